@@ -1,0 +1,17 @@
+"""ebantenna: a vibrating antenna probe, from Euler-Bernoulli beam elements to material classification.
+
+Subpackages, in the order the data flows:
+
+- :mod:`ebantenna.fem`: beam elements derived with sympy, assembly, modal analysis, exact reference;
+- :mod:`ebantenna.simulate`: scene-based simulator of the tip accelerometer;
+- :mod:`ebantenna.signal`: features, filters, decay fit, time-frequency views, tracking;
+- :mod:`ebantenna.ml`: hand-written SMO kernel SVM and NumPy MLP;
+- :mod:`ebantenna.device`: MPU6050 and PCA9685 drivers, with a simulated I2C bus.
+"""
+
+from .probe import MATERIALS, Material, Probe, material
+from .recording import Recording
+
+__version__ = "0.1.0"
+
+__all__ = ["Probe", "Material", "MATERIALS", "material", "Recording", "__version__"]

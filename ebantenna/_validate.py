@@ -1,0 +1,122 @@
+"""Input validation shared by the whole package.
+
+Every public function checks its arguments at the boundary with these helpers, so that bad input
+raises a :class:`ValueError` or :class:`TypeError` that names the parameter, the allowed range and the
+value given, instead of a NaN or a traceback from deep inside NumPy.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+from numbers import Real
+
+import numpy as np
+
+__all__ = [
+    "check_real",
+    "check_positive",
+    "check_nonnegative",
+    "check_in_range",
+    "check_int",
+    "check_choice",
+    "check_array",
+]
+
+
+def check_real(name: str, value, *, allow_inf: bool = False) -> float:
+    """Return ``value`` as a float; raise if it is not a real number (or is NaN / inf)."""
+    if isinstance(value, bool) or not isinstance(value, Real | np.floating | np.integer):
+        raise TypeError(f"{name} must be a real number, got {value!r} ({type(value).__name__})")
+    value = float(value)
+    if math.isnan(value) or (math.isinf(value) and not allow_inf):
+        raise ValueError(f"{name} must be a finite number, got {value!r}")
+    return value
+
+
+def check_positive(name: str, value, *, allow_inf: bool = False) -> float:
+    """Return ``value`` as a float; raise unless ``0 < value`` (``< inf`` unless allowed)."""
+    value = check_real(name, value, allow_inf=allow_inf)
+    if not value > 0:
+        raise ValueError(f"{name} must be > 0, got {value!r}")
+    return value
+
+
+def check_nonnegative(name: str, value, *, allow_inf: bool = False) -> float:
+    """Return ``value`` as a float; raise unless ``0 <= value``."""
+    value = check_real(name, value, allow_inf=allow_inf)
+    if not value >= 0:
+        raise ValueError(f"{name} must be >= 0, got {value!r}")
+    return value
+
+
+def check_in_range(
+    name: str,
+    value,
+    low: float,
+    high: float,
+    *,
+    low_inclusive: bool = False,
+    high_inclusive: bool = False,
+) -> float:
+    """Return ``value`` as a float; raise unless it lies in the interval from ``low`` to ``high``."""
+    value = check_real(name, value)
+    above = value >= low if low_inclusive else value > low
+    below = value <= high if high_inclusive else value < high
+    if not (above and below):
+        left = "[" if low_inclusive else "("
+        right = "]" if high_inclusive else ")"
+        raise ValueError(f"{name} must lie in {left}{low:g}, {high:g}{right}, got {value!r}")
+    return value
+
+
+def check_int(name: str, value, *, minimum: int | None = None, maximum: int | None = None) -> int:
+    """Return ``value`` as an int; raise unless it is an integer within the given bounds."""
+    if isinstance(value, bool) or not isinstance(value, int | np.integer):
+        raise TypeError(f"{name} must be an integer, got {value!r} ({type(value).__name__})")
+    value = int(value)
+    if minimum is not None and value < minimum:
+        raise ValueError(f"{name} must be >= {minimum}, got {value}")
+    if maximum is not None and value > maximum:
+        raise ValueError(f"{name} must be <= {maximum}, got {value}")
+    return value
+
+
+def check_choice(name: str, value, choices: Iterable[str]) -> str:
+    """Return ``value``; raise unless it is one of ``choices`` (listing them)."""
+    choices = tuple(choices)
+    if value not in choices:
+        valid = ", ".join(repr(c) for c in choices)
+        raise ValueError(f"{name} must be one of {valid}; got {value!r}")
+    return value
+
+
+def check_array(
+    name: str,
+    value,
+    *,
+    ndim: int | tuple[int, ...] | None = None,
+    min_length: int = 1,
+    finite: bool = True,
+    dtype=np.float64,
+) -> np.ndarray:
+    """Return ``value`` as a NumPy array of ``dtype``; raise on wrong shape, emptiness or NaN/inf.
+
+    ``min_length`` applies to the last axis. The array is converted, never modified in place.
+    """
+    try:
+        array = np.asarray(value, dtype=dtype)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be array-like of numbers, got {type(value).__name__}") from exc
+    if ndim is not None:
+        allowed = (ndim,) if isinstance(ndim, int) else tuple(ndim)
+        if array.ndim not in allowed:
+            raise ValueError(
+                f"{name} must have {' or '.join(map(str, allowed))} dimension(s), "
+                f"got shape {array.shape}"
+            )
+    if array.size == 0 or (array.ndim > 0 and array.shape[-1] < min_length):
+        raise ValueError(f"{name} must have at least {min_length} samples, got shape {array.shape}")
+    if finite and not np.all(np.isfinite(array)):
+        raise ValueError(f"{name} must contain only finite values (no NaN or inf)")
+    return array

@@ -1,0 +1,92 @@
+"""`Recording`: the accelerations of the probe tip, as the simulator or the device delivers them."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ._validate import check_array, check_positive
+
+__all__ = ["Recording"]
+
+
+@dataclass(frozen=True, eq=False)
+class Recording:
+    """Tip accelerations in the sweep plane (X) and across it (Z), sampled at ``fs``.
+
+    Parameters
+    ----------
+    t : array of shape (n,)
+        Sample times, s.
+    ax, az : arrays of shape (n,)
+        Accelerations along X and Z, m/s^2.
+    fs : float
+        Nominal sampling frequency, Hz.
+    metadata : dict
+        JSON-serialisable description of where the data came from (scene, seed, device, samples lost).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ebantenna.recording import Recording
+    >>> t = np.arange(4) / 1000.0
+    >>> rec = Recording(t, np.zeros(4), np.ones(4), fs=1000.0)
+    >>> rec.n_samples, rec.duration
+    (4, 0.004)
+    """
+
+    t: np.ndarray
+    ax: np.ndarray
+    az: np.ndarray
+    fs: float
+    metadata: dict = field(default_factory=dict)
+
+    def __post_init__(self):
+        t = check_array("t", self.t, ndim=1)
+        ax = check_array("ax", self.ax, ndim=1)
+        az = check_array("az", self.az, ndim=1)
+        if not (t.shape == ax.shape == az.shape):
+            raise ValueError(
+                f"t, ax and az must have the same length, got {t.shape}, {ax.shape}, {az.shape}"
+            )
+        for name, value in (("t", t), ("ax", ax), ("az", az)):
+            value.setflags(write=False)
+            object.__setattr__(self, name, value)
+        object.__setattr__(self, "fs", check_positive("fs", self.fs))
+        try:
+            json.dumps(self.metadata)
+        except TypeError as exc:
+            raise TypeError(f"metadata must be JSON-serialisable: {exc}") from exc
+
+    @property
+    def n_samples(self) -> int:
+        """Number of samples."""
+        return int(self.t.shape[0])
+
+    @property
+    def duration(self) -> float:
+        """Nominal duration ``n_samples / fs``, s."""
+        return self.n_samples / self.fs
+
+    def save(self, path) -> Path:
+        """Save as a compressed ``.npz`` (arrays ``t``, ``ax``, ``az``, ``fs`` and JSON ``metadata``)."""
+        path = Path(path)
+        np.savez_compressed(
+            path,
+            t=self.t,
+            ax=self.ax,
+            az=self.az,
+            fs=np.float64(self.fs),
+            metadata=np.array(json.dumps(self.metadata, sort_keys=True)),
+        )
+        return path
+
+    @classmethod
+    def load(cls, path) -> Recording:
+        """Load a recording written by :meth:`save` (never unpickles anything)."""
+        with np.load(Path(path), allow_pickle=False) as data:
+            metadata = json.loads(str(data["metadata"])) if "metadata" in data else {}
+            return cls(data["t"], data["ax"], data["az"], float(data["fs"]), metadata)

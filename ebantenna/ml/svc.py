@@ -1,0 +1,386 @@
+"""``SVC``: a kernel support vector classifier trained by hand-written SMO.
+
+A drop-in for :class:`sklearn.svm.SVC` (C-SVC, no probability estimates): the same parameter
+names, one-vs-one multiclass training and the same fitted attributes, layout and signs, so that a
+student can swap the import and compare. The dual problems are solved by
+:func:`ebantenna.ml.smo.solve_smo`.
+"""
+
+from __future__ import annotations
+
+import logging
+import warnings
+from numbers import Integral, Real
+
+import numpy as np
+from sklearn.base import BaseEstimator, ClassifierMixin
+from sklearn.exceptions import ConvergenceWarning
+from sklearn.utils.class_weight import compute_class_weight
+from sklearn.utils.multiclass import check_classification_targets
+from sklearn.utils.validation import (
+    _check_sample_weight,
+    check_is_fitted,
+    column_or_1d,
+    validate_data,
+)
+
+from .._validate import check_choice, check_positive
+from .kernels import KERNELS, Kernel, resolve_gamma
+from .smo import SELECTIONS, KernelRows, solve_smo
+
+__all__ = ["SVC", "ovr_decision_function"]
+
+logger = logging.getLogger(__name__)
+
+#: libsvm's own cap on the number of SMO updates when ``max_iter=-1``.
+_LIBSVM_MAX_ITER = 10_000_000
+
+
+def ovr_decision_function(predictions: np.ndarray, confidences: np.ndarray, n_classes: int):
+    """One-vs-rest scores from one-vs-one results, aggregated as scikit-learn does.
+
+    Each class gets its number of pairwise votes plus a tie-breaking term
+    :math:`s / (3(|s| + 1))` in :math:`(-1/3, 1/3)`, where :math:`s` is its summed confidence.
+
+    Parameters
+    ----------
+    predictions : ndarray of shape (n_samples, n_pairs)
+        0 where the pair's first class won, 1 where the second did.
+    confidences : ndarray of shape (n_samples, n_pairs)
+        Confidence in the second class of each pair.
+    n_classes : int
+        Number of classes; the pairs are ``(0, 1), (0, 2), ..., (1, 2), ...``.
+
+    Examples
+    --------
+    >>> ovr_decision_function(np.array([[0, 0, 1]]), np.array([[-1.0, -2.0, 0.5]]), 3)
+    array([[2.25      , 0.22222222, 1.        ]])
+    """
+    n = predictions.shape[0]
+    votes = np.zeros((n, n_classes))
+    conf = np.zeros((n, n_classes))
+    k = 0
+    for i in range(n_classes):
+        for j in range(i + 1, n_classes):
+            conf[:, i] -= confidences[:, k]
+            conf[:, j] += confidences[:, k]
+            votes[predictions[:, k] == 0, i] += 1
+            votes[predictions[:, k] == 1, j] += 1
+            k += 1
+    return votes + conf / (3 * (np.abs(conf) + 1))
+
+
+class SVC(ClassifierMixin, BaseEstimator):
+    """C-support vector classifier with a hand-written SMO solver.
+
+    Parameters
+    ----------
+    C : float, default=1.0
+        Penalty of the slack variables (upper bound of the dual variables), > 0.
+    kernel : {'rbf', 'linear', 'poly'}, default='rbf'
+        Kernel function (see :mod:`ebantenna.ml.kernels`).
+    degree : int, default=3
+        Degree of the 'poly' kernel.
+    gamma : {'scale', 'auto'} or float, default='scale'
+        Kernel coefficient, as in scikit-learn: 'scale' is ``1 / (n_features * X.var())``.
+    coef0 : float, default=0.0
+        Constant term of the 'poly' kernel.
+    shrinking : bool, default=True
+        Accepted for compatibility with scikit-learn. The solver keeps every variable active
+        (libsvm with ``shrinking=False``); the solution is the same within ``tol``.
+    tol : float, default=1e-3
+        Stopping tolerance on the maximal KKT violation.
+    cache_size : float, default=200
+        Memory for kernel entries, in MB. The whole kernel matrix is built with one matrix product
+        when it fits (in float64 if that fits too, unless ``libsvm_compat``), otherwise rows are
+        computed on demand and the least recently used are dropped.
+    class_weight : dict or 'balanced', default=None
+        Multiply ``C`` by this weight for the samples of each class.
+    verbose : bool, default=False
+        Log each binary problem at INFO level.
+    max_iter : int, default=-1
+        Largest number of SMO updates per binary problem; -1 means libsvm's own cap
+        (``max(1e7, 100 n)``). Stopping there raises a ``ConvergenceWarning``.
+    decision_function_shape : {'ovr', 'ovo'}, default='ovr'
+        Shape of :meth:`decision_function` with more than two classes: the raw one-vs-one values,
+        or one-vs-rest scores aggregated from their votes.
+    break_ties : bool, default=False
+        With 'ovr' and more than two classes, predict the argmax of the decision function instead
+        of the majority vote.
+    random_state : None
+        Accepted for compatibility; the solver is deterministic.
+    selection : {'second-order', 'first-order'}, default='second-order'
+        Working-set selection: libsvm's second-order rule or the maximal violating pair.
+    libsvm_compat : bool, default=False
+        Follow libsvm's arithmetic (float32 kernel storage, ties broken by the last index,
+        sequential bias sum) so that scikit-learn's ``SVC(shrinking=False)`` is reproduced to about
+        1e-12 with the same iteration counts. See :mod:`ebantenna.ml.smo` for what each convention
+        changes.
+
+    Attributes
+    ----------
+    classes_ : ndarray of shape (n_classes,)
+    support_ : ndarray of shape (n_SV,)
+        Indices of the support vectors, grouped by class.
+    support_vectors_ : ndarray of shape (n_SV, n_features)
+    n_support_ : ndarray of shape (n_classes,), int32
+    dual_coef_ : ndarray of shape (n_classes - 1, n_SV)
+        :math:`y_t\\alpha_t` in libsvm's one-vs-one layout (sign flipped for two classes, as
+        scikit-learn does).
+    intercept_ : ndarray of shape (n_classes * (n_classes - 1) / 2,)
+    n_iter_ : ndarray of shape (n_classes * (n_classes - 1) / 2,)
+        SMO updates per binary problem.
+    fit_status_ : int
+        0 if every problem converged, 1 otherwise.
+    class_weight_ : ndarray of shape (n_classes,)
+    shape_fit_ : tuple
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> rng = np.random.default_rng(0)
+    >>> X = np.vstack([rng.normal(-2, 1, (20, 2)), rng.normal(2, 1, (20, 2))])
+    >>> y = np.repeat([0, 1], 20)
+    >>> clf = SVC(kernel="rbf", C=1.0).fit(X, y)
+    >>> clf.score(X, y)
+    1.0
+    >>> clf.predict([[-2.0, -2.0], [2.0, 2.0]])
+    array([0, 1])
+    """
+
+    _parameter_constraints: dict = {}
+
+    def __init__(
+        self,
+        *,
+        C=1.0,
+        kernel="rbf",
+        degree=3,
+        gamma="scale",
+        coef0=0.0,
+        shrinking=True,
+        tol=1e-3,
+        cache_size=200,
+        class_weight=None,
+        verbose=False,
+        max_iter=-1,
+        decision_function_shape="ovr",
+        break_ties=False,
+        random_state=None,
+        selection="second-order",
+        libsvm_compat=False,
+    ):
+        self.C = C
+        self.kernel = kernel
+        self.degree = degree
+        self.gamma = gamma
+        self.coef0 = coef0
+        self.shrinking = shrinking
+        self.tol = tol
+        self.cache_size = cache_size
+        self.class_weight = class_weight
+        self.verbose = verbose
+        self.max_iter = max_iter
+        self.decision_function_shape = decision_function_shape
+        self.break_ties = break_ties
+        self.random_state = random_state
+        self.selection = selection
+        self.libsvm_compat = libsvm_compat
+
+    # ------------------------------------------------------------------ checks
+    def _check_params(self):
+        check_positive("C", self.C)
+        check_choice("kernel", self.kernel, KERNELS)
+        if isinstance(self.degree, bool) or not isinstance(self.degree, Integral):
+            raise TypeError(f"degree must be an integer >= 0, got {self.degree!r}")
+        if self.degree < 0:
+            raise ValueError(f"degree must be >= 0, got {self.degree!r}")
+        if not isinstance(self.coef0, Real) or isinstance(self.coef0, bool):
+            raise TypeError(f"coef0 must be a real number, got {self.coef0!r}")
+        check_positive("tol", self.tol)
+        check_positive("cache_size", self.cache_size)
+        if isinstance(self.max_iter, bool) or not isinstance(self.max_iter, Integral):
+            raise TypeError(f"max_iter must be an integer (-1 or >= 1), got {self.max_iter!r}")
+        if self.max_iter == 0 or self.max_iter < -1:
+            raise ValueError(f"max_iter must be -1 or >= 1, got {self.max_iter!r}")
+        check_choice("decision_function_shape", self.decision_function_shape, ("ovr", "ovo"))
+        check_choice("selection", self.selection, SELECTIONS)
+        if self.break_ties and self.decision_function_shape == "ovo":
+            raise ValueError("break_ties must be False when decision_function_shape is 'ovo'")
+
+    # --------------------------------------------------------------------- fit
+    def fit(self, X, y, sample_weight=None):
+        """Train one binary SVM per pair of classes.
+
+        Parameters
+        ----------
+        X : array-like of shape (n_samples, n_features)
+            Training features.
+        y : array-like of shape (n_samples,)
+            Class labels.
+        sample_weight : array-like of shape (n_samples,), optional
+            Per-sample multiplier of ``C``; samples with weight <= 0 are left out.
+
+        Returns
+        -------
+        self
+        """
+        self._check_params()
+        X, y = validate_data(self, X, y, dtype=np.float64, order="C", accept_sparse=False)
+        y = column_or_1d(y, warn=True)
+        check_classification_targets(y)
+        classes, y_idx = np.unique(y, return_inverse=True)
+        self.classes_ = classes
+        if classes.size < 2:
+            raise ValueError(
+                f"The number of classes has to be greater than one; got {classes.size} class"
+            )
+        self.class_weight_ = compute_class_weight(self.class_weight, classes=classes, y=y)
+        sw = _check_sample_weight(sample_weight, X, dtype=np.float64)
+        self._gamma = resolve_gamma(self.gamma, X)
+        kern = Kernel(self.kernel, gamma=self._gamma, degree=int(self.degree),
+                      coef0=float(self.coef0))
+        c_vec = float(self.C) * self.class_weight_[y_idx] * sw
+        keep = c_vec > 0
+        n = X.shape[0]
+        cache_bytes = int(float(self.cache_size) * 2**20)
+        n_keep = int(keep.sum())
+        if self.libsvm_compat or n_keep * n_keep * 8 > cache_bytes:
+            dtype = np.float32
+        else:
+            dtype = np.float64
+        kept = np.flatnonzero(keep)
+        full = None
+        if n_keep * n_keep * np.dtype(dtype).itemsize <= cache_bytes:
+            full = kern.gram(X[kept], dtype=dtype)
+        diag = kern.diagonal(X)
+        max_iter = _LIBSVM_MAX_ITER if self.max_iter == -1 else int(self.max_iter)
+        max_iter = max(max_iter, 100 * n) if self.max_iter == -1 else max_iter
+        # position of each kept sample inside `full`
+        where = np.full(n, -1)
+        where[kept] = np.arange(n_keep)
+        members = [np.flatnonzero((y_idx == c) & keep) for c in range(classes.size)]
+        if any(m.size == 0 for m in members):
+            raise ValueError("every class needs at least one sample with a positive weight")
+        k = classes.size
+        coefs = {}
+        rhos, n_iter, status = [], [], 0
+        for a in range(k):
+            for b in range(a + 1, k):
+                idx = np.concatenate([members[a], members[b]])
+                ys = np.concatenate([np.ones(members[a].size), -np.ones(members[b].size)])
+                if full is not None:
+                    sub = full[np.ix_(where[idx], where[idx])]
+                    rows = KernelRows(None, kern, dtype, cache_bytes, full=sub)
+                else:
+                    rows = KernelRows(X[idx], kern, dtype, cache_bytes)
+                res = solve_smo(rows, ys, c_vec[idx], diagonal=diag[idx], tol=float(self.tol),
+                                max_iter=max_iter, selection=self.selection,
+                                ties_last=bool(self.libsvm_compat))
+                if self.verbose:
+                    logger.info("classes (%r, %r): %d updates, %d support vectors", classes[a],
+                                classes[b], res.n_iter, int(np.count_nonzero(res.alpha)))
+                if not res.converged:
+                    status = 1
+                coefs[a, b] = (idx, res.alpha * ys)
+                rhos.append(res.rho)
+                n_iter.append(res.n_iter)
+        self._store(X, classes, members, coefs, np.array(rhos), n_iter)
+        self.fit_status_ = status
+        self.shape_fit_ = X.shape
+        if status:
+            warnings.warn(
+                f"Solver terminated early (max_iter={self.max_iter}).  Consider pre-processing "
+                "your data with StandardScaler or MinMaxScaler.",
+                ConvergenceWarning,
+                stacklevel=2,
+            )
+        if not (np.isfinite(self._dual_coef_).all() and np.isfinite(self._intercept_).all()):
+            raise ValueError("The dual coefficients or intercepts are not finite. The input data "
+                             "may contain large values and need to be preprocessed.")
+        return self
+
+    def _store(self, X, classes, members, coefs, rhos, n_iter):
+        """Arrange the pairwise solutions in libsvm's (and scikit-learn's) layout."""
+        k = classes.size
+        nonzero = np.zeros(X.shape[0], dtype=bool)
+        for idx, coef in coefs.values():
+            nonzero[idx[coef != 0]] = True
+        sv_per_class = [m[nonzero[m]] for m in members]
+        support = np.concatenate(sv_per_class)
+        pos = np.full(X.shape[0], -1)
+        pos[support] = np.arange(support.size)
+        dual = np.zeros((k - 1, support.size))
+        for (a, b), (idx, coef) in coefs.items():
+            na = members[a].size
+            ia, ib = idx[:na], idx[na:]
+            sa, sb = nonzero[ia], nonzero[ib]
+            dual[b - 1, pos[ia[sa]]] = coef[:na][sa]
+            dual[a, pos[ib[sb]]] = coef[na:][sb]
+        self.support_ = support.astype(np.int32)
+        self.support_vectors_ = X[support]
+        self.n_support_ = np.array([s.size for s in sv_per_class], dtype=np.int32)
+        self._dual_coef_ = dual
+        self._intercept_ = -rhos
+        self.n_iter_ = np.array(n_iter, dtype=np.int32)
+        if k == 2:
+            self.dual_coef_ = -dual
+            self.intercept_ = rhos.copy()
+        else:
+            self.dual_coef_ = dual
+            self.intercept_ = -rhos
+
+    # ----------------------------------------------------------------- predict
+    def _kernel(self) -> Kernel:
+        return Kernel(self.kernel, gamma=self._gamma, degree=int(self.degree),
+                      coef0=float(self.coef0))
+
+    def _ovo_decision(self, X) -> np.ndarray:
+        """libsvm's pairwise decision values (positive: the pair's first class)."""
+        check_is_fitted(self)
+        X = validate_data(self, X, dtype=np.float64, order="C", reset=False)
+        kx = self._kernel().gram(X, self.support_vectors_)
+        k = self.classes_.size
+        bounds = np.concatenate([[0], np.cumsum(self.n_support_)])
+        out = np.empty((X.shape[0], k * (k - 1) // 2))
+        p = 0
+        for a in range(k):
+            for b in range(a + 1, k):
+                sa = slice(bounds[a], bounds[a + 1])
+                sb = slice(bounds[b], bounds[b + 1])
+                out[:, p] = (kx[:, sa] @ self._dual_coef_[b - 1, sa]
+                             + kx[:, sb] @ self._dual_coef_[a, sb] + self._intercept_[p])
+                p += 1
+        return out
+
+    def decision_function(self, X):
+        """Signed distances to the separating surfaces.
+
+        Returns
+        -------
+        ndarray of shape (n_samples,) for two classes (positive: ``classes_[1]``), otherwise
+        (n_samples, n_classes) for 'ovr' or (n_samples, n_classes * (n_classes - 1) / 2) for 'ovo'.
+        """
+        dec = self._ovo_decision(X)
+        k = self.classes_.size
+        if k == 2:
+            return -dec.ravel()
+        if self.decision_function_shape == "ovr":
+            return ovr_decision_function(dec < 0, -dec, k)
+        return dec
+
+    def predict(self, X):
+        """Class labels by one-vs-one majority vote (ties: the first class)."""
+        dec = self._ovo_decision(X)
+        k = self.classes_.size
+        if self.break_ties and self.decision_function_shape == "ovr" and k > 2:
+            return self.classes_[np.argmax(ovr_decision_function(dec < 0, -dec, k), axis=1)]
+        votes = np.zeros((dec.shape[0], k), dtype=np.int64)
+        p = 0
+        for a in range(k):
+            for b in range(a + 1, k):
+                win = dec[:, p] > 0
+                votes[win, a] += 1
+                votes[~win, b] += 1
+                p += 1
+        return self.classes_[np.argmax(votes, axis=1)]

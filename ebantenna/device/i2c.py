@@ -1,0 +1,222 @@
+"""Register access to one I2C chip, with bounded retries of transient bus errors.
+
+Both drivers talk to their chip through an :class:`I2CDevice`, which wraps any object with the
+subset of the :class:`smbus2.SMBus` API used here (``read_byte_data``, ``write_byte_data``,
+``read_i2c_block_data``, ``write_i2c_block_data`` and ``i2c_rdwr``): the real bus on a Raspberry Pi,
+or :class:`ebantenna.device.simbus.SimulatedBus` anywhere else.
+
+A noisy I2C line makes the kernel report ``OSError`` with errno 121 (``EREMOTEIO``, "Remote I/O
+error": the chip did not acknowledge), 5 (``EIO``), 110 (``ETIMEDOUT``) or 11 (``EAGAIN``, bus
+arbitration lost). These are retried with an exponential back-off that is bounded both in the number
+of attempts and in the longest wait; when the attempts are used up an :class:`I2CError` names the
+chip, the register, the operation and the last error. Every retry is counted in
+:attr:`I2CDevice.retries` and logged, so that nothing is lost silently. Other errors (a missing
+bus, a wrong address, a permission problem) are not retried.
+"""
+
+from __future__ import annotations
+
+import errno
+import logging
+from dataclasses import dataclass
+
+from .._validate import check_int, check_nonnegative, check_positive
+from .clock import SystemClock
+
+__all__ = ["RetryPolicy", "I2CError", "I2CDevice", "TRANSIENT_ERRNOS", "SMBUS_BLOCK_MAX"]
+
+logger = logging.getLogger(__name__)
+
+#: errno values treated as transient bus noise (retried).
+TRANSIENT_ERRNOS = frozenset({errno.EREMOTEIO, errno.EIO, errno.ETIMEDOUT, errno.EAGAIN})
+
+#: The SMBus protocol carries at most 32 data bytes per block transfer.
+SMBUS_BLOCK_MAX = 32
+
+
+class I2CError(OSError):
+    """A bus transfer that still failed after every permitted retry."""
+
+
+@dataclass(frozen=True)
+class RetryPolicy:
+    """How often, and after which waits, a transient I2C error is retried.
+
+    The wait before retry ``k`` (``k = 1, 2, ...``) is ``min(initial_delay * factor**(k-1),
+    max_delay)``, so the total time spent waiting is bounded by ``(attempts - 1) * max_delay``.
+
+    Parameters
+    ----------
+    attempts : int
+        Total number of tries of one transfer, >= 1. Default 5.
+    initial_delay : float
+        Wait before the first retry, s. Default 0.5 ms.
+    factor : float
+        Growth of the wait from one retry to the next, >= 1. Default 2.
+    max_delay : float
+        Longest single wait, s. Default 20 ms.
+
+    Examples
+    --------
+    >>> from ebantenna.device.i2c import RetryPolicy
+    >>> RetryPolicy(attempts=4, initial_delay=0.001, factor=3.0, max_delay=0.005).delays()
+    (0.001, 0.003, 0.005)
+    """
+
+    attempts: int = 5
+    initial_delay: float = 5e-4
+    factor: float = 2.0
+    max_delay: float = 0.02
+
+    def __post_init__(self):
+        check_int("attempts", self.attempts, minimum=1)
+        check_nonnegative("initial_delay", self.initial_delay)
+        check_positive("factor", self.factor)
+        if self.factor < 1:
+            raise ValueError(f"factor must be >= 1, got {self.factor!r}")
+        check_nonnegative("max_delay", self.max_delay)
+
+    def delays(self) -> tuple[float, ...]:
+        """The waits before each retry, s (``attempts - 1`` of them)."""
+        return tuple(
+            min(self.initial_delay * self.factor**k, self.max_delay)
+            for k in range(self.attempts - 1)
+        )
+
+
+def _check_byte(name: str, value) -> int:
+    return check_int(name, value, minimum=0, maximum=255)
+
+
+class I2CDevice:
+    """One chip at one address on a bus, with retried register reads and writes.
+
+    Parameters
+    ----------
+    bus : smbus2.SMBus or compatible
+        The open bus.
+    address : int
+        7-bit I2C address of the chip, 0x03-0x77.
+    retry : RetryPolicy, optional
+        Retry policy for transient errors. Default :class:`RetryPolicy()`.
+    clock : clock, optional
+        Supplies ``sleep`` for the back-off. Default :class:`~ebantenna.device.clock.SystemClock`.
+    use_rdwr : bool
+        Read long blocks in one combined ``i2c_rdwr`` transfer instead of 32-byte SMBus blocks.
+
+    Examples
+    --------
+    >>> from ebantenna.device.simbus import SimulatedRig
+    >>> from ebantenna.device.i2c import I2CDevice
+    >>> rig = SimulatedRig.quiet()
+    >>> I2CDevice(rig.bus, 0x68, clock=rig.clock).read_byte(0x75) == 0x68  # MPU-6050 WHO_AM_I
+    True
+    """
+
+    def __init__(self, bus, address: int, *, retry: RetryPolicy | None = None, clock=None,
+                 use_rdwr: bool = False):
+        self.bus = bus
+        self.address = check_int("address", address, minimum=0x03, maximum=0x77)
+        self.retry = RetryPolicy() if retry is None else retry
+        if not isinstance(self.retry, RetryPolicy):
+            raise TypeError(f"retry must be a RetryPolicy, got {type(retry).__name__}")
+        self.clock = SystemClock() if clock is None else clock
+        self.use_rdwr = bool(use_rdwr)
+        #: Number of transient errors that were retried.
+        self.retries = 0
+
+    def _transfer(self, what: str, register: int, call):
+        delays = self.retry.delays()
+        for attempt in range(self.retry.attempts):
+            try:
+                return call()
+            except OSError as exc:
+                if exc.errno not in TRANSIENT_ERRNOS:
+                    raise
+                if attempt == len(delays):
+                    hint = (" (no acknowledge: check the wiring, the power and the address)"
+                            if exc.errno == errno.EREMOTEIO else "")
+                    raise I2CError(
+                        exc.errno,
+                        f"I2C {what} of register 0x{register:02X} at address 0x{self.address:02X} "
+                        f"failed after {self.retry.attempts} attempts: {exc.strerror or exc}{hint}",
+                    ) from exc
+                self.retries += 1
+                logger.warning(
+                    "I2C %s of register 0x%02X at 0x%02X: %s; retry %d of %d in %.1f ms",
+                    what, register, self.address, exc, attempt + 1, len(delays),
+                    1e3 * delays[attempt],
+                )
+                self.clock.sleep(delays[attempt])
+        raise AssertionError("unreachable")  # pragma: no cover
+
+    def read_byte(self, register: int) -> int:
+        """Read one register."""
+        register = _check_byte("register", register)
+        return int(self._transfer(
+            "read", register, lambda: self.bus.read_byte_data(self.address, register)))
+
+    def write_byte(self, register: int, value: int) -> None:
+        """Write one register."""
+        register = _check_byte("register", register)
+        value = _check_byte("value", value)
+        self._transfer(
+            "write", register, lambda: self.bus.write_byte_data(self.address, register, value))
+
+    def write_block(self, register: int, data) -> None:
+        """Write up to 32 bytes to consecutive registers in one transfer (one I2C STOP)."""
+        register = _check_byte("register", register)
+        data = [_check_byte("data", b) for b in data]
+        if not 1 <= len(data) <= SMBUS_BLOCK_MAX:
+            raise ValueError(f"data must hold 1 to {SMBUS_BLOCK_MAX} bytes, got {len(data)}")
+        self._transfer(
+            "block write", register,
+            lambda: self.bus.write_i2c_block_data(self.address, register, data))
+
+    def read_block(self, register: int, length: int, *, increment: bool = True,
+                   chunk: int = SMBUS_BLOCK_MAX) -> bytes:
+        """Read ``length`` bytes starting at ``register``, in one burst or a few.
+
+        Reading several registers in one burst is what keeps a multi-byte sample whole: the chip
+        latches all of them for the duration of the transfer, whereas separate one-byte reads can
+        mix the high byte of one sample with the low byte of the next.
+
+        Parameters
+        ----------
+        register : int
+            First register.
+        length : int
+            Number of bytes, >= 1.
+        increment : bool
+            True for ordinary registers, whose address auto-increments (a read longer than
+            ``chunk`` continues at ``register + offset``); False for a FIFO data port, which
+            delivers successive bytes at one address.
+        chunk : int
+            Longest SMBus block transfer, 1-32 bytes. A FIFO of 6-byte samples is best drained in
+            30-byte chunks so that a transfer never splits a sample.
+
+        With ``use_rdwr`` the whole read is one combined ``i2c_rdwr`` transfer of any length.
+        """
+        register = _check_byte("register", register)
+        length = check_int("length", length, minimum=1)
+        chunk = check_int("chunk", chunk, minimum=1, maximum=SMBUS_BLOCK_MAX)
+        if increment and register + length > 256:
+            raise ValueError(f"register 0x{register:02X} + length {length} runs past 0xFF")
+        if self.use_rdwr:
+            from smbus2 import i2c_msg
+
+            def call():
+                write = i2c_msg.write(self.address, [register])
+                read = i2c_msg.read(self.address, length)
+                self.bus.i2c_rdwr(write, read)
+                return bytes(read)
+
+            return self._transfer("combined read", register, call)
+        out = bytearray()
+        while len(out) < length:
+            n = min(chunk, length - len(out))
+            start = register + len(out) if increment else register
+            out += bytes(self._transfer(
+                "block read", start,
+                lambda n=n, start=start: self.bus.read_i2c_block_data(self.address, start, n)))
+        return bytes(out)

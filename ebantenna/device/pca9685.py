@@ -1,0 +1,188 @@
+"""Driver for the NXP PCA9685 16-channel, 12-bit PWM controller that drives the pan-tilt servos.
+
+Register numbers, bits and the procedures follow the *PCA9685 Product data sheet*, revision 4,
+16 April 2015 (NXP), cited as "DS" with its section numbers.
+
+PWM frequency (DS 7.3.5)
+------------------------
+    prescale = round(osc_clock / (4096 * update_rate)) - 1,
+
+with the internal oscillator at 25 MHz: 121 for 50 Hz, which gives 25 MHz / (4096 * 122) = 50.03 Hz.
+``PRE_SCALE`` can only be written while ``MODE1.SLEEP`` is 1, so the sequence is: sleep, write the
+prescale, wake, wait 500 us for the oscillator (DS 7.3.1.1), then write ``RESTART``.
+
+Pulse widths (DS 7.3.3)
+-----------------------
+Each channel has four registers ``LEDn_ON_L/H``, ``LEDn_OFF_L/H`` at ``0x06 + 4 n``: the output
+goes high at count ON and low at count OFF of each 4096-count period. A servo pulse of width ``w``
+seconds is ``ON = 0``, ``OFF = round(w * f * 4096)``. The four bytes are written in one
+auto-incremented block transfer, and ``MODE2.OCH = 0`` makes the outputs change at the I2C STOP, so
+a pulse is never half updated. Bit 4 of ``LEDn_OFF_H`` (full OFF) switches a channel off;
+``ALL_LED_OFF_H`` does so for all 16 channels at once, which is how the servos are released.
+"""
+
+from __future__ import annotations
+
+import logging
+
+from .._validate import check_int, check_nonnegative, check_positive
+from .clock import SystemClock
+from .i2c import I2CDevice, RetryPolicy
+
+__all__ = ["PCA9685", "prescale_for", "pwm_frequency"]
+
+logger = logging.getLogger(__name__)
+
+MODE1 = 0x00
+MODE2 = 0x01
+LED0_ON_L = 0x06
+ALL_LED_ON_L = 0xFA
+ALL_LED_OFF_H = 0xFD
+PRE_SCALE = 0xFE
+
+MODE1_RESTART = 0x80
+MODE1_AI = 0x20
+MODE1_SLEEP = 0x10
+MODE2_OUTDRV = 0x04
+FULL_BIT = 0x10
+
+#: Nominal internal oscillator, Hz (DS 7.3.5).
+OSCILLATOR_HZ = 25e6
+N_CHANNELS = 16
+
+
+def prescale_for(frequency: float, oscillator_hz: float = OSCILLATOR_HZ) -> int:
+    """``PRE_SCALE`` for a PWM ``frequency`` (Hz), DS equation 1.
+
+    Raises
+    ------
+    ValueError
+        When the result falls outside the register's 3-255 (about 24-1526 Hz at 25 MHz).
+
+    Examples
+    --------
+    >>> from ebantenna.device.pca9685 import prescale_for
+    >>> prescale_for(50.0), prescale_for(200.0), prescale_for(1526.0)
+    (121, 30, 3)
+    """
+    frequency = check_positive("frequency", frequency)
+    oscillator_hz = check_positive("oscillator_hz", oscillator_hz)
+    value = round(oscillator_hz / (4096.0 * frequency)) - 1
+    if not 3 <= value <= 255:
+        low = oscillator_hz / (4096.0 * 256)
+        high = oscillator_hz / (4096.0 * 4)
+        raise ValueError(f"frequency must lie in [{low:.1f}, {high:.1f}] Hz, got {frequency!r}")
+    return value
+
+
+def pwm_frequency(prescale: int, oscillator_hz: float = OSCILLATOR_HZ) -> float:
+    """The PWM frequency that ``PRE_SCALE = prescale`` actually gives, Hz.
+
+    Examples
+    --------
+    >>> from ebantenna.device.pca9685 import pwm_frequency
+    >>> round(pwm_frequency(121), 3)
+    50.029
+    """
+    prescale = check_int("prescale", prescale, minimum=3, maximum=255)
+    return check_positive("oscillator_hz", oscillator_hz) / (4096.0 * (prescale + 1))
+
+
+class PCA9685:
+    """The PWM controller.
+
+    Parameters
+    ----------
+    bus : smbus2.SMBus or compatible
+        The open I2C bus.
+    address : int
+        I2C address; 0x40 with all address pins low (default).
+    frequency : float
+        PWM frequency, Hz. Default 50 Hz, the servo frame rate.
+    oscillator_hz : float
+        The oscillator's actual frequency, Hz, if calibrated; default the nominal 25 MHz.
+    retry : RetryPolicy, optional
+        Retries of transient bus errors.
+    clock : clock, optional
+        ``sleep`` provider. Default the system clock.
+
+    Examples
+    --------
+    >>> from ebantenna.device.simbus import SimulatedRig
+    >>> from ebantenna.device.pca9685 import PCA9685
+    >>> rig = SimulatedRig.quiet()
+    >>> pca = PCA9685(rig.bus, clock=rig.clock)
+    >>> pca.initialize()
+    >>> pca.set_pulse(0, 1.5e-3)
+    >>> round(pca.pulse(0) * 1e6, 1)  # microseconds, to the nearest 4.88 us count
+    1498.2
+    """
+
+    def __init__(self, bus, address: int = 0x40, *, frequency: float = 50.0,
+                 oscillator_hz: float = OSCILLATOR_HZ, retry: RetryPolicy | None = None,
+                 clock=None):
+        self.prescale = prescale_for(frequency, oscillator_hz)
+        self.frequency = pwm_frequency(self.prescale, oscillator_hz)
+        self.clock = SystemClock() if clock is None else clock
+        self.device = I2CDevice(bus, address, retry=retry, clock=self.clock)
+
+    def initialize(self) -> None:
+        """Switch every output off, then set the PWM frequency.
+
+        Register writes, in order: ``ALL_LED_OFF_H = 0x10`` (all outputs full off), ``MODE2 = 0x04``
+        (totem-pole outputs, change on STOP), ``MODE1 = old | SLEEP`` (RESTART bit written as 0),
+        ``PRE_SCALE``, ``MODE1 = old & ~SLEEP | AI`` (wake, register auto-increment), 500 us
+        wait, ``MODE1 |= RESTART``.
+        """
+        self.device.write_byte(ALL_LED_OFF_H, FULL_BIT)
+        self.device.write_byte(MODE2, MODE2_OUTDRV)
+        old = self.device.read_byte(MODE1) & ~MODE1_RESTART & 0xFF
+        self.device.write_byte(MODE1, old | MODE1_SLEEP)
+        self.device.write_byte(PRE_SCALE, self.prescale)
+        awake = (old & ~MODE1_SLEEP & 0xFF) | MODE1_AI
+        self.device.write_byte(MODE1, awake)
+        self.clock.sleep(500e-6)
+        self.device.write_byte(MODE1, awake | MODE1_RESTART)
+        logger.info("PCA9685 at 0x%02X: prescale %d, %.3f Hz", self.device.address, self.prescale,
+                    self.frequency)
+
+    @staticmethod
+    def _check_channel(channel) -> int:
+        return check_int("channel", channel, minimum=0, maximum=N_CHANNELS - 1)
+
+    def counts_for(self, pulse: float) -> int:
+        """OFF count for a pulse of ``pulse`` seconds (rounded to the nearest count)."""
+        pulse = check_nonnegative("pulse", pulse)
+        counts = round(pulse * self.frequency * 4096)
+        if not 1 <= counts <= 4095:
+            raise ValueError(
+                f"pulse must lie in (0, {4095 / (4096 * self.frequency):.6f}] s at "
+                f"{self.frequency:.2f} Hz, got {pulse!r}")
+        return counts
+
+    def set_pulse(self, channel: int, pulse: float) -> None:
+        """Output pulses of ``pulse`` seconds on ``channel`` (one 4-byte block write)."""
+        channel = self._check_channel(channel)
+        off = self.counts_for(pulse)
+        self.device.write_block(LED0_ON_L + 4 * channel, [0, 0, off & 0xFF, off >> 8])
+
+    def pulse(self, channel: int) -> float:
+        """Read back the pulse width on ``channel``, s (0 when the channel is off)."""
+        channel = self._check_channel(channel)
+        on_l, on_h, off_l, off_h = self.device.read_block(LED0_ON_L + 4 * channel, 4)
+        if off_h & FULL_BIT or (on_h & FULL_BIT) == 0 and ((off_h & 0x0F) << 8 | off_l) == 0:
+            return 0.0
+        if on_h & FULL_BIT:
+            return 1.0 / self.frequency
+        on = (on_h & 0x0F) << 8 | on_l
+        off = (off_h & 0x0F) << 8 | off_l
+        return ((off - on) % 4096) / (4096 * self.frequency)
+
+    def channel_off(self, channel: int) -> None:
+        """Switch one output off (full OFF bit)."""
+        channel = self._check_channel(channel)
+        self.device.write_block(LED0_ON_L + 4 * channel, [0, 0, 0, FULL_BIT])
+
+    def all_off(self) -> None:
+        """Switch all 16 outputs off at once (``ALL_LED_OFF_H`` full OFF): the servos go limp."""
+        self.device.write_byte(ALL_LED_OFF_H, FULL_BIT)

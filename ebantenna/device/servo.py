@@ -1,0 +1,158 @@
+"""MG996R hobby servos on PCA9685 channels: angle to pulse width, with calibration and limits.
+
+A hobby servo turns to an angle set by the width of a pulse repeated at about 50 Hz. For the
+MG996R the usable range is roughly 0.5-2.5 ms for about 180 degrees of travel, but each unit
+differs, so the mapping is a per-servo :class:`ServoCalibration`. Its limits keep the mechanism
+away from its stops (and the probe away from the frame): a command outside them is clamped to the
+nearest limit with a :class:`ServoLimitWarning`, never silently.
+"""
+
+from __future__ import annotations
+
+import logging
+import warnings
+from dataclasses import dataclass
+
+from .._validate import check_int, check_real
+from .pca9685 import PCA9685
+
+__all__ = ["ServoCalibration", "Servo", "ServoLimitWarning"]
+
+logger = logging.getLogger(__name__)
+
+
+class ServoLimitWarning(UserWarning):
+    """A servo command was outside the calibrated limits and has been clamped."""
+
+
+@dataclass(frozen=True)
+class ServoCalibration:
+    """Linear map from servo angle to pulse width, and the allowed range of angles.
+
+    Parameters
+    ----------
+    channel : int
+        PCA9685 output, 0-15.
+    min_pulse, max_pulse : float
+        Pulse widths at ``min_angle`` and ``max_angle``, s. Defaults 0.5 ms and 2.5 ms (MG996R).
+    min_angle, max_angle : float
+        The angles those pulses give, degrees. Defaults 0 and 180.
+    lower_limit, upper_limit : float
+        Commands are clamped to this range, degrees; it must lie within ``[min_angle, max_angle]``.
+        Defaults: the full range.
+
+    Examples
+    --------
+    >>> from ebantenna.device.servo import ServoCalibration
+    >>> cal = ServoCalibration(channel=0)
+    >>> cal.pulse(90.0)
+    0.0015
+    >>> cal.angle(0.002)
+    135.0
+    """
+
+    channel: int
+    min_pulse: float = 0.5e-3
+    max_pulse: float = 2.5e-3
+    min_angle: float = 0.0
+    max_angle: float = 180.0
+    lower_limit: float | None = None
+    upper_limit: float | None = None
+
+    def __post_init__(self):
+        check_int("channel", self.channel, minimum=0, maximum=15)
+        for name in ("min_pulse", "max_pulse"):
+            value = check_real(name, getattr(self, name))
+            if not 0 < value < 0.02:
+                raise ValueError(f"{name} must lie in (0, 0.02) s, got {value!r}")
+        if not self.min_pulse != self.max_pulse:
+            raise ValueError("min_pulse and max_pulse must differ")
+        check_real("min_angle", self.min_angle)
+        check_real("max_angle", self.max_angle)
+        if not self.min_angle < self.max_angle:
+            raise ValueError(
+                f"min_angle must be < max_angle ({self.max_angle!r}), got {self.min_angle!r}")
+        if self.lower_limit is None:
+            object.__setattr__(self, "lower_limit", float(self.min_angle))
+        if self.upper_limit is None:
+            object.__setattr__(self, "upper_limit", float(self.max_angle))
+        lo = check_real("lower_limit", self.lower_limit)
+        hi = check_real("upper_limit", self.upper_limit)
+        if not self.min_angle <= lo < hi <= self.max_angle:
+            raise ValueError(
+                f"lower_limit and upper_limit must satisfy {self.min_angle!r} <= lower_limit < "
+                f"upper_limit <= {self.max_angle!r}; got {lo!r} and {hi!r}")
+
+    def pulse(self, angle: float) -> float:
+        """Pulse width for ``angle`` (degrees, not clamped), s."""
+        angle = check_real("angle", angle)
+        frac = (angle - self.min_angle) / (self.max_angle - self.min_angle)
+        return self.min_pulse + frac * (self.max_pulse - self.min_pulse)
+
+    def angle(self, pulse: float) -> float:
+        """Angle for a pulse width of ``pulse`` seconds, degrees."""
+        pulse = check_real("pulse", pulse)
+        frac = (pulse - self.min_pulse) / (self.max_pulse - self.min_pulse)
+        return self.min_angle + frac * (self.max_angle - self.min_angle)
+
+    def clamp(self, angle: float) -> float:
+        """``angle`` limited to ``[lower_limit, upper_limit]``, degrees."""
+        return min(max(check_real("angle", angle), self.lower_limit), self.upper_limit)
+
+
+class Servo:
+    """One servo on a PCA9685 channel.
+
+    Parameters
+    ----------
+    pca : PCA9685
+        The initialised controller.
+    calibration : ServoCalibration
+        Mapping and limits of this servo.
+    name : str
+        Used in warnings and logs ("pan", "tilt").
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from ebantenna.device.simbus import SimulatedRig
+    >>> from ebantenna.device.pca9685 import PCA9685
+    >>> from ebantenna.device.servo import Servo, ServoCalibration, ServoLimitWarning
+    >>> rig = SimulatedRig.quiet()
+    >>> pca = PCA9685(rig.bus, clock=rig.clock); pca.initialize()
+    >>> pan = Servo(pca, ServoCalibration(0, lower_limit=30.0, upper_limit=150.0), "pan")
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     pan.move(170.0)
+    150.0
+    >>> caught[0].category is ServoLimitWarning
+    True
+    """
+
+    def __init__(self, pca: PCA9685, calibration: ServoCalibration, name: str = "servo"):
+        if not isinstance(calibration, ServoCalibration):
+            raise TypeError(
+                f"calibration must be a ServoCalibration, got {type(calibration).__name__}")
+        self.pca = pca
+        self.calibration = calibration
+        self.name = str(name)
+        #: Last commanded angle, degrees (None before the first command or after release).
+        self.angle = None
+
+    def move(self, angle: float) -> float:
+        """Command ``angle`` (degrees), clamped to the limits; returns the angle commanded."""
+        cal = self.calibration
+        target = cal.clamp(angle)
+        if target != float(angle):
+            message = (f"{self.name} servo: {float(angle):.2f} deg is outside its limits "
+                       f"[{cal.lower_limit:g}, {cal.upper_limit:g}] deg; clamped to {target:g}")
+            logger.warning(message)
+            warnings.warn(message, ServoLimitWarning, stacklevel=2)
+        self.pca.set_pulse(cal.channel, cal.pulse(target))
+        self.angle = target
+        return target
+
+    def release(self) -> None:
+        """Stop driving this servo (its output off: the motor goes limp)."""
+        self.pca.channel_off(self.calibration.channel)
+        self.angle = None

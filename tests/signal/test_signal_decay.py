@@ -1,0 +1,110 @@
+import math
+
+import numpy as np
+import pytest
+from scipy import signal as sps
+
+from ebantenna.signal import DECAY_METHODS, apply_filter, envelope, fit_decay, paper_filter
+
+FS = 1000.0
+T = np.arange(1000) / FS
+
+
+def _decay(tau, a=1.5, f0=87.3, phase=0.4):
+    return a * np.exp(-T / tau) * np.sin(2 * np.pi * f0 * T + phase)
+
+
+@pytest.mark.parametrize("method", DECAY_METHODS)
+@pytest.mark.parametrize("tau", [0.03, 0.1, 0.3, 2.0])
+def test_clean_one_second_decay_within_3_percent(method, tau):
+    fit = fit_decay(_decay(tau), FS, method=method)
+    assert fit.ok and fit.status == "ok"
+    assert fit.tau == pytest.approx(tau, rel=0.03)
+    assert fit.b == pytest.approx(-1.0 / fit.tau)
+    assert fit.tau > 0  # the sign convention: tau = -1/b for a decay
+    # The gain is the envelope at t = 0 (peaks sit between samples, so "peaks" reads up to 5 % low).
+    assert fit.a == pytest.approx(1.5, rel=0.05)
+
+
+@pytest.mark.parametrize("method", DECAY_METHODS)
+def test_noisy_decay_within_3_percent(method):
+    rng = np.random.default_rng(5)
+    taus = [fit_decay(_decay(0.1) + 0.01 * rng.standard_normal(T.size), FS, method=method).tau
+            for _ in range(10)]
+    assert np.max(np.abs(np.array(taus) / 0.1 - 1)) < 0.03
+
+
+def test_envelope_against_scipy_hilbert():
+    x = _decay(0.2)
+    np.testing.assert_allclose(envelope(x), np.abs(sps.hilbert(x)), atol=1e-12)
+    x_odd = x[:999]
+    np.testing.assert_allclose(envelope(x_odd), np.abs(sps.hilbert(x_odd)), atol=1e-12)
+
+
+def test_model_reproduces_the_fit():
+    fit = fit_decay(_decay(0.1), FS)
+    np.testing.assert_allclose(fit.model([0.0, 0.1]), [fit.a, fit.a * math.exp(-0.1 / fit.tau)])
+
+
+def test_noise_only_is_flagged_not_decaying():
+    rng = np.random.default_rng(1)
+    for seed_noise in rng.standard_normal((10, 1000)):
+        fit = fit_decay(seed_noise, FS)
+        assert fit.status == "not_decaying" and not fit.ok
+
+
+def test_steady_and_growing_oscillations_are_flagged():
+    steady = fit_decay(np.sin(2 * np.pi * 50 * T), FS)
+    growing = fit_decay(np.exp(T) * np.sin(2 * np.pi * 50 * T), FS)
+    assert steady.status == growing.status == "not_decaying"
+    assert growing.tau == math.inf and growing.b > 0
+
+
+def test_clipped_decay_is_detected_and_still_fitted():
+    x = np.clip(_decay(0.1, a=3.0), -1.0, 1.0)  # saturation, as at the sensor's +-16 g range
+    fit = fit_decay(x, FS)
+    assert fit.clipped
+    assert fit.ok
+    assert fit.tau == pytest.approx(0.1, rel=0.1)
+    assert not fit_decay(_decay(0.1), FS).clipped
+
+
+def test_short_input():
+    with pytest.raises(ValueError, match="at least 16"):
+        fit_decay(_decay(0.1)[:10], FS)
+    # 20 samples of a slow 5 Hz wave: less than four periods, no decay can be measured.
+    fit = fit_decay(np.sin(2 * np.pi * 5 * T[:20]) * np.exp(-T[:20]), FS)
+    assert fit.status == "too_few_points" and fit.tau == math.inf
+
+
+def test_filter_ringing_biases_tau_upwards():
+    """The Table 1 filter (order 13) rings for ~0.42 s; the probe's decay is much shorter."""
+    x = np.exp(-T / 0.02) * np.sin(2 * np.pi * 70 * T)
+    unfiltered = fit_decay(x, FS).tau
+    table_causal = fit_decay(sps.sosfilt(paper_filter("chebyshev"), x), FS).tau
+    table_zero_phase = fit_decay(apply_filter(paper_filter("chebyshev"), x), FS).tau
+    stated_zero_phase = fit_decay(apply_filter(paper_filter("chebyshev", "stated"), x), FS).tau
+    assert unfiltered == pytest.approx(0.02, rel=0.05)
+    assert table_causal > 3 * 0.02  # the tail is the filter's ringing, not the probe's decay
+    assert table_zero_phase > 1.1 * 0.02
+    assert stated_zero_phase == pytest.approx(0.02, rel=0.08)
+
+
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(x=[]), "x"),
+        (dict(x=np.ones(100)), "constant"),
+        (dict(x=np.r_[np.ones(50), np.nan]), "finite"),
+        (dict(x=np.ones((20, 20))), "dimension"),
+        (dict(x=_decay(0.1), fs=0.0), "fs"),
+        (dict(x=_decay(0.1), method="exp1"), "method"),
+        (dict(x=_decay(0.1), floor_factor=0.5), "floor_factor"),
+        (dict(x=_decay(0.1), min_r_squared=1.5), "min_r_squared"),
+    ],
+)
+def test_bad_input(kwargs, match):
+    x = kwargs.pop("x")
+    fs = kwargs.pop("fs", FS)
+    with pytest.raises(ValueError, match=match):
+        fit_decay(x, fs, **kwargs)

@@ -1,0 +1,140 @@
+import numpy as np
+import pytest
+from scipy import signal as sps
+
+from ebantenna.signal import (
+    PAPER_FILTERS,
+    FilterSpec,
+    apply_filter,
+    check_specification,
+    design_bandpass,
+    filter_order,
+    filter_time_constant,
+    paper_filter,
+)
+
+FS = 1000.0
+
+
+def _steady_gain_db(sos, f, fs=FS, n=6000):
+    """Independent witness: the amplitude of a long tone after the filter, in the time domain."""
+    t = np.arange(n) / fs
+    y = sps.sosfilt(sos, np.sin(2 * np.pi * f * t))
+    tail = y[n // 2 :]
+    ref = np.sin(2 * np.pi * f * t[n // 2 :])
+    # Least-squares amplitude of the steady-state sinusoid (sine and cosine parts).
+    basis = np.column_stack([ref, np.cos(2 * np.pi * f * t[n // 2 :])])
+    coef, *_ = np.linalg.lstsq(basis, tail, rcond=None)
+    return 20 * np.log10(np.hypot(*coef))
+
+
+@pytest.mark.parametrize("kind, order", [("chebyshev", 13), ("elliptic", 8)])
+def test_order_selection_and_specification(kind, order):
+    spec = PAPER_FILTERS[kind]
+    assert filter_order(spec) == order
+    sos = paper_filter(kind)
+    assert sos.shape == (order, 6)
+    report = check_specification(sos, spec)
+    assert report.meets
+    assert report.passband_loss == pytest.approx(spec.ripple, abs=1e-3)  # equiripple: uses it all
+    assert report.stopband_attenuation >= spec.attenuation
+    # One order less fails the table: the selected order is the smallest that works.
+    assert not check_specification(design_bandpass(spec, order - 1), spec).meets
+
+
+@pytest.mark.parametrize("kind", ["chebyshev", "elliptic"])
+def test_time_domain_tones_confirm_the_band_edges(kind):
+    spec = PAPER_FILTERS[kind]
+    sos = paper_filter(kind)
+    centre = 0.5 * sum(spec.passband)
+    for f in (*spec.passband, centre):
+        assert _steady_gain_db(sos, f) >= -spec.ripple - 0.05  # 0.05 dB: finite-record estimate
+    for f in spec.stopband:
+        assert _steady_gain_db(sos, f) <= -spec.attenuation + 0.05
+
+
+@pytest.mark.parametrize("kind", ["chebyshev", "elliptic"])
+def test_stated_second_order_does_not_meet_the_table(kind):
+    spec = PAPER_FILTERS[kind]
+    sos = paper_filter(kind, "stated")
+    assert sos.shape == (2, 6)
+    report = check_specification(sos, spec)
+    assert not report.meets
+    # Only a few dB at the stop-band edges, instead of 30 or 45 dB.
+    assert report.stopband_attenuation < 5.0
+    assert filter_time_constant(sos, FS) < 0.02
+
+
+def test_transfer_function_form_fails_where_sections_do_not():
+    spec = PAPER_FILTERS["chebyshev"]
+    b, a = design_bandpass(spec, output="ba")
+    # The rounded degree-26 denominator has roots outside the unit circle: an unstable filter.
+    assert np.max(np.abs(np.roots(a))) > 1.0
+    f = np.array([60.0, 100.0, 160.0])
+    _, h_ba = sps.freqz(b, a, worN=f, fs=FS)
+    _, h_sos = sps.sosfreqz(paper_filter("chebyshev"), worN=f, fs=FS)
+    loss_ba = -20 * np.log10(np.abs(h_ba))
+    loss_sos = -20 * np.log10(np.abs(h_sos))
+    assert np.all(loss_sos <= 1.0 + 1e-6)
+    assert loss_ba.max() > 10.0  # the (b, a) response misses the pass band by tens of dB
+    # ...and running it diverges, while the sections stay bounded.
+    x = np.random.default_rng(0).standard_normal(3000)
+    assert np.max(np.abs(sps.lfilter(b, a, x))) > 1e6
+    assert np.max(np.abs(sps.sosfilt(paper_filter("chebyshev"), x))) < 10.0
+
+
+def test_zero_phase_squares_the_magnitude_and_keeps_the_phase():
+    sos = paper_filter("chebyshev")
+    t = np.arange(4000) / FS
+    x = np.sin(2 * np.pi * 110 * t)
+    y = apply_filter(sos, x)
+    mid = slice(1500, 2500)
+    _, h = sps.sosfreqz(sos, worN=[110.0], fs=FS)
+    np.testing.assert_allclose(y[mid], np.abs(h[0]) ** 2 * x[mid], atol=1e-3)
+
+
+def test_filter_time_constant_against_impulse_response():
+    sos = paper_filter("chebyshev")
+    tau = filter_time_constant(sos, FS)
+    assert tau == pytest.approx(0.42, abs=0.01)
+    impulse = np.zeros(6000)
+    impulse[0] = 1.0
+    h = sps.sosfilt(sos, impulse)
+    # Witness: envelope of the late impulse response decays with the slowest pole's rate.
+    from ebantenna.signal import envelope
+
+    env = envelope(h)
+    t = np.arange(h.size) / FS
+    window = (t > 1.5) & (t < 4.0)
+    slope = np.polyfit(t[window], np.log(env[window]), 1)[0]
+    assert -1 / slope == pytest.approx(tau, rel=0.03)
+
+
+def test_other_sampling_rate_and_bands_beyond_nyquist():
+    sos = paper_filter("elliptic", fs=2000.0)
+    assert check_specification(sos, PAPER_FILTERS["elliptic"].at(2000.0)).meets
+    with pytest.raises(ValueError, match="fs/2"):
+        paper_filter("elliptic", fs=600.0)
+    with pytest.raises(ValueError, match="passband"):
+        FilterSpec("chebyshev", 1000.0, (60.0, 520.0), (55.0, 530.0), 1.0, 30.0)
+    with pytest.raises(ValueError, match="enclose"):
+        FilterSpec("chebyshev", 1000.0, (60.0, 160.0), (65.0, 165.0), 1.0, 30.0)
+
+
+@pytest.mark.parametrize(
+    "call, exc, match",
+    [
+        (lambda: paper_filter("butterworth"), ValueError, "kind"),
+        (lambda: paper_filter("chebyshev", 0), ValueError, "order"),
+        (lambda: paper_filter("chebyshev", "paper"), ValueError, "order"),
+        (lambda: paper_filter("chebyshev", 2.5), TypeError, "order"),
+        (lambda: apply_filter(paper_filter("chebyshev"), np.ones(20)), ValueError, "x"),
+        (lambda: apply_filter(np.ones((2, 5)), np.ones(200)), ValueError, "sos"),
+        (lambda: apply_filter(paper_filter("chebyshev"), np.full(200, np.nan)), ValueError, "x"),
+        (lambda: filter_time_constant(paper_filter("chebyshev"), 0.0), ValueError, "fs"),
+        (lambda: filter_order("chebyshev"), TypeError, "spec"),
+    ],
+)
+def test_bad_input(call, exc, match):
+    with pytest.raises(exc, match=match):
+        call()

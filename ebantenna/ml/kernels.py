@@ -130,23 +130,30 @@ class Kernel:
         """
         same = Y is None
         Y = X if same else Y
-        dot = X @ Y.T
-        if self.name == "linear":
-            out = dot
-        elif self.name == "poly":
-            out = (self.gamma * dot + self.coef0) ** self.degree
-        else:
+        if self.name == "rbf":
             xn = squared_norms(X) if x_norms is None else x_norms
             yn = (xn if same else squared_norms(Y)) if y_norms is None else y_norms
-            # libsvm's order of operations: gamma * (|x|^2 + |y|^2 - 2 x.y)
-            out = xn[:, None] + yn[None, :]
-            out -= 2.0 * dot
-            np.maximum(out, 0.0, out=out)
-            out *= -self.gamma
-            np.exp(out, out=out)
-            if same:
-                np.fill_diagonal(out, 1.0)
-        return out.astype(dtype, copy=False)
+        out = np.empty((X.shape[0], Y.shape[0]), dtype=dtype)
+        # Row blocks of about 4 MB keep the float64 intermediates in cache.
+        step = max(1, (1 << 19) // max(1, Y.shape[0]))
+        for start in range(0, X.shape[0], step):
+            stop = min(start + step, X.shape[0])
+            block = X[start:stop] @ Y.T
+            if self.name == "poly":
+                block *= self.gamma
+                block += self.coef0
+                block **= self.degree
+            elif self.name == "rbf":
+                # libsvm's order of operations: exp(-gamma * (|x|^2 + |y|^2 - 2 x.y))
+                block *= -2.0
+                block += xn[start:stop, None] + yn[None, :]
+                np.maximum(block, 0.0, out=block)
+                block *= -self.gamma
+                np.exp(block, out=block)
+            out[start:stop] = block
+        if same and self.name == "rbf":
+            np.fill_diagonal(out, 1.0)
+        return out
 
     def diagonal(self, X: np.ndarray) -> np.ndarray:
         """The diagonal :math:`k(x_i, x_i)` in float64 (exactly 1 for 'rbf')."""

@@ -285,58 +285,59 @@ def solve_smo(
     QD = np.asarray(diagonal, dtype=np.float64)
     C = np.asarray(C, dtype=np.float64)
     alpha = np.zeros(n)
-    G = -np.ones(n)
-    # alpha = 0: positives can go up, negatives can go down
-    in_up = pos.copy()
-    in_low = ~pos
+    # The loop keeps yG = y * G (G = Q alpha - e); G itself is y * yG. Membership of I_up and
+    # I_low is kept as penalties 0 / -inf added to the scores, one vector operation each.
+    yG = -yf.copy()
+    up_pen = np.where(pos, 0.0, -np.inf)  # alpha = 0: positives can go up,
+    low_pen = np.where(pos, -np.inf, 0.0)  # negatives can go down
     second = selection == "second-order"
-    neg_inf = -np.inf
     converged = False
     violation = np.inf
     n_iter = 0
     while n_iter < max_iter:
-        yG = yf * G
-        up_vals = np.where(in_up, -yG, neg_inf)
+        up_vals = up_pen - yG
         i = _argmax(up_vals, ties_last)
         Gmax = up_vals[i]
-        low_vals = np.where(in_low, yG, neg_inf)
+        low_vals = yG + low_pen
         Gmax2 = low_vals.max()
         violation = Gmax + Gmax2
         if not violation >= tol:  # also stops on -inf (an empty set)
             converged = True
             break
+        Ki = rows.row(i).astype(np.float64)
         if second:
-            Ki = rows.row(i).astype(np.float64)
-            grad_diff = Gmax + yG
+            # libsvm minimises -b^2/a over j in I_low with b = Gmax + y_j G_j > 0; the same j
+            # maximises b^2/a with b clipped at 0 (non-candidates score 0, and the best candidate
+            # scores > 0 because b >= tol there).
             quad = (QD[i] + QD) - 2.0 * Ki
-            quad[quad <= 0] = TAU
-            obj = -(grad_diff * grad_diff) / quad
-            obj[~(in_low & (grad_diff > 0))] = np.inf
-            j = _argmin(obj, ties_last)
-            if obj[j] == np.inf:
+            quad = np.where(quad > 0, quad, TAU)
+            grad_diff = np.maximum(Gmax + low_vals, 0.0)
+            gain = grad_diff * grad_diff
+            gain /= quad
+            j = _argmax(gain, ties_last)
+            if not gain[j] > 0:
                 converged = True
                 break
         else:
             j = _argmax(low_vals, ties_last)
-            Ki = rows.row(i).astype(np.float64)
         n_iter += 1
         Kj = rows.row(j).astype(np.float64)
         old_i, old_j = alpha[i], alpha[j]
         a_i, a_j = _two_variable_update(
-            i, j, yf[i], yf[j], old_i, old_j, G[i], G[j], QD[i], QD[j], Ki[j], C[i], C[j]
+            i, j, yf[i], yf[j], old_i, old_j, yf[i] * yG[i], yf[j] * yG[j], QD[i], QD[j],
+            Ki[j], C[i], C[j],
         )
         alpha[i], alpha[j] = a_i, a_j
-        d_i = np.float64(yf[i] * (a_i - old_i))
-        d_j = np.float64(yf[j] * (a_j - old_j))
-        # libsvm: G += Q_i * dalpha_i + Q_j * dalpha_j with Q_t = y_t y K_t
-        G += yf * (Ki * d_i + Kj * d_j)
+        # libsvm: G += Q_i * dalpha_i + Q_j * dalpha_j with Q_t = y_t y K_t, hence on yG:
+        yG += Ki * (yf[i] * (a_i - old_i)) + Kj * (yf[j] * (a_j - old_j))
         for t, a in ((i, a_i), (j, a_j)):
-            at_upper = a >= C[t]
-            at_lower = a <= 0
+            can_up = -np.inf if a >= C[t] else 0.0
+            can_down = -np.inf if a <= 0 else 0.0
             if pos[t]:
-                in_up[t], in_low[t] = not at_upper, not at_lower
+                up_pen[t], low_pen[t] = can_up, can_down
             else:
-                in_up[t], in_low[t] = not at_lower, not at_upper
+                up_pen[t], low_pen[t] = can_down, can_up
+    G = yf * yG
     if not converged:
         logger.info("SMO stopped at max_iter=%d with violation %.3g", max_iter, violation)
     rho = _rho(alpha, G, yf, C, ties_last)

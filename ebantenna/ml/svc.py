@@ -54,7 +54,7 @@ def ovr_decision_function(predictions: np.ndarray, confidences: np.ndarray, n_cl
     Examples
     --------
     >>> ovr_decision_function(np.array([[0, 0, 1]]), np.array([[-1.0, -2.0, 0.5]]), 3)
-    array([[2.25      , 0.22222222, 1.        ]])
+    array([[ 2.25, -0.2 ,  0.8 ]])
     """
     n = predictions.shape[0]
     votes = np.zeros((n, n_classes))
@@ -249,28 +249,35 @@ class SVC(ClassifierMixin, BaseEstimator):
             dtype = np.float32
         else:
             dtype = np.float64
-        kept = np.flatnonzero(keep)
-        full = None
-        if n_keep * n_keep * np.dtype(dtype).itemsize <= cache_bytes:
-            full = kern.gram(X[kept], dtype=dtype)
-        diag = kern.diagonal(X)
-        max_iter = _LIBSVM_MAX_ITER if self.max_iter == -1 else int(self.max_iter)
-        max_iter = max(max_iter, 100 * n) if self.max_iter == -1 else max_iter
-        # position of each kept sample inside `full`
-        where = np.full(n, -1)
-        where[kept] = np.arange(n_keep)
         members = [np.flatnonzero((y_idx == c) & keep) for c in range(classes.size)]
         if any(m.size == 0 for m in members):
             raise ValueError("every class needs at least one sample with a positive weight")
+        # Samples sorted by class: the kernel block of a pair of classes is then four slices of
+        # the whole matrix (copied without fancy indexing).
+        order = np.concatenate(members)
+        starts = np.concatenate([[0], np.cumsum([m.size for m in members])])
+        full = None
+        if n_keep * n_keep * np.dtype(dtype).itemsize <= cache_bytes:
+            full = kern.gram(X[order], dtype=dtype)
+        diag = kern.diagonal(X)
+        max_iter = _LIBSVM_MAX_ITER if self.max_iter == -1 else int(self.max_iter)
+        max_iter = max(max_iter, 100 * n) if self.max_iter == -1 else max_iter
         k = classes.size
         coefs = {}
         rhos, n_iter, status = [], [], 0
         for a in range(k):
             for b in range(a + 1, k):
                 idx = np.concatenate([members[a], members[b]])
-                ys = np.concatenate([np.ones(members[a].size), -np.ones(members[b].size)])
+                na = members[a].size
+                ys = np.concatenate([np.ones(na), -np.ones(members[b].size)])
                 if full is not None:
-                    sub = full[np.ix_(where[idx], where[idx])]
+                    sa = slice(starts[a], starts[a + 1])
+                    sb = slice(starts[b], starts[b + 1])
+                    sub = np.empty((idx.size, idx.size), dtype=dtype)
+                    sub[:na, :na] = full[sa, sa]
+                    sub[:na, na:] = full[sa, sb]
+                    sub[na:, :na] = full[sb, sa]
+                    sub[na:, na:] = full[sb, sb]
                     rows = KernelRows(None, kern, dtype, cache_bytes, full=sub)
                 else:
                     rows = KernelRows(X[idx], kern, dtype, cache_bytes)

@@ -1,0 +1,562 @@
+"""Multilayer perceptrons in NumPy with backpropagation written out by hand.
+
+:class:`MLPClassifier` (softmax or logistic outputs with cross-entropy) and :class:`MLPRegressor`
+(identity outputs with squared error) take scikit-learn's parameter names and expose its fitted
+attributes (``coefs_``, ``intercepts_``, ``loss_curve_``, ``n_iter_``, ...), so that a student can
+swap the import. The solvers are
+
+``'gd'``
+    full-batch gradient descent, one step per epoch (the paper's "gradient descent");
+``'sgd'``
+    mini-batch stochastic gradient descent with (Nesterov) momentum;
+``'adam'``
+    Adam;
+``'scg'``
+    Møller's scaled conjugate gradient on the full batch (the paper's best distance regressor).
+
+The loss is :math:`L = \\ell + \\frac{\\alpha}{2n}\\sum_l \\lVert W_l \\rVert^2` with :math:`\\ell`
+the mean cross-entropy per sample, or, for regression,
+:math:`\\ell = \\frac{1}{2 n m}\\sum_{i,k} (y_{ik} - \\hat y_{ik})^2` over ``n`` samples and ``m``
+outputs: the same numbers as scikit-learn reports.
+
+Difference from scikit-learn for several regression outputs
+-----------------------------------------------------------
+scikit-learn reports the loss above but back-propagates :math:`(\\hat y - y) / n`, which is ``m``
+times the gradient of that loss (only of the data term: its L2 term keeps its own scale). Here the
+gradient is the true gradient of the reported loss, :math:`(\\hat y - y) / (n m)`. With one output,
+or for classification, both agree, and one ``'gd'`` step equals one full-batch step of
+scikit-learn's ``'sgd'`` solver without momentum.
+"""
+
+from __future__ import annotations
+
+import logging
+import warnings
+from numbers import Integral, Real
+
+import numpy as np
+from scipy.special import expit, log_expit, logsumexp
+from sklearn.base import BaseEstimator, ClassifierMixin, RegressorMixin
+from sklearn.exceptions import ConvergenceWarning
+from sklearn.metrics import accuracy_score, r2_score
+from sklearn.model_selection import train_test_split
+from sklearn.preprocessing import LabelBinarizer
+from sklearn.utils.multiclass import check_classification_targets, type_of_target
+from sklearn.utils.validation import check_is_fitted, column_or_1d, validate_data
+
+from .._validate import check_choice
+from .optimizers import Adam, Momentum, scg_init, scg_step
+
+__all__ = ["MLPClassifier", "MLPRegressor", "ACTIVATIONS", "SOLVERS"]
+
+logger = logging.getLogger(__name__)
+
+#: Hidden-layer activations.
+ACTIVATIONS = ("identity", "logistic", "tanh", "relu")
+#: Training algorithms.
+SOLVERS = ("gd", "sgd", "adam", "scg")
+
+
+def _activate(name: str, z: np.ndarray) -> np.ndarray:
+    """Apply an activation in place and return it (logistic via ``expit``: no overflow)."""
+    if name == "tanh":
+        return np.tanh(z, out=z)
+    if name == "relu":
+        return np.maximum(z, 0.0, out=z)
+    if name == "logistic":
+        return expit(z, out=z)
+    return z
+
+
+def _derivative(name: str, a: np.ndarray, delta: np.ndarray) -> None:
+    """Multiply ``delta`` in place by the activation's derivative, written with its output ``a``."""
+    if name == "tanh":
+        delta *= 1.0 - a * a
+    elif name == "relu":
+        delta[a <= 0] = 0.0
+    elif name == "logistic":
+        delta *= a * (1.0 - a)
+
+
+def _check_positive_real(name, value, *, allow_zero=False):
+    if isinstance(value, bool) or not isinstance(value, Real) or not np.isfinite(value):
+        raise TypeError(f"{name} must be a finite real number, got {value!r}")
+    if value < 0 or (value == 0 and not allow_zero):
+        raise ValueError(f"{name} must be {'>= 0' if allow_zero else '> 0'}, got {value!r}")
+
+
+class _BaseMLP(BaseEstimator):
+    """Shared machinery: parameters, forward pass, backpropagation and the training loop."""
+
+    def __init__(
+        self,
+        hidden_layer_sizes=(100,),
+        activation="relu",
+        *,
+        solver="adam",
+        alpha=0.0001,
+        batch_size="auto",
+        learning_rate="constant",
+        learning_rate_init=0.001,
+        power_t=0.5,
+        max_iter=200,
+        shuffle=True,
+        random_state=None,
+        tol=1e-4,
+        verbose=False,
+        warm_start=False,
+        momentum=0.9,
+        nesterovs_momentum=True,
+        early_stopping=False,
+        validation_fraction=0.1,
+        beta_1=0.9,
+        beta_2=0.999,
+        epsilon=1e-8,
+        n_iter_no_change=10,
+    ):
+        self.hidden_layer_sizes = hidden_layer_sizes
+        self.activation = activation
+        self.solver = solver
+        self.alpha = alpha
+        self.batch_size = batch_size
+        self.learning_rate = learning_rate
+        self.learning_rate_init = learning_rate_init
+        self.power_t = power_t
+        self.max_iter = max_iter
+        self.shuffle = shuffle
+        self.random_state = random_state
+        self.tol = tol
+        self.verbose = verbose
+        self.warm_start = warm_start
+        self.momentum = momentum
+        self.nesterovs_momentum = nesterovs_momentum
+        self.early_stopping = early_stopping
+        self.validation_fraction = validation_fraction
+        self.beta_1 = beta_1
+        self.beta_2 = beta_2
+        self.epsilon = epsilon
+        self.n_iter_no_change = n_iter_no_change
+
+    # ----------------------------------------------------------- validation
+    def _hidden_sizes(self) -> list[int]:
+        sizes = self.hidden_layer_sizes
+        if isinstance(sizes, Integral) and not isinstance(sizes, bool):
+            sizes = [sizes]
+        try:
+            sizes = list(sizes)
+        except TypeError as exc:
+            raise TypeError(f"hidden_layer_sizes must be an int or a sequence of ints, "
+                            f"got {self.hidden_layer_sizes!r}") from exc
+        for s in sizes:
+            if isinstance(s, bool) or not isinstance(s, Integral) or s < 1:
+                raise ValueError(f"hidden_layer_sizes must contain integers >= 1, got {sizes!r}")
+        return [int(s) for s in sizes]
+
+    def _check_params(self):
+        check_choice("activation", self.activation, ACTIVATIONS)
+        check_choice("solver", self.solver, SOLVERS)
+        check_choice("learning_rate", self.learning_rate, ("constant", "invscaling", "adaptive"))
+        _check_positive_real("alpha", self.alpha, allow_zero=True)
+        _check_positive_real("learning_rate_init", self.learning_rate_init)
+        _check_positive_real("power_t", self.power_t, allow_zero=True)
+        _check_positive_real("tol", self.tol, allow_zero=True)
+        _check_positive_real("epsilon", self.epsilon)
+        for name in ("momentum", "beta_1", "beta_2"):
+            value = getattr(self, name)
+            _check_positive_real(name, value, allow_zero=True)
+            if value > 1 or (name != "momentum" and value >= 1):
+                raise ValueError(f"{name} must lie in [0, 1{']' if name == 'momentum' else ')'}, "
+                                 f"got {value!r}")
+        for name in ("max_iter", "n_iter_no_change"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, Integral):
+                raise TypeError(f"{name} must be an integer >= 1, got {value!r}")
+            if value < 1:
+                raise ValueError(f"{name} must be >= 1, got {value!r}")
+        if self.batch_size != "auto":
+            if isinstance(self.batch_size, bool) or not isinstance(self.batch_size, Integral):
+                raise TypeError(f"batch_size must be 'auto' or an integer >= 1, "
+                                f"got {self.batch_size!r}")
+            if self.batch_size < 1:
+                raise ValueError(f"batch_size must be >= 1, got {self.batch_size!r}")
+        _check_positive_real("validation_fraction", self.validation_fraction)
+        if self.validation_fraction >= 1:
+            raise ValueError(f"validation_fraction must lie in (0, 1), "
+                             f"got {self.validation_fraction!r}")
+
+    # ------------------------------------------------------- network pieces
+    def _init_params(self, sizes, rng):
+        """Glorot-uniform weights: bound ``sqrt(f / (fan_in + fan_out))``, f = 6 (logistic: 2)."""
+        factor = 2.0 if self.activation == "logistic" else 6.0
+        coefs, intercepts = [], []
+        for fan_in, fan_out in zip(sizes[:-1], sizes[1:], strict=True):
+            bound = np.sqrt(factor / (fan_in + fan_out))
+            coefs.append(rng.uniform(-bound, bound, (fan_in, fan_out)))
+            intercepts.append(rng.uniform(-bound, bound, fan_out))
+        return coefs, intercepts
+
+    def _forward(self, X, coefs, intercepts):
+        """Activations of every layer; the last entry holds the output layer's pre-activation."""
+        acts = [X]
+        last = len(coefs) - 1
+        for i, (W, b) in enumerate(zip(coefs, intercepts, strict=True)):
+            z = acts[-1] @ W
+            z += b
+            if i < last:
+                _activate(self.activation, z)
+            acts.append(z)
+        return acts
+
+    def _loss_grad(self, X, Y, coefs, intercepts):
+        """Loss (data term + L2) and its exact gradient with respect to every weight and bias."""
+        n = X.shape[0]
+        acts = self._forward(X, coefs, intercepts)
+        data_loss, delta = self._output_loss(acts[-1], Y)
+        l2 = sum(float(np.dot(W.ravel(), W.ravel())) for W in coefs)
+        loss = data_loss + 0.5 * self.alpha * l2 / n
+        coef_grads = [None] * len(coefs)
+        intercept_grads = [None] * len(coefs)
+        for layer in range(len(coefs) - 1, -1, -1):
+            coef_grads[layer] = acts[layer].T @ delta + (self.alpha / n) * coefs[layer]
+            intercept_grads[layer] = delta.sum(axis=0)
+            if layer > 0:
+                delta = delta @ coefs[layer].T
+                _derivative(self.activation, acts[layer], delta)
+        return loss, coef_grads, intercept_grads
+
+    # Flattened parameters for SCG and for finite-difference checks.
+    def _pack(self, coefs, intercepts) -> np.ndarray:
+        return np.concatenate([a.ravel() for pair in zip(coefs, intercepts, strict=True)
+                               for a in pair])
+
+    def _unpack(self, w, shapes):
+        coefs, intercepts, pos = [], [], 0
+        for fan_in, fan_out in shapes:
+            coefs.append(w[pos : pos + fan_in * fan_out].reshape(fan_in, fan_out))
+            pos += fan_in * fan_out
+            intercepts.append(w[pos : pos + fan_out])
+            pos += fan_out
+        return coefs, intercepts
+
+    def loss_and_gradient(self, X, Y, w=None):
+        """Loss and flattened gradient at the flattened parameters ``w`` (default: fitted ones).
+
+        ``Y`` is the encoded target (one-hot for classes, 2-D for regression), as used in
+        training. Meant for checks such as finite differences.
+        """
+        check_is_fitted(self)
+        shapes = [c.shape for c in self.coefs_]
+        w = self._pack(self.coefs_, self.intercepts_) if w is None else np.asarray(w, float)
+        coefs, intercepts = self._unpack(w, shapes)
+        loss, cg, ig = self._loss_grad(np.asarray(X, float), np.asarray(Y, float), coefs,
+                                       intercepts)
+        return loss, self._pack(cg, ig)
+
+    # --------------------------------------------------------- training
+    def _fit(self, X, Y, y_for_split):
+        self._check_params()
+        hidden = self._hidden_sizes()
+        rng = np.random.default_rng(self.random_state)
+        n_features, n_out = X.shape[1], Y.shape[1]
+        sizes = [n_features, *hidden, n_out]
+        first_pass = not (self.warm_start and hasattr(self, "coefs_"))
+        if first_pass:
+            self.coefs_, self.intercepts_ = self._init_params(sizes, rng)
+            self.loss_curve_ = []
+            self.n_iter_ = 0
+            self.t_ = 0
+            self.best_loss_ = np.inf
+            self.validation_scores_ = None
+            self.best_validation_score_ = None
+        else:
+            expected = [(a, b) for a, b in zip(sizes[:-1], sizes[1:], strict=True)]
+            got = [c.shape for c in self.coefs_]
+            if got != expected:
+                raise ValueError(f"coefs_ shapes {got} do not match the network {expected}")
+            self.coefs_ = [np.array(c, dtype=np.float64) for c in self.coefs_]
+            self.intercepts_ = [np.array(b, dtype=np.float64) for b in self.intercepts_]
+            for name in ("loss_curve_", "n_iter_", "t_", "best_loss_"):
+                if not hasattr(self, name):
+                    setattr(self, name, {"loss_curve_": [], "best_loss_": np.inf}.get(name, 0))
+            self.loss_curve_ = list(self.loss_curve_)
+        self.n_layers_ = len(sizes)
+        self.n_outputs_ = n_out
+        X_val = Y_val = None
+        if self.early_stopping:
+            stratify = y_for_split if isinstance(self, ClassifierMixin) else None
+            seed = int(rng.integers(2**31 - 1))
+            try:
+                X, X_val, Y, Y_val = train_test_split(
+                    X, Y, test_size=self.validation_fraction, random_state=seed,
+                    stratify=stratify)
+            except ValueError:
+                X, X_val, Y, Y_val = train_test_split(
+                    X, Y, test_size=self.validation_fraction, random_state=seed)
+            if X.shape[0] < 1 or X_val.shape[0] < 1:
+                raise ValueError("early_stopping needs at least one training and one "
+                                 "validation sample")
+            self.validation_scores_ = []
+            self.best_validation_score_ = -np.inf
+            self._best = None
+        self._no_improvement = 0
+        if self.solver == "scg":
+            self._train_scg(X, Y, X_val, Y_val)
+        else:
+            self._train_first_order(X, Y, X_val, Y_val, rng)
+        if self.early_stopping and self._best is not None:
+            self.coefs_, self.intercepts_ = self._best
+        if hasattr(self, "_best"):
+            del self._best
+        return self
+
+    def _end_of_epoch(self, loss, X_val, Y_val) -> bool:
+        """Record the epoch; return True when training should stop for lack of progress."""
+        self.loss_curve_.append(float(loss))
+        self.n_iter_ += 1
+        if self.verbose:
+            logger.info("Iteration %d, loss = %.8f", self.n_iter_, loss)
+        if self.early_stopping:
+            score = self._validation_score(X_val, Y_val)
+            self.validation_scores_.append(score)
+            if score < self.best_validation_score_ + self.tol:
+                self._no_improvement += 1
+            else:
+                self._no_improvement = 0
+            if score > self.best_validation_score_:
+                self.best_validation_score_ = score
+                self._best = ([c.copy() for c in self.coefs_],
+                              [b.copy() for b in self.intercepts_])
+        else:
+            if loss > self.best_loss_ - self.tol:
+                self._no_improvement += 1
+            else:
+                self._no_improvement = 0
+        if loss < self.best_loss_:
+            self.best_loss_ = float(loss)
+        return self._no_improvement > self.n_iter_no_change
+
+    def _train_first_order(self, X, Y, X_val, Y_val, rng):
+        n = X.shape[0]
+        params = self.coefs_ + self.intercepts_
+        if self.solver == "gd":
+            batch = n
+        elif self.batch_size == "auto":
+            batch = min(200, n)
+        else:
+            batch = min(int(self.batch_size), n)
+        lr = float(self.learning_rate_init)
+        if self.solver == "adam":
+            opt = Adam(params, lr, self.beta_1, self.beta_2, self.epsilon)
+        else:
+            mom = 0.0 if self.solver == "gd" else float(self.momentum)
+            opt = Momentum(params, lr, mom, bool(self.nesterovs_momentum) and mom > 0)
+        idx = np.arange(n)
+        stopped = False
+        for _ in range(self.max_iter):
+            if self.shuffle and self.solver != "gd":
+                rng.shuffle(idx)
+            total = 0.0
+            for start in range(0, n, batch):
+                sl = idx[start : start + batch]
+                Xb, Yb = (X, Y) if batch == n and not self.shuffle else (X[sl], Y[sl])
+                loss, cg, ig = self._loss_grad(Xb, Yb, self.coefs_, self.intercepts_)
+                total += loss * Xb.shape[0]
+                opt.update(params, cg + ig)
+                self.t_ += Xb.shape[0]
+                if self.learning_rate == "invscaling" and self.solver != "adam":
+                    opt.learning_rate = self.learning_rate_init / (self.t_ + 1) ** self.power_t
+            loss = total / n
+            if not np.isfinite(loss):
+                raise ValueError("the loss is not finite: lower learning_rate_init or scale "
+                                 "the features")
+            if self._end_of_epoch(loss, X_val, Y_val):
+                if (self.learning_rate == "adaptive" and self.solver != "adam"
+                        and opt.learning_rate > 1e-6):
+                    opt.learning_rate /= 5.0
+                    self._no_improvement = 0
+                    continue
+                stopped = True
+                break
+        if not stopped:
+            warnings.warn(f"{self.solver}: maximum iterations ({self.max_iter}) reached and the "
+                          "optimization hasn't converged yet.", ConvergenceWarning, stacklevel=3)
+
+    def _train_scg(self, X, Y, X_val, Y_val):
+        shapes = [c.shape for c in self.coefs_]
+
+        def fg(w):
+            coefs, intercepts = self._unpack(w, shapes)
+            loss, cg, ig = self._loss_grad(X, Y, coefs, intercepts)
+            return loss, self._pack(cg, ig)
+
+        state = scg_init(self._pack(self.coefs_, self.intercepts_), fg)
+        stopped = False
+        for _ in range(self.max_iter):
+            f_before = state.f
+            scg_step(state, fg)
+            self.coefs_, self.intercepts_ = self._unpack(state.w.copy(), shapes)
+            # the loss recorded for an epoch is the one at its start, as for the other solvers
+            if self._end_of_epoch(f_before, X_val, Y_val):
+                stopped = True
+                break
+            if float(state.grad @ state.grad) < 1e-24:
+                stopped = True
+                break
+        if not stopped:
+            warnings.warn(f"scg: maximum iterations ({self.max_iter}) reached and the "
+                          "optimization hasn't converged yet.", ConvergenceWarning, stacklevel=3)
+
+
+class MLPClassifier(ClassifierMixin, _BaseMLP):
+    """Multilayer perceptron classifier: softmax (or logistic) output and cross-entropy loss.
+
+    Parameters are those of :class:`sklearn.neural_network.MLPClassifier`, with ``solver`` one of
+    'gd', 'sgd', 'adam' or 'scg' (see the module text). ``random_state`` seeds a
+    :func:`numpy.random.default_rng` (initial weights, shuffling, validation split).
+
+    Attributes
+    ----------
+    classes_ : ndarray
+    coefs_, intercepts_ : list of ndarray
+        Weight matrix (fan_in, fan_out) and bias vector of each layer.
+    loss_curve_ : list of float
+        Loss at each epoch (mean over its batches).
+    n_iter_ : int
+    best_loss_ : float
+    validation_scores_, best_validation_score_ : list, float or None
+        Accuracy on the validation split when ``early_stopping``.
+    n_layers_, n_outputs_, out_activation_ : int, int, str
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> rng = np.random.default_rng(0)
+    >>> X = np.vstack([rng.normal(-1, 0.5, (30, 2)), rng.normal(1, 0.5, (30, 2))])
+    >>> y = np.repeat(["pvc", "steel"], 30)
+    >>> clf = MLPClassifier((5,), activation="tanh", solver="scg", max_iter=100,
+    ...                     random_state=0).fit(X, y)
+    >>> clf.score(X, y)
+    1.0
+    """
+
+    def fit(self, X, y):
+        """Train on features ``X`` (n_samples, n_features) and labels ``y``."""
+        X, y = validate_data(self, X, y, dtype=np.float64, multi_output=True,
+                             reset=not (self.warm_start and hasattr(self, "coefs_")))
+        if y.ndim == 2 and y.shape[1] == 1:
+            y = column_or_1d(y, warn=True)
+        check_classification_targets(y)
+        if not (self.warm_start and hasattr(self, "_label_binarizer")):
+            self._label_binarizer = LabelBinarizer().fit(y)
+            self.classes_ = self._label_binarizer.classes_
+        Y = self._label_binarizer.transform(y).astype(np.float64)
+        self._multilabel = type_of_target(y).startswith("multilabel")
+        self.out_activation_ = "logistic" if (Y.shape[1] == 1 or self._multilabel) else "softmax"
+        return self._fit(X, Y, y)
+
+    def _output_loss(self, z, Y):
+        """Mean cross-entropy from the output logits ``z`` and its gradient with respect to them."""
+        n = z.shape[0]
+        if self.out_activation_ == "softmax":
+            lse = logsumexp(z, axis=1, keepdims=True)
+            loss = float(np.sum(lse[:, 0]) - np.sum(Y * z)) / n
+            prob = np.exp(z - lse)
+        else:
+            # -[y log s(z) + (1-y) log s(-z)], finite for any z
+            loss = float(-np.sum(Y * log_expit(z) + (1.0 - Y) * log_expit(-z))) / n
+            prob = expit(z)
+        return loss, (prob - Y) / n
+
+    def _validation_score(self, X, Y):
+        return accuracy_score(self._label_binarizer.inverse_transform(Y), self.predict(X))
+
+    def predict_proba(self, X):
+        """Class probabilities, shape (n_samples, n_classes)."""
+        check_is_fitted(self)
+        X = validate_data(self, X, dtype=np.float64, reset=False)
+        z = self._forward(X, self.coefs_, self.intercepts_)[-1]
+        if self.out_activation_ == "softmax":
+            z = z - z.max(axis=1, keepdims=True)
+            e = np.exp(z)
+            return e / e.sum(axis=1, keepdims=True)
+        p = expit(z)
+        if self._multilabel:
+            return p
+        return np.hstack([1.0 - p, p])
+
+    def predict_log_proba(self, X):
+        """Logarithm of :meth:`predict_proba`, computed stably."""
+        check_is_fitted(self)
+        X = validate_data(self, X, dtype=np.float64, reset=False)
+        z = self._forward(X, self.coefs_, self.intercepts_)[-1]
+        if self.out_activation_ == "softmax":
+            return z - logsumexp(z, axis=1, keepdims=True)
+        if self._multilabel:
+            return log_expit(z)
+        return np.hstack([log_expit(-z), log_expit(z)])
+
+    def predict(self, X):
+        """Predicted class labels."""
+        proba = self.predict_proba(X)
+        if self._multilabel:
+            return self._label_binarizer.inverse_transform((proba > 0.5).astype(int))
+        return self.classes_[np.argmax(proba, axis=1)]
+
+    def __sklearn_tags__(self):
+        tags = super().__sklearn_tags__()
+        tags.classifier_tags.multi_label = True
+        return tags
+
+
+class MLPRegressor(RegressorMixin, _BaseMLP):
+    """Multilayer perceptron regressor: identity output and squared-error loss.
+
+    Parameters are those of :class:`sklearn.neural_network.MLPRegressor`, with ``solver`` one of
+    'gd', 'sgd', 'adam' or 'scg'. With several outputs the gradient is the true gradient of the
+    reported loss, which is ``1 / n_outputs`` of scikit-learn's (see the module text).
+
+    Attributes
+    ----------
+    coefs_, intercepts_ : list of ndarray
+    loss_curve_ : list of float
+    n_iter_ : int
+    best_loss_ : float
+    validation_scores_, best_validation_score_ : list, float or None
+        R² on the validation split when ``early_stopping``.
+    n_layers_, n_outputs_, out_activation_ : int, int, str
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> X = np.linspace(0, 1, 40)[:, None]
+    >>> reg = MLPRegressor((9,), activation="relu", solver="scg", max_iter=300,
+    ...                    random_state=1).fit(X, 0.5 * X[:, 0])
+    >>> bool(reg.score(X, 0.5 * X[:, 0]) > 0.99)
+    True
+    """
+
+    out_activation_ = "identity"
+
+    def fit(self, X, y):
+        """Train on features ``X`` (n_samples, n_features) and targets ``y``."""
+        X, y = validate_data(self, X, y, dtype=np.float64, multi_output=True, y_numeric=True,
+                             reset=not (self.warm_start and hasattr(self, "coefs_")))
+        self._y_ndim = y.ndim
+        Y = y.reshape(-1, 1) if y.ndim == 1 else y
+        return self._fit(X, np.asarray(Y, dtype=np.float64), None)
+
+    def _output_loss(self, z, Y):
+        """Half the mean squared error over all entries, and its exact gradient."""
+        diff = z - Y
+        loss = 0.5 * float(np.mean(diff * diff))
+        return loss, diff / diff.size
+
+    def _validation_score(self, X, Y):
+        return r2_score(Y if Y.shape[1] > 1 else Y[:, 0], self.predict(X))
+
+    def predict(self, X):
+        """Predicted targets, shape (n_samples,) or (n_samples, n_outputs)."""
+        check_is_fitted(self)
+        X = validate_data(self, X, dtype=np.float64, reset=False)
+        z = self._forward(X, self.coefs_, self.intercepts_)[-1]
+        return z[:, 0] if self._y_ndim == 1 else z

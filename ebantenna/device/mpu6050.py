@@ -401,6 +401,26 @@ class MPU6050:
         return FifoBlock(index, self._decode(raw), 0)
 
     @property
+    def fifo_capacity(self) -> float:
+        """How long the FIFO can go undrained before it overflows, s (170 ms at 1 kHz)."""
+        return (FIFO_SIZE // SAMPLE_BYTES) / self.config.fs
+
+    def check_poll_interval(self, poll_interval: float) -> float:
+        """Return ``poll_interval`` (s) if the FIFO, drained that often, cannot overflow."""
+        poll_interval = check_positive("poll_interval", poll_interval)
+        if not poll_interval < self.fifo_capacity:
+            raise ValueError(
+                f"poll_interval must be < {self.fifo_capacity:.3f} s (the FIFO holds "
+                f"{FIFO_SIZE // SAMPLE_BYTES} samples at {self.config.fs:g} Hz), "
+                f"got {poll_interval!r}")
+        return poll_interval
+
+    @property
+    def stream_start(self) -> float | None:
+        """Clock reading when :meth:`start_fifo` started the stream, s (None before)."""
+        return self._stream_start
+
+    @property
     def stream_position(self) -> int:
         """Samples produced since :meth:`start_fifo` that have been read or counted as lost."""
         return self._segment_base + self._segment_read
@@ -454,8 +474,8 @@ class MPU6050:
         duration : float
             Length of the recording, s.
         poll_interval : float
-            Time between drains, s. Must stay well below the FIFO's 170 ms at 1 kHz, or samples are
-            lost (and counted).
+            Time between drains, s. Must be below the FIFO's 170 ms at 1 kHz; a host that stalls
+            for longer loses samples (and counts them).
 
         Returns
         -------
@@ -464,7 +484,7 @@ class MPU6050:
             were lost.
         """
         duration = check_positive("duration", duration)
-        poll_interval = check_positive("poll_interval", poll_interval)
+        poll_interval = self.check_poll_interval(poll_interval)
         wanted = max(1, round(duration * self.config.fs))
         self.start_fifo()
         indices, blocks = [], []

@@ -342,6 +342,7 @@ def search_and_record(mpu: MPU6050, pantilt: PanTilt, config: SearchConfig | Non
         raise TypeError(f"config must be a SearchConfig, got {type(config).__name__}")
     clock = mpu.clock
     fs = mpu.config.fs
+    mpu.check_poll_interval(config.poll_interval)
     pre = int(round(config.pre_trigger * fs))
     post = int(round(config.duration * fs))
     detector = ContactDetector(config.threshold, config.baseline_window)

@@ -156,6 +156,8 @@ class _World:
         self.contact_time = None
         self.contact_tilt = None
         self.max_push = 0.0
+        self.blocked = False
+        self.direction = 1.0
         self.commands: list[tuple[float, str, float | None]] = []
 
     def advance_to(self, now: float) -> None:
@@ -177,7 +179,8 @@ class _World:
                         self.contact_time = self.time + tau
                         self.contact_tilt = tilt
                         self.direction = math.copysign(1.0, pan1 - pan0)
-            if self.contact_time is not None and self.obstacle is not None:
+                        self.blocked = True
+            if self.blocked:
                 # The post stops the probe: the pan cannot pass it.
                 if (pan1 - self.obstacle.pan) * self.direction > 0:
                     pan1 = self.obstacle.pan
@@ -192,8 +195,7 @@ class _World:
         servo = self.pan if axis == "pan" else self.tilt
         servo.target = angle
         self.commands.append((now, axis, angle))
-        if (axis == "pan" and angle is not None and self.contact_time is not None
-                and self.obstacle is not None):
+        if axis == "pan" and angle is not None and self.blocked:
             push = (angle - self.obstacle.pan) * self.direction
             self.max_push = max(self.max_push, push)
 
@@ -609,6 +611,43 @@ class SimulatedRig:
             return simulate(run, seed=seed)
 
         return cls(vibration, seed=seed, **kwargs)
+
+    @classmethod
+    def for_contact(cls, *, scene: str = "paper", material: str = "brass", ratio: float = 0.5,
+                    seed: int = 0, **kwargs) -> SimulatedRig:
+        """A rig whose probe touches ``material`` at ``ratio`` of its length, in a built-in scene.
+
+        Parameters
+        ----------
+        scene : str
+            Name of a built-in scene of :mod:`ebantenna.simulate` ("paper" or "ideal").
+        material : str
+            Touched material (see :func:`ebantenna.probe.material_names`).
+        ratio : float
+            Contact distance from the hinge over the probe length, in (0, 1).
+        seed : int
+            Seed of the simulation, the sensor noise and the faults.
+        """
+        ratio = check_in_range("ratio", ratio, 0.0, 1.0)
+        from ..simulate import builtin_scene
+
+        base = builtin_scene(scene)
+        chosen = base.with_(contact=ratio * base.probe.length, material=material)
+        return cls.from_scene(chosen, seed=seed, **kwargs)
+
+    def touch(self, at: float | None = None) -> None:
+        """Put the probe in contact from virtual time ``at`` (s; default now), whatever the servos.
+
+        For exercising the accelerometer alone: from then on it plays the vibration.
+        """
+        now = self.clock.monotonic()
+        at = now if at is None else check_nonnegative("at", at)
+        if at < now:
+            raise ValueError(f"at must be >= the current time {now!r} s, got {at!r}")
+        if self.world.contact_time is not None:
+            raise ValueError("the probe is already in contact")
+        self.world.advance_to(now)
+        self.world.contact_time = at
 
     @property
     def contact_time(self) -> float | None:

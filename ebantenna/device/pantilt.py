@@ -355,12 +355,7 @@ def search_and_record(mpu: MPU6050, pantilt: PanTilt, config: SearchConfig | Non
         mpu.start_fifo()
         start = clock.monotonic()
         while True:
-            elapsed = clock.monotonic() - start
-            if trigger is None:
-                if elapsed > config.max_search_time:
-                    logger.info("no contact within %.1f s", config.max_search_time)
-                    break
-                pantilt.move(*config.path.angles(elapsed))
+            # Check the newest samples first, so that no move is commanded after a contact.
             block = mpu.read_fifo()
             if block.index.size:
                 indices.append(block.index)
@@ -380,7 +375,13 @@ def search_and_record(mpu: MPU6050, pantilt: PanTilt, config: SearchConfig | Non
                         while len(indices) > 1 and indices[0][-1] < keep_from:
                             indices.pop(0)
                             blocks.pop(0)
-            if trigger is not None and mpu.stream_position >= trigger + post:
+            if trigger is None:
+                elapsed = clock.monotonic() - start
+                if elapsed > config.max_search_time:
+                    logger.info("no contact within %.1f s", config.max_search_time)
+                    break
+                pantilt.move(*config.path.angles(elapsed))
+            elif mpu.stream_position >= trigger + post:
                 break
             clock.sleep(config.poll_interval)
     finally:

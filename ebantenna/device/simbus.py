@@ -155,6 +155,7 @@ class _World:
         self.time = 0.0
         self.contact_time = None
         self.contact_tilt = None
+        #: Furthest the pan was commanded past the post after the contact, degrees.
         self.max_push = 0.0
         self.blocked = False
         self.direction = 1.0
@@ -180,6 +181,7 @@ class _World:
                         self.contact_tilt = tilt
                         self.direction = math.copysign(1.0, pan1 - pan0)
                         self.blocked = True
+                        self.max_push = (self.pan.target - self.obstacle.pan) * self.direction
             if self.blocked:
                 # The post stops the probe: the pan cannot pass it.
                 if (pan1 - self.obstacle.pan) * self.direction > 0:

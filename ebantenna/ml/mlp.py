@@ -560,3 +560,9 @@ class MLPRegressor(RegressorMixin, _BaseMLP):
         X = validate_data(self, X, dtype=np.float64, reset=False)
         z = self._forward(X, self.coefs_, self.intercepts_)[-1]
         return z[:, 0] if self._y_ndim == 1 else z
+
+    def __sklearn_tags__(self):
+        tags = super().__sklearn_tags__()
+        tags.target_tags.multi_output = True
+        tags.target_tags.single_output = True
+        return tags

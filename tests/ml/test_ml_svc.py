@@ -1,0 +1,246 @@
+"""SVC against scikit-learn's libsvm, against the KKT conditions, and on hard numerics."""
+
+import warnings
+
+import numpy as np
+import pytest
+from sklearn.exceptions import ConvergenceWarning
+from sklearn.multiclass import OneVsRestClassifier
+from sklearn.svm import SVC as LibSVC
+
+from ebantenna.ml import SVC
+from ebantenna.ml.kernels import Kernel
+from ebantenna.ml.smo import KernelRows, solve_smo
+
+
+def _data(n=240, d=6, k=3, seed=0, noise=0.6):
+    rng = np.random.default_rng(seed)
+    centers = rng.normal(size=(k, d)) * 1.5
+    y = rng.integers(0, k, n)
+    X = centers[y] + noise * rng.normal(size=(n, d))
+    return X, y
+
+
+def _scale(values):
+    return max(1.0, float(np.abs(values).max()))
+
+
+@pytest.mark.parametrize("kernel", ["rbf", "linear", "poly"])
+@pytest.mark.parametrize("k", [2, 4])
+def test_libsvm_compat_reproduces_sklearn(kernel, k):
+    X, y = _data(k=k, seed=k)
+    params = dict(kernel=kernel, C=3.0, gamma="scale", degree=2, coef0=1.0)
+    ref = LibSVC(shrinking=False, **params).fit(X, y)
+    ours = SVC(libsvm_compat=True, **params).fit(X, y)
+    # the same path: same iteration counts and the same support vectors in the same layout
+    np.testing.assert_array_equal(ours.n_iter_, ref.n_iter_)
+    np.testing.assert_array_equal(ours.support_, ref.support_)
+    np.testing.assert_array_equal(ours.n_support_, ref.n_support_)
+    np.testing.assert_allclose(ours.support_vectors_, ref.support_vectors_, rtol=0, atol=0)
+    # what is left is summation order in the kernel sums: 1e-12 of the values' scale
+    tol = 1e-12 * _scale(ref.dual_coef_)
+    np.testing.assert_allclose(ours.dual_coef_, ref.dual_coef_, rtol=0, atol=tol)
+    np.testing.assert_allclose(ours.intercept_, ref.intercept_, rtol=0,
+                               atol=1e-12 * _scale(ref.intercept_))
+    for shape in ("ovr", "ovo"):
+        ref.set_params(decision_function_shape=shape)
+        ours.set_params(decision_function_shape=shape)
+        dref, dours = ref.decision_function(X), ours.decision_function(X)
+        assert dours.shape == dref.shape
+        np.testing.assert_allclose(dours, dref, rtol=0, atol=1e-12 * _scale(dref))
+    np.testing.assert_array_equal(ours.predict(X), ref.predict(X))
+
+
+def test_default_mode_agrees_within_libsvm_tolerance():
+    X, y = _data(n=300, k=3, seed=5)
+    ref = LibSVC(C=2.0).fit(X, y)
+    ours = SVC(C=2.0).fit(X, y)
+    ref.set_params(decision_function_shape="ovo")
+    ours.set_params(decision_function_shape="ovo")
+    dref, dours = ref.decision_function(X), ours.decision_function(X)
+    # both stop when the KKT violation is below tol = 1e-3; the decision values then differ by
+    # a few tol (measured: about 5e-4 on this set)
+    assert np.abs(dours - dref).max() < 1e-2
+    assert np.abs(dours - dref).max() > 1e-10  # a genuinely different path, not a copy
+    sure = np.all(np.abs(dref) > 2e-2, axis=1)
+    np.testing.assert_array_equal(ours.predict(X)[sure], ref.predict(X)[sure])
+    # support vectors: all those clearly inside the margin are found by both
+    assert set(ref.support_) == set(ours.support_)
+
+
+def _kkt_violation(rows, y, C, res):
+    """Independent optimality check: the largest KKT violation from the dual solution."""
+    K = np.array([rows.row(i) for i in range(y.size)], dtype=np.float64)
+    f = K @ (res.alpha * y) - res.rho
+    margin = y * f
+    at_zero = res.alpha <= 0
+    at_c = res.alpha >= C
+    free = ~(at_zero | at_c)
+    viol = np.zeros_like(margin)
+    viol[at_zero] = np.maximum(0, 1 - margin[at_zero])
+    viol[at_c] = np.maximum(0, margin[at_c] - 1)
+    viol[free] = np.abs(margin[free] - 1)
+    return viol.max(), abs(float(res.alpha @ y))
+
+
+@pytest.mark.parametrize("selection", ["second-order", "first-order"])
+def test_smo_solution_satisfies_kkt(selection):
+    X, y3 = _data(n=150, k=2, seed=3, noise=1.2)
+    y = np.where(y3 == 0, 1.0, -1.0)
+    kern = Kernel("rbf", gamma=0.2)
+    rows = KernelRows(X, kern, np.float64, cache_bytes=1 << 24)
+    C = np.full(y.size, 2.0)
+    res = solve_smo(rows, y, C, diagonal=kern.diagonal(X), tol=1e-6, selection=selection)
+    assert res.converged
+    viol, balance = _kkt_violation(rows, y, C, res)
+    # stopping rule m - M < tol bounds every KKT violation by about tol (free-variable bias
+    # averaging can add at most the same again)
+    assert viol < 2e-6
+    assert balance < 1e-10
+    assert np.all((res.alpha >= 0) & (res.alpha <= C))
+
+
+def test_second_order_needs_fewer_iterations_same_optimum():
+    X, y = _data(n=300, k=2, seed=11, noise=1.5)
+    first = SVC(selection="first-order", tol=1e-5, C=10.0).fit(X, y)
+    second = SVC(selection="second-order", tol=1e-5, C=10.0).fit(X, y)
+    assert second.n_iter_[0] < first.n_iter_[0]
+    np.testing.assert_allclose(first.decision_function(X), second.decision_function(X),
+                               atol=1e-3)
+
+
+def test_row_cache_matches_full_kernel():
+    X, y = _data(n=200, k=3, seed=2)
+    full = SVC(libsvm_compat=True).fit(X, y)
+    # 0.05 MB holds about 100 rows of 200 float32 entries: the row cache is used
+    cached = SVC(libsvm_compat=True, cache_size=0.05).fit(X, y)
+    np.testing.assert_array_equal(cached.support_, full.support_)
+    np.testing.assert_allclose(cached.decision_function(X), full.decision_function(X),
+                               atol=1e-9)
+
+
+def test_kernel_rows_cache_evicts_and_recomputes():
+    X = np.random.default_rng(0).normal(size=(50, 3))
+    kern = Kernel("rbf", gamma=0.5)
+    rows = KernelRows(X, kern, np.float64, cache_bytes=3 * 50 * 8)
+    assert not rows.is_full
+    ref = kern.gram(X)
+    for i in [0, 1, 2, 3, 0, 4, 1]:
+        np.testing.assert_allclose(rows.row(i), ref[i], rtol=1e-14, atol=1e-15)
+    assert rows.rows_computed == 7  # 3 rows fit: row 0 and row 1 were evicted before reuse
+
+
+@pytest.mark.parametrize("kernel", ["rbf", "linear", "poly"])
+def test_gram_matrix_against_direct_formula(kernel):
+    rng = np.random.default_rng(4)
+    X, Y = rng.normal(size=(7, 3)), rng.normal(size=(5, 3))
+    k = Kernel(kernel, gamma=0.3, degree=3, coef0=0.5)
+    direct = np.empty((7, 5))
+    for i in range(7):
+        for j in range(5):
+            if kernel == "rbf":
+                direct[i, j] = np.exp(-0.3 * np.sum((X[i] - Y[j]) ** 2))
+            elif kernel == "linear":
+                direct[i, j] = X[i] @ Y[j]
+            else:
+                direct[i, j] = (0.3 * X[i] @ Y[j] + 0.5) ** 3
+    np.testing.assert_allclose(k.gram(X, Y), direct, rtol=1e-13, atol=1e-14)
+
+
+def test_duplicate_points_with_conflicting_labels():
+    X, y = _data(n=60, k=2, seed=1)
+    X = np.vstack([X, X])
+    y = np.concatenate([y, 1 - y])  # every point appears once in each class
+    clf = SVC(C=1.0, libsvm_compat=True).fit(X, y)
+    ref = LibSVC(C=1.0, shrinking=False).fit(X, y)
+    assert np.all(np.isfinite(clf.dual_coef_)) and np.all(np.isfinite(clf.intercept_))
+    np.testing.assert_array_equal(clf.n_iter_, ref.n_iter_)
+    np.testing.assert_allclose(clf.decision_function(X), ref.decision_function(X), atol=1e-12)
+
+
+def test_large_c_stops_at_max_iter_with_warning():
+    rng = np.random.default_rng(7)
+    X = rng.normal(size=(120, 2))
+    y = (X[:, 0] * X[:, 1] + 0.8 * rng.normal(size=120) > 0).astype(int)  # not separable
+    with pytest.warns(ConvergenceWarning, match="max_iter=50"):
+        clf = SVC(C=1e6, kernel="linear", max_iter=50).fit(X, y)
+    assert clf.fit_status_ == 1
+    assert clf.n_iter_[0] == 50
+    assert np.all(np.isfinite(clf.decision_function(X)))
+
+
+def test_large_c_and_large_gamma_converge_finite():
+    X, y = _data(n=100, k=2, seed=8, noise=1.0)
+    clf = SVC(C=1e6, gamma=1e3).fit(X, y)
+    ref = LibSVC(C=1e6, gamma=1e3).fit(X, y)
+    # with gamma = 1e3 the kernel is the identity to 1e-300: every point is its own support
+    # vector and the training set is memorised
+    assert clf.fit_status_ == 0
+    assert clf.score(X, y) == 1.0
+    assert clf.support_.size == X.shape[0] == ref.support_.size
+    # different paths stop at different points of the tol = 1e-3 neighbourhood ...
+    np.testing.assert_allclose(clf.decision_function(X), ref.decision_function(X), atol=2e-3)
+    # ... while libsvm's arithmetic retraces libsvm's path
+    compat = SVC(C=1e6, gamma=1e3, libsvm_compat=True).fit(X, y)
+    ref = LibSVC(C=1e6, gamma=1e3, shrinking=False).fit(X, y)
+    np.testing.assert_allclose(compat.decision_function(X), ref.decision_function(X), atol=1e-12)
+
+
+def test_one_vs_rest_wrapper_and_a_single_class_split():
+    X, y = _data(n=150, k=3, seed=9)
+    ovr = OneVsRestClassifier(SVC(C=2.0)).fit(X, y)
+    ref = OneVsRestClassifier(LibSVC(C=2.0)).fit(X, y)
+    assert (ovr.predict(X) == ref.predict(X)).mean() > 0.97
+    # a label present in every training example: scikit-learn warns and predicts it constantly
+    Y = np.column_stack([np.ones(X.shape[0], dtype=int), (y == 1).astype(int)])
+    with pytest.warns(UserWarning, match="present in all training examples"):
+        single = OneVsRestClassifier(SVC()).fit(X, Y)
+    assert np.all(single.predict(X)[:, 0] == 1)
+
+
+@pytest.mark.parametrize(
+    "params, match",
+    [
+        (dict(C=0.0), "C"),
+        (dict(C=-1.0), "C"),
+        (dict(kernel="sigmoid"), "kernel"),
+        (dict(gamma="wide"), "gamma"),
+        (dict(gamma=-1.0), "gamma"),
+        (dict(tol=0.0), "tol"),
+        (dict(max_iter=0), "max_iter"),
+        (dict(selection="random"), "selection"),
+        (dict(decision_function_shape="ovo", break_ties=True), "break_ties"),
+    ],
+)
+def test_bad_parameters_name_themselves(params, match):
+    X, y = _data(n=20, k=2)
+    with pytest.raises(ValueError, match=match):
+        SVC(**params).fit(X, y)
+
+
+def test_single_class_is_refused():
+    with pytest.raises(ValueError, match="class"):
+        SVC().fit([[0.0], [1.0]], [3, 3])
+
+
+def test_break_ties_predicts_argmax_of_ovr_scores():
+    X, y = _data(n=200, k=4, seed=12, noise=1.5)
+    clf = SVC(break_ties=True).fit(X, y)
+    np.testing.assert_array_equal(clf.predict(X),
+                                  clf.classes_[np.argmax(clf.decision_function(X), axis=1)])
+
+
+def test_string_labels_and_binary_sign_convention():
+    X, y = _data(n=80, k=2, seed=13)
+    names = np.array(["pvc", "steel"])[y]
+    clf = SVC().fit(X, names)
+    dec = clf.decision_function(X)
+    # positive decision values mean classes_[1], as in scikit-learn
+    np.testing.assert_array_equal(clf.predict(X), np.where(dec > 0, "steel", "pvc"))
+
+
+def test_no_warning_on_normal_fit():
+    X, y = _data()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        SVC().fit(X, y).predict(X)

@@ -1,0 +1,26 @@
+"""Finite elements of the probe: Euler-Bernoulli beam elements, assembly, modes, exact reference.
+
+- :mod:`~ebantenna.fem.symbolic`: the element derived with sympy, the paper's errata;
+- :mod:`~ebantenna.fem.elements`: the same matrices in NumPy;
+- :mod:`~ebantenna.fem.assembly`: mesh, assembly, supports;
+- :mod:`~ebantenna.fem.modal`: the generalized eigenproblem, mode shapes, contact sweeps;
+- :mod:`~ebantenna.fem.exact`: the exact frequencies from the transcendental frequency equation;
+- :mod:`~ebantenna.fem.zones`: the three zones of the dominant mode along the probe (Fig. 16).
+
+(:mod:`~ebantenna.fem.symbolic` imports sympy and is not loaded until asked for.)
+"""
+
+from .exact import exact_frequencies
+from .modal import ModalResult, modal_analysis, natural_frequencies
+from .supports import Supports
+from .zones import ZoneResult, dominant_mode_zones
+
+__all__ = [
+    "Supports",
+    "ModalResult",
+    "modal_analysis",
+    "natural_frequencies",
+    "exact_frequencies",
+    "ZoneResult",
+    "dominant_mode_zones",
+]

@@ -1,0 +1,121 @@
+"""Mesh of the probe and assembly of the global stiffness and mass matrices.
+
+The global DOF vector is ``(v0, theta0, v1, theta1, ..., vN, thetaN)`` for nodes 0 (hinge) to N (tip).
+Supports are applied by removing the DOFs they fix (a clamped hinge removes ``v0`` and ``theta0``, a
+rigid contact removes ``v`` at the contact node) and by adding spring stiffnesses and the tip mass to
+the diagonal.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import scipy.sparse as sps
+
+from .._validate import check_in_range, check_int
+from ..probe import Probe
+from .elements import consistent_mass, element_stiffness
+from .supports import Supports
+
+__all__ = ["beam_mesh", "assemble", "apply_supports", "free_dofs", "contact_node"]
+
+
+def beam_mesh(length: float, contact: float | None, n_elements: int) -> np.ndarray:
+    """Node positions from hinge (0) to tip (``length``), m, with a node exactly at ``contact``.
+
+    The elements are shared between the two spans in proportion to their lengths (at least one each)
+    and are uniform within a span. ``n_elements=2`` with a contact gives the paper's model.
+
+    Examples
+    --------
+    >>> from ebantenna.fem.assembly import beam_mesh
+    >>> beam_mesh(0.4, 0.1, 4)
+    array([0. , 0.1, 0.2, 0.3, 0.4])
+    >>> beam_mesh(0.4, 0.3, 2)
+    array([0. , 0.3, 0.4])
+    """
+    if contact is None:
+        n_elements = check_int("n_elements", n_elements, minimum=1)
+        return np.linspace(0.0, length, n_elements + 1)
+    n_elements = check_int("n_elements", n_elements, minimum=2)
+    contact = check_in_range("contact", contact, 0.0, length)
+    n1 = min(max(1, round(n_elements * contact / length)), n_elements - 1)
+    span = np.linspace(0.0, contact, n1 + 1)
+    overhang = np.linspace(contact, length, n_elements - n1 + 1)
+    return np.concatenate([span, overhang[1:]])
+
+
+def contact_node(nodes: np.ndarray, contact: float | None) -> int | None:
+    """Index of the node at the contact (None without contact)."""
+    if contact is None:
+        return None
+    return int(np.argmin(np.abs(nodes - contact)))
+
+
+def _element_dofs(n_elements: int) -> np.ndarray:
+    return 2 * np.arange(n_elements)[:, None] + np.arange(4)
+
+
+def assemble(nodes: np.ndarray, probe: Probe, *, sparse: bool = False):
+    """Global stiffness K (N/m...) and consistent mass M (kg...) of the bare beam, no supports.
+
+    Parameters
+    ----------
+    nodes : array of shape (n_nodes,)
+        Node positions, m, increasing.
+    probe : Probe
+        Beam properties (``EI``, ``rho A``); the tip mass is added by :func:`apply_supports`.
+    sparse : bool
+        Return ``scipy.sparse`` CSC matrices instead of dense arrays.
+    """
+    lengths = np.diff(nodes)
+    Ke = element_stiffness(probe.flexural_rigidity, lengths).reshape(-1)
+    Me = consistent_mass(probe.mass_per_length, lengths).reshape(-1)
+    dofs = _element_dofs(lengths.size)
+    rows = np.repeat(dofs, 4, axis=1).reshape(-1)
+    cols = np.tile(dofs, (1, 4)).reshape(-1)
+    n = 2 * nodes.size
+    K = sps.coo_matrix((Ke, (rows, cols)), shape=(n, n))
+    M = sps.coo_matrix((Me, (rows, cols)), shape=(n, n))
+    if sparse:
+        return K.tocsc(), M.tocsc()
+    return K.toarray(), M.toarray()
+
+
+def free_dofs(nodes: np.ndarray, supports: Supports) -> np.ndarray:
+    """Indices of the DOFs left free by the supports, increasing."""
+    fixed = [0]  # the hinge never moves sideways
+    if supports.hinge == "clamped":
+        fixed.append(1)
+    if supports.rigid_contact:
+        fixed.append(2 * contact_node(nodes, supports.contact))
+    return np.setdiff1d(np.arange(2 * nodes.size), fixed)
+
+
+def apply_supports(K, M, nodes: np.ndarray, probe: Probe, supports: Supports):
+    """Add springs and the tip mass, then keep the free DOFs.
+
+    Returns
+    -------
+    K_free, M_free : matrices (dense or sparse, as given)
+        Restricted to the free DOFs.
+    free : ndarray of int
+        Their indices in the global DOF vector.
+    """
+    free = free_dofs(nodes, supports)
+    n = K.shape[0]
+    k_diag = np.zeros(n)
+    m_diag = np.zeros(n)
+    if not isinstance(supports.hinge, str):
+        k_diag[1] += supports.hinge_stiffness
+    if supports.contact is not None and not math.isinf(supports.contact_stiffness):
+        k_diag[2 * contact_node(nodes, supports.contact)] += supports.contact_stiffness
+    m_diag[-2] += probe.tip_mass
+    if sps.issparse(K):
+        K = (K + sps.diags(k_diag)).tocsc()[free][:, free]
+        M = (M + sps.diags(m_diag)).tocsc()[free][:, free]
+    else:
+        K = (K + np.diag(k_diag))[np.ix_(free, free)]
+        M = (M + np.diag(m_diag))[np.ix_(free, free)]
+    return K, M, free

@@ -1,0 +1,410 @@
+"""Modal analysis of the probe: the generalized eigenproblem ``K phi = omega^2 M phi``.
+
+Why not simply ``scipy.linalg.eigh(K, M)``? That routine reduces the problem to
+``L^-1 K L^-T`` with ``M = L L^T`` and finds all eigenvalues to an *absolute* accuracy of about
+``eps * omega_max^2``. On a fine mesh ``omega_max^2`` grows like ``(N/L)^4`` while the probe's
+first ``omega^2`` stays put, so the low modes, the only ones that matter, lose their digits
+(about 3 % at 2048 elements). Here the problem is inverted instead, as in shift-invert Lanczos:
+with a small shift ``s > 0`` and ``K + s M = L L^T``,
+
+    L^-1 M L^-T y = mu y,     omega^2 = 1/mu - s,     phi = L^-T y / sqrt(mu),
+
+and the *largest* ``mu`` belong to the lowest modes, so they come out with full relative
+accuracy. The shift keeps ``K + s M`` positive definite even for a free (unsupported) probe,
+whose rigid-body mode then has ``omega = 0`` instead of a NaN. Small meshes are solved densely,
+large ones with sparse shift-invert Lanczos (:func:`scipy.sparse.linalg.eigsh`), the same idea.
+
+That is still not enough on very fine meshes: the assembled ``K`` itself is only known to
+rounding, and ``K phi`` for a smooth mode is a fourth difference that cancels to a relative
+``eps / (beta h)^4`` (about 2e-5 at 2048 elements). So the eigenvalues are finally refined by the
+Rayleigh quotient ``omega^2 = U(phi) / T(phi)`` with the strain energy summed from the element
+*curvatures* (a second difference, ``eps / (beta h)^2``, about 1e-10) instead of ``phi^T K phi``.
+A Rayleigh quotient is stationary at an eigenvector, so the eigenvector's own error enters squared.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as sla
+import scipy.sparse.linalg as spla
+from threadpoolctl import threadpool_limits
+
+from .._validate import check_array, check_choice, check_int
+from ..probe import Probe
+from .assembly import apply_supports, assemble, beam_mesh, contact_node
+from .elements import consistent_mass, element_stiffness, hermite, hermite_slope
+from .supports import Supports
+
+__all__ = [
+    "ModalResult",
+    "modal_analysis",
+    "natural_frequencies",
+    "solve_modes",
+    "SOLVERS",
+    "DENSE_LIMIT",
+    "strain_energy",
+]
+
+#: Solvers of :func:`solve_modes`: the inverted dense solve, sparse shift-invert Lanczos, and the
+#: textbook ``scipy.linalg.eigh(K, M)`` kept to show what it loses.
+SOLVERS = ("auto", "dense", "sparse", "naive")
+
+#: Above this many free DOFs, ``solver="auto"`` goes sparse.
+DENSE_LIMIT = 400
+
+
+def _shift(probe: Probe) -> float:
+    """A positive shift of the scale of the probe's own omega^2 (1/s^2)."""
+    return probe.flexural_rigidity / (probe.mass_per_length * probe.length**4)
+
+
+def _clip_eigenvalues(lam: np.ndarray, shift: float) -> np.ndarray:
+    # Rounding can leave a rigid-body eigenvalue a hair below zero (|lam| ~ eps * shift).
+    tiny = 1e-8 * shift
+    if np.any(lam < -tiny):
+        raise np.linalg.LinAlgError(f"negative eigenvalue {lam.min():g}: K is not semi-definite")
+    return np.maximum(lam, 0.0)
+
+
+def solve_modes(K, M, n_modes: int, *, shift: float, solver: str = "auto"):
+    """Lowest ``n_modes`` eigenpairs of ``K phi = lam M phi`` (``K`` semi-, ``M`` positive definite).
+
+    Parameters
+    ----------
+    K, M : dense arrays or sparse matrices of shape (n, n)
+        Stiffness and mass restricted to the free DOFs.
+    n_modes : int
+        How many of the lowest modes.
+    shift : float
+        Positive shift ``s`` (1/s^2), of the order of the lowest eigenvalue.
+    solver : {"auto", "dense", "sparse", "naive"}
+        See :data:`SOLVERS`.
+
+    Returns
+    -------
+    lam : ndarray of shape (n_modes,)
+        Eigenvalues ``omega^2``, 1/s^2, ascending, never negative.
+    phi : ndarray of shape (n, n_modes)
+        Mass-normalised eigenvectors (``phi.T @ M @ phi = I``).
+    """
+    check_choice("solver", solver, SOLVERS)
+    n = K.shape[0]
+    n_modes = check_int("n_modes", n_modes, minimum=1, maximum=n)
+    if solver == "auto":
+        solver = "dense" if n <= DENSE_LIMIT else "sparse"
+    if solver == "sparse" and n_modes >= n - 1:
+        solver = "dense"  # ARPACK needs k < n - 1
+    if solver in ("dense", "naive"):
+        K = K.toarray() if hasattr(K, "toarray") else np.asarray(K)
+        M = M.toarray() if hasattr(M, "toarray") else np.asarray(M)
+    if solver == "naive":
+        lam, phi = sla.eigh(K, M, subset_by_index=[0, n_modes - 1])
+        return np.maximum(lam, 0.0), phi
+    if solver == "dense":
+        L = sla.cholesky(K + shift * M, lower=True)
+        X = sla.solve_triangular(L, M, lower=True)
+        B = sla.solve_triangular(L, X.T, lower=True)
+        mu, Y = sla.eigh((B + B.T) / 2, subset_by_index=[n - n_modes, n - 1])
+        mu, Y = mu[::-1], Y[:, ::-1]
+        phi = sla.solve_triangular(L, Y, lower=True, trans="T") / np.sqrt(mu)
+        return _clip_eigenvalues(1.0 / mu - shift, shift), phi
+    # Sparse shift-invert Lanczos about -shift; a fixed start vector makes it deterministic.
+    lam, phi = spla.eigsh(
+        K.tocsc(), k=n_modes, M=M.tocsc(), sigma=-shift, which="LM", v0=np.ones(n), tol=0
+    )
+    order = np.argsort(lam)
+    lam, phi = lam[order], phi[:, order]
+    phi = phi / np.sqrt(np.einsum("ik,ik->k", phi, M @ phi))
+    return _clip_eigenvalues(lam, shift), phi
+
+
+@dataclass(frozen=True, eq=False)
+class ModalResult:
+    """Natural frequencies and mass-normalised mode shapes of a supported probe.
+
+    Attributes
+    ----------
+    probe : Probe
+    supports : Supports
+    nodes : ndarray of shape (n_nodes,)
+        Node positions, m (a node sits at the contact).
+    omega : ndarray of shape (n_modes,)
+        Natural circular frequencies, rad/s, ascending.
+    shapes : ndarray of shape (2 * n_nodes, n_modes)
+        Mode shapes as full DOF vectors ``(v0, theta0, v1, ...)`` (m, rad per unit modal
+        coordinate), zero at the fixed DOFs, normalised so that ``phi.T @ M @ phi = I``.
+    free : ndarray of int
+        Indices of the free DOFs.
+    mass_matrix : ndarray of shape (2 * n_nodes, 2 * n_nodes)
+        Global consistent mass with the tip mass (kg, kg m, kg m^2), before removing fixed DOFs.
+    """
+
+    probe: Probe
+    supports: Supports
+    nodes: np.ndarray
+    omega: np.ndarray
+    shapes: np.ndarray
+    free: np.ndarray
+    mass_matrix: object
+
+    @property
+    def frequencies(self) -> np.ndarray:
+        """Natural frequencies, Hz."""
+        return self.omega / (2 * math.pi)
+
+    @property
+    def n_modes(self) -> int:
+        """Number of modes computed."""
+        return int(self.omega.size)
+
+    def _locate(self, x):
+        x = check_array("x", x, ndim=(0, 1))
+        if np.any((x < 0) | (x > self.probe.length)):
+            raise ValueError(f"x must lie in [0, {self.probe.length:g}] m")
+        element = np.clip(np.searchsorted(self.nodes, x, side="right") - 1, 0, self.nodes.size - 2)
+        le = self.nodes[element + 1] - self.nodes[element]
+        xi = (x - self.nodes[element]) / le
+        dofs = 2 * element[..., None] + np.arange(4)
+        return xi, le, self.shapes[dofs]  # shapes[dofs]: (..., 4, n_modes)
+
+    def displacement(self, x) -> np.ndarray:
+        """Deflection of every mode at positions ``x`` (m) by the Hermite shape functions.
+
+        Returns an array of shape ``x.shape + (n_modes,)``, m per unit modal coordinate.
+        """
+        xi, le, local = self._locate(x)
+        return np.einsum("...a,...am->...m", hermite(xi, le), local)
+
+    def slope(self, x) -> np.ndarray:
+        """Slope ``dv/dx`` of every mode at positions ``x`` (m), shape ``x.shape + (n_modes,)``."""
+        xi, le, local = self._locate(x)
+        return np.einsum("...a,...am->...m", hermite_slope(xi, le), local)
+
+    def modal_coordinates(self, u) -> np.ndarray:
+        """Modal coordinates ``q = Phi^T M u`` of a full DOF vector ``u`` (fixed DOFs ignored).
+
+        For an initial velocity field this gives the initial modal velocities; the fixed DOFs are
+        ignored because the supports take their motion away (an impulsive reaction).
+        """
+        u = check_array("u", u, ndim=(1, 2))
+        if u.shape[0] != self.shapes.shape[0]:
+            raise ValueError(f"u must have {self.shapes.shape[0]} rows (2 per node), got {u.shape}")
+        masked = np.zeros_like(u)
+        masked[self.free] = u[self.free]
+        return self.shapes.T @ (self.mass_matrix @ masked)
+
+    def overhang_mass_fraction(self) -> np.ndarray:
+        """Share of each mode's kinetic energy in the overhang, from the contact to the tip.
+
+        Close to 1 for a mode in which the overhang swings like a cantilever on the contact, close to
+        0 for one in which the span between hinge and contact vibrates (Fig. 17 of the paper).
+        """
+        if self.supports.contact is None:
+            raise ValueError("overhang_mass_fraction needs a contact (supports.contact is None)")
+        c = contact_node(self.nodes, self.supports.contact)
+        part = self.shapes[2 * c :]
+        M = self.mass_matrix[2 * c :, 2 * c :]
+        return np.einsum("im,ij,jm->m", part, M, part)
+
+    @property
+    def dominant_mode(self) -> int:
+        """Index of the paper's "dominant (most flexible) mode": the lowest-frequency one, 0."""
+        return 0
+
+    def plot(self, ax=None, modes=None, n_points: int = 400):
+        """Draw mode shapes with the Hermite shape functions between nodes.
+
+        Returns the matplotlib Axes.
+        """
+        from .plot import plot_modes
+
+        return plot_modes(self, ax=ax, modes=modes, n_points=n_points)
+
+
+def modal_analysis(
+    probe: Probe,
+    supports: Supports,
+    *,
+    n_elements: int = 64,
+    n_modes: int = 3,
+    solver: str = "auto",
+) -> ModalResult:
+    """Natural frequencies and mode shapes of the probe on its supports.
+
+    Parameters
+    ----------
+    probe : Probe
+        Geometry and material of the tube, and the tip mass.
+    supports : Supports
+        Hinge, contact position (m) and stiffness.
+    n_elements : int
+        Number of beam elements; 2 with a contact is the paper's model.
+    n_modes : int
+        Number of lowest modes to return.
+    solver : {"auto", "dense", "sparse", "naive"}
+        Eigen solver; see :func:`solve_modes`.
+
+    Returns
+    -------
+    ModalResult
+
+    Examples
+    --------
+    >>> from ebantenna import Probe
+    >>> from ebantenna.fem import Supports, modal_analysis
+    >>> res = modal_analysis(Probe(), Supports(contact=0.2), n_elements=2, n_modes=3)
+    >>> res.frequencies.round(1)
+    array([ 39.1, 293.9, 743.9])
+    """
+    if not isinstance(probe, Probe):
+        raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")
+    if not isinstance(supports, Supports):
+        raise TypeError(f"supports must be a Supports, got {type(supports).__name__}")
+    if supports.contact is not None and not supports.contact < probe.length:
+        raise ValueError(
+            f"contact must lie in (0, {probe.length:g}) m (the probe's length), got {supports.contact!r}"
+        )
+    nodes = beam_mesh(probe.length, supports.contact, n_elements)
+    use_sparse = solver == "sparse" or (solver == "auto" and 2 * nodes.size > DENSE_LIMIT)
+    K, M = assemble(nodes, probe, sparse=use_sparse)
+    K_free, M_free, free = apply_supports(K, M, nodes, probe, supports)
+    lam, phi = solve_modes(K_free, M_free, n_modes, shift=_shift(probe), solver=solver)
+    shapes = np.zeros((2 * nodes.size, lam.size))
+    shapes[free] = phi
+    M_full = M.tolil() if use_sparse else M.copy()
+    M_full[-2, -2] += probe.tip_mass
+    M_full = M_full.tocsr() if use_sparse else M_full
+    if solver != "naive":
+        lam = strain_energy(nodes, probe, supports, shapes) / np.einsum(
+            "im,im->m", shapes, M_full @ shapes
+        )
+        order = np.argsort(lam)
+        lam, shapes = lam[order], shapes[:, order]
+    return ModalResult(probe, supports, nodes, np.sqrt(np.maximum(lam, 0.0)), shapes, free, M_full)
+
+
+def strain_energy(nodes: np.ndarray, probe: Probe, supports: Supports, u: np.ndarray) -> np.ndarray:
+    """Twice the strain energy ``u^T K u`` of DOF vectors, summed from element curvatures (J).
+
+    Inside an element the curvature ``v''`` is linear between its end values ``k1`` and ``k2``, so
+    ``int EI v''^2 dx = EI l (k1^2 + k1 k2 + k2^2) / 3``. Springs at the hinge and the contact add
+    ``k theta0^2`` and ``k v_c^2``. Same value as ``u^T K u`` in exact arithmetic, far fewer
+    cancellations in floating point.
+
+    Parameters
+    ----------
+    u : array of shape (2 * n_nodes,) or (2 * n_nodes, m)
+        Full DOF vectors (m, rad).
+    """
+    l = np.diff(nodes).reshape((-1,) + (1,) * (u.ndim - 1))
+    v1, t1, v2, t2 = u[0:-2:2], u[1:-2:2], u[2::2], u[3::2]
+    k1 = (6 * (v2 - v1) - l * (4 * t1 + 2 * t2)) / l**2
+    k2 = (6 * (v1 - v2) + l * (2 * t1 + 4 * t2)) / l**2
+    energy = (probe.flexural_rigidity * l / 3 * (k1 * k1 + k1 * k2 + k2 * k2)).sum(axis=0)
+    if not isinstance(supports.hinge, str):
+        energy = energy + supports.hinge_stiffness * u[1] ** 2
+    if supports.contact is not None and not math.isinf(supports.contact_stiffness):
+        energy = energy + supports.contact_stiffness * u[2 * contact_node(nodes, supports.contact)] ** 2
+    return energy
+
+
+def natural_frequencies(
+    probe: Probe,
+    contacts,
+    *,
+    hinge="clamped",
+    contact_stiffness: float = math.inf,
+    n_elements: int = 64,
+    n_modes: int = 3,
+    chunk: int = 125,
+) -> np.ndarray:
+    """Natural frequencies for many contact positions at once, Hz.
+
+    All positions share one mesh topology (``n_elements`` elements), so their matrices are
+    assembled and solved as stacks with batched LAPACK calls: no Python loop per position.
+
+    Parameters
+    ----------
+    probe : Probe
+    contacts : array of shape (n,)
+        Contact positions from the hinge, m, each in ``(0, L)``.
+    hinge, contact_stiffness
+        As in :class:`Supports`.
+    n_elements, n_modes : int
+        Mesh size and number of modes.
+    chunk : int
+        Positions solved per batch (bounds the memory to about ``chunk * (2 n_elements)^2 * 32`` bytes).
+
+    Returns
+    -------
+    ndarray of shape (n, n_modes)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ebantenna import Probe
+    >>> from ebantenna.fem import natural_frequencies
+    >>> natural_frequencies(Probe(), np.array([0.1, 0.2]), n_modes=2).round(2)
+    array([[ 21.35, 137.77],
+           [ 38.97, 243.51]])
+    """
+    contacts = check_array("contacts", contacts, ndim=1)
+    chunk = check_int("chunk", chunk, minimum=1)
+    supports = [Supports(contact=float(c), hinge=hinge, contact_stiffness=contact_stiffness) for c in contacts]
+    bad = (contacts <= 0) | (contacts >= probe.length)
+    if np.any(bad):
+        raise ValueError(
+            f"contacts must lie in (0, {probe.length:g}) m, got {contacts[bad][0]!r}"
+        )
+    blocks = [supports[i : i + chunk] for i in range(0, contacts.size, chunk)]
+    # LAPACK releases the GIL: chunks run side by side on the machine's cores, each with a
+    # single-threaded BLAS (threads inside such small matrices only get in each other's way).
+    workers = min(len(blocks), os.cpu_count() or 1)
+    with threadpool_limits(limits=1, user_api="blas"), ThreadPoolExecutor(workers) as pool:
+        parts = pool.map(lambda b: _batched_frequencies(probe, b, n_elements, n_modes), blocks)
+        return np.concatenate(list(parts))
+
+
+def _batched_frequencies(probe, supports_list, n_elements, n_modes):
+    meshes = np.stack([beam_mesh(probe.length, s.contact, n_elements) for s in supports_list])
+    lengths = np.diff(meshes, axis=1)  # (B, ne)
+    B, ne = lengths.shape
+    n = 2 * (ne + 1)
+    Ke = element_stiffness(probe.flexural_rigidity, lengths)  # (B, ne, 4, 4)
+    Me = consistent_mass(probe.mass_per_length, lengths)
+    K = np.zeros((B, n, n))
+    M = np.zeros((B, n, n))
+    for parity in (0, 1):  # elements of one parity share no node: no duplicate indices per pass
+        e = np.arange(parity, ne, 2)
+        d = 2 * e[:, None] + np.arange(4)
+        K[:, d[:, :, None], d[:, None, :]] += Ke[:, e]
+        M[:, d[:, :, None], d[:, None, :]] += Me[:, e]
+    M[:, -2, -2] += probe.tip_mass
+    s0 = supports_list[0]
+    if not isinstance(s0.hinge, str):
+        K[:, 1, 1] += s0.hinge_stiffness
+    nodes_c = np.array([contact_node(m, s.contact) for m, s in zip(meshes, supports_list)])
+    if s0.rigid_contact:
+        # Move each contact's deflection DOF out of the way: keep all others, in order.
+        keep = np.array([np.setdiff1d(np.arange(n), [0, 1, 2 * c]) for c in nodes_c])
+        if s0.hinge != "clamped":
+            keep = np.array([np.setdiff1d(np.arange(n), [0, 2 * c]) for c in nodes_c])
+    else:
+        K[np.arange(B), 2 * nodes_c, 2 * nodes_c] += s0.contact_stiffness
+        fixed = [0, 1] if s0.hinge == "clamped" else [0]
+        keep = np.tile(np.setdiff1d(np.arange(n), fixed), (B, 1))
+    rows = np.arange(B)[:, None, None]
+    K = K[rows, keep[:, :, None], keep[:, None, :]]
+    M = M[rows, keep[:, :, None], keep[:, None, :]]
+    shift = _shift(probe)
+    L = np.linalg.cholesky(K + shift * M)
+    X = np.linalg.solve(L, M)
+    Bm = np.linalg.solve(L, np.swapaxes(X, 1, 2))  # L^-1 M L^-T
+    mu = np.linalg.eigvalsh((Bm + np.swapaxes(Bm, 1, 2)) / 2)[:, ::-1][:, :n_modes]
+    lam = _clip_eigenvalues(1.0 / mu - shift, shift)
+    return np.sqrt(lam) / (2 * math.pi)

@@ -1,0 +1,304 @@
+"""MLP: one gradient step against scikit-learn, gradients against finite differences, numerics."""
+
+import warnings
+
+import numpy as np
+import pytest
+from sklearn.exceptions import ConvergenceWarning
+from sklearn.neural_network import MLPClassifier as SkClassifier
+from sklearn.neural_network import MLPRegressor as SkRegressor
+
+from ebantenna.ml import MLPClassifier, MLPRegressor
+from ebantenna.ml.optimizers import scg_init, scg_step
+
+
+def _data(n=60, d=4, seed=0):
+    rng = np.random.default_rng(seed)
+    X = rng.normal(size=(n, d))
+    return X, rng
+
+
+def _one_step_pair(ours, theirs, X, y):
+    """Fit both once (to set up), copy our initial weights into theirs, take one step each."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        ours.fit(X, y)
+        theirs.fit(X, y)
+        c0 = [c.copy() for c in ours.coefs_]
+        b0 = [b.copy() for b in ours.intercepts_]
+        for est in (ours, theirs):
+            est.coefs_ = [c.copy() for c in c0]
+            est.intercepts_ = [b.copy() for b in b0]
+            est.set_params(warm_start=True)
+            est.fit(X, y)
+    return c0, b0
+
+
+STEP = dict(alpha=0.3, max_iter=1, learning_rate_init=0.05, random_state=0)
+SK_STEP = dict(solver="sgd", momentum=0.0, shuffle=False, **STEP)
+
+
+@pytest.mark.parametrize("activation", ["tanh", "relu", "logistic", "identity"])
+@pytest.mark.parametrize("n_classes", [2, 3])
+def test_gd_step_equals_sklearn_full_batch_sgd(activation, n_classes):
+    X, rng = _data()
+    y = rng.integers(0, n_classes, X.shape[0])
+    ours = MLPClassifier(hidden_layer_sizes=(7, 5), activation=activation, solver="gd", **STEP)
+    theirs = SkClassifier(hidden_layer_sizes=(7, 5), activation=activation,
+                          batch_size=X.shape[0], **SK_STEP)
+    _one_step_pair(ours, theirs, X, y)
+    # same loss (L2 term included) and the same updated weights, to rounding
+    assert abs(ours.loss_curve_[-1] - theirs.loss_curve_[-1]) < 1e-12
+    for a, b in zip(ours.coefs_ + ours.intercepts_, theirs.coefs_ + theirs.intercepts_,
+                    strict=True):
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-10)
+    np.testing.assert_allclose(ours.predict_proba(X), theirs.predict_proba(X), atol=1e-10)
+
+
+def test_gd_step_equals_sklearn_for_single_output_regression():
+    X, rng = _data()
+    y = X @ rng.normal(size=4) + 0.1 * rng.normal(size=X.shape[0])
+    ours = MLPRegressor(hidden_layer_sizes=(6,), activation="tanh", solver="gd", **STEP)
+    theirs = SkRegressor(hidden_layer_sizes=(6,), activation="tanh", batch_size=X.shape[0],
+                         **SK_STEP)
+    _one_step_pair(ours, theirs, X, y)
+    assert abs(ours.loss_curve_[-1] - theirs.loss_curve_[-1]) < 1e-12
+    for a, b in zip(ours.coefs_ + ours.intercepts_, theirs.coefs_ + theirs.intercepts_,
+                    strict=True):
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-10)
+
+
+def test_multi_output_regression_uses_the_true_gradient():
+    X, rng = _data()
+    Y = np.column_stack([X[:, 0], X[:, 1] ** 2, -X[:, 2]])  # three outputs
+    params = dict(hidden_layer_sizes=(5,), activation="tanh", alpha=0.0, max_iter=1,
+                  learning_rate_init=0.05, random_state=0)
+    ours = MLPRegressor(solver="gd", **params)
+    theirs = SkRegressor(solver="sgd", momentum=0.0, shuffle=False, batch_size=X.shape[0],
+                         **params)
+    c0, b0 = _one_step_pair(ours, theirs, X, Y)
+    # the same reported loss ...
+    assert abs(ours.loss_curve_[-1] - theirs.loss_curve_[-1]) < 1e-12
+    # ... but scikit-learn's step is n_outputs = 3 times the step of the true gradient
+    for ours_new, theirs_new, start in zip(ours.coefs_ + ours.intercepts_,
+                                           theirs.coefs_ + theirs.intercepts_, c0 + b0,
+                                           strict=True):
+        np.testing.assert_allclose(theirs_new - start, 3.0 * (ours_new - start), atol=1e-12)
+    # and ours is the gradient of the reported loss: a central difference agrees
+    _check_gradient(ours, X, Y)
+
+
+def _check_gradient(model, X, Y, eps=1e-6, rtol=1e-6):
+    """Compare the backpropagated gradient with central finite differences of the loss."""
+    w0 = model._pack(model.coefs_, model.intercepts_)
+    _, grad = model.loss_and_gradient(X, Y, w0)
+    rng = np.random.default_rng(1)
+    picks = rng.choice(w0.size, size=min(40, w0.size), replace=False)
+    fd = np.empty(picks.size)
+    for k, i in enumerate(picks):
+        wp, wm = w0.copy(), w0.copy()
+        wp[i] += eps
+        wm[i] -= eps
+        fd[k] = (model.loss_and_gradient(X, Y, wp)[0] - model.loss_and_gradient(X, Y, wm)[0])
+        fd[k] /= 2 * eps
+    # central differences are exact to O(eps^2) ~ 1e-12 plus rounding ~ 1e-16 / eps = 1e-10
+    np.testing.assert_allclose(grad[picks], fd, rtol=rtol, atol=1e-8)
+
+
+@pytest.mark.parametrize("activation", ["tanh", "logistic", "identity", "relu"])
+@pytest.mark.parametrize("kind", ["binary", "multiclass", "multilabel", "regression"])
+def test_gradient_matches_finite_differences(activation, kind):
+    X, rng = _data(n=30, d=3, seed=2)
+    common = dict(hidden_layer_sizes=(4, 3), activation=activation, alpha=0.7, max_iter=3,
+                  solver="gd", random_state=3)
+    if kind == "regression":
+        model, y = MLPRegressor(**common), rng.normal(size=(30, 2))
+        Y = y
+    else:
+        model = MLPClassifier(**common)
+        y = {"binary": rng.integers(0, 2, 30), "multiclass": rng.integers(0, 4, 30),
+             "multilabel": rng.integers(0, 2, (30, 3))}[kind]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        model.fit(X, y)
+    if kind != "regression":
+        Y = model._label_binarizer.transform(y).astype(float)
+    _check_gradient(model, X, Y)
+
+
+def test_saturated_outputs_give_finite_loss_and_probabilities():
+    X, rng = _data(n=20, d=2)
+    y = rng.integers(0, 3, 20)
+    clf = MLPClassifier(hidden_layer_sizes=(3,), activation="logistic", solver="gd",
+                        max_iter=1, random_state=0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        clf.fit(X, y)
+    clf.coefs_ = [c * 1e4 for c in clf.coefs_]  # huge logits: exp would overflow naively
+    Xbig = X * 1e6
+    Y = clf._label_binarizer.transform(y).astype(float)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no overflow or divide-by-zero RuntimeWarning
+        loss, grad = clf.loss_and_gradient(Xbig, Y)
+        proba = clf.predict_proba(Xbig)
+        log_proba = clf.predict_log_proba(Xbig)
+    assert np.isfinite(loss) and loss > 1.0  # confidently wrong somewhere: a large loss
+    assert np.all(np.isfinite(grad))
+    assert np.all(np.isfinite(proba)) and np.allclose(proba.sum(axis=1), 1.0)
+    assert np.all(np.isfinite(log_proba))
+    # log-probabilities from log-sum-exp stay exact where probabilities underflow to 0
+    np.testing.assert_allclose(np.exp(log_proba), proba, atol=1e-300)
+
+
+def test_binary_logistic_output_stable_for_huge_logits():
+    X = np.array([[0.0], [1.0], [2.0], [3.0]])
+    y = np.array([0, 0, 1, 1])
+    clf = MLPClassifier(hidden_layer_sizes=(2,), solver="gd", max_iter=1, random_state=0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        clf.fit(X, y)
+    clf.coefs_[-1][:] = 1e5
+    clf.intercepts_[-1][:] = -1e8  # logit about -1e8 for every sample
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        loss, _ = clf.loss_and_gradient(X, clf._label_binarizer.transform(y).astype(float))
+        lp = clf.predict_log_proba(X)
+    # half the samples are positives predicted with log-probability about -1e8
+    assert 0.4e8 < loss < 0.6e8
+    assert np.all(np.isfinite(lp))
+
+
+def test_constant_features_are_harmless():
+    X, rng = _data(n=80, d=3)
+    X = np.column_stack([X, np.full(80, 5.0), np.zeros(80)])
+    y = (X[:, 0] > 0).astype(int)
+    clf = MLPClassifier(hidden_layer_sizes=(6,), activation="tanh", solver="scg", max_iter=100,
+                        random_state=0).fit(X, y)
+    assert clf.score(X, y) > 0.95
+    assert all(np.all(np.isfinite(c)) for c in clf.coefs_)
+
+
+@pytest.mark.parametrize("solver", ["gd", "sgd", "adam", "scg"])
+def test_every_solver_learns_a_smooth_function(solver):
+    X = np.linspace(-1, 1, 80)[:, None]
+    y = np.sin(2 * X[:, 0])
+    lr = {"gd": 0.2, "sgd": 0.05, "adam": 0.01, "scg": 0.001}[solver]
+    reg = MLPRegressor(hidden_layer_sizes=(10,), activation="tanh", solver=solver,
+                       learning_rate_init=lr, max_iter=400, tol=0.0, n_iter_no_change=400,
+                       random_state=0, batch_size=20)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        reg.fit(X, y)
+    assert reg.loss_curve_[-1] < 0.5 * reg.loss_curve_[0]
+    assert reg.score(X, y) > 0.9
+
+
+def test_scg_beats_gd_for_the_same_number_of_epochs():
+    X = np.linspace(0, 1, 60)[:, None]
+    y = np.where(X[:, 0] < 0.5, X[:, 0], 1.0 - X[:, 0])
+    common = dict(hidden_layer_sizes=(9,), activation="relu", max_iter=150, tol=0.0,
+                  n_iter_no_change=150, random_state=4)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        scg = MLPRegressor(solver="scg", **common).fit(X, y)
+        gd = MLPRegressor(solver="gd", learning_rate_init=0.1, **common).fit(X, y)
+    assert scg.loss_curve_[-1] < gd.loss_curve_[-1]
+    # every accepted SCG step lowers the loss: the curve never goes up
+    assert np.all(np.diff(scg.loss_curve_) <= 1e-15)
+
+
+def test_scg_minimises_a_quadratic_like_conjugate_gradients():
+    rng = np.random.default_rng(0)
+    M = rng.normal(size=(6, 6))
+    A = M @ M.T + 6 * np.eye(6)
+    b = rng.normal(size=6)
+
+    def fg(w):
+        return 0.5 * float(w @ A @ w) - float(b @ w), A @ w - b
+
+    state = scg_init(np.zeros(6), fg)
+    for _ in range(40):
+        scg_step(state, fg)
+    np.testing.assert_allclose(state.w, np.linalg.solve(A, b), rtol=1e-7, atol=1e-9)
+
+
+def test_early_stopping_keeps_the_best_validation_weights():
+    X, rng = _data(n=200, d=5, seed=6)
+    y = (X[:, 0] + 0.8 * rng.normal(size=200) > 0).astype(int)
+    clf = MLPClassifier(hidden_layer_sizes=(30,), solver="adam", learning_rate_init=0.05,
+                        early_stopping=True, validation_fraction=0.2, n_iter_no_change=5,
+                        max_iter=500, random_state=0).fit(X, y)
+    assert clf.n_iter_ < 500
+    assert len(clf.validation_scores_) == clf.n_iter_
+    assert clf.best_validation_score_ == max(clf.validation_scores_)
+    # stopped n_iter_no_change + 1 epochs after the last improvement by tol
+    assert clf.n_iter_ - 1 - int(np.argmax(clf.validation_scores_)) >= 5
+
+
+def test_max_iter_warns():
+    X, rng = _data()
+    with pytest.warns(ConvergenceWarning, match="maximum iterations"):
+        MLPRegressor(hidden_layer_sizes=(3,), solver="gd", max_iter=2).fit(X, X[:, 0])
+
+
+def test_same_seed_same_bytes():
+    X, rng = _data()
+    y = rng.integers(0, 3, X.shape[0])
+    a = MLPClassifier(hidden_layer_sizes=(5,), max_iter=20, random_state=7, tol=0.0,
+                      n_iter_no_change=100)
+    b = MLPClassifier(hidden_layer_sizes=(5,), max_iter=20, random_state=7, tol=0.0,
+                      n_iter_no_change=100)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        a.fit(X, y)
+        b.fit(X, y)
+    for u, v in zip(a.coefs_, b.coefs_, strict=True):
+        assert u.tobytes() == v.tobytes()
+
+
+@pytest.mark.parametrize(
+    "params, error, match",
+    [
+        (dict(solver="lbfgs"), ValueError, "solver"),
+        (dict(activation="softplus"), ValueError, "activation"),
+        (dict(hidden_layer_sizes=(0,)), ValueError, "hidden_layer_sizes"),
+        (dict(hidden_layer_sizes="wide"), ValueError, "hidden_layer_sizes"),
+        (dict(alpha=-1.0), ValueError, "alpha"),
+        (dict(learning_rate_init=0.0), ValueError, "learning_rate_init"),
+        (dict(momentum=1.5), ValueError, "momentum"),
+        (dict(max_iter=0), ValueError, "max_iter"),
+        (dict(batch_size=2.5), TypeError, "batch_size"),
+        (dict(validation_fraction=1.0), ValueError, "validation_fraction"),
+    ],
+)
+def test_bad_parameters_name_themselves(params, error, match):
+    X, rng = _data(n=10)
+    with pytest.raises(error, match=match):
+        MLPRegressor(**params).fit(X, X[:, 0])
+
+
+def test_warm_start_with_wrong_shapes_is_refused():
+    X, rng = _data(n=10)
+    reg = MLPRegressor(hidden_layer_sizes=(3,), warm_start=True)
+    reg.coefs_ = [np.zeros((2, 3)), np.zeros((3, 1))]
+    reg.intercepts_ = [np.zeros(3), np.zeros(1)]
+    with pytest.raises(ValueError, match="coefs_"):
+        reg.fit(X, X[:, 0])
+
+
+def test_user_set_weights_on_a_fresh_estimator_take_one_gd_step():
+    X, rng = _data()
+    y = rng.integers(0, 3, X.shape[0])
+    ours = MLPClassifier(hidden_layer_sizes=(7, 5), activation="tanh", solver="gd", **STEP)
+    theirs = SkClassifier(hidden_layer_sizes=(7, 5), activation="tanh", batch_size=X.shape[0],
+                          **SK_STEP)
+    c0, b0 = _one_step_pair(ours, theirs, X, y)
+    fresh = MLPClassifier(hidden_layer_sizes=(7, 5), activation="tanh", solver="gd",
+                          warm_start=True, **STEP)
+    fresh.coefs_ = [c.copy() for c in c0]
+    fresh.intercepts_ = [b.copy() for b in b0]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        fresh.fit(X, y)
+    for a, b in zip(fresh.coefs_, theirs.coefs_, strict=True):
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-10)

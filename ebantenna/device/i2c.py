@@ -142,7 +142,7 @@ class I2CDevice:
                         f"failed after {self.retry.attempts} attempts: {exc.strerror or exc}{hint}",
                     ) from exc
                 self.retries += 1
-                logger.warning(
+                logger.info(
                     "I2C %s of register 0x%02X at 0x%02X: %s; retry %d of %d in %.1f ms",
                     what, register, self.address, exc, attempt + 1, len(delays),
                     1e3 * delays[attempt],

@@ -14,14 +14,14 @@ MG996R's rated speed, 60 degrees in 0.17 s at 4.8 V. When the pan angle reaches 
 
 :class:`SimulatedMPU6050` keeps its registers, samples at the rate they set, quantises to the set
 range and fills a 1024-byte FIFO that overflows (overwriting its oldest bytes and raising
-``FIFO_OFLOW_INT``) when drained too slowly. Before the contact it reads a little white noise; from
-the first sample at or after the contact on it plays the vibration
-:class:`~ebantenna.recording.Recording`, sample for sample, so that what the driver reads back
-matches it to within one LSB. The vibration comes either from given arrays or from the scene
-simulator (:meth:`SimulatedRig.from_scene`, which is the only place in :mod:`ebantenna.device` that
-imports :mod:`ebantenna.simulate`, and only when a contact happens). The sensor reports
-accelerations as the simulator does, without gravity, and does not model the chip's own
-low-pass filter.
+``FIFO_OFLOW_INT``) when drained too slowly. Before the contact it reads the vibration's rest level
+(:attr:`SimulatedRig.rest`) plus a little white noise; from the first sample at or after the contact
+on it plays the vibration :class:`~ebantenna.recording.Recording`, sample for sample, so that what
+the driver reads back matches it to within one LSB. The vibration comes either from given arrays or
+from the scene simulator (:meth:`SimulatedRig.from_scene`, which is the only place in
+:mod:`ebantenna.device` that imports :mod:`ebantenna.simulate`, and only when the accelerometer
+first samples). The sensor reports what the simulator computes (with gravity if the scene includes
+it) and does not model the chip's own low-pass filter.
 
 :class:`Faults` injects transient ``OSError`` (errno 121) at a given rate, a wrong ``WHO_AM_I`` and
 a host stall (the driver descheduled for a while, so the FIFO overflows).
@@ -534,7 +534,8 @@ class SimulatedRig:
     ----------
     vibration : Recording or callable or None
         The tip acceleration from the contact on: a recording, or ``vibration(fs)`` returning one
-        for the sample rate the accelerometer is set to (called once, at the contact); or None.
+        for the sample rate the accelerometer is set to (called once, at the first sample); or None.
+        Outside it the sensor reads :attr:`rest` plus noise.
     obstacle : Obstacle or None
         Where the post is (default :class:`Obstacle()`); None for empty space (no contact ever).
     faults : Faults, optional
@@ -603,7 +604,7 @@ class SimulatedRig:
     def from_scene(cls, scene, *, seed: int = 0, **kwargs) -> SimulatedRig:
         """A rig whose contact plays ``simulate(scene, seed=seed)`` (its contact and material).
 
-        The simulator is imported and run only when the contact happens, at the accelerometer's
+        The simulator is imported and run only when the accelerometer first samples, at its
         configured sample rate.
         """
         def vibration(fs: float) -> Recording:
@@ -662,26 +663,35 @@ class SimulatedRig:
         """The recording played from the contact on (None before it is needed)."""
         return self._recording
 
+    @property
+    def rest(self) -> np.ndarray:
+        """The steady reading (X, Y, Z) outside the vibration, m/s^2: the mean of the last tenth
+        of the vibration (where it has died away; gravity, if the simulator includes it), or 0."""
+        rec = self._recording
+        if rec is None:
+            return np.zeros(3)
+        tail = max(1, rec.n_samples // 10)
+        return np.array([rec.ax[-tail:].mean(), 0.0, rec.az[-tail:].mean()])
+
     def _acceleration(self, times: np.ndarray, fs: float) -> np.ndarray:
         self.world.advance_to(self.clock.monotonic())
-        acc = self._rng.normal(0.0, self.noise, (times.size, 3)) if self.noise else np.zeros(
-            (times.size, 3))
+        if self._vibration is not None and self._recording is None:
+            self._recording = self._vibration(fs)
+            if not isinstance(self._recording, Recording):
+                raise TypeError("vibration(fs) must return a Recording")
+        rec = self._recording
+        if rec is not None and not math.isclose(rec.fs, fs):
+            raise ValueError(f"the vibration is sampled at {rec.fs:g} Hz but the simulated "
+                             f"MPU-6050 is set to {fs:g} Hz")
+        acc = self.rest + self._rng.normal(0.0, self.noise, (times.size, 3))
         contact = self.world.contact_time
-        if contact is None or self._vibration is None:
+        if contact is None or rec is None:
             return acc
         after = times >= contact - 1e-12
         if not after.any():
             return acc
         if self.contact_sample_time is None:
             self.contact_sample_time = float(times[after][0])
-        if self._recording is None:
-            self._recording = self._vibration(fs)
-            if not isinstance(self._recording, Recording):
-                raise TypeError("vibration(fs) must return a Recording")
-        rec = self._recording
-        if not math.isclose(rec.fs, fs):
-            raise ValueError(f"the vibration is sampled at {rec.fs:g} Hz but the simulated "
-                             f"MPU-6050 is set to {fs:g} Hz")
         j = np.rint((times - self.contact_sample_time) * fs).astype(np.int64)
         play = after & (j >= 0) & (j < rec.n_samples)
         acc[play, 0] = rec.ax[j[play]]

@@ -1,0 +1,156 @@
+"""The simulated bus: SMBus behaviour, chip rules, the scene simulator behind it, isolation."""
+
+import ast
+import errno
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from smbus2 import i2c_msg
+
+import ebantenna.device as device
+from ebantenna.cli import main
+from ebantenna.device import MPU6050, PCA9685, Faults, PanTilt, SimulatedRig, search_and_record
+from ebantenna.device.mpu6050 import STANDARD_GRAVITY
+from ebantenna.recording import Recording
+
+LSB = STANDARD_GRAVITY / 2048
+
+
+def test_smbus_limits_and_missing_chips_behave_like_smbus2():
+    rig = SimulatedRig.quiet()
+    with pytest.raises(ValueError, match="over 32"):
+        rig.bus.read_i2c_block_data(0x68, 0x3B, 33)
+    with pytest.raises(ValueError, match="32"):
+        rig.bus.write_i2c_block_data(0x40, 0x06, [0] * 33)
+    with pytest.raises(OSError) as info:
+        rig.bus.read_byte_data(0x29, 0)
+    assert info.value.errno == errno.EREMOTEIO
+    rig.bus.close()
+    with pytest.raises(OSError):
+        rig.bus.read_byte_data(0x68, 0x75)
+
+
+def test_i2c_rdwr_with_smbus2_messages():
+    rig = SimulatedRig.quiet()
+    write, read = i2c_msg.write(0x68, [0x75]), i2c_msg.read(0x68, 1)
+    rig.bus.i2c_rdwr(write, read)
+    assert list(read) == [0x68]
+
+
+def test_fifo_overflow_sets_the_interrupt_flag_which_clears_on_read():
+    rig = SimulatedRig.quiet()
+    mpu = MPU6050(rig.bus, clock=rig.clock)
+    mpu.initialize()
+    mpu.start_fifo()
+    rig.clock.sleep(0.1)
+    assert 590 <= mpu.fifo_count() <= 612 and rig.bus.read_byte_data(0x68, 0x3A) == 0
+    rig.clock.sleep(0.2)
+    assert mpu.fifo_count() == 1024
+    assert rig.bus.read_byte_data(0x68, 0x3A) & 0x10
+    assert rig.bus.read_byte_data(0x68, 0x3A) == 0
+    # The next drain notices, discards and counts.
+    block = mpu.read_fifo()
+    assert block.index.size == 0 and block.lost > 0 and mpu.overflows == 1
+
+
+def test_error_injection_rate_is_what_was_asked():
+    rig = SimulatedRig.quiet(faults=Faults(error_rate=0.2), seed=5)
+    failures = 0
+    for _ in range(2000):
+        try:
+            rig.bus.read_byte_data(0x68, 0x75)
+        except OSError as exc:
+            assert exc.errno == errno.EREMOTEIO
+            failures += 1
+    assert failures == rig.bus.errors_injected
+    # Binomial(2000, 0.2): mean 400, standard deviation 17.9; five sigma either side.
+    assert 310 < failures < 490
+
+
+def test_same_seed_same_bytes():
+    ax = 20.0 * np.sin(np.arange(800) / 7.0)
+    results = []
+    for _ in range(2):
+        rig = SimulatedRig.from_arrays(ax, ax, fs=1000.0, seed=11,
+                                       faults=Faults(error_rate=0.05))
+        _, res = _search(rig)
+        results.append(res.recording)
+    np.testing.assert_array_equal(results[0].ax, results[1].ax)
+    assert results[0].metadata == results[1].metadata
+
+
+def _search(rig, **kwargs):
+    mpu = MPU6050(rig.bus, clock=rig.clock)
+    mpu.initialize()
+    unit = PanTilt(PCA9685(rig.bus, clock=rig.clock))
+    unit.initialize()
+    return mpu, search_and_record(mpu, unit, **kwargs)
+
+
+def test_drivers_know_nothing_of_the_simulator():
+    # Only simbus imports ebantenna.simulate, and only inside a function.
+    root = Path(device.__file__).parent
+    for path in root.glob("*.py"):
+        tree = ast.parse(path.read_text())
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom) and "simulate" in (node.module or ""):
+                assert path.name == "simbus.py", path
+        top = [n for n in tree.body if isinstance(n, ast.Import | ast.ImportFrom)]
+        assert not any("simulate" in (getattr(n, "module", "") or "") for n in top), path
+    code = ("import sys, ebantenna.device, ebantenna.device._cli; "
+            "print('ebantenna.simulate' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
+
+
+@pytest.mark.parametrize("material, ratio", [("brass", 0.3), ("wood", 0.7)])
+def test_scene_vibration_is_read_back_to_within_one_lsb(material, ratio):
+    simulate = pytest.importorskip("ebantenna.simulate")
+    scene = simulate.builtin_scene("paper")
+    scene = scene.with_(contact=ratio * scene.probe.length, material=material)
+    witness = simulate.simulate(scene, seed=5)
+    rig = SimulatedRig.from_scene(scene, seed=5)
+    mpu, result = _search(rig)
+    assert result.contact_detected and result.servos_stopped and result.samples_lost == 0
+    rec = result.recording
+    assert isinstance(rec, Recording) and rec.fs == witness.fs
+    k_contact = round((rig.contact_sample_time - mpu.stream_start) * rec.fs) - 1
+    j = rec.metadata["first_index"] + np.rint(rec.t * rec.fs).astype(int) - k_contact
+    play = (j >= 0) & (j < witness.n_samples)
+    assert play.sum() >= min(witness.n_samples, 1000)
+    assert np.max(np.abs(rec.ax[play] - witness.ax[j[play]])) <= LSB
+    assert np.max(np.abs(rec.az[play] - witness.az[j[play]])) <= LSB
+
+
+def test_acquire_command_json(capsys, tmp_path):
+    pytest.importorskip("ebantenna.simulate")
+    out = tmp_path / "rec.npz"
+    code = main(["acquire", "--simulated", "--material", "pvc", "--ratio", "0.4", "--seed", "2",
+                 "--inject-faults", "0.02", "--out", str(out), "--json"])
+    captured = capsys.readouterr()
+    data = json.loads(captured.out)
+    assert code == 0
+    assert data["contact_detected"] is True and data["servos_stopped"] is True
+    assert data["samples"] == 1050 and data["samples_lost"] == 0
+    assert data["material"] == "pvc" and data["ratio"] == 0.4
+    assert data["i2c_retries"] == data["i2c_errors_injected"]
+    saved = Recording.load(out)
+    assert saved.n_samples == 1050 and saved.metadata["material"] == "pvc"
+
+
+def test_acquire_command_text_and_errors(capsys):
+    pytest.importorskip("ebantenna.simulate")
+    assert main(["acquire", "--simulated", "--seed", "1"]) == 0
+    assert "recorded 1050 samples" in capsys.readouterr().out
+    for argv, match in [(["--ratio", "1.5"], "ratio"), (["--material", "gold"], "material")]:
+        with pytest.raises(SystemExit) as info:
+            main(["acquire", "--simulated", *argv])
+        assert info.value.code == 2
+        assert match in capsys.readouterr().err
+    with pytest.raises(SystemExit) as info:
+        main(["acquire", "--bus", "1", "--inject-faults", "0.1"])
+    assert info.value.code == 2 and "--simulated" in capsys.readouterr().err

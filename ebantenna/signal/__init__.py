@@ -19,7 +19,10 @@ from .filters import (
     filter_time_constant,
     paper_filter,
 )
+from .kalman import KalmanFilter, KalmanResult
 from .spectral import FREQUENCY_METHODS, WINDOWS, dominant_frequency
+from .timefreq import TimeFrequency, morlet_scalogram, spectrogram
+from .tracking import FrequencyTracker, TrackingResult
 
 __all__ = [
     "resultant_acceleration",
@@ -43,4 +46,11 @@ __all__ = [
     "MIN_DECAY_SAMPLES",
     "envelope",
     "fit_decay",
+    "TimeFrequency",
+    "spectrogram",
+    "morlet_scalogram",
+    "KalmanFilter",
+    "KalmanResult",
+    "FrequencyTracker",
+    "TrackingResult",
 ]

@@ -1,0 +1,343 @@
+"""Scenes: what is simulated, down to the list of effects.
+
+A :class:`Scene` fixes the probe and its supports, the contact position and the touched material,
+the excitation (the servo's sweep, arrested by the object), the acquisition (sampling frequency and
+duration) and the explicit list of effects. Two scenes are built in (:func:`builtin_scene`):
+
+``ideal``
+    The modal response only: the bare tube, rigid contact, no damping, no sensor.
+``paper``
+    The paper's rig: the tube with the MPU6050 board at its tip, every effect of
+    :mod:`ebantenna.simulate.effects` at its documented default.
+
+Scenes are saved to and loaded from TOML or JSON (:meth:`Scene.save`, :func:`load_scene`).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .._validate import check_in_range, check_int, check_nonnegative, check_positive
+from ..fem.supports import HINGES
+from ..probe import Probe, material
+from .effects import EFFECT_TYPES, GY521_MASS, effect_names, make_effect
+
+__all__ = ["Scene", "builtin_scene", "scene_names", "load_scene", "resolve_scene"]
+
+_ORDER = {name: i for i, name in enumerate(effect_names())}
+
+
+def _normalise_effects(effects) -> tuple:
+    if isinstance(effects, str | bytes):
+        raise TypeError("effects must be a sequence of effect names or instances, not a string")
+    if isinstance(effects, dict):
+        items = [make_effect(name, params) for name, params in effects.items()]
+    else:
+        try:
+            items = [make_effect(e) for e in effects]
+        except TypeError as exc:
+            if "not iterable" in str(exc):
+                raise TypeError(f"effects must be a sequence, got {effects!r}") from exc
+            raise
+    names = [e.name for e in items]
+    duplicates = sorted({n for n in names if names.count(n) > 1})
+    if duplicates:
+        raise ValueError(f"effects must not repeat; {', '.join(duplicates)} listed twice")
+    return tuple(sorted(items, key=lambda e: _ORDER[e.name]))
+
+
+@dataclass(frozen=True)
+class Scene:
+    """Everything the simulator needs, validated on construction.
+
+    Parameters
+    ----------
+    name : str
+        A label saved with the results.
+    probe : Probe
+        The tube (and its tip mass, when the ``tip_mass`` effect is listed).
+    hinge : {"clamped", "pinned"} or float
+        The hinge at the servo: clamped, pinned or a rotational spring in N m/rad.
+    contact : float
+        Contact position from the hinge, m, inside ``(0, L)``.
+    material : str
+        Touched material, one of :func:`ebantenna.probe.material_names` (stored by its canonical
+        name).
+    fs : float
+        Sampling frequency, Hz; at least twice ``max_frequency``.
+    duration : float
+        Length of the recording after the arrest, s.
+    sweep_speed : float
+        Angular speed ``Omega`` of the sweep when the probe hits the object, rad/s.
+    tilt_ratio : float
+        Angular speed across the sweep plane at the contact, as a fraction of ``sweep_speed``
+        (dimensionless): what drives the Z axis (see :mod:`ebantenna.simulate.modes`).
+    effects : sequence of str or effect instances, or dict
+        The effects to simulate (names, instances, or ``{name: {parameter: value}}``); stored as
+        instances in the order they are applied. None listed: the modal response only.
+    n_elements : int
+        Beam elements of the FEM model.
+    n_modes : int
+        Modes the FEM computes; they must reach ``max_frequency``.
+    max_frequency : float
+        Only modes below this frequency are simulated, Hz.
+
+    Examples
+    --------
+    >>> from ebantenna.simulate import Scene
+    >>> scene = Scene(contact=0.25, material="Aluminum", effects=["gravity"])
+    >>> scene.material, scene.effect_names, scene.n_samples
+    ('aluminium', ('gravity',), 1000)
+    >>> scene.with_(fs=500.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: fs must be at least twice max_frequency (2 x 480 Hz = 960 Hz), got 500.0 Hz
+    """
+
+    name: str = "custom"
+    probe: Probe = field(default_factory=Probe)
+    hinge: str | float = "clamped"
+    contact: float = 0.17
+    material: str = "brass"
+    fs: float = 1000.0
+    duration: float = 1.0
+    sweep_speed: float = 0.5
+    tilt_ratio: float = 0.25
+    effects: tuple = ()
+    n_elements: int = 40
+    n_modes: int = 8
+    max_frequency: float = 480.0
+
+    def __post_init__(self):
+        def put(name, value):
+            object.__setattr__(self, name, value)
+
+        if not isinstance(self.name, str):
+            raise TypeError(f"name must be a string, got {self.name!r}")
+        if not isinstance(self.probe, Probe):
+            raise TypeError(f"probe must be a Probe, got {type(self.probe).__name__}")
+        if isinstance(self.hinge, str):
+            if self.hinge not in HINGES:
+                raise ValueError(
+                    f"hinge must be one of {', '.join(HINGES)} or a rotational stiffness > 0 "
+                    f"(N m/rad); got {self.hinge!r}"
+                )
+        else:
+            put("hinge", check_positive("hinge (rotational stiffness, N m/rad)", self.hinge))
+        put("contact", check_in_range("contact", self.contact, 0.0, self.probe.length))
+        put("material", material(self.material).name)
+        put("max_frequency", check_positive("max_frequency", self.max_frequency))
+        fs = check_positive("fs", self.fs)
+        if fs < 2 * self.max_frequency:
+            raise ValueError(
+                f"fs must be at least twice max_frequency (2 x {self.max_frequency:g} Hz = "
+                f"{2 * self.max_frequency:g} Hz), got {fs!r} Hz"
+            )
+        put("fs", fs)
+        put("duration", check_positive("duration", self.duration))
+        if self.n_samples < 2:
+            raise ValueError(
+                f"duration * fs must give at least 2 samples, got {self.duration!r} s at {fs:g} Hz"
+            )
+        put("sweep_speed", check_positive("sweep_speed", self.sweep_speed))
+        put("tilt_ratio", check_nonnegative("tilt_ratio", self.tilt_ratio))
+        put("n_elements", check_int("n_elements", self.n_elements, minimum=2))
+        put("n_modes", check_int("n_modes", self.n_modes, minimum=1))
+        effects = _normalise_effects(self.effects)
+        put("effects", effects)
+        names = self.effect_names
+        if ("tip_mass" in names) != (self.probe.tip_mass > 0):
+            raise ValueError(
+                "the 'tip_mass' effect must be listed exactly when the probe carries a tip mass; "
+                f"got probe.tip_mass={self.probe.tip_mass!r} kg with effects {list(names)}"
+            )
+        if "contact_damping" in names and "contact_compliance" not in names:
+            raise ValueError(
+                "effect 'contact_damping' needs 'contact_compliance' (the energy flows through the "
+                "compliant contact)"
+            )
+        if "clipping" in names and "quantisation" in names:
+            if self.effect("clipping").range_g != self.effect("quantisation").range_g:
+                raise ValueError("clipping and quantisation must use the same range_g")
+        for name, limit in (("dlpf", "bandwidth"), ("mains_hum", "frequency")):
+            if name in names and not getattr(self.effect(name), limit) < fs / 2:
+                raise ValueError(
+                    f"{name} {limit} {getattr(self.effect(name), limit):g} Hz must be below "
+                    f"fs/2 = {fs / 2:g} Hz"
+                )
+
+    # ---------------------------------------------------------------------------------------------
+    @property
+    def n_samples(self) -> int:
+        """Number of samples, ``round(duration * fs)``."""
+        return int(round(self.duration * self.fs))
+
+    @property
+    def effect_names(self) -> tuple[str, ...]:
+        """Names of the listed effects, in the order they are applied."""
+        return tuple(e.name for e in self.effects)
+
+    def has(self, name: str) -> bool:
+        """Whether the effect ``name`` is listed."""
+        return name in self.effect_names
+
+    def effect(self, name: str):
+        """The listed effect called ``name``, or None."""
+        for e in self.effects:
+            if e.name == name:
+                return e
+        return None
+
+    def with_(self, **changes) -> Scene:
+        """A copy with some fields replaced, validated like a new scene.
+
+        Examples
+        --------
+        >>> from ebantenna.simulate import builtin_scene
+        >>> builtin_scene("paper").with_(contact=0.25, material="wood").contact
+        0.25
+        """
+        valid = [f.name for f in dataclasses.fields(self)]
+        unknown = sorted(set(changes) - set(valid))
+        if unknown:
+            raise TypeError(
+                f"Scene has no field(s) {', '.join(unknown)}; fields: {', '.join(valid)}"
+            )
+        return dataclasses.replace(self, **changes)
+
+    # ---------------------------------------------------------------------------------------------
+    def to_dict(self) -> dict:
+        """A JSON-ready description: scalars, ``probe`` and ``effects`` ({name: parameters})."""
+        out = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+        out["probe"] = self.probe.to_dict()
+        out["effects"] = {e.name: e.parameters() for e in self.effects}
+        return out
+
+    @classmethod
+    def from_dict(cls, data: dict) -> Scene:
+        """Build a scene from :meth:`to_dict`'s layout; missing fields take their defaults."""
+        if not isinstance(data, dict):
+            raise TypeError(f"a scene must be a table/dict, got {type(data).__name__}")
+        valid = [f.name for f in dataclasses.fields(cls)]
+        unknown = sorted(set(data) - set(valid))
+        if unknown:
+            raise ValueError(
+                f"unknown scene field(s) {', '.join(unknown)}; fields: {', '.join(valid)}"
+            )
+        data = dict(data)
+        if "probe" in data:
+            probe = data["probe"]
+            if not isinstance(probe, dict):
+                raise TypeError("scene field 'probe' must be a table/dict of Probe parameters")
+            probe_fields = {f.name for f in dataclasses.fields(Probe)}
+            bad = sorted(set(probe) - probe_fields)
+            if bad:
+                raise ValueError(
+                    f"unknown probe field(s) {', '.join(bad)}; "
+                    f"fields: {', '.join(sorted(probe_fields))}"
+                )
+            data["probe"] = Probe(**probe)
+        return cls(**data)
+
+    def save(self, path) -> Path:
+        """Save as TOML (``.toml``) or JSON (any other suffix); returns the path."""
+        path = Path(path)
+        data = self.to_dict()
+        if path.suffix.lower() == ".toml":
+            path.write_text(_to_toml(data), encoding="utf-8")
+        else:
+            path.write_text(json.dumps(data, indent=2) + "\n", encoding="utf-8")
+        return path
+
+
+def _toml_value(value) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if math.isinf(value):
+            return "inf" if value > 0 else "-inf"
+        return repr(value)
+    if isinstance(value, str):
+        return json.dumps(value)  # a JSON string is a valid TOML basic string
+    raise TypeError(f"cannot write {value!r} to TOML")
+
+
+def _to_toml(data: dict) -> str:
+    lines = [f"{k} = {_toml_value(v)}" for k, v in data.items() if not isinstance(v, dict)]
+    lines += ["", "[probe]"] + [f"{k} = {_toml_value(v)}" for k, v in data["probe"].items()]
+    for name, params in data["effects"].items():
+        lines += ["", f"[effects.{name}]"] + [f"{k} = {_toml_value(v)}" for k, v in params.items()]
+    if not data["effects"]:
+        lines += ["", "[effects]"]
+    return "\n".join(lines) + "\n"
+
+
+def load_scene(path) -> Scene:
+    """Load a scene saved by :meth:`Scene.save` (TOML by suffix ``.toml``, otherwise JSON)."""
+    path = Path(path)
+    text = path.read_text(encoding="utf-8")
+    if path.suffix.lower() == ".toml":
+        try:
+            import tomllib
+        except ModuleNotFoundError as exc:  # Python 3.10
+            raise OSError(
+                "reading TOML scenes needs Python 3.11 or later; use a JSON scene"
+            ) from exc
+        try:
+            data = tomllib.loads(text)
+        except tomllib.TOMLDecodeError as exc:
+            raise ValueError(f"{path}: not valid TOML: {exc}") from exc
+    else:
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError as exc:
+            raise ValueError(f"{path}: not valid JSON: {exc}") from exc
+    return Scene.from_dict(data)
+
+
+def scene_names() -> tuple[str, ...]:
+    """Names of the built-in scenes."""
+    return ("ideal", "paper")
+
+
+def builtin_scene(name: str) -> Scene:
+    """A built-in scene: ``"ideal"`` (modal response only) or ``"paper"`` (the paper's rig).
+
+    Both touch brass 17 cm from the hinge, as in the paper's Fig. 1.
+
+    Examples
+    --------
+    >>> from ebantenna.simulate import builtin_scene
+    >>> builtin_scene("ideal").effects
+    ()
+    >>> builtin_scene("paper").probe.tip_mass
+    0.0025
+    """
+    if name == "ideal":
+        return Scene(name="ideal")
+    if name == "paper":
+        return Scene(
+            name="paper",
+            probe=Probe(tip_mass=GY521_MASS),
+            effects=tuple(cls() for cls in EFFECT_TYPES),
+        )
+    raise ValueError(f"scene must be one of {', '.join(scene_names())}; got {name!r}")
+
+
+def resolve_scene(name_or_path) -> Scene:
+    """A built-in scene by name, or a scene file (TOML or JSON) by path."""
+    if str(name_or_path) in scene_names():
+        return builtin_scene(str(name_or_path))
+    path = Path(name_or_path)
+    if not path.is_file():
+        raise ValueError(
+            f"scene must be one of {', '.join(scene_names())} or an existing .toml/.json file; "
+            f"got {str(name_or_path)!r}"
+        )
+    return load_scene(path)

@@ -1,0 +1,313 @@
+"""``simulate(scene) -> Recording``, and the same for many signals at once.
+
+The work is vectorised over signals: modal parameters come from one FEM solve per distinct contact
+position (and one for the Z axis), material physics is applied to whole arrays, and every effect
+acts on ``(n_signals, n_samples)`` arrays. The only Python loops run over distinct contact
+positions, over materials and, to give each signal its own reproducible random numbers, over
+signals (one generator per signal and random effect) -- never over samples.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from threadpoolctl import threadpool_limits
+
+from .._progress import progress
+from .._validate import check_array, check_int
+from ..probe import material as lookup_material
+from ..recording import Recording
+from .modes import arrest_modes, modal_acceleration
+from .scene import Scene
+
+__all__ = ["ModalTerms", "modal_terms", "simulate", "simulate_batch"]
+
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True, eq=False)
+class ModalTerms:
+    """Modal parameters of many signals, zero-padded to a common number of modes.
+
+    Attributes
+    ----------
+    omega : ndarray of shape (n_signals, n_modes)
+        Undamped natural circular frequencies (with the contact compliance, if listed), rad/s.
+    zeta : ndarray of shape (n_signals, n_modes)
+        Damping ratios (dimensionless).
+    amplitude : ndarray of shape (n_signals, n_modes)
+        Tip velocity each mode starts with, ``phi_k(L) q_dot_k(0)``, m/s; 0 in padding.
+    """
+
+    omega: np.ndarray
+    zeta: np.ndarray
+    amplitude: np.ndarray
+
+    def frequencies(self, row: int = 0) -> np.ndarray:
+        """Natural frequencies of signal ``row`` (padding dropped), Hz."""
+        live = self.amplitude[row] != 0
+        return self.omega[row, live] / (2 * math.pi)
+
+    def damping_ratios(self, row: int = 0) -> np.ndarray:
+        """Damping ratios of signal ``row`` (padding dropped)."""
+        return self.zeta[row, self.amplitude[row] != 0]
+
+
+def _per_signal(name, value, default, n):
+    if value is None:
+        value = default
+    if isinstance(value, str):
+        return np.array([value] * n, dtype=object)
+    if np.ndim(value) == 0:
+        return np.full(n, value, dtype=float)
+    array = np.asarray(value)
+    if array.shape != (n,):
+        raise ValueError(f"{name} must be a scalar or have shape ({n},), got shape {array.shape}")
+    return array
+
+
+def _terms(scene: Scene, contacts, materials, speeds, tilts, show_progress=None):
+    """ModalTerms for X and Z of every signal."""
+    probe = scene.probe
+    n = contacts.size
+    kw = dict(n_elements=scene.n_elements, n_modes=scene.n_modes, max_frequency=scene.max_frequency)
+    compliance = scene.effect("contact_compliance")
+    damping = scene.effect("contact_damping")
+    if compliance is not None:  # one FEM solve per (contact, material)
+        stiffness = {m: compliance.stiffness(lookup_material(m), probe) for m in set(materials)}
+        springs = np.array([stiffness[m] for m in materials])
+    else:
+        springs = np.full(n, math.inf)
+    keys = np.stack([contacts, springs], axis=1)
+    unique, inverse = np.unique(keys, axis=0, return_inverse=True)
+    inverse = inverse.ravel()
+    # Many small eigenproblems: BLAS threads only add overhead (and thrash on a busy machine).
+    with threadpool_limits(limits=1):
+        modes = [
+            arrest_modes(probe, scene.hinge, float(c), contact_stiffness=float(k), **kw)
+            for c, k in progress(unique, total=len(unique), desc="modes", enabled=show_progress)
+        ]
+    width = max(m.omega.size for m in modes)
+    omega_u = np.ones((len(unique), width))
+    amp_u = np.zeros((len(unique), width))
+    force_u = np.zeros((len(unique), width))
+    for i, m in enumerate(modes):
+        k = m.omega.size
+        omega_u[i, :k] = m.omega
+        amp_u[i, :k] = m.tip * m.velocity
+        force_u[i, :k] = m.contact_force
+    omega = omega_u[inverse]
+    amplitude = amp_u[inverse] * speeds[:, None]
+    zeta_s = (
+        scene.effect("structural_damping").damping_ratio(probe)
+        if scene.has("structural_damping")
+        else 0.0
+    )
+    zeta = np.full((n, width), zeta_s)
+    if damping is not None:
+        force = force_u[inverse]
+        for name in np.unique(materials):
+            rows = materials == name
+            loss = damping.loss_compliance(
+                omega[rows], lookup_material(str(name)), probe, compliance
+            )
+            zeta[rows] += force[rows] ** 2 * loss / (2 * omega[rows] ** 2)
+    if np.any(zeta >= 1):
+        raise ValueError(f"a mode is overdamped (zeta up to {zeta.max():.3g}); not supported")
+    x = ModalTerms(omega, zeta, amplitude)
+
+    z_modes = arrest_modes(probe, scene.hinge, None, **kw)
+    z_amp = (z_modes.tip * z_modes.velocity)[None, :] * (tilts * speeds)[:, None]
+    z = ModalTerms(
+        np.broadcast_to(z_modes.omega, z_amp.shape).copy(),
+        np.full(z_amp.shape, zeta_s),
+        z_amp,
+    )
+    return x, z
+
+
+def modal_terms(scene: Scene) -> tuple[ModalTerms, ModalTerms]:
+    """The X and Z modal parameters of one scene (one row each).
+
+    Examples
+    --------
+    >>> from ebantenna.simulate import builtin_scene, modal_terms
+    >>> x, z = modal_terms(builtin_scene("ideal").with_(contact=0.2))
+    >>> x.frequencies().round(1), z.frequencies().round(1)
+    (array([ 33.1, 193. , 355.1]), array([ 13.8,  86.6, 242.5]))
+    """
+    one = np.ones(1)
+    return _terms(
+        scene,
+        np.array([scene.contact]),
+        np.array([scene.material], dtype=object),
+        scene.sweep_speed * one,
+        scene.tilt_ratio * one,
+    )
+
+
+def simulate_batch(
+    scene: Scene,
+    *,
+    contact=None,
+    material=None,
+    sweep_speed=None,
+    tilt_ratio=None,
+    seeds=0,
+    show_progress=None,
+):
+    """Simulate many signals of one scene, each with its own contact, material, speed and seed.
+
+    Row ``i`` equals ``simulate(scene.with_(contact=contact[i], material=material[i],
+    sweep_speed=sweep_speed[i], tilt_ratio=tilt_ratio[i]), seed=seeds[i])``.
+
+    Parameters
+    ----------
+    scene : Scene
+        Everything that is shared.
+    contact, sweep_speed, tilt_ratio : float or array of shape (n,), optional
+        Per-signal values (m, rad/s, dimensionless); the scene's by default.
+    material : str or array of str of shape (n,), optional
+        Per-signal touched materials; the scene's by default.
+    seeds : int or array of int of shape (n,)
+        Seeds of the signals' random effects.
+    show_progress : bool, optional
+        Force the progress bar over contact positions on or off (default: on a terminal).
+
+    Returns
+    -------
+    t : ndarray of shape (n_samples,)
+        Nominal sample times, s.
+    ax, az : ndarray of shape (n, n_samples)
+        Tip accelerations, m/s^2.
+    x, z : ModalTerms
+        The modal parameters used.
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
+    sizes = [np.size(v) for v in (contact, sweep_speed, tilt_ratio, seeds) if v is not None]
+    if material is not None and not isinstance(material, str):
+        sizes.append(len(material))
+    n = max(sizes + [1])
+    contacts = check_array("contact", _per_signal("contact", contact, scene.contact, n), ndim=1)
+    bad = (contacts <= 0) | (contacts >= scene.probe.length)
+    if np.any(bad):
+        raise ValueError(
+            f"contact must lie in (0, {scene.probe.length:g}) m, got {contacts[bad][0]!r}"
+        )
+    materials = np.array(
+        [
+            lookup_material(str(m)).name
+            for m in _per_signal("material", material, scene.material, n)
+        ],
+        dtype=object,
+    )
+    speeds = check_array(
+        "sweep_speed", _per_signal("sweep_speed", sweep_speed, scene.sweep_speed, n), ndim=1
+    )
+    tilts = check_array(
+        "tilt_ratio", _per_signal("tilt_ratio", tilt_ratio, scene.tilt_ratio, n), ndim=1
+    )
+    if np.any(speeds <= 0) or np.any(tilts < 0):
+        raise ValueError("sweep_speed must be > 0 and tilt_ratio >= 0 for every signal")
+    seed_array = np.asarray(seeds)
+    if seed_array.ndim == 0:
+        seed_array = np.full(n, check_int("seeds", seeds, minimum=0), dtype=np.int64)
+    if seed_array.shape != (n,) or not np.issubdtype(seed_array.dtype, np.integer):
+        raise ValueError(f"seeds must be an int or {n} ints, got {seeds!r}")
+    if np.any(seed_array < 0):
+        raise ValueError("seeds must be >= 0")
+
+    x, z = _terms(scene, contacts, materials, speeds, tilts, show_progress)
+    fs, ns = scene.fs, scene.n_samples
+    t = np.arange(ns) / fs
+
+    def rngs(effect):
+        return [np.random.default_rng([int(s), effect.stream]) for s in seed_array]
+
+    jitter = scene.effect("clock_jitter")
+    if jitter is not None:
+        when = t + np.stack([jitter.offsets(r, ns) for r in rngs(jitter)])
+    else:
+        when = t
+    ax = modal_acceleration(when, x.amplitude, x.omega, x.zeta)
+    az = modal_acceleration(when, z.amplitude, z.omega, z.zeta)
+    if jitter is not None:
+        before = when < 0  # a sample taken before the arrest: rigid rotation, no acceleration
+        ax[before] = 0.0
+        az[before] = 0.0
+
+    level_z = 0.0
+    gravity = scene.effect("gravity")
+    if gravity is not None:
+        ax, az = gravity.apply(ax, az)
+        level_z = gravity.g
+    hum = scene.effect("mains_hum")
+    if hum is not None:
+        phases = np.stack([hum.phases(r) for r in rngs(hum)])  # (n, 2)
+        tt = when if np.ndim(when) == 2 else when[None, :]
+        ax = ax + hum.signal(tt, phases[:, :1])
+        az = az + hum.signal(tt, phases[:, 1:])
+    noise = scene.effect("sensor_noise")
+    if noise is not None:
+        draws = np.stack([noise.draw(r, ns, fs) for r in rngs(noise)])  # (n, 2, ns)
+        ax = ax + draws[:, 0]
+        az = az + draws[:, 1]
+    levels_x, levels_z = np.zeros(n), np.full(n, level_z)
+    dlpf = scene.effect("dlpf")
+    if dlpf is not None:
+        ax, az = dlpf.apply(ax, fs, levels_x), dlpf.apply(az, fs, levels_z)
+    clipping = scene.effect("clipping")
+    if clipping is not None:
+        ax, az = clipping.apply(ax), clipping.apply(az)
+    quantisation = scene.effect("quantisation")
+    if quantisation is not None:
+        ax, az = quantisation.apply(ax), quantisation.apply(az)
+    kalman = scene.effect("kalman")
+    if kalman is not None:
+        ax, az = kalman.apply(ax, levels_x), kalman.apply(az, levels_z)
+    log.debug("simulated %d signals of %d samples", n, ns)
+    return t, ax, az, x, z
+
+
+def simulate(scene: Scene, seed: int = 0) -> Recording:
+    """Simulate the tip accelerations of one scene.
+
+    Parameters
+    ----------
+    scene : Scene
+        What to simulate (:func:`~ebantenna.simulate.builtin_scene` or your own).
+    seed : int
+        Seed of the random effects (noise, jitter, hum phase); a scene without random effects does
+        not depend on it.
+
+    Returns
+    -------
+    Recording
+        ``t`` (s), ``ax``, ``az`` (m/s^2), ``fs`` (Hz) and metadata: the scene, the seed and the
+        simulated modes of X and Z (frequencies in Hz, damping ratios).
+
+    Examples
+    --------
+    >>> from ebantenna.simulate import builtin_scene, simulate
+    >>> rec = simulate(builtin_scene("paper").with_(contact=0.25, material="brass"), seed=3)
+    >>> rec.n_samples, rec.fs
+    (1000, 1000.0)
+    >>> rec.metadata["modes_x_hz"]
+    [40.49, 175.74, 396.07]
+    """
+    seed = check_int("seed", seed, minimum=0)
+    t, ax, az, x, z = simulate_batch(scene, seeds=seed)
+    metadata = {
+        "source": "ebantenna.simulate",
+        "scene": scene.to_dict(),
+        "seed": seed,
+        "modes_x_hz": [round(float(f), 2) for f in x.frequencies()],
+        "zeta_x": [float(v) for v in x.damping_ratios()],
+        "modes_z_hz": [round(float(f), 2) for f in z.frequencies()],
+        "zeta_z": [float(v) for v in z.damping_ratios()],
+    }
+    return Recording(t, ax[0], az[0], scene.fs, metadata)

@@ -1,0 +1,89 @@
+"""Scenes: validation, built-in scenes, TOML/JSON files."""
+
+import json
+
+import pytest
+
+from ebantenna.probe import Probe
+from ebantenna.simulate import Scene, builtin_scene, load_scene
+from ebantenna.simulate.effects import ContactDamping, SensorNoise, effect_names
+from ebantenna.simulate.scene import resolve_scene
+
+
+def test_builtin_scenes():
+    ideal = builtin_scene("ideal")
+    paper = builtin_scene("paper")
+    assert ideal.effects == ()
+    assert ideal.probe.tip_mass == 0
+    assert paper.effect_names == effect_names()  # every effect, in application order
+    assert 2e-3 <= paper.probe.tip_mass <= 3e-3  # the GY-521 board
+    with pytest.raises(ValueError, match="ideal, paper"):
+        builtin_scene("nope")
+
+
+def test_with_replaces_and_validates():
+    scene = builtin_scene("paper").with_(contact=0.25, material="Brass")
+    assert (scene.contact, scene.material) == (0.25, "brass")
+    with pytest.raises(ValueError, match="contact must lie in"):
+        scene.with_(contact=0.5)
+    with pytest.raises(TypeError, match="no field"):
+        scene.with_(colour="red")
+
+
+@pytest.mark.parametrize(
+    "changes, message",
+    [
+        ({"duration": -1.0}, "duration must be > 0"),
+        ({"fs": 900.0}, "fs must be at least twice max_frequency"),
+        ({"effects": ("gravity", "wobble")}, "unknown effect 'wobble'; valid effects: structural"),
+        ({"effects": ("gravity", "gravity")}, "listed twice"),
+        ({"material": "cheese"}, "aluminium, brass, wood, steel, pvc"),
+        ({"hinge": "glued"}, "hinge must be one of"),
+        ({"effects": ("contact_damping",)}, "needs 'contact_compliance'"),
+        ({"probe": Probe(tip_mass=0.002)}, "'tip_mass' effect must be listed"),
+        ({"effects": ("tip_mass",)}, "'tip_mass' effect must be listed"),
+        ({"sweep_speed": 0.0}, "sweep_speed must be > 0"),
+        ({"effects": {"dlpf": {"bandwidth": 100.0}}}, "bandwidth must be one of"),
+        ({"effects": {"sensor_noise": {"color": "pink"}}}, "unknown parameter"),
+    ],
+)
+def test_bad_scenes_are_clear_errors(changes, message):
+    with pytest.raises(ValueError, match=message):
+        builtin_scene("ideal").with_(**changes)
+
+
+def test_effects_accept_names_instances_and_tables_in_canonical_order():
+    scene = Scene(effects=[SensorNoise(density=0.01), "gravity", "contact_compliance"])
+    assert scene.effect_names == ("contact_compliance", "gravity", "sensor_noise")
+    assert scene.effect("sensor_noise").density == 0.01
+    same = Scene(
+        effects={"gravity": {}, "sensor_noise": {"density": 0.01}, "contact_compliance": {}}
+    )
+    assert same == scene
+    assert scene.effect("dlpf") is None
+
+
+@pytest.mark.parametrize("suffix", [".toml", ".json"])
+def test_save_load_roundtrip(tmp_path, suffix):
+    scene = builtin_scene("paper").with_(
+        contact=0.3,
+        material="wood",
+        hinge=12.5,
+        effects=builtin_scene("paper").effects[:2]
+        + (ContactDamping(object_thickness=0.02), "tip_mass"),
+    )
+    path = scene.save(tmp_path / f"scene{suffix}")
+    loaded = load_scene(path)
+    assert loaded == scene
+    assert loaded.to_dict() == scene.to_dict()
+    assert resolve_scene(path) == scene
+    assert resolve_scene("paper") == builtin_scene("paper")
+
+
+def test_load_rejects_unknown_fields(tmp_path):
+    path = tmp_path / "bad.json"
+    path.write_text(json.dumps({"contact": 0.2, "speed_of_light": 3e8}))
+    with pytest.raises(ValueError, match="unknown scene field"):
+        load_scene(path)
+    with pytest.raises(ValueError, match="existing .toml/.json"):
+        resolve_scene(tmp_path / "missing.toml")

@@ -6,6 +6,11 @@ how the signal was made (beam model, simulator or the real accelerometer).
 """
 
 from .decay import DECAY_METHODS, MIN_DECAY_SAMPLES, DecayFit, envelope, fit_decay
+from .estimators import (
+    DecayMaterialClassifier,
+    FrequencyDistanceEstimator,
+    MultiModeDistanceEstimator,
+)
 from .features import fft_features, norm_spectrum, resultant_acceleration
 from .filters import (
     PAPER_FILTERS,
@@ -53,4 +58,7 @@ __all__ = [
     "KalmanResult",
     "FrequencyTracker",
     "TrackingResult",
+    "FrequencyDistanceEstimator",
+    "MultiModeDistanceEstimator",
+    "DecayMaterialClassifier",
 ]

@@ -19,9 +19,8 @@ Morlet scalogram
     ``nu + k`` (the spectrum of the sampled wavelet, which matters near ``fs / 2``), on a
     zero-padded FFT so that the record does not wrap around. Its time resolution improves as the
     frequency grows (``a sqrt(B)`` samples), which is what makes short-lived high modes visible.
-    PyWavelets
-    integrates the wavelet and differentiates the result instead; its coefficients equal these
-    times ``sinc(f / fs)`` (an average over one sample) and a half-sample shift.
+    PyWavelets integrates the wavelet and differentiates the result instead; its coefficients
+    equal these times ``sinc(f / fs)`` (an average over one sample) and a half-sample shift.
 """
 
 from __future__ import annotations

@@ -21,6 +21,7 @@ from . import __version__
 #: Modules that register subcommands, in the order ``--help`` lists them.
 COMMAND_MODULES = (
     "ebantenna.fem._cli",
+    "ebantenna.simulate._cli",
     "ebantenna.device._cli",
 )
 

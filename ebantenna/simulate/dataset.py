@@ -87,6 +87,8 @@ class Dataset:
         Sampling frequency, Hz.
     metadata : dict
         Configuration (scene, seed, quick), variation model, checksum.
+    path : Path or None
+        The file it was loaded from.
     """
 
     ax: np.ndarray
@@ -100,6 +102,7 @@ class Dataset:
     seed_row: np.ndarray
     fs: float
     metadata: dict
+    path: Path | None = None
 
     @property
     def n_signals(self) -> int:
@@ -302,4 +305,4 @@ def load_dataset(path) -> Dataset:
         raise ValueError(f"{path}: checksum mismatch, the file is corrupt or was modified")
     for a in arrays.values():
         a.setflags(write=False)
-    return Dataset(fs=fs, metadata=metadata, **arrays)
+    return Dataset(fs=fs, metadata=metadata, path=path, **arrays)

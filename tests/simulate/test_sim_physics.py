@@ -68,7 +68,7 @@ def test_full_modal_sum_equals_direct_time_integration():
 
 
 def test_damped_modal_sum_equals_time_integration_with_modal_damping():
-    # Witness: state-space exponential with the modal damping matrix C = M Phi diag(2 zeta w) Phi^T M.
+    # Witness: state-space exponential with modal damping C = M Phi diag(2 zeta w) Phi^T M.
     probe = Probe()
     scene = builtin_scene("ideal").with_(
         contact=0.3,
@@ -144,7 +144,7 @@ def test_contact_compliance_equals_fem_with_a_spring_and_lowers_frequencies():
     # Hertz: softer objects, softer contact.
     stiff = [ContactCompliance().stiffness(material(m), probe) for m in ("steel", "wood", "pvc")]
     assert stiff[0] > stiff[1] > stiff[2]
-    # Johnson (1985) by hand for steel: 1/E* = (1-0.39^2)/3e9 + (1-0.29^2)/205e9, R = 4 mm, F = 0.5 N.
+    # Johnson (1985) by hand, steel: 1/E* = (1-0.39^2)/3e9 + (1-0.29^2)/205e9, R = 4 mm, F = 0.5 N.
     e_star = 1 / ((1 - 0.39**2) / 3e9 + (1 - 0.29**2) / 205e9)
     assert stiff[0] == pytest.approx((6 * 0.5 * e_star**2 * 0.004) ** (1 / 3), rel=1e-12)
 

@@ -1,0 +1,123 @@
+"""The paper's data set and the ``simulate`` / ``dataset`` commands."""
+
+import json
+import os
+
+import numpy as np
+import pytest
+
+from ebantenna.cli import main
+from ebantenna.probe import material_names
+from ebantenna.recording import Recording
+from ebantenna.simulate import build_dataset, builtin_scene, load_dataset, simulate
+from ebantenna.simulate.dataset import dataset_plan
+
+
+@pytest.fixture(scope="module")
+def quick(tmp_path_factory):
+    out = tmp_path_factory.mktemp("data")
+    return out, build_dataset(out, seed=3, quick=True, show_progress=False)
+
+
+def test_quick_dataset_layout(quick):
+    _, data = quick
+    n_contacts = np.arange(0.025, 0.4, 0.05).size
+    assert data.ax.shape == data.az.shape == (5 * n_contacts * 3, 1000)
+    assert data.ax.dtype == np.float32
+    assert tuple(dict.fromkeys(str(m) for m in data.material)) == material_names()
+    assert np.unique(data.repetition).tolist() == [0, 1, 2]
+    assert np.all(np.abs(data.contact_true - data.contact) <= 0.006)  # 1 mm std, 6 sigma
+    assert np.all((data.contact_true > 0) & (data.contact_true < 0.4))
+    assert data.fs == 1000.0 and data.checksum() == data.metadata["checksum_sha256"]
+    assert data.metadata["config"]["scene"]["name"] == "paper"
+
+
+def test_rows_are_single_simulations(quick):
+    _, data = quick
+    scene = builtin_scene("paper")
+    for i in (0, 37, data.n_signals - 1):
+        rec = simulate(
+            scene.with_(
+                contact=float(data.contact_true[i]),
+                material=str(data.material[i]),
+                sweep_speed=float(data.sweep_speed[i]),
+                tilt_ratio=float(data.tilt_ratio[i]),
+            ),
+            seed=int(data.seed_row[i]),
+        )
+        assert np.array_equal(rec.ax.astype(np.float32), data.ax[i])
+        assert np.array_equal(rec.az.astype(np.float32), data.az[i])
+
+
+def test_deterministic_by_seed_cached_and_checked(quick, tmp_path):
+    out, data = quick
+    path = data.path
+    mtime = os.stat(path).st_mtime_ns
+    again = build_dataset(out, seed=3, quick=True, show_progress=False)
+    assert os.stat(path).st_mtime_ns == mtime  # reused, not rebuilt
+    assert again.checksum() == data.checksum()
+    fresh = build_dataset(tmp_path, seed=3, quick=True, show_progress=False)
+    assert fresh.checksum() == data.checksum()  # same seed, same bytes
+    other = dataset_plan(builtin_scene("paper"), seed=4, quick=True)
+    assert not np.array_equal(other["contact_true"], data.contact_true)
+    # A modified file is refused by load_dataset.
+    with np.load(fresh.path) as f:
+        arrays = {k: f[k] for k in f.files}
+    arrays["ax"] = arrays["ax"].copy()
+    arrays["ax"][0, 0] += 1.0
+    bad = tmp_path / "bad.npz"
+    np.savez_compressed(bad, **arrays)
+    with pytest.raises(ValueError, match="checksum mismatch"):
+        load_dataset(bad)
+
+
+def test_full_plan_matches_the_paper():
+    plan = dataset_plan(builtin_scene("paper"), seed=0)
+    contacts = np.unique(plan["contact"])
+    assert contacts.size == 79 and np.allclose(np.diff(contacts), 0.005)
+    assert plan["contact"].size == 5 * 79 * 25
+    assert np.std(np.log(plan["sweep_speed"])) == pytest.approx(0.10, rel=0.05)
+
+
+def test_cli_simulate_json(tmp_path, capsys):
+    out = tmp_path / "rec.npz"
+    code = main(
+        [
+            "simulate",
+            "--scene",
+            "paper",
+            "--ratio",
+            "0.5",
+            "--material",
+            "pvc",
+            "--seed",
+            "4",
+            "--out",
+            str(out),
+            "--json",
+        ]
+    )
+    assert code == 0
+    report = json.loads(capsys.readouterr().out)
+    assert report["contact"] == pytest.approx(0.2) and report["material"] == "pvc"
+    rec = Recording.load(out)
+    expected = simulate(builtin_scene("paper").with_(contact=0.2, material="pvc"), seed=4)
+    assert np.array_equal(rec.ax, expected.ax) and rec.fs == 1000.0
+    assert report["modes_x_hz"] == expected.metadata["modes_x_hz"]
+
+
+def test_cli_simulate_scene_file_and_errors(tmp_path, capsys):
+    scene_file = builtin_scene("ideal").with_(contact=0.1).save(tmp_path / "s.toml")
+    assert main(["simulate", "--scene", str(scene_file), "--out", str(tmp_path / "r.npz")]) == 0
+    assert "touched at 10.00 cm" in capsys.readouterr().out
+    with pytest.raises(SystemExit) as exc:
+        main(["simulate", "--scene", "ideal", "--contact", "0.5", "--out", str(tmp_path / "r.npz")])
+    assert exc.value.code == 2
+    assert "contact must lie in" in capsys.readouterr().err
+
+
+def test_cli_dataset_json(tmp_path, capsys):
+    assert main(["dataset", "--out", str(tmp_path), "--quick", "--seed", "3", "--json"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert report["signals"] == 120 and report["repetitions"] == 3 and report["quick"] is True
+    assert report["materials"] == sorted(material_names())

@@ -1,5 +1,7 @@
-"""Signal processing for the antenna probe: features, filters, decay fit, time-frequency views,
-noise filtering, frequency tracking and the estimators that work from signals alone.
+"""Signal processing for the antenna probe.
+
+Features, filters, decay fit, time-frequency views, noise filtering, frequency tracking and the
+estimators that work from signals alone.
 
 Everything here takes a :class:`~ebantenna.recording.Recording` or plain arrays; nothing depends on
 how the signal was made (beam model, simulator or the real accelerometer).

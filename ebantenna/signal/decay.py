@@ -46,7 +46,7 @@ import numpy as np
 from scipy import optimize
 from scipy.signal import find_peaks
 
-from .._validate import check_choice, check_in_range, check_positive
+from .._validate import check_choice, check_in_range
 from ._checks import check_fs, check_signal
 from .spectral import dominant_frequency
 
@@ -216,7 +216,6 @@ def fit_decay(
     floor_factor = check_in_range("floor_factor", floor_factor, 1.0, 1e6, low_inclusive=True)
     min_r_squared = check_in_range("min_r_squared", min_r_squared, 0.0, 1.0, low_inclusive=True,
                                    high_inclusive=True)
-    check_positive("fs", fs)
     n = x.shape[0]
     clipped = _clipped_mask(x)
     is_clipped = bool(clipped.any())

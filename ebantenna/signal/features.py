@@ -123,8 +123,7 @@ def fft_features(
     normalise: str = "sample",
     remove_mean: bool = False,
 ) -> np.ndarray:
-    """The paper's feature vector: the first ``n_bins`` FFT norm magnitudes, normalised by a
-    maximum.
+    """The paper's feature vector: the first ``n_bins`` FFT norm magnitudes, normalised.
 
     Parameters
     ----------

@@ -1,5 +1,4 @@
-"""The band-pass filters of the paper's Tables 1 and 2, as second-order sections, applied with zero
-phase.
+"""The band-pass filters of the paper's Tables 1 and 2: second-order sections, zero phase.
 
 Table 1 (Chebyshev, used before the decay fit of section 4.1.2) and Table 2 (elliptic, used before
 the full-range distance network of section 4.2) give a full specification at ``fs = 1000 Hz``:
@@ -133,8 +132,10 @@ PAPER_FILTERS = {
 
 
 def filter_order(spec: FilterSpec) -> int:
-    """Smallest prototype order whose design meets ``spec`` (:func:`scipy.signal.cheb1ord` /
-    ``ellipord``).
+    """Smallest prototype order whose design meets ``spec``.
+
+    Found by the order-selection routines :func:`scipy.signal.cheb1ord` and
+    :func:`scipy.signal.ellipord`.
 
     Examples
     --------

@@ -27,7 +27,7 @@ from .filters import (
     paper_filter,
 )
 from .kalman import KalmanFilter, KalmanResult
-from .spectral import FREQUENCY_METHODS, WINDOWS, dominant_frequency
+from .spectral import FREQUENCY_METHODS, WINDOWS, dominant_frequency, peak_frequencies
 from .timefreq import TimeFrequency, morlet_scalogram, spectrogram
 from .tracking import FrequencyTracker, TrackingResult
 
@@ -36,6 +36,7 @@ __all__ = [
     "norm_spectrum",
     "fft_features",
     "dominant_frequency",
+    "peak_frequencies",
     "FREQUENCY_METHODS",
     "WINDOWS",
     "FilterSpec",

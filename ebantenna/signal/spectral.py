@@ -21,10 +21,10 @@ from __future__ import annotations
 import numpy as np
 from scipy.signal import get_window
 
-from .._validate import check_choice, check_int, check_nonnegative
+from .._validate import check_choice, check_int, check_nonnegative, check_positive
 from ._checks import check_fs, check_signal
 
-__all__ = ["dominant_frequency", "FREQUENCY_METHODS", "WINDOWS"]
+__all__ = ["dominant_frequency", "peak_frequencies", "FREQUENCY_METHODS", "WINDOWS"]
 
 #: Peak-frequency estimators of :func:`dominant_frequency`.
 FREQUENCY_METHODS = ("bin", "parabolic", "jacobsen")
@@ -86,6 +86,18 @@ def dominant_frequency(
     >>> dominant_frequency(x, 1000.0, method="bin")
     123.0
     """
+    spectrum, lo, hi, n, fs = _windowed_spectrum(x, fs, method, window, zero_pad, fmin, fmax,
+                                                 remove_mean)
+    mag = np.abs(spectrum)
+    k = lo + int(np.argmax(mag[lo : hi + 1]))
+    if mag[k] == 0.0:
+        raise ValueError("x has no energy in the search band [fmin, fmax]")
+    return _refine_peak(spectrum, k, fs, n, method, window, zero_pad)
+
+
+def _windowed_spectrum(x, fs, method, window, zero_pad, fmin, fmax, remove_mean):
+    """Validate the arguments; return the windowed spectrum, the bin range of the search band,
+    the number of samples and the sampling frequency."""
     fs = check_fs(fs)
     x = check_signal("x", x, min_length=4, allow_constant=False)
     check_choice("method", method, FREQUENCY_METHODS)
@@ -107,20 +119,22 @@ def dominant_frequency(
         x = x - x.mean()
     w = np.ones(n) if window == "rectangular" else get_window(window, n, fftbins=True)
     spectrum = np.fft.rfft(x * w, n=n_fft)
-    mag = np.abs(spectrum)
     df = fs / n_fft
     lo = int(np.ceil(fmin / df - 1e-9))
     hi = int(np.floor(fmax / df + 1e-9))
     if hi < lo:
         raise ValueError(f"the band [{fmin:g}, {fmax:g}] Hz holds no FFT bin (bin width {df:g} Hz)")
-    k = lo + int(np.argmax(mag[lo : hi + 1]))
-    if mag[k] == 0.0:
-        raise ValueError("x has no energy in the search band [fmin, fmax]")
+    return spectrum, lo, hi, n, fs
+
+
+def _refine_peak(spectrum, k, fs, n, method, window, zero_pad) -> float:
+    """Frequency (Hz) of the peak at bin ``k`` of the spectrum of ``n`` samples, padded."""
+    df = fs / (n * zero_pad)
     step = zero_pad if method == "jacobsen" else 1
-    if method == "bin" or k - step < 0 or k + step > mag.shape[0] - 1:
+    if method == "bin" or k - step < 0 or k + step > spectrum.shape[0] - 1:
         return float(k * df)
     if method == "parabolic":
-        lm = np.log(np.maximum(mag[k - 1 : k + 2], np.finfo(float).tiny))
+        lm = np.log(np.maximum(np.abs(spectrum[k - 1 : k + 2]), np.finfo(float).tiny))
         curvature = lm[0] - 2.0 * lm[1] + lm[2]
         delta = 0.0 if curvature == 0.0 else 0.5 * (lm[0] - lm[2]) / curvature
         return float((k + float(np.clip(delta, -1.0, 1.0))) * df)
@@ -131,3 +145,81 @@ def dominant_frequency(
     denominator = 2.0 * b - a - c
     delta = 0.0 if denominator == 0 else scale * float(np.real((a - c) / denominator))
     return float(k * df + float(np.clip(delta, -1.0, 1.0)) * fs / n)
+
+
+def peak_frequencies(
+    x,
+    fs,
+    n_peaks: int,
+    *,
+    method: str = "jacobsen",
+    window: str = "hann",
+    min_separation: float | None = None,
+    fmin: float | None = None,
+    fmax: float | None = None,
+    remove_mean: bool = True,
+) -> np.ndarray:
+    """Frequencies of the ``n_peaks`` strongest spectral peaks of ``x`` (several modes), Hz.
+
+    Each peak is a local maximum of the windowed magnitude spectrum, at least ``min_separation``
+    apart from any stronger one; it is refined like :func:`dominant_frequency`. The result feeds
+    :class:`~ebantenna.signal.MultiModeDistanceEstimator`.
+
+    Parameters
+    ----------
+    x : array of shape (n,)
+        Signal, at least 4 samples, not constant.
+    fs : float
+        Sampling frequency, Hz.
+    n_peaks : int
+        Number of peaks wanted (>= 1).
+    method, window, fmin, fmax, remove_mean
+        As for :func:`dominant_frequency`.
+    min_separation : float, optional
+        Smallest distance between two reported peaks, Hz; default four bins, ``4 fs / n``
+        (the main lobe of the Hann window is four bins wide).
+
+    Returns
+    -------
+    ndarray of shape (n_peaks,)
+        Peak frequencies in ascending order, Hz.
+
+    Raises
+    ------
+    ValueError
+        When the band holds fewer than ``n_peaks`` separated peaks, and for the bad inputs of
+        :func:`dominant_frequency`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ebantenna.signal import peak_frequencies
+    >>> t = np.arange(1000) / 1000.0
+    >>> x = (np.exp(-t / 0.3) * np.sin(2 * np.pi * 43.21 * t)
+    ...      + 0.5 * np.exp(-t / 0.1) * np.sin(2 * np.pi * 187.65 * t))
+    >>> np.round(peak_frequencies(x, 1000.0, 2), 2)
+    array([ 43.21, 187.65])
+    """
+    n_peaks = check_int("n_peaks", n_peaks, minimum=1)
+    spectrum, lo, hi, n, fs = _windowed_spectrum(x, fs, method, window, 1, fmin, fmax,
+                                                 remove_mean)
+    df = fs / n
+    sep = 4.0 * df if min_separation is None else check_positive("min_separation", min_separation)
+    mag = np.abs(spectrum)
+    band = mag[lo : hi + 1]
+    inner = (band[1:-1] > band[:-2]) & (band[1:-1] >= band[2:])
+    candidates = lo + 1 + np.flatnonzero(inner)
+    candidates = candidates[np.argsort(mag[candidates])[::-1]]
+    chosen: list[int] = []
+    for k in candidates:
+        if mag[k] > 0.0 and all(abs(k - j) * df >= sep for j in chosen):
+            chosen.append(int(k))
+            if len(chosen) == n_peaks:
+                break
+    if len(chosen) < n_peaks:
+        raise ValueError(
+            f"x holds only {len(chosen)} spectral peak(s) at least {sep:g} Hz apart in the "
+            f"search band; n_peaks={n_peaks} requested"
+        )
+    freqs = [_refine_peak(spectrum, k, fs, n, method, window, 1) for k in chosen]
+    return np.sort(np.array(freqs))

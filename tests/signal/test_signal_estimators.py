@@ -174,3 +174,23 @@ def test_degree_zero_is_quadratic_discriminant_analysis():
 def test_bad_input(call, match):
     with pytest.raises(ValueError, match=match):
         call()
+
+
+def test_full_range_distance_from_signals_alone(calibration):
+    """From vibration records to distances: two FEM modes ring, their peaks give the contact."""
+    from ebantenna.signal import peak_frequencies
+
+    freqs, d = calibration
+    est = MultiModeDistanceEstimator().fit(freqs[:, :2], d)
+    rng = np.random.default_rng(7)
+    t = np.arange(1000) / 1000.0
+    contacts = np.array([0.05, 0.15, 0.25, 0.30, 0.33, 0.36, 0.385])  # beyond 80 % included
+    modes = fem.natural_frequencies(PROBE, contacts, n_modes=2)
+    predicted = []
+    for f1, f2 in modes:
+        x = (np.exp(-t / 0.25) * np.sin(2 * np.pi * f1 * t + rng.uniform(0, 6))
+             + 0.5 * np.exp(-t / 0.1) * np.sin(2 * np.pi * f2 * t + rng.uniform(0, 6))
+             + 0.01 * rng.standard_normal(t.size))
+        predicted.append(est.predict(peak_frequencies(x, 1000.0, 2)[None, :])[0])
+    err_cm = np.abs(np.array(predicted) - contacts) * 100
+    assert err_cm.max() < 0.3

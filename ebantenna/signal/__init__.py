@@ -7,7 +7,14 @@ Everything here takes a :class:`~ebantenna.recording.Recording` or plain arrays;
 how the signal was made (beam model, simulator or the real accelerometer).
 """
 
-from .decay import DECAY_METHODS, MIN_DECAY_SAMPLES, DecayFit, envelope, fit_decay
+from .decay import (
+    DECAY_METHODS,
+    MIN_DECAY_SAMPLES,
+    DecayFit,
+    band_passed_decay,
+    envelope,
+    fit_decay,
+)
 from .estimators import (
     DecayMaterialClassifier,
     FrequencyDistanceEstimator,
@@ -54,6 +61,7 @@ __all__ = [
     "MIN_DECAY_SAMPLES",
     "envelope",
     "fit_decay",
+    "band_passed_decay",
     "TimeFrequency",
     "spectrogram",
     "morlet_scalogram",

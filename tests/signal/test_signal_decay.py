@@ -108,3 +108,21 @@ def test_bad_input(kwargs, match):
     fs = kwargs.pop("fs", FS)
     with pytest.raises(ValueError, match=match):
         fit_decay(x, fs, **kwargs)
+
+
+def test_band_passed_decay_is_filter_then_fit():
+    from ebantenna.signal import band_passed_decay
+
+    rng = np.random.default_rng(8)
+    x = _decay(0.1) + 0.5 * np.sin(2 * np.pi * 20 * T) + 0.01 * rng.standard_normal(T.size)
+    for kind in ("chebyshev", "elliptic"):
+        for order in (None, "stated"):
+            expected = fit_decay(apply_filter(paper_filter(kind, order), x), FS)
+            assert band_passed_decay(x, FS, kind=kind, order=order) == expected
+    # The 20 Hz hum ruins the plain fit; the band-pass removes it.
+    assert band_passed_decay(x, FS).tau == pytest.approx(0.1, rel=0.1)
+    assert not fit_decay(x, FS).ok
+    with pytest.raises(ValueError, match="fs/2"):
+        band_passed_decay(x, 300.0)
+    with pytest.raises(ValueError, match="kind"):
+        band_passed_decay(x, FS, kind="bessel")

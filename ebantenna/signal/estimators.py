@@ -237,7 +237,8 @@ class DecayMaterialClassifier:
     contact distance (degree ``degree``) with Gaussian residuals (a full 2x2 covariance per
     material, unbiased). A new contact is given to the material with the largest posterior
     probability (priors: class frequencies). With ``degree=0`` the distance is ignored and this is
-    quadratic discriminant analysis on ``(log tau, log gain)``.
+    quadratic discriminant analysis on ``(log tau, log gain)``. The features of a contact are
+    ``tau`` and ``a`` of :func:`~ebantenna.signal.band_passed_decay`.
 
     Parameters
     ----------

@@ -42,6 +42,7 @@ def register(subparsers) -> None:
     data.add_argument("--out", required=True, metavar="DIR", help="output directory")
     data.add_argument("--seed", type=int, default=0, metavar="S", help="seed (0)")
     data.add_argument("--quick", action="store_true", help="a small version for tests and docs")
+    data.add_argument("--jobs", type=int, default=1, metavar="N", help="worker processes (1)")
     data.add_argument("--json", action="store_true", help="print one JSON object")
     data.set_defaults(func=run_dataset)
 
@@ -109,7 +110,7 @@ def run_dataset(args) -> int:
     if args.seed < 0:
         raise ValueError(f"--seed must be >= 0, got {args.seed}")
     start = time.perf_counter()
-    data = build_dataset(args.out, seed=args.seed, quick=args.quick)
+    data = build_dataset(args.out, seed=args.seed, quick=args.quick, n_jobs=args.jobs)
     summary = {
         "path": str(data.path),
         "signals": data.n_signals,

@@ -198,8 +198,28 @@ def _config(scene: Scene, seed: int, quick: bool) -> dict:
     }
 
 
+def _simulate_material(scene: Scene, name: str, plan: dict):
+    rows = np.flatnonzero(plan["material"] == name)
+    _, bx, bz, _, _ = simulate_batch(
+        scene,
+        contact=plan["contact_true"][rows],
+        material=name,
+        sweep_speed=plan["sweep_speed"][rows],
+        tilt_ratio=plan["tilt_ratio"][rows],
+        seeds=plan["seed_row"][rows],
+        show_progress=False,
+    )
+    return rows, bx.astype(np.float32), bz.astype(np.float32)
+
+
 def build_dataset(
-    out_dir, seed: int = 0, quick: bool = False, *, scene: Scene | None = None, show_progress=None
+    out_dir,
+    seed: int = 0,
+    quick: bool = False,
+    *,
+    scene: Scene | None = None,
+    n_jobs: int = 1,
+    show_progress=None,
 ) -> Dataset:
     """Build (or reuse) the paper's data set in ``out_dir``.
 
@@ -213,6 +233,8 @@ def build_dataset(
         A small version (contacts every 5 cm, 3 repetitions) for tests and documentation.
     scene : Scene, optional
         The scene to record; default the built-in ``paper`` scene.
+    n_jobs : int
+        Worker processes (one material per task, :mod:`joblib`); the result does not depend on it.
     show_progress : bool, optional
         Force the progress bar on or off (default: on a terminal).
 
@@ -232,6 +254,7 @@ def build_dataset(
     ((120, 1000), ['aluminium', 'brass'])
     """
     seed = check_int("seed", seed, minimum=0)
+    n_jobs = check_int("n_jobs", n_jobs, minimum=1)
     scene = builtin_scene("paper") if scene is None else scene
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
@@ -254,17 +277,16 @@ def build_dataset(
     n = plan["contact"].size
     ax = np.empty((n, scene.n_samples), dtype=np.float32)
     az = np.empty_like(ax)
-    for name in progress(material_names(), desc="dataset", enabled=show_progress):
-        rows = np.flatnonzero(plan["material"] == name)
-        _, bx, bz, _, _ = simulate_batch(
-            scene,
-            contact=plan["contact_true"][rows],
-            material=name,
-            sweep_speed=plan["sweep_speed"][rows],
-            tilt_ratio=plan["tilt_ratio"][rows],
-            seeds=plan["seed_row"][rows],
-            show_progress=False,
+    names = progress(material_names(), desc="dataset", enabled=show_progress)
+    if n_jobs == 1:
+        parts = (_simulate_material(scene, name, plan) for name in names)
+    else:
+        from joblib import Parallel, delayed
+
+        parts = Parallel(n_jobs=n_jobs, return_as="generator")(
+            delayed(_simulate_material)(scene, name, plan) for name in names
         )
+    for rows, bx, bz in parts:
         ax[rows], az[rows] = bx, bz
     arrays = dict(plan, ax=ax, az=az)
     metadata = {
@@ -280,7 +302,9 @@ def build_dataset(
     )
     os.replace(tmp, path)
     log.info("wrote %s (%d signals)", path, n)
-    return load_dataset(path)
+    for a in arrays.values():
+        a.setflags(write=False)
+    return Dataset(fs=float(scene.fs), metadata=metadata, path=path, **arrays)
 
 
 def load_dataset(path) -> Dataset:

@@ -153,7 +153,7 @@ def arrest_modes(
     )
 
 
-def modal_acceleration(t, amplitude, omega, zeta, *, max_elements: int = 4_000_000) -> np.ndarray:
+def modal_acceleration(t, amplitude, omega, zeta, *, max_elements: int = 500_000) -> np.ndarray:
     """Sum of damped modal accelerations ``sum_k Im(C_k e^(s_k t))`` for many signals at once.
 
     Parameters

@@ -644,7 +644,9 @@ def plot_confusion_comparison(result: ClassificationResult, paper: PaperConfusio
             _draw_matrix(axes[0, col], ours, result.labels,
                          f"this run, {result.method.upper()} {split}")
         m, labs = _reorder(paper, split, result.labels)
-        _draw_matrix(axes[1, col], m, labs, f"paper {paper.figure}, {split}")
+        printed = paper.reported_accuracy.get(split)
+        note = "" if printed is None else f" (printed {100 * printed:.1f} %)"
+        _draw_matrix(axes[1, col], m, labs, f"paper {paper.figure}, {split}{note}")
     return fig
 
 

@@ -134,11 +134,14 @@ class Kernel:
             xn = squared_norms(X) if x_norms is None else x_norms
             yn = (xn if same else squared_norms(Y)) if y_norms is None else y_norms
         out = np.empty((X.shape[0], Y.shape[0]), dtype=dtype)
-        # Row blocks of about 4 MB keep the float64 intermediates in cache.
+        # Row blocks of about 4 MB keep the float64 intermediates in cache. For the matrix of X
+        # with itself only the blocks on and above the diagonal are computed (half the
+        # products and exponentials) and mirrored.
         step = max(1, (1 << 19) // max(1, Y.shape[0]))
         for start in range(0, X.shape[0], step):
             stop = min(start + step, X.shape[0])
-            block = X[start:stop] @ Y.T
+            first = start if same else 0
+            block = X[start:stop] @ Y[first:].T
             if self.name == "poly":
                 block *= self.gamma
                 block += self.coef0
@@ -146,11 +149,13 @@ class Kernel:
             elif self.name == "rbf":
                 # libsvm's order of operations: exp(-gamma * (|x|^2 + |y|^2 - 2 x.y))
                 block *= -2.0
-                block += xn[start:stop, None] + yn[None, :]
+                block += xn[start:stop, None] + yn[None, first:]
                 np.maximum(block, 0.0, out=block)
                 block *= -self.gamma
                 np.exp(block, out=block)
-            out[start:stop] = block
+            out[start:stop, first:] = block
+            if same and stop < X.shape[0]:
+                out[stop:, start:stop] = out[start:stop, stop:].T
         if same and self.name == "rbf":
             np.fill_diagonal(out, 1.0)
         return out

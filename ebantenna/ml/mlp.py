@@ -71,7 +71,9 @@ def _activate(name: str, z: np.ndarray) -> np.ndarray:
 def _derivative(name: str, a: np.ndarray, delta: np.ndarray) -> None:
     """Multiply ``delta`` in place by the activation's derivative, written with its output ``a``."""
     if name == "tanh":
-        delta *= 1.0 - a * a
+        d = a * a
+        np.subtract(1.0, d, out=d)
+        delta *= d
     elif name == "relu":
         delta[a <= 0] = 0.0
     elif name == "logistic":
@@ -358,7 +360,7 @@ class _BaseMLP(BaseEstimator):
             total = 0.0
             for start in range(0, n, batch):
                 sl = idx[start : start + batch]
-                Xb, Yb = (X, Y) if batch == n and not self.shuffle else (X[sl], Y[sl])
+                Xb, Yb = (X, Y) if batch >= n else (X[sl], Y[sl])
                 loss, cg, ig = self._loss_grad(Xb, Yb, self.coefs_, self.intercepts_)
                 total += loss * Xb.shape[0]
                 opt.update(params, cg + ig)
@@ -458,9 +460,16 @@ class MLPClassifier(ClassifierMixin, _BaseMLP):
         """Mean cross-entropy from the output logits ``z`` and its gradient with respect to them."""
         n = z.shape[0]
         if self.out_activation_ == "softmax":
-            lse = logsumexp(z, axis=1, keepdims=True)
-            loss = float(np.sum(lse[:, 0]) - np.sum(Y * z)) / n
-            prob = np.exp(z - lse)
+            # log-sum-exp shifted by the row maximum: no overflow, exact for saturated logits
+            shift = z.max(axis=1, keepdims=True)
+            prob = np.exp(z - shift)
+            total = prob.sum(axis=1, keepdims=True)
+            lse = shift + np.log(total)
+            loss = float(np.sum(lse) - np.einsum("ij,ij->", Y, z)) / n
+            prob /= total
+            prob -= Y
+            prob /= n
+            return loss, prob
         else:
             # -[y log s(z) + (1-y) log s(-z)], finite for any z
             loss = float(-np.sum(Y * log_expit(z) + (1.0 - Y) * log_expit(-z))) / n

@@ -271,14 +271,8 @@ class SVC(ClassifierMixin, BaseEstimator):
                 na = members[a].size
                 ys = np.concatenate([np.ones(na), -np.ones(members[b].size)])
                 if full is not None:
-                    sa = slice(starts[a], starts[a + 1])
-                    sb = slice(starts[b], starts[b + 1])
-                    sub = np.empty((idx.size, idx.size), dtype=dtype)
-                    sub[:na, :na] = full[sa, sa]
-                    sub[:na, na:] = full[sa, sb]
-                    sub[na:, :na] = full[sb, sa]
-                    sub[na:, na:] = full[sb, sb]
-                    rows = KernelRows(None, kern, dtype, cache_bytes, full=sub)
+                    parts = (slice(starts[a], starts[a + 1]), slice(starts[b], starts[b + 1]))
+                    rows = KernelRows(None, kern, dtype, cache_bytes, full=full, parts=parts)
                 else:
                     rows = KernelRows(X[idx], kern, dtype, cache_bytes)
                 res = solve_smo(rows, ys, c_vec[idx], diagonal=diag[idx], tol=float(self.tol),

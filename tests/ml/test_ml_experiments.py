@@ -118,7 +118,7 @@ def test_figures_put_results_beside_the_paper():
     assert isinstance(fig, Figure)
     assert len(fig.axes) == 4  # this run and the paper, training and test
     titles = [ax.get_title() for ax in fig.axes]
-    assert any("paper Fig. 15, test" in t and "99.2 %" in t for t in titles)
+    assert any("paper Fig. 15, test (printed 99.2 %)" in t for t in titles)
     # the paper's matrix is drawn in this run's class order
     paper_ax = fig.axes[3]
     assert [t.get_text() for t in paper_ax.get_yticklabels()] == list(MATERIALS)

@@ -1,11 +1,10 @@
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
+import pywt  # PyWavelets, the independent witness for the scalogram (test extra)
 from scipy import signal as sps
 
 from ebantenna.signal import morlet_scalogram, spectrogram
-
-pywt = pytest.importorskip("pywt")
 
 FS = 1000.0
 T = np.arange(1000) / FS

@@ -237,3 +237,31 @@ def test_batch_rows_equal_single_simulations():
         )
         assert np.allclose(one.ax, ax[i], rtol=0, atol=1e-9)
         assert np.allclose(one.az, az[i], rtol=0, atol=1e-9)
+
+
+def test_with_the_board_the_lowest_mode_changes_character_near_0_8_l():
+    # The paper's Fig. 16: the overhang's cantilever mode gives way to the span's mode. Witness:
+    # the share of the lowest mode's kinetic energy in the overhang falls through 1/2.
+    probe = builtin_scene("paper").probe
+    ratios = np.arange(0.70, 0.951, 0.01)
+    share = np.array(
+        [
+            modal_analysis(
+                probe, Supports(contact=r * probe.length), n_elements=40, n_modes=3
+            ).overhang_mass_fraction()[0]
+            for r in ratios
+        ]
+    )
+    assert np.all(np.diff(share) < 0)
+    crossing = ratios[np.argmax(share < 0.5)]
+    assert 0.78 <= crossing <= 0.88
+    # Without the board the change comes earlier: the tip mass moves it towards the tip.
+    bare = np.array(
+        [
+            modal_analysis(
+                Probe(), Supports(contact=r * 0.4), n_elements=40, n_modes=3
+            ).overhang_mass_fraction()[0]
+            for r in ratios
+        ]
+    )
+    assert ratios[np.argmax(bare < 0.5)] < crossing

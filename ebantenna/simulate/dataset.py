@@ -241,8 +241,9 @@ def build_dataset(
     Returns
     -------
     Dataset
-        Also saved as ``paper-dataset-seed<seed>[-quick].npz``; a file there with the same
-        configuration and a valid checksum is loaded instead of simulated again.
+        Also saved as ``<scene name>-dataset-seed<seed>[-quick].npz`` (``paper-dataset-seed0.npz``
+        by default); a file there with the same configuration and a valid checksum is loaded
+        instead of simulated again.
 
     Examples
     --------
@@ -260,7 +261,7 @@ def build_dataset(
         raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    path = out_dir / f"paper-dataset-seed{seed}{'-quick' if quick else ''}.npz"
+    path = out_dir / f"{scene.name}-dataset-seed{seed}{'-quick' if quick else ''}.npz"
     config = _config(scene, seed, quick)
     if path.is_file():
         try:
@@ -277,7 +278,7 @@ def build_dataset(
     n = plan["contact"].size
     ax = np.empty((n, scene.n_samples), dtype=np.float32)
     az = np.empty_like(ax)
-    names = progress(material_names(), desc="dataset", enabled=show_progress)
+    names = material_names()
     if n_jobs == 1:
         parts = (_simulate_material(scene, name, plan) for name in names)
     else:
@@ -286,7 +287,7 @@ def build_dataset(
         parts = Parallel(n_jobs=n_jobs, return_as="generator")(
             delayed(_simulate_material)(scene, name, plan) for name in names
         )
-    for rows, bx, bz in parts:
+    for rows, bx, bz in progress(parts, total=len(names), desc="dataset", enabled=show_progress):
         ax[rows], az[rows] = bx, bz
     arrays = dict(plan, ax=ax, az=az)
     metadata = {

@@ -86,8 +86,8 @@ class SVC(ClassifierMixin, BaseEstimator):
     coef0 : float, default=0.0
         Constant term of the 'poly' kernel.
     shrinking : bool, default=True
-        Accepted for compatibility with scikit-learn. The solver keeps every variable active
-        (libsvm with ``shrinking=False``); the solution is the same within ``tol``.
+        libsvm's shrinking heuristic (see :func:`ebantenna.ml.smo.solve_smo`); the solution is
+        the same within ``tol`` either way.
     tol : float, default=1e-3
         Stopping tolerance on the maximal KKT violation.
     cache_size : float, default=200
@@ -113,9 +113,9 @@ class SVC(ClassifierMixin, BaseEstimator):
         Working-set selection: libsvm's second-order rule or the maximal violating pair.
     libsvm_compat : bool, default=False
         Follow libsvm's arithmetic (float32 kernel storage, ties broken by the last index,
-        sequential bias sum) so that scikit-learn's ``SVC(shrinking=False)`` is reproduced to about
-        1e-12 with the same iteration counts. See :mod:`ebantenna.ml.smo` for what each convention
-        changes.
+        sequential bias sum) so that scikit-learn's ``SVC`` with the same ``shrinking`` is
+        reproduced to about 1e-12 with the same iteration counts. See :mod:`ebantenna.ml.smo`
+        for what each convention changes.
 
     Attributes
     ----------
@@ -277,7 +277,8 @@ class SVC(ClassifierMixin, BaseEstimator):
                     rows = KernelRows(X[idx], kern, dtype, cache_bytes)
                 res = solve_smo(rows, ys, c_vec[idx], diagonal=diag[idx], tol=float(self.tol),
                                 max_iter=max_iter, selection=self.selection,
-                                ties_last=bool(self.libsvm_compat))
+                                ties_last=bool(self.libsvm_compat),
+                                shrinking=bool(self.shrinking))
                 if self.verbose:
                     logger.info("classes (%r, %r): %d updates, %d support vectors", classes[a],
                                 classes[b], res.n_iter, int(np.count_nonzero(res.alpha)))

@@ -25,12 +25,13 @@ def _scale(values):
     return max(1.0, float(np.abs(values).max()))
 
 
+@pytest.mark.parametrize("shrinking", [False, True])
 @pytest.mark.parametrize("kernel", ["rbf", "linear", "poly"])
 @pytest.mark.parametrize("k", [2, 4])
-def test_libsvm_compat_reproduces_sklearn(kernel, k):
+def test_libsvm_compat_reproduces_sklearn(kernel, k, shrinking):
     X, y = _data(k=k, seed=k)
-    params = dict(kernel=kernel, C=3.0, gamma="scale", degree=2, coef0=1.0)
-    ref = LibSVC(shrinking=False, **params).fit(X, y)
+    params = dict(kernel=kernel, C=3.0, gamma="scale", degree=2, coef0=1.0, shrinking=shrinking)
+    ref = LibSVC(**params).fit(X, y)
     ours = SVC(libsvm_compat=True, **params).fit(X, y)
     # the same path: same iteration counts and the same support vectors in the same layout
     np.testing.assert_array_equal(ours.n_iter_, ref.n_iter_)
@@ -107,6 +108,24 @@ def test_second_order_needs_fewer_iterations_same_optimum():
     assert second.n_iter_[0] < first.n_iter_[0]
     np.testing.assert_allclose(first.decision_function(X), second.decision_function(X),
                                atol=1e-3)
+
+
+def test_shrinking_retraces_libsvm_over_many_shrink_rounds():
+    # C = 10 on overlapping classes: over 5000 updates, so the active set is shrunk (every 300
+    # updates here) and rebuilt several times
+    rng = np.random.default_rng(2)
+    X = rng.normal(size=(300, 8))
+    y = (np.sin(2 * X[:, 0]) + X[:, 1] * X[:, 2] + 0.5 * rng.normal(size=300) > 0).astype(int)
+    for kernel in ("poly",):
+        ref = LibSVC(C=10.0, kernel=kernel).fit(X, y)
+        ours = SVC(C=10.0, kernel=kernel, libsvm_compat=True).fit(X, y)
+        plain = SVC(C=10.0, kernel=kernel, libsvm_compat=True, shrinking=False).fit(X, y)
+        assert ref.n_iter_[0] > 5000
+        assert ours.n_iter_[0] == ref.n_iter_[0] != plain.n_iter_[0]
+        dref = ref.decision_function(X)
+        np.testing.assert_allclose(ours.decision_function(X), dref, atol=1e-12 * _scale(dref) * 10)
+        # shrinking changes the path, not the optimum: within the stopping tolerance
+        np.testing.assert_allclose(plain.decision_function(X), dref, atol=2e-2)
 
 
 def test_row_cache_matches_full_kernel():

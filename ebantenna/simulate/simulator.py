@@ -40,20 +40,22 @@ class ModalTerms:
         Damping ratios (dimensionless).
     amplitude : ndarray of shape (n_signals, n_modes)
         Tip velocity each mode starts with, ``phi_k(L) q_dot_k(0)``, m/s; 0 in padding.
+    live : ndarray of bool, shape (n_signals, n_modes)
+        True for a simulated mode, False for padding.
     """
 
     omega: np.ndarray
     zeta: np.ndarray
     amplitude: np.ndarray
+    live: np.ndarray
 
     def frequencies(self, row: int = 0) -> np.ndarray:
         """Natural frequencies of signal ``row`` (padding dropped), Hz."""
-        live = self.amplitude[row] != 0
-        return self.omega[row, live] / (2 * math.pi)
+        return self.omega[row, self.live[row]] / (2 * math.pi)
 
     def damping_ratios(self, row: int = 0) -> np.ndarray:
         """Damping ratios of signal ``row`` (padding dropped)."""
-        return self.zeta[row, self.amplitude[row] != 0]
+        return self.zeta[row, self.live[row]]
 
 
 def _per_signal(name, value, default, n):
@@ -94,8 +96,10 @@ def _terms(scene: Scene, contacts, materials, speeds, tilts, show_progress=None)
     omega_u = np.ones((len(unique), width))
     amp_u = np.zeros((len(unique), width))
     force_u = np.zeros((len(unique), width))
+    live_u = np.zeros((len(unique), width), dtype=bool)
     for i, m in enumerate(modes):
         k = m.omega.size
+        live_u[i, :k] = True
         omega_u[i, :k] = m.omega
         amp_u[i, :k] = m.tip * m.velocity
         force_u[i, :k] = m.contact_force
@@ -117,7 +121,7 @@ def _terms(scene: Scene, contacts, materials, speeds, tilts, show_progress=None)
             zeta[rows] += force[rows] ** 2 * loss / (2 * omega[rows] ** 2)
     if np.any(zeta >= 1):
         raise ValueError(f"a mode is overdamped (zeta up to {zeta.max():.3g}); not supported")
-    x = ModalTerms(omega, zeta, amplitude)
+    x = ModalTerms(omega, zeta, amplitude, live_u[inverse])
 
     z_modes = arrest_modes(probe, scene.hinge, None, **kw)
     z_amp = (z_modes.tip * z_modes.velocity)[None, :] * (tilts * speeds)[:, None]
@@ -125,6 +129,7 @@ def _terms(scene: Scene, contacts, materials, speeds, tilts, show_progress=None)
         np.broadcast_to(z_modes.omega, z_amp.shape).copy(),
         np.full(z_amp.shape, zeta_s),
         z_amp,
+        np.ones(z_amp.shape, dtype=bool),
     )
     return x, z
 

@@ -119,7 +119,7 @@ def test_clock_jitter_samples_the_analytic_signal_at_jittered_times():
     from ebantenna.simulate import modal_terms
 
     x, _ = modal_terms(scene)
-    live = x.amplitude[0] != 0
+    live = x.live[0]
     amp, w = x.amplitude[0, live], x.omega[0, live]
     expected = -(amp * w * np.sin(np.outer(np.maximum(when, 0.0), w))).sum(axis=1)
     expected[when < 0] = 0.0

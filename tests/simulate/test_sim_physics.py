@@ -208,6 +208,9 @@ def test_z_axis_rings_at_the_free_probe_frequencies_scaled_by_tilt():
     assert np.array_equal(half.ax, full.ax)
     # Z is the same whatever the contact.
     assert np.array_equal(simulate(scene.with_(contact=0.33)).az, full.az)
+    # Without tilt Z is silent, and the modes are still reported.
+    still = simulate(scene.with_(tilt_ratio=0.0))
+    assert np.all(still.az == 0) and still.metadata["modes_z_hz"] == full.metadata["modes_z_hz"]
 
 
 def test_batch_rows_equal_single_simulations():

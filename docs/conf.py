@@ -1,0 +1,109 @@
+"""Sphinx configuration of the ebantenna documentation.
+
+Build from the repository root::
+
+    python -m sphinx -W --keep-going -b html docs docs/_build/html
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE / "_ext"))
+sys.path.insert(0, str(HERE / "_tools"))
+
+from make_inventories import intersphinx_mapping as _local_inventories  # noqa: E402
+
+import ebantenna  # noqa: E402
+
+project = "ebantenna"
+author = "The ebantenna developers"
+copyright = "the ebantenna developers, BSD-3-Clause"
+release = ebantenna.__version__
+version = release
+
+extensions = [
+    "sphinx.ext.autodoc",
+    "sphinx.ext.autosummary",
+    "sphinx.ext.intersphinx",
+    "sphinx.ext.mathjax",
+    "sphinx.ext.viewcode",
+    "numpydoc",
+    "sphinx_gallery.gen_gallery",
+    "ebantenna_docs",
+]
+
+templates_path = ["_templates"]
+exclude_patterns = [
+    "_build", "_inventories", "_tools", "_ext", "exercises/solutions",
+    "examples/GALLERY_HEADER.rst",
+]
+html_theme = "furo"
+html_title = f"ebantenna {release}"
+html_static_path = ["_static"]
+html_css_files = ["ebantenna.css"]
+
+# --- API reference -----------------------------------------------------------------------------
+autosummary_generate = True
+autosummary_imported_members = False
+autodoc_default_options = {
+    "members": True,
+    "inherited-members": False,
+    "show-inheritance": False,
+    # scikit-learn's metadata-routing helpers, generated on every estimator: not ours to document
+    "exclude-members": "set_fit_request,set_score_request,set_predict_request,set_output",
+}
+autodoc_typehints = "none"  # numpydoc docstrings already say the types, with units
+numpydoc_show_class_members = False
+numpydoc_class_members_toctree = False
+numpydoc_xref_param_type = True
+numpydoc_xref_aliases = {
+    "Probe": "ebantenna.probe.Probe",
+    "Recording": "ebantenna.recording.Recording",
+    "Supports": "ebantenna.fem.supports.Supports",
+    "ModalResult": "ebantenna.fem.modal.ModalResult",
+    "ZoneResult": "ebantenna.fem.zones.ZoneResult",
+    "Erratum": "ebantenna.fem.symbolic.Erratum",
+    "ndarray": "numpy.ndarray",
+    # numpydoc's defaults point these at glossaries of inventories we do not keep
+    "bool": "bool",
+    "sequence": "collections.abc.Sequence",
+    "array_like": "numpy.typing.ArrayLike",
+    "array-like": "numpy.typing.ArrayLike",
+    "Generator": "numpy.random.Generator",
+}
+numpydoc_xref_ignore = {
+    "of", "or", "shape", "optional", "default", "array", "arrays", "dense", "sparse", "matrices",
+    "int", "float", "str", "bool", "dict", "list", "tuple", "None", "callable", "sequence",
+    "object", "matplotlib", "Axes", "sympy", "Matrix", "4x4", "6x6", "n", "m",
+    "scalar", "path-like", "iterable", "any", "bytes", "complex", "inf", "from",
+}
+
+# --- Links to the libraries, from inventories kept in the repository (no download) -------------
+intersphinx_mapping = _local_inventories("_inventories")
+intersphinx_timeout = 1
+
+# --- Gallery: every example runs at build time, so its figures cannot go stale ------------------
+os.environ.setdefault("MPLBACKEND", "Agg")
+sphinx_gallery_conf = {
+    "examples_dirs": "examples",
+    "gallery_dirs": "auto_examples",
+    "filename_pattern": r"/plot_",
+    "ignore_pattern": r"__init__\.py",
+    "download_all_examples": False,
+    "remove_config_comments": True,
+    "within_subsection_order": "FileNameSortKey",
+    "matplotlib_animations": False,
+    "show_memory": False,
+    "abort_on_example_error": True,
+    "only_warn_on_example_error": False,
+    "doc_module": ("ebantenna",),
+    "reference_url": {"ebantenna": None},
+    "backreferences_dir": None,
+    "image_scrapers": ("matplotlib",),
+}
+
+math_number_all = False

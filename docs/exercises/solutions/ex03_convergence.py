@@ -1,0 +1,34 @@
+"""Exercise 3: measure the order of convergence of the finite-element frequencies."""
+
+import numpy as np
+
+from ebantenna import Probe
+from ebantenna.fem import Supports, exact_frequencies, modal_analysis
+
+probe = Probe()
+contact = 0.25 * probe.length  # a node sits exactly at the contact for every mesh below
+exact = exact_frequencies(probe, contact, n_modes=2)
+
+meshes = [8, 16, 32, 64]
+errors = np.array(
+    [
+        modal_analysis(probe, Supports(contact=contact), n_elements=n, n_modes=2).frequencies
+        for n in meshes
+    ]
+) / exact - 1.0
+
+# Halving h divides the error by 2^p: p = log2(e(h) / e(h/2)).
+orders = np.log2(errors[:-1] / errors[1:])
+print("relative errors:\n", errors)
+print("observed orders:\n", orders.round(3))
+
+# From above: every finite-element frequency is higher than the exact one.
+assert np.all(errors > 0)
+# Fourth order: on the finer meshes the observed order is 4 within 0.1 for both modes.
+assert np.all(np.abs(orders[-2:] - 4.0) < 0.1), orders
+# Richardson: with p = 4 two meshes give a better estimate than either,
+# f_exact ~ (16 f_(h/2) - f_h) / 15.
+f32, f64 = (1 + errors[-2:]) * exact
+richardson = (16 * f64 - f32) / 15
+assert np.all(np.abs(richardson / exact - 1) < np.abs(errors[-1]) / 10)
+print("ok: the error falls like h^4, from above")

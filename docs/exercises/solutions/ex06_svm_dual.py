@@ -1,0 +1,47 @@
+"""Exercise 6: solve a small SVM dual with a general optimiser and compare with SMO."""
+
+import numpy as np
+from scipy.optimize import minimize
+
+from ebantenna.ml import SVC
+
+rng = np.random.default_rng(3)
+X = np.vstack([rng.normal([-1, -1], 0.7, (15, 2)), rng.normal([1, 1], 0.7, (15, 2))])
+y = np.repeat([-1.0, 1.0], 15)
+C = 1.0
+
+# Dual: maximise sum(alpha) - 1/2 alpha^T Q alpha with Q_ij = y_i y_j x_i.x_j,
+# subject to sum(alpha y) = 0 and 0 <= alpha <= C. minimize() wants a minimum: flip the sign.
+Q = (y[:, None] * y[None, :]) * (X @ X.T)
+result = minimize(
+    lambda a: 0.5 * a @ Q @ a - a.sum(),
+    x0=np.zeros(y.size),
+    jac=lambda a: Q @ a - 1.0,
+    bounds=[(0.0, C)] * y.size,
+    constraints=[{"type": "eq", "fun": lambda a: a @ y, "jac": lambda a: y}],
+    method="SLSQP",
+    options={"ftol": 1e-14, "maxiter": 500},
+)
+alpha = result.x
+w = (alpha * y) @ X
+# The bias from the free support vectors (0 < alpha < C), where y_i f(x_i) = 1 exactly.
+free = (alpha > 1e-6) & (alpha < C - 1e-6)
+b = np.mean(y[free] - X[free] @ w)
+print("w =", w.round(4), " b =", round(b, 4), " support vectors:", int((alpha > 1e-6).sum()))
+
+# The same problem by the package's SMO.
+svc = SVC(C=C, kernel="linear", tol=1e-8).fit(X, y)
+alpha_smo = np.zeros(y.size)
+# dual_coef_ holds y_i alpha_i of the support vectors (scikit-learn's layout).
+alpha_smo[svc.support_] = np.abs(svc.dual_coef_[0])
+w_smo = svc.dual_coef_[0] @ svc.support_vectors_
+
+assert result.success
+assert np.allclose(alpha, alpha_smo, atol=1e-5), np.abs(alpha - alpha_smo).max()
+assert np.allclose(w, w_smo, atol=1e-5)
+assert abs(b - svc.intercept_[0]) < 1e-4
+# Both satisfy the constraints of the dual.
+assert abs(alpha_smo @ y) < 1e-10 and np.all((alpha_smo >= 0) & (alpha_smo <= C))
+# The multipliers are continuous, not +-1: the paper's remark confuses them with the labels.
+assert np.any(free)
+print("ok: SLSQP and SMO find the same multipliers, hyperplane and bias")

@@ -1,0 +1,117 @@
+"""The build-time tools of the docs: sympy rendering, errata table, CLI help, inventories."""
+
+import ast
+import io
+import zlib
+from pathlib import Path
+
+import ebantenna_docs
+import make_inventories
+import pytest
+import sympy as sp
+from sphinx.util.inventory import InventoryFile
+
+from ebantenna.fem import symbolic
+
+DOCS = Path(__file__).resolve().parents[2] / "docs"
+
+
+def test_render_latex_is_sympy_latex_of_the_package_result():
+    K, _M = symbolic.element_matrices()
+    names = {symbolic.rhoA: r"\rho A", symbolic.EI: "EI", symbolic.l1: "l_1", symbolic.l2: "l_2"}
+    assert ebantenna_docs.render_latex("element_matrices()[0]") == sp.latex(K, symbol_names=names)
+    assert ebantenna_docs.render_latex("element_matrices()[0]", "K =").startswith("K = ")
+
+
+def test_factored_rendering_keeps_the_matrix():
+    latex = ebantenna_docs.render_latex("element_matrices()[1]", factor="rhoA * l / 420")
+    assert latex.startswith(r"\frac{l \rho A}{420}")
+    for entry in ("156", "22 l", "54", "- 13 l", "- 3 l^{2}"):
+        assert entry in latex
+    # the factor taken out is exact: the inner matrix times the factor is M again
+    factor = symbolic.rhoA * symbolic.l / 420
+    inner = (symbolic.element_matrices()[1] / factor).applyfunc(sp.factor)
+    assert inner[0, 0] == 156 and inner[0, 1] == 22 * symbolic.l
+
+
+def test_broken_expression_raises():
+    with pytest.raises(NameError):
+        ebantenna_docs.render_latex("no_such_function()")
+
+
+def test_errata_rows_follow_paper_errata():
+    rows = ebantenna_docs.errata_rows()
+    errata = symbolic.paper_errata()
+    assert len(rows) == len(errata) > 0
+    for row, e in zip(rows, errata, strict=True):
+        assert row[:3] == [e.matrix, str(e.row), str(e.col)] and row[5] == e.reason
+    # the typo in the printed element stiffness, K(3, 4) = +6 EI / l^2 instead of -6 EI / l^2
+    assert ["K", "3", "4", r"\frac{6 EI}{l^{2}}", r"- \frac{6 EI}{l^{2}}", "typo"] in rows
+
+
+def test_cli_help_is_the_programs_own():
+    from ebantenna.cli import build_parser
+
+    text = ebantenna_docs.cli_help()
+    sub = next(a for a in build_parser()._actions if isinstance(getattr(a, "choices", None), dict))
+    for command in sub.choices:
+        assert command in text
+        assert ebantenna_docs.cli_help(command).startswith(f"usage: ebantenna {command}")
+    with pytest.raises(KeyError, match="no command"):
+        ebantenna_docs.cli_help("no-such-command")
+
+
+def test_user_guide_documents_only_existing_commands():
+    from ebantenna.cli import build_parser
+
+    sub = next(a for a in build_parser()._actions if isinstance(getattr(a, "choices", None), dict))
+    text = (DOCS / "user_guide" / "cli.rst").read_text()
+    import re
+
+    for command in re.findall(r"\.\. ebantenna-cli:: (\S+)", text):
+        assert command in sub.choices
+    for command in re.findall(r"^   ebantenna (\w+)", text, flags=re.M):
+        assert command in sub.choices
+
+
+@pytest.mark.parametrize("key", sorted(make_inventories.INVENTORIES))
+def test_committed_inventory_is_valid_and_up_to_date(key, tmp_path):
+    project, _dist, base, entries = make_inventories.INVENTORIES[key]
+    committed = (DOCS / "_inventories" / f"{key}.inv").read_bytes()
+    # Sphinx itself can read it, and finds every entry at its URL under the project's base.
+    inventory = InventoryFile.load(io.BytesIO(committed), base, lambda b, u: b + u)
+    items = {}
+    for role_items in (inventory.data if hasattr(inventory, "data") else inventory).values():
+        items.update(role_items)
+    assert set(items) == {name for name, _role, _uri in entries}
+    for name, _role, uri in entries:
+        item = items[name]
+        url = item.uri if hasattr(item, "uri") else item[2]
+        assert url == base + uri.replace("$", name) and url.startswith("https://")
+    # the header names the project; regenerating gives the same bytes
+    header, _, body = committed.partition(b"zlib.\n")
+    assert f"# Project: {project}".encode() in header
+    assert zlib.decompress(body).decode().count("\n") == len(entries)
+    make_inventories.write_inventories(tmp_path)
+    assert (tmp_path / f"{key}.inv").read_bytes() == committed
+
+
+def test_inventory_refuses_objects_that_do_not_exist():
+    assert make_inventories.resolve("numpy.linalg.eigh") is not None
+    with pytest.raises(LookupError):
+        make_inventories.resolve("numpy.linalg.no_such_function")
+
+
+def test_intersphinx_mapping_points_at_local_files():
+    mapping = make_inventories.intersphinx_mapping("_inventories")
+    assert set(mapping) == {"numpy", "scipy", "sklearn", "sympy", "matplotlib"}
+    for url, path in mapping.values():
+        assert url.startswith("https://") and (DOCS / path).is_file()
+
+
+def test_gallery_has_at_least_eight_titled_examples():
+    examples = sorted((DOCS / "examples").glob("plot_*.py"))
+    assert len(examples) >= 8
+    for path in examples:
+        doc = ast.get_docstring(ast.parse(path.read_text()))
+        assert doc and doc.splitlines()[1].startswith("===="), path.name

@@ -1,0 +1,47 @@
+"""
+The rig's driver on a simulated I2C bus
+=======================================
+
+The drivers in :mod:`ebantenna.device` talk to the MPU6050 accelerometer and the PCA9685 servo
+board register by register, as on the Raspberry Pi. :class:`~ebantenna.device.SimulatedRig`
+answers those same register reads and writes, with a virtual clock and a simulated contact, so
+that the search of the paper (sweep, detect the touch, stop the servos, record, release) runs
+without hardware. Injected I2C faults show that the driver retries and counts what it lost.
+"""
+
+import matplotlib.pyplot as plt
+
+from ebantenna.device import (
+    MPU6050,
+    PCA9685,
+    Faults,
+    PanTilt,
+    SearchConfig,
+    SimulatedRig,
+    search_and_record,
+)
+
+results = {}
+for rate in (0.0, 0.02):
+    rig = SimulatedRig.for_contact(scene="paper", material="wood", ratio=0.5, seed=4,
+                                   faults=Faults(error_rate=rate))
+    mpu = MPU6050(rig.bus, clock=rig.clock)
+    mpu.initialize()
+    unit = PanTilt(PCA9685(rig.bus, clock=rig.clock))
+    unit.initialize()
+    result = search_and_record(mpu, unit, SearchConfig(duration=0.5))
+    rig.bus.close()
+    results[rate] = result
+    print(f"fault rate {rate:.0%}: contact={result.contact_detected}, "
+          f"servos stopped={result.servos_stopped}, samples={result.samples}, "
+          f"lost={result.samples_lost}, I2C retries={result.i2c_retries}")
+
+fig, ax = plt.subplots(figsize=(7, 3.5))
+for rate, result in results.items():
+    rec = result.recording
+    ax.plot(rec.t - rec.t[0], rec.az, lw=0.7, label=f"Z, {rate:.0%} of transfers failing")
+ax.set_xlabel("time after the contact (s)")
+ax.set_ylabel("acceleration (m/s$^2$)")
+ax.legend(fontsize="small")
+fig.tight_layout()
+plt.show()

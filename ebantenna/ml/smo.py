@@ -148,6 +148,15 @@ class KernelRows:
         """True when the whole matrix is stored."""
         return self.matrix is not None
 
+    def row64(self, i: int) -> np.ndarray:
+        """Kernel row :math:`k(x_i, x_t)` as float64 (a new array, or a view of float64 storage)."""
+        if self._parts is not None:
+            r = self.matrix[self._rows[i]]
+            if len(self._parts) == 1:
+                return r[self._parts[0]].astype(np.float64)
+            return np.concatenate([r[p] for p in self._parts], dtype=np.float64)
+        return np.asarray(self.row(i), dtype=np.float64)
+
     def row(self, i: int) -> np.ndarray:
         """Kernel row :math:`k(x_i, x_t)` for all t, in the storage type."""
         if self._parts is not None:
@@ -342,7 +351,7 @@ def solve_smo(
         if not violation >= tol:  # also stops on -inf (an empty set)
             converged = True
             break
-        Ki = rows.row(i).astype(np.float64)
+        Ki = rows.row64(i)
         if second:
             # libsvm minimises -b^2/a over j in I_low with b = Gmax + y_j G_j > 0; the same j
             # maximises b^2/a with b clipped at 0 (non-candidates score 0, and the best candidate
@@ -359,7 +368,7 @@ def solve_smo(
         else:
             j = _argmax(low_vals, ties_last)
         n_iter += 1
-        Kj = rows.row(j).astype(np.float64)
+        Kj = rows.row64(j)
         old_i, old_j = alpha[i], alpha[j]
         a_i, a_j = _two_variable_update(
             i, j, yf[i], yf[j], old_i, old_j, yf[i] * yG[i], yf[j] * yG[j], QD[i], QD[j],

@@ -87,7 +87,9 @@ class SVC(ClassifierMixin, BaseEstimator):
         Constant term of the 'poly' kernel.
     shrinking : bool, default=True
         libsvm's shrinking heuristic (see :func:`ebantenna.ml.smo.solve_smo`); the solution is
-        the same within ``tol`` either way.
+        the same within ``tol`` either way. Shrinking saves kernel evaluations, so it is used with
+        the row cache and in ``libsvm_compat`` mode; when the whole kernel matrix is in memory
+        the default mode solves without it, which is faster in NumPy.
     tol : float, default=1e-3
         Stopping tolerance on the maximal KKT violation.
     cache_size : float, default=200
@@ -278,7 +280,8 @@ class SVC(ClassifierMixin, BaseEstimator):
                 res = solve_smo(rows, ys, c_vec[idx], diagonal=diag[idx], tol=float(self.tol),
                                 max_iter=max_iter, selection=self.selection,
                                 ties_last=bool(self.libsvm_compat),
-                                shrinking=bool(self.shrinking))
+                                shrinking=bool(self.shrinking) and (
+                                    self.libsvm_compat or full is None))
                 if self.verbose:
                     logger.info("classes (%r, %r): %d updates, %d support vectors", classes[a],
                                 classes[b], res.n_iter, int(np.count_nonzero(res.alpha)))

@@ -5,7 +5,9 @@ Before the contact the servo swings the probe rigidly about the hinge at the ang
 the contact the servo stops and the object arrests the probe at the contact point: the supports take
 the velocity of the DOFs they fix (an impulsive reaction), the rest keeps its velocity. The free
 vibration that follows, with ``q(0) = 0``, is a sum of FEM modes with initial modal velocities
-``q_dot(0) = Phi^T M u0`` (:meth:`ebantenna.fem.ModalResult.modal_coordinates`). A mode ``k`` with
+``q_dot(0) = Phi^T M u0`` (:meth:`ebantenna.fem.ModalResult.modal_coordinates`). With a compliant
+contact (the ``contact_compliance`` effect) nothing is fixed at the contact: the contact spring
+starts relaxed and stops the probe there within the first cycles. A mode ``k`` with
 circular frequency ``omega_k``, damping ratio ``zeta_k`` and ``q_dot_k(0) = p_k`` moves as
 
     q_k(t) = p_k / omega_d e^(-a t) sin(omega_d t),   a = zeta_k omega_k,
@@ -50,7 +52,7 @@ class ArrestModes:
     Attributes
     ----------
     omega : ndarray of shape (n,)
-        Undamped natural circular frequencies with a rigid contact, rad/s.
+        Undamped natural circular frequencies with the contact (pin or spring), rad/s.
     tip : ndarray of shape (n,)
         Tip deflection of each mass-normalised mode, 1/sqrt(kg).
     velocity : ndarray of shape (n,)

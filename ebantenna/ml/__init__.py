@@ -5,6 +5,7 @@ Nothing here knows about beams or signals: every function takes plain arrays.
 """
 
 from .mlp import MLPClassifier, MLPRegressor
+from .persistence import load_model, save_model
 from .svc import SVC
 
-__all__ = ["SVC", "MLPClassifier", "MLPRegressor"]
+__all__ = ["SVC", "MLPClassifier", "MLPRegressor", "save_model", "load_model"]

@@ -423,12 +423,13 @@ def classify_materials_ann(X, materials, *, hidden_layer_sizes=(53,), activation
                           random_state=seed, warm_start=True, alpha=0.0)
     start = time.perf_counter()
     best, best_loss, since = None, np.inf, 0
+    X_train, y_train, X_val = X[train], y[train], X[val]
     with warnings.catch_warnings():
         # one epoch per call: the per-call iteration limit is reached on purpose
         warnings.simplefilter("ignore", ConvergenceWarning)
         for _ in range(max_iter):
-            model.fit(X[train], y[train])
-            log_p = model.predict_log_proba(X[val])
+            model.fit(X_train, y_train)
+            log_p = model.predict_log_proba(X_val)
             cols = np.searchsorted(model.classes_, y[val])
             val_loss = -float(np.mean(log_p[np.arange(cols.size), cols]))
             if val_loss < best_loss:

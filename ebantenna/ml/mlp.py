@@ -214,7 +214,8 @@ class _BaseMLP(BaseEstimator):
         n = X.shape[0]
         acts = self._forward(X, coefs, intercepts)
         data_loss, delta = self._output_loss(acts[-1], Y)
-        l2 = sum(float(np.dot(W.ravel(), W.ravel())) for W in coefs)
+        # einsum, not a BLAS dot: no thread start-up for a reduction this small
+        l2 = sum(float(np.einsum("ij,ij->", W, W)) for W in coefs)
         loss = data_loss + 0.5 * self.alpha * l2 / n
         coef_grads = [None] * len(coefs)
         intercept_grads = [None] * len(coefs)

@@ -65,11 +65,14 @@ def plot_zones(zones, ax=None):
     """
     ax = _axes(ax)
     x = 100 * zones.contacts
+    # each sample's zone covers the half-way points to its neighbours
+    edges = np.concatenate([[x[0]], 0.5 * (x[1:] + x[:-1]), [x[-1]]])
     colours = {1: "tab:blue", 2: "tab:orange", 3: "tab:green"}
     for z, colour in colours.items():
         sel = zones.zone == z
         if np.any(sel):
-            ax.axvspan(x[sel].min(), x[sel].max(), color=colour, alpha=0.15, lw=0)
+            for i in np.flatnonzero(sel):
+                ax.axvspan(edges[i], edges[i + 1], color=colour, alpha=0.15, lw=0)
             ax.plot(x[sel], zones.frequency[sel], ".", color=colour, label=f"zone {z}")
     ax.plot(x, zones.frequency, color="0.3", lw=0.8)
     ax.set_xlabel("contact distance from the hinge (cm)")

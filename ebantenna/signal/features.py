@@ -36,15 +36,15 @@ def resultant_acceleration(ax, az=None) -> np.ndarray:
 
     Parameters
     ----------
-    ax : array of shape (n,) or Recording
+    ax : array of shape (n,) or (n_recordings, n), or Recording
         Acceleration along X, m/s^2, or a :class:`~ebantenna.recording.Recording` (then omit
         ``az``).
-    az : array of shape (n,), optional
+    az : array of the shape of ``ax``, optional
         Acceleration along Z, m/s^2.
 
     Returns
     -------
-    ndarray of shape (n,)
+    ndarray of the shape of ``ax``
         The Euclidean norm sample by sample, m/s^2 (computed with :func:`numpy.hypot`, which does
         not overflow for large values).
 
@@ -55,8 +55,8 @@ def resultant_acceleration(ax, az=None) -> np.ndarray:
     array([5., 2.])
     """
     ax, az, _ = _pair(ax, az)
-    ax = check_signal("ax", ax, min_length=1)
-    az = check_signal("az", az, min_length=1)
+    ax = check_array("ax", ax, ndim=(1, 2), min_length=1)
+    az = check_array("az", az, ndim=(1, 2), min_length=1)
     if ax.shape != az.shape:
         raise ValueError(f"ax and az must have the same shape, got {ax.shape} and {az.shape}")
     return np.hypot(ax, az)

@@ -73,7 +73,7 @@ def test_fft_features_shape_normalisation_and_independent_dft():
         (lambda: resultant_acceleration([], []), "ax"),
         (lambda: resultant_acceleration([1.0, np.nan], [1.0, 2.0]), "ax"),
         (lambda: resultant_acceleration([1.0, 2.0], [1.0]), "same shape"),
-        (lambda: resultant_acceleration(np.ones((2, 2)), np.ones((2, 2))), "dimension"),
+        (lambda: resultant_acceleration(np.ones((2, 2, 2)), np.ones((2, 2, 2))), "dimension"),
         (lambda: norm_spectrum([1.0, 2.0], [1.0, 2.0], 0.0), "fs"),
         (lambda: fft_features(np.ones(10), np.ones(10), n_bins=300), "n_bins"),
         (lambda: fft_features(np.ones(10), np.ones(10), normalise="max"), "normalise"),
@@ -90,3 +90,11 @@ def test_bad_types():
         resultant_acceleration([1.0, 2.0])
     with pytest.raises(TypeError, match="fs"):
         norm_spectrum([1.0, 2.0], [1.0, 2.0], "1000")
+
+
+def test_resultant_of_rows_is_the_resultant_of_each_row():
+    rng = np.random.default_rng(4)
+    ax, az = rng.standard_normal((2, 3, 50))
+    rows = resultant_acceleration(ax, az)
+    for i in range(3):
+        np.testing.assert_array_equal(rows[i], resultant_acceleration(ax[i], az[i]))

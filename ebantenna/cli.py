@@ -23,6 +23,7 @@ COMMAND_MODULES = (
     "ebantenna.fem._cli",
     "ebantenna.simulate._cli",
     "ebantenna.device._cli",
+    "ebantenna.study._cli",
 )
 
 

@@ -1,0 +1,54 @@
+"""``ebantenna reproduce`` and ``ebantenna bench``."""
+
+from __future__ import annotations
+
+
+def register(subparsers) -> None:
+    """Add the ``reproduce`` and ``bench`` commands."""
+    rep = subparsers.add_parser(
+        "reproduce",
+        help="the whole study: figures and a report, the paper beside its reproduction",
+        description="Build (or reuse) the simulated data set and run the whole study.",
+    )
+    rep.add_argument("--out", default="ebantenna-output", metavar="DIR", help="output directory")
+    rep.add_argument("--quick", action="store_true", help="a reduced run for tests and docs")
+    rep.add_argument("--seed", type=int, default=0, help="seed of the data set and the models")
+    rep.add_argument("--jobs", type=int, default=-1, help="parallel workers (-1: all cores)")
+    rep.add_argument("--cache", metavar="DIR", help="data set cache (default ~/.cache/ebantenna)")
+    rep.add_argument("--json", action="store_true", help="print the summary as one JSON object")
+    rep.set_defaults(func=run_reproduce)
+
+
+def run_reproduce(args) -> int:
+    """Run ``ebantenna reproduce``."""
+    from ..cli import print_json
+    from .reproduce import reproduce
+
+    result = reproduce(
+        args.out,
+        quick=args.quick,
+        seed=args.seed,
+        n_jobs=args.jobs,
+        cache_dir=args.cache,
+        show_progress=None if not args.json else False,
+    )
+    s = result.summary
+    if args.json:
+        print_json(s)
+        return 0
+    print(f"Study written to {result.out_dir}/ ({len(result.figures)} figures)")
+    print(f"  report: {result.report_html}")
+    print(
+        f"  SVM material accuracy: train {s['svm']['train_accuracy']:.1%}, "
+        f"test {s['svm']['test_accuracy']:.1%}   (paper 99.7 % / 99.2 %)"
+    )
+    print(
+        f"  ANN material accuracy: all {s['ann']['all_accuracy']:.1%}, "
+        f"test {s['ann']['test_accuracy']:.1%}   (paper 80.8 %)"
+    )
+    print(
+        f"  contact distance over the whole probe: MAE "
+        f"{s['distance']['full_range_mae_cm']:.2f} cm (first mode only: "
+        f"{s['distance']['first_mode_only_mae_cm']:.2f} cm)"
+    )
+    return 0

@@ -1,0 +1,87 @@
+"""The main job end to end on the quick data set, its report and its JSON summary."""
+
+import json
+
+import numpy as np
+import pytest
+
+from ebantenna.cli import main
+from ebantenna.study import reproduce
+from ebantenna.study.features import signal_features
+from ebantenna.study.report import Report
+
+
+@pytest.fixture(scope="module")
+def quick_study(tmp_path_factory):
+    out = tmp_path_factory.mktemp("study")
+    cache = tmp_path_factory.mktemp("cache")
+    return reproduce(out, quick=True, cache_dir=cache, n_jobs=1, show_progress=False), cache
+
+
+def test_quick_study_writes_every_figure_and_both_reports(quick_study):
+    result, _ = quick_study
+    expected = {
+        "fig16_zones", "fig17_mode_shapes", "fig09_10_dominant_frequency",
+        "fig11_gain_time_constant", "fig12_ann_confusion", "fig15_svm_confusion",
+        "fig13_14_distance_networks", "beyond_full_range_distance", "fig18_19_time_frequency",
+    }
+    assert set(result.figures) == expected
+    for path in result.figures.values():
+        assert path.stat().st_size > 5_000 and path.read_bytes()[:4] == b"\x89PNG"
+    md = result.report_markdown.read_text()
+    page = result.report_html.read_text()
+    for name in expected:
+        assert f"{name}.png" in md and f"{name}.png" in page
+    # the paper's numbers stand beside the reproduction's
+    assert "99.2 %" in md and "80.8 %" in md and "0.80 L" in md
+    assert md.count("| K1 |") >= 1 and "common factor" in page
+
+
+def test_summary_holds_the_contract_numbers(quick_study):
+    result, _ = quick_study
+    s = json.loads((result.out_dir / "summary.json").read_text())
+    for key in ("svm", "ann"):
+        assert 0.0 <= s[key]["test_accuracy"] <= 1.0
+    assert s["distance"]["full_range_mae_cm"] > 0
+    assert s["dataset"]["signals"] == 120 and s["modes"]["errata"] > 0
+    # the zones are where the mode shapes put them: transition before the tip, after mid-probe
+    assert 0.5 < s["modes"]["zone2_start_ratio"] < s["modes"]["zone3_start_ratio"] < 1.0
+
+
+def test_a_second_run_reuses_the_cached_data_set(quick_study, tmp_path, capsys):
+    result, cache = quick_study
+    files = sorted(p.name for p in cache.iterdir())
+    code = main(["reproduce", "--quick", "--out", str(tmp_path), "--cache", str(cache),
+                 "--jobs", "1", "--json"])
+    assert code == 0
+    printed = json.loads(capsys.readouterr().out)  # stdout is exactly one JSON object
+    assert sorted(p.name for p in cache.iterdir()) == files
+    assert printed["dataset"]["checksum_sha256"] == result.summary["dataset"]["checksum_sha256"]
+    assert printed["svm"]["test_accuracy"] == result.summary["svm"]["test_accuracy"]
+
+
+def test_features_do_not_depend_on_the_number_of_jobs():
+    rng = np.random.default_rng(1)
+    t = np.arange(1000) / 1000.0
+    f1 = rng.uniform(15, 60, 7)[:, None]
+    ax = np.exp(-t / 0.2) * (np.sin(2 * np.pi * f1 * t) + 0.5 * np.sin(2 * np.pi * 4.1 * f1 * t))
+    az = 9.81 + 0.1 * ax + 0.01 * rng.standard_normal(ax.shape)
+    one = signal_features(ax, az, 1000.0, n_jobs=1, chunk=3, show_progress=False)
+    two = signal_features(ax, az, 1000.0, n_jobs=2, chunk=2, show_progress=False)
+    for name in ("dominant", "peaks", "tau", "gain", "decay_ok", "fft", "fft_elliptic"):
+        np.testing.assert_array_equal(getattr(one, name), getattr(two, name))
+    np.testing.assert_allclose(one.dominant, f1[:, 0], atol=0.05)
+    np.testing.assert_allclose(one.peaks[:, 1], 4.1 * f1[:, 0], rtol=2e-3)
+
+
+def test_report_renders_the_same_blocks_twice():
+    r = Report("T <&>")
+    r.heading("A")
+    r.paragraph("x < y")
+    r.table(["a", "b"], [[1, "p|q"]])
+    r.figure("f.png", "cap")
+    r.preformatted("1 2\n3 4")
+    md, page = r.markdown(), r.html()
+    assert "| 1 | p\\|q |" in md and "<td>p|q</td>" in page
+    assert "x &lt; y" in page and "<h1>T &lt;&amp;&gt;</h1>" in page
+    assert md.index("## A") < md.index("![cap](f.png)") < md.index("```")

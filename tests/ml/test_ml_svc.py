@@ -263,3 +263,16 @@ def test_no_warning_on_normal_fit():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         SVC().fit(X, y).predict(X)
+
+
+@pytest.mark.parametrize("kernel", ["rbf", "linear", "poly"])
+def test_identical_points_of_both_classes(kernel):
+    # every kernel entry equal: the curvature of each two-variable step is 0 (libsvm's TAU
+    # floor), and the bias decides alone
+    X = np.zeros((21, 3))
+    y = np.r_[np.zeros(10), np.ones(11)].astype(int)
+    ours = SVC(kernel=kernel, libsvm_compat=True).fit(X, y)
+    ref = LibSVC(kernel=kernel).fit(X, y)
+    np.testing.assert_array_equal(ours.n_iter_, ref.n_iter_)
+    np.testing.assert_allclose(ours.intercept_, ref.intercept_, atol=1e-12)
+    np.testing.assert_array_equal(ours.predict(X), ref.predict(X))

@@ -138,6 +138,16 @@ def test_row_cache_matches_full_kernel():
                                atol=1e-9)
 
 
+def test_row_cache_in_default_mode_uses_shrinking_and_agrees():
+    X, y = _data(n=200, k=3, seed=2)
+    full = SVC().fit(X, y)  # whole kernel in memory: solved without shrinking
+    cached = SVC(cache_size=0.05).fit(X, y)  # row cache: shrinking on, a different path
+    ref = LibSVC().fit(X, y)
+    for model in (full, cached):
+        np.testing.assert_allclose(model.decision_function(X), ref.decision_function(X),
+                                   atol=5e-3)
+
+
 def test_kernel_rows_cache_evicts_and_recomputes():
     X = np.random.default_rng(0).normal(size=(50, 3))
     kern = Kernel("rbf", gamma=0.5)

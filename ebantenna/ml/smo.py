@@ -341,11 +341,13 @@ def solve_smo(
     converged = False
     violation = np.inf
     n_iter = 0
+    # work buffers: every vector operation of the loop writes into one of these
+    up_vals, low_vals, quad, gain = (np.empty(n) for _ in range(4))
     while n_iter < max_iter:
-        up_vals = up_pen - yG
+        np.subtract(up_pen, yG, out=up_vals)
         i = _argmax(up_vals, ties_last)
         Gmax = up_vals[i]
-        low_vals = yG + low_pen
+        np.add(yG, low_pen, out=low_vals)
         Gmax2 = low_vals.max()
         violation = Gmax + Gmax2
         if not violation >= tol:  # also stops on -inf (an empty set)
@@ -355,12 +357,18 @@ def solve_smo(
         if second:
             # libsvm minimises -b^2/a over j in I_low with b = Gmax + y_j G_j > 0; the same j
             # maximises b^2/a with b clipped at 0 (non-candidates score 0, and the best candidate
-            # scores > 0 because b >= tol there).
-            quad = (QD[i] + QD) - 2.0 * Ki
-            quad = np.where(quad > 0, quad, TAU)
-            grad_diff = np.maximum(Gmax + low_vals, 0.0)
-            gain = grad_diff * grad_diff
-            gain /= quad
+            # scores > 0 because b >= tol there). a = (K_ii + K_jj) - 2 K_ij, floored at TAU.
+            np.add(QD, QD[i], out=quad)
+            np.multiply(Ki, 2.0, out=gain)
+            np.subtract(quad, gain, out=quad)
+            if ties_last:
+                quad[quad <= 0] = TAU  # libsvm: exactly TAU where a <= 0, a itself elsewhere
+            else:
+                np.maximum(quad, TAU, out=quad)
+            np.add(low_vals, Gmax, out=gain)
+            np.maximum(gain, 0.0, out=gain)
+            np.multiply(gain, gain, out=gain)
+            np.divide(gain, quad, out=gain)
             j = _argmax(gain, ties_last)
             if not gain[j] > 0:
                 converged = True
@@ -376,7 +384,10 @@ def solve_smo(
         )
         alpha[i], alpha[j] = a_i, a_j
         # libsvm: G += Q_i * dalpha_i + Q_j * dalpha_j with Q_t = y_t y K_t, hence on yG:
-        yG += Ki * (yf[i] * (a_i - old_i)) + Kj * (yf[j] * (a_j - old_j))
+        step_i = Ki * (yf[i] * (a_i - old_i))  # a new array: stored rows are never written
+        np.multiply(Kj, yf[j] * (a_j - old_j), out=quad)
+        np.add(step_i, quad, out=step_i)
+        yG += step_i
         for t, a in ((i, a_i), (j, a_j)):
             can_up = -np.inf if a >= C[t] else 0.0
             can_down = -np.inf if a <= 0 else 0.0

@@ -1,4 +1,4 @@
-"""ebantenna: a vibrating antenna probe, from Euler-Bernoulli beam elements to material classification.
+"""ebantenna: a vibrating antenna probe, from Euler-Bernoulli beams to material classification.
 
 Subpackages, in the order the data flows:
 

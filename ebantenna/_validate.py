@@ -1,8 +1,8 @@
 """Input validation shared by the whole package.
 
 Every public function checks its arguments at the boundary with these helpers, so that bad input
-raises a :class:`ValueError` or :class:`TypeError` that names the parameter, the allowed range and the
-value given, instead of a NaN or a traceback from deep inside NumPy.
+raises a :class:`ValueError` or :class:`TypeError` that names the parameter, the allowed range and
+the value given, instead of a NaN or a traceback from deep inside NumPy.
 """
 
 from __future__ import annotations
@@ -59,7 +59,7 @@ def check_in_range(
     low_inclusive: bool = False,
     high_inclusive: bool = False,
 ) -> float:
-    """Return ``value`` as a float; raise unless it lies in the interval from ``low`` to ``high``."""
+    """Return ``value`` as a float; raise unless it lies between ``low`` and ``high``."""
     value = check_real(name, value)
     above = value >= low if low_inclusive else value > low
     below = value <= high if high_inclusive else value < high
@@ -107,7 +107,9 @@ def check_array(
     try:
         array = np.asarray(value, dtype=dtype)
     except (TypeError, ValueError) as exc:
-        raise TypeError(f"{name} must be array-like of numbers, got {type(value).__name__}") from exc
+        raise TypeError(
+            f"{name} must be array-like of numbers, got {type(value).__name__}"
+        ) from exc
     if ndim is not None:
         allowed = (ndim,) if isinstance(ndim, int) else tuple(ndim)
         if array.ndim not in allowed:

@@ -31,11 +31,12 @@ class Probe:
     inner_diameter : float
         Inside diameter, m; 0 for a solid rod. Default 6 mm (paper, section 3).
     youngs_modulus : float
-        Young's modulus E of the tube, Pa. Default 3.0 GPa: cast PMMA, 2.2-3.8 GPa in M. F. Ashby,
-        *Materials Selection in Mechanical Design*, 4th ed., Butterworth-Heinemann, 2011, ch. 4 charts
-        and appendix C (mid value).
+        Young's modulus E of the tube, Pa. Default 3.0 GPa: cast PMMA, 2.2-3.8 GPa in
+        M. F. Ashby, *Materials Selection in Mechanical Design*, 4th ed., Butterworth-Heinemann,
+        2011, ch. 4 charts and appendix C (mid value).
     density : float
-        Mass density rho of the tube, kg/m^3. Default 1190 kg/m^3: PMMA, 1170-1200 kg/m^3 (Ashby, ibid.).
+        Mass density rho of the tube, kg/m^3. Default 1190 kg/m^3: PMMA, 1170-1200 kg/m^3
+        (Ashby, ibid.).
     tip_mass : float
         Point mass at the free tip, kg (the accelerometer board). Default 0: none.
     loss_factor : float
@@ -102,7 +103,7 @@ class Probe:
         return self.mass_per_length * self.length
 
     def summary(self) -> dict:
-        """The contract's JSON description: ``L``, ``E``, ``rho``, ``A``, ``I``, ``tip_mass`` (SI)."""
+        """The contract's JSON: ``L``, ``E``, ``rho``, ``A``, ``I``, ``tip_mass`` (SI units)."""
         return {
             "L": self.length,
             "E": self.youngs_modulus,
@@ -132,8 +133,8 @@ class Material:
     poisson_ratio : float
         Poisson's ratio nu (dimensionless).
     loss_factor : float
-        Material loss factor eta (dimensionless): the fraction 2*pi*eta of the strain energy lost per
-        cycle of vibration.
+        Material loss factor eta (dimensionless): the fraction 2*pi*eta of the strain energy lost
+        per cycle of vibration.
     source : str
         Where the numbers come from.
     """
@@ -155,10 +156,14 @@ MATERIALS: dict[str, Material] = {
     m.name: m
     for m in (
         Material("aluminium", 69e9, 2700.0, 0.33, 1e-4, f"6061 alloy; {_ASHBY}; eta: {_CREMER}"),
-        Material("brass", 105e9, 8500.0, 0.34, 1e-3, f"C26000 cartridge brass; {_ASHBY}; {_CREMER}"),
+        Material(
+            "brass", 105e9, 8500.0, 0.34, 1e-3, f"C26000 cartridge brass; {_ASHBY}; {_CREMER}"
+        ),
         Material("wood", 12.5e9, 660.0, 0.35, 1e-2, f"red oak along the grain; {_FPL}; {_CREMER}"),
         Material("steel", 205e9, 7850.0, 0.29, 2e-4, f"low-carbon steel; {_ASHBY}; {_CREMER}"),
-        Material("pvc", 3.0e9, 1400.0, 0.38, 2e-2, f"rigid (unplasticised) PVC; {_ASHBY}; {_CREMER}"),
+        Material(
+            "pvc", 3.0e9, 1400.0, 0.38, 2e-2, f"rigid (unplasticised) PVC; {_ASHBY}; {_CREMER}"
+        ),
     )
 }
 

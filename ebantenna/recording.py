@@ -26,7 +26,8 @@ class Recording:
     fs : float
         Nominal sampling frequency, Hz.
     metadata : dict
-        JSON-serialisable description of where the data came from (scene, seed, device, samples lost).
+        JSON-serialisable description of where the data came from (scene, seed, device, samples
+        lost).
 
     Examples
     --------
@@ -72,7 +73,7 @@ class Recording:
         return self.n_samples / self.fs
 
     def save(self, path) -> Path:
-        """Save as a compressed ``.npz`` (arrays ``t``, ``ax``, ``az``, ``fs`` and JSON ``metadata``)."""
+        """Save as compressed ``.npz``: arrays ``t``, ``ax``, ``az``, ``fs``, JSON ``metadata``."""
         path = Path(path)
         np.savez_compressed(
             path,

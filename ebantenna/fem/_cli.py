@@ -84,7 +84,10 @@ def run_modes(args) -> int:
 
     probe, contact = _setup(args)
     result = modal_analysis(
-        probe, Supports(contact=contact, hinge=args.hinge), n_elements=args.elements, n_modes=args.modes
+        probe,
+        Supports(contact=contact, hinge=args.hinge),
+        n_elements=args.elements,
+        n_modes=args.modes,
     )
     if args.plot:
         import matplotlib

@@ -1,9 +1,9 @@
 """Mesh of the probe and assembly of the global stiffness and mass matrices.
 
-The global DOF vector is ``(v0, theta0, v1, theta1, ..., vN, thetaN)`` for nodes 0 (hinge) to N (tip).
-Supports are applied by removing the DOFs they fix (a clamped hinge removes ``v0`` and ``theta0``, a
-rigid contact removes ``v`` at the contact node) and by adding spring stiffnesses and the tip mass to
-the diagonal.
+The global DOF vector is ``(v0, theta0, v1, theta1, ..., vN, thetaN)`` for nodes 0 (hinge) to N
+(tip). Supports are applied by removing the DOFs they fix (a clamped hinge removes ``v0`` and
+``theta0``, a rigid contact removes ``v`` at the contact node) and by adding spring stiffnesses and
+the tip mass to the diagonal.
 """
 
 from __future__ import annotations

@@ -80,7 +80,8 @@ def consistent_mass(rhoA, l):
 def hermite(xi, l):
     """Hermite cubic shape functions at ``xi = x/l`` in [0, 1] of an element of length ``l`` (m).
 
-    Returns an array of shape ``(..., 4)``: deflection = ``hermite(xi, l) @ (v1, theta1, v2, theta2)``.
+    Returns an array of shape ``(..., 4)``:
+    deflection = ``hermite(xi, l) @ (v1, theta1, v2, theta2)``.
     """
     xi = np.asarray(xi, dtype=float)
     l = np.asarray(l, dtype=float)
@@ -96,7 +97,7 @@ def hermite(xi, l):
 
 
 def hermite_slope(xi, l):
-    """Derivatives ``dN/dx`` (1/m for the deflection DOFs, dimensionless for the slopes), shape (..., 4)."""
+    """Derivatives ``dN/dx``, shape (..., 4): 1/m for the deflection DOFs, 1 for the slopes."""
     xi = np.asarray(xi, dtype=float)
     l = np.asarray(l, dtype=float)
     return np.stack(

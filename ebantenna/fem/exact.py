@@ -1,11 +1,12 @@
 """Exact natural frequencies of the probe from the transcendental frequency equation.
 
 The reference that the finite elements must converge to. Each span of the beam obeys
-``EI w'''' = rho A omega^2 w``, solved by ``w = C1 cos(beta x) + C2 sin(beta x) + C3 cosh(beta x)
-+ C4 sinh(beta x)`` with ``beta^4 = rho A omega^2 / EI``. Split the probe at the contact pin into the
-span ``[0, a]`` and the overhang ``[a, L]`` (``b = L - a``), give the pin a small rotation ``theta``
-and ask what bending moment each part needs for it (sympy does this in a few lines; the results are
-below). The pin carries no moment of its own, so the two curvatures must agree:
+``EI w'''' = rho A omega^2 w``, solved by ``w = C1 cos(beta x) + C2 sin(beta x) +
+C3 cosh(beta x) + C4 sinh(beta x)`` with ``beta^4 = rho A omega^2 / EI``. Split the probe at the
+contact pin into the span ``[0, a]`` and the overhang ``[a, L]`` (``b = L - a``), give the pin a
+small rotation ``theta`` and ask what bending moment each part needs for it (sympy does this in a
+few lines; the results are below). The pin carries no moment of its own, so the two curvatures
+must agree:
 
 - span, clamped at the hinge:  ``w''(a) / (beta theta) = -F(u) / H-(u)``
 - span, pinned at the hinge:   ``w''(a) / (beta theta) =  P(u) / F(u)``
@@ -61,7 +62,8 @@ def _F_over_cosh(u):
 
 def _Hminus_over_cosh(u):
     if u < _SERIES_LIMIT:
-        # H-(u) = sum_{k>=1} (-1)^k 4^k u^(4k) / (4k)!  =  -(sum_{k>=0} (-1)^k 4^(k+1) u^(4k+4)/(4k+4)!)
+        # H-(u) = sum_{k>=1} (-1)^k 4^k u^(4k) / (4k)!
+        #       = -(sum_{k>=0} (-1)^k 4^(k+1) u^(4k+4) / (4k+4)!)
         return -_series(u, 4, 1) / math.cosh(u)
     return math.cos(u) - 1.0 / math.cosh(u)
 
@@ -133,7 +135,9 @@ def exact_frequencies(
 
     supports = Supports(contact=contact, hinge=hinge)
     if not isinstance(hinge, str):
-        raise ValueError(f"hinge must be 'clamped' or 'pinned' for the exact solution, got {hinge!r}")
+        raise ValueError(
+            f"hinge must be 'clamped' or 'pinned' for the exact solution, got {hinge!r}"
+        )
     n_modes = check_int("n_modes", n_modes, minimum=1)
     if probe.tip_mass != 0:
         raise ValueError(f"tip_mass must be 0 for the exact solution, got {probe.tip_mass!r}")
@@ -153,7 +157,9 @@ def exact_frequencies(
             betas.append(lo)
         elif f_lo * f_hi < 0:
             betas.append(
-                brentq(frequency_equation, lo, hi, args=(L, contact, hinge), xtol=1e-300, rtol=1e-15)
+                brentq(
+                    frequency_equation, lo, hi, args=(L, contact, hinge), xtol=1e-300, rtol=1e-15
+                )
             )
         lo, f_lo = hi, f_hi
         if lo * L > 700:

@@ -72,7 +72,7 @@ def _clip_eigenvalues(lam: np.ndarray, shift: float) -> np.ndarray:
 
 
 def solve_modes(K, M, n_modes: int, *, shift: float, solver: str = "auto"):
-    """Lowest ``n_modes`` eigenpairs of ``K phi = lam M phi`` (``K`` semi-, ``M`` positive definite).
+    """Lowest ``n_modes`` eigenpairs of ``K phi = lam M phi`` (``K`` semi-definite, ``M`` definite).
 
     Parameters
     ----------
@@ -201,8 +201,8 @@ class ModalResult:
     def overhang_mass_fraction(self) -> np.ndarray:
         """Share of each mode's kinetic energy in the overhang, from the contact to the tip.
 
-        Close to 1 for a mode in which the overhang swings like a cantilever on the contact, close to
-        0 for one in which the span between hinge and contact vibrates (Fig. 17 of the paper).
+        Close to 1 for a mode in which the overhang swings like a cantilever on the contact, close
+        to 0 for one in which the span between hinge and contact vibrates (Fig. 17 of the paper).
         """
         if self.supports.contact is None:
             raise ValueError("overhang_mass_fraction needs a contact (supports.contact is None)")
@@ -267,7 +267,8 @@ def modal_analysis(
         raise TypeError(f"supports must be a Supports, got {type(supports).__name__}")
     if supports.contact is not None and not supports.contact < probe.length:
         raise ValueError(
-            f"contact must lie in (0, {probe.length:g}) m (the probe's length), got {supports.contact!r}"
+            f"contact must lie in (0, {probe.length:g}) m (the probe's length), "
+            f"got {supports.contact!r}"
         )
     nodes = beam_mesh(probe.length, supports.contact, n_elements)
     use_sparse = solver == "sparse" or (solver == "auto" and 2 * nodes.size > DENSE_LIMIT)
@@ -309,7 +310,9 @@ def strain_energy(nodes: np.ndarray, probe: Probe, supports: Supports, u: np.nda
     if not isinstance(supports.hinge, str):
         energy = energy + supports.hinge_stiffness * u[1] ** 2
     if supports.contact is not None and not math.isinf(supports.contact_stiffness):
-        energy = energy + supports.contact_stiffness * u[2 * contact_node(nodes, supports.contact)] ** 2
+        energy = (
+            energy + supports.contact_stiffness * u[2 * contact_node(nodes, supports.contact)] ** 2
+        )
     return energy
 
 
@@ -338,7 +341,7 @@ def natural_frequencies(
     n_elements, n_modes : int
         Mesh size and number of modes.
     chunk : int
-        Positions solved per batch (bounds the memory to about ``chunk * (2 n_elements)^2 * 32`` bytes).
+        Positions solved per batch (memory about ``chunk * (2 n_elements)^2 * 32`` bytes).
 
     Returns
     -------
@@ -355,12 +358,13 @@ def natural_frequencies(
     """
     contacts = check_array("contacts", contacts, ndim=1)
     chunk = check_int("chunk", chunk, minimum=1)
-    supports = [Supports(contact=float(c), hinge=hinge, contact_stiffness=contact_stiffness) for c in contacts]
+    supports = [
+        Supports(contact=float(c), hinge=hinge, contact_stiffness=contact_stiffness)
+        for c in contacts
+    ]
     bad = (contacts <= 0) | (contacts >= probe.length)
     if np.any(bad):
-        raise ValueError(
-            f"contacts must lie in (0, {probe.length:g}) m, got {contacts[bad][0]!r}"
-        )
+        raise ValueError(f"contacts must lie in (0, {probe.length:g}) m, got {contacts[bad][0]!r}")
     blocks = [supports[i : i + chunk] for i in range(0, contacts.size, chunk)]
     # LAPACK releases the GIL: chunks run side by side on the machine's cores, each with a
     # single-threaded BLAS (threads inside such small matrices only get in each other's way).
@@ -388,7 +392,9 @@ def _batched_frequencies(probe, supports_list, n_elements, n_modes):
     s0 = supports_list[0]
     if not isinstance(s0.hinge, str):
         K[:, 1, 1] += s0.hinge_stiffness
-    nodes_c = np.array([contact_node(m, s.contact) for m, s in zip(meshes, supports_list)])
+    nodes_c = np.array(
+        [contact_node(m, s.contact) for m, s in zip(meshes, supports_list, strict=True)]
+    )
     if s0.rigid_contact:
         # Move each contact's deflection DOF out of the way: keep all others, in order.
         keep = np.array([np.setdiff1d(np.arange(n), [0, 1, 2 * c]) for c in nodes_c])

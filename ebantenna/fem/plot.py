@@ -1,4 +1,4 @@
-"""Figures of the modal analysis: mode shapes (Fig. 17) and the zones of the dominant mode (Fig. 16)."""
+"""Figures of the modal analysis: mode shapes (Fig. 17) and the dominant mode's zones (Fig. 16)."""
 
 from __future__ import annotations
 

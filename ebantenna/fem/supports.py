@@ -47,7 +47,9 @@ class Supports:
         if isinstance(self.hinge, str):
             check_choice("hinge", self.hinge, HINGES)
         else:
-            object.__setattr__(self, "hinge", check_positive("hinge (rotational stiffness)", self.hinge))
+            object.__setattr__(
+                self, "hinge", check_positive("hinge (rotational stiffness)", self.hinge)
+            )
         object.__setattr__(
             self,
             "contact_stiffness",

@@ -8,7 +8,8 @@ and Practice*, 2nd ed., CRC Press, 2007, ch. 11):
 2. Express the four coefficients through the nodal degrees of freedom ``(v1, theta1, v2, theta2)``
    (deflection and slope ``v'`` at both ends): ``v(x) = N(x) . d`` with the Hermite cubics ``N``.
 3. Strain energy ``U = 1/2 int EI v''^2 dx = 1/2 d^T K d`` gives ``K = int EI N''^T N'' dx``;
-   kinetic energy ``T = 1/2 int rho A vdot^2 dx = 1/2 ddot^T M ddot`` gives ``M = int rho A N^T N dx``.
+   kinetic energy ``T = 1/2 int rho A vdot^2 dx = 1/2 ddot^T M ddot`` gives
+   ``M = int rho A N^T N dx``.
 
 Everything here is exact rational arithmetic in sympy. :mod:`ebantenna.fem.elements` holds the fast
 NumPy versions, and the tests prove that both agree exactly.
@@ -109,7 +110,7 @@ def assemble(element_list: list[sp.Matrix]) -> sp.Matrix:
 
 @cache
 def two_element_matrices() -> tuple[sp.Matrix, sp.Matrix]:
-    """The paper's 6-DOF model: hinge P -- element 1 (``l1``) -- contact Q -- element 2 (``l2``) -- tip R.
+    """The paper's 6-DOF model: hinge P, element 1 (``l1``), contact Q, element 2 (``l2``), tip R.
 
     The two elements have different lengths, so their factors ``EI/l1^3`` and ``EI/l2^3`` differ and
     cannot be pulled out of the assembled matrix as one common factor.
@@ -166,13 +167,14 @@ _PAPER_M1 = [
 
 #: What the paper gets wrong besides single entries (quoted in the docs beside the errata table).
 PAPER_NOTES = (
-    "The text lists the element DOFs as [v1, v2, theta1, theta2], but the printed K and M are in the "
-    "order (v1, theta1, v2, theta2).",
+    "The text lists the element DOFs as [v1, v2, theta1, theta2], but the printed K and M are in "
+    "the order (v1, theta1, v2, theta2).",
     "I is called the 'moment of inertia (kg/m^2)'; it is the second moment of area, in m^4.",
     "K1 and M1 carry one factor EI/l^3 and rhoA*l/420 with an undefined l; with l1 != l2 the two "
     "elements' factors differ and cannot be taken out in common.",
-    "The text says that det(K - w^2 M) = 0 gives 'two frequencies'; the 4x4 element has four, and the "
-    "6-DOF model with the hinge clamped and the contact pinned keeps three free DOFs, so three.",
+    "The text says that det(K - w^2 M) = 0 gives 'two frequencies'; the 4x4 element has four, and "
+    "the 6-DOF model with the hinge clamped and the contact pinned keeps three free DOFs, so "
+    "three.",
 )
 
 
@@ -251,9 +253,7 @@ def _compare(name: str, printed: sp.Matrix, derived: sp.Matrix) -> list[Erratum]
                     reason = "typo"
                 else:
                     reason = "common factor"
-            records.append(
-                Erratum(name, i + 1, j + 1, str(p), str(sp.factor(d)), reason)
-            )
+            records.append(Erratum(name, i + 1, j + 1, str(p), str(sp.factor(d)), reason))
     return records
 
 

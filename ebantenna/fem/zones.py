@@ -62,7 +62,7 @@ class ZoneResult:
         return first(2), first(3)
 
     def plot(self, ax=None):
-        """Dominant frequency against contact distance, shaded by zone (Fig. 16). Returns the Axes."""
+        """Dominant frequency against contact distance, zones shaded (Fig. 16); returns the Axes."""
         from .plot import plot_zones
 
         return plot_zones(self, ax=ax)

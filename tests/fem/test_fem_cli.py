@@ -26,7 +26,9 @@ def test_modes_json_follows_the_contract(capsys):
 
 def test_exact_and_fine_modes_agree(capsys):
     exact = run_json(capsys, ["exact", "--contact", "0.3", "--hinge", "pinned", "--json"])
-    fem = run_json(capsys, ["modes", "--contact", "0.3", "--hinge", "pinned", "--elements", "128", "--json"])
+    fem = run_json(
+        capsys, ["modes", "--contact", "0.3", "--hinge", "pinned", "--elements", "128", "--json"]
+    )
     assert exact["elements"] is None
     np.testing.assert_allclose(fem["frequencies_hz"], exact["frequencies_hz"], rtol=1e-7)
 
@@ -48,6 +50,8 @@ def test_bad_ratio_is_a_clear_error(capsys):
 def test_python_dash_m_runs_the_same_command():
     done = subprocess.run(
         [sys.executable, "-m", "ebantenna", "exact", "--no-contact", "--modes", "1", "--json"],
-        capture_output=True, text=True, check=True,
+        capture_output=True,
+        text=True,
+        check=True,
     )
     assert json.loads(done.stdout)["frequencies_hz"][0] == pytest.approx(13.8828316, rel=1e-7)

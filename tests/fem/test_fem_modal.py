@@ -77,7 +77,9 @@ def test_sparse_and_dense_solvers_agree():
     np.testing.assert_allclose(dense.frequencies, sparse.frequencies, rtol=1e-11)
     # shapes agree up to sign
     signs = np.sign(np.sum(dense.shapes * sparse.shapes, axis=0))
-    np.testing.assert_allclose(dense.shapes, sparse.shapes * signs, atol=1e-7 * np.abs(dense.shapes).max())
+    np.testing.assert_allclose(
+        dense.shapes, sparse.shapes * signs, atol=1e-7 * np.abs(dense.shapes).max()
+    )
 
 
 def test_very_stiff_hinge_spring_is_a_clamp():
@@ -120,7 +122,12 @@ def test_free_pinned_probe_has_a_zero_mode_not_a_nan():
 def test_cantilever_matches_the_textbook_beta_l():
     res = modal_analysis(PROBE, Supports(None), n_elements=128, n_modes=3)
     beta_l = np.array([1.8751040687119611, 4.6940911329741745, 7.8547574382376126])
-    f = beta_l**2 / L**2 * math.sqrt(PROBE.flexural_rigidity / PROBE.mass_per_length) / (2 * math.pi)
+    f = (
+        beta_l**2
+        / L**2
+        * math.sqrt(PROBE.flexural_rigidity / PROBE.mass_per_length)
+        / (2 * math.pi)
+    )
     np.testing.assert_allclose(res.frequencies, f, rtol=1e-7)
     np.testing.assert_allclose(exact_frequencies(PROBE, None, n_modes=3), f, rtol=1e-13)
 
@@ -157,10 +164,12 @@ def test_batched_sweep_equals_one_at_a_time():
     contacts = np.linspace(0.01, 0.39, 23)
     for hinge, probe in (("clamped", PROBE), ("pinned", Probe(tip_mass=0.003)), (5.0, PROBE)):
         batch = natural_frequencies(probe, contacts, hinge=hinge, n_elements=24, n_modes=3, chunk=7)
-        single = np.array([
-            modal_analysis(probe, Supports(c, hinge), n_elements=24, n_modes=3).frequencies
-            for c in contacts
-        ])
+        single = np.array(
+            [
+                modal_analysis(probe, Supports(c, hinge), n_elements=24, n_modes=3).frequencies
+                for c in contacts
+            ]
+        )
         np.testing.assert_allclose(batch, single, rtol=1e-10)
     soft = natural_frequencies(PROBE, contacts[:3], contact_stiffness=50.0, n_elements=24)
     one = modal_analysis(PROBE, Supports(contacts[1], contact_stiffness=50.0), n_elements=24)

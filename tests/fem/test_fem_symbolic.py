@@ -37,13 +37,30 @@ def test_shape_functions_interpolate_the_nodal_dofs():
 
 def test_element_matrices_are_the_textbook_ones():
     K, M = element_matrices()
-    textbook_K = EI / l**3 * sp.Matrix(
-        [[12, 6 * l, -12, 6 * l], [6 * l, 4 * l**2, -6 * l, 2 * l**2],
-         [-12, -6 * l, 12, -6 * l], [6 * l, 2 * l**2, -6 * l, 4 * l**2]]
+    textbook_K = (
+        EI
+        / l**3
+        * sp.Matrix(
+            [
+                [12, 6 * l, -12, 6 * l],
+                [6 * l, 4 * l**2, -6 * l, 2 * l**2],
+                [-12, -6 * l, 12, -6 * l],
+                [6 * l, 2 * l**2, -6 * l, 4 * l**2],
+            ]
+        )
     )
-    textbook_M = rhoA * l / 420 * sp.Matrix(
-        [[156, 22 * l, 54, -13 * l], [22 * l, 4 * l**2, 13 * l, -3 * l**2],
-         [54, 13 * l, 156, -22 * l], [-13 * l, -3 * l**2, -22 * l, 4 * l**2]]
+    textbook_M = (
+        rhoA
+        * l
+        / 420
+        * sp.Matrix(
+            [
+                [156, 22 * l, 54, -13 * l],
+                [22 * l, 4 * l**2, 13 * l, -3 * l**2],
+                [54, 13 * l, 156, -22 * l],
+                [-13 * l, -3 * l**2, -22 * l, 4 * l**2],
+            ]
+        )
     )
     assert sp.simplify(K - textbook_K) == sp.zeros(4, 4)
     assert sp.simplify(M - textbook_M) == sp.zeros(4, 4)
@@ -73,14 +90,16 @@ def test_numpy_element_matrices_equal_sympy_exactly(ei, rho_a, length):
 
 
 @settings(max_examples=25, deadline=None)
-@given(
-    ei=st.floats(1e-3, 1e3), rho_a=st.floats(1e-3, 1e3), length=st.floats(1e-4, 10.0)
-)
+@given(ei=st.floats(1e-3, 1e3), rho_a=st.floats(1e-3, 1e3), length=st.floats(1e-4, 10.0))
 def test_lambdified_and_hand_written_matrices_agree_in_floats(ei, rho_a, length):
     K_fun, M_fun = lambdify_element_matrices()
     # Both evaluate the same polynomials in a different order: a few ulps apart at most.
-    np.testing.assert_allclose(elements.element_stiffness(ei, length), K_fun(ei, length), rtol=1e-14)
-    np.testing.assert_allclose(elements.consistent_mass(rho_a, length), M_fun(rho_a, length), rtol=1e-14)
+    np.testing.assert_allclose(
+        elements.element_stiffness(ei, length), K_fun(ei, length), rtol=1e-14
+    )
+    np.testing.assert_allclose(
+        elements.consistent_mass(rho_a, length), M_fun(rho_a, length), rtol=1e-14
+    )
 
 
 def test_two_element_model_is_the_assembly_of_two_elements():
@@ -99,8 +118,13 @@ def test_errata_find_the_known_misprints():
     # Checked by hand against the paper's section 2.2: each is wrong even for l1 == l2.
     assert typos == {
         ("K", 3, 4),
-        ("K1", 4, 1), ("K1", 4, 2), ("K1", 4, 5), ("K1", 5, 4),
-        ("M1", 4, 2), ("M1", 6, 3), ("M1", 6, 4),
+        ("K1", 4, 1),
+        ("K1", 4, 2),
+        ("K1", 4, 5),
+        ("K1", 5, 4),
+        ("M1", 4, 2),
+        ("M1", 6, 3),
+        ("M1", 6, 4),
     }
     common = {(e.matrix, e.row, e.col) for e in errata if e.reason == "common factor"}
     assert ("K1", 3, 3) in common and ("M1", 4, 4) in common
@@ -119,7 +143,7 @@ def test_every_unlisted_entry_really_agrees(matrix_name):
     from ebantenna.fem.symbolic import paper_matrices
 
     printed = paper_matrices()[matrix_name]
-    derived = dict(zip(("K1", "M1"), two_element_matrices()))[matrix_name]
+    derived = dict(zip(("K1", "M1"), two_element_matrices(), strict=True))[matrix_name]
     listed = {(e.row, e.col) for e in paper_errata() if e.matrix == matrix_name}
     for i in range(6):
         for j in range(6):

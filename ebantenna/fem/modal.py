@@ -140,8 +140,9 @@ class ModalResult:
         coordinate), zero at the fixed DOFs, normalised so that ``phi.T @ M @ phi = I``.
     free : ndarray of int
         Indices of the free DOFs.
-    mass_matrix : ndarray of shape (2 * n_nodes, 2 * n_nodes)
-        Global consistent mass with the tip mass (kg, kg m, kg m^2), before removing fixed DOFs.
+    mass_matrix : ndarray or scipy.sparse matrix of shape (2 * n_nodes, 2 * n_nodes)
+        Global consistent mass with the tip mass (kg, kg m, kg m^2), before removing fixed DOFs;
+        sparse when the mesh was solved with the sparse solver.
     """
 
     probe: Probe
@@ -208,8 +209,8 @@ class ModalResult:
             raise ValueError("overhang_mass_fraction needs a contact (supports.contact is None)")
         c = contact_node(self.nodes, self.supports.contact)
         part = self.shapes[2 * c :]
-        M = self.mass_matrix[2 * c :, 2 * c :]
-        return np.einsum("im,ij,jm->m", part, M, part)
+        M = self.mass_matrix[2 * c :, 2 * c :]  # dense or sparse alike
+        return np.einsum("im,im->m", part, M @ part)
 
     @property
     def dominant_mode(self) -> int:

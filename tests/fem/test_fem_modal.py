@@ -248,3 +248,15 @@ def test_exact_solver_rejects_what_it_does_not_cover():
         exact_frequencies(PROBE, 0.4)
     with pytest.raises(ValueError, match="contacts must lie in"):
         natural_frequencies(PROBE, np.array([0.1, 0.5]))
+
+
+def test_overhang_fraction_and_projection_work_on_sparse_meshes_too():
+    dense = modal_analysis(PROBE, Supports(0.3), n_elements=100, n_modes=2, solver="dense")
+    sparse = modal_analysis(PROBE, Supports(0.3), n_elements=100, n_modes=2, solver="sparse")
+    np.testing.assert_allclose(
+        dense.overhang_mass_fraction(), sparse.overhang_mass_fraction(), rtol=1e-8
+    )
+    u = np.zeros(dense.shapes.shape[0])
+    u[0::2], u[1::2] = dense.nodes, 1.0  # rigid rotation about the hinge, 1 rad/s
+    q_dense, q_sparse = dense.modal_coordinates(u), sparse.modal_coordinates(u)
+    np.testing.assert_allclose(np.abs(q_dense), np.abs(q_sparse), rtol=1e-8)

@@ -1,0 +1,87 @@
+"""The numbers the theory pages state in prose hold for what the package computes."""
+
+import numpy as np
+import pytest
+import sympy as sp
+from scipy.optimize import minimize_scalar
+
+from ebantenna import Probe
+from ebantenna.fem import Supports, exact_frequencies, modal_analysis
+from ebantenna.fem.symbolic import element_matrices, l, rhoA
+from ebantenna.simulate import builtin_scene
+
+PROBE = Probe()
+L = PROBE.length
+
+
+def two_element_errors(ratio):
+    """Relative errors of the three frequencies of the paper's two-element model."""
+    contact = ratio * L
+    f = modal_analysis(PROBE, Supports(contact=contact), n_elements=2, n_modes=3).frequencies
+    return f / exact_frequencies(PROBE, contact, n_modes=3) - 1.0
+
+
+def test_element_checks_by_eye():
+    # theory/element.rst: rigid motions bend nothing, and a translation carries the whole mass
+    K, M = element_matrices()
+    for d in (sp.Matrix([1, 0, 1, 0]), sp.Matrix([0, 1, l, 1])):
+        assert sp.simplify(K * d) == sp.zeros(4, 1)
+    d = sp.Matrix([1, 0, 1, 0])
+    assert sp.simplify((d.T * M * d)[0] - rhoA * l) == 0
+
+
+@pytest.mark.parametrize(
+    ("ratio", "stated"), [(0.1, 0.004), (0.6, 0.003), (0.7, 0.02), (0.8, 0.16), (0.9, 0.31)]
+)
+def test_two_element_first_mode_error_as_stated(ratio, stated):
+    # theory/convergence.rst quotes these to the shown digit
+    assert two_element_errors(ratio)[0] == pytest.approx(stated, rel=0.2, abs=5e-4)
+
+
+def test_two_element_model_good_for_the_first_mode_only():
+    ratios = np.linspace(0.05, 0.97, 24)
+    errors = np.array([two_element_errors(r) for r in ratios])
+    assert np.all(errors[ratios < 0.66, 0] < 0.01)  # "up to about two thirds of the length"
+    assert np.all(errors[:, 1] >= 0.19)  # "the second mode at least 20 % too high"
+    assert np.all(errors[:, 2] >= 0.37)  # "the third at least 38 %"
+
+
+def test_64_elements_within_1e_minus_6():
+    # theory/assembly.rst: 64 elements put the first three frequencies within 1e-6 of exact
+    for ratio in np.linspace(0.05, 0.97, 12):
+        res = modal_analysis(PROBE, Supports(contact=ratio * L), n_elements=64, n_modes=3)
+        exact = exact_frequencies(PROBE, ratio * L, n_modes=3)
+        assert np.all(np.abs(res.frequencies / exact - 1) < 1e-6)
+
+
+def _peak(probe):
+    def f(a):
+        return modal_analysis(probe, Supports(contact=a * probe.length), n_modes=1).frequencies[0]
+
+    return minimize_scalar(lambda a: -f(a), bounds=(0.5, 0.97), method="bounded",
+                           options={"xatol": 1e-4}).x
+
+
+def test_peak_of_the_dominant_frequency_with_and_without_tip_mass():
+    # theory/zones.rst: 0.78 L for the bare tube, about 0.88 L with the paper scene's tip mass
+    assert _peak(PROBE) == pytest.approx(0.78, abs=0.005)
+    scene_probe = builtin_scene("paper").probe
+    assert scene_probe.tip_mass == pytest.approx(0.0025)
+    assert _peak(scene_probe) == pytest.approx(0.88, abs=0.01)
+
+
+def test_svc_against_scikit_learn_as_stated():
+    # theory/svm.rst: defaults agree to about tol; libsvm_compat=True to about 1e-12
+    from sklearn.datasets import make_moons
+    from sklearn.svm import SVC as SklearnSVC
+
+    from ebantenna.ml import SVC
+
+    X, y = make_moons(n_samples=120, noise=0.25, random_state=0)
+    ref = SklearnSVC(C=1.0, gamma=2.0).fit(X, y)
+    ours = SVC(C=1.0, gamma=2.0).fit(X, y)
+    compat = SVC(C=1.0, gamma=2.0, libsvm_compat=True).fit(X, y)
+    assert np.array_equal(np.sort(ours.support_), np.sort(ref.support_))
+    assert np.abs(ours.decision_function(X) - ref.decision_function(X)).max() < 1e-2
+    assert np.abs(compat.decision_function(X) - ref.decision_function(X)).max() < 1e-10
+    assert np.array_equal(compat.n_iter_, ref.n_iter_)

@@ -217,14 +217,14 @@ class ModalResult:
         """Index of the paper's "dominant (most flexible) mode": the lowest-frequency one, 0."""
         return 0
 
-    def plot(self, ax=None, modes=None, n_points: int = 400):
+    def plot(self, ax=None, modes=None, n_points: int = 400, label: str = "mode"):
         """Draw mode shapes with the Hermite shape functions between nodes.
 
-        Returns the matplotlib Axes.
+        See :func:`ebantenna.fem.plot.plot_modes`; returns the matplotlib Axes.
         """
         from .plot import plot_modes
 
-        return plot_modes(self, ax=ax, modes=modes, n_points=n_points)
+        return plot_modes(self, ax=ax, modes=modes, n_points=n_points, label=label)
 
 
 def modal_analysis(

@@ -15,7 +15,7 @@ def _axes(ax):
     return ax
 
 
-def plot_modes(result, ax=None, modes=None, n_points: int = 400):
+def plot_modes(result, ax=None, modes=None, n_points: int = 400, label: str = "mode"):
     """Mode shapes drawn with the Hermite shape functions between nodes (not straight lines).
 
     Each shape is scaled to a peak of 1; nodes are marked, the hinge and the contact shown.
@@ -28,6 +28,8 @@ def plot_modes(result, ax=None, modes=None, n_points: int = 400):
         Which modes (0-based); all by default.
     n_points : int
         Points along the probe.
+    label : str
+        Legend prefix of each curve: ``"{label} {k}: {f} Hz"`` (to tell meshes or probes apart).
 
     Returns
     -------
@@ -42,7 +44,9 @@ def plot_modes(result, ax=None, modes=None, n_points: int = 400):
         scale = np.max(np.abs(w[:, m])) or 1.0
         sign = 1.0 if w[np.argmax(np.abs(w[:, m])), m] > 0 else -1.0
         (line,) = ax.plot(
-            100 * x, sign * w[:, m] / scale, label=f"mode {m + 1}: {result.frequencies[m]:.1f} Hz"
+            100 * x,
+            sign * w[:, m] / scale,
+            label=f"{label} {m + 1}: {result.frequencies[m]:.1f} Hz",
         )
         if result.nodes.size <= 40:
             ax.plot(100 * result.nodes, sign * wn[:, m] / scale, "o", ms=3, color=line.get_color())

@@ -18,7 +18,7 @@ from ..probe import Probe
 from .elements import consistent_mass, element_stiffness
 from .supports import Supports
 
-__all__ = ["beam_mesh", "assemble", "apply_supports", "free_dofs", "contact_node"]
+__all__ = ["beam_mesh", "assemble", "scatter", "apply_supports", "free_dofs", "contact_node"]
 
 
 def beam_mesh(length: float, contact: float | None, n_elements: int) -> np.ndarray:
@@ -57,6 +57,23 @@ def _element_dofs(n_elements: int) -> np.ndarray:
     return 2 * np.arange(n_elements)[:, None] + np.arange(4)
 
 
+def scatter(element_matrices: np.ndarray) -> np.ndarray:
+    """Add the 4x4 matrices of a chain of elements into the dense global matrix.
+
+    Works on stacks too: ``(..., n_elements, 4, 4)`` gives ``(..., 2 n + 2, 2 n + 2)``. Elements of
+    the same parity share no node, so each parity is added with one fancy-indexed ``+=`` (fancy
+    indexing does not accumulate repeated indices, and here there are none).
+    """
+    ne = element_matrices.shape[-3]
+    n = 2 * (ne + 1)
+    out = np.zeros(element_matrices.shape[:-3] + (n, n))
+    for parity in (0, 1):
+        e = np.arange(parity, ne, 2)
+        d = _element_dofs(ne)[e]
+        out[..., d[:, :, None], d[:, None, :]] += element_matrices[..., e, :, :]
+    return out
+
+
 def assemble(nodes: np.ndarray, probe: Probe, *, sparse: bool = False):
     """Global stiffness K (N/m...) and consistent mass M (kg...) of the bare beam, no supports.
 
@@ -70,17 +87,18 @@ def assemble(nodes: np.ndarray, probe: Probe, *, sparse: bool = False):
         Return ``scipy.sparse`` CSC matrices instead of dense arrays.
     """
     lengths = np.diff(nodes)
-    Ke = element_stiffness(probe.flexural_rigidity, lengths).reshape(-1)
-    Me = consistent_mass(probe.mass_per_length, lengths).reshape(-1)
+    Ke = element_stiffness(probe.flexural_rigidity, lengths)
+    Me = consistent_mass(probe.mass_per_length, lengths)
+    if not sparse:
+        return scatter(Ke), scatter(Me)
+    Ke, Me = Ke.reshape(-1), Me.reshape(-1)
     dofs = _element_dofs(lengths.size)
     rows = np.repeat(dofs, 4, axis=1).reshape(-1)
     cols = np.tile(dofs, (1, 4)).reshape(-1)
     n = 2 * nodes.size
     K = sps.coo_matrix((Ke, (rows, cols)), shape=(n, n))
     M = sps.coo_matrix((Me, (rows, cols)), shape=(n, n))
-    if sparse:
-        return K.tocsc(), M.tocsc()
-    return K.toarray(), M.toarray()
+    return K.tocsc(), M.tocsc()
 
 
 def free_dofs(nodes: np.ndarray, supports: Supports) -> np.ndarray:

@@ -36,7 +36,7 @@ from threadpoolctl import threadpool_limits
 
 from .._validate import check_array, check_choice, check_int
 from ..probe import Probe
-from .assembly import apply_supports, assemble, beam_mesh, contact_node
+from .assembly import apply_supports, assemble, beam_mesh, contact_node, scatter
 from .elements import consistent_mass, element_stiffness, hermite, hermite_slope
 from .supports import Supports
 
@@ -380,15 +380,8 @@ def _batched_frequencies(probe, supports_list, n_elements, n_modes):
     lengths = np.diff(meshes, axis=1)  # (B, ne)
     B, ne = lengths.shape
     n = 2 * (ne + 1)
-    Ke = element_stiffness(probe.flexural_rigidity, lengths)  # (B, ne, 4, 4)
-    Me = consistent_mass(probe.mass_per_length, lengths)
-    K = np.zeros((B, n, n))
-    M = np.zeros((B, n, n))
-    for parity in (0, 1):  # elements of one parity share no node: no duplicate indices per pass
-        e = np.arange(parity, ne, 2)
-        d = 2 * e[:, None] + np.arange(4)
-        K[:, d[:, :, None], d[:, None, :]] += Ke[:, e]
-        M[:, d[:, :, None], d[:, None, :]] += Me[:, e]
+    K = scatter(element_stiffness(probe.flexural_rigidity, lengths))  # (B, n, n)
+    M = scatter(consistent_mass(probe.mass_per_length, lengths))
     M[:, -2, -2] += probe.tip_mass
     s0 = supports_list[0]
     if not isinstance(s0.hinge, str):

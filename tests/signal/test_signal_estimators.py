@@ -1,6 +1,8 @@
 import numpy as np
 import pytest
 
+from ebantenna import fem  # the beam model is the witness of the calibration curves
+from ebantenna.probe import Probe
 from ebantenna.signal import (
     DecayMaterialClassifier,
     FrequencyDistanceEstimator,
@@ -9,9 +11,6 @@ from ebantenna.signal import (
     fit_decay,
     paper_filter,
 )
-
-fem = pytest.importorskip("ebantenna.fem")
-from ebantenna.probe import Probe  # noqa: E402
 
 PROBE = Probe()
 L = PROBE.length

@@ -293,10 +293,8 @@ def load_scene(path) -> Scene:
     if path.suffix.lower() == ".toml":
         try:
             import tomllib
-        except ModuleNotFoundError as exc:  # Python 3.10
-            raise OSError(
-                "reading TOML scenes needs Python 3.11 or later; use a JSON scene"
-            ) from exc
+        except ModuleNotFoundError:  # Python 3.10: the same parser, from PyPI
+            import tomli as tomllib
         try:
             data = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:

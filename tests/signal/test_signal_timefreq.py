@@ -7,6 +7,10 @@ from scipy import signal as sps
 from ebantenna.signal import morlet_scalogram, spectrogram
 
 FS = 1000.0
+# PyWavelets samples the wavelet on 2**precision points; before 1.9 (the last release for Python
+# 3.10 is 1.8) that was 2**10, which costs up to about 1.5 % at the highest frequencies tested here.
+# 1.9 raised it to 2**12. The witness is held to what its own precision allows.
+PYWT_PRECISE = tuple(int(p) for p in pywt.__version__.split(".")[:2]) >= (1, 9)
 T = np.arange(1000) / FS
 
 
@@ -65,7 +69,7 @@ def test_scalogram_magnitude_against_pywavelets(f0):
     # PyWavelets averages the wavelet over one sample (integrate, then difference): a factor
     # sinc(f / fs) on a tone at f. Its centring leaves a half-sample shift, so compare magnitudes.
     expected = np.abs(tf.values[0, mid]) * np.sinc(f0 / FS)
-    np.testing.assert_allclose(np.abs(ref[0, mid]), expected, rtol=5e-3)
+    np.testing.assert_allclose(np.abs(ref[0, mid]), expected, rtol=5e-3 if PYWT_PRECISE else 2e-2)
 
 
 def test_scalogram_of_a_broadband_decay_against_pywavelets():
@@ -80,7 +84,7 @@ def test_scalogram_of_a_broadband_decay_against_pywavelets():
         err = np.abs(np.abs(ref[i, mid]) - np.sinc(f / FS) * np.abs(mine[i, mid])).max()
         # The noise is broadband, so the sinc(f/fs) factor and the half-sample shift are only
         # approximate in rows the tone does not reach: 1 % of the map's peak (measured: 0.2 %).
-        assert err < 0.01 * level
+        assert err < (0.01 if PYWT_PRECISE else 0.03) * level
 
 
 def test_plot_returns_a_figure():

@@ -18,7 +18,15 @@ from ..probe import Probe
 from .elements import consistent_mass, element_stiffness
 from .supports import Supports
 
-__all__ = ["beam_mesh", "assemble", "scatter", "apply_supports", "free_dofs", "contact_node"]
+__all__ = [
+    "beam_mesh",
+    "assemble",
+    "scatter",
+    "support_diagonals",
+    "apply_supports",
+    "free_dofs",
+    "contact_node",
+]
 
 
 def beam_mesh(length: float, contact: float | None, n_elements: int) -> np.ndarray:
@@ -111,6 +119,23 @@ def free_dofs(nodes: np.ndarray, supports: Supports) -> np.ndarray:
     return np.setdiff1d(np.arange(2 * nodes.size), fixed)
 
 
+def support_diagonals(nodes: np.ndarray, probe: Probe, supports: Supports):
+    """What the supports and the tip mass add to the diagonals of K and M (full DOF vectors).
+
+    A rotational hinge spring adds to ``K[theta0, theta0]``, a compliant contact to ``K[v_c, v_c]``,
+    the tip mass to ``M[v_tip, v_tip]``.
+    """
+    n = 2 * nodes.size
+    k_diag = np.zeros(n)
+    m_diag = np.zeros(n)
+    if not isinstance(supports.hinge, str):
+        k_diag[1] += supports.hinge_stiffness
+    if supports.contact is not None and not math.isinf(supports.contact_stiffness):
+        k_diag[2 * contact_node(nodes, supports.contact)] += supports.contact_stiffness
+    m_diag[-2] += probe.tip_mass
+    return k_diag, m_diag
+
+
 def apply_supports(K, M, nodes: np.ndarray, probe: Probe, supports: Supports):
     """Add springs and the tip mass, then keep the free DOFs.
 
@@ -122,14 +147,7 @@ def apply_supports(K, M, nodes: np.ndarray, probe: Probe, supports: Supports):
         Their indices in the global DOF vector.
     """
     free = free_dofs(nodes, supports)
-    n = K.shape[0]
-    k_diag = np.zeros(n)
-    m_diag = np.zeros(n)
-    if not isinstance(supports.hinge, str):
-        k_diag[1] += supports.hinge_stiffness
-    if supports.contact is not None and not math.isinf(supports.contact_stiffness):
-        k_diag[2 * contact_node(nodes, supports.contact)] += supports.contact_stiffness
-    m_diag[-2] += probe.tip_mass
+    k_diag, m_diag = support_diagonals(nodes, probe, supports)
     if sps.issparse(K):
         K = (K + sps.diags(k_diag)).tocsc()[free][:, free]
         M = (M + sps.diags(m_diag)).tocsc()[free][:, free]

@@ -36,7 +36,15 @@ from threadpoolctl import threadpool_limits
 
 from .._validate import check_array, check_choice, check_int
 from ..probe import Probe
-from .assembly import apply_supports, assemble, beam_mesh, contact_node, scatter
+from .assembly import (
+    apply_supports,
+    assemble,
+    beam_mesh,
+    contact_node,
+    free_dofs,
+    scatter,
+    support_diagonals,
+)
 from .elements import consistent_mass, element_stiffness, hermite, hermite_slope
 from .supports import Supports
 
@@ -377,28 +385,16 @@ def natural_frequencies(
 
 def _batched_frequencies(probe, supports_list, n_elements, n_modes):
     meshes = np.stack([beam_mesh(probe.length, s.contact, n_elements) for s in supports_list])
-    lengths = np.diff(meshes, axis=1)  # (B, ne)
-    B, ne = lengths.shape
-    n = 2 * (ne + 1)
-    K = scatter(element_stiffness(probe.flexural_rigidity, lengths))  # (B, n, n)
-    M = scatter(consistent_mass(probe.mass_per_length, lengths))
-    M[:, -2, -2] += probe.tip_mass
-    s0 = supports_list[0]
-    if not isinstance(s0.hinge, str):
-        K[:, 1, 1] += s0.hinge_stiffness
-    nodes_c = np.array(
-        [contact_node(m, s.contact) for m, s in zip(meshes, supports_list, strict=True)]
-    )
-    if s0.rigid_contact:
-        # Move each contact's deflection DOF out of the way: keep all others, in order.
-        keep = np.array([np.setdiff1d(np.arange(n), [0, 1, 2 * c]) for c in nodes_c])
-        if s0.hinge != "clamped":
-            keep = np.array([np.setdiff1d(np.arange(n), [0, 2 * c]) for c in nodes_c])
-    else:
-        K[np.arange(B), 2 * nodes_c, 2 * nodes_c] += s0.contact_stiffness
-        fixed = [0, 1] if s0.hinge == "clamped" else [0]
-        keep = np.tile(np.setdiff1d(np.arange(n), fixed), (B, 1))
-    rows = np.arange(B)[:, None, None]
+    pairs = list(zip(meshes, supports_list, strict=True))
+    K = scatter(element_stiffness(probe.flexural_rigidity, np.diff(meshes, axis=1)))  # (B, n, n)
+    M = scatter(consistent_mass(probe.mass_per_length, np.diff(meshes, axis=1)))
+    diagonals = [support_diagonals(m, probe, s) for m, s in pairs]
+    d = np.arange(K.shape[-1])
+    K[:, d, d] += np.array([k for k, _ in diagonals])
+    M[:, d, d] += np.array([m for _, m in diagonals])
+    # Every member has the same number of free DOFs; only which v is fixed at the contact moves.
+    keep = np.array([free_dofs(m, s) for m, s in pairs])
+    rows = np.arange(len(pairs))[:, None, None]
     K = K[rows, keep[:, :, None], keep[:, None, :]]
     M = M[rows, keep[:, :, None], keep[:, None, :]]
     shift = _shift(probe)

@@ -62,8 +62,9 @@ __all__ = [
 #: textbook ``scipy.linalg.eigh(K, M)`` kept to show what it loses.
 SOLVERS = ("auto", "dense", "sparse", "naive")
 
-#: Above this many free DOFs, ``solver="auto"`` goes sparse.
-DENSE_LIMIT = 400
+#: Above this many free DOFs, ``solver="auto"`` goes sparse (where shift-invert Lanczos on the
+#: banded matrices overtakes the dense solve: about 100 elements, see benchmarks/fem_accuracy.py).
+DENSE_LIMIT = 200
 
 
 def _shift(probe: Probe) -> float:

@@ -12,21 +12,12 @@ elements, batched against one position at a time.
 from __future__ import annotations
 
 import argparse
-import time
 
 import numpy as np
 
 from ebantenna import Probe
+from ebantenna.bench._timing import best_time
 from ebantenna.fem import Supports, exact_frequencies, modal_analysis, natural_frequencies
-
-
-def best_time(fn, repeat):
-    best = np.inf
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
 
 
 def accuracy_table(quick: bool) -> list[dict]:

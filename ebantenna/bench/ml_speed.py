@@ -18,7 +18,6 @@ helps on an idle machine and hurts on a busy one, so one row repeats our fit on 
 from __future__ import annotations
 
 import argparse
-import time
 import warnings
 
 import numpy as np
@@ -27,6 +26,7 @@ from sklearn.neural_network import MLPClassifier as SkMLP
 from sklearn.svm import SVC as LibSVC
 from threadpoolctl import threadpool_limits
 
+from ebantenna.bench._timing import best_time
 from ebantenna.ml import SVC, MLPClassifier
 
 
@@ -38,15 +38,6 @@ def spectra_like(n, d, k, seed):
     y = rng.integers(0, k, n)
     X = np.abs(centers[y] * 0.55 + rng.normal(size=(n, d)))
     return X, y
-
-
-def best_of(fn, repeat):
-    times, out = [], None
-    for _ in range(repeat):
-        start = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - start)
-    return min(times), out
 
 
 def main(argv=None):
@@ -65,9 +56,9 @@ def main(argv=None):
         t_ours = t_theirs = np.inf
         m_ours = m_theirs = None
         for _ in range(args.repeat):  # alternate, keep the best of each
-            t, m_ours = best_of(ours, 1)
+            t, m_ours = best_time(ours, 1)
             t_ours = min(t_ours, t)
-            t, m_theirs = best_of(theirs, 1)
+            t, m_theirs = best_time(theirs, 1)
             t_theirs = min(t_theirs, t)
         rows.append((name, t_ours, t_theirs, score(m_ours), score(m_theirs)))
 

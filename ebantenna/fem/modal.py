@@ -31,6 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg as sla
+import scipy.sparse as sps
 import scipy.sparse.linalg as spla
 from threadpoolctl import threadpool_limits
 
@@ -287,9 +288,8 @@ def modal_analysis(
     lam, phi = solve_modes(K_free, M_free, n_modes, shift=_shift(probe), solver=solver)
     shapes = np.zeros((2 * nodes.size, lam.size))
     shapes[free] = phi
-    M_full = M.tolil() if use_sparse else M.copy()
-    M_full[-2, -2] += probe.tip_mass
-    M_full = M_full.tocsr() if use_sparse else M_full
+    _, m_diag = support_diagonals(nodes, probe, supports)  # the tip mass, as in apply_supports
+    M_full = (M + sps.diags(m_diag)).tocsr() if use_sparse else M + np.diag(m_diag)
     if solver != "naive":
         lam = strain_energy(nodes, probe, supports, shapes) / np.einsum(
             "im,im->m", shapes, M_full @ shapes

@@ -96,6 +96,11 @@ class _Figures:
         return path.name
 
 
+def _probe_length(ds) -> float:
+    """Length (m) of the probe the data set was simulated with, from its own metadata."""
+    return ds.metadata["config"]["scene"]["probe"]["length"]
+
+
 def _pct(x: float) -> str:
     return f"{100 * x:.1f} %"
 
@@ -218,7 +223,7 @@ def _per_contact(values, contact, mask=None):
 def _frequency_section(report, figs, ds, feats, materials):
     import matplotlib.pyplot as plt
 
-    L = ds.metadata["config"]["scene"]["probe"]["length"]
+    L = _probe_length(ds)
     fig, (a9, a10) = plt.subplots(1, 2, figsize=(12, 4))
     for m in materials:
         sel = ds.material == m
@@ -268,7 +273,7 @@ def _frequency_section(report, figs, ds, feats, materials):
 def _decay_section(report, figs, ds, feats, materials):
     import matplotlib.pyplot as plt
 
-    L = ds.metadata["config"]["scene"]["probe"]["length"]
+    L = _probe_length(ds)
     region = ds.contact <= 0.8 * L
     fig, (ag, at) = plt.subplots(1, 2, figsize=(12, 4))
     rows = []
@@ -311,7 +316,7 @@ def _decay_section(report, figs, ds, feats, materials):
 def _ml_section(report, figs, ds, feats, seed):
     from ..ml import experiments as ex
 
-    L = ds.metadata["config"]["scene"]["probe"]["length"]
+    L = _probe_length(ds)
     svm = ex.classify_materials_svm(feats.fft, ds.material, seed=seed)
     ann = ex.classify_materials_ann(feats.fft, ds.material, seed=seed)
     fig12 = figs.save(ex.plot_confusion_comparison(ann, ex.PAPER_ANN), "fig12_ann_confusion")
@@ -405,7 +410,7 @@ def _full_range_section(report, figs, ds, feats):
 
     from ..signal import FrequencyDistanceEstimator, MultiModeDistanceEstimator
 
-    L = ds.metadata["config"]["scene"]["probe"]["length"]
+    L = _probe_length(ds)
     grid = np.unique(ds.contact)
     # Calibrate on every other contact position and test on the ones in between: the estimate
     # must interpolate, it cannot just recognise a position it has seen.

@@ -3,6 +3,7 @@
 import numpy as np
 import pytest
 from sklearn.svm import SVC as LibSVC
+from smo_reference import assert_follows_reference, iteration_slack
 
 from ebantenna.ml.kernels import Kernel, resolve_gamma
 from ebantenna.ml.smo import KernelRows, solve_smo
@@ -33,15 +34,25 @@ def test_each_convention_moves_its_digit(seed):
     ref = LibSVC(C=2.0, shrinking=False).fit(X, (y > 0).astype(int))
     dref = ref.decision_function(X)
     n_ref = int(ref.n_iter_[0])
+    tol = 1e-3
 
-    n, dec = _solve(X, y, dtype=np.float32, ties_last=True)  # all of libsvm's conventions
-    assert n == n_ref
-    assert np.abs(dec - dref).max() < 1e-12
+    # all of libsvm's conventions: libsvm's path; on the same path only summation order is left,
+    # a few ulp of the decision values' scale (about 1): 1e-12
+    n, dec = _solve(X, y, dtype=np.float32, ties_last=True)
+    assert_follows_reference(n, dec, n_ref, dref, tol=tol, same_path_atol=1e-12)
 
-    n, dec = _solve(X, y, dtype=np.float64, ties_last=True)  # float64 kernel: 7th digit
-    assert n == n_ref
-    assert 1e-9 < np.abs(dec - dref).max() < 1e-5
+    # float64 kernel columns: kernel values differ from libsvm's float32 ones in the 7th digit.
+    # Where the path stays libsvm's (the usual case) the decision values move in the 7th digit
+    # (measured 3e-7 to 7e-7); where a last-bit difference of the BLAS kernel forks the path
+    # (seed 2 under OpenBLAS's Haswell kernel: 286 updates instead of 281) they differ by up to
+    # a few tol. Either way the difference is real (above 1e-9) and bounded.
+    n, dec = _solve(X, y, dtype=np.float64, ties_last=True)
+    assert_follows_reference(n, dec, n_ref, dref, tol=tol, same_path_atol=1e-5)
+    assert np.abs(dec - dref).max() > 1e-9
 
-    n, dec = _solve(X, y, dtype=np.float32, ties_last=False)  # first-index ties: another path
-    assert n != n_ref
-    assert 1e-5 < np.abs(dec - dref).max() < 5e-3  # within a few tol = 1e-3
+    # first-index ties: float32 kernel values tie exactly and often, so the tie rule picks other
+    # pairs from the first updates on, whatever the BLAS kernel: another path (26 to 42 updates
+    # apart on these seeds, well outside the slack) to another tol-optimal point, a few tol away
+    n, dec = _solve(X, y, dtype=np.float32, ties_last=False)
+    assert abs(n - n_ref) > iteration_slack(n_ref)
+    assert 1e-5 < np.abs(dec - dref).max() < 10.0 * tol

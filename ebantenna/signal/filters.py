@@ -54,7 +54,13 @@ __all__ = [
     "apply_filter",
     "check_specification",
     "filter_time_constant",
+    "freqz_sos",
 ]
+
+#: ``scipy.signal.freqz_sos``, the frequency response of second-order sections. SciPy 1.15
+#: introduced that name for the older ``sosfreqz``, which later releases deprecate; on an older
+#: SciPy this is ``sosfreqz`` itself (same arguments, same result).
+freqz_sos = getattr(sps, "freqz_sos", None) or sps.sosfreqz
 
 #: The order the paper's text gives for both filters ("second order").
 STATED_ORDER = 2
@@ -313,7 +319,7 @@ def check_specification(sos, spec: FilterSpec, *, n_points: int = 8192) -> SpecR
                              np.linspace(spec.stopband[1], nyq, n_points)])
 
     def gain_db(f):
-        _, h = sps.sosfreqz(sos, worN=f, fs=spec.fs)
+        _, h = freqz_sos(sos, worN=f, fs=spec.fs)
         return 20.0 * np.log10(np.maximum(np.abs(h), 1e-300))
 
     loss = float(-gain_db(f_pass).min())

@@ -340,8 +340,8 @@ def classify_materials_svm(X, materials, *, test_fraction=0.2, C=1.0, gamma=2.0,
     >>> X = rng.normal(size=(120, 8)) + 3 * (y[:, None] == ["brass", "pvc", "steel"]).repeat(
     ...     [3, 3, 2], axis=1)
     >>> res = classify_materials_svm(X, y, gamma="scale")
-    >>> res.confusions["test"].sum(), res.accuracies["test"] > 0.9
-    (np.int64(24), True)
+    >>> int(res.confusions["test"].sum()), res.accuracies["test"] > 0.9
+    (24, True)
     """
     X = _features(X)
     y = _labels(materials, X.shape[0])

@@ -12,6 +12,6 @@ Subpackages, in the order the data flows:
 from .probe import MATERIALS, Material, Probe, material
 from .recording import Recording
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"
 
 __all__ = ["Probe", "Material", "MATERIALS", "material", "Recording", "__version__"]

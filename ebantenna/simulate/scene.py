@@ -292,7 +292,7 @@ def load_scene(path) -> Scene:
     text = path.read_text(encoding="utf-8")
     if path.suffix.lower() == ".toml":
         try:
-            import tomllib
+            import tomllib  # novermin (guarded: Python 3.10 falls back to tomli below)
         except ModuleNotFoundError:  # Python 3.10: the same parser, from PyPI
             import tomli as tomllib
         try:

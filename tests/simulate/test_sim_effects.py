@@ -10,11 +10,11 @@ from ebantenna.simulate.effects import (
     STANDARD_GRAVITY,
     Clipping,
     ClockJitter,
-    KalmanFilter,
     LowPassFilter,
     MainsHum,
     Quantisation,
     SensorNoise,
+    SteadyStateKalman,
     make_effect,
 )
 
@@ -93,7 +93,7 @@ def test_dlpf_is_minus_3db_at_its_bandwidth_and_passes_dc():
 
 def test_kalman_gain_solves_the_riccati_equation_and_filter_matches_the_recursion():
     for ratio in (0.01, 1.0, 30.0):
-        kf = KalmanFilter(ratio=ratio)
+        kf = SteadyStateKalman(ratio=ratio)
         # Witness: iterate the time-varying covariance recursion with r = 1, q = ratio.
         p = 1.0
         for _ in range(2000):
@@ -102,7 +102,7 @@ def test_kalman_gain_solves_the_riccati_equation_and_filter_matches_the_recursio
             p = (1 - gain) * prior
         assert kf.gain() == pytest.approx(gain, rel=1e-12)
     z = np.random.default_rng(0).normal(size=(2, 50))
-    kf = KalmanFilter()
+    kf = SteadyStateKalman()
     y = kf.apply(z, np.array([0.5, -1.0]))
     for row, level in ((0, 0.5), (1, -1.0)):
         est = level

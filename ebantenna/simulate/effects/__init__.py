@@ -1,0 +1,109 @@
+"""The effects a scene may call for, each a small frozen dataclass with its physics and sources.
+
+A scene lists the effects it wants; an effect that is not listed is not computed at all. The modal
+response itself (superposition of the FEM modes after the arrest, see :mod:`.modes`) is not an
+effect: it is always there. Effects fall in two groups:
+
+*Physics of the probe and the contact* (:mod:`.physics`), which change the modal parameters:
+:class:`StructuralDamping`, :class:`ContactCompliance`, :class:`ContactDamping`, :class:`TipMass`.
+
+*The sensor and the acquisition* (:mod:`.sensor`), which act on the sampled signals, in this order:
+:class:`ClockJitter` (when the samples are taken), :class:`Gravity`, :class:`MainsHum`,
+:class:`SensorNoise`, :class:`LowPassFilter` (the MPU6050's DLPF), :class:`Clipping`,
+:class:`Quantisation`, :class:`SteadyStateKalman` (on the Raspberry Pi).
+
+All arrays here have shape ``(n_signals, n_samples)``: every effect is vectorised over signals.
+Random effects draw from a :class:`numpy.random.Generator` per signal that the simulator makes
+from the signal's seed and the effect's own :attr:`stream` number, so that adding or removing one
+effect never changes the random numbers of another.
+"""
+
+from __future__ import annotations
+
+from .physics import GY521_MASS, ContactCompliance, ContactDamping, StructuralDamping, TipMass
+from .sensor import (
+    DLPF_BANDWIDTHS,
+    STANDARD_GRAVITY,
+    Clipping,
+    ClockJitter,
+    Gravity,
+    LowPassFilter,
+    MainsHum,
+    Quantisation,
+    SensorNoise,
+    SteadyStateKalman,
+)
+
+__all__ = [
+    "STANDARD_GRAVITY",
+    "GY521_MASS",
+    "DLPF_BANDWIDTHS",
+    "StructuralDamping",
+    "ContactCompliance",
+    "ContactDamping",
+    "TipMass",
+    "ClockJitter",
+    "Gravity",
+    "MainsHum",
+    "SensorNoise",
+    "LowPassFilter",
+    "Clipping",
+    "Quantisation",
+    "SteadyStateKalman",
+    "EFFECT_TYPES",
+    "effect_names",
+    "make_effect",
+]
+
+#: Every effect type, in the order the simulator applies them.
+EFFECT_TYPES = (
+    StructuralDamping,
+    ContactCompliance,
+    ContactDamping,
+    TipMass,
+    ClockJitter,
+    Gravity,
+    MainsHum,
+    SensorNoise,
+    LowPassFilter,
+    Clipping,
+    Quantisation,
+    SteadyStateKalman,
+)
+
+_BY_NAME = {cls.name: cls for cls in EFFECT_TYPES}
+
+
+def effect_names() -> tuple[str, ...]:
+    """Names of every effect, in the order the simulator applies them.
+
+    Examples
+    --------
+    >>> effect_names()[:2]
+    ('structural_damping', 'contact_compliance')
+    """
+    return tuple(_BY_NAME)
+
+
+def make_effect(effect, params: dict | None = None):
+    """An effect instance from a name (with optional parameters) or an instance.
+
+    Raises
+    ------
+    ValueError
+        For an unknown name, listing the valid ones.
+
+    Examples
+    --------
+    >>> make_effect("sensor_noise", {"density": 0.01})
+    SensorNoise(density=0.01)
+    """
+    if isinstance(effect, EFFECT_TYPES):
+        if params:
+            raise TypeError("parameters can only be given with an effect's name, not an instance")
+        return effect
+    if not isinstance(effect, str):
+        raise TypeError(f"an effect must be a name or an effect instance, got {effect!r}")
+    if effect not in _BY_NAME:
+        raise ValueError(f"unknown effect {effect!r}; valid effects: {', '.join(_BY_NAME)}")
+    return _BY_NAME[effect].from_parameters(params or {})

@@ -1,0 +1,341 @@
+"""Effects of the sensor and the acquisition: they act on the sampled signals, in this order.
+
+:class:`ClockJitter` (when the samples are taken), :class:`Gravity`, :class:`MainsHum`,
+:class:`SensorNoise`, :class:`LowPassFilter` (the MPU6050's DLPF), :class:`Clipping`,
+:class:`Quantisation`, :class:`SteadyStateKalman` (on the Raspberry Pi).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numpy as np
+import scipy.signal as sps
+
+from ..._validate import check_choice, check_int, check_nonnegative, check_positive
+from ._base import _Effect
+
+#: Standard acceleration of gravity, m/s^2 (CGPM 1901); the MPU6050's "g".
+STANDARD_GRAVITY = 9.80665
+
+
+@dataclass(frozen=True)
+class ClockJitter(_Effect):
+    """Sample-clock jitter of the acquisition loop.
+
+    The Raspberry Pi polls the sensor from a user-space loop, so sample ``n`` is taken at
+    ``n / fs + e_n`` instead of ``n / fs``, while the recording still assigns it the nominal time.
+    The offsets ``e_n`` are independent, normal, with standard deviation ``rms``; the continuous
+    signals (modal response, gravity, hum) are evaluated exactly at the jittered instants.
+    Simplification: the sensor's own filter then runs on these samples as if they were regular.
+
+    Parameters
+    ----------
+    rms : float
+        Standard deviation of the sampling instants, s. Default 50 us: an assumption, the order of
+        the scheduling latency of a Linux user-space loop without real-time priority.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> e = ClockJitter(rms=1e-4).offsets(np.random.default_rng(0), 1000)
+    >>> bool(abs(e.std() - 1e-4) < 1e-5)
+    True
+    """
+
+    name: ClassVar[str] = "clock_jitter"
+    stream: ClassVar[int] = 1
+    rms: float = 50e-6
+
+    def __post_init__(self):
+        check_nonnegative("rms", self.rms)
+
+    def offsets(self, rng: np.random.Generator, n_samples: int) -> np.ndarray:
+        """Offsets ``e_n`` of one signal's sampling instants, s, shape ``(n_samples,)``."""
+        return rng.normal(0.0, self.rms, n_samples)
+
+
+@dataclass(frozen=True)
+class Gravity(_Effect):
+    """Gravity as the accelerometer sees it.
+
+    An accelerometer measures specific force, so at rest it reads ``+g`` along the axis that points
+    up. The probe lies horizontal and sweeps in the horizontal plane: X (in the sweep plane) is
+    horizontal and reads no gravity, Z is vertical and reads ``+g``. The static sag of the probe is
+    a constant deflection and does not change the (linear) vibration.
+
+    Parameters
+    ----------
+    g : float
+        Acceleration of gravity, m/s^2. Default: standard gravity 9.80665 m/s^2.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> ax, az = Gravity().apply(np.zeros((1, 2)), np.zeros((1, 2)))
+    >>> az
+    array([[9.80665, 9.80665]])
+    """
+
+    name: ClassVar[str] = "gravity"
+    g: float = STANDARD_GRAVITY
+
+    def __post_init__(self):
+        check_nonnegative("g", self.g)
+
+    def apply(self, ax, az):
+        """Add ``g`` to ``az``; ``ax`` is returned unchanged."""
+        return ax, az + self.g
+
+
+@dataclass(frozen=True)
+class MainsHum(_Effect):
+    """Mains hum picked up by the sensor's supply and wiring.
+
+    A sinusoid of the mains frequency with a fixed amplitude and a random phase per signal and
+    axis. The paper's elliptic filter (Table 2: stop band below 48 Hz, pass band from 52 Hz) is
+    placed to remove exactly such a 50 Hz hum.
+
+    Parameters
+    ----------
+    frequency : float
+        Mains frequency, Hz. Default 50 Hz (the 230 V, 50 Hz grid where the rig was built).
+    amplitude : float
+        Amplitude in each axis, m/s^2. Default 0.05 m/s^2 (about 5 mg): an assumption, a few
+        LSB at the +-16 g range.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> hum = MainsHum().signal(np.arange(3) / 1000.0, np.array([[0.0]]))
+    >>> hum.round(4)
+    array([[0.    , 0.0155, 0.0294]])
+    """
+
+    name: ClassVar[str] = "mains_hum"
+    stream: ClassVar[int] = 2
+    frequency: float = 50.0
+    amplitude: float = 0.05
+
+    def __post_init__(self):
+        check_positive("frequency", self.frequency)
+        check_nonnegative("amplitude", self.amplitude)
+
+    def phases(self, rng: np.random.Generator) -> np.ndarray:
+        """Random phases (rad) for X and Z, shape ``(2,)``."""
+        return rng.uniform(0.0, 2 * math.pi, 2)
+
+    def signal(self, t, phase) -> np.ndarray:
+        """``amplitude * sin(2 pi f t + phase)``, m/s^2; ``t`` and ``phase`` broadcast."""
+        return self.amplitude * np.sin(2 * math.pi * self.frequency * np.asarray(t) + phase)
+
+
+@dataclass(frozen=True)
+class SensorNoise(_Effect):
+    """White noise of the accelerometer.
+
+    The MPU6050's accelerometer noise power spectral density is 400 ug/sqrt(Hz) (InvenSense,
+    *MPU-6000 and MPU-6050 Product Specification*, rev. 3.4, 2013, table 6.2). White noise of that
+    density sampled at ``fs`` has the standard deviation ``density * sqrt(fs / 2)`` (about 0.088
+    m/s^2 at 1 kHz); the sensor's low-pass filter (:class:`LowPassFilter`), when listed, then
+    shapes it. Independent in X and Z.
+
+    Parameters
+    ----------
+    density : float
+        Noise amplitude spectral density, (m/s^2)/sqrt(Hz). Default 400 ug/sqrt(Hz).
+
+    Examples
+    --------
+    >>> round(SensorNoise().std(1000.0), 4)  # m/s^2
+    0.0877
+    """
+
+    name: ClassVar[str] = "sensor_noise"
+    stream: ClassVar[int] = 3
+    density: float = 400e-6 * STANDARD_GRAVITY
+
+    def __post_init__(self):
+        check_nonnegative("density", self.density)
+
+    def std(self, fs: float) -> float:
+        """Standard deviation of the sampled noise, m/s^2."""
+        return self.density * math.sqrt(fs / 2)
+
+    def draw(self, rng: np.random.Generator, n_samples: int, fs: float) -> np.ndarray:
+        """Noise of one signal for X and Z, m/s^2, shape ``(2, n_samples)``."""
+        return rng.normal(0.0, self.std(fs), (2, n_samples))
+
+
+#: The MPU6050's accelerometer DLPF bandwidths, Hz, by DLPF_CFG 0..6 (MPU-6000/MPU-6050 Register
+#: Map and Descriptions, rev. 4.2, register 26 CONFIG).
+DLPF_BANDWIDTHS = (260.0, 184.0, 94.0, 44.0, 21.0, 10.0, 5.0)
+
+
+@dataclass(frozen=True)
+class LowPassFilter(_Effect):
+    """The MPU6050's digital low-pass filter (DLPF).
+
+    The register map gives only the bandwidth of each DLPF setting, not the filter. It is modelled
+    as a second-order Butterworth low-pass with that -3 dB frequency, in second-order sections,
+    run causally on the samples. Its state starts settled on the signal's level before the contact
+    (gravity only), as the sensor was running before. Default 260 Hz: DLPF_CFG = 0, the power-on
+    value of register 26.
+
+    Parameters
+    ----------
+    bandwidth : float
+        -3 dB frequency, Hz, one of :data:`DLPF_BANDWIDTHS`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> y = LowPassFilter().apply(np.ones((1, 50)), 1000.0, np.array([1.0]))
+    >>> bool(np.allclose(y, 1.0))
+    True
+    """
+
+    name: ClassVar[str] = "dlpf"
+    bandwidth: float = 260.0
+
+    def __post_init__(self):
+        check_positive("bandwidth", self.bandwidth)
+        if float(self.bandwidth) not in DLPF_BANDWIDTHS:
+            valid = ", ".join(f"{b:g}" for b in DLPF_BANDWIDTHS)
+            raise ValueError(
+                f"bandwidth must be one of {valid} Hz (the MPU6050's DLPF); got {self.bandwidth!r}"
+            )
+
+    def sos(self, fs: float) -> np.ndarray:
+        """Second-order sections of the filter at sampling frequency ``fs`` (Hz)."""
+        if not self.bandwidth < fs / 2:
+            raise ValueError(
+                f"dlpf bandwidth {self.bandwidth:g} Hz must be below fs/2 = {fs / 2:g} Hz"
+            )
+        return sps.butter(2, self.bandwidth, btype="low", fs=fs, output="sos")
+
+    def apply(self, a: np.ndarray, fs: float, level) -> np.ndarray:
+        """Filter every row of ``a`` (m/s^2); ``level`` (one per row): the settled initial value."""
+        sos = self.sos(fs)
+        zi = sps.sosfilt_zi(sos)[:, None, :] * np.asarray(level, dtype=float)[None, :, None]
+        y, _ = sps.sosfilt(sos, a, axis=-1, zi=zi)
+        return y
+
+
+@dataclass(frozen=True)
+class Clipping(_Effect):
+    """The accelerometer's full-scale range.
+
+    At AFS_SEL = 3 the MPU6050 measures +-16 g with 2048 LSB/g into a 16-bit two's-complement
+    register, so readings saturate at ``-32768`` and ``+32767`` LSB: at ``-16 g`` and
+    ``16 g (1 - 2^-15)`` (product specification rev. 3.4, table 6.2; the paper, section 3).
+
+    Parameters
+    ----------
+    range_g : int
+        Full scale, in g: 2, 4, 8 or 16. Default 16.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> Clipping(range_g=2).apply(np.array([[-100.0, 0.0, 100.0]])).round(4)
+    array([[-19.6133,   0.    ,  19.6127]])
+    """
+
+    name: ClassVar[str] = "clipping"
+    range_g: int = 16
+
+    def __post_init__(self):
+        check_choice("range_g", check_int("range_g", self.range_g), (2, 4, 8, 16))
+
+    def limits(self) -> tuple[float, float]:
+        """Lowest and highest reading, m/s^2."""
+        full = self.range_g * STANDARD_GRAVITY
+        return -full, full * (1 - 2.0**-15)
+
+    def apply(self, a: np.ndarray) -> np.ndarray:
+        """Cap ``a`` (m/s^2) at the range."""
+        low, high = self.limits()
+        return np.clip(a, low, high)
+
+
+@dataclass(frozen=True)
+class Quantisation(_Effect):
+    """16-bit quantisation of the readings.
+
+    The register holds an integer count of LSB, ``LSB = 2 range / 2^16`` (``g/2048`` at +-16 g);
+    the reading is rounded to the nearest count. Saturation is :class:`Clipping`'s business.
+
+    Parameters
+    ----------
+    range_g : int
+        Full scale, in g: 2, 4, 8 or 16. Default 16 (must match :class:`Clipping` when both are
+        listed).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> q = Quantisation()
+    >>> float(q.apply(np.array([[0.01]]))[0, 0] / q.lsb())
+    2.0
+    """
+
+    name: ClassVar[str] = "quantisation"
+    range_g: int = 16
+
+    def __post_init__(self):
+        check_choice("range_g", check_int("range_g", self.range_g), (2, 4, 8, 16))
+
+    def lsb(self) -> float:
+        """One count, m/s^2."""
+        return 2 * self.range_g * STANDARD_GRAVITY / 2**16
+
+    def apply(self, a: np.ndarray) -> np.ndarray:
+        """Round ``a`` (m/s^2) to the nearest count."""
+        lsb = self.lsb()
+        return np.round(a / lsb) * lsb
+
+
+@dataclass(frozen=True)
+class SteadyStateKalman(_Effect):
+    """The acquisition-side Kalman filter (the paper, section 3).
+
+    A scalar Kalman filter per axis with a random-walk model ``x_n = x_(n-1) + w_n`` (variance
+    ``q``) observed as ``z_n = x_n + v_n`` (variance ``r``), the usual choice for smoothing sensor
+    readings. Run with its steady-state gain it is the first-order recursive filter
+    ``y_n = y_(n-1) + K (z_n - y_(n-1))``, where ``K = s / (s + 1)``, ``s = (rho + sqrt(rho^2 +
+    4 rho)) / 2`` and ``rho = q / r`` solve the Riccati equation. It starts settled on the level
+    before the contact. The paper gives no tuning; ``rho = 1`` (``K = 0.618``, -3 dB at fs/6) is an
+    assumption that keeps its analysis band (60-160 Hz) mostly intact.
+
+    Parameters
+    ----------
+    ratio : float
+        ``rho = q / r``, process to measurement noise variance, dimensionless. Default 1.
+
+    Examples
+    --------
+    >>> round(SteadyStateKalman().gain(), 6)
+    0.618034
+    """
+
+    name: ClassVar[str] = "kalman"
+    ratio: float = 1.0
+
+    def __post_init__(self):
+        check_positive("ratio", self.ratio)
+
+    def gain(self) -> float:
+        """Steady-state Kalman gain ``K`` (dimensionless)."""
+        rho = self.ratio
+        s = (rho + math.sqrt(rho * rho + 4 * rho)) / 2
+        return s / (s + 1)
+
+    def apply(self, a: np.ndarray, level) -> np.ndarray:
+        """Filter every row of ``a`` (m/s^2) starting from the settled ``level`` (one per row)."""
+        k = self.gain()
+        zi = (1 - k) * np.asarray(level, dtype=float)[:, None]
+        y, _ = sps.lfilter([k], [1.0, -(1.0 - k)], a, axis=-1, zi=zi)
+        return y

@@ -13,17 +13,24 @@ Every Gram matrix is built from one matrix product (a GEMM), so a whole block of
 costs about as much as the dot products it needs, instead of one call per entry. The RBF kernel uses
 libsvm's expansion :math:`\\lVert x\\rVert^2 + \\lVert x'\\rVert^2 - 2\\, x\\cdot x'`, which is what
 lets a NumPy solver reproduce libsvm's training kernel bit for bit once rounded to float32.
+
+:class:`KernelRows` hands the SMO solver the rows of a training kernel: it either holds the whole
+matrix (one GEMM) or keeps a least-recently-used cache of rows computed on demand.
 """
 
 from __future__ import annotations
 
+import logging
+from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
 
 from .._validate import check_choice, check_int, check_real
 
-__all__ = ["KERNELS", "Kernel", "resolve_gamma", "gram_matrix", "squared_norms"]
+__all__ = ["KERNELS", "Kernel", "KernelRows", "resolve_gamma", "gram_matrix", "squared_norms"]
+
+logger = logging.getLogger(__name__)
 
 #: Names of the kernels, as scikit-learn spells them.
 KERNELS = ("linear", "rbf", "poly")
@@ -182,3 +189,108 @@ def gram_matrix(X, Y=None, *, kernel="rbf", gamma=1.0, degree=3, coef0=0.0) -> n
     X = np.asarray(X, dtype=np.float64)
     Y = None if Y is None else np.asarray(Y, dtype=np.float64)
     return Kernel(kernel, gamma=gamma, degree=degree, coef0=coef0).gram(X, Y)
+
+
+class KernelRows:
+    """Rows of the kernel matrix of ``X`` with itself, stored or cached.
+
+    Parameters
+    ----------
+    X : ndarray of shape (n, n_features)
+        Training points (float64).
+    kernel : Kernel
+        The kernel function.
+    dtype : numpy dtype
+        Storage type of the rows (float32 as libsvm, or float64).
+    cache_bytes : int
+        Memory allowed for kernel rows, in bytes. If the whole matrix fits it is computed at once
+        with one matrix product; otherwise rows are computed on demand and the least recently used
+        ones are dropped.
+    full : ndarray of shape (N, N), optional
+        A precomputed kernel matrix to use as it is.
+    parts : sequence of slice, optional
+        With ``full``: the problem's points are the rows of ``full`` in these slices, one after
+        the other (the classes of a one-vs-one pair). Rows are then assembled from the slices on
+        demand instead of copying the block.
+
+    Examples
+    --------
+    >>> X = np.array([[0.0], [1.0], [3.0]])
+    >>> rows = KernelRows(X, Kernel("linear"), np.float64, cache_bytes=8)
+    >>> rows.is_full
+    False
+    >>> rows.row(2)
+    array([0., 3., 9.])
+    """
+
+    def __init__(self, X, kernel: Kernel, dtype, cache_bytes: int, full=None, parts=None):
+        self.X = X
+        self.kernel = kernel
+        self.dtype = np.dtype(dtype)
+        self._norms = squared_norms(X) if X is not None else None
+        self._parts = None
+        if full is not None and parts is not None:
+            parts = list(parts)
+            self.matrix = full
+            self.n = sum(p.stop - p.start for p in parts)
+            # row i of the problem is row _rows[i] of `full`; touching slices are merged
+            self._rows = np.concatenate([np.arange(p.start, p.stop) for p in parts])
+            merged = [parts[0]]
+            for p in parts[1:]:
+                if p.start == merged[-1].stop:
+                    merged[-1] = slice(merged[-1].start, p.stop)
+                else:
+                    merged.append(p)
+            self._parts = merged
+            self.rows_computed = 0
+            return
+        self.n = X.shape[0] if full is None else full.shape[0]
+        if full is not None:
+            self.matrix = np.asarray(full, dtype=self.dtype)
+        elif self.n * self.n * self.dtype.itemsize <= cache_bytes:
+            self.matrix = kernel.gram(X, x_norms=self._norms, dtype=self.dtype)
+        else:
+            self.matrix = None
+            self._cache: OrderedDict[int, np.ndarray] = OrderedDict()
+            row_bytes = self.n * self.dtype.itemsize
+            self._capacity = max(2, int(cache_bytes // row_bytes))
+            logger.info("kernel of %d points does not fit: caching %d rows", self.n,
+                        self._capacity)
+        self.rows_computed = 0
+
+    @property
+    def is_full(self) -> bool:
+        """True when the whole matrix is stored."""
+        return self.matrix is not None
+
+    def row64(self, i: int) -> np.ndarray:
+        """Kernel row :math:`k(x_i, x_t)` as float64 (a new array, or a view of float64 storage)."""
+        if self._parts is not None:
+            r = self.matrix[self._rows[i]]
+            if len(self._parts) == 1:
+                return r[self._parts[0]].astype(np.float64)
+            return np.concatenate([r[p] for p in self._parts], dtype=np.float64)
+        return np.asarray(self.row(i), dtype=np.float64)
+
+    def row(self, i: int) -> np.ndarray:
+        """Kernel row :math:`k(x_i, x_t)` for all t, in the storage type."""
+        if self._parts is not None:
+            r = self.matrix[self._rows[i]]
+            if len(self._parts) == 1:
+                return r[self._parts[0]]
+            return np.concatenate([r[p] for p in self._parts])
+        if self.matrix is not None:
+            return self.matrix[i]
+        cached = self._cache.get(i)
+        if cached is not None:
+            self._cache.move_to_end(i)
+            return cached
+        r = self.kernel.gram(self.X[i : i + 1], self.X, x_norms=self._norms[i : i + 1],
+                             y_norms=self._norms, dtype=self.dtype)[0]
+        if self.kernel.name == "rbf":
+            r[i] = 1.0
+        self.rows_computed += 1
+        self._cache[i] = r
+        if len(self._cache) > self._capacity:
+            self._cache.popitem(last=False)
+        return r

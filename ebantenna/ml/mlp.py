@@ -26,6 +26,11 @@ times the gradient of that loss (only of the data term: its L2 term keeps its ow
 gradient is the true gradient of the reported loss, :math:`(\\hat y - y) / (n m)`. With one output,
 or for classification, both agree, and one ``'gd'`` step equals one full-batch step of
 scikit-learn's ``'sgd'`` solver without momentum.
+
+The forward pass, the losses and backpropagation are plain functions of
+:mod:`ebantenna.ml.backprop`; the parameters are checked by scikit-learn's own constraint
+mechanism (``_parameter_constraints``), so a bad value raises the error scikit-learn raises, in
+the same words.
 """
 
 from __future__ import annotations
@@ -36,59 +41,57 @@ from numbers import Integral, Real
 
 import numpy as np
 from scipy.special import expit, log_expit, logsumexp
-from sklearn.base import BaseEstimator, ClassifierMixin, RegressorMixin
+from sklearn.base import BaseEstimator, ClassifierMixin, RegressorMixin, _fit_context
 from sklearn.exceptions import ConvergenceWarning
 from sklearn.metrics import accuracy_score, r2_score
 from sklearn.model_selection import train_test_split
 from sklearn.preprocessing import LabelBinarizer
+from sklearn.utils._param_validation import Interval, Options, StrOptions
 from sklearn.utils.multiclass import check_classification_targets, type_of_target
 from sklearn.utils.validation import check_is_fitted, column_or_1d, validate_data
 
-from .._validate import check_choice
+from .backprop import ACTIVATIONS, backprop, forward, glorot_uniform, output_loss, pack, unpack
 from .optimizers import Adam, Momentum, scg_init, scg_step
 
 __all__ = ["MLPClassifier", "MLPRegressor", "ACTIVATIONS", "SOLVERS"]
 
 logger = logging.getLogger(__name__)
 
-#: Hidden-layer activations.
-ACTIVATIONS = ("identity", "logistic", "tanh", "relu")
 #: Training algorithms.
 SOLVERS = ("gd", "sgd", "adam", "scg")
 
 
-def _activate(name: str, z: np.ndarray) -> np.ndarray:
-    """Apply an activation in place and return it (logistic via ``expit``: no overflow)."""
-    if name == "tanh":
-        return np.tanh(z, out=z)
-    if name == "relu":
-        return np.maximum(z, 0.0, out=z)
-    if name == "logistic":
-        return expit(z, out=z)
-    return z
-
-
-def _derivative(name: str, a: np.ndarray, delta: np.ndarray) -> None:
-    """Multiply ``delta`` in place by the activation's derivative, written with its output ``a``."""
-    if name == "tanh":
-        d = a * a
-        np.subtract(1.0, d, out=d)
-        delta *= d
-    elif name == "relu":
-        delta[a <= 0] = 0.0
-    elif name == "logistic":
-        delta *= a * (1.0 - a)
-
-
-def _check_positive_real(name, value, *, allow_zero=False):
-    if isinstance(value, bool) or not isinstance(value, Real) or not np.isfinite(value):
-        raise TypeError(f"{name} must be a finite real number, got {value!r}")
-    if value < 0 or (value == 0 and not allow_zero):
-        raise ValueError(f"{name} must be {'>= 0' if allow_zero else '> 0'}, got {value!r}")
-
-
 class _BaseMLP(BaseEstimator):
-    """Shared machinery: parameters, forward pass, backpropagation and the training loop."""
+    """Shared machinery: parameters, their constraints and the training loops."""
+
+    # scikit-learn's constraints and wording, with this package's solvers; validation_fraction
+    # excludes 0, which would leave an empty validation split
+    _parameter_constraints: dict = {
+        "hidden_layer_sizes": ["array-like", Interval(Integral, 1, None, closed="left")],
+        "activation": [StrOptions({"identity", "logistic", "tanh", "relu"})],
+        "solver": [StrOptions({"gd", "sgd", "adam", "scg"})],
+        "alpha": [Interval(Real, 0, None, closed="left")],
+        "batch_size": [StrOptions({"auto"}), Interval(Integral, 1, None, closed="left")],
+        "learning_rate": [StrOptions({"constant", "invscaling", "adaptive"})],
+        "learning_rate_init": [Interval(Real, 0, None, closed="neither")],
+        "power_t": [Interval(Real, 0, None, closed="left")],
+        "max_iter": [Interval(Integral, 1, None, closed="left")],
+        "shuffle": ["boolean"],
+        "random_state": [None, Interval(Integral, 0, None, closed="left"),
+                         np.random.RandomState, np.random.Generator, np.random.SeedSequence,
+                         np.random.BitGenerator],
+        "tol": [Interval(Real, 0, None, closed="left")],
+        "verbose": ["verbose"],
+        "warm_start": ["boolean"],
+        "momentum": [Interval(Real, 0, 1, closed="both")],
+        "nesterovs_momentum": ["boolean"],
+        "early_stopping": ["boolean"],
+        "validation_fraction": [Interval(Real, 0, 1, closed="neither")],
+        "beta_1": [Interval(Real, 0, 1, closed="left")],
+        "beta_2": [Interval(Real, 0, 1, closed="left")],
+        "epsilon": [Interval(Real, 0, None, closed="neither")],
+        "n_iter_no_change": [Interval(Integral, 1, None, closed="left"), Options(Real, {np.inf})],
+    }
 
     def __init__(
         self,
@@ -139,107 +142,38 @@ class _BaseMLP(BaseEstimator):
         self.epsilon = epsilon
         self.n_iter_no_change = n_iter_no_change
 
-    # ----------------------------------------------------------- validation
+    # ------------------------------------------------------------ network
     def _hidden_sizes(self) -> list[int]:
+        """``hidden_layer_sizes`` as a list (the constraints have checked int or array-like)."""
         sizes = self.hidden_layer_sizes
-        if isinstance(sizes, Integral) and not isinstance(sizes, bool):
-            sizes = [sizes]
-        try:
-            sizes = list(sizes)
-        except TypeError as exc:
-            raise TypeError(f"hidden_layer_sizes must be an int or a sequence of ints, "
-                            f"got {self.hidden_layer_sizes!r}") from exc
-        for s in sizes:
-            if isinstance(s, bool) or not isinstance(s, Integral) or s < 1:
-                raise ValueError(f"hidden_layer_sizes must contain integers >= 1, got {sizes!r}")
+        sizes = [sizes] if isinstance(sizes, Integral) else list(sizes)
+        if any(isinstance(s, bool) or not isinstance(s, Integral) for s in sizes):
+            raise TypeError(f"hidden_layer_sizes must contain integers, got {sizes!r}.")
+        if any(s <= 0 for s in sizes):
+            raise ValueError(f"hidden_layer_sizes must be > 0, got {sizes}.")
         return [int(s) for s in sizes]
-
-    def _check_params(self):
-        check_choice("activation", self.activation, ACTIVATIONS)
-        check_choice("solver", self.solver, SOLVERS)
-        check_choice("learning_rate", self.learning_rate, ("constant", "invscaling", "adaptive"))
-        _check_positive_real("alpha", self.alpha, allow_zero=True)
-        _check_positive_real("learning_rate_init", self.learning_rate_init)
-        _check_positive_real("power_t", self.power_t, allow_zero=True)
-        _check_positive_real("tol", self.tol, allow_zero=True)
-        _check_positive_real("epsilon", self.epsilon)
-        for name in ("momentum", "beta_1", "beta_2"):
-            value = getattr(self, name)
-            _check_positive_real(name, value, allow_zero=True)
-            if value > 1 or (name != "momentum" and value >= 1):
-                raise ValueError(f"{name} must lie in [0, 1{']' if name == 'momentum' else ')'}, "
-                                 f"got {value!r}")
-        for name in ("max_iter", "n_iter_no_change"):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, Integral):
-                raise TypeError(f"{name} must be an integer >= 1, got {value!r}")
-            if value < 1:
-                raise ValueError(f"{name} must be >= 1, got {value!r}")
-        if self.batch_size != "auto":
-            if isinstance(self.batch_size, bool) or not isinstance(self.batch_size, Integral):
-                raise TypeError(f"batch_size must be 'auto' or an integer >= 1, "
-                                f"got {self.batch_size!r}")
-            if self.batch_size < 1:
-                raise ValueError(f"batch_size must be >= 1, got {self.batch_size!r}")
-        _check_positive_real("validation_fraction", self.validation_fraction)
-        if self.validation_fraction >= 1:
-            raise ValueError(f"validation_fraction must lie in (0, 1), "
-                             f"got {self.validation_fraction!r}")
-
-    # ------------------------------------------------------- network pieces
-    def _init_params(self, sizes, rng):
-        """Glorot-uniform weights: bound ``sqrt(f / (fan_in + fan_out))``, f = 6 (logistic: 2)."""
-        factor = 2.0 if self.activation == "logistic" else 6.0
-        coefs, intercepts = [], []
-        for fan_in, fan_out in zip(sizes[:-1], sizes[1:], strict=True):
-            bound = np.sqrt(factor / (fan_in + fan_out))
-            coefs.append(rng.uniform(-bound, bound, (fan_in, fan_out)))
-            intercepts.append(rng.uniform(-bound, bound, fan_out))
-        return coefs, intercepts
-
-    def _forward(self, X, coefs, intercepts):
-        """Activations of every layer; the last entry holds the output layer's pre-activation."""
-        acts = [X]
-        last = len(coefs) - 1
-        for i, (W, b) in enumerate(zip(coefs, intercepts, strict=True)):
-            z = acts[-1] @ W
-            z += b
-            if i < last:
-                _activate(self.activation, z)
-            acts.append(z)
-        return acts
 
     def _loss_grad(self, X, Y, coefs, intercepts):
         """Loss (data term + L2) and its exact gradient with respect to every weight and bias."""
         n = X.shape[0]
-        acts = self._forward(X, coefs, intercepts)
-        data_loss, delta = self._output_loss(acts[-1], Y)
+        acts = forward(X, coefs, intercepts, self.activation)
+        data_loss, delta = output_loss(self.out_activation_, acts[-1], Y)
         # einsum, not a BLAS dot: no thread start-up for a reduction this small
         l2 = sum(float(np.einsum("ij,ij->", W, W)) for W in coefs)
         loss = data_loss + 0.5 * self.alpha * l2 / n
-        coef_grads = [None] * len(coefs)
-        intercept_grads = [None] * len(coefs)
-        for layer in range(len(coefs) - 1, -1, -1):
-            coef_grads[layer] = acts[layer].T @ delta + (self.alpha / n) * coefs[layer]
-            intercept_grads[layer] = delta.sum(axis=0)
-            if layer > 0:
-                delta = delta @ coefs[layer].T
-                _derivative(self.activation, acts[layer], delta)
+        coef_grads, intercept_grads = backprop(acts, delta, coefs, self.activation,
+                                               self.alpha / n)
         return loss, coef_grads, intercept_grads
+
+    def _forward(self, X, coefs, intercepts):
+        return forward(X, coefs, intercepts, self.activation)
 
     # Flattened parameters for SCG and for finite-difference checks.
     def _pack(self, coefs, intercepts) -> np.ndarray:
-        return np.concatenate([a.ravel() for pair in zip(coefs, intercepts, strict=True)
-                               for a in pair])
+        return pack(coefs, intercepts)
 
     def _unpack(self, w, shapes):
-        coefs, intercepts, pos = [], [], 0
-        for fan_in, fan_out in shapes:
-            coefs.append(w[pos : pos + fan_in * fan_out].reshape(fan_in, fan_out))
-            pos += fan_in * fan_out
-            intercepts.append(w[pos : pos + fan_out])
-            pos += fan_out
-        return coefs, intercepts
+        return unpack(w, shapes)
 
     def loss_and_gradient(self, X, Y, w=None):
         """Loss and flattened gradient at the flattened parameters ``w`` (default: fitted ones).
@@ -259,14 +193,13 @@ class _BaseMLP(BaseEstimator):
 
     # --------------------------------------------------------- training
     def _fit(self, X, Y, y_for_split):
-        self._check_params()
         hidden = self._hidden_sizes()
         rng = np.random.default_rng(self.random_state)
         n_features, n_out = X.shape[1], Y.shape[1]
         sizes = [n_features, *hidden, n_out]
         first_pass = not (self.warm_start and hasattr(self, "coefs_"))
         if first_pass:
-            self.coefs_, self.intercepts_ = self._init_params(sizes, rng)
+            self.coefs_, self.intercepts_ = glorot_uniform(sizes, self.activation, rng)
             self.loss_curve_ = []
             self.n_iter_ = 0
             self.t_ = 0
@@ -444,6 +377,7 @@ class MLPClassifier(ClassifierMixin, _BaseMLP):
     1.0
     """
 
+    @_fit_context(prefer_skip_nested_validation=True)
     def fit(self, X, y):
         """Train on features ``X`` (n_samples, n_features) and labels ``y``."""
         X, y = validate_data(self, X, y, dtype=np.float64, multi_output=True,
@@ -458,26 +392,6 @@ class MLPClassifier(ClassifierMixin, _BaseMLP):
         self._multilabel = type_of_target(y).startswith("multilabel")
         self.out_activation_ = "logistic" if (Y.shape[1] == 1 or self._multilabel) else "softmax"
         return self._fit(X, Y, y)
-
-    def _output_loss(self, z, Y):
-        """Mean cross-entropy from the output logits ``z`` and its gradient with respect to them."""
-        n = z.shape[0]
-        if self.out_activation_ == "softmax":
-            # log-sum-exp shifted by the row maximum: no overflow, exact for saturated logits
-            shift = z.max(axis=1, keepdims=True)
-            prob = np.exp(z - shift)
-            total = prob.sum(axis=1, keepdims=True)
-            lse = shift + np.log(total)
-            loss = float(np.sum(lse) - np.einsum("ij,ij->", Y, z)) / n
-            prob /= total
-            prob -= Y
-            prob /= n
-            return loss, prob
-        else:
-            # -[y log s(z) + (1-y) log s(-z)], finite for any z
-            loss = float(-np.sum(Y * log_expit(z) + (1.0 - Y) * log_expit(-z))) / n
-            prob = expit(z)
-        return loss, (prob - Y) / n
 
     def _validation_score(self, X, Y):
         return accuracy_score(self._label_binarizer.inverse_transform(Y), self.predict(X))
@@ -549,6 +463,7 @@ class MLPRegressor(RegressorMixin, _BaseMLP):
 
     out_activation_ = "identity"
 
+    @_fit_context(prefer_skip_nested_validation=True)
     def fit(self, X, y):
         """Train on features ``X`` (n_samples, n_features) and targets ``y``."""
         X, y = validate_data(self, X, y, dtype=np.float64, multi_output=True, y_numeric=True,
@@ -556,12 +471,6 @@ class MLPRegressor(RegressorMixin, _BaseMLP):
         self._y_ndim = y.ndim
         Y = y.reshape(-1, 1) if y.ndim == 1 else y
         return self._fit(X, np.asarray(Y, dtype=np.float64), None)
-
-    def _output_loss(self, z, Y):
-        """Half the mean squared error over all entries, and its exact gradient."""
-        diff = z - Y
-        loss = 0.5 * float(np.mean(diff * diff))
-        return loss, diff / diff.size
 
     def _validation_score(self, X, Y):
         return r2_score(Y if Y.shape[1] > 1 else Y[:, 0], self.predict(X))

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import logging
 import warnings
+from dataclasses import replace
 from numbers import Integral, Real
 
 import numpy as np
@@ -25,8 +26,8 @@ from sklearn.utils.validation import (
 )
 
 from .._validate import check_choice, check_positive
-from .kernels import KERNELS, Kernel, resolve_gamma
-from .smo import SELECTIONS, KernelRows, solve_smo
+from .kernels import KERNELS, Kernel, KernelRows, resolve_gamma
+from .smo import DEFAULT, LIBSVM, SELECTIONS, SMOPolicy, solve_smo
 
 __all__ = ["SVC", "ovr_decision_function"]
 
@@ -86,10 +87,10 @@ class SVC(ClassifierMixin, BaseEstimator):
     coef0 : float, default=0.0
         Constant term of the 'poly' kernel.
     shrinking : bool, default=True
-        libsvm's shrinking heuristic (see :func:`ebantenna.ml.smo.solve_smo`); the solution is
-        the same within ``tol`` either way. Shrinking saves kernel evaluations, so it is used with
-        the row cache and in ``libsvm_compat`` mode; when the whole kernel matrix is in memory
-        the default mode solves without it, which is faster in NumPy.
+        libsvm's shrinking heuristic (see :class:`~ebantenna.ml.smo_policy.SMOPolicy`); the
+        solution is the same within ``tol`` either way. Shrinking saves kernel evaluations, so it
+        is used with the row cache and in ``libsvm_compat`` mode; when the whole kernel matrix is
+        in memory the default mode solves without it, which is faster in NumPy.
     tol : float, default=1e-3
         Stopping tolerance on the maximal KKT violation.
     cache_size : float, default=200
@@ -114,10 +115,11 @@ class SVC(ClassifierMixin, BaseEstimator):
     selection : {'second-order', 'first-order'}, default='second-order'
         Working-set selection: libsvm's second-order rule or the maximal violating pair.
     libsvm_compat : bool, default=False
-        Follow libsvm's arithmetic (float32 kernel storage, ties broken by the last index,
-        sequential bias sum) so that scikit-learn's ``SVC`` with the same ``shrinking`` is
-        reproduced to about 1e-12 with the same iteration counts. See :mod:`ebantenna.ml.smo`
-        for what each convention changes.
+        Follow libsvm's arithmetic (the :data:`~ebantenna.ml.smo_policy.LIBSVM` policy: float32
+        kernel storage, ties broken by the last index, its curvature floor, sequential bias sum) so
+        that scikit-learn's ``SVC`` with the same ``shrinking`` is reproduced to about 1e-12 with
+        the same iteration counts. See :mod:`ebantenna.ml.smo` for what each convention
+        changes.
 
     Attributes
     ----------
@@ -247,10 +249,8 @@ class SVC(ClassifierMixin, BaseEstimator):
         n = X.shape[0]
         cache_bytes = int(float(self.cache_size) * 2**20)
         n_keep = int(keep.sum())
-        if self.libsvm_compat or n_keep * n_keep * 8 > cache_bytes:
-            dtype = np.float32
-        else:
-            dtype = np.float64
+        base = LIBSVM if self.libsvm_compat else DEFAULT
+        dtype = base.kernel_dtype(n_keep, cache_bytes)
         members = [np.flatnonzero((y_idx == c) & keep) for c in range(classes.size)]
         if any(m.size == 0 for m in members):
             raise ValueError("every class needs at least one sample with a positive weight")
@@ -262,6 +262,7 @@ class SVC(ClassifierMixin, BaseEstimator):
         if n_keep * n_keep * np.dtype(dtype).itemsize <= cache_bytes:
             full = kern.gram(X[order], dtype=dtype)
         diag = kern.diagonal(X)
+        policy = self._smo_policy(whole_kernel=full is not None)
         max_iter = _LIBSVM_MAX_ITER if self.max_iter == -1 else int(self.max_iter)
         max_iter = max(max_iter, 100 * n) if self.max_iter == -1 else max_iter
         k = classes.size
@@ -278,10 +279,7 @@ class SVC(ClassifierMixin, BaseEstimator):
                 else:
                     rows = KernelRows(X[idx], kern, dtype, cache_bytes)
                 res = solve_smo(rows, ys, c_vec[idx], diagonal=diag[idx], tol=float(self.tol),
-                                max_iter=max_iter, selection=self.selection,
-                                ties_last=bool(self.libsvm_compat),
-                                shrinking=bool(self.shrinking) and (
-                                    self.libsvm_compat or full is None))
+                                max_iter=max_iter, policy=policy)
                 if self.verbose:
                     logger.info("classes (%r, %r): %d updates, %d support vectors", classes[a],
                                 classes[b], res.n_iter, int(np.count_nonzero(res.alpha)))
@@ -304,6 +302,22 @@ class SVC(ClassifierMixin, BaseEstimator):
             raise ValueError("The dual coefficients or intercepts are not finite. The input data "
                              "may contain large values and need to be preprocessed.")
         return self
+
+    def _smo_policy(self, whole_kernel: bool) -> SMOPolicy:
+        """The SMO conventions of this fit.
+
+        ``libsvm_compat`` takes all of libsvm's (:data:`~ebantenna.ml.smo_policy.LIBSVM`), with
+        ``shrinking`` as given. Otherwise the package's (:data:`~ebantenna.ml.smo_policy.DEFAULT`):
+        shrinking only pays with the row cache, where the solver then shrinks as libsvm does, with
+        libsvm's curvature floor, and keeps the default tie-breaking and bias sum.
+        """
+        shrinking = bool(self.shrinking)
+        if self.libsvm_compat:
+            return replace(LIBSVM, selection=self.selection, shrinking=shrinking)
+        if shrinking and not whole_kernel:
+            return replace(DEFAULT, selection=self.selection, shrinking=True,
+                           curvature_floor="nonpositive")
+        return replace(DEFAULT, selection=self.selection)
 
     def _store(self, X, classes, members, coefs, rhos, n_iter):
         """Arrange the pairwise solutions in libsvm's (and scikit-learn's) layout."""

@@ -11,7 +11,7 @@ from smo_reference import assert_follows_reference, iteration_slack
 
 from ebantenna.ml import SVC
 from ebantenna.ml.kernels import Kernel
-from ebantenna.ml.smo import KernelRows, solve_smo
+from ebantenna.ml.smo import KernelRows, SMOPolicy, solve_smo
 
 
 def _data(n=240, d=6, k=3, seed=0, noise=0.6):
@@ -109,7 +109,8 @@ def test_smo_solution_satisfies_kkt(selection):
     kern = Kernel("rbf", gamma=0.2)
     rows = KernelRows(X, kern, np.float64, cache_bytes=1 << 24)
     C = np.full(y.size, 2.0)
-    res = solve_smo(rows, y, C, diagonal=kern.diagonal(X), tol=1e-6, selection=selection)
+    res = solve_smo(rows, y, C, diagonal=kern.diagonal(X), tol=1e-6,
+                    policy=SMOPolicy(selection=selection))
     assert res.converged
     viol, balance = _kkt_violation(rows, y, C, res)
     # stopping rule m - M < tol bounds every KKT violation by about tol (free-variable bias

@@ -3,7 +3,7 @@
 Both drivers talk to their chip through an :class:`I2CDevice`, which wraps any object with the
 subset of the :class:`smbus2.SMBus` API used here (``read_byte_data``, ``write_byte_data``,
 ``read_i2c_block_data``, ``write_i2c_block_data`` and ``i2c_rdwr``): the real bus on a Raspberry Pi,
-or :class:`ebantenna.device.simbus.SimulatedBus` anywhere else.
+or :class:`ebantenna.device.simulated.SimulatedBus` anywhere else.
 
 A noisy I2C line makes the kernel report ``OSError`` with errno 121 (``EREMOTEIO``, "Remote I/O
 error": the chip did not acknowledge), 5 (``EIO``), 110 (``ETIMEDOUT``) or 11 (``EAGAIN``, bus
@@ -106,7 +106,7 @@ class I2CDevice:
 
     Examples
     --------
-    >>> from ebantenna.device.simbus import SimulatedRig
+    >>> from ebantenna.device.simulated import SimulatedRig
     >>> from ebantenna.device.i2c import I2CDevice
     >>> rig = SimulatedRig.quiet()
     >>> I2CDevice(rig.bus, 0x68, clock=rig.clock).read_byte(0x75) == 0x68  # MPU-6050 WHO_AM_I

@@ -253,7 +253,7 @@ class MPU6050:
 
     Examples
     --------
-    >>> from ebantenna.device.simbus import SimulatedRig
+    >>> from ebantenna.device.simulated import SimulatedRig
     >>> from ebantenna.device.mpu6050 import MPU6050
     >>> rig = SimulatedRig.quiet(seed=0)
     >>> mpu = MPU6050(rig.bus, clock=rig.clock)

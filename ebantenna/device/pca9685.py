@@ -107,7 +107,7 @@ class PCA9685:
 
     Examples
     --------
-    >>> from ebantenna.device.simbus import SimulatedRig
+    >>> from ebantenna.device.simulated import SimulatedRig
     >>> from ebantenna.device.pca9685 import PCA9685
     >>> rig = SimulatedRig.quiet()
     >>> pca = PCA9685(rig.bus, clock=rig.clock)

@@ -115,7 +115,7 @@ class Servo:
     Examples
     --------
     >>> import warnings
-    >>> from ebantenna.device.simbus import SimulatedRig
+    >>> from ebantenna.device.simulated import SimulatedRig
     >>> from ebantenna.device.pca9685 import PCA9685
     >>> from ebantenna.device.servo import Servo, ServoCalibration, ServoLimitWarning
     >>> rig = SimulatedRig.quiet()

@@ -7,6 +7,7 @@ source. Every name cites the datasheet, its revision and the section or table it
 
 - :mod:`ebantenna.chips.mpu6050`: the InvenSense MPU-6050 accelerometer and gyroscope;
 - :mod:`ebantenna.chips.pca9685`: the NXP PCA9685 16-channel PWM controller;
+- :mod:`ebantenna.chips.mg996r`: the TowerPro MG996R servos the PCA9685 drives;
 - :mod:`ebantenna.chips.bitfield`: :class:`~ebantenna.chips.bitfield.BitField`, a group of
   adjacent bits in one register.
 

@@ -101,3 +101,12 @@ def test_bus_time_per_transfer():
     bus = SimulatedBus(devices={0x68: _mpu()}, bus_hz=100e3)
     bus.read_i2c_block_data(0x68, R.FIFO_COUNTH, 2)
     assert bus.clock.monotonic() == pytest.approx(50e-6 + 38 / 100e3, rel=1e-12)
+
+
+def test_the_default_calibration_drives_the_simulated_servo_to_the_commanded_angle():
+    from ebantenna.device.servo import ServoCalibration
+    from ebantenna.device.simulated.world import mg996r_angle
+
+    cal = ServoCalibration(channel=0)
+    for angle in (0.0, 20.0, 90.0, 160.0, 180.0):
+        assert mg996r_angle(cal.pulse(angle)) == pytest.approx(angle, abs=1e-9)

@@ -12,11 +12,10 @@ import math
 from dataclasses import dataclass
 
 from ..._validate import check_real
+from ...chips.mg996r import PULSE_RANGE, SLEW_RATE, TRAVEL
 
 __all__ = [
     "MG996R_SLEW_RATE",
-    "MG996R_PULSE_RANGE",
-    "MG996R_TRAVEL",
     "mg996r_angle",
     "Obstacle",
     "DEFAULT_OBSTACLE",
@@ -24,20 +23,15 @@ __all__ = [
     "World",
 ]
 
-#: MG996R speed at 4.8 V, no load: 0.17 s per 60 degrees (maker's data sheet), degrees/s.
-MG996R_SLEW_RATE = 60.0 / 0.17
-#: Pulse widths at the two ends of the simulated MG996R's travel, s: 0.5 ms and 2.5 ms, the
-#: range hobby servo makers give for about 180 degrees (the same as the default
-#: :class:`~ebantenna.device.servo.ServoCalibration`).
-MG996R_PULSE_RANGE = (0.5e-3, 2.5e-3)
-#: Travel of the simulated MG996R between those pulses, degrees.
-MG996R_TRAVEL = 180.0
+#: MG996R speed at 4.8 V, no load, degrees/s (see :data:`ebantenna.chips.mg996r.SLEW_RATE`).
+MG996R_SLEW_RATE = SLEW_RATE
 
 
 def mg996r_angle(width: float) -> float | None:
     """Angle (degrees) the simulated MG996R turns to for pulses of ``width`` (s); None: no pulses.
 
-    Linear over :data:`MG996R_PULSE_RANGE`, against its end stops beyond.
+    Linear from 0 to :data:`~ebantenna.chips.mg996r.TRAVEL` over
+    :data:`~ebantenna.chips.mg996r.PULSE_RANGE`, against its end stops beyond.
 
     Examples
     --------
@@ -47,8 +41,8 @@ def mg996r_angle(width: float) -> float | None:
     """
     if width == 0:
         return None
-    low, high = MG996R_PULSE_RANGE
-    return min(max((width - low) / (high - low) * MG996R_TRAVEL, 0.0), MG996R_TRAVEL)
+    low, high = PULSE_RANGE
+    return min(max((width - low) / (high - low) * TRAVEL, 0.0), TRAVEL)
 
 
 @dataclass(frozen=True)

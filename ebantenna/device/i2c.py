@@ -33,6 +33,10 @@ TRANSIENT_ERRNOS = frozenset({errno.EREMOTEIO, errno.EIO, errno.ETIMEDOUT, errno
 #: The SMBus protocol carries at most 32 data bytes per block transfer.
 SMBUS_BLOCK_MAX = 32
 
+#: 7-bit addresses accepted: 0x03-0x77, the range Linux's ``i2cdetect`` probes by default. The
+#: I2C-bus specification (NXP UM10204, section 3.1.12) reserves 0x00-0x07 and 0x78-0x7F.
+_FIRST_ADDRESS, _LAST_ADDRESS = 0x03, 0x77
+
 
 class I2CError(OSError):
     """A bus transfer that still failed after every permitted retry."""
@@ -116,7 +120,8 @@ class I2CDevice:
     def __init__(self, bus, address: int, *, retry: RetryPolicy | None = None, clock=None,
                  use_rdwr: bool = False):
         self.bus = bus
-        self.address = check_int("address", address, minimum=0x03, maximum=0x77)
+        self.address = check_int("address", address, minimum=_FIRST_ADDRESS,
+                                 maximum=_LAST_ADDRESS)
         self.retry = RetryPolicy() if retry is None else retry
         if not isinstance(self.retry, RetryPolicy):
             raise TypeError(f"retry must be a RetryPolicy, got {type(retry).__name__}")

@@ -7,6 +7,8 @@ Subpackages, in the order the data flows:
 - :mod:`ebantenna.signal`: features, filters, decay fit, time-frequency views, tracking;
 - :mod:`ebantenna.ml`: hand-written SMO kernel SVM and NumPy MLP;
 - :mod:`ebantenna.device`: MPU6050 and PCA9685 drivers, with a simulated I2C bus.
+
+Below them all, :mod:`ebantenna.chips` holds the chips' register maps and datasheet constants.
 """
 
 from .probe import MATERIALS, Material, Probe, material

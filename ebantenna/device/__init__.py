@@ -1,8 +1,10 @@
 """The real rig: MPU-6050 and PCA9685 drivers over smbus2, servos, the pan-tilt search, and a
 register-level simulated I2C bus on which the same code runs without hardware.
 
-The drivers know nothing of the scene simulator; only :mod:`ebantenna.device.simbus` uses it, and
-only when a simulated contact needs a vibration.
+The chips' register maps and datasheet constants live in :mod:`ebantenna.chips`, shared by the
+drivers here and the simulated chips in :mod:`ebantenna.device.simulated`. The drivers know
+nothing of the scene simulator; only :mod:`ebantenna.device.simulated` uses it, and only when a
+simulated contact needs a vibration.
 """
 
 from .clock import SystemClock, VirtualClock
@@ -18,7 +20,7 @@ from .pantilt import (
 )
 from .pca9685 import PCA9685, prescale_for
 from .servo import Servo, ServoCalibration, ServoLimitWarning
-from .simbus import Faults, Obstacle, SimulatedBus, SimulatedRig
+from .simulated import Faults, Obstacle, SimulatedBus, SimulatedRig
 
 __all__ = [
     "SystemClock",

@@ -48,7 +48,7 @@ def run(args: argparse.Namespace) -> int:
     config = SearchConfig(threshold=args.threshold, duration=args.duration)
     labels = {"material": material, "ratio": ratio}
     if args.simulated:
-        from .simbus import Faults, SimulatedRig
+        from .simulated import Faults, SimulatedRig
 
         rig = SimulatedRig.for_contact(scene=args.scene, material=material, ratio=ratio,
                                        seed=args.seed,

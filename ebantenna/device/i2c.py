@@ -3,7 +3,7 @@
 Both drivers talk to their chip through an :class:`I2CDevice`, which wraps any object with the
 subset of the :class:`smbus2.SMBus` API used here (``read_byte_data``, ``write_byte_data``,
 ``read_i2c_block_data``, ``write_i2c_block_data`` and ``i2c_rdwr``): the real bus on a Raspberry Pi,
-or :class:`ebantenna.device.simbus.SimulatedBus` anywhere else.
+or :class:`ebantenna.device.simulated.SimulatedBus` anywhere else.
 
 A noisy I2C line makes the kernel report ``OSError`` with errno 121 (``EREMOTEIO``, "Remote I/O
 error": the chip did not acknowledge), 5 (``EIO``), 110 (``ETIMEDOUT``) or 11 (``EAGAIN``, bus
@@ -32,6 +32,10 @@ TRANSIENT_ERRNOS = frozenset({errno.EREMOTEIO, errno.EIO, errno.ETIMEDOUT, errno
 
 #: The SMBus protocol carries at most 32 data bytes per block transfer.
 SMBUS_BLOCK_MAX = 32
+
+#: 7-bit addresses accepted: 0x03-0x77, the range Linux's ``i2cdetect`` probes by default. The
+#: I2C-bus specification (NXP UM10204, section 3.1.12) reserves 0x00-0x07 and 0x78-0x7F.
+_FIRST_ADDRESS, _LAST_ADDRESS = 0x03, 0x77
 
 
 class I2CError(OSError):
@@ -106,7 +110,7 @@ class I2CDevice:
 
     Examples
     --------
-    >>> from ebantenna.device.simbus import SimulatedRig
+    >>> from ebantenna.device.simulated import SimulatedRig
     >>> from ebantenna.device.i2c import I2CDevice
     >>> rig = SimulatedRig.quiet()
     >>> I2CDevice(rig.bus, 0x68, clock=rig.clock).read_byte(0x75) == 0x68  # MPU-6050 WHO_AM_I
@@ -116,7 +120,8 @@ class I2CDevice:
     def __init__(self, bus, address: int, *, retry: RetryPolicy | None = None, clock=None,
                  use_rdwr: bool = False):
         self.bus = bus
-        self.address = check_int("address", address, minimum=0x03, maximum=0x77)
+        self.address = check_int("address", address, minimum=_FIRST_ADDRESS,
+                                 maximum=_LAST_ADDRESS)
         self.retry = RetryPolicy() if retry is None else retry
         if not isinstance(self.retry, RetryPolicy):
             raise TypeError(f"retry must be a RetryPolicy, got {type(retry).__name__}")

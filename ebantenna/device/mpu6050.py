@@ -53,9 +53,31 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validate import check_choice, check_int, check_positive
+from ..chips.mpu6050 import (
+    ACCEL_LSB_PER_G,
+    ACCEL_OUTPUT_RATE,
+    ACCEL_RANGES_G,
+    ACCEL_SAMPLE_BYTES,
+    ADDRESS_AD0_LOW,
+    ADDRESSES,
+    AFS_SEL,
+    CLKSEL,
+    DATA_DTYPE,
+    DLPF,
+    FIFO_SIZE,
+    STANDARD_GRAVITY,
+    WHO_AM_I_VALUE,
+    ClockSource,
+    FifoEnable,
+    Interrupt,
+    PowerManagement1,
+    Register,
+    UserControl,
+    gyro_output_rate,
+)
 from ..recording import Recording
 from .clock import SystemClock
-from .i2c import I2CDevice, RetryPolicy
+from .i2c import SMBUS_BLOCK_MAX, I2CDevice, RetryPolicy
 
 __all__ = [
     "MPU6050",
@@ -70,47 +92,13 @@ __all__ = [
 
 logger = logging.getLogger(__name__)
 
-#: Standard gravity, m/s^2 (CGPM 1901): the "g" of the accelerometer's full-scale ranges.
-STANDARD_GRAVITY = 9.80665
+#: Sensitivity by full-scale range (+/- g), LSB per g (PS, table 6.2).
+LSB_PER_G = dict(zip(ACCEL_RANGES_G, ACCEL_LSB_PER_G, strict=True))
 
-#: Sensitivity for AFS_SEL = 0..3, i.e. +/-2, 4, 8, 16 g (PS, table 6.2), LSB per g.
-LSB_PER_G = {2: 16384, 4: 8192, 8: 4096, 16: 2048}
-
-#: Accelerometer -3 dB bandwidth for DLPF_CFG = 0..6, Hz (RM, register 26).
-_ACCEL_BANDWIDTH = (260.0, 184.0, 94.0, 44.0, 21.0, 10.0, 5.0)
-
-# Register addresses (RM, section 3 "Register Map").
-SMPLRT_DIV = 0x19  # 25
-CONFIG = 0x1A  # 26
-GYRO_CONFIG = 0x1B  # 27
-ACCEL_CONFIG = 0x1C  # 28
-FIFO_EN = 0x23  # 35
-INT_ENABLE = 0x38  # 56
-INT_STATUS = 0x3A  # 58
-ACCEL_XOUT_H = 0x3B  # 59
-USER_CTRL = 0x6A  # 106
-PWR_MGMT_1 = 0x6B  # 107
-FIFO_COUNTH = 0x72  # 114
-FIFO_R_W = 0x74  # 116
-WHO_AM_I = 0x75  # 117
-
-# Bits.
-PWR_DEVICE_RESET = 0x80
-PWR_SLEEP = 0x40
-CLKSEL_PLL_XGYRO = 0x01
-FIFO_EN_ACCEL = 0x08
-USER_CTRL_FIFO_EN = 0x40
-USER_CTRL_FIFO_RESET = 0x04
-INT_FIFO_OFLOW = 0x10
-
-#: What WHO_AM_I reads on every MPU-6050, whatever the AD0 pin (RM, register 117).
-WHO_AM_I_VALUE = 0x68
-#: FIFO size, bytes (PS, section 7.17).
-FIFO_SIZE = 1024
 #: Bytes per FIFO sample with only the accelerometer enabled.
-SAMPLE_BYTES = 6
+SAMPLE_BYTES = ACCEL_SAMPLE_BYTES
 #: Longest SMBus chunk that holds whole samples.
-_FIFO_CHUNK = 30
+_FIFO_CHUNK = (SMBUS_BLOCK_MAX // SAMPLE_BYTES) * SAMPLE_BYTES
 
 
 class ChipIdentityError(OSError):
@@ -145,9 +133,10 @@ def sample_rate_divider(fs: float, dlpf_cfg: int) -> int:
     """
     dlpf_cfg = check_int("dlpf_cfg", dlpf_cfg, minimum=0, maximum=6)
     fs = check_positive("fs", fs)
-    if fs > 1000.0:
-        raise ValueError(f"fs must be <= 1000 Hz (the accelerometer's output rate), got {fs!r}")
-    gyro_rate = 8000.0 if dlpf_cfg == 0 else 1000.0
+    if fs > ACCEL_OUTPUT_RATE:
+        raise ValueError(f"fs must be <= {ACCEL_OUTPUT_RATE:g} Hz (the accelerometer's output "
+                         f"rate), got {fs!r}")
+    gyro_rate = gyro_output_rate(dlpf_cfg)
     divider = round(gyro_rate / fs) - 1
     if not (0 <= divider <= 255 and math.isclose(gyro_rate / (1 + divider), fs, rel_tol=1e-12)):
         raise ValueError(
@@ -166,7 +155,7 @@ def accel_bandwidth(dlpf_cfg: int) -> float:
     >>> accel_bandwidth(0)
     260.0
     """
-    return _ACCEL_BANDWIDTH[check_int("dlpf_cfg", dlpf_cfg, minimum=0, maximum=6)]
+    return DLPF[check_int("dlpf_cfg", dlpf_cfg, minimum=0, maximum=len(DLPF) - 1)].accel_bandwidth
 
 
 @dataclass(frozen=True)
@@ -195,13 +184,14 @@ class MPU6050Config:
     fs: float = 1000.0
     dlpf_cfg: int = 0
     full_scale_g: int = 16
-    address: int = 0x68
+    address: int = ADDRESS_AD0_LOW
 
     def __post_init__(self):
         sample_rate_divider(self.fs, self.dlpf_cfg)
         if self.full_scale_g not in LSB_PER_G:
-            raise ValueError(f"full_scale_g must be one of 2, 4, 8, 16; got {self.full_scale_g!r}")
-        check_choice("address", self.address, (0x68, 0x69))
+            valid = ", ".join(str(g) for g in ACCEL_RANGES_G)
+            raise ValueError(f"full_scale_g must be one of {valid}; got {self.full_scale_g!r}")
+        check_choice("address", self.address, ADDRESSES)
 
     @property
     def smplrt_div(self) -> int:
@@ -211,7 +201,7 @@ class MPU6050Config:
     @property
     def accel_config(self) -> int:
         """Value of ``ACCEL_CONFIG``: ``AFS_SEL`` in bits 4:3."""
-        return (2, 4, 8, 16).index(self.full_scale_g) << 3
+        return AFS_SEL.put(ACCEL_RANGES_G.index(self.full_scale_g))
 
     @property
     def lsb_per_g(self) -> int:
@@ -263,7 +253,7 @@ class MPU6050:
 
     Examples
     --------
-    >>> from ebantenna.device.simbus import SimulatedRig
+    >>> from ebantenna.device.simulated import SimulatedRig
     >>> from ebantenna.device.mpu6050 import MPU6050
     >>> rig = SimulatedRig.quiet(seed=0)
     >>> mpu = MPU6050(rig.bus, clock=rig.clock)
@@ -292,7 +282,7 @@ class MPU6050:
     # -- setup -----------------------------------------------------------------------------
     def who_am_i(self) -> int:
         """Read ``WHO_AM_I`` (RM, register 117)."""
-        return self.device.read_byte(WHO_AM_I)
+        return self.device.read_byte(Register.WHO_AM_I)
 
     def check_identity(self) -> None:
         """Raise :class:`ChipIdentityError` unless ``WHO_AM_I`` reads 0x68."""
@@ -314,14 +304,14 @@ class MPU6050:
         """
         cfg = self.config
         self.check_identity()
-        self.device.write_byte(PWR_MGMT_1, PWR_DEVICE_RESET)
+        self.device.write_byte(Register.PWR_MGMT_1, PowerManagement1.DEVICE_RESET)
         self.clock.sleep(0.1)
-        self.device.write_byte(PWR_MGMT_1, CLKSEL_PLL_XGYRO)
+        self.device.write_byte(Register.PWR_MGMT_1, CLKSEL.put(ClockSource.PLL_X_GYRO))
         self.clock.sleep(0.01)
-        self.device.write_byte(CONFIG, cfg.dlpf_cfg)
-        self.device.write_byte(SMPLRT_DIV, cfg.smplrt_div)
-        self.device.write_byte(ACCEL_CONFIG, cfg.accel_config)
-        self.device.write_byte(INT_ENABLE, INT_FIFO_OFLOW)
+        self.device.write_byte(Register.CONFIG, cfg.dlpf_cfg)
+        self.device.write_byte(Register.SMPLRT_DIV, cfg.smplrt_div)
+        self.device.write_byte(Register.ACCEL_CONFIG, cfg.accel_config)
+        self.device.write_byte(Register.INT_ENABLE, Interrupt.FIFO_OFLOW)
         logger.info("MPU-6050 at 0x%02X: %g Hz, DLPF %d (%g Hz), +/-%d g", cfg.address, cfg.fs,
                     cfg.dlpf_cfg, cfg.bandwidth, cfg.full_scale_g)
 
@@ -332,20 +322,21 @@ class MPU6050:
 
     @staticmethod
     def _decode(raw: bytes) -> np.ndarray:
-        return np.frombuffer(raw, dtype=">i2").astype(np.int16).reshape(-1, 3)
+        return np.frombuffer(raw, dtype=DATA_DTYPE).astype(np.int16).reshape(-1, 3)
 
     def read_acceleration(self) -> np.ndarray:
         """The latest X, Y, Z acceleration, m/s^2, from one 6-byte burst read (not byte by byte)."""
-        return self.to_acceleration(self._decode(self.device.read_block(ACCEL_XOUT_H, 6))[0])
+        return self.to_acceleration(self._decode(self.device.read_block(Register.ACCEL_XOUT_H,
+                                                                   SAMPLE_BYTES))[0])
 
     # -- FIFO ------------------------------------------------------------------------------
     def _reset_fifo(self) -> None:
         # FIFO_RESET only acts while USER_CTRL.FIFO_EN is 0 (RM, register 106).
-        self.device.write_byte(FIFO_EN, 0x00)
-        self.device.write_byte(USER_CTRL, USER_CTRL_FIFO_RESET)
-        self.device.read_byte(INT_STATUS)  # clears a stale overflow flag
-        self.device.write_byte(FIFO_EN, FIFO_EN_ACCEL)
-        self.device.write_byte(USER_CTRL, USER_CTRL_FIFO_EN)
+        self.device.write_byte(Register.FIFO_EN, 0)
+        self.device.write_byte(Register.USER_CTRL, UserControl.FIFO_RESET)
+        self.device.read_byte(Register.INT_STATUS)  # clears a stale overflow flag
+        self.device.write_byte(Register.FIFO_EN, FifoEnable.ACCEL)
+        self.device.write_byte(Register.USER_CTRL, UserControl.FIFO_EN)
         self._segment_start = self.clock.monotonic()
         self._segment_read = 0
 
@@ -358,12 +349,12 @@ class MPU6050:
 
     def stop_fifo(self) -> None:
         """Stop filling the FIFO."""
-        self.device.write_byte(USER_CTRL, 0x00)
-        self.device.write_byte(FIFO_EN, 0x00)
+        self.device.write_byte(Register.USER_CTRL, 0)
+        self.device.write_byte(Register.FIFO_EN, 0)
 
     def fifo_count(self) -> int:
         """Bytes waiting in the FIFO (``FIFO_COUNTH``/``L`` read in one burst)."""
-        high, low = self.device.read_block(FIFO_COUNTH, 2)
+        high, low = self.device.read_block(Register.FIFO_COUNTH, 2)
         return (high << 8) | low
 
     def read_fifo(self) -> FifoBlock:
@@ -377,9 +368,9 @@ class MPU6050:
         if self._stream_start is None:
             raise ValueError("the FIFO is not running: call start_fifo() first")
         fs = self.config.fs
-        status = self.device.read_byte(INT_STATUS)
+        status = self.device.read_byte(Register.INT_STATUS)
         count = self.fifo_count()
-        if status & INT_FIFO_OFLOW or count >= FIFO_SIZE:
+        if status & Interrupt.FIFO_OFLOW or count >= FIFO_SIZE:
             old_start, read = self._segment_start, self._segment_read
             self._reset_fifo()
             # Everything produced between the last good read and the restart is gone.
@@ -393,7 +384,7 @@ class MPU6050:
         n = count // SAMPLE_BYTES
         if n == 0:
             return FifoBlock(np.empty(0, dtype=np.int64), np.empty((0, 3), np.int16), 0)
-        raw = self.device.read_block(FIFO_R_W, n * SAMPLE_BYTES, increment=False,
+        raw = self.device.read_block(Register.FIFO_R_W, n * SAMPLE_BYTES, increment=False,
                                      chunk=_FIFO_CHUNK)
         index = self._segment_base + self._segment_read + np.arange(n)
         self._segment_read += n

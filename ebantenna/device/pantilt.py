@@ -142,7 +142,7 @@ class PanTilt:
 
     Examples
     --------
-    >>> from ebantenna.device.simbus import SimulatedRig
+    >>> from ebantenna.device.simulated import SimulatedRig
     >>> from ebantenna.device.pca9685 import PCA9685
     >>> from ebantenna.device.pantilt import PanTilt
     >>> rig = SimulatedRig.quiet()
@@ -326,7 +326,7 @@ def search_and_record(mpu: MPU6050, pantilt: PanTilt, config: SearchConfig | Non
     Examples
     --------
     >>> import numpy as np
-    >>> from ebantenna.device.simbus import SimulatedRig
+    >>> from ebantenna.device.simulated import SimulatedRig
     >>> from ebantenna.device import MPU6050, PCA9685, PanTilt, search_and_record
     >>> t = np.arange(600) / 1000.0
     >>> ring = 20.0 * np.exp(-t / 0.1) * np.sin(2 * np.pi * 40.0 * t)

@@ -26,30 +26,29 @@ from __future__ import annotations
 import logging
 
 from .._validate import check_int, check_nonnegative, check_positive
+from ..chips.pca9685 import (
+    COUNTS_PER_PERIOD,
+    DEFAULT_ADDRESS,
+    LED_FULL,
+    N_CHANNELS,
+    OSCILLATOR_HZ,
+    OSCILLATOR_STARTUP,
+    PRESCALE_MAX,
+    PRESCALE_MIN,
+    Led,
+    Mode1,
+    Mode2,
+    Register,
+    join_count,
+    led_register,
+    split_count,
+)
 from .clock import SystemClock
 from .i2c import I2CDevice, RetryPolicy
 
 __all__ = ["PCA9685", "prescale_for", "pwm_frequency"]
 
 logger = logging.getLogger(__name__)
-
-MODE1 = 0x00
-MODE2 = 0x01
-LED0_ON_L = 0x06
-ALL_LED_ON_L = 0xFA
-ALL_LED_OFF_H = 0xFD
-PRE_SCALE = 0xFE
-
-MODE1_RESTART = 0x80
-MODE1_AI = 0x20
-MODE1_SLEEP = 0x10
-MODE2_OUTDRV = 0x04
-FULL_BIT = 0x10
-
-#: Nominal internal oscillator, Hz (DS 7.3.5).
-OSCILLATOR_HZ = 25e6
-N_CHANNELS = 16
-
 
 def prescale_for(frequency: float, oscillator_hz: float = OSCILLATOR_HZ) -> int:
     """``PRE_SCALE`` for a PWM ``frequency`` (Hz), DS equation 1.
@@ -67,10 +66,10 @@ def prescale_for(frequency: float, oscillator_hz: float = OSCILLATOR_HZ) -> int:
     """
     frequency = check_positive("frequency", frequency)
     oscillator_hz = check_positive("oscillator_hz", oscillator_hz)
-    value = round(oscillator_hz / (4096.0 * frequency)) - 1
-    if not 3 <= value <= 255:
-        low = oscillator_hz / (4096.0 * 256)
-        high = oscillator_hz / (4096.0 * 4)
+    value = round(oscillator_hz / (COUNTS_PER_PERIOD * frequency)) - 1
+    if not PRESCALE_MIN <= value <= PRESCALE_MAX:
+        low = oscillator_hz / (COUNTS_PER_PERIOD * (PRESCALE_MAX + 1))
+        high = oscillator_hz / (COUNTS_PER_PERIOD * (PRESCALE_MIN + 1))
         raise ValueError(f"frequency must lie in [{low:.1f}, {high:.1f}] Hz, got {frequency!r}")
     return value
 
@@ -84,8 +83,8 @@ def pwm_frequency(prescale: int, oscillator_hz: float = OSCILLATOR_HZ) -> float:
     >>> round(pwm_frequency(121), 3)
     50.029
     """
-    prescale = check_int("prescale", prescale, minimum=3, maximum=255)
-    return check_positive("oscillator_hz", oscillator_hz) / (4096.0 * (prescale + 1))
+    prescale = check_int("prescale", prescale, minimum=PRESCALE_MIN, maximum=PRESCALE_MAX)
+    return check_positive("oscillator_hz", oscillator_hz) / (COUNTS_PER_PERIOD * (prescale + 1))
 
 
 class PCA9685:
@@ -108,7 +107,7 @@ class PCA9685:
 
     Examples
     --------
-    >>> from ebantenna.device.simbus import SimulatedRig
+    >>> from ebantenna.device.simulated import SimulatedRig
     >>> from ebantenna.device.pca9685 import PCA9685
     >>> rig = SimulatedRig.quiet()
     >>> pca = PCA9685(rig.bus, clock=rig.clock)
@@ -118,7 +117,7 @@ class PCA9685:
     1498.2
     """
 
-    def __init__(self, bus, address: int = 0x40, *, frequency: float = 50.0,
+    def __init__(self, bus, address: int = DEFAULT_ADDRESS, *, frequency: float = 50.0,
                  oscillator_hz: float = OSCILLATOR_HZ, retry: RetryPolicy | None = None,
                  clock=None):
         self.prescale = prescale_for(frequency, oscillator_hz)
@@ -134,15 +133,15 @@ class PCA9685:
         ``PRE_SCALE``, ``MODE1 = old & ~SLEEP | AI`` (wake, register auto-increment), 500 us
         wait, ``MODE1 |= RESTART``.
         """
-        self.device.write_byte(ALL_LED_OFF_H, FULL_BIT)
-        self.device.write_byte(MODE2, MODE2_OUTDRV)
-        old = self.device.read_byte(MODE1) & ~MODE1_RESTART & 0xFF
-        self.device.write_byte(MODE1, old | MODE1_SLEEP)
-        self.device.write_byte(PRE_SCALE, self.prescale)
-        awake = (old & ~MODE1_SLEEP & 0xFF) | MODE1_AI
-        self.device.write_byte(MODE1, awake)
-        self.clock.sleep(500e-6)
-        self.device.write_byte(MODE1, awake | MODE1_RESTART)
+        self.device.write_byte(Register.ALL_LED_OFF_H, LED_FULL)
+        self.device.write_byte(Register.MODE2, Mode2.OUTDRV)
+        old = self.device.read_byte(Register.MODE1) & ~int(Mode1.RESTART) & 0xFF
+        self.device.write_byte(Register.MODE1, old | Mode1.SLEEP)
+        self.device.write_byte(Register.PRE_SCALE, self.prescale)
+        awake = (old & ~int(Mode1.SLEEP) & 0xFF) | Mode1.AI
+        self.device.write_byte(Register.MODE1, awake)
+        self.clock.sleep(OSCILLATOR_STARTUP)
+        self.device.write_byte(Register.MODE1, awake | Mode1.RESTART)
         logger.info("PCA9685 at 0x%02X: prescale %d, %.3f Hz", self.device.address, self.prescale,
                     self.frequency)
 
@@ -153,10 +152,11 @@ class PCA9685:
     def counts_for(self, pulse: float) -> int:
         """OFF count for a pulse of ``pulse`` seconds (rounded to the nearest count)."""
         pulse = check_nonnegative("pulse", pulse)
-        counts = round(pulse * self.frequency * 4096)
-        if not 1 <= counts <= 4095:
+        counts = round(pulse * self.frequency * COUNTS_PER_PERIOD)
+        if not 1 <= counts <= COUNTS_PER_PERIOD - 1:
             raise ValueError(
-                f"pulse must lie in (0, {4095 / (4096 * self.frequency):.6f}] s at "
+                f"pulse must lie in (0, "
+                f"{(COUNTS_PER_PERIOD - 1) / (COUNTS_PER_PERIOD * self.frequency):.6f}] s at "
                 f"{self.frequency:.2f} Hz, got {pulse!r}")
         return counts
 
@@ -164,25 +164,24 @@ class PCA9685:
         """Output pulses of ``pulse`` seconds on ``channel`` (one 4-byte block write)."""
         channel = self._check_channel(channel)
         off = self.counts_for(pulse)
-        self.device.write_block(LED0_ON_L + 4 * channel, [0, 0, off & 0xFF, off >> 8])
+        self.device.write_block(led_register(channel), [0, 0, *split_count(off)])
 
     def pulse(self, channel: int) -> float:
         """Read back the pulse width on ``channel``, s (0 when the channel is off)."""
         channel = self._check_channel(channel)
-        on_l, on_h, off_l, off_h = self.device.read_block(LED0_ON_L + 4 * channel, 4)
-        if off_h & FULL_BIT or (on_h & FULL_BIT) == 0 and ((off_h & 0x0F) << 8 | off_l) == 0:
+        on_l, on_h, off_l, off_h = self.device.read_block(led_register(channel), len(Led))
+        on, off = join_count(on_l, on_h), join_count(off_l, off_h)
+        if off_h & LED_FULL or (on_h & LED_FULL) == 0 and off == 0:
             return 0.0
-        if on_h & FULL_BIT:
+        if on_h & LED_FULL:
             return 1.0 / self.frequency
-        on = (on_h & 0x0F) << 8 | on_l
-        off = (off_h & 0x0F) << 8 | off_l
-        return ((off - on) % 4096) / (4096 * self.frequency)
+        return ((off - on) % COUNTS_PER_PERIOD) / (COUNTS_PER_PERIOD * self.frequency)
 
     def channel_off(self, channel: int) -> None:
         """Switch one output off (full OFF bit)."""
         channel = self._check_channel(channel)
-        self.device.write_block(LED0_ON_L + 4 * channel, [0, 0, 0, FULL_BIT])
+        self.device.write_block(led_register(channel), [0, 0, 0, LED_FULL])
 
     def all_off(self) -> None:
         """Switch all 16 outputs off at once (``ALL_LED_OFF_H`` full OFF): the servos go limp."""
-        self.device.write_byte(ALL_LED_OFF_H, FULL_BIT)
+        self.device.write_byte(Register.ALL_LED_OFF_H, LED_FULL)

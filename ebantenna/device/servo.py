@@ -14,6 +14,8 @@ import warnings
 from dataclasses import dataclass
 
 from .._validate import check_int, check_real
+from ..chips.mg996r import PULSE_RANGE, TRAVEL
+from ..chips.pca9685 import N_CHANNELS
 from .pca9685 import PCA9685
 
 __all__ = ["ServoCalibration", "Servo", "ServoLimitWarning"]
@@ -34,7 +36,8 @@ class ServoCalibration:
     channel : int
         PCA9685 output, 0-15.
     min_pulse, max_pulse : float
-        Pulse widths at ``min_angle`` and ``max_angle``, s. Defaults 0.5 ms and 2.5 ms (MG996R).
+        Pulse widths at ``min_angle`` and ``max_angle``, s. Defaults 0.5 ms and 2.5 ms (MG996R,
+        :data:`ebantenna.chips.mg996r.PULSE_RANGE`).
     min_angle, max_angle : float
         The angles those pulses give, degrees. Defaults 0 and 180.
     lower_limit, upper_limit : float
@@ -52,15 +55,15 @@ class ServoCalibration:
     """
 
     channel: int
-    min_pulse: float = 0.5e-3
-    max_pulse: float = 2.5e-3
+    min_pulse: float = PULSE_RANGE[0]
+    max_pulse: float = PULSE_RANGE[1]
     min_angle: float = 0.0
-    max_angle: float = 180.0
+    max_angle: float = TRAVEL
     lower_limit: float | None = None
     upper_limit: float | None = None
 
     def __post_init__(self):
-        check_int("channel", self.channel, minimum=0, maximum=15)
+        check_int("channel", self.channel, minimum=0, maximum=N_CHANNELS - 1)
         for name in ("min_pulse", "max_pulse"):
             value = check_real(name, getattr(self, name))
             if not 0 < value < 0.02:
@@ -115,7 +118,7 @@ class Servo:
     Examples
     --------
     >>> import warnings
-    >>> from ebantenna.device.simbus import SimulatedRig
+    >>> from ebantenna.device.simulated import SimulatedRig
     >>> from ebantenna.device.pca9685 import PCA9685
     >>> from ebantenna.device.servo import Servo, ServoCalibration, ServoLimitWarning
     >>> rig = SimulatedRig.quiet()

@@ -15,10 +15,8 @@ import numpy as np
 import scipy.signal as sps
 
 from ..._validate import check_choice, check_int, check_nonnegative, check_positive
+from ...chips.mpu6050 import ACCEL_NOISE_DENSITY, ACCEL_RANGES_G, DLPF, STANDARD_GRAVITY
 from ._base import _Effect
-
-#: Standard acceleration of gravity, m/s^2 (CGPM 1901); the MPU6050's "g".
-STANDARD_GRAVITY = 9.80665
 
 
 @dataclass(frozen=True)
@@ -155,7 +153,7 @@ class SensorNoise(_Effect):
 
     name: ClassVar[str] = "sensor_noise"
     stream: ClassVar[int] = 3
-    density: float = 400e-6 * STANDARD_GRAVITY
+    density: float = ACCEL_NOISE_DENSITY * STANDARD_GRAVITY
 
     def __post_init__(self):
         check_nonnegative("density", self.density)
@@ -169,9 +167,9 @@ class SensorNoise(_Effect):
         return rng.normal(0.0, self.std(fs), (2, n_samples))
 
 
-#: The MPU6050's accelerometer DLPF bandwidths, Hz, by DLPF_CFG 0..6 (MPU-6000/MPU-6050 Register
-#: Map and Descriptions, rev. 4.2, register 26 CONFIG).
-DLPF_BANDWIDTHS = (260.0, 184.0, 94.0, 44.0, 21.0, 10.0, 5.0)
+#: The MPU6050's accelerometer DLPF bandwidths, Hz, by DLPF_CFG 0..6 (see
+#: :data:`ebantenna.chips.mpu6050.DLPF`).
+DLPF_BANDWIDTHS = tuple(setting.accel_bandwidth for setting in DLPF)
 
 
 @dataclass(frozen=True)
@@ -198,7 +196,7 @@ class LowPassFilter(_Effect):
     """
 
     name: ClassVar[str] = "dlpf"
-    bandwidth: float = 260.0
+    bandwidth: float = DLPF[0].accel_bandwidth
 
     def __post_init__(self):
         check_positive("bandwidth", self.bandwidth)
@@ -248,7 +246,7 @@ class Clipping(_Effect):
     range_g: int = 16
 
     def __post_init__(self):
-        check_choice("range_g", check_int("range_g", self.range_g), (2, 4, 8, 16))
+        check_choice("range_g", check_int("range_g", self.range_g), ACCEL_RANGES_G)
 
     def limits(self) -> tuple[float, float]:
         """Lowest and highest reading, m/s^2."""
@@ -286,7 +284,7 @@ class Quantisation(_Effect):
     range_g: int = 16
 
     def __post_init__(self):
-        check_choice("range_g", check_int("range_g", self.range_g), (2, 4, 8, 16))
+        check_choice("range_g", check_int("range_g", self.range_g), ACCEL_RANGES_G)
 
     def lsb(self) -> float:
         """One count, m/s^2."""

@@ -12,6 +12,7 @@ import pytest
 from smbus2 import i2c_msg
 
 import ebantenna.device as device
+from ebantenna.chips.mpu6050 import ADDRESS_AD0_LOW, Interrupt, Register
 from ebantenna.cli import main
 from ebantenna.device import MPU6050, PCA9685, Faults, PanTilt, SimulatedRig, search_and_record
 from ebantenna.device.mpu6050 import STANDARD_GRAVITY
@@ -31,7 +32,7 @@ def test_smbus_limits_and_missing_chips_behave_like_smbus2():
     assert info.value.errno == errno.EREMOTEIO
     rig.bus.close()
     with pytest.raises(OSError):
-        rig.bus.read_byte_data(0x68, 0x75)
+        rig.bus.read_byte_data(ADDRESS_AD0_LOW, Register.WHO_AM_I)
 
 
 def test_i2c_rdwr_with_smbus2_messages():
@@ -47,11 +48,12 @@ def test_fifo_overflow_sets_the_interrupt_flag_which_clears_on_read():
     mpu.initialize()
     mpu.start_fifo()
     rig.clock.sleep(0.1)
-    assert 590 <= mpu.fifo_count() <= 612 and rig.bus.read_byte_data(0x68, 0x3A) == 0
+    status = (ADDRESS_AD0_LOW, Register.INT_STATUS)
+    assert 590 <= mpu.fifo_count() <= 612 and rig.bus.read_byte_data(*status) == 0
     rig.clock.sleep(0.2)
     assert mpu.fifo_count() == 1024
-    assert rig.bus.read_byte_data(0x68, 0x3A) & 0x10
-    assert rig.bus.read_byte_data(0x68, 0x3A) == 0
+    assert rig.bus.read_byte_data(*status) & Interrupt.FIFO_OFLOW
+    assert rig.bus.read_byte_data(*status) == 0
     # The next drain notices, discards and counts.
     block = mpu.read_fifo()
     assert block.index.size == 0 and block.lost > 0 and mpu.overflows == 1
@@ -62,7 +64,7 @@ def test_error_injection_rate_is_what_was_asked():
     failures = 0
     for _ in range(2000):
         try:
-            rig.bus.read_byte_data(0x68, 0x75)
+            rig.bus.read_byte_data(ADDRESS_AD0_LOW, Register.WHO_AM_I)
         except OSError as exc:
             assert exc.errno == errno.EREMOTEIO
             failures += 1
@@ -92,19 +94,42 @@ def _search(rig, **kwargs):
 
 
 def test_drivers_know_nothing_of_the_simulator():
-    # Only simbus imports ebantenna.simulate, and only inside a function.
+    # Only device/simulated/rig.py imports ebantenna.simulate, and only inside a function.
     root = Path(device.__file__).parent
-    for path in root.glob("*.py"):
+    for path in root.rglob("*.py"):
         tree = ast.parse(path.read_text())
         for node in ast.walk(tree):
-            if isinstance(node, ast.ImportFrom) and "simulate" in (node.module or ""):
-                assert path.name == "simbus.py", path
+            if isinstance(node, ast.ImportFrom) and "simulate" in (node.module or "").split("."):
+                assert path.relative_to(root).as_posix() == "simulated/rig.py", path
         top = [n for n in tree.body if isinstance(n, ast.Import | ast.ImportFrom)]
-        assert not any("simulate" in (getattr(n, "module", "") or "") for n in top), path
+        assert not any("simulate" in (getattr(n, "module", "") or "").split(".")
+                       for n in top), path
     code = ("import sys, ebantenna.device, ebantenna.device._cli; "
             "print('ebantenna.simulate' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def _unnamed_hex_literals(path):
+    """Hexadecimal integers in ``path`` other than the byte mask 0xFF and module-level constants."""
+    text = path.read_text()
+    tree = ast.parse(text)
+    named = {id(node.value) for node in tree.body
+             if isinstance(node, ast.Assign | ast.AnnAssign)
+             and isinstance(node.value, ast.Constant)}
+    for node in ast.walk(tree):
+        if (isinstance(node, ast.Constant) and type(node.value) is int and id(node) not in named
+                and node.value != 0xFF
+                and ast.get_source_segment(text, node).lower().startswith("0x")):
+            yield f"{path.name}:{node.lineno}: {ast.get_source_segment(text, node)}"
+
+
+def test_register_numbers_come_from_the_chip_maps():
+    # Drivers and simulated chips name every register and bit through ebantenna.chips.
+    root = Path(device.__file__).parent
+    paths = [root / "mpu6050.py", root / "pca9685.py", *sorted((root / "simulated").glob("*.py"))]
+    found = [hit for path in paths for hit in _unnamed_hex_literals(path)]
+    assert found == []
 
 
 @pytest.mark.parametrize("material, ratio", [("brass", 0.3), ("wood", 0.7)])

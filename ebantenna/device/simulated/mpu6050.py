@@ -1,0 +1,209 @@
+"""The simulated MPU-6050: its registers, sampling, quantisation and FIFO.
+
+It samples at the rate ``CONFIG`` and ``SMPLRT_DIV`` set, quantises to the range ``ACCEL_CONFIG``
+sets and fills a 1024-byte FIFO that overflows (overwriting its oldest bytes and raising
+``FIFO_OFLOW_INT``) when drained too slowly; see :mod:`ebantenna.chips.mpu6050` for the register
+map and its source. What it measures comes from a ``source`` callable; it does not model the
+chip's own low-pass filter.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+
+from ...chips.mpu6050 import (
+    ACCEL_LSB_PER_G,
+    ACCEL_SAMPLE_BYTES,
+    AFS_SEL,
+    DATA_DTYPE,
+    DLPF_CFG,
+    FIFO_SIZE,
+    POWER_ON,
+    READ_ONLY,
+    STANDARD_GRAVITY,
+    USER_CONTROL_SELF_CLEARING,
+    WHO_AM_I_VALUE,
+    FifoEnable,
+    Interrupt,
+    PowerManagement1,
+    Register,
+    UserControl,
+    gyro_output_rate,
+)
+
+__all__ = ["SimulatedMPU6050"]
+
+#: Registers modelled: the 128 addresses 0x00-0x7F, which hold the whole map (RM section 3 ends at
+#: 0x75); a burst read stops advancing at the last of them.
+_REGISTER_SPACE = 128
+#: What a read of the empty FIFO returns in this model.
+_EMPTY_FIFO_BYTE = 0xFF
+_COUNT_LIMITS = np.iinfo(np.int16)
+
+
+class SimulatedMPU6050:
+    """Register model of the MPU-6050: sleep, sample rate, range, FIFO with overflow.
+
+    Parameters
+    ----------
+    source : callable
+        ``source(times, fs)`` returns the (n, 3) accelerations in m/s^2 at the sample times
+        ``times`` (s) for the sample rate ``fs`` (Hz).
+    clock : VirtualClock
+        The bus's clock.
+    who_am_i : int
+        What ``WHO_AM_I`` reads.
+
+    Attributes
+    ----------
+    regs : bytearray
+        The register file, by address.
+    fifo : bytearray
+        The bytes waiting in the FIFO, oldest first.
+    overflowed_bytes : int
+        Bytes overwritten by overflows.
+    samples_pushed : int
+        Samples written into the FIFO.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ebantenna.chips.mpu6050 import Register, UserControl, FifoEnable
+    >>> from ebantenna.device.clock import VirtualClock
+    >>> from ebantenna.device.simulated import SimulatedMPU6050
+    >>> clock = VirtualClock()
+    >>> mpu = SimulatedMPU6050(lambda t, fs: np.zeros((t.size, 3)), clock)
+    >>> mpu.sample_rate(), mpu.lsb_per_g()
+    (8000.0, 16384)
+    >>> mpu.write(Register.PWR_MGMT_1, [0]); mpu.write(Register.SMPLRT_DIV, [7])
+    >>> mpu.write(Register.FIFO_EN, [FifoEnable.ACCEL])
+    >>> mpu.write(Register.USER_CTRL, [UserControl.FIFO_EN])
+    >>> clock.sleep(0.0105); mpu.read(Register.FIFO_COUNTH, 2)  # 10 samples of 6 bytes
+    [0, 60]
+    """
+
+    FIFO_SIZE = FIFO_SIZE
+
+    def __init__(self, source: Callable, clock, *, who_am_i: int = WHO_AM_I_VALUE):
+        self.source = source
+        self.clock = clock
+        self.who_am_i = who_am_i
+        self.regs = bytearray(_REGISTER_SPACE)
+        self.fifo = bytearray()
+        self.overflowed_bytes = 0
+        self.samples_pushed = 0
+        self.reset()
+
+    def reset(self) -> None:
+        """Power-on state (RM section 3): all zero but ``PWR_MGMT_1`` (asleep) and ``WHO_AM_I``."""
+        self.regs[:] = bytes(_REGISTER_SPACE)
+        for register, value in POWER_ON.items():
+            self.regs[register] = value
+        self.regs[Register.WHO_AM_I] = self.who_am_i
+        self.fifo.clear()
+        self._since = None
+        self._produced = 0
+
+    def sample_rate(self) -> float:
+        """Sample rate set by CONFIG and SMPLRT_DIV, Hz (RM register 25)."""
+        gyro_rate = gyro_output_rate(DLPF_CFG.get(self.regs[Register.CONFIG]))
+        return gyro_rate / (1 + self.regs[Register.SMPLRT_DIV])
+
+    def lsb_per_g(self) -> int:
+        """Sensitivity from ACCEL_CONFIG.AFS_SEL, LSB/g."""
+        return ACCEL_LSB_PER_G[AFS_SEL.get(self.regs[Register.ACCEL_CONFIG])]
+
+    def _producing(self) -> bool:
+        regs = self.regs
+        return (not regs[Register.PWR_MGMT_1] & PowerManagement1.SLEEP
+                and bool(regs[Register.USER_CTRL] & UserControl.FIFO_EN)
+                and bool(regs[Register.FIFO_EN] & FifoEnable.ACCEL))
+
+    def _counts(self, times: np.ndarray) -> np.ndarray:
+        acc = np.asarray(self.source(times, self.sample_rate()), dtype=np.float64)
+        counts = np.rint(acc / STANDARD_GRAVITY * self.lsb_per_g())
+        return np.clip(counts, _COUNT_LIMITS.min, _COUNT_LIMITS.max).astype(DATA_DTYPE)
+
+    def _catch_up(self) -> None:
+        if self._since is None:
+            return
+        now = self.clock.monotonic()
+        fs = self.sample_rate()
+        target = int(math.floor((now - self._since) * fs + 1e-9))
+        if target <= self._produced:
+            return
+        k = np.arange(self._produced, target)
+        times = self._since + (k + 1) / fs
+        self.fifo += self._counts(times).tobytes()
+        self.samples_pushed += k.size
+        self._produced = target
+        excess = len(self.fifo) - self.FIFO_SIZE
+        if excess > 0:
+            # RM register 35 / PS 7.17: the oldest data are overwritten.
+            del self.fifo[:excess]
+            self.overflowed_bytes += excess
+            if self.regs[Register.INT_ENABLE] & Interrupt.FIFO_OFLOW:
+                self.regs[Register.INT_STATUS] |= Interrupt.FIFO_OFLOW
+
+    def _update_state(self, was_producing: bool) -> None:
+        producing = self._producing()
+        if producing and not was_producing:
+            self._since = self.clock.monotonic()
+            self._produced = 0
+        elif was_producing and not producing:
+            self._since = None
+
+    def read(self, register: int, length: int) -> list[int]:
+        """Read ``length`` bytes from ``register`` on, as one I2C read transfer does."""
+        self._catch_up()
+        out = []
+        reg = register
+        for _ in range(length):
+            if reg == Register.FIFO_R_W:
+                out.append(self.fifo.pop(0) if self.fifo else _EMPTY_FIFO_BYTE)
+                continue
+            if reg == Register.FIFO_COUNTH:
+                value = len(self.fifo) >> 8
+            elif reg == Register.FIFO_COUNTL:
+                value = len(self.fifo) & 0xFF
+            elif Register.ACCEL_XOUT_H <= reg <= Register.ACCEL_ZOUT_L:
+                value = self._latest()[reg - Register.ACCEL_XOUT_H]
+            else:
+                value = self.regs[reg]
+                if reg == Register.INT_STATUS:
+                    self.regs[reg] = 0  # cleared by reading (INT_PIN_CFG.INT_RD_CLEAR = 0)
+            out.append(value)
+            reg = min(reg + 1, _REGISTER_SPACE - 1)
+        return out
+
+    def _latest(self) -> bytes:
+        if self.regs[Register.PWR_MGMT_1] & PowerManagement1.SLEEP:
+            return bytes(ACCEL_SAMPLE_BYTES)
+        fs = self.sample_rate()
+        tick = math.floor(self.clock.monotonic() * fs) / fs
+        return self._counts(np.array([tick])).tobytes()
+
+    def write(self, register: int, data) -> None:
+        """Write ``data`` from ``register`` on, as one I2C write transfer does."""
+        self._catch_up()
+        for k, value in enumerate(data):
+            reg = (register + k) % _REGISTER_SPACE
+            was = self._producing()
+            if reg == Register.PWR_MGMT_1 and value & PowerManagement1.DEVICE_RESET:
+                self.reset()
+                continue
+            if reg == Register.FIFO_EN and value & ~int(FifoEnable.ACCEL):
+                raise ValueError(
+                    "the simulated MPU-6050 models only accelerometer data in the FIFO "
+                    f"(FIFO_EN = 0x{int(FifoEnable.ACCEL):02X}); got FIFO_EN = 0x{int(value):02X}")
+            if reg in READ_ONLY:
+                continue
+            if reg == Register.USER_CTRL:
+                if value & UserControl.FIFO_RESET and not value & UserControl.FIFO_EN:
+                    self.fifo.clear()
+                value &= ~int(USER_CONTROL_SELF_CLEARING) & 0xFF  # reset bits clear themselves
+            self.regs[reg] = value
+            self._update_state(was)

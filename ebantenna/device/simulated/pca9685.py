@@ -1,0 +1,136 @@
+"""The simulated PCA9685: its registers with the datasheet's rules, driving two simulated MG996R.
+
+It keeps ``PRE_SCALE`` writable only while asleep, auto-increments the register address only with
+``MODE1.AI``, spreads the ``ALL_LED`` registers to every output and honours the full-OFF and
+full-ON bits (see :mod:`ebantenna.chips.pca9685` for the map and its source). Whenever a write
+changes the pulse width on a servo's output it commands that servo of the :class:`World`.
+"""
+
+from __future__ import annotations
+
+from ..._validate import check_int
+from ...chips.pca9685 import (
+    COUNTS_PER_PERIOD,
+    LED_FULL,
+    N_CHANNELS,
+    OSCILLATOR_HZ,
+    POWER_ON,
+    Led,
+    Mode1,
+    Register,
+    join_count,
+    led_register,
+)
+from .world import World, mg996r_angle
+
+__all__ = ["SimulatedPCA9685"]
+
+#: Register addresses are one byte; with ``MODE1.AI`` set they roll over from 0xFF to 0x00.
+_REGISTER_SPACE = 256
+
+
+class SimulatedPCA9685:
+    """Register model of the PCA9685 driving two simulated MG996R servos.
+
+    Parameters
+    ----------
+    world : World
+        The servo motion model it commands.
+    clock : VirtualClock
+        The bus's clock.
+    pan_channel, tilt_channel : int
+        Outputs the two servos hang on.
+    oscillator_hz : float
+        The chip's oscillator, Hz.
+
+    Attributes
+    ----------
+    regs : bytearray
+        The register file, by address.
+    prescale_blocked : int
+        Writes to ``PRE_SCALE`` ignored because the chip was awake (DS 7.3.5).
+
+    Examples
+    --------
+    >>> from ebantenna.chips.pca9685 import Mode1, Register
+    >>> from ebantenna.device.clock import VirtualClock
+    >>> from ebantenna.device.simulated import SimulatedPCA9685, World
+    >>> pca = SimulatedPCA9685(World(None, rate=300.0), VirtualClock())
+    >>> pca.write(Register.PRE_SCALE, [121]); round(pca.frequency(), 2)
+    50.03
+    >>> pca.write(Register.MODE1, [Mode1.AI]); pca.write(Register.PRE_SCALE, [3])
+    >>> pca.prescale_blocked, pca.read(Register.PRE_SCALE, 1)
+    (1, [121])
+    """
+
+    def __init__(self, world: World, clock, *, pan_channel: int = 0, tilt_channel: int = 1,
+                 oscillator_hz: float = OSCILLATOR_HZ):
+        self.world = world
+        self.clock = clock
+        last = N_CHANNELS - 1
+        self.channels = {check_int("pan_channel", pan_channel, minimum=0, maximum=last): "pan",
+                         check_int("tilt_channel", tilt_channel, minimum=0, maximum=last): "tilt"}
+        self.oscillator_hz = oscillator_hz
+        self.regs = bytearray(_REGISTER_SPACE)
+        self.prescale_blocked = 0
+        self.reset()
+
+    def reset(self) -> None:
+        """Power-on state (DS 7.3): asleep, every output full off, 200 Hz."""
+        self.regs[:] = bytes(_REGISTER_SPACE)
+        for register, value in POWER_ON.items():
+            self.regs[register] = value
+        self._apply()
+
+    def frequency(self) -> float:
+        """PWM frequency set by PRE_SCALE, Hz."""
+        return self.oscillator_hz / (COUNTS_PER_PERIOD * (self.regs[Register.PRE_SCALE] + 1))
+
+    def pulse(self, channel: int) -> float:
+        """Pulse width now on ``channel``, s (0 when it is off or the chip sleeps)."""
+        if self.regs[Register.MODE1] & Mode1.SLEEP:
+            return 0.0
+        first = led_register(channel)
+        on_l, on_h, off_l, off_h = self.regs[first:first + len(Led)]
+        if off_h & LED_FULL or on_h & LED_FULL:
+            return 0.0  # full off, or full on (no pulses: a servo ignores it)
+        width = (join_count(off_l, off_h) - join_count(on_l, on_h)) % COUNTS_PER_PERIOD
+        return width / (COUNTS_PER_PERIOD * self.frequency())
+
+    def outputs_enabled(self) -> bool:
+        """Whether any servo channel is producing pulses."""
+        return any(self.pulse(ch) > 0 for ch in self.channels)
+
+    def _apply(self) -> None:
+        now = self.clock.monotonic()
+        for ch, axis in self.channels.items():
+            angle = mg996r_angle(self.pulse(ch))
+            servo = self.world.pan if axis == "pan" else self.world.tilt
+            if angle != servo.target:
+                self.world.command(now, axis, angle)
+
+    def _step(self) -> int:
+        return 1 if self.regs[Register.MODE1] & Mode1.AI else 0
+
+    def read(self, register: int, length: int) -> list[int]:
+        """Read ``length`` bytes from ``register`` on, as one I2C read transfer does."""
+        step = self._step()
+        return [self.regs[(register + k * step) % _REGISTER_SPACE] for k in range(length)]
+
+    def write(self, register: int, data) -> None:
+        """Write ``data`` from ``register`` on, as one I2C write transfer does."""
+        step = self._step()
+        for k, value in enumerate(data):
+            reg = (register + k * step) % _REGISTER_SPACE
+            if reg == Register.PRE_SCALE and not self.regs[Register.MODE1] & Mode1.SLEEP:
+                self.prescale_blocked += 1  # DS 7.3.5: PRE_SCALE is blocked while awake
+                continue
+            if reg == Register.MODE1:
+                value &= ~int(Mode1.RESTART) & 0xFF  # RESTART restarts the PWM and clears itself
+            if Register.ALL_LED_ON_L <= reg <= Register.ALL_LED_OFF_H:
+                part = Led(reg - Register.ALL_LED_ON_L)
+                for ch in range(N_CHANNELS):
+                    self.regs[led_register(ch, part)] = value
+                continue
+            self.regs[reg] = value
+        self._apply()

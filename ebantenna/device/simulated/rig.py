@@ -1,0 +1,212 @@
+"""The simulated rig: pan-tilt unit, probe, accelerometer and post behind a simulated bus.
+
+Before the contact the accelerometer reads the vibration's rest level (:attr:`SimulatedRig.rest`)
+plus a little white noise; from the first sample at or after the contact on it plays the vibration
+:class:`~ebantenna.recording.Recording`, sample for sample, so that what the driver reads back
+matches it to within one LSB. The vibration comes either from given arrays or from the scene
+simulator (:meth:`SimulatedRig.from_scene`, :meth:`SimulatedRig.for_contact`). This module is the
+only place in :mod:`ebantenna.device` that imports :mod:`ebantenna.simulate`, and only when the
+accelerometer first samples. The sensor reports what the simulator computes (with gravity if the
+scene includes it).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..._validate import check_in_range, check_int, check_nonnegative, check_positive
+from ...chips.mpu6050 import ADDRESS_AD0_LOW
+from ...chips.pca9685 import DEFAULT_ADDRESS
+from ...recording import Recording
+from ..clock import VirtualClock
+from .bus import SimulatedBus
+from .faults import Faults
+from .mpu6050 import SimulatedMPU6050
+from .pca9685 import SimulatedPCA9685
+from .world import DEFAULT_OBSTACLE, MG996R_SLEW_RATE, Obstacle, World
+
+__all__ = ["SimulatedRig"]
+
+
+class SimulatedRig:
+    """Pan-tilt unit, probe, accelerometer and obstacle, behind a :class:`SimulatedBus`.
+
+    Parameters
+    ----------
+    vibration : Recording or callable or None
+        The tip acceleration from the contact on: a recording, or ``vibration(fs)`` returning one
+        for the sample rate the accelerometer is set to (called once, at the first sample); or None.
+        Outside it the sensor reads :attr:`rest` plus noise.
+    obstacle : Obstacle or None
+        Where the post is (default
+        :data:`~ebantenna.device.simulated.world.DEFAULT_OBSTACLE`); None for empty space (no
+        contact ever).
+    faults : Faults, optional
+        Faults to inject.
+    seed : int
+        Seed of the sensor noise and of the fault injector.
+    noise : float
+        Standard deviation of the sensor noise outside the vibration, m/s^2. Default 0.02.
+    slew_rate : float
+        Servo speed, degrees/s. Default the MG996R's.
+
+    Attributes
+    ----------
+    bus : SimulatedBus
+    clock : VirtualClock
+    world : World
+        Servos, post and contact.
+    mpu : SimulatedMPU6050
+        The accelerometer, at address 0x68.
+    pca : SimulatedPCA9685
+        The servo controller, at address 0x40.
+
+    Examples
+    --------
+    >>> from ebantenna.chips.mpu6050 import ADDRESS_AD0_LOW, Register, WHO_AM_I_VALUE
+    >>> from ebantenna.device.simulated import SimulatedRig
+    >>> rig = SimulatedRig.quiet(seed=2)
+    >>> rig.bus.read_byte_data(ADDRESS_AD0_LOW, Register.WHO_AM_I) == WHO_AM_I_VALUE
+    True
+    >>> rig.contact_time is None
+    True
+    """
+
+    def __init__(self, vibration=None, *, obstacle: Obstacle | None = DEFAULT_OBSTACLE,
+                 faults: Faults | None = None, seed: int = 0, noise: float = 0.02,
+                 slew_rate: float = MG996R_SLEW_RATE):
+        if not (vibration is None or isinstance(vibration, Recording) or callable(vibration)):
+            raise TypeError("vibration must be a Recording, a callable or None, got "
+                            f"{type(vibration).__name__}")
+        seed = check_int("seed", seed, minimum=0)
+        self.noise = check_nonnegative("noise", noise)
+        self._vibration = vibration
+        self._recording = vibration if isinstance(vibration, Recording) else None
+        noise_seed, bus_seed = np.random.SeedSequence(seed).spawn(2)
+        self._rng = np.random.default_rng(noise_seed)
+        self.clock = VirtualClock()
+        self.bus = SimulatedBus(self.clock, faults=faults,
+                                seed=int(bus_seed.generate_state(1)[0]))
+        if not (obstacle is None or isinstance(obstacle, Obstacle)):
+            raise TypeError(f"obstacle must be an Obstacle or None, got {type(obstacle).__name__}")
+        self.world = World(obstacle, check_positive("slew_rate", slew_rate))
+        self.mpu = SimulatedMPU6050(self._acceleration, self.clock,
+                                    who_am_i=self.bus.faults.who_am_i)
+        self.pca = SimulatedPCA9685(self.world, self.clock)
+        self.bus.devices = {ADDRESS_AD0_LOW: self.mpu, DEFAULT_ADDRESS: self.pca}
+        #: Time of the first sample at or after the contact, s.
+        self.contact_sample_time = None
+
+    @classmethod
+    def quiet(cls, *, seed: int = 0, faults: Faults | None = None) -> SimulatedRig:
+        """A rig in empty space: noise only, never a contact."""
+        return cls(None, obstacle=None, seed=seed, faults=faults)
+
+    @classmethod
+    def from_arrays(cls, ax, az, fs: float, **kwargs) -> SimulatedRig:
+        """A rig whose contact plays the given accelerations (m/s^2) sampled at ``fs`` (Hz)."""
+        ax = np.asarray(ax, dtype=np.float64)
+        rec = Recording(np.arange(ax.size) / check_positive("fs", fs), ax, az, fs,
+                        {"source": "arrays"})
+        return cls(rec, **kwargs)
+
+    @classmethod
+    def from_scene(cls, scene, *, seed: int = 0, **kwargs) -> SimulatedRig:
+        """A rig whose contact plays ``simulate(scene, seed=seed)`` (its contact and material).
+
+        The simulator is imported and run only when the accelerometer first samples, at its
+        configured sample rate.
+        """
+        def vibration(fs: float) -> Recording:
+            from ...simulate import simulate
+
+            run = scene if math.isclose(scene.fs, fs) else scene.with_(fs=fs)
+            return simulate(run, seed=seed)
+
+        return cls(vibration, seed=seed, **kwargs)
+
+    @classmethod
+    def for_contact(cls, *, scene: str = "paper", material: str = "brass", ratio: float = 0.5,
+                    seed: int = 0, **kwargs) -> SimulatedRig:
+        """A rig whose probe touches ``material`` at ``ratio`` of its length, in a built-in scene.
+
+        Parameters
+        ----------
+        scene : str
+            Name of a built-in scene of :mod:`ebantenna.simulate` ("paper" or "ideal").
+        material : str
+            Touched material (see :func:`ebantenna.probe.material_names`).
+        ratio : float
+            Contact distance from the hinge over the probe length, in (0, 1).
+        seed : int
+            Seed of the simulation, the sensor noise and the faults.
+        """
+        ratio = check_in_range("ratio", ratio, 0.0, 1.0)
+        from ...simulate import builtin_scene
+
+        base = builtin_scene(scene)
+        chosen = base.with_(contact=ratio * base.probe.length, material=material)
+        return cls.from_scene(chosen, seed=seed, **kwargs)
+
+    def touch(self, at: float | None = None) -> None:
+        """Put the probe in contact from virtual time ``at`` (s; default now), whatever the servos.
+
+        For exercising the accelerometer alone: from then on it plays the vibration.
+        """
+        now = self.clock.monotonic()
+        at = now if at is None else check_nonnegative("at", at)
+        if at < now:
+            raise ValueError(f"at must be >= the current time {now!r} s, got {at!r}")
+        if self.world.contact_time is not None:
+            raise ValueError("the probe is already in contact")
+        self.world.advance_to(now)
+        self.world.contact_time = at
+
+    @property
+    def contact_time(self) -> float | None:
+        """Virtual time at which the probe met the obstacle, s (None before that)."""
+        self.world.advance_to(self.clock.monotonic())
+        return self.world.contact_time
+
+    @property
+    def vibration(self) -> Recording | None:
+        """The recording played from the contact on (None before it is needed)."""
+        return self._recording
+
+    @property
+    def rest(self) -> np.ndarray:
+        """The steady reading (X, Y, Z) outside the vibration, m/s^2: the mean of the last tenth
+        of the vibration (where it has died away; gravity, if the simulator includes it), or 0."""
+        rec = self._recording
+        if rec is None:
+            return np.zeros(3)
+        tail = max(1, rec.n_samples // 10)
+        return np.array([rec.ax[-tail:].mean(), 0.0, rec.az[-tail:].mean()])
+
+    def _acceleration(self, times: np.ndarray, fs: float) -> np.ndarray:
+        self.world.advance_to(self.clock.monotonic())
+        if self._vibration is not None and self._recording is None:
+            self._recording = self._vibration(fs)
+            if not isinstance(self._recording, Recording):
+                raise TypeError("vibration(fs) must return a Recording")
+        rec = self._recording
+        if rec is not None and not math.isclose(rec.fs, fs):
+            raise ValueError(f"the vibration is sampled at {rec.fs:g} Hz but the simulated "
+                             f"MPU-6050 is set to {fs:g} Hz")
+        acc = self.rest + self._rng.normal(0.0, self.noise, (times.size, 3))
+        contact = self.world.contact_time
+        if contact is None or rec is None:
+            return acc
+        after = times >= contact - 1e-12
+        if not after.any():
+            return acc
+        if self.contact_sample_time is None:
+            self.contact_sample_time = float(times[after][0])
+        j = np.rint((times - self.contact_sample_time) * fs).astype(np.int64)
+        play = after & (j >= 0) & (j < rec.n_samples)
+        acc[play, 0] = rec.ax[j[play]]
+        acc[play, 1] = 0.0
+        acc[play, 2] = rec.az[j[play]]
+        return acc

@@ -1,0 +1,112 @@
+"""The simulated chips follow their datasheets' register rules, register by register."""
+
+import errno
+
+import numpy as np
+import pytest
+
+from ebantenna.chips import mpu6050 as mpu_map
+from ebantenna.chips import pca9685 as pca_map
+from ebantenna.device.clock import VirtualClock
+from ebantenna.device.simulated import (
+    FaultInjector,
+    Faults,
+    SimulatedBus,
+    SimulatedMPU6050,
+    SimulatedPCA9685,
+    World,
+)
+
+R = mpu_map.Register
+P = pca_map.Register
+
+
+def _mpu(clock=None):
+    return SimulatedMPU6050(lambda t, fs: np.ones((t.size, 3)), clock or VirtualClock())
+
+
+def test_mpu6050_power_on_and_device_reset():
+    mpu = _mpu()
+    assert mpu.read(R.PWR_MGMT_1, 1) == [0x40] and mpu.read(R.WHO_AM_I, 1) == [0x68]
+    mpu.write(R.PWR_MGMT_1, [0])
+    mpu.write(R.ACCEL_CONFIG, [0x18])
+    assert mpu.lsb_per_g() == 2048
+    mpu.write(R.PWR_MGMT_1, [mpu_map.PowerManagement1.DEVICE_RESET])
+    assert mpu.read(R.PWR_MGMT_1, 1) == [0x40] and mpu.lsb_per_g() == 16384
+
+
+def test_mpu6050_read_only_registers_ignore_writes_and_reset_bits_clear_themselves():
+    mpu = _mpu()
+    mpu.write(R.WHO_AM_I, [0x00])
+    mpu.write(R.ACCEL_XOUT_H, [0x12])
+    assert mpu.read(R.WHO_AM_I, 1) == [0x68]
+    mpu.write(R.USER_CTRL, [0x40 | 0x04 | 0x02 | 0x01])
+    assert mpu.read(R.USER_CTRL, 1) == [0x40]
+
+
+def test_mpu6050_models_only_accelerometer_data_in_the_fifo():
+    with pytest.raises(ValueError, match="FIFO_EN = 0x08\\); got FIFO_EN = 0x48"):
+        _mpu().write(R.FIFO_EN, [0x48])
+
+
+def test_mpu6050_rates_follow_the_filter_setting():
+    # RM 25: 8 kHz with the filter off (DLPF_CFG 0 or 7), 1 kHz with it on, divided by 1 + div.
+    mpu = _mpu()
+    for cfg, div, rate in [(0, 7, 1000.0), (1, 0, 1000.0), (3, 1, 500.0), (7, 3, 2000.0)]:
+        mpu.write(R.CONFIG, [cfg])
+        mpu.write(R.SMPLRT_DIV, [div])
+        assert mpu.sample_rate() == rate
+
+
+def test_mpu6050_burst_read_of_the_data_registers_is_one_sample():
+    clock = VirtualClock()
+    mpu = _mpu(clock)
+    mpu.write(R.PWR_MGMT_1, [0])
+    clock.sleep(0.01)
+    raw = bytes(mpu.read(R.ACCEL_XOUT_H, 6))
+    counts = np.frombuffer(raw, dtype=">i2")
+    # 1 m/s^2 at +/-2 g: 16384 / 9.80665 LSB, rounded.
+    assert counts.tolist() == [1671, 1671, 1671]
+
+
+def test_pca9685_all_led_registers_write_every_output():
+    pca = SimulatedPCA9685(World(None, rate=300.0), VirtualClock())
+    pca.write(P.ALL_LED_OFF_L, [0x34])
+    assert all(pca.regs[pca_map.led_register(ch, pca_map.Led.OFF_L)] == 0x34 for ch in range(16))
+    assert pca.read(P.ALL_LED_OFF_L, 1) == [0]
+
+
+def test_pca9685_auto_increment_only_with_mode1_ai():
+    pca = SimulatedPCA9685(World(None, rate=300.0), VirtualClock())
+    pca.write(P.LED0_ON_L, [1, 2])  # AI off: both bytes land in LED0_ON_L
+    assert pca.read(P.LED0_ON_L, 2) == [2, 2]
+    pca.write(P.MODE1, [pca_map.Mode1.AI | pca_map.Mode1.RESTART])
+    assert pca.read(P.MODE1, 1) == [0x20]  # RESTART clears itself
+    pca.write(P.LED0_ON_L, [1, 2])
+    assert pca.read(P.LED0_ON_L, 2) == [1, 2]
+
+
+def test_fault_injector_draws_from_its_own_seed():
+    a, b = (FaultInjector(Faults(error_rate=0.5), seed=3) for _ in range(2))
+    draws = [(a.transfer_error() is None, b.transfer_error() is None) for _ in range(50)]
+    assert all(x == y for x, y in draws) and a.errors_injected == 50 - sum(x for x, _ in draws)
+    error = FaultInjector(Faults(error_rate=0.999), seed=0).transfer_error()
+    assert isinstance(error, OSError) and error.errno == errno.EREMOTEIO
+    with pytest.raises(TypeError, match="faults must be a Faults"):
+        SimulatedBus(faults={"error_rate": 0.1})
+
+
+def test_bus_time_per_transfer():
+    # 50 us overhead plus (9 (n + 2) + 2) clocks at 100 kHz for n = 2 data bytes.
+    bus = SimulatedBus(devices={0x68: _mpu()}, bus_hz=100e3)
+    bus.read_i2c_block_data(0x68, R.FIFO_COUNTH, 2)
+    assert bus.clock.monotonic() == pytest.approx(50e-6 + 38 / 100e3, rel=1e-12)
+
+
+def test_the_default_calibration_drives_the_simulated_servo_to_the_commanded_angle():
+    from ebantenna.device.servo import ServoCalibration
+    from ebantenna.device.simulated.world import mg996r_angle
+
+    cal = ServoCalibration(channel=0)
+    for angle in (0.0, 20.0, 90.0, 160.0, 180.0):
+        assert mg996r_angle(cal.pulse(angle)) == pytest.approx(angle, abs=1e-9)

@@ -26,6 +26,7 @@ from sklearn.utils.validation import (
 )
 
 from .._validate import check_choice, check_positive
+from .fitted import INPUT_ATTRIBUTES, FittedAttribute
 from .kernels import KERNELS, Kernel, KernelRows, resolve_gamma
 from .smo import DEFAULT, LIBSVM, SELECTIONS, SMOPolicy, solve_smo
 
@@ -153,6 +154,24 @@ class SVC(ClassifierMixin, BaseEstimator):
     """
 
     _parameter_constraints: dict = {}
+
+    #: Every attribute that :meth:`fit` sets (see :mod:`ebantenna.ml.fitted`).
+    _fitted_schema = (
+        FittedAttribute("classes_", "array", ndim=1),
+        FittedAttribute("class_weight_", "array", dtype="float64", ndim=1),
+        FittedAttribute("support_", "array", dtype="int32", ndim=1),
+        FittedAttribute("support_vectors_", "array", dtype="float64", ndim=2),
+        FittedAttribute("n_support_", "array", dtype="int32", ndim=1),
+        FittedAttribute("dual_coef_", "array", dtype="float64", ndim=2),
+        FittedAttribute("intercept_", "array", dtype="float64", ndim=1),
+        FittedAttribute("_dual_coef_", "array", dtype="float64", ndim=2),
+        FittedAttribute("_intercept_", "array", dtype="float64", ndim=1),
+        FittedAttribute("n_iter_", "array", dtype="int32", ndim=1),
+        FittedAttribute("_gamma", "value"),
+        FittedAttribute("fit_status_", "value"),
+        FittedAttribute("shape_fit_", "value", since=2),
+        *INPUT_ATTRIBUTES,
+    )
 
     def __init__(
         self,

@@ -76,6 +76,7 @@ __all__ = ["SMOPolicy", "DEFAULT", "LIBSVM", "SMOResult", "solve_smo", "KernelRo
 
 logger = logging.getLogger(__name__)
 
+
 @dataclass(frozen=True)
 class SMOResult:
     """Solution of one binary SVM dual problem.

@@ -14,8 +14,9 @@ from dataclasses import replace
 from numbers import Integral, Real
 
 import numpy as np
-from sklearn.base import BaseEstimator, ClassifierMixin
+from sklearn.base import BaseEstimator, ClassifierMixin, _fit_context
 from sklearn.exceptions import ConvergenceWarning
+from sklearn.utils._param_validation import Interval, Options, StrOptions
 from sklearn.utils.class_weight import compute_class_weight
 from sklearn.utils.multiclass import check_classification_targets
 from sklearn.utils.validation import (
@@ -25,9 +26,9 @@ from sklearn.utils.validation import (
     validate_data,
 )
 
-from .._validate import check_choice, check_positive
-from .kernels import KERNELS, Kernel, KernelRows, resolve_gamma
-from .smo import DEFAULT, LIBSVM, SELECTIONS, SMOPolicy, solve_smo
+from .fitted import INPUT_ATTRIBUTES, FittedAttribute
+from .kernels import Kernel, KernelRows, resolve_gamma
+from .smo import DEFAULT, LIBSVM, SMOPolicy, solve_smo
 
 __all__ = ["SVC", "ovr_decision_function"]
 
@@ -110,7 +111,7 @@ class SVC(ClassifierMixin, BaseEstimator):
     break_ties : bool, default=False
         With 'ovr' and more than two classes, predict the argmax of the decision function instead
         of the majority vote.
-    random_state : None
+    random_state : int, RandomState instance or None, default=None
         Accepted for compatibility; the solver is deterministic.
     selection : {'second-order', 'first-order'}, default='second-order'
         Working-set selection: libsvm's second-order rule or the maximal violating pair.
@@ -152,7 +153,44 @@ class SVC(ClassifierMixin, BaseEstimator):
     array([0, 1])
     """
 
-    _parameter_constraints: dict = {}
+    # scikit-learn's constraints and wording for the parameters shared with sklearn.svm.SVC;
+    # C must be finite and max_iter=0 (no update at all) is refused
+    _parameter_constraints: dict = {
+        "C": [Interval(Real, 0.0, None, closed="neither")],
+        "kernel": [StrOptions({"linear", "rbf", "poly"})],
+        "degree": [Interval(Integral, 0, None, closed="left")],
+        "gamma": [StrOptions({"scale", "auto"}), Interval(Real, 0.0, None, closed="left")],
+        "coef0": [Interval(Real, None, None, closed="neither")],
+        "shrinking": ["boolean"],
+        "tol": [Interval(Real, 0.0, None, closed="neither")],
+        "cache_size": [Interval(Real, 0, None, closed="neither")],
+        "class_weight": [StrOptions({"balanced"}), dict, None],
+        "verbose": ["verbose"],
+        "max_iter": [Interval(Integral, 1, None, closed="left"), Options(Integral, {-1})],
+        "decision_function_shape": [StrOptions({"ovr", "ovo"})],
+        "break_ties": ["boolean"],
+        "random_state": ["random_state"],
+        "selection": [StrOptions({"second-order", "first-order"})],
+        "libsvm_compat": ["boolean"],
+    }
+
+    #: Every attribute that :meth:`fit` sets (see :mod:`ebantenna.ml.fitted`).
+    _fitted_schema = (
+        FittedAttribute("classes_", "array", ndim=1),
+        FittedAttribute("class_weight_", "array", dtype="float64", ndim=1),
+        FittedAttribute("support_", "array", dtype="int32", ndim=1),
+        FittedAttribute("support_vectors_", "array", dtype="float64", ndim=2),
+        FittedAttribute("n_support_", "array", dtype="int32", ndim=1),
+        FittedAttribute("dual_coef_", "array", dtype="float64", ndim=2),
+        FittedAttribute("intercept_", "array", dtype="float64", ndim=1),
+        FittedAttribute("_dual_coef_", "array", dtype="float64", ndim=2),
+        FittedAttribute("_intercept_", "array", dtype="float64", ndim=1),
+        FittedAttribute("n_iter_", "array", dtype="int32", ndim=1),
+        FittedAttribute("_gamma", "value"),
+        FittedAttribute("fit_status_", "value"),
+        FittedAttribute("shape_fit_", "value", since=2),
+        *INPUT_ATTRIBUTES,
+    )
 
     def __init__(
         self,
@@ -191,28 +229,8 @@ class SVC(ClassifierMixin, BaseEstimator):
         self.selection = selection
         self.libsvm_compat = libsvm_compat
 
-    # ------------------------------------------------------------------ checks
-    def _check_params(self):
-        check_positive("C", self.C)
-        check_choice("kernel", self.kernel, KERNELS)
-        if isinstance(self.degree, bool) or not isinstance(self.degree, Integral):
-            raise TypeError(f"degree must be an integer >= 0, got {self.degree!r}")
-        if self.degree < 0:
-            raise ValueError(f"degree must be >= 0, got {self.degree!r}")
-        if not isinstance(self.coef0, Real) or isinstance(self.coef0, bool):
-            raise TypeError(f"coef0 must be a real number, got {self.coef0!r}")
-        check_positive("tol", self.tol)
-        check_positive("cache_size", self.cache_size)
-        if isinstance(self.max_iter, bool) or not isinstance(self.max_iter, Integral):
-            raise TypeError(f"max_iter must be an integer (-1 or >= 1), got {self.max_iter!r}")
-        if self.max_iter == 0 or self.max_iter < -1:
-            raise ValueError(f"max_iter must be -1 or >= 1, got {self.max_iter!r}")
-        check_choice("decision_function_shape", self.decision_function_shape, ("ovr", "ovo"))
-        check_choice("selection", self.selection, SELECTIONS)
-        if self.break_ties and self.decision_function_shape == "ovo":
-            raise ValueError("break_ties must be False when decision_function_shape is 'ovo'")
-
     # --------------------------------------------------------------------- fit
+    @_fit_context(prefer_skip_nested_validation=True)
     def fit(self, X, y, sample_weight=None):
         """Train one binary SVM per pair of classes.
 
@@ -229,7 +247,8 @@ class SVC(ClassifierMixin, BaseEstimator):
         -------
         self
         """
-        self._check_params()
+        if self.break_ties and self.decision_function_shape == "ovo":
+            raise ValueError("break_ties must be False when decision_function_shape is 'ovo'")
         X, y = validate_data(self, X, y, dtype=np.float64, order="C", accept_sparse=False)
         y = column_or_1d(y, warn=True)
         check_classification_targets(y)

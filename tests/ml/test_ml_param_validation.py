@@ -1,4 +1,6 @@
-"""MLP parameters are checked by scikit-learn's constraint mechanism, with scikit-learn's words."""
+"""Parameters are checked by scikit-learn's constraint mechanism, with scikit-learn's words."""
+
+import re
 
 import numpy as np
 import pytest
@@ -12,6 +14,12 @@ X = np.random.default_rng(0).normal(size=(12, 3))
 Y = {MLPRegressor: X[:, 0], MLPClassifier: (X[:, 0] > 0).astype(int)}
 THEIRS = {MLPRegressor: SkRegressor, MLPClassifier: SkClassifier}
 OURS = {theirs: ours for ours, theirs in THEIRS.items()}
+
+
+def _in_set_order(message):
+    """The message with the options inside {...} sorted: a set's order is not reproducible."""
+    return re.sub(r"\{([^}]*)\}", lambda m: "{" + ", ".join(sorted(m[1].split(", "))) + "}",
+                  message)
 
 
 def _raised(estimator, params):
@@ -34,7 +42,7 @@ def test_bad_parameter_gives_scikit_learns_message(ours, params):
     theirs = _raised(THEIRS[ours], params)
     # the same error type and the same sentence, naming the parameter and the allowed values
     assert mine.type is theirs.type
-    assert str(mine.value) == str(theirs.value)
+    assert _in_set_order(str(mine.value)) == _in_set_order(str(theirs.value))
     assert next(iter(params)) in str(mine.value)
 
 
@@ -61,3 +69,35 @@ def test_n_iter_no_change_may_be_infinite_as_in_scikit_learn():
     with pytest.warns(UserWarning, match="maximum iterations"):
         reg.fit(X, Y[MLPRegressor])
     assert reg.n_iter_ == 5
+
+
+@pytest.mark.parametrize("params", [
+    dict(degree=-1), dict(gamma="wide"),
+    dict(gamma=-1.0), dict(coef0="0"), dict(shrinking="no"), dict(tol=0.0), dict(cache_size=0),
+    dict(class_weight="even"), dict(decision_function_shape="ovx"), dict(break_ties=2.0),
+])
+def test_svc_gives_scikit_learns_message(params):
+    from sklearn.svm import SVC as SkSVC
+
+    from ebantenna.ml import SVC
+
+    y = (X[:, 0] > 0).astype(int)
+    with pytest.raises(InvalidParameterError) as mine:
+        SVC(**params).fit(X, y)
+    with pytest.raises(InvalidParameterError) as theirs:
+        SkSVC(**params).fit(X, y)
+    assert _in_set_order(str(mine.value)) == _in_set_order(str(theirs.value))
+
+
+@pytest.mark.parametrize("params, match", [
+    (dict(max_iter=0), r"'max_iter' parameter of SVC must be .*range \[1, inf\).* among \{-1\}"),
+    (dict(C=0.0), r"'C' parameter of SVC must be a float in the range \(0.0, inf\)"),
+    (dict(C=np.inf), r"'C' parameter of SVC must be a float in the range \(0.0, inf\)"),
+    (dict(selection="random"), "'selection' parameter of SVC must be a str among"),
+    (dict(kernel="sigmoid"), "'kernel' parameter of SVC must be a str among"),  # three kernels
+])
+def test_svc_own_constraints(params, match):
+    from ebantenna.ml import SVC
+
+    with pytest.raises(ValueError, match=match):
+        SVC(**params).fit(X, (X[:, 0] > 0).astype(int))

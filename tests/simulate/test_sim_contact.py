@@ -1,11 +1,13 @@
-"""Hertz contact of crossed cylinders, tube wall and wood across the grain, against witnesses."""
+"""Contact stiffness (Hertz, tube wall, wood) and unilateral contact dynamics, against witnesses."""
 
 import math
+import warnings
 
 import numpy as np
 import pytest
-from scipy.integrate import quad
+from scipy.integrate import quad, solve_ivp
 
+from ebantenna.fem import Supports, modal_analysis
 from ebantenna.probe import Probe, material
 from ebantenna.simulate.contact import (
     CrossedCylinders,
@@ -15,6 +17,11 @@ from ebantenna.simulate.contact import (
     tube_on_rod_stiffness,
 )
 from ebantenna.simulate.effects import ContactCompliance
+from ebantenna.simulate.unilateral import (
+    ChatterError,
+    probe_contact_model,
+    unilateral_response,
+)
 
 EPS = np.finfo(float).eps
 
@@ -146,3 +153,205 @@ def test_series_total_and_the_dominant_share():
 def test_impossible_parameters_are_named(call, word):
     with pytest.raises(ValueError, match=word):
         call()
+
+
+# --------------------------------------------------------------------------------------------------
+# Unilateral contact dynamics
+
+XTOL = 1e-12  # the default time_tolerance of unilateral_response, s
+
+
+def test_mass_bouncing_on_a_spring():
+    m, k, v0 = 0.3, 2.0e4, 0.7
+    res = unilateral_response(
+        [[m]],
+        [[0.0]],
+        0,
+        k,
+        base=0,
+        approach_speed=v0,
+        duration=0.02,
+        fs=5000.0,
+        return_states=True,
+    )
+    (sep,) = res.events
+    Tc = math.pi * math.sqrt(m / k)
+    assert sep.kind == "separation"
+    # Each event is placed within 2 time_tolerance after the root; the root itself is exact up to
+    # the rounding of F (eps * F_max) over its slope k v0: eps sqrt(m/k), far below XTOL.
+    assert abs(sep.time - Tc) <= 2 * XTOL + 8 * EPS * Tc
+    # At separation the force, hence the acceleration, is zero: the speed error is second order
+    # in the time error, ~(omega 2 XTOL)^2; what remains is the propagator's rounding (few ulps
+    # per step, ~100 steps).
+    assert sep.velocity == pytest.approx(-v0, rel=1e3 * EPS)
+    w = math.sqrt(k / m)
+    inside = res.t < Tc
+    expected = -v0 * w * np.sin(w * res.t[inside])  # a = -k x / m, x = v0/w sin(w t)
+    # Rounding of the propagator and of sin (measured ~2 ulps of the peak); 100 ulps of margin.
+    assert np.abs(res.acceleration[inside] - expected).max() <= 100 * EPS * v0 * w
+    after = res.t > Tc + 1e-9
+    assert np.all(res.contact_force[after] == 0) and np.all(res.acceleration[after] == 0)
+    assert np.allclose(res.states[after, 1], -v0, rtol=1e3 * EPS, atol=0)  # flies off at -v0
+
+
+def _two_dof(damping=0.0):
+    m1, m2, k1, k2 = 0.05, 0.02, 4.0e3, 9.0e3
+    M = np.diag([m1, m2])
+    K = np.array([[k1 + k2, -k2], [-k2, k2]])
+    C = damping * K
+    return M, K, C
+
+
+def _energy(res, M, K, kc):
+    n = M.shape[0]
+    X = res.states
+    q, v, s = X[:, :n], X[:, n : 2 * n], X[:, 2 * n]
+    p = q[:, -1] + s
+    closed = res.contact_force > 0
+    return (
+        0.5 * np.einsum("ti,ij,tj->t", v, M, v)
+        + 0.5 * np.einsum("ti,ij,tj->t", q, K, q)
+        + 0.5 * kc * np.where(closed, p, 0.0) ** 2
+    )
+
+
+@pytest.mark.parametrize("preload", [0.0, 0.4])
+def test_energy_is_conserved_across_switches_without_damping(preload):
+    M, K, _ = _two_dof()
+    kc = 5.0e4
+    res = unilateral_response(
+        M,
+        K,
+        1,
+        kc,
+        base=np.ones(2),
+        approach_speed=0.3,
+        duration=0.2,
+        fs=2000.0,
+        preload=preload,
+        return_states=True,
+        max_events=10_000,
+    )
+    assert len(res.events) >= 4  # the witness needs switches
+    after = res.t > res.stop_time  # the servo does work until it stops
+    E = _energy(res, M, K, kc)[after]
+    # Within a state the propagator is exact up to rounding (a few ulps of the state per block,
+    # cond(V) ~ 10; measured 2e-14 over ~40 switches); at a switch the spring holds
+    # 1/2 kc (p_dot 2 XTOL)^2, ~1e-17 of E.
+    assert np.abs(E - E[0]).max() <= 1e-12 * E[0]
+
+
+def test_large_preload_never_separates_and_equals_the_bilateral_solution():
+    # The force starts from zero at the first touch, so no preload can prevent a rebound of a stiff
+    # contact; with a contact softer than the structure the servo's push closes it monotonically,
+    # and the preload (ripple ~ v0 sqrt(m/kc) = 0.4 mm against 5 mm of overtravel) keeps it closed.
+    M, K, C = _two_dof(damping=2e-5)
+    kc, v0, F0 = 1.0e3, 0.05, 5.0
+    res = unilateral_response(
+        M,
+        K,
+        1,
+        kc,
+        base=np.ones(2),
+        approach_speed=v0,
+        duration=0.3,
+        fs=4000.0,
+        damping=C,
+        preload=F0,
+        output=0,
+    )
+    assert res.events == ()
+    assert res.contact_force[1:].min() > 0  # zero only at the first touch
+    # Independent witness: the bilateral system integrated by DOP853, base ramp then stop.
+    c = np.array([0.0, 1.0])
+    Kc = K + kc * np.outer(c, c)
+    Minv = np.linalg.inv(M)
+
+    def rhs(t, y, sdot):
+        q, v, s = y[:2], y[2:4], y[4]
+        a = -Minv @ (Kc @ q + C @ v + kc * c * s)
+        return np.concatenate([v, a, [sdot]])
+
+    tol = dict(method="DOP853", rtol=1e-12, atol=1e-15)
+    first = solve_ivp(rhs, (0, res.stop_time), np.zeros(5), args=(v0,), **tol)
+    y = first.y[:, -1].copy()
+    y[2:4] += v0  # the servo stops: the structure keeps its velocity relative to it
+    late = res.t > res.stop_time
+    second = solve_ivp(rhs, (res.stop_time, res.t[-1]), y, args=(0.0,), t_eval=res.t[late], **tol)
+    acc = np.array([rhs(0, yy, 0.0)[2] for yy in second.y.T])
+    peak = np.abs(acc).max()
+    # DOP853 at rtol 1e-12 keeps the global error near 1e-10 of the peak over these ~200 periods.
+    assert np.abs(res.acceleration[late] - acc).max() <= 1e-8 * peak
+    early = ~late
+    bilateral = np.array(
+        [
+            rhs(0, yy, v0)[2]
+            for yy in solve_ivp(
+                rhs, (0, res.stop_time), np.zeros(5), args=(v0,), t_eval=res.t[early], **tol
+            ).y.T
+        ]
+    )
+    assert np.abs(res.acceleration[early] - bilateral).max() <= 1e-8 * peak
+
+
+def test_chatter_beyond_max_events_is_named_or_held_closed():
+    M, K, _ = _two_dof()
+    kw = dict(base=np.ones(2), approach_speed=0.3, duration=0.2, fs=2000.0)
+    with pytest.raises(ChatterError, match="max_events=3"):
+        unilateral_response(M, K, 1, 5.0e4, max_events=3, **kw)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        res = unilateral_response(M, K, 1, 5.0e4, max_events=3, on_max_events="warn", **kw)
+    assert any("max_events=3" in str(w.message) for w in caught)
+    assert res.bilateral_from is not None
+    held = res.t > res.bilateral_from
+    assert np.all(res.contact_force[held] != 0)  # held closed: the force may even pull
+
+
+def test_reduced_probe_model_matches_the_fem_modes():
+    probe = Probe(tip_mass=2.5e-3)
+    model = probe_contact_model(probe, 0.2, n_elements=32, n_modes=6)
+    free = np.sqrt(np.linalg.eigvals(np.linalg.solve(model.mass, model.stiffness)).real)
+    fem_free = modal_analysis(probe, Supports(), n_elements=32, n_modes=6).omega
+    # The free modes are in the basis (on a mesh with a node at 0.2 m, here the same nodes):
+    # eigh's relative accuracy, ~1e-12 for these conditioned pencils.
+    assert np.sort(free)[:6] == pytest.approx(fem_free, rel=1e-9)
+    kc = 2.0e5
+    closed = np.sort(
+        np.sqrt(
+            np.linalg.eigvals(
+                np.linalg.solve(
+                    model.mass, model.stiffness + kc * np.outer(model.contact, model.contact)
+                )
+            ).real
+        )
+    )
+    fem_closed = modal_analysis(
+        probe, Supports(contact=0.2, contact_stiffness=kc), n_elements=32, n_modes=3
+    ).omega
+    # Rayleigh-Ritz from above; free modes + the attachment mode give the first three contact
+    # modes within 0.5 % (measured 0.02-0.3 %), the truncated modes' share.
+    assert np.all(closed[:3] >= fem_closed * (1 - 1e-12))
+    assert closed[:3] == pytest.approx(fem_closed, rel=5e-3)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "word"),
+    [
+        (dict(preload=-0.1), "preload"),
+        (dict(contact_stiffness=0.0), "contact_stiffness"),
+        (dict(approach_speed=-1.0), "approach_speed"),
+        (dict(fs=0.0), "fs"),
+        (dict(max_events=0), "max_events"),
+        (dict(stiffness=[[-1.0]]), "stiffness"),
+        (dict(mass=[[0.0]]), "mass"),
+        (dict(preload=0.5), "preload > 0 needs"),  # a free mass cannot be pressed
+    ],
+)
+def test_unilateral_bad_input_is_named(kwargs, word):
+    args = dict(mass=[[1.0]], stiffness=[[0.0]], contact=0, contact_stiffness=1e4)
+    args.update({k: kwargs.pop(k) for k in list(kwargs) if k in args})
+    call = dict(base=0, approach_speed=1.0, duration=0.01, fs=1000.0)
+    call.update(kwargs)
+    with pytest.raises(ValueError, match=word):
+        unilateral_response(**args, **call)

@@ -17,6 +17,7 @@ from ebantenna.simulate.contact import (
     tube_on_rod_stiffness,
 )
 from ebantenna.simulate.effects import ContactCompliance
+from ebantenna.simulate.friction import coulomb_response
 from ebantenna.simulate.unilateral import (
     ChatterError,
     probe_contact_model,
@@ -355,3 +356,81 @@ def test_unilateral_bad_input_is_named(kwargs, word):
     call.update(kwargs)
     with pytest.raises(ValueError, match=word):
         unilateral_response(**args, **call)
+
+
+# --------------------------------------------------------------------------------------------------
+# Coulomb friction
+
+
+def test_free_vibration_with_dry_friction_decays_linearly():
+    # Den Hartog, Mechanical Vibrations, 8.3: each half period pi/omega the amplitude drops by
+    # 2 mu N / k (4 mu N / k per cycle); the motion stops at the first turning point inside
+    # |x| <= mu N / k.
+    m, k, muN, A0 = 1.0, 100.0, 1.0, 0.105
+    res = coulomb_response(
+        [[m]],
+        [[k]],
+        0,
+        1.0,
+        static_friction=muN,
+        kinetic_friction=muN,
+        duration=3.0,
+        fs=200.0,
+        displacement=[A0],
+    )
+    turns = res.events[1:]
+    expected = [(-1) ** j * (A0 - 2 * j * muN / k) for j in range(1, 6)]
+    assert [e.kind for e in turns] == ["slip+", "slip-", "slip+", "slip-", "stick"]
+    # DOP853 at rtol 1e-10 (atol 1e-10 A0): the global error stays within a few rtol over three
+    # periods (measured 2e-11 A0).
+    assert [e.position for e in turns] == pytest.approx(expected, abs=1e-9 * A0)
+    half = math.pi * math.sqrt(m / k)
+    # The events are zeros of the velocity, whose slope there is omega^2 A: the time error is the
+    # velocity error (~rtol omega A0) over it, ~rtol / omega per event, adding up (measured 3e-11).
+    assert [e.time for e in turns] == pytest.approx(half * np.arange(1, 6), abs=1e-9)
+    stuck = res.t > turns[-1].time
+    assert np.allclose(res.states[stuck, 0], expected[-1], rtol=0, atol=1e-9 * A0)
+    assert np.all(np.abs(res.friction_force[stuck]) <= muN)
+
+
+def test_stick_slip_of_a_block_on_a_moving_belt():
+    # Block (m, k to the ground) on a belt at speed v, mu_s > mu_k: it sticks until k x = mu_s N,
+    # slips on a circle about x_k = mu_k N / k in the phase plane for (pi + 2 atan(v/(omega d)))
+    # / omega, d = x_s - x_k, and sticks again at 2 x_k - x_s for 2 d / v.
+    m, k, N, mus, muk, v = 1.0, 100.0, 1.0, 0.6, 0.4, 0.05
+    w = math.sqrt(k / m)
+    xs, xk = mus * N / k, muk * N / k
+    d = xs - xk
+    slip = (math.pi + 2 * math.atan(v / (w * d))) / w
+    stick = 2 * d / v
+    res = coulomb_response(
+        [[m]],
+        [[k]],
+        0,
+        N,
+        static_friction=mus,
+        kinetic_friction=muk,
+        duration=1.5,
+        fs=1000.0,
+        surface_speed=v,
+        velocity=[v],
+    )
+    kinds = [e.kind for e in res.events]
+    assert kinds[:5] == ["stick", "slip-", "stick", "slip-", "stick"]
+    times = np.array([e.time for e in res.events[:5]])
+    expected = np.array(
+        [0, xs / v, xs / v + slip, xs / v + slip + stick, xs / v + 2 * slip + stick]
+    )
+    # Event times from DOP853's event root finder at rtol 1e-10: ~rtol / omega = 1e-11 s each,
+    # adding up over four events (measured 4e-11 s).
+    assert times == pytest.approx(expected, abs=1e-9)
+    # Position at the sticking event: rtol times the state's size (v0 = 0.05).
+    assert res.events[2].position == pytest.approx(2 * xk - xs, abs=1e-11)
+
+
+def test_friction_bad_input_is_named():
+    kw = dict(duration=0.1, fs=100.0)
+    with pytest.raises(ValueError, match="kinetic_friction must be <= static_friction"):
+        coulomb_response([[1.0]], [[1.0]], 0, 1.0, static_friction=0.2, kinetic_friction=0.3, **kw)
+    with pytest.raises(ValueError, match="normal_force"):
+        coulomb_response([[1.0]], [[1.0]], 0, -1.0, static_friction=0.2, kinetic_friction=0.1, **kw)

@@ -207,7 +207,7 @@ class _State:
                     self.lam, self.V, self.Vinv, self.G, self.H = lam, V, Vinv, G, H
         taus = h * np.arange(1, block + 1)
         if self.eigen:
-            self.powers = np.stack([self.matrix(tau) for tau in taus])
+            self.powers = self.matrix(taus)
         else:
             Phi = spl.expm(A * h)
             powers = np.empty((block,) + A.shape)
@@ -217,20 +217,36 @@ class _State:
             self.powers = powers
 
     def matrix(self, tau):
-        """The propagator ``x(t + tau) = E(tau) x(t)``."""
+        """The propagator ``x(t + tau) = E(tau) x(t)``; a stack of them for an array of ``tau``."""
         if not self.eigen:
             return spl.expm(self.A * tau)
+        tau = np.asarray(tau, dtype=float)
+        taus = tau.reshape(-1)
         m = 2 * self.n
-        Ey = ((self.V * np.exp(self.lam * tau)) @ self.Vinv).real
-        E = np.eye(m + 2)
-        E[:m, :m] = Ey
-        E[:m, m] = Ey @ self.G - self.G
-        E[:m, m + 1] = Ey @ self.H - self.G * tau - self.H
-        E[m, m + 1] = tau
-        return E
+        growth = np.exp(np.multiply.outer(taus, self.lam))  # (k, 2n)
+        Ey = ((self.V[None] * growth[:, None, :]) @ self.Vinv).real
+        E = np.zeros((taus.size, m + 2, m + 2))
+        E[:, :m, :m] = Ey
+        E[:, :m, m] = Ey @ self.G - self.G
+        E[:, :m, m + 1] = Ey @ self.H - np.multiply.outer(taus, self.G) - self.H
+        E[:, m, m] = E[:, m + 1, m + 1] = 1.0
+        E[:, m, m + 1] = taus
+        return E.reshape(tau.shape + (m + 2, m + 2))
 
     def step(self, x, tau):
-        return x if tau == 0 else self.matrix(tau) @ x
+        """The state ``tau`` after ``x``."""
+        if tau == 0:
+            return x
+        if not self.eigen:
+            return spl.expm(self.A * tau) @ x
+        m = 2 * self.n
+        y, s, sigma = x[:m], x[m], x[m + 1]
+        z = self.Vinv @ (y + self.G * s + self.H * sigma)
+        out = np.empty_like(x)
+        out[:m] = (self.V @ (np.exp(self.lam * tau) * z)).real - self.G * (s + sigma * tau)
+        out[:m] -= self.H * sigma
+        out[m], out[m + 1] = s + sigma * tau, sigma
+        return out
 
     def curve(self, x):
         """The monitored quantity along the motion from ``x``, as a function of elapsed time."""

@@ -11,10 +11,18 @@ stiffness of :mod:`.contact`) that acts only in compression:
     free state:     M q'' + C q' + K q = 0,          gap g = -p >= 0
 
 Both states are linear and time-invariant, so between events the motion is propagated exactly,
-``x(t + tau) = expm(A tau) x(t)`` for the state ``x = (q, q', s, s')`` (the matrix exponential,
-exact for any linear system, also with rigid-body motion or damping). The contact ends when its
-force falls to zero and starts when the gap closes; these events are found by a root finder
-(:func:`scipy.optimize.brentq`) on the force or the gap within the step where it changes sign.
+``x(t + tau) = expm(A tau) x(t)`` for the state ``x = (q, q', s, s')``: through the eigenvectors
+of each state's system matrix (the closed-form modal solution, damping included), or through
+the matrix exponential itself where a rigid-body motion makes that matrix defective. The
+contact ends when its force falls to zero and starts when the gap closes; these events are
+found by a root finder (:func:`scipy.optimize.brentq`) on the force or the gap within the step
+where it changes sign, and placed on the far side of the root (within ``2 time_tolerance``)
+so that the state entered starts admissible. The two states share the coordinates ``q``, so a
+switch changes nothing but the equations: no energy is lost or gained by it.
+
+A sampled strike costs about 20-40 ms (0.5 s at 1 kHz output, the 64-element probe reduced to
+8 modes and the attachment mode, a few dozen events; one core): most of it is setting up the
+two states' propagators, the rest grows with the number of events.
 
 **The pan-tilt's approach and the preload.** ``q`` are coordinates *relative to the servo*: the
 absolute displacement is ``r s + q``, where ``s`` is the servo's travel measured at the contact

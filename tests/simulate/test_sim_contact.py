@@ -473,3 +473,28 @@ def test_friction_bad_input_is_named():
         coulomb_response([[1.0]], [[1.0]], 0, 1.0, static_friction=0.2, kinetic_friction=0.3, **kw)
     with pytest.raises(ValueError, match="normal_force"):
         coulomb_response([[1.0]], [[1.0]], 0, -1.0, static_friction=0.2, kinetic_friction=0.1, **kw)
+
+
+def test_friction_follows_a_normal_force_in_time():
+    # No normal force, no friction: the oscillator rings as if frictionless, x0 cos(omega t).
+    res = coulomb_response(
+        [[1.0]],
+        [[100.0]],
+        0,
+        lambda t: 0.0,
+        static_friction=0.5,
+        kinetic_friction=0.4,
+        duration=1.0,
+        fs=100.0,
+        displacement=[0.01],
+    )
+    # DOP853 at rtol 1e-10 over 1.6 periods: global error a few rtol of the amplitude.
+    assert np.abs(res.states[:, 0] - 0.01 * np.cos(10 * res.t)).max() <= 1e-9 * 0.01
+    assert np.all(res.friction_force == 0)
+
+
+def test_probe_model_rejects_a_contact_off_the_probe():
+    with pytest.raises(ValueError, match="contact must lie in"):
+        probe_contact_model(Probe(), 0.45)
+    with pytest.raises(ValueError, match="damping_ratio"):
+        probe_contact_model(Probe(), 0.2, damping_ratio=1.0)

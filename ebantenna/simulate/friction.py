@@ -26,7 +26,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from .._validate import check_int, check_nonnegative, check_positive
-from .unilateral import ChatterError, _square, _vector
+from .structure import check_dof_vector, check_symmetric_matrix
+from .unilateral import ChatterError
 
 __all__ = ["FrictionEvent", "FrictionResponse", "coulomb_response"]
 
@@ -136,12 +137,12 @@ def coulomb_response(
     [('slip-', 0.1), ('slip+', -0.08), ('slip-', 0.06), ('slip+', -0.04), ('slip-', 0.02),
      ('stick', 0.0)]
     """
-    M = _square("mass", mass)
+    M = check_symmetric_matrix("mass", mass)
     n = M.shape[0]
-    K = _square("stiffness", stiffness, n)
-    C = np.zeros((n, n)) if damping is None else _square("damping", damping, n)
-    tv = _vector("tangential", tangential, n)
-    o = tv if output is None else _vector("output", output, n)
+    K = check_symmetric_matrix("stiffness", stiffness, n)
+    C = np.zeros((n, n)) if damping is None else check_symmetric_matrix("damping", damping, n)
+    tv = check_dof_vector("tangential", tangential, n)
+    o = tv if output is None else check_dof_vector("output", output, n)
     mus = check_nonnegative("static_friction", static_friction)
     muk = check_nonnegative("kinetic_friction", kinetic_friction)
     if muk > mus:
@@ -163,8 +164,8 @@ def coulomb_response(
         raise ValueError(f"surface_speed must be finite, got {surface_speed!r}")
     max_events = check_int("max_events", max_events, minimum=1)
     rtol = check_positive("rtol", rtol)
-    q0 = np.zeros(n) if displacement is None else _vector("displacement", displacement, n)
-    v0 = np.zeros(n) if velocity is None else _vector("velocity", velocity, n)
+    q0 = np.zeros(n) if displacement is None else check_dof_vector("displacement", displacement, n)
+    v0 = np.zeros(n) if velocity is None else check_dof_vector("velocity", velocity, n)
     try:
         np.linalg.cholesky(M)
     except np.linalg.LinAlgError:

@@ -1,7 +1,8 @@
 """A contact that only pushes: strike, rebound, free ringing and chatter of a linear structure.
 
 The structure is linear, with ``n`` generalised coordinates ``q`` (physical DOFs or a reduced
-basis, see :func:`probe_contact_model`), mass ``M``, stiffness ``K`` and viscous damping ``C``.
+basis, see :func:`.structure.probe_contact_model`), mass ``M``, stiffness ``K`` and viscous
+damping ``C``.
 It touches a rigid object at one point whose displacement toward the object is ``c @ q``
 (for a compliant object coupled in, ``c`` is the difference of the two bodies' contact
 displacements). The contact is a spring ``k_c`` (the linearised Hertz, wall and object
@@ -57,14 +58,13 @@ import scipy.linalg as spl
 import scipy.optimize as spo
 
 from .._validate import check_choice, check_int, check_nonnegative, check_positive
+from .structure import check_dof_vector, check_symmetric_matrix
 
 __all__ = [
     "ChatterError",
     "ContactEvent",
     "UnilateralResponse",
-    "ContactModel",
     "unilateral_response",
-    "probe_contact_model",
 ]
 
 logger = logging.getLogger(__name__)
@@ -135,54 +135,6 @@ class UnilateralResponse:
     def n_impacts(self) -> int:
         """Number of strikes, the first touch included."""
         return 1 + sum(e.kind == "contact" for e in self.events)
-
-
-@dataclass(frozen=True, eq=False)
-class ContactModel:
-    """A linear structure with one contact point, ready for :func:`unilateral_response`.
-
-    Attributes
-    ----------
-    mass, stiffness, damping : ndarray of shape (n, n)
-        In the model's generalised coordinates (kg, N/m and N s/m for physical ones).
-    contact : ndarray of shape (n,)
-        Displacement of the contact point toward the object per unit coordinate.
-    base : ndarray of shape (n,)
-        The servo's rigid motion per metre of travel at the contact point.
-    output : ndarray of shape (n,)
-        Displacement at the accelerometer per unit coordinate.
-    """
-
-    mass: np.ndarray
-    stiffness: np.ndarray
-    damping: np.ndarray
-    contact: np.ndarray
-    base: np.ndarray
-    output: np.ndarray
-
-
-def _vector(name, value, n):
-    if isinstance(value, int | np.integer) and not isinstance(value, bool):
-        i = check_int(name, value, minimum=-n, maximum=n - 1)
-        out = np.zeros(n)
-        out[i] = 1.0
-        return out
-    out = np.asarray(value, dtype=float)
-    if out.shape != (n,) or not np.all(np.isfinite(out)):
-        raise ValueError(f"{name} must be a DOF index or a finite vector of length {n}")
-    return out
-
-
-def _square(name, value, n=None):
-    out = np.atleast_2d(np.asarray(value, dtype=float))
-    if out.ndim != 2 or out.shape[0] != out.shape[1] or (n is not None and out.shape[0] != n):
-        size = "square" if n is None else f"{n} x {n}"
-        raise ValueError(f"{name} must be a {size} matrix, got shape {out.shape}")
-    if not np.all(np.isfinite(out)):
-        raise ValueError(f"{name} must be finite")
-    if not np.allclose(out, out.T, rtol=1e-10, atol=0):
-        raise ValueError(f"{name} must be symmetric")
-    return out
 
 
 class _State:
@@ -343,13 +295,13 @@ def unilateral_response(
     >>> float(res.contact_force.max()) <= 100.0  # k v sqrt(m/k), N
     True
     """
-    M = _square("mass", mass)
+    M = check_symmetric_matrix("mass", mass)
     n = M.shape[0]
-    K = _square("stiffness", stiffness, n)
-    C = np.zeros((n, n)) if damping is None else _square("damping", damping, n)
-    c = _vector("contact", contact, n)
-    r = _vector("base", base, n)
-    o = c if output is None else _vector("output", output, n)
+    K = check_symmetric_matrix("stiffness", stiffness, n)
+    C = np.zeros((n, n)) if damping is None else check_symmetric_matrix("damping", damping, n)
+    c = check_dof_vector("contact", contact, n)
+    r = check_dof_vector("base", base, n)
+    o = c if output is None else check_dof_vector("output", output, n)
     kc = check_positive("contact_stiffness", contact_stiffness)
     v0 = check_positive("approach_speed", approach_speed)
     T = check_positive("duration", duration)
@@ -523,86 +475,3 @@ def unilateral_response(
     return UnilateralResponse(
         t_out, acc, force, tuple(events), t_stop, overtravel, bilateral_from, states
     )
-
-
-def probe_contact_model(
-    probe,
-    contact: float,
-    *,
-    hinge="clamped",
-    n_elements: int = 64,
-    n_modes: int = 8,
-    damping_ratio: float = 0.0,
-) -> ContactModel:
-    """The probe as a reduced model for :func:`unilateral_response`: free modes + attachment mode.
-
-    The basis is the probe's first ``n_modes`` modes without contact plus the static deflection
-    under a unit force at the contact (the attachment mode, which carries the contact spring's
-    local deformation: R. R. Craig and A. J. Kurdila, *Fundamentals of Structural Dynamics*, 2nd
-    ed., Wiley, 2006, section 17.4). Both contact states use the same basis, so a switch loses
-    nothing, and the static flexibility at the contact (hence the preload) is exact.
-
-    Parameters
-    ----------
-    probe : Probe
-        The probe (with its tip mass).
-    contact : float
-        Contact position from the hinge, m, in (0, L).
-    hinge : {"clamped", "pinned"} or float
-        As in :class:`ebantenna.fem.Supports`; "pinned" leaves a rigid rotation (then only
-        ``preload=0`` is possible).
-    n_elements, n_modes : int
-        FEM mesh and number of free modes kept.
-    damping_ratio : float
-        Modal damping ratio of every mode of the reduced free probe, in [0, 1); e.g. the
-        probe's ``loss_factor / 2``.
-
-    Examples
-    --------
-    >>> from ebantenna.probe import Probe
-    >>> model = probe_contact_model(Probe(), 0.2, n_elements=16, n_modes=4)
-    >>> model.mass.shape
-    (5, 5)
-    >>> model.contact.shape, model.output.shape
-    ((5,), (5,))
-    """
-    from ..fem import Supports
-    from ..fem.assembly import apply_supports, assemble, beam_mesh, contact_node
-
-    n_modes = check_int("n_modes", n_modes, minimum=1)
-    zeta = check_nonnegative("damping_ratio", damping_ratio)
-    if not zeta < 1:
-        raise ValueError(f"damping_ratio must lie in [0, 1), got {damping_ratio!r}")
-    check_positive("contact", contact)
-    if not contact < probe.length:
-        raise ValueError(f"contact must lie in (0, {probe.length:g}) m, got {contact!r}")
-    supports = Supports(contact=None, hinge=hinge)
-    nodes = beam_mesh(probe.length, contact, n_elements)
-    K, M = assemble(nodes, probe)
-    Kf, Mf, free = apply_supports(K, M, nodes, probe, supports)
-    nf = free.size
-    # The free probe's modes on a mesh with a node at the contact (dense: a few hundred DOFs).
-    _, phi = spl.eigh(Kf, Mf, subset_by_index=[0, min(n_modes, nf - 1) - 1])
-    ci = int(np.searchsorted(free, 2 * contact_node(nodes, contact)))
-    unit = np.zeros(nf)
-    unit[ci] = 1.0
-    if hinge == "pinned":
-        # Attachment under a unit force with the rigid rotation removed: K is singular there.
-        attach = np.linalg.lstsq(Kf, unit - Mf @ phi @ (phi.T @ unit), rcond=None)[0]
-    else:
-        attach = np.linalg.solve(Kf, unit)
-    T = np.column_stack([phi, attach])
-    # Orthonormalise the basis in the mass metric (keeps the reduced matrices well conditioned).
-    Mr, Kr = T.T @ Mf @ T, T.T @ Kf @ T
-    w2, Psi = spl.eigh(Kr, Mr)
-    T = T @ Psi
-    Mr = T.T @ Mf @ T
-    Kr = T.T @ Kf @ T
-    Mr, Kr = (Mr + Mr.T) / 2, (Kr + Kr.T) / 2
-    omega = np.sqrt(np.clip(w2, 0, None))
-    Cr = Mr @ np.diag(2 * zeta * omega) @ Mr  # mass-normalised basis: C = M Psi 2 zeta w Psi^T M
-    x_free = nodes[free // 2]
-    rigid = np.where(free % 2 == 0, x_free, 1.0) / contact  # rotation about the hinge
-    base = np.linalg.solve(Mr, T.T @ Mf @ rigid)
-    tip = int(np.searchsorted(free, 2 * (nodes.size - 1)))
-    return ContactModel(Mr, Kr, (Cr + Cr.T) / 2, T[ci].copy(), base, T[tip].copy())

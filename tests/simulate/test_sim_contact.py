@@ -18,11 +18,8 @@ from ebantenna.simulate.contact import (
 )
 from ebantenna.simulate.effects import ContactCompliance
 from ebantenna.simulate.friction import coulomb_response
-from ebantenna.simulate.unilateral import (
-    ChatterError,
-    probe_contact_model,
-    unilateral_response,
-)
+from ebantenna.simulate.structure import probe_contact_model
+from ebantenna.simulate.unilateral import ChatterError, unilateral_response
 
 EPS = np.finfo(float).eps
 

@@ -32,7 +32,7 @@ import numpy as np
 
 from .._progress import progress
 from .._validate import check_int
-from .report import Report
+from ..report import FigureSet, Report
 
 __all__ = ["StudyResult", "reproduce", "default_cache_dir"]
 
@@ -51,7 +51,13 @@ RATIOS = (0.25, 0.5, 0.75, 0.8, 0.9)
 
 
 def default_cache_dir() -> Path:
-    """Where data sets are cached: ``$EBANTENNA_CACHE``, else ``~/.cache/ebantenna``."""
+    """Where data sets are cached: ``$EBANTENNA_CACHE``, else ``~/.cache/ebantenna``.
+
+    Examples
+    --------
+    >>> isinstance(default_cache_dir(), Path)
+    True
+    """
     env = os.environ.get("EBANTENNA_CACHE")
     return Path(env) if env else Path.home() / ".cache" / "ebantenna"
 
@@ -79,29 +85,19 @@ class StudyResult:
     report_html: Path
 
 
-class _Figures:
-    """Saves matplotlib figures into the output directory and remembers them."""
-
-    def __init__(self, out_dir: Path):
-        self.out_dir = out_dir
-        self.paths: dict[str, Path] = {}
-
-    def save(self, fig, name: str) -> str:
-        import matplotlib.pyplot as plt
-
-        path = self.out_dir / f"{name}.png"
-        fig.savefig(path, dpi=120, bbox_inches="tight")
-        plt.close(fig)
-        self.paths[name] = path
-        return path.name
-
-
 def _probe_length(ds) -> float:
     """Length (m) of the probe the data set was simulated with, from its own metadata."""
     return ds.metadata["config"]["scene"]["probe"]["length"]
 
 
 def _pct(x: float) -> str:
+    """A fraction as a percentage with one decimal.
+
+    Examples
+    --------
+    >>> _pct(0.9917)
+    '99.2 %'
+    """
     return f"{100 * x:.1f} %"
 
 
@@ -207,6 +203,14 @@ def _modes_section(report, figs, probe, quick):
 
 # ----------------------------------------------------------------- 4-5. signal processing
 def _per_contact(values, contact, mask=None):
+    """Median and standard deviation of ``values`` at each distinct contact distance.
+
+    Examples
+    --------
+    >>> grid, med, spread = _per_contact(np.array([1.0, 3.0, 5.0]), np.array([0.1, 0.1, 0.2]))
+    >>> grid.tolist(), med.tolist(), spread.tolist()
+    ([0.1, 0.2], [2.0, 5.0], [1.0, 0.0])
+    """
     grid = np.unique(contact)
     med = np.full(grid.size, np.nan)
     spread = np.full(grid.size, np.nan)
@@ -555,7 +559,7 @@ def reproduce(
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     cache_dir = Path(cache_dir) if cache_dir is not None else default_cache_dir()
-    figs = _Figures(out_dir)
+    figs = FigureSet(out_dir)
     report = Report("ebantenna: the study reproduced" + (" (quick run)" if quick else ""))
     report.paragraph(
         "Every number below comes from the simulated probe (scene 'paper'), not from the paper's "

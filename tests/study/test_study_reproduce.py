@@ -8,7 +8,7 @@ import pytest
 from ebantenna.cli import main
 from ebantenna.study import reproduce
 from ebantenna.study.features import signal_features
-from ebantenna.study.report import Report
+from ebantenna.report import Report
 
 
 @pytest.fixture(scope="module")

@@ -24,6 +24,7 @@ import time
 
 import numpy as np
 
+from ebantenna.report import text_table
 from ebantenna.signal import (
     DECAY_METHODS,
     FrequencyTracker,
@@ -34,7 +35,6 @@ from ebantenna.signal import (
     paper_filter,
     spectrogram,
 )
-from ebantenna.report import text_table
 
 __all__ = ["frequency_rows", "timefreq_rows", "decay_rows", "distance_rows", "run", "to_text",
            "plot", "main"]
@@ -165,7 +165,7 @@ def distance_rows(rng) -> dict:
         where no test contact falls in it) and ``us_per_contact``.
     """
     from ebantenna.fem import natural_frequencies
-    from ebantenna.signal import FrequencyDistanceEstimator, MultiModeDistanceEstimator
+    from ebantenna.paper.estimators import FrequencyDistanceEstimator, MultiModeDistanceEstimator
     from ebantenna.probe import Probe
 
     probe = Probe()

@@ -37,6 +37,7 @@ def register(subparsers) -> None:
 def run_reproduce(args) -> int:
     """Run ``ebantenna reproduce``."""
     from ..cli import print_json
+    from ..paper import printed
     from .reproduce import reproduce
 
     result = reproduce(
@@ -55,11 +56,13 @@ def run_reproduce(args) -> int:
     print(f"  report: {result.report_html}")
     print(
         f"  SVM material accuracy: train {s['svm']['train_accuracy']:.1%}, "
-        f"test {s['svm']['test_accuracy']:.1%}   (paper 99.7 % / 99.2 %)"
+        f"test {s['svm']['test_accuracy']:.1%}   (paper "
+        f"{printed.percent(printed.SVM_TRAIN_ACCURACY)} / "
+        f"{printed.percent(printed.SVM_TEST_ACCURACY)})"
     )
     print(
         f"  ANN material accuracy: all {s['ann']['all_accuracy']:.1%}, "
-        f"test {s['ann']['test_accuracy']:.1%}   (paper 80.8 %)"
+        f"test {s['ann']['test_accuracy']:.1%}   (paper {printed.percent(printed.ANN_ACCURACY)})"
     )
     print(
         f"  contact distance over the whole probe: MAE "

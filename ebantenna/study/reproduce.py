@@ -32,22 +32,15 @@ import numpy as np
 
 from .._progress import progress
 from .._validate import check_int
+from ..paper import printed
+from ..paper.protocol import TIME_FREQUENCY_RATIOS
 from ..report import FigureSet, Report
 
 __all__ = ["StudyResult", "reproduce", "default_cache_dir"]
 
 log = logging.getLogger(__name__)
 
-#: What the paper reports, quoted beside each reproduced number.
-PAPER = {
-    "deviation_cm": 29.5,
-    "mode_change_ratio": 0.8,
-    "ann_accuracy": 0.808,
-    "svm_train_accuracy": 0.997,
-    "svm_test_accuracy": 0.992,
-    "prior_distance_accuracy_cm": 0.5,
-}
-RATIOS = (0.25, 0.5, 0.75, 0.8, 0.9)
+RATIOS = TIME_FREQUENCY_RATIOS
 
 
 def default_cache_dir() -> Path:
@@ -155,7 +148,7 @@ def _modes_section(report, figs, probe, quick):
         [
             [
                 "mode change complete",
-                f"{PAPER['mode_change_ratio']:.2f} L",
+                f"{printed.MODE_CHANGE_RATIO.value:.2f} L",
                 f"zone 3 from {start3 / L:.2f} L",
             ],
             ["transition (zone 2) begins", "-", f"{start2 / L:.2f} L"],
@@ -257,12 +250,12 @@ def _frequency_section(report, figs, ds, feats, materials):
         [
             [
                 "deviation from the linear trend",
-                f"{PAPER['deviation_cm']} cm (40 cm probe)",
+                f"{printed.DEVIATION_CM.value} cm ({printed.PROBE_LENGTH_CM.value:g} cm probe)",
                 f"dominant frequency peaks at {100 * peak:.1f} cm ({peak / L:.2f} L)",
             ],
             [
                 "spread grows near",
-                "about 30 cm (80 % of L)",
+                f"about 30 cm ({printed.percent(printed.SPREAD_RATIO)} of L)",
                 f"{100 * grid[first]:.1f} cm ({grid[first] / L:.2f} L)",
             ],
         ],
@@ -318,16 +311,18 @@ def _decay_section(report, figs, ds, feats, materials):
 
 # ------------------------------------------------------------------------------ 6. ML
 def _ml_section(report, figs, ds, feats, seed):
-    from ..ml import experiments as ex
+    from ..paper import experiments as ex
+    from ..paper.plots import plot_confusion_comparison, plot_distance_errors
+    from ..paper.printed import PAPER_ANN, PAPER_SVM
 
     L = _probe_length(ds)
     svm = ex.classify_materials_svm(feats.fft, ds.material, seed=seed)
     ann = ex.classify_materials_ann(feats.fft, ds.material, seed=seed)
-    fig12 = figs.save(ex.plot_confusion_comparison(ann, ex.PAPER_ANN), "fig12_ann_confusion")
-    fig15 = figs.save(ex.plot_confusion_comparison(svm, ex.PAPER_SVM), "fig15_svm_confusion")
+    fig12 = figs.save(plot_confusion_comparison(ann, PAPER_ANN), "fig12_ann_confusion")
+    fig15 = figs.save(plot_confusion_comparison(svm, PAPER_SVM), "fig15_svm_confusion")
     lin = ex.regress_distance_linear_region(feats.fft, ds.contact, probe_length=L, seed=seed)
     full = ex.regress_distance_full_length(feats.fft_elliptic, ds.contact, seed=seed)
-    fig1314 = figs.save(ex.plot_distance_errors(lin, full), "fig13_14_distance_networks")
+    fig1314 = figs.save(plot_distance_errors(lin, full), "fig13_14_distance_networks")
 
     sa, aa = svm.accuracies, ann.accuracies
     report.heading("Material classification: ANN and SVM (Figs. 12, 15)")
@@ -345,12 +340,13 @@ def _ml_section(report, figs, ds, feats, seed):
             [
                 "SVM",
                 "train",
-                _pct(PAPER["svm_train_accuracy"]),
+                printed.percent(printed.SVM_TRAIN_ACCURACY),
                 _pct(sa["train"]),
                 f"{svm.fit_seconds:.1f}",
             ],
-            ["SVM", "test", _pct(PAPER["svm_test_accuracy"]), _pct(sa["test"]), ""],
-            ["ANN", "all", _pct(PAPER["ann_accuracy"]), _pct(aa["all"]), f"{ann.fit_seconds:.1f}"],
+            ["SVM", "test", printed.percent(printed.SVM_TEST_ACCURACY), _pct(sa["test"]), ""],
+            ["ANN", "all", printed.percent(printed.ANN_ACCURACY), _pct(aa["all"]),
+             f"{ann.fit_seconds:.1f}"],
             ["ANN", "test", "-", _pct(aa["test"]), ""],
         ],
     )
@@ -412,7 +408,7 @@ def _ml_section(report, figs, ds, feats, seed):
 def _full_range_section(report, figs, ds, feats):
     import matplotlib.pyplot as plt
 
-    from ..signal import FrequencyDistanceEstimator, MultiModeDistanceEstimator
+    from ..paper.estimators import FrequencyDistanceEstimator, MultiModeDistanceEstimator
 
     L = _probe_length(ds)
     grid = np.unique(ds.contact)
@@ -474,9 +470,9 @@ def _full_range_section(report, figs, ds, feats):
         ],
     )
     report.paragraph(
-        f"Paper: the earlier ANN reached about {PAPER['prior_distance_accuracy_cm']} cm on the "
-        f"first 75-80 % of the probe. Recordings without two separable peaks: {int((~ok).sum())} "
-        f"of {ok.size} (left out of the two-mode estimate and counted here)."
+        f"Paper: the earlier ANN reached about {printed.PRIOR_DISTANCE_ACCURACY_CM.value} cm on "
+        "the first 75-80 % of the probe. Recordings without two separable peaks: "
+        f"{int((~ok).sum())} of {ok.size} (left out of the two-mode estimate and counted here)."
     )
     report.figure(name, "Mean absolute error along the probe: one mode against two")
     return {
@@ -611,7 +607,7 @@ def reproduce(
     done("data set")
 
     step("features")
-    from .features import signal_features
+    from ..paper.features import signal_features
 
     feats = signal_features(ds.ax, ds.az, ds.fs, n_jobs=n_jobs, show_progress=show_progress)
     done("features")

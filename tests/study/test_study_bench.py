@@ -37,7 +37,8 @@ def test_each_sweep_runs_once_and_feeds_table_and_figure(tmp_path, monkeypatch):
     monkeypatch.setattr(fem_accuracy, "run", counted)
     drawn = []
     original_plot = fem_accuracy.plot
-    monkeypatch.setattr(fem_accuracy, "plot", lambda rows: drawn.append(rows) or original_plot(rows))
+    monkeypatch.setattr(fem_accuracy, "plot",
+                        lambda rows: drawn.append(rows) or original_plot(rows))
     results = run_benchmarks(tmp_path, quick=True, only=["fem_accuracy"], show_progress=False)
     assert calls == [True]
     # the figure is drawn from the very rows the table was written from

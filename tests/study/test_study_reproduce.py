@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from ebantenna.cli import main
-from ebantenna.study import reproduce
-from ebantenna.study.features import signal_features
+from ebantenna.paper.features import signal_features
 from ebantenna.report import Report
+from ebantenna.study import reproduce
 
 
 @pytest.fixture(scope="module")

@@ -33,6 +33,7 @@ __all__ = [
     "MATERIAL_ANN",
     "DISTANCE_LINEAR_REGION",
     "DISTANCE_FULL_LENGTH",
+    "DECAY_REGION",
     "TIME_FREQUENCY_RATIOS",
     "normalise_by_max",
     "check_fractions",
@@ -150,6 +151,9 @@ DISTANCE_FULL_LENGTH = NetworkProtocol(
     hidden_layer_sizes=(9,), activation="relu", solver="scg", fractions=(0.70, 0.15, 0.15),
     region=1.0, normalisation="min-max", where="section 4.2, Table 2, Fig. 14",
 )
+#: Section 2.3 and Fig. 11: the decay features (gain, time constant) are taken on the first 80 %
+#: of the probe, a fraction of its length.
+DECAY_REGION = 0.8
 #: Figs. 18 and 19: the contact positions of the spectrograms and scalograms, fractions of L.
 TIME_FREQUENCY_RATIOS = (0.25, 0.5, 0.75, 0.8, 0.9)
 

@@ -3,7 +3,7 @@
 - :mod:`~ebantenna.paper.printed`: every number, table and matrix the paper prints, with where.
 - :mod:`~ebantenna.paper.protocol`: the data set it recorded and how each model was fed (materials,
   positions, repetitions, splits, network settings).
-- :mod:`~ebantenna.paper.features`: the per-recording features the study computes from the data
+- :mod:`~ebantenna.paper.feature_table`: the per-recording features the study computes from the data
   set (dominant frequency, two strongest peaks, decay fit, FFT vectors), in parallel.
 - :mod:`~ebantenna.paper.estimators`: the distance and material estimators from those features,
   as scikit-learn estimators.

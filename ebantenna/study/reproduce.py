@@ -36,7 +36,7 @@ from pathlib import Path
 from .._progress import progress
 from .._validate import check_int
 from ..report import FigureSet, Report
-from . import dataset, full_range, learning, modes, signals, time_frequency
+from . import data_summary, full_range, learning, mode_zones, signals, time_frequency
 
 __all__ = ["StudyResult", "reproduce", "default_cache_dir"]
 
@@ -136,7 +136,7 @@ def reproduce(
     import matplotlib
 
     matplotlib.use("Agg")
-    from ..paper.features import signal_features
+    from ..paper.feature_table import signal_features
     from ..simulate import build_dataset, builtin_scene
 
     seed = check_int("seed", seed, minimum=0)
@@ -154,19 +154,19 @@ def reproduce(
     workers = (os.cpu_count() or 1) if n_jobs is None or n_jobs < 0 else n_jobs
     timer = _Timer(show_progress)
 
-    mode_result = timer.run("modes", modes.compute, scene.probe, quick)
-    modes.render(mode_result, report, figures)
+    mode_result = timer.run("modes", mode_zones.compute, scene.probe, quick)
+    mode_zones.render(mode_result, report, figures)
     ds = timer.run(
         "data set",
         lambda: build_dataset(cache_dir, seed=seed, quick=quick, n_jobs=workers,
                               show_progress=show_progress),
     )
-    data_result = dataset.compute(ds)
+    data_result = data_summary.compute(ds)
     feats = timer.run(
         "features",
         lambda: signal_features(ds.ax, ds.az, ds.fs, n_jobs=n_jobs, show_progress=show_progress),
     )
-    dataset.render(data_result, report, figures)
+    data_summary.render(data_result, report, figures)
     materials = data_result.materials
     frequency = timer.run("frequency", signals.compute_frequency, ds, feats, materials)
     signals.render_frequency(frequency, report, figures)

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from ebantenna.cli import main
-from ebantenna.paper.features import signal_features
+from ebantenna.paper.feature_table import signal_features
 from ebantenna.report import Report
 from ebantenna.study import reproduce
 from ebantenna.study.reproduce import STEPS
@@ -95,18 +95,18 @@ def test_sections_compute_without_drawing_and_render_from_their_result(tmp_path)
 
     from ebantenna.report import FigureSet
     from ebantenna.simulate import builtin_scene
-    from ebantenna.study import modes, time_frequency
+    from ebantenna.study import mode_zones, time_frequency
 
     plt.close("all")
     scene = builtin_scene("paper")
-    result = modes.compute(scene.probe, quick=True)
+    result = mode_zones.compute(scene.probe, quick=True)
     maps = time_frequency.compute(scene, seed=0)
     assert plt.get_fignums() == []
     with pytest.raises(dataclasses.FrozenInstanceError):
         result.peak = 0.0
     assert json.loads(json.dumps(result.to_dict())) == result.to_dict()
     report, figures = Report("t"), FigureSet(tmp_path)
-    modes.render(result, report, figures)
+    mode_zones.render(result, report, figures)
     time_frequency.render(maps, report, figures)
     assert list(figures.paths) == ["fig16_zones", "fig17_mode_shapes", "fig18_19_time_frequency"]
     assert plt.get_fignums() == []  # every figure saved and closed

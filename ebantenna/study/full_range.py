@@ -121,7 +121,8 @@ def render(result: FullRangeResult, report, figures) -> None:
         "position (1 cm apart), the test the positions in between, which the calibration never saw."
     )
     report.table(
-        ["estimator", "range", "MAE (cm)", "MAE beyond 0.8 L (cm)", "95th percentile (cm)"],
+        ["estimator", "range", "MAE (cm)", f"MAE beyond {r.region:g} L (cm)",
+         "95th percentile (cm)"],
         [
             [
                 "first mode only",

@@ -9,6 +9,13 @@ import numpy as np
 
 from ..paper import experiments, printed
 from ..paper.plots import plot_confusion_comparison, plot_distance_errors
+from ..paper.protocol import (
+    DATASET,
+    DISTANCE_FULL_LENGTH,
+    DISTANCE_LINEAR_REGION,
+    MATERIAL_ANN,
+    MATERIAL_SVM,
+)
 from ._common import pct, probe_length
 
 __all__ = ["LearningResult", "compute", "render"]
@@ -75,10 +82,13 @@ def render(result: LearningResult, report, figures) -> None:
     fig1314 = figures.save(plot_distance_errors(lin, full), "fig13_14_distance_networks")
     sa, aa = svm.accuracies, ann.accuracies
     report.heading("Material classification: ANN and SVM (Figs. 12, 15)")
+    svm_split = _split((1 - MATERIAL_SVM.test_fraction, MATERIAL_SVM.test_fraction))
     report.paragraph(
-        "Features: the 256 FFT magnitudes of X and Z, each vector divided by its maximum. "
-        "SVM: RBF kernel, gamma = 2, one-vs-rest, 80/20 split (section 4.3). ANN: one hidden "
-        "layer of 53 tanh neurons, gradient descent, 70/15/15 split with validation stopping "
+        f"Features: the {DATASET.fft_bins} FFT magnitudes of X and Z, each vector divided by its "
+        f"maximum. SVM: RBF kernel, gamma = {MATERIAL_SVM.gamma:g}, {MATERIAL_SVM.strategy}, "
+        f"{svm_split} split (section 4.3). ANN: one hidden layer of "
+        f"{MATERIAL_ANN.hidden_layer_sizes[0]} {MATERIAL_ANN.activation} neurons, gradient "
+        f"descent, {_split(MATERIAL_ANN.fractions)} split with validation stopping "
         "(section 4.2). "
         "The simulator's materials differ only through contact damping and compliance; nothing "
         "was tuned towards the paper's accuracies."
@@ -108,18 +118,34 @@ def render(result: LearningResult, report, figures) -> None:
     report.figure(fig15, "SVM confusion matrices beside the paper's Fig. 15")
     report.preformatted(svm.report() + "\n\n" + ann.report())
     report.heading("Distance networks (Figs. 13, 14)")
+    lin_net, full_net = DISTANCE_LINEAR_REGION, DISTANCE_FULL_LENGTH
+    sizes = lin_net.hidden_layer_sizes  # layers x neurons, as the paper counts them
+    lin_name = f"{len(sizes)} x {sizes[0]} {lin_net.activation}"
+    region = f"{100 * lin_net.region:g} %"
     report.paragraph(
-        "2 x 20 tanh network on the first 80 % of the probe (section 4.2), and the 9-neuron ReLU "
-        "network trained by scaled conjugate gradient over the whole length on Table 2 "
-        "elliptic-filtered spectra, min-max normalised."
+        f"{lin_name} network on the first {region} of the probe (section 4.2), and the "
+        f"{full_net.hidden_layer_sizes[0]}-neuron ReLU network trained by scaled conjugate "
+        "gradient over the whole length on Table 2 elliptic-filtered spectra, min-max normalised."
     )
     report.table(
         ["network", "range", "MAE (cm)", "RMS (cm)", "fit time (s)"],
         [
-            ["2 x 20 tanh, GD", "0-80 % of L", f"{lin.mae_cm:.2f}", f"{lin.rmse_cm:.2f}",
+            [f"{lin_name}, GD", f"0-{region} of L", f"{lin.mae_cm:.2f}", f"{lin.rmse_cm:.2f}",
              f"{lin.fit_seconds:.1f}"],
-            ["9 ReLU, SCG", "whole probe", f"{full.mae_cm:.2f}", f"{full.rmse_cm:.2f}",
+            [f"{full_net.hidden_layer_sizes[0]} ReLU, SCG", "whole probe", f"{full.mae_cm:.2f}",
+             f"{full.rmse_cm:.2f}",
              f"{full.fit_seconds:.1f}"],
         ],
     )
     report.figure(fig1314, "Mean absolute distance error along the probe (cf. Figs. 13, 14)")
+
+
+def _split(fractions) -> str:
+    """Shares as the paper writes a split: ``(0.7, 0.15, 0.15)`` -> ``'70/15/15'``.
+
+    Examples
+    --------
+    >>> _split((0.7, 0.15, 0.15)), _split((0.8, 0.2))
+    ('70/15/15', '80/20')
+    """
+    return "/".join(f"{100 * f:.0f}" for f in fractions)

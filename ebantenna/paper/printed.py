@@ -29,16 +29,28 @@ from ..signal.filters import PAPER_FILTERS
 __all__ = [
     "PrintedNumber",
     "PaperConfusion",
+    "UNITS",
     "PRIOR_DISTANCE_ACCURACY_CM",
     "PROBE_LENGTH_CM",
+    "TUBE_OUTER_DIAMETER_CM",
+    "TUBE_INNER_DIAMETER_CM",
+    "SENSOR_RANGE_G",
+    "SAMPLING_FREQUENCY_KHZ",
+    "MAX_FREQUENCY_HZ",
+    "I2C_RATE_KHZ",
     "DEVIATION_CM",
     "DEVIATION_50CM_PROBE_CM",
     "SPREAD_RATIO",
     "MODE_CHANGE_RATIO",
     "PVC_WOOD_OVERLAP_CM",
+    "HIGH_BAND_CUTOFFS_HZ",
     "ANN_ACCURACY",
     "SVM_TRAIN_ACCURACY",
     "SVM_TEST_ACCURACY",
+    "SVM_ITERATIONS",
+    "SVM_SAMPLES",
+    "EARLY_MODES_SAMPLES",
+    "LONG_LIVED_SAMPLES",
     "PAPER_ANN",
     "PAPER_SVM",
     "TABLE_1",
@@ -46,6 +58,10 @@ __all__ = [
     "NUMBERS",
     "percent",
 ]
+
+
+#: The units a printed number may carry (fractions for percentages).
+UNITS = ("cm", "fraction", "fraction of L", "Hz", "kHz", "g", "samples", "iterations")
 
 
 @dataclass(frozen=True)
@@ -57,7 +73,7 @@ class PrintedNumber:
     value : float
         The value in the unit given (fractions for percentages: 0.808 for 80.8 %).
     unit : str
-        Its unit: ``"cm"``, ``"fraction"``, ``"fraction of L"``.
+        Its unit: one of :data:`UNITS`.
     where : str
         Figure, table, equation or section that prints it.
     quote : str
@@ -68,6 +84,10 @@ class PrintedNumber:
     unit: str
     where: str
     quote: str
+
+    def __post_init__(self):
+        if self.unit not in UNITS:
+            raise ValueError(f"unit must be one of {UNITS}, got {self.unit!r}")
 
 
 def percent(number: PrintedNumber) -> str:
@@ -91,6 +111,30 @@ PROBE_LENGTH_CM = PrintedNumber(
     40.0, "cm", "section 2.1 and section 4.1.1",
     "the antenna length is taken as 40 cm",
 )
+TUBE_OUTER_DIAMETER_CM = PrintedNumber(
+    0.8, "cm", "section 3",
+    "an acrylic fiber tube of 0.8 cm outer diameter, 0.6 cm inner diameter, and 40 cm length",
+)
+TUBE_INNER_DIAMETER_CM = PrintedNumber(
+    0.6, "cm", "section 3",
+    "an acrylic fiber tube of 0.8 cm outer diameter, 0.6 cm inner diameter, and 40 cm length",
+)
+SENSOR_RANGE_G = PrintedNumber(
+    16.0, "g", "section 3",
+    "The maximum sensitivity of the sensor is +-16g (g = 9.81 m/s^2)",
+)
+SAMPLING_FREQUENCY_KHZ = PrintedNumber(
+    1.0, "kHz", "section 3",
+    "The sampling frequency of the data acquisition is set as 1 kHz",
+)
+MAX_FREQUENCY_HZ = PrintedNumber(
+    512.0, "Hz", "section 3",
+    "to capture all frequencies of vibration up to 512 Hz",
+)
+I2C_RATE_KHZ = PrintedNumber(
+    400.0, "kHz", "section 3",
+    "the maximum data transferring rate of the sensor via I2C is 400 kHz",
+)
 DEVIATION_CM = PrintedNumber(
     29.5, "cm", "Fig. 9, section 4.1.1",
     "a deviation from that linear behavior could be observed at 29.5 cm away from the hinge point",
@@ -112,6 +156,12 @@ PVC_WOOD_OVERLAP_CM = PrintedNumber(
     26.0, "cm", "Fig. 11, section 4.1.2",
     "an overlap is observed between PVC and WOOD at 26 cm away from the hinge point",
 )
+HIGH_BAND_CUTOFFS_HZ = (
+    PrintedNumber(100.0, "Hz", "section 4.1.2",
+                  "pass band cutoff frequencies are set in the range of 100 Hz- 200 Hz"),
+    PrintedNumber(200.0, "Hz", "section 4.1.2",
+                  "pass band cutoff frequencies are set in the range of 100 Hz- 200 Hz"),
+)
 ANN_ACCURACY = PrintedNumber(
     0.808, "fraction", "Fig. 12, section 4.2",
     "The average overall accuracy for material classification is 80.8%",
@@ -123,6 +173,22 @@ SVM_TRAIN_ACCURACY = PrintedNumber(
 SVM_TEST_ACCURACY = PrintedNumber(
     0.992, "fraction", "Fig. 15, section 4.3",
     "The accuracy for training and testing is 99.7% and 99.2%, respectively",
+)
+SVM_ITERATIONS = PrintedNumber(
+    50, "iterations", "section 4.3",
+    "The optimum model was obtained for 2.0 gamma values and with 50 iterations",
+)
+SVM_SAMPLES = PrintedNumber(
+    6000, "samples", "section 4.3",
+    "The batch size is selected as 6000 samples and 80% of it is used as the training dataset",
+)
+EARLY_MODES_SAMPLES = PrintedNumber(
+    100, "samples", "Fig. 19, section 4.4",
+    "in the beginning there are many vibration modes and most of them disappear after 100 samples",
+)
+LONG_LIVED_SAMPLES = PrintedNumber(
+    300, "samples", "Fig. 18, section 4.4",
+    "these frequency components remain powerful during more than 300 samples of the signal",
 )
 
 
@@ -220,12 +286,24 @@ TABLE_2 = PAPER_FILTERS["elliptic"]
 NUMBERS = {
     "prior_distance_accuracy_cm": PRIOR_DISTANCE_ACCURACY_CM,
     "probe_length_cm": PROBE_LENGTH_CM,
+    "tube_outer_diameter_cm": TUBE_OUTER_DIAMETER_CM,
+    "tube_inner_diameter_cm": TUBE_INNER_DIAMETER_CM,
+    "sensor_range_g": SENSOR_RANGE_G,
+    "sampling_frequency_khz": SAMPLING_FREQUENCY_KHZ,
+    "max_frequency_hz": MAX_FREQUENCY_HZ,
+    "i2c_rate_khz": I2C_RATE_KHZ,
     "deviation_cm": DEVIATION_CM,
     "deviation_50cm_probe_cm": DEVIATION_50CM_PROBE_CM,
     "spread_ratio": SPREAD_RATIO,
     "mode_change_ratio": MODE_CHANGE_RATIO,
     "pvc_wood_overlap_cm": PVC_WOOD_OVERLAP_CM,
+    "high_band_low_cutoff_hz": HIGH_BAND_CUTOFFS_HZ[0],
+    "high_band_high_cutoff_hz": HIGH_BAND_CUTOFFS_HZ[1],
     "ann_accuracy": ANN_ACCURACY,
     "svm_train_accuracy": SVM_TRAIN_ACCURACY,
     "svm_test_accuracy": SVM_TEST_ACCURACY,
+    "svm_iterations": SVM_ITERATIONS,
+    "svm_samples": SVM_SAMPLES,
+    "early_modes_samples": EARLY_MODES_SAMPLES,
+    "long_lived_samples": LONG_LIVED_SAMPLES,
 }

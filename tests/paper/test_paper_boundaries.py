@@ -81,7 +81,9 @@ def test_the_simulated_data_set_follows_the_paper_protocol():
 def test_every_printed_number_says_where_it_is_printed():
     for name, number in printed.NUMBERS.items():
         assert number.where and number.quote, name
-        assert number.unit in ("cm", "fraction", "fraction of L"), name
+        assert number.unit in printed.UNITS, name
+    with pytest.raises(ValueError, match="unit must be one of"):
+        printed.PrintedNumber(1.0, "furlong", "nowhere", "")
     # the confusion matrices carry the printed accuracies (their counts are checked against
     # them in test_paper_experiments.py)
     assert printed.PAPER_SVM.reported_accuracy == {"train": 0.997, "test": 0.992}
@@ -94,3 +96,13 @@ def test_module_names_are_unique():
     """Two modules of one name would be two meanings of one word (and ambiguous in the docs)."""
     names = [p.name for p in ROOT.rglob("*.py") if p.name not in ("__init__.py", "_cli.py")]
     assert sorted({n for n in names if names.count(n) > 1}) == []
+
+
+def test_the_default_probe_and_paper_scene_are_what_the_paper_prints():
+    from ebantenna.probe import Probe
+
+    probe, scene = Probe(), builtin_scene("paper")
+    assert probe.length == pytest.approx(printed.PROBE_LENGTH_CM.value / 100)
+    assert probe.outer_diameter == pytest.approx(printed.TUBE_OUTER_DIAMETER_CM.value / 100)
+    assert probe.inner_diameter == pytest.approx(printed.TUBE_INNER_DIAMETER_CM.value / 100)
+    assert scene.fs == pytest.approx(1000 * printed.SAMPLING_FREQUENCY_KHZ.value)

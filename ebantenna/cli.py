@@ -24,6 +24,7 @@ COMMAND_MODULES = (
     "ebantenna.simulate._cli",
     "ebantenna.device._cli",
     "ebantenna.study._cli",
+    "ebantenna.bench._cli",
 )
 
 

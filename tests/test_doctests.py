@@ -23,7 +23,7 @@ def test_docstring_examples(name):
 
 def test_the_public_subpackages_have_examples():
     # Not a formality: a subpackage whose docstrings lost their examples fails here.
-    for sub in ("fem", "simulate", "signal", "ml", "device", "study"):
+    for sub in ("fem", "simulate", "signal", "ml", "device", "paper", "study"):
         attempted = sum(
             doctest.testmod(importlib.import_module(n), optionflags=FLAGS, report=False).attempted
             for n in MODULES

@@ -1,8 +1,11 @@
 """Accuracy against time, for every subpackage: what each extra digit or percent costs.
 
-Each module here is one sweep with a ``main(argv)`` that prints its tables; the scripts in the
+Each module here is one sweep: ``run(quick)`` measures and returns its rows (lists of dicts),
+``to_text(rows)`` formats them as text tables, and, where the sweep has a figure,
+``plot(rows)`` draws it from the same rows. ``main(argv)`` prints the tables; the scripts in the
 repository's ``benchmarks/`` folder run them one at a time, and :func:`run_benchmarks` (the
-``ebantenna bench`` command) runs them all and gathers their tables and plots into one report.
+``ebantenna bench`` command) runs them all, each once, and writes every table and figure into one
+report through :func:`write_sweep`.
 
 - :mod:`~ebantenna.bench.fem_accuracy`: FEM error against the exact frequencies and solve time,
   N = 2 ... 2048 elements, three solvers; the batched contact sweep.
@@ -16,17 +19,14 @@ Timings are measured side by side in one run; on a shared machine read the ratio
 
 from __future__ import annotations
 
-import contextlib
 import importlib
-import io
 import time
 from pathlib import Path
 
-import numpy as np
-
 from .._progress import progress
+from ..report import FigureSet, Report
 
-__all__ = ["BENCHMARKS", "run_benchmarks"]
+__all__ = ["BENCHMARKS", "run_benchmarks", "write_sweep"]
 
 #: Module name and title of every sweep, in report order.
 BENCHMARKS = {
@@ -37,54 +37,33 @@ BENCHMARKS = {
 }
 
 
-def _fem_plot(quick: bool):
-    import matplotlib.pyplot as plt
+def write_sweep(report: Report, figures: FigureSet, name: str, module, rows) -> str:
+    """Write one sweep's tables and (if it has one) its figure, both from the same rows.
 
-    from .fem_accuracy import accuracy_table
+    Parameters
+    ----------
+    report : Report
+        Receives a heading, the text tables and the figure.
+    figures : FigureSet
+        Saves the figure as ``name.png``.
+    name : str
+        Key of the sweep in :data:`BENCHMARKS`.
+    module : module
+        The sweep's module, with ``to_text(rows)`` and optionally ``plot(rows)``.
+    rows : dict
+        What the module's ``run`` returned.
 
-    rows = accuracy_table(quick)
-    fig, ax = plt.subplots(figsize=(7, 4.2))
-    for solver, marker in (("dense", "o"), ("sparse", "s"), ("naive", "x")):
-        err = np.array([r[solver][0] for r in rows])
-        sec = np.array([r[solver][1] for r in rows])
-        ok = np.isfinite(err) & (err > 0)
-        ax.loglog(sec[ok], err[ok], marker + "-", label=solver)
-        for r, e, s in zip(rows, err, sec, strict=True):
-            if np.isfinite(e) and e > 0 and solver == "sparse":
-                ax.annotate(
-                    str(r["N"]), (s, e), fontsize=7, xytext=(3, 3), textcoords="offset points"
-                )
-    ax.set_xlabel("solve time (s)")
-    ax.set_ylabel("max relative error of f1..f3")
-    ax.set_title("What a digit costs: FEM at contact 0.8 L (labels: elements)")
-    ax.legend()
-    return fig
-
-
-def _signal_plot(quick: bool):
-    import matplotlib.pyplot as plt
-
-    from .signal_accuracy import frequency_table
-
-    with contextlib.redirect_stdout(io.StringIO()):
-        rows = frequency_table(20 if quick else 200, np.random.default_rng(0))
-    fig, ax = plt.subplots(figsize=(7, 4.2))
-    for method, window, pad, rms, _worst, seconds in rows:
-        ax.loglog(seconds * 1e6, rms, "o")
-        ax.annotate(
-            f"{method}/{window}/x{pad}",
-            (seconds * 1e6, rms),
-            fontsize=7,
-            xytext=(3, 3),
-            textcoords="offset points",
-        )
-    ax.set_xlabel("time per estimate (us)")
-    ax.set_ylabel("RMS frequency error (Hz)")
-    ax.set_title("Dominant frequency: accuracy against time")
-    return fig
-
-
-PLOTS = {"fem_accuracy": _fem_plot, "signal_accuracy": _signal_plot}
+    Returns
+    -------
+    str
+        The tables as text.
+    """
+    text = module.to_text(rows)
+    report.heading(BENCHMARKS[name])
+    report.preformatted(text.strip())
+    if hasattr(module, "plot"):
+        report.figure(figures.save(module.plot(rows), name), BENCHMARKS[name])
+    return text
 
 
 def run_benchmarks(
@@ -97,7 +76,7 @@ def run_benchmarks(
     out_dir : path
         Output directory (created).
     quick : bool
-        Each sweep's ``--quick`` version: smaller meshes, fewer trials, smaller problems.
+        Each sweep's quick version: smaller meshes, fewer trials, smaller problems.
     only : iterable of str, optional
         Names from :data:`BENCHMARKS` to run; all by default.
     show_progress : bool, optional
@@ -106,14 +85,12 @@ def run_benchmarks(
     Returns
     -------
     dict
-        ``{name: {"seconds": ..., "table": text}}`` and the report paths under ``"report"``.
+        ``{name: {"seconds": ..., "table": text, "rows": ...}}`` and the report paths under
+        ``"report"``.
     """
     import matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from ..study.report import Report
 
     names = list(BENCHMARKS) if only is None else list(only)
     unknown = sorted(set(names) - set(BENCHMARKS))
@@ -121,6 +98,7 @@ def run_benchmarks(
         raise ValueError(f"only must name benchmarks among {', '.join(BENCHMARKS)}; got {unknown}")
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
+    figures = FigureSet(out_dir)
     report = Report("ebantenna: accuracy against time" + (" (quick)" if quick else ""))
     report.paragraph(
         "Every table is measured side by side in one run; compare ratios, not seconds."
@@ -128,19 +106,11 @@ def run_benchmarks(
     results: dict = {}
     for name in progress(names, desc="bench", enabled=show_progress):
         module = importlib.import_module(f"{__name__}.{name}")
-        buffer = io.StringIO()
         start = time.perf_counter()
-        with contextlib.redirect_stdout(buffer):
-            module.main(["--quick"] if quick else [])
+        rows = module.run(quick)
         seconds = time.perf_counter() - start
-        results[name] = {"seconds": seconds, "table": buffer.getvalue()}
-        report.heading(BENCHMARKS[name])
-        report.preformatted(buffer.getvalue().strip())
-        if name in PLOTS:
-            fig = PLOTS[name](quick)
-            fig.savefig(out_dir / f"{name}.png", dpi=120, bbox_inches="tight")
-            plt.close(fig)
-            report.figure(f"{name}.png", BENCHMARKS[name])
+        text = write_sweep(report, figures, name, module, rows)
+        results[name] = {"seconds": seconds, "table": text, "rows": rows}
         report.paragraph(f"This sweep took {seconds:.1f} s.")
     md, page = report.write(out_dir, "bench")
     results["report"] = {"markdown": str(md), "html": str(page)}

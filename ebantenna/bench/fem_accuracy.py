@@ -2,11 +2,12 @@
 
 Run:  python benchmarks/fem_accuracy.py [--quick]
 
-Prints, for meshes of N = 2 ... 2048 elements, the largest relative error of the first three
-frequencies against :func:`ebantenna.fem.exact_frequencies` and the time of each solver (dense
-inverted Cholesky, sparse shift-invert Lanczos, and the textbook ``scipy.linalg.eigh(K, M)``),
-measured side by side in one run; then the throughput of a 1000-position contact sweep at 64
-elements, batched against one position at a time.
+:func:`run` measures, for meshes of N = 2 ... 2048 elements, the largest relative error of the
+first three frequencies against :func:`ebantenna.fem.exact_frequencies` and the time of each solver
+(dense inverted Cholesky, sparse shift-invert Lanczos, and the textbook
+``scipy.linalg.eigh(K, M)``), side by side in one run; then the throughput of a 1000-position
+contact sweep at 64 elements, batched against one position at a time. It returns the rows;
+:func:`to_text` and :func:`plot` draw the table and the figure from those same rows.
 """
 
 from __future__ import annotations
@@ -18,9 +19,28 @@ import numpy as np
 from ebantenna import Probe
 from ebantenna.bench._timing import best_time
 from ebantenna.fem import Supports, exact_frequencies, modal_analysis, natural_frequencies
+from ebantenna.report import text_table
+
+__all__ = ["SOLVERS", "accuracy_rows", "sweep_rows", "run", "to_text", "plot", "main"]
+
+#: The solvers compared, with their plot markers.
+SOLVERS = {"dense": "o", "sparse": "s", "naive": "x"}
 
 
-def accuracy_table(quick: bool) -> list[dict]:
+def accuracy_rows(quick: bool) -> list[dict]:
+    """Error and best solve time of each solver against the mesh size.
+
+    Parameters
+    ----------
+    quick : bool
+        Meshes up to 256 elements instead of 2048.
+
+    Returns
+    -------
+    list of dict
+        One row per mesh: ``N``, and for each solver ``<solver>_error`` (largest relative error of
+        f1..f3, NaN where the solver was not run) and ``<solver>_seconds`` (best wall time, s).
+    """
     probe = Probe()
     contact = 0.8 * probe.length
     exact = exact_frequencies(probe, contact, n_modes=3)
@@ -28,12 +48,12 @@ def accuracy_table(quick: bool) -> list[dict]:
     sizes = [2, 4, 8, 16, 32, 64, 128, 256] + ([] if quick else [512, 1024, 2048])
     for n in sizes:
         row = {"N": n}
-        for solver in ("dense", "sparse", "naive"):
-            if solver in ("dense", "naive") and n > (256 if quick else 1024):
-                row[solver] = (float("nan"), float("nan"))
-                continue
-            if solver == "sparse" and n < 4:
-                row[solver] = (float("nan"), float("nan"))
+        for solver in SOLVERS:
+            skip = (solver in ("dense", "naive") and n > (256 if quick else 1024)) or (
+                solver == "sparse" and n < 4
+            )
+            if skip:
+                row[f"{solver}_error"] = row[f"{solver}_seconds"] = float("nan")
                 continue
             t, res = best_time(
                 lambda s=solver, n=n: modal_analysis(
@@ -41,12 +61,20 @@ def accuracy_table(quick: bool) -> list[dict]:
                 ),
                 3 if n <= 256 else 1,
             )
-            row[solver] = (float(np.max(np.abs(res.frequencies / exact - 1))), t)
+            row[f"{solver}_error"] = float(np.max(np.abs(res.frequencies / exact - 1)))
+            row[f"{solver}_seconds"] = t
         rows.append(row)
     return rows
 
 
-def sweep_table(quick: bool) -> list[tuple[str, float, float]]:
+def sweep_rows(quick: bool) -> list[dict]:
+    """Throughput of a contact sweep at 64 elements: batched against one position at a time.
+
+    Returns
+    -------
+    list of dict
+        Rows with ``method``, ``seconds`` (for the whole sweep, s) and ``positions_per_second``.
+    """
     probe = Probe()
     n = 200 if quick else 1000
     contacts = np.linspace(0.01, 0.39, n)
@@ -58,33 +86,79 @@ def sweep_table(quick: bool) -> list[tuple[str, float, float]]:
         ),
         1,
     )
-    assert np.allclose(f[:k], g, rtol=1e-8)
+    if not np.allclose(f[:k], g, rtol=1e-8):
+        raise RuntimeError("the batched sweep and the single solves disagree beyond 1e-8")
     return [
-        (f"batched natural_frequencies, {n} positions", t_batch, n / t_batch),
-        (f"modal_analysis one at a time (x{n // k} of {k})", t_loop * n / k, k / t_loop),
+        {"method": f"batched natural_frequencies, {n} positions", "seconds": t_batch,
+         "positions_per_second": n / t_batch},
+        {"method": f"modal_analysis one at a time (x{n // k} of {k})", "seconds": t_loop * n / k,
+         "positions_per_second": k / t_loop},
     ]
 
 
+def run(quick: bool = False) -> dict:
+    """Both sweeps: ``{"accuracy": accuracy_rows(quick), "sweep": sweep_rows(quick)}``."""
+    return {"accuracy": accuracy_rows(quick), "sweep": sweep_rows(quick)}
+
+
+def to_text(tables: dict) -> str:
+    """The tables of :func:`run` as text."""
+    columns = [("N", "N", "6d")]
+    for s in SOLVERS:
+        columns += [(f"{s}_error", f"{s} err", "10.2e"), (f"{s}_seconds", "time", "9.5f")]
+    sweep = tables["sweep"]
+    lines = [
+        "Contact at 0.8 L, clamped hinge: max relative error of f1..f3 | best time (s)",
+        text_table(columns, tables["accuracy"]),
+        "",
+        "Contact sweep at 64 elements, 3 modes",
+        text_table(
+            [("method", "method", "<48"), ("seconds", "s", "8.3f"),
+             ("positions_per_second", "positions/s", "9.0f")],
+            sweep,
+        ),
+        f"speed-up of the batched sweep: {sweep[1]['seconds'] / sweep[0]['seconds']:.1f}x",
+    ]
+    return "\n".join(lines)
+
+
+def plot(tables: dict):
+    """Error against solve time of each solver, from the rows of :func:`run`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from matplotlib.figure import Figure
+
+    rows = tables["accuracy"]
+    fig = Figure(figsize=(7, 4.2))
+    ax = fig.subplots()
+    for solver, marker in SOLVERS.items():
+        err = np.array([r[f"{solver}_error"] for r in rows])
+        sec = np.array([r[f"{solver}_seconds"] for r in rows])
+        ok = np.isfinite(err) & (err > 0)
+        ax.loglog(sec[ok], err[ok], marker + "-", label=solver)
+        if solver == "sparse":
+            for r, e, s in zip(rows, err, sec, strict=True):
+                if np.isfinite(e) and e > 0:
+                    ax.annotate(
+                        str(r["N"]), (s, e), fontsize=7, xytext=(3, 3),
+                        textcoords="offset points",
+                    )
+    ax.set_xlabel("solve time (s)")
+    ax.set_ylabel("max relative error of f1..f3")
+    ax.set_title("What a digit costs: FEM at contact 0.8 L (labels: elements)")
+    ax.legend()
+    return fig
+
+
 def main(argv=None):
+    """Command-line entry: print the tables."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="smaller meshes and sweep")
     args = parser.parse_args(argv)
-    print("Contact at 0.8 L, clamped hinge: max relative error of f1..f3 | best time (s)")
-    print(
-        f"{'N':>6} | {'dense err':>10} {'time':>9} | {'sparse err':>10} {'time':>9} |"
-        f" {'naive err':>10} {'time':>9}"
-    )
-    for row in accuracy_table(args.quick):
-        cells = " | ".join(
-            f"{row[s][0]:10.2e} {row[s][1]:9.5f}" for s in ("dense", "sparse", "naive")
-        )
-        print(f"{row['N']:>6} | {cells}")
-    print()
-    print("Contact sweep at 64 elements, 3 modes")
-    rows = sweep_table(args.quick)
-    for name, t, rate in rows:
-        print(f"  {name:<48} {t:8.3f} s  {rate:9.0f} positions/s")
-    print(f"  speed-up of the batched sweep: {rows[1][1] / rows[0][1]:.1f}x")
+    print(to_text(run(args.quick)))
 
 
 if __name__ == "__main__":

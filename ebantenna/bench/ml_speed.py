@@ -11,6 +11,7 @@ Run: ``python benchmarks/ml_speed.py [--quick] [--repeat N]``
 
 Each pair is timed alternately ``--repeat`` times and the best time of each is kept, so that
 other load on the machine affects both sides alike. The table prints the ratio ours / theirs.
+:func:`run` returns the rows, :func:`to_text` prints them.
 libsvm runs on one thread; our Gram matrix is a BLAS product that uses every BLAS thread, which
 helps on an idle machine and hurts on a busy one, so one row repeats our fit on one BLAS thread.
 """
@@ -28,6 +29,9 @@ from threadpoolctl import threadpool_limits
 
 from ebantenna.bench._timing import best_time
 from ebantenna.ml import SVC, MLPClassifier
+from ebantenna.report import text_table
+
+__all__ = ["spectra_like", "run", "to_text", "main"]
 
 
 def spectra_like(n, d, k, seed):
@@ -40,12 +44,25 @@ def spectra_like(n, d, k, seed):
     return X, y
 
 
-def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="smaller problems")
-    parser.add_argument("--repeat", type=int, default=2, help="timings per estimator")
-    args = parser.parse_args(argv)
-    n = 1500 if args.quick else 6000
+def run(quick: bool = False, repeat: int = 2) -> dict:
+    """Time each hand-written estimator against scikit-learn's on the same data.
+
+    Parameters
+    ----------
+    quick : bool
+        1500 training samples and 20 epochs instead of 6000 and 50.
+    repeat : int
+        Alternating timings per pair; the best of each side is kept.
+
+    Returns
+    -------
+    dict
+        ``rows``: per task ``task``, ``ours_seconds``, ``sklearn_seconds``, ``ratio`` (ours /
+        theirs), ``ours_accuracy`` and ``sklearn_accuracy`` (held out).
+    """
+    if repeat < 1:
+        raise ValueError(f"repeat must be >= 1, got {repeat}")
+    n = 1500 if quick else 6000
     d, k = 256, 5
     X, y = spectra_like(n + n // 4, d, k, seed=0)
     X /= X.max()
@@ -55,12 +72,14 @@ def main(argv=None):
     def pair(name, ours, theirs, score):
         t_ours = t_theirs = np.inf
         m_ours = m_theirs = None
-        for _ in range(args.repeat):  # alternate, keep the best of each
+        for _ in range(repeat):  # alternate, keep the best of each
             t, m_ours = best_time(ours, 1)
             t_ours = min(t_ours, t)
             t, m_theirs = best_time(theirs, 1)
             t_theirs = min(t_theirs, t)
-        rows.append((name, t_ours, t_theirs, score(m_ours), score(m_theirs)))
+        rows.append({"task": name, "ours_seconds": t_ours, "sklearn_seconds": t_theirs,
+                     "ratio": t_ours / t_theirs, "ours_accuracy": score(m_ours),
+                     "sklearn_accuracy": score(m_theirs)})
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ConvergenceWarning)
@@ -76,7 +95,7 @@ def main(argv=None):
         pair("SVC rbf fit, libsvm_compat=True",
              lambda: SVC(libsvm_compat=True).fit(Xtr, ytr),
              lambda: LibSVC(shrinking=False).fit(Xtr, ytr), acc)
-        epochs = 20 if args.quick else 50
+        epochs = 20 if quick else 50
         common = dict(hidden_layer_sizes=(53,), activation="tanh", max_iter=epochs, tol=0.0,
                       n_iter_no_change=10**6, random_state=0, alpha=1e-4)
         pair(f"MLP 53 tanh, full-batch gd, {epochs} epochs",
@@ -86,11 +105,26 @@ def main(argv=None):
         pair(f"MLP 53 tanh, adam batch 200, {epochs} epochs",
              lambda: MLPClassifier(solver="adam", batch_size=200, **common).fit(Xtr, ytr),
              lambda: SkMLP(solver="adam", batch_size=200, **common).fit(Xtr, ytr), acc)
+    return {"rows": rows}
 
-    print(f"{'task':48s} {'ours (s)':>9s} {'sklearn (s)':>11s} {'ratio':>6s} "
-          f"{'acc ours':>9s} {'acc sklearn':>11s}")
-    for name, a, b, sa, sb in rows:
-        print(f"{name:48s} {a:9.3f} {b:11.3f} {a / b:6.2f} {sa:9.4f} {sb:11.4f}")
+
+def to_text(tables: dict) -> str:
+    """The table of :func:`run` as text."""
+    return text_table(
+        [("task", "task", "<48"), ("ours_seconds", "ours (s)", "9.3f"),
+         ("sklearn_seconds", "sklearn (s)", "11.3f"), ("ratio", "ratio", "6.2f"),
+         ("ours_accuracy", "acc ours", "9.4f"), ("sklearn_accuracy", "acc sklearn", "11.4f")],
+        tables["rows"],
+    )
+
+
+def main(argv=None):
+    """Command-line entry: print the table."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="smaller problems")
+    parser.add_argument("--repeat", type=int, default=2, help="timings per estimator")
+    args = parser.parse_args(argv)
+    print(to_text(run(args.quick, args.repeat)))
 
 
 if __name__ == "__main__":

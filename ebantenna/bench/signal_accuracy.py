@@ -12,7 +12,9 @@ Tables:
 4. contact distance from frequencies: error in cm along the whole probe, one mode against two and
    three, with FEM frequencies of the paper's probe as the calibration and test data.
 
-Run ``python benchmarks/signal_accuracy.py`` (add ``--quick`` for fewer trials).
+:func:`run` returns the rows of every table; :func:`to_text` and :func:`plot` draw the tables and
+the figure from those same rows. Run ``python benchmarks/signal_accuracy.py`` (add ``--quick`` for
+fewer trials).
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ import time
 
 import numpy as np
 
+from ebantenna.report import text_table
 from ebantenna.signal import (
     DECAY_METHODS,
     FrequencyTracker,
@@ -32,6 +35,9 @@ from ebantenna.signal import (
     paper_filter,
     spectrogram,
 )
+
+__all__ = ["frequency_rows", "timefreq_rows", "decay_rows", "distance_rows", "run", "to_text",
+           "plot", "main"]
 
 FS = 1000.0
 T = np.arange(1000) / FS
@@ -49,7 +55,15 @@ def _timed(fn, repeat):
     return best, result
 
 
-def frequency_table(n_trials, rng):
+def frequency_rows(n_trials, rng) -> list[dict]:
+    """Dominant-frequency estimators on ``n_trials`` noisy damped tones.
+
+    Returns
+    -------
+    list of dict
+        ``method``, ``window``, ``pad`` (zero-padding factor), ``rms_hz`` and ``max_hz`` (error,
+        Hz), ``seconds`` (per call, s) and ``ratio`` (time relative to the first row).
+    """
     signals = []
     for _ in range(n_trials):
         f0 = rng.uniform(20.0, 450.0)
@@ -67,20 +81,22 @@ def frequency_table(n_trials, rng):
         ])
         seconds, _ = _timed(lambda m=method, w=window, p=pad: dominant_frequency(
             signals[0][1], FS, method=m, window=w, zero_pad=p), 50)
-        rows.append((method, window, pad, np.sqrt(np.mean(errors**2)), np.abs(errors).max(),
-                     seconds))
-    base = rows[0][5]
-    print("\n1. Dominant frequency: 1 s at 1 kHz, damped tone (tau 0.3 s), noise 0.02 "
-          f"({n_trials} trials)")
-    print(f"{'method':<10} {'window':<12} {'pad':>4} {'rms err Hz':>11} {'max err Hz':>11} "
-          f"{'time us':>9} {'time ratio':>11}")
-    for method, window, pad, rms, worst, seconds in rows:
-        print(f"{method:<10} {window:<12} {pad:>4} {rms:>11.4f} {worst:>11.4f} "
-              f"{seconds * 1e6:>9.1f} {seconds / base:>11.2f}")
+        rows.append({"method": method, "window": window, "pad": pad,
+                     "rms_hz": float(np.sqrt(np.mean(errors**2))),
+                     "max_hz": float(np.abs(errors).max()), "seconds": seconds})
+    for row in rows:
+        row["ratio"] = row["seconds"] / rows[0]["seconds"]
     return rows
 
 
-def timefreq_table():
+def timefreq_rows() -> list[dict]:
+    """Ridge error of STFT, Morlet scalogram and the adaptive tracker on a chirp.
+
+    Returns
+    -------
+    list of dict
+        ``view``, ``rms_hz`` (ridge error, Hz), ``seconds`` (per map, s) and ``ratio``.
+    """
     truth = 80.0 + 60.0 * T  # chirp from 80 Hz to 140 Hz
     x = np.sin(2 * np.pi * (80.0 * T + 30.0 * T**2))
     interior = (T > 0.15) & (T < 0.85)
@@ -91,23 +107,32 @@ def timefreq_table():
         ridge = tf.ridge()
         keep = (tf.t > 0.15) & (tf.t < 0.85)
         err = ridge[keep] - np.interp(tf.t[keep], T, truth)
-        rows.append((f"STFT nperseg={nperseg}", np.sqrt(np.mean(err**2)), seconds))
+        rows.append({"view": f"STFT nperseg={nperseg}",
+                     "rms_hz": float(np.sqrt(np.mean(err**2))), "seconds": seconds})
     freqs = np.arange(60.0, 160.0, 0.5)
     for bandwidth in (1.5, 4.0, 16.0):
         seconds, tf = _timed(lambda b=bandwidth: morlet_scalogram(x, FS, freqs, bandwidth=b), 3)
         err = tf.ridge()[interior] - truth[interior]
-        rows.append((f"Morlet B={bandwidth:g} (200 rows)", np.sqrt(np.mean(err**2)), seconds))
+        rows.append({"view": f"Morlet B={bandwidth:g} (200 rows)",
+                     "rms_hz": float(np.sqrt(np.mean(err**2))), "seconds": seconds})
     seconds, res = _timed(lambda: FrequencyTracker(FS).track(x), 3)
     err = res.frequency[interior] - truth[interior]
-    rows.append(("adaptive tracker", np.sqrt(np.mean(err**2)), seconds))
-    base = rows[0][2]
-    print("\n2. Time-frequency ridge on a chirp 80 -> 140 Hz (1 s, 1 kHz), 0.15 s < t < 0.85 s")
-    print(f"{'view':<28} {'rms ridge err Hz':>17} {'time ms':>9} {'time ratio':>11}")
-    for name, rms, seconds in rows:
-        print(f"{name:<28} {rms:>17.3f} {seconds * 1e3:>9.2f} {seconds / base:>11.2f}")
+    rows.append({"view": "adaptive tracker", "rms_hz": float(np.sqrt(np.mean(err**2))),
+                 "seconds": seconds})
+    for row in rows:
+        row["ratio"] = row["seconds"] / rows[0]["seconds"]
+    return rows
 
 
-def decay_table(n_trials, rng):
+def decay_rows(n_trials, rng) -> list[dict]:
+    """The decay-fit methods, with and without the Table 1 band-pass, on damped tones.
+
+    Returns
+    -------
+    list of dict
+        ``tau`` (true time constant, s), ``method``, ``band_pass``, ``median_error`` and
+        ``max_error`` (relative error of tau), ``seconds`` (per fit, s) and ``ratio``.
+    """
     sos = paper_filter("chebyshev")
     stated = paper_filter("chebyshev", "stated")
     rows = []
@@ -116,25 +141,32 @@ def decay_table(n_trials, rng):
                    + 0.01 * rng.standard_normal(T.size) for _ in range(n_trials)]
         for method in DECAY_METHODS:
             for label, pre in (("none", None), ("table 1 (13)", sos), ("stated (2)", stated)):
-                def run(x, m=method, p=pre):
+                def fit(x, m=method, p=pre):
                     return fit_decay(x if p is None else apply_filter(p, x), FS, method=m)
-                fits = [run(x) for x in signals]
-                rel = np.array([f.tau / tau - 1 for f in fits])
-                seconds, _ = _timed(lambda r=run, x0=signals[0]: r(x0), 10)
-                rows.append((tau, method, label, np.median(rel), np.abs(rel).max(), seconds))
-    base = rows[0][5]
-    print(f"\n3. Decay fit: 1 s, 1 kHz damped tone (80-140 Hz), noise 0.01 ({n_trials} trials)")
-    print(f"{'tau s':>6} {'method':<10} {'band-pass':<13} {'median err':>11} {'max |err|':>10} "
-          f"{'time ms':>8} {'time ratio':>11}")
-    for tau, method, label, med, worst, seconds in rows:
-        print(f"{tau:>6.2f} {method:<10} {label:<13} {med:>+11.2%} {worst:>10.2%} "
-              f"{seconds * 1e3:>8.2f} {seconds / base:>11.2f}")
+                rel = np.array([fit(x).tau / tau - 1 for x in signals])
+                seconds, _ = _timed(lambda r=fit, x0=signals[0]: r(x0), 10)
+                rows.append({"tau": tau, "method": method, "band_pass": label,
+                             "median_error": float(np.median(rel)),
+                             "max_error": float(np.abs(rel).max()), "seconds": seconds})
+    for row in rows:
+        row["ratio"] = row["seconds"] / rows[0]["seconds"]
+    return rows
 
 
-def distance_table(rng):
+def distance_rows(rng) -> dict:
+    """Contact distance from noisy FEM frequencies: one mode against two and three.
+
+    Returns
+    -------
+    dict
+        ``noise`` (relative frequency scatter), ``turning_point_m`` (where f1 turns, m),
+        ``length_m`` (probe length, m), ``bands`` (list of (low, high) fractions of the length)
+        and ``rows``: per estimator ``estimator``, ``max_error_cm`` (one value per band, NaN
+        where no test contact falls in it) and ``us_per_contact``.
+    """
     from ebantenna.fem import natural_frequencies
+    from ebantenna.paper.estimators import FrequencyDistanceEstimator, MultiModeDistanceEstimator
     from ebantenna.probe import Probe
-    from ebantenna.signal import FrequencyDistanceEstimator, MultiModeDistanceEstimator
 
     probe = Probe()
     length = probe.length
@@ -154,31 +186,125 @@ def distance_table(rng):
         errors[f"{k} modes"] = np.abs(est.predict(test_f[:, :k]) - test_d) * 100
         times[f"{k} modes"] = _timed(lambda e=est, m=k: e.predict(test_f[:, :m]), 3)[0]
     edges = np.array([0.0, 0.25, 0.5, 0.75, single.limit_ / length, 0.9, 1.0])
-    print(f"\n4. Contact distance from FEM frequencies with {noise:.1%} scatter; calibration every "
-          f"5 mm; 400 random contacts. f1 turns at {single.limit_ * 100:.1f} cm "
-          f"({single.limit_ / length:.1%} of L). Max error, cm:")
-    bands = list(zip(edges[:-1], edges[1:], strict=True))
-    header = " ".join(f"{f'{a:.0%}-{b:.0%}':>9}" for a, b in bands)
-    print(f"{'estimator':<10} {header} {'us/contact':>11}")
+    bands = [(float(a), float(b)) for a, b in zip(edges[:-1], edges[1:], strict=True)]
+    rows = []
     for name, err in errors.items():
-        cells = []
+        worst = []
         for a, b in bands:
             sel = (test_d >= a * length) & (test_d < b * length)
-            cells.append(f"{err[sel].max():>9.3f}" if sel.any() else f"{'-':>9}")
-        print(f"{name:<10} {' '.join(cells)} {times[name] / test_d.size * 1e6:>11.2f}")
+            worst.append(float(err[sel].max()) if sel.any() else float("nan"))
+        rows.append({"estimator": name, "max_error_cm": worst,
+                     "us_per_contact": times[name] / test_d.size * 1e6})
+    return {"noise": noise, "turning_point_m": float(single.limit_), "length_m": length,
+            "bands": bands, "rows": rows}
+
+
+def run(quick: bool = False, seed: int = 0) -> dict:
+    """Every table of this sweep, as rows.
+
+    Parameters
+    ----------
+    quick : bool
+        Fewer trials.
+    seed : int
+        Seed of the noise and of the test contacts.
+
+    Returns
+    -------
+    dict
+        ``n_trials`` and the rows of ``frequency``, ``timefreq``, ``decay`` (with
+        ``decay_trials``) and ``distance``.
+    """
+    rng = np.random.default_rng(seed)
+    n = 20 if quick else 200
+    n_decay = 5 if quick else 30
+    return {
+        "n_trials": n,
+        "frequency": frequency_rows(n, rng),
+        "timefreq": timefreq_rows(),
+        "decay_trials": n_decay,
+        "decay": decay_rows(n_decay, rng),
+        "distance": distance_rows(rng),
+    }
+
+
+def to_text(tables: dict) -> str:
+    """The tables of :func:`run` as text."""
+    frequency = text_table(
+        [("method", "method", "<10"), ("window", "window", "<12"), ("pad", "pad", "4d"),
+         ("rms_hz", "rms err Hz", "11.4f"), ("max_hz", "max err Hz", "11.4f"),
+         ("us", "time us", "9.1f"), ("ratio", "time ratio", "11.2f")],
+        [{**r, "us": r["seconds"] * 1e6} for r in tables["frequency"]],
+    )
+    timefreq = text_table(
+        [("view", "view", "<28"), ("rms_hz", "rms ridge err Hz", "17.3f"),
+         ("ms", "time ms", "9.2f"), ("ratio", "time ratio", "11.2f")],
+        [{**r, "ms": r["seconds"] * 1e3} for r in tables["timefreq"]],
+    )
+    decay = text_table(
+        [("tau", "tau s", "6.2f"), ("method", "method", "<10"), ("band_pass", "band-pass", "<13"),
+         ("median_error", "median err", "+11.2%"), ("max_error", "max |err|", "10.2%"),
+         ("ms", "time ms", "8.2f"), ("ratio", "time ratio", "11.2f")],
+        [{**r, "ms": r["seconds"] * 1e3} for r in tables["decay"]],
+    )
+    dist = tables["distance"]
+    band_names = [f"{a:.0%}-{b:.0%}" for a, b in dist["bands"]]
+    distance_columns = [("estimator", "estimator", "<10")]
+    distance_columns += [(name, name, "9.3f") for name in band_names]
+    distance_columns.append(("us_per_contact", "us/contact", "11.2f"))
+    distance = text_table(
+        distance_columns,
+        [{**r, **dict(zip(band_names, r["max_error_cm"], strict=True))} for r in dist["rows"]],
+    )
+    turn = dist["turning_point_m"]
+    return "\n".join([
+        "1. Dominant frequency: 1 s at 1 kHz, damped tone (tau 0.3 s), noise 0.02 "
+        f"({tables['n_trials']} trials)",
+        frequency,
+        "",
+        "2. Time-frequency ridge on a chirp 80 -> 140 Hz (1 s, 1 kHz), 0.15 s < t < 0.85 s",
+        timefreq,
+        "",
+        f"3. Decay fit: 1 s, 1 kHz damped tone (80-140 Hz), noise 0.01 "
+        f"({tables['decay_trials']} trials)",
+        decay,
+        "",
+        f"4. Contact distance from FEM frequencies with {dist['noise']:.1%} scatter; calibration "
+        f"every 5 mm; 400 random contacts. f1 turns at {turn * 100:.1f} cm "
+        f"({turn / dist['length_m']:.1%} of L). Max error, cm:",
+        distance,
+    ])
+
+
+def plot(tables: dict):
+    """Error against time of the dominant-frequency estimators, from the rows of :func:`run`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(7, 4.2))
+    ax = fig.subplots()
+    for r in tables["frequency"]:
+        us = r["seconds"] * 1e6
+        ax.loglog(us, r["rms_hz"], "o")
+        ax.annotate(f"{r['method']}/{r['window']}/x{r['pad']}", (us, r["rms_hz"]), fontsize=7,
+                    xytext=(3, 3), textcoords="offset points")
+    ax.set_xlabel("time per estimate (us)")
+    ax.set_ylabel("RMS frequency error (Hz)")
+    ax.set_title("Dominant frequency: accuracy against time")
+    return fig
 
 
 def main(argv=None):
+    """Command-line entry: print the tables."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="fewer trials")
     parser.add_argument("--seed", type=int, default=0)
     args = parser.parse_args(argv)
-    rng = np.random.default_rng(args.seed)
-    n = 20 if args.quick else 200
-    frequency_table(n, rng)
-    timefreq_table()
-    decay_table(5 if args.quick else 30, rng)
-    distance_table(rng)
+    print(to_text(run(args.quick, args.seed)))
 
 
 if __name__ == "__main__":

@@ -8,6 +8,8 @@ less than wall time. The last lines build the whole paper data set (9875 signals
 directory with one and with two worker processes and report wall and CPU time and the peak memory
 (target: under 10 s and 1 GB on 2 cores).
 
+:func:`run` returns the rows, :func:`to_text` prints them.
+
 Run: ``python benchmarks/simulate_cost.py [--signals N] [--repeat R] [--skip-dataset] [--quick]``
 """
 
@@ -22,8 +24,11 @@ import time
 import numpy as np
 
 from ebantenna.probe import Probe, material_names
+from ebantenna.report import text_table
 from ebantenna.simulate import build_dataset, builtin_scene, simulate_batch
 from ebantenna.simulate.effects import GY521_MASS, effect_names
+
+__all__ = ["scenarios", "time_scene", "run", "to_text", "main"]
 
 
 def scenarios():
@@ -53,7 +58,90 @@ def time_scene(scene, contacts, materials, seeds, repeat):
     return best
 
 
+def run(quick: bool = False, signals: int = 1000, repeat: int = 3,
+        skip_dataset: bool = False) -> dict:
+    """Cost of each effect, and (unless skipped) of building the whole paper data set.
+
+    Parameters
+    ----------
+    quick : bool
+        200 signals, one timing, no data-set build (overrides the other arguments).
+    signals : int
+        Signals simulated per scene.
+    repeat : int
+        Timings per scene; the best is kept.
+    skip_dataset : bool
+        Leave out the data-set build.
+
+    Returns
+    -------
+    dict
+        ``signals``, ``repeat``, ``rows`` (per scene ``scene``, ``per_1000`` CPU s per 1000
+        signals and ``ratio`` against the ideal scene) and ``dataset`` (per worker count
+        ``jobs``, ``signals``, ``wall_seconds``, ``cpu_seconds``; empty when skipped),
+        ``peak_mb`` and ``load``.
+    """
+    if quick:
+        signals, repeat, skip_dataset = 200, 1, True
+    if signals < 1 or repeat < 1:
+        raise ValueError(f"signals and repeat must be >= 1, got {signals} and {repeat}")
+    rng = np.random.default_rng(0)
+    n = signals
+    contacts = np.round(rng.uniform(0.005, 0.395, n) / 5e-4) * 5e-4
+    materials = rng.choice(material_names(), n)
+    seeds = rng.integers(0, 2**62, n)
+    rows = []
+    for label, scene in scenarios():
+        seconds = time_scene(scene, contacts, materials, seeds, repeat)
+        rows.append({"scene": label, "per_1000": seconds * 1000 / n})
+    for row in rows:
+        row["ratio"] = row["per_1000"] / rows[0]["per_1000"]
+    dataset = []
+    if not skip_dataset:
+        for jobs in (1, 2):
+            with tempfile.TemporaryDirectory() as tmp:
+                wall, cpu = time.perf_counter(), time.process_time()
+                data = build_dataset(tmp, seed=0, n_jobs=jobs, show_progress=False)
+                wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
+            dataset.append({"jobs": jobs, "signals": data.n_signals, "wall_seconds": wall,
+                            "cpu_seconds": cpu})
+    return {
+        "signals": n,
+        "repeat": repeat,
+        "rows": rows,
+        "dataset": dataset,
+        "peak_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,  # kB -> MB (Linux)
+        "load": os.getloadavg()[0],
+    }
+
+
+def to_text(tables: dict) -> str:
+    """The tables of :func:`run` as text."""
+    lines = [
+        f"{tables['signals']} one-second signals at 1 kHz, best of {tables['repeat']}, "
+        "CPU seconds",
+        text_table(
+            [("scene", "scene", "<42"), ("per_1000", "s / 1000 signals", "17.3f"),
+             ("ratio", "x ideal", "8.2f")],
+            tables["rows"],
+        ),
+    ]
+    if tables["dataset"]:
+        lines.append("")
+        for r in tables["dataset"]:
+            lines.append(
+                f"whole paper data set, {r['jobs']} process(es): {r['signals']} signals, "
+                f"{r['wall_seconds']:.2f} s wall, {r['cpu_seconds']:.2f} s CPU in the main "
+                "process (incl. saving)"
+            )
+        lines.append(f"peak resident memory of the main process: {tables['peak_mb']:.0f} MB")
+        lines.append(f"load average while measuring: {tables['load']:.2f} on "
+                     f"{os.cpu_count()} cores")
+    return "\n".join(lines)
+
+
 def main(argv=None):
+    """Command-line entry: print the tables."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--signals", type=int, default=1000)
     parser.add_argument("--repeat", type=int, default=3)
@@ -62,38 +150,7 @@ def main(argv=None):
         "--quick", action="store_true", help="200 signals, one timing, no data set build"
     )
     args = parser.parse_args(argv)
-    if args.quick:
-        args.signals, args.repeat, args.skip_dataset = 200, 1, True
-
-    rng = np.random.default_rng(0)
-    n = args.signals
-    contacts = np.round(rng.uniform(0.005, 0.395, n) / 5e-4) * 5e-4
-    materials = rng.choice(material_names(), n)
-    seeds = rng.integers(0, 2**62, n)
-    rows = []
-    for label, scene in scenarios():
-        seconds = time_scene(scene, contacts, materials, seeds, args.repeat)
-        rows.append((label, seconds * 1000 / n))
-    base = rows[0][1]
-    print(f"{n} one-second signals at 1 kHz, best of {args.repeat}, CPU seconds")
-    print(f"{'scene':42s} {'s / 1000 signals':>17s} {'x ideal':>8s}")
-    for label, per_1000 in rows:
-        print(f"{label:42s} {per_1000:17.3f} {per_1000 / base:8.2f}")
-
-    if not args.skip_dataset:
-        print()
-        for jobs in (1, 2):
-            with tempfile.TemporaryDirectory() as tmp:
-                wall, cpu = time.perf_counter(), time.process_time()
-                data = build_dataset(tmp, seed=0, n_jobs=jobs, show_progress=False)
-                wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
-            print(
-                f"whole paper data set, {jobs} process(es): {data.n_signals} signals, "
-                f"{wall:.2f} s wall, {cpu:.2f} s CPU in the main process (incl. saving)"
-            )
-        peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024  # kB -> MB on Linux
-        print(f"peak resident memory of the main process: {peak:.0f} MB")
-        print(f"load average while measuring: {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores")
+    print(to_text(run(args.quick, args.signals, args.repeat, args.skip_dataset)))
 
 
 if __name__ == "__main__":

@@ -1,5 +1,6 @@
 """Machine learning on feature arrays: a hand-written SMO support vector classifier, NumPy
-multilayer perceptrons, metrics, persistence and the paper's two experiments.
+multilayer perceptrons, metrics and persistence. The paper's two experiments built on them live
+in :mod:`ebantenna.paper.experiments`.
 
 Nothing here knows about beams or signals: every function takes plain arrays.
 """

@@ -1,7 +1,7 @@
 """Signal processing for the antenna probe.
 
-Features, filters, decay fit, time-frequency views, noise filtering, frequency tracking and the
-estimators that work from signals alone.
+Features, filters, decay fit, time-frequency views, noise filtering and frequency tracking. The
+paper's estimators built on these features live in :mod:`ebantenna.paper.estimators`.
 
 Everything here takes a :class:`~ebantenna.recording.Recording` or plain arrays; nothing depends on
 how the signal was made (beam model, simulator or the real accelerometer).
@@ -14,11 +14,6 @@ from .decay import (
     band_passed_decay,
     envelope,
     fit_decay,
-)
-from .estimators import (
-    DecayMaterialClassifier,
-    FrequencyDistanceEstimator,
-    MultiModeDistanceEstimator,
 )
 from .features import fft_features, norm_spectrum, resultant_acceleration
 from .filters import (
@@ -69,7 +64,4 @@ __all__ = [
     "KalmanResult",
     "FrequencyTracker",
     "TrackingResult",
-    "FrequencyDistanceEstimator",
-    "MultiModeDistanceEstimator",
-    "DecayMaterialClassifier",
 ]

@@ -163,7 +163,7 @@ def peak_frequencies(
 
     Each peak is a local maximum of the windowed magnitude spectrum, at least ``min_separation``
     apart from any stronger one; it is refined like :func:`dominant_frequency`. The result feeds
-    :class:`~ebantenna.signal.MultiModeDistanceEstimator`.
+    :class:`ebantenna.paper.estimators.MultiModeDistanceEstimator`.
 
     Parameters
     ----------

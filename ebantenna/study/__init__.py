@@ -1,5 +1,5 @@
-"""The whole study end to end (``ebantenna reproduce``) and the accuracy-versus-time report
-(``ebantenna bench``)."""
+"""The whole study end to end (``ebantenna reproduce``): one module per report section, each a
+pure ``compute`` returning a frozen result and a ``render`` that writes it."""
 
 from .reproduce import StudyResult, default_cache_dir, reproduce
 

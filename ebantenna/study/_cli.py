@@ -1,10 +1,10 @@
-"""``ebantenna reproduce`` and ``ebantenna bench``."""
+"""``ebantenna reproduce``."""
 
 from __future__ import annotations
 
 
 def register(subparsers) -> None:
-    """Add the ``reproduce`` and ``bench`` commands."""
+    """Add the ``reproduce`` command."""
     rep = subparsers.add_parser(
         "reproduce",
         help="the whole study: figures and a report, the paper beside its reproduction",
@@ -17,26 +17,12 @@ def register(subparsers) -> None:
     rep.add_argument("--cache", metavar="DIR", help="data set cache (default ~/.cache/ebantenna)")
     rep.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     rep.set_defaults(func=run_reproduce)
-    bench = subparsers.add_parser(
-        "bench",
-        help="accuracy against time for every subpackage, as one report",
-        description="Run the accuracy-versus-time sweeps and write bench.md / bench.html.",
-    )
-    bench.add_argument("--out", default="ebantenna-bench", metavar="DIR", help="output directory")
-    bench.add_argument("--quick", action="store_true", help="the sweeps' quick versions")
-    bench.add_argument(
-        "--only",
-        action="append",
-        metavar="NAME",
-        help="run only this sweep (repeatable): fem_accuracy, signal_accuracy, simulate_cost, "
-        "ml_speed",
-    )
-    bench.set_defaults(func=run_bench)
 
 
 def run_reproduce(args) -> int:
     """Run ``ebantenna reproduce``."""
     from ..cli import print_json
+    from ..paper import printed
     from .reproduce import reproduce
 
     result = reproduce(
@@ -55,28 +41,17 @@ def run_reproduce(args) -> int:
     print(f"  report: {result.report_html}")
     print(
         f"  SVM material accuracy: train {s['svm']['train_accuracy']:.1%}, "
-        f"test {s['svm']['test_accuracy']:.1%}   (paper 99.7 % / 99.2 %)"
+        f"test {s['svm']['test_accuracy']:.1%}   (paper "
+        f"{printed.percent(printed.SVM_TRAIN_ACCURACY)} / "
+        f"{printed.percent(printed.SVM_TEST_ACCURACY)})"
     )
     print(
         f"  ANN material accuracy: all {s['ann']['all_accuracy']:.1%}, "
-        f"test {s['ann']['test_accuracy']:.1%}   (paper 80.8 %)"
+        f"test {s['ann']['test_accuracy']:.1%}   (paper {printed.percent(printed.ANN_ACCURACY)})"
     )
     print(
         f"  contact distance over the whole probe: MAE "
         f"{s['distance']['full_range_mae_cm']:.2f} cm (first mode only: "
         f"{s['distance']['first_mode_only_mae_cm']:.2f} cm)"
     )
-    return 0
-
-
-def run_bench(args) -> int:
-    """Run ``ebantenna bench``."""
-    from ..bench import run_benchmarks
-
-    results = run_benchmarks(args.out, quick=args.quick, only=args.only)
-    for name, result in results.items():
-        if name != "report":
-            print(f"== {name} ({result['seconds']:.1f} s)")
-            print(result["table"])
-    print(f"report: {results['report']['html']}")
     return 0

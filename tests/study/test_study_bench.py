@@ -22,3 +22,26 @@ def test_bench_rejects_an_unknown_sweep(tmp_path, capsys):
     with pytest.raises(SystemExit):
         main(["bench", "--out", str(tmp_path), "--only", "nope"])
     assert "only must name benchmarks" in capsys.readouterr().err
+
+
+def test_each_sweep_runs_once_and_feeds_table_and_figure(tmp_path, monkeypatch):
+    from ebantenna.bench import fem_accuracy
+
+    calls = []
+    original = fem_accuracy.run
+
+    def counted(quick=False):
+        calls.append(quick)
+        return original(quick)
+
+    monkeypatch.setattr(fem_accuracy, "run", counted)
+    drawn = []
+    original_plot = fem_accuracy.plot
+    monkeypatch.setattr(fem_accuracy, "plot",
+                        lambda rows: drawn.append(rows) or original_plot(rows))
+    results = run_benchmarks(tmp_path, quick=True, only=["fem_accuracy"], show_progress=False)
+    assert calls == [True]
+    # the figure is drawn from the very rows the table was written from
+    assert len(drawn) == 1 and drawn[0] is results["fem_accuracy"]["rows"]
+    assert str(results["fem_accuracy"]["rows"]["accuracy"][0]["N"]) in results["fem_accuracy"][
+        "table"]

@@ -1,14 +1,16 @@
 """The main job end to end on the quick data set, its report and its JSON summary."""
 
+import dataclasses
 import json
 
 import numpy as np
 import pytest
 
 from ebantenna.cli import main
+from ebantenna.paper.feature_table import signal_features
+from ebantenna.report import Report
 from ebantenna.study import reproduce
-from ebantenna.study.features import signal_features
-from ebantenna.study.report import Report
+from ebantenna.study.reproduce import STEPS
 
 
 @pytest.fixture(scope="module")
@@ -85,3 +87,40 @@ def test_report_renders_the_same_blocks_twice():
     assert "| 1 | p\\|q |" in md and "<td>p|q</td>" in page
     assert "x &lt; y" in page and "<h1>T &lt;&amp;&gt;</h1>" in page
     assert md.index("## A") < md.index("![cap](f.png)") < md.index("```")
+
+
+def test_sections_compute_without_drawing_and_render_from_their_result(tmp_path):
+    """compute is pure (no figure, no report); render draws only from the result it is given."""
+    import matplotlib.pyplot as plt
+
+    from ebantenna.report import FigureSet
+    from ebantenna.simulate import builtin_scene
+    from ebantenna.study import mode_zones, time_frequency
+
+    plt.close("all")
+    scene = builtin_scene("paper")
+    result = mode_zones.compute(scene.probe, quick=True)
+    maps = time_frequency.compute(scene, seed=0)
+    assert plt.get_fignums() == []
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        result.peak = 0.0
+    assert json.loads(json.dumps(result.to_dict())) == result.to_dict()
+    report, figures = Report("t"), FigureSet(tmp_path)
+    mode_zones.render(result, report, figures)
+    time_frequency.render(maps, report, figures)
+    assert list(figures.paths) == ["fig16_zones", "fig17_mode_shapes", "fig18_19_time_frequency"]
+    assert plt.get_fignums() == []  # every figure saved and closed
+    assert f"zone 3 from {result.to_dict()['zone3_start_ratio']:.2f} L" in report.markdown()
+
+
+def test_summary_is_the_results_dicts_put_together(quick_study):
+    result, _ = quick_study
+    s = result.summary
+    assert list(s) == ["quick", "seed", "modes", "dataset", "frequency", "decay", "svm", "ann",
+                       "distance", "timings_s", "report", "figures"]
+    assert list(s["distance"]) == [
+        "full_range_mae_cm", "full_range_mae_beyond_80_cm", "first_mode_only_mae_cm",
+        "first_mode_turning_point_cm", "recordings_without_two_peaks", "linear_region_mae_cm",
+        "full_length_mae_cm",
+    ]
+    assert list(s["timings_s"]) == list(STEPS)

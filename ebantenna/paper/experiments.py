@@ -1,17 +1,17 @@
-"""The paper's two learning experiments, on plain arrays, beside the paper's printed results.
+"""The paper's two learning experiments, on plain arrays.
 
 * Material classification (sections 4.2 and 4.3): an RBF support vector machine trained one-vs-rest
-  on an 80/20 split (Fig. 15: 99.7 % training, 99.2 % test accuracy) and a network with one hidden
-  layer of 53 tanh neurons trained by gradient descent on a 70/15/15 split (Fig. 12: 80.8 %).
+  on an 80/20 split and a network with one hidden layer of 53 tanh neurons trained by gradient
+  descent on a 70/15/15 split; what the paper printed for them is in
+  :mod:`ebantenna.paper.printed` (Figs. 12 and 15).
 * Contact-distance regression (section 4.2): two tanh layers of 20 neurons on the first 80 % of the
   probe, and one ReLU layer of 9 neurons trained by scaled conjugate gradient over the full length
   on min-max normalised features; errors in cm along the probe.
 
-Every function takes the feature matrix ``X`` of shape (n, 256) (FFT magnitudes), the material
-labels and/or the contact distances in metres, and returns a small frozen result object with the
-confusion matrices, accuracies and errors. :func:`plot_confusion_comparison` and
-:func:`plot_distance_errors` draw them, the first beside :data:`PAPER_SVM` and :data:`PAPER_ANN`,
-the confusion matrices printed in Figs. 15 and 12, transcribed here as data.
+The settings come from :mod:`ebantenna.paper.protocol`. Every function takes the feature matrix
+``X`` of shape (n, 256) (FFT magnitudes), the material labels and/or the contact distances in
+metres, and returns a small frozen result object with the confusion matrices, accuracies and
+errors; :mod:`ebantenna.paper.plots` draws them.
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from __future__ import annotations
 import logging
 import time
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from sklearn.exceptions import ConvergenceWarning
@@ -27,112 +27,29 @@ from sklearn.model_selection import train_test_split
 from sklearn.multiclass import OneVsRestClassifier
 
 from .._validate import check_array, check_in_range, check_positive
-from .metrics import absolute_errors, accuracy, confusion_matrix
-from .mlp import MLPClassifier, MLPRegressor
-from .svc import SVC
+from ..ml import SVC, MLPClassifier, MLPRegressor
+from ..ml.metrics import absolute_errors, accuracy, confusion_matrix
+from .protocol import (
+    DISTANCE_FULL_LENGTH,
+    DISTANCE_LINEAR_REGION,
+    MATERIAL_ANN,
+    MATERIAL_SVM,
+    check_fractions,
+    normalise_by_max,
+    three_way_split,
+)
 
 __all__ = [
-    "PaperConfusion",
-    "PAPER_ANN",
-    "PAPER_SVM",
     "ClassificationResult",
     "RegressionResult",
-    "normalise_by_max",
     "classify_materials_svm",
     "classify_materials_ann",
     "regress_distance_linear_region",
     "regress_distance_full_length",
     "format_confusion",
-    "plot_confusion_comparison",
-    "plot_distance_errors",
 ]
 
 logger = logging.getLogger(__name__)
-
-
-# --------------------------------------------------------------------------- the paper's numbers
-@dataclass(frozen=True)
-class PaperConfusion:
-    """A confusion matrix as printed in the paper.
-
-    Attributes
-    ----------
-    figure : str
-        Where it is printed.
-    labels : tuple of str
-        Class names in the printed order.
-    matrices : dict of str to ndarray
-        Counts per split ('train', 'test' or 'all'), rows = true class, columns = predicted class.
-    reported_accuracy : dict of str to float
-        The accuracies printed with the figure (fractions).
-    note : str
-        How the printed figure was read.
-
-    Examples
-    --------
-    >>> round(PAPER_SVM.accuracy("train"), 4), PAPER_SVM.reported_accuracy["train"]
-    (0.9965, 0.997)
-    >>> int(PAPER_SVM.matrices["test"].sum())
-    1200
-    """
-
-    figure: str
-    labels: tuple[str, ...]
-    matrices: dict = field(default_factory=dict)
-    reported_accuracy: dict = field(default_factory=dict)
-    note: str = ""
-
-    def accuracy(self, split: str) -> float:
-        """Accuracy recomputed from the printed counts of ``split``."""
-        return accuracy(self.matrices[split])
-
-
-_FIG12_PRINTED = np.array(
-    [  # rows: output (predicted) class; columns: target (true) class, MATLAB's plotconfusion
-        [808, 58, 22, 52, 20],
-        [32, 685, 33, 74, 23],
-        [14, 41, 709, 39, 55],
-        [31, 79, 53, 648, 41],
-        [21, 43, 70, 55, 757],
-    ]
-)
-
-#: Fig. 12: the 53-neuron tanh network, all samples (training, validation and test together).
-PAPER_ANN = PaperConfusion(
-    figure="Fig. 12",
-    labels=("aluminium", "pvc", "brass", "wood", "steel"),
-    matrices={"all": _FIG12_PRINTED.T.copy()},
-    reported_accuracy={"all": 0.808},
-    note="Printed as MATLAB's plotconfusion (rows: output class, columns: target class); stored "
-    "transposed. The printed row totals give the precisions (84.2 % for aluminium), the column "
-    "totals the recalls (89.2 %). The wood row prints '76.1' without its percent sign.",
-)
-
-#: Fig. 15: the RBF SVM trained one-vs-rest; white cells training, red cells test.
-PAPER_SVM = PaperConfusion(
-    figure="Fig. 15",
-    labels=("aluminium", "brass", "pvc", "steel", "wood"),
-    matrices={
-        "train": np.array([
-            [886, 1, 0, 1, 1],
-            [3, 966, 0, 1, 0],
-            [0, 1, 980, 3, 0],
-            [2, 0, 0, 1020, 1],
-            [1, 0, 1, 1, 931],
-        ]),
-        "test": np.array([
-            [217, 2, 1, 1, 1],
-            [0, 238, 0, 0, 1],
-            [0, 0, 272, 0, 0],
-            [2, 2, 0, 238, 0],
-            [0, 0, 0, 0, 225],
-        ]),
-    },
-    reported_accuracy={"train": 0.997, "test": 0.992},
-    note="Rows are read as the true class (the row labels of the figure); each row has a "
-    "training line (white) and a test line (red). The counts add up to 4800 and 1200 samples, "
-    "the 80/20 split of 6000, and give 99.65 % (printed 99.7 %) and 99.17 % (printed 99.2 %).",
-)
 
 
 # --------------------------------------------------------------------------------- results
@@ -230,22 +147,6 @@ class RegressionResult:
 
 
 # ------------------------------------------------------------------------------- helpers
-def normalise_by_max(X) -> np.ndarray:
-    """Divide the whole feature matrix by its largest magnitude, as in section 4.2.
-
-    Examples
-    --------
-    >>> normalise_by_max(np.array([[1.0, -4.0], [2.0, 0.0]]))
-    array([[ 0.25, -1.  ],
-           [ 0.5 ,  0.  ]])
-    """
-    X = np.asarray(X, dtype=np.float64)
-    peak = np.abs(X).max()
-    if peak == 0:
-        raise ValueError("X must not be all zeros")
-    return X / peak
-
-
 def _features(X) -> np.ndarray:
     return check_array("X", X, ndim=2)
 
@@ -269,29 +170,6 @@ def _distances(distances, n) -> np.ndarray:
     return d
 
 
-def _three_way_split(n, fractions, seed, stratify=None):
-    """Indices of train / validation / test parts with the given fractions."""
-    _, f_val, f_test = fractions
-    n_test, n_val = int(round(f_test * n)), int(round(f_val * n))
-    if min(n_test, n_val, n - n_test - n_val) < 1:
-        raise ValueError(f"{n} samples cannot be split by fractions {fractions!r}")
-    idx = np.arange(n)
-    rest, test = train_test_split(idx, test_size=n_test, random_state=seed, stratify=stratify)
-    strat_rest = None if stratify is None else stratify[rest]
-    train, val = train_test_split(rest, test_size=n_val, random_state=seed + 1,
-                                  stratify=strat_rest)
-    return train, val, test
-
-
-def _check_fractions(fractions):
-    if len(fractions) != 3:
-        raise ValueError(f"fractions must be (train, validation, test), got {fractions!r}")
-    for name, f in zip(("train", "validation", "test"), fractions, strict=True):
-        check_in_range(f"fractions[{name}]", f, 0.0, 1.0)
-    if abs(sum(fractions) - 1.0) > 1e-9:
-        raise ValueError(f"fractions must add up to 1, got {fractions!r}")
-
-
 def _label_order(y, labels):
     if labels is None:
         return tuple(np.unique(y).tolist())
@@ -303,7 +181,8 @@ def _label_order(y, labels):
 
 
 # ---------------------------------------------------------------------- classification
-def classify_materials_svm(X, materials, *, test_fraction=0.2, C=1.0, gamma=2.0, seed=0,
+def classify_materials_svm(X, materials, *, test_fraction=MATERIAL_SVM.test_fraction, C=1.0,
+                           gamma=MATERIAL_SVM.gamma, seed=0,
                            labels=None, normalise=True, tol=1e-3) -> ClassificationResult:
     """Material classification by an RBF SVM trained one-vs-rest (section 4.3, Fig. 15).
 
@@ -365,9 +244,10 @@ def classify_materials_svm(X, materials, *, test_fraction=0.2, C=1.0, gamma=2.0,
     return ClassificationResult("svm", order, confusions, seconds, model)
 
 
-def classify_materials_ann(X, materials, *, hidden_layer_sizes=(53,), activation="tanh",
-                           solver="gd", learning_rate_init=0.05, max_iter=1000,
-                           fractions=(0.70, 0.15, 0.15), seed=0, labels=None, normalise=True,
+def classify_materials_ann(X, materials, *, hidden_layer_sizes=MATERIAL_ANN.hidden_layer_sizes,
+                           activation=MATERIAL_ANN.activation, solver=MATERIAL_ANN.solver,
+                           learning_rate_init=0.05, max_iter=1000,
+                           fractions=MATERIAL_ANN.fractions, seed=0, labels=None, normalise=True,
                            n_iter_no_change=6) -> ClassificationResult:
     """Material classification by a tanh network (section 4.2, Fig. 12).
 
@@ -413,11 +293,11 @@ def classify_materials_ann(X, materials, *, hidden_layer_sizes=(53,), activation
     """
     X = _features(X)
     y = _labels(materials, X.shape[0])
-    _check_fractions(fractions)
+    check_fractions(fractions)
     order = _label_order(y, labels)
     if normalise:
         X = normalise_by_max(X)
-    train, val, test = _three_way_split(X.shape[0], fractions, seed, stratify=y)
+    train, val, test = three_way_split(X.shape[0], fractions, seed, stratify=y)
     model = MLPClassifier(hidden_layer_sizes=hidden_layer_sizes, activation=activation,
                           solver=solver, learning_rate_init=learning_rate_init, max_iter=1,
                           random_state=seed, warm_start=True, alpha=0.0)
@@ -450,7 +330,7 @@ def classify_materials_ann(X, materials, *, hidden_layer_sizes=(53,), activation
 
 # -------------------------------------------------------------------------- regression
 def _regression(name, X, d, model, fractions, seed, min_max) -> RegressionResult:
-    train, val, test = _three_way_split(X.shape[0], fractions, seed)
+    train, val, test = three_way_split(X.shape[0], fractions, seed)
     fit_rows = np.concatenate([train, val])
     if min_max:
         lo = X[fit_rows].min(axis=0)
@@ -474,10 +354,14 @@ def _regression(name, X, d, model, fractions, seed, min_max) -> RegressionResult
     return RegressionResult(name, truth, pred, positions, mean_err, seconds, model)
 
 
-def regress_distance_linear_region(X, distances, *, probe_length, fraction_of_length=0.8,
-                                   hidden_layer_sizes=(20, 20), activation="tanh", solver="gd",
+def regress_distance_linear_region(X, distances, *, probe_length,
+                                   fraction_of_length=DISTANCE_LINEAR_REGION.region,
+                                   hidden_layer_sizes=DISTANCE_LINEAR_REGION.hidden_layer_sizes,
+                                   activation=DISTANCE_LINEAR_REGION.activation,
+                                   solver=DISTANCE_LINEAR_REGION.solver,
                                    learning_rate_init=0.01, max_iter=2000,
-                                   fractions=(0.70, 0.15, 0.15), seed=0, normalise=True):
+                                   fractions=DISTANCE_LINEAR_REGION.fractions, seed=0,
+                                   normalise=True):
     """Contact distance on the first 80 % of the probe by a 2 x 20 tanh network (section 4.2).
 
     Parameters
@@ -517,7 +401,7 @@ def regress_distance_linear_region(X, distances, *, probe_length, fraction_of_le
     d = _distances(distances, X.shape[0])
     check_positive("probe_length", probe_length)
     check_in_range("fraction_of_length", fraction_of_length, 0.0, 1.0, high_inclusive=True)
-    _check_fractions(fractions)
+    check_fractions(fractions)
     keep = d <= fraction_of_length * probe_length
     if keep.sum() < 10:
         raise ValueError("fewer than 10 samples lie within fraction_of_length of the hinge")
@@ -532,9 +416,11 @@ def regress_distance_linear_region(X, distances, *, probe_length, fraction_of_le
                        X, d, model, fractions, seed, min_max=False)
 
 
-def regress_distance_full_length(X, distances, *, hidden_layer_sizes=(9,), activation="relu",
-                                 solver="scg", max_iter=1000, fractions=(0.70, 0.15, 0.15),
-                                 seed=0):
+def regress_distance_full_length(X, distances, *,
+                                 hidden_layer_sizes=DISTANCE_FULL_LENGTH.hidden_layer_sizes,
+                                 activation=DISTANCE_FULL_LENGTH.activation,
+                                 solver=DISTANCE_FULL_LENGTH.solver, max_iter=1000,
+                                 fractions=DISTANCE_FULL_LENGTH.fractions, seed=0):
     """Contact distance over the whole probe by a 9-neuron ReLU network trained by SCG.
 
     The features are min-max normalised per feature (range taken from the training and
@@ -556,7 +442,7 @@ def regress_distance_full_length(X, distances, *, hidden_layer_sizes=(9,), activ
     """
     X = _features(X)
     d = _distances(distances, X.shape[0])
-    _check_fractions(fractions)
+    check_fractions(fractions)
     model = MLPRegressor(hidden_layer_sizes=hidden_layer_sizes, activation=activation,
                          solver=solver, max_iter=max_iter, random_state=seed, alpha=0.0,
                          n_iter_no_change=30)
@@ -581,103 +467,3 @@ def format_confusion(matrix, labels) -> str:
     rows = [str(lab).ljust(16) + "".join(str(int(v)).rjust(width + 1) for v in row)
             for lab, row in zip(labels, m, strict=True)]
     return "\n".join([head, *rows])
-
-
-def _reorder(paper: PaperConfusion, split: str, labels) -> tuple[np.ndarray, tuple]:
-    """The paper's matrix in ``labels`` order when the names match, else as printed."""
-    m = paper.matrices[split]
-    if set(labels) == set(paper.labels):
-        pos = [paper.labels.index(lab) for lab in labels]
-        return m[np.ix_(pos, pos)], tuple(labels)
-    return m, paper.labels
-
-
-def _draw_matrix(ax, m, labels, title):
-    m = np.asarray(m)
-    rows = m.sum(axis=1, keepdims=True)
-    share = np.divide(m, rows, out=np.zeros(m.shape), where=rows > 0)
-    ax.imshow(share, cmap="Blues", vmin=0, vmax=1)
-    for (i, j), v in np.ndenumerate(m):
-        ax.text(j, i, str(int(v)), ha="center", va="center", fontsize=8,
-                color="white" if share[i, j] > 0.6 else "black")
-    ax.set_xticks(range(len(labels)), labels, rotation=45, ha="right")
-    ax.set_yticks(range(len(labels)), labels)
-    ax.set_xlabel("predicted class")
-    ax.set_ylabel("true class")
-    ax.set_title(f"{title}\naccuracy {100 * accuracy(m):.1f} %", fontsize=9)
-
-
-def plot_confusion_comparison(result: ClassificationResult, paper: PaperConfusion | None = None):
-    """Our confusion matrices beside the paper's printed ones.
-
-    Parameters
-    ----------
-    result : ClassificationResult
-    paper : PaperConfusion, optional
-        Default: :data:`PAPER_SVM` for an SVM result, :data:`PAPER_ANN` for an ANN result.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-        Top row: this run; bottom row: the paper, for each split the paper prints.
-
-    Examples
-    --------
-    >>> res = ClassificationResult("ann", PAPER_ANN.labels, {"all": PAPER_ANN.matrices["all"]},
-    ...                            0.0)
-    >>> fig = plot_confusion_comparison(res)
-    >>> len(fig.axes)
-    2
-    """
-    from matplotlib.figure import Figure
-
-    if paper is None:
-        paper = PAPER_SVM if result.method == "svm" else PAPER_ANN
-    splits = list(paper.matrices)
-    fig = Figure(figsize=(4.2 * len(splits), 8.0), layout="constrained")
-    axes = fig.subplots(2, len(splits), squeeze=False)
-    for col, split in enumerate(splits):
-        ours = result.confusions.get(split)
-        if ours is None:
-            axes[0, col].set_axis_off()
-            axes[0, col].set_title(f"no '{split}' split in this run", fontsize=9)
-        else:
-            _draw_matrix(axes[0, col], ours, result.labels,
-                         f"this run, {result.method.upper()} {split}")
-        m, labs = _reorder(paper, split, result.labels)
-        printed = paper.reported_accuracy.get(split)
-        note = "" if printed is None else f" (printed {100 * printed:.1f} %)"
-        _draw_matrix(axes[1, col], m, labs, f"paper {paper.figure}, {split}{note}")
-    return fig
-
-
-def plot_distance_errors(*results: RegressionResult):
-    """Mean absolute error (cm) along the probe for one or more regressions.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-
-    Examples
-    --------
-    >>> r = RegressionResult("net", np.array([0.1, 0.2]), np.array([0.11, 0.2]),
-    ...                      np.array([0.1, 0.2]), np.array([1.0, 0.0]), 0.0)
-    >>> fig = plot_distance_errors(r)
-    >>> fig.axes[0].get_xlabel()
-    'contact distance from the hinge (cm)'
-    """
-    from matplotlib.figure import Figure
-
-    if not results:
-        raise ValueError("plot_distance_errors needs at least one RegressionResult")
-    fig = Figure(figsize=(7.0, 4.0), layout="constrained")
-    ax = fig.subplots()
-    for r in results:
-        ax.plot(100 * r.distance_test, r.errors_cm, ".", alpha=0.25, ms=3)
-        ax.plot(100 * r.positions, r.mean_error_cm, "-o", ms=3,
-                label=f"{r.name}: MAE {r.mae_cm:.2f} cm", color=ax.lines[-1].get_color())
-    ax.set_xlabel("contact distance from the hinge (cm)")
-    ax.set_ylabel("absolute error (cm)")
-    ax.legend(fontsize=8)
-    ax.grid(alpha=0.3)
-    return fig

@@ -1,7 +1,9 @@
-"""A tiny document model rendered twice: Markdown and standalone HTML.
+"""Report writing shared by ``ebantenna reproduce`` and ``ebantenna bench``.
 
-The study's report is a list of blocks (headings, paragraphs, tables, figures, preformatted text);
-one list feeds both renderers, so the two files can never disagree.
+A report is a list of blocks (headings, paragraphs, tables, figures, preformatted text); one list
+feeds both renderers, Markdown and standalone HTML, so the two files can never disagree.
+:class:`FigureSet` saves matplotlib figures beside the report as PNG and remembers their paths;
+:func:`text_table` formats rows of dicts as a fixed-width text table for a terminal.
 """
 
 from __future__ import annotations
@@ -10,7 +12,7 @@ import html
 from dataclasses import dataclass, field
 from pathlib import Path
 
-__all__ = ["Report"]
+__all__ = ["Report", "FigureSet", "text_table"]
 
 
 @dataclass
@@ -19,7 +21,7 @@ class Report:
 
     Examples
     --------
-    >>> from ebantenna.study.report import Report
+    >>> from ebantenna.report import Report
     >>> r = Report("Title")
     >>> r.table(["a", "b"], [[1, 2.5]])
     >>> print(r.markdown().splitlines()[2:5])
@@ -115,3 +117,91 @@ class Report:
         md.write_text(self.markdown(), encoding="utf-8")
         page.write_text(self.html(), encoding="utf-8")
         return md, page
+
+
+class FigureSet:
+    """Saves matplotlib figures as PNG into one directory and remembers them by name.
+
+    Parameters
+    ----------
+    out_dir : path
+        Directory the PNG files go to (must exist).
+    dpi : int
+        Resolution of the saved files, dots per inch.
+
+    Attributes
+    ----------
+    paths : dict of str to Path
+        Every figure saved so far, by name, in order.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from matplotlib.figure import Figure
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     figures = FigureSet(tmp)
+    ...     fig = Figure()
+    ...     _ = fig.subplots().plot([0, 1], [1, 0])
+    ...     figures.save(fig, "line"), list(figures.paths)
+    ('line.png', ['line'])
+    """
+
+    def __init__(self, out_dir, dpi: int = 120):
+        self.out_dir = Path(out_dir)
+        self.dpi = dpi
+        self.paths: dict[str, Path] = {}
+
+    def save(self, fig, name: str) -> str:
+        """Save ``fig`` as ``name.png``, close it, and return the file name (relative)."""
+        import matplotlib.pyplot as plt
+
+        if not name or "/" in name:
+            raise ValueError(f"name must be a plain file stem, got {name!r}")
+        path = self.out_dir / f"{name}.png"
+        fig.savefig(path, dpi=self.dpi, bbox_inches="tight")
+        plt.close(fig)
+        self.paths[name] = path
+        return path.name
+
+
+def text_table(columns, rows) -> str:
+    """Rows of dicts as a fixed-width text table.
+
+    Parameters
+    ----------
+    columns : sequence of (key, header, format)
+        Which value of each row goes in a column, the column's header and a format
+        specification for :func:`format` (for example ``"9.3f"``); the header is right-aligned
+        to the width the format gives, or left-aligned when the format starts with ``<``.
+    rows : sequence of dict
+        One dict per row.
+
+    Returns
+    -------
+    str
+        Header line and one line per row, columns separated by one space.
+
+    Examples
+    --------
+    >>> print(text_table([("name", "name", "<6"), ("t", "time s", "8.3f")],
+    ...                  [{"name": "a", "t": 0.5}, {"name": "bb", "t": 12.25}]))
+    name     time s
+    a         0.500
+    bb       12.250
+    """
+    columns = [tuple(c) for c in columns]
+    for c in columns:
+        if len(c) != 3:
+            raise ValueError(f"columns must hold (key, header, format) triples, got {c!r}")
+    cells = [[format(row[key], fmt) for key, _, fmt in columns] for row in rows]
+    widths = [
+        max([len(header)] + [len(r[i]) for r in cells])
+        for i, (_, header, _) in enumerate(columns)
+    ]
+    def line(values):
+        out = []
+        for (_, _, fmt), width, v in zip(columns, widths, values, strict=True):
+            out.append(v.ljust(width) if fmt.startswith("<") else v.rjust(width))
+        return " ".join(out).rstrip()
+
+    return "\n".join([line([h for _, h, _ in columns]), *(line(r) for r in cells)])

@@ -1,8 +1,13 @@
-"""Estimators from signals alone: contact distance from frequencies, material from the decay.
+"""The paper's estimators from signal features: contact distance from frequencies, material from
+the decay.
 
 They learn from arrays (measured frequencies with the known contact distances; decay features with
-the known materials) and follow the scikit-learn pattern: ``fit`` returns the estimator, fitted
-attributes end in ``_``, ``predict`` maps new measurements.
+the known materials) and are scikit-learn estimators: parameters in ``__init__`` and
+``get_params``/``set_params``, input checked by :func:`sklearn.utils.validation.validate_data`,
+``fit`` returns the estimator, fitted attributes end in ``_``, ``predict`` (and ``score``) map new
+measurements, so they go into pipelines, ``clone`` and cross-validation. Which of scikit-learn's
+own estimator checks each passes, and why the others do not apply, is tested in
+``tests/paper/test_paper_estimators.py``.
 
 **Why the paper stops at 80 %.** With the contact pinning the probe at a distance ``d`` from the
 hinge, the lowest mode is first the overhang beyond the contact swinging as a cantilever (its
@@ -18,8 +23,12 @@ from __future__ import annotations
 
 import numpy as np
 from scipy.interpolate import PchipInterpolator
+from scipy.sparse import issparse
+from sklearn.base import BaseEstimator, ClassifierMixin, RegressorMixin
+from sklearn.utils.multiclass import check_classification_targets
+from sklearn.utils.validation import check_is_fitted, validate_data
 
-from .._validate import check_array, check_choice, check_int
+from .._validate import check_choice, check_int
 
 __all__ = [
     "FrequencyDistanceEstimator",
@@ -28,9 +37,10 @@ __all__ = [
 ]
 
 
-def _not_fitted(obj, attribute):
-    if not hasattr(obj, attribute):
-        raise ValueError(f"{type(obj).__name__} is not fitted yet; call fit first")
+def _positive(X, what="frequencies"):
+    if np.any(X <= 0):
+        raise ValueError(f"{what} must be > 0 Hz")
+    return X
 
 
 def _calibration_curve(frequencies: np.ndarray, distances: np.ndarray):
@@ -47,7 +57,36 @@ def _calibration_curve(frequencies: np.ndarray, distances: np.ndarray):
     return grid, medians, spread
 
 
-class FrequencyDistanceEstimator:
+def _as_column(X):
+    """A 1-D sequence of frequencies read as one column ``(n, 1)``; anything else unchanged."""
+    if not hasattr(X, "shape") or (getattr(X, "ndim", None) == 1 and isinstance(X, np.ndarray)):
+        arr = np.asarray(X)
+        if arr.ndim == 1 and arr.dtype != object:
+            return arr.reshape(-1, 1)
+    return X
+
+
+def _one_column(X) -> np.ndarray:
+    """Check that validated ``X`` holds one frequency per row."""
+    if X.shape[1] != 1:
+        raise ValueError(f"X must hold one frequency per row (shape (n,) or (n, 1)), "
+                         f"got shape {X.shape}")
+    return X
+
+
+def _same_length(X, y, message):
+    """Our own message for a length mismatch, before scikit-learn's generic one."""
+    if issparse(X):
+        return  # scikit-learn's check below rejects it with its own message
+    try:
+        n_x, n_y = len(X), len(y)
+    except TypeError:  # sparse input or no y: scikit-learn's checks below speak
+        return
+    if n_x != n_y:
+        raise ValueError(message.format(n_x, n_y))
+
+
+class FrequencyDistanceEstimator(RegressorMixin, BaseEstimator):
     """Contact distance from the dominant (first-mode) frequency, on the curve's monotonic part.
 
     Parameters
@@ -58,6 +97,8 @@ class FrequencyDistanceEstimator:
 
     Attributes
     ----------
+    n_features_in_ : int
+        Always 1: the dominant frequency.
     distances_ : ndarray
         Distinct calibration distances, m.
     frequencies_ : ndarray
@@ -72,7 +113,7 @@ class FrequencyDistanceEstimator:
     Examples
     --------
     >>> import numpy as np
-    >>> from ebantenna.signal import FrequencyDistanceEstimator
+    >>> from ebantenna.paper.estimators import FrequencyDistanceEstimator
     >>> d = np.linspace(0.0, 1.0, 11)
     >>> f = 10 + 20 * d - 10 * d**2 * (d > 0.8)     # rises, then bends down after 0.8
     >>> est = FrequencyDistanceEstimator().fit(f, d)
@@ -83,16 +124,31 @@ class FrequencyDistanceEstimator:
     def __init__(self, out_of_range: str = "raise"):
         self.out_of_range = out_of_range
 
-    def fit(self, frequencies, distances):
-        """Learn the calibration curve from frequencies (Hz, shape ``(n,)``) at distances (m)."""
+    def __sklearn_tags__(self):
+        tags = super().__sklearn_tags__()
+        tags.input_tags.positive_only = True
+        return tags
+
+    def fit(self, X, y):
+        """Learn the calibration curve.
+
+        Parameters
+        ----------
+        X : array-like of shape (n,) or (n, 1)
+            Dominant frequencies, Hz.
+        y : array-like of shape (n,)
+            Contact distances, m.
+
+        Returns
+        -------
+        self
+        """
         check_choice("out_of_range", self.out_of_range, ("raise", "clip"))
-        f = check_array("frequencies", frequencies, ndim=1)
-        d = check_array("distances", distances, ndim=1)
-        if f.shape != d.shape:
-            raise ValueError(f"frequencies and distances must have the same shape, got {f.shape} "
-                             f"and {d.shape}")
-        if np.any(f <= 0):
-            raise ValueError("frequencies must be > 0 Hz")
+        X = _as_column(X)
+        _same_length(X, y, "frequencies and distances must have the same shape, got ({},) and "
+                           "({},)")
+        f, d = validate_data(self, X, y, y_numeric=True)
+        f = _positive(_one_column(f))[:, 0]
         grid, medians, _ = _calibration_curve(f[:, None], d)
         curve = medians[:, 0]
         increasing = bool(curve[min(2, curve.size - 1)] >= curve[0])
@@ -112,12 +168,22 @@ class FrequencyDistanceEstimator:
         self.frequency_range_ = (lo, hi)
         return self
 
-    def predict(self, frequencies) -> np.ndarray:
-        """Contact distances (m) for dominant frequencies (Hz), shape ``(n,)``."""
-        _not_fitted(self, "limit_")
-        f = check_array("frequencies", frequencies, ndim=(0, 1))
-        scalar = f.ndim == 0
-        f = np.atleast_1d(f)
+    def predict(self, X):
+        """Contact distances (m) for dominant frequencies (Hz).
+
+        Parameters
+        ----------
+        X : float or array-like of shape (n,) or (n, 1)
+            Dominant frequencies, Hz.
+
+        Returns
+        -------
+        float or ndarray of shape (n,)
+            Contact distances, m (a float for a scalar input).
+        """
+        check_is_fitted(self)
+        scalar = np.ndim(X) == 0
+        f = _one_column(validate_data(self, _as_column(np.atleast_1d(X)), reset=False))[:, 0]
         lo, hi = self.frequency_range_
         outside = (f < lo) | (f > hi)
         if np.any(outside) and self.out_of_range == "raise":
@@ -132,7 +198,7 @@ class FrequencyDistanceEstimator:
         return out[0] if scalar else out
 
 
-class MultiModeDistanceEstimator:
+class MultiModeDistanceEstimator(RegressorMixin, BaseEstimator):
     """Contact distance from the frequencies of several modes, along the whole probe.
 
     Each mode's calibration curve ``f_j(d)`` (median over replicates, monotone cubic interpolation
@@ -149,17 +215,21 @@ class MultiModeDistanceEstimator:
 
     Attributes
     ----------
+    n_features_in_ : int
+        Number of modes.
     distances_ : ndarray
         Distinct calibration distances, m.
     frequencies_ : ndarray of shape (n_distances, n_modes)
         Median calibration frequencies, Hz.
     weights_ : ndarray of shape (n_modes,)
         Weights of the modes in the distance cost.
+    grid_ : ndarray of shape (n_grid,)
+        The dense distance grid, m.
 
     Examples
     --------
     >>> import numpy as np
-    >>> from ebantenna.signal import MultiModeDistanceEstimator
+    >>> from ebantenna.paper.estimators import MultiModeDistanceEstimator
     >>> d = np.linspace(0.0, 1.0, 21)
     >>> f = np.column_stack([10 + 8 * np.sin(np.pi * d), 30 + 20 * d])  # f1 alone is ambiguous
     >>> est = MultiModeDistanceEstimator().fit(f, d)
@@ -171,16 +241,30 @@ class MultiModeDistanceEstimator:
     def __init__(self, n_grid: int = 4000):
         self.n_grid = n_grid
 
-    def fit(self, frequencies, distances):
-        """Learn the curves from frequencies (Hz, shape ``(n, n_modes)``) at distances (m)."""
+    def __sklearn_tags__(self):
+        tags = super().__sklearn_tags__()
+        tags.input_tags.positive_only = True
+        return tags
+
+    def fit(self, X, y):
+        """Learn the curves.
+
+        Parameters
+        ----------
+        X : array-like of shape (n, n_modes)
+            Mode frequencies, Hz.
+        y : array-like of shape (n,)
+            Contact distances, m.
+
+        Returns
+        -------
+        self
+        """
         n_grid = check_int("n_grid", self.n_grid, minimum=10)
-        f = check_array("frequencies", frequencies, ndim=2)
-        d = check_array("distances", distances, ndim=1)
-        if f.shape[0] != d.shape[0]:
-            raise ValueError(f"frequencies must have one row per distance, got {f.shape[0]} rows "
-                             f"for {d.shape[0]} distances")
-        if np.any(f <= 0):
-            raise ValueError("frequencies must be > 0 Hz")
+        _same_length(X, y, "frequencies must have one row per distance, got {} rows for {} "
+                           "distances")
+        f, d = validate_data(self, X, y, y_numeric=True)
+        _positive(f)
         grid, medians, spread = _calibration_curve(f, d)
         if spread is None or np.any(spread == 0):
             weights = np.ones(f.shape[1])
@@ -191,33 +275,43 @@ class MultiModeDistanceEstimator:
         self.frequencies_ = medians
         self.weights_ = weights
         self.n_modes_ = f.shape[1]
-        self._grid = np.linspace(grid[0], grid[-1], n_grid)
-        self._log_curves = np.log(PchipInterpolator(grid, medians, axis=0)(self._grid))
+        self.grid_ = np.linspace(grid[0], grid[-1], n_grid)
+        self._log_curves = np.log(PchipInterpolator(grid, medians, axis=0)(self.grid_))
         return self
 
-    def cost(self, frequencies) -> np.ndarray:
-        """Weighted squared log-frequency misfit on the dense grid, shape ``(n, n_grid)``."""
-        _not_fitted(self, "weights_")
-        f = check_array("frequencies", frequencies, ndim=(1, 2))
-        f = np.atleast_2d(f)
-        if f.shape[1] != self.n_modes_:
+    def cost(self, X) -> np.ndarray:
+        """Weighted squared log-frequency misfit on the dense grid, shape ``(n, n_grid)``.
+
+        Parameters
+        ----------
+        X : array-like of shape (n_modes,) or (n, n_modes)
+            Mode frequencies, Hz.
+        """
+        check_is_fitted(self)
+        if np.ndim(X) == 1:
+            X = np.atleast_2d(X)  # one measurement
+        if np.ndim(X) == 2 and np.shape(X)[1] != self.n_modes_:
             raise ValueError(f"frequencies must have {self.n_modes_} columns (modes), "
-                             f"got shape {f.shape}")
-        if np.any(f <= 0):
-            raise ValueError("frequencies must be > 0 Hz")
+                             f"got shape {np.shape(X)}")
+        f = _positive(validate_data(self, X, reset=False))
         diff = np.log(f)[:, None, :] - self._log_curves[None, :, :]
         return (diff**2 * self.weights_).sum(axis=2)
 
-    @property
-    def grid_(self) -> np.ndarray:
-        """The dense distance grid, m."""
-        _not_fitted(self, "weights_")
-        return self._grid
+    def predict(self, X) -> np.ndarray:
+        """Contact distances (m) for rows of mode frequencies.
 
-    def predict(self, frequencies) -> np.ndarray:
-        """Contact distances (m) for rows of mode frequencies (Hz), shape ``(n,)``."""
-        cost = self.cost(frequencies)
-        grid = self._grid
+        Parameters
+        ----------
+        X : array-like of shape (n, n_modes)
+            Mode frequencies, Hz.
+
+        Returns
+        -------
+        ndarray of shape (n,)
+            Contact distances, m.
+        """
+        cost = self.cost(X)
+        grid = self.grid_
         best = np.argmin(cost, axis=1)
         inner = np.clip(best, 1, grid.shape[0] - 2)
         rows = np.arange(cost.shape[0])
@@ -230,7 +324,7 @@ class MultiModeDistanceEstimator:
         return grid[best] + shift * step
 
 
-class DecayMaterialClassifier:
+class DecayMaterialClassifier(ClassifierMixin, BaseEstimator):
     """Material of the touched object from the decay time constant and gain (section 4.1.2).
 
     For each material the logarithms of ``tau`` and of the gain are modelled as polynomials of the
@@ -249,11 +343,13 @@ class DecayMaterialClassifier:
     ----------
     classes_ : ndarray
         Material labels, sorted.
+    n_features_in_ : int
+        Always 3: distance, tau and gain.
 
     Examples
     --------
     >>> import numpy as np
-    >>> from ebantenna.signal import DecayMaterialClassifier
+    >>> from ebantenna.paper.estimators import DecayMaterialClassifier
     >>> rng = np.random.default_rng(0)
     >>> d = np.tile(np.linspace(0.05, 0.3, 20), 2)
     >>> tau = np.r_[np.full(20, 0.05), np.full(20, 0.1)] * (1 + 0.05 * rng.standard_normal(40))
@@ -268,8 +364,8 @@ class DecayMaterialClassifier:
     def __init__(self, degree: int = 2):
         self.degree = degree
 
-    def _features(self, X):
-        X = check_array("X", X, ndim=2)
+    def _features(self, X, reset):
+        X = validate_data(self, X, reset=reset)
         if X.shape[1] != 3:
             raise ValueError(
                 f"X must have 3 columns (distance m, tau s, gain), got shape {X.shape}"
@@ -283,15 +379,27 @@ class DecayMaterialClassifier:
         return np.vander(u, self.degree + 1, increasing=True)
 
     def fit(self, X, y):
-        """Learn from ``X`` (shape ``(n, 3)``: distance m, tau s, gain) and the labels ``y``."""
+        """Learn the per-material models.
+
+        Parameters
+        ----------
+        X : array-like of shape (n, 3)
+            Contact distance (m), time constant tau (s) and gain (m/s^2) of each contact.
+        y : array-like of shape (n,)
+            Material labels.
+
+        Returns
+        -------
+        self
+        """
         degree = check_int("degree", self.degree, minimum=0, maximum=5)
-        d, z = self._features(X)
-        y = np.asarray(y)
-        if y.shape != (X.shape[0] if hasattr(X, "shape") else len(X),):
-            raise ValueError(f"y must have one label per row of X, got shape {y.shape}")
+        _same_length(X, y, "y must have one label per row of X ({}), got {}")
+        X, y = validate_data(self, X, y)
+        check_classification_targets(y)
+        d, z = self._features(X, reset=False)
         self.classes_, inverse = np.unique(y, return_inverse=True)
         if self.classes_.shape[0] < 2:
-            raise ValueError("y must hold at least two materials")
+            raise ValueError("y must hold at least two materials, got 1 class")
         self._d_mean = float(d.mean())
         self._d_scale = float(d.std()) or 1.0
         design = self._design(d)
@@ -312,12 +420,11 @@ class DecayMaterialClassifier:
             self._cov_inv.append(np.linalg.inv(cov))
             self._log_norm.append(-0.5 * logdet - np.log(2 * np.pi))
             self._log_prior.append(np.log(rows.mean()))
-        self.n_features_in_ = 3
         return self
 
     def _joint_log_likelihood(self, X):
-        _not_fitted(self, "classes_")
-        d, z = self._features(X)
+        check_is_fitted(self)
+        d, z = self._features(X, reset=False)
         design = self._design(d)
         out = np.empty((z.shape[0], self.classes_.shape[0]))
         for k in range(self.classes_.shape[0]):
@@ -335,8 +442,5 @@ class DecayMaterialClassifier:
 
     def predict(self, X) -> np.ndarray:
         """Most probable material for each row of ``X``."""
-        return self.classes_[np.argmax(self._joint_log_likelihood(X), axis=1)]
-
-    def score(self, X, y) -> float:
-        """Fraction of rows classified correctly."""
-        return float(np.mean(self.predict(X) == np.asarray(y)))
+        best = np.argmax(self._joint_log_likelihood(X), axis=1)
+        return self.classes_[best]

@@ -2,15 +2,13 @@ import numpy as np
 import pytest
 
 from ebantenna import fem  # the beam model is the witness of the calibration curves
-from ebantenna.probe import Probe
-from ebantenna.signal import (
+from ebantenna.paper.estimators import (
     DecayMaterialClassifier,
     FrequencyDistanceEstimator,
     MultiModeDistanceEstimator,
-    apply_filter,
-    fit_decay,
-    paper_filter,
 )
+from ebantenna.probe import Probe
+from ebantenna.signal import apply_filter, fit_decay, paper_filter
 
 PROBE = Probe()
 L = PROBE.length
@@ -157,7 +155,7 @@ def test_degree_zero_is_quadratic_discriminant_analysis():
         (lambda: FrequencyDistanceEstimator().predict([1.0]), "not fitted"),
         (lambda: FrequencyDistanceEstimator(out_of_range="nan").fit([1, 2, 3.0], [1, 2, 3.0]),
          "out_of_range"),
-        (lambda: MultiModeDistanceEstimator().fit(np.ones(3), [0.1, 0.2, 0.3]), "dimension"),
+        (lambda: MultiModeDistanceEstimator().fit(np.ones(3), [0.1, 0.2, 0.3]), "2D array"),
         (lambda: MultiModeDistanceEstimator().fit(np.ones((2, 2)), [0.1, 0.2, 0.3]), "one row"),
         (lambda: MultiModeDistanceEstimator().fit(np.ones((3, 2)), [0.1, 0.2, 0.3]).predict(
             np.ones((1, 3))), "columns"),

@@ -6,19 +6,17 @@ from matplotlib.figure import Figure
 from sklearn.multiclass import OneVsRestClassifier
 from sklearn.svm import SVC as LibSVC
 
-from ebantenna.ml.experiments import (
-    PAPER_ANN,
-    PAPER_SVM,
+from ebantenna.ml.metrics import per_class_rates
+from ebantenna.paper.experiments import (
     classify_materials_ann,
     classify_materials_svm,
     format_confusion,
-    normalise_by_max,
-    plot_confusion_comparison,
-    plot_distance_errors,
     regress_distance_full_length,
     regress_distance_linear_region,
 )
-from ebantenna.ml.metrics import per_class_rates
+from ebantenna.paper.plots import plot_confusion_comparison, plot_distance_errors
+from ebantenna.paper.printed import PAPER_ANN, PAPER_SVM
+from ebantenna.paper.protocol import normalise_by_max
 
 MATERIALS = ("aluminium", "brass", "pvc", "steel", "wood")
 

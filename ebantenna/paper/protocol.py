@@ -1,0 +1,218 @@
+"""The paper's protocol: the data set it recorded and how it split and fed it to each model.
+
+What the paper did, as data (sections 4.1 to 4.3): five materials touched every 5 mm along a
+40 cm probe, 25 recordings each; 256 FFT magnitudes per recording divided by the data set's
+largest; an RBF SVM trained one-vs-rest on an 80/20 split; networks trained on a 70/15/15 split;
+the distance network restricted to the first 80 % of the probe. The experiments in
+:mod:`ebantenna.paper.experiments` take their defaults from here, and the split helpers below
+are the ones they use.
+
+Examples
+--------
+>>> DATASET.contact_step, DATASET.repetitions
+(0.005, 25)
+>>> MATERIAL_ANN.hidden_layer_sizes, MATERIAL_ANN.fractions
+((53,), (0.7, 0.15, 0.15))
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from sklearn.model_selection import train_test_split
+
+from .._validate import check_in_range
+
+__all__ = [
+    "DatasetProtocol",
+    "SVMProtocol",
+    "NetworkProtocol",
+    "DATASET",
+    "MATERIAL_SVM",
+    "MATERIAL_ANN",
+    "DISTANCE_LINEAR_REGION",
+    "DISTANCE_FULL_LENGTH",
+    "DECAY_REGION",
+    "TIME_FREQUENCY_RATIOS",
+    "normalise_by_max",
+    "check_fractions",
+    "three_way_split",
+]
+
+
+@dataclass(frozen=True)
+class DatasetProtocol:
+    """How the paper's data set was recorded.
+
+    Attributes
+    ----------
+    materials : tuple of str
+        Touched materials, in the order the paper lists them.
+    probe_length : float
+        Probe length, m.
+    contact_step : float
+        Spacing of the contact positions along the probe, m.
+    repetitions : int
+        Recordings per material and contact position.
+    fft_bins : int
+        FFT magnitudes per recording used as features.
+    where : str
+        Where the paper says so.
+    """
+
+    materials: tuple[str, ...]
+    probe_length: float
+    contact_step: float
+    repetitions: int
+    fft_bins: int
+    where: str
+
+
+@dataclass(frozen=True)
+class SVMProtocol:
+    """The paper's SVM material classifier.
+
+    Attributes
+    ----------
+    gamma : float
+        RBF kernel width of eq. 7, on features divided by their maximum, 1/(feature unit)^2.
+    test_fraction : float
+        Share held out for testing.
+    strategy : str
+        Multi-class strategy.
+    where : str
+        Where the paper says so.
+    """
+
+    gamma: float
+    test_fraction: float
+    strategy: str
+    where: str
+
+
+@dataclass(frozen=True)
+class NetworkProtocol:
+    """One of the paper's networks.
+
+    Attributes
+    ----------
+    hidden_layer_sizes : tuple of int
+        Neurons per hidden layer.
+    activation : str
+        Hidden activation.
+    solver : str
+        Training algorithm (``"gd"``: gradient descent, ``"scg"``: scaled conjugate gradient).
+    fractions : tuple of float
+        Train, validation and test shares.
+    region : float
+        Part of the probe (fraction of its length, from the hinge) whose contacts are used.
+    normalisation : str
+        ``"max"``: the whole matrix divided by its largest magnitude; ``"min-max"``: each feature
+        scaled to [0, 1].
+    where : str
+        Where the paper says so.
+    """
+
+    hidden_layer_sizes: tuple[int, ...]
+    activation: str
+    solver: str
+    fractions: tuple[float, float, float]
+    region: float
+    normalisation: str
+    where: str
+
+
+#: Sections 4.1.1 and 4.2: five materials, every 5 mm, 25 samples per contact, 256 FFT bins.
+DATASET = DatasetProtocol(
+    materials=("aluminium", "brass", "wood", "steel", "pvc"),
+    probe_length=0.40,
+    contact_step=0.005,
+    repetitions=25,
+    fft_bins=256,
+    where="sections 4.1.1 and 4.2",
+)
+#: Section 4.3: RBF kernel, gamma 2.0, one-vs-all, 80/20 split of 6000 samples (Fig. 15).
+MATERIAL_SVM = SVMProtocol(gamma=2.0, test_fraction=0.2, strategy="one-vs-rest",
+                           where="section 4.3, eq. 7, Fig. 15")
+#: Section 4.2: one hidden layer of 53 tanh neurons, gradient descent, 70/15/15 (Fig. 12).
+MATERIAL_ANN = NetworkProtocol(
+    hidden_layer_sizes=(53,), activation="tanh", solver="gd", fractions=(0.70, 0.15, 0.15),
+    region=1.0, normalisation="max", where="section 4.2, Fig. 12",
+)
+#: Section 4.2: two tanh layers of 20, gradient descent, first 80 % of the probe (Fig. 13).
+DISTANCE_LINEAR_REGION = NetworkProtocol(
+    hidden_layer_sizes=(20, 20), activation="tanh", solver="gd", fractions=(0.70, 0.15, 0.15),
+    region=0.8, normalisation="max", where="section 4.2, Fig. 13",
+)
+#: Section 4.2: 9 ReLU neurons, scaled conjugate gradient, whole probe, min-max, Table 2 filter
+#: first (Fig. 14).
+DISTANCE_FULL_LENGTH = NetworkProtocol(
+    hidden_layer_sizes=(9,), activation="relu", solver="scg", fractions=(0.70, 0.15, 0.15),
+    region=1.0, normalisation="min-max", where="section 4.2, Table 2, Fig. 14",
+)
+#: Section 2.3 and Fig. 11: the decay features (gain, time constant) are taken on the first 80 %
+#: of the probe, a fraction of its length.
+DECAY_REGION = 0.8
+#: Figs. 18 and 19: the contact positions of the spectrograms and scalograms, fractions of L.
+TIME_FREQUENCY_RATIOS = (0.25, 0.5, 0.75, 0.8, 0.9)
+
+
+def normalise_by_max(X) -> np.ndarray:
+    """Divide the whole feature matrix by its largest magnitude, as in section 4.2.
+
+    Examples
+    --------
+    >>> normalise_by_max(np.array([[1.0, -4.0], [2.0, 0.0]]))
+    array([[ 0.25, -1.  ],
+           [ 0.5 ,  0.  ]])
+    """
+    X = np.asarray(X, dtype=np.float64)
+    peak = np.abs(X).max()
+    if peak == 0:
+        raise ValueError("X must not be all zeros")
+    return X / peak
+
+
+def check_fractions(fractions) -> tuple[float, float, float]:
+    """Check (train, validation, test) shares: three values in [0, 1] adding up to 1.
+
+    Examples
+    --------
+    >>> check_fractions((0.7, 0.15, 0.15))
+    (0.7, 0.15, 0.15)
+    """
+    fractions = tuple(fractions)
+    if len(fractions) != 3:
+        raise ValueError(f"fractions must be (train, validation, test), got {fractions!r}")
+    for name, f in zip(("train", "validation", "test"), fractions, strict=True):
+        check_in_range(f"fractions[{name}]", f, 0.0, 1.0)
+    if abs(sum(fractions) - 1.0) > 1e-9:
+        raise ValueError(f"fractions must add up to 1, got {fractions!r}")
+    return fractions
+
+
+def three_way_split(n, fractions, seed, stratify=None):
+    """Indices of train / validation / test parts with the given fractions.
+
+    The test part is drawn first (seed ``seed``), the validation part from the rest (seed
+    ``seed + 1``); both stratified by ``stratify`` when given.
+
+    Examples
+    --------
+    >>> train, val, test = three_way_split(20, (0.7, 0.15, 0.15), seed=0)
+    >>> len(train), len(val), len(test)
+    (14, 3, 3)
+    """
+    fractions = check_fractions(fractions)
+    _, f_val, f_test = fractions
+    n_test, n_val = int(round(f_test * n)), int(round(f_val * n))
+    if min(n_test, n_val, n - n_test - n_val) < 1:
+        raise ValueError(f"{n} samples cannot be split by fractions {fractions!r}")
+    idx = np.arange(n)
+    stratify = None if stratify is None else np.asarray(stratify)
+    rest, test = train_test_split(idx, test_size=n_test, random_state=seed, stratify=stratify)
+    strat_rest = None if stratify is None else stratify[rest]
+    train, val = train_test_split(rest, test_size=n_val, random_state=seed + 1,
+                                  stratify=strat_rest)
+    return train, val, test

@@ -1,0 +1,57 @@
+"""Small helpers shared by the study's sections (private)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["per_contact", "probe_length", "pct"]
+
+
+def probe_length(ds) -> float:
+    """Length (m) of the probe the data set was simulated with, from its own metadata."""
+    return ds.metadata["config"]["scene"]["probe"]["length"]
+
+
+def pct(x: float) -> str:
+    """A fraction as a percentage with one decimal.
+
+    Examples
+    --------
+    >>> pct(0.9917)
+    '99.2 %'
+    """
+    return f"{100 * x:.1f} %"
+
+
+def per_contact(values, contact, mask=None):
+    """Median and standard deviation of ``values`` at each distinct contact distance.
+
+    Parameters
+    ----------
+    values, contact : ndarray of shape (n,)
+        Values and the contact distance (m) of each.
+    mask : ndarray of bool, optional
+        Which values to use; a contact with none left gets NaN.
+
+    Returns
+    -------
+    grid, median, spread : ndarray
+        Distinct contacts (m), median and standard deviation at each.
+
+    Examples
+    --------
+    >>> grid, med, spread = per_contact(np.array([1.0, 3.0, 5.0]), np.array([0.1, 0.1, 0.2]))
+    >>> grid.tolist(), med.tolist(), spread.tolist()
+    ([0.1, 0.2], [2.0, 5.0], [1.0, 0.0])
+    """
+    grid = np.unique(contact)
+    med = np.full(grid.size, np.nan)
+    spread = np.full(grid.size, np.nan)
+    for i, g in enumerate(grid):
+        sel = contact == g
+        if mask is not None:
+            sel &= mask
+        if np.any(sel):
+            med[i] = np.median(values[sel])
+            spread[i] = np.std(values[sel])
+    return grid, med, spread

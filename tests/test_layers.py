@@ -78,7 +78,7 @@ def _exists(module: str) -> bool:
 
 
 def imports(path: Path) -> list[tuple[int, str, list[str]]]:
-    """Every import of an ``ebantenna`` module in ``path``: (line, module, names imported from it)."""
+    """Every import of an ``ebantenna`` module in ``path``: (line, module, names taken from it)."""
     name = module_name(path)
     package = name if path.name == "__init__.py" else name.rsplit(".", 1)[0]
     found = []

@@ -23,9 +23,10 @@ import time
 
 import numpy as np
 
+from ebantenna.paper.data import build_dataset
 from ebantenna.probe import Probe, material_names
 from ebantenna.report import text_table
-from ebantenna.simulate import build_dataset, builtin_scene, simulate_batch
+from ebantenna.simulate import builtin_scene, simulate_batch
 from ebantenna.simulate.effects import GY521_MASS, effect_names
 
 __all__ = ["scenarios", "time_scene", "run", "to_text", "main"]

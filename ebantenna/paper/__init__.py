@@ -3,6 +3,8 @@
 - :mod:`~ebantenna.paper.printed`: every number, table and matrix the paper prints, with where.
 - :mod:`~ebantenna.paper.protocol`: the data set it recorded and how each model was fed (materials,
   positions, repetitions, splits, network settings).
+- :mod:`~ebantenna.paper.data`: the paper's data set, simulated in the ``paper`` scene, with
+  the rig's assumed scatter from one repetition to the next.
 - :mod:`~ebantenna.paper.feature_table`: the per-recording features the study computes from the data
   set (dominant frequency, two strongest peaks, decay fit, FFT vectors), in parallel.
 - :mod:`~ebantenna.paper.estimators`: the distance and material estimators from those features,

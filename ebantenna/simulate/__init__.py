@@ -1,11 +1,12 @@
-"""Scene-based simulator of the tip accelerometer, and the paper's data set.
+"""Scene-based simulator of the tip accelerometer, and data sets of simulated recordings.
 
 - :mod:`~ebantenna.simulate.scene`: :class:`Scene`, the built-in ``ideal`` and ``paper`` scenes,
   TOML/JSON files;
 - :mod:`~ebantenna.simulate.effects`: every effect a scene may list, with its physics and sources;
 - :mod:`~ebantenna.simulate.modes`: the modal response after the object arrests the swept probe;
 - :mod:`~ebantenna.simulate.simulator`: :func:`simulate` and :func:`simulate_batch`;
-- :mod:`~ebantenna.simulate.dataset`: the paper's data set (materials x contacts x repetitions).
+- :mod:`~ebantenna.simulate.dataset`: data sets of recordings (materials x contacts x
+  repetitions); the paper's own is :mod:`ebantenna.paper.data`.
 
 Examples
 --------
@@ -16,7 +17,7 @@ Examples
 ((1000,), 1000.0)
 """
 
-from .dataset import Dataset, build_dataset, load_dataset
+from .dataset import Dataset, DatasetDesign, build_dataset, dataset_plan, load_dataset
 from .effects import effect_names, make_effect
 from .scene import Scene, builtin_scene, load_scene, scene_names
 from .simulator import ModalTerms, modal_terms, simulate, simulate_batch
@@ -33,6 +34,8 @@ __all__ = [
     "effect_names",
     "make_effect",
     "Dataset",
+    "DatasetDesign",
     "build_dataset",
+    "dataset_plan",
     "load_dataset",
 ]

@@ -105,7 +105,7 @@ def run_dataset(args) -> int:
     import numpy as np
 
     from ..cli import print_json
-    from .dataset import build_dataset
+    from ..paper.data import build_dataset
 
     if args.seed < 0:
         raise ValueError(f"--seed must be >= 0, got {args.seed}")

@@ -1,22 +1,20 @@
-"""The paper's data set: five materials, contacts every 5 mm along the probe, 25 repetitions.
+"""Data sets of simulated recordings: materials x contact positions x repetitions.
 
-The paper (sections 2.1 and 4.2) records, for each of five touched materials, the probe's vibration
-after a contact at every 5 mm along the probe, 25 times each. Here the recordings come from the
-``paper`` scene. What varies from one repetition to the next, and why:
+A :class:`DatasetDesign` says which recordings a data set holds (the touched materials, the
+nominal contact positions, the repetitions of each) and how one repetition differs from the next:
 
-- *impact speed*: the servo's speed at the contact varies by 10 % (log-normal): the sweep is an
-  ellipse and the object is met at slightly different points of it;
-- *tilt rate*: likewise the rate across the sweep plane varies by 20 % (log-normal);
-- *position*: the probe does not hit exactly the nominal point; the error is normal with a
-  standard deviation of 1 mm, and the realised position is rounded to a 0.5 mm grid (so that
-  repetitions share FEM solves) and kept at least 0.5 mm inside the probe;
+- *impact speed*: the servo's speed at the contact varies (log-normal, ``speed_spread``);
+- *tilt rate*: likewise the rate across the sweep plane (log-normal, ``tilt_spread``);
+- *position*: the probe does not hit exactly the nominal point; the error is normal
+  (``position_error``), and the realised position is rounded to a grid (``position_grid``, so that
+  repetitions share FEM solves) and kept one grid step inside the probe;
 - *the sensor*: noise, sample-clock jitter and the hum's phase, from each signal's own seed.
 
 Every row can be reproduced alone: row ``i`` equals ``simulate(scene.with_(contact=contact_true[i],
 material=material[i], sweep_speed=sweep_speed[i], tilt_ratio=tilt_ratio[i]), seed=seed_row[i])``.
-The material enters the signals only through the contact's compliance and damping.
+The paper's own design, and the data set it recorded, are in :mod:`ebantenna.paper.data`.
 
-The data set is saved as a compressed ``.npz`` (accelerations as float32) with a JSON metadata
+A data set is saved as a compressed ``.npz`` (accelerations as float32) with a JSON metadata
 record and a SHA-256 checksum of the arrays, and reused when the same configuration asks again.
 """
 
@@ -26,30 +24,24 @@ import hashlib
 import json
 import logging
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from pathlib import Path
 
 import numpy as np
 
 from .. import __version__
 from .._progress import progress
-from .._validate import check_int
-from ..probe import material_names
-from .scene import Scene, builtin_scene
+from .._validate import check_int, check_nonnegative, check_positive
+from ..probe import material
+from .scene import Scene
 from .simulator import simulate_batch
 
-__all__ = ["Dataset", "build_dataset", "load_dataset", "dataset_plan", "FORMAT"]
+__all__ = ["Dataset", "DatasetDesign", "build_dataset", "load_dataset", "dataset_plan", "FORMAT"]
 
 log = logging.getLogger(__name__)
 
 #: Format tag written into every data set file.
 FORMAT = "ebantenna-dataset-1"
-STEP = 0.005  # m, the paper's contact spacing
-REPETITIONS = 25
-POSITION_ERROR = 1e-3  # m, standard deviation
-POSITION_GRID = 5e-4  # m
-SPEED_SPREAD = 0.10  # log-normal sigma of the sweep speed
-TILT_SPREAD = 0.20  # log-normal sigma of the tilt ratio
 _ARRAYS = (
     "ax",
     "az",
@@ -61,6 +53,78 @@ _ARRAYS = (
     "tilt_ratio",
     "seed_row",
 )
+
+
+@dataclass(frozen=True)
+class DatasetDesign:
+    """Which recordings a data set holds, and how one repetition differs from the next.
+
+    Parameters
+    ----------
+    name : str
+        Names the data set's file, ``<scene name>-<name>-seed<seed>.npz``.
+    materials : tuple of str
+        Touched materials (names of :data:`ebantenna.probe.MATERIALS`).
+    first_contact, contact_step : float
+        Nominal contact positions ``first_contact + k contact_step`` short of the probe's tip, m.
+    repetitions : int
+        Recordings per material and nominal position.
+    position_error : float
+        Standard deviation of the realised contact position about the nominal one, m.
+    position_grid : float
+        Grid the realised position is rounded to, m.
+    speed_spread, tilt_spread : float
+        Log-normal sigmas of the sweep speed and of the tilt ratio, dimensionless.
+
+    Examples
+    --------
+    >>> d = DatasetDesign("small", ("brass", "pvc"), 0.1, 0.1, 2)
+    >>> d.contacts(0.4)
+    array([0.1, 0.2, 0.3])
+    """
+
+    name: str
+    materials: tuple[str, ...]
+    first_contact: float
+    contact_step: float
+    repetitions: int
+    position_error: float = 0.0
+    position_grid: float = 5e-4
+    speed_spread: float = 0.0
+    tilt_spread: float = 0.0
+
+    def __post_init__(self):
+        if not (isinstance(self.name, str) and self.name.replace("-", "").isalnum()):
+            raise ValueError(f"name must be letters, digits and '-', got {self.name!r}")
+        if isinstance(self.materials, str) or not self.materials:
+            raise ValueError(
+                f"materials must be a non-empty tuple of names, got {self.materials!r}"
+            )
+        object.__setattr__(self, "materials", tuple(material(m).name for m in self.materials))
+        check_positive("first_contact", self.first_contact)
+        check_positive("contact_step", self.contact_step)
+        check_int("repetitions", self.repetitions, minimum=1)
+        check_nonnegative("position_error", self.position_error)
+        check_positive("position_grid", self.position_grid)
+        check_nonnegative("speed_spread", self.speed_spread)
+        check_nonnegative("tilt_spread", self.tilt_spread)
+
+    def contacts(self, length: float) -> np.ndarray:
+        """The nominal contact positions on a probe of ``length`` (m), m."""
+        check_positive("length", length)
+        k = np.arange(int(np.floor((length - self.first_contact) / self.contact_step + 1e-9)) + 1)
+        nominal = self.first_contact + k * self.contact_step
+        nominal = nominal[nominal < length - 1e-12]
+        if nominal.size == 0:
+            raise ValueError(
+                f"first_contact must lie on the probe (< {length:g} m), got {self.first_contact!r}"
+            )
+        return np.round(nominal, 6)
+
+    def to_dict(self) -> dict:
+        """The design as plain JSON values."""
+        return {f.name: list(v) if isinstance(v := getattr(self, f.name), tuple) else v
+                for f in fields(self)}
 
 
 @dataclass(frozen=True, eq=False)
@@ -86,7 +150,7 @@ class Dataset:
     fs : float
         Sampling frequency, Hz.
     metadata : dict
-        Configuration (scene, seed, quick), variation model, checksum.
+        Configuration (scene, design, seed), package version, checksum.
     path : Path or None
         The file it was loaded from.
     """
@@ -136,7 +200,7 @@ def _checksum(arrays: dict, fs: float) -> str:
     return h.hexdigest()
 
 
-def dataset_plan(scene: Scene, seed: int = 0, quick: bool = False) -> dict:
+def dataset_plan(scene: Scene, design: DatasetDesign, seed: int = 0) -> dict:
     """The rows of the data set before simulation: labels and per-repetition variation.
 
     Returns a dict of arrays ``material``, ``contact``, ``contact_true``, ``repetition``,
@@ -144,58 +208,42 @@ def dataset_plan(scene: Scene, seed: int = 0, quick: bool = False) -> dict:
 
     Examples
     --------
-    >>> import numpy as np
     >>> from ebantenna.simulate import builtin_scene
-    >>> from ebantenna.simulate.dataset import dataset_plan
-    >>> plan = dataset_plan(builtin_scene("paper"), seed=0)
-    >>> plan["contact"].size, np.unique(plan["contact"])[[0, -1]]
-    (9875, array([0.005, 0.395]))
+    >>> design = DatasetDesign("small", ("brass", "pvc"), 0.1, 0.1, 2)
+    >>> plan = dataset_plan(builtin_scene("paper"), design, seed=0)
+    >>> plan["contact"].size, sorted({str(m) for m in plan["material"]})
+    (12, ['brass', 'pvc'])
     """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
+    if not isinstance(design, DatasetDesign):
+        raise TypeError(f"design must be a DatasetDesign, got {type(design).__name__}")
     seed = check_int("seed", seed, minimum=0)
     length = scene.probe.length
-    if quick:
-        nominal = np.arange(0.025, length, 0.05)
-        repetitions = 3
-    else:
-        nominal = np.arange(1, int(np.floor(length / STEP + 1e-9)) + 1) * STEP
-        nominal = nominal[nominal < length - 1e-12]
-        repetitions = REPETITIONS
-    nominal = np.round(nominal, 6)
-    materials = material_names()
+    nominal = design.contacts(length)
+    materials = design.materials
     mat, con, rep = np.meshgrid(
-        np.arange(len(materials)), nominal, np.arange(repetitions), indexing="ij"
+        np.arange(len(materials)), nominal, np.arange(design.repetitions), indexing="ij"
     )
     n = mat.size
     rng = np.random.default_rng([seed, 0xDA7A])
-    error = rng.normal(0.0, POSITION_ERROR, n)
-    true = np.round((con.ravel() + error) / POSITION_GRID) * POSITION_GRID
-    true = np.round(np.clip(true, POSITION_GRID, length - POSITION_GRID), 9)
+    grid = design.position_grid
+    error = rng.normal(0.0, design.position_error, n)
+    true = np.round((con.ravel() + error) / grid) * grid
+    true = np.round(np.clip(true, grid, length - grid), 9)
     return {
         "material": np.array(materials)[mat.ravel()],
         "contact": con.ravel(),
         "contact_true": true,
         "repetition": rep.ravel().astype(np.int64),
-        "sweep_speed": scene.sweep_speed * np.exp(rng.normal(0.0, SPEED_SPREAD, n)),
-        "tilt_ratio": scene.tilt_ratio * np.exp(rng.normal(0.0, TILT_SPREAD, n)),
+        "sweep_speed": scene.sweep_speed * np.exp(rng.normal(0.0, design.speed_spread, n)),
+        "tilt_ratio": scene.tilt_ratio * np.exp(rng.normal(0.0, design.tilt_spread, n)),
         "seed_row": rng.integers(0, 2**62, n, dtype=np.int64),
     }
 
 
-def _config(scene: Scene, seed: int, quick: bool) -> dict:
-    return {
-        "format": FORMAT,
-        "seed": seed,
-        "quick": bool(quick),
-        "scene": scene.to_dict(),
-        "variation": {
-            "repetitions": 3 if quick else REPETITIONS,
-            "contact_step_m": 0.05 if quick else STEP,
-            "position_error_std_m": POSITION_ERROR,
-            "position_grid_m": POSITION_GRID,
-            "sweep_speed_lognormal_sigma": SPEED_SPREAD,
-            "tilt_ratio_lognormal_sigma": TILT_SPREAD,
-        },
-    }
+def _config(scene: Scene, design: DatasetDesign, seed: int) -> dict:
+    return {"format": FORMAT, "seed": seed, "scene": scene.to_dict(), "design": design.to_dict()}
 
 
 def _simulate_material(scene: Scene, name: str, plan: dict):
@@ -214,25 +262,27 @@ def _simulate_material(scene: Scene, name: str, plan: dict):
 
 def build_dataset(
     out_dir,
+    scene: Scene,
+    design: DatasetDesign,
     seed: int = 0,
-    quick: bool = False,
     *,
-    scene: Scene | None = None,
     n_jobs: int = 1,
     show_progress=None,
 ) -> Dataset:
-    """Build (or reuse) the paper's data set in ``out_dir``.
+    """Build (or reuse) the data set of ``design`` recorded in ``scene``, in ``out_dir``.
+
+    The paper's data set is :func:`ebantenna.paper.build_dataset`.
 
     Parameters
     ----------
     out_dir : path
         Directory for the ``.npz`` file (created if needed).
+    scene : Scene
+        The scene to record.
+    design : DatasetDesign
+        Materials, contact positions, repetitions and their scatter.
     seed : int
         Seed of everything random in the data set.
-    quick : bool
-        A small version (contacts every 5 cm, 3 repetitions) for tests and documentation.
-    scene : Scene, optional
-        The scene to record; default the built-in ``paper`` scene.
     n_jobs : int
         Worker processes (one material per task, :mod:`joblib`); the result does not depend on it.
     show_progress : bool, optional
@@ -241,28 +291,30 @@ def build_dataset(
     Returns
     -------
     Dataset
-        Also saved as ``<scene name>-dataset-seed<seed>[-quick].npz`` (``paper-dataset-seed0.npz``
-        by default); a file there with the same configuration and a valid checksum is loaded
-        instead of simulated again.
+        Also saved as ``<scene name>-<design name>-seed<seed>.npz``; a file there with the same
+        configuration (scene, design, seed) and a valid checksum is loaded instead of simulated
+        again.
 
     Examples
     --------
     >>> import tempfile
-    >>> from ebantenna.simulate import build_dataset
+    >>> from ebantenna.simulate import builtin_scene
+    >>> design = DatasetDesign("small", ("brass", "pvc"), 0.1, 0.1, 2)
     >>> with tempfile.TemporaryDirectory() as tmp:
-    ...     data = build_dataset(tmp, seed=1, quick=True)
-    >>> data.ax.shape, sorted({str(m) for m in data.material})[:2]
-    ((120, 1000), ['aluminium', 'brass'])
+    ...     data = build_dataset(tmp, builtin_scene("paper"), design, seed=1)
+    >>> data.ax.shape, data.path.name
+    ((12, 1000), 'paper-small-seed1.npz')
     """
     seed = check_int("seed", seed, minimum=0)
     n_jobs = check_int("n_jobs", n_jobs, minimum=1)
-    scene = builtin_scene("paper") if scene is None else scene
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
+    if not isinstance(design, DatasetDesign):
+        raise TypeError(f"design must be a DatasetDesign, got {type(design).__name__}")
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    path = out_dir / f"{scene.name}-dataset-seed{seed}{'-quick' if quick else ''}.npz"
-    config = _config(scene, seed, quick)
+    path = out_dir / f"{scene.name}-{design.name}-seed{seed}.npz"
+    config = _config(scene, design, seed)
     if path.is_file():
         try:
             cached = load_dataset(path)
@@ -274,11 +326,11 @@ def build_dataset(
                 return cached
             log.info("rebuilding %s: configuration changed", path)
 
-    plan = dataset_plan(scene, seed, quick)
+    plan = dataset_plan(scene, design, seed)
     n = plan["contact"].size
     ax = np.empty((n, scene.n_samples), dtype=np.float32)
     az = np.empty_like(ax)
-    names = material_names()
+    names = design.materials
     if n_jobs == 1:
         parts = (_simulate_material(scene, name, plan) for name in names)
     else:

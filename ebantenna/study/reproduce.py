@@ -136,8 +136,9 @@ def reproduce(
     import matplotlib
 
     matplotlib.use("Agg")
+    from ..paper.data import build_dataset
     from ..paper.feature_table import signal_features
-    from ..simulate import build_dataset, builtin_scene
+    from ..simulate import builtin_scene
 
     seed = check_int("seed", seed, minimum=0)
     out_dir = Path(out_dir)

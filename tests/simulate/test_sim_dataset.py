@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 
 from ebantenna.cli import main
+from ebantenna.paper.data import build_dataset, dataset_plan
 from ebantenna.probe import material_names
 from ebantenna.recording import Recording
-from ebantenna.simulate import build_dataset, builtin_scene, load_dataset, simulate
-from ebantenna.simulate.dataset import dataset_plan
+from ebantenna.simulate import builtin_scene, load_dataset, simulate
 
 
 @pytest.fixture(scope="module")
@@ -59,7 +59,7 @@ def test_deterministic_by_seed_cached_and_checked(quick, tmp_path):
     fresh = build_dataset(tmp_path, seed=3, quick=True, n_jobs=2, show_progress=False)
     assert fresh.checksum() == data.checksum()  # same seed, same bytes, whatever the workers
     assert load_dataset(fresh.path).checksum() == data.checksum()
-    other = dataset_plan(builtin_scene("paper"), seed=4, quick=True)
+    other = dataset_plan(seed=4, quick=True)
     assert not np.array_equal(other["contact_true"], data.contact_true)
     # A modified file is refused by load_dataset.
     with np.load(fresh.path) as f:
@@ -73,7 +73,7 @@ def test_deterministic_by_seed_cached_and_checked(quick, tmp_path):
 
 
 def test_full_plan_matches_the_paper():
-    plan = dataset_plan(builtin_scene("paper"), seed=0)
+    plan = dataset_plan(seed=0)
     contacts = np.unique(plan["contact"])
     assert contacts.size == 79 and np.allclose(np.diff(contacts), 0.005)
     assert plan["contact"].size == 5 * 79 * 25
@@ -122,3 +122,54 @@ def test_cli_dataset_json(tmp_path, capsys):
     report = json.loads(capsys.readouterr().out)
     assert report["signals"] == 120 and report["repetitions"] == 3 and report["quick"] is True
     assert report["materials"] == sorted(material_names())
+
+
+def test_a_design_of_ones_own_and_its_cache_key(tmp_path):
+    from ebantenna.simulate import DatasetDesign
+    from ebantenna.simulate import build_dataset as build
+
+    scene = builtin_scene("paper")
+    design = DatasetDesign("pair", ("steel", "pvc"), 0.1, 0.15, 2)
+    data = build(tmp_path, scene, design, seed=2, show_progress=False)
+    assert data.path.name == "paper-pair-seed2.npz"
+    assert sorted(set(data.material)) == ["pvc", "steel"]
+    np.testing.assert_array_equal(np.unique(data.contact), [0.1, 0.25])
+    # no scatter asked for: the realised positions are the nominal ones, the speeds the scene's
+    np.testing.assert_array_equal(data.contact_true, data.contact)
+    assert np.all(data.sweep_speed == scene.sweep_speed)
+    # row 0 is simulate() of its own scene and seed
+    rec = simulate(scene.with_(contact=float(data.contact_true[0]), material=str(data.material[0])),
+                   seed=int(data.seed_row[0]))
+    np.testing.assert_array_equal(data.ax[0], rec.ax.astype(np.float32))
+    # another design under the same name is another configuration: rebuilt, not reused
+    wider = DatasetDesign("pair", ("steel", "pvc"), 0.1, 0.15, 3)
+    again = build(tmp_path, scene, wider, seed=2, show_progress=False)
+    assert again.n_signals == 3 * data.n_signals // 2
+
+
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(repetitions=0), "repetitions"),
+        (dict(contact_step=0.0), "contact_step"),
+        (dict(first_contact=-0.1), "first_contact"),
+        (dict(materials=("gold",)), "gold"),
+        (dict(materials="steel"), "materials"),
+        (dict(position_error=-1e-3), "position_error"),
+        (dict(name="a b"), "name"),
+    ],
+)
+def test_a_bad_design_names_its_parameter(kwargs, match):
+    from ebantenna.simulate import DatasetDesign
+
+    params = dict(name="d", materials=("steel",), first_contact=0.1, contact_step=0.1,
+                  repetitions=1)
+    with pytest.raises(ValueError, match=match):
+        DatasetDesign(**{**params, **kwargs})
+
+
+def test_a_first_contact_beyond_the_probe_is_refused():
+    from ebantenna.simulate import DatasetDesign
+
+    with pytest.raises(ValueError, match="first_contact"):
+        DatasetDesign("d", ("steel",), 0.5, 0.1, 1).contacts(0.4)

@@ -54,13 +54,18 @@ def sweep_meshes(length: float, contacts: np.ndarray, n_elements: int):
     return nodes, n1
 
 
-def _band(element_matrices: np.ndarray) -> np.ndarray:
-    """Lower band of the assembled matrix, shape (B, 4, n): ``out[:, d, i] = A[i, i - d]``."""
-    B, ne = element_matrices.shape[:2]
+def _band(element_matrices: np.ndarray, in_span: np.ndarray) -> np.ndarray:
+    """Lower band of the assembled matrix, shape (B, 4, n): ``out[:, d, i] = A[i, i - d]``.
+
+    ``element_matrices`` (B, 2, 4, 4) are those of the span's and of the overhang's elements,
+    ``in_span`` (B, n_elements) says which elements belong to the span.
+    """
+    B, ne = in_span.shape
     out = np.zeros((B, _BAND + 1, 2 * ne + 2))
     for a in range(4):
         for b in range(a + 1):  # element e puts its (a, b) entry at row 2 e + a
-            out[:, a - b, a : a + 2 * ne : 2] += element_matrices[:, :, a, b]
+            span, overhang = element_matrices[:, 0, a, b, None], element_matrices[:, 1, a, b, None]
+            out[:, a - b, a : a + 2 * ne : 2] += np.where(in_span, span, overhang)
     return out
 
 
@@ -111,11 +116,11 @@ def _backward(L: np.ndarray, x: np.ndarray) -> np.ndarray:
 
 
 def _matvec(band: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """Symmetric band (n, 4, B) times vectors x (n, B)."""
-    y = band[:, 0] * x
+    """Symmetric band (4, n, B), ``band[d, i] = A[i, i - d]``, times vectors x (n, B)."""
+    y = band[0] * x
     for d in range(1, _BAND + 1):
-        y[d:] += band[d:, d] * x[:-d]
-        y[:-d] += band[d:, d] * x[d:]
+        y[d:] += band[d, d:] * x[:-d]
+        y[:-d] += band[d, d:] * x[d:]
     return y
 
 
@@ -136,10 +141,13 @@ def banded_sweep(
     ``contact_stiffness`` inf for a rigid contact, N/m for a spring.
     """
     B = contacts.size
-    nodes, c_node = sweep_meshes(probe.length, contacts, n_elements)
-    h = np.diff(nodes, axis=1)
-    K = _band(element_stiffness(probe.flexural_rigidity, h))
-    M = _band(consistent_mass(probe.mass_per_length, h))
+    # Two uniform spans per position (see sweep_meshes): two element lengths, two matrices.
+    _, c_node = sweep_meshes(probe.length, contacts, n_elements)
+    lengths = np.stack([contacts / c_node, (probe.length - contacts) / (n_elements - c_node)], 1)
+    in_span = np.arange(n_elements) < c_node[:, None]
+    h = np.where(in_span, lengths[:, :1], lengths[:, 1:])  # (B, n_elements)
+    K = _band(element_stiffness(probe.flexural_rigidity, lengths), in_span)
+    M = _band(consistent_mass(probe.mass_per_length, lengths), in_span)
     rows = np.arange(B)
     v_c = 2 * c_node
     if math.isinf(contact_stiffness):  # decouple the contact DOF: mu = 0 there, nothing else
@@ -163,7 +171,7 @@ def banded_sweep(
         A[:, d, :d] = 0.0
         M[:, d, :d] = 0.0
     L = _cholesky(A)
-    Mb = np.ascontiguousarray(np.transpose(M, (2, 1, 0)))  # (n, 4, B)
+    Mb = np.ascontiguousarray(np.transpose(M, (1, 2, 0)))  # (4, n, B): one diagonal each
     _, y = _lanczos(L, Mb, n_modes)
     # Rayleigh quotients of the mode shapes phi = L^-T y, the strain energy summed from element
     # curvatures as in modal.strain_energy: the Ritz values themselves carry the rounding of
@@ -203,7 +211,7 @@ def _lanczos(L, Mb, n_modes):
     value): the loop stops once that bound is below ``1e-14 theta_j`` for every retained value of
     every position.
     """
-    n, B = Mb.shape[0], Mb.shape[2]
+    n, B = Mb.shape[1], Mb.shape[2]
     steps = min(n, _MAX_STEPS)
     basis = np.empty((steps + 1, n, B))
     q = np.random.default_rng(0).standard_normal((n, 1))

@@ -7,7 +7,11 @@
 - :mod:`~ebantenna.fem.exact`: the exact frequencies from the transcendental frequency equation;
 - :mod:`~ebantenna.fem.zones`: the three zones of the dominant mode along the probe (Fig. 16);
 - :mod:`~ebantenna.fem.coupling`: the touched rod as a vibrating body, coupled to the probe through
-  the contact spring by Craig-Bampton component-mode synthesis.
+  the contact spring by Craig-Bampton component-mode synthesis;
+- :mod:`~ebantenna.fem.banded`: contact sweeps on the banded matrices (behind
+  :func:`natural_frequencies`);
+- :mod:`~ebantenna.fem.hinge`: hinge stiffness and tip mass fitted to where the dominant mode
+  changes.
 
 (:mod:`~ebantenna.fem.symbolic` imports sympy and is not loaded until asked for.)
 """

@@ -401,6 +401,7 @@ def coupled_modes(
     rod_modes: int = 12,
     contact_loss_factor: float = 0.0,
     rod_reduction: CraigBampton | None = None,
+    probe_reduction: CraigBampton | None = None,
 ) -> CoupledModes:
     """Coupled modes of probe and rod by Craig-Bampton component-mode synthesis.
 
@@ -423,8 +424,9 @@ def coupled_modes(
         Fixed-interface modes kept per substructure (more: closer to :func:`monolithic_modes`).
     contact_loss_factor : float
         Loss factor of the contact spring (dimensionless), default 0.
-    rod_reduction : CraigBampton, optional
-        A reduction of this rod made earlier by :func:`craig_bampton`, to reuse it in a sweep.
+    rod_reduction, probe_reduction : CraigBampton, optional
+        Reductions of this rod, and of this probe at this contact, made earlier by
+        :func:`craig_bampton`, to reuse them in a sweep.
 
     Returns
     -------
@@ -441,9 +443,10 @@ def coupled_modes(
     array([0.012 , 0.0139, 0.0104])
     """
     k_c, eta_c = _check_coupling(contact_stiffness, contact_loss_factor, n_modes)
-    p = craig_bampton(
-        probe_substructure(probe, contact, hinge=hinge, n_elements=n_elements), probe_modes
-    )
+    p = probe_reduction
+    if p is None:
+        sub = probe_substructure(probe, contact, hinge=hinge, n_elements=n_elements)
+        p = craig_bampton(sub, probe_modes)
     r = rod_reduction
     if r is None:
         r = craig_bampton(rod_substructure(rod, n_elements=rod_elements), rod_modes)

@@ -58,8 +58,8 @@ def coupled_sweep(
     n_modes: int = 6,
     n_elements: int = 64,
     rod_elements: int = 32,
-    probe_modes: int = 24,
-    rod_modes: int = 12,
+    probe_modes: int = 40,
+    rod_modes: int = 20,
     contact_loss_factor: float = 0.0,
 ) -> CoupledSweep:
     """Coupled modes of the probe touching each rod at each contact position.

@@ -397,8 +397,8 @@ def coupled_modes(
     n_modes: int = 6,
     n_elements: int = 64,
     rod_elements: int = 32,
-    probe_modes: int = 24,
-    rod_modes: int = 12,
+    probe_modes: int = 40,
+    rod_modes: int = 20,
     contact_loss_factor: float = 0.0,
     rod_reduction: CraigBampton | None = None,
     probe_reduction: CraigBampton | None = None,
@@ -422,6 +422,10 @@ def coupled_modes(
         Beam elements of the probe and the rod.
     probe_modes, rod_modes : int
         Fixed-interface modes kept per substructure (more: closer to :func:`monolithic_modes`).
+        For the lowest six coupled modes of the five materials' default rods touched at 5, 20
+        and 35 cm (k_c = 2e5 N/m), the largest relative error is 4.7e-6 with 24 / 12 modes,
+        3.7e-7 with the default 40 / 20, 3.5e-8 with 64 / 32; the reduced problem has
+        ``probe_modes + rod_modes + 2`` coordinates.
     contact_loss_factor : float
         Loss factor of the contact spring (dimensionless), default 0.
     rod_reduction, probe_reduction : CraigBampton, optional

@@ -19,12 +19,13 @@ The basis is
 
 With ``x = [x_i; x_b] = T [q; x_b]``, ``T = [[Phi, Psi], [0, 1]]``, the reduced stiffness is
 ``blockdiag(Lambda, K_bb + K_bi Psi)`` and the reduced mass ``T^T M T``. Keeping every
-fixed-interface mode makes ``T`` square and the reduction exact; keeping ``k`` of them is exact
-for the static response and converges quickly in the low modes (``convergence`` in the tests). The
-two reduced substructures are then assembled through the spring, ``k_c (x_b^probe - x_b^rod)^2 /
-2`` of strain energy, or tied rigidly (``k_c = inf``) by merging the two interface coordinates.
-The rod's reduction does not depend on the probe's contact position, so a sweep reduces each rod
-once. :func:`monolithic_modes` assembles the same system without reduction, the witness.
+fixed-interface mode makes ``T`` square and the reduction exact; keeping ``k`` of them is exact for
+the static response and, being a Rayleigh-Ritz subspace, converges from above in the low modes as
+``k`` grows (errors in :func:`coupled_modes`). The two reduced substructures are then assembled
+through the spring, ``k_c (x_b^probe - x_b^rod)^2 / 2`` of strain energy, or tied rigidly (infinite
+``k_c``) by merging the two interface coordinates. The rod's reduction does not depend on the
+probe's contact position, so a sweep reduces each rod once. :func:`monolithic_modes` assembles the
+same system without reduction, the witness.
 
 Damping (an assumption)
 -----------------------

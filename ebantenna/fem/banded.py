@@ -213,35 +213,36 @@ def _lanczos(L, Mb, n_modes):
     """
     n, B = Mb.shape[1], Mb.shape[2]
     steps = min(n, _MAX_STEPS)
-    basis = np.empty((steps + 1, n, B))
-    q = np.random.default_rng(0).standard_normal((n, 1))
-    basis[0] = q / np.linalg.norm(q)
+    first_check = min(2 * n_modes + 2, steps)  # Ritz values seldom converge sooner
+    basis = np.empty((B, steps + 1, n))  # per position, one Lanczos vector per row
+    q = np.random.default_rng(0).standard_normal(n)
+    basis[:, 0] = q / np.linalg.norm(q)
     alpha = np.zeros((B, steps))
     beta = np.zeros((B, steps))
     for k in range(steps):
-        w = _forward(L, _matvec(Mb, _backward(L, basis[k])))
-        alpha[:, k] = np.einsum("nb,nb->b", basis[k], w)
-        done = basis[: k + 1]
-        w -= np.einsum("knb,kb->nb", done, np.einsum("knb,nb->kb", done, w))  # reorthogonalise
-        norm = np.linalg.norm(w, axis=0)
+        w = _forward(L, _matvec(Mb, _backward(L, np.ascontiguousarray(basis[:, k].T)))).T
+        alpha[:, k] = np.einsum("bn,bn->b", basis[:, k], w)
+        done = basis[:, : k + 1]  # (B, k + 1, n): reorthogonalise by batched matrix products
+        w = w - np.matmul(np.matmul(done, w[:, :, None]).transpose(0, 2, 1), done)[:, 0]
+        norm = np.linalg.norm(w, axis=1)
         # A Krylov space that is already invariant (a small mesh) ends here: beta = 0 and the
         # next vector is zero, which adds nothing to the tridiagonal matrix.
         alive = norm > 1e-13 * np.abs(alpha[:, : k + 1]).max(axis=1)
         beta[:, k] = np.where(alive, norm, 0.0)
-        basis[k + 1] = np.where(alive, w / np.where(alive, norm, 1.0), 0.0)
-        if k + 1 < steps and (k + 1 <= n_modes or (k - n_modes) % 2):  # check every other step
-            continue
+        basis[:, k + 1] = np.where(alive[:, None], w / np.where(alive, norm, 1.0)[:, None], 0.0)
         m = k + 1
+        if m < steps and (m < first_check or (m - first_check) % 2):  # check every other step
+            continue
         T = np.zeros((B, m, m))
         idx = np.arange(m)
         T[:, idx, idx] = alpha[:, :m]
         T[:, idx[:-1], idx[1:]] = T[:, idx[1:], idx[:-1]] = beta[:, : m - 1]
         theta, S = np.linalg.eigh(T)
-        theta, S = theta[:, ::-1], S[:, -1, ::-1]
-        r = beta[:, k, None] * np.abs(S[:, :n_modes])
+        theta, S = theta[:, ::-1], S[:, :, ::-1]
+        r = beta[:, k, None] * np.abs(S[:, -1, :n_modes])
         gap = np.abs(theta[:, :n_modes] - theta[:, 1 : n_modes + 1])
         bound = np.where(r < gap, np.minimum(r, r**2 / np.where(r < gap, gap, 1.0)), r)
         if np.all(bound <= _TOLERANCE * theta[:, :n_modes]) or m == steps:
-            S = np.linalg.eigh(T)[1][:, :, ::-1][:, :, :n_modes]  # (B, m, n_modes)
-            return theta[:, :n_modes], np.einsum("knb,bkj->jnb", basis[:m], S)
+            ritz = np.matmul(S[:, :, :n_modes].transpose(0, 2, 1), basis[:, :m])  # (B, j, n)
+            return theta[:, :n_modes], ritz.transpose(1, 2, 0)
     raise np.linalg.LinAlgError(f"Lanczos did not converge in {_MAX_STEPS} steps")

@@ -364,8 +364,7 @@ def natural_frequencies(
     n_elements, n_modes : int
         Mesh size and number of modes.
     chunk : int, optional
-        Positions solved per batch: default 125 dense; banded, the positions shared among the
-        cores in batches of 256 to 2048 (memory about
+        Positions solved per batch: default 125 dense, 256 banded (memory about
         ``chunk * (2 n_elements)^2 * 32`` bytes dense, ``chunk * n_elements * 600`` banded).
     method : {"banded", "dense"}
         See above.
@@ -385,9 +384,8 @@ def natural_frequencies(
     """
     contacts = check_array("contacts", contacts, ndim=1)
     check_choice("method", method, SWEEP_METHODS)
-    if chunk is None:  # banded: share the positions among the cores, in batches of 256..2048
-        cores = os.cpu_count() or 1
-        chunk = int(np.clip(-(-contacts.size // cores), 256, 2048)) if method == "banded" else 125
+    if chunk is None:  # banded: batches small enough for the cache, spread over the cores
+        chunk = 256 if method == "banded" else 125
     chunk = check_int("chunk", chunk, minimum=1)
     n_elements = check_int("n_elements", n_elements, minimum=2)
     n_modes = check_int("n_modes", n_modes, minimum=1, maximum=2 * n_elements - 1)

@@ -5,12 +5,14 @@ A chain of beam elements couples each DOF only to its three neighbours on either
 position; here every position of a batch is handled at once, vectorised over the batch:
 
 1. the band of ``A = K + s M`` is assembled (``s > 0``, the shift of :mod:`~ebantenna.fem.modal`),
-   with the rigid contact imposed by decoupling its DOF (its row and column of ``K`` reduced to
-   the diagonal, of ``M`` to zero: that DOF then carries the eigenvalue ``mu = 0`` and nothing
-   else);
-2. ``A = L L^T`` by a banded Cholesky factorisation, ``O(n)`` per position;
+   every held DOF (the hinge's deflection, its rotation when clamped, a rigid contact) decoupled
+   instead of removed, so that all positions share one layout: its row and column of ``K``
+   reduced to the diagonal, of ``M`` to zero, it carries the eigenvalue ``mu = 0`` and nothing
+   else;
+2. ``A = L L^T`` by a banded Cholesky factorisation, ``O(n)`` per position; ``L`` is block lower
+   bidiagonal in the 2 x 2 blocks of the nodes, so the triangular solves go node by node;
 3. Lanczos for the largest eigenvalues ``mu = 1 / (omega^2 + s)`` of ``C = L^-1 M L^-T`` (the
-   lowest modes), each step two banded triangular solves and a banded product, ``O(n)``; the
+   lowest modes), each step two triangular solves and a banded product, ``O(n)``; the
    ``mu`` of a beam fall off like ``j^-4``, so about a dozen steps reach the residual bound
    ``1e-14`` (B. N. Parlett, *The Symmetric Eigenvalue Problem*, SIAM, 1998, ch. 13);
 4. the frequencies are the Rayleigh quotients of the Ritz vectors, the strain energy summed from
@@ -92,27 +94,49 @@ def _cholesky(A: np.ndarray) -> np.ndarray:
     return L
 
 
-def _forward(L: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """``L^-1 x`` for x of shape (n, B): forward substitution down the band."""
-    n = x.shape[0]
-    z = np.zeros((n + _BAND,) + x.shape[1:])
-    for i in range(n):
-        r = i + _BAND
-        z[r] = (x[i] - L[r, 1] * z[r - 1] - L[r, 2] * z[r - 2] - L[r, 3] * z[r - 3]) / L[r, 0]
-    return z[_BAND:]
+def _node_blocks(L: np.ndarray):
+    """The band of ``L`` regrouped by node: ``L`` is block lower bidiagonal in 2 x 2 blocks.
+
+    Row ``2k`` (the deflection of node ``k``) and ``2k + 1`` (its rotation) reach back to node
+    ``k - 1`` only (``L[2k, 2k - 3]`` belongs to node ``k - 2`` and is zero: those nodes share no
+    element, and a banded Cholesky fills nothing outside the band). Returns the inverses of the
+    diagonal blocks and the blocks below them, each (n_nodes, 2, 2, B).
+    """
+    Lr = L[_BAND:-_BAND]  # (n, 4, B): Lr[i, d] = L[i, i - d]
+    v, t = Lr[0::2], Lr[1::2]  # rows of deflections and of rotations, (n_nodes, 4, B)
+    a, c, b = v[:, 0], t[:, 1], t[:, 0]  # diagonal block [[a, 0], [c, b]]
+    inv = np.zeros((v.shape[0], 2, 2) + v.shape[2:])
+    inv[:, 0, 0], inv[:, 1, 1], inv[:, 1, 0] = 1 / a, 1 / b, -c / (a * b)
+    below = np.zeros_like(inv)  # columns 2k - 2, 2k - 1
+    below[:, 0, 0], below[:, 0, 1], below[:, 1, 0], below[:, 1, 1] = (
+        v[:, 2],
+        v[:, 1],
+        t[:, 3],
+        t[:, 2],
+    )
+    return inv, below
 
 
-def _backward(L: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """``L^-T x`` for x of shape (n, B): back substitution up the band."""
-    n = x.shape[0]
-    Lp = L  # padded by zero rows below the last (see _cholesky)
-    z = np.zeros((n + _BAND,) + x.shape[1:])
-    for i in range(n - 1, -1, -1):
-        r = i + _BAND
-        z[i] = (
-            x[i] - Lp[r + 1, 1] * z[i + 1] - Lp[r + 2, 2] * z[i + 2] - Lp[r + 3, 3] * z[i + 3]
-        ) / L[r, 0]
-    return z[:n]
+def _forward(L, x: np.ndarray) -> np.ndarray:
+    """``L^-1 x`` for x of shape (n, B): forward substitution, node by node."""
+    inv, below = L
+    x = x.reshape(inv.shape[0], 2, -1)
+    z = np.empty_like(x)
+    z[0] = (inv[0] * x[0]).sum(1)
+    for k in range(1, x.shape[0]):
+        z[k] = (inv[k] * (x[k] - (below[k] * z[k - 1]).sum(1))).sum(1)
+    return z.reshape(-1, x.shape[-1])
+
+
+def _backward(L, x: np.ndarray) -> np.ndarray:
+    """``L^-T x`` for x of shape (n, B): back substitution, node by node."""
+    inv, below = L
+    x = x.reshape(inv.shape[0], 2, -1)
+    z = np.empty_like(x)
+    z[-1] = (inv[-1] * x[-1][:, None]).sum(0)
+    for k in range(x.shape[0] - 2, -1, -1):
+        z[k] = (inv[k] * (x[k] - (below[k + 1] * z[k + 1][:, None]).sum(0))[:, None]).sum(0)
+    return z.reshape(-1, x.shape[-1])
 
 
 def _matvec(band: np.ndarray, x: np.ndarray) -> np.ndarray:
@@ -150,38 +174,38 @@ def banded_sweep(
     M = _band(consistent_mass(probe.mass_per_length, lengths), in_span)
     rows = np.arange(B)
     v_c = 2 * c_node
-    if math.isinf(contact_stiffness):  # decouple the contact DOF: mu = 0 there, nothing else
-        size = K.shape[2]
-        for A in (K, M):
-            A[rows, 1:, v_c] = 0.0  # its row: A[v_c, v_c - d]
-            for d in range(1, _BAND + 1):  # its column: A[v_c + d, v_c]
-                A[rows, d, np.minimum(v_c + d, size - 1)] *= v_c + d >= size
-        M[rows, 0, v_c] = 0.0  # K keeps its diagonal there, so A stays definite
+    held = [np.zeros(B, dtype=int)]  # the hinge never moves sideways
+    if math.isinf(hinge_stiffness):
+        held.append(np.ones(B, dtype=int))
+    else:
+        K[:, 0, 1] += hinge_stiffness
+    if math.isinf(contact_stiffness):
+        held.append(v_c)
     else:
         K[rows, 0, v_c] += contact_stiffness
     M[:, 0, -2] += probe.tip_mass
-    first = 1  # the hinge never moves sideways
-    if math.isinf(hinge_stiffness):
-        first = 2
-    else:
-        K[:, 0, 1] += hinge_stiffness
+    for dof in held:  # decouple each held DOF: mu = 0 there, nothing else
+        size = K.shape[2]
+        for A in (K, M):
+            A[rows, 1:, dof] = 0.0  # its row: A[dof, dof - d]
+            for d in range(1, _BAND + 1):  # its column: A[dof + d, dof]
+                A[rows, d, np.minimum(dof + d, size - 1)] *= dof + d >= size
+        M[rows, 0, dof] = 0.0  # K keeps its diagonal there, so A stays definite
+    free = np.ones((B, K.shape[2]))
+    for dof in held:
+        free[rows, dof] = 0.0
     A = K + shift * M
-    A, M = A[:, :, first:], M[:, :, first:]
-    for d in range(1, _BAND + 1):  # entries that reached into the removed hinge DOFs
-        A[:, d, :d] = 0.0
-        M[:, d, :d] = 0.0
-    L = _cholesky(A)
+    L = _node_blocks(_cholesky(A))
     Mb = np.ascontiguousarray(np.transpose(M, (1, 2, 0)))  # (4, n, B): one diagonal each
-    _, y = _lanczos(L, Mb, n_modes)
+    _, y = _lanczos(L, Mb, n_modes, free)
     # Rayleigh quotients of the mode shapes phi = L^-T y, the strain energy summed from element
     # curvatures as in modal.strain_energy: the Ritz values themselves carry the rounding of
     # 1 / mu - s and of K phi, about eps * omega_max^2 / omega^2; the quotient, stationary at an
     # eigenvector, does not.
     lam = np.empty((B, n_modes))
     for j in range(n_modes):
-        phi = np.zeros((2 * n_elements + 2, B))
-        phi[first:] = _backward(L, y[j])
-        mass = np.einsum("nb,nb->b", phi[first:], _matvec(Mb, phi[first:]))
+        phi = _backward(L, y[j]) * free.T  # held DOFs exactly still
+        mass = np.einsum("nb,nb->b", phi, _matvec(Mb, phi))
         lam[:, j] = _strain_energy(h.T, probe.flexural_rigidity, phi) / mass
         if not math.isinf(hinge_stiffness):
             lam[:, j] += hinge_stiffness * phi[1] ** 2 / mass
@@ -198,7 +222,7 @@ def _strain_energy(h, EI, u):
     return (EI * h / 3 * (k1 * k1 + k1 * k2 + k2 * k2)).sum(axis=0)
 
 
-def _lanczos(L, Mb, n_modes):
+def _lanczos(L, Mb, n_modes, free):
     """Largest ``n_modes`` eigenpairs of ``C = L^-1 M L^-T`` for each band of a batch.
 
     Returns the Ritz values, shape (B, n_modes), and Ritz vectors, shape (n_modes, n, B).
@@ -215,8 +239,8 @@ def _lanczos(L, Mb, n_modes):
     steps = min(n, _MAX_STEPS)
     first_check = min(2 * n_modes + 2, steps)  # Ritz values seldom converge sooner
     basis = np.empty((B, steps + 1, n))  # per position, one Lanczos vector per row
-    q = np.random.default_rng(0).standard_normal(n)
-    basis[:, 0] = q / np.linalg.norm(q)
+    q = np.random.default_rng(0).standard_normal(n) * free  # nothing along a held DOF
+    basis[:, 0] = q / np.linalg.norm(q, axis=1, keepdims=True)
     alpha = np.zeros((B, steps))
     beta = np.zeros((B, steps))
     for k in range(steps):

@@ -13,9 +13,9 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
-from ._validate import check_nonnegative, check_positive
+from ._validate import check_in_range, check_nonnegative, check_positive
 
-__all__ = ["Probe", "Material", "MATERIALS", "material", "material_names"]
+__all__ = ["Probe", "Material", "MATERIALS", "ALIASES", "material", "material_names"]
 
 
 @dataclass(frozen=True)
@@ -127,16 +127,32 @@ class Material:
     name : str
         Short name, as used on the command line.
     youngs_modulus : float
-        Young's modulus E, Pa.
+        Young's modulus E, Pa; for wood, along the grain (the rod's axis).
     density : float
         Density rho, kg/m^3.
     poisson_ratio : float
-        Poisson's ratio nu (dimensionless).
+        Poisson's ratio nu (dimensionless), in (-1, 0.5).
     loss_factor : float
-        Material loss factor eta (dimensionless): the fraction 2*pi*eta of the strain energy lost
-        per cycle of vibration.
+        Material loss factor eta (dimensionless, >= 0): the fraction 2*pi*eta of the strain energy
+        lost per cycle of vibration.
     source : str
         Where the numbers come from.
+    youngs_modulus_across : float or None
+        Young's modulus across the rod's axis, Pa, for an anisotropic material (wood: across the
+        grain); ``None`` (default) for an isotropic one, whose modulus is the same in every
+        direction.
+    ranges : tuple of (field, low, high)
+        The spread the sources give for a field (same units as the field), where the value
+        taken is one point of a range.
+
+    Examples
+    --------
+    >>> from ebantenna.probe import material
+    >>> oak = material("oak")
+    >>> oak.youngs_modulus / oak.transverse_modulus > 5  # far stiffer along the grain
+    True
+    >>> material("steel").transverse_modulus == material("steel").youngs_modulus
+    True
     """
 
     name: str
@@ -145,27 +161,119 @@ class Material:
     poisson_ratio: float
     loss_factor: float
     source: str
+    youngs_modulus_across: float | None = None
+    ranges: tuple = ()
+
+    def __post_init__(self):
+        check_positive("youngs_modulus", self.youngs_modulus)
+        check_positive("density", self.density)
+        check_in_range("poisson_ratio", self.poisson_ratio, -1.0, 0.5)
+        check_nonnegative("loss_factor", self.loss_factor)
+        if self.youngs_modulus_across is not None:
+            check_positive("youngs_modulus_across", self.youngs_modulus_across)
+        for field, low, high in self.ranges:
+            value = getattr(self, field)
+            if not low <= value <= high:
+                raise ValueError(
+                    f"{field} must lie in its sources' range [{low:g}, {high:g}], got {value!r}"
+                )
+
+    @property
+    def transverse_modulus(self) -> float:
+        """Young's modulus across the rod's axis, Pa (the contact's); E for isotropic materials."""
+        if self.youngs_modulus_across is None:
+            return self.youngs_modulus
+        return self.youngs_modulus_across
 
 
-_ASHBY = "M. F. Ashby, Materials Selection in Mechanical Design, 4th ed., 2011, appendix C"
-_CREMER = "L. Cremer, M. Heckl, B. A. T. Petersson, Structure-Borne Sound, 3rd ed., 2005, table 2.4"
-_FPL = "Wood Handbook, USDA FPL-GTR-190, 2010, tables 5-3a and 5-1 (red oak, 12 % moisture)"
+# Sources. Every number of the table below is one of these, at the table or page given.
+_ASHBY_JONES = (
+    "M. F. Ashby, D. R. H. Jones, Engineering Materials 1, 4th ed., Butterworth-Heinemann, 2012, "
+    "table 3.1 (Young's modulus) and table 5.1 (density)"
+)
+_ASHBY = (
+    "M. F. Ashby, Materials Selection in Mechanical Design, 4th ed., Butterworth-Heinemann, 2011, "
+    "ch. 4 (loss coefficient - modulus chart) and appendix C"
+)
+_CREMER = (
+    "L. Cremer, M. Heckl, B. A. T. Petersson, Structure-Borne Sound, 3rd ed., Springer, 2005, "
+    "ch. 3 (Damping), table of material loss factors"
+)
+_ASM = "ASM Handbook vol. 2, Properties and Selection: Nonferrous Alloys, ASM International, 1990"
+_FPL = (
+    "Forest Products Laboratory, Wood Handbook, FPL-GTR-282, USDA, 2021, ch. 5: table 5-1 "
+    "(elastic ratios), table 5-2 (Poisson's ratios), table 5-3a (MOE, specific gravity at 12 % "
+    "moisture); northern red oak"
+)
 
-#: The five materials of the paper's experiments. Mid values of the ranges the sources give.
+#: The five materials of the paper's experiments (the paper names them, gives no grade or
+#: geometry). Each value is a mid value of the range its sources give (``ranges``):
+#:
+#: - aluminium, 6061-T6 (the common rod stock): E 68.9 GPa, rho 2700 kg/m^3, nu 0.33 (ASM vol. 2;
+#:   Ashby & Jones table 3.1: 69 GPa); eta 1e-4, metals of construction 1e-5 to 1e-3 (Cremer et
+#:   al.; Ashby's chart);
+#: - brass: 97 GPa (C36000 free-cutting) to 110 GPa (C26000 cartridge), rho 8500 kg/m^3
+#:   (8490-8530), nu 0.34 (ASM vol. 2; Ashby & Jones table 3.1: 103-124 GPa); eta 1e-3, "< 1e-3"
+#:   in Cremer et al., up to 2e-3 for annealed brass;
+#: - wood: northern red oak at 12 % moisture (FPL table 5-3a): bending MOE 12.5 GPa along the grain
+#:   (the handbook's MOE includes shear deflection and reads up to ~10 % below the true E_L);
+#:   specific gravity 0.63 on oven-dry mass and volume at 12 % moisture, so rho = 0.63 * 1000 *
+#:   1.12 = 706 kg/m^3; across the grain E_R / E_L = 0.154 and E_T / E_L = 0.082 (FPL table 5-1),
+#:   E_R = 1.93 GPa, E_T = 1.03 GPa: the probe meets the rod's side at no particular angle to the
+#:   growth rings, so the mean, 1.48 GPa, is taken; nu = mu_LR = 0.350 (FPL table 5-2); eta 1e-2,
+#:   wood along the grain 5e-3 to 1.5e-2 (Cremer et al.; Ashby's chart);
+#: - steel, low-carbon: E 200-210 GPa, rho 7850 kg/m^3, nu 0.29 (Ashby & Jones tables 3.1, 5.1:
+#:   mild steel 200 GPa); eta 2e-4, 1e-4 to 6e-4 (Cremer et al.);
+#: - pvc, rigid (unplasticised): E 2.4-4.1 GPa, rho 1300-1580 kg/m^3, nu 0.38-0.40 (Ashby
+#:   appendix C); eta 2e-2, 1e-2 to 5e-2 at room temperature, well below the glass transition
+#:   (Ashby's loss-coefficient chart; Cremer et al. give 2e-2 for the similar glassy Plexiglas).
 MATERIALS: dict[str, Material] = {
     m.name: m
     for m in (
-        Material("aluminium", 69e9, 2700.0, 0.33, 1e-4, f"6061 alloy; {_ASHBY}; eta: {_CREMER}"),
         Material(
-            "brass", 105e9, 8500.0, 0.34, 1e-3, f"C26000 cartridge brass; {_ASHBY}; {_CREMER}"
+            "aluminium", 68.9e9, 2700.0, 0.33, 1e-4,
+            f"6061-T6; {_ASM}; {_ASHBY_JONES}; eta: {_CREMER}; {_ASHBY}",
+            ranges=(("youngs_modulus", 68e9, 71e9), ("loss_factor", 1e-5, 1e-3)),
         ),
-        Material("wood", 12.5e9, 660.0, 0.35, 1e-2, f"red oak along the grain; {_FPL}; {_CREMER}"),
-        Material("steel", 205e9, 7850.0, 0.29, 2e-4, f"low-carbon steel; {_ASHBY}; {_CREMER}"),
         Material(
-            "pvc", 3.0e9, 1400.0, 0.38, 2e-2, f"rigid (unplasticised) PVC; {_ASHBY}; {_CREMER}"
+            "brass", 105e9, 8500.0, 0.34, 1e-3,
+            f"C36000-C26000; {_ASM}; {_ASHBY_JONES}; eta: {_CREMER}",
+            ranges=(
+                ("youngs_modulus", 97e9, 124e9),
+                ("density", 8490.0, 8530.0),
+                ("loss_factor", 2e-4, 2e-3),
+            ),
+        ),
+        Material(
+            "wood", 12.5e9, 706.0, 0.350, 1e-2,
+            f"northern red oak; {_FPL}; eta: {_CREMER}; {_ASHBY}",
+            youngs_modulus_across=1.48e9,
+            ranges=(
+                ("youngs_modulus", 12.5e9, 13.8e9),
+                ("youngs_modulus_across", 1.03e9, 1.93e9),
+                ("loss_factor", 5e-3, 1.5e-2),
+            ),
+        ),
+        Material(
+            "steel", 205e9, 7850.0, 0.29, 2e-4,
+            f"low-carbon steel; {_ASHBY_JONES}; {_ASHBY}; eta: {_CREMER}",
+            ranges=(("youngs_modulus", 200e9, 210e9), ("loss_factor", 1e-4, 6e-4)),
+        ),
+        Material(
+            "pvc", 3.0e9, 1400.0, 0.38, 2e-2,
+            f"rigid (unplasticised) PVC; {_ASHBY}; eta: {_CREMER}",
+            ranges=(
+                ("youngs_modulus", 2.4e9, 4.1e9),
+                ("density", 1300.0, 1580.0),
+                ("poisson_ratio", 0.38, 0.40),
+                ("loss_factor", 1e-2, 5e-2),
+            ),
         ),
     )
 }
+
+#: Other names accepted by :func:`material`.
+ALIASES = {"aluminum": "aluminium", "oak": "wood", "red oak": "wood", "mild steel": "steel"}
 
 
 def material_names() -> tuple[str, ...]:
@@ -174,7 +282,7 @@ def material_names() -> tuple[str, ...]:
 
 
 def material(name: str) -> Material:
-    """Look up a touched material by name (case-insensitive; 'aluminum' is accepted).
+    """Look up a touched material by name (case-insensitive; the :data:`ALIASES` are accepted).
 
     Raises
     ------
@@ -190,7 +298,7 @@ def material(name: str) -> Material:
     if not isinstance(name, str):
         raise TypeError(f"material must be a string, got {type(name).__name__}")
     key = name.strip().lower()
-    key = {"aluminum": "aluminium"}.get(key, key)
+    key = ALIASES.get(key, key)
     if key not in MATERIALS:
         raise ValueError(f"material must be one of {', '.join(MATERIALS)}; got {name!r}")
     return MATERIALS[key]

@@ -5,11 +5,18 @@
 - :mod:`~ebantenna.fem.assembly`: mesh, assembly, supports;
 - :mod:`~ebantenna.fem.modal`: the generalized eigenproblem, mode shapes, contact sweeps;
 - :mod:`~ebantenna.fem.exact`: the exact frequencies from the transcendental frequency equation;
-- :mod:`~ebantenna.fem.zones`: the three zones of the dominant mode along the probe (Fig. 16).
+- :mod:`~ebantenna.fem.zones`: the three zones of the dominant mode along the probe (Fig. 16);
+- :mod:`~ebantenna.fem.coupling`: the touched rod as a vibrating body, coupled to the probe through
+  the contact spring by Craig-Bampton component-mode synthesis;
+- :mod:`~ebantenna.fem.banded`: contact sweeps on the banded matrices (behind
+  :func:`natural_frequencies`);
+- :mod:`~ebantenna.fem.hinge`: hinge stiffness and tip mass fitted to where the dominant mode
+  changes.
 
 (:mod:`~ebantenna.fem.symbolic` imports sympy and is not loaded until asked for.)
 """
 
+from .coupling import CoupledModes, Rod, coupled_modes, monolithic_modes
 from .exact import exact_frequencies
 from .modal import ModalResult, modal_analysis, natural_frequencies
 from .supports import Supports
@@ -23,4 +30,8 @@ __all__ = [
     "exact_frequencies",
     "ZoneResult",
     "dominant_mode_zones",
+    "Rod",
+    "CoupledModes",
+    "coupled_modes",
+    "monolithic_modes",
 ]

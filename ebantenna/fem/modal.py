@@ -46,6 +46,7 @@ from .assembly import (
     scatter,
     support_diagonals,
 )
+from .banded import banded_sweep
 from .elements import consistent_mass, element_stiffness, hermite, hermite_slope
 from .supports import Supports
 
@@ -55,6 +56,7 @@ __all__ = [
     "natural_frequencies",
     "solve_modes",
     "SOLVERS",
+    "SWEEP_METHODS",
     "DENSE_LIMIT",
     "strain_energy",
 ]
@@ -326,6 +328,10 @@ def strain_energy(nodes: np.ndarray, probe: Probe, supports: Supports, u: np.nda
     return energy
 
 
+#: Methods of :func:`natural_frequencies`.
+SWEEP_METHODS = ("banded", "dense")
+
+
 def natural_frequencies(
     probe: Probe,
     contacts,
@@ -334,12 +340,19 @@ def natural_frequencies(
     contact_stiffness: float = math.inf,
     n_elements: int = 64,
     n_modes: int = 3,
-    chunk: int = 125,
+    chunk: int | None = None,
+    method: str = "banded",
 ) -> np.ndarray:
     """Natural frequencies for many contact positions at once, Hz.
 
-    All positions share one mesh topology (``n_elements`` elements), so their matrices are
-    assembled and solved as stacks with batched LAPACK calls: no Python loop per position.
+    All positions share one mesh topology (``n_elements`` elements), so they are solved as a
+    batch, with no Python loop per position:
+
+    - ``"banded"`` (default): a banded Cholesky factorisation of ``K + s M`` per position, Lanczos
+      for the lowest modes, then Rayleigh quotients from the element curvatures, all vectorised
+      over the batch (:mod:`~ebantenna.fem.banded`); as accurate as :func:`modal_analysis`;
+    - ``"dense"``: the dense inverted solve of :func:`solve_modes` with batched LAPACK calls,
+      ``O(n^3)`` per position and without the final Rayleigh quotients.
 
     Parameters
     ----------
@@ -350,8 +363,11 @@ def natural_frequencies(
         As in :class:`Supports`.
     n_elements, n_modes : int
         Mesh size and number of modes.
-    chunk : int
-        Positions solved per batch (memory about ``chunk * (2 n_elements)^2 * 32`` bytes).
+    chunk : int, optional
+        Positions solved per batch: default 125 dense, 256 banded (memory about
+        ``chunk * (2 n_elements)^2 * 32`` bytes dense, ``chunk * n_elements * 600`` banded).
+    method : {"banded", "dense"}
+        See above.
 
     Returns
     -------
@@ -367,21 +383,46 @@ def natural_frequencies(
            [ 38.97, 243.51]])
     """
     contacts = check_array("contacts", contacts, ndim=1)
+    check_choice("method", method, SWEEP_METHODS)
+    if chunk is None:  # banded: batches small enough for the cache, spread over the cores
+        chunk = 256 if method == "banded" else 125
     chunk = check_int("chunk", chunk, minimum=1)
-    supports = [
-        Supports(contact=float(c), hinge=hinge, contact_stiffness=contact_stiffness)
-        for c in contacts
-    ]
+    n_elements = check_int("n_elements", n_elements, minimum=2)
+    n_modes = check_int("n_modes", n_modes, minimum=1, maximum=2 * n_elements - 1)
+    supports = Supports(contact=None, hinge=hinge, contact_stiffness=contact_stiffness)
     bad = (contacts <= 0) | (contacts >= probe.length)
     if np.any(bad):
         raise ValueError(f"contacts must lie in (0, {probe.length:g}) m, got {contacts[bad][0]!r}")
-    blocks = [supports[i : i + chunk] for i in range(0, contacts.size, chunk)]
-    # LAPACK releases the GIL: chunks run side by side on the machine's cores, each with a
-    # single-threaded BLAS (threads inside such small matrices only get in each other's way).
+    blocks = [contacts[i : i + chunk] for i in range(0, contacts.size, chunk)]
+    if method == "banded":
+
+        def solve(block):
+            lam = banded_sweep(
+                probe,
+                block,
+                hinge_stiffness=supports.hinge_stiffness,
+                contact_stiffness=supports.contact_stiffness,
+                n_elements=n_elements,
+                n_modes=n_modes,
+                shift=_shift(probe),
+            )
+            return np.sqrt(_clip_eigenvalues(lam, _shift(probe))) / (2 * math.pi)
+
+    else:
+
+        def solve(block):
+            members = [
+                Supports(contact=float(c), hinge=hinge, contact_stiffness=contact_stiffness)
+                for c in block
+            ]
+            return _batched_frequencies(probe, members, n_elements, n_modes)
+
+    # LAPACK and NumPy's array loops release the GIL: batches run side by side on the machine's
+    # cores, each with a single-threaded BLAS (threads inside such small matrices only get in
+    # each other's way).
     workers = min(len(blocks), os.cpu_count() or 1)
     with threadpool_limits(limits=1, user_api="blas"), ThreadPoolExecutor(workers) as pool:
-        parts = pool.map(lambda b: _batched_frequencies(probe, b, n_elements, n_modes), blocks)
-        return np.concatenate(list(parts))
+        return np.concatenate(list(pool.map(solve, blocks)))
 
 
 def _batched_frequencies(probe, supports_list, n_elements, n_modes):

@@ -1,0 +1,272 @@
+"""Contact sweeps on banded matrices: a banded Cholesky and a few Lanczos steps per position.
+
+A chain of beam elements couples each DOF only to its three neighbours on either side, so ``K`` and
+``M`` are *banded* (half-bandwidth 3). A dense solve ignores this and pays ``O(n^3)`` per contact
+position; here every position of a batch is handled at once, vectorised over the batch:
+
+1. the band of ``A = K + s M`` is assembled (``s > 0``, the shift of :mod:`~ebantenna.fem.modal`),
+   every held DOF (the hinge's deflection, its rotation when clamped, a rigid contact) decoupled
+   instead of removed, so that all positions share one layout: its row and column of ``K``
+   reduced to the diagonal, of ``M`` to zero, it carries the eigenvalue ``mu = 0`` and nothing
+   else;
+2. ``A = L L^T`` by a banded Cholesky factorisation, ``O(n)`` per position; ``L`` is block lower
+   bidiagonal in the 2 x 2 blocks of the nodes, so the triangular solves go node by node;
+3. Lanczos for the largest eigenvalues ``mu = 1 / (omega^2 + s)`` of ``C = L^-1 M L^-T`` (the
+   lowest modes), each step two triangular solves and a banded product, ``O(n)``; the
+   ``mu`` of a beam fall off like ``j^-4``, so about a dozen steps reach the residual bound
+   ``1e-14`` (B. N. Parlett, *The Symmetric Eigenvalue Problem*, SIAM, 1998, ch. 13);
+4. the frequencies are the Rayleigh quotients of the Ritz vectors, the strain energy summed from
+   the element curvatures as in :func:`~ebantenna.fem.modal.strain_energy`: good to about
+   ``1e-12``, like :func:`~ebantenna.fem.modal.modal_analysis`, where ``1/mu - s`` alone carries
+   the rounding ``eps omega_max^2 / omega^2`` (about 1e-9 at 64 elements).
+
+:func:`~ebantenna.fem.modal.natural_frequencies` calls this by default.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..probe import Probe
+from .elements import consistent_mass, element_stiffness
+
+__all__ = ["banded_sweep", "sweep_meshes"]
+
+_BAND = 3  # half-bandwidth of a chain of Hermite beam elements in the (v, theta) numbering
+_TOLERANCE = 1e-14
+_MAX_STEPS = 200
+
+
+def sweep_meshes(length: float, contacts: np.ndarray, n_elements: int):
+    """Node positions of :func:`~ebantenna.fem.assembly.beam_mesh` for many contacts at once.
+
+    Returns ``(nodes, contact_node)``: arrays of shape ``(n, n_elements + 1)`` (m) and ``(n,)``.
+    """
+    n1 = np.clip(np.round(n_elements * contacts / length).astype(int), 1, n_elements - 1)
+    k = np.arange(n_elements + 1)
+    c = contacts[:, None]
+    n1c = n1[:, None]
+    span = k * (c / n1c)  # as np.linspace computes its points
+    overhang = c + (k - n1c) * ((length - c) / (n_elements - n1c))
+    nodes = np.where(k <= n1c, span, overhang)
+    nodes[np.arange(contacts.size), n1] = contacts
+    nodes[:, -1] = length
+    return nodes, n1
+
+
+def _band(element_matrices: np.ndarray, in_span: np.ndarray) -> np.ndarray:
+    """Lower band of the assembled matrix, shape (B, 4, n): ``out[:, d, i] = A[i, i - d]``.
+
+    ``element_matrices`` (B, 2, 4, 4) are those of the span's and of the overhang's elements,
+    ``in_span`` (B, n_elements) says which elements belong to the span.
+    """
+    B, ne = in_span.shape
+    out = np.zeros((B, _BAND + 1, 2 * ne + 2))
+    for a in range(4):
+        for b in range(a + 1):  # element e puts its (a, b) entry at row 2 e + a
+            span, overhang = element_matrices[:, 0, a, b, None], element_matrices[:, 1, a, b, None]
+            out[:, a - b, a : a + 2 * ne : 2] += np.where(in_span, span, overhang)
+    return out
+
+
+def _cholesky(A: np.ndarray) -> np.ndarray:
+    """Banded Cholesky ``A = L L^T`` of a stack of bands (B, 4, n); returns L's band, same layout.
+
+    Row ``i`` of ``L`` holds ``L[i, i-3 .. i]``; it needs only the three rows above it.
+    """
+    B, _, n = A.shape
+    # rows padded by three rows of the identity above and three zero rows below
+    L = np.zeros((n + 2 * _BAND, _BAND + 1, B))
+    L[:_BAND, 0] = 1.0
+    Ad = np.ascontiguousarray(np.transpose(A, (2, 1, 0)))  # (n, 4, B)
+    for i in range(n):
+        r = i + _BAND
+        for d in range(_BAND, 0, -1):  # L[i, i-d], from the left
+            j = r - d
+            s = Ad[i, d].copy()
+            for q in range(d + 1, _BAND + 1):  # k = i - q, shared by rows i and j = i - d
+                s -= L[r, q] * L[j, q - d]
+            L[r, d] = s / L[j, 0]
+        s = Ad[i, 0] - L[r, 1] ** 2 - L[r, 2] ** 2 - L[r, 3] ** 2
+        L[r, 0] = np.sqrt(s)
+    return L
+
+
+def _node_blocks(L: np.ndarray):
+    """The band of ``L`` regrouped by node: ``L`` is block lower bidiagonal in 2 x 2 blocks.
+
+    Row ``2k`` (the deflection of node ``k``) and ``2k + 1`` (its rotation) reach back to node
+    ``k - 1`` only (``L[2k, 2k - 3]`` belongs to node ``k - 2`` and is zero: those nodes share no
+    element, and a banded Cholesky fills nothing outside the band). Returns the inverses of the
+    diagonal blocks and the blocks below them, each (n_nodes, 2, 2, B).
+    """
+    Lr = L[_BAND:-_BAND]  # (n, 4, B): Lr[i, d] = L[i, i - d]
+    v, t = Lr[0::2], Lr[1::2]  # rows of deflections and of rotations, (n_nodes, 4, B)
+    a, c, b = v[:, 0], t[:, 1], t[:, 0]  # diagonal block [[a, 0], [c, b]]
+    inv = np.zeros((v.shape[0], 2, 2) + v.shape[2:])
+    inv[:, 0, 0], inv[:, 1, 1], inv[:, 1, 0] = 1 / a, 1 / b, -c / (a * b)
+    below = np.zeros_like(inv)  # columns 2k - 2, 2k - 1
+    below[:, 0, 0], below[:, 0, 1], below[:, 1, 0], below[:, 1, 1] = (
+        v[:, 2],
+        v[:, 1],
+        t[:, 3],
+        t[:, 2],
+    )
+    return inv, below
+
+
+def _forward(L, x: np.ndarray) -> np.ndarray:
+    """``L^-1 x`` for x of shape (n, B): forward substitution, node by node."""
+    inv, below = L
+    x = x.reshape(inv.shape[0], 2, -1)
+    z = np.empty_like(x)
+    z[0] = (inv[0] * x[0]).sum(1)
+    for k in range(1, x.shape[0]):
+        z[k] = (inv[k] * (x[k] - (below[k] * z[k - 1]).sum(1))).sum(1)
+    return z.reshape(-1, x.shape[-1])
+
+
+def _backward(L, x: np.ndarray) -> np.ndarray:
+    """``L^-T x`` for x of shape (n, B): back substitution, node by node."""
+    inv, below = L
+    x = x.reshape(inv.shape[0], 2, -1)
+    z = np.empty_like(x)
+    z[-1] = (inv[-1] * x[-1][:, None]).sum(0)
+    for k in range(x.shape[0] - 2, -1, -1):
+        z[k] = (inv[k] * (x[k] - (below[k + 1] * z[k + 1][:, None]).sum(0))[:, None]).sum(0)
+    return z.reshape(-1, x.shape[-1])
+
+
+def _matvec(band: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """Symmetric band (4, n, B), ``band[d, i] = A[i, i - d]``, times vectors x (n, B)."""
+    y = band[0] * x
+    for d in range(1, _BAND + 1):
+        y[d:] += band[d, d:] * x[:-d]
+        y[:-d] += band[d, d:] * x[d:]
+    return y
+
+
+def banded_sweep(
+    probe: Probe,
+    contacts: np.ndarray,
+    *,
+    hinge_stiffness: float,
+    contact_stiffness: float,
+    n_elements: int,
+    n_modes: int,
+    shift: float,
+) -> np.ndarray:
+    """Lowest ``n_modes`` eigenvalues ``omega^2`` (1/s^2) for each contact, shape (n, n_modes).
+
+    Inputs are trusted (the public entry is :func:`~ebantenna.fem.modal.natural_frequencies`).
+    ``hinge_stiffness`` is inf for a clamped hinge, 0 for a pinned one, N m/rad for a spring;
+    ``contact_stiffness`` inf for a rigid contact, N/m for a spring.
+    """
+    B = contacts.size
+    # Two uniform spans per position (see sweep_meshes): two element lengths, two matrices.
+    _, c_node = sweep_meshes(probe.length, contacts, n_elements)
+    lengths = np.stack([contacts / c_node, (probe.length - contacts) / (n_elements - c_node)], 1)
+    in_span = np.arange(n_elements) < c_node[:, None]
+    h = np.where(in_span, lengths[:, :1], lengths[:, 1:])  # (B, n_elements)
+    K = _band(element_stiffness(probe.flexural_rigidity, lengths), in_span)
+    M = _band(consistent_mass(probe.mass_per_length, lengths), in_span)
+    rows = np.arange(B)
+    v_c = 2 * c_node
+    held = [np.zeros(B, dtype=int)]  # the hinge never moves sideways
+    if math.isinf(hinge_stiffness):
+        held.append(np.ones(B, dtype=int))
+    else:
+        K[:, 0, 1] += hinge_stiffness
+    if math.isinf(contact_stiffness):
+        held.append(v_c)
+    else:
+        K[rows, 0, v_c] += contact_stiffness
+    M[:, 0, -2] += probe.tip_mass
+    for dof in held:  # decouple each held DOF: mu = 0 there, nothing else
+        size = K.shape[2]
+        for A in (K, M):
+            A[rows, 1:, dof] = 0.0  # its row: A[dof, dof - d]
+            for d in range(1, _BAND + 1):  # its column: A[dof + d, dof]
+                A[rows, d, np.minimum(dof + d, size - 1)] *= dof + d >= size
+        M[rows, 0, dof] = 0.0  # K keeps its diagonal there, so A stays definite
+    free = np.ones((B, K.shape[2]))
+    for dof in held:
+        free[rows, dof] = 0.0
+    A = K + shift * M
+    L = _node_blocks(_cholesky(A))
+    Mb = np.ascontiguousarray(np.transpose(M, (1, 2, 0)))  # (4, n, B): one diagonal each
+    _, y = _lanczos(L, Mb, n_modes, free)
+    # Rayleigh quotients of the mode shapes phi = L^-T y, the strain energy summed from element
+    # curvatures as in modal.strain_energy: the Ritz values themselves carry the rounding of
+    # 1 / mu - s and of K phi, about eps * omega_max^2 / omega^2; the quotient, stationary at an
+    # eigenvector, does not.
+    lam = np.empty((B, n_modes))
+    for j in range(n_modes):
+        phi = _backward(L, y[j]) * free.T  # held DOFs exactly still
+        mass = np.einsum("nb,nb->b", phi, _matvec(Mb, phi))
+        lam[:, j] = _strain_energy(h.T, probe.flexural_rigidity, phi) / mass
+        if not math.isinf(hinge_stiffness):
+            lam[:, j] += hinge_stiffness * phi[1] ** 2 / mass
+        if not math.isinf(contact_stiffness):
+            lam[:, j] += contact_stiffness * phi[v_c, rows] ** 2 / mass
+    return np.sort(lam, axis=1)
+
+
+def _strain_energy(h, EI, u):
+    """Twice the bending strain energy of DOF vectors u (2 n + 2, B) on elements h (n, B), J."""
+    v1, t1, v2, t2 = u[0:-2:2], u[1:-2:2], u[2::2], u[3::2]
+    k1 = (6 * (v2 - v1) - h * (4 * t1 + 2 * t2)) / h**2
+    k2 = (6 * (v1 - v2) + h * (2 * t1 + 4 * t2)) / h**2
+    return (EI * h / 3 * (k1 * k1 + k1 * k2 + k2 * k2)).sum(axis=0)
+
+
+def _lanczos(L, Mb, n_modes, free):
+    """Largest ``n_modes`` eigenpairs of ``C = L^-1 M L^-T`` for each band of a batch.
+
+    Returns the Ritz values, shape (B, n_modes), and Ritz vectors, shape (n_modes, n, B).
+
+    Lanczos with full reorthogonalisation (one Gram-Schmidt pass per step) from one fixed start
+    vector. The error of a Ritz value
+    ``theta_j`` is bounded by its residual ``r_j = beta_k |s_kj|`` (``s_kj`` the last component
+    of its eigenvector of the tridiagonal ``T_k``), and by ``r_j^2 / gap_j`` once the residual is
+    below the gap to the other eigenvalues (Kato-Temple; the gap estimated from the next Ritz
+    value): the loop stops once that bound is below ``1e-14 theta_j`` for every retained value of
+    every position.
+    """
+    n, B = Mb.shape[1], Mb.shape[2]
+    steps = min(n, _MAX_STEPS)
+    first_check = min(2 * n_modes + 2, steps)  # Ritz values seldom converge sooner
+    basis = np.empty((B, steps + 1, n))  # per position, one Lanczos vector per row
+    q = np.random.default_rng(0).standard_normal(n) * free  # nothing along a held DOF
+    basis[:, 0] = q / np.linalg.norm(q, axis=1, keepdims=True)
+    alpha = np.zeros((B, steps))
+    beta = np.zeros((B, steps))
+    for k in range(steps):
+        w = _forward(L, _matvec(Mb, _backward(L, np.ascontiguousarray(basis[:, k].T)))).T
+        alpha[:, k] = np.einsum("bn,bn->b", basis[:, k], w)
+        done = basis[:, : k + 1]  # (B, k + 1, n): reorthogonalise by batched matrix products
+        w = w - np.matmul(np.matmul(done, w[:, :, None]).transpose(0, 2, 1), done)[:, 0]
+        norm = np.linalg.norm(w, axis=1)
+        # A Krylov space that is already invariant (a small mesh) ends here: beta = 0 and the
+        # next vector is zero, which adds nothing to the tridiagonal matrix.
+        alive = norm > 1e-13 * np.abs(alpha[:, : k + 1]).max(axis=1)
+        beta[:, k] = np.where(alive, norm, 0.0)
+        basis[:, k + 1] = np.where(alive[:, None], w / np.where(alive, norm, 1.0)[:, None], 0.0)
+        m = k + 1
+        if m < steps and (m < first_check or (m - first_check) % 2):  # check every other step
+            continue
+        T = np.zeros((B, m, m))
+        idx = np.arange(m)
+        T[:, idx, idx] = alpha[:, :m]
+        T[:, idx[:-1], idx[1:]] = T[:, idx[1:], idx[:-1]] = beta[:, : m - 1]
+        theta, S = np.linalg.eigh(T)
+        theta, S = theta[:, ::-1], S[:, :, ::-1]
+        r = beta[:, k, None] * np.abs(S[:, -1, :n_modes])
+        gap = np.abs(theta[:, :n_modes] - theta[:, 1 : n_modes + 1])
+        bound = np.where(r < gap, np.minimum(r, r**2 / np.where(r < gap, gap, 1.0)), r)
+        if np.all(bound <= _TOLERANCE * theta[:, :n_modes]) or m == steps:
+            ritz = np.matmul(S[:, :, :n_modes].transpose(0, 2, 1), basis[:, :m])  # (B, j, n)
+            return theta[:, :n_modes], ritz.transpose(1, 2, 0)
+    raise np.linalg.LinAlgError(f"Lanczos did not converge in {_MAX_STEPS} steps")

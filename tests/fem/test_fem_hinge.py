@@ -1,0 +1,78 @@
+"""Fitting the hinge stiffness and the tip mass to where the dominant mode changes."""
+
+import numpy as np
+import pytest
+
+from ebantenna import Probe
+from ebantenna.fem import natural_frequencies
+from ebantenna.fem.hinge import fit_hinge_and_tip, transition_position
+
+PROBE = Probe()
+
+
+def test_a_bare_clamped_tube_changes_at_one_fraction_of_any_length():
+    # no length scale: the transition is the same fraction of 40 and of 50 cm, to its tolerance
+    x40 = transition_position(PROBE, n_elements=24) / 0.4
+    x50 = transition_position(Probe(length=0.5), n_elements=24) / 0.5
+    assert abs(x40 - x50) < 1e-5
+
+
+def test_the_peak_is_the_largest_lowest_frequency():
+    x = transition_position(PROBE, n_elements=24)
+    c = np.linspace(0.6, 0.95, 71) * PROBE.length
+    f = natural_frequencies(PROBE, c, n_elements=24, n_modes=1)[:, 0]
+    f_peak = natural_frequencies(PROBE, np.array([x]), n_elements=24, n_modes=1)[0, 0]
+    assert f_peak >= f.max() * (1 - 1e-12)
+
+
+def test_a_tip_mass_moves_the_change_outwards_and_a_soft_hinge_inwards():
+    base = transition_position(PROBE, n_elements=24)
+    assert transition_position(Probe(tip_mass=0.002), n_elements=24) > base
+    assert transition_position(PROBE, hinge=0.3, n_elements=24) < base
+    zone3 = transition_position(PROBE, criterion="zone3", n_elements=24)
+    zone2 = transition_position(PROBE, criterion="zone2", n_elements=24)
+    assert zone2 < zone3
+
+
+def test_observations_made_by_a_known_model_are_fitted_back():
+    truth = {"hinge": 2.0, "tip_mass": 0.001}
+    lengths = np.array([0.4, 0.5])
+    observed = np.array(
+        [
+            transition_position(
+                Probe(length=length, tip_mass=truth["tip_mass"]),
+                hinge=truth["hinge"],
+                n_elements=24,
+            )
+            for length in lengths
+        ]
+    )
+    fit = fit_hinge_and_tip(
+        PROBE,
+        lengths,
+        observed,
+        grid=4,
+        n_elements=24,
+        stiffness_bounds=(0.1, 100.0),
+        mass_bounds=(0.0, 0.004),
+    )
+    # the located transitions carry ~1e-6 L of error; a consistent pair is fitted to that level
+    assert fit.rms_residual < 2e-5
+    assert fit.tip_mass == pytest.approx(truth["tip_mass"], rel=0.05)
+    assert fit.hinge_stiffness == pytest.approx(truth["hinge"], rel=0.05)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"observed": [0.45]}, r"observed must lie in \(0, length\)"),
+        ({"lengths": [0.4, 0.5]}, "lengths and observed must be 1-D of one size"),
+        ({"criterion": "knee"}, "criterion must be one of"),
+        ({"mass_bounds": (-0.001, 0.01)}, "mass_bounds"),
+        ({"stiffness_bounds": (0.0, 1.0)}, r"stiffness_bounds\[0\] must be > 0"),
+    ],
+)
+def test_bad_input_names_the_parameter(kwargs, message):
+    args = {"lengths": [0.4], "observed": [0.3]} | kwargs
+    with pytest.raises(ValueError, match=message):
+        fit_hinge_and_tip(PROBE, args.pop("lengths"), args.pop("observed"), **args)

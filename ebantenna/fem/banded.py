@@ -247,8 +247,15 @@ def _lanczos(L, Mb, n_modes, free):
         w = _forward(L, _matvec(Mb, _backward(L, np.ascontiguousarray(basis[:, k].T)))).T
         alpha[:, k] = np.einsum("bn,bn->b", basis[:, k], w)
         done = basis[:, : k + 1]  # (B, k + 1, n): reorthogonalise by batched matrix products
+        before = np.linalg.norm(w, axis=1)
         w = w - np.matmul(np.matmul(done, w[:, :, None]).transpose(0, 2, 1), done)[:, 0]
         norm = np.linalg.norm(w, axis=1)
+        if np.any(norm < 0.7 * before):
+            # Much of w cancelled: one Gram-Schmidt pass leaves components along the basis of
+            # about eps |w_before| / |w|, so a second pass follows ("twice is enough": Kahan's
+            # criterion, B. N. Parlett, The Symmetric Eigenvalue Problem, 1998, section 6.9).
+            w = w - np.matmul(np.matmul(done, w[:, :, None]).transpose(0, 2, 1), done)[:, 0]
+            norm = np.linalg.norm(w, axis=1)
         # A Krylov space that is already invariant (a small mesh) ends here: beta = 0 and the
         # next vector is zero, which adds nothing to the tridiagonal matrix.
         alive = norm > 1e-13 * np.abs(alpha[:, : k + 1]).max(axis=1)

@@ -123,6 +123,11 @@ def solve_modes(K, M, n_modes: int, *, shift: float, solver: str = "auto"):
         B = sla.solve_triangular(L, X.T, lower=True)
         mu, Y = sla.eigh((B + B.T) / 2, subset_by_index=[n - n_modes, n - 1])
         mu, Y = mu[::-1], Y[:, ::-1]
+        # mu = 1 / (omega^2 + shift) is resolved only down to the rounding of the largest one,
+        # n eps mu_max: below it (a mode stiffer than the arithmetic can see, e.g. a nearly rigid
+        # substructure) it may even come out negative. Such modes are floored there: finite,
+        # normalised, with omega^2 at least 1 / (n eps mu_max).
+        mu = np.maximum(mu, n * np.finfo(float).eps * mu[0])
         phi = sla.solve_triangular(L, Y, lower=True, trans="T") / np.sqrt(mu)
         return _clip_eigenvalues(1.0 / mu - shift, shift), phi
     # Sparse shift-invert Lanczos about -shift; a fixed start vector makes it deterministic.

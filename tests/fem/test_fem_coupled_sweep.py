@@ -18,8 +18,11 @@ def test_sweep_equals_one_pair_at_a_time():
     for i, rod in enumerate(rods):
         for j, c in enumerate(contacts):
             one = coupled_modes(PROBE, rod, float(c), float(k_c[i]), hinge="pinned", n_modes=4)
-            # the same reductions and the same small solve: equal to rounding
-            np.testing.assert_allclose(sweep.frequencies[i, j], one.frequencies, rtol=1e-12)
+            # the same reductions and the same small solve, batched differently (other BLAS
+            # blocking): equal to the rounding of the Rayleigh-quotient refinement, about
+            # n eps (omega_k / omega_1)^2 over the ~60 retained modes k that mix into the lowest
+            # (measured up to 2e-12 across BLAS kernels and thread counts); 1e-10 bounds it
+            np.testing.assert_allclose(sweep.frequencies[i, j], one.frequencies, rtol=1e-10)
             np.testing.assert_allclose(sweep.damping_ratio[i, j], one.damping_ratio, rtol=1e-10)
             np.testing.assert_allclose(
                 np.abs(sweep.tip_displacement[i, j]), np.abs(one.tip_displacement), rtol=1e-9

@@ -36,7 +36,10 @@ __all__ = ["banded_sweep", "sweep_meshes"]
 
 _BAND = 3  # half-bandwidth of a chain of Hermite beam elements in the (v, theta) numbering
 _TOLERANCE = 1e-14
-_MAX_STEPS = 200
+#: Most Lanczos steps per batch, and the most modes the banded sweep is asked for (a quarter:
+#: Ritz values converge in a few times n_modes steps).
+MAX_LANCZOS_STEPS = 200
+BANDED_MAX_MODES = MAX_LANCZOS_STEPS // 4
 
 
 def sweep_meshes(length: float, contacts: np.ndarray, n_elements: int):
@@ -236,7 +239,7 @@ def _lanczos(L, Mb, n_modes, free):
     every position.
     """
     n, B = Mb.shape[1], Mb.shape[2]
-    steps = min(n, _MAX_STEPS)
+    steps = min(n, MAX_LANCZOS_STEPS)
     first_check = min(2 * n_modes + 2, steps)  # Ritz values seldom converge sooner
     basis = np.empty((B, steps + 1, n))  # per position, one Lanczos vector per row
     q = np.random.default_rng(0).standard_normal(n) * free  # nothing along a held DOF
@@ -273,7 +276,11 @@ def _lanczos(L, Mb, n_modes, free):
         r = beta[:, k, None] * np.abs(S[:, -1, :n_modes])
         gap = np.abs(theta[:, :n_modes] - theta[:, 1 : n_modes + 1])
         bound = np.where(r < gap, np.minimum(r, r**2 / np.where(r < gap, gap, 1.0)), r)
-        if np.all(bound <= _TOLERANCE * theta[:, :n_modes]) or m == steps:
+        # converged, or the whole space spanned (then the Ritz pairs are the eigenpairs)
+        if np.all(bound <= _TOLERANCE * theta[:, :n_modes]) or m == n:
             ritz = np.matmul(S[:, :, :n_modes].transpose(0, 2, 1), basis[:, :m])  # (B, j, n)
             return theta[:, :n_modes], ritz.transpose(1, 2, 0)
-    raise np.linalg.LinAlgError(f"Lanczos did not converge in {_MAX_STEPS} steps")
+    raise np.linalg.LinAlgError(
+        f"Lanczos did not converge to {n_modes} modes in {steps} steps; "
+        "ask for fewer modes or use method='dense'"
+    )

@@ -72,7 +72,13 @@ def transition_position(
     grid = np.linspace(0.3, 0.99, 139) * L  # 5 mm steps on a 40 cm probe
     if criterion == "peak":
         f = natural_frequencies(probe, grid, hinge=hinge, n_elements=n_elements, n_modes=1)[:, 0]
-        i = int(np.clip(np.argmax(f), 1, grid.size - 2))
+        i = int(np.argmax(f))
+        if i in (0, grid.size - 1):
+            raise ValueError(
+                f"the lowest frequency peaks at the edge of the searched contacts "
+                f"({grid[i] / L:.2f} L of 0.30-0.99 L): no interior peak to locate for this "
+                f"probe (tip_mass={probe.tip_mass!r} kg, hinge={hinge!r})"
+            )
         best = minimize_scalar(
             lambda c: (
                 -natural_frequencies(

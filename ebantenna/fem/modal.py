@@ -46,7 +46,7 @@ from .assembly import (
     scatter,
     support_diagonals,
 )
-from .banded import banded_sweep
+from .banded import BANDED_MAX_MODES, MAX_LANCZOS_STEPS, banded_sweep
 from .elements import consistent_mass, element_stiffness, hermite, hermite_slope
 from .supports import Supports
 
@@ -394,6 +394,12 @@ def natural_frequencies(
     chunk = check_int("chunk", chunk, minimum=1)
     n_elements = check_int("n_elements", n_elements, minimum=2)
     n_modes = check_int("n_modes", n_modes, minimum=1, maximum=2 * n_elements - 1)
+    if method == "banded" and n_modes > BANDED_MAX_MODES:
+        raise ValueError(
+            f"n_modes must be <= {BANDED_MAX_MODES} with method='banded' (Lanczos converges in "
+            f"a few times n_modes steps, at most {MAX_LANCZOS_STEPS}); got {n_modes}: use "
+            "method='dense' for that many modes"
+        )
     supports = Supports(contact=None, hinge=hinge, contact_stiffness=contact_stiffness)
     bad = (contacts <= 0) | (contacts >= probe.length)
     if np.any(bad):

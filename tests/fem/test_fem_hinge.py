@@ -76,3 +76,9 @@ def test_bad_input_names_the_parameter(kwargs, message):
     args = {"lengths": [0.4], "observed": [0.3]} | kwargs
     with pytest.raises(ValueError, match=message):
         fit_hinge_and_tip(PROBE, args.pop("lengths"), args.pop("observed"), **args)
+
+
+def test_a_peak_at_the_edge_of_the_search_is_refused():
+    # a heavy tip pushes the lowest mode's peak to the tip: there is no interior peak to locate
+    with pytest.raises(ValueError, match="edge of the searched contacts"):
+        transition_position(Probe(tip_mass=0.2))

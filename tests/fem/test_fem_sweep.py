@@ -105,3 +105,16 @@ def test_small_meshes_with_every_mode(n_elements, hinge, k_c):
     ref = one_at_a_time(probe, [0.1, 0.2], hinge, k_c, n_elements, n_modes)
     # tiny meshes, kappa <= 1e4: the quotients agree to a few eps kappa
     np.testing.assert_allclose(fast, ref, rtol=1e-10)
+
+
+def test_banded_sweep_refuses_more_modes_than_lanczos_can_deliver():
+    with pytest.raises(ValueError, match=r"n_modes must be <= 50 with method='banded'"):
+        natural_frequencies(PROBE, np.array([0.2]), n_elements=200, n_modes=150)
+    # the dense sweep takes that many; the banded one, up to its cap, agrees with one
+    # modal_analysis (both refine by the Rayleigh quotient: relative agreement to a few hundred eps)
+    dense = natural_frequencies(PROBE, np.array([0.2]), n_elements=200, n_modes=150,
+                                method="dense")
+    assert dense.shape == (1, 150) and np.all(np.diff(dense[0]) > 0)
+    banded = natural_frequencies(PROBE, np.array([0.2]), n_elements=200, n_modes=50)
+    single = modal_analysis(PROBE, Supports(0.2), n_elements=200, n_modes=50).frequencies
+    np.testing.assert_allclose(banded[0], single, rtol=1e-12)

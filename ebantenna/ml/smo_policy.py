@@ -38,9 +38,10 @@ class SMOPolicy:
         Index taken when several candidates of the selection score the same: the first, or the
         last as libsvm's ``>=`` comparisons do.
     curvature_floor : {'tau', 'nonpositive'}
-        What happens to a curvature :math:`a_{ij}` of the two-variable problem that is too small:
-        ``'tau'`` uses :math:`\\max(a_{ij}, \\tau)`; ``'nonpositive'`` replaces only
-        :math:`a_{ij} \\le 0` by :math:`\\tau` (libsvm). :math:`\\tau = 10^{-12}`.
+        How the second-order working-set selection scores a curvature :math:`a_{ij}` that is too
+        small: ``'tau'`` uses :math:`\\max(a_{ij}, \\tau)`; ``'nonpositive'`` replaces only
+        :math:`a_{ij} \\le 0` by :math:`\\tau` (libsvm). :math:`\\tau = 10^{-12}`. The step
+        itself (the two-variable step of the SMO loop) always floors libsvm's way.
     bias_sum : {'pairwise', 'sequential'}
         Summation of :math:`y_t G_t` over the free variables for :math:`\\rho`: NumPy's pairwise
         sum, or one term after the other as libsvm does.

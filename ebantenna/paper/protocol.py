@@ -132,7 +132,8 @@ DATASET = DatasetProtocol(
     fft_bins=256,
     where="sections 4.1.1 and 4.2",
 )
-#: Section 4.3: RBF kernel, gamma 2.0, one-vs-all, 80/20 split of 6000 samples (Fig. 15).
+#: Section 4.3: RBF kernel, gamma 2.0, one-vs-all, 80/20 split of a batch of 6000 samples
+#: (Fig. 15; the data set itself holds 5 x 79 x 25 = 9875 recordings).
 MATERIAL_SVM = SVMProtocol(gamma=2.0, test_fraction=0.2, strategy="one-vs-rest",
                            where="section 4.3, eq. 7, Fig. 15")
 #: Section 4.2: one hidden layer of 53 tanh neurons, gradient descent, 70/15/15 (Fig. 12).
@@ -175,7 +176,7 @@ def normalise_by_max(X) -> np.ndarray:
 
 
 def check_fractions(fractions) -> tuple[float, float, float]:
-    """Check (train, validation, test) shares: three values in [0, 1] adding up to 1.
+    """Check (train, validation, test) shares: three values in (0, 1) adding up to 1.
 
     Examples
     --------

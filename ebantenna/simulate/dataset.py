@@ -41,7 +41,7 @@ __all__ = ["Dataset", "DatasetDesign", "build_dataset", "load_dataset", "dataset
 log = logging.getLogger(__name__)
 
 #: Format tag written into every data set file.
-FORMAT = "ebantenna-dataset-1"
+FORMAT = "ebantenna-dataset-2"  # 2: the configuration records a DatasetDesign
 _ARRAYS = (
     "ax",
     "az",

@@ -60,7 +60,10 @@ class ContactCompliance(_Effect):
     lowers the natural frequencies only slightly. The simulator puts this spring in place of the
     rigid pin in the FEM model (:class:`ebantenna.fem.Supports` ``contact_stiffness``), one solve
     per contact position and material.
-    The ring (ovalisation) compliance of the tube wall is neglected.
+    The ring (ovalisation) compliance of the tube wall is neglected here, and the object is taken
+    as flat; :func:`ebantenna.simulate.contact.tube_on_rod_stiffness` models the tube crossing a
+    round rod with the wall's ring compliance in series (for a 12 mm steel rod about 2.8 times
+    softer than this sphere-on-flat value) and is the model the touched-rod physics builds on.
 
     Parameters
     ----------

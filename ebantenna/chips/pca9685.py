@@ -146,11 +146,16 @@ def join_count(low: int, high: int) -> int:
 
 
 #: Power-on values that are not 0x00 (DS 7.3, table 4, and 7.3.1-7.3.5): ``MODE1`` 0x11 (asleep,
-#: ALLCALL on), ``MODE2`` 0x04 (totem-pole outputs), ``PRE_SCALE`` 0x1E (200 Hz), and every
-#: ``LEDn_OFF_H`` 0x10 (full OFF).
+#: ALLCALL on), ``MODE2`` 0x04 (totem-pole outputs), the I2C sub-addresses ``SUBADR1..3`` 0xE2,
+#: 0xE4, 0xE8 and ``ALLCALLADR`` 0xE0 (8-bit forms, DS 7.3.6-7.3.7), ``PRE_SCALE`` 0x1E (200 Hz),
+#: and every ``LEDn_OFF_H`` 0x10 (full OFF).
 POWER_ON = {
     Register.MODE1: Mode1.SLEEP | Mode1.ALLCALL,
     Register.MODE2: Mode2.OUTDRV,
+    Register.SUBADR1: 0xE2,
+    Register.SUBADR2: 0xE4,
+    Register.SUBADR3: 0xE8,
+    Register.ALLCALLADR: 0xE0,
     Register.PRE_SCALE: 0x1E,
     **{led_register(ch, Led.OFF_H): LED_FULL for ch in range(N_CHANNELS)},
 }

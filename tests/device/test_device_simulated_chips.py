@@ -110,3 +110,13 @@ def test_the_default_calibration_drives_the_simulated_servo_to_the_commanded_ang
     cal = ServoCalibration(channel=0)
     for angle in (0.0, 20.0, 90.0, 160.0, 180.0):
         assert mg996r_angle(cal.pulse(angle)) == pytest.approx(angle, abs=1e-9)
+
+
+def test_pca9685_power_on_sub_addresses_and_the_prescale_floor():
+    pca = SimulatedPCA9685(World(None, rate=300.0), VirtualClock())
+    # DS table 4: the sub-addresses and the all-call address hold their 8-bit forms after reset
+    assert pca.read(P.ALLCALLADR, 1) == [0xE0]
+    assert [pca.read(r, 1)[0] for r in (P.SUBADR1, P.SUBADR2, P.SUBADR3)] == [0xE2, 0xE4, 0xE8]
+    # DS 7.3.5: a PRE_SCALE below 3 (written while asleep) runs as 3
+    pca.write(P.PRE_SCALE, [0])
+    assert pca.frequency() == pca.oscillator_hz / (4096 * 4)

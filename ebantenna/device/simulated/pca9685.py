@@ -15,6 +15,7 @@ from ...chips.pca9685 import (
     N_CHANNELS,
     OSCILLATOR_HZ,
     POWER_ON,
+    PRESCALE_MIN,
     Led,
     Mode1,
     Register,
@@ -83,8 +84,9 @@ class SimulatedPCA9685:
         self._apply()
 
     def frequency(self) -> float:
-        """PWM frequency set by PRE_SCALE, Hz."""
-        return self.oscillator_hz / (COUNTS_PER_PERIOD * (self.regs[Register.PRE_SCALE] + 1))
+        """PWM frequency set by PRE_SCALE, Hz (the chip reads a value below 3 as 3, DS 7.3.5)."""
+        prescale = max(self.regs[Register.PRE_SCALE], PRESCALE_MIN)
+        return self.oscillator_hz / (COUNTS_PER_PERIOD * (prescale + 1))
 
     def pulse(self, channel: int) -> float:
         """Pulse width now on ``channel``, s (0 when it is off or the chip sleeps)."""

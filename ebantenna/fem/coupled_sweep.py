@@ -10,15 +10,13 @@ cores (LAPACK releases the GIL).
 
 from __future__ import annotations
 
-import os
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
 from .._validate import check_array, check_int
 from ..probe import Probe
+from ._parallel import map_on_cores
 from .coupling import Rod, coupled_modes, craig_bampton, probe_substructure, rod_substructure
 
 __all__ = ["CoupledSweep", "coupled_sweep"]
@@ -134,9 +132,7 @@ def coupled_sweep(
             out.append((res.frequencies, res.damping_ratio, res.tip_displacement))
         return out
 
-    workers = min(contacts.size, os.cpu_count() or 1) or 1
-    with threadpool_limits(limits=1, user_api="blas"), ThreadPoolExecutor(workers) as pool:
-        results = list(pool.map(one_position, range(contacts.size)))
+    results = map_on_cores(one_position, range(contacts.size))
     shape = (len(rods), contacts.size, n_modes)
     f, z, tip = (np.empty(shape) for _ in range(3))
     for j, per_rod in enumerate(results):

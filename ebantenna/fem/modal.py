@@ -25,18 +25,16 @@ A Rayleigh quotient is stationary at an eigenvector, so the eigenvector's own er
 from __future__ import annotations
 
 import math
-import os
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sps
 import scipy.sparse.linalg as spla
-from threadpoolctl import threadpool_limits
 
 from .._validate import check_array, check_choice, check_int
 from ..probe import Probe
+from ._parallel import map_on_cores
 from .assembly import (
     apply_supports,
     assemble,
@@ -428,12 +426,8 @@ def natural_frequencies(
             ]
             return _batched_frequencies(probe, members, n_elements, n_modes)
 
-    # LAPACK and NumPy's array loops release the GIL: batches run side by side on the machine's
-    # cores, each with a single-threaded BLAS (threads inside such small matrices only get in
-    # each other's way).
-    workers = min(len(blocks), os.cpu_count() or 1)
-    with threadpool_limits(limits=1, user_api="blas"), ThreadPoolExecutor(workers) as pool:
-        return np.concatenate(list(pool.map(solve, blocks)))
+    # batches side by side on the machine's cores
+    return np.concatenate(map_on_cores(solve, blocks))
 
 
 def _batched_frequencies(probe, supports_list, n_elements, n_modes):

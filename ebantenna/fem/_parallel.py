@@ -1,0 +1,20 @@
+"""Many small solves at once: one thread per core, each with a single-threaded BLAS (private)."""
+
+from __future__ import annotations
+
+import os
+from concurrent.futures import ThreadPoolExecutor
+
+from threadpoolctl import threadpool_limits
+
+
+def map_on_cores(function, items) -> list:
+    """``[function(item) for item in items]``, spread over the cores.
+
+    NumPy and SciPy release the GIL in their kernels, so threads run side by side; BLAS is held to
+    one thread each, because threads inside such small matrices only get in each other's way.
+    """
+    items = list(items)
+    workers = max(1, min(len(items), os.cpu_count() or 1))
+    with threadpool_limits(limits=1, user_api="blas"), ThreadPoolExecutor(workers) as pool:
+        return list(pool.map(function, items))

@@ -23,6 +23,7 @@ import time
 
 import numpy as np
 
+from ebantenna.bench._timing import best_time
 from ebantenna.paper.data import build_dataset
 from ebantenna.probe import Probe, material_names
 from ebantenna.report import text_table
@@ -49,14 +50,13 @@ def scenarios():
 
 
 def time_scene(scene, contacts, materials, seeds, repeat):
-    best = np.inf
-    for _ in range(repeat):
-        start = time.process_time()
-        simulate_batch(
+    """Best CPU seconds of ``repeat`` simulations of the batch."""
+    def batch():
+        return simulate_batch(
             scene, contact=contacts, material=materials, seeds=seeds, show_progress=False
         )
-        best = min(best, time.process_time() - start)
-    return best
+
+    return best_time(batch, repeat, clock=time.process_time)[0]
 
 
 def run(quick: bool = False, signals: int = 1000, repeat: int = 3,

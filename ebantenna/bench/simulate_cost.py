@@ -33,15 +33,17 @@ from ebantenna.simulate.effects import GY521_MASS, effect_names
 __all__ = ["scenarios", "time_scene", "run", "to_text", "main"]
 
 
+#: Effects that only make sense on top of another: measured together with it.
+PREREQUISITES = {"object_damping": "object_modes", "preload_scatter": "object_modes"}
+
+
 def scenarios():
     ideal = builtin_scene("ideal")
     yield "ideal (modal response only)", ideal
     for name in effect_names():
-        if name == "contact_damping":
-            yield (
-                name + " (+ contact_compliance)",
-                ideal.with_(effects=("contact_compliance", "contact_damping")),
-            )
+        if name in PREREQUISITES:
+            base = PREREQUISITES[name]
+            yield f"{name} (+ {base})", ideal.with_(effects=(base, name))
         elif name == "tip_mass":
             yield name, ideal.with_(probe=Probe(tip_mass=GY521_MASS), effects=("tip_mass",))
         else:
@@ -51,6 +53,7 @@ def scenarios():
 
 def time_scene(scene, contacts, materials, seeds, repeat):
     """Best CPU seconds of ``repeat`` simulations of the batch."""
+
     def batch():
         return simulate_batch(
             scene, contact=contacts, material=materials, seeds=seeds, show_progress=False
@@ -59,8 +62,9 @@ def time_scene(scene, contacts, materials, seeds, repeat):
     return best_time(batch, repeat, clock=time.process_time)[0]
 
 
-def run(quick: bool = False, signals: int = 1000, repeat: int = 3,
-        skip_dataset: bool = False) -> dict:
+def run(
+    quick: bool = False, signals: int = 1000, repeat: int = 3, skip_dataset: bool = False
+) -> dict:
     """Cost of each effect, and (unless skipped) of building the whole paper data set.
 
     Parameters
@@ -104,8 +108,9 @@ def run(quick: bool = False, signals: int = 1000, repeat: int = 3,
                 wall, cpu = time.perf_counter(), time.process_time()
                 data = build_dataset(tmp, seed=0, n_jobs=jobs, show_progress=False)
                 wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
-            dataset.append({"jobs": jobs, "signals": data.n_signals, "wall_seconds": wall,
-                            "cpu_seconds": cpu})
+            dataset.append(
+                {"jobs": jobs, "signals": data.n_signals, "wall_seconds": wall, "cpu_seconds": cpu}
+            )
     return {
         "signals": n,
         "repeat": repeat,
@@ -119,11 +124,13 @@ def run(quick: bool = False, signals: int = 1000, repeat: int = 3,
 def to_text(tables: dict) -> str:
     """The tables of :func:`run` as text."""
     lines = [
-        f"{tables['signals']} one-second signals at 1 kHz, best of {tables['repeat']}, "
-        "CPU seconds",
+        f"{tables['signals']} one-second signals at 1 kHz, best of {tables['repeat']}, CPU seconds",
         text_table(
-            [("scene", "scene", "<42"), ("per_1000", "s / 1000 signals", "17.3f"),
-             ("ratio", "x ideal", "8.2f")],
+            [
+                ("scene", "scene", "<42"),
+                ("per_1000", "s / 1000 signals", "17.3f"),
+                ("ratio", "x ideal", "8.2f"),
+            ],
             tables["rows"],
         ),
     ]
@@ -136,8 +143,9 @@ def to_text(tables: dict) -> str:
                 "process (incl. saving)"
             )
         lines.append(f"peak resident memory of the main process: {tables['peak_mb']:.0f} MB")
-        lines.append(f"load average while measuring: {tables['load']:.2f} on "
-                     f"{os.cpu_count()} cores")
+        lines.append(
+            f"load average while measuring: {tables['load']:.2f} on {os.cpu_count()} cores"
+        )
     return "\n".join(lines)
 
 

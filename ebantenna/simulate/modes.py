@@ -38,7 +38,14 @@ from ..fem import Supports, modal_analysis
 from ..fem.assembly import assemble
 from ..probe import Probe
 
-__all__ = ["ArrestModes", "arrest_modes", "modal_acceleration"]
+__all__ = [
+    "ArrestModes",
+    "arrest_modes",
+    "coupled_arrest_modes",
+    "modal_exponentials",
+    "damped_exponentials",
+    "modal_acceleration",
+]
 
 #: Modes below this frequency (Hz) are rigid-body motions (a pinned hinge without contact): a
 #: rotation at constant rate gives no transverse acceleration in the linear theory.
@@ -63,6 +70,9 @@ class ArrestModes:
         DOF, for a spring ``k`` times the contact's deflection; None without contact.
     contact_stiffness : float
         Stiffness of the contact used, N/m (``inf``: rigid pin).
+    damping_ratio : ndarray of shape (n,) or None
+        Each mode's damping ratio where the model gives it (the probe coupled to a damped
+        object, :func:`coupled_arrest_modes`); None where the scene's effects set it.
     """
 
     omega: np.ndarray
@@ -70,6 +80,7 @@ class ArrestModes:
     velocity: np.ndarray
     contact_force: np.ndarray | None
     contact_stiffness: float = math.inf
+    damping_ratio: np.ndarray | None = None
 
     def strain_energy_share(self) -> np.ndarray:
         """Share of each mode's strain energy stored in the contact spring (0 for a rigid pin)."""
@@ -155,6 +166,206 @@ def arrest_modes(
     )
 
 
+def _sweep_velocity(nodes: np.ndarray) -> np.ndarray:
+    """DOF velocities of the probe swinging rigidly about the hinge, per unit sweep speed."""
+    u0 = np.zeros(2 * nodes.size)
+    u0[0::2] = nodes  # v = Omega x per unit Omega
+    u0[1::2] = 1.0  # theta = Omega
+    return u0
+
+
+def coupled_arrest_modes(
+    probe: Probe,
+    hinge,
+    contact: float,
+    rod,
+    *,
+    probe_reduction,
+    rod_reduction,
+    contact_stiffness: float,
+    contact_loss_factor: float,
+    max_frequency: float,
+) -> ArrestModes:
+    """Modes below ``max_frequency`` of the probe arrested on a vibrating rod, and their excitation.
+
+    The probe and the rod are joined by the contact spring (:func:`ebantenna.fem.coupling.
+    coupled_modes`, from reductions made once per contact position and per rod). At the arrest
+    the probe moves as in :func:`arrest_modes` (the hinge stopped, every other point keeping the
+    sweep's velocity), the rod is at rest and the spring relaxed; the initial modal velocities are
+    ``Phi^T M u0`` over the probe's DOFs (the rod's initial velocity is zero).
+
+    Parameters
+    ----------
+    probe : Probe
+        The probe, with the loss factor its modes should carry (0 for an undamped probe).
+    hinge : {"clamped", "pinned"} or float
+        The probe's hinge.
+    contact : float
+        Contact position from the hinge, m.
+    rod : ebantenna.fem.rod.Rod
+        The touched rod.
+    probe_reduction, rod_reduction : ebantenna.fem.coupling.CraigBampton
+        The probe reduced at this contact, and the rod (with the loss factor it should carry).
+    contact_stiffness, contact_loss_factor : float
+        The contact spring, N/m, and its loss factor.
+    max_frequency : float
+        Highest frequency kept, Hz; each reduction must keep fixed-interface modes up to it.
+
+    Examples
+    --------
+    >>> from ebantenna.probe import Probe
+    >>> from ebantenna.fem.coupling import Rod, craig_bampton, probe_substructure, rod_substructure
+    >>> p = craig_bampton(probe_substructure(Probe(), 0.2, n_elements=40), 16)
+    >>> r = craig_bampton(rod_substructure(Rod("steel"), n_elements=16), 8)
+    >>> m = coupled_arrest_modes(Probe(), "clamped", 0.2, Rod("steel"), probe_reduction=p,
+    ...                          rod_reduction=r,
+    ...                          contact_stiffness=1.8e5, contact_loss_factor=0.0,
+    ...                          max_frequency=480.0)
+    >>> m.frequencies.round(1)
+    array([ 38.4, 133.9, 243.5, 347.6])
+    """
+    from ..fem.assembly import assemble
+    from ..fem.coupling import coupled_modes
+
+    for label, red in (("probe_modes", probe_reduction), ("rod_modes", rod_reduction)):
+        top = red.fixed_interface_omega[-1] / (2 * math.pi) if red.fixed_interface_omega.size else 0
+        if not top >= max_frequency:
+            raise ValueError(
+                f"the {label.split('_')[0]}'s reduction keeps modes up to {top:.0f} Hz only, "
+                f"below max_frequency={max_frequency:g} Hz; raise {label}"
+            )
+    # Interlacing: joining the two fixed-interface systems through the two interface coordinates
+    # adds at most two eigenvalues below any frequency, so this many coupled modes reach it.
+    limit = 2 * math.pi * max_frequency
+    n_modes = min(
+        probe_reduction.stiffness.shape[0] + rod_reduction.stiffness.shape[0],
+        int(np.sum(probe_reduction.fixed_interface_omega < limit))
+        + int(np.sum(rod_reduction.fixed_interface_omega < limit))
+        + 2,
+    )
+    res = coupled_modes(
+        probe,
+        rod,
+        contact,
+        contact_stiffness,
+        hinge=hinge,
+        n_modes=n_modes,
+        contact_loss_factor=contact_loss_factor,
+        rod_reduction=rod_reduction,
+        probe_reduction=probe_reduction,
+        damping="perturbation",
+    )
+    nodes = res.probe_nodes
+    K, M = assemble(nodes, probe)
+    momentum = M @ _sweep_velocity(nodes)
+    momentum[-2] += probe.tip_mass * nodes[-1]  # the tip mass swings with the tip
+    velocity = res.probe_shapes.T @ momentum
+    freqs = res.frequencies
+    keep = (freqs < max_frequency) & (freqs > RIGID_BODY_HZ)
+    ic = 2 * int(np.argmin(np.abs(nodes - contact)))
+    ih = 2 * int(np.argmin(np.abs(res.rod_nodes - rod.contact_height)))
+    force = contact_stiffness * (res.probe_shapes[ic] - res.rod_shapes[ih])
+    return ArrestModes(
+        res.omega[keep],
+        res.tip_displacement[keep],
+        velocity[keep],
+        force[keep],
+        float(contact_stiffness),
+        res.damping_ratio[keep],
+    )
+
+
+def modal_exponentials(amplitude, omega, zeta):
+    """The modes' tip acceleration as complex exponentials: ``C_k`` and ``s_k`` (module docstring).
+
+    Parameters
+    ----------
+    amplitude, omega, zeta : arrays of shape (n_signals, n_modes)
+        As in :func:`modal_acceleration`.
+
+    Returns
+    -------
+    coef, rate : complex ndarrays of shape (n_signals, n_modes)
+        ``C_k`` (m/s^2) and ``s_k`` (1/s): the acceleration is ``Im(sum_k C_k exp(s_k t))``.
+    """
+    amplitude = np.asarray(amplitude, dtype=float)
+    omega = np.asarray(omega, dtype=float)
+    zeta = np.asarray(zeta, dtype=float)
+    if np.any(zeta < 0) or np.any(zeta >= 1):
+        raise ValueError("damping ratios must lie in [0, 1) (underdamped modes)")
+    a = zeta * omega
+    wd = omega * np.sqrt(1 - zeta**2)
+    return amplitude * ((a * a - wd * wd) / wd - 2j * a), -a + 1j * wd
+
+
+#: Block length of the uniform-grid evaluation in :func:`damped_exponentials`.
+_GRID_BLOCK = 32
+
+
+def damped_exponentials(t, coef, rate, *, max_elements: int = 500_000) -> np.ndarray:
+    """``Im(sum_k coef_k exp(rate_k t))`` for many signals at once.
+
+    On a uniform time grid ``t_n = t_0 + n dt`` the exponentials are not evaluated sample by
+    sample: with ``n = a B + b`` (``B`` = 32), ``exp(r t_n) = exp(r (t_0 + a B dt)) exp(r b dt)``,
+    so each term costs ``n / B + B`` complex exponentials and the sum over terms becomes one
+    batched matrix product. The rounding is that of the direct evaluation (both take the
+    exponential of arguments up to ``|r| t``), a few ulps more.
+
+    Parameters
+    ----------
+    t : array of shape (n_samples,) or (n_signals, n_samples)
+        Times, s (one row per signal when the sampling is jittered).
+    coef, rate : complex arrays of shape (n_signals, n_terms)
+        Amplitudes and rates (1/s) of each signal's exponentials.
+    max_elements : int
+        Work in blocks of signals so that no temporary exceeds this many complex numbers.
+
+    Returns
+    -------
+    ndarray of shape (n_signals, n_samples)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.arange(4) / 4.0
+    >>> damped_exponentials(t, np.array([[1.0 + 0j]]), np.array([[2j * np.pi]])).round(12)
+    array([[ 0.,  1.,  0., -1.]])
+    """
+    t = np.asarray(t, dtype=float)
+    n_signals, n_terms = coef.shape
+    n_samples = t.shape[-1]
+    out = np.empty((n_signals, n_samples))
+    uniform = t.ndim == 1 and n_samples > 2 * _GRID_BLOCK and _is_uniform(t)
+    if uniform:
+        dt = (t[-1] - t[0]) / (n_samples - 1)
+        n_blocks = -(-n_samples // _GRID_BLOCK)
+        inner = np.arange(_GRID_BLOCK) * dt
+        outer = t[0] + np.arange(n_blocks) * (_GRID_BLOCK * dt)
+        per_signal = n_terms * (n_blocks + _GRID_BLOCK) + n_samples
+    else:
+        per_signal = n_terms * n_samples
+    block = max(1, max_elements // max(1, per_signal))
+    for start in range(0, n_signals, block):
+        rows = slice(start, start + block)
+        r = rate[rows, :, None]
+        if uniform:
+            head = coef[rows, :, None] * np.exp(r * outer)  # (s, k, A)
+            tail = np.exp(r * inner)  # (s, k, B)
+            grid = np.matmul(head.transpose(0, 2, 1), tail).imag  # (s, A, B)
+            out[rows] = grid.reshape(grid.shape[0], -1)[:, :n_samples]
+        else:
+            tt = t[rows][:, None, :] if t.ndim == 2 else t[None, None, :]
+            out[rows] = np.einsum("sk,skn->sn", coef[rows], np.exp(r * tt)).imag
+    return out
+
+
+def _is_uniform(t: np.ndarray) -> bool:
+    """Whether ``t`` is ``t_0 + n dt`` to rounding."""
+    n = np.arange(t.size)
+    dt = (t[-1] - t[0]) / (t.size - 1)
+    return bool(np.all(np.abs(t - (t[0] + n * dt)) <= 8 * np.finfo(float).eps * np.abs(t).max()))
+
+
 def modal_acceleration(t, amplitude, omega, zeta, *, max_elements: int = 500_000) -> np.ndarray:
     """Sum of damped modal accelerations ``sum_k Im(C_k e^(s_k t))`` for many signals at once.
 
@@ -183,23 +394,5 @@ def modal_acceleration(t, amplitude, omega, zeta, *, max_elements: int = 500_000
     >>> modal_acceleration(t, np.array([[1.0]]), np.array([[2 * np.pi]]), np.zeros((1, 1))).round(6)
     array([[ 0.      , -6.283185]])
     """
-    amplitude = np.asarray(amplitude, dtype=float)
-    omega = np.asarray(omega, dtype=float)
-    zeta = np.asarray(zeta, dtype=float)
-    t = np.asarray(t, dtype=float)
-    n_signals = amplitude.shape[0]
-    n_samples = t.shape[-1]
-    if np.any(zeta < 0) or np.any(zeta >= 1):
-        raise ValueError("damping ratios must lie in [0, 1) (underdamped modes)")
-    a = zeta * omega
-    wd = omega * np.sqrt(1 - zeta**2)
-    coef = amplitude * ((a * a - wd * wd) / wd - 2j * a)  # C_k
-    rate = -a + 1j * wd  # s_k
-    out = np.empty((n_signals, n_samples))
-    block = max(1, max_elements // max(1, amplitude.shape[1] * n_samples))
-    for start in range(0, n_signals, block):
-        rows = slice(start, start + block)
-        tt = t[rows] if t.ndim == 2 else t
-        phase = rate[rows, :, None] * (tt[:, None, :] if t.ndim == 2 else tt[None, None, :])
-        out[rows] = np.einsum("sk,skn->sn", coef[rows], np.exp(phase)).imag
-    return out
+    coef, rate = modal_exponentials(amplitude, omega, zeta)
+    return damped_exponentials(t, coef, rate, max_elements=max_elements)

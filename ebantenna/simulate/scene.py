@@ -7,8 +7,11 @@ duration) and the explicit list of effects. Two scenes are built in (:func:`buil
 ``ideal``
     The modal response only: the bare tube, rigid contact, no damping, no sensor.
 ``paper``
-    The paper's rig: the tube with the MPU6050 board at its tip, every effect of
-    :mod:`ebantenna.simulate.effects` at its documented default.
+    The paper's rig: the tube with the MPU6050 board at its tip touching a rod of the given
+    material, every effect of :mod:`ebantenna.simulate.effects` at its documented default but
+    ``contact_compliance`` (the rod's own contact spring, in ``object_modes``, replaces it), the
+    probe's and the rod's modes up to 3 kHz, which the sensor's filter and decimation fold into
+    the 0-500 Hz band as on the chip.
 
 Scenes are saved to and loaded from TOML or JSON (:meth:`Scene.save`, :func:`load_scene`).
 """
@@ -68,7 +71,8 @@ class Scene:
         Touched material, one of :func:`ebantenna.probe.material_names` (stored by its canonical
         name).
     fs : float
-        Sampling frequency, Hz; at least twice ``max_frequency``. Default 1 kHz (the paper,
+        Sampling frequency, Hz: at least twice ``max_frequency``, or with the ``dlpf`` effect a
+        whole divisor of its internal rate. Default 1 kHz (the paper,
         section 3).
     duration : float
         Length of the recording after the arrest, s. Default 1 s: an assumption, long enough for
@@ -92,7 +96,10 @@ class Scene:
         Modes the FEM computes; they must reach ``max_frequency``. Default 8.
     max_frequency : float
         Only modes below this frequency are simulated, Hz. Default 480 Hz, just under the Nyquist
-        frequency of 1 kHz sampling; the sensor's 260 Hz low-pass filter attenuates what lies above.
+        frequency of 1 kHz sampling. With the ``dlpf`` effect the modes are sampled at the chip's
+        internal rate and may reach its Nyquist frequency: what the filter lets through above
+        ``fs / 2`` then aliases, as on the chip (the ``paper`` scene simulates up to 3 kHz, where
+        the 260 Hz filter's gain has fallen below 1 %).
 
     Examples
     --------
@@ -140,11 +147,6 @@ class Scene:
         put("material", material(self.material).name)
         put("max_frequency", check_positive("max_frequency", self.max_frequency))
         fs = check_positive("fs", self.fs)
-        if fs < 2 * self.max_frequency:
-            raise ValueError(
-                f"fs must be at least twice max_frequency (2 x {self.max_frequency:g} Hz = "
-                f"{2 * self.max_frequency:g} Hz), got {fs!r} Hz"
-            )
         put("fs", fs)
         put("duration", check_positive("duration", self.duration))
         if self.n_samples < 2:
@@ -163,20 +165,39 @@ class Scene:
                 "the 'tip_mass' effect must be listed exactly when the probe carries a tip mass; "
                 f"got probe.tip_mass={self.probe.tip_mass!r} kg with effects {list(names)}"
             )
-        if "contact_damping" in names and "contact_compliance" not in names:
+        if "object_damping" in names and "object_modes" not in names:
             raise ValueError(
-                "effect 'contact_damping' needs 'contact_compliance' (the energy flows through the "
-                "compliant contact)"
+                "effect 'object_damping' needs 'object_modes' (it damps the touched rod's modes)"
+            )
+        if "preload_scatter" in names and "object_modes" not in names:
+            raise ValueError(
+                "effect 'preload_scatter' needs 'object_modes' (the preload it scatters is the "
+                "rod contact's)"
+            )
+        if "object_modes" in names and "contact_compliance" in names:
+            raise ValueError(
+                "effects 'object_modes' and 'contact_compliance' both set the contact spring; "
+                "list one of them"
             )
         if "clipping" in names and "quantisation" in names:
             if self.effect("clipping").range_g != self.effect("quantisation").range_g:
                 raise ValueError("clipping and quantisation must use the same range_g")
-        for name, limit in (("dlpf", "bandwidth"), ("mains_hum", "frequency")):
-            if name in names and not getattr(self.effect(name), limit) < fs / 2:
-                raise ValueError(
-                    f"{name} {limit} {getattr(self.effect(name), limit):g} Hz must be below "
-                    f"fs/2 = {fs / 2:g} Hz"
-                )
+        dlpf = self.effect("dlpf")
+        if dlpf is not None:  # the modes are sampled at the chip's internal rate, then decimated
+            dlpf.divider(fs)
+            rate, what = dlpf.internal_rate, "the dlpf's internal_rate"
+        else:
+            rate, what = fs, "fs"
+        if rate < 2 * self.max_frequency:
+            raise ValueError(
+                f"{what} must be at least twice max_frequency (2 x {self.max_frequency:g} Hz = "
+                f"{2 * self.max_frequency:g} Hz), got {rate!r} Hz"
+            )
+        hum = self.effect("mains_hum")
+        if hum is not None and not hum.frequency < fs / 2:
+            raise ValueError(
+                f"mains_hum frequency {hum.frequency:g} Hz must be below fs/2 = {fs / 2:g} Hz"
+            )
 
     # ---------------------------------------------------------------------------------------------
     @property
@@ -280,7 +301,10 @@ def _to_toml(data: dict) -> str:
     lines = [f"{k} = {_toml_value(v)}" for k, v in data.items() if not isinstance(v, dict)]
     lines += ["", "[probe]"] + [f"{k} = {_toml_value(v)}" for k, v in data["probe"].items()]
     for name, params in data["effects"].items():
-        lines += ["", f"[effects.{name}]"] + [f"{k} = {_toml_value(v)}" for k, v in params.items()]
+        # TOML has no null: a parameter at None (its default) is left out, and read back as None.
+        lines += ["", f"[effects.{name}]"] + [
+            f"{k} = {_toml_value(v)}" for k, v in params.items() if v is not None
+        ]
     if not data["effects"]:
         lines += ["", "[effects]"]
     return "\n".join(lines) + "\n"
@@ -331,7 +355,9 @@ def builtin_scene(name: str) -> Scene:
         return Scene(
             name="paper",
             probe=Probe(tip_mass=GY521_MASS),
-            effects=tuple(cls() for cls in EFFECT_TYPES),
+            effects=tuple(cls() for cls in EFFECT_TYPES if cls.name != "contact_compliance"),
+            n_modes=16,
+            max_frequency=3000.0,
         )
     raise ValueError(f"scene must be one of {', '.join(scene_names())}; got {name!r}")
 

@@ -9,6 +9,7 @@ signals (one generator per signal and random effect) -- never over samples.
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import math
 from dataclasses import dataclass
@@ -20,7 +21,12 @@ from .._progress import progress
 from .._validate import check_array, check_int
 from ..probe import material as lookup_material
 from ..recording import Recording
-from .modes import arrest_modes, modal_acceleration
+from .modes import (
+    arrest_modes,
+    coupled_arrest_modes,
+    damped_exponentials,
+    modal_exponentials,
+)
 from .scene import Scene
 
 __all__ = ["ModalTerms", "modal_terms", "simulate", "simulate_batch"]
@@ -71,38 +77,103 @@ def _per_signal(name, value, default, n):
     return array
 
 
-def _terms(scene: Scene, contacts, materials, speeds, tilts, show_progress=None):
-    """ModalTerms for X and Z of every signal."""
+def _pinned_modes(scene: Scene, contacts, materials, show_progress):
+    """Arrest modes on a rigid object (a pin, or the ``contact_compliance`` spring)."""
     probe = scene.probe
-    n = contacts.size
     kw = dict(n_elements=scene.n_elements, n_modes=scene.n_modes, max_frequency=scene.max_frequency)
     compliance = scene.effect("contact_compliance")
-    damping = scene.effect("contact_damping")
     if compliance is not None:  # one FEM solve per (contact, material)
         stiffness = {m: compliance.stiffness(lookup_material(m), probe) for m in set(materials)}
         springs = np.array([stiffness[m] for m in materials])
     else:
-        springs = np.full(n, math.inf)
+        springs = np.full(contacts.size, math.inf)
     keys = np.stack([contacts, springs], axis=1)
     unique, inverse = np.unique(keys, axis=0, return_inverse=True)
-    inverse = inverse.ravel()
+    modes = [
+        arrest_modes(probe, scene.hinge, float(c), contact_stiffness=float(k), **kw)
+        for c, k in progress(unique, total=len(unique), desc="modes", enabled=show_progress)
+    ]
+    return modes, inverse.ravel()
+
+
+def _object_modes(scene: Scene, contacts, materials, preloads, show_progress):
+    """Arrest modes on the touched rod, coupled to the probe (the ``object_modes`` effect).
+
+    Each rod is reduced once, the probe once per distinct contact position; what is left per
+    (position, material, preload) is the small coupled eigenproblem.
+    """
+    from ..fem.coupling import craig_bampton, probe_substructure, rod_substructure
+
+    obj = scene.effect("object_modes")
+    probe = scene.probe
+    if not scene.has("structural_damping"):
+        probe = dataclasses.replace(probe, loss_factor=0.0)
+    object_loss = scene.has("object_damping")
+    rods = {}
+    for name in sorted(set(materials)):
+        rod = obj.rod(lookup_material(name))
+        sub = rod_substructure(rod, n_elements=obj.rod_elements)
+        if not object_loss:
+            sub = dataclasses.replace(sub, loss_factor=0.0)
+        rods[name] = (rod, craig_bampton(sub, obj.rod_modes))
+    unique_c, inverse_c = np.unique(contacts, return_inverse=True)
+    inverse_c = inverse_c.ravel()
+    key_of, modes = {}, []
+    for i in progress(range(unique_c.size), desc="modes", enabled=show_progress):
+        c = float(unique_c[i])
+        sub = probe_substructure(probe, c, hinge=scene.hinge, n_elements=scene.n_elements)
+        reduced = craig_bampton(sub, obj.probe_modes)
+        here = inverse_c == i
+        for name, preload in sorted(set(zip(materials[here], preloads[here], strict=True))):
+            rod, rod_reduced = rods[name]
+            k_c = obj.contact_stiffness(rod.material, probe, preload)
+            eta_c = obj.contact_loss_factor(
+                rod.material, probe, object_loss=object_loss, preload=preload
+            )
+            key_of[i, name, preload] = len(modes)
+            modes.append(
+                coupled_arrest_modes(
+                    probe,
+                    scene.hinge,
+                    c,
+                    rod,
+                    probe_reduction=reduced,
+                    rod_reduction=rod_reduced,
+                    contact_stiffness=k_c,
+                    contact_loss_factor=eta_c,
+                    max_frequency=scene.max_frequency,
+                )
+            )
+    inverse = np.array(
+        [key_of[key] for key in zip(inverse_c, materials, preloads, strict=True)], dtype=int
+    )
+    return modes, inverse
+
+
+def _terms(scene: Scene, contacts, materials, speeds, tilts, preloads=None, show_progress=None):
+    """ModalTerms for X and Z of every signal (``preloads``: each strike's, with object modes)."""
+    probe = scene.probe
+    n = contacts.size
     # Many small eigenproblems: BLAS threads only add overhead (and thrash on a busy machine).
     with threadpool_limits(limits=1):
-        modes = [
-            arrest_modes(probe, scene.hinge, float(c), contact_stiffness=float(k), **kw)
-            for c, k in progress(unique, total=len(unique), desc="modes", enabled=show_progress)
-        ]
+        if scene.has("object_modes"):
+            if preloads is None:
+                preloads = np.full(n, scene.effect("object_modes").preload)
+            modes, inverse = _object_modes(scene, contacts, materials, preloads, show_progress)
+        else:
+            modes, inverse = _pinned_modes(scene, contacts, materials, show_progress)
     width = max(m.omega.size for m in modes)
-    omega_u = np.ones((len(unique), width))
-    amp_u = np.zeros((len(unique), width))
-    force_u = np.zeros((len(unique), width))
-    live_u = np.zeros((len(unique), width), dtype=bool)
+    omega_u = np.ones((len(modes), width))
+    amp_u = np.zeros((len(modes), width))
+    zeta_u = np.zeros((len(modes), width))
+    live_u = np.zeros((len(modes), width), dtype=bool)
     for i, m in enumerate(modes):
         k = m.omega.size
         live_u[i, :k] = True
         omega_u[i, :k] = m.omega
         amp_u[i, :k] = m.tip * m.velocity
-        force_u[i, :k] = m.contact_force
+        if m.damping_ratio is not None:
+            zeta_u[i, :k] = m.damping_ratio
     omega = omega_u[inverse]
     amplitude = amp_u[inverse] * speeds[:, None]
     zeta_s = (
@@ -110,19 +181,15 @@ def _terms(scene: Scene, contacts, materials, speeds, tilts, show_progress=None)
         if scene.has("structural_damping")
         else 0.0
     )
-    zeta = np.full((n, width), zeta_s)
-    if damping is not None:
-        force = force_u[inverse]
-        for name in np.unique(materials):
-            rows = materials == name
-            loss = damping.loss_compliance(
-                omega[rows], lookup_material(str(name)), probe, compliance
-            )
-            zeta[rows] += force[rows] ** 2 * loss / (2 * omega[rows] ** 2)
+    if scene.has("object_modes"):  # the coupled model carries every body's damping
+        zeta = zeta_u[inverse]
+    else:
+        zeta = np.full((n, width), zeta_s)
     if np.any(zeta >= 1):
         raise ValueError(f"a mode is overdamped (zeta up to {zeta.max():.3g}); not supported")
     x = ModalTerms(omega, zeta, amplitude, live_u[inverse])
 
+    kw = dict(n_elements=scene.n_elements, n_modes=scene.n_modes, max_frequency=scene.max_frequency)
     z_modes = arrest_modes(probe, scene.hinge, None, **kw)
     z_amp = (z_modes.tip * z_modes.velocity)[None, :] * (tilts * speeds)[:, None]
     z = ModalTerms(
@@ -226,20 +293,31 @@ def simulate_batch(
     if np.any(seed_array < 0):
         raise ValueError("seeds must be >= 0")
 
-    x, z = _terms(scene, contacts, materials, speeds, tilts, show_progress)
-    fs, ns = scene.fs, scene.n_samples
-    t = np.arange(ns) / fs
-
     def rngs(effect):
         return [np.random.default_rng([int(s), effect.stream]) for s in seed_array]
+
+    preloads = None
+    scatter = scene.effect("preload_scatter")
+    if scatter is not None:
+        nominal = scene.effect("object_modes").preload
+        preloads = np.array([nominal * scatter.factor(r) for r in rngs(scatter)])
+    x, z = _terms(scene, contacts, materials, speeds, tilts, preloads, show_progress)
+    fs, ns = scene.fs, scene.n_samples
+    t = np.arange(ns) / fs
 
     jitter = scene.effect("clock_jitter")
     if jitter is not None:
         when = t + np.stack([jitter.offsets(r, ns) for r in rngs(jitter)])
     else:
         when = t
-    ax = modal_acceleration(when, x.amplitude, x.omega, x.zeta)
-    az = modal_acceleration(when, z.amplitude, z.omega, z.zeta)
+    dlpf = scene.effect("dlpf")
+    axes = []
+    for terms in (x, z):
+        coef, rate = modal_exponentials(terms.amplitude, terms.omega, terms.zeta)
+        if dlpf is not None:  # the chip's filter at its internal rate, then its decimation
+            coef, rate = dlpf.filter_exponentials(coef, rate)
+        axes.append(damped_exponentials(when, coef, rate))
+    ax, az = axes
     if jitter is not None:
         before = when < 0  # a sample taken before the arrest: rigid rotation, no acceleration
         ax[before] = 0.0
@@ -247,24 +325,31 @@ def simulate_batch(
 
     level_z = 0.0
     gravity = scene.effect("gravity")
-    if gravity is not None:
+    if gravity is not None:  # a constant: the settled filter passes it unchanged
         ax, az = gravity.apply(ax, az)
         level_z = gravity.g
     hum = scene.effect("mains_hum")
-    if hum is not None:
-        phases = np.stack([hum.phases(r) for r in rngs(hum)])  # (n, 2)
+    if hum is not None:  # a steady tone: the filter scales and delays it
+        gain = complex(dlpf.frequency_response(hum.frequency)) if dlpf is not None else 1.0
+        phases = np.stack([hum.phases(r) for r in rngs(hum)]) + np.angle(gain)  # (n, 2)
         tt = when if np.ndim(when) == 2 else when[None, :]
-        ax = ax + hum.signal(tt, phases[:, :1])
-        az = az + hum.signal(tt, phases[:, 1:])
+        ax = ax + abs(gain) * hum.signal(tt, phases[:, :1])
+        az = az + abs(gain) * hum.signal(tt, phases[:, 1:])
     noise = scene.effect("sensor_noise")
     if noise is not None:
-        draws = np.stack([noise.draw(r, ns, fs) for r in rngs(noise)])  # (n, 2, ns)
+        draws = _sensor_noise(noise, dlpf, rngs(noise), ns, fs)  # (n, 2, ns)
         ax = ax + draws[:, 0]
         az = az + draws[:, 1]
     levels_x, levels_z = np.zeros(n), np.full(n, level_z)
-    dlpf = scene.effect("dlpf")
-    if dlpf is not None:
-        ax, az = dlpf.apply(ax, fs, levels_x), dlpf.apply(az, fs, levels_z)
+    drift = scene.effect("sensor_drift")
+    if drift is not None:  # after the filter: the chip's offset and sensitivity
+        draws = [drift.draw(r) for r in rngs(drift)]
+        gains = np.stack([g for g, _ in draws])
+        offsets = np.stack([o for _, o in draws])
+        ax = gains[:, :1] * ax + offsets[:, :1]
+        az = gains[:, 1:] * az + offsets[:, 1:]
+        levels_x = offsets[:, 0].copy()
+        levels_z = gains[:, 1] * levels_z + offsets[:, 1]
     clipping = scene.effect("clipping")
     if clipping is not None:
         ax, az = clipping.apply(ax), clipping.apply(az)
@@ -276,6 +361,33 @@ def simulate_batch(
         ax, az = kalman.apply(ax, levels_x), kalman.apply(az, levels_z)
     log.debug("simulated %d signals of %d samples", n, ns)
     return t, ax, az, x, z
+
+
+#: Signals whose internal-rate noise is drawn and filtered at once (bounds the memory).
+_NOISE_BLOCK = 128
+#: Noise is drawn this many of the DLPF's time constants 1/(2 pi bandwidth) before the first
+#: kept sample, so that the filter starts in its steady state (its transient then decays to
+#: exp(-12), 6e-6).
+_NOISE_WARM_UP = 12
+
+
+def _sensor_noise(noise, dlpf, generators, n_samples: int, fs: float) -> np.ndarray:
+    """Sensor noise of X and Z for every signal, shape ``(n, 2, n_samples)``.
+
+    Without the DLPF the noise is white at ``fs``. With it, the noise is drawn white at the
+    internal rate (the datasheet's density), filtered and decimated as the chip does.
+    """
+    if dlpf is None:
+        return np.stack([noise.draw(r, n_samples, fs) for r in generators])
+    step = dlpf.divider(fs)
+    lead = math.ceil(_NOISE_WARM_UP / (2 * math.pi * dlpf.bandwidth) * fs)  # output samples
+    out = np.empty((len(generators), 2, n_samples))
+    for start in range(0, len(generators), _NOISE_BLOCK):
+        block = generators[start : start + _NOISE_BLOCK]
+        size = step * (lead + n_samples)
+        raw = np.stack([noise.draw(r, size, dlpf.internal_rate) for r in block])
+        out[start : start + len(block)] = dlpf.apply_internal(raw, fs)[..., lead:]
+    return out
 
 
 def simulate(scene: Scene, seed: int = 0) -> Recording:
@@ -301,8 +413,8 @@ def simulate(scene: Scene, seed: int = 0) -> Recording:
     >>> rec = simulate(builtin_scene("paper").with_(contact=0.25, material="brass"), seed=3)
     >>> rec.n_samples, rec.fs
     (1000, 1000.0)
-    >>> rec.metadata["modes_x_hz"]
-    [33.44, 184.5, 375.45]
+    >>> rec.metadata["modes_x_hz"][:4]  # the probe's and the brass rod's coupled modes
+    [32.82, 92.58, 185.89, 372.96]
     """
     seed = check_int("seed", seed, minimum=0)
     t, ax, az, x, z = simulate_batch(scene, seeds=seed)

@@ -6,7 +6,7 @@ import pytest
 
 from ebantenna.probe import Probe
 from ebantenna.simulate import Scene, builtin_scene, load_scene
-from ebantenna.simulate.effects import ContactDamping, SensorNoise, effect_names
+from ebantenna.simulate.effects import ObjectModes, SensorNoise, effect_names
 from ebantenna.simulate.scene import resolve_scene
 
 
@@ -15,7 +15,8 @@ def test_builtin_scenes():
     paper = builtin_scene("paper")
     assert ideal.effects == ()
     assert ideal.probe.tip_mass == 0
-    assert paper.effect_names == effect_names()  # every effect, in application order
+    # Every effect in application order, but the rigid object's spring: the rod brings its own.
+    assert paper.effect_names == tuple(n for n in effect_names() if n != "contact_compliance")
     assert 2e-3 <= paper.probe.tip_mass <= 3e-3  # the GY-521 board
     with pytest.raises(ValueError, match="ideal, paper"):
         builtin_scene("nope")
@@ -39,7 +40,13 @@ def test_with_replaces_and_validates():
         ({"effects": ("gravity", "gravity")}, "listed twice"),
         ({"material": "cheese"}, "aluminium, brass, wood, steel, pvc"),
         ({"hinge": "glued"}, "hinge must be one of"),
-        ({"effects": ("contact_damping",)}, "needs 'contact_compliance'"),
+        ({"effects": ("object_damping",)}, "needs 'object_modes'"),
+        ({"effects": ("object_modes", "contact_compliance")}, "both set the contact spring"),
+        ({"effects": {"object_modes": {"preload": 0.0}}}, "preload must be > 0"),
+        ({"effects": {"object_modes": {"contact_height": 0.3}}}, "contact_height"),
+        ({"effects": {"object_modes": {"diameter": -0.01}}}, "diameter must be > 0"),
+        ({"effects": {"dlpf": {"internal_rate": 7500.0}}}, "whole multiple of fs"),
+        ({"effects": ("dlpf",), "max_frequency": 4100.0}, "internal_rate must be at least"),
         ({"probe": Probe(tip_mass=0.002)}, "'tip_mass' effect must be listed"),
         ({"effects": ("tip_mass",)}, "'tip_mass' effect must be listed"),
         ({"sweep_speed": 0.0}, "sweep_speed must be > 0"),
@@ -69,8 +76,9 @@ def test_save_load_roundtrip(tmp_path, suffix):
         contact=0.3,
         material="wood",
         hinge=12.5,
-        effects=builtin_scene("paper").effects[:2]
-        + (ContactDamping(object_thickness=0.02), "tip_mass"),
+        effects=builtin_scene("paper").effects[:1]
+        + (ObjectModes(diameter=0.01, contact_height=0.2), "object_damping", "tip_mass"),
+        max_frequency=480.0,  # no sensor filter: the modes must stay below fs / 2
     )
     path = scene.save(tmp_path / f"scene{suffix}")
     loaded = load_scene(path)
@@ -78,6 +86,9 @@ def test_save_load_roundtrip(tmp_path, suffix):
     assert loaded.to_dict() == scene.to_dict()
     assert resolve_scene(path) == scene
     assert resolve_scene("paper") == builtin_scene("paper")
+    # Parameters left at None (the rod touched at its free end) survive both formats.
+    paper = builtin_scene("paper")
+    assert load_scene(paper.save(tmp_path / f"paper{suffix}")) == paper
 
 
 def test_load_rejects_unknown_fields(tmp_path):

@@ -4,12 +4,16 @@ A scene lists the effects it wants; an effect that is not listed is not computed
 response itself (superposition of the FEM modes after the arrest, see :mod:`.modes`) is not an
 effect: it is always there. Effects fall in two groups:
 
-*Physics of the probe and the contact* (:mod:`.physics`), which change the modal parameters:
-:class:`StructuralDamping`, :class:`ContactCompliance`, :class:`ContactDamping`, :class:`TipMass`.
+*Physics of the probe, the contact and the touched object* (:mod:`.physics`, :mod:`.objects`),
+which change the modal parameters: :class:`StructuralDamping`, :class:`ContactCompliance` (a rigid
+object behind a spring), :class:`ObjectModes` (the object as a rod with its own modes, coupled to
+the probe), :class:`ObjectDamping` (that rod's material damping), :class:`PreloadScatter` (the
+contact's preload from strike to strike), :class:`TipMass`.
 
 *The sensor and the acquisition* (:mod:`.sensor`), which act on the sampled signals, in this order:
 :class:`ClockJitter` (when the samples are taken), :class:`Gravity`, :class:`MainsHum`,
-:class:`SensorNoise`, :class:`LowPassFilter` (the MPU6050's DLPF), :class:`Clipping`,
+:class:`SensorNoise`, :class:`LowPassFilter` (the MPU6050's DLPF, at its internal rate, and the
+decimation), :class:`SensorDrift` (offset and gain between sessions), :class:`Clipping`,
 :class:`Quantisation`, :class:`SteadyStateKalman` (on the Raspberry Pi).
 
 All arrays here have shape ``(n_signals, n_samples)``: every effect is vectorised over signals.
@@ -20,7 +24,8 @@ effect never changes the random numbers of another.
 
 from __future__ import annotations
 
-from .physics import GY521_MASS, ContactCompliance, ContactDamping, StructuralDamping, TipMass
+from .objects import ObjectDamping, ObjectModes
+from .physics import GY521_MASS, ContactCompliance, StructuralDamping, TipMass
 from .sensor import (
     DLPF_BANDWIDTHS,
     STANDARD_GRAVITY,
@@ -33,6 +38,7 @@ from .sensor import (
     SensorNoise,
     SteadyStateKalman,
 )
+from .session import PreloadScatter, SensorDrift
 
 __all__ = [
     "STANDARD_GRAVITY",
@@ -40,7 +46,10 @@ __all__ = [
     "DLPF_BANDWIDTHS",
     "StructuralDamping",
     "ContactCompliance",
-    "ContactDamping",
+    "ObjectModes",
+    "ObjectDamping",
+    "PreloadScatter",
+    "SensorDrift",
     "TipMass",
     "ClockJitter",
     "Gravity",
@@ -59,13 +68,16 @@ __all__ = [
 EFFECT_TYPES = (
     StructuralDamping,
     ContactCompliance,
-    ContactDamping,
+    ObjectModes,
+    ObjectDamping,
+    PreloadScatter,
     TipMass,
     ClockJitter,
     Gravity,
     MainsHum,
     SensorNoise,
     LowPassFilter,
+    SensorDrift,
     Clipping,
     Quantisation,
     SteadyStateKalman,

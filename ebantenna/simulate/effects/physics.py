@@ -1,15 +1,13 @@
 """Effects of the probe and the contact: they change the modal parameters.
 
-:class:`StructuralDamping`, :class:`ContactCompliance`, :class:`ContactDamping`, :class:`TipMass`.
+:class:`StructuralDamping`, :class:`ContactCompliance`, :class:`TipMass`. The touched object's own
+modes and damping are in :mod:`.objects`.
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import ClassVar
-
-import numpy as np
 
 from ..._validate import check_in_range, check_positive
 from ...probe import Material, Probe
@@ -19,7 +17,6 @@ from ._base import _Effect
 #: 20 x 15.5 x 1.6 mm at 1850 kg/m^3 (0.9 g), 8-pin header (0.6 g), chip and parts (0.3 g), plus
 #: 0.7 g of solder, glue and wire ends at the tip; 2.5 g, within the 2-3 g that hobby vendors list.
 GY521_MASS = 2.5e-3
-
 
 
 @dataclass(frozen=True)
@@ -63,7 +60,7 @@ class ContactCompliance(_Effect):
     The ring (ovalisation) compliance of the tube wall is neglected here, and the object is taken
     as flat; :func:`ebantenna.simulate.contact.tube_on_rod_stiffness` models the tube crossing a
     round rod with the wall's ring compliance in series (for a 12 mm steel rod about 2.8 times
-    softer than this sphere-on-flat value) and is the model the touched-rod physics builds on.
+    softer than this sphere-on-flat value), the spring of :class:`~.objects.ObjectModes`.
 
     Parameters
     ----------
@@ -102,75 +99,6 @@ class ContactCompliance(_Effect):
         """Linearised Hertz contact stiffness ``k``, N/m."""
         radius = probe.outer_diameter / 2
         return (6 * self.preload * self.effective_modulus(obj, probe) ** 2 * radius) ** (1 / 3)
-
-    def loss_factor(self, obj: Material, probe: Probe) -> float:
-        """Loss factor of the contact spring (dimensionless).
-
-        The Hertz compliance is the sum of the two bodies' shares ``(1 - nu_i^2) / E_i``; each share
-        loses energy with its own material loss factor, so the spring's loss factor is their
-        compliance-weighted mean.
-        """
-        c_probe = (1 - self.probe_poisson_ratio**2) / probe.youngs_modulus
-        c_obj = (1 - obj.poisson_ratio**2) / obj.youngs_modulus
-        return (c_probe * probe.loss_factor + c_obj * obj.loss_factor) / (c_probe + c_obj)
-
-
-@dataclass(frozen=True)
-class ContactDamping(_Effect):
-    """Energy the vibrating probe loses into the touched object, by material.
-
-    The object is modelled as a large plate of thickness ``h`` touched normal to its face. The
-    drive-point impedance of an infinite thin plate is real, a pure dashpot
-    ``Z = 8 sqrt(B' m'')`` with bending stiffness ``B' = E h^3 / (12 (1 - nu^2))`` and mass per area
-    ``m'' = rho h`` (Cremer, Heckl and Petersson, *Structure-Borne Sound*, 3rd ed., 2005, section
-    5.3.1): bending waves carry the energy away. In series with it sits the Hertz spring of
-    :class:`ContactCompliance` with its hysteretic loss factor. The contact's complex compliance at
-    circular frequency ``omega`` is ``C = 1 / (k (1 + i eta_c)) + 1 / (i omega Z)``. A
-    mass-normalised
-    mode whose contact force per unit modal coordinate is ``F_k`` loses ``pi F_k^2 (-Im C)`` per
-    cycle of its energy ``omega_k^2 / 2``, hence the damping ratio (modal strain energy method,
-    valid while the contact holds a small share of the mode's energy, a few per cent here)
-
-        zeta_k = F_k^2 (-Im C(omega_k)) / (2 omega_k^2).
-
-    Soft, light objects (wood, PVC) have a low impedance and take more energy than metals. The
-    plate's own loss factor does not enter (an infinite plate radiates everything). Requires
-    :class:`ContactCompliance`, the element through which the energy flows.
-
-    Parameters
-    ----------
-    object_thickness : float
-        Thickness ``h`` of the touched object, m. Default 10 mm: an assumption (the paper does not
-        describe the objects).
-
-    Examples
-    --------
-    >>> from ebantenna.probe import material
-    >>> round(ContactDamping().plate_impedance(material("steel")))  # N s/m
-    9680
-    """
-
-    name: ClassVar[str] = "contact_damping"
-    object_thickness: float = 0.01
-
-    def __post_init__(self):
-        check_positive("object_thickness", self.object_thickness)
-
-    def plate_impedance(self, obj: Material) -> float:
-        """Drive-point impedance ``Z = 8 sqrt(B' m'')`` of the object (infinite plate), N s/m."""
-        h = self.object_thickness
-        bending = obj.youngs_modulus * h**3 / (12 * (1 - obj.poisson_ratio**2))
-        return 8 * math.sqrt(bending * obj.density * h)
-
-    def loss_compliance(self, omega, obj: Material, probe: Probe, compliance: ContactCompliance):
-        """``-Im C(omega)``, the dissipative part of the contact compliance, m/N.
-
-        ``omega`` (rad/s) may be an array.
-        """
-        k = compliance.stiffness(obj, probe)
-        eta = compliance.loss_factor(obj, probe)
-        omega = np.asarray(omega, dtype=float)
-        return eta / (k * (1 + eta**2)) + 1.0 / (omega * self.plate_impedance(obj))
 
 
 @dataclass(frozen=True)

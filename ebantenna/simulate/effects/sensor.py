@@ -174,29 +174,50 @@ DLPF_BANDWIDTHS = tuple(setting.accel_bandwidth for setting in DLPF)
 
 @dataclass(frozen=True)
 class LowPassFilter(_Effect):
-    """The MPU6050's digital low-pass filter (DLPF).
+    """The MPU6050's digital low-pass filter (DLPF), run at the chip's internal rate.
 
-    The register map gives only the bandwidth of each DLPF setting, not the filter. It is modelled
-    as a second-order Butterworth low-pass with that -3 dB frequency, in second-order sections,
-    run causally on the samples. Its state starts settled on the signal's level before the contact
-    (gravity only), as the sensor was running before. Default 260 Hz: DLPF_CFG = 0, the power-on
-    value of register 26.
+    The chip samples the accelerometer internally faster than it outputs, filters the samples
+    with its DLPF and hands out one sample in every ``internal_rate / fs`` (the accelerometer's
+    output rate is 1 kHz, RM 25). Nothing but the DLPF stands between the sensor and the
+    decimation, so whatever the DLPF lets through above ``fs / 2`` *aliases*: a mode at
+    ``f > fs / 2`` appears at ``|f - m fs|`` with the DLPF's gain at ``f``.
+
+    The register map gives only the bandwidth of each DLPF setting, not the filter. Assumptions,
+    named here once: the filter is a second-order Butterworth low-pass with that -3 dB
+    frequency, discretised at the internal rate (its zeros then lie at the internal Nyquist
+    frequency, far above the band, not at ``fs / 2``); the internal rate is 8 kHz, the rate of
+    the same chip's gyroscope path with the filter off (RM 25; the accelerometer's own internal
+    rate is not published). The filter starts settled on the signal's level before the contact
+    (gravity only), as the sensor was running before. Default bandwidth 260 Hz: DLPF_CFG = 0, the
+    power-on value of register 26.
+
+    The simulator does not sample the modal response at the internal rate and filter it: a sum
+    of damped exponentials stays one through a linear filter, so :meth:`filter_exponentials`
+    gives the filtered and decimated signal in closed form (the witness,
+    :func:`scipy.signal.sosfilt` at the internal rate followed by the decimation, agrees to
+    rounding). Noise, which has no such form, is drawn at the internal rate and filtered
+    (:meth:`apply_internal`).
 
     Parameters
     ----------
     bandwidth : float
         -3 dB frequency, Hz, one of :data:`DLPF_BANDWIDTHS`.
+    internal_rate : float
+        The rate the filter runs at, Hz: an integer multiple of the scene's sampling frequency.
 
     Examples
     --------
     >>> import numpy as np
-    >>> y = LowPassFilter().apply(np.ones((1, 50)), 1000.0, np.array([1.0]))
-    >>> bool(np.allclose(y, 1.0))
-    True
+    >>> dlpf = LowPassFilter()
+    >>> dlpf.divider(1000.0)
+    8
+    >>> float(abs(dlpf.frequency_response(700.0)).round(3))  # a 700 Hz mode, seen at 300 Hz
+    0.131
     """
 
     name: ClassVar[str] = "dlpf"
     bandwidth: float = DLPF[0].accel_bandwidth
+    internal_rate: float = 8000.0
 
     def __post_init__(self):
         check_positive("bandwidth", self.bandwidth)
@@ -205,21 +226,77 @@ class LowPassFilter(_Effect):
             raise ValueError(
                 f"bandwidth must be one of {valid} Hz (the MPU6050's DLPF); got {self.bandwidth!r}"
             )
-
-    def sos(self, fs: float) -> np.ndarray:
-        """Second-order sections of the filter at sampling frequency ``fs`` (Hz)."""
-        if not self.bandwidth < fs / 2:
+        check_positive("internal_rate", self.internal_rate)
+        if not self.bandwidth < self.internal_rate / 2:
             raise ValueError(
-                f"dlpf bandwidth {self.bandwidth:g} Hz must be below fs/2 = {fs / 2:g} Hz"
+                f"internal_rate must exceed twice the bandwidth ({2 * self.bandwidth:g} Hz), "
+                f"got {self.internal_rate!r} Hz"
             )
-        return sps.butter(2, self.bandwidth, btype="low", fs=fs, output="sos")
 
-    def apply(self, a: np.ndarray, fs: float, level) -> np.ndarray:
-        """Filter every row of ``a`` (m/s^2); ``level`` (one per row): the settled initial value."""
-        sos = self.sos(fs)
-        zi = sps.sosfilt_zi(sos)[:, None, :] * np.asarray(level, dtype=float)[None, :, None]
-        y, _ = sps.sosfilt(sos, a, axis=-1, zi=zi)
-        return y
+    def divider(self, fs: float) -> int:
+        """How many internal samples make one output sample at ``fs`` (Hz); raise unless whole."""
+        ratio = self.internal_rate / check_positive("fs", fs)
+        whole = round(ratio)
+        if whole < 1 or abs(ratio - whole) > 1e-9 * ratio:
+            raise ValueError(
+                f"the dlpf's internal_rate ({self.internal_rate:g} Hz) must be a whole multiple "
+                f"of fs, got fs = {fs:g} Hz"
+            )
+        return int(whole)
+
+    def sos(self) -> np.ndarray:
+        """Second-order sections of the filter at the internal rate."""
+        return sps.butter(2, self.bandwidth, btype="low", fs=self.internal_rate, output="sos")
+
+    def frequency_response(self, frequency) -> np.ndarray:
+        """Complex gain ``H(exp(2 pi i f / internal_rate))`` at ``frequency`` (Hz)."""
+        b, a = sps.sos2tf(self.sos())
+        w = np.exp(-2j * math.pi * np.asarray(frequency, dtype=float) / self.internal_rate)
+        return np.polyval(b[::-1], w) / np.polyval(a[::-1], w)
+
+    def filter_exponentials(self, coef: np.ndarray, rate: np.ndarray):
+        """The filter's output for an input ``Im(sum_k coef_k exp(rate_k t))`` sampled from t = 0.
+
+        Input sample ``n`` is ``u_n = Im(sum_k C_k z_k^n)`` with ``z_k = exp(rate_k / f_i)`` and
+        ``f_i`` the internal rate; the filter ``H(w) = B(w) / A(w)`` in ``w = z^-1`` starts at
+        rest. For one exponential the output's z-transform ``B(w) / (A(w) (1 - z_k w))`` splits
+        into partial fractions over the input's pole and the filter's poles ``p_j``:
+
+            y_n = Im( sum_k C_k [ H(z_k) z_k^n + sum_j R_jk p_j^n ] ),
+            R_jk = B(1/p_j) / ( (1 - z_k / p_j) prod_(i != j) (1 - p_i / p_j) ),
+
+        a sum of damped exponentials again: the input's, scaled by the filter's gain, and the
+        filter's own transient at its poles (rates ``f_i log p_j``). Evaluated at ``t = n / f_i``
+        it is the filter's output exactly; at every ``divider``-th sample, the decimated one.
+
+        Parameters
+        ----------
+        coef, rate : complex arrays of shape (n_signals, n_terms)
+            ``C_k`` and ``rate_k`` (1/s) of each signal's exponentials.
+
+        Returns
+        -------
+        coef, rate : complex arrays of shape (n_signals, n_terms + 2)
+            The output's exponentials, the filter's two transient terms last.
+        """
+        b, a = sps.sos2tf(self.sos())
+        poles = np.roots(a)  # distinct: a Butterworth pair
+        fi = self.internal_rate
+        z = np.exp(np.asarray(rate) / fi)
+        gain = np.polyval(b[::-1], 1 / z) / np.polyval(a[::-1], 1 / z)
+        out_coef = [coef * gain]
+        for j, p in enumerate(poles):
+            others = np.prod([1 - q / p for i, q in enumerate(poles) if i != j])
+            residue = np.polyval(b[::-1], 1 / p) / ((1 - z / p) * others)
+            out_coef.append(np.sum(coef * residue, axis=-1, keepdims=True))
+        n = coef.shape[0]
+        pole_rates = np.broadcast_to(fi * np.log(poles.astype(complex)), (n, poles.size))
+        return np.concatenate(out_coef, axis=-1), np.concatenate([rate, pole_rates], axis=-1)
+
+    def apply_internal(self, a: np.ndarray, fs: float) -> np.ndarray:
+        """Filter rows sampled at the internal rate (m/s^2) from rest; decimate them to ``fs``."""
+        y = sps.sosfilt(self.sos(), a, axis=-1)
+        return y[..., :: self.divider(fs)]
 
 
 @dataclass(frozen=True)

@@ -18,7 +18,7 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from .._progress import progress
-from .._validate import check_array, check_int
+from .._validate import check_array, check_int, check_positive
 from ..probe import material as lookup_material
 from ..recording import Recording
 from .modes import (
@@ -48,12 +48,21 @@ class ModalTerms:
         Tip velocity each mode starts with, ``phi_k(L) q_dot_k(0)``, m/s; 0 in padding.
     live : ndarray of bool, shape (n_signals, n_modes)
         True for a simulated mode, False for padding.
+    contact_force : ndarray of shape (n_signals, n_modes) or None
+        ``F_k q_dot_k(0)``: each mode's force in the contact spring per unit modal coordinate
+        times its initial modal velocity, N/s (the dynamic contact force is
+        ``sum_k F_k q_dot_k(0) / omega_dk e^(-a_k t) sin(omega_dk t)``); None without a contact
+        spring (a rigid pin, or the Z axis).
+    preload : ndarray of shape (n_signals,) or None
+        Each strike's static contact force, N, with the ``object_modes`` effect; None otherwise.
     """
 
     omega: np.ndarray
     zeta: np.ndarray
     amplitude: np.ndarray
     live: np.ndarray
+    contact_force: np.ndarray | None = None
+    preload: np.ndarray | None = None
 
     def frequencies(self, row: int = 0) -> np.ndarray:
         """Natural frequencies of signal ``row`` (padding dropped), Hz."""
@@ -62,6 +71,33 @@ class ModalTerms:
     def damping_ratios(self, row: int = 0) -> np.ndarray:
         """Damping ratios of signal ``row`` (padding dropped)."""
         return self.zeta[row, self.live[row]]
+
+    def dynamic_contact_force(self, t) -> np.ndarray:
+        """The contact spring's force about its static value at times ``t`` (s), N.
+
+        Shape ``(n_signals, t.size)``; positive presses the probe on the object. The linear
+        model lets it take either sign: a strike in which it falls below minus the preload
+        would, on the rig, lift the probe off the object (see
+        :func:`ebantenna.simulate.unilateral.unilateral_response`).
+        """
+        if self.contact_force is None:
+            raise ValueError("these modal terms have no contact spring (contact_force is None)")
+        wd = self.omega * np.sqrt(1 - self.zeta**2)
+        coef = (self.contact_force / wd).astype(complex)
+        rate = -self.zeta * self.omega + 1j * wd
+        return damped_exponentials(np.asarray(t, dtype=float), coef, rate)
+
+    def lift_off_ratio(self, duration: float = 1.0, rate: float = 8000.0) -> np.ndarray:
+        """Largest pull of the linear contact over its preload, per strike (dimensionless).
+
+        ``max_t (-F_dyn(t)) / F0`` over ``duration`` seconds sampled at ``rate`` Hz: above 1 the
+        linear (bilateral) model holds the probe to the object by a pull that a real contact
+        cannot give; the probe would lift off and strike again.
+        """
+        if self.preload is None:
+            raise ValueError("these modal terms have no preload (listed without object_modes)")
+        t = np.arange(int(round(check_positive("duration", duration) * rate))) / rate
+        return np.max(-self.dynamic_contact_force(t), axis=1) / self.preload
 
 
 def _per_signal(name, value, default, n):
@@ -165,6 +201,7 @@ def _terms(scene: Scene, contacts, materials, speeds, tilts, preloads=None, show
     width = max(m.omega.size for m in modes)
     omega_u = np.ones((len(modes), width))
     amp_u = np.zeros((len(modes), width))
+    force_u = np.zeros((len(modes), width))
     zeta_u = np.zeros((len(modes), width))
     live_u = np.zeros((len(modes), width), dtype=bool)
     for i, m in enumerate(modes):
@@ -172,6 +209,8 @@ def _terms(scene: Scene, contacts, materials, speeds, tilts, preloads=None, show
         live_u[i, :k] = True
         omega_u[i, :k] = m.omega
         amp_u[i, :k] = m.tip * m.velocity
+        if m.contact_force is not None and math.isfinite(m.contact_stiffness):
+            force_u[i, :k] = m.contact_force * m.velocity
         if m.damping_ratio is not None:
             zeta_u[i, :k] = m.damping_ratio
     omega = omega_u[inverse]
@@ -187,7 +226,9 @@ def _terms(scene: Scene, contacts, materials, speeds, tilts, preloads=None, show
         zeta = np.full((n, width), zeta_s)
     if np.any(zeta >= 1):
         raise ValueError(f"a mode is overdamped (zeta up to {zeta.max():.3g}); not supported")
-    x = ModalTerms(omega, zeta, amplitude, live_u[inverse])
+    spring = any(math.isfinite(m.contact_stiffness) for m in modes)
+    force = force_u[inverse] * speeds[:, None] if spring else None
+    x = ModalTerms(omega, zeta, amplitude, live_u[inverse], force, preloads)
 
     kw = dict(n_elements=scene.n_elements, n_modes=scene.n_modes, max_frequency=scene.max_frequency)
     z_modes = arrest_modes(probe, scene.hinge, None, **kw)

@@ -36,6 +36,7 @@ import numpy as np
 
 from ..fem import Supports, modal_analysis
 from ..fem.assembly import assemble
+from ..fem.coupling import coupled_modes
 from ..probe import Probe
 
 __all__ = [
@@ -224,9 +225,6 @@ def coupled_arrest_modes(
     >>> m.frequencies.round(1)
     array([ 38.4, 133.9, 243.5, 347.6])
     """
-    from ..fem.assembly import assemble
-    from ..fem.coupling import coupled_modes
-
     for label, red in (("probe_modes", probe_reduction), ("rod_modes", rod_reduction)):
         top = red.fixed_interface_omega[-1] / (2 * math.pi) if red.fixed_interface_omega.size else 0
         if not top >= max_frequency:

@@ -19,6 +19,7 @@ from threadpoolctl import threadpool_limits
 
 from .._progress import progress
 from .._validate import check_array, check_int, check_positive
+from ..fem.coupling import craig_bampton, probe_substructure, rod_substructure
 from ..probe import material as lookup_material
 from ..recording import Recording
 from .modes import (
@@ -138,8 +139,6 @@ def _object_modes(scene: Scene, contacts, materials, preloads, show_progress):
     Each rod is reduced once, the probe once per distinct contact position; what is left per
     (position, material, preload) is the small coupled eigenproblem.
     """
-    from ..fem.coupling import craig_bampton, probe_substructure, rod_substructure
-
     obj = scene.effect("object_modes")
     probe = scene.probe
     if not scene.has("structural_damping"):

@@ -29,6 +29,9 @@ class FullRangeResult:
         Contacts (m) and absolute errors (cm) of the two-mode estimate.
     contact_one, error_one_cm : ndarray
         The same for the first-mode-only estimate.
+    error_known_material_cm : ndarray
+        Absolute errors (cm) of the two-mode estimate calibrated per material, for the same test
+        recordings as ``error_two_cm``, with each recording's material taken as known.
     turning_point : float
         Where the calibrated first-mode curve turns, m.
     without_two_peaks, recordings : int
@@ -41,6 +44,7 @@ class FullRangeResult:
     error_two_cm: np.ndarray
     contact_one: np.ndarray
     error_one_cm: np.ndarray
+    error_known_material_cm: np.ndarray
     turning_point: float
     without_two_peaks: int
     recordings: int
@@ -59,6 +63,7 @@ class FullRangeResult:
                 float(self.error_two_cm[beyond].mean()) if np.any(beyond) else None
             ),
             "first_mode_only_mae_cm": float(self.error_one_cm.mean()),
+            "full_range_known_material_mae_cm": float(self.error_known_material_cm.mean()),
             "first_mode_turning_point_cm": 100 * self.turning_point,
             "recordings_without_two_peaks": self.without_two_peaks,
         }
@@ -75,6 +80,17 @@ def compute(ds, feats) -> FullRangeResult:
     )
     test = ~calibration & ok
     error_cm = 100 * np.abs(multi.predict(feats.peaks[test]) - ds.contact[test])
+    # The touched rod moves the modes by material: one calibration per material.
+    known = np.empty(int(test.sum()))
+    for name in np.unique(ds.material[test]):
+        mine = ds.material == name
+        per_material = MultiModeDistanceEstimator().fit(
+            feats.peaks[calibration & ok & mine], ds.contact[calibration & ok & mine]
+        )
+        rows = mine[test]
+        known[rows] = 100 * np.abs(
+            per_material.predict(feats.peaks[test & mine]) - ds.contact[test & mine]
+        )
     single = FrequencyDistanceEstimator(out_of_range="clip").fit(
         feats.dominant[calibration], ds.contact[calibration]
     )
@@ -87,6 +103,7 @@ def compute(ds, feats) -> FullRangeResult:
         error_two_cm=error_cm,
         contact_one=ds.contact[test1],
         error_one_cm=error1_cm,
+        error_known_material_cm=known,
         turning_point=single.limit_,
         without_two_peaks=int((~ok).sum()),
         recordings=int(ok.size),
@@ -138,7 +155,22 @@ def render(result: FullRangeResult, report, figures) -> None:
                 f"{r.error_two_cm[beyond].mean():.2f}" if np.any(beyond) else "-",
                 f"{np.percentile(r.error_two_cm, 95):.2f}",
             ],
+            [
+                "two modes, calibrated per material",
+                "whole probe",
+                f"{r.error_known_material_cm.mean():.2f}",
+                f"{r.error_known_material_cm[beyond].mean():.2f}" if np.any(beyond) else "-",
+                f"{np.percentile(r.error_known_material_cm, 95):.2f}",
+            ],
         ],
+    )
+    report.paragraph(
+        "The touched rod is part of the vibrating system: a soft PVC rod lowers the coupled "
+        "modes, a steel one hardly does, so one calibration for all materials places the same "
+        "contact at different distances. Calibrated per material (the material taken as known, "
+        "as the classifier above gives it for most recordings), the two-mode estimate is "
+        f"{r.error_two_cm.mean() / max(r.error_known_material_cm.mean(), 1e-12):.0f} times more "
+        "accurate: on this rig the probe must know what it touched to know where."
     )
     report.paragraph(
         f"Paper: the earlier ANN reached about {printed.PRIOR_DISTANCE_ACCURACY_CM.value} cm on "

@@ -120,7 +120,7 @@ def test_summary_is_the_results_dicts_put_together(quick_study):
                        "distance", "timings_s", "report", "figures"]
     assert list(s["distance"]) == [
         "full_range_mae_cm", "full_range_mae_beyond_80_cm", "first_mode_only_mae_cm",
-        "first_mode_turning_point_cm", "recordings_without_two_peaks", "linear_region_mae_cm",
-        "full_length_mae_cm",
+        "full_range_known_material_mae_cm", "first_mode_turning_point_cm",
+        "recordings_without_two_peaks", "linear_region_mae_cm", "full_length_mae_cm",
     ]
     assert list(s["timings_s"]) == list(STEPS)

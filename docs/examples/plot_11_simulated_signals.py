@@ -33,7 +33,8 @@ for (ax_t, ax_f), a in zip(axes, ratios, strict=True):
     ax_t.plot(rec.t, rec.az, lw=0.6, label="Z")
     ax_t.set_ylabel("m/s$^2$")
     ax_t.set_title(f"contact at {a:.2f} L", fontsize="small")
-    ax_f.semilogy(f, mag, lw=0.8)
+    ax_f.semilogy(f[1:], mag[1:], lw=0.8)  # the DC bin is ~0 after the mean is removed
+    ax_f.set_ylim(mag[1:].min() / 2, 2 * mag[1:].max())
     for fm in modes[modes < rec.fs / 2]:
         ax_f.axvline(fm, color="tab:red", ls=":", lw=1)
     ax_f.set_ylabel("|FFT| norm")

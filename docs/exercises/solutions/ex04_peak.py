@@ -34,7 +34,9 @@ assert 0.75 < a_exact < 0.82, a_exact
 assert f_exact(a_exact - 0.05) < f_max and f_exact(a_exact + 0.05) < f_max
 # Not monotonic: the same frequency belongs to two contact positions, one on each side.
 assert f_exact(0.7) < f_max and f_exact(0.95) < f_max
-# The partner of 0.7 L: the root of f(a) - f(0.7 L) beyond the maximum.
+# The partner of 0.7 L: the root of f(a) - f(0.7 L) beyond the maximum. It exists because the
+# frequency at the far end of the range is lower still (the root is bracketed).
+assert f_exact(0.97) < f_exact(0.7) < f_max
 a_twin = brentq(lambda a: f_exact(a) - f_exact(0.7), a_exact, 0.97)
 print(f"{f_exact(0.7):.2f} Hz belongs to a contact at 0.700 L and at {a_twin:.3f} L")
 assert a_twin > a_exact and abs(f_exact(a_twin) - f_exact(0.7)) < 1e-6

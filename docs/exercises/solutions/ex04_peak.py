@@ -42,5 +42,9 @@ print(f"{f_exact(0.7):.2f} Hz belongs to a contact at 0.700 L and at {a_twin:.3f
 assert a_twin > a_exact and abs(f_exact(a_twin) - f_exact(0.7)) < 1e-6
 # The two-element model puts the maximum further out, by several per cent of the length.
 assert a_two - a_exact > 0.03, (a_two, a_exact)
+
+# The expected answers on the exercise page, checked against these values by the test suite.
+ANSWERS = {"a_peak": a_exact, "f_peak": f_max, "a_peak_two_elements": a_two, "a_twin": a_twin}
+
 print("ok: the dominant frequency is not monotonic; two elements misplace its maximum by "
       f"{100 * (a_two - a_exact):.1f} % of the length")

@@ -54,4 +54,8 @@ assert np.allclose(grad_pkg, np.concatenate([g.ravel() for g in grads]), rtol=1e
 # 3. A gradient step lowers the loss (the gradient points uphill).
 step = [p - 0.1 * g for p, g in zip(params, grads, strict=True)]
 assert loss_and_grads(*step)[0] < loss
+
+# The expected answers on the exercise page, checked against these values by the test suite.
+ANSWERS = {"loss": loss, "loss_after_step": loss_and_grads(*step)[0]}
+
 print(f"ok: loss {loss:.6f}; backpropagation = finite differences = ebantenna's gradient")

@@ -38,6 +38,7 @@ extensions = [
     "sphinx_gallery.gen_gallery",
     "matplotlib.sphinxext.plot_directive",
     "ebantenna_docs",
+    "paper_map",
 ]
 
 templates_path = ["_templates"]

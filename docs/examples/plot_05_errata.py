@@ -64,6 +64,7 @@ print("printed K1 symmetric?", printed["K1"] == printed["K1"].T)
 # each record of :func:`~ebantenna.fem.symbolic.paper_errata` (rows and columns 1-based, as
 # printed), coloured by its reason.
 from matplotlib.colors import ListedColormap  # noqa: E402
+from matplotlib.patches import Patch  # noqa: E402
 
 codes = {"common factor": 1, "typo": 2}
 fig, axes = plt.subplots(1, 2, figsize=(9.5, 4.4))
@@ -79,9 +80,9 @@ for ax, name in zip(axes, ("K1", "M1"), strict=True):
     ax.set_ylabel("row")
     n = int(np.count_nonzero(grid))
     ax.set_title(f"{name}: {n} printed entries differ")
-for reason, code in codes.items():
-    axes[1].plot([], [], "s", ms=9, color=["tab:orange", "tab:red"][code - 1], label=reason)
-axes[1].legend(loc="upper left", bbox_to_anchor=(1.02, 1), fontsize="small")
+colours = {"common factor": "tab:orange", "typo": "tab:red"}
+axes[1].legend(handles=[Patch(color=c, label=reason) for reason, c in colours.items()],
+               loc="upper left", bbox_to_anchor=(1.02, 1), fontsize="small")
 print("errata in K1 and M1:", sum(e.matrix in ("K1", "M1") for e in paper_errata()),
       "of", len(paper_errata()))
 fig.tight_layout()

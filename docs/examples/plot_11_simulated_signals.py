@@ -23,7 +23,7 @@ print(scene.probe)
 print("effects:", ", ".join(type(e).__name__ for e in scene.effects))
 
 ratios = [0.25, 0.5, 0.75, 0.8, 0.9]
-fig, axes = plt.subplots(len(ratios), 2, figsize=(10, 10))
+fig, axes = plt.subplots(len(ratios), 2, figsize=(10, 10), sharex="col")
 for (ax_t, ax_f), a in zip(axes, ratios, strict=True):
     contact = a * scene.probe.length
     rec = simulate(scene.with_(contact=contact), seed=1)

@@ -114,3 +114,19 @@ def test_rotary_inertia_and_shear_as_stated():
     # the modulus range 2.2-3.8 GPa around 3.0 GPa moves a frequency by about +-13 %
     assert np.sqrt(3.8 / 3.0) - 1 == pytest.approx(0.13, abs=0.01)
     assert 1 - np.sqrt(2.2 / 3.0) == pytest.approx(0.14, abs=0.01)
+
+
+def test_one_vs_one_and_one_vs_rest_as_stated():
+    # theory/svm.rst: SVC trains one machine per pair (K (K - 1) / 2 decision values with
+    # decision_function_shape="ovo"); OneVsRestClassifier(SVC(...)) trains one per class
+    from sklearn.datasets import make_blobs
+    from sklearn.multiclass import OneVsRestClassifier
+
+    from ebantenna.ml import SVC
+
+    X, y = make_blobs(n_samples=100, centers=5, random_state=0)
+    ovo = SVC(decision_function_shape="ovo").fit(X, y)
+    assert ovo.decision_function(X).shape == (100, 5 * 4 // 2)
+    ovr = OneVsRestClassifier(SVC()).fit(X, y)
+    assert len(ovr.estimators_) == 5
+    assert ovr.score(X, y) > 0.8  # a working classifier, not just an object that fits

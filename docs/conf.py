@@ -39,6 +39,7 @@ extensions = [
     "matplotlib.sphinxext.plot_directive",
     "ebantenna_docs",
     "paper_map",
+    "exercise_notebooks",
 ]
 
 templates_path = ["_templates"]

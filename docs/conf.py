@@ -30,10 +30,16 @@ extensions = [
     "sphinx.ext.autosummary",
     "sphinx.ext.intersphinx",
     "sphinx.ext.mathjax",
+    # MathJax 3 itself (scripts and fonts), copied from its PyPI package into _static/mathjax: the
+    # pages typeset their formulas with no network (a classroom offline, the rig's Raspberry Pi)
+    "sphinx-mathjax-offline",
     "sphinx.ext.viewcode",
     "numpydoc",
     "sphinx_gallery.gen_gallery",
+    "matplotlib.sphinxext.plot_directive",
     "ebantenna_docs",
+    "paper_map",
+    "exercise_notebooks",
 ]
 
 templates_path = ["_templates"]
@@ -93,17 +99,29 @@ sphinx_gallery_conf = {
     "gallery_dirs": "auto_examples",
     "filename_pattern": r"/plot_",
     "ignore_pattern": r"__init__\.py",
-    "download_all_examples": False,
+    # every example also as a notebook and a script, and all of them in one zip
+    "download_all_examples": True,
     "remove_config_comments": True,
     "within_subsection_order": "FileNameSortKey",
     "matplotlib_animations": False,
     "show_memory": False,
+    # the timing page loads DataTables from a CDN, and its numbers change every build: not written
+    "write_computation_times": False,
     "abort_on_example_error": True,
     "only_warn_on_example_error": False,
     "doc_module": ("ebantenna",),
     "reference_url": {"ebantenna": None},
     "backreferences_dir": None,
-    "image_scrapers": ("matplotlib",),
+    # matplotlib's scraper, after docs/_ext/figure_check.py found every axis labelled, no panel
+    # empty, no legend entry without its curve and no log axis reaching far beyond its data
+    "image_scrapers": ("figure_check",),
 }
 
 math_number_all = False
+
+# --- Figures drawn by the package inside a page (``.. plot::``), such as the probe's sketch ------
+plot_include_source = False
+plot_html_show_source_link = False
+plot_html_show_formats = False
+plot_formats = [("png", 110)]
+plot_rcparams = {"figure.autolayout": True}

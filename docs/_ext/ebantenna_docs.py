@@ -29,7 +29,9 @@ from docutils.parsers.rst import directives
 from sphinx.directives.patches import MathDirective
 from sphinx.util.docutils import SphinxDirective
 
-__all__ = ["latex", "evaluate", "render_latex", "errata_rows", "cli_help", "setup"]
+__all__ = [
+    "latex", "evaluate", "render_latex", "erratum_kind", "errata_rows", "cli_help", "setup",
+]
 
 
 def _symbol_names() -> dict:
@@ -85,8 +87,38 @@ def _locals() -> dict:
     return {"l": s.l, "l1": s.l1, "l2": s.l2, "EI": s.EI, "rhoA": s.rhoA}
 
 
+def erratum_kind(erratum) -> str:
+    """What is wrong with one printed entry, in finer words than its ``reason``.
+
+    ``"common factor"`` as in :func:`~ebantenna.fem.symbolic.paper_errata`; a ``"typo"`` of an
+    entry that belongs to one element (length ``l1`` or ``l2``, the printed ``l`` read as that
+    length) is a ``"sign"`` when the printed entry is minus the derived one, a ``"subscript"`` when
+    writing the element's own length for the other element's length in it gives the derived one,
+    and a ``"wrong term"`` otherwise.
+    """
+    from ebantenna.fem.symbolic import l, l1, l2
+
+    if erratum.reason != "typo":
+        return erratum.reason
+    printed = sp.sympify(erratum.printed, locals=_locals())
+    derived = sp.sympify(erratum.derived, locals=_locals())
+    lengths = derived.free_symbols & {l, l1, l2}
+    own = next(iter(lengths)) if len(lengths) == 1 else None
+    if own is not None:
+        printed = printed.subs(l, own)
+    if sp.simplify(printed + derived) == 0:
+        return "sign"
+    other = {l1: l2, l2: l1}.get(own)
+    if other is not None and sp.simplify(printed.subs(other, own) - derived) == 0:
+        return "subscript"
+    return "wrong term"
+
+
 def errata_rows() -> list[list[str]]:
-    """Rows ``[matrix, row, col, printed, derived, reason]`` of the errata table, LaTeX in cells."""
+    """Rows ``[matrix, row, col, printed, derived, reason, kind]`` of the errata table.
+
+    The printed and derived cells are LaTeX; ``kind`` is :func:`erratum_kind`.
+    """
     from ebantenna.fem.symbolic import paper_errata
 
     rows = []
@@ -99,6 +131,7 @@ def errata_rows() -> list[list[str]]:
                 latex(sp.sympify(e.printed, locals=_locals())),
                 latex(sp.sympify(e.derived, locals=_locals())),
                 e.reason,
+                erratum_kind(e),
             ]
         )
     return rows
@@ -125,7 +158,10 @@ class SympyMath(MathDirective):
         except Exception as exc:  # a broken expression must fail the build, with its location
             raise self.error(f"sympy-math: cannot evaluate {expression!r}: {exc}") from exc
         self.arguments = [latex]
-        return super().run()
+        # the grey box marked "derived" (docs/_static/ebantenna.css): the package's own result
+        box = nodes.container(classes=["derived"])
+        box.extend(super().run())
+        return [box]
 
 
 def _cell(text: str, math: bool = False):
@@ -137,22 +173,18 @@ def _cell(text: str, math: bool = False):
 
 
 class PaperErrata(SphinxDirective):
-    """``.. ebantenna-cli:: [COMMAND]``
-    The ``--help`` text of the installed ``ebantenna`` command (or one subcommand), so that the user
-    guide documents exactly the commands and options that exist.
-
-``.. paper-errata::``: the generated errata table and the paper's notes."""
+    """``.. paper-errata::``: the generated errata table and the paper's notes."""
 
     has_content = False
 
     def run(self):
         from ebantenna.fem.symbolic import PAPER_NOTES
 
-        headers = ["matrix", "row", "col", "printed", "derived", "reason"]
+        headers = ["matrix", "row", "col", "printed", "derived", "reason", "what is wrong"]
         table = nodes.table(classes=["errata"])
         group = nodes.tgroup(cols=len(headers))
         table += group
-        for width in (8, 5, 5, 30, 30, 14):
+        for width in (8, 5, 5, 30, 30, 14, 14):
             group += nodes.colspec(colwidth=width)
         head = nodes.thead()
         row = nodes.row()

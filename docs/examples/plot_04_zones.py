@@ -27,17 +27,19 @@ fine = np.linspace(0.5, 0.95, 451) * probe.length
 f64 = natural_frequencies(probe, fine, n_modes=1)[:, 0]
 f2 = natural_frequencies(probe, fine, n_modes=1, n_elements=2)[:, 0]
 
-fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
+fig, ax1 = plt.subplots(figsize=(7, 4.2))
 zones.plot(ax=ax1)
 ax1.plot(100 * fine, f2, ":", color="k", lw=1, label="two-element model")
 ax1.legend(fontsize="small")
 ax1.set_title("dominant frequency against contact position")
+fig.tight_layout()
 print(f"maximum at {fine[np.argmax(f64)] / probe.length:.3f} L (64 elements), "
       f"{fine[np.argmax(f2)] / probe.length:.3f} L (two elements)")
 
 # %%
 # Mode shapes on both sides of the maximum: the overhang swings (zone 1), then the span does
 # (zone 3).
+fig, ax2 = plt.subplots(figsize=(7, 4.2))
 for a, style in ((0.5, "-"), (0.8, "--"), (0.95, ":")):
     res = modal_analysis(probe, Supports(contact=a * probe.length), n_modes=1)
     x = np.linspace(0, probe.length, 300)

@@ -15,7 +15,6 @@ paper does not define. With equal elements (contact at half the length) the obvi
 import matplotlib.pyplot as plt
 import numpy as np
 import scipy.linalg as sla
-import sympy as sp
 
 from ebantenna import Probe
 from ebantenna.fem.symbolic import (
@@ -61,17 +60,30 @@ print("contact at L/2, printed matrices:", np.round(f_printed, 2), "Hz")
 print("printed K1 symmetric?", printed["K1"] == printed["K1"].T)
 
 # %%
-# Where the printed matrices differ: a map of the 6x6 entries, for equal element lengths.
-fig, axes = plt.subplots(1, 2, figsize=(9, 4))
-for ax, name, derived in zip(axes, ("K1", "M1"), (K_derived, M_derived), strict=True):
-    equal = {l1: l, l2: l}
-    delta = (printed[name] - derived.subs(equal)).applyfunc(sp.simplify)
-    wrong = np.array([[delta[i, j] != 0 for j in range(6)] for i in range(6)])
-    ax.imshow(wrong, cmap="Reds", vmin=0, vmax=1.5)
+# Where the printed matrices differ: a map of the 6x6 entries of ``K1`` and ``M1``, one mark for
+# each record of :func:`~ebantenna.fem.symbolic.paper_errata` (rows and columns 1-based, as
+# printed), coloured by its reason.
+from matplotlib.colors import ListedColormap  # noqa: E402
+from matplotlib.patches import Patch  # noqa: E402
+
+codes = {"common factor": 1, "typo": 2}
+fig, axes = plt.subplots(1, 2, figsize=(9.5, 4.4))
+for ax, name in zip(axes, ("K1", "M1"), strict=True):
+    grid = np.zeros((6, 6))
+    for e in paper_errata():
+        if e.matrix == name:
+            grid[e.row - 1, e.col - 1] = codes[e.reason]
+    ax.imshow(grid, cmap=ListedColormap(["white", "tab:orange", "tab:red"]), vmin=0, vmax=2)
     ax.set_xticks(range(6), [f"{k + 1}" for k in range(6)])
     ax.set_yticks(range(6), [f"{k + 1}" for k in range(6)])
-    ax.set_title(f"{name}: entries wrong even for l1 = l2 (red)")
-    for i, j in zip(*np.nonzero(wrong), strict=True):
-        ax.text(j, i, "x", ha="center", va="center")
+    ax.set_xlabel("column")
+    ax.set_ylabel("row")
+    n = int(np.count_nonzero(grid))
+    ax.set_title(f"{name}: {n} printed entries differ")
+colours = {"common factor": "tab:orange", "typo": "tab:red"}
+axes[1].legend(handles=[Patch(color=c, label=reason) for reason, c in colours.items()],
+               loc="upper left", bbox_to_anchor=(1.02, 1), fontsize="small")
+print("errata in K1 and M1:", sum(e.matrix in ("K1", "M1") for e in paper_errata()),
+      "of", len(paper_errata()))
 fig.tight_layout()
 plt.show()

@@ -40,12 +40,15 @@ print("SMO iterations:", exact.n_iter_, "(ebantenna, libsvm_compat=True),", ref.
 print("training accuracy:", ours.score(X, y), "(ebantenna),", ref.score(X, y), "(scikit-learn)")
 
 fig, ax = plt.subplots(figsize=(6.5, 4.5))
-ax.contourf(grid[..., 0], grid[..., 1], d_ours, levels=20, cmap="RdBu_r", alpha=0.5)
+filled = ax.contourf(grid[..., 0], grid[..., 1], d_ours, levels=20, cmap="RdBu_r", alpha=0.5)
+fig.colorbar(filled, ax=ax, label="decision function (ebantenna)")
 ax.contour(grid[..., 0], grid[..., 1], d_ours, levels=[-1, 0, 1], colors="k",
            linestyles=["--", "-", "--"])
 ax.contour(grid[..., 0], grid[..., 1], d_ref, levels=[0], colors="yellow", linestyles=":")
 ax.scatter(X[:, 0], X[:, 1], c=y, cmap="RdBu_r", edgecolors="k", s=20)
 ax.scatter(*ours.support_vectors_.T, s=80, facecolors="none", edgecolors="k", lw=0.8)
+ax.set_xlabel("feature 1")
+ax.set_ylabel("feature 2")
 ax.set_title("boundary and margins (ebantenna, black), boundary (scikit-learn, yellow dots)",
              fontsize="small")
 fig.tight_layout()

@@ -34,12 +34,13 @@ x = sum(a * np.exp(-t / tau) * np.sin(2 * np.pi * f * t)
 print("decay time constants (ms):", np.round(1e3 * taus, 1))
 
 stft = spectrogram(x, fs, nperseg=64, noverlap=56)
-cwt = morlet_scalogram(x, fs, np.linspace(10.0, 450.0, 120), bandwidth=1.5)
+# up to just below the Nyquist frequency, so that the third mode (about 477 Hz) is on the map
+cwt = morlet_scalogram(x, fs, np.linspace(10.0, 495.0, 140), bandwidth=1.5)
 
 fig, axes = plt.subplots(3, 1, figsize=(7, 9))
 axes[0].plot(t, x, lw=0.7)
 axes[0].set_xlabel("time (s)")
-axes[0].set_ylabel("signal")
+axes[0].set_ylabel("signal (sum of unit modes)")
 stft.plot(ax=axes[1], dynamic_range=50)
 cwt.plot(ax=axes[2], dynamic_range=50)
 for ax in axes[1:]:

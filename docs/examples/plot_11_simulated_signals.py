@@ -23,7 +23,7 @@ print(scene.probe)
 print("effects:", ", ".join(type(e).__name__ for e in scene.effects))
 
 ratios = [0.25, 0.5, 0.75, 0.8, 0.9]
-fig, axes = plt.subplots(len(ratios), 2, figsize=(10, 10))
+fig, axes = plt.subplots(len(ratios), 2, figsize=(10, 10), sharex="col")
 for (ax_t, ax_f), a in zip(axes, ratios, strict=True):
     contact = a * scene.probe.length
     rec = simulate(scene.with_(contact=contact), seed=1)
@@ -33,7 +33,8 @@ for (ax_t, ax_f), a in zip(axes, ratios, strict=True):
     ax_t.plot(rec.t, rec.az, lw=0.6, label="Z")
     ax_t.set_ylabel("m/s$^2$")
     ax_t.set_title(f"contact at {a:.2f} L", fontsize="small")
-    ax_f.semilogy(f, mag, lw=0.8)
+    ax_f.semilogy(f[1:], mag[1:], lw=0.8)  # the DC bin is ~0 after the mean is removed
+    ax_f.set_ylim(mag[1:].min() / 2, 2 * mag[1:].max())
     for fm in modes[modes < rec.fs / 2]:
         ax_f.axvline(fm, color="tab:red", ls=":", lw=1)
     ax_f.set_ylabel("|FFT| norm")

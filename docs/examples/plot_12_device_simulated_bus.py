@@ -7,6 +7,10 @@ board register by register, as on the Raspberry Pi. :class:`~ebantenna.device.Si
 answers those same register reads and writes, with a virtual clock and a simulated contact, so
 that the search of the paper (sweep, detect the touch, stop the servos, record, release) runs
 without hardware. Injected I2C faults show that the driver retries and counts what it lost.
+
+The figure draws the recording without faults as a thick grey line and the one with faults as a
+thin dashed line over it: where they coincide, every failed transfer was retried and returned the
+same sample, and the legend counts what could not be recovered.
 """
 
 import matplotlib.pyplot as plt
@@ -37,9 +41,12 @@ for rate in (0.0, 0.02):
           f"lost={result.samples_lost}, I2C retries={result.i2c_retries}")
 
 fig, ax = plt.subplots(figsize=(7, 3.5))
+styles = {0.0: {"color": "0.7", "lw": 3.0}, 0.02: {"color": "tab:red", "lw": 0.8, "ls": "--"}}
 for rate, result in results.items():
     rec = result.recording
-    ax.plot(rec.t - rec.t[0], rec.az, lw=0.7, label=f"Z, {rate:.0%} of transfers failing")
+    ax.plot(rec.t - rec.t[0], rec.az, **styles[rate],
+            label=f"Z, {rate:.0%} of transfers failing: {result.samples_lost} samples lost, "
+                  f"{result.i2c_retries} retries")
 ax.set_xlabel("time after the contact (s)")
 ax.set_ylabel("acceleration (m/s$^2$)")
 ax.legend(fontsize="small")

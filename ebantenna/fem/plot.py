@@ -1,10 +1,10 @@
-"""Figures of the modal analysis: mode shapes (Fig. 17) and the dominant mode's zones (Fig. 16)."""
+"""Figures of the modal analysis: the probe's sketch, mode shapes (Fig. 17), zones (Fig. 16)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["plot_modes", "plot_zones"]
+__all__ = ["plot_probe", "plot_modes", "plot_zones"]
 
 
 def _axes(ax):
@@ -12,6 +12,98 @@ def _axes(ax):
         import matplotlib.pyplot as plt
 
         _fig, ax = plt.subplots(figsize=(7, 4))
+    return ax
+
+
+def plot_probe(probe, supports=None, ax=None):
+    """Sketch of the probe: P the hinge, Q the contact, R the free tip, drawn to scale along x.
+
+    The tube is the thick bar from P (x = 0) to R (x = L); the hinge is a hatched wall when
+    clamped, a triangle when pinned and a spiral-spring symbol when elastic; the touched object
+    is a pin under Q; the accelerometer board at R is a square when the probe has a tip mass. The
+    two elements of the paper's model, ``l1 = |PQ|`` and ``l2 = |QR|``, are dimensioned below.
+    Only the length is to scale: the diameter is drawn thick enough to see.
+
+    Parameters
+    ----------
+    probe : Probe
+    supports : Supports, optional
+        The hinge and the contact; a clamped probe touching nothing by default. The contact must
+        lie inside ``(0, L)``.
+    ax : matplotlib Axes, optional
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Examples
+    --------
+    >>> from ebantenna import Probe
+    >>> from ebantenna.fem import Supports
+    >>> from ebantenna.fem.plot import plot_probe
+    >>> ax = plot_probe(Probe(), Supports(contact=0.3))
+    >>> [t.get_text() for t in ax.texts][:3]
+    ['P', 'Q', 'R']
+    """
+    from .._validate import check_in_range
+    from .supports import Supports
+
+    supports = Supports() if supports is None else supports
+    length = 100 * probe.length  # cm, as on every other figure of the probe
+    contact = None
+    if supports.contact is not None:
+        contact = 100 * check_in_range("supports.contact", supports.contact, 0.0, probe.length)
+    ax = _axes(ax)
+    ax.plot([0, length], [0, 0], color="0.45", lw=6, solid_capstyle="butt", zorder=2)
+    # the hinge
+    if supports.hinge == "clamped":
+        ax.fill_between(
+            [-0.04 * length, 0], -0.3, 0.3, facecolor="0.92", edgecolor="0.4", hatch="///", lw=0
+        )
+        ax.plot([0, 0], [-0.3, 0.3], color="k", lw=1.5)
+        hinge = "P: clamped hinge"
+    elif supports.hinge == "pinned":
+        ax.plot([0], [-0.055], "k^", ms=12, zorder=3)
+        hinge = "P: pinned hinge"
+    else:
+        turns = np.linspace(0, 4 * np.pi, 200)
+        radius = 0.012 * length * (1 + turns) / (1 + 4 * np.pi)
+        ax.plot(radius * np.cos(turns), 0.1 * radius / (0.012 * length) * np.sin(turns), "k-", lw=1)
+        hinge = f"P: elastic hinge, {supports.hinge:g} N m/rad"
+    ax.text(0, 0.42, "P", ha="center", fontsize="large", weight="bold")
+    # the contact
+    if contact is not None:
+        ax.plot([contact], [-0.055], "^", color="tab:red", ms=12, zorder=3)
+        ax.plot([contact - 0.03 * length, contact + 0.03 * length], [-0.1, -0.1], color="tab:red")
+        ax.text(contact, 0.42, "Q", ha="center", fontsize="large", weight="bold", color="tab:red")
+    # the tip and its accelerometer
+    if probe.tip_mass > 0:
+        ax.plot(
+            [length],
+            [0],
+            "s",
+            color="tab:blue",
+            ms=11,
+            zorder=3,
+            label=f"tip mass {1e3 * probe.tip_mass:g} g",
+        )
+    ax.text(length, 0.42, "R", ha="center", fontsize="large", weight="bold")
+    # dimensions: the whole length above, the paper's two elements below
+    ax.annotate("", (0, 0.25), (length, 0.25), arrowprops={"arrowstyle": "<->", "lw": 0.8})
+    ax.text(length / 2, 0.28, f"L = {length:g} cm", ha="center", va="bottom")
+    if contact is not None:
+        for a, b, name in ((0, contact, "l1 = |PQ|"), (contact, length, "l2 = |QR|")):
+            ax.annotate("", (a, -0.3), (b, -0.3), arrowprops={"arrowstyle": "<->", "lw": 0.8})
+            ax.text((a + b) / 2, -0.34, f"{name} = {b - a:.4g} cm", ha="center", va="top")
+    ax.text(0, -0.62, hinge, fontsize="small")
+    ax.set_xlim(-0.08 * length, 1.06 * length)
+    ax.set_ylim(-0.7, 0.6)
+    ax.set_yticks([])
+    for side in ("left", "right", "top"):
+        ax.spines[side].set_visible(False)
+    ax.set_xlabel("distance from the hinge (cm)")
+    if probe.tip_mass > 0:
+        ax.legend(loc="lower right", fontsize="small", frameon=False)
     return ax
 
 

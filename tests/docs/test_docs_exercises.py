@@ -1,8 +1,12 @@
 """Every exercise solution runs, checks its own answer, and is shown on its exercise page."""
 
+import contextlib
+import functools
+import io
 import re
 import runpy
 import warnings
+from decimal import Decimal
 from pathlib import Path
 
 import pytest
@@ -33,14 +37,47 @@ def test_page_has_statement_hints_and_hidden_solution(page):
     assert text.index("<details") > text.index("====\n")  # a statement comes first
 
 
+@functools.cache
+def run_solution(script: Path) -> tuple[dict, str]:
+    """The globals and the printed output of one solution script, warnings as errors."""
+    out = io.StringIO()
+    with warnings.catch_warnings(), contextlib.redirect_stdout(out):
+        warnings.simplefilter("error")
+        namespace = runpy.run_path(str(script), run_name="__main__")
+    return namespace, out.getvalue()
+
+
 @pytest.mark.parametrize("script", SOLUTIONS, ids=lambda p: p.stem)
-def test_solution_runs_and_its_checks_pass(script, capsys):
+def test_solution_runs_and_its_checks_pass(script):
     source = script.read_text()
     assert source.count("assert ") >= 3, "a solution must check its answer"
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        runpy.run_path(str(script), run_name="__main__")
-    assert "ok" in capsys.readouterr().out
+    assert "ok" in run_solution(script)[1]
+
+
+def _page_answers(text: str) -> dict[str, str]:
+    """``name = value`` pairs of the folded "Expected answers" block of an exercise page."""
+    start = text.index('<details class="answers">')
+    block = text[start : text.index("</details>", start)]
+    return dict(re.findall(r"``(\w+) = ([-+0-9.eE]+)``", block))
+
+
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: p.stem)
+def test_page_states_objectives_difficulty_time(page):
+    text = page.read_text()
+    assert re.search(r"^:Objectives: \S", text, flags=re.M)
+    assert re.search(r"^:Difficulty: (introductory|intermediate|advanced)$", text, flags=re.M)
+    assert re.search(r"^:Time: about \d+ minutes$", text, flags=re.M)
+
+
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: p.stem)
+def test_expected_answers_on_the_page_are_the_solutions(page):
+    stated = _page_answers(page.read_text())
+    answers = run_solution(DOCS / "exercises" / "solutions" / f"{page.stem}.py")[0]["ANSWERS"]
+    assert stated and set(stated) == set(answers), (sorted(stated), sorted(answers))
+    for name, text in stated.items():
+        # the page rounds to its last printed digit: the value is within half a unit of it
+        half_unit = 0.5 * 10.0 ** Decimal(text).as_tuple().exponent
+        assert abs(float(answers[name]) - float(text)) <= half_unit * (1 + 1e-9), (name, text)
 
 
 def test_a_wrong_answer_fails(tmp_path):
@@ -53,3 +90,13 @@ def test_a_wrong_answer_fails(tmp_path):
     path.write_text(broken)
     with pytest.raises(AssertionError):
         runpy.run_path(str(path), run_name="__main__")
+
+
+def test_course_outline_covers_every_exercise_and_theory_page():
+    course = (DOCS / "course.rst").read_text()
+    for page in PAGES:
+        assert f":doc:`exercises/{page.stem}`" in course, page.stem
+    for page in sorted((DOCS / "theory").glob("*.rst")):
+        if page.stem != "index":
+            assert f":doc:`theory/{page.stem}`" in course, page.stem
+    assert "   course\n" in (DOCS / "index.rst").read_text()  # in the site's toctree

@@ -46,7 +46,21 @@ def test_errata_rows_follow_paper_errata():
     for row, e in zip(rows, errata, strict=True):
         assert row[:3] == [e.matrix, str(e.row), str(e.col)] and row[5] == e.reason
     # the typo in the printed element stiffness, K(3, 4) = +6 EI / l^2 instead of -6 EI / l^2
-    assert ["K", "3", "4", r"\frac{6 EI}{l^{2}}", r"- \frac{6 EI}{l^{2}}", "typo"] in rows
+    assert ["K", "3", "4", r"\frac{6 EI}{l^{2}}", r"- \frac{6 EI}{l^{2}}", "typo", "sign"] in rows
+
+
+def test_erratum_kinds():
+    errata = symbolic.paper_errata()
+    kinds = {(e.matrix, e.row, e.col): ebantenna_docs.erratum_kind(e) for e in errata}
+    # M1(6, 3) and M1(6, 4) belong to element 2 alone but are printed with l1 where l2 belongs
+    assert kinds[("M1", 6, 3)] == kinds[("M1", 6, 4)] == "subscript"
+    assert kinds[("K", 3, 4)] == kinds[("K1", 5, 4)] == "sign"
+    assert kinds[("K1", 3, 3)] == "common factor"
+    # a made-up erratum of each kind is told apart from the others
+    made = symbolic.Erratum("M1", 6, 3, "-13*l*l1*rhoA/420", "-13*l2**2*rhoA/420", "typo")
+    assert ebantenna_docs.erratum_kind(made) == "subscript"
+    made = symbolic.Erratum("M1", 6, 3, "-12*l*l2*rhoA/420", "-13*l2**2*rhoA/420", "typo")
+    assert ebantenna_docs.erratum_kind(made) == "wrong term"
 
 
 def test_cli_help_is_the_programs_own():

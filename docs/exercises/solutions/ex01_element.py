@@ -37,4 +37,8 @@ assert sp.simplify((t.T * M * t)[0] - rhoA * l) == 0
 # A lumped mass matrix (rho A l / 2 on each deflection) carries the same mass, but is not M.
 lumped = sp.diag(rhoA * l / 2, 0, rhoA * l / 2, 0)
 assert sp.simplify((t.T * lumped * t)[0] - rhoA * l) == 0 and lumped != M
+
+# The expected answers on the exercise page, checked against these values by the test suite.
+ANSWERS = {"M11": M[0, 0] * 420 / (rhoA * l), "M14": M[0, 3] * 420 / (rhoA * l**2)}
+
 print("ok: M derived, equal to element_matrices()[1], carries the mass rho A l")

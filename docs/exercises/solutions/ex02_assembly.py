@@ -50,4 +50,8 @@ assert wrong == typos, (wrong, typos)
 # The printed K1 is not even symmetric, which a stiffness matrix must be.
 assert paper_matrices()["K1"] != paper_matrices()["K1"].T
 assert np.allclose(K, K.T)
+
+# The expected answers on the exercise page, checked against these values by the test suite.
+ANSWERS = {"n_typos_K1": len(typos), "K33": K[2, 2], "M33": M[2, 2]}
+
 print("ok: hand assembly equals the sympy assembly; the typos of K1 are", typos)

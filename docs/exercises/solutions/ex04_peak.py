@@ -34,11 +34,17 @@ assert 0.75 < a_exact < 0.82, a_exact
 assert f_exact(a_exact - 0.05) < f_max and f_exact(a_exact + 0.05) < f_max
 # Not monotonic: the same frequency belongs to two contact positions, one on each side.
 assert f_exact(0.7) < f_max and f_exact(0.95) < f_max
-# The partner of 0.7 L: the root of f(a) - f(0.7 L) beyond the maximum.
+# The partner of 0.7 L: the root of f(a) - f(0.7 L) beyond the maximum. It exists because the
+# frequency at the far end of the range is lower still (the root is bracketed).
+assert f_exact(0.97) < f_exact(0.7) < f_max
 a_twin = brentq(lambda a: f_exact(a) - f_exact(0.7), a_exact, 0.97)
 print(f"{f_exact(0.7):.2f} Hz belongs to a contact at 0.700 L and at {a_twin:.3f} L")
 assert a_twin > a_exact and abs(f_exact(a_twin) - f_exact(0.7)) < 1e-6
 # The two-element model puts the maximum further out, by several per cent of the length.
 assert a_two - a_exact > 0.03, (a_two, a_exact)
+
+# The expected answers on the exercise page, checked against these values by the test suite.
+ANSWERS = {"a_peak": a_exact, "f_peak": f_max, "a_peak_two_elements": a_two, "a_twin": a_twin}
+
 print("ok: the dominant frequency is not monotonic; two elements misplace its maximum by "
       f"{100 * (a_two - a_exact):.1f} % of the length")

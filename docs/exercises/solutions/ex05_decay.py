@@ -35,4 +35,8 @@ assert fit.b < 0 and np.isclose(fit.tau, -1.0 / fit.b)
 # Twice the damping, half the time constant.
 fit2 = fit_decay(5.0 * np.exp(-2 * t / tau_true) * np.cos(2 * np.pi * f0 * t), fs)
 assert abs(fit2.tau / (tau_true / 2) - 1) < 0.03
+
+# The expected answers on the exercise page, checked against these values by the test suite.
+ANSWERS = {"tau_hand_ms": 1e3 * tau_hand, "tau_fit_ms": 1e3 * fit.tau, "a_fit": fit.a}
+
 print("ok")

@@ -44,4 +44,8 @@ assert abs(b - svc.intercept_[0]) < 1e-4
 assert abs(alpha_smo @ y) < 1e-10 and np.all((alpha_smo >= 0) & (alpha_smo <= C))
 # The multipliers are continuous, not +-1: the paper's remark confuses them with the labels.
 assert np.any(free)
+
+# The expected answers on the exercise page, checked against these values by the test suite.
+ANSWERS = {"w1": w[0], "w2": w[1], "b": b, "n_support": int((alpha > 1e-6).sum())}
+
 print("ok: SLSQP and SMO find the same multipliers, hyperplane and bias")

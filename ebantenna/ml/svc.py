@@ -120,7 +120,11 @@ class SVC(ClassifierMixin, BaseEstimator):
         kernel storage, ties broken by the last index, its curvature floor, sequential bias sum) so
         that scikit-learn's ``SVC`` with the same ``shrinking`` is reproduced to about 1e-12 with
         the same iteration counts. See :mod:`ebantenna.ml.smo` for what each convention
-        changes.
+        changes. On purpose this includes libsvm's cancelling RBF arithmetic in training (the
+        expansion of :math:`\\lVert x - y\\rVert^2` about the origin, see
+        :mod:`ebantenna.ml.kernels`): its path, like libsvm's, changes when every feature is
+        shifted by the same amount. Predictions use centred points in both modes, as close as a
+        GEMM gets to libsvm's direct differences when it predicts.
 
     Attributes
     ----------
@@ -279,7 +283,7 @@ class SVC(ClassifierMixin, BaseEstimator):
         starts = np.concatenate([[0], np.cumsum([m.size for m in members])])
         full = None
         if n_keep * n_keep * np.dtype(dtype).itemsize <= cache_bytes:
-            full = kern.gram(X[order], dtype=dtype)
+            full = kern.gram(X[order], dtype=dtype, center=not self.libsvm_compat)
         diag = kern.diagonal(X)
         policy = self._smo_policy(whole_kernel=full is not None)
         max_iter = _LIBSVM_MAX_ITER if self.max_iter == -1 else int(self.max_iter)
@@ -296,7 +300,8 @@ class SVC(ClassifierMixin, BaseEstimator):
                     parts = (slice(starts[a], starts[a + 1]), slice(starts[b], starts[b + 1]))
                     rows = KernelRows(None, kern, dtype, cache_bytes, full=full, parts=parts)
                 else:
-                    rows = KernelRows(X[idx], kern, dtype, cache_bytes)
+                    rows = KernelRows(X[idx], kern, dtype, cache_bytes,
+                                      center=not self.libsvm_compat)
                 res = solve_smo(rows, ys, c_vec[idx], diagonal=diag[idx], tol=float(self.tol),
                                 max_iter=max_iter, policy=policy)
                 if self.verbose:

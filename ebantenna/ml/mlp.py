@@ -12,7 +12,13 @@ swap the import. The solvers are
 ``'adam'``
     Adam;
 ``'scg'``
-    Møller's scaled conjugate gradient on the full batch (the paper's best distance regressor).
+    scaled conjugate gradient on the full batch (the paper's best distance regressor), in the
+    form of Netlab's ``scg.m``, a variant of Møller's algorithm (see
+    :mod:`ebantenna.ml.optimizers`). Two parameters beyond scikit-learn's set it: ``sigma0``
+    (default 1e-4), the step of the finite-difference curvature estimate, and ``lambda0``
+    (default 1), the initial Levenberg-Marquardt scale; MATLAB's ``trainscg`` uses 5e-5 and
+    5e-7. A loss or gradient that is not finite stops it with a ``ValueError``, as for the
+    other solvers.
 
 The loss is :math:`L = \\ell + \\frac{\\alpha}{2n}\\sum_l \\lVert W_l \\rVert^2` with :math:`\\ell`
 the mean cross-entropy per sample, or, for regression,
@@ -53,7 +59,8 @@ class MLPClassifier(ClassifierMixin, BaseMLP):
     """Multilayer perceptron classifier: softmax (or logistic) output and cross-entropy loss.
 
     Parameters are those of :class:`sklearn.neural_network.MLPClassifier`, with ``solver`` one of
-    'gd', 'sgd', 'adam' or 'scg' (see the module text). ``random_state`` seeds a
+    'gd', 'sgd', 'adam' or 'scg', plus ``sigma0`` and ``lambda0`` of 'scg' (see the module text).
+    ``random_state`` seeds a
     :func:`numpy.random.default_rng` (initial weights, shuffling, validation split).
 
     Attributes
@@ -157,7 +164,8 @@ class MLPRegressor(RegressorMixin, BaseMLP):
     """Multilayer perceptron regressor: identity output and squared-error loss.
 
     Parameters are those of :class:`sklearn.neural_network.MLPRegressor`, with ``solver`` one of
-    'gd', 'sgd', 'adam' or 'scg'. With several outputs the gradient is the true gradient of the
+    'gd', 'sgd', 'adam' or 'scg', plus ``sigma0`` and ``lambda0`` of 'scg' (see the module text).
+    With several outputs the gradient is the true gradient of the
     reported loss, which is ``1 / n_outputs`` of scikit-learn's (see the module text).
 
     Attributes

@@ -65,6 +65,8 @@ class BaseMLP(BaseEstimator):
         "beta_2": [Interval(Real, 0, 1, closed="left")],
         "epsilon": [Interval(Real, 0, None, closed="neither")],
         "n_iter_no_change": [Interval(Integral, 1, None, closed="left"), Options(Real, {np.inf})],
+        "sigma0": [Interval(Real, 0, None, closed="neither")],
+        "lambda0": [Interval(Real, 0, None, closed="neither")],
     }
 
     #: Attributes that ``fit`` sets on every network (see :mod:`ebantenna.ml.fitted`).
@@ -107,6 +109,8 @@ class BaseMLP(BaseEstimator):
         beta_2=0.999,
         epsilon=1e-8,
         n_iter_no_change=10,
+        sigma0=1e-4,
+        lambda0=1.0,
     ):
         self.hidden_layer_sizes = hidden_layer_sizes
         self.activation = activation
@@ -130,6 +134,8 @@ class BaseMLP(BaseEstimator):
         self.beta_2 = beta_2
         self.epsilon = epsilon
         self.n_iter_no_change = n_iter_no_change
+        self.sigma0 = sigma0
+        self.lambda0 = lambda0
 
     # ------------------------------------------------------------ network
     def _hidden_sizes(self) -> list[int]:
@@ -317,11 +323,12 @@ class BaseMLP(BaseEstimator):
             loss, cg, ig = self._loss_grad(X, Y, coefs, intercepts)
             return loss, self._pack(cg, ig)
 
-        state = scg_init(self._pack(self.coefs_, self.intercepts_), fg)
+        state = scg_init(self._pack(self.coefs_, self.intercepts_), fg,
+                         lambda0=float(self.lambda0))
         stopped = False
         for _ in range(self.max_iter):
             f_before = state.f
-            scg_step(state, fg)
+            scg_step(state, fg, sigma0=float(self.sigma0))
             self.coefs_, self.intercepts_ = self._unpack(state.w.copy(), shapes)
             # the loss recorded for an epoch is the one at its start, as for the other solvers
             if self._end_of_epoch(f_before, X_val, Y_val):

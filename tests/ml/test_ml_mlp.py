@@ -254,6 +254,45 @@ def test_scg_minimises_a_quadratic_like_conjugate_gradients():
     np.testing.assert_allclose(state.w, np.linalg.solve(A, b), rtol=1e-7, atol=1e-9)
 
 
+def test_scg_sigma0_and_lambda0_are_netlabs_settable_constants():
+    rng = np.random.default_rng(2)
+    M = rng.normal(size=(4, 4))
+    A = M @ M.T + np.eye(4)
+
+    def fg(w):
+        return 0.5 * float(w @ A @ w), A @ w
+
+    assert scg_init(np.ones(4), fg).beta == 1.0  # Netlab's lambda0
+    state = scg_init(np.ones(4), fg, lambda0=5e-7)  # trainscg's
+    assert state.beta == 5e-7
+    d = state.d.copy()  # the first direction: steepest descent
+    scg_step(state, fg, sigma0=5e-5)
+    # on a quadratic the finite difference of gradients is d^T A d for any sigma0, up to the
+    # rounding of A (w + sigma d) - A w: about eps |A| |w| / sigma relative to |A| |d|
+    assert state.gamma == pytest.approx(float(d @ A @ d), rel=1e-8)
+    X, _ = _data(n=40, d=3, seed=1)
+    y = X[:, 0] - X[:, 1]
+    common = dict(hidden_layer_sizes=(5,), solver="scg", max_iter=30, random_state=0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        netlab = MLPRegressor(**common).fit(X, y)
+        matlab = MLPRegressor(sigma0=5e-5, lambda0=5e-7, **common).fit(X, y)
+    assert netlab.loss_curve_[0] == matlab.loss_curve_[0]  # same start, different scale path
+    assert netlab.loss_curve_ != matlab.loss_curve_
+    with pytest.raises(ValueError, match="lambda0"):
+        MLPRegressor(solver="scg", lambda0=0.0).fit(X, y)
+
+
+@pytest.mark.parametrize("scale_x, scale_y", [(1.0, 1e200), (1e200, 1.0)])
+def test_scg_refuses_a_loss_that_is_not_finite(scale_x, scale_y):
+    X, _ = _data(n=40, d=3, seed=1)
+    y = X[:, 0]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # NumPy's overflow, the cause named below
+        with pytest.raises(ValueError, match="not finite"):
+            MLPRegressor((5,), solver="scg", max_iter=5).fit(scale_x * X, scale_y * y)
+
+
 def test_early_stopping_keeps_the_best_validation_weights():
     X, rng = _data(n=200, d=5, seed=6)
     y = (X[:, 0] + 0.8 * rng.normal(size=200) > 0).astype(int)

@@ -1,13 +1,16 @@
 """Kernel functions of the support vector machine, computed with BLAS.
 
-A kernel :math:`k(x, x')` measures the similarity of two feature vectors. The three kernels offered
+A kernel :math:`k(x, x')` measures the similarity of two feature vectors. The four kernels offered
 are the ones scikit-learn's :class:`sklearn.svm.SVC` and libsvm call by the same names:
 
 =========== ===========================================================
 linear      :math:`k(x, x') = x \\cdot x'`
 rbf         :math:`k(x, x') = \\exp(-\\gamma \\lVert x - x' \\rVert^2)`
 poly        :math:`k(x, x') = (\\gamma\\, x \\cdot x' + r)^d`
+sigmoid     :math:`k(x, x') = \\tanh(\\gamma\\, x \\cdot x' + r)`
 =========== ===========================================================
+
+(:class:`~ebantenna.ml.SVC` also takes a precomputed kernel matrix or a callable.)
 
 Every Gram matrix is built from one matrix product (a GEMM), so a whole block of kernel entries
 costs about as much as the dot products it needs, instead of one call per entry. The RBF kernel
@@ -58,7 +61,7 @@ __all__ = ["KERNELS", "Kernel", "KernelRows", "resolve_gamma", "gram_matrix", "s
 logger = logging.getLogger(__name__)
 
 #: Names of the kernels, as scikit-learn spells them.
-KERNELS = ("linear", "rbf", "poly")
+KERNELS = ("linear", "rbf", "poly", "sigmoid")
 
 
 def resolve_gamma(gamma, X: np.ndarray) -> float:
@@ -114,14 +117,14 @@ class Kernel:
 
     Parameters
     ----------
-    name : {'linear', 'rbf', 'poly'}
+    name : {'linear', 'rbf', 'poly', 'sigmoid'}
         Kernel type.
     gamma : float
-        Coefficient :math:`\\gamma` of 'rbf' and 'poly' (1 / feature²), >= 0.
+        Coefficient :math:`\\gamma` of 'rbf', 'poly' and 'sigmoid' (1 / feature²), >= 0.
     degree : int
         Degree :math:`d` of 'poly', >= 0.
     coef0 : float
-        Constant term :math:`r` of 'poly'.
+        Constant term :math:`r` of 'poly' and 'sigmoid'.
 
     Examples
     --------
@@ -200,6 +203,10 @@ class Kernel:
                 block *= self.gamma
                 block += self.coef0
                 block **= self.degree
+            elif self.name == "sigmoid":
+                block *= self.gamma
+                block += self.coef0
+                np.tanh(block, out=block)
             elif self.name == "rbf":
                 # exp(-gamma * (|x|^2 + |y|^2 - 2 x.y)) in libsvm's order of operations
                 block *= -2.0
@@ -221,6 +228,8 @@ class Kernel:
         sq = squared_norms(X)
         if self.name == "linear":
             return sq
+        if self.name == "sigmoid":
+            return np.tanh(self.gamma * sq + self.coef0)
         return (self.gamma * sq + self.coef0) ** self.degree
 
 

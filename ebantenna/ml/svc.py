@@ -1,8 +1,8 @@
 """``SVC``: a kernel support vector classifier trained by hand-written SMO.
 
-A drop-in for :class:`sklearn.svm.SVC` (C-SVC, no probability estimates): the same parameter
-names, one-vs-one multiclass training and the same fitted attributes, layout and signs, so that a
-student can swap the import and compare. The dual problems are solved by
+A drop-in for :class:`sklearn.svm.SVC` (C-SVC): the same parameter names, kernels (including a
+precomputed matrix and a callable), one-vs-one multiclass training and the same fitted attributes,
+layout and signs, so that a student can swap the import and compare. The dual problems are solved by
 :func:`ebantenna.ml.smo.solve_smo`.
 """
 
@@ -28,6 +28,7 @@ from sklearn.utils.validation import (
 
 from .fitted import INPUT_ATTRIBUTES, FittedAttribute
 from .kernels import Kernel, KernelRows, resolve_gamma
+from .ovo import one_vs_one_coef, ovo_votes, ovr_decision_function
 from .smo import DEFAULT, LIBSVM, SMOPolicy, solve_smo
 
 __all__ = ["SVC", "ovr_decision_function"]
@@ -38,40 +39,6 @@ logger = logging.getLogger(__name__)
 _LIBSVM_MAX_ITER = 10_000_000
 
 
-def ovr_decision_function(predictions: np.ndarray, confidences: np.ndarray, n_classes: int):
-    """One-vs-rest scores from one-vs-one results, aggregated as scikit-learn does.
-
-    Each class gets its number of pairwise votes plus a tie-breaking term
-    :math:`s / (3(|s| + 1))` in :math:`(-1/3, 1/3)`, where :math:`s` is its summed confidence.
-
-    Parameters
-    ----------
-    predictions : ndarray of shape (n_samples, n_pairs)
-        0 where the pair's first class won, 1 where the second did.
-    confidences : ndarray of shape (n_samples, n_pairs)
-        Confidence in the second class of each pair.
-    n_classes : int
-        Number of classes; the pairs are ``(0, 1), (0, 2), ..., (1, 2), ...``.
-
-    Examples
-    --------
-    >>> ovr_decision_function(np.array([[0, 0, 1]]), np.array([[-1.0, -2.0, 0.5]]), 3)
-    array([[ 2.25, -0.2 ,  0.8 ]])
-    """
-    n = predictions.shape[0]
-    votes = np.zeros((n, n_classes))
-    conf = np.zeros((n, n_classes))
-    k = 0
-    for i in range(n_classes):
-        for j in range(i + 1, n_classes):
-            conf[:, i] -= confidences[:, k]
-            conf[:, j] += confidences[:, k]
-            votes[predictions[:, k] == 0, i] += 1
-            votes[predictions[:, k] == 1, j] += 1
-            k += 1
-    return votes + conf / (3 * (np.abs(conf) + 1))
-
-
 class SVC(ClassifierMixin, BaseEstimator):
     """C-support vector classifier with a hand-written SMO solver.
 
@@ -79,14 +46,17 @@ class SVC(ClassifierMixin, BaseEstimator):
     ----------
     C : float, default=1.0
         Penalty of the slack variables (upper bound of the dual variables), > 0.
-    kernel : {'rbf', 'linear', 'poly'}, default='rbf'
-        Kernel function (see :mod:`ebantenna.ml.kernels`).
+    kernel : {'rbf', 'linear', 'poly', 'sigmoid', 'precomputed'} or callable, default='rbf'
+        Kernel function (see :mod:`ebantenna.ml.kernels`). With 'precomputed', ``X`` is the
+        kernel matrix: (n_samples, n_samples) for :meth:`fit`, (n_test, n_samples) later. A
+        callable ``kernel(X, Y)`` returns the matrix of ``X`` against ``Y`` (it is evaluated once
+        on the training set; the training ``X`` is kept to evaluate it for new points).
     degree : int, default=3
         Degree of the 'poly' kernel.
     gamma : {'scale', 'auto'} or float, default='scale'
         Kernel coefficient, as in scikit-learn: 'scale' is ``1 / (n_features * X.var())``.
     coef0 : float, default=0.0
-        Constant term of the 'poly' kernel.
+        Constant term of the 'poly' and 'sigmoid' kernels.
     shrinking : bool, default=True
         libsvm's shrinking heuristic (see :class:`~ebantenna.ml.smo_policy.SMOPolicy`); the
         solution is the same within ``tol`` either way. Shrinking saves kernel evaluations, so it
@@ -132,6 +102,7 @@ class SVC(ClassifierMixin, BaseEstimator):
     support_ : ndarray of shape (n_SV,)
         Indices of the support vectors, grouped by class.
     support_vectors_ : ndarray of shape (n_SV, n_features)
+        Empty, of shape (0, 0), for a precomputed or callable kernel (as in scikit-learn).
     n_support_ : ndarray of shape (n_classes,), int32
     dual_coef_ : ndarray of shape (n_classes - 1, n_SV)
         :math:`y_t\\alpha_t` in libsvm's one-vs-one layout (sign flipped for two classes, as
@@ -161,7 +132,7 @@ class SVC(ClassifierMixin, BaseEstimator):
     # C must be finite and max_iter=0 (no update at all) is refused
     _parameter_constraints: dict = {
         "C": [Interval(Real, 0.0, None, closed="neither")],
-        "kernel": [StrOptions({"linear", "rbf", "poly"})],
+        "kernel": [StrOptions({"linear", "rbf", "poly", "sigmoid", "precomputed"}), callable],
         "degree": [Interval(Integral, 0, None, closed="left")],
         "gamma": [StrOptions({"scale", "auto"}), Interval(Real, 0.0, None, closed="left")],
         "coef0": [Interval(Real, None, None, closed="neither")],
@@ -254,6 +225,9 @@ class SVC(ClassifierMixin, BaseEstimator):
         if self.break_ties and self.decision_function_shape == "ovo":
             raise ValueError("break_ties must be False when decision_function_shape is 'ovo'")
         X, y = validate_data(self, X, y, dtype=np.float64, order="C", accept_sparse=False)
+        if self.kernel == "precomputed" and X.shape[0] != X.shape[1]:
+            raise ValueError("Precomputed matrix must be a square matrix. Input is a "
+                             f"{X.shape[0]}x{X.shape[1]} matrix.")
         y = column_or_1d(y, warn=True)
         check_classification_targets(y)
         classes, y_idx = np.unique(y, return_inverse=True)
@@ -265,8 +239,8 @@ class SVC(ClassifierMixin, BaseEstimator):
         self.class_weight_ = compute_class_weight(self.class_weight, classes=classes, y=y)
         sw = _check_sample_weight(sample_weight, X, dtype=np.float64)
         self._gamma = resolve_gamma(self.gamma, X)
-        kern = Kernel(self.kernel, gamma=self._gamma, degree=int(self.degree),
-                      coef0=float(self.coef0))
+        given = self._given_kernel_matrix(X)  # precomputed or callable: the whole matrix
+        kern = None if given is not None else self._kernel()
         c_vec = float(self.C) * self.class_weight_[y_idx] * sw
         keep = c_vec > 0
         n = X.shape[0]
@@ -282,9 +256,13 @@ class SVC(ClassifierMixin, BaseEstimator):
         order = np.concatenate(members)
         starts = np.concatenate([[0], np.cumsum([m.size for m in members])])
         full = None
-        if n_keep * n_keep * np.dtype(dtype).itemsize <= cache_bytes:
-            full = kern.gram(X[order], dtype=dtype, center=not self.libsvm_compat)
-        diag = kern.diagonal(X)
+        if given is not None:
+            full = np.asarray(given[np.ix_(order, order)], dtype=dtype)
+            diag = np.diag(given).astype(np.float64)
+        else:
+            if n_keep * n_keep * np.dtype(dtype).itemsize <= cache_bytes:
+                full = kern.gram(X[order], dtype=dtype, center=not self.libsvm_compat)
+            diag = kern.diagonal(X)
         policy = self._smo_policy(whole_kernel=full is not None)
         max_iter = _LIBSVM_MAX_ITER if self.max_iter == -1 else int(self.max_iter)
         max_iter = max(max_iter, 100 * n) if self.max_iter == -1 else max_iter
@@ -361,7 +339,12 @@ class SVC(ClassifierMixin, BaseEstimator):
             dual[b - 1, pos[ia[sa]]] = coef[:na][sa]
             dual[a, pos[ib[sb]]] = coef[na:][sb]
         self.support_ = support.astype(np.int32)
-        self.support_vectors_ = X[support]
+        if self.kernel == "precomputed" or callable(self.kernel):
+            self.support_vectors_ = np.empty((0, 0))
+            if callable(self.kernel):
+                self._X_fit = X
+        else:
+            self.support_vectors_ = X[support]
         self.n_support_ = np.array([s.size for s in sv_per_class], dtype=np.int32)
         self._dual_coef_ = dual
         self._intercept_ = -rhos
@@ -373,16 +356,62 @@ class SVC(ClassifierMixin, BaseEstimator):
             self.dual_coef_ = dual
             self.intercept_ = -rhos
 
+    def _given_kernel_matrix(self, X):
+        """The training kernel matrix for 'precomputed' (``X`` itself) or a callable, else None."""
+        if self.kernel == "precomputed":
+            return X
+        if callable(self.kernel):
+            return self._call_kernel(X, X)
+        return None
+
+    def _call_kernel(self, X, Y) -> np.ndarray:
+        """The callable kernel's matrix of ``X`` against ``Y``, checked."""
+        K = np.asarray(self.kernel(X, Y), dtype=np.float64)
+        if K.shape != (X.shape[0], Y.shape[0]):
+            raise ValueError(f"the kernel callable must return an array of shape "
+                             f"{(X.shape[0], Y.shape[0])}; got {K.shape}")
+        if not np.isfinite(K).all():
+            raise ValueError("the kernel callable returned values that are not finite")
+        return K
+
     # ----------------------------------------------------------------- predict
     def _kernel(self) -> Kernel:
         return Kernel(self.kernel, gamma=self._gamma, degree=int(self.degree),
                       coef0=float(self.coef0))
 
+    def _test_kernel(self, X) -> np.ndarray:
+        """Kernel matrix of test points ``X`` (validated) against the support vectors."""
+        if self.kernel == "precomputed":
+            return X[:, self.support_]
+        if callable(self.kernel):
+            return self._call_kernel(X, self._X_fit[self.support_])
+        return self._kernel().gram(X, self.support_vectors_)
+
+    @property
+    def coef_(self) -> np.ndarray:
+        """Weights :math:`w` of the separating hyperplanes, linear kernel only.
+
+        Shape (1, n_features) for two classes, else one row per pair of classes in the order of
+        ``intercept_``; computed from ``dual_coef_`` and ``support_vectors_`` as scikit-learn
+        does, read-only.
+        """
+        if self.kernel != "linear":
+            raise AttributeError("coef_ is only available when using a linear kernel")
+        check_is_fitted(self)
+        coef = one_vs_one_coef(self.dual_coef_, self.n_support_, self.support_vectors_)
+        coef.flags.writeable = False
+        return coef
+
+    def __sklearn_tags__(self):
+        tags = super().__sklearn_tags__()
+        tags.input_tags.pairwise = self.kernel == "precomputed"
+        return tags
+
     def _ovo_decision(self, X) -> np.ndarray:
         """libsvm's pairwise decision values (positive: the pair's first class)."""
         check_is_fitted(self)
         X = validate_data(self, X, dtype=np.float64, order="C", reset=False)
-        kx = self._kernel().gram(X, self.support_vectors_)
+        kx = self._test_kernel(X)
         k = self.classes_.size
         bounds = np.concatenate([[0], np.cumsum(self.n_support_)])
         out = np.empty((X.shape[0], k * (k - 1) // 2))
@@ -418,12 +447,5 @@ class SVC(ClassifierMixin, BaseEstimator):
         k = self.classes_.size
         if self.break_ties and self.decision_function_shape == "ovr" and k > 2:
             return self.classes_[np.argmax(ovr_decision_function(dec < 0, -dec, k), axis=1)]
-        votes = np.zeros((dec.shape[0], k), dtype=np.int64)
-        p = 0
-        for a in range(k):
-            for b in range(a + 1, k):
-                win = dec[:, p] > 0
-                votes[win, a] += 1
-                votes[~win, b] += 1
-                p += 1
+        votes = ovo_votes(dec, k)
         return self.classes_[np.argmax(votes, axis=1)]

@@ -47,7 +47,7 @@ def test_bad_parameter_gives_scikit_learns_message(ours, params):
 
 
 @pytest.mark.parametrize("params, allowed", [
-    (dict(solver="lbfgs"), ["'gd'", "'sgd'", "'adam'", "'scg'"]),
+    (dict(solver="newton"), ["'gd'", "'sgd'", "'adam'", "'scg'", "'lbfgs'"]),
     (dict(validation_fraction=0.0), ["range (0.0, 1.0)"]),  # 0 would leave no validation data
     (dict(random_state=-1), ["None", "Generator"]),
 ])

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["ovr_decision_function", "ovo_votes", "one_vs_one_coef"]
+__all__ = ["ovr_decision_function", "ovo_votes", "one_vs_one_coef", "dual_layout"]
 
 
 def ovr_decision_function(predictions: np.ndarray, confidences: np.ndarray, n_classes: int):
@@ -99,3 +99,51 @@ def one_vs_one_coef(dual_coef: np.ndarray, n_support: np.ndarray,
             rows.append(dual_coef[b - 1, sa] @ support_vectors[sa]
                         + dual_coef[a, sb] @ support_vectors[sb])
     return np.vstack(rows)
+
+
+def dual_layout(n: int, members: list[np.ndarray], coefs: dict) -> tuple:
+    """Arrange the pairwise dual solutions in libsvm's (and scikit-learn's) layout.
+
+    Parameters
+    ----------
+    n : int
+        Number of training points.
+    members : list of ndarray
+        Indices of the points of each class.
+    coefs : dict
+        ``coefs[a, b] = (idx, y_alpha)``: the points of the pair (class ``a`` first) and their
+        :math:`y_t \\alpha_t`.
+
+    Returns
+    -------
+    support : ndarray of int32
+        Support vectors (nonzero in any pair), grouped by class.
+    n_support : ndarray of int32, shape (n_classes,)
+    dual : ndarray of shape (n_classes - 1, n_SV)
+        Row ``b - 1`` holds the coefficients of class ``a``'s points in pair ``(a, b)``, row
+        ``a`` those of class ``b``'s points (libsvm's signs: +1 for the pair's first class).
+
+    Examples
+    --------
+    >>> pair = (np.array([0, 1, 2]), np.array([0.5, 0.0, -0.5]))
+    >>> support, n_sv, dual = dual_layout(3, [np.array([0, 1]), np.array([2])], {(0, 1): pair})
+    >>> support, n_sv, dual
+    (array([0, 2], dtype=int32), array([1, 1], dtype=int32), array([[ 0.5, -0.5]]))
+    """
+    k = len(members)
+    nonzero = np.zeros(n, dtype=bool)
+    for idx, coef in coefs.values():
+        nonzero[idx[coef != 0]] = True
+    sv_per_class = [m[nonzero[m]] for m in members]
+    support = np.concatenate(sv_per_class)
+    pos = np.full(n, -1)
+    pos[support] = np.arange(support.size)
+    dual = np.zeros((k - 1, support.size))
+    for (a, b), (idx, coef) in coefs.items():
+        na = members[a].size
+        ia, ib = idx[:na], idx[na:]
+        sa, sb = nonzero[ia], nonzero[ib]
+        dual[b - 1, pos[ia[sa]]] = coef[:na][sa]
+        dual[a, pos[ib[sb]]] = coef[na:][sb]
+    n_support = np.array([c.size for c in sv_per_class], dtype=np.int32)
+    return support.astype(np.int32), n_support, dual

@@ -1,8 +1,9 @@
 """``SVC``: a kernel support vector classifier trained by hand-written SMO.
 
 A drop-in for :class:`sklearn.svm.SVC` (C-SVC): the same parameter names, kernels (including a
-precomputed matrix and a callable), one-vs-one multiclass training and the same fitted attributes,
-layout and signs, so that a student can swap the import and compare. The dual problems are solved by
+precomputed matrix and a callable), one-vs-one multiclass training, probability estimates as libsvm
+makes them (:mod:`ebantenna.ml.platt`) and the same fitted attributes, layout and signs, so that a
+student can swap the import and compare. The dual problems are solved by
 :func:`ebantenna.ml.smo.solve_smo`.
 """
 
@@ -15,9 +16,11 @@ from numbers import Integral, Real
 
 import numpy as np
 from sklearn.base import BaseEstimator, ClassifierMixin, _fit_context
-from sklearn.exceptions import ConvergenceWarning
+from sklearn.exceptions import ConvergenceWarning, NotFittedError
+from sklearn.utils import check_random_state
 from sklearn.utils._param_validation import Interval, Options, StrOptions
 from sklearn.utils.class_weight import compute_class_weight
+from sklearn.utils.metaestimators import available_if
 from sklearn.utils.multiclass import check_classification_targets
 from sklearn.utils.validation import (
     _check_sample_weight,
@@ -28,7 +31,8 @@ from sklearn.utils.validation import (
 
 from .fitted import INPUT_ATTRIBUTES, FittedAttribute
 from .kernels import Kernel, KernelRows, resolve_gamma
-from .ovo import one_vs_one_coef, ovo_votes, ovr_decision_function
+from .ovo import dual_layout, one_vs_one_coef, ovo_votes, ovr_decision_function
+from .platt import pairwise_coupling, pairwise_sigmoids
 from .smo import DEFAULT, LIBSVM, SMOPolicy, solve_smo
 
 __all__ = ["SVC", "ovr_decision_function"]
@@ -62,6 +66,10 @@ class SVC(ClassifierMixin, BaseEstimator):
         solution is the same within ``tol`` either way. Shrinking saves kernel evaluations, so it
         is used with the row cache and in ``libsvm_compat`` mode; when the whole kernel matrix is
         in memory the default mode solves without it, which is faster in NumPy.
+    probability : bool, default=False
+        Also fit Platt's sigmoids on five-fold cross-validated decision values (five more fits
+        per pair of classes), for :meth:`predict_proba`. As in scikit-learn, :meth:`predict`
+        still votes and may disagree with the most probable class.
     tol : float, default=1e-3
         Stopping tolerance on the maximal KKT violation.
     cache_size : float, default=200
@@ -81,8 +89,9 @@ class SVC(ClassifierMixin, BaseEstimator):
     break_ties : bool, default=False
         With 'ovr' and more than two classes, predict the argmax of the decision function instead
         of the majority vote.
-    random_state : int, RandomState instance or None, default=None
-        Accepted for compatibility; the solver is deterministic.
+    random_state : int, Generator, RandomState instance or None, default=None
+        Seeds the folds of ``probability=True`` (NumPy's generator, not libsvm's: the folds
+        differ from scikit-learn's); the solver itself is deterministic.
     selection : {'second-order', 'first-order'}, default='second-order'
         Working-set selection: libsvm's second-order rule or the maximal violating pair.
     libsvm_compat : bool, default=False
@@ -110,6 +119,8 @@ class SVC(ClassifierMixin, BaseEstimator):
     intercept_ : ndarray of shape (n_classes * (n_classes - 1) / 2,)
     n_iter_ : ndarray of shape (n_classes * (n_classes - 1) / 2,)
         SMO updates per binary problem.
+    probA_, probB_ : ndarray of shape (n_classes * (n_classes - 1) / 2,)
+        Platt's :math:`A` and :math:`B` of each pair (empty unless ``probability``).
     fit_status_ : int
         0 if every problem converged, 1 otherwise.
     class_weight_ : ndarray of shape (n_classes,)
@@ -137,6 +148,7 @@ class SVC(ClassifierMixin, BaseEstimator):
         "gamma": [StrOptions({"scale", "auto"}), Interval(Real, 0.0, None, closed="left")],
         "coef0": [Interval(Real, None, None, closed="neither")],
         "shrinking": ["boolean"],
+        "probability": ["boolean"],
         "tol": [Interval(Real, 0.0, None, closed="neither")],
         "cache_size": [Interval(Real, 0, None, closed="neither")],
         "class_weight": [StrOptions({"balanced"}), dict, None],
@@ -164,6 +176,8 @@ class SVC(ClassifierMixin, BaseEstimator):
         FittedAttribute("_gamma", "value"),
         FittedAttribute("fit_status_", "value"),
         FittedAttribute("shape_fit_", "value", since=2),
+        FittedAttribute("probA_", "array", dtype="float64", ndim=1, optional=True),
+        FittedAttribute("probB_", "array", dtype="float64", ndim=1, optional=True),
         *INPUT_ATTRIBUTES,
     )
 
@@ -176,6 +190,7 @@ class SVC(ClassifierMixin, BaseEstimator):
         gamma="scale",
         coef0=0.0,
         shrinking=True,
+        probability=False,
         tol=1e-3,
         cache_size=200,
         class_weight=None,
@@ -193,6 +208,7 @@ class SVC(ClassifierMixin, BaseEstimator):
         self.gamma = gamma
         self.coef0 = coef0
         self.shrinking = shrinking
+        self.probability = probability
         self.tol = tol
         self.cache_size = cache_size
         self.class_weight = class_weight
@@ -291,6 +307,9 @@ class SVC(ClassifierMixin, BaseEstimator):
                 rhos.append(res.rho)
                 n_iter.append(res.n_iter)
         self._store(X, classes, members, coefs, np.array(rhos), n_iter)
+        self.probA_ = self.probB_ = np.empty(0)
+        if self.probability:
+            self._fit_probability(X, members, given, kern, dtype, c_vec, diag, policy, max_iter)
         self.fit_status_ = status
         self.shape_fit_ = X.shape
         if status:
@@ -324,20 +343,7 @@ class SVC(ClassifierMixin, BaseEstimator):
     def _store(self, X, classes, members, coefs, rhos, n_iter):
         """Arrange the pairwise solutions in libsvm's (and scikit-learn's) layout."""
         k = classes.size
-        nonzero = np.zeros(X.shape[0], dtype=bool)
-        for idx, coef in coefs.values():
-            nonzero[idx[coef != 0]] = True
-        sv_per_class = [m[nonzero[m]] for m in members]
-        support = np.concatenate(sv_per_class)
-        pos = np.full(X.shape[0], -1)
-        pos[support] = np.arange(support.size)
-        dual = np.zeros((k - 1, support.size))
-        for (a, b), (idx, coef) in coefs.items():
-            na = members[a].size
-            ia, ib = idx[:na], idx[na:]
-            sa, sb = nonzero[ia], nonzero[ib]
-            dual[b - 1, pos[ia[sa]]] = coef[:na][sa]
-            dual[a, pos[ib[sb]]] = coef[na:][sb]
+        support, n_support, dual = dual_layout(X.shape[0], members, coefs)
         self.support_ = support.astype(np.int32)
         if self.kernel == "precomputed" or callable(self.kernel):
             self.support_vectors_ = np.empty((0, 0))
@@ -345,7 +351,7 @@ class SVC(ClassifierMixin, BaseEstimator):
                 self._X_fit = X
         else:
             self.support_vectors_ = X[support]
-        self.n_support_ = np.array([s.size for s in sv_per_class], dtype=np.int32)
+        self.n_support_ = n_support
         self._dual_coef_ = dual
         self._intercept_ = -rhos
         self.n_iter_ = np.array(n_iter, dtype=np.int32)
@@ -355,6 +361,49 @@ class SVC(ClassifierMixin, BaseEstimator):
         else:
             self.dual_coef_ = dual
             self.intercept_ = -rhos
+
+    def _fit_probability(self, X, members, given, kern, dtype, c_vec, diag, policy, max_iter):
+        """Platt's sigmoids of every pair, on five-fold decision values (libsvm's procedure)."""
+        center = not self.libsvm_compat
+
+        def kernel_block(rows, cols):
+            if given is not None:
+                return given[np.ix_(rows, cols)]
+            same = rows is cols or np.array_equal(rows, cols)
+            return kern.gram(X[rows], None if same else X[cols], center=center or not same)
+
+        def solve(points, ys, K):
+            rows = KernelRows(None, kern, dtype, 0, full=K)
+            res = solve_smo(rows, ys, c_vec[points], diagonal=diag[points], tol=float(self.tol),
+                            max_iter=max_iter, policy=policy)
+            return res.alpha * ys, res.rho
+
+        rs = self.random_state
+        seed = rs if rs is None or isinstance(rs, (Integral, np.random.Generator)) else (
+            check_random_state(rs).randint(2**31 - 1))
+        self.probA_, self.probB_ = pairwise_sigmoids(members, kernel_block, solve,
+                                                     np.random.default_rng(seed))
+
+    def _check_proba(self):
+        if not self.probability:
+            raise AttributeError("predict_proba is not available when probability=False")
+        return True
+
+    @available_if(_check_proba)
+    def predict_proba(self, X):
+        """Class probabilities, shape (n_samples, n_classes), from Platt's sigmoids coupled
+        pairwise (see :mod:`ebantenna.ml.platt`)."""
+        check_is_fitted(self)
+        if getattr(self, "probA_", np.empty(0)).size == 0:
+            raise NotFittedError("predict_proba is not available when fitted with "
+                                 "probability=False")
+        return pairwise_coupling(self._ovo_decision(X), self.probA_, self.probB_,
+                                 self.classes_.size)
+
+    @available_if(_check_proba)
+    def predict_log_proba(self, X):
+        """Logarithm of :meth:`predict_proba`."""
+        return np.log(self.predict_proba(X))
 
     def _given_kernel_matrix(self, X):
         """The training kernel matrix for 'precomputed' (``X`` itself) or a callable, else None."""

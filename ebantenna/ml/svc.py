@@ -10,6 +10,7 @@ student can swap the import and compare. The dual problems are solved by
 from __future__ import annotations
 
 import logging
+import math
 import warnings
 from dataclasses import replace
 from numbers import Integral, Real
@@ -39,8 +40,6 @@ __all__ = ["SVC", "ovr_decision_function"]
 
 logger = logging.getLogger(__name__)
 
-#: libsvm's own cap on the number of SMO updates when ``max_iter=-1``.
-_LIBSVM_MAX_ITER = 10_000_000
 
 
 class SVC(ClassifierMixin, BaseEstimator):
@@ -81,8 +80,9 @@ class SVC(ClassifierMixin, BaseEstimator):
     verbose : bool, default=False
         Log each binary problem at INFO level.
     max_iter : int, default=-1
-        Largest number of SMO updates per binary problem; -1 means libsvm's own cap
-        (``max(1e7, 100 n)``). Stopping there raises a ``ConvergenceWarning``.
+        Largest number of SMO updates per binary problem; -1 means no limit, as in
+        scikit-learn's bundled libsvm (upstream libsvm stops at ``max(1e7, 100 n)``). Stopping
+        at the limit raises a ``ConvergenceWarning``.
     decision_function_shape : {'ovr', 'ovo'}, default='ovr'
         Shape of :meth:`decision_function` with more than two classes: the raw one-vs-one values,
         or one-vs-rest scores aggregated from their votes.
@@ -259,7 +259,6 @@ class SVC(ClassifierMixin, BaseEstimator):
         kern = None if given is not None else self._kernel()
         c_vec = float(self.C) * self.class_weight_[y_idx] * sw
         keep = c_vec > 0
-        n = X.shape[0]
         cache_bytes = int(float(self.cache_size) * 2**20)
         n_keep = int(keep.sum())
         base = LIBSVM if self.libsvm_compat else DEFAULT
@@ -280,8 +279,9 @@ class SVC(ClassifierMixin, BaseEstimator):
                 full = kern.gram(X[order], dtype=dtype, center=not self.libsvm_compat)
             diag = kern.diagonal(X)
         policy = self._smo_policy(whole_kernel=full is not None)
-        max_iter = _LIBSVM_MAX_ITER if self.max_iter == -1 else int(self.max_iter)
-        max_iter = max(max_iter, 100 * n) if self.max_iter == -1 else max_iter
+        # -1: no cap, as in scikit-learn's libsvm ("set max_iter to -1 to disable the mechanism"
+        # in its Solver::Solve; upstream libsvm stops at max(1e7, 100 n) updates instead)
+        max_iter = math.inf if self.max_iter == -1 else int(self.max_iter)
         k = classes.size
         coefs = {}
         rhos, n_iter, status = [], [], 0

@@ -107,3 +107,17 @@ def test_coef_only_for_the_linear_kernel():
     X, y, _ = _data()
     with pytest.raises(AttributeError, match="linear kernel"):
         _ = SVC().fit(X, y).coef_
+
+
+def test_max_iter_minus_one_has_no_cap_as_in_scikit_learns_libsvm():
+    # A nearly hard-margin linear problem that needs more than 100 updates per sample (upstream
+    # libsvm's per-sample factor): scikit-learn's libsvm runs it to the end, and so do we.
+    rng = np.random.default_rng(0)
+    X = rng.normal(size=(40, 2))
+    y = (X[:, 0] + 0.8 * rng.normal(size=40) > 0).astype(int)
+    params = dict(kernel="linear", C=100.0, tol=1e-8, shrinking=False)
+    ours = SVC(libsvm_compat=True, **params).fit(X, y)
+    ref = LibSVC(**params).fit(X, y)
+    assert ours.n_iter_[0] > 100 * X.shape[0]
+    np.testing.assert_array_equal(ours.n_iter_, ref.n_iter_)
+    assert ours.fit_status_ == ref.fit_status_ == 0

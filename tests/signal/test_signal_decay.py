@@ -193,3 +193,13 @@ def test_extreme_amplitudes_give_the_same_fit(method):
         assert fit.a == pytest.approx(scale * ref.a, rel=1e-6)
     near_max = fit_decay(np.finfo(float).max / 1.6 * x, FS, method=method)
     assert near_max.ok and near_max.tau == pytest.approx(ref.tau, rel=1e-6)
+
+
+def test_envelope_of_extreme_amplitudes():
+    x = _decay(0.2)
+    ref = envelope(x)
+    for scale in (2.0**-1000, 2.0**1000, np.finfo(float).max / 4):
+        got = envelope(scale * x)
+        # a power-of-two scale is exact end to end; the last one rounds scale * x (u relative)
+        assert np.all(np.isfinite(got))
+        np.testing.assert_allclose(got / scale, ref, rtol=1e-12, atol=1e-12)

@@ -7,7 +7,10 @@ Run: ``python benchmarks/ml_speed.py [--quick] [--repeat N]``
   <= 0.7.
 * ``MLPClassifier.fit`` with the same network, solver and number of epochs as scikit-learn's
   (full-batch gradient descent = scikit-learn's 'sgd' with one batch and no momentum; Adam with
-  mini-batches of 200). Target: ratio <= 1.
+  mini-batches of 200; SGD with scikit-learn's 'invscaling' schedule; L-BFGS through SciPy on
+  both sides). Target: ratio <= 1.
+* ``SVC(probability=True).fit``: the fit plus five cross-validation fits per pair of classes on
+  both sides.
 
 Each pair is timed alternately ``--repeat`` times and the best time of each is kept, so that
 other load on the machine affects both sides alike. The table prints the ratio ours / theirs.
@@ -95,6 +98,11 @@ def run(quick: bool = False, repeat: int = 2) -> dict:
         pair("SVC rbf fit, libsvm_compat=True",
              lambda: SVC(libsvm_compat=True).fit(Xtr, ytr),
              lambda: LibSVC(shrinking=False).fit(Xtr, ytr), acc)
+        # probability=True: five cross-validation fits per pair of classes on each side
+        warnings.simplefilter("ignore", FutureWarning)  # scikit-learn >= 1.9 deprecates it
+        pair("SVC rbf fit, probability=True",
+             lambda: SVC(probability=True, random_state=0).fit(Xtr, ytr),
+             lambda: LibSVC(probability=True, random_state=0).fit(Xtr, ytr), acc)
         epochs = 20 if quick else 50
         common = dict(hidden_layer_sizes=(53,), activation="tanh", max_iter=epochs, tol=0.0,
                       n_iter_no_change=10**6, random_state=0, alpha=1e-4)
@@ -105,6 +113,14 @@ def run(quick: bool = False, repeat: int = 2) -> dict:
         pair(f"MLP 53 tanh, adam batch 200, {epochs} epochs",
              lambda: MLPClassifier(solver="adam", batch_size=200, **common).fit(Xtr, ytr),
              lambda: SkMLP(solver="adam", batch_size=200, **common).fit(Xtr, ytr), acc)
+        pair(f"MLP 53 tanh, sgd invscaling batch 200, {epochs} epochs",
+             lambda: MLPClassifier(solver="sgd", batch_size=200, learning_rate="invscaling",
+                                   learning_rate_init=0.5, **common).fit(Xtr, ytr),
+             lambda: SkMLP(solver="sgd", batch_size=200, learning_rate="invscaling",
+                           learning_rate_init=0.5, **common).fit(Xtr, ytr), acc)
+        pair(f"MLP 53 tanh, lbfgs, {epochs} iterations",
+             lambda: MLPClassifier(solver="lbfgs", **common).fit(Xtr, ytr),
+             lambda: SkMLP(solver="lbfgs", **common).fit(Xtr, ytr), acc)
     return {"rows": rows}
 
 

@@ -1,18 +1,46 @@
 """Kernel functions of the support vector machine, computed with BLAS.
 
-A kernel :math:`k(x, x')` measures the similarity of two feature vectors. The three kernels offered
+A kernel :math:`k(x, x')` measures the similarity of two feature vectors. The four kernels offered
 are the ones scikit-learn's :class:`sklearn.svm.SVC` and libsvm call by the same names:
 
 =========== ===========================================================
 linear      :math:`k(x, x') = x \\cdot x'`
 rbf         :math:`k(x, x') = \\exp(-\\gamma \\lVert x - x' \\rVert^2)`
 poly        :math:`k(x, x') = (\\gamma\\, x \\cdot x' + r)^d`
+sigmoid     :math:`k(x, x') = \\tanh(\\gamma\\, x \\cdot x' + r)`
 =========== ===========================================================
 
+(:class:`~ebantenna.ml.SVC` also takes a precomputed kernel matrix or a callable.)
+
 Every Gram matrix is built from one matrix product (a GEMM), so a whole block of kernel entries
-costs about as much as the dot products it needs, instead of one call per entry. The RBF kernel uses
-libsvm's expansion :math:`\\lVert x\\rVert^2 + \\lVert x'\\rVert^2 - 2\\, x\\cdot x'`, which is what
-lets a NumPy solver reproduce libsvm's training kernel bit for bit once rounded to float32.
+costs about as much as the dot products it needs, instead of one call per entry. The RBF kernel
+needs the squared distance, which a GEMM gives through the expansion
+:math:`\\lVert x\\rVert^2 + \\lVert y\\rVert^2 - 2\\, x\\cdot y`.
+
+**Cancellation, and how it is avoided.** The expansion subtracts numbers of size :math:`\\lVert
+x\\rVert^2` to get one of size :math:`\\lVert x - y\\rVert^2`. If every feature carries a common
+offset :math:`c` (a sensor bias, gravity), :math:`\\lVert x\\rVert^2` grows like :math:`c^2` while
+the distance does not, and the rounding error of the sum, about :math:`u\\,c^2` (unit roundoff
+:math:`u = 2^{-53}`), swamps it: at :math:`c = 10^6` the error is of order :math:`10^{-4}` on
+distances of order 1. The distance itself does not depend on the origin, so :meth:`Kernel.gram`
+first subtracts one common centre :math:`m` (the mean of the reference points) from both sets, then
+expands. With :math:`\\tilde x = \\mathrm{fl}(x - m)`, :math:`p` features and first order in
+:math:`u`, the computed squared distance :math:`\\hat d` obeys
+
+.. math:: |\\hat d - \\lVert x - y\\rVert^2| \\le (p + 5)\\, u\\,
+          (\\lVert \\tilde x\\rVert + \\lVert \\tilde y\\rVert)^2
+
+(:math:`p + 3` for the three inner products and the two additions, 2 for rounding the centred
+coordinates; the error of :math:`m` itself cancels because both sets use the same :math:`m`), and
+the kernel value :math:`K = e^{-\\gamma d}` is off by at most :math:`\\gamma K |\\hat d - d| + u K`.
+The bound now scales with the spread of the data about their mean, not with their distance from
+the origin: a common shift of the features no longer changes the machine.
+
+libsvm trains with the uncentred expansion (its ``Kernel::kernel_rbf``) and predicts with direct
+differences (``Kernel::k_function``), so its training path changes when the features are shifted
+(its decision values drift by about 2e-8 relative at a shift of :math:`10^3`, 2e-4 at :math:`10^6`;
+exercise 8 shows it). ``center=False`` reproduces its training arithmetic on purpose; the
+``libsvm_compat`` mode of :class:`~ebantenna.ml.SVC` uses it to follow libsvm's path and digits.
 
 :class:`KernelRows` hands the SMO solver the rows of a training kernel: it either holds the whole
 matrix (one GEMM) or keeps a least-recently-used cache of rows computed on demand.
@@ -33,7 +61,7 @@ __all__ = ["KERNELS", "Kernel", "KernelRows", "resolve_gamma", "gram_matrix", "s
 logger = logging.getLogger(__name__)
 
 #: Names of the kernels, as scikit-learn spells them.
-KERNELS = ("linear", "rbf", "poly")
+KERNELS = ("linear", "rbf", "poly", "sigmoid")
 
 
 def resolve_gamma(gamma, X: np.ndarray) -> float:
@@ -89,14 +117,14 @@ class Kernel:
 
     Parameters
     ----------
-    name : {'linear', 'rbf', 'poly'}
+    name : {'linear', 'rbf', 'poly', 'sigmoid'}
         Kernel type.
     gamma : float
-        Coefficient :math:`\\gamma` of 'rbf' and 'poly' (1 / feature²), >= 0.
+        Coefficient :math:`\\gamma` of 'rbf', 'poly' and 'sigmoid' (1 / feature²), >= 0.
     degree : int
         Degree :math:`d` of 'poly', >= 0.
     coef0 : float
-        Constant term :math:`r` of 'poly'.
+        Constant term :math:`r` of 'poly' and 'sigmoid'.
 
     Examples
     --------
@@ -129,14 +157,36 @@ class Kernel:
         x_norms: np.ndarray | None = None,
         y_norms: np.ndarray | None = None,
         dtype=np.float64,
+        center: bool = True,
     ) -> np.ndarray:
         """Kernel matrix :math:`K_{ij} = k(x_i, y_j)`, computed in float64, returned as ``dtype``.
 
         With ``Y`` omitted the matrix of ``X`` with itself is returned; for 'rbf' its diagonal is
         then set to exactly 1, the value :math:`\\exp(0)` that rounding in the expansion can miss.
+
+        Parameters
+        ----------
+        X : ndarray of shape (n, n_features)
+        Y : ndarray of shape (m, n_features), optional
+            Reference points (default: ``X``).
+        x_norms, y_norms : ndarray, optional
+            Precomputed :func:`squared_norms` of ``X`` and ``Y`` for 'rbf'; only with
+            ``center=False`` (they would be the norms of the uncentred points otherwise).
+        dtype : numpy dtype
+            Type of the returned matrix.
+        center : bool
+            For 'rbf': subtract the mean of the reference points from both sets before the
+            expansion, so that the result does not cancel (see the module notes for the error
+            bound). ``False`` expands the points as given, as libsvm trains.
         """
         same = Y is None
         Y = X if same else Y
+        if self.name == "rbf" and center:
+            if x_norms is not None or y_norms is not None:
+                raise ValueError("x_norms and y_norms can only be given with center=False")
+            m = Y.mean(axis=0)
+            X = X - m
+            Y = X if same else Y - m
         if self.name == "rbf":
             xn = squared_norms(X) if x_norms is None else x_norms
             yn = (xn if same else squared_norms(Y)) if y_norms is None else y_norms
@@ -153,8 +203,12 @@ class Kernel:
                 block *= self.gamma
                 block += self.coef0
                 block **= self.degree
+            elif self.name == "sigmoid":
+                block *= self.gamma
+                block += self.coef0
+                np.tanh(block, out=block)
             elif self.name == "rbf":
-                # libsvm's order of operations: exp(-gamma * (|x|^2 + |y|^2 - 2 x.y))
+                # exp(-gamma * (|x|^2 + |y|^2 - 2 x.y)) in libsvm's order of operations
                 block *= -2.0
                 block += xn[start:stop, None] + yn[None, first:]
                 np.maximum(block, 0.0, out=block)
@@ -174,6 +228,8 @@ class Kernel:
         sq = squared_norms(X)
         if self.name == "linear":
             return sq
+        if self.name == "sigmoid":
+            return np.tanh(self.gamma * sq + self.coef0)
         return (self.gamma * sq + self.coef0) ** self.degree
 
 
@@ -208,6 +264,9 @@ class KernelRows:
         ones are dropped.
     full : ndarray of shape (N, N), optional
         A precomputed kernel matrix to use as it is.
+    center : bool
+        For 'rbf': compute the rows from the points centred once on their mean, without
+        cancellation (see the module notes); ``False`` keeps libsvm's uncentred arithmetic.
     parts : sequence of slice, optional
         With ``full``: the problem's points are the rows of ``full`` in these slices, one after
         the other (the classes of a one-vs-one pair). Rows are then assembled from the slices on
@@ -223,7 +282,10 @@ class KernelRows:
     array([0., 3., 9.])
     """
 
-    def __init__(self, X, kernel: Kernel, dtype, cache_bytes: int, full=None, parts=None):
+    def __init__(self, X, kernel: Kernel, dtype, cache_bytes: int, full=None, parts=None,
+                 center: bool = True):
+        if X is not None and center and kernel.name == "rbf":
+            X = X - X.mean(axis=0)
         self.X = X
         self.kernel = kernel
         self.dtype = np.dtype(dtype)
@@ -248,7 +310,7 @@ class KernelRows:
         if full is not None:
             self.matrix = np.asarray(full, dtype=self.dtype)
         elif self.n * self.n * self.dtype.itemsize <= cache_bytes:
-            self.matrix = kernel.gram(X, x_norms=self._norms, dtype=self.dtype)
+            self.matrix = kernel.gram(X, x_norms=self._norms, dtype=self.dtype, center=False)
         else:
             self.matrix = None
             self._cache: OrderedDict[int, np.ndarray] = OrderedDict()
@@ -286,7 +348,7 @@ class KernelRows:
             self._cache.move_to_end(i)
             return cached
         r = self.kernel.gram(self.X[i : i + 1], self.X, x_norms=self._norms[i : i + 1],
-                             y_norms=self._norms, dtype=self.dtype)[0]
+                             y_norms=self._norms, dtype=self.dtype, center=False)[0]
         if self.kernel.name == "rbf":
             r[i] = 1.0
         self.rows_computed += 1

@@ -12,7 +12,21 @@ swap the import. The solvers are
 ``'adam'``
     Adam;
 ``'scg'``
-    Møller's scaled conjugate gradient on the full batch (the paper's best distance regressor).
+    scaled conjugate gradient on the full batch (the paper's best distance regressor), in the
+    form of Netlab's ``scg.m``, a variant of Møller's algorithm (see
+    :mod:`ebantenna.ml.optimizers`). Two parameters beyond scikit-learn's set it: ``sigma0``
+    (default 1e-4), the step of the finite-difference curvature estimate, and ``lambda0``
+    (default 1), the initial Levenberg-Marquardt scale; MATLAB's ``trainscg`` uses 5e-5 and
+    5e-7. A loss or gradient that is not finite stops it with a ``ValueError``, as for the
+    other solvers;
+``'lbfgs'``
+    scikit-learn's: :func:`scipy.optimize.minimize` with L-BFGS-B on the full batch
+    (``maxiter=max_iter``, ``maxfun=max_fun``, ``gtol=tol``); ``loss_curve_`` holds the loss
+    after each of its iterations, which scikit-learn does not keep.
+
+``learning_rate="invscaling"`` decays once per epoch, ``learning_rate_init / (t_ + 1) ** power_t``
+with ``t_`` the samples seen, as scikit-learn's. ``partial_fit`` trains one epoch per call
+('gd', 'sgd' and 'adam').
 
 The loss is :math:`L = \\ell + \\frac{\\alpha}{2n}\\sum_l \\lVert W_l \\rVert^2` with :math:`\\ell`
 the mean cross-entropy per sample, or, for regression,
@@ -40,6 +54,7 @@ from scipy.special import expit, log_expit, logsumexp
 from sklearn.base import ClassifierMixin, RegressorMixin, _fit_context
 from sklearn.metrics import accuracy_score, r2_score
 from sklearn.preprocessing import LabelBinarizer
+from sklearn.utils.metaestimators import available_if
 from sklearn.utils.multiclass import check_classification_targets, type_of_target
 from sklearn.utils.validation import check_is_fitted, column_or_1d, validate_data
 
@@ -49,11 +64,22 @@ from .mlp_base import ACTIVATIONS, SOLVERS, BaseMLP
 __all__ = ["MLPClassifier", "MLPRegressor", "ACTIVATIONS", "SOLVERS"]
 
 
+def _first_order(estimator) -> bool:
+    """``partial_fit`` exists for the first-order solvers only (as scikit-learn's for 'sgd' and
+    'adam'): 'scg' and 'lbfgs' work on the full batch until they converge."""
+    if estimator.solver not in ("gd", "sgd", "adam"):
+        raise AttributeError(f"partial_fit is only available for the first-order solvers 'gd', "
+                             f"'sgd' and 'adam'; solver={estimator.solver!r} is not one.")
+    return True
+
+
 class MLPClassifier(ClassifierMixin, BaseMLP):
     """Multilayer perceptron classifier: softmax (or logistic) output and cross-entropy loss.
 
     Parameters are those of :class:`sklearn.neural_network.MLPClassifier`, with ``solver`` one of
-    'gd', 'sgd', 'adam' or 'scg' (see the module text). ``random_state`` seeds a
+    'gd', 'sgd', 'adam', 'scg' or 'lbfgs', plus ``sigma0`` and ``lambda0`` of 'scg' (see the
+    module text).
+    ``random_state`` seeds a
     :func:`numpy.random.default_rng` (initial weights, shuffling, validation split).
 
     Attributes
@@ -104,6 +130,51 @@ class MLPClassifier(ClassifierMixin, BaseMLP):
         self._multilabel = type_of_target(y).startswith("multilabel")
         self.out_activation_ = "logistic" if (Y.shape[1] == 1 or self._multilabel) else "softmax"
         return self._fit(X, Y, y)
+
+    @available_if(_first_order)
+    @_fit_context(prefer_skip_nested_validation=True)
+    def partial_fit(self, X, y, classes=None):
+        """One epoch on ``X``, ``y``, continuing from the previous call (as scikit-learn's).
+
+        The optimiser's state (momentum velocities or Adam's moments, the learning rate of
+        'invscaling' and 'adaptive', the samples seen ``t_``) carries over from one call to the
+        next. It is not kept by :meth:`fit` nor saved with the model: the first ``partial_fit``
+        after either starts a fresh optimiser (scikit-learn's continues the one of ``fit``).
+
+        Parameters
+        ----------
+        X : array-like of shape (n_samples, n_features)
+        y : array-like of shape (n_samples,) or (n_samples, n_classes)
+        classes : array-like of shape (n_classes,), optional
+            Every class that will ever be seen; required on the first call only.
+
+        Returns
+        -------
+        self
+        """
+        first = not hasattr(self, "classes_")
+        if first and classes is None:
+            raise ValueError("classes must be passed on the first call to partial_fit.")
+        if not first and classes is not None and not np.array_equal(self.classes_,
+                                                                    np.unique(classes)):
+            raise ValueError(f"`classes={classes!r}` is not the same as on the first call to "
+                             f"partial_fit, was: {self.classes_!r}")
+        X, y = validate_data(self, X, y, dtype=np.float64, multi_output=True, reset=first)
+        if y.ndim == 2 and y.shape[1] == 1:
+            y = column_or_1d(y, warn=True)
+        check_classification_targets(y)
+        if first:
+            self._multilabel = type_of_target(y).startswith("multilabel")
+            fit_on = np.asarray(classes) if not self._multilabel else y
+            self._label_binarizer = LabelBinarizer().fit(fit_on)
+            self.classes_ = self._label_binarizer.classes_
+        elif not self._multilabel and not np.isin(np.unique(y), self.classes_).all():
+            raise ValueError(f"y holds labels not in classes_ {self.classes_!r}")
+        Y = self._label_binarizer.transform(y).astype(np.float64)
+        n_classes = self.classes_.size
+        self.out_activation_ = ("logistic" if (n_classes <= 2 or self._multilabel)
+                                else "softmax")
+        return self._fit(X, Y, y, incremental=True)
 
     def _rebuild_fitted(self) -> None:
         """Rebuild the attributes that the schema marks 'rebuilt' (after loading)."""
@@ -157,7 +228,9 @@ class MLPRegressor(RegressorMixin, BaseMLP):
     """Multilayer perceptron regressor: identity output and squared-error loss.
 
     Parameters are those of :class:`sklearn.neural_network.MLPRegressor`, with ``solver`` one of
-    'gd', 'sgd', 'adam' or 'scg'. With several outputs the gradient is the true gradient of the
+    'gd', 'sgd', 'adam', 'scg' or 'lbfgs', plus ``sigma0`` and ``lambda0`` of 'scg' (see the
+    module text).
+    With several outputs the gradient is the true gradient of the
     reported loss, which is ``1 / n_outputs`` of scikit-learn's (see the module text).
 
     Attributes
@@ -192,6 +265,24 @@ class MLPRegressor(RegressorMixin, BaseMLP):
         self._y_ndim = y.ndim
         Y = y.reshape(-1, 1) if y.ndim == 1 else y
         return self._fit(X, np.asarray(Y, dtype=np.float64), None)
+
+    @available_if(_first_order)
+    @_fit_context(prefer_skip_nested_validation=True)
+    def partial_fit(self, X, y):
+        """One epoch on ``X``, ``y``, continuing from the previous call (as scikit-learn's).
+
+        Returns
+        -------
+        self
+        """
+        first = not hasattr(self, "coefs_")
+        X, y = validate_data(self, X, y, dtype=np.float64, multi_output=True, y_numeric=True,
+                             reset=first)
+        if not first and y.ndim != self._y_ndim:
+            raise ValueError(f"y has {y.ndim} dimension(s); the first call had {self._y_ndim}")
+        self._y_ndim = y.ndim
+        Y = y.reshape(-1, 1) if y.ndim == 1 else y
+        return self._fit(X, np.asarray(Y, dtype=np.float64), None, incremental=True)
 
     def _validation_score(self, X, Y):
         return r2_score(Y if Y.shape[1] > 1 else Y[:, 0], self.predict(X))

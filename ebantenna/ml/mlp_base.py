@@ -13,6 +13,7 @@ import warnings
 from numbers import Integral, Real
 
 import numpy as np
+from scipy import optimize
 from sklearn.base import BaseEstimator, ClassifierMixin
 from sklearn.exceptions import ConvergenceWarning
 from sklearn.model_selection import train_test_split
@@ -28,7 +29,7 @@ __all__ = ["BaseMLP", "ACTIVATIONS", "SOLVERS"]
 logger = logging.getLogger(__name__)
 
 #: Training algorithms.
-SOLVERS = ("gd", "sgd", "adam", "scg")
+SOLVERS = ("gd", "sgd", "adam", "scg", "lbfgs")
 
 
 class BaseMLP(BaseEstimator):
@@ -43,7 +44,7 @@ class BaseMLP(BaseEstimator):
     _parameter_constraints: dict = {
         "hidden_layer_sizes": ["array-like", Interval(Integral, 1, None, closed="left")],
         "activation": [StrOptions({"identity", "logistic", "tanh", "relu"})],
-        "solver": [StrOptions({"gd", "sgd", "adam", "scg"})],
+        "solver": [StrOptions({"gd", "sgd", "adam", "scg", "lbfgs"})],
         "alpha": [Interval(Real, 0, None, closed="left")],
         "batch_size": [StrOptions({"auto"}), Interval(Integral, 1, None, closed="left")],
         "learning_rate": [StrOptions({"constant", "invscaling", "adaptive"})],
@@ -65,6 +66,9 @@ class BaseMLP(BaseEstimator):
         "beta_2": [Interval(Real, 0, 1, closed="left")],
         "epsilon": [Interval(Real, 0, None, closed="neither")],
         "n_iter_no_change": [Interval(Integral, 1, None, closed="left"), Options(Real, {np.inf})],
+        "sigma0": [Interval(Real, 0, None, closed="neither")],
+        "lambda0": [Interval(Real, 0, None, closed="neither")],
+        "max_fun": [Interval(Integral, 1, None, closed="left")],
     }
 
     #: Attributes that ``fit`` sets on every network (see :mod:`ebantenna.ml.fitted`).
@@ -79,6 +83,10 @@ class BaseMLP(BaseEstimator):
         FittedAttribute("best_validation_score_", "value", since=2),
         FittedAttribute("n_layers_", "value"),
         FittedAttribute("n_outputs_", "value"),
+        # the optimiser's state, which partial_fit continues: not saved (a loaded network
+        # continues with a fresh optimiser, its learning rate back at learning_rate_init)
+        FittedAttribute("_optimizer", "rebuilt", optional=True),
+        FittedAttribute("_no_improvement", "rebuilt", optional=True),
         *INPUT_ATTRIBUTES,
     )
 
@@ -107,6 +115,9 @@ class BaseMLP(BaseEstimator):
         beta_2=0.999,
         epsilon=1e-8,
         n_iter_no_change=10,
+        sigma0=1e-4,
+        lambda0=1.0,
+        max_fun=15000,
     ):
         self.hidden_layer_sizes = hidden_layer_sizes
         self.activation = activation
@@ -130,6 +141,9 @@ class BaseMLP(BaseEstimator):
         self.beta_2 = beta_2
         self.epsilon = epsilon
         self.n_iter_no_change = n_iter_no_change
+        self.sigma0 = sigma0
+        self.lambda0 = lambda0
+        self.max_fun = max_fun
 
     # ------------------------------------------------------------ network
     def _hidden_sizes(self) -> list[int]:
@@ -181,12 +195,20 @@ class BaseMLP(BaseEstimator):
         return loss, self._pack(cg, ig)
 
     # --------------------------------------------------------- training
-    def _fit(self, X, Y, y_for_split):
+    def _fit(self, X, Y, y_for_split, incremental=False):
+        """Train; with ``incremental`` (``partial_fit``) one epoch, continuing the optimiser's
+        state (velocities, moments, learning rate, samples seen) from the previous call."""
         hidden = self._hidden_sizes()
-        rng = np.random.default_rng(self.random_state)
+        if incremental and self.solver not in ("gd", "sgd", "adam"):
+            raise ValueError(f"partial_fit is only available for the first-order solvers 'gd', "
+                             f"'sgd' and 'adam'; solver={self.solver!r} works on the full batch "
+                             "until it converges.")
+        if incremental and self.early_stopping:
+            raise ValueError("partial_fit does not support early_stopping=True")
         n_features, n_out = X.shape[1], Y.shape[1]
         sizes = [n_features, *hidden, n_out]
-        first_pass = not (self.warm_start and hasattr(self, "coefs_"))
+        first_pass = not ((self.warm_start or incremental) and hasattr(self, "coefs_"))
+        rng = np.random.default_rng(self.random_state)
         if first_pass:
             self.coefs_, self.intercepts_ = glorot_uniform(sizes, self.activation, rng)
             self.loss_curve_ = []
@@ -206,10 +228,12 @@ class BaseMLP(BaseEstimator):
                 if not hasattr(self, name):
                     setattr(self, name, {"loss_curve_": [], "best_loss_": np.inf}.get(name, 0))
             self.loss_curve_ = list(self.loss_curve_)
+        # as scikit-learn: n_iter_ counts the epochs of this call (one for partial_fit)
+        self.n_iter_ = 0
         self.n_layers_ = len(sizes)
         self.n_outputs_ = n_out
         X_val = Y_val = None
-        if self.early_stopping:
+        if self.early_stopping and self.solver != "lbfgs":  # as scikit-learn: ignored by lbfgs
             stratify = y_for_split if isinstance(self, ClassifierMixin) else None
             seed = int(rng.integers(2**31 - 1))
             try:
@@ -225,16 +249,23 @@ class BaseMLP(BaseEstimator):
             self.validation_scores_ = []
             self.best_validation_score_ = -np.inf
             self._best = None
-        self._no_improvement = 0
-        if self.solver == "scg":
+        if not incremental or not hasattr(self, "_no_improvement"):
+            self._no_improvement = 0
+        if self.solver == "lbfgs":
+            self._train_lbfgs(X, Y)
+        elif self.solver == "scg":
             self._train_scg(X, Y, X_val, Y_val)
         else:
-            self._train_first_order(X, Y, X_val, Y_val, rng)
+            self._train_first_order(X, Y, X_val, Y_val, rng, incremental)
         if self.early_stopping and self._best is not None:
             self.coefs_, self.intercepts_ = self._best
         if hasattr(self, "_best"):
             del self._best
-        del self._no_improvement
+        if not incremental:
+            # only partial_fit carries the optimiser to its next call (see partial_fit)
+            for name in ("_optimizer", "_no_improvement"):
+                if hasattr(self, name):
+                    delattr(self, name)
         return self
 
     def _end_of_epoch(self, loss, X_val, Y_val) -> bool:
@@ -263,7 +294,7 @@ class BaseMLP(BaseEstimator):
             self.best_loss_ = float(loss)
         return self._no_improvement > self.n_iter_no_change
 
-    def _train_first_order(self, X, Y, X_val, Y_val, rng):
+    def _train_first_order(self, X, Y, X_val, Y_val, rng, incremental=False):
         n = X.shape[0]
         params = self.coefs_ + self.intercepts_
         if self.solver == "gd":
@@ -273,14 +304,17 @@ class BaseMLP(BaseEstimator):
         else:
             batch = min(int(self.batch_size), n)
         lr = float(self.learning_rate_init)
-        if self.solver == "adam":
+        # partial_fit continues the optimiser of the previous partial_fit
+        opt = getattr(self, "_optimizer", None) if incremental else None
+        if opt is None and self.solver == "adam":
             opt = Adam(params, lr, self.beta_1, self.beta_2, self.epsilon)
-        else:
+        elif opt is None:
             mom = 0.0 if self.solver == "gd" else float(self.momentum)
             opt = Momentum(params, lr, mom, bool(self.nesterovs_momentum) and mom > 0)
+        self._optimizer = opt
         idx = np.arange(n)
-        stopped = False
-        for _ in range(self.max_iter):
+        stopped = incremental  # one epoch, no convergence to report
+        for _ in range(1 if incremental else self.max_iter):
             if self.shuffle and self.solver != "gd":
                 rng.shuffle(idx)
             total = 0.0
@@ -291,12 +325,13 @@ class BaseMLP(BaseEstimator):
                 total += loss * Xb.shape[0]
                 opt.update(params, cg + ig)
                 self.t_ += Xb.shape[0]
-                if self.learning_rate == "invscaling" and self.solver != "adam":
-                    opt.learning_rate = self.learning_rate_init / (self.t_ + 1) ** self.power_t
             loss = total / n
             if not np.isfinite(loss):
                 raise ValueError("the loss is not finite: lower learning_rate_init or scale "
                                  "the features")
+            if self.learning_rate == "invscaling" and self.solver != "adam":
+                # scikit-learn's schedule: once per epoch, by the number of samples seen
+                opt.learning_rate = self.learning_rate_init / (self.t_ + 1) ** self.power_t
             if self._end_of_epoch(loss, X_val, Y_val):
                 if (self.learning_rate == "adaptive" and self.solver != "adam"
                         and opt.learning_rate > 1e-6):
@@ -309,6 +344,38 @@ class BaseMLP(BaseEstimator):
             warnings.warn(f"{self.solver}: maximum iterations ({self.max_iter}) reached and the "
                           "optimization hasn't converged yet.", ConvergenceWarning, stacklevel=3)
 
+    def _train_lbfgs(self, X, Y):
+        """scikit-learn's 'lbfgs': :func:`scipy.optimize.minimize` with L-BFGS-B on the full
+        batch, ``maxiter=max_iter``, ``maxfun=max_fun``, ``gtol=tol``. ``loss_curve_`` holds the
+        loss after each iteration (scikit-learn keeps none for this solver)."""
+        shapes = [c.shape for c in self.coefs_]
+        last = {}
+
+        def fg(w):
+            coefs, intercepts = self._unpack(w, shapes)
+            loss, cg, ig = self._loss_grad(X, Y, coefs, intercepts)
+            last["w"], last["f"] = w.copy(), loss
+            return loss, self._pack(cg, ig)
+
+        def record(w):  # the iterate is normally the point evaluated last
+            f = last["f"] if np.array_equal(w, last["w"]) else fg(w)[0]
+            self.loss_curve_.append(float(f))
+            self.best_loss_ = min(self.best_loss_, float(f))
+
+        res = optimize.minimize(fg, self._pack(self.coefs_, self.intercepts_), jac=True,
+                                method="L-BFGS-B", callback=record,
+                                options={"maxfun": int(self.max_fun),
+                                         "maxiter": int(self.max_iter), "gtol": float(self.tol)})
+        if not np.isfinite(res.fun):
+            raise ValueError("lbfgs: the loss is not finite: scale the features and targets")
+        self.coefs_, self.intercepts_ = self._unpack(res.x, shapes)
+        self.n_iter_ = min(int(res.nit), int(self.max_iter))
+        self.t_ += X.shape[0] * self.n_iter_
+        if res.status != 0:
+            message = res.message.decode() if isinstance(res.message, bytes) else res.message
+            warnings.warn(f"lbfgs failed to converge after {res.nit} iteration(s) "
+                          f"(status={res.status}): {message}", ConvergenceWarning, stacklevel=3)
+
     def _train_scg(self, X, Y, X_val, Y_val):
         shapes = [c.shape for c in self.coefs_]
 
@@ -317,11 +384,12 @@ class BaseMLP(BaseEstimator):
             loss, cg, ig = self._loss_grad(X, Y, coefs, intercepts)
             return loss, self._pack(cg, ig)
 
-        state = scg_init(self._pack(self.coefs_, self.intercepts_), fg)
+        state = scg_init(self._pack(self.coefs_, self.intercepts_), fg,
+                         lambda0=float(self.lambda0))
         stopped = False
         for _ in range(self.max_iter):
             f_before = state.f
-            scg_step(state, fg)
+            scg_step(state, fg, sigma0=float(self.sigma0))
             self.coefs_, self.intercepts_ = self._unpack(state.w.copy(), shapes)
             # the loss recorded for an epoch is the one at its start, as for the other solvers
             if self._end_of_epoch(f_before, X_val, Y_val):

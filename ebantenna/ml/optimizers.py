@@ -2,8 +2,15 @@
 
 Each optimiser works on a list of arrays (the weights and biases of every layer) and their
 gradients. :class:`Momentum` is gradient descent with momentum (plain gradient descent with
-``momentum=0``), :class:`Adam` is Kingma and Ba's, and :func:`scg_step` is Møller's (1993)
-full-batch scaled conjugate gradient, the method MATLAB calls ``trainscg``.
+``momentum=0``), :class:`Adam` is Kingma and Ba's, and :func:`scg_step` is the full-batch scaled
+conjugate gradient in the form of Netlab's ``scg.m`` (I. Nabney, *Netlab: Algorithms for Pattern
+Recognition*, Springer 2002), a variant of M. F. Møller's (1993) algorithm.
+
+Netlab's variant differs from Møller's published one in how the Levenberg-Marquardt scale
+:math:`\\lambda` is adapted (multiplied by 4 after a poor step and halved after a good one, kept
+in :math:`[10^{-15}, 10^{100}]`, where Møller raises it by an amount computed from the step) and
+in its defaults, :math:`\\sigma_0 = 10^{-4}` and :math:`\\lambda_0 = 1`; MATLAB's ``trainscg``
+uses :math:`\\sigma = 5\\cdot 10^{-5}` and :math:`\\lambda = 5\\cdot 10^{-7}`. Both are settable.
 """
 
 from __future__ import annotations
@@ -102,8 +109,12 @@ class SCGState:
 _BETA_MIN, _BETA_MAX = 1e-15, 1e100
 
 
-def scg_init(w: np.ndarray, fg: Callable[[np.ndarray], tuple[float, np.ndarray]]) -> SCGState:
+def scg_init(w: np.ndarray, fg: Callable[[np.ndarray], tuple[float, np.ndarray]],
+             lambda0: float = 1.0) -> SCGState:
     """Start SCG at ``w``: ``fg(w)`` returns the loss and its gradient.
+
+    ``lambda0`` is the initial Levenberg-Marquardt scale (Netlab: 1). A loss or gradient that is
+    not finite at ``w`` raises a ``ValueError``: no step could be judged from it.
 
     Examples
     --------
@@ -119,7 +130,11 @@ def scg_init(w: np.ndarray, fg: Callable[[np.ndarray], tuple[float, np.ndarray]]
     True
     """
     f, g = fg(np.asarray(w, dtype=np.float64))
-    return SCGState(w=np.array(w, dtype=np.float64), f=float(f), grad=g, d=-g)
+    if not (np.isfinite(f) and np.all(np.isfinite(g))):
+        raise ValueError(f"scg: the loss ({f!r}) or its gradient is not finite at the start: "
+                         "scale the features and targets")
+    return SCGState(w=np.array(w, dtype=np.float64), f=float(f), grad=g, d=-g,
+                    beta=float(lambda0))
 
 
 def scg_step(state: SCGState, fg, sigma0: float = 1e-4) -> bool:
@@ -130,7 +145,10 @@ def scg_step(state: SCGState, fg, sigma0: float = 1e-4) -> bool:
     :math:`\beta |d|^2` keeps it positive and is adapted by the ratio :math:`\Delta` of the actual
     to the predicted decrease, so no line search is needed. Directions follow Polak–Ribière and
     restart at the steepest descent after as many successful steps as there are parameters. This is
-    the formulation of Netlab's ``scg`` (Nabney, 2002).
+    the formulation of Netlab's ``scg`` (Nabney, 2002); ``sigma0`` is its :math:`\sigma_0`.
+
+    A step to a point where the loss is not finite counts as a failed step (the scale grows); a
+    curvature estimate that is not finite raises a ``ValueError``.
     """
     st = state
     if st.success:
@@ -144,6 +162,9 @@ def scg_step(state: SCGState, fg, sigma0: float = 1e-4) -> bool:
         sigma = sigma0 / np.sqrt(st.kappa)
         _, g_plus = fg(st.w + sigma * st.d)
         st.gamma = float(st.d @ (g_plus - st.grad)) / sigma
+        if not np.isfinite(st.gamma):
+            raise ValueError("scg: the gradient is not finite a distance sigma0 along the search "
+                             "direction: scale the features and targets")
     delta = st.gamma + st.beta * st.kappa
     if delta <= 0:
         delta = st.beta * st.kappa

@@ -107,9 +107,11 @@ class SMOResult:
 
 
 def _argmax(values: np.ndarray, last: bool) -> int:
+    # the array methods, not np.argmax: the wrapper's dispatch costs more than the search on the
+    # vectors of a few thousand entries that SMO scans twice per update
     if last:
-        return values.size - 1 - int(np.argmax(values[::-1]))
-    return int(np.argmax(values))
+        return values.size - 1 - int(values[::-1].argmax())
+    return int(values.argmax())
 
 
 class _DualState:

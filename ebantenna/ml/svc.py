@@ -1,7 +1,8 @@
 """``SVC``: a kernel support vector classifier trained by hand-written SMO.
 
-A drop-in for :class:`sklearn.svm.SVC` (C-SVC, no probability estimates): the same parameter
-names, one-vs-one multiclass training and the same fitted attributes, layout and signs, so that a
+A drop-in for :class:`sklearn.svm.SVC` (C-SVC): the same parameter names, kernels (including a
+precomputed matrix and a callable), one-vs-one multiclass training, probability estimates as libsvm
+makes them (:mod:`ebantenna.ml.platt`) and the same fitted attributes, layout and signs, so that a
 student can swap the import and compare. The dual problems are solved by
 :func:`ebantenna.ml.smo.solve_smo`.
 """
@@ -9,15 +10,18 @@ student can swap the import and compare. The dual problems are solved by
 from __future__ import annotations
 
 import logging
+import math
 import warnings
 from dataclasses import replace
 from numbers import Integral, Real
 
 import numpy as np
 from sklearn.base import BaseEstimator, ClassifierMixin, _fit_context
-from sklearn.exceptions import ConvergenceWarning
+from sklearn.exceptions import ConvergenceWarning, NotFittedError
+from sklearn.utils import check_random_state
 from sklearn.utils._param_validation import Interval, Options, StrOptions
 from sklearn.utils.class_weight import compute_class_weight
+from sklearn.utils.metaestimators import available_if
 from sklearn.utils.multiclass import check_classification_targets
 from sklearn.utils.validation import (
     _check_sample_weight,
@@ -28,48 +32,14 @@ from sklearn.utils.validation import (
 
 from .fitted import INPUT_ATTRIBUTES, FittedAttribute
 from .kernels import Kernel, KernelRows, resolve_gamma
+from .ovo import dual_layout, one_vs_one_coef, ovo_votes, ovr_decision_function
+from .platt import pairwise_coupling, pairwise_sigmoids
 from .smo import DEFAULT, LIBSVM, SMOPolicy, solve_smo
 
 __all__ = ["SVC", "ovr_decision_function"]
 
 logger = logging.getLogger(__name__)
 
-#: libsvm's own cap on the number of SMO updates when ``max_iter=-1``.
-_LIBSVM_MAX_ITER = 10_000_000
-
-
-def ovr_decision_function(predictions: np.ndarray, confidences: np.ndarray, n_classes: int):
-    """One-vs-rest scores from one-vs-one results, aggregated as scikit-learn does.
-
-    Each class gets its number of pairwise votes plus a tie-breaking term
-    :math:`s / (3(|s| + 1))` in :math:`(-1/3, 1/3)`, where :math:`s` is its summed confidence.
-
-    Parameters
-    ----------
-    predictions : ndarray of shape (n_samples, n_pairs)
-        0 where the pair's first class won, 1 where the second did.
-    confidences : ndarray of shape (n_samples, n_pairs)
-        Confidence in the second class of each pair.
-    n_classes : int
-        Number of classes; the pairs are ``(0, 1), (0, 2), ..., (1, 2), ...``.
-
-    Examples
-    --------
-    >>> ovr_decision_function(np.array([[0, 0, 1]]), np.array([[-1.0, -2.0, 0.5]]), 3)
-    array([[ 2.25, -0.2 ,  0.8 ]])
-    """
-    n = predictions.shape[0]
-    votes = np.zeros((n, n_classes))
-    conf = np.zeros((n, n_classes))
-    k = 0
-    for i in range(n_classes):
-        for j in range(i + 1, n_classes):
-            conf[:, i] -= confidences[:, k]
-            conf[:, j] += confidences[:, k]
-            votes[predictions[:, k] == 0, i] += 1
-            votes[predictions[:, k] == 1, j] += 1
-            k += 1
-    return votes + conf / (3 * (np.abs(conf) + 1))
 
 
 class SVC(ClassifierMixin, BaseEstimator):
@@ -79,19 +49,26 @@ class SVC(ClassifierMixin, BaseEstimator):
     ----------
     C : float, default=1.0
         Penalty of the slack variables (upper bound of the dual variables), > 0.
-    kernel : {'rbf', 'linear', 'poly'}, default='rbf'
-        Kernel function (see :mod:`ebantenna.ml.kernels`).
+    kernel : {'rbf', 'linear', 'poly', 'sigmoid', 'precomputed'} or callable, default='rbf'
+        Kernel function (see :mod:`ebantenna.ml.kernels`). With 'precomputed', ``X`` is the
+        kernel matrix: (n_samples, n_samples) for :meth:`fit`, (n_test, n_samples) later. A
+        callable ``kernel(X, Y)`` returns the matrix of ``X`` against ``Y`` (it is evaluated once
+        on the training set; the training ``X`` is kept to evaluate it for new points).
     degree : int, default=3
         Degree of the 'poly' kernel.
     gamma : {'scale', 'auto'} or float, default='scale'
         Kernel coefficient, as in scikit-learn: 'scale' is ``1 / (n_features * X.var())``.
     coef0 : float, default=0.0
-        Constant term of the 'poly' kernel.
+        Constant term of the 'poly' and 'sigmoid' kernels.
     shrinking : bool, default=True
         libsvm's shrinking heuristic (see :class:`~ebantenna.ml.smo_policy.SMOPolicy`); the
         solution is the same within ``tol`` either way. Shrinking saves kernel evaluations, so it
         is used with the row cache and in ``libsvm_compat`` mode; when the whole kernel matrix is
         in memory the default mode solves without it, which is faster in NumPy.
+    probability : bool, default=False
+        Also fit Platt's sigmoids on five-fold cross-validated decision values (five more fits
+        per pair of classes), for :meth:`predict_proba`. As in scikit-learn, :meth:`predict`
+        still votes and may disagree with the most probable class.
     tol : float, default=1e-3
         Stopping tolerance on the maximal KKT violation.
     cache_size : float, default=200
@@ -103,16 +80,18 @@ class SVC(ClassifierMixin, BaseEstimator):
     verbose : bool, default=False
         Log each binary problem at INFO level.
     max_iter : int, default=-1
-        Largest number of SMO updates per binary problem; -1 means libsvm's own cap
-        (``max(1e7, 100 n)``). Stopping there raises a ``ConvergenceWarning``.
+        Largest number of SMO updates per binary problem; -1 means no limit, as in
+        scikit-learn's bundled libsvm (upstream libsvm stops at ``max(1e7, 100 n)``). Stopping
+        at the limit raises a ``ConvergenceWarning``.
     decision_function_shape : {'ovr', 'ovo'}, default='ovr'
         Shape of :meth:`decision_function` with more than two classes: the raw one-vs-one values,
         or one-vs-rest scores aggregated from their votes.
     break_ties : bool, default=False
         With 'ovr' and more than two classes, predict the argmax of the decision function instead
         of the majority vote.
-    random_state : int, RandomState instance or None, default=None
-        Accepted for compatibility; the solver is deterministic.
+    random_state : int, Generator, RandomState instance or None, default=None
+        Seeds the folds of ``probability=True`` (NumPy's generator, not libsvm's: the folds
+        differ from scikit-learn's); the solver itself is deterministic.
     selection : {'second-order', 'first-order'}, default='second-order'
         Working-set selection: libsvm's second-order rule or the maximal violating pair.
     libsvm_compat : bool, default=False
@@ -120,7 +99,11 @@ class SVC(ClassifierMixin, BaseEstimator):
         kernel storage, ties broken by the last index, its curvature floor, sequential bias sum) so
         that scikit-learn's ``SVC`` with the same ``shrinking`` is reproduced to about 1e-12 with
         the same iteration counts. See :mod:`ebantenna.ml.smo` for what each convention
-        changes.
+        changes. On purpose this includes libsvm's cancelling RBF arithmetic in training (the
+        expansion of :math:`\\lVert x - y\\rVert^2` about the origin, see
+        :mod:`ebantenna.ml.kernels`): its path, like libsvm's, changes when every feature is
+        shifted by the same amount. Predictions use centred points in both modes, as close as a
+        GEMM gets to libsvm's direct differences when it predicts.
 
     Attributes
     ----------
@@ -128,6 +111,7 @@ class SVC(ClassifierMixin, BaseEstimator):
     support_ : ndarray of shape (n_SV,)
         Indices of the support vectors, grouped by class.
     support_vectors_ : ndarray of shape (n_SV, n_features)
+        Empty, of shape (0, 0), for a precomputed or callable kernel (as in scikit-learn).
     n_support_ : ndarray of shape (n_classes,), int32
     dual_coef_ : ndarray of shape (n_classes - 1, n_SV)
         :math:`y_t\\alpha_t` in libsvm's one-vs-one layout (sign flipped for two classes, as
@@ -135,6 +119,8 @@ class SVC(ClassifierMixin, BaseEstimator):
     intercept_ : ndarray of shape (n_classes * (n_classes - 1) / 2,)
     n_iter_ : ndarray of shape (n_classes * (n_classes - 1) / 2,)
         SMO updates per binary problem.
+    probA_, probB_ : ndarray of shape (n_classes * (n_classes - 1) / 2,)
+        Platt's :math:`A` and :math:`B` of each pair (empty unless ``probability``).
     fit_status_ : int
         0 if every problem converged, 1 otherwise.
     class_weight_ : ndarray of shape (n_classes,)
@@ -157,11 +143,12 @@ class SVC(ClassifierMixin, BaseEstimator):
     # C must be finite and max_iter=0 (no update at all) is refused
     _parameter_constraints: dict = {
         "C": [Interval(Real, 0.0, None, closed="neither")],
-        "kernel": [StrOptions({"linear", "rbf", "poly"})],
+        "kernel": [StrOptions({"linear", "rbf", "poly", "sigmoid", "precomputed"}), callable],
         "degree": [Interval(Integral, 0, None, closed="left")],
         "gamma": [StrOptions({"scale", "auto"}), Interval(Real, 0.0, None, closed="left")],
         "coef0": [Interval(Real, None, None, closed="neither")],
         "shrinking": ["boolean"],
+        "probability": ["boolean"],
         "tol": [Interval(Real, 0.0, None, closed="neither")],
         "cache_size": [Interval(Real, 0, None, closed="neither")],
         "class_weight": [StrOptions({"balanced"}), dict, None],
@@ -189,6 +176,8 @@ class SVC(ClassifierMixin, BaseEstimator):
         FittedAttribute("_gamma", "value"),
         FittedAttribute("fit_status_", "value"),
         FittedAttribute("shape_fit_", "value", since=2),
+        FittedAttribute("probA_", "array", dtype="float64", ndim=1, optional=True),
+        FittedAttribute("probB_", "array", dtype="float64", ndim=1, optional=True),
         *INPUT_ATTRIBUTES,
     )
 
@@ -201,6 +190,7 @@ class SVC(ClassifierMixin, BaseEstimator):
         gamma="scale",
         coef0=0.0,
         shrinking=True,
+        probability=False,
         tol=1e-3,
         cache_size=200,
         class_weight=None,
@@ -218,6 +208,7 @@ class SVC(ClassifierMixin, BaseEstimator):
         self.gamma = gamma
         self.coef0 = coef0
         self.shrinking = shrinking
+        self.probability = probability
         self.tol = tol
         self.cache_size = cache_size
         self.class_weight = class_weight
@@ -250,6 +241,9 @@ class SVC(ClassifierMixin, BaseEstimator):
         if self.break_ties and self.decision_function_shape == "ovo":
             raise ValueError("break_ties must be False when decision_function_shape is 'ovo'")
         X, y = validate_data(self, X, y, dtype=np.float64, order="C", accept_sparse=False)
+        if self.kernel == "precomputed" and X.shape[0] != X.shape[1]:
+            raise ValueError("Precomputed matrix must be a square matrix. Input is a "
+                             f"{X.shape[0]}x{X.shape[1]} matrix.")
         y = column_or_1d(y, warn=True)
         check_classification_targets(y)
         classes, y_idx = np.unique(y, return_inverse=True)
@@ -261,11 +255,10 @@ class SVC(ClassifierMixin, BaseEstimator):
         self.class_weight_ = compute_class_weight(self.class_weight, classes=classes, y=y)
         sw = _check_sample_weight(sample_weight, X, dtype=np.float64)
         self._gamma = resolve_gamma(self.gamma, X)
-        kern = Kernel(self.kernel, gamma=self._gamma, degree=int(self.degree),
-                      coef0=float(self.coef0))
+        given = self._given_kernel_matrix(X)  # precomputed or callable: the whole matrix
+        kern = None if given is not None else self._kernel()
         c_vec = float(self.C) * self.class_weight_[y_idx] * sw
         keep = c_vec > 0
-        n = X.shape[0]
         cache_bytes = int(float(self.cache_size) * 2**20)
         n_keep = int(keep.sum())
         base = LIBSVM if self.libsvm_compat else DEFAULT
@@ -278,12 +271,17 @@ class SVC(ClassifierMixin, BaseEstimator):
         order = np.concatenate(members)
         starts = np.concatenate([[0], np.cumsum([m.size for m in members])])
         full = None
-        if n_keep * n_keep * np.dtype(dtype).itemsize <= cache_bytes:
-            full = kern.gram(X[order], dtype=dtype)
-        diag = kern.diagonal(X)
+        if given is not None:
+            full = np.asarray(given[np.ix_(order, order)], dtype=dtype)
+            diag = np.diag(given).astype(np.float64)
+        else:
+            if n_keep * n_keep * np.dtype(dtype).itemsize <= cache_bytes:
+                full = kern.gram(X[order], dtype=dtype, center=not self.libsvm_compat)
+            diag = kern.diagonal(X)
         policy = self._smo_policy(whole_kernel=full is not None)
-        max_iter = _LIBSVM_MAX_ITER if self.max_iter == -1 else int(self.max_iter)
-        max_iter = max(max_iter, 100 * n) if self.max_iter == -1 else max_iter
+        # -1: no cap, as in scikit-learn's libsvm ("set max_iter to -1 to disable the mechanism"
+        # in its Solver::Solve; upstream libsvm stops at max(1e7, 100 n) updates instead)
+        max_iter = math.inf if self.max_iter == -1 else int(self.max_iter)
         k = classes.size
         coefs = {}
         rhos, n_iter, status = [], [], 0
@@ -296,7 +294,8 @@ class SVC(ClassifierMixin, BaseEstimator):
                     parts = (slice(starts[a], starts[a + 1]), slice(starts[b], starts[b + 1]))
                     rows = KernelRows(None, kern, dtype, cache_bytes, full=full, parts=parts)
                 else:
-                    rows = KernelRows(X[idx], kern, dtype, cache_bytes)
+                    rows = KernelRows(X[idx], kern, dtype, cache_bytes,
+                                      center=not self.libsvm_compat)
                 res = solve_smo(rows, ys, c_vec[idx], diagonal=diag[idx], tol=float(self.tol),
                                 max_iter=max_iter, policy=policy)
                 if self.verbose:
@@ -308,6 +307,9 @@ class SVC(ClassifierMixin, BaseEstimator):
                 rhos.append(res.rho)
                 n_iter.append(res.n_iter)
         self._store(X, classes, members, coefs, np.array(rhos), n_iter)
+        self.probA_ = self.probB_ = np.empty(0)
+        if self.probability:
+            self._fit_probability(X, members, given, kern, dtype, c_vec, diag, policy, max_iter)
         self.fit_status_ = status
         self.shape_fit_ = X.shape
         if status:
@@ -341,23 +343,15 @@ class SVC(ClassifierMixin, BaseEstimator):
     def _store(self, X, classes, members, coefs, rhos, n_iter):
         """Arrange the pairwise solutions in libsvm's (and scikit-learn's) layout."""
         k = classes.size
-        nonzero = np.zeros(X.shape[0], dtype=bool)
-        for idx, coef in coefs.values():
-            nonzero[idx[coef != 0]] = True
-        sv_per_class = [m[nonzero[m]] for m in members]
-        support = np.concatenate(sv_per_class)
-        pos = np.full(X.shape[0], -1)
-        pos[support] = np.arange(support.size)
-        dual = np.zeros((k - 1, support.size))
-        for (a, b), (idx, coef) in coefs.items():
-            na = members[a].size
-            ia, ib = idx[:na], idx[na:]
-            sa, sb = nonzero[ia], nonzero[ib]
-            dual[b - 1, pos[ia[sa]]] = coef[:na][sa]
-            dual[a, pos[ib[sb]]] = coef[na:][sb]
+        support, n_support, dual = dual_layout(X.shape[0], members, coefs)
         self.support_ = support.astype(np.int32)
-        self.support_vectors_ = X[support]
-        self.n_support_ = np.array([s.size for s in sv_per_class], dtype=np.int32)
+        if self.kernel == "precomputed" or callable(self.kernel):
+            self.support_vectors_ = np.empty((0, 0))
+            if callable(self.kernel):
+                self._X_fit = X
+        else:
+            self.support_vectors_ = X[support]
+        self.n_support_ = n_support
         self._dual_coef_ = dual
         self._intercept_ = -rhos
         self.n_iter_ = np.array(n_iter, dtype=np.int32)
@@ -368,16 +362,105 @@ class SVC(ClassifierMixin, BaseEstimator):
             self.dual_coef_ = dual
             self.intercept_ = -rhos
 
+    def _fit_probability(self, X, members, given, kern, dtype, c_vec, diag, policy, max_iter):
+        """Platt's sigmoids of every pair, on five-fold decision values (libsvm's procedure)."""
+        center = not self.libsvm_compat
+
+        def kernel_block(rows, cols):
+            if given is not None:
+                return given[np.ix_(rows, cols)]
+            same = rows is cols or np.array_equal(rows, cols)
+            return kern.gram(X[rows], None if same else X[cols], center=center or not same)
+
+        def solve(points, ys, K):
+            rows = KernelRows(None, kern, dtype, 0, full=K)
+            res = solve_smo(rows, ys, c_vec[points], diagonal=diag[points], tol=float(self.tol),
+                            max_iter=max_iter, policy=policy)
+            return res.alpha * ys, res.rho
+
+        rs = self.random_state
+        seed = rs if rs is None or isinstance(rs, (Integral, np.random.Generator)) else (
+            check_random_state(rs).randint(2**31 - 1))
+        self.probA_, self.probB_ = pairwise_sigmoids(members, kernel_block, solve,
+                                                     np.random.default_rng(seed))
+
+    def _check_proba(self):
+        if not self.probability:
+            raise AttributeError("predict_proba is not available when probability=False")
+        return True
+
+    @available_if(_check_proba)
+    def predict_proba(self, X):
+        """Class probabilities, shape (n_samples, n_classes), from Platt's sigmoids coupled
+        pairwise (see :mod:`ebantenna.ml.platt`)."""
+        check_is_fitted(self)
+        if getattr(self, "probA_", np.empty(0)).size == 0:
+            raise NotFittedError("predict_proba is not available when fitted with "
+                                 "probability=False")
+        return pairwise_coupling(self._ovo_decision(X), self.probA_, self.probB_,
+                                 self.classes_.size)
+
+    @available_if(_check_proba)
+    def predict_log_proba(self, X):
+        """Logarithm of :meth:`predict_proba`."""
+        return np.log(self.predict_proba(X))
+
+    def _given_kernel_matrix(self, X):
+        """The training kernel matrix for 'precomputed' (``X`` itself) or a callable, else None."""
+        if self.kernel == "precomputed":
+            return X
+        if callable(self.kernel):
+            return self._call_kernel(X, X)
+        return None
+
+    def _call_kernel(self, X, Y) -> np.ndarray:
+        """The callable kernel's matrix of ``X`` against ``Y``, checked."""
+        K = np.asarray(self.kernel(X, Y), dtype=np.float64)
+        if K.shape != (X.shape[0], Y.shape[0]):
+            raise ValueError(f"the kernel callable must return an array of shape "
+                             f"{(X.shape[0], Y.shape[0])}; got {K.shape}")
+        if not np.isfinite(K).all():
+            raise ValueError("the kernel callable returned values that are not finite")
+        return K
+
     # ----------------------------------------------------------------- predict
     def _kernel(self) -> Kernel:
         return Kernel(self.kernel, gamma=self._gamma, degree=int(self.degree),
                       coef0=float(self.coef0))
 
+    def _test_kernel(self, X) -> np.ndarray:
+        """Kernel matrix of test points ``X`` (validated) against the support vectors."""
+        if self.kernel == "precomputed":
+            return X[:, self.support_]
+        if callable(self.kernel):
+            return self._call_kernel(X, self._X_fit[self.support_])
+        return self._kernel().gram(X, self.support_vectors_)
+
+    @property
+    def coef_(self) -> np.ndarray:
+        """Weights :math:`w` of the separating hyperplanes, linear kernel only.
+
+        Shape (1, n_features) for two classes, else one row per pair of classes in the order of
+        ``intercept_``; computed from ``dual_coef_`` and ``support_vectors_`` as scikit-learn
+        does, read-only.
+        """
+        if self.kernel != "linear":
+            raise AttributeError("coef_ is only available when using a linear kernel")
+        check_is_fitted(self)
+        coef = one_vs_one_coef(self.dual_coef_, self.n_support_, self.support_vectors_)
+        coef.flags.writeable = False
+        return coef
+
+    def __sklearn_tags__(self):
+        tags = super().__sklearn_tags__()
+        tags.input_tags.pairwise = self.kernel == "precomputed"
+        return tags
+
     def _ovo_decision(self, X) -> np.ndarray:
         """libsvm's pairwise decision values (positive: the pair's first class)."""
         check_is_fitted(self)
         X = validate_data(self, X, dtype=np.float64, order="C", reset=False)
-        kx = self._kernel().gram(X, self.support_vectors_)
+        kx = self._test_kernel(X)
         k = self.classes_.size
         bounds = np.concatenate([[0], np.cumsum(self.n_support_)])
         out = np.empty((X.shape[0], k * (k - 1) // 2))
@@ -413,12 +496,5 @@ class SVC(ClassifierMixin, BaseEstimator):
         k = self.classes_.size
         if self.break_ties and self.decision_function_shape == "ovr" and k > 2:
             return self.classes_[np.argmax(ovr_decision_function(dec < 0, -dec, k), axis=1)]
-        votes = np.zeros((dec.shape[0], k), dtype=np.int64)
-        p = 0
-        for a in range(k):
-            for b in range(a + 1, k):
-                win = dec[:, p] > 0
-                votes[win, a] += 1
-                votes[~win, b] += 1
-                p += 1
+        votes = ovo_votes(dec, k)
         return self.classes_[np.argmax(votes, axis=1)]

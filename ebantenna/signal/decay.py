@@ -15,7 +15,14 @@ exponential cannot be fitted to the oscillation itself. Three methods:
     least squares of ``a exp(b t)`` to the envelope itself (what a curve-fitting toolbox does),
     started from the log-linear answer;
 ``"peaks"``
-    the log-linear fit through the local maxima of ``|x|`` only (the logarithmic decrement).
+    the log-linear fit through the local maxima of ``|x|`` only (the logarithmic decrement);
+``"sinusoid"``
+    least squares of the whole damped sinusoid ``e^{bt} (p cos wt + q sin wt) + c`` to the signal
+    itself (:func:`scipy.optimize.least_squares`), started from the log-linear envelope fit. Its
+    model holds one mode; for that case it is unbiased, where the envelope fits are not (the
+    Hilbert envelope of a damped tone ripples at twice its frequency, by about
+    ``1 / (4 pi f tau)``, and the first and last periods must be dropped): on clean decays they
+    overestimate ``tau`` by 0.5-3 %.
 
 Robustness: only the samples from the start up to where the envelope first sinks to
 ``floor_factor`` times the noise floor (the median envelope of the last tenth of the record) are
@@ -23,7 +30,15 @@ used, so the noise tail does not bend the line; the first and last
 period are dropped (Hilbert edge effects); clipped samples (flat runs at the extreme values, as when
 the accelerometer saturates) are skipped; and a record with no measurable decay is flagged
 (``status="not_decaying"``) instead of being given a meaningless time constant. Logarithms are only
-ever taken of positive envelope values.
+ever taken of positive envelope values. The signal is scaled by a power of two before fitting (an
+exact operation), so amplitudes from 1e-300 to 1e300 give the same ``tau``.
+
+**An "ok" is checked.** An envelope fit is only ``"ok"`` if the samples it used span at least two
+periods of the signal, and if it agrees within 3 % with the damped-sinusoid fit whenever that fit
+explains the record (residual below 10 % of the signal, so one decaying mode is all there is);
+otherwise the status says what is wrong (``"too_few_points"``, ``"inconsistent"``). The
+damped-sinusoid fit is ``"ok"`` when it converged, decays, its residual is below 10 % of the
+signal (R^2 >= 0.99) and the record holds at least one period of the fitted frequency.
 
 **Filters ring too.** A decaying tone ``exp((-1/tau + i w) t)`` passes a linear filter as the same
 exponential, so band-pass filtering does not change ``tau`` by itself; but the filter adds its own
@@ -60,7 +75,13 @@ __all__ = [
 ]
 
 #: Methods of :func:`fit_decay`.
-DECAY_METHODS = ("loglinear", "nonlinear", "peaks")
+DECAY_METHODS = ("loglinear", "nonlinear", "peaks", "sinusoid")
+#: Relative disagreement of an envelope fit with the damped-sinusoid fit above which the envelope
+#: fit is ``"inconsistent"``.
+CONSISTENCY = 0.03
+#: Smallest R^2 of the damped-sinusoid fit (a residual of 10 % of the signal's RMS) for it to be
+#: ``"ok"``, and to serve as the witness of the envelope fits.
+SINUSOID_R_SQUARED = 0.99
 #: Shortest record :func:`fit_decay` accepts, samples.
 MIN_DECAY_SAMPLES = 16
 
@@ -80,16 +101,20 @@ class DecayFit:
     status : str
         ``"ok"``; ``"not_decaying"`` (no exponential decay stands out of the noise: noise only, a
         steady or growing oscillation); ``"too_few_points"`` (the record holds fewer than four
-        periods of its dominant frequency, or nothing is left to fit after trimming; then ``a = b =
-        0``).
+        periods of its dominant frequency, or the decay is over before two periods could be
+        fitted; then ``a = b = 0``); ``"inconsistent"`` (an envelope fit that disagrees by more
+        than 3 % with a damped sinusoid that explains the record: ``a``, ``b`` and ``tau`` are
+        the envelope's, not to be trusted); ``"poor_fit"`` (``"sinusoid"`` only: the model leaves
+        more than 10 % of the signal unexplained, or did not converge).
     clipped : bool
         Flat runs at the extremes were found and skipped.
     method : str
         The fitting method.
     r_squared : float
-        Weighted coefficient of determination of ``log env`` against the fitted line.
+        Weighted coefficient of determination of ``log env`` against the fitted line
+        (``"sinusoid"``: of the signal against the fitted damped sinusoid).
     n_points : int
-        Envelope samples (or peaks) used.
+        Envelope samples (or peaks, or signal samples) used.
     """
 
     a: float
@@ -135,7 +160,9 @@ def envelope(x) -> np.ndarray:
     """
     x = check_signal("x", x, min_length=2)
     n = x.shape[0]
-    spectrum = np.fft.fft(x)
+    # exact power-of-two scaling: the FFT's sums cannot overflow for |x| up to 1e308
+    exponent = math.frexp(float(np.max(np.abs(x))))[1]
+    spectrum = np.fft.fft(np.ldexp(x, -exponent))
     h = np.zeros(n)
     h[0] = 1.0
     if n % 2 == 0:
@@ -143,7 +170,7 @@ def envelope(x) -> np.ndarray:
         h[1 : n // 2] = 2.0
     else:
         h[1 : (n + 1) // 2] = 2.0
-    return np.abs(np.fft.ifft(spectrum * h))
+    return np.ldexp(np.abs(np.fft.ifft(spectrum * h)), exponent)
 
 
 def _clipped_mask(x: np.ndarray) -> np.ndarray:
@@ -191,8 +218,10 @@ def fit_decay(
         constant.
     fs : float
         Sampling frequency, Hz.
-    method : {"loglinear", "nonlinear", "peaks"}
-        See the module notes.
+    method : {"loglinear", "nonlinear", "peaks", "sinusoid"}
+        See the module notes. ``"sinusoid"`` is unbiased for one decaying mode; the envelope
+        methods also serve a mix of modes (each is then checked against the sinusoid fit only
+        where that fit explains the record).
     remove_mean : bool
         Subtract the mean before taking the envelope.
     floor_factor : float
@@ -216,6 +245,16 @@ def fit_decay(
     >>> rng = np.random.default_rng(0)
     >>> fit_decay(rng.standard_normal(1000), 1000.0).status
     'not_decaying'
+
+    A short decay at a low frequency: its envelope is too distorted to be trusted, the
+    damped-sinusoid fit is exact.
+
+    >>> x = np.exp(-t / 0.03) * np.sin(2 * np.pi * 25 * t)
+    >>> fit_decay(x, 1000.0).ok
+    False
+    >>> fit = fit_decay(x, 1000.0, method="sinusoid")
+    >>> fit.status, round(fit.tau, 6)
+    ('ok', 0.03)
     """
     fs = check_fs(fs)
     x = check_signal("x", x, min_length=MIN_DECAY_SAMPLES, allow_constant=False)
@@ -224,6 +263,9 @@ def fit_decay(
     min_r_squared = check_in_range("min_r_squared", min_r_squared, 0.0, 1.0, low_inclusive=True,
                                    high_inclusive=True)
     n = x.shape[0]
+    # Scale by a power of two (exact) so that sums, squares and logs neither overflow nor underflow.
+    exponent = math.frexp(float(np.max(np.abs(x))))[1]
+    x = np.ldexp(x, -exponent)
     clipped = _clipped_mask(x)
     is_clipped = bool(clipped.any())
     xc = x - x.mean() if remove_mean else x
@@ -232,38 +274,74 @@ def fit_decay(
 
     period = fs / dominant_frequency(xc, fs, method="bin", window="rectangular")
     edge = int(min(max(2, math.ceil(period)), n // 8))
-    start = edge
-    if is_clipped:
-        start = max(start, int(np.flatnonzero(clipped)[-1]) + 1 + edge)
+    first = int(np.flatnonzero(clipped)[-1]) + 1 if is_clipped else 0
+    start = max(edge, first + edge)
     stop = n - edge
 
-    def failed(status):
-        return DecayFit(0.0, 0.0, math.inf, status, is_clipped, method, 0.0, 0)
+    def result(a, b, status, r2=0.0, n_points=0):
+        tau = -1.0 / b if b < 0 else math.inf
+        return DecayFit(float(np.ldexp(a, exponent)), float(b), float(tau), status, is_clipped,
+                        method, float(r2), int(n_points))
 
     if period > n / 4 or stop - start < 4:
-        return failed("too_few_points")
+        return result(0.0, 0.0, "too_few_points")
     region = np.arange(start, stop)
     tail = env[region[-max(2, region.size // 10) :]]
     floor = float(np.median(tail))
     # Fit from the start up to where the envelope first sinks to the floor: later samples are noise,
     # Hilbert leakage from the record's ends, or the offset left by removing the mean.
+    # A record that ends before its decay reaches the noise floor has no floor to cut at: the
+    # envelope must rise well above its tail (floor_factor squared) for the tail to be noise.
     below = np.flatnonzero(env[region] <= floor_factor * floor)
+    if env[region].max() < floor_factor**2 * floor:
+        below = below[:0]
     keep = region[: below[0]] if below.size else region
-    if keep.size < max(4, region.size // 20):
+    end = min(n, int(keep[-1]) + 1 + edge) if keep.size else start
+    # A decay over before two periods could be fitted leaves too little envelope; the whole
+    # record is then fitted only to tell a decay (too short to measure) from no decay at all.
+    too_short = keep.size < 2 * period or keep.size < max(4, region.size // 20)
+    if too_short:
         keep = region[env[region] > 0.0]
     if method == "peaks":
         peaks, _ = find_peaks(np.abs(xc))
         keep = np.intersect1d(peaks, keep)
     if keep.size < 4:
-        return failed("too_few_points")
+        return result(0.0, 0.0, "too_few_points")
 
-    tk, ek = t[keep], env[keep]
-    if method == "peaks":
-        ek = np.abs(xc[keep])
-    ly = np.log(ek)  # ek > 0 by construction of keep
+    a, b, r2 = _envelope_fit(t[keep], env[keep] if method != "peaks" else np.abs(xc[keep]),
+                             nonlinear=method == "nonlinear")
+    decaying = b < 0 and r2 >= min_r_squared
+    sine = _damped_sinusoid_fit(xc[first:], t[first:], end - first, a, b, 2 * np.pi / period * fs)
+    if method == "sinusoid":
+        if sine is None:
+            return result(a, b, "poor_fit" if decaying else "not_decaying", r2, keep.size)
+        a_s, b_s, r2_s, n_s = sine
+        good = r2_s >= SINUSOID_R_SQUARED
+        status = "ok" if good and b_s < 0 else ("not_decaying" if good or not decaying
+                                                else "poor_fit")
+        return result(a_s, b_s, status, r2_s, n_s)
+    if not decaying:
+        status = "not_decaying"
+    elif too_short:
+        status = "too_few_points"
+    elif (sine is not None and sine[2] >= SINUSOID_R_SQUARED and sine[1] < 0
+          and abs(sine[1] / b - 1.0) > CONSISTENCY):
+        status = "inconsistent"
+    else:
+        status = "ok"
+    return result(a, b, status, r2, keep.size)
+
+
+def _envelope_fit(tk, ek, *, nonlinear):
+    """Fit ``a exp(b t)`` to envelope samples ``ek > 0`` at times ``tk``; return ``(a, b, r2)``.
+
+    The weighted log-linear fit, refined by least squares on ``ek`` itself if ``nonlinear``;
+    ``r2`` is the weighted R^2 of ``log ek`` against the final line.
+    """
+    ly = np.log(ek)
     log_a, b, _ = _weighted_line(tk, ly, ek**2)
     a = math.exp(log_a)
-    if method == "nonlinear":
+    if nonlinear:
         def residual(p):
             return p[0] * np.exp(p[1] * tk) - ek
 
@@ -279,10 +357,62 @@ def fit_decay(
     ym = (w * ly).sum() / w.sum()
     ss_tot = (w * (ly - ym) ** 2).sum()
     r2 = 1.0 - (w * (ly - fitted) ** 2).sum() / ss_tot if ss_tot > 0 else 0.0
-    tau = -1.0 / b if b < 0 else math.inf
-    status = "ok" if (b < 0 and r2 >= min_r_squared) else "not_decaying"
-    return DecayFit(float(a), float(b), float(tau), status, is_clipped, method, float(r2),
-                    int(keep.size))
+    return a, b, r2
+
+
+def _damped_sinusoid_fit(x, t, n_fit, a0, b0, omega0):
+    """Least squares of ``exp(b t) (p cos wt + q sin wt) + c`` to the first ``n_fit`` samples.
+
+    Started from the envelope fit ``(a0, b0)`` (or, if that does not decay, the energy centroid
+    of the signal) and the frequency ``omega0`` (rad/s) refined on a zero-padded spectrum of the
+    window; the linear parameters ``p, q, c`` start from their least-squares values.
+
+    Returns
+    -------
+    tuple (a, b, r_squared, n_fit) or None
+        ``a`` the amplitude at ``t = 0``; None when the window holds less than one period of the
+        fitted frequency or the solver fails.
+    """
+    n_fit = min(n_fit, x.size)
+    if n_fit < 8:
+        return None
+    y, t0 = x[:n_fit], t[0]
+    tw = t[:n_fit] - t0
+    if not b0 < 0:
+        energy = y**2
+        b0 = -0.5 / max(float((tw * energy).sum() / energy.sum()), tw[1])
+    # the strongest peak of the window's spectrum, 8x zero-padded, near the record's dominant bin
+    spectrum = np.abs(np.fft.rfft(y - y.mean(), 8 * n_fit))
+    omegas = 2 * np.pi * np.fft.rfftfreq(8 * n_fit, tw[1])
+    omega = float(omegas[1 + np.argmax(spectrum[1:])]) if spectrum.size > 1 else omega0
+
+    def columns(b, w):
+        e = np.exp(b * tw)
+        return e, np.cos(w * tw), np.sin(w * tw)
+
+    e, co, si = columns(b0, omega)
+    lin, *_ = np.linalg.lstsq(np.column_stack([e * co, e * si, np.ones(n_fit)]), y, rcond=None)
+
+    def residual(v):
+        b, w, p, q, c = v
+        e, co, si = columns(b, w)
+        return e * (p * co + q * si) + c - y
+
+    def jacobian(v):
+        b, w, p, q, c = v
+        e, co, si = columns(b, w)
+        osc = e * (p * co + q * si)
+        return np.column_stack([tw * osc, tw * e * (q * co - p * si), e * co, e * si,
+                                np.ones(n_fit)])
+
+    sol = optimize.least_squares(residual, x0=[b0, omega, *lin], jac=jacobian, method="lm",
+                                 x_scale="jac")
+    b, w, p, q, _ = sol.x
+    if not (sol.success and np.all(np.isfinite(sol.x))) or abs(w) * tw[-1] < 2 * np.pi:
+        return None
+    ss_tot = float(((y - y.mean()) ** 2).sum())
+    r2 = 1.0 - float((sol.fun**2).sum()) / ss_tot if ss_tot > 0 else 0.0
+    return math.hypot(p, q) * math.exp(-b * t0), float(b), r2, n_fit
 
 
 def band_passed_decay(x, fs, *, kind: str = "chebyshev", order=None,
@@ -299,7 +429,7 @@ def band_passed_decay(x, fs, *, kind: str = "chebyshev", order=None,
         Table 1 (the paper's choice before the decay fit) or Table 2.
     order : int or None or "stated"
         As for :func:`~ebantenna.signal.paper_filter`. See the module notes on filter ringing.
-    method : {"loglinear", "nonlinear", "peaks"}
+    method : {"loglinear", "nonlinear", "peaks", "sinusoid"}
         Fitting method.
 
     Returns

@@ -18,6 +18,8 @@ neighbours:
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from scipy.signal import get_window
 
@@ -60,9 +62,11 @@ def dominant_frequency(
         FFT length as a multiple of ``n`` (1 = no padding). Padding interpolates the spectrum: it
         shrinks the bin spacing (and the plain-bin error) but not the resolution.
     fmin, fmax : float, optional
-        Search band, Hz. Default: from one bin above DC up to the Nyquist frequency ``fs / 2``.
+        Search band, Hz. Default: from one bin above DC up to the Nyquist frequency ``fs / 2``
+        (for a short transient, from two bins of the analysed segment, see the notes).
     remove_mean : bool
-        Subtract the mean first, so that the DC bin (gravity, offsets) cannot win.
+        Subtract the mean first (for a short transient, the median of the record), so that the
+        DC bin (gravity, offsets) cannot win.
 
     Returns
     -------
@@ -75,6 +79,21 @@ def dominant_frequency(
         For an empty, constant, too-short or non-finite ``x``, ``fs <= 0``, or a band outside
         ``[0, fs/2]``.
 
+    Notes
+    -----
+    **Short transients.** A window over the whole record weights its start by about zero, so a
+    decay of a few tens of milliseconds at the start of a one-second record would vanish under
+    it. Without ``fmin``, a record whose energy sits in less than half of it (a decay or a burst,
+    found block by block) is analysed on that part only: baseline (the median) removed, windowed
+    over the part, padded to keep the record's bin spacing.
+
+    **Accuracy.** For a clean damped tone :math:`e^{-t/\\tau}\\sin(2\\pi f t + \\phi)` plus any
+    offset (checked for :math:`\\tau` from 5 ms to 10 s, offsets up to 10 g, 1 s at 1 kHz) the
+    Jacobsen estimate with the Hann window is within :math:`0.15/(2\\pi\\tau) + 0.01 f_s/n` of
+    :math:`f`, provided the tone is at least its half-bandwidth :math:`1/(2\\pi\\tau)` away from 0
+    and from :math:`f_s/2` (closer, its peak merges with its mirror image and is not :math:`f` any
+    more). Values of ``x`` from 1e-300 to 1e308 are scaled by a power of two (exact) before the FFT.
+
     Examples
     --------
     >>> import numpy as np
@@ -85,9 +104,12 @@ def dominant_frequency(
     123.37
     >>> dominant_frequency(x, 1000.0, method="bin")
     123.0
+    >>> short = np.exp(-t / 0.03) * np.sin(2 * np.pi * 25.0 * t) + 9.81  # a 30 ms tap, gravity
+    >>> round(dominant_frequency(short, 1000.0), 1)
+    25.0
     """
-    spectrum, lo, hi, n, fs = _windowed_spectrum(x, fs, method, window, zero_pad, fmin, fmax,
-                                                 remove_mean)
+    spectrum, lo, hi, n, fs, zero_pad = _windowed_spectrum(x, fs, method, window, zero_pad, fmin,
+                                                           fmax, remove_mean)
     mag = np.abs(spectrum)
     k = lo + int(np.argmax(mag[lo : hi + 1]))
     if mag[k] == 0.0:
@@ -108,6 +130,7 @@ def _windowed_spectrum(x, fs, method, window, zero_pad, fmin, fmax, remove_mean)
     n = x.shape[0]
     n_fft = n * zero_pad
     nyquist = fs / 2.0
+    given_fmin = fmin
     fmin = fs / n if fmin is None else check_nonnegative("fmin", fmin)
     fmax = nyquist if fmax is None else check_nonnegative("fmax", fmax)
     if not fmin < fmax <= nyquist:
@@ -115,8 +138,32 @@ def _windowed_spectrum(x, fs, method, window, zero_pad, fmin, fmax, remove_mean)
             f"fmin and fmax must satisfy 0 <= fmin < fmax <= fs/2 = {nyquist:g} Hz, "
             f"got fmin={fmin:g}, fmax={fmax:g}"
         )
-    if remove_mean:
-        x = x - x.mean()
+    fmin = given_fmin if given_fmin is None else fmin
+    # Scale by a power of two (exact) so that the FFT's sums cannot overflow near 1e308.
+    x = np.ldexp(x, -math.frexp(float(np.max(np.abs(x))))[1])
+    segment = _transient(x) if fmin is None else None
+    if segment is not None:
+        # A short transient: window the part that holds it, not the whole record (a taper over
+        # the whole record would weight the transient's start by about zero), and remove the
+        # baseline (the median of the record, the level outside the transient) instead of the
+        # mean, which would leave a step. The padding keeps the record's bin spacing.
+        if remove_mean:
+            x = x - np.median(x)
+        x = x[segment]
+        m = x.shape[0]
+        zero_pad *= -(-n // m)
+        n, n_fft = m, m * zero_pad
+        # below two bins of the segment the window's DC lobe holds what is left of the baseline
+        fmin = 2.0 * fs / m
+        if not fmin < fmax:
+            raise ValueError(
+                f"x is a transient of {m} samples: no frequency below its two-bin limit "
+                f"{fmin:g} Hz can be resolved; fmax={fmax:g}"
+            )
+    else:
+        fmin = fs / n if fmin is None else fmin
+        if remove_mean:
+            x = x - x.mean()
     w = np.ones(n) if window == "rectangular" else get_window(window, n, fftbins=True)
     spectrum = np.fft.rfft(x * w, n=n_fft)
     df = fs / n_fft
@@ -124,7 +171,28 @@ def _windowed_spectrum(x, fs, method, window, zero_pad, fmin, fmax, remove_mean)
     hi = int(np.floor(fmax / df + 1e-9))
     if hi < lo:
         raise ValueError(f"the band [{fmin:g}, {fmax:g}] Hz holds no FFT bin (bin width {df:g} Hz)")
-    return spectrum, lo, hi, n, fs
+    return spectrum, lo, hi, n, fs, zero_pad
+
+
+def _transient(x: np.ndarray) -> slice | None:
+    """The samples holding a short transient (a decay, a burst) in ``x``, or None.
+
+    The record is cut into 64 blocks about the median of ``x`` (the baseline). A transient is the
+    span from the first to the last block above both 30 times the quietest block (the noise
+    floor: for white noise the quietest of 64 blocks of 15 or more samples holds about 0.4 times
+    the mean block energy, and a block above 12 times the mean is a 1e-6 chance) and 1e-6 of the
+    strongest block (an amplitude 60 dB down, where a noise-free decay counts as over). It counts
+    as short when it covers less than half the record, which a steady oscillation never does.
+    """
+    n = x.shape[0]
+    size = max(4, n // 64)
+    blocks = (x[: n - n % size] - np.median(x)).reshape(-1, size)
+    energy = np.einsum("ij,ij->i", blocks, blocks)
+    loud = np.flatnonzero(energy > max(30.0 * energy.min(), 1e-6 * energy.max()))
+    if loud.size == 0:
+        return None
+    start, stop = int(loud[0]) * size, (int(loud[-1]) + 1) * size
+    return slice(start, stop) if 2 * (stop - start) < n else None
 
 
 def _refine_peak(spectrum, k, fs, n, method, window, zero_pad) -> float:
@@ -201,10 +269,11 @@ def peak_frequencies(
     array([ 43.21, 187.65])
     """
     n_peaks = check_int("n_peaks", n_peaks, minimum=1)
-    spectrum, lo, hi, n, fs = _windowed_spectrum(x, fs, method, window, 1, fmin, fmax,
-                                                 remove_mean)
-    df = fs / n
-    sep = 4.0 * df if min_separation is None else check_positive("min_separation", min_separation)
+    spectrum, lo, hi, n, fs, zero_pad = _windowed_spectrum(x, fs, method, window, 1, fmin, fmax,
+                                                           remove_mean)
+    df = fs / (n * zero_pad)
+    sep = (4.0 * fs / n if min_separation is None
+           else check_positive("min_separation", min_separation))
     mag = np.abs(spectrum)
     band = mag[lo : hi + 1]
     inner = (band[1:-1] > band[:-2]) & (band[1:-1] >= band[2:])
@@ -221,5 +290,5 @@ def peak_frequencies(
             f"x holds only {len(chosen)} spectral peak(s) at least {sep:g} Hz apart in the "
             f"search band; n_peaks={n_peaks} requested"
         )
-    freqs = [_refine_peak(spectrum, k, fs, n, method, window, 1) for k in chosen]
+    freqs = [_refine_peak(spectrum, k, fs, n, method, window, zero_pad) for k in chosen]
     return np.sort(np.array(freqs))

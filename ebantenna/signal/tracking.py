@@ -24,6 +24,14 @@ the tracker checks, block by block, the share of the input power that passes its
 drops below ``reacquire_ratio``, restarts from the dominant frequency of that block. After the start
 and after every restart the coefficient is held for ``3 / (1 - rho)`` samples while the band-pass
 settles, and no block is judged before it has settled.
+
+Lock gate. After a decay the record holds only noise, and an adaptive filter left running would
+follow it (and a restart would jump to the noise's strongest bin). Each block is therefore judged
+against the noise floor, the power of the quietest block: a block more than ``lock_snr`` times
+above it is *locked* (the filter adapts and may restart); below, the tracker is *unlocked* and
+holds its last frequency. A record whose loudest block is not ``lock_snr`` times above its
+quietest has no quiet part (a steady tone, a slow decay) and is locked throughout.
+:meth:`TrackingResult.final_frequency` reads only locked samples.
 """
 
 from __future__ import annotations
@@ -54,18 +62,31 @@ class TrackingResult:
         The tracked component (band-pass output), unit of the input.
     reacquired : ndarray of int
         Sample indices where the tracker restarted on a new dominant frequency.
+    locked : ndarray of bool, shape (n,)
+        True where the input stood above the noise floor and the tracker followed it (see the
+        module notes on the lock gate).
     """
 
     t: np.ndarray
     frequency: np.ndarray
     bandpass: np.ndarray
     reacquired: np.ndarray
+    locked: np.ndarray
 
     def final_frequency(self, fraction: float = 0.25) -> float:
-        """Median tracked frequency over the last ``fraction`` of the record, Hz."""
+        """Median tracked frequency over the last ``fraction`` of the locked samples, Hz.
+
+        Raises
+        ------
+        ValueError
+            If no sample is locked (the record holds nothing above its noise floor).
+        """
         fraction = check_in_range("fraction", fraction, 0.0, 1.0, high_inclusive=True)
-        k = max(1, int(round(fraction * self.frequency.shape[0])))
-        return float(np.median(self.frequency[-k:]))
+        followed = self.frequency[self.locked]
+        if followed.size == 0:
+            raise ValueError("the tracker never locked: no block stood above the noise floor")
+        k = max(1, int(round(fraction * followed.shape[0])))
+        return float(np.median(followed[-k:]))
 
 
 @dataclass(frozen=True)
@@ -92,6 +113,9 @@ class FrequencyTracker:
         Block length for the reacquisition check, samples.
     reacquire_ratio : float
         Restart when the band-pass output holds less than this share of the block's input power.
+    lock_snr : float
+        Power ratio over the noise floor (the quietest block) above which a block is locked
+        (>= 1; default 10, i.e. 10 dB). See the module notes.
 
     Examples
     --------
@@ -113,6 +137,7 @@ class FrequencyTracker:
     reacquire: bool = True
     block: int = 50
     reacquire_ratio: float = 0.3
+    lock_snr: float = 10.0
 
     def __post_init__(self):
         fs = check_fs(self.fs)
@@ -133,6 +158,7 @@ class FrequencyTracker:
             raise TypeError(f"reacquire must be True or False, got {self.reacquire!r}")
         check_int("block", self.block, minimum=8)
         check_in_range("reacquire_ratio", self.reacquire_ratio, 0.0, 1.0)
+        check_in_range("lock_snr", self.lock_snr, 1.0, 1e12, low_inclusive=True)
 
     @property
     def bandwidth(self) -> float:
@@ -152,7 +178,8 @@ class FrequencyTracker:
             Signal (for instance the resultant acceleration), at least ``block`` samples, not
             constant. Its mean is removed first.
         f0 : float, optional
-            Starting frequency, Hz; default the dominant frequency of the first four blocks.
+            Starting frequency, Hz; default the dominant frequency of the first four blocks from
+            the first locked one.
 
         Returns
         -------
@@ -161,8 +188,11 @@ class FrequencyTracker:
         x = check_signal("x", x, min_length=self.block, allow_constant=False)
         x = x - x.mean()
         n = x.shape[0]
+        locked = self._lock_gate(x)
         if f0 is None:
-            head = x[: max(self.block, min(n, 4 * self.block))]
+            # the first four blocks from where the signal starts (a record may begin quietly)
+            first = int(np.argmax(locked))
+            head = x[first : first + max(self.block, min(n, 4 * self.block))]
             f0 = dominant_frequency(head, self.fs, fmin=self.fmin, fmax=self.fmax)
         else:
             f0 = check_in_range("f0", f0, self.fmin, self.fmax, low_inclusive=True,
@@ -184,7 +214,7 @@ class FrequencyTracker:
             e = s0 + a * s1 + s2
             band[k] = x[k] - e
             r = lam * r + s1 * s1
-            if k >= settle_until and r > 0.0:
+            if k >= settle_until and r > 0.0 and locked[k]:
                 a = min(max(a - mu * e * s1 / r, a_lo), a_hi)
             s2, s1 = s1, s0
             freq[k] = math.acos(-a / 2.0) * self.fs / (2.0 * math.pi)
@@ -193,7 +223,8 @@ class FrequencyTracker:
                 block_out += band[k] * band[k]
                 if (k + 1) % self.block == 0:
                     settled = k + 1 - self.block >= settle_until
-                    if settled and block_in > 0.0 and block_out < self.reacquire_ratio * block_in:
+                    if (settled and locked[k] and block_in > 0.0
+                            and block_out < self.reacquire_ratio * block_in):
                         seg = x[k + 1 - self.block : k + 1]
                         if np.ptp(seg) > 0.0:
                             f_new = dominant_frequency(seg, self.fs, fmin=self.fmin,
@@ -202,4 +233,15 @@ class FrequencyTracker:
                             settle_until = k + 1 + warmup
                             restarts.append(k + 1)
                     block_in = block_out = 0.0
-        return TrackingResult(np.arange(n) / self.fs, freq, band, np.asarray(restarts, dtype=int))
+        return TrackingResult(np.arange(n) / self.fs, freq, band, np.asarray(restarts, dtype=int),
+                              locked)
+
+    def _lock_gate(self, x: np.ndarray) -> np.ndarray:
+        """Per sample: does its block stand ``lock_snr`` above the quietest block's power?"""
+        n = x.shape[0]
+        starts = np.arange(0, n, self.block)
+        power = np.add.reduceat(x * x, starts) / np.diff(np.append(starts, n))
+        floor = float(power.min())
+        if power.max() <= self.lock_snr * floor:
+            return np.ones(n, dtype=bool)  # no quiet part: a steady or slowly decaying signal
+        return np.repeat(power > self.lock_snr * floor, np.diff(np.append(starts, n)))

@@ -79,6 +79,137 @@ def test_gd_step_equals_sklearn_full_batch_sgd(activation, n_classes):
                                atol=_rounding(X, (7, 5)))
 
 
+@pytest.mark.parametrize("learning_rate", ["constant", "invscaling", "adaptive"])
+@pytest.mark.parametrize("solver", ["gd", "sgd", "adam"])
+def test_several_epochs_follow_sklearn(solver, learning_rate):
+    X, rng = _data()
+    y = rng.integers(0, 3, X.shape[0])
+    batch = X.shape[0] if solver == "gd" else 20
+    # adaptive: tol=10 makes every epoch one without improvement, so the rate drops by 5 often
+    common = dict(hidden_layer_sizes=(7,), activation="tanh", learning_rate=learning_rate,
+                  learning_rate_init=0.05, shuffle=False, alpha=0.01, random_state=0,
+                  power_t=0.5, tol=10.0 if learning_rate == "adaptive" else 0.0,
+                  n_iter_no_change=1 if learning_rate == "adaptive" else 50)
+    ours = MLPClassifier(solver=solver, batch_size=batch, **common)
+    theirs = SkClassifier(solver="sgd" if solver == "gd" else solver, batch_size=batch,
+                          **({"momentum": 0.0} if solver == "gd" else {}), **common)
+    epochs = 8
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        for est in (ours, theirs):
+            est.set_params(max_iter=1).fit(X, y)
+        c0 = [c.copy() for c in ours.coefs_]
+        b0 = [b.copy() for b in ours.intercepts_]
+        for est in (ours, theirs):
+            est.coefs_ = [c.copy() for c in c0]
+            est.intercepts_ = [b.copy() for b in b0]
+            est.t_ = 0
+            est.set_params(warm_start=True, max_iter=epochs).fit(X, y)
+    assert ours.n_iter_ == theirs.n_iter_ and ours.t_ == theirs.t_
+    # Each step adds at most one step's rounding; these small steps (rate <= 0.05 on a loss of
+    # curvature below 1) carry earlier errors with a gain below 2 over the run.
+    n_steps = epochs * (X.shape[0] // batch)
+    atol = 2 * n_steps * _rounding(X, (7,), _max_abs(theirs.coefs_ + theirs.intercepts_))
+    np.testing.assert_allclose(ours.loss_curve_[1:], theirs.loss_curve_[1:], rtol=0, atol=atol)
+    for a, b in zip(ours.coefs_ + ours.intercepts_, theirs.coefs_ + theirs.intercepts_,
+                    strict=True):
+        np.testing.assert_allclose(a, b, rtol=0, atol=atol)
+
+
+@pytest.mark.parametrize("kind, solver, learning_rate", [
+    ("classifier", "sgd", "invscaling"), ("classifier", "adam", "constant"),
+    ("regressor", "sgd", "constant"), ("regressor", "adam", "constant"),
+])
+def test_partial_fit_follows_sklearn(kind, solver, learning_rate):
+    X, rng = _data()
+    y = rng.integers(0, 3, X.shape[0]) if kind == "classifier" else X[:, 0] - X[:, 1] ** 2
+    Ours, Theirs = ((MLPClassifier, SkClassifier) if kind == "classifier"
+                    else (MLPRegressor, SkRegressor))
+    common = dict(hidden_layer_sizes=(6,), activation="tanh", solver=solver, batch_size=15,
+                  learning_rate=learning_rate, learning_rate_init=0.02, shuffle=False,
+                  alpha=0.01, random_state=0, max_iter=1)
+    ours, theirs = Ours(**common), Theirs(**common)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        for est in (ours, theirs):
+            est.fit(X, y)  # sets up the network; then both start from our weights
+        for est in (ours, theirs):
+            est.coefs_ = [c.copy() for c in ours.coefs_]
+            est.intercepts_ = [b.copy() for b in ours.intercepts_]
+            est.t_ = 0
+            if hasattr(est, "_optimizer"):
+                del est._optimizer  # scikit-learn's would continue the one of fit
+    halves = (slice(0, 30), slice(30, 60))
+    for call in range(6):
+        part = halves[call % 2]
+        extra = {"classes": np.arange(3)} if kind == "classifier" else {}
+        ours.partial_fit(X[part], y[part], **extra)
+        theirs.partial_fit(X[part], y[part], **extra)
+        assert ours.n_iter_ == theirs.n_iter_ == 1 and ours.t_ == theirs.t_
+    # 12 steps, each adding one step's rounding, carried with a gain below 2 (small steps)
+    atol = 2 * 12 * _rounding(X, (6,), _max_abs(theirs.coefs_ + theirs.intercepts_))
+    np.testing.assert_allclose(ours.loss_curve_[1:], theirs.loss_curve_[1:], rtol=0, atol=atol)
+    for a, b in zip(ours.coefs_ + ours.intercepts_, theirs.coefs_ + theirs.intercepts_,
+                    strict=True):
+        np.testing.assert_allclose(a, b, rtol=0, atol=atol)
+
+
+def test_partial_fit_refusals():
+    X, rng = _data()
+    y = rng.integers(0, 3, X.shape[0])
+    with pytest.raises(ValueError, match="classes must be passed"):
+        MLPClassifier().partial_fit(X, y)
+    assert not hasattr(MLPClassifier(solver="scg"), "partial_fit")
+    with pytest.raises(ValueError, match="early_stopping"):
+        MLPRegressor(early_stopping=True).partial_fit(X, X[:, 0])
+    clf = MLPClassifier((4,), random_state=0).partial_fit(X, y, classes=[0, 1, 2, 3])
+    assert clf.classes_.tolist() == [0, 1, 2, 3]  # a class not seen yet is still a class
+    with pytest.raises(ValueError, match="not the same"):
+        clf.partial_fit(X, y, classes=[0, 1])
+
+
+@pytest.mark.parametrize("kind", ["classifier", "regressor"])
+def test_lbfgs_follows_sklearn(kind):
+    X, rng = _data()
+    y = rng.integers(0, 3, X.shape[0]) if kind == "classifier" else X[:, 0] - X[:, 1] ** 2
+    Ours, Theirs = ((MLPClassifier, SkClassifier) if kind == "classifier"
+                    else (MLPRegressor, SkRegressor))
+    common = dict(hidden_layer_sizes=(7,), activation="tanh", solver="lbfgs", alpha=0.01,
+                  random_state=0, max_iter=1)
+    ours, theirs = Ours(**common), Theirs(**common)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        for est in (ours, theirs):
+            est.fit(X, y)
+        c0 = [c.copy() for c in ours.coefs_]
+        b0 = [b.copy() for b in ours.intercepts_]
+        for est in (ours, theirs):
+            est.coefs_ = [c.copy() for c in c0]
+            est.intercepts_ = [b.copy() for b in b0]
+            est.set_params(warm_start=True, max_iter=10).fit(X, y)
+    assert ours.n_iter_ == theirs.n_iter_ == 10
+    assert ours.loss_curve_[-1] == pytest.approx(theirs.loss_, rel=1e-9)
+    # L-BFGS is deterministic in f and g, which the two codes compute with sums in different
+    # orders; its line search and two-loop recursion carry that rounding on with a gain that
+    # stays far below 1e5 over ten iterations of this well-scaled problem (after hundreds of
+    # iterations the non-convex paths may fork, as any two runs of L-BFGS)
+    atol = 1e5 * _rounding(X, (7,), _max_abs(theirs.coefs_ + theirs.intercepts_))
+    for a, b in zip(ours.coefs_ + ours.intercepts_, theirs.coefs_ + theirs.intercepts_,
+                    strict=True):
+        np.testing.assert_allclose(a, b, rtol=0, atol=atol)
+
+
+def test_lbfgs_warns_when_it_stops_early_and_learns():
+    X = np.linspace(0, 1, 40)[:, None]
+    y = np.sin(3 * X[:, 0])
+    with pytest.warns(ConvergenceWarning, match="lbfgs failed to converge"):
+        MLPRegressor((8,), solver="lbfgs", max_iter=3, random_state=0).fit(X, y)
+    reg = MLPRegressor((8,), activation="tanh", solver="lbfgs", max_iter=500, tol=1e-8,
+                       random_state=0).fit(X, y)
+    assert reg.score(X, y) > 0.999
+    assert len(reg.loss_curve_) == reg.n_iter_ and reg.best_loss_ == min(reg.loss_curve_)
+
+
 def test_gd_step_equals_sklearn_for_single_output_regression():
     X, rng = _data()
     y = X @ rng.normal(size=4) + 0.1 * rng.normal(size=X.shape[0])
@@ -254,6 +385,45 @@ def test_scg_minimises_a_quadratic_like_conjugate_gradients():
     np.testing.assert_allclose(state.w, np.linalg.solve(A, b), rtol=1e-7, atol=1e-9)
 
 
+def test_scg_sigma0_and_lambda0_are_netlabs_settable_constants():
+    rng = np.random.default_rng(2)
+    M = rng.normal(size=(4, 4))
+    A = M @ M.T + np.eye(4)
+
+    def fg(w):
+        return 0.5 * float(w @ A @ w), A @ w
+
+    assert scg_init(np.ones(4), fg).beta == 1.0  # Netlab's lambda0
+    state = scg_init(np.ones(4), fg, lambda0=5e-7)  # trainscg's
+    assert state.beta == 5e-7
+    d = state.d.copy()  # the first direction: steepest descent
+    scg_step(state, fg, sigma0=5e-5)
+    # on a quadratic the finite difference of gradients is d^T A d for any sigma0, up to the
+    # rounding of A (w + sigma d) - A w: about eps |A| |w| / sigma relative to |A| |d|
+    assert state.gamma == pytest.approx(float(d @ A @ d), rel=1e-8)
+    X, _ = _data(n=40, d=3, seed=1)
+    y = X[:, 0] - X[:, 1]
+    common = dict(hidden_layer_sizes=(5,), solver="scg", max_iter=30, random_state=0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        netlab = MLPRegressor(**common).fit(X, y)
+        matlab = MLPRegressor(sigma0=5e-5, lambda0=5e-7, **common).fit(X, y)
+    assert netlab.loss_curve_[0] == matlab.loss_curve_[0]  # same start, different scale path
+    assert netlab.loss_curve_ != matlab.loss_curve_
+    with pytest.raises(ValueError, match="lambda0"):
+        MLPRegressor(solver="scg", lambda0=0.0).fit(X, y)
+
+
+@pytest.mark.parametrize("scale_x, scale_y", [(1.0, 1e200), (1e200, 1.0)])
+def test_scg_refuses_a_loss_that_is_not_finite(scale_x, scale_y):
+    X, _ = _data(n=40, d=3, seed=1)
+    y = X[:, 0]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # NumPy's overflow, the cause named below
+        with pytest.raises(ValueError, match="not finite"):
+            MLPRegressor((5,), solver="scg", max_iter=5).fit(scale_x * X, scale_y * y)
+
+
 def test_early_stopping_keeps_the_best_validation_weights():
     X, rng = _data(n=200, d=5, seed=6)
     y = (X[:, 0] + 0.8 * rng.normal(size=200) > 0).astype(int)
@@ -291,7 +461,7 @@ def test_same_seed_same_bytes():
 @pytest.mark.parametrize(
     "params, error, match",
     [
-        (dict(solver="lbfgs"), ValueError, "solver"),
+        (dict(solver="newton"), ValueError, "solver"),
         (dict(activation="softplus"), ValueError, "activation"),
         (dict(hidden_layer_sizes=(0,)), ValueError, "hidden_layer_sizes"),
         (dict(hidden_layer_sizes="wide"), ValueError, "hidden_layer_sizes"),

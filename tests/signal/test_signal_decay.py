@@ -126,3 +126,80 @@ def test_band_passed_decay_is_filter_then_fit():
         band_passed_decay(x, 300.0)
     with pytest.raises(ValueError, match="kind"):
         band_passed_decay(x, FS, kind="bessel")
+
+
+# The grid of clean decays: f0 from 10 Hz to 0.9 Nyquist, tau from 10 ms to the record length,
+# three phases and amplitudes from 1e-150 to 1e150 (7 x 8 x 3 x 3 = 504 records of 1 s at 1 kHz).
+GRID_F0 = (10.0, 25.0, 50.0, 100.0, 200.0, 300.0, 450.0)
+GRID_TAU = (0.01, 0.02, 0.03, 0.05, 0.1, 0.2, 0.5, 1.0)
+GRID_PHASE = (0.0, 1.0, 2.5)
+GRID_AMPLITUDE = (1e-150, 1.0, 1e150)
+
+
+def _grid():
+    for f0 in GRID_F0:
+        for tau in GRID_TAU:
+            for phase in GRID_PHASE:
+                for amp in GRID_AMPLITUDE:
+                    yield f0, tau, amp * np.exp(-T / tau) * np.sin(2 * np.pi * f0 * T + phase)
+
+
+@pytest.mark.parametrize("method", DECAY_METHODS)
+def test_ok_is_right_on_the_clean_decay_grid(method):
+    n_ok = 0
+    for f0, tau, x in _grid():
+        fit = fit_decay(x, FS, method=method)
+        if fit.ok:
+            n_ok += 1
+            assert fit.tau == pytest.approx(tau, rel=0.03), (f0, tau)
+    if method == "sinusoid":
+        # the model is exact here; every record with a period inside the decay is measured
+        # (10 Hz at tau = 10 ms holds less than half a period above 1 % of its start)
+        assert n_ok >= 504 - 3 * 3
+
+
+def test_sinusoid_fit_is_unbiased_where_envelopes_are_not():
+    for f0, tau in [(25.0, 0.03), (87.3, 0.1), (450.0, 0.03), (10.0, 0.5)]:
+        x = np.exp(-T / tau) * np.sin(2 * np.pi * f0 * T + 0.3)
+        fit = fit_decay(x, FS, method="sinusoid")
+        # exact model, noise-free: least_squares stops at its relative step tolerance xtol=1e-8
+        assert fit.ok and fit.tau == pytest.approx(tau, rel=1e-6)
+        assert fit.a == pytest.approx(1.0, rel=1e-6)
+        assert fit.r_squared == pytest.approx(1.0, abs=1e-9)
+
+
+def test_envelope_fit_is_not_ok_when_it_is_wrong():
+    # The 25 Hz, 30 ms decay once came out as tau = 0.374 s with status "ok".
+    x = np.exp(-T / 0.03) * np.sin(2 * np.pi * 25 * T)
+    for method in ("loglinear", "nonlinear", "peaks"):
+        fit = fit_decay(x, FS, method=method)
+        assert not fit.ok or fit.tau == pytest.approx(0.03, rel=0.03)
+    # near Nyquist the envelope ripples: the damped-sinusoid witness catches the disagreement
+    near_nyquist = np.exp(-T / 0.03) * np.sin(2 * np.pi * 450 * T + 1.0)
+    fit = fit_decay(near_nyquist, FS)
+    assert fit.status == "inconsistent" and abs(fit.tau / 0.03 - 1) > 0.03
+
+
+@pytest.mark.parametrize("method", DECAY_METHODS)
+def test_extreme_amplitudes_give_the_same_fit(method):
+    x = _decay(0.1)
+    ref = fit_decay(x, FS, method=method)
+    for scale in (2.0**-1000, 1e-300, 1e300, 2.0**1000):
+        fit = fit_decay(scale * x, FS, method=method)
+        # scaling by a power of two inside is exact: tau is identical when the input scale is a
+        # power of two; otherwise x * scale is rounded (u relative) before the fit
+        assert fit.status == ref.status
+        assert fit.tau == pytest.approx(ref.tau, rel=1e-6)
+        assert fit.a == pytest.approx(scale * ref.a, rel=1e-6)
+    near_max = fit_decay(np.finfo(float).max / 1.6 * x, FS, method=method)
+    assert near_max.ok and near_max.tau == pytest.approx(ref.tau, rel=1e-6)
+
+
+def test_envelope_of_extreme_amplitudes():
+    x = _decay(0.2)
+    ref = envelope(x)
+    for scale in (2.0**-1000, 2.0**1000, np.finfo(float).max / 4):
+        got = envelope(scale * x)
+        # a power-of-two scale is exact end to end; the last one rounds scale * x (u relative)
+        assert np.all(np.isfinite(got))
+        np.testing.assert_allclose(got / scale, ref, rtol=1e-12, atol=1e-12)

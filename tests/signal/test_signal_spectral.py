@@ -105,3 +105,36 @@ def test_peak_frequencies_of_three_damped_modes():
         peak_frequencies(x, FS, 0)
     with pytest.raises(ValueError, match="min_separation"):
         peak_frequencies(x, FS, 2, min_separation=-1.0)
+
+
+def test_short_and_long_decays_with_offsets_within_the_stated_accuracy():
+    # The grid of the docstring's accuracy statement: tau from 5 ms to 10 s, offsets up to 10 g,
+    # every tone at least a half-bandwidth 1/(2 pi tau) away from 0 and from fs/2.
+    for f0 in (25.0, 50.0, 100.0, 200.0, 400.0, 480.0):
+        for tau in (0.005, 0.01, 0.02, 0.03, 0.05, 0.1, 0.3, 1.0, 3.0, 10.0):
+            half_bandwidth = 1.0 / (2 * np.pi * tau)
+            if not half_bandwidth <= f0 <= FS / 2 - half_bandwidth:
+                continue
+            for offset in (0.0, 98.1, -98.1):
+                for phase in (0.0, 0.7, 2.0):
+                    x = np.exp(-T / tau) * np.sin(2 * np.pi * f0 * T + phase) + offset
+                    error = abs(dominant_frequency(x, FS) - f0)
+                    assert error <= 0.15 * half_bandwidth + 0.01 * FS / T.size, (f0, tau, offset)
+
+
+def test_short_decay_is_no_longer_read_as_dc():
+    # A 30 ms decay once gave about 0 Hz: the Hann taper over the whole second hid it.
+    x = np.exp(-T / 0.03) * np.sin(2 * np.pi * 25.0 * T)
+    assert dominant_frequency(x, FS) == pytest.approx(25.0, abs=0.15 / (2 * np.pi * 0.03))
+    # a decay that starts later in the record (a tap at 0.6 s) is found as well
+    late = np.where(T >= 0.6, np.exp(-(T - 0.6) / 0.02) * np.sin(2 * np.pi * 140 * (T - 0.6)), 0)
+    accuracy = 0.15 / (2 * np.pi * 0.02)
+    assert dominant_frequency(late + 9.81, FS) == pytest.approx(140.0, abs=accuracy)
+
+
+@pytest.mark.parametrize("scale", [1e-300, 1e-200, 1e200, 1e308])
+def test_extreme_amplitudes(scale):
+    x = np.sin(2 * np.pi * 123.37 * T) * np.exp(-T / 0.2)
+    ref = dominant_frequency(x, FS)
+    # the power-of-two scaling inside is exact; only the rounding of scale * x is left
+    assert dominant_frequency(scale * x, FS) == pytest.approx(ref, abs=1e-9)

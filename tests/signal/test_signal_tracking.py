@@ -74,3 +74,36 @@ def test_bandwidth_and_fixed_start():
 def test_bad_input(call, exc, match):
     with pytest.raises(exc, match=match):
         call()
+
+
+@pytest.mark.parametrize("tau", [0.03, 0.1, 0.3])
+def test_lock_gate_stops_following_noise_after_a_decay(tau):
+    rng = np.random.default_rng(3)
+    x = np.exp(-T / tau) * np.sin(2 * np.pi * 87.0 * T) + 0.01 * rng.standard_normal(T.size)
+    res = FrequencyTracker(FS).track(x)
+    # the noise tail is unlocked: the tracker holds the decay's frequency and never restarts on
+    # a noise bin (the band is 16 Hz wide; the held value is within the lock-in error, 0.5 Hz)
+    assert res.reacquired.size == 0
+    assert not res.locked[-100:].any()
+    assert res.final_frequency() == pytest.approx(87.0, abs=0.5)
+    assert np.all(np.abs(res.frequency[~res.locked] - res.frequency[res.locked][-1]) == 0)
+    if tau <= 0.1:
+        # without the gate (every block but the quietest counts as signal) it follows the noise
+        # that fills the last half second (at tau = 0.3 s the decay still outlasts the record)
+        ungated = FrequencyTracker(FS, lock_snr=1.0).track(x)
+        assert abs(ungated.final_frequency() - 87.0) > 5.0
+
+
+def test_quiet_start_is_not_constant():
+    x = np.where(T < 0.3, 0.0, np.exp(-(T - 0.3) / 0.2) * np.sin(2 * np.pi * 120 * (T - 0.3)))
+    res = FrequencyTracker(FS).track(x)
+    assert not res.locked[:300].any() and res.locked[300:400].all()
+    assert res.final_frequency() == pytest.approx(120.0, abs=0.5)
+
+
+def test_never_locked_has_no_final_frequency():
+    res = FrequencyTracker(FS).track(np.sin(2 * np.pi * 50 * T))
+    assert res.locked.all()  # a steady tone has no quiet part
+    empty = type(res)(res.t, res.frequency, res.bandpass, res.reacquired, np.zeros(T.size, bool))
+    with pytest.raises(ValueError, match="never locked"):
+        empty.final_frequency()

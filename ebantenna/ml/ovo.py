@@ -1,0 +1,149 @@
+"""One-vs-one bookkeeping of a multiclass SVM, in libsvm's (and scikit-learn's) layout.
+
+With :math:`k` classes, one binary machine is trained per pair :math:`(a, b)`, :math:`a < b`, in
+the order ``(0, 1), (0, 2), ..., (1, 2), ...``. The functions here turn the pairwise results into
+votes, one-vs-rest scores and, for the linear kernel, the weight vectors of the pairs.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["ovr_decision_function", "ovo_votes", "one_vs_one_coef", "dual_layout"]
+
+
+def ovr_decision_function(predictions: np.ndarray, confidences: np.ndarray, n_classes: int):
+    """One-vs-rest scores from one-vs-one results, aggregated as scikit-learn does.
+
+    Each class gets its number of pairwise votes plus a tie-breaking term
+    :math:`s / (3(|s| + 1))` in :math:`(-1/3, 1/3)`, where :math:`s` is its summed confidence.
+
+    Parameters
+    ----------
+    predictions : ndarray of shape (n_samples, n_pairs)
+        0 where the pair's first class won, 1 where the second did.
+    confidences : ndarray of shape (n_samples, n_pairs)
+        Confidence in the second class of each pair.
+    n_classes : int
+        Number of classes; the pairs are ``(0, 1), (0, 2), ..., (1, 2), ...``.
+
+    Examples
+    --------
+    >>> ovr_decision_function(np.array([[0, 0, 1]]), np.array([[-1.0, -2.0, 0.5]]), 3)
+    array([[ 2.25, -0.2 ,  0.8 ]])
+    """
+    n = predictions.shape[0]
+    votes = np.zeros((n, n_classes))
+    conf = np.zeros((n, n_classes))
+    k = 0
+    for i in range(n_classes):
+        for j in range(i + 1, n_classes):
+            conf[:, i] -= confidences[:, k]
+            conf[:, j] += confidences[:, k]
+            votes[predictions[:, k] == 0, i] += 1
+            votes[predictions[:, k] == 1, j] += 1
+            k += 1
+    return votes + conf / (3 * (np.abs(conf) + 1))
+
+
+def ovo_votes(decisions: np.ndarray, n_classes: int) -> np.ndarray:
+    """Votes of the pairwise machines: a positive decision value votes for the pair's first class.
+
+    Examples
+    --------
+    >>> ovo_votes(np.array([[1.0, -2.0, 0.5]]), 3)
+    array([[1, 1, 1]])
+    """
+    votes = np.zeros((decisions.shape[0], n_classes), dtype=np.int64)
+    p = 0
+    for a in range(n_classes):
+        for b in range(a + 1, n_classes):
+            win = decisions[:, p] > 0
+            votes[win, a] += 1
+            votes[~win, b] += 1
+            p += 1
+    return votes
+
+
+def one_vs_one_coef(dual_coef: np.ndarray, n_support: np.ndarray,
+                    support_vectors: np.ndarray) -> np.ndarray:
+    """Weight vectors :math:`w = \\sum_t y_t \\alpha_t x_t` of the pairwise linear machines.
+
+    Parameters
+    ----------
+    dual_coef : ndarray of shape (n_classes - 1, n_SV)
+        ``dual_coef_`` of a fitted :class:`~ebantenna.ml.SVC` (scikit-learn's layout and signs).
+    n_support : ndarray of shape (n_classes,)
+        Support vectors per class.
+    support_vectors : ndarray of shape (n_SV, n_features)
+
+    Returns
+    -------
+    ndarray of shape (1, n_features) for two classes, else (n_pairs, n_features)
+        As scikit-learn's ``coef_``.
+
+    Examples
+    --------
+    >>> one_vs_one_coef(np.array([[-0.5, 0.5]]), np.array([1, 1]), np.array([[0.0], [2.0]]))
+    array([[1.]])
+    """
+    if dual_coef.shape[0] == 1:
+        return dual_coef @ support_vectors
+    bounds = np.concatenate([[0], np.cumsum(n_support)])
+    k = n_support.shape[0]
+    rows = []
+    for a in range(k):
+        sa = slice(bounds[a], bounds[a + 1])
+        for b in range(a + 1, k):
+            sb = slice(bounds[b], bounds[b + 1])
+            rows.append(dual_coef[b - 1, sa] @ support_vectors[sa]
+                        + dual_coef[a, sb] @ support_vectors[sb])
+    return np.vstack(rows)
+
+
+def dual_layout(n: int, members: list[np.ndarray], coefs: dict) -> tuple:
+    """Arrange the pairwise dual solutions in libsvm's (and scikit-learn's) layout.
+
+    Parameters
+    ----------
+    n : int
+        Number of training points.
+    members : list of ndarray
+        Indices of the points of each class.
+    coefs : dict
+        ``coefs[a, b] = (idx, y_alpha)``: the points of the pair (class ``a`` first) and their
+        :math:`y_t \\alpha_t`.
+
+    Returns
+    -------
+    support : ndarray of int32
+        Support vectors (nonzero in any pair), grouped by class.
+    n_support : ndarray of int32, shape (n_classes,)
+    dual : ndarray of shape (n_classes - 1, n_SV)
+        Row ``b - 1`` holds the coefficients of class ``a``'s points in pair ``(a, b)``, row
+        ``a`` those of class ``b``'s points (libsvm's signs: +1 for the pair's first class).
+
+    Examples
+    --------
+    >>> pair = (np.array([0, 1, 2]), np.array([0.5, 0.0, -0.5]))
+    >>> support, n_sv, dual = dual_layout(3, [np.array([0, 1]), np.array([2])], {(0, 1): pair})
+    >>> support, n_sv, dual
+    (array([0, 2], dtype=int32), array([1, 1], dtype=int32), array([[ 0.5, -0.5]]))
+    """
+    k = len(members)
+    nonzero = np.zeros(n, dtype=bool)
+    for idx, coef in coefs.values():
+        nonzero[idx[coef != 0]] = True
+    sv_per_class = [m[nonzero[m]] for m in members]
+    support = np.concatenate(sv_per_class)
+    pos = np.full(n, -1)
+    pos[support] = np.arange(support.size)
+    dual = np.zeros((k - 1, support.size))
+    for (a, b), (idx, coef) in coefs.items():
+        na = members[a].size
+        ia, ib = idx[:na], idx[na:]
+        sa, sb = nonzero[ia], nonzero[ib]
+        dual[b - 1, pos[ia[sa]]] = coef[:na][sa]
+        dual[a, pos[ib[sb]]] = coef[na:][sb]
+    n_support = np.array([c.size for c in sv_per_class], dtype=np.int32)
+    return support.astype(np.int32), n_support, dual

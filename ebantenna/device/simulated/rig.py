@@ -22,7 +22,7 @@ from ...chips.pca9685 import DEFAULT_ADDRESS
 from ...recording import Recording
 from ..clock import VirtualClock
 from .bus import SimulatedBus
-from .faults import Faults
+from .faults import MAX_CLOCK_DRIFT, Faults
 from .mpu6050 import SimulatedMPU6050
 from .pca9685 import SimulatedPCA9685
 from .world import DEFAULT_OBSTACLE, MG996R_SLEW_RATE, Obstacle, World
@@ -93,7 +93,8 @@ class SimulatedRig:
             raise TypeError(f"obstacle must be an Obstacle or None, got {type(obstacle).__name__}")
         self.world = World(obstacle, check_positive("slew_rate", slew_rate))
         self.mpu = SimulatedMPU6050(self._acceleration, self.clock,
-                                    who_am_i=self.bus.faults.who_am_i)
+                                    who_am_i=self.bus.faults.who_am_i,
+                                    clock_drift=self.bus.faults.clock_drift)
         self.pca = SimulatedPCA9685(self.world, self.clock)
         self.bus.devices = {ADDRESS_AD0_LOW: self.mpu, DEFAULT_ADDRESS: self.pca}
         #: Time of the first sample at or after the contact, s.
@@ -150,6 +151,30 @@ class SimulatedRig:
         chosen = base.with_(contact=ratio * base.probe.length, material=material)
         return cls.from_scene(chosen, seed=seed, **kwargs)
 
+    def wrong_samples(self, mpu, recording) -> int:
+        """How many samples of ``recording`` (made by ``mpu``'s stream on this rig) differ from
+        what the simulated chip put into its FIFO: the ground truth.
+
+        A kept sample is right when the chip's epoch that started when the driver's segment did
+        holds, at the same position, the same counts on all three axes.
+        """
+        raw = recording.metadata["raw"]
+        starts = mpu.stream.starts
+        epochs = {round(start, 12): k for k, (start, _) in enumerate(self.mpu.epochs)}
+        truths = {}
+        wrong = 0
+        for seg, pos, counts in zip(raw["segment"], raw["position"], raw["counts_xyz"],
+                                    strict=True):
+            k = epochs.get(round(starts[seg], 12))
+            if k is None:
+                wrong += 1
+                continue
+            if k not in truths:
+                truths[k] = self.mpu.truth(k)
+            truth = truths[k]
+            wrong += not (pos < len(truth) and list(truth[pos]) == list(counts))
+        return wrong
+
     def touch(self, at: float | None = None) -> None:
         """Put the probe in contact from virtual time ``at`` (s; default now), whatever the servos.
 
@@ -192,7 +217,8 @@ class SimulatedRig:
             if not isinstance(self._recording, Recording):
                 raise TypeError("vibration(fs) must return a Recording")
         rec = self._recording
-        if rec is not None and not math.isclose(rec.fs, fs):
+        # the chip's clock may be off its nominal rate by up to MAX_CLOCK_DRIFT
+        if rec is not None and not math.isclose(rec.fs, fs, rel_tol=MAX_CLOCK_DRIFT * 1.001):
             raise ValueError(f"the vibration is sampled at {rec.fs:g} Hz but the simulated "
                              f"MPU-6050 is set to {fs:g} Hz")
         acc = self.rest + self._rng.normal(0.0, self.noise, (times.size, 3))

@@ -4,8 +4,9 @@ The probe sweeps an elliptical path in (pan, tilt), like the searching antenna o
 (Fig. 7). The accelerometer's FIFO is drained all the while and every new sample is checked against
 a running baseline; the first sample whose acceleration departs from it by more than a threshold is
 the contact (Fig. 8). The servos are then stopped at once: held a small stated angle
-(:attr:`SearchConfig.back_off`) behind where they were commanded when the contact sample was
-taken, so that the probe never pushes further into the object. The vibration window is recorded
+(:attr:`SearchConfig.back_off`) behind the position they had certainly reached when the contact
+sample was taken (the command before the one then in effect), so that the probe never pushes
+further into the object. The vibration window is recorded
 into a :class:`~ebantenna.recording.Recording` (a short stretch before the contact included), and
 the servos are released (PWM off). They are released on every way out, an exception, Ctrl-C,
 SIGTERM or SIGHUP included (:class:`~ebantenna.device.safety.ServoGuard`), and a run whose
@@ -243,9 +244,9 @@ class SearchConfig:
     max_search_time : float
         Give up after this long without a contact, s. Default 12 s (three loops).
     back_off : float
-        On contact, hold the servos this far behind where they were commanded when the contact
-        sample was taken, degrees. Default 3: more than one servo update along the default path
-        (peak 94 deg/s times 20 ms = 1.9 deg).
+        On contact, hold the servos this far behind the position they had certainly reached when
+        the contact sample was taken, degrees. Default 3: more than one servo update along the
+        default path (peak 94 deg/s times 20 ms = 1.9 deg).
     watchdog : float
         Longest time without a new accelerometer sample, s. Default 1 s.
     """
@@ -330,6 +331,7 @@ class AcquisitionResult:
             list(self.contact_angles), "i2c_retries": self.i2c_retries,
             "servos_released": self.servos_released,
             "sample_rate_estimated_hz": self.stream.get("sample_rate_estimated_hz"),
+            "sample_period_uncertainty_s": self.stream.get("sample_period_uncertainty_s"),
             "fifo_restarts": self.stream.get("fifo_restarts", 0),
             "faults": len(self.stream.get("faults", [])),
         }
@@ -398,7 +400,7 @@ def search_and_record(mpu: MPU6050, pantilt: PanTilt, config: SearchConfig | Non
                     hit = detector.update(acc[:, 0], acc[:, 2])
                     if hit is not None:
                         trigger = int(block.index[hit])
-                        at = _commanded_at(commands, stream.host_time(trigger))
+                        at = _reached_by(commands, stream.host_time(trigger))
                         stopped = pantilt.stop(config.back_off, at)
                         angles = (pantilt.pan.angle, pantilt.tilt.angle)
                         logger.info("contact at sample %d (%.3f s); servos held at %s",
@@ -446,7 +448,12 @@ def search_and_record(mpu: MPU6050, pantilt: PanTilt, config: SearchConfig | Non
                              angles, retries, guard.released, report)
 
 
-def _commanded_at(commands, when: float) -> tuple[float, float] | None:
-    """The (pan, tilt) last commanded at or before host time ``when``, degrees (None: none)."""
+def _reached_by(commands, when: float) -> tuple[float, float] | None:
+    """The (pan, tilt) the servos had certainly reached by host time ``when``, degrees.
+
+    That is the command *before* the one in effect at ``when``: the servo was on its way from
+    there to the newer one (a step of the path, 1.9 degrees at most by default, takes an MG996R
+    about 5 ms of its 20 ms frame). None before two commands.
+    """
     earlier = [(pan, tilt) for t, pan, tilt in commands if t <= when]
-    return earlier[-1] if earlier else None
+    return earlier[-2] if len(earlier) >= 2 else None

@@ -242,3 +242,18 @@ def test_a_release_that_fails_on_a_stuck_bus_is_retried():
         pass
     assert guard.released and not rig.pca.outputs_enabled()
     assert rig.clock.monotonic() > 0.8  # it waited the stuck stretch out
+
+
+@pytest.mark.parametrize("bus_hz", [100e3, 400e3])
+def test_both_bus_speeds_keep_up_with_1_khz(bus_hz):
+    # 54 bus clocks per sample (6 bytes of 9): 54 % of a 100 kHz bus, 14 % of a 400 kHz one.
+    rig = _rig(Faults(), seed=8)
+    rig.bus.bus_hz = bus_hz
+    mpu = MPU6050(rig.bus, clock=rig.clock)
+    mpu.initialize()
+    rec = mpu.record(0.5)
+    assert rec.metadata["samples_lost"] == 0 and rec.metadata["fifo_restarts"] == 0
+    _check(rig, mpu, rec, 500)
+    sizes = np.asarray(rec.metadata["raw"]["drain_samples"][3:])  # after the first drains
+    # a drain loop of n samples takes 20 ms + n * 54 / bus_hz (+ a few fixed transfers)
+    assert np.all(sizes <= (0.02 + 0.004) * 1000 / (1 - 54 * 1000 / bus_hz))

@@ -197,3 +197,23 @@ def test_read_fifo_before_start_is_an_error():
     mpu = MPU6050(rig.bus, clock=rig.clock)
     with pytest.raises(ValueError, match="start_fifo"):
         mpu.read_fifo()
+
+
+def test_a_compatible_chip_is_accepted_with_a_warning():
+    from ebantenna.device import CompatibleChipWarning
+
+    rig = SimulatedRig.quiet(faults=Faults(who_am_i=0x70))
+    mpu = MPU6050(rig.bus, clock=rig.clock)
+    with pytest.warns(CompatibleChipWarning, match="MPU-6500"):
+        mpu.initialize()
+    assert mpu.part == "MPU-6500" and mpu.metadata()["device"] == "MPU-6500"
+
+
+def test_wake_waits_follow_the_datasheet():
+    # 100 ms after the device reset, 30 ms (gyro start-up, PS 6.1) after waking on the PLL.
+    rig = SimulatedRig.quiet()
+    sleeps = []
+    original = rig.clock.sleep
+    rig.clock.sleep = lambda s: (sleeps.append(s), original(s))[1]
+    MPU6050(rig.bus, clock=rig.clock).initialize()
+    assert sleeps == [0.1, 0.03]

@@ -90,9 +90,10 @@ def test_search_finds_the_post_stops_records_and_releases():
     # (one loop to drain the contact sample, one more at most before the stop; the transfers of
     # a loop take about 10 ms at 100 kHz on top of the poll interval) ...
     assert 0 < rig.world.max_push <= config.path.peak_rate() * 2 * (config.poll_interval + 0.01)
-    # ... and then held at least back_off behind every command sent: never pushing further.
+    # ... and then held at least back_off behind the post, where the probe touched it: the
+    # hold never pushes further.
     pans = [a for t, axis, a in rig.world.commands if axis == "pan" and a is not None]
-    assert (pans[-1] - max(pans[:-1])) * rig.world.direction <= -config.back_off + 1e-9
+    assert (pans[-1] - Obstacle().pan) * rig.world.direction <= -config.back_off + 1e-9
     # ... no new angle was commanded after the contact was detected, and then the PWM went off.
     t_detect = rig.contact_time + config.poll_interval + 0.01
     late = [(axis, a) for t, axis, a in rig.world.commands if t > t_detect]
@@ -101,7 +102,8 @@ def test_search_finds_the_post_stops_records_and_releases():
     assert len({round(a, 9) for axis, a in late if axis == "pan" and a is not None}) <= 1
     assert set(held) <= {"pan", "tilt"}
     assert not rig.pca.outputs_enabled()
-    assert rig.world.pan.angle == pytest.approx(Obstacle().pan)
+    # The servo went back to the hold, off the post, before the PWM went off.
+    assert (rig.world.pan.angle - Obstacle().pan) * rig.world.direction <= -config.back_off + 1e-9
 
 
 def test_no_obstacle_no_contact_and_servos_released():

@@ -191,3 +191,35 @@ def test_acquire_command_text_and_errors(capsys):
     with pytest.raises(SystemExit) as info:
         main(["acquire", "--bus", "1", "--inject-faults", "0.1"])
     assert info.value.code == 2 and "--simulated" in capsys.readouterr().err
+
+
+def test_acquire_with_every_fault_kind_reports_no_wrong_sample(capsys):
+    code = main(["acquire", "--simulated", "--seed", "3", "--inject-faults", "0.2",
+                 "--stuck-bus", "1.0", "0.2", "--clock-drift", "0.008", "--json"])
+    data = json.loads(capsys.readouterr().out)
+    assert code == 0 and data["samples_wrong"] == 0 and data["servos_released"] is True
+    assert data["samples"] + data["samples_lost"] == 1050 and data["fifo_restarts"] > 0
+    assert {"late", "short", "stuck"} <= set(data["faults_injected"])
+    # the chip runs 0.8 % fast: the estimated period's bracket holds the true one (loose here:
+    # the faults cut the stream into short segments, each bounding the period weakly)
+    period = 1 / data["sample_rate_estimated_hz"]
+    assert abs(period - 1 / 1008.0) <= data["sample_period_uncertainty_s"] < 0.02 * period
+
+
+def test_acquire_stalled_saves_the_partial_recording(capsys, tmp_path):
+    out = tmp_path / "partial.npz"
+    with pytest.raises(SystemExit) as info:
+        main(["acquire", "--simulated", "--seed", "1", "--stuck-bus", "0.5", "100",
+              "--out", str(out)])
+    err = capsys.readouterr().err
+    assert info.value.code == 2 and "watchdog" in err and "servos released" in err
+    assert str(out) in err and Recording.load(out).n_samples > 0
+
+
+def test_acquire_oscillator_calibration(capsys):
+    main(["acquire", "--simulated", "--seed", "1", "--measured-pwm-hz", "51.2", "--json"])
+    data = json.loads(capsys.readouterr().out)
+    assert data["pca9685_oscillator_hz"] == pytest.approx(51.2 * 4096 * 122)
+    with pytest.raises(SystemExit):
+        main(["acquire", "--simulated", "--oscillator-hz", "30e6"])
+    assert "oscillator_hz must lie in" in capsys.readouterr().err

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 
 from ebantenna.device import MPU6050, PCA9685, PanTilt, SimulatedRig, VirtualClock
 from ebantenna.device.fifo import PeriodEstimator
-from ebantenna.device.safety import GUARDED_SIGNALS, ServoGuard, SignalReceived
+from ebantenna.device.safety import GUARDED_SIGNALS, ReleaseError, ServoGuard, SignalReceived
 from ebantenna.device.simulated import Faults
 from ebantenna.device.simulated.faults import TRANSFER_FAULTS
 from ebantenna.device.watchdog import StreamStalledError
@@ -257,3 +257,35 @@ def test_both_bus_speeds_keep_up_with_1_khz(bus_hz):
     sizes = np.asarray(rec.metadata["raw"]["drain_samples"][3:])  # after the first drains
     # a drain loop of n samples takes 20 ms + n * 54 / bus_hz (+ a few fixed transfers)
     assert np.all(sizes <= (0.02 + 0.004) * 1000 / (1 - 54 * 1000 / bus_hz))
+
+
+def test_a_release_that_keeps_failing_is_a_clear_error():
+    rig = SimulatedRig.quiet(faults=Faults(stuck_at=0.5, stuck_duration=100.0))
+    unit = PanTilt(PCA9685(rig.bus, clock=rig.clock))
+    unit.initialize()
+    rig.clock.advance(0.5 - rig.clock.monotonic())
+    with pytest.raises(ReleaseError, match="may still be powered"):
+        with ServoGuard(unit.release, rig.clock, attempts=3, delay=0.01) as guard:
+            pass
+    assert not guard.released
+    # while another error is on its way out, that error is not masked
+    with pytest.raises(RuntimeError, match="the run's own error"):
+        with ServoGuard(unit.release, rig.clock, attempts=2, delay=0.01):
+            raise RuntimeError("the run's own error")
+
+
+def test_a_signal_during_the_release_is_raised_after_it():
+    before = signal.getsignal(signal.SIGTERM)
+    rig = SimulatedRig.quiet()
+    unit = PanTilt(PCA9685(rig.bus, clock=rig.clock))
+    unit.initialize()
+
+    def release_then_signal():
+        unit.release()
+        os.kill(os.getpid(), signal.SIGTERM)
+
+    with pytest.raises(SignalReceived):
+        with ServoGuard(release_then_signal, rig.clock) as guard:
+            unit.move(100.0, 90.0)
+    assert guard.released and not rig.pca.outputs_enabled()
+    assert signal.getsignal(signal.SIGTERM) is before

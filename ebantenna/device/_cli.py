@@ -112,7 +112,8 @@ def run(args: argparse.Namespace) -> int:
     if stalled is not None:
         where = args.out or "acquire-partial.npz"
         saved = stalled.recording.save(where) if stalled.recording is not None else None
-        raise OSError(f"{stalled}; servos released; "
+        released = getattr(stalled, "servos_released", False)
+        raise OSError(f"{stalled}; servos {'released' if released else 'NOT confirmed released'}; "
                       + (f"partial recording saved to {saved}" if saved else "nothing to save"))
     summary = {"mode": "simulated" if args.simulated else "hardware", **labels,
                **result.summary(), "out": None, "pca9685_oscillator_hz": oscillator}

@@ -212,12 +212,15 @@ class FifoStream:
             self._note(f"restart failed ({exc.strerror or exc})", "wait")
 
     # -- draining --------------------------------------------------------------------------
-    def _quiet_check(self, now: float) -> str | None:
-        """Why the chip produces nothing, if it has been reset or reconfigured; else None."""
+    def _quiet(self, now: float) -> FifoBlock:
+        """An empty FIFO: fine unless samples are overdue; then find out why and recover."""
         due = (now - self.starts[-1]) / self.estimator.period - self.delivered[-1]
         if due < QUIET_SAMPLES:
-            return None
-        return self.mpu.configuration_lost() or "no samples from the FIFO"
+            return _empty_block()
+        why = self.mpu.configuration_lost()
+        if why is not None:
+            return self._fail(why, reconfigure=True)
+        return self._fail("no samples from the FIFO")
 
     def drain(self) -> FifoBlock:
         """Drain every whole sample waiting; on any fault restart and return what was kept."""
@@ -232,17 +235,15 @@ class FifoStream:
         device = self.device
         try:
             before = self.clock.monotonic()
-            high, low = device.read_block(Register.FIFO_COUNTH, 2)
+            count = self.mpu.fifo_count()
             after = self.clock.monotonic()
-            count = (high << 8) | low
             if count >= FIFO_SIZE:
                 return self._fail("FIFO full (overflow)", overflow=True)
             if count % ACCEL_SAMPLE_BYTES:
                 return self._fail(f"FIFO count {count} is not a whole number of samples")
             n = count // ACCEL_SAMPLE_BYTES
             if n == 0:
-                why = self._quiet_check(after)
-                return _empty_block() if why is None else self._fail(why, reconfigure=True)
+                return self._quiet(after)
             raw = bytearray()
             chunk = n * ACCEL_SAMPLE_BYTES if device.use_rdwr else FIFO_CHUNK
             while len(raw) < count:
@@ -268,7 +269,7 @@ class FifoStream:
     def _fail(self, cause: str, *, overflow: bool = False, reconfigure: bool = False):
         self.overflows += overflow
         self.pending = cause
-        if reconfigure and cause != "no samples from the FIFO":
+        if reconfigure:
             self._note(cause, "reconfigure")
             self.unconfigured = True
             self._try_configure()

@@ -5,8 +5,9 @@
 an SSH session dropped) that turn the signal into an exception (:class:`KeyboardInterrupt` for
 SIGINT, :class:`SignalReceived` for the others), so that the run unwinds through its ``finally``
 clauses. On exit, whatever the reason, it releases the servos, retrying a release that fails on a
-noisy bus, and puts the previous handlers back. Signals arriving during the release are held and
-re-raised after it.
+noisy bus, and puts the previous handlers back; an exception leaving the guard gets an attribute
+``servos_released`` that says whether the release succeeded. Signals arriving during the release
+are held and re-raised after it.
 
 Handlers can only be installed from the main thread (Python's :mod:`signal` rule); elsewhere the
 guard still releases on exit and says so in the log.
@@ -154,6 +155,8 @@ class ServoGuard:
             for signum, previous in self._previous.items():
                 signal.signal(signum, previous)
             self._previous.clear()
+        if exc is not None:  # the error on its way out says whether the servos let go
+            exc.servos_released = self.released
         if self._held and exc is None:
             self._raise(self._held[0], None)
         return False

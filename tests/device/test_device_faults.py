@@ -225,9 +225,9 @@ def test_each_signal_releases_the_servos_and_restores_the_handlers(signum):
     mpu = MPU6050(rig.bus, clock=clock)
     mpu.initialize()
     expected = KeyboardInterrupt if signum == signal.SIGINT else SignalReceived
-    with pytest.raises(expected):
+    with pytest.raises(expected) as info:
         search_and_record(mpu, unit)
-    assert clock.sent
+    assert clock.sent and info.value.servos_released is True
     assert rig.world.commands[-1][2] is None and not rig.pca.outputs_enabled()
     assert {s: signal.getsignal(s) for s in GUARDED_SIGNALS} == before
 

@@ -207,13 +207,19 @@ def test_acquire_with_every_fault_kind_reports_no_wrong_sample(capsys):
 
 
 def test_acquire_stalled_saves_the_partial_recording(capsys, tmp_path):
+    # Stuck for 1.3 s: the 1 s watchdog fires, the release retries outlast the rest.
     out = tmp_path / "partial.npz"
     with pytest.raises(SystemExit) as info:
-        main(["acquire", "--simulated", "--seed", "1", "--stuck-bus", "0.5", "100",
+        main(["acquire", "--simulated", "--seed", "1", "--stuck-bus", "0.5", "1.3",
               "--out", str(out)])
     err = capsys.readouterr().err
     assert info.value.code == 2 and "watchdog" in err and "servos released" in err
     assert str(out) in err and Recording.load(out).n_samples > 0
+    # Stuck for good: nothing can switch the servos off, and the message does not pretend.
+    with pytest.raises(SystemExit):
+        main(["acquire", "--simulated", "--seed", "1", "--stuck-bus", "0.5", "100",
+              "--out", str(out)])
+    assert "servos NOT confirmed released" in capsys.readouterr().err
 
 
 def test_acquire_oscillator_calibration(capsys):

@@ -13,10 +13,12 @@ timestamps of its interrupts), are:
    FIFO holds 1024 bytes, PS 7.17) and ``INT_STATUS`` shows no overflow (RM 58,
    ``FIFO_OFLOW_INT``), which also catches an overflow between the count and the data, and
    ``USER_CTRL``/``PWR_MGMT_1`` show the chip still running (not reset during the drain).
-2. **On any failure**, the FIFO is **restarted** (``FIFO_EN = 0``, ``USER_CTRL.FIFO_RESET``, then
-   ``FIFO_EN`` and ``USER_CTRL.FIFO_EN`` again, RM 35 and 106): a new *segment* begins, aligned
-   on a sample boundary. The write that starts it is made once; if it fails the whole restart is
-   redone, so the segment's start time is always that of a write known to have landed.
+2. **On any failure**, the FIFO is **restarted** (``FIFO_EN = 0``, ``USER_CTRL.FIFO_RESET``,
+   then ``FIFO_EN`` and ``USER_CTRL.FIFO_EN`` again, RM 35 and 106): a new *segment* begins,
+   aligned on a sample boundary. The whole-sample transfers of a drain that came in before a
+   failed one are kept, once ``INT_STATUS`` has confirmed them; nothing after a failed transfer
+   can be placed. The write that starts a segment is made once; if it fails the whole restart
+   is redone, so the segment's start time is always that of a write known to have landed.
 3. **Timestamps**: sample ``j`` of a segment started at host time ``t_e`` is taken at
    ``t_e + (j + 1) T``. The period ``T`` is estimated over the run from every confirmed count:
    ``n`` samples produced between ``t_e`` and the end of the count's transfer, and not ``n + 1``
@@ -232,21 +234,47 @@ class FifoStream:
             self._try_restart()
             if self.pending is not None:
                 return _empty_block()
-        device = self.device
         try:
             before = self.clock.monotonic()
             count = self.mpu.fifo_count()
             after = self.clock.monotonic()
-            if count >= FIFO_SIZE:
-                return self._fail("FIFO full (overflow)", overflow=True)
-            if count % ACCEL_SAMPLE_BYTES:
-                return self._fail(f"FIFO count {count} is not a whole number of samples")
-            n = count // ACCEL_SAMPLE_BYTES
-            if n == 0:
-                return self._quiet(after)
-            raw = bytearray()
-            chunk = n * ACCEL_SAMPLE_BYTES if device.use_rdwr else FIFO_CHUNK
-            while len(raw) < count:
+        except I2CError as exc:
+            return self._fail(f"bus error ({exc.strerror or exc})")
+        if count >= FIFO_SIZE:
+            return self._fail("FIFO full (overflow)", overflow=True)
+        if count % ACCEL_SAMPLE_BYTES:
+            return self._fail(f"FIFO count {count} is not a whole number of samples")
+        if count == 0:
+            return self._quiet(after)
+        raw, broken = self._read_data(count)
+        try:
+            status = self.device.read_byte(Register.INT_STATUS, retry=False)
+            # USER_CTRL and PWR_MGMT_1 (RM 106-107) in one burst: a chip reset during the drain
+            # would have emptied the FIFO, and the data port then reads filler bytes.
+            user_ctrl, power = self.device.read_block(Register.USER_CTRL, 2)
+        except I2CError as exc:
+            return self._fail(f"bus error ({exc.strerror or exc})")
+        if status & Interrupt.FIFO_OFLOW:
+            return self._fail("FIFO overflow", overflow=True)
+        if not user_ctrl & UserControl.FIFO_EN or power & PowerManagement1.SLEEP:
+            return self._fail("the chip was reset during the drain", reconfigure=True)
+        block = self._keep(raw, count // ACCEL_SAMPLE_BYTES, before, after)
+        if broken is not None:  # the whole chunks before the failed transfer are kept
+            self._fail(f"bus error ({broken.strerror or broken})")
+        return block
+
+    def _read_data(self, count: int) -> tuple[bytes, I2CError | None]:
+        """Read ``count`` bytes of the data port in whole-sample transfers, one attempt each.
+
+        Returns the bytes of the transfers that succeeded before the first failure (whole
+        samples, in order) and that failure (None if all succeeded): a failed transfer may have
+        taken any number of bytes out of the FIFO, so nothing after it can be placed.
+        """
+        device = self.device
+        chunk = count if device.use_rdwr else FIFO_CHUNK
+        raw = bytearray()
+        while len(raw) < count:
+            try:
                 raw += device.read_block(
                     Register.FIFO_R_W,
                     min(chunk, count - len(raw)),
@@ -254,17 +282,9 @@ class FifoStream:
                     chunk=FIFO_CHUNK,
                     retry=False,
                 )
-            status = device.read_byte(Register.INT_STATUS, retry=False)
-            # USER_CTRL and PWR_MGMT_1 (RM 106-107) in one burst: a chip reset during the drain
-            # would have emptied the FIFO, and the data port then reads filler bytes.
-            user_ctrl, power = device.read_block(Register.USER_CTRL, 2)
-        except I2CError as exc:
-            return self._fail(f"bus error ({exc.strerror or exc})")
-        if status & Interrupt.FIFO_OFLOW:
-            return self._fail("FIFO overflow", overflow=True)
-        if not user_ctrl & UserControl.FIFO_EN or power & PowerManagement1.SLEEP:
-            return self._fail("the chip was reset during the drain", reconfigure=True)
-        return self._keep(raw, n, before, after)
+            except I2CError as exc:
+                return bytes(raw), exc
+        return bytes(raw), None
 
     def _fail(self, cause: str, *, overflow: bool = False, reconfigure: bool = False):
         self.overflows += overflow
@@ -288,10 +308,17 @@ class FifoStream:
         else:
             self.unconfigured = False
 
-    def _keep(self, raw: bytes, n: int, before: float, after: float) -> FifoBlock:
+    def _keep(self, raw: bytes, waiting: int, before: float, after: float) -> FifoBlock:
+        """Keep the samples of ``raw``; ``waiting`` samples were counted in the FIFO between
+        host times ``before`` and ``after``."""
         seg = len(self.starts) - 1
         first = self.delivered[seg]
-        self.estimator.add(start=self.starts[seg], produced=first + n, before=before, after=after)
+        self.estimator.add(
+            start=self.starts[seg], produced=first + waiting, before=before, after=after
+        )
+        n = len(raw) // ACCEL_SAMPLE_BYTES
+        if n == 0:
+            return _empty_block()
         slots = self.offsets[seg] + first + np.arange(n)
         lost = int(slots[0]) - self.next_slot
         counts = self.mpu.decode(raw)

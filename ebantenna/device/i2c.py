@@ -16,8 +16,9 @@ bus, a wrong address, a permission problem) are not retried.
 A retry is only safe when the transfer has no side effect on the chip. Reading a FIFO data port or
 a clear-on-read status register is not such a transfer: the error may come after the chip has
 shifted its bytes out (the kernel reports the failure at the STOP or on a late timeout), and a
-second read then returns the *next* bytes. Those reads are made with ``retry=False``: one attempt,
-and any failure, a short read included, raises :class:`I2CError` at once for the caller to
+second read then returns the *next* bytes. Those reads are made with ``retry=False``: retried only
+after a missing acknowledge (:data:`NOTHING_READ_ERRNOS`), which proves that nothing was read, and
+any other failure, a short read included, raises :class:`I2CError` at once for the caller to
 resynchronise. A read that returns fewer bytes than asked (:class:`ShortReadError`) is a failure
 like any other.
 """
@@ -37,6 +38,7 @@ __all__ = [
     "ShortReadError",
     "I2CDevice",
     "TRANSIENT_ERRNOS",
+    "NOTHING_READ_ERRNOS",
     "SMBUS_BLOCK_MAX",
 ]
 
@@ -44,6 +46,13 @@ logger = logging.getLogger(__name__)
 
 #: errno values treated as transient bus noise (retried).
 TRANSIENT_ERRNOS = frozenset({errno.EREMOTEIO, errno.EIO, errno.ETIMEDOUT, errno.EAGAIN})
+#: errno values that prove a *read* delivered nothing, so that even a FIFO read may be retried:
+#: ``EREMOTEIO``, a missing acknowledge. In a read only the chip's address and register bytes are
+#: acknowledged by the chip; the data bytes are acknowledged by the master (I2C-bus
+#: specification, NXP UM10204 rev. 7, section 3.1.6), so a NACK comes before any data left the
+#: chip. Assumption: the adapter reports a NACK as ``EREMOTEIO`` and nothing else as it
+#: (Linux's ``i2c-bcm2835`` of the Raspberry Pi does; see its ``BCM2835_I2C_S_ERR`` handling).
+NOTHING_READ_ERRNOS = frozenset({errno.EREMOTEIO})
 
 #: The SMBus protocol carries at most 32 data bytes per block transfer.
 SMBUS_BLOCK_MAX = 32
@@ -153,15 +162,15 @@ class I2CDevice:
         #: Number of transient errors that were retried.
         self.retries = 0
 
-    def _transfer(self, what: str, register: int, call, *, retry: bool = True):
-        delays = self.retry.delays() if retry else ()
+    def _transfer(self, what: str, register: int, call, *, retryable=TRANSIENT_ERRNOS):
+        delays = self.retry.delays()
         for attempt in range(len(delays) + 1):
             try:
                 return call()
             except OSError as exc:
                 if exc.errno not in TRANSIENT_ERRNOS:
                     raise
-                if attempt == len(delays):
+                if attempt == len(delays) or exc.errno not in retryable:
                     hint = (" (no acknowledge: check the wiring, the power and the address)"
                             if exc.errno == errno.EREMOTEIO else "")
                     raise I2CError(
@@ -180,11 +189,12 @@ class I2CDevice:
         raise AssertionError("unreachable")  # pragma: no cover
 
     def read_byte(self, register: int, *, retry: bool = True) -> int:
-        """Read one register; ``retry=False`` for a clear-on-read register (one attempt)."""
+        """Read one register; ``retry=False`` for a clear-on-read register (retried only when
+        the chip provably sent nothing, see :data:`NOTHING_READ_ERRNOS`)."""
         register = _check_byte("register", register)
         return int(self._transfer(
             "read", register, lambda: self.bus.read_byte_data(self.address, register),
-            retry=retry))
+            retryable=TRANSIENT_ERRNOS if retry else NOTHING_READ_ERRNOS))
 
     def write_byte(self, register: int, value: int, *, retry: bool = True) -> None:
         """Write one register; ``retry=False`` when the caller must know the single write that
@@ -193,7 +203,7 @@ class I2CDevice:
         value = _check_byte("value", value)
         self._transfer(
             "write", register, lambda: self.bus.write_byte_data(self.address, register, value),
-            retry=retry)
+            retryable=TRANSIENT_ERRNOS if retry else frozenset())
 
     def write_block(self, register: int, data) -> None:
         """Write up to 32 bytes to consecutive registers in one transfer (one I2C STOP)."""
@@ -228,13 +238,15 @@ class I2CDevice:
             30-byte chunks so that a transfer never splits a sample.
         retry : bool
             Retry transient errors (default). False for a read with a side effect, such as a FIFO
-            data port: one attempt, and the first failure or short transfer raises
-            :class:`I2CError`.
+            data port: retried only when the error proves the chip sent nothing
+            (:data:`NOTHING_READ_ERRNOS`); any other failure, a short transfer included, raises
+            :class:`I2CError` at once.
 
         With ``use_rdwr`` the whole read is one combined ``i2c_rdwr`` transfer of any length.
         """
         register = _check_byte("register", register)
         length = check_int("length", length, minimum=1)
+        retryable = TRANSIENT_ERRNOS if retry else NOTHING_READ_ERRNOS
         chunk = check_int("chunk", chunk, minimum=1, maximum=SMBUS_BLOCK_MAX)
         if increment and register + length > 256:
             raise ValueError(f"register 0x{register:02X} + length {length} runs past 0xFF")
@@ -247,7 +259,7 @@ class I2CDevice:
                 self.bus.i2c_rdwr(write, read)
                 return _whole(bytes(read)[: read.len], length)
 
-            return self._transfer("combined read", register, call, retry=retry)
+            return self._transfer("combined read", register, call, retryable=retryable)
         out = bytearray()
         while len(out) < length:
             n = min(chunk, length - len(out))
@@ -256,7 +268,7 @@ class I2CDevice:
                 "block read", start,
                 lambda n=n, start=start: _whole(
                     bytes(self.bus.read_i2c_block_data(self.address, start, n)), n),
-                retry=retry)
+                retryable=retryable)
         return bytes(out)
 
 

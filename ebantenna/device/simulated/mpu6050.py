@@ -57,7 +57,8 @@ class SimulatedMPU6050:
     ----------
     source : callable
         ``source(times, fs)`` returns the (n, 3) accelerations in m/s^2 at the sample times
-        ``times`` (s) for the sample rate ``fs`` (Hz).
+        ``times`` (s) for the sample rate ``fs`` (Hz) the registers set (the times themselves
+        follow the chip's actual clock, :meth:`true_rate`).
     clock : VirtualClock
         The bus's clock.
     who_am_i : int
@@ -152,7 +153,7 @@ class SimulatedMPU6050:
                 and bool(regs[Register.FIFO_EN] & FifoEnable.ACCEL))
 
     def _counts(self, times: np.ndarray) -> np.ndarray:
-        acc = np.asarray(self.source(times, self.true_rate()), dtype=np.float64)
+        acc = np.asarray(self.source(times, self.sample_rate()), dtype=np.float64)
         counts = np.rint(acc / STANDARD_GRAVITY * self.lsb_per_g())
         return np.clip(counts, _COUNT_LIMITS.min, _COUNT_LIMITS.max).astype(DATA_DTYPE)
 

@@ -6,11 +6,14 @@ The drivers in :mod:`ebantenna.device` talk to the MPU6050 accelerometer and the
 board register by register, as on the Raspberry Pi. :class:`~ebantenna.device.SimulatedRig`
 answers those same register reads and writes, with a virtual clock and a simulated contact, so
 that the search of the paper (sweep, detect the touch, stop the servos, record, release) runs
-without hardware. Injected I2C faults show that the driver retries and counts what it lost.
+without hardware. Injected I2C faults show what the driver does with them: it retries harmless
+register reads, but never a FIFO read blindly (a retry there would shift every later sample); it
+restarts the FIFO instead and counts the samples of the gap as lost. The simulated chip keeps the
+ground truth, so the example also counts the kept samples that differ from it: none.
 
-The figure draws the recording without faults as a thick grey line and the one with faults as a
-thin dashed line over it: where they coincide, every failed transfer was retried and returned the
-same sample, and the legend counts what could not be recovered.
+The figure draws the recording without faults as a thick grey line and the one with faults as
+thin red dots over it: every red dot lies on the grey line (each kept sample is right), and where
+the dots are missing, samples were lost, as the legend counts.
 """
 
 import matplotlib.pyplot as plt
@@ -38,15 +41,17 @@ for rate in (0.0, 0.02):
     results[rate] = result
     print(f"fault rate {rate:.0%}: contact={result.contact_detected}, "
           f"servos stopped={result.servos_stopped}, samples={result.samples}, "
-          f"lost={result.samples_lost}, I2C retries={result.i2c_retries}")
+          f"lost={result.samples_lost}, wrong={rig.wrong_samples(mpu, result.recording)}, "
+          f"I2C retries={result.i2c_retries}, FIFO restarts={result.stream['fifo_restarts']}")
 
 fig, ax = plt.subplots(figsize=(7, 3.5))
-styles = {0.0: {"color": "0.7", "lw": 3.0}, 0.02: {"color": "tab:red", "lw": 0.8, "ls": "--"}}
+styles = {0.0: {"color": "0.7", "lw": 3.0}, 0.02: {"color": "tab:red", "ls": "", "marker": ".",
+                                                  "ms": 2.0}}
 for rate, result in results.items():
     rec = result.recording
     ax.plot(rec.t - rec.t[0], rec.az, **styles[rate],
             label=f"Z, {rate:.0%} of transfers failing: {result.samples_lost} samples lost, "
-                  f"{result.i2c_retries} retries")
+                  f"{result.stream['fifo_restarts']} FIFO restarts")
 ax.set_xlabel("time after the contact (s)")
 ax.set_ylabel("acceleration (m/s$^2$)")
 ax.legend(fontsize="small")

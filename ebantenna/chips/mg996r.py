@@ -9,14 +9,14 @@ the one hobby vendors list for the MG996R, and each unit differs (hence
 
 Examples
 --------
->>> from ebantenna.chips.mg996r import PULSE_RANGE, SLEW_RATE, TRAVEL
->>> round(SLEW_RATE, 1), PULSE_RANGE, TRAVEL
-(352.9, (0.0005, 0.0025), 180.0)
+>>> from ebantenna.chips.mg996r import PULSE_RANGE, SAFE_ANGLES, SLEW_RATE, TRAVEL
+>>> round(SLEW_RATE, 1), PULSE_RANGE, TRAVEL, SAFE_ANGLES
+(352.9, (0.0005, 0.0025), 180.0, (22.5, 157.5))
 """
 
 from __future__ import annotations
 
-__all__ = ["SLEW_RATE", "PULSE_RANGE", "TRAVEL"]
+__all__ = ["SLEW_RATE", "PULSE_RANGE", "TRAVEL", "SAFE_PULSE_RANGE", "SAFE_ANGLES"]
 
 #: Operating speed at 4.8 V, no load: 0.17 s per 60 degrees (DS), in degrees/s.
 SLEW_RATE = 60.0 / 0.17
@@ -24,3 +24,12 @@ SLEW_RATE = 60.0 / 0.17
 PULSE_RANGE = (0.5e-3, 2.5e-3)
 #: Travel between those pulses, degrees (vendors' listings: "180 degrees").
 TRAVEL = 180.0
+#: The conservative default pulse range, s: 750-2250 us, the default of Adafruit's ServoKit
+#: (``adafruit_motor.servo.Servo``: ``min_pulse=750``, ``max_pulse=2250``), which keeps most units
+#: off their end stops; many MG996R reach a stop before 0.5 or 2.5 ms and stall there, hot.
+SAFE_PULSE_RANGE = (0.75e-3, 2.25e-3)
+#: The angles that range gives on the nominal line through :data:`PULSE_RANGE` and
+#: :data:`TRAVEL` (22.5 and 157.5 degrees): the same slope, less travel.
+SAFE_ANGLES = tuple(
+    round((p - PULSE_RANGE[0]) / (PULSE_RANGE[1] - PULSE_RANGE[0]) * TRAVEL, 9)
+    for p in SAFE_PULSE_RANGE)

@@ -61,6 +61,9 @@ __all__ = [
     "FIFO_SIZE",
     "ACCEL_SAMPLE_BYTES",
     "DATA_DTYPE",
+    "RESET_WAIT",
+    "GYRO_STARTUP",
+    "COMPATIBLE_WHO_AM_I",
 ]
 
 #: Standard acceleration of gravity, m/s^2 (3rd CGPM, 1901): the "g" in which the datasheet states
@@ -265,3 +268,28 @@ ACCEL_SAMPLE_BYTES = 6
 #: Every sensor output is a 16-bit two's-complement value, high byte first (RM 59-72):
 #: a NumPy dtype string.
 DATA_DTYPE = ">i2"
+
+#: Wait after ``PWR_MGMT_1.DEVICE_RESET`` before the registers are written again, s: the
+#: register map gives no figure; 100 ms is the power-up start-up time for register access (PS
+#: section 6.3, "Start-up time for register read/write": 100 ms maximum).
+RESET_WAIT = 0.1
+#: Gyroscope start-up time, s (PS section 6.1, table "Gyroscope specifications": 30 ms, DLPF_CFG =
+#: 0, to within 1 deg/s of final). With ``CLKSEL`` = 1 the sample clock comes from the X gyro's
+#: PLL, so the samples are not trusted before it has started.
+GYRO_STARTUP = 30e-3
+
+#: ``WHO_AM_I`` values of parts that answer the same registers as far as this package uses them
+#: (accelerometer data, FIFO of 6-byte samples, the same power and rate registers); from the
+#: table of Linux's ``inv_mpu6050`` driver (``drivers/iio/imu/inv_mpu6050/inv_mpu_iio.h``,
+#: ``INV_*_WHOAMI_VALUE``). Their FIFO sizes may differ (the MPU-6500 family holds 512 bytes, or
+#: 4 kB), so they are accepted with a warning only.
+COMPATIBLE_WHO_AM_I = {
+    0x70: "MPU-6500",
+    0x71: "MPU-9250",
+    0x73: "MPU-9255",
+    0x74: "MPU-6515",
+    0x78: "MPU-6880",
+    0x98: "ICM-20689",
+    0xA6: "ICM-20609",
+    0xAF: "ICM-20608",
+}

@@ -8,8 +8,15 @@ simulated contact needs a vibration.
 """
 
 from .clock import SystemClock, VirtualClock
-from .i2c import I2CDevice, I2CError, RetryPolicy
-from .mpu6050 import MPU6050, ChipIdentityError, MPU6050Config, sample_rate_divider
+from .fifo import FifoStream, PeriodEstimator
+from .i2c import I2CDevice, I2CError, RetryPolicy, ShortReadError
+from .mpu6050 import (
+    MPU6050,
+    ChipIdentityError,
+    CompatibleChipWarning,
+    MPU6050Config,
+    sample_rate_divider,
+)
 from .pantilt import (
     AcquisitionResult,
     ContactDetector,
@@ -18,9 +25,11 @@ from .pantilt import (
     SearchConfig,
     search_and_record,
 )
-from .pca9685 import PCA9685, prescale_for
+from .pca9685 import PCA9685, oscillator_from_measurement, prescale_for
+from .safety import ReleaseError, ServoGuard, SignalReceived
 from .servo import Servo, ServoCalibration, ServoLimitWarning
 from .simulated import Faults, Obstacle, SimulatedBus, SimulatedRig
+from .watchdog import StreamStalledError
 
 __all__ = [
     "SystemClock",
@@ -28,12 +37,21 @@ __all__ = [
     "I2CDevice",
     "I2CError",
     "RetryPolicy",
+    "ShortReadError",
+    "FifoStream",
+    "PeriodEstimator",
+    "StreamStalledError",
     "MPU6050",
     "MPU6050Config",
     "ChipIdentityError",
+    "CompatibleChipWarning",
     "sample_rate_divider",
     "PCA9685",
     "prescale_for",
+    "oscillator_from_measurement",
+    "ServoGuard",
+    "SignalReceived",
+    "ReleaseError",
     "Servo",
     "ServoCalibration",
     "ServoLimitWarning",

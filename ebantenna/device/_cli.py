@@ -3,6 +3,14 @@
 from __future__ import annotations
 
 import argparse
+import os
+
+#: What to do when /dev/i2c-N is missing (Raspberry Pi OS).
+ENABLE_I2C_HINT = (
+    "enable I2C on a Raspberry Pi with 'sudo raspi-config' (Interface Options > I2C) or the line "
+    "'dtparam=i2c_arm=on' in /boot/firmware/config.txt, then reboot; 'sudo modprobe i2c-dev' "
+    "loads the device files, and 'ls /dev/i2c-*' lists the buses ('i2cdetect -y 1' shows the "
+    "chips: 0x40 PCA9685, 0x68 MPU-6050)")
 
 
 def register(subparsers) -> None:
@@ -25,7 +33,19 @@ def register(subparsers) -> None:
     parser.add_argument("--scene", default="paper", help="built-in scene for --simulated")
     parser.add_argument("--seed", type=int, default=0, help="seed of the simulation")
     parser.add_argument("--inject-faults", type=float, default=0.0, metavar="RATE",
-                        help="simulated only: fraction of I2C transfers that fail (errno 121)")
+                        help="simulated only: fraction of I2C transfers that fail, every kind "
+                        "(no acknowledge, EIO, ETIMEDOUT, EAGAIN, late errors, short reads)")
+    parser.add_argument("--chip-reset-at", type=float, metavar="S",
+                        help="simulated only: the accelerometer browns out at this time, s")
+    parser.add_argument("--stuck-bus", type=float, nargs=2, metavar=("AT", "FOR"),
+                        help="simulated only: the bus is stuck from AT for FOR seconds")
+    parser.add_argument("--clock-drift", type=float, default=0.0, metavar="X",
+                        help="simulated only: the accelerometer's clock runs (1 + X) fast")
+    parser.add_argument("--oscillator-hz", type=float, metavar="HZ",
+                        help="PCA9685 oscillator frequency as calibrated (default 25 MHz)")
+    parser.add_argument("--measured-pwm-hz", type=float, metavar="HZ",
+                        help="PWM frequency measured on a PCA9685 output at the default 50 Hz "
+                        "setting; calibrates the oscillator from it")
     parser.add_argument("--threshold", type=float, default=2.0,
                         help="contact threshold on the acceleration change, m/s^2 (default 2)")
     parser.add_argument("--duration", type=float, default=1.0,
@@ -42,40 +62,67 @@ def run(args: argparse.Namespace) -> int:
     from .mpu6050 import MPU6050
     from .pantilt import PanTilt, SearchConfig, search_and_record
     from .pca9685 import PCA9685
+    from .watchdog import StreamStalledError
 
     ratio = check_in_range("ratio", args.ratio, 0.0, 1.0)
     material = lookup_material(args.material).name
     config = SearchConfig(threshold=args.threshold, duration=args.duration)
     labels = {"material": material, "ratio": ratio}
+    simulated_only = {"--inject-faults": args.inject_faults, "--chip-reset-at": args.chip_reset_at,
+                      "--stuck-bus": args.stuck_bus, "--clock-drift": args.clock_drift}
+    oscillator = _oscillator(args)
     if args.simulated:
         from .simulated import Faults, SimulatedRig
 
+        stuck_at, stuck_for = args.stuck_bus or (None, 0.0)
+        faults = Faults.every_kind(args.inject_faults, chip_reset_at=args.chip_reset_at,
+                                   stuck_at=stuck_at, stuck_duration=stuck_for,
+                                   clock_drift=args.clock_drift)
         rig = SimulatedRig.for_contact(scene=args.scene, material=material, ratio=ratio,
-                                       seed=args.seed,
-                                       faults=Faults(error_rate=args.inject_faults))
+                                       seed=args.seed, faults=faults)
         bus, clock = rig.bus, rig.clock
         labels.update({"scene": args.scene, "seed": args.seed, "simulated": True})
     else:
-        if args.inject_faults:
-            raise ValueError("--inject-faults works only with --simulated")
+        given = [name for name, value in simulated_only.items() if value]
+        if given:
+            raise ValueError(f"{', '.join(given)} work(s) only with --simulated")
         from smbus2 import SMBus
 
         from .clock import SystemClock
 
+        if not os.path.exists(f"/dev/i2c-{args.bus}"):
+            raise FileNotFoundError(f"/dev/i2c-{args.bus} does not exist: no I2C bus {args.bus} "
+                                    f"on this machine. To {ENABLE_I2C_HINT}")
         bus, clock = SMBus(args.bus), SystemClock()
         labels.update({"bus": args.bus, "simulated": False})
+    stalled = None
     try:
-        mpu = MPU6050(bus, clock=clock)
-        mpu.initialize()
-        unit = PanTilt(PCA9685(bus, clock=clock))
+        # The servos first: switched off before anything else can fail (a missing
+        # accelerometer must not leave them where an earlier run put them).
+        unit = PanTilt(PCA9685(bus, clock=clock, oscillator_hz=oscillator))
         unit.initialize()
-        result = search_and_record(mpu, unit, config, labels=labels)
+        mpu = MPU6050(bus, clock=clock)
+        try:
+            mpu.initialize()
+            result = search_and_record(mpu, unit, config, labels=labels)
+        except StreamStalledError as exc:
+            stalled = exc
     finally:
         bus.close()
+    if stalled is not None:
+        where = args.out or "acquire-partial.npz"
+        saved = stalled.recording.save(where) if stalled.recording is not None else None
+        released = getattr(stalled, "servos_released", False)
+        raise OSError(f"{stalled}; servos {'released' if released else 'NOT confirmed released'}; "
+                      + (f"partial recording saved to {saved}" if saved else "nothing to save"))
     summary = {"mode": "simulated" if args.simulated else "hardware", **labels,
-               **result.summary(), "out": None}
+               **result.summary(), "out": None, "pca9685_oscillator_hz": oscillator}
     if args.simulated:
         summary["i2c_errors_injected"] = rig.bus.errors_injected
+        summary["faults_injected"] = sorted({kind for _, kind in rig.bus.injector.log})
+        summary["samples_wrong"] = (rig.wrong_samples(mpu, result.recording)
+                                    if result.recording is not None else 0)
+        summary["virtual_time_s"] = rig.clock.monotonic()
     if args.out and result.recording is not None:
         summary["out"] = str(result.recording.save(args.out))
     if args.json:
@@ -87,10 +134,24 @@ def run(args: argparse.Namespace) -> int:
             print(f"contact after {result.contact_time:.3f} s at pan/tilt "
                   f"{result.contact_angles[0]:.1f}/{result.contact_angles[1]:.1f} deg; "
                   f"servos {'stopped' if result.servos_stopped else 'NOT confirmed stopped'}")
-            print(f"recorded {result.samples} samples at {result.recording.fs:g} Hz, "
-                  f"{result.samples_lost} lost, {result.i2c_retries} I2C retries")
+            print(f"recorded {result.samples} samples at {result.recording.fs:.2f} Hz "
+                  f"(estimated), {result.samples_lost} lost, {result.i2c_retries} I2C retries, "
+                  f"{summary['fifo_restarts']} FIFO restarts")
             if summary["out"]:
                 print(f"saved {summary['out']}")
         else:
-            print(f"no contact within {config.max_search_time:g} s; servos released")
+            print(f"no contact within {config.max_search_time:g} s")
+        print("servos released" if result.servos_released else "servos NOT confirmed released")
     return 0 if result.contact_detected else 1
+
+
+def _oscillator(args) -> float:
+    """The PCA9685 oscillator frequency from ``--oscillator-hz`` or ``--measured-pwm-hz``."""
+    from ..chips.pca9685 import OSCILLATOR_HZ
+    from .pca9685 import oscillator_from_measurement, prescale_for
+
+    if args.oscillator_hz is not None and args.measured_pwm_hz is not None:
+        raise ValueError("give --oscillator-hz or --measured-pwm-hz, not both")
+    if args.measured_pwm_hz is not None:
+        return oscillator_from_measurement(args.measured_pwm_hz, prescale_for(50.0))
+    return OSCILLATOR_HZ if args.oscillator_hz is None else float(args.oscillator_hz)

@@ -12,6 +12,15 @@ of attempts and in the longest wait; when the attempts are used up an :class:`I2
 chip, the register, the operation and the last error. Every retry is counted in
 :attr:`I2CDevice.retries` and logged, so that nothing is lost silently. Other errors (a missing
 bus, a wrong address, a permission problem) are not retried.
+
+A retry is only safe when the transfer has no side effect on the chip. Reading a FIFO data port or
+a clear-on-read status register is not such a transfer: the error may come after the chip has
+shifted its bytes out (the kernel reports the failure at the STOP or on a late timeout), and a
+second read then returns the *next* bytes. Those reads are made with ``retry=False``: retried only
+after a missing acknowledge (:data:`NOTHING_READ_ERRNOS`), which proves that nothing was read, and
+any other failure, a short read included, raises :class:`I2CError` at once for the caller to
+resynchronise. A read that returns fewer bytes than asked (:class:`ShortReadError`) is a failure
+like any other.
 """
 
 from __future__ import annotations
@@ -23,12 +32,27 @@ from dataclasses import dataclass
 from .._validate import check_int, check_nonnegative, check_positive
 from .clock import SystemClock
 
-__all__ = ["RetryPolicy", "I2CError", "I2CDevice", "TRANSIENT_ERRNOS", "SMBUS_BLOCK_MAX"]
+__all__ = [
+    "RetryPolicy",
+    "I2CError",
+    "ShortReadError",
+    "I2CDevice",
+    "TRANSIENT_ERRNOS",
+    "NOTHING_READ_ERRNOS",
+    "SMBUS_BLOCK_MAX",
+]
 
 logger = logging.getLogger(__name__)
 
 #: errno values treated as transient bus noise (retried).
 TRANSIENT_ERRNOS = frozenset({errno.EREMOTEIO, errno.EIO, errno.ETIMEDOUT, errno.EAGAIN})
+#: errno values that prove a *read* delivered nothing, so that even a FIFO read may be retried:
+#: ``EREMOTEIO``, a missing acknowledge. In a read only the chip's address and register bytes are
+#: acknowledged by the chip; the data bytes are acknowledged by the master (I2C-bus
+#: specification, NXP UM10204 rev. 7, section 3.1.6), so a NACK comes before any data left the
+#: chip. Assumption: the adapter reports a NACK as ``EREMOTEIO`` and nothing else as it
+#: (Linux's ``i2c-bcm2835`` of the Raspberry Pi does; see its ``BCM2835_I2C_S_ERR`` handling).
+NOTHING_READ_ERRNOS = frozenset({errno.EREMOTEIO})
 
 #: The SMBus protocol carries at most 32 data bytes per block transfer.
 SMBUS_BLOCK_MAX = 32
@@ -40,6 +64,14 @@ _FIRST_ADDRESS, _LAST_ADDRESS = 0x03, 0x77
 
 class I2CError(OSError):
     """A bus transfer that still failed after every permitted retry."""
+
+
+class ShortReadError(OSError):
+    """A read transfer returned fewer bytes than it asked for (errno ``EIO``)."""
+
+    def __init__(self, asked: int, got: int):
+        super().__init__(errno.EIO, f"short read: {got} of {asked} bytes")
+        self.asked, self.got = asked, got
 
 
 @dataclass(frozen=True)
@@ -130,21 +162,22 @@ class I2CDevice:
         #: Number of transient errors that were retried.
         self.retries = 0
 
-    def _transfer(self, what: str, register: int, call):
+    def _transfer(self, what: str, register: int, call, *, retryable=TRANSIENT_ERRNOS):
         delays = self.retry.delays()
-        for attempt in range(self.retry.attempts):
+        for attempt in range(len(delays) + 1):
             try:
                 return call()
             except OSError as exc:
                 if exc.errno not in TRANSIENT_ERRNOS:
                     raise
-                if attempt == len(delays):
+                if attempt == len(delays) or exc.errno not in retryable:
                     hint = (" (no acknowledge: check the wiring, the power and the address)"
                             if exc.errno == errno.EREMOTEIO else "")
                     raise I2CError(
                         exc.errno,
                         f"I2C {what} of register 0x{register:02X} at address 0x{self.address:02X} "
-                        f"failed after {self.retry.attempts} attempts: {exc.strerror or exc}{hint}",
+                        f"failed after {attempt + 1} attempt{'s' if attempt else ''}: "
+                        f"{exc.strerror or exc}{hint}",
                     ) from exc
                 self.retries += 1
                 logger.info(
@@ -155,18 +188,22 @@ class I2CDevice:
                 self.clock.sleep(delays[attempt])
         raise AssertionError("unreachable")  # pragma: no cover
 
-    def read_byte(self, register: int) -> int:
-        """Read one register."""
+    def read_byte(self, register: int, *, retry: bool = True) -> int:
+        """Read one register; ``retry=False`` for a clear-on-read register (retried only when
+        the chip provably sent nothing, see :data:`NOTHING_READ_ERRNOS`)."""
         register = _check_byte("register", register)
         return int(self._transfer(
-            "read", register, lambda: self.bus.read_byte_data(self.address, register)))
+            "read", register, lambda: self.bus.read_byte_data(self.address, register),
+            retryable=TRANSIENT_ERRNOS if retry else NOTHING_READ_ERRNOS))
 
-    def write_byte(self, register: int, value: int) -> None:
-        """Write one register."""
+    def write_byte(self, register: int, value: int, *, retry: bool = True) -> None:
+        """Write one register; ``retry=False`` when the caller must know the single write that
+        landed (one attempt)."""
         register = _check_byte("register", register)
         value = _check_byte("value", value)
         self._transfer(
-            "write", register, lambda: self.bus.write_byte_data(self.address, register, value))
+            "write", register, lambda: self.bus.write_byte_data(self.address, register, value),
+            retryable=TRANSIENT_ERRNOS if retry else frozenset())
 
     def write_block(self, register: int, data) -> None:
         """Write up to 32 bytes to consecutive registers in one transfer (one I2C STOP)."""
@@ -179,7 +216,7 @@ class I2CDevice:
             lambda: self.bus.write_i2c_block_data(self.address, register, data))
 
     def read_block(self, register: int, length: int, *, increment: bool = True,
-                   chunk: int = SMBUS_BLOCK_MAX) -> bytes:
+                   chunk: int = SMBUS_BLOCK_MAX, retry: bool = True) -> bytes:
         """Read ``length`` bytes starting at ``register``, in one burst or a few.
 
         Reading several registers in one burst is what keeps a multi-byte sample whole: the chip
@@ -199,11 +236,17 @@ class I2CDevice:
         chunk : int
             Longest SMBus block transfer, 1-32 bytes. A FIFO of 6-byte samples is best drained in
             30-byte chunks so that a transfer never splits a sample.
+        retry : bool
+            Retry transient errors (default). False for a read with a side effect, such as a FIFO
+            data port: retried only when the error proves the chip sent nothing
+            (:data:`NOTHING_READ_ERRNOS`); any other failure, a short transfer included, raises
+            :class:`I2CError` at once.
 
         With ``use_rdwr`` the whole read is one combined ``i2c_rdwr`` transfer of any length.
         """
         register = _check_byte("register", register)
         length = check_int("length", length, minimum=1)
+        retryable = TRANSIENT_ERRNOS if retry else NOTHING_READ_ERRNOS
         chunk = check_int("chunk", chunk, minimum=1, maximum=SMBUS_BLOCK_MAX)
         if increment and register + length > 256:
             raise ValueError(f"register 0x{register:02X} + length {length} runs past 0xFF")
@@ -214,14 +257,23 @@ class I2CDevice:
                 write = i2c_msg.write(self.address, [register])
                 read = i2c_msg.read(self.address, length)
                 self.bus.i2c_rdwr(write, read)
-                return bytes(read)
+                return _whole(bytes(read)[: read.len], length)
 
-            return self._transfer("combined read", register, call)
+            return self._transfer("combined read", register, call, retryable=retryable)
         out = bytearray()
         while len(out) < length:
             n = min(chunk, length - len(out))
             start = register + len(out) if increment else register
-            out += bytes(self._transfer(
+            out += self._transfer(
                 "block read", start,
-                lambda n=n, start=start: self.bus.read_i2c_block_data(self.address, start, n)))
+                lambda n=n, start=start: _whole(
+                    bytes(self.bus.read_i2c_block_data(self.address, start, n)), n),
+                retryable=retryable)
         return bytes(out)
+
+
+def _whole(data: bytes, asked: int) -> bytes:
+    """``data`` if it holds the ``asked`` bytes, else :class:`ShortReadError`."""
+    if len(data) != asked:
+        raise ShortReadError(asked, len(data))
+    return data

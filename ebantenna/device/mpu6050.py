@@ -39,15 +39,16 @@ FIFO (RM, registers 35, 56, 58, 106, 114-116)
 With only ``ACCEL_FIFO_EN`` set, each sample is 6 bytes (X, Y, Z, big-endian, signed). The FIFO
 holds 1024 bytes, 170 samples, 170 ms at 1 kHz. When it is full the chip overwrites the oldest
 bytes and sets ``FIFO_OFLOW_INT`` in ``INT_STATUS``; since 1024 is not a multiple of 6, what
-remains is no longer aligned on sample boundaries, so the driver discards it, resets the FIFO and
-counts the lost samples from the elapsed time. A recording states how many samples were lost, and
-that number is exactly zero when the FIFO is drained in time (no overflow).
+remains is no longer aligned on sample boundaries. How the driver keeps every kept sample right
+through overflows, failed and short reads and chip resets, and counts every one it could not
+keep, is the subject of :mod:`ebantenna.device.fifo`.
 """
 
 from __future__ import annotations
 
 import logging
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -62,27 +63,31 @@ from ..chips.mpu6050 import (
     ADDRESSES,
     AFS_SEL,
     CLKSEL,
+    COMPATIBLE_WHO_AM_I,
     DATA_DTYPE,
     DLPF,
     FIFO_SIZE,
+    GYRO_STARTUP,
+    RESET_WAIT,
     STANDARD_GRAVITY,
     WHO_AM_I_VALUE,
     ClockSource,
-    FifoEnable,
     Interrupt,
     PowerManagement1,
     Register,
-    UserControl,
     gyro_output_rate,
 )
 from ..recording import Recording
 from .clock import SystemClock
-from .i2c import SMBUS_BLOCK_MAX, I2CDevice, RetryPolicy
+from .fifo import FifoBlock, FifoStream
+from .i2c import I2CDevice, RetryPolicy
+from .watchdog import StreamStalledError, record_stream
 
 __all__ = [
     "MPU6050",
     "MPU6050Config",
     "ChipIdentityError",
+    "CompatibleChipWarning",
     "FifoBlock",
     "STANDARD_GRAVITY",
     "LSB_PER_G",
@@ -97,12 +102,14 @@ LSB_PER_G = dict(zip(ACCEL_RANGES_G, ACCEL_LSB_PER_G, strict=True))
 
 #: Bytes per FIFO sample with only the accelerometer enabled.
 SAMPLE_BYTES = ACCEL_SAMPLE_BYTES
-#: Longest SMBus chunk that holds whole samples.
-_FIFO_CHUNK = (SMBUS_BLOCK_MAX // SAMPLE_BYTES) * SAMPLE_BYTES
 
 
 class ChipIdentityError(OSError):
     """The chip at the address is not the one expected (WHO_AM_I mismatch)."""
+
+
+class CompatibleChipWarning(UserWarning):
+    """The chip is not an MPU-6050 but a part known to answer the same registers."""
 
 
 def sample_rate_divider(fs: float, dlpf_cfg: int) -> int:
@@ -214,26 +221,6 @@ class MPU6050Config:
         return accel_bandwidth(self.dlpf_cfg)
 
 
-@dataclass(frozen=True)
-class FifoBlock:
-    """Samples drained from the FIFO in one go.
-
-    Attributes
-    ----------
-    index : ndarray of int, shape (n,)
-        Position of each sample in the stream since :meth:`MPU6050.start_fifo` (0-based). A jump
-        means samples were lost in between.
-    counts : ndarray of int16, shape (n, 3)
-        Raw X, Y, Z counts.
-    lost : int
-        Samples lost (to an overflow) just before this block.
-    """
-
-    index: np.ndarray
-    counts: np.ndarray
-    lost: int
-
-
 class MPU6050:
     """The accelerometer, configured for the paper's acquisition.
 
@@ -271,13 +258,10 @@ class MPU6050:
         self.clock = SystemClock() if clock is None else clock
         self.device = I2CDevice(bus, self.config.address, retry=retry, clock=self.clock,
                                 use_rdwr=use_rdwr)
-        self._stream_start = None
-        self._segment_start = None
-        self._segment_base = 0
-        self._segment_read = 0
-        self.samples_read = 0
-        self.samples_lost = 0
-        self.overflows = 0
+        #: The running FIFO stream (None before :meth:`start_fifo`).
+        self.stream: FifoStream | None = None
+        #: Name of the part found by :meth:`check_identity`.
+        self.part = "MPU-6050"
 
     # -- setup -----------------------------------------------------------------------------
     def who_am_i(self) -> int:
@@ -285,35 +269,73 @@ class MPU6050:
         return self.device.read_byte(Register.WHO_AM_I)
 
     def check_identity(self) -> None:
-        """Raise :class:`ChipIdentityError` unless ``WHO_AM_I`` reads 0x68."""
+        """Check ``WHO_AM_I`` (RM 117): 0x68 is an MPU-6050; a compatible part is accepted with a
+        :class:`CompatibleChipWarning`; anything else raises :class:`ChipIdentityError`."""
         value = self.who_am_i()
-        if value != WHO_AM_I_VALUE:
-            raise ChipIdentityError(
-                f"the chip at I2C address 0x{self.config.address:02X} is not an MPU-6050: "
-                f"WHO_AM_I reads 0x{value:02X}, expected 0x{WHO_AM_I_VALUE:02X}"
-            )
+        if value == WHO_AM_I_VALUE:
+            self.part = "MPU-6050"
+            return
+        if value in COMPATIBLE_WHO_AM_I:
+            self.part = COMPATIBLE_WHO_AM_I[value]
+            message = (f"the chip at I2C address 0x{self.config.address:02X} reads WHO_AM_I "
+                       f"0x{value:02X}: an {self.part}, not an MPU-6050. Its accelerometer "
+                       "registers are the same, but check its FIFO size and noise figures "
+                       "before trusting the recording")
+            logger.warning(message)
+            warnings.warn(message, CompatibleChipWarning, stacklevel=3)
+            return
+        known = ", ".join(f"0x{v:02X} ({name})" for v, name in COMPATIBLE_WHO_AM_I.items())
+        raise ChipIdentityError(
+            f"the chip at I2C address 0x{self.config.address:02X} is not an MPU-6050: "
+            f"WHO_AM_I reads 0x{value:02X}, expected 0x{WHO_AM_I_VALUE:02X} (or a compatible "
+            f"part: {known}). A value of 0x00 or 0xFF usually means a wiring fault"
+        )
 
     def initialize(self) -> None:
         """Check the chip, reset it, wake it on the PLL clock and set rate, filter and range.
 
-        Register writes, in order: ``PWR_MGMT_1 = 0x80`` (device reset, then 100 ms wait, RM
-        register 107 and PS section 4.20), ``PWR_MGMT_1 = 0x01`` (SLEEP cleared, CLKSEL = 1: PLL on
-        the X gyroscope, recommended over the internal 8 MHz oscillator for stability), ``CONFIG =
-        dlpf_cfg``, ``SMPLRT_DIV``, ``ACCEL_CONFIG = AFS_SEL << 3``, ``INT_ENABLE = 0x10``
-        (FIFO_OFLOW_EN).
+        Register writes, in order: ``PWR_MGMT_1 = 0x80`` (device reset, then a
+        :data:`~ebantenna.chips.mpu6050.RESET_WAIT` of 100 ms), then :meth:`configure`.
         """
-        cfg = self.config
         self.check_identity()
         self.device.write_byte(Register.PWR_MGMT_1, PowerManagement1.DEVICE_RESET)
-        self.clock.sleep(0.1)
+        self.clock.sleep(RESET_WAIT)
+        self.configure()
+
+    def configure(self) -> None:
+        """Wake the chip and set rate, filter, range and the overflow interrupt.
+
+        Register writes, in order: ``USER_CTRL = 0`` (FIFO off while the clock starts),
+        ``PWR_MGMT_1 = 0x01`` (SLEEP cleared, CLKSEL = 1: PLL on the X
+        gyroscope, recommended over the internal 8 MHz oscillator for stability, RM 107), a wait
+        of :data:`~ebantenna.chips.mpu6050.GYRO_STARTUP` (30 ms, the gyroscope's start-up time,
+        PS 6.1), ``CONFIG = dlpf_cfg``, ``SMPLRT_DIV``, ``ACCEL_CONFIG = AFS_SEL << 3``,
+        ``INT_ENABLE = 0x10`` (FIFO_OFLOW_EN). Also used to bring back a chip that was reset
+        (a brown-out) in the middle of a run.
+        """
+        cfg = self.config
+        self.device.write_byte(Register.USER_CTRL, 0)
         self.device.write_byte(Register.PWR_MGMT_1, CLKSEL.put(ClockSource.PLL_X_GYRO))
-        self.clock.sleep(0.01)
-        self.device.write_byte(Register.CONFIG, cfg.dlpf_cfg)
-        self.device.write_byte(Register.SMPLRT_DIV, cfg.smplrt_div)
-        self.device.write_byte(Register.ACCEL_CONFIG, cfg.accel_config)
-        self.device.write_byte(Register.INT_ENABLE, Interrupt.FIFO_OFLOW)
-        logger.info("MPU-6050 at 0x%02X: %g Hz, DLPF %d (%g Hz), +/-%d g", cfg.address, cfg.fs,
-                    cfg.dlpf_cfg, cfg.bandwidth, cfg.full_scale_g)
+        self.clock.sleep(GYRO_STARTUP)
+        for register, value in self._settings().items():
+            self.device.write_byte(register, value)
+        logger.info("%s at 0x%02X: %g Hz, DLPF %d (%g Hz), +/-%d g", self.part, cfg.address,
+                    cfg.fs, cfg.dlpf_cfg, cfg.bandwidth, cfg.full_scale_g)
+
+    def _settings(self) -> dict:
+        cfg = self.config
+        return {Register.CONFIG: cfg.dlpf_cfg, Register.SMPLRT_DIV: cfg.smplrt_div,
+                Register.ACCEL_CONFIG: cfg.accel_config, Register.INT_ENABLE: Interrupt.FIFO_OFLOW}
+
+    def configuration_lost(self) -> str | None:
+        """Why the chip no longer runs as configured (asleep, or a setting changed), or None."""
+        power = self.device.read_byte(Register.PWR_MGMT_1)
+        if power & PowerManagement1.SLEEP:
+            return "the chip is asleep (reset, e.g. by a brown-out)"
+        for register, value in self._settings().items():
+            if self.device.read_byte(register) != value:
+                return f"register 0x{int(register):02X} lost its setting (chip reset)"
+        return None
 
     # -- conversion ------------------------------------------------------------------------
     def to_acceleration(self, counts) -> np.ndarray:
@@ -321,75 +343,36 @@ class MPU6050:
         return np.asarray(counts, dtype=np.float64) * (STANDARD_GRAVITY / self.config.lsb_per_g)
 
     @staticmethod
-    def _decode(raw: bytes) -> np.ndarray:
+    def decode(raw: bytes) -> np.ndarray:
+        """Bytes of whole samples (big-endian X, Y, Z, RM 59-64) to (n, 3) int16 counts."""
         return np.frombuffer(raw, dtype=DATA_DTYPE).astype(np.int16).reshape(-1, 3)
 
     def read_acceleration(self) -> np.ndarray:
         """The latest X, Y, Z acceleration, m/s^2, from one 6-byte burst read (not byte by byte)."""
-        return self.to_acceleration(self._decode(self.device.read_block(Register.ACCEL_XOUT_H,
-                                                                   SAMPLE_BYTES))[0])
+        return self.to_acceleration(self.decode(self.device.read_block(Register.ACCEL_XOUT_H,
+                                                                  SAMPLE_BYTES))[0])
 
     # -- FIFO ------------------------------------------------------------------------------
-    def _reset_fifo(self) -> None:
-        # FIFO_RESET only acts while USER_CTRL.FIFO_EN is 0 (RM, register 106).
-        self.device.write_byte(Register.FIFO_EN, 0)
-        self.device.write_byte(Register.USER_CTRL, UserControl.FIFO_RESET)
-        self.device.read_byte(Register.INT_STATUS)  # clears a stale overflow flag
-        self.device.write_byte(Register.FIFO_EN, FifoEnable.ACCEL)
-        self.device.write_byte(Register.USER_CTRL, UserControl.FIFO_EN)
-        self._segment_start = self.clock.monotonic()
-        self._segment_read = 0
-
-    def start_fifo(self) -> None:
-        """Empty the FIFO and start filling it with accelerometer samples."""
-        self._reset_fifo()
-        self._stream_start = self._segment_start
-        self._segment_base = 0
-        self.samples_read = self.samples_lost = self.overflows = 0
+    def start_fifo(self) -> FifoStream:
+        """Empty the FIFO and start a stream of accelerometer samples (:mod:`~.fifo`)."""
+        self.stream = FifoStream(self)
+        return self.stream
 
     def stop_fifo(self) -> None:
-        """Stop filling the FIFO."""
+        """Stop filling the FIFO (the stream's record stays readable)."""
         self.device.write_byte(Register.USER_CTRL, 0)
         self.device.write_byte(Register.FIFO_EN, 0)
 
     def fifo_count(self) -> int:
-        """Bytes waiting in the FIFO (``FIFO_COUNTH``/``L`` read in one burst)."""
+        """Bytes waiting in the FIFO (``FIFO_COUNTH``/``L`` read in one burst, RM 114-115)."""
         high, low = self.device.read_block(Register.FIFO_COUNTH, 2)
         return (high << 8) | low
 
     def read_fifo(self) -> FifoBlock:
-        """Drain every whole sample waiting in the FIFO.
-
-        ``INT_STATUS`` is read first: if it reports an overflow (or the FIFO is full), the FIFO's
-        content is no longer aligned on samples, so it is discarded, the FIFO is reset, and the
-        samples produced since the last good read are counted as lost (from the elapsed time and
-        the sample rate), logged and returned in :attr:`FifoBlock.lost`.
-        """
-        if self._stream_start is None:
+        """Drain every whole sample waiting in the FIFO (see :meth:`FifoStream.drain`)."""
+        if self.stream is None:
             raise ValueError("the FIFO is not running: call start_fifo() first")
-        fs = self.config.fs
-        status = self.device.read_byte(Register.INT_STATUS)
-        count = self.fifo_count()
-        if status & Interrupt.FIFO_OFLOW or count >= FIFO_SIZE:
-            old_start, read = self._segment_start, self._segment_read
-            self._reset_fifo()
-            # Everything produced between the last good read and the restart is gone.
-            produced = max(int(math.floor((self._segment_start - old_start) * fs)), read)
-            lost = produced - read
-            self.overflows += 1
-            self.samples_lost += lost
-            self._segment_base += produced
-            logger.warning("MPU-6050 FIFO overflow: %d samples lost; drain the FIFO faster", lost)
-            return FifoBlock(np.empty(0, dtype=np.int64), np.empty((0, 3), np.int16), lost)
-        n = count // SAMPLE_BYTES
-        if n == 0:
-            return FifoBlock(np.empty(0, dtype=np.int64), np.empty((0, 3), np.int16), 0)
-        raw = self.device.read_block(Register.FIFO_R_W, n * SAMPLE_BYTES, increment=False,
-                                     chunk=_FIFO_CHUNK)
-        index = self._segment_base + self._segment_read + np.arange(n)
-        self._segment_read += n
-        self.samples_read += n
-        return FifoBlock(index, self._decode(raw), 0)
+        return self.stream.drain()
 
     @property
     def fifo_capacity(self) -> float:
@@ -407,20 +390,30 @@ class MPU6050:
         return poll_interval
 
     @property
-    def stream_start(self) -> float | None:
-        """Clock reading when :meth:`start_fifo` started the stream, s (None before)."""
-        return self._stream_start
+    def stream_position(self) -> int:
+        """The slot after the last sample kept since :meth:`start_fifo` (0 before)."""
+        return 0 if self.stream is None else self.stream.next_slot
 
     @property
-    def stream_position(self) -> int:
-        """Samples produced since :meth:`start_fifo` that have been read or counted as lost."""
-        return self._segment_base + self._segment_read
+    def overflows(self) -> int:
+        """FIFO overflows seen in the current stream."""
+        return 0 if self.stream is None else self.stream.overflows
+
+    @property
+    def samples_read(self) -> int:
+        """Samples kept in the current stream."""
+        return 0 if self.stream is None else self.stream.samples_read
+
+    @property
+    def samples_lost(self) -> int:
+        """Slots of the current stream, up to the last kept sample, that hold no sample."""
+        return self.stream_position - self.samples_read
 
     def metadata(self) -> dict:
         """What a recording from this chip should say about its origin."""
         cfg = self.config
-        return {
-            "device": "MPU-6050",
+        meta = {
+            "device": self.part,
             "address": cfg.address,
             "sample_rate_hz": cfg.fs,
             "dlpf_cfg": cfg.dlpf_cfg,
@@ -428,69 +421,43 @@ class MPU6050:
             "full_scale_g": cfg.full_scale_g,
             "lsb_per_g": cfg.lsb_per_g,
             "i2c_retries": self.device.retries,
-            "fifo_overflows": self.overflows,
         }
+        if self.stream is not None:
+            meta.update(self.stream.report())
+        return meta
 
-    def to_recording(self, index, counts, *, lost: int, origin: int | None = None,
-                     metadata: dict | None = None) -> Recording:
-        """Turn stream positions and raw counts into a :class:`Recording` (X -> ax, Z -> az).
+    def to_recording(self, first: int, stop: int, *, metadata: dict | None = None) -> Recording:
+        """The stream's samples in slots ``[first, stop)`` as a
+        :class:`~ebantenna.recording.Recording` (see :meth:`FifoStream.recording`)."""
+        if self.stream is None:
+            raise ValueError("no stream to make a recording of: call start_fifo() first")
+        return self.stream.recording(first, stop, metadata=metadata)
 
-        ``t`` is ``(index - origin) / fs`` (``origin`` defaults to ``index[0]``): a lost stretch
-        shows as a gap in ``t``.
-        """
-        index = np.asarray(index, dtype=np.int64)
-        counts = np.asarray(counts, dtype=np.int16).reshape(-1, 3)
-        if index.size == 0:
-            raise ValueError("no samples to make a recording of")
-        limit = np.iinfo(np.int16)
-        saturated = int(np.count_nonzero(
-            (counts[:, [0, 2]] == limit.min) | (counts[:, [0, 2]] == limit.max)))
-        if saturated:
-            logger.warning("%d accelerometer readings at the +/-%d g limit (clipped)",
-                           saturated, self.config.full_scale_g)
-        acc = self.to_acceleration(counts)
-        meta = self.metadata()
-        meta.update({"samples_lost": int(lost), "samples_saturated": saturated,
-                     "first_index": int(index[0])})
-        meta.update(metadata or {})
-        origin = int(index[0]) if origin is None else int(origin)
-        return Recording((index - origin) / self.config.fs, acc[:, 0], acc[:, 2],
-                         self.config.fs, meta)
-
-    def record(self, duration: float, *, poll_interval: float = 0.02) -> Recording:
+    def record(self, duration: float, *, poll_interval: float = 0.02,
+               watchdog: float = 1.0) -> Recording:
         """Record ``duration`` seconds through the FIFO, draining it every ``poll_interval``.
 
         Parameters
         ----------
         duration : float
-            Length of the recording, s.
+            Length of the recording, s: ``round(duration * fs)`` slots.
         poll_interval : float
             Time between drains, s. Must be below the FIFO's 170 ms at 1 kHz; a host that stalls
             for longer loses samples (and counts them).
+        watchdog : float
+            Longest time without a new sample, s. Default 1 s.
 
         Returns
         -------
         Recording
-            ``metadata["samples_lost"]`` says how many of the ``round(duration * fs)`` samples
-            were lost.
+            ``metadata["samples_lost"]`` says how many of the slots hold no sample.
+
+        Raises
+        ------
+        StreamStalledError
+            When no sample came for ``watchdog`` seconds; it holds what was recorded so far.
         """
-        duration = check_positive("duration", duration)
-        poll_interval = self.check_poll_interval(poll_interval)
-        wanted = max(1, round(duration * self.config.fs))
-        self.start_fifo()
-        indices, blocks = [], []
-        try:
-            while True:
-                self.clock.sleep(poll_interval)
-                block = self.read_fifo()
-                indices.append(block.index)
-                blocks.append(block.counts)
-                if self.stream_position >= wanted:
-                    break
-        finally:
-            self.stop_fifo()
-        index = np.concatenate(indices)
-        counts = np.concatenate(blocks)
-        keep = index < wanted
-        lost = wanted - int(np.count_nonzero(keep))
-        return self.to_recording(index[keep], counts[keep], lost=lost, origin=0)
+        return record_stream(self, duration, poll_interval=poll_interval, watchdog=watchdog)
+
+
+__all__ += ["StreamStalledError"]

@@ -3,10 +3,15 @@
 The probe sweeps an elliptical path in (pan, tilt), like the searching antenna of a stick insect
 (Fig. 7). The accelerometer's FIFO is drained all the while and every new sample is checked against
 a running baseline; the first sample whose acceleration departs from it by more than a threshold is
-the contact (Fig. 8). The servos are then stopped at once (held where they were last commanded), the
-vibration window is recorded into a :class:`~ebantenna.recording.Recording` (a short stretch before
-the contact included), and the servos are released (PWM off). They are released on every way out,
-an exception or Ctrl-C included.
+the contact (Fig. 8). The servos are then stopped at once: held a small stated angle
+(:attr:`SearchConfig.back_off`) behind the position they had certainly reached when the contact
+sample was taken (the command before the one then in effect), so that the probe never pushes
+further into the object. The vibration window is recorded
+into a :class:`~ebantenna.recording.Recording` (a short stretch before the contact included), and
+the servos are released (PWM off). They are released on every way out, an exception, Ctrl-C,
+SIGTERM or SIGHUP included (:class:`~ebantenna.device.safety.ServoGuard`), and a run whose
+accelerometer stops producing ends with
+:class:`~ebantenna.device.watchdog.StreamStalledError` after :attr:`SearchConfig.watchdog`.
 """
 
 from __future__ import annotations
@@ -19,9 +24,12 @@ import numpy as np
 
 from .._validate import check_int, check_nonnegative, check_positive, check_real
 from ..recording import Recording
+from .i2c import I2CError
 from .mpu6050 import MPU6050
 from .pca9685 import PCA9685
+from .safety import ServoGuard
 from .servo import Servo, ServoCalibration
+from .watchdog import check_watchdog, stop_quietly
 
 __all__ = [
     "EllipticalPath",
@@ -137,8 +145,8 @@ class PanTilt:
     pca : PCA9685
         The controller (initialised by :meth:`initialize`).
     pan, tilt : ServoCalibration
-        Calibrations; defaults: pan on channel 0, tilt on channel 1, MG996R 0.5-2.5 ms for
-        0-180 degrees, limited to 20-160 degrees.
+        Calibrations; defaults: pan on channel 0, tilt on channel 1, the conservative default
+        pulse range of :class:`ServoCalibration` (22.5-157.5 degrees).
 
     Examples
     --------
@@ -160,43 +168,51 @@ class PanTilt:
         if not isinstance(pca, PCA9685):
             raise TypeError(f"pca must be a PCA9685, got {type(pca).__name__}")
         self.pca = pca
-        self.pan = Servo(pca, pan or ServoCalibration(0, lower_limit=20.0, upper_limit=160.0),
-                         "pan")
-        self.tilt = Servo(pca, tilt or ServoCalibration(1, lower_limit=20.0, upper_limit=160.0),
-                          "tilt")
+        self.pan = Servo(pca, pan or ServoCalibration(0), "pan")
+        self.tilt = Servo(pca, tilt or ServoCalibration(1), "tilt")
         if self.pan.calibration.channel == self.tilt.calibration.channel:
             raise ValueError("pan and tilt servos must be on different channels, both are on "
                              f"{self.pan.calibration.channel}")
 
     def initialize(self) -> None:
-        """Set up the PCA9685 (outputs off, 50 Hz)."""
+        """Set up the PCA9685: outputs off first, then 50 Hz. Call it before anything else is
+        started, so that servos left driven by an earlier run go limp at once."""
         self.pca.initialize()
 
     def move(self, pan: float, tilt: float) -> tuple[float, float]:
         """Command both servos (clamped to their limits); returns the angles commanded, degrees."""
         return self.pan.move(pan), self.tilt.move(tilt)
 
-    def stop(self) -> bool:
-        """Hold both servos at their last commanded angles and confirm it from the registers.
+    def stop(self, back_off: float = 0.0, at: tuple | None = None) -> bool:
+        """Hold both servos and confirm it from the registers.
 
-        Returns True when both channels read back the pulse of the held angle (to within one
-        count), i.e. no further motion has been commanded.
+        Each servo is held ``back_off`` degrees behind ``at`` (its commanded angle when the
+        contact happened; default its last commanded angle), against its last direction of
+        motion, so that it never pushes further. Returns True when both channels read back the
+        pulse of the held angle (to within one count).
         """
+        back_off = check_nonnegative("back_off", back_off)
         ok = True
-        for servo in (self.pan, self.tilt):
+        for k, servo in enumerate((self.pan, self.tilt)):
             if servo.angle is None:
                 ok = False
                 continue
-            servo.move(servo.angle)
-            expected = servo.calibration.pulse(servo.angle)
+            target = servo.angle if at is None else at[k]
+            direction = 0.0 if servo.previous is None else math.copysign(
+                1.0, servo.angle - servo.previous) if servo.angle != servo.previous else 0.0
+            held = servo.calibration.clamp(target - direction * back_off)
+            servo.move(held)
+            expected = servo.calibration.pulse(held)
             ok &= abs(self.pca.pulse(servo.calibration.channel) - expected) <= (
                 1.0 / (4096 * self.pca.frequency))
         return bool(ok)
 
     def release(self) -> None:
-        """Switch every PWM output off (the servos go limp)."""
+        """Switch every PWM output off (the servos go limp); raises :class:`I2CError` if the
+        bus fails (:class:`~ebantenna.device.safety.ServoGuard` retries)."""
         self.pca.all_off()
         self.pan.angle = self.tilt.angle = None
+        self.pan.previous = self.tilt.previous = None
 
     def __enter__(self):
         return self
@@ -227,6 +243,12 @@ class SearchConfig:
         must stay below the 170 ms the FIFO holds at 1 kHz.
     max_search_time : float
         Give up after this long without a contact, s. Default 12 s (three loops).
+    back_off : float
+        On contact, hold the servos this far behind the position they had certainly reached when
+        the contact sample was taken, degrees. Default 3: more than one servo update along the
+        default path (peak 94 deg/s times 20 ms = 1.9 deg).
+    watchdog : float
+        Longest time without a new accelerometer sample, s. Default 1 s.
     """
 
     path: EllipticalPath = field(default_factory=EllipticalPath)
@@ -236,6 +258,8 @@ class SearchConfig:
     duration: float = 1.0
     poll_interval: float = 0.02
     max_search_time: float = 12.0
+    back_off: float = 3.0
+    watchdog: float = 1.0
 
     def __post_init__(self):
         if not isinstance(self.path, EllipticalPath):
@@ -246,6 +270,8 @@ class SearchConfig:
         check_positive("duration", self.duration)
         check_positive("poll_interval", self.poll_interval)
         check_positive("max_search_time", self.max_search_time)
+        check_nonnegative("back_off", self.back_off)
+        check_positive("watchdog", self.watchdog)
 
 
 @dataclass(frozen=True)
@@ -270,6 +296,10 @@ class AcquisitionResult:
         (pan, tilt) commanded when the servos were stopped, degrees.
     i2c_retries : int
         Transient bus errors retried on the way.
+    servos_released : bool
+        Whether the PWM outputs were switched off at the end (confirmed by the release).
+    stream : dict
+        The FIFO stream's report: estimated sample rate, restarts, overflows, fault log.
     """
 
     contact_detected: bool
@@ -280,6 +310,8 @@ class AcquisitionResult:
     contact_time: float | None
     contact_angles: tuple[float, float] | None
     i2c_retries: int
+    servos_released: bool = False
+    stream: dict = field(default_factory=dict)
 
     @property
     def samples(self) -> int:
@@ -297,6 +329,11 @@ class AcquisitionResult:
             "contact_time_s": self.contact_time,
             "contact_angles_deg": None if self.contact_angles is None else
             list(self.contact_angles), "i2c_retries": self.i2c_retries,
+            "servos_released": self.servos_released,
+            "sample_rate_estimated_hz": self.stream.get("sample_rate_estimated_hz"),
+            "sample_period_uncertainty_s": self.stream.get("sample_period_uncertainty_s"),
+            "fifo_restarts": self.stream.get("fifo_restarts", 0),
+            "faults": len(self.stream.get("faults", [])),
         }
         if self.recording is not None:
             out["fs_hz"] = self.recording.fs
@@ -346,67 +383,77 @@ def search_and_record(mpu: MPU6050, pantilt: PanTilt, config: SearchConfig | Non
     pre = int(round(config.pre_trigger * fs))
     post = int(round(config.duration * fs))
     detector = ContactDetector(config.threshold, config.baseline_window)
-    indices: list[np.ndarray] = []
-    blocks: list[np.ndarray] = []
+    commands: list[tuple[float, float, float]] = []  # (host time, pan, tilt) of every move
     trigger = None
     stopped = False
     angles = None
-    try:
-        mpu.start_fifo()
-        start = clock.monotonic()
-        while True:
-            # Check the newest samples first, so that no move is commanded after a contact.
-            block = mpu.read_fifo()
-            if block.index.size:
-                indices.append(block.index)
-                blocks.append(block.counts)
-                if trigger is None:
+    guard = ServoGuard(pantilt.release, clock)
+    with guard:
+        try:
+            stream = mpu.start_fifo()
+            start = clock.monotonic()
+            while True:
+                # Check the newest samples first, so that no move is commanded after a contact.
+                block = mpu.read_fifo()
+                if block.index.size and trigger is None:
                     acc = mpu.to_acceleration(block.counts)
                     hit = detector.update(acc[:, 0], acc[:, 2])
                     if hit is not None:
-                        stopped = pantilt.stop()
-                        angles = (pantilt.pan.angle, pantilt.tilt.angle)
                         trigger = int(block.index[hit])
-                        logger.info("contact at sample %d (%.3f s); servos held at %s", trigger,
-                                    trigger / fs, angles)
-                    else:
-                        # While searching keep only what a pre-trigger stretch could need.
-                        keep_from = int(block.index[-1]) - pre
-                        while len(indices) > 1 and indices[0][-1] < keep_from:
-                            indices.pop(0)
-                            blocks.pop(0)
-            if trigger is None:
-                elapsed = clock.monotonic() - start
-                if elapsed > config.max_search_time:
-                    logger.info("no contact within %.1f s", config.max_search_time)
+                        at = _reached_by(commands, stream.host_time(trigger))
+                        stopped = pantilt.stop(config.back_off, at)
+                        angles = (pantilt.pan.angle, pantilt.tilt.angle)
+                        logger.info("contact at sample %d (%.3f s); servos held at %s",
+                                    trigger, trigger / fs, angles)
+                if trigger is None:
+                    elapsed = clock.monotonic() - start
+                    if elapsed > config.max_search_time:
+                        logger.info("no contact within %.1f s", config.max_search_time)
+                        break
+                    try:
+                        moved = pantilt.move(*config.path.angles(elapsed))
+                        commands.append((clock.monotonic(), *moved))
+                    except I2CError as exc:  # the servos keep their last command
+                        logger.warning("servo update failed (%s); the search goes on", exc)
+                elif mpu.stream_position >= trigger + post:
                     break
-                pantilt.move(*config.path.angles(elapsed))
-            elif mpu.stream_position >= trigger + post:
-                break
-            clock.sleep(config.poll_interval)
-    finally:
-        try:
-            pantilt.release()
+                window = None if trigger is None else (max(trigger - pre, 0), trigger + post)
+                check_watchdog(mpu, config.watchdog, window=window, metadata=labels)
+                clock.sleep(config.poll_interval)
         finally:
-            mpu.stop_fifo()
+            stop_quietly(mpu)
     retries = mpu.device.retries + pantilt.pca.device.retries
+    report = stream.report()
     if trigger is None:
-        return AcquisitionResult(False, False, None, 0, mpu.samples_lost, None, None, retries)
-    index = np.concatenate(indices)
-    counts = np.concatenate(blocks)
+        return AcquisitionResult(False, False, None, 0, mpu.samples_lost, None, None, retries,
+                                 guard.released, report)
     first = max(trigger - pre, 0)
-    keep = (index >= first) & (index < trigger + post)
-    lost = (trigger + post - first) - int(np.count_nonzero(keep))
     meta = {
         "source": "device",
         "trigger_time": (trigger - first) / fs,
         "contact_angles_deg": list(angles),
         "servos_stopped": stopped,
+        "back_off_deg": config.back_off,
         "stream_samples_lost": mpu.samples_lost,
         "i2c_retries": retries,
+        "servo_calibration": {"pan": pantilt.pan.calibration.to_dict(),
+                              "tilt": pantilt.tilt.calibration.to_dict(),
+                              "pwm_frequency_hz": pantilt.pca.frequency,
+                              "oscillator_hz": pantilt.pca.oscillator_hz},
     }
     meta.update(labels or {})
-    recording = mpu.to_recording(index[keep], counts[keep], lost=lost, origin=first,
-                                 metadata=meta)
+    recording = mpu.to_recording(first, trigger + post, metadata=meta)
+    lost = recording.metadata["samples_lost"]
     return AcquisitionResult(True, stopped, recording, lost, mpu.samples_lost, trigger / fs,
-                             angles, retries)
+                             angles, retries, guard.released, report)
+
+
+def _reached_by(commands, when: float) -> tuple[float, float] | None:
+    """The (pan, tilt) the servos had certainly reached by host time ``when``, degrees.
+
+    That is the command *before* the one in effect at ``when``: the servo was on its way from
+    there to the newer one (a step of the path, 1.9 degrees at most by default, takes an MG996R
+    about 5 ms of its 20 ms frame). None before two commands.
+    """
+    earlier = [(pan, tilt) for t, pan, tilt in commands if t <= when]
+    return earlier[-2] if len(earlier) >= 2 else None

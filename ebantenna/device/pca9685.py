@@ -8,6 +8,11 @@ PWM frequency (DS 7.3.5)
     prescale = round(osc_clock / (4096 * update_rate)) - 1,
 
 with the internal oscillator at 25 MHz: 121 for 50 Hz, which gives 25 MHz / (4096 * 122) = 50.03 Hz.
+The internal oscillator is only nominally 25 MHz (DS table 11, "f_osc": 23-27 MHz over the
+operating range), so a servo pulse computed for 25 MHz can be 8 % off. Adafruit's PCA9685 driver
+lets the user give the measured oscillator frequency; here ``oscillator_hz`` takes it, and
+:func:`oscillator_from_measurement` computes it from the PWM frequency measured on an output
+(with a frequency counter or an oscilloscope) at a known prescale.
 ``PRE_SCALE`` can only be written while ``MODE1.SLEEP`` is 1, so the sequence is: sleep, write the
 prescale, wake, wait 500 us for the oscillator (DS 7.3.1.1), then write ``RESTART``.
 
@@ -46,7 +51,12 @@ from ..chips.pca9685 import (
 from .clock import SystemClock
 from .i2c import I2CDevice, RetryPolicy
 
-__all__ = ["PCA9685", "prescale_for", "pwm_frequency"]
+__all__ = ["PCA9685", "prescale_for", "pwm_frequency", "oscillator_from_measurement",
+           "OSCILLATOR_RANGE"]
+
+#: The range of the internal oscillator, Hz (DS table 11, f_osc: 23 to 27 MHz); a calibration
+#: outside it is refused as a measurement error.
+OSCILLATOR_RANGE = (23e6, 27e6)
 
 logger = logging.getLogger(__name__)
 
@@ -74,6 +84,31 @@ def prescale_for(frequency: float, oscillator_hz: float = OSCILLATOR_HZ) -> int:
     return value
 
 
+def oscillator_from_measurement(measured_pwm_hz: float, prescale: int) -> float:
+    """The oscillator frequency, Hz, from the PWM frequency measured on an output at ``prescale``.
+
+    Inverts DS equation 1: ``osc_clock = f_pwm * 4096 * (prescale + 1)``.
+
+    Examples
+    --------
+    >>> from ebantenna.device.pca9685 import oscillator_from_measurement
+    >>> round(oscillator_from_measurement(51.2, 121) / 1e6, 4)  # MHz: a fast unit
+    25.5853
+    """
+    prescale = check_int("prescale", prescale, minimum=PRESCALE_MIN, maximum=PRESCALE_MAX)
+    return _check_oscillator(
+        check_positive("measured_pwm_hz", measured_pwm_hz) * COUNTS_PER_PERIOD * (prescale + 1))
+
+
+def _check_oscillator(oscillator_hz: float) -> float:
+    low, high = OSCILLATOR_RANGE
+    oscillator_hz = check_positive("oscillator_hz", oscillator_hz)
+    if not low <= oscillator_hz <= high:
+        raise ValueError(f"oscillator_hz must lie in [{low:g}, {high:g}] Hz (the PCA9685's "
+                         f"oscillator range, DS table 11), got {oscillator_hz!r}")
+    return oscillator_hz
+
+
 def pwm_frequency(prescale: int, oscillator_hz: float = OSCILLATOR_HZ) -> float:
     """The PWM frequency that ``PRE_SCALE = prescale`` actually gives, Hz.
 
@@ -99,7 +134,8 @@ class PCA9685:
     frequency : float
         PWM frequency, Hz. Default 50 Hz, the servo frame rate.
     oscillator_hz : float
-        The oscillator's actual frequency, Hz, if calibrated; default the nominal 25 MHz.
+        The oscillator's actual frequency, Hz, if calibrated (given, or from
+        :func:`oscillator_from_measurement`); default the nominal 25 MHz. Must lie in 23-27 MHz.
     retry : RetryPolicy, optional
         Retries of transient bus errors.
     clock : clock, optional
@@ -120,6 +156,7 @@ class PCA9685:
     def __init__(self, bus, address: int = DEFAULT_ADDRESS, *, frequency: float = 50.0,
                  oscillator_hz: float = OSCILLATOR_HZ, retry: RetryPolicy | None = None,
                  clock=None):
+        self.oscillator_hz = _check_oscillator(oscillator_hz)
         self.prescale = prescale_for(frequency, oscillator_hz)
         self.frequency = pwm_frequency(self.prescale, oscillator_hz)
         self.clock = SystemClock() if clock is None else clock

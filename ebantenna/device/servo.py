@@ -14,7 +14,7 @@ import warnings
 from dataclasses import dataclass
 
 from .._validate import check_int, check_real
-from ..chips.mg996r import PULSE_RANGE, TRAVEL
+from ..chips.mg996r import SAFE_ANGLES, SAFE_PULSE_RANGE
 from ..chips.pca9685 import N_CHANNELS
 from .pca9685 import PCA9685
 
@@ -36,10 +36,12 @@ class ServoCalibration:
     channel : int
         PCA9685 output, 0-15.
     min_pulse, max_pulse : float
-        Pulse widths at ``min_angle`` and ``max_angle``, s. Defaults 0.5 ms and 2.5 ms (MG996R,
-        :data:`ebantenna.chips.mg996r.PULSE_RANGE`).
+        Pulse widths at ``min_angle`` and ``max_angle``, s. Defaults 0.75 ms and 2.25 ms, the
+        conservative range :data:`ebantenna.chips.mg996r.SAFE_PULSE_RANGE` that keeps a servo
+        off its end stops; measure a unit's own range and pass it here to use more travel.
     min_angle, max_angle : float
-        The angles those pulses give, degrees. Defaults 0 and 180.
+        The angles those pulses give, degrees. Defaults 22.5 and 157.5, on the MG996R's nominal
+        line (0.5-2.5 ms for 0-180 degrees, :data:`ebantenna.chips.mg996r.SAFE_ANGLES`).
     lower_limit, upper_limit : float
         Commands are clamped to this range, degrees; it must lie within ``[min_angle, max_angle]``.
         Defaults: the full range.
@@ -52,13 +54,15 @@ class ServoCalibration:
     0.0015
     >>> cal.angle(0.002)
     135.0
+    >>> cal.to_dict()["min_pulse"]
+    0.00075
     """
 
     channel: int
-    min_pulse: float = PULSE_RANGE[0]
-    max_pulse: float = PULSE_RANGE[1]
-    min_angle: float = 0.0
-    max_angle: float = TRAVEL
+    min_pulse: float = SAFE_PULSE_RANGE[0]
+    max_pulse: float = SAFE_PULSE_RANGE[1]
+    min_angle: float = SAFE_ANGLES[0]
+    max_angle: float = SAFE_ANGLES[1]
     lower_limit: float | None = None
     upper_limit: float | None = None
 
@@ -85,6 +89,10 @@ class ServoCalibration:
             raise ValueError(
                 f"lower_limit and upper_limit must satisfy {self.min_angle!r} <= lower_limit < "
                 f"upper_limit <= {self.max_angle!r}; got {lo!r} and {hi!r}")
+
+    def to_dict(self) -> dict:
+        """JSON-ready form (stored with a recording)."""
+        return {name: getattr(self, name) for name in self.__dataclass_fields__}
 
     def pulse(self, angle: float) -> float:
         """Pulse width for ``angle`` (degrees, not clamped), s."""
@@ -141,6 +149,8 @@ class Servo:
         self.name = str(name)
         #: Last commanded angle, degrees (None before the first command or after release).
         self.angle = None
+        #: The angle commanded before it, degrees (its direction of motion), or None.
+        self.previous = None
 
     def move(self, angle: float) -> float:
         """Command ``angle`` (degrees), clamped to the limits; returns the angle commanded."""
@@ -152,10 +162,12 @@ class Servo:
             logger.warning(message)
             warnings.warn(message, ServoLimitWarning, stacklevel=2)
         self.pca.set_pulse(cal.channel, cal.pulse(target))
+        if target != self.angle:
+            self.previous = self.angle
         self.angle = target
         return target
 
     def release(self) -> None:
         """Stop driving this servo (its output off: the motor goes limp)."""
         self.pca.channel_off(self.calibration.channel)
-        self.angle = None
+        self.angle = self.previous = None

@@ -143,3 +143,39 @@ def test_missing_chip_is_reported_after_retries():
     dev = I2CDevice(rig.bus, 0x50, clock=rig.clock)
     with pytest.raises(I2CError, match="0x50"):
         dev.read_byte(0)
+
+
+@pytest.mark.parametrize("err", [errno.EIO, errno.ETIMEDOUT, errno.EAGAIN])
+def test_a_read_with_a_side_effect_is_not_retried_after_an_error_that_may_be_late(err):
+    bus = ScriptedBus(failures=1, err=err)
+    dev = I2CDevice(bus, 0x68, clock=RecordingClock())
+    with pytest.raises(I2CError, match="failed after 1 attempt"):
+        dev.read_block(0x74, 30, increment=False, chunk=30, retry=False)
+    assert len(bus.calls) == 1 and dev.retries == 0
+    with pytest.raises(I2CError):
+        I2CDevice(ScriptedBus(failures=1, err=err), 0x68, clock=RecordingClock()).read_byte(
+            0x3A, retry=False)
+
+
+def test_a_missing_acknowledge_proves_nothing_was_read_and_is_retried():
+    bus = ScriptedBus(failures=2, err=errno.EREMOTEIO)
+    dev = I2CDevice(bus, 0x68, clock=RecordingClock())
+    data = dev.read_block(0x74, 6, increment=False, retry=False)
+    assert data == bytes([0x74 + k for k in range(6)])
+    assert dev.retries == 2 and len(bus.calls) == 3
+    # a write made once is never retried, not even after a missing acknowledge
+    with pytest.raises(I2CError):
+        I2CDevice(ScriptedBus(failures=1), 0x68, clock=RecordingClock()).write_byte(
+            0x6A, 0x40, retry=False)
+
+
+def test_a_short_read_is_an_error():
+    class ShortBus(ScriptedBus):
+        def read_i2c_block_data(self, addr, reg, length, force=None):
+            return super().read_i2c_block_data(addr, reg, length)[: length - 1]
+
+    dev = I2CDevice(ShortBus(), 0x68, clock=RecordingClock())
+    with pytest.raises(I2CError, match="short read: 5 of 6 bytes"):
+        dev.read_block(0x74, 6, increment=False, retry=False)
+    with pytest.raises(I2CError, match="after 5 attempts"):  # retried like any transient error
+        dev.read_block(0x3B, 6)

@@ -11,7 +11,6 @@ from ebantenna.device import (
     ContactDetector,
     EllipticalPath,
     Faults,
-    I2CError,
     Obstacle,
     PanTilt,
     SearchConfig,
@@ -20,6 +19,7 @@ from ebantenna.device import (
     search_and_record,
 )
 from ebantenna.device.mpu6050 import STANDARD_GRAVITY
+from ebantenna.device.watchdog import StreamStalledError
 
 LSB = STANDARD_GRAVITY / 2048
 
@@ -73,7 +73,7 @@ def test_search_finds_the_post_stops_records_and_releases():
     assert 0.2 < rig.contact_time < 1.0
     # Every sample from the contact on is the vibration's, to within one LSB (stream positions
     # are counted from the FIFO start; sample k is taken at stream_start + (k + 1) / fs).
-    k_contact = round((rig.contact_sample_time - mpu.stream_start) * 1000.0) - 1
+    k_contact = round((rig.contact_sample_time - mpu.stream.starts[0]) * 1000.0) - 1
     index = rec.metadata["first_index"] + np.rint(rec.t * 1000.0).astype(int)
     j = index - k_contact
     after = j >= 0
@@ -87,7 +87,13 @@ def test_search_finds_the_post_stops_records_and_releases():
     assert 0 <= trigger - k_contact <= 3
     # Stopped at once: the pan was never commanded more than one servo update past the post...
     # (the transfers of one loop take about 5 ms on top of the poll interval).
-    assert 0 < rig.world.max_push <= config.path.peak_rate() * (config.poll_interval + 0.005)
+    # (one loop to drain the contact sample, one more at most before the stop; the transfers of
+    # a loop take about 10 ms at 100 kHz on top of the poll interval) ...
+    assert 0 < rig.world.max_push <= config.path.peak_rate() * 2 * (config.poll_interval + 0.01)
+    # ... and then held at least back_off behind the post, where the probe touched it: the
+    # hold never pushes further.
+    pans = [a for t, axis, a in rig.world.commands if axis == "pan" and a is not None]
+    assert (pans[-1] - Obstacle().pan) * rig.world.direction <= -config.back_off + 1e-9
     # ... no new angle was commanded after the contact was detected, and then the PWM went off.
     t_detect = rig.contact_time + config.poll_interval + 0.01
     late = [(axis, a) for t, axis, a in rig.world.commands if t > t_detect]
@@ -96,7 +102,8 @@ def test_search_finds_the_post_stops_records_and_releases():
     assert len({round(a, 9) for axis, a in late if axis == "pan" and a is not None}) <= 1
     assert set(held) <= {"pan", "tilt"}
     assert not rig.pca.outputs_enabled()
-    assert rig.world.pan.angle == pytest.approx(Obstacle().pan)
+    # The servo went back to the hold, off the post, before the PWM went off.
+    assert (rig.world.pan.angle - Obstacle().pan) * rig.world.direction <= -config.back_off + 1e-9
 
 
 def test_no_obstacle_no_contact_and_servos_released():
@@ -110,9 +117,11 @@ def test_no_obstacle_no_contact_and_servos_released():
 def test_transient_errors_are_survived_and_counted():
     ax, az = _ring()
     rig = SimulatedRig.from_arrays(ax, az, fs=1000.0, seed=7, faults=Faults(error_rate=0.05))
-    _, result = _run(rig)
-    assert result.contact_detected and result.samples_lost == 0
-    assert result.i2c_retries == rig.bus.errors_injected > 10
+    mpu, result = _run(rig)
+    assert result.contact_detected
+    assert result.samples + result.samples_lost == 1050
+    assert rig.wrong_samples(mpu, result.recording) == 0
+    assert result.i2c_retries + result.summary()["faults"] >= rig.bus.errors_injected > 10
     assert result.summary()["i2c_retries"] == result.i2c_retries
 
 
@@ -177,7 +186,7 @@ def test_a_dead_bus_during_the_search_is_a_clear_error():
     unit = PanTilt(PCA9685(rig.bus, clock=rig.clock))
     unit.initialize()
     rig.bus.devices.pop(0x68)  # the accelerometer's cable falls off
-    with pytest.raises(I2CError, match="0x68"):
+    with pytest.raises(StreamStalledError, match="0x68"):
         search_and_record(mpu, unit)
     assert not rig.pca.outputs_enabled()
 

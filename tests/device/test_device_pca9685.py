@@ -97,7 +97,8 @@ def test_calibration_round_trips(angle):
 
 
 def test_reversed_servo_is_allowed():
-    cal = ServoCalibration(channel=0, min_pulse=2.5e-3, max_pulse=0.5e-3)
+    cal = ServoCalibration(channel=0, min_pulse=2.5e-3, max_pulse=0.5e-3, min_angle=0.0,
+                           max_angle=180.0)
     assert cal.pulse(0.0) == 2.5e-3 and cal.pulse(180.0) == 0.5e-3
 
 

@@ -42,12 +42,13 @@ while len(raw) < count:
 counts = np.frombuffer(bytes(raw), dtype=DATA_DTYPE).reshape(-1, 3)  # X, Y, Z, high byte first
 acceleration = mpu.to_acceleration(counts)  # m/s^2: counts * g / 2048 at +-16 g
 print("first samples (m/s^2):\n", acceleration[:3].round(2))
-# Reading took time: 300 bytes at 400 kHz, 9 bits a byte, are about 7 ms, and the chip kept
-# sampling meanwhile. The FIFO holds those few new samples, no more.
+# Reading took time: 300 bytes at 100 kHz (a Raspberry Pi's default bus clock), 9 bits a byte,
+# are 27 ms, and the chip kept sampling meanwhile. The FIFO holds those new samples, no more.
 high, low = bus.read_i2c_block_data(address, Register.FIFO_COUNTH, 2)
 arrived = ((high << 8) | low) // ACCEL_SAMPLE_BYTES
 print(f"{arrived} samples arrived while we read")
-assert 300 * 9 / 400e3 * fs <= arrived + 1 and arrived <= 15
+assert bus.bus_hz == 100e3
+assert 300 * 9 / bus.bus_hz * fs <= arrived + 1 and arrived <= 40  # plus addresses, overheads
 # gravity: the mean of the samples is about 1 g in magnitude
 assert abs(np.linalg.norm(acceleration.mean(axis=0)) / 9.81 - 1) < 0.2
 
@@ -62,12 +63,17 @@ assert status & Interrupt.FIFO_OFLOW and count == FIFO_SIZE
 # the content no longer starts on a sample. Decoding it anyway mixes the axes of two samples.
 assert FIFO_SIZE % ACCEL_SAMPLE_BYTES != 0
 
-# 5. The driver does the same, and counts what was lost instead of decoding garbage.
+# 5. The driver does the same, and counts what was lost instead of decoding garbage: it sees the
+# full FIFO, discards it and restarts the FIFO; the next drain says how many samples the gap cost.
 mpu.start_fifo()
 rig.clock.sleep(0.300)
 block = mpu.read_fifo()
-print(f"driver: {block.lost} samples lost, {len(block.index)} returned")
-assert len(block.index) == 0 and abs(block.lost - 0.300 * fs) <= 1
+assert len(block.index) == 0 and mpu.overflows == 1
+rig.clock.sleep(0.020)
+block = mpu.read_fifo()
+print(f"driver: {block.lost} samples lost, then {len(block.index)} returned")
+# the 300 ms undrained, plus the few samples due while the driver read the count and restarted
+assert 0.300 * fs <= block.lost <= 0.300 * fs + 5
 
 # The expected answers on the exercise page, checked against these values by the test suite.
 ANSWERS = {"samples_after_50ms": len(counts), "overflow_count": count, "lost": block.lost}

@@ -3,8 +3,14 @@
 Each transfer advances the :class:`~ebantenna.device.clock.VirtualClock` by its duration on the
 bus plus a fixed per-transfer overhead, and sleeping advances it instantly, so a ten-second search
 takes a fraction of a second. Every transfer passes through one place, :meth:`SimulatedBus._begin`,
-where the :class:`~ebantenna.device.simulated.faults.FaultInjector` may stall the host or fail it;
-reads then go through :meth:`SimulatedBus._read` and writes through :meth:`SimulatedBus._write`.
+where the :class:`~ebantenna.device.simulated.faults.FaultInjector` may stall the host, reset the
+accelerometer, time out on a stuck bus or fail the transfer early; reads then go through
+:meth:`SimulatedBus._read` and writes through :meth:`SimulatedBus._write`, where a transfer may
+fail late (after the chip has done its part) or, for a read, come back short.
+
+The bus clock defaults to 100 kHz, the rate a Raspberry Pi's I2C bus runs at unless
+``dtparam=i2c_arm_baudrate`` in ``/boot/firmware/config.txt`` says otherwise (Raspberry Pi
+documentation, "config.txt", ``i2c_arm_baudrate``: default 100000).
 """
 
 from __future__ import annotations
@@ -12,11 +18,15 @@ from __future__ import annotations
 import errno
 
 from ..._validate import check_int, check_nonnegative, check_positive
+from ...chips.mpu6050 import ADDRESS_AD0_LOW
 from ..clock import VirtualClock
 from ..i2c import SMBUS_BLOCK_MAX
 from .faults import FaultInjector, Faults
 
-__all__ = ["SimulatedBus", "transfer_bits"]
+__all__ = ["SimulatedBus", "transfer_bits", "RASPBERRY_PI_BUS_HZ"]
+
+#: I2C clock of a Raspberry Pi's bus unless configured otherwise, Hz (see the module notes).
+RASPBERRY_PI_BUS_HZ = 100e3
 
 #: Read/write flag of an I2C message (``I2C_M_RD`` in Linux's ``i2c.h``, as smbus2 sets it).
 _I2C_M_RD = 0x0001
@@ -52,7 +62,8 @@ class SimulatedBus:
     seed : int
         Seed of the fault injector.
     bus_hz : float
-        I2C clock, Hz. Default 400 kHz (fast mode, the paper's rate).
+        I2C clock, Hz. Default 100 kHz, a Raspberry Pi's default (:data:`RASPBERRY_PI_BUS_HZ`);
+        400 kHz (fast mode) when ``i2c_arm_baudrate=400000`` is set.
     overhead : float
         Fixed cost of one transfer (system call, driver), s. Default 50 us.
 
@@ -73,12 +84,13 @@ class SimulatedBus:
     Traceback (most recent call last):
     ...
     OSError: [Errno 121] Remote I/O error
-    >>> round(bus.clock.monotonic() * 1e6, 1)  # us: 50 us overhead + 29 clocks at 400 kHz
-    122.5
+    >>> round(bus.clock.monotonic() * 1e6, 1)  # us: 50 us overhead + 29 clocks at 100 kHz
+    340.0
     """
 
     def __init__(self, clock=None, *, devices: dict | None = None, faults: Faults | None = None,
-                 seed: int = 0, bus_hz: float = 400e3, overhead: float = 50e-6):
+                 seed: int = 0, bus_hz: float = RASPBERRY_PI_BUS_HZ, overhead: float = 50e-6,
+                 reset_address: int = ADDRESS_AD0_LOW):
         self.clock = VirtualClock() if clock is None else clock
         self.faults = Faults() if faults is None else faults
         self.bus_hz = check_positive("bus_hz", bus_hz)
@@ -88,6 +100,8 @@ class SimulatedBus:
         self.writes: list[tuple[int, int, tuple[int, ...]]] = []
         self.transfers = 0
         self.closed = False
+        #: The chip that :attr:`Faults.chip_reset_at` browns out.
+        self.reset_address = reset_address
 
     @property
     def errors_injected(self) -> int:
@@ -95,31 +109,56 @@ class SimulatedBus:
         return self.injector.errors_injected
 
     def _begin(self, address: int, nbytes: int):
-        """Run a transfer's bus phase: time, faults, acknowledge. Returns the chip addressed."""
+        """Run a transfer's bus phase: time, faults, acknowledge.
+
+        Returns the chip addressed and the kind of late fault drawn for it (None, "late" or
+        "short"); an early fault raises here, before the chip sees anything.
+        """
         if self.closed:
             raise OSError(errno.EBADF, "the simulated bus is closed")
+        injector = self.injector
         self.clock.advance(self.overhead + transfer_bits(nbytes) / self.bus_hz)
-        self.clock.advance(self.injector.host_stall(self.clock.monotonic()))
+        self.clock.advance(injector.host_stall(self.clock.monotonic()))
+        now = self.clock.monotonic()
         self.transfers += 1
-        error = self.injector.transfer_error()
-        if error is not None:
-            raise error
+        if injector.chip_reset(now) and self.reset_address in self.devices:
+            self.devices[self.reset_address].brown_out()
+        stuck = injector.stuck(now)
+        if stuck is not None:
+            raise stuck
+        kind = injector.draw(now)
+        if kind is not None and kind not in ("late", "short"):
+            raise injector.early_error(kind)
         if address not in self.devices:
             raise OSError(errno.EREMOTEIO, "Remote I/O error")
-        return self.devices[address]
+        return self.devices[address], kind
 
     def _read(self, address: int, register: int, length: int, nbytes: int) -> list[int]:
         """One read transfer of ``length`` bytes from ``register`` on (``nbytes`` on the wire)."""
-        return self._begin(address, nbytes).read(register, length)
+        chip, kind = self._begin(address, nbytes)
+        if kind == "short":
+            return chip.read(register, self.injector.short_length(length))
+        data = chip.read(register, length)
+        if kind == "late":
+            raise self.injector.late_error()
+        return data
 
     def _write(self, address: int, register: int, data: list[int]) -> None:
         """One write transfer of ``data`` from ``register`` on."""
-        self._begin(address, len(data)).write(register, data)
+        chip, kind = self._begin(address, len(data))
+        if kind == "short":
+            raise self.injector.early_error("nack")
+        chip.write(register, data)
         self.writes.append((address, register, tuple(data)))
+        if kind == "late":
+            raise self.injector.late_error()
 
     def read_byte_data(self, i2c_addr: int, register: int, force=None) -> int:
-        """Read one register."""
-        return self._read(i2c_addr, register, 1, 1)[0]
+        """Read one register (a short transfer of it, no byte at all, is an ``EIO``)."""
+        data = self._read(i2c_addr, register, 1, 1)
+        if not data:
+            raise OSError(errno.EIO, "Input/output error")
+        return data[0]
 
     def write_byte_data(self, i2c_addr: int, register: int, value: int, force=None) -> None:
         """Write one register."""
@@ -147,6 +186,7 @@ class SimulatedBus:
         data = bytes(self._read(msgs[0].addr, register, msgs[1].len, msgs[1].len + 1))
         for k, value in enumerate(data):
             msgs[1].buf[k] = bytes([value])
+        msgs[1].len = len(data)  # a short read: the kernel reports the bytes it received
 
     def close(self) -> None:
         """Close the bus."""

@@ -5,6 +5,12 @@ sets and fills a 1024-byte FIFO that overflows (overwriting its oldest bytes and
 ``FIFO_OFLOW_INT``) when drained too slowly; see :mod:`ebantenna.chips.mpu6050` for the register
 map and its source. What it measures comes from a ``source`` callable; it does not model the
 chip's own low-pass filter.
+
+Modelling assumption: the sample-rate divider starts counting when the FIFO starts filling (awake,
+``USER_CTRL.FIFO_EN`` and ``FIFO_EN.ACCEL`` set), so the first sample of such an *epoch* lands one
+sample period after it starts. The chip keeps the ground truth of every epoch
+(:attr:`SimulatedMPU6050.epochs`): its start time and every sample it put into the FIFO, which is
+what a driver's kept samples are checked against.
 """
 
 from __future__ import annotations
@@ -51,11 +57,15 @@ class SimulatedMPU6050:
     ----------
     source : callable
         ``source(times, fs)`` returns the (n, 3) accelerations in m/s^2 at the sample times
-        ``times`` (s) for the sample rate ``fs`` (Hz).
+        ``times`` (s) for the sample rate ``fs`` (Hz) the registers set (the times themselves
+        follow the chip's actual clock, :meth:`true_rate`).
     clock : VirtualClock
         The bus's clock.
     who_am_i : int
         What ``WHO_AM_I`` reads.
+    clock_drift : float
+        Relative error of the sample clock: the chip samples at ``(1 + clock_drift)`` times the
+        rate its registers set.
 
     Attributes
     ----------
@@ -67,6 +77,9 @@ class SimulatedMPU6050:
         Bytes overwritten by overflows.
     samples_pushed : int
         Samples written into the FIFO.
+    epochs : list of (float, list of ndarray)
+        Ground truth: for each time the FIFO started filling, that virtual time (s) and the
+        blocks of (n, 3) int16 counts it produced from then on, in order.
 
     Examples
     --------
@@ -87,10 +100,13 @@ class SimulatedMPU6050:
 
     FIFO_SIZE = FIFO_SIZE
 
-    def __init__(self, source: Callable, clock, *, who_am_i: int = WHO_AM_I_VALUE):
+    def __init__(self, source: Callable, clock, *, who_am_i: int = WHO_AM_I_VALUE,
+                 clock_drift: float = 0.0):
         self.source = source
         self.clock = clock
         self.who_am_i = who_am_i
+        self.clock_drift = float(clock_drift)
+        self.epochs: list[tuple[float, list[np.ndarray]]] = []
         self.regs = bytearray(_REGISTER_SPACE)
         self.fifo = bytearray()
         self.overflowed_bytes = 0
@@ -106,6 +122,20 @@ class SimulatedMPU6050:
         self.fifo.clear()
         self._since = None
         self._produced = 0
+
+    def brown_out(self) -> None:
+        """Lose power for a moment: the samples due so far are produced, then the power-on state."""
+        self._catch_up()
+        self.reset()
+
+    def truth(self, epoch: int) -> np.ndarray:
+        """Every sample (n, 3) int16 that epoch ``epoch`` put into the FIFO, in order."""
+        blocks = self.epochs[epoch][1]
+        return np.concatenate(blocks) if blocks else np.empty((0, 3), np.int16)
+
+    def true_rate(self) -> float:
+        """The rate at which the chip actually samples, Hz: :meth:`sample_rate` with the drift."""
+        return self.sample_rate() * (1.0 + self.clock_drift)
 
     def sample_rate(self) -> float:
         """Sample rate set by CONFIG and SMPLRT_DIV, Hz (RM register 25)."""
@@ -131,13 +161,15 @@ class SimulatedMPU6050:
         if self._since is None:
             return
         now = self.clock.monotonic()
-        fs = self.sample_rate()
+        fs = self.true_rate()
         target = int(math.floor((now - self._since) * fs + 1e-9))
         if target <= self._produced:
             return
         k = np.arange(self._produced, target)
         times = self._since + (k + 1) / fs
-        self.fifo += self._counts(times).tobytes()
+        counts = self._counts(times)
+        self.epochs[-1][1].append(counts.astype(np.int16))
+        self.fifo += counts.tobytes()
         self.samples_pushed += k.size
         self._produced = target
         excess = len(self.fifo) - self.FIFO_SIZE
@@ -153,6 +185,7 @@ class SimulatedMPU6050:
         if producing and not was_producing:
             self._since = self.clock.monotonic()
             self._produced = 0
+            self.epochs.append((self._since, []))
         elif was_producing and not producing:
             self._since = None
 
@@ -182,7 +215,7 @@ class SimulatedMPU6050:
     def _latest(self) -> bytes:
         if self.regs[Register.PWR_MGMT_1] & PowerManagement1.SLEEP:
             return bytes(ACCEL_SAMPLE_BYTES)
-        fs = self.sample_rate()
+        fs = self.true_rate()
         tick = math.floor(self.clock.monotonic() * fs) / fs
         return self._counts(np.array([tick])).tobytes()
 

@@ -93,7 +93,8 @@ class SimulatedRig:
             raise TypeError(f"obstacle must be an Obstacle or None, got {type(obstacle).__name__}")
         self.world = World(obstacle, check_positive("slew_rate", slew_rate))
         self.mpu = SimulatedMPU6050(self._acceleration, self.clock,
-                                    who_am_i=self.bus.faults.who_am_i)
+                                    who_am_i=self.bus.faults.who_am_i,
+                                    clock_drift=self.bus.faults.clock_drift)
         self.pca = SimulatedPCA9685(self.world, self.clock)
         self.bus.devices = {ADDRESS_AD0_LOW: self.mpu, DEFAULT_ADDRESS: self.pca}
         #: Time of the first sample at or after the contact, s.
@@ -150,6 +151,30 @@ class SimulatedRig:
         chosen = base.with_(contact=ratio * base.probe.length, material=material)
         return cls.from_scene(chosen, seed=seed, **kwargs)
 
+    def wrong_samples(self, mpu, recording) -> int:
+        """How many samples of ``recording`` (made by ``mpu``'s stream on this rig) differ from
+        what the simulated chip put into its FIFO: the ground truth.
+
+        A kept sample is right when the chip's epoch that started when the driver's segment did
+        holds, at the same position, the same counts on all three axes.
+        """
+        raw = recording.metadata["raw"]
+        starts = mpu.stream.starts
+        epochs = {round(start, 12): k for k, (start, _) in enumerate(self.mpu.epochs)}
+        truths = {}
+        wrong = 0
+        for seg, pos, counts in zip(raw["segment"], raw["position"], raw["counts_xyz"],
+                                    strict=True):
+            k = epochs.get(round(starts[seg], 12))
+            if k is None:
+                wrong += 1
+                continue
+            if k not in truths:
+                truths[k] = self.mpu.truth(k)
+            truth = truths[k]
+            wrong += not (pos < len(truth) and list(truth[pos]) == list(counts))
+        return wrong
+
     def touch(self, at: float | None = None) -> None:
         """Put the probe in contact from virtual time ``at`` (s; default now), whatever the servos.
 
@@ -204,7 +229,11 @@ class SimulatedRig:
             return acc
         if self.contact_sample_time is None:
             self.contact_sample_time = float(times[after][0])
-        j = np.rint((times - self.contact_sample_time) * fs).astype(np.int64)
+        # Played sample for sample at the chip's actual rate: with a drifting clock the
+        # vibration runs that much faster or slower (a time scale within MAX_CLOCK_DRIFT, as
+        # Faults checks).
+        rate = self.mpu.true_rate()
+        j = np.rint((times - self.contact_sample_time) * rate).astype(np.int64)
         play = after & (j >= 0) & (j < rec.n_samples)
         acc[play, 0] = rec.ax[j[play]]
         acc[play, 1] = 0.0

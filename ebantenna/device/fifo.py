@@ -56,7 +56,8 @@ __all__ = ["PeriodEstimator", "StreamFault", "FifoBlock", "FifoStream", "CLOCK_T
 logger = logging.getLogger(__name__)
 
 #: How far the sample clock may be off its nominal rate before the estimate is not trusted,
-#: relative: a few times the clock's +/-1 % initial tolerance with the gyro PLL (PS section 6.5).
+#: relative: a few times the +/-1 % variation over temperature of the gyro oscillators that the PLL
+#: locks to (PS rev. 3.4, section 7.15).
 CLOCK_TOLERANCE = 0.05
 #: Longest SMBus chunk that holds whole samples (30 bytes: 5 samples).
 FIFO_CHUNK = (SMBUS_BLOCK_MAX // ACCEL_SAMPLE_BYTES) * ACCEL_SAMPLE_BYTES

@@ -36,8 +36,8 @@ __all__ = ["Faults", "FaultInjector", "TRANSFER_FAULTS", "MAX_CLOCK_DRIFT"]
 
 #: Kinds of failed transfer the injector can draw (see the module notes).
 TRANSFER_FAULTS = ("nack", "eio", "etimedout", "eagain", "late", "short")
-#: Largest sample-clock error accepted, relative: a few times the MPU-6050's +/-1 % initial
-#: tolerance of its clock (PS section 6.5, "Clock source": PLL with gyro reference).
+#: Largest sample-clock error accepted, relative: a few times the +/-1 % variation over temperature
+#: of the gyro oscillators the MPU-6050's PLL locks to (PS rev. 3.4, section 7.15).
 MAX_CLOCK_DRIFT = 0.05
 
 _EARLY_ERRNO = {"nack": errno.EREMOTEIO, "eio": errno.EIO, "etimedout": errno.ETIMEDOUT,

@@ -183,8 +183,9 @@ class BaseMLP(BaseEstimator):
 
         ``Y`` is the encoded target (one-hot for classes, 2-D for regression), as used in
         training. Meant for checks such as finite differences. The network must be fitted, since
-        the layer shapes come from ``coefs_``; to evaluate it at weights of your own, fit once with
-        ``max_iter=1`` (and ``alpha=0`` for the bare loss) and pass your ``w``.
+        the layer shapes come from ``coefs_``; to evaluate it at weights of your own, set
+        ``coefs_`` and ``intercepts_`` yourself (and ``alpha=0`` for the bare loss), as exercise 7
+        does, and pass your ``w``.
         """
         check_is_fitted(self)
         shapes = [c.shape for c in self.coefs_]

@@ -1,0 +1,141 @@
+"""Section 6c: what the material classifier learns: the ablation of every effect and the
+equivalent-pair control."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from ..fem.rod import Rod
+from ..paper.controls import (
+    ABLATION_DESIGN,
+    Ablation,
+    ablation_accuracies,
+    equivalent_pair_accuracy,
+    equivalent_rod,
+)
+from ..paper.data import QUICK_DESIGN
+from ._common import pct
+
+__all__ = ["ControlsResult", "control_design", "compute", "render"]
+
+
+def control_design(quick: bool):
+    """The data set the controls rebuild: :data:`~ebantenna.paper.controls.ABLATION_DESIGN`,
+    or for a quick run the quick design with one repetition (40 recordings).
+
+    Examples
+    --------
+    >>> control_design(True).repetitions, control_design(False).contact_step
+    (1, 0.02)
+    """
+    return replace(QUICK_DESIGN, name="controls-quick", repetitions=1) if quick else ABLATION_DESIGN
+
+
+@dataclass(frozen=True, eq=False)
+class ControlsResult:
+    """The ablation and the equivalent pair.
+
+    Attributes
+    ----------
+    ablation : Ablation
+    pair_accuracy : float or None
+        Grouped-split accuracy between the aluminium rod and its steel equivalent; None when the
+        scene has no ``object_modes`` effect (``pair_note`` says so).
+    pair_note : str
+        Why the pair was not simulated, or the two rods' dimensions.
+    recordings : int
+        Recordings per rebuilt data set.
+    """
+
+    ablation: Ablation
+    pair_accuracy: float | None
+    pair_note: str
+    recordings: int
+
+    def to_dict(self) -> dict:
+        """Under ``materials``: ``ablation`` and ``equivalent_pair_accuracy``."""
+        return {
+            "ablation": dict(self.ablation.accuracies),
+            "ablation_dropped_together": {
+                k: list(v) for k, v in self.ablation.dropped_together.items()
+            },
+            "ablation_refused": dict(self.ablation.refused),
+            "equivalent_pair_accuracy": self.pair_accuracy,
+        }
+
+
+def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ControlsResult:
+    """Run the ablation over every effect of ``scene`` and, if it has rod modes, the pair."""
+    design = control_design(quick)
+    ablation = ablation_accuracies(
+        scene, design=design, seed=seed, cache_dir=cache_dir, n_jobs=n_jobs
+    )
+    effect = scene.effect("object_modes")
+    if effect is None:
+        accuracy, note = (
+            None,
+            (
+                "not simulated: the scene has no 'object_modes' effect, so the "
+                "touched object has no dimensions to match"
+            ),
+        )
+    else:
+        al = Rod("aluminium", diameter=effect.diameter, free_length=effect.free_length)
+        steel = equivalent_rod(al, "steel")
+        accuracy = equivalent_pair_accuracy(
+            scene, design=design, seed=seed, cache_dir=cache_dir, n_jobs=n_jobs
+        )
+        note = (
+            f"aluminium Ø{1e3 * al.diameter:.2f} mm x {1e3 * al.free_length:.1f} mm against "
+            f"steel Ø{1e3 * steel.diameter:.2f} mm x {1e3 * steel.free_length:.1f} mm"
+        )
+    n = len(design.materials) * design.repetitions * design.contacts(scene.probe.length).size
+    return ControlsResult(ablation, accuracy, note, n)
+
+
+def render(result: ControlsResult, report, figures) -> None:
+    """The ablation table and the pair, with what they mean."""
+    r, acc = result, result.ablation.accuracies
+    base = acc["none"]
+    report.heading("What the classifier learns: one effect at a time switched off")
+    report.paragraph(
+        f"The data set ({r.recordings} recordings, a reduced design) is simulated again with one "
+        "effect of the scene switched off, and the paper's SVM is tested on whole held-out "
+        "positions (every 5th). The effect whose removal drops the accuracy towards chance "
+        "is the one that carries the material; one whose removal leaves it unchanged does not."
+    )
+    rows = [["none (all effects on)", pct(base), ""]]
+    for name, a in acc.items():
+        if name != "none":
+            rows.append([name, pct(a), f"{100 * (a - base):+.1f} points"])
+    report.table(["switched off", "grouped test accuracy", "change"], rows)
+    for name, together in r.ablation.dropped_together.items():
+        report.paragraph(
+            f"'{name}' cannot go alone (the scene requires it for "
+            f"'{together[1]}'): the two were switched off together."
+        )
+    for name, reason in r.ablation.refused.items():
+        report.paragraph(f"'{name}' cannot be switched off by removing effects: {reason}")
+    drops = {k: base - a for k, a in acc.items() if k != "none"}
+    if drops:
+        carrier = max(drops, key=drops.get)
+        report.paragraph(
+            f"The largest drop comes from switching off '{carrier}' "
+            f"({pct(base)} to {pct(acc[carrier])}): in this scene it carries most of the "
+            "material information. The paper explains the materials by how much vibration "
+            "energy they absorb; where the largest drop comes from an effect other than the "
+            "damping of the contact or the loss factors, the simulation contradicts that "
+            "explanation."
+        )
+    report.heading("The equivalent pair: impedance, not chemistry")
+    if r.pair_accuracy is None:
+        report.paragraph(f"The equivalent pair was {r.pair_note}.")
+    else:
+        report.paragraph(
+            f"Two rods of different materials, {r.pair_note}: the same cantilever stiffness "
+            "3EI/l^3 and the same bending frequencies, hence the same modal masses, so the "
+            "probe meets the same mechanical impedance but for the loss factor and the contact. "
+            f"The SVM, labelled by material, reaches {pct(r.pair_accuracy)} on whole held-out "
+            "positions (chance: 50 %). Near 50 % the probe feels impedance, not chemistry; "
+            "well above it, what is left (loss factor, Hertz contact) still tells them apart."
+        )

@@ -22,7 +22,7 @@ def recordings(draw):
     return positions[order], labels[order], draw(st.integers(0, 1000))
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=40, deadline=None)
 @given(recordings())
 def test_grouped_and_blocked_never_share_a_position(data):
     positions, _, seed = data
@@ -38,7 +38,7 @@ def test_grouped_and_blocked_never_share_a_position(data):
         assert not set(positions[train].tolist()) & set(positions[test].tolist())
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=40, deadline=None)
 @given(recordings())
 def test_blocked_holds_out_consecutive_positions_and_grouped_every_fifth(data):
     positions, _, seed = data
@@ -52,7 +52,7 @@ def test_blocked_holds_out_consecutive_positions_and_grouped_every_fifth(data):
     assert np.all(np.diff(held) == 5) and held[0] < 5
 
 
-@settings(max_examples=30, deadline=None)
+@settings(max_examples=20, deadline=None)
 @given(recordings())
 def test_every_split_is_deterministic_per_seed(data):
     positions, labels, seed = data

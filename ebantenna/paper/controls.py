@@ -18,7 +18,7 @@ per scene like any data set.
 
 from __future__ import annotations
 
-import dataclasses
+import itertools
 import math
 from dataclasses import dataclass, replace
 
@@ -85,7 +85,7 @@ class Ablation:
         ``"none"`` (nothing switched off: the baseline) and one entry per effect switched off;
         effects dropped together are named ``"a+b"``.
     dropped_together : dict of str to tuple of str
-        For an effect the scene refused to lose alone: the effects dropped with it.
+        For an effect the scene refused to lose alone: it and the effects dropped with it.
     refused : dict of str to str
         Effects that could not be switched off at all, with the scene's reason.
     """
@@ -99,19 +99,21 @@ def _without(scene: Scene, names) -> Scene:
     return scene.with_(effects=[e for e in scene.effects if e.name not in names])
 
 
-def _ablated_scene(scene: Scene, name: str):
-    """The scene without ``name`` (and what had to go with it), or the scene's refusal."""
-    try:
-        return _without(scene, {name}), (name,), None
-    except ValueError as alone:
-        for other in scene.effect_names:  # an effect that needs this one goes with it
-            if other == name:
-                continue
+def _ablated_scene(scene: Scene, name: str, most: int = 2):
+    """The scene without ``name`` and the fewest other effects that must go with it.
+
+    Returns ``(scene, dropped names, None)``, or ``(None, (name,), reason)`` when no set of at
+    most ``most`` other effects makes the scene valid.
+    """
+    others = [n for n in scene.effect_names if n != name]
+    reason = None
+    for size in range(most + 1):
+        for extra in itertools.combinations(others, size):
             try:
-                return _without(scene, {name, other}), (name, other), None
-            except ValueError:
-                continue
-        return None, (name,), str(alone)
+                return _without(scene, {name, *extra}), (name, *extra), None
+            except ValueError as exc:
+                reason = reason or str(exc)  # the scene's reason for refusing ``name`` alone
+    return None, (name,), reason
 
 
 def ablation_accuracies(
@@ -125,10 +127,11 @@ def ablation_accuracies(
 ) -> Ablation:
     """Rebuild the data set with each effect switched off; the grouped SVM accuracy of each.
 
-    An effect that another one requires cannot go alone: the scene raises ``ValueError``, and
-    the pair is dropped together (the first other effect whose removal makes the scene valid);
-    an effect that cannot be dropped by removing effects at all (e.g. ``tip_mass``, which the
-    probe's own tip mass demands) is reported in ``refused`` with the scene's reason.
+    An effect that others require cannot go alone: the scene raises ``ValueError``, and the
+    effect is dropped together with the fewest others (at most two, the first such set in the
+    scene's order) whose removal makes the scene valid; an effect that cannot be dropped by
+    removing effects at all (e.g. ``tip_mass``, which the probe's own tip mass demands) is
+    reported in ``refused`` with the scene's reason.
 
     Parameters
     ----------
@@ -155,12 +158,12 @@ def ablation_accuracies(
     >>> from ebantenna.simulate import builtin_scene
     >>> design = replace(ABLATION_DESIGN, materials=("brass", "pvc"), contact_step=0.05)
     >>> with tempfile.TemporaryDirectory() as tmp:
-    ...     ab = ablation_accuracies(builtin_scene("paper"), ["contact_compliance", "tip_mass"],
+    ...     ab = ablation_accuracies(builtin_scene("paper"), ["object_modes", "tip_mass"],
     ...                              design=design, cache_dir=tmp)
     >>> sorted(ab.accuracies)
-    ['contact_compliance+contact_damping', 'none']
-    >>> ab.dropped_together["contact_compliance"], sorted(ab.refused)
-    (('contact_compliance', 'contact_damping'), ['tip_mass'])
+    ['none', 'object_modes+object_damping+preload_scatter']
+    >>> sorted(ab.refused)
+    ['tip_mass']
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
@@ -265,8 +268,16 @@ def equivalent_rod(reference: Rod, other) -> Rod:
 def equivalent_pair_scenes(scene: Scene, *, reference: str = "aluminium", other: str = "steel"):
     """Two scenes touching a ``reference`` rod and its :func:`equivalent_rod` of ``other``.
 
-    The scene must list the ``object_modes`` effect; its ``diameter`` and ``free_length`` set
-    the reference rod, and the other scene gets the equivalent rod's.
+    The scene must list the ``object_modes`` effect; its ``diameter``, ``free_length`` and
+    ``contact_height`` set the reference rod, and the other scene gets the equivalent rod's
+    (the contact height scaled with the length, unless it is the free end).
+
+    Examples
+    --------
+    >>> from ebantenna.simulate import builtin_scene
+    >>> al, steel = equivalent_pair_scenes(builtin_scene("paper"))
+    >>> al.material, steel.material, round(1e3 * steel.effect("object_modes").diameter, 2)
+    ('aluminium', 'steel', 7.81)
 
     Returns
     -------
@@ -279,16 +290,17 @@ def equivalent_pair_scenes(scene: Scene, *, reference: str = "aluminium", other:
             "scene must list the 'object_modes' effect (the touched rod's own modes); "
             f"it lists {', '.join(scene.effect_names) or 'none'}"
         )
+    height = getattr(effect, "contact_height", None)  # None: the rod's free end
     rod = Rod(
         reference,
         diameter=check_positive("diameter", effect.diameter),
         free_length=check_positive("free_length", effect.free_length),
+        contact_height=height,
     )
     twin = equivalent_rod(rod, other)
     changed = {"diameter": twin.diameter, "free_length": twin.free_length}
-    changed = {
-        k: v for k, v in changed.items() if k in {f.name for f in dataclasses.fields(effect)}
-    }
+    if height is not None:  # the same point of the mode shapes
+        changed["contact_height"] = twin.contact_height
     twin_effect = replace(effect, **changed)
     effects = [twin_effect if e.name == "object_modes" else e for e in scene.effects]
     return (

@@ -18,9 +18,10 @@ from ._common import pct
 
 __all__ = ["ControlsResult", "ENERGY_ABSORPTION", "control_design", "compute", "render"]
 
-#: The effects through which the touched material absorbs the probe's vibration energy: the
-#: paper's explanation of why the materials differ.
-ENERGY_ABSORPTION = frozenset({"structural_damping", "contact_damping"})
+#: The effects through which the touched material absorbs the probe's vibration energy (the
+#: rod's loss factor, :class:`ebantenna.simulate.effects.ObjectDamping`): the paper's
+#: explanation of why the materials differ.
+ENERGY_ABSORPTION = frozenset({"object_damping"})
 
 
 def control_design(quick: bool):

@@ -11,6 +11,7 @@ from ebantenna.fem.rod import Rod
 from ebantenna.paper.controls import (
     ABLATION_DESIGN,
     ablation_accuracies,
+    equivalent_pair_accuracy,
     equivalent_pair_scenes,
     equivalent_rod,
 )
@@ -55,8 +56,16 @@ def test_equivalent_of_the_same_material_is_the_same_rod():
 
 
 def test_the_pair_needs_the_rod_modes():
+    scene = builtin_scene("paper")
+    without = scene.with_(
+        effects=[
+            e
+            for e in scene.effects
+            if e.name not in ("object_modes", "object_damping", "preload_scatter")
+        ]
+    )
     with pytest.raises(ValueError, match="object_modes"):
-        equivalent_pair_scenes(builtin_scene("paper"))
+        equivalent_pair_scenes(without)
     with pytest.raises(TypeError, match="reference"):
         equivalent_rod("aluminium", "steel")
 
@@ -65,16 +74,41 @@ def test_ablation_on_a_tiny_design(tmp_path):
     scene = builtin_scene("paper")
     tiny = replace(ABLATION_DESIGN, materials=("brass", "pvc"), contact_step=0.05, repetitions=1)
     ab = ablation_accuracies(
-        scene, ["gravity", "contact_compliance", "tip_mass"], design=tiny, cache_dir=tmp_path
+        scene, ["gravity", "object_modes", "tip_mass"], design=tiny, cache_dir=tmp_path
     )
-    assert list(ab.accuracies) == ["none", "gravity", "contact_compliance+contact_damping"]
+    both = "object_modes+object_damping+preload_scatter"  # the two need the rod's modes
+    assert list(ab.accuracies) == ["none", "gravity", both]
     assert all(0.0 <= a <= 1.0 for a in ab.accuracies.values())
     # 2 held-out positions x 2 materials: accuracies are multiples of 1/4
     assert all(np.isclose(4 * a, round(4 * a)) for a in ab.accuracies.values())
-    assert ab.dropped_together == {"contact_compliance": ("contact_compliance", "contact_damping")}
+    assert ab.dropped_together == {"object_modes": tuple(both.split("+"))}
     assert "tip mass" in ab.refused["tip_mass"]
     # one cached data set per scene, each with the effects it was built without
     files = sorted(p.name for p in tmp_path.glob("*.npz"))
     assert len(files) == 3 and any("without-gravity" in f for f in files)
     with pytest.raises(ValueError, match="names must be effects"):
         ablation_accuracies(scene, ["no_such_effect"], design=tiny, cache_dir=tmp_path)
+
+
+def test_equivalent_pair_scenes_touch_the_matched_rods():
+    scene = builtin_scene("paper")
+    al_scene, steel_scene = equivalent_pair_scenes(scene)
+    assert (al_scene.material, steel_scene.material) == ("aluminium", "steel")
+    al, st = al_scene.effect("object_modes"), steel_scene.effect("object_modes")
+    assert (al.diameter, al.free_length) == (0.012, 0.25)  # the scene's own rod
+    twin = equivalent_rod(Rod("aluminium", diameter=0.012, free_length=0.25), "steel")
+    assert (st.diameter, st.free_length) == (twin.diameter, twin.free_length)
+    # every other effect and parameter is the scene's
+    assert [e for e in steel_scene.effects if e.name != "object_modes"] == [
+        e for e in scene.effects if e.name != "object_modes"
+    ]
+    assert al_scene.name != steel_scene.name  # cached apart
+
+
+def test_equivalent_pair_accuracy_on_a_tiny_design(tmp_path):
+    tiny = replace(ABLATION_DESIGN, contact_step=0.05, repetitions=1)
+    acc = equivalent_pair_accuracy(builtin_scene("paper"), design=tiny, cache_dir=tmp_path)
+    # 2 held-out positions x 2 materials x 1 repetition: a multiple of 1/4
+    assert 0.0 <= acc <= 1.0 and np.isclose(4 * acc, round(4 * acc))
+    assert len(list(tmp_path.glob("*pair-aluminium*.npz"))) == 1
+    assert len(list(tmp_path.glob("*pair-steel*.npz"))) == 1

@@ -120,7 +120,8 @@ def render(result: ControlsResult, report, figures) -> None:
     for name, together in r.ablation.dropped_together.items():
         report.paragraph(
             f"'{name}' cannot go alone (the scene requires it for "
-            f"'{together[1]}'): the two were switched off together."
+            + ", ".join(f"'{n}'" for n in together[1:])
+            + "): they were switched off together."
         )
     for name, reason in r.ablation.refused.items():
         report.paragraph(f"'{name}' cannot be switched off by removing effects: {reason}")
@@ -154,8 +155,8 @@ def _verdict(accuracies: dict, chance: float) -> str:
     if base <= chance or not drops or max(drops.values()) <= 0:
         return (
             f"With every effect on, the classifier is at {pct(base)} (chance {pct(chance)}) and "
-            "no single effect's removal lowers it: in this scene no effect carries the material "
-            "to the SVM."
+            "no single effect's removal lowers it: in this data set no effect carries the "
+            "material to the SVM on held-out positions."
         )
     carrier = max(drops, key=drops.get)
     names = set(carrier.split("+"))

@@ -10,9 +10,9 @@ import numpy as np
 from ..paper import experiments, printed
 from ..paper.position_aware import classify_materials_position_aware
 from ..paper.splits import SPLITS, split_rows
-from ._common import pct, probe_length
+from ._common import beyond_chance, pct, probe_length
 
-__all__ = ["MaterialSplitsResult", "TRAINERS", "STEP_SIZES", "beyond_chance", "compute", "render"]
+__all__ = ["MaterialSplitsResult", "TRAINERS", "STEP_SIZES", "compute", "render"]
 
 #: The trainers compared: the paper's gradient descent, scaled conjugate gradient and Adam.
 TRAINERS = ("gd", "scg", "adam")
@@ -193,18 +193,6 @@ def render(result: MaterialSplitsResult, report, figures) -> None:
             for k, d in r.distance.items()
         ],
     )
-
-
-def beyond_chance(accuracy: float, chance: float, n: int) -> bool:
-    """Whether an accuracy on ``n`` test recordings stands more than two binomial standard
-    deviations of guessing, ``2 sqrt(chance (1 - chance) / n)``, above chance.
-
-    Examples
-    --------
-    >>> beyond_chance(0.30, 0.2, 1000), beyond_chance(0.30, 0.2, 30)
-    (True, False)
-    """
-    return bool(accuracy - chance > 2 * np.sqrt(chance * (1 - chance) / n))
 
 
 def _lift(r: MaterialSplitsResult) -> str:

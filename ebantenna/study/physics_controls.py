@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+import numpy as np
+
 from ..fem.rod import Rod
 from ..paper.controls import (
     ABLATION_DESIGN,
@@ -14,7 +16,8 @@ from ..paper.controls import (
     equivalent_rod,
 )
 from ..paper.data import QUICK_DESIGN
-from ._common import pct
+from ..paper.splits import grouped_split
+from ._common import beyond_chance, pct
 
 __all__ = ["ControlsResult", "ENERGY_ABSORPTION", "control_design", "compute", "render"]
 
@@ -31,7 +34,7 @@ def control_design(quick: bool):
     Examples
     --------
     >>> control_design(True).repetitions, control_design(False).contact_step
-    (1, 0.02)
+    (1, 0.005)
     """
     return replace(QUICK_DESIGN, name="controls-quick", repetitions=1) if quick else ABLATION_DESIGN
 
@@ -52,6 +55,8 @@ class ControlsResult:
         Recordings per rebuilt data set.
     chance : float
         Accuracy of guessing: one over the number of materials.
+    test_recordings : int
+        Recordings in each grouped test set.
     """
 
     ablation: Ablation
@@ -59,6 +64,7 @@ class ControlsResult:
     pair_note: str
     recordings: int
     chance: float
+    test_recordings: int
 
     def to_dict(self) -> dict:
         """Under ``materials``: ``ablation`` and ``equivalent_pair_accuracy``."""
@@ -98,7 +104,10 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ControlsRe
             f"steel Ø{1e3 * steel.diameter:.2f} mm x {1e3 * steel.free_length:.1f} mm"
         )
     n = len(design.materials) * design.repetitions * design.contacts(scene.probe.length).size
-    return ControlsResult(ablation, accuracy, note, n, 1 / len(design.materials))
+    positions = design.contacts(scene.probe.length)
+    held = np.isin(positions, positions[grouped_split(positions, seed=seed)[1]])
+    n_test = int(held.sum()) * len(design.materials) * design.repetitions
+    return ControlsResult(ablation, accuracy, note, n, 1 / len(design.materials), n_test)
 
 
 def render(result: ControlsResult, report, figures) -> None:
@@ -125,7 +134,7 @@ def render(result: ControlsResult, report, figures) -> None:
         )
     for name, reason in r.ablation.refused.items():
         report.paragraph(f"'{name}' cannot be switched off by removing effects: {reason}")
-    report.paragraph(_verdict(acc, r.chance))
+    report.paragraph(_verdict(acc, r.chance, r.test_recordings))
     report.heading("The equivalent pair: impedance, not chemistry")
     if r.pair_accuracy is None:
         report.paragraph(f"The equivalent pair was {r.pair_note}.")
@@ -140,38 +149,57 @@ def render(result: ControlsResult, report, figures) -> None:
         )
 
 
-def _verdict(accuracies: dict, chance: float) -> str:
-    """Which effect carries the material, in plain words.
+def _verdict(accuracies: dict, chance: float, n: int) -> str:
+    """Which effect carries the material, in plain words; ``n`` test recordings per accuracy.
+
+    A difference counts only beyond two binomial standard deviations of guessing
+    (:func:`~._common.beyond_chance`).
 
     Examples
     --------
-    >>> _verdict({"none": 0.9, "gravity": 0.9, "object_modes": 0.25}, 0.2)[:52]
+    >>> _verdict({"none": 0.9, "gravity": 0.9, "object_modes": 0.25}, 0.2, 80)[:52]
     "Switching off 'object_modes' costs the most (90.0 % "
-    >>> _verdict({"none": 0.2, "gravity": 0.2}, 0.2)[:40]
+    >>> "contradicts" in _verdict({"none": 0.6, "object_modes": 0.2, "object_damping": 0.62},
+    ...                           0.2, 80)
+    True
+    >>> "agrees" in _verdict({"none": 0.6, "object_modes": 0.2, "object_damping": 0.3}, 0.2, 80)
+    True
+    >>> _verdict({"none": 0.25, "gravity": 0.2}, 0.2, 40)[:40]
     'With every effect on, the classifier is '
     """
     base = accuracies["none"]
     drops = {k: base - a for k, a in accuracies.items() if k != "none"}
-    if base <= chance or not drops or max(drops.values()) <= 0:
+    carrier = max(drops, key=drops.get) if drops else None
+    if (
+        carrier is None
+        or not beyond_chance(base, chance, n)
+        or not beyond_chance(chance + drops[carrier], chance, n)
+    ):
         return (
-            f"With every effect on, the classifier is at {pct(base)} (chance {pct(chance)}) and "
-            "no single effect's removal lowers it: in this data set no effect carries the "
-            "material to the SVM on held-out positions."
+            f"With every effect on, the classifier is at {pct(base)} (chance {pct(chance)}, "
+            f"{n} test recordings) and no single effect's removal lowers it by more than "
+            "guessing would: in this data set no one effect is shown to carry the material."
         )
-    carrier = max(drops, key=drops.get)
-    names = set(carrier.split("+"))
-    if names & ENERGY_ABSORPTION:
+    alone = {k: d for k, d in drops.items() if k in ENERGY_ABSORPTION}  # switched off alone
+    absorbs = [k for k, d in alone.items() if beyond_chance(chance + d, chance, n)]
+    if absorbs:
         paper = (
-            "This agrees with the paper's explanation, that the materials differ by how much "
-            "vibration energy they absorb."
+            f"Switched off alone, '{absorbs[0]}' lowers it too: this agrees with the paper's "
+            "explanation, that the materials differ by how much vibration energy they absorb."
         )
     else:
+        measured = "; ".join(
+            f"switched off alone, '{k}' changes it by {100 * -d:+.1f} points"
+            for k, d in alone.items()
+        )
         paper = (
             "This contradicts the paper's explanation, that the materials differ by how much "
-            "vibration energy they absorb: here the material is told by "
-            f"'{carrier}', not by damping."
+            "vibration energy they absorb: "
+            + (measured + ", no more than guessing would. " if measured else "")
+            + "The probe tells the materials by the touched object's own modes, not by its damping."
         )
     return (
         f"Switching off '{carrier}' costs the most ({pct(base)} to {pct(accuracies[carrier])}, "
-        f"chance {pct(chance)}): in this scene it carries the material information. " + paper
+        f"chance {pct(chance)}, {n} test recordings): in this scene it carries the material "
+        "information. " + paper
     )

@@ -182,8 +182,8 @@ def _label_order(y, labels):
 
 # ---------------------------------------------------------------------- classification
 def classify_materials_svm(X, materials, *, test_fraction=MATERIAL_SVM.test_fraction, C=1.0,
-                           gamma=MATERIAL_SVM.gamma, seed=0,
-                           labels=None, normalise=True, tol=1e-3) -> ClassificationResult:
+                           gamma=MATERIAL_SVM.gamma, seed=0, labels=None, normalise=True,
+                           tol=1e-3, split=None) -> ClassificationResult:
     """Material classification by an RBF SVM trained one-vs-rest (section 4.3, Fig. 15).
 
     Parameters
@@ -206,6 +206,9 @@ def classify_materials_svm(X, materials, *, test_fraction=MATERIAL_SVM.test_frac
         Divide ``X`` by its largest magnitude first, as the paper did.
     tol : float, default=1e-3
         SMO stopping tolerance.
+    split : (ndarray, ndarray), optional
+        Train and test row indices (e.g. from :mod:`ebantenna.paper.splits`), replacing the
+        random split; ``test_fraction`` and ``seed`` are then not used.
 
     Returns
     -------
@@ -229,8 +232,13 @@ def classify_materials_svm(X, materials, *, test_fraction=MATERIAL_SVM.test_frac
     order = _label_order(y, labels)
     if normalise:
         X = normalise_by_max(X)
-    idx = np.arange(X.shape[0])
-    train, test = train_test_split(idx, test_size=test_fraction, random_state=seed, stratify=y)
+    if split is None:
+        train, test = train_test_split(np.arange(X.shape[0]), test_size=test_fraction,
+                                       random_state=seed, stratify=y)
+    else:
+        train, test = (np.asarray(rows, dtype=np.intp) for rows in split)
+        if np.intersect1d(train, test).size:
+            raise ValueError("split must not put one row in both train and test")
     model = OneVsRestClassifier(SVC(kernel="rbf", C=C, gamma=gamma, tol=tol))
     start = time.perf_counter()
     model.fit(X[train], y[train])
@@ -251,9 +259,14 @@ def classify_materials_ann(X, materials, *, hidden_layer_sizes=MATERIAL_ANN.hidd
                            n_iter_no_change=6) -> ClassificationResult:
     """Material classification by a tanh network (section 4.2, Fig. 12).
 
-    The samples are split 70/15/15 (stratified). Training runs on the first part and stops when
-    the cross-entropy on the validation part has not decreased for ``n_iter_no_change`` epochs
-    (MATLAB's validation check), keeping the best weights.
+    The samples are split 70/15/15 (stratified). With gradient descent (``solver='gd'``)
+    training runs on the first part and stops when the cross-entropy on the validation part has
+    not decreased for ``n_iter_no_change`` epochs (MATLAB's validation check), keeping the best
+    weights. A trainer that carries state from one epoch to the next (``'scg'``: its conjugate
+    directions, ``'adam'``: its moment estimates, ``'sgd'``: momentum) runs in one call instead,
+    on the train and validation parts together, with the estimator's own early stopping on the
+    same validation share (validation accuracy, scikit-learn's rule); the 'validation'
+    confusion matrix is then left out, since the estimator drew its own validation rows.
 
     Parameters
     ----------
@@ -262,9 +275,11 @@ def classify_materials_ann(X, materials, *, hidden_layer_sizes=MATERIAL_ANN.hidd
     hidden_layer_sizes : tuple of int, default=(53,)
         The paper's optimum: one hidden layer of 53 neurons.
     activation : str, default='tanh'
-    solver : str, default='gd'
-        Full-batch gradient descent, as in the paper.
+    solver : {'gd', 'scg', 'adam', 'sgd'}, default='gd'
+        Full-batch gradient descent, as in the paper, or another trainer of
+        :class:`ebantenna.ml.MLPClassifier`.
     learning_rate_init : float, default=0.05
+        Step of 'gd', 'sgd' and 'adam' (SCG chooses its own).
     max_iter : int, default=1000
         Largest number of epochs.
     fractions : (float, float, float), default=(0.70, 0.15, 0.15)
@@ -302,6 +317,15 @@ def classify_materials_ann(X, materials, *, hidden_layer_sizes=MATERIAL_ANN.hidd
                           solver=solver, learning_rate_init=learning_rate_init, max_iter=1,
                           random_state=seed, warm_start=True, alpha=0.0)
     start = time.perf_counter()
+    if solver != "gd":
+        fit_rows = np.concatenate([train, val])
+        model.set_params(max_iter=max_iter, warm_start=False, early_stopping=True,
+                         validation_fraction=len(val) / len(fit_rows),
+                         n_iter_no_change=n_iter_no_change)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ConvergenceWarning)
+            model.fit(X[fit_rows], y[fit_rows])
+        return _ann_result(model, X, y, order, {"train": fit_rows, "test": test}, start)
     best, best_loss, since = None, np.inf, 0
     X_train, y_train, X_val = X[train], y[train], X[val]
     with warnings.catch_warnings():
@@ -320,11 +344,16 @@ def classify_materials_ann(X, materials, *, hidden_layer_sizes=MATERIAL_ANN.hidd
                 if since >= n_iter_no_change:
                     break
     model.coefs_, model.intercepts_ = best
+    return _ann_result(model, X, y, order, {"train": train, "validation": val, "test": test},
+                       start)
+
+
+def _ann_result(model, X, y, order, parts, start) -> ClassificationResult:
     seconds = time.perf_counter() - start
-    parts = {"train": train, "validation": val, "test": test, "all": np.arange(X.shape[0])}
+    parts = {**parts, "all": np.arange(X.shape[0])}
     confusions = {k: confusion_matrix(y[i], model.predict(X[i]), order) for k, i in parts.items()}
-    logger.info("ANN: all %.3f, test %.3f after %d epochs", accuracy(confusions["all"]),
-                accuracy(confusions["test"]), model.n_iter_)
+    logger.info("ANN (%s): all %.3f, test %.3f after %d epochs", model.solver,
+                accuracy(confusions["all"]), accuracy(confusions["test"]), model.n_iter_)
     return ClassificationResult("ann", order, confusions, seconds, model)
 
 

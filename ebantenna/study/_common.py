@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["per_contact", "probe_length", "pct"]
+__all__ = ["beyond_chance", "per_contact", "probe_length", "pct"]
 
 
 def probe_length(ds) -> float:
@@ -55,3 +55,15 @@ def per_contact(values, contact, mask=None):
             med[i] = np.median(values[sel])
             spread[i] = np.std(values[sel])
     return grid, med, spread
+
+
+def beyond_chance(accuracy: float, chance: float, n: int) -> bool:
+    """Whether an accuracy on ``n`` test recordings stands more than two binomial standard
+    deviations of guessing, ``2 sqrt(chance (1 - chance) / n)``, above chance.
+
+    Examples
+    --------
+    >>> beyond_chance(0.30, 0.2, 1000), beyond_chance(0.30, 0.2, 30)
+    (True, False)
+    """
+    return bool(accuracy - chance > 2 * np.sqrt(chance * (1 - chance) / n))

@@ -145,3 +145,42 @@ def test_bad_input_is_named(call, match):
     X, y, d = _spectra(n_per=5)
     with pytest.raises(ValueError, match=match):
         call(X, y, d)
+
+
+def test_svm_on_a_given_split_trains_and_tests_on_those_rows():
+    X, y, d = _spectra(n_per=30)
+    test = np.flatnonzero(np.isin(np.round(d, 3), [0.06, 0.16, 0.26]))
+    train = np.setdiff1d(np.arange(y.size), test)
+    res = classify_materials_svm(X, y, gamma="scale", split=(train, test))
+    assert res.confusions["train"].sum() == train.size
+    assert res.confusions["test"].sum() == test.size
+    lib = OneVsRestClassifier(LibSVC(kernel="rbf", gamma="scale")).fit(
+        normalise_by_max(X)[train], y[train])
+    ours = res.model.predict(normalise_by_max(X)[test])
+    # two SMO solvers to tol 1e-3: they may part on a sample at the margin, not on more
+    assert np.mean(ours == lib.predict(normalise_by_max(X)[test])) >= 0.97
+    with pytest.raises(ValueError, match="both train and test"):
+        classify_materials_svm(X, y, split=(train, np.r_[test, train[:1]]))
+
+
+@pytest.mark.parametrize("solver", ["scg", "adam"])
+def test_stateful_trainers_run_in_one_call(solver):
+    """SCG's directions and Adam's moments must survive from epoch to epoch: the experiment is
+    one fit of the estimator with early stopping, the same as calling it directly."""
+    from ebantenna.ml import MLPClassifier
+    from ebantenna.paper.protocol import three_way_split
+
+    X, y, _ = _spectra(n_per=30)
+    res = classify_materials_ann(X, y, hidden_layer_sizes=(8,), solver=solver,
+                                 learning_rate_init=0.01, max_iter=200, seed=2)
+    assert "validation" not in res.confusions and res.model.n_iter_ > 1
+    train, val, test = three_way_split(y.size, (0.7, 0.15, 0.15), 2, stratify=y)
+    rows = np.concatenate([train, val])
+    direct = MLPClassifier((8,), activation="tanh", solver=solver, learning_rate_init=0.01,
+                           max_iter=200, random_state=2, alpha=0.0, early_stopping=True,
+                           validation_fraction=val.size / rows.size, n_iter_no_change=6)
+    Xn = normalise_by_max(X)
+    direct.fit(Xn[rows], y[rows])
+    np.testing.assert_array_equal(res.model.predict(Xn[test]), direct.predict(Xn[test]))
+    assert res.model.n_iter_ == direct.n_iter_
+    assert res.confusions["test"].sum() == test.size

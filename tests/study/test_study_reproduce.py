@@ -9,15 +9,7 @@ import pytest
 from ebantenna.cli import main
 from ebantenna.paper.feature_table import signal_features
 from ebantenna.report import Report
-from ebantenna.study import reproduce
 from ebantenna.study.reproduce import STEPS
-
-
-@pytest.fixture(scope="module")
-def quick_study(tmp_path_factory):
-    out = tmp_path_factory.mktemp("study")
-    cache = tmp_path_factory.mktemp("cache")
-    return reproduce(out, quick=True, cache_dir=cache, n_jobs=1, show_progress=False), cache
 
 
 def test_quick_study_writes_every_figure_and_both_reports(quick_study):
@@ -117,10 +109,45 @@ def test_summary_is_the_results_dicts_put_together(quick_study):
     result, _ = quick_study
     s = result.summary
     assert list(s) == ["quick", "seed", "modes", "dataset", "frequency", "decay", "svm", "ann",
-                       "distance", "timings_s", "report", "figures"]
+                       "materials", "distance", "hinge", "timings_s", "dataset_cached", "report",
+                       "figures"]
     assert list(s["distance"]) == [
         "full_range_mae_cm", "full_range_mae_beyond_80_cm", "first_mode_only_mae_cm",
         "full_range_known_material_mae_cm", "first_mode_turning_point_cm",
         "recordings_without_two_peaks", "linear_region_mae_cm", "full_length_mae_cm",
+        "linear_region_mae_cm_by_trainer", "linear_region_best_trainer",
     ]
     assert list(s["timings_s"]) == list(STEPS)
+
+
+def test_material_accuracies_are_fractions_on_every_split(quick_study):
+    result, _ = quick_study
+    m = json.loads((result.out_dir / "summary.json").read_text())["materials"]
+    for key in ("svm_random_train_accuracy", "svm_random_test_accuracy",
+                "svm_grouped_test_accuracy", "svm_blocked_test_accuracy"):
+        assert 0.0 <= m[key] <= 1.0, key
+    assert m["svm_random_test_accuracy"] == result.summary["svm"]["test_accuracy"]
+    assert set(m["position_aware_test_accuracy"]) == {"random", "grouped", "blocked"}
+    assert set(m["ann"]) == {"gd", "scg", "adam"}
+    assert m["ann"]["gd"] == result.summary["ann"]["test_accuracy"]
+    assert m["ablation"]["none"] is not None and len(m["ablation"]) > 5
+    values = [*m["position_aware_test_accuracy"].values(), *m["ann"].values(),
+              *m["ablation"].values()]
+    if m["equivalent_pair_accuracy"] is not None:
+        values.append(m["equivalent_pair_accuracy"])
+    assert all(0.0 <= v <= 1.0 for v in values)
+
+
+def test_hinge_fit_and_run_time_table_are_reported(quick_study):
+    result, _ = quick_study
+    s = result.summary
+    h = s["hinge"]
+    assert h["observed_cm"] == [29.5, 39.5] and h["probe_lengths_cm"] == [40.0, 50.0]
+    np.testing.assert_allclose(h["residual_cm"],
+                               np.subtract(h["predicted_cm"], h["observed_cm"]), rtol=1e-12)
+    assert h["rms_residual_cm"] == pytest.approx(np.sqrt(np.mean(np.square(h["residual_cm"]))))
+    md = result.report_markdown.read_text()
+    assert "hinge-and-tip model explains both" in md
+    assert "| data set |" in md and "| total |" in md
+    assert ("reused from its cache" in md) == s["dataset_cached"]
+    assert "A random split of neighbouring positions flatters any classifier" in md

@@ -1,0 +1,348 @@
+"""Controls that show what the material classifier learns.
+
+*Ablation* (:func:`ablation_accuracies`): the data set is simulated again with one effect of the
+scene switched off, and the SVM's accuracy on whole held-out positions
+(:func:`~ebantenna.paper.splits.grouped_split`) is measured each time. The effect whose removal
+brings the accuracy down to chance is the one that carries the material.
+
+*Equivalent pair* (:func:`equivalent_rod`, :func:`equivalent_pair_accuracy`): an aluminium and a
+steel rod whose dimensions make them the same mechanical object for the probe (same cantilever
+stiffness, same bending frequencies, hence the same modal masses), labelled by material. If the
+probe feels mechanical impedance and not chemistry, no classifier tells them apart better than a
+coin (0.5).
+
+Both rebuild data sets with :func:`ebantenna.simulate.build_dataset`, on a small design
+(:data:`ABLATION_DESIGN`, or :data:`~ebantenna.paper.data.QUICK_DESIGN` for quick runs), cached
+per scene like any data set.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from .._validate import check_int, check_positive
+from ..fem.rod import Rod
+from ..probe import material
+from ..signal import fft_features
+from ..simulate import DatasetDesign, Scene
+from ..simulate import build_dataset as _build
+from .data import PAPER_DESIGN
+from .experiments import classify_materials_svm
+from .splits import grouped_split
+
+__all__ = [
+    "ABLATION_DESIGN",
+    "Ablation",
+    "ablation_accuracies",
+    "grouped_svm_accuracy",
+    "equivalent_rod",
+    "equivalent_pair_scenes",
+    "equivalent_pair_accuracy",
+]
+
+#: The reduced data set of the controls: the paper's materials, positions (every 5 mm) and
+#: scatter, one recording per material and position: 395 recordings. The positions stay 5 mm
+#: apart because the grouped split asks the classifier to interpolate between neighbours; with
+#: 2 cm between them the SVM is at chance even with every effect on.
+ABLATION_DESIGN = replace(PAPER_DESIGN, name="controls", repetitions=1)
+
+
+def grouped_svm_accuracy(ds, *, seed: int = 0, every: int = 5) -> float:
+    """SVM test accuracy on whole held-out positions of data set ``ds``.
+
+    The paper's features (FFT magnitudes of X and Z, :func:`ebantenna.signal.fft_features`) and
+    SVM (:func:`~ebantenna.paper.experiments.classify_materials_svm`) on
+    :func:`~ebantenna.paper.splits.grouped_split` by the nominal positions ``ds.contact``.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from ebantenna.simulate import builtin_scene, build_dataset
+    >>> design = replace(ABLATION_DESIGN, materials=("brass", "pvc"), contact_step=0.05)
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     ds = build_dataset(tmp, builtin_scene("paper"), design)
+    >>> 0.0 <= grouped_svm_accuracy(ds, every=2) <= 1.0
+    True
+    """
+    X = fft_features(np.asarray(ds.ax, float), np.asarray(ds.az, float))
+    split = grouped_split(ds.contact, every=every, seed=seed)
+    result = classify_materials_svm(X, ds.material, split=split)
+    return result.accuracies["test"]
+
+
+@dataclass(frozen=True)
+class Ablation:
+    """Grouped-split SVM accuracy with each effect switched off.
+
+    Attributes
+    ----------
+    accuracies : dict of str to float
+        ``"none"`` (nothing switched off: the baseline) and one entry per effect switched off;
+        effects dropped together are named ``"a+b"``.
+    dropped_together : dict of str to tuple of str
+        For an effect the scene refused to lose alone: it and the effects dropped with it.
+    refused : dict of str to str
+        Effects that could not be switched off at all, with the scene's reason.
+    """
+
+    accuracies: dict
+    dropped_together: dict
+    refused: dict
+
+
+def _without(scene: Scene, names) -> Scene:
+    return scene.with_(effects=[e for e in scene.effects if e.name not in names])
+
+
+def _ablated_scene(scene: Scene, name: str, most: int = 2):
+    """The scene without ``name`` and the fewest other effects that must go with it.
+
+    Returns ``(scene, dropped names, None)``, or ``(None, (name,), reason)`` when no set of at
+    most ``most`` other effects makes the scene valid.
+    """
+    others = [n for n in scene.effect_names if n != name]
+    reason = None
+    for size in range(most + 1):
+        for extra in itertools.combinations(others, size):
+            try:
+                return _without(scene, {name, *extra}), (name, *extra), None
+            except ValueError as exc:
+                reason = reason or str(exc)  # the scene's reason for refusing ``name`` alone
+    return None, (name,), reason
+
+
+def ablation_accuracies(
+    scene: Scene,
+    names=None,
+    *,
+    design: DatasetDesign = ABLATION_DESIGN,
+    seed: int = 0,
+    cache_dir,
+    n_jobs: int = 1,
+) -> Ablation:
+    """Rebuild the data set with each effect switched off; the grouped SVM accuracy of each.
+
+    An effect that others require cannot go alone: the scene raises ``ValueError``, and the
+    effect is dropped together with the fewest others (at most two, the first such set in the
+    scene's order) whose removal makes the scene valid; an effect that cannot be dropped by
+    removing effects at all (e.g. ``tip_mass``, which the probe's own tip mass demands) is
+    reported in ``refused`` with the scene's reason.
+
+    Parameters
+    ----------
+    scene : Scene
+        The full scene.
+    names : sequence of str, optional
+        Effects to switch off, one at a time (default: every effect of the scene).
+    design : DatasetDesign
+        The data set rebuilt each time (default :data:`ABLATION_DESIGN`).
+    seed : int
+        Seed of the data set and of the split.
+    cache_dir : path
+        Where the data sets are cached (one file per ablated scene).
+    n_jobs : int
+        Worker processes of each build.
+
+    Returns
+    -------
+    Ablation
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from ebantenna.simulate import builtin_scene
+    >>> design = replace(ABLATION_DESIGN, materials=("brass", "pvc"), contact_step=0.05)
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     ab = ablation_accuracies(builtin_scene("paper"), ["object_modes", "tip_mass"],
+    ...                              design=design, cache_dir=tmp)
+    >>> sorted(ab.accuracies)
+    ['none', 'object_modes+object_damping+preload_scatter']
+    >>> sorted(ab.refused)
+    ['tip_mass']
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
+    names = scene.effect_names if names is None else tuple(names)
+    unknown = sorted(set(names) - set(scene.effect_names))
+    if unknown:
+        raise ValueError(
+            f"names must be effects of the scene ({', '.join(scene.effect_names)}); got {unknown}"
+        )
+    seed = check_int("seed", seed, minimum=0)
+
+    def accuracy(s: Scene) -> float:
+        ds = _build(cache_dir, s, design, seed, n_jobs=n_jobs, show_progress=False)
+        return grouped_svm_accuracy(ds, seed=seed)
+
+    accuracies = {"none": accuracy(scene)}
+    together, refused = {}, {}
+    for name in names:
+        ablated, dropped, reason = _ablated_scene(scene, name)
+        if ablated is None:
+            refused[name] = reason
+            continue
+        if len(dropped) > 1:
+            together[name] = dropped
+        label = "+".join(dropped)
+        accuracies[label] = accuracy(ablated.with_(name=f"{scene.name}-without-{label}"))
+    return Ablation(accuracies, together, refused)
+
+
+# ------------------------------------------------------------------ the equivalent pair
+def _cantilever(rod: Rod) -> tuple[float, float]:
+    """Cantilever tip stiffness 3EI/l^3 (N/m) and first bending frequency (Hz) of ``rod``."""
+    beam = rod.as_beam()
+    return 3 * beam.flexural_rigidity / rod.free_length**3, rod.cantilever_frequency()
+
+
+def equivalent_rod(reference: Rod, other) -> Rod:
+    """The rod of material ``other`` that the probe cannot tell from ``reference``.
+
+    For a solid round cantilever of diameter ``d``, free length ``l``, Young's modulus ``E``
+    and density ``rho``, ``I = pi d^4 / 64`` and ``A = pi d^2 / 4``, so
+
+    .. math::
+
+        k = \\frac{3 E I}{l^3} = \\frac{3 \\pi E d^4}{64\\, l^3}, \\qquad
+        f_n = \\frac{(\\beta_n l)^2}{2 \\pi l^2} \\sqrt{\\frac{E I}{\\rho A}}
+            = \\frac{(\\beta_n l)^2}{8 \\pi} \\frac{d}{l^2} c, \\quad c = \\sqrt{E / \\rho}.
+
+    Every mode of the family has the same ``beta_n l``, so matching ``f_1`` matches every
+    bending frequency. With ratios ``lambda = l'/l``, ``delta = d'/d``, ``epsilon = E'/E``,
+    ``kappa = c'/c``: equal frequencies need ``delta kappa / lambda^2 = 1``, i.e.
+    ``delta = lambda^2 / kappa``; equal stiffness needs ``epsilon delta^4 / lambda^3 = 1``, and
+    with the first, ``epsilon lambda^5 / kappa^4 = 1``:
+
+    .. math::
+
+        \\lambda = \\left(\\frac{\\kappa^4}{\\epsilon}\\right)^{1/5}, \\qquad
+        \\delta = \\frac{\\lambda^2}{\\kappa}.
+
+    With ``k = m_eff omega_1^2`` the effective (and every modal) mass then matches too, and the
+    mode shapes are those of one family: the point mobility at the free end is the same but for
+    the loss factor. For aluminium to steel (``kappa`` close to 1, ``epsilon`` about 2.9), a
+    Ø12 mm x 250 mm aluminium rod matches a steel rod of about Ø7.8 mm x 203 mm. The contact
+    height scales with the length (the same point of the mode shapes).
+
+    Parameters
+    ----------
+    reference : Rod
+        The rod to match.
+    other : Material or str
+        The material of the equivalent rod.
+
+    Returns
+    -------
+    Rod
+        Of material ``other``, with the diameter and free length above.
+
+    Examples
+    --------
+    >>> al = Rod("aluminium", diameter=0.012, free_length=0.25)
+    >>> steel = equivalent_rod(al, "steel")
+    >>> round(1e3 * steel.diameter, 2), round(1e3 * steel.free_length, 1)  # mm
+    (7.81, 202.9)
+    >>> round(steel.cantilever_frequency() / al.cantilever_frequency(), 12)
+    1.0
+    """
+    if not isinstance(reference, Rod):
+        raise TypeError(f"reference must be a Rod, got {type(reference).__name__}")
+    a, b = reference.material, material(other) if isinstance(other, str) else other
+    epsilon = b.youngs_modulus / a.youngs_modulus
+    kappa = math.sqrt((b.youngs_modulus / b.density) / (a.youngs_modulus / a.density))
+    lam = (kappa**4 / epsilon) ** 0.2
+    delta = lam**2 / kappa
+    return Rod(
+        b,
+        diameter=delta * reference.diameter,
+        free_length=lam * reference.free_length,
+        contact_height=lam * reference.contact_height,
+    )
+
+
+def equivalent_pair_scenes(scene: Scene, *, reference: str = "aluminium", other: str = "steel"):
+    """Two scenes touching a ``reference`` rod and its :func:`equivalent_rod` of ``other``.
+
+    The scene must list the ``object_modes`` effect; its ``diameter``, ``free_length`` and
+    ``contact_height`` set the reference rod, and the other scene gets the equivalent rod's
+    (the contact height scaled with the length, unless it is the free end).
+
+    Examples
+    --------
+    >>> from ebantenna.simulate import builtin_scene
+    >>> al, steel = equivalent_pair_scenes(builtin_scene("paper"))
+    >>> al.material, steel.material, round(1e3 * steel.effect("object_modes").diameter, 2)
+    ('aluminium', 'steel', 7.81)
+
+    Returns
+    -------
+    (Scene, Scene)
+        Touching ``reference`` and ``other``, named ``<scene>-pair-<material>``.
+    """
+    effect = scene.effect("object_modes")
+    if effect is None:
+        raise ValueError(
+            "scene must list the 'object_modes' effect (the touched rod's own modes); "
+            f"it lists {', '.join(scene.effect_names) or 'none'}"
+        )
+    height = getattr(effect, "contact_height", None)  # None: the rod's free end
+    rod = Rod(
+        reference,
+        diameter=check_positive("diameter", effect.diameter),
+        free_length=check_positive("free_length", effect.free_length),
+        contact_height=height,
+    )
+    twin = equivalent_rod(rod, other)
+    changed = {"diameter": twin.diameter, "free_length": twin.free_length}
+    if height is not None:  # the same point of the mode shapes
+        changed["contact_height"] = twin.contact_height
+    twin_effect = replace(effect, **changed)
+    effects = [twin_effect if e.name == "object_modes" else e for e in scene.effects]
+    return (
+        scene.with_(name=f"{scene.name}-pair-{reference}", material=reference),
+        scene.with_(name=f"{scene.name}-pair-{other}", material=other, effects=effects),
+    )
+
+
+def equivalent_pair_accuracy(
+    scene: Scene,
+    *,
+    design: DatasetDesign = ABLATION_DESIGN,
+    seed: int = 0,
+    cache_dir,
+    n_jobs: int = 1,
+) -> float:
+    """Grouped-split SVM accuracy between an aluminium rod and its steel equivalent.
+
+    Both data sets follow ``design`` with one material each (aluminium in one scene, steel in
+    the other, :func:`equivalent_pair_scenes`), the same seed and so the same scatter, and are
+    put together with the material as the label. Two classes: 0.5 is chance.
+
+    Returns
+    -------
+    float
+        Test accuracy on whole held-out positions.
+    """
+    parts = []
+    for s, name in zip(equivalent_pair_scenes(scene), ("aluminium", "steel"), strict=True):
+        parts.append(
+            _build(
+                cache_dir,
+                s,
+                replace(design, materials=(name,)),
+                seed,
+                n_jobs=n_jobs,
+                show_progress=False,
+            )
+        )
+    X = fft_features(
+        np.vstack([np.asarray(p.ax, float) for p in parts]),
+        np.vstack([np.asarray(p.az, float) for p in parts]),
+    )
+    y = np.concatenate([p.material for p in parts])
+    split = grouped_split(np.concatenate([p.contact for p in parts]), seed=seed)
+    return classify_materials_svm(X, y, split=split).accuracies["test"]

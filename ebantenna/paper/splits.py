@@ -1,0 +1,199 @@
+"""Train/test splits of a data set of recordings taken at a few contact positions.
+
+The paper splits its recordings at random (80/20, section 4.3). Its recordings come in groups:
+25 recordings at each of 79 nominal contact positions 5 mm apart, per material. Recordings at
+one position are near copies of each other, and those at neighbouring positions differ only a
+little. A random split therefore puts, for almost every test recording, a near copy of it in the
+training set: the test then measures how well a classifier *recognises* a position it has seen,
+not how well it tells the material at a position it has not. Any classifier looks better on
+such a split than it will on the rig, where the next contact falls wherever it falls.
+
+Three splits, from the most to the least flattering:
+
+``random``
+    Recordings at random, stratified by material (the paper's split).
+``grouped``
+    Whole nominal positions held out, interleaved: every ``every``-th distinct position (from an
+    offset drawn from the seed) goes to the test set with all its recordings. The classifier must
+    interpolate between positions it has seen on both sides.
+``blocked``
+    A contiguous range of positions held out (its start drawn from the seed): the classifier must
+    bridge a stretch of the probe it never saw.
+
+Every split returns sorted row indices ``(train, test)``; the grouped and blocked splits never
+put one nominal position on both sides. Group by the *nominal* position (``Dataset.contact``),
+not the realised one (``Dataset.contact_true``), which scatters around it.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from sklearn.model_selection import train_test_split
+
+from .._validate import check_array, check_choice, check_in_range, check_int
+
+__all__ = ["SPLITS", "random_split", "grouped_split", "blocked_split", "split_rows"]
+
+#: The splits, from the most to the least flattering.
+SPLITS = ("random", "grouped", "blocked")
+
+
+def _positions(positions) -> tuple[np.ndarray, np.ndarray]:
+    """The distinct nominal positions and each row's index among them."""
+    p = check_array("positions", positions, ndim=1)
+    grid, inverse = np.unique(p, return_inverse=True)
+    if grid.size < 2:
+        raise ValueError(
+            f"positions must hold at least 2 distinct contact positions, got {grid.size}"
+        )
+    return grid, inverse
+
+
+def _rows(test_mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    return np.flatnonzero(~test_mask), np.flatnonzero(test_mask)
+
+
+def random_split(labels, *, test_fraction: float = 0.2, seed: int = 0):
+    """Recordings split at random, stratified by label (the paper's 80/20).
+
+    Parameters
+    ----------
+    labels : array-like of shape (n,)
+        Class of each recording (the strata).
+    test_fraction : float
+        Share of the recordings in the test set, in (0, 1).
+    seed : int
+        Seed of the split.
+
+    Returns
+    -------
+    train, test : ndarray of int
+        Sorted row indices.
+
+    Examples
+    --------
+    >>> train, test = random_split(["al", "pvc"] * 5, test_fraction=0.2, seed=0)
+    >>> train.size, test.size
+    (8, 2)
+    """
+    y = np.asarray(labels)
+    check_in_range("test_fraction", test_fraction, 0.0, 1.0)
+    seed = check_int("seed", seed, minimum=0)
+    train, test = train_test_split(
+        np.arange(y.size), test_size=test_fraction, random_state=seed, stratify=y
+    )
+    return np.sort(train), np.sort(test)
+
+
+def grouped_split(positions, *, every: int = 5, seed: int = 0):
+    """Whole nominal positions held out, interleaved: every ``every``-th one goes to the test.
+
+    Parameters
+    ----------
+    positions : array-like of shape (n,)
+        Nominal contact position of each recording, m.
+    every : int
+        One distinct position in ``every`` is held out (5: a fifth of the positions, the paper's
+        test share).
+    seed : int
+        Picks the offset of the first held-out position, in ``[0, every)``.
+
+    Returns
+    -------
+    train, test : ndarray of int
+        Sorted row indices; no position has rows on both sides.
+
+    Examples
+    --------
+    >>> pos = np.repeat([0.05, 0.10, 0.15, 0.20, 0.25, 0.30], 2)
+    >>> train, test = grouped_split(pos, every=3, seed=0)
+    >>> sorted(set(pos[test].tolist()))
+    [0.05, 0.2]
+    """
+    grid, inverse = _positions(positions)
+    every = check_int("every", every, minimum=2)
+    if every > grid.size:
+        raise ValueError(
+            f"every must be at most the number of distinct positions ({grid.size}), got {every}"
+        )
+    seed = check_int("seed", seed, minimum=0)
+    offset = int(np.random.default_rng([seed, 0x5917]).integers(every))
+    held = np.zeros(grid.size, dtype=bool)
+    held[offset::every] = True
+    return _rows(held[inverse])
+
+
+def blocked_split(positions, *, test_fraction: float = 0.2, seed: int = 0):
+    """A contiguous range of nominal positions held out.
+
+    Parameters
+    ----------
+    positions : array-like of shape (n,)
+        Nominal contact position of each recording, m.
+    test_fraction : float
+        Share of the distinct positions held out, in (0, 1); rounded up to a whole number of
+        positions, and at least one position stays for training.
+    seed : int
+        Picks where the held-out range starts (any start that fits, each equally likely).
+
+    Returns
+    -------
+    train, test : ndarray of int
+        Sorted row indices; the test positions are consecutive in the sorted grid.
+
+    Examples
+    --------
+    >>> pos = np.repeat(np.arange(1, 11) / 100, 3)  # 1 ... 10 cm, 3 recordings each
+    >>> train, test = blocked_split(pos, test_fraction=0.2, seed=0)
+    >>> held = sorted(set(pos[test].tolist()))
+    >>> len(held), round(held[1] - held[0], 9), test.size
+    (2, 0.01, 6)
+    """
+    grid, inverse = _positions(positions)
+    check_in_range("test_fraction", test_fraction, 0.0, 1.0)
+    seed = check_int("seed", seed, minimum=0)
+    width = min(math.ceil(test_fraction * grid.size), grid.size - 1)
+    start = int(np.random.default_rng([seed, 0xB10C]).integers(grid.size - width + 1))
+    held = np.zeros(grid.size, dtype=bool)
+    held[start : start + width] = True
+    return _rows(held[inverse])
+
+
+def split_rows(kind: str, labels, positions, *, seed: int = 0, test_fraction: float = 0.2):
+    """One of :data:`SPLITS` by name, with the test share the paper used.
+
+    ``grouped`` holds out every ``round(1 / test_fraction)``-th position.
+
+    Parameters
+    ----------
+    kind : {"random", "grouped", "blocked"}
+        Which split.
+    labels : array-like of shape (n,)
+        Class of each recording (the random split's strata).
+    positions : array-like of shape (n,)
+        Nominal contact position of each recording, m.
+    seed : int
+        Seed of the split.
+    test_fraction : float
+        Share of the recordings (random) or of the positions (grouped, blocked) held out.
+
+    Returns
+    -------
+    train, test : ndarray of int
+
+    Examples
+    --------
+    >>> pos = np.repeat(np.arange(1, 11) / 100, 2)
+    >>> y = np.tile(["al", "pvc"], 10)
+    >>> [split_rows(k, y, pos)[1].size for k in SPLITS]
+    [4, 4, 4]
+    """
+    check_choice("kind", kind, SPLITS)
+    if kind == "random":
+        return random_split(labels, test_fraction=test_fraction, seed=seed)
+    if kind == "grouped":
+        check_in_range("test_fraction", test_fraction, 0.0, 1.0)
+        return grouped_split(positions, every=max(2, round(1 / test_fraction)), seed=seed)
+    return blocked_split(positions, test_fraction=test_fraction, seed=seed)

@@ -74,10 +74,13 @@ def _chunk(ax, az, fs, cheb, ellip):
     tau = np.full(n, np.nan)
     gain = np.full(n, np.nan)
     ok = np.zeros(n, dtype=bool)
+    # The paper's spectrum is that of the whole record: the band starts one bin above DC, which
+    # also keeps the spectral functions from analysing a short transient on its own span.
+    band = {"fmin": fs / ax.shape[1]}
     for i in range(n):
-        dominant[i] = dominant_frequency(ax[i], fs)
+        dominant[i] = dominant_frequency(ax[i], fs, **band)
         try:
-            peaks[i] = peak_frequencies(ax[i], fs, 2)
+            peaks[i] = peak_frequencies(ax[i], fs, 2, **band)
         except ValueError:
             pass  # fewer than two separated peaks: stays NaN and is counted by the caller
         fit = fit_decay(banded[i], fs)

@@ -39,6 +39,7 @@ from .assembly import (
     apply_supports,
     assemble,
     beam_mesh,
+    check_resolvable,
     contact_node,
     free_dofs,
     scatter,
@@ -390,7 +391,7 @@ def natural_frequencies(
     if chunk is None:  # banded: batches small enough for the cache, spread over the cores
         chunk = 256 if method == "banded" else 125
     chunk = check_int("chunk", chunk, minimum=1)
-    n_elements = check_int("n_elements", n_elements, minimum=2)
+    n_elements = check_resolvable(check_int("n_elements", n_elements, minimum=2))
     n_modes = check_int("n_modes", n_modes, minimum=1, maximum=2 * n_elements - 1)
     if method == "banded" and n_modes > BANDED_MAX_MODES:
         raise ValueError(

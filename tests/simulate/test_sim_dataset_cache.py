@@ -165,13 +165,13 @@ def test_the_build_runs_on_a_dask_cluster_through_joblib(tmp_path, reference):
     )
     from joblib import parallel_config
 
-    with (
-        distributed.LocalCluster(
-            n_workers=1, threads_per_worker=1, dashboard_address=None, processes=True
-        ) as cluster,
-        distributed.Client(cluster) as client,
-    ):
-        with distributed.get_task_stream(client) as tasks, parallel_config(backend="dask"):
+    # two workers: with room for one task only, joblib would run the tasks in this process
+    cluster = distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    )
+    with cluster, distributed.Client(cluster) as client:
+        with parallel_config(backend="dask"):
             data = build(tmp_path)
-    assert len(tasks.data) >= len(DESIGN.materials)  # one task per material ran on the cluster
+        executed = client.run(lambda dask_worker: dask_worker.state.executed_count)
+    assert sum(executed.values()) >= len(DESIGN.materials)  # ran in the cluster's workers
     assert data.checksum() == reference.checksum()  # same bytes as on one machine

@@ -21,6 +21,7 @@ elements). :func:`roundoff_error` is that estimate with ``c = 0.05``, an upper b
 from __future__ import annotations
 
 import math
+import os
 
 import numpy as np
 import scipy.sparse as sps
@@ -34,6 +35,7 @@ __all__ = [
     "beam_mesh",
     "roundoff_error",
     "check_resolvable",
+    "check_memory",
     "ROUNDOFF_RTOL",
     "MAX_ELEMENTS",
     "assemble",
@@ -86,6 +88,23 @@ def check_resolvable(n_elements: int) -> int:
             "error is already far below that"
         )
     return n_elements
+
+
+def check_memory(nbytes: float, what: str) -> None:
+    """Raise ``ValueError`` before ``what`` allocates more than half of the machine's memory.
+
+    ``nbytes`` is the caller's a-priori estimate. Without a way to ask the machine (no
+    ``os.sysconf``), nothing is checked.
+    """
+    try:
+        total = os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (AttributeError, ValueError, OSError):
+        return
+    if nbytes > total / 2:
+        raise ValueError(
+            f"{what} needs about {nbytes / 1e9:.3g} GB, more than half of this machine's "
+            f"{total / 1e9:.3g} GB of memory"
+        )
 
 
 def beam_mesh(length: float, contact: float | None, n_elements: int) -> np.ndarray:

@@ -308,3 +308,10 @@ def test_exact_contact_at_the_hinge_tends_to_the_cantilever(contact, hinge):
     near = exact_frequencies(PROBE, contact, hinge=hinge, n_modes=3)
     cantilever = exact_frequencies(PROBE, None, hinge="clamped", n_modes=3)
     np.testing.assert_allclose(near, cantilever, rtol=1e-12)
+
+
+def test_a_sweep_that_cannot_fit_in_memory_is_refused_before_allocating():
+    # 10^6 positions x (2 x 3000)^2 x 32 bytes = 1.15e15 bytes: more than any machine's memory
+    contacts = np.linspace(0.01, 0.39, 10**6)
+    with pytest.raises(ValueError, match=r"smaller chunk.*needs about 1.15e\+06 GB"):
+        natural_frequencies(PROBE, contacts, n_elements=3000, method="dense", chunk=10**6)

@@ -152,3 +152,29 @@ def test_bench_json_is_one_strict_json_object(tmp_path, capsys):
     assert set(report["benchmarks"]) == {"fem_accuracy"}
     assert report["benchmarks"]["fem_accuracy"]["rows"]
     assert os.path.exists(report["report"]["html"])
+
+
+@pytest.mark.parametrize(
+    "module, function, argv, kept",
+    [
+        ("ebantenna.device.pantilt", "search_and_record", ["acquire", "--simulated"], "material"),
+        ("ebantenna.study.reproduce", "reproduce", ["reproduce", "--quick"], "quick"),
+    ],
+)
+def test_every_long_command_ends_an_interrupt_in_one_line_and_json(
+    tmp_path, capsys, monkeypatch, module, function, argv, kept
+):
+    import importlib
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(importlib.import_module(module), function, interrupted)
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(SystemExit) as exc:
+        main([*argv, "--json"])
+    assert exc.value.code == 130
+    captured = capsys.readouterr()
+    assert captured.err == f"ebantenna {argv[0]}: interrupted\n"
+    report = json.loads(captured.out)
+    assert report["interrupted"] == "SIGINT" and kept in report and report["out"] is None

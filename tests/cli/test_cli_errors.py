@@ -178,3 +178,19 @@ def test_every_long_command_ends_an_interrupt_in_one_line_and_json(
     assert captured.err == f"ebantenna {argv[0]}: interrupted\n"
     report = json.loads(captured.out)
     assert report["interrupted"] == "SIGINT" and kept in report and report["out"] is None
+
+
+def test_a_hang_up_seen_by_the_servo_guard_ends_acquire_in_one_line(capsys, monkeypatch):
+    import ebantenna.device.pantilt
+    from ebantenna.device import SignalReceived
+
+    def hung_up(*args, **kwargs):
+        raise SignalReceived(signal.SIGHUP)
+
+    monkeypatch.setattr(ebantenna.device.pantilt, "search_and_record", hung_up)
+    with pytest.raises(SystemExit) as exc:
+        main(["acquire", "--simulated", "--json"])
+    assert exc.value.code == 128 + signal.SIGHUP
+    captured = capsys.readouterr()
+    assert captured.err == "ebantenna acquire: interrupted\n"
+    assert json.loads(captured.out)["interrupted"] == "SIGHUP"

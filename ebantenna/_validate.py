@@ -8,8 +8,13 @@ the value given, instead of a NaN or a traceback from deep inside NumPy.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
+import os
+import zipfile
+import zlib
+from collections.abc import Iterable, Iterator
+from contextlib import contextmanager
 from numbers import Real
+from pathlib import Path
 
 import numpy as np
 
@@ -21,6 +26,8 @@ __all__ = [
     "check_int",
     "check_choice",
     "check_array",
+    "output_path",
+    "open_npz",
 ]
 
 
@@ -122,3 +129,85 @@ def check_array(
     if finite and not np.all(np.isfinite(array)):
         raise ValueError(f"{name} must contain only finite values (no NaN or inf)")
     return array
+
+
+def output_path(name: str, path, suffix: str, *, any_suffix: bool = False) -> Path:
+    """The file a writer creates for ``path``: ``suffix`` appended as the writer would append it.
+
+    NumPy's ``savez`` appends ``.npz`` unless the name ends with it; matplotlib's ``savefig``
+    appends ``.png`` only to a name without any suffix (``any_suffix=True``). Reporting this path,
+    not the one given, keeps what is reported equal to what is written. A name that is empty or
+    a directory is refused instead of becoming a hidden file such as ``..npz``.
+
+    Examples
+    --------
+    >>> output_path("out", "runs/rec", ".npz").as_posix()
+    'runs/rec.npz'
+    >>> output_path("plot", "modes.svg", ".png", any_suffix=True).as_posix()
+    'modes.svg'
+    >>> output_path("out", ".", ".npz")
+    Traceback (most recent call last):
+    ...
+    ValueError: out must name a file, got '.' (a directory)
+    """
+    text = os.fspath(path)
+    if not isinstance(text, str) or not text.strip():
+        raise ValueError(f"{name} must name a file, got {text!r}")
+    target = Path(text)
+    if text.endswith(("/", os.sep)) or target.name in ("", ".", "..") or target.is_dir():
+        raise ValueError(f"{name} must name a file, got {text!r} (a directory)")
+    has_suffix = bool(target.suffix) if any_suffix else target.name.endswith(suffix)
+    return target if has_suffix else target.with_name(target.name + suffix)
+
+
+@contextmanager
+def open_npz(path, what: str) -> Iterator[np.lib.npyio.NpzFile]:
+    """Open an ``.npz`` archive without pickle; any damage becomes one ``ValueError`` naming it.
+
+    A truncated, foreign or corrupted file makes NumPy and :mod:`zipfile` raise half a dozen
+    kinds of errors (``BadZipFile``, ``EOFError``, ``zlib.error``, a ``KeyError`` for a missing
+    array, a ``ValueError`` for pickled data), some only when an array is read. Inside this
+    context they all end as ``ValueError("<path> is not <what>: ...")``; a missing file stays a
+    :class:`FileNotFoundError`.
+
+    Examples
+    --------
+    >>> import tempfile, os
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     p = os.path.join(d, "x.npz")
+    ...     with open(p, "wb") as f:
+    ...         _ = f.write(b"t,ax,az")
+    ...     with open_npz(p, "a recording") as data:
+    ...         pass
+    Traceback (most recent call last):
+    ...
+    ValueError: ...x.npz is not a recording: not an .npz archive (it does not begin like a zip file)
+    """
+    path = Path(os.fspath(path))
+    if path.is_dir():
+        raise ValueError(f"{path} is a directory, not {what}")
+    damaged = (zipfile.BadZipFile, EOFError, zlib.error, ValueError, OSError)
+    # The file is opened here, not by NumPy, so that it is closed whatever fails.
+    with open(path, "rb") as file:  # a missing file raises FileNotFoundError here
+        head = file.read(4)
+        file.seek(0)
+        if not head:
+            raise ValueError(f"{path} is not {what}: the file is empty")
+        if head not in (b"PK\x03\x04", b"PK\x05\x06"):
+            raise ValueError(
+                f"{path} is not {what}: not an .npz archive (it does not begin like a zip file)"
+            )
+        try:
+            data = np.load(file, allow_pickle=False)
+        except damaged as exc:
+            damage = f"the file is truncated or damaged ({exc})"
+            raise ValueError(f"{path} is not {what}: {damage}") from None
+        with data:
+            try:
+                yield data
+            except KeyError as exc:
+                raise ValueError(f"{path} is not {what}: it lacks the array {exc}") from None
+            except damaged as exc:
+                if isinstance(exc, ValueError) and str(path) in str(exc):
+                    raise  # already names the file
+                raise ValueError(f"{path} is not {what}: {exc}") from None

@@ -6,15 +6,25 @@ function takes the parsed arguments and returns an exit code. Modules import the
 dependencies inside the run function so that ``ebantenna --help`` stays fast.
 
 With ``--json`` a command prints exactly one JSON object on stdout and nothing else.
+
+Every command ends in one of three ways: success (exit code 0, or 1 where the command says so),
+one line on stderr naming what was wrong (exit code 2: bad input, a damaged file, too little
+memory), or, on Ctrl-C or SIGTERM, one line saying so (exit codes 130 and 143, as a shell reports
+a process killed by those signals). A command that has partial results worth keeping (a
+recording) saves them before it stops; with ``--json`` it then prints what it kept, marked
+``"interrupted"``.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
 import json
 import logging
+import signal
 import sys
+import threading
 
 from . import __version__
 
@@ -43,10 +53,57 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+#: Seeds the command line accepts: what a 64-bit signed integer holds, from 0.
+MAX_SEED = 2**63 - 1
+
+
+def seed_argument(text: str) -> int:
+    """The ``--seed`` type: an integer in ``[0, MAX_SEED]``."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be an integer, got {text!r}") from None
+    if not 0 <= value <= MAX_SEED:
+        raise argparse.ArgumentTypeError(f"must lie in [0, 2**63 - 1], got {text}")
+    return value
+
+
 def print_json(obj) -> None:
     """Print one JSON object on stdout (the ``--json`` contract)."""
     json.dump(obj, sys.stdout, indent=2, sort_keys=False)
     sys.stdout.write("\n")
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM (or another terminating signal), raised like Ctrl-C so that every ``finally`` and
+    ``except KeyboardInterrupt`` that makes the work safe (servos released, temporary files
+    removed) runs for it too."""
+
+    def __init__(self, signum: int = signal.SIGTERM):
+        super().__init__(signal.Signals(signum).name)
+        self.signum = int(signum)
+
+
+def _raise_terminated(signum, frame):
+    raise Terminated(signum)
+
+
+@contextlib.contextmanager
+def _sigterm_as_interrupt():
+    if threading.current_thread() is not threading.main_thread():
+        yield  # signal handlers can be set from the main thread only
+        return
+    previous = signal.signal(signal.SIGTERM, _raise_terminated)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def interrupted(exc: KeyboardInterrupt, partial: dict) -> KeyboardInterrupt:
+    """Attach what a command kept to the interrupt, for :func:`main` to print with ``--json``."""
+    exc.partial = partial
+    return exc
 
 
 def main(argv=None) -> int:
@@ -58,8 +115,19 @@ def main(argv=None) -> int:
         format="%(levelname)s %(name)s: %(message)s",
         stream=sys.stderr,
     )
+    where = f"ebantenna {args.command}"
     try:
-        return int(args.func(args) or 0)
+        with _sigterm_as_interrupt():
+            return int(args.func(args) or 0)
+    except KeyboardInterrupt as exc:
+        signum = exc.signum if isinstance(exc, Terminated) else signal.SIGINT
+        partial = getattr(exc, "partial", None)
+        if getattr(args, "json", False):
+            print_json({"interrupted": signal.Signals(signum).name, **(partial or {})})
+        kept = f"; kept {partial['out']}" if partial and partial.get("out") else ""
+        parser.exit(128 + signum, f"{where}: interrupted{kept}\n")
+    except MemoryError:
+        parser.exit(2, f"{where}: error: not enough memory for this request\n")
     except (ValueError, TypeError, OSError) as exc:
-        # Bad input and I/O problems end with one clear line, not a traceback.
-        parser.exit(2, f"ebantenna {args.command}: error: {exc}\n")
+        # Bad input, damaged files and I/O problems end with one clear line, not a traceback.
+        parser.exit(2, f"{where}: error: {exc}\n")

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._validate import check_array, check_positive
+from ._validate import check_array, check_positive, open_npz, output_path
 
 __all__ = ["Recording"]
 
@@ -73,8 +73,12 @@ class Recording:
         return self.n_samples / self.fs
 
     def save(self, path) -> Path:
-        """Save as compressed ``.npz``: arrays ``t``, ``ax``, ``az``, ``fs``, JSON ``metadata``."""
-        path = Path(path)
+        """Save as compressed ``.npz``: arrays ``t``, ``ax``, ``az``, ``fs``, JSON ``metadata``.
+
+        Returns the file written: ``path`` with ``.npz`` appended if it lacks it. An empty name
+        or a directory raises ``ValueError``.
+        """
+        path = output_path("path", path, ".npz")
         np.savez_compressed(
             path,
             t=self.t,
@@ -87,7 +91,25 @@ class Recording:
 
     @classmethod
     def load(cls, path) -> Recording:
-        """Load a recording written by :meth:`save` (never unpickles anything)."""
-        with np.load(Path(path), allow_pickle=False) as data:
-            metadata = json.loads(str(data["metadata"])) if "metadata" in data else {}
-            return cls(data["t"], data["ax"], data["az"], float(data["fs"]), metadata)
+        """Load a recording written by :meth:`save` (never unpickles anything).
+
+        Raises
+        ------
+        FileNotFoundError
+            If there is no such file.
+        ValueError
+            Naming the file, if it is truncated, damaged, or not a recording (an array missing or
+            of the wrong shape, metadata that is not a JSON object).
+        """
+        what = "a recording"
+        with open_npz(path, what) as data:
+            try:
+                metadata = json.loads(str(data["metadata"])) if "metadata" in data else {}
+                if not isinstance(metadata, dict):
+                    raise ValueError("metadata must be a JSON object")
+                fs = data["fs"]
+                if fs.shape != ():
+                    raise ValueError(f"fs must be one number, got shape {fs.shape}")
+                return cls(data["t"], data["ax"], data["az"], float(fs), metadata)
+            except (TypeError, ValueError) as exc:  # json's errors are ValueErrors
+                raise ValueError(f"{Path(path)} is not {what}: {exc}") from None

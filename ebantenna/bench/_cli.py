@@ -19,17 +19,63 @@ def register(subparsers) -> None:
         help="run only this sweep (repeatable): fem_accuracy, signal_accuracy, simulate_cost, "
         "ml_speed",
     )
+    bench.add_argument(
+        "--json", action="store_true", help="print the measured rows as one JSON object"
+    )
     bench.set_defaults(func=run_bench)
+
+
+def json_ready(value):
+    """``value`` with NumPy numbers and arrays as plain JSON values; NaN and inf as None.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> json_ready({"n": np.int64(3), "err": [np.float64(1e-9), float("nan")]})
+    {'n': 3, 'err': [1e-09, None]}
+    """
+    import math
+    from pathlib import Path
+
+    import numpy as np
+
+    if isinstance(value, dict):
+        return {str(k): json_ready(v) for k, v in value.items()}
+    if isinstance(value, list | tuple | np.ndarray):
+        return [json_ready(v) for v in value]
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None  # JSON has no NaN or infinity
+    if isinstance(value, Path):
+        return str(value)
+    return value
 
 
 def run_bench(args) -> int:
     """Run ``ebantenna bench``."""
+    from ..cli import print_json
     from . import run_benchmarks
 
-    results = run_benchmarks(args.out, quick=args.quick, only=args.only)
+    results = run_benchmarks(
+        args.out, quick=args.quick, only=args.only, show_progress=False if args.json else None
+    )
+    report = results.pop("report")
+    if args.json:
+        print_json(
+            {
+                "out": str(args.out),
+                "quick": bool(args.quick),
+                "report": report,
+                "benchmarks": {
+                    name: {"seconds": r["seconds"], "rows": json_ready(r["rows"])}
+                    for name, r in results.items()
+                },
+            }
+        )
+        return 0
     for name, result in results.items():
-        if name != "report":
-            print(f"== {name} ({result['seconds']:.1f} s)")
-            print(result["table"])
-    print(f"report: {results['report']['html']}")
+        print(f"== {name} ({result['seconds']:.1f} s)")
+        print(result["table"])
+    print(f"report: {report['html']}")
     return 0

@@ -12,9 +12,14 @@ ENABLE_I2C_HINT = (
     "loads the device files, and 'ls /dev/i2c-*' lists the buses ('i2cdetect -y 1' shows the "
     "chips: 0x40 PCA9685, 0x68 MPU-6050)")
 
+#: Longest recording ``acquire`` makes after a contact, s: the paper's windows last about 1 s.
+MAX_DURATION = 60.0
+
 
 def register(subparsers) -> None:
     """Add the ``acquire`` subcommand."""
+    from ..cli import seed_argument
+
     parser = subparsers.add_parser(
         "acquire",
         help="sweep the probe until it touches something, then record the vibration",
@@ -31,7 +36,8 @@ def register(subparsers) -> None:
     parser.add_argument("--ratio", type=float, default=0.5,
                         help="contact distance over probe length, in (0, 1) (default 0.5)")
     parser.add_argument("--scene", default="paper", help="built-in scene for --simulated")
-    parser.add_argument("--seed", type=int, default=0, help="seed of the simulation")
+    parser.add_argument("--seed", type=seed_argument, default=0,
+                        help="seed of the simulation, 0 ... 2**63 - 1 (0)")
     parser.add_argument("--inject-faults", type=float, default=0.0, metavar="RATE",
                         help="simulated only: fraction of I2C transfers that fail, every kind "
                         "(no acknowledge, EIO, ETIMEDOUT, EAGAIN, late errors, short reads)")
@@ -49,7 +55,8 @@ def register(subparsers) -> None:
     parser.add_argument("--threshold", type=float, default=2.0,
                         help="contact threshold on the acceleration change, m/s^2 (default 2)")
     parser.add_argument("--duration", type=float, default=1.0,
-                        help="recorded time after the contact, s (default 1)")
+                        help=f"recorded time after the contact, s, in (0, {MAX_DURATION:g}] "
+                        "(default 1)")
     parser.add_argument("--out", metavar="FILE.npz", help="save the recording here")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.set_defaults(func=run)
@@ -57,14 +64,18 @@ def register(subparsers) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run the acquisition; returns the exit code (0 on contact, 1 without one)."""
-    from .._validate import check_in_range
+    from .._validate import check_in_range, output_path
+    from ..cli import Terminated, interrupted
     from ..probe import material as lookup_material
     from .mpu6050 import MPU6050
     from .pantilt import PanTilt, SearchConfig, search_and_record
     from .pca9685 import PCA9685
+    from .safety import SignalReceived
     from .watchdog import StreamStalledError
 
-    ratio = check_in_range("ratio", args.ratio, 0.0, 1.0)
+    ratio = check_in_range("--ratio", args.ratio, 0.0, 1.0)
+    check_in_range("--duration", args.duration, 0.0, MAX_DURATION, high_inclusive=True)
+    out = None if args.out is None else output_path("--out", args.out, ".npz")
     material = lookup_material(args.material).name
     config = SearchConfig(threshold=args.threshold, duration=args.duration)
     labels = {"material": material, "ratio": ratio}
@@ -107,10 +118,18 @@ def run(args: argparse.Namespace) -> int:
             result = search_and_record(mpu, unit, config, labels=labels)
         except StreamStalledError as exc:
             stalled = exc
+    except (KeyboardInterrupt, SignalReceived) as exc:
+        # search_and_record has released the servos on its way out; no recording is complete
+        partial = {"mode": "simulated" if args.simulated else "hardware", **labels,
+                   "contact_detected": None, "out": None,
+                   "servos_released": getattr(exc, "servos_released", None)}
+        if isinstance(exc, SignalReceived):  # SIGTERM or SIGHUP, as the servo guard saw it
+            exc = Terminated(exc.signum)
+        raise interrupted(exc, partial) from None
     finally:
         bus.close()
     if stalled is not None:
-        where = args.out or "acquire-partial.npz"
+        where = out or "acquire-partial.npz"
         saved = stalled.recording.save(where) if stalled.recording is not None else None
         released = getattr(stalled, "servos_released", False)
         raise OSError(f"{stalled}; servos {'released' if released else 'NOT confirmed released'}; "
@@ -123,8 +142,8 @@ def run(args: argparse.Namespace) -> int:
         summary["samples_wrong"] = (rig.wrong_samples(mpu, result.recording)
                                     if result.recording is not None else 0)
         summary["virtual_time_s"] = rig.clock.monotonic()
-    if args.out and result.recording is not None:
-        summary["out"] = str(result.recording.save(args.out))
+    if out is not None and result.recording is not None:
+        summary["out"] = str(result.recording.save(out))
     if args.json:
         from ..cli import print_json
 

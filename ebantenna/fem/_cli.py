@@ -80,8 +80,10 @@ def _report(args, probe, contact, elements, frequencies) -> int:
 
 def run_modes(args) -> int:
     """Run ``ebantenna modes``."""
+    from .._validate import output_path
     from . import Supports, modal_analysis
 
+    plot = None if args.plot is None else output_path("--plot", args.plot, ".png", any_suffix=True)
     probe, contact = _setup(args)
     result = modal_analysis(
         probe,
@@ -89,15 +91,18 @@ def run_modes(args) -> int:
         n_elements=args.elements,
         n_modes=args.modes,
     )
-    if args.plot:
+    if plot is not None:
         import matplotlib
 
         matplotlib.use("Agg")
         ax = result.plot()
         ax.set_title(f"Mode shapes, {args.elements} elements")
         ax.figure.tight_layout()
-        ax.figure.savefig(args.plot, dpi=150)
-    return _report(args, probe, contact, args.elements, result.frequencies)
+        ax.figure.savefig(plot, dpi=150)
+    code = _report(args, probe, contact, args.elements, result.frequencies)
+    if plot is not None and not args.json:
+        print(f"mode shapes saved to {plot}")
+    return code
 
 
 def run_exact(args) -> int:

@@ -4,11 +4,24 @@ The global DOF vector is ``(v0, theta0, v1, theta1, ..., vN, thetaN)`` for nodes
 (tip). Supports are applied by removing the DOFs they fix (a clamped hinge removes ``v0`` and
 ``theta0``, a rigid contact removes ``v`` at the contact node) and by adding spring stiffnesses and
 the tip mass to the diagonal.
+
+Round-off sets a limit to refinement. The assembled ``K`` is a discrete fourth derivative: its
+entries grow like ``EI / h^3`` while ``K phi`` for the probe's low modes stays of the order of
+``EI phi / L^4``, so its condition number grows like ``(L/h)^4 = N^4``. Every solve with it
+(Cholesky, LU, shift-invert Lanczos) returns mode shapes carrying rounding noise of relative size
+about ``eps N^4`` at the mesh's own wavelength, and that noise, stiff as it is, raises the
+frequencies. Even refined by the curvature Rayleigh quotient (:mod:`~ebantenna.fem.modal`), the
+lowest frequency is then off by about ``(c eps N^4)^2``, with ``c`` between 1e-4 and 0.02 for
+the probe's hinges and contacts (measured against :mod:`~ebantenna.fem.exact` at 4096 and 8192
+elements). :func:`roundoff_error` is that estimate with ``c = 0.05``, an upper bound, and
+:data:`MAX_ELEMENTS` the finest mesh whose estimate stays within :data:`ROUNDOFF_RTOL`:
+:func:`beam_mesh` refuses finer ones, where more elements buy no accuracy, only noise.
 """
 
 from __future__ import annotations
 
 import math
+import os
 
 import numpy as np
 import scipy.sparse as sps
@@ -20,6 +33,11 @@ from .supports import Supports
 
 __all__ = [
     "beam_mesh",
+    "roundoff_error",
+    "check_resolvable",
+    "check_memory",
+    "ROUNDOFF_RTOL",
+    "MAX_ELEMENTS",
     "assemble",
     "scatter",
     "support_diagonals",
@@ -29,11 +47,72 @@ __all__ = [
 ]
 
 
+#: Relative accuracy of the lowest frequency that a mesh must be able to hold in double precision.
+ROUNDOFF_RTOL = 1e-6
+
+#: The upper-bound constant ``c`` of :func:`roundoff_error` (measured: 1e-4 ... 0.02).
+_ROUNDOFF_C = 0.05
+
+
+def roundoff_error(n_elements: int) -> float:
+    """A-priori estimate of the round-off error of the lowest frequency on ``n_elements``, relative.
+
+    ``(c eps N^4)^2`` with ``c = 0.05`` (see the module's introduction): the condition number
+    ``N^4`` of the assembled stiffness, times the machine epsilon, squared by the Rayleigh
+    quotient. The discretisation error falls like ``N^-4``; the two cross at a few hundred
+    elements below 1e-12, so a finer mesh than that buys nothing.
+
+    Examples
+    --------
+    >>> from ebantenna.fem.assembly import roundoff_error
+    >>> f"{roundoff_error(2048):.0e}", f"{roundoff_error(16384):.0e}"
+    ('4e-08', '6e-01')
+    """
+    n_elements = check_int("n_elements", n_elements, minimum=1)
+    return (_ROUNDOFF_C * np.finfo(float).eps * float(n_elements) ** 4) ** 2
+
+
+#: The finest mesh whose :func:`roundoff_error` stays within :data:`ROUNDOFF_RTOL`.
+MAX_ELEMENTS = int((math.sqrt(ROUNDOFF_RTOL) / (_ROUNDOFF_C * np.finfo(float).eps)) ** 0.25)
+
+
+def check_resolvable(n_elements: int) -> int:
+    """Return ``n_elements``; raise ``ValueError`` above :data:`MAX_ELEMENTS` (round-off limit)."""
+    n_elements = check_int("n_elements", n_elements, minimum=1)
+    if n_elements > MAX_ELEMENTS:
+        raise ValueError(
+            f"n_elements must be <= {MAX_ELEMENTS}, got {n_elements}: the stiffness matrix's "
+            f"condition number grows like N^4 (here {float(n_elements) ** 4:.0e}), and in double "
+            f"precision the lowest frequency would be off by about {roundoff_error(n_elements):.0e}"
+            f" (relative), beyond {ROUNDOFF_RTOL:g}; at {MAX_ELEMENTS} elements the discretisation "
+            "error is already far below that"
+        )
+    return n_elements
+
+
+def check_memory(nbytes: float, what: str) -> None:
+    """Raise ``ValueError`` before ``what`` allocates more than half of the machine's memory.
+
+    ``nbytes`` is the caller's a-priori estimate. Without a way to ask the machine (no
+    ``os.sysconf``), nothing is checked.
+    """
+    try:
+        total = os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (AttributeError, ValueError, OSError):
+        return
+    if nbytes > total / 2:
+        raise ValueError(
+            f"{what} needs about {nbytes / 1e9:.3g} GB, more than half of this machine's "
+            f"{total / 1e9:.3g} GB of memory"
+        )
+
+
 def beam_mesh(length: float, contact: float | None, n_elements: int) -> np.ndarray:
     """Node positions from hinge (0) to tip (``length``), m, with a node exactly at ``contact``.
 
     The elements are shared between the two spans in proportion to their lengths (at least one each)
-    and are uniform within a span. ``n_elements=2`` with a contact gives the paper's model.
+    and are uniform within a span. ``n_elements=2`` with a contact gives the paper's model; more
+    than :data:`MAX_ELEMENTS` are refused (round-off, see :func:`roundoff_error`).
 
     Examples
     --------
@@ -43,8 +122,8 @@ def beam_mesh(length: float, contact: float | None, n_elements: int) -> np.ndarr
     >>> beam_mesh(0.4, 0.3, 2)
     array([0. , 0.3, 0.4])
     """
+    n_elements = check_resolvable(n_elements)
     if contact is None:
-        n_elements = check_int("n_elements", n_elements, minimum=1)
         return np.linspace(0.0, length, n_elements + 1)
     n_elements = check_int("n_elements", n_elements, minimum=2)
     contact = check_in_range("contact", contact, 0.0, length)

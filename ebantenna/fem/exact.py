@@ -45,37 +45,44 @@ _SERIES_LIMIT = 1.0  # below this argument, Taylor series; above, closed forms
 _FACT = [math.factorial(k) for k in range(40)]
 
 
-def _series(u, first_power, sign_start):
-    """sum_k (-1)^k 4^(k+1) u^(4k+p) / (4k+p)! for k = 0.. (enough terms for u < 1)."""
+def _series(u, first_power, sign_start, divide=0):
+    """sum_k (-1)^k 4^(k+1) u^(4k+p-d) / (4k+p)! for k = 0.. (enough terms for u < 1).
+
+    The division by ``u^d`` is done term by term, so that a tiny ``u`` (a contact 1e-300 m from
+    the hinge) gives the finite limit instead of 0 / 0.
+    """
     total = 0.0
     for k in range(7):
         p = 4 * k + first_power
-        total += (-1) ** k * 4 ** (k + sign_start) * u**p / _FACT[p]
+        total += (-1) ** k * 4 ** (k + sign_start) * u ** (p - divide) / _FACT[p]
     return total
 
 
-def _F_over_cosh(u):
+def _F_over_cosh(u, divide=0):
+    """F(u) / (cosh(u) u^divide)."""
     if u < _SERIES_LIMIT:
-        return _series(u, 3, 1) / math.cosh(u)
-    return math.sin(u) - math.cos(u) * math.tanh(u)
+        return _series(u, 3, 1, divide) / math.cosh(u)
+    return (math.sin(u) - math.cos(u) * math.tanh(u)) / u**divide
 
 
-def _Hminus_over_cosh(u):
+def _Hminus_over_cosh(u, divide=0):
+    """H-(u) / (cosh(u) u^divide)."""
     if u < _SERIES_LIMIT:
         # H-(u) = sum_{k>=1} (-1)^k 4^k u^(4k) / (4k)!
         #       = -(sum_{k>=0} (-1)^k 4^(k+1) u^(4k+4) / (4k+4)!)
-        return -_series(u, 4, 1) / math.cosh(u)
-    return math.cos(u) - 1.0 / math.cosh(u)
+        return -_series(u, 4, 1, divide) / math.cosh(u)
+    return (math.cos(u) - 1.0 / math.cosh(u)) / u**divide
 
 
 def _Hplus_over_cosh(u):
     return math.cos(u) + 1.0 / math.cosh(u)
 
 
-def _P_over_cosh(u):
+def _P_over_cosh(u, divide=0):
+    """P(u) / (cosh(u) u^divide)."""
     if u < _SERIES_LIMIT:
-        return _series(u, 2, 1) / math.cosh(u)
-    return 2 * math.sin(u) * math.tanh(u)
+        return _series(u, 2, 1, divide) / math.cosh(u)
+    return 2 * math.sin(u) * math.tanh(u) / u**divide
 
 
 def frequency_equation(beta: float, length: float, contact: float | None, hinge: str) -> float:
@@ -92,15 +99,14 @@ def frequency_equation(beta: float, length: float, contact: float | None, hinge:
     if contact is None:
         if hinge == "clamped":
             return _Hplus_over_cosh(beta * length)
-        return _F_over_cosh(beta * length) / (beta * length) ** 3
+        return _F_over_cosh(beta * length, divide=3)
     u, v = beta * contact, beta * (length - contact)
     if hinge == "clamped":
         # divided by u^3 as well, so that a contact next to the hinge does not flatten it to zero
-        return (
-            _F_over_cosh(u) / u**3 * _Hplus_over_cosh(v)
-            + _F_over_cosh(v) * _Hminus_over_cosh(u) / u**3
-        )
-    return _P_over_cosh(u) / u**2 * _Hplus_over_cosh(v) - _F_over_cosh(u) / u**2 * _F_over_cosh(v)
+        span_f, span_h = _F_over_cosh(u, divide=3), _Hminus_over_cosh(u, divide=3)
+        return span_f * _Hplus_over_cosh(v) + _F_over_cosh(v) * span_h
+    span_p, span_f = _P_over_cosh(u, divide=2), _F_over_cosh(u, divide=2)
+    return span_p * _Hplus_over_cosh(v) - span_f * _F_over_cosh(v)
 
 
 def exact_frequencies(

@@ -25,6 +25,7 @@ A Rayleigh quotient is stationary at an eigenvector, so the eigenvector's own er
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -39,6 +40,8 @@ from .assembly import (
     apply_supports,
     assemble,
     beam_mesh,
+    check_memory,
+    check_resolvable,
     contact_node,
     free_dofs,
     scatter,
@@ -288,6 +291,8 @@ def modal_analysis(
         )
     nodes = beam_mesh(probe.length, supports.contact, n_elements)
     use_sparse = solver == "sparse" or (solver == "auto" and 2 * nodes.size > DENSE_LIMIT)
+    if not use_sparse:  # K, M, the factor and two products, (2 n_nodes)^2 doubles each
+        check_memory(5 * 8 * (2 * nodes.size) ** 2, f"a dense solve of {n_elements} elements")
     K, M = assemble(nodes, probe, sparse=use_sparse)
     K_free, M_free, free = apply_supports(K, M, nodes, probe, supports)
     lam, phi = solve_modes(K_free, M_free, n_modes, shift=_shift(probe), solver=solver)
@@ -390,7 +395,7 @@ def natural_frequencies(
     if chunk is None:  # banded: batches small enough for the cache, spread over the cores
         chunk = 256 if method == "banded" else 125
     chunk = check_int("chunk", chunk, minimum=1)
-    n_elements = check_int("n_elements", n_elements, minimum=2)
+    n_elements = check_resolvable(check_int("n_elements", n_elements, minimum=2))
     n_modes = check_int("n_modes", n_modes, minimum=1, maximum=2 * n_elements - 1)
     if method == "banded" and n_modes > BANDED_MAX_MODES:
         raise ValueError(
@@ -398,6 +403,13 @@ def natural_frequencies(
             f"a few times n_modes steps, at most {MAX_LANCZOS_STEPS}); got {n_modes}: use "
             "method='dense' for that many modes"
         )
+    batch = min(chunk, contacts.size) * min(os.cpu_count() or 1, -(-contacts.size // chunk))
+    per_position = 32 * (2 * n_elements) ** 2 if method == "dense" else 600 * n_elements
+    check_memory(
+        batch * per_position,
+        f"natural_frequencies(method={method!r}) with {n_elements} elements and batches of "
+        f"{min(chunk, contacts.size)} positions (pass a smaller chunk, or method='banded')",
+    )
     supports = Supports(contact=None, hinge=hinge, contact_stiffness=contact_stiffness)
     bad = (contacts <= 0) | (contacts >= probe.length)
     if np.any(bad):

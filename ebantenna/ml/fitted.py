@@ -51,6 +51,10 @@ class FittedAttribute:
     Traceback (most recent call last):
     ...
     ValueError: coefs_ must hold float64 arrays of 2 dimension(s), got float64 of shape (3,)
+    >>> a.check(np.full((2, 3), np.nan))
+    Traceback (most recent call last):
+    ...
+    ValueError: coefs_ must hold finite numbers, got NaN or infinity
     """
 
     name: str
@@ -63,23 +67,33 @@ class FittedAttribute:
     def __post_init__(self):
         if self.kind not in KINDS:
             raise ValueError(f"kind must be one of {KINDS}, got {self.kind!r}")
-        if (self.dtype is not None or self.ndim is not None) and self.kind not in ("array",
-                                                                                 "arrays"):
+        if (self.dtype is not None or self.ndim is not None) and self.kind not in (
+            "array",
+            "arrays",
+        ):
             raise ValueError(f"dtype and ndim describe arrays; {self.name} is a {self.kind!r}")
 
     def check(self, array: np.ndarray) -> None:
-        """Raise ``ValueError`` unless ``array`` has the declared dtype and dimensions."""
-        dtype_ok = (array.dtype != object if self.dtype is None
-                    else array.dtype == np.dtype(self.dtype))
+        """Raise ``ValueError`` unless ``array`` has the declared dtype and dimensions.
+
+        Numbers must be finite too: a NaN or an infinity in a fitted array is a broken model
+        (every prediction through it is NaN, or one class for every row), never a fitted one.
+        """
+        dtype_ok = (
+            array.dtype != object if self.dtype is None else array.dtype == np.dtype(self.dtype)
+        )
         if not dtype_ok or (self.ndim is not None and array.ndim != self.ndim):
             dims = "any number of" if self.ndim is None else self.ndim
-            raise ValueError(f"{self.name} must hold {self.dtype or 'label'} arrays of {dims} "
-                             f"dimension(s), got {array.dtype} of shape {array.shape}")
+            raise ValueError(
+                f"{self.name} must hold {self.dtype or 'label'} arrays of {dims} "
+                f"dimension(s), got {array.dtype} of shape {array.shape}"
+            )
+        if array.dtype.kind in "fc" and not np.all(np.isfinite(array)):
+            raise ValueError(f"{self.name} must hold finite numbers, got NaN or infinity")
 
 
 #: What scikit-learn's input validation sets on every estimator fitted here.
 INPUT_ATTRIBUTES = (
     FittedAttribute("n_features_in_", "value"),
-    FittedAttribute("feature_names_in_", "array", dtype="object", ndim=1, optional=True,
-                    since=2),
+    FittedAttribute("feature_names_in_", "array", dtype="object", ndim=1, optional=True, since=2),
 )

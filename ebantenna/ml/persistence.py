@@ -6,26 +6,37 @@ file holds every fitted array under its attribute name (a list of arrays as ``na
 ``name1``, ...) and one JSON document with the estimator's class, its parameters and its other
 fitted values. Loading rebuilds the estimator from those alone, with
 ``numpy.load(..., allow_pickle=False)``: nothing is ever unpickled. Arrays are checked against
-their declared dtype and dimensions on the way out and on the way in, and a model holding an
-attribute that its schema does not declare is refused rather than saved incompletely.
+their declared dtype and dimensions, and for finite numbers, on the way out and on the way in, and
+a model holding an attribute that its schema does not declare is refused rather than saved
+incompletely.
+
+A file is read against that schema and nothing else: only declared attributes are set, each
+array checked, each value a plain JSON number, string, bool or list of them (no NaN); the
+parameters pass the estimator's own validation; a SHA-256 checksum over the arrays and the JSON
+catches a file changed after it was written; and the rebuilt model must predict a finite answer
+before it is handed out. Whatever is wrong ends in one ``ValueError`` naming the file.
 """
 
 from __future__ import annotations
 
+import hashlib
 import json
+import math
 import os
+import warnings
 from pathlib import Path
 
 import numpy as np
 
+from .._validate import open_npz, output_path
 from .mlp import MLPClassifier, MLPRegressor
 from .svc import SVC
 
 __all__ = ["save_model", "load_model", "FORMAT_VERSION"]
 
 #: Version of the file layout: 2 adds attributes that version 1 did not store (see each
-#: attribute's ``since``); files of version 1 still load.
-FORMAT_VERSION = 2
+#: attribute's ``since``), 3 a checksum; files of versions 1 and 2 still load, unchecksummed.
+FORMAT_VERSION = 3
 
 _CLASSES = {cls.__name__: cls for cls in (SVC, MLPClassifier, MLPRegressor)}
 
@@ -49,6 +60,35 @@ def _plain(value):
     raise TypeError(f"cannot store {type(value).__name__} value {value!r} as JSON")
 
 
+def _checksum(arrays: dict, meta: dict) -> str:
+    """SHA-256 over every array (name, dtype, shape, bytes) and the JSON without the checksum."""
+    h = hashlib.sha256()
+    for name in sorted(arrays):
+        a = np.ascontiguousarray(arrays[name])
+        h.update(f"{name}|{a.dtype.str}|{a.shape}|".encode())
+        h.update(a.tobytes())
+    rest = {k: v for k, v in meta.items() if k != "checksum_sha256"}
+    h.update(json.dumps(rest, sort_keys=True).encode())
+    return h.hexdigest()
+
+
+def _check_plain(name: str, value) -> None:
+    """Raise unless ``value`` is JSON as :func:`_plain` writes it, without NaN."""
+    if isinstance(value, float) and math.isnan(value):
+        raise ValueError(f"{name} must not be NaN")
+    if isinstance(value, list):
+        for v in value:
+            _check_plain(name, v)
+    elif isinstance(value, dict):
+        if set(value) not in ({"__tuple__"}, {"__dict__"}) or not isinstance(
+            next(iter(value.values())), list
+        ):
+            raise ValueError(f"{name} holds an object that no fitted value is: {value!r:.80}")
+        _check_plain(name, next(iter(value.values())))
+    elif not (value is None or isinstance(value, bool | int | float | str)):
+        raise ValueError(f"{name} must be a number, string, bool or list, got {value!r:.80}")
+
+
 def _unplain(value):
     if isinstance(value, dict) and "__tuple__" in value:
         return tuple(_unplain(v) for v in value["__tuple__"])
@@ -67,8 +107,7 @@ def _array_to_save(attr, value) -> np.ndarray:
             try:
                 value = value.astype(str)
             except (TypeError, ValueError) as exc:
-                raise TypeError(f"{attr.name} holds Python objects that cannot be "
-                                "stored") from exc
+                raise TypeError(f"{attr.name} holds Python objects that cannot be stored") from exc
         if attr.dtype == "object":
             attr.check(value.astype(object))
             return value
@@ -128,17 +167,19 @@ def save_model(model, path) -> Path:
     """
     name = type(model).__name__
     if name not in _CLASSES or type(model) is not _CLASSES[name]:
-        raise TypeError(f"model must be an SVC, MLPClassifier or MLPRegressor of ebantenna.ml, "
-                        f"got {type(model).__name__}")
+        raise TypeError(
+            f"model must be an SVC, MLPClassifier or MLPRegressor of ebantenna.ml, "
+            f"got {type(model).__name__}"
+        )
     if not hasattr(model, "n_features_in_"):
         raise ValueError("model must be fitted before it is saved")
     undeclared = _undeclared(model)
     if undeclared:
-        raise TypeError(f"model holds attributes that {name}._fitted_schema does not declare, "
-                        f"so they would not be saved: {', '.join(undeclared)}")
-    path = Path(os.fspath(path))
-    if path.suffix != ".npz":
-        path = path.with_name(path.name + ".npz")
+        raise TypeError(
+            f"model holds attributes that {name}._fitted_schema does not declare, "
+            f"so they would not be saved: {', '.join(undeclared)}"
+        )
+    path = output_path("path", path, ".npz")
     arrays, values, lengths = {}, {}, {}
     for attr in model._fitted_schema:
         if attr.kind == "rebuilt" or (attr.optional and not hasattr(model, attr.name)):
@@ -154,6 +195,7 @@ def save_model(model, path) -> Path:
                 arrays[f"{attr.name}{i}"] = _array_to_save(attr, a)
         else:
             values[attr.name] = _plain(value)
+            _check_plain(attr.name, values[attr.name])
     meta = {
         "format_version": FORMAT_VERSION,
         "class": name,
@@ -161,6 +203,7 @@ def save_model(model, path) -> Path:
         "attributes": values,
         "list_lengths": lengths,
     }
+    meta["checksum_sha256"] = _checksum(arrays, meta)
     arrays["__meta__"] = np.array(json.dumps(meta))
     np.savez(path, **arrays)
     return path
@@ -172,7 +215,7 @@ def load_model(path):
     Parameters
     ----------
     path : str or os.PathLike
-        A file written by :func:`save_model` (format version 1 or 2).
+        A file written by :func:`save_model` (format version 1, 2 or 3).
 
     Returns
     -------
@@ -181,44 +224,102 @@ def load_model(path):
 
     Raises
     ------
+    FileNotFoundError
+        If there is no such file.
     ValueError
-        If the file is not a model file of this package, is of an unknown version or class, or
-        lacks or misdescribes a fitted attribute.
+        Naming the file, if it is truncated or damaged, not a model file of this package, of an
+        unknown version or class, changed since it was written (checksum), or if a parameter or
+        fitted attribute is missing, undeclared, of the wrong type or shape, or not finite.
     """
     path = Path(os.fspath(path))
-    with np.load(path, allow_pickle=False) as data:
+    what = "a model file of ebantenna.ml"
+    with open_npz(path, what) as data:
         if "__meta__" not in data.files:
-            raise ValueError(f"{path} is not a model file of ebantenna.ml (no metadata)")
-        meta = json.loads(str(data["__meta__"]))
-        version = meta.get("format_version")
-        if version not in (1, FORMAT_VERSION):
-            raise ValueError(f"{path}: unsupported format version {version!r}")
-        name = meta["class"]
-        if name not in _CLASSES:
-            raise ValueError(f"{path}: unknown model class {name!r}")
-        cls = _CLASSES[name]
-        model = cls(**{k: _unplain(v) for k, v in meta["params"].items()})
-        stored = {"array": set(data.files) - {"__meta__"},
-                  "arrays": set(meta["list_lengths"]), "value": set(meta["attributes"])}
-        used = set()
-        for attr in cls._fitted_schema:
-            if attr.kind == "rebuilt":
-                continue
-            if attr.kind == "array" and attr.name in stored["array"]:
-                setattr(model, attr.name, _loaded_array(attr, data[attr.name], path))
-            elif attr.kind == "arrays" and attr.name in stored["arrays"]:
-                keys = [f"{attr.name}{i}" for i in range(meta["list_lengths"][attr.name])]
-                setattr(model, attr.name, [_loaded_array(attr, data[k], path) for k in keys])
-                used.update(keys)
-            elif attr.kind == "value" and attr.name in stored["value"]:
-                setattr(model, attr.name, _unplain(meta["attributes"][attr.name]))
-            elif not attr.optional and attr.since <= version:
-                raise ValueError(f"{path}: the fitted attribute {attr.name} of {name} is missing")
-            used.add(attr.name)
-        unknown = (stored["array"] - used) | ((stored["arrays"] | stored["value"]) - used)
-        if unknown:
-            raise ValueError(f"{path}: {name} declares no fitted attribute "
-                             f"{', '.join(sorted(unknown))}")
+            raise ValueError(f"{path} is not {what} (no metadata)")
+        arrays = {k: data[k] for k in data.files if k != "__meta__"}
+        text = data["__meta__"]
+    try:
+        return _rebuild(path, arrays, json.loads(str(text)))
+    except (KeyError, TypeError, AttributeError, ValueError) as exc:
+        if isinstance(exc, ValueError) and str(path) in str(exc):
+            raise
+        raise ValueError(f"{path} is not {what}: {type(exc).__name__}: {exc}") from None
+
+
+def _rebuild(path: Path, arrays: dict, meta):
+    """The model described by a file's arrays and JSON, checked at every step."""
+    if not isinstance(meta, dict):
+        raise ValueError("its metadata is not a JSON object")
+    version = meta.get("format_version")
+    if version not in (1, 2, FORMAT_VERSION):
+        raise ValueError(f"{path}: unsupported format version {version!r}")
+    if version >= 3 and meta.get("checksum_sha256") != _checksum(arrays, meta):
+        raise ValueError(f"{path}: checksum mismatch, the file is corrupt or was modified")
+    name = meta["class"]
+    if name not in _CLASSES:
+        raise ValueError(f"{path}: unknown model class {name!r}")
+    cls = _CLASSES[name]
+    params, attributes, lengths = meta["params"], meta["attributes"], meta["list_lengths"]
+    for key, group in (("params", params), ("attributes", attributes), ("list_lengths", lengths)):
+        if not isinstance(group, dict):
+            raise ValueError(f"{path}: {key} must be a JSON object")
+    for key, value in params.items():
+        _check_plain(f"parameter {key}", value)
+    model = cls(**{k: _unplain(v) for k, v in params.items()})
+    model._validate_params()  # scikit-learn's own parameter constraints
+    stored = {"array": set(arrays), "arrays": set(lengths), "value": set(attributes)}
+    used = set()
+    for attr in cls._fitted_schema:
+        if attr.kind == "rebuilt":
+            continue
+        if attr.kind == "array" and attr.name in stored["array"]:
+            setattr(model, attr.name, _loaded_array(attr, arrays[attr.name], path))
+        elif attr.kind == "arrays" and attr.name in stored["arrays"]:
+            count = lengths[attr.name]
+            if isinstance(count, bool) or not isinstance(count, int) or count < 0:
+                raise ValueError(f"{path}: list_lengths of {attr.name} must be a count")
+            keys = [f"{attr.name}{i}" for i in range(count)]
+            setattr(model, attr.name, [_loaded_array(attr, arrays[k], path) for k in keys])
+            used.update(keys)
+        elif attr.kind == "value" and attr.name in stored["value"]:
+            _check_plain(attr.name, attributes[attr.name])
+            setattr(model, attr.name, _unplain(attributes[attr.name]))
+        elif not attr.optional and attr.since <= version:
+            raise ValueError(f"{path}: the fitted attribute {attr.name} of {name} is missing")
+        used.add(attr.name)
+    unknown = (stored["array"] - used) | ((stored["arrays"] | stored["value"]) - used)
+    if unknown:
+        raise ValueError(
+            f"{path}: {name} declares no fitted attribute {', '.join(sorted(unknown))}"
+        )
     if hasattr(model, "_rebuild_fitted"):
         model._rebuild_fitted()
+    _check_predicts(model, path)
     return model
+
+
+#: The most input features a loaded model may declare (a bound for the prediction check).
+MAX_FEATURES = 1_000_000
+
+
+def _check_predicts(model, path: Path) -> None:
+    """The loaded model must answer one row of zeros, with finite scores (a shape check too)."""
+    n = model.n_features_in_
+    if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= MAX_FEATURES:
+        raise ValueError(f"{path}: n_features_in_ must be an int in [1, {MAX_FEATURES}], got {n!r}")
+    X = np.zeros((1, n))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # e.g. "X does not have valid feature names"
+        try:
+            y = np.asarray(model.predict(X))
+            scores = [
+                np.asarray(getattr(model, method)(X))
+                for method in ("decision_function", "predict_proba")
+                if hasattr(model, method)
+            ]
+        except (ValueError, TypeError, IndexError, KeyError, AttributeError) as exc:
+            raise ValueError(f"{path}: the stored model is inconsistent ({exc})") from None
+    if y.dtype.kind in "fc":
+        scores.append(y)
+    if any(not np.all(np.isfinite(s)) for s in scores):
+        raise ValueError(f"{path}: the stored model predicts NaN or infinity")

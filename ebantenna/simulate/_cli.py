@@ -16,6 +16,8 @@ def _hinge(value: str):
 
 def register(subparsers) -> None:
     """Add the ``simulate`` and ``dataset`` commands."""
+    from ..cli import seed_argument
+
     sim = subparsers.add_parser(
         "simulate",
         help="simulate one recording of the tip accelerometer",
@@ -28,7 +30,13 @@ def register(subparsers) -> None:
     where.add_argument("--contact", type=float, metavar="M", help="contact position (m)")
     sim.add_argument("--hinge", metavar="clamped|pinned|K", help="hinge (or rotational spring)")
     sim.add_argument("--material", metavar="NAME", help="touched material")
-    sim.add_argument("--seed", type=int, default=0, metavar="S", help="seed of random effects (0)")
+    sim.add_argument(
+        "--seed",
+        type=seed_argument,
+        default=0,
+        metavar="S",
+        help="seed of random effects, 0 ... 2**63 - 1 (0)",
+    )
     sim.add_argument("--out", required=True, metavar="FILE.npz", help="where to save the recording")
     sim.add_argument("--json", action="store_true", help="print one JSON object")
     sim.set_defaults(func=run_simulate)
@@ -40,7 +48,9 @@ def register(subparsers) -> None:
         "compressed .npz with metadata and a checksum; an identical existing file is reused.",
     )
     data.add_argument("--out", required=True, metavar="DIR", help="output directory")
-    data.add_argument("--seed", type=int, default=0, metavar="S", help="seed (0)")
+    data.add_argument(
+        "--seed", type=seed_argument, default=0, metavar="S", help="seed, 0 ... 2**63 - 1 (0)"
+    )
     data.add_argument("--quick", action="store_true", help="a small version for tests and docs")
     data.add_argument("--jobs", type=int, default=1, metavar="N", help="worker processes (1)")
     data.add_argument("--json", action="store_true", help="print one JSON object")
@@ -49,12 +59,12 @@ def register(subparsers) -> None:
 
 def run_simulate(args) -> int:
     """Run ``ebantenna simulate``."""
-    from pathlib import Path
-
+    from .._validate import output_path
     from ..cli import print_json
     from .scene import resolve_scene
     from .simulator import simulate
 
+    out = output_path("--out", args.out, ".npz")  # refused before any work is done
     scene = resolve_scene(args.scene)
     changes = {}
     if args.ratio is not None:
@@ -69,10 +79,8 @@ def run_simulate(args) -> int:
         changes["material"] = args.material
     if changes:
         scene = scene.with_(**changes)
-    if args.seed < 0:
-        raise ValueError(f"--seed must be >= 0, got {args.seed}")
     rec = simulate(scene, seed=args.seed)
-    out = rec.save(Path(args.out))
+    out = rec.save(out)
     summary = {
         "scene": scene.name,
         "contact": scene.contact,
@@ -104,13 +112,23 @@ def run_dataset(args) -> int:
 
     import numpy as np
 
-    from ..cli import print_json
+    from ..cli import interrupted, print_json
     from ..paper.data import build_dataset
 
-    if args.seed < 0:
-        raise ValueError(f"--seed must be >= 0, got {args.seed}")
     start = time.perf_counter()
-    data = build_dataset(args.out, seed=args.seed, quick=args.quick, n_jobs=args.jobs)
+    try:
+        data = build_dataset(args.out, seed=args.seed, quick=args.quick, n_jobs=args.jobs)
+    except KeyboardInterrupt as exc:
+        # an unfinished data set is not kept: a partial file would pass for the whole one
+        raise interrupted(
+            exc,
+            {
+                "path": None,
+                "seed": args.seed,
+                "quick": bool(args.quick),
+                "seconds": round(time.perf_counter() - start, 3),
+            },
+        ) from None
     summary = {
         "path": str(data.path),
         "signals": data.n_signals,

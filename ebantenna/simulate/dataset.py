@@ -16,22 +16,32 @@ The paper's own design, and the data set it recorded, are in :mod:`ebantenna.pap
 
 A data set is saved as a compressed ``.npz`` (accelerations as float32) with a JSON metadata
 record and a SHA-256 checksum of the arrays, and reused when the same configuration asks again.
+The configuration is the cache key: the file format, the package version, the seed, the design,
+every parameter of the scene (probe, supports, sampling, each effect's parameters) and every
+property of the touched materials, so that changed physics never reuses stale data. A cached file
+that is damaged, truncated, foreign or stale is rebuilt, and the log says why. The simulation
+runs through :mod:`joblib`, one task per material, so any joblib backend can run it: local
+processes, or a Dask cluster (``joblib.parallel_config(backend="dask")``) to grow a sweep beyond
+one machine without changing code.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
 import logging
 import os
+import re
 from dataclasses import dataclass, fields
 from pathlib import Path
 
 import numpy as np
+from joblib import Parallel, delayed
 
 from .. import __version__
 from .._progress import progress
-from .._validate import check_int, check_nonnegative, check_positive
+from .._validate import check_int, check_nonnegative, check_positive, open_npz
 from ..probe import material
 from .scene import Scene
 from .simulator import simulate_batch
@@ -41,7 +51,7 @@ __all__ = ["Dataset", "DatasetDesign", "build_dataset", "load_dataset", "dataset
 log = logging.getLogger(__name__)
 
 #: Format tag written into every data set file.
-FORMAT = "ebantenna-dataset-2"  # 2: the configuration records a DatasetDesign
+FORMAT = "ebantenna-dataset-3"  # 2: a DatasetDesign; 3: package version and materials in the key
 _ARRAYS = (
     "ax",
     "az",
@@ -123,8 +133,10 @@ class DatasetDesign:
 
     def to_dict(self) -> dict:
         """The design as plain JSON values."""
-        return {f.name: list(v) if isinstance(v := getattr(self, f.name), tuple) else v
-                for f in fields(self)}
+        return {
+            f.name: list(v) if isinstance(v := getattr(self, f.name), tuple) else v
+            for f in fields(self)
+        }
 
 
 @dataclass(frozen=True, eq=False)
@@ -243,7 +255,57 @@ def dataset_plan(scene: Scene, design: DatasetDesign, seed: int = 0) -> dict:
 
 
 def _config(scene: Scene, design: DatasetDesign, seed: int) -> dict:
-    return {"format": FORMAT, "seed": seed, "scene": scene.to_dict(), "design": design.to_dict()}
+    """The cache key: everything the arrays depend on, as plain JSON values."""
+    config = {
+        "format": FORMAT,
+        "ebantenna_version": __version__,
+        "seed": seed,
+        "scene": scene.to_dict(),
+        "design": design.to_dict(),
+        "materials": {name: dataclasses.asdict(material(name)) for name in design.materials},
+    }
+    return json.loads(json.dumps(config))  # tuples as lists, as they come back from the file
+
+
+def _stale(stored, config: dict) -> str | None:
+    """Why a cached file's configuration is not ``config`` (None when it is)."""
+    if not isinstance(stored, dict):
+        return "it records no configuration"
+    changed = sorted(k for k in config.keys() | stored.keys() if stored.get(k) != config.get(k))
+    if not changed:
+        return None
+    if "scene" in changed and isinstance(stored.get("scene"), dict):
+        scene = config["scene"]
+        changed.remove("scene")
+        changed += [
+            f"scene.{k}"
+            for k in sorted(scene.keys() | stored["scene"].keys())
+            if stored["scene"].get(k) != scene.get(k)
+        ]
+    return f"configuration changed ({', '.join(changed)})"
+
+
+def _remove_leftovers(path: Path) -> None:
+    """Delete temporary files of ``path`` left by builds whose process no longer runs."""
+    pattern = re.compile(re.escape(path.name) + r"\.tmp(\d+)\.npz")
+    for tmp in path.parent.glob(path.name + ".tmp*.npz"):
+        match = pattern.fullmatch(tmp.name)
+        if match is None or _running(int(match.group(1))):
+            continue  # another build still writing
+        log.info("removing %s, left by an interrupted build", tmp)
+        tmp.unlink(missing_ok=True)
+
+
+def _running(pid: int) -> bool:
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OverflowError, OSError):
+        return True  # someone else's process, or cannot tell: leave its file alone
+    return True
 
 
 def _simulate_material(scene: Scene, name: str, plan: dict):
@@ -266,7 +328,7 @@ def build_dataset(
     design: DatasetDesign,
     seed: int = 0,
     *,
-    n_jobs: int = 1,
+    n_jobs: int | None = None,
     show_progress=None,
 ) -> Dataset:
     """Build (or reuse) the data set of ``design`` recorded in ``scene``, in ``out_dir``.
@@ -283,8 +345,10 @@ def build_dataset(
         Materials, contact positions, repetitions and their scatter.
     seed : int
         Seed of everything random in the data set.
-    n_jobs : int
-        Worker processes (one material per task, :mod:`joblib`); the result does not depend on it.
+    n_jobs : int, optional
+        Workers (one material per task, :mod:`joblib`), at most one per material; default: the
+        active ``joblib.parallel_config`` (one process outside any). The result does not depend
+        on it, nor on the backend.
     show_progress : bool, optional
         Force the progress bar on or off (default: on a terminal).
 
@@ -292,8 +356,9 @@ def build_dataset(
     -------
     Dataset
         Also saved as ``<scene name>-<design name>-seed<seed>.npz``; a file there with the same
-        configuration (scene, design, seed) and a valid checksum is loaded instead of simulated
-        again.
+        configuration (format, package version, every scene parameter, design, materials, seed)
+        and a valid checksum is loaded instead of simulated again. A damaged or stale file is
+        rebuilt (logged at WARNING with the reason). An interruption leaves no temporary file.
 
     Examples
     --------
@@ -306,7 +371,8 @@ def build_dataset(
     ((12, 1000), 'paper-small-seed1.npz')
     """
     seed = check_int("seed", seed, minimum=0)
-    n_jobs = check_int("n_jobs", n_jobs, minimum=1)
+    if n_jobs is not None:
+        n_jobs = min(check_int("n_jobs", n_jobs, minimum=1), len(design.materials))
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
     if not isinstance(design, DatasetDesign):
@@ -314,31 +380,28 @@ def build_dataset(
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     path = out_dir / f"{scene.name}-{design.name}-seed{seed}.npz"
+    _remove_leftovers(path)
     config = _config(scene, design, seed)
-    if path.is_file():
+    if path.exists():
         try:
             cached = load_dataset(path)
         except ValueError as exc:
             log.warning("rebuilding %s: %s", path, exc)
         else:
-            if cached.metadata.get("config") == json.loads(json.dumps(config)):
+            why = _stale(cached.metadata.get("config"), config)
+            if why is None:
                 log.info("reusing %s", path)
                 return cached
-            log.info("rebuilding %s: configuration changed", path)
+            log.warning("rebuilding %s: %s", path, why)
 
     plan = dataset_plan(scene, design, seed)
     n = plan["contact"].size
     ax = np.empty((n, scene.n_samples), dtype=np.float32)
     az = np.empty_like(ax)
     names = design.materials
-    if n_jobs == 1:
-        parts = (_simulate_material(scene, name, plan) for name in names)
-    else:
-        from joblib import Parallel, delayed
-
-        parts = Parallel(n_jobs=n_jobs, return_as="generator")(
-            delayed(_simulate_material)(scene, name, plan) for name in names
-        )
+    parts = Parallel(n_jobs=n_jobs, return_as="generator")(
+        delayed(_simulate_material)(scene, name, plan) for name in names
+    )
     for rows, bx, bz in progress(parts, total=len(names), desc="dataset", enabled=show_progress):
         ax[rows], az[rows] = bx, bz
     arrays = dict(plan, ax=ax, az=az)
@@ -349,11 +412,16 @@ def build_dataset(
         "units": {"ax": "m/s^2", "az": "m/s^2", "contact": "m", "sweep_speed": "rad/s", "fs": "Hz"},
         "checksum_sha256": _checksum(arrays, scene.fs),
     }
+    # Written under a name of its own, then renamed: a reader never sees half a file, and
+    # concurrent builds into one folder each write their own. Interrupted, it is removed.
     tmp = path.with_name(path.name + f".tmp{os.getpid()}.npz")
-    np.savez_compressed(
-        tmp, fs=np.float64(scene.fs), metadata=np.array(json.dumps(metadata)), **arrays
-    )
-    os.replace(tmp, path)
+    try:
+        np.savez_compressed(
+            tmp, fs=np.float64(scene.fs), metadata=np.array(json.dumps(metadata)), **arrays
+        )
+        os.replace(tmp, path)
+    finally:
+        tmp.unlink(missing_ok=True)
     log.info("wrote %s (%d signals)", path, n)
     for a in arrays.values():
         a.setflags(write=False)
@@ -365,19 +433,31 @@ def load_dataset(path) -> Dataset:
 
     Raises
     ------
+    FileNotFoundError
+        If there is no such file.
     ValueError
-        If the file is not such a data set or its arrays do not match the checksum.
+        Naming the file, if it is truncated, damaged, not such a data set, of another format, or
+        its arrays do not match the checksum.
     """
     path = Path(path)
-    with np.load(path, allow_pickle=False) as data:
+    what = "an ebantenna data set"
+    with open_npz(path, what) as data:
         missing = [k for k in (*_ARRAYS, "fs", "metadata") if k not in data]
         if missing:
-            raise ValueError(f"{path} is not an ebantenna data set (missing {', '.join(missing)})")
+            raise ValueError(f"{path} is not {what} (missing {', '.join(missing)})")
         arrays = {k: data[k] for k in _ARRAYS}
-        fs = float(data["fs"])
-        metadata = json.loads(str(data["metadata"]))
-    if metadata.get("config", {}).get("format") != FORMAT:
-        raise ValueError(f"{path}: unknown data set format")
+        fs_array, text = data["fs"], data["metadata"]
+    try:
+        fs = float(fs_array)
+        metadata = json.loads(str(text))
+    except (TypeError, ValueError) as exc:  # a foreign file with arrays of these names
+        raise ValueError(f"{path} is not {what}: {exc}") from None
+    if not isinstance(metadata, dict):
+        raise ValueError(f"{path} is not {what}: its metadata is not a JSON object")
+    config = metadata.get("config")
+    fmt = config.get("format") if isinstance(config, dict) else None
+    if fmt != FORMAT:
+        raise ValueError(f"{path}: data set format {fmt!r}, this version reads {FORMAT!r}")
     if _checksum(arrays, fs) != metadata.get("checksum_sha256"):
         raise ValueError(f"{path}: checksum mismatch, the file is corrupt or was modified")
     for a in arrays.values():

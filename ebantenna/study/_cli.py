@@ -5,6 +5,8 @@ from __future__ import annotations
 
 def register(subparsers) -> None:
     """Add the ``reproduce`` command."""
+    from ..cli import seed_argument
+
     rep = subparsers.add_parser(
         "reproduce",
         help="the whole study: figures and a report, the paper beside its reproduction",
@@ -12,7 +14,12 @@ def register(subparsers) -> None:
     )
     rep.add_argument("--out", default="ebantenna-output", metavar="DIR", help="output directory")
     rep.add_argument("--quick", action="store_true", help="a reduced run for tests and docs")
-    rep.add_argument("--seed", type=int, default=0, help="seed of the data set and the models")
+    rep.add_argument(
+        "--seed",
+        type=seed_argument,
+        default=0,
+        help="seed of the data set and the models, 0 ... 2**63 - 1 (0)",
+    )
     rep.add_argument("--jobs", type=int, default=-1, help="parallel workers (-1: all cores)")
     rep.add_argument("--cache", metavar="DIR", help="data set cache (default ~/.cache/ebantenna)")
     rep.add_argument("--json", action="store_true", help="print the summary as one JSON object")
@@ -21,18 +28,24 @@ def register(subparsers) -> None:
 
 def run_reproduce(args) -> int:
     """Run ``ebantenna reproduce``."""
-    from ..cli import print_json
+    from ..cli import interrupted, print_json
     from ..paper import printed
     from .reproduce import reproduce
 
-    result = reproduce(
-        args.out,
-        quick=args.quick,
-        seed=args.seed,
-        n_jobs=args.jobs,
-        cache_dir=args.cache,
-        show_progress=None if not args.json else False,
-    )
+    try:
+        result = reproduce(
+            args.out,
+            quick=args.quick,
+            seed=args.seed,
+            n_jobs=args.jobs,
+            cache_dir=args.cache,
+            show_progress=None if not args.json else False,
+        )
+    except KeyboardInterrupt as exc:
+        # what is complete stays: the cached data set (written whole or not at all), the figures
+        # written so far; the report and summary.json are not written
+        partial = {"out": None, "quick": bool(args.quick), "seed": args.seed}
+        raise interrupted(exc, partial) from None
     s = result.summary
     if args.json:
         print_json(s)

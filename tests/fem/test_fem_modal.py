@@ -15,7 +15,14 @@ from ebantenna.fem import (
     modal_analysis,
     natural_frequencies,
 )
-from ebantenna.fem.assembly import apply_supports, assemble, beam_mesh
+from ebantenna.fem.assembly import (
+    MAX_ELEMENTS,
+    ROUNDOFF_RTOL,
+    apply_supports,
+    assemble,
+    beam_mesh,
+    roundoff_error,
+)
 from ebantenna.fem.modal import strain_energy
 
 PROBE = Probe()
@@ -68,6 +75,37 @@ def test_2048_elements_stay_accurate_where_a_naive_eigh_does_not():
     # The textbook scipy.linalg.eigh(K, M) loses the low modes to rounding on this mesh.
     naive = modal_analysis(PROBE, sup, n_elements=1024, n_modes=1, solver="naive")
     assert abs(rel_error(naive)[0]) > 1e-4
+
+
+@pytest.mark.parametrize(
+    "contact, hinge", [(0.1 * L, "clamped"), (0.5 * L, "pinned"), (None, "clamped")]
+)
+def test_the_roundoff_estimate_bounds_the_error_at_the_finest_mesh_allowed(contact, hinge):
+    # The discretisation error at this mesh is ~ (beta h)^4 < 1e-14: what is left is round-off,
+    # which roundoff_error promises to bound.
+    res = modal_analysis(PROBE, Supports(contact, hinge), n_elements=MAX_ELEMENTS, n_modes=1)
+    err = abs(rel_error(res, hinge)[0])
+    assert err <= roundoff_error(MAX_ELEMENTS) <= ROUNDOFF_RTOL, err
+
+
+def test_a_mesh_finer_than_double_precision_resolves_is_refused_naming_the_limit():
+    with pytest.raises(ValueError, match=f"n_elements must be <= {MAX_ELEMENTS}, got 16384"):
+        modal_analysis(PROBE, Supports(0.5 * L), n_elements=16384)
+    with pytest.raises(ValueError, match="condition number grows like N"):
+        natural_frequencies(PROBE, [0.2], n_elements=MAX_ELEMENTS + 1)
+    with pytest.raises(ValueError, match=f"<= {MAX_ELEMENTS}"):  # before any memory is spent
+        beam_mesh(L, None, 10**9)
+    # the estimate grows like N^8: a factor 2 in elements is a factor 256 in error
+    assert roundoff_error(2 * MAX_ELEMENTS) == pytest.approx(256 * roundoff_error(MAX_ELEMENTS))
+
+
+@pytest.mark.parametrize("n_modes", [0, 4, 50])
+def test_n_modes_beyond_the_free_dofs_is_refused(n_modes):
+    # 2 elements, clamped hinge, rigid contact: 3 free DOFs, so 3 modes at most
+    with pytest.raises(ValueError, match="n_modes must be"):
+        natural_frequencies(PROBE, [0.1], n_elements=2, n_modes=n_modes)
+    with pytest.raises(ValueError, match="n_modes must be"):
+        modal_analysis(PROBE, Supports(0.1), n_elements=2, n_modes=n_modes)
 
 
 def test_sparse_and_dense_solvers_agree():
@@ -260,3 +298,20 @@ def test_overhang_fraction_and_projection_work_on_sparse_meshes_too():
     u[0::2], u[1::2] = dense.nodes, 1.0  # rigid rotation about the hinge, 1 rad/s
     q_dense, q_sparse = dense.modal_coordinates(u), sparse.modal_coordinates(u)
     np.testing.assert_allclose(np.abs(q_dense), np.abs(q_sparse), rtol=1e-8)
+
+
+@pytest.mark.parametrize("hinge", ["clamped", "pinned"])
+@pytest.mark.parametrize("contact", [1e-100, 1e-300])
+def test_exact_contact_at_the_hinge_tends_to_the_cantilever(contact, hinge):
+    # A pin at the hinge itself leaves a cantilever (beta L = 1.8751, 4.6941, 7.8548) whatever
+    # the hinge: the terms divided by u^3 are summed term by term, never 0 / 0.
+    near = exact_frequencies(PROBE, contact, hinge=hinge, n_modes=3)
+    cantilever = exact_frequencies(PROBE, None, hinge="clamped", n_modes=3)
+    np.testing.assert_allclose(near, cantilever, rtol=1e-12)
+
+
+def test_a_sweep_that_cannot_fit_in_memory_is_refused_before_allocating():
+    # 10^6 positions x (2 x 3000)^2 x 32 bytes = 1.15e15 bytes: more than any machine's memory
+    contacts = np.linspace(0.01, 0.39, 10**6)
+    with pytest.raises(ValueError, match=r"smaller chunk.*needs about 1.15e\+06 GB"):
+        natural_frequencies(PROBE, contacts, n_elements=3000, method="dense", chunk=10**6)

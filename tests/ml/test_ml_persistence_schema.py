@@ -1,13 +1,14 @@
 """Each estimator's declared fitted schema is complete, and saving follows it exactly."""
 
 import json
+import os
 import warnings
 
 import numpy as np
 import pytest
 from sklearn.exceptions import ConvergenceWarning
 
-from ebantenna.ml import SVC, MLPClassifier, MLPRegressor
+from ebantenna.ml import SVC, MLPClassifier, MLPRegressor, persistence
 from ebantenna.ml.persistence import load_model, save_model
 
 rng = np.random.default_rng(5)
@@ -104,13 +105,17 @@ def test_feature_names_are_kept_as_objects(tmp_path):
     assert again.feature_names_in_.tolist() == ["f0", "f1", "f2", "f3"]
 
 
-def _rewrite(path, meta_change, drop=()):
+def _rewrite(path, meta_change=None, drop=(), checksum=True, **array_changes):
+    """Change a saved file as someone who knows the format would: checksum recomputed."""
     with np.load(path, allow_pickle=False) as data:
         arrays = {k: data[k] for k in data.files if k not in drop}
-    meta = json.loads(str(arrays["__meta__"]))
-    meta_change(meta)
-    arrays["__meta__"] = np.array(json.dumps(meta))
-    np.savez(path, **arrays)
+    meta = json.loads(str(arrays.pop("__meta__")))
+    if meta_change is not None:
+        meta_change(meta)
+    arrays.update(array_changes)
+    if checksum:
+        meta["checksum_sha256"] = persistence._checksum(arrays, meta)
+    np.savez(path, __meta__=np.array(json.dumps(meta)), **arrays)
 
 
 def test_a_version_1_file_still_loads(tmp_path):
@@ -130,13 +135,68 @@ def test_a_version_1_file_still_loads(tmp_path):
 def test_a_file_that_misdescribes_an_attribute_is_refused(tmp_path):
     model = _fitted(SVC(), LABELS)
     path = save_model(model, tmp_path / "m")
-    with np.load(path, allow_pickle=False) as data:
-        arrays = {k: data[k] for k in data.files}
-    arrays["support_"] = arrays["support_"].astype(np.int64)
-    np.savez(path, **arrays)
+    _rewrite(path, support_=model.support_.astype(np.int64))
     with pytest.raises(ValueError, match="support_ must hold int32 arrays"):
         load_model(path)
     path = save_model(model, tmp_path / "m")
     _rewrite(path, lambda meta: meta["attributes"].pop("fit_status_"))
     with pytest.raises(ValueError, match="fit_status_ of SVC is missing"):
         load_model(path)
+
+
+def _saved_svc(tmp_path):
+    model = _fitted(SVC(), LABELS)
+    return model, save_model(model, tmp_path / "m")
+
+
+def test_an_edited_file_fails_its_checksum(tmp_path):
+    model, path = _saved_svc(tmp_path)
+    _rewrite(path, checksum=False, dual_coef_=model.dual_coef_ * 2)
+    with pytest.raises(ValueError, match="m.npz: checksum mismatch"):
+        load_model(path)
+
+
+def test_a_nan_weight_is_refused_even_with_a_valid_checksum(tmp_path):
+    model, path = _saved_svc(tmp_path)
+    bad = model.dual_coef_.copy()
+    bad[0, 0] = np.nan
+    _rewrite(path, dual_coef_=bad)
+    with pytest.raises(ValueError, match="dual_coef_ must hold finite numbers"):
+        load_model(path)
+    with pytest.raises(ValueError, match="finite"):  # nor is such a model saved
+        model.dual_coef_ = bad
+        save_model(model, tmp_path / "again")
+
+
+@pytest.mark.parametrize(
+    "change, match",
+    [
+        (lambda m: m["attributes"].update(predict="x"), "declares no fitted attribute predict"),
+        (lambda m: m["params"].update(predict="x"), "unexpected keyword argument 'predict'"),
+        (lambda m: m["params"].update(kernel="bogus"), "kernel"),
+        (lambda m: m["params"].update(C=float("nan")), "parameter C must not be NaN"),
+        (lambda m: m["attributes"].update(fit_status_={"evil": 1}), "fit_status_ holds an obj"),
+        (lambda m: m["attributes"].update(n_features_in_=7), "inconsistent"),
+        (lambda m: m["attributes"].update(n_features_in_=10**12), "n_features_in_ must be"),
+        (lambda m: m.pop("class"), "KeyError"),
+        (lambda m: m.update(format_version=99), "unsupported format version 99"),
+    ],
+)
+def test_a_tampered_file_is_refused_naming_what_is_wrong(tmp_path, change, match):
+    _, path = _saved_svc(tmp_path)
+    _rewrite(path, change)
+    with pytest.raises(ValueError, match=match) as exc:
+        load_model(path)
+    assert str(path) in str(exc.value)
+
+
+def test_a_truncated_or_foreign_file_is_one_clear_error(tmp_path):
+    _, path = _saved_svc(tmp_path)
+    os.truncate(path, path.stat().st_size // 2)
+    with pytest.raises(ValueError, match="m.npz is not a model file.*truncated or damaged"):
+        load_model(path)
+    path.write_text("C=1.0")
+    with pytest.raises(ValueError, match="not an .npz archive"):
+        load_model(path)
+    with pytest.raises(ValueError, match="must name a file"):
+        save_model(_fitted(SVC(), LABELS), tmp_path)

@@ -33,6 +33,9 @@ __all__ = ["Scene", "builtin_scene", "scene_names", "load_scene", "resolve_scene
 
 _ORDER = {name: i for i, name in enumerate(effect_names())}
 
+#: Most samples one simulated recording may have.
+MAX_SAMPLES = 10_000_000
+
 
 def _normalise_effects(effects) -> tuple:
     if isinstance(effects, str | bytes):
@@ -152,6 +155,12 @@ class Scene:
         if self.n_samples < 2:
             raise ValueError(
                 f"duration * fs must give at least 2 samples, got {self.duration!r} s at {fs:g} Hz"
+            )
+        if self.n_samples > MAX_SAMPLES:
+            raise ValueError(
+                f"duration * fs must give at most {MAX_SAMPLES:.0e} samples (a recording of "
+                f"{8 * MAX_SAMPLES / 1e6:g} MB per axis), got duration={self.duration!r} s at "
+                f"{fs:g} Hz"
             )
         put("sweep_speed", check_positive("sweep_speed", self.sweep_speed))
         put("tilt_ratio", check_nonnegative("tilt_ratio", self.tilt_ratio))

@@ -34,6 +34,9 @@ __all__ = ["ModalTerms", "modal_terms", "simulate", "simulate_batch"]
 
 log = logging.getLogger(__name__)
 
+#: Largest seed: seeds are stored as 64-bit integers (in data sets too).
+MAX_SEED = 2**63 - 1
+
 
 @dataclass(frozen=True, eq=False)
 class ModalTerms:
@@ -327,7 +330,7 @@ def simulate_batch(
         raise ValueError("sweep_speed must be > 0 and tilt_ratio >= 0 for every signal")
     seed_array = np.asarray(seeds)
     if seed_array.ndim == 0:
-        seed_array = np.full(n, check_int("seeds", seeds, minimum=0), dtype=np.int64)
+        seed_array = np.full(n, check_int("seeds", seeds, minimum=0, maximum=MAX_SEED), np.int64)
     if seed_array.shape != (n,) or not np.issubdtype(seed_array.dtype, np.integer):
         raise ValueError(f"seeds must be an int or {n} ints, got {seeds!r}")
     if np.any(seed_array < 0):
@@ -456,7 +459,7 @@ def simulate(scene: Scene, seed: int = 0) -> Recording:
     >>> rec.metadata["modes_x_hz"][:4]  # the probe's and the brass rod's coupled modes
     [32.82, 92.58, 185.89, 372.96]
     """
-    seed = check_int("seed", seed, minimum=0)
+    seed = check_int("seed", seed, minimum=0, maximum=MAX_SEED)
     t, ax, az, x, z = simulate_batch(scene, seeds=seed)
     metadata = {
         "source": "ebantenna.simulate",

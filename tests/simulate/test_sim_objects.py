@@ -184,3 +184,11 @@ def test_sensor_drift_is_a_gain_and_an_offset_per_recording():
     assert np.allclose(a.az, gain[1] * b.az + offset[1], rtol=4e-16, atol=4e-16 * 10)
     # The datasheet's drifts over 70 degC, scaled to the session's 3 degC: 1.5 and 2.5 mg.
     assert np.allclose(drift.offset_std() / 9.80665, [35e-3 * 3 / 70, 60e-3 * 3 / 70])
+
+
+def test_seeds_beyond_64_bits_are_refused_by_name():
+    scene = builtin_scene("ideal")
+    with pytest.raises(ValueError, match="seed"):
+        simulate(scene, seed=2**70)
+    with pytest.raises(ValueError, match="seeds"):
+        simulate_batch(scene, seeds=2**63)

@@ -35,6 +35,7 @@ def test_with_replaces_and_validates():
     "changes, message",
     [
         ({"duration": -1.0}, "duration must be > 0"),
+        ({"duration": 1e9}, "at most 1e\\+07 samples"),
         ({"fs": 900.0}, "fs must be at least twice max_frequency"),
         ({"effects": ("gravity", "wobble")}, "unknown effect 'wobble'; valid effects: structural"),
         ({"effects": ("gravity", "gravity")}, "listed twice"),

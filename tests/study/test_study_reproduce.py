@@ -135,7 +135,9 @@ def test_material_accuracies_are_fractions_on_every_split(quick_study):
               *m["ablation"].values()]
     if m["equivalent_pair_accuracy"] is not None:
         values.append(m["equivalent_pair_accuracy"])
+    values.append(m["contact_lift_off_share"])  # the paper scene has the rod's modes
     assert all(0.0 <= v <= 1.0 for v in values)
+    assert "A contact that only pushes" in result.report_markdown.read_text()
 
 
 def test_hinge_fit_and_run_time_table_are_reported(quick_study):

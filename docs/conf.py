@@ -60,7 +60,9 @@ autodoc_default_options = {
     "inherited-members": False,
     "show-inheritance": False,
     # scikit-learn's metadata-routing helpers, generated on every estimator: not ours to document
-    "exclude-members": "set_fit_request,set_score_request,set_predict_request,set_output",
+    "exclude-members": (
+        "set_fit_request,set_partial_fit_request,set_score_request,set_predict_request,set_output"
+    ),
 }
 autodoc_typehints = "none"  # numpydoc docstrings already say the types, with units
 numpydoc_show_class_members = False

@@ -119,9 +119,14 @@ def run(args: argparse.Namespace) -> int:
         except StreamStalledError as exc:
             stalled = exc
     except (KeyboardInterrupt, SignalReceived) as exc:
-        # search_and_record has released the servos on its way out; no recording is complete
+        # search_and_record has released the servos on its way out; no recording is complete,
+        # but what the window held after a contact is kept, marked as interrupted
+        recording = getattr(exc, "recording", None)
+        saved = None if recording is None else recording.save(out or "acquire-partial.npz")
         partial = {"mode": "simulated" if args.simulated else "hardware", **labels,
-                   "contact_detected": None, "out": None,
+                   "contact_detected": True if recording is not None else None,
+                   "samples": None if recording is None else recording.n_samples,
+                   "out": None if saved is None else str(saved),
                    "servos_released": getattr(exc, "servos_released", None)}
         if isinstance(exc, SignalReceived):  # SIGTERM or SIGHUP, as the servo guard saw it
             exc = Terminated(exc.signum)

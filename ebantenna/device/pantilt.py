@@ -27,7 +27,7 @@ from ..recording import Recording
 from .i2c import I2CError
 from .mpu6050 import MPU6050
 from .pca9685 import PCA9685
-from .safety import ServoGuard
+from .safety import ServoGuard, SignalReceived
 from .servo import Servo, ServoCalibration
 from .watchdog import check_watchdog, stop_quietly
 
@@ -420,6 +420,11 @@ def search_and_record(mpu: MPU6050, pantilt: PanTilt, config: SearchConfig | Non
                 window = None if trigger is None else (max(trigger - pre, 0), trigger + post)
                 check_watchdog(mpu, config.watchdog, window=window, metadata=labels)
                 clock.sleep(config.poll_interval)
+        except (KeyboardInterrupt, SignalReceived) as exc:
+            # Interrupted after the contact: hand back what the window holds so far, marked.
+            if trigger is not None:
+                exc.recording = _partial(mpu, max(trigger - pre, 0), trigger + post, labels)
+            raise
         finally:
             stop_quietly(mpu)
     retries = mpu.device.retries + pantilt.pca.device.retries
@@ -446,6 +451,18 @@ def search_and_record(mpu: MPU6050, pantilt: PanTilt, config: SearchConfig | Non
     lost = recording.metadata["samples_lost"]
     return AcquisitionResult(True, stopped, recording, lost, mpu.samples_lost, trigger / fs,
                              angles, retries, guard.released, report)
+
+
+def _partial(mpu, first: int, stop: int, labels):
+    """The samples of the window ``[first, stop)`` kept so far, as a recording marked
+    ``interrupted``; None when none were kept."""
+    stop = min(stop, mpu.stream_position)
+    if stop <= first:
+        return None
+    try:
+        return mpu.to_recording(first, stop, metadata={**(labels or {}), "interrupted": True})
+    except ValueError:  # no sample of the window was kept
+        return None
 
 
 def _reached_by(commands, when: float) -> tuple[float, float] | None:

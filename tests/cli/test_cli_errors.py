@@ -7,6 +7,7 @@ import subprocess
 import sys
 import textwrap
 
+import numpy as np
 import pytest
 
 from ebantenna import cli
@@ -194,3 +195,24 @@ def test_a_hang_up_seen_by_the_servo_guard_ends_acquire_in_one_line(capsys, monk
     captured = capsys.readouterr()
     assert captured.err == "ebantenna acquire: interrupted\n"
     assert json.loads(captured.out)["interrupted"] == "SIGHUP"
+
+
+def test_acquire_keeps_the_window_recorded_before_an_interrupt(tmp_path, capsys, monkeypatch):
+    import ebantenna.device.pantilt
+    from ebantenna.recording import Recording
+
+    part = Recording(np.arange(5) / 1000.0, np.ones(5), np.zeros(5), 1000.0, {"interrupted": True})
+
+    def interrupted_after_contact(*args, **kwargs):
+        exc = KeyboardInterrupt()
+        exc.recording = part  # what search_and_record attaches after a contact
+        raise exc
+
+    monkeypatch.setattr(ebantenna.device.pantilt, "search_and_record", interrupted_after_contact)
+    out = tmp_path / "strike"
+    with pytest.raises(SystemExit) as exc:
+        main(["acquire", "--simulated", "--out", str(out), "--json"])
+    assert exc.value.code == 130
+    report = json.loads(capsys.readouterr().out)
+    assert report["out"] == str(out) + ".npz" and report["samples"] == 5
+    assert Recording.load(report["out"]).metadata["interrupted"] is True

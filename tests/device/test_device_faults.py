@@ -291,3 +291,45 @@ def test_a_signal_during_the_release_is_raised_after_it():
             unit.move(100.0, 90.0)
     assert guard.released and not rig.pca.outputs_enabled()
     assert signal.getsignal(signal.SIGTERM) is before
+
+
+class SignalInWindow(VirtualClock):
+    """Sends SIGINT to this process in the first sleep once ``mpu`` has streamed ``at`` samples."""
+
+    def __init__(self, at):
+        super().__init__()
+        self.at, self.mpu, self.sent = at, None, False
+
+    def sleep(self, seconds):
+        stream = None if self.mpu is None else self.mpu.stream
+        if not self.sent and stream is not None and self.mpu.stream_position > self.at:
+            self.sent = True
+            os.kill(os.getpid(), signal.SIGINT)
+        super().sleep(seconds)
+
+
+def test_an_interrupt_after_the_contact_hands_back_the_window_so_far():
+    from ebantenna.device import search_and_record
+
+    def run(clock=None):
+        rig = SimulatedRig.for_contact(scene="ideal", material="brass", ratio=0.5, seed=2)
+        if clock is not None:
+            rig.bus.clock = rig.mpu.clock = rig.pca.clock = rig.clock = clock
+        unit = PanTilt(PCA9685(rig.bus, clock=rig.clock))
+        unit.initialize()
+        mpu = MPU6050(rig.bus, clock=rig.clock)
+        if clock is not None:
+            clock.mpu = mpu
+        mpu.initialize()
+        return search_and_record(mpu, unit)
+
+    whole = run()
+    assert whole.contact_detected
+    # The same strike, with SIGINT 0.2 s into the 1 s window after the contact.
+    clock = SignalInWindow(round(whole.contact_time * 1000.0) + 200)
+    with pytest.raises(KeyboardInterrupt) as info:
+        run(clock)
+    part = info.value.recording
+    assert clock.sent and part is not None and part.metadata["interrupted"] is True
+    assert 0 < part.n_samples < whole.recording.n_samples
+    assert info.value.servos_released is True

@@ -34,8 +34,6 @@ __all__ = ["ModalTerms", "modal_terms", "simulate", "simulate_batch"]
 
 log = logging.getLogger(__name__)
 
-#: Largest seed: seeds are stored as 64-bit integers (in data sets too).
-MAX_SEED = 2**63 - 1
 
 
 @dataclass(frozen=True, eq=False)
@@ -188,6 +186,16 @@ def _object_modes(scene: Scene, contacts, materials, preloads, show_progress):
     return modes, inverse
 
 
+def _seeds(seeds, n: int) -> list[int]:
+    """``n`` seeds as Python ints >= 0 (any size: they enter a SeedSequence), from one or ``n``."""
+    if isinstance(seeds, int | np.integer) and not isinstance(seeds, bool):
+        return [check_int("seeds", seeds, minimum=0)] * n
+    values = list(np.asarray(seeds, dtype=object).ravel()) if np.ndim(seeds) == 1 else None
+    if values is None or len(values) != n:
+        raise ValueError(f"seeds must be an int or {n} ints, got {seeds!r}")
+    return [check_int("seeds", v, minimum=0) for v in values]
+
+
 def _terms(scene: Scene, contacts, materials, speeds, tilts, preloads=None, show_progress=None):
     """ModalTerms for X and Z of every signal (``preloads``: each strike's, with object modes)."""
     probe = scene.probe
@@ -328,16 +336,10 @@ def simulate_batch(
     )
     if np.any(speeds <= 0) or np.any(tilts < 0):
         raise ValueError("sweep_speed must be > 0 and tilt_ratio >= 0 for every signal")
-    seed_array = np.asarray(seeds)
-    if seed_array.ndim == 0:
-        seed_array = np.full(n, check_int("seeds", seeds, minimum=0, maximum=MAX_SEED), np.int64)
-    if seed_array.shape != (n,) or not np.issubdtype(seed_array.dtype, np.integer):
-        raise ValueError(f"seeds must be an int or {n} ints, got {seeds!r}")
-    if np.any(seed_array < 0):
-        raise ValueError("seeds must be >= 0")
+    seed_list = _seeds(seeds, n)
 
     def rngs(effect):
-        return [np.random.default_rng([int(s), effect.stream]) for s in seed_array]
+        return [np.random.default_rng([s, effect.stream]) for s in seed_list]
 
     preloads = None
     scatter = scene.effect("preload_scatter")
@@ -459,7 +461,7 @@ def simulate(scene: Scene, seed: int = 0) -> Recording:
     >>> rec.metadata["modes_x_hz"][:4]  # the probe's and the brass rod's coupled modes
     [32.82, 92.58, 185.89, 372.96]
     """
-    seed = check_int("seed", seed, minimum=0, maximum=MAX_SEED)
+    seed = check_int("seed", seed, minimum=0)
     t, ax, az, x, z = simulate_batch(scene, seeds=seed)
     metadata = {
         "source": "ebantenna.simulate",

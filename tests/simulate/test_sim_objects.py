@@ -186,9 +186,14 @@ def test_sensor_drift_is_a_gain_and_an_offset_per_recording():
     assert np.allclose(drift.offset_std() / 9.80665, [35e-3 * 3 / 70, 60e-3 * 3 / 70])
 
 
-def test_seeds_beyond_64_bits_are_refused_by_name():
-    scene = builtin_scene("ideal")
-    with pytest.raises(ValueError, match="seed"):
-        simulate(scene, seed=2**70)
-    with pytest.raises(ValueError, match="seeds"):
-        simulate_batch(scene, seeds=2**63)
+def test_any_python_int_is_a_seed():
+    scene = builtin_scene("paper").with_(contact=0.2)
+    big = simulate(scene, seed=2**70)
+    assert not np.array_equal(big.ax, simulate(scene, seed=2**70 + 1).ax)
+    assert big.metadata["seed"] == 2**70
+    _, ax, _, _, _ = simulate_batch(scene, contact=[0.2, 0.2], seeds=[2**70, 3])
+    assert np.array_equal(ax[0], big.ax) and np.array_equal(ax[1], simulate(scene, seed=3).ax)
+    with pytest.raises(ValueError, match="seeds must be >= 0"):
+        simulate_batch(scene, seeds=-1)
+    with pytest.raises(ValueError, match="seeds must be an int or 2 ints"):
+        simulate_batch(scene, contact=[0.2, 0.2], seeds=[[1, 2]])

@@ -95,6 +95,14 @@ class ArrestModes:
         return self.omega / (2 * math.pi)
 
 
+def _sweep_velocity(nodes: np.ndarray) -> np.ndarray:
+    """DOF velocities of the probe swinging rigidly about the hinge, per unit sweep speed."""
+    u0 = np.zeros(2 * nodes.size)
+    u0[0::2] = nodes  # v = Omega x per unit Omega
+    u0[1::2] = 1.0  # theta = Omega
+    return u0
+
+
 def arrest_modes(
     probe: Probe,
     hinge,
@@ -147,10 +155,7 @@ def arrest_modes(
             f"n_modes={n_modes} modes reach only {freqs[-1]:.1f} Hz, below max_frequency="
             f"{max_frequency:g} Hz; raise n_modes"
         )
-    u0 = np.zeros(2 * res.nodes.size)
-    u0[0::2] = res.nodes  # v = Omega x per unit Omega
-    u0[1::2] = 1.0  # theta = Omega
-    velocity = res.modal_coordinates(u0)
+    velocity = res.modal_coordinates(_sweep_velocity(res.nodes))
     tip = res.displacement(np.array([probe.length]))[0]
     keep = (freqs < max_frequency) & (freqs > RIGID_BODY_HZ)
     force = None
@@ -165,14 +170,6 @@ def arrest_modes(
     return ArrestModes(
         res.omega[keep], tip[keep], velocity[keep], force, float(supports.contact_stiffness)
     )
-
-
-def _sweep_velocity(nodes: np.ndarray) -> np.ndarray:
-    """DOF velocities of the probe swinging rigidly about the hinge, per unit sweep speed."""
-    u0 = np.zeros(2 * nodes.size)
-    u0[0::2] = nodes  # v = Omega x per unit Omega
-    u0[1::2] = 1.0  # theta = Omega
-    return u0
 
 
 def coupled_arrest_modes(
@@ -253,11 +250,12 @@ def coupled_arrest_modes(
         probe_reduction=probe_reduction,
         damping="perturbation",
     )
+    # As in arrest_modes, the hinge takes the velocity of the DOFs it fixes: the modal velocities
+    # are Phi^T M u0 over the probe's free DOFs only (its mass matrix there holds the tip mass).
+    sub = probe_reduction.substructure
+    momentum = sub.mass @ _sweep_velocity(sub.nodes)[sub.free]
+    velocity = res.probe_shapes[sub.free].T @ momentum
     nodes = res.probe_nodes
-    K, M = assemble(nodes, probe)
-    momentum = M @ _sweep_velocity(nodes)
-    momentum[-2] += probe.tip_mass * nodes[-1]  # the tip mass swings with the tip
-    velocity = res.probe_shapes.T @ momentum
     freqs = res.frequencies
     keep = (freqs < max_frequency) & (freqs > RIGID_BODY_HZ)
     ic = 2 * int(np.argmin(np.abs(nodes - contact)))

@@ -35,7 +35,6 @@ __all__ = ["ModalTerms", "modal_terms", "simulate", "simulate_batch"]
 log = logging.getLogger(__name__)
 
 
-
 @dataclass(frozen=True, eq=False)
 class ModalTerms:
     """Modal parameters of many signals, zero-padded to a common number of modes.
@@ -84,9 +83,9 @@ class ModalTerms:
         """
         if self.contact_force is None:
             raise ValueError("these modal terms have no contact spring (contact_force is None)")
-        wd = self.omega * np.sqrt(1 - self.zeta**2)
-        coef = (self.contact_force / wd).astype(complex)
-        rate = -self.zeta * self.omega + 1j * wd
+        # q_k(t) = q_dot_k(0) / omega_dk e^(-a_k t) sin(omega_dk t), on the modes' own rates
+        _, rate = modal_exponentials(self.contact_force, self.omega, self.zeta)
+        coef = (self.contact_force / rate.imag).astype(complex)
         return damped_exponentials(np.asarray(t, dtype=float), coef, rate)
 
     def lift_off_ratio(self, duration: float = 1.0, rate: float = 8000.0) -> np.ndarray:
@@ -426,10 +425,10 @@ def _sensor_noise(noise, dlpf, generators, n_samples: int, fs: float) -> np.ndar
         return np.stack([noise.draw(r, n_samples, fs) for r in generators])
     step = dlpf.divider(fs)
     lead = math.ceil(_NOISE_WARM_UP / (2 * math.pi * dlpf.bandwidth) * fs)  # output samples
+    size = step * (lead + n_samples)  # internal samples drawn per signal and axis
     out = np.empty((len(generators), 2, n_samples))
     for start in range(0, len(generators), _NOISE_BLOCK):
         block = generators[start : start + _NOISE_BLOCK]
-        size = step * (lead + n_samples)
         raw = np.stack([noise.draw(r, size, dlpf.internal_rate) for r in block])
         out[start : start + len(block)] = dlpf.apply_internal(raw, fs)[..., lead:]
     return out

@@ -248,11 +248,15 @@ class LowPassFilter(_Effect):
         """Second-order sections of the filter at the internal rate."""
         return sps.butter(2, self.bandwidth, btype="low", fs=self.internal_rate, output="sos")
 
+    def _transfer(self):
+        """``(b, a)`` of the filter, and its gain ``B(1/z) / A(1/z)`` as a function of ``z``."""
+        b, a = sps.sos2tf(self.sos())
+        return b, a, lambda z: np.polyval(b[::-1], 1 / z) / np.polyval(a[::-1], 1 / z)
+
     def frequency_response(self, frequency) -> np.ndarray:
         """Complex gain ``H(exp(2 pi i f / internal_rate))`` at ``frequency`` (Hz)."""
-        b, a = sps.sos2tf(self.sos())
-        w = np.exp(-2j * math.pi * np.asarray(frequency, dtype=float) / self.internal_rate)
-        return np.polyval(b[::-1], w) / np.polyval(a[::-1], w)
+        _, _, gain = self._transfer()
+        return gain(np.exp(2j * math.pi * np.asarray(frequency, dtype=float) / self.internal_rate))
 
     def filter_exponentials(self, coef: np.ndarray, rate: np.ndarray):
         """The filter's output for an input ``Im(sum_k coef_k exp(rate_k t))`` sampled from t = 0.
@@ -279,12 +283,11 @@ class LowPassFilter(_Effect):
         coef, rate : complex arrays of shape (n_signals, n_terms + 2)
             The output's exponentials, the filter's two transient terms last.
         """
-        b, a = sps.sos2tf(self.sos())
+        b, a, gain = self._transfer()
         poles = np.roots(a)  # distinct: a Butterworth pair
         fi = self.internal_rate
         z = np.exp(np.asarray(rate) / fi)
-        gain = np.polyval(b[::-1], 1 / z) / np.polyval(a[::-1], 1 / z)
-        out_coef = [coef * gain]
+        out_coef = [coef * gain(z)]
         for j, p in enumerate(poles):
             others = np.prod([1 - q / p for i, q in enumerate(poles) if i != j])
             residue = np.polyval(b[::-1], 1 / p) / ((1 - z / p) * others)

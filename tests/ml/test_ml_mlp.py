@@ -187,7 +187,8 @@ def test_lbfgs_follows_sklearn(kind):
             est.coefs_ = [c.copy() for c in c0]
             est.intercepts_ = [b.copy() for b in b0]
             est.set_params(warm_start=True, max_iter=10).fit(X, y)
-    assert ours.n_iter_ == theirs.n_iter_ == 10
+    # Both stop at the same iteration, the reference run's, within the budget of 10.
+    assert ours.n_iter_ == theirs.n_iter_ <= 10
     assert ours.loss_curve_[-1] == pytest.approx(theirs.loss_, rel=1e-9)
     # L-BFGS is deterministic in f and g, which the two codes compute with sums in different
     # orders; its line search and two-loop recursion carry that rounding on with a gain that

@@ -46,6 +46,8 @@ templates_path = ["_templates"]
 exclude_patterns = [
     "_build", "_inventories", "_tools", "_ext", "exercises/solutions",
     "examples/GALLERY_HEADER.rst",
+    # timing pages an older build with write_computation_times on may have left in the tree
+    "sg_execution_times.rst", "auto_examples/sg_execution_times.rst",
 ]
 html_theme = "furo"
 html_title = f"ebantenna {release}"

@@ -33,8 +33,13 @@ from ebantenna.simulate.effects import GY521_MASS, effect_names
 __all__ = ["scenarios", "time_scene", "run", "to_text", "main"]
 
 
-#: Effects that only make sense on top of another: measured together with it.
-PREREQUISITES = {"object_damping": "object_modes", "preload_scatter": "object_modes"}
+#: Effects that only make sense on top of others: measured together with them (a contact that
+#: only pushes between undamped bodies chatters without end, so it gets the damping too).
+PREREQUISITES = {
+    "object_damping": ("object_modes",),
+    "preload_scatter": ("object_modes",),
+    "unilateral_contact": ("structural_damping", "object_modes", "object_damping"),
+}
 
 
 def scenarios():
@@ -43,7 +48,7 @@ def scenarios():
     for name in effect_names():
         if name in PREREQUISITES:
             base = PREREQUISITES[name]
-            yield f"{name} (+ {base})", ideal.with_(effects=(base, name))
+            yield f"{name} (+ {', '.join(base)})", ideal.with_(effects=(*base, name))
         elif name == "tip_mass":
             yield name, ideal.with_(probe=Probe(tip_mass=GY521_MASS), effects=("tip_mass",))
         else:

@@ -162,7 +162,8 @@ class Dataset:
     fs : float
         Sampling frequency, Hz.
     metadata : dict
-        Configuration (scene, design, seed), package version, checksum.
+        Configuration (scene, design, seed), package version, checksum; with the
+        ``unilateral_contact`` effect also ``restrikes``, each strike's contacts after the first.
     path : Path or None
         The file it was loaded from.
     """
@@ -310,7 +311,7 @@ def _running(pid: int) -> bool:
 
 def _simulate_material(scene: Scene, name: str, plan: dict):
     rows = np.flatnonzero(plan["material"] == name)
-    _, bx, bz, _, _ = simulate_batch(
+    _, bx, bz, x, _ = simulate_batch(
         scene,
         contact=plan["contact_true"][rows],
         material=name,
@@ -319,7 +320,7 @@ def _simulate_material(scene: Scene, name: str, plan: dict):
         seeds=plan["seed_row"][rows],
         show_progress=False,
     )
-    return rows, bx.astype(np.float32), bz.astype(np.float32)
+    return rows, bx.astype(np.float32), bz.astype(np.float32), x.restrikes
 
 
 def build_dataset(
@@ -402,8 +403,13 @@ def build_dataset(
     parts = Parallel(n_jobs=n_jobs, return_as="generator")(
         delayed(_simulate_material)(scene, name, plan) for name in names
     )
-    for rows, bx, bz in progress(parts, total=len(names), desc="dataset", enabled=show_progress):
+    restrikes = np.zeros(n, dtype=int)
+    for rows, bx, bz, again in progress(
+        parts, total=len(names), desc="dataset", enabled=show_progress
+    ):
         ax[rows], az[rows] = bx, bz
+        if again is not None:
+            restrikes[rows] = again
     arrays = dict(plan, ax=ax, az=az)
     metadata = {
         "config": config,
@@ -412,6 +418,8 @@ def build_dataset(
         "units": {"ax": "m/s^2", "az": "m/s^2", "contact": "m", "sweep_speed": "rad/s", "fs": "Hz"},
         "checksum_sha256": _checksum(arrays, scene.fs),
     }
+    if scene.has("unilateral_contact"):  # each strike's contacts after the first touch
+        metadata["restrikes"] = restrikes.tolist()
     # Written under a name of its own, then renamed: a reader never sees half a file, and
     # concurrent builds into one folder each write their own. Interrupted, it is removed.
     tmp = path.with_name(path.name + f".tmp{os.getpid()}.npz")

@@ -29,6 +29,7 @@ from .modes import (
     modal_exponentials,
 )
 from .scene import Scene
+from .strikes import strike_model, unilateral_axis
 
 __all__ = ["ModalTerms", "modal_terms", "simulate", "simulate_batch"]
 
@@ -56,6 +57,8 @@ class ModalTerms:
         spring (a rigid pin, or the Z axis).
     preload : ndarray of shape (n_signals,) or None
         Each strike's static contact force, N, with the ``object_modes`` effect; None otherwise.
+    restrikes : ndarray of int, shape (n_signals,) or None
+        With ``unilateral_contact``, once simulated: contacts after the first touch per strike.
     """
 
     omega: np.ndarray
@@ -64,6 +67,7 @@ class ModalTerms:
     live: np.ndarray
     contact_force: np.ndarray | None = None
     preload: np.ndarray | None = None
+    restrikes: np.ndarray | None = None
 
     def frequencies(self, row: int = 0) -> np.ndarray:
         """Natural frequencies of signal ``row`` (padding dropped), Hz."""
@@ -153,7 +157,8 @@ def _object_modes(scene: Scene, contacts, materials, preloads, show_progress):
         rods[name] = (rod, craig_bampton(sub, obj.rod_modes))
     unique_c, inverse_c = np.unique(contacts, return_inverse=True)
     inverse_c = inverse_c.ravel()
-    key_of, modes = {}, []
+    unilateral = scene.has("unilateral_contact")
+    key_of, modes, strikes = {}, [], []
     for i in progress(range(unique_c.size), desc="modes", enabled=show_progress):
         c = float(unique_c[i])
         sub = probe_substructure(probe, c, hinge=scene.hinge, n_elements=scene.n_elements)
@@ -179,10 +184,18 @@ def _object_modes(scene: Scene, contacts, materials, preloads, show_progress):
                     max_frequency=scene.max_frequency,
                 )
             )
+            if unilateral:
+                strikes.append(
+                    strike_model(
+                        reduced, rod_reduced, c, contact_stiffness=k_c, preload=preload,
+                        max_frequency=scene.max_frequency, probe_loss=probe.loss_factor,
+                        rod_loss=rod_reduced.loss_factor,
+                    )  # fmt: skip
+                )
     inverse = np.array(
         [key_of[key] for key in zip(inverse_c, materials, preloads, strict=True)], dtype=int
     )
-    return modes, inverse
+    return modes, inverse, strikes
 
 
 def _seeds(seeds, n: int) -> list[int]:
@@ -196,7 +209,8 @@ def _seeds(seeds, n: int) -> list[int]:
 
 
 def _terms(scene: Scene, contacts, materials, speeds, tilts, preloads=None, show_progress=None):
-    """ModalTerms for X and Z of every signal (``preloads``: each strike's, with object modes)."""
+    """ModalTerms for X and Z of every signal (``preloads``: each strike's, with object modes),
+    and with ``unilateral_contact`` the strike models, which one each signal uses (else None)."""
     probe = scene.probe
     n = contacts.size
     # Many small eigenproblems: BLAS threads only add overhead (and thrash on a busy machine).
@@ -204,9 +218,11 @@ def _terms(scene: Scene, contacts, materials, speeds, tilts, preloads=None, show
         if scene.has("object_modes"):
             if preloads is None:
                 preloads = np.full(n, scene.effect("object_modes").preload)
-            modes, inverse = _object_modes(scene, contacts, materials, preloads, show_progress)
+            modes, inverse, strikes = _object_modes(
+                scene, contacts, materials, preloads, show_progress
+            )
         else:
-            modes, inverse = _pinned_modes(scene, contacts, materials, show_progress)
+            (modes, inverse), strikes = _pinned_modes(scene, contacts, materials, show_progress), []
     width = max(m.omega.size for m in modes)
     omega_u = np.ones((len(modes), width))
     amp_u = np.zeros((len(modes), width))
@@ -248,7 +264,7 @@ def _terms(scene: Scene, contacts, materials, speeds, tilts, preloads=None, show
         z_amp,
         np.ones(z_amp.shape, dtype=bool),
     )
-    return x, z
+    return x, z, ((strikes, inverse) if strikes else None)
 
 
 def modal_terms(scene: Scene) -> tuple[ModalTerms, ModalTerms]:
@@ -268,7 +284,7 @@ def modal_terms(scene: Scene) -> tuple[ModalTerms, ModalTerms]:
         np.array([scene.material], dtype=object),
         scene.sweep_speed * one,
         scene.tilt_ratio * one,
-    )
+    )[:2]
 
 
 def simulate_batch(
@@ -345,7 +361,7 @@ def simulate_batch(
     if scatter is not None:
         nominal = scene.effect("object_modes").preload
         preloads = np.array([nominal * scatter.factor(r) for r in rngs(scatter)])
-    x, z = _terms(scene, contacts, materials, speeds, tilts, preloads, show_progress)
+    x, z, strikes = _terms(scene, contacts, materials, speeds, tilts, preloads, show_progress)
     fs, ns = scene.fs, scene.n_samples
     t = np.arange(ns) / fs
 
@@ -362,6 +378,9 @@ def simulate_batch(
             coef, rate = dlpf.filter_exponentials(coef, rate)
         axes.append(damped_exponentials(when, coef, rate))
     ax, az = axes
+    if strikes is not None:  # X is the strike through a contact that only pushes
+        ax, restrikes = unilateral_axis(scene, *strikes, speeds, when)
+        x = dataclasses.replace(x, restrikes=restrikes)
     if jitter is not None:
         before = when < 0  # a sample taken before the arrest: rigid rotation, no acceleration
         ax[before] = 0.0

@@ -8,7 +8,8 @@ effect: it is always there. Effects fall in two groups:
 which change the modal parameters: :class:`StructuralDamping`, :class:`ContactCompliance` (a rigid
 object behind a spring), :class:`ObjectModes` (the object as a rod with its own modes, coupled to
 the probe), :class:`ObjectDamping` (that rod's material damping), :class:`PreloadScatter` (the
-contact's preload from strike to strike), :class:`TipMass`.
+contact's preload from strike to strike), :class:`UnilateralContact` (the probe lifts off and
+strikes again), :class:`TipMass`.
 
 *The sensor and the acquisition* (:mod:`.sensor`), which act on the sampled signals, in this order:
 :class:`ClockJitter` (when the samples are taken), :class:`Gravity`, :class:`MainsHum`,
@@ -24,7 +25,7 @@ effect never changes the random numbers of another.
 
 from __future__ import annotations
 
-from .objects import ObjectDamping, ObjectModes
+from .objects import ObjectDamping, ObjectModes, UnilateralContact
 from .physics import GY521_MASS, ContactCompliance, StructuralDamping, TipMass
 from .sensor import (
     DLPF_BANDWIDTHS,
@@ -49,6 +50,7 @@ __all__ = [
     "ObjectModes",
     "ObjectDamping",
     "PreloadScatter",
+    "UnilateralContact",
     "SensorDrift",
     "TipMass",
     "ClockJitter",
@@ -71,6 +73,7 @@ EFFECT_TYPES = (
     ObjectModes,
     ObjectDamping,
     PreloadScatter,
+    UnilateralContact,
     TipMass,
     ClockJitter,
     Gravity,

@@ -1,0 +1,242 @@
+"""Strikes on the touched rod through a contact that only pushes (``unilateral_contact``).
+
+The linear model of :mod:`.modes` joins probe and rod by a spring that pulls as readily as it
+pushes. Here the same two bodies, reduced by the same Craig-Bampton bases, strike each other
+through :func:`.unilateral.unilateral_response`: the servo swings the probe onto the rod, drives on
+by the overtravel that builds up the preload, and stops; whenever the contact force would turn
+into a pull the probe separates, rings free, and strikes again.
+
+The model of one strike (:func:`strike_model`):
+
+- **Bases.** Each body keeps its fixed-interface modes below the scene's ``max_frequency`` and its
+  interface coordinate, the deflection at the contact (a Craig-Bampton reduction with fewer
+  modes; :func:`ebantenna.fem.coupling.craig_bampton`). The contact's gap closes by
+  ``p = x_probe - x_rod + s``, ``s`` the servo's travel at the contact point.
+- **Damping.** A time-domain model needs viscous damping where the frequency-domain one uses a
+  loss factor: each body gets the modal viscous damping ``2 zeta_k omega_k`` with
+  ``zeta_k = eta / 2`` on its own modes with its interface free, ``C = M Phi diag(eta omega)
+  Phi^T M`` for mass-normalised ``Phi``; at each of the body's resonances this dissipates what
+  the loss factor does (R. R. Craig and A. J. Kurdila, *Fundamentals of Structural Dynamics*,
+  2nd ed., Wiley, 2006, section 10.3). **Assumption:** the contact spring's own loss (its
+  compliance-weighted share, :meth:`.effects.ObjectModes.contact_loss_factor`) is left out: a
+  dashpot in the contact would act in one state only.
+- **The approach.** The probe swings rigidly about its hinge at the sweep speed, so the contact
+  point approaches at ``sweep_speed x contact``; the servo's rigid motion per unit travel at the
+  contact is that rotation projected on the probe's basis in the mass metric, as the linear
+  model's initial modal velocities are (:func:`.modes.coupled_arrest_modes`).
+
+The ``paper`` scene with this effect costs some six times as much as without it, about 40 CPU
+seconds per thousand one-second strikes against 7 (``ebantenna bench``): most of it in stepping
+each strike at the DLPF's 8 kHz internal rate through its events.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as sla
+
+from .modes import _sweep_velocity
+from .structure import ContactModel
+from .unilateral import unilateral_response
+
+__all__ = ["StrikeModel", "strike_model", "strike_accelerations", "unilateral_axis"]
+
+#: Without the DLPF, strikes are computed at this multiple of ``fs`` and read at the sample times.
+UNFILTERED_RATE = 8
+
+
+@dataclass(frozen=True, eq=False)
+class StrikeModel:
+    """Probe and rod as one linear structure for :func:`.unilateral.unilateral_response`.
+
+    Attributes
+    ----------
+    structure : ContactModel
+        Mass, stiffness and damping of the two bodies side by side (no contact), the contact
+        vector ``c`` (``p = c @ q + s``), the servo's motion ``base`` and the accelerometer
+        ``output``, all in the stacked reduced coordinates.
+    contact : float
+        Contact position from the hinge, m (the approach speed is ``sweep_speed * contact``).
+    contact_stiffness : float
+        The contact spring, N/m.
+    preload : float
+        The static contact force once the servo has stopped, N.
+    """
+
+    structure: ContactModel
+    contact: float
+    contact_stiffness: float
+    preload: float
+
+
+def _truncated(reduction, max_frequency: float):
+    """The reduction's coordinates with fixed-interface modes below ``max_frequency``, and the
+    interface coordinate (last)."""
+    keep = np.flatnonzero(reduction.fixed_interface_omega < 2 * math.pi * max_frequency)
+    idx = np.append(keep, reduction.interface)
+    K = reduction.stiffness[np.ix_(idx, idx)]
+    M = reduction.mass[np.ix_(idx, idx)]
+    return K, M, reduction.basis[:, idx]
+
+
+def _modal_viscous(K: np.ndarray, M: np.ndarray, loss_factor: float) -> np.ndarray:
+    """``M Phi diag(eta omega) Phi^T M``: viscous damping equal to ``eta`` at every mode."""
+    if loss_factor == 0:
+        return np.zeros_like(K)
+    lam, phi = sla.eigh(K, M)  # mass-normalised: phi^T M phi = I
+    omega = np.sqrt(np.clip(lam, 0.0, None))  # a mechanism's zero mode may come out as -eps
+    Mphi = M @ phi
+    C = (Mphi * (loss_factor * omega)) @ Mphi.T
+    return (C + C.T) / 2
+
+
+def strike_model(
+    probe_reduction,
+    rod_reduction,
+    contact: float,
+    *,
+    contact_stiffness: float,
+    preload: float,
+    max_frequency: float,
+    probe_loss: float,
+    rod_loss: float,
+) -> StrikeModel:
+    """Probe and rod reduced for one strike (module docstring).
+
+    Parameters
+    ----------
+    probe_reduction, rod_reduction : ebantenna.fem.coupling.CraigBampton
+        The probe reduced at ``contact``, and the rod.
+    contact : float
+        Contact position from the hinge, m.
+    contact_stiffness, preload : float
+        The contact spring (N/m) and the static contact force (N).
+    max_frequency : float
+        Fixed-interface modes at or above it are dropped, Hz.
+    probe_loss, rod_loss : float
+        Loss factors of the two bodies (0 for none).
+
+    Examples
+    --------
+    >>> from ebantenna.fem.coupling import Rod, craig_bampton, probe_substructure, rod_substructure
+    >>> from ebantenna.probe import Probe
+    >>> p = craig_bampton(probe_substructure(Probe(), 0.2, n_elements=40), 16)
+    >>> r = craig_bampton(rod_substructure(Rod("steel"), n_elements=16), 8)
+    >>> m = strike_model(p, r, 0.2, contact_stiffness=1.8e5, preload=0.5, max_frequency=3000.0,
+    ...                  probe_loss=0.0, rod_loss=0.0)
+    >>> m.structure.mass.shape  # probe: 8 modes below 3 kHz + interface; rod: 2 + interface
+    (12, 12)
+    """
+    Kp, Mp, Tp = _truncated(probe_reduction, max_frequency)
+    Kr, Mr, _ = _truncated(rod_reduction, max_frequency)
+    n_p, n_r = Kp.shape[0], Kr.shape[0]
+    sub = probe_reduction.substructure
+    # the servo's rigid rotation per metre of travel at the contact, projected on the basis
+    rigid = _sweep_velocity(sub.nodes)[sub.free] / contact
+    base = np.zeros(n_p + n_r)
+    base[:n_p] = sla.solve(Mp, Tp.T @ (sub.mass @ rigid), assume_a="pos")
+    c = np.zeros(n_p + n_r)
+    c[n_p - 1], c[-1] = 1.0, -1.0  # the probe's interface deflection minus the rod's
+    tip = int(np.searchsorted(sub.free, 2 * (sub.nodes.size - 1)))
+    output = np.zeros(n_p + n_r)
+    output[:n_p] = Tp[tip]
+    structure = ContactModel(
+        sla.block_diag(Mp, Mr),
+        sla.block_diag(Kp, Kr),
+        sla.block_diag(_modal_viscous(Kp, Mp, probe_loss), _modal_viscous(Kr, Mr, rod_loss)),
+        c,
+        base,
+        output,
+    )
+    return StrikeModel(structure, float(contact), float(contact_stiffness), float(preload))
+
+
+def strike_accelerations(
+    models, inverse, speeds, *, rate: float, n_samples: int, max_events: int
+) -> tuple[np.ndarray, np.ndarray]:
+    """The tip acceleration of every strike at ``rate``, and its number of re-strikes.
+
+    Parameters
+    ----------
+    models : list of StrikeModel
+        The distinct strike models.
+    inverse : array of int, shape (n,)
+        Which model each signal uses.
+    speeds : array of shape (n,)
+        Each signal's sweep speed, rad/s.
+    rate : float
+        Sample rate, Hz.
+    n_samples : int
+        Samples per signal from the first touch.
+    max_events : int
+        Most contact changes per strike before the contact is held closed (with a warning).
+
+    Returns
+    -------
+    acceleration : ndarray of shape (n, n_samples)
+        m/s^2, 0 at the first touch.
+    restrikes : ndarray of int, shape (n,)
+        Contacts after the first touch: 0 where the probe never lifted off.
+
+    Warns
+    -----
+    RuntimeWarning
+        Once, naming how many strikes reached ``max_events`` (their contact is then held).
+    """
+    out = np.empty((len(inverse), n_samples))
+    restrikes = np.zeros(len(inverse), dtype=int)
+    held = np.zeros(len(inverse), dtype=bool)
+    duration = (n_samples - 1) / rate
+    for i, (k, speed) in enumerate(zip(inverse, speeds, strict=True)):
+        m = models[k]
+        s = m.structure
+        with warnings.catch_warnings():  # one warning for all strikes, below
+            warnings.simplefilter("ignore", RuntimeWarning)
+            res = unilateral_response(
+                s.mass, s.stiffness, s.contact, m.contact_stiffness,
+                base=s.base, approach_speed=float(speed) * m.contact, duration=duration, fs=rate,
+                damping=s.damping, output=s.output, preload=m.preload,
+                max_events=max_events, on_max_events="warn",
+            )  # fmt: skip
+        out[i] = res.acceleration[:n_samples]
+        restrikes[i] = res.n_impacts - 1
+        held[i] = res.bilateral_from is not None
+    if held.any():
+        warnings.warn(
+            f"{held.sum()} of {held.size} strikes chattered beyond max_events={max_events} "
+            "contact changes; their contact was held closed from then on (undamped bodies "
+            "chatter without end: list structural_damping and object_damping, or raise "
+            "max_events)",
+            RuntimeWarning,
+            stacklevel=2,
+        )
+    return out, restrikes
+
+
+def unilateral_axis(scene, models, inverse, speeds, when) -> tuple[np.ndarray, np.ndarray]:
+    """The X axis of the ``unilateral_contact`` strikes, through the DLPF, read at ``when``.
+
+    Each strike is computed at the DLPF's internal rate (without the DLPF at
+    :data:`UNFILTERED_RATE` times ``fs``), filtered there, and read at the sample times ``when``
+    (shape ``(n_samples,)`` or, with clock jitter, ``(n, n_samples)``) by linear interpolation,
+    which is exact at whole internal samples; the chip's register holds such samples. Returns
+    the accelerations ``(n, n_samples)`` (m/s^2) and each strike's number of re-strikes.
+    """
+    dlpf = scene.effect("dlpf")
+    rate = dlpf.internal_rate if dlpf is not None else UNFILTERED_RATE * scene.fs
+    span = float(np.max(when)) if np.ndim(when) == 2 else (scene.n_samples - 1) / scene.fs
+    n_int = math.floor(span * rate) + 2  # internal samples reaching past the last reading
+    effect = scene.effect("unilateral_contact")
+    acc, restrikes = strike_accelerations(
+        models, inverse, speeds, rate=rate, n_samples=n_int, max_events=effect.max_events
+    )
+    if dlpf is not None:
+        acc = dlpf.apply_internal(acc, rate)  # filtered, at the internal rate
+    grid = np.arange(n_int) / rate
+    rows = np.broadcast_to(when, acc.shape[:1] + np.shape(when)[-1:])
+    # readings between internal samples: linear interpolation (exact at whole samples)
+    return np.stack([np.interp(w, grid, a) for w, a in zip(rows, acc, strict=True)]), restrikes

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -87,32 +87,50 @@ class Ablation:
         For an effect the scene refused to lose alone: it and the effects dropped with it.
     refused : dict of str to str
         Effects that could not be switched off at all, with the scene's reason.
+    changed : dict of str to str
+        Effects that could only be switched off with a scene parameter changed, and how.
     """
 
     accuracies: dict
     dropped_together: dict
     refused: dict
+    changed: dict = field(default_factory=dict)
 
 
-def _without(scene: Scene, names) -> Scene:
-    return scene.with_(effects=[e for e in scene.effects if e.name not in names])
+def _without(scene: Scene, names, **changes) -> Scene:
+    return scene.with_(effects=[e for e in scene.effects if e.name not in names], **changes)
 
 
 def _ablated_scene(scene: Scene, name: str, most: int = 2):
     """The scene without ``name`` and the fewest other effects that must go with it.
 
-    Returns ``(scene, dropped names, None)``, or ``(None, (name,), reason)`` when no set of at
-    most ``most`` other effects makes the scene valid.
+    Returns ``(scene, dropped names, None, change)``, or ``(None, (name,), reason, None)`` when no
+    set of at most ``most`` other effects makes the scene valid. ``change`` says which scene
+    parameter had to change instead (or None): without the ``dlpf`` nothing stands between the
+    modes and the sampling at ``fs``, so only the modes below ``fs / 2`` are simulated.
     """
     others = [n for n in scene.effect_names if n != name]
     reason = None
     for size in range(most + 1):
         for extra in itertools.combinations(others, size):
             try:
-                return _without(scene, {name, *extra}), (name, *extra), None
+                return _without(scene, {name, *extra}), (name, *extra), None, None
             except ValueError as exc:
                 reason = reason or str(exc)  # the scene's reason for refusing ``name`` alone
-    return None, (name,), reason
+    if "max_frequency" in reason:  # the sampling can no longer hold the modes simulated
+        nyquist = scene.fs / 2
+        try:
+            ablated = _without(scene, {name}, max_frequency=nyquist)
+        except ValueError:
+            pass
+        else:
+            change = (
+                f"max_frequency lowered from {scene.max_frequency:g} to {nyquist:g} Hz: "
+                "without it nothing stands between the modes and the sampling, so only the "
+                "modes below fs/2 are simulated (no aliasing)"
+            )
+            return ablated, (name,), None, change
+    return None, (name,), reason, None
 
 
 def ablation_accuracies(
@@ -179,17 +197,19 @@ def ablation_accuracies(
         return grouped_svm_accuracy(ds, seed=seed)
 
     accuracies = {"none": accuracy(scene)}
-    together, refused = {}, {}
+    together, refused, changed = {}, {}, {}
     for name in names:
-        ablated, dropped, reason = _ablated_scene(scene, name)
+        ablated, dropped, reason, change = _ablated_scene(scene, name)
         if ablated is None:
             refused[name] = reason
             continue
         if len(dropped) > 1:
             together[name] = dropped
+        if change is not None:
+            changed[name] = change
         label = "+".join(dropped)
         accuracies[label] = accuracy(ablated.with_(name=f"{scene.name}-without-{label}"))
-    return Ablation(accuracies, together, refused)
+    return Ablation(accuracies, together, refused, changed)
 
 
 # ------------------------------------------------------------------ the equivalent pair

@@ -89,6 +89,7 @@ class ControlsResult:
                 k: list(v) for k, v in self.ablation.dropped_together.items()
             },
             "ablation_refused": dict(self.ablation.refused),
+            "ablation_changed": dict(self.ablation.changed),
             "equivalent_pair_accuracy": self.pair_accuracy,
             "contact_lift_off_share": self.lift_off_share,
             "svm_grouped_unilateral_accuracy": self.unilateral_accuracy,
@@ -175,6 +176,8 @@ def render(result: ControlsResult, report, figures) -> None:
             + ", ".join(f"'{n}'" for n in together[1:])
             + "): they were switched off together."
         )
+    for name, change in r.ablation.changed.items():
+        report.paragraph(f"'{name}' switched off with {change}.")
     for name, reason in r.ablation.refused.items():
         report.paragraph(f"'{name}' cannot be switched off by removing effects: {reason}")
     report.paragraph(_verdict(acc, r.chance, r.test_recordings))

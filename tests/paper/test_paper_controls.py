@@ -10,6 +10,7 @@ import pytest
 from ebantenna.fem.rod import Rod
 from ebantenna.paper.controls import (
     ABLATION_DESIGN,
+    _ablated_scene,
     ablation_accuracies,
     equivalent_pair_accuracy,
     equivalent_pair_scenes,
@@ -112,3 +113,15 @@ def test_equivalent_pair_accuracy_on_a_tiny_design(tmp_path):
     assert 0.0 <= acc <= 1.0 and np.isclose(4 * acc, round(4 * acc))
     assert len(list(tmp_path.glob("*pair-aluminium*.npz"))) == 1
     assert len(list(tmp_path.glob("*pair-steel*.npz"))) == 1
+
+
+def test_switching_off_the_dlpf_simulates_only_what_the_sampling_holds():
+    # The paper scene simulates modes up to 3 kHz because the chip filters at 8 kHz before it
+    # decimates; without the filter the scene at fs = 1 kHz can hold modes below 500 Hz only.
+    scene = builtin_scene("paper")
+    ablated, dropped, reason, change = _ablated_scene(scene, "dlpf")
+    assert dropped == ("dlpf",) and reason is None
+    assert ablated.max_frequency == scene.fs / 2 and "dlpf" not in ablated.effect_names
+    assert "max_frequency lowered from 3000 to 500 Hz" in change
+    # an effect that can simply go changes nothing else
+    assert _ablated_scene(scene, "gravity")[3] is None

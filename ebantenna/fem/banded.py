@@ -236,34 +236,37 @@ def _lanczos(L, Mb, n_modes, free):
     of its eigenvector of the tridiagonal ``T_k``), and by ``r_j^2 / gap_j`` once the residual is
     below the gap to the other eigenvalues (Kato-Temple; the gap estimated from the next Ritz
     value): the loop stops once that bound is below ``1e-14 theta_j`` for every retained value of
-    every position.
+    every position. The Lanczos vectors are stored step by step, ``(step, n, B)``, so that every
+    operation runs over the whole batch at once and the memory grows with the steps taken.
     """
     n, B = Mb.shape[1], Mb.shape[2]
     steps = min(n, MAX_LANCZOS_STEPS)
     first_check = min(2 * n_modes + 2, steps)  # Ritz values seldom converge sooner
-    basis = np.empty((B, steps + 1, n))  # per position, one Lanczos vector per row
-    q = np.random.default_rng(0).standard_normal(n) * free  # nothing along a held DOF
-    basis[:, 0] = q / np.linalg.norm(q, axis=1, keepdims=True)
+    basis = np.empty((min(steps, 4 * first_check) + 1, n, B))  # grown below if need be
+    q = np.random.default_rng(0).standard_normal(n)[:, None] * free.T  # nothing on a held DOF
+    basis[0] = q / np.linalg.norm(q, axis=0)
     alpha = np.zeros((B, steps))
     beta = np.zeros((B, steps))
     for k in range(steps):
-        w = _forward(L, _matvec(Mb, _backward(L, np.ascontiguousarray(basis[:, k].T)))).T
-        alpha[:, k] = np.einsum("bn,bn->b", basis[:, k], w)
-        done = basis[:, : k + 1]  # (B, k + 1, n): reorthogonalise by batched matrix products
-        before = np.linalg.norm(w, axis=1)
-        w = w - np.matmul(np.matmul(done, w[:, :, None]).transpose(0, 2, 1), done)[:, 0]
-        norm = np.linalg.norm(w, axis=1)
+        if k + 1 == basis.shape[0]:
+            basis = np.concatenate([basis, np.empty_like(basis)])[: steps + 1]
+        w = _forward(L, _matvec(Mb, _backward(L, basis[k])))
+        alpha[:, k] = np.einsum("nb,nb->b", basis[k], w)
+        done = basis[: k + 1]  # reorthogonalise against every earlier vector, batch-wide
+        before = np.linalg.norm(w, axis=0)
+        w -= np.einsum("kb,knb->nb", np.einsum("knb,nb->kb", done, w), done)
+        norm = np.linalg.norm(w, axis=0)
         if np.any(norm < 0.7 * before):
             # Much of w cancelled: one Gram-Schmidt pass leaves components along the basis of
             # about eps |w_before| / |w|, so a second pass follows ("twice is enough": Kahan's
             # criterion, B. N. Parlett, The Symmetric Eigenvalue Problem, 1998, section 6.9).
-            w = w - np.matmul(np.matmul(done, w[:, :, None]).transpose(0, 2, 1), done)[:, 0]
-            norm = np.linalg.norm(w, axis=1)
+            w -= np.einsum("kb,knb->nb", np.einsum("knb,nb->kb", done, w), done)
+            norm = np.linalg.norm(w, axis=0)
         # A Krylov space that is already invariant (a small mesh) ends here: beta = 0 and the
         # next vector is zero, which adds nothing to the tridiagonal matrix.
         alive = norm > 1e-13 * np.abs(alpha[:, : k + 1]).max(axis=1)
         beta[:, k] = np.where(alive, norm, 0.0)
-        basis[:, k + 1] = np.where(alive[:, None], w / np.where(alive, norm, 1.0)[:, None], 0.0)
+        basis[k + 1] = np.where(alive, w / np.where(alive, norm, 1.0), 0.0)
         m = k + 1
         if m < steps and (m < first_check or (m - first_check) % 2):  # check every other step
             continue
@@ -278,8 +281,8 @@ def _lanczos(L, Mb, n_modes, free):
         bound = np.where(r < gap, np.minimum(r, r**2 / np.where(r < gap, gap, 1.0)), r)
         # converged, or the whole space spanned (then the Ritz pairs are the eigenpairs)
         if np.all(bound <= _TOLERANCE * theta[:, :n_modes]) or m == n:
-            ritz = np.matmul(S[:, :, :n_modes].transpose(0, 2, 1), basis[:, :m])  # (B, j, n)
-            return theta[:, :n_modes], ritz.transpose(1, 2, 0)
+            ritz = np.einsum("bkj,knb->jnb", S[:, :, :n_modes], basis[:m])  # (j, n, B)
+            return theta[:, :n_modes], ritz
     raise np.linalg.LinAlgError(
         f"Lanczos did not converge to {n_modes} modes in {steps} steps; "
         "ask for fewer modes or use method='dense'"

@@ -468,7 +468,8 @@ def simulate(scene: Scene, seed: int = 0) -> Recording:
     -------
     Recording
         ``t`` (s), ``ax``, ``az`` (m/s^2), ``fs`` (Hz) and metadata: the scene, the seed and the
-        simulated modes of X and Z (frequencies in Hz, damping ratios).
+        simulated modes of X and Z (frequencies in Hz, damping ratios); with the
+        ``unilateral_contact`` effect also ``restrikes``, the contacts after the first touch.
 
     Examples
     --------
@@ -490,4 +491,6 @@ def simulate(scene: Scene, seed: int = 0) -> Recording:
         "modes_z_hz": [round(float(f), 2) for f in z.frequencies()],
         "zeta_z": [float(v) for v in z.damping_ratios()],
     }
+    if x.restrikes is not None:  # the unilateral contact: strikes after the first touch
+        metadata["restrikes"] = int(x.restrikes[0])
     return Recording(t, ax[0], az[0], scene.fs, metadata)

@@ -11,7 +11,7 @@ import scipy.signal as sps
 
 from ebantenna.fem.coupling import craig_bampton, probe_substructure, rod_substructure
 from ebantenna.probe import Probe, material
-from ebantenna.simulate import Scene, builtin_scene, simulate_batch
+from ebantenna.simulate import Scene, builtin_scene, simulate, simulate_batch
 from ebantenna.simulate.strikes import UNFILTERED_RATE, strike_accelerations, strike_model
 
 EPS = np.finfo(float).eps
@@ -208,6 +208,9 @@ def test_the_contact_only_pushes_in_the_simulated_strikes():
                             contact=[0.1, 0.38], material="brass")[1]  # fmt: skip
     assert x.restrikes.shape == (2,) and np.all(x.restrikes >= 0)
     assert not np.allclose(ax, linear)  # the two contact laws give two different strikes
+    rec = simulate(scene.with_(contact=0.1, material="brass"))
+    assert rec.metadata["restrikes"] == x.restrikes[0]
+    np.testing.assert_array_equal(rec.ax, ax[0])
 
 
 def test_unilateral_contact_needs_the_rod():

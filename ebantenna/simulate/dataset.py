@@ -51,7 +51,10 @@ __all__ = ["Dataset", "DatasetDesign", "build_dataset", "load_dataset", "dataset
 log = logging.getLogger(__name__)
 
 #: Format tag written into every data set file.
-FORMAT = "ebantenna-dataset-3"  # 2: a DatasetDesign; 3: package version and materials in the key
+#: Raised whenever the simulated signals change for the same configuration, so that no cache
+#: built by older code is reused: 2, a DatasetDesign; 3, package version and materials in the
+#: key; 4, the coupled arrest's modal velocities over the probe's free DOFs only.
+FORMAT = "ebantenna-dataset-4"
 _ARRAYS = (
     "ax",
     "az",

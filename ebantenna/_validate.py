@@ -20,6 +20,7 @@ import numpy as np
 
 __all__ = [
     "check_real",
+    "check_bool",
     "check_positive",
     "check_nonnegative",
     "check_in_range",
@@ -39,6 +40,16 @@ def check_real(name: str, value, *, allow_inf: bool = False) -> float:
     if math.isnan(value) or (math.isinf(value) and not allow_inf):
         raise ValueError(f"{name} must be a finite number, got {value!r}")
     return value
+
+
+def check_bool(name: str, value) -> bool:
+    """Return ``value``; raise unless it is ``True`` or ``False``.
+
+    A string such as ``"no"`` is truthy: taken as a flag it would silently mean the opposite.
+    """
+    if not isinstance(value, bool | np.bool_):
+        raise TypeError(f"{name} must be True or False, got {value!r} ({type(value).__name__})")
+    return bool(value)
 
 
 def check_positive(name: str, value, *, allow_inf: bool = False) -> float:

@@ -53,6 +53,13 @@ class Recording:
             raise ValueError(
                 f"t, ax and az must have the same length, got {t.shape}, {ax.shape}, {az.shape}"
             )
+        steps = np.diff(t)
+        if np.any(steps <= 0):
+            i = int(np.argmax(steps <= 0))
+            raise ValueError(
+                f"t must increase strictly (sample times, s), got t[{i + 1}] = {t[i + 1]!r} "
+                f"after t[{i}] = {t[i]!r}"
+            )
         for name, value in (("t", t), ("ax", ax), ("az", az)):
             value.setflags(write=False)
             object.__setattr__(self, name, value)

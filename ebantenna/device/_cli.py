@@ -12,13 +12,12 @@ ENABLE_I2C_HINT = (
     "loads the device files, and 'ls /dev/i2c-*' lists the buses ('i2cdetect -y 1' shows the "
     "chips: 0x40 PCA9685, 0x68 MPU-6050)")
 
-#: Longest recording ``acquire`` makes after a contact, s: the paper's windows last about 1 s.
-MAX_DURATION = 60.0
 
 
 def register(subparsers) -> None:
     """Add the ``acquire`` subcommand."""
     from ..cli import seed_argument
+    from .pantilt import MAX_DURATION
 
     parser = subparsers.add_parser(
         "acquire",
@@ -68,7 +67,7 @@ def run(args: argparse.Namespace) -> int:
     from ..cli import Terminated, interrupted
     from ..probe import material as lookup_material
     from .mpu6050 import MPU6050
-    from .pantilt import PanTilt, SearchConfig, search_and_record
+    from .pantilt import MAX_DURATION, PanTilt, SearchConfig, search_and_record
     from .pca9685 import PCA9685
     from .safety import SignalReceived
     from .watchdog import StreamStalledError

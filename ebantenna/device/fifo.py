@@ -39,6 +39,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
+from .._validate import check_in_range, check_positive
 from ..chips.mpu6050 import (
     ACCEL_SAMPLE_BYTES,
     FIFO_SIZE,
@@ -85,7 +86,9 @@ class PeriodEstimator:
     """
 
     def __init__(self, nominal: float, tolerance: float = CLOCK_TOLERANCE):
-        self.nominal = float(nominal)
+        nominal = check_positive("nominal", nominal)
+        tolerance = check_in_range("tolerance", tolerance, 0.0, 1.0)
+        self.nominal = nominal
         self.low = nominal * (1.0 - tolerance)
         self.high = nominal * (1.0 + tolerance)
 
@@ -165,6 +168,10 @@ class FifoStream:
     """
 
     def __init__(self, mpu):
+        from .mpu6050 import MPU6050  # the driver imports this module
+
+        if not isinstance(mpu, MPU6050):
+            raise TypeError(f"mpu must be an MPU6050, got {type(mpu).__name__}")
         self.mpu = mpu
         self.device = mpu.device
         self.clock = mpu.clock

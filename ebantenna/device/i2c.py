@@ -105,7 +105,7 @@ class RetryPolicy:
     max_delay: float = 0.02
 
     def __post_init__(self):
-        check_int("attempts", self.attempts, minimum=1)
+        check_int("attempts", self.attempts, minimum=1, maximum=MAX_ATTEMPTS)
         check_nonnegative("initial_delay", self.initial_delay)
         check_positive("factor", self.factor)
         if self.factor < 1:
@@ -120,8 +120,17 @@ class RetryPolicy:
         )
 
 
+#: The most attempts a :class:`RetryPolicy` makes: a transient error clears within a few
+#: milliseconds, and a bus failing a hundred times in a row is broken, not busy.
+MAX_ATTEMPTS = 100
+
+
 def _check_byte(name: str, value) -> int:
     return check_int(name, value, minimum=0, maximum=255)
+
+
+#: What every bus offers (the reads and writes of single registers, which every chip here uses).
+_BUS_METHODS = ("read_byte_data", "write_byte_data")
 
 
 class I2CDevice:
@@ -151,6 +160,12 @@ class I2CDevice:
 
     def __init__(self, bus, address: int, *, retry: RetryPolicy | None = None, clock=None,
                  use_rdwr: bool = False):
+        missing = [m for m in _BUS_METHODS if not callable(getattr(bus, m, None))]
+        if missing:
+            raise TypeError(
+                f"bus must be an open I2C bus (smbus2.SMBus or SimulatedBus), got "
+                f"{type(bus).__name__} without {', '.join(missing)}"
+            )
         self.bus = bus
         self.address = check_int("address", address, minimum=_FIRST_ADDRESS,
                                  maximum=_LAST_ADDRESS)

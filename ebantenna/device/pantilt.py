@@ -22,7 +22,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validate import check_int, check_nonnegative, check_positive, check_real
+from .._validate import (
+    check_array,
+    check_in_range,
+    check_int,
+    check_nonnegative,
+    check_positive,
+    check_real,
+)
 from ..recording import Recording
 from .i2c import I2CError
 from .mpu6050 import MPU6050
@@ -41,6 +48,9 @@ __all__ = [
 ]
 
 logger = logging.getLogger(__name__)
+
+#: Longest recording a search makes after a contact, s: the paper's windows last about 1 s.
+MAX_DURATION = 60.0
 
 
 @dataclass(frozen=True)
@@ -124,8 +134,12 @@ class ContactDetector:
 
     def update(self, ax, az) -> int | None:
         """Check new samples (m/s^2); return the position of the first contact in them, or None."""
-        ax = np.asarray(ax, dtype=np.float64)
-        az = np.asarray(az, dtype=np.float64)
+        if np.size(ax) == 0 and np.size(az) == 0:  # a poll that found no new samples
+            return None
+        ax = check_array("ax", ax, ndim=1)
+        az = check_array("az", az, ndim=1)
+        if ax.shape != az.shape:
+            raise ValueError(f"ax and az must have the same length, got {ax.size} and {az.size}")
         found = None
         if self._x.size >= self.window:
             deviation = np.hypot(ax - self._x.mean(), az - self._z.mean())
@@ -168,8 +182,9 @@ class PanTilt:
         if not isinstance(pca, PCA9685):
             raise TypeError(f"pca must be a PCA9685, got {type(pca).__name__}")
         self.pca = pca
-        self.pan = Servo(pca, pan or ServoCalibration(0), "pan")
-        self.tilt = Servo(pca, tilt or ServoCalibration(1), "tilt")
+        # "is None", not "or": a falsy wrong value must reach Servo's check, not become a default
+        self.pan = Servo(pca, ServoCalibration(0) if pan is None else pan, "pan")
+        self.tilt = Servo(pca, ServoCalibration(1) if tilt is None else tilt, "tilt")
         if self.pan.calibration.channel == self.tilt.calibration.channel:
             raise ValueError("pan and tilt servos must be on different channels, both are on "
                              f"{self.pan.calibration.channel}")
@@ -181,6 +196,7 @@ class PanTilt:
 
     def move(self, pan: float, tilt: float) -> tuple[float, float]:
         """Command both servos (clamped to their limits); returns the angles commanded, degrees."""
+        pan, tilt = check_real("pan", pan), check_real("tilt", tilt)
         return self.pan.move(pan), self.tilt.move(tilt)
 
     def stop(self, back_off: float = 0.0, at: tuple | None = None) -> bool:
@@ -267,7 +283,7 @@ class SearchConfig:
         check_positive("threshold", self.threshold)
         check_int("baseline_window", self.baseline_window, minimum=1)
         check_nonnegative("pre_trigger", self.pre_trigger)
-        check_positive("duration", self.duration)
+        check_in_range("duration", self.duration, 0.0, MAX_DURATION, high_inclusive=True)
         check_positive("poll_interval", self.poll_interval)
         check_positive("max_search_time", self.max_search_time)
         check_nonnegative("back_off", self.back_off)
@@ -374,6 +390,10 @@ def search_and_record(mpu: MPU6050, pantilt: PanTilt, config: SearchConfig | Non
     >>> result.contact_detected, result.servos_stopped, result.samples, result.samples_lost
     (True, True, 1050, 0)
     """
+    if not isinstance(mpu, MPU6050):
+        raise TypeError(f"mpu must be an MPU6050, got {type(mpu).__name__}")
+    if not isinstance(pantilt, PanTilt):
+        raise TypeError(f"pantilt must be a PanTilt, got {type(pantilt).__name__}")
     config = SearchConfig() if config is None else config
     if not isinstance(config, SearchConfig):
         raise TypeError(f"config must be a SearchConfig, got {type(config).__name__}")

@@ -141,6 +141,8 @@ class Servo:
     """
 
     def __init__(self, pca: PCA9685, calibration: ServoCalibration, name: str = "servo"):
+        if not isinstance(pca, PCA9685):
+            raise TypeError(f"pca must be a PCA9685, got {type(pca).__name__}")
         if not isinstance(calibration, ServoCalibration):
             raise TypeError(
                 f"calibration must be a ServoCalibration, got {type(calibration).__name__}")

@@ -139,6 +139,8 @@ def exact_frequencies(
     """
     from .supports import Supports
 
+    if not isinstance(probe, Probe):
+        raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")
     supports = Supports(contact=contact, hinge=hinge)
     if not isinstance(hinge, str):
         raise ValueError(

@@ -40,6 +40,7 @@ from .assembly import (
     apply_supports,
     assemble,
     beam_mesh,
+    check_contact,
     check_memory,
     check_resolvable,
     contact_node,
@@ -285,11 +286,8 @@ def modal_analysis(
         raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")
     if not isinstance(supports, Supports):
         raise TypeError(f"supports must be a Supports, got {type(supports).__name__}")
-    if supports.contact is not None and not supports.contact < probe.length:
-        raise ValueError(
-            f"contact must lie in (0, {probe.length:g}) m (the probe's length), "
-            f"got {supports.contact!r}"
-        )
+    if supports.contact is not None:
+        check_contact("contact", supports.contact, probe.length)
     nodes = beam_mesh(probe.length, supports.contact, n_elements)
     use_sparse = solver == "sparse" or (solver == "auto" and 2 * nodes.size > DENSE_LIMIT)
     if not use_sparse:  # K, M, the factor and two products, (2 n_nodes)^2 doubles each
@@ -398,6 +396,8 @@ def natural_frequencies(
     array([[ 21.35, 137.77],
            [ 38.97, 243.51]])
     """
+    if not isinstance(probe, Probe):
+        raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")
     contacts = check_array("contacts", contacts, ndim=1)
     check_choice("method", method, SWEEP_METHODS)
     if chunk is None:  # banded: batches small enough for the cache, spread over the cores
@@ -423,9 +423,8 @@ def natural_frequencies(
         f"{min(chunk, contacts.size)} positions (pass a smaller chunk, or method='banded')",
     )
     supports = Supports(contact=None, hinge=hinge, contact_stiffness=contact_stiffness)
-    bad = (contacts <= 0) | (contacts >= probe.length)
-    if np.any(bad):
-        raise ValueError(f"contacts must lie in (0, {probe.length:g}) m, got {contacts[bad][0]!r}")
+    for contact in (contacts.min(), contacts.max()):  # the two nearest the ends
+        check_contact("contacts", contact, probe.length)
     if method == "secular":  # one modal analysis, then every position side by side
         lam = secular_sweep(
             probe,

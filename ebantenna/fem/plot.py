@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._validate import check_int
+
 __all__ = ["plot_probe", "plot_modes", "plot_zones"]
 
 
@@ -127,8 +129,14 @@ def plot_modes(result, ax=None, modes=None, n_points: int = 400, label: str = "m
     -------
     matplotlib.axes.Axes
     """
+    n_points = check_int("n_points", n_points, minimum=2)
+    if modes is None:
+        modes = range(result.n_modes)
+    else:
+        if isinstance(modes, int | np.integer):
+            modes = [modes]
+        modes = [check_int("modes", m, minimum=0, maximum=result.n_modes - 1) for m in modes]
     ax = _axes(ax)
-    modes = range(result.n_modes) if modes is None else modes
     x = np.linspace(0.0, result.probe.length, n_points)
     w = result.displacement(x)
     wn = result.displacement(result.nodes)

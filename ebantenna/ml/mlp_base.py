@@ -159,13 +159,17 @@ class BaseMLP(BaseEstimator):
     def _loss_grad(self, X, Y, coefs, intercepts):
         """Loss (data term + L2) and its exact gradient with respect to every weight and bias."""
         n = X.shape[0]
-        acts = forward(X, coefs, intercepts, self.activation)
-        data_loss, delta = output_loss(self.out_activation_, acts[-1], Y)
-        # einsum, not a BLAS dot: no thread start-up for a reduction this small
-        l2 = sum(float(np.einsum("ij,ij->", W, W)) for W in coefs)
-        loss = data_loss + 0.5 * self.alpha * l2 / n
-        coef_grads, intercept_grads = backprop(acts, delta, coefs, self.activation,
-                                               self.alpha / n)
+        # Every solver checks that the loss is finite and stops with a clear error when it is
+        # not; NumPy's overflow warnings on the way there would only be noise before it.
+        with np.errstate(over="ignore", invalid="ignore"):
+            acts = forward(X, coefs, intercepts, self.activation)
+            data_loss, delta = output_loss(self.out_activation_, acts[-1], Y)
+            # einsum, not a BLAS dot: no thread start-up for a reduction this small
+            l2 = sum(float(np.einsum("ij,ij->", W, W)) for W in coefs)
+            loss = data_loss + 0.5 * self.alpha * l2 / n
+            coef_grads, intercept_grads = backprop(
+                acts, delta, coefs, self.activation, self.alpha / n
+            )
         return loss, coef_grads, intercept_grads
 
     def _forward(self, X, coefs, intercepts):

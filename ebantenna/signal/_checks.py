@@ -6,7 +6,11 @@ import numpy as np
 
 from .._validate import check_array, check_positive
 
-__all__ = ["check_signal", "check_fs", "check_band"]
+__all__ = ["check_signal", "check_fs", "check_band", "MAX_FFT"]
+
+#: The longest FFT a feature or spectrogram pads to: 2**24 points, a 256 MB complex spectrum
+#: and a bin width of fs / 2**24 (60 µHz at 1 kHz), far finer than any record resolves.
+MAX_FFT = 2**24
 
 
 def check_signal(name: str, x, *, min_length: int = 2, allow_constant: bool = True) -> np.ndarray:

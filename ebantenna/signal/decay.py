@@ -61,7 +61,7 @@ import numpy as np
 from scipy import optimize
 from scipy.signal import find_peaks
 
-from .._validate import check_choice, check_in_range
+from .._validate import check_bool, check_choice, check_in_range
 from ._checks import check_fs, check_signal
 from .spectral import dominant_frequency
 
@@ -262,6 +262,7 @@ def fit_decay(
     floor_factor = check_in_range("floor_factor", floor_factor, 1.0, 1e6, low_inclusive=True)
     min_r_squared = check_in_range("min_r_squared", min_r_squared, 0.0, 1.0, low_inclusive=True,
                                    high_inclusive=True)
+    remove_mean = check_bool("remove_mean", remove_mean)
     n = x.shape[0]
     # Scale by a power of two (exact) so that sums, squares and logs neither overflow nor underflow.
     exponent = math.frexp(float(np.max(np.abs(x))))[1]

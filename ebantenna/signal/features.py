@@ -13,9 +13,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_array, check_choice, check_int
+from .._validate import check_array, check_bool, check_choice, check_int
 from ..recording import Recording
-from ._checks import check_fs, check_signal
+from ._checks import MAX_FFT, check_fs, check_signal
 
 __all__ = ["resultant_acceleration", "norm_spectrum", "fft_features"]
 
@@ -101,8 +101,8 @@ def norm_spectrum(ax, az=None, fs=None, *, n_fft=None, remove_mean: bool = False
     if ax.shape != az.shape:
         raise ValueError(f"ax and az must have the same shape, got {ax.shape} and {az.shape}")
     n = ax.shape[0]
-    n_fft = n if n_fft is None else check_int("n_fft", n_fft, minimum=2)
-    if remove_mean:
+    n_fft = n if n_fft is None else check_int("n_fft", n_fft, minimum=2, maximum=MAX_FFT)
+    if check_bool("remove_mean", remove_mean):
         ax = ax - ax.mean()
         az = az - az.mean()
     scale = np.full(n_fft // 2 + 1, 2.0 / min(n, n_fft))
@@ -157,14 +157,14 @@ def fft_features(
     >>> v.shape, int(np.argmax(v)), float(v.max())  # 125 Hz is bin 64 of a 512-point FFT at 1 kHz
     ((256,), 64, 1.0) """
     ax, az, _ = _pair(ax, az)
-    n_fft = check_int("n_fft", n_fft, minimum=2)
+    n_fft = check_int("n_fft", n_fft, minimum=2, maximum=MAX_FFT)
     n_bins = check_int("n_bins", n_bins, minimum=1, maximum=n_fft // 2 + 1)
     check_choice("normalise", normalise, ("sample", "dataset", "none"))
     ax = check_array("ax", ax, ndim=(1, 2), min_length=2)
     az = check_array("az", az, ndim=(1, 2), min_length=2)
     if ax.shape != az.shape:
         raise ValueError(f"ax and az must have the same shape, got {ax.shape} and {az.shape}")
-    if remove_mean:
+    if check_bool("remove_mean", remove_mean):
         ax = ax - ax.mean(axis=-1, keepdims=True)
         az = az - az.mean(axis=-1, keepdims=True)
     mx = np.abs(np.fft.rfft(ax, n=n_fft, axis=-1))

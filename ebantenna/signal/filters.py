@@ -241,7 +241,10 @@ def _designed(spec: FilterSpec, order) -> np.ndarray:
 
 
 def _check_sos(sos) -> np.ndarray:
-    sos = np.asarray(sos, dtype=float)
+    try:
+        sos = np.asarray(sos, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"sos must be an array of second-order sections, got {sos!r:.40}") from None
     if sos.ndim != 2 or sos.shape[1] != 6 or sos.shape[0] < 1:
         raise ValueError(f"sos must have shape (n_sections, 6), got {sos.shape}")
     if not np.all(np.isfinite(sos)):

@@ -23,7 +23,7 @@ import math
 import numpy as np
 from scipy.signal import get_window
 
-from .._validate import check_choice, check_int, check_nonnegative, check_positive
+from .._validate import check_bool, check_choice, check_int, check_nonnegative, check_positive
 from ._checks import check_fs, check_signal
 
 __all__ = ["dominant_frequency", "peak_frequencies", "FREQUENCY_METHODS", "WINDOWS"]
@@ -125,6 +125,7 @@ def _windowed_spectrum(x, fs, method, window, zero_pad, fmin, fmax, remove_mean)
     check_choice("method", method, FREQUENCY_METHODS)
     check_choice("window", window, WINDOWS)
     zero_pad = check_int("zero_pad", zero_pad, minimum=1, maximum=64)
+    check_bool("remove_mean", remove_mean)
     if method == "jacobsen" and window not in ("hann", "rectangular"):
         raise ValueError(f"method 'jacobsen' needs window 'hann' or 'rectangular', got {window!r}")
     n = x.shape[0]

@@ -31,7 +31,7 @@ import numpy as np
 from scipy.signal import get_window
 
 from .._validate import check_array, check_choice, check_int, check_positive
-from ._checks import check_fs, check_signal
+from ._checks import MAX_FFT, check_fs, check_signal
 from .spectral import WINDOWS
 
 __all__ = ["TimeFrequency", "spectrogram", "morlet_scalogram"]
@@ -139,7 +139,9 @@ def spectrogram(x, fs, *, nperseg: int = 64, noverlap: int | None = None,
     noverlap = nperseg // 2 if noverlap is None else check_int(
         "noverlap", noverlap, minimum=0, maximum=nperseg - 1)
     check_choice("window", window, WINDOWS)
-    n_fft = nperseg if n_fft is None else check_int("n_fft", n_fft, minimum=nperseg)
+    if n_fft is None:
+        n_fft = nperseg
+    n_fft = check_int("n_fft", n_fft, minimum=nperseg, maximum=MAX_FFT)
     w = np.ones(nperseg) if window == "rectangular" else get_window(window, nperseg, fftbins=True)
     hop = nperseg - noverlap
     n_frames = 1 + (x.shape[0] - nperseg) // hop
@@ -153,6 +155,11 @@ def spectrogram(x, fs, *, nperseg: int = 64, noverlap: int | None = None,
     t = (starts + nperseg / 2.0) / fs
     return TimeFrequency(t, np.fft.rfftfreq(n_fft, d=1.0 / fs), scale[:, None] * spectrum,
                          "spectrogram")
+
+
+#: The longest wavelet, in samples, that :func:`morlet_scalogram` pads for: its FFTs of twice that
+#: many complex points take 256 MB, and a wavelet much longer than any record says nothing more.
+MAX_WAVELET_SAMPLES = 2**23
 
 
 def morlet_scalogram(x, fs, frequencies, *, bandwidth: float = 1.5,
@@ -201,7 +208,14 @@ def morlet_scalogram(x, fs, frequencies, *, bandwidth: float = 1.5,
     n = x.shape[0]
     scales = center * fs / freqs
     # The Gaussian envelope exp(-t^2/B) is below 1e-15 beyond 6 sqrt(B) scale units.
-    pad = int(np.ceil(6.0 * np.sqrt(bandwidth) * scales.max()))
+    span = 6.0 * np.sqrt(bandwidth) * scales.max()
+    if not span <= MAX_WAVELET_SAMPLES:
+        raise ValueError(
+            f"bandwidth={bandwidth:g} and center={center:g} make the wavelet at "
+            f"{freqs.min():g} Hz {span:.3g} samples long (6 sqrt(B) C fs / f), more than "
+            f"{MAX_WAVELET_SAMPLES}; lower bandwidth or center, or raise the lowest frequency"
+        )
+    pad = int(np.ceil(span))
     n_fft = 1 << int(np.ceil(np.log2(n + pad)))
     spectrum = np.fft.fft(x, n_fft)
     nu = np.fft.fftfreq(n_fft)

@@ -18,7 +18,7 @@ def register(subparsers) -> None:
         "--seed",
         type=seed_argument,
         default=0,
-        help="seed of the data set and the models, 0 ... 2**63 - 1 (0)",
+        help="seed of the data set and the models, 0 ... 2**32 - 2 (0)",
     )
     rep.add_argument("--jobs", type=int, default=-1, help="parallel workers (-1: all cores)")
     rep.add_argument("--cache", metavar="DIR", help="data set cache (default ~/.cache/ebantenna)")

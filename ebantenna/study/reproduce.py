@@ -39,7 +39,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .._progress import progress
-from .._validate import check_int
+from .._validate import check_bool, check_int
 from ..report import FigureSet, Report
 from . import (
     data_summary,
@@ -121,6 +121,18 @@ class _Timer:
         self._bar.close()
 
 
+#: The largest seed: scikit-learn takes 32-bit seeds, and the splits use ``seed + 1`` too.
+MAX_SEED = 2**32 - 2
+
+
+def _directory(name: str, path) -> Path:
+    """``path`` as a Path; raise if it names an existing file (a folder is written there)."""
+    path = Path(os.fspath(path))
+    if path.exists() and not path.is_dir():
+        raise ValueError(f"{name} must be a directory, got {str(path)!r} (an existing file)")
+    return path
+
+
 def reproduce(
     out_dir="ebantenna-output",
     *,
@@ -140,7 +152,7 @@ def reproduce(
         The small data set (contacts every 5 cm, 3 repetitions) and coarser sweeps: well under a
         minute, for tests and the documentation. Its numbers are not the study's.
     seed : int
-        Seed of the data set and of every split and initialisation.
+        Seed of the data set and of every split and initialisation, 0 ... :data:`MAX_SEED`.
     n_jobs : int or None
         joblib workers for the data set and the features (``-1``: all cores).
     cache_dir : path, optional
@@ -159,10 +171,13 @@ def reproduce(
     from ..paper.feature_table import signal_features
     from ..simulate import builtin_scene
 
-    seed = check_int("seed", seed, minimum=0)
-    out_dir = Path(out_dir)
+    seed = check_int("seed", seed, minimum=0, maximum=MAX_SEED)
+    quick = check_bool("quick", quick)
+    if n_jobs is not None and check_int("n_jobs", n_jobs) == 0:
+        raise ValueError("n_jobs must be -1 (all cores), None or a count >= 1, got 0")
+    out_dir = _directory("out_dir", out_dir)
+    cache_dir = _directory("cache_dir", default_cache_dir() if cache_dir is None else cache_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    cache_dir = Path(cache_dir) if cache_dir is not None else default_cache_dir()
     figures = FigureSet(out_dir)
     report = Report("ebantenna: the study reproduced" + (" (quick run)" if quick else ""))
     report.paragraph(

@@ -440,15 +440,16 @@ def natural_frequencies(
     if method == "banded":
 
         def solve(block):
-            lam = banded_sweep(
-                probe,
-                block,
-                hinge_stiffness=supports.hinge_stiffness,
-                contact_stiffness=supports.contact_stiffness,
-                n_elements=n_elements,
-                n_modes=n_modes,
-                shift=_shift(probe),
-            )
+            with np.errstate(invalid="ignore", divide="ignore"):  # NaN is refused below
+                lam = banded_sweep(
+                    probe,
+                    block,
+                    hinge_stiffness=supports.hinge_stiffness,
+                    contact_stiffness=supports.contact_stiffness,
+                    n_elements=n_elements,
+                    n_modes=n_modes,
+                    shift=_shift(probe),
+                )
             return np.sqrt(_clip_eigenvalues(lam, _shift(probe))) / (2 * math.pi)
 
     else:
@@ -461,7 +462,18 @@ def natural_frequencies(
             return _batched_frequencies(probe, members, n_elements, n_modes)
 
     # batches side by side on the machine's cores
-    return np.concatenate(map_on_cores(solve, blocks))
+    frequencies = np.concatenate(map_on_cores(solve, blocks))
+    if not np.all(np.isfinite(frequencies)):
+        # a contact near an end on a coarse mesh leaves one tiny element beside long ones: its
+        # own modes lie some 1e16 (1 / eps) above the lowest, beyond what Lanczos resolves
+        i, k = np.argwhere(~np.isfinite(frequencies))[0]
+        h = np.diff(beam_mesh(probe.length, float(contacts[i]), n_elements))
+        raise ValueError(
+            f"mode {k + 1} at contacts[{i}] = {float(contacts[i])!r} m cannot be resolved with "
+            f"n_elements={n_elements}: the elements differ in length by a factor of "
+            f"{h.max() / h.min():.1e}; use more elements or fewer modes"
+        )
+    return frequencies
 
 
 def _batched_frequencies(probe, supports_list, n_elements, n_modes):

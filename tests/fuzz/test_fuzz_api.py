@@ -7,12 +7,12 @@ and a fragment of the message naming the parameter. A row that passes the bad va
 NumPy or SciPy (a traceback from deep inside them), answers with a vague error, or returns a
 clipped or NaN result fails. Sizes are tiny so that every row runs in milliseconds.
 
-The count: 588 rows (``pytest --collect-only -q tests/fuzz/test_fuzz_api.py`` lists them, plus
-one coverage test): signal 169, device 111, fem 101, simulate 77, ml 72, probe 28, recording 21,
+The count: 589 rows (``pytest --collect-only -q tests/fuzz/test_fuzz_api.py`` lists them, plus
+one coverage test): signal 169, device 111, fem 102, simulate 77, ml 72, probe 28, recording 21,
 study 9. Three are strict expected failures: bad inputs the simulator does not refuse yet. The
 command line adds 163: 150 hypothesis command lines in ``tests/cli/test_cli_fuzz.py`` (valid
 ones among them) and 13 bad-input cases in ``tests/cli/test_cli_errors.py`` (4 output paths, 8
-out-of-range numbers, 1 damaged recording): 751 in all.
+out-of-range numbers, 1 damaged recording): 752 in all.
 """
 
 from __future__ import annotations
@@ -724,6 +724,15 @@ ROWS += [
         PROBE,
         [0.2, 0.4 - 1e-10],
         contact_stiffness=1e4,
+        match="contacts must lie in [4e-07",
+    ),
+    bad(
+        "fem.natural_frequencies",
+        "secular-near-hinge",
+        NF,
+        PROBE,
+        [1e-9, 0.2],
+        method="secular",
         match="contacts must lie in [4e-07",
     ),
     bad(

@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .._validate import check_in_range, check_int, check_nonnegative, check_positive
+from ..fem.assembly import check_resolvable
 from ..fem.supports import HINGES
 from ..probe import Probe, material
 from .effects import EFFECT_TYPES, GY521_MASS, effect_names, make_effect
@@ -169,7 +170,7 @@ class Scene:
             )
         put("sweep_speed", check_positive("sweep_speed", self.sweep_speed))
         put("tilt_ratio", check_nonnegative("tilt_ratio", self.tilt_ratio))
-        put("n_elements", check_int("n_elements", self.n_elements, minimum=2))
+        put("n_elements", check_resolvable(check_int("n_elements", self.n_elements, minimum=2)))
         put("n_modes", check_int("n_modes", self.n_modes, minimum=1))
         effects = _normalise_effects(self.effects)
         put("effects", effects)
@@ -347,6 +348,9 @@ def load_scene(path) -> Scene:
             data = json.loads(text)
         except json.JSONDecodeError as exc:
             raise ValueError(f"{path}: not valid JSON: {exc}") from exc
+    if not isinstance(data, dict):
+        kind = type(data).__name__
+        raise ValueError(f"{path}: a scene file holds one table/object, not a {kind}")
     return Scene.from_dict(data)
 
 

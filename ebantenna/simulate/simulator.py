@@ -277,6 +277,8 @@ def modal_terms(scene: Scene) -> tuple[ModalTerms, ModalTerms]:
     >>> x.frequencies().round(1), z.frequencies().round(1)
     (array([ 39. , 243.5, 350.7]), array([ 13.9,  87. , 243.6, 477.4]))
     """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
     one = np.ones(1)
     return _terms(
         scene,

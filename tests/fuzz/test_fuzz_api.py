@@ -7,12 +7,12 @@ and a fragment of the message naming the parameter. A row that passes the bad va
 NumPy or SciPy (a traceback from deep inside them), answers with a vague error, or returns a
 clipped or NaN result fails. Sizes are tiny so that every row runs in milliseconds.
 
-The count: 589 rows (``pytest --collect-only -q tests/fuzz/test_fuzz_api.py`` lists them, plus
-one coverage test): signal 169, device 111, fem 102, simulate 77, ml 72, probe 28, recording 21,
-study 9. Three are strict expected failures: bad inputs the simulator does not refuse yet. The
-command line adds 163: 150 hypothesis command lines in ``tests/cli/test_cli_fuzz.py`` (valid
-ones among them) and 13 bad-input cases in ``tests/cli/test_cli_errors.py`` (4 output paths, 8
-out-of-range numbers, 1 damaged recording): 752 in all.
+The count: 591 rows (``pytest --collect-only -q tests/fuzz/test_fuzz_api.py`` lists them, plus
+one coverage test): signal 169, device 111, fem 102, simulate 79, ml 72, probe 28, recording 21,
+study 9. The command line adds 163: 150 hypothesis command lines in
+``tests/cli/test_cli_fuzz.py`` (valid ones among them) and 13 bad-input cases in
+``tests/cli/test_cli_errors.py`` (4 output paths, 8 out-of-range numbers, 1 damaged recording):
+754 in all.
 """
 
 from __future__ import annotations
@@ -107,11 +107,6 @@ def make_file(kind: str, folder) -> str:
 def bad(target: str, case: str, fn, *args, raises=ValueError, match: str, marks=(), **kwargs):
     """One row: ``fn(*args, **kwargs)`` raises ``raises`` with ``match`` in its message."""
     return pytest.param(target, fn, args, kwargs, raises, match, id=f"{target}-{case}", marks=marks)
-
-
-def not_refused_yet(reason: str):
-    """A bad input the package still mishandles; the mark turns into a failure once it is fixed."""
-    return pytest.mark.xfail(strict=True, reason=reason)
 
 
 # ---------------------------------------------------------------- probe and materials
@@ -1247,9 +1242,6 @@ ROWS += [
         Sc,
         n_elements=HUGE_INT,
         match="n_elements must be <=",
-        marks=not_refused_yet(
-            "Scene accepts n_elements above fem.assembly.MAX_ELEMENTS; only simulate() refuses it"
-        ),
     ),
     bad("simulate.Scene", "modes-0", Sc, n_modes=0, match="n_modes must be >= 1"),
     bad(
@@ -1327,9 +1319,6 @@ ROWS += [
         simulate.load_scene,
         File("scene-list"),
         match="scene-list.json",
-        marks=not_refused_yet(
-            "a JSON list raises TypeError without the file's name; every other loader names it"
-        ),
     ),
     bad(
         "simulate.load_scene",
@@ -1439,11 +1428,23 @@ ROWS += [
         "paper",
         raises=TypeError,
         match="scene must be a Scene",
-        marks=not_refused_yet(
-            "modal_terms reads scene.contact before checking its type: AttributeError"
-        ),
     ),
     bad("simulate.make_effect", "unknown", simulate.make_effect, "rain", match="unknown effect"),
+    bad(
+        "simulate.make_effect",
+        "unilateral-max-events-0",
+        simulate.make_effect,
+        "unilateral_contact",
+        {"max_events": 0},
+        match="max_events must be >= 1",
+    ),
+    bad(
+        "simulate.Scene",
+        "unilateral-without-rod",
+        Sc,
+        effects=["unilateral_contact"],
+        match="'unilateral_contact' needs 'object_modes'",
+    ),
     bad(
         "simulate.make_effect",
         "int",

@@ -42,6 +42,9 @@ class FittedAttribute:
         Set by some fits only (``feature_names_in_`` needs named columns).
     since : int
         First file format version that stores it; older files load without it.
+    sparse : bool
+        For an ``'array'``: it may also be a ``scipy.sparse`` CSR matrix (after a fit on sparse
+        input), stored as its three arrays and checked like the dense one.
 
     Examples
     --------
@@ -63,6 +66,7 @@ class FittedAttribute:
     ndim: int | None = None
     optional: bool = False
     since: int = 1
+    sparse: bool = False
 
     def __post_init__(self):
         if self.kind not in KINDS:
@@ -72,6 +76,8 @@ class FittedAttribute:
             "arrays",
         ):
             raise ValueError(f"dtype and ndim describe arrays; {self.name} is a {self.kind!r}")
+        if self.sparse and self.kind != "array":
+            raise ValueError(f"only an 'array' may be sparse; {self.name} is a {self.kind!r}")
 
     def check(self, array: np.ndarray) -> None:
         """Raise ``ValueError`` unless ``array`` has the declared dtype and dimensions.

@@ -42,6 +42,11 @@ differences (``Kernel::k_function``), so its training path changes when the feat
 exercise 8 shows it). ``center=False`` reproduces its training arithmetic on purpose; the
 ``libsvm_compat`` mode of :class:`~ebantenna.ml.SVC` uses it to follow libsvm's path and digits.
 
+Sparse points (``scipy.sparse`` matrices, used as CSR) cannot be centred without filling them:
+their rows are expanded about the origin and the entries whose error bound is not small against
+the distance are recomputed from direct differences, which bounds every squared distance
+*relative to itself* (:mod:`ebantenna.ml.sparse_input` gives the bound and the rule).
+
 :class:`KernelRows` hands the SMO solver the rows of a training kernel: it either holds the whole
 matrix (one GEMM) or keeps a least-recently-used cache of rows computed on demand.
 """
@@ -53,10 +58,13 @@ from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.sparse import issparse
 
 from .._validate import check_choice, check_int, check_real
+from .sparse_input import as_csr, recompute_cancelled, sparse_variance, squared_norms_sparse
 
-__all__ = ["KERNELS", "Kernel", "KernelRows", "resolve_gamma", "gram_matrix", "squared_norms"]
+__all__ = ["KERNELS", "Kernel", "KernelRows", "resolve_gamma", "gram_matrix", "squared_norms",
+           "call_kernel"]
 
 logger = logging.getLogger(__name__)
 
@@ -72,8 +80,8 @@ def resolve_gamma(gamma, X: np.ndarray) -> float:
     gamma : {'scale', 'auto'} or float
         ``'scale'`` gives ``1 / (n_features * X.var())`` (1 if the variance is zero), ``'auto'``
         gives ``1 / n_features``, a number is used as it is (it must be >= 0).
-    X : ndarray of shape (n_samples, n_features)
-        Training features.
+    X : ndarray or sparse matrix of shape (n_samples, n_features)
+        Training features (for a sparse matrix, its zeros count in the variance).
 
     Returns
     -------
@@ -92,7 +100,7 @@ def resolve_gamma(gamma, X: np.ndarray) -> float:
         check_choice("gamma", gamma, ("scale", "auto"))
         if gamma == "auto":
             return 1.0 / X.shape[1]
-        var = float(X.var())
+        var = sparse_variance(X) if issparse(X) else float(X.var())
         return 1.0 / (X.shape[1] * var) if var != 0 else 1.0
     value = check_real("gamma", gamma)
     if value < 0:
@@ -100,14 +108,17 @@ def resolve_gamma(gamma, X: np.ndarray) -> float:
     return value
 
 
-def squared_norms(X: np.ndarray) -> np.ndarray:
-    """Row-wise squared Euclidean norms :math:`\\lVert x_i \\rVert^2` (float64).
+def squared_norms(X) -> np.ndarray:
+    """Row-wise squared Euclidean norms :math:`\\lVert x_i \\rVert^2` (float64) of an array or a
+    CSR matrix.
 
     Examples
     --------
     >>> squared_norms(np.array([[3.0, 4.0], [1.0, 0.0]]))
     array([25.,  1.])
     """
+    if issparse(X):
+        return squared_norms_sparse(as_csr(X))
     return np.einsum("ij,ij->i", X, X)
 
 
@@ -151,8 +162,8 @@ class Kernel:
 
     def gram(
         self,
-        X: np.ndarray,
-        Y: np.ndarray | None = None,
+        X,
+        Y=None,
         *,
         x_norms: np.ndarray | None = None,
         y_norms: np.ndarray | None = None,
@@ -166,22 +177,29 @@ class Kernel:
 
         Parameters
         ----------
-        X : ndarray of shape (n, n_features)
-        Y : ndarray of shape (m, n_features), optional
-            Reference points (default: ``X``).
+        X : ndarray or sparse matrix of shape (n, n_features)
+        Y : ndarray or sparse matrix of shape (m, n_features), optional
+            Reference points (default: ``X``). If either set is sparse, both are taken as CSR
+            matrices (see :mod:`ebantenna.ml.sparse_input`).
         x_norms, y_norms : ndarray, optional
-            Precomputed :func:`squared_norms` of ``X`` and ``Y`` for 'rbf'; only with
-            ``center=False`` (they would be the norms of the uncentred points otherwise).
+            Precomputed :func:`squared_norms` of ``X`` and ``Y`` for 'rbf'; for dense points only
+            with ``center=False`` (they would be the norms of the uncentred points otherwise).
         dtype : numpy dtype
             Type of the returned matrix.
         center : bool
-            For 'rbf': subtract the mean of the reference points from both sets before the
-            expansion, so that the result does not cancel (see the module notes for the error
-            bound). ``False`` expands the points as given, as libsvm trains.
+            For 'rbf', keep the squared distances free of cancellation: dense points are centred
+            on the mean of the reference points before the expansion (see the module notes),
+            sparse rows keep their sparsity and the entries the expansion cannot be trusted with
+            are recomputed from direct differences (see :mod:`ebantenna.ml.sparse_input`).
+            ``False`` expands the points as given, as libsvm trains.
         """
         same = Y is None
+        sparse = issparse(X) or (not same and issparse(Y))
+        if sparse:
+            X = as_csr(X)
+            Y = X if same else as_csr(Y)
         Y = X if same else Y
-        if self.name == "rbf" and center:
+        if self.name == "rbf" and center and not sparse:
             if x_norms is not None or y_norms is not None:
                 raise ValueError("x_norms and y_norms can only be given with center=False")
             m = Y.mean(axis=0)
@@ -199,6 +217,8 @@ class Kernel:
             stop = min(start + step, X.shape[0])
             first = start if same else 0
             block = X[start:stop] @ Y[first:].T
+            if sparse:
+                block = block.toarray()
             if self.name == "poly":
                 block *= self.gamma
                 block += self.coef0
@@ -212,6 +232,9 @@ class Kernel:
                 block *= -2.0
                 block += xn[start:stop, None] + yn[None, first:]
                 np.maximum(block, 0.0, out=block)
+                if sparse and center:
+                    recompute_cancelled(block, X[start:stop], Y[first:], xn[start:stop],
+                                        yn[first:])
                 block *= -self.gamma
                 np.exp(block, out=block)
             out[start:stop, first:] = block
@@ -234,7 +257,7 @@ class Kernel:
 
 
 def gram_matrix(X, Y=None, *, kernel="rbf", gamma=1.0, degree=3, coef0=0.0) -> np.ndarray:
-    """Kernel matrix between the rows of ``X`` and ``Y`` (float64).
+    """Kernel matrix between the rows of ``X`` and ``Y`` (float64); arrays or sparse matrices.
 
     Examples
     --------
@@ -242,9 +265,30 @@ def gram_matrix(X, Y=None, *, kernel="rbf", gamma=1.0, degree=3, coef0=0.0) -> n
     array([[1., 0.],
            [0., 1.]])
     """
-    X = np.asarray(X, dtype=np.float64)
-    Y = None if Y is None else np.asarray(Y, dtype=np.float64)
+    X = X if issparse(X) else np.asarray(X, dtype=np.float64)
+    Y = Y if Y is None or issparse(Y) else np.asarray(Y, dtype=np.float64)
     return Kernel(kernel, gamma=gamma, degree=degree, coef0=coef0).gram(X, Y)
+
+
+def call_kernel(kernel, X, Y) -> np.ndarray:
+    """The matrix ``kernel(X, Y)`` of a user's kernel callable, checked (float64, dense).
+
+    A sparse result is converted to an array, as scikit-learn does.
+
+    Examples
+    --------
+    >>> call_kernel(lambda a, b: a @ b.T, np.eye(2), np.ones((1, 2)))
+    array([[1.],
+           [1.]])
+    """
+    K = kernel(X, Y)
+    K = K.toarray() if issparse(K) else np.asarray(K, dtype=np.float64)
+    if K.shape != (X.shape[0], Y.shape[0]):
+        raise ValueError(f"the kernel callable must return an array of shape "
+                         f"{(X.shape[0], Y.shape[0])}; got {K.shape}")
+    if not np.isfinite(K).all():
+        raise ValueError("the kernel callable returned values that are not finite")
+    return K.astype(np.float64, copy=False)
 
 
 class KernelRows:
@@ -252,7 +296,7 @@ class KernelRows:
 
     Parameters
     ----------
-    X : ndarray of shape (n, n_features)
+    X : ndarray or CSR matrix of shape (n, n_features)
         Training points (float64).
     kernel : Kernel
         The kernel function.
@@ -265,8 +309,9 @@ class KernelRows:
     full : ndarray of shape (N, N), optional
         A precomputed kernel matrix to use as it is.
     center : bool
-        For 'rbf': compute the rows from the points centred once on their mean, without
-        cancellation (see the module notes); ``False`` keeps libsvm's uncentred arithmetic.
+        For 'rbf': compute the rows without cancellation, from the points centred once on their
+        mean or, for sparse points, with the cancelling entries recomputed (see
+        :meth:`Kernel.gram`); ``False`` keeps libsvm's uncentred arithmetic.
     parts : sequence of slice, optional
         With ``full``: the problem's points are the rows of ``full`` in these slices, one after
         the other (the classes of a one-vs-one pair). Rows are then assembled from the slices on
@@ -284,8 +329,14 @@ class KernelRows:
 
     def __init__(self, X, kernel: Kernel, dtype, cache_bytes: int, full=None, parts=None,
                  center: bool = True):
-        if X is not None and center and kernel.name == "rbf":
+        sparse = issparse(X)
+        if sparse:
+            X = as_csr(X)
+        elif X is not None and center and kernel.name == "rbf":
             X = X - X.mean(axis=0)
+        # rows are expanded about the origin: dense points are centred already, sparse ones keep
+        # their zeros and have their cancelling entries recomputed
+        self._center = center and sparse
         self.X = X
         self.kernel = kernel
         self.dtype = np.dtype(dtype)
@@ -310,7 +361,8 @@ class KernelRows:
         if full is not None:
             self.matrix = np.asarray(full, dtype=self.dtype)
         elif self.n * self.n * self.dtype.itemsize <= cache_bytes:
-            self.matrix = kernel.gram(X, x_norms=self._norms, dtype=self.dtype, center=False)
+            self.matrix = kernel.gram(X, x_norms=self._norms, dtype=self.dtype,
+                                      center=self._center)
         else:
             self.matrix = None
             self._cache: OrderedDict[int, np.ndarray] = OrderedDict()
@@ -348,7 +400,7 @@ class KernelRows:
             self._cache.move_to_end(i)
             return cached
         r = self.kernel.gram(self.X[i : i + 1], self.X, x_norms=self._norms[i : i + 1],
-                             y_norms=self._norms, dtype=self.dtype, center=False)[0]
+                             y_norms=self._norms, dtype=self.dtype, center=self._center)[0]
         if self.kernel.name == "rbf":
             r[i] = 1.0
         self.rows_computed += 1

@@ -41,6 +41,13 @@ gradient is the true gradient of the reported loss, :math:`(\\hat y - y) / (n m)
 or for classification, both agree, and one ``'gd'`` step equals one full-batch step of
 scikit-learn's ``'sgd'`` solver without momentum.
 
+Sparse input: ``fit``, ``partial_fit`` and the predictions take ``scipy.sparse`` matrices and
+arrays; CSR and CSC are used as they are, other formats are converted to CSR (scikit-learn's
+rule). Only the first layer's products see the sparse matrix; they sum over its stored entries,
+in another order than a dense product, so a sparse fit follows the dense one to rounding.
+Targets must be dense: a sparse ``y`` raises scikit-learn's ``TypeError`` (scikit-learn's
+classifier, unlike this one, also takes a sparse label indicator matrix).
+
 The forward pass, the losses and backpropagation are plain functions of
 :mod:`ebantenna.ml.backprop`; the parameters are checked by scikit-learn's own constraint
 mechanism (``_parameter_constraints``), so a bad value raises the error scikit-learn raises, in
@@ -50,18 +57,30 @@ the same words.
 from __future__ import annotations
 
 import numpy as np
+from scipy.sparse import issparse
 from scipy.special import expit, log_expit, logsumexp
 from sklearn.base import ClassifierMixin, RegressorMixin, _fit_context
 from sklearn.metrics import accuracy_score, r2_score
 from sklearn.preprocessing import LabelBinarizer
 from sklearn.utils.metaestimators import available_if
 from sklearn.utils.multiclass import check_classification_targets, type_of_target
-from sklearn.utils.validation import check_is_fitted, column_or_1d, validate_data
+from sklearn.utils.validation import check_array, check_is_fitted, column_or_1d, validate_data
 
 from .fitted import FittedAttribute
 from .mlp_base import ACTIVATIONS, SOLVERS, BaseMLP
 
 __all__ = ["MLPClassifier", "MLPRegressor", "ACTIVATIONS", "SOLVERS"]
+
+#: Sparse formats taken as they are (as scikit-learn's MLPs); others are converted to CSR.
+SPARSE = ("csr", "csc")
+
+
+def _dense_target(y):
+    """``y`` as given; a sparse ``y`` is refused in scikit-learn's words (targets are dense here,
+    even the label indicator matrices that scikit-learn's classifier takes sparse)."""
+    if issparse(y):
+        check_array(y, accept_sparse=False, ensure_2d=False, dtype=None, input_name="y")
+    return y
 
 
 def _first_order(estimator) -> bool:
@@ -118,7 +137,8 @@ class MLPClassifier(ClassifierMixin, BaseMLP):
     @_fit_context(prefer_skip_nested_validation=True)
     def fit(self, X, y):
         """Train on features ``X`` (n_samples, n_features) and labels ``y``."""
-        X, y = validate_data(self, X, y, dtype=np.float64, multi_output=True,
+        X, y = validate_data(self, X, _dense_target(y), dtype=np.float64, accept_sparse=SPARSE,
+                             multi_output=True,
                              reset=not (self.warm_start and hasattr(self, "coefs_")))
         if y.ndim == 2 and y.shape[1] == 1:
             y = column_or_1d(y, warn=True)
@@ -159,7 +179,8 @@ class MLPClassifier(ClassifierMixin, BaseMLP):
                                                                     np.unique(classes)):
             raise ValueError(f"`classes={classes!r}` is not the same as on the first call to "
                              f"partial_fit, was: {self.classes_!r}")
-        X, y = validate_data(self, X, y, dtype=np.float64, multi_output=True, reset=first)
+        X, y = validate_data(self, X, _dense_target(y), dtype=np.float64, accept_sparse=SPARSE,
+                             multi_output=True, reset=first)
         if y.ndim == 2 and y.shape[1] == 1:
             y = column_or_1d(y, warn=True)
         check_classification_targets(y)
@@ -189,7 +210,7 @@ class MLPClassifier(ClassifierMixin, BaseMLP):
     def predict_proba(self, X):
         """Class probabilities, shape (n_samples, n_classes)."""
         check_is_fitted(self)
-        X = validate_data(self, X, dtype=np.float64, reset=False)
+        X = validate_data(self, X, dtype=np.float64, accept_sparse=SPARSE, reset=False)
         z = self._forward(X, self.coefs_, self.intercepts_)[-1]
         if self.out_activation_ == "softmax":
             z = z - z.max(axis=1, keepdims=True)
@@ -203,7 +224,7 @@ class MLPClassifier(ClassifierMixin, BaseMLP):
     def predict_log_proba(self, X):
         """Logarithm of :meth:`predict_proba`, computed stably."""
         check_is_fitted(self)
-        X = validate_data(self, X, dtype=np.float64, reset=False)
+        X = validate_data(self, X, dtype=np.float64, accept_sparse=SPARSE, reset=False)
         z = self._forward(X, self.coefs_, self.intercepts_)[-1]
         if self.out_activation_ == "softmax":
             return z - logsumexp(z, axis=1, keepdims=True)
@@ -221,6 +242,7 @@ class MLPClassifier(ClassifierMixin, BaseMLP):
     def __sklearn_tags__(self):
         tags = super().__sklearn_tags__()
         tags.classifier_tags.multi_label = True
+        tags.input_tags.sparse = True
         return tags
 
 
@@ -260,7 +282,8 @@ class MLPRegressor(RegressorMixin, BaseMLP):
     @_fit_context(prefer_skip_nested_validation=True)
     def fit(self, X, y):
         """Train on features ``X`` (n_samples, n_features) and targets ``y``."""
-        X, y = validate_data(self, X, y, dtype=np.float64, multi_output=True, y_numeric=True,
+        X, y = validate_data(self, X, _dense_target(y), dtype=np.float64, accept_sparse=SPARSE,
+                             multi_output=True, y_numeric=True,
                              reset=not (self.warm_start and hasattr(self, "coefs_")))
         self._y_ndim = y.ndim
         Y = y.reshape(-1, 1) if y.ndim == 1 else y
@@ -276,8 +299,8 @@ class MLPRegressor(RegressorMixin, BaseMLP):
         self
         """
         first = not hasattr(self, "coefs_")
-        X, y = validate_data(self, X, y, dtype=np.float64, multi_output=True, y_numeric=True,
-                             reset=first)
+        X, y = validate_data(self, X, _dense_target(y), dtype=np.float64, accept_sparse=SPARSE,
+                             multi_output=True, y_numeric=True, reset=first)
         if not first and y.ndim != self._y_ndim:
             raise ValueError(f"y has {y.ndim} dimension(s); the first call had {self._y_ndim}")
         self._y_ndim = y.ndim
@@ -290,7 +313,7 @@ class MLPRegressor(RegressorMixin, BaseMLP):
     def predict(self, X):
         """Predicted targets, shape (n_samples,) or (n_samples, n_outputs)."""
         check_is_fitted(self)
-        X = validate_data(self, X, dtype=np.float64, reset=False)
+        X = validate_data(self, X, dtype=np.float64, accept_sparse=SPARSE, reset=False)
         z = self._forward(X, self.coefs_, self.intercepts_)[-1]
         return z[:, 0] if self._y_ndim == 1 else z
 
@@ -298,4 +321,5 @@ class MLPRegressor(RegressorMixin, BaseMLP):
         tags = super().__sklearn_tags__()
         tags.target_tags.multi_output = True
         tags.target_tags.single_output = True
+        tags.input_tags.sparse = True
         return tags

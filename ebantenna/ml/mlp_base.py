@@ -14,6 +14,7 @@ from numbers import Integral, Real
 
 import numpy as np
 from scipy import optimize
+from scipy.sparse import issparse
 from sklearn.base import BaseEstimator, ClassifierMixin
 from sklearn.exceptions import ConvergenceWarning
 from sklearn.model_selection import train_test_split
@@ -195,7 +196,8 @@ class BaseMLP(BaseEstimator):
         shapes = [c.shape for c in self.coefs_]
         w = self._pack(self.coefs_, self.intercepts_) if w is None else np.asarray(w, float)
         coefs, intercepts = self._unpack(w, shapes)
-        loss, cg, ig = self._loss_grad(np.asarray(X, float), np.asarray(Y, float), coefs,
+        X = X if issparse(X) else np.asarray(X, float)
+        loss, cg, ig = self._loss_grad(X, np.asarray(Y, float), coefs,
                                        intercepts)
         return loss, self._pack(cg, ig)
 

@@ -15,6 +15,10 @@ array checked, each value a plain JSON number, string, bool or list of them (no 
 parameters pass the estimator's own validation; a SHA-256 checksum over the arrays and the JSON
 catches a file changed after it was written; and the rebuilt model must predict a finite answer
 before it is handed out. Whatever is wrong ends in one ``ValueError`` naming the file.
+
+A CSR matrix (the support vectors of an :class:`SVC` fitted on sparse input) is stored as its
+arrays ``name__data``, ``name__indices`` and ``name__indptr`` with its shape in the JSON
+(``sparse_shapes``), and rebuilt only if scipy's full format check passes.
 """
 
 from __future__ import annotations
@@ -27,6 +31,7 @@ import warnings
 from pathlib import Path
 
 import numpy as np
+import scipy.sparse as sp
 
 from .._validate import open_npz, output_path
 from .mlp import MLPClassifier, MLPRegressor
@@ -125,6 +130,27 @@ def _loaded_array(attr, value: np.ndarray, path) -> np.ndarray:
     return value
 
 
+#: The arrays that hold a CSR matrix.
+_CSR_PARTS = ("data", "indices", "indptr")
+
+
+def _loaded_csr(attr, parts, shape, path) -> sp.csr_matrix:
+    """A stored CSR matrix, rebuilt only if its arrays and shape make a valid one."""
+    data, indices, indptr = parts
+    if not (isinstance(shape, list) and len(shape) == 2 and all(
+            isinstance(n, int) and not isinstance(n, bool) and n >= 0 for n in shape)):
+        raise ValueError(f"{path}: the shape of {attr.name} must be two counts, got {shape!r}")
+    if indices.dtype.kind not in "iu" or indptr.dtype.kind not in "iu":
+        raise ValueError(f"{path}: the indices of {attr.name} must be integers")
+    _loaded_array(attr, data.reshape(1, -1) if attr.ndim == 2 else data, path)
+    try:
+        matrix = sp.csr_matrix((data, indices, indptr), shape=tuple(shape))
+        matrix.check_format(full_check=True)
+    except ValueError as exc:
+        raise ValueError(f"{path}: {attr.name} is not a valid CSR matrix ({exc})") from None
+    return matrix
+
+
 def _undeclared(model) -> list[str]:
     """Attributes of ``model`` that are neither parameters nor in its fitted schema."""
     known = {a.name for a in model._fitted_schema} | set(model.get_params(deep=False))
@@ -180,14 +206,20 @@ def save_model(model, path) -> Path:
             f"so they would not be saved: {', '.join(undeclared)}"
         )
     path = output_path("path", path, ".npz")
-    arrays, values, lengths = {}, {}, {}
+    arrays, values, lengths, sparse_shapes = {}, {}, {}, {}
     for attr in model._fitted_schema:
         if attr.kind == "rebuilt" or (attr.optional and not hasattr(model, attr.name)):
             continue
         if not hasattr(model, attr.name):
             raise ValueError(f"model lacks its fitted attribute {attr.name}: fit it again")
         value = getattr(model, attr.name)
-        if attr.kind == "array":
+        if attr.kind == "array" and attr.sparse and sp.issparse(value):
+            value = value.tocsr()
+            attr.check(value.data.reshape(1, -1) if attr.ndim == 2 else value.data)
+            for part in _CSR_PARTS:
+                arrays[f"{attr.name}__{part}"] = getattr(value, part)
+            sparse_shapes[attr.name] = [int(n) for n in value.shape]
+        elif attr.kind == "array":
             arrays[attr.name] = _array_to_save(attr, value)
         elif attr.kind == "arrays":
             lengths[attr.name] = len(value)
@@ -203,6 +235,8 @@ def save_model(model, path) -> Path:
         "attributes": values,
         "list_lengths": lengths,
     }
+    if sparse_shapes:
+        meta["sparse_shapes"] = sparse_shapes
     meta["checksum_sha256"] = _checksum(arrays, meta)
     arrays["__meta__"] = np.array(json.dumps(meta))
     np.savez(path, **arrays)
@@ -267,12 +301,20 @@ def _rebuild(path: Path, arrays: dict, meta):
         _check_plain(f"parameter {key}", value)
     model = cls(**{k: _unplain(v) for k, v in params.items()})
     model._validate_params()  # scikit-learn's own parameter constraints
+    shapes = meta.get("sparse_shapes", {})
+    if not isinstance(shapes, dict):
+        raise ValueError(f"{path}: sparse_shapes must be a JSON object")
     stored = {"array": set(arrays), "arrays": set(lengths), "value": set(attributes)}
     used = set()
     for attr in cls._fitted_schema:
         if attr.kind == "rebuilt":
             continue
-        if attr.kind == "array" and attr.name in stored["array"]:
+        if attr.kind == "array" and attr.sparse and attr.name in shapes:
+            keys = [f"{attr.name}__{part}" for part in _CSR_PARTS]
+            setattr(model, attr.name, _loaded_csr(attr, [arrays[k] for k in keys],
+                                                  shapes[attr.name], path))
+            used.update(keys)
+        elif attr.kind == "array" and attr.name in stored["array"]:
             setattr(model, attr.name, _loaded_array(attr, arrays[attr.name], path))
         elif attr.kind == "arrays" and attr.name in stored["arrays"]:
             count = lengths[attr.name]

@@ -10,11 +10,11 @@ The module text of :mod:`ebantenna.ml.smo` says which digit each convention move
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-__all__ = ["SMOPolicy", "DEFAULT", "LIBSVM", "SELECTIONS", "TAU"]
+__all__ = ["SMOPolicy", "DEFAULT", "LIBSVM", "SELECTIONS", "TAU", "fit_policy"]
 
 #: Working-set selection rules.
 SELECTIONS = ("second-order", "first-order")
@@ -104,3 +104,27 @@ DEFAULT = SMOPolicy()
 #: sequential bias sum, shrinking, float32 kernel entries.
 LIBSVM = SMOPolicy(ties="last", curvature_floor="nonpositive", bias_sum="sequential",
                    shrinking=True, float32_kernel=True)
+
+
+def fit_policy(libsvm_compat: bool, selection: str, shrinking: bool,
+               whole_kernel: bool) -> SMOPolicy:
+    """The SMO conventions of an :class:`~ebantenna.ml.SVC` fit.
+
+    ``libsvm_compat`` takes all of libsvm's (:data:`LIBSVM`), with ``shrinking`` as given.
+    Otherwise the package's (:data:`DEFAULT`): shrinking only pays with the row cache, where the
+    solver then shrinks as libsvm does, with libsvm's curvature floor, and keeps the default
+    tie-breaking and bias sum.
+
+    Examples
+    --------
+    >>> fit_policy(False, "second-order", True, whole_kernel=True).shrinking
+    False
+    >>> fit_policy(True, "first-order", True, whole_kernel=True).ties
+    'last'
+    """
+    if libsvm_compat:
+        return replace(LIBSVM, selection=selection, shrinking=shrinking)
+    if shrinking and not whole_kernel:
+        return replace(DEFAULT, selection=selection, shrinking=True,
+                       curvature_floor="nonpositive")
+    return replace(DEFAULT, selection=selection)

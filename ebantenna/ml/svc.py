@@ -5,6 +5,12 @@ precomputed matrix and a callable), one-vs-one multiclass training, probability 
 makes them (:mod:`ebantenna.ml.platt`) and the same fitted attributes, layout and signs, so that a
 student can swap the import and compare. The dual problems are solved by
 :func:`ebantenna.ml.smo.solve_smo`.
+
+Sparse input: :meth:`SVC.fit` takes ``scipy.sparse`` matrices and arrays, used as CSR (CSC, COO
+and the other formats are converted, as scikit-learn does), with every kernel but 'precomputed'.
+The RBF kernel of sparse rows stays free of cancellation without centring them
+(:mod:`ebantenna.ml.sparse_input`). Unlike scikit-learn's, a model fitted on dense data also
+predicts sparse rows, and the reverse.
 """
 
 from __future__ import annotations
@@ -12,10 +18,10 @@ from __future__ import annotations
 import logging
 import math
 import warnings
-from dataclasses import replace
 from numbers import Integral, Real
 
 import numpy as np
+import scipy.sparse as sp
 from sklearn.base import BaseEstimator, ClassifierMixin, _fit_context
 from sklearn.exceptions import ConvergenceWarning, NotFittedError
 from sklearn.utils import check_random_state
@@ -31,15 +37,16 @@ from sklearn.utils.validation import (
 )
 
 from .fitted import INPUT_ATTRIBUTES, FittedAttribute
-from .kernels import Kernel, KernelRows, resolve_gamma
+from .kernels import Kernel, KernelRows, call_kernel, resolve_gamma
 from .ovo import dual_layout, one_vs_one_coef, ovo_votes, ovr_decision_function
 from .platt import pairwise_coupling, pairwise_sigmoids
-from .smo import DEFAULT, LIBSVM, SMOPolicy, solve_smo
+from .smo import DEFAULT, LIBSVM, solve_smo
+from .smo_policy import fit_policy
+from .sparse_input import as_csr
 
 __all__ = ["SVC", "ovr_decision_function"]
 
 logger = logging.getLogger(__name__)
-
 
 
 class SVC(ClassifierMixin, BaseEstimator):
@@ -110,12 +117,13 @@ class SVC(ClassifierMixin, BaseEstimator):
     classes_ : ndarray of shape (n_classes,)
     support_ : ndarray of shape (n_SV,)
         Indices of the support vectors, grouped by class.
-    support_vectors_ : ndarray of shape (n_SV, n_features)
-        Empty, of shape (0, 0), for a precomputed or callable kernel (as in scikit-learn).
+    support_vectors_ : ndarray or CSR matrix of shape (n_SV, n_features)
+        A ``scipy.sparse.csr_matrix`` after a fit on sparse ``X``; empty, of shape (0, 0), for a
+        precomputed or callable kernel (both as in scikit-learn).
     n_support_ : ndarray of shape (n_classes,), int32
-    dual_coef_ : ndarray of shape (n_classes - 1, n_SV)
+    dual_coef_ : ndarray or CSR matrix of shape (n_classes - 1, n_SV)
         :math:`y_t\\alpha_t` in libsvm's one-vs-one layout (sign flipped for two classes, as
-        scikit-learn does).
+        scikit-learn does); a ``csr_matrix`` after a sparse fit, as there.
     intercept_ : ndarray of shape (n_classes * (n_classes - 1) / 2,)
     n_iter_ : ndarray of shape (n_classes * (n_classes - 1) / 2,)
         SMO updates per binary problem.
@@ -166,9 +174,9 @@ class SVC(ClassifierMixin, BaseEstimator):
         FittedAttribute("classes_", "array", ndim=1),
         FittedAttribute("class_weight_", "array", dtype="float64", ndim=1),
         FittedAttribute("support_", "array", dtype="int32", ndim=1),
-        FittedAttribute("support_vectors_", "array", dtype="float64", ndim=2),
+        FittedAttribute("support_vectors_", "array", dtype="float64", ndim=2, sparse=True),
         FittedAttribute("n_support_", "array", dtype="int32", ndim=1),
-        FittedAttribute("dual_coef_", "array", dtype="float64", ndim=2),
+        FittedAttribute("dual_coef_", "array", dtype="float64", ndim=2, sparse=True),
         FittedAttribute("intercept_", "array", dtype="float64", ndim=1),
         FittedAttribute("_dual_coef_", "array", dtype="float64", ndim=2),
         FittedAttribute("_intercept_", "array", dtype="float64", ndim=1),
@@ -227,10 +235,11 @@ class SVC(ClassifierMixin, BaseEstimator):
 
         Parameters
         ----------
-        X : array-like of shape (n_samples, n_features)
-            Training features.
+        X : array-like or sparse matrix of shape (n_samples, n_features)
+            Training features. Sparse matrices are used as CSR (other formats are converted, as
+            scikit-learn does); a sparse kernel matrix ('precomputed') is refused, as there.
         y : array-like of shape (n_samples,)
-            Class labels.
+            Class labels (dense).
         sample_weight : array-like of shape (n_samples,), optional
             Per-sample multiplier of ``C``; samples with weight <= 0 are left out.
 
@@ -240,7 +249,8 @@ class SVC(ClassifierMixin, BaseEstimator):
         """
         if self.break_ties and self.decision_function_shape == "ovo":
             raise ValueError("break_ties must be False when decision_function_shape is 'ovo'")
-        X, y = validate_data(self, X, y, dtype=np.float64, order="C", accept_sparse=False)
+        X, y = validate_data(self, X, y, dtype=np.float64, order="C", accept_sparse="csr")
+        X = self._sparse_input(X)
         if self.kernel == "precomputed" and X.shape[0] != X.shape[1]:
             raise ValueError("Precomputed matrix must be a square matrix. Input is a "
                              f"{X.shape[0]}x{X.shape[1]} matrix.")
@@ -278,7 +288,8 @@ class SVC(ClassifierMixin, BaseEstimator):
             if n_keep * n_keep * np.dtype(dtype).itemsize <= cache_bytes:
                 full = kern.gram(X[order], dtype=dtype, center=not self.libsvm_compat)
             diag = kern.diagonal(X)
-        policy = self._smo_policy(whole_kernel=full is not None)
+        policy = fit_policy(self.libsvm_compat, self.selection, bool(self.shrinking),
+                            whole_kernel=full is not None)
         # -1: no cap, as in scikit-learn's libsvm ("set max_iter to -1 to disable the mechanism"
         # in its Solver::Solve; upstream libsvm stops at max(1e7, 100 n) updates instead)
         max_iter = math.inf if self.max_iter == -1 else int(self.max_iter)
@@ -324,43 +335,26 @@ class SVC(ClassifierMixin, BaseEstimator):
                              "may contain large values and need to be preprocessed.")
         return self
 
-    def _smo_policy(self, whole_kernel: bool) -> SMOPolicy:
-        """The SMO conventions of this fit.
-
-        ``libsvm_compat`` takes all of libsvm's (:data:`~ebantenna.ml.smo_policy.LIBSVM`), with
-        ``shrinking`` as given. Otherwise the package's (:data:`~ebantenna.ml.smo_policy.DEFAULT`):
-        shrinking only pays with the row cache, where the solver then shrinks as libsvm does, with
-        libsvm's curvature floor, and keeps the default tie-breaking and bias sum.
-        """
-        shrinking = bool(self.shrinking)
-        if self.libsvm_compat:
-            return replace(LIBSVM, selection=self.selection, shrinking=shrinking)
-        if shrinking and not whole_kernel:
-            return replace(DEFAULT, selection=self.selection, shrinking=True,
-                           curvature_floor="nonpositive")
-        return replace(DEFAULT, selection=self.selection)
-
     def _store(self, X, classes, members, coefs, rhos, n_iter):
         """Arrange the pairwise solutions in libsvm's (and scikit-learn's) layout."""
         k = classes.size
         support, n_support, dual = dual_layout(X.shape[0], members, coefs)
         self.support_ = support.astype(np.int32)
+        sparse = sp.issparse(X) and not callable(self.kernel)
         if self.kernel == "precomputed" or callable(self.kernel):
             self.support_vectors_ = np.empty((0, 0))
             if callable(self.kernel):
                 self._X_fit = X
-        else:
-            self.support_vectors_ = X[support]
+        else:  # CSR matrices for a sparse fit, as scikit-learn's
+            self.support_vectors_ = sp.csr_matrix(X[support]) if sparse else X[support]
         self.n_support_ = n_support
         self._dual_coef_ = dual
         self._intercept_ = -rhos
         self.n_iter_ = np.array(n_iter, dtype=np.int32)
-        if k == 2:
-            self.dual_coef_ = -dual
-            self.intercept_ = rhos.copy()
-        else:
-            self.dual_coef_ = dual
-            self.intercept_ = -rhos
+        self.dual_coef_ = -dual if k == 2 else dual
+        self.intercept_ = rhos.copy() if k == 2 else -rhos
+        if sparse:
+            self.dual_coef_ = sp.csr_matrix(self.dual_coef_)
 
     def _fit_probability(self, X, members, given, kern, dtype, c_vec, diag, policy, max_iter):
         """Platt's sigmoids of every pair, on five-fold decision values (libsvm's procedure)."""
@@ -410,18 +404,16 @@ class SVC(ClassifierMixin, BaseEstimator):
         if self.kernel == "precomputed":
             return X
         if callable(self.kernel):
-            return self._call_kernel(X, X)
+            return call_kernel(self.kernel, X, X)
         return None
 
-    def _call_kernel(self, X, Y) -> np.ndarray:
-        """The callable kernel's matrix of ``X`` against ``Y``, checked."""
-        K = np.asarray(self.kernel(X, Y), dtype=np.float64)
-        if K.shape != (X.shape[0], Y.shape[0]):
-            raise ValueError(f"the kernel callable must return an array of shape "
-                             f"{(X.shape[0], Y.shape[0])}; got {K.shape}")
-        if not np.isfinite(K).all():
-            raise ValueError("the kernel callable returned values that are not finite")
-        return K
+    def _sparse_input(self, X):
+        """A validated sparse ``X`` in canonical CSR form (sorted, summed indices)."""
+        if not sp.issparse(X):
+            return X
+        if self.kernel == "precomputed":  # scikit-learn's words
+            raise TypeError("Sparse precomputed kernels are not supported.")
+        return as_csr(X)
 
     # ----------------------------------------------------------------- predict
     def _kernel(self) -> Kernel:
@@ -433,7 +425,7 @@ class SVC(ClassifierMixin, BaseEstimator):
         if self.kernel == "precomputed":
             return X[:, self.support_]
         if callable(self.kernel):
-            return self._call_kernel(X, self._X_fit[self.support_])
+            return call_kernel(self.kernel, X, self._X_fit[self.support_])
         return self._kernel().gram(X, self.support_vectors_)
 
     @property
@@ -442,24 +434,30 @@ class SVC(ClassifierMixin, BaseEstimator):
 
         Shape (1, n_features) for two classes, else one row per pair of classes in the order of
         ``intercept_``; computed from ``dual_coef_`` and ``support_vectors_`` as scikit-learn
-        does, read-only.
+        does, read-only (a CSR matrix after a sparse fit, as there).
         """
         if self.kernel != "linear":
             raise AttributeError("coef_ is only available when using a linear kernel")
         check_is_fitted(self)
-        coef = one_vs_one_coef(self.dual_coef_, self.n_support_, self.support_vectors_)
-        coef.flags.writeable = False
+        dual = self.dual_coef_
+        sparse = sp.issparse(dual)
+        coef = one_vs_one_coef(dual.toarray() if sparse else dual, self.n_support_,
+                               self.support_vectors_)
+        coef = sp.csr_matrix(coef) if sparse else coef
+        (coef.data if sparse else coef).flags.writeable = False
         return coef
 
     def __sklearn_tags__(self):
         tags = super().__sklearn_tags__()
         tags.input_tags.pairwise = self.kernel == "precomputed"
+        tags.input_tags.sparse = self.kernel != "precomputed"
         return tags
 
     def _ovo_decision(self, X) -> np.ndarray:
         """libsvm's pairwise decision values (positive: the pair's first class)."""
         check_is_fitted(self)
-        X = validate_data(self, X, dtype=np.float64, order="C", reset=False)
+        X = validate_data(self, X, dtype=np.float64, order="C", accept_sparse="csr", reset=False)
+        X = self._sparse_input(X)
         kx = self._test_kernel(X)
         k = self.classes_.size
         bounds = np.concatenate([[0], np.cumsum(self.n_support_)])

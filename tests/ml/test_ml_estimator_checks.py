@@ -24,8 +24,9 @@ def _expected_failures(estimator):
         # weights multiply C per sample, as in libsvm: a repeated sample and a doubled weight
         # give the same optimum but different SMO paths, hence different points of the
         # tolerance neighbourhood
-        return {"check_sample_weight_equivalence_on_dense_data":
-                "sample_weight is not equivalent to removing/repeating samples."}
+        reason = "sample_weight is not equivalent to removing/repeating samples."
+        return {"check_sample_weight_equivalence_on_dense_data": reason,
+                "check_sample_weight_equivalence_on_sparse_data": reason}
     return {}
 
 

@@ -4,6 +4,7 @@ import warnings
 
 import numpy as np
 import pytest
+from mlp_reference import EPS, max_abs, one_step_pair, rounding
 from sklearn.exceptions import ConvergenceWarning
 from sklearn.neural_network import MLPClassifier as SkClassifier
 from sklearn.neural_network import MLPRegressor as SkRegressor
@@ -18,42 +19,6 @@ def _data(n=60, d=4, seed=0):
     return X, rng
 
 
-EPS = np.finfo(float).eps
-
-
-def _rounding(X, widths, scale=1.0):
-    """How far two correct implementations of one gradient step may drift apart by rounding alone.
-
-    They sum the same products in different orders (BLAS blocking differs between CPU kernels and
-    between the two codes). A sum of m products is off by at most m eps times the sum of their
-    magnitudes (Higham, Accuracy and Stability of Numerical Algorithms, 2nd ed., eq. 3.5); the
-    longest sums here run over the samples (backward) and the widest layer (forward), and a step
-    chains a few of them (forward, backward, update; both codes): 8 m eps, scaled.
-    """
-    m = len(X) * max([X.shape[1], *widths])
-    return 8 * m * EPS * scale
-
-
-def _max_abs(arrays):
-    return max(1.0, max(float(np.abs(a).max()) for a in arrays))
-
-
-def _one_step_pair(ours, theirs, X, y):
-    """Fit both once (to set up), copy our initial weights into theirs, take one step each."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ConvergenceWarning)
-        ours.fit(X, y)
-        theirs.fit(X, y)
-        c0 = [c.copy() for c in ours.coefs_]
-        b0 = [b.copy() for b in ours.intercepts_]
-        for est in (ours, theirs):
-            est.coefs_ = [c.copy() for c in c0]
-            est.intercepts_ = [b.copy() for b in b0]
-            est.set_params(warm_start=True)
-            est.fit(X, y)
-    return c0, b0
-
-
 STEP = dict(alpha=0.3, max_iter=1, learning_rate_init=0.05, random_state=0)
 SK_STEP = dict(solver="sgd", momentum=0.0, shuffle=False, **STEP)
 
@@ -66,17 +31,17 @@ def test_gd_step_equals_sklearn_full_batch_sgd(activation, n_classes):
     ours = MLPClassifier(hidden_layer_sizes=(7, 5), activation=activation, solver="gd", **STEP)
     theirs = SkClassifier(hidden_layer_sizes=(7, 5), activation=activation,
                           batch_size=X.shape[0], **SK_STEP)
-    _one_step_pair(ours, theirs, X, y)
+    one_step_pair(ours, theirs, X, y)
     # same loss (L2 term included) and the same updated weights, to rounding
     loss = theirs.loss_curve_[-1]
-    assert abs(ours.loss_curve_[-1] - loss) <= _rounding(X, (7, 5), max(1.0, loss))
+    assert abs(ours.loss_curve_[-1] - loss) <= rounding(X, (7, 5), max(1.0, loss))
     weights = theirs.coefs_ + theirs.intercepts_
-    atol = _rounding(X, (7, 5), _max_abs(weights))
+    atol = rounding(X, (7, 5), max_abs(weights))
     for a, b in zip(ours.coefs_ + ours.intercepts_, weights, strict=True):
         np.testing.assert_allclose(a, b, rtol=0, atol=atol)
     # probabilities lie in [0, 1]: the same bound, scaled by 1
     np.testing.assert_allclose(ours.predict_proba(X), theirs.predict_proba(X), rtol=0,
-                               atol=_rounding(X, (7, 5)))
+                               atol=rounding(X, (7, 5)))
 
 
 @pytest.mark.parametrize("learning_rate", ["constant", "invscaling", "adaptive"])
@@ -109,7 +74,7 @@ def test_several_epochs_follow_sklearn(solver, learning_rate):
     # Each step adds at most one step's rounding; these small steps (rate <= 0.05 on a loss of
     # curvature below 1) carry earlier errors with a gain below 2 over the run.
     n_steps = epochs * (X.shape[0] // batch)
-    atol = 2 * n_steps * _rounding(X, (7,), _max_abs(theirs.coefs_ + theirs.intercepts_))
+    atol = 2 * n_steps * rounding(X, (7,), max_abs(theirs.coefs_ + theirs.intercepts_))
     np.testing.assert_allclose(ours.loss_curve_[1:], theirs.loss_curve_[1:], rtol=0, atol=atol)
     for a, b in zip(ours.coefs_ + ours.intercepts_, theirs.coefs_ + theirs.intercepts_,
                     strict=True):
@@ -147,7 +112,7 @@ def test_partial_fit_follows_sklearn(kind, solver, learning_rate):
         theirs.partial_fit(X[part], y[part], **extra)
         assert ours.n_iter_ == theirs.n_iter_ == 1 and ours.t_ == theirs.t_
     # 12 steps, each adding one step's rounding, carried with a gain below 2 (small steps)
-    atol = 2 * 12 * _rounding(X, (6,), _max_abs(theirs.coefs_ + theirs.intercepts_))
+    atol = 2 * 12 * rounding(X, (6,), max_abs(theirs.coefs_ + theirs.intercepts_))
     np.testing.assert_allclose(ours.loss_curve_[1:], theirs.loss_curve_[1:], rtol=0, atol=atol)
     for a, b in zip(ours.coefs_ + ours.intercepts_, theirs.coefs_ + theirs.intercepts_,
                     strict=True):
@@ -194,7 +159,7 @@ def test_lbfgs_follows_sklearn(kind):
     # orders; its line search and two-loop recursion carry that rounding on with a gain that
     # stays far below 1e5 over ten iterations of this well-scaled problem (after hundreds of
     # iterations the non-convex paths may fork, as any two runs of L-BFGS)
-    atol = 1e5 * _rounding(X, (7,), _max_abs(theirs.coefs_ + theirs.intercepts_))
+    atol = 1e5 * rounding(X, (7,), max_abs(theirs.coefs_ + theirs.intercepts_))
     for a, b in zip(ours.coefs_ + ours.intercepts_, theirs.coefs_ + theirs.intercepts_,
                     strict=True):
         np.testing.assert_allclose(a, b, rtol=0, atol=atol)
@@ -217,11 +182,11 @@ def test_gd_step_equals_sklearn_for_single_output_regression():
     ours = MLPRegressor(hidden_layer_sizes=(6,), activation="tanh", solver="gd", **STEP)
     theirs = SkRegressor(hidden_layer_sizes=(6,), activation="tanh", batch_size=X.shape[0],
                          **SK_STEP)
-    _one_step_pair(ours, theirs, X, y)
+    one_step_pair(ours, theirs, X, y)
     loss = theirs.loss_curve_[-1]
-    assert abs(ours.loss_curve_[-1] - loss) <= _rounding(X, (6,), max(1.0, loss))
+    assert abs(ours.loss_curve_[-1] - loss) <= rounding(X, (6,), max(1.0, loss))
     weights = theirs.coefs_ + theirs.intercepts_
-    atol = _rounding(X, (6,), _max_abs(weights))
+    atol = rounding(X, (6,), max_abs(weights))
     for a, b in zip(ours.coefs_ + ours.intercepts_, weights, strict=True):
         np.testing.assert_allclose(a, b, rtol=0, atol=atol)
 
@@ -234,13 +199,13 @@ def test_multi_output_regression_uses_the_true_gradient():
     ours = MLPRegressor(solver="gd", **params)
     theirs = SkRegressor(solver="sgd", momentum=0.0, shuffle=False, batch_size=X.shape[0],
                          **params)
-    c0, b0 = _one_step_pair(ours, theirs, X, Y)
+    c0, b0 = one_step_pair(ours, theirs, X, Y)
     # the same reported loss ...
     loss = theirs.loss_curve_[-1]
-    assert abs(ours.loss_curve_[-1] - loss) <= _rounding(X, (5,), max(1.0, loss))
+    assert abs(ours.loss_curve_[-1] - loss) <= rounding(X, (5,), max(1.0, loss))
     # ... but scikit-learn's step is n_outputs = 3 times the step of the true gradient (the
     # differences of the weights carry their rounding, scaled by the weights themselves)
-    atol = _rounding(X, (5,), _max_abs(c0 + b0))
+    atol = rounding(X, (5,), max_abs(c0 + b0))
     for ours_new, theirs_new, start in zip(ours.coefs_ + ours.intercepts_,
                                            theirs.coefs_ + theirs.intercepts_, c0 + b0,
                                            strict=True):
@@ -495,7 +460,7 @@ def test_user_set_weights_on_a_fresh_estimator_take_one_gd_step():
     ours = MLPClassifier(hidden_layer_sizes=(7, 5), activation="tanh", solver="gd", **STEP)
     theirs = SkClassifier(hidden_layer_sizes=(7, 5), activation="tanh", batch_size=X.shape[0],
                           **SK_STEP)
-    c0, b0 = _one_step_pair(ours, theirs, X, y)
+    c0, b0 = one_step_pair(ours, theirs, X, y)
     fresh = MLPClassifier(hidden_layer_sizes=(7, 5), activation="tanh", solver="gd",
                           warm_start=True, **STEP)
     fresh.coefs_ = [c.copy() for c in c0]
@@ -503,6 +468,6 @@ def test_user_set_weights_on_a_fresh_estimator_take_one_gd_step():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ConvergenceWarning)
         fresh.fit(X, y)
-    atol = _rounding(X, (7, 5), _max_abs(theirs.coefs_))
+    atol = rounding(X, (7, 5), max_abs(theirs.coefs_))
     for a, b in zip(fresh.coefs_, theirs.coefs_, strict=True):
         np.testing.assert_allclose(a, b, rtol=0, atol=atol)

@@ -6,6 +6,7 @@ import warnings
 
 import numpy as np
 import pytest
+import scipy.sparse as sp
 from sklearn.exceptions import ConvergenceWarning
 
 from ebantenna.ml import SVC, MLPClassifier, MLPRegressor, persistence
@@ -200,3 +201,31 @@ def test_a_truncated_or_foreign_file_is_one_clear_error(tmp_path):
         load_model(path)
     with pytest.raises(ValueError, match="must name a file"):
         save_model(_fitted(SVC(), LABELS), tmp_path)
+
+
+def test_a_sparse_fit_round_trips_with_its_csr_matrices(tmp_path):
+    Xs = sp.csr_matrix(np.where(X > 0.3, X, 0.0))
+    model = SVC(kernel="linear").fit(Xs, LABELS)
+    again = load_model(save_model(model, tmp_path / "m"))
+    for name in ("support_vectors_", "dual_coef_"):
+        before, after = getattr(model, name), getattr(again, name)
+        assert sp.isspmatrix_csr(after) and after.shape == before.shape
+        for part in ("data", "indices", "indptr"):
+            assert getattr(after, part).tobytes() == getattr(before, part).tobytes(), name
+    np.testing.assert_array_equal(again.decision_function(Xs), model.decision_function(Xs))
+
+
+@pytest.mark.parametrize("change, match", [
+    (dict(support_vectors___indices=np.array([99] * 3)), "support_vectors_ is not a valid CSR"),
+    (dict(dual_coef___data=np.array([np.inf])), "dual_coef_ must hold finite numbers"),
+    (lambda m: m["sparse_shapes"].update(dual_coef_=[1]), "shape of dual_coef_ must be two"),
+])
+def test_a_damaged_csr_matrix_is_refused(tmp_path, change, match):
+    Xs = sp.csr_matrix(np.where(X > 0.3, X, 0.0))
+    path = save_model(SVC().fit(Xs, LABELS), tmp_path / "m")
+    if callable(change):
+        _rewrite(path, change)
+    else:
+        _rewrite(path, **change)
+    with pytest.raises(ValueError, match=match):
+        load_model(path)

@@ -8,6 +8,7 @@ import pytest
 from ebantenna.ml import SVC
 from ebantenna.ml.kernels import Kernel
 from ebantenna.ml.smo import DEFAULT, LIBSVM, KernelRows, SMOPolicy, solve_smo
+from ebantenna.ml.smo_policy import fit_policy
 
 
 def test_presets_name_each_convention():
@@ -48,4 +49,6 @@ def test_solve_smo_refuses_anything_but_a_policy():
     (dict(shrinking=False), False, DEFAULT),
 ])
 def test_each_svc_mode_runs_its_policy(params, whole_kernel, expected):
-    assert SVC(**params)._smo_policy(whole_kernel=whole_kernel) == expected
+    svc = SVC(**params)
+    assert fit_policy(svc.libsvm_compat, svc.selection, svc.shrinking,
+                      whole_kernel=whole_kernel) == expected

@@ -68,6 +68,11 @@ __all__ = ["KERNELS", "Kernel", "KernelRows", "resolve_gamma", "gram_matrix", "s
 
 logger = logging.getLogger(__name__)
 
+#: Most float64 entries of one matrix product of :meth:`Kernel.gram` (32 MB).
+GEMM_ENTRIES = 1 << 22
+#: Entries of the sub-blocks that the kernel function is applied to (512 kB, cache-resident).
+CACHE_ENTRIES = 1 << 16
+
 #: Names of the kernels, as scikit-learn spells them.
 KERNELS = ("linear", "rbf", "poly", "sigmoid")
 
@@ -209,40 +214,50 @@ class Kernel:
             xn = squared_norms(X) if x_norms is None else x_norms
             yn = (xn if same else squared_norms(Y)) if y_norms is None else y_norms
         out = np.empty((X.shape[0], Y.shape[0]), dtype=dtype)
-        # Row blocks of about 4 MB keep the float64 intermediates in cache. For the matrix of X
-        # with itself only the blocks on and above the diagonal are computed (half the
-        # products and exponentials) and mirrored.
-        step = max(1, (1 << 19) // max(1, Y.shape[0]))
+        # The products come in row blocks of up to GEMM_ENTRIES float64 (32 MB): tall enough for
+        # BLAS to run near its peak. The kernel function is then applied to sub-blocks of about
+        # 512 kB, which stay in cache through its five passes. For the matrix of X with itself
+        # only the blocks on and above the diagonal are computed (half the products and
+        # exponentials) and mirrored.
+        step = max(1, GEMM_ENTRIES // max(1, Y.shape[0]))
+        # one buffer for every block: fresh memory per block would be faulted in page by page
+        buffer = np.empty(min(step, X.shape[0]) * Y.shape[0])
         for start in range(0, X.shape[0], step):
             stop = min(start + step, X.shape[0])
             first = start if same else 0
-            block = X[start:stop] @ Y[first:].T
+            product = buffer[: (stop - start) * (Y.shape[0] - first)]
+            product = product.reshape(stop - start, Y.shape[0] - first)
             if sparse:
-                block = block.toarray()
-            if self.name == "poly":
-                block *= self.gamma
-                block += self.coef0
-                block **= self.degree
-            elif self.name == "sigmoid":
-                block *= self.gamma
-                block += self.coef0
-                np.tanh(block, out=block)
-            elif self.name == "rbf":
-                # exp(-gamma * (|x|^2 + |y|^2 - 2 x.y)) in libsvm's order of operations
-                block *= -2.0
-                block += xn[start:stop, None] + yn[None, first:]
-                np.maximum(block, 0.0, out=block)
-                if sparse and center:
-                    recompute_cancelled(block, X[start:stop], Y[first:], xn[start:stop],
-                                        yn[first:])
-                block *= -self.gamma
-                np.exp(block, out=block)
-            out[start:stop, first:] = block
+                (X[start:stop] @ Y[first:].T).toarray(out=product)
+            else:
+                np.matmul(X[start:stop], Y[first:].T, out=product)
+            sub = max(1, CACHE_ENTRIES // max(1, product.shape[1]))
+            for lo in range(0, stop - start, sub):
+                hi = min(lo + sub, stop - start)
+                rows = slice(start + lo, start + hi)
+                block = product[lo:hi]
+                if self.name == "rbf":
+                    rbf_in_place(block, self.gamma, xn[rows], yn[first:],
+                                 (X[rows], Y[first:]) if sparse and center else None)
+                else:
+                    self._dot_kernel_in_place(block)
+                out[rows, first:] = block
             if same and stop < X.shape[0]:
                 out[stop:, start:stop] = out[start:stop, stop:].T
         if same and self.name == "rbf":
             np.fill_diagonal(out, 1.0)
         return out
+
+    def _dot_kernel_in_place(self, block: np.ndarray) -> None:
+        """'linear', 'poly' or 'sigmoid' of a block of dot products, in place."""
+        if self.name == "poly":
+            block *= self.gamma
+            block += self.coef0
+            block **= self.degree
+        elif self.name == "sigmoid":
+            block *= self.gamma
+            block += self.coef0
+            np.tanh(block, out=block)
 
     def diagonal(self, X: np.ndarray) -> np.ndarray:
         """The diagonal :math:`k(x_i, x_i)` in float64 (exactly 1 for 'rbf')."""
@@ -254,6 +269,30 @@ class Kernel:
         if self.name == "sigmoid":
             return np.tanh(self.gamma * sq + self.coef0)
         return (self.gamma * sq + self.coef0) ** self.degree
+
+
+def rbf_in_place(block, gamma, x_norms, y_norms, sparse_rows=None) -> None:
+    """Turn a block of dot products :math:`x \\cdot y` into RBF kernel values, in place.
+
+    ``exp(-gamma * (|x|^2 + |y|^2 - 2 x.y))`` in libsvm's order of operations, the squared
+    distance clipped at 0. With ``sparse_rows = (X, Y)`` (CSR) the entries that the expansion
+    cannot be trusted with are recomputed first
+    (:func:`~ebantenna.ml.sparse_input.recompute_cancelled`).
+
+    Examples
+    --------
+    >>> block = np.array([[1.0, 0.0]])
+    >>> rbf_in_place(block, 0.5, np.array([1.0]), np.array([1.0, 1.0]))
+    >>> np.round(block, 6)
+    array([[1.      , 0.367879]])
+    """
+    block *= -2.0
+    block += x_norms[:, None] + y_norms[None, :]
+    np.maximum(block, 0.0, out=block)
+    if sparse_rows is not None:
+        recompute_cancelled(block, *sparse_rows, x_norms, y_norms)
+    block *= -gamma
+    np.exp(block, out=block)
 
 
 def gram_matrix(X, Y=None, *, kernel="rbf", gamma=1.0, degree=3, coef0=0.0) -> np.ndarray:

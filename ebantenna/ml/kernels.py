@@ -64,7 +64,7 @@ from .._validate import check_choice, check_int, check_real
 from .sparse_input import as_csr, recompute_cancelled, sparse_variance, squared_norms_sparse
 
 __all__ = ["KERNELS", "Kernel", "KernelRows", "resolve_gamma", "gram_matrix", "squared_norms",
-           "call_kernel"]
+           "call_kernel", "rbf_in_place", "GEMM_ENTRIES", "CACHE_ENTRIES"]
 
 logger = logging.getLogger(__name__)
 
@@ -105,7 +105,7 @@ def resolve_gamma(gamma, X: np.ndarray) -> float:
         check_choice("gamma", gamma, ("scale", "auto"))
         if gamma == "auto":
             return 1.0 / X.shape[1]
-        var = sparse_variance(X) if issparse(X) else float(X.var())
+        var = sparse_variance(as_csr(X)) if issparse(X) else float(X.var())
         return 1.0 / (X.shape[1] * var) if var != 0 else 1.0
     value = check_real("gamma", gamma)
     if value < 0:

@@ -24,9 +24,15 @@ their distance) the entry is recomputed as :math:`\\sum_k (x_k - y_k)^2` over th
 stored entries: one rounding per difference, two per square and :math:`n_x + n_y` additions,
 a relative error of at most :math:`(n_x + n_y + 2)\\, u`. Every squared distance from sparse rows
 is therefore within :math:`\\max(\\eta, (n_x + n_y + 2) u)` of the exact one, relative: a bound
-on the distance itself, tighter than the dense path's (which is relative to the spread of the
-data) and independent of any offset of the features.
+on the distance itself (the dense path's is relative to the spread of the data), independent of
+any offset of the features. Through :math:`K = e^{-\\gamma d}` it moves a kernel value by at most
+:math:`\\gamma K \\eta d \\le \\eta / e \\approx 3.4\\times 10^{-10}`: below the float32 storage of
+the kernel (:math:`6\\times 10^{-8}`) and far below any SMO tolerance, while a smaller
+:math:`\\eta` would send more entries to the slower direct path.
 
+Why not centre dense copies of bounded row blocks instead: that would spend the dense arithmetic
+(all :math:`p` products of every pair) and :math:`p` floats per row on data that are mostly
+zeros, for every entry, where the bound above singles out the few entries that need more care.
 Only the entries that need it are recomputed, in chunks of at most :data:`CHUNK` pairs (their
 differences are sparse matrices of that many rows), so memory stays bounded; on typical sparse
 data those are the diagonal of a training kernel and the duplicates. With ``center=False``
@@ -105,7 +111,8 @@ def squared_norms_sparse(X) -> np.ndarray:
 
 
 def sparse_variance(X) -> float:
-    """Variance of every entry of a sparse matrix (zeros included), as ``X.toarray().var()``.
+    """Variance of every entry of a CSR matrix in :func:`as_csr` form (zeros included), as
+    ``X.toarray().var()``.
 
     Two passes over the stored entries,
     :math:`\\frac1N\\bigl(\\sum (x - \\mu)^2 + z\\,\\mu^2\\bigr)` with :math:`z` the zeros: no

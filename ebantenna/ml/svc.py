@@ -9,8 +9,8 @@ student can swap the import and compare. The dual problems are solved by
 Sparse input: :meth:`SVC.fit` takes ``scipy.sparse`` matrices and arrays, used as CSR (CSC, COO
 and the other formats are converted, as scikit-learn does), with every kernel but 'precomputed'.
 The RBF kernel of sparse rows stays free of cancellation without centring them
-(:mod:`ebantenna.ml.sparse_input`). Unlike scikit-learn's, a model fitted on dense data also
-predicts sparse rows, and the reverse.
+(:mod:`ebantenna.ml.sparse_input`). A model fitted on sparse rows predicts dense ones too, and,
+unlike scikit-learn's, a model fitted on dense rows also predicts sparse ones.
 """
 
 from __future__ import annotations

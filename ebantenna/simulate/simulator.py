@@ -184,14 +184,9 @@ def _object_modes(scene: Scene, contacts, materials, preloads, show_progress):
                     max_frequency=scene.max_frequency,
                 )
             )
-            if unilateral:
-                strikes.append(
-                    strike_model(
-                        reduced, rod_reduced, c, contact_stiffness=k_c, preload=preload,
-                        max_frequency=scene.max_frequency, probe_loss=probe.loss_factor,
-                        rod_loss=rod_reduced.loss_factor,
-                    )  # fmt: skip
-                )
+            if unilateral:  # the same reductions, struck through a contact that only pushes
+                model = strike_model(reduced, rod_reduced, c, k_c, preload, scene.max_frequency)
+                strikes.append(model)
     inverse = np.array(
         [key_of[key] for key in zip(inverse_c, materials, preloads, strict=True)], dtype=int
     )
@@ -209,8 +204,7 @@ def _seeds(seeds, n: int) -> list[int]:
 
 
 def _terms(scene: Scene, contacts, materials, speeds, tilts, preloads=None, show_progress=None):
-    """ModalTerms for X and Z of every signal (``preloads``: each strike's, with object modes),
-    and with ``unilateral_contact`` the strike models, which one each signal uses (else None)."""
+    """ModalTerms of X and Z per signal, and ``unilateral_contact``'s strike models (or None)."""
     probe = scene.probe
     n = contacts.size
     # Many small eigenproblems: BLAS threads only add overhead (and thrash on a busy machine).
@@ -373,16 +367,19 @@ def simulate_batch(
     else:
         when = t
     dlpf = scene.effect("dlpf")
-    axes = []
-    for terms in (x, z):
+
+    def modal_axis(terms):
         coef, rate = modal_exponentials(terms.amplitude, terms.omega, terms.zeta)
         if dlpf is not None:  # the chip's filter at its internal rate, then its decimation
             coef, rate = dlpf.filter_exponentials(coef, rate)
-        axes.append(damped_exponentials(when, coef, rate))
-    ax, az = axes
+        return damped_exponentials(when, coef, rate)
+
     if strikes is not None:  # X is the strike through a contact that only pushes
         ax, restrikes = unilateral_axis(scene, *strikes, speeds, when)
         x = dataclasses.replace(x, restrikes=restrikes)
+    else:
+        ax = modal_axis(x)
+    az = modal_axis(z)
     if jitter is not None:
         before = when < 0  # a sample taken before the arrest: rigid rotation, no acceleration
         ax[before] = 0.0

@@ -98,27 +98,23 @@ def strike_model(
     probe_reduction,
     rod_reduction,
     contact: float,
-    *,
     contact_stiffness: float,
     preload: float,
     max_frequency: float,
-    probe_loss: float,
-    rod_loss: float,
 ) -> StrikeModel:
     """Probe and rod reduced for one strike (module docstring).
 
     Parameters
     ----------
     probe_reduction, rod_reduction : ebantenna.fem.coupling.CraigBampton
-        The probe reduced at ``contact``, and the rod.
+        The probe reduced at ``contact``, and the rod; each body is damped by its own
+        substructure's loss factor (0 for none).
     contact : float
         Contact position from the hinge, m.
     contact_stiffness, preload : float
         The contact spring (N/m) and the static contact force (N).
     max_frequency : float
         Fixed-interface modes at or above it are dropped, Hz.
-    probe_loss, rod_loss : float
-        Loss factors of the two bodies (0 for none).
 
     Examples
     --------
@@ -126,8 +122,7 @@ def strike_model(
     >>> from ebantenna.probe import Probe
     >>> p = craig_bampton(probe_substructure(Probe(), 0.2, n_elements=40), 16)
     >>> r = craig_bampton(rod_substructure(Rod("steel"), n_elements=16), 8)
-    >>> m = strike_model(p, r, 0.2, contact_stiffness=1.8e5, preload=0.5, max_frequency=3000.0,
-    ...                  probe_loss=0.0, rod_loss=0.0)
+    >>> m = strike_model(p, r, 0.2, contact_stiffness=1.8e5, preload=0.5, max_frequency=3000.0)
     >>> m.structure.mass.shape  # probe: 8 modes below 3 kHz + interface; rod: 2 + interface
     (12, 12)
     """
@@ -147,7 +142,10 @@ def strike_model(
     structure = ContactModel(
         sla.block_diag(Mp, Mr),
         sla.block_diag(Kp, Kr),
-        sla.block_diag(_modal_viscous(Kp, Mp, probe_loss), _modal_viscous(Kr, Mr, rod_loss)),
+        sla.block_diag(
+            _modal_viscous(Kp, Mp, probe_reduction.loss_factor),
+            _modal_viscous(Kr, Mr, rod_reduction.loss_factor),
+        ),
         c,
         base,
         output,

@@ -1,6 +1,7 @@
 """The strike through a contact that only pushes (``unilateral_contact``), against witnesses:
 the unreduced bodies' static flexibility, the damped eigenvalues, an ODE solver, the filter."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -22,14 +23,12 @@ def _model(name="brass", contact=0.2, preload=0.5, probe_loss=0.0, rod_loss=0.0)
     scene = builtin_scene("paper")
     effect = scene.effect("object_modes")
     rod = effect.rod(name)
-    p = craig_bampton(probe_substructure(PROBE, contact, n_elements=40), 40)
-    r = craig_bampton(rod_substructure(rod, n_elements=24), 20)
+    p_sub = probe_substructure(PROBE, contact, n_elements=40)
+    r_sub = rod_substructure(rod, n_elements=24)
+    p = craig_bampton(dataclasses.replace(p_sub, loss_factor=probe_loss), 40)
+    r = craig_bampton(dataclasses.replace(r_sub, loss_factor=rod_loss), 20)
     k_c = effect.contact_stiffness(material(name), PROBE, preload)
-    model = strike_model(
-        p, r, contact, contact_stiffness=k_c, preload=preload, max_frequency=3000.0,
-        probe_loss=probe_loss, rod_loss=rod_loss,
-    )  # fmt: skip
-    return model, p.substructure, r.substructure
+    return strike_model(p, r, contact, k_c, preload, 3000.0), p_sub, r_sub
 
 
 def _flexibility(sub):

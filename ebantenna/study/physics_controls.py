@@ -86,6 +86,15 @@ class ControlsResult:
     restrikes: np.ndarray | None = None
     mid_height_accuracy: float | None = None
 
+    @property
+    def data_sets(self) -> int:
+        """How many small data sets the controls built: one per ablation row, two for the pair,
+        one each for the unilateral contact and the moved contact height."""
+        extra = [self.pair_accuracy, self.unilateral_accuracy, self.mid_height_accuracy]
+        return len(self.ablation.accuracies) + sum(
+            n for n, a in zip((2, 1, 1), extra, strict=True) if a is not None
+        )
+
     def to_dict(self) -> dict:
         """Under ``materials``: ``ablation`` and ``equivalent_pair_accuracy``."""
         return {

@@ -232,7 +232,7 @@ def reproduce(
     report.paragraph(
         f"Wall time of every step on {workers} worker(s). The data set was "
         + ("reused from its cache" if cached else "simulated in this run")
-        + f" ({ds.path.name}); the controls rebuild {len(controls.ablation.accuracies)} small "
+        + f" ({ds.path.name}); the controls rebuild {controls.data_sets} small "
         "data sets, cached likewise."
     )
     report.table(["step", "seconds"], [[k, f"{v:.1f}"] for k, v in timer.seconds.items()]

@@ -425,32 +425,24 @@ def natural_frequencies(
     supports = Supports(contact=None, hinge=hinge, contact_stiffness=contact_stiffness)
     for contact in (contacts.min(), contacts.max()):  # the two nearest the ends
         check_contact("contacts", contact, probe.length)
-    if method == "secular":  # one modal analysis, then every position side by side
-        lam = secular_sweep(
-            probe,
-            contacts,
-            hinge_stiffness=supports.hinge_stiffness,
-            contact_stiffness=supports.contact_stiffness,
-            n_elements=n_elements,
-            n_modes=n_modes,
-            chunk=chunk,
-        )
+    sweep = dict(
+        hinge_stiffness=supports.hinge_stiffness,
+        contact_stiffness=supports.contact_stiffness,
+        n_elements=n_elements,
+        n_modes=n_modes,
+    )
+
+    def hertz(lam):
         return np.sqrt(_clip_eigenvalues(lam, _shift(probe))) / (2 * math.pi)
+
+    if method == "secular":  # one modal analysis, then every position side by side
+        return hertz(secular_sweep(probe, contacts, chunk=chunk, **sweep))
     blocks = [contacts[i : i + chunk] for i in range(0, contacts.size, chunk)]
     if method == "banded":
 
         def solve(block):
             with np.errstate(invalid="ignore", divide="ignore"):  # NaN is refused below
-                lam = banded_sweep(
-                    probe,
-                    block,
-                    hinge_stiffness=supports.hinge_stiffness,
-                    contact_stiffness=supports.contact_stiffness,
-                    n_elements=n_elements,
-                    n_modes=n_modes,
-                    shift=_shift(probe),
-                )
-            return np.sqrt(_clip_eigenvalues(lam, _shift(probe))) / (2 * math.pi)
+                return hertz(banded_sweep(probe, block, shift=_shift(probe), **sweep))
 
     else:
 

@@ -117,20 +117,19 @@ def _ablated_scene(scene: Scene, name: str, most: int = 2):
                 return _without(scene, {name, *extra}), (name, *extra), None, None
             except ValueError as exc:
                 reason = reason or str(exc)  # the scene's reason for refusing ``name`` alone
-    if "max_frequency" in reason:  # the sampling can no longer hold the modes simulated
-        nyquist = scene.fs / 2
-        try:
-            ablated = _without(scene, {name}, max_frequency=nyquist)
-        except ValueError:
-            pass
-        else:
-            change = (
-                f"max_frequency lowered from {scene.max_frequency:g} to {nyquist:g} Hz: "
-                "without it nothing stands between the modes and the sampling, so only the "
-                "modes below fs/2 are simulated (no aliasing)"
-            )
-            return ablated, (name,), None, change
-    return None, (name,), reason, None
+    if "max_frequency" not in reason:
+        return None, (name,), reason, None
+    nyquist = scene.fs / 2  # the sampling can no longer hold the modes simulated: fewer modes
+    try:
+        ablated = _without(scene, {name}, max_frequency=nyquist)
+    except ValueError:
+        return None, (name,), reason, None
+    change = (
+        f"max_frequency lowered from {scene.max_frequency:g} to {nyquist:g} Hz: without it "
+        "nothing stands between the modes and the sampling, so only the modes below fs/2 are "
+        "simulated (no aliasing)"
+    )
+    return ablated, (name,), None, change
 
 
 def ablation_accuracies(

@@ -273,11 +273,12 @@ def _lift_off(r: ControlsResult) -> str:
         return text + " How much that changes the accuracies above is not measured here."
     share = float(np.mean(r.restrikes > 0))
     linear, pushing = r.ablation.accuracies["none"], r.unilateral_accuracy
+    difference = _resolved(linear, pushing, r.test_recordings)
     verdict = (
         "within two binomial standard deviations of each other: this design does not resolve "
         "a change by the contact law"
-        if _resolved(linear, pushing, r.test_recordings) is None
-        else _resolved(linear, pushing, r.test_recordings) + ": the contact law matters here"
+        if difference is None
+        else difference + ": the contact law matters here"
     )
     return text + (
         " The same design simulated again with a contact that only pushes (the "

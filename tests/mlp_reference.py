@@ -26,8 +26,9 @@ def max_abs(arrays):
     return max(1.0, max(float(np.abs(a).max()) for a in arrays))
 
 
-def one_step_pair(ours, theirs, X, y):
-    """Fit both once (to set up), copy our initial weights into theirs, take one step each."""
+def one_step_pair(ours, theirs, X, y, **then):
+    """Fit both once (to set up), copy our initial weights into theirs, take one step each
+    (or what the parameters ``then`` set for the second fit, e.g. ``max_iter=10``)."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ConvergenceWarning)
         ours.fit(X, y)
@@ -37,6 +38,6 @@ def one_step_pair(ours, theirs, X, y):
         for est in (ours, theirs):
             est.coefs_ = [c.copy() for c in c0]
             est.intercepts_ = [b.copy() for b in b0]
-            est.set_params(warm_start=True)
+            est.set_params(warm_start=True, **then)
             est.fit(X, y)
     return c0, b0

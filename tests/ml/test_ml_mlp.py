@@ -142,16 +142,7 @@ def test_lbfgs_follows_sklearn(kind):
     common = dict(hidden_layer_sizes=(7,), activation="tanh", solver="lbfgs", alpha=0.01,
                   random_state=0, max_iter=1)
     ours, theirs = Ours(**common), Theirs(**common)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ConvergenceWarning)
-        for est in (ours, theirs):
-            est.fit(X, y)
-        c0 = [c.copy() for c in ours.coefs_]
-        b0 = [b.copy() for b in ours.intercepts_]
-        for est in (ours, theirs):
-            est.coefs_ = [c.copy() for c in c0]
-            est.intercepts_ = [b.copy() for b in b0]
-            est.set_params(warm_start=True, max_iter=10).fit(X, y)
+    one_step_pair(ours, theirs, X, y, max_iter=10)
     # Both stop at the same iteration, the reference run's, within the budget of 10.
     assert ours.n_iter_ == theirs.n_iter_ <= 10
     assert ours.loss_curve_[-1] == pytest.approx(theirs.loss_, rel=1e-9)

@@ -6,19 +6,22 @@ Run:  python benchmarks/fem_accuracy.py [--quick]
 first three frequencies against :func:`ebantenna.fem.exact_frequencies` and the time of each solver
 (dense inverted Cholesky, sparse shift-invert Lanczos, and the textbook
 ``scipy.linalg.eigh(K, M)``), side by side in one run; then the throughput and the error of a
-contact sweep: the banded and the secular-equation sweeps against one position at a time. It
+contact sweep: the banded and the secular-equation sweeps (with and without the static correction)
+against one position at a time. It
 returns the rows; :func:`to_text` and :func:`plot` draw the table and the figure from those rows.
 """
 
 from __future__ import annotations
 
 import argparse
+import math
 
 import numpy as np
 
 from ebantenna import Probe
 from ebantenna.bench._timing import best_time
 from ebantenna.fem import Supports, exact_frequencies, modal_analysis, natural_frequencies
+from ebantenna.fem.secular import secular_sweep
 from ebantenna.report import text_table
 
 __all__ = ["SOLVERS", "accuracy_rows", "sweep_rows", "run", "to_text", "plot", "main"]
@@ -70,11 +73,11 @@ def accuracy_rows(quick: bool) -> list[dict]:
 def sweep_rows(quick: bool) -> list[dict]:
     """Throughput and accuracy of a contact sweep: each method, side by side in one run.
 
-    Every position is solved by the banded sweep and the secular sweep at 64 elements, by the
-    secular sweep at 256 (its model puts the contact inside an element, so it needs finer
-    elements for the same accuracy), and a tenth of them one at a time. ``max_error`` is the
-    largest relative error of f1..f3 against :func:`ebantenna.fem.exact_frequencies` over 20
-    of the positions.
+    Every position is solved by the banded sweep and the secular sweep at 64 elements, and by
+    the secular sweep without its static correction at 64 and 256 elements (it then models the
+    contact as a pin inside an element, which needs finer elements for the same accuracy); a
+    fiftieth of them one at a time. ``max_error`` is the largest relative error of f1..f3
+    against :func:`ebantenna.fem.exact_frequencies` over 20 of the positions.
 
     Returns
     -------
@@ -87,13 +90,25 @@ def sweep_rows(quick: bool) -> list[dict]:
     contacts = np.linspace(0.01, 0.39, n)
     sample = np.linspace(0, n - 1, 20).astype(int)
     exact = np.array([exact_frequencies(probe, float(contacts[i]), n_modes=3) for i in sample])
+
+    def bare(n_elements):  # the secular sweep without the static correction
+        lam = secular_sweep(
+            probe, contacts, hinge_stiffness=math.inf, contact_stiffness=math.inf,
+            n_elements=n_elements, n_modes=3, static=False,
+        )  # fmt: skip
+        return np.sqrt(lam) / (2 * math.pi)
+
     rows, swept = [], {}
-    for label, kw in (
+    for label, sweep in (
         ("batched natural_frequencies, banded, 64 el.", dict(method="banded", n_elements=64)),
-        ("secular equation, 64 el.", dict(method="secular", n_elements=64)),
-        ("secular equation, 256 el.", dict(method="secular", n_elements=256)),
+        ("secular equation, static correction, 64 el.", dict(method="secular", n_elements=64)),
+        ("secular equation, no correction, 64 el.", 64),
+        ("secular equation, no correction, 256 el.", 256),
     ):
-        t, f = best_time(lambda kw=kw: natural_frequencies(probe, contacts, **kw), 2)
+        if isinstance(sweep, dict):
+            t, f = best_time(lambda kw=sweep: natural_frequencies(probe, contacts, **kw), 2)
+        else:
+            t, f = best_time(lambda m=sweep: bare(m), 2)
         swept[label] = f
         rows.append(
             {

@@ -362,10 +362,11 @@ def natural_frequencies(
       ``O(n^3)`` per position and without the final Rayleigh quotients;
     - ``"secular"``: one modal analysis without the contact on a *fixed* uniform mesh, then the
       roots of the secular equation of the rank-one contact per position
-      (:mod:`~ebantenna.fem.secular`), many times faster. A different model: the contact falls
-      inside an element instead of on a node put there, which is the same only where the
-      contact is a node of the uniform mesh and elsewhere less accurate at the same
-      ``n_elements`` (``ebantenna bench`` shows both against the exact solution).
+      (:mod:`~ebantenna.fem.secular`), several times faster. A different model: the contact
+      falls inside an element instead of on a node put there, with the compliance the mesh
+      misses there added in series (its static correction); the same model where the contact
+      is a node of the uniform mesh, and as accurate elsewhere (``ebantenna bench`` shows both
+      against the exact solution).
 
     Parameters
     ----------

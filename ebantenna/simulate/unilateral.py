@@ -452,7 +452,7 @@ def unilateral_response(
         if not stopped:
             limit = min(limit, int(math.floor(t_stop / h)) - i)
         m = min(block, limit)
-        X = st.powers[:m] @ x
+        X = (st.powers[:m].reshape(m * N, N) @ x).reshape(m, N)  # one matrix-vector product
         g = X @ st.monitor
         bad = np.flatnonzero(g <= 0) if watched(st) else np.empty(0, int)
         if bad.size:

@@ -25,6 +25,13 @@ The model of one strike (:func:`strike_model`):
   contact is that rotation projected on the probe's basis in the mass metric, as the linear
   model's initial modal velocities are (:func:`.modes.coupled_arrest_modes`).
 
+**Long chatter near the tip.** Struck within about a tenth of its length from the tip, the
+bare probe (no tip mass) can chatter for a few tenths of a second, beyond the effect's
+``max_events``: the contact mode (~3 kHz) has no loss in the spring (the assumption above) and
+little from the bodies, and the contact opens as long as that mode's force amplitude exceeds
+the preload. This is the model's dynamics, not the event grid's: a grid four times finer finds
+the same events (the test suite checks it).
+
 The ``paper`` scene with this effect costs some six times as much as without it, about 40 CPU
 seconds per thousand one-second strikes against 7 (``ebantenna bench``): most of it in stepping
 each strike at the DLPF's 8 kHz internal rate through its events.

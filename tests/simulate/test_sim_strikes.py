@@ -232,3 +232,42 @@ def test_undamped_bodies_chatter_on_and_say_so_once():
         _, _, _, x, _ = simulate_batch(scene, contact=[0.15, 0.3], material="steel")
     assert len(w) == 1
     assert np.all(x.restrikes >= 2)  # five contact changes: at least two re-strikes
+
+
+def test_the_chatter_near_the_tip_is_the_models_not_the_event_grids(monkeypatch):
+    # Contacts near the bare probe's tip chatter for a long time: the contact mode (~3 kHz) is
+    # lossless in the spring and lightly damped by the bodies, and the contact keeps opening
+    # while its amplitude exceeds the preload's deflection F0 / k_c. Watching the force on a
+    # grid four times finer finds the same events; the motions then differ only by the event
+    # times' tolerance: each event within 2 time_tolerance, shifting what follows by at most
+    # omega_max 2 time_tolerance relative, summed over the events.
+    import ebantenna.simulate.unilateral as unilateral
+
+    probe = Probe()
+    scene = builtin_scene("paper")
+    effect = scene.effect("object_modes")
+    contact, preload = 0.3675, 0.5
+    p = craig_bampton(probe_substructure(probe, contact, n_elements=40), 40)  # PMMA's loss
+    r = craig_bampton(rod_substructure(effect.rod("pvc"), n_elements=24), 20)  # PVC's
+    k_c = effect.contact_stiffness(material("pvc"), probe, preload)
+    s = strike_model(p, r, contact, k_c, preload, 3000.0).structure
+    runs = []
+    for steps in (16, 64):
+        monkeypatch.setattr(unilateral, "STEPS_PER_PERIOD", steps)
+        runs.append(
+            unilateral.unilateral_response(
+                s.mass, s.stiffness, s.contact, k_c, base=s.base, approach_speed=0.5 * contact,
+                duration=0.05, fs=8000.0, damping=s.damping, output=s.output, preload=preload,
+                max_events=2000, time_tolerance=1e-12,
+            )
+        )  # fmt: skip
+    coarse, fine = runs
+    assert len(coarse.events) == len(fine.events) > 20
+    assert [e.kind for e in coarse.events] == [e.kind for e in fine.events]
+    closed = s.stiffness + k_c * np.outer(s.contact, s.contact)
+    omega_max = math.sqrt(sla.eigvalsh(closed, s.mass).max())
+    bound = len(fine.events) * omega_max * 2e-12 * 2
+    assert (
+        np.abs(coarse.acceleration - fine.acceleration).max()
+        <= bound * np.abs(fine.acceleration).max()
+    )

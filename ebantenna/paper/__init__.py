@@ -11,6 +11,10 @@
   as scikit-learn estimators.
 - :mod:`~ebantenna.paper.experiments` and :mod:`~ebantenna.paper.plots`: the paper's SVM and
   network experiments and their figures beside the printed ones.
+- Beyond the paper: :mod:`~ebantenna.paper.position_aware` (the spectrum read at its estimated
+  contact distance) and :mod:`~ebantenna.paper.mode_curves` (material and distance fitted
+  together from two mode frequencies); :mod:`~ebantenna.paper.controls` (what a classifier
+  learns).
 
 The generic stages (:mod:`ebantenna.fem`, :mod:`ebantenna.simulate`, :mod:`ebantenna.signal`,
 :mod:`ebantenna.ml`) know nothing of this paper's numbers; this package may use all of them.

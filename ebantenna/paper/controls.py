@@ -24,7 +24,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from .._validate import check_int, check_positive
+from .._validate import check_choice, check_int, check_positive
 from ..fem.rod import Rod
 from ..probe import material
 from ..signal import fft_features
@@ -32,6 +32,8 @@ from ..simulate import DatasetDesign, Scene
 from ..simulate import build_dataset as _build
 from .data import PAPER_DESIGN
 from .experiments import classify_materials_svm
+from .feature_table import signal_features
+from .mode_curves import classify_materials_by_mode_curves
 from .splits import grouped_split
 
 __all__ = [
@@ -334,18 +336,27 @@ def equivalent_pair_accuracy(
     seed: int = 0,
     cache_dir,
     n_jobs: int = 1,
+    classifier: str = "svm",
 ) -> float:
-    """Grouped-split SVM accuracy between an aluminium rod and its steel equivalent.
+    """Grouped-split accuracy between an aluminium rod and its steel equivalent.
 
     Both data sets follow ``design`` with one material each (aluminium in one scene, steel in
     the other, :func:`equivalent_pair_scenes`), the same seed and so the same scatter, and are
     put together with the material as the label. Two classes: 0.5 is chance.
+
+    Parameters
+    ----------
+    classifier : {"svm", "mode_curves"}
+        The paper's SVM on the FFT features, or
+        :func:`~ebantenna.paper.mode_curves.classify_materials_by_mode_curves` on the two
+        strongest peaks.
 
     Returns
     -------
     float
         Test accuracy on whole held-out positions.
     """
+    check_choice("classifier", classifier, ("svm", "mode_curves"))
     parts = []
     for s, name in zip(equivalent_pair_scenes(scene), ("aluminium", "steel"), strict=True):
         parts.append(
@@ -358,10 +369,13 @@ def equivalent_pair_accuracy(
                 show_progress=False,
             )
         )
-    X = fft_features(
-        np.vstack([np.asarray(p.ax, float) for p in parts]),
-        np.vstack([np.asarray(p.az, float) for p in parts]),
-    )
+    ax = np.vstack([np.asarray(p.ax, float) for p in parts])
+    az = np.vstack([np.asarray(p.az, float) for p in parts])
     y = np.concatenate([p.material for p in parts])
-    split = grouped_split(np.concatenate([p.contact for p in parts]), seed=seed)
-    return classify_materials_svm(X, y, split=split).accuracies["test"]
+    contact = np.concatenate([p.contact for p in parts])
+    split = grouped_split(contact, seed=seed)
+    if classifier == "svm":
+        return classify_materials_svm(fft_features(ax, az), y, split=split).accuracies["test"]
+    feats = signal_features(ax, az, parts[0].fs, n_jobs=n_jobs, show_progress=False)
+    result = classify_materials_by_mode_curves(feats.peaks, feats.dominant, y, contact, split)
+    return result.accuracies["test"]

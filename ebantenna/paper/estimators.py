@@ -28,7 +28,7 @@ from sklearn.base import BaseEstimator, ClassifierMixin, RegressorMixin
 from sklearn.utils.multiclass import check_classification_targets
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from .._validate import check_choice, check_int
+from .._validate import check_array, check_choice, check_int
 
 __all__ = [
     "FrequencyDistanceEstimator",
@@ -279,13 +279,15 @@ class MultiModeDistanceEstimator(RegressorMixin, BaseEstimator):
         self._log_curves = np.log(PchipInterpolator(grid, medians, axis=0)(self.grid_))
         return self
 
-    def cost(self, X) -> np.ndarray:
+    def cost(self, X, weights=None) -> np.ndarray:
         """Weighted squared log-frequency misfit on the dense grid, shape ``(n, n_grid)``.
 
         Parameters
         ----------
         X : array-like of shape (n_modes,) or (n, n_modes)
             Mode frequencies, Hz.
+        weights : array-like of shape (n_modes,), optional
+            The modes' weights; default ``weights_``.
         """
         check_is_fitted(self)
         if np.ndim(X) == 1:
@@ -294,8 +296,17 @@ class MultiModeDistanceEstimator(RegressorMixin, BaseEstimator):
             raise ValueError(f"frequencies must have {self.n_modes_} columns (modes), "
                              f"got shape {np.shape(X)}")
         f = _positive(validate_data(self, X, reset=False))
+        if weights is None:
+            weights = self.weights_
+        else:
+            weights = check_array("weights", weights, ndim=1)
+            if weights.size != self.n_modes_ or np.any(weights < 0):
+                raise ValueError(
+                    f"weights must be {self.n_modes_} non-negative numbers, one per mode, got "
+                    f"{weights.tolist()}"
+                )
         diff = np.log(f)[:, None, :] - self._log_curves[None, :, :]
-        return (diff**2 * self.weights_).sum(axis=2)
+        return (diff**2 * weights).sum(axis=2)
 
     def predict(self, X) -> np.ndarray:
         """Contact distances (m) for rows of mode frequencies.

@@ -84,7 +84,8 @@ class StudyResult:
         JSON-serialisable numbers (``svm.test_accuracy``, ``ann.test_accuracy``,
         ``distance.full_range_mae_cm``; under ``materials`` the SVM on the three splits
         ``svm_random_test_accuracy``, ``svm_grouped_test_accuracy``,
-        ``svm_blocked_test_accuracy``, ``position_aware_test_accuracy``, ``ann`` by trainer,
+        ``svm_blocked_test_accuracy``, ``position_aware_test_accuracy``,
+        ``mode_curve_test_accuracy``, ``ann`` by trainer,
         ``ablation`` and ``equivalent_pair_accuracy``; ``hinge``; ``timings_s``, ...), accuracies
         as fractions.
     out_dir : Path

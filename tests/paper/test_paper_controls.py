@@ -113,6 +113,14 @@ def test_equivalent_pair_accuracy_on_a_tiny_design(tmp_path):
     assert 0.0 <= acc <= 1.0 and np.isclose(4 * acc, round(4 * acc))
     assert len(list(tmp_path.glob("*pair-aluminium*.npz"))) == 1
     assert len(list(tmp_path.glob("*pair-steel*.npz"))) == 1
+    # the mode-curve classifier on the same two data sets, read from the cache
+    curves = equivalent_pair_accuracy(
+        builtin_scene("paper"), design=tiny, cache_dir=tmp_path, classifier="mode_curves"
+    )
+    assert 0.0 <= curves <= 1.0 and np.isclose(4 * curves, round(4 * curves))
+    assert len(list(tmp_path.glob("*.npz"))) == 2
+    with pytest.raises(ValueError, match="classifier"):
+        equivalent_pair_accuracy(builtin_scene("paper"), cache_dir=tmp_path, classifier="knn")
 
 
 def test_switching_off_the_dlpf_simulates_only_what_the_sampling_holds():

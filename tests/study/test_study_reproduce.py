@@ -116,7 +116,8 @@ def test_summary_is_the_results_dicts_put_together(quick_study):
                        "figures"]
     assert list(s["distance"]) == [
         "full_range_mae_cm", "full_range_mae_beyond_80_cm", "first_mode_only_mae_cm",
-        "full_range_known_material_mae_cm", "first_mode_turning_point_cm",
+        "full_range_known_material_mae_cm", "full_range_joint_mae_cm",
+        "full_range_joint_material_accuracy", "first_mode_turning_point_cm",
         "recordings_without_two_peaks", "linear_region_mae_cm", "full_length_mae_cm",
         "linear_region_mae_cm_by_trainer", "linear_region_best_trainer",
     ]
@@ -131,13 +132,16 @@ def test_material_accuracies_are_fractions_on_every_split(quick_study):
         assert 0.0 <= m[key] <= 1.0, key
     assert m["svm_random_test_accuracy"] == result.summary["svm"]["test_accuracy"]
     assert set(m["position_aware_test_accuracy"]) == {"random", "grouped", "blocked"}
+    assert set(m["mode_curve_test_accuracy"]) == {"random", "grouped", "blocked"}
     assert set(m["ann"]) == {"gd", "scg", "adam"}
     assert m["ann"]["gd"] == result.summary["ann"]["test_accuracy"]
     assert m["ablation"]["none"] is not None and len(m["ablation"]) > 5
     values = [*m["position_aware_test_accuracy"].values(), *m["ann"].values(),
+              *m["mode_curve_test_accuracy"].values(),
               *m["ablation"].values()]
     if m["equivalent_pair_accuracy"] is not None:
         values.append(m["equivalent_pair_accuracy"])
+        values.append(m["equivalent_pair_mode_curve_accuracy"])
     # the paper scene has the rod's modes: lift-off, the unilateral rebuild, the moved contact
     values += [
         m[key]

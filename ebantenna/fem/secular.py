@@ -46,7 +46,8 @@ R. H. MacNeal, "A hybrid method of component mode synthesis", Computers & Struct
 581-601): the secular function is shifted by a constant, the interlacing is kept, and the error
 left is the dynamic part's, which falls like ``h^4`` as the banded sweep's does. At 64 elements
 the corrected sweep is as accurate as the banded one against the exact solution; the uncorrected
-one stays available (``static_correction=False``) as the lesson. ``ebantenna bench`` shows both.
+one stays available (``secular_sweep(..., static=False)``) as the lesson. ``ebantenna bench``
+shows both.
 """
 
 from __future__ import annotations

@@ -168,6 +168,7 @@ def render(result: MaterialSplitsResult, report, figures) -> None:
         "far as the object's signature is the same at every distance."
     )
     report.paragraph(_lift(r))
+    name = _plot_mode_curves(r.mode_curves["random"].model, figures)
     report.heading("Beyond the paper: material and distance from two frequencies")
     report.paragraph(
         "The touched rod is part of the vibrating system, so each material draws its own curves "
@@ -177,6 +178,12 @@ def render(result: MaterialSplitsResult, report, figures) -> None:
         "at once: the material whose curves pass closest, at the distance where they do, is the "
         "answer. Two numbers per recording instead of the spectrum's 256, and nothing learnt "
         "but the curves. " + _curves(r)
+    )
+    report.figure(
+        name,
+        "Each material's calibration curves (median over repetitions): the two strongest peaks "
+        "against the contact distance. Where another coupled mode, one the rod brings, becomes "
+        "one of the two strongest, a curve jumps to that mode's branch: a signature too.",
     )
     report.heading("The networks with other trainers")
     report.paragraph(
@@ -255,3 +262,19 @@ def _curves(r: MaterialSplitsResult) -> str:
     else:
         why = "Even so it does not carry over to the stretch of the probe it never saw."
     return f"It reaches {' and '.join(words)}. {why}"
+
+
+def _plot_mode_curves(model, figures) -> str:
+    """Each material's calibration curves: its two strongest peaks against the distance."""
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4), sharex=True)
+    for m, curves in model.curves_.items():
+        for j, ax in enumerate(axes):
+            ax.semilogy(100 * curves.distances_, curves.frequencies_[:, j], label=m)
+    for j, ax in enumerate(axes):
+        ax.set_xlabel("contact distance (cm)")
+        ax.set_ylabel(f"{('lower', 'upper')[j]} of the two strongest peaks (Hz)")
+    axes[0].legend(fontsize="small")
+    fig.suptitle("The touched rod moves the probe's modes, each material in its own way")
+    return figures.save(fig, "beyond_mode_curves")

@@ -18,6 +18,7 @@ def test_quick_study_writes_every_figure_and_both_reports(quick_study):
         "fig16_zones", "fig17_mode_shapes", "fig09_10_dominant_frequency",
         "fig11_gain_time_constant", "fig12_ann_confusion", "fig15_svm_confusion",
         "fig13_14_distance_networks", "beyond_full_range_distance", "fig18_19_time_frequency",
+        "beyond_mode_curves",
     }
     assert set(result.figures) == expected
     for path in result.figures.values():

@@ -42,8 +42,9 @@ class ModeCurveClassifier:
     ----------
     n_grid : int
         Points of each material's dense distance grid
-        (:class:`~ebantenna.paper.estimators.MultiModeDistanceEstimator`); 1000 over the
-        probe's 0.4 m is a step of 0.4 mm, refined by a parabola for the distance.
+        (:class:`~ebantenna.paper.estimators.MultiModeDistanceEstimator`), which spans the
+        calibrated distances: 1000 points over the paper's 0.36 m is a step of about 0.4 mm,
+        refined by a parabola for the distance. No distance is predicted outside them.
 
     Attributes
     ----------
@@ -139,7 +140,9 @@ def classify_materials_by_mode_curves(peaks, dominant, materials, positions, spl
     Parameters
     ----------
     peaks : array-like of shape (n, 2)
-        The two strongest spectral peaks, Hz (NaN where fewer than two stand out).
+        The two strongest spectral peaks, Hz; NaN where fewer than two stand out (where
+        :func:`ebantenna.signal.peak_frequencies` raises its ValueError, as
+        :func:`ebantenna.paper.feature_table.signal_features` stores it).
     dominant : array-like of shape (n,)
         Dominant frequency, Hz: alone on one curve per material where a row lacks two peaks.
     materials : array-like of shape (n,)

@@ -254,8 +254,8 @@ def _curves(r: MaterialSplitsResult) -> str:
     carried = beyond_chance(blocked.accuracies["test"], 1 / len(blocked.labels), n)
     if carried:
         why = (
-            "What it reads, how the rod moves the probe's modes, changes smoothly along the "
-            "probe, so it carries over to a stretch of the probe it never saw"
+            "What it reads, how the rod moves the probe's modes, changes smoothly along most "
+            "of the probe, so it carries over to a stretch of the probe it never saw"
         )
         better = blocked.accuracies["test"] > r.svm["blocked"].accuracies["test"]
         why += ", where the spectrum's bins do not." if better else "."

@@ -18,6 +18,8 @@ from ..paper.controls import (
     grouped_svm_accuracy,
 )
 from ..paper.data import QUICK_DESIGN
+from ..paper.feature_table import signal_features
+from ..paper.mode_curves import classify_materials_by_mode_curves
 from ..paper.splits import grouped_split
 from ..simulate import build_dataset, dataset_plan, simulate_batch
 from ._common import beyond_chance, pct
@@ -76,6 +78,9 @@ class ControlsResult:
         Grouped-split accuracy with the rods touched halfway up instead of at their free end
         (the assumption of :class:`~ebantenna.simulate.effects.ObjectModes`); None without
         ``object_modes``.
+    mode_curve_accuracies : dict of str to float or None
+        The mode-curve classifier on the same grouped split, with the ``"linear"`` contact and
+        the ``"unilateral"`` one; None with ``unilateral_accuracy``.
     """
 
     ablation: Ablation
@@ -89,6 +94,7 @@ class ControlsResult:
     unilateral_accuracy: float | None = None
     restrikes: np.ndarray | None = None
     mid_height_accuracy: float | None = None
+    mode_curve_accuracies: dict | None = None
 
     @property
     def data_sets(self) -> int:
@@ -101,6 +107,7 @@ class ControlsResult:
 
     def to_dict(self) -> dict:
         """Under ``materials``: ``ablation`` and ``equivalent_pair_accuracy``."""
+        curves = self.mode_curve_accuracies or {}
         return {
             "ablation": dict(self.ablation.accuracies),
             "ablation_dropped_together": {
@@ -119,6 +126,8 @@ class ControlsResult:
                 None if self.restrikes is None else float(np.median(self.restrikes))
             ),
             "svm_grouped_mid_height_accuracy": self.mid_height_accuracy,
+            "mode_curve_grouped_linear_accuracy": curves.get("linear"),
+            "mode_curve_grouped_unilateral_accuracy": curves.get("unilateral"),
         }
 
 
@@ -129,7 +138,7 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ControlsRe
         scene, design=design, seed=seed, cache_dir=cache_dir, n_jobs=n_jobs
     )
     effect = scene.effect("object_modes")
-    curves = None
+    pair_curves = None
     if effect is None:
         accuracy, note = (
             None,
@@ -143,7 +152,7 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ControlsRe
         steel = equivalent_rod(al, "steel")
         pair = dict(design=design, seed=seed, cache_dir=cache_dir, n_jobs=n_jobs)
         accuracy = equivalent_pair_accuracy(scene, **pair)
-        curves = equivalent_pair_accuracy(scene, classifier="mode_curves", **pair)
+        pair_curves = equivalent_pair_accuracy(scene, classifier="mode_curves", **pair)
         note = (
             f"aluminium Ø{1e3 * al.diameter:.2f} mm x {1e3 * al.free_length:.1f} mm against "
             f"steel Ø{1e3 * steel.diameter:.2f} mm x {1e3 * steel.free_length:.1f} mm"
@@ -161,7 +170,7 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ControlsRe
             seeds=plan["seed_row"], show_progress=False,
         )
         lift_off = float(np.mean(x.lift_off_ratio(scene.duration) > 1))
-    unilateral = restrikes = None
+    unilateral = restrikes = curves = None
     if effect is not None and not scene.has("unilateral_contact"):
         pushing = scene.with_(
             name=f"{scene.name}-unilateral", effects=(*scene.effects, "unilateral_contact")
@@ -169,6 +178,11 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ControlsRe
         ds = build_dataset(cache_dir, pushing, design, seed, n_jobs=n_jobs, show_progress=False)
         unilateral = grouped_svm_accuracy(ds, seed=seed)
         restrikes = np.asarray(ds.metadata["restrikes"], dtype=int)
+        linear = build_dataset(cache_dir, scene, design, seed, n_jobs=n_jobs, show_progress=False)
+        curves = {
+            "linear": _mode_curve_accuracy(linear, seed, n_jobs),
+            "unilateral": _mode_curve_accuracy(ds, seed, n_jobs),
+        }
     mid = None
     if effect is not None:  # the assumed contact height, moved: the rods touched halfway up
         halfway = replace(effect, contact_height=effect.free_length / 2)
@@ -179,8 +193,8 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ControlsRe
         ds = build_dataset(cache_dir, moved, design, seed, n_jobs=n_jobs, show_progress=False)
         mid = grouped_svm_accuracy(ds, seed=seed)
     return ControlsResult(
-        ablation, accuracy, note, curves, n, 1 / len(design.materials), n_test, lift_off,
-        unilateral, restrikes, mid,
+        ablation, accuracy, note, pair_curves, n, 1 / len(design.materials), n_test, lift_off,
+        unilateral, restrikes, mid, curves,
     )  # fmt: skip
 
 
@@ -288,7 +302,7 @@ def _lift_off(r: ControlsResult) -> str:
         if difference is None
         else difference + ": the contact law matters here"
     )
-    return text + (
+    measured = (
         " The same design simulated again with a contact that only pushes (the "
         "'unilateral_contact' effect: the pan-tilt's approach, the overtravel that builds the "
         "preload, lift-off and re-strike, integrated between contact events; some six "
@@ -298,6 +312,36 @@ def _lift_off(r: ControlsResult) -> str:
         f"{pct(pushing)} with it against {pct(linear)} with the linear contact "
         f"({r.test_recordings} test recordings), {verdict}."
     )
+    return text + measured + _curves_under_both_laws(r)
+
+
+def _curves_under_both_laws(r: ControlsResult) -> str:
+    """The mode-curve classifier with either contact law, if measured."""
+    if r.mode_curve_accuracies is None:
+        return ""
+    linear, pushing = r.mode_curve_accuracies["linear"], r.mode_curve_accuracies["unilateral"]
+    difference = _resolved(linear, pushing, r.test_recordings)
+    survives = beyond_chance(pushing, r.chance, r.test_recordings)
+    return (
+        f" The mode-curve classifier reaches {pct(pushing)} with it against {pct(linear)} with "
+        "the linear contact, "
+        + ("within two binomial standard deviations" if difference is None else difference)
+        + (
+            ": what the rod does to the probe's modes survives the lift-offs."
+            if survives
+            else ": with lift-offs it falls to chance."
+        )
+    )
+
+
+def _mode_curve_accuracy(ds, seed: int, n_jobs: int) -> float:
+    """The mode-curve classifier's accuracy on whole held-out positions of data set ``ds``."""
+    feats = signal_features(ds.ax, ds.az, ds.fs, n_jobs=n_jobs, show_progress=False)
+    split = grouped_split(ds.contact, seed=seed)
+    result = classify_materials_by_mode_curves(
+        feats.peaks, feats.dominant, ds.material, ds.contact, split
+    )
+    return result.accuracies["test"]
 
 
 def _verdict(accuracies: dict, chance: float, n: int) -> str:

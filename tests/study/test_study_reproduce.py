@@ -139,6 +139,7 @@ def test_material_accuracies_are_fractions_on_every_split(quick_study):
     assert m["ablation"]["none"] is not None and len(m["ablation"]) > 5
     values = [*m["position_aware_test_accuracy"].values(), *m["ann"].values(),
               *m["mode_curve_test_accuracy"].values(),
+              m["mode_curve_grouped_linear_accuracy"], m["mode_curve_grouped_unilateral_accuracy"],
               *m["ablation"].values()]
     if m["equivalent_pair_accuracy"] is not None:
         values.append(m["equivalent_pair_accuracy"])

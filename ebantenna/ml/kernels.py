@@ -48,7 +48,8 @@ the distance are recomputed from direct differences, which bounds every squared 
 *relative to itself* (:mod:`ebantenna.ml.sparse_input` gives the bound and the rule).
 
 :class:`KernelRows` hands the SMO solver the rows of a training kernel: it either holds the whole
-matrix (one GEMM) or keeps a least-recently-used cache of rows computed on demand.
+matrix (one GEMM) or keeps a least-recently-used cache of rows computed on demand
+(:mod:`ebantenna.ml.pair_kernels` decides which, for each problem of a fit).
 """
 
 from __future__ import annotations
@@ -174,6 +175,7 @@ class Kernel:
         y_norms: np.ndarray | None = None,
         dtype=np.float64,
         center: bool = True,
+        out: np.ndarray | None = None,
     ) -> np.ndarray:
         """Kernel matrix :math:`K_{ij} = k(x_i, y_j)`, computed in float64, returned as ``dtype``.
 
@@ -197,6 +199,10 @@ class Kernel:
             sparse rows keep their sparsity and the entries the expansion cannot be trusted with
             are recomputed from direct differences (see :mod:`ebantenna.ml.sparse_input`).
             ``False`` expands the points as given, as libsvm trains.
+        out : ndarray of shape (n, m), optional
+            Where to write the matrix (``dtype`` is then its type), for example a block of a
+            larger array. A float64 ``out`` of dense points receives the products directly,
+            without the staging buffer; the numbers are the same.
         """
         same = Y is None
         sparse = issparse(X) or (not same and issparse(Y))
@@ -213,20 +219,32 @@ class Kernel:
         if self.name == "rbf":
             xn = squared_norms(X) if x_norms is None else x_norms
             yn = (xn if same else squared_norms(Y)) if y_norms is None else y_norms
-        out = np.empty((X.shape[0], Y.shape[0]), dtype=dtype)
+        if out is None:
+            out = np.empty((X.shape[0], Y.shape[0]), dtype=dtype)
+        elif out.shape != (X.shape[0], Y.shape[0]):
+            raise ValueError(f"out must have shape {(X.shape[0], Y.shape[0])}; got {out.shape}")
+        direct = out.dtype == np.float64 and not sparse  # products straight into out
         # The products come in row blocks of up to GEMM_ENTRIES float64 (32 MB): tall enough for
         # BLAS to run near its peak. The kernel function is then applied to sub-blocks of about
         # 512 kB, which stay in cache through its five passes. For the matrix of X with itself
         # only the blocks on and above the diagonal are computed (half the products and
         # exponentials) and mirrored.
         step = max(1, GEMM_ENTRIES // max(1, Y.shape[0]))
+        if same and direct:  # at least two strips: a quarter is computed needlessly, not half
+            step = min(step, max(64, -(-X.shape[0] // 2)))
         # one buffer for every block: fresh memory per block would be faulted in page by page
-        buffer = np.empty(min(step, X.shape[0]) * Y.shape[0])
+        buffer = None if direct else np.empty(min(step, X.shape[0]) * Y.shape[0])
+        # a block of a larger array is not contiguous, and NumPy is several times slower on it:
+        # its sub-blocks go through a contiguous scratch
+        scratch = np.empty(max(CACHE_ENTRIES, Y.shape[0])) if direct else None
         for start in range(0, X.shape[0], step):
             stop = min(start + step, X.shape[0])
             first = start if same else 0
-            product = buffer[: (stop - start) * (Y.shape[0] - first)]
-            product = product.reshape(stop - start, Y.shape[0] - first)
+            if direct:
+                product = out[start:stop, first:]
+            else:
+                product = buffer[: (stop - start) * (Y.shape[0] - first)]
+                product = product.reshape(stop - start, Y.shape[0] - first)
             if sparse:
                 (X[start:stop] @ Y[first:].T).toarray(out=product)
             else:
@@ -235,13 +253,19 @@ class Kernel:
             for lo in range(0, stop - start, sub):
                 hi = min(lo + sub, stop - start)
                 rows = slice(start + lo, start + hi)
-                block = product[lo:hi]
+                block = dest = product[lo:hi] if direct else out[rows, first:]
+                if not direct:
+                    block = product[lo:hi]
+                elif not block.flags.c_contiguous:
+                    block = scratch[: block.size].reshape(block.shape)
+                    block[...] = dest
                 if self.name == "rbf":
                     rbf_in_place(block, self.gamma, xn[rows], yn[first:],
                                  (X[rows], Y[first:]) if sparse and center else None)
                 else:
                     self._dot_kernel_in_place(block)
-                out[rows, first:] = block
+                if block is not dest:
+                    dest[...] = block
             if same and stop < X.shape[0]:
                 out[stop:, start:stop] = out[start:stop, stop:].T
         if same and self.name == "rbf":
@@ -424,6 +448,13 @@ class KernelRows:
                 return r[self._parts[0]].astype(np.float64)
             return np.concatenate([r[p] for p in self._parts], dtype=np.float64)
         return np.asarray(self.row(i), dtype=np.float64)
+
+    def row_reader(self):
+        """The fastest way to :meth:`row64`: indexing of the stored matrix when it is whole and
+        float64 (rows are then views, never to be written), else :meth:`row64` itself."""
+        if self._parts is None and self.matrix is not None and self.dtype == np.float64:
+            return self.matrix.__getitem__
+        return self.row64
 
     def row(self, i: int) -> np.ndarray:
         """Kernel row :math:`k(x_i, x_t)` for all t, in the storage type."""

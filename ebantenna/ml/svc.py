@@ -39,6 +39,7 @@ from sklearn.utils.validation import (
 from .fitted import INPUT_ATTRIBUTES, FittedAttribute
 from .kernels import Kernel, KernelRows, call_kernel, resolve_gamma
 from .ovo import dual_layout, one_vs_one_coef, ovo_votes, ovr_decision_function
+from .pair_kernels import PairKernels
 from .platt import pairwise_coupling, pairwise_sigmoids
 from .smo import DEFAULT, LIBSVM, solve_smo
 from .smo_policy import fit_policy
@@ -70,8 +71,9 @@ class SVC(ClassifierMixin, BaseEstimator):
     shrinking : bool, default=True
         libsvm's shrinking heuristic (see :class:`~ebantenna.ml.smo_policy.SMOPolicy`); the
         solution is the same within ``tol`` either way. Shrinking saves kernel evaluations, so it
-        is used with the row cache and in ``libsvm_compat`` mode; when the whole kernel matrix is
-        in memory the default mode solves without it, which is faster in NumPy.
+        is used with the row cache and in ``libsvm_compat`` mode; when the kernel of each pair
+        of classes is in memory the default mode solves without it, which is faster in NumPy
+        (:mod:`ebantenna.ml.smo_whole`).
     probability : bool, default=False
         Also fit Platt's sigmoids on five-fold cross-validated decision values (five more fits
         per pair of classes), for :meth:`predict_proba`. As in scikit-learn, :meth:`predict`
@@ -79,9 +81,12 @@ class SVC(ClassifierMixin, BaseEstimator):
     tol : float, default=1e-3
         Stopping tolerance on the maximal KKT violation.
     cache_size : float, default=200
-        Memory for kernel entries, in MB. The whole kernel matrix is built with one matrix product
-        when it fits (in float64 if that fits too, unless ``libsvm_compat``), otherwise rows are
-        computed on demand and the least recently used are dropped.
+        Memory for kernel entries, in MB. In the default mode the kernel of each pair of classes
+        is built in float64 in one buffer reused from pair to pair, when the largest pair fits
+        (:mod:`ebantenna.ml.pair_kernels`); otherwise, and with ``libsvm_compat``, the whole
+        kernel matrix is built with one matrix product when it fits (in float64 if that fits
+        too, unless ``libsvm_compat``), else rows are computed on demand and the least recently
+        used are dropped.
     class_weight : dict or 'balanced', default=None
         Multiply ``C`` by this weight for the samples of each class.
     verbose : bool, default=False
@@ -276,20 +281,11 @@ class SVC(ClassifierMixin, BaseEstimator):
         members = [np.flatnonzero((y_idx == c) & keep) for c in range(classes.size)]
         if any(m.size == 0 for m in members):
             raise ValueError("every class needs at least one sample with a positive weight")
-        # Samples sorted by class: the kernel block of a pair of classes is then four slices of
-        # the whole matrix (copied without fancy indexing).
-        order = np.concatenate(members)
-        starts = np.concatenate([[0], np.cumsum([m.size for m in members])])
-        full = None
-        if given is not None:
-            full = np.asarray(given[np.ix_(order, order)], dtype=dtype)
-            diag = np.diag(given).astype(np.float64)
-        else:
-            if n_keep * n_keep * np.dtype(dtype).itemsize <= cache_bytes:
-                full = kern.gram(X[order], dtype=dtype, center=not self.libsvm_compat)
-            diag = kern.diagonal(X)
+        kernels = PairKernels(X, members, kern, dtype, cache_bytes, given=given,
+                              libsvm_compat=self.libsvm_compat)
+        diag = np.diag(given).astype(np.float64) if given is not None else kern.diagonal(X)
         policy = fit_policy(self.libsvm_compat, self.selection, bool(self.shrinking),
-                            whole_kernel=full is not None)
+                            whole_kernel=kernels.stored)
         # -1: no cap, as in scikit-learn's libsvm ("set max_iter to -1 to disable the mechanism"
         # in its Solver::Solve; upstream libsvm stops at max(1e7, 100 n) updates instead)
         max_iter = math.inf if self.max_iter == -1 else int(self.max_iter)
@@ -301,14 +297,8 @@ class SVC(ClassifierMixin, BaseEstimator):
                 idx = np.concatenate([members[a], members[b]])
                 na = members[a].size
                 ys = np.concatenate([np.ones(na), -np.ones(members[b].size)])
-                if full is not None:
-                    parts = (slice(starts[a], starts[a + 1]), slice(starts[b], starts[b + 1]))
-                    rows = KernelRows(None, kern, dtype, cache_bytes, full=full, parts=parts)
-                else:
-                    rows = KernelRows(X[idx], kern, dtype, cache_bytes,
-                                      center=not self.libsvm_compat)
-                res = solve_smo(rows, ys, c_vec[idx], diagonal=diag[idx], tol=float(self.tol),
-                                max_iter=max_iter, policy=policy)
+                res = solve_smo(kernels.rows(a, b), ys, c_vec[idx], diagonal=diag[idx],
+                                tol=float(self.tol), max_iter=max_iter, policy=policy)
                 if self.verbose:
                     logger.info("classes (%r, %r): %d updates, %d support vectors", classes[a],
                                 classes[b], res.n_iter, int(np.count_nonzero(res.alpha)))

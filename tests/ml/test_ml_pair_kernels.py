@@ -1,0 +1,114 @@
+"""The kernels of the one-vs-one problems built pair by pair (``ebantenna.ml.pair_kernels``)."""
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from ebantenna.ml.kernels import Kernel
+from ebantenna.ml.pair_kernels import PairKernels
+
+U = np.finfo(float).eps / 2  # unit roundoff
+
+
+def _dyadic_classes(sizes, p, offset, seed=0):
+    """Points on a grid of 2**-10 shifted by ``offset`` = 2**k, class by class: every difference
+    of two coordinates is exact, so the true distances are known."""
+    rng = np.random.default_rng(seed)
+    base = rng.integers(-2048, 2048, size=(sum(sizes), p)) / 1024.0
+    members, start = [], 0
+    for size in sizes:
+        members.append(np.arange(start, start + size))
+        start += size
+    perm = rng.permutation(base.shape[0])  # classes interleaved in X, as in real data
+    inverse = np.argsort(perm)
+    return base[perm] + offset, base[perm], [inverse[m] for m in members]
+
+
+@pytest.mark.parametrize("offset", [0.0, 2.0**20])
+def test_pair_kernels_within_the_documented_bound(offset):
+    p, gamma = 6, 0.3
+    X, X0, members = _dyadic_classes([9, 14, 5, 11], p, offset)
+    kern = Kernel("rbf", gamma=gamma)
+    kernels = PairKernels(X, members, kern, np.float64, cache_bytes=1 << 20)
+    assert kernels.layout == "pairs" and kernels.stored
+    m = X[np.concatenate(members)].mean(axis=0)  # the one centre of every block
+    k = len(members)
+    for a in range(k):  # the order of the fit: the corner block is reused from pair to pair
+        for b in range(a + 1, k):
+            idx = np.concatenate([members[a], members[b]])
+            rows = kernels.rows(a, b)
+            K = np.array([rows.row64(i) for i in range(idx.size)])
+            d = ((X0[idx, None, :] - X0[None, idx, :]) ** 2).sum(axis=2)  # p u d error
+            ref = np.exp(-gamma * d)
+            norms = np.linalg.norm(X[idx] - m, axis=1)
+            # the module notes' bound on the centred distance, the reference's own rounding,
+            # one rounding of exp on each side
+            dist_bound = (p + 5) * U * (norms[:, None] + norms[None, :]) ** 2 + p * U * d
+            assert np.all(np.abs(K - ref) <= gamma * ref * dist_bound + 2 * U * ref), (a, b)
+            np.testing.assert_array_equal(K, K.T)  # mirrored, not recomputed
+            np.testing.assert_array_equal(np.diag(K), 1.0)
+
+
+@pytest.mark.parametrize("kernel", ["linear", "poly", "sigmoid"])
+def test_dot_kernels_pair_by_pair_against_direct_formula(kernel):
+    rng = np.random.default_rng(2)
+    X = rng.normal(size=(40, 5))
+    members = [np.flatnonzero(np.arange(40) % 3 == c) for c in range(3)]
+    kern = Kernel(kernel, gamma=0.3, coef0=0.5, degree=3)
+    kernels = PairKernels(X, members, kern, np.float64, cache_bytes=1 << 20)
+    for a, b in [(0, 1), (0, 2), (1, 2)]:
+        idx = np.concatenate([members[a], members[b]])
+        dots = X[idx] @ X[idx].T
+        ref = {"linear": dots, "poly": (0.3 * dots + 0.5) ** 3,
+               "sigmoid": np.tanh(0.3 * dots + 0.5)}[kernel]
+        rows = kernels.rows(a, b)
+        K = np.array([rows.row64(i) for i in range(idx.size)])
+        # each dot product of 5 terms is off by at most 5 u |x|_1 |y|_1 on either side; the
+        # kernel function's slope is at most max(1, |K|) here (linear 1, sigmoid 0.3, poly
+        # 0.9 t^2 <= |t|^3 for t = 0.3 x.y + 0.5 >= 0.9, below that at most 1), and its own
+        # evaluation rounds a few times on each side
+        scale = np.abs(X[idx]).sum(axis=1)
+        slope = max(1.0, np.abs(ref).max())
+        tol = 2 * 5 * U * scale[:, None] * scale[None, :] * slope + 8 * U * np.abs(ref)
+        assert np.all(np.abs(K - ref) <= tol)
+
+
+def test_layouts_follow_the_memory_bound():
+    rng = np.random.default_rng(0)
+    X = rng.normal(size=(30, 2))
+    members = [np.arange(0, 10), np.arange(10, 20), np.arange(20, 30)]
+    kern = Kernel("rbf")
+    pair_bytes, whole_bytes = 20 * 20 * 8, 30 * 30 * 4
+    assert PairKernels(X, members, kern, np.float64, pair_bytes).layout == "pairs"
+    # libsvm's storage: the whole matrix in its own type, or rows on demand
+    assert PairKernels(X, members, kern, np.float32, whole_bytes,
+                       libsvm_compat=True).layout == "whole"
+    assert PairKernels(X, members, kern, np.float32, pair_bytes - 1).layout == "cache"
+    assert not PairKernels(X, members, kern, np.float32, pair_bytes - 1).stored
+    assert PairKernels(sp.csr_matrix(X), members, kern, np.float32,
+                       whole_bytes).layout == "whole"
+    given = X @ X.T
+    assert PairKernels(None, members, None, np.float64, 0, given=given).layout == "given"
+
+
+def test_gram_into_a_block_of_a_larger_array():
+    rng = np.random.default_rng(4)
+    X, Y = rng.normal(size=(70, 3)), rng.normal(size=(50, 3))
+    kern = Kernel("rbf", gamma=0.4)
+    big = np.zeros((90, 90))
+
+    def bound(A, B, K):
+        # both results within the documented bound (p = 3) of the same centred expansion
+        m = B.mean(axis=0)
+        a, b = np.linalg.norm(A - m, axis=1), np.linalg.norm(B - m, axis=1)
+        return 2 * (0.4 * K * (3 + 5) * U * (a[:, None] + b[None, :]) ** 2 + U * K)
+
+    kern.gram(X, Y, out=big[5:75, 20:70])
+    ref = kern.gram(X, Y)
+    assert np.all(np.abs(big[5:75, 20:70] - ref) <= bound(X, Y, ref))
+    assert not big[:5].any() and not big[75:].any() and not big[:, :20].any()
+    kern.gram(X, out=big[:70, :70])
+    ref = kern.gram(X)
+    assert np.all(np.abs(big[:70, :70] - ref) <= bound(X, X, ref))
+    with pytest.raises(ValueError, match="out must have shape"):
+        kern.gram(X, Y, out=np.empty((70, 49)))

@@ -9,14 +9,16 @@ kept in one of three ways, the first that applies:
 * **pair by pair, in float64** (the default mode, dense points, when the kernel of the two
   largest classes fits in ``cache_bytes`` in float64): the kernel matrix of each pair is built
   in one float64 buffer, reused from pair to pair, and each row is a contiguous view of it. The
-  pairs come in the order :math:`(0, 1), (0, 2), \\dots, (0, k-1), (1, 2), \\dots`, so the
-  block of the first class stays in the buffer's corner while the second class changes, and is
-  computed once per first class. This computes more entries than the whole matrix (for five
-  classes of equal size 17/12.5 = 1.36 times as many), but holds one pair's kernel instead of
-  all of them (at 6000 points in five classes, 46 MB instead of 288 MB in float64 or 144 MB in
-  float32). Memory is the dearer resource: writing fresh memory costs about as much per entry as
-  computing the entry, and float64 keeps the error bound of :mod:`ebantenna.ml.kernels` without
-  a float32 rounding on top.
+  pairs come in the order :math:`(0, k-1), (0, k-2), \\dots, (0, 1), (1, k-1), \\dots, (1, 2),
+  \\dots`: the block of the first class stays in the buffer's corner while the second class
+  changes, and the last pair of a run leaves the block of the next first class in the buffer,
+  where it is copied to the corner instead of being computed again. Each pair then costs its
+  cross block and one diagonal block: for five classes of equal size about 1.5 times the
+  entries of the whole matrix, but one pair's kernel in memory instead of all of them (at 6000
+  points in five classes, 46 MB instead of 288 MB in float64 or 144 MB in float32). Memory is
+  not free: fresh memory is faulted in page by page, which on a virtual machine can cost about
+  as much per entry as computing the entry; and float64 keeps the error bound of
+  :mod:`ebantenna.ml.kernels` without a float32 rounding on top.
 * **the whole matrix** (``libsvm_compat``, sparse points, or when a pair does not fit but the
   whole matrix does in ``dtype``): one Gram product over the points sorted by class; the rows of
   a pair are assembled from two slices of it.
@@ -98,12 +100,21 @@ class PairKernels:
             self._points = points
             self._norms = squared_norms(points) if kernel.name == "rbf" else None
             self._buffer = np.empty((largest, largest))
-            self._corner = None
+            self._corner = self._last = self._lower = None
         elif n * n * self.dtype.itemsize <= cache_bytes:
             self.layout = "whole"
             self._matrix = kernel.gram(X[order], dtype=self.dtype, center=self.center)
         else:
             self.layout = "cache"
+
+    def pairs(self):
+        """The problems ``(a, b, rows)`` of every pair of classes ``a < b``, in the order that
+        reuses the blocks of the 'pairs' layout (see the module text); each ``rows`` is valid
+        until the next one is taken."""
+        k = len(self.members)
+        for a in range(k):
+            for b in range(k - 1, a, -1):
+                yield a, b, self.rows(a, b)
 
     @property
     def stored(self) -> bool:
@@ -133,8 +144,13 @@ class PairKernels:
         na, n = A.stop - A.start, A.stop - A.start + B.stop - B.start
         K = self._buffer[:n, :n]
         if self._corner != a:  # the block of the first class stays while the second changes
-            self._block(A, None, K[:na, :na])
+            if self._last == a:  # left by the pair (a - 1, a) in the lower right: moved up
+                m = self._lower
+                K[:na, :na] = self._buffer[m : m + na, m : m + na]
+            else:
+                self._block(A, None, K[:na, :na])
             self._corner = a
+        self._last, self._lower = b, na
         self._block(A, B, K[:na, na:])
         K[na:, :na] = K[:na, na:].T
         self._block(B, None, K[na:, na:])

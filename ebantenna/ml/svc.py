@@ -289,25 +289,23 @@ class SVC(ClassifierMixin, BaseEstimator):
         # -1: no cap, as in scikit-learn's libsvm ("set max_iter to -1 to disable the mechanism"
         # in its Solver::Solve; upstream libsvm stops at max(1e7, 100 n) updates instead)
         max_iter = math.inf if self.max_iter == -1 else int(self.max_iter)
-        k = classes.size
-        coefs = {}
-        rhos, n_iter, status = [], [], 0
-        for a in range(k):
-            for b in range(a + 1, k):
-                idx = np.concatenate([members[a], members[b]])
-                na = members[a].size
-                ys = np.concatenate([np.ones(na), -np.ones(members[b].size)])
-                res = solve_smo(kernels.rows(a, b), ys, c_vec[idx], diagonal=diag[idx],
-                                tol=float(self.tol), max_iter=max_iter, policy=policy)
-                if self.verbose:
-                    logger.info("classes (%r, %r): %d updates, %d support vectors", classes[a],
-                                classes[b], res.n_iter, int(np.count_nonzero(res.alpha)))
-                if not res.converged:
-                    status = 1
-                coefs[a, b] = (idx, res.alpha * ys)
-                rhos.append(res.rho)
-                n_iter.append(res.n_iter)
-        self._store(X, classes, members, coefs, np.array(rhos), n_iter)
+        coefs, solved, status = {}, {}, 0
+        for a, b, rows in kernels.pairs():  # in the order that reuses kernel blocks
+            idx = np.concatenate([members[a], members[b]])
+            ys = np.concatenate([np.ones(members[a].size), -np.ones(members[b].size)])
+            res = solve_smo(rows, ys, c_vec[idx], diagonal=diag[idx], tol=float(self.tol),
+                            max_iter=max_iter, policy=policy)
+            if self.verbose:
+                logger.info("classes (%r, %r): %d updates, %d support vectors", classes[a],
+                            classes[b], res.n_iter, int(np.count_nonzero(res.alpha)))
+            if not res.converged:
+                status = 1
+            coefs[a, b] = (idx, res.alpha * ys)
+            solved[a, b] = res
+        order = sorted(solved)  # libsvm's order of the pairs: (0, 1), (0, 2), ..., (1, 2), ...
+        rhos = np.array([solved[pair].rho for pair in order])
+        n_iter = [solved[pair].n_iter for pair in order]
+        self._store(X, classes, members, coefs, rhos, n_iter)
         self.probA_ = self.probB_ = np.empty(0)
         if self.probability:
             self._fit_probability(X, members, given, kern, dtype, c_vec, diag, policy, max_iter)

@@ -33,20 +33,29 @@ def test_pair_kernels_within_the_documented_bound(offset):
     assert kernels.layout == "pairs" and kernels.stored
     m = X[np.concatenate(members)].mean(axis=0)  # the one centre of every block
     k = len(members)
-    for a in range(k):  # the order of the fit: the corner block is reused from pair to pair
-        for b in range(a + 1, k):
-            idx = np.concatenate([members[a], members[b]])
-            rows = kernels.rows(a, b)
-            K = np.array([rows.row64(i) for i in range(idx.size)])
-            d = ((X0[idx, None, :] - X0[None, idx, :]) ** 2).sum(axis=2)  # p u d error
-            ref = np.exp(-gamma * d)
-            norms = np.linalg.norm(X[idx] - m, axis=1)
-            # the module notes' bound on the centred distance, the reference's own rounding,
-            # one rounding of exp on each side
-            dist_bound = (p + 5) * U * (norms[:, None] + norms[None, :]) ** 2 + p * U * d
-            assert np.all(np.abs(K - ref) <= gamma * ref * dist_bound + 2 * U * ref), (a, b)
-            np.testing.assert_array_equal(K, K.T)  # mirrored, not recomputed
-            np.testing.assert_array_equal(np.diag(K), 1.0)
+    seen = []
+    # the order of a fit, with blocks kept and moved from pair to pair
+    for a, b, rows in kernels.pairs():
+        seen.append((a, b))
+        idx = np.concatenate([members[a], members[b]])
+        K = np.array([rows.row64(i) for i in range(idx.size)])
+        d = ((X0[idx, None, :] - X0[None, idx, :]) ** 2).sum(axis=2)  # p u d error
+        ref = np.exp(-gamma * d)
+        norms = np.linalg.norm(X[idx] - m, axis=1)
+        # the module notes' bound on the centred distance, the reference's own rounding, one
+        # rounding of exp on each side
+        dist_bound = (p + 5) * U * (norms[:, None] + norms[None, :]) ** 2 + p * U * d
+        assert np.all(np.abs(K - ref) <= gamma * ref * dist_bound + 2 * U * ref), (a, b)
+        np.testing.assert_array_equal(K, K.T)  # mirrored, not recomputed
+        np.testing.assert_array_equal(np.diag(K), 1.0)
+    assert sorted(seen) == [(a, b) for a in range(k) for b in range(a + 1, k)]
+    # any order: a block not at hand is computed (1e-12: the bound above stays below 1e-13 for
+    # these points, whose centred norms are at most 2 sqrt(6))
+    for a, b in [(2, 3), (0, 1), (0, 3), (1, 2)]:
+        K = np.array([kernels.rows(a, b).row64(i) for i in range(6)])
+        idx = np.concatenate([members[a], members[b]])[:6]
+        ref = np.exp(-gamma * ((X0[idx, None, :] - X0[None, idx, :]) ** 2).sum(axis=2))
+        np.testing.assert_allclose(K[:, :6], ref, rtol=0, atol=1e-12)
 
 
 @pytest.mark.parametrize("kernel", ["linear", "poly", "sigmoid"])

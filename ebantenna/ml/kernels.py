@@ -236,7 +236,9 @@ class Kernel:
         buffer = None if direct else np.empty(min(step, X.shape[0]) * Y.shape[0])
         # a block of a larger array is not contiguous, and NumPy is several times slower on it:
         # its sub-blocks go through a contiguous scratch
-        scratch = np.empty(max(CACHE_ENTRIES, Y.shape[0])) if direct else None
+        largest = min(max(CACHE_ENTRIES, Y.shape[0]), X.shape[0] * Y.shape[0])  # of a sub-block
+        scratch = np.empty(largest) if direct else None
+        sums = np.empty(largest) if self.name == "rbf" else None  # of the norms, reused
         for start in range(0, X.shape[0], step):
             stop = min(start + step, X.shape[0])
             first = start if same else 0
@@ -261,7 +263,7 @@ class Kernel:
                     block[...] = dest
                 if self.name == "rbf":
                     rbf_in_place(block, self.gamma, xn[rows], yn[first:],
-                                 (X[rows], Y[first:]) if sparse and center else None)
+                                 (X[rows], Y[first:]) if sparse and center else None, sums)
                 else:
                     self._dot_kernel_in_place(block)
                 if block is not dest:
@@ -295,13 +297,15 @@ class Kernel:
         return (self.gamma * sq + self.coef0) ** self.degree
 
 
-def rbf_in_place(block, gamma, x_norms, y_norms, sparse_rows=None) -> None:
+def rbf_in_place(block, gamma, x_norms, y_norms, sparse_rows=None, scratch=None) -> None:
     """Turn a block of dot products :math:`x \\cdot y` into RBF kernel values, in place.
 
     ``exp(-gamma * (|x|^2 + |y|^2 - 2 x.y))`` in libsvm's order of operations, the squared
     distance clipped at 0. With ``sparse_rows = (X, Y)`` (CSR) the entries that the expansion
     cannot be trusted with are recomputed first
-    (:func:`~ebantenna.ml.sparse_input.recompute_cancelled`).
+    (:func:`~ebantenna.ml.sparse_input.recompute_cancelled`). ``scratch``, a float64 array of at
+    least ``block.size`` entries, receives the sum of the norms instead of a fresh array (fresh
+    memory is faulted in page by page at every call).
 
     Examples
     --------
@@ -311,7 +315,8 @@ def rbf_in_place(block, gamma, x_norms, y_norms, sparse_rows=None) -> None:
     array([[1.      , 0.367879]])
     """
     block *= -2.0
-    block += x_norms[:, None] + y_norms[None, :]
+    sums = None if scratch is None else scratch[: block.size].reshape(block.shape)
+    block += np.add(x_norms[:, None], y_norms[None, :], out=sums)
     np.maximum(block, 0.0, out=block)
     if sparse_rows is not None:
         recompute_cancelled(block, *sparse_rows, x_norms, y_norms)

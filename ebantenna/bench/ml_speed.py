@@ -4,8 +4,10 @@ Run: ``python benchmarks/ml_speed.py [--quick] [--repeat N]``
 
 * ``SVC.fit`` on 6000 x 256 features, 5 classes, RBF kernel, against ``sklearn.svm.SVC`` (libsvm,
   C++), with the held-out accuracy of each so that the times compare equal work. Target: ratio
-  <= 0.3 (``libsvm_compat``: <= 0.5); measured 0.5-0.6 on a loaded two-core machine, where about
-  half of the time is the float64 Gram product and the rest the SMO loop's NumPy calls.
+  <= 0.3 (``libsvm_compat``: <= 0.5); measured 0.31-0.36 on one BLAS thread and 0.27-0.33 on two
+  on a moderately loaded two-core machine (two BLAS threads reach 0.7 when the machine is busy).
+  About half of the time is the float64 kernel products of the pairs of classes, the other half
+  the SMO loop's NumPy calls (about 20 us per update, 14000 updates).
 * ``MLPClassifier.fit`` with the same network, solver and number of epochs as scikit-learn's
   (full-batch gradient descent = scikit-learn's 'sgd' with one batch and no momentum; Adam with
   mini-batches of 200; SGD with scikit-learn's 'invscaling' schedule; L-BFGS through SciPy on

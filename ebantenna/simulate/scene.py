@@ -31,7 +31,7 @@ from .effects import EFFECT_TYPES, GY521_MASS, effect_names, make_effect
 
 #: Effects the ``paper`` scene leaves out: ``contact_compliance``, because the rod's own contact
 #: spring (in ``object_modes``) replaces it, and ``unilateral_contact``, because its strikes make
-#: the scene some six times as costly, seven minutes of one core for the paper's data set (what
+#: the scene some five times as costly, five minutes of one core for the paper's data set (what
 #: it changes in the classifier is measured on a reduced design instead: ``ebantenna reproduce``).
 PAPER_LEAVES_OUT = frozenset({"contact_compliance", "unilateral_contact"})
 

@@ -305,7 +305,7 @@ def _lift_off(r: ControlsResult) -> str:
     measured = (
         " The same design simulated again with a contact that only pushes (the "
         "'unilateral_contact' effect: the pan-tilt's approach, the overtravel that builds the "
-        "preload, lift-off and re-strike, integrated between contact events; some six "
+        "preload, lift-off and re-strike, integrated between contact events; some five "
         "times the cost of the linear model, which is why the paper's data set does without "
         f"it): {pct(share)} of the strikes strike again, a median of "
         f"{np.median(r.restrikes):g} times. The SVM on whole held-out positions reaches "

@@ -149,7 +149,7 @@ class UnilateralContact(_Effect):
     modes below the scene's ``max_frequency``; their loss factors become modal viscous damping.
     The Z axis is unchanged. Requires :class:`ObjectModes`.
 
-    It makes the ``paper`` scene some six times as costly (``ebantenna bench``), about seven
+    It makes the ``paper`` scene some five times as costly (``ebantenna bench``), about five
     minutes of one core for its ten thousand recordings: the ``paper`` scene leaves it out of its
     data set, and the study measures what it changes on a reduced design.
 

@@ -303,7 +303,12 @@ class BaseMLP(BaseEstimator):
 
     def _train_first_order(self, X, Y, X_val, Y_val, rng, incremental=False):
         n = X.shape[0]
-        params = self.coefs_ + self.intercepts_
+        # one flat vector holds every weight and bias (coefs_ and intercepts_ are views of it):
+        # the optimiser then moves all of them with a handful of NumPy calls per batch
+        shapes = [c.shape for c in self.coefs_]
+        w = self._pack(self.coefs_, self.intercepts_)
+        self.coefs_, self.intercepts_ = self._unpack(w, shapes)
+        params = [w]
         if self.solver == "gd":
             batch = n
         elif self.batch_size == "auto":
@@ -326,11 +331,12 @@ class BaseMLP(BaseEstimator):
                 rng.shuffle(idx)
             total = 0.0
             for start in range(0, n, batch):
+                # a batch-sized copy stays in cache; one shuffled copy of X per epoch is slower
                 sl = idx[start : start + batch]
                 Xb, Yb = (X, Y) if batch >= n else (X[sl], Y[sl])
                 loss, cg, ig = self._loss_grad(Xb, Yb, self.coefs_, self.intercepts_)
                 total += loss * Xb.shape[0]
-                opt.update(params, cg + ig)
+                opt.update(params, [self._pack(cg, ig)])
                 self.t_ += Xb.shape[0]
             loss = total / n
             if not np.isfinite(loss):
@@ -347,6 +353,9 @@ class BaseMLP(BaseEstimator):
                     continue
                 stopped = True
                 break
+        # own arrays again, not views of the flat training vector
+        self.coefs_ = [c.copy() for c in self.coefs_]
+        self.intercepts_ = [b.copy() for b in self.intercepts_]
         if not stopped:
             warnings.warn(f"{self.solver}: maximum iterations ({self.max_iter}) reached and the "
                           "optimization hasn't converged yet.", ConvergenceWarning, stacklevel=3)

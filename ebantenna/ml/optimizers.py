@@ -47,10 +47,12 @@ class Momentum:
     def update(self, params, grads) -> None:
         """Move ``params`` in place."""
         for p, g, v in zip(params, grads, self.velocities, strict=True):
+            step = g * self.learning_rate  # in place below: no further temporary arrays
             v *= self.momentum
-            v -= self.learning_rate * g
+            v -= step
             if self.nesterov:
-                p += self.momentum * v - self.learning_rate * g
+                np.subtract(v * self.momentum, step, out=step)
+                p += step
             else:
                 p += v
 
@@ -82,11 +84,19 @@ class Adam:
         lr = (self.learning_rate * np.sqrt(1 - self.beta_2**self.t)
               / (1 - self.beta_1**self.t))
         for p, g, m, v in zip(params, grads, self.ms, self.vs, strict=True):
+            # the same operations as p -= lr m / (sqrt(v) + eps), in place on two temporaries
+            tmp = g * (1 - self.beta_1)
             m *= self.beta_1
-            m += (1 - self.beta_1) * g
+            m += tmp
+            np.multiply(g, 1 - self.beta_2, out=tmp)
+            tmp *= g
             v *= self.beta_2
-            v += (1 - self.beta_2) * g * g
-            p -= lr * m / (np.sqrt(v) + self.epsilon)
+            v += tmp
+            np.sqrt(v, out=tmp)
+            tmp += self.epsilon
+            step = m * lr
+            step /= tmp
+            p -= step
 
 
 @dataclass

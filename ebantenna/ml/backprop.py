@@ -169,7 +169,7 @@ def output_loss(out_activation: str, z: np.ndarray, Y: np.ndarray) -> tuple[floa
     return 0.5 * float(np.mean(diff * diff)), diff / diff.size
 
 
-def backprop(acts, delta, coefs, activation: str, alpha_per_sample: float):
+def backprop(acts, delta, coefs, activation: str, alpha_per_sample: float, out=None):
     """Gradients of every weight matrix and bias vector, from the output gradient backwards.
 
     Parameters
@@ -186,6 +186,9 @@ def backprop(acts, delta, coefs, activation: str, alpha_per_sample: float):
         L2 coefficient divided by the number of samples: the penalty
         :math:`\\frac{\\alpha}{2n}\\sum_l \\lVert W_l \\rVert^2` adds ``alpha_per_sample * W`` to
         each weight gradient.
+    out : tuple of two lists of ndarray, optional
+        Arrays of the gradients' shapes to write them into (for instance views of one flat
+        vector from :func:`unpack`), instead of new ones.
 
     Returns
     -------
@@ -199,11 +202,16 @@ def backprop(acts, delta, coefs, activation: str, alpha_per_sample: float):
     ([array([[1.],
            [2.]])], [array([1.])])
     """
-    coef_grads = [None] * len(coefs)
-    intercept_grads = [None] * len(coefs)
+    if out is None:
+        out = ([np.empty_like(W) for W in coefs], [np.empty(W.shape[1]) for W in coefs])
+    coef_grads, intercept_grads = out
     for layer in range(len(coefs) - 1, -1, -1):
-        coef_grads[layer] = acts[layer].T @ delta + alpha_per_sample * coefs[layer]
-        intercept_grads[layer] = delta.sum(axis=0)
+        if isinstance(acts[layer], np.ndarray):
+            np.matmul(acts[layer].T, delta, out=coef_grads[layer])
+        else:  # sparse input: scipy's product, copied in
+            coef_grads[layer][...] = acts[layer].T @ delta
+        coef_grads[layer] += alpha_per_sample * coefs[layer]
+        np.sum(delta, axis=0, out=intercept_grads[layer])
         if layer > 0:
             delta = delta @ coefs[layer].T
             activation_derivative(activation, acts[layer], delta)

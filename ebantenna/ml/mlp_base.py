@@ -157,8 +157,9 @@ class BaseMLP(BaseEstimator):
             raise ValueError(f"hidden_layer_sizes must be > 0, got {sizes}.")
         return [int(s) for s in sizes]
 
-    def _loss_grad(self, X, Y, coefs, intercepts):
-        """Loss (data term + L2) and its exact gradient with respect to every weight and bias."""
+    def _loss_grad(self, X, Y, coefs, intercepts, out=None):
+        """Loss (data term + L2) and its exact gradient with respect to every weight and bias
+        (written into ``out``, two lists of arrays, when given)."""
         n = X.shape[0]
         # Every solver checks that the loss is finite and stops with a clear error when it is
         # not; NumPy's overflow warnings on the way there would only be noise before it.
@@ -169,7 +170,7 @@ class BaseMLP(BaseEstimator):
             l2 = sum(float(np.einsum("ij,ij->", W, W)) for W in coefs)
             loss = data_loss + 0.5 * self.alpha * l2 / n
             coef_grads, intercept_grads = backprop(
-                acts, delta, coefs, self.activation, self.alpha / n
+                acts, delta, coefs, self.activation, self.alpha / n, out
             )
         return loss, coef_grads, intercept_grads
 
@@ -308,7 +309,8 @@ class BaseMLP(BaseEstimator):
         shapes = [c.shape for c in self.coefs_]
         w = self._pack(self.coefs_, self.intercepts_)
         self.coefs_, self.intercepts_ = self._unpack(w, shapes)
-        params = [w]
+        params, grad = [w], np.empty_like(w)
+        grads = self._unpack(grad, shapes)  # the gradient's layers, views of grad
         if self.solver == "gd":
             batch = n
         elif self.batch_size == "auto":
@@ -334,9 +336,9 @@ class BaseMLP(BaseEstimator):
                 # a batch-sized copy stays in cache; one shuffled copy of X per epoch is slower
                 sl = idx[start : start + batch]
                 Xb, Yb = (X, Y) if batch >= n else (X[sl], Y[sl])
-                loss, cg, ig = self._loss_grad(Xb, Yb, self.coefs_, self.intercepts_)
+                loss, _, _ = self._loss_grad(Xb, Yb, self.coefs_, self.intercepts_, grads)
                 total += loss * Xb.shape[0]
-                opt.update(params, [self._pack(cg, ig)])
+                opt.update(params, [grad])
                 self.t_ += Xb.shape[0]
             loss = total / n
             if not np.isfinite(loss):

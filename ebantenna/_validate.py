@@ -142,6 +142,25 @@ def check_array(
     return array
 
 
+def check_per_row(n: int, of: str, **arrays) -> None:
+    """Raise unless every array of ``arrays`` has shape ``(n,)``: one entry per row of ``of``.
+
+    Examples
+    --------
+    >>> check_per_row(2, "X", y=[1, 2], distance=[0.1])
+    Traceback (most recent call last):
+    ...
+    ValueError: y and distance must have one entry per row of X (2), got (2,) and (1,)
+    """
+    shapes = [np.shape(a) for a in arrays.values()]
+    if any(shape != (n,) for shape in shapes):
+        names, got = list(arrays), [str(shape) for shape in shapes]
+        raise ValueError(
+            f"{', '.join(names[:-1])} and {names[-1]} must have one entry per row of {of} ({n}), "
+            f"got {', '.join(got[:-1])} and {got[-1]}"
+        )
+
+
 def output_path(name: str, path, suffix: str, *, any_suffix: bool = False) -> Path:
     """The file a writer creates for ``path``: ``suffix`` appended as the writer would append it.
 

@@ -24,7 +24,7 @@ import time
 
 import numpy as np
 
-from .._validate import check_array
+from .._validate import check_array, check_per_row
 from ..ml.metrics import confusion_matrix
 from .estimators import MultiModeDistanceEstimator
 from .experiments import ClassificationResult
@@ -90,11 +90,7 @@ class ModeCurveClassifier:
         X = check_array("X", X, ndim=2)
         y = np.asarray(y)
         distance = check_array("distance", distance, ndim=1)
-        if y.shape != (X.shape[0],) or distance.shape != (X.shape[0],):
-            raise ValueError(
-                f"y and distance must have one entry per row of X ({X.shape[0]}), got "
-                f"{y.shape} and {distance.shape}"
-            )
+        check_per_row(X.shape[0], "X", y=y, distance=distance)
         self.classes_ = np.unique(y)
         if self.classes_.size < 2:
             raise ValueError(f"y must hold at least 2 materials, got {self.classes_.tolist()}")
@@ -164,11 +160,7 @@ def classify_materials_by_mode_curves(peaks, dominant, materials, positions, spl
     dominant = check_array("dominant", dominant, ndim=1, finite=False)
     y = np.asarray(materials)
     d = check_array("positions", positions, ndim=1)
-    if y.shape != (peaks.shape[0],) or d.shape != y.shape or dominant.shape != y.shape:
-        raise ValueError(
-            f"dominant, materials and positions must have one entry per row of peaks "
-            f"({peaks.shape[0]}), got {dominant.shape}, {y.shape} and {d.shape}"
-        )
+    check_per_row(peaks.shape[0], "peaks", dominant=dominant, materials=y, positions=d)
     train, test = (np.asarray(rows, dtype=np.intp) for rows in split)
     order = tuple(np.unique(y).tolist()) if labels is None else tuple(labels)
     two = np.all(np.isfinite(peaks), axis=1) & np.all(peaks > 0, axis=1)

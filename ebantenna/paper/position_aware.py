@@ -27,7 +27,7 @@ from sklearn.multiclass import OneVsRestClassifier
 from sklearn.utils.multiclass import check_classification_targets
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from .._validate import check_array, check_positive
+from .._validate import check_array, check_per_row, check_positive
 from ..ml import SVC
 from ..ml.metrics import confusion_matrix
 from .estimators import FrequencyDistanceEstimator, MultiModeDistanceEstimator
@@ -276,11 +276,7 @@ def classify_materials_position_aware(
     X = normalise_by_max(check_array("X", X, ndim=2))
     y = np.asarray(materials)
     d = check_array("positions", positions, ndim=1)
-    if y.shape != (X.shape[0],) or d.shape != (X.shape[0],):
-        raise ValueError(
-            f"materials and positions must have one entry per row of X ({X.shape[0]}), got "
-            f"{y.shape} and {d.shape}"
-        )
+    check_per_row(X.shape[0], "X", materials=y, positions=d)
     train, test = (np.asarray(rows, dtype=np.intp) for rows in split)
     order = tuple(np.unique(y).tolist()) if labels is None else tuple(labels)
     start = time.perf_counter()

@@ -119,15 +119,19 @@ class ModeCurveClassifier:
         best = np.argmin(self.misfit(X), axis=1)
         return self.classes_[best]
 
-    def predict_distance(self, X) -> np.ndarray:
-        """The contact distance (m) of each row, on the curves of its predicted material."""
+    def place(self, X) -> tuple[np.ndarray, np.ndarray]:
+        """The material of each row and its contact distance (m) on that material's curves."""
         X = check_array("X", X, ndim=2)
         material = self.predict(X)
-        out = np.empty(X.shape[0])
+        distance = np.empty(X.shape[0])
         for m in np.unique(material):
             rows = material == m
-            out[rows] = self.curves_[m].predict(X[rows])
-        return out
+            distance[rows] = self.curves_[m].predict(X[rows])
+        return material, distance
+
+    def predict_distance(self, X) -> np.ndarray:
+        """The contact distance (m) of each row, on the curves of its predicted material."""
+        return self.place(X)[1]
 
 
 def classify_materials_by_mode_curves(peaks, dominant, materials, positions, split, labels=None):

@@ -104,8 +104,9 @@ def compute(ds, feats) -> FullRangeResult:
     # Nothing known: material and distance fitted together on each material's curves.
     fit = calibration & ok
     joint = ModeCurveClassifier().fit(feats.peaks[fit], ds.material[fit], ds.contact[fit])
-    joint_cm = 100 * np.abs(joint.predict_distance(feats.peaks[test]) - ds.contact[test])
-    joint_accuracy = float(np.mean(joint.predict(feats.peaks[test]) == ds.material[test]))
+    material, distance = joint.place(feats.peaks[test])  # each row's curves found once
+    joint_cm = 100 * np.abs(distance - ds.contact[test])
+    joint_accuracy = float(np.mean(material == ds.material[test]))
     single = FrequencyDistanceEstimator(out_of_range="clip").fit(
         feats.dominant[calibration], ds.contact[calibration]
     )

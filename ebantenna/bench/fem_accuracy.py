@@ -100,15 +100,14 @@ def sweep_rows(quick: bool) -> list[dict]:
 
     rows, swept = [], {}
     for label, sweep in (
-        ("batched natural_frequencies, banded, 64 el.", dict(method="banded", n_elements=64)),
-        ("secular equation, static correction, 64 el.", dict(method="secular", n_elements=64)),
-        ("secular equation, no correction, 64 el.", 64),
-        ("secular equation, no correction, 256 el.", 256),
-    ):
-        if isinstance(sweep, dict):
-            t, f = best_time(lambda kw=sweep: natural_frequencies(probe, contacts, **kw), 2)
-        else:
-            t, f = best_time(lambda m=sweep: bare(m), 2)
+        ("batched natural_frequencies, banded, 64 el.",
+         lambda: natural_frequencies(probe, contacts, method="banded", n_elements=64)),
+        ("secular equation, static correction, 64 el.",
+         lambda: natural_frequencies(probe, contacts, method="secular", n_elements=64)),
+        ("secular equation, no correction, 64 el.", lambda: bare(64)),
+        ("secular equation, no correction, 256 el.", lambda: bare(256)),
+    ):  # fmt: skip
+        t, f = best_time(sweep, 2)
         swept[label] = f
         rows.append(
             {

@@ -16,14 +16,18 @@ Both states are linear and time-invariant, so between events the motion is propa
 of each state's system matrix (the closed-form modal solution, damping included), or through
 the matrix exponential itself where a rigid-body motion makes that matrix defective. The
 contact ends when its force falls to zero and starts when the gap closes; these events are
-found by a root finder (:func:`scipy.optimize.brentq`) on the force or the gap within the step
-where it changes sign, and placed on the far side of the root (within ``2 time_tolerance``)
-so that the state entered starts admissible. The two states share the coordinates ``q``, so a
-switch changes nothing but the equations: no energy is lost or gained by it.
+found within the step where the force or the gap changes sign, by Newton's method kept inside a
+shrinking bracket, and placed on the far side of the root (within ``time_tolerance``) so that
+the state entered starts admissible. The two states share the coordinates ``q``, so a switch
+changes nothing but the equations: no energy is lost or gained by it.
 
-A sampled strike costs about 20-40 ms (0.5 s at 1 kHz output, the 64-element probe reduced to
-8 modes and the attachment mode, a few dozen events; one core): most of it is setting up the
-two states' propagators, the rest grows with the number of events.
+**Cost.** Within a state, the force (or gap) and the acceleration are sums of the state's modes,
+``Re(sum_k w_k e^(lambda_k t))`` plus the servo's linear part, so a block of steps costs one
+small matrix product, not a propagation per step. Where a bound shows that the force (or gap)
+cannot change sign over a long span, ``sum_k |w_k| |e^(lambda_k t)|`` below its steady part
+(a settled strike pressed by its preload), only the output samples are computed there. A one-second
+strike of the paper scene (probe and rod reduced to about 12 coordinates, a few dozen events,
+8 kHz) costs about 8 ms on one core, most of it in the events.
 
 **The pan-tilt's approach and the preload.** ``q`` are coordinates *relative to the servo*: the
 absolute displacement is ``r s + q``, where ``s`` is the servo's travel measured at the contact
@@ -48,6 +52,7 @@ rest with zero preload can chatter without end; ``max_events`` bounds the work.
 
 from __future__ import annotations
 
+import functools
 import logging
 import math
 import warnings
@@ -55,7 +60,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg as spl
-import scipy.optimize as spo
 
 from .._validate import check_choice, check_int, check_nonnegative, check_positive
 from .structure import check_dof_vector, check_symmetric_matrix
@@ -73,6 +77,10 @@ logger = logging.getLogger(__name__)
 STEPS_PER_PERIOD = 16
 #: Most states propagated at once in one block (bounds the memory of the stacked powers).
 _BLOCK_ELEMENTS = 2_000_000
+#: Most iterations of the event root finder (bisection alone needs log2(step / tolerance)).
+_MAX_ROOT_STEPS = 200
+#: Where the contact provably keeps its state, up to this many blocks are read at once.
+LONG_BLOCKS = 32
 
 
 class ChatterError(RuntimeError):
@@ -144,14 +152,21 @@ class _State:
     and ``H = A^-1 G`` the motion is ``y(t) = e^(At) (y + G s + H s') - G s(t) - H s'``, and
     ``e^(At) = V e^(Lambda t) V^-1`` from the eigenvectors of ``A``. Where ``A`` is defective or
     singular with a load on it (a rigid-body motion), the matrix exponential is used instead.
+
+    Three linear functions of the state are read along the motion (``rows``: the monitored
+    quantity, the acceleration and the contact force). In modal coordinates ``z = V^-1 (y + G s
+    + H s')`` each of them is ``Re(sum_k w_k e^(lambda_k t)) + a (s + s' t) + b s'``, so a block
+    of ``m`` steps costs one ``(m, 2n)`` by ``(2n, 3)`` product, not ``m`` state propagations.
     """
 
-    def __init__(self, A, n, monitor, force, accel, h, block):
-        self.A, self.n, self.monitor, self.force, self.accel = A, n, monitor, force, accel
+    def __init__(self, A, n, monitor, force, accel):
+        self.A, self.n, self.monitor = A, n, monitor
+        self.rows = np.stack([monitor, accel, force])
         Ay, f = A[: 2 * n, : 2 * n], A[: 2 * n, 2 * n]
         self.eigen = False
         with np.errstate(all="ignore"):
             lam, V = np.linalg.eig(Ay)
+            self.lam = lam  # the state's eigenvalues, whichever propagator it uses
             if np.linalg.cond(V) < 1e8:
                 Vinv = np.linalg.inv(V)
                 G = H = np.zeros(2 * n)
@@ -164,10 +179,24 @@ class _State:
                         ok = False
                 if ok and np.all(np.isfinite(G)) and np.all(np.isfinite(H)):
                     self.eigen = True
-                    self.lam, self.V, self.Vinv, self.G, self.H = lam, V, Vinv, G, H
-        taus = h * np.arange(1, block + 1)
+                    self.V, self.Vinv, self.G, self.H = V, Vinv, G, H
+                    m = 2 * n
+                    ry = self.rows[:, :m]
+                    self.row_modes = ry @ V  # (3, 2n): each row's weight on each mode
+                    self.row_s = self.rows[:, m] - ry @ G  # ... on the servo's travel s(t)
+                    self.row_speed = self.rows[:, m + 1] - ry @ H  # ... on its speed s'
+
+    def grid(self, h, block, sub):
+        """Prepare steps of ``h``, read in blocks of ``block`` steps or every ``sub`` steps."""
+        self.h, self.block, self.sub = h, block, sub
+        lam, A = self.lam, self.A
         if self.eigen:
-            self.powers = self.matrix(taus)
+            # e^(lambda t) at the steps 1..block, and at whole blocks 0..LONG_BLOCKS
+            self.fine = np.exp(np.multiply.outer(h * np.arange(1, block + 1), lam))
+            self.fine_real = np.hstack([self.fine.real, -self.fine.imag])
+            self.growing = bool(np.any(lam.real > 0))  # only by rounding, for a passive body
+            self.peak = np.abs(self.fine[0])
+            self.span = block * LONG_BLOCKS  # the longest span read at once
         else:
             Phi = spl.expm(A * h)
             powers = np.empty((block,) + A.shape)
@@ -175,54 +204,156 @@ class _State:
             for j in range(1, block):
                 powers[j] = Phi @ powers[j - 1]
             self.powers = powers
+            self.span = block
 
-    def matrix(self, tau):
-        """The propagator ``x(t + tau) = E(tau) x(t)``; a stack of them for an array of ``tau``."""
+    @functools.cached_property
+    def every_real(self):
+        """``e^(lambda sub h k)``, ``k = 0, 1, ...`` over a span, as ``[Re, -Im]``: powers by
+        repeated products (``k`` roundings); computed when a state first settles."""
+        every = np.full(
+            (-(-self.span // self.sub), self.lam.size), np.exp(self.lam * self.sub * self.h)
+        )
+        every[0] = 1.0
+        every = np.cumprod(every, axis=0)
+        return np.hstack([every.real, -every.imag])
+
+    def modal(self, x):
+        """The modal coordinates ``z`` of ``x`` (None where the propagator is ``expm``)."""
         if not self.eigen:
-            return spl.expm(self.A * tau)
-        tau = np.asarray(tau, dtype=float)
-        taus = tau.reshape(-1)
+            return None
         m = 2 * self.n
-        growth = np.exp(np.multiply.outer(taus, self.lam))  # (k, 2n)
-        Ey = ((self.V[None] * growth[:, None, :]) @ self.Vinv).real
-        E = np.zeros((taus.size, m + 2, m + 2))
-        E[:, :m, :m] = Ey
-        E[:, :m, m] = Ey @ self.G - self.G
-        E[:, :m, m + 1] = Ey @ self.H - np.multiply.outer(taus, self.G) - self.H
-        E[:, m, m] = E[:, m + 1, m + 1] = 1.0
-        E[:, m, m + 1] = taus
-        return E.reshape(tau.shape + (m + 2, m + 2))
+        return self.Vinv @ (x[:m] + self.G * x[m] + self.H * x[m + 1])
 
-    def step(self, x, tau):
-        """The state ``tau`` after ``x``."""
+    def _affine(self, out, x, steps):
+        """Add the servo's part ``a (s + s' t) + b s'`` of the rows to ``out``."""
+        m = 2 * self.n
+        s, sigma = x[m], x[m + 1]
+        if sigma == 0:  # the servo has stopped
+            out += s * self.row_s
+        else:
+            out += np.multiply.outer(s + sigma * self.h * steps, self.row_s)
+            out += sigma * self.row_speed
+        return out
+
+    def readings(self, x, z, m):
+        """``rows`` at each of the ``m`` steps after ``x`` (at most ``block``), shape ``(m, 3)``;
+        ``z`` is :meth:`modal` of ``x``."""
+        if not self.eigen:
+            return (self.powers[:m] @ x) @ self.rows.T
+        w = self.row_modes * z  # (3, 2n)
+        # Re(e w) = Re(e) Re(w) - Im(e) Im(w), as one real product
+        out = self.fine_real[:m] @ np.concatenate([w.real, w.imag], axis=1).T
+        return self._affine(out, x, np.arange(1, m + 1))
+
+    def samples(self, x, z, first, m):
+        """``rows`` every ``sub`` steps from step ``first + 1`` after ``x`` up to step ``m``
+        (at most ``span``)."""
+        steps = np.arange(first + 1, m + 1, self.sub)
+        if not self.eigen:
+            return (self.powers[steps - 1] @ x) @ self.rows.T
+        w = self.row_modes * (z * np.exp(self.lam * (self.h * (first + 1))))
+        out = self.every_real[: steps.size] @ np.concatenate([w.real, w.imag], axis=1).T
+        return self._affine(out, x, steps)
+
+    def stays_positive(self, x, z, m):
+        """Whether the monitored quantity provably stays positive over the next ``m`` steps.
+
+        Its modal part is at most ``sum_k |w_k| max|e^(lambda_k t)|`` in size and the rest is
+        linear in time, so the bound needs no step to be taken.
+        """
+        if not self.eigen:
+            return False
+        k = 2 * self.n
+        s, sigma = x[k], x[k + 1]
+        ends = (s * self.row_s[0], (s + sigma * self.h * m) * self.row_s[0])
+        trend = min(ends) + sigma * self.row_speed[0]
+        if self.growing:
+            rate = self.lam.real
+            peak = np.exp(np.where(rate > 0, rate * m, rate) * self.h)
+        else:  # every mode decays: the largest |e^(lambda t)| is at the first step
+            peak = self.peak
+        return bool(trend > np.abs(self.row_modes[0] * z) @ peak)
+
+    def after(self, x, z, steps):
+        """The state a whole number of steps after ``x`` (``z``: its :meth:`modal`)."""
+        if not self.eigen:
+            return self.powers[steps - 1] @ x
+        return self.at(x, z, steps * self.h)
+
+    def at(self, x, z, tau):
+        """The state ``tau`` after ``x`` (``z``: its :meth:`modal`)."""
         if tau == 0:
             return x
         if not self.eigen:
             return spl.expm(self.A * tau) @ x
         m = 2 * self.n
-        y, s, sigma = x[:m], x[m], x[m + 1]
-        z = self.Vinv @ (y + self.G * s + self.H * sigma)
+        s, sigma = x[m], x[m + 1]
         out = np.empty_like(x)
         out[:m] = (self.V @ (np.exp(self.lam * tau) * z)).real - self.G * (s + sigma * tau)
         out[:m] -= self.H * sigma
         out[m], out[m + 1] = s + sigma * tau, sigma
         return out
 
-    def curve(self, x):
-        """The monitored quantity along the motion from ``x``, as a function of elapsed time."""
+    def step(self, x, tau):
+        """The state ``tau`` after ``x``."""
+        return self.at(x, self.modal(x), tau)
+
+    def curve(self, x, z):
+        """The monitored quantity along the motion from ``x`` (``z``: its :meth:`modal`) and
+        its rate, as a function of elapsed time."""
         if not self.eigen:
-            return lambda tau: float(self.monitor @ self.step(x, tau))
+
+            def value_and_rate(tau):
+                xt = self.step(x, tau)
+                return float(self.monitor @ xt), float(self.monitor @ (self.A @ xt))
+
+            return value_and_rate
         m = 2 * self.n
-        y, s, sigma = x[:m], x[m], x[m + 1]
-        my, ms = self.monitor[:m], self.monitor[m]
-        w = (my @ self.V) * (self.Vinv @ (y + self.G * s + self.H * sigma))
-        gG, gH, lam = my @ self.G, my @ self.H, self.lam
-        return lambda tau: float(
-            (w @ np.exp(lam * tau)).real
-            - gG * (s + sigma * tau)
-            - gH * sigma
-            + ms * (s + sigma * tau)
-        )
+        s, sigma = x[m], x[m + 1]
+        w, lam = self.row_modes[0] * z, self.lam
+        a, b = self.row_s[0], self.row_speed[0]
+
+        def value_and_rate(tau):
+            e = w * np.exp(lam * tau)
+            return float(e.sum().real + a * (s + sigma * tau) + b * sigma), float(
+                (e @ lam).real + a * sigma
+            )
+
+        return value_and_rate
+
+
+def _crossing(curve, span: float, xtol: float, ga: float, gb: float) -> float:
+    """When the monitored quantity ``g``, ``ga > 0`` at 0 and ``gb <= 0`` at ``span``, reaches
+    zero: the far end ``b`` of a bracket ``[a, b]`` with ``g(a) > 0 >= g(b)`` and ``b - a <=
+    xtol``, so that the state entered starts admissible.
+
+    Newton's method on ``g`` and its rate, kept inside the bracket by bisection where a Newton
+    step would leave it or does not halve the last one (the safeguarded iteration ``rtsafe``,
+    W. H. Press et al., *Numerical Recipes*, 3rd ed., Cambridge University Press, 2007, section
+    9.4). Near the root a step just past it closes the bracket from the other side.
+    """
+    a, b = 0.0, span
+    t = a + ga * (b - a) / (ga - gb)  # the secant through the ends
+    last = span
+    for _ in range(_MAX_ROOT_STEPS):
+        g, rate = curve(t)
+        if g > 0:
+            a = t
+        else:
+            b = t
+        if b - a <= xtol:
+            return b
+        step = g / rate if rate != 0 else math.inf
+        new = t - step
+        if not (a < new < b) or abs(step) > last / 2:
+            new = (a + b) / 2  # bisection: the bracket halves
+        elif abs(step) < xtol / 2:  # at the root: step just past it, to the other side
+            new += math.copysign(xtol / 2, -step)
+            if not a < new < b:
+                new = (a + b) / 2
+        last = abs(new - t)
+        t = new
+    return b
 
 
 def unilateral_response(
@@ -276,7 +407,7 @@ def unilateral_response(
         When they are exceeded: raise :class:`ChatterError`, or warn and hold the contact closed
         (bilateral) from the next contact on.
     time_tolerance : float
-        Accuracy of each event time, s (> 0); events are placed no more than twice this late.
+        Accuracy of each event time, s (> 0); events are placed no more than this late.
     return_states : bool
         Also return the state ``(q, q', s, s')`` at every sample.
 
@@ -349,18 +480,17 @@ def unilateral_response(
         return A
 
     A_free, A_closed = system(False), system(True)
-    lam = np.concatenate(
-        [np.linalg.eigvals(A_free[:-2, :-2]), np.linalg.eigvals(A_closed[:-2, :-2])]
-    )
-    fastest = float(np.abs(lam).max())
+    free = _State(A_free, n, -pen, np.zeros(N), o @ A_free[n : 2 * n])
+    closed = _State(A_closed, n, kc * pen, kc * pen, o @ A_closed[n : 2 * n])
+    fastest = float(np.abs(np.concatenate([free.lam, closed.lam])).max())
     h_max = 2 * math.pi / (STEPS_PER_PERIOD * fastest) if fastest > 0 else 1 / fs
     sub = max(1, math.ceil(1 / (fs * h_max)))
     h = 1 / (fs * sub)
     n_samples = int(math.floor(T * fs + 1e-9)) + 1
     n_steps = (n_samples - 1) * sub
     block = int(max(1, min(256, n_steps, _BLOCK_ELEMENTS // (N * N))))
-    free = _State(A_free, n, -pen, np.zeros(N), o @ A_free[n : 2 * n], h, block)
-    closed = _State(A_closed, n, kc * pen, kc * pen, o @ A_closed[n : 2 * n], h, block)
+    free.grid(h, block, sub)
+    closed.grid(h, block, sub)
 
     t_out = np.arange(n_samples) / fs
     acc = np.zeros(n_samples)
@@ -373,8 +503,7 @@ def unilateral_response(
     def record(i, x, st):
         if i % sub == 0:
             k = i // sub
-            acc[k] = st.accel @ x
-            force[k] = st.force @ x
+            acc[k], force[k] = st.rows[1:] @ x
             if states is not None:
                 states[k] = x
 
@@ -405,23 +534,27 @@ def unilateral_response(
     def watched(st):
         return not (frozen and st is closed)
 
-    def advance(x, st, t0, t1):
-        """Propagate from t0 to t1 (at most one step) through any events on the way."""
+    def advance(x, st, t0, t1, crosses=False):
+        """Propagate from t0 to t1 (at most one step) through any events on the way;
+        ``crosses``: the monitored quantity is known to reach zero by t1."""
         while True:
-            x1 = st.step(x, t1 - t0)
-            if not watched(st) or st.monitor @ x1 > 0:
-                return x1, st
-
-            g = st.curve(x)
+            if not crosses:
+                x1 = st.step(x, t1 - t0)
+                if not watched(st) or st.monitor @ x1 > 0:
+                    return x1, st
+            z = st.modal(x)
+            g = st.curve(x, z)
             span = t1 - t0
-            if g(0.0) <= 0:  # already at the boundary (a grazing touch): switch at once
+            end = g(span)[0]
+            if end > 0:  # a graze that rounding decides: the curve stays in this state
+                return st.at(x, z, span), st
+            crosses = False
+            start = g(0.0)[0]
+            if start <= 0:  # already at the boundary (a grazing touch): switch at once
                 tau = 0.0
             else:
-                tau = spo.brentq(g, 0.0, span, xtol=xtol, rtol=4 * np.finfo(float).eps)
-                # Take the root from the far side, so the state entered starts admissible.
-                while tau < span and g(tau) > 0:
-                    tau = min(span, tau + xtol)
-            x = st.step(x, tau)
+                tau = _crossing(g, span, xtol, start, end)
+            x = st.at(x, z, tau)
             t0 = t0 + tau
             st = switch(st, x, t0)
 
@@ -451,24 +584,31 @@ def unilateral_response(
         limit = n_steps - i
         if not stopped:
             limit = min(limit, int(math.floor(t_stop / h)) - i)
-        m = min(block, limit)
-        X = (st.powers[:m].reshape(m * N, N) @ x).reshape(m, N)  # one matrix-vector product
-        g = X @ st.monitor
-        bad = np.flatnonzero(g <= 0) if watched(st) else np.empty(0, int)
-        if bad.size:
-            m = int(bad[0])  # steps safely inside the state
+        first = (-(i + 1)) % sub  # the first step from here that is an output sample
+        z = st.modal(x)
+        m = min(st.span, limit)
+        if not watched(st) or st.stays_positive(x, z, m):  # no event possible: read the samples
+            bad = ()
+            j = np.arange(first, m, sub)
+            values = st.samples(x, z, first, m)
+        else:
+            m = min(block, limit)
+            values = st.readings(x, z, m)
+            bad = np.flatnonzero(values[:, 0] <= 0)
+            if len(bad):
+                m = int(bad[0])  # steps safely inside the state
+            j = np.arange(first, m, sub)
+            values = values[j]
         # Record the output samples among the m steps taken.
-        j = np.arange((-(i + 1)) % sub, m, sub)
         k = (i + 1 + j) // sub
-        acc[k] = X[j] @ st.accel
-        force[k] = X[j] @ st.force
+        acc[k], force[k] = values[:, 1], values[:, 2]
         if states is not None:
-            states[k] = X[j]
+            states[k] = [st.after(x, z, jj + 1) for jj in j]
         if m:
-            x = X[m - 1]
+            x = st.after(x, z, m)
             i += m
-        if bad.size:
-            x, st = advance(x, st, i * h, (i + 1) * h)
+        if len(bad):
+            x, st = advance(x, st, i * h, (i + 1) * h, crosses=True)
             i += 1
             record(i, x, st)
     logger.debug("unilateral strike: %d events, %d steps of %.3g s", len(events), n_steps, h)

@@ -42,6 +42,7 @@ from __future__ import annotations
 
 import math
 import warnings
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -81,14 +82,31 @@ class StrikeModel:
     preload: float
 
 
-def _truncated(reduction, max_frequency: float):
-    """The reduction's coordinates with fixed-interface modes below ``max_frequency``, and the
-    interface coordinate (last)."""
-    keep = np.flatnonzero(reduction.fixed_interface_omega < 2 * math.pi * max_frequency)
-    idx = np.append(keep, reduction.interface)
-    K = reduction.stiffness[np.ix_(idx, idx)]
-    M = reduction.mass[np.ix_(idx, idx)]
-    return K, M, reduction.basis[:, idx]
+#: Each reduction's truncated, damped matrices by ``max_frequency``: the many strikes on one
+#: probe position or one rod (preloads and speeds differ) share them.
+_BODIES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _body(reduction, max_frequency: float):
+    """``K, M, T, C`` of the reduction's coordinates with fixed-interface modes below
+    ``max_frequency`` and the interface coordinate (last), damped by its loss factor."""
+    cached = _BODIES.setdefault(reduction, {})
+    if max_frequency not in cached:
+        keep = np.flatnonzero(reduction.fixed_interface_omega < 2 * math.pi * max_frequency)
+        idx = np.append(keep, reduction.interface)
+        K = reduction.stiffness[np.ix_(idx, idx)]
+        M = reduction.mass[np.ix_(idx, idx)]
+        C = _modal_viscous(K, M, reduction.loss_factor)
+        cached[max_frequency] = K, M, reduction.basis[:, idx], C
+    return cached[max_frequency]
+
+
+def _side_by_side(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The block-diagonal matrix of ``a`` and ``b``."""
+    out = np.zeros((a.shape[0] + b.shape[0],) * 2)
+    out[: a.shape[0], : a.shape[0]] = a
+    out[a.shape[0] :, a.shape[0] :] = b
+    return out
 
 
 def _modal_viscous(K: np.ndarray, M: np.ndarray, loss_factor: float) -> np.ndarray:
@@ -134,8 +152,8 @@ def strike_model(
     >>> m.structure.mass.shape  # probe: 8 modes below 3 kHz + interface; rod: 2 + interface
     (12, 12)
     """
-    Kp, Mp, Tp = _truncated(probe_reduction, max_frequency)
-    Kr, Mr, _ = _truncated(rod_reduction, max_frequency)
+    Kp, Mp, Tp, Cp = _body(probe_reduction, max_frequency)
+    Kr, Mr, _, Cr = _body(rod_reduction, max_frequency)
     n_p, n_r = Kp.shape[0], Kr.shape[0]
     sub = probe_reduction.substructure
     # the servo's rigid rotation per metre of travel at the contact, projected on the basis
@@ -148,15 +166,7 @@ def strike_model(
     output = np.zeros(n_p + n_r)
     output[:n_p] = Tp[tip]
     structure = ContactModel(
-        sla.block_diag(Mp, Mr),
-        sla.block_diag(Kp, Kr),
-        sla.block_diag(
-            _modal_viscous(Kp, Mp, probe_reduction.loss_factor),
-            _modal_viscous(Kr, Mr, rod_reduction.loss_factor),
-        ),
-        c,
-        base,
-        output,
+        _side_by_side(Mp, Mr), _side_by_side(Kp, Kr), _side_by_side(Cp, Cr), c, base, output
     )
     return StrikeModel(structure, float(contact), float(contact_stiffness), float(preload))
 

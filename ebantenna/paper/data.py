@@ -84,7 +84,8 @@ def build_dataset(out_dir, seed: int = 0, quick: bool = False, *, scene: Scene |
     scene : Scene, optional
         The scene to record; default the built-in ``paper`` scene.
     n_jobs : int
-        Worker processes (one material per task); the result does not depend on it.
+        Worker processes (each task a range of contact positions of one material); the
+        result does not depend on it.
     show_progress : bool, optional
         Force the progress bar on or off (default: on a terminal).
 

@@ -52,7 +52,6 @@ rest with zero preload can chatter without end; ``max_events`` bounds the work.
 
 from __future__ import annotations
 
-import functools
 import logging
 import math
 import warnings
@@ -62,6 +61,7 @@ import numpy as np
 import scipy.linalg as spl
 
 from .._validate import check_choice, check_int, check_nonnegative, check_positive
+from .linear_state import LinearState, crossing
 from .structure import check_dof_vector, check_symmetric_matrix
 
 __all__ = [
@@ -77,10 +77,6 @@ logger = logging.getLogger(__name__)
 STEPS_PER_PERIOD = 16
 #: Most states propagated at once in one block (bounds the memory of the stacked powers).
 _BLOCK_ELEMENTS = 2_000_000
-#: Most iterations of the event root finder (bisection alone needs log2(step / tolerance)).
-_MAX_ROOT_STEPS = 200
-#: Where the contact provably keeps its state, up to this many blocks are read at once.
-LONG_BLOCKS = 32
 
 
 class ChatterError(RuntimeError):
@@ -143,217 +139,6 @@ class UnilateralResponse:
     def n_impacts(self) -> int:
         """Number of strikes, the first touch included."""
         return 1 + sum(e.kind == "contact" for e in self.events)
-
-
-class _State:
-    """One of the two linear states: exact propagator, and what is monitored and recorded in it.
-
-    The state ``x = (y, s, s')`` with ``y = (q, q')`` obeys ``y' = A y + f s``. With ``G = A^-1 f``
-    and ``H = A^-1 G`` the motion is ``y(t) = e^(At) (y + G s + H s') - G s(t) - H s'``, and
-    ``e^(At) = V e^(Lambda t) V^-1`` from the eigenvectors of ``A``. Where ``A`` is defective or
-    singular with a load on it (a rigid-body motion), the matrix exponential is used instead.
-
-    Three linear functions of the state are read along the motion (``rows``: the monitored
-    quantity, the acceleration and the contact force). In modal coordinates ``z = V^-1 (y + G s
-    + H s')`` each of them is ``Re(sum_k w_k e^(lambda_k t)) + a (s + s' t) + b s'``, so a block
-    of ``m`` steps costs one ``(m, 2n)`` by ``(2n, 3)`` product, not ``m`` state propagations.
-    """
-
-    def __init__(self, A, n, monitor, force, accel):
-        self.A, self.n, self.monitor = A, n, monitor
-        self.rows = np.stack([monitor, accel, force])
-        Ay, f = A[: 2 * n, : 2 * n], A[: 2 * n, 2 * n]
-        self.eigen = False
-        with np.errstate(all="ignore"):
-            lam, V = np.linalg.eig(Ay)
-            self.lam = lam  # the state's eigenvalues, whichever propagator it uses
-            if np.linalg.cond(V) < 1e8:
-                Vinv = np.linalg.inv(V)
-                G = H = np.zeros(2 * n)
-                ok = True
-                if np.any(f):
-                    try:
-                        G = np.linalg.solve(Ay, f)
-                        H = np.linalg.solve(Ay, G)
-                    except np.linalg.LinAlgError:
-                        ok = False
-                if ok and np.all(np.isfinite(G)) and np.all(np.isfinite(H)):
-                    self.eigen = True
-                    self.V, self.Vinv, self.G, self.H = V, Vinv, G, H
-                    m = 2 * n
-                    ry = self.rows[:, :m]
-                    self.row_modes = ry @ V  # (3, 2n): each row's weight on each mode
-                    self.row_s = self.rows[:, m] - ry @ G  # ... on the servo's travel s(t)
-                    self.row_speed = self.rows[:, m + 1] - ry @ H  # ... on its speed s'
-
-    def grid(self, h, block, sub):
-        """Prepare steps of ``h``, read in blocks of ``block`` steps or every ``sub`` steps."""
-        self.h, self.block, self.sub = h, block, sub
-        lam, A = self.lam, self.A
-        if self.eigen:
-            # e^(lambda t) at the steps 1..block, and at whole blocks 0..LONG_BLOCKS
-            self.fine = np.exp(np.multiply.outer(h * np.arange(1, block + 1), lam))
-            self.fine_real = np.hstack([self.fine.real, -self.fine.imag])
-            self.growing = bool(np.any(lam.real > 0))  # only by rounding, for a passive body
-            self.peak = np.abs(self.fine[0])
-            self.span = block * LONG_BLOCKS  # the longest span read at once
-        else:
-            Phi = spl.expm(A * h)
-            powers = np.empty((block,) + A.shape)
-            powers[0] = Phi
-            for j in range(1, block):
-                powers[j] = Phi @ powers[j - 1]
-            self.powers = powers
-            self.span = block
-
-    @functools.cached_property
-    def every_real(self):
-        """``e^(lambda sub h k)``, ``k = 0, 1, ...`` over a span, as ``[Re, -Im]``: powers by
-        repeated products (``k`` roundings); computed when a state first settles."""
-        every = np.full(
-            (-(-self.span // self.sub), self.lam.size), np.exp(self.lam * self.sub * self.h)
-        )
-        every[0] = 1.0
-        every = np.cumprod(every, axis=0)
-        return np.hstack([every.real, -every.imag])
-
-    def modal(self, x):
-        """The modal coordinates ``z`` of ``x`` (None where the propagator is ``expm``)."""
-        if not self.eigen:
-            return None
-        m = 2 * self.n
-        return self.Vinv @ (x[:m] + self.G * x[m] + self.H * x[m + 1])
-
-    def _affine(self, out, x, steps):
-        """Add the servo's part ``a (s + s' t) + b s'`` of the rows to ``out``."""
-        m = 2 * self.n
-        s, sigma = x[m], x[m + 1]
-        if sigma == 0:  # the servo has stopped
-            out += s * self.row_s
-        else:
-            out += np.multiply.outer(s + sigma * self.h * steps, self.row_s)
-            out += sigma * self.row_speed
-        return out
-
-    def readings(self, x, z, m):
-        """``rows`` at each of the ``m`` steps after ``x`` (at most ``block``), shape ``(m, 3)``;
-        ``z`` is :meth:`modal` of ``x``."""
-        if not self.eigen:
-            return (self.powers[:m] @ x) @ self.rows.T
-        w = self.row_modes * z  # (3, 2n)
-        # Re(e w) = Re(e) Re(w) - Im(e) Im(w), as one real product
-        out = self.fine_real[:m] @ np.concatenate([w.real, w.imag], axis=1).T
-        return self._affine(out, x, np.arange(1, m + 1))
-
-    def samples(self, x, z, first, m):
-        """``rows`` every ``sub`` steps from step ``first + 1`` after ``x`` up to step ``m``
-        (at most ``span``)."""
-        steps = np.arange(first + 1, m + 1, self.sub)
-        if not self.eigen:
-            return (self.powers[steps - 1] @ x) @ self.rows.T
-        w = self.row_modes * (z * np.exp(self.lam * (self.h * (first + 1))))
-        out = self.every_real[: steps.size] @ np.concatenate([w.real, w.imag], axis=1).T
-        return self._affine(out, x, steps)
-
-    def stays_positive(self, x, z, m):
-        """Whether the monitored quantity provably stays positive over the next ``m`` steps.
-
-        Its modal part is at most ``sum_k |w_k| max|e^(lambda_k t)|`` in size and the rest is
-        linear in time, so the bound needs no step to be taken.
-        """
-        if not self.eigen:
-            return False
-        k = 2 * self.n
-        s, sigma = x[k], x[k + 1]
-        ends = (s * self.row_s[0], (s + sigma * self.h * m) * self.row_s[0])
-        trend = min(ends) + sigma * self.row_speed[0]
-        if self.growing:
-            rate = self.lam.real
-            peak = np.exp(np.where(rate > 0, rate * m, rate) * self.h)
-        else:  # every mode decays: the largest |e^(lambda t)| is at the first step
-            peak = self.peak
-        return bool(trend > np.abs(self.row_modes[0] * z) @ peak)
-
-    def after(self, x, z, steps):
-        """The state a whole number of steps after ``x`` (``z``: its :meth:`modal`)."""
-        if not self.eigen:
-            return self.powers[steps - 1] @ x
-        return self.at(x, z, steps * self.h)
-
-    def at(self, x, z, tau):
-        """The state ``tau`` after ``x`` (``z``: its :meth:`modal`)."""
-        if tau == 0:
-            return x
-        if not self.eigen:
-            return spl.expm(self.A * tau) @ x
-        m = 2 * self.n
-        s, sigma = x[m], x[m + 1]
-        out = np.empty_like(x)
-        out[:m] = (self.V @ (np.exp(self.lam * tau) * z)).real - self.G * (s + sigma * tau)
-        out[:m] -= self.H * sigma
-        out[m], out[m + 1] = s + sigma * tau, sigma
-        return out
-
-    def step(self, x, tau):
-        """The state ``tau`` after ``x``."""
-        return self.at(x, self.modal(x), tau)
-
-    def curve(self, x, z):
-        """The monitored quantity along the motion from ``x`` (``z``: its :meth:`modal`) and
-        its rate, as a function of elapsed time."""
-        if not self.eigen:
-
-            def value_and_rate(tau):
-                xt = self.step(x, tau)
-                return float(self.monitor @ xt), float(self.monitor @ (self.A @ xt))
-
-            return value_and_rate
-        m = 2 * self.n
-        s, sigma = x[m], x[m + 1]
-        w, lam = self.row_modes[0] * z, self.lam
-        a, b = self.row_s[0], self.row_speed[0]
-
-        def value_and_rate(tau):
-            e = w * np.exp(lam * tau)
-            return float(e.sum().real + a * (s + sigma * tau) + b * sigma), float(
-                (e @ lam).real + a * sigma
-            )
-
-        return value_and_rate
-
-
-def _crossing(curve, span: float, xtol: float, ga: float, gb: float) -> float:
-    """When the monitored quantity ``g``, ``ga > 0`` at 0 and ``gb <= 0`` at ``span``, reaches
-    zero: the far end ``b`` of a bracket ``[a, b]`` with ``g(a) > 0 >= g(b)`` and ``b - a <=
-    xtol``, so that the state entered starts admissible.
-
-    Newton's method on ``g`` and its rate, kept inside the bracket by bisection where a Newton
-    step would leave it or does not halve the last one (the safeguarded iteration ``rtsafe``,
-    W. H. Press et al., *Numerical Recipes*, 3rd ed., Cambridge University Press, 2007, section
-    9.4). Near the root a step just past it closes the bracket from the other side.
-    """
-    a, b = 0.0, span
-    t = a + ga * (b - a) / (ga - gb)  # the secant through the ends
-    last = span
-    for _ in range(_MAX_ROOT_STEPS):
-        g, rate = curve(t)
-        if g > 0:
-            a = t
-        else:
-            b = t
-        if b - a <= xtol:
-            return b
-        step = g / rate if rate != 0 else math.inf
-        new = t - step
-        if not (a < new < b) or abs(step) > last / 2:
-            new = (a + b) / 2  # bisection: the bracket halves
-        elif abs(step) < xtol / 2:  # at the root: step just past it, to the other side
-            new += math.copysign(xtol / 2, -step)
-            if not a < new < b:
-                new = (a + b) / 2
-        last = abs(new - t)
-        t = new
-    return b
 
 
 def unilateral_response(
@@ -480,8 +265,8 @@ def unilateral_response(
         return A
 
     A_free, A_closed = system(False), system(True)
-    free = _State(A_free, n, -pen, np.zeros(N), o @ A_free[n : 2 * n])
-    closed = _State(A_closed, n, kc * pen, kc * pen, o @ A_closed[n : 2 * n])
+    free = LinearState(A_free, n, -pen, np.zeros(N), o @ A_free[n : 2 * n])
+    closed = LinearState(A_closed, n, kc * pen, kc * pen, o @ A_closed[n : 2 * n])
     fastest = float(np.abs(np.concatenate([free.lam, closed.lam])).max())
     h_max = 2 * math.pi / (STEPS_PER_PERIOD * fastest) if fastest > 0 else 1 / fs
     sub = max(1, math.ceil(1 / (fs * h_max)))
@@ -553,7 +338,7 @@ def unilateral_response(
             if start <= 0:  # already at the boundary (a grazing touch): switch at once
                 tau = 0.0
             else:
-                tau = _crossing(g, span, xtol, start, end)
+                tau = crossing(g, span, xtol, start, end)
             x = st.at(x, z, tau)
             t0 = t0 + tau
             st = switch(st, x, t0)

@@ -5,8 +5,9 @@ import math
 import numpy as np
 import pytest
 
-import ebantenna.simulate.unilateral as unilateral
-from ebantenna.simulate.unilateral import _crossing, _State, unilateral_response
+import ebantenna.simulate.linear_state as linear_state
+from ebantenna.simulate.linear_state import LinearState, crossing
+from ebantenna.simulate.unilateral import unilateral_response
 
 EPS = np.finfo(float).eps
 
@@ -36,7 +37,7 @@ def _counted(g, rate):
 def test_crossing_lands_just_past_the_root_within_the_bisection_budget(g, rate, root):
     span, xtol = 5e-5, 1e-12
     curve, calls = _counted(g, rate)
-    b = _crossing(curve, span, xtol, g(0.0), g(span))
+    b = crossing(curve, span, xtol, g(0.0), g(span))
     # The far end of a bracket [a, b] around the root with b - a <= xtol; the root itself is
     # known to rounding (eps of the time), which widens the window by a few ulps.
     assert g(b) <= 0
@@ -61,7 +62,7 @@ def _two_dof_closed_state():
     A[n : 2 * n, 2 * n] = -kc * (Minv @ c)
     A[2 * n, 2 * n + 1] = 1.0
     pen = np.concatenate([c, np.zeros(n), [1.0, 0.0]])  # p = c @ q + s
-    st = _State(A, n, kc * pen, kc * pen, A[n])
+    st = LinearState(A, n, kc * pen, kc * pen, A[n])
     fastest = np.abs(st.lam).max()
     st.grid(2 * math.pi / (16 * fastest), 256, 7)
     return st
@@ -99,14 +100,14 @@ def test_settled_spans_read_the_same_samples_as_every_step(monkeypatch):
         preload=2.0, max_events=10_000,
     )  # fmt: skip
     bound = unilateral_response(M, K, 1, 5.0e4, **kw)
-    monkeypatch.setattr(_State, "stays_positive", lambda self, x, z, m: False)
+    monkeypatch.setattr(LinearState, "stays_positive", lambda self, x, z, m: False)
     stepped = unilateral_response(M, K, 1, 5.0e4, **kw)
     assert [e.time for e in bound.events] == [e.time for e in stepped.events]
     assert len(bound.events) >= 2  # it rebounds before it settles
     peak = np.abs(stepped.acceleration).max()
     # The settled spans use powers e^(lambda sub h k) built by k repeated products, k below
     # span/sub; each carries k roundings of the modal amplitudes (sum |w| ~ peak).
-    k = unilateral.LONG_BLOCKS * 256
+    k = linear_state.LONG_BLOCKS * 256
     assert np.abs(bound.acceleration - stepped.acceleration).max() <= 4 * k * EPS * peak
     np.testing.assert_allclose(bound.contact_force, stepped.contact_force, rtol=0,
                                atol=4 * k * EPS * np.abs(stepped.contact_force).max())  # fmt: skip

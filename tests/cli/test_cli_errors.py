@@ -118,7 +118,7 @@ SIGNAL_SCRIPT = textwrap.dedent("""
         print("ready", file=sys.stderr, flush=True)
         time.sleep(120)
 
-    d._simulate_material = slow
+    d._simulate_rows = slow
     sys.exit(main(["dataset", "--out", sys.argv[1], "--quick", "--json"]))
 """)
 

@@ -70,8 +70,8 @@ class ControlsResult:
         the preload (:meth:`ebantenna.simulate.ModalTerms.lift_off_ratio` above 1); None without
         ``object_modes``.
     unilateral_accuracy : float or None
-        Grouped-split accuracy on the same design with ``unilateral_contact`` added (the probe
-        lifts off and strikes again); None without ``object_modes`` or when the scene has it.
+        Grouped-split accuracy on the same design with the ``unilateral_contact`` effect (the
+        probe lifts off and strikes again); None without ``object_modes``.
     restrikes : ndarray of int or None
         Each of those strikes' contacts after the first touch.
     mid_height_accuracy : float or None
@@ -81,6 +81,11 @@ class ControlsResult:
     mode_curve_accuracies : dict of str to float or None
         The mode-curve classifier on the same grouped split, with the ``"linear"`` contact and
         the ``"unilateral"`` one; None with ``unilateral_accuracy``.
+    linear_accuracy : float or None
+        Grouped-split accuracy with the linear contact (without ``unilateral_contact``); None
+        with ``unilateral_accuracy``.
+    pushes : bool
+        Whether the scene's own contact only pushes (it lists ``unilateral_contact``).
     """
 
     ablation: Ablation
@@ -95,14 +100,18 @@ class ControlsResult:
     restrikes: np.ndarray | None = None
     mid_height_accuracy: float | None = None
     mode_curve_accuracies: dict | None = None
+    linear_accuracy: float | None = None
+    pushes: bool = False
 
     @property
     def data_sets(self) -> int:
         """How many small data sets the controls built: one per ablation row, two for the pair,
-        one each for the unilateral contact and the moved contact height."""
+        one for the contact law the scene does not use (the ablation has the other), and one for
+        the moved contact height."""
         extra = [self.pair_accuracy, self.unilateral_accuracy, self.mid_height_accuracy]
+        law = 0 if self.pushes else 1  # with it, the ablation's row is the linear contact
         return len(self.ablation.accuracies) + sum(
-            n for n, a in zip((2, 1, 1), extra, strict=True) if a is not None
+            n for n, a in zip((2, law, 1), extra, strict=True) if a is not None
         )
 
     def to_dict(self) -> dict:
@@ -119,6 +128,7 @@ class ControlsResult:
             "equivalent_pair_mode_curve_accuracy": self.pair_mode_curve_accuracy,
             "contact_lift_off_share": self.lift_off_share,
             "svm_grouped_unilateral_accuracy": self.unilateral_accuracy,
+            "svm_grouped_linear_accuracy": self.linear_accuracy,
             "unilateral_restrike_share": (
                 None if self.restrikes is None else float(np.mean(self.restrikes > 0))
             ),
@@ -161,26 +171,24 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ControlsRe
     positions = design.contacts(scene.probe.length)
     held = np.isin(positions, positions[grouped_split(positions, seed=seed)[1]])
     n_test = int(held.sum()) * len(design.materials) * design.repetitions
-    lift_off = None
-    if effect is not None:
-        plan = dataset_plan(scene, design, seed)
+    lift_off = unilateral = linear_accuracy = restrikes = curves = None
+    if effect is not None:  # the two contact laws: the scene's own, and the other
+        pushing, linear = _contact_laws(scene)
+        plan = dataset_plan(linear, design, seed)
         _, _, _, x, _ = simulate_batch(
-            scene, contact=plan["contact_true"], material=plan["material"],
+            linear, contact=plan["contact_true"], material=plan["material"],
             sweep_speed=plan["sweep_speed"], tilt_ratio=plan["tilt_ratio"],
             seeds=plan["seed_row"], show_progress=False,
-        )
+        )  # fmt: skip
         lift_off = float(np.mean(x.lift_off_ratio(scene.duration) > 1))
-    unilateral = restrikes = curves = None
-    if effect is not None and not scene.has("unilateral_contact"):
-        pushing = scene.with_(
-            name=f"{scene.name}-unilateral", effects=(*scene.effects, "unilateral_contact")
-        )
-        ds = build_dataset(cache_dir, pushing, design, seed, n_jobs=n_jobs, show_progress=False)
+        build = dict(n_jobs=n_jobs, show_progress=False)
+        ds = build_dataset(cache_dir, pushing, design, seed, **build)
         unilateral = grouped_svm_accuracy(ds, seed=seed)
         restrikes = np.asarray(ds.metadata["restrikes"], dtype=int)
-        linear = build_dataset(cache_dir, scene, design, seed, n_jobs=n_jobs, show_progress=False)
+        lin = build_dataset(cache_dir, linear, design, seed, **build)
+        linear_accuracy = grouped_svm_accuracy(lin, seed=seed)
         curves = {
-            "linear": _mode_curve_accuracy(linear, seed, n_jobs),
+            "linear": _mode_curve_accuracy(lin, seed, n_jobs),
             "unilateral": _mode_curve_accuracy(ds, seed, n_jobs),
         }
     mid = None
@@ -194,8 +202,18 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ControlsRe
         mid = grouped_svm_accuracy(ds, seed=seed)
     return ControlsResult(
         ablation, accuracy, note, pair_curves, n, 1 / len(design.materials), n_test, lift_off,
-        unilateral, restrikes, mid, curves,
+        unilateral, restrikes, mid, curves, linear_accuracy, scene.has("unilateral_contact"),
     )  # fmt: skip
+
+
+def _contact_laws(scene):
+    """The scene with a contact that only pushes and with the linear one; one of them is
+    ``scene`` itself, the other named as the ablation names it (so its data set is shared)."""
+    law = "unilateral_contact"
+    if scene.has(law):
+        others = [e for e in scene.effects if e.name != law]
+        return scene, scene.with_(name=f"{scene.name}-without-{law}", effects=others)
+    return scene.with_(name=f"{scene.name}-unilateral", effects=(*scene.effects, law)), scene
 
 
 def render(result: ControlsResult, report, figures) -> None:
@@ -280,21 +298,33 @@ def _lift_off(r: ControlsResult) -> str:
     Examples
     --------
     >>> from ebantenna.paper.controls import Ablation
-    >>> r = ControlsResult(Ablation({"none": 0.6}, {}, {}), None, "", None, 395, 0.2, 80, 0.6,
-    ...                    0.5, np.array([0, 3, 5, 9]))
+    >>> r = ControlsResult(Ablation({"none": 0.5}, {}, {}), None, "", None, 395, 0.2, 80, 0.6,
+    ...                    0.5, np.array([0, 3, 5, 9]), linear_accuracy=0.6, pushes=True)
     >>> _lift_off(r).endswith("this design does not resolve a change by the contact law.")
     True
     """
-    text = (
-        "The data set's contact is linear: it pushes and pulls. In "
-        f"{pct(r.lift_off_share)} of these strikes its dynamic force would have to exceed the "
-        "preload in pulling: on the rig the probe would lift off the rod, ring free and strike "
-        "again (chatter)."
+    law = (
+        "the 'unilateral_contact' effect: the pan-tilt's approach, the overtravel that builds "
+        "the preload, lift-off and re-strike, integrated between contact events"
     )
+    pull = (
+        f"in {pct(r.lift_off_share)} of these strikes its dynamic force would have to exceed the "
+        "preload in pulling"
+    )
+    if r.pushes:
+        text = (
+            f"The data set's contact only pushes ({law}). A linear contact, which pushes and "
+            f"pulls, would hold on: {pull}, a force that no real contact gives."
+        )
+    else:
+        text = (
+            f"The data set's contact is linear: it pushes and pulls, and {pull}: on the rig the "
+            "probe would lift off the rod, ring free and strike again (chatter)."
+        )
     if r.unilateral_accuracy is None:
         return text + " How much that changes the accuracies above is not measured here."
     share = float(np.mean(r.restrikes > 0))
-    linear, pushing = r.ablation.accuracies["none"], r.unilateral_accuracy
+    linear, pushing = r.linear_accuracy, r.unilateral_accuracy
     difference = _resolved(linear, pushing, r.test_recordings)
     verdict = (
         "within two binomial standard deviations of each other: this design does not resolve "
@@ -302,15 +332,16 @@ def _lift_off(r: ControlsResult) -> str:
         if difference is None
         else difference + ": the contact law matters here"
     )
+    other = (
+        ""
+        if r.pushes
+        else f" The same design simulated again with a contact that only pushes ({law}):"
+    )
     measured = (
-        " The same design simulated again with a contact that only pushes (the "
-        "'unilateral_contact' effect: the pan-tilt's approach, the overtravel that builds the "
-        "preload, lift-off and re-strike, integrated between contact events; some five "
-        "times the cost of the linear model, which is why the paper's data set does without "
-        f"it): {pct(share)} of the strikes strike again, a median of "
+        f"{other} {pct(share)} of the strikes strike again, a median of "
         f"{np.median(r.restrikes):g} times. The SVM on whole held-out positions reaches "
-        f"{pct(pushing)} with it against {pct(linear)} with the linear contact "
-        f"({r.test_recordings} test recordings), {verdict}."
+        f"{pct(pushing)} with the contact that only pushes against {pct(linear)} with the "
+        f"linear one ({r.test_recordings} test recordings), {verdict}."
     )
     return text + measured + _curves_under_both_laws(r)
 

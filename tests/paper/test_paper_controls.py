@@ -62,7 +62,8 @@ def test_the_pair_needs_the_rod_modes():
         effects=[
             e
             for e in scene.effects
-            if e.name not in ("object_modes", "object_damping", "preload_scatter")
+            if e.name
+            not in ("object_modes", "object_damping", "preload_scatter", "unilateral_contact")
         ]
     )
     with pytest.raises(ValueError, match="object_modes"):
@@ -77,7 +78,8 @@ def test_ablation_on_a_tiny_design(tmp_path):
     ab = ablation_accuracies(
         scene, ["gravity", "object_modes", "tip_mass"], design=tiny, cache_dir=tmp_path
     )
-    both = "object_modes+object_damping+preload_scatter"  # the two need the rod's modes
+    # the three need the rod's modes
+    both = "object_modes+object_damping+preload_scatter+unilateral_contact"
     assert list(ab.accuracies) == ["none", "gravity", both]
     assert all(0.0 <= a <= 1.0 for a in ab.accuracies.values())
     # 2 held-out positions x 2 materials: accuracies are multiples of 1/4

@@ -15,10 +15,8 @@ def test_builtin_scenes():
     paper = builtin_scene("paper")
     assert ideal.effects == ()
     assert ideal.probe.tip_mass == 0
-    # Every effect in application order, but the rigid object's spring (the rod brings its own)
-    # and the contact that only pushes (too costly for the paper's data set).
-    left_out = ("contact_compliance", "unilateral_contact")
-    assert paper.effect_names == tuple(n for n in effect_names() if n not in left_out)
+    # Every effect in application order, but the rigid object's spring (the rod brings its own).
+    assert paper.effect_names == tuple(n for n in effect_names() if n != "contact_compliance")
     assert 2e-3 <= paper.probe.tip_mass <= 3e-3  # the GY-521 board
     with pytest.raises(ValueError, match="ideal, paper"):
         builtin_scene("nope")

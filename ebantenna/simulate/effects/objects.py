@@ -149,7 +149,7 @@ class UnilateralContact(_Effect):
     modes below the scene's ``max_frequency``; their loss factors become modal viscous damping.
     The Z axis is unchanged. Requires :class:`ObjectModes`.
 
-    The ``paper`` scene lists it; it makes that scene about twice as costly to simulate
+    The ``paper`` scene lists it; it makes that scene about 2.3 times as costly to simulate
     (``ebantenna bench``). The study measures what a linear contact would change instead.
 
     Parameters

@@ -102,8 +102,12 @@ def test_settled_spans_read_the_same_samples_as_every_step(monkeypatch):
     bound = unilateral_response(M, K, 1, 5.0e4, **kw)
     monkeypatch.setattr(LinearState, "stays_positive", lambda self, x, z, m: False)
     stepped = unilateral_response(M, K, 1, 5.0e4, **kw)
-    assert [e.time for e in bound.events] == [e.time for e in stepped.events]
+    assert [e.kind for e in bound.events] == [e.kind for e in stepped.events]
     assert len(bound.events) >= 2  # it rebounds before it settles
+    # The two read the same exact motion with different roundings of the state (a few ulps),
+    # which move an event by ulps of the force over its rate: far below the time tolerance.
+    times = np.array([[e.time for e in r.events] for r in (bound, stepped)])
+    assert np.abs(times[0] - times[1]).max() <= 1e-12
     peak = np.abs(stepped.acceleration).max()
     # The settled spans use powers e^(lambda sub h k) built by k repeated products, k below
     # span/sub; each carries k roundings of the modal amplitudes (sum |w| ~ peak).

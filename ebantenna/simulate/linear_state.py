@@ -69,11 +69,11 @@ class LinearState:
         self.h, self.block, self.sub = h, block, sub
         lam, A = self.lam, self.A
         if self.eigen:
-            # e^(lambda t) at the steps 1..block, and at whole blocks 0..LONG_BLOCKS
-            self.fine = np.exp(np.multiply.outer(h * np.arange(1, block + 1), lam))
-            self.fine_real = np.hstack([self.fine.real, -self.fine.imag])
+            # e^(lambda t) at the steps 1..block, as [Re, -Im] for real products
+            fine = np.exp(np.multiply.outer(h * np.arange(1, block + 1), lam))
+            self.fine_real = np.hstack([fine.real, -fine.imag])
             self.growing = bool(np.any(lam.real > 0))  # only by rounding, for a passive body
-            self.peak = np.abs(self.fine[0])
+            self.peak = np.abs(fine[0])
             self.span = block * LONG_BLOCKS  # the longest span read at once
         else:
             Phi = spl.expm(A * h)

@@ -102,7 +102,8 @@ def _body(reduction, max_frequency: float):
 
 
 def _side_by_side(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """The block-diagonal matrix of ``a`` and ``b``."""
+    """The block-diagonal matrix of ``a`` and ``b`` (``scipy.linalg.block_diag``'s general path
+    costs more than the rest of a strike's set-up)."""
     out = np.zeros((a.shape[0] + b.shape[0],) * 2)
     out[: a.shape[0], : a.shape[0]] = a
     out[a.shape[0] :, a.shape[0] :] = b

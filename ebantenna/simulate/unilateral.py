@@ -334,7 +334,7 @@ def unilateral_response(
             if end > 0:  # a graze that rounding decides: the curve stays in this state
                 return st.at(x, z, span), st
             crosses = False
-            start = g(0.0)[0]
+            start = float(st.monitor @ x)
             if start <= 0:  # already at the boundary (a grazing touch): switch at once
                 tau = 0.0
             else:

@@ -172,6 +172,7 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ControlsRe
     held = np.isin(positions, positions[grouped_split(positions, seed=seed)[1]])
     n_test = int(held.sum()) * len(design.materials) * design.repetitions
     lift_off = unilateral = linear_accuracy = restrikes = curves = None
+    pushes = scene.has("unilateral_contact")
     if effect is not None:  # the two contact laws: the scene's own, and the other
         pushing, linear = _contact_laws(scene)
         plan = dataset_plan(linear, design, seed)
@@ -183,10 +184,15 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ControlsRe
         lift_off = float(np.mean(x.lift_off_ratio(scene.duration) > 1))
         build = dict(n_jobs=n_jobs, show_progress=False)
         ds = build_dataset(cache_dir, pushing, design, seed, **build)
-        unilateral = grouped_svm_accuracy(ds, seed=seed)
         restrikes = np.asarray(ds.metadata["restrikes"], dtype=int)
         lin = build_dataset(cache_dir, linear, design, seed, **build)
-        linear_accuracy = grouped_svm_accuracy(lin, seed=seed)
+        # The ablation has measured the scene itself ("none") and, when its contact pushes, the
+        # linear variant (row "unilateral_contact", the same data set): fit only what is left.
+        measured = ablation.accuracies
+        unilateral = measured["none"] if pushes else grouped_svm_accuracy(ds, seed=seed)
+        linear_accuracy = measured.get("unilateral_contact") if pushes else measured["none"]
+        if linear_accuracy is None:  # the ablation could not switch the contact off alone
+            linear_accuracy = grouped_svm_accuracy(lin, seed=seed)
         curves = {
             "linear": _mode_curve_accuracy(lin, seed, n_jobs),
             "unilateral": _mode_curve_accuracy(ds, seed, n_jobs),
@@ -202,7 +208,7 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ControlsRe
         mid = grouped_svm_accuracy(ds, seed=seed)
     return ControlsResult(
         ablation, accuracy, note, pair_curves, n, 1 / len(design.materials), n_test, lift_off,
-        unilateral, restrikes, mid, curves, linear_accuracy, scene.has("unilateral_contact"),
+        unilateral, restrikes, mid, curves, linear_accuracy, pushes,
     )  # fmt: skip
 
 

@@ -399,7 +399,7 @@ def simulate_batch(
         az = az + abs(gain) * hum.signal(tt, phases[:, 1:])
     noise = scene.effect("sensor_noise")
     if noise is not None:
-        draws = _sensor_noise(noise, dlpf, rngs(noise), ns, fs)  # (n, 2, ns)
+        draws = noise.draw_signals(rngs(noise), ns, fs, dlpf)  # (n, 2, ns)
         ax = ax + draws[:, 0]
         az = az + draws[:, 1]
     levels_x, levels_z = np.zeros(n), np.full(n, level_z)
@@ -423,33 +423,6 @@ def simulate_batch(
         ax, az = kalman.apply(ax, levels_x), kalman.apply(az, levels_z)
     log.debug("simulated %d signals of %d samples", n, ns)
     return t, ax, az, x, z
-
-
-#: Signals whose internal-rate noise is drawn and filtered at once (bounds the memory).
-_NOISE_BLOCK = 128
-#: Noise is drawn this many of the DLPF's time constants 1/(2 pi bandwidth) before the first
-#: kept sample, so that the filter starts in its steady state (its transient then decays to
-#: exp(-12), 6e-6).
-_NOISE_WARM_UP = 12
-
-
-def _sensor_noise(noise, dlpf, generators, n_samples: int, fs: float) -> np.ndarray:
-    """Sensor noise of X and Z for every signal, shape ``(n, 2, n_samples)``.
-
-    Without the DLPF the noise is white at ``fs``. With it, the noise is drawn white at the
-    internal rate (the datasheet's density), filtered and decimated as the chip does.
-    """
-    if dlpf is None:
-        return np.stack([noise.draw(r, n_samples, fs) for r in generators])
-    step = dlpf.divider(fs)
-    lead = math.ceil(_NOISE_WARM_UP / (2 * math.pi * dlpf.bandwidth) * fs)  # output samples
-    size = step * (lead + n_samples)  # internal samples drawn per signal and axis
-    out = np.empty((len(generators), 2, n_samples))
-    for start in range(0, len(generators), _NOISE_BLOCK):
-        block = generators[start : start + _NOISE_BLOCK]
-        raw = np.stack([noise.draw(r, size, dlpf.internal_rate) for r in block])
-        out[start : start + len(block)] = dlpf.apply_internal(raw, fs)[..., lead:]
-    return out
 
 
 def simulate(scene: Scene, seed: int = 0) -> Recording:

@@ -166,6 +166,33 @@ class SensorNoise(_Effect):
         """Noise of one signal for X and Z, m/s^2, shape ``(2, n_samples)``."""
         return rng.normal(0.0, self.std(fs), (2, n_samples))
 
+    def draw_signals(self, generators, n_samples: int, fs: float, dlpf=None) -> np.ndarray:
+        """Noise of X and Z for every signal (one generator each), shape ``(n, 2, n_samples)``.
+
+        Without the DLPF the noise is white at ``fs``. With it (a :class:`LowPassFilter`), the
+        noise is drawn white at the internal rate (the datasheet's density), filtered and
+        decimated as the chip does, from :data:`NOISE_WARM_UP` filter time constants before
+        the first kept sample, so that the filter starts in its steady state.
+        """
+        if dlpf is None:
+            return np.stack([self.draw(r, n_samples, fs) for r in generators])
+        step = dlpf.divider(fs)
+        lead = math.ceil(NOISE_WARM_UP / (2 * math.pi * dlpf.bandwidth) * fs)  # output samples
+        size = step * (lead + n_samples)  # internal samples drawn per signal and axis
+        out = np.empty((len(generators), 2, n_samples))
+        for start in range(0, len(generators), NOISE_BLOCK):
+            block = generators[start : start + NOISE_BLOCK]
+            raw = np.stack([self.draw(r, size, dlpf.internal_rate) for r in block])
+            out[start : start + len(block)] = dlpf.apply_internal(raw, fs)[..., lead:]
+        return out
+
+
+#: Signals whose internal-rate noise is drawn and filtered at once (bounds the memory).
+NOISE_BLOCK = 128
+#: Noise is drawn this many of the DLPF's time constants 1/(2 pi bandwidth) before the first
+#: kept sample (its transient then decays to exp(-12), 6e-6).
+NOISE_WARM_UP = 12
+
 
 #: The MPU6050's accelerometer DLPF bandwidths, Hz, by DLPF_CFG 0..6 (see
 #: :data:`ebantenna.chips.mpu6050.DLPF`).

@@ -52,7 +52,14 @@ from .modes import _sweep_velocity
 from .structure import ContactModel
 from .unilateral import unilateral_response
 
-__all__ = ["StrikeModel", "strike_model", "strike_accelerations", "unilateral_axis"]
+__all__ = [
+    "StrikeModel",
+    "strike_model",
+    "strike_accelerations",
+    "timed_rate",
+    "read_through_dlpf",
+    "unilateral_axis",
+]
 
 #: Without the DLPF, strikes are computed at this multiple of ``fs`` and read at the sample times.
 UNFILTERED_RATE = 8
@@ -234,26 +241,38 @@ def strike_accelerations(
     return out, restrikes
 
 
-def unilateral_axis(scene, models, inverse, speeds, when) -> tuple[np.ndarray, np.ndarray]:
-    """The X axis of the ``unilateral_contact`` strikes, through the DLPF, read at ``when``.
-
-    Each strike is computed at the DLPF's internal rate (without the DLPF at
-    :data:`UNFILTERED_RATE` times ``fs``), filtered there, and read at the sample times ``when``
-    (shape ``(n_samples,)`` or, with clock jitter, ``(n, n_samples)``) by linear interpolation,
-    which is exact at whole internal samples; the chip's register holds such samples. Returns
-    the accelerations ``(n, n_samples)`` (m/s^2) and each strike's number of re-strikes.
-    """
+def timed_rate(scene, when) -> tuple[float, int]:
+    """The rate at which a time-stepped axis is computed, and how many samples reach past the
+    last reading at ``when``: the DLPF's internal rate, or without it :data:`UNFILTERED_RATE`
+    times ``fs``."""
     dlpf = scene.effect("dlpf")
     rate = dlpf.internal_rate if dlpf is not None else UNFILTERED_RATE * scene.fs
     span = float(np.max(when)) if np.ndim(when) == 2 else (scene.n_samples - 1) / scene.fs
-    n_int = math.floor(span * rate) + 2  # internal samples reaching past the last reading
+    return rate, math.floor(span * rate) + 2
+
+
+def read_through_dlpf(scene, acc, rate, when) -> np.ndarray:
+    """Accelerations ``acc`` (shape ``(n, n_int)``, computed at :func:`timed_rate`) through the
+    scene's DLPF, if listed, and read at the sample times ``when`` (shape ``(n_samples,)`` or,
+    with clock jitter, ``(n, n_samples)``) by linear interpolation, which is exact at whole
+    internal samples; the chip's register holds such samples."""
+    dlpf = scene.effect("dlpf")
+    if dlpf is not None:
+        acc = dlpf.apply_internal(acc, rate)  # filtered, at the internal rate
+    grid = np.arange(acc.shape[1]) / rate
+    rows = np.broadcast_to(when, acc.shape[:1] + np.shape(when)[-1:])
+    return np.stack([np.interp(w, grid, a) for w, a in zip(rows, acc, strict=True)])
+
+
+def unilateral_axis(scene, models, inverse, speeds, when) -> tuple[np.ndarray, np.ndarray]:
+    """The X axis of the ``unilateral_contact`` strikes, through the DLPF, read at ``when``.
+
+    Each strike is computed at :func:`timed_rate` and read through :func:`read_through_dlpf`.
+    Returns the accelerations ``(n, n_samples)`` (m/s^2) and each strike's number of re-strikes.
+    """
+    rate, n_int = timed_rate(scene, when)
     effect = scene.effect("unilateral_contact")
     acc, restrikes = strike_accelerations(
         models, inverse, speeds, rate=rate, n_samples=n_int, max_events=effect.max_events
     )
-    if dlpf is not None:
-        acc = dlpf.apply_internal(acc, rate)  # filtered, at the internal rate
-    grid = np.arange(n_int) / rate
-    rows = np.broadcast_to(when, acc.shape[:1] + np.shape(when)[-1:])
-    # readings between internal samples: linear interpolation (exact at whole samples)
-    return np.stack([np.interp(w, grid, a) for w, a in zip(rows, acc, strict=True)]), restrikes
+    return read_through_dlpf(scene, acc, rate, when), restrikes

@@ -30,9 +30,11 @@ from ..probe import Probe, material
 from .effects import EFFECT_TYPES, GY521_MASS, effect_names, make_effect
 
 #: Effects the ``paper`` scene leaves out: ``contact_compliance``, because the rod's own contact
-#: spring (in ``object_modes``) replaces it. Its contact only pushes (``unilateral_contact``);
-#: what a linear contact would change is measured by ``ebantenna reproduce``.
-PAPER_LEAVES_OUT = frozenset({"contact_compliance"})
+#: spring (in ``object_modes``) replaces it, and ``coulomb_friction``, because no friction
+#: coefficient of the tube on four of the five materials is tabulated (a scene that asks for it
+#: lists it with its own). Its contact only pushes (``unilateral_contact``); what a linear
+#: contact would change is measured by ``ebantenna reproduce``.
+PAPER_LEAVES_OUT = frozenset({"contact_compliance", "coulomb_friction"})
 
 __all__ = ["Scene", "builtin_scene", "scene_names", "load_scene", "resolve_scene"]
 
@@ -187,6 +189,11 @@ class Scene:
             raise ValueError(
                 "effect 'unilateral_contact' needs 'object_modes' (it is the contact with the "
                 "touched rod that only pushes)"
+            )
+        if "coulomb_friction" in names and "object_modes" not in names:
+            raise ValueError(
+                "effect 'coulomb_friction' needs 'object_modes' (its normal force is the rod "
+                "contact's preload)"
             )
         if "preload_scatter" in names and "object_modes" not in names:
             raise ValueError(

@@ -29,6 +29,7 @@ from .modes import (
     modal_exponentials,
 )
 from .scene import Scene
+from .stick_slip import friction_axis, friction_model
 from .strikes import strike_model, unilateral_axis
 
 __all__ = ["ModalTerms", "modal_terms", "simulate", "simulate_batch"]
@@ -141,7 +142,8 @@ def _object_modes(scene: Scene, contacts, materials, preloads, show_progress):
     """Arrest modes on the touched rod, coupled to the probe (the ``object_modes`` effect).
 
     Each rod is reduced once, the probe once per distinct contact position; what is left per
-    (position, material, preload) is the small coupled eigenproblem.
+    (position, material, preload) is the small coupled eigenproblem, and the models of the
+    time-stepped axes that the scene lists (``timed``: ``"strikes"``, ``"friction"``).
     """
     obj = scene.effect("object_modes")
     probe = scene.probe
@@ -157,8 +159,8 @@ def _object_modes(scene: Scene, contacts, materials, preloads, show_progress):
         rods[name] = (rod, craig_bampton(sub, obj.rod_modes))
     unique_c, inverse_c = np.unique(contacts, return_inverse=True)
     inverse_c = inverse_c.ravel()
-    unilateral = scene.has("unilateral_contact")
-    key_of, modes, strikes = {}, [], []
+    unilateral, friction = scene.has("unilateral_contact"), scene.has("coulomb_friction")
+    key_of, modes, strikes, frictions = {}, [], [], []
     for i in progress(range(unique_c.size), desc="modes", enabled=show_progress):
         c = float(unique_c[i])
         sub = probe_substructure(probe, c, hinge=scene.hinge, n_elements=scene.n_elements)
@@ -187,10 +189,13 @@ def _object_modes(scene: Scene, contacts, materials, preloads, show_progress):
             if unilateral:  # the same reductions, struck through a contact that only pushes
                 model = strike_model(reduced, rod_reduced, c, k_c, preload, scene.max_frequency)
                 strikes.append(model)
+            if friction:  # Z along the rod, held by dry friction under the preload
+                frictions.append(friction_model(reduced, preload, scene.max_frequency))
     inverse = np.array(
         [key_of[key] for key in zip(inverse_c, materials, preloads, strict=True)], dtype=int
     )
-    return modes, inverse, strikes
+    timed = {"strikes": strikes, "friction": frictions}
+    return modes, inverse, {name: models for name, models in timed.items() if models}
 
 
 def _seeds(seeds, n: int) -> list[int]:
@@ -204,7 +209,8 @@ def _seeds(seeds, n: int) -> list[int]:
 
 
 def _terms(scene: Scene, contacts, materials, speeds, tilts, preloads=None, show_progress=None):
-    """ModalTerms of X and Z per signal, and ``unilateral_contact``'s strike models (or None)."""
+    """ModalTerms of X and Z per signal, the models of the time-stepped axes (``timed``, see
+    :func:`_object_modes`) and which model each signal uses."""
     probe = scene.probe
     n = contacts.size
     # Many small eigenproblems: BLAS threads only add overhead (and thrash on a busy machine).
@@ -212,11 +218,11 @@ def _terms(scene: Scene, contacts, materials, speeds, tilts, preloads=None, show
         if scene.has("object_modes"):
             if preloads is None:
                 preloads = np.full(n, scene.effect("object_modes").preload)
-            modes, inverse, strikes = _object_modes(
+            modes, inverse, timed = _object_modes(
                 scene, contacts, materials, preloads, show_progress
             )
         else:
-            (modes, inverse), strikes = _pinned_modes(scene, contacts, materials, show_progress), []
+            (modes, inverse), timed = _pinned_modes(scene, contacts, materials, show_progress), {}
     width = max(m.omega.size for m in modes)
     omega_u = np.ones((len(modes), width))
     amp_u = np.zeros((len(modes), width))
@@ -258,7 +264,7 @@ def _terms(scene: Scene, contacts, materials, speeds, tilts, preloads=None, show
         z_amp,
         np.ones(z_amp.shape, dtype=bool),
     )
-    return x, z, ((strikes, inverse) if strikes else None)
+    return x, z, timed, inverse
 
 
 def modal_terms(scene: Scene) -> tuple[ModalTerms, ModalTerms]:
@@ -357,7 +363,9 @@ def simulate_batch(
     if scatter is not None:
         nominal = scene.effect("object_modes").preload
         preloads = np.array([nominal * scatter.factor(r) for r in rngs(scatter)])
-    x, z, strikes = _terms(scene, contacts, materials, speeds, tilts, preloads, show_progress)
+    x, z, timed, inverse = _terms(
+        scene, contacts, materials, speeds, tilts, preloads, show_progress
+    )
     fs, ns = scene.fs, scene.n_samples
     t = np.arange(ns) / fs
 
@@ -374,12 +382,15 @@ def simulate_batch(
             coef, rate = dlpf.filter_exponentials(coef, rate)
         return damped_exponentials(when, coef, rate)
 
-    if strikes is not None:  # X is the strike through a contact that only pushes
-        ax, restrikes = unilateral_axis(scene, *strikes, speeds, when)
+    if "strikes" in timed:  # X is the strike through a contact that only pushes
+        ax, restrikes = unilateral_axis(scene, timed["strikes"], inverse, speeds, when)
         x = dataclasses.replace(x, restrikes=restrikes)
     else:
         ax = modal_axis(x)
-    az = modal_axis(z)
+    if "friction" in timed:  # Z sticks to the rod and slips along it
+        az = friction_axis(scene, timed["friction"], inverse, tilts * speeds, when)
+    else:
+        az = modal_axis(z)
     if jitter is not None:
         before = when < 0  # a sample taken before the arrest: rigid rotation, no acceleration
         ax[before] = 0.0

@@ -9,7 +9,8 @@ which change the modal parameters: :class:`StructuralDamping`, :class:`ContactCo
 object behind a spring), :class:`ObjectModes` (the object as a rod with its own modes, coupled to
 the probe), :class:`ObjectDamping` (that rod's material damping), :class:`PreloadScatter` (the
 contact's preload from strike to strike), :class:`UnilateralContact` (the probe lifts off and
-strikes again), :class:`TipMass`.
+strikes again), :class:`CoulombFriction` (the probe sticks to the rod and slips along it),
+:class:`TipMass`.
 
 *The sensor and the acquisition* (:mod:`.sensor`), which act on the sampled signals, in this order:
 :class:`ClockJitter` (when the samples are taken), :class:`Gravity`, :class:`MainsHum`,
@@ -25,7 +26,7 @@ effect never changes the random numbers of another.
 
 from __future__ import annotations
 
-from .objects import ObjectDamping, ObjectModes, UnilateralContact
+from .objects import CoulombFriction, ObjectDamping, ObjectModes, UnilateralContact
 from .physics import GY521_MASS, ContactCompliance, StructuralDamping, TipMass
 from .sensor import (
     DLPF_BANDWIDTHS,
@@ -51,6 +52,7 @@ __all__ = [
     "ObjectDamping",
     "PreloadScatter",
     "UnilateralContact",
+    "CoulombFriction",
     "SensorDrift",
     "TipMass",
     "ClockJitter",
@@ -74,6 +76,7 @@ EFFECT_TYPES = (
     ObjectDamping,
     PreloadScatter,
     UnilateralContact,
+    CoulombFriction,
     TipMass,
     ClockJitter,
     Gravity,

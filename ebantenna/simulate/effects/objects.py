@@ -1,8 +1,10 @@
-"""Effects of the touched object: its own modes, its own damping, a contact that only pushes.
+"""Effects of the touched object: its own modes, its own damping, a contact that only pushes,
+friction along it.
 
 :class:`ObjectModes` makes the touched object a vibrating body (a rod in a stand, coupled to the
 probe through the contact spring); :class:`ObjectDamping` gives that rod its material's loss
-factor; :class:`UnilateralContact` lets the probe lift off the rod and strike it again. The
+factor; :class:`UnilateralContact` lets the probe lift off the rod and strike it again;
+:class:`CoulombFriction` holds the probe's motion along the rod by dry friction. The
 object's geometry is an assumption of the scene, stated here once: the paper names
 five materials ("a brass rod", its Fig. 1) and gives no dimensions.
 """
@@ -13,7 +15,7 @@ import math
 from dataclasses import dataclass
 from typing import ClassVar
 
-from ..._validate import check_int, check_positive
+from ..._validate import check_int, check_nonnegative, check_positive
 from ...fem.rod import Rod
 from ...probe import Material, Probe
 from ..contact import TUBE_POISSON_RATIO, tube_on_rod_stiffness
@@ -170,4 +172,51 @@ class UnilateralContact(_Effect):
     max_events: int = 4000
 
     def __post_init__(self):
+        check_int("max_events", self.max_events, minimum=1)
+
+
+@dataclass(frozen=True)
+class CoulombFriction(_Effect):
+    """Dry friction along the rod: the Z axis sticks to the rod and slips on it.
+
+    Without this effect the probe slides along the rod freely, and Z rings at the free probe's
+    frequencies (:mod:`ebantenna.simulate.modes`). With it, the contact point's motion along the
+    rod meets Coulomb friction under the contact's preload ``N`` (static ``mu_s N``, kinetic
+    ``mu_k N``): the tilt servo's stop sets it sliding, friction brakes it, and once it sticks Z
+    rings as a probe pinned at the contact, until the force needed to hold it exceeds
+    ``mu_s N``. Computed exactly between the stick and slip states
+    (:mod:`ebantenna.simulate.stick_slip`, where its assumptions are named). Requires
+    :class:`ObjectModes` (the preload). The ``paper`` scene leaves it out
+    (:data:`ebantenna.simulate.scene.PAPER_LEAVES_OUT`).
+
+    Parameters
+    ----------
+    static_friction, kinetic_friction : float
+        ``mu_s >= mu_k >= 0`` (dimensionless). **Assumption:** one pair for every touched
+        material, 0.45 for both by default: the middle of the range 0.4-0.5 tabulated for dry
+        Plexiglas (PMMA) on steel in the handbook friction tables (Autodesk Inventor's friction
+        coefficient table, after the classic handbook values); no table gives PMMA on
+        aluminium, brass, oak or PVC, nor a kinetic value apart.
+    max_events : int
+        Most stick/slip changes per signal (>= 1); more raise
+        :class:`~ebantenna.simulate.unilateral.ChatterError`.
+
+    Examples
+    --------
+    >>> CoulombFriction().static_friction
+    0.45
+    """
+
+    name: ClassVar[str] = "coulomb_friction"
+    static_friction: float = 0.45
+    kinetic_friction: float = 0.45
+    max_events: int = 1000
+
+    def __post_init__(self):
+        mus = check_nonnegative("static_friction", self.static_friction)
+        if check_nonnegative("kinetic_friction", self.kinetic_friction) > mus:
+            raise ValueError(
+                f"kinetic_friction must be <= static_friction ({mus!r}), "
+                f"got {self.kinetic_friction!r}"
+            )
         check_int("max_events", self.max_events, minimum=1)

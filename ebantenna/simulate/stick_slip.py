@@ -1,0 +1,410 @@
+"""Coulomb friction along the rod, propagated exactly between stick and slip (``coulomb_friction``).
+
+Across the sweep plane the probe presses on the rod with the normal force ``N`` and moves along
+it (the Z axis: the rod stands across the sweep plane). Dry friction (C. A. Coulomb's law, as in
+J. P. Den Hartog, *Mechanical Vibrations*, 4th ed., McGraw-Hill, 1956, section 8.3) resists that
+motion at the contact coordinate ``q_b`` (its speed ``u = q_b'``):
+
+- **slip** (``u != 0``): the friction force is ``-mu_k N sign(u)``, a constant load: the structure
+  is linear, ``M q'' + C q' + K q = -mu_k N sign(u) e_b``;
+- **stick** (``u = 0``): the rod holds the contact point, ``q_b'' = 0``, the other coordinates move
+  as the structure pinned there, and the friction force is what holding takes,
+  ``F = (M q'' + C q' + K q)_b``, as long as ``|F| <= mu_s N``.
+
+Each of the three states is a linear system with a constant load, so it is propagated by its
+closed-form modal solution (:class:`.linear_state.LinearState`, as the contact states of
+:mod:`.unilateral` are), read in blocks of steps, and its end found inside a step by a bracketed
+Newton iteration (:func:`.linear_state.crossing`): slip ends where ``u`` reaches zero, stick where
+``|F|`` reaches ``mu_s N``. At a slip's end the contact sticks if holding takes at most
+``mu_s N``; otherwise, as at a stick's end, it slips the way the structure pulls.
+:func:`.friction.coulomb_response` integrates the same law with :func:`scipy.integrate.solve_ivp`
+and is this module's witness in the test suite.
+
+**In the scene** (:class:`.effects.CoulombFriction`): the probe's Z axis is its Craig-Bampton
+reduction at the contact (the same basis as the strikes', :mod:`.strikes`), damped by the tube's
+loss factor where ``structural_damping`` is listed; the tilt servo's stop leaves it moving with
+the rigid rotation ``tilt_ratio x sweep_speed`` about the hinge, as without friction
+(:mod:`.modes`), so the contact point starts sliding along the rod at ``tilt_ratio x sweep_speed
+x contact``. **Assumption:** ``N`` is the contact's static preload: the normal force's swing
+during the strike, and its lift-offs with ``unilateral_contact``, are not fed into the friction.
+The rod is rigid along its axis (its axial modes lie far above the scene's band).
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import weakref
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as sla
+
+from .._validate import check_int, check_nonnegative, check_positive
+from .linear_state import LinearState, crossing
+from .modes import _sweep_velocity
+from .strikes import _body, read_through_dlpf, timed_rate
+from .structure import check_dof_vector, check_symmetric_matrix
+from .unilateral import STEPS_PER_PERIOD, ChatterError
+
+__all__ = ["StickSlipResponse", "stick_slip_response", "FrictionModel", "friction_model",
+           "friction_axis"]  # fmt: skip
+
+log = logging.getLogger(__name__)
+
+#: Most states propagated at once in one block (bounds the memory of the stacked powers).
+_BLOCK_ELEMENTS = 2_000_000
+
+
+@dataclass(frozen=True, eq=False)
+class StickSlipResponse:
+    """Time history of a structure with Coulomb friction at one coordinate.
+
+    Attributes
+    ----------
+    t : ndarray of shape (n_samples,)
+        Sample times, s.
+    acceleration : ndarray of shape (n_samples,)
+        Acceleration at the output, m/s^2.
+    friction_force : ndarray of shape (n_samples,)
+        Friction force on the structure along the contact coordinate, N.
+    events : tuple of (float, str)
+        ``(time in s, state entered)`` for the start and every change; states ``"stick"``,
+        ``"slip+"`` (``u > 0``) and ``"slip-"``.
+    """
+
+    t: np.ndarray
+    acceleration: np.ndarray
+    friction_force: np.ndarray
+    events: tuple
+
+
+def stick_slip_response(
+    mass,
+    stiffness,
+    contact: int,
+    normal_force: float,
+    *,
+    static_friction: float,
+    kinetic_friction: float,
+    duration: float,
+    fs: float,
+    velocity=None,
+    damping=None,
+    output=None,
+    max_events: int = 1000,
+    time_tolerance: float = 1e-12,
+) -> StickSlipResponse:
+    """Free motion, from ``q = 0``, of a linear structure with Coulomb friction at one coordinate.
+
+    Parameters
+    ----------
+    mass, stiffness : array of shape (n, n)
+        Symmetric mass (positive definite) and stiffness (positive semidefinite) matrices.
+    contact : int
+        Index of the coordinate along which friction acts (the contact point's displacement).
+    normal_force : float
+        ``N``, N (>= 0); 0 means no friction.
+    static_friction, kinetic_friction : float
+        ``mu_s >= mu_k >= 0`` (dimensionless).
+    duration, fs : float
+        Record length (s) and output sample rate (Hz).
+    velocity : array of shape (n,), optional
+        Initial ``q'``; zero by default.
+    damping : array of shape (n, n), optional
+        Viscous damping matrix.
+    output : int or array of shape (n,), optional
+        Where the acceleration is read; default the contact coordinate.
+    max_events : int
+        Most stick/slip changes (>= 1); more raise :class:`~.unilateral.ChatterError`.
+    time_tolerance : float
+        Each change is placed within this many seconds after the exact instant, s.
+
+    Returns
+    -------
+    StickSlipResponse
+
+    Examples
+    --------
+    A 1 kg, 100 N/m oscillator launched at 1 m/s against ``mu N = 1 N`` turns at 9.05 cm and
+    loses ``2 mu N / k = 2 cm`` of amplitude every half period ``pi / 10 s``; from 1.05 cm the
+    spring still overcomes ``mu_s N`` once, and at 0.95 cm (``0.02 m - 1.05 cm``) it no longer can:
+
+    >>> r = stick_slip_response([[1.0]], [[100.0]], 0, 1.0, static_friction=1.0,
+    ...                         kinetic_friction=1.0, duration=2.0, fs=100.0, velocity=[1.0])
+    >>> [kind for _, kind in r.events]
+    ['slip+', 'slip-', 'slip+', 'slip-', 'slip+', 'slip-', 'stick']
+    >>> float(round(r.friction_force[-1], 6))  # holding the spring there: k x, N
+    0.950124
+    """
+    M = check_symmetric_matrix("mass", mass)
+    n = M.shape[0]
+    K = check_symmetric_matrix("stiffness", stiffness, n)
+    C = np.zeros((n, n)) if damping is None else check_symmetric_matrix("damping", damping, n)
+    b = check_int("contact", contact, minimum=0)
+    if b >= n:
+        raise ValueError(f"contact must be a coordinate index below {n}, got {contact!r}")
+    o = check_dof_vector("output", b if output is None else output, n)
+    v0 = np.zeros(n) if velocity is None else check_dof_vector("velocity", velocity, n)
+    N = check_nonnegative("normal_force", normal_force)
+    mus = check_nonnegative("static_friction", static_friction)
+    muk = check_nonnegative("kinetic_friction", kinetic_friction)
+    if muk > mus:
+        raise ValueError(
+            f"kinetic_friction must be <= static_friction ({mus!r}), got {kinetic_friction!r}"
+        )
+    T = check_positive("duration", duration)
+    fs = check_positive("fs", fs)
+    max_events = check_int("max_events", max_events, minimum=1)
+    xtol = check_positive("time_tolerance", time_tolerance)
+    try:
+        Minv = sla.cho_solve((np.linalg.cholesky(M), True), np.eye(n))
+    except np.linalg.LinAlgError:
+        raise ValueError("mass must be positive definite") from None
+
+    states = _friction_states(M, K, C, Minv, b, o, N * mus, N * muk)
+    fastest = max(float(np.abs(st.lam).max()) for st in states.values())
+    h_max = 2 * math.pi / (STEPS_PER_PERIOD * fastest) if fastest > 0 else 1 / fs
+    sub = max(1, math.ceil(1 / (fs * h_max)))
+    h = 1 / (fs * sub)
+    n_samples = int(math.floor(T * fs + 1e-9)) + 1
+    n_steps = (n_samples - 1) * sub
+    block = int(max(1, min(256, n_steps, _BLOCK_ELEMENTS // (2 * n + 2) ** 2)))
+    for st in states.values():
+        st.grid(h, block, sub)
+    frictionless = mus * N == 0  # one state, never left: the free structure
+    hold_limit = mus * N
+    stick, lower = states["stick"], states["stick lower"]
+
+    acc = np.zeros(n_samples)
+    force = np.zeros(n_samples)
+    events: list[tuple[float, str]] = []
+
+    def entered(x):
+        """The state taken at ``x`` where ``u = 0`` (or at the start)."""
+        u = x[n + b]
+        if u != 0 and not events:
+            return "slip+" if u > 0 else "slip-"
+        x[n + b] = 0.0  # exactly at rest on the rod (the event lies within xtol of it)
+        F = float(stick.rows[2] @ x)
+        if abs(F) <= hold_limit:
+            return "stick"
+        return "slip-" if F > 0 else "slip+"  # holding would take more: it slips the way it pulls
+
+    def switch(name, x, t):
+        new = entered(x) if name != "stick" else ("slip-" if stick.rows[2] @ x > 0 else "slip+")
+        events.append((t, new))
+        if len(events) > max_events:
+            raise ChatterError(
+                f"more than max_events={max_events} stick/slip events by t={t:.6g} s; raise "
+                "max_events or check the friction coefficients"
+            )
+        return new
+
+    def record(i, x, name):
+        if i % sub == 0:
+            acc[i // sub], force[i // sub] = states[name].rows[1:] @ x
+
+    def first_crossing(name, x, span, fresh):
+        """Which monitor ends state ``name`` first within ``span`` after ``x``, and when
+        (``None`` if neither does); ``fresh``: the state was entered at ``x``."""
+        found = None
+        for st in (states[name], lower) if name == "stick" else (states[name],):
+            z = st.modal(x)
+            curve = st.curve(x, z)
+            end = curve(span)[0]
+            start = float(st.monitor @ x)
+            if end > 0:  # stays (a graze that rounding decides)
+                continue
+            if start <= 0 and not fresh:
+                tau = 0.0
+            else:  # a slip entered at u = 0 starts on its boundary and leaves it at once
+                tau = crossing(curve, span, xtol, max(start, np.finfo(float).tiny), end)
+            if found is None or tau < found[0]:
+                found = (tau, st.at(x, z, tau))
+        return found
+
+    def advance(x, name, t0, t1, fresh=False):
+        """Propagate from t0 to t1 (at most one step) through any events on the way."""
+        while True:
+            found = None if frictionless else first_crossing(name, x, t1 - t0, fresh)
+            if found is None:
+                return states[name].step(x, t1 - t0), name
+            tau, x = found
+            t0 += tau
+            name, fresh = switch(name, x, t0), True
+
+    x = np.zeros(2 * n + 2)
+    x[n : 2 * n] = v0
+    x[2 * n] = 1.0  # the constant load's multiplier (LinearState's "servo travel", at rest)
+    name = "slip+" if frictionless else entered(x)
+    events.append((0.0, name))
+    record(0, x, name)
+    fresh = name != "stick" and x[n + b] == 0  # a slip from rest starts on its boundary
+    i = 0
+    while i < n_steps:
+        st = states[name]
+        first = (-(i + 1)) % sub  # the first step from here that is an output sample
+        z = st.modal(x)
+        m = min(st.span, n_steps - i)
+        quiet = frictionless or (
+            st.stays_positive(x, z, m)
+            and (name != "stick" or lower.stays_positive(x, lower.modal(x), m))
+        )
+        if quiet:  # no event possible: read only the samples
+            bad = ()
+            j = np.arange(first, m, sub)
+            values = st.samples(x, z, first, m)
+        else:
+            m = min(block, n_steps - i)
+            values = st.readings(x, z, m)
+            ends = values[:, 0] <= 0
+            if name == "stick":  # the lower limit: mu_s N + F = 2 mu_s N - (mu_s N - F)
+                ends |= 2 * hold_limit - values[:, 0] <= 0
+            bad = np.flatnonzero(ends)
+            if len(bad):
+                m = int(bad[0])  # steps safely inside the state
+            j = np.arange(first, m, sub)
+            values = values[j]
+        k = (i + 1 + j) // sub
+        acc[k], force[k] = values[:, 1], values[:, 2]
+        if m:
+            x = st.after(x, z, m)
+            i += m
+            fresh = False
+        if len(bad):
+            x, name = advance(x, name, i * h, (i + 1) * h, fresh)
+            fresh = False
+            i += 1
+            record(i, x, name)
+    log.debug("stick-slip: %d events, %d steps of %.3g s", len(events), n_steps, h)
+    t_out = np.arange(n_samples) / fs
+    return StickSlipResponse(t_out, acc, force, tuple(events))
+
+
+def _friction_states(M, K, C, Minv, b, o, hold, slide):
+    """The linear states of ``x = (q, q', 1, 0)``: slipping either way, and sticking (twice:
+    one copy watches the upper limit ``F <= mu_s N``, one the lower ``F >= -mu_s N``)."""
+    n = M.shape[0]
+    size = 2 * n + 2
+
+    def system(load, held):
+        A = np.zeros((size, size))
+        A[:n, n : 2 * n] = np.eye(n)
+        A[n : 2 * n, :n] = -Minv @ K
+        A[n : 2 * n, n : 2 * n] = -Minv @ C
+        A[n : 2 * n, 2 * n] = load * Minv[:, b]
+        if held:  # q_b' = q_b'' = 0; the others move as the structure pinned at b
+            rest = np.delete(np.arange(n), b)
+            A[b] = 0.0  # (q_b' is 0: dropping it keeps the held state's matrix diagonalisable)
+            A[n : 2 * n] = 0.0
+            Mr = M[np.ix_(rest, rest)]
+            A[n + rest, :n] = -np.linalg.solve(Mr, K[rest])
+            A[n + rest, n : 2 * n] = -np.linalg.solve(Mr, C[rest])
+        return A
+
+    states = {}
+    for name, sign in (("slip+", 1.0), ("slip-", -1.0)):
+        A = system(-sign * slide, held=False)
+        monitor = np.zeros(size)
+        monitor[n + b] = sign  # the speed along the rod, positive while slipping this way
+        load = np.zeros(size)
+        load[2 * n] = -sign * slide
+        states[name] = LinearState(A, n, monitor, load, o @ A[n : 2 * n])
+    A = system(0.0, held=True)
+    F = np.zeros(size)  # (M q'' + C q' + K q)_b, with q'' from the held system
+    F[: 2 * n] = M[b] @ A[n : 2 * n, : 2 * n] + np.concatenate([K[b], C[b]])
+    limit = np.zeros(size)
+    limit[2 * n] = hold
+    accel = o @ A[n : 2 * n]
+    states["stick"] = LinearState(A, n, limit - F, F, accel)
+    states["stick lower"] = LinearState(A, n, limit + F, F, accel)
+    return states
+
+
+@dataclass(frozen=True, eq=False)
+class FrictionModel:
+    """The probe's Z axis at one contact, ready for :func:`stick_slip_response`.
+
+    Attributes
+    ----------
+    mass, stiffness, damping : ndarray of shape (n, n)
+        The reduced probe (fixed-interface modes below ``max_frequency``, then the contact's
+        deflection, last), kg, N/m, N s/m.
+    rotation : ndarray of shape (n,)
+        The reduced coordinates' velocity per rad/s of rigid rotation about the hinge.
+    output : ndarray of shape (n,)
+        The tip's deflection in the reduced coordinates.
+    normal_force : float
+        The contact's preload, N.
+    """
+
+    mass: np.ndarray
+    stiffness: np.ndarray
+    damping: np.ndarray
+    rotation: np.ndarray
+    output: np.ndarray
+    normal_force: float
+
+
+#: The Z model of each probe reduction by ``max_frequency`` (the preload only scales N).
+_Z_BODIES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def friction_model(probe_reduction, preload: float, max_frequency: float) -> FrictionModel:
+    """The probe's Z axis, reduced at its contact (module docstring), pressed with ``preload``.
+
+    Parameters
+    ----------
+    probe_reduction : ebantenna.fem.coupling.CraigBampton
+        The probe reduced at the contact, damped by its substructure's loss factor.
+    preload : float
+        The normal force, N (> 0).
+    max_frequency : float
+        Fixed-interface modes at or above it are dropped, Hz.
+    """
+    cached = _Z_BODIES.setdefault(probe_reduction, {})
+    if max_frequency not in cached:
+        K, M, T, C = _body(probe_reduction, max_frequency)
+        sub = probe_reduction.substructure
+        rigid = _sweep_velocity(sub.nodes)[sub.free]  # per rad/s about the hinge
+        rotation = sla.solve(M, T.T @ (sub.mass @ rigid), assume_a="pos")
+        tip = int(np.searchsorted(sub.free, 2 * (sub.nodes.size - 1)))
+        cached[max_frequency] = K, M, C, rotation, T[tip]
+    K, M, C, rotation, output = cached[max_frequency]
+    return FrictionModel(M, K, C, rotation, output, check_positive("preload", preload))
+
+
+def friction_axis(scene, models, inverse, rotation_speeds, when) -> np.ndarray:
+    """The Z axis with ``coulomb_friction``, through the DLPF, read at ``when``.
+
+    Parameters
+    ----------
+    scene : Scene
+        Lists ``coulomb_friction`` (its coefficients) and perhaps ``dlpf``.
+    models : list of FrictionModel
+        The distinct Z models.
+    inverse : array of int, shape (n,)
+        Which model each signal uses.
+    rotation_speeds : array of shape (n,)
+        Each signal's tilt rotation at the stop, ``tilt_ratio x sweep_speed``, rad/s.
+    when : ndarray
+        Sample times, shape ``(n_samples,)`` or ``(n, n_samples)``, s.
+
+    Returns
+    -------
+    ndarray of shape (n, n_samples)
+        m/s^2.
+    """
+    effect = scene.effect("coulomb_friction")
+    rate, n_int = timed_rate(scene, when)
+    acc = np.empty((len(inverse), n_int))
+    for i, (k, speed) in enumerate(zip(inverse, rotation_speeds, strict=True)):
+        m = models[k]
+        acc[i] = stick_slip_response(
+            m.mass, m.stiffness, m.mass.shape[0] - 1, m.normal_force,
+            static_friction=effect.static_friction, kinetic_friction=effect.kinetic_friction,
+            duration=(n_int - 1) / rate, fs=rate, velocity=m.rotation * float(speed),
+            damping=m.damping, output=m.output, max_events=effect.max_events,
+        ).acceleration[:n_int]  # fmt: skip
+    return read_through_dlpf(scene, acc, rate, when)

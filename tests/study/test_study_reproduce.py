@@ -152,6 +152,7 @@ def test_material_accuracies_are_fractions_on_every_split(quick_study):
             "svm_grouped_unilateral_accuracy",
             "unilateral_restrike_share",
             "svm_grouped_mid_height_accuracy",
+            "svm_grouped_friction_accuracy",
         )
     ]
     assert all(0.0 <= v <= 1.0 for v in values)
@@ -159,6 +160,7 @@ def test_material_accuracies_are_fractions_on_every_split(quick_study):
     assert m["ablation_changed"].keys() == {"dlpf"}  # its modes above fs/2 go with it
     text = result.report_markdown.read_text()
     assert "A contact that only pushes" in text and "Where the rod is touched" in text
+    assert "Friction along the rod" in text
 
 
 def test_hinge_fit_and_run_time_table_are_reported(quick_study):

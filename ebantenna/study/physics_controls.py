@@ -311,8 +311,9 @@ def render(result: ControlsResult, report, figures) -> None:
         report.paragraph(
             "Across the sweep plane the probe slides along the rod. With dry friction there "
             "(the 'coulomb_friction' effect, mu = 0.45 unless the scene says otherwise, under "
-            "the preload) the contact point sticks to the rod within the first milliseconds and "
-            "the Z axis rings as the probe pinned at the contact, where without it Z rings at "
+            "the preload) the contact point sticks to the rod (within 20 ms wherever it lies "
+            "beyond a fifth of the probe from the hinge) and the Z axis then rings as the probe "
+            "pinned at the contact, where without it Z rings at "
             "the free probe's frequencies whatever was touched. The SVM on whole held-out "
             f"positions reaches {pct(r.friction_accuracy)} with friction against "
             f"{pct(without)} without ({r.test_recordings} test recordings), "

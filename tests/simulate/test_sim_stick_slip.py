@@ -10,10 +10,11 @@ import pytest
 import scipy.linalg as sla
 
 from ebantenna.fem import Supports, modal_analysis
+from ebantenna.fem.coupling import craig_bampton, probe_substructure
 from ebantenna.simulate import Scene, builtin_scene, simulate_batch
 from ebantenna.simulate.effects import CoulombFriction
 from ebantenna.simulate.friction import coulomb_response
-from ebantenna.simulate.stick_slip import stick_slip_response
+from ebantenna.simulate.stick_slip import friction_model, stick_slip_response
 from ebantenna.simulate.unilateral import ChatterError
 
 # A chain of three masses held by friction at the middle one: it slips, sticks, slips again.
@@ -159,3 +160,30 @@ def test_paper_scene_with_friction_runs_every_sensor_effect():
     t, ax, az, _, _ = simulate_batch(scene, material=["oak", "pvc"], seeds=[1, 2],
                                      show_progress=False)  # fmt: skip
     assert az.shape == (2, scene.n_samples) and np.all(np.isfinite(az))
+
+
+def _paper_z_events(contact):
+    scene = builtin_scene("paper")
+    obj = scene.effect("object_modes")
+    sub = probe_substructure(scene.probe, contact, hinge=scene.hinge, n_elements=scene.n_elements)
+    m = friction_model(craig_bampton(sub, obj.probe_modes), obj.preload, scene.max_frequency)
+    effect = CoulombFriction()
+    return stick_slip_response(
+        m.mass, m.stiffness, m.mass.shape[0] - 1, m.normal_force,
+        static_friction=effect.static_friction, kinetic_friction=effect.kinetic_friction,
+        duration=1.0, fs=8000.0, velocity=m.rotation * scene.tilt_ratio * scene.sweep_speed,
+        damping=m.damping, output=m.output,
+    ).events  # fmt: skip
+
+
+@pytest.mark.parametrize("contact", [0.1, 0.2, 0.25, 0.3, 0.35, 0.39])
+def test_paper_probe_sticks_within_20_ms_beyond_a_fifth_of_its_length(contact):
+    # theory/touched_object.rst: "within the first 20 ms ... beyond a fifth of the probe"
+    events = _paper_z_events(contact)
+    assert events[-1][1] == "stick" and events[-1][0] <= 0.02 and len(events) <= 10
+
+
+def test_paper_probe_near_the_hinge_slips_again_and_again():
+    # ... "nearer the hinge ... it slips again and again for up to half a second"
+    events = _paper_z_events(0.02)
+    assert len(events) > 10 and 0.1 < events[-1][0] <= 0.5

@@ -336,6 +336,7 @@ def _simulate_rows(scene: Scene, rows: np.ndarray, plan: dict):
         tilt_ratio=plan["tilt_ratio"][rows],
         seeds=plan["seed_row"][rows],
         show_progress=False,
+        x_modes=False,  # the data set keeps the signals, not the modes
     )
     return rows, bx.astype(np.float32), bz.astype(np.float32), x.restrikes
 

@@ -23,6 +23,7 @@ from ..fem.coupling import craig_bampton, probe_substructure, rod_substructure
 from ..probe import material as lookup_material
 from ..recording import Recording
 from .modes import (
+    ArrestModes,
     arrest_modes,
     coupled_arrest_modes,
     damped_exponentials,
@@ -138,12 +139,13 @@ def _pinned_modes(scene: Scene, contacts, materials, show_progress):
     return modes, inverse.ravel()
 
 
-def _object_modes(scene: Scene, contacts, materials, preloads, show_progress):
+def _object_modes(scene: Scene, contacts, materials, preloads, show_progress, x_modes=True):
     """Arrest modes on the touched rod, coupled to the probe (the ``object_modes`` effect).
 
     Each rod is reduced once, the probe once per distinct contact position; what is left per
     (position, material, preload) is the small coupled eigenproblem, and the models of the
-    time-stepped axes that the scene lists (``timed``: ``"strikes"``, ``"friction"``).
+    time-stepped axes that the scene lists (``timed``: ``"strikes"``, ``"friction"``). Without
+    ``x_modes`` the coupled eigenproblem is skipped where the strikes give the X axis.
     """
     obj = scene.effect("object_modes")
     probe = scene.probe
@@ -172,20 +174,21 @@ def _object_modes(scene: Scene, contacts, materials, preloads, show_progress):
             eta_c = obj.contact_loss_factor(
                 rod.material, probe, object_loss=object_loss, preload=preload
             )
-            key_of[i, name, preload] = len(modes)
-            modes.append(
-                coupled_arrest_modes(
-                    probe,
-                    scene.hinge,
-                    c,
-                    rod,
-                    probe_reduction=reduced,
-                    rod_reduction=rod_reduced,
-                    contact_stiffness=k_c,
-                    contact_loss_factor=eta_c,
-                    max_frequency=scene.max_frequency,
+            key_of[i, name, preload] = len(key_of)
+            if x_modes or not unilateral:
+                modes.append(
+                    coupled_arrest_modes(
+                        probe,
+                        scene.hinge,
+                        c,
+                        rod,
+                        probe_reduction=reduced,
+                        rod_reduction=rod_reduced,
+                        contact_stiffness=k_c,
+                        contact_loss_factor=eta_c,
+                        max_frequency=scene.max_frequency,
+                    )
                 )
-            )
             if unilateral:  # the same reductions, struck through a contact that only pushes
                 model = strike_model(reduced, rod_reduced, c, k_c, preload, scene.max_frequency)
                 strikes.append(model)
@@ -208,7 +211,10 @@ def _seeds(seeds, n: int) -> list[int]:
     return [check_int("seeds", v, minimum=0) for v in values]
 
 
-def _terms(scene: Scene, contacts, materials, speeds, tilts, preloads=None, show_progress=None):
+def _terms(
+    scene: Scene, contacts, materials, speeds, tilts, preloads=None, show_progress=None,
+    x_modes=True,
+):  # fmt: skip
     """ModalTerms of X and Z per signal, the models of the time-stepped axes (``timed``, see
     :func:`_object_modes`) and which model each signal uses."""
     probe = scene.probe
@@ -219,10 +225,13 @@ def _terms(scene: Scene, contacts, materials, speeds, tilts, preloads=None, show
             if preloads is None:
                 preloads = np.full(n, scene.effect("object_modes").preload)
             modes, inverse, timed = _object_modes(
-                scene, contacts, materials, preloads, show_progress
+                scene, contacts, materials, preloads, show_progress, x_modes
             )
         else:
             (modes, inverse), timed = _pinned_modes(scene, contacts, materials, show_progress), {}
+    rows = inverse  # each signal's modes
+    if not modes:  # X's modes not asked for (x_modes=False): none, for every signal
+        rows, modes = np.zeros(n, dtype=int), [ArrestModes(*[np.empty(0)] * 3, None)]
     width = max(m.omega.size for m in modes)
     omega_u = np.ones((len(modes), width))
     amp_u = np.zeros((len(modes), width))
@@ -238,22 +247,22 @@ def _terms(scene: Scene, contacts, materials, speeds, tilts, preloads=None, show
             force_u[i, :k] = m.contact_force * m.velocity
         if m.damping_ratio is not None:
             zeta_u[i, :k] = m.damping_ratio
-    omega = omega_u[inverse]
-    amplitude = amp_u[inverse] * speeds[:, None]
+    omega = omega_u[rows]
+    amplitude = amp_u[rows] * speeds[:, None]
     zeta_s = (
         scene.effect("structural_damping").damping_ratio(probe)
         if scene.has("structural_damping")
         else 0.0
     )
     if scene.has("object_modes"):  # the coupled model carries every body's damping
-        zeta = zeta_u[inverse]
+        zeta = zeta_u[rows]
     else:
         zeta = np.full((n, width), zeta_s)
     if np.any(zeta >= 1):
         raise ValueError(f"a mode is overdamped (zeta up to {zeta.max():.3g}); not supported")
     spring = any(math.isfinite(m.contact_stiffness) for m in modes)
-    force = force_u[inverse] * speeds[:, None] if spring else None
-    x = ModalTerms(omega, zeta, amplitude, live_u[inverse], force, preloads)
+    force = force_u[rows] * speeds[:, None] if spring else None
+    x = ModalTerms(omega, zeta, amplitude, live_u[rows], force, preloads)
 
     kw = dict(n_elements=scene.n_elements, n_modes=scene.n_modes, max_frequency=scene.max_frequency)
     z_modes = arrest_modes(probe, scene.hinge, None, **kw)
@@ -298,6 +307,7 @@ def simulate_batch(
     tilt_ratio=None,
     seeds=0,
     show_progress=None,
+    x_modes=True,
 ):
     """Simulate many signals of one scene, each with its own contact, material, speed and seed.
 
@@ -316,6 +326,10 @@ def simulate_batch(
         Seeds of the signals' random effects.
     show_progress : bool, optional
         Force the progress bar over contact positions on or off (default: on a terminal).
+    x_modes : bool
+        Whether ``x`` carries the coupled modes even where the strikes of ``unilateral_contact``
+        give the X axis (one eigenproblem per strike); False leaves them out there (``x`` then
+        has no modes, only ``preload`` and ``restrikes``), as a data set build does.
 
     Returns
     -------
@@ -364,7 +378,7 @@ def simulate_batch(
         nominal = scene.effect("object_modes").preload
         preloads = np.array([nominal * scatter.factor(r) for r in rngs(scatter)])
     x, z, timed, inverse = _terms(
-        scene, contacts, materials, speeds, tilts, preloads, show_progress
+        scene, contacts, materials, speeds, tilts, preloads, show_progress, x_modes
     )
     fs, ns = scene.fs, scene.n_samples
     t = np.arange(ns) / fs

@@ -271,3 +271,17 @@ def test_the_chatter_near_the_tip_is_the_models_not_the_event_grids(monkeypatch)
         np.abs(coarse.acceleration - fine.acceleration).max()
         <= bound * np.abs(fine.acceleration).max()
     )
+
+
+def test_without_x_modes_the_strikes_are_the_same_and_x_carries_no_modes():
+    # A data set build skips the coupled eigenproblem per strike: the strikes never read it.
+    scene = builtin_scene("paper")
+    kw = dict(contact=[0.12, 0.3, 0.37], material=["pvc", "steel", "oak"], seeds=[4, 5, 6],
+              show_progress=False)  # fmt: skip
+    _, ax, az, x, _ = simulate_batch(scene, **kw)
+    _, ax_, az_, x_, _ = simulate_batch(scene, x_modes=False, **kw)
+    np.testing.assert_array_equal(ax_, ax)
+    np.testing.assert_array_equal(az_, az)
+    np.testing.assert_array_equal(x_.restrikes, x.restrikes)
+    np.testing.assert_array_equal(x_.preload, x.preload)
+    assert x.omega.shape[1] > 0 and x_.omega.shape == (3, 0) and x_.frequencies(0).size == 0

@@ -290,7 +290,7 @@ def backprop(acts, delta, coefs, activation: str, alpha_per_sample: float, out=N
             coef_grads[layer][...] = acts[layer].T @ delta
         penalty = None if work is None else work.penalties[layer]
         coef_grads[layer] += np.multiply(coefs[layer], alpha_per_sample, out=penalty)
-        np.sum(delta, axis=0, out=intercept_grads[layer])
+        delta.sum(axis=0, out=intercept_grads[layer])  # the method: no Python wrapper
         if layer > 0:
             if work is None:
                 delta = delta @ coefs[layer].T

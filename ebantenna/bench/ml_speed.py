@@ -11,8 +11,14 @@ Run: ``python benchmarks/ml_speed.py [--quick] [--repeat N]``
 * ``MLPClassifier.fit`` with the same network, solver and number of epochs as scikit-learn's
   (full-batch gradient descent = scikit-learn's 'sgd' with one batch and no momentum; Adam with
   mini-batches of 200; SGD with scikit-learn's 'invscaling' schedule; L-BFGS through SciPy on
-  both sides). Target: ratio <= 0.6; measured 0.69 for Adam and SGD with mini-batches, 0.93
-  for full-batch gradient descent and 0.9-1.0 for L-BFGS on the shared two-core machine.
+  both sides). Target: ratio <= 0.6, not reached. With one BLAS thread on both sides
+  (``OPENBLAS_NUM_THREADS=1``) Adam and SGD with mini-batches measure 0.79-0.80 (0.84-0.88
+  before the batch arrays were reused), full-batch gradient descent 0.87 and L-BFGS 0.92: the
+  two 200 x 256 x 53 products of each batch, the same BLAS calls on both sides, take 0.30 s of
+  scikit-learn's 0.64 s Adam fit, so a loop doing nothing else would still stop near 0.47.
+  With two BLAS threads on the shared two-core machine the mini-batch rows measure 0.72-0.88
+  from run to run: the threaded products wait for the busy second core (a fit then takes
+  2-6 s instead of 0.5 s), on both sides alike.
 * ``SVC(probability=True).fit``: the fit plus five cross-validation fits per pair of classes on
   both sides.
 

@@ -21,7 +21,16 @@ from sklearn.model_selection import train_test_split
 from sklearn.utils._param_validation import Interval, Options, StrOptions
 from sklearn.utils.validation import check_is_fitted
 
-from .backprop import ACTIVATIONS, backprop, forward, glorot_uniform, output_loss, pack, unpack
+from .backprop import (
+    ACTIVATIONS,
+    Workspace,
+    backprop,
+    forward,
+    glorot_uniform,
+    output_loss,
+    pack,
+    unpack,
+)
 from .fitted import INPUT_ATTRIBUTES, FittedAttribute
 from .optimizers import Adam, Momentum, scg_init, scg_step
 
@@ -157,20 +166,25 @@ class BaseMLP(BaseEstimator):
             raise ValueError(f"hidden_layer_sizes must be > 0, got {sizes}.")
         return [int(s) for s in sizes]
 
-    def _loss_grad(self, X, Y, coefs, intercepts, out=None):
+    def _loss_grad(self, X, Y, coefs, intercepts, out=None, work=None):
         """Loss (data term + L2) and its exact gradient with respect to every weight and bias
-        (written into ``out``, two lists of arrays, when given)."""
+        (written into ``out``, two lists of arrays, when given; the intermediate arrays into the
+        :class:`~ebantenna.ml.backprop.Workspace` ``work`` of ``X``'s number of rows, when
+        given)."""
         n = X.shape[0]
         # Every solver checks that the loss is finite and stops with a clear error when it is
         # not; NumPy's overflow warnings on the way there would only be noise before it.
         with np.errstate(over="ignore", invalid="ignore"):
-            acts = forward(X, coefs, intercepts, self.activation)
-            data_loss, delta = output_loss(self.out_activation_, acts[-1], Y)
+            acts = forward(X, coefs, intercepts, self.activation,
+                           None if work is None else work.activations)
+            # with a workspace the logits' array takes their gradient: nothing reads them after
+            data_loss, delta = output_loss(self.out_activation_, acts[-1], Y,
+                                           None if work is None else acts[-1])
             # einsum, not a BLAS dot: no thread start-up for a reduction this small
             l2 = sum(float(np.einsum("ij,ij->", W, W)) for W in coefs)
             loss = data_loss + 0.5 * self.alpha * l2 / n
             coef_grads, intercept_grads = backprop(
-                acts, delta, coefs, self.activation, self.alpha / n, out
+                acts, delta, coefs, self.activation, self.alpha / n, out, work
             )
         return loss, coef_grads, intercept_grads
 
@@ -327,16 +341,26 @@ class BaseMLP(BaseEstimator):
             opt = Momentum(params, lr, mom, bool(self.nesterovs_momentum) and mom > 0)
         self._optimizer = opt
         idx = np.arange(n)
+        # the arrays of one batch's forward and backward pass, reused by every batch of the same
+        # size (two sizes at most: the full batches and the last, shorter one)
+        sizes = [X.shape[1], *(W.shape[1] for W in self.coefs_)]
+        workspaces = {}
         stopped = incremental  # one epoch, no convergence to report
         for _ in range(1 if incremental else self.max_iter):
             if self.shuffle and self.solver != "gd":
                 rng.shuffle(idx)
             total = 0.0
             for start in range(0, n, batch):
-                # a batch-sized copy stays in cache; one shuffled copy of X per epoch is slower
+                # a batch-sized copy stays in cache; one shuffled copy of X per epoch is slower.
+                # Y.take, not Y[sl]: for a narrow array such as the one-hot targets, NumPy's
+                # fancy indexing costs three times as much as take (the same rows either way).
                 sl = idx[start : start + batch]
-                Xb, Yb = (X, Y) if batch >= n else (X[sl], Y[sl])
-                loss, _, _ = self._loss_grad(Xb, Yb, self.coefs_, self.intercepts_, grads)
+                Xb, Yb = (X, Y) if batch >= n else (X[sl], Y.take(sl, axis=0))
+                rows = Xb.shape[0]
+                if rows not in workspaces:
+                    workspaces[rows] = Workspace(rows, sizes)
+                loss, _, _ = self._loss_grad(Xb, Yb, self.coefs_, self.intercepts_, grads,
+                                             workspaces[rows])
                 total += loss * Xb.shape[0]
                 opt.update(params, [grad])
                 self.t_ += Xb.shape[0]

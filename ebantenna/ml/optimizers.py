@@ -43,15 +43,20 @@ class Momentum:
         self.momentum = float(momentum)
         self.nesterov = bool(nesterov)
         self.velocities = [np.zeros_like(p) for p in params]
+        # two temporaries per parameter array, allocated once: update runs once per mini-batch
+        self._steps = [np.empty_like(p) for p in params]
+        self._scratch = [np.empty_like(p) for p in params]
 
     def update(self, params, grads) -> None:
         """Move ``params`` in place."""
-        for p, g, v in zip(params, grads, self.velocities, strict=True):
-            step = g * self.learning_rate  # in place below: no further temporary arrays
+        for p, g, v, step, tmp in zip(params, grads, self.velocities, self._steps,
+                                      self._scratch, strict=True):
+            np.multiply(g, self.learning_rate, out=step)  # lr * g
             v *= self.momentum
             v -= step
             if self.nesterov:
-                np.subtract(v * self.momentum, step, out=step)
+                np.multiply(v, self.momentum, out=tmp)
+                np.subtract(tmp, step, out=step)
                 p += step
             else:
                 p += v
@@ -77,15 +82,19 @@ class Adam:
         self.t = 0
         self.ms = [np.zeros_like(p) for p in params]
         self.vs = [np.zeros_like(p) for p in params]
+        # two temporaries per parameter array, allocated once: update runs once per mini-batch
+        self._steps = [np.empty_like(p) for p in params]
+        self._scratch = [np.empty_like(p) for p in params]
 
     def update(self, params, grads) -> None:
         """Move ``params`` in place."""
         self.t += 1
         lr = (self.learning_rate * np.sqrt(1 - self.beta_2**self.t)
               / (1 - self.beta_1**self.t))
-        for p, g, m, v in zip(params, grads, self.ms, self.vs, strict=True):
+        for p, g, m, v, step, tmp in zip(params, grads, self.ms, self.vs, self._steps,
+                                         self._scratch, strict=True):
             # the same operations as p -= lr m / (sqrt(v) + eps), in place on two temporaries
-            tmp = g * (1 - self.beta_1)
+            np.multiply(g, 1 - self.beta_1, out=tmp)
             m *= self.beta_1
             m += tmp
             np.multiply(g, 1 - self.beta_2, out=tmp)
@@ -94,7 +103,7 @@ class Adam:
             v += tmp
             np.sqrt(v, out=tmp)
             tmp += self.epsilon
-            step = m * lr
+            np.multiply(m, lr, out=step)
             step /= tmp
             p -= step
 

@@ -244,6 +244,31 @@ def test_gradient_matches_finite_differences(activation, kind):
     _check_gradient(model, X, Y)
 
 
+@pytest.mark.parametrize("activation", ["tanh", "logistic", "identity", "relu"])
+@pytest.mark.parametrize("out_activation", ["softmax", "logistic", "identity"])
+def test_workspace_changes_no_bit(activation, out_activation):
+    """The training loop's reused arrays (Workspace, out=) give the very same loss and gradient
+    as the functions allocating their own."""
+    from ebantenna.ml.backprop import Workspace, backprop, forward, glorot_uniform, output_loss
+
+    X, rng = _data(n=25, d=6, seed=5)
+    sizes = [6, 7, 4, 3]
+    coefs, intercepts = glorot_uniform(sizes, activation, rng)
+    Y = np.eye(3)[rng.integers(0, 3, 25)] if out_activation != "identity" else rng.normal(
+        size=(25, 3))
+    acts = forward(X, coefs, intercepts, activation)
+    loss, delta = output_loss(out_activation, acts[-1], Y)
+    grads = backprop(acts, delta, coefs, activation, 0.01)
+    work = Workspace(25, sizes)
+    for _ in range(2):  # the second pass writes over the arrays of the first
+        w_acts = forward(X, coefs, intercepts, activation, work.activations)
+        w_loss, w_delta = output_loss(out_activation, w_acts[-1], Y, w_acts[-1])
+        w_grads = backprop(w_acts, w_delta, coefs, activation, 0.01, work=work)
+        assert w_loss == loss
+        for a, b in zip(grads[0] + grads[1], w_grads[0] + w_grads[1], strict=True):
+            assert np.array_equal(a, b)
+
+
 def test_saturated_outputs_give_finite_loss_and_probabilities():
     X, rng = _data(n=20, d=2)
     y = rng.integers(0, 3, 20)

@@ -233,27 +233,24 @@ class _DualState:
 
     def reconstruct(self) -> None:
         """Rebuild the gradient of the shrunk variables and make every variable active again."""
-        n, active, rows, perm = self.n, self.active, self.rows, self.perm
+        n, active, perm = self.n, self.active, self.perm
         if active == n:
             return
-        alpha, y, yG = self.alpha, self.y, self.yG
+        alpha, y = self.alpha, self.y
         # G = Gbar + p with p = -1, in y-scaled form: yG = yGbar - y
-        yG[active:] = self.yGbar[active:] - y[active:]
+        inactive = self.yGbar[active:] - y[active:]
         free = np.flatnonzero(((alpha > 0) & (alpha < self.C))[:active])
         if free.size:
-            if free.size * n > 2 * active * (n - active):
-                # for each inactive i: G_i += sum over free j of alpha_j Q_ij, in order of j
-                K = np.array([rows.row(perm[i])[perm[free]] for i in range(active, n)],
-                             dtype=np.float64)
-                terms = K * (alpha[free] * y[free])[None, :]
-                acc = np.concatenate([yG[active:, None], terms], axis=1)
-                yG[active:] = np.cumsum(acc, axis=1)[:, -1]
-            else:
-                # for each free i in order: G_j += alpha_i Q_ij for every inactive j
-                K = np.array([rows.row(perm[i])[perm[active:]] for i in free], dtype=np.float64)
-                terms = K * (alpha[free] * y[free])[:, None]
-                acc = np.concatenate([yG[None, active:], terms], axis=0)
-                yG[active:] = np.cumsum(acc, axis=0)[-1]
+            # G_t += alpha_s Q_ts for every inactive t, over the free s one after the other in
+            # their order. libsvm has two loops for this (by inactive t, or by free s, whichever
+            # computes fewer kernel rows); both add the same terms in this order, and the kernel
+            # is symmetric, so one gather of the (free, inactive) block gives libsvm's numbers.
+            K = self.rows.block64(perm[free], perm[active:])
+            weights = alpha[free] * y[free]  # alpha_s Q_ts = alpha_s y_s K_ts y_t
+            for K_s, w_s in zip(K, weights.tolist(), strict=True):  # in order: sequential sum
+                K_s *= w_s
+                inactive += K_s
+        self.yG[active:] = inactive
         self.active = n
 
     def shrink(self, tol: float) -> None:

@@ -327,23 +327,25 @@ class _DualState:
         a = self.active
         up, low = self.up_pen[:a] == 0, self.low_pen[:a] == 0
         yG = self.yG[:a]
-        shrink = ((low & ~up & (-yG > Gmax1)) | (up & ~low & (yG > Gmax2))).tolist()
-        arrays = (self.y, self.QD, self.C, self.alpha, self.yG, self.yGbar, self.up_pen,
-                  self.low_pen, self.perm, self.y_list, self.QD_list, self.C_list)
-        i = 0
-        while i < a:
-            if shrink[i]:
-                a -= 1
-                while a > i:
-                    if not shrink[a]:
-                        for arr in arrays:
-                            arr[i], arr[a] = arr[a], arr[i]
-                        shrink[i], shrink[a] = shrink[a], shrink[i]
-                        self.permuted = True
-                        break
-                    a -= 1
-            i += 1
-        self._activate(a)
+        shrink = (low & ~up & (-yG > Gmax1)) | (up & ~low & (yG > Gmax2))
+        # libsvm walks one index up from the front and one down from the back: each variable to
+        # set aside that the first meets trades places with the next variable to keep that the
+        # second meets, until they cross. So the k-th variable to set aside among the first
+        # `keep` positions trades places with the k-th to keep counted from the end, and the
+        # swaps can be made at once.
+        keep = a - int(np.count_nonzero(shrink))
+        front = np.flatnonzero(shrink[:keep])
+        back = keep + np.flatnonzero(~shrink[keep:])[::-1]
+        if front.size:
+            order = np.arange(a)
+            order[front], order[back] = back, front
+            for arr in (self.y, self.QD, self.C, self.alpha, self.yG, self.yGbar, self.up_pen,
+                        self.low_pen, self.perm):
+                arr[:a] = arr[order]
+            self.y_list, self.QD_list, self.C_list = (
+                v.tolist() for v in (self.y, self.QD, self.C))
+            self.permuted = True
+        self._activate(keep)
 
     def rho(self) -> float:
         """libsvm's bias: mean of y G over the free variables, else the middle of the feasible

@@ -75,7 +75,8 @@ from .kernels import KernelRows
 from .smo_policy import DEFAULT, LIBSVM, SELECTIONS, TAU, SMOPolicy
 from .smo_whole import pair_step, run_whole, runs_whole
 
-__all__ = ["SMOPolicy", "DEFAULT", "LIBSVM", "SMOResult", "solve_smo", "KernelRows", "SELECTIONS"]
+__all__ = ["SMOPolicy", "DEFAULT", "LIBSVM", "SMOResult", "solve_smo", "KernelRows", "SELECTIONS",
+           "shrink_order"]
 
 logger = logging.getLogger(__name__)
 
@@ -122,6 +123,41 @@ def _argmax(values: np.ndarray, last: bool) -> int:
     if last:
         return values.size - 1 - int(values[::-1].argmax())
     return int(values.argmax())
+
+
+def shrink_order(shrink: np.ndarray) -> tuple[np.ndarray, int]:
+    """libsvm's reordering of the active variables when ``shrink`` marks those set aside.
+
+    libsvm's ``do_shrinking`` walks one index up from the front and one down from the back:
+    each variable to set aside that the first meets trades places with the next variable to
+    keep that the second meets, until the two cross. So the k-th variable to set aside among
+    the first ``keep`` positions trades places with the k-th variable to keep counted from the
+    end, and all the swaps can be made at once, with one gather per array.
+
+    Parameters
+    ----------
+    shrink : ndarray of bool, shape (a,)
+        True for the active variables to set aside.
+
+    Returns
+    -------
+    order : ndarray of int, shape (a,)
+        Position ``p`` receives the variable at ``order[p]``.
+    keep : int
+        The new number of active variables (those not set aside come first).
+
+    Examples
+    --------
+    >>> shrink_order(np.array([True, False, True, False, False]))
+    (array([4, 1, 3, 2, 0]), 3)
+    """
+    a = shrink.size
+    keep = a - int(np.count_nonzero(shrink))
+    front = np.flatnonzero(shrink[:keep])
+    back = keep + np.flatnonzero(~shrink[keep:])[::-1]
+    order = np.arange(a)
+    order[front], order[back] = back, front
+    return order, keep
 
 
 class _DualState:
@@ -328,17 +364,8 @@ class _DualState:
         up, low = self.up_pen[:a] == 0, self.low_pen[:a] == 0
         yG = self.yG[:a]
         shrink = (low & ~up & (-yG > Gmax1)) | (up & ~low & (yG > Gmax2))
-        # libsvm walks one index up from the front and one down from the back: each variable to
-        # set aside that the first meets trades places with the next variable to keep that the
-        # second meets, until they cross. So the k-th variable to set aside among the first
-        # `keep` positions trades places with the k-th to keep counted from the end, and the
-        # swaps can be made at once.
-        keep = a - int(np.count_nonzero(shrink))
-        front = np.flatnonzero(shrink[:keep])
-        back = keep + np.flatnonzero(~shrink[keep:])[::-1]
-        if front.size:
-            order = np.arange(a)
-            order[front], order[back] = back, front
+        order, keep = shrink_order(shrink)
+        if not np.array_equal(order, np.arange(a)):  # some variables trade places
             for arr in (self.y, self.QD, self.C, self.alpha, self.yG, self.yGbar, self.up_pen,
                         self.low_pen, self.perm):
                 arr[:a] = arr[order]

@@ -110,7 +110,8 @@ class SMOResult:
     violation: float
 
 
-#: Memory for the kernel rows that the SMO state keeps between updates (float64, in bytes).
+#: Memory for the kernel rows that the SMO state keeps between updates (float64, in bytes), on
+#: top of the kernel's own storage; rows that are views of a float64 kernel take none.
 ROW_MEMO_BYTES = 64 << 20
 
 #: ``ndarray.max()`` without its Python wrapper.

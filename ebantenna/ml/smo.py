@@ -76,7 +76,7 @@ from .smo_policy import DEFAULT, LIBSVM, SELECTIONS, TAU, SMOPolicy
 from .smo_whole import pair_step, run_whole, runs_whole
 
 __all__ = ["SMOPolicy", "DEFAULT", "LIBSVM", "SMOResult", "solve_smo", "KernelRows", "SELECTIONS",
-           "shrink_order"]
+           "shrink_order", "ROW_MEMO_BYTES"]
 
 logger = logging.getLogger(__name__)
 

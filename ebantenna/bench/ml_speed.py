@@ -11,10 +11,10 @@ Run: ``python benchmarks/ml_speed.py [--quick] [--repeat N]``
   ``libsvm_compat``: measured 0.44-0.52 on two BLAS threads and 0.62-0.69 on one on the quiet
   shared machine, 0.65-0.72 and 0.50-0.65 while it ran about twice its cores in other work (one
   full bench run: 0.62); before the SMO work of issue 15 the same runs gave 0.65-1.0 and
-  0.67-0.90. The default mode measured 0.36-0.44 and 0.41-0.55 in those runs. The time is the
-  float32 kernel matrix (0.15 s on two threads, 0.21 s on one, the products at the core's peak,
-  plus up to 0.2 s to fault in its 144 MB when the kernel has no huge pages at hand) and the SMO
-  loop with shrinking (0.29 s: about 20 us per update, the same 14165 updates as libsvm).
+  0.67-0.90. The default mode measured 0.36-0.44 and 0.49-0.56 in the quiet runs. The time is
+  the float32 kernel matrix (0.15 s on two threads, 0.21 s on one, the products at the core's
+  peak, plus up to 0.2 s to fault in its 144 MB when the kernel has no huge pages at hand) and
+  the SMO loop with shrinking (0.29 s: about 20 us per update, the same 14165 updates as libsvm).
 * ``MLPClassifier.fit`` with the same network, solver and number of epochs as scikit-learn's
   (full-batch gradient descent = scikit-learn's 'sgd' with one batch and no momentum; Adam with
   mini-batches of 200; SGD with scikit-learn's 'invscaling' schedule; L-BFGS through SciPy on

@@ -454,6 +454,31 @@ class KernelRows:
             return np.concatenate([r[p] for p in self._parts], dtype=np.float64)
         return np.asarray(self.row(i), dtype=np.float64)
 
+    def block64(self, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
+        """Kernel entries :math:`k(x_r, x_c)` for ``r`` in ``rows`` and ``c`` in ``cols``, as a
+        new float64 array of shape ``(rows.size, cols.size)``.
+
+        With the matrix stored, each row is one gather from a stored row (``take``: about three
+        times faster than fancy indexing with ``np.ix_`` on a large matrix).
+
+        Examples
+        --------
+        >>> X = np.array([[0.0], [1.0], [3.0]])
+        >>> KernelRows(X, Kernel("linear"), np.float32, 1 << 10).block64(np.array([2]),
+        ...                                                               np.array([0, 1]))
+        array([[0., 3.]])
+        """
+        out = np.empty((len(rows), len(cols)))
+        if self.matrix is None:
+            for k, r in enumerate(rows.tolist()):
+                out[k] = self.row(r)[cols]
+            return out
+        if self._parts is not None:  # positions of the problem -> rows of the stored matrix
+            rows, cols = self._rows[rows], self._rows[cols]
+        for k, r in enumerate(rows.tolist()):
+            out[k] = self.matrix[r].take(cols)
+        return out
+
     def row_reader(self):
         """The fastest way to :meth:`row64`: indexing of the stored matrix when it is whole and
         float64 (rows are then views, never to be written), else :meth:`row64` itself."""

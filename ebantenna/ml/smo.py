@@ -75,7 +75,8 @@ from .kernels import KernelRows
 from .smo_policy import DEFAULT, LIBSVM, SELECTIONS, TAU, SMOPolicy
 from .smo_whole import pair_step, run_whole, runs_whole
 
-__all__ = ["SMOPolicy", "DEFAULT", "LIBSVM", "SMOResult", "solve_smo", "KernelRows", "SELECTIONS"]
+__all__ = ["SMOPolicy", "DEFAULT", "LIBSVM", "SMOResult", "solve_smo", "KernelRows", "SELECTIONS",
+           "shrink_order", "ROW_MEMO_BYTES"]
 
 logger = logging.getLogger(__name__)
 
@@ -109,12 +110,55 @@ class SMOResult:
     violation: float
 
 
+#: Memory for the kernel rows that the SMO state keeps between updates (float64, in bytes), on
+#: top of the kernel's own storage; rows that are views of a float64 kernel take none.
+ROW_MEMO_BYTES = 64 << 20
+
+#: ``ndarray.max()`` without its Python wrapper.
+_largest = np.maximum.reduce
+
+
 def _argmax(values: np.ndarray, last: bool) -> int:
     # the array methods, not np.argmax: the wrapper's dispatch costs more than the search on the
     # vectors of a few thousand entries that SMO scans twice per update
     if last:
         return values.size - 1 - int(values[::-1].argmax())
     return int(values.argmax())
+
+
+def shrink_order(shrink: np.ndarray) -> tuple[np.ndarray, int]:
+    """libsvm's reordering of the active variables when ``shrink`` marks those set aside.
+
+    libsvm's ``do_shrinking`` walks one index up from the front and one down from the back:
+    each variable to set aside that the first meets trades places with the next variable to
+    keep that the second meets, until the two cross. So the k-th variable to set aside among
+    the first ``keep`` positions trades places with the k-th variable to keep counted from the
+    end, and all the swaps can be made at once, with one gather per array.
+
+    Parameters
+    ----------
+    shrink : ndarray of bool, shape (a,)
+        True for the active variables to set aside.
+
+    Returns
+    -------
+    order : ndarray of int, shape (a,)
+        Position ``p`` receives the variable at ``order[p]``.
+    keep : int
+        The new number of active variables (those not set aside come first).
+
+    Examples
+    --------
+    >>> shrink_order(np.array([True, False, True, False, False]))
+    (array([4, 1, 3, 2, 0]), 3)
+    """
+    a = shrink.size
+    keep = a - int(np.count_nonzero(shrink))
+    front = np.flatnonzero(shrink[:keep])
+    back = keep + np.flatnonzero(~shrink[keep:])[::-1]
+    order = np.arange(a)
+    order[front], order[back] = back, front
+    return order, keep
 
 
 class _DualState:
@@ -126,6 +170,13 @@ class _DualState:
     ``yGbar = y * Gbar`` with :math:`\\bar G_t = \\sum_{s: \\alpha_s = C_s} C_s Q_{ts}`, from which
     the gradient of the shrunk variables is rebuilt. Membership of :math:`I_{up}` and
     :math:`I_{low}` is kept as penalties 0 / -inf added to the scores, one vector operation each.
+
+    An update costs a few NumPy calls on vectors of a few thousand entries, and at that size the
+    cost of a call is mostly its overhead, so the state saves what it can around them: the views
+    of the active positions are made once per change of the active set (:meth:`_activate`), the
+    scalars of the two-variable step are read from Python lists (arithmetic on NumPy scalars is
+    several times slower), and the kernel rows of the active set are kept from one update to the
+    next until the order changes (:meth:`kernel_row`).
     """
 
     def __init__(self, rows: KernelRows, y, C, diagonal, policy: SMOPolicy):
@@ -133,7 +184,6 @@ class _DualState:
         self.rows, self.policy, self.n = rows, policy, n
         self.perm = np.arange(n)
         self.permuted = False
-        self.active = n
         self.unshrink = False
         self.y = np.array(y, dtype=np.float64)
         self.QD = np.array(diagonal, dtype=np.float64)
@@ -144,13 +194,58 @@ class _DualState:
         pos = self.y > 0
         self.up_pen = np.where(pos, 0.0, -np.inf)  # alpha = 0: positives can go up,
         self.low_pen = np.where(pos, -np.inf, 0.0)  # negatives can go down
+        # the same numbers as Python lists, for the scalar work of an update (shrink swaps them
+        # along with the arrays)
+        self.y_list, self.QD_list, self.C_list = (v.tolist() for v in (self.y, self.QD, self.C))
+        # the policy's choices as plain booleans, read at every update
+        self._last = policy.ties == "last"
+        self._second_order = policy.selection == "second-order"
+        self._floor_nonpositive = policy.curvature_floor == "nonpositive"
+        # a constant diagonal (the RBF kernel's is 1) makes K_ii + K_jj one number: a pass less
+        self._same_diagonal = bool(np.all(self.QD == self.QD[0]))
+        self._diagonal_sum = float(self.QD[0] + self.QD[0])
         # work buffers: every vector operation of selection and update writes into one of these
-        self._up, self._low, self._quad, self._gain = (np.empty(n) for _ in range(4))
+        self._up, self._low, self._quad, self._gain, self._step = (np.empty(n) for _ in range(5))
+        self._zeros = np.zeros(n)
+        # kernel rows over the active set by position, valid until the order or the active set
+        # changes; at most about ROW_MEMO_BYTES of them
+        self._rows_memo: dict[int, np.ndarray] = {}
+        self._memo_capacity = max(2, ROW_MEMO_BYTES // (8 * n))
+        self._activate(n)
+
+    def _activate(self, active: int) -> None:
+        """Make the first ``active`` positions the active set: their views, no kept rows."""
+        self.active = a = active
+        self._rows_memo.clear()  # positions now hold other variables, or rows another length
+        self._yG_a, self._up_pen_a, self._low_pen_a, self._QD_a = (
+            v[:a] for v in (self.yG, self.up_pen, self.low_pen, self.QD))
+        self._up_a, self._low_a, self._quad_a, self._gain_a, self._step_a, self._zeros_a = (
+            v[:a] for v in (self._up, self._low, self._quad, self._gain, self._step, self._zeros))
+
+    def _argmax(self, values: np.ndarray) -> int:
+        """Index of the largest value; on a tie the first, or the last as libsvm's ``>=``."""
+        return _argmax(values, self._last)
 
     def kernel_row(self, p: int, length: int | None = None) -> np.ndarray:
         """Kernel row of position ``p`` over positions ``[0, length)`` (default: the active set),
-        float64; possibly a view of the stored kernel, never to be written."""
-        length = self.active if length is None else length
+        float64; possibly a view of the stored kernel, never to be written.
+
+        Rows of the active set are kept until the next change of the order or of the active
+        set: SMO picks the same variables again and again (libsvm keeps them in its kernel
+        cache), and a row assembled from float32 storage, or gathered in the permuted order,
+        costs several NumPy calls.
+        """
+        if length is not None and length != self.active:
+            return self._assemble_row(p, length)
+        row = self._rows_memo.get(p)
+        if row is None:
+            if len(self._rows_memo) >= self._memo_capacity:
+                self._rows_memo.clear()
+            row = self._rows_memo[p] = self._assemble_row(p, self.active)
+        return row
+
+    def _assemble_row(self, p: int, length: int) -> np.ndarray:
+        """Kernel row of position ``p`` over positions ``[0, length)``, from the stored rows."""
         if self.permuted:
             return self.rows.row(self.perm[p])[self.perm[:length]].astype(np.float64)
         row = self.rows.row64(p)
@@ -159,69 +254,73 @@ class _DualState:
     def select(self, tol: float):
         """Working pair ``(i, j, K_i, violation)`` among the active positions; ``i`` is None when
         they are optimal within ``tol``."""
-        a, last = self.active, self.policy.ties == "last"
-        yG = self.yG[:a]
-        up_vals, low_vals = self._up[:a], self._low[:a]
-        np.subtract(self.up_pen[:a], yG, out=up_vals)
-        i = _argmax(up_vals, last)
-        Gmax = up_vals[i]
-        np.add(yG, self.low_pen[:a], out=low_vals)
-        violation = Gmax + low_vals.max()
+        yG = self._yG_a
+        up_vals, low_vals = self._up_a, self._low_a
+        np.subtract(self._up_pen_a, yG, out=up_vals)
+        i = self._argmax(up_vals)
+        Gmax = up_vals.item(i)
+        np.add(yG, self._low_pen_a, out=low_vals)
+        violation = Gmax + _largest(low_vals)
         if not violation >= tol:  # also stops on -inf (an empty set)
             return None, None, None, violation
         Ki = self.kernel_row(i)
-        if self.policy.selection == "first-order":
-            return i, _argmax(low_vals, last), Ki, violation
+        if not self._second_order:
+            return i, self._argmax(low_vals), Ki, violation
         # libsvm minimises -b^2/a over j in I_low with b = Gmax + y_j G_j > 0; the same j
         # maximises b^2/a with b clipped at 0 (non-candidates score 0, and the best candidate
         # scores > 0 because b >= tol there). a = (K_ii + K_jj) - 2 K_ij, floored.
-        quad, gain = self._quad[:a], self._gain[:a]
-        np.add(self.QD[:a], self.QD[i], out=quad)
-        np.multiply(Ki, 2.0, out=gain)
-        np.subtract(quad, gain, out=quad)
-        if self.policy.curvature_floor == "nonpositive":
+        quad, gain = self._quad_a, self._gain_a
+        if self._same_diagonal:  # -2 K_ij + (K_ii + K_jj): the same number, one pass fewer
+            np.multiply(Ki, -2.0, out=quad)
+            quad += self._diagonal_sum
+        else:
+            np.add(self._QD_a, self.QD_list[i], out=quad)
+            np.multiply(Ki, 2.0, out=gain)
+            quad -= gain
+        if self._floor_nonpositive:
             quad[quad <= 0] = TAU  # exactly TAU where a <= 0, a itself elsewhere
         else:
             np.maximum(quad, TAU, out=quad)
         np.add(low_vals, Gmax, out=gain)
-        np.maximum(gain, 0.0, out=gain)
-        np.multiply(gain, gain, out=gain)
-        np.divide(gain, quad, out=gain)
-        j = _argmax(gain, last)
-        if not gain[j] > 0:
+        np.maximum(gain, self._zeros_a, out=gain)  # an array of zeros: 3x faster than 0.0
+        gain *= gain
+        gain /= quad
+        j = self._argmax(gain)
+        if not gain.item(j) > 0:
             return None, None, None, violation
         return i, j, Ki, violation
 
     def pair_step(self, i: int, j: int, K_ij: float) -> tuple[float, float]:
         """libsvm's analytic solution of the two-variable subproblem, clipped to the box."""
-        y, QD, C, alpha = self.y, self.QD, self.C, self.alpha
-        return pair_step(y[i], y[j], QD[i], QD[j], C[i], C[j], alpha[i], alpha[j],
-                         y[i] * self.yG[i], y[j] * self.yG[j], K_ij)
+        y, QD, C, alpha, yG = self.y_list, self.QD_list, self.C_list, self.alpha, self.yG
+        return pair_step(y[i], y[j], QD[i], QD[j], C[i], C[j], alpha.item(i), alpha.item(j),
+                         y[i] * yG.item(i), y[j] * yG.item(j), K_ij)
 
     def update(self, i: int, j: int, Ki: np.ndarray) -> None:
         """Solve for the pair ``(i, j)`` and update the gradient (and ``Gbar`` when shrinking)."""
-        y, C, alpha = self.y, self.C, self.alpha
+        y, C, alpha = self.y_list, self.C_list, self.alpha
         Kj = self.kernel_row(j)
-        old_i, old_j = alpha[i], alpha[j]
-        a_i, a_j = self.pair_step(i, j, Ki[j])
+        old_i, old_j = alpha.item(i), alpha.item(j)
+        a_i, a_j = self.pair_step(i, j, Ki.item(j))
         alpha[i], alpha[j] = a_i, a_j
         # libsvm: G += Q_i * dalpha_i + Q_j * dalpha_j with Q_t = y_t y K_t, hence on yG:
-        step = Ki * (y[i] * (a_i - old_i))  # a new array: stored rows are never written
-        tmp = self._quad[: self.active]
-        np.multiply(Kj, y[j] * (a_j - old_j), out=tmp)
-        np.add(step, tmp, out=step)
-        self.yG[: self.active] += step
+        step, step_j = self._step_a, self._quad_a
+        np.multiply(Ki, y[i] * (a_i - old_i), out=step)
+        np.multiply(Kj, y[j] * (a_j - old_j), out=step_j)
+        step += step_j
+        self._yG_a += step
         for t, a, old in ((i, a_i, old_i), (j, a_j, old_j)):
-            can_up = -np.inf if a >= C[t] else 0.0
+            C_t = C[t]
+            can_up = -np.inf if a >= C_t else 0.0
             can_down = -np.inf if a <= 0 else 0.0
             if y[t] > 0:
                 self.up_pen[t], self.low_pen[t] = can_up, can_down
             else:
                 self.up_pen[t], self.low_pen[t] = can_down, can_up
-            was_upper = old >= C[t]
-            if self.policy.shrinking and was_upper != (a >= C[t]):
+            was_upper = old >= C_t
+            if self.policy.shrinking and was_upper != (a >= C_t):
                 # Gbar_k += C_t Q_tk (Q_tk = y_t y_k K_tk), in y-scaled form
-                gbar_step = (C[t] * y[t]) * self.kernel_row(t, self.n)
+                gbar_step = (C_t * y[t]) * self.kernel_row(t, self.n)
                 if was_upper:
                     self.yGbar -= gbar_step
                 else:
@@ -233,28 +332,25 @@ class _DualState:
 
     def reconstruct(self) -> None:
         """Rebuild the gradient of the shrunk variables and make every variable active again."""
-        n, active, rows, perm = self.n, self.active, self.rows, self.perm
+        n, active, perm = self.n, self.active, self.perm
         if active == n:
             return
-        alpha, y, yG = self.alpha, self.y, self.yG
+        alpha, y = self.alpha, self.y
         # G = Gbar + p with p = -1, in y-scaled form: yG = yGbar - y
-        yG[active:] = self.yGbar[active:] - y[active:]
+        inactive = self.yGbar[active:] - y[active:]
         free = np.flatnonzero(((alpha > 0) & (alpha < self.C))[:active])
         if free.size:
-            if free.size * n > 2 * active * (n - active):
-                # for each inactive i: G_i += sum over free j of alpha_j Q_ij, in order of j
-                K = np.array([rows.row(perm[i])[perm[free]] for i in range(active, n)],
-                             dtype=np.float64)
-                terms = K * (alpha[free] * y[free])[None, :]
-                acc = np.concatenate([yG[active:, None], terms], axis=1)
-                yG[active:] = np.cumsum(acc, axis=1)[:, -1]
-            else:
-                # for each free i in order: G_j += alpha_i Q_ij for every inactive j
-                K = np.array([rows.row(perm[i])[perm[active:]] for i in free], dtype=np.float64)
-                terms = K * (alpha[free] * y[free])[:, None]
-                acc = np.concatenate([yG[None, active:], terms], axis=0)
-                yG[active:] = np.cumsum(acc, axis=0)[-1]
-        self.active = n
+            # G_t += alpha_s Q_ts for every inactive t, over the free s one after the other in
+            # their order. libsvm has two loops for this (by inactive t, or by free s, whichever
+            # computes fewer kernel rows); both add the same terms in this order, and the kernel
+            # is symmetric, so one gather of the (free, inactive) block gives libsvm's numbers.
+            K = self.rows.block64(perm[free], perm[active:])
+            weights = alpha[free] * y[free]  # alpha_s Q_ts = alpha_s y_s K_ts y_t
+            for K_s, w_s in zip(K, weights.tolist(), strict=True):  # in order: sequential sum
+                K_s *= w_s
+                inactive += K_s
+        self.yG[active:] = inactive
+        self._activate(n)
 
     def shrink(self, tol: float) -> None:
         """libsvm's ``do_shrinking``: set aside the variables at a bound unlikely to move."""
@@ -268,23 +364,16 @@ class _DualState:
         a = self.active
         up, low = self.up_pen[:a] == 0, self.low_pen[:a] == 0
         yG = self.yG[:a]
-        shrink = ((low & ~up & (-yG > Gmax1)) | (up & ~low & (yG > Gmax2))).tolist()
-        arrays = (self.y, self.QD, self.C, self.alpha, self.yG, self.yGbar, self.up_pen,
-                  self.low_pen, self.perm)
-        i = 0
-        while i < a:
-            if shrink[i]:
-                a -= 1
-                while a > i:
-                    if not shrink[a]:
-                        for arr in arrays:
-                            arr[i], arr[a] = arr[a], arr[i]
-                        shrink[i], shrink[a] = shrink[a], shrink[i]
-                        self.permuted = True
-                        break
-                    a -= 1
-            i += 1
-        self.active = a
+        shrink = (low & ~up & (-yG > Gmax1)) | (up & ~low & (yG > Gmax2))
+        order, keep = shrink_order(shrink)
+        if not np.array_equal(order, np.arange(a)):  # some variables trade places
+            for arr in (self.y, self.QD, self.C, self.alpha, self.yG, self.yGbar, self.up_pen,
+                        self.low_pen, self.perm):
+                arr[:a] = arr[order]
+            self.y_list, self.QD_list, self.C_list = (
+                v.tolist() for v in (self.y, self.QD, self.C))
+            self.permuted = True
+        self._activate(keep)
 
     def rho(self) -> float:
         """libsvm's bias: mean of y G over the free variables, else the middle of the feasible

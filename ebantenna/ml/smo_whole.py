@@ -17,7 +17,8 @@ its arithmetic, so the loop is built to make few calls:
   :math:`I_{up}` or :math:`I_{low}` (or both), so :math:`y_t G_t` is read from whichever score is
   finite.
 * In-place operators (``b *= b``) instead of ufunc calls with ``out=`` (about half the call
-  cost), and the scalar work of the two-variable step on Python floats.
+  cost), ``np.maximum`` against an array of the constant rather than the constant itself (a
+  third of the cost), and the scalar work of the two-variable step on Python floats.
 * A constant kernel diagonal (the RBF kernel's is 1) saves one pass: :math:`a_{ij}` is then
   ``Ki * -2.0 + (K_ii + K_jj)``, the same number as ``(K_ii + K_jj) - 2.0 * Ki``.
 * The stopping test uses :math:`\\max_j (\\mathrm{low}_j + G_{max})`, which rounding (monotone)
@@ -135,6 +136,9 @@ def run_whole(state, tol: float, max_iter: float) -> tuple[int, bool, float]:
     same_diagonal = bool(np.all(QD == QD[0]))  # as for 'rbf' (all 1)
     diagonal_sum = QDs[0] + QDs[0]
     inf = np.inf
+    # np.maximum against arrays of the constant: the same numbers, and about three times faster
+    # than against the Python float, which takes a slower loop
+    taus, zeros = np.full(QD.shape, TAU), np.zeros(QD.shape)
     n_iter, converged, violation = 0, False, inf
     while n_iter < max_iter:
         i = int(up.argmax())
@@ -154,8 +158,8 @@ def run_whole(state, tol: float, max_iter: float) -> tuple[int, bool, float]:
                 quad = QD + QDs[i]
                 twice = Ki * 2.0
                 quad -= twice
-            np.maximum(quad, TAU, out=quad)
-            np.maximum(b, 0.0, out=b)
+            np.maximum(quad, taus, out=quad)
+            np.maximum(b, zeros, out=b)
             b *= b
             b /= quad
             j = int(b.argmax())

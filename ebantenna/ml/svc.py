@@ -86,7 +86,8 @@ class SVC(ClassifierMixin, BaseEstimator):
         (:mod:`ebantenna.ml.pair_kernels`); otherwise, and with ``libsvm_compat``, the whole
         kernel matrix is built with one matrix product when it fits (in float64 if that fits
         too, unless ``libsvm_compat``), else rows are computed on demand and the least recently
-        used are dropped.
+        used are dropped. With shrinking the solver also keeps the float64 rows it has used
+        since the last reordering, up to :data:`ebantenna.ml.smo.ROW_MEMO_BYTES` (64 MB).
     class_weight : dict or 'balanced', default=None
         Multiply ``C`` by this weight for the samples of each class.
     verbose : bool, default=False

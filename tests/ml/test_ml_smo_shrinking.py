@@ -1,0 +1,96 @@
+"""The bookkeeping of shrinking SMO: libsvm's reordering, the reconstruction block, kept rows."""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from ebantenna.ml import smo
+from ebantenna.ml.kernels import Kernel, KernelRows
+from ebantenna.ml.smo import LIBSVM, shrink_order, solve_smo
+
+
+def _libsvm_do_shrinking_order(shrink):
+    """The swap loop of libsvm's ``Solver::do_shrinking``, transcribed one swap at a time."""
+    shrink = list(shrink)
+    order = list(range(len(shrink)))
+    active = len(shrink)
+    i = 0
+    while i < active:
+        if shrink[i]:
+            active -= 1
+            while active > i:
+                if not shrink[active]:
+                    order[i], order[active] = order[active], order[i]
+                    shrink[i], shrink[active] = shrink[active], shrink[i]
+                    break
+                active -= 1
+        i += 1
+    return order, active
+
+
+def test_shrink_order_makes_libsvm_swaps_at_once():
+    rng = np.random.default_rng(0)
+    for _ in range(3000):
+        flags = rng.random(int(rng.integers(0, 40))) < rng.random()
+        order, keep = shrink_order(flags)
+        assert (order.tolist(), keep) == _libsvm_do_shrinking_order(flags)
+
+
+@pytest.mark.parametrize("dtype", [np.float32, np.float64])
+@pytest.mark.parametrize("stored", [True, False])
+def test_block64_is_the_rows_at_the_columns(dtype, stored):
+    rng = np.random.default_rng(1)
+    X = rng.normal(size=(40, 3))
+    rows = KernelRows(X, Kernel("rbf", gamma=0.3), dtype,
+                      cache_bytes=(1 << 20) if stored else 8 * 40 * 4)
+    assert rows.is_full == stored
+    r, c = rng.permutation(40)[:7], rng.permutation(40)[:11]
+    block = rows.block64(r, c)
+    assert block.dtype == np.float64 and block.shape == (7, 11)
+    np.testing.assert_array_equal(block, np.array([rows.row(i)[c] for i in r], dtype=np.float64))
+    assert rows.block64(r[:0], c).shape == (0, 11)
+
+
+def test_block64_of_a_pair_in_the_whole_matrix():
+    rng = np.random.default_rng(2)
+    X = rng.normal(size=(30, 2))
+    full = Kernel("rbf").gram(X, dtype=np.float32)
+    parts = (slice(3, 10), slice(20, 30))  # the classes of a pair, not adjacent
+    rows = KernelRows(None, Kernel("rbf"), np.float32, 0, full=full, parts=parts)
+    r, c = np.array([0, 16, 8]), np.array([5, 1, 12, 7])
+    np.testing.assert_array_equal(rows.block64(r, c), np.array([rows.row64(i)[c] for i in r]))
+
+
+def _shrinking_problem():
+    rng = np.random.default_rng(3)
+    X = rng.normal(size=(1300, 4))  # over 1000 variables: the loop shrinks more than once
+    y = np.where(X[:, 0] + X[:, 1] ** 2 + 0.8 * rng.normal(size=1300) > 1.0, 1.0, -1.0)
+    kern = Kernel("rbf", gamma=0.5)
+    return KernelRows(X, kern, np.float32, 1 << 24), y, kern.diagonal(X)
+
+
+def test_kept_rows_do_not_change_the_solution(monkeypatch):
+    # the rows kept between updates are the rows themselves: with room for two of them only,
+    # the same steps to the last bit
+    rows, y, diagonal = _shrinking_problem()
+    C = np.full(y.size, 4.0)
+    kept = solve_smo(rows, y, C, diagonal=diagonal, policy=LIBSVM)
+    monkeypatch.setattr(smo, "ROW_MEMO_BYTES", 0)
+    few = solve_smo(rows, y, C, diagonal=diagonal, policy=LIBSVM)
+    assert kept.converged and kept.n_iter > 2000
+    assert kept.n_iter == few.n_iter
+    np.testing.assert_array_equal(kept.alpha, few.alpha)
+    assert (kept.rho, kept.objective) == (few.rho, few.objective)
+
+
+def test_shrinking_reaches_the_optimum_of_the_whole_problem():
+    rows, y, diagonal = _shrinking_problem()
+    C = np.full(y.size, 4.0)
+    shrunk = solve_smo(rows, y, C, diagonal=diagonal, tol=1e-6, policy=LIBSVM)
+    whole = solve_smo(rows, y, C, diagonal=diagonal, tol=1e-6,
+                      policy=replace(LIBSVM, shrinking=False))
+    assert shrunk.converged and whole.converged
+    assert shrunk.objective == pytest.approx(whole.objective, rel=1e-9)
+    assert abs(shrunk.rho - whole.rho) < 1e-5
+

@@ -4,8 +4,9 @@ Simulated signals and their norm spectra
 
 :func:`ebantenna.simulate.simulate` turns a :class:`~ebantenna.simulate.Scene` into the
 :class:`~ebantenna.recording.Recording` the accelerometer would deliver. The built-in ``paper``
-scene models the paper's rig: the accelerometer board at the tip, contact compliance, sensor
-noise, mains hum, the sensor's own low-pass filter and more (print ``scene.effects``). Here the
+scene models the paper's rig: the accelerometer board at the tip, the touched rod with its own
+modes, a contact that only pushes, sensor noise, mains hum, the sensor's own low-pass filter and
+more (print ``scene.effects``). Here the
 probe touches brass at the paper's five positions; each recording is shown with the paper's
 feature, the norm of the X and Z spectra (its eq. 1 applied to the FFTs), beside the lowest
 natural frequencies of the finite-element model of the same probe, tip mass included.

@@ -4,17 +4,17 @@ Run: ``python benchmarks/ml_speed.py [--quick] [--repeat N]``
 
 * ``SVC.fit`` on 6000 x 256 features, 5 classes, RBF kernel, against ``sklearn.svm.SVC`` (libsvm,
   C++), with the held-out accuracy of each so that the times compare equal work. Target: ratio
-  <= 0.3 (``libsvm_compat``: <= 0.5); measured 0.31-0.36 on one BLAS thread and 0.27-0.33 on two
-  on a moderately loaded two-core machine (two BLAS threads reach 0.7 when the machine is busy).
-  About half of the time is the float64 kernel products of the pairs of classes, the other half
-  the SMO loop's NumPy calls (about 12 us per update, 14000 updates).
-  ``libsvm_compat``: measured 0.44-0.52 on two BLAS threads and 0.62-0.69 on one on the quiet
-  shared machine, 0.65-0.72 and 0.50-0.65 while it ran about twice its cores in other work (one
-  full bench run: 0.62); before the SMO work of issue 15 the same runs gave 0.65-1.0 and
-  0.67-0.90. The default mode measured 0.36-0.44 and 0.49-0.56 in the quiet runs. The time is
-  the float32 kernel matrix (0.15 s on two threads, 0.21 s on one, the products at the core's
-  peak, plus up to 0.2 s to fault in its 144 MB when the kernel has no huge pages at hand) and
-  the SMO loop with shrinking (0.29 s: about 20 us per update, the same 14165 updates as libsvm).
+  <= 0.3 (``libsvm_compat``: <= 0.5). The ratios depend on the machine: on the Intel machine of
+  earlier runs the default mode measured 0.27-0.33 on two BLAS threads and 0.31-0.36 on one; on
+  the AMD EPYC machine of issue 15's last runs, where libsvm runs about 2.5 times as fast
+  (0.87 s against 2.25 s), 0.36-0.44 and 0.49-0.56, and ``libsvm_compat`` 0.44-0.58 on two
+  threads and 0.62-0.69 on one (0.65-1.0 and 0.74-0.90 before the SMO work of issue 15, in the
+  same runs). The default mode's time is about half the float64 kernel products of the pairs of
+  classes and half the SMO loop's NumPy calls (about 12 us per update, 14000 updates);
+  ``libsvm_compat``'s the float32 kernel matrix (0.15 s on two threads, 0.21 s on one, the
+  products at the core's peak, plus up to 0.2 s to fault in its 144 MB when the kernel has no
+  huge pages at hand) and the SMO loop with shrinking (0.29 s: about 20 us per update, the same
+  14165 updates as libsvm).
 * ``MLPClassifier.fit`` with the same network, solver and number of epochs as scikit-learn's
   (full-batch gradient descent = scikit-learn's 'sgd' with one batch and no momentum; Adam with
   mini-batches of 200; SGD with scikit-learn's 'invscaling' schedule; L-BFGS through SciPy on

@@ -4,7 +4,7 @@ Run: ``python benchmarks/ml_speed.py [--quick] [--repeat N]``
 
 * ``SVC.fit`` on 6000 x 256 features, 5 classes, RBF kernel, against ``sklearn.svm.SVC`` (libsvm,
   C++), with the held-out accuracy of each so that the times compare equal work. Target: ratio
-  <= 0.3 (``libsvm_compat``: <= 0.5). The ratios depend on the machine: on the Intel machine of
+  <= 0.3 (``libsvm_compat``: <= 0.5). The ratios depend on the machine: on the machine of
   earlier runs the default mode measured 0.27-0.33 on two BLAS threads and 0.31-0.36 on one; on
   the AMD EPYC machine of issue 15's last runs, where libsvm runs about 2.5 times as fast
   (0.87 s against 2.25 s), 0.36-0.44 and 0.49-0.56, and ``libsvm_compat`` 0.44-0.58 on two

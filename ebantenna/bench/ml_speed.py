@@ -6,9 +6,9 @@ Run: ``python benchmarks/ml_speed.py [--quick] [--repeat N]``
   C++), with the held-out accuracy of each so that the times compare equal work. Target: ratio
   <= 0.3 (``libsvm_compat``: <= 0.5). The ratios depend on the machine: on the machine of
   earlier runs the default mode measured 0.27-0.33 on two BLAS threads and 0.31-0.36 on one; on
-  the AMD EPYC machine of issue 15's last runs, where libsvm runs about 2.5 times as fast
+  the AMD EPYC machine of the latest runs, where libsvm runs about 2.5 times as fast
   (0.87 s against 2.25 s), 0.36-0.44 and 0.49-0.56, and ``libsvm_compat`` 0.44-0.58 on two
-  threads and 0.62-0.69 on one (0.65-1.0 and 0.74-0.90 before the SMO work of issue 15, in the
+  threads and 0.62-0.69 on one (0.65-1.0 and 0.74-0.90 before the shrinking loop's rework, in the
   same runs). The default mode's time is about half the float64 kernel products of the pairs of
   classes and half the SMO loop's NumPy calls (about 12 us per update, 14000 updates);
   ``libsvm_compat``'s the float32 kernel matrix (0.15 s on two threads, 0.21 s on one, the

@@ -29,7 +29,24 @@ from .._validate import check_int, check_nonnegative, check_positive
 from .structure import check_dof_vector, check_symmetric_matrix
 from .unilateral import ChatterError
 
-__all__ = ["FrictionEvent", "FrictionResponse", "coulomb_response"]
+__all__ = ["FrictionEvent", "FrictionResponse", "coulomb_response", "check_coefficients"]
+
+
+def check_coefficients(static_friction, kinetic_friction) -> tuple[float, float]:
+    """``(mu_s, mu_k)`` as floats, checked: both >= 0 and ``mu_k <= mu_s``.
+
+    Examples
+    --------
+    >>> check_coefficients(0.5, 0.4)
+    (0.5, 0.4)
+    """
+    mus = check_nonnegative("static_friction", static_friction)
+    muk = check_nonnegative("kinetic_friction", kinetic_friction)
+    if muk > mus:
+        raise ValueError(
+            f"kinetic_friction must be <= static_friction ({mus!r}), got {kinetic_friction!r}"
+        )
+    return mus, muk
 
 
 @dataclass(frozen=True)
@@ -143,12 +160,7 @@ def coulomb_response(
     C = np.zeros((n, n)) if damping is None else check_symmetric_matrix("damping", damping, n)
     tv = check_dof_vector("tangential", tangential, n)
     o = tv if output is None else check_dof_vector("output", output, n)
-    mus = check_nonnegative("static_friction", static_friction)
-    muk = check_nonnegative("kinetic_friction", kinetic_friction)
-    if muk > mus:
-        raise ValueError(
-            f"kinetic_friction must be <= static_friction ({mus!r}), got {kinetic_friction!r}"
-        )
+    mus, muk = check_coefficients(static_friction, kinetic_friction)
     if callable(normal_force):
         N = normal_force
     else:

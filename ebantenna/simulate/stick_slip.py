@@ -41,6 +41,7 @@ import numpy as np
 import scipy.linalg as sla
 
 from .._validate import check_int, check_nonnegative, check_positive
+from .friction import check_coefficients
 from .linear_state import LinearState, crossing
 from .modes import _sweep_velocity
 from .strikes import _body, read_through_dlpf, timed_rate
@@ -147,12 +148,7 @@ def stick_slip_response(
     o = check_dof_vector("output", b if output is None else output, n)
     v0 = np.zeros(n) if velocity is None else check_dof_vector("velocity", velocity, n)
     N = check_nonnegative("normal_force", normal_force)
-    mus = check_nonnegative("static_friction", static_friction)
-    muk = check_nonnegative("kinetic_friction", kinetic_friction)
-    if muk > mus:
-        raise ValueError(
-            f"kinetic_friction must be <= static_friction ({mus!r}), got {kinetic_friction!r}"
-        )
+    mus, muk = check_coefficients(static_friction, kinetic_friction)
     T = check_positive("duration", duration)
     fs = check_positive("fs", fs)
     max_events = check_int("max_events", max_events, minimum=1)

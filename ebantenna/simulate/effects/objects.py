@@ -15,10 +15,11 @@ import math
 from dataclasses import dataclass
 from typing import ClassVar
 
-from ..._validate import check_int, check_nonnegative, check_positive
+from ..._validate import check_int, check_positive
 from ...fem.rod import Rod
 from ...probe import Material, Probe
 from ..contact import TUBE_POISSON_RATIO, tube_on_rod_stiffness
+from ..friction import check_coefficients
 from ._base import _Effect
 
 
@@ -213,10 +214,5 @@ class CoulombFriction(_Effect):
     max_events: int = 1000
 
     def __post_init__(self):
-        mus = check_nonnegative("static_friction", self.static_friction)
-        if check_nonnegative("kinetic_friction", self.kinetic_friction) > mus:
-            raise ValueError(
-                f"kinetic_friction must be <= static_friction ({mus!r}), "
-                f"got {self.kinetic_friction!r}"
-            )
+        check_coefficients(self.static_friction, self.kinetic_friction)
         check_int("max_events", self.max_events, minimum=1)

@@ -15,12 +15,35 @@ import math
 import numpy as np
 import scipy.linalg as spl
 
-__all__ = ["LinearState", "crossing", "LONG_BLOCKS"]
+__all__ = ["LinearState", "crossing", "step_grid", "LONG_BLOCKS", "BLOCK_ELEMENTS"]
 
 #: Most iterations of the event root finder (bisection alone needs log2(step / tolerance)).
 _MAX_ROOT_STEPS = 200
 #: Where the contact provably keeps its state, up to this many blocks are read at once.
 LONG_BLOCKS = 32
+#: Most states propagated at once in one block (bounds the memory of the stacked powers).
+BLOCK_ELEMENTS = 2_000_000
+
+
+def step_grid(states, fs: float, duration: float, steps_per_period: int):
+    """Prepare the steps on which ``states`` are propagated and watched (:meth:`LinearState.grid`).
+
+    The step is at most a ``steps_per_period``-th of the fastest state's shortest period and
+    divides the output sample interval ``1 / fs`` into ``sub`` whole steps. Returns ``(h, sub,
+    n_samples, n_steps, block)``: the step (s), steps per output sample, output samples over
+    ``duration`` (both ends included), steps in all and steps per block.
+    """
+    fastest = max(float(np.abs(st.lam).max()) for st in states)
+    h_max = 2 * math.pi / (steps_per_period * fastest) if fastest > 0 else 1 / fs
+    sub = max(1, math.ceil(1 / (fs * h_max)))
+    h = 1 / (fs * sub)
+    n_samples = int(math.floor(duration * fs + 1e-9)) + 1
+    n_steps = (n_samples - 1) * sub
+    size = states[0].A.shape[0]
+    block = int(max(1, min(256, n_steps, BLOCK_ELEMENTS // (size * size))))
+    for st in states:
+        st.grid(h, block, sub)
+    return h, sub, n_samples, n_steps, block
 
 
 class LinearState:

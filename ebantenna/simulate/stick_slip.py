@@ -33,7 +33,6 @@ The rod is rigid along its axis (its axial modes lie far above the scene's band)
 from __future__ import annotations
 
 import logging
-import math
 import weakref
 from dataclasses import dataclass
 
@@ -42,7 +41,7 @@ import scipy.linalg as sla
 
 from .._validate import check_int, check_nonnegative, check_positive
 from .friction import check_coefficients
-from .linear_state import LinearState, crossing
+from .linear_state import LinearState, crossing, step_grid
 from .modes import _sweep_velocity
 from .strikes import _body, read_through_dlpf, timed_rate
 from .structure import check_dof_vector, check_symmetric_matrix
@@ -52,9 +51,6 @@ __all__ = ["StickSlipResponse", "stick_slip_response", "FrictionModel", "frictio
            "friction_axis"]  # fmt: skip
 
 log = logging.getLogger(__name__)
-
-#: Most states propagated at once in one block (bounds the memory of the stacked powers).
-_BLOCK_ELEMENTS = 2_000_000
 
 
 @dataclass(frozen=True, eq=False)
@@ -159,15 +155,9 @@ def stick_slip_response(
         raise ValueError("mass must be positive definite") from None
 
     states = _friction_states(M, K, C, Minv, b, o, N * mus, N * muk)
-    fastest = max(float(np.abs(st.lam).max()) for st in states.values())
-    h_max = 2 * math.pi / (STEPS_PER_PERIOD * fastest) if fastest > 0 else 1 / fs
-    sub = max(1, math.ceil(1 / (fs * h_max)))
-    h = 1 / (fs * sub)
-    n_samples = int(math.floor(T * fs + 1e-9)) + 1
-    n_steps = (n_samples - 1) * sub
-    block = int(max(1, min(256, n_steps, _BLOCK_ELEMENTS // (2 * n + 2) ** 2)))
-    for st in states.values():
-        st.grid(h, block, sub)
+    h, sub, n_samples, n_steps, block = step_grid(
+        list(states.values()), fs, T, STEPS_PER_PERIOD
+    )
     frictionless = mus * N == 0  # one state, never left: the free structure
     hold_limit = mus * N
     stick, lower = states["stick"], states["stick lower"]

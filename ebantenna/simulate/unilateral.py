@@ -61,7 +61,7 @@ import numpy as np
 import scipy.linalg as spl
 
 from .._validate import check_choice, check_int, check_nonnegative, check_positive
-from .linear_state import LinearState, crossing
+from .linear_state import LinearState, crossing, step_grid
 from .structure import check_dof_vector, check_symmetric_matrix
 
 __all__ = [
@@ -75,8 +75,6 @@ logger = logging.getLogger(__name__)
 
 #: Steps per shortest natural period at which the sign of the force or the gap is checked.
 STEPS_PER_PERIOD = 16
-#: Most states propagated at once in one block (bounds the memory of the stacked powers).
-_BLOCK_ELEMENTS = 2_000_000
 
 
 class ChatterError(RuntimeError):
@@ -267,15 +265,7 @@ def unilateral_response(
     A_free, A_closed = system(False), system(True)
     free = LinearState(A_free, n, -pen, np.zeros(N), o @ A_free[n : 2 * n])
     closed = LinearState(A_closed, n, kc * pen, kc * pen, o @ A_closed[n : 2 * n])
-    fastest = float(np.abs(np.concatenate([free.lam, closed.lam])).max())
-    h_max = 2 * math.pi / (STEPS_PER_PERIOD * fastest) if fastest > 0 else 1 / fs
-    sub = max(1, math.ceil(1 / (fs * h_max)))
-    h = 1 / (fs * sub)
-    n_samples = int(math.floor(T * fs + 1e-9)) + 1
-    n_steps = (n_samples - 1) * sub
-    block = int(max(1, min(256, n_steps, _BLOCK_ELEMENTS // (N * N))))
-    free.grid(h, block, sub)
-    closed.grid(h, block, sub)
+    h, sub, n_samples, n_steps, block = step_grid([free, closed], fs, T, STEPS_PER_PERIOD)
 
     t_out = np.arange(n_samples) / fs
     acc = np.zeros(n_samples)

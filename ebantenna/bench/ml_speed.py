@@ -4,30 +4,34 @@ Run: ``python benchmarks/ml_speed.py [--quick] [--repeat N]``
 
 * ``SVC.fit`` on 6000 x 256 features, 5 classes, RBF kernel, against ``sklearn.svm.SVC`` (libsvm,
   C++), with the held-out accuracy of each so that the times compare equal work. Target: ratio
-  <= 0.3 (``libsvm_compat``: <= 0.5). The ratios depend on the machine: on the machine of
-  earlier runs the default mode measured 0.27-0.33 on two BLAS threads and 0.31-0.36 on one; on
-  the AMD EPYC machine of the latest runs, where libsvm runs about 2.5 times as fast
-  (0.87 s against 2.25 s), 0.36-0.44 and 0.49-0.56, and ``libsvm_compat`` 0.44-0.58 on two
-  threads and 0.62-0.69 on one (0.65-1.0 and 0.74-0.90 before the shrinking loop's rework, in the
-  same runs). The default mode's time is about half the float64 kernel products of the pairs of
-  classes and half the SMO loop's NumPy calls (about 12 us per update, 14000 updates);
-  ``libsvm_compat``'s the float32 kernel matrix (0.15 s on two threads, 0.21 s on one, the
-  products at the core's peak, plus up to 0.2 s to fault in its 144 MB when the kernel has no
-  huge pages at hand) and the SMO loop with shrinking (0.29 s: about 20 us per update, the same
-  14165 updates as libsvm).
+  <= 0.3 (``libsvm_compat``: <= 0.5), not reached on the AMD EPYC machine of the latest runs.
+  The ratios depend on the machine: on the machine of earlier runs the default mode measured
+  0.27-0.33 on two BLAS threads and 0.31-0.36 on one; on the AMD EPYC machine, where libsvm runs
+  about 2.5 times as fast (0.87-0.93 s against 2.25 s), 0.36-0.45 and 0.49-0.57, and
+  ``libsvm_compat`` 0.44-0.58 on two threads and 0.62-0.69 on one.
 * ``MLPClassifier.fit`` with the same network, solver and number of epochs as scikit-learn's
   (full-batch gradient descent = scikit-learn's 'sgd' with one batch and no momentum; Adam with
   mini-batches of 200; SGD with scikit-learn's 'invscaling' schedule; L-BFGS through SciPy on
-  both sides). Target: ratio <= 0.6, not reached. With one BLAS thread on both sides
-  (``OPENBLAS_NUM_THREADS=1``) Adam and SGD with mini-batches measure 0.79-0.80 (0.84-0.88
-  before the batch arrays were reused), full-batch gradient descent 0.87 and L-BFGS 0.92: the
-  two 200 x 256 x 53 products of each batch, the same BLAS calls on both sides, take 0.30 s of
-  scikit-learn's 0.64 s Adam fit, so a loop doing nothing else would still stop near 0.47.
-  With two BLAS threads on the shared two-core machine the mini-batch rows measure 0.72-0.88
-  from run to run: the threaded products wait for the busy second core (a fit then takes
-  2-6 s instead of 0.5 s), on both sides alike.
+  both sides). Target: ratio <= 0.6, not reached: Adam and SGD with mini-batches measure
+  0.72-0.80 (one or two BLAS threads), full-batch gradient descent 0.87-0.92, L-BFGS 0.91.
+  With two BLAS threads on the shared two-core machine the threaded products wait for the busy
+  second core (a fit then takes 2-6 s instead of 0.5 s), on both sides alike.
 * ``SVC(probability=True).fit``: the fit plus five cross-validation fits per pair of classes on
   both sides.
+
+A second table (:func:`where_time_goes`) splits our fits into parts, each as a share of
+scikit-learn's time, and so shows how low each ratio can go. On the AMD EPYC machine, two BLAS
+threads: the default ``SVC`` spends 0.21 in kernel entries (float64 products at the cores' peak)
+and 0.21 in the SMO loop (14165 updates, the same number as libsvm's, at about 14 us each, some
+fifteen NumPy calls on vectors of 2400 entries); a ratio of 0.3 would leave the loop 4 us per
+update. ``libsvm_compat``: 0.16 in its float32 kernel matrix and 0.36 in the loop with
+shrinking (23 us per update). Adam: the gathers and the two 200 x 256 x 53 products of each
+mini-batch, the same BLAS calls on both sides, take 0.49 of scikit-learn's fit and Adam's
+update of the parameters, the same arithmetic as scikit-learn's (for 1e-15 parity), 0.13: 0.62
+in all, above the target, before the activations, the loss and the output layer. Computing only
+the kernel rows that SMO reads (36 % of them) was tried and is slower: each block of rows
+repacks the pair's points for the product, so the entries cost twice as much (0.42-0.52 s
+against 0.40 s for the fit).
 
 Each pair is timed alternately ``--repeat`` times and the best time of each is kept, so that
 other load on the machine affects both sides alike. The table prints the ratio ours / theirs.
@@ -39,7 +43,9 @@ helps on an idle machine and hurts on a busy one, so one row repeats our fit on 
 from __future__ import annotations
 
 import argparse
+import time
 import warnings
+from contextlib import contextmanager
 
 import numpy as np
 from sklearn.exceptions import ConvergenceWarning
@@ -49,9 +55,12 @@ from threadpoolctl import threadpool_limits
 
 from ebantenna.bench._timing import best_time
 from ebantenna.ml import SVC, MLPClassifier
+from ebantenna.ml import svc as svc_module
+from ebantenna.ml.kernels import Kernel
+from ebantenna.ml.optimizers import Adam
 from ebantenna.report import text_table
 
-__all__ = ["spectra_like", "run", "to_text", "main"]
+__all__ = ["spectra_like", "run", "where_time_goes", "to_text", "main"]
 
 
 def spectra_like(n, d, k, seed):
@@ -78,7 +87,8 @@ def run(quick: bool = False, repeat: int = 2) -> dict:
     -------
     dict
         ``rows``: per task ``task``, ``ours_seconds``, ``sklearn_seconds``, ``ratio`` (ours /
-        theirs), ``ours_accuracy`` and ``sklearn_accuracy`` (held out).
+        theirs), ``ours_accuracy`` and ``sklearn_accuracy`` (held out); ``parts``: the rows of
+        :func:`where_time_goes`.
     """
     if repeat < 1:
         raise ValueError(f"repeat must be >= 1, got {repeat}")
@@ -100,11 +110,12 @@ def run(quick: bool = False, repeat: int = 2) -> dict:
         rows.append({"task": name, "ours_seconds": t_ours, "sklearn_seconds": t_theirs,
                      "ratio": t_ours / t_theirs, "ours_accuracy": score(m_ours),
                      "sklearn_accuracy": score(m_theirs)})
+        return rows[-1]
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ConvergenceWarning)
         acc = lambda m: m.score(Xte, yte)  # noqa: E731
-        pair(f"SVC rbf fit, {n}x{d}, {k} classes",
+        svc = pair(f"SVC rbf fit, {n}x{d}, {k} classes",
              lambda: SVC().fit(Xtr, ytr), lambda: LibSVC().fit(Xtr, ytr), acc)
         def one_thread_fit():
             with threadpool_limits(1):
@@ -127,7 +138,7 @@ def run(quick: bool = False, repeat: int = 2) -> dict:
              lambda: MLPClassifier(solver="gd", learning_rate_init=0.1, **common).fit(Xtr, ytr),
              lambda: SkMLP(solver="sgd", momentum=0.0, batch_size=n, shuffle=False,
                            learning_rate_init=0.1, **common).fit(Xtr, ytr), acc)
-        pair(f"MLP 53 tanh, adam batch 200, {epochs} epochs",
+        adam = pair(f"MLP 53 tanh, adam batch 200, {epochs} epochs",
              lambda: MLPClassifier(solver="adam", batch_size=200, **common).fit(Xtr, ytr),
              lambda: SkMLP(solver="adam", batch_size=200, **common).fit(Xtr, ytr), acc)
         pair(f"MLP 53 tanh, sgd invscaling batch 200, {epochs} epochs",
@@ -138,7 +149,110 @@ def run(quick: bool = False, repeat: int = 2) -> dict:
         pair(f"MLP 53 tanh, lbfgs, {epochs} iterations",
              lambda: MLPClassifier(solver="lbfgs", **common).fit(Xtr, ytr),
              lambda: SkMLP(solver="lbfgs", **common).fit(Xtr, ytr), acc)
-    return {"rows": rows}
+        parts = where_time_goes(Xtr, ytr, svc["sklearn_seconds"], adam["sklearn_seconds"], epochs)
+    return {"rows": rows, "parts": parts}
+
+
+@contextmanager
+def _clocked(owner, name: str, totals: dict, count=None):
+    """While inside, add the wall time of every call of ``owner.name`` to ``totals[name]`` (and
+    ``count(result)`` to ``totals[name + ' count']``); the attribute is restored on exit."""
+    inner = getattr(owner, name)
+
+    def timed(*args, **kwargs):
+        start = time.perf_counter()
+        out = inner(*args, **kwargs)
+        totals[name] = totals.get(name, 0.0) + time.perf_counter() - start
+        if count is not None:
+            totals[name + " count"] = totals.get(name + " count", 0) + count(out)
+        return out
+
+    setattr(owner, name, timed)
+    try:
+        yield totals
+    finally:
+        setattr(owner, name, inner)
+
+
+def where_time_goes(X, y, svc_seconds: float, adam_seconds: float, epochs: int,
+                    batch_size: int = 200) -> list[dict]:
+    """Split our fits into their parts, each as a share of scikit-learn's fit time.
+
+    ``SVC``: one fit per mode with :meth:`Kernel.gram` (every kernel entry) and the SMO solver
+    clocked; the solver's updates are counted. ``MLPClassifier`` (Adam): the work that both
+    sides do with the same BLAS calls and that parity with scikit-learn fixes, timed alone: the
+    gather of each mini-batch with the two ``batch x n_features x n_hidden`` products, and
+    Adam's update of the parameters (as many steps as mini-batches). A target ratio below the
+    sum of these shares cannot be met by a loop that keeps the same arithmetic.
+
+    Parameters
+    ----------
+    X, y : training set of the timed fits.
+    svc_seconds, adam_seconds : float
+        scikit-learn's best fit times, measured in the same run.
+    epochs, batch_size : int
+        The MLP's epochs and mini-batch size.
+
+    Returns
+    -------
+    list of dict
+        ``part``, ``seconds``, ``share`` (of scikit-learn's time) and ``note``; the SMO rows
+        also ``updates``, the solver's updates over all pairs of classes.
+    """
+    parts = []
+    for compat in (False, True):
+        whole = np.inf
+        for _ in range(2):  # the faster of two clocked fits
+            clocked: dict = {}
+            with (_clocked(Kernel, "gram", clocked),
+                  _clocked(svc_module, "solve_smo", clocked, count=lambda res: res.n_iter)):
+                start = time.perf_counter()
+                SVC(libsvm_compat=compat).fit(X, y)
+                seconds = time.perf_counter() - start
+            if seconds < whole:
+                whole, totals = seconds, clocked
+        mode = "libsvm_compat" if compat else "default"
+        updates = totals["solve_smo count"]
+        for part, seconds, note in (
+                ("kernel entries (Kernel.gram)", totals["gram"], ""),
+                ("SMO loop", totals["solve_smo"],
+                 f"{updates} updates, {1e6 * totals['solve_smo'] / updates:.1f} us each"),
+                ("the rest", whole - totals["gram"] - totals["solve_smo"], "")):
+            parts.append({"part": f"SVC {mode}: {part}", "seconds": seconds,
+                          "share": seconds / svc_seconds, "note": note,
+                          "updates": updates if part == "SMO loop" else None})
+    rng = np.random.default_rng(0)
+    n, d = X.shape
+    hidden = 53
+    W = rng.normal(size=(d, hidden))
+    delta = rng.normal(size=(batch_size, hidden))
+
+    def products():  # forward X_b W and the weight gradient X_b^T delta of every mini-batch
+        for _ in range(epochs):
+            order = rng.permutation(n)
+            for start in range(0, n, batch_size):
+                Xb = X[order[start : start + batch_size]]
+                Xb @ W
+                Xb.T @ delta[: len(Xb)]
+
+    steps = epochs * -(-n // batch_size)
+    shapes = [(d, hidden), (hidden,), (hidden, len(np.unique(y))), (len(np.unique(y)),)]
+    params = [rng.normal(size=shape) for shape in shapes]
+    grads = [1e-3 * rng.normal(size=shape) for shape in shapes]
+
+    def adam():
+        opt = Adam(params)
+        for _ in range(steps):
+            opt.update(params, grads)
+
+    for part, fn, note in (
+            (f"gathers and the two {batch_size}x{d}x{hidden} products", products,
+             f"{steps} mini-batches, the same BLAS calls on both sides"),
+            ("Adam's update of the parameters", adam, f"{steps} steps")):
+        seconds = best_time(fn, 2)[0]
+        parts.append({"part": f"MLP adam: {part}", "seconds": seconds,
+                      "share": seconds / adam_seconds, "note": note})
+    return parts
 
 
 def to_text(tables: dict) -> str:
@@ -148,6 +262,10 @@ def to_text(tables: dict) -> str:
          ("sklearn_seconds", "sklearn (s)", "11.3f"), ("ratio", "ratio", "6.2f"),
          ("ours_accuracy", "acc ours", "9.4f"), ("sklearn_accuracy", "acc sklearn", "11.4f")],
         tables["rows"],
+    ) + "\n\nWhere our time goes, as a share of scikit-learn's fit time:\n" + text_table(
+        [("part", "part", "<58"), ("seconds", "seconds", "8.3f"), ("share", "share", "6.2f"),
+         ("note", "", "<")],
+        tables["parts"],
     )
 
 

@@ -45,3 +45,39 @@ def test_each_sweep_runs_once_and_feeds_table_and_figure(tmp_path, monkeypatch):
     assert len(drawn) == 1 and drawn[0] is results["fem_accuracy"]["rows"]
     assert str(results["fem_accuracy"]["rows"]["accuracy"][0]["N"]) in results["fem_accuracy"][
         "table"]
+
+
+def test_ml_speed_parts_count_the_solver_updates_and_restore_what_they_clock():
+    from ebantenna.bench import ml_speed
+    from ebantenna.ml import SVC
+    from ebantenna.ml import svc as svc_module
+    from ebantenna.ml.kernels import Kernel
+
+    gram, solve = Kernel.gram, svc_module.solve_smo
+    X, y = ml_speed.spectra_like(150, 8, 3, seed=1)
+    parts = ml_speed.where_time_goes(X, y, 2.0, 4.0, epochs=1, batch_size=64)
+    assert Kernel.gram is gram and svc_module.solve_smo is solve
+    rows = {p["part"]: p for p in parts}
+    # SMO is deterministic: the clocked fit takes the updates of an unclocked one
+    assert rows["SVC default: SMO loop"]["updates"] == SVC().fit(X, y).n_iter_.sum()
+    assert rows["SVC libsvm_compat: SMO loop"]["updates"] == (
+        SVC(libsvm_compat=True).fit(X, y).n_iter_.sum())
+    # the parts of a fit are disjoint stretches of it, and each share is over the given time
+    for p in parts:
+        assert p["seconds"] >= 0
+        assert p["share"] == p["seconds"] / (2.0 if p["part"].startswith("SVC") else 4.0)
+    assert "3 mini-batches" in rows["MLP adam: gathers and the two 64x8x53 products"]["note"]
+
+
+def test_clocked_restores_the_attribute_when_the_call_raises():
+    from types import SimpleNamespace
+
+    from ebantenna.bench.ml_speed import _clocked
+
+    def fails():
+        raise RuntimeError("boom")
+
+    owner, totals = SimpleNamespace(f=fails), {}
+    with pytest.raises(RuntimeError, match="boom"), _clocked(owner, "f", totals):
+        owner.f()
+    assert owner.f is fails and "f" not in totals

@@ -9,6 +9,7 @@ block of steps; :func:`crossing` finds the event inside a step.
 
 from __future__ import annotations
 
+import copy
 import functools
 import math
 
@@ -61,8 +62,7 @@ class LinearState:
     """
 
     def __init__(self, A, n, monitor, force, accel):
-        self.A, self.n, self.monitor = A, n, monitor
-        self.rows = np.stack([monitor, accel, force])
+        self.A, self.n = A, n
         Ay, f = A[: 2 * n, : 2 * n], A[: 2 * n, 2 * n]
         self.eigen = False
         with np.errstate(all="ignore"):
@@ -81,11 +81,25 @@ class LinearState:
                 if ok and np.all(np.isfinite(G)) and np.all(np.isfinite(H)):
                     self.eigen = True
                     self.V, self.Vinv, self.G, self.H = V, Vinv, G, H
-                    m = 2 * n
-                    ry = self.rows[:, :m]
-                    self.row_modes = ry @ V  # (3, 2n): each row's weight on each mode
-                    self.row_s = self.rows[:, m] - ry @ G  # ... on the servo's travel s(t)
-                    self.row_speed = self.rows[:, m + 1] - ry @ H  # ... on its speed s'
+        self._read(monitor, force, accel)
+
+    def watching(self, monitor, force, accel) -> LinearState:
+        """The same state with other rows read along the motion; the decomposition of ``A`` is
+        shared, not computed again (call before :meth:`grid`)."""
+        twin = copy.copy(self)
+        twin._read(monitor, force, accel)
+        return twin
+
+    def _read(self, monitor, force, accel):
+        """Set the rows read along the motion, and their weights on the modes."""
+        self.monitor = monitor
+        self.rows = np.stack([monitor, accel, force])
+        if self.eigen:
+            m = 2 * self.n
+            ry = self.rows[:, :m]
+            self.row_modes = ry @ self.V  # (3, 2n): each row's weight on each mode
+            self.row_s = self.rows[:, m] - ry @ self.G  # ... on the servo's travel s(t)
+            self.row_speed = self.rows[:, m + 1] - ry @ self.H  # ... on its speed s'
 
     def grid(self, h, block, sub):
         """Prepare steps of ``h``, read in blocks of ``block`` steps or every ``sub`` steps."""

@@ -304,7 +304,7 @@ def _friction_states(M, K, C, Minv, b, o, hold, slide):
     limit[2 * n] = hold
     accel = o @ A[n : 2 * n]
     states["stick"] = LinearState(A, n, limit - F, F, accel)
-    states["stick lower"] = LinearState(A, n, limit + F, F, accel)
+    states["stick lower"] = states["stick"].watching(limit + F, F, accel)
     return states
 
 

@@ -115,3 +115,22 @@ def test_settled_spans_read_the_same_samples_as_every_step(monkeypatch):
     assert np.abs(bound.acceleration - stepped.acceleration).max() <= 4 * k * EPS * peak
     np.testing.assert_allclose(bound.contact_force, stepped.contact_force, rtol=0,
                                atol=4 * k * EPS * np.abs(stepped.contact_force).max())  # fmt: skip
+
+
+def test_a_state_watching_other_rows_shares_the_decomposition_and_reads_the_same():
+    st = _two_dof_closed_state()
+    n, A = st.n, st.A
+    rng = np.random.default_rng(5)
+    monitor, force, accel = (rng.normal(size=A.shape[0]) for _ in range(3))
+    before = st.rows.copy(), st.row_modes.copy()
+    twin = st.watching(monitor, force, accel)
+    fresh = LinearState(A, n, monitor, force, accel)
+    assert twin.V is st.V and twin.lam is st.lam  # not decomposed again
+    np.testing.assert_array_equal(st.rows, before[0])  # the original reads what it read
+    np.testing.assert_array_equal(st.row_modes, before[1])
+    for state in (twin, fresh):
+        state.grid(st.h, st.block, st.sub)
+    x = np.concatenate([rng.normal(size=2 * n) * 1e-4, [1e-5, 2e-3]])
+    # the same eigenvectors (LAPACK is deterministic on the same matrix), so the same numbers
+    np.testing.assert_array_equal(twin.readings(x, twin.modal(x), st.block),
+                                  fresh.readings(x, fresh.modal(x), st.block))

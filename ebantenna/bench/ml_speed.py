@@ -13,31 +13,35 @@ Run: ``python benchmarks/ml_speed.py [--quick] [--repeat N]``
   (full-batch gradient descent = scikit-learn's 'sgd' with one batch and no momentum; Adam with
   mini-batches of 200; SGD with scikit-learn's 'invscaling' schedule; L-BFGS through SciPy on
   both sides). Target: ratio <= 0.6, not reached: Adam and SGD with mini-batches measure
-  0.72-0.80 (one or two BLAS threads), full-batch gradient descent 0.87-0.92, L-BFGS 0.91.
+  0.71-0.81 (one or two BLAS threads), full-batch gradient descent 0.87-0.92, L-BFGS 0.91-1.26
+  (its products are threaded on both sides, and vary the most from run to run).
   With two BLAS threads on the shared two-core machine the threaded products wait for the busy
   second core (a fit then takes 2-6 s instead of 0.5 s), on both sides alike.
 * ``SVC(probability=True).fit``: the fit plus five cross-validation fits per pair of classes on
   both sides.
 
 A second table (:func:`where_time_goes`) splits our fits into parts, each as a share of
-scikit-learn's time, and so shows how low each ratio can go. On the AMD EPYC machine, two BLAS
-threads: the default ``SVC`` spends 0.21 in kernel entries (float64 products at the cores' peak)
-and 0.21 in the SMO loop (14165 updates, the same number as libsvm's, at about 14 us each, some
-fifteen NumPy calls on vectors of 2400 entries); a ratio of 0.3 would leave the loop 4 us per
-update. ``libsvm_compat``: 0.16 in its float32 kernel matrix and 0.36 in the loop with
-shrinking (23 us per update). Adam: the gathers and the two 200 x 256 x 53 products of each
-mini-batch, the same BLAS calls on both sides, take 0.49 of scikit-learn's fit and Adam's
-update of the parameters, the same arithmetic as scikit-learn's (for 1e-15 parity), 0.13: 0.62
-in all, above the target, before the activations, the loss and the output layer. Computing only
-the kernel rows that SMO reads (36 % of them) was tried and is slower: each block of rows
-repacks the pair's points for the product, so the entries cost twice as much (0.42-0.52 s
-against 0.40 s for the fit).
+scikit-learn's time, and so shows how low each ratio can go. On the AMD EPYC machine: the default
+``SVC`` (two BLAS threads) spends 0.18-0.21 in kernel entries (float64 products at the cores'
+peak) and 0.18-0.22 in the SMO loop (14165 updates, the same number as libsvm's, at 13-14 us
+each, some fifteen NumPy calls on vectors of 2400 entries); a ratio of 0.3 would leave the loop
+about 4 us per update. ``libsvm_compat``: 0.14-0.17 in its float32 kernel matrix and 0.29-0.36
+in the loop with shrinking (22-23 us per update). Adam on one BLAS thread: the gathers and the
+two 200 x 256 x 53 products of each mini-batch, the same BLAS calls on both sides, take 0.51-0.53
+of scikit-learn's fit, Adam's update of the parameters 0.10 and the hidden layer's tanh with its
+derivative 0.03, each the same arithmetic as scikit-learn's (which the 1e-15 parity needs): 0.66
+in all, above the target of 0.6 before the loss and the output layer. (On two threads the
+products' share varies from run to run, 0.33-0.49.)
+Computing only the kernel rows that SMO reads (36 % of them, in blocks of 16-64 rows chosen by
+their violation) was tried and is slower: each block repacks the pair's points for the product,
+so an entry costs about twice as much (0.42-0.52 s against 0.40 s for the fit).
 
 Each pair is timed alternately ``--repeat`` times and the best time of each is kept, so that
 other load on the machine affects both sides alike. The table prints the ratio ours / theirs.
 :func:`run` returns the rows, :func:`to_text` prints them.
 libsvm runs on one thread; our Gram matrix is a BLAS product that uses every BLAS thread, which
-helps on an idle machine and hurts on a busy one, so one row repeats our fit on one BLAS thread.
+helps on an idle machine and hurts on a busy one, so one row repeats our fit on one BLAS thread,
+and one repeats the Adam fit with both sides on one BLAS thread.
 """
 
 from __future__ import annotations
@@ -56,6 +60,7 @@ from threadpoolctl import threadpool_limits
 from ebantenna.bench._timing import best_time
 from ebantenna.ml import SVC, MLPClassifier
 from ebantenna.ml import svc as svc_module
+from ebantenna.ml.backprop import activation_derivative
 from ebantenna.ml.kernels import Kernel
 from ebantenna.ml.optimizers import Adam
 from ebantenna.report import text_table
@@ -115,13 +120,14 @@ def run(quick: bool = False, repeat: int = 2) -> dict:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ConvergenceWarning)
         acc = lambda m: m.score(Xte, yte)  # noqa: E731
+
+        def one_thread(estimator):
+            with threadpool_limits(1):
+                return estimator.fit(Xtr, ytr)
+
         svc = pair(f"SVC rbf fit, {n}x{d}, {k} classes",
              lambda: SVC().fit(Xtr, ytr), lambda: LibSVC().fit(Xtr, ytr), acc)
-        def one_thread_fit():
-            with threadpool_limits(1):
-                return SVC().fit(Xtr, ytr)
-
-        pair("SVC rbf fit, ours on 1 BLAS thread", one_thread_fit,
+        pair("SVC rbf fit, ours on 1 BLAS thread", lambda: one_thread(SVC()),
              lambda: LibSVC().fit(Xtr, ytr), acc)
         pair("SVC rbf fit, libsvm_compat=True",  # both sides shrink, as by default
              lambda: SVC(libsvm_compat=True).fit(Xtr, ytr),
@@ -138,9 +144,12 @@ def run(quick: bool = False, repeat: int = 2) -> dict:
              lambda: MLPClassifier(solver="gd", learning_rate_init=0.1, **common).fit(Xtr, ytr),
              lambda: SkMLP(solver="sgd", momentum=0.0, batch_size=n, shuffle=False,
                            learning_rate_init=0.1, **common).fit(Xtr, ytr), acc)
-        adam = pair(f"MLP 53 tanh, adam batch 200, {epochs} epochs",
+        pair(f"MLP 53 tanh, adam batch 200, {epochs} epochs",
              lambda: MLPClassifier(solver="adam", batch_size=200, **common).fit(Xtr, ytr),
              lambda: SkMLP(solver="adam", batch_size=200, **common).fit(Xtr, ytr), acc)
+        adam = pair("MLP adam, both sides on 1 BLAS thread",
+                    lambda: one_thread(MLPClassifier(solver="adam", batch_size=200, **common)),
+                    lambda: one_thread(SkMLP(solver="adam", batch_size=200, **common)), acc)
         pair(f"MLP 53 tanh, sgd invscaling batch 200, {epochs} epochs",
              lambda: MLPClassifier(solver="sgd", batch_size=200, learning_rate="invscaling",
                                    learning_rate_init=0.5, **common).fit(Xtr, ytr),
@@ -179,17 +188,19 @@ def where_time_goes(X, y, svc_seconds: float, adam_seconds: float, epochs: int,
     """Split our fits into their parts, each as a share of scikit-learn's fit time.
 
     ``SVC``: one fit per mode with :meth:`Kernel.gram` (every kernel entry) and the SMO solver
-    clocked; the solver's updates are counted. ``MLPClassifier`` (Adam): the work that both
-    sides do with the same BLAS calls and that parity with scikit-learn fixes, timed alone: the
-    gather of each mini-batch with the two ``batch x n_features x n_hidden`` products, and
-    Adam's update of the parameters (as many steps as mini-batches). A target ratio below the
-    sum of these shares cannot be met by a loop that keeps the same arithmetic.
+    clocked; the solver's updates are counted. ``MLPClassifier`` (Adam), on one BLAS thread
+    (steadier on a shared machine than two): the work that both sides do with the same
+    arithmetic, which parity with scikit-learn fixes, timed alone: the gather of each mini-batch
+    with the two ``batch x n_features x n_hidden`` products, Adam's update of the parameters (as
+    many steps as mini-batches), and the hidden layer's tanh with its derivative. A target ratio
+    below the sum of these shares cannot be met by a loop that keeps the same arithmetic.
 
     Parameters
     ----------
     X, y : training set of the timed fits.
     svc_seconds, adam_seconds : float
-        scikit-learn's best fit times, measured in the same run.
+        scikit-learn's best fit times, measured in the same run (``adam_seconds`` on one BLAS
+        thread).
     epochs, batch_size : int
         The MLP's epochs and mini-batch size.
 
@@ -245,13 +256,24 @@ def where_time_goes(X, y, svc_seconds: float, adam_seconds: float, epochs: int,
         for _ in range(steps):
             opt.update(params, grads)
 
-    for part, fn, note in (
-            (f"gathers and the two {batch_size}x{d}x{hidden} products", products,
-             f"{steps} mini-batches, the same BLAS calls on both sides"),
-            ("Adam's update of the parameters", adam, f"{steps} steps")):
-        seconds = best_time(fn, 2)[0]
-        parts.append({"part": f"MLP adam: {part}", "seconds": seconds,
-                      "share": seconds / adam_seconds, "note": note})
+    hidden_layer = rng.normal(size=(batch_size, hidden))
+    activated, back, scratch = (np.empty_like(hidden_layer) for _ in range(3))
+
+    def tanh():  # the hidden layer's activation forward, its derivative backward
+        for _ in range(steps):
+            np.tanh(hidden_layer, out=activated)  # what activate('tanh', z) does to z in place
+            np.copyto(back, delta)
+            activation_derivative("tanh", activated, back, scratch)
+
+    with threadpool_limits(1):  # steadier than two threads on a shared machine
+        for part, fn, note in (
+                (f"gathers and the two {batch_size}x{d}x{hidden} products", products,
+                 f"{steps} mini-batches, the same BLAS calls on both sides"),
+                ("Adam's update of the parameters", adam, f"{steps} steps"),
+                ("tanh and its derivative in the hidden layer", tanh, f"{steps} mini-batches")):
+            seconds = best_time(fn, 2)[0]
+            parts.append({"part": f"MLP adam, 1 BLAS thread: {part}", "seconds": seconds,
+                          "share": seconds / adam_seconds, "note": note})
     return parts
 
 

@@ -66,7 +66,7 @@ def test_ml_speed_parts_count_the_solver_updates_and_restore_what_they_clock():
     for p in parts:
         assert p["seconds"] >= 0
         assert p["share"] == p["seconds"] / (2.0 if p["part"].startswith("SVC") else 4.0)
-    assert "3 mini-batches" in rows["MLP adam: gathers and the two 64x8x53 products"]["note"]
+    assert "3 mini-batches" in rows["MLP adam, 1 BLAS thread: gathers and the two 64x8x53 products"]["note"]
 
 
 def test_clocked_restores_the_attribute_when_the_call_raises():

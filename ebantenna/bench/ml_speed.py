@@ -126,7 +126,7 @@ def run(quick: bool = False, repeat: int = 2) -> dict:
                 return estimator.fit(Xtr, ytr)
 
         svc = pair(f"SVC rbf fit, {n}x{d}, {k} classes",
-             lambda: SVC().fit(Xtr, ytr), lambda: LibSVC().fit(Xtr, ytr), acc)
+                   lambda: SVC().fit(Xtr, ytr), lambda: LibSVC().fit(Xtr, ytr), acc)
         pair("SVC rbf fit, ours on 1 BLAS thread", lambda: one_thread(SVC()),
              lambda: LibSVC().fit(Xtr, ytr), acc)
         pair("SVC rbf fit, libsvm_compat=True",  # both sides shrink, as by default

@@ -170,6 +170,33 @@ class LinearState:
         out = self.every_real[: steps.size] @ np.concatenate([w.real, w.imag], axis=1).T
         return self._affine(out, x, steps)
 
+    def read_ahead(self, x, z, first, limit, quiet, ends=None):
+        """Read the rows from ``x`` on, up to the next event or ``limit`` steps.
+
+        ``quiet`` (no event possible within ``min(span, limit)`` steps, from
+        :meth:`stays_positive`): all those steps are taken and only the output samples are read.
+        Otherwise at most a ``block`` of steps is read, and the motion stops before the first
+        step where ``ends(values)`` holds (default: the monitored row ``<= 0``). ``first`` is
+        the first step from ``x`` that is an output sample.
+
+        Returns
+        -------
+        tuple
+            ``(m, j, values, event)``: the steps safely inside the state, the output samples among
+            them (step indices from 0), the rows there, and whether an event lies in the next
+            step.
+        """
+        if quiet:
+            m = min(self.span, limit)
+            return m, np.arange(first, m, self.sub), self.samples(x, z, first, m), False
+        m = min(self.block, limit)
+        values = self.readings(x, z, m)
+        bad = np.flatnonzero(values[:, 0] <= 0 if ends is None else ends(values))
+        if len(bad):
+            m = int(bad[0])
+        j = np.arange(first, m, self.sub)
+        return m, j, values[j], bool(len(bad))
+
     def stays_positive(self, x, z, m):
         """Whether the monitored quantity provably stays positive over the next ``m`` steps.
 

@@ -155,12 +155,17 @@ def stick_slip_response(
         raise ValueError("mass must be positive definite") from None
 
     states = _friction_states(M, K, C, Minv, b, o, N * mus, N * muk)
-    h, sub, n_samples, n_steps, block = step_grid(
-        list(states.values()), fs, T, STEPS_PER_PERIOD
-    )
+    h, sub, n_samples, n_steps, _ = step_grid(list(states.values()), fs, T, STEPS_PER_PERIOD)
     frictionless = mus * N == 0  # one state, never left: the free structure
     hold_limit = mus * N
     stick, lower = states["stick"], states["stick lower"]
+
+    def both_limits(values):
+        """Where sticking ends: at the upper limit, mu_s N - F <= 0 (the monitored row), or at
+        the lower, mu_s N + F = 2 mu_s N - (mu_s N - F) <= 0."""
+        ends = values[:, 0] <= 0
+        ends |= 2 * hold_limit - values[:, 0] <= 0
+        return ends
 
     acc = np.zeros(n_samples)
     force = np.zeros(n_samples)
@@ -237,28 +242,15 @@ def stick_slip_response(
             st.stays_positive(x, z, m)
             and (name != "stick" or lower.stays_positive(x, lower.modal(x), m))
         )
-        if quiet:  # no event possible: read only the samples
-            bad = ()
-            j = np.arange(first, m, sub)
-            values = st.samples(x, z, first, m)
-        else:
-            m = min(block, n_steps - i)
-            values = st.readings(x, z, m)
-            ends = values[:, 0] <= 0
-            if name == "stick":  # the lower limit: mu_s N + F = 2 mu_s N - (mu_s N - F)
-                ends |= 2 * hold_limit - values[:, 0] <= 0
-            bad = np.flatnonzero(ends)
-            if len(bad):
-                m = int(bad[0])  # steps safely inside the state
-            j = np.arange(first, m, sub)
-            values = values[j]
+        m, j, values, event = st.read_ahead(
+            x, z, first, n_steps - i, quiet, both_limits if name == "stick" else None)
         k = (i + 1 + j) // sub
         acc[k], force[k] = values[:, 1], values[:, 2]
         if m:
             x = st.after(x, z, m)
             i += m
             fresh = False
-        if len(bad):
+        if event:
             x, name = advance(x, name, i * h, (i + 1) * h, fresh)
             fresh = False
             i += 1

@@ -265,7 +265,7 @@ def unilateral_response(
     A_free, A_closed = system(False), system(True)
     free = LinearState(A_free, n, -pen, np.zeros(N), o @ A_free[n : 2 * n])
     closed = LinearState(A_closed, n, kc * pen, kc * pen, o @ A_closed[n : 2 * n])
-    h, sub, n_samples, n_steps, block = step_grid([free, closed], fs, T, STEPS_PER_PERIOD)
+    h, sub, n_samples, n_steps, _ = step_grid([free, closed], fs, T, STEPS_PER_PERIOD)
 
     t_out = np.arange(n_samples) / fs
     acc = np.zeros(n_samples)
@@ -361,19 +361,8 @@ def unilateral_response(
             limit = min(limit, int(math.floor(t_stop / h)) - i)
         first = (-(i + 1)) % sub  # the first step from here that is an output sample
         z = st.modal(x)
-        m = min(st.span, limit)
-        if not watched(st) or st.stays_positive(x, z, m):  # no event possible: read the samples
-            bad = ()
-            j = np.arange(first, m, sub)
-            values = st.samples(x, z, first, m)
-        else:
-            m = min(block, limit)
-            values = st.readings(x, z, m)
-            bad = np.flatnonzero(values[:, 0] <= 0)
-            if len(bad):
-                m = int(bad[0])  # steps safely inside the state
-            j = np.arange(first, m, sub)
-            values = values[j]
+        quiet = not watched(st) or st.stays_positive(x, z, min(st.span, limit))
+        m, j, values, event = st.read_ahead(x, z, first, limit, quiet)
         # Record the output samples among the m steps taken.
         k = (i + 1 + j) // sub
         acc[k], force[k] = values[:, 1], values[:, 2]
@@ -382,7 +371,7 @@ def unilateral_response(
         if m:
             x = st.after(x, z, m)
             i += m
-        if len(bad):
+        if event:
             x, st = advance(x, st, i * h, (i + 1) * h, crosses=True)
             i += 1
             record(i, x, st)

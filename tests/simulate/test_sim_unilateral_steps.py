@@ -134,3 +134,24 @@ def test_a_state_watching_other_rows_shares_the_decomposition_and_reads_the_same
     # the same eigenvectors (LAPACK is deterministic on the same matrix), so the same numbers
     np.testing.assert_array_equal(twin.readings(x, twin.modal(x), st.block),
                                   fresh.readings(x, fresh.modal(x), st.block))
+
+
+def test_read_ahead_stops_before_the_first_step_that_ends_the_state():
+    st = _two_dof_closed_state()
+    n = st.n
+    x = np.concatenate([np.full(2 * n, 1e-6), [1e-5, 0.0]])
+    z = st.modal(x)
+    first = 3
+    never = lambda values: np.zeros(len(values), dtype=bool)  # noqa: E731
+    m, j, values, event = st.read_ahead(x, z, first, st.block, False, never)
+    assert m == st.block and not event
+    np.testing.assert_array_equal(j, np.arange(first, st.block, st.sub))
+    stop = st.block // 2
+    at_stop = lambda values: np.arange(len(values)) >= stop  # noqa: E731
+    m2, j2, values2, event2 = st.read_ahead(x, z, first, st.block, False, at_stop)
+    assert event2 and m2 == stop
+    np.testing.assert_array_equal(j2, j[j < stop])  # the samples up to the stop, the same numbers
+    np.testing.assert_array_equal(values2, values[: len(j2)])
+    # the limit bounds the steps read, quiet or not
+    assert st.read_ahead(x, z, first, 5, False, never)[0] == 5
+    assert st.read_ahead(x, z, first, 5, True)[0] == 5

@@ -44,7 +44,7 @@ from .friction import check_coefficients
 from .linear_state import LinearState, crossing, step_grid
 from .modes import _sweep_velocity
 from .strikes import _body, read_through_dlpf, timed_rate
-from .structure import check_dof_vector, check_symmetric_matrix
+from .structure import check_dof_vector, check_symmetric_matrix, mass_inverse
 from .unilateral import STEPS_PER_PERIOD, ChatterError
 
 __all__ = ["StickSlipResponse", "stick_slip_response", "FrictionModel", "friction_model",
@@ -149,10 +149,7 @@ def stick_slip_response(
     fs = check_positive("fs", fs)
     max_events = check_int("max_events", max_events, minimum=1)
     xtol = check_positive("time_tolerance", time_tolerance)
-    try:
-        Minv = sla.cho_solve((np.linalg.cholesky(M), True), np.eye(n))
-    except np.linalg.LinAlgError:
-        raise ValueError("mass must be positive definite") from None
+    Minv = mass_inverse(M)
 
     states = _friction_states(M, K, C, Minv, b, o, N * mus, N * muk)
     h, sub, n_samples, n_steps, _ = step_grid(list(states.values()), fs, T, STEPS_PER_PERIOD)

@@ -16,7 +16,8 @@ import scipy.linalg as spl
 
 from .._validate import check_int, check_nonnegative, check_positive
 
-__all__ = ["ContactModel", "probe_contact_model", "check_dof_vector", "check_symmetric_matrix"]
+__all__ = ["ContactModel", "probe_contact_model", "check_dof_vector", "check_symmetric_matrix",
+           "mass_inverse"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -67,6 +68,23 @@ def check_symmetric_matrix(name: str, value, n: int | None = None) -> np.ndarray
     if not np.allclose(out, out.T, rtol=1e-10, atol=0):
         raise ValueError(f"{name} must be symmetric")
     return out
+
+
+def mass_inverse(mass: np.ndarray) -> np.ndarray:
+    """:math:`M^{-1}` of a symmetric mass matrix, through its Cholesky factor; raise a
+    ``ValueError`` naming ``mass`` when it is not positive definite.
+
+    Examples
+    --------
+    >>> mass_inverse(np.array([[2.0, 0.0], [0.0, 4.0]]))
+    array([[0.5 , 0.  ],
+           [0.  , 0.25]])
+    """
+    try:
+        L = np.linalg.cholesky(mass)
+    except np.linalg.LinAlgError:
+        raise ValueError("mass must be positive definite") from None
+    return spl.cho_solve((L, True), np.eye(mass.shape[0]))
 
 
 def probe_contact_model(

@@ -58,11 +58,10 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg as spl
 
 from .._validate import check_choice, check_int, check_nonnegative, check_positive
 from .linear_state import LinearState, crossing, step_grid
-from .structure import check_dof_vector, check_symmetric_matrix
+from .structure import check_dof_vector, check_symmetric_matrix, mass_inverse
 
 __all__ = [
     "ChatterError",
@@ -224,10 +223,7 @@ def unilateral_response(
     max_events = check_int("max_events", max_events, minimum=1)
     check_choice("on_max_events", on_max_events, ("raise", "warn"))
     xtol = check_positive("time_tolerance", time_tolerance)
-    try:
-        L = np.linalg.cholesky(M)
-    except np.linalg.LinAlgError:
-        raise ValueError("mass must be positive definite") from None
+    Minv = mass_inverse(M)
     if np.linalg.eigvalsh(K).min() < -1e-10 * max(1.0, np.abs(K).max()):
         raise ValueError("stiffness must be positive semidefinite")
 
@@ -246,7 +242,6 @@ def unilateral_response(
     t_stop = overtravel / v0
 
     # First-order systems of x = (q, q', s, s').
-    Minv = spl.cho_solve((L, True), np.eye(n))
     N = 2 * n + 2
     pen = np.zeros(N)  # p = pen @ x
     pen[:n], pen[2 * n] = c, 1.0

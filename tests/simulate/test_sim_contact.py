@@ -18,7 +18,8 @@ from ebantenna.simulate.contact import (
 )
 from ebantenna.simulate.effects import ContactCompliance
 from ebantenna.simulate.friction import coulomb_response
-from ebantenna.simulate.structure import probe_contact_model
+from ebantenna.simulate.stick_slip import stick_slip_response
+from ebantenna.simulate.structure import mass_inverse, probe_contact_model
 from ebantenna.simulate.unilateral import ChatterError, unilateral_response
 
 EPS = np.finfo(float).eps
@@ -495,3 +496,21 @@ def test_probe_model_rejects_a_contact_off_the_probe():
         probe_contact_model(Probe(), 0.45)
     with pytest.raises(ValueError, match="damping_ratio"):
         probe_contact_model(Probe(), 0.2, damping_ratio=1.0)
+
+
+def test_mass_inverse_inverts_and_names_a_mass_that_is_not_positive_definite():
+    rng = np.random.default_rng(2)
+    A = rng.normal(size=(4, 4))
+    M = A @ A.T + 4 * np.eye(4)
+    # a backward-stable inverse: residual within a few n eps cond(M)
+    bound = 10 * 4 * np.finfo(float).eps * np.linalg.cond(M)
+    assert np.abs(mass_inverse(M) @ M - np.eye(4)).max() < bound
+    singular = [[1.0, 1.0], [1.0, 1.0]]
+    with pytest.raises(ValueError, match="mass must be positive definite"):
+        mass_inverse(np.array(singular))
+    with pytest.raises(ValueError, match="mass must be positive definite"):
+        unilateral_response(singular, np.eye(2), 0, 1e3, base=0, approach_speed=0.1,
+                            duration=0.01, fs=1000.0)
+    with pytest.raises(ValueError, match="mass must be positive definite"):
+        stick_slip_response(singular, np.eye(2), 0, 1.0, static_friction=0.5,
+                            kinetic_friction=0.5, duration=0.01, fs=1000.0)

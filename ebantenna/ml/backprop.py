@@ -1,19 +1,49 @@
-"""The multilayer perceptron itself: forward pass, output losses and backpropagation, by hand.
+"""The multilayer perceptron as the textbook writes it: forward pass, output loss, backpropagation.
 
 Plain functions on lists of arrays: ``coefs[l]`` is the weight matrix of layer ``l``, of shape
-(fan_in, fan_out), and ``intercepts[l]`` its bias vector. The estimators of
-:mod:`ebantenna.ml.mlp` train with them; a student can call them directly to follow one
-gradient step.
+(fan_in, fan_out), and ``intercepts[l]`` its bias vector. This module is the **reference**: read
+it top to bottom to follow one gradient evaluation, or call its functions to take one step by
+hand. With :math:`a_0 = X` and layers :math:`l = 1, \\dots, L`,
+
+.. math::
+
+   z_l = a_{l-1} W_l + b_l, \\qquad a_l = f(z_l) \\ (l < L), \\qquad
+   \\delta_L = \\frac{\\partial \\ell}{\\partial z_L}, \\qquad
+   \\delta_{l-1} = (\\delta_l W_l^T) \\odot f'(z_{l-1}),
+
+   \\frac{\\partial L}{\\partial W_l} = a_{l-1}^T \\delta_l + \\frac{\\alpha}{n} W_l, \\qquad
+   \\frac{\\partial L}{\\partial b_l} = \\sum_{\\text{samples}} \\delta_l.
+
+:math:`\\ell` is the loss *averaged* over the ``n`` samples, so :math:`\\delta_L` already holds
+the factor :math:`1/n`: with the per-sample deltas :math:`\\delta^{(i)}` of the textbooks,
+:math:`a^T \\delta = \\frac{1}{n}\\sum_i a^{(i)T} \\delta^{(i)}` and :math:`\\sum \\delta` is
+their mean.
 
 The hidden layers apply one activation; the output layer applies ``'softmax'`` (several classes,
 cross-entropy), ``'logistic'`` (two classes or several labels, cross-entropy) or ``'identity'``
 (regression, half the mean squared error over all entries). Every loss is returned with its exact
-gradient with respect to the output pre-activations.
+gradient with respect to the output pre-activations (the derivative of the output nonlinearity
+cancels against that of the loss: :math:`\\delta_L = (\\hat y - y)/n`, divided by the number of
+outputs as well for the squared error).
 
-A training loop calls these functions once per mini-batch, with arrays of the same shapes every
-time. It may pass a :class:`Workspace`, arrays allocated once per batch size, for them to write
-into (``out=``) instead of allocating new ones: the arithmetic, and thus every result, is the same
-with or without it.
+The estimators of :mod:`ebantenna.ml.mlp` train with an **engine** that does the same arithmetic in
+arrays allocated once per batch size (a private module); the tests hold it equal to these
+functions bit for bit. The functions here take checked values (float arrays of matching shapes,
+known activation names): the estimators validate their input once, at their public methods.
+
+Examples
+--------
+One gradient evaluation of a network with one hidden layer, by hand:
+
+>>> rng = np.random.default_rng(0)
+>>> X, Y = rng.normal(size=(4, 3)), np.eye(2)[[0, 1, 1, 0]]
+>>> coefs, intercepts = glorot_uniform([3, 5, 2], "tanh", rng)
+>>> loss, coef_grads, intercept_grads = loss_and_gradients(
+...     X, Y, coefs, intercepts, "tanh", "softmax", alpha=0.0)
+>>> [g.shape for g in coef_grads], [g.shape for g in intercept_grads]
+([(3, 5), (5, 2)], [(5,), (2,)])
+>>> bool(loss > 0)
+True
 """
 
 from __future__ import annotations
@@ -23,14 +53,15 @@ from scipy.special import expit, log_expit
 
 __all__ = [
     "ACTIVATIONS",
-    "Workspace",
     "OUTPUT_ACTIVATIONS",
     "activate",
     "activation_derivative",
     "glorot_uniform",
     "forward",
     "output_loss",
+    "l2_penalty",
     "backprop",
+    "loss_and_gradients",
     "pack",
     "unpack",
 ]
@@ -59,16 +90,33 @@ def activate(name: str, z: np.ndarray) -> np.ndarray:
 
 
 def activation_derivative(name: str, a: np.ndarray, delta: np.ndarray,
-                          scratch: np.ndarray | None = None) -> None:
-    """Multiply ``delta`` in place by the activation's derivative, written with its output ``a``.
+                          scratch: np.ndarray | None = None) -> np.ndarray:
+    """Multiply ``delta`` in place by the activation's derivative :math:`f'(z)`, written with its
+    output ``a = f(z)``, and return it.
 
-    ``scratch``, an array of ``a``'s shape, holds the derivative on the way (a new array when
-    not given).
+    ``'tanh'``: :math:`1 - a^2`; ``'logistic'``: :math:`a (1 - a)`; ``'relu'``: 1 where
+    :math:`a > 0`, else 0 (the entries are set to 0, not multiplied, so that an infinite
+    ``delta`` gives 0 there and not NaN); ``'identity'``: 1.
+
+    Parameters
+    ----------
+    name : str
+        Hidden-layer activation, one of :data:`ACTIVATIONS`.
+    a : ndarray
+        The activation's output.
+    delta : ndarray of ``a``'s shape
+        The gradient to multiply, overwritten.
+    scratch : ndarray of ``a``'s shape, optional
+        Holds the derivative on the way (a new array when not given).
+
+    Returns
+    -------
+    delta : ndarray
+        ``delta`` itself.
 
     Examples
     --------
-    >>> delta = np.ones(2)
-    >>> activation_derivative("tanh", np.array([0.0, 0.5]), delta); delta
+    >>> activation_derivative("tanh", np.array([0.0, 0.5]), np.ones(2))
     array([1.  , 0.75])
     """
     if name == "tanh":
@@ -81,6 +129,7 @@ def activation_derivative(name: str, a: np.ndarray, delta: np.ndarray,
         d = np.subtract(1.0, a, out=scratch)
         d *= a
         delta *= d
+    return delta
 
 
 def glorot_uniform(sizes, activation: str, rng: np.random.Generator):
@@ -115,49 +164,25 @@ def glorot_uniform(sizes, activation: str, rng: np.random.Generator):
     return coefs, intercepts
 
 
-class Workspace:
-    """Arrays that one mini-batch step writes into, allocated once and reused by the next batches
-    of the same size.
+def forward(X, coefs, intercepts, activation: str) -> list[np.ndarray]:
+    """Activations of every layer, ``X`` first; the last entry is the output pre-activation.
 
-    Every batch computes arrays of the same shapes: each layer's activations, the deltas that
-    backpropagation carries to the hidden layers, the derivative of the activation, and the L2
-    term of each weight gradient. Writing into these arrays with ``out=`` spares NumPy an
-    allocation per array and batch (the activations of a wide first layer are larger than the
-    allocator keeps at hand), and the memory is still in cache when the next batch comes; the
-    operations are the same, so are the results.
+    :math:`z_l = a_{l-1} W_l + b_l`, then :math:`a_l = f(z_l)` on the hidden layers; the output
+    layer's nonlinearity belongs to the loss (:func:`output_loss`).
 
     Parameters
     ----------
-    n_samples : int
-        Rows of the batches that will use it.
-    sizes : sequence of int
-        Width of every layer, input and output included.
+    X : ndarray or scipy.sparse matrix of shape (n_samples, n_features)
+        Inputs (float; a sparse matrix is multiplied by scipy, its stored entries only).
+    coefs, intercepts : list of ndarray
+        Weight matrices (fan_in, fan_out) and bias vectors (fan_out,).
+    activation : str
+        Hidden-layer activation, one of :data:`ACTIVATIONS`.
 
-    Examples
-    --------
-    >>> work = Workspace(4, [3, 2, 1])
-    >>> [a.shape for a in work.activations], [d.shape for d in work.deltas]
-    ([(4, 2), (4, 1)], [(4, 2)])
-    """
-
-    def __init__(self, n_samples: int, sizes):
-        widths = list(sizes[1:])
-        #: output of each layer (the last holds the logits, then their gradient)
-        self.activations = [np.empty((n_samples, w)) for w in widths]
-        #: gradient with respect to each hidden layer's pre-activation
-        self.deltas = [np.empty((n_samples, w)) for w in widths[:-1]]
-        #: the activation's derivative at each hidden layer
-        self.derivatives = [np.empty((n_samples, w)) for w in widths[:-1]]
-        #: the L2 term ``alpha_per_sample * W`` of each weight gradient
-        self.penalties = [np.empty((fan_in, fan_out))
-                          for fan_in, fan_out in zip(sizes[:-1], sizes[1:], strict=True)]
-
-
-def forward(X, coefs, intercepts, activation: str, out=None) -> list[np.ndarray]:
-    """Activations of every layer, ``X`` first; the last entry is the output pre-activation.
-
-    ``out``, one array of shape (n_samples, fan_out) per layer (``Workspace.activations``),
-    receives the activations instead of new arrays.
+    Returns
+    -------
+    list of ndarray
+        ``[X, a_1, ..., a_{L-1}, z_L]``.
 
     Examples
     --------
@@ -167,25 +192,24 @@ def forward(X, coefs, intercepts, activation: str, out=None) -> list[np.ndarray]
     """
     acts = [X]
     last = len(coefs) - 1
-    for i, (W, b) in enumerate(zip(coefs, intercepts, strict=True)):
-        if out is None:
-            z = acts[-1] @ W
-        elif isinstance(acts[-1], np.ndarray):
-            z = np.matmul(acts[-1], W, out=out[i])
-        else:  # sparse input: scipy's product, copied in
-            z = out[i]
-            z[...] = acts[-1] @ W
-        z += b
-        if i < last:
-            activate(activation, z)
+    for layer, (W, b) in enumerate(zip(coefs, intercepts, strict=True)):
+        z = acts[-1] @ W + b
+        if layer < last:
+            z = activate(activation, z)
         acts.append(z)
     return acts
 
 
-def output_loss(out_activation: str, z: np.ndarray, Y: np.ndarray,
-                out=None) -> tuple[float, np.ndarray]:
+def output_loss(out_activation: str, z: np.ndarray, Y: np.ndarray) -> tuple[float, np.ndarray]:
     """Mean loss per sample at the output pre-activations ``z`` and its gradient with respect
     to ``z``.
+
+    ``'softmax'``: :math:`\\ell = \\frac1n \\sum_i (\\log\\sum_k e^{z_{ik}} - y_i \\cdot z_i)`,
+    which is the cross-entropy :math:`-\\frac1n\\sum_{ik} y_{ik}\\log p_{ik}` of the softmax
+    probabilities :math:`p` for targets whose rows sum to 1; :math:`\\delta = (p - y)/n`.
+    ``'logistic'``: :math:`\\ell = -\\frac1n\\sum [y\\log\\sigma(z) + (1-y)\\log\\sigma(-z)]`;
+    :math:`\\delta = (\\sigma(z) - y)/n`. ``'identity'``: :math:`\\ell = \\frac{1}{2nm}\\sum(z-y)^2`
+    over ``m`` outputs; :math:`\\delta = (z - y)/(nm)`.
 
     Parameters
     ----------
@@ -193,13 +217,9 @@ def output_loss(out_activation: str, z: np.ndarray, Y: np.ndarray,
         Output activation: cross-entropy for the first two, half the mean squared error over all
         entries for 'identity'.
     z : ndarray of shape (n_samples, n_outputs)
-        Output pre-activations (logits).
+        Output pre-activations (logits); not modified.
     Y : ndarray of shape (n_samples, n_outputs)
         Encoded targets (one-hot or 0/1 for classes).
-    out : ndarray of shape (n_samples, n_outputs), optional
-        Where to write the gradient instead of a new array. It may be ``z`` itself, which a
-        training loop no longer needs once the loss is known: the loss is computed before ``z``
-        is overwritten.
 
     Returns
     -------
@@ -215,44 +235,51 @@ def output_loss(out_activation: str, z: np.ndarray, Y: np.ndarray,
     """
     n = z.shape[0]
     if out_activation == "softmax":
-        # log-sum-exp shifted by the row maximum: no overflow, exact for saturated logits.
-        # The maxima are picked through argmax: with a few classes z.max(axis=1) runs one tiny
-        # reduction per row and costs three times as much; the values picked are the same.
-        shift = z[np.arange(n), z.argmax(axis=1)][:, np.newaxis]
-        y_dot_z = np.einsum("ij,ij->", Y, z)  # before z may be overwritten by out
-        prob = np.subtract(z, shift, out=out)
-        np.exp(prob, out=prob)
-        total = prob.sum(axis=1, keepdims=True)
-        lse = np.log(total)
-        lse += shift
-        loss = float(lse.sum() - y_dot_z) / n
-        prob /= total
-        prob -= Y
-        prob /= n
-        return loss, prob
+        # log-sum-exp shifted by the row maximum: no overflow, exact for saturated logits
+        shift = z.max(axis=1, keepdims=True)
+        e = np.exp(z - shift)
+        total = e.sum(axis=1, keepdims=True)
+        log_sum_exp = np.log(total) + shift
+        loss = float(log_sum_exp.sum() - np.einsum("ij,ij->", Y, z)) / n
+        return loss, (e / total - Y) / n
     if out_activation == "logistic":
-        # -[y log s(z) + (1-y) log s(-z)], finite for any z
+        # log_expit(z) = log(sigma(z)), finite for any z
         loss = float(-np.sum(Y * log_expit(z) + (1.0 - Y) * log_expit(-z))) / n
-        delta = expit(z, out=out)
-        delta -= Y
-        delta /= n
-        return loss, delta
-    diff = np.subtract(z, Y, out=out)
+        return loss, (expit(z) - Y) / n
+    diff = z - Y
     loss = 0.5 * float(np.mean(diff * diff))
-    diff /= diff.size
-    return loss, diff
+    return loss, diff / diff.size
 
 
-def backprop(acts, delta, coefs, activation: str, alpha_per_sample: float, out=None,
-             work: Workspace | None = None):
+def l2_penalty(coefs, alpha: float, n_samples: int) -> float:
+    """The weight-decay term :math:`\\frac{\\alpha}{2n}\\sum_l \\lVert W_l \\rVert^2` of the loss
+    (the biases are not penalised).
+
+    Examples
+    --------
+    >>> l2_penalty([np.full((2, 1), 3.0)], alpha=1.0, n_samples=9)
+    1.0
+    """
+    # einsum, not a BLAS dot: no thread start-up for a reduction this small
+    squares = sum(float(np.einsum("ij,ij->", W, W)) for W in coefs)
+    return 0.5 * alpha * squares / n_samples
+
+
+def backprop(acts, delta, coefs, activation: str, alpha_per_sample: float):
     """Gradients of every weight matrix and bias vector, from the output gradient backwards.
+
+    The chain rule, layer by layer from the last:
+    :math:`\\partial L/\\partial W_l = a_{l-1}^T \\delta_l + (\\alpha/n) W_l`,
+    :math:`\\partial L/\\partial b_l = \\sum \\delta_l` (``delta`` holds the :math:`1/n` of the
+    mean loss), then :math:`\\delta_{l-1} = (\\delta_l W_l^T) \\odot f'(z_{l-1})`.
 
     Parameters
     ----------
     acts : list of ndarray
         The activations from :func:`forward`.
     delta : ndarray of shape (n_samples, n_outputs)
-        Gradient of the data loss with respect to the output pre-activations.
+        Gradient of the data loss with respect to the output pre-activations
+        (from :func:`output_loss`); not modified.
     coefs : list of ndarray
         Weight matrices.
     activation : str
@@ -261,12 +288,6 @@ def backprop(acts, delta, coefs, activation: str, alpha_per_sample: float, out=N
         L2 coefficient divided by the number of samples: the penalty
         :math:`\\frac{\\alpha}{2n}\\sum_l \\lVert W_l \\rVert^2` adds ``alpha_per_sample * W`` to
         each weight gradient.
-    out : tuple of two lists of ndarray, optional
-        Arrays of the gradients' shapes to write them into (for instance views of one flat
-        vector from :func:`unpack`), instead of new ones.
-    work : Workspace, optional
-        Arrays for the hidden layers' deltas and the other intermediate results, instead of new
-        ones.
 
     Returns
     -------
@@ -280,26 +301,54 @@ def backprop(acts, delta, coefs, activation: str, alpha_per_sample: float, out=N
     ([array([[1.],
            [2.]])], [array([1.])])
     """
-    if out is None:
-        out = ([np.empty_like(W) for W in coefs], [np.empty(W.shape[1]) for W in coefs])
-    coef_grads, intercept_grads = out
-    for layer in range(len(coefs) - 1, -1, -1):
-        if isinstance(acts[layer], np.ndarray):
-            np.matmul(acts[layer].T, delta, out=coef_grads[layer])
-        else:  # sparse input: scipy's product, copied in
-            coef_grads[layer][...] = acts[layer].T @ delta
-        penalty = None if work is None else work.penalties[layer]
-        coef_grads[layer] += np.multiply(coefs[layer], alpha_per_sample, out=penalty)
-        delta.sum(axis=0, out=intercept_grads[layer])  # the method: no Python wrapper
+    n_layers = len(coefs)
+    coef_grads, intercept_grads = [None] * n_layers, [None] * n_layers
+    for layer in reversed(range(n_layers)):
+        # acts[layer] is the input a_{l-1} of this layer: acts[0] is X
+        coef_grads[layer] = acts[layer].T @ delta + coefs[layer] * alpha_per_sample
+        intercept_grads[layer] = delta.sum(axis=0)
         if layer > 0:
-            if work is None:
-                delta = delta @ coefs[layer].T
-                activation_derivative(activation, acts[layer], delta)
-            else:
-                delta = np.matmul(delta, coefs[layer].T, out=work.deltas[layer - 1])
-                activation_derivative(activation, acts[layer], delta,
-                                      work.derivatives[layer - 1])
+            delta = activation_derivative(activation, acts[layer], delta @ coefs[layer].T)
     return coef_grads, intercept_grads
+
+
+def loss_and_gradients(X, Y, coefs, intercepts, activation: str, out_activation: str,
+                       alpha: float):
+    """The loss :math:`L = \\ell + \\frac{\\alpha}{2n}\\sum_l \\lVert W_l \\rVert^2` and its
+    gradient with respect to every weight and bias: one forward and one backward pass.
+
+    Parameters
+    ----------
+    X : ndarray or scipy.sparse matrix of shape (n_samples, n_features)
+    Y : ndarray of shape (n_samples, n_outputs)
+        Encoded targets.
+    coefs, intercepts : list of ndarray
+    activation : str
+        Hidden-layer activation, one of :data:`ACTIVATIONS`.
+    out_activation : str
+        Output activation, one of :data:`OUTPUT_ACTIVATIONS`.
+    alpha : float
+        L2 coefficient (divided by ``n_samples`` in the loss).
+
+    Returns
+    -------
+    loss : float
+    coef_grads, intercept_grads : list of ndarray
+
+    Examples
+    --------
+    >>> loss, coef_grads, intercept_grads = loss_and_gradients(
+    ...     np.ones((2, 1)), np.zeros((2, 1)), [np.ones((1, 1))], [np.zeros(1)], "relu",
+    ...     "identity", alpha=0.0)
+    >>> loss, coef_grads, intercept_grads
+    (0.5, [array([[1.]])], [array([1.])])
+    """
+    n = X.shape[0]
+    acts = forward(X, coefs, intercepts, activation)
+    data_loss, delta = output_loss(out_activation, acts[-1], Y)
+    loss = data_loss + l2_penalty(coefs, alpha, n)
+    coef_grads, intercept_grads = backprop(acts, delta, coefs, activation, alpha / n)
+    return loss, coef_grads, intercept_grads
 
 
 def pack(coefs, intercepts) -> np.ndarray:

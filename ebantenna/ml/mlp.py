@@ -49,7 +49,9 @@ Targets must be dense: a sparse ``y`` raises scikit-learn's ``TypeError`` (sciki
 classifier, unlike this one, also takes a sparse label indicator matrix).
 
 The forward pass, the losses and backpropagation are plain functions of
-:mod:`ebantenna.ml.backprop`; the parameters are checked by scikit-learn's own constraint
+:mod:`ebantenna.ml.backprop`, written as the textbook writes them; training runs an engine that
+does the same arithmetic in arrays reused from batch to batch, held equal to them bit for bit by
+the tests. The parameters are checked by scikit-learn's own constraint
 mechanism (``_parameter_constraints``), so a bad value raises the error scikit-learn raises, in
 the same words.
 """
@@ -66,6 +68,7 @@ from sklearn.utils.metaestimators import available_if
 from sklearn.utils.multiclass import check_classification_targets, type_of_target
 from sklearn.utils.validation import check_array, check_is_fitted, column_or_1d, validate_data
 
+from .backprop import forward
 from .fitted import FittedAttribute
 from .mlp_base import ACTIVATIONS, SOLVERS, BaseMLP
 
@@ -211,7 +214,7 @@ class MLPClassifier(ClassifierMixin, BaseMLP):
         """Class probabilities, shape (n_samples, n_classes)."""
         check_is_fitted(self)
         X = validate_data(self, X, dtype=np.float64, accept_sparse=SPARSE, reset=False)
-        z = self._forward(X, self.coefs_, self.intercepts_)[-1]
+        z = forward(X, self.coefs_, self.intercepts_, self.activation)[-1]
         if self.out_activation_ == "softmax":
             z = z - z.max(axis=1, keepdims=True)
             e = np.exp(z)
@@ -225,7 +228,7 @@ class MLPClassifier(ClassifierMixin, BaseMLP):
         """Logarithm of :meth:`predict_proba`, computed stably."""
         check_is_fitted(self)
         X = validate_data(self, X, dtype=np.float64, accept_sparse=SPARSE, reset=False)
-        z = self._forward(X, self.coefs_, self.intercepts_)[-1]
+        z = forward(X, self.coefs_, self.intercepts_, self.activation)[-1]
         if self.out_activation_ == "softmax":
             return z - logsumexp(z, axis=1, keepdims=True)
         if self._multilabel:
@@ -314,7 +317,7 @@ class MLPRegressor(RegressorMixin, BaseMLP):
         """Predicted targets, shape (n_samples,) or (n_samples, n_outputs)."""
         check_is_fitted(self)
         X = validate_data(self, X, dtype=np.float64, accept_sparse=SPARSE, reset=False)
-        z = self._forward(X, self.coefs_, self.intercepts_)[-1]
+        z = forward(X, self.coefs_, self.intercepts_, self.activation)[-1]
         return z[:, 0] if self._y_ndim == 1 else z
 
     def __sklearn_tags__(self):

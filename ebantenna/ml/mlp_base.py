@@ -1,9 +1,15 @@
 """The machinery shared by the two multilayer perceptrons of :mod:`ebantenna.ml.mlp`.
 
 :class:`BaseMLP` holds scikit-learn's parameters and their constraints (validated by
-scikit-learn's ``_fit_context``), the declared fitted attributes, the loss and gradient built from
-:mod:`ebantenna.ml.backprop`, and the training loops: epochs of the first-order solvers with
-their optimisers of :mod:`ebantenna.ml.optimizers`, Møller's SCG, and early stopping.
+scikit-learn's ``_fit_context``), the declared fitted attributes, and the training loops: epochs
+of the first-order solvers with their optimisers of :mod:`ebantenna.ml.optimizers`, Møller's SCG,
+L-BFGS through SciPy, and early stopping.
+
+Every solver evaluates the loss and its gradient with the training engine (a private module that
+reuses its arrays from batch to batch), which the tests hold equal, bit for bit, to the
+reference :mod:`ebantenna.ml.backprop`; :meth:`BaseMLP.loss_and_gradient` evaluates the
+reference itself. The public methods of the estimators validate their input once; the training
+steps below them take checked values.
 """
 
 from __future__ import annotations
@@ -21,16 +27,8 @@ from sklearn.model_selection import train_test_split
 from sklearn.utils._param_validation import Interval, Options, StrOptions
 from sklearn.utils.validation import check_is_fitted
 
-from .backprop import (
-    ACTIVATIONS,
-    Workspace,
-    backprop,
-    forward,
-    glorot_uniform,
-    output_loss,
-    pack,
-    unpack,
-)
+from ._backprop_engine import Workspace, loss_and_gradients_into
+from .backprop import ACTIVATIONS, glorot_uniform, loss_and_gradients, pack, unpack
 from .fitted import INPUT_ATTRIBUTES, FittedAttribute
 from .optimizers import Adam, Momentum, scg_init, scg_step
 
@@ -166,111 +164,78 @@ class BaseMLP(BaseEstimator):
             raise ValueError(f"hidden_layer_sizes must be > 0, got {sizes}.")
         return [int(s) for s in sizes]
 
-    def _loss_grad(self, X, Y, coefs, intercepts, out=None, work=None):
-        """Loss (data term + L2) and its exact gradient with respect to every weight and bias
-        (written into ``out``, two lists of arrays, when given; the intermediate arrays into the
-        :class:`~ebantenna.ml.backprop.Workspace` ``work`` of ``X``'s number of rows, when
-        given)."""
-        n = X.shape[0]
+    def _loss_and_gradients_into(self, X, Y, coefs, intercepts, grads, work) -> float:
+        """The training engine's loss, the gradients written into ``grads`` (two lists of arrays)
+        and the intermediate arrays into ``work``, a ``Workspace`` of ``X``'s number of rows
+        (:mod:`ebantenna.ml.backprop` holds the reference it equals). The values are checked."""
         # Every solver checks that the loss is finite and stops with a clear error when it is
         # not; NumPy's overflow warnings on the way there would only be noise before it.
         with np.errstate(over="ignore", invalid="ignore"):
-            acts = forward(X, coefs, intercepts, self.activation,
-                           None if work is None else work.activations)
-            # with a workspace the logits' array takes their gradient: nothing reads them after
-            data_loss, delta = output_loss(self.out_activation_, acts[-1], Y,
-                                           None if work is None else acts[-1])
-            # einsum, not a BLAS dot: no thread start-up for a reduction this small
-            l2 = sum(float(np.einsum("ij,ij->", W, W)) for W in coefs)
-            loss = data_loss + 0.5 * self.alpha * l2 / n
-            coef_grads, intercept_grads = backprop(
-                acts, delta, coefs, self.activation, self.alpha / n, out, work
-            )
-        return loss, coef_grads, intercept_grads
+            return loss_and_gradients_into(X, Y, coefs, intercepts, self.activation,
+                                           self.out_activation_, self.alpha, grads, work)
 
-    def _forward(self, X, coefs, intercepts):
-        return forward(X, coefs, intercepts, self.activation)
+    def _full_batch_objective(self, X, Y):
+        """``f(w) -> (loss, gradient)`` at flattened parameters ``w`` on the whole training set,
+        for 'lbfgs' and 'scg' (each call returns a gradient array of its own)."""
+        shapes = [c.shape for c in self.coefs_]
+        work = Workspace(X.shape[0], [X.shape[1], *(s[1] for s in shapes)])
+        grad = np.empty(sum(fan_in * fan_out + fan_out for fan_in, fan_out in shapes))
+        grads = unpack(grad, shapes)
 
-    # Flattened parameters for SCG and for finite-difference checks.
-    def _pack(self, coefs, intercepts) -> np.ndarray:
-        return pack(coefs, intercepts)
+        def loss_and_flat_gradient(w):
+            coefs, intercepts = unpack(w, shapes)
+            loss = self._loss_and_gradients_into(X, Y, coefs, intercepts, grads, work)
+            return loss, grad.copy()
 
-    def _unpack(self, w, shapes):
-        return unpack(w, shapes)
+        return loss_and_flat_gradient
 
     def loss_and_gradient(self, X, Y, w=None):
-        """Loss and flattened gradient at the flattened parameters ``w`` (default: fitted ones).
+        """Loss and flattened gradient at the flattened parameters ``w`` (default: fitted ones),
+        computed by the reference :func:`ebantenna.ml.backprop.loss_and_gradients`.
 
         ``Y`` is the encoded target (one-hot for classes, 2-D for regression), as used in
         training. Meant for checks such as finite differences. The network must be fitted, since
         the layer shapes come from ``coefs_``; to evaluate it at weights of your own, set
         ``coefs_`` and ``intercepts_`` yourself (and ``alpha=0`` for the bare loss), as exercise 7
-        does, and pass your ``w``.
+        does, and pass your ``w`` (laid out as :func:`ebantenna.ml.backprop.pack` does).
         """
         check_is_fitted(self)
         shapes = [c.shape for c in self.coefs_]
-        w = self._pack(self.coefs_, self.intercepts_) if w is None else np.asarray(w, float)
-        coefs, intercepts = self._unpack(w, shapes)
+        w = pack(self.coefs_, self.intercepts_) if w is None else np.asarray(w, float)
+        coefs, intercepts = unpack(w, shapes)
         X = X if issparse(X) else np.asarray(X, float)
-        loss, cg, ig = self._loss_grad(X, np.asarray(Y, float), coefs,
-                                       intercepts)
-        return loss, self._pack(cg, ig)
+        with np.errstate(over="ignore", invalid="ignore"):  # a loss that is not finite says it
+            loss, coef_grads, intercept_grads = loss_and_gradients(
+                X, np.asarray(Y, float), coefs, intercepts, self.activation,
+                self.out_activation_, self.alpha)
+        return loss, pack(coef_grads, intercept_grads)
 
     # --------------------------------------------------------- training
     def _fit(self, X, Y, y_for_split, incremental=False):
-        """Train; with ``incremental`` (``partial_fit``) one epoch, continuing the optimiser's
-        state (velocities, moments, learning rate, samples seen) from the previous call."""
-        hidden = self._hidden_sizes()
-        if incremental and self.solver not in ("gd", "sgd", "adam"):
-            raise ValueError(f"partial_fit is only available for the first-order solvers 'gd', "
-                             f"'sgd' and 'adam'; solver={self.solver!r} works on the full batch "
-                             "until it converges.")
+        """Train on checked ``X`` and encoded ``Y``; with ``incremental`` (``partial_fit``) one
+        epoch, continuing the optimiser's state (velocities, moments, learning rate, samples
+        seen) from the previous call.
+
+        The steps: build the network (or continue the fitted one), set a validation split aside
+        for early stopping, run the solver, keep the best network seen on the validation split.
+        One generator seeded by ``random_state`` draws, in this order, the initial weights, the
+        split and the shuffles of the epochs.
+        """
+        sizes = [X.shape[1], *self._hidden_sizes(), Y.shape[1]]
         if incremental and self.early_stopping:
             raise ValueError("partial_fit does not support early_stopping=True")
-        n_features, n_out = X.shape[1], Y.shape[1]
-        sizes = [n_features, *hidden, n_out]
-        first_pass = not ((self.warm_start or incremental) and hasattr(self, "coefs_"))
         rng = np.random.default_rng(self.random_state)
-        if first_pass:
-            self.coefs_, self.intercepts_ = glorot_uniform(sizes, self.activation, rng)
-            self.loss_curve_ = []
-            self.n_iter_ = 0
-            self.t_ = 0
-            self.best_loss_ = np.inf
-            self.validation_scores_ = None
-            self.best_validation_score_ = None
+        if (self.warm_start or incremental) and hasattr(self, "coefs_"):
+            self._continue_network(sizes)
         else:
-            expected = [(a, b) for a, b in zip(sizes[:-1], sizes[1:], strict=True)]
-            got = [c.shape for c in self.coefs_]
-            if got != expected:
-                raise ValueError(f"coefs_ shapes {got} do not match the network {expected}")
-            self.coefs_ = [np.array(c, dtype=np.float64) for c in self.coefs_]
-            self.intercepts_ = [np.array(b, dtype=np.float64) for b in self.intercepts_]
-            for name in ("loss_curve_", "n_iter_", "t_", "best_loss_"):
-                if not hasattr(self, name):
-                    setattr(self, name, {"loss_curve_": [], "best_loss_": np.inf}.get(name, 0))
-            self.loss_curve_ = list(self.loss_curve_)
+            self._initialize_network(sizes, rng)
         # as scikit-learn: n_iter_ counts the epochs of this call (one for partial_fit)
         self.n_iter_ = 0
         self.n_layers_ = len(sizes)
-        self.n_outputs_ = n_out
+        self.n_outputs_ = Y.shape[1]
         X_val = Y_val = None
         if self.early_stopping and self.solver != "lbfgs":  # as scikit-learn: ignored by lbfgs
-            stratify = y_for_split if isinstance(self, ClassifierMixin) else None
-            seed = int(rng.integers(2**31 - 1))
-            try:
-                X, X_val, Y, Y_val = train_test_split(
-                    X, Y, test_size=self.validation_fraction, random_state=seed,
-                    stratify=stratify)
-            except ValueError:
-                X, X_val, Y, Y_val = train_test_split(
-                    X, Y, test_size=self.validation_fraction, random_state=seed)
-            if X.shape[0] < 1 or X_val.shape[0] < 1:
-                raise ValueError("early_stopping needs at least one training and one "
-                                 "validation sample")
-            self.validation_scores_ = []
-            self.best_validation_score_ = -np.inf
-            self._best = None
+            X, Y, X_val, Y_val = self._validation_split(X, Y, y_for_split, rng)
         if not incremental or not hasattr(self, "_no_improvement"):
             self._no_improvement = 0
         if self.solver == "lbfgs":
@@ -279,8 +244,57 @@ class BaseMLP(BaseEstimator):
             self._train_scg(X, Y, X_val, Y_val)
         else:
             self._train_first_order(X, Y, X_val, Y_val, rng, incremental)
-        if self.early_stopping and self._best is not None:
-            self.coefs_, self.intercepts_ = self._best
+        self._keep_best(incremental)
+        return self
+
+    def _initialize_network(self, sizes, rng) -> None:
+        """Glorot-uniform weights for layers of the given ``sizes`` and an empty history."""
+        self.coefs_, self.intercepts_ = glorot_uniform(sizes, self.activation, rng)
+        self.loss_curve_ = []
+        self.t_ = 0
+        self.best_loss_ = np.inf
+        self.validation_scores_ = None
+        self.best_validation_score_ = None
+
+    def _continue_network(self, sizes) -> None:
+        """Continue from the fitted weights (``warm_start``, ``partial_fit``): they must fit
+        layers of the given ``sizes``; the history carries on."""
+        expected = [(a, b) for a, b in zip(sizes[:-1], sizes[1:], strict=True)]
+        got = [c.shape for c in self.coefs_]
+        if got != expected:
+            raise ValueError(f"coefs_ shapes {got} do not match the network {expected}")
+        self.coefs_ = [np.array(c, dtype=np.float64) for c in self.coefs_]
+        self.intercepts_ = [np.array(b, dtype=np.float64) for b in self.intercepts_]
+        for name in ("loss_curve_", "n_iter_", "t_", "best_loss_"):
+            if not hasattr(self, name):
+                setattr(self, name, {"loss_curve_": [], "best_loss_": np.inf}.get(name, 0))
+        self.loss_curve_ = list(self.loss_curve_)
+
+    def _validation_split(self, X, Y, y_for_split, rng):
+        """``X, Y, X_val, Y_val``: ``validation_fraction`` of the samples set aside for early
+        stopping (stratified by class when every class can be), and an empty score history."""
+        stratify = y_for_split if isinstance(self, ClassifierMixin) else None
+        seed = int(rng.integers(2**31 - 1))
+        try:
+            X, X_val, Y, Y_val = train_test_split(
+                X, Y, test_size=self.validation_fraction, random_state=seed, stratify=stratify)
+        except ValueError:
+            X, X_val, Y, Y_val = train_test_split(
+                X, Y, test_size=self.validation_fraction, random_state=seed)
+        if X.shape[0] < 1 or X_val.shape[0] < 1:
+            raise ValueError("early_stopping needs at least one training and one "
+                             "validation sample")
+        self.validation_scores_ = []
+        self.best_validation_score_ = -np.inf
+        self._best = None
+        return X, Y, X_val, Y_val
+
+    def _keep_best(self, incremental) -> None:
+        """After training: the best network on the validation split (early stopping); the
+        optimiser's state kept for the next ``partial_fit`` only."""
+        best = getattr(self, "_best", None)
+        if self.early_stopping and best is not None:
+            self.coefs_, self.intercepts_ = best
         if hasattr(self, "_best"):
             del self._best
         if not incremental:
@@ -288,7 +302,6 @@ class BaseMLP(BaseEstimator):
             for name in ("_optimizer", "_no_improvement"):
                 if hasattr(self, name):
                     delattr(self, name)
-        return self
 
     def _end_of_epoch(self, loss, X_val, Y_val) -> bool:
         """Record the epoch; return True when training should stop for lack of progress."""
@@ -317,66 +330,23 @@ class BaseMLP(BaseEstimator):
         return self._no_improvement > self.n_iter_no_change
 
     def _train_first_order(self, X, Y, X_val, Y_val, rng, incremental=False):
-        n = X.shape[0]
+        """Epochs of mini-batch steps of 'gd', 'sgd' or 'adam' (one epoch for ``partial_fit``),
+        until the loss (or the validation score) stops improving or ``max_iter``."""
         # one flat vector holds every weight and bias (coefs_ and intercepts_ are views of it):
         # the optimiser then moves all of them with a handful of NumPy calls per batch
         shapes = [c.shape for c in self.coefs_]
-        w = self._pack(self.coefs_, self.intercepts_)
-        self.coefs_, self.intercepts_ = self._unpack(w, shapes)
-        params, grad = [w], np.empty_like(w)
-        grads = self._unpack(grad, shapes)  # the gradient's layers, views of grad
-        if self.solver == "gd":
-            batch = n
-        elif self.batch_size == "auto":
-            batch = min(200, n)
-        else:
-            batch = min(int(self.batch_size), n)
-        lr = float(self.learning_rate_init)
-        # partial_fit continues the optimiser of the previous partial_fit
-        opt = getattr(self, "_optimizer", None) if incremental else None
-        if opt is None and self.solver == "adam":
-            opt = Adam(params, lr, self.beta_1, self.beta_2, self.epsilon)
-        elif opt is None:
-            mom = 0.0 if self.solver == "gd" else float(self.momentum)
-            opt = Momentum(params, lr, mom, bool(self.nesterovs_momentum) and mom > 0)
-        self._optimizer = opt
-        idx = np.arange(n)
-        # the arrays of one batch's forward and backward pass, reused by every batch of the same
-        # size (two sizes at most: the full batches and the last, shorter one)
-        sizes = [X.shape[1], *(W.shape[1] for W in self.coefs_)]
-        workspaces = {}
+        w = pack(self.coefs_, self.intercepts_)
+        self.coefs_, self.intercepts_ = unpack(w, shapes)
+        grad = np.empty_like(w)
+        opt = self._first_order_optimizer(w, incremental)
+        step = self._mini_batch_step(X.shape[1], w, grad, opt)
+        order = np.arange(X.shape[0])
         stopped = incremental  # one epoch, no convergence to report
         for _ in range(1 if incremental else self.max_iter):
             if self.shuffle and self.solver != "gd":
-                rng.shuffle(idx)
-            total = 0.0
-            for start in range(0, n, batch):
-                # a batch-sized copy stays in cache; one shuffled copy of X per epoch is slower.
-                # Y.take, not Y[sl]: for a narrow array such as the one-hot targets, NumPy's
-                # fancy indexing costs three times as much as take (the same rows either way).
-                sl = idx[start : start + batch]
-                Xb, Yb = (X, Y) if batch >= n else (X[sl], Y.take(sl, axis=0))
-                rows = Xb.shape[0]
-                if rows not in workspaces:
-                    workspaces[rows] = Workspace(rows, sizes)
-                loss, _, _ = self._loss_grad(Xb, Yb, self.coefs_, self.intercepts_, grads,
-                                             workspaces[rows])
-                total += loss * Xb.shape[0]
-                opt.update(params, [grad])
-                self.t_ += Xb.shape[0]
-            loss = total / n
-            if not np.isfinite(loss):
-                raise ValueError("the loss is not finite: lower learning_rate_init or scale "
-                                 "the features")
-            if self.learning_rate == "invscaling" and self.solver != "adam":
-                # scikit-learn's schedule: once per epoch, by the number of samples seen
-                opt.learning_rate = self.learning_rate_init / (self.t_ + 1) ** self.power_t
-            if self._end_of_epoch(loss, X_val, Y_val):
-                if (self.learning_rate == "adaptive" and self.solver != "adam"
-                        and opt.learning_rate > 1e-6):
-                    opt.learning_rate /= 5.0
-                    self._no_improvement = 0
-                    continue
+                rng.shuffle(order)
+            loss = self._epoch(X, Y, order, step)
+            if self._stop_after_epoch(loss, X_val, Y_val, opt):
                 stopped = True
                 break
         # own arrays again, not views of the flat training vector
@@ -386,31 +356,100 @@ class BaseMLP(BaseEstimator):
             warnings.warn(f"{self.solver}: maximum iterations ({self.max_iter}) reached and the "
                           "optimization hasn't converged yet.", ConvergenceWarning, stacklevel=3)
 
+    def _first_order_optimizer(self, w, incremental):
+        """Adam or momentum (none for 'gd') on the flat parameters ``w``; ``partial_fit``
+        continues the optimiser of the previous ``partial_fit``."""
+        opt = getattr(self, "_optimizer", None) if incremental else None
+        if opt is None and self.solver == "adam":
+            opt = Adam([w], float(self.learning_rate_init), self.beta_1, self.beta_2,
+                       self.epsilon)
+        elif opt is None:
+            mom = 0.0 if self.solver == "gd" else float(self.momentum)
+            opt = Momentum([w], float(self.learning_rate_init), mom,
+                           bool(self.nesterovs_momentum) and mom > 0)
+        self._optimizer = opt
+        return opt
+
+    def _mini_batch_step(self, n_features, w, grad, opt):
+        """``step(Xb, Yb) -> loss``: the loss and gradient of one mini-batch by the engine, then
+        the optimiser's move of ``w`` (of which ``coefs_`` and ``intercepts_`` are views)."""
+        grads = unpack(grad, [c.shape for c in self.coefs_])  # the gradient's layers
+        sizes = [n_features, *(W.shape[1] for W in self.coefs_)]
+        # the arrays of one batch's forward and backward pass, reused by every batch of the same
+        # size (two sizes at most: the full batches and the last, shorter one)
+        workspaces = {}
+
+        def step(Xb, Yb):
+            rows = Xb.shape[0]
+            if rows not in workspaces:
+                workspaces[rows] = Workspace(rows, sizes)
+            loss = self._loss_and_gradients_into(Xb, Yb, self.coefs_, self.intercepts_, grads,
+                                                 workspaces[rows])
+            opt.update([w], [grad])
+            return loss
+
+        return step
+
+    def _epoch(self, X, Y, order, step) -> float:
+        """One pass over the mini-batches of ``X`` in the given ``order``; the mean loss."""
+        n = X.shape[0]
+        if self.solver == "gd":
+            batch = n
+        else:
+            batch = min(200 if self.batch_size == "auto" else int(self.batch_size), n)
+        total = 0.0
+        for start in range(0, n, batch):
+            # a batch-sized copy stays in cache; one shuffled copy of X per epoch is slower.
+            # Y.take, not Y[rows]: for a narrow array such as the one-hot targets, NumPy's
+            # fancy indexing costs three times as much as take (the same rows either way).
+            rows = order[start : start + batch]
+            Xb, Yb = (X, Y) if batch >= n else (X[rows], Y.take(rows, axis=0))
+            total += step(Xb, Yb) * Xb.shape[0]
+            self.t_ += Xb.shape[0]
+        return total / n
+
+    def _stop_after_epoch(self, loss, X_val, Y_val, opt) -> bool:
+        """Record the epoch, apply the learning-rate schedule; True when training stops."""
+        if not np.isfinite(loss):
+            raise ValueError("the loss is not finite: lower learning_rate_init or scale "
+                             "the features")
+        if self.learning_rate == "invscaling" and self.solver != "adam":
+            # scikit-learn's schedule: once per epoch, by the number of samples seen
+            opt.learning_rate = self.learning_rate_init / (self.t_ + 1) ** self.power_t
+        if not self._end_of_epoch(loss, X_val, Y_val):
+            return False
+        if (self.learning_rate == "adaptive" and self.solver != "adam"
+                and opt.learning_rate > 1e-6):
+            opt.learning_rate /= 5.0
+            self._no_improvement = 0
+            return False
+        return True
+
     def _train_lbfgs(self, X, Y):
         """scikit-learn's 'lbfgs': :func:`scipy.optimize.minimize` with L-BFGS-B on the full
         batch, ``maxiter=max_iter``, ``maxfun=max_fun``, ``gtol=tol``. ``loss_curve_`` holds the
         loss after each iteration (scikit-learn keeps none for this solver)."""
         shapes = [c.shape for c in self.coefs_]
+        objective = self._full_batch_objective(X, Y)
         last = {}
 
         def fg(w):
-            coefs, intercepts = self._unpack(w, shapes)
-            loss, cg, ig = self._loss_grad(X, Y, coefs, intercepts)
+            loss, grad = objective(w)
             last["w"], last["f"] = w.copy(), loss
-            return loss, self._pack(cg, ig)
+            return loss, grad
 
         def record(w):  # the iterate is normally the point evaluated last
             f = last["f"] if np.array_equal(w, last["w"]) else fg(w)[0]
             self.loss_curve_.append(float(f))
             self.best_loss_ = min(self.best_loss_, float(f))
 
-        res = optimize.minimize(fg, self._pack(self.coefs_, self.intercepts_), jac=True,
+        res = optimize.minimize(fg, pack(self.coefs_, self.intercepts_), jac=True,
                                 method="L-BFGS-B", callback=record,
                                 options={"maxfun": int(self.max_fun),
                                          "maxiter": int(self.max_iter), "gtol": float(self.tol)})
         if not np.isfinite(res.fun):
             raise ValueError("lbfgs: the loss is not finite: scale the features and targets")
-        self.coefs_, self.intercepts_ = self._unpack(res.x, shapes)
+        self.coefs_, self.intercepts_ = unpack(res.x, shapes)
         self.n_iter_ = min(int(res.nit), int(self.max_iter))
         self.t_ += X.shape[0] * self.n_iter_
         if res.status != 0:
@@ -419,20 +458,17 @@ class BaseMLP(BaseEstimator):
                           f"(status={res.status}): {message}", ConvergenceWarning, stacklevel=3)
 
     def _train_scg(self, X, Y, X_val, Y_val):
+        """Netlab's scaled conjugate gradient on the full batch (see
+        :func:`ebantenna.ml.optimizers.scg_step`), until the loss (or the validation score) stops
+        improving, the gradient vanishes, or ``max_iter``."""
         shapes = [c.shape for c in self.coefs_]
-
-        def fg(w):
-            coefs, intercepts = self._unpack(w, shapes)
-            loss, cg, ig = self._loss_grad(X, Y, coefs, intercepts)
-            return loss, self._pack(cg, ig)
-
-        state = scg_init(self._pack(self.coefs_, self.intercepts_), fg,
-                         lambda0=float(self.lambda0))
+        fg = self._full_batch_objective(X, Y)
+        state = scg_init(pack(self.coefs_, self.intercepts_), fg, lambda0=float(self.lambda0))
         stopped = False
         for _ in range(self.max_iter):
             f_before = state.f
             scg_step(state, fg, sigma0=float(self.sigma0))
-            self.coefs_, self.intercepts_ = self._unpack(state.w.copy(), shapes)
+            self.coefs_, self.intercepts_ = unpack(state.w.copy(), shapes)
             # the loss recorded for an epoch is the one at its start, as for the other solvers
             if self._end_of_epoch(f_before, X_val, Y_val):
                 stopped = True

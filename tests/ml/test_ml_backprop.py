@@ -1,0 +1,122 @@
+"""Backpropagation: the training engine against the textbook reference (bit for bit), the
+reference against central finite differences, and the training loop on the engine."""
+
+import warnings
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+from sklearn.exceptions import ConvergenceWarning
+
+from ebantenna.ml import MLPClassifier
+from ebantenna.ml._backprop_engine import Workspace, loss_and_gradients_into
+from ebantenna.ml.backprop import (
+    activation_derivative,
+    glorot_uniform,
+    loss_and_gradients,
+    pack,
+    unpack,
+)
+
+EPS = np.finfo(float).eps
+SIZES = [6, 7, 4, 3]
+
+
+def _problem(out_activation, activation, n=25, seed=5, sparse=False):
+    rng = np.random.default_rng(seed)
+    X = rng.normal(size=(n, SIZES[0]))
+    if sparse:
+        X[np.abs(X) < 0.7] = 0.0
+        X = sp.csr_matrix(X)
+    coefs, intercepts = glorot_uniform(SIZES, activation, rng)
+    if out_activation == "identity":
+        Y = rng.normal(size=(n, SIZES[-1]))
+    elif out_activation == "softmax":
+        Y = np.eye(SIZES[-1])[rng.integers(0, SIZES[-1], n)]
+    else:  # logistic: several labels
+        Y = (rng.random((n, SIZES[-1])) < 0.5).astype(float)
+    return X, Y, coefs, intercepts
+
+
+@pytest.mark.parametrize("sparse", [False, True])
+@pytest.mark.parametrize("activation", ["tanh", "logistic", "identity", "relu"])
+@pytest.mark.parametrize("out_activation", ["softmax", "logistic", "identity"])
+def test_engine_equals_reference_bit_for_bit(activation, out_activation, sparse):
+    """The engine claims the reference's arithmetic in reused arrays: the same bits, also when
+    its arrays still hold the previous batch's values and the gradient lands in views of one
+    flat vector."""
+    X, Y, coefs, intercepts = _problem(out_activation, activation, sparse=sparse)
+    loss, coef_grads, intercept_grads = loss_and_gradients(
+        X, Y, coefs, intercepts, activation, out_activation, alpha=0.3)
+    work = Workspace(X.shape[0], SIZES)
+    flat = np.empty(pack(coefs, intercepts).size)
+    grads = unpack(flat, [c.shape for c in coefs])
+    for _ in range(2):  # the second pass writes over the arrays of the first
+        engine_loss = loss_and_gradients_into(X, Y, coefs, intercepts, activation,
+                                              out_activation, 0.3, grads, work)
+        assert engine_loss == loss
+        assert np.array_equal(flat, pack(coef_grads, intercept_grads))
+
+
+def test_reference_leaves_its_inputs_alone():
+    X, Y, coefs, intercepts = _problem("softmax", "tanh")
+    before = [a.copy() for a in (X, Y, *coefs, *intercepts)]
+    loss_and_gradients(X, Y, coefs, intercepts, "tanh", "softmax", alpha=0.1)
+    for a, b in zip(before, (X, Y, *coefs, *intercepts), strict=True):
+        assert np.array_equal(a, b)
+
+
+@pytest.mark.parametrize("activation", ["tanh", "logistic", "identity"])
+@pytest.mark.parametrize("out_activation", ["softmax", "logistic", "identity"])
+def test_reference_gradient_matches_central_differences(activation, out_activation):
+    """(f(w + h e) - f(w - h e)) / 2h = f'(w) + h^2 f'''(xi) / 6 + r.
+
+    Truncation: along one coordinate, f''' is a mean over the samples of products of the
+    activations' and losses' derivatives (the third ones at most 2 in size for tanh, logistic
+    and the cross-entropies) with weights below 1 (Glorot) and unit-scale inputs: below 10 here.
+    Rounding: each loss value is a sum over n samples of terms built from dot products of at
+    most sum(SIZES) terms and a few exp/log, so its error is at most (n + sum(SIZES) + 10) eps |f|
+    (recursive summation, gamma_k); the difference of two of them, divided by 2h, adds
+    r <= (n + sum(SIZES) + 10) eps |f| / h. h = 1e-5 makes both terms small.
+    """
+    X, Y, coefs, intercepts = _problem(out_activation, activation, n=12, seed=8)
+    shapes = [c.shape for c in coefs]
+    w = pack(coefs, intercepts)
+
+    def loss_at(v):
+        c, b = unpack(v, shapes)
+        return loss_and_gradients(X, Y, c, b, activation, out_activation, alpha=0.7)[0]
+
+    loss, coef_grads, intercept_grads = loss_and_gradients(
+        X, Y, coefs, intercepts, activation, out_activation, alpha=0.7)
+    grad = pack(coef_grads, intercept_grads)
+    h = 1e-5
+    terms = X.shape[0] + sum(SIZES) + 10
+    bound = 10.0 * h**2 / 6.0 + terms * EPS * max(1.0, abs(loss)) / h
+    for i in np.random.default_rng(0).choice(w.size, size=30, replace=False):
+        up, down = w.copy(), w.copy()
+        up[i] += h
+        down[i] -= h
+        assert abs((loss_at(up) - loss_at(down)) / (2 * h) - grad[i]) <= bound
+
+
+def test_relu_derivative_zeroes_an_infinite_delta():
+    """The relu's derivative is 0 for a <= 0: the entry is set, not multiplied (inf * 0 = NaN)."""
+    delta = np.array([np.inf, -np.inf, 2.0])
+    activation_derivative("relu", np.array([0.0, 1.0, -1.0]), delta)
+    assert np.array_equal(delta, [0.0, -np.inf, 0.0])
+
+
+def test_lbfgs_ignores_early_stopping():
+    """As scikit-learn's: 'lbfgs' trains on the whole set and keeps no validation scores."""
+    rng = np.random.default_rng(0)
+    X = rng.normal(size=(40, 3))
+    y = (X[:, 0] > 0).astype(int)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        clf = MLPClassifier((3,), solver="lbfgs", early_stopping=True, max_iter=5,
+                            random_state=0).fit(X, y)
+        plain = MLPClassifier((3,), solver="lbfgs", max_iter=5, random_state=0).fit(X, y)
+    assert clf.validation_scores_ is None and clf.best_validation_score_ is None
+    for a, b in zip(clf.coefs_ + clf.intercepts_, plain.coefs_ + plain.intercepts_, strict=True):
+        assert np.array_equal(a, b)

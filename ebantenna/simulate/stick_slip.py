@@ -42,8 +42,8 @@ import scipy.linalg as sla
 from .._validate import check_int, check_nonnegative, check_positive
 from .friction import check_coefficients
 from .linear_state import LinearState, crossing, step_grid
-from .modes import _sweep_velocity
-from .strikes import _body, read_through_dlpf, timed_rate
+from .modes import sweep_velocity
+from .strikes import read_through_dlpf, reduced_body, timed_rate
 from .structure import check_dof_vector, check_symmetric_matrix, mass_inverse
 from .unilateral import STEPS_PER_PERIOD, ChatterError
 
@@ -340,9 +340,9 @@ def friction_model(probe_reduction, preload: float, max_frequency: float) -> Fri
     """
     cached = _Z_BODIES.setdefault(probe_reduction, {})
     if max_frequency not in cached:
-        K, M, T, C = _body(probe_reduction, max_frequency)
+        K, M, T, C = reduced_body(probe_reduction, max_frequency)
         sub = probe_reduction.substructure
-        rigid = _sweep_velocity(sub.nodes)[sub.free]  # per rad/s about the hinge
+        rigid = sweep_velocity(sub.nodes)[sub.free]  # per rad/s about the hinge
         rotation = sla.solve(M, T.T @ (sub.mass @ rigid), assume_a="pos")
         tip = int(np.searchsorted(sub.free, 2 * (sub.nodes.size - 1)))
         cached[max_frequency] = K, M, C, rotation, T[tip]

@@ -188,26 +188,7 @@ def coulomb_response(
         raise ValueError("tangential must be a nonzero vector")
 
     t_out = np.arange(int(math.floor(T * fs + 1e-9)) + 1) / fs
-    scale = max(np.abs(np.concatenate([q0, v0])).max(), abs(vs), 1e-300)
-    y = np.concatenate([q0, v0])
-    t = 0.0
-    state = law.entered(t, y)
-    events = [FrictionEvent(0.0, state, float(tv @ q0))]
-    record = np.zeros((t_out.size, 2 * n)), np.zeros(t_out.size), np.zeros(t_out.size)
-    while t < t_out[-1]:
-        sol = law.integrate(state, t, y, t_out, o, record, rtol=rtol, atol=rtol * scale)
-        if sol.status != 1:  # reached the end
-            break
-        t, y = sol.t[-1], sol.y[:, -1].copy()
-        state = law.next_state(state, t, y)
-        events.append(FrictionEvent(float(t), state, float(tv @ y[:n])))
-        if len(events) > max_events:
-            raise ChatterError(
-                f"more than max_events={max_events} stick/slip events by t={t:.6g} s; "
-                "raise max_events or check the friction coefficients"
-            )
-    states, acc, fric = record
-    return FrictionResponse(t_out, acc, fric, states, tuple(events))
+    return law.respond(q0, v0, t_out, o, rtol=rtol, max_events=max_events)
 
 
 class CoulombLaw:
@@ -302,6 +283,31 @@ class CoulombLaw:
         if new == state:  # a grazing touch of u = v_s: keep slipping the other way
             new = "slip+" if state == "slip-" else "slip-"
         return new
+
+    def respond(self, q0, v0, t_out, output, *, rtol, max_events) -> FrictionResponse:
+        """The motion from ``(q0, v0)`` sampled at ``t_out``: one state after another, each
+        integrated to its end (absolute tolerance ``rtol`` times the initial state's size)."""
+        n, tv = self.n, self.tv
+        scale = max(np.abs(np.concatenate([q0, v0])).max(), abs(self.vs), 1e-300)
+        y = np.concatenate([q0, v0])
+        t = 0.0
+        state = self.entered(t, y)
+        events = [FrictionEvent(0.0, state, float(tv @ q0))]
+        record = np.zeros((t_out.size, 2 * n)), np.zeros(t_out.size), np.zeros(t_out.size)
+        while t < t_out[-1]:
+            sol = self.integrate(state, t, y, t_out, output, record, rtol=rtol, atol=rtol * scale)
+            if sol.status != 1:  # reached the end
+                break
+            t, y = sol.t[-1], sol.y[:, -1].copy()
+            state = self.next_state(state, t, y)
+            events.append(FrictionEvent(float(t), state, float(tv @ y[:n])))
+            if len(events) > max_events:
+                raise ChatterError(
+                    f"more than max_events={max_events} stick/slip events by t={t:.6g} s; "
+                    "raise max_events or check the friction coefficients"
+                )
+        states, acc, fric = record
+        return FrictionResponse(t_out, acc, fric, states, tuple(events))
 
     def integrate(self, state, t, y, t_out, output, record, *, rtol, atol):
         """Integrate ``state`` from ``(t, y)`` to its end or ``t_out[-1]``, filling ``record``

@@ -382,7 +382,7 @@ class SwitchedSystem:
         (``z``: its modal coordinates), their rows ``values``."""
         k = (i + 1 + j) // self.sub
         self.acc[k], self.force[k] = values[:, 1], values[:, 2]
-        if self.trajectory is not None:
+        if self.trajectory is not None and len(j):  # (an empty list would not broadcast)
             st = self.state(key)
             self.trajectory[k] = [st.after(x, z, jj + 1) for jj in j]
 

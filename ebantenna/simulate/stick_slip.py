@@ -47,8 +47,8 @@ from .strikes import read_through_dlpf, reduced_body, timed_rate
 from .structure import check_dof_vector, check_symmetric_matrix, mass_inverse
 from .unilateral import STEPS_PER_PERIOD, ChatterError
 
-__all__ = ["StickSlipResponse", "stick_slip_response", "StickSlipLaw", "FrictionModel",
-           "friction_model", "friction_axis"]  # fmt: skip
+__all__ = ["StickSlipResponse", "stick_slip_response", "StickSlipLaw", "friction_states",
+           "FrictionModel", "friction_model", "friction_axis"]  # fmt: skip
 
 log = logging.getLogger(__name__)
 
@@ -157,7 +157,7 @@ def stick_slip_response(
     check_choice("method", method, tuple(MARCHES))
     Minv = mass_inverse(M)
 
-    states = _friction_states(M, K, C, Minv, b, o, N * mus, N * muk)
+    states = friction_states(M, K, C, Minv, b, o, N * mus, N * muk)
     grid = step_grid(list(states.values()), fs, T, STEPS_PER_PERIOD)
     law = StickSlipLaw(states, b, grid, hold_limit=mus * N, max_events=max_events,
                        time_tolerance=xtol)  # fmt: skip
@@ -178,7 +178,7 @@ class StickSlipLaw(SwitchedSystem):
     ----------
     states : dict of LinearState
         The slips, and the stick twice (``"stick"`` watches ``mu_s N - F``, ``"stick lower"``
-        ``mu_s N + F``), from :func:`_friction_states`.
+        ``mu_s N + F``), from :func:`friction_states`.
     contact : int
         The coordinate ``b`` along which friction acts.
     grid : tuple
@@ -298,9 +298,16 @@ class StickSlipLaw(SwitchedSystem):
             name, fresh = self.switch(name, x, t0), True
 
 
-def _friction_states(M, K, C, Minv, b, o, hold, slide):
+def friction_states(M, K, C, Minv, b, o, hold, slide):
     """The linear states of ``x = (q, q', 1, 0)``: slipping either way, and sticking (twice:
-    one copy watches the upper limit ``F <= mu_s N``, one the lower ``F >= -mu_s N``)."""
+    one copy watches the upper limit ``F <= mu_s N``, one the lower ``F >= -mu_s N``).
+
+    Slip: ``M q'' + C q' + K q = -+mu_k N e_b`` (``slide`` is ``mu_k N``), watching the speed
+    ``+-u``. Stick: ``q_b' = q_b'' = 0`` and the other coordinates move as the structure pinned
+    at ``b``, watching ``mu_s N -+ F`` (``hold`` is ``mu_s N``) with
+    ``F = (M q'' + C q' + K q)_b``. Every state records the acceleration at ``o`` and the
+    friction force. Takes checked values (:func:`stick_slip_response`).
+    """
     n = M.shape[0]
     size = 2 * n + 2
 

@@ -29,6 +29,13 @@ cannot change sign over a long span, ``sum_k |w_k| |e^(lambda_k t)|`` below its 
 strike of the paper scene (probe and rod reduced to about 12 coordinates, a few dozen events,
 8 kHz) costs about 8 ms on one core, most of it in the events.
 
+**Reference and engine.** :class:`StrikeLaw` is the law as the textbook writes it: the two
+states (:func:`contact_states`), one step through any event (propagate, watch the sign of the
+force or the gap, locate the root, :meth:`StrikeLaw.switch`), the servo's stop. The reference
+march takes every step in turn (``method="steps"``, :func:`.linear_state.march_step_by_step`);
+the default engine (``method="blocks"``) reads the state ahead in blocks as described above and
+takes only the steps that hold an event. The test suite holds the two together.
+
 **The pan-tilt's approach and the preload.** ``q`` are coordinates *relative to the servo*: the
 absolute displacement is ``r s + q``, where ``s`` is the servo's travel measured at the contact
 point and ``r`` the rigid motion the servo gives the structure per unit ``s`` (``base``). Before

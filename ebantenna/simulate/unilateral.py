@@ -223,6 +223,13 @@ def unilateral_response(
     [('separation', 0.031415927, -1.0)]
     >>> float(res.contact_force.max()) <= 100.0  # k v sqrt(m/k), N
     True
+
+    The reference march finds the same event, within ``time_tolerance``:
+
+    >>> ref = unilateral_response([[1.0]], [[0.0]], 0, 1e4, base=0, approach_speed=1.0,
+    ...                           duration=0.05, fs=1000.0, method="steps")
+    >>> abs(ref.events[0].time - res.events[0].time) <= 2e-12
+    True
     """
     M = check_symmetric_matrix("mass", mass)
     n = M.shape[0]
@@ -292,6 +299,16 @@ def state_matrix(Minv, K, C, c, contact_stiffness: float, closed: bool) -> np.nd
     ``q' = q'``, ``M q'' = -(K + k_c c c^T) q - C q' - k_c c s`` when closed (without the
     ``k_c`` terms when open), ``s' = s'`` and ``s'' = 0`` (the servo at constant speed; its
     stop is an event). Takes checked values.
+
+    Examples
+    --------
+    One mass of 1 kg on a 100 N/m spring and a 2 N s/m dashpot, touching a 300 N/m contact:
+
+    >>> state_matrix(np.eye(1), np.array([[100.0]]), np.array([[2.0]]), np.ones(1), 300.0, True)
+    array([[   0.,    1.,    0.,    0.],
+           [-400.,   -2., -300.,    0.],
+           [   0.,    0.,    0.,    1.],
+           [   0.,    0.,    0.,    0.]])
     """
     n = K.shape[0]
     A = np.zeros((2 * n + 2, 2 * n + 2))

@@ -29,7 +29,8 @@ from .._validate import check_int, check_nonnegative, check_positive
 from .structure import check_dof_vector, check_symmetric_matrix
 from .unilateral import ChatterError
 
-__all__ = ["FrictionEvent", "FrictionResponse", "coulomb_response", "check_coefficients"]
+__all__ = ["FrictionEvent", "FrictionResponse", "coulomb_response", "check_coefficients",
+           "CoulombLaw"]  # fmt: skip
 
 
 def check_coefficients(static_friction, kinetic_friction) -> tuple[float, float]:
@@ -182,98 +183,146 @@ def coulomb_response(
         np.linalg.cholesky(M)
     except np.linalg.LinAlgError:
         raise ValueError("mass must be positive definite") from None
-    Minv = np.linalg.inv(M)
-    Mt = Minv @ tv
-    tMt = float(tv @ Mt)
-    if not tMt > 0:
+    law = CoulombLaw(K, C, np.linalg.inv(M), tv, N, mus, muk, vs)
+    if not law.tMt > 0:
         raise ValueError("tangential must be a nonzero vector")
 
-    def stick_force(t, y):
-        f = -K @ y[:n] - C @ y[n:]
-        return -float(tv @ (Minv @ f)) / tMt
+    t_out = np.arange(int(math.floor(T * fs + 1e-9)) + 1) / fs
+    return law.respond(q0, v0, t_out, o, rtol=rtol, max_events=max_events)
 
-    def friction(state, t, y):
+
+class CoulombLaw:
+    """Coulomb's law at one contact point as the right-hand sides and events of an ODE.
+
+    The witness's own arithmetic, independent of :mod:`.stick_slip`: each state is integrated
+    by :func:`scipy.integrate.solve_ivp` (DOP853) up to its terminal event. Built by
+    :func:`coulomb_response` from checked values.
+
+    Parameters
+    ----------
+    K, C, Minv : ndarray of shape (n, n)
+        Stiffness, damping and the inverse mass.
+    tangential : ndarray of shape (n,)
+        ``t``: the contact point's displacement along the rod.
+    normal_force : callable
+        ``N(t)``, N.
+    static_friction, kinetic_friction : float
+        ``mu_s >= mu_k >= 0``.
+    surface_speed : float
+        ``v_s``, m/s.
+    """
+
+    def __init__(self, K, C, Minv, tangential, normal_force, static_friction, kinetic_friction,
+                 surface_speed):  # fmt: skip
+        self.K, self.C, self.Minv, self.tv = K, C, Minv, tangential
+        self.n = K.shape[0]
+        self.N = normal_force
+        self.mus, self.muk, self.vs = static_friction, kinetic_friction, surface_speed
+        self.Mt = Minv @ tangential
+        self.tMt = float(tangential @ self.Mt)
+
+    def stick_force(self, t, y):
+        """The friction force that keeps ``t @ q'' = 0``: ``-(t M^-1 f) / (t M^-1 t)``."""
+        n = self.n
+        f = -self.K @ y[:n] - self.C @ y[n:]
+        return -float(self.tv @ (self.Minv @ f)) / self.tMt
+
+    def friction(self, state, t, y):
+        """The friction force in ``state``: the holding force, or ``-+mu_k N``."""
         if state == "stick":
-            return stick_force(t, y)
-        return -muk * N(t) * (1.0 if state == "slip+" else -1.0)
+            return self.stick_force(t, y)
+        return -self.muk * self.N(t) * (1.0 if state == "slip+" else -1.0)
 
-    def rhs(state):
+    def rhs(self, state):
+        """``y' = (q', M^-1 (-K q - C q' + F t))`` in ``state``."""
+        n = self.n
+
         def f(t, y):
-            force = -K @ y[:n] - C @ y[n:] + friction(state, t, y) * tv
-            return np.concatenate([y[n:], Minv @ force])
+            force = -self.K @ y[:n] - self.C @ y[n:] + self.friction(state, t, y) * self.tv
+            return np.concatenate([y[n:], self.Minv @ force])
 
         return f
 
-    def relative_speed(t, y):
-        return float(tv @ y[n:]) - vs
+    def relative_speed(self, t, y):
+        """``u - v_s``: zero where a slip ends."""
+        return float(self.tv @ y[self.n :]) - self.vs
 
-    def stick_limit(t, y):
-        return mus * N(t) - abs(stick_force(t, y))
+    def stick_limit(self, t, y):
+        """``mu_s N - |F|``: zero where a stick ends."""
+        return self.mus * self.N(t) - abs(self.stick_force(t, y))
 
-    def entered(t, y, previous=None):
+    def end_event(self, state):
+        """The terminal event of ``state``, as :func:`scipy.integrate.solve_ivp` takes it."""
+        watched = self.stick_limit if state == "stick" else self.relative_speed
+
+        def event(t, y):
+            return watched(t, y)
+
+        event.direction = -1 if state in ("stick", "slip+") else 1
+        event.terminal = True
+        return event
+
+    def entered(self, t, y, previous=None):
         """The state the contact takes at (t, y) with zero relative speed (or at the start)."""
-        u = relative_speed(t, y)
+        u = self.relative_speed(t, y)
         if previous is None and abs(u) > 0:
             return "slip+" if u > 0 else "slip-"
-        F = stick_force(t, y)
-        if abs(F) <= mus * N(t):
+        F = self.stick_force(t, y)
+        if abs(F) <= self.mus * self.N(t):
             return "stick"
         return "slip-" if F > 0 else "slip+"
 
-    t_out = np.arange(int(math.floor(T * fs + 1e-9)) + 1) / fs
-    scale = max(np.abs(np.concatenate([q0, v0])).max(), abs(vs), 1e-300)
-    atol = rtol * scale
-    y = np.concatenate([q0, v0])
-    t = 0.0
-    state = entered(t, y)
-    events = [FrictionEvent(0.0, state, float(tv @ q0))]
-    states = np.zeros((t_out.size, 2 * n))
-    acc = np.zeros(t_out.size)
-    fric = np.zeros(t_out.size)
-    while t < t_out[-1]:
-        if state == "stick":
-            ev = stick_limit
-            ev.direction = -1
-        else:
-            ev = relative_speed
-            ev.direction = -1 if state == "slip+" else 1
-        ev.terminal = True
-        fun = rhs(state)
+    def next_state(self, state, t, y):
+        """The state after ``state`` ended at ``(t, y)``; a slip's end lands ``y`` (in place)
+        exactly on ``u = v_s``."""
+        n = self.n
+        if state == "stick":  # the static limit is reached: slip against the required force
+            return "slip-" if self.stick_force(t, y) > 0 else "slip+"
+        y[n:] += self.Mt * ((self.vs - float(self.tv @ y[n:])) / self.tMt)  # land on u = v_s
+        new = self.entered(t, y, previous=state)
+        if new == state:  # a grazing touch of u = v_s: keep slipping the other way
+            new = "slip+" if state == "slip-" else "slip-"
+        return new
+
+    def respond(self, q0, v0, t_out, output, *, rtol, max_events) -> FrictionResponse:
+        """The motion from ``(q0, v0)`` sampled at ``t_out``: one state after another, each
+        integrated to its end (absolute tolerance ``rtol`` times the initial state's size)."""
+        n, tv = self.n, self.tv
+        scale = max(np.abs(np.concatenate([q0, v0])).max(), abs(self.vs), 1e-300)
+        y = np.concatenate([q0, v0])
+        t = 0.0
+        state = self.entered(t, y)
+        events = [FrictionEvent(0.0, state, float(tv @ q0))]
+        record = np.zeros((t_out.size, 2 * n)), np.zeros(t_out.size), np.zeros(t_out.size)
+        while t < t_out[-1]:
+            sol = self.integrate(state, t, y, t_out, output, record, rtol=rtol, atol=rtol * scale)
+            if sol.status != 1:  # reached the end
+                break
+            t, y = sol.t[-1], sol.y[:, -1].copy()
+            state = self.next_state(state, t, y)
+            events.append(FrictionEvent(float(t), state, float(tv @ y[:n])))
+            if len(events) > max_events:
+                raise ChatterError(
+                    f"more than max_events={max_events} stick/slip events by t={t:.6g} s; "
+                    "raise max_events or check the friction coefficients"
+                )
+        states, acc, fric = record
+        return FrictionResponse(t_out, acc, fric, states, tuple(events))
+
+    def integrate(self, state, t, y, t_out, output, record, *, rtol, atol):
+        """Integrate ``state`` from ``(t, y)`` to its end or ``t_out[-1]``, filling ``record``
+        (states, acceleration at ``output``, friction) at the samples ``t_out`` it covers;
+        returns the :func:`scipy.integrate.solve_ivp` solution."""
+        n = self.n
+        fun = self.rhs(state)
         mask = t_out >= t
-        sol = solve_ivp(
-            fun,
-            (t, t_out[-1]),
-            y,
-            method="DOP853",
-            events=ev,
-            dense_output=True,
-            rtol=rtol,
-            atol=atol,
-        )
-        t_end = sol.t[-1]
-        take = mask & (t_out <= t_end)
+        sol = solve_ivp(fun, (t, t_out[-1]), y, method="DOP853", events=self.end_event(state),
+                        dense_output=True, rtol=rtol, atol=atol)  # fmt: skip
+        take = mask & (t_out <= sol.t[-1])
         Y = sol.sol(t_out[take]).T if take.any() else np.zeros((0, 2 * n))
+        states, acc, fric = record
         states[take] = Y
         for k, yy in zip(np.flatnonzero(take), Y, strict=True):
-            a = fun(t_out[k], yy)[n:]
-            acc[k] = o @ a
-            fric[k] = friction(state, t_out[k], yy)
-        if sol.status != 1:  # reached the end
-            break
-        t, y = t_end, sol.y[:, -1].copy()
-        if state != "stick":
-            y[n:] += Mt * ((vs - float(tv @ y[n:])) / tMt)  # land exactly on u = v_s
-        if state == "stick":  # the static limit is reached: slip against the required force
-            state = "slip-" if stick_force(t, y) > 0 else "slip+"
-        else:
-            new = entered(t, y, previous=state)
-            if new == state:  # a grazing touch of u = v_s: keep slipping the other way
-                new = "slip+" if state == "slip-" else "slip-"
-            state = new
-        events.append(FrictionEvent(float(t), state, float(tv @ y[:n])))
-        if len(events) > max_events:
-            raise ChatterError(
-                f"more than max_events={max_events} stick/slip events by t={t:.6g} s; "
-                "raise max_events or check the friction coefficients"
-            )
-    return FrictionResponse(t_out, acc, fric, states, tuple(events))
+            acc[k] = output @ fun(t_out[k], yy)[n:]
+            fric[k] = self.friction(state, t_out[k], yy)
+        return sol

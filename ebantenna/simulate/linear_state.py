@@ -5,6 +5,14 @@ open. Within a state the motion is the closed-form modal solution, so what the s
 many steps (the contact force or gap that decides the next event, the acceleration and the
 force that are recorded) is a sum of the state's modes and costs one small matrix product per
 block of steps; :func:`crossing` finds the event inside a step.
+
+**Marching through the states.** A contact law (:class:`.unilateral.StrikeLaw`,
+:class:`.stick_slip.StickSlipLaw`) is a :class:`SwitchedSystem`: it says which state holds and
+how one step is taken through any event on the way. :func:`march_step_by_step` is the reference:
+it takes every step in turn, as an event-driven integration is written in a textbook. The
+engine ``"blocks"`` (the default, in a private module) reads each state a block of steps ahead
+and takes only the steps that hold an event one at a time; both give the same events, and the
+same signals up to the rounding of the propagation (the test suite holds them together).
 """
 
 from __future__ import annotations
@@ -16,7 +24,10 @@ import math
 import numpy as np
 import scipy.linalg as spl
 
-__all__ = ["LinearState", "crossing", "step_grid", "LONG_BLOCKS", "BLOCK_ELEMENTS"]
+from ._block_march import march_in_blocks
+
+__all__ = ["LinearState", "crossing", "step_grid", "SwitchedSystem", "march_step_by_step",
+           "MARCHES", "LONG_BLOCKS", "BLOCK_ELEMENTS"]  # fmt: skip
 
 #: Most iterations of the event root finder (bisection alone needs log2(step / tolerance)).
 _MAX_ROOT_STEPS = 200
@@ -296,3 +307,116 @@ def crossing(curve, span: float, xtol: float, ga: float, gb: float) -> float:
         last = abs(new - t)
         t = new
     return b
+
+
+class SwitchedSystem:
+    """A structure that switches between linear states at events, as a march takes it.
+
+    A contact law subclasses it and gives :meth:`state` (the :class:`LinearState` of a state's
+    key) and :meth:`advance` (one step, through any event on the way); the other hooks have
+    defaults that suit a law with nothing but its states. Along the march it records the
+    acceleration and the force (rows 1 and 2 of each state) at every ``sub``-th step, and with
+    ``n_states`` the whole state there too.
+
+    Parameters
+    ----------
+    h : float
+        The step, s.
+    sub : int
+        Steps per output sample.
+    n_samples : int
+        Output samples.
+    n_states : int, optional
+        Size of the state vector, to record the state at every output sample.
+    """
+
+    def __init__(self, h: float, sub: int, n_samples: int, n_states: int | None = None):
+        self.h, self.sub = h, sub
+        self.acc = np.zeros(n_samples)
+        self.force = np.zeros(n_samples)
+        self.trajectory = None if n_states is None else np.zeros((n_samples, n_states))
+
+    def state(self, key) -> LinearState:
+        """The linear state called ``key``."""
+        raise NotImplementedError
+
+    def advance(self, x, key, t0: float, t1: float, crosses: bool = False):
+        """The state ``(x, key)`` at ``t1`` from ``t0`` (at most one step), through any event;
+        ``crosses``: an event is known to lie before ``t1``."""
+        raise NotImplementedError
+
+    def interrupts(self, i: int) -> bool:
+        """Whether something besides the states' own motion happens within step ``i``."""
+        return False
+
+    def interrupted_step(self, x, key, i: int):
+        """Step ``i`` when :meth:`interrupts` says so."""
+        raise NotImplementedError
+
+    def horizon(self, i: int, n_steps: int) -> int:
+        """How many steps from step ``i`` on the current state may be read ahead."""
+        return n_steps - i
+
+    def quiet(self, key, x, z, m: int) -> bool:
+        """Whether no event can happen within the next ``m`` steps
+        (:meth:`LinearState.stays_positive`)."""
+        return self.state(key).stays_positive(x, z, m)
+
+    def ends(self, key):
+        """Where the state ends, as :meth:`LinearState.read_ahead` takes it (None: monitor <= 0)."""
+        return None
+
+    def moved(self) -> None:
+        """Called once the march has moved on from where a state was entered."""
+
+    def record(self, i: int, x, key) -> None:
+        """Record step ``i`` if it is an output sample."""
+        if i % self.sub == 0:
+            k = i // self.sub
+            self.acc[k], self.force[k] = self.state(key).rows[1:] @ x
+            if self.trajectory is not None:
+                self.trajectory[k] = x
+
+    def record_block(self, i: int, j, values, x, z, key) -> None:
+        """Record the output samples ``j`` (steps after ``i``) of a block read ahead from ``x``
+        (``z``: its modal coordinates), their rows ``values``."""
+        k = (i + 1 + j) // self.sub
+        self.acc[k], self.force[k] = values[:, 1], values[:, 2]
+        if self.trajectory is not None and len(j):  # (an empty list would not broadcast)
+            st = self.state(key)
+            self.trajectory[k] = [st.after(x, z, jj + 1) for jj in j]
+
+
+def march_step_by_step(system: SwitchedSystem, x, key, n_steps: int):
+    """The reference march: every step in turn, each through any event on the way.
+
+    Parameters
+    ----------
+    system : SwitchedSystem
+        The contact law; it records the output samples.
+    x : ndarray
+        The state vector at step 0 (already recorded).
+    key
+        The state that holds there.
+    n_steps : int
+        Steps to take.
+
+    Returns
+    -------
+    tuple
+        ``(x, key)`` after the last step.
+    """
+    h = system.h
+    for i in range(n_steps):
+        if system.interrupts(i):
+            x, key = system.interrupted_step(x, key, i)
+        else:
+            x, key = system.advance(x, key, i * h, (i + 1) * h)
+        system.moved()
+        system.record(i + 1, x, key)
+    return x, key
+
+
+#: The marches a contact law may take, by name: ``"blocks"`` (the engine, the default) and
+#: ``"steps"`` (the reference).
+MARCHES = {"blocks": march_in_blocks, "steps": march_step_by_step}

@@ -46,6 +46,7 @@ __all__ = [
     "modal_exponentials",
     "damped_exponentials",
     "modal_acceleration",
+    "sweep_velocity",
 ]
 
 #: Modes below this frequency (Hz) are rigid-body motions (a pinned hinge without contact): a
@@ -95,8 +96,27 @@ class ArrestModes:
         return self.omega / (2 * math.pi)
 
 
-def _sweep_velocity(nodes: np.ndarray) -> np.ndarray:
-    """DOF velocities of the probe swinging rigidly about the hinge, per unit sweep speed."""
+def sweep_velocity(nodes: np.ndarray) -> np.ndarray:
+    """DOF velocities of the probe swinging rigidly about the hinge, per unit sweep speed.
+
+    A rigid rotation ``Omega`` about the hinge moves the node at ``x`` sideways at ``Omega x``
+    and turns its section at ``Omega``; the beam's DOFs at each node are ``(v, theta)``.
+
+    Parameters
+    ----------
+    nodes : ndarray of shape (n_nodes,)
+        Node positions from the hinge, m.
+
+    Returns
+    -------
+    ndarray of shape (2 n_nodes,)
+        ``(v, theta)`` of every node per rad/s: m/s and rad/s.
+
+    Examples
+    --------
+    >>> sweep_velocity(np.array([0.0, 0.1, 0.2]))
+    array([0. , 1. , 0.1, 1. , 0.2, 1. ])
+    """
     u0 = np.zeros(2 * nodes.size)
     u0[0::2] = nodes  # v = Omega x per unit Omega
     u0[1::2] = 1.0  # theta = Omega
@@ -155,7 +175,7 @@ def arrest_modes(
             f"n_modes={n_modes} modes reach only {freqs[-1]:.1f} Hz, below max_frequency="
             f"{max_frequency:g} Hz; raise n_modes"
         )
-    velocity = res.modal_coordinates(_sweep_velocity(res.nodes))
+    velocity = res.modal_coordinates(sweep_velocity(res.nodes))
     tip = res.displacement(np.array([probe.length]))[0]
     keep = (freqs < max_frequency) & (freqs > RIGID_BODY_HZ)
     force = None
@@ -253,7 +273,7 @@ def coupled_arrest_modes(
     # As in arrest_modes, the hinge takes the velocity of the DOFs it fixes: the modal velocities
     # are Phi^T M u0 over the probe's free DOFs only (its mass matrix there holds the tip mass).
     sub = probe_reduction.substructure
-    momentum = sub.mass @ _sweep_velocity(sub.nodes)[sub.free]
+    momentum = sub.mass @ sweep_velocity(sub.nodes)[sub.free]
     velocity = res.probe_shapes[sub.free].T @ momentum
     nodes = res.probe_nodes
     freqs = res.frequencies

@@ -39,16 +39,16 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 
-from .._validate import check_int, check_nonnegative, check_positive
+from .._validate import check_choice, check_int, check_nonnegative, check_positive
 from .friction import check_coefficients
-from .linear_state import LinearState, crossing, step_grid
-from .modes import _sweep_velocity
-from .strikes import _body, read_through_dlpf, timed_rate
+from .linear_state import MARCHES, LinearState, SwitchedSystem, crossing, step_grid
+from .modes import sweep_velocity
+from .strikes import read_through_dlpf, reduced_body, timed_rate
 from .structure import check_dof_vector, check_symmetric_matrix, mass_inverse
 from .unilateral import STEPS_PER_PERIOD, ChatterError
 
-__all__ = ["StickSlipResponse", "stick_slip_response", "FrictionModel", "friction_model",
-           "friction_axis"]  # fmt: skip
+__all__ = ["StickSlipResponse", "stick_slip_response", "StickSlipLaw", "friction_states",
+           "FrictionModel", "friction_model", "friction_axis"]  # fmt: skip
 
 log = logging.getLogger(__name__)
 
@@ -91,6 +91,7 @@ def stick_slip_response(
     output=None,
     max_events: int = 1000,
     time_tolerance: float = 1e-12,
+    method: str = "blocks",
 ) -> StickSlipResponse:
     """Free motion, from ``q = 0``, of a linear structure with Coulomb friction at one coordinate.
 
@@ -116,6 +117,10 @@ def stick_slip_response(
         Most stick/slip changes (>= 1); more raise :class:`~.unilateral.ChatterError`.
     time_tolerance : float
         Each change is placed within this many seconds after the exact instant, s.
+    method : {"blocks", "steps"}
+        How the states are marched: ``"blocks"`` (the engine, fast) or ``"steps"`` (the
+        reference, :func:`.linear_state.march_step_by_step`), as in
+        :func:`.unilateral.unilateral_response`.
 
     Returns
     -------
@@ -149,55 +154,123 @@ def stick_slip_response(
     fs = check_positive("fs", fs)
     max_events = check_int("max_events", max_events, minimum=1)
     xtol = check_positive("time_tolerance", time_tolerance)
+    check_choice("method", method, tuple(MARCHES))
     Minv = mass_inverse(M)
 
-    states = _friction_states(M, K, C, Minv, b, o, N * mus, N * muk)
-    h, sub, n_samples, n_steps, _ = step_grid(list(states.values()), fs, T, STEPS_PER_PERIOD)
-    frictionless = mus * N == 0  # one state, never left: the free structure
-    hold_limit = mus * N
-    stick, lower = states["stick"], states["stick lower"]
+    states = friction_states(M, K, C, Minv, b, o, N * mus, N * muk)
+    grid = step_grid(list(states.values()), fs, T, STEPS_PER_PERIOD)
+    law = StickSlipLaw(states, b, grid, hold_limit=mus * N, max_events=max_events,
+                       time_tolerance=xtol)  # fmt: skip
+    x, name = law.start(v0)
+    MARCHES[method](law, x, name, grid[3])
+    log.debug("stick-slip: %d events, %d steps of %.3g s", len(law.events), grid[3], law.h)
+    t_out = np.arange(grid[2]) / fs
+    return StickSlipResponse(t_out, law.acc, law.force, tuple(law.events))
 
-    def both_limits(values):
+
+class StickSlipLaw(SwitchedSystem):
+    """Coulomb's law at one coordinate: the three states and when each ends.
+
+    Built by :func:`stick_slip_response` from checked values; marched by
+    :data:`.linear_state.MARCHES`. The state keys are ``"slip+"``, ``"slip-"`` and ``"stick"``.
+
+    Parameters
+    ----------
+    states : dict of LinearState
+        The slips, and the stick twice (``"stick"`` watches ``mu_s N - F``, ``"stick lower"``
+        ``mu_s N + F``), from :func:`friction_states`.
+    contact : int
+        The coordinate ``b`` along which friction acts.
+    grid : tuple
+        :func:`.linear_state.step_grid` of the states.
+    hold_limit : float
+        ``mu_s N``, N: the most friction can hold; 0 means no friction.
+    max_events, time_tolerance
+        As in :func:`stick_slip_response`.
+    """
+
+    def __init__(self, states, contact, grid, *, hold_limit, max_events, time_tolerance):
+        h, sub, n_samples, _, _ = grid
+        super().__init__(h, sub, n_samples)
+        self.linear, self.b = states, contact
+        self.n = states["stick"].n
+        self.stick, self.lower = states["stick"], states["stick lower"]
+        self.hold_limit = hold_limit
+        self.frictionless = hold_limit == 0  # one state, never left: the free structure
+        self.max_events, self.xtol = max_events, time_tolerance
+        self.events: list[tuple[float, str]] = []
+        self.fresh = False  # the state was entered where the march now is
+
+    def state(self, key):
+        """The linear state called ``key``."""
+        return self.linear[key]
+
+    def start(self, velocity):
+        """The state at ``t = 0``: ``q = 0``, ``q' = velocity``, and the state it takes."""
+        n = self.n
+        x = np.zeros(2 * n + 2)
+        x[n : 2 * n] = velocity
+        x[2 * n] = 1.0  # the constant load's multiplier (LinearState's "servo travel", at rest)
+        name = "slip+" if self.frictionless else self.entered(x)
+        self.events.append((0.0, name))
+        self.record(0, x, name)
+        self.fresh = name != "stick" and x[n + self.b] == 0  # a slip from rest: on its boundary
+        return x, name
+
+    def both_limits(self, values):
         """Where sticking ends: at the upper limit, mu_s N - F <= 0 (the monitored row), or at
         the lower, mu_s N + F = 2 mu_s N - (mu_s N - F) <= 0."""
         ends = values[:, 0] <= 0
-        ends |= 2 * hold_limit - values[:, 0] <= 0
+        ends |= 2 * self.hold_limit - values[:, 0] <= 0
         return ends
 
-    acc = np.zeros(n_samples)
-    force = np.zeros(n_samples)
-    events: list[tuple[float, str]] = []
+    def ends(self, name):
+        """A stick ends at either limit; a slip where its speed reaches zero."""
+        return self.both_limits if name == "stick" else None
 
-    def entered(x):
-        """The state taken at ``x`` where ``u = 0`` (or at the start)."""
-        u = x[n + b]
-        if u != 0 and not events:
+    def quiet(self, name, x, z, m):
+        """No event within ``m`` steps: no friction, or every monitor provably stays > 0."""
+        return self.frictionless or (
+            self.linear[name].stays_positive(x, z, m)
+            and (name != "stick" or self.lower.stays_positive(x, self.lower.modal(x), m))
+        )
+
+    def moved(self):
+        """The march has left the point where the state was entered."""
+        self.fresh = False
+
+    def entered(self, x):
+        """The state taken at ``x`` where ``u = 0`` (or at the start): stick if holding takes
+        at most ``mu_s N``, otherwise slip the way the structure pulls."""
+        u = x[self.n + self.b]
+        if u != 0 and not self.events:
             return "slip+" if u > 0 else "slip-"
-        x[n + b] = 0.0  # exactly at rest on the rod (the event lies within xtol of it)
-        F = float(stick.rows[2] @ x)
-        if abs(F) <= hold_limit:
+        x[self.n + self.b] = 0.0  # exactly at rest on the rod (the event lies within xtol)
+        F = float(self.stick.rows[2] @ x)
+        if abs(F) <= self.hold_limit:
             return "stick"
         return "slip-" if F > 0 else "slip+"  # holding would take more: it slips the way it pulls
 
-    def switch(name, x, t):
-        new = entered(x) if name != "stick" else ("slip-" if stick.rows[2] @ x > 0 else "slip+")
-        events.append((t, new))
-        if len(events) > max_events:
+    def switch(self, name, x, t):
+        """The switching law at an event at ``t``: a slip's end as :meth:`entered`; a stick's
+        end slips against the force that holding took."""
+        if name != "stick":
+            new = self.entered(x)
+        else:
+            new = "slip-" if self.stick.rows[2] @ x > 0 else "slip+"
+        self.events.append((t, new))
+        if len(self.events) > self.max_events:
             raise ChatterError(
-                f"more than max_events={max_events} stick/slip events by t={t:.6g} s; raise "
-                "max_events or check the friction coefficients"
+                f"more than max_events={self.max_events} stick/slip events by t={t:.6g} s; "
+                "raise max_events or check the friction coefficients"
             )
         return new
 
-    def record(i, x, name):
-        if i % sub == 0:
-            acc[i // sub], force[i // sub] = states[name].rows[1:] @ x
-
-    def first_crossing(name, x, span, fresh):
+    def first_crossing(self, name, x, span, fresh):
         """Which monitor ends state ``name`` first within ``span`` after ``x``, and when
         (``None`` if neither does); ``fresh``: the state was entered at ``x``."""
         found = None
-        for st in (states[name], lower) if name == "stick" else (states[name],):
+        for st in (self.stick, self.lower) if name == "stick" else (self.linear[name],):
             z = st.modal(x)
             curve = st.curve(x, z)
             end = curve(span)[0]
@@ -207,59 +280,34 @@ def stick_slip_response(
             if start <= 0 and not fresh:
                 tau = 0.0
             else:  # a slip entered at u = 0 starts on its boundary and leaves it at once
-                tau = crossing(curve, span, xtol, max(start, np.finfo(float).tiny), end)
+                tau = crossing(curve, span, self.xtol, max(start, np.finfo(float).tiny), end)
             if found is None or tau < found[0]:
                 found = (tau, st.at(x, z, tau))
         return found
 
-    def advance(x, name, t0, t1, fresh=False):
-        """Propagate from t0 to t1 (at most one step) through any events on the way."""
+    def advance(self, x, name, t0, t1, crosses=False):
+        """Propagate from ``t0`` to ``t1`` (at most one step) through any events on the way
+        (``crosses`` is not needed: every step looks for the first crossing)."""
+        fresh = self.fresh
         while True:
-            found = None if frictionless else first_crossing(name, x, t1 - t0, fresh)
+            found = None if self.frictionless else self.first_crossing(name, x, t1 - t0, fresh)
             if found is None:
-                return states[name].step(x, t1 - t0), name
+                return self.linear[name].step(x, t1 - t0), name
             tau, x = found
             t0 += tau
-            name, fresh = switch(name, x, t0), True
-
-    x = np.zeros(2 * n + 2)
-    x[n : 2 * n] = v0
-    x[2 * n] = 1.0  # the constant load's multiplier (LinearState's "servo travel", at rest)
-    name = "slip+" if frictionless else entered(x)
-    events.append((0.0, name))
-    record(0, x, name)
-    fresh = name != "stick" and x[n + b] == 0  # a slip from rest starts on its boundary
-    i = 0
-    while i < n_steps:
-        st = states[name]
-        first = (-(i + 1)) % sub  # the first step from here that is an output sample
-        z = st.modal(x)
-        m = min(st.span, n_steps - i)
-        quiet = frictionless or (
-            st.stays_positive(x, z, m)
-            and (name != "stick" or lower.stays_positive(x, lower.modal(x), m))
-        )
-        m, j, values, event = st.read_ahead(
-            x, z, first, n_steps - i, quiet, both_limits if name == "stick" else None)
-        k = (i + 1 + j) // sub
-        acc[k], force[k] = values[:, 1], values[:, 2]
-        if m:
-            x = st.after(x, z, m)
-            i += m
-            fresh = False
-        if event:
-            x, name = advance(x, name, i * h, (i + 1) * h, fresh)
-            fresh = False
-            i += 1
-            record(i, x, name)
-    log.debug("stick-slip: %d events, %d steps of %.3g s", len(events), n_steps, h)
-    t_out = np.arange(n_samples) / fs
-    return StickSlipResponse(t_out, acc, force, tuple(events))
+            name, fresh = self.switch(name, x, t0), True
 
 
-def _friction_states(M, K, C, Minv, b, o, hold, slide):
+def friction_states(M, K, C, Minv, b, o, hold, slide):
     """The linear states of ``x = (q, q', 1, 0)``: slipping either way, and sticking (twice:
-    one copy watches the upper limit ``F <= mu_s N``, one the lower ``F >= -mu_s N``)."""
+    one copy watches the upper limit ``F <= mu_s N``, one the lower ``F >= -mu_s N``).
+
+    Slip: ``M q'' + C q' + K q = -+mu_k N e_b`` (``slide`` is ``mu_k N``), watching the speed
+    ``+-u``. Stick: ``q_b' = q_b'' = 0`` and the other coordinates move as the structure pinned
+    at ``b``, watching ``mu_s N -+ F`` (``hold`` is ``mu_s N``) with
+    ``F = (M q'' + C q' + K q)_b``. Every state records the acceleration at ``o`` and the
+    friction force. Takes checked values (:func:`stick_slip_response`).
+    """
     n = M.shape[0]
     size = 2 * n + 2
 
@@ -340,9 +388,9 @@ def friction_model(probe_reduction, preload: float, max_frequency: float) -> Fri
     """
     cached = _Z_BODIES.setdefault(probe_reduction, {})
     if max_frequency not in cached:
-        K, M, T, C = _body(probe_reduction, max_frequency)
+        K, M, T, C = reduced_body(probe_reduction, max_frequency)
         sub = probe_reduction.substructure
-        rigid = _sweep_velocity(sub.nodes)[sub.free]  # per rad/s about the hinge
+        rigid = sweep_velocity(sub.nodes)[sub.free]  # per rad/s about the hinge
         rotation = sla.solve(M, T.T @ (sub.mass @ rigid), assume_a="pos")
         tip = int(np.searchsorted(sub.free, 2 * (sub.nodes.size - 1)))
         cached[max_frequency] = K, M, C, rotation, T[tip]

@@ -48,7 +48,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 
-from .modes import _sweep_velocity
+from .modes import sweep_velocity
 from .structure import ContactModel
 from .unilateral import unilateral_response
 
@@ -59,6 +59,7 @@ __all__ = [
     "timed_rate",
     "read_through_dlpf",
     "unilateral_axis",
+    "reduced_body",
 ]
 
 #: Without the DLPF, strikes are computed at this multiple of ``fs`` and read at the sample times.
@@ -94,9 +95,27 @@ class StrikeModel:
 _BODIES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
-def _body(reduction, max_frequency: float):
-    """``K, M, T, C`` of the reduction's coordinates with fixed-interface modes below
-    ``max_frequency`` and the interface coordinate (last), damped by its loss factor."""
+def reduced_body(reduction, max_frequency: float):
+    """One body of a strike: its Craig-Bampton reduction truncated at ``max_frequency``.
+
+    Keeps the fixed-interface modes below ``max_frequency`` and the interface coordinate
+    (last), damped by the reduction's loss factor (the modal viscous damping of the module
+    docstring). The result is cached per reduction and ``max_frequency``: the many strikes on
+    one probe position or one rod share it.
+
+    Parameters
+    ----------
+    reduction : ebantenna.fem.coupling.CraigBampton
+        The body reduced at its interface (the contact).
+    max_frequency : float
+        Fixed-interface modes at or above it are dropped, Hz.
+
+    Returns
+    -------
+    tuple of ndarray
+        ``K, M, T, C``: stiffness (N/m), mass (kg) and damping (N s/m) in the kept coordinates,
+        and the basis ``T`` from them to the body's free DOFs.
+    """
     cached = _BODIES.setdefault(reduction, {})
     if max_frequency not in cached:
         keep = np.flatnonzero(reduction.fixed_interface_omega < 2 * math.pi * max_frequency)
@@ -160,12 +179,12 @@ def strike_model(
     >>> m.structure.mass.shape  # probe: 8 modes below 3 kHz + interface; rod: 2 + interface
     (12, 12)
     """
-    Kp, Mp, Tp, Cp = _body(probe_reduction, max_frequency)
-    Kr, Mr, _, Cr = _body(rod_reduction, max_frequency)
+    Kp, Mp, Tp, Cp = reduced_body(probe_reduction, max_frequency)
+    Kr, Mr, _, Cr = reduced_body(rod_reduction, max_frequency)
     n_p, n_r = Kp.shape[0], Kr.shape[0]
     sub = probe_reduction.substructure
     # the servo's rigid rotation per metre of travel at the contact, projected on the basis
-    rigid = _sweep_velocity(sub.nodes)[sub.free] / contact
+    rigid = sweep_velocity(sub.nodes)[sub.free] / contact
     base = np.zeros(n_p + n_r)
     base[:n_p] = sla.solve(Mp, Tp.T @ (sub.mass @ rigid), assume_a="pos")
     c = np.zeros(n_p + n_r)

@@ -29,6 +29,13 @@ cannot change sign over a long span, ``sum_k |w_k| |e^(lambda_k t)|`` below its 
 strike of the paper scene (probe and rod reduced to about 12 coordinates, a few dozen events,
 8 kHz) costs about 8 ms on one core, most of it in the events.
 
+**Reference and engine.** :class:`StrikeLaw` is the law as the textbook writes it: the two
+states (:func:`contact_states`), one step through any event (propagate, watch the sign of the
+force or the gap, locate the root, :meth:`StrikeLaw.switch`), the servo's stop. The reference
+march takes every step in turn (``method="steps"``, :func:`.linear_state.march_step_by_step`);
+the default engine (``method="blocks"``) reads the state ahead in blocks as described above and
+takes only the steps that hold an event. The test suite holds the two together.
+
 **The pan-tilt's approach and the preload.** ``q`` are coordinates *relative to the servo*: the
 absolute displacement is ``r s + q``, where ``s`` is the servo's travel measured at the contact
 point and ``r`` the rigid motion the servo gives the structure per unit ``s`` (``base``). Before
@@ -60,12 +67,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validate import check_choice, check_int, check_nonnegative, check_positive
-from .linear_state import LinearState, crossing, step_grid
+from .linear_state import MARCHES, LinearState, SwitchedSystem, crossing, step_grid
 from .structure import check_dof_vector, check_symmetric_matrix, mass_inverse
 
 __all__ = [
     "ChatterError",
     "ContactEvent",
+    "StrikeLaw",
+    "contact_states",
+    "preload_overtravel",
     "UnilateralResponse",
     "unilateral_response",
 ]
@@ -155,6 +165,7 @@ def unilateral_response(
     on_max_events: str = "raise",
     time_tolerance: float = 1e-12,
     return_states: bool = False,
+    method: str = "blocks",
 ) -> UnilateralResponse:
     """Strike of a linear structure on a rigid object through a contact that only pushes.
 
@@ -192,6 +203,11 @@ def unilateral_response(
         Accuracy of each event time, s (> 0); events are placed no more than this late.
     return_states : bool
         Also return the state ``(q, q', s, s')`` at every sample.
+    method : {"blocks", "steps"}
+        How the states are marched: ``"blocks"`` reads each state a block of steps ahead (the
+        engine, fast); ``"steps"`` takes every step in turn (the reference,
+        :func:`.linear_state.march_step_by_step`). The same events; the signals agree up to the
+        rounding of the propagation.
 
     Returns
     -------
@@ -206,6 +222,13 @@ def unilateral_response(
     >>> [(e.kind, round(e.time, 9), round(e.velocity, 9)) for e in res.events]
     [('separation', 0.031415927, -1.0)]
     >>> float(res.contact_force.max()) <= 100.0  # k v sqrt(m/k), N
+    True
+
+    The reference march finds the same event, within ``time_tolerance``:
+
+    >>> ref = unilateral_response([[1.0]], [[0.0]], 0, 1e4, base=0, approach_speed=1.0,
+    ...                           duration=0.05, fs=1000.0, method="steps")
+    >>> abs(ref.events[0].time - res.events[0].time) <= 2e-12
     True
     """
     M = check_symmetric_matrix("mass", mass)
@@ -223,94 +246,223 @@ def unilateral_response(
     max_events = check_int("max_events", max_events, minimum=1)
     check_choice("on_max_events", on_max_events, ("raise", "warn"))
     xtol = check_positive("time_tolerance", time_tolerance)
+    check_choice("method", method, tuple(MARCHES))
     Minv = mass_inverse(M)
     if np.linalg.eigvalsh(K).min() < -1e-10 * max(1.0, np.abs(K).max()):
         raise ValueError("stiffness must be positive semidefinite")
 
-    overtravel = 0.0
-    if F0 > 0:
-        try:
-            flex = float(c @ np.linalg.solve(K, c))
-        except np.linalg.LinAlgError:
-            flex = math.inf
-        if not (math.isfinite(flex) and flex > 0):
-            raise ValueError(
-                "preload > 0 needs a structure that resists a static load at the contact "
-                "(stiffness is singular there: a free rigid-body motion); give preload=0"
-            )
-        overtravel = F0 * (1 / kc + flex)
-    t_stop = overtravel / v0
+    overtravel = preload_overtravel(K, c, kc, F0)
+    free, closed, pen = contact_states(Minv, K, C, c, kc, o)
+    grid = step_grid([free, closed], fs, T, STEPS_PER_PERIOD)
+    law = StrikeLaw(
+        free, closed, pen, r, overtravel / v0, grid, max_events=max_events,
+        on_max_events=on_max_events, time_tolerance=xtol, return_states=return_states,
+    )  # fmt: skip
+    x, state = law.first_touch(v0)
+    MARCHES[method](law, x, state, grid[3])
+    logger.debug("unilateral strike: %d events, %d steps of %.3g s", len(law.events), grid[3],
+                 law.h)  # fmt: skip
+    return UnilateralResponse(
+        np.arange(grid[2]) / fs, law.acc, law.force, tuple(law.events), law.stop_time,
+        overtravel, law.bilateral_from, law.trajectory,
+    )  # fmt: skip
 
-    # First-order systems of x = (q, q', s, s').
-    N = 2 * n + 2
-    pen = np.zeros(N)  # p = pen @ x
+
+def preload_overtravel(K, c, contact_stiffness: float, preload: float) -> float:
+    """The servo's travel past the first touch that leaves the contact carrying ``preload``.
+
+    ``s_stop = F0 (1/k_c + c @ K^-1 @ c)``: the contact spring in series with the structure's
+    static flexibility at the contact. Takes checked values (:func:`unilateral_response`).
+
+    Examples
+    --------
+    >>> preload_overtravel(np.array([[100.0]]), np.array([1.0]), 100.0, 1.0)  # 1 N on 50 N/m, m
+    0.02
+    """
+    if preload == 0:
+        return 0.0
+    try:
+        flex = float(c @ np.linalg.solve(K, c))
+    except np.linalg.LinAlgError:
+        flex = math.inf
+    if not (math.isfinite(flex) and flex > 0):
+        raise ValueError(
+            "preload > 0 needs a structure that resists a static load at the contact "
+            "(stiffness is singular there: a free rigid-body motion); give preload=0"
+        )
+    return preload * (1 / contact_stiffness + flex)
+
+
+def state_matrix(Minv, K, C, c, contact_stiffness: float, closed: bool) -> np.ndarray:
+    """The first-order system of ``x = (q, q', s, s')`` with the contact open or closed.
+
+    ``q' = q'``, ``M q'' = -(K + k_c c c^T) q - C q' - k_c c s`` when closed (without the
+    ``k_c`` terms when open), ``s' = s'`` and ``s'' = 0`` (the servo at constant speed; its
+    stop is an event). Takes checked values.
+
+    Examples
+    --------
+    One mass of 1 kg on a 100 N/m spring and a 2 N s/m dashpot, touching a 300 N/m contact:
+
+    >>> state_matrix(np.eye(1), np.array([[100.0]]), np.array([[2.0]]), np.ones(1), 300.0, True)
+    array([[   0.,    1.,    0.,    0.],
+           [-400.,   -2., -300.,    0.],
+           [   0.,    0.,    0.,    1.],
+           [   0.,    0.,    0.,    0.]])
+    """
+    n = K.shape[0]
+    A = np.zeros((2 * n + 2, 2 * n + 2))
+    A[:n, n : 2 * n] = np.eye(n)
+    Kc = K + contact_stiffness * np.outer(c, c) if closed else K
+    A[n : 2 * n, :n] = -Minv @ Kc
+    A[n : 2 * n, n : 2 * n] = -Minv @ C
+    if closed:
+        A[n : 2 * n, 2 * n] = -contact_stiffness * (Minv @ c)
+    A[2 * n, 2 * n + 1] = 1.0
+    return A
+
+
+def contact_states(Minv, K, C, c, contact_stiffness: float, output):
+    """The two linear states, ``(free, closed, pen)``, with what each watches and records.
+
+    The free state watches the gap ``-p`` and records zero force; the closed state watches and
+    records the contact force ``k_c p``. Both record the acceleration at ``output``. ``pen``
+    reads the penetration ``p = pen @ x``. Takes checked values.
+    """
+    n = K.shape[0]
+    pen = np.zeros(2 * n + 2)  # p = pen @ x
     pen[:n], pen[2 * n] = c, 1.0
+    A_free = state_matrix(Minv, K, C, c, contact_stiffness, closed=False)
+    A_closed = state_matrix(Minv, K, C, c, contact_stiffness, closed=True)
+    kp = contact_stiffness * pen
+    free = LinearState(A_free, n, -pen, np.zeros(2 * n + 2), output @ A_free[n : 2 * n])
+    closed = LinearState(A_closed, n, kp, kp, output @ A_closed[n : 2 * n])
+    return free, closed, pen
 
-    def system(closed):
-        A = np.zeros((N, N))
-        A[:n, n : 2 * n] = np.eye(n)
-        Kc = K + kc * np.outer(c, c) if closed else K
-        A[n : 2 * n, :n] = -Minv @ Kc
-        A[n : 2 * n, n : 2 * n] = -Minv @ C
-        if closed:
-            A[n : 2 * n, 2 * n] = -kc * (Minv @ c)
-        A[2 * n, 2 * n + 1] = 1.0
-        return A
 
-    A_free, A_closed = system(False), system(True)
-    free = LinearState(A_free, n, -pen, np.zeros(N), o @ A_free[n : 2 * n])
-    closed = LinearState(A_closed, n, kc * pen, kc * pen, o @ A_closed[n : 2 * n])
-    h, sub, n_samples, n_steps, _ = step_grid([free, closed], fs, T, STEPS_PER_PERIOD)
+class StrikeLaw(SwitchedSystem):
+    """The unilateral contact's law: two states, the switching conditions, the servo's stop.
 
-    t_out = np.arange(n_samples) / fs
-    acc = np.zeros(n_samples)
-    force = np.zeros(n_samples)
-    states = np.zeros((n_samples, N)) if return_states else None
-    events: list[ContactEvent] = []
-    bilateral_from = None
-    frozen = False
+    Built by :func:`unilateral_response` from checked values; marched by
+    :data:`.linear_state.MARCHES`. The state keys are the two :class:`.linear_state.LinearState`
+    themselves.
 
-    def record(i, x, st):
-        if i % sub == 0:
-            k = i // sub
-            acc[k], force[k] = st.rows[1:] @ x
-            if states is not None:
-                states[k] = x
+    Parameters
+    ----------
+    free, closed : LinearState
+        The contact open (watching the gap) and closed (watching the force).
+    pen : ndarray of shape (2 n + 2,)
+        The penetration ``p = pen @ x``.
+    base : ndarray of shape (n,)
+        The servo's rigid motion per metre of travel, ``r``.
+    stop_time : float
+        When the servo stops, s.
+    grid : tuple
+        :func:`.linear_state.step_grid` of the two states.
+    max_events, on_max_events, time_tolerance, return_states
+        As in :func:`unilateral_response`.
+    """
 
-    def switch(st, x, t):
-        """Enter the other state at time t; returns it."""
-        nonlocal frozen, bilateral_from
-        entering = free if st is closed else closed
-        kind = "contact" if entering is closed else "separation"
-        events.append(ContactEvent(t, kind, float(pen @ (st.A @ x))))
-        if len(events) >= max_events and not frozen:
-            if on_max_events == "raise":
-                raise ChatterError(
-                    f"more than max_events={max_events} contact events by t={t:.6g} s: the probe "
-                    "chatters or rests on the object without preload; raise max_events, give a "
-                    "preload, or use on_max_events='warn' to hold the contact from then on"
-                )
-            warnings.warn(
-                f"max_events={max_events} reached at t={t:.6g} s (chatter); the contact is "
-                "held closed from the next contact on",
-                RuntimeWarning,
-                stacklevel=3,
-            )
-            frozen = True
-        if frozen and entering is closed and bilateral_from is None:
-            bilateral_from = t
+    def __init__(self, free, closed, pen, base, stop_time, grid, *, max_events, on_max_events,
+                 time_tolerance, return_states):  # fmt: skip
+        h, sub, n_samples, _, _ = grid
+        n = base.size
+        super().__init__(h, sub, n_samples, 2 * n + 2 if return_states else None)
+        self.free, self.closed, self.base, self.stop_time = free, closed, base, stop_time
+        self.max_events, self.on_max_events = max_events, on_max_events
+        self.xtol = time_tolerance
+        self.pen = pen
+        self.events: list[ContactEvent] = []
+        self.bilateral_from = None
+        self.frozen = False  # held closed after max_events (on_max_events="warn")
+        self.stopped = False
+
+    def state(self, key):
+        """The state itself (the keys are the states)."""
+        return key
+
+    def first_touch(self, approach_speed: float):
+        """The state at ``t = 0``: the contact just closed, ``p = 0``, closing at ``v0``."""
+        n = self.base.size
+        x = np.zeros(2 * n + 2)
+        x[2 * n + 1] = approach_speed
+        if self.stop_time == 0.0:
+            x = self.stop_servo(x)
+        self.record(0, x, self.closed)
+        return x, self.closed
+
+    def stop_servo(self, x):
+        """The servo stops: its speed passes to the structure (``q' += r s'``, ``s' = 0``)."""
+        n = self.base.size
+        x = x.copy()
+        x[n : 2 * n] += self.base * x[2 * n + 1]
+        x[2 * n + 1] = 0.0
+        self.stopped = True
+        return x
+
+    def interrupts(self, i):
+        """The servo stops within step ``i``."""
+        return not self.stopped and self.stop_time < (i + 1) * self.h
+
+    def interrupted_step(self, x, st, i):
+        """Step ``i`` with the servo's stop inside: up to it, stop, and on to the step's end."""
+        x, st = self.advance(x, st, i * self.h, self.stop_time)
+        x = self.stop_servo(x)
+        return self.advance(x, st, self.stop_time, (i + 1) * self.h)
+
+    def horizon(self, i, n_steps):
+        """Steps ahead before the record's end or the servo's stop."""
+        limit = n_steps - i
+        if not self.stopped:
+            limit = min(limit, int(math.floor(self.stop_time / self.h)) - i)
+        return limit
+
+    def watched(self, st) -> bool:
+        """Whether ``st`` can end (not a contact held closed after ``max_events``)."""
+        return not (self.frozen and st is self.closed)
+
+    def quiet(self, st, x, z, m):
+        """No event within ``m`` steps: the state is held, or its monitor provably stays > 0."""
+        return not self.watched(st) or st.stays_positive(x, z, m)
+
+    def switch(self, st, x, t):
+        """The switching law at an event at time ``t``: enter the other state, and count."""
+        entering = self.free if st is self.closed else self.closed
+        kind = "contact" if entering is self.closed else "separation"
+        self.events.append(ContactEvent(t, kind, float(self.pen @ (st.A @ x))))
+        if len(self.events) >= self.max_events and not self.frozen:
+            self.too_many_events(t)
+        if self.frozen and entering is self.closed and self.bilateral_from is None:
+            self.bilateral_from = t
         return entering
 
-    def watched(st):
-        return not (frozen and st is closed)
+    def too_many_events(self, t):
+        """``max_events`` reached at ``t``: raise, or warn and hold the next contact closed."""
+        if self.on_max_events == "raise":
+            raise ChatterError(
+                f"more than max_events={self.max_events} contact events by t={t:.6g} s: the "
+                "probe chatters or rests on the object without preload; raise max_events, give "
+                "a preload, or use on_max_events='warn' to hold the contact from then on"
+            )
+        warnings.warn(
+            f"max_events={self.max_events} reached at t={t:.6g} s (chatter); the contact is "
+            "held closed from the next contact on",
+            RuntimeWarning,
+            stacklevel=2,
+        )
+        self.frozen = True
 
-    def advance(x, st, t0, t1, crosses=False):
-        """Propagate from t0 to t1 (at most one step) through any events on the way;
-        ``crosses``: the monitored quantity is known to reach zero by t1."""
+    def advance(self, x, st, t0, t1, crosses=False):
+        """Propagate from ``t0`` to ``t1`` (at most one step) through any events on the way.
+
+        The state's monitor (the force when closed, the gap when open) is watched: where it
+        falls to zero, :func:`.linear_state.crossing` finds when, and :meth:`switch` enters the
+        other state there. ``crosses``: the monitor is known to reach zero by ``t1``.
+        """
         while True:
             if not crosses:
                 x1 = st.step(x, t1 - t0)
-                if not watched(st) or st.monitor @ x1 > 0:
+                if not self.watched(st) or st.monitor @ x1 > 0:
                     return x1, st
             z = st.modal(x)
             g = st.curve(x, z)
@@ -323,54 +475,7 @@ def unilateral_response(
             if start <= 0:  # already at the boundary (a grazing touch): switch at once
                 tau = 0.0
             else:
-                tau = crossing(g, span, xtol, start, end)
+                tau = crossing(g, span, self.xtol, start, end)
             x = st.at(x, z, tau)
             t0 = t0 + tau
-            st = switch(st, x, t0)
-
-    # First touch at t = 0: contact closed, p = 0, closing at v0 through s' or through q'.
-    x = np.zeros(N)
-    x[2 * n + 1] = v0
-    st = closed
-    stopped = False
-    if t_stop == 0.0:
-        x[n : 2 * n] += r * v0
-        x[2 * n + 1] = 0.0
-        stopped = True
-    record(0, x, st)
-    i = 0
-    while i < n_steps:
-        t = i * h
-        if not stopped and t_stop < (i + 1) * h:
-            x, st = advance(x, st, t, t_stop)
-            x = x.copy()
-            x[n : 2 * n] += r * x[2 * n + 1]
-            x[2 * n + 1] = 0.0
-            stopped = True
-            x, st = advance(x, st, t_stop, (i + 1) * h)
-            i += 1
-            record(i, x, st)
-            continue
-        limit = n_steps - i
-        if not stopped:
-            limit = min(limit, int(math.floor(t_stop / h)) - i)
-        first = (-(i + 1)) % sub  # the first step from here that is an output sample
-        z = st.modal(x)
-        quiet = not watched(st) or st.stays_positive(x, z, min(st.span, limit))
-        m, j, values, event = st.read_ahead(x, z, first, limit, quiet)
-        # Record the output samples among the m steps taken.
-        k = (i + 1 + j) // sub
-        acc[k], force[k] = values[:, 1], values[:, 2]
-        if states is not None:
-            states[k] = [st.after(x, z, jj + 1) for jj in j]
-        if m:
-            x = st.after(x, z, m)
-            i += m
-        if event:
-            x, st = advance(x, st, i * h, (i + 1) * h, crosses=True)
-            i += 1
-            record(i, x, st)
-    logger.debug("unilateral strike: %d events, %d steps of %.3g s", len(events), n_steps, h)
-    return UnilateralResponse(
-        t_out, acc, force, tuple(events), t_stop, overtravel, bilateral_from, states
-    )
+            st = self.switch(st, x, t0)

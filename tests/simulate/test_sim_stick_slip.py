@@ -38,14 +38,15 @@ def chain_exact(t):
     return np.linalg.solve(M_CHAIN, force)[2]
 
 
-def test_one_oscillator_loses_two_mu_n_over_k_per_half_period_and_sticks():
+@pytest.mark.parametrize("method", ["blocks", "steps"])
+def test_one_oscillator_loses_two_mu_n_over_k_per_half_period_and_sticks(method):
     # m = 1 kg, k = 100 N/m, launched at 1 m/s against mu N = 1 N: each slip is half a period
     # about the shifted rest position -+mu N / k; it sticks at the first turning point whose
     # spring force k|x| is at most mu_s N (Den Hartog, section 8.3).
     k, mu_n, v0 = 100.0, 1.0, 1.0
     omega = math.sqrt(k)
     r = stick_slip_response([[1.0]], [[k]], 0, 1.0, static_friction=1.0, kinetic_friction=1.0,
-                            duration=3.0, fs=100.0, velocity=[v0])  # fmt: skip
+                            duration=3.0, fs=100.0, velocity=[v0], method=method)  # fmt: skip
     shift = mu_n / k
     amplitude = math.hypot(shift, v0 / omega)
     first = (math.pi / 2 - math.asin(shift / amplitude)) / omega  # the first turning point
@@ -76,10 +77,11 @@ def test_frictionless_chain_is_the_modal_closed_form():
     assert [kind for _, kind in r.events] == ["slip+"]
 
 
-def test_chain_with_stick_and_slip_agrees_with_the_integrated_witness():
+@pytest.mark.parametrize("method", ["blocks", "steps"])
+def test_chain_with_stick_and_slip_agrees_with_the_integrated_witness(method):
     kw = dict(static_friction=0.6, kinetic_friction=0.4, duration=2.0, fs=1000.0,
               velocity=V_CHAIN, damping=C_CHAIN, output=2)  # fmt: skip
-    ours = stick_slip_response(M_CHAIN, K_CHAIN, 1, 5.0, **kw)
+    ours = stick_slip_response(M_CHAIN, K_CHAIN, 1, 5.0, method=method, **kw)
     witness = coulomb_response(M_CHAIN, K_CHAIN, 1, 5.0, rtol=1e-12, **kw)
     kinds = [kind for _, kind in ours.events]
     assert kinds == [e.kind for e in witness.events]

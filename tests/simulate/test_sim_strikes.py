@@ -14,6 +14,7 @@ from ebantenna.fem.coupling import craig_bampton, probe_substructure, rod_substr
 from ebantenna.probe import Probe, material
 from ebantenna.simulate import Scene, builtin_scene, simulate, simulate_batch
 from ebantenna.simulate.strikes import UNFILTERED_RATE, strike_accelerations, strike_model
+from ebantenna.simulate.unilateral import unilateral_response
 
 EPS = np.finfo(float).eps
 PROBE = Probe(tip_mass=2.5e-3)
@@ -154,6 +155,23 @@ def test_the_strike_matches_an_event_driven_ode_solver(name, contact):
     assert restrikes[0] == n_witness >= 1
     # both locate events to ~1e-12 s and integrate to ~1e-11: far below 1e-6 of the peak
     assert np.allclose(acc[0], witness, rtol=0, atol=1e-6 * np.abs(witness).max())
+
+
+@pytest.mark.parametrize(("name", "contact"), [("steel", 0.1), ("pvc", 0.3)])
+def test_the_reference_march_matches_the_event_driven_ode_solver(name, contact):
+    # The same witness for the reference (every step in turn) as for the engine above.
+    model, _, _ = _model(name, contact=contact, probe_loss=0.03, rod_loss=0.02)
+    s, rate, n_out = model.structure, 8000.0, 801
+    res = unilateral_response(
+        s.mass, s.stiffness, s.contact, model.contact_stiffness, base=s.base,
+        approach_speed=0.5 * model.contact, duration=(n_out - 1) / rate, fs=rate,
+        damping=s.damping, output=s.output, preload=model.preload, max_events=400,
+        method="steps",
+    )  # fmt: skip
+    witness, n_witness = _event_driven_witness(model, 0.5, np.arange(n_out) / rate)
+    assert res.n_impacts - 1 == n_witness >= 1
+    # both locate events to ~1e-12 s and integrate to ~1e-11: far below 1e-6 of the peak
+    assert np.allclose(res.acceleration, witness, rtol=0, atol=1e-6 * np.abs(witness).max())
 
 
 #: the rod and the contact, with the probe's and the rod's damping (undamped, they chatter on)

@@ -45,6 +45,9 @@ __all__ = [
     "I2CError",
     "BusDeadError",
     "transfer_bits",
+    "transfer_time",
+    "RASPBERRY_PI_BUS_HZ",
+    "TRANSFER_OVERHEAD",
     "ShortReadError",
     "I2CDevice",
     "TRANSIENT_ERRNOS",
@@ -66,6 +69,13 @@ TRANSIENT_ERRNOS = frozenset(
 #: chip. Assumption: the adapter reports a NACK as ``EREMOTEIO`` and nothing else as it
 #: (Linux's ``i2c-bcm2835`` of the Raspberry Pi does; see its ``BCM2835_I2C_S_ERR`` handling).
 NOTHING_READ_ERRNOS = frozenset({errno.EREMOTEIO})
+
+#: I2C clock of a Raspberry Pi's bus unless ``dtparam=i2c_arm_baudrate`` says otherwise, Hz
+#: (Raspberry Pi documentation, "config.txt", ``i2c_arm_baudrate``: default 100000).
+RASPBERRY_PI_BUS_HZ = 100e3
+#: Fixed cost of one transfer besides its bits on the wire (the system call and the adapter's
+#: set-up), s: an assumed 50 us, of the order of a Linux ``ioctl`` on a Raspberry Pi.
+TRANSFER_OVERHEAD = 50e-6
 
 #: The SMBus protocol carries at most 32 data bytes per block transfer.
 SMBUS_BLOCK_MAX = 32
@@ -97,6 +107,19 @@ def transfer_bits(nbytes: int) -> int:
     29
     """
     return 9 * (check_int("nbytes", nbytes, minimum=0) + 2) + 2
+
+
+def transfer_time(nbytes: int, bus_hz: float = RASPBERRY_PI_BUS_HZ,
+                  overhead: float = TRANSFER_OVERHEAD) -> float:
+    """Time one register transfer of ``nbytes`` data bytes takes at ``bus_hz`` (Hz), s.
+
+    Examples
+    --------
+    >>> from ebantenna.device.i2c import transfer_time
+    >>> round(transfer_time(30) * 1e3, 2)  # ms: five FIFO samples in one SMBus block at 100 kHz
+    2.95
+    """
+    return overhead + transfer_bits(nbytes) / check_positive("bus_hz", bus_hz)
 
 
 class ShortReadError(OSError):

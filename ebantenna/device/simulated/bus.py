@@ -18,17 +18,15 @@ from __future__ import annotations
 import errno
 
 from ..._validate import check_int, check_nonnegative, check_positive
-from ...chips.mpu6050 import ADDRESS_AD0_LOW, Register
+from ...chips.mpu6050 import ACCEL_SAMPLE_BYTES, ADDRESS_AD0_LOW, Register
 from ...chips.pca9685 import DEFAULT_ADDRESS, LED_FULL, N_CHANNELS, Led, led_register
 from ...chips.pca9685 import Register as PcaRegister
 from ..clock import VirtualClock
-from ..i2c import SMBUS_BLOCK_MAX, transfer_bits
+from ..i2c import RASPBERRY_PI_BUS_HZ, SMBUS_BLOCK_MAX, TRANSFER_OVERHEAD, transfer_bits
 from .faults import FaultInjector, Faults
 
 __all__ = ["SimulatedBus", "transfer_bits", "RASPBERRY_PI_BUS_HZ"]
 
-#: I2C clock of a Raspberry Pi's bus unless configured otherwise, Hz (see the module notes).
-RASPBERRY_PI_BUS_HZ = 100e3
 
 #: Highest 7-bit I2C address.
 _LAST_ADDRESS = 0x7F
@@ -78,7 +76,8 @@ class SimulatedBus:
     """
 
     def __init__(self, clock=None, *, devices: dict | None = None, faults: Faults | None = None,
-                 seed: int = 0, bus_hz: float = RASPBERRY_PI_BUS_HZ, overhead: float = 50e-6,
+                 seed: int = 0, bus_hz: float = RASPBERRY_PI_BUS_HZ,
+                 overhead: float = TRANSFER_OVERHEAD,
                  reset_address: int = ADDRESS_AD0_LOW):
         self.clock = VirtualClock() if clock is None else clock
         self.faults = Faults() if faults is None else faults
@@ -141,8 +140,9 @@ class SimulatedBus:
         if kind == "late":
             raise self._fail(self.injector.late_error())
         if kind == "overcount":
-            count = ((data[0] << 8) | data[1]) + 6 * self.injector.overcount()
-            data[0], data[1] = (count >> 8) & 0xFF, count & 0xFF
+            extra = chip.impossible_samples() + self.injector.overcount()
+            count = min(((data[0] << 8) | data[1]) + ACCEL_SAMPLE_BYTES * extra, (1 << 16) - 1)
+            data[0], data[1] = count >> 8, count & 0xFF
         return data
 
     def _releases(self, address: int, register: int, data: list[int]) -> bool:

@@ -19,9 +19,10 @@ adapter's errno from the ``ioctl``):
 ``"eintr"``
     The system call is interrupted by a signal (``EINTR``) before the transfer starts.
 ``"overcount"``
-    A read of ``FIFO_COUNTH``/``L`` returns more than the FIFO holds, by a whole number of
-    samples (a bit error that the whole-sample check cannot see). Other transfers drawn
-    ``"overcount"`` go through untouched.
+    A read of ``FIFO_COUNTH``/``L`` returns more than the chip can have produced since its FIFO
+    was last enabled, even at the fastest clock :data:`MAX_CLOCK_DRIFT` allows, by a whole
+    number of samples (a bit error that the whole-sample check cannot see). Other transfers
+    drawn ``"overcount"`` go through untouched.
 
 Besides those, a :class:`Faults` can reset the accelerometer once (a brown-out: power-on
 registers, asleep), hold the whole bus stuck for a while (every transfer times out), stall the
@@ -41,14 +42,12 @@ import numpy as np
 
 from ..._validate import check_in_range, check_int, check_nonnegative, check_real
 from ...chips.mpu6050 import WHO_AM_I_VALUE
+from .mpu6050 import MAX_CLOCK_DRIFT
 
 __all__ = ["Faults", "FaultInjector", "TRANSFER_FAULTS", "MAX_CLOCK_DRIFT", "MAX_OVERCOUNT"]
 
 #: Kinds of failed transfer the injector can draw (see the module notes).
 TRANSFER_FAULTS = ("nack", "eio", "etimedout", "eagain", "late", "short", "eintr", "overcount")
-#: Largest sample-clock error accepted, relative: a few times the +/-1 % variation over temperature
-#: of the gyro oscillators the MPU-6050's PLL locks to (PS rev. 3.4, section 7.15).
-MAX_CLOCK_DRIFT = 0.05
 
 _EARLY_ERRNO = {"nack": errno.EREMOTEIO, "eio": errno.EIO, "etimedout": errno.ETIMEDOUT,
                 "eagain": errno.EAGAIN, "eintr": errno.EINTR}
@@ -251,7 +250,8 @@ class FaultInjector:
         return self.faults.transfer_timeout if error.errno == errno.ETIMEDOUT else 0.0
 
     def overcount(self) -> int:
-        """Samples a corrupted FIFO count adds: 1 to :data:`MAX_OVERCOUNT`."""
+        """Samples a corrupted FIFO count claims beyond what the chip can have produced: 1 to
+        :data:`MAX_OVERCOUNT`."""
         return int(self._rng.integers(1, MAX_OVERCOUNT + 1))
 
     def short_length(self, length: int) -> int:

@@ -51,6 +51,10 @@ from ...chips.mpu6050 import (
 
 __all__ = ["SimulatedMPU6050"]
 
+#: Largest sample-clock error accepted, relative: a few times the +/-1 % variation over temperature
+#: of the gyro oscillators the MPU-6050's PLL locks to (PS rev. 3.4, section 7.15).
+MAX_CLOCK_DRIFT = 0.05
+
 #: Registers modelled: the 128 addresses 0x00-0x7F, which hold the whole map (RM section 3 ends at
 #: 0x75); a burst read stops advancing at the last of them.
 _REGISTER_SPACE = 128
@@ -154,6 +158,17 @@ class SimulatedMPU6050:
         """Every sample (n, 3) int16 that epoch ``epoch`` put into the FIFO, in order."""
         blocks = self.epochs[epoch][1]
         return np.concatenate(blocks) if blocks else np.empty((0, 3), np.int16)
+
+    def impossible_samples(self) -> int:
+        """How many samples a FIFO count must add to what the FIFO holds to claim more than the
+        chip can have produced since the FIFO was enabled, at the fastest clock the faults
+        allow (:data:`MAX_CLOCK_DRIFT`) and with its first
+        sample as early as a free-running divider can put it: the ``"overcount"`` fault."""
+        if self._since is None:
+            return 0
+        fastest = self.sample_rate() * (1.0 + MAX_CLOCK_DRIFT)
+        possible = math.floor((self.clock.monotonic() - self._since) * fastest) + 1
+        return max(possible - self._produced, 0) + 1
 
     def true_rate(self) -> float:
         """The rate at which the chip actually samples, Hz: :meth:`sample_rate` with the drift."""

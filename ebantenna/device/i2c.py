@@ -294,7 +294,7 @@ class I2CDevice:
             raise BusDeadError(
                 errno.ETIMEDOUT,
                 f"I2C {what} of register 0x{register:02X} at address 0x{self.address:02X} not "
-                f"attempted: nothing on the bus has succeeded for {failing:.2f} s (more than "
+                f"attempted: nothing on the bus has succeeded for {failing:.3f} s (more than "
                 f"{self.retry.dead_after:g} s); the bus is dead")
 
     def _attempt(self, call):

@@ -19,7 +19,7 @@ import errno
 
 from ..._validate import check_int, check_nonnegative, check_positive
 from ...chips.mpu6050 import ACCEL_SAMPLE_BYTES, ADDRESS_AD0_LOW, Register
-from ...chips.pca9685 import DEFAULT_ADDRESS, LED_FULL, N_CHANNELS, Led, led_register
+from ...chips.pca9685 import DEFAULT_ADDRESS, LED_FULL, N_CHANNELS, Led, Mode1, led_register
 from ...chips.pca9685 import Register as PcaRegister
 from ..clock import VirtualClock
 from ..i2c import RASPBERRY_PI_BUS_HZ, SMBUS_BLOCK_MAX, TRANSFER_OVERHEAD, transfer_bits
@@ -149,6 +149,8 @@ class SimulatedBus:
         """Whether this write switches PCA9685 outputs off (for :attr:`Faults.release_fails`)."""
         if address != DEFAULT_ADDRESS or not self.faults.release_fails:
             return False
+        if self.devices[address].regs[PcaRegister.MODE1] & Mode1.SLEEP:
+            return False  # not set up yet: the outputs are off anyway
         last = register + len(data) - 1
         if not data[-1] & LED_FULL:
             return False

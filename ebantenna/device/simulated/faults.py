@@ -101,8 +101,9 @@ class Faults:
         How long a transfer that fails with ``ETIMEDOUT`` (drawn, late, or on a stuck bus) hangs
         before it fails, s. Default 0; about 1 s on a real adapter.
     release_fails : bool
-        Every write that switches PCA9685 outputs off (``ALL_LED_OFF_H``, an ``LEDn_OFF_H``
-        with the full-OFF bit) fails with ``EIO``, before it reaches the chip.
+        Once the PCA9685 is awake (initialised), every write that switches its outputs off
+        (``ALL_LED_OFF_H``, an ``LEDn_OFF_H`` with the full-OFF bit) fails with ``EIO``, before
+        it reaches the chip.
 
     Examples
     --------

@@ -9,7 +9,7 @@ simulated contact needs a vibration.
 
 from .clock import SystemClock, VirtualClock
 from .fifo import FifoStream, PeriodEstimator
-from .i2c import BusDeadError, I2CDevice, I2CError, RetryPolicy, ShortReadError
+from .i2c import I2CDevice, I2CError, RetryPolicy, ShortReadError
 from .mpu6050 import (
     MPU6050,
     ChipIdentityError,
@@ -17,7 +17,6 @@ from .mpu6050 import (
     MPU6050Config,
     sample_rate_divider,
 )
-from .oe import OutputEnable
 from .pantilt import (
     AcquisitionResult,
     ContactDetector,
@@ -26,7 +25,7 @@ from .pantilt import (
     SearchConfig,
     search_and_record,
 )
-from .pca9685 import PCA9685, NotInitializedError, oscillator_from_measurement, prescale_for
+from .pca9685 import PCA9685, oscillator_from_measurement, prescale_for
 from .safety import ReleaseError, ServoGuard, SignalReceived
 from .servo import Servo, ServoCalibration, ServoLimitWarning
 from .simulated import Faults, Obstacle, SimulatedBus, SimulatedRig
@@ -37,7 +36,6 @@ __all__ = [
     "VirtualClock",
     "I2CDevice",
     "I2CError",
-    "BusDeadError",
     "RetryPolicy",
     "ShortReadError",
     "FifoStream",
@@ -49,8 +47,6 @@ __all__ = [
     "CompatibleChipWarning",
     "sample_rate_divider",
     "PCA9685",
-    "NotInitializedError",
-    "OutputEnable",
     "prescale_for",
     "oscillator_from_measurement",
     "ServoGuard",

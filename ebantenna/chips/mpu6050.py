@@ -64,6 +64,10 @@ __all__ = [
     "RESET_WAIT",
     "GYRO_STARTUP",
     "COMPATIBLE_WHO_AM_I",
+    "ChipModel",
+    "CHIP_MODELS",
+    "A_DLPF_CFG",
+    "ACCEL_DLPF_6500",
 ]
 
 #: Standard acceleration of gravity, m/s^2 (3rd CGPM, 1901): the "g" in which the datasheet states
@@ -83,6 +87,7 @@ class Register(IntEnum):
     CONFIG = 0x1A  # 26
     GYRO_CONFIG = 0x1B  # 27
     ACCEL_CONFIG = 0x1C  # 28
+    ACCEL_CONFIG2 = 0x1D  # 29 on the MPU-6500 family only (its RM, register 29); reserved here
     FIFO_EN = 0x23  # 35
     INT_PIN_CFG = 0x37  # 55
     INT_ENABLE = 0x38  # 56
@@ -292,4 +297,48 @@ COMPATIBLE_WHO_AM_I = {
     0x98: "ICM-20689",
     0xA6: "ICM-20609",
     0xAF: "ICM-20608",
+}
+
+
+#: ``ACCEL_CONFIG2[2:0]`` of the MPU-6500 family: the accelerometer's own low-pass filter
+#: (MPU-6500 Register Map RM-MPU-6500A-00 rev. 2.1, register 29); bit 3, ``ACCEL_FCHOICE_B``, is
+#: left 0 (filter in use, 1 kHz output).
+A_DLPF_CFG = BitField(Register.ACCEL_CONFIG2, 0, 3)
+#: Accelerometer -3 dB bandwidth by ``A_DLPF_CFG`` 0-7 on the MPU-6500 family, Hz (same source,
+#: table of register 29).
+ACCEL_DLPF_6500 = (218.1, 218.1, 99.0, 44.8, 21.2, 10.2, 5.05, 420.0)
+
+
+@dataclass(frozen=True)
+class ChipModel:
+    """What differs between the parts this package drives.
+
+    Attributes
+    ----------
+    name : str
+        Part name.
+    fifo_size : int
+        FIFO size, bytes.
+    accel_config2 : bool
+        True for the MPU-6500 family: the accelerometer filter lives in ``ACCEL_CONFIG2`` and
+        ``SMPLRT_DIV`` applies only when ``0 < DLPF_CFG < 7`` (otherwise the FIFO runs at the
+        gyroscope's 8 kHz or faster, whatever the divider says); MPU-6500 register map,
+        registers 25, 26 and 29.
+    """
+
+    name: str
+    fifo_size: int
+    accel_config2: bool
+
+
+#: The parts driven, by ``WHO_AM_I``: the MPU-6050 (1024-byte FIFO, PS 7.17) and the MPU-6500
+#: family (512-byte FIFO, MPU-6500 Product Specification PS-MPU-6500A-01 rev. 1.1, section 4.15;
+#: MPU-9250 PS-MPU-9250A-01 rev. 1.1, section 4.17; the MPU-9255 is an MPU-9250 with another
+#: ``WHO_AM_I``). The other parts of :data:`COMPATIBLE_WHO_AM_I` are refused by name: their FIFO
+#: sizes and filter registers are not modelled here.
+CHIP_MODELS = {
+    WHO_AM_I_VALUE: ChipModel("MPU-6050", FIFO_SIZE, False),
+    0x70: ChipModel("MPU-6500", 512, True),
+    0x71: ChipModel("MPU-9250", 512, True),
+    0x73: ChipModel("MPU-9255", 512, True),
 }

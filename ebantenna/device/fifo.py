@@ -3,30 +3,43 @@
 The FIFO holds 6-byte samples (X, Y, Z) with nothing in them to say where a sample begins, so a
 single byte read but not kept shifts every later frame: X becomes Y, Y becomes Z. The rules here,
 modelled on Linux's ``inv_mpu6050`` driver (``drivers/iio/imu/inv_mpu6050/inv_mpu_ring.c``: it
-resets the FIFO on an overflow or a failed read, and estimates the sample period from the
-timestamps of its interrupts), are:
+resets the FIFO on an overflow or a failed read, keeps a per-chip FIFO size, accepts an
+interrupt's timestamp only when the period it implies lies within a few percent of nominal, and
+estimates the sample period from the timestamps of its interrupts), are:
 
-1. **One drain** is: read ``FIFO_COUNT`` (harmless, retried), read the whole samples waiting in
-   ``FIFO_R_W`` (one attempt per transfer, never retried), then read ``INT_STATUS`` (clear on
-   read, one attempt). Its samples are kept only if every step succeeded, every transfer brought
-   all its bytes, the count was a whole number of samples below the FIFO's size (RM 114-115: the
-   FIFO holds 1024 bytes, PS 7.17) and ``INT_STATUS`` shows no overflow (RM 58,
-   ``FIFO_OFLOW_INT``), which also catches an overflow between the count and the data, and
-   ``USER_CTRL``/``PWR_MGMT_1`` show the chip still running (not reset during the drain).
-2. **On any failure**, the FIFO is **restarted** (``FIFO_EN = 0``, ``USER_CTRL.FIFO_RESET``,
-   then ``FIFO_EN`` and ``USER_CTRL.FIFO_EN`` again, RM 35 and 106): a new *segment* begins,
-   aligned on a sample boundary. The whole-sample transfers of a drain that came in before a
-   failed one are kept, once ``INT_STATUS`` has confirmed them; nothing after a failed transfer
-   can be placed. The write that starts a segment is made once; if it fails the whole restart
-   is redone, so the segment's start time is always that of a write known to have landed.
-3. **Timestamps**: sample ``j`` of a segment started at host time ``t_e`` is taken at
-   ``t_e + (j + 1) T``. The period ``T`` is estimated over the run from every confirmed count:
-   ``n`` samples produced between ``t_e`` and the end of the count's transfer, and not ``n + 1``
-   by its beginning, bound ``T`` from both sides; the estimate is the middle of the tightest
-   bounds. Each sample also gets a *slot*, its position on the grid of the nominal stream,
-   and the slots nobody filled are the lost samples, so kept + lost is always the number of
-   slots asked for.
-4. **A chip that went quiet** (no sample where some were due) is asked for its configuration; if
+1. **Trust no count.** One drain begins with ``FIFO_COUNT`` (harmless, retried). Before any
+   data is read the count must be a whole number of samples, not above the FIFO's size (RM
+   114-115; 1024 bytes on the MPU-6050, PS 7.17, 512 on the MPU-6500 family), possible in the
+   time since the segment began (:class:`PeriodEstimator`: a count no period within the clock's
+   tolerance can explain is *rejected*, logged at WARNING and counted). A count read too high
+   would make the driver read past the FIFO's end, where the real part repeats its last byte:
+   filler that decodes as a plausible sample. A count equal to the FIFO's size is an overflow.
+   (A count too high by less than the clock's tolerance allows cannot be told from a true one
+   by any check before the read; the check catches every count the chip cannot have reached.)
+2. **One drain** then reads the whole samples waiting in ``FIFO_R_W`` (one attempt per
+   transfer, never retried), then ``INT_STATUS`` (clear on read, one attempt). Its samples are
+   kept only if every step succeeded, every transfer brought all its bytes, ``INT_STATUS``
+   shows no overflow (RM 58, ``FIFO_OFLOW_INT``), which also catches an overflow between the
+   count and the data, and ``USER_CTRL``/``PWR_MGMT_1`` show the chip still running (not reset
+   during the drain).
+3. **On any failure**, whatever ``OSError`` it raised (``EINTR`` and ``EAGAIN`` are retried as
+   transient where a retry is safe; an unknown errno becomes an :class:`I2CError`), the FIFO is
+   **restarted** (``FIFO_EN = 0``, ``USER_CTRL.FIFO_RESET``, then ``FIFO_EN`` and
+   ``USER_CTRL.FIFO_EN`` again, RM 35 and 106): a new *segment* begins, aligned on a sample
+   boundary, and what was kept so far stays kept. The whole-sample transfers of a drain that
+   came in before a failed one are kept, once ``INT_STATUS`` has confirmed them; nothing after
+   a failed transfer can be placed. The write that starts a segment is made once; if it fails
+   the whole restart is redone, so the segment's start is always a write known to have landed.
+4. **Timestamps** do not assume when a segment's first sample came: whether the divider
+   restarts when the FIFO is enabled or runs free is a property of the silicon (see the HIL
+   checklist of the user guide). The period ``T`` is bracketed from *differences* of counts
+   within a segment, in which the first sample's time cancels (:class:`PeriodEstimator`); each
+   segment's first sample is then placed from its own counts, and sample ``j`` is at ``t_0 +
+   j T``. Every segment carries the uncertainty of its timestamps, and a recording says the
+   largest (``timestamp_uncertainty_s``). Each sample also gets a *slot*, its position on the
+   grid of the nominal stream, and the slots nobody filled are the lost samples, so kept +
+   lost is always the number of slots asked for.
+5. **A chip that went quiet** (no sample where some were due) is asked for its configuration; if
    it has been reset (a brown-out leaves it asleep, RM 107), it is configured again and the
    stream restarted. Every fault goes into :attr:`FifoStream.faults`.
 """
@@ -34,15 +47,12 @@ timestamps of its interrupts), are:
 from __future__ import annotations
 
 import logging
-import math
 from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from .._validate import check_in_range, check_positive
 from ..chips.mpu6050 import (
     ACCEL_SAMPLE_BYTES,
-    FIFO_SIZE,
     FifoEnable,
     Interrupt,
     PowerManagement1,
@@ -51,68 +61,16 @@ from ..chips.mpu6050 import (
 )
 from ..recording import Recording
 from .i2c import SMBUS_BLOCK_MAX, I2CError
+from .timing import CLOCK_TOLERANCE, PeriodEstimator
 
 __all__ = ["PeriodEstimator", "StreamFault", "FifoBlock", "FifoStream", "CLOCK_TOLERANCE"]
 
 logger = logging.getLogger(__name__)
 
-#: How far the sample clock may be off its nominal rate before the estimate is not trusted,
-#: relative: a few times the +/-1 % variation over temperature of the gyro oscillators that the PLL
-#: locks to (PS rev. 3.4, section 7.15).
-CLOCK_TOLERANCE = 0.05
 #: Longest SMBus chunk that holds whole samples (30 bytes: 5 samples).
 FIFO_CHUNK = (SMBUS_BLOCK_MAX // ACCEL_SAMPLE_BYTES) * ACCEL_SAMPLE_BYTES
 #: A chip is asked whether it was reset when this many samples were due and none came.
 QUIET_SAMPLES = 3
-
-
-class PeriodEstimator:
-    """The sample period, bracketed by counts of samples at known host times.
-
-    Parameters
-    ----------
-    nominal : float
-        The period the registers set, s.
-    tolerance : float
-        The period is assumed within ``nominal * (1 +/- tolerance)``.
-
-    Examples
-    --------
-    >>> from ebantenna.device.fifo import PeriodEstimator
-    >>> est = PeriodEstimator(1e-3)
-    >>> est.add(start=0.0, produced=101, before=0.10145, after=0.10185)  # one count read
-    >>> round(est.period * 1e3, 4), round(est.uncertainty * 1e6, 2)  # ms, us
-    (1.0015, 6.9)
-    """
-
-    def __init__(self, nominal: float, tolerance: float = CLOCK_TOLERANCE):
-        nominal = check_positive("nominal", nominal)
-        tolerance = check_in_range("tolerance", tolerance, 0.0, 1.0)
-        self.nominal = nominal
-        self.low = nominal * (1.0 - tolerance)
-        self.high = nominal * (1.0 + tolerance)
-
-    def add(self, *, start: float, produced: int, before: float, after: float) -> None:
-        """``produced`` samples since ``start`` (s) by the time ``after``, and fewer than
-        ``produced + 1`` at ``before`` (the count's transfer ran from ``before`` to ``after``)."""
-        low = (before - start) / (produced + 1)
-        high = (after - start) / produced if produced else math.inf
-        if max(low, self.low) >= min(high, self.high):
-            logger.debug(
-                "sample count %d at %.6f s contradicts the period bounds; ignored", produced, after
-            )
-            return
-        self.low, self.high = max(low, self.low), min(high, self.high)
-
-    @property
-    def period(self) -> float:
-        """Best estimate of the period, s."""
-        return 0.5 * (self.low + self.high)
-
-    @property
-    def uncertainty(self) -> float:
-        """Half the width of the bracket, s."""
-        return 0.5 * (self.high - self.low)
 
 
 @dataclass(frozen=True)
@@ -161,6 +119,18 @@ def _empty_block(lost: int = 0) -> FifoBlock:
     return FifoBlock(np.empty(0, np.int64), np.empty((0, 3), np.int16), lost)
 
 
+def _as_i2c_error(exc: OSError) -> I2CError:
+    """Every ``OSError`` of the FIFO path as an :class:`I2CError` (an unknown errno included),
+    so that one failure path handles them all."""
+    if isinstance(exc, I2CError):
+        return exc
+    return I2CError(exc.errno, f"{type(exc).__name__}: {exc.strerror or exc}")
+
+
+def _cause(exc: OSError) -> str:
+    return f"bus error ({exc.strerror or exc})"
+
+
 class FifoStream:
     """A running FIFO stream of one :class:`~ebantenna.device.mpu6050.MPU6050`.
 
@@ -168,16 +138,16 @@ class FifoStream:
     """
 
     def __init__(self, mpu):
-        from .mpu6050 import MPU6050  # the driver imports this module
-
-        if not isinstance(mpu, MPU6050):
+        if not all(callable(getattr(mpu, name, None))
+                   for name in ("fifo_count", "configure", "configuration_lost", "decode")):
             raise TypeError(f"mpu must be an MPU6050, got {type(mpu).__name__}")
         self.mpu = mpu
         self.device = mpu.device
         self.clock = mpu.clock
+        self.fifo_size = mpu.fifo_size
         self.estimator = PeriodEstimator(1.0 / mpu.config.fs)
         self.faults: list[StreamFault] = []
-        self.starts: list[float] = []  # host time each segment started
+        self.starts: list[float] = []  # host time each segment started (its enable write ended)
         self.offsets: list[int] = []  # slot of each segment's first sample
         self.delivered: list[int] = []  # samples kept from each segment
         self.drain_times: list[float] = []
@@ -189,6 +159,11 @@ class FifoStream:
         self.unconfigured = False  # a reset chip whose configuration is not written back yet
         self.last_progress = self.clock.monotonic()
         self._try_restart()
+
+    @property
+    def counts_rejected(self) -> int:
+        """FIFO counts rejected as impossible (see :class:`PeriodEstimator`)."""
+        return self.estimator.rejected
 
     # -- restarting ------------------------------------------------------------------------
     def _note(self, cause: str, action: str) -> None:
@@ -203,6 +178,7 @@ class FifoStream:
         device.write_byte(Register.USER_CTRL, UserControl.FIFO_RESET)
         device.read_byte(Register.INT_STATUS)  # clears a stale overflow flag (RM 58)
         device.write_byte(Register.FIFO_EN, FifoEnable.ACCEL)
+        before = self.clock.monotonic()
         device.write_byte(Register.USER_CTRL, UserControl.FIFO_EN, retry=False)
         start = self.clock.monotonic()  # the write landed at its last acknowledge, just before
         period = self.estimator.period
@@ -210,6 +186,7 @@ class FifoStream:
             offset = max(round((start - self.starts[0]) / period), self.next_slot)
         else:
             offset = 0
+        self.estimator.begin(before=before, after=start)
         self.starts.append(start)
         self.offsets.append(offset)
         self.delivered.append(0)
@@ -218,7 +195,8 @@ class FifoStream:
     def _try_restart(self) -> None:
         try:
             self._restart()
-        except I2CError as exc:
+        except OSError as exc:
+            exc = _as_i2c_error(exc)
             self._note(f"restart failed ({exc.strerror or exc})", "wait")
 
     # -- draining --------------------------------------------------------------------------
@@ -227,10 +205,37 @@ class FifoStream:
         due = (now - self.starts[-1]) / self.estimator.period - self.delivered[-1]
         if due < QUIET_SAMPLES:
             return _empty_block()
-        why = self.mpu.configuration_lost()
+        try:
+            why = self.mpu.configuration_lost()
+        except OSError as exc:
+            return self._fail(_cause(_as_i2c_error(exc)))
         if why is not None:
             return self._fail(why, reconfigure=True)
         return self._fail("no samples from the FIFO")
+
+    def _trusted_count(self) -> tuple[int | None, tuple | None, str | None]:
+        """Read ``FIFO_COUNT`` and check it before any data is read (rule 1 of the module notes).
+
+        Returns the bytes to read (None when the count cannot be trusted), the observation
+        ``(produced, before, after)`` it makes for the :class:`PeriodEstimator`, and why it was
+        refused (None when it was not).
+        """
+        before = self.clock.monotonic()
+        count = self.mpu.fifo_count()
+        after = self.clock.monotonic()
+        if count > self.fifo_size:
+            self.estimator.rejected += 1
+            logger.warning("MPU-6050 FIFO: a count of %d bytes exceeds the FIFO's %d; rejected",
+                           count, self.fifo_size)
+            return None, None, f"FIFO count {count} exceeds the FIFO's {self.fifo_size} bytes"
+        if count == self.fifo_size:
+            return None, None, "overflow"
+        if count % ACCEL_SAMPLE_BYTES:
+            return None, None, f"FIFO count {count} is not a whole number of samples"
+        produced = self.delivered[-1] + count // ACCEL_SAMPLE_BYTES
+        if count and not self.estimator.check(produced=produced, before=before, after=after):
+            return None, None, f"FIFO count {count} is more than the chip can have produced"
+        return count, (produced, before, after), None
 
     def drain(self) -> FifoBlock:
         """Drain every whole sample waiting; on any fault restart and return what was kept."""
@@ -243,32 +248,34 @@ class FifoStream:
             if self.pending is not None:
                 return _empty_block()
         try:
-            before = self.clock.monotonic()
-            count = self.mpu.fifo_count()
-            after = self.clock.monotonic()
-        except I2CError as exc:
-            return self._fail(f"bus error ({exc.strerror or exc})")
-        if count >= FIFO_SIZE:
+            count, observed, refused = self._trusted_count()
+        except OSError as exc:
+            return self._fail(_cause(_as_i2c_error(exc)))
+        if refused == "overflow":
             return self._fail("FIFO full (overflow)", overflow=True)
-        if count % ACCEL_SAMPLE_BYTES:
-            return self._fail(f"FIFO count {count} is not a whole number of samples")
+        if refused is not None:
+            return self._fail(refused)
         if count == 0:
-            return self._quiet(after)
+            return self._quiet(observed[2])
+        return self._drain_data(count, observed)
+
+    def _drain_data(self, count: int, observed: tuple) -> FifoBlock:
+        """Read ``count`` bytes of samples, confirm them from the status registers, keep them."""
         raw, broken = self._read_data(count)
         try:
             status = self.device.read_byte(Register.INT_STATUS, retry=False)
             # USER_CTRL and PWR_MGMT_1 (RM 106-107) in one burst: a chip reset during the drain
             # would have emptied the FIFO, and the data port then reads filler bytes.
             user_ctrl, power = self.device.read_block(Register.USER_CTRL, 2)
-        except I2CError as exc:
-            return self._fail(f"bus error ({exc.strerror or exc})")
+        except OSError as exc:
+            return self._fail(_cause(_as_i2c_error(exc)))
         if status & Interrupt.FIFO_OFLOW:
             return self._fail("FIFO overflow", overflow=True)
         if not user_ctrl & UserControl.FIFO_EN or power & PowerManagement1.SLEEP:
             return self._fail("the chip was reset during the drain", reconfigure=True)
-        block = self._keep(raw, count // ACCEL_SAMPLE_BYTES, before, after)
+        block = self._keep(raw, observed)
         if broken is not None:  # the whole chunks before the failed transfer are kept
-            self._fail(f"bus error ({broken.strerror or broken})")
+            self._fail(_cause(broken))
         return block
 
     def _read_data(self, count: int) -> tuple[bytes, I2CError | None]:
@@ -290,8 +297,8 @@ class FifoStream:
                     chunk=FIFO_CHUNK,
                     retry=False,
                 )
-            except I2CError as exc:
-                return bytes(raw), exc
+            except OSError as exc:
+                return bytes(raw), _as_i2c_error(exc)
         return bytes(raw), None
 
     def _fail(self, cause: str, *, overflow: bool = False, reconfigure: bool = False):
@@ -311,19 +318,19 @@ class FifoStream:
     def _try_configure(self) -> None:
         try:
             self.mpu.configure()
-        except I2CError as exc:
+        except OSError as exc:
+            exc = _as_i2c_error(exc)
             self._note(f"reconfigure failed ({exc.strerror or exc})", "wait")
         else:
             self.unconfigured = False
 
-    def _keep(self, raw: bytes, waiting: int, before: float, after: float) -> FifoBlock:
-        """Keep the samples of ``raw``; ``waiting`` samples were counted in the FIFO between
-        host times ``before`` and ``after``."""
+    def _keep(self, raw: bytes, observed: tuple) -> FifoBlock:
+        """Keep the samples of ``raw``; ``observed`` is the drain's count, now confirmed by the
+        status registers, as ``(produced, before, after)`` for the period estimate."""
         seg = len(self.starts) - 1
         first = self.delivered[seg]
-        self.estimator.add(
-            start=self.starts[seg], produced=first + waiting, before=before, after=after
-        )
+        produced, before, after = observed
+        self.estimator.add(produced=produced, before=before, after=after)
         n = len(raw) // ACCEL_SAMPLE_BYTES
         if n == 0:
             return _empty_block()
@@ -343,7 +350,10 @@ class FifoStream:
 
     def host_time(self, slot: int) -> float:
         """Host time at which the sample in ``slot`` of the current segment was taken, s."""
-        return self.starts[-1] + (slot - self.offsets[-1] + 1) * self.estimator.period
+        seg = len(self.starts) - 1
+        j = slot - self.offsets[seg]
+        t0, _ = self.estimator.timestamps(seg, max(j, 0))
+        return t0 + j * self.estimator.period
 
     # -- what was kept ---------------------------------------------------------------------
     @property
@@ -351,10 +361,22 @@ class FifoStream:
         """Samples kept so far."""
         return int(sum(self.delivered))
 
+    def segment_timing(self) -> tuple[np.ndarray, np.ndarray]:
+        """For every segment: the estimated host time of its sample 0 (s, from the stream's
+        first segment start) and the uncertainty of its kept timestamps (s; 0 for a segment
+        with none kept); see :meth:`PeriodEstimator.timestamps`."""
+        first = np.zeros(len(self.starts))
+        uncertainty = np.zeros(len(self.starts))
+        for seg, n in enumerate(self.delivered):
+            t0, u = self.estimator.timestamps(seg, max(n - 1, 0))
+            first[seg] = t0 - self.starts[0]
+            uncertainty[seg] = u if n else 0.0
+        return first, uncertainty
+
     def kept(self, first: int = 0, stop: int | None = None) -> dict:
         """The kept samples with slots in ``[first, stop)``: arrays ``slot``, ``segment``,
-        ``position`` (within the segment), ``counts`` and ``time`` (s, estimated, from the
-        stream's first sample)."""
+        ``position`` (within the segment), ``counts``, ``time`` (s, estimated, from the stream's
+        first segment start) and ``uncertainty`` (s, that of the sample's segment)."""
         if not self._slot:
             slot = np.empty(0, np.int64)
             out = {
@@ -373,21 +395,28 @@ class FifoStream:
         stop = self.next_slot if stop is None else stop
         keep = (out["slot"] >= first) & (out["slot"] < stop)
         out = {k: v[keep] for k, v in out.items()}
-        starts = np.asarray(self.starts or [0.0]) - (self.starts or [0.0])[0]
-        out["time"] = starts[out["segment"]] + out["position"] * self.estimator.period
+        if self.starts:
+            t0, uncertainty = self.segment_timing()
+        else:
+            t0 = uncertainty = np.zeros(1)
+        out["time"] = t0[out["segment"]] + out["position"] * self.estimator.period
+        out["uncertainty"] = uncertainty[out["segment"]]
         return out
 
     def recording(self, first: int, stop: int, *, metadata: dict | None = None):
         """The stream's samples in slots ``[first, stop)`` as a
         :class:`~ebantenna.recording.Recording` (X -> ax, Z -> az), and the raw record.
 
-        ``t`` is each sample's estimated time (s) from slot ``first``, with the period estimated
-        over the run (:class:`~ebantenna.device.fifo.PeriodEstimator`), and ``fs`` the estimated
-        rate. The metadata hold ``samples_lost`` (slots in the window without a sample), the
-        stream's report (period estimate, restarts, fault log) and under ``"raw"`` what the rig
-        measured: the counts of all three axes (Y included), each sample's slot, FIFO segment
-        and position in it, each segment's start and each drain's host time (s from the
-        stream's start) and size.
+        ``t`` is each sample's estimated time (s), counted from the estimated time of slot
+        ``first`` on the first segment's grid, with the period estimated over the run
+        (:class:`~ebantenna.device.timing.PeriodEstimator`), and ``fs`` the estimated rate. The
+        metadata hold ``samples_lost`` (slots in the window without a sample), the stream's
+        report (period estimate, restarts, rejected counts, fault log),
+        ``timestamp_uncertainty_s`` (how far any timestamp of the window can be from the truth,
+        the largest of its segments') and under ``"raw"`` what the rig measured: the counts of
+        all three axes (Y included), each sample's slot, FIFO segment and position in it, each
+        segment's start, estimated first sample and its timestamps' uncertainty, and each
+        drain's host time (s from the stream's start) and size.
 
         Returns
         -------
@@ -398,16 +427,7 @@ class FifoStream:
         if kept["slot"].size == 0:
             raise ValueError("no samples to make a recording of")
         counts = kept["counts"]
-        limit = np.iinfo(np.int16)
-        saturated = int(
-            np.count_nonzero((counts[:, [0, 2]] == limit.min) | (counts[:, [0, 2]] == limit.max))
-        )
-        if saturated:
-            logger.warning(
-                "%d accelerometer readings at the +/-%d g limit (clipped)",
-                saturated,
-                mpu.config.full_scale_g,
-            )
+        saturated = _saturated(counts, mpu.config.full_scale_g)
         acc = mpu.to_acceleration(counts)
         period = self.estimator.period
         meta = mpu.metadata()
@@ -416,30 +436,52 @@ class FifoStream:
                 "samples_lost": int((stop - first) - kept["slot"].size),
                 "samples_saturated": saturated,
                 "first_index": int(kept["slot"][0]),
+                "timestamp_uncertainty_s": float(kept["uncertainty"].max()),
             }
         )
         meta.update(metadata or {})
-        t = kept["time"] - first * period
-        starts = np.asarray(self.starts) - self.starts[0]
-        meta["raw"] = {  # what the rig measured, as measured (see the module notes of .fifo)
-            "counts_xyz": counts.tolist(),
+        first_sample, uncertainty = self.segment_timing()
+        t = kept["time"] - (first_sample[0] + (first - self.offsets[0]) * period)
+        meta["raw"] = self._raw(kept, first, first_sample, uncertainty)
+        return Recording(t, acc[:, 0], acc[:, 2], 1.0 / period, meta)
+
+    def _raw(self, kept: dict, first: int, first_sample, uncertainty) -> dict:
+        """What the rig measured, as measured (see the module notes)."""
+        return {
+            "counts_xyz": kept["counts"].tolist(),
             "slot": (kept["slot"] - first).tolist(),
             "segment": kept["segment"].tolist(),
             "position": kept["position"].tolist(),
-            "segment_start_s": starts.tolist(),
+            "segment_start_s": (np.asarray(self.starts) - self.starts[0]).tolist(),
+            "segment_first_sample_s": first_sample.tolist(),
+            "segment_uncertainty_s": uncertainty.tolist(),
             "drain_time_s": (np.asarray(self.drain_times) - self.starts[0]).tolist(),
             "drain_samples": list(self.drain_sizes),
         }
-        return Recording(t, acc[:, 0], acc[:, 2], 1.0 / period, meta)
 
     def report(self) -> dict:
-        """JSON-ready account of the stream: period estimate, restarts, faults."""
+        """JSON-ready account of the stream: period estimate, restarts, rejected counts, how far
+        the timestamps can be trusted, faults."""
         est = self.estimator
+        _, uncertainty = self.segment_timing() if self.starts else (None, np.zeros(1))
         return {
             "sample_rate_estimated_hz": 1.0 / est.period,
             "sample_period_s": est.period,
             "sample_period_uncertainty_s": est.uncertainty,
+            "timestamp_uncertainty_s": float(np.max(uncertainty)),
             "fifo_restarts": len(self.starts) - 1,
             "fifo_overflows": self.overflows,
+            "fifo_counts_rejected": est.rejected,
             "faults": [f.to_dict() for f in self.faults],
         }
+
+
+def _saturated(counts: np.ndarray, full_scale_g: int) -> int:
+    """X and Z readings at the int16 limits (clipped), logged at WARNING when there are any."""
+    limit = np.iinfo(np.int16)
+    xz = counts[:, [0, 2]]
+    saturated = int(np.count_nonzero((xz == limit.min) | (xz == limit.max)))
+    if saturated:
+        logger.warning("%d accelerometer readings at the +/-%d g limit (clipped)", saturated,
+                       full_scale_g)
+    return saturated

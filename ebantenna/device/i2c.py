@@ -10,8 +10,15 @@ error": the chip did not acknowledge), 5 (``EIO``), 110 (``ETIMEDOUT``) or 11 (`
 arbitration lost). These are retried with an exponential back-off that is bounded both in the number
 of attempts and in the longest wait; when the attempts are used up an :class:`I2CError` names the
 chip, the register, the operation and the last error. Every retry is counted in
-:attr:`I2CDevice.retries` and logged, so that nothing is lost silently. Other errors (a missing
-bus, a wrong address, a permission problem) are not retried.
+:attr:`I2CDevice.retries` and logged, so that nothing is lost silently. A system call interrupted
+by a signal (``EINTR``) is retried the same way. Other errors (a missing bus, a wrong address, a
+permission problem) are not retried.
+
+Giving up is bounded in *time*, not in attempts times retries: a transfer that hangs until the
+adapter's timeout (about a second on a stuck bus) is not tried again once
+:attr:`RetryPolicy.deadline` has passed since its first attempt, and a bus on which nothing has
+succeeded for :attr:`RetryPolicy.dead_after` seconds is declared dead: every later call on it
+raises :class:`BusDeadError` at once, without touching the bus, for every chip on that bus.
 
 A retry is only safe when the transfer has no side effect on the chip. Reading a FIFO data port or
 a clear-on-read status register is not such a transfer: the error may come after the chip has
@@ -27,6 +34,7 @@ from __future__ import annotations
 
 import errno
 import logging
+import weakref
 from dataclasses import dataclass
 
 from .._validate import check_int, check_nonnegative, check_positive
@@ -35,6 +43,11 @@ from .clock import SystemClock
 __all__ = [
     "RetryPolicy",
     "I2CError",
+    "BusDeadError",
+    "transfer_bits",
+    "transfer_time",
+    "RASPBERRY_PI_BUS_HZ",
+    "TRANSFER_OVERHEAD",
     "ShortReadError",
     "I2CDevice",
     "TRANSIENT_ERRNOS",
@@ -44,8 +57,11 @@ __all__ = [
 
 logger = logging.getLogger(__name__)
 
-#: errno values treated as transient bus noise (retried).
-TRANSIENT_ERRNOS = frozenset({errno.EREMOTEIO, errno.EIO, errno.ETIMEDOUT, errno.EAGAIN})
+#: errno values treated as transient bus noise (retried), and ``EINTR``: the call was interrupted
+#: by a signal and may simply be made again.
+TRANSIENT_ERRNOS = frozenset(
+    {errno.EREMOTEIO, errno.EIO, errno.ETIMEDOUT, errno.EAGAIN, errno.EINTR}
+)
 #: errno values that prove a *read* delivered nothing, so that even a FIFO read may be retried:
 #: ``EREMOTEIO``, a missing acknowledge. In a read only the chip's address and register bytes are
 #: acknowledged by the chip; the data bytes are acknowledged by the master (I2C-bus
@@ -53,6 +69,13 @@ TRANSIENT_ERRNOS = frozenset({errno.EREMOTEIO, errno.EIO, errno.ETIMEDOUT, errno
 #: chip. Assumption: the adapter reports a NACK as ``EREMOTEIO`` and nothing else as it
 #: (Linux's ``i2c-bcm2835`` of the Raspberry Pi does; see its ``BCM2835_I2C_S_ERR`` handling).
 NOTHING_READ_ERRNOS = frozenset({errno.EREMOTEIO})
+
+#: I2C clock of a Raspberry Pi's bus unless ``dtparam=i2c_arm_baudrate`` says otherwise, Hz
+#: (Raspberry Pi documentation, "config.txt", ``i2c_arm_baudrate``: default 100000).
+RASPBERRY_PI_BUS_HZ = 100e3
+#: Fixed cost of one transfer besides its bits on the wire (the system call and the adapter's
+#: set-up), s: an assumed 50 us, of the order of a Linux ``ioctl`` on a Raspberry Pi.
+TRANSFER_OVERHEAD = 50e-6
 
 #: The SMBus protocol carries at most 32 data bytes per block transfer.
 SMBUS_BLOCK_MAX = 32
@@ -64,6 +87,39 @@ _FIRST_ADDRESS, _LAST_ADDRESS = 0x03, 0x77
 
 class I2CError(OSError):
     """A bus transfer that still failed after every permitted retry."""
+
+
+class BusDeadError(I2CError):
+    """Nothing on the bus has succeeded for :attr:`RetryPolicy.dead_after` seconds: no more
+    transfers are attempted on it (errno ``ETIMEDOUT``)."""
+
+
+def transfer_bits(nbytes: int) -> int:
+    """Bus clock cycles of a register transfer carrying ``nbytes`` data bytes.
+
+    The address byte, the register byte and the data bytes each take nine clocks (eight bits and
+    the acknowledge), plus about one clock each for the START and the STOP condition.
+
+    Examples
+    --------
+    >>> from ebantenna.device.i2c import transfer_bits
+    >>> transfer_bits(1)
+    29
+    """
+    return 9 * (check_int("nbytes", nbytes, minimum=0) + 2) + 2
+
+
+def transfer_time(nbytes: int, bus_hz: float = RASPBERRY_PI_BUS_HZ,
+                  overhead: float = TRANSFER_OVERHEAD) -> float:
+    """Time one register transfer of ``nbytes`` data bytes takes at ``bus_hz`` (Hz), s.
+
+    Examples
+    --------
+    >>> from ebantenna.device.i2c import transfer_time
+    >>> round(transfer_time(30) * 1e3, 2)  # ms: five FIFO samples in one SMBus block at 100 kHz
+    2.95
+    """
+    return overhead + transfer_bits(nbytes) / check_positive("bus_hz", bus_hz)
 
 
 class ShortReadError(OSError):
@@ -91,6 +147,15 @@ class RetryPolicy:
         Growth of the wait from one retry to the next, >= 1. Default 2.
     max_delay : float
         Longest single wait, s. Default 20 ms.
+    deadline : float
+        No new attempt of one transfer starts later than this after its first attempt began, s.
+        Default 1 s: the retries of a noisy bus take milliseconds, while one attempt on a stuck
+        bus can take the adapter's whole timeout (about 1 s), so ``attempts`` alone would
+        multiply that timeout.
+    dead_after : float
+        A bus on which no transfer has succeeded for this long is dead, s (see the module notes).
+        Default 2 s: far longer than any transient fault, short enough that a run on a dead bus
+        gives up within a few seconds.
 
     Examples
     --------
@@ -103,6 +168,8 @@ class RetryPolicy:
     initial_delay: float = 5e-4
     factor: float = 2.0
     max_delay: float = 0.02
+    deadline: float = 1.0
+    dead_after: float = 2.0
 
     def __post_init__(self):
         check_int("attempts", self.attempts, minimum=1, maximum=MAX_ATTEMPTS)
@@ -111,6 +178,8 @@ class RetryPolicy:
         if self.factor < 1:
             raise ValueError(f"factor must be >= 1, got {self.factor!r}")
         check_nonnegative("max_delay", self.max_delay)
+        check_positive("deadline", self.deadline)
+        check_positive("dead_after", self.dead_after)
 
     def delays(self) -> tuple[float, ...]:
         """The waits before each retry, s (``attempts - 1`` of them)."""
@@ -127,6 +196,46 @@ MAX_ATTEMPTS = 100
 
 def _check_byte(name: str, value) -> int:
     return check_int(name, value, minimum=0, maximum=255)
+
+
+class BusHealth:
+    """When a bus last answered, shared by every :class:`I2CDevice` on it.
+
+    Attributes
+    ----------
+    failing_since : float or None
+        Host time at which the first of the transfers failing since the last success began, s;
+        None while the bus answers.
+    """
+
+    def __init__(self):
+        self.failing_since = None
+
+    def failed(self, began: float) -> None:
+        """A transfer that began at host time ``began`` (s) failed."""
+        if self.failing_since is None:
+            self.failing_since = began
+
+    def succeeded(self) -> None:
+        """A transfer succeeded: the bus answers."""
+        self.failing_since = None
+
+    def failing_for(self, now: float) -> float:
+        """How long nothing has succeeded on the bus at host time ``now``, s (0 if it answers)."""
+        return 0.0 if self.failing_since is None else now - self.failing_since
+
+
+#: The health of each open bus object, shared by the devices on it.
+_HEALTH: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def bus_health(bus) -> BusHealth:
+    """The :class:`BusHealth` of ``bus`` (one per bus object; a new one for a bus that cannot be
+    weakly referenced)."""
+    try:
+        return _HEALTH.setdefault(bus, BusHealth())
+    except TypeError:  # not weakly referenceable: health per device
+        return BusHealth()
 
 
 #: What every bus offers (the reads and writes of single registers, which every chip here uses).
@@ -176,16 +285,42 @@ class I2CDevice:
         self.use_rdwr = bool(use_rdwr)
         #: Number of transient errors that were retried.
         self.retries = 0
+        #: When the bus last answered (shared with the other devices on ``bus``).
+        self.health = bus_health(bus)
+
+    def _check_alive(self, what: str, register: int) -> None:
+        failing = self.health.failing_for(self.clock.monotonic())
+        if failing > self.retry.dead_after:
+            raise BusDeadError(
+                errno.ETIMEDOUT,
+                f"I2C {what} of register 0x{register:02X} at address 0x{self.address:02X} not "
+                f"attempted: nothing on the bus has succeeded for {failing:.3f} s (more than "
+                f"{self.retry.dead_after:g} s); the bus is dead")
+
+    def _attempt(self, call):
+        """One attempt of ``call``, noting in :attr:`health` whether the bus answered."""
+        began = self.clock.monotonic()
+        try:
+            result = call()
+        except OSError:
+            self.health.failed(began)
+            raise
+        self.health.succeeded()
+        return result
 
     def _transfer(self, what: str, register: int, call, *, retryable=TRANSIENT_ERRNOS):
+        self._check_alive(what, register)
         delays = self.retry.delays()
+        first = self.clock.monotonic()
         for attempt in range(len(delays) + 1):
             try:
-                return call()
+                return self._attempt(call)
             except OSError as exc:
                 if exc.errno not in TRANSIENT_ERRNOS:
                     raise
-                if attempt == len(delays) or exc.errno not in retryable:
+                late = self.clock.monotonic() - first + (
+                    delays[attempt] if attempt < len(delays) else 0.0) > self.retry.deadline
+                if attempt == len(delays) or exc.errno not in retryable or late:
                     hint = (" (no acknowledge: check the wiring, the power and the address)"
                             if exc.errno == errno.EREMOTEIO else "")
                     raise I2CError(

@@ -34,6 +34,18 @@ Range (RM, register 28)
 ``AFS_SEL = 3`` selects +/-16 g, 2048 LSB/g (PS, table 6.2), the paper's "maximum sensitivity".
 Raw counts are converted with the standard gravity 9.80665 m/s^2.
 
+Compatible chips (MPU-6500 family)
+----------------------------------
+The MPU-6500, MPU-9250 and MPU-9255 answer the same accelerometer, FIFO and power registers, with
+three differences that matter here (MPU-6500 Register Map RM-MPU-6500A-00 rev. 2.1, registers 25,
+26 and 29): ``SMPLRT_DIV`` applies only when ``0 < DLPF_CFG < 7`` (with the default
+``DLPF_CFG = 0`` they would stream at 8 kHz); the accelerometer's filter is ``A_DLPF_CFG`` in
+``ACCEL_CONFIG2``, not ``CONFIG``; and the FIFO holds 512 bytes. They are configured with
+``DLPF_CFG = max(dlpf_cfg, 1)`` (1 kHz internal rate, so the divider applies), ``SMPLRT_DIV =
+1 kHz / fs - 1`` and ``A_DLPF_CFG = max(dlpf_cfg, 1)`` (218.1 Hz for the default, the nearest
+to the MPU-6050's 260 Hz). Other parts Linux's driver knows are refused by name: their FIFO sizes
+and filter registers are not modelled here.
+
 FIFO (RM, registers 35, 56, 58, 106, 114-116)
 ---------------------------------------------
 With only ``ACCEL_FIFO_EN`` set, each sample is 6 bytes (X, Y, Z, big-endian, signed). The FIFO
@@ -49,24 +61,18 @@ from __future__ import annotations
 import logging
 import math
 import warnings
-from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_choice, check_int, check_positive
+from .._validate import check_nonnegative, check_positive
 from ..chips.mpu6050 import (
-    ACCEL_LSB_PER_G,
-    ACCEL_OUTPUT_RATE,
-    ACCEL_RANGES_G,
+    ACCEL_DLPF_6500,
     ACCEL_SAMPLE_BYTES,
-    ADDRESS_AD0_LOW,
-    ADDRESSES,
-    AFS_SEL,
+    CHIP_MODELS,
     CLKSEL,
     COMPATIBLE_WHO_AM_I,
     DATA_DTYPE,
-    DLPF,
-    FIFO_SIZE,
+    GYRO_RATE_DLPF_ON,
     GYRO_STARTUP,
     RESET_WAIT,
     STANDARD_GRAVITY,
@@ -75,12 +81,12 @@ from ..chips.mpu6050 import (
     Interrupt,
     PowerManagement1,
     Register,
-    gyro_output_rate,
 )
 from ..recording import Recording
 from .clock import SystemClock
-from .fifo import FifoBlock, FifoStream
-from .i2c import I2CDevice, RetryPolicy
+from .fifo import CLOCK_TOLERANCE, FIFO_CHUNK, FifoBlock, FifoStream
+from .i2c import RASPBERRY_PI_BUS_HZ, I2CDevice, RetryPolicy, transfer_time
+from .mpu6050_config import LSB_PER_G, MPU6050Config, accel_bandwidth, sample_rate_divider
 from .watchdog import StreamStalledError, record_stream
 
 __all__ = [
@@ -97,11 +103,11 @@ __all__ = [
 
 logger = logging.getLogger(__name__)
 
-#: Sensitivity by full-scale range (+/- g), LSB per g (PS, table 6.2).
-LSB_PER_G = dict(zip(ACCEL_RANGES_G, ACCEL_LSB_PER_G, strict=True))
-
 #: Bytes per FIFO sample with only the accelerometer enabled.
 SAMPLE_BYTES = ACCEL_SAMPLE_BYTES
+#: Samples kept free in the FIFO by the poll-interval limit (Linux's ``inv_mpu6050`` resets its
+#: FIFO when fewer than three samples' room is left).
+FIFO_MARGIN = 3
 
 
 class ChipIdentityError(OSError):
@@ -110,115 +116,6 @@ class ChipIdentityError(OSError):
 
 class CompatibleChipWarning(UserWarning):
     """The chip is not an MPU-6050 but a part known to answer the same registers."""
-
-
-def sample_rate_divider(fs: float, dlpf_cfg: int) -> int:
-    """``SMPLRT_DIV`` for a sample rate ``fs`` with low-pass setting ``dlpf_cfg`` (RM, register 25).
-
-    Parameters
-    ----------
-    fs : float
-        Wanted sample rate, Hz. At most 1 kHz, the accelerometer's output rate.
-    dlpf_cfg : int
-        ``DLPF_CFG``, 0-6.
-
-    Returns
-    -------
-    int
-        The divider, 0-255, such that ``gyro_rate / (1 + divider) == fs`` exactly.
-
-    Raises
-    ------
-    ValueError
-        When no divider gives ``fs`` exactly.
-
-    Examples
-    --------
-    >>> from ebantenna.device.mpu6050 import sample_rate_divider
-    >>> sample_rate_divider(1000.0, 0), sample_rate_divider(1000.0, 1), sample_rate_divider(500, 3)
-    (7, 0, 1)
-    """
-    dlpf_cfg = check_int("dlpf_cfg", dlpf_cfg, minimum=0, maximum=6)
-    fs = check_positive("fs", fs)
-    if fs > ACCEL_OUTPUT_RATE:
-        raise ValueError(f"fs must be <= {ACCEL_OUTPUT_RATE:g} Hz (the accelerometer's output "
-                         f"rate), got {fs!r}")
-    gyro_rate = gyro_output_rate(dlpf_cfg)
-    divider = round(gyro_rate / fs) - 1
-    if not (0 <= divider <= 255 and math.isclose(gyro_rate / (1 + divider), fs, rel_tol=1e-12)):
-        raise ValueError(
-            f"fs must be {gyro_rate:g} Hz / (1 + n) for an integer n in [0, 255] when "
-            f"dlpf_cfg={dlpf_cfg}; got {fs!r}"
-        )
-    return divider
-
-
-def accel_bandwidth(dlpf_cfg: int) -> float:
-    """The accelerometer's -3 dB bandwidth for ``DLPF_CFG`` 0-6, Hz (RM, register 26).
-
-    Examples
-    --------
-    >>> from ebantenna.device.mpu6050 import accel_bandwidth
-    >>> accel_bandwidth(0)
-    260.0
-    """
-    return DLPF[check_int("dlpf_cfg", dlpf_cfg, minimum=0, maximum=len(DLPF) - 1)].accel_bandwidth
-
-
-@dataclass(frozen=True)
-class MPU6050Config:
-    """Settings of the accelerometer.
-
-    Parameters
-    ----------
-    fs : float
-        Sample rate, Hz. Default 1000 Hz (paper, section 3).
-    dlpf_cfg : int
-        Digital low-pass filter setting 0-6. Default 0: 260 Hz, the widest (see the module notes).
-    full_scale_g : int
-        Full-scale range, +/- g: 2, 4, 8 or 16. Default 16 (paper, section 3).
-    address : int
-        I2C address: 0x68 (AD0 low, default) or 0x69 (AD0 high).
-
-    Examples
-    --------
-    >>> from ebantenna.device.mpu6050 import MPU6050Config
-    >>> cfg = MPU6050Config()
-    >>> cfg.smplrt_div, cfg.accel_config, cfg.lsb_per_g
-    (7, 24, 2048)
-    """
-
-    fs: float = 1000.0
-    dlpf_cfg: int = 0
-    full_scale_g: int = 16
-    address: int = ADDRESS_AD0_LOW
-
-    def __post_init__(self):
-        sample_rate_divider(self.fs, self.dlpf_cfg)
-        if self.full_scale_g not in LSB_PER_G:
-            valid = ", ".join(str(g) for g in ACCEL_RANGES_G)
-            raise ValueError(f"full_scale_g must be one of {valid}; got {self.full_scale_g!r}")
-        check_choice("address", self.address, ADDRESSES)
-
-    @property
-    def smplrt_div(self) -> int:
-        """Value of ``SMPLRT_DIV``."""
-        return sample_rate_divider(self.fs, self.dlpf_cfg)
-
-    @property
-    def accel_config(self) -> int:
-        """Value of ``ACCEL_CONFIG``: ``AFS_SEL`` in bits 4:3."""
-        return AFS_SEL.put(ACCEL_RANGES_G.index(self.full_scale_g))
-
-    @property
-    def lsb_per_g(self) -> int:
-        """Sensitivity, LSB/g."""
-        return LSB_PER_G[self.full_scale_g]
-
-    @property
-    def bandwidth(self) -> float:
-        """Accelerometer -3 dB bandwidth, Hz."""
-        return accel_bandwidth(self.dlpf_cfg)
 
 
 class MPU6050:
@@ -237,6 +134,10 @@ class MPU6050:
     use_rdwr : bool
         Drain the FIFO with combined ``i2c_rdwr`` transfers (any length) instead of 30-byte SMBus
         blocks.
+    bus_hz : float, optional
+        The bus's I2C clock, Hz, for the poll-interval limit (:meth:`max_poll_interval`).
+        Default: the bus's ``bus_hz`` attribute if it has one (the simulated bus), else a
+        Raspberry Pi's default 100 kHz.
 
     Examples
     --------
@@ -251,7 +152,8 @@ class MPU6050:
     """
 
     def __init__(self, bus, config: MPU6050Config | None = None, *,
-                 retry: RetryPolicy | None = None, clock=None, use_rdwr: bool = False):
+                 retry: RetryPolicy | None = None, clock=None, use_rdwr: bool = False,
+                 bus_hz: float | None = None):
         self.config = MPU6050Config() if config is None else config
         if not isinstance(self.config, MPU6050Config):
             raise TypeError(f"config must be an MPU6050Config, got {type(config).__name__}")
@@ -260,8 +162,21 @@ class MPU6050:
                                 use_rdwr=use_rdwr)
         #: The running FIFO stream (None before :meth:`start_fifo`).
         self.stream: FifoStream | None = None
-        #: Name of the part found by :meth:`check_identity`.
-        self.part = "MPU-6050"
+        #: The part found by :meth:`check_identity` (an MPU-6050 until then).
+        self.model = CHIP_MODELS[WHO_AM_I_VALUE]
+        #: The I2C clock assumed for the poll-interval limit, Hz.
+        self.bus_hz = check_positive(
+            "bus_hz", getattr(bus, "bus_hz", RASPBERRY_PI_BUS_HZ) if bus_hz is None else bus_hz)
+
+    @property
+    def part(self) -> str:
+        """Name of the part found by :meth:`check_identity`."""
+        return self.model.name
+
+    @property
+    def fifo_size(self) -> int:
+        """The part's FIFO size, bytes (1024 on the MPU-6050, 512 on the MPU-6500 family)."""
+        return self.model.fifo_size
 
     # -- setup -----------------------------------------------------------------------------
     def who_am_i(self) -> int:
@@ -269,21 +184,29 @@ class MPU6050:
         return self.device.read_byte(Register.WHO_AM_I)
 
     def check_identity(self) -> None:
-        """Check ``WHO_AM_I`` (RM 117): 0x68 is an MPU-6050; a compatible part is accepted with a
-        :class:`CompatibleChipWarning`; anything else raises :class:`ChipIdentityError`."""
+        """Check ``WHO_AM_I`` (RM 117): 0x68 is an MPU-6050; a part of the MPU-6500 family is
+        accepted with a :class:`CompatibleChipWarning` and configured as such (see the module
+        notes); another part Linux's driver knows is refused by name, and anything else raises
+        :class:`ChipIdentityError`."""
         value = self.who_am_i()
         if value == WHO_AM_I_VALUE:
-            self.part = "MPU-6050"
+            self.model = CHIP_MODELS[value]
             return
-        if value in COMPATIBLE_WHO_AM_I:
-            self.part = COMPATIBLE_WHO_AM_I[value]
+        if value in CHIP_MODELS:
+            self.model = CHIP_MODELS[value]
             message = (f"the chip at I2C address 0x{self.config.address:02X} reads WHO_AM_I "
-                       f"0x{value:02X}: an {self.part}, not an MPU-6050. Its accelerometer "
-                       "registers are the same, but check its FIFO size and noise figures "
-                       "before trusting the recording")
+                       f"0x{value:02X}: an {self.part}, not an MPU-6050. It is configured as "
+                       f"one (its {self.fifo_size}-byte FIFO, the accelerometer filter in "
+                       "ACCEL_CONFIG2); check its noise figures before comparing recordings")
             logger.warning(message)
             warnings.warn(message, CompatibleChipWarning, stacklevel=3)
             return
+        if value in COMPATIBLE_WHO_AM_I:
+            raise ChipIdentityError(
+                f"the chip at I2C address 0x{self.config.address:02X} is an "
+                f"{COMPATIBLE_WHO_AM_I[value]} (WHO_AM_I 0x{value:02X}): not supported, its FIFO "
+                "size and filter registers are not modelled here (supported: "
+                + ", ".join(m.name for m in CHIP_MODELS.values()) + ")")
         known = ", ".join(f"0x{v:02X} ({name})" for v, name in COMPATIBLE_WHO_AM_I.items())
         raise ChipIdentityError(
             f"the chip at I2C address 0x{self.config.address:02X} is not an MPU-6050: "
@@ -320,12 +243,32 @@ class MPU6050:
         for register, value in self._settings().items():
             self.device.write_byte(register, value)
         logger.info("%s at 0x%02X: %g Hz, DLPF %d (%g Hz), +/-%d g", self.part, cfg.address,
-                    cfg.fs, cfg.dlpf_cfg, cfg.bandwidth, cfg.full_scale_g)
+                    cfg.fs, cfg.dlpf_cfg, self.bandwidth, cfg.full_scale_g)
 
     def _settings(self) -> dict:
         cfg = self.config
-        return {Register.CONFIG: cfg.dlpf_cfg, Register.SMPLRT_DIV: cfg.smplrt_div,
-                Register.ACCEL_CONFIG: cfg.accel_config, Register.INT_ENABLE: Interrupt.FIFO_OFLOW}
+        if not self.model.accel_config2:
+            return {Register.CONFIG: cfg.dlpf_cfg, Register.SMPLRT_DIV: cfg.smplrt_div,
+                    Register.ACCEL_CONFIG: cfg.accel_config,
+                    Register.INT_ENABLE: Interrupt.FIFO_OFLOW}
+        # MPU-6500 family (module notes): the divider needs the filter on; the accelerometer's
+        # own filter lives in ACCEL_CONFIG2.
+        divider = round(GYRO_RATE_DLPF_ON / cfg.fs) - 1
+        if not (0 <= divider <= 255 and math.isclose(GYRO_RATE_DLPF_ON / (1 + divider), cfg.fs,
+                                                     rel_tol=1e-12)):
+            raise ValueError(f"fs must be 1000 Hz / (1 + n) for an integer n in [0, 255] on an "
+                             f"{self.part}; got {cfg.fs!r}")
+        filtered = max(cfg.dlpf_cfg, 1)
+        return {Register.CONFIG: filtered, Register.SMPLRT_DIV: divider,
+                Register.ACCEL_CONFIG: cfg.accel_config, Register.ACCEL_CONFIG2: filtered,
+                Register.INT_ENABLE: Interrupt.FIFO_OFLOW}
+
+    @property
+    def bandwidth(self) -> float:
+        """The accelerometer's -3 dB bandwidth as configured on this part, Hz."""
+        if self.model.accel_config2:
+            return ACCEL_DLPF_6500[max(self.config.dlpf_cfg, 1)]
+        return self.config.bandwidth
 
     def configuration_lost(self) -> str | None:
         """Why the chip no longer runs as configured (asleep, or a setting changed), or None."""
@@ -339,8 +282,29 @@ class MPU6050:
 
     # -- conversion ------------------------------------------------------------------------
     def to_acceleration(self, counts) -> np.ndarray:
-        """Raw counts to acceleration, m/s^2."""
-        return np.asarray(counts, dtype=np.float64) * (STANDARD_GRAVITY / self.config.lsb_per_g)
+        """Raw counts to acceleration, m/s^2.
+
+        Raises
+        ------
+        ValueError
+            For a count that no 16-bit output register can hold (outside -32768 ... 32767, RM
+            59-64) or that is not a number.
+
+        Examples
+        --------
+        >>> from ebantenna.device.simulated import SimulatedRig
+        >>> from ebantenna.device.mpu6050 import MPU6050
+        >>> rig = SimulatedRig.quiet()
+        >>> MPU6050(rig.bus, clock=rig.clock).to_acceleration([2048, -32768]).round(3)
+        array([  9.807, -156.906])
+        """
+        counts = np.asarray(counts, dtype=np.float64)
+        limit = np.iinfo(np.int16)
+        bad = ~((counts >= limit.min) & (counts <= limit.max))  # NaN compares False
+        if bad.any():
+            raise ValueError(f"counts must be 16-bit register values in [{limit.min}, "
+                             f"{limit.max}], got {counts[bad].flat[0]!r}")
+        return counts * (STANDARD_GRAVITY / self.config.lsb_per_g)
 
     @staticmethod
     def decode(raw: bytes) -> np.ndarray:
@@ -377,16 +341,53 @@ class MPU6050:
     @property
     def fifo_capacity(self) -> float:
         """How long the FIFO can go undrained before it overflows, s (170 ms at 1 kHz)."""
-        return (FIFO_SIZE // SAMPLE_BYTES) / self.config.fs
+        return (self.fifo_size // SAMPLE_BYTES) / self.config.fs
 
-    def check_poll_interval(self, poll_interval: float) -> float:
-        """Return ``poll_interval`` (s) if the FIFO, drained that often, cannot overflow."""
+    def max_poll_interval(self, busy: float = 0.0) -> float:
+        """The longest wait between drains after which the FIFO still cannot overflow, s.
+
+        A drain loop sleeps ``P``, then reads the ``N`` samples waiting, ``c`` seconds each on
+        the bus, plus ``F`` seconds of fixed transfers (two counts, ``INT_STATUS``, ``USER_CTRL``)
+        and ``busy`` seconds of other traffic (servo updates). Samples arrive at up to ``r =
+        fs (1 + tolerance)`` while it sleeps *and* while it drains, so ``N = r (P + F + busy +
+        N c)``: ``N = r (P + F + busy) / (1 - r c)``. Keeping ``N`` three samples below the
+        FIFO's size (Linux's ``inv_mpu6050`` keeps the same margin) gives
+        ``P < N_max (1 - r c) / r - F - busy``. When ``r c >= 1`` the bus cannot keep up at all.
+
+        Parameters
+        ----------
+        busy : float
+            Other bus time per poll, s.
+
+        Examples
+        --------
+        >>> from ebantenna.device.simulated import SimulatedRig
+        >>> from ebantenna.device.mpu6050 import MPU6050
+        >>> rig = SimulatedRig.quiet()
+        >>> round(MPU6050(rig.bus, clock=rig.clock).max_poll_interval() * 1e3, 1)  # ms, 100 kHz
+        58.9
+        >>> rig.bus.bus_hz = 400e3
+        >>> round(MPU6050(rig.bus, clock=rig.clock).max_poll_interval() * 1e3, 1)  # ms, 400 kHz
+        132.6
+        """
+        busy = check_nonnegative("busy", busy)
+        rate = self.config.fs * (1.0 + CLOCK_TOLERANCE)
+        per_sample = transfer_time(FIFO_CHUNK, self.bus_hz) / (FIFO_CHUNK // SAMPLE_BYTES)
+        fixed = 2 * transfer_time(2, self.bus_hz) + transfer_time(1, self.bus_hz) + transfer_time(
+            2, self.bus_hz)
+        most = self.fifo_size // SAMPLE_BYTES - FIFO_MARGIN
+        return most * (1.0 - rate * per_sample) / rate - fixed - busy
+
+    def check_poll_interval(self, poll_interval: float, busy: float = 0.0) -> float:
+        """Return ``poll_interval`` (s) if the FIFO, drained that often, cannot overflow (see
+        :meth:`max_poll_interval`; ``busy``: other bus time per poll, s)."""
         poll_interval = check_positive("poll_interval", poll_interval)
-        if not poll_interval < self.fifo_capacity:
+        limit = self.max_poll_interval(busy)
+        if not poll_interval < limit:
             raise ValueError(
-                f"poll_interval must be < {self.fifo_capacity:.3f} s (the FIFO holds "
-                f"{FIFO_SIZE // SAMPLE_BYTES} samples at {self.config.fs:g} Hz), "
-                f"got {poll_interval!r}")
+                f"poll_interval must be < {max(limit, 0.0):.4f} s (the {self.part}'s FIFO holds "
+                f"{self.fifo_size // SAMPLE_BYTES} samples at {self.config.fs:g} Hz, and draining "
+                f"them at {self.bus_hz / 1e3:g} kHz takes time too), got {poll_interval!r}")
         return poll_interval
 
     @property
@@ -417,7 +418,8 @@ class MPU6050:
             "address": cfg.address,
             "sample_rate_hz": cfg.fs,
             "dlpf_cfg": cfg.dlpf_cfg,
-            "bandwidth_hz": cfg.bandwidth,
+            "bandwidth_hz": self.bandwidth,
+            "fifo_size_bytes": self.fifo_size,
             "full_scale_g": cfg.full_scale_g,
             "lsb_per_g": cfg.lsb_per_g,
             "i2c_retries": self.device.retries,
@@ -442,8 +444,8 @@ class MPU6050:
         duration : float
             Length of the recording, s: ``round(duration * fs)`` slots.
         poll_interval : float
-            Time between drains, s. Must be below the FIFO's 170 ms at 1 kHz; a host that stalls
-            for longer loses samples (and counts them).
+            Time between drains, s. Must be below :meth:`max_poll_interval` (59 ms at 1 kHz on
+            a 100 kHz bus); a host that stalls for longer loses samples (and counts them).
         watchdog : float
             Longest time without a new sample, s. Default 1 s.
 

@@ -20,22 +20,22 @@ import logging
 import math
 from dataclasses import dataclass, field
 
-import numpy as np
-
 from .._validate import (
-    check_array,
     check_in_range,
     check_int,
     check_nonnegative,
     check_positive,
     check_real,
 )
+from ..chips.pca9685 import Led
 from ..recording import Recording
-from .i2c import I2CError
+from .i2c import I2CError, transfer_time
 from .mpu6050 import MPU6050
+from .oe import OutputEnable
 from .pca9685 import PCA9685
-from .safety import ServoGuard, SignalReceived
+from .safety import ReleaseError, ServoGuard, SignalReceived
 from .servo import Servo, ServoCalibration
+from .sweep import ContactDetector, EllipticalPath
 from .watchdog import check_watchdog, stop_quietly
 
 __all__ = [
@@ -51,104 +51,6 @@ logger = logging.getLogger(__name__)
 
 #: Longest recording a search makes after a contact, s: the paper's windows last about 1 s.
 MAX_DURATION = 60.0
-
-
-@dataclass(frozen=True)
-class EllipticalPath:
-    """The search path: an ellipse in (pan, tilt) traversed at constant angular rate.
-
-    ``pan(t) = pan_center + pan_amplitude sin(2 pi t / period)`` and
-    ``tilt(t) = tilt_center + tilt_amplitude cos(2 pi t / period)``.
-
-    Parameters
-    ----------
-    pan_center, tilt_center : float
-        Centre of the ellipse, degrees (servo angles). Defaults 90, 90.
-    pan_amplitude, tilt_amplitude : float
-        Semi-axes, degrees. Defaults 60 and 15: a wide, flat sweep.
-    period : float
-        Time for one loop, s. Default 4 s.
-
-    Examples
-    --------
-    >>> from ebantenna.device.pantilt import EllipticalPath
-    >>> path = EllipticalPath()
-    >>> [round(a, 6) for a in path.angles(1.0)]  # a quarter loop: pan at its maximum
-    [150.0, 90.0]
-    """
-
-    pan_center: float = 90.0
-    tilt_center: float = 90.0
-    pan_amplitude: float = 60.0
-    tilt_amplitude: float = 15.0
-    period: float = 4.0
-
-    def __post_init__(self):
-        check_real("pan_center", self.pan_center)
-        check_real("tilt_center", self.tilt_center)
-        check_nonnegative("pan_amplitude", self.pan_amplitude)
-        check_nonnegative("tilt_amplitude", self.tilt_amplitude)
-        check_positive("period", self.period)
-
-    def angles(self, t: float) -> tuple[float, float]:
-        """(pan, tilt) at time ``t`` (s) after the start, degrees."""
-        phase = 2.0 * math.pi * check_real("t", t) / self.period
-        return (self.pan_center + self.pan_amplitude * math.sin(phase),
-                self.tilt_center + self.tilt_amplitude * math.cos(phase))
-
-    def peak_rate(self) -> float:
-        """Fastest angular speed of the pan servo along the path, degrees/s."""
-        return 2.0 * math.pi * max(self.pan_amplitude, self.tilt_amplitude) / self.period
-
-
-class ContactDetector:
-    """Flags the first sample whose acceleration leaves a running baseline by more than a threshold.
-
-    The baseline is the mean of the last ``window`` samples before the block being examined; the
-    deviation of a sample is ``hypot(ax - mean_x, az - mean_z)``. Nothing is flagged until the
-    window is full.
-
-    Parameters
-    ----------
-    threshold : float
-        Deviation that counts as a contact, m/s^2.
-    window : int
-        Samples in the baseline.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from ebantenna.device.pantilt import ContactDetector
-    >>> det = ContactDetector(threshold=1.0, window=10)
-    >>> print(det.update(np.zeros(10), np.zeros(10)))
-    None
-    >>> det.update(np.array([0.1, 0.2, 3.0]), np.zeros(3))
-    2
-    """
-
-    def __init__(self, threshold: float, window: int = 50):
-        self.threshold = check_positive("threshold", threshold)
-        self.window = check_int("window", window, minimum=1)
-        self._x = np.empty(0)
-        self._z = np.empty(0)
-
-    def update(self, ax, az) -> int | None:
-        """Check new samples (m/s^2); return the position of the first contact in them, or None."""
-        if np.size(ax) == 0 and np.size(az) == 0:  # a poll that found no new samples
-            return None
-        ax = check_array("ax", ax, ndim=1)
-        az = check_array("az", az, ndim=1)
-        if ax.shape != az.shape:
-            raise ValueError(f"ax and az must have the same length, got {ax.size} and {az.size}")
-        found = None
-        if self._x.size >= self.window:
-            deviation = np.hypot(ax - self._x.mean(), az - self._z.mean())
-            above = np.flatnonzero(deviation > self.threshold)
-            if above.size:
-                found = int(above[0])
-        self._x = np.concatenate([self._x, ax])[-self.window:]
-        self._z = np.concatenate([self._z, az])[-self.window:]
-        return found
 
 
 class PanTilt:
@@ -315,7 +217,10 @@ class AcquisitionResult:
     servos_released : bool
         Whether the PWM outputs were switched off at the end (confirmed by the release).
     stream : dict
-        The FIFO stream's report: estimated sample rate, restarts, overflows, fault log.
+        The FIFO stream's report: estimated sample rate, restarts, overflows, rejected counts,
+        timestamp uncertainty, fault log.
+    servos_released_by : str or None
+        How they were released: ``"i2c"``, ``"oe"`` (the ``OE`` pin) or None.
     """
 
     contact_detected: bool
@@ -328,6 +233,7 @@ class AcquisitionResult:
     i2c_retries: int
     servos_released: bool = False
     stream: dict = field(default_factory=dict)
+    servos_released_by: str | None = None
 
     @property
     def samples(self) -> int:
@@ -346,8 +252,13 @@ class AcquisitionResult:
             "contact_angles_deg": None if self.contact_angles is None else
             list(self.contact_angles), "i2c_retries": self.i2c_retries,
             "servos_released": self.servos_released,
+            "servos_released_by": self.servos_released_by,
             "sample_rate_estimated_hz": self.stream.get("sample_rate_estimated_hz"),
             "sample_period_uncertainty_s": self.stream.get("sample_period_uncertainty_s"),
+            "timestamp_uncertainty_s": (
+                self.stream.get("timestamp_uncertainty_s") if self.recording is None
+                else self.recording.metadata["timestamp_uncertainty_s"]),
+            "fifo_counts_rejected": self.stream.get("fifo_counts_rejected", 0),
             "fifo_restarts": self.stream.get("fifo_restarts", 0),
             "faults": len(self.stream.get("faults", [])),
         }
@@ -358,7 +269,8 @@ class AcquisitionResult:
 
 
 def search_and_record(mpu: MPU6050, pantilt: PanTilt, config: SearchConfig | None = None, *,
-                      labels: dict | None = None) -> AcquisitionResult:
+                      labels: dict | None = None,
+                      output_enable: OutputEnable | None = None) -> AcquisitionResult:
     """Sweep until contact, stop the servos, record the vibration window, release the servos.
 
     Parameters
@@ -371,10 +283,19 @@ def search_and_record(mpu: MPU6050, pantilt: PanTilt, config: SearchConfig | Non
         Search and recording settings.
     labels : dict, optional
         JSON-serialisable labels stored in the recording's metadata (material, contact ratio, ...).
+    output_enable : OutputEnable, optional
+        The PCA9685's ``OE`` pin on a GPIO line: the release used when I2C cannot release the
+        servos (:mod:`~ebantenna.device.oe`).
 
     Returns
     -------
     AcquisitionResult
+
+    Raises
+    ------
+    ReleaseError
+        When the servos could not be released after a search that finished: the error's
+        ``result`` holds the :class:`AcquisitionResult`, recording included.
 
     Examples
     --------
@@ -397,80 +318,122 @@ def search_and_record(mpu: MPU6050, pantilt: PanTilt, config: SearchConfig | Non
     config = SearchConfig() if config is None else config
     if not isinstance(config, SearchConfig):
         raise TypeError(f"config must be a SearchConfig, got {type(config).__name__}")
-    clock = mpu.clock
-    fs = mpu.config.fs
-    mpu.check_poll_interval(config.poll_interval)
-    pre = int(round(config.pre_trigger * fs))
-    post = int(round(config.duration * fs))
-    detector = ContactDetector(config.threshold, config.baseline_window)
-    commands: list[tuple[float, float, float]] = []  # (host time, pan, tilt) of every move
-    trigger = None
-    stopped = False
-    angles = None
-    guard = ServoGuard(pantilt.release, clock)
-    with guard:
+    if not (output_enable is None or isinstance(output_enable, OutputEnable)):
+        raise TypeError(f"output_enable must be an OutputEnable or None, got "
+                        f"{type(output_enable).__name__}")
+    # two 4-byte pulse writes per poll share the bus with the FIFO
+    mpu.check_poll_interval(config.poll_interval, busy=2 * transfer_time(len(Led), mpu.bus_hz))
+    search = _Search(mpu, pantilt, config, labels)
+    guard = ServoGuard(pantilt.release, mpu.clock,
+                       fallback=None if output_enable is None else output_enable.disable_outputs)
+    try:
+        with guard:
+            search.run()
+    except ReleaseError as exc:  # the search finished: its recording is not dropped
+        exc.result = search.result(guard)
+        raise
+    return search.result(guard)
+
+
+class _Search:
+    """The steps of one :func:`search_and_record`: sweep and watch, stop on contact, record."""
+
+    def __init__(self, mpu, pantilt, config, labels):
+        self.mpu, self.pantilt, self.config, self.labels = mpu, pantilt, config, labels
+        fs = mpu.config.fs
+        self.pre = int(round(config.pre_trigger * fs))
+        self.post = int(round(config.duration * fs))
+        self.detector = ContactDetector(config.threshold, config.baseline_window)
+        self.commands: list[tuple[float, float, float]] = []  # (host time, pan, tilt) of moves
+        self.trigger = None
+        self.stopped = False
+        self.angles = None
+        self.stream = None
+        self.report: dict = {}
+
+    def run(self) -> None:
+        """Poll until the window after a contact is recorded or the search time is up."""
+        mpu, config, clock = self.mpu, self.config, self.mpu.clock
         try:
-            stream = mpu.start_fifo()
+            self.stream = mpu.start_fifo()
             start = clock.monotonic()
             while True:
                 # Check the newest samples first, so that no move is commanded after a contact.
-                block = mpu.read_fifo()
-                if block.index.size and trigger is None:
-                    acc = mpu.to_acceleration(block.counts)
-                    hit = detector.update(acc[:, 0], acc[:, 2])
-                    if hit is not None:
-                        trigger = int(block.index[hit])
-                        at = _reached_by(commands, stream.host_time(trigger))
-                        stopped = pantilt.stop(config.back_off, at)
-                        angles = (pantilt.pan.angle, pantilt.tilt.angle)
-                        logger.info("contact at sample %d (%.3f s); servos held at %s",
-                                    trigger, trigger / fs, angles)
-                if trigger is None:
+                self.detect(mpu.read_fifo())
+                if self.trigger is None:
                     elapsed = clock.monotonic() - start
                     if elapsed > config.max_search_time:
                         logger.info("no contact within %.1f s", config.max_search_time)
                         break
-                    try:
-                        moved = pantilt.move(*config.path.angles(elapsed))
-                        commands.append((clock.monotonic(), *moved))
-                    except I2CError as exc:  # the servos keep their last command
-                        logger.warning("servo update failed (%s); the search goes on", exc)
-                elif mpu.stream_position >= trigger + post:
+                    self.sweep(elapsed)
+                elif mpu.stream_position >= self.trigger + self.post:
                     break
-                window = None if trigger is None else (max(trigger - pre, 0), trigger + post)
-                check_watchdog(mpu, config.watchdog, window=window, metadata=labels)
+                window = (None if self.trigger is None
+                          else (max(self.trigger - self.pre, 0), self.trigger + self.post))
+                check_watchdog(mpu, config.watchdog, window=window, metadata=self.labels)
                 clock.sleep(config.poll_interval)
         except (KeyboardInterrupt, SignalReceived) as exc:
             # Interrupted after the contact: hand back what the window holds so far, marked.
-            if trigger is not None:
-                exc.recording = _partial(mpu, max(trigger - pre, 0), trigger + post, labels)
+            if self.trigger is not None:
+                exc.recording = _partial(mpu, max(self.trigger - self.pre, 0),
+                                         self.trigger + self.post, self.labels)
             raise
         finally:
             stop_quietly(mpu)
-    retries = mpu.device.retries + pantilt.pca.device.retries
-    report = stream.report()
-    if trigger is None:
-        return AcquisitionResult(False, False, None, 0, mpu.samples_lost, None, None, retries,
-                                 guard.released, report)
-    first = max(trigger - pre, 0)
-    meta = {
-        "source": "device",
-        "trigger_time": (trigger - first) / fs,
-        "contact_angles_deg": list(angles),
-        "servos_stopped": stopped,
-        "back_off_deg": config.back_off,
-        "stream_samples_lost": mpu.samples_lost,
-        "i2c_retries": retries,
-        "servo_calibration": {"pan": pantilt.pan.calibration.to_dict(),
-                              "tilt": pantilt.tilt.calibration.to_dict(),
-                              "pwm_frequency_hz": pantilt.pca.frequency,
-                              "oscillator_hz": pantilt.pca.oscillator_hz},
-    }
-    meta.update(labels or {})
-    recording = mpu.to_recording(first, trigger + post, metadata=meta)
-    lost = recording.metadata["samples_lost"]
-    return AcquisitionResult(True, stopped, recording, lost, mpu.samples_lost, trigger / fs,
-                             angles, retries, guard.released, report)
+            self.report = {} if self.stream is None else self.stream.report()
+
+    def detect(self, block) -> None:
+        """Look for the contact in a drained block; on contact hold the servos where they had
+        certainly been when the contact sample was taken."""
+        if not block.index.size or self.trigger is not None:
+            return
+        acc = self.mpu.to_acceleration(block.counts)
+        hit = self.detector.update(acc[:, 0], acc[:, 2])
+        if hit is None:
+            return
+        self.trigger = int(block.index[hit])
+        at = _reached_by(self.commands, self.stream.host_time(self.trigger))
+        self.stopped = self.pantilt.stop(self.config.back_off, at)
+        self.angles = (self.pantilt.pan.angle, self.pantilt.tilt.angle)
+        logger.info("contact at sample %d (%.3f s); servos held at %s", self.trigger,
+                    self.trigger / self.mpu.config.fs, self.angles)
+
+    def sweep(self, elapsed: float) -> None:
+        """Command the next point of the path; a failed update leaves the last command."""
+        try:
+            moved = self.pantilt.move(*self.config.path.angles(elapsed))
+            self.commands.append((self.mpu.clock.monotonic(), *moved))
+        except I2CError as exc:  # the servos keep their last command
+            logger.warning("servo update failed (%s); the search goes on", exc)
+
+    def result(self, guard: ServoGuard) -> AcquisitionResult:
+        """What the search produced, with the release's outcome."""
+        mpu, pantilt, fs = self.mpu, self.pantilt, self.mpu.config.fs
+        retries = mpu.device.retries + pantilt.pca.device.retries
+        released = dict(servos_released=guard.released, servos_released_by=guard.released_by)
+        if self.trigger is None:
+            return AcquisitionResult(False, False, None, 0, mpu.samples_lost, None, None,
+                                     retries, stream=self.report, **released)
+        first = max(self.trigger - self.pre, 0)
+        meta = {
+            "source": "device",
+            "trigger_time": (self.trigger - first) / fs,
+            "contact_angles_deg": list(self.angles),
+            "servos_stopped": self.stopped,
+            "back_off_deg": self.config.back_off,
+            "stream_samples_lost": mpu.samples_lost,
+            "i2c_retries": retries,
+            "servo_calibration": {"pan": pantilt.pan.calibration.to_dict(),
+                                  "tilt": pantilt.tilt.calibration.to_dict(),
+                                  "pwm_frequency_hz": pantilt.pca.frequency,
+                                  "oscillator_hz": pantilt.pca.oscillator_hz},
+        }
+        meta.update(self.labels or {})
+        recording = mpu.to_recording(first, self.trigger + self.post, metadata=meta)
+        lost = recording.metadata["samples_lost"]
+        return AcquisitionResult(True, self.stopped, recording, lost, mpu.samples_lost,
+                                 self.trigger / fs, self.angles, retries, stream=self.report,
+                                 **released)
 
 
 def _partial(mpu, first: int, stop: int, labels):

@@ -52,7 +52,7 @@ from .clock import SystemClock
 from .i2c import I2CDevice, RetryPolicy
 
 __all__ = ["PCA9685", "prescale_for", "pwm_frequency", "oscillator_from_measurement",
-           "OSCILLATOR_RANGE"]
+           "OSCILLATOR_RANGE", "NotInitializedError"]
 
 #: The range of the internal oscillator, Hz (DS table 11, f_osc: 23 to 27 MHz); a calibration
 #: outside it is refused as a measurement error.
@@ -60,28 +60,39 @@ OSCILLATOR_RANGE = (23e6, 27e6)
 
 logger = logging.getLogger(__name__)
 
+class NotInitializedError(RuntimeError):
+    """A PCA9685 was asked for pulses before :meth:`PCA9685.initialize` set its frequency."""
+
+
 def prescale_for(frequency: float, oscillator_hz: float = OSCILLATOR_HZ) -> int:
     """``PRE_SCALE`` for a PWM ``frequency`` (Hz), DS equation 1.
 
     Raises
     ------
     ValueError
-        When the result falls outside the register's 3-255 (about 24-1526 Hz at 25 MHz).
+        When ``frequency`` lies outside the chip's range, the frequencies of ``PRE_SCALE`` 255
+        and 3 with the data sheet's rounding to whole hertz (24-1526 Hz at 25 MHz, DS 7.3.5):
+        it is refused, not silently clamped to the nearest frequency the chip can make.
 
     Examples
     --------
     >>> from ebantenna.device.pca9685 import prescale_for
     >>> prescale_for(50.0), prescale_for(200.0), prescale_for(1526.0)
     (121, 30, 3)
+    >>> prescale_for(1600.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: frequency must lie in [24, 1526] Hz (the PCA9685's range at 25 MHz), got 1600.0
     """
     frequency = check_positive("frequency", frequency)
     oscillator_hz = check_positive("oscillator_hz", oscillator_hz)
-    value = round(oscillator_hz / (COUNTS_PER_PERIOD * frequency)) - 1
-    if not PRESCALE_MIN <= value <= PRESCALE_MAX:
-        low = oscillator_hz / (COUNTS_PER_PERIOD * (PRESCALE_MAX + 1))
-        high = oscillator_hz / (COUNTS_PER_PERIOD * (PRESCALE_MIN + 1))
-        raise ValueError(f"frequency must lie in [{low:.1f}, {high:.1f}] Hz, got {frequency!r}")
-    return value
+    low = round(oscillator_hz / (COUNTS_PER_PERIOD * (PRESCALE_MAX + 1)))
+    high = round(oscillator_hz / (COUNTS_PER_PERIOD * (PRESCALE_MIN + 1)))
+    if not low <= frequency <= high:
+        raise ValueError(f"frequency must lie in [{low}, {high}] Hz (the PCA9685's range at "
+                         f"{oscillator_hz / 1e6:g} MHz), got {frequency!r}")
+    return min(max(round(oscillator_hz / (COUNTS_PER_PERIOD * frequency)) - 1, PRESCALE_MIN),
+               PRESCALE_MAX)
 
 
 def oscillator_from_measurement(measured_pwm_hz: float, prescale: int) -> float:
@@ -161,6 +172,8 @@ class PCA9685:
         self.frequency = pwm_frequency(self.prescale, oscillator_hz)
         self.clock = SystemClock() if clock is None else clock
         self.device = I2CDevice(bus, address, retry=retry, clock=self.clock)
+        #: Whether :meth:`initialize` has set the frequency (pulses are refused before).
+        self.initialized = False
 
     def initialize(self) -> None:
         """Switch every output off, then set the PWM frequency.
@@ -179,6 +192,7 @@ class PCA9685:
         self.device.write_byte(Register.MODE1, awake)
         self.clock.sleep(OSCILLATOR_STARTUP)
         self.device.write_byte(Register.MODE1, awake | Mode1.RESTART)
+        self.initialized = True
         logger.info("PCA9685 at 0x%02X: prescale %d, %.3f Hz", self.device.address, self.prescale,
                     self.frequency)
 
@@ -198,9 +212,20 @@ class PCA9685:
         return counts
 
     def set_pulse(self, channel: int, pulse: float) -> None:
-        """Output pulses of ``pulse`` seconds on ``channel`` (one 4-byte block write)."""
+        """Output pulses of ``pulse`` seconds on ``channel`` (one 4-byte block write).
+
+        Raises
+        ------
+        NotInitializedError
+            Before :meth:`initialize`: the chip's frequency, which the pulse width depends on,
+            is not set yet (switching outputs off, :meth:`all_off`, works at any time).
+        """
         channel = self._check_channel(channel)
         off = self.counts_for(pulse)
+        if not self.initialized:
+            raise NotInitializedError(
+                f"PCA9685 at 0x{self.device.address:02X} is not initialized: call initialize() "
+                "before set_pulse() (it sets the PWM frequency the pulse width depends on)")
         self.device.write_block(led_register(channel), [0, 0, *split_count(off)])
 
     def pulse(self, channel: int) -> float:

@@ -19,8 +19,8 @@ import logging
 import signal
 import threading
 
-from .._validate import check_int, check_nonnegative
-from .i2c import I2CError
+from .._validate import check_int, check_nonnegative, check_positive
+from .i2c import BusDeadError, I2CError
 
 __all__ = ["ServoGuard", "SignalReceived", "GUARDED_SIGNALS", "ReleaseError"]
 
@@ -42,7 +42,17 @@ class SignalReceived(BaseException):
 
 
 class ReleaseError(OSError):
-    """The servos could not be released: they may still be powered."""
+    """The servos could not be released: they may still be powered.
+
+    Attributes
+    ----------
+    result : object or None
+        What the run had finished before the release failed (an
+        :class:`~ebantenna.device.pantilt.AcquisitionResult` for a search), so that a failure
+        after the recording was made never loses it; None if nothing was finished.
+    """
+
+    result = None
 
 
 class ServoGuard:
@@ -59,11 +69,20 @@ class ServoGuard:
     delay : float
         Wait before the first retry, s, doubled before each further one. Default 50 ms: six
         tries span 1.55 s, longer than a bus stuck for a moment.
+    deadline : float
+        No attempt starts that would end more than this after the first began, judged by the
+        longest attempt so far, s. Default 2 s. A bus declared dead
+        (:class:`~ebantenna.device.i2c.BusDeadError`) ends the attempts at once.
+    fallback : callable, optional
+        A release that needs no I2C, called when the I2C release failed (e.g.
+        :meth:`~ebantenna.device.oe.OutputEnable.disable_outputs`).
 
     Attributes
     ----------
     released : bool
         Whether the last release succeeded.
+    released_by : str or None
+        How: ``"i2c"``, ``"oe"`` (the fallback) or None.
     signal_received : int or None
         The guarded signal that ended the run, if one did.
 
@@ -80,14 +99,20 @@ class ServoGuard:
     (True, False)
     """
 
-    def __init__(self, release, clock, *, attempts: int = 6, delay: float = 0.05):
+    def __init__(self, release, clock, *, attempts: int = 6, delay: float = 0.05,
+                 deadline: float = 2.0, fallback=None):
         if not callable(release):
             raise TypeError(f"release must be callable, got {type(release).__name__}")
+        if fallback is not None and not callable(fallback):
+            raise TypeError(f"fallback must be callable or None, got {type(fallback).__name__}")
         self.release = release
+        self.fallback = fallback
         self.clock = clock
         self.attempts = check_int("attempts", attempts, minimum=1)
         self.delay = check_nonnegative("delay", delay)
+        self.deadline = check_positive("deadline", deadline)
         self.released = False
+        self.released_by = None
         self.signal_received = None
         self._previous: dict[int, object] = {}
         self._held: list[int] = []
@@ -115,30 +140,49 @@ class ServoGuard:
             )
         return self
 
-    def release_with_retries(self) -> None:
-        """Release, retrying a failure ``attempts`` times; :class:`ReleaseError` if all fail."""
-        last = None
+    def _release_over_i2c(self) -> I2CError | None:
+        """Try the release until it succeeds, the attempts are used up or the deadline is near;
+        returns the last error (None on success)."""
+        first = self.clock.monotonic()
+        longest = 0.0
         for attempt in range(self.attempts):
+            began = self.clock.monotonic()
             try:
                 self.release()
             except I2CError as exc:
-                last = exc
-                logger.warning(
-                    "releasing the servos failed (attempt %d of %d): %s",
-                    attempt + 1,
-                    self.attempts,
-                    exc,
-                )
-                if attempt + 1 < self.attempts:
-                    self.clock.sleep(self.delay * 2**attempt)
+                longest = max(longest, self.clock.monotonic() - began)
+                logger.warning("releasing the servos failed (attempt %d of %d): %s",
+                               attempt + 1, self.attempts, exc)
+                wait = self.delay * 2**attempt
+                spent = self.clock.monotonic() - first
+                if (isinstance(exc, BusDeadError) or attempt + 1 == self.attempts
+                        or spent + wait + longest > self.deadline):
+                    return exc
+                self.clock.sleep(wait)
                 continue
-            self.released = True
+            return None
+        raise AssertionError("unreachable")  # pragma: no cover
+
+    def release_with_retries(self) -> None:
+        """Release over I2C, retrying a failure within :attr:`deadline`; then, if it still
+        failed, through :attr:`fallback`. :class:`ReleaseError` if nothing worked."""
+        last = self._release_over_i2c()
+        if last is None:
+            self.released, self.released_by = True, "i2c"
             return
-        self.released = False
+        if self.fallback is not None:
+            try:
+                self.fallback()
+            except Exception as exc:  # noqa: BLE001 - any failure of the fallback is reported
+                logger.error("the release without I2C failed too: %s", exc)
+            else:
+                self.released, self.released_by = True, "oe"
+                return
+        self.released, self.released_by = False, None
         raise ReleaseError(
             last.errno,
-            f"the servos could not be released after {self.attempts} attempts "
-            f"({last}): they may still be powered; switch off the servo supply",
+            f"the servos could not be released ({last}): they may still be powered; switch off "
+            "the servo supply",
         ) from last
 
     def __exit__(self, exc_type, exc, tb):

@@ -14,13 +14,17 @@ import warnings
 from dataclasses import dataclass
 
 from .._validate import check_int, check_real
-from ..chips.mg996r import SAFE_ANGLES, SAFE_PULSE_RANGE
+from ..chips.mg996r import PULSE_RANGE, SAFE_ANGLES, SAFE_PULSE_RANGE
 from ..chips.pca9685 import N_CHANNELS
 from .pca9685 import PCA9685
 
 __all__ = ["ServoCalibration", "Servo", "ServoLimitWarning"]
 
 logger = logging.getLogger(__name__)
+
+#: Round-off allowed at the ends of a servo's travel, s: a few ulps of a millisecond pulse
+#: computed through the angle line.
+_ROUND_OFF = 1e-15
 
 
 class ServoLimitWarning(UserWarning):
@@ -56,6 +60,10 @@ class ServoCalibration:
     135.0
     >>> cal.to_dict()["min_pulse"]
     0.00075
+    >>> cal.pulse(1000.0)  # 11.6 ms: far past the end stop
+    Traceback (most recent call last):
+    ...
+    ValueError: angle must give a pulse within the servo's travel [0.5, 2.5] ms, got 1000.0 deg...
     """
 
     channel: int
@@ -91,14 +99,43 @@ class ServoCalibration:
                 f"upper_limit <= {self.max_angle!r}; got {lo!r} and {hi!r}")
 
     def to_dict(self) -> dict:
-        """JSON-ready form (stored with a recording)."""
-        return {name: getattr(self, name) for name in self.__dataclass_fields__}
+        """JSON-ready form (stored with a recording): plain ``int`` and ``float`` values, whatever
+        NumPy scalars the calibration was made with."""
+        out = {name: float(getattr(self, name)) for name in self.__dataclass_fields__}
+        out["channel"] = int(self.channel)
+        return out
 
     def pulse(self, angle: float) -> float:
-        """Pulse width for ``angle`` (degrees, not clamped), s."""
+        """Pulse width for ``angle`` (degrees), s.
+
+        The angle is not clamped to ``[lower_limit, upper_limit]`` (:meth:`clamp` does that,
+        and :meth:`Servo.move` clamps with a :class:`ServoLimitWarning`), but the pulse must
+        lie within the servo's travel: the MG996R's nominal 0.5-2.5 ms
+        (:data:`ebantenna.chips.mg996r.PULSE_RANGE`), widened to the calibration's own
+        ``min_pulse`` and ``max_pulse`` if a measured unit goes further.
+
+        Raises
+        ------
+        ValueError
+            When the pulse falls outside that travel: it would drive the servo into its stops.
+        """
         angle = check_real("angle", angle)
         frac = (angle - self.min_angle) / (self.max_angle - self.min_angle)
-        return self.min_pulse + frac * (self.max_pulse - self.min_pulse)
+        pulse = self.min_pulse + frac * (self.max_pulse - self.min_pulse)
+        low, high = self.travel
+        if not low - _ROUND_OFF <= pulse <= high + _ROUND_OFF:
+            raise ValueError(
+                f"angle must give a pulse within the servo's travel [{low * 1e3:g}, "
+                f"{high * 1e3:g}] ms, got {angle!r} deg ({pulse * 1e3:.4g} ms); clamp() it, or "
+                "use Servo.move, which clamps with a warning")
+        return pulse
+
+    @property
+    def travel(self) -> tuple[float, float]:
+        """The pulses the servo can take, s: the MG996R's nominal range, widened to this
+        calibration's ``min_pulse`` and ``max_pulse``."""
+        return (min(PULSE_RANGE[0], self.min_pulse, self.max_pulse),
+                max(PULSE_RANGE[1], self.min_pulse, self.max_pulse))
 
     def angle(self, pulse: float) -> float:
         """Angle for a pulse width of ``pulse`` seconds, degrees."""

@@ -148,8 +148,25 @@ def test_polling_slower_than_the_fifo_holds_is_refused():
     rig = SimulatedRig.quiet()
     mpu = MPU6050(rig.bus, clock=rig.clock)
     mpu.initialize()
-    with pytest.raises(ValueError, match=r"poll_interval must be < 0\.170 s"):
+    # 170 samples, three kept free, at 1050 Hz (the clock's tolerance) while a 100 kHz bus
+    # drains 5 samples per 290 clocks and 50 us: 167 (1 - 1050 * 0.59e-3) / 1050 s, less the
+    # 1.6 ms of fixed transfers of a drain (see MPU6050.max_poll_interval)
+    with pytest.raises(ValueError, match=r"poll_interval must be < 0\.0589 s"):
         mpu.record(1.0, poll_interval=0.3)
+    with pytest.raises(ValueError, match=r"poll_interval must be < 0\.0589 s"):
+        mpu.record(1.0, poll_interval=0.1)  # it overflowed twice at 100 kHz: now refused
+
+
+@pytest.mark.parametrize("bus_hz", [100e3, 400e3])
+def test_the_poll_interval_limit_keeps_the_fifo_from_overflowing(bus_hz):
+    # Just under the limit, with the clock 5 % fast (the tolerance the limit assumes): no
+    # overflow, no sample lost.
+    rig = SimulatedRig.quiet(faults=Faults(clock_drift=0.05))
+    rig.bus.bus_hz = bus_hz
+    mpu = MPU6050(rig.bus, clock=rig.clock)
+    mpu.initialize()
+    rec = mpu.record(1.0, poll_interval=0.999 * mpu.max_poll_interval())
+    assert rec.metadata["fifo_overflows"] == 0 and rec.metadata["samples_lost"] == 0
 
 
 @pytest.mark.parametrize("stall", [0.2, 0.45])

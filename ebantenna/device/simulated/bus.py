@@ -18,33 +18,20 @@ from __future__ import annotations
 import errno
 
 from ..._validate import check_int, check_nonnegative, check_positive
-from ...chips.mpu6050 import ADDRESS_AD0_LOW
+from ...chips.mpu6050 import ACCEL_SAMPLE_BYTES, ADDRESS_AD0_LOW, Register
+from ...chips.pca9685 import DEFAULT_ADDRESS, LED_FULL, N_CHANNELS, Led, Mode1, led_register
+from ...chips.pca9685 import Register as PcaRegister
 from ..clock import VirtualClock
-from ..i2c import SMBUS_BLOCK_MAX
+from ..i2c import RASPBERRY_PI_BUS_HZ, SMBUS_BLOCK_MAX, TRANSFER_OVERHEAD, transfer_bits
 from .faults import FaultInjector, Faults
 
 __all__ = ["SimulatedBus", "transfer_bits", "RASPBERRY_PI_BUS_HZ"]
 
-#: I2C clock of a Raspberry Pi's bus unless configured otherwise, Hz (see the module notes).
-RASPBERRY_PI_BUS_HZ = 100e3
 
+#: Highest 7-bit I2C address.
+_LAST_ADDRESS = 0x7F
 #: Read/write flag of an I2C message (``I2C_M_RD`` in Linux's ``i2c.h``, as smbus2 sets it).
 _I2C_M_RD = 0x0001
-
-
-def transfer_bits(nbytes: int) -> int:
-    """Bus clock cycles of a register transfer carrying ``nbytes`` data bytes.
-
-    The address byte, the register byte and the data bytes each take nine clocks (eight bits and
-    the acknowledge), plus about one clock each for the START and the STOP condition.
-
-    Examples
-    --------
-    >>> from ebantenna.device.simulated.bus import transfer_bits
-    >>> transfer_bits(1)
-    29
-    """
-    return 9 * (check_int("nbytes", nbytes, minimum=0) + 2) + 2
 
 
 class SimulatedBus:
@@ -89,7 +76,8 @@ class SimulatedBus:
     """
 
     def __init__(self, clock=None, *, devices: dict | None = None, faults: Faults | None = None,
-                 seed: int = 0, bus_hz: float = RASPBERRY_PI_BUS_HZ, overhead: float = 50e-6,
+                 seed: int = 0, bus_hz: float = RASPBERRY_PI_BUS_HZ,
+                 overhead: float = TRANSFER_OVERHEAD,
                  reset_address: int = ADDRESS_AD0_LOW):
         self.clock = VirtualClock() if clock is None else clock
         self.faults = Faults() if faults is None else faults
@@ -108,11 +96,17 @@ class SimulatedBus:
         """Transfers failed on purpose."""
         return self.injector.errors_injected
 
-    def _begin(self, address: int, nbytes: int):
+    def _fail(self, error: OSError) -> OSError:
+        """``error``, after the transfer has hung for the adapter's timeout if it is one."""
+        self.clock.advance(self.injector.timeout_wait(error))
+        return error
+
+    def _begin(self, address: int, nbytes: int, *, counting: bool = False):
         """Run a transfer's bus phase: time, faults, acknowledge.
 
-        Returns the chip addressed and the kind of late fault drawn for it (None, "late" or
-        "short"); an early fault raises here, before the chip sees anything.
+        Returns the chip addressed and the kind of late fault drawn for it (None, "late",
+        "short" or, for a read of the MPU-6050's FIFO count (``counting``), "overcount"); an
+        early fault raises here, before the chip sees anything.
         """
         if self.closed:
             raise OSError(errno.EBADF, "the simulated bus is closed")
@@ -125,36 +119,68 @@ class SimulatedBus:
             self.devices[self.reset_address].brown_out()
         stuck = injector.stuck(now)
         if stuck is not None:
-            raise stuck
+            raise self._fail(stuck)
         kind = injector.draw(now)
-        if kind is not None and kind not in ("late", "short"):
-            raise injector.early_error(kind)
+        if kind == "overcount" and not counting:
+            injector.cancel()
+            kind = None
+        if kind is not None and kind not in ("late", "short", "overcount"):
+            raise self._fail(injector.early_error(kind))
         if address not in self.devices:
             raise OSError(errno.EREMOTEIO, "Remote I/O error")
         return self.devices[address], kind
 
     def _read(self, address: int, register: int, length: int, nbytes: int) -> list[int]:
         """One read transfer of ``length`` bytes from ``register`` on (``nbytes`` on the wire)."""
-        chip, kind = self._begin(address, nbytes)
+        counting = address == self.reset_address and register == Register.FIFO_COUNTH
+        chip, kind = self._begin(address, nbytes, counting=counting and length >= 2)
         if kind == "short":
             return chip.read(register, self.injector.short_length(length))
         data = chip.read(register, length)
         if kind == "late":
-            raise self.injector.late_error()
+            raise self._fail(self.injector.late_error())
+        if kind == "overcount":
+            extra = chip.impossible_samples() + self.injector.overcount()
+            count = min(((data[0] << 8) | data[1]) + ACCEL_SAMPLE_BYTES * extra, (1 << 16) - 1)
+            data[0], data[1] = count >> 8, count & 0xFF
         return data
+
+    def _releases(self, address: int, register: int, data: list[int]) -> bool:
+        """Whether this write switches PCA9685 outputs off (for :attr:`Faults.release_fails`)."""
+        if address != DEFAULT_ADDRESS or not self.faults.release_fails:
+            return False
+        if self.devices[address].regs[PcaRegister.MODE1] & Mode1.SLEEP:
+            return False  # not set up yet: the outputs are off anyway
+        last = register + len(data) - 1
+        if not data[-1] & LED_FULL:
+            return False
+        return last == PcaRegister.ALL_LED_OFF_H or (
+            PcaRegister.LED0_ON_L <= last <= led_register(N_CHANNELS - 1, Led.OFF_H)
+            and (last - PcaRegister.LED0_ON_L) % 4 == 3)
 
     def _write(self, address: int, register: int, data: list[int]) -> None:
         """One write transfer of ``data`` from ``register`` on."""
         chip, kind = self._begin(address, len(data))
         if kind == "short":
-            raise self.injector.early_error("nack")
+            raise self._fail(self.injector.early_error("nack"))
+        if self._releases(address, register, data):
+            self.injector.errors_injected += 1
+            self.injector.log.append((self.clock.monotonic(), "release refused"))
+            raise self._fail(self.injector.early_error("eio"))
         chip.write(register, data)
         self.writes.append((address, register, tuple(data)))
         if kind == "late":
-            raise self.injector.late_error()
+            raise self._fail(self.injector.late_error())
+
+    @staticmethod
+    def _check(i2c_addr, register) -> None:
+        """Refuse an address outside 0-127 or a register outside 0-255, as a real bus would."""
+        check_int("i2c_addr", i2c_addr, minimum=0, maximum=_LAST_ADDRESS)
+        check_int("register", register, minimum=0, maximum=0xFF)
 
     def read_byte_data(self, i2c_addr: int, register: int, force=None) -> int:
         """Read one register (a short transfer of it, no byte at all, is an ``EIO``)."""
+        self._check(i2c_addr, register)
         data = self._read(i2c_addr, register, 1, 1)
         if not data:
             raise OSError(errno.EIO, "Input/output error")
@@ -162,17 +188,21 @@ class SimulatedBus:
 
     def write_byte_data(self, i2c_addr: int, register: int, value: int, force=None) -> None:
         """Write one register."""
+        self._check(i2c_addr, register)
+        check_int("value", value, minimum=0, maximum=0xFF)
         self._write(i2c_addr, register, [value])
 
     def read_i2c_block_data(self, i2c_addr: int, register: int, length: int, force=None):
         """Read ``length`` (at most 32) bytes from ``register`` on."""
+        self._check(i2c_addr, register)
         if length > SMBUS_BLOCK_MAX:
             raise ValueError("Desired block length over 32 bytes")
         return self._read(i2c_addr, register, length, length)
 
     def write_i2c_block_data(self, i2c_addr: int, register: int, data, force=None) -> None:
         """Write up to 32 bytes from ``register`` on."""
-        data = list(data)
+        self._check(i2c_addr, register)
+        data = [check_int("data", value, minimum=0, maximum=0xFF) for value in data]
         if len(data) > SMBUS_BLOCK_MAX:
             raise ValueError("Data length cannot exceed 32 bytes")
         self._write(i2c_addr, register, data)

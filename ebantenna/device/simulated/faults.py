@@ -16,10 +16,21 @@ adapter's errno from the ``ioctl``):
 ``"short"``
     A read returns fewer bytes than asked; the chip has shifted out only those. (A write drawn
     "short" fails early, like ``"nack"``.)
+``"eintr"``
+    The system call is interrupted by a signal (``EINTR``) before the transfer starts.
+``"overcount"``
+    A read of ``FIFO_COUNTH``/``L`` returns more than the chip can have produced since its FIFO
+    was last enabled, even at the fastest clock :data:`MAX_CLOCK_DRIFT` allows, by a whole
+    number of samples (a bit error that the whole-sample check cannot see). Other transfers
+    drawn ``"overcount"`` go through untouched.
 
 Besides those, a :class:`Faults` can reset the accelerometer once (a brown-out: power-on
 registers, asleep), hold the whole bus stuck for a while (every transfer times out), stall the
-host once, and run the accelerometer's sample clock off its nominal rate.
+host once, run the accelerometer's sample clock off its nominal rate, let its sample-rate divider
+run free (the first sample of a FIFO segment then comes anywhere within a period of the enable,
+not one period after it), make it repeat its last byte when the FIFO is read past its end (as the
+real part does), make every transfer that times out hang for a stated time first (the adapter's
+timeout), and make every write that releases the servos fail.
 """
 
 from __future__ import annotations
@@ -31,17 +42,17 @@ import numpy as np
 
 from ..._validate import check_in_range, check_int, check_nonnegative, check_real
 from ...chips.mpu6050 import WHO_AM_I_VALUE
+from .mpu6050 import MAX_CLOCK_DRIFT
 
-__all__ = ["Faults", "FaultInjector", "TRANSFER_FAULTS", "MAX_CLOCK_DRIFT"]
+__all__ = ["Faults", "FaultInjector", "TRANSFER_FAULTS", "MAX_CLOCK_DRIFT", "MAX_OVERCOUNT"]
 
 #: Kinds of failed transfer the injector can draw (see the module notes).
-TRANSFER_FAULTS = ("nack", "eio", "etimedout", "eagain", "late", "short")
-#: Largest sample-clock error accepted, relative: a few times the +/-1 % variation over temperature
-#: of the gyro oscillators the MPU-6050's PLL locks to (PS rev. 3.4, section 7.15).
-MAX_CLOCK_DRIFT = 0.05
+TRANSFER_FAULTS = ("nack", "eio", "etimedout", "eagain", "late", "short", "eintr", "overcount")
 
 _EARLY_ERRNO = {"nack": errno.EREMOTEIO, "eio": errno.EIO, "etimedout": errno.ETIMEDOUT,
-                "eagain": errno.EAGAIN}
+                "eagain": errno.EAGAIN, "eintr": errno.EINTR}
+#: Largest over-report of a FIFO count, samples: up to a whole FIFO's worth.
+MAX_OVERCOUNT = 170
 
 
 def _error(code: int) -> OSError:
@@ -79,6 +90,20 @@ class Faults:
     clock_drift : float
         Relative error of the accelerometer's sample clock: it samples at ``fs * (1 +
         clock_drift)``. At most :data:`MAX_CLOCK_DRIFT` in magnitude.
+    free_running_divider : bool
+        The accelerometer's sample-rate divider runs free instead of restarting when the FIFO is
+        enabled: a segment's first sample comes at the next tick of its own grid, anywhere in
+        the period after the enable.
+    repeat_last_byte : bool
+        Reading the FIFO past its end repeats the last byte read (the real part) instead of
+        returning 0xFF.
+    transfer_timeout : float
+        How long a transfer that fails with ``ETIMEDOUT`` (drawn, late, or on a stuck bus) hangs
+        before it fails, s. Default 0; about 1 s on a real adapter.
+    release_fails : bool
+        Once the PCA9685 is awake (initialised), every write that switches its outputs off
+        (``ALL_LED_OFF_H``, an ``LEDn_OFF_H`` with the full-OFF bit) fails with ``EIO``, before
+        it reaches the chip.
 
     Examples
     --------
@@ -96,6 +121,10 @@ class Faults:
     stuck_at: float | None = None
     stuck_duration: float = 0.0
     clock_drift: float = 0.0
+    free_running_divider: bool = False
+    repeat_last_byte: bool = False
+    transfer_timeout: float = 0.0
+    release_fails: bool = False
 
     def __post_init__(self):
         check_in_range("error_rate", self.error_rate, 0.0, 1.0, low_inclusive=True)
@@ -111,6 +140,10 @@ class Faults:
                 check_nonnegative(name, getattr(self, name))
         check_nonnegative("stall_duration", self.stall_duration)
         check_nonnegative("stuck_duration", self.stuck_duration)
+        check_nonnegative("transfer_timeout", self.transfer_timeout)
+        for name in ("free_running_divider", "repeat_last_byte", "release_fails"):
+            if not isinstance(getattr(self, name), bool):
+                raise TypeError(f"{name} must be a bool, got {getattr(self, name)!r}")
         drift = check_real("clock_drift", self.clock_drift)
         if abs(drift) > MAX_CLOCK_DRIFT:
             raise ValueError(f"clock_drift must lie in [-{MAX_CLOCK_DRIFT}, {MAX_CLOCK_DRIFT}], "
@@ -200,6 +233,11 @@ class FaultInjector:
         self.log.append((now, kind))
         return kind
 
+    def cancel(self) -> None:
+        """Take back the last fault drawn: it did not apply to its transfer."""
+        self.errors_injected -= 1
+        self.log.pop()
+
     def early_error(self, kind: str) -> OSError:
         """The error of a transfer that fails before its data phase."""
         return _error(_EARLY_ERRNO.get(kind, errno.EREMOTEIO))
@@ -207,6 +245,15 @@ class FaultInjector:
     def late_error(self) -> OSError:
         """The error of a transfer that fails after its data phase: ``EIO`` or ``ETIMEDOUT``."""
         return _error(errno.EIO if self._rng.random() < 0.5 else errno.ETIMEDOUT)
+
+    def timeout_wait(self, error: OSError) -> float:
+        """How long a transfer failing with ``error`` hangs first, s (``ETIMEDOUT`` only)."""
+        return self.faults.transfer_timeout if error.errno == errno.ETIMEDOUT else 0.0
+
+    def overcount(self) -> int:
+        """Samples a corrupted FIFO count claims beyond what the chip can have produced: 1 to
+        :data:`MAX_OVERCOUNT`."""
+        return int(self._rng.integers(1, MAX_OVERCOUNT + 1))
 
     def short_length(self, length: int) -> int:
         """How many of ``length`` bytes a short read delivers: 0 to ``length - 1``."""

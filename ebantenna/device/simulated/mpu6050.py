@@ -8,9 +8,16 @@ chip's own low-pass filter.
 
 Modelling assumption: the sample-rate divider starts counting when the FIFO starts filling (awake,
 ``USER_CTRL.FIFO_EN`` and ``FIFO_EN.ACCEL`` set), so the first sample of such an *epoch* lands one
-sample period after it starts. The chip keeps the ground truth of every epoch
-(:attr:`SimulatedMPU6050.epochs`): its start time and every sample it put into the FIFO, which is
-what a driver's kept samples are checked against.
+sample period after it starts; with ``free_running_divider`` it runs on its own grid of ticks
+instead, and the first sample lands at the next tick, anywhere within a period of the start. Which
+of the two the real part does is a question for the hardware (see the HIL checklist of the user
+guide); the driver assumes neither. The chip keeps the ground truth of every epoch
+(:attr:`SimulatedMPU6050.epochs` and :attr:`SimulatedMPU6050.first_sample`): its start time, the
+time of its first sample and every sample it put into the FIFO, which is what a driver's kept
+samples and timestamps are checked against.
+
+A ``who_am_i`` of the MPU-6500 family (:data:`~ebantenna.chips.mpu6050.CHIP_MODELS`) makes it
+one of those: a 512-byte FIFO, and ``SMPLRT_DIV`` applied only when ``0 < DLPF_CFG < 7``.
 """
 
 from __future__ import annotations
@@ -24,9 +31,11 @@ from ...chips.mpu6050 import (
     ACCEL_LSB_PER_G,
     ACCEL_SAMPLE_BYTES,
     AFS_SEL,
+    CHIP_MODELS,
     DATA_DTYPE,
     DLPF_CFG,
-    FIFO_SIZE,
+    GYRO_RATE_DLPF_OFF,
+    GYRO_RATE_DLPF_ON,
     POWER_ON,
     READ_ONLY,
     STANDARD_GRAVITY,
@@ -41,6 +50,10 @@ from ...chips.mpu6050 import (
 )
 
 __all__ = ["SimulatedMPU6050"]
+
+#: Largest sample-clock error accepted, relative: a few times the +/-1 % variation over temperature
+#: of the gyro oscillators the MPU-6050's PLL locks to (PS rev. 3.4, section 7.15).
+MAX_CLOCK_DRIFT = 0.05
 
 #: Registers modelled: the 128 addresses 0x00-0x7F, which hold the whole map (RM section 3 ends at
 #: 0x75); a burst read stops advancing at the last of them.
@@ -66,6 +79,10 @@ class SimulatedMPU6050:
     clock_drift : float
         Relative error of the sample clock: the chip samples at ``(1 + clock_drift)`` times the
         rate its registers set.
+    free_running_divider : bool
+        The divider runs on its own grid instead of restarting with the FIFO (module notes).
+    repeat_last_byte : bool
+        A read of the empty FIFO repeats the last byte read (the real part); else 0xFF.
 
     Attributes
     ----------
@@ -80,6 +97,9 @@ class SimulatedMPU6050:
     epochs : list of (float, list of ndarray)
         Ground truth: for each time the FIFO started filling, that virtual time (s) and the
         blocks of (n, 3) int16 counts it produced from then on, in order.
+    first_sample : list of float
+        Ground truth: the virtual time of each epoch's first sample, s (its later samples follow
+        at the true period, ``1 / true_rate()``).
 
     Examples
     --------
@@ -98,15 +118,21 @@ class SimulatedMPU6050:
     [0, 60]
     """
 
-    FIFO_SIZE = FIFO_SIZE
-
     def __init__(self, source: Callable, clock, *, who_am_i: int = WHO_AM_I_VALUE,
-                 clock_drift: float = 0.0):
+                 clock_drift: float = 0.0, free_running_divider: bool = False,
+                 repeat_last_byte: bool = False):
         self.source = source
         self.clock = clock
         self.who_am_i = who_am_i
+        self.model = CHIP_MODELS.get(who_am_i, CHIP_MODELS[WHO_AM_I_VALUE])
+        #: FIFO size, bytes (512 for the MPU-6500 family).
+        self.FIFO_SIZE = self.model.fifo_size
         self.clock_drift = float(clock_drift)
+        self.free_running_divider = bool(free_running_divider)
+        self.repeat_last_byte = bool(repeat_last_byte)
+        self._last_byte = _EMPTY_FIFO_BYTE
         self.epochs: list[tuple[float, list[np.ndarray]]] = []
+        self.first_sample: list[float] = []
         self.regs = bytearray(_REGISTER_SPACE)
         self.fifo = bytearray()
         self.overflowed_bytes = 0
@@ -133,13 +159,30 @@ class SimulatedMPU6050:
         blocks = self.epochs[epoch][1]
         return np.concatenate(blocks) if blocks else np.empty((0, 3), np.int16)
 
+    def impossible_samples(self) -> int:
+        """How many samples a FIFO count must add to what the FIFO holds to claim more than the
+        chip can have produced since the FIFO was enabled, at the fastest clock the faults
+        allow (:data:`MAX_CLOCK_DRIFT`) and with its first
+        sample as early as a free-running divider can put it: the ``"overcount"`` fault."""
+        if self._since is None:
+            return 0
+        fastest = self.sample_rate() * (1.0 + MAX_CLOCK_DRIFT)
+        possible = math.floor((self.clock.monotonic() - self._since) * fastest) + 1
+        return max(possible - self._produced, 0) + 1
+
     def true_rate(self) -> float:
         """The rate at which the chip actually samples, Hz: :meth:`sample_rate` with the drift."""
         return self.sample_rate() * (1.0 + self.clock_drift)
 
     def sample_rate(self) -> float:
-        """Sample rate set by CONFIG and SMPLRT_DIV, Hz (RM register 25)."""
-        gyro_rate = gyro_output_rate(DLPF_CFG.get(self.regs[Register.CONFIG]))
+        """Sample rate set by CONFIG and SMPLRT_DIV, Hz (RM register 25; on the MPU-6500 family
+        the divider applies only when ``0 < DLPF_CFG < 7``)."""
+        dlpf_cfg = DLPF_CFG.get(self.regs[Register.CONFIG])
+        if self.model.accel_config2:
+            if not 0 < dlpf_cfg < 7:
+                return GYRO_RATE_DLPF_OFF
+            return GYRO_RATE_DLPF_ON / (1 + self.regs[Register.SMPLRT_DIV])
+        gyro_rate = gyro_output_rate(dlpf_cfg)
         return gyro_rate / (1 + self.regs[Register.SMPLRT_DIV])
 
     def lsb_per_g(self) -> int:
@@ -162,11 +205,17 @@ class SimulatedMPU6050:
             return
         now = self.clock.monotonic()
         fs = self.true_rate()
-        target = int(math.floor((now - self._since) * fs + 1e-9))
+        if self.free_running_divider:
+            target = int(math.floor((now - self.first_sample[-1]) * fs + 1e-9)) + 1
+        else:
+            target = int(math.floor((now - self._since) * fs + 1e-9))
         if target <= self._produced:
             return
         k = np.arange(self._produced, target)
-        times = self._since + (k + 1) / fs
+        if self.free_running_divider:
+            times = self.first_sample[-1] + k / fs
+        else:
+            times = self._since + (k + 1) / fs
         counts = self._counts(times)
         self.epochs[-1][1].append(counts.astype(np.int16))
         self.fifo += counts.tobytes()
@@ -186,6 +235,12 @@ class SimulatedMPU6050:
             self._since = self.clock.monotonic()
             self._produced = 0
             self.epochs.append((self._since, []))
+            fs = self.true_rate()
+            if self.free_running_divider:  # the next tick of the chip's own grid
+                first = (math.floor(self._since * fs + 1e-9) + 1) / fs
+            else:
+                first = self._since + 1.0 / fs
+            self.first_sample.append(first)
         elif was_producing and not producing:
             self._since = None
 
@@ -196,7 +251,11 @@ class SimulatedMPU6050:
         reg = register
         for _ in range(length):
             if reg == Register.FIFO_R_W:
-                out.append(self.fifo.pop(0) if self.fifo else _EMPTY_FIFO_BYTE)
+                if self.fifo:
+                    self._last_byte = self.fifo.pop(0)
+                    out.append(self._last_byte)
+                else:
+                    out.append(self._last_byte if self.repeat_last_byte else _EMPTY_FIFO_BYTE)
                 continue
             if reg == Register.FIFO_COUNTH:
                 value = len(self.fifo) >> 8
@@ -204,12 +263,14 @@ class SimulatedMPU6050:
                 value = len(self.fifo) & 0xFF
             elif Register.ACCEL_XOUT_H <= reg <= Register.ACCEL_ZOUT_L:
                 value = self._latest()[reg - Register.ACCEL_XOUT_H]
+            elif reg >= _REGISTER_SPACE:
+                value = 0  # not modelled: reads as 0
             else:
                 value = self.regs[reg]
                 if reg == Register.INT_STATUS:
                     self.regs[reg] = 0  # cleared by reading (INT_PIN_CFG.INT_RD_CLEAR = 0)
             out.append(value)
-            reg = min(reg + 1, _REGISTER_SPACE - 1)
+            reg = min(reg + 1, _REGISTER_SPACE - 1) if reg < _REGISTER_SPACE else reg
         return out
 
     def _latest(self) -> bytes:
@@ -223,7 +284,9 @@ class SimulatedMPU6050:
         """Write ``data`` from ``register`` on, as one I2C write transfer does."""
         self._catch_up()
         for k, value in enumerate(data):
-            reg = (register + k) % _REGISTER_SPACE
+            reg = (register + k) % 256
+            if reg >= _REGISTER_SPACE:
+                continue  # not modelled: the write is ignored
             was = self._producing()
             if reg == Register.PWR_MGMT_1 and value & PowerManagement1.DEVICE_RESET:
                 self.reset()

@@ -24,7 +24,37 @@ from ...chips.pca9685 import (
 )
 from .world import World, mg996r_angle
 
-__all__ = ["SimulatedPCA9685"]
+__all__ = ["SimulatedPCA9685", "SimulatedLine"]
+
+
+class SimulatedLine:
+    """A GPIO output line as gpiozero's ``DigitalOutputDevice`` offers it: ``on()``, ``off()``
+    and ``value``; it calls ``drive(level)`` on every change.
+
+    Examples
+    --------
+    >>> levels = []
+    >>> line = SimulatedLine(levels.append)
+    >>> line.on(); line.off(); levels, line.value
+    ([True, False], 0)
+    """
+
+    def __init__(self, drive):
+        self._drive = drive
+        self.value = 0
+
+    def on(self) -> None:
+        """Drive the line high."""
+        self.value = 1
+        self._drive(True)
+
+    def off(self) -> None:
+        """Drive the line low."""
+        self.value = 0
+        self._drive(False)
+
+    def close(self) -> None:
+        """Release the line (nothing to do in the simulation)."""
 
 #: Register addresses are one byte; with ``MODE1.AI`` set they roll over from 0xFF to 0x00.
 _REGISTER_SPACE = 256
@@ -50,6 +80,9 @@ class SimulatedPCA9685:
         The register file, by address.
     prescale_blocked : int
         Writes to ``PRE_SCALE`` ignored because the chip was awake (DS 7.3.5).
+    output_disabled : bool
+        The level of the ``OE`` pin: True (high) switches every output off whatever the
+        registers say (DS 7.4, "Active LOW output enable input"); see :meth:`oe_line`.
 
     Examples
     --------
@@ -74,6 +107,7 @@ class SimulatedPCA9685:
         self.oscillator_hz = oscillator_hz
         self.regs = bytearray(_REGISTER_SPACE)
         self.prescale_blocked = 0
+        self.output_disabled = False
         self.reset()
 
     def reset(self) -> None:
@@ -89,8 +123,8 @@ class SimulatedPCA9685:
         return self.oscillator_hz / (COUNTS_PER_PERIOD * (prescale + 1))
 
     def pulse(self, channel: int) -> float:
-        """Pulse width now on ``channel``, s (0 when it is off or the chip sleeps)."""
-        if self.regs[Register.MODE1] & Mode1.SLEEP:
+        """Pulse width now on ``channel``, s (0 when it is off, the chip sleeps or OE is high)."""
+        if self.regs[Register.MODE1] & Mode1.SLEEP or self.output_disabled:
             return 0.0
         first = led_register(channel)
         on_l, on_h, off_l, off_h = self.regs[first:first + len(Led)]
@@ -102,6 +136,16 @@ class SimulatedPCA9685:
     def outputs_enabled(self) -> bool:
         """Whether any servo channel is producing pulses."""
         return any(self.pulse(ch) > 0 for ch in self.channels)
+
+    def set_oe(self, high: bool) -> None:
+        """Drive the ``OE`` pin: high switches every output off at once, low lets the registers
+        rule again (no I2C involved)."""
+        self.output_disabled = bool(high)
+        self._apply()
+
+    def oe_line(self) -> SimulatedLine:
+        """A GPIO line wired to ``OE``, with gpiozero's ``on``/``off`` (on = high = outputs off)."""
+        return SimulatedLine(self.set_oe)
 
     def _apply(self) -> None:
         now = self.clock.monotonic()

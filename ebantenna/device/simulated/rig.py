@@ -94,7 +94,9 @@ class SimulatedRig:
         self.world = World(obstacle, check_positive("slew_rate", slew_rate))
         self.mpu = SimulatedMPU6050(self._acceleration, self.clock,
                                     who_am_i=self.bus.faults.who_am_i,
-                                    clock_drift=self.bus.faults.clock_drift)
+                                    clock_drift=self.bus.faults.clock_drift,
+                                    free_running_divider=self.bus.faults.free_running_divider,
+                                    repeat_last_byte=self.bus.faults.repeat_last_byte)
         self.pca = SimulatedPCA9685(self.world, self.clock)
         self.bus.devices = {ADDRESS_AD0_LOW: self.mpu, DEFAULT_ADDRESS: self.pca}
         #: Time of the first sample at or after the contact, s.
@@ -174,6 +176,26 @@ class SimulatedRig:
             truth = truths[k]
             wrong += not (pos < len(truth) and list(truth[pos]) == list(counts))
         return wrong
+
+    def oe_line(self):
+        """A GPIO line wired to the PCA9685's ``OE`` pin (for
+        :class:`~ebantenna.device.oe.OutputEnable`): it switches the outputs off without I2C."""
+        return self.pca.oe_line()
+
+    def true_times(self, mpu, recording) -> np.ndarray:
+        """The true host time (s, from the stream's first segment start) at which each sample of
+        ``recording`` (made by ``mpu``'s stream on this rig) was taken: the ground truth of its
+        timestamps. NaN for a sample of no epoch."""
+        raw = recording.metadata["raw"]
+        starts = mpu.stream.starts
+        epochs = {round(start, 12): k for k, (start, _) in enumerate(self.mpu.epochs)}
+        period = 1.0 / self.mpu.true_rate()
+        out = np.full(len(raw["segment"]), np.nan)
+        for i, (seg, pos) in enumerate(zip(raw["segment"], raw["position"], strict=True)):
+            k = epochs.get(round(starts[seg], 12))
+            if k is not None:
+                out[i] = self.mpu.first_sample[k] + pos * period - starts[0]
+        return out
 
     def touch(self, at: float | None = None) -> None:
         """Put the probe in contact from virtual time ``at`` (s; default now), whatever the servos.

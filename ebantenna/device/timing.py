@@ -1,0 +1,164 @@
+"""The sample period and the timestamps of a FIFO stream, from counts of samples at host times.
+
+The host never sees the accelerometer's clock; it sees counts: so many samples in the FIFO,
+read between two host times. :class:`PeriodEstimator` turns those counts into a bracket of the
+period that does not depend on when a segment's first sample came (the phase cancels in
+differences of counts), and into each segment's timestamps with their uncertainty. It is used by
+:class:`~ebantenna.device.fifo.FifoStream` (rule 4 of its module notes). Linux's
+``inv_mpu6050`` driver does the same job from interrupt timestamps, accepting one only when the
+period it implies lies within a few percent of nominal.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+
+from .._validate import check_in_range, check_positive
+
+__all__ = ["PeriodEstimator", "CLOCK_TOLERANCE"]
+
+logger = logging.getLogger(__name__)
+
+#: How far the sample clock may be off its nominal rate before the estimate is not trusted,
+#: relative: a few times the +/-1 % variation over temperature of the gyro oscillators that the PLL
+#: locks to (PS rev. 3.4, section 7.15).
+CLOCK_TOLERANCE = 0.05
+
+class PeriodEstimator:
+    """The sample period, bracketed by counts of samples at known host times, without assuming
+    when a segment's first sample came.
+
+    Each FIFO *segment* starts with the write that enables the FIFO, made between host times
+    ``before`` and ``after``: that is an observation "0 samples at ``before``, and the first one
+    at most one period after ``after``" (the divider, restarted or free-running, ticks within a
+    period). Each confirmed count is an observation "``n`` samples by ``after``, fewer than
+    ``n + 1`` at ``before``". With ``t_k`` the time of the segment's sample ``k`` (0-based) and
+    ``T`` the period, two observations ``(n1, b1, a1)`` and ``(n2, b2, a2)`` of one segment,
+    ``n2 > n1``, give ``t_(n2) > b2`` and ``t_(n1 - 1) <= a1``, so ``(n2 - n1 + 1) T > b2 - a1``;
+    and ``t_(n2 - 1) <= a2``, ``t_(n1) > b1``, so ``(n2 - n1 - 1) T < a2 - b1``. The time of the
+    first sample cancels: the bracket needs no phase. It starts from the rate's tolerance, two
+    sided on the *rate*: ``nominal / (1 + tolerance) <= T <= nominal / (1 - tolerance)``.
+
+    A count that contradicts the bracket (no period in it can explain the count) is not used:
+    it is logged at WARNING and counted in :attr:`rejected`.
+
+    Parameters
+    ----------
+    nominal : float
+        The period the registers set, s.
+    tolerance : float
+        The rate is assumed within ``(1 +/- tolerance)`` times the nominal rate.
+
+    Attributes
+    ----------
+    low, high : float
+        The bracket of the period, s.
+    rejected : int
+        Counts rejected because they contradict the bracket.
+    segments : list of list of (int, float, float)
+        The observations ``(n, before, after)`` of each segment, the enable first.
+
+    Examples
+    --------
+    >>> from ebantenna.device.timing import PeriodEstimator
+    >>> est = PeriodEstimator(1e-3)
+    >>> est.begin(before=0.0, after=0.0003)  # the write that enabled the FIFO
+    >>> est.add(produced=100, before=0.10045, after=0.10088)  # one count read
+    True
+    >>> round(est.period * 1e3, 4), round(est.uncertainty * 1e6, 1)  # ms, us
+    (1.0053, 13.7)
+    >>> est.add(produced=900, before=0.2, after=0.2004)  # impossible: 900 samples in 0.2 s
+    False
+    >>> est.rejected
+    1
+    """
+
+    def __init__(self, nominal: float, tolerance: float = CLOCK_TOLERANCE):
+        nominal = check_positive("nominal", nominal)
+        tolerance = check_in_range("tolerance", tolerance, 0.0, 1.0)
+        self.nominal = nominal
+        self.low = nominal / (1.0 + tolerance)
+        self.high = nominal / (1.0 - tolerance)
+        self.rejected = 0
+        self.segments: list[list[tuple[int, float, float]]] = []
+
+    def begin(self, *, before: float, after: float) -> None:
+        """A new segment: the FIFO was enabled by a write made between host times ``before`` and
+        ``after`` (s)."""
+        self.segments.append([(0, before, after)])
+
+    def bounds(self, produced: int, before: float, after: float) -> tuple[float, float]:
+        """The bracket ``(low, high)`` of the period, s, if ``produced`` samples of the current
+        segment were counted between host times ``before`` and ``after``; empty (``low >=
+        high``) when the count contradicts what is known."""
+        low, high = self.low, self.high
+        for n1, b1, a1 in self.segments[-1]:
+            if produced < n1:  # fewer samples than an earlier count: impossible
+                return math.inf, -math.inf
+            low = max(low, (before - a1) / (produced - n1 + 1))
+            if produced - n1 > 1:
+                high = min(high, (after - b1) / (produced - n1 - 1))
+        return low, high
+
+    def check(self, *, produced: int, before: float, after: float) -> bool:
+        """Whether the count is possible; if not it is rejected: logged and counted."""
+        low, high = self.bounds(produced, before, after)
+        if low < high:
+            return True
+        self.rejected += 1
+        logger.warning(
+            "MPU-6050 FIFO: a count of %d samples at %.6f s is impossible (the period would "
+            "lie outside [%.4g, %.4g] s); rejected", produced, after, self.low, self.high)
+        return False
+
+    def add(self, *, produced: int, before: float, after: float,
+            start: float | None = None) -> bool:
+        """Narrow the bracket with a confirmed count; False (and rejected) if it contradicts.
+
+        ``start`` (s), if given, is the instant the count's segment began, for a segment whose
+        enable is known to that precision: a new segment unless the current one began then.
+        """
+        if start is not None and (not self.segments or self.segments[-1][0] != (0, start, start)):
+            self.begin(before=start, after=start)
+        if not self.check(produced=produced, before=before, after=after):
+            return False
+        self.low, self.high = self.bounds(produced, before, after)
+        self.segments[-1].append((produced, before, after))
+        return True
+
+    def sample_interval(self, segment: int, j: int) -> tuple[float, float]:
+        """Host times ``(earliest, latest)`` (s) at which sample ``j`` of ``segment`` can have
+        been taken, from that segment's observations and the bracket."""
+        earliest, latest = -math.inf, math.inf
+        for n, before, after in self.segments[segment]:
+            k = j - n  # t_j = t_n + k T > before + k T
+            earliest = max(earliest, before + k * (self.low if k >= 0 else self.high))
+            k += 1  # t_j = t_(n-1) + k T <= after + k T
+            latest = min(latest, after + k * (self.high if k >= 0 else self.low))
+        return earliest, latest
+
+    def timestamps(self, segment: int, last: int) -> tuple[float, float]:
+        """The estimated time of sample 0 of ``segment`` (s) and the uncertainty (s) of every
+        timestamp ``t_0 + j T`` (``T``: :attr:`period`) for ``j`` in ``0 ... last``.
+
+        ``t_0`` is the middle of sample 0's interval. The error ``(t_0 - true t_0) + j (T -
+        true T)`` is linear in ``j``, so its largest size is at ``j = 0`` or ``j = last``, where
+        :meth:`sample_interval` bounds it.
+        """
+        earliest, latest = self.sample_interval(segment, 0)
+        t0 = 0.5 * (earliest + latest)
+        uncertainty = 0.5 * (latest - earliest)
+        lo, hi = self.sample_interval(segment, last)
+        t_last = t0 + last * self.period
+        return t0, max(uncertainty, t_last - lo, hi - t_last)
+
+    @property
+    def period(self) -> float:
+        """Best estimate of the period, s."""
+        return 0.5 * (self.low + self.high)
+
+    @property
+    def uncertainty(self) -> float:
+        """Half the width of the bracket, s."""
+        return 0.5 * (self.high - self.low)

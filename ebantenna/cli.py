@@ -32,6 +32,7 @@ from . import __version__
 COMMAND_MODULES = (
     "ebantenna.fem._cli",
     "ebantenna.simulate._cli",
+    "ebantenna.paper._cli",
     "ebantenna.device._cli",
     "ebantenna.study._cli",
     "ebantenna.bench._cli",

@@ -86,7 +86,7 @@ PAPER_MAP = (
     Item(
         "Fig. 3",
         "box plot of the data set",
-        ("ebantenna.paper.data.build_dataset", "ebantenna.study.data_summary.compute"),
+        ("ebantenna.paper.data.build_paper_dataset", "ebantenna.study.data_summary.compute"),
         (),
         "",
         "summary:dataset.signals",

@@ -24,7 +24,7 @@ import time
 import numpy as np
 
 from ebantenna.bench._timing import best_time
-from ebantenna.paper.data import build_dataset
+from ebantenna.paper.data import build_paper_dataset
 from ebantenna.probe import Probe, material_names
 from ebantenna.report import text_table
 from ebantenna.simulate import builtin_scene, simulate_batch
@@ -112,7 +112,7 @@ def run(
         for jobs in (1, 2):
             with tempfile.TemporaryDirectory() as tmp:
                 wall, cpu = time.perf_counter(), time.process_time()
-                data = build_dataset(tmp, seed=0, n_jobs=jobs, show_progress=False)
+                data = build_paper_dataset(tmp, seed=0, n_jobs=jobs, show_progress=False)
                 wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
             dataset.append(
                 {"jobs": jobs, "signals": data.n_signals, "wall_seconds": wall, "cpu_seconds": cpu}

@@ -18,12 +18,10 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from ..simulate import Dataset, DatasetDesign, Scene, builtin_scene
-from ..simulate import build_dataset as _build
-from ..simulate import dataset_plan as _plan
+from ..simulate import Dataset, DatasetDesign, Scene, build_dataset, builtin_scene, dataset_plan
 from .protocol import DATASET
 
-__all__ = ["PAPER_DESIGN", "QUICK_DESIGN", "design", "build_dataset", "dataset_plan"]
+__all__ = ["PAPER_DESIGN", "QUICK_DESIGN", "design", "build_paper_dataset", "paper_dataset_plan"]
 
 #: The paper's data set: every 5 mm, 25 repetitions, with the rig's assumed scatter.
 PAPER_DESIGN = DatasetDesign(
@@ -39,8 +37,9 @@ PAPER_DESIGN = DatasetDesign(
 )
 
 #: A small version for tests, examples and ``--quick``: every 5 cm from 2.5 cm, 3 repetitions.
-QUICK_DESIGN = replace(PAPER_DESIGN, name="dataset-quick", first_contact=0.025,
-                       contact_step=0.05, repetitions=3)
+QUICK_DESIGN = replace(
+    PAPER_DESIGN, name="dataset-quick", first_contact=0.025, contact_step=0.05, repetitions=3
+)
 
 
 def design(quick: bool = False) -> DatasetDesign:
@@ -54,23 +53,30 @@ def design(quick: bool = False) -> DatasetDesign:
     return QUICK_DESIGN if quick else PAPER_DESIGN
 
 
-def dataset_plan(seed: int = 0, quick: bool = False, *, scene: Scene | None = None) -> dict:
+def paper_dataset_plan(seed: int = 0, quick: bool = False, *, scene: Scene | None = None) -> dict:
     """The rows of the paper's data set before simulation (see
     :func:`ebantenna.simulate.dataset_plan`).
 
     Examples
     --------
     >>> import numpy as np
-    >>> plan = dataset_plan(seed=0)
+    >>> plan = paper_dataset_plan(seed=0)
     >>> plan["contact"].size, np.unique(plan["contact"])[[0, -1]]
     (9875, array([0.005, 0.395]))
     """
     scene = builtin_scene("paper") if scene is None else scene
-    return _plan(scene, design(quick), seed)
+    return dataset_plan(scene, design(quick), seed)
 
 
-def build_dataset(out_dir, seed: int = 0, quick: bool = False, *, scene: Scene | None = None,
-                  n_jobs: int = 1, show_progress=None) -> Dataset:
+def build_paper_dataset(
+    out_dir,
+    seed: int = 0,
+    quick: bool = False,
+    *,
+    scene: Scene | None = None,
+    n_jobs: int = 1,
+    show_progress=None,
+) -> Dataset:
     """Build (or reuse) the paper's data set in ``out_dir``.
 
     Parameters
@@ -99,10 +105,11 @@ def build_dataset(out_dir, seed: int = 0, quick: bool = False, *, scene: Scene |
     --------
     >>> import tempfile
     >>> with tempfile.TemporaryDirectory() as tmp:
-    ...     data = build_dataset(tmp, seed=1, quick=True)
+    ...     data = build_paper_dataset(tmp, seed=1, quick=True)
     >>> data.ax.shape, sorted({str(m) for m in data.material})[:2]
     ((120, 1000), ['aluminium', 'brass'])
     """
     scene = builtin_scene("paper") if scene is None else scene
-    return _build(out_dir, scene, design(quick), seed, n_jobs=n_jobs,
-                  show_progress=show_progress)
+    return build_dataset(
+        out_dir, scene, design(quick), seed, n_jobs=n_jobs, show_progress=show_progress
+    )

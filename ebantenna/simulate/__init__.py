@@ -4,7 +4,10 @@
   TOML/JSON files;
 - :mod:`~ebantenna.simulate.effects`: every effect a scene may list, with its physics and sources;
 - :mod:`~ebantenna.simulate.modes`: the modal response after the object arrests the swept probe;
-- :mod:`~ebantenna.simulate.simulator`: :func:`simulate` and :func:`simulate_batch`;
+- :mod:`~ebantenna.simulate.touched_object`: the touched object's physics models (pinned,
+  coupled, unilateral, friction);
+- :mod:`~ebantenna.simulate.simulator`: :func:`simulate` and :func:`simulate_batch`, the effects
+  applied as one ordered chain of steps;
 - :mod:`~ebantenna.simulate.dataset`: data sets of recordings (materials x contacts x
   repetitions); the paper's own is :mod:`ebantenna.paper.data`.
 

@@ -1,4 +1,4 @@
-"""``ebantenna simulate`` and ``ebantenna dataset``: simulated recordings, the paper's data set."""
+"""``ebantenna simulate``: one simulated recording (``ebantenna dataset`` is in ``paper``)."""
 
 from __future__ import annotations
 
@@ -15,7 +15,7 @@ def _hinge(value: str):
 
 
 def register(subparsers) -> None:
-    """Add the ``simulate`` and ``dataset`` commands."""
+    """Add the ``simulate`` command."""
     from ..cli import seed_argument
 
     sim = subparsers.add_parser(
@@ -40,21 +40,6 @@ def register(subparsers) -> None:
     sim.add_argument("--out", required=True, metavar="FILE.npz", help="where to save the recording")
     sim.add_argument("--json", action="store_true", help="print one JSON object")
     sim.set_defaults(func=run_simulate)
-
-    data = subparsers.add_parser(
-        "dataset",
-        help="build the paper's data set (5 materials x contacts x 25 repetitions)",
-        description="Simulate the paper's data set with the paper scene and save it as a "
-        "compressed .npz with metadata and a checksum; an identical existing file is reused.",
-    )
-    data.add_argument("--out", required=True, metavar="DIR", help="output directory")
-    data.add_argument(
-        "--seed", type=seed_argument, default=0, metavar="S", help="seed, 0 ... 2**63 - 1 (0)"
-    )
-    data.add_argument("--quick", action="store_true", help="a small version for tests and docs")
-    data.add_argument("--jobs", type=int, default=1, metavar="N", help="worker processes (1)")
-    data.add_argument("--json", action="store_true", help="print one JSON object")
-    data.set_defaults(func=run_dataset)
 
 
 def run_simulate(args) -> int:
@@ -103,52 +88,4 @@ def run_simulate(args) -> int:
     )
     print(f"  X modes (Hz): {', '.join(f'{f:.2f}' for f in summary['modes_x_hz'])}")
     print(f"  Z modes (Hz): {', '.join(f'{f:.2f}' for f in summary['modes_z_hz'])}")
-    return 0
-
-
-def run_dataset(args) -> int:
-    """Run ``ebantenna dataset``."""
-    import time
-
-    import numpy as np
-
-    from ..cli import interrupted, print_json
-    from ..paper.data import build_dataset
-
-    start = time.perf_counter()
-    try:
-        data = build_dataset(args.out, seed=args.seed, quick=args.quick, n_jobs=args.jobs)
-    except KeyboardInterrupt as exc:
-        # an unfinished data set is not kept: a partial file would pass for the whole one
-        raise interrupted(
-            exc,
-            {
-                "path": None,
-                "seed": args.seed,
-                "quick": bool(args.quick),
-                "seconds": round(time.perf_counter() - start, 3),
-            },
-        ) from None
-    summary = {
-        "path": str(data.path),
-        "signals": data.n_signals,
-        "samples": data.n_samples,
-        "fs": data.fs,
-        "materials": sorted({str(m) for m in data.material}),
-        "contacts": int(np.unique(data.contact).size),
-        "repetitions": int(data.repetition.max()) + 1,
-        "seed": args.seed,
-        "quick": bool(args.quick),
-        "checksum_sha256": data.metadata["checksum_sha256"],
-        "seconds": round(time.perf_counter() - start, 3),
-    }
-    if args.json:
-        print_json(summary)
-        return 0
-    print(
-        f"{summary['signals']} signals ({len(summary['materials'])} materials x "
-        f"{summary['contacts']} contacts x {summary['repetitions']} repetitions), "
-        f"{summary['samples']} samples at {data.fs:g} Hz in {args.out} "
-        f"({summary['seconds']:.1f} s)"
-    )
     return 0

@@ -31,8 +31,6 @@ import dataclasses
 import hashlib
 import json
 import logging
-import os
-import re
 from dataclasses import dataclass, fields
 from pathlib import Path
 
@@ -43,6 +41,7 @@ from .. import __version__
 from .._progress import progress
 from .._validate import check_int, check_nonnegative, check_positive, open_npz
 from ..probe import material
+from ._dataset_files import remove_leftovers, stale_reason, write_whole
 from .scene import Scene
 from .simulator import simulate_batch
 
@@ -234,7 +233,11 @@ def dataset_plan(scene: Scene, design: DatasetDesign, seed: int = 0) -> dict:
         raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
     if not isinstance(design, DatasetDesign):
         raise TypeError(f"design must be a DatasetDesign, got {type(design).__name__}")
-    seed = check_int("seed", seed, minimum=0)
+    return _plan(scene, design, check_int("seed", seed, minimum=0))
+
+
+def _plan(scene: Scene, design: DatasetDesign, seed: int) -> dict:
+    """:func:`dataset_plan` of checked values."""
     length = scene.probe.length
     nominal = design.contacts(length)
     materials = design.materials
@@ -269,47 +272,6 @@ def _config(scene: Scene, design: DatasetDesign, seed: int) -> dict:
         "materials": {name: dataclasses.asdict(material(name)) for name in design.materials},
     }
     return json.loads(json.dumps(config))  # tuples as lists, as they come back from the file
-
-
-def _stale(stored, config: dict) -> str | None:
-    """Why a cached file's configuration is not ``config`` (None when it is)."""
-    if not isinstance(stored, dict):
-        return "it records no configuration"
-    changed = sorted(k for k in config.keys() | stored.keys() if stored.get(k) != config.get(k))
-    if not changed:
-        return None
-    if "scene" in changed and isinstance(stored.get("scene"), dict):
-        scene = config["scene"]
-        changed.remove("scene")
-        changed += [
-            f"scene.{k}"
-            for k in sorted(scene.keys() | stored["scene"].keys())
-            if stored["scene"].get(k) != scene.get(k)
-        ]
-    return f"configuration changed ({', '.join(changed)})"
-
-
-def _remove_leftovers(path: Path) -> None:
-    """Delete temporary files of ``path`` left by builds whose process no longer runs."""
-    pattern = re.compile(re.escape(path.name) + r"\.tmp(\d+)\.npz")
-    for tmp in path.parent.glob(path.name + ".tmp*.npz"):
-        match = pattern.fullmatch(tmp.name)
-        if match is None or _running(int(match.group(1))):
-            continue  # another build still writing
-        log.info("removing %s, left by an interrupted build", tmp)
-        tmp.unlink(missing_ok=True)
-
-
-def _running(pid: int) -> bool:
-    if pid == os.getpid():
-        return True
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except (PermissionError, OverflowError, OSError):
-        return True  # someone else's process, or cannot tell: leave its file alone
-    return True
 
 
 #: Tasks per material: contiguous ranges of contact positions (each task shares its probe
@@ -352,7 +314,7 @@ def build_dataset(
 ) -> Dataset:
     """Build (or reuse) the data set of ``design`` recorded in ``scene``, in ``out_dir``.
 
-    The paper's data set is :func:`ebantenna.paper.build_dataset`.
+    The paper's data set is :func:`ebantenna.paper.data.build_paper_dataset`.
 
     Parameters
     ----------
@@ -399,25 +361,56 @@ def build_dataset(
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     path = out_dir / f"{scene.name}-{design.name}-seed{seed}.npz"
-    _remove_leftovers(path)
+    remove_leftovers(path)
     config = _config(scene, design, seed)
-    if path.exists():
-        try:
-            cached = load_dataset(path)
-        except ValueError as exc:
-            log.warning("rebuilding %s: %s", path, exc)
-        else:
-            why = _stale(cached.metadata.get("config"), config)
-            if why is None:
-                log.info("reusing %s", path)
-                return cached
-            log.warning("rebuilding %s: %s", path, why)
+    cached = _reusable(path, config)
+    if cached is not None:
+        return cached
+    plan = _plan(scene, design, seed)
+    ax, az, restrikes = _simulate_plan(scene, plan, design.materials, n_jobs, show_progress)
+    arrays = dict(plan, ax=ax, az=az)
+    metadata = {
+        "config": config,
+        "ebantenna_version": __version__,
+        "n_signals": int(ax.shape[0]),
+        "units": {"ax": "m/s^2", "az": "m/s^2", "contact": "m", "sweep_speed": "rad/s", "fs": "Hz"},
+        "checksum_sha256": _checksum(arrays, scene.fs),
+    }
+    if scene.has("unilateral_contact"):  # each strike's contacts after the first touch
+        metadata["restrikes"] = restrikes.tolist()
+    write_whole(path, arrays, metadata, scene.fs)
+    for a in arrays.values():
+        a.setflags(write=False)
+    return Dataset(fs=float(scene.fs), metadata=metadata, path=path, **arrays)
 
-    plan = dataset_plan(scene, design, seed)
+
+def _reusable(path: Path, config: dict) -> Dataset | None:
+    """The data set cached at ``path`` if it loads and has ``config``; None (logged why) if not."""
+    if not path.exists():
+        return None
+    try:
+        cached = load_dataset(path)
+    except ValueError as exc:
+        log.warning("rebuilding %s: %s", path, exc)
+        return None
+    why = stale_reason(cached.metadata.get("config"), config)
+    if why is not None:
+        log.warning("rebuilding %s: %s", path, why)
+        return None
+    log.info("reusing %s", path)
+    return cached
+
+
+def _simulate_plan(scene: Scene, plan: dict, materials, n_jobs, show_progress):
+    """The signals of every row of ``plan``, one :mod:`joblib` task per range of contacts.
+
+    Returns ``ax`` and ``az`` (float32, ``(n, n_samples)``) and each row's restrikes (0 without
+    ``unilateral_contact``). Takes checked values.
+    """
     n = plan["contact"].size
     ax = np.empty((n, scene.n_samples), dtype=np.float32)
     az = np.empty_like(ax)
-    tasks = _tasks(plan, design.materials)
+    tasks = _tasks(plan, materials)
     if n_jobs is not None:
         n_jobs = min(n_jobs, len(tasks))
     parts = Parallel(n_jobs=n_jobs, return_as="generator")(
@@ -430,30 +423,7 @@ def build_dataset(
         ax[rows], az[rows] = bx, bz
         if again is not None:
             restrikes[rows] = again
-    arrays = dict(plan, ax=ax, az=az)
-    metadata = {
-        "config": config,
-        "ebantenna_version": __version__,
-        "n_signals": int(n),
-        "units": {"ax": "m/s^2", "az": "m/s^2", "contact": "m", "sweep_speed": "rad/s", "fs": "Hz"},
-        "checksum_sha256": _checksum(arrays, scene.fs),
-    }
-    if scene.has("unilateral_contact"):  # each strike's contacts after the first touch
-        metadata["restrikes"] = restrikes.tolist()
-    # Written under a name of its own, then renamed: a reader never sees half a file, and
-    # concurrent builds into one folder each write their own. Interrupted, it is removed.
-    tmp = path.with_name(path.name + f".tmp{os.getpid()}.npz")
-    try:
-        np.savez_compressed(
-            tmp, fs=np.float64(scene.fs), metadata=np.array(json.dumps(metadata)), **arrays
-        )
-        os.replace(tmp, path)
-    finally:
-        tmp.unlink(missing_ok=True)
-    log.info("wrote %s (%d signals)", path, n)
-    for a in arrays.values():
-        a.setflags(write=False)
-    return Dataset(fs=float(scene.fs), metadata=metadata, path=path, **arrays)
+    return ax, az, restrikes
 
 
 def load_dataset(path) -> Dataset:

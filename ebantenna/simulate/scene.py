@@ -40,6 +40,18 @@ __all__ = ["Scene", "builtin_scene", "scene_names", "load_scene", "resolve_scene
 
 _ORDER = {name: i for i, name in enumerate(effect_names())}
 
+#: Effects that need another effect listed with them: (effect, needed, why).
+EFFECT_NEEDS = (
+    ("object_damping", "object_modes", "it damps the touched rod's modes"),
+    (
+        "unilateral_contact",
+        "object_modes",
+        "it is the contact with the touched rod that only pushes",
+    ),
+    ("coulomb_friction", "object_modes", "its normal force is the rod contact's preload"),
+    ("preload_scatter", "object_modes", "the preload it scatters is the rod contact's"),
+)
+
 #: Most samples one simulated recording may have.
 MAX_SAMPLES = 10_000_000
 
@@ -138,9 +150,17 @@ class Scene:
     max_frequency: float = 480.0
 
     def __post_init__(self):
-        def put(name, value):
-            object.__setattr__(self, name, value)
+        self._check_setup()
+        self._check_acquisition()
+        object.__setattr__(self, "effects", _normalise_effects(self.effects))
+        self._check_effects()
+        self._check_rates()
 
+    def _put(self, name, value):
+        object.__setattr__(self, name, value)
+
+    def _check_setup(self):
+        """The label, the probe, its hinge, the contact and the touched material."""
         if not isinstance(self.name, str):
             raise TypeError(f"name must be a string, got {self.name!r}")
         if not isinstance(self.probe, Probe):
@@ -152,13 +172,16 @@ class Scene:
                     f"(N m/rad); got {self.hinge!r}"
                 )
         else:
-            put("hinge", check_positive("hinge (rotational stiffness, N m/rad)", self.hinge))
-        put("contact", check_in_range("contact", self.contact, 0.0, self.probe.length))
-        put("material", material(self.material).name)
-        put("max_frequency", check_positive("max_frequency", self.max_frequency))
+            self._put("hinge", check_positive("hinge (rotational stiffness, N m/rad)", self.hinge))
+        self._put("contact", check_in_range("contact", self.contact, 0.0, self.probe.length))
+        self._put("material", material(self.material).name)
+
+    def _check_acquisition(self):
+        """The band, the sampling, the sweep and the FEM model's size."""
+        self._put("max_frequency", check_positive("max_frequency", self.max_frequency))
         fs = check_positive("fs", self.fs)
-        put("fs", fs)
-        put("duration", check_positive("duration", self.duration))
+        self._put("fs", fs)
+        self._put("duration", check_positive("duration", self.duration))
         if self.n_samples < 2:
             raise ValueError(
                 f"duration * fs must give at least 2 samples, got {self.duration!r} s at {fs:g} Hz"
@@ -169,37 +192,23 @@ class Scene:
                 f"{8 * MAX_SAMPLES / 1e6:g} MB per axis), got duration={self.duration!r} s at "
                 f"{fs:g} Hz"
             )
-        put("sweep_speed", check_positive("sweep_speed", self.sweep_speed))
-        put("tilt_ratio", check_nonnegative("tilt_ratio", self.tilt_ratio))
-        put("n_elements", check_resolvable(check_int("n_elements", self.n_elements, minimum=2)))
-        put("n_modes", check_int("n_modes", self.n_modes, minimum=1))
-        effects = _normalise_effects(self.effects)
-        put("effects", effects)
+        self._put("sweep_speed", check_positive("sweep_speed", self.sweep_speed))
+        self._put("tilt_ratio", check_nonnegative("tilt_ratio", self.tilt_ratio))
+        n_elements = check_resolvable(check_int("n_elements", self.n_elements, minimum=2))
+        self._put("n_elements", n_elements)
+        self._put("n_modes", check_int("n_modes", self.n_modes, minimum=1))
+
+    def _check_effects(self):
+        """The listed effects agree with the probe and with one another."""
         names = self.effect_names
         if ("tip_mass" in names) != (self.probe.tip_mass > 0):
             raise ValueError(
                 "the 'tip_mass' effect must be listed exactly when the probe carries a tip mass; "
                 f"got probe.tip_mass={self.probe.tip_mass!r} kg with effects {list(names)}"
             )
-        if "object_damping" in names and "object_modes" not in names:
-            raise ValueError(
-                "effect 'object_damping' needs 'object_modes' (it damps the touched rod's modes)"
-            )
-        if "unilateral_contact" in names and "object_modes" not in names:
-            raise ValueError(
-                "effect 'unilateral_contact' needs 'object_modes' (it is the contact with the "
-                "touched rod that only pushes)"
-            )
-        if "coulomb_friction" in names and "object_modes" not in names:
-            raise ValueError(
-                "effect 'coulomb_friction' needs 'object_modes' (its normal force is the rod "
-                "contact's preload)"
-            )
-        if "preload_scatter" in names and "object_modes" not in names:
-            raise ValueError(
-                "effect 'preload_scatter' needs 'object_modes' (the preload it scatters is the "
-                "rod contact's)"
-            )
+        for effect, needed, why in EFFECT_NEEDS:
+            if effect in names and needed not in names:
+                raise ValueError(f"effect '{effect}' needs '{needed}' ({why})")
         if "object_modes" in names and "contact_compliance" in names:
             raise ValueError(
                 "effects 'object_modes' and 'contact_compliance' both set the contact spring; "
@@ -208,21 +217,24 @@ class Scene:
         if "clipping" in names and "quantisation" in names:
             if self.effect("clipping").range_g != self.effect("quantisation").range_g:
                 raise ValueError("clipping and quantisation must use the same range_g")
+
+    def _check_rates(self):
+        """The modes and the hum within the rates that sample them."""
         dlpf = self.effect("dlpf")
         if dlpf is not None:  # the modes are sampled at the chip's internal rate, then decimated
-            dlpf.divider(fs)
+            dlpf.divider(self.fs)
             rate, what = dlpf.internal_rate, "the dlpf's internal_rate"
         else:
-            rate, what = fs, "fs"
+            rate, what = self.fs, "fs"
         if rate < 2 * self.max_frequency:
             raise ValueError(
                 f"{what} must be at least twice max_frequency (2 x {self.max_frequency:g} Hz = "
                 f"{2 * self.max_frequency:g} Hz), got {rate!r} Hz"
             )
         hum = self.effect("mains_hum")
-        if hum is not None and not hum.frequency < fs / 2:
+        if hum is not None and not hum.frequency < self.fs / 2:
             raise ValueError(
-                f"mains_hum frequency {hum.frequency:g} Hz must be below fs/2 = {fs / 2:g} Hz"
+                f"mains_hum frequency {hum.frequency:g} Hz must be below fs/2 = {self.fs / 2:g} Hz"
             )
 
     # ---------------------------------------------------------------------------------------------

@@ -168,7 +168,7 @@ def reproduce(
     import matplotlib
 
     matplotlib.use("Agg")
-    from ..paper.data import build_dataset
+    from ..paper.data import build_paper_dataset
     from ..paper.feature_table import signal_features
     from ..simulate import builtin_scene
 
@@ -197,8 +197,8 @@ def reproduce(
     before = {p: p.stat().st_mtime_ns for p in cache_dir.glob("*.npz")}
     ds = timer.run(
         "data set",
-        lambda: build_dataset(cache_dir, seed=seed, quick=quick, n_jobs=workers,
-                              show_progress=show_progress),
+        lambda: build_paper_dataset(cache_dir, seed=seed, quick=quick, n_jobs=workers,
+                                    show_progress=show_progress),
     )
     data_result = data_summary.compute(ds)
     feats = timer.run(

@@ -99,7 +99,7 @@ def test_an_interrupted_dataset_ends_in_one_line_and_json(
     def interrupted(*args, **kwargs):
         raise kind()
 
-    monkeypatch.setattr(ebantenna.paper.data, "build_dataset", interrupted)
+    monkeypatch.setattr(ebantenna.paper.data, "build_paper_dataset", interrupted)
     with pytest.raises(SystemExit) as exc:
         main(["dataset", "--out", str(tmp_path), "--quick", "--seed", "7", "--json"])
     assert exc.value.code == code

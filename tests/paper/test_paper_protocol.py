@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from ebantenna.paper import printed
-from ebantenna.paper.data import dataset_plan
+from ebantenna.paper.data import paper_dataset_plan
 from ebantenna.paper.protocol import DATASET
 from ebantenna.probe import material_names
 from ebantenna.simulate import builtin_scene
@@ -17,7 +17,7 @@ def test_the_simulated_data_set_follows_the_paper_protocol():
     assert material_names() == DATASET.materials
     assert builtin_scene("paper").probe.length == pytest.approx(DATASET.probe_length)
     assert DATASET.probe_length == pytest.approx(printed.PROBE_LENGTH_CM.value / 100)
-    plan = dataset_plan(seed=0)
+    plan = paper_dataset_plan(seed=0)
     contacts = np.unique(plan["contact"])
     np.testing.assert_allclose(np.diff(contacts), DATASET.contact_step, atol=1e-9)
     assert np.bincount(plan["repetition"]).size == DATASET.repetitions

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from ebantenna.cli import main
-from ebantenna.paper.data import build_dataset, dataset_plan
+from ebantenna.paper.data import build_paper_dataset, paper_dataset_plan
 from ebantenna.probe import material_names
 from ebantenna.recording import Recording
 from ebantenna.simulate import builtin_scene, load_dataset, simulate
@@ -16,7 +16,7 @@ from ebantenna.simulate import builtin_scene, load_dataset, simulate
 @pytest.fixture(scope="module")
 def quick(tmp_path_factory):
     out = tmp_path_factory.mktemp("data")
-    return out, build_dataset(out, seed=3, quick=True, show_progress=False)
+    return out, build_paper_dataset(out, seed=3, quick=True, show_progress=False)
 
 
 def test_quick_dataset_layout(quick):
@@ -53,13 +53,13 @@ def test_deterministic_by_seed_cached_and_checked(quick, tmp_path):
     out, data = quick
     path = data.path
     mtime = os.stat(path).st_mtime_ns
-    again = build_dataset(out, seed=3, quick=True, show_progress=False)
+    again = build_paper_dataset(out, seed=3, quick=True, show_progress=False)
     assert os.stat(path).st_mtime_ns == mtime  # reused, not rebuilt
     assert again.checksum() == data.checksum()
-    fresh = build_dataset(tmp_path, seed=3, quick=True, n_jobs=2, show_progress=False)
+    fresh = build_paper_dataset(tmp_path, seed=3, quick=True, n_jobs=2, show_progress=False)
     assert fresh.checksum() == data.checksum()  # same seed, same bytes, whatever the workers
     assert load_dataset(fresh.path).checksum() == data.checksum()
-    other = dataset_plan(seed=4, quick=True)
+    other = paper_dataset_plan(seed=4, quick=True)
     assert not np.array_equal(other["contact_true"], data.contact_true)
     # A modified file is refused by load_dataset.
     with np.load(fresh.path) as f:
@@ -73,7 +73,7 @@ def test_deterministic_by_seed_cached_and_checked(quick, tmp_path):
 
 
 def test_full_plan_matches_the_paper():
-    plan = dataset_plan(seed=0)
+    plan = paper_dataset_plan(seed=0)
     contacts = np.unique(plan["contact"])
     assert contacts.size == 79 and np.allclose(np.diff(contacts), 0.005)
     assert plan["contact"].size == 5 * 79 * 25

@@ -18,6 +18,12 @@ strikes again), :class:`CoulombFriction` (the probe sticks to the rod and slips 
 decimation), :class:`SensorDrift` (offset and gain between sessions), :class:`Clipping`,
 :class:`Quantisation`, :class:`SteadyStateKalman` (on the Raspberry Pi).
 
+The simulator applies them in one loop over an ordered list of steps,
+:data:`ebantenna.simulate.simulator.CHAIN`; :mod:`~ebantenna.simulate.simulator` gives the order
+and why (the filter is linear, so it acts on each part of the signal as that part enters). The
+touched rod's models are the list :data:`ebantenna.simulate.simulator.OBJECT_MODELS`. A new effect
+is a class here, an entry of :data:`EFFECT_TYPES` and one step in the simulator's list.
+
 All arrays here have shape ``(n_signals, n_samples)``: every effect is vectorised over signals.
 Random effects draw from a :class:`numpy.random.Generator` per signal that the simulator makes
 from the signal's seed and the effect's own :attr:`stream` number, so that adding or removing one

@@ -6,7 +6,7 @@ from dataclasses import asdict, fields
 from typing import ClassVar
 
 
-class _Effect:
+class Effect:
     """Shared behaviour: a name, parameters as a dict, construction from a dict."""
 
     name: ClassVar[str]

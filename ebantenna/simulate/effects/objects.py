@@ -20,11 +20,11 @@ from ...fem.rod import Rod
 from ...probe import Material, Probe
 from ..contact import TUBE_POISSON_RATIO, tube_on_rod_stiffness
 from ..friction import check_coefficients
-from ._base import _Effect
+from ._base import Effect
 
 
 @dataclass(frozen=True)
-class ObjectModes(_Effect):
+class ObjectModes(Effect):
     """The touched object as a rod with its own modes, coupled to the probe by the contact spring.
 
     The object is a solid round rod clamped upright in a stand (:class:`ebantenna.fem.rod.Rod`),
@@ -122,7 +122,7 @@ class ObjectModes(_Effect):
 
 
 @dataclass(frozen=True)
-class ObjectDamping(_Effect):
+class ObjectDamping(Effect):
     """The touched rod's own material damping.
 
     The rod's material loss factor ``eta`` (:data:`ebantenna.probe.MATERIALS`, with its sources)
@@ -139,7 +139,7 @@ class ObjectDamping(_Effect):
 
 
 @dataclass(frozen=True)
-class UnilateralContact(_Effect):
+class UnilateralContact(Effect):
     """A contact that only pushes: the probe lifts off the rod, rings free, and strikes again.
 
     Without this effect the contact spring of :class:`ObjectModes` pulls as readily as it
@@ -177,7 +177,7 @@ class UnilateralContact(_Effect):
 
 
 @dataclass(frozen=True)
-class CoulombFriction(_Effect):
+class CoulombFriction(Effect):
     """Dry friction along the rod: the Z axis sticks to the rod and slips on it.
 
     Without this effect the probe slides along the rod freely, and Z rings at the free probe's

@@ -11,7 +11,7 @@ from typing import ClassVar
 
 from ..._validate import check_in_range, check_positive
 from ...probe import Material, Probe
-from ._base import _Effect
+from ._base import Effect
 
 #: The accelerometer board at the tip: an MPU6050 breakout (GY-521), kg. Estimate: FR-4 board
 #: 20 x 15.5 x 1.6 mm at 1850 kg/m^3 (0.9 g), 8-pin header (0.6 g), chip and parts (0.3 g), plus
@@ -20,7 +20,7 @@ GY521_MASS = 2.5e-3
 
 
 @dataclass(frozen=True)
-class StructuralDamping(_Effect):
+class StructuralDamping(Effect):
     """Hysteretic (material) damping of the tube, as modal damping.
 
     A material with loss factor ``eta`` loses ``2 pi eta`` of its strain energy per cycle. Near a
@@ -43,7 +43,7 @@ class StructuralDamping(_Effect):
 
 
 @dataclass(frozen=True)
-class ContactCompliance(_Effect):
+class ContactCompliance(Effect):
     """Compliance of the contact between the tube and the object (Hertz), by material.
 
     The tube's side touches the object in a point; with the crossed-cylinder approximation this is
@@ -102,7 +102,7 @@ class ContactCompliance(_Effect):
 
 
 @dataclass(frozen=True)
-class TipMass(_Effect):
+class TipMass(Effect):
     """The accelerometer board at the free tip, as a point mass in the FEM model.
 
     The mass itself is the probe's :attr:`~ebantenna.probe.Probe.tip_mass`; a scene lists this

@@ -16,11 +16,11 @@ import scipy.signal as sps
 
 from ..._validate import check_choice, check_int, check_nonnegative, check_positive
 from ...chips.mpu6050 import ACCEL_NOISE_DENSITY, ACCEL_RANGES_G, DLPF, STANDARD_GRAVITY
-from ._base import _Effect
+from ._base import Effect
 
 
 @dataclass(frozen=True)
-class ClockJitter(_Effect):
+class ClockJitter(Effect):
     """Sample-clock jitter of the acquisition loop.
 
     The Raspberry Pi polls the sensor from a user-space loop, so sample ``n`` is taken at
@@ -56,7 +56,7 @@ class ClockJitter(_Effect):
 
 
 @dataclass(frozen=True)
-class Gravity(_Effect):
+class Gravity(Effect):
     """Gravity as the accelerometer sees it.
 
     An accelerometer measures specific force, so at rest it reads ``+g`` along the axis that points
@@ -89,7 +89,7 @@ class Gravity(_Effect):
 
 
 @dataclass(frozen=True)
-class MainsHum(_Effect):
+class MainsHum(Effect):
     """Mains hum picked up by the sensor's supply and wiring.
 
     A sinusoid of the mains frequency with a fixed amplitude and a random phase per signal and
@@ -131,7 +131,7 @@ class MainsHum(_Effect):
 
 
 @dataclass(frozen=True)
-class SensorNoise(_Effect):
+class SensorNoise(Effect):
     """White noise of the accelerometer.
 
     The MPU6050's accelerometer noise power spectral density is 400 ug/sqrt(Hz) (InvenSense,
@@ -200,7 +200,7 @@ DLPF_BANDWIDTHS = tuple(setting.accel_bandwidth for setting in DLPF)
 
 
 @dataclass(frozen=True)
-class LowPassFilter(_Effect):
+class LowPassFilter(Effect):
     """The MPU6050's digital low-pass filter (DLPF), run at the chip's internal rate.
 
     The chip samples the accelerometer internally faster than it outputs, filters the samples
@@ -330,7 +330,7 @@ class LowPassFilter(_Effect):
 
 
 @dataclass(frozen=True)
-class Clipping(_Effect):
+class Clipping(Effect):
     """The accelerometer's full-scale range.
 
     At AFS_SEL = 3 the MPU6050 measures +-16 g with 2048 LSB/g into a 16-bit two's-complement
@@ -367,7 +367,7 @@ class Clipping(_Effect):
 
 
 @dataclass(frozen=True)
-class Quantisation(_Effect):
+class Quantisation(Effect):
     """16-bit quantisation of the readings.
 
     The register holds an integer count of LSB, ``LSB = 2 range / 2^16`` (``g/2048`` at +-16 g);
@@ -404,7 +404,7 @@ class Quantisation(_Effect):
 
 
 @dataclass(frozen=True)
-class SteadyStateKalman(_Effect):
+class SteadyStateKalman(Effect):
     """The acquisition-side Kalman filter (the paper, section 3).
 
     A scalar Kalman filter per axis with a random-walk model ``x_n = x_(n-1) + w_n`` (variance

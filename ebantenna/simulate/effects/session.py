@@ -14,11 +14,11 @@ import numpy as np
 
 from ..._validate import check_nonnegative
 from ...chips.mpu6050 import STANDARD_GRAVITY
-from ._base import _Effect
+from ._base import Effect
 
 
 @dataclass(frozen=True)
-class PreloadScatter(_Effect):
+class PreloadScatter(Effect):
     """The contact's preload varies from strike to strike.
 
     The servo stops where the search sweep met the object, and how far it drove on before it
@@ -65,7 +65,7 @@ SENSITIVITY_DRIFT = 2e-4
 
 
 @dataclass(frozen=True)
-class SensorDrift(_Effect):
+class SensorDrift(Effect):
     """The accelerometer's offset and gain differ between recording sessions.
 
     The MPU6050's zero-g level moves by up to 35 mg (X) and 60 mg (Z) over 0-70 degC and its

@@ -346,7 +346,9 @@ def loglinear_fit(t, env):
     """Fit ``env ~ a exp(b t)`` as the line ``log env = log a + b t``, weighted by ``env^2``.
 
     The weights undo what the logarithm does to noise: an envelope error ``s`` becomes a log
-    error ``s / env``. Takes checked values: ``env > 0``. Returns ``(a, b)``.
+    error ``s / env``. Takes checked values: ``env > 0`` and of moderate size, so that
+    ``env^2`` neither overflows nor underflows (:func:`fit_decay` scales the signal by a power of
+    two first). Returns ``(a, b)``.
 
     Examples
     --------

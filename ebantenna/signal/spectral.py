@@ -26,7 +26,8 @@ its two neighbours:
     estimators", *IEEE Signal Processing Magazine* 24(3), 2007:
     ``delta = P * Re[(X[k-1] - X[k+1]) / (2 X[k] - X[k-1] - X[k+1])]`` with ``P = 1`` for the
     rectangular window and ``P = 2`` for the (periodic) Hann window, for which the formula is exact
-    for one tone apart from the leakage of its negative-frequency image.
+    for one tone apart from the leakage of its negative-frequency image and a finite-length error
+    below ``4 / n**2`` bin (the DFT's Dirichlet kernel against the sinc of the derivation).
 """
 
 from __future__ import annotations

@@ -27,7 +27,8 @@ exponential cannot be fitted to the oscillation itself. Three methods:
 **The steps.** :func:`fit_decay` validates its arguments once, then follows the textbook: the
 envelope (:func:`analytic_envelope`), the log-linear fit (:func:`loglinear_fit`, refined by
 :func:`envelope_fit` for ``"nonlinear"``), the damped-sinusoid witness
-(:func:`damped_sinusoid_fit`) and the checks (:func:`envelope_status`, :func:`sinusoid_status`).
+(``damped_sinusoid_fit``, in the private module ``ebantenna/signal/_damped_sinusoid.py``) and
+the checks (:func:`envelope_status`, :func:`sinusoid_status`).
 The steps take checked values. The numerical guards below (the power-of-two scaling, the clipped
 samples, the fitted region) live in the private module ``ebantenna/signal/_guards.py``.
 
@@ -70,6 +71,7 @@ from scipy.signal import find_peaks
 
 from .._validate import check_bool, check_choice, check_in_range
 from ._checks import check_fs, check_signal
+from ._damped_sinusoid import damped_sinusoid_fit
 from ._guards import clipped_mask, decay_region, unit_scaled
 from .filters import apply_filter, paper_filter
 from .spectral import dominant_frequency
@@ -86,7 +88,6 @@ __all__ = [
     "weighted_line",
     "loglinear_fit",
     "envelope_fit",
-    "damped_sinusoid_fit",
     "envelope_status",
     "sinusoid_status",
 ]
@@ -396,8 +397,8 @@ def envelope_status(b, decaying, too_short, sine) -> str:
 
     ``"not_decaying"`` unless ``decaying`` (``b < 0`` and R^2 high enough); ``"too_few_points"``
     when the decay is over before two periods; ``"inconsistent"`` when the damped-sinusoid fit
-    ``sine`` (see :func:`damped_sinusoid_fit`) explains the record (R^2 >= 0.99), decays, and
-    disagrees with ``b`` by more than 3 %; otherwise ``"ok"``.
+    ``sine``, ``(a, b, r_squared, n_fit)`` or None, explains the record (R^2 >= 0.99), decays,
+    and disagrees with ``b`` by more than 3 %; otherwise ``"ok"``.
 
     Examples
     --------
@@ -436,61 +437,6 @@ def sinusoid_status(sine, envelope_decays: bool) -> str:
     if good and sine[1] < 0:
         return "ok"
     return "not_decaying" if good or not envelope_decays else "poor_fit"
-
-
-def damped_sinusoid_fit(x, t, n_fit, a0, b0, omega0):
-    """Least squares of ``exp(b t) (p cos wt + q sin wt) + c`` to the first ``n_fit`` samples.
-
-    Started from the envelope fit ``(a0, b0)`` (or, if that does not decay, the energy centroid
-    of the signal) and the frequency ``omega0`` (rad/s) refined on a zero-padded spectrum of the
-    window; the linear parameters ``p, q, c`` start from their least-squares values.
-
-    Returns
-    -------
-    tuple (a, b, r_squared, n_fit) or None
-        ``a`` the amplitude at ``t = 0``; None when the window holds less than one period of the
-        fitted frequency or the solver fails.
-    """
-    n_fit = min(n_fit, x.size)
-    if n_fit < 8:
-        return None
-    y, t0 = x[:n_fit], t[0]
-    tw = t[:n_fit] - t0
-    if not b0 < 0:
-        energy = y**2
-        b0 = -0.5 / max(float((tw * energy).sum() / energy.sum()), tw[1])
-    # the strongest peak of the window's spectrum, 8x zero-padded, near the record's dominant bin
-    spectrum = np.abs(np.fft.rfft(y - y.mean(), 8 * n_fit))
-    omegas = 2 * np.pi * np.fft.rfftfreq(8 * n_fit, tw[1])
-    omega = float(omegas[1 + np.argmax(spectrum[1:])]) if spectrum.size > 1 else omega0
-
-    def columns(b, w):
-        e = np.exp(b * tw)
-        return e, np.cos(w * tw), np.sin(w * tw)
-
-    e, co, si = columns(b0, omega)
-    lin, *_ = np.linalg.lstsq(np.column_stack([e * co, e * si, np.ones(n_fit)]), y, rcond=None)
-
-    def residual(v):
-        b, w, p, q, c = v
-        e, co, si = columns(b, w)
-        return e * (p * co + q * si) + c - y
-
-    def jacobian(v):
-        b, w, p, q, c = v
-        e, co, si = columns(b, w)
-        osc = e * (p * co + q * si)
-        return np.column_stack([tw * osc, tw * e * (q * co - p * si), e * co, e * si,
-                                np.ones(n_fit)])
-
-    sol = optimize.least_squares(residual, x0=[b0, omega, *lin], jac=jacobian, method="lm",
-                                 x_scale="jac")
-    b, w, p, q, _ = sol.x
-    if not (sol.success and np.all(np.isfinite(sol.x))) or abs(w) * tw[-1] < 2 * np.pi:
-        return None
-    ss_tot = float(((y - y.mean()) ** 2).sum())
-    r2 = 1.0 - float((sol.fun**2).sum()) / ss_tot if ss_tot > 0 else 0.0
-    return math.hypot(p, q) * math.exp(-b * t0), float(b), r2, n_fit
 
 
 def band_passed_decay(x, fs, *, kind: str = "chebyshev", order=None,

@@ -24,6 +24,14 @@ exponential cannot be fitted to the oscillation itself. Three methods:
     ``1 / (4 pi f tau)``, and the first and last periods must be dropped): on clean decays they
     overestimate ``tau`` by 0.5-3 %.
 
+**The steps.** :func:`fit_decay` validates its arguments once, then follows the textbook: the
+envelope (:func:`analytic_envelope`), the log-linear fit (:func:`loglinear_fit`, refined by
+:func:`envelope_fit` for ``"nonlinear"``), the damped-sinusoid witness
+(``damped_sinusoid_fit``, in the private module ``ebantenna/signal/_damped_sinusoid.py``) and
+the checks (:func:`envelope_status`, :func:`sinusoid_status`).
+The steps take checked values. The numerical guards below (the power-of-two scaling, the clipped
+samples, the fitted region) live in the private module ``ebantenna/signal/_guards.py``.
+
 Robustness: only the samples from the start up to where the envelope first sinks to
 ``floor_factor`` times the noise floor (the median envelope of the last tenth of the record) are
 used, so the noise tail does not bend the line; the first and last
@@ -63,6 +71,9 @@ from scipy.signal import find_peaks
 
 from .._validate import check_bool, check_choice, check_in_range
 from ._checks import check_fs, check_signal
+from ._damped_sinusoid import damped_sinusoid_fit
+from ._guards import clipped_mask, decay_region, unit_scaled
+from .filters import apply_filter, paper_filter
 from .spectral import dominant_frequency
 
 __all__ = [
@@ -72,6 +83,13 @@ __all__ = [
     "band_passed_decay",
     "DECAY_METHODS",
     "MIN_DECAY_SAMPLES",
+    # the steps of the reference; they take checked arguments
+    "analytic_envelope",
+    "weighted_line",
+    "loglinear_fit",
+    "envelope_fit",
+    "envelope_status",
+    "sinusoid_status",
 ]
 
 #: Methods of :func:`fit_decay`.
@@ -158,11 +176,25 @@ def envelope(x) -> np.ndarray:
     >>> bool(np.allclose(env, 2.0))
     True
     """
-    x = check_signal("x", x, min_length=2)
+    return analytic_envelope(check_signal("x", x, min_length=2))
+
+
+def analytic_envelope(x: np.ndarray) -> np.ndarray:
+    """``|x + i H[x]|`` of a checked signal: FFT, negative frequencies removed, positive doubled.
+
+    As :func:`scipy.signal.hilbert` computes it, after an exact power-of-two scaling so that the
+    FFT's sums cannot overflow for ``|x|`` up to 1e308. Takes a checked ``x`` (finite, 1-D).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ebantenna.signal.decay import analytic_envelope
+    >>> analytic_envelope(np.array([1.0, 0.0, -1.0, 0.0]))  # cos(pi n / 2): envelope 1
+    array([1., 1., 1., 1.])
+    """
     n = x.shape[0]
-    # exact power-of-two scaling: the FFT's sums cannot overflow for |x| up to 1e308
-    exponent = math.frexp(float(np.max(np.abs(x))))[1]
-    spectrum = np.fft.fft(np.ldexp(x, -exponent))
+    x, exponent = unit_scaled(x)
+    spectrum = np.fft.fft(x)
     h = np.zeros(n)
     h[0] = 1.0
     if n % 2 == 0:
@@ -171,33 +203,6 @@ def envelope(x) -> np.ndarray:
     else:
         h[1 : (n + 1) // 2] = 2.0
     return np.ldexp(np.abs(np.fft.ifft(spectrum * h)), exponent)
-
-
-def _clipped_mask(x: np.ndarray) -> np.ndarray:
-    """Samples in flat runs (two or more equal samples) at the signal's maximum or minimum."""
-    tol = 1e-9 * float(np.ptp(x))
-    at_extreme = (x >= x.max() - tol) | (x <= x.min() + tol)
-    run = at_extreme[1:] & at_extreme[:-1]
-    mask = np.zeros_like(at_extreme)
-    mask[1:] |= run
-    mask[:-1] |= run
-    return mask
-
-
-def _weighted_line(t, y, w):
-    """Weighted least squares ``y ~ c0 + c1 t``; returns ``(c0, c1, r_squared)``."""
-    sw = w.sum()
-    tm = (w * t).sum() / sw
-    ym = (w * y).sum() / sw
-    stt = (w * (t - tm) ** 2).sum()
-    if stt == 0.0:
-        return ym, 0.0, 0.0
-    c1 = (w * (t - tm) * (y - ym)).sum() / stt
-    c0 = ym - c1 * tm
-    ss_res = (w * (y - c0 - c1 * t) ** 2).sum()
-    ss_tot = (w * (y - ym) ** 2).sum()
-    r2 = 1.0 - ss_res / ss_tot if ss_tot > 0 else 0.0
-    return float(c0), float(c1), float(r2)
 
 
 def fit_decay(
@@ -256,6 +261,42 @@ def fit_decay(
     >>> fit.status, round(fit.tau, 6)
     ('ok', 0.03)
     """
+    x, fs, floor_factor, min_r_squared, remove_mean = _checked_arguments(
+        x, fs, method, remove_mean, floor_factor, min_r_squared)
+    x, exponent = unit_scaled(x)  # guard: sums, squares and logs neither overflow nor underflow
+    clipped = clipped_mask(x)  # guard: samples of a saturated sensor
+    xc = x - x.mean() if remove_mean else x
+    env = analytic_envelope(xc)
+    t = np.arange(x.shape[0]) / fs
+    period = fs / dominant_frequency(xc, fs, method="bin", window="rectangular")  # samples
+    region = decay_region(env, clipped, period, floor_factor)  # guard: edges, clipping, noise
+    keep = None if region is None else region.keep
+    if keep is not None and method == "peaks":
+        keep = np.intersect1d(find_peaks(np.abs(xc))[0], keep)
+    if keep is None or keep.size < 4:
+        return _decay_fit(0.0, 0.0, "too_few_points", 0.0, 0, exponent, clipped, method)
+
+    a, b, r2 = envelope_fit(t[keep], env[keep] if method != "peaks" else np.abs(xc[keep]),
+                            nonlinear=method == "nonlinear")
+    decaying = b < 0 and r2 >= min_r_squared
+    first = region.first
+    sine = damped_sinusoid_fit(xc[first:], t[first:], region.end - first, a, b,
+                               2 * np.pi / period * fs)
+    n_points = keep.size
+    if method == "sinusoid":
+        status = sinusoid_status(sine, decaying)
+        if sine is not None:
+            a, b, r2, n_points = sine
+    else:
+        status = envelope_status(b, decaying, region.too_short, sine)
+    return _decay_fit(a, b, status, r2, n_points, exponent, clipped, method)
+
+
+def _checked_arguments(x, fs, method, remove_mean, floor_factor, min_r_squared):
+    """Validate the arguments of :func:`fit_decay` once, at the public boundary.
+
+    Returns ``(x, fs, floor_factor, min_r_squared, remove_mean)``.
+    """
     fs = check_fs(fs)
     x = check_signal("x", x, min_length=MIN_DECAY_SAMPLES, allow_constant=False)
     check_choice("method", method, DECAY_METHODS)
@@ -263,85 +304,74 @@ def fit_decay(
     min_r_squared = check_in_range("min_r_squared", min_r_squared, 0.0, 1.0, low_inclusive=True,
                                    high_inclusive=True)
     remove_mean = check_bool("remove_mean", remove_mean)
-    n = x.shape[0]
-    # Scale by a power of two (exact) so that sums, squares and logs neither overflow nor underflow.
-    exponent = math.frexp(float(np.max(np.abs(x))))[1]
-    x = np.ldexp(x, -exponent)
-    clipped = _clipped_mask(x)
-    is_clipped = bool(clipped.any())
-    xc = x - x.mean() if remove_mean else x
-    env = envelope(xc)
-    t = np.arange(n) / fs
-
-    period = fs / dominant_frequency(xc, fs, method="bin", window="rectangular")
-    edge = int(min(max(2, math.ceil(period)), n // 8))
-    first = int(np.flatnonzero(clipped)[-1]) + 1 if is_clipped else 0
-    start = max(edge, first + edge)
-    stop = n - edge
-
-    def result(a, b, status, r2=0.0, n_points=0):
-        tau = -1.0 / b if b < 0 else math.inf
-        return DecayFit(float(np.ldexp(a, exponent)), float(b), float(tau), status, is_clipped,
-                        method, float(r2), int(n_points))
-
-    if period > n / 4 or stop - start < 4:
-        return result(0.0, 0.0, "too_few_points")
-    region = np.arange(start, stop)
-    tail = env[region[-max(2, region.size // 10) :]]
-    floor = float(np.median(tail))
-    # Fit from the start up to where the envelope first sinks to the floor: later samples are noise,
-    # Hilbert leakage from the record's ends, or the offset left by removing the mean.
-    # A record that ends before its decay reaches the noise floor has no floor to cut at: the
-    # envelope must rise well above its tail (floor_factor squared) for the tail to be noise.
-    below = np.flatnonzero(env[region] <= floor_factor * floor)
-    if env[region].max() < floor_factor**2 * floor:
-        below = below[:0]
-    keep = region[: below[0]] if below.size else region
-    end = min(n, int(keep[-1]) + 1 + edge) if keep.size else start
-    # A decay over before two periods could be fitted leaves too little envelope; the whole
-    # record is then fitted only to tell a decay (too short to measure) from no decay at all.
-    too_short = keep.size < 2 * period or keep.size < max(4, region.size // 20)
-    if too_short:
-        keep = region[env[region] > 0.0]
-    if method == "peaks":
-        peaks, _ = find_peaks(np.abs(xc))
-        keep = np.intersect1d(peaks, keep)
-    if keep.size < 4:
-        return result(0.0, 0.0, "too_few_points")
-
-    a, b, r2 = _envelope_fit(t[keep], env[keep] if method != "peaks" else np.abs(xc[keep]),
-                             nonlinear=method == "nonlinear")
-    decaying = b < 0 and r2 >= min_r_squared
-    sine = _damped_sinusoid_fit(xc[first:], t[first:], end - first, a, b, 2 * np.pi / period * fs)
-    if method == "sinusoid":
-        if sine is None:
-            return result(a, b, "poor_fit" if decaying else "not_decaying", r2, keep.size)
-        a_s, b_s, r2_s, n_s = sine
-        good = r2_s >= SINUSOID_R_SQUARED
-        status = "ok" if good and b_s < 0 else ("not_decaying" if good or not decaying
-                                                else "poor_fit")
-        return result(a_s, b_s, status, r2_s, n_s)
-    if not decaying:
-        status = "not_decaying"
-    elif too_short:
-        status = "too_few_points"
-    elif (sine is not None and sine[2] >= SINUSOID_R_SQUARED and sine[1] < 0
-          and abs(sine[1] / b - 1.0) > CONSISTENCY):
-        status = "inconsistent"
-    else:
-        status = "ok"
-    return result(a, b, status, r2, keep.size)
+    return x, fs, floor_factor, min_r_squared, remove_mean
 
 
-def _envelope_fit(tk, ek, *, nonlinear):
+def _decay_fit(a, b, status, r_squared, n_points, exponent, clipped, method) -> DecayFit:
+    """The :class:`DecayFit` of a fit to ``x * 2**-exponent``, with ``a`` scaled back."""
+    tau = -1.0 / b if b < 0 else math.inf
+    return DecayFit(float(np.ldexp(a, exponent)), float(b), float(tau), status,
+                    bool(clipped.any()), method, float(r_squared), int(n_points))
+
+
+def weighted_line(t, y, w):
+    """Weighted least squares ``y ~ c0 + c1 t``; returns ``(c0, c1, r_squared)``.
+
+    The normal equations in centred form: ``c1 = sum w (t - tm)(y - ym) / sum w (t - tm)^2``,
+    ``c0 = ym - c1 tm`` with ``tm``, ``ym`` the weighted means. A single abscissa (no slope to
+    fit) gives ``(ym, 0, 0)``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ebantenna.signal.decay import weighted_line
+    >>> t = np.array([0.0, 1.0, 2.0])
+    >>> weighted_line(t, 1.0 + 2.0 * t, np.ones(3))
+    (1.0, 2.0, 1.0)
+    """
+    sw = w.sum()
+    tm = (w * t).sum() / sw
+    ym = (w * y).sum() / sw
+    stt = (w * (t - tm) ** 2).sum()
+    if stt == 0.0:
+        return ym, 0.0, 0.0
+    c1 = (w * (t - tm) * (y - ym)).sum() / stt
+    c0 = ym - c1 * tm
+    ss_res = (w * (y - c0 - c1 * t) ** 2).sum()
+    ss_tot = (w * (y - ym) ** 2).sum()
+    r2 = 1.0 - ss_res / ss_tot if ss_tot > 0 else 0.0
+    return float(c0), float(c1), float(r2)
+
+
+def loglinear_fit(t, env):
+    """Fit ``env ~ a exp(b t)`` as the line ``log env = log a + b t``, weighted by ``env^2``.
+
+    The weights undo what the logarithm does to noise: an envelope error ``s`` becomes a log
+    error ``s / env``. Takes checked values: ``env > 0`` and of moderate size, so that
+    ``env^2`` neither overflows nor underflows (:func:`fit_decay` scales the signal by a power of
+    two first). Returns ``(a, b)``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ebantenna.signal.decay import loglinear_fit
+    >>> t = np.linspace(0.0, 1.0, 11)
+    >>> a, b = loglinear_fit(t, 2.0 * np.exp(-3.0 * t))
+    >>> round(a, 12), round(b, 12)
+    (2.0, -3.0)
+    """
+    log_a, b, _ = weighted_line(t, np.log(env), env**2)
+    return math.exp(log_a), b
+
+
+def envelope_fit(tk, ek, *, nonlinear):
     """Fit ``a exp(b t)`` to envelope samples ``ek > 0`` at times ``tk``; return ``(a, b, r2)``.
 
-    The weighted log-linear fit, refined by least squares on ``ek`` itself if ``nonlinear``;
-    ``r2`` is the weighted R^2 of ``log ek`` against the final line.
+    The weighted log-linear fit (:func:`loglinear_fit`), refined by least squares on ``ek``
+    itself if ``nonlinear``; ``r2`` is the weighted R^2 of ``log ek`` against the final line.
+    Takes checked values.
     """
-    ly = np.log(ek)
-    log_a, b, _ = _weighted_line(tk, ly, ek**2)
-    a = math.exp(log_a)
+    a, b = loglinear_fit(tk, ek)
     if nonlinear:
         def residual(p):
             return p[0] * np.exp(p[1] * tk) - ek
@@ -353,6 +383,7 @@ def _envelope_fit(tk, ek, *, nonlinear):
         sol = optimize.least_squares(residual, x0=[a, b], jac=jacobian, method="lm")
         if sol.success and np.all(np.isfinite(sol.x)) and sol.x[0] > 0:
             a, b = float(sol.x[0]), float(sol.x[1])
+    ly = np.log(ek)
     w = ek**2
     fitted = math.log(a) + b * tk
     ym = (w * ly).sum() / w.sum()
@@ -361,59 +392,51 @@ def _envelope_fit(tk, ek, *, nonlinear):
     return a, b, r2
 
 
-def _damped_sinusoid_fit(x, t, n_fit, a0, b0, omega0):
-    """Least squares of ``exp(b t) (p cos wt + q sin wt) + c`` to the first ``n_fit`` samples.
+def envelope_status(b, decaying, too_short, sine) -> str:
+    """The checks of an envelope fit with rate ``b`` (1/s): its :attr:`DecayFit.status`.
 
-    Started from the envelope fit ``(a0, b0)`` (or, if that does not decay, the energy centroid
-    of the signal) and the frequency ``omega0`` (rad/s) refined on a zero-padded spectrum of the
-    window; the linear parameters ``p, q, c`` start from their least-squares values.
+    ``"not_decaying"`` unless ``decaying`` (``b < 0`` and R^2 high enough); ``"too_few_points"``
+    when the decay is over before two periods; ``"inconsistent"`` when the damped-sinusoid fit
+    ``sine``, ``(a, b, r_squared, n_fit)`` or None, explains the record (R^2 >= 0.99), decays,
+    and disagrees with ``b`` by more than 3 %; otherwise ``"ok"``.
 
-    Returns
-    -------
-    tuple (a, b, r_squared, n_fit) or None
-        ``a`` the amplitude at ``t = 0``; None when the window holds less than one period of the
-        fitted frequency or the solver fails.
+    Examples
+    --------
+    >>> from ebantenna.signal.decay import envelope_status
+    >>> envelope_status(-10.0, True, False, (1.0, -10.1, 0.999, 500))  # 1 % apart
+    'ok'
+    >>> envelope_status(-10.0, True, False, (1.0, -12.0, 0.999, 500))  # 20 % apart
+    'inconsistent'
     """
-    n_fit = min(n_fit, x.size)
-    if n_fit < 8:
-        return None
-    y, t0 = x[:n_fit], t[0]
-    tw = t[:n_fit] - t0
-    if not b0 < 0:
-        energy = y**2
-        b0 = -0.5 / max(float((tw * energy).sum() / energy.sum()), tw[1])
-    # the strongest peak of the window's spectrum, 8x zero-padded, near the record's dominant bin
-    spectrum = np.abs(np.fft.rfft(y - y.mean(), 8 * n_fit))
-    omegas = 2 * np.pi * np.fft.rfftfreq(8 * n_fit, tw[1])
-    omega = float(omegas[1 + np.argmax(spectrum[1:])]) if spectrum.size > 1 else omega0
+    if not decaying:
+        return "not_decaying"
+    if too_short:
+        return "too_few_points"
+    if (sine is not None and sine[2] >= SINUSOID_R_SQUARED and sine[1] < 0
+            and abs(sine[1] / b - 1.0) > CONSISTENCY):
+        return "inconsistent"
+    return "ok"
 
-    def columns(b, w):
-        e = np.exp(b * tw)
-        return e, np.cos(w * tw), np.sin(w * tw)
 
-    e, co, si = columns(b0, omega)
-    lin, *_ = np.linalg.lstsq(np.column_stack([e * co, e * si, np.ones(n_fit)]), y, rcond=None)
+def sinusoid_status(sine, envelope_decays: bool) -> str:
+    """The checks of the damped-sinusoid fit ``sine`` (None when it failed): its status.
 
-    def residual(v):
-        b, w, p, q, c = v
-        e, co, si = columns(b, w)
-        return e * (p * co + q * si) + c - y
+    ``"ok"`` when it explains the record (R^2 >= 0.99) and decays; ``"not_decaying"`` when it
+    explains the record without decaying, or when neither it nor the envelope fit finds a
+    decay; ``"poor_fit"`` otherwise (the envelope decays, the sinusoid does not explain it).
 
-    def jacobian(v):
-        b, w, p, q, c = v
-        e, co, si = columns(b, w)
-        osc = e * (p * co + q * si)
-        return np.column_stack([tw * osc, tw * e * (q * co - p * si), e * co, e * si,
-                                np.ones(n_fit)])
-
-    sol = optimize.least_squares(residual, x0=[b0, omega, *lin], jac=jacobian, method="lm",
-                                 x_scale="jac")
-    b, w, p, q, _ = sol.x
-    if not (sol.success and np.all(np.isfinite(sol.x))) or abs(w) * tw[-1] < 2 * np.pi:
-        return None
-    ss_tot = float(((y - y.mean()) ** 2).sum())
-    r2 = 1.0 - float((sol.fun**2).sum()) / ss_tot if ss_tot > 0 else 0.0
-    return math.hypot(p, q) * math.exp(-b * t0), float(b), r2, n_fit
+    Examples
+    --------
+    >>> from ebantenna.signal.decay import sinusoid_status
+    >>> sinusoid_status((1.0, -10.0, 0.999, 500), True), sinusoid_status(None, True)
+    ('ok', 'poor_fit')
+    """
+    if sine is None:
+        return "poor_fit" if envelope_decays else "not_decaying"
+    good = sine[2] >= SINUSOID_R_SQUARED
+    if good and sine[1] < 0:
+        return "ok"
+    return "not_decaying" if good or not envelope_decays else "poor_fit"
 
 
 def band_passed_decay(x, fs, *, kind: str = "chebyshev", order=None,
@@ -448,7 +471,5 @@ def band_passed_decay(x, fs, *, kind: str = "chebyshev", order=None,
     >>> fit.status, round(fit.tau, 2)
     ('ok', 0.1)
     """
-    from .filters import apply_filter, paper_filter
-
     fs = check_fs(fs)
     return fit_decay(apply_filter(paper_filter(kind, order, fs=fs), x), fs, method=method)

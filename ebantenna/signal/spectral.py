@@ -1,9 +1,22 @@
 """Dominant frequency of a vibration signal, to a fraction of an FFT bin.
 
+:func:`dominant_frequency` reads as the textbook writes the spectral peak, one named step a line:
+
+1. remove the mean, apply the window, take the real FFT (:func:`windowed_spectrum`,
+   :func:`window_weights`);
+2. take the magnitude and its strongest bin in the search band (:func:`strongest_bin`);
+3. interpolate between the bins (:func:`interpolated_frequency`, with :func:`parabolic_offset` or
+   :func:`jacobsen_offset`).
+
+:func:`peak_frequencies` shares steps 1 and 3 and picks several peaks in step 2
+(:func:`local_maxima`, :func:`strongest_separated`). The arguments are validated once, by the two
+public functions; the steps take checked values. The numerical guards (an exact power-of-two
+scaling against overflow, the search for a short transient, the slack of a band edge on a bin)
+live in the private module ``ebantenna/signal/_guards.py``, each explained there.
+
 The plain estimate is the frequency of the largest FFT bin; its error is up to half a bin, ``fs / (2
 n)`` (0.5 Hz for one second of data). Two interpolating estimators refine it from the peak bin and
-its two
-neighbours:
+its two neighbours:
 
 ``"parabolic"``
     fits a parabola through the three log-magnitudes (exact for a Gaussian-shaped peak; for a Hann
@@ -13,20 +26,34 @@ neighbours:
     estimators", *IEEE Signal Processing Magazine* 24(3), 2007:
     ``delta = P * Re[(X[k-1] - X[k+1]) / (2 X[k] - X[k-1] - X[k+1])]`` with ``P = 1`` for the
     rectangular window and ``P = 2`` for the (periodic) Hann window, for which the formula is exact
-    for one tone apart from the leakage of its negative-frequency image.
+    for one tone apart from the leakage of its negative-frequency image and a finite-length error
+    below ``4 / n**2`` bin (the DFT's Dirichlet kernel against the sinc of the derivation).
 """
 
 from __future__ import annotations
-
-import math
 
 import numpy as np
 from scipy.signal import get_window
 
 from .._validate import check_bool, check_choice, check_int, check_nonnegative, check_positive
 from ._checks import check_fs, check_signal
+from ._guards import analysed_part, unit_scaled
 
-__all__ = ["dominant_frequency", "peak_frequencies", "FREQUENCY_METHODS", "WINDOWS"]
+__all__ = [
+    "dominant_frequency",
+    "peak_frequencies",
+    "FREQUENCY_METHODS",
+    "WINDOWS",
+    # the steps of the reference; they take checked arguments
+    "windowed_spectrum",
+    "window_weights",
+    "strongest_bin",
+    "interpolated_frequency",
+    "parabolic_offset",
+    "jacobsen_offset",
+    "local_maxima",
+    "strongest_separated",
+]
 
 #: Peak-frequency estimators of :func:`dominant_frequency`.
 FREQUENCY_METHODS = ("bin", "parabolic", "jacobsen")
@@ -109,18 +136,25 @@ def dominant_frequency(
     >>> round(dominant_frequency(short, 1000.0), 1)
     25.0
     """
-    spectrum, lo, hi, n, fs, zero_pad = _windowed_spectrum(x, fs, method, window, zero_pad, fmin,
-                                                           fmax, remove_mean)
-    mag = np.abs(spectrum)
-    k = lo + int(np.argmax(mag[lo : hi + 1]))
-    if mag[k] == 0.0:
+    x, fs, zero_pad, fmin, fmax = _checked_arguments(x, fs, method, window, zero_pad, fmin,
+                                                     fmax, remove_mean)
+    spectrum, part = windowed_spectrum(x, fs, window, zero_pad, fmin, fmax, remove_mean)
+    magnitude = np.abs(spectrum)
+    k = strongest_bin(magnitude, part.lo, part.hi)
+    if magnitude[k] == 0.0:
         raise ValueError("x has no energy in the search band [fmin, fmax]")
-    return _refine_peak(spectrum, k, fs, n, method, window, zero_pad)
+    return interpolated_frequency(spectrum, k, fs, part.n, method, window, part.zero_pad)
 
 
-def _windowed_spectrum(x, fs, method, window, zero_pad, fmin, fmax, remove_mean):
-    """Validate the arguments; return the windowed spectrum, the bin range of the search band,
-    the number of samples and the sampling frequency."""
+def _checked_arguments(x, fs, method, window, zero_pad, fmin, fmax, remove_mean):
+    """Validate the arguments of :func:`dominant_frequency` once, at the public boundary.
+
+    Returns ``(x, fs, zero_pad, fmin, fmax)``.
+
+    ``fmin=None`` is returned as None: it asks for the automatic band start, and for the search
+    of a short transient (:func:`~ebantenna.signal._guards.analysed_part`); the band is checked
+    with its default start ``fs / n``. ``fmax=None`` becomes the Nyquist frequency.
+    """
     fs = check_fs(fs)
     x = check_signal("x", x, min_length=4, allow_constant=False)
     check_choice("method", method, FREQUENCY_METHODS)
@@ -129,100 +163,148 @@ def _windowed_spectrum(x, fs, method, window, zero_pad, fmin, fmax, remove_mean)
     check_bool("remove_mean", remove_mean)
     if method == "jacobsen" and window not in ("hann", "rectangular"):
         raise ValueError(f"method 'jacobsen' needs window 'hann' or 'rectangular', got {window!r}")
-    n = x.shape[0]
-    n_fft = n * zero_pad
     nyquist = fs / 2.0
-    given_fmin = fmin
-    fmin = fs / n if fmin is None else check_nonnegative("fmin", fmin)
+    low = fs / x.shape[0] if fmin is None else check_nonnegative("fmin", fmin)
     fmax = nyquist if fmax is None else check_nonnegative("fmax", fmax)
-    if not fmin < fmax <= nyquist:
+    if not low < fmax <= nyquist:
         raise ValueError(
             f"fmin and fmax must satisfy 0 <= fmin < fmax <= fs/2 = {nyquist:g} Hz, "
-            f"got fmin={fmin:g}, fmax={fmax:g}"
+            f"got fmin={low:g}, fmax={fmax:g}"
         )
-    fmin = given_fmin if given_fmin is None else fmin
-    # Scale by a power of two (exact) so that the FFT's sums cannot overflow near 1e308.
-    x = np.ldexp(x, -math.frexp(float(np.max(np.abs(x))))[1])
-    segment = _transient(x) if fmin is None else None
-    if segment is not None:
-        # A short transient: window the part that holds it, not the whole record (a taper over
-        # the whole record would weight the transient's start by about zero), and remove the
-        # baseline (the median of the record, the level outside the transient) instead of the
-        # mean, which would leave a step. The padding keeps the record's bin spacing.
-        if remove_mean:
-            x = x - np.median(x)
-        x = x[segment]
-        m = x.shape[0]
-        zero_pad *= -(-n // m)
-        n, n_fft = m, m * zero_pad
-        # below two bins of the segment the window's DC lobe holds what is left of the baseline
-        fmin = 2.0 * fs / m
-        if not fmin < fmax:
-            raise ValueError(
-                f"x is a transient of {m} samples: no frequency below its two-bin limit "
-                f"{fmin:g} Hz can be resolved; fmax={fmax:g}"
-            )
-    else:
-        fmin = fs / n if fmin is None else fmin
-        if remove_mean:
-            x = x - x.mean()
-    w = np.ones(n) if window == "rectangular" else get_window(window, n, fftbins=True)
-    spectrum = np.fft.rfft(x * w, n=n_fft)
-    df = fs / n_fft
-    lo = int(np.ceil(fmin / df - 1e-9))
-    hi = int(np.floor(fmax / df + 1e-9))
-    if hi < lo:
-        raise ValueError(f"the band [{fmin:g}, {fmax:g}] Hz holds no FFT bin (bin width {df:g} Hz)")
-    return spectrum, lo, hi, n, fs, zero_pad
+    return x, fs, zero_pad, None if fmin is None else low, fmax
 
 
-def _transient(x: np.ndarray) -> slice | None:
-    """The samples holding a short transient (a decay, a burst) in ``x``, or None.
+def windowed_spectrum(x, fs, window, zero_pad, fmin, fmax, remove_mean):
+    """Spectrum the peak is read from: the mean removed, the window applied, the real FFT.
 
-    The record is cut into 64 blocks about the median of ``x`` (the baseline). A transient is the
-    span from the first to the last block above both 30 times the quietest block (the noise
-    floor: for white noise the quietest of 64 blocks of 15 or more samples holds about 0.4 times
-    the mean block energy, and a block above 12 times the mean is a 1e-6 chance) and 1e-6 of the
-    strongest block (an amplitude 60 dB down, where a noise-free decay counts as over). It counts
-    as short when it covers less than half the record, which a steady oscillation never does.
+    The textbook steps, behind two numerical guards: ``x`` is first scaled by a power of two
+    (exact) so that the FFT's sums cannot overflow near 1e308, and a short transient is analysed
+    on its own part of the record (see the notes of :func:`dominant_frequency`). Takes checked
+    arguments (as :func:`dominant_frequency` returns them after validation).
+
+    Returns
+    -------
+    spectrum : ndarray of complex
+        ``rfft(w * (x - mean), n_fft)`` of the analysed part, in the (scaled) unit of ``x``.
+    part : AnalysedPart
+        The analysed samples, their number ``n``, the padding and the bins of the search band.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ebantenna.signal.spectral import windowed_spectrum
+    >>> x = 3.0 + np.sin(2 * np.pi * 10 * np.arange(100) / 100.0)  # 10 Hz, 1 s at 100 Hz
+    >>> spectrum, part = windowed_spectrum(x, 100.0, "rectangular", 1, None, 50.0, True)
+    >>> int(np.argmax(np.abs(spectrum))), part.lo, part.hi  # 1 Hz bins; DC left out
+    (10, 1, 50)
     """
-    n = x.shape[0]
-    size = max(4, n // 64)
-    blocks = (x[: n - n % size] - np.median(x)).reshape(-1, size)
-    energy = np.einsum("ij,ij->i", blocks, blocks)
-    loud = _loud(energy)
-    # A slow steady tone has blocks near its zero crossings far quieter than those at its
-    # peaks, enough to pass it off as a few short bursts; over runs of a quarter of the record,
-    # each holding half a period of any tone above 2 fs / n, it stands out nowhere.
-    if loud.size == 0 or _loud(np.convolve(energy, np.ones(len(energy) // 4), "valid")).size == 0:
-        return None
-    start, stop = int(loud[0]) * size, (int(loud[-1]) + 1) * size
-    return slice(start, stop) if 2 * (stop - start) < n else None
+    x, _ = unit_scaled(x)
+    part = analysed_part(x, fs, zero_pad, fmin, fmax)
+    y = x[part.samples]
+    if remove_mean:
+        # a transient's baseline is the level outside it, the median of the whole record (its
+        # own mean would leave a step)
+        y = y - (np.median(x) if part.is_transient else y.mean())
+    return np.fft.rfft(y * window_weights(window, part.n), n=part.n_fft), part
 
 
-def _loud(energy: np.ndarray) -> np.ndarray:
-    """Indices of the blocks above the noise floor (see :func:`_transient`)."""
-    return np.flatnonzero(energy > max(30.0 * energy.min(), 1e-6 * energy.max()))
+def window_weights(window: str, n: int) -> np.ndarray:
+    """Weights of the periodic ``window`` over ``n`` samples (the form for spectral analysis).
+
+    Examples
+    --------
+    >>> from ebantenna.signal.spectral import window_weights
+    >>> window_weights("hann", 4)  # (1 - cos(2 pi k / 4)) / 2
+    array([0. , 0.5, 1. , 0.5])
+    """
+    return np.ones(n) if window == "rectangular" else get_window(window, n, fftbins=True)
 
 
-def _refine_peak(spectrum, k, fs, n, method, window, zero_pad) -> float:
-    """Frequency (Hz) of the peak at bin ``k`` of the spectrum of ``n`` samples, padded."""
+def strongest_bin(magnitude: np.ndarray, lo: int, hi: int) -> int:
+    """Index of the largest of ``magnitude[lo : hi + 1]`` (the first one of equal values).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ebantenna.signal.spectral import strongest_bin
+    >>> strongest_bin(np.array([9.0, 1.0, 4.0, 2.0]), 1, 3)  # the search band leaves out bin 0
+    2
+    """
+    return lo + int(np.argmax(magnitude[lo : hi + 1]))
+
+
+def interpolated_frequency(spectrum, k, fs, n, method, window, zero_pad) -> float:
+    """Frequency (Hz) of the peak at bin ``k`` of the spectrum of ``n`` samples, padded.
+
+    ``method="bin"`` gives the bin's own frequency ``k fs / (n zero_pad)``; ``"parabolic"`` and
+    ``"jacobsen"`` move it by the offset of :func:`parabolic_offset` or :func:`jacobsen_offset`.
+    At the ends of the spectrum, where a neighbour is missing, the bin's frequency is returned.
+    Takes checked arguments.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ebantenna.signal.spectral import interpolated_frequency
+    >>> n = 64
+    >>> x = np.sin(2 * np.pi * 10.25 * np.arange(n) / n)  # 10.25 cycles: between bins 10 and 11
+    >>> spectrum = np.fft.rfft(x * np.hanning(n + 1)[:-1])
+    >>> round(interpolated_frequency(spectrum, 10, 64.0, n, "jacobsen", "hann", 1), 6)
+    10.25
+    """
     df = fs / (n * zero_pad)
+    # Jacobsen's neighbours are one unpadded bin (zero_pad padded bins) away on either side: the
+    # derivation holds about any reference frequency, so it is exact on a padded grid too.
     step = zero_pad if method == "jacobsen" else 1
     if method == "bin" or k - step < 0 or k + step > spectrum.shape[0] - 1:
         return float(k * df)
     if method == "parabolic":
-        lm = np.log(np.maximum(np.abs(spectrum[k - 1 : k + 2]), np.finfo(float).tiny))
-        curvature = lm[0] - 2.0 * lm[1] + lm[2]
-        delta = 0.0 if curvature == 0.0 else 0.5 * (lm[0] - lm[2]) / curvature
-        return float((k + float(np.clip(delta, -1.0, 1.0))) * df)
-    # Jacobsen: the neighbours one unpadded bin (zero_pad padded bins) away on either side; the
-    # derivation holds about any reference frequency, so it is exact on a padded grid too.
+        return float((k + parabolic_offset(spectrum, k)) * df)
+    return float(k * df + jacobsen_offset(spectrum, k, step, window) * fs / n)
+
+
+def parabolic_offset(spectrum: np.ndarray, k: int) -> float:
+    """Offset (bins) of the vertex of the parabola through the log-magnitudes at ``k - 1 .. k + 1``.
+
+    ``delta = (L[k-1] - L[k+1]) / (2 (L[k-1] - 2 L[k] + L[k+1]))`` with ``L = log |X|``: exact
+    for a Gaussian-shaped peak. Guards: a zero magnitude is read as the smallest normal float
+    (its log is finite), a flat top gives 0, and the offset is clipped to one bin.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ebantenna.signal.spectral import parabolic_offset
+    >>> bins = np.arange(5.0)
+    >>> round(parabolic_offset(np.exp(-((bins - 2.3) ** 2)), 2), 12)  # a Gaussian peak at 2.3
+    0.3
+    """
+    lm = np.log(np.maximum(np.abs(spectrum[k - 1 : k + 2]), np.finfo(float).tiny))
+    curvature = lm[0] - 2.0 * lm[1] + lm[2]
+    delta = 0.0 if curvature == 0.0 else 0.5 * (lm[0] - lm[2]) / curvature
+    return float(np.clip(delta, -1.0, 1.0))
+
+
+def jacobsen_offset(spectrum: np.ndarray, k: int, step: int, window: str) -> float:
+    """Offset (unpadded bins) of Jacobsen and Kootsookos' complex-ratio estimator at bin ``k``.
+
+    ``delta = P Re[(X[k-s] - X[k+s]) / (2 X[k] - X[k-s] - X[k+s])]`` with the neighbours ``s =
+    step`` padded bins away, ``P = 2`` for the Hann window and ``P = 1`` for the rectangular one.
+    Guards: a zero denominator gives 0, and the offset is clipped to one bin.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ebantenna.signal.spectral import jacobsen_offset
+    >>> n = 1000
+    >>> tone = np.exp(2j * np.pi * 50.4 * np.arange(n) / n)  # one complex tone, 50.4 cycles
+    >>> spectrum = np.fft.fft(tone * np.hanning(n + 1)[:-1])
+    >>> round(jacobsen_offset(spectrum, 50, 1, "hann"), 9)  # Hann: exact as n grows
+    0.4
+    """
     a, b, c = spectrum[k - step], spectrum[k], spectrum[k + step]
     scale = 2.0 if window == "hann" else 1.0
     denominator = 2.0 * b - a - c
     delta = 0.0 if denominator == 0 else scale * float(np.real((a - c) / denominator))
-    return float(k * df + float(np.clip(delta, -1.0, 1.0)) * fs / n)
+    return float(np.clip(delta, -1.0, 1.0))
 
 
 def peak_frequencies(
@@ -279,26 +361,61 @@ def peak_frequencies(
     array([ 43.21, 187.65])
     """
     n_peaks = check_int("n_peaks", n_peaks, minimum=1)
-    spectrum, lo, hi, n, fs, zero_pad = _windowed_spectrum(x, fs, method, window, 1, fmin, fmax,
-                                                           remove_mean)
-    df = fs / (n * zero_pad)
-    sep = (4.0 * fs / n if min_separation is None
-           else check_positive("min_separation", min_separation))
-    mag = np.abs(spectrum)
-    band = mag[lo : hi + 1]
+    x, fs, _, fmin, fmax = _checked_arguments(x, fs, method, window, 1, fmin, fmax, remove_mean)
+    if min_separation is not None:
+        min_separation = check_positive("min_separation", min_separation)
+    spectrum, part = windowed_spectrum(x, fs, window, 1, fmin, fmax, remove_mean)
+    separation = 4.0 * fs / part.n if min_separation is None else min_separation
+    magnitude = np.abs(spectrum)
+    candidates = local_maxima(magnitude, part.lo, part.hi)
+    chosen = strongest_separated(magnitude, candidates, n_peaks, separation, fs / part.n_fft)
+    if len(chosen) < n_peaks:
+        raise ValueError(
+            f"x holds only {len(chosen)} spectral peak(s) at least {separation:g} Hz apart in the "
+            f"search band; n_peaks={n_peaks} requested"
+        )
+    freqs = [interpolated_frequency(spectrum, k, fs, part.n, method, window, part.zero_pad)
+             for k in chosen]
+    return np.sort(np.array(freqs))
+
+
+def local_maxima(magnitude: np.ndarray, lo: int, hi: int) -> np.ndarray:
+    """Bins strictly inside ``[lo, hi]`` above their left and not below their right neighbour.
+
+    A plateau counts once, at its left end. Returned strongest first (by ``magnitude``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ebantenna.signal.spectral import local_maxima
+    >>> local_maxima(np.array([0.0, 3.0, 1.0, 5.0, 5.0, 2.0]), 0, 5)
+    array([3, 1])
+    """
+    band = magnitude[lo : hi + 1]
     inner = (band[1:-1] > band[:-2]) & (band[1:-1] >= band[2:])
     candidates = lo + 1 + np.flatnonzero(inner)
-    candidates = candidates[np.argsort(mag[candidates])[::-1]]
+    return candidates[np.argsort(magnitude[candidates])[::-1]]
+
+
+def strongest_separated(magnitude, candidates, n_peaks: int, separation: float,
+                        df: float) -> list[int]:
+    """The first ``n_peaks`` of ``candidates`` (strongest first) at least ``separation`` Hz apart.
+
+    Greedy: a candidate is taken when it has energy and lies ``separation`` Hz (``df`` Hz a bin)
+    or more from every peak taken before it. May return fewer than ``n_peaks``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ebantenna.signal.spectral import strongest_separated
+    >>> magnitude = np.array([0.0, 5.0, 4.0, 0.0, 3.0])
+    >>> strongest_separated(magnitude, np.array([1, 2, 4]), 2, 2.0, 1.0)  # bin 2 is too close
+    [1, 4]
+    """
     chosen: list[int] = []
     for k in candidates:
-        if mag[k] > 0.0 and all(abs(k - j) * df >= sep for j in chosen):
+        if magnitude[k] > 0.0 and all(abs(k - j) * df >= separation for j in chosen):
             chosen.append(int(k))
             if len(chosen) == n_peaks:
                 break
-    if len(chosen) < n_peaks:
-        raise ValueError(
-            f"x holds only {len(chosen)} spectral peak(s) at least {sep:g} Hz apart in the "
-            f"search band; n_peaks={n_peaks} requested"
-        )
-    freqs = [_refine_peak(spectrum, k, fs, n, method, window, zero_pad) for k in chosen]
-    return np.sort(np.array(freqs))
+    return chosen

@@ -28,8 +28,9 @@ from scipy.optimize import brentq, least_squares, minimize_scalar
 
 from .._validate import check_array, check_choice, check_int, check_positive
 from ..probe import Probe
-from .modal import modal_analysis, natural_frequencies
+from .modal import modal_analysis
 from .supports import Supports
+from .sweeps import natural_frequencies
 
 __all__ = ["CRITERIA", "HingeFit", "transition_position", "fit_hinge_and_tip"]
 

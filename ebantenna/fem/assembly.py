@@ -8,8 +8,10 @@ the tip mass to the diagonal.
 The assembly itself is the *direct stiffness method*: every element adds its 4 x 4 matrix into the
 rows and columns of its four DOFs, ``(v_e, theta_e, v_{e+1}, theta_{e+1})``, so that two
 neighbouring elements overlap on the 2 x 2 block of their common node.
-:func:`assemble_elements` is that loop, word for word; :func:`assemble` runs a faster engine by
-default that gives the same matrix bit for bit (:mod:`ebantenna.fem._scatter` explains how).
+:func:`assemble_elements` is that loop, word for word, on the element matrices as
+:mod:`~ebantenna.fem.elements` writes them out; :func:`assemble` runs faster engines by default
+that give the same matrices bit for bit (:mod:`ebantenna.fem._element_engine` and
+:mod:`ebantenna.fem._scatter` explain how).
 
 The guards that come before a mesh (round-off, memory, a contact the mesh can hold) are in
 :mod:`~ebantenna.fem.guards`; the functions here take checked values.
@@ -24,6 +26,7 @@ import scipy.sparse as sps
 
 from .._validate import check_choice, check_int
 from ..probe import Probe
+from ._element_engine import mass_polynomial, stiffness_polynomial
 from ._scatter import scatter, scatter_sparse
 from .elements import consistent_mass, element_stiffness
 from .guards import check_resolvable
@@ -131,9 +134,12 @@ def assemble(nodes: np.ndarray, probe: Probe, *, sparse: bool = False, engine: s
     sparse : bool
         Return ``scipy.sparse`` CSC matrices instead of dense arrays.
     engine : {"scatter", "loop"}
-        How dense matrices are assembled: ``"loop"`` is :func:`assemble_elements`, the
-        reference; ``"scatter"`` (default) adds all elements of one parity at once
-        (:mod:`ebantenna.fem._scatter`), with the same result bit for bit.
+        ``"loop"``: the reference, the element matrices written out
+        (:func:`~ebantenna.fem.elements.element_stiffness`,
+        :func:`~ebantenna.fem.elements.consistent_mass`) and added by :func:`assemble_elements`.
+        ``"scatter"`` (default): the engines, the same matrices as polynomials in the element
+        length (:mod:`ebantenna.fem._element_engine`) added one parity of elements at a time
+        (:mod:`ebantenna.fem._scatter`), or into sparse matrices; the same result bit for bit.
 
     Examples
     --------
@@ -149,12 +155,13 @@ def assemble(nodes: np.ndarray, probe: Probe, *, sparse: bool = False, engine: s
     """
     check_choice("engine", engine, ASSEMBLY_ENGINES)
     lengths = np.diff(nodes)
-    Ke = element_stiffness(probe.flexural_rigidity, lengths)
-    Me = consistent_mass(probe.mass_per_length, lengths)
+    EI, rhoA = probe.flexural_rigidity, probe.mass_per_length
+    if engine == "loop" and not sparse:
+        Ke, Me = element_stiffness(EI, lengths), consistent_mass(rhoA, lengths)
+        return assemble_elements(Ke), assemble_elements(Me)
+    Ke, Me = stiffness_polynomial(EI, lengths), mass_polynomial(rhoA, lengths)
     if sparse:
         return scatter_sparse(Ke), scatter_sparse(Me)
-    if engine == "loop":
-        return assemble_elements(Ke), assemble_elements(Me)
     return scatter(Ke), scatter(Me)
 
 

@@ -30,7 +30,8 @@ import math
 import numpy as np
 
 from ..probe import Probe
-from .elements import bending_energy, consistent_mass, element_stiffness
+from ._element_engine import mass_polynomial, stiffness_polynomial
+from .elements import bending_energy
 
 __all__ = ["banded_sweep", "sweep_meshes"]
 
@@ -173,8 +174,8 @@ def banded_sweep(
     lengths = np.stack([contacts / c_node, (probe.length - contacts) / (n_elements - c_node)], 1)
     in_span = np.arange(n_elements) < c_node[:, None]
     h = np.where(in_span, lengths[:, :1], lengths[:, 1:])  # (B, n_elements)
-    K = _band(element_stiffness(probe.flexural_rigidity, lengths), in_span)
-    M = _band(consistent_mass(probe.mass_per_length, lengths), in_span)
+    K = _band(stiffness_polynomial(probe.flexural_rigidity, lengths), in_span)
+    M = _band(mass_polynomial(probe.mass_per_length, lengths), in_span)
     rows = np.arange(B)
     v_c = 2 * c_node
     held = [np.zeros(B, dtype=int)]  # the hinge never moves sideways

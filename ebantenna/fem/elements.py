@@ -15,6 +15,11 @@ Each entry is an array, so one call builds the matrices of many elements at once
 ``(n,)`` gives ``(n, 4, 4)``), and on exact :class:`fractions.Fraction` inputs the arithmetic is
 exact, which is how the tests prove them equal to the sympy result. DOF order per element:
 ``(v1, theta1, v2, theta2)``.
+
+Filling sixteen entries one by one costs a few microseconds per call, which adds up when a sweep
+builds the matrices of thousands of meshes; the fast paths (:func:`~ebantenna.fem.assembly.assemble`
+by default, the sweeps) use an engine that writes the same matrices as ``K0 + K1 l + K2 l^2``,
+equal to these bit for bit (:mod:`ebantenna.fem._element_engine`).
 """
 
 from __future__ import annotations
@@ -31,15 +36,17 @@ __all__ = [
 
 
 def _matrix(rows, *scalars) -> np.ndarray:
-    """Stack a 4 x 4 table of entries (numbers or arrays) into an array of shape (..., 4, 4).
+    """Fill a 4 x 4 table of entries (numbers or arrays) into an array of shape (..., 4, 4).
 
-    The entries broadcast against each other and against ``scalars`` (the factors in front).
+    The entries broadcast against each other and against ``scalars`` (the factors in front); the
+    result is floating point, or of objects for exact :class:`fractions.Fraction` inputs.
     """
     shape = np.broadcast_shapes(*(np.shape(s) for s in scalars))
-    return np.stack(
-        [np.stack([np.broadcast_to(entry, shape) for entry in row], axis=-1) for row in rows],
-        axis=-2,
-    )
+    out = np.empty(shape + (4, 4), dtype=np.result_type(*scalars, float))
+    for i, row in enumerate(rows):
+        for j, entry in enumerate(row):
+            out[..., i, j] = entry
+    return out
 
 
 def element_stiffness(EI, l):

@@ -26,11 +26,11 @@ import numpy as np
 
 from .._validate import check_array, check_choice, check_int
 from ..probe import Probe
+from ._element_engine import mass_polynomial, stiffness_polynomial
 from ._parallel import map_on_cores
 from ._scatter import scatter
 from .assembly import beam_mesh, free_dofs, support_diagonals
 from .banded import BANDED_MAX_MODES, MAX_LANCZOS_STEPS, banded_sweep
-from .elements import consistent_mass, element_stiffness
 from .guards import check_contact, check_memory, check_resolvable
 from .modal import clip_eigenvalues, eigenvalue_shift
 from .secular import secular_sweep
@@ -208,8 +208,8 @@ def dense_sweep(
     members = [Supports(float(c), hinge=hinge, contact_stiffness=stiffness) for c in contacts]
     meshes = np.stack([beam_mesh(probe.length, s.contact, n_elements) for s in members])
     pairs = list(zip(meshes, members, strict=True))
-    K = scatter(element_stiffness(probe.flexural_rigidity, np.diff(meshes, axis=1)))  # (B, n, n)
-    M = scatter(consistent_mass(probe.mass_per_length, np.diff(meshes, axis=1)))
+    K = scatter(stiffness_polynomial(probe.flexural_rigidity, np.diff(meshes, axis=1)))  # (B,n,n)
+    M = scatter(mass_polynomial(probe.mass_per_length, np.diff(meshes, axis=1)))
     diagonals = [support_diagonals(m, probe, s) for m, s in pairs]
     d = np.arange(K.shape[-1])
     K[:, d, d] += np.array([k for k, _ in diagonals])

@@ -24,10 +24,10 @@ from ebantenna.fem import Supports, exact_frequencies, modal_analysis, natural_f
 from ebantenna.fem.secular import secular_sweep
 from ebantenna.report import text_table
 
-__all__ = ["SOLVERS", "accuracy_rows", "sweep_rows", "run", "to_text", "plot", "main"]
+__all__ = ["SOLVER_MARKERS", "accuracy_rows", "sweep_rows", "run", "to_text", "plot", "main"]
 
 #: The solvers compared, with their plot markers.
-SOLVERS = {"dense": "o", "sparse": "s", "naive": "x"}
+SOLVER_MARKERS = {"dense": "o", "sparse": "s", "naive": "x"}
 
 
 def accuracy_rows(quick: bool) -> list[dict]:
@@ -51,7 +51,7 @@ def accuracy_rows(quick: bool) -> list[dict]:
     sizes = [2, 4, 8, 16, 32, 64, 128, 256] + ([] if quick else [512, 1024, 2048])
     for n in sizes:
         row = {"N": n}
-        for solver in SOLVERS:
+        for solver in SOLVER_MARKERS:
             skip = (solver in ("dense", "naive") and n > (256 if quick else 1024)) or (
                 solver == "sparse" and n < 4
             )
@@ -147,7 +147,7 @@ def run(quick: bool = False) -> dict:
 def to_text(tables: dict) -> str:
     """The tables of :func:`run` as text."""
     columns = [("N", "N", "6d")]
-    for s in SOLVERS:
+    for s in SOLVER_MARKERS:
         columns += [(f"{s}_error", f"{s} err", "10.2e"), (f"{s}_seconds", "time", "9.5f")]
     sweep = tables["sweep"]
     lines = [
@@ -183,7 +183,7 @@ def plot(tables: dict):
     rows = tables["accuracy"]
     fig = Figure(figsize=(7, 4.2))
     ax = fig.subplots()
-    for solver, marker in SOLVERS.items():
+    for solver, marker in SOLVER_MARKERS.items():
         err = np.array([r[f"{solver}_error"] for r in rows])
         sec = np.array([r[f"{solver}_seconds"] for r in rows])
         ok = np.isfinite(err) & (err > 0)

@@ -5,140 +5,45 @@ The global DOF vector is ``(v0, theta0, v1, theta1, ..., vN, thetaN)`` for nodes
 ``theta0``, a rigid contact removes ``v`` at the contact node) and by adding spring stiffnesses and
 the tip mass to the diagonal.
 
-Round-off sets a limit to refinement. The assembled ``K`` is a discrete fourth derivative: its
-entries grow like ``EI / h^3`` while ``K phi`` for the probe's low modes stays of the order of
-``EI phi / L^4``, so its condition number grows like ``(L/h)^4 = N^4``. Every solve with it
-(Cholesky, LU, shift-invert Lanczos) returns mode shapes carrying rounding noise of relative size
-about ``eps N^4`` at the mesh's own wavelength, and that noise, stiff as it is, raises the
-frequencies. Even refined by the curvature Rayleigh quotient (:mod:`~ebantenna.fem.modal`), the
-lowest frequency is then off by about ``(c eps N^4)^2``, with ``c`` between 1e-4 and 0.02 for
-the probe's hinges and contacts (measured against :mod:`~ebantenna.fem.exact` at 4096 and 8192
-elements). :func:`roundoff_error` is that estimate with ``c = 0.05``, an upper bound, and
-:data:`MAX_ELEMENTS` the finest mesh whose estimate stays within :data:`ROUNDOFF_RTOL`:
-:func:`beam_mesh` refuses finer ones, where more elements buy no accuracy, only noise.
+The assembly itself is the *direct stiffness method*: every element adds its 4 x 4 matrix into the
+rows and columns of its four DOFs, ``(v_e, theta_e, v_{e+1}, theta_{e+1})``, so that two
+neighbouring elements overlap on the 2 x 2 block of their common node.
+:func:`assemble_elements` is that loop, word for word, on the element matrices as
+:mod:`~ebantenna.fem.elements` writes them out; :func:`assemble` runs faster engines by default
+that give the same matrices bit for bit (:mod:`ebantenna.fem._element_engine` and
+:mod:`ebantenna.fem._scatter` explain how).
+
+The guards that come before a mesh (round-off, memory, a contact the mesh can hold) are in
+:mod:`~ebantenna.fem.guards`; the functions here take checked values.
 """
 
 from __future__ import annotations
 
 import math
-import os
 
 import numpy as np
 import scipy.sparse as sps
 
-from .._validate import check_in_range, check_int
+from .._validate import check_choice, check_int
 from ..probe import Probe
+from ._element_engine import mass_polynomial, stiffness_polynomial
+from ._scatter import scatter, scatter_sparse
 from .elements import consistent_mass, element_stiffness
+from .guards import check_resolvable
 from .supports import Supports
 
 __all__ = [
     "beam_mesh",
-    "roundoff_error",
-    "check_resolvable",
-    "check_memory",
-    "ROUNDOFF_RTOL",
-    "MAX_ELEMENTS",
-    "MIN_SPAN",
-    "check_contact",
+    "contact_node",
+    "assemble_elements",
     "assemble",
-    "scatter",
-    "support_diagonals",
+    "ASSEMBLY_ENGINES",
     "apply_supports",
     "free_dofs",
-    "contact_node",
 ]
 
-
-#: Relative accuracy of the lowest frequency that a mesh must be able to hold in double precision.
-ROUNDOFF_RTOL = 1e-6
-
-#: The upper-bound constant ``c`` of :func:`roundoff_error` (measured: 1e-4 ... 0.02).
-_ROUNDOFF_C = 0.05
-
-
-def roundoff_error(n_elements: int) -> float:
-    """A-priori estimate of the round-off error of the lowest frequency on ``n_elements``, relative.
-
-    ``(c eps N^4)^2`` with ``c = 0.05`` (see the module's introduction): the condition number
-    ``N^4`` of the assembled stiffness, times the machine epsilon, squared by the Rayleigh
-    quotient. The discretisation error falls like ``N^-4``; the two cross at a few hundred
-    elements below 1e-12, so a finer mesh than that buys nothing.
-
-    Examples
-    --------
-    >>> from ebantenna.fem.assembly import roundoff_error
-    >>> f"{roundoff_error(2048):.0e}", f"{roundoff_error(16384):.0e}"
-    ('4e-08', '6e-01')
-    """
-    n_elements = check_int("n_elements", n_elements, minimum=1)
-    return (_ROUNDOFF_C * np.finfo(float).eps * float(n_elements) ** 4) ** 2
-
-
-#: The finest mesh whose :func:`roundoff_error` stays within :data:`ROUNDOFF_RTOL`.
-MAX_ELEMENTS = int((math.sqrt(ROUNDOFF_RTOL) / (_ROUNDOFF_C * np.finfo(float).eps)) ** 0.25)
-
-
-def check_resolvable(n_elements: int) -> int:
-    """Return ``n_elements``; raise ``ValueError`` above :data:`MAX_ELEMENTS` (round-off limit)."""
-    n_elements = check_int("n_elements", n_elements, minimum=1)
-    if n_elements > MAX_ELEMENTS:
-        raise ValueError(
-            f"n_elements must be <= {MAX_ELEMENTS}, got {n_elements}: the stiffness matrix's "
-            f"condition number grows like N^4 (here {float(n_elements) ** 4:.0e}), and in double "
-            f"precision the lowest frequency would be off by about {roundoff_error(n_elements):.0e}"
-            f" (relative), beyond {ROUNDOFF_RTOL:g}; at {MAX_ELEMENTS} elements the discretisation "
-            "error is already far below that"
-        )
-    return n_elements
-
-
-def check_memory(nbytes: float, what: str) -> None:
-    """Raise ``ValueError`` before ``what`` allocates more than half of the machine's memory.
-
-    ``nbytes`` is the caller's a-priori estimate. Without a way to ask the machine (no
-    ``os.sysconf``), nothing is checked.
-    """
-    try:
-        total = os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
-    except (AttributeError, ValueError, OSError):
-        return
-    if nbytes > total / 2:
-        raise ValueError(
-            f"{what} needs about {nbytes / 1e9:.3g} GB, more than half of this machine's "
-            f"{total / 1e9:.3g} GB of memory"
-        )
-
-
-#: The shortest span, as a fraction of the probe's length, between the contact and the hinge or
-#: the tip. The element there has a stiffness growing like ``h^-3``: measured against
-#: :mod:`~ebantenna.fem.exact` on 64 elements, a span of 2.5e-8 L still gives every frequency to
-#: 1e-8, while 2.5e-10 L with a soft contact at the tip makes the Cholesky factor break down
-#: (NaN) and 2.5e-12 L loses three digits; 1e-6 L keeps a margin of 25 below the last good one.
-#: A contact that close (0.4 µm on the paper's probe) is at the end for every purpose.
-MIN_SPAN = 1e-6
-
-
-def check_contact(name: str, contact, length: float) -> float:
-    """Return ``contact``; raise unless it lies in the probe, :data:`MIN_SPAN` from either end.
-
-    Examples
-    --------
-    >>> from ebantenna.fem.assembly import check_contact
-    >>> check_contact("contact", 0.2, 0.4)
-    0.2
-    >>> check_contact("contact", 1e-9, 0.4)
-    Traceback (most recent call last):
-    ...
-    ValueError: contact must lie in [4e-07, 0.3999996] m (1e-06 of the length ...), got 1e-09
-    """
-    contact = check_in_range(name, contact, 0.0, length)
-    low, high = MIN_SPAN * length, (1.0 - MIN_SPAN) * length
-    if not low <= contact <= high:
-        raise ValueError(
-            f"{name} must lie in [{low:.7g}, {high:.7g}] m ({MIN_SPAN:g} of the length or more "
-            f"from the hinge and from the tip), got {contact!r}"
-        )
-    return contact
+#: Engines of :func:`assemble`: the parity scatter (fast, the default) and the reference loop.
+ASSEMBLY_ENGINES = ("scatter", "loop")
 
 
 def beam_mesh(length: float, contact: float | None, n_elements: int) -> np.ndarray:
@@ -146,7 +51,13 @@ def beam_mesh(length: float, contact: float | None, n_elements: int) -> np.ndarr
 
     The elements are shared between the two spans in proportion to their lengths (at least one each)
     and are uniform within a span. ``n_elements=2`` with a contact gives the paper's model; more
-    than :data:`MAX_ELEMENTS` are refused (round-off, see :func:`roundoff_error`).
+    than :data:`~ebantenna.fem.guards.MAX_ELEMENTS` are refused (round-off, see
+    :func:`~ebantenna.fem.guards.roundoff_error`).
+
+    ``contact`` is taken as checked: the public entry points (for example
+    :func:`~ebantenna.fem.modal.modal_analysis`) pass it through
+    :func:`~ebantenna.fem.guards.check_contact` first, which keeps it
+    :data:`~ebantenna.fem.guards.MIN_SPAN` from either end.
 
     Examples
     --------
@@ -160,7 +71,6 @@ def beam_mesh(length: float, contact: float | None, n_elements: int) -> np.ndarr
     if contact is None:
         return np.linspace(0.0, length, n_elements + 1)
     n_elements = check_int("n_elements", n_elements, minimum=2)
-    contact = check_contact("contact", contact, length)
     n1 = min(max(1, round(n_elements * contact / length)), n_elements - 1)
     span = np.linspace(0.0, contact, n1 + 1)
     overhang = np.linspace(contact, length, n_elements - n1 + 1)
@@ -174,28 +84,45 @@ def contact_node(nodes: np.ndarray, contact: float | None) -> int | None:
     return int(np.argmin(np.abs(nodes - contact)))
 
 
-def _element_dofs(n_elements: int) -> np.ndarray:
-    return 2 * np.arange(n_elements)[:, None] + np.arange(4)
+def assemble_elements(element_matrices: np.ndarray) -> np.ndarray:
+    """Assemble the 4x4 matrices of a chain of elements: the direct stiffness method, as a loop.
 
+    Element ``e`` joins nodes ``e`` and ``e + 1``; its local DOFs ``(v1, theta1, v2, theta2)`` are
+    the global DOFs ``2e, 2e + 1, 2e + 2, 2e + 3``. Each of its 16 entries is added where its row
+    and column DOFs meet.
 
-def scatter(element_matrices: np.ndarray) -> np.ndarray:
-    """Add the 4x4 matrices of a chain of elements into the dense global matrix.
+    Parameters
+    ----------
+    element_matrices : array of shape (n_elements, 4, 4)
 
-    Works on stacks too: ``(..., n_elements, 4, 4)`` gives ``(..., 2 n + 2, 2 n + 2)``. Elements of
-    the same parity share no node, so each parity is added with one fancy-indexed ``+=`` (fancy
-    indexing does not accumulate repeated indices, and here there are none).
+    Returns
+    -------
+    ndarray of shape (2 n_elements + 2, 2 n_elements + 2)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ebantenna.fem.assembly import assemble_elements
+    >>> assemble_elements(np.ones((2, 4, 4)))   # node 1 is shared: its block adds up twice
+    array([[1., 1., 1., 1., 0., 0.],
+           [1., 1., 1., 1., 0., 0.],
+           [1., 1., 2., 2., 1., 1.],
+           [1., 1., 2., 2., 1., 1.],
+           [0., 0., 1., 1., 1., 1.],
+           [0., 0., 1., 1., 1., 1.]])
     """
-    ne = element_matrices.shape[-3]
-    n = 2 * (ne + 1)
-    out = np.zeros(element_matrices.shape[:-3] + (n, n))
-    for parity in (0, 1):
-        e = np.arange(parity, ne, 2)
-        d = _element_dofs(ne)[e]
-        out[..., d[:, :, None], d[:, None, :]] += element_matrices[..., e, :, :]
-    return out
+    n_elements = element_matrices.shape[0]
+    n_dofs = 2 * n_elements + 2
+    A = np.zeros((n_dofs, n_dofs))
+    for e in range(n_elements):
+        dofs = (2 * e, 2 * e + 1, 2 * e + 2, 2 * e + 3)  # v_e, theta_e, v_e+1, theta_e+1
+        for a in range(4):
+            for b in range(4):
+                A[dofs[a], dofs[b]] += element_matrices[e, a, b]
+    return A
 
 
-def assemble(nodes: np.ndarray, probe: Probe, *, sparse: bool = False):
+def assemble(nodes: np.ndarray, probe: Probe, *, sparse: bool = False, engine: str = "scatter"):
     """Global stiffness K (N/m...) and consistent mass M (kg...) of the bare beam, no supports.
 
     Parameters
@@ -206,20 +133,36 @@ def assemble(nodes: np.ndarray, probe: Probe, *, sparse: bool = False):
         Beam properties (``EI``, ``rho A``); the tip mass is added by :func:`apply_supports`.
     sparse : bool
         Return ``scipy.sparse`` CSC matrices instead of dense arrays.
+    engine : {"scatter", "loop"}
+        ``"loop"``: the reference, the element matrices written out
+        (:func:`~ebantenna.fem.elements.element_stiffness`,
+        :func:`~ebantenna.fem.elements.consistent_mass`) and added by :func:`assemble_elements`.
+        ``"scatter"`` (default): the engines, the same matrices as polynomials in the element
+        length (:mod:`ebantenna.fem._element_engine`) added one parity of elements at a time
+        (:mod:`ebantenna.fem._scatter`), or into sparse matrices; the same result bit for bit.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ebantenna import Probe
+    >>> from ebantenna.fem.assembly import assemble, beam_mesh
+    >>> nodes = beam_mesh(0.4, 0.2, 8)
+    >>> K, M = assemble(nodes, Probe())
+    >>> K.shape
+    (18, 18)
+    >>> bool(np.array_equal(K, assemble(nodes, Probe(), engine="loop")[0]))
+    True
     """
+    check_choice("engine", engine, ASSEMBLY_ENGINES)
     lengths = np.diff(nodes)
-    Ke = element_stiffness(probe.flexural_rigidity, lengths)
-    Me = consistent_mass(probe.mass_per_length, lengths)
-    if not sparse:
-        return scatter(Ke), scatter(Me)
-    Ke, Me = Ke.reshape(-1), Me.reshape(-1)
-    dofs = _element_dofs(lengths.size)
-    rows = np.repeat(dofs, 4, axis=1).reshape(-1)
-    cols = np.tile(dofs, (1, 4)).reshape(-1)
-    n = 2 * nodes.size
-    K = sps.coo_matrix((Ke, (rows, cols)), shape=(n, n))
-    M = sps.coo_matrix((Me, (rows, cols)), shape=(n, n))
-    return K.tocsc(), M.tocsc()
+    EI, rhoA = probe.flexural_rigidity, probe.mass_per_length
+    if engine == "loop" and not sparse:
+        Ke, Me = element_stiffness(EI, lengths), consistent_mass(rhoA, lengths)
+        return assemble_elements(Ke), assemble_elements(Me)
+    Ke, Me = stiffness_polynomial(EI, lengths), mass_polynomial(rhoA, lengths)
+    if sparse:
+        return scatter_sparse(Ke), scatter_sparse(Me)
+    return scatter(Ke), scatter(Me)
 
 
 def free_dofs(nodes: np.ndarray, supports: Supports) -> np.ndarray:

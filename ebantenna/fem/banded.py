@@ -16,11 +16,11 @@ position; here every position of a batch is handled at once, vectorised over the
    ``mu`` of a beam fall off like ``j^-4``, so about a dozen steps reach the residual bound
    ``1e-14`` (B. N. Parlett, *The Symmetric Eigenvalue Problem*, SIAM, 1998, ch. 13);
 4. the frequencies are the Rayleigh quotients of the Ritz vectors, the strain energy summed from
-   the element curvatures as in :func:`~ebantenna.fem.modal.strain_energy`: good to about
+   the element curvatures (:func:`~ebantenna.fem.elements.bending_energy`): good to about
    ``1e-12``, like :func:`~ebantenna.fem.modal.modal_analysis`, where ``1/mu - s`` alone carries
    the rounding ``eps omega_max^2 / omega^2`` (about 1e-9 at 64 elements).
 
-:func:`~ebantenna.fem.modal.natural_frequencies` calls this by default.
+:func:`~ebantenna.fem.sweeps.natural_frequencies` calls this by default.
 """
 
 from __future__ import annotations
@@ -30,7 +30,8 @@ import math
 import numpy as np
 
 from ..probe import Probe
-from .elements import consistent_mass, element_stiffness
+from ._element_engine import mass_polynomial, stiffness_polynomial
+from .elements import bending_energy
 
 __all__ = ["banded_sweep", "sweep_meshes"]
 
@@ -163,7 +164,7 @@ def banded_sweep(
 ) -> np.ndarray:
     """Lowest ``n_modes`` eigenvalues ``omega^2`` (1/s^2) for each contact, shape (n, n_modes).
 
-    Inputs are trusted (the public entry is :func:`~ebantenna.fem.modal.natural_frequencies`).
+    Inputs are trusted (the public entry is :func:`~ebantenna.fem.sweeps.natural_frequencies`).
     ``hinge_stiffness`` is inf for a clamped hinge, 0 for a pinned one, N m/rad for a spring;
     ``contact_stiffness`` inf for a rigid contact, N/m for a spring.
     """
@@ -173,8 +174,8 @@ def banded_sweep(
     lengths = np.stack([contacts / c_node, (probe.length - contacts) / (n_elements - c_node)], 1)
     in_span = np.arange(n_elements) < c_node[:, None]
     h = np.where(in_span, lengths[:, :1], lengths[:, 1:])  # (B, n_elements)
-    K = _band(element_stiffness(probe.flexural_rigidity, lengths), in_span)
-    M = _band(consistent_mass(probe.mass_per_length, lengths), in_span)
+    K = _band(stiffness_polynomial(probe.flexural_rigidity, lengths), in_span)
+    M = _band(mass_polynomial(probe.mass_per_length, lengths), in_span)
     rows = np.arange(B)
     v_c = 2 * c_node
     held = [np.zeros(B, dtype=int)]  # the hinge never moves sideways
@@ -202,27 +203,19 @@ def banded_sweep(
     Mb = np.ascontiguousarray(np.transpose(M, (1, 2, 0)))  # (4, n, B): one diagonal each
     _, y = _lanczos(L, Mb, n_modes, free)
     # Rayleigh quotients of the mode shapes phi = L^-T y, the strain energy summed from element
-    # curvatures as in modal.strain_energy: the Ritz values themselves carry the rounding of
+    # curvatures (elements.bending_energy): the Ritz values themselves carry the rounding of
     # 1 / mu - s and of K phi, about eps * omega_max^2 / omega^2; the quotient, stationary at an
     # eigenvector, does not.
     lam = np.empty((B, n_modes))
     for j in range(n_modes):
         phi = _backward(L, y[j]) * free.T  # held DOFs exactly still
         mass = np.einsum("nb,nb->b", phi, _matvec(Mb, phi))
-        lam[:, j] = _strain_energy(h.T, probe.flexural_rigidity, phi) / mass
+        lam[:, j] = bending_energy(probe.flexural_rigidity, h.T, phi) / mass
         if not math.isinf(hinge_stiffness):
             lam[:, j] += hinge_stiffness * phi[1] ** 2 / mass
         if not math.isinf(contact_stiffness):
             lam[:, j] += contact_stiffness * phi[v_c, rows] ** 2 / mass
     return np.sort(lam, axis=1)
-
-
-def _strain_energy(h, EI, u):
-    """Twice the bending strain energy of DOF vectors u (2 n + 2, B) on elements h (n, B), J."""
-    v1, t1, v2, t2 = u[0:-2:2], u[1:-2:2], u[2::2], u[3::2]
-    k1 = (6 * (v2 - v1) - h * (4 * t1 + 2 * t2)) / h**2
-    k2 = (6 * (v1 - v2) + h * (2 * t1 + 4 * t2)) / h**2
-    return (EI * h / 3 * (k1 * k1 + k1 * k2 + k2 * k2)).sum(axis=0)
 
 
 def _lanczos(L, Mb, n_modes, free):

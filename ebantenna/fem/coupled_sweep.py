@@ -92,24 +92,10 @@ def coupled_sweep(
     >>> sweep.frequencies[1, 1].round(1)  # pvc rod, contact at 0.2 m
     array([23. , 62.1])
     """
-    rods = tuple(rods)
-    for rod in rods:
-        if not isinstance(rod, Rod):
-            raise TypeError(f"rods must hold Rod objects, got {type(rod).__name__}")
-    if not rods:
-        raise ValueError("rods must hold at least one Rod, got none")
+    rods = _check_rods(rods)
     contacts = check_array("contacts", contacts, ndim=1)
     n_modes = check_int("n_modes", n_modes, minimum=1)
-    k_c = np.asarray(contact_stiffness, dtype=float)
-    if k_c.ndim == 1:
-        k_c = k_c[:, None]
-    try:
-        k_c = np.broadcast_to(k_c, (len(rods), contacts.size))
-    except ValueError:
-        raise ValueError(
-            f"contact_stiffness must be a number or of shape ({len(rods)},) or "
-            f"({len(rods)}, {contacts.size}), got shape {np.shape(contact_stiffness)}"
-        ) from None
+    k_c = _stiffness_table(contact_stiffness, len(rods), contacts.size)
     reduced_rods = [
         craig_bampton(rod_substructure(rod, n_elements=rod_elements), rod_modes) for rod in rods
     ]
@@ -139,3 +125,32 @@ def coupled_sweep(
         for i, (fi, zi, ti) in enumerate(per_rod):
             f[i, j], z[i, j], tip[i, j] = fi, zi, ti
     return CoupledSweep(rods, contacts, f, z, tip)
+
+
+def _check_rods(rods) -> tuple:
+    """The rods as a tuple of at least one :class:`~ebantenna.fem.rod.Rod`."""
+    rods = tuple(rods)
+    for rod in rods:
+        if not isinstance(rod, Rod):
+            raise TypeError(f"rods must hold Rod objects, got {type(rod).__name__}")
+    if not rods:
+        raise ValueError("rods must hold at least one Rod, got none")
+    return rods
+
+
+def _stiffness_table(contact_stiffness, n_rods: int, n_contacts: int) -> np.ndarray:
+    """The contact stiffness (N/m) per rod and position, shape ``(n_rods, n_contacts)``.
+
+    A number holds for all, an array of shape ``(n_rods,)`` per rod, ``(n_rods, n_contacts)``
+    per rod and position.
+    """
+    k_c = np.asarray(contact_stiffness, dtype=float)
+    if k_c.ndim == 1:
+        k_c = k_c[:, None]
+    try:
+        return np.broadcast_to(k_c, (n_rods, n_contacts))
+    except ValueError:
+        raise ValueError(
+            f"contact_stiffness must be a number or of shape ({n_rods},) or "
+            f"({n_rods}, {n_contacts}), got shape {np.shape(contact_stiffness)}"
+        ) from None

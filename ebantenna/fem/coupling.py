@@ -47,10 +47,11 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 
-from .._validate import check_choice, check_in_range, check_int, check_nonnegative
+from .._validate import check_choice, check_int, check_nonnegative
 from ..probe import Probe
 from .assembly import assemble, beam_mesh, free_dofs, support_diagonals
-from .modal import solve_modes
+from .guards import check_contact
+from .modal import eigenvalue_shift, solve_modes
 from .rod import Rod
 from .supports import Supports
 
@@ -112,7 +113,7 @@ def probe_substructure(probe: Probe, contact: float, *, hinge="clamped", n_eleme
     """
     if not isinstance(probe, Probe):
         raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")
-    contact = check_in_range("contact", contact, 0.0, probe.length)
+    contact = check_contact("contact", contact, probe.length)
     supports = Supports(contact=None, hinge=hinge)
     nodes = beam_mesh(probe.length, contact, n_elements)
     return _substructure(nodes, probe, supports, contact, probe.loss_factor)
@@ -124,6 +125,7 @@ def rod_substructure(rod: Rod, *, n_elements: int = 32) -> Substructure:
         raise TypeError(f"rod must be a Rod, got {type(rod).__name__}")
     beam = rod.as_beam()
     if rod.contact_height < rod.free_length:
+        check_contact("contact_height", rod.contact_height, rod.free_length)
         nodes = beam_mesh(rod.free_length, rod.contact_height, n_elements)
     else:
         n_elements = check_int("n_elements", n_elements, minimum=1)
@@ -139,8 +141,7 @@ def _substructure(nodes, beam, supports, contact, loss_factor):
     M = (M + np.diag(m_diag))[np.ix_(free, free)]
     v_contact = 2 * int(np.argmin(np.abs(nodes - contact)))
     interface = int(np.flatnonzero(free == v_contact)[0])
-    scale = beam.flexural_rigidity / (beam.mass_per_length * beam.length**4)
-    return Substructure(K, M, interface, nodes, free, float(loss_factor), scale)
+    return Substructure(K, M, interface, nodes, free, float(loss_factor), eigenvalue_shift(beam))
 
 
 @dataclass(frozen=True, eq=False)
@@ -347,10 +348,6 @@ def _perturbation(lam, D, n_modes):
     return lam[:n_modes] + 1j * d - np.einsum("kj,kj->k", rows, w) - 1j * third
 
 
-def _shift(probe: Probe) -> float:
-    return probe.flexural_rigidity / (probe.mass_per_length * probe.length**4)
-
-
 def coupled_modes(
     probe: Probe,
     rod: Rod,
@@ -427,7 +424,7 @@ def coupled_modes(
         r = craig_bampton(rod_substructure(rod, n_elements=rod_elements), rod_modes)
     parts = [(c.stiffness, c.mass, c.interface, c.loss_factor) for c in (p, r)]
     K, K_im, M, G = _couple(parts, k_c, eta_c)
-    lam, z, eig, zeta = _solve_coupled(K, K_im, M, n_modes, _shift(probe), damping)
+    lam, z, eig, zeta = _solve_coupled(K, K_im, M, n_modes, eigenvalue_shift(probe), damping)
     x = G @ z
     n_p = p.stiffness.shape[0]
     return CoupledModes(
@@ -470,7 +467,7 @@ def monolithic_modes(
     r = rod_substructure(rod, n_elements=rod_elements)
     parts = [(s.stiffness, s.mass, s.interface, s.loss_factor) for s in (p, r)]
     K, K_im, M, G = _couple(parts, k_c, eta_c)
-    lam, z, eig, zeta = _solve_coupled(K, K_im, M, n_modes, _shift(probe))
+    lam, z, eig, zeta = _solve_coupled(K, K_im, M, n_modes, eigenvalue_shift(probe))
     x = G @ z
     n_p = p.stiffness.shape[0]
     return CoupledModes(np.sqrt(lam), zeta, eig, p.nodes, r.nodes, p.full(x[:n_p]), r.full(x[n_p:]))

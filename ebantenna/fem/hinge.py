@@ -28,8 +28,9 @@ from scipy.optimize import brentq, least_squares, minimize_scalar
 
 from .._validate import check_array, check_choice, check_int, check_positive
 from ..probe import Probe
-from .modal import modal_analysis, natural_frequencies
+from .modal import modal_analysis
 from .supports import Supports
+from .sweeps import natural_frequencies
 
 __all__ = ["CRITERIA", "HingeFit", "transition_position", "fit_hinge_and_tip"]
 
@@ -200,25 +201,8 @@ def fit_hinge_and_tip(
     True
     """
     check_choice("criterion", criterion, CRITERIA)
-    lengths = check_array("lengths", lengths, ndim=1)
-    observed = check_array("observed", observed, ndim=1)
-    if lengths.shape != observed.shape or lengths.size == 0:
-        raise ValueError(
-            f"lengths and observed must be 1-D of one size >= 1, got {lengths.shape} and "
-            f"{observed.shape}"
-        )
-    for length, x in zip(lengths, observed, strict=True):
-        check_positive("lengths", length)
-        if not 0 < x < length:
-            raise ValueError(f"observed must lie in (0, length) = (0, {length:g}) m, got {x!r}")
-    k_lo = check_positive("stiffness_bounds[0]", stiffness_bounds[0])
-    k_hi = check_positive("stiffness_bounds[1]", stiffness_bounds[1])
-    m_lo, m_hi = (float(v) for v in mass_bounds)
-    if not (k_lo < k_hi and 0 <= m_lo < m_hi and math.isfinite(m_hi)):
-        raise ValueError(
-            "need 0 < stiffness_bounds[0] < stiffness_bounds[1] and "
-            f"0 <= mass_bounds[0] < mass_bounds[1] < inf, got {stiffness_bounds}, {mass_bounds}"
-        )
+    lengths, observed = _check_observations(lengths, observed)
+    (k_lo, k_hi), (m_lo, m_hi) = _check_bounds(stiffness_bounds, mass_bounds)
     grid = check_int("grid", grid, minimum=2)
 
     def predict(log_k, mass):
@@ -238,12 +222,7 @@ def fit_hinge_and_tip(
         return (predict(*p) - observed) / lengths
 
     bounds = ([math.log10(k_lo), m_lo], [math.log10(k_hi), m_hi])
-    best, best_cost = None, math.inf
-    for log_k in np.linspace(bounds[0][0], bounds[1][0], grid):
-        for mass in np.linspace(m_lo, m_hi, grid):
-            cost = float(np.sum(residual((log_k, mass)) ** 2))
-            if cost < best_cost:
-                best, best_cost = (log_k, mass), cost
+    best, best_cost = _grid_search(residual, bounds, grid)
     start = np.clip(best, np.array(bounds[0]) + 1e-9, np.array(bounds[1]) - 1e-9)
     scale = np.array([0.1, 0.02 * (m_hi - m_lo)])
     fit = least_squares(residual, start, bounds=bounds, x_scale=scale, diff_step=1e-4, xtol=1e-10)
@@ -256,3 +235,47 @@ def fit_hinge_and_tip(
         predicted=predict(log_k, mass),
         criterion=criterion,
     )
+
+
+def _check_observations(lengths, observed):
+    """Both as 1-D arrays of one size >= 1, every observation inside its probe ``(0, length)``."""
+    lengths = check_array("lengths", lengths, ndim=1)
+    observed = check_array("observed", observed, ndim=1)
+    if lengths.shape != observed.shape or lengths.size == 0:
+        raise ValueError(
+            f"lengths and observed must be 1-D of one size >= 1, got {lengths.shape} and "
+            f"{observed.shape}"
+        )
+    for length, x in zip(lengths, observed, strict=True):
+        check_positive("lengths", length)
+        if not 0 < x < length:
+            raise ValueError(f"observed must lie in (0, length) = (0, {length:g}) m, got {x!r}")
+    return lengths, observed
+
+
+def _check_bounds(stiffness_bounds, mass_bounds):
+    """``(k_lo, k_hi), (m_lo, m_hi)`` with ``0 < k_lo < k_hi`` and ``0 <= m_lo < m_hi < inf``."""
+    k_lo = check_positive("stiffness_bounds[0]", stiffness_bounds[0])
+    k_hi = check_positive("stiffness_bounds[1]", stiffness_bounds[1])
+    m_lo, m_hi = (float(v) for v in mass_bounds)
+    if not (k_lo < k_hi and 0 <= m_lo < m_hi and math.isfinite(m_hi)):
+        raise ValueError(
+            "need 0 < stiffness_bounds[0] < stiffness_bounds[1] and "
+            f"0 <= mass_bounds[0] < mass_bounds[1] < inf, got {stiffness_bounds}, {mass_bounds}"
+        )
+    return (k_lo, k_hi), (m_lo, m_hi)
+
+
+def _grid_search(residual, bounds, grid: int):
+    """The point of a ``grid x grid`` lattice inside ``bounds`` with the least squared residual.
+
+    Returns ``((log_k, mass), cost)``; the lattice finds the basin that a local least-squares
+    refinement then descends.
+    """
+    best, best_cost = None, math.inf
+    for log_k in np.linspace(bounds[0][0], bounds[1][0], grid):
+        for mass in np.linspace(bounds[0][1], bounds[1][1], grid):
+            cost = float(np.sum(residual((log_k, mass)) ** 2))
+            if cost < best_cost:
+                best, best_cost = (log_k, mass), cost
+    return best, best_cost

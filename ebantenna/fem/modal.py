@@ -25,7 +25,6 @@ A Rayleigh quotient is stationary at an eigenvector, so the eigenvector's own er
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -35,51 +34,51 @@ import scipy.sparse.linalg as spla
 
 from .._validate import check_array, check_choice, check_int
 from ..probe import Probe
-from ._parallel import map_on_cores
-from .assembly import (
-    apply_supports,
-    assemble,
-    beam_mesh,
-    check_contact,
-    check_memory,
-    check_resolvable,
-    contact_node,
-    free_dofs,
-    scatter,
-    support_diagonals,
-)
-from .banded import BANDED_MAX_MODES, MAX_LANCZOS_STEPS, banded_sweep
-from .elements import consistent_mass, element_stiffness, hermite, hermite_slope
-from .secular import secular_sweep
+from .assembly import apply_supports, assemble, beam_mesh, contact_node, support_diagonals
+from .elements import bending_energy, hermite, hermite_slope
+from .guards import check_contact, check_memory
 from .supports import Supports
 
 __all__ = [
     "ModalResult",
     "modal_analysis",
-    "natural_frequencies",
     "solve_modes",
-    "SOLVERS",
-    "SWEEP_METHODS",
+    "eigenvalue_shift",
+    "clip_eigenvalues",
+    "EIGEN_SOLVERS",
     "DENSE_LIMIT",
     "strain_energy",
 ]
 
-#: Solvers of :func:`solve_modes`: the inverted dense solve, sparse shift-invert Lanczos, and the
-#: textbook ``scipy.linalg.eigh(K, M)`` kept to show what it loses.
-SOLVERS = ("auto", "dense", "sparse", "naive")
+#: Eigen-solvers of :func:`solve_modes`: the inverted dense solve, sparse shift-invert Lanczos,
+#: and the textbook ``scipy.linalg.eigh(K, M)`` kept to show what it loses.
+EIGEN_SOLVERS = ("auto", "dense", "sparse", "naive")
 
 #: Above this many free DOFs, ``solver="auto"`` goes sparse (where shift-invert Lanczos on the
 #: banded matrices overtakes the dense solve: about 100 elements, see benchmarks/fem_accuracy.py).
 DENSE_LIMIT = 200
 
 
-def _shift(probe: Probe) -> float:
-    """A positive shift of the scale of the probe's own omega^2 (1/s^2)."""
-    return probe.flexural_rigidity / (probe.mass_per_length * probe.length**4)
+def eigenvalue_shift(beam: Probe) -> float:
+    """A positive shift ``s = EI / (rho A L^4)`` of the scale of a beam's own ``omega^2``, 1/s^2.
+
+    Examples
+    --------
+    >>> from ebantenna import Probe
+    >>> from ebantenna.fem.modal import eigenvalue_shift
+    >>> p = Probe()
+    >>> eigenvalue_shift(p) == p.flexural_rigidity / (p.mass_per_length * p.length**4)
+    True
+    """
+    return beam.flexural_rigidity / (beam.mass_per_length * beam.length**4)
 
 
-def _clip_eigenvalues(lam: np.ndarray, shift: float) -> np.ndarray:
-    # Rounding can leave a rigid-body eigenvalue a hair below zero (|lam| ~ eps * shift).
+def clip_eigenvalues(lam: np.ndarray, shift: float) -> np.ndarray:
+    """Eigenvalues ``omega^2`` (1/s^2) floored at zero; raise if one is truly negative.
+
+    Rounding can leave a rigid-body eigenvalue a hair below zero (``|lam| ~ eps * shift``); below
+    ``-1e-8 shift`` the stiffness was not semi-definite.
+    """
     tiny = 1e-8 * shift
     if np.any(lam < -tiny):
         raise np.linalg.LinAlgError(f"negative eigenvalue {lam.min():g}: K is not semi-definite")
@@ -98,7 +97,7 @@ def solve_modes(K, M, n_modes: int, *, shift: float, solver: str = "auto"):
     shift : float
         Positive shift ``s`` (1/s^2), of the order of the lowest eigenvalue.
     solver : {"auto", "dense", "sparse", "naive"}
-        See :data:`SOLVERS`.
+        See :data:`EIGEN_SOLVERS`.
 
     Returns
     -------
@@ -107,7 +106,7 @@ def solve_modes(K, M, n_modes: int, *, shift: float, solver: str = "auto"):
     phi : ndarray of shape (n, n_modes)
         Mass-normalised eigenvectors (``phi.T @ M @ phi = I``).
     """
-    check_choice("solver", solver, SOLVERS)
+    check_choice("solver", solver, EIGEN_SOLVERS)
     n = K.shape[0]
     n_modes = check_int("n_modes", n_modes, minimum=1, maximum=n)
     if solver == "auto":
@@ -132,7 +131,7 @@ def solve_modes(K, M, n_modes: int, *, shift: float, solver: str = "auto"):
         # normalised, with omega^2 at least 1 / (n eps mu_max).
         mu = np.maximum(mu, n * np.finfo(float).eps * mu[0])
         phi = sla.solve_triangular(L, Y, lower=True, trans="T") / np.sqrt(mu)
-        return _clip_eigenvalues(1.0 / mu - shift, shift), phi
+        return clip_eigenvalues(1.0 / mu - shift, shift), phi
     # Sparse shift-invert Lanczos about -shift; a fixed start vector makes it deterministic.
     lam, phi = spla.eigsh(
         K.tocsc(), k=n_modes, M=M.tocsc(), sigma=-shift, which="LM", v0=np.ones(n), tol=0
@@ -140,7 +139,7 @@ def solve_modes(K, M, n_modes: int, *, shift: float, solver: str = "auto"):
     order = np.argsort(lam)
     lam, phi = lam[order], phi[:, order]
     phi = phi / np.sqrt(np.einsum("ik,ik->k", phi, M @ phi))
-    return _clip_eigenvalues(lam, shift), phi
+    return clip_eigenvalues(lam, shift), phi
 
 
 @dataclass(frozen=True, eq=False)
@@ -294,7 +293,7 @@ def modal_analysis(
         check_memory(5 * 8 * (2 * nodes.size) ** 2, f"a dense solve of {n_elements} elements")
     K, M = assemble(nodes, probe, sparse=use_sparse)
     K_free, M_free, free = apply_supports(K, M, nodes, probe, supports)
-    lam, phi = solve_modes(K_free, M_free, n_modes, shift=_shift(probe), solver=solver)
+    lam, phi = solve_modes(K_free, M_free, n_modes, shift=eigenvalue_shift(probe), solver=solver)
     shapes = np.zeros((2 * nodes.size, lam.size))
     shapes[free] = phi
     _, m_diag = support_diagonals(nodes, probe, supports)  # the tip mass, as in apply_supports
@@ -311,10 +310,10 @@ def modal_analysis(
 def strain_energy(nodes: np.ndarray, probe: Probe, supports: Supports, u: np.ndarray) -> np.ndarray:
     """Twice the strain energy ``u^T K u`` of DOF vectors, summed from element curvatures (J).
 
-    Inside an element the curvature ``v''`` is linear between its end values ``k1`` and ``k2``, so
-    ``int EI v''^2 dx = EI l (k1^2 + k1 k2 + k2^2) / 3``. Springs at the hinge and the contact add
-    ``k theta0^2`` and ``k v_c^2``. Same value as ``u^T K u`` in exact arithmetic, far fewer
-    cancellations in floating point.
+    The beam's share is :func:`~ebantenna.fem.elements.bending_energy`, ``EI l (k1^2 + k1 k2 +
+    k2^2) / 3`` per element from its end curvatures ``k1``, ``k2``. Springs at the hinge and the
+    contact add ``k theta0^2`` and ``k v_c^2``. Same value as ``u^T K u`` in exact arithmetic, far
+    fewer cancellations in floating point.
 
     Parameters
     ----------
@@ -322,10 +321,7 @@ def strain_energy(nodes: np.ndarray, probe: Probe, supports: Supports, u: np.nda
         Full DOF vectors (m, rad).
     """
     l = np.diff(nodes).reshape((-1,) + (1,) * (u.ndim - 1))
-    v1, t1, v2, t2 = u[0:-2:2], u[1:-2:2], u[2::2], u[3::2]
-    k1 = (6 * (v2 - v1) - l * (4 * t1 + 2 * t2)) / l**2
-    k2 = (6 * (v1 - v2) + l * (2 * t1 + 4 * t2)) / l**2
-    energy = (probe.flexural_rigidity * l / 3 * (k1 * k1 + k1 * k2 + k2 * k2)).sum(axis=0)
+    energy = bending_energy(probe.flexural_rigidity, l, u)
     if not isinstance(supports.hinge, str):
         energy = energy + supports.hinge_stiffness * u[1] ** 2
     if supports.contact is not None and not math.isinf(supports.contact_stiffness):
@@ -333,160 +329,3 @@ def strain_energy(nodes: np.ndarray, probe: Probe, supports: Supports, u: np.nda
             energy + supports.contact_stiffness * u[2 * contact_node(nodes, supports.contact)] ** 2
         )
     return energy
-
-
-#: Methods of :func:`natural_frequencies`.
-SWEEP_METHODS = ("banded", "dense", "secular")
-
-
-def natural_frequencies(
-    probe: Probe,
-    contacts,
-    *,
-    hinge="clamped",
-    contact_stiffness: float = math.inf,
-    n_elements: int = 64,
-    n_modes: int = 3,
-    chunk: int | None = None,
-    method: str = "banded",
-) -> np.ndarray:
-    """Natural frequencies for many contact positions at once, Hz.
-
-    All positions share one mesh topology (``n_elements`` elements), so they are solved as a
-    batch, with no Python loop per position:
-
-    - ``"banded"`` (default): a banded Cholesky factorisation of ``K + s M`` per position, Lanczos
-      for the lowest modes, then Rayleigh quotients from the element curvatures, all vectorised
-      over the batch (:mod:`~ebantenna.fem.banded`); as accurate as :func:`modal_analysis`;
-    - ``"dense"``: the dense inverted solve of :func:`solve_modes` with batched LAPACK calls,
-      ``O(n^3)`` per position and without the final Rayleigh quotients;
-    - ``"secular"``: one modal analysis without the contact on a *fixed* uniform mesh, then the
-      roots of the secular equation of the rank-one contact per position
-      (:mod:`~ebantenna.fem.secular`), several times faster. A different model: the contact
-      falls inside an element instead of on a node put there, with the compliance the mesh
-      misses there added in series (its static correction); the same model where the contact
-      is a node of the uniform mesh, and as accurate elsewhere (``ebantenna bench`` shows both
-      against the exact solution).
-
-    Parameters
-    ----------
-    probe : Probe
-    contacts : array of shape (n,)
-        Contact positions from the hinge, m, each in ``(0, L)``.
-    hinge, contact_stiffness
-        As in :class:`Supports`.
-    n_elements, n_modes : int
-        Mesh size and number of modes.
-    chunk : int, optional
-        Positions solved per batch: default 125 dense, 256 banded, 1024 secular (memory about
-        ``chunk * (2 n_elements)^2 * 32`` bytes dense, ``chunk * n_elements * 600`` banded,
-        ``chunk * n_modes * n_elements * 100`` secular).
-    method : {"banded", "dense", "secular"}
-        See above.
-
-    Returns
-    -------
-    ndarray of shape (n, n_modes)
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from ebantenna import Probe
-    >>> from ebantenna.fem import natural_frequencies
-    >>> natural_frequencies(Probe(), np.array([0.1, 0.2]), n_modes=2).round(2)
-    array([[ 21.35, 137.77],
-           [ 38.97, 243.51]])
-    """
-    if not isinstance(probe, Probe):
-        raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")
-    contacts = check_array("contacts", contacts, ndim=1)
-    check_choice("method", method, SWEEP_METHODS)
-    if chunk is None:  # banded: batches small enough for the cache, spread over the cores
-        chunk = {"banded": 256, "dense": 125, "secular": 1024}[method]
-    chunk = check_int("chunk", chunk, minimum=1)
-    n_elements = check_resolvable(check_int("n_elements", n_elements, minimum=2))
-    n_modes = check_int("n_modes", n_modes, minimum=1, maximum=2 * n_elements - 1)
-    if method == "banded" and n_modes > BANDED_MAX_MODES:
-        raise ValueError(
-            f"n_modes must be <= {BANDED_MAX_MODES} with method='banded' (Lanczos converges in "
-            f"a few times n_modes steps, at most {MAX_LANCZOS_STEPS}); got {n_modes}: use "
-            "method='dense' for that many modes"
-        )
-    batch = min(chunk, contacts.size) * min(os.cpu_count() or 1, -(-contacts.size // chunk))
-    per_position = {
-        "dense": 32 * (2 * n_elements) ** 2,
-        "banded": 600 * n_elements,
-        "secular": 100 * n_modes * n_elements,
-    }[method]
-    check_memory(
-        batch * per_position,
-        f"natural_frequencies(method={method!r}) with {n_elements} elements and batches of "
-        f"{min(chunk, contacts.size)} positions (pass a smaller chunk, or method='banded')",
-    )
-    supports = Supports(contact=None, hinge=hinge, contact_stiffness=contact_stiffness)
-    for contact in (contacts.min(), contacts.max()):  # the two nearest the ends
-        check_contact("contacts", contact, probe.length)
-    sweep = dict(
-        hinge_stiffness=supports.hinge_stiffness,
-        contact_stiffness=supports.contact_stiffness,
-        n_elements=n_elements,
-        n_modes=n_modes,
-    )
-
-    def hertz(lam):
-        return np.sqrt(_clip_eigenvalues(lam, _shift(probe))) / (2 * math.pi)
-
-    if method == "secular":  # one modal analysis, then every position side by side
-        return hertz(secular_sweep(probe, contacts, chunk=chunk, **sweep))
-    blocks = [contacts[i : i + chunk] for i in range(0, contacts.size, chunk)]
-    if method == "banded":
-
-        def solve(block):
-            with np.errstate(invalid="ignore", divide="ignore"):  # NaN is refused below
-                return hertz(banded_sweep(probe, block, shift=_shift(probe), **sweep))
-
-    else:
-
-        def solve(block):
-            members = [
-                Supports(contact=float(c), hinge=hinge, contact_stiffness=contact_stiffness)
-                for c in block
-            ]
-            return _batched_frequencies(probe, members, n_elements, n_modes)
-
-    # batches side by side on the machine's cores
-    frequencies = np.concatenate(map_on_cores(solve, blocks))
-    if not np.all(np.isfinite(frequencies)):
-        # a contact near an end on a coarse mesh leaves one tiny element beside long ones: its
-        # own modes lie some 1e16 (1 / eps) above the lowest, beyond what Lanczos resolves
-        i, k = np.argwhere(~np.isfinite(frequencies))[0]
-        h = np.diff(beam_mesh(probe.length, float(contacts[i]), n_elements))
-        raise ValueError(
-            f"mode {k + 1} at contacts[{i}] = {float(contacts[i])!r} m cannot be resolved with "
-            f"n_elements={n_elements}: the elements differ in length by a factor of "
-            f"{h.max() / h.min():.1e}; use more elements or fewer modes"
-        )
-    return frequencies
-
-
-def _batched_frequencies(probe, supports_list, n_elements, n_modes):
-    meshes = np.stack([beam_mesh(probe.length, s.contact, n_elements) for s in supports_list])
-    pairs = list(zip(meshes, supports_list, strict=True))
-    K = scatter(element_stiffness(probe.flexural_rigidity, np.diff(meshes, axis=1)))  # (B, n, n)
-    M = scatter(consistent_mass(probe.mass_per_length, np.diff(meshes, axis=1)))
-    diagonals = [support_diagonals(m, probe, s) for m, s in pairs]
-    d = np.arange(K.shape[-1])
-    K[:, d, d] += np.array([k for k, _ in diagonals])
-    M[:, d, d] += np.array([m for _, m in diagonals])
-    # Every member has the same number of free DOFs; only which v is fixed at the contact moves.
-    keep = np.array([free_dofs(m, s) for m, s in pairs])
-    rows = np.arange(len(pairs))[:, None, None]
-    K = K[rows, keep[:, :, None], keep[:, None, :]]
-    M = M[rows, keep[:, :, None], keep[:, None, :]]
-    shift = _shift(probe)
-    L = np.linalg.cholesky(K + shift * M)
-    X = np.linalg.solve(L, M)
-    Bm = np.linalg.solve(L, np.swapaxes(X, 1, 2))  # L^-1 M L^-T
-    mu = np.linalg.eigvalsh((Bm + np.swapaxes(Bm, 1, 2)) / 2)[:, ::-1][:, :n_modes]
-    lam = _clip_eigenvalues(1.0 / mu - shift, shift)
-    return np.sqrt(lam) / (2 * math.pi)

@@ -57,21 +57,7 @@ def plot_probe(probe, supports=None, ax=None):
         contact = 100 * check_in_range("supports.contact", supports.contact, 0.0, probe.length)
     ax = _axes(ax)
     ax.plot([0, length], [0, 0], color="0.45", lw=6, solid_capstyle="butt", zorder=2)
-    # the hinge
-    if supports.hinge == "clamped":
-        ax.fill_between(
-            [-0.04 * length, 0], -0.3, 0.3, facecolor="0.92", edgecolor="0.4", hatch="///", lw=0
-        )
-        ax.plot([0, 0], [-0.3, 0.3], color="k", lw=1.5)
-        hinge = "P: clamped hinge"
-    elif supports.hinge == "pinned":
-        ax.plot([0], [-0.055], "k^", ms=12, zorder=3)
-        hinge = "P: pinned hinge"
-    else:
-        turns = np.linspace(0, 4 * np.pi, 200)
-        radius = 0.012 * length * (1 + turns) / (1 + 4 * np.pi)
-        ax.plot(radius * np.cos(turns), 0.1 * radius / (0.012 * length) * np.sin(turns), "k-", lw=1)
-        hinge = f"P: elastic hinge, {supports.hinge:g} N m/rad"
+    hinge = _draw_hinge(ax, supports.hinge, length)
     ax.text(0, 0.42, "P", ha="center", fontsize="large", weight="bold")
     # the contact
     if contact is not None:
@@ -107,6 +93,23 @@ def plot_probe(probe, supports=None, ax=None):
     if probe.tip_mass > 0:
         ax.legend(loc="lower right", fontsize="small", frameon=False)
     return ax
+
+
+def _draw_hinge(ax, hinge, length: float) -> str:
+    """Draw the hinge at x = 0 (a hatched wall, a triangle or a spiral spring); return its label."""
+    if hinge == "clamped":
+        ax.fill_between(
+            [-0.04 * length, 0], -0.3, 0.3, facecolor="0.92", edgecolor="0.4", hatch="///", lw=0
+        )
+        ax.plot([0, 0], [-0.3, 0.3], color="k", lw=1.5)
+        return "P: clamped hinge"
+    if hinge == "pinned":
+        ax.plot([0], [-0.055], "k^", ms=12, zorder=3)
+        return "P: pinned hinge"
+    turns = np.linspace(0, 4 * np.pi, 200)
+    radius = 0.012 * length * (1 + turns) / (1 + 4 * np.pi)
+    ax.plot(radius * np.cos(turns), 0.1 * radius / (0.012 * length) * np.sin(turns), "k-", lw=1)
+    return f"P: elastic hinge, {hinge:g} N m/rad"
 
 
 def plot_modes(result, ax=None, modes=None, n_points: int = 400, label: str = "mode"):

@@ -60,8 +60,7 @@ import scipy.linalg as sla
 from ..probe import Probe
 from ._parallel import map_on_cores
 from .assembly import assemble
-from .banded import _strain_energy
-from .elements import hermite
+from .elements import bending_energy, hermite
 
 __all__ = ["secular_sweep", "contact_weights", "static_correction"]
 
@@ -191,7 +190,7 @@ def secular_sweep(
 ) -> np.ndarray:
     """Lowest ``n_modes`` eigenvalues ``omega^2`` (1/s^2) for each contact, shape (B, n_modes).
 
-    Inputs are trusted (the public entry is :func:`~ebantenna.fem.modal.natural_frequencies`
+    Inputs are trusted (the public entry is :func:`~ebantenna.fem.sweeps.natural_frequencies`
     with ``method="secular"``). ``hinge_stiffness`` is inf for a clamped hinge, 0 for a pinned
     one, N m/rad for a spring; ``contact_stiffness`` inf for a rigid contact, N/m for a spring.
     The modes without contact are solved once; the positions then go in batches of ``chunk``,
@@ -226,7 +225,7 @@ def secular_sweep(
         u = np.zeros((2 * nodes.size, u_free.shape[1]))
         u[free] = u_free
         h = np.full((n_elements, u.shape[1]), nodes[1] - nodes[0])
-        energy = _strain_energy(h, probe.flexural_rigidity, u).reshape(x.shape)
+        energy = bending_energy(probe.flexural_rigidity, h, u).reshape(x.shape)
         if not math.isinf(hinge_stiffness):
             energy += hinge_stiffness * u[1].reshape(x.shape) ** 2
         # the contact spring's energy, (c^T u)^2 / compliance; none for a rigid pin (c^T u = 0)

@@ -36,7 +36,7 @@ __all__ = [
     "shape_functions",
     "element_matrices",
     "two_element_matrices",
-    "assemble",
+    "assemble_chain",
     "paper_matrices",
     "paper_errata",
     "Erratum",
@@ -99,8 +99,12 @@ def element_matrices() -> tuple[sp.Matrix, sp.Matrix]:
     return K, M
 
 
-def assemble(element_list: list[sp.Matrix]) -> sp.Matrix:
-    """Assemble 4x4 element matrices of a chain of elements (node k joins elements k-1 and k)."""
+def assemble_chain(element_list: list[sp.Matrix]) -> sp.Matrix:
+    """Assemble the symbolic 4x4 matrices of a chain of elements (node k joins elements k-1, k).
+
+    The sympy counterpart of :func:`~ebantenna.fem.assembly.assemble_elements`: element ``e``
+    adds its block into rows and columns ``2e .. 2e + 3``.
+    """
     n = len(element_list)
     G = sp.zeros(2 * n + 2, 2 * n + 2)
     for e, Ke in enumerate(element_list):
@@ -130,7 +134,7 @@ def two_element_matrices() -> tuple[sp.Matrix, sp.Matrix]:
     K, M = element_matrices()
     Ks = [K.subs(l, length) for length in (l1, l2)]
     Ms = [M.subs(l, length) for length in (l1, l2)]
-    return assemble(Ks), assemble(Ms)
+    return assemble_chain(Ks), assemble_chain(Ms)
 
 
 # --- The matrices as the paper prints them (section 2.2), transcribed entry by entry. -------------

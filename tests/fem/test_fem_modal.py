@@ -15,14 +15,8 @@ from ebantenna.fem import (
     modal_analysis,
     natural_frequencies,
 )
-from ebantenna.fem.assembly import (
-    MAX_ELEMENTS,
-    ROUNDOFF_RTOL,
-    apply_supports,
-    assemble,
-    beam_mesh,
-    roundoff_error,
-)
+from ebantenna.fem.assembly import apply_supports, assemble, beam_mesh
+from ebantenna.fem.guards import MAX_ELEMENTS, ROUNDOFF_RTOL, roundoff_error
 from ebantenna.fem.modal import strain_energy
 
 PROBE = Probe()

@@ -15,7 +15,7 @@ from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 
 from ebantenna.fem import Supports, modal_analysis, natural_frequencies
-from ebantenna.fem.assembly import MAX_ELEMENTS, MIN_SPAN
+from ebantenna.fem.guards import MAX_ELEMENTS, MIN_SPAN
 from ebantenna.ml import SVC, MLPClassifier, MLPRegressor, load_model, save_model
 from ebantenna.probe import Probe
 from ebantenna.recording import Recording

@@ -3,6 +3,7 @@
 import numpy as np
 import sympy as sp
 
+from ebantenna.fem.assembly import assemble_elements
 from ebantenna.fem.elements import consistent_mass, element_stiffness
 from ebantenna.fem.symbolic import (
     EI,
@@ -31,6 +32,11 @@ values = {EI: EI_value, rhoA: rhoA_value, l1: a, l2: b}
 K_sym, M_sym = (np.array(m.subs(values), dtype=float) for m in two_element_matrices())
 assert np.allclose(K, K_sym, rtol=1e-13, atol=0)
 assert np.allclose(M, M_sym, rtol=1e-13, atol=1e-18)
+# The package's loop adds the same numbers in the same places: no entry sums more than two terms,
+# and x + y == y + x in floating point, so it agrees bit for bit.
+lengths = np.array([a, b])
+assert np.array_equal(K, assemble_elements(element_stiffness(EI_value, lengths)))
+assert np.array_equal(M, assemble_elements(consistent_mass(rhoA_value, lengths)))
 
 # 3. The printed K1 with l = l1 = l2 (equal elements): which entries disagree with the derivation?
 equal = {l1: l, l2: l}

@@ -1,0 +1,139 @@
+"""Guards of the finite-element model: what a mesh can resolve, what the machine can hold.
+
+Three limits are checked before anything is assembled; they live here, apart from the mesh and
+the assembly, so that those read as the textbook writes them.
+
+**Round-off** sets a limit to refinement. The assembled ``K`` is a discrete fourth derivative:
+its entries grow like ``EI / h^3`` while ``K phi`` for the probe's low modes stays of the order
+of ``EI phi / L^4``, so its condition number grows like ``(L/h)^4 = N^4``. Every solve with it
+(Cholesky, LU, shift-invert Lanczos) returns mode shapes carrying rounding noise of relative size
+about ``eps N^4`` at the mesh's own wavelength, and that noise, stiff as it is, raises the
+frequencies. Even refined by the curvature Rayleigh quotient (:mod:`~ebantenna.fem.modal`), the
+lowest frequency is then off by about ``(c eps N^4)^2``, with ``c`` between 1e-4 and 0.02 for
+the probe's hinges and contacts (measured against :mod:`~ebantenna.fem.exact` at 4096 and 8192
+elements). :func:`roundoff_error` is that estimate with ``c = 0.05``, an upper bound, and
+:data:`MAX_ELEMENTS` the finest mesh whose estimate stays within :data:`ROUNDOFF_RTOL`:
+:func:`check_resolvable` refuses finer ones, where more elements buy no accuracy, only noise.
+
+**Memory.** :func:`check_memory` refuses a dense solve or a batch of sweeps that would take more
+than half of the machine's memory, before it is allocated.
+
+**A contact the mesh can hold.** :func:`check_contact` refuses a contact closer to the hinge or
+the tip than :data:`MIN_SPAN` of the length, where the short element beside it would leave the
+factorisation of ``K`` without digits.
+
+The public entry points (:func:`~ebantenna.fem.modal.modal_analysis`,
+:func:`~ebantenna.fem.sweeps.natural_frequencies`, :func:`~ebantenna.fem.coupling.coupled_modes`,
+...) call these once; the functions behind them take checked values.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+
+import numpy as np
+
+from .._validate import check_in_range, check_int
+
+__all__ = [
+    "roundoff_error",
+    "check_resolvable",
+    "check_memory",
+    "check_contact",
+    "ROUNDOFF_RTOL",
+    "MAX_ELEMENTS",
+    "MIN_SPAN",
+]
+
+
+#: Relative accuracy of the lowest frequency that a mesh must be able to hold in double precision.
+ROUNDOFF_RTOL = 1e-6
+
+#: The upper-bound constant ``c`` of :func:`roundoff_error` (measured: 1e-4 ... 0.02).
+_ROUNDOFF_C = 0.05
+
+
+def roundoff_error(n_elements: int) -> float:
+    """A-priori estimate of the round-off error of the lowest frequency on ``n_elements``, relative.
+
+    ``(c eps N^4)^2`` with ``c = 0.05`` (see the module's introduction): the condition number
+    ``N^4`` of the assembled stiffness, times the machine epsilon, squared by the Rayleigh
+    quotient. The discretisation error falls like ``N^-4``; the two cross at a few hundred
+    elements below 1e-12, so a finer mesh than that buys nothing.
+
+    Examples
+    --------
+    >>> from ebantenna.fem.guards import roundoff_error
+    >>> f"{roundoff_error(2048):.0e}", f"{roundoff_error(16384):.0e}"
+    ('4e-08', '6e-01')
+    """
+    n_elements = check_int("n_elements", n_elements, minimum=1)
+    return (_ROUNDOFF_C * np.finfo(float).eps * float(n_elements) ** 4) ** 2
+
+
+#: The finest mesh whose :func:`roundoff_error` stays within :data:`ROUNDOFF_RTOL`.
+MAX_ELEMENTS = int((math.sqrt(ROUNDOFF_RTOL) / (_ROUNDOFF_C * np.finfo(float).eps)) ** 0.25)
+
+
+def check_resolvable(n_elements: int) -> int:
+    """Return ``n_elements``; raise ``ValueError`` above :data:`MAX_ELEMENTS` (round-off limit)."""
+    n_elements = check_int("n_elements", n_elements, minimum=1)
+    if n_elements > MAX_ELEMENTS:
+        raise ValueError(
+            f"n_elements must be <= {MAX_ELEMENTS}, got {n_elements}: the stiffness matrix's "
+            f"condition number grows like N^4 (here {float(n_elements) ** 4:.0e}), and in double "
+            f"precision the lowest frequency would be off by about {roundoff_error(n_elements):.0e}"
+            f" (relative), beyond {ROUNDOFF_RTOL:g}; at {MAX_ELEMENTS} elements the discretisation "
+            "error is already far below that"
+        )
+    return n_elements
+
+
+def check_memory(nbytes: float, what: str) -> None:
+    """Raise ``ValueError`` before ``what`` allocates more than half of the machine's memory.
+
+    ``nbytes`` is the caller's a-priori estimate. Without a way to ask the machine (no
+    ``os.sysconf``), nothing is checked.
+    """
+    try:
+        total = os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (AttributeError, ValueError, OSError):
+        return
+    if nbytes > total / 2:
+        raise ValueError(
+            f"{what} needs about {nbytes / 1e9:.3g} GB, more than half of this machine's "
+            f"{total / 1e9:.3g} GB of memory"
+        )
+
+
+#: The shortest span, as a fraction of the probe's length, between the contact and the hinge or
+#: the tip. The element there has a stiffness growing like ``h^-3``: measured against
+#: :mod:`~ebantenna.fem.exact` on 64 elements, a span of 2.5e-8 L still gives every frequency to
+#: 1e-8, while 2.5e-10 L with a soft contact at the tip makes the Cholesky factor break down
+#: (NaN) and 2.5e-12 L loses three digits; 1e-6 L keeps a margin of 25 below the last good one.
+#: A contact that close (0.4 µm on the paper's probe) is at the end for every purpose.
+MIN_SPAN = 1e-6
+
+
+def check_contact(name: str, contact, length: float) -> float:
+    """Return ``contact``; raise unless it lies in the probe, :data:`MIN_SPAN` from either end.
+
+    Examples
+    --------
+    >>> from ebantenna.fem.guards import check_contact
+    >>> check_contact("contact", 0.2, 0.4)
+    0.2
+    >>> check_contact("contact", 1e-9, 0.4)
+    Traceback (most recent call last):
+    ...
+    ValueError: contact must lie in [4e-07, 0.3999996] m (1e-06 of the length ...), got 1e-09
+    """
+    contact = check_in_range(name, contact, 0.0, length)
+    low, high = MIN_SPAN * length, (1.0 - MIN_SPAN) * length
+    if not low <= contact <= high:
+        raise ValueError(
+            f"{name} must lie in [{low:.7g}, {high:.7g}] m ({MIN_SPAN:g} of the length or more "
+            f"from the hinge and from the tip), got {contact!r}"
+        )
+    return contact

@@ -23,8 +23,8 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .._validate import check_in_range, check_int, check_nonnegative, check_positive
-from ..fem.assembly import check_resolvable
+from .._validate import check_int, check_nonnegative, check_positive
+from ..fem.guards import check_contact, check_resolvable
 from ..fem.supports import HINGES
 from ..probe import Probe, material
 from .effects import EFFECT_TYPES, GY521_MASS, effect_names, make_effect
@@ -173,7 +173,7 @@ class Scene:
                 )
         else:
             self._put("hinge", check_positive("hinge (rotational stiffness, N m/rad)", self.hinge))
-        self._put("contact", check_in_range("contact", self.contact, 0.0, self.probe.length))
+        self._put("contact", check_contact("contact", self.contact, self.probe.length))
         self._put("material", material(self.material).name)
 
     def _check_acquisition(self):

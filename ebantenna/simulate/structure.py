@@ -14,7 +14,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as spl
 
-from .._validate import check_int, check_nonnegative, check_positive
+from .._validate import check_int, check_nonnegative
+from ..fem.guards import check_contact
 
 __all__ = ["ContactModel", "probe_contact_model", "check_dof_vector", "check_symmetric_matrix",
            "mass_inverse"]
@@ -135,9 +136,7 @@ def probe_contact_model(
     zeta = check_nonnegative("damping_ratio", damping_ratio)
     if not zeta < 1:
         raise ValueError(f"damping_ratio must lie in [0, 1), got {damping_ratio!r}")
-    check_positive("contact", contact)
-    if not contact < probe.length:
-        raise ValueError(f"contact must lie in (0, {probe.length:g}) m, got {contact!r}")
+    contact = check_contact("contact", contact, probe.length)
     supports = Supports(contact=None, hinge=hinge)
     nodes = beam_mesh(probe.length, contact, n_elements)
     K, M = assemble(nodes, probe)

@@ -33,6 +33,24 @@ def test_with_replaces_and_validates():
         scene.with_(colour="red")
 
 
+@pytest.mark.parametrize("ratio", [0.0, 1e-9, 1 - 1e-9, 1.0])
+def test_a_contact_at_an_end_is_refused_at_every_entry(ratio):
+    # fem.guards.check_contact: a span shorter than MIN_SPAN of the length cannot be meshed
+    from ebantenna.fem.guards import MIN_SPAN
+    from ebantenna.simulate import simulate_batch
+    from ebantenna.simulate.structure import probe_contact_model
+
+    scene = builtin_scene("ideal")
+    contact = ratio * scene.probe.length
+    assert min(ratio, 1 - ratio) < MIN_SPAN
+    with pytest.raises(ValueError, match="contact must lie in"):
+        scene.with_(contact=contact)
+    with pytest.raises(ValueError, match="contact must lie in"):
+        simulate_batch(scene, contact=[0.2, contact])
+    with pytest.raises(ValueError, match="contact must lie in"):
+        probe_contact_model(scene.probe, contact)
+
+
 @pytest.mark.parametrize(
     "changes, message",
     [

@@ -41,8 +41,8 @@ from .kernels import Kernel, KernelRows, call_kernel, resolve_gamma
 from .ovo import dual_layout, one_vs_one_coef, ovo_votes, ovr_decision_function
 from .pair_kernels import PairKernels
 from .platt import pairwise_coupling, pairwise_sigmoids
-from .smo import DEFAULT, LIBSVM, solve_smo
-from .smo_policy import fit_policy
+from .smo import solve_smo
+from .smo_policy import DEFAULT, LIBSVM, fit_policy
 from .sparse_input import as_csr
 
 __all__ = ["SVC", "ovr_decision_function"]

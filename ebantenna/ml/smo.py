@@ -281,6 +281,9 @@ def bias(G, y, alpha, C, *, sequential=False) -> float:
 def reference_smo(K, y, C, *, tol=1e-3, max_iter=10_000_000, selection="second-order"):
     """SMO as the textbook writes it: select a pair, solve it, update the gradient; repeat.
 
+    Like the steps it calls, it takes checked values (:class:`~ebantenna.ml.SVC` validates them
+    once) and computes nothing that it does not need.
+
     Parameters
     ----------
     K : ndarray of shape (n, n)

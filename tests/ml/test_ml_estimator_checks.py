@@ -10,7 +10,6 @@ ESTIMATORS = [
     SVC(libsvm_compat=True, kernel="linear", selection="first-order"),
     SVC(probability=True, random_state=0),
     SVC(kernel="precomputed"),
-    SVC(solver="reference", shrinking=False, kernel="poly", degree=2),
     MLPClassifier(hidden_layer_sizes=(10,), max_iter=200, random_state=0),
     MLPClassifier(hidden_layer_sizes=(8,), solver="scg", max_iter=50, random_state=0),
     MLPRegressor(hidden_layer_sizes=(10,), max_iter=300, random_state=0),

@@ -205,20 +205,7 @@ class Kernel:
             without the staging buffer; the numbers are the same.
         """
         same = Y is None
-        sparse = issparse(X) or (not same and issparse(Y))
-        if sparse:
-            X = as_csr(X)
-            Y = X if same else as_csr(Y)
-        Y = X if same else Y
-        if self.name == "rbf" and center and not sparse:
-            if x_norms is not None or y_norms is not None:
-                raise ValueError("x_norms and y_norms can only be given with center=False")
-            m = Y.mean(axis=0)
-            X = X - m
-            Y = X if same else Y - m
-        if self.name == "rbf":
-            xn = squared_norms(X) if x_norms is None else x_norms
-            yn = (xn if same else squared_norms(Y)) if y_norms is None else y_norms
+        X, Y, sparse, xn, yn = self._expansion_points(X, Y, x_norms, y_norms, center)
         if out is None:
             out = np.empty((X.shape[0], Y.shape[0]), dtype=dtype)
         elif out.shape != (X.shape[0], Y.shape[0]):
@@ -251,28 +238,60 @@ class Kernel:
                 (X[start:stop] @ Y[first:].T).toarray(out=product)
             else:
                 np.matmul(X[start:stop], Y[first:].T, out=product)
-            sub = max(1, CACHE_ENTRIES // max(1, product.shape[1]))
-            for lo in range(0, stop - start, sub):
-                hi = min(lo + sub, stop - start)
-                rows = slice(start + lo, start + hi)
-                block = dest = product[lo:hi] if direct else out[rows, first:]
-                if not direct:
-                    block = product[lo:hi]
-                elif not block.flags.c_contiguous:
-                    block = scratch[: block.size].reshape(block.shape)
-                    block[...] = dest
-                if self.name == "rbf":
-                    rbf_in_place(block, self.gamma, xn[rows], yn[first:],
-                                 (X[rows], Y[first:]) if sparse and center else None, sums)
-                else:
-                    self._dot_kernel_in_place(block)
-                if block is not dest:
-                    dest[...] = block
+            self._apply_to_strip(product, out, (start, first), direct, scratch, sums,
+                                 (X, Y, xn, yn, sparse and center))
             if same and stop < X.shape[0]:
                 out[stop:, start:stop] = out[start:stop, stop:].T
         if same and self.name == "rbf":
             np.fill_diagonal(out, 1.0)
         return out
+
+    def _expansion_points(self, X, Y, x_norms, y_norms, center):
+        """The points that :meth:`gram` expands (CSR if either set is sparse, dense ones centred
+        for 'rbf' with ``center``) and, for 'rbf', their squared norms:
+        ``(X, Y, sparse, x_norms, y_norms)``; ``Y`` is ``X`` itself when omitted."""
+        same = Y is None
+        sparse = issparse(X) or (not same and issparse(Y))
+        if sparse:
+            X = as_csr(X)
+            Y = X if same else as_csr(Y)
+        Y = X if same else Y
+        if self.name == "rbf" and center and not sparse:
+            if x_norms is not None or y_norms is not None:
+                raise ValueError("x_norms and y_norms can only be given with center=False")
+            m = Y.mean(axis=0)
+            X = X - m
+            Y = X if same else Y - m
+        if self.name != "rbf":
+            return X, Y, sparse, None, None
+        xn = squared_norms(X) if x_norms is None else x_norms
+        yn = (xn if same else squared_norms(Y)) if y_norms is None else y_norms
+        return X, Y, sparse, xn, yn
+
+    def _apply_to_strip(self, product, out, corner, direct, scratch, sums, points) -> None:
+        """The kernel function on a strip of dot products, in cache-sized sub-blocks, written
+        to ``out`` from ``corner`` = (first row, first column); ``product`` is already that part
+        of ``out`` when ``direct``. ``points`` = ``(X, Y, x_norms, y_norms, direct_differences)``
+        as :meth:`gram` prepared them."""
+        start, first = corner
+        X, Y, xn, yn, differences = points
+        sub = max(1, CACHE_ENTRIES // max(1, product.shape[1]))
+        for lo in range(0, product.shape[0], sub):
+            hi = min(lo + sub, product.shape[0])
+            rows = slice(start + lo, start + hi)
+            block = dest = product[lo:hi] if direct else out[rows, first:]
+            if not direct:
+                block = product[lo:hi]
+            elif not block.flags.c_contiguous:
+                block = scratch[: block.size].reshape(block.shape)
+                block[...] = dest
+            if self.name == "rbf":
+                rbf_in_place(block, self.gamma, xn[rows], yn[first:],
+                             (X[rows], Y[first:]) if differences else None, sums)
+            else:
+                self._dot_kernel_in_place(block)
+            if block is not dest:
+                dest[...] = block
 
     def _dot_kernel_in_place(self, block: np.ndarray) -> None:
         """'linear', 'poly' or 'sigmoid' of a block of dot products, in place."""
@@ -455,9 +474,20 @@ class KernelRows:
         return np.asarray(self.row(i), dtype=np.float64)
 
     def block64(self, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
-        """Kernel entries :math:`k(x_r, x_c)`, ``r`` in ``rows``, ``c`` in ``cols``, as a new
-        float64 array: each row one gather (``take``, about three times faster than ``np.ix_``);
-        the same numbers as :meth:`row64` at the columns, whole matrix or pair of classes."""
+        """Kernel entries :math:`k(x_r, x_c)` for ``r`` in ``rows`` and ``c`` in ``cols``, as a
+        new float64 array of shape ``(rows.size, cols.size)``.
+
+        Each row is one gather (``take``, about three times faster than fancy indexing with
+        ``np.ix_`` on a large matrix), from a stored row or a computed one: the same numbers as
+        :meth:`row64` at the columns, whole matrix or pair of classes.
+
+        Examples
+        --------
+        >>> X = np.array([[0.0], [1.0], [3.0]])
+        >>> KernelRows(X, Kernel("linear"), np.float32, 1 << 10).block64(np.array([2]),
+        ...                                                               np.array([0, 1]))
+        array([[0., 3.]])
+        """
         if self.matrix is None:
             row = self.row
         else:

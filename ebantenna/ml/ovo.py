@@ -3,6 +3,8 @@
 With :math:`k` classes, one binary machine is trained per pair :math:`(a, b)`, :math:`a < b`, in
 the order ``(0, 1), (0, 2), ..., (1, 2), ...``. The functions here turn the pairwise results into
 votes, one-vs-rest scores and, for the linear kernel, the weight vectors of the pairs.
+They take checked values: :class:`~ebantenna.ml.SVC` validates its input once, in ``fit`` and
+``predict``.
 """
 
 from __future__ import annotations

@@ -24,6 +24,8 @@ kept in one of three ways, the first that applies:
   a pair are assembled from two slices of it.
 * **a row cache** otherwise: each problem computes its rows on demand and keeps the most recently
   used (:class:`~ebantenna.ml.kernels.KernelRows`).
+
+:class:`PairKernels` takes checked values: :class:`~ebantenna.ml.SVC` validates its input once.
 """
 
 from __future__ import annotations

@@ -20,6 +20,8 @@ These follow libsvm's code (as bundled with scikit-learn) operation by operation
 the same decision values they give libsvm's numbers. The cross-validation folds are drawn with
 NumPy's generator, not libsvm's own: on the same data ``A`` and ``B`` therefore differ from
 scikit-learn's by the fold-to-fold spread of the decision values.
+
+The functions take checked values: :class:`~ebantenna.ml.SVC` validates its input once.
 """
 
 from __future__ import annotations

@@ -26,13 +26,23 @@ bias is libsvm's: :math:`\\rho` is the mean of :math:`y_t G_t` over the free var
 midpoint of the feasible interval when none is free; the decision function is
 :math:`f(x) = \\sum_t y_t \\alpha_t k(x_t, x) - \\rho`.
 
-Kernel rows come from :class:`~ebantenna.ml.kernels.KernelRows`, which either holds the whole matrix
-(one GEMM) or keeps a least-recently-used cache of rows that are computed on demand. There is one
-loop, :func:`solve_smo`; how it selects, breaks ties, floors the curvature, shrinks and sums the
-bias is an :class:`~ebantenna.ml.smo_policy.SMOPolicy`, a frozen value with two
+This module is the **reference**: the algorithm as the textbook writes it, on a full kernel
+matrix, each step a function that fits on a screen: :func:`select_working_set` (first and second
+order), :func:`solve_two_variable` (Platt's :math:`L` and :math:`H`), :func:`update_gradient` and
+:func:`bias`, put together by the loop :func:`reference_smo`, which ``SVC(solver="reference")``
+runs.
+
+:func:`solve_smo` runs the same algorithm on the **engines**, private modules that make it fast
+or libsvm's to the last digit. Kernel rows come from :class:`~ebantenna.ml.kernels.KernelRows`,
+which either holds the whole matrix (one GEMM) or keeps a least-recently-used cache of rows that
+are computed on demand. How an engine selects, breaks ties, floors the curvature, shrinks and
+sums the bias is an :class:`~ebantenna.ml.smo_policy.SMOPolicy`, a frozen value with two
 presets: :data:`~ebantenna.ml.smo_policy.DEFAULT` and :data:`~ebantenna.ml.smo_policy.LIBSVM`.
-For the default conventions without shrinking, :mod:`ebantenna.ml.smo_whole` takes the same
-steps, to the last bit, with fewer NumPy calls.
+For the default conventions without shrinking, ``_smo_whole`` runs over all variables with few
+NumPy calls per update; every other policy runs on ``_smo_state``, libsvm's solver with its
+shrinking, its variable order and a memo of kernel rows. The two share libsvm's two-variable
+step and the second-order scores (``_smo_step``) and return the same numbers to the last bit for
+the same policy. Tests hold both equal to the reference within what the stopping rule allows.
 
 Conventions and the digits they move
 ------------------------------------
@@ -60,7 +70,7 @@ order and gradient reconstruction included) or off. What each convention does, w
   routine the diagonal is 1 - 1e-16 or so, a last-bit change of every step denominator. libsvm's
   value is exactly 1, and so is the diagonal here for 'rbf'.
 
-What is left between the two implementations is the summation order of the kernel sums in the
+What is left between libsvm and this package is the summation order of the kernel sums in the
 decision function: about 1e-14 of the values' scale.
 """
 
@@ -71,12 +81,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._smo_state import DualState, run_general
+from ._smo_whole import run_whole, runs_whole
 from .kernels import KernelRows
-from .smo_policy import DEFAULT, LIBSVM, SELECTIONS, TAU, SMOPolicy
-from .smo_whole import pair_step, run_whole, runs_whole
+from .smo_policy import DEFAULT, TAU, SMOPolicy
 
-__all__ = ["SMOPolicy", "DEFAULT", "LIBSVM", "SMOResult", "solve_smo", "KernelRows", "SELECTIONS",
-           "shrink_order", "ROW_MEMO_BYTES"]
+__all__ = ["SMOResult", "select_working_set", "solve_two_variable", "update_gradient", "bias",
+           "reference_smo", "solve_smo"]
 
 logger = logging.getLogger(__name__)
 
@@ -110,298 +121,208 @@ class SMOResult:
     violation: float
 
 
-#: Memory for the kernel rows that the SMO state keeps between updates (float64, in bytes), on
-#: top of the kernel's own storage; rows that are views of a float64 kernel take none.
-ROW_MEMO_BYTES = 64 << 20
+# ----------------------------------------------------------------------------- the reference
+def select_working_set(G, y, alpha, C, K, *, rule="second-order", tol=1e-3, tau=TAU):
+    """The working pair :math:`(i, j)` of an SMO step, or none when :math:`\\alpha` is optimal.
 
-#: ``ndarray.max()`` without its Python wrapper.
-_largest = np.maximum.reduce
+    :math:`i` maximises :math:`-y_t G_t` over :math:`I_{up}` (the variables that can move so
+    that :math:`y_t\\alpha_t` grows); its value is :math:`m(\\alpha)`, and :math:`M(\\alpha)` is
+    the smallest :math:`-y_t G_t` over :math:`I_{low}` (those that can move the other way).
+    :math:`\\alpha` is optimal when :math:`m(\\alpha) \\le M(\\alpha)`: SMO stops when the
+    violation :math:`m - M` is below ``tol``. Then :math:`j`, in :math:`I_{low}`:
 
-
-def _argmax(values: np.ndarray, last: bool) -> int:
-    # the array methods, not np.argmax: the wrapper's dispatch costs more than the search on the
-    # vectors of a few thousand entries that SMO scans twice per update
-    if last:
-        return values.size - 1 - int(values[::-1].argmax())
-    return int(values.argmax())
-
-
-def shrink_order(shrink: np.ndarray) -> tuple[np.ndarray, int]:
-    """libsvm's reordering of the active variables when ``shrink`` marks those set aside.
-
-    libsvm's ``do_shrinking`` walks one index up from the front and one down from the back:
-    each variable to set aside that the first meets trades places with the next variable to
-    keep that the second meets, until the two cross. So the k-th variable to set aside among
-    the first ``keep`` positions trades places with the k-th variable to keep counted from the
-    end, and all the swaps can be made at once, with one gather per array.
+    * ``'first-order'``: the one of :math:`M(\\alpha)`, the maximal violating pair;
+    * ``'second-order'`` (Fan, Chen and Lin): among the :math:`j` with
+      :math:`b_{ij} = m + y_j G_j > 0`, the one whose two-variable step lowers the objective
+      most, by :math:`b_{ij}^2 / (2 a_{ij})` with :math:`a_{ij} = K_{ii} + K_{jj} - 2K_{ij}`
+      (floored at ``tau``).
 
     Parameters
     ----------
-    shrink : ndarray of bool, shape (a,)
-        True for the active variables to set aside.
+    G, y, alpha, C : ndarray of shape (n,)
+        Gradient :math:`Q\\alpha - e`, labels (+1 or -1), variables and their bounds.
+    K : ndarray of shape (n, n)
+        Kernel matrix (the second-order rule reads row :math:`i` and the diagonal).
+    rule : {'second-order', 'first-order'}
+    tol, tau : float
+        Stopping tolerance; floor of the curvature :math:`a_{ij}`.
 
     Returns
     -------
-    order : ndarray of int, shape (a,)
-        Position ``p`` receives the variable at ``order[p]``.
-    keep : int
-        The new number of active variables (those not set aside come first).
+    i, j : int or None
+        The pair, or None twice when the violation is below ``tol``.
+    violation : float
+        :math:`m(\\alpha) - M(\\alpha)`.
 
     Examples
     --------
-    >>> shrink_order(np.array([True, False, True, False, False]))
-    (array([4, 1, 3, 2, 0]), 3)
+    At :math:`\\alpha = 0` every gradient is -1; :math:`I_{up}` holds the positives, so the
+    violation is 1 - (-1) = 2:
+
+    >>> y = np.array([1.0, 1.0, -1.0]); K = np.eye(3)
+    >>> select_working_set(-np.ones(3), y, np.zeros(3), np.ones(3), K)
+    (0, 2, 2.0)
     """
-    a = shrink.size
-    keep = a - int(np.count_nonzero(shrink))
-    front = np.flatnonzero(shrink[:keep])
-    back = keep + np.flatnonzero(~shrink[keep:])[::-1]
-    order = np.arange(a)
-    order[front], order[back] = back, front
-    return order, keep
+    minus_yG = -y * G
+    up = ((y > 0) & (alpha < C)) | ((y < 0) & (alpha > 0))  # I_up
+    low = ((y > 0) & (alpha > 0)) | ((y < 0) & (alpha < C))  # I_low
+    up_score = np.where(up, minus_yG, -np.inf)
+    low_score = np.where(low, minus_yG, np.inf)
+    i = int(np.argmax(up_score))
+    violation = float(up_score[i] - low_score.min())  # m(alpha) - M(alpha)
+    if not violation >= tol:  # also when a set is empty (-inf)
+        return None, None, violation
+    if rule == "first-order":
+        return i, int(np.argmin(low_score)), violation
+    b = up_score[i] - low_score  # b_ij = m + y_j G_j; -inf outside I_low
+    a = np.maximum(K[i, i] + np.diag(K) - 2.0 * K[i], tau)  # a_ij, floored
+    gain = np.where(b > 0, b * b / a, 0.0)  # twice the decrease of the objective
+    return i, int(np.argmax(gain)), violation
 
 
-class _DualState:
-    """SMO's variables, kept in libsvm's (permuted) order.
+def solve_two_variable(i, j, alpha, G, y, C, K, *, tau=TAU):
+    """Platt's solution of the dual in :math:`(\\alpha_i, \\alpha_j)`, the others held fixed.
 
-    Position ``p`` holds variable ``perm[p]``; the first ``active`` positions are the active set
-    (all of them without shrinking, and then ``perm`` stays the identity). The loop keeps
-    ``yG = y * G`` (:math:`G = Q\\alpha - e`; G itself is ``y * yG``) and, for shrinking,
-    ``yGbar = y * Gbar`` with :math:`\\bar G_t = \\sum_{s: \\alpha_s = C_s} C_s Q_{ts}`, from which
-    the gradient of the shrunk variables is rebuilt. Membership of :math:`I_{up}` and
-    :math:`I_{low}` is kept as penalties 0 / -inf added to the scores, one vector operation each.
+    The constraint :math:`y_i\\alpha_i + y_j\\alpha_j = \\text{const}` leaves a segment: in
+    :math:`\\alpha_j`, the interval :math:`[L, H]` where both variables stay in their boxes
+    (:math:`L = \\max(0, \\alpha_j - \\alpha_i)`, :math:`H = \\min(C_j, C_i + \\alpha_j -
+    \\alpha_i)` when :math:`y_i \\ne y_j`; :math:`L = \\max(0, \\alpha_i + \\alpha_j - C_i)`,
+    :math:`H = \\min(C_j, \\alpha_i + \\alpha_j)` otherwise). Along it the objective is a
+    parabola of curvature :math:`\\eta = K_{ii} + K_{jj} - 2K_{ij}`, least at
+    :math:`\\alpha_j + y_j (E_i - E_j) / \\eta` with Platt's errors
+    :math:`E_i - E_j = y_i G_i - y_j G_j`. Clip that to :math:`[L, H]`; :math:`\\alpha_i`
+    follows from the constraint. An :math:`\\eta \\le \\tau` (a kernel that is not positive
+    definite) is replaced by ``tau``, as libsvm does.
 
-    An update costs a few NumPy calls on vectors of a few thousand entries, and at that size the
-    cost of a call is mostly its overhead, so the state saves what it can around them: the views
-    of the active positions are made once per change of the active set (:meth:`_activate`), the
-    scalars of the two-variable step are read from Python lists (arithmetic on NumPy scalars is
-    several times slower), and the kernel rows of the active set are kept from one update to the
-    next until the order changes (:meth:`kernel_row`).
+    Parameters
+    ----------
+    i, j : int
+        The working pair.
+    alpha, G, y, C : ndarray of shape (n,)
+        Variables, gradient :math:`Q\\alpha - e`, labels and bounds.
+    K : ndarray of shape (n, n)
+        Kernel matrix.
+
+    Returns
+    -------
+    tuple of float
+        The new :math:`(\\alpha_i, \\alpha_j)`.
+
+    Examples
+    --------
+    Two points of opposite classes at distance 2 (linear kernel), from :math:`\\alpha = 0`:
+
+    >>> K = np.array([[4.0, 0.0], [0.0, 0.0]])
+    >>> solve_two_variable(0, 1, np.zeros(2), -np.ones(2), np.array([1.0, -1.0]),
+    ...                    np.full(2, 10.0), K)
+    (0.5, 0.5)
     """
+    if y[i] != y[j]:  # alpha_i - alpha_j = d stays
+        d = alpha[i] - alpha[j]
+        L, H, top = max(0.0, -d), min(C[j], C[i] - d), C[i] - d
+    else:  # alpha_i + alpha_j = t stays
+        t = alpha[i] + alpha[j]
+        L, H, top = max(0.0, t - C[i]), min(C[j], t), t - C[i]
+    eta = max(K[i, i] + K[j, j] - 2.0 * K[i, j], tau)
+    a_j = alpha[j] + y[j] * (y[i] * G[i] - y[j] * G[j]) / eta  # the parabola's minimum
+    a_j = min(max(a_j, L), H)
+    # alpha_i from the constraint; at a_j = top it is C_i, which the rounding of C_i - d + d or
+    # t - (t - C_i) could miss by one unit in the last place (at the other end, d - d = 0 exactly)
+    a_i = C[i] if a_j == top else (a_j + d if y[i] != y[j] else t - a_j)
+    return float(a_i), float(a_j)
 
-    def __init__(self, rows: KernelRows, y, C, diagonal, policy: SMOPolicy):
-        n = y.shape[0]
-        self.rows, self.policy, self.n = rows, policy, n
-        self.perm = np.arange(n)
-        self.permuted = False
-        self.unshrink = False
-        self.y = np.array(y, dtype=np.float64)
-        self.QD = np.array(diagonal, dtype=np.float64)
-        self.C = np.array(C, dtype=np.float64)
-        self.alpha = np.zeros(n)
-        self.yG = -self.y
-        self.yGbar = np.zeros(n)
-        pos = self.y > 0
-        self.up_pen = np.where(pos, 0.0, -np.inf)  # alpha = 0: positives can go up,
-        self.low_pen = np.where(pos, -np.inf, 0.0)  # negatives can go down
-        # the same numbers as Python lists, for the scalar work of an update (shrink swaps them
-        # along with the arrays)
-        self.y_list, self.QD_list, self.C_list = (v.tolist() for v in (self.y, self.QD, self.C))
-        # the policy's choices as plain booleans, read at every update
-        self._last = policy.ties == "last"
-        self._second_order = policy.selection == "second-order"
-        self._floor_nonpositive = policy.curvature_floor == "nonpositive"
-        # a constant diagonal (the RBF kernel's is 1) makes K_ii + K_jj one number: a pass less
-        self._same_diagonal = bool(np.all(self.QD == self.QD[0]))
-        self._diagonal_sum = float(self.QD[0] + self.QD[0])
-        # work buffers: every vector operation of selection and update writes into one of these
-        self._up, self._low, self._quad, self._gain, self._step = (np.empty(n) for _ in range(5))
-        self._zeros = np.zeros(n)
-        # kernel rows over the active set by position, valid until the order or the active set
-        # changes; at most about ROW_MEMO_BYTES of them
-        self._rows_memo: dict[int, np.ndarray] = {}
-        self._memo_capacity = max(2, ROW_MEMO_BYTES // (8 * n))
-        self._activate(n)
 
-    def _activate(self, active: int) -> None:
-        """Make the first ``active`` positions the active set: their views, no kept rows."""
-        self.active = a = active
-        self._rows_memo.clear()  # positions now hold other variables, or rows another length
-        self._yG_a, self._up_pen_a, self._low_pen_a, self._QD_a = (
-            v[:a] for v in (self.yG, self.up_pen, self.low_pen, self.QD))
-        self._up_a, self._low_a, self._quad_a, self._gain_a, self._step_a, self._zeros_a = (
-            v[:a] for v in (self._up, self._low, self._quad, self._gain, self._step, self._zeros))
+def update_gradient(G, K, y, i, j, delta_i, delta_j):
+    """The gradient :math:`G = Q\\alpha - e` after :math:`\\alpha_i` and :math:`\\alpha_j` moved.
 
-    def _argmax(self, values: np.ndarray) -> int:
-        """Index of the largest value; on a tie the first, or the last as libsvm's ``>=``."""
-        return _argmax(values, self._last)
+    Only two columns of :math:`Q` (:math:`Q_{ts} = y_t y_s K_{ts}`) enter:
+    :math:`G \\leftarrow G + Q_{:i}\\,\\Delta\\alpha_i + Q_{:j}\\,\\Delta\\alpha_j`.
 
-    def kernel_row(self, p: int, length: int | None = None) -> np.ndarray:
-        """Kernel row of position ``p`` over positions ``[0, length)`` (default: the active set),
-        float64; possibly a view of the stored kernel, never to be written.
+    Examples
+    --------
+    >>> K = np.array([[4.0, 0.0], [0.0, 0.0]]); y = np.array([1.0, -1.0])
+    >>> update_gradient(-np.ones(2), K, y, 0, 1, 0.5, 0.5)
+    array([ 1., -1.])
+    """
+    return G + y * (K[i] * (y[i] * delta_i) + K[j] * (y[j] * delta_j))
 
-        Rows of the active set are kept until the next change of the order or of the active
-        set: SMO picks the same variables again and again (libsvm keeps them in its kernel
-        cache), and a row assembled from float32 storage, or gathered in the permuted order,
-        costs several NumPy calls.
-        """
-        if length is not None and length != self.active:
-            return self._assemble_row(p, length)
-        row = self._rows_memo.get(p)
-        if row is None:
-            if len(self._rows_memo) >= self._memo_capacity:
-                self._rows_memo.clear()
-            row = self._rows_memo[p] = self._assemble_row(p, self.active)
-        return row
 
-    def _assemble_row(self, p: int, length: int) -> np.ndarray:
-        """Kernel row of position ``p`` over positions ``[0, length)``, from the stored rows."""
-        if self.permuted:
-            return self.rows.row(self.perm[p])[self.perm[:length]].astype(np.float64)
-        row = self.rows.row64(p)
-        return row if length == self.n else row[:length]
+def bias(G, y, alpha, C, *, sequential=False) -> float:
+    """libsvm's :math:`\\rho`, the bias of :math:`f(x) = \\sum_t y_t\\alpha_t k(x_t, x) - \\rho`.
 
-    def select(self, tol: float):
-        """Working pair ``(i, j, K_i, violation)`` among the active positions; ``i`` is None when
-        they are optimal within ``tol``."""
-        yG = self._yG_a
-        up_vals, low_vals = self._up_a, self._low_a
-        np.subtract(self._up_pen_a, yG, out=up_vals)
-        i = self._argmax(up_vals)
-        Gmax = up_vals.item(i)
-        np.add(yG, self._low_pen_a, out=low_vals)
-        violation = Gmax + _largest(low_vals)
-        if not violation >= tol:  # also stops on -inf (an empty set)
-            return None, None, None, violation
-        Ki = self.kernel_row(i)
-        if not self._second_order:
-            return i, self._argmax(low_vals), Ki, violation
-        # libsvm minimises -b^2/a over j in I_low with b = Gmax + y_j G_j > 0; the same j
-        # maximises b^2/a with b clipped at 0 (non-candidates score 0, and the best candidate
-        # scores > 0 because b >= tol there). a = (K_ii + K_jj) - 2 K_ij, floored.
-        quad, gain = self._quad_a, self._gain_a
-        if self._same_diagonal:  # -2 K_ij + (K_ii + K_jj): the same number, one pass fewer
-            np.multiply(Ki, -2.0, out=quad)
-            quad += self._diagonal_sum
-        else:
-            np.add(self._QD_a, self.QD_list[i], out=quad)
-            np.multiply(Ki, 2.0, out=gain)
-            quad -= gain
-        if self._floor_nonpositive:
-            quad[quad <= 0] = TAU  # exactly TAU where a <= 0, a itself elsewhere
-        else:
-            np.maximum(quad, TAU, out=quad)
-        np.add(low_vals, Gmax, out=gain)
-        np.maximum(gain, self._zeros_a, out=gain)  # an array of zeros: 3x faster than 0.0
-        gain *= gain
-        gain /= quad
-        j = self._argmax(gain)
-        if not gain.item(j) > 0:
-            return None, None, None, violation
-        return i, j, Ki, violation
+    At the optimum every free variable (:math:`0 < \\alpha_t < C_t`) has :math:`y_t G_t = \\rho`:
+    :math:`\\rho` is their mean. Without a free variable the optimality conditions only bound
+    :math:`\\rho` by variables at their bounds; it is the middle of that interval.
 
-    def pair_step(self, i: int, j: int, K_ij: float) -> tuple[float, float]:
-        """libsvm's analytic solution of the two-variable subproblem, clipped to the box."""
-        y, QD, C, alpha, yG = self.y_list, self.QD_list, self.C_list, self.alpha, self.yG
-        return pair_step(y[i], y[j], QD[i], QD[j], C[i], C[j], alpha.item(i), alpha.item(j),
-                         y[i] * yG.item(i), y[j] * yG.item(j), K_ij)
+    Parameters
+    ----------
+    G, y, alpha, C : ndarray of shape (n,)
+        Gradient, labels, variables and bounds.
+    sequential : bool
+        Sum one term after the other as libsvm does (last bits only), not pairwise.
 
-    def update(self, i: int, j: int, Ki: np.ndarray) -> None:
-        """Solve for the pair ``(i, j)`` and update the gradient (and ``Gbar`` when shrinking)."""
-        y, C, alpha = self.y_list, self.C_list, self.alpha
-        Kj = self.kernel_row(j)
-        old_i, old_j = alpha.item(i), alpha.item(j)
-        a_i, a_j = self.pair_step(i, j, Ki.item(j))
+    Examples
+    --------
+    >>> bias(np.array([0.5, -0.25]), np.array([1.0, -1.0]), np.array([0.5, 0.5]), np.ones(2))
+    0.375
+    """
+    yG = y * G
+    free = (alpha > 0) & (alpha < C)
+    if free.any():
+        total = np.cumsum(yG[free])[-1] if sequential else yG[free].sum()
+        return float(total / np.count_nonzero(free))
+    upper, lower, pos = alpha >= C, alpha <= 0, y > 0
+    above = yG[(upper & ~pos) | (lower & pos)]  # rho <= y_t G_t there
+    below = yG[(upper & pos) | (lower & ~pos)]  # rho >= y_t G_t there
+    return float(((above.min() if above.size else np.inf)
+                  + (below.max() if below.size else -np.inf)) / 2)
+
+
+def reference_smo(K, y, C, *, tol=1e-3, max_iter=10_000_000, selection="second-order"):
+    """SMO as the textbook writes it: select a pair, solve it, update the gradient; repeat.
+
+    Like the steps it calls, it takes checked values (:class:`~ebantenna.ml.SVC` validates them
+    once) and computes nothing that it does not need.
+
+    Parameters
+    ----------
+    K : ndarray of shape (n, n)
+        Kernel matrix, float64.
+    y, C : ndarray of shape (n,)
+        Labels (+1 or -1) and bounds :math:`C_t > 0`.
+    tol : float
+        Stopping tolerance on the maximal violation.
+    max_iter : int or float
+        Largest number of updates.
+    selection : {'second-order', 'first-order'}
+        Rule of :func:`select_working_set`.
+
+    Returns
+    -------
+    SMOResult
+
+    Examples
+    --------
+    >>> K = np.array([[0.0, 0.0], [0.0, 4.0]])  # the points 0 and 2, linear kernel
+    >>> res = reference_smo(K, np.array([-1.0, 1.0]), np.full(2, 10.0))
+    >>> res.alpha, res.rho, res.n_iter
+    (array([0.5, 0.5]), 1.0, 1)
+    """
+    alpha = np.zeros(y.size)
+    G = -np.ones(y.size)  # Q alpha - e at alpha = 0
+    n_iter = 0
+    i, j, violation = select_working_set(G, y, alpha, C, K, rule=selection, tol=tol)
+    while i is not None and n_iter < max_iter:
+        a_i, a_j = solve_two_variable(i, j, alpha, G, y, C, K)
+        G = update_gradient(G, K, y, i, j, a_i - alpha[i], a_j - alpha[j])
         alpha[i], alpha[j] = a_i, a_j
-        # libsvm: G += Q_i * dalpha_i + Q_j * dalpha_j with Q_t = y_t y K_t, hence on yG:
-        step, step_j = self._step_a, self._quad_a
-        np.multiply(Ki, y[i] * (a_i - old_i), out=step)
-        np.multiply(Kj, y[j] * (a_j - old_j), out=step_j)
-        step += step_j
-        self._yG_a += step
-        for t, a, old in ((i, a_i, old_i), (j, a_j, old_j)):
-            C_t = C[t]
-            can_up = -np.inf if a >= C_t else 0.0
-            can_down = -np.inf if a <= 0 else 0.0
-            if y[t] > 0:
-                self.up_pen[t], self.low_pen[t] = can_up, can_down
-            else:
-                self.up_pen[t], self.low_pen[t] = can_down, can_up
-            was_upper = old >= C_t
-            if self.policy.shrinking and was_upper != (a >= C_t):
-                # Gbar_k += C_t Q_tk (Q_tk = y_t y_k K_tk), in y-scaled form
-                gbar_step = (C_t * y[t]) * self.kernel_row(t, self.n)
-                if was_upper:
-                    self.yGbar -= gbar_step
-                else:
-                    self.yGbar += gbar_step
-
-    def violation(self) -> float:
-        """Maximal violation over all variables (after :meth:`reconstruct`)."""
-        return float((self.up_pen - self.yG).max() + (self.yG + self.low_pen).max())
-
-    def reconstruct(self) -> None:
-        """Rebuild the gradient of the shrunk variables and make every variable active again."""
-        n, active, perm = self.n, self.active, self.perm
-        if active == n:
-            return
-        alpha, y = self.alpha, self.y
-        # G = Gbar + p with p = -1, in y-scaled form: yG = yGbar - y
-        inactive = self.yGbar[active:] - y[active:]
-        free = np.flatnonzero(((alpha > 0) & (alpha < self.C))[:active])
-        if free.size:
-            # G_t += alpha_s Q_ts for every inactive t, over the free s one after the other in
-            # their order. libsvm has two loops for this (by inactive t, or by free s, whichever
-            # computes fewer kernel rows); both add the same terms in this order, and the kernel
-            # is symmetric, so one gather of the (free, inactive) block gives libsvm's numbers.
-            K = self.rows.block64(perm[free], perm[active:])
-            weights = alpha[free] * y[free]  # alpha_s Q_ts = alpha_s y_s K_ts y_t
-            for K_s, w_s in zip(K, weights.tolist(), strict=True):  # in order: sequential sum
-                K_s *= w_s
-                inactive += K_s
-        self.yG[active:] = inactive
-        self._activate(n)
-
-    def shrink(self, tol: float) -> None:
-        """libsvm's ``do_shrinking``: set aside the variables at a bound unlikely to move."""
-        a = self.active
-        up, low = self.up_pen[:a] == 0, self.low_pen[:a] == 0
-        Gmax1 = np.max(np.where(up, -self.yG[:a], -np.inf))
-        Gmax2 = np.max(np.where(low, self.yG[:a], -np.inf))
-        if not self.unshrink and Gmax1 + Gmax2 <= tol * 10:
-            self.unshrink = True
-            self.reconstruct()
-        a = self.active
-        up, low = self.up_pen[:a] == 0, self.low_pen[:a] == 0
-        yG = self.yG[:a]
-        shrink = (low & ~up & (-yG > Gmax1)) | (up & ~low & (yG > Gmax2))
-        order, keep = shrink_order(shrink)
-        if not np.array_equal(order, np.arange(a)):  # some variables trade places
-            for arr in (self.y, self.QD, self.C, self.alpha, self.yG, self.yGbar, self.up_pen,
-                        self.low_pen, self.perm):
-                arr[:a] = arr[order]
-            self.y_list, self.QD_list, self.C_list = (
-                v.tolist() for v in (self.y, self.QD, self.C))
-            self.permuted = True
-        self._activate(keep)
-
-    def rho(self) -> float:
-        """libsvm's bias: mean of y G over the free variables, else the middle of the feasible
-        range."""
-        yG, y, alpha, C = self.yG, self.y, self.alpha, self.C
-        upper = alpha >= C
-        lower = alpha <= 0
-        free = ~(upper | lower)
-        if free.any():
-            vals = yG[free]
-            total = np.cumsum(vals)[-1] if self.policy.bias_sum == "sequential" else vals.sum()
-            return float(total / vals.size)
-        pos = y > 0
-        ub_set = (upper & ~pos) | (lower & pos)
-        lb_set = (upper & pos) | (lower & ~pos)
-        ub = yG[ub_set].min() if ub_set.any() else np.inf
-        lb = yG[lb_set].max() if lb_set.any() else -np.inf
-        return float((ub + lb) / 2)
-
-    def result(self, n_iter: int, converged: bool, violation: float) -> SMOResult:
-        """The solution in the callers' order of the variables."""
-        G = self.y * self.yG
-        objective = float(np.sum(self.alpha * (G - 1.0)) / 2.0)
-        alpha = np.empty(self.n)
-        alpha[self.perm] = self.alpha
-        return SMOResult(alpha, self.rho(), n_iter, converged, objective, float(violation))
+        n_iter += 1
+        i, j, violation = select_working_set(G, y, alpha, C, K, rule=selection, tol=tol)
+    objective = float(np.sum(alpha * (G - 1.0)) / 2.0)
+    return SMOResult(alpha, bias(G, y, alpha, C), n_iter, i is None, objective, violation)
 
 
+# ----------------------------------------------------------------------------- the engines
 def solve_smo(
     rows: KernelRows,
     y: np.ndarray,
@@ -412,7 +333,13 @@ def solve_smo(
     max_iter: int = 10_000_000,
     policy: SMOPolicy = DEFAULT,
 ) -> SMOResult:
-    """Solve the binary C-SVC dual by SMO.
+    """Solve the binary C-SVC dual by SMO on the engines (the policy chooses which).
+
+    The same algorithm as :func:`reference_smo`, from kernel rows, in libsvm's arithmetic:
+    the policy's conventions without shrinking on the whole-kernel engine, every other policy
+    on libsvm's engine with shrinking and a row memo (see the module text). Inputs are taken
+    as checked (:class:`~ebantenna.ml.SVC` validates them once); only the policy's type is
+    checked here.
 
     Parameters
     ----------
@@ -453,45 +380,21 @@ def solve_smo(
     """
     if not isinstance(policy, SMOPolicy):
         raise TypeError(f"policy must be an SMOPolicy, got {type(policy).__name__}")
-    state = _DualState(rows, y, C, diagonal, policy)
-    if runs_whole(policy, state.C):  # the same steps with fewer NumPy calls (smo_whole)
-        n_iter, converged, violation = run_whole(state, tol, max_iter)
+    y, C, diagonal = (np.array(v, dtype=np.float64) for v in (y, C, diagonal))
+    perm = None
+    if runs_whole(policy, C):
+        alpha, yG, n_iter, converged, violation = run_whole(
+            rows, y, diagonal, C, policy.selection == "second-order", tol, max_iter)
     else:
-        n_iter, converged, violation = _run(state, tol, max_iter)
+        state = DualState(rows, y, C, diagonal, policy)
+        n_iter, converged, violation = run_general(state, tol, max_iter)
+        y, C, alpha, yG, perm = state.y, state.C, state.alpha, state.yG, state.perm
     if not converged:
         logger.info("SMO stopped at max_iter=%d with violation %.3g", max_iter, violation)
-    return state.result(n_iter, converged, violation)
-
-
-def _run(state: _DualState, tol: float, max_iter: float) -> tuple[int, bool, float]:
-    """The general SMO loop (any policy): ``(n_iter, converged, violation)``."""
-    policy = state.policy
-    n = state.n
-    n_iter = 0
-    counter = min(n, 1000) + 1
-    converged = False
-    violation = np.inf
-    while n_iter < max_iter:
-        if policy.shrinking:
-            counter -= 1
-            if counter == 0:
-                counter = min(n, 1000)
-                state.shrink(tol)
-        i, j, Ki, violation = state.select(tol)
-        if i is None:
-            if state.active == n:
-                converged = True
-                break
-            # optimal on the active set: check again on all variables, and shrink at once
-            state.reconstruct()
-            i, j, Ki, violation = state.select(tol)
-            if i is None:
-                converged = True
-                break
-            counter = 1
-        n_iter += 1
-        state.update(i, j, Ki)
-    if not converged:
-        state.reconstruct()
-        violation = state.violation()
-    return n_iter, converged, violation
+    G = y * yG  # in the engine's order: the sums of the objective and the bias follow it
+    objective = float(np.sum(alpha * (G - 1.0)) / 2.0)
+    rho = bias(G, y, alpha, C, sequential=policy.bias_sum == "sequential")
+    if perm is not None:  # back to the callers' order
+        alpha = np.empty_like(alpha)
+        alpha[perm] = state.alpha
+    return SMOResult(alpha, rho, n_iter, converged, objective, float(violation))

@@ -1,10 +1,11 @@
 """How an SMO run behaves where the textbook leaves a choice: the :class:`SMOPolicy`.
 
-The SMO loop of :func:`ebantenna.ml.smo.solve_smo` is one; the choices it makes on the way
-(which working-set rule, which index on a tie, how a tiny curvature is floored, whether variables
-are shrunk, how the bias is summed, in which precision kernel entries are stored) are fields of a
-frozen :class:`SMOPolicy`. Two presets: :data:`DEFAULT`, the package's own, and :data:`LIBSVM`,
-the conventions of libsvm as bundled with scikit-learn, which reproduce its path and its digits.
+The SMO engines behind :func:`ebantenna.ml.smo.solve_smo` run one algorithm, the reference
+loop of :mod:`ebantenna.ml.smo`; the choices they make on the way (which working-set rule, which
+index on a tie, how a tiny curvature is floored, whether variables are shrunk, how the bias is
+summed, in which precision kernel entries are stored) are fields of a frozen :class:`SMOPolicy`.
+Two presets: :data:`DEFAULT`, the package's own, and :data:`LIBSVM`, the conventions of libsvm as
+bundled with scikit-learn, which reproduce its path and its digits.
 The module text of :mod:`ebantenna.ml.smo` says which digit each convention moves.
 """
 

@@ -3,8 +3,12 @@
 A drop-in for :class:`sklearn.svm.SVC` (C-SVC): the same parameter names, kernels (including a
 precomputed matrix and a callable), one-vs-one multiclass training, probability estimates as libsvm
 makes them (:mod:`ebantenna.ml.platt`) and the same fitted attributes, layout and signs, so that a
-student can swap the import and compare. The dual problems are solved by
-:func:`ebantenna.ml.smo.solve_smo`.
+student can swap the import and compare. The dual problems are solved by SMO
+(:mod:`ebantenna.ml.smo`): by default on its fast engines (:func:`~ebantenna.ml.smo.solve_smo`),
+with ``solver="reference"`` by the textbook loop :func:`~ebantenna.ml.smo.reference_smo`.
+
+The parameters are validated once, here, when :meth:`SVC.fit` starts; the functions it calls
+take checked values.
 
 Sparse input: :meth:`SVC.fit` takes ``scipy.sparse`` matrices and arrays, used as CSR (CSC, COO
 and the other formats are converted, as scikit-learn does), with every kernel but 'precomputed'.
@@ -41,8 +45,8 @@ from .kernels import Kernel, KernelRows, call_kernel, resolve_gamma
 from .ovo import dual_layout, one_vs_one_coef, ovo_votes, ovr_decision_function
 from .pair_kernels import PairKernels
 from .platt import pairwise_coupling, pairwise_sigmoids
-from .smo import DEFAULT, LIBSVM, solve_smo
-from .smo_policy import fit_policy
+from .smo import reference_smo, solve_smo
+from .smo_policy import DEFAULT, LIBSVM, fit_policy
 from .sparse_input import as_csr
 
 __all__ = ["SVC", "ovr_decision_function"]
@@ -72,8 +76,8 @@ class SVC(ClassifierMixin, BaseEstimator):
         libsvm's shrinking heuristic (see :class:`~ebantenna.ml.smo_policy.SMOPolicy`); the
         solution is the same within ``tol`` either way. Shrinking saves kernel evaluations, so it
         is used with the row cache and in ``libsvm_compat`` mode; when the kernel of each pair
-        of classes is in memory the default mode solves without it, which is faster in NumPy
-        (:mod:`ebantenna.ml.smo_whole`).
+        of classes is in memory the default mode solves without it, which is faster in NumPy.
+        ``solver="reference"`` never shrinks and refuses ``shrinking=True``.
     probability : bool, default=False
         Also fit Platt's sigmoids on five-fold cross-validated decision values (five more fits
         per pair of classes), for :meth:`predict_proba`. As in scikit-learn, :meth:`predict`
@@ -87,7 +91,9 @@ class SVC(ClassifierMixin, BaseEstimator):
         kernel matrix is built with one matrix product when it fits (in float64 if that fits
         too, unless ``libsvm_compat``), else rows are computed on demand and the least recently
         used are dropped. With shrinking the solver also keeps the float64 rows it has used
-        since the last reordering, up to :data:`ebantenna.ml.smo.ROW_MEMO_BYTES` (64 MB).
+        since the last reordering, up to 64 MB. ``solver="reference"`` holds the kernel matrix
+        of each pair of classes as one float64 array, whatever ``cache_size`` (with the entries
+        of the storage above).
     class_weight : dict or 'balanced', default=None
         Multiply ``C`` by this weight for the samples of each class.
     verbose : bool, default=False
@@ -117,6 +123,15 @@ class SVC(ClassifierMixin, BaseEstimator):
         :mod:`ebantenna.ml.kernels`): its path, like libsvm's, changes when every feature is
         shifted by the same amount. Predictions use centred points in both modes, as close as a
         GEMM gets to libsvm's direct differences when it predicts.
+    solver : {'auto', 'reference'}, default='auto'
+        Which SMO solves the dual problems. 'auto': the engines, chosen by the other parameters
+        (libsvm's solver with shrinking and a row cache, or a run over the whole kernel of a
+        pair of classes), fast and, with ``libsvm_compat``, libsvm's to the last digits.
+        'reference': the textbook loop of :mod:`ebantenna.ml.smo`
+        (:func:`~ebantenna.ml.smo.reference_smo`), slower, to read and to step through; it
+        finds the same support vectors and decision values within what ``tol`` allows. It
+        follows neither libsvm's conventions nor its shrinking: ``libsvm_compat=True`` or
+        ``shrinking=True`` with it raise a ``ValueError``.
 
     Attributes
     ----------
@@ -151,6 +166,12 @@ class SVC(ClassifierMixin, BaseEstimator):
     1.0
     >>> clf.predict([[-2.0, -2.0], [2.0, 2.0]])
     array([0, 1])
+
+    The textbook SMO finds the same classifier:
+
+    >>> ref = SVC(kernel="rbf", C=1.0, solver="reference", shrinking=False).fit(X, y)
+    >>> bool(np.array_equal(ref.support_, clf.support_))
+    True
     """
 
     # scikit-learn's constraints and wording for the parameters shared with sklearn.svm.SVC;
@@ -173,6 +194,7 @@ class SVC(ClassifierMixin, BaseEstimator):
         "random_state": ["random_state"],
         "selection": [StrOptions({"second-order", "first-order"})],
         "libsvm_compat": ["boolean"],
+        "solver": [StrOptions({"auto", "reference"})],
     }
 
     #: Every attribute that :meth:`fit` sets (see :mod:`ebantenna.ml.fitted`).
@@ -215,6 +237,7 @@ class SVC(ClassifierMixin, BaseEstimator):
         random_state=None,
         selection="second-order",
         libsvm_compat=False,
+        solver="auto",
     ):
         self.C = C
         self.kernel = kernel
@@ -233,6 +256,7 @@ class SVC(ClassifierMixin, BaseEstimator):
         self.random_state = random_state
         self.selection = selection
         self.libsvm_compat = libsvm_compat
+        self.solver = solver
 
     # --------------------------------------------------------------------- fit
     @_fit_context(prefer_skip_nested_validation=True)
@@ -253,8 +277,53 @@ class SVC(ClassifierMixin, BaseEstimator):
         -------
         self
         """
+        self._check_combination()
+        X, y_idx, sw = self._training_data(X, y, sample_weight)
+        classes = self.classes_
+        self._gamma = resolve_gamma(self.gamma, X)
+        given = self._given_kernel_matrix(X)  # precomputed or callable: the whole matrix
+        kern = None if given is not None else self._kernel()
+        c_vec = float(self.C) * self.class_weight_[y_idx] * sw
+        keep = c_vec > 0
+        cache_bytes = int(float(self.cache_size) * 2**20)
+        base = LIBSVM if self.libsvm_compat else DEFAULT
+        dtype = base.kernel_dtype(int(keep.sum()), cache_bytes)
+        members = [np.flatnonzero((y_idx == c) & keep) for c in range(classes.size)]
+        if any(m.size == 0 for m in members):
+            raise ValueError("every class needs at least one sample with a positive weight")
+        kernels = PairKernels(X, members, kern, dtype, cache_bytes, given=given,
+                              libsvm_compat=self.libsvm_compat)
+        diag = np.diag(given).astype(np.float64) if given is not None else kern.diagonal(X)
+        policy = fit_policy(self.libsvm_compat, self.selection, bool(self.shrinking),
+                            whole_kernel=kernels.stored)
+        # -1: no cap, as in scikit-learn's libsvm ("set max_iter to -1 to disable the mechanism"
+        # in its Solver::Solve; upstream libsvm stops at max(1e7, 100 n) updates instead)
+        max_iter = math.inf if self.max_iter == -1 else int(self.max_iter)
+        coefs, rhos, n_iter, status = self._solve_pairs(kernels, members, c_vec, diag, policy,
+                                                         max_iter)
+        self._store(X, classes, members, coefs, rhos, n_iter)
+        self.probA_ = self.probB_ = np.empty(0)
+        if self.probability:
+            self._fit_probability(X, members, given, kern, dtype, c_vec, diag, policy, max_iter)
+        self.fit_status_ = status
+        self.shape_fit_ = X.shape
+        self._check_solution(status)
+        return self
+
+    def _check_combination(self):
+        """Refuse the parameters that do not go together (their types are checked already)."""
         if self.break_ties and self.decision_function_shape == "ovo":
             raise ValueError("break_ties must be False when decision_function_shape is 'ovo'")
+        if self.solver == "reference":
+            for name in ("libsvm_compat", "shrinking"):
+                if getattr(self, name):
+                    raise ValueError(f"{name}=True needs solver='auto': the reference SMO "
+                                     f"follows neither libsvm's conventions nor its shrinking; "
+                                     f"set {name}=False")
+
+    def _training_data(self, X, y, sample_weight):
+        """Validated ``X``, the class index of each sample and the sample weights; sets
+        ``classes_`` and ``class_weight_``."""
         X, y = validate_data(self, X, y, dtype=np.float64, order="C", accept_sparse="csr")
         X = self._sparse_input(X)
         if self.kernel == "precomputed" and X.shape[0] != X.shape[1]:
@@ -269,33 +338,17 @@ class SVC(ClassifierMixin, BaseEstimator):
                 f"The number of classes has to be greater than one; got {classes.size} class"
             )
         self.class_weight_ = compute_class_weight(self.class_weight, classes=classes, y=y)
-        sw = _check_sample_weight(sample_weight, X, dtype=np.float64)
-        self._gamma = resolve_gamma(self.gamma, X)
-        given = self._given_kernel_matrix(X)  # precomputed or callable: the whole matrix
-        kern = None if given is not None else self._kernel()
-        c_vec = float(self.C) * self.class_weight_[y_idx] * sw
-        keep = c_vec > 0
-        cache_bytes = int(float(self.cache_size) * 2**20)
-        n_keep = int(keep.sum())
-        base = LIBSVM if self.libsvm_compat else DEFAULT
-        dtype = base.kernel_dtype(n_keep, cache_bytes)
-        members = [np.flatnonzero((y_idx == c) & keep) for c in range(classes.size)]
-        if any(m.size == 0 for m in members):
-            raise ValueError("every class needs at least one sample with a positive weight")
-        kernels = PairKernels(X, members, kern, dtype, cache_bytes, given=given,
-                              libsvm_compat=self.libsvm_compat)
-        diag = np.diag(given).astype(np.float64) if given is not None else kern.diagonal(X)
-        policy = fit_policy(self.libsvm_compat, self.selection, bool(self.shrinking),
-                            whole_kernel=kernels.stored)
-        # -1: no cap, as in scikit-learn's libsvm ("set max_iter to -1 to disable the mechanism"
-        # in its Solver::Solve; upstream libsvm stops at max(1e7, 100 n) updates instead)
-        max_iter = math.inf if self.max_iter == -1 else int(self.max_iter)
+        return X, y_idx, _check_sample_weight(sample_weight, X, dtype=np.float64)
+
+    def _solve_pairs(self, kernels, members, c_vec, diag, policy, max_iter):
+        """One binary dual per pair of classes: ``(coefs, rhos, n_iter, status)``, the pairs in
+        libsvm's order for ``rhos`` and ``n_iter``."""
+        classes = self.classes_
         coefs, solved, status = {}, {}, 0
         for a, b, rows in kernels.pairs():  # in the order that reuses kernel blocks
             idx = np.concatenate([members[a], members[b]])
             ys = np.concatenate([np.ones(members[a].size), -np.ones(members[b].size)])
-            res = solve_smo(rows, ys, c_vec[idx], diagonal=diag[idx], tol=float(self.tol),
-                            max_iter=max_iter, policy=policy)
+            res = self._solve_dual(rows, ys, c_vec[idx], diag[idx], policy, max_iter)
             if self.verbose:
                 logger.info("classes (%r, %r): %d updates, %d support vectors", classes[a],
                             classes[b], res.n_iter, int(np.count_nonzero(res.alpha)))
@@ -305,24 +358,30 @@ class SVC(ClassifierMixin, BaseEstimator):
             solved[a, b] = res
         order = sorted(solved)  # libsvm's order of the pairs: (0, 1), (0, 2), ..., (1, 2), ...
         rhos = np.array([solved[pair].rho for pair in order])
-        n_iter = [solved[pair].n_iter for pair in order]
-        self._store(X, classes, members, coefs, rhos, n_iter)
-        self.probA_ = self.probB_ = np.empty(0)
-        if self.probability:
-            self._fit_probability(X, members, given, kern, dtype, c_vec, diag, policy, max_iter)
-        self.fit_status_ = status
-        self.shape_fit_ = X.shape
+        return coefs, rhos, [solved[pair].n_iter for pair in order], status
+
+    def _solve_dual(self, rows, ys, C, diagonal, policy, max_iter):
+        """One binary dual, on the engines or, with ``solver='reference'``, by the reference
+        loop on the float64 kernel matrix of its points."""
+        if self.solver == "reference":
+            points = np.arange(ys.size)
+            return reference_smo(rows.block64(points, points), ys, C, tol=float(self.tol),
+                                 max_iter=max_iter, selection=self.selection)
+        return solve_smo(rows, ys, C, diagonal=diagonal, tol=float(self.tol), max_iter=max_iter,
+                         policy=policy)
+
+    def _check_solution(self, status):
+        """Warn if a problem stopped at ``max_iter``; refuse coefficients that are not finite."""
         if status:
             warnings.warn(
                 f"Solver terminated early (max_iter={self.max_iter}).  Consider pre-processing "
                 "your data with StandardScaler or MinMaxScaler.",
                 ConvergenceWarning,
-                stacklevel=2,
+                stacklevel=3,
             )
         if not (np.isfinite(self._dual_coef_).all() and np.isfinite(self._intercept_).all()):
             raise ValueError("The dual coefficients or intercepts are not finite. The input data "
                              "may contain large values and need to be preprocessed.")
-        return self
 
     def _store(self, X, classes, members, coefs, rhos, n_iter):
         """Arrange the pairwise solutions in libsvm's (and scikit-learn's) layout."""
@@ -357,8 +416,7 @@ class SVC(ClassifierMixin, BaseEstimator):
 
         def solve(points, ys, K):
             rows = KernelRows(None, kern, dtype, 0, full=K)
-            res = solve_smo(rows, ys, c_vec[points], diagonal=diag[points], tol=float(self.tol),
-                            max_iter=max_iter, policy=policy)
+            res = self._solve_dual(rows, ys, c_vec[points], diag[points], policy, max_iter)
             return res.alpha * ys, res.rho
 
         rs = self.random_state

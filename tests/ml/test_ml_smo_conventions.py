@@ -7,8 +7,9 @@ import pytest
 from sklearn.svm import SVC as LibSVC
 from smo_reference import assert_follows_reference, iteration_slack
 
-from ebantenna.ml.kernels import Kernel, resolve_gamma
-from ebantenna.ml.smo import DEFAULT, LIBSVM, KernelRows, solve_smo
+from ebantenna.ml.kernels import Kernel, KernelRows, resolve_gamma
+from ebantenna.ml.smo import solve_smo
+from ebantenna.ml.smo_policy import DEFAULT, LIBSVM
 
 
 def _problem(seed):

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from ebantenna.ml import SVC
-from ebantenna.ml.kernels import Kernel
-from ebantenna.ml.smo import DEFAULT, LIBSVM, KernelRows, SMOPolicy, solve_smo
-from ebantenna.ml.smo_policy import fit_policy
+from ebantenna.ml.kernels import Kernel, KernelRows
+from ebantenna.ml.smo import solve_smo
+from ebantenna.ml.smo_policy import DEFAULT, LIBSVM, SMOPolicy, fit_policy
 
 
 def test_presets_name_each_convention():

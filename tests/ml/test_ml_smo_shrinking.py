@@ -5,9 +5,11 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from ebantenna.ml import smo
+from ebantenna.ml import _smo_state
+from ebantenna.ml._smo_state import shrink_order
 from ebantenna.ml.kernels import Kernel, KernelRows
-from ebantenna.ml.smo import LIBSVM, shrink_order, solve_smo
+from ebantenna.ml.smo import solve_smo
+from ebantenna.ml.smo_policy import LIBSVM
 
 
 def _libsvm_do_shrinking_order(shrink):
@@ -76,7 +78,7 @@ def test_kept_rows_do_not_change_the_solution(monkeypatch):
     rows, y, diagonal = _shrinking_problem()
     C = np.full(y.size, 4.0)
     kept = solve_smo(rows, y, C, diagonal=diagonal, policy=LIBSVM)
-    monkeypatch.setattr(smo, "ROW_MEMO_BYTES", 0)
+    monkeypatch.setattr(_smo_state, "ROW_MEMO_BYTES", 0)
     few = solve_smo(rows, y, C, diagonal=diagonal, policy=LIBSVM)
     assert kept.converged and kept.n_iter > 2000
     assert kept.n_iter == few.n_iter

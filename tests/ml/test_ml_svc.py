@@ -10,8 +10,9 @@ from sklearn.svm import SVC as LibSVC
 from smo_reference import assert_follows_reference, iteration_slack
 
 from ebantenna.ml import SVC
-from ebantenna.ml.kernels import Kernel
-from ebantenna.ml.smo import KernelRows, SMOPolicy, solve_smo
+from ebantenna.ml.kernels import Kernel, KernelRows
+from ebantenna.ml.smo import solve_smo
+from ebantenna.ml.smo_policy import SMOPolicy
 
 
 def _data(n=240, d=6, k=3, seed=0, noise=0.6):

@@ -1,4 +1,5 @@
-"""The SMO loop without shrinking (``ebantenna.ml.smo_whole``) against the general loop."""
+"""The two SMO engines: the whole-kernel run (``_smo_whole``) against the general one
+(``_smo_state``), to the last bit, and libsvm's two-variable step (``_smo_step``)."""
 
 from dataclasses import replace
 
@@ -6,9 +7,10 @@ import numpy as np
 import pytest
 
 from ebantenna.ml import smo
+from ebantenna.ml._smo_step import pair_step
+from ebantenna.ml._smo_whole import runs_whole
 from ebantenna.ml.kernels import Kernel, KernelRows
 from ebantenna.ml.smo_policy import DEFAULT, LIBSVM
-from ebantenna.ml.smo_whole import pair_step, runs_whole
 
 
 def _problem(seed):

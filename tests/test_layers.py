@@ -1,4 +1,4 @@
-"""The package's layers: which part may import which, and how long a module may grow.
+"""The package's layers: which part may import which, and how long a function may grow.
 
 ``MAY_IMPORT`` below is the one written form of the import rules (``docs/architecture.rst`` shows
 the same table, and a test here keeps the two equal). A part is a top-level module of the package
@@ -6,6 +6,14 @@ the same table, and a test here keeps the two equal). A part is a top-level modu
 is a part of its own, the one corner of ``device`` that may drive the simulator, and every
 ``_cli`` module belongs to the command layer ``cli`` wherever it sits. Every import
 statement counts, those inside functions too (the command-line modules import lazily).
+
+Below the parts, the modules: no two import each other (directly or round a longer circle), and no
+module takes a private name (``_name``) from another. A private *module* (``ml/_smo_whole.py``)
+is an engine behind its part's public interface: its own part may import its public names.
+
+The unit a reader takes in is a function, so the budget is on functions: at most
+``FUNCTION_BUDGET`` lines of code (the docstring is teaching and does not count); a longer one
+is listed in ``LONG_FUNCTIONS`` with its reason. A module's length is only a warning.
 """
 
 from __future__ import annotations
@@ -45,8 +53,15 @@ MAY_IMPORT: dict[str, frozenset[str]] = {
     "__main__": frozenset({"cli"}),
 }
 
-#: A module past this many lines is split: a reader should find each concept in a short file.
-MAX_LINES = 500
+#: A module past this many lines is worth a look (a warning, never a failure: teaching content is
+#: never cut to fit a number).
+MODULE_LINES_HINT = 500
+
+#: Lines of code a function may have, its docstring not counted: what a reader sees on one screen.
+FUNCTION_BUDGET = 60
+
+#: "module:qualified.name" -> why it stays longer than the budget.
+LONG_FUNCTIONS: dict[str, str] = {}
 
 PACKAGE = Path(__file__).resolve().parent.parent / "ebantenna"
 MODULES = sorted(PACKAGE.rglob("*.py"))
@@ -132,10 +147,123 @@ def test_no_private_name_of_another_part(path):
     assert not wrong, f"{module_name(path)} reaches into private names: {wrong}"
 
 
+def long_modules() -> list[tuple[str, int]]:
+    """Modules past ``MODULE_LINES_HINT`` lines, longest first (``conftest.py`` lists them after
+    every run: a hint to look, never a failure)."""
+    sizes = [(module_name(p), len(p.read_text().splitlines())) for p in MODULES]
+    return sorted(((m, n) for m, n in sizes if n > MODULE_LINES_HINT), key=lambda r: -r[1])
+
+
+def code_lines(node: ast.FunctionDef | ast.AsyncFunctionDef) -> int:
+    """Lines of a function from ``def`` to its end, less its docstring."""
+    n = node.end_lineno - node.lineno + 1
+    first = node.body[0]
+    if (isinstance(first, ast.Expr) and isinstance(first.value, ast.Constant)
+            and isinstance(first.value.value, str)):
+        n -= first.end_lineno - first.lineno + 1
+    return n
+
+
+def functions(path: Path) -> dict[str, int]:
+    """``{"module:qualified.name": code lines}`` of every function in ``path``."""
+    found = {}
+
+    def visit(node, prefix):
+        for child in ast.iter_child_nodes(node):
+            if isinstance(child, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                name = f"{prefix}{child.name}"
+                found[f"{module_name(path)}:{name}"] = code_lines(child)
+                visit(child, f"{name}.<locals>.")
+            elif isinstance(child, ast.ClassDef):
+                visit(child, f"{prefix}{child.name}.")
+    visit(ast.parse(path.read_text(), str(path)), "")
+    return found
+
+
+ALL_FUNCTIONS = {k: v for p in MODULES for k, v in functions(p).items()}
+
+
+def test_functions_fit_the_budget():
+    over = {k: n for k, n in ALL_FUNCTIONS.items()
+            if n > FUNCTION_BUDGET and k not in LONG_FUNCTIONS}
+    assert not over, (f"functions over {FUNCTION_BUDGET} lines of code: split them into named "
+                      f"steps, or list them in LONG_FUNCTIONS with the reason: {over}")
+
+
+def test_every_long_function_listed_is_still_long():
+    stale = [k for k in LONG_FUNCTIONS if ALL_FUNCTIONS.get(k, 0) <= FUNCTION_BUDGET]
+    assert not stale, f"LONG_FUNCTIONS entries that are gone or fit the budget now: {stale}"
+
+
+def test_code_lines_leave_out_the_docstring():
+    tree = ast.parse('def f():\n    """One.\n\n    Two.\n    """\n    a = 1\n    return a\n')
+    assert code_lines(tree.body[0]) == 3  # def, a = 1, return a
+    tree = ast.parse("def g():\n    return 1\n")
+    assert code_lines(tree.body[0]) == 2
+
+
+def module_graph() -> dict[str, set[str]]:
+    """Module -> the package modules it imports (every statement, inside functions too)."""
+    names = {module_name(p) for p in MODULES}
+    return {module_name(p): {t for _, t, _ in imports(p) if t in names and t != module_name(p)}
+            for p in MODULES}
+
+
+def circles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """The strongly connected components with more than one module (Tarjan, iteratively)."""
+    index, low, on_stack, stack, found = {}, {}, set(), [], []
+    for root in graph:
+        if root in index:
+            continue
+        work = [(root, iter(sorted(graph[root])))]
+        index[root] = low[root] = len(index)
+        stack.append(root)
+        on_stack.add(root)
+        while work:
+            node, children = work[-1]
+            child = next(children, None)
+            if child is not None:
+                if child not in index:
+                    index[child] = low[child] = len(index)
+                    stack.append(child)
+                    on_stack.add(child)
+                    work.append((child, iter(sorted(graph[child]))))
+                elif child in on_stack:
+                    low[node] = min(low[node], index[child])
+                continue
+            work.pop()
+            if work:
+                low[work[-1][0]] = min(low[work[-1][0]], low[node])
+            if low[node] == index[node]:
+                component = []
+                while True:
+                    member = stack.pop()
+                    on_stack.discard(member)
+                    component.append(member)
+                    if member == node:
+                        break
+                if len(component) > 1:
+                    found.append(sorted(component))
+    return found
+
+
+def test_circles_are_found():
+    graph = {"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}, "e": set()}
+    assert circles(graph) == [["a", "b", "c"]]
+    assert circles({"a": {"b"}, "b": set()}) == []
+
+
+def test_no_import_circle():
+    found = circles(module_graph())
+    assert not found, f"modules that import each other (directly or round a circle): {found}"
+
+
 @pytest.mark.parametrize("path", MODULES, ids=lambda p: module_name(p))
-def test_no_module_grows_past_the_limit(path):
-    n = len(path.read_text().splitlines())
-    assert n <= MAX_LINES, f"{module_name(path)}: {n} lines (at most {MAX_LINES})"
+def test_no_private_name_of_another_module(path):
+    here = module_name(path)
+    wrong = [f"line {line}: {target} {names}" for line, target, names in imports(path)
+             if target != here and any(n.startswith("_") and n != "__version__" for n in names)]
+    assert not wrong, f"{here} takes private names of another module: {wrong}"
 
 
 #: File names that mean the same thing wherever they stand: the package conventions, and a chip's

@@ -66,18 +66,19 @@ def test_ml_speed_parts_count_the_solver_updates_and_restore_what_they_clock():
     for p in parts:
         assert p["seconds"] >= 0
         assert p["share"] == p["seconds"] / (2.0 if p["part"].startswith("SVC") else 4.0)
-    assert "3 mini-batches" in rows["MLP adam, 1 BLAS thread: gathers and the two 64x8x53 products"]["note"]
+    products = rows["MLP adam, 1 BLAS thread: gathers and the two 64x8x53 products"]
+    assert "3 mini-batches" in products["note"]
 
 
 def test_clocked_restores_the_attribute_when_the_call_raises():
     from types import SimpleNamespace
 
-    from ebantenna.bench.ml_speed import _clocked
+    from ebantenna.bench._timing import clocked
 
     def fails():
         raise RuntimeError("boom")
 
     owner, totals = SimpleNamespace(f=fails), {}
-    with pytest.raises(RuntimeError, match="boom"), _clocked(owner, "f", totals):
+    with pytest.raises(RuntimeError, match="boom"), clocked(owner, "f", totals):
         owner.f()
     assert owner.f is fails and "f" not in totals

@@ -82,3 +82,17 @@ def test_clocked_restores_the_attribute_when_the_call_raises():
     with pytest.raises(RuntimeError, match="boom"), clocked(owner, "f", totals):
         owner.f()
     assert owner.f is fails and "f" not in totals
+
+
+def test_compare_alternates_the_sides_and_keeps_the_best_time_of_each():
+    from ebantenna.bench import ml_speed
+
+    calls = []
+    row = ml_speed.compare("t", lambda: calls.append("ours") or 1.0,
+                           lambda: calls.append("theirs") or 0.5, lambda m: 2 * m, repeat=3)
+    assert calls == ["ours", "theirs"] * 3  # alternated, so load on the machine hits both
+    assert row["task"] == "t" and row["ours_accuracy"] == 2.0 and row["sklearn_accuracy"] == 1.0
+    assert row["ours_seconds"] > 0 and row["sklearn_seconds"] > 0
+    assert row["ratio"] == row["ours_seconds"] / row["sklearn_seconds"]  # the same division
+    with pytest.raises(ValueError, match="repeat must be >= 1"):
+        ml_speed.run(repeat=0)

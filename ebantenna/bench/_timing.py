@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import time
+from contextlib import contextmanager
 
-__all__ = ["best_time"]
+__all__ = ["best_time", "clocked"]
 
 
 def best_time(fn, repeat: int, clock=time.perf_counter):
@@ -18,3 +19,36 @@ def best_time(fn, repeat: int, clock=time.perf_counter):
         out = fn()
         best = min(best, clock() - start)
     return best, out
+
+
+@contextmanager
+def clocked(owner, name: str, totals: dict, count=None):
+    """While inside, add the wall time (s) of every call of ``owner.name`` to ``totals[name]``
+    (and ``count(result)`` to ``totals[name + ' count']``); the attribute is restored on exit,
+    also when a call raises.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> owner, totals = SimpleNamespace(double=lambda x: 2 * x), {}
+    >>> with clocked(owner, "double", totals, count=lambda out: out):
+    ...     owner.double(3), owner.double(4)
+    (6, 8)
+    >>> totals["double count"], totals["double"] >= 0
+    (14, True)
+    """
+    inner = getattr(owner, name)
+
+    def timed(*args, **kwargs):
+        start = time.perf_counter()
+        out = inner(*args, **kwargs)
+        totals[name] = totals.get(name, 0.0) + time.perf_counter() - start
+        if count is not None:
+            totals[name + " count"] = totals.get(name + " count", 0) + count(out)
+        return out
+
+    setattr(owner, name, timed)
+    try:
+        yield totals
+    finally:
+        setattr(owner, name, inner)

@@ -49,7 +49,6 @@ from __future__ import annotations
 import argparse
 import time
 import warnings
-from contextlib import contextmanager
 
 import numpy as np
 from sklearn.exceptions import ConvergenceWarning
@@ -57,7 +56,7 @@ from sklearn.neural_network import MLPClassifier as SkMLP
 from sklearn.svm import SVC as LibSVC
 from threadpoolctl import threadpool_limits
 
-from ebantenna.bench._timing import best_time
+from ebantenna.bench._timing import best_time, clocked
 from ebantenna.ml import SVC, MLPClassifier
 from ebantenna.ml import svc as svc_module
 from ebantenna.ml.backprop import activation_derivative
@@ -65,7 +64,8 @@ from ebantenna.ml.kernels import Kernel
 from ebantenna.ml.optimizers import Adam
 from ebantenna.report import text_table
 
-__all__ = ["spectra_like", "run", "where_time_goes", "to_text", "main"]
+__all__ = ["spectra_like", "run", "compare", "svc_rows", "mlp_rows", "where_time_goes", "to_text",
+           "main"]
 
 
 def spectra_like(n, d, k, seed):
@@ -76,6 +76,10 @@ def spectra_like(n, d, k, seed):
     y = rng.integers(0, k, n)
     X = np.abs(centers[y] * 0.55 + rng.normal(size=(n, d)))
     return X, y
+
+
+#: The row whose scikit-learn time the MLP's parts are shares of (both sides on one thread).
+ADAM_ONE_THREAD = "MLP adam, both sides on 1 BLAS thread"
 
 
 def run(quick: bool = False, repeat: int = 2) -> dict:
@@ -102,85 +106,90 @@ def run(quick: bool = False, repeat: int = 2) -> dict:
     X, y = spectra_like(n + n // 4, d, k, seed=0)
     X /= X.max()
     Xtr, ytr, Xte, yte = X[:n], y[:n], X[n:], y[n:]
-    rows = []
-
-    def pair(name, ours, theirs, score):
-        t_ours = t_theirs = np.inf
-        m_ours = m_theirs = None
-        for _ in range(repeat):  # alternate, keep the best of each
-            t, m_ours = best_time(ours, 1)
-            t_ours = min(t_ours, t)
-            t, m_theirs = best_time(theirs, 1)
-            t_theirs = min(t_theirs, t)
-        rows.append({"task": name, "ours_seconds": t_ours, "sklearn_seconds": t_theirs,
-                     "ratio": t_ours / t_theirs, "ours_accuracy": score(m_ours),
-                     "sklearn_accuracy": score(m_theirs)})
-        return rows[-1]
-
+    epochs = 20 if quick else 50
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ConvergenceWarning)
+        warnings.simplefilter("ignore", FutureWarning)  # probability=True, scikit-learn >= 1.9
         acc = lambda m: m.score(Xte, yte)  # noqa: E731
-
-        def one_thread(estimator):
-            with threadpool_limits(1):
-                return estimator.fit(Xtr, ytr)
-
-        svc = pair(f"SVC rbf fit, {n}x{d}, {k} classes",
-                   lambda: SVC().fit(Xtr, ytr), lambda: LibSVC().fit(Xtr, ytr), acc)
-        pair("SVC rbf fit, ours on 1 BLAS thread", lambda: one_thread(SVC()),
-             lambda: LibSVC().fit(Xtr, ytr), acc)
-        pair("SVC rbf fit, libsvm_compat=True",  # both sides shrink, as by default
-             lambda: SVC(libsvm_compat=True).fit(Xtr, ytr),
-             lambda: LibSVC().fit(Xtr, ytr), acc)
-        # probability=True: five cross-validation fits per pair of classes on each side
-        warnings.simplefilter("ignore", FutureWarning)  # scikit-learn >= 1.9 deprecates it
-        pair("SVC rbf fit, probability=True",
-             lambda: SVC(probability=True, random_state=0).fit(Xtr, ytr),
-             lambda: LibSVC(probability=True, random_state=0).fit(Xtr, ytr), acc)
-        epochs = 20 if quick else 50
-        common = dict(hidden_layer_sizes=(53,), activation="tanh", max_iter=epochs, tol=0.0,
-                      n_iter_no_change=10**6, random_state=0, alpha=1e-4)
-        pair(f"MLP 53 tanh, full-batch gd, {epochs} epochs",
-             lambda: MLPClassifier(solver="gd", learning_rate_init=0.1, **common).fit(Xtr, ytr),
-             lambda: SkMLP(solver="sgd", momentum=0.0, batch_size=n, shuffle=False,
-                           learning_rate_init=0.1, **common).fit(Xtr, ytr), acc)
-        pair(f"MLP 53 tanh, adam batch 200, {epochs} epochs",
-             lambda: MLPClassifier(solver="adam", batch_size=200, **common).fit(Xtr, ytr),
-             lambda: SkMLP(solver="adam", batch_size=200, **common).fit(Xtr, ytr), acc)
-        adam = pair("MLP adam, both sides on 1 BLAS thread",
-                    lambda: one_thread(MLPClassifier(solver="adam", batch_size=200, **common)),
-                    lambda: one_thread(SkMLP(solver="adam", batch_size=200, **common)), acc)
-        pair(f"MLP 53 tanh, sgd invscaling batch 200, {epochs} epochs",
-             lambda: MLPClassifier(solver="sgd", batch_size=200, learning_rate="invscaling",
-                                   learning_rate_init=0.5, **common).fit(Xtr, ytr),
-             lambda: SkMLP(solver="sgd", batch_size=200, learning_rate="invscaling",
-                           learning_rate_init=0.5, **common).fit(Xtr, ytr), acc)
-        pair(f"MLP 53 tanh, lbfgs, {epochs} iterations",
-             lambda: MLPClassifier(solver="lbfgs", **common).fit(Xtr, ytr),
-             lambda: SkMLP(solver="lbfgs", **common).fit(Xtr, ytr), acc)
-        parts = where_time_goes(Xtr, ytr, svc["sklearn_seconds"], adam["sklearn_seconds"], epochs)
-    return {"rows": rows, "parts": parts}
+        svc = svc_rows(Xtr, ytr, acc, repeat)
+        mlp = mlp_rows(Xtr, ytr, acc, repeat, epochs)
+        adam = next(r for r in mlp if r["task"] == ADAM_ONE_THREAD)
+        parts = where_time_goes(Xtr, ytr, svc[0]["sklearn_seconds"], adam["sklearn_seconds"],
+                                epochs)
+    return {"rows": svc + mlp, "parts": parts}
 
 
-@contextmanager
-def _clocked(owner, name: str, totals: dict, count=None):
-    """While inside, add the wall time of every call of ``owner.name`` to ``totals[name]`` (and
-    ``count(result)`` to ``totals[name + ' count']``); the attribute is restored on exit."""
-    inner = getattr(owner, name)
+def compare(task: str, ours, theirs, score, repeat: int) -> dict:
+    """One row of :func:`run`: ``ours()`` and ``theirs()`` timed alternately ``repeat`` times,
+    the best time (s) of each kept, and ``score`` of each side's last fitted model."""
+    t_ours = t_theirs = np.inf
+    m_ours = m_theirs = None
+    for _ in range(repeat):  # alternate, keep the best of each
+        t, m_ours = best_time(ours, 1)
+        t_ours = min(t_ours, t)
+        t, m_theirs = best_time(theirs, 1)
+        t_theirs = min(t_theirs, t)
+    return {"task": task, "ours_seconds": t_ours, "sklearn_seconds": t_theirs,
+            "ratio": t_ours / t_theirs, "ours_accuracy": score(m_ours),
+            "sklearn_accuracy": score(m_theirs)}
 
-    def timed(*args, **kwargs):
-        start = time.perf_counter()
-        out = inner(*args, **kwargs)
-        totals[name] = totals.get(name, 0.0) + time.perf_counter() - start
-        if count is not None:
-            totals[name + " count"] = totals.get(name + " count", 0) + count(out)
-        return out
 
-    setattr(owner, name, timed)
-    try:
-        yield totals
-    finally:
-        setattr(owner, name, inner)
+def _on_one_thread(estimator, X, y):
+    """``estimator.fit(X, y)`` with BLAS limited to one thread."""
+    with threadpool_limits(1):
+        return estimator.fit(X, y)
+
+
+def svc_rows(X, y, score, repeat: int) -> list[dict]:
+    """Our ``SVC`` against libsvm's: the default, on one BLAS thread, ``libsvm_compat`` and
+    ``probability=True``; the first row is the reference of :func:`where_time_goes`."""
+    n, d = X.shape
+    k = len(np.unique(y))
+    rows = [
+        compare(f"SVC rbf fit, {n}x{d}, {k} classes",
+                lambda: SVC().fit(X, y), lambda: LibSVC().fit(X, y), score, repeat),
+        compare("SVC rbf fit, ours on 1 BLAS thread", lambda: _on_one_thread(SVC(), X, y),
+                lambda: LibSVC().fit(X, y), score, repeat),
+        compare("SVC rbf fit, libsvm_compat=True",  # both sides shrink, as by default
+                lambda: SVC(libsvm_compat=True).fit(X, y),
+                lambda: LibSVC().fit(X, y), score, repeat),
+    ]
+    # probability=True: five cross-validation fits per pair of classes on each side
+    rows.append(compare("SVC rbf fit, probability=True",
+                        lambda: SVC(probability=True, random_state=0).fit(X, y),
+                        lambda: LibSVC(probability=True, random_state=0).fit(X, y),
+                        score, repeat))
+    return rows
+
+
+def mlp_rows(X, y, score, repeat: int, epochs: int) -> list[dict]:
+    """Our ``MLPClassifier`` against scikit-learn's with the same network, solver and epochs:
+    full-batch gradient descent, Adam (also with both sides on one BLAS thread), SGD with
+    scikit-learn's 'invscaling' schedule and L-BFGS."""
+    n = len(X)
+    common = dict(hidden_layer_sizes=(53,), activation="tanh", max_iter=epochs, tol=0.0,
+                  n_iter_no_change=10**6, random_state=0, alpha=1e-4)
+    pairs = [
+        (f"MLP 53 tanh, full-batch gd, {epochs} epochs",
+         lambda: MLPClassifier(solver="gd", learning_rate_init=0.1, **common).fit(X, y),
+         lambda: SkMLP(solver="sgd", momentum=0.0, batch_size=n, shuffle=False,
+                       learning_rate_init=0.1, **common).fit(X, y)),
+        (f"MLP 53 tanh, adam batch 200, {epochs} epochs",
+         lambda: MLPClassifier(solver="adam", batch_size=200, **common).fit(X, y),
+         lambda: SkMLP(solver="adam", batch_size=200, **common).fit(X, y)),
+        (ADAM_ONE_THREAD,
+         lambda: _on_one_thread(MLPClassifier(solver="adam", batch_size=200, **common), X, y),
+         lambda: _on_one_thread(SkMLP(solver="adam", batch_size=200, **common), X, y)),
+        (f"MLP 53 tanh, sgd invscaling batch 200, {epochs} epochs",
+         lambda: MLPClassifier(solver="sgd", batch_size=200, learning_rate="invscaling",
+                               learning_rate_init=0.5, **common).fit(X, y),
+         lambda: SkMLP(solver="sgd", batch_size=200, learning_rate="invscaling",
+                       learning_rate_init=0.5, **common).fit(X, y)),
+        (f"MLP 53 tanh, lbfgs, {epochs} iterations",
+         lambda: MLPClassifier(solver="lbfgs", **common).fit(X, y),
+         lambda: SkMLP(solver="lbfgs", **common).fit(X, y)),
+    ]
+    return [compare(task, ours, theirs, score, repeat) for task, ours, theirs in pairs]
 
 
 def where_time_goes(X, y, svc_seconds: float, adam_seconds: float, epochs: int,
@@ -210,18 +219,25 @@ def where_time_goes(X, y, svc_seconds: float, adam_seconds: float, epochs: int,
         ``part``, ``seconds``, ``share`` (of scikit-learn's time) and ``note``; the SMO rows
         also ``updates``, the solver's updates over all pairs of classes.
     """
+    return (_svc_parts(X, y, svc_seconds)
+            + _mlp_parts(X, y, adam_seconds, epochs, batch_size))
+
+
+def _svc_parts(X, y, svc_seconds: float) -> list[dict]:
+    """Per mode, the faster of two fits with :meth:`Kernel.gram` and the SMO solver clocked:
+    kernel entries, the SMO loop (with its updates) and the rest, as shares of ``svc_seconds``."""
     parts = []
     for compat in (False, True):
         whole = np.inf
         for _ in range(2):  # the faster of two clocked fits
-            clocked: dict = {}
-            with (_clocked(Kernel, "gram", clocked),
-                  _clocked(svc_module, "solve_smo", clocked, count=lambda res: res.n_iter)):
+            times: dict = {}
+            with (clocked(Kernel, "gram", times),
+                  clocked(svc_module, "solve_smo", times, count=lambda res: res.n_iter)):
                 start = time.perf_counter()
                 SVC(libsvm_compat=compat).fit(X, y)
                 seconds = time.perf_counter() - start
             if seconds < whole:
-                whole, totals = seconds, clocked
+                whole, totals = seconds, times
         mode = "libsvm_compat" if compat else "default"
         updates = totals["solve_smo count"]
         for part, seconds, note in (
@@ -232,6 +248,13 @@ def where_time_goes(X, y, svc_seconds: float, adam_seconds: float, epochs: int,
             parts.append({"part": f"SVC {mode}: {part}", "seconds": seconds,
                           "share": seconds / svc_seconds, "note": note,
                           "updates": updates if part == "SMO loop" else None})
+    return parts
+
+
+def _mlp_parts(X, y, adam_seconds: float, epochs: int, batch_size: int) -> list[dict]:
+    """The Adam fit's work shared with scikit-learn's, each part timed alone on one BLAS
+    thread, as shares of ``adam_seconds``."""
+    parts = []
     rng = np.random.default_rng(0)
     n, d = X.shape
     hidden = 53

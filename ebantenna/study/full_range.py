@@ -130,23 +130,8 @@ def compute(ds, feats) -> FullRangeResult:
 
 def render(result: FullRangeResult, report, figures) -> None:
     """The error along the probe, one mode against two, and its table."""
-    import matplotlib.pyplot as plt
-
     r = result
-    pos, mae, _ = per_contact(r.error_two_cm, r.contact_two)
-    pos1, mae1, _ = per_contact(r.error_one_cm, r.contact_one)
-    fig, ax = plt.subplots(figsize=(8, 4))
-    ax.semilogy(100 * pos1, mae1, ".-", label="first mode only (the paper's feature)")
-    ax.semilogy(100 * pos, mae, ".-", label="two modes (full range)")
-    ax.axvline(100 * r.turning_point, color="0.5", ls="--", lw=1, label="turning point of f1")
-    ax.set_xlabel("contact distance (cm)")
-    ax.set_ylabel("mean absolute error (cm)")
-    ax.legend(fontsize="small")
-    ax.set_title("Contact distance along the whole probe")
-    name = figures.save(fig, "beyond_full_range_distance")
-
-    beyond = r.beyond
-    beyond1 = r.contact_one > r.region * r.length
+    name = _plot_error_along_probe(r, figures)
     report.heading("Beyond the paper: contact distance over the whole probe")
     report.paragraph(
         "The first mode's frequency rises and then falls along the probe, so it cannot place a "
@@ -158,36 +143,7 @@ def render(result: FullRangeResult, report, figures) -> None:
     report.table(
         ["estimator", "range", "MAE (cm)", f"MAE beyond {r.region:g} L (cm)",
          "95th percentile (cm)"],
-        [
-            [
-                "first mode only",
-                "whole probe",
-                f"{r.error_one_cm.mean():.2f}",
-                f"{r.error_one_cm[beyond1].mean():.2f}",
-                f"{np.percentile(r.error_one_cm, 95):.2f}",
-            ],
-            [
-                "two modes",
-                "whole probe",
-                f"{r.error_two_cm.mean():.2f}",
-                f"{r.error_two_cm[beyond].mean():.2f}" if np.any(beyond) else "-",
-                f"{np.percentile(r.error_two_cm, 95):.2f}",
-            ],
-            [
-                "two modes, calibrated per material (material known)",
-                "whole probe",
-                f"{r.error_known_material_cm.mean():.2f}",
-                f"{r.error_known_material_cm[beyond].mean():.2f}" if np.any(beyond) else "-",
-                f"{np.percentile(r.error_known_material_cm, 95):.2f}",
-            ],
-            [
-                "two modes, material fitted with the distance",
-                "whole probe",
-                f"{r.error_joint_cm.mean():.2f}",
-                f"{r.error_joint_cm[beyond].mean():.2f}" if np.any(beyond) else "-",
-                f"{np.percentile(r.error_joint_cm, 95):.2f}",
-            ],
-        ],
+        _error_rows(r),
     )
     report.paragraph(
         "The touched rod is part of the vibrating system: a soft PVC rod lowers the coupled "
@@ -208,3 +164,57 @@ def render(result: FullRangeResult, report, figures) -> None:
         "here)."
     )
     report.figure(name, "Mean absolute error along the probe: one mode against two")
+
+
+def _plot_error_along_probe(r: FullRangeResult, figures) -> str:
+    """The mean absolute error at each test contact, one mode against two."""
+    import matplotlib.pyplot as plt
+
+    pos, mae, _ = per_contact(r.error_two_cm, r.contact_two)
+    pos1, mae1, _ = per_contact(r.error_one_cm, r.contact_one)
+    fig, ax = plt.subplots(figsize=(8, 4))
+    ax.semilogy(100 * pos1, mae1, ".-", label="first mode only (the paper's feature)")
+    ax.semilogy(100 * pos, mae, ".-", label="two modes (full range)")
+    ax.axvline(100 * r.turning_point, color="0.5", ls="--", lw=1, label="turning point of f1")
+    ax.set_xlabel("contact distance (cm)")
+    ax.set_ylabel("mean absolute error (cm)")
+    ax.legend(fontsize="small")
+    ax.set_title("Contact distance along the whole probe")
+    return figures.save(fig, "beyond_full_range_distance")
+
+
+def _error_rows(r: FullRangeResult) -> list[list[str]]:
+    """One row per estimator: its MAE over the whole probe, beyond the first mode's region
+    (``-`` if no test contact lies there) and its 95th percentile, in cm."""
+    beyond = r.beyond
+    beyond1 = r.contact_one > r.region * r.length
+    return [
+        [
+            "first mode only",
+            "whole probe",
+            f"{r.error_one_cm.mean():.2f}",
+            f"{r.error_one_cm[beyond1].mean():.2f}",
+            f"{np.percentile(r.error_one_cm, 95):.2f}",
+        ],
+        [
+            "two modes",
+            "whole probe",
+            f"{r.error_two_cm.mean():.2f}",
+            f"{r.error_two_cm[beyond].mean():.2f}" if np.any(beyond) else "-",
+            f"{np.percentile(r.error_two_cm, 95):.2f}",
+        ],
+        [
+            "two modes, calibrated per material (material known)",
+            "whole probe",
+            f"{r.error_known_material_cm.mean():.2f}",
+            f"{r.error_known_material_cm[beyond].mean():.2f}" if np.any(beyond) else "-",
+            f"{np.percentile(r.error_known_material_cm, 95):.2f}",
+        ],
+        [
+            "two modes, material fitted with the distance",
+            "whole probe",
+            f"{r.error_joint_cm.mean():.2f}",
+            f"{r.error_joint_cm[beyond].mean():.2f}" if np.any(beyond) else "-",
+            f"{np.percentile(r.error_joint_cm, 95):.2f}",
+        ],
+    ]

@@ -80,6 +80,13 @@ def render(result: LearningResult, report, figures) -> None:
     fig12 = figures.save(plot_confusion_comparison(ann, printed.PAPER_ANN), "fig12_ann_confusion")
     fig15 = figures.save(plot_confusion_comparison(svm, printed.PAPER_SVM), "fig15_svm_confusion")
     fig1314 = figures.save(plot_distance_errors(lin, full), "fig13_14_distance_networks")
+    _render_classifiers(svm, ann, report, fig12, fig15)
+    _render_distance_networks(lin, full, report, fig1314)
+
+
+def _render_classifiers(svm, ann, report, fig12: str, fig15: str) -> None:
+    """The material classifiers beside the paper's: features, accuracies, the ANN's training
+    loss against guessing, the confusion matrices (Figs. 12, 15)."""
     sa, aa = svm.accuracies, ann.accuracies
     report.heading("Material classification: ANN and SVM (Figs. 12, 15)")
     svm_split = _split((1 - MATERIAL_SVM.test_fraction, MATERIAL_SVM.test_fraction))
@@ -117,6 +124,10 @@ def render(result: LearningResult, report, figures) -> None:
     report.figure(fig12, "ANN confusion matrices beside the paper's Fig. 12")
     report.figure(fig15, "SVM confusion matrices beside the paper's Fig. 15")
     report.preformatted(svm.report() + "\n\n" + ann.report())
+
+
+def _render_distance_networks(lin, full, report, fig1314: str) -> None:
+    """The two distance networks, their errors and Figs. 13, 14."""
     report.heading("Distance networks (Figs. 13, 14)")
     lin_net, full_net = DISTANCE_LINEAR_REGION, DISTANCE_FULL_LENGTH
     sizes = lin_net.hidden_layer_sizes  # layers x neurons, as the paper counts them

@@ -121,8 +121,16 @@ def _positions_cm(p) -> str:
 
 
 def render(result: MaterialSplitsResult, report, figures) -> None:
-    """The three splits side by side, the position-aware classifier, the trainers."""
-    r = result
+    """The three splits side by side, the position-aware classifier, the mode-curve classifier
+    and the trainers, each a section of the report."""
+    _render_splits(result, report)
+    _render_position_aware(result, report)
+    _render_mode_curves(result, report, figures)
+    _render_trainers(result, report)
+
+
+def _render_splits(r: MaterialSplitsResult, report) -> None:
+    """Why a random split flatters, and the paper's SVM on the three splits."""
     report.heading("How the split flatters: random recordings, held-out positions")
     report.paragraph(
         "A random split of neighbouring positions flatters any classifier. "
@@ -155,6 +163,10 @@ def render(result: MaterialSplitsResult, report, figures) -> None:
         f"Paper, random split: {printed.percent(printed.SVM_TEST_ACCURACY)}. Chance: "
         f"{pct(1 / len(r.svm['random'].labels))}."
     )
+
+
+def _render_position_aware(r: MaterialSplitsResult, report) -> None:
+    """The classifier that estimates the contact distance first, and what it gains."""
     report.heading("Beyond the paper: distance first, then material")
     report.paragraph(
         "The position-aware classifier first estimates the contact distance of a recording from "
@@ -168,6 +180,10 @@ def render(result: MaterialSplitsResult, report, figures) -> None:
         "far as the object's signature is the same at every distance."
     )
     report.paragraph(_lift(r))
+
+
+def _render_mode_curves(r: MaterialSplitsResult, report, figures) -> None:
+    """Material and distance from the two strongest peaks, with the calibration curves."""
     name = _plot_mode_curves(r.mode_curves["random"].model, figures)
     report.heading("Beyond the paper: material and distance from two frequencies")
     report.paragraph(
@@ -185,6 +201,10 @@ def render(result: MaterialSplitsResult, report, figures) -> None:
         "against the contact distance. Where another coupled mode, one the rod brings, becomes "
         "one of the two strongest, a curve jumps to that mode's branch: a signature too.",
     )
+
+
+def _render_trainers(r: MaterialSplitsResult, report) -> None:
+    """The paper's networks trained by gradient descent, scaled conjugate gradient and Adam."""
     report.heading("The networks with other trainers")
     report.paragraph(
         "The same 53-tanh network trained by the paper's full-batch gradient descent (with its "

@@ -97,18 +97,33 @@ def compute(probe, quick: bool) -> ModesResult:
 
 def render(result: ModesResult, report, figures) -> None:
     """Figures 16 and 17, the comparison table and the errata."""
-    import matplotlib.pyplot as plt
+    fig16, fig17 = _plot_zones(result, figures), _plot_mode_shapes(result, figures)
+    _render_zones(result, report, fig16, fig17)
+    _render_two_elements_against_exact(result, report)
+    _render_errata(result, report)
 
-    L = result.length
+
+def _plot_zones(result: ModesResult, figures) -> str:
+    """Fig. 16: the dominant frequency against the contact distance, zones shaded."""
     ax = result.zones.plot()
     ax.set_title("Dominant (lowest) frequency and its zones (cf. Fig. 16)")
-    fig16 = figures.save(ax.figure, "fig16_zones")
+    return figures.save(ax.figure, "fig16_zones")
+
+
+def _plot_mode_shapes(result: ModesResult, figures) -> str:
+    """Fig. 17: the mode shapes with the contact in zones 1, 2 and 3."""
+    import matplotlib.pyplot as plt
+
     fig, axes = plt.subplots(1, 3, figsize=(13, 3.6), sharey=True)
     for axis, (label, c, res) in zip(axes, result.shapes, strict=True):
         res.plot(ax=axis)
-        axis.set_title(f"({label}) contact at {c / L:.2f} L")
-    fig17 = figures.save(fig, "fig17_mode_shapes")
+        axis.set_title(f"({label}) contact at {c / result.length:.2f} L")
+    return figures.save(fig, "fig17_mode_shapes")
 
+
+def _render_zones(result: ModesResult, report, fig16: str, fig17: str) -> None:
+    """Where the zones begin, beside the paper's mode change, and Figs. 16 and 17."""
+    L = result.length
     report.heading("Modes of the probe and the three zones (Figs. 16, 17)")
     report.paragraph(
         f"Probe of the paper scene: L = {100 * L:g} cm acrylic tube with a "
@@ -133,6 +148,10 @@ def render(result: ModesResult, report, figures) -> None:
     report.figure(
         fig17, "Mode shapes in zones 1, 2 and 3, drawn with the shape functions (cf. Fig. 17)"
     )
+
+
+def _render_two_elements_against_exact(result: ModesResult, report) -> None:
+    """The paper's two-element frequencies against a fine mesh and the exact equation."""
     report.paragraph(
         "The paper's two-element model against 64 elements and the exact frequency equation "
         "(bare tube, no tip mass, so that the exact solution applies):"
@@ -146,6 +165,10 @@ def render(result: ModesResult, report, figures) -> None:
             for row in result.comparison
         ],
     )
+
+
+def _render_errata(result: ModesResult, report) -> None:
+    """The printed matrices' entries that differ from the derivation, and the paper's notes."""
     errata = result.errata
     report.paragraph(
         f"Errata of the printed element and two-element matrices: {len(errata)} entries differ "

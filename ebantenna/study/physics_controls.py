@@ -152,75 +152,101 @@ class ControlsResult:
 
 
 def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ControlsResult:
-    """Run the ablation over every effect of ``scene`` and, if it has rod modes, the pair."""
+    """Run the ablation over every effect of ``scene`` and, if it has rod modes, the pair, the
+    two contact laws, the moved contact height and the friction along the rod."""
     design = control_design(quick)
     ablation = ablation_accuracies(
         scene, design=design, seed=seed, cache_dir=cache_dir, n_jobs=n_jobs
     )
-    effect = scene.effect("object_modes")
-    pair_curves = None
-    if effect is None:
-        accuracy, note = (
-            None,
-            (
-                "not simulated: the scene has no 'object_modes' effect, so the "
-                "touched object has no dimensions to match"
-            ),
-        )
-    else:
-        al = Rod("aluminium", diameter=effect.diameter, free_length=effect.free_length)
-        steel = equivalent_rod(al, "steel")
-        pair = dict(design=design, seed=seed, cache_dir=cache_dir, n_jobs=n_jobs)
-        accuracy = equivalent_pair_accuracy(scene, **pair)
-        pair_curves = equivalent_pair_accuracy(scene, classifier="mode_curves", **pair)
-        note = (
-            f"aluminium Ø{1e3 * al.diameter:.2f} mm x {1e3 * al.free_length:.1f} mm against "
-            f"steel Ø{1e3 * steel.diameter:.2f} mm x {1e3 * steel.free_length:.1f} mm"
-        )
-    n = len(design.materials) * design.repetitions * design.contacts(scene.probe.length).size
-    positions = design.contacts(scene.probe.length)
-    held = np.isin(positions, positions[grouped_split(positions, seed=seed)[1]])
-    n_test = int(held.sum()) * len(design.materials) * design.repetitions
-    lift_off = unilateral = linear_accuracy = restrikes = curves = None
+    build = dict(design=design, seed=seed, cache_dir=cache_dir, n_jobs=n_jobs)
+    accuracy, note, pair_curves = _equivalent_pair(scene, **build)
+    n, n_test = _recordings(scene, design, seed)
+    lift_off = unilateral = linear_accuracy = restrikes = curves = mid = friction = None
     pushes = scene.has("unilateral_contact")
-    if effect is not None:  # the two contact laws: the scene's own, and the other
-        pushing, linear = _contact_laws(scene)
-        plan = dataset_plan(linear, design, seed)
-        _, _, _, x, _ = simulate_batch(
-            linear, contact=plan["contact_true"], material=plan["material"],
-            sweep_speed=plan["sweep_speed"], tilt_ratio=plan["tilt_ratio"],
-            seeds=plan["seed_row"], show_progress=False,
-        )  # fmt: skip
-        lift_off = float(np.mean(x.lift_off_ratio(scene.duration) > 1))
-        build = dict(n_jobs=n_jobs, show_progress=False)
-        ds = build_dataset(cache_dir, pushing, design, seed, **build)
-        restrikes = np.asarray(ds.metadata["restrikes"], dtype=int)
-        lin = build_dataset(cache_dir, linear, design, seed, **build)
-        # The ablation has measured the scene itself ("none") and, when its contact pushes, the
-        # linear variant (row "unilateral_contact", the same data set): fit only what is left.
-        measured = ablation.accuracies
-        unilateral = measured["none"] if pushes else grouped_svm_accuracy(ds, seed=seed)
-        linear_accuracy = measured.get("unilateral_contact") if pushes else measured["none"]
-        if linear_accuracy is None:  # the ablation could not switch the contact off alone
-            linear_accuracy = grouped_svm_accuracy(lin, seed=seed)
-        curves = {
-            "linear": _mode_curve_accuracy(lin, seed, n_jobs),
-            "unilateral": _mode_curve_accuracy(ds, seed, n_jobs),
-        }
-    mid = None
-    if effect is not None:  # the assumed contact height, moved: the rods touched halfway up
-        halfway = replace(effect, contact_height=effect.free_length / 2)
-        moved = scene.with_(
-            name=f"{scene.name}-mid-height",
-            effects=[halfway if e.name == "object_modes" else e for e in scene.effects],
+    if scene.effect("object_modes") is not None:
+        lift_off, restrikes, unilateral, linear_accuracy, curves = _contact_laws_compared(
+            scene, ablation, **build
         )
-        ds = build_dataset(cache_dir, moved, design, seed, n_jobs=n_jobs, show_progress=False)
-        mid = grouped_svm_accuracy(ds, seed=seed)
+        mid = _mid_height_accuracy(scene, **build)
         friction = _friction_accuracy(scene, ablation, design, seed, cache_dir, n_jobs)
     return ControlsResult(
         ablation, accuracy, note, pair_curves, n, 1 / len(design.materials), n_test, lift_off,
         unilateral, restrikes, mid, curves, linear_accuracy, pushes, friction,
     )  # fmt: skip
+
+
+def _equivalent_pair(scene, **build):
+    """The aluminium rod against its steel equivalent: the SVM's and the mode-curve
+    classifier's accuracies and the two rods' dimensions, or (None, why not, None) when the
+    scene has no ``object_modes`` effect."""
+    effect = scene.effect("object_modes")
+    if effect is None:
+        return None, (
+            "not simulated: the scene has no 'object_modes' effect, so the "
+            "touched object has no dimensions to match"
+        ), None
+    al = Rod("aluminium", diameter=effect.diameter, free_length=effect.free_length)
+    steel = equivalent_rod(al, "steel")
+    accuracy = equivalent_pair_accuracy(scene, **build)
+    pair_curves = equivalent_pair_accuracy(scene, classifier="mode_curves", **build)
+    note = (
+        f"aluminium Ø{1e3 * al.diameter:.2f} mm x {1e3 * al.free_length:.1f} mm against "
+        f"steel Ø{1e3 * steel.diameter:.2f} mm x {1e3 * steel.free_length:.1f} mm"
+    )
+    return accuracy, note, pair_curves
+
+
+def _recordings(scene, design, seed: int) -> tuple[int, int]:
+    """Recordings in each rebuilt data set, and in its grouped test set."""
+    n = len(design.materials) * design.repetitions * design.contacts(scene.probe.length).size
+    positions = design.contacts(scene.probe.length)
+    held = np.isin(positions, positions[grouped_split(positions, seed=seed)[1]])
+    n_test = int(held.sum()) * len(design.materials) * design.repetitions
+    return n, n_test
+
+
+def _contact_laws_compared(scene, ablation, *, design, seed, cache_dir, n_jobs):
+    """The contact that only pushes against the linear one: the share of strikes in which the
+    linear contact would pull, the re-strikes, the SVM's accuracy under each law and the
+    mode-curve classifier's (``{"linear": ..., "unilateral": ...}``)."""
+    pushes = scene.has("unilateral_contact")
+    pushing, linear = _contact_laws(scene)
+    plan = dataset_plan(linear, design, seed)
+    _, _, _, x, _ = simulate_batch(
+        linear, contact=plan["contact_true"], material=plan["material"],
+        sweep_speed=plan["sweep_speed"], tilt_ratio=plan["tilt_ratio"],
+        seeds=plan["seed_row"], show_progress=False,
+    )  # fmt: skip
+    lift_off = float(np.mean(x.lift_off_ratio(scene.duration) > 1))
+    build = dict(n_jobs=n_jobs, show_progress=False)
+    ds = build_dataset(cache_dir, pushing, design, seed, **build)
+    restrikes = np.asarray(ds.metadata["restrikes"], dtype=int)
+    lin = build_dataset(cache_dir, linear, design, seed, **build)
+    # The ablation has measured the scene itself ("none") and, when its contact pushes, the
+    # linear variant (row "unilateral_contact", the same data set): fit only what is left.
+    measured = ablation.accuracies
+    unilateral = measured["none"] if pushes else grouped_svm_accuracy(ds, seed=seed)
+    linear_accuracy = measured.get("unilateral_contact") if pushes else measured["none"]
+    if linear_accuracy is None:  # the ablation could not switch the contact off alone
+        linear_accuracy = grouped_svm_accuracy(lin, seed=seed)
+    curves = {
+        "linear": _mode_curve_accuracy(lin, seed, n_jobs),
+        "unilateral": _mode_curve_accuracy(ds, seed, n_jobs),
+    }
+    return lift_off, restrikes, unilateral, linear_accuracy, curves
+
+
+def _mid_height_accuracy(scene, *, design, seed, cache_dir, n_jobs) -> float:
+    """Grouped-split SVM accuracy with the assumed contact height moved: the rods touched
+    halfway up instead of at their free end."""
+    effect = scene.effect("object_modes")
+    halfway = replace(effect, contact_height=effect.free_length / 2)
+    moved = scene.with_(
+        name=f"{scene.name}-mid-height",
+        effects=[halfway if e.name == "object_modes" else e for e in scene.effects],
+    )
+    ds = build_dataset(cache_dir, moved, design, seed, n_jobs=n_jobs, show_progress=False)
+    return grouped_svm_accuracy(ds, seed=seed)
 
 
 def _friction_accuracy(scene, ablation, design, seed, cache_dir, n_jobs) -> float:
@@ -246,8 +272,24 @@ def _contact_laws(scene):
 
 
 def render(result: ControlsResult, report, figures) -> None:
-    """The ablation table and the pair, with what they mean."""
-    r, acc = result, result.ablation.accuracies
+    """The ablation table and the pair, with what they mean; then, where they were measured,
+    the contact that only pushes, the moved contact height and the friction along the rod."""
+    r = result
+    _render_ablation(r, report)
+    _render_equivalent_pair(r, report)
+    if r.lift_off_share is not None:
+        report.heading("A contact that only pushes")
+        report.paragraph(_lift_off(r))
+    if r.mid_height_accuracy is not None:
+        _render_mid_height(r, report)
+    if r.friction_accuracy is not None:
+        _render_friction(r, report)
+
+
+def _render_ablation(r: ControlsResult, report) -> None:
+    """One effect at a time switched off: the table, the effects that had to go together, and
+    which effect carries the material."""
+    acc = r.ablation.accuracies
     base = acc["none"]
     report.heading("What the classifier learns: one effect at a time switched off")
     report.paragraph(
@@ -272,6 +314,10 @@ def render(result: ControlsResult, report, figures) -> None:
     for name, reason in r.ablation.refused.items():
         report.paragraph(f"'{name}' cannot be switched off by removing effects: {reason}")
     report.paragraph(_verdict(acc, r.chance, r.test_recordings))
+
+
+def _render_equivalent_pair(r: ControlsResult, report) -> None:
+    """Two rods of equal stiffness and frequencies in different materials told apart, or not."""
     report.heading("The equivalent pair: impedance, not chemistry")
     if r.pair_accuracy is None:
         report.paragraph(f"The equivalent pair was {r.pair_note}.")
@@ -286,42 +332,47 @@ def render(result: ControlsResult, report, figures) -> None:
             "50 % the probe feels impedance, not chemistry; well above it, what is left (loss "
             "factor, Hertz contact) still tells them apart."
         )
-    if r.lift_off_share is not None:
-        report.heading("A contact that only pushes")
-        report.paragraph(_lift_off(r))
-    if r.mid_height_accuracy is not None:
-        report.heading("Where the rod is touched: an assumption moved")
-        report.paragraph(
-            "The paper does not say where on the rods the probe touched; the scene assumes their "
-            "free end, the softest point, where the rod's modes move the contact most. Touched "
-            "halfway up instead, the same SVM on whole held-out positions reaches "
-            f"{pct(r.mid_height_accuracy)} (free end: {pct(acc['none'])}, "
-            f"{r.test_recordings} test recordings, chance {pct(r.chance)}), "
-            + (
-                _resolved(acc["none"], r.mid_height_accuracy, r.test_recordings)
-                or "within two binomial standard deviations"
-            )
-            + ". The accuracies of this report hold for the assumed rod and contact, not for "
-            "every rod."
+
+
+def _render_mid_height(r: ControlsResult, report) -> None:
+    """The SVM with the rods touched halfway up instead of at their free end."""
+    acc = r.ablation.accuracies
+    report.heading("Where the rod is touched: an assumption moved")
+    report.paragraph(
+        "The paper does not say where on the rods the probe touched; the scene assumes their "
+        "free end, the softest point, where the rod's modes move the contact most. Touched "
+        "halfway up instead, the same SVM on whole held-out positions reaches "
+        f"{pct(r.mid_height_accuracy)} (free end: {pct(acc['none'])}, "
+        f"{r.test_recordings} test recordings, chance {pct(r.chance)}), "
+        + (
+            _resolved(acc["none"], r.mid_height_accuracy, r.test_recordings)
+            or "within two binomial standard deviations"
         )
-    if r.friction_accuracy is not None:
-        report.heading("Friction along the rod")
-        listed = "coulomb_friction" in acc
-        without = acc["coulomb_friction"] if listed else acc["none"]
-        report.paragraph(
-            "Across the sweep plane the probe slides along the rod. With dry friction there "
-            "(the 'coulomb_friction' effect, mu = 0.45 unless the scene says otherwise, under "
-            "the preload) the contact point sticks to the rod (within 20 ms wherever it lies "
-            "beyond a fifth of the probe from the hinge) and the Z axis then rings as the probe "
-            "pinned at the contact, where without it Z rings at "
-            "the free probe's frequencies whatever was touched. The SVM on whole held-out "
-            f"positions reaches {pct(r.friction_accuracy)} with friction against "
-            f"{pct(without)} without ({r.test_recordings} test recordings), "
-            + (_resolved(without, r.friction_accuracy, r.test_recordings)
-               or "within two binomial standard deviations")
-            + ". The rod is rigid along its axis, so friction adds the contact's position to "
-            "Z, not the material."
-        )
+        + ". The accuracies of this report hold for the assumed rod and contact, not for "
+        "every rod."
+    )
+
+
+def _render_friction(r: ControlsResult, report) -> None:
+    """The SVM with dry friction along the rod against without."""
+    acc = r.ablation.accuracies
+    report.heading("Friction along the rod")
+    listed = "coulomb_friction" in acc
+    without = acc["coulomb_friction"] if listed else acc["none"]
+    report.paragraph(
+        "Across the sweep plane the probe slides along the rod. With dry friction there "
+        "(the 'coulomb_friction' effect, mu = 0.45 unless the scene says otherwise, under "
+        "the preload) the contact point sticks to the rod (within 20 ms wherever it lies "
+        "beyond a fifth of the probe from the hinge) and the Z axis then rings as the probe "
+        "pinned at the contact, where without it Z rings at "
+        "the free probe's frequencies whatever was touched. The SVM on whole held-out "
+        f"positions reaches {pct(r.friction_accuracy)} with friction against "
+        f"{pct(without)} without ({r.test_recordings} test recordings), "
+        + (_resolved(without, r.friction_accuracy, r.test_recordings)
+           or "within two binomial standard deviations")
+        + ". The rod is rigid along its axis, so friction adds the contact's position to "
+        "Z, not the material."
+    )
 
 
 def _resolved(base: float, other: float, n: int) -> str | None:

@@ -134,6 +134,20 @@ def _directory(name: str, path) -> Path:
     return path
 
 
+class _Sections:
+    """Each section of the study in turn: its ``compute`` timed as one step, its ``render``
+    writing its figures and its part of the report; the results kept by step."""
+
+    def __init__(self, timer: _Timer, report: Report, figures: FigureSet):
+        self.timer, self.report, self.figures = timer, report, figures
+        self.results: dict = {}
+
+    def run(self, step: str, compute, render, *args):
+        result = self.results[step] = self.timer.run(step, compute, *args)
+        render(result, self.report, self.figures)
+        return result
+
+
 def reproduce(
     out_dir="ebantenna-output",
     *,
@@ -172,86 +186,43 @@ def reproduce(
     from ..paper.feature_table import signal_features
     from ..simulate import builtin_scene
 
-    seed = check_int("seed", seed, minimum=0, maximum=MAX_SEED)
-    quick = check_bool("quick", quick)
-    if n_jobs is not None and check_int("n_jobs", n_jobs) == 0:
-        raise ValueError("n_jobs must be -1 (all cores), None or a count >= 1, got 0")
-    out_dir = _directory("out_dir", out_dir)
-    cache_dir = _directory("cache_dir", default_cache_dir() if cache_dir is None else cache_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
+    seed, quick = _checked_options(seed, quick, n_jobs)
+    out_dir, cache_dir = _folders(out_dir, cache_dir)
     figures = FigureSet(out_dir)
-    report = Report("ebantenna: the study reproduced" + (" (quick run)" if quick else ""))
-    report.paragraph(
-        "Every number below comes from the simulated probe (scene 'paper'), not from the paper's "
-        "recordings; the paper's value stands beside each one. "
-        + ("This is the quick run: a small data set, numbers only indicative." if quick else "")
-    )
+    report = _opening(quick)
     scene = builtin_scene("paper")
     workers = (os.cpu_count() or 1) if n_jobs is None or n_jobs < 0 else n_jobs
     timer = _Timer(show_progress)
+    study = _Sections(timer, report, figures)
 
-    mode_result = timer.run("modes", mode_zones.compute, scene.probe, quick)
-    mode_zones.render(mode_result, report, figures)
-    hinge = timer.run("hinge", hinge_fit.compute, scene.probe, quick)
-    hinge_fit.render(hinge, report, figures)
+    study.run("modes", mode_zones.compute, mode_zones.render, scene.probe, quick)
+    study.run("hinge", hinge_fit.compute, hinge_fit.render, scene.probe, quick)
     before = {p: p.stat().st_mtime_ns for p in cache_dir.glob("*.npz")}
     ds = timer.run(
         "data set",
         lambda: build_paper_dataset(cache_dir, seed=seed, quick=quick, n_jobs=workers,
                                     show_progress=show_progress),
     )
-    data_result = data_summary.compute(ds)
+    data_result = study.results["data set"] = data_summary.compute(ds)
     feats = timer.run(
         "features",
         lambda: signal_features(ds.ax, ds.az, ds.fs, n_jobs=n_jobs, show_progress=show_progress),
     )
     data_summary.render(data_result, report, figures)
-    materials = data_result.materials
-    frequency = timer.run("frequency", signals.compute_frequency, ds, feats, materials)
-    signals.render_frequency(frequency, report, figures)
-    decay = timer.run("decay", signals.compute_decay, ds, feats, materials)
-    signals.render_decay(decay, report, figures)
-    learnt = timer.run("ml", learning.compute, ds, feats, seed)
-    learning.render(learnt, report, figures)
-    splits = timer.run(
-        "splits",
-        lambda: material_splits.compute(ds, feats, seed, random_svm=learnt.svm,
-                                        paper_ann=learnt.ann, paper_distance=learnt.linear_region),
-    )
-    material_splits.render(splits, report, figures)
-    controls = timer.run("controls", physics_controls.compute, scene, seed, quick, cache_dir,
-                         workers)
-    physics_controls.render(controls, report, figures)
-    distance = timer.run("full range", full_range.compute, ds, feats)
-    full_range.render(distance, report, figures)
-    maps = timer.run("time-frequency", time_frequency.compute, scene, seed)
-    time_frequency.render(maps, report, figures)
+    _learn_materials_and_distance(study, ds, feats, data_result.materials, seed)
+    controls = study.run("controls", physics_controls.compute, physics_controls.render,
+                         scene, seed, quick, cache_dir, workers)
+    study.run("full range", full_range.compute, full_range.render, ds, feats)
+    study.run("time-frequency", time_frequency.compute, time_frequency.render, scene, seed)
     timer.close()
 
     cached = before.get(ds.path) == ds.path.stat().st_mtime_ns
-    report.heading("Run time")
-    report.paragraph(
-        f"Wall time of every step on {workers} worker(s). The data set was "
-        + ("reused from its cache" if cached else "simulated in this run")
-        + f" ({ds.path.name}); the controls rebuild {controls.data_sets} small "
-        "data sets, cached likewise."
-    )
-    report.table(["step", "seconds"], [[k, f"{v:.1f}"] for k, v in timer.seconds.items()]
-                 + [["total", f"{sum(timer.seconds.values()):.1f}"]])
+    _run_time(report, timer.seconds, workers, cached, ds.path.name, controls.data_sets)
     md, page = report.write(out_dir)
     summary = {
         "quick": quick,
         "seed": seed,
-        "modes": mode_result.to_dict(),
-        "dataset": data_result.to_dict(),
-        "frequency": frequency.to_dict(),
-        "decay": decay.to_dict(),
-        **learnt.to_dict(),
-        "materials": {**splits.to_dict()["materials"], **controls.to_dict()},
-        "distance": {**distance.to_dict(), **learnt.distance_dict(),
-                     **splits.to_dict()["distance"]},
-        "hinge": hinge.to_dict(),
-        **maps.to_dict(),
+        **_summary(study.results),
         "timings_s": dict(timer.seconds),
         "dataset_cached": cached,
         "report": {"markdown": str(md), "html": str(page)},
@@ -259,3 +230,77 @@ def reproduce(
     }
     (out_dir / "summary.json").write_text(json.dumps(summary, indent=2), encoding="utf-8")
     return StudyResult(summary, out_dir, dict(figures.paths), md, page)
+
+
+def _checked_options(seed, quick, n_jobs) -> tuple[int, bool]:
+    """``seed`` and ``quick`` checked; ``n_jobs`` -1, None or a count >= 1."""
+    seed = check_int("seed", seed, minimum=0, maximum=MAX_SEED)
+    quick = check_bool("quick", quick)
+    if n_jobs is not None and check_int("n_jobs", n_jobs) == 0:
+        raise ValueError("n_jobs must be -1 (all cores), None or a count >= 1, got 0")
+    return seed, quick
+
+
+def _folders(out_dir, cache_dir) -> tuple[Path, Path]:
+    """The output folder, made if missing, and the cache (default :func:`default_cache_dir`)."""
+    out_dir = _directory("out_dir", out_dir)
+    cache_dir = _directory("cache_dir", default_cache_dir() if cache_dir is None else cache_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    return out_dir, cache_dir
+
+
+def _opening(quick: bool) -> Report:
+    """The report's title and its first paragraph: where every number comes from."""
+    report = Report("ebantenna: the study reproduced" + (" (quick run)" if quick else ""))
+    report.paragraph(
+        "Every number below comes from the simulated probe (scene 'paper'), not from the paper's "
+        "recordings; the paper's value stands beside each one. "
+        + ("This is the quick run: a small data set, numbers only indicative." if quick else "")
+    )
+    return report
+
+
+def _learn_materials_and_distance(study: _Sections, ds, feats, materials, seed: int) -> None:
+    """Steps 4 to 6: the dominant frequency and the decay per material, the paper's classifiers
+    and distance networks, and the same on the three splits and with other trainers."""
+    study.run("frequency", signals.compute_frequency, signals.render_frequency,
+              ds, feats, materials)
+    study.run("decay", signals.compute_decay, signals.render_decay, ds, feats, materials)
+    learnt = study.run("ml", learning.compute, learning.render, ds, feats, seed)
+    study.run(
+        "splits",
+        lambda: material_splits.compute(ds, feats, seed, random_svm=learnt.svm,
+                                        paper_ann=learnt.ann, paper_distance=learnt.linear_region),
+        material_splits.render,
+    )
+
+
+def _run_time(report: Report, seconds: dict, workers: int, cached: bool, dataset: str,
+              control_sets: int) -> None:
+    """The last section: the wall time of every step, and whether the data set was cached."""
+    report.heading("Run time")
+    report.paragraph(
+        f"Wall time of every step on {workers} worker(s). The data set was "
+        + ("reused from its cache" if cached else "simulated in this run")
+        + f" ({dataset}); the controls rebuild {control_sets} small "
+        "data sets, cached likewise."
+    )
+    report.table(["step", "seconds"], [[k, f"{v:.1f}"] for k, v in seconds.items()]
+                 + [["total", f"{sum(seconds.values()):.1f}"]])
+
+
+def _summary(results: dict) -> dict:
+    """The sections' results put together as ``summary.json`` holds them (timings aside)."""
+    learnt, splits = results["ml"], results["splits"].to_dict()
+    return {
+        "modes": results["modes"].to_dict(),
+        "dataset": results["data set"].to_dict(),
+        "frequency": results["frequency"].to_dict(),
+        "decay": results["decay"].to_dict(),
+        **learnt.to_dict(),
+        "materials": {**splits["materials"], **results["controls"].to_dict()},
+        "distance": {**results["full range"].to_dict(), **learnt.distance_dict(),
+                     **splits["distance"]},
+        "hinge": results["hinge"].to_dict(),
+        **results["time-frequency"].to_dict(),
+    }

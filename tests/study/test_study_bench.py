@@ -66,18 +66,33 @@ def test_ml_speed_parts_count_the_solver_updates_and_restore_what_they_clock():
     for p in parts:
         assert p["seconds"] >= 0
         assert p["share"] == p["seconds"] / (2.0 if p["part"].startswith("SVC") else 4.0)
-    assert "3 mini-batches" in rows["MLP adam, 1 BLAS thread: gathers and the two 64x8x53 products"]["note"]
+    products = rows["MLP adam, 1 BLAS thread: gathers and the two 64x8x53 products"]
+    assert "3 mini-batches" in products["note"]
 
 
 def test_clocked_restores_the_attribute_when_the_call_raises():
     from types import SimpleNamespace
 
-    from ebantenna.bench.ml_speed import _clocked
+    from ebantenna.bench._timing import clocked
 
     def fails():
         raise RuntimeError("boom")
 
     owner, totals = SimpleNamespace(f=fails), {}
-    with pytest.raises(RuntimeError, match="boom"), _clocked(owner, "f", totals):
+    with pytest.raises(RuntimeError, match="boom"), clocked(owner, "f", totals):
         owner.f()
     assert owner.f is fails and "f" not in totals
+
+
+def test_compare_alternates_the_sides_and_keeps_the_best_time_of_each():
+    from ebantenna.bench import ml_speed
+
+    calls = []
+    row = ml_speed.compare("t", lambda: calls.append("ours") or 1.0,
+                           lambda: calls.append("theirs") or 0.5, lambda m: 2 * m, repeat=3)
+    assert calls == ["ours", "theirs"] * 3  # alternated, so load on the machine hits both
+    assert row["task"] == "t" and row["ours_accuracy"] == 2.0 and row["sklearn_accuracy"] == 1.0
+    assert row["ours_seconds"] > 0 and row["sklearn_seconds"] > 0
+    assert row["ratio"] == row["ours_seconds"] / row["sklearn_seconds"]  # the same division
+    with pytest.raises(ValueError, match="repeat must be >= 1"):
+        ml_speed.run(repeat=0)

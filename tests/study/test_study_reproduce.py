@@ -176,3 +176,32 @@ def test_hinge_fit_and_run_time_table_are_reported(quick_study):
     assert "| data set |" in md and "| total |" in md
     assert ("reused from its cache" in md) == s["dataset_cached"]
     assert "A random split of neighbouring positions flatters any classifier" in md
+
+
+def test_report_sections_follow_the_recipe(quick_study):
+    """reproduce computes and renders the sections in the order of its steps, and each render
+    writes its own sections in its own order: the report's headings are the study's outline."""
+    result, _ = quick_study
+    headings = [line[3:] for line in result.report_markdown.read_text().splitlines()
+                if line.startswith("## ")]
+    assert headings == [
+        "Modes of the probe and the three zones (Figs. 16, 17)",
+        "The hinge: one stiffness and one tip mass for both probes?",
+        "Data set",
+        "Dominant frequency against contact distance (Figs. 9, 10)",
+        "Gain and time constant by material (Fig. 11)",
+        "Material classification: ANN and SVM (Figs. 12, 15)",
+        "Distance networks (Figs. 13, 14)",
+        "How the split flatters: random recordings, held-out positions",
+        "Beyond the paper: distance first, then material",
+        "Beyond the paper: material and distance from two frequencies",
+        "The networks with other trainers",
+        "What the classifier learns: one effect at a time switched off",
+        "The equivalent pair: impedance, not chemistry",
+        "A contact that only pushes",
+        "Where the rod is touched: an assumption moved",
+        "Friction along the rod",
+        "Beyond the paper: contact distance over the whole probe",
+        "Spectrograms and scalograms (Figs. 18, 19)",
+        "Run time",
+    ]

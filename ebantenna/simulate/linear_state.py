@@ -17,6 +17,7 @@ same signals up to the rounding of the propagation (the test suite holds them to
 
 from __future__ import annotations
 
+import abc
 import copy
 import functools
 import math
@@ -309,7 +310,7 @@ def crossing(curve, span: float, xtol: float, ga: float, gb: float) -> float:
     return b
 
 
-class SwitchedSystem:
+class SwitchedSystem(abc.ABC):
     """A structure that switches between linear states at events, as a march takes it.
 
     A contact law subclasses it and gives :meth:`state` (the :class:`LinearState` of a state's
@@ -336,22 +337,23 @@ class SwitchedSystem:
         self.force = np.zeros(n_samples)
         self.trajectory = None if n_states is None else np.zeros((n_samples, n_states))
 
+    @abc.abstractmethod
     def state(self, key) -> LinearState:
         """The linear state called ``key``."""
-        raise NotImplementedError
 
+    @abc.abstractmethod
     def advance(self, x, key, t0: float, t1: float, crosses: bool = False):
         """The state ``(x, key)`` at ``t1`` from ``t0`` (at most one step), through any event;
         ``crosses``: an event is known to lie before ``t1``."""
-        raise NotImplementedError
 
     def interrupts(self, i: int) -> bool:
         """Whether something besides the states' own motion happens within step ``i``."""
         return False
 
     def interrupted_step(self, x, key, i: int):
-        """Step ``i`` when :meth:`interrupts` says so."""
-        raise NotImplementedError
+        """Step ``i`` when :meth:`interrupts` says so; a law whose :meth:`interrupts` can be true
+        gives its own (here, for a law with nothing but its states, an ordinary step)."""
+        return self.advance(x, key, i * self.h, (i + 1) * self.h)
 
     def horizon(self, i: int, n_steps: int) -> int:
         """How many steps from step ``i`` on the current state may be read ahead."""

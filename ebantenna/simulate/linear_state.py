@@ -368,7 +368,7 @@ class SwitchedSystem(abc.ABC):
         """Where the state ends, as :meth:`LinearState.read_ahead` takes it (None: monitor <= 0)."""
         return None
 
-    def moved(self) -> None:
+    def moved(self) -> None:  # noqa: B027 - a hook that most laws leave empty
         """Called once the march has moved on from where a state was entered."""
 
     def record(self, i: int, x, key) -> None:

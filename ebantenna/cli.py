@@ -10,10 +10,10 @@ With ``--json`` a command prints exactly one JSON object on stdout and nothing e
 Every command ends in one of three ways: success (exit code 0, or 1 where the command says so),
 one line on stderr naming what was wrong (exit code 2: bad input, a damaged file, too little
 memory; exit code 3 from ``acquire``: the recording was saved but the servos could not be
-released, and the servo supply must be cut by hand), or, on Ctrl-C or SIGTERM, one line saying so (exit codes 130 and 143, as a shell reports
-a process killed by those signals). A command that has partial results worth keeping (a
-recording) saves them before it stops; with ``--json`` it then prints what it kept, marked
-``"interrupted"``.
+released, and the servo supply must be cut by hand), or, on Ctrl-C or SIGTERM, one line saying
+so (exit codes 130 and 143, as a shell reports a process killed by those signals). A command
+that has partial results worth keeping (a recording) saves them before it stops; with ``--json``
+it then prints what it kept, marked ``"interrupted"``.
 """
 
 from __future__ import annotations

@@ -14,13 +14,16 @@ list an effect skips its step, and a new effect is one more entry in the list. I
    if the scene lists one, otherwise the sum of its modes, through the chip's low-pass filter
    (``dlpf``) and its decimation.
 5. ``clock_jitter`` again: a sample taken before the arrest reads no acceleration.
-6. ``gravity``, 7. ``mains_hum``, 8. ``sensor_noise``: what the chip measures besides the
-   vibration. On the chip the filter acts on the sum, after the noise; it is linear, so applying
-   it to each part as that part enters gives the same: to the modal exponentials exactly (step
-   4), to the hum by its gain and phase at the hum's frequency, to the noise as drawn at the
-   chip's internal rate; gravity, a constant, passes the settled filter unchanged.
+6. ``gravity``,
+7. ``mains_hum`` and
+8. ``sensor_noise``: what the chip measures besides the vibration. On the chip the filter acts
+   on the sum, after the noise; it is linear, so applying it to each part as that part enters
+   gives the same: to the modal exponentials exactly (step 4), to the hum by its gain and phase
+   at the hum's frequency, to the noise as drawn at the chip's internal rate; gravity, a
+   constant, passes the settled filter unchanged.
 9. ``sensor_drift``: the chip's offset and sensitivity, after its filter.
-10. ``clipping`` and 11. ``quantisation``: the chip's range and its 16-bit output.
+10. ``clipping`` and
+11. ``quantisation``: the chip's range and its 16-bit output.
 12. ``kalman``: the filter on the Raspberry Pi, about each axis's resting level.
 
 The touched object is one of four physics models, each a named step of

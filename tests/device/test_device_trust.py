@@ -262,3 +262,15 @@ def test_acquire_json_reports_trust_and_release(capsys):
                 "servos_released_by", "sample_period_uncertainty_s"):
         assert key in data
     assert data["samples_wrong"] == 0 and data["servos_released"] is True
+
+
+def test_the_oe_pin_switches_the_outputs_off_and_on_without_i2c():
+    # OE is active low on the PCA9685: high = every output off, low = outputs follow the registers
+    rig = SimulatedRig.for_contact(seed=0, faults=Faults())
+    oe = OutputEnable(rig.oe_line())
+    assert rig.pca.outputs_enabled()
+    oe.disable_outputs()
+    assert not rig.pca.outputs_enabled()
+    oe.enable_outputs()
+    assert rig.pca.outputs_enabled()
+    oe.close()

@@ -267,6 +267,9 @@ def test_acquire_json_reports_trust_and_release(capsys):
 def test_the_oe_pin_switches_the_outputs_off_and_on_without_i2c():
     # OE is active low on the PCA9685: high = every output off, low = outputs follow the registers
     rig = SimulatedRig.for_contact(seed=0, faults=Faults())
+    unit = PanTilt(PCA9685(rig.bus, clock=rig.clock))
+    unit.initialize()
+    unit.move(90.0, 90.0)  # both servos driven
     oe = OutputEnable(rig.oe_line())
     assert rig.pca.outputs_enabled()
     oe.disable_outputs()

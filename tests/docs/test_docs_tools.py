@@ -1,6 +1,7 @@
 """The build-time tools of the docs: sympy rendering, errata table, CLI help, inventories."""
 
 import ast
+import inspect
 import io
 import zlib
 from pathlib import Path
@@ -124,9 +125,29 @@ def test_inventory_refuses_objects_that_do_not_exist():
 
 def test_intersphinx_mapping_points_at_local_files():
     mapping = make_inventories.intersphinx_mapping("_inventories")
-    assert set(mapping) == {"numpy", "scipy", "sklearn", "sympy", "matplotlib"}
+    # Python (numpydoc links every "float" and "dict" of a docstring to it) and every library the
+    # docs link to
+    libraries = {"numpy", "scipy", "sklearn", "sympy", "matplotlib", "joblib", "smbus2"}
+    assert set(mapping) == {"python"} | libraries
     for url, path in mapping.values():
         assert url.startswith("https://") and (DOCS / path).is_file()
+
+
+@pytest.mark.parametrize("key", sorted(make_inventories.INVENTORIES))
+def test_every_inventory_name_imports(key):
+    for name, role, _uri in make_inventories.INVENTORIES[key][3]:
+        obj = make_inventories.resolve(name)
+        if role == "module":
+            assert inspect.ismodule(obj), name
+        elif role == "class":
+            assert isinstance(obj, type), name
+
+
+def test_builtin_names_resolve_to_the_builtins():
+    assert make_inventories.resolve("float") is float
+    assert make_inventories.resolve("None") is None
+    with pytest.raises(LookupError):
+        make_inventories.resolve("no_such_builtin")
 
 
 def test_gallery_has_at_least_eight_titled_examples():

@@ -40,6 +40,9 @@ extensions = [
     "ebantenna_docs",
     "paper_map",
     "exercise_notebooks",
+    # a reference may use the name a user imports (ebantenna.signal.fit_decay): linked to the page
+    # of the very object it imports to, in the module that defines it
+    "public_names",
 ]
 
 templates_path = ["_templates"]
@@ -77,19 +80,55 @@ numpydoc_xref_aliases = {
     "ModalResult": "ebantenna.fem.modal.ModalResult",
     "ZoneResult": "ebantenna.fem.zones.ZoneResult",
     "Erratum": "ebantenna.fem.symbolic.Erratum",
+    "Material": "ebantenna.probe.Material",
+    "Rod": "ebantenna.fem.rod.Rod",
+    "Scene": "ebantenna.simulate.scene.Scene",
+    "SystemClock": "ebantenna.device.clock.SystemClock",
+    "VirtualClock": "ebantenna.device.clock.VirtualClock",
+    "ClassificationResult": "ebantenna.paper.experiments.ClassificationResult",
+    "RegressionResult": "ebantenna.paper.experiments.RegressionResult",
     "ndarray": "numpy.ndarray",
+    "Axes": "matplotlib.axes.Axes",
+    "Matrix": "sympy.Matrix",
+    "object": "object",
     # numpydoc's defaults point these at glossaries of inventories we do not keep
     "bool": "bool",
     "sequence": "collections.abc.Sequence",
+    "iterable": "collections.abc.Iterable",
+    "module": "types.ModuleType",
     "array_like": "numpy.typing.ArrayLike",
     "array-like": "numpy.typing.ArrayLike",
     "Generator": "numpy.random.Generator",
+    "RandomState": "numpy.random.RandomState",
+    "Path": "pathlib.Path",
+    "dtype": "numpy.dtype",
+    "int16": "numpy.int16",
+    "int32": "numpy.int32",
+    "int64": "numpy.int64",
+    "float32": "numpy.float32",
+    "float64": "numpy.float64",
+    "csr_matrix": "scipy.sparse.csr_matrix",
 }
+# The vocabulary of a type description, which names no object: linking words, the kinds of
+# container ("array", "matrix"), the sizes in a shape ("n_samples", "k") and the names of the parts
+# of a tuple ("(key, header, format)"). Python's own types ("int", "float", "dict"...) are not in
+# this list: numpydoc links them to the Python inventory.
 numpydoc_xref_ignore = {
-    "of", "or", "shape", "optional", "default", "array", "arrays", "dense", "sparse", "matrices",
-    "int", "float", "str", "bool", "dict", "list", "tuple", "None", "callable", "sequence",
-    "object", "matplotlib", "Axes", "sympy", "Matrix", "4x4", "6x6", "n", "m",
-    "scalar", "path-like", "iterable", "any", "bytes", "complex", "inf", "from",
+    # linking words
+    "of", "or", "and", "to", "as", "for", "from", "the", "a", "else", "otherwise", "given", "two",
+    "shape", "shapes", "optional", "default", "compatible", "instance", "instances", "classes",
+    # kinds of container and value
+    "array", "arrays", "ndarrays", "dense", "sparse", "matrix", "matrices", "CSR", "scalar",
+    "any", "inf", "self", "estimator", "path", "path-like", "numpy", "4x4", "6x6",
+    "matplotlib", "sympy",
+    # sizes in a shape
+    "n", "m", "k", "p", "N", "n_SV", "n_bins", "n_classes", "n_contacts", "n_distances",
+    "n_elements", "n_features", "n_fft", "n_freqs", "n_labels", "n_modes", "n_nodes", "n_outputs",
+    "n_pairs", "n_recordings", "n_rods", "n_samples", "n_sections", "n_signals", "n_states",
+    "n_terms", "n_times",
+    # names of the parts of a tuple
+    "key", "header", "format", "field", "low", "high", "time", "axis", "angle", "address",
+    "register",
 }
 
 # --- Links to the libraries, from inventories kept in the repository (no download) -------------
@@ -122,6 +161,18 @@ sphinx_gallery_conf = {
 }
 
 math_number_all = False
+
+# --- Every cross-reference must land: the -W build fails on a target that has no page ---------
+nitpicky = True
+# Only objects that exist but have no page, because they live in a private module:
+nitpick_ignore = {
+    # the base every effect shows as "Bases: Effect" (a name, parameters as a dict, construction
+    # from a dict), in the private ebantenna.simulate.effects._base
+    ("py:class", "ebantenna.simulate.effects._base.Effect"),
+    # the record windowed_spectrum returns, from the private ebantenna.signal._guards; its fields
+    # are described where it is returned
+    ("py:obj", "AnalysedPart"),
+}
 
 # --- Figures drawn by the package inside a page (``.. plot::``), such as the probe's sketch ------
 plot_include_source = False

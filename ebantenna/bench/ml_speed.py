@@ -206,7 +206,8 @@ def where_time_goes(X, y, svc_seconds: float, adam_seconds: float, epochs: int,
 
     Parameters
     ----------
-    X, y : training set of the timed fits.
+    X, y : ndarray
+        Training set of the timed fits.
     svc_seconds, adam_seconds : float
         scikit-learn's best fit times, measured in the same run (``adam_seconds`` on one BLAS
         thread).

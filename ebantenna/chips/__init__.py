@@ -11,7 +11,7 @@ source. Every name cites the datasheet, its revision and the section or table it
 - :mod:`ebantenna.chips.bitfield`: :class:`~ebantenna.chips.bitfield.BitField`, a group of
   adjacent bits in one register.
 
-This package imports nothing else of :mod:`ebantenna` but its input checks, so that every stage may
+This package imports nothing else of ebantenna but its input checks, so that every stage may
 import it.
 """
 

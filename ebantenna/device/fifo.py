@@ -41,7 +41,7 @@ estimates the sample period from the timestamps of its interrupts), are:
    lost is always the number of slots asked for.
 5. **A chip that went quiet** (no sample where some were due) is asked for its configuration; if
    it has been reset (a brown-out leaves it asleep, RM 107), it is configured again and the
-   stream restarted. Every fault goes into :attr:`FifoStream.faults`.
+   stream restarted. Every fault goes into the ``faults`` of the :class:`FifoStream`.
 """
 
 from __future__ import annotations
@@ -134,7 +134,8 @@ def _cause(exc: OSError) -> str:
 class FifoStream:
     """A running FIFO stream of one :class:`~ebantenna.device.mpu6050.MPU6050`.
 
-    Made by :meth:`MPU6050.start_fifo`; see the module notes for the rules it follows.
+    Made by :meth:`~ebantenna.device.mpu6050.MPU6050.start_fifo`; see the module notes for the rules
+    it follows.
     """
 
     def __init__(self, mpu):

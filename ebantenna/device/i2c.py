@@ -16,8 +16,8 @@ permission problem) are not retried.
 
 Giving up is bounded in *time*, not in attempts times retries: a transfer that hangs until the
 adapter's timeout (about a second on a stuck bus) is not tried again once
-:attr:`RetryPolicy.deadline` has passed since its first attempt, and a bus on which nothing has
-succeeded for :attr:`RetryPolicy.dead_after` seconds is declared dead: every later call on it
+the policy's ``deadline`` (:class:`RetryPolicy`) has passed since its first attempt, and a bus on
+which nothing has succeeded for its ``dead_after`` seconds is declared dead: every later call on it
 raises :class:`BusDeadError` at once, without touching the bus, for every chip on that bus.
 
 A retry is only safe when the transfer has no side effect on the chip. Reading a FIFO data port or
@@ -90,8 +90,8 @@ class I2CError(OSError):
 
 
 class BusDeadError(I2CError):
-    """Nothing on the bus has succeeded for :attr:`RetryPolicy.dead_after` seconds: no more
-    transfers are attempted on it (errno ``ETIMEDOUT``)."""
+    """Nothing on the bus has succeeded for the :class:`RetryPolicy`'s ``dead_after`` seconds: no
+    more transfers are attempted on it (errno ``ETIMEDOUT``)."""
 
 
 def transfer_bits(nbytes: int) -> int:
@@ -253,7 +253,7 @@ class I2CDevice:
         7-bit I2C address of the chip, 0x03-0x77.
     retry : RetryPolicy, optional
         Retry policy for transient errors. Default :class:`RetryPolicy()`.
-    clock : clock, optional
+    clock : SystemClock or VirtualClock, optional
         Supplies ``sleep`` for the back-off. Default :class:`~ebantenna.device.clock.SystemClock`.
     use_rdwr : bool
         Read long blocks in one combined ``i2c_rdwr`` transfer instead of 32-byte SMBus blocks.

@@ -129,7 +129,7 @@ class MPU6050:
         Settings; default :class:`MPU6050Config()` (1 kHz, 260 Hz, +/-16 g).
     retry : RetryPolicy, optional
         Retries of transient bus errors.
-    clock : clock, optional
+    clock : SystemClock or VirtualClock, optional
         ``monotonic``/``sleep`` provider. Default the system clock.
     use_rdwr : bool
         Drain the FIFO with combined ``i2c_rdwr`` transfers (any length) instead of 30-byte SMBus

@@ -4,14 +4,15 @@ The probe sweeps an elliptical path in (pan, tilt), like the searching antenna o
 (Fig. 7). The accelerometer's FIFO is drained all the while and every new sample is checked against
 a running baseline; the first sample whose acceleration departs from it by more than a threshold is
 the contact (Fig. 8). The servos are then stopped at once: held a small stated angle
-(:attr:`SearchConfig.back_off`) behind the position they had certainly reached when the contact
-sample was taken (the command before the one then in effect), so that the probe never pushes
+(``back_off`` of :class:`SearchConfig`) behind the position they had certainly reached when the
+contact sample was taken (the command before the one then in effect), so that the probe never pushes
 further into the object. The vibration window is recorded
 into a :class:`~ebantenna.recording.Recording` (a short stretch before the contact included), and
 the servos are released (PWM off). They are released on every way out, an exception, Ctrl-C,
 SIGTERM or SIGHUP included (:class:`~ebantenna.device.safety.ServoGuard`), and a run whose
 accelerometer stops producing ends with
-:class:`~ebantenna.device.watchdog.StreamStalledError` after :attr:`SearchConfig.watchdog`.
+:class:`~ebantenna.device.watchdog.StreamStalledError` after ``watchdog`` seconds
+(:class:`SearchConfig`).
 """
 
 from __future__ import annotations

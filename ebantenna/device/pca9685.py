@@ -149,7 +149,7 @@ class PCA9685:
         :func:`oscillator_from_measurement`); default the nominal 25 MHz. Must lie in 23-27 MHz.
     retry : RetryPolicy, optional
         Retries of transient bus errors.
-    clock : clock, optional
+    clock : SystemClock or VirtualClock, optional
         ``sleep`` provider. Default the system clock.
 
     Examples

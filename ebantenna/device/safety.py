@@ -9,8 +9,8 @@ noisy bus, and puts the previous handlers back; an exception leaving the guard g
 ``servos_released`` that says whether the release succeeded. Signals arriving during the release
 are held and re-raised after it.
 
-Handlers can only be installed from the main thread (Python's :mod:`signal` rule); elsewhere the
-guard still releases on exit and says so in the log.
+Handlers can only be installed from the main thread (a rule of Python's :mod:`signal` module);
+elsewhere the guard still releases on exit and says so in the log.
 """
 
 from __future__ import annotations
@@ -61,8 +61,9 @@ class ServoGuard:
     Parameters
     ----------
     release : callable
-        Releases the servos (e.g. :meth:`PanTilt.release`); may raise :class:`I2CError`.
-    clock : clock
+        Releases the servos (e.g. :meth:`~ebantenna.device.pantilt.PanTilt.release`); may raise
+        :class:`I2CError`.
+    clock : SystemClock or VirtualClock
         ``sleep`` provider for the waits between release attempts.
     attempts : int
         Tries of the release, >= 1. Default 6.
@@ -164,8 +165,8 @@ class ServoGuard:
         raise AssertionError("unreachable")  # pragma: no cover
 
     def release_with_retries(self) -> None:
-        """Release over I2C, retrying a failure within :attr:`deadline`; then, if it still
-        failed, through :attr:`fallback`. :class:`ReleaseError` if nothing worked."""
+        """Release over I2C, retrying a failure within ``deadline`` seconds; then, if it
+        still failed, through ``fallback``. :class:`ReleaseError` if nothing worked."""
         last = self._release_over_i2c()
         if last is None:
             self.released, self.released_by = True, "i2c"

@@ -41,7 +41,7 @@ class PeriodEstimator:
     sided on the *rate*: ``nominal / (1 + tolerance) <= T <= nominal / (1 - tolerance)``.
 
     A count that contradicts the bracket (no period in it can explain the count) is not used:
-    it is logged at WARNING and counted in :attr:`rejected`.
+    it is logged at WARNING and counted in ``rejected``.
 
     Parameters
     ----------

@@ -74,7 +74,8 @@ def check_watchdog(
 
 
 def record_stream(mpu, duration: float, *, poll_interval: float = 0.02, watchdog: float = 1.0):
-    """Record ``duration`` s of ``mpu``'s FIFO (the body of :meth:`MPU6050.record`)."""
+    """Record ``duration`` s of ``mpu``'s FIFO (the body of
+    :meth:`~ebantenna.device.mpu6050.MPU6050.record`)."""
     duration = check_positive("duration", duration)
     poll_interval = mpu.check_poll_interval(poll_interval)
     watchdog = check_positive("watchdog", watchdog)

@@ -10,8 +10,8 @@ rows and columns of its four DOFs, ``(v_e, theta_e, v_{e+1}, theta_{e+1})``, so 
 neighbouring elements overlap on the 2 x 2 block of their common node.
 :func:`assemble_elements` is that loop, word for word, on the element matrices as
 :mod:`~ebantenna.fem.elements` writes them out; :func:`assemble` runs faster engines by default
-that give the same matrices bit for bit (:mod:`ebantenna.fem._element_engine` and
-:mod:`ebantenna.fem._scatter` explain how).
+that give the same matrices bit for bit (``ebantenna.fem._element_engine`` and
+``ebantenna.fem._scatter`` explain how).
 
 The guards that come before a mesh (round-off, memory, a contact the mesh can hold) are in
 :mod:`~ebantenna.fem.guards`; the functions here take checked values.
@@ -138,8 +138,8 @@ def assemble(nodes: np.ndarray, probe: Probe, *, sparse: bool = False, engine: s
         (:func:`~ebantenna.fem.elements.element_stiffness`,
         :func:`~ebantenna.fem.elements.consistent_mass`) and added by :func:`assemble_elements`.
         ``"scatter"`` (default): the engines, the same matrices as polynomials in the element
-        length (:mod:`ebantenna.fem._element_engine`) added one parity of elements at a time
-        (:mod:`ebantenna.fem._scatter`), or into sparse matrices; the same result bit for bit.
+        length (``ebantenna.fem._element_engine``) added one parity of elements at a time
+        (``ebantenna.fem._scatter``), or into sparse matrices; the same result bit for bit.
 
     Examples
     --------

@@ -11,10 +11,10 @@ moves from the hinge to the tip:
 - **zone 2** in between: both parts share the mode, which changes character (Fig. 17b).
 
 The zones are read off the mode shapes, by the share of the lowest mode's kinetic energy in the
-overhang (:meth:`ModalResult.overhang_mass_fraction`), with thresholds that say what "almost all"
-and "little" mean. The frequency itself stops rising in zone 2 and falls in zone 3: the lowest
-frequency is *not* monotonic in the contact position, which is why a calibration from the dominant
-frequency alone fails beyond about 80 % of the length.
+overhang (:meth:`~ebantenna.fem.modal.ModalResult.overhang_mass_fraction`), with thresholds that say
+what "almost all" and "little" mean. The frequency itself stops rising in zone 2 and falls in zone
+3: the lowest frequency is *not* monotonic in the contact position, which is why a calibration from
+the dominant frequency alone fails beyond about 80 % of the length.
 """
 
 from __future__ import annotations

@@ -1,4 +1,5 @@
-"""How an SMO run behaves where the textbook leaves a choice: the :class:`SMOPolicy`.
+"""How an SMO run behaves where the textbook leaves a choice: the
+:class:`~ebantenna.ml.smo_policy.SMOPolicy`.
 
 The SMO engines behind :func:`ebantenna.ml.smo.solve_smo` run one algorithm, the reference
 loop of :mod:`ebantenna.ml.smo`; the choices they make on the way (which working-set rule, which

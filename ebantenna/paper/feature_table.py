@@ -1,4 +1,4 @@
-"""Per-signal features of a data set, computed in parallel chunks through :mod:`joblib`.
+"""Per-signal features of a data set, computed in parallel chunks through joblib.
 
 Every signal of the data set goes through the same small pipeline (dominant frequency, the two
 strongest spectral peaks, the band-passed decay fit, the paper's FFT feature vectors). The rows are

@@ -46,7 +46,7 @@ class PositionAwareMaterialClassifier(ClassifierMixin, BaseEstimator):
 
     For every distinct training distance ``d_k`` the mean ``mu_k`` and standard deviation
     ``s_k`` of each feature over all training rows at ``d_k`` (all materials together) are
-    kept, ``s_k`` floored at :data:`SPREAD_FLOOR` times its mean. A row at distance ``d`` becomes
+    kept, ``s_k`` floored at ``SPREAD_FLOOR`` times its mean. A row at distance ``d`` becomes
     ``z = (x - mu(d)) / S(d)``, with ``mu`` and ``S`` linear in ``d`` between training distances
     and constant beyond them. The scale ``S_k = sqrt(s_k^2 + m^2)`` adds to the spread at
     ``d_k`` the spread ``m`` of the mean over all training distances: a probe mode's peak moves
@@ -232,7 +232,7 @@ def classify_materials_position_aware(
     """Distance first, then material: :class:`PositionAwareMaterialClassifier` on a split.
 
     The classifier learns at the training rows' nominal distances; every test row is read at
-    the distance estimated from its own spectrum (:func:`estimate_distances`, calibrated on the
+    the distance estimated from its own spectrum (``estimate_distances``, calibrated on the
     training rows).
 
     Parameters
@@ -244,7 +244,7 @@ def classify_materials_position_aware(
     positions : array-like of shape (n,)
         Nominal contact position of each row, m.
     peaks, dominant
-        Per-row frequencies for the distance estimate (see :func:`estimate_distances`).
+        Per-row frequencies for the distance estimate (see ``estimate_distances``).
     split : (ndarray, ndarray)
         Train and test row indices (:mod:`ebantenna.paper.splits`).
     C, gamma

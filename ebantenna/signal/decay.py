@@ -393,7 +393,7 @@ def envelope_fit(tk, ek, *, nonlinear):
 
 
 def envelope_status(b, decaying, too_short, sine) -> str:
-    """The checks of an envelope fit with rate ``b`` (1/s): its :attr:`DecayFit.status`.
+    """The checks of an envelope fit with rate ``b`` (1/s): its ``status`` of a :class:`DecayFit`.
 
     ``"not_decaying"`` unless ``decaying`` (``b < 0`` and R^2 high enough); ``"too_few_points"``
     when the decay is over before two periods; ``"inconsistent"`` when the damped-sinusoid fit

@@ -20,9 +20,9 @@ The configuration is the cache key: the file format, the package version, the se
 every parameter of the scene (probe, supports, sampling, each effect's parameters) and every
 property of the touched materials, so that changed physics never reuses stale data. A cached file
 that is damaged, truncated, foreign or stale is rebuilt, and the log says why. The simulation
-runs through :mod:`joblib`, one task per material, so any joblib backend can run it: local
-processes, or a Dask cluster (``joblib.parallel_config(backend="dask")``) to grow a sweep beyond
-one machine without changing code.
+runs through :class:`joblib.Parallel`, one task per material, so any joblib backend can run it:
+local processes, or a Dask cluster (``joblib.parallel_config(backend="dask")``) to grow a sweep
+beyond one machine without changing code.
 """
 
 from __future__ import annotations
@@ -327,7 +327,7 @@ def build_dataset(
     seed : int
         Seed of everything random in the data set.
     n_jobs : int, optional
-        Workers (:mod:`joblib`; each task a range of contact positions of one material);
+        Workers (:class:`joblib.Parallel`; each task a range of contact positions of one material);
         default: the active ``joblib.parallel_config`` (one process outside any). The result
         does not depend on it, nor on the backend.
     show_progress : bool, optional
@@ -402,7 +402,7 @@ def _reusable(path: Path, config: dict) -> Dataset | None:
 
 
 def _simulate_plan(scene: Scene, plan: dict, materials, n_jobs, show_progress):
-    """The signals of every row of ``plan``, one :mod:`joblib` task per range of contacts.
+    """The signals of every row of ``plan``, one joblib task per range of contacts.
 
     Returns ``ax`` and ``az`` (float32, ``(n, n_samples)``) and each row's restrikes (0 without
     ``unilateral_contact``). Takes checked values.

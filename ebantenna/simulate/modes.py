@@ -206,8 +206,9 @@ def coupled_arrest_modes(
 ) -> ArrestModes:
     """Modes below ``max_frequency`` of the probe arrested on a vibrating rod, and their excitation.
 
-    The probe and the rod are joined by the contact spring (:func:`ebantenna.fem.coupling.
-    coupled_modes`, from reductions made once per contact position and per rod). At the arrest
+    The probe and the rod are joined by the contact spring
+    (:func:`ebantenna.fem.coupling.coupled_modes`,
+    from reductions made once per contact position and per rod). At the arrest
     the probe moves as in :func:`arrest_modes` (the hinge stopped, every other point keeping the
     sweep's velocity), the rod is at rest and the spring relaxed; the initial modal velocities are
     ``Phi^T M u0`` over the probe's DOFs (the rod's initial velocity is zero).

@@ -9,7 +9,7 @@ duration) and the explicit list of effects. Two scenes are built in (:func:`buil
 ``paper``
     The paper's rig: the tube with the MPU6050 board at its tip touching a rod of the given
     material, every effect of :mod:`ebantenna.simulate.effects` at its documented default but
-    those in :data:`PAPER_LEAVES_OUT`, the probe's and the rod's modes up to 3 kHz, which the
+    those in ``PAPER_LEAVES_OUT``, the probe's and the rod's modes up to 3 kHz, which the
     sensor's filter and decimation fold into the 0-500 Hz band as on the chip.
 
 Scenes are saved to and loaded from TOML or JSON (:meth:`Scene.save`, :func:`load_scene`).

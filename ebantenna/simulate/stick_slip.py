@@ -20,10 +20,10 @@ Newton iteration (:func:`.linear_state.crossing`): slip ends where ``u`` reaches
 :func:`.friction.coulomb_response` integrates the same law with :func:`scipy.integrate.solve_ivp`
 and is this module's witness in the test suite.
 
-**In the scene** (:class:`.effects.CoulombFriction`): the probe's Z axis is its Craig-Bampton
-reduction at the contact (the same basis as the strikes', :mod:`.strikes`), damped by the tube's
-loss factor where ``structural_damping`` is listed; the tilt servo's stop leaves it moving with
-the rigid rotation ``tilt_ratio x sweep_speed`` about the hinge, as without friction
+**In the scene** (:class:`~ebantenna.simulate.effects.CoulombFriction`): the probe's Z axis is its
+Craig-Bampton reduction at the contact (the same basis as the strikes', :mod:`.strikes`), damped by
+the tube's loss factor where ``structural_damping`` is listed; the tilt servo's stop leaves it
+moving with the rigid rotation ``tilt_ratio x sweep_speed`` about the hinge, as without friction
 (:mod:`.modes`), so the contact point starts sliding along the rod at ``tilt_ratio x sweep_speed
 x contact``. **Assumption:** ``N`` is the contact's static preload: the normal force's swing
 during the strike, and its lift-offs with ``unilateral_contact``, are not fed into the friction.

@@ -18,8 +18,8 @@ The model of one strike (:func:`strike_model`):
   Phi^T M`` for mass-normalised ``Phi``; at each of the body's resonances this dissipates what
   the loss factor does (R. R. Craig and A. J. Kurdila, *Fundamentals of Structural Dynamics*,
   2nd ed., Wiley, 2006, section 10.3). **Assumption:** the contact spring's own loss (its
-  compliance-weighted share, :meth:`.effects.ObjectModes.contact_loss_factor`) is left out: a
-  dashpot in the contact would act in one state only.
+  compliance-weighted share, :meth:`~ebantenna.simulate.effects.ObjectModes.contact_loss_factor`) is
+  left out: a dashpot in the contact would act in one state only.
 - **The approach.** The probe swings rigidly about its hinge at the sweep speed, so the contact
   point approaches at ``sweep_speed x contact``; the servo's rigid motion per unit travel at the
   contact is that rotation projected on the probe's basis in the mass metric, as the linear
@@ -262,7 +262,7 @@ def strike_accelerations(
 
 def timed_rate(scene, when) -> tuple[float, int]:
     """The rate at which a time-stepped axis is computed, and how many samples reach past the
-    last reading at ``when``: the DLPF's internal rate, or without it :data:`UNFILTERED_RATE`
+    last reading at ``when``: the DLPF's internal rate, or without it ``UNFILTERED_RATE``
     times ``fs``."""
     dlpf = scene.effect("dlpf")
     rate = dlpf.internal_rate if dlpf is not None else UNFILTERED_RATE * scene.fs

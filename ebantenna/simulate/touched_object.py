@@ -90,7 +90,7 @@ class ContactCase:
         The contact's static force, N.
     rod : Rod
         The touched rod.
-    probe_reduction, rod_reduction : Reduction
+    probe_reduction, rod_reduction : ebantenna.fem.coupling.CraigBampton
         The two bodies reduced at the contact (:func:`ebantenna.fem.coupling.craig_bampton`).
     stiffness : float
         The contact spring under ``preload``, N/m.
@@ -170,7 +170,8 @@ class ObjectModel:
         ``build(case: ContactCase)``: the model of one contact case.
     respond : callable or None
         ``respond(batch, models) -> (n, n_samples) array``: the axis, for a model stepped in
-        time; None for modes, which the modal sum reads (:data:`CHAIN`, the responses).
+        time; None for modes, which the modal sum reads
+        (:data:`~ebantenna.simulate.simulator.CHAIN`, the responses).
     unless : str or None
         An effect that gives the same axis in time: when it is listed and the caller asked for no
         X modes (``x_modes=False``, as a data set build does), the model is left out.
@@ -184,7 +185,8 @@ class ObjectModel:
     unless: str | None = None
 
     def wanted(self, scene: Scene, x_modes: bool) -> bool:
-        """Whether ``scene`` needs this model (``x_modes`` as in :func:`simulate_batch`)."""
+        """Whether ``scene`` needs this model (``x_modes`` as in
+        :func:`~ebantenna.simulate.simulator.simulate_batch`)."""
         if self.effect is not None and not scene.has(self.effect):
             return False
         return x_modes or self.unless is None or not scene.has(self.unless)

@@ -7,7 +7,7 @@
    and the errata of the printed matrices; one hinge stiffness and tip mass fitted to both of
    the paper's probe lengths;
 2. the simulated data set (built once, then reused from its cache);
-3. the signal features of every recording (in parallel through :mod:`joblib`);
+3. the signal features of every recording (in parallel through :class:`joblib.Parallel`);
 4. the dominant frequency against the contact distance per material and its spread (Figs. 9, 10);
 5. the gain and time constant of the band-passed decay per material (Fig. 11);
 6. the SVM and ANN material classifiers with their confusion matrices beside the paper's
@@ -167,7 +167,7 @@ def reproduce(
         The small data set (contacts every 5 cm, 3 repetitions) and coarser sweeps: well under a
         minute, for tests and the documentation. Its numbers are not the study's.
     seed : int
-        Seed of the data set and of every split and initialisation, 0 ... :data:`MAX_SEED`.
+        Seed of the data set and of every split and initialisation, 0 ... ``MAX_SEED``.
     n_jobs : int or None
         joblib workers for the data set and the features (``-1``: all cores).
     cache_dir : path, optional

@@ -1,12 +1,17 @@
 """The build-time tools of the docs: sympy rendering, errata table, CLI help, inventories."""
 
 import ast
+import importlib
+import inspect
 import io
+import re
+import runpy
 import zlib
 from pathlib import Path
 
 import ebantenna_docs
 import make_inventories
+import public_names
 import pytest
 import sympy as sp
 from sphinx.util.inventory import InventoryFile
@@ -124,9 +129,122 @@ def test_inventory_refuses_objects_that_do_not_exist():
 
 def test_intersphinx_mapping_points_at_local_files():
     mapping = make_inventories.intersphinx_mapping("_inventories")
-    assert set(mapping) == {"numpy", "scipy", "sklearn", "sympy", "matplotlib"}
+    # Python (numpydoc links every "float" and "dict" of a docstring to it) and every library the
+    # docs link to
+    libraries = {"numpy", "scipy", "sklearn", "sympy", "matplotlib", "joblib", "smbus2"}
+    assert set(mapping) == {"python"} | libraries
     for url, path in mapping.values():
         assert url.startswith("https://") and (DOCS / path).is_file()
+
+
+@pytest.mark.parametrize("key", sorted(make_inventories.INVENTORIES))
+def test_every_inventory_name_imports(key):
+    for name, role, _uri in make_inventories.INVENTORIES[key][3]:
+        obj = make_inventories.resolve(name)
+        if role == "module":
+            assert inspect.ismodule(obj), name
+        elif role == "class":
+            assert isinstance(obj, type), name
+
+
+def test_builtin_names_resolve_to_the_builtins():
+    assert make_inventories.resolve("float") is float
+    assert make_inventories.resolve("None") is None
+    with pytest.raises(LookupError):
+        make_inventories.resolve("no_such_builtin")
+
+
+@pytest.fixture(scope="module")
+def conf():
+    return runpy.run_path(str(DOCS / "conf.py"))
+
+
+def test_conf_reports_every_dead_reference(conf):
+    # with nitpicky on, the -W build of CI fails on any reference that has no target
+    assert conf["nitpicky"] is True
+    assert "public_names" in conf["extensions"]
+    assert "nitpick_ignore_regex" not in conf  # no pattern that could hide real dead links
+
+
+def test_nitpick_ignore_holds_only_existing_private_objects(conf):
+    # bare names, as numpydoc writes them from a docstring's type, and where they are defined
+    homes = {"AnalysedPart": "ebantenna.signal._guards.AnalysedPart"}
+    for _role, target in conf["nitpick_ignore"]:
+        full = homes.get(target, target)
+        # the object exists (a typo would hide nothing), and it lives in a private module, which
+        # the API pages do not document
+        make_inventories.resolve(full)
+        assert any(part.startswith("_") for part in full.split(".")), target
+
+
+def test_numpydoc_aliases_point_at_real_objects(conf):
+    inventory_names = {
+        name for entries in make_inventories.INVENTORIES.values() for name, _r, _u in entries[3]
+    }
+    for word, target in conf["numpydoc_xref_aliases"].items():
+        if target.startswith("ebantenna."):
+            make_inventories.resolve(target)
+        else:
+            assert target in inventory_names, (word, target)
+    # a word is either linked or ignored, not both
+    assert not set(conf["numpydoc_xref_aliases"]) & conf["numpydoc_xref_ignore"]
+
+
+def test_public_names_finds_the_object_itself():
+    from ebantenna.signal import decay, fit_decay
+    from ebantenna.signal.kalman import KalmanFilter
+
+    documented = {"ebantenna.signal.decay.fit_decay", "ebantenna.signal.decay.envelope"}
+    assert public_names.documented_name(decay.envelope, "envelope", documented) == (
+        "ebantenna.signal.decay.envelope"
+    )
+    assert public_names.import_name("ebantenna.signal.fit_decay") is fit_decay is decay.fit_decay
+    assert public_names.documented_name(fit_decay, "fit_decay", documented) == (
+        "ebantenna.signal.decay.fit_decay"
+    )
+    # a name that is not documented, or another object of the same name, is not linked
+    elsewhere = {"ebantenna.other.fit_decay"}
+    assert public_names.documented_name(fit_decay, "fit_decay", elsewhere) is None
+    other = {"ebantenna.signal.spectral.dominant_frequency"}
+    assert public_names.documented_name(fit_decay, "dominant_frequency", other) is None
+    assert public_names.import_name("ebantenna.signal.no_such_name") is public_names._MISSING
+    # a classmethod is bound anew on every access: the same method, not the same object
+    assert KalmanFilter.random_walk is not KalmanFilter.random_walk
+    assert public_names.same(KalmanFilter.random_walk, KalmanFilter.random_walk)
+    assert not public_names.same(KalmanFilter.random_walk, KalmanFilter.resonator)
+
+
+def test_public_names_reads_bare_names_in_their_module():
+    assert public_names.candidates("ebantenna.ml.SVC", "ebantenna.signal", None) == [
+        "ebantenna.ml.SVC"
+    ]
+    assert public_names.candidates("fit", "ebantenna.ml.svc", "SVC") == [
+        "ebantenna.ml.svc.SVC.fit", "ebantenna.ml.svc.fit"
+    ]
+    assert public_names.candidates("float", None, None) == []
+
+
+def test_autosummary_takes_a_module_before_a_function_of_the_same_name():
+    import ebantenna.study
+
+    module = importlib.import_module("ebantenna.study.reproduce")
+
+    # ebantenna.study re-exports the function reproduce of its module reproduce
+    assert ebantenna.study.reproduce is not module
+    importer = public_names.module_first(lambda name, grouped=True: ("fallback", None, name))
+    assert importer("ebantenna.study.reproduce")[0] is module
+    assert importer("ebantenna.study.reproduce.StudyResult")[0] == "fallback"
+
+
+def test_exercise_links_do_not_repeat_the_word_exercise():
+    # an exercise page's title starts with "Exercise N:", so "exercise :doc:`...`" rendered as
+    # "exercise Exercise N: ..."; a link says "exercise N" through its own title instead
+    pattern = re.compile(r"\b[Ee]xercises?\s+:doc:`[^`<]*`")
+    pages = [p for p in DOCS.rglob("*.rst") if not {"_build", "auto_examples"} & set(p.parts)]
+    pages += list((DOCS / "examples").glob("*.py"))
+    pages += list((DOCS.parent / "ebantenna").rglob("*.py"))
+    found = [f"{p.name}: {m.group(0)!r}" for p in pages for m in pattern.finditer(p.read_text())]
+    assert found == []
 
 
 def test_gallery_has_at_least_eight_titled_examples():

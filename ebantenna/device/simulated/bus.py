@@ -2,10 +2,10 @@
 
 Each transfer advances the :class:`~ebantenna.device.clock.VirtualClock` by its duration on the
 bus plus a fixed per-transfer overhead, and sleeping advances it instantly, so a ten-second search
-takes a fraction of a second. Every transfer passes through one place, :meth:`SimulatedBus._begin`,
+takes a fraction of a second. Every transfer passes through one place, ``SimulatedBus._begin``,
 where the :class:`~ebantenna.device.simulated.faults.FaultInjector` may stall the host, reset the
 accelerometer, time out on a stuck bus or fail the transfer early; reads then go through
-:meth:`SimulatedBus._read` and writes through :meth:`SimulatedBus._write`, where a transfer may
+``SimulatedBus._read`` and writes through ``SimulatedBus._write``, where a transfer may
 fail late (after the chip has done its part) or, for a read, come back short.
 
 The bus clock defaults to 100 kHz, the rate a Raspberry Pi's I2C bus runs at unless
@@ -88,7 +88,7 @@ class SimulatedBus:
         self.writes: list[tuple[int, int, tuple[int, ...]]] = []
         self.transfers = 0
         self.closed = False
-        #: The chip that :attr:`Faults.chip_reset_at` browns out.
+        #: The chip that the ``chip_reset_at`` of :class:`Faults` browns out.
         self.reset_address = reset_address
 
     @property

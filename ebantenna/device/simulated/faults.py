@@ -20,7 +20,7 @@ adapter's errno from the ``ioctl``):
     The system call is interrupted by a signal (``EINTR``) before the transfer starts.
 ``"overcount"``
     A read of ``FIFO_COUNTH``/``L`` returns more than the chip can have produced since its FIFO
-    was last enabled, even at the fastest clock :data:`MAX_CLOCK_DRIFT` allows, by a whole
+    was last enabled, even at the fastest clock ``MAX_CLOCK_DRIFT`` allows, by a whole
     number of samples (a bit error that the whole-sample check cannot see). Other transfers
     drawn ``"overcount"`` go through untouched.
 
@@ -89,7 +89,7 @@ class Faults:
         How long the bus stays stuck, s.
     clock_drift : float
         Relative error of the accelerometer's sample clock: it samples at ``fs * (1 +
-        clock_drift)``. At most :data:`MAX_CLOCK_DRIFT` in magnitude.
+        clock_drift)``. At most ``MAX_CLOCK_DRIFT`` in magnitude.
     free_running_divider : bool
         The accelerometer's sample-rate divider runs free instead of restarting when the FIFO is
         enabled: a segment's first sample comes at the next tick of its own grid, anywhere in
@@ -196,7 +196,8 @@ class FaultInjector:
     def host_stall(self, now: float) -> float:
         """How long the host stalls before a transfer that starts at virtual time ``now``, s.
 
-        The stall of :attr:`Faults.stall_at` happens once, at the first transfer from then on.
+        The stall at ``stall_at`` (:class:`Faults`) happens once, at the first transfer from then
+        on.
         """
         faults = self.faults
         if faults.stall_at is None or self._stalled or now < faults.stall_at:
@@ -224,7 +225,8 @@ class FaultInjector:
         return _error(errno.ETIMEDOUT)
 
     def draw(self, now: float = 0.0) -> str | None:
-        """The kind of failure of this transfer (one of :attr:`Faults.kinds`), or None."""
+        """The kind of failure of this transfer (one of the ``kinds`` of :class:`Faults`), or
+        None."""
         faults = self.faults
         if not (faults.error_rate and self._rng.random() < faults.error_rate):
             return None

@@ -12,7 +12,7 @@ sample period after it starts; with ``free_running_divider`` it runs on its own 
 instead, and the first sample lands at the next tick, anywhere within a period of the start. Which
 of the two the real part does is a question for the hardware (see the HIL checklist of the user
 guide); the driver assumes neither. The chip keeps the ground truth of every epoch
-(:attr:`SimulatedMPU6050.epochs` and :attr:`SimulatedMPU6050.first_sample`): its start time, the
+(``epochs`` and ``first_sample`` of :class:`SimulatedMPU6050`): its start time, the
 time of its first sample and every sample it put into the FIFO, which is what a driver's kept
 samples and timestamps are checked against.
 
@@ -162,7 +162,7 @@ class SimulatedMPU6050:
     def impossible_samples(self) -> int:
         """How many samples a FIFO count must add to what the FIFO holds to claim more than the
         chip can have produced since the FIFO was enabled, at the fastest clock the faults
-        allow (:data:`MAX_CLOCK_DRIFT`) and with its first
+        allow (``MAX_CLOCK_DRIFT``) and with its first
         sample as early as a free-running divider can put it: the ``"overcount"`` fault."""
         if self._since is None:
             return 0

@@ -26,7 +26,7 @@ is a class here, an entry of :data:`EFFECT_TYPES` and one step in the simulator'
 
 All arrays here have shape ``(n_signals, n_samples)``: every effect is vectorised over signals.
 Random effects draw from a :class:`numpy.random.Generator` per signal that the simulator makes
-from the signal's seed and the effect's own :attr:`stream` number, so that adding or removing one
+from the signal's seed and the effect's own ``stream`` number, so that adding or removing one
 effect never changes the random numbers of another.
 """
 

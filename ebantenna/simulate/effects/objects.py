@@ -188,7 +188,7 @@ class CoulombFriction(Effect):
     ``mu_s N``. Computed exactly between the stick and slip states
     (:mod:`ebantenna.simulate.stick_slip`, where its assumptions are named). Requires
     :class:`ObjectModes` (the preload). The ``paper`` scene leaves it out
-    (:data:`ebantenna.simulate.scene.PAPER_LEAVES_OUT`).
+    (``PAPER_LEAVES_OUT`` of :mod:`ebantenna.simulate.scene`).
 
     Parameters
     ----------

@@ -26,7 +26,7 @@ class StructuralDamping(Effect):
     A material with loss factor ``eta`` loses ``2 pi eta`` of its strain energy per cycle. Near a
     resonance this equals viscous damping with ratio ``zeta = eta / 2`` (Cremer, Heckl and
     Petersson, *Structure-Borne Sound*, 3rd ed., 2005, section 3.3), applied to every mode. The
-    loss factor is the probe's :attr:`~ebantenna.probe.Probe.loss_factor` (PMMA: 0.03).
+    loss factor is the probe's ``loss_factor`` (:class:`~ebantenna.probe.Probe`) (PMMA: 0.03).
 
     Examples
     --------
@@ -105,8 +105,8 @@ class ContactCompliance(Effect):
 class TipMass(Effect):
     """The accelerometer board at the free tip, as a point mass in the FEM model.
 
-    The mass itself is the probe's :attr:`~ebantenna.probe.Probe.tip_mass`; a scene lists this
-    effect exactly when its probe carries one, so that the list of effects says everything the
+    The mass itself is the probe's ``tip_mass`` (:class:`~ebantenna.probe.Probe`); a scene lists
+    this effect exactly when its probe carries one, so that the list of effects says everything the
     simulator computes. The ``paper`` scene uses :data:`GY521_MASS` (2.5 g, an MPU6050 breakout
     with its pin header, solder and wire ends). With it, the lowest mode changes character near
     0.8 L (the paper's Fig. 16). Its rotary inertia and the wires along the tube are neglected.

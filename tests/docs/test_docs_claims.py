@@ -130,3 +130,68 @@ def test_one_vs_one_and_one_vs_rest_as_stated():
     ovr = OneVsRestClassifier(SVC()).fit(X, y)
     assert len(ovr.estimators_) == 5
     assert ovr.score(X, y) > 0.8  # a working classifier, not just an object that fits
+
+
+# --- the gallery's prose ------------------------------------------------------------------------
+
+
+def _strongest_bin(rec):
+    from ebantenna.signal import norm_spectrum
+
+    f, mag = norm_spectrum(rec, remove_mean=True)
+    k = int(np.argmax(mag[1:])) + 1
+    return f, mag, f[k]
+
+
+def _bin_share(f, mag, frequency):
+    """The largest bin within one bin of ``frequency``, as a share of the largest bin."""
+    near = np.abs(f - frequency) <= f[1] - f[0]
+    return mag[near].max() / mag[1:].max()
+
+
+def test_plot_11_strongest_bins_as_stated():
+    # plot_11_simulated_signals: what the strongest bin of the norm spectrum sits on, brass touched
+    from ebantenna.probe import material
+
+    scene = builtin_scene("paper").with_(material="brass")
+    L = scene.probe.length
+    for a in (0.25, 0.5, 0.75, 0.8):
+        rec = simulate_at(scene, a * L)
+        f, _, peak = _strongest_bin(rec)
+        assert f[1] - f[0] == pytest.approx(1.0)  # "one bin (1 Hz)": a one-second record
+        lowest = rec.metadata["modes_x_hz"][0]
+        pinned = modal_analysis(scene.probe, Supports(contact=a * L), n_modes=1).frequencies[0]
+        assert abs(peak - lowest) <= 1.0  # within one bin of the simulated lowest frequency
+        assert 0 < pinned - lowest <= 1.2 + 0.05  # "up to 1.2 Hz below", to the stated digit
+    rec = simulate_at(scene, 0.9 * L)
+    f, mag, peak = _strongest_bin(rec)
+    pinned = modal_analysis(scene.probe, Supports(contact=0.9 * L), n_modes=2).frequencies
+    simulated, zeta = rec.metadata["modes_x_hz"], rec.metadata["zeta_x"]
+    assert pinned[0] == pytest.approx(70.4, abs=0.05)
+    assert simulated[0] == pytest.approx(70.4, abs=0.05)
+    assert 0.075 <= _bin_share(f, mag, simulated[0]) <= 0.125  # "about a tenth"
+    assert peak == 89.0
+    rod = scene.effect("object_modes").rod(material("brass")).cantilever_frequency()
+    assert rod == pytest.approx(94.4, abs=0.05)  # the rod alone in its stand
+    assert simulated[1] == pytest.approx(89.0, abs=0.05)  # the rod's mode, coupled
+    assert zeta[1] == pytest.approx(0.0008, abs=0.00005)
+    assert zeta[0] == pytest.approx(0.015, abs=0.001) and zeta[2] == pytest.approx(0.015, abs=0.001)
+    # "rings through the whole second while the probe's modes die away": time constants
+    # 1 / (zeta omega) of the rod's mode beyond the record, of the probe's far within it
+    tau = 1 / (2 * np.pi * np.array(zeta[:3]) * np.array(simulated[:3]))
+    assert tau[1] > rec.t[-1] and tau[0] < 0.2 * rec.t[-1] and tau[2] < 0.2 * rec.t[-1]
+    assert pinned[1] == pytest.approx(186.7, abs=0.05)
+    assert abs(simulated[2] - 187) <= 2  # "near 187 Hz"
+    assert 0.15 <= _bin_share(f, mag, simulated[2]) <= 0.25  # "about a fifth"
+    # on a rigid object (the rod's modes and what needs them switched off) the strongest bin is
+    # the probe's second mode, within one bin
+    gone = ("object_modes", "object_damping", "preload_scatter", "unilateral_contact")
+    rigid = scene.with_(effects=[e for e in scene.effects if e.name not in gone])
+    _, _, peak = _strongest_bin(simulate_at(rigid, 0.9 * L))
+    assert abs(peak - pinned[1]) <= 1.0
+
+
+def simulate_at(scene, contact):
+    from ebantenna.simulate import simulate
+
+    return simulate(scene.with_(contact=contact), seed=1)

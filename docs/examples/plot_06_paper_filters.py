@@ -15,8 +15,8 @@ import numpy as np
 from ebantenna.signal import PAPER_FILTERS, check_specification, paper_filter
 from ebantenna.signal.filters import freqz_sos
 
-fig, axes = plt.subplots(1, 2, figsize=(11, 4))
-for ax, kind in zip(axes, ("chebyshev", "elliptic"), strict=True):
+for kind in ("chebyshev", "elliptic"):  # one figure each
+    fig, ax = plt.subplots(figsize=(7, 4))
     spec = PAPER_FILTERS[kind]
     for order, style in ((None, "-"), ("stated", "--")):
         sos = paper_filter(kind, order)
@@ -40,5 +40,5 @@ for ax, kind in zip(axes, ("chebyshev", "elliptic"), strict=True):
     ax.set_ylabel("gain (dB)")
     ax.set_title(f"{kind}: {spec.source}", fontsize="small")
     ax.legend(fontsize="small", loc="lower center")
-fig.tight_layout()
+    fig.tight_layout()
 plt.show()

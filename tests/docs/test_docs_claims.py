@@ -226,3 +226,98 @@ def test_plot_12_retries_as_stated(caplog):
     assert any("register 0x74" in m for m in retries)  # FIFO_R_W reads among them
     assert result.samples_lost == 0 and result.stream["fifo_restarts"] == 0
     assert rig.wrong_samples(mpu, result.recording) == 0
+
+
+def test_plot_03_mesh_error_and_rounding_as_stated():
+    # plot_03_naive_eigensolver, contact at L/2: "on 16 elements [the mesh's error] is about 1e-6";
+    # "between 40 and 80 elements the mesh's error falls below the naive solver's rounding error"
+    supports = Supports(contact=0.5 * L)
+    exact = exact_frequencies(PROBE, supports.contact, n_modes=1)[0]
+
+    def errors(n):
+        naive, inverted = (
+            modal_analysis(PROBE, supports, n_elements=n, n_modes=1, solver=s).frequencies[0]
+            for s in ("naive", "auto")
+        )
+        return abs(inverted / exact - 1), abs(naive / inverted - 1)  # mesh's, rounding's
+
+    mesh, _ = errors(16)
+    assert mesh == pytest.approx(1e-6, rel=0.5)  # "about 1e-6": to the stated order
+    mesh, rounding = errors(40)
+    assert rounding < mesh / 10  # far from the crossing, whatever the BLAS kernel
+    mesh, rounding = errors(80)
+    assert rounding > mesh
+
+
+def test_plot_04_maximum_further_out_for_two_elements():
+    # plot_04_zones: "the paper's two-element model puts it further out" than 64 elements
+    from ebantenna.fem import natural_frequencies
+
+    fine = np.linspace(0.5, 0.95, 451) * L
+    f64 = natural_frequencies(PROBE, fine, n_modes=1)[:, 0]
+    f2 = natural_frequencies(PROBE, fine, n_modes=1, n_elements=2)[:, 0]
+    assert fine[np.argmax(f2)] > fine[np.argmax(f64)] + 0.02 * L
+
+
+def test_plot_06_stated_second_order_fails_both_tables():
+    # plot_06_paper_filters: the text's "second order" meets neither table; the designed order does
+    from ebantenna.signal import PAPER_FILTERS, check_specification, paper_filter
+
+    for kind, spec in PAPER_FILTERS.items():
+        assert not check_specification(paper_filter(kind, "stated"), spec).meets, kind
+        assert check_specification(paper_filter(kind), spec).meets, kind
+
+
+def test_plot_08_differences_as_stated():
+    # plot_08_svm_vs_sklearn: the defaults differ by about the stopping tolerance 1e-3 on the grid;
+    # libsvm_compat=True follows libsvm's path and agrees to rounding
+    from sklearn.datasets import make_moons
+    from sklearn.svm import SVC as SklearnSVC
+
+    from ebantenna.ml import SVC
+
+    X, y = make_moons(n_samples=200, noise=0.25, random_state=0)
+    grid = np.stack(np.meshgrid(np.linspace(-1.5, 2.5, 150), np.linspace(-1.0, 1.5, 120)), -1)
+    grid = grid.reshape(-1, 2)
+    ref = SklearnSVC(C=1.0, gamma=2.0).fit(X, y)
+    ours = SVC(C=1.0, gamma=2.0).fit(X, y)
+    difference = np.abs(ours.decision_function(grid) - ref.decision_function(grid)).max()
+    assert 1e-4 <= difference <= 1e-2  # "of the order of the stopping tolerance tol=1e-3"
+    compat = SVC(C=1.0, gamma=2.0, libsvm_compat=True).fit(X, y)
+    assert_follows_reference(compat.n_iter_[0], compat.decision_function(grid), ref.n_iter_[0],
+                             ref.decision_function(grid), tol=1e-3, same_path_atol=1e-10)
+
+
+def test_plot_10_third_mode_about_477_hz():
+    # plot_10_spectrogram_scalogram: three modes below Nyquist at 0.9 L, the third about 477 Hz,
+    # inside the scalogram's range up to 495 Hz
+    f = modal_analysis(PROBE, Supports(contact=0.9 * L), n_modes=3).frequencies
+    assert np.all(f < 500.0)
+    assert f[2] == pytest.approx(477, abs=0.5) and f[2] < 495.0
+
+
+def test_plot_13_stick_then_hold_as_stated():
+    # plot_13_stick_slip: the contact slides for a fraction of a millisecond, sticks, slips briefly
+    # again, and from then on holds (the last event a stick) within the 30 ms shown
+    from ebantenna.fem.coupling import craig_bampton, probe_substructure
+    from ebantenna.simulate.effects import CoulombFriction
+    from ebantenna.simulate.stick_slip import friction_model, stick_slip_response
+
+    contact = 0.3
+    scene = builtin_scene("paper").with_(contact=contact, material="brass")
+    mu = CoulombFriction().static_friction
+    rod = scene.effect("object_modes")
+    sub = probe_substructure(scene.probe, contact, hinge=scene.hinge, n_elements=scene.n_elements)
+    model = friction_model(craig_bampton(sub, rod.probe_modes), rod.preload, scene.max_frequency)
+    res = stick_slip_response(
+        model.mass, model.stiffness, model.mass.shape[0] - 1, model.normal_force,
+        static_friction=mu, kinetic_friction=mu, duration=0.03, fs=8000.0,
+        velocity=model.rotation * scene.tilt_ratio * scene.sweep_speed,
+        damping=model.damping, output=model.output,
+    )  # fmt: skip
+    times = [t for t, _ in res.events]
+    kinds = [k.rstrip("+-") for _, k in res.events]
+    assert kinds[:3] == ["slip", "stick", "slip"] and kinds[-1] == "stick"
+    assert times[1] < 1e-3  # "a fraction of a millisecond"
+    slips = [b - a for (a, k), b in zip(res.events, times[1:], strict=False) if k != "stick"]
+    assert max(slips[1:]) < slips[0]  # the later slips are brief

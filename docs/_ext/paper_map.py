@@ -8,7 +8,8 @@
   set alone takes minutes to simulate, too long for a page build). Refresh it after a change that
   moves the study's results::
 
-      ebantenna reproduce --json --seed 0 --out /tmp/study --cache /tmp/cache > /tmp/summary.json
+      ebantenna reproduce --json --seed 0 --out /tmp/study --cache /tmp/cache \\
+          > /tmp/summary.json
       python docs/_ext/paper_map.py /tmp/summary.json
 
 - numbers computed while the page is built, in seconds: the filter orders, the probe and the scene,
@@ -186,7 +187,8 @@ PAPER_MAP = (
     Item(
         "Fig. 7",
         "animation of the 3D simulation of the rig",
-        here="the rig's motion is simulated (:class:`~ebantenna.device.SimulatedRig`), not drawn",
+        here="the rig's motion is simulated "
+        "(:class:`~ebantenna.device.simulated.rig.SimulatedRig`), not drawn",
         status="not computed: an animation, nothing to compute",
     ),
     Item(

@@ -3,9 +3,10 @@ Convergence to the exact frequencies: from above, as h⁴
 ========================================================
 
 The exact natural frequencies of the probe come from the transcendental frequency equation
-(:func:`ebantenna.fem.exact_frequencies`). The finite-element frequencies must approach them
-**from above** (the method minimises the Rayleigh quotient over a subspace) and with the **fourth
-power** of the element size :math:`h` (cubic elements, energy with second derivatives).
+(:func:`ebantenna.fem.exact_frequencies <ebantenna.fem.exact.exact_frequencies>`). The
+finite-element frequencies must approach them **from above** (the method minimises the Rayleigh
+quotient over a subspace) and with the **fourth power** of the element size :math:`h` (cubic
+elements, energy with second derivatives).
 """
 
 import matplotlib.pyplot as plt

@@ -35,7 +35,7 @@ for e in paper_errata():
 
 # %%
 # Frequencies of the model with three free DOFs :math:`(\theta_2, v_3, \theta_3)`
-# ------------------------------------------------------------------------------
+# -------------------------------------------------------------------------------
 probe = Probe()
 free = [3, 4, 5]
 printed = paper_matrices()

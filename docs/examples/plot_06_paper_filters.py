@@ -4,8 +4,9 @@ The paper's band-pass filters against their tables
 
 The paper gives two band-pass specifications: Table 1 (Chebyshev, 60-160 Hz, before the decay fit)
 and Table 2 (elliptic, 52-325 Hz, before the distance network), and calls both filters "second
-order". :func:`ebantenna.signal.paper_filter` designs the lowest order that meets each table;
-:func:`ebantenna.signal.check_specification` measures a design against its table. The stated
+order". :func:`ebantenna.signal.paper_filter <ebantenna.signal.filters.paper_filter>` designs the
+lowest order that meets each table; :func:`ebantenna.signal.check_specification
+<ebantenna.signal.filters.check_specification>` measures a design against its table. The stated
 "second order" does not meet either table.
 """
 

@@ -2,10 +2,11 @@
 Training a network: gradient descent against scaled conjugate gradients
 =======================================================================
 
-The paper trains its material classifier by gradient descent and its best distance regressor
-by scaled conjugate gradients (MATLAB's ``trainscg``). :class:`ebantenna.ml.MLPRegressor` has
-both (``solver="gd"`` and ``solver="scg"``). Here a small network learns a smooth curve, a stand-in
-for "dominant frequency -> contact distance", and the two loss curves are compared.
+The paper trains its material classifier by gradient descent and its best distance regressor by
+scaled conjugate gradients (MATLAB's ``trainscg``). :class:`ebantenna.ml.MLPRegressor
+<ebantenna.ml.mlp.MLPRegressor>` has both (``solver="gd"`` and ``solver="scg"``). Here a small
+network learns a smooth curve, a stand-in for "dominant frequency -> contact distance", and the two
+loss curves are compared.
 """
 
 import warnings

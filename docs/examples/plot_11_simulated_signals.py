@@ -2,7 +2,8 @@
 Simulated signals and their norm spectra
 ========================================
 
-:func:`ebantenna.simulate.simulate` turns a :class:`~ebantenna.simulate.Scene` into the
+:func:`ebantenna.simulate.simulate <ebantenna.simulate.simulator.simulate>` turns a
+:class:`~ebantenna.simulate.scene.Scene` into the
 :class:`~ebantenna.recording.Recording` the accelerometer would deliver. The built-in ``paper``
 scene models the paper's rig: the accelerometer board at the tip, the touched rod with its own
 modes, a contact that only pushes, sensor noise, mains hum, the sensor's own low-pass filter and

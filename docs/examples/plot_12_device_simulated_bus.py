@@ -2,14 +2,14 @@
 The rig's driver on a simulated I2C bus
 =======================================
 
-The drivers in :mod:`ebantenna.device` talk to the MPU6050 accelerometer and the PCA9685 servo
-board register by register, as on the Raspberry Pi. :class:`~ebantenna.device.SimulatedRig`
-answers those same register reads and writes, with a virtual clock and a simulated contact, so
-that the search of the paper (sweep, detect the touch, stop the servos, record, release) runs
-without hardware. Injected I2C faults show what the driver does with them: it retries harmless
-register reads, but never a FIFO read blindly (a retry there would shift every later sample); it
-restarts the FIFO instead and counts the samples of the gap as lost. The simulated chip keeps the
-ground truth, so the example also counts the kept samples that differ from it: none.
+The drivers in :mod:`ebantenna.device` talk to the MPU6050 accelerometer and the PCA9685 servo board
+register by register, as on the Raspberry Pi. :class:`~ebantenna.device.simulated.rig.SimulatedRig`
+answers those same register reads and writes, with a virtual clock and a simulated contact, so that
+the search of the paper (sweep, detect the touch, stop the servos, record, release) runs without
+hardware. Injected I2C faults show what the driver does with them: it retries harmless register
+reads, but never a FIFO read blindly (a retry there would shift every later sample); it restarts the
+FIFO instead and counts the samples of the gap as lost. The simulated chip keeps the ground truth,
+so the example also counts the kept samples that differ from it: none.
 
 The figure draws the recording without faults as a thick grey line and the one with faults as
 thin red dots over it: every red dot lies on the grey line (each kept sample is right), and where
@@ -32,10 +32,10 @@ from ebantenna.device import (
 )
 
 # %%
-# The drivers log what they do through :mod:`logging` (logger ``ebantenna.device``): each chip's
-# set-up, the contact, and every retried I2C transfer, at level INFO. Here that log is printed with
-# the example's output, one line per event, and kept there (``propagate = False``): the retries
-# are what this example is about.
+# The drivers log what they do through Python's ``logging`` (logger ``ebantenna.device``): each
+# chip's set-up, the contact, and every retried I2C transfer, at level INFO. Here that log is
+# printed with the example's output, one line per event, and kept there (``propagate = False``): the
+# retries are what this example is about.
 log = logging.getLogger("ebantenna.device")
 handler = logging.StreamHandler(sys.stdout)
 handler.setFormatter(logging.Formatter("    log: %(message)s"))

@@ -5,7 +5,7 @@ Friction along the rod: stick and slip on the Z axis
 The rod stands across the sweep plane, so the probe's Z motion at the contact runs along the
 rod. Without friction the probe slides freely there and Z rings at the free probe's
 frequencies, whatever it touched. The effect
-:class:`~ebantenna.simulate.effects.CoulombFriction` adds dry friction under the contact's
+:class:`~ebantenna.simulate.effects.objects.CoulombFriction` adds dry friction under the contact's
 preload: the contact point slides, friction brakes it, and once it sticks Z rings as the probe
 pinned at the contact. First figure: the friction force at the contact over the first 30 ms,
 between the limits :math:`\\pm\\mu_s N` (shaded: stuck). Second: the Z spectra of the ``paper``

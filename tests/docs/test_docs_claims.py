@@ -321,3 +321,30 @@ def test_plot_13_stick_then_hold_as_stated():
     assert times[1] < 1e-3  # "a fraction of a millisecond"
     slips = [b - a for (a, k), b in zip(res.events, times[1:], strict=False) if k != "stick"]
     assert max(slips[1:]) < slips[0]  # the later slips are brief
+
+
+def test_plot_13_z_peaks_move_from_free_to_pinned():
+    # plot_13_stick_slip: "Z's peaks move from the free probe's frequencies to the pinned probe's"
+    from ebantenna.simulate import simulate
+    from ebantenna.simulate.effects import CoulombFriction
+
+    contact = 0.3
+    scene = builtin_scene("paper").with_(contact=contact, material="brass")
+    rubbing = scene.with_(effects=(*scene.effects, CoulombFriction()))
+    free = modal_analysis(scene.probe, Supports(hinge=scene.hinge), n_modes=2).frequencies
+    pinned = modal_analysis(scene.probe, Supports(contact=contact, hinge=scene.hinge),
+                            n_modes=2).frequencies  # fmt: skip
+    peaks = {}
+    for label, s in (("without", scene), ("with", rubbing)):
+        rec = simulate(s, seed=1)
+        z = rec.az - rec.az.mean()
+        spectrum = np.abs(np.fft.rfft(z * np.hanning(z.size)))
+        f = np.fft.rfftfreq(z.size, 1 / rec.fs)
+        near = {fm: spectrum[np.abs(f - fm) <= 1.0].max() for fm in (*free, *pinned)}
+        peaks[label] = (f[np.argmax(spectrum[1:]) + 1], near)
+    strongest, near = peaks["without"]
+    assert abs(strongest - free[0]) <= 1.0  # within one bin of the free probe's lowest mode
+    assert near[free[1]] > near[pinned[1]]
+    strongest, near = peaks["with"]
+    assert abs(strongest - pinned[0]) <= 1.0  # within one bin of the pinned probe's lowest mode
+    assert near[pinned[1]] > near[free[1]]

@@ -7,7 +7,10 @@
   ``supxlabel``/``supylabel`` labels it; a colour bar without a label;
 - a legend entry whose artist is hidden or has no data (an empty ``plot([], [])`` proxy);
 - a logarithmic axis whose limits reach more than two decades beyond the bulk of the data
-  (its 1st to 100th percentile): the axis then shows a stray value, not the data.
+  (its 1st to 100th percentile): the axis then shows a stray value, not the data;
+- ASCII mathematics in a title, an axis label, a legend entry or a text: ``^`` or ``**`` for a
+  power, or a one-letter name with an ``_`` subscript (``f_FEM``), outside mathtext's ``$...$``,
+  where ``$h^4$`` and ``$f_{FEM}$`` typeset them.
 
 The gallery runs it on every figure before the figure is saved: ``image_scrapers`` names this
 module, whose :func:`_get_sg_image_scraper` hands sphinx-gallery :func:`checked_scraper`, and a
@@ -16,9 +19,11 @@ figure with a problem fails the build. The tests run it on the figures of the th
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
-__all__ = ["figure_problems", "checked_scraper"]
+__all__ = ["figure_problems", "ascii_math", "checked_scraper"]
 
 #: How far a log axis may reach beyond the bulk of the data, in decades.
 LOG_SLACK_DECADES = 2.0
@@ -96,6 +101,43 @@ def _log_problems(ax) -> list[str]:
     return problems
 
 
+#: Outside ``$...$``: a power written ``^`` or ``**``, or a one-letter name with a subscript.
+ASCII_MATH = re.compile(r"\^|\*\*|\b[A-Za-z]_[{A-Za-z0-9]")
+
+
+def ascii_math(text: str) -> str | None:
+    """The first piece of ASCII mathematics in a figure text outside mathtext, or None."""
+    outside = re.sub(r"(?<!\\)\$.*?(?<!\\)\$", " ", text)  # drop every $...$ span
+    match = ASCII_MATH.search(outside)
+    return match.group(0) if match else None
+
+
+def _texts(ax) -> list[str]:
+    texts = [ax.get_title(loc) for loc in ("left", "center", "right")]
+    texts += [ax.get_xlabel(), ax.get_ylabel()] + [t.get_text() for t in ax.texts]
+    legend = ax.get_legend()
+    if legend is not None:
+        texts += [t.get_text() for t in legend.get_texts()]
+    return [t for t in texts if t]
+
+
+def _text_problems(fig) -> list[str]:
+    problems = []
+    named = [("figure", t) for t in _figure_texts(fig)]
+    named += [(f"axes {k}", t) for k, ax in enumerate(fig.axes) for t in _texts(ax)]
+    for where, text in named:
+        found = ascii_math(text)
+        if found is not None:
+            problems.append(f"{where}: {text!r} writes mathematics in ASCII ({found!r}); "
+                            "use mathtext, $...$")
+    return problems
+
+
+def _figure_texts(fig) -> list[str]:
+    sup = [getattr(fig, f"_sup{w}", None) for w in ("title", "xlabel", "ylabel")]
+    return [t.get_text() for t in sup if t is not None and t.get_text()]
+
+
 def figure_problems(fig) -> list[str]:
     """What is wrong with a figure, as sentences; an empty list when nothing is.
 
@@ -124,7 +166,7 @@ def figure_problems(fig) -> list[str]:
             if not labelled and _has_tick_labels(axis):
                 problems.append(f"{name}: {which} axis without a label")
         problems += [f"{name}: {p}" for p in _legend_problems(ax) + _log_problems(ax)]
-    return problems
+    return problems + _text_problems(fig)
 
 
 def checked_scraper(block, block_vars, gallery_conf):

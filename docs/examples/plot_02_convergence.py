@@ -1,11 +1,12 @@
 """
-Convergence to the exact frequencies: from above, as h^4
-=========================================================
+Convergence to the exact frequencies: from above, as h⁴
+========================================================
 
 The exact natural frequencies of the probe come from the transcendental frequency equation
-(:func:`ebantenna.fem.exact_frequencies`). The finite-element frequencies must approach them
-**from above** (the method minimises the Rayleigh quotient over a subspace) and with the **fourth
-power** of the element size (cubic elements, energy with second derivatives).
+(:func:`ebantenna.fem.exact_frequencies <ebantenna.fem.exact.exact_frequencies>`). The
+finite-element frequencies must approach them **from above** (the method minimises the Rayleigh
+quotient over a subspace) and with the **fourth power** of the element size :math:`h` (cubic
+elements, energy with second derivatives).
 """
 
 import matplotlib.pyplot as plt
@@ -43,7 +44,7 @@ for k in range(3):
     ax.loglog(100 * h, errors[:, k], "o-", label=f"mode {k + 1}")
 ax.loglog(100 * h, errors[-1, 0] * (h / h[-1]) ** 4, "k--", lw=1, label=r"$\propto h^4$")
 ax.set_xlabel("element size h (cm)")
-ax.set_ylabel("relative error  (f_FEM - f_exact) / f_exact")
+ax.set_ylabel(r"relative error $(f_\mathrm{FEM} - f_\mathrm{exact})\,/\,f_\mathrm{exact}$")
 ax.set_title(f"contact at {contact * 100:.0f} cm, clamped hinge")
 ax.legend()
 fig.tight_layout()

@@ -1,18 +1,20 @@
-"""
+r"""
 Digits lost by the naive eigensolver on fine meshes
 ===================================================
 
 ``scipy.linalg.eigh(K, M)`` finds every eigenvalue to an *absolute* accuracy of about
-``eps * omega_max**2``. On a fine mesh the largest eigenvalue grows like the fourth power of the
-number of elements, and the lowest modes, the ones we want, lose their digits. The package inverts
-the problem instead (see the theory page on the eigenproblem). Here both are compared with the
-exact frequency.
+:math:`\varepsilon\,\omega_\mathrm{max}^2`. On a fine mesh the largest eigenvalue grows like the
+fourth power of the number of elements, and the lowest modes, the ones we want, lose their digits.
+The package inverts the problem instead (see the theory page on the eigenproblem). Here both are
+compared with the exact frequency.
 
-Two errors add up in this comparison. The mesh's own error falls like ``n**-4`` (the theory page on
-convergence): on 16 elements it is about ``1e-6`` and no solver can do better, so there the two
-solvers agree because both are limited by the mesh, not because the model has converged. From
-about 100 elements on the mesh's error is below the naive solver's rounding error, which grows
-like ``eps * (omega_max / omega_1)**2``, and only the inverted solver keeps following the mesh.
+Two errors add up in this comparison. The mesh's own error falls like :math:`n^{-4}` (the theory
+page on convergence): on 16 elements it is about :math:`10^{-6}` and no solver can do better, so
+there the two solvers agree because both are limited by the mesh, not because the model has
+converged. Somewhere between 40 and 80 elements the mesh's error falls below the naive solver's
+rounding error, which grows like :math:`\varepsilon\,(\omega_\mathrm{max}/\omega_1)^2` (where
+exactly depends on the last bits of the linear algebra library's sums), and from there on only the
+inverted solver keeps following the mesh.
 """
 
 import matplotlib.pyplot as plt

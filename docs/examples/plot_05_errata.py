@@ -1,4 +1,4 @@
-"""
+r"""
 The paper's printed matrices against the derivation
 ===================================================
 
@@ -7,9 +7,10 @@ The paper's printed matrices against the derivation
 Here we print that list and ask what the differences do to the frequencies: we solve the
 two-element model once with the derived matrices and once with the printed ones.
 
-The printed ``K1`` and ``M1`` carry one factor ``EI/l^3`` and ``rho A l/420`` with an ``l`` the
-paper does not define. With equal elements (contact at half the length) the obvious reading
-``l = l1 = l2`` is unambiguous, and only the typos remain.
+The printed :math:`K_1` and :math:`M_1` carry one factor :math:`EI/l^3` and
+:math:`\rho A l/420` with an :math:`l` the paper does not define. With equal elements (contact at
+half the length) the obvious reading :math:`l = l_1 = l_2` is unambiguous, and only the typos
+remain.
 """
 
 import matplotlib.pyplot as plt
@@ -33,8 +34,8 @@ for e in paper_errata():
           f"derived {e.derived:<40} {e.reason}")
 
 # %%
-# Frequencies of the model with three free DOFs (theta2, v3, theta3)
-# ------------------------------------------------------------------
+# Frequencies of the model with three free DOFs :math:`(\theta_2, v_3, \theta_3)`
+# -------------------------------------------------------------------------------
 probe = Probe()
 free = [3, 4, 5]
 printed = paper_matrices()
@@ -60,15 +61,16 @@ print("contact at L/2, printed matrices:", np.round(f_printed, 2), "Hz")
 print("printed K1 symmetric?", printed["K1"] == printed["K1"].T)
 
 # %%
-# Where the printed matrices differ: a map of the 6x6 entries of ``K1`` and ``M1``, one mark for
-# each record of :func:`~ebantenna.fem.symbolic.paper_errata` (rows and columns 1-based, as
-# printed), coloured by its reason.
+# Where the printed matrices differ: a map of the 6 × 6 entries of :math:`K_1` and :math:`M_1`,
+# one mark for each record of :func:`~ebantenna.fem.symbolic.paper_errata` (rows and columns
+# 1-based, as printed), coloured by its reason.
 from matplotlib.colors import ListedColormap  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
 
 codes = {"common factor": 1, "typo": 2}
-fig, axes = plt.subplots(1, 2, figsize=(9.5, 4.4))
-for ax, name in zip(axes, ("K1", "M1"), strict=True):
+colours = {"common factor": "tab:orange", "typo": "tab:red"}
+for name in ("K1", "M1"):  # one figure each
+    fig, ax = plt.subplots(figsize=(6.2, 4.4))
     grid = np.zeros((6, 6))
     for e in paper_errata():
         if e.matrix == name:
@@ -79,11 +81,10 @@ for ax, name in zip(axes, ("K1", "M1"), strict=True):
     ax.set_xlabel("column")
     ax.set_ylabel("row")
     n = int(np.count_nonzero(grid))
-    ax.set_title(f"{name}: {n} printed entries differ")
-colours = {"common factor": "tab:orange", "typo": "tab:red"}
-axes[1].legend(handles=[Patch(color=c, label=reason) for reason, c in colours.items()],
-               loc="upper left", bbox_to_anchor=(1.02, 1), fontsize="small")
+    ax.set_title(f"${name[0]}_{name[1]}$: {n} printed entries differ")  # K1 -> $K_1$
+    ax.legend(handles=[Patch(color=c, label=reason) for reason, c in colours.items()],
+              loc="upper left", bbox_to_anchor=(1.02, 1), fontsize="small")
+    fig.tight_layout()
 print("errata in K1 and M1:", sum(e.matrix in ("K1", "M1") for e in paper_errata()),
       "of", len(paper_errata()))
-fig.tight_layout()
 plt.show()

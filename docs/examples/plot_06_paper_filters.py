@@ -4,8 +4,9 @@ The paper's band-pass filters against their tables
 
 The paper gives two band-pass specifications: Table 1 (Chebyshev, 60-160 Hz, before the decay fit)
 and Table 2 (elliptic, 52-325 Hz, before the distance network), and calls both filters "second
-order". :func:`ebantenna.signal.paper_filter` designs the lowest order that meets each table;
-:func:`ebantenna.signal.check_specification` measures a design against its table. The stated
+order". :func:`ebantenna.signal.paper_filter <ebantenna.signal.filters.paper_filter>` designs the
+lowest order that meets each table; :func:`ebantenna.signal.check_specification
+<ebantenna.signal.filters.check_specification>` measures a design against its table. The stated
 "second order" does not meet either table.
 """
 
@@ -15,8 +16,8 @@ import numpy as np
 from ebantenna.signal import PAPER_FILTERS, check_specification, paper_filter
 from ebantenna.signal.filters import freqz_sos
 
-fig, axes = plt.subplots(1, 2, figsize=(11, 4))
-for ax, kind in zip(axes, ("chebyshev", "elliptic"), strict=True):
+for kind in ("chebyshev", "elliptic"):  # one figure each
+    fig, ax = plt.subplots(figsize=(7, 4))
     spec = PAPER_FILTERS[kind]
     for order, style in ((None, "-"), ("stated", "--")):
         sos = paper_filter(kind, order)
@@ -40,5 +41,5 @@ for ax, kind in zip(axes, ("chebyshev", "elliptic"), strict=True):
     ax.set_ylabel("gain (dB)")
     ax.set_title(f"{kind}: {spec.source}", fontsize="small")
     ax.legend(fontsize="small", loc="lower center")
-fig.tight_layout()
+    fig.tight_layout()
 plt.show()

@@ -1,13 +1,13 @@
-"""
+r"""
 Fitting the decay: time constant and gain
 =========================================
 
-The paper classifies materials by how fast the vibration dies away: it fits ``F(t) = a exp(b t)``
-(its eq. 4) and calls ``a`` the gain and ``1/b`` the time constant.
-:func:`ebantenna.signal.fit_decay` fits the model to the envelope of the signal (the magnitude
-of the analytic signal) and reports ``tau = -1/b > 0``; ``method="sinusoid"`` fits the whole
-damped sinusoid to the signal itself instead, which has no envelope bias. Here a damped tone with
-a known time constant, plus noise, checks them.
+The paper classifies materials by how fast the vibration dies away: it fits :math:`F(t) = a\,e^{bt}`
+(its eq. 4) and calls :math:`a` the gain and :math:`1/b` the time constant.
+:func:`ebantenna.signal.fit_decay <ebantenna.signal.decay.fit_decay>` fits the model to the envelope
+of the signal (the magnitude of the analytic signal) and reports :math:`\tau = -1/b > 0`;
+``method="sinusoid"`` fits the whole damped sinusoid to the signal itself instead, which has no
+envelope bias. Here a damped tone with a known time constant, plus noise, checks them.
 """
 
 import matplotlib.pyplot as plt

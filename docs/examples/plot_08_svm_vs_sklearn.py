@@ -2,10 +2,10 @@
 The hand-written SVM against scikit-learn
 =========================================
 
-:class:`ebantenna.ml.SVC` solves the SVM dual by sequential minimal optimisation, written out in
-NumPy, and takes scikit-learn's parameter names. Trained on the same data with the same
-parameters as :class:`sklearn.svm.SVC`, it must find the same support vectors, the same dual
-coefficients and the same decision boundary.
+:class:`ebantenna.ml.SVC <ebantenna.ml.svc.SVC>` solves the SVM dual by sequential minimal
+optimisation, written out in NumPy, and takes scikit-learn's parameter names. Trained on the same
+data with the same parameters as :class:`sklearn.svm.SVC`, it must find the same support vectors,
+the same dual coefficients and the same decision boundary.
 """
 
 import matplotlib.pyplot as plt

@@ -2,10 +2,11 @@
 Training a network: gradient descent against scaled conjugate gradients
 =======================================================================
 
-The paper trains its material classifier by gradient descent and its best distance regressor
-by scaled conjugate gradients (MATLAB's ``trainscg``). :class:`ebantenna.ml.MLPRegressor` has
-both (``solver="gd"`` and ``solver="scg"``). Here a small network learns a smooth curve, a stand-in
-for "dominant frequency -> contact distance", and the two loss curves are compared.
+The paper trains its material classifier by gradient descent and its best distance regressor by
+scaled conjugate gradients (MATLAB's ``trainscg``). :class:`ebantenna.ml.MLPRegressor
+<ebantenna.ml.mlp.MLPRegressor>` has both (``solver="gd"`` and ``solver="scg"``). Here a small
+network learns a smooth curve, a stand-in for "dominant frequency -> contact distance", and the two
+loss curves are compared.
 """
 
 import warnings
@@ -32,12 +33,17 @@ for name, model in (("gd", gd), ("scg", scg)):
     print(f"{name:3s}: {model.n_iter_} epochs, final loss {model.loss_curve_[-1]:.2e}, "
           f"R^2 {model.score(X, y):.3f}")
 
-fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4))
+fig, ax1 = plt.subplots(figsize=(6.5, 4))
 ax1.semilogy(gd.loss_curve_, label="gradient descent")
 ax1.semilogy(scg.loss_curve_, label="scaled conjugate gradient")
 ax1.set_xlabel("epoch (one SCG epoch evaluates the gradient up to twice)")
 ax1.set_ylabel("training loss (half mean squared error)")
 ax1.legend()
+fig.tight_layout()
+
+# %%
+# What each network has learnt after its 300 epochs: the fitted curves over the data.
+fig, ax2 = plt.subplots(figsize=(6.5, 4))
 xs = np.linspace(-1, 1, 200)[:, None]
 ax2.plot(X[:, 0], y, ".", color="0.6", ms=3, label="data")
 ax2.plot(xs[:, 0], gd.predict(xs), label="gd")

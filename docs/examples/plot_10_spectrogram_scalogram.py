@@ -1,12 +1,12 @@
-"""
+r"""
 Spectrogram against wavelet scalogram
 =====================================
 
 The paper verifies the mode change with time-frequency pictures of the vibration (its Figs. 18 and
 19): near the tip several modes ring at first and die quickly. Here a signal is built from the
 probe's own first three modes at a contact near the tip (0.9 L), each decaying with the
-structural loss factor of the tube (a mode of frequency ``f`` decays with the time constant
-``1 / (pi eta f)``), and looked at with a short-time FFT and with a Morlet wavelet.
+structural loss factor of the tube (a mode of frequency :math:`f` decays with the time constant
+:math:`1/(\pi \eta f)`), and looked at with a short-time FFT and with a Morlet wavelet.
 
 The spectrogram has one time resolution for all frequencies; the wavelet uses short windows at high
 frequency and long ones at low frequency, so it follows the fast-dying high modes and still
@@ -37,14 +37,20 @@ stft = spectrogram(x, fs, nperseg=64, noverlap=56)
 # up to just below the Nyquist frequency, so that the third mode (about 477 Hz) is on the map
 cwt = morlet_scalogram(x, fs, np.linspace(10.0, 495.0, 140), bandwidth=1.5)
 
-fig, axes = plt.subplots(3, 1, figsize=(7, 9))
-axes[0].plot(t, x, lw=0.7)
-axes[0].set_xlabel("time (s)")
-axes[0].set_ylabel("signal (sum of unit modes)")
-stft.plot(ax=axes[1], dynamic_range=50)
-cwt.plot(ax=axes[2], dynamic_range=50)
-for ax in axes[1:]:
+fig, ax = plt.subplots(figsize=(7, 3))
+ax.plot(t, x, lw=0.7)
+ax.set_xlabel("time (s)")
+ax.set_ylabel("signal (sum of unit modes)")
+fig.tight_layout()
+
+# %%
+# The same signal as a spectrogram, then as a scalogram; dotted lines: the modes.
+for transform in (stft, cwt):
+    fig, ax = plt.subplots(figsize=(7, 3.6))
+    transform.plot(ax=ax, dynamic_range=50)
     for f in f_modes:
         ax.axhline(f, color="w", lw=0.5, ls=":")
-fig.tight_layout()
+    fig.tight_layout()
+
+# sphinx_gallery_thumbnail_number = 3
 plt.show()

@@ -5,11 +5,11 @@ Friction along the rod: stick and slip on the Z axis
 The rod stands across the sweep plane, so the probe's Z motion at the contact runs along the
 rod. Without friction the probe slides freely there and Z rings at the free probe's
 frequencies, whatever it touched. The effect
-:class:`~ebantenna.simulate.effects.CoulombFriction` adds dry friction under the contact's
+:class:`~ebantenna.simulate.effects.objects.CoulombFriction` adds dry friction under the contact's
 preload: the contact point slides, friction brakes it, and once it sticks Z rings as the probe
-pinned at the contact. Top: the friction force at the contact over the first 30 ms, between the
-limits :math:`\\pm\\mu_s N` (shaded: stuck). Bottom: the Z spectra of the ``paper`` scene
-without and with friction, beside the frequencies of the free probe and of the probe pinned at
+pinned at the contact. First figure: the friction force at the contact over the first 30 ms,
+between the limits :math:`\\pm\\mu_s N` (shaded: stuck). Second: the Z spectra of the ``paper``
+scene without and with friction, beside the frequencies of the free probe and of the probe pinned at
 the contact.
 """
 
@@ -40,7 +40,7 @@ res = stick_slip_response(
 for time, kind in res.events:
     print(f"{1e3 * time:7.3f} ms  {kind}")
 
-fig, (top, bottom) = plt.subplots(2, 1, figsize=(9, 7))
+fig, top = plt.subplots(figsize=(9, 3.8))
 top.plot(1e3 * res.t, res.friction_force, lw=0.8)
 limit = mu * model.normal_force
 top.axhline(limit, color="k", ls=":", lw=1)
@@ -53,7 +53,9 @@ top.set_xlabel("time after the contact (ms)")
 top.set_ylabel("friction force (N)")
 top.set_title(f"contact at {100 * contact:.0f} cm, preload {model.normal_force:g} N, mu = {mu}",
               fontsize="small")  # fmt: skip
+fig.tight_layout()
 
+fig, bottom = plt.subplots(figsize=(9, 3.8))
 free = modal_analysis(scene.probe, Supports(hinge=scene.hinge), n_modes=4).frequencies
 pinned = modal_analysis(scene.probe, Supports(contact=contact, hinge=scene.hinge),
                         n_modes=4).frequencies  # fmt: skip

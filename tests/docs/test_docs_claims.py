@@ -130,3 +130,221 @@ def test_one_vs_one_and_one_vs_rest_as_stated():
     ovr = OneVsRestClassifier(SVC()).fit(X, y)
     assert len(ovr.estimators_) == 5
     assert ovr.score(X, y) > 0.8  # a working classifier, not just an object that fits
+
+
+# --- the gallery's prose ------------------------------------------------------------------------
+
+
+def _strongest_bin(rec):
+    from ebantenna.signal import norm_spectrum
+
+    f, mag = norm_spectrum(rec, remove_mean=True)
+    k = int(np.argmax(mag[1:])) + 1
+    return f, mag, f[k]
+
+
+def _bin_share(f, mag, frequency):
+    """The largest bin within one bin of ``frequency``, as a share of the largest bin."""
+    near = np.abs(f - frequency) <= f[1] - f[0]
+    return mag[near].max() / mag[1:].max()
+
+
+def test_plot_11_strongest_bins_as_stated():
+    # plot_11_simulated_signals: what the strongest bin of the norm spectrum sits on, brass touched
+    from ebantenna.probe import material
+
+    scene = builtin_scene("paper").with_(material="brass")
+    L = scene.probe.length
+    for a in (0.25, 0.5, 0.75, 0.8):
+        rec = simulate_at(scene, a * L)
+        f, _, peak = _strongest_bin(rec)
+        assert f[1] - f[0] == pytest.approx(1.0)  # "one bin (1 Hz)": a one-second record
+        lowest = rec.metadata["modes_x_hz"][0]
+        pinned = modal_analysis(scene.probe, Supports(contact=a * L), n_modes=1).frequencies[0]
+        assert abs(peak - lowest) <= 1.0  # within one bin of the simulated lowest frequency
+        assert 0 < pinned - lowest <= 1.2 + 0.05  # "up to 1.2 Hz below", to the stated digit
+    rec = simulate_at(scene, 0.9 * L)
+    f, mag, peak = _strongest_bin(rec)
+    pinned = modal_analysis(scene.probe, Supports(contact=0.9 * L), n_modes=2).frequencies
+    simulated, zeta = rec.metadata["modes_x_hz"], rec.metadata["zeta_x"]
+    assert pinned[0] == pytest.approx(70.4, abs=0.05)
+    assert simulated[0] == pytest.approx(70.4, abs=0.05)
+    assert 0.075 <= _bin_share(f, mag, simulated[0]) <= 0.125  # "about a tenth"
+    assert peak == 89.0
+    rod = scene.effect("object_modes").rod(material("brass")).cantilever_frequency()
+    assert rod == pytest.approx(94.4, abs=0.05)  # the rod alone in its stand
+    assert simulated[1] == pytest.approx(89.0, abs=0.05)  # the rod's mode, coupled
+    assert zeta[1] == pytest.approx(0.0008, abs=0.00005)
+    assert zeta[0] == pytest.approx(0.015, abs=0.001) and zeta[2] == pytest.approx(0.015, abs=0.001)
+    # "rings through the whole second while the probe's modes die away": time constants
+    # 1 / (zeta omega) of the rod's mode beyond the record, of the probe's far within it
+    tau = 1 / (2 * np.pi * np.array(zeta[:3]) * np.array(simulated[:3]))
+    assert tau[1] > rec.t[-1] and tau[0] < 0.2 * rec.t[-1] and tau[2] < 0.2 * rec.t[-1]
+    assert pinned[1] == pytest.approx(186.7, abs=0.05)
+    assert abs(simulated[2] - 187) <= 2  # "near 187 Hz"
+    assert 0.15 <= _bin_share(f, mag, simulated[2]) <= 0.25  # "about a fifth"
+    # on a rigid object (the rod's modes and what needs them switched off) the strongest bin is
+    # the probe's second mode, within one bin
+    gone = ("object_modes", "object_damping", "preload_scatter", "unilateral_contact")
+    rigid = scene.with_(effects=[e for e in scene.effects if e.name not in gone])
+    _, _, peak = _strongest_bin(simulate_at(rigid, 0.9 * L))
+    assert abs(peak - pinned[1]) <= 1.0
+
+
+def simulate_at(scene, contact):
+    from ebantenna.simulate import simulate
+
+    return simulate(scene.with_(contact=contact), seed=1)
+
+
+def test_plot_12_retries_as_stated(caplog):
+    # plot_12_device_simulated_bus: at 2 % failing transfers every failure is retried once and
+    # goes through, each a missing acknowledge (errno 121); nothing lost, no kept sample wrong
+    import logging
+
+    from ebantenna.device import (
+        MPU6050,
+        PCA9685,
+        Faults,
+        PanTilt,
+        SearchConfig,
+        SimulatedRig,
+        search_and_record,
+    )
+
+    rig = SimulatedRig.for_contact(scene="paper", material="wood", ratio=0.5, seed=4,
+                                   faults=Faults(error_rate=0.02))
+    with caplog.at_level(logging.INFO, logger="ebantenna.device"):
+        mpu = MPU6050(rig.bus, clock=rig.clock)
+        mpu.initialize()
+        unit = PanTilt(PCA9685(rig.bus, clock=rig.clock))
+        unit.initialize()
+        result = search_and_record(mpu, unit, SearchConfig(duration=0.5))
+    rig.bus.close()
+    retries = [r.getMessage() for r in caplog.records if "retry" in r.getMessage()]
+    assert retries and all("[Errno 121]" in m and "retry 1 of" in m for m in retries)
+    assert any("register 0x74" in m for m in retries)  # FIFO_R_W reads among them
+    assert result.samples_lost == 0 and result.stream["fifo_restarts"] == 0
+    assert rig.wrong_samples(mpu, result.recording) == 0
+
+
+def test_plot_03_mesh_error_and_rounding_as_stated():
+    # plot_03_naive_eigensolver, contact at L/2: "on 16 elements [the mesh's error] is about 1e-6";
+    # "between 40 and 80 elements the mesh's error falls below the naive solver's rounding error"
+    supports = Supports(contact=0.5 * L)
+    exact = exact_frequencies(PROBE, supports.contact, n_modes=1)[0]
+
+    def errors(n):
+        naive, inverted = (
+            modal_analysis(PROBE, supports, n_elements=n, n_modes=1, solver=s).frequencies[0]
+            for s in ("naive", "auto")
+        )
+        return abs(inverted / exact - 1), abs(naive / inverted - 1)  # mesh's, rounding's
+
+    mesh, _ = errors(16)
+    assert mesh == pytest.approx(1e-6, rel=0.5)  # "about 1e-6": to the stated order
+    mesh, rounding = errors(40)
+    assert rounding < mesh / 10  # far from the crossing, whatever the BLAS kernel
+    mesh, rounding = errors(80)
+    assert rounding > mesh
+
+
+def test_plot_04_maximum_further_out_for_two_elements():
+    # plot_04_zones: "the paper's two-element model puts it further out" than 64 elements
+    from ebantenna.fem import natural_frequencies
+
+    fine = np.linspace(0.5, 0.95, 451) * L
+    f64 = natural_frequencies(PROBE, fine, n_modes=1)[:, 0]
+    f2 = natural_frequencies(PROBE, fine, n_modes=1, n_elements=2)[:, 0]
+    assert fine[np.argmax(f2)] > fine[np.argmax(f64)] + 0.02 * L
+
+
+def test_plot_06_stated_second_order_fails_both_tables():
+    # plot_06_paper_filters: the text's "second order" meets neither table; the designed order does
+    from ebantenna.signal import PAPER_FILTERS, check_specification, paper_filter
+
+    for kind, spec in PAPER_FILTERS.items():
+        assert not check_specification(paper_filter(kind, "stated"), spec).meets, kind
+        assert check_specification(paper_filter(kind), spec).meets, kind
+
+
+def test_plot_08_differences_as_stated():
+    # plot_08_svm_vs_sklearn: the defaults differ by about the stopping tolerance 1e-3 on the grid;
+    # libsvm_compat=True follows libsvm's path and agrees to rounding
+    from sklearn.datasets import make_moons
+    from sklearn.svm import SVC as SklearnSVC
+
+    from ebantenna.ml import SVC
+
+    X, y = make_moons(n_samples=200, noise=0.25, random_state=0)
+    grid = np.stack(np.meshgrid(np.linspace(-1.5, 2.5, 150), np.linspace(-1.0, 1.5, 120)), -1)
+    grid = grid.reshape(-1, 2)
+    ref = SklearnSVC(C=1.0, gamma=2.0).fit(X, y)
+    ours = SVC(C=1.0, gamma=2.0).fit(X, y)
+    difference = np.abs(ours.decision_function(grid) - ref.decision_function(grid)).max()
+    assert 1e-4 <= difference <= 1e-2  # "of the order of the stopping tolerance tol=1e-3"
+    compat = SVC(C=1.0, gamma=2.0, libsvm_compat=True).fit(X, y)
+    assert_follows_reference(compat.n_iter_[0], compat.decision_function(grid), ref.n_iter_[0],
+                             ref.decision_function(grid), tol=1e-3, same_path_atol=1e-10)
+
+
+def test_plot_10_third_mode_about_477_hz():
+    # plot_10_spectrogram_scalogram: three modes below Nyquist at 0.9 L, the third about 477 Hz,
+    # inside the scalogram's range up to 495 Hz
+    f = modal_analysis(PROBE, Supports(contact=0.9 * L), n_modes=3).frequencies
+    assert np.all(f < 500.0)
+    assert f[2] == pytest.approx(477, abs=0.5) and f[2] < 495.0
+
+
+def test_plot_13_stick_then_hold_as_stated():
+    # plot_13_stick_slip: the contact slides for a fraction of a millisecond, sticks, slips briefly
+    # again, and from then on holds (the last event a stick) within the 30 ms shown
+    from ebantenna.fem.coupling import craig_bampton, probe_substructure
+    from ebantenna.simulate.effects import CoulombFriction
+    from ebantenna.simulate.stick_slip import friction_model, stick_slip_response
+
+    contact = 0.3
+    scene = builtin_scene("paper").with_(contact=contact, material="brass")
+    mu = CoulombFriction().static_friction
+    rod = scene.effect("object_modes")
+    sub = probe_substructure(scene.probe, contact, hinge=scene.hinge, n_elements=scene.n_elements)
+    model = friction_model(craig_bampton(sub, rod.probe_modes), rod.preload, scene.max_frequency)
+    res = stick_slip_response(
+        model.mass, model.stiffness, model.mass.shape[0] - 1, model.normal_force,
+        static_friction=mu, kinetic_friction=mu, duration=0.03, fs=8000.0,
+        velocity=model.rotation * scene.tilt_ratio * scene.sweep_speed,
+        damping=model.damping, output=model.output,
+    )  # fmt: skip
+    times = [t for t, _ in res.events]
+    kinds = [k.rstrip("+-") for _, k in res.events]
+    assert kinds[:3] == ["slip", "stick", "slip"] and kinds[-1] == "stick"
+    assert times[1] < 1e-3  # "a fraction of a millisecond"
+    slips = [b - a for (a, k), b in zip(res.events, times[1:], strict=False) if k != "stick"]
+    assert max(slips[1:]) < slips[0]  # the later slips are brief
+
+
+def test_plot_13_z_peaks_move_from_free_to_pinned():
+    # plot_13_stick_slip: "Z's peaks move from the free probe's frequencies to the pinned probe's"
+    from ebantenna.simulate import simulate
+    from ebantenna.simulate.effects import CoulombFriction
+
+    contact = 0.3
+    scene = builtin_scene("paper").with_(contact=contact, material="brass")
+    rubbing = scene.with_(effects=(*scene.effects, CoulombFriction()))
+    free = modal_analysis(scene.probe, Supports(hinge=scene.hinge), n_modes=2).frequencies
+    pinned = modal_analysis(scene.probe, Supports(contact=contact, hinge=scene.hinge),
+                            n_modes=2).frequencies  # fmt: skip
+    peaks = {}
+    for label, s in (("without", scene), ("with", rubbing)):
+        rec = simulate(s, seed=1)
+        z = rec.az - rec.az.mean()
+        spectrum = np.abs(np.fft.rfft(z * np.hanning(z.size)))
+        f = np.fft.rfftfreq(z.size, 1 / rec.fs)
+        near = {fm: spectrum[np.abs(f - fm) <= 1.0].max() for fm in (*free, *pinned)}
+        peaks[label] = (f[np.argmax(spectrum[1:]) + 1], near)
+    strongest, near = peaks["without"]
+    assert abs(strongest - free[0]) <= 1.0  # within one bin of the free probe's lowest mode
+    assert near[free[1]] > near[pinned[1]]
+    strongest, near = peaks["with"]
+    assert abs(strongest - pinned[0]) <= 1.0  # within one bin of the pinned probe's lowest mode
+    assert near[pinned[1]] > near[free[1]]

@@ -119,3 +119,27 @@ def test_every_figure_of_the_pages_passes(code):
     exec(compile(code, "<plot directive>", "exec"), {})  # noqa: S102 - the docs' own code
     problems = [p for num in plt.get_fignums() for p in figure_problems(plt.figure(num))]
     assert problems == []
+
+
+def test_ascii_mathematics_is_found_outside_mathtext():
+    from figure_check import ascii_math
+
+    assert ascii_math("error as h^4") == "^"
+    assert ascii_math("x**2") == "**"
+    assert ascii_math("(f_FEM - f_exact) / f_exact") == "f_F"
+    # typeset by mathtext, or no mathematics at all: nothing to find
+    for text in (r"$\propto h^4$", "m/s$^2$", r"$(f_\mathrm{FEM} - f)$", "modes_x_hz", "2 x 20"):
+        assert ascii_math(text) is None, text
+
+    fig, ax = plt.subplots()
+    ax.plot([1, 2], [1, 2], label=r"$\propto h^4$")
+    ax.set_xlabel("h (cm)")
+    ax.set_ylabel("error")
+    ax.legend()
+    assert figure_problems(fig) == []
+    ax.set_title("convergence as h^4")
+    fig.suptitle("EI/l^3")
+    assert figure_problems(fig) == [
+        "figure: 'EI/l^3' writes mathematics in ASCII ('^'); use mathtext, $...$",
+        "axes 0: 'convergence as h^4' writes mathematics in ASCII ('^'); use mathtext, $...$",
+    ]

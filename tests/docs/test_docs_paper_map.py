@@ -1,5 +1,6 @@
-"""The paper -> code page: every item of the paper listed, every name real, every key reproduced."""
+"""The paper -> code page: every item listed, every name real, every number read from a source."""
 
+import json
 import re
 from pathlib import Path
 
@@ -62,46 +63,110 @@ def test_resolve_refuses_what_does_not_exist():
 
 def test_every_item_is_reproduced_by_code_or_says_why_not():
     for item in paper_map.PAPER_MAP:
-        assert item.code or item.reproduced.startswith("not reproduced"), item.item
+        assert item.code or item.status.startswith("not computed"), item.item
 
 
-def test_build_values_are_reproduces_modes_section():
-    # The page's numbers are the ``modes`` section of reproduce's summary and the filter orders.
-    from ebantenna.signal import PAPER_FILTERS, filter_order
+def test_every_status_is_one_of_the_kinds_and_gives_its_reason():
+    for item in paper_map.PAPER_MAP:
+        kind = item.status.split(":")[0]
+        assert kind in paper_map.STATUSES, item.item
+        if kind in ("differs", "not computed"):  # a difference or a gap always says why
+            assert len(item.status.split(":", 1)[1].strip()) > 10, item.item
+        assert item.here, item.item  # every "ebantenna" cell says what the package gives
+
+
+RECORD = paper_map.load_summary()
+VALUES = paper_map.build_values(RECORD["summary"])
+
+
+def test_the_summary_has_every_key_the_map_reads():
+    for item in paper_map.PAPER_MAP:
+        for key in paper_map.keys_read(item):
+            assert key in VALUES, (item.item, key)
+        cells = paper_map._cells(item, VALUES)  # formats every value, checks every verdict
+        assert not any("[[" in cell for cell in cells), item.item
+
+
+def test_the_stored_summary_is_a_full_run_with_its_commit_and_date():
+    made, summary = RECORD["made"], RECORD["summary"]
+    assert re.fullmatch(r"[0-9a-f]{40}(\+dirty)?", made["commit"])
+    assert re.fullmatch(r"\d{4}-\d\d-\d\d \d\d:\d\d UTC", made["date"])
+    assert made["command"].startswith("ebantenna reproduce --json")
+    assert summary["quick"] is False
+    text = json.dumps(summary)
+    assert "/tmp" not in text and str(Path.home()) not in text  # no path of the machine that ran it
+
+
+def test_the_summary_keys_are_those_reproduce_writes():
+    # The stored modes section is what the code computes now (a few seconds); every other key
+    # is one that a section's to_dict or reproduce's summary writes (running the study takes
+    # too long for this suite).
     from ebantenna.simulate import builtin_scene
     from ebantenna.study import mode_zones
 
-    values = paper_map.build_values(quick=True)  # the page uses the full run; same code
-    modes = mode_zones.compute(builtin_scene("paper").probe, quick=True).to_dict()
-    page = {k.removeprefix("modes."): v for k, v in values.items() if k.startswith("modes.")}
-    assert page == modes
-    assert values["filter:chebyshev"] == filter_order(PAPER_FILTERS["chebyshev"]) == 13
-    for item in paper_map.PAPER_MAP:
-        if item.reproduced.startswith(("modes.", "filter:")):
-            assert item.reproduced in values, item.item
-    # the peak of the dominant frequency sits near the paper's 80 % (Fig. 16), on the quick run's
-    # grid of 50 contacts (steps of 2 % of the length)
-    assert values["modes.lowest_frequency_peak_ratio"] == pytest.approx(
-        NUMBERS["mode_change_ratio"].value, abs=0.1
-    )
-
-
-SUMMARY_KEYS = sorted(
-    {
-        i.reproduced.removeprefix("summary:")
-        for i in paper_map.PAPER_MAP
-        if i.reproduced.startswith("summary:")
-    }
-)
-
-
-def test_summary_keys_appear_where_reproduce_writes_them():
-    # Each key's section is a key of reproduce's summary dict, and its name a key that a
-    # section's to_dict writes (running reproduce itself takes too long for this suite).
+    probe = builtin_scene("paper").probe
+    assert RECORD["summary"]["modes"] == mode_zones.compute(probe, quick=False).to_dict()
     study = Path(paper_map.resolve("ebantenna.study").__file__).parent
     source = "\n".join(p.read_text() for p in study.glob("*.py"))
-    summary_source = (study / "reproduce.py").read_text()
-    for key in SUMMARY_KEYS:
-        section, name = key.split(".")
-        assert f'"{name}"' in source, key
-        assert f'"{section}"' in summary_source or f'"{section}": {{' in source, key
+    for key in paper_map.flatten(RECORD["summary"]):
+        section, name = key.split(".")[:2] if "." in key else (key, key)
+        assert f'"{section}"' in source, key
+        if name not in ("figures", "report") and section not in ("figures", "report", "timings_s"):
+            assert f'"{name}"' in source, key  # a key of its own, not a material or figure name
+
+
+def test_each_verdict_is_the_one_the_numbers_give():
+    checked = [item for item in paper_map.PAPER_MAP if item.check]
+    assert {i.item for i in checked} >= {"Fig. 9", "Fig. 12", "Fig. 15", "Fig. 16"}
+    for item in checked:
+        assert item.printed in NUMBERS, item.item
+        assert item.status.startswith(paper_map.verdict(item, VALUES)), item.item
+    wrong = paper_map.Item("Fig. 12", "x", printed="ann_accuracy", here="y",
+                           status="agrees", check=("summary:ann.all_accuracy", 0.02))
+    with pytest.raises(paper_map.ExtensionError):
+        paper_map._cells(wrong, VALUES)
+
+
+def test_fill_formats_and_refuses_an_unknown_key():
+    text = paper_map.fill("[[a|pct]] and [[b|.1f]] cm", {"a": 0.5, "b": 2.25})
+    assert text == "50.0 % and 2.2 cm"
+    with pytest.raises(KeyError, match="nothing"):
+        paper_map.fill("[[nothing|g]]", {})
+
+
+def test_refresh_stores_a_full_run_without_its_paths(tmp_path):
+    summary = json.loads(json.dumps(RECORD["summary"]))
+    summary["dataset"]["path"] = "/somewhere/cache/" + summary["dataset"]["path"]
+    summary["figures"] = {k: f"/somewhere/out/{v}" for k, v in summary["figures"].items()}
+    source = tmp_path / "summary.json"
+    source.write_text(json.dumps(summary))
+    record = paper_map.refresh(source, tmp_path / "stored.json", commit="0" * 40)
+    assert record == json.loads((tmp_path / "stored.json").read_text())
+    assert record["summary"]["figures"] == RECORD["summary"]["figures"]
+    assert record["summary"]["dataset"] == RECORD["summary"]["dataset"]
+    assert record["made"]["commit"] == "0" * 40
+    summary["quick"] = True
+    source.write_text(json.dumps(summary))
+    with pytest.raises(ValueError, match="quick"):
+        paper_map.refresh(source, tmp_path / "stored.json", commit="0" * 40)
+
+
+def test_the_pages_numbers_on_the_peak():
+    # paper_to_code.rst, "Where the dominant frequency peaks": each number it states
+    assert VALUES["peak:bare-clamped"] == pytest.approx(0.783, abs=5e-4)
+    assert VALUES["peak:board-clamped"] == pytest.approx(0.88, abs=0.005)
+    assert VALUES["scene:tip_mass_g"] == pytest.approx(2.5)
+    board = [VALUES[f"peak:board-{h}"] for h in ("clamped", "fitted", "pinned")]
+    assert min(board) == VALUES["peak:board-pinned"] and round(min(board), 2) == 0.84
+    assert VALUES["peak:bare-pinned"] < VALUES["peak:bare-fitted"] < VALUES["peak:bare-clamped"]
+    hinge = RECORD["summary"]["hinge"]
+    assert hinge["tip_mass_g"] < 1e-3 and hinge["explains_both"] is False  # "no tip mass at all"
+    assert NUMBERS["deviation_cm"].value / 40 == pytest.approx(0.74, abs=0.005)
+    assert NUMBERS["deviation_50cm_probe_cm"].value / 50 == pytest.approx(0.79, abs=0.005)
+    assert RECORD["summary"]["modes"]["lowest_frequency_peak_ratio"] == pytest.approx(0.88)
+    # "on the report's grid of 99 contacts": the full run's zone sweep
+    from ebantenna.simulate import builtin_scene
+    from ebantenna.study import mode_zones
+
+    zones = mode_zones.compute(builtin_scene("paper").probe, quick=False).zones
+    assert len(zones.contacts) == 99

@@ -3,14 +3,15 @@
 The drivers choose nothing about the wiring at run time; they assume it. :data:`WIRES` lists the
 connections those assumptions need, each derived from the default it serves:
 
-- the MPU-6050 at :attr:`MPU6050Config.address <ebantenna.device.MPU6050Config.address>`
+- the MPU-6050 at the ``address`` of :class:`~ebantenna.device.mpu6050_config.MPU6050Config`
   (0x68, pin ``AD0`` low; MPU-6000/MPU-6050 Product Specification rev. 3.4, "PS", section 9.2);
 - the PCA9685 at :data:`ebantenna.chips.pca9685.DEFAULT_ADDRESS` (0x40, address pins ``A0``-``A5``
   low; PCA9685 product data sheet rev. 4, "DS", section 7.1);
 - both on I2C bus 1 of the Raspberry Pi (``--bus 1``, ``/dev/i2c-1``), whose SDA and SCL are
   GPIO 2 and GPIO 3 on header pins 3 and 5 (Raspberry Pi documentation, "GPIO and the 40-pin
   header");
-- the pan servo on output 0 and the tilt servo on output 1 (:class:`~ebantenna.device.PanTilt`);
+- the pan servo on output 0 and the tilt servo on output 1
+  (:class:`~ebantenna.device.pantilt.PanTilt`);
 - optionally the PCA9685's active-low ``OE`` pin (DS 7.4) on GPIO 17, header pin 11, the line
   ``acquire --oe-gpio 17`` drives (:mod:`ebantenna.device.oe`);
 - the servos' power from a separate supply on the PCA9685's ``V+`` terminal, its ground joined to
@@ -39,14 +40,16 @@ from .mpu6050_config import MPU6050Config
 
 __all__ = [
     "I2C_BUS", "SDA_GPIO", "SCL_GPIO", "OE_GPIO", "PAN_CHANNEL", "TILT_CHANNEL", "HEADER_PIN",
-    "MPU6050_ADDRESS", "PCA9685_ADDRESS", "Wire", "WIRES", "PARTS", "pin_positions", "draw_wiring",
+    "MPU6050_ADDRESS", "PCA9685_ADDRESS", "MPU6050_VDD", "PCA9685_VDD", "FAST_MODE_HZ",
+    "SERVO_VOLTAGE", "SERVO_STALL_CURRENT", "SERVO_SUPPLY", "servo_supply_current", "Wire",
+    "WIRES", "PARTS", "pin_positions", "draw_wiring",
 ]  # fmt: skip
 
 #: The Raspberry Pi's I2C bus on its header (``/dev/i2c-1``).
 I2C_BUS = 1
 #: BCM GPIO numbers of bus 1's data and clock lines, and of the ``OE`` line of ``--oe-gpio 17``.
 SDA_GPIO, SCL_GPIO, OE_GPIO = 2, 3, 17
-#: Channels of the pan and tilt servos, as :class:`~ebantenna.device.PanTilt` defaults them.
+#: Channels of the pan and tilt servos, as :class:`~ebantenna.device.pantilt.PanTilt` defaults them.
 PAN_CHANNEL, TILT_CHANNEL = 0, 1
 #: Physical header pin of each signal used (Raspberry Pi documentation, "GPIO and the 40-pin
 #: header"): 3.3 V on pin 1, ground on pin 6.
@@ -54,6 +57,31 @@ HEADER_PIN = {"3.3 V": 1, f"GPIO {SDA_GPIO}": 3, f"GPIO {SCL_GPIO}": 5, "GND": 6
               f"GPIO {OE_GPIO}": 11}
 #: The accelerometer's address as the driver's default configuration has it.
 MPU6050_ADDRESS = MPU6050Config().address
+
+#: Supply voltage range of the MPU-6050, V (PS 6.3, "VDD power supply, operating voltages"); the
+#: Raspberry Pi's 3.3 V pin lies inside it.
+MPU6050_VDD = (2.375, 3.46)
+#: Supply voltage range of the PCA9685, V (DS 1, "General description").
+PCA9685_VDD = (2.3, 5.5)
+#: Fastest I2C clock both chips accept, Hz: the MPU-6050's fast mode, 400 kHz (PS 6.4, "I2C
+#: operating frequency"); the PCA9685 accepts Fast-mode Plus, up to 1 MHz (DS 1).
+FAST_MODE_HZ = 400_000
+#: Operating voltage of the MG996R, V (TowerPro *MG996R* data sheet, specifications).
+SERVO_VOLTAGE = (4.8, 7.2)
+#: Stall current of one MG996R at 6 V, A (TowerPro *MG996R* data sheet, specifications).
+SERVO_STALL_CURRENT = 2.5
+#: Servo supply voltage the rig uses, V: inside :data:`SERVO_VOLTAGE`, and the range the data
+#: sheet's figures are given for (4.8 V and 6 V).
+SERVO_SUPPLY = (5.0, 6.0)
+
+
+def servo_supply_current(n_servos: int = 2) -> float:
+    """Current the servo supply must deliver when every servo stalls at once, A.
+
+    >>> servo_supply_current()  # pan and tilt
+    5.0
+    """
+    return n_servos * SERVO_STALL_CURRENT
 
 
 @dataclass(frozen=True)

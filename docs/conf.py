@@ -40,6 +40,7 @@ extensions = [
     "ebantenna_docs",
     "paper_map",
     "exercise_notebooks",
+    "course_tracks",
 ]
 
 templates_path = ["_templates"]

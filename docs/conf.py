@@ -43,6 +43,7 @@ extensions = [
     # a reference may use the name a user imports (ebantenna.signal.fit_decay): linked to the page
     # of the very object it imports to, in the module that defines it
     "public_names",
+    "course_tracks",
 ]
 
 templates_path = ["_templates"]

@@ -1,0 +1,136 @@
+"""The course tracks fit their sessions, cover every exercise and theory page, and point only at
+pages that exist; the session sheets say what a student needs."""
+
+from __future__ import annotations
+
+import dataclasses
+import re
+from pathlib import Path
+
+import course_tracks as course
+import pytest
+
+DOCS = Path(__file__).resolve().parents[2] / "docs"
+EXERCISES = sorted(f"exercises/{p.stem}" for p in (DOCS / "exercises").glob("ex*.rst"))
+THEORY = sorted(f"theory/{p.stem}" for p in (DOCS / "theory").glob("*.rst") if p.stem != "index")
+EXAMPLES = sorted(f"auto_examples/{p.stem}" for p in (DOCS / "examples").glob("plot_*.py"))
+TRACKS = list(course.TRACKS.values())
+IDS = [t.key for t in TRACKS]
+
+
+def _assigned(track, field):
+    return [d for s in track.sessions for d in getattr(s, field)]
+
+
+def _source_of(docname: str) -> Path:
+    """The file a document name comes from (gallery pages come from docs/examples)."""
+    if docname.startswith("auto_examples/"):
+        return DOCS / "examples" / f"{docname.split('/', 1)[1]}.py"
+    return DOCS / f"{docname}.rst"
+
+
+def test_the_three_tracks():
+    assert sorted(course.TRACKS) == [4, 6, 7]
+    assert all(len(t.sessions) == n for n, t in course.TRACKS.items())
+
+
+@pytest.mark.parametrize("track", TRACKS, ids=IDS)
+def test_core_work_of_every_session_fits_its_budget(track):
+    for i, session in enumerate(track.sessions, 1):
+        minutes = course.core_minutes(track, session)
+        assert minutes <= course.BUDGET, f"{track.key} session {i}: {minutes} min"
+    assert course.overloaded({len(track.sessions): track}) == []
+
+
+def test_an_overloaded_session_is_reported():
+    # one more core exercise in the fullest session must push it over: the check can fail
+    track = course.TRACKS[7]
+    fullest = max(track.sessions, key=lambda s: course.core_minutes(track, s))
+    extra = "exercises/ex02_assembly"
+    heavy = dataclasses.replace(fullest, exercises=fullest.exercises + (extra,))
+    sessions = tuple(heavy if s is fullest else s for s in track.sessions)
+    bad = course.Track(sessions, {**track.roles, extra: "core"})
+    assert course.overloaded({7: bad}) and "session" in course.overloaded({7: bad})[0]
+
+
+def test_minutes_are_the_pages_own(tmp_path):
+    for docname in EXERCISES:
+        stated = re.search(r":Time: about (\d+) minutes", _source_of(docname).read_text())
+        assert course.exercise_minutes(docname) == int(stated.group(1))
+    (tmp_path / "exercises").mkdir()
+    (tmp_path / "exercises" / "ex99.rst").write_text("Ex\n==\n\n:Time: a while\n")
+    with pytest.raises(ValueError, match="Time"):
+        course.exercise_minutes("exercises/ex99", tmp_path)
+
+
+@pytest.mark.parametrize("track", TRACKS, ids=IDS)
+def test_every_exercise_once_in_every_track_with_a_role(track):
+    assigned = _assigned(track, "exercises")
+    assert sorted(assigned) == EXERCISES  # each page once, none missing, none unknown
+    assert sorted(track.roles) == EXERCISES
+    assert set(track.roles.values()) <= set(course.ROLES)
+
+
+@pytest.mark.parametrize("track", TRACKS, ids=IDS)
+def test_every_theory_page_read_and_every_example_run(track):
+    assert set(THEORY) <= set(_assigned(track, "reading"))
+    assert sorted(_assigned(track, "examples")) == EXAMPLES
+
+
+def test_every_referenced_page_exists():
+    for track in TRACKS:
+        for field in ("reading", "examples", "exercises"):
+            for docname in _assigned(track, field):
+                assert _source_of(docname).is_file(), f"{track.key}: {docname}"
+
+
+def test_the_kalman_page_has_its_exercise_in_its_session():
+    for track in TRACKS:
+        session = next(s for s in track.sessions if "theory/kalman" in s.reading)
+        assert "exercises/ex14_kalman" in session.exercises, track.key
+
+
+def test_sheet_has_goals_reading_exercises_and_what_to_prepare():
+    track = course.TRACKS[7]
+    for number, session in enumerate(track.sessions, 1):
+        sheet = course.session_sheet(track, number)
+        for heading in ("Goals", "Read before the session", "Presented in class",
+                        "Run in class", "Exercises", "Prepare for next time"):
+            assert f"\n{heading}\n" in sheet
+        for docname in session.reading + session.examples:
+            assert f":doc:`/{docname}`" in sheet
+        for docname in session.exercises:
+            line = f":doc:`/{docname}` ({track.roles[docname]}, "
+            assert line + f"{course.exercise_minutes(docname)} min)" in sheet
+        if number < len(track.sessions):  # the next session's reading is announced
+            for docname in track.sessions[number].reading:
+                assert f"read :doc:`/{docname}`" in sheet
+
+
+def test_table_shows_the_budget_of_every_session():
+    for track in TRACKS:
+        table = "\n".join(course.track_table(track))
+        for session in track.sessions:
+            assert f"= {course.core_minutes(track, session)} of {course.BUDGET}" in table
+
+
+def test_sheets_are_written_and_left_alone_when_unchanged(tmp_path):
+    # the exercise pages are read from a copy of docs/, so the sheets land in tmp_path
+    (tmp_path / "exercises").mkdir()
+    for docname in EXERCISES:
+        (tmp_path / f"{docname}.rst").write_text(_source_of(docname).read_text())
+    written = course.write_sheets(docs=tmp_path)
+    assert len(written) == sum(len(t.sessions) for t in TRACKS)
+    stamps = [p.stat().st_mtime_ns for p in written]
+    assert course.write_sheets(docs=tmp_path) == written
+    assert [p.stat().st_mtime_ns for p in written] == stamps
+
+
+def test_course_page_has_every_track_and_no_ascii_powers():
+    text = (DOCS / "course.rst").read_text()
+    for n in course.TRACKS:
+        assert f".. course-track:: {n}\n" in text
+    sheets = [course.session_sheet(t, i) for t in TRACKS for i in range(1, len(t.sessions) + 1)]
+    for page in [text, *sheets]:
+        assert not re.search(r"\w\^\d", page), "write h⁴ or :math:`h^4`, not h^4"
+    assert "   course\n" in (DOCS / "index.rst").read_text()  # in the site's toctree

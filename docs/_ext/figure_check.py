@@ -101,8 +101,9 @@ def _log_problems(ax) -> list[str]:
     return problems
 
 
-#: Outside ``$...$``: a power written ``^`` or ``**``, or a one-letter name with a subscript.
-ASCII_MATH = re.compile(r"\^|\*\*|\b[A-Za-z]_[{A-Za-z0-9]")
+#: Outside ``$...$``: a power written ``^`` or ``**``, a one-letter name with a subscript, or a
+#: lower-case l with a digit (``l1``), which reads as I1 in the figures' sans-serif font.
+ASCII_MATH = re.compile(r"\^|\*\*|\b[A-Za-z]_[{A-Za-z0-9]|\bl[0-9]\b")
 
 
 def ascii_math(text: str) -> str | None:

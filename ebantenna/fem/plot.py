@@ -23,7 +23,8 @@ def plot_probe(probe, supports=None, ax=None):
     The tube is the thick bar from P (x = 0) to R (x = L); the hinge is a hatched wall when
     clamped, a triangle when pinned and a spiral-spring symbol when elastic; the touched object
     is a pin under Q; the accelerometer board at R is a square when the probe has a tip mass. The
-    two elements of the paper's model, ``l1 = |PQ|`` and ``l2 = |QR|``, are dimensioned below.
+    two elements of the paper's model, :math:`l_1 = |PQ|` and :math:`l_2 = |QR|`, are dimensioned
+    below, in math italics so that the l cannot be read as an I.
     Only the length is to scale: the diameter is drawn thick enough to see.
 
     Parameters
@@ -80,7 +81,7 @@ def plot_probe(probe, supports=None, ax=None):
     ax.annotate("", (0, 0.25), (length, 0.25), arrowprops={"arrowstyle": "<->", "lw": 0.8})
     ax.text(length / 2, 0.28, f"L = {length:g} cm", ha="center", va="bottom")
     if contact is not None:
-        for a, b, name in ((0, contact, "l1 = |PQ|"), (contact, length, "l2 = |QR|")):
+        for a, b, name in ((0, contact, r"$l_1 = |PQ|$"), (contact, length, r"$l_2 = |QR|$")):
             ax.annotate("", (a, -0.3), (b, -0.3), arrowprops={"arrowstyle": "<->", "lw": 0.8})
             ax.text((a + b) / 2, -0.34, f"{name} = {b - a:.4g} cm", ha="center", va="top")
     ax.text(0, -0.62, hinge, fontsize="small")

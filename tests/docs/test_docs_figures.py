@@ -127,8 +127,10 @@ def test_ascii_mathematics_is_found_outside_mathtext():
     assert ascii_math("error as h^4") == "^"
     assert ascii_math("x**2") == "**"
     assert ascii_math("(f_FEM - f_exact) / f_exact") == "f_F"
+    assert ascii_math("l1 = |PQ|") == "l1"  # reads as I1 in a sans-serif font
     # typeset by mathtext, or no mathematics at all: nothing to find
-    for text in (r"$\propto h^4$", "m/s$^2$", r"$(f_\mathrm{FEM} - f)$", "modes_x_hz", "2 x 20"):
+    for text in (r"$l_1 = |PQ|$", "l = 25 cm", r"$\propto h^4$", "m/s$^2$",
+                 r"$(f_\mathrm{FEM} - f)$", "modes_x_hz", "2 x 20"):
         assert ascii_math(text) is None, text
 
     fig, ax = plt.subplots()

@@ -188,3 +188,24 @@ def test_each_check_accepts_the_solution_and_rejects_just_outside(script):
         # the verdict never shows the answer
         shown = str(check(script.stem, **{name: outside[0]})).removeprefix(f"{name}: ")
         assert f"{value:.3g}" not in shown, shown
+
+
+def test_ex13_linear_contact_numbers_as_stated(tmp_path):
+    # ex13's answers quote what the same design gives with a linear contact (the paper scene
+    # without unilateral_contact): the solution run on that scene, to the digits the page prints
+    page = (DOCS / "exercises" / "ex13_mode_curves.rst").read_text()
+    accuracy, distance = re.search(
+        r"the same design gives about ([0-9.]+) and ([0-9.]+) cm", " ".join(page.split())
+    ).groups()
+    source = (DOCS / "exercises" / "solutions" / "ex13_mode_curves.py").read_text()
+    scene = 'builtin_scene("paper")'
+    assert source.count(scene) == 1
+    linear = (f"{scene}.with_(effects=[e for e in {scene}.effects "
+              'if e.name != "unilateral_contact"])')
+    script = tmp_path / "ex13_linear.py"
+    script.write_text(source.replace(scene, linear))
+    answers = run_solution(script)[0]["ANSWERS"]
+    for stated, value in ((accuracy, answers["curve_accuracy"]),
+                          (distance, answers["distance_cm"])):
+        half_unit = 0.5 * 10.0 ** Decimal(stated).as_tuple().exponent  # "about": printed digits
+        assert abs(value - float(stated)) <= half_unit, (stated, value)

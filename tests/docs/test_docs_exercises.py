@@ -209,3 +209,14 @@ def test_ex13_linear_contact_numbers_as_stated(tmp_path):
                           (distance, answers["distance_cm"])):
         half_unit = 0.5 * 10.0 ** Decimal(stated).as_tuple().exponent  # "about": printed digits
         assert abs(value - float(stated)) <= half_unit, (stated, value)
+
+
+def test_answer_key_module_is_the_tools_output():
+    # written by docs/_tools/make_answer_key.py, not by hand: its text is the tool's text of it
+    text = make_answer_key.module_text(ANSWER_KEY)
+    assert make_answer_key.MODULE.read_text() == text
+    namespace = {}
+    exec(compile(text, str(make_answer_key.MODULE), "exec"), namespace)
+    assert namespace["ANSWER_KEY"] == ANSWER_KEY
+    with pytest.raises(ValueError, match="every answer needs a tolerance"):
+        make_answer_key.entries({"a": 1.0, "b": 2.0}, {"a": ("abs", 0, "a count")})

@@ -181,3 +181,18 @@ plot_html_show_source_link = False
 plot_html_show_formats = False
 plot_formats = [("png", 110)]
 plot_rcparams = {"figure.autolayout": True}
+
+# --- Editions: students by default, teachers with ``-t teacher`` -------------------------------
+# The teacher edition (python -m sphinx -t teacher -b html docs docs/_build/teacher) adds the
+# exercises' expected answers and worked solutions (``.. teacher::`` blocks, never parsed in the
+# student edition). Its reST sources hold those blocks, so only it copies them into _sources/.
+exercise_edition = "teacher" if tags.has("teacher") else "student"  # noqa: F821 (Sphinx's tags)
+html_copy_source = exercise_edition == "teacher"
+html_show_sourcelink = html_copy_source
+html_theme_options = {
+    "announcement": (
+        "Teacher edition: expected answers and worked solutions shown. Not for students."
+        if exercise_edition == "teacher"
+        else "Student edition: exercises with self-checks, no solutions."
+    ),
+}

@@ -2,11 +2,27 @@
 
 from __future__ import annotations
 
+import importlib.util
 import sys
 
-from tqdm.auto import tqdm
+import tqdm.std
 
-__all__ = ["progress"]
+__all__ = ["bar_class", "progress"]
+
+
+def bar_class():
+    """The progress-bar class: tqdm's notebook bar where it can draw, else the plain text bar.
+
+    :mod:`tqdm.auto` picks the notebook bar inside Jupyter, and without ipywidgets that bar only
+    warns ("IProgress not found"). So the automatic choice is made only when ipywidgets can be
+    imported; otherwise the plain bar, which writes text to stderr, is used everywhere.
+    """
+    if importlib.util.find_spec("ipywidgets") is None:
+        return tqdm.std.tqdm
+    # imported here: tqdm.auto already warns on import inside a kernel without ipywidgets
+    from tqdm.auto import tqdm as auto_bar
+
+    return auto_bar
 
 
 def progress(iterable=None, *, total=None, desc=None, enabled=None, **kwargs):
@@ -25,4 +41,4 @@ def progress(iterable=None, *, total=None, desc=None, enabled=None, **kwargs):
     """
     if enabled is None:
         enabled = sys.stderr.isatty()
-    return tqdm(iterable, total=total, desc=desc, disable=not enabled, leave=False, **kwargs)
+    return bar_class()(iterable, total=total, desc=desc, disable=not enabled, leave=False, **kwargs)

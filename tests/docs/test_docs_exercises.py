@@ -9,7 +9,10 @@ import warnings
 from decimal import Decimal
 from pathlib import Path
 
+import make_answer_key
 import pytest
+
+from ebantenna.course import ANSWER_KEY, check, tolerances
 
 DOCS = Path(__file__).resolve().parents[2] / "docs"
 SOLUTIONS = sorted((DOCS / "exercises" / "solutions").glob("ex*.py"))
@@ -25,16 +28,52 @@ def test_at_least_six_exercises_each_with_a_page_and_a_solution():
 
 
 @pytest.mark.parametrize("page", PAGES, ids=lambda p: p.stem)
-def test_page_has_statement_hints_and_hidden_solution(page):
+def test_page_has_statement_hints_answers_and_solution_in_order(page):
     text = page.read_text()
-    # the solution is the script the tests run, included verbatim, inside a closed <details>
-    assert f".. literalinclude:: solutions/{page.stem}.py" in text
-    opened = re.findall(r"<details class=\"(hint|solution)\">", text)
-    assert opened.count("solution") == 1 and opened.count("hint") >= 1
+    # statement, hints (folded), the self-check, then what only the teacher edition shows: the
+    # expected answers and the worked solution, the script the tests run, included verbatim
+    marks = [
+        text.index("====\n"),
+        text.index('<details class="hint">'),
+        text.index(f".. exercise-check:: {page.stem}\n"),
+        text.index(".. teacher:: answers\n"),
+        text.index(".. teacher:: solution\n"),
+        text.index(f"   .. literalinclude:: solutions/{page.stem}.py\n      :language: python\n"),
+    ]
+    assert marks == sorted(marks), marks
+    assert text.count(".. teacher:: answers\n") == text.count(".. teacher:: solution\n") == 1
     assert text.count("<details") == text.count("</details>")
-    solution_at = text.index('<details class="solution">')
-    assert text.index(".. literalinclude::") > solution_at  # hidden until asked for
-    assert text.index("<details") > text.index("====\n")  # a statement comes first
+    # nothing of the answers or the solution outside the teacher blocks (which students never get)
+    assert "<details class=\"solution\">" not in text and "<details class=\"answers\">" not in text
+    before_teacher = text[: marks[3]]
+    assert f"solutions/{page.stem}.py\n   :language: python\n\n" not in before_teacher
+
+
+#: what makes an exercise's data random or generated: a seed, a random generator, a simulated rig
+GENERATED = re.compile(r"default_rng|seed=|build_dataset|SimulatedRig|linspace|meshes = ")
+
+
+@pytest.mark.parametrize("script", SOLUTIONS, ids=lambda p: p.stem)
+def test_generated_data_is_stated_on_the_page(script):
+    source = script.read_text()
+    page = (DOCS / "exercises" / f"{script.stem}.rst").read_text()
+    start, end = source.find("# [data]\n"), source.find("# [/data]\n")
+    if start == -1:
+        assert not GENERATED.search(source), "the solution makes generated data: mark them"
+        assert end == -1
+        return
+    # the data are made between the markers, at the top (before the first step)
+    assert 0 < start < end
+    data = source[start:end]
+    assert not re.search(r"^# 1\. ", source[:start], flags=re.M)
+    # every seed the solution uses is in the data block or stated on the page (seed=0 of a split)
+    statement = page[: page.index(".. teacher::")]
+    for call, seed in re.findall(r"(default_rng\(|seed=)(\d+)", source):
+        assert f"{call}{seed}" in data or f"seed={seed}" in statement, f"{call}{seed} unstated"
+    include = (f".. literalinclude:: solutions/{script.stem}.py\n   :language: python\n"
+               "   :class: exercise-code\n   :start-after: # [data]\n   :end-before: # [/data]\n")
+    assert include in page
+    assert page.index(include) < page.index(".. teacher::")
 
 
 @functools.cache
@@ -55,9 +94,9 @@ def test_solution_runs_and_its_checks_pass(script):
 
 
 def _page_answers(text: str) -> dict[str, str]:
-    """``name = value`` pairs of the folded "Expected answers" block of an exercise page."""
-    start = text.index('<details class="answers">')
-    block = text[start : text.index("</details>", start)]
+    """``name = value`` pairs of the teacher's "Expected answers" block of an exercise page."""
+    start = text.index(".. teacher:: answers\n")
+    block = text[start : text.index(".. teacher:: solution\n", start)]
     return dict(re.findall(r"``(\w+) = ([-+0-9.eE]+)``", block))
 
 
@@ -90,3 +129,84 @@ def test_a_wrong_answer_fails(tmp_path):
     path.write_text(broken)
     with pytest.raises(AssertionError):
         runpy.run_path(str(path), run_name="__main__")
+
+
+# --- the answer key behind ebantenna.course.check ------------------------------------------------
+
+
+@pytest.mark.parametrize("script", SOLUTIONS, ids=lambda p: p.stem)
+def test_answer_key_is_what_the_solution_computes(script):
+    namespace = run_solution(script)[0]
+    computed = make_answer_key.entries(namespace["ANSWERS"], namespace["TOLERANCES"])
+    key = ANSWER_KEY[script.stem]
+    assert list(key) == list(computed), "run python docs/_tools/make_answer_key.py"
+    for name, entry in computed.items():
+        stored = key[name]
+        assert {k: stored[k] for k in ("kind", "width", "reason")} == {
+            k: entry[k] for k in ("kind", "width", "reason")
+        }, name
+        # the key holds the printed repr of the same float: equal, up to the last bits another
+        # BLAS may round differently (far below every tolerance)
+        assert stored["value"] == pytest.approx(entry["value"], rel=1e-9, abs=1e-300), name
+
+
+@pytest.mark.parametrize("script", SOLUTIONS, ids=lambda p: p.stem)
+def test_each_check_accepts_the_solution_and_rejects_just_outside(script):
+    answers = run_solution(script)[0]["ANSWERS"]
+    stated = tolerances(script.stem)
+    assert check(script.stem, **{n: float(v) for n, v in answers.items()}).ok
+    for name, value in answers.items():
+        value, tol = float(value), stated[name]
+        assert tol.reason and len(tol.reason) < 140  # one line
+        if tol.kind == "abs":
+            outside = [value + tol.width + max(1e-6, 1e-3 * tol.width)]
+            outside.append(value - tol.width - max(1e-6, 1e-3 * tol.width))
+            inside = [value + tol.width * 0.999, value - tol.width * 0.999]
+        elif tol.kind == "rel":
+            outside = [value * (1 + 1.001 * tol.width), value * (1 - 1.001 * tol.width)]
+            inside = [value * (1 + 0.999 * tol.width), value * (1 - 0.999 * tol.width)]
+        else:
+            outside, inside = [value * tol.width * 1.001, value / tol.width / 1.001], [
+                value * tol.width * 0.999, value / tol.width * 1.001]
+        if value == 0 and tol.kind != "abs":
+            pytest.fail(f"{name}: a relative tolerance of a zero answer accepts nothing else")
+        for v in outside:
+            report = check(script.stem, **{name: v})
+            assert not report.ok and "not yet" in str(report), (name, v)
+        for v in inside:
+            assert check(script.stem, **{name: v}).ok, (name, v)
+        # the verdict never shows the answer
+        shown = str(check(script.stem, **{name: outside[0]})).removeprefix(f"{name}: ")
+        assert f"{value:.3g}" not in shown, shown
+
+
+def test_ex13_linear_contact_numbers_as_stated(tmp_path):
+    # ex13's answers quote what the same design gives with a linear contact (the paper scene
+    # without unilateral_contact): the solution run on that scene, to the digits the page prints
+    page = (DOCS / "exercises" / "ex13_mode_curves.rst").read_text()
+    accuracy, distance = re.search(
+        r"the same design gives about ([0-9.]+) and ([0-9.]+) cm", " ".join(page.split())
+    ).groups()
+    source = (DOCS / "exercises" / "solutions" / "ex13_mode_curves.py").read_text()
+    scene = 'builtin_scene("paper")'
+    assert source.count(scene) == 1
+    linear = (f"{scene}.with_(effects=[e for e in {scene}.effects "
+              'if e.name != "unilateral_contact"])')
+    script = tmp_path / "ex13_linear.py"
+    script.write_text(source.replace(scene, linear))
+    answers = run_solution(script)[0]["ANSWERS"]
+    for stated, value in ((accuracy, answers["curve_accuracy"]),
+                          (distance, answers["distance_cm"])):
+        half_unit = 0.5 * 10.0 ** Decimal(stated).as_tuple().exponent  # "about": printed digits
+        assert abs(value - float(stated)) <= half_unit, (stated, value)
+
+
+def test_answer_key_module_is_the_tools_output():
+    # written by docs/_tools/make_answer_key.py, not by hand: its text is the tool's text of it
+    text = make_answer_key.module_text(ANSWER_KEY)
+    assert make_answer_key.MODULE.read_text() == text
+    namespace = {}
+    exec(compile(text, str(make_answer_key.MODULE), "exec"), namespace)
+    assert namespace["ANSWER_KEY"] == ANSWER_KEY
+    with pytest.raises(ValueError, match="every answer needs a tolerance"):
+        make_answer_key.entries({"a": 1.0, "b": 2.0}, {"a": ("abs", 0, "a count")})

@@ -3,8 +3,9 @@
 A classroom without internet, or the rig's Raspberry Pi, must see the formulas typeset, not raw
 LaTeX. The pages are opened in headless Chromium with every network request made to fail (an
 unreachable proxy and a resolver that finds no host); only ``file://`` loads succeed. These tests
-need the built HTML (``python -m sphinx -b html docs docs/_build/html``) and, for the browser tests,
-Debian's ``chromium``; ``.ci/run`` provides both, so they are never skipped there.
+need both built editions (``python -m sphinx -b html docs docs/_build/html`` and, for the teacher
+edition, ``python -m sphinx -t teacher -b html docs docs/_build/teacher``) and, for the browser
+tests, Debian's ``chromium``; ``.ci/run`` provides them, so they are never skipped there.
 """
 
 from __future__ import annotations
@@ -18,14 +19,26 @@ from pathlib import Path
 import pytest
 
 DOCS = Path(__file__).resolve().parents[2] / "docs"
-BUILD = DOCS / "_build" / "html"
+#: the student edition (the default build) and the teacher edition (``-t teacher``)
+BUILDS = {"student": DOCS / "_build" / "html", "teacher": DOCS / "_build" / "teacher"}
 #: pages with display and inline math: sympy's derived matrices, the SVM dual, the signal chain
 MATH_PAGES = ["theory/element.html", "theory/filters.html", "theory/kalman.html"]
 
-needs_build = pytest.mark.skipif(
-    not (BUILD / "index.html").is_file(),
-    reason="docs not built (python -m sphinx -b html docs docs/_build/html)",
-)
+
+
+def _built(edition: str):
+    """The parameter of one edition's build directory, skipped with a reason when not built."""
+    build = BUILDS[edition]
+    flag = "" if edition == "student" else "-t teacher "
+    mark = pytest.mark.skipif(
+        not (build / "index.html").is_file(),
+        reason=f"{edition} edition not built (python -m sphinx {flag}-b html docs {build})",
+    )
+    return pytest.param(build, id=edition, marks=mark)
+
+
+#: every test on built pages runs on both editions
+each_build = pytest.mark.parametrize("build", [_built(e) for e in sorted(BUILDS)])
 CHROMIUM = next(
     (p for p in map(shutil.which, ("chromium", "chromium-browser", "google-chrome")) if p), None
 )
@@ -100,32 +113,31 @@ def _render(path: Path, tmp_path: Path) -> str:
     return done.stdout
 
 
-@needs_build
-def test_every_built_page_loads_only_local_scripts_and_styles():
-    pages = sorted(BUILD.rglob("*.html"))
+@each_build
+def test_every_built_page_loads_only_local_scripts_and_styles(build):
+    pages = sorted(build.rglob("*.html"))
     assert len(pages) > 50  # the whole site, not a stray file
     remote = {}
     for page in pages:
         found = [u for u in _parse(page.read_text(encoding="utf-8")).resources if _is_remote(u)]
         if found:
-            remote[str(page.relative_to(BUILD))] = found
-    for css in BUILD.rglob("*.css"):
+            remote[str(page.relative_to(build))] = found
+    for css in build.rglob("*.css"):
         found = re.findall(r"url\(\s*['\"]?((?:[a-z]+:)?//[^)'\"]+)", css.read_text("utf-8"))
         if found:
-            remote[str(css.relative_to(BUILD))] = found
+            remote[str(css.relative_to(build))] = found
     assert not remote, f"pages that load from the network: {remote}"
 
 
-@needs_build
-def test_mathjax_ships_with_its_fonts():
-    mathjax = BUILD / "_static" / "mathjax"
+@each_build
+def test_mathjax_ships_with_its_fonts(build):
+    mathjax = build / "_static" / "mathjax"
     assert (mathjax / "tex-chtml.js").is_file()
     assert list((mathjax / "output" / "chtml" / "fonts" / "woff-v2").glob("MathJax_Main-*.woff"))
-    html = (BUILD / MATH_PAGES[0]).read_text(encoding="utf-8")
+    html = (build / MATH_PAGES[0]).read_text(encoding="utf-8")
     assert "_static/mathjax/tex-chtml.js" in html
 
 
-@needs_build
 @needs_chromium
 def test_the_browser_really_is_offline(tmp_path):
     # The witness that the set-up cuts the network: MathJax from its CDN does not typeset here.
@@ -140,14 +152,14 @@ def test_the_browser_really_is_offline(tmp_path):
     assert r"\frac" in "".join(rendered.visible)
 
 
-@needs_build
+@each_build
 @needs_chromium
 @pytest.mark.parametrize("name", MATH_PAGES)
-def test_math_is_typeset_offline(name, tmp_path):
-    source = (BUILD / name).read_text(encoding="utf-8")
+def test_math_is_typeset_offline(build, name, tmp_path):
+    source = (build / name).read_text(encoding="utf-8")
     assert r"\frac" in source  # the page has fractions to typeset
     n_math = source.count('class="math notranslate')  # Sphinx's span or div of each formula
-    rendered = _parse(_render(BUILD / name, tmp_path))
+    rendered = _parse(_render(build / name, tmp_path))
     assert rendered.math_containers >= n_math > 0
     visible = "".join(rendered.visible)
     assert r"\frac" not in visible and r"\(" not in visible and r"\[" not in visible

@@ -40,5 +40,8 @@ assert sp.simplify((t.T * lumped * t)[0] - rhoA * l) == 0 and lumped != M
 
 # The expected answers on the exercise page, checked against these values by the test suite.
 ANSWERS = {"M11": M[0, 0] * 420 / (rhoA * l), "M14": M[0, 3] * 420 / (rhoA * l**2)}
+# The tolerance of each answer: how far two correct ways of working may differ, and why.
+EXACT = "exact rational arithmetic gives an integer; 1e-6 admits a floating-point quadrature"
+TOLERANCES = {"M11": ("abs", 1e-6, EXACT), "M14": ("abs", 1e-6, EXACT)}
 
 print("ok: M derived, equal to element_matrices()[1], carries the mass rho A l")

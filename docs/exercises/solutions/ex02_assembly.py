@@ -16,8 +16,10 @@ from ebantenna.fem.symbolic import (
     two_element_matrices,
 )
 
+# [data]
 EI_value, rhoA_value = 0.4123, 0.02617  # N m^2, kg/m (the default probe, rounded)
 a, b = 0.3, 0.1  # m: contact at 30 cm of a 40 cm probe
+# [/data]
 
 # 1. Assemble by hand: each element adds its 4x4 block to the rows/columns of its two nodes.
 K = np.zeros((6, 6))
@@ -59,5 +61,9 @@ assert np.allclose(K, K.T)
 
 # The expected answers on the exercise page, checked against these values by the test suite.
 ANSWERS = {"n_typos_K1": len(typos), "K33": K[2, 2], "M33": M[2, 2]}
+# The tolerance of each answer: how far two correct ways of working may differ, and why.
+SUMS = "the same two terms added in any order: only the last of 16 digits can differ"
+TOLERANCES = {"n_typos_K1": ("abs", 0, "a count of matrix entries"),
+              "K33": ("rel", 1e-9, SUMS), "M33": ("rel", 1e-9, SUMS)}
 
 print("ok: hand assembly equals the sympy assembly; the typos of K1 are", typos)

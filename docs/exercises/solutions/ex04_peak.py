@@ -45,6 +45,18 @@ assert a_two - a_exact > 0.03, (a_two, a_exact)
 
 # The expected answers on the exercise page, checked against these values by the test suite.
 ANSWERS = {"a_peak": a_exact, "f_peak": f_max, "a_peak_two_elements": a_two, "a_twin": a_twin}
+# The tolerance of each answer: how far two correct ways of working may differ, and why.
+FLAT = "the maximum is flat: a search on a 1e-3 grid or a bounded optimiser find it within 1e-3 L"
+TOLERANCES = {
+    "a_peak": ("abs", 1e-3, FLAT), "a_peak_two_elements": ("abs", 1e-3, FLAT),
+    "f_peak": ("rel", 1e-4, (
+        "at a flat maximum an error of 1e-3 L in the place changes the frequency by far less "
+        "than 1e-4"
+    )),
+    "a_twin": ("abs", 1e-3, (
+        "any root-finder (or a 1e-3 grid) on f(a) - f(0.7 L) beyond the maximum"
+    )),
+}
 
 print("ok: the dominant frequency is not monotonic; two elements misplace its maximum by "
       f"{100 * (a_two - a_exact):.1f} % of the length")

@@ -4,12 +4,14 @@ import numpy as np
 
 from ebantenna.ml import MLPRegressor
 
+# [data]
 rng = np.random.default_rng(7)
 n, n_in, n_hidden = 20, 3, 5
 X = rng.standard_normal((n, n_in))
 y = rng.standard_normal(n)
 W1, b1 = rng.standard_normal((n_in, n_hidden)), rng.standard_normal(n_hidden)
 W2, b2 = rng.standard_normal((n_hidden, 1)), rng.standard_normal(1)
+# [/data]
 
 
 def loss_and_grads(W1, b1, W2, b2):
@@ -57,5 +59,8 @@ assert loss_and_grads(*step)[0] < loss
 
 # The expected answers on the exercise page, checked against these values by the test suite.
 ANSWERS = {"loss": loss, "loss_after_step": loss_and_grads(*step)[0]}
+# The tolerance of each answer: how far two correct ways of working may differ, and why.
+SUMS = "the same formula summed in another order changes only the last few of 16 digits"
+TOLERANCES = {"loss": ("rel", 1e-9, SUMS), "loss_after_step": ("rel", 1e-9, SUMS)}
 
 print(f"ok: loss {loss:.6f}; backpropagation = finite differences = ebantenna's gradient")

@@ -47,5 +47,13 @@ assert abs(h_ba[-1]) > 1e3 and abs(h_sos[-1]) < 1e-2
 assert filter_order(PAPER_FILTERS["elliptic"]) == 8
 
 # The expected answers on the exercise page, checked against these values by the test suite.
-ANSWERS = {"order": order, "selectivity": selectivity, "radius_sos": radius_sos}
+ANSWERS = {"order": order, "selectivity": selectivity, "radius_sos": radius_sos,
+           "n_coefficients_ba": len(a)}
+# The tolerance of each answer: how far two correct ways of working may differ, and why.
+TOLERANCES = {
+    "order": ("abs", 0, "an integer: the next one above the formula's value"),
+    "selectivity": ("rel", 1e-6, "the same closed formula; the edges' pre-warping is exact"),
+    "radius_sos": ("rel", 1e-6, "roots of quadratics from the same design, to rounding"),
+    "n_coefficients_ba": ("abs", 0, "a count: the denominator of a 26-pole filter"),
+}
 print("ok: Table 1 needs order 13; as (b, a) that filter is unstable, as sections it is not")

@@ -7,10 +7,12 @@ import numpy as np
 from ebantenna import Probe
 from ebantenna.fem import exact_frequencies, natural_frequencies
 
+# [data]
 probe = Probe()
 budget = 1e-4  # relative error allowed on each of the first three frequencies
 contacts = np.linspace(0.05, 0.95, 19) * probe.length
 exact = np.array([exact_frequencies(probe, c, n_modes=3) for c in contacts])
+# [/data]
 
 
 def worst_error(n_elements):
@@ -44,4 +46,16 @@ assert worst_error(2 * n_needed) < worst_error(n_needed) / 8
 # The expected answers on the exercise page, checked against these values by the test suite.
 ANSWERS = {"n_predicted": n_predicted, "n_needed": n_needed,
            "error_needed": worst_error(n_needed)}
+# The tolerance of each answer: how far two correct ways of working may differ, and why.
+TOLERANCES = {
+    "n_predicted": ("abs", 2, (
+        "rounding the predicted mesh up or to the nearest, from the observed order or from "
+        "exactly 4, moves it by an element or two"
+    )),
+    "n_needed": ("abs", 0, "a count: the smallest mesh that meets the budget"),
+    "error_needed": ("rel", 0.01, (
+        "an exact frequency from an own root-finder (tolerance 1e-12 or finer) moves this "
+        "error of 1e-4 by far less than 1 %"
+    )),
+}
 print("ok: the h^4 law picks the mesh for an error budget")

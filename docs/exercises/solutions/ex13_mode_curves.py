@@ -12,11 +12,13 @@ from ebantenna.paper.splits import grouped_split
 from ebantenna.signal import fft_features, peak_frequencies
 from ebantenna.simulate import build_dataset, builtin_scene
 
+# [data]
 # A small data set of the paper scene: 5 materials, contacts every 1 cm, 2 repetitions.
 design = replace(QUICK_DESIGN, name="ex13", first_contact=0.02, contact_step=0.01, repetitions=2)
 with tempfile.TemporaryDirectory() as tmp:
     ds = build_dataset(tmp, builtin_scene("paper"), design, seed=13)
 ax = np.asarray(ds.ax, float)
+# [/data]
 
 # 1. The two strongest peaks of X in every recording (the band starts one bin above DC).
 fmin = ds.fs / ax.shape[1]
@@ -42,7 +44,8 @@ assert repeat < spread.min()  # the rig's scatter is smaller than what the mater
 # 3. Whole positions held out; the curves are calibrated on the others.
 train, test = grouped_split(ds.contact, seed=0)
 clf = ModeCurveClassifier().fit(peaks[train], ds.material[train], ds.contact[train])
-curve_accuracy = float(np.mean(clf.predict(peaks[test]) == ds.material[test]))
+n_correct = int(np.sum(clf.predict(peaks[test]) == ds.material[test]))
+curve_accuracy = n_correct / len(test)
 distance_cm = float(100 * np.abs(clf.predict_distance(peaks[test]) - ds.contact[test]).mean())
 X = fft_features(ax, np.asarray(ds.az, float))
 svm_accuracy = classify_materials_svm(X, ds.material, split=(train, test)).accuracies["test"]
@@ -51,5 +54,21 @@ print(f"held-out positions: mode curves {curve_accuracy:.2f}, SVM {svm_accuracy:
 assert curve_accuracy > svm_accuracy
 assert curve_accuracy > 2 / len(design.materials)  # far above chance (0.2)
 
-ANSWERS = {"curve_accuracy": curve_accuracy, "distance_cm": distance_cm}
+ANSWERS = {"spread_f1_pct": 100 * spread[0], "spread_f2_pct": 100 * spread[1],
+           "repeat_pct": 100 * repeat, "curve_accuracy": curve_accuracy,
+           "n_correct": n_correct, "n_test": len(test), "distance_cm": distance_cm,
+           "svm_accuracy": svm_accuracy}
+# The tolerance of each answer: how far two correct ways of working may differ, and why.
+PEAK = (
+    "peak_frequencies interpolates between FFT bins: another interpolation moves a peak by a "
+    "small part of a bin"
+)
+SPLIT = "the same data and split; another solver tolerance may flip a recording or two of 80"
+TOLERANCES = {
+    "spread_f1_pct": ("rel", 0.1, PEAK), "spread_f2_pct": ("rel", 0.1, PEAK),
+    "repeat_pct": ("rel", 0.1, PEAK),
+    "curve_accuracy": ("abs", 0.03, SPLIT), "n_correct": ("abs", 2, SPLIT),
+    "n_test": ("abs", 0, "the held-out recordings of the seeded grouped split"),
+    "distance_cm": ("rel", 0.1, PEAK), "svm_accuracy": ("abs", 0.03, SPLIT),
+}
 print("ok")

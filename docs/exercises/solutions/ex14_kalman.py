@@ -4,12 +4,14 @@ import numpy as np
 
 from ebantenna.signal import KalmanFilter
 
+# [data]
 fs = 1000.0  # Hz
 n = 3000  # samples, 3 s
 q_std, r_std = 0.01, 0.2  # m/s^2: the drift's step per sample, the sensor's noise
 rng = np.random.default_rng(14)
 level = 9.81 + np.cumsum(q_std * rng.standard_normal(n))  # the slowly drifting level, m/s^2
 y = level + r_std * rng.standard_normal(n)  # what the accelerometer reports, m/s^2
+# [/data]
 q, r = q_std**2, r_std**2
 
 # 1. The steady gain by hand. The scalar filter predicts P- = P + q, takes the gain
@@ -66,5 +68,11 @@ ANSWERS = {
     "rms_q_small": rms_tuned[0.01],
     "rms_q_large": rms_tuned[100.0],
 }
+# How far a right answer may lie from these values, and why.
+CLOSED_FORM = "a closed form: any right algebra gives it to rounding, or to five copied digits"
+SAME_DATA = "the statement fixes the data, the filter and the cut at 1000 samples: only sums differ"
+TOLERANCES = {"k_steady": ("rel", 1e-4, CLOSED_FORM), "sigma_steady": ("rel", 1e-4, CLOSED_FORM),
+              "rms_raw": ("rel", 1e-3, SAME_DATA), "rms_filtered": ("rel", 1e-3, SAME_DATA),
+              "rms_q_small": ("rel", 1e-3, SAME_DATA), "rms_q_large": ("rel", 1e-3, SAME_DATA)}
 
 print("ok")

@@ -1,0 +1,96 @@
+"""Write ``ebantenna/course/_answer_key.py``: the key behind :func:`ebantenna.course.check`.
+
+Every worked solution in ``docs/exercises/solutions/`` ends with two dictionaries: ``ANSWERS``
+(name -> value) and ``TOLERANCES`` (name -> ``(kind, width, reason)``). This script runs each
+solution and writes them, side by side, into one module of the package, so that a student's
+self-check needs neither the solutions nor the documentation. Run it after changing a solution::
+
+    python docs/_tools/make_answer_key.py
+
+``tests/docs/test_docs_exercises.py`` fails while the module differs from what the solutions
+compute.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import runpy
+import sys
+import textwrap
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+SOLUTIONS = ROOT / "docs" / "exercises" / "solutions"
+MODULE = ROOT / "ebantenna" / "course" / "_answer_key.py"
+
+__all__ = ["entries", "answer_key", "module_text", "main"]
+
+HEADER = '''"""Expected answers of the exercises and their tolerances: ebantenna.course's key.
+
+Written by ``docs/_tools/make_answer_key.py`` from the worked solutions in
+``docs/exercises/solutions/``; do not edit by hand. The test suite checks that it equals what the
+solutions compute.
+"""
+
+'''
+
+
+def entries(answers: dict, tolerances: dict) -> dict[str, dict]:
+    """One solution's answers and tolerances as ``{name: {value, kind, width, reason}}``."""
+    if set(answers) != set(tolerances):
+        raise ValueError(
+            f"every answer needs a tolerance: answers {sorted(answers)}, "
+            f"tolerances {sorted(tolerances)}"
+        )
+    out = {}
+    for name in answers:
+        kind, width, reason = tolerances[name]
+        out[name] = {"value": float(answers[name]), "kind": kind, "width": float(width),
+                     "reason": reason}
+    return out
+
+
+def _run(script: Path) -> dict:
+    with contextlib.redirect_stdout(io.StringIO()):
+        return runpy.run_path(str(script), run_name="__main__")
+
+
+def answer_key(solutions: Path = SOLUTIONS, run=_run) -> dict[str, dict[str, dict]]:
+    """The key of every solution script ``ex*.py`` in ``solutions``, by exercise name."""
+    key = {}
+    for script in sorted(solutions.glob("ex*.py")):
+        namespace = run(script)
+        key[script.stem] = entries(namespace["ANSWERS"], namespace["TOLERANCES"])
+    return key
+
+
+def module_text(key: dict) -> str:
+    """The source of ``ebantenna/course/_answer_key.py`` holding ``key``, one answer a line."""
+    lines = [HEADER, "ANSWER_KEY = {\n"]
+    for exercise, answers in key.items():
+        lines.append(f"    {exercise!r}: {{\n")
+        for name, entry in answers.items():
+            reason = textwrap.wrap(entry["reason"], 80, drop_whitespace=False)
+            lines += [
+                f"        {name!r}: {{\n",
+                f"            'value': {entry['value']!r}, 'kind': {entry['kind']!r}, "
+                f"'width': {entry['width']!r},\n",
+                "            'reason': (\n",
+                *(f"                {part!r}\n" for part in reason),
+                "            ),\n",
+                "        },\n",
+            ]
+        lines.append("    },\n")
+    lines.append("}\n")
+    return "".join(lines)
+
+
+def main() -> int:
+    MODULE.write_text(module_text(answer_key()))
+    print(f"wrote {MODULE.relative_to(ROOT)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,193 @@
+"""Self-checks for the exercises: is a student's value within the stated tolerance?
+
+Every exercise of the documentation states what to compute, the data to compute it from (with its
+seed) and, for each expected answer, a tolerance with its reason: how far two legitimate ways of
+working may differ. :func:`check` tells whether a value is within that tolerance of the answer of
+the worked solution, without printing the answer::
+
+    >>> from ebantenna.course import check
+    >>> print(check("ex05", tau_fit_ms=None))
+    tau_fit_ms: not yet: no value given (None)
+
+The expected values come from ``ebantenna/course/_answer_key.py``, which
+``docs/_tools/make_answer_key.py`` writes by running the worked solutions; the test suite checks
+that it still equals what they compute.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ._answer_key import ANSWER_KEY
+
+__all__ = ["Tolerance", "CheckReport", "exercises", "tolerances", "check"]
+
+#: how a tolerance is measured: an absolute difference, a relative one, or a ratio
+KINDS = ("abs", "rel", "factor")
+
+
+@dataclass(frozen=True)
+class Tolerance:
+    """How close a value must be to the expected one, and why that much.
+
+    Parameters
+    ----------
+    kind : {"abs", "rel", "factor"}
+        ``"abs"``: ``|value - expected| <= width`` (in the answer's unit; ``width = 0`` means
+        exactly); ``"rel"``: ``|value / expected - 1| <= width``; ``"factor"``: the ratio
+        ``value / expected`` lies within ``[1 / width, width]`` (for rounding errors, whose size
+        depends on the order of the operations, not their value).
+    width : float
+        The tolerance (unit of the answer for ``"abs"``, dimensionless otherwise).
+    reason : str
+        One sentence: which legitimate choices make two correct answers differ by that much.
+    """
+
+    kind: str
+    width: float
+    reason: str
+
+    def __post_init__(self):
+        if self.kind not in KINDS:
+            raise ValueError(f"kind must be one of {KINDS}, got {self.kind!r}")
+        if not (self.width >= 0 and math.isfinite(self.width)):
+            raise ValueError(f"width must be finite and >= 0, got {self.width!r}")
+        if self.kind == "factor" and self.width < 1:
+            raise ValueError(f"a factor tolerance must be >= 1, got {self.width!r}")
+
+    def describe(self) -> str:
+        """The tolerance in words: ``"±1 %"``, ``"±0.05"``, ``"exact"`` or ``"a factor 3"``."""
+        if self.kind == "abs":
+            return "exact" if self.width == 0 else f"±{self.width:g}"
+        if self.kind == "rel":
+            if self.width >= 1e-3:
+                return f"±{100 * self.width:g} %"
+            return f"±{self.width:.0e} relative"
+        return f"a factor {self.width:g}"
+
+    def accepts(self, value: float, expected: float) -> bool:
+        """Whether ``value`` is within this tolerance of ``expected``."""
+        if self.kind == "abs":
+            # the half-ulp slack lets "exactly" accept a float equal to an integer answer
+            return abs(value - expected) <= self.width + 4 * math.ulp(abs(expected))
+        if self.kind == "rel":
+            return abs(value - expected) <= self.width * abs(expected)
+        if value == expected:
+            return True
+        if value * expected <= 0:  # a sign change or a zero is no rounding difference
+            return False
+        ratio = value / expected
+        return 1 / self.width <= ratio <= self.width
+
+
+@dataclass(frozen=True)
+class CheckReport:
+    """The outcome of :func:`check`: one line per value, and whether all of them passed.
+
+    Attributes
+    ----------
+    exercise : str
+        The exercise's full name, e.g. ``"ex05_decay"``.
+    lines : tuple of str
+        ``"name: within ..."`` or ``"name: not yet: ..."``, in the order given.
+    passed : tuple of bool
+        Whether each value is within its tolerance.
+    """
+
+    exercise: str
+    lines: tuple[str, ...]
+    passed: tuple[bool, ...]
+
+    @property
+    def ok(self) -> bool:
+        """True when every value given is within its tolerance."""
+        return all(self.passed)
+
+    def __str__(self) -> str:
+        return "\n".join(self.lines)
+
+    def _repr_pretty_(self, printer, cycle):  # a notebook cell shows the lines, not the repr
+        printer.text(str(self))
+
+
+def exercises() -> list[str]:
+    """The exercises with expected answers, by full name (``"ex01_element"``, ...)."""
+    return sorted(ANSWER_KEY)
+
+
+def _full_name(exercise: str) -> str:
+    if not isinstance(exercise, str):
+        raise TypeError(f"exercise must be a str such as 'ex05', got {type(exercise).__name__}")
+    names = [name for name in ANSWER_KEY if name == exercise or name.split("_")[0] == exercise]
+    if len(names) != 1:
+        raise ValueError(f"exercise must be one of {exercises()} (or their ex01-style prefix), "
+                         f"got {exercise!r}")
+    return names[0]
+
+
+def tolerances(exercise: str) -> dict[str, Tolerance]:
+    """The stated tolerance of every expected answer of ``exercise`` (``"ex05"`` or its full name).
+
+    Examples
+    --------
+    >>> tolerances("ex05")["tau_hand_ms"].describe()
+    '±1 %'
+    """
+    key = ANSWER_KEY[_full_name(exercise)]
+    return {name: Tolerance(a["kind"], a["width"], a["reason"]) for name, a in key.items()}
+
+
+def _verdict(name: str, value, expected: float, tolerance: Tolerance) -> tuple[str, bool]:
+    stated = tolerance.describe()
+    stated = "equal to" if stated == "exact" else f"within {stated} of"
+    stated += " the expected value"
+    if value is None:
+        return f"{name}: not yet: no value given (None)", False
+    try:  # a NumPy scalar or a 0-d array is a number too; a string or a bool is not
+        if isinstance(value, (str, bytes, bool)):
+            raise TypeError(value)
+        value = float(value)
+    except (TypeError, ValueError):
+        return f"{name}: not yet: {value!r} is not a number", False
+    if not math.isfinite(value):
+        return f"{name}: not yet: {value} is not a finite number", False
+    if tolerance.accepts(value, expected):
+        return f"{name}: {stated}", True
+    return f"{name}: not yet: not {stated}", False
+
+
+def check(exercise: str, **values) -> CheckReport:
+    """Whether each value is within the stated tolerance of the exercise's expected answer.
+
+    The answers themselves are not shown: a value is either within the tolerance or "not yet".
+
+    Parameters
+    ----------
+    exercise : str
+        ``"ex05"`` or ``"ex05_decay"``.
+    **values : float or None
+        The answers to check, by the names the exercise page gives (``tau_fit_ms=80.1``); ``None``
+        for one not computed yet.
+
+    Returns
+    -------
+    CheckReport
+        One line per value; ``report.ok`` is True when all of them are within tolerance.
+
+    Examples
+    --------
+    >>> report = check("ex01", M11=156, M14=-12)
+    >>> print(report)
+    M11: within ±1e-06 of the expected value
+    M14: not yet: not within ±1e-06 of the expected value
+    >>> report.ok
+    False
+    """
+    name = _full_name(exercise)
+    key, stated = ANSWER_KEY[name], tolerances(name)
+    unknown = sorted(set(values) - set(key))
+    if unknown or not values:
+        raise ValueError(f"the values of {name} are named {sorted(key)}, got {sorted(values)}")
+    verdicts = [_verdict(v, values[v], key[v]["value"], stated[v]) for v in values]
+    return CheckReport(name, tuple(v[0] for v in verdicts), tuple(v[1] for v in verdicts))

@@ -1,0 +1,66 @@
+"""Progress bars: the notebook bar only where ipywidgets can draw it, no warning anywhere."""
+
+import subprocess
+import sys
+import textwrap
+
+from ebantenna import _progress
+
+# A Jupyter kernel without ipywidgets, as tqdm.auto detects one (ipykernel's shell module is
+# loaded), in which ``import ipywidgets`` fails. Warnings are recorded, not raised: tqdm.auto
+# catches the exception its own warning would raise and falls back silently.
+FAKE_KERNEL = textwrap.dedent(
+    """
+    import importlib.util, sys, types, warnings
+    caught = warnings.catch_warnings(record=True)
+    seen = caught.__enter__()
+    warnings.simplefilter("always")
+
+    class ZMQInteractiveShell:
+        config = {"IPKernelApp": {}}
+
+    sys.modules["ipykernel.zmqshell"] = types.ModuleType("ipykernel.zmqshell")
+    sys.modules["IPython"] = types.SimpleNamespace(get_ipython=lambda: ZMQInteractiveShell())
+    sys.modules["ipywidgets"] = None  # import ipywidgets -> ImportError
+    real_find_spec = importlib.util.find_spec
+    importlib.util.find_spec = lambda name, *a: (
+        None if name == "ipywidgets" else real_find_spec(name, *a)
+    )
+    """
+)
+
+
+def _run(code: str) -> subprocess.CompletedProcess:
+    return subprocess.run(
+        [sys.executable, "-c", FAKE_KERNEL + textwrap.dedent(code)],
+        capture_output=True, text=True, timeout=120, check=False,
+    )
+
+
+def test_tqdm_auto_warns_in_a_kernel_without_ipywidgets():
+    # the witness: the fake kernel is one in which tqdm.auto warns ("IProgress not found")
+    done = _run("import tqdm.auto\nassert 'IProgress not found' in str(seen[0].message)\n")
+    assert done.returncode == 0, done.stderr
+
+
+def test_the_package_bar_is_plain_and_silent_there():
+    done = _run(
+        """
+        from ebantenna._progress import progress
+        bar = progress(range(3), enabled=True)
+        assert list(bar) == [0, 1, 2]
+        assert type(bar).__module__ == "tqdm.std", type(bar)
+        assert not seen, [str(w.message) for w in seen]
+        """
+    )
+    assert done.returncode == 0, done.stderr
+
+
+def test_with_ipywidgets_the_automatic_choice(monkeypatch):
+    import tqdm.auto
+    import tqdm.std
+
+    monkeypatch.setattr(_progress.importlib.util, "find_spec", lambda name, *a: object())
+    assert _progress.bar_class() is tqdm.auto.tqdm
+    monkeypatch.setattr(_progress.importlib.util, "find_spec", lambda name, *a: None)
+    assert _progress.bar_class() is tqdm.std.tqdm

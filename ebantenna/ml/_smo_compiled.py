@@ -155,6 +155,13 @@ def _initial_state(y, QD, C, index):
     return F, pos.copy(), ~pos, np.array(index, dtype=np.int64), np.arange(n, dtype=np.int64)
 
 
+def _compiled_for(matrix) -> bool:
+    """Whether the loop was compiled for this kernel matrix: a writable 2-d ndarray of
+    float64 or float32 in the machine's byte order."""
+    return (isinstance(matrix, np.ndarray) and matrix.ndim == 2 and matrix.flags.writeable
+            and matrix.dtype in (np.dtype(np.float64), np.dtype(np.float32)))
+
+
 def run_compiled(rows, y: np.ndarray, C: np.ndarray, diagonal: np.ndarray, policy: SMOPolicy,
                  tol: float, max_iter: float):
     """Run the compiled loop, or return None when the kernel is not stored whole.
@@ -166,7 +173,7 @@ def run_compiled(rows, y: np.ndarray, C: np.ndarray, diagonal: np.ndarray, polic
         order (``perm[p]`` the variable at position ``p``), as the NumPy engines leave them.
     """
     stored = rows.stored_entries()
-    if stored is None or np.dtype(stored[0].dtype) not in (np.float64, np.float32):
+    if stored is None or not _compiled_for(stored[0]):
         return None
     from . import _smo_numba
 

@@ -103,36 +103,47 @@ def _better(v, best, last):
 
 
 @_jit
-def _select(K, g, F, up, low, a, tol, opts, pair_sum, Ki):
-    """The working pair ``(i, j, violation)`` among the first ``a`` positions, ``i = -1`` when
-    optimal within ``tol``; ``Ki`` receives the row of ``i``. ``opts``: second order, ties to the
-    last, libsvm's floor, constant diagonal."""
-    second_order, last, floor_nonpositive, same_diagonal = opts
-    yG, QD = F[_YG], F[_QD]
-    i, Gmax = 0, (0.0 - yG[0]) if up[0] else -np.inf
-    top_low, j_low = (yG[0] + 0.0) if low[0] else -np.inf, 0
-    for t in range(1, a):
+def _scan(F, up, low, a, last):
+    """The two arg-maxima of the selection over the first ``a`` positions:
+    ``(i, Gmax, j, top)``, :math:`G_{max} = -y_i G_i` the largest over :math:`I_{up}` and
+    ``top`` the largest :math:`y_j G_j` over :math:`I_{low}` (-inf for an empty set)."""
+    yG = F[_YG]
+    i, Gmax, j, top = 0, -np.inf, 0, -np.inf
+    for t in range(a):
         v = (0.0 - yG[t]) if up[t] else -np.inf
         if _better(v, Gmax, last):
             i, Gmax = t, v
         w = (yG[t] + 0.0) if low[t] else -np.inf
-        if _better(w, top_low, last):
-            j_low, top_low = t, w
+        if _better(w, top, last):
+            j, top = t, w
+    return i, Gmax, j, top
+
+
+@_jit
+def _select(K, g, F, low, a, tol, opts, pair_sum, Ki, scan):
+    """The working pair ``(i, j, violation)`` among the first ``a`` positions from their
+    :func:`_scan`, ``i = -1`` when optimal within ``tol``; ``Ki`` receives the row of ``i``.
+    ``opts``: second order, ties to the last, libsvm's floor, constant diagonal."""
+    second_order, last, floor_nonpositive, same_diagonal = opts
+    i, Gmax, j_low, top_low = scan
     violation = Gmax + top_low
     if not violation >= tol:  # also stops on -inf (an empty set)
         return -1, -1, violation
-    _gather(K, g, i, a, Ki)
     if not second_order:
+        _gather(K, g, i, a, Ki)
         return i, j_low, violation
-    QD_i, j, best = QD[i], 0, -np.inf
-    for t in range(a):
+    yG, QD = F[_YG], F[_QD]
+    QD_i, j, best, r = QD[i], 0, -np.inf, g[i]
+    for t in range(a):  # the scores of ebantenna.ml._smo_step.second_order_gain, and the row
+        K_it = np.float64(K[r, g[t]])
+        Ki[t] = K_it
         score = 0.0
         if low[t]:
             b = (yG[t] + 0.0) + Gmax
             if same_diagonal:
-                quad = Ki[t] * -2.0 + pair_sum
+                quad = K_it * -2.0 + pair_sum
             else:
-                quad = (QD[t] + QD_i) - Ki[t] * 2.0
+                quad = (QD[t] + QD_i) - K_it * 2.0
             if floor_nonpositive:
                 if quad <= 0:
                     quad = TAU
@@ -141,7 +152,7 @@ def _select(K, g, F, up, low, a, tol, opts, pair_sum, Ki):
             if b < 0.0:
                 b = 0.0
             score = b * b / quad
-        if t == 0 or _better(score, best, last):
+        if _better(score, best, last):
             j, best = t, score
     if not best > 0:
         return -1, -1, violation
@@ -161,29 +172,48 @@ def _set_membership(F, up, low, t):
 
 
 @_jit
-def _update(K, g, F, up, low, a, i, j, Ki, Kj, shrinking):
-    """Solve for the pair ``(i, j)``, update the gradient (and ``Gbar`` when shrinking)."""
-    y, QD, C, alpha, yG, yGbar = F[_Y], F[_QD], F[_C], F[_ALPHA], F[_YG], F[_YGBAR]
-    _gather(K, g, j, a, Kj)
+def _update(K, g, F, up, low, a, i, j, Ki, shrinking, last):
+    """Solve for the pair ``(i, j)``, update the gradient (and ``Gbar`` when shrinking);
+    returns the next :func:`_scan`, made in the same pass as the gradient."""
+    y, QD, C, alpha, yG = F[_Y], F[_QD], F[_C], F[_ALPHA], F[_YG]
     old_i, old_j = alpha[i], alpha[j]
     a_i, a_j = pair_step(y[i], y[j], QD[i], QD[j], C[i], C[j], old_i, old_j, y[i] * yG[i],
                          y[j] * yG[j], Ki[j])
     alpha[i], alpha[j] = a_i, a_j
-    c_i, c_j = y[i] * (a_i - old_i), y[j] * (a_j - old_j)
-    for t in range(a):
-        yG[t] += Ki[t] * c_i + Kj[t] * c_j
-    n = F.shape[1]
-    for t, old in ((i, old_i), (j, old_j)):
-        _set_membership(F, up, low, t)
-        was_upper = old >= C[t]
-        if shrinking and was_upper != (alpha[t] >= C[t]):
-            coef, r = C[t] * y[t], g[t]  # Gbar += C_t Q_t, in y-scaled form
-            for k in range(n):
-                step = coef * np.float64(K[r, g[k]])
-                if was_upper:
-                    yGbar[k] -= step
-                else:
-                    yGbar[k] += step
+    _set_membership(F, up, low, i)
+    _set_membership(F, up, low, j)
+    c_i, c_j, r = y[i] * (a_i - old_i), y[j] * (a_j - old_j), g[j]
+    i_next, Gmax, j_next, top = 0, -np.inf, 0, -np.inf
+    for t in range(a):  # G += Q_i dalpha_i + Q_j dalpha_j, on y G; then the next scan
+        v = yG[t] + (Ki[t] * c_i + np.float64(K[r, g[t]]) * c_j)
+        yG[t] = v
+        u = (0.0 - v) if up[t] else -np.inf
+        if _better(u, Gmax, last):
+            i_next, Gmax = t, u
+        w = (v + 0.0) if low[t] else -np.inf
+        if _better(w, top, last):
+            j_next, top = t, w
+    if shrinking:
+        _move_gbar(K, g, F, i, old_i)
+        _move_gbar(K, g, F, j, old_j)
+    return i_next, Gmax, j_next, top
+
+
+@_jit
+def _move_gbar(K, g, F, t, old):
+    """:math:`\\bar G \\mathrel{+}= \\pm C_t Q_t` when :math:`\\alpha_t` reached or left
+    :math:`C_t`, in y-scaled form (libsvm's ``G_bar``)."""
+    C_t, yGbar = F[_C, t], F[_YGBAR]
+    was_upper = old >= C_t
+    if was_upper == (F[_ALPHA, t] >= C_t):
+        return
+    coef, r = C_t * F[_Y, t], g[t]
+    for k in range(F.shape[1]):
+        step = coef * np.float64(K[r, g[k]])
+        if was_upper:
+            yGbar[k] -= step
+        else:
+            yGbar[k] += step
 
 
 @_jit
@@ -253,7 +283,16 @@ def _max_violation(F, up, low):
     return top_up + top_low
 
 
-@_jit
+#: The two specialisations compiled (float64 and float32 kernel matrices, any strides), so
+#: that a view and a contiguous matrix share one compiled loop.
+_SIGNATURES = [
+    (numba.types.Array(dtype, 2, "A"), numba.int64[::1], numba.float64[:, ::1],
+     numba.boolean[::1], numba.boolean[::1], numba.int64[::1], numba.float64, numba.float64,
+     numba.types.UniTuple(numba.boolean, 4), numba.boolean, numba.float64)
+    for dtype in (numba.float64, numba.float32)]
+
+
+@numba.njit(_SIGNATURES, cache=True)
 def smo_loop(K, g, F, up, low, perm, tol, max_iter, opts, shrinking, pair_sum):
     """SMO from the state in ``F``, ``up``, ``low`` (updated in place, in libsvm's order on
     return, ``perm`` the variables' positions): ``(n_iter, converged, violation)``.
@@ -262,30 +301,34 @@ def smo_loop(K, g, F, up, low, perm, tol, max_iter, opts, shrinking, pair_sum):
     ``pair_sum`` :math:`K_{ii} + K_{jj}` for a constant diagonal.
     """
     n = F.shape[1]
-    Ki, Kj = np.empty(n), np.empty(n)
+    last = opts[1]
+    Ki = np.empty(n)
     n_iter, active, unshrink = 0, n, False
     counter = min(n, 1000) + 1
     converged, violation = False, np.inf
+    scan = _scan(F, up, low, active, last)
     while n_iter < max_iter:
         if shrinking:
             counter -= 1
             if counter == 0:
                 counter = min(n, 1000)
                 active, unshrink = _shrink(K, g, F, up, low, perm, active, tol, unshrink)
-        i, j, violation = _select(K, g, F, up, low, active, tol, opts, pair_sum, Ki)
+                scan = _scan(F, up, low, active, last)
+        i, j, violation = _select(K, g, F, low, active, tol, opts, pair_sum, Ki, scan)
         if i < 0:
             if active == n:
                 converged = True
                 break
             # optimal on the active set: check again on all variables, and shrink at once
             active = _reconstruct(K, g, F, active)
-            i, j, violation = _select(K, g, F, up, low, active, tol, opts, pair_sum, Ki)
+            scan = _scan(F, up, low, active, last)
+            i, j, violation = _select(K, g, F, low, active, tol, opts, pair_sum, Ki, scan)
             if i < 0:
                 converged = True
                 break
             counter = 1
         n_iter += 1
-        _update(K, g, F, up, low, active, i, j, Ki, Kj, shrinking)
+        scan = _update(K, g, F, up, low, active, i, j, Ki, shrinking, last)
     if not converged:
         _reconstruct(K, g, F, active)
         violation = _max_violation(F, up, low)

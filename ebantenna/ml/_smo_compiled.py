@@ -87,6 +87,8 @@ def engine_status() -> EngineStatus:
     try:
         from . import _smo_numba
 
+        if _smo_numba.IMPORT_ERROR:
+            raise ImportError(_smo_numba.IMPORT_ERROR)
         _smoke_test(_smo_numba)
     except Exception as exc:  # numba is installed but cannot build the loop here
         reason = (f"numba is installed but the compiled SMO engine failed with NumPy "

@@ -1,7 +1,8 @@
 """The SMO loop compiled by numba: the NumPy engines' arithmetic, one scalar at a time (private).
 
-Imported only by :mod:`ebantenna.ml._smo_compiled`, which imports it when numba is installed
-and falls back to the NumPy engines otherwise. The loop is that of
+Used only by :mod:`ebantenna.ml._smo_compiled`, when numba is installed and this module
+compiled (``IMPORT_ERROR`` says why not); otherwise SMO runs on the NumPy engines. The loop
+is that of
 :func:`ebantenna.ml._smo_state.run_general` on a :class:`~ebantenna.ml._smo_state.DualState`
 (which the whole-kernel engine :mod:`ebantenna.ml._smo_whole` matches to the last bit), written
 with plain loops so that one call runs every update, with no NumPy call per update:
@@ -25,14 +26,28 @@ as :meth:`~ebantenna.ml.kernels.KernelRows.row64` does).
 
 from __future__ import annotations
 
-import numba
 import numpy as np
 
 from .smo_policy import TAU
 
-__all__ = ["smo_loop", "pair_step"]
+try:
+    import numba
+except ImportError as exc:  # not installed, or not working with this NumPy
+    numba = None
+    IMPORT_ERROR = f"{type(exc).__name__}: {exc}"
+else:
+    IMPORT_ERROR = ""
 
-_jit = numba.njit(cache=True)
+__all__ = ["smo_loop", "pair_step", "IMPORT_ERROR"]
+
+
+def _plain(function):
+    """Without numba the loops stay Python functions (this module still imports, and
+    :mod:`ebantenna.ml._smo_compiled` does not use it)."""
+    return function
+
+
+_jit = numba.njit(cache=True) if numba is not None else _plain
 
 # the rows of F
 _Y, _QD, _C, _ALPHA, _YG, _YGBAR = range(6)
@@ -285,14 +300,15 @@ def _max_violation(F, up, low):
 
 #: The two specialisations compiled (float64 and float32 kernel matrices, any strides), so
 #: that a view and a contiguous matrix share one compiled loop.
-_SIGNATURES = [
+_SIGNATURES = [] if numba is None else [
     (numba.types.Array(dtype, 2, "A"), numba.int64[::1], numba.float64[:, ::1],
      numba.boolean[::1], numba.boolean[::1], numba.int64[::1], numba.float64, numba.float64,
      numba.types.UniTuple(numba.boolean, 4), numba.boolean, numba.float64)
     for dtype in (numba.float64, numba.float32)]
+_jit_loop = numba.njit(_SIGNATURES, cache=True) if numba is not None else _plain
 
 
-@numba.njit(_SIGNATURES, cache=True)
+@_jit_loop
 def smo_loop(K, g, F, up, low, perm, tol, max_iter, opts, shrinking, pair_sum):
     """SMO from the state in ``F``, ``up``, ``low`` (updated in place, in libsvm's order on
     return, ``perm`` the variables' positions): ``(n_iter, converged, violation)``.

@@ -128,6 +128,30 @@ def test_rows_computed_on_demand_stay_on_numpy():
     _same(res, smo.solve_smo(rows, y, np.ones(40), diagonal=kern.diagonal(X), engine="numpy"))
 
 
+@pytest.mark.parametrize("policy", [LIBSVM, replace(LIBSVM, ties="first", curvature_floor="tau",
+                                                    bias_sum="pairwise", float32_kernel=False)])
+def test_the_loop_as_plain_python_takes_the_same_steps(monkeypatch, policy):
+    # The compiled loop's source runs as Python too (numba's py_func, or the module as it
+    # imports without numba): its logic is held to the NumPy engines in every CI environment
+    from ebantenna.ml import _smo_numba
+
+    loop = getattr(_smo_numba.smo_loop, "py_func", _smo_numba.smo_loop)
+    monkeypatch.setattr(_smo_numba, "smo_loop", loop)
+    rng = np.random.default_rng(11)
+    X = rng.normal(size=(70, 2))
+    y = np.where(X[:, 0] * X[:, 1] + 0.3 * rng.normal(size=70) > 0, 1.0, -1.0)
+    kern = Kernel("rbf", gamma=1.0)
+    rows = KernelRows(X, kern, policy.kernel_dtype(70, 1 << 20), 1 << 20)
+    C, diagonal = np.full(70, 5.0), kern.diagonal(X)
+    y_, C_, alpha, yG, perm, n_iter, converged, violation = _smo_compiled.run_compiled(
+        rows, y, C, diagonal, policy, 1e-4, 1e7)
+    numpy = smo.solve_smo(rows, y, C, diagonal=diagonal, tol=1e-4, policy=policy,
+                          engine="numpy")
+    assert (n_iter, converged, violation) == (numpy.n_iter, numpy.converged, numpy.violation)
+    assert n_iter > 70  # past the first shrinking with LIBSVM
+    np.testing.assert_array_equal(alpha[np.argsort(perm)], numpy.alpha)
+
+
 @pytest.fixture
 def fresh_status():
     """Probe numba again in this test, and once more after it."""

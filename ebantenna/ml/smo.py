@@ -44,6 +44,19 @@ shrinking, its variable order and a memo of kernel rows. The two share libsvm's 
 step and the second-order scores (``_smo_step``) and return the same numbers to the last bit for
 the same policy. Tests hold both equal to the reference within what the stopping rule allows.
 
+The optional compiled engine
+----------------------------
+With numba installed (``pip install ebantenna[fast]``) the loop of both engines also exists
+compiled (``_smo_numba``): the same floating-point operations in the same order, so the same
+:math:`\alpha`, :math:`\rho`, number of updates and violation to the last bit (tests hold it
+there on every kernel and both conventions), run in one call with no NumPy call per update.
+:func:`solve_smo` uses it whenever the whole kernel is stored and numba works
+(:func:`engine_status`); otherwise the NumPy engines run, and the reason is said once per
+process (an INFO log when numba is not installed, a :class:`RuntimeWarning` when it fails).
+The environment variable ``EBANTENNA_ENGINE`` (:data:`ENGINE_VARIABLE`) set to ``numpy``,
+``compiled`` or ``auto`` (the default), or the ``engine`` argument of :func:`solve_smo`,
+chooses; ``compiled`` raises when it is not available.
+
 Conventions and the digits they move
 ------------------------------------
 With the :data:`~ebantenna.ml.smo_policy.LIBSVM` policy (``SVC(libsvm_compat=True)``) the
@@ -81,14 +94,22 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._smo_compiled import choose_engine, run_compiled
+from ._smo_compiled import (
+    ENGINE_VARIABLE,
+    ENGINES,
+    EngineStatus,
+    choose_engine,
+    engine_status,
+    run_compiled,
+)
 from ._smo_state import DualState, run_general
 from ._smo_whole import run_whole, runs_whole
 from .kernels import KernelRows
 from .smo_policy import DEFAULT, TAU, SMOPolicy
 
 __all__ = ["SMOResult", "select_working_set", "solve_two_variable", "update_gradient", "bias",
-           "reference_smo", "solve_smo"]
+           "reference_smo", "solve_smo", "ENGINES", "ENGINE_VARIABLE", "EngineStatus",
+           "engine_status"]
 
 logger = logging.getLogger(__name__)
 

@@ -152,9 +152,9 @@ def _select(K, g, F, low, a, tol, opts, pair_sum, Ki, scan):
     for t in range(a):  # the scores of ebantenna.ml._smo_step.second_order_gain, and the row
         K_it = np.float64(K[r, g[t]])
         Ki[t] = K_it
-        score = 0.0
-        if low[t]:
-            b = (yG[t] + 0.0) + Gmax
+        score = 0.0  # max(b, 0)**2 / a is 0 for b <= 0 (a >= tau > 0): no division there
+        b = ((yG[t] + 0.0) + Gmax) if low[t] else 0.0
+        if b > 0.0:
             if same_diagonal:
                 quad = K_it * -2.0 + pair_sum
             else:
@@ -164,8 +164,6 @@ def _select(K, g, F, low, a, tol, opts, pair_sum, Ki, scan):
                     quad = TAU
             elif quad < TAU:
                 quad = TAU
-            if b < 0.0:
-                b = 0.0
             score = b * b / quad
         if _better(score, best, last):
             j, best = t, score

@@ -53,7 +53,7 @@ there on every kernel and both conventions), run in one call with no NumPy call 
 :func:`solve_smo` uses it whenever the whole kernel is stored and numba works
 (:func:`engine_status`); otherwise the NumPy engines run, and the reason is said once per
 process (an INFO log when numba is not installed, a :class:`RuntimeWarning` when it fails).
-The environment variable ``EBANTENNA_ENGINE`` (:data:`ENGINE_VARIABLE`) set to ``numpy``,
+The environment variable ``EBANTENNA_ENGINE`` (``ENGINE_VARIABLE`` here) set to ``numpy``,
 ``compiled`` or ``auto`` (the default), or the ``engine`` argument of :func:`solve_smo`,
 chooses; ``compiled`` raises when it is not available.
 
@@ -96,7 +96,6 @@ import numpy as np
 
 from ._smo_compiled import (
     ENGINE_VARIABLE,
-    ENGINES,
     EngineStatus,
     choose_engine,
     engine_status,
@@ -108,8 +107,7 @@ from .kernels import KernelRows
 from .smo_policy import DEFAULT, TAU, SMOPolicy
 
 __all__ = ["SMOResult", "select_working_set", "solve_two_variable", "update_gradient", "bias",
-           "reference_smo", "solve_smo", "ENGINES", "ENGINE_VARIABLE", "EngineStatus",
-           "engine_status"]
+           "reference_smo", "solve_smo", "ENGINE_VARIABLE", "EngineStatus", "engine_status"]
 
 logger = logging.getLogger(__name__)
 

@@ -382,7 +382,7 @@ def solve_smo(
         :class:`~ebantenna.ml.smo_policy.SMOPolicy`. With ``LIBSVM`` the path is libsvm's, shrinking
         on or off (``dataclasses.replace(LIBSVM, shrinking=False)``).
     engine : {'auto', 'numpy', 'compiled'} or None
-        Which engine runs the loop (see :mod:`ebantenna.ml._smo_compiled`): the NumPy engines,
+        Which engine runs the loop (see the module text): the NumPy engines,
         or their compiled twin (numba, ``pip install ebantenna[fast]``), which returns the same
         numbers to the last bit when the whole kernel is stored. None reads the environment
         variable ``EBANTENNA_ENGINE``, default ``'auto'``: compiled when numba works.

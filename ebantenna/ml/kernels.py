@@ -464,6 +464,26 @@ class KernelRows:
         """True when the whole matrix is stored."""
         return self.matrix is not None
 
+    def stored_entries(self):
+        """The stored matrix and, per position of the problem, its row there: ``(matrix,
+        index)`` with :math:`k(x_p, x_q)` = ``matrix[index[p], index[q]]``, or None when rows
+        are computed on demand.
+
+        Examples
+        --------
+        >>> X = np.array([[0.0], [1.0], [3.0]])
+        >>> K = Kernel("linear").gram(X)
+        >>> matrix, index = KernelRows(None, Kernel("linear"), np.float64, 0, full=K,
+        ...                            parts=[slice(0, 1), slice(2, 3)]).stored_entries()
+        >>> index, matrix[index[1], index[1]]
+        (array([0, 2]), np.float64(9.0))
+        """
+        if self.matrix is None:
+            return None
+        if self._parts is not None:
+            return self.matrix, self._rows
+        return self.matrix, np.arange(self.n)
+
     def row64(self, i: int) -> np.ndarray:
         """Kernel row :math:`k(x_i, x_t)` as float64 (a new array, or a view of float64 storage)."""
         if self._parts is not None:

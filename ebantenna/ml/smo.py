@@ -44,6 +44,19 @@ shrinking, its variable order and a memo of kernel rows. The two share libsvm's 
 step and the second-order scores (``_smo_step``) and return the same numbers to the last bit for
 the same policy. Tests hold both equal to the reference within what the stopping rule allows.
 
+The optional compiled engine
+----------------------------
+With numba installed (``pip install ebantenna[fast]``) the loop of both engines also exists
+compiled (``_smo_numba``): the same floating-point operations in the same order, so the same
+:math:`\alpha`, :math:`\rho`, number of updates and violation to the last bit (tests hold it
+there on every kernel and both conventions), run in one call with no NumPy call per update.
+:func:`solve_smo` uses it whenever the whole kernel is stored and numba works
+(:func:`engine_status`); otherwise the NumPy engines run, and the reason is said once per
+process (an INFO log when numba is not installed, a :class:`RuntimeWarning` when it fails).
+The environment variable ``EBANTENNA_ENGINE`` (``ENGINE_VARIABLE`` here) set to ``numpy``,
+``compiled`` or ``auto`` (the default), or the ``engine`` argument of :func:`solve_smo`,
+chooses; ``compiled`` raises when it is not available.
+
 Conventions and the digits they move
 ------------------------------------
 With the :data:`~ebantenna.ml.smo_policy.LIBSVM` policy (``SVC(libsvm_compat=True)``) the
@@ -81,13 +94,20 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._smo_compiled import (
+    ENGINE_VARIABLE,
+    EngineStatus,
+    choose_engine,
+    engine_status,
+    run_compiled,
+)
 from ._smo_state import DualState, run_general
 from ._smo_whole import run_whole, runs_whole
 from .kernels import KernelRows
 from .smo_policy import DEFAULT, TAU, SMOPolicy
 
 __all__ = ["SMOResult", "select_working_set", "solve_two_variable", "update_gradient", "bias",
-           "reference_smo", "solve_smo"]
+           "reference_smo", "solve_smo", "ENGINE_VARIABLE", "EngineStatus", "engine_status"]
 
 logger = logging.getLogger(__name__)
 
@@ -332,6 +352,7 @@ def solve_smo(
     tol: float = 1e-3,
     max_iter: int = 10_000_000,
     policy: SMOPolicy = DEFAULT,
+    engine: str | None = None,
 ) -> SMOResult:
     """Solve the binary C-SVC dual by SMO on the engines (the policy chooses which).
 
@@ -360,6 +381,11 @@ def solve_smo(
         :data:`~ebantenna.ml.smo_policy.DEFAULT`, :data:`~ebantenna.ml.smo_policy.LIBSVM` or any
         :class:`~ebantenna.ml.smo_policy.SMOPolicy`. With ``LIBSVM`` the path is libsvm's, shrinking
         on or off (``dataclasses.replace(LIBSVM, shrinking=False)``).
+    engine : {'auto', 'numpy', 'compiled'} or None
+        Which engine runs the loop (see the module text): the NumPy engines,
+        or their compiled twin (numba, ``pip install ebantenna[fast]``), which returns the same
+        numbers to the last bit when the whole kernel is stored. None reads the environment
+        variable ``EBANTENNA_ENGINE``, default ``'auto'``: compiled when numba works.
 
     Returns
     -------
@@ -382,13 +408,20 @@ def solve_smo(
         raise TypeError(f"policy must be an SMOPolicy, got {type(policy).__name__}")
     y, C, diagonal = (np.array(v, dtype=np.float64) for v in (y, C, diagonal))
     perm = None
-    if runs_whole(policy, C):
+    compiled = None
+    if choose_engine(engine) == "compiled":
+        compiled = run_compiled(rows, y, C, diagonal, policy, tol, max_iter)
+    if compiled is not None:
+        y, C, alpha, yG, perm, n_iter, converged, violation = compiled
+        state_alpha = alpha
+    elif runs_whole(policy, C):
         alpha, yG, n_iter, converged, violation = run_whole(
             rows, y, diagonal, C, policy.selection == "second-order", tol, max_iter)
     else:
         state = DualState(rows, y, C, diagonal, policy)
         n_iter, converged, violation = run_general(state, tol, max_iter)
         y, C, alpha, yG, perm = state.y, state.C, state.alpha, state.yG, state.perm
+        state_alpha = alpha
     if not converged:
         logger.info("SMO stopped at max_iter=%d with violation %.3g", max_iter, violation)
     G = y * yG  # in the engine's order: the sums of the objective and the bias follow it
@@ -396,5 +429,5 @@ def solve_smo(
     rho = bias(G, y, alpha, C, sequential=policy.bias_sum == "sequential")
     if perm is not None:  # back to the callers' order
         alpha = np.empty_like(alpha)
-        alpha[perm] = state.alpha
+        alpha[perm] = state_alpha
     return SMOResult(alpha, rho, n_iter, converged, objective, float(violation))

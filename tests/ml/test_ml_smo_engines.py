@@ -13,6 +13,13 @@ from ebantenna.ml.kernels import Kernel, KernelRows
 from ebantenna.ml.smo_policy import DEFAULT, LIBSVM
 
 
+@pytest.fixture(autouse=True)
+def _numpy_engines(monkeypatch):
+    # these tests are about the NumPy engines themselves (the compiled twin has its own tests,
+    # tests/ml/test_ml_smo_compiled.py): keep solve_smo on them even when numba is installed
+    monkeypatch.setenv("EBANTENNA_ENGINE", "numpy")
+
+
 def _problem(seed):
     rng = np.random.default_rng(seed)
     n = int(rng.integers(20, 160))

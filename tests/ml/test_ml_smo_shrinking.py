@@ -12,6 +12,13 @@ from ebantenna.ml.smo import solve_smo
 from ebantenna.ml.smo_policy import LIBSVM
 
 
+@pytest.fixture(autouse=True)
+def _numpy_engines(monkeypatch):
+    # these tests are about the NumPy engines themselves (the compiled twin has its own tests,
+    # tests/ml/test_ml_smo_compiled.py): keep solve_smo on them even when numba is installed
+    monkeypatch.setenv("EBANTENNA_ENGINE", "numpy")
+
+
 def _libsvm_do_shrinking_order(shrink):
     """The swap loop of libsvm's ``Solver::do_shrinking``, transcribed one swap at a time."""
     shrink = list(shrink)

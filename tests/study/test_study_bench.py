@@ -96,3 +96,39 @@ def test_compare_alternates_the_sides_and_keeps_the_best_time_of_each():
     assert row["ratio"] == row["ours_seconds"] / row["sklearn_seconds"]  # the same division
     with pytest.raises(ValueError, match="repeat must be >= 1"):
         ml_speed.run(repeat=0)
+
+
+def test_compare_takes_the_ratios_within_each_repetition():
+    from ebantenna.bench import ml_speed
+
+    # a clock that makes the calls last, in order: ours 2, theirs 1; ours 3, theirs 6; ours 8,
+    # theirs 2 (s): within-repetition ratios 2, 0.5 and 4; best times 2 and 1
+    ticks = iter([0, 2, 2, 3, 3, 6, 6, 12, 12, 20, 20, 22])
+    row = ml_speed.compare("t", lambda: None, lambda: None, lambda m: 0.0, repeat=3,
+                           data="d", engine="e", clock=lambda: next(ticks))
+    assert (row["ratio_min"], row["ratio_median"]) == (0.5, 2.0)
+    assert (row["ours_seconds"], row["sklearn_seconds"], row["ratio"]) == (2, 1, 2.0)
+    assert (row["data"], row["engine"]) == ("d", "e")
+
+
+def test_small_set_rows_time_each_engine_on_each_set(monkeypatch):
+    from ebantenna.bench import ml_speed
+
+    seen = []
+
+    def fake_compare(task, ours, theirs, score, repeat, *, data, engine):
+        model = ours()  # the batch of our fits, on the engine chosen by on_engine
+        seen.append((task, data.split()[0], engine, ml_speed.os.environ["EBANTENNA_ENGINE"]))
+        return {"ours_seconds": 1.0, "sklearn_seconds": 1.0, "ours_accuracy": score(model)}
+
+    monkeypatch.setattr(ml_speed, "compare", fake_compare)
+    monkeypatch.setattr(ml_speed, "SMALL_SETS", ("iris",))
+    before = ml_speed.os.environ.get("EBANTENNA_ENGINE")
+    rows = ml_speed.small_set_rows(repeat=1, batch_seconds=0.0)
+    engines = ml_speed.engines()
+    assert [(task, engine) for task, _, engine, _ in seen] == [
+        (task, engine) for task in ("SVC rbf fit", "SVC rbf fit, libsvm_compat=True",
+                                    "SVC linear fit, C=100") for engine in engines]
+    assert all(name == "iris" and env == engine for _, name, engine, env in seen)
+    assert all(r["ours_accuracy"] > 0.9 for r in rows)  # iris held out: the fits are real
+    assert ml_speed.os.environ.get("EBANTENNA_ENGINE") == before  # restored after

@@ -46,7 +46,7 @@ from .ovo import dual_layout, one_vs_one_coef, ovo_votes, ovr_decision_function
 from .pair_kernels import PairKernels
 from .platt import pairwise_coupling, pairwise_sigmoids
 from .smo import reference_smo, solve_smo
-from .smo_policy import DEFAULT, LIBSVM, fit_policy
+from .smo_policy import DEFAULT, LIBSVM, fit_policy, positive_semidefinite
 from .sparse_input import as_csr
 
 __all__ = ["SVC", "ovr_decision_function"]
@@ -123,6 +123,11 @@ class SVC(ClassifierMixin, BaseEstimator):
         :mod:`ebantenna.ml.kernels`): its path, like libsvm's, changes when every feature is
         shifted by the same amount. Predictions use centred points in both modes, as close as a
         GEMM gets to libsvm's direct differences when it predicts.
+        A kernel that is not positive semi-definite is always fitted this way, whatever
+        ``libsvm_compat`` says: 'sigmoid', and a precomputed or callable kernel whose training
+        Gram matrix :func:`~ebantenna.ml.smo_policy.positive_semidefinite` refuses. Its dual is
+        not convex, and the default conventions would stop at another of its stationary points
+        than scikit-learn (see :mod:`ebantenna.ml.smo_policy`).
     solver : {'auto', 'reference'}, default='auto'
         Which SMO solves the dual problems. 'auto': the engines, chosen by the other parameters
         (libsvm's solver with shrinking and a row cache, or a run over the whole kernel of a
@@ -131,7 +136,8 @@ class SVC(ClassifierMixin, BaseEstimator):
         (:func:`~ebantenna.ml.smo.reference_smo`), slower, to read and to step through; it
         finds the same support vectors and decision values within what ``tol`` allows. It
         follows neither libsvm's conventions nor its shrinking: ``libsvm_compat=True`` or
-        ``shrinking=True`` with it raise a ``ValueError``.
+        ``shrinking=True`` with it raise a ``ValueError``. With a kernel that is not positive
+        semi-definite it may stop at another stationary point of the dual than the engines.
 
     Attributes
     ----------
@@ -286,15 +292,17 @@ class SVC(ClassifierMixin, BaseEstimator):
         c_vec = float(self.C) * self.class_weight_[y_idx] * sw
         keep = c_vec > 0
         cache_bytes = int(float(self.cache_size) * 2**20)
-        base = LIBSVM if self.libsvm_compat else DEFAULT
+        # a kernel that is not PSD takes libsvm's conventions whole: see smo_policy's module text
+        compat = self.libsvm_compat or not positive_semidefinite(self.kernel, given)
+        base = LIBSVM if compat else DEFAULT
         dtype = base.kernel_dtype(int(keep.sum()), cache_bytes)
         members = [np.flatnonzero((y_idx == c) & keep) for c in range(classes.size)]
         if any(m.size == 0 for m in members):
             raise ValueError("every class needs at least one sample with a positive weight")
         kernels = PairKernels(X, members, kern, dtype, cache_bytes, given=given,
-                              libsvm_compat=self.libsvm_compat)
+                              libsvm_compat=compat)
         diag = np.diag(given).astype(np.float64) if given is not None else kern.diagonal(X)
-        policy = fit_policy(self.libsvm_compat, self.selection, bool(self.shrinking),
+        policy = fit_policy(compat, self.selection, bool(self.shrinking),
                             whole_kernel=kernels.stored)
         # -1: no cap, as in scikit-learn's libsvm ("set max_iter to -1 to disable the mechanism"
         # in its Solver::Solve; upstream libsvm stops at max(1e7, 100 n) updates instead)
@@ -304,7 +312,8 @@ class SVC(ClassifierMixin, BaseEstimator):
         self._store(X, classes, members, coefs, rhos, n_iter)
         self.probA_ = self.probB_ = np.empty(0)
         if self.probability:
-            self._fit_probability(X, members, given, kern, dtype, c_vec, diag, policy, max_iter)
+            self._fit_probability(X, members, given, kern, dtype, c_vec, diag, policy, max_iter,
+                                  compat)
         self.fit_status_ = status
         self.shape_fit_ = X.shape
         self._check_solution(status)
@@ -404,9 +413,10 @@ class SVC(ClassifierMixin, BaseEstimator):
         if sparse:
             self.dual_coef_ = sp.csr_matrix(self.dual_coef_)
 
-    def _fit_probability(self, X, members, given, kern, dtype, c_vec, diag, policy, max_iter):
+    def _fit_probability(self, X, members, given, kern, dtype, c_vec, diag, policy, max_iter,
+                         compat):
         """Platt's sigmoids of every pair, on five-fold decision values (libsvm's procedure)."""
-        center = not self.libsvm_compat
+        center = not compat
 
         def kernel_block(rows, cols):
             if given is not None:

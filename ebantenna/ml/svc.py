@@ -44,7 +44,7 @@ from .fitted import INPUT_ATTRIBUTES, FittedAttribute
 from .kernels import Kernel, KernelRows, call_kernel, resolve_gamma
 from .ovo import dual_layout, one_vs_one_coef, ovo_votes, ovr_decision_function
 from .pair_kernels import PairKernels
-from .platt import pairwise_coupling, pairwise_sigmoids
+from .platt import LibsvmRandom, pairwise_coupling, pairwise_sigmoids
 from .smo import reference_smo, solve_smo
 from .smo_policy import DEFAULT, LIBSVM, fit_policy, positive_semidefinite
 from .sparse_input import as_csr
@@ -109,8 +109,10 @@ class SVC(ClassifierMixin, BaseEstimator):
         With 'ovr' and more than two classes, predict the argmax of the decision function instead
         of the majority vote.
     random_state : int, Generator, RandomState instance or None, default=None
-        Seeds the folds of ``probability=True`` (NumPy's generator, not libsvm's: the folds
-        differ from scikit-learn's); the solver itself is deterministic.
+        Seeds the folds of ``probability=True`` as scikit-learn does: the seed is
+        ``check_random_state(random_state).randint(2**31 - 1)``, and the folds are drawn by
+        libsvm's own generator (:class:`~ebantenna.ml.platt.LibsvmRandom`), so that they are
+        scikit-learn's; the solver itself is deterministic.
     selection : {'second-order', 'first-order'}, default='second-order'
         Working-set selection: libsvm's second-order rule or the maximal violating pair.
     libsvm_compat : bool, default=False
@@ -429,11 +431,17 @@ class SVC(ClassifierMixin, BaseEstimator):
             res = self._solve_dual(rows, ys, c_vec[points], diag[points], policy, max_iter)
             return res.alpha * ys, res.rho
 
-        rs = self.random_state
-        seed = rs if rs is None or isinstance(rs, (Integral, np.random.Generator)) else (
-            check_random_state(rs).randint(2**31 - 1))
         self.probA_, self.probB_ = pairwise_sigmoids(members, kernel_block, solve,
-                                                     np.random.default_rng(seed))
+                                                     LibsvmRandom(self._libsvm_seed()))
+
+    def _libsvm_seed(self) -> int:
+        """libsvm's ``random_seed`` for ``random_state``, drawn as ``BaseLibSVM.fit`` draws it:
+        ``check_random_state(random_state).randint(2**31 - 1)`` (a Generator, which
+        scikit-learn refuses, gives ``integers(2**31 - 1)``)."""
+        rs = self.random_state
+        if isinstance(rs, np.random.Generator):
+            return int(rs.integers(np.iinfo(np.int32).max))
+        return int(check_random_state(rs).randint(np.iinfo(np.int32).max))
 
     def _check_proba(self):
         if not self.probability:

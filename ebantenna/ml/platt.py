@@ -22,7 +22,7 @@ the same decision values they give libsvm's numbers.
 The folds are libsvm's too. scikit-learn's copy of libsvm draws them with its own generator
 (``sklearn/svm/src/newrand/newrand.h``): a Mersenne twister ``std::mt19937`` seeded with
 ``set_seed(seed)`` (the standard 32-bit initialisation, the same as NumPy's
-:class:`~numpy.random.RandomState` with an integer seed), and ``bounded_rand_int(range)``, which
+``numpy.random.RandomState`` with an integer seed), and ``bounded_rand_int(range)``, which
 maps a 32-bit draw :math:`x` to :math:`\\lfloor x \\cdot \\mathrm{range} / 2^{32} \\rfloor`,
 drawing again while the low 32 bits of the product fall below
 :math:`(2^{32} - \\mathrm{range}) \\bmod \\mathrm{range}` (Lemire's unbiased method).

@@ -102,19 +102,26 @@ class MLPClassifier(ClassifierMixin, BaseMLP):
     'gd', 'sgd', 'adam', 'scg' or 'lbfgs', plus ``sigma0`` and ``lambda0`` of 'scg' (see the
     module text).
     ``random_state`` seeds a
-    :func:`numpy.random.default_rng` (initial weights, shuffling, validation split).
+    :func:`numpy.random.default_rng` (initial weights, shuffling); the validation split of
+    ``early_stopping`` is drawn as scikit-learn draws it, the same samples for the same
+    ``random_state``.
 
     Attributes
     ----------
     classes_ : ndarray
     coefs_, intercepts_ : list of ndarray
         Weight matrix (fan_in, fan_out) and bias vector of each layer.
+    loss_ : float
+        As scikit-learn's: the loss of the last epoch (mean over its batches), or for 'lbfgs'
+        the loss at the final weights.
     loss_curve_ : list of float
         Loss at each epoch (mean over its batches).
     n_iter_ : int
     best_loss_ : float
     validation_scores_, best_validation_score_ : list, float or None
-        Accuracy on the validation split when ``early_stopping``.
+        Accuracy on the validation split when ``early_stopping``; the split is scikit-learn's
+        for the same ``random_state``. With ``warm_start`` both carry on from the previous
+        fit, as in scikit-learn.
     n_layers_, n_outputs_, out_activation_ : int, int, str
 
     Examples
@@ -261,11 +268,14 @@ class MLPRegressor(RegressorMixin, BaseMLP):
     Attributes
     ----------
     coefs_, intercepts_ : list of ndarray
+    loss_ : float
+        The loss of the last epoch, or for 'lbfgs' at the final weights.
     loss_curve_ : list of float
     n_iter_ : int
     best_loss_ : float
     validation_scores_, best_validation_score_ : list, float or None
-        R² on the validation split when ``early_stopping``.
+        R² on the validation split when ``early_stopping``; the split is scikit-learn's for the
+        same ``random_state``, and ``warm_start`` carries both on, as there.
     n_layers_, n_outputs_, out_activation_ : int, int, str
 
     Examples

@@ -24,6 +24,7 @@ from scipy.sparse import issparse
 from sklearn.base import BaseEstimator, ClassifierMixin
 from sklearn.exceptions import ConvergenceWarning
 from sklearn.model_selection import train_test_split
+from sklearn.utils import check_random_state
 from sklearn.utils._param_validation import Interval, Options, StrOptions
 from sklearn.utils.validation import check_is_fitted
 
@@ -84,6 +85,8 @@ class BaseMLP(BaseEstimator):
         FittedAttribute("coefs_", "arrays", dtype="float64", ndim=2),
         FittedAttribute("intercepts_", "arrays", dtype="float64", ndim=1),
         FittedAttribute("loss_curve_", "value"),
+        # optional: files saved before it existed load without it
+        FittedAttribute("loss_", "value", optional=True),
         FittedAttribute("n_iter_", "value"),
         FittedAttribute("t_", "value"),
         FittedAttribute("best_loss_", "value"),
@@ -94,7 +97,9 @@ class BaseMLP(BaseEstimator):
         # the optimiser's state, which partial_fit continues: not saved (a loaded network
         # continues with a fresh optimiser, its learning rate back at learning_rate_init)
         FittedAttribute("_optimizer", "rebuilt", optional=True),
-        FittedAttribute("_no_improvement", "rebuilt", optional=True),
+        # the count of epochs without progress, which warm_start continues as scikit-learn's
+        # does: saved (optional: files written before it was kept load without it)
+        FittedAttribute("_no_improvement", "value", optional=True),
         *INPUT_ATTRIBUTES,
     )
 
@@ -218,25 +223,28 @@ class BaseMLP(BaseEstimator):
 
         The steps: build the network (or continue the fitted one), set a validation split aside
         for early stopping, run the solver, keep the best network seen on the validation split.
-        One generator seeded by ``random_state`` draws, in this order, the initial weights, the
-        split and the shuffles of the epochs.
+        One generator seeded by ``random_state`` draws, in this order, the initial weights and
+        the shuffles of the epochs; the validation split is scikit-learn's (see
+        :meth:`_split_random_state`).
         """
         sizes = [X.shape[1], *self._hidden_sizes(), Y.shape[1]]
         if incremental and self.early_stopping:
             raise ValueError("partial_fit does not support early_stopping=True")
         rng = np.random.default_rng(self.random_state)
-        if (self.warm_start or incremental) and hasattr(self, "coefs_"):
-            self._continue_network(sizes)
-        else:
+        fresh = not ((self.warm_start or incremental) and hasattr(self, "coefs_"))
+        if fresh:
             self._initialize_network(sizes, rng)
+        else:
+            self._continue_network(sizes)
         # as scikit-learn: n_iter_ counts the epochs of this call (one for partial_fit)
         self.n_iter_ = 0
         self.n_layers_ = len(sizes)
         self.n_outputs_ = Y.shape[1]
         X_val = Y_val = None
         if self.early_stopping and self.solver != "lbfgs":  # as scikit-learn: ignored by lbfgs
-            X, Y, X_val, Y_val = self._validation_split(X, Y, y_for_split, rng)
-        if not incremental or not hasattr(self, "_no_improvement"):
+            X, Y, X_val, Y_val = self._validation_split(X, Y, rng, sizes, fresh)
+        # as scikit-learn, the count of epochs without progress carries on with warm_start
+        if fresh or not hasattr(self, "_no_improvement"):
             self._no_improvement = 0
         if self.solver == "lbfgs":
             self._train_lbfgs(X, Y)
@@ -270,22 +278,50 @@ class BaseMLP(BaseEstimator):
                 setattr(self, name, {"loss_curve_": [], "best_loss_": np.inf}.get(name, 0))
         self.loss_curve_ = list(self.loss_curve_)
 
-    def _validation_split(self, X, Y, y_for_split, rng):
+    def _split_random_state(self, rng, sizes, fresh):
+        """What draws the validation split: the ``RandomState`` that scikit-learn's
+        ``_fit_stochastic`` hands to ``train_test_split`` for the same ``random_state``.
+
+        scikit-learn makes it with ``check_random_state(random_state)`` at every ``fit`` and,
+        on a fresh network, first draws the initial weights from it (a ``uniform`` array of each
+        layer's weights, then of its biases); those draws are repeated here, so that the split
+        is the same. A ``RandomState`` instance is used as it is: it has given this network its
+        initial weights already (through :func:`numpy.random.default_rng`, the same number of
+        draws). A ``Generator``, ``SeedSequence`` or ``BitGenerator``, which scikit-learn does
+        not take, gives a seed from ``rng``.
+        """
+        rs = self.random_state
+        if isinstance(rs, np.random.RandomState):
+            return rs
+        if rs is None or isinstance(rs, Integral):
+            state = check_random_state(rs)
+            if fresh:
+                for fan_in, fan_out in zip(sizes[:-1], sizes[1:], strict=True):
+                    state.uniform(size=(fan_in, fan_out))
+                    state.uniform(size=fan_out)
+            return state
+        return int(rng.integers(2**31 - 1))
+
+    def _validation_split(self, X, Y, rng, sizes, fresh):
         """``X, Y, X_val, Y_val``: ``validation_fraction`` of the samples set aside for early
-        stopping (stratified by class when every class can be), and an empty score history."""
-        stratify = y_for_split if isinstance(self, ClassifierMixin) else None
-        seed = int(rng.integers(2**31 - 1))
+        stopping, the same samples as scikit-learn's for the same ``random_state``: stratified
+        by class for a single output column (two classes) as there, not for more columns.
+        A fresh network starts an empty score history; with ``warm_start`` the history and
+        ``best_validation_score_`` carry on, as in scikit-learn."""
+        state = self._split_random_state(rng, sizes, fresh)
+        stratify = Y if isinstance(self, ClassifierMixin) and Y.shape[1] == 1 else None
         try:
             X, X_val, Y, Y_val = train_test_split(
-                X, Y, test_size=self.validation_fraction, random_state=seed, stratify=stratify)
-        except ValueError:
+                X, Y, test_size=self.validation_fraction, random_state=state, stratify=stratify)
+        except ValueError:  # a class too small to stratify: scikit-learn raises, we split
             X, X_val, Y, Y_val = train_test_split(
-                X, Y, test_size=self.validation_fraction, random_state=seed)
+                X, Y, test_size=self.validation_fraction, random_state=state)
         if X.shape[0] < 1 or X_val.shape[0] < 1:
             raise ValueError("early_stopping needs at least one training and one "
                              "validation sample")
-        self.validation_scores_ = []
-        self.best_validation_score_ = -np.inf
+        if fresh or getattr(self, "validation_scores_", None) is None:
+            self.validation_scores_ = []
+            self.best_validation_score_ = -np.inf
         self._best = None
         return X, Y, X_val, Y_val
 
@@ -297,11 +333,11 @@ class BaseMLP(BaseEstimator):
             self.coefs_, self.intercepts_ = best
         if hasattr(self, "_best"):
             del self._best
-        if not incremental:
+        if self.solver != "lbfgs":  # as scikit-learn: the mean loss of the last epoch
+            self.loss_ = self.loss_curve_[-1] if self.loss_curve_ else None
+        if not incremental and hasattr(self, "_optimizer"):
             # only partial_fit carries the optimiser to its next call (see partial_fit)
-            for name in ("_optimizer", "_no_improvement"):
-                if hasattr(self, name):
-                    delattr(self, name)
+            del self._optimizer
 
     def _end_of_epoch(self, loss, X_val, Y_val) -> bool:
         """Record the epoch; return True when training should stop for lack of progress."""
@@ -450,6 +486,7 @@ class BaseMLP(BaseEstimator):
         if not np.isfinite(res.fun):
             raise ValueError("lbfgs: the loss is not finite: scale the features and targets")
         self.coefs_, self.intercepts_ = unpack(res.x, shapes)
+        self.loss_ = float(res.fun)  # as scikit-learn: the loss at the final weights
         self.n_iter_ = min(int(res.nit), int(self.max_iter))
         self.t_ += X.shape[0] * self.n_iter_
         if res.status != 0:

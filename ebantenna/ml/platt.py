@@ -17,9 +17,32 @@ for multi-class classification by pairwise coupling", *JMLR* 5, 2004 (libsvm's
 :math:`\\sum_i \\sum_{j \\ne i} (r_{ji} p_i - r_{ij} p_j)^2` over the simplex.
 
 These follow libsvm's code (as bundled with scikit-learn) operation by operation, so that given
-the same decision values they give libsvm's numbers. The cross-validation folds are drawn with
-NumPy's generator, not libsvm's own: on the same data ``A`` and ``B`` therefore differ from
-scikit-learn's by the fold-to-fold spread of the decision values.
+the same decision values they give libsvm's numbers.
+
+The folds are libsvm's too. scikit-learn's copy of libsvm draws them with its own generator
+(``sklearn/svm/src/newrand/newrand.h``): a Mersenne twister ``std::mt19937`` seeded with
+``set_seed(seed)`` (the standard 32-bit initialisation, the same as NumPy's
+``numpy.random.RandomState`` with an integer seed), and ``bounded_rand_int(range)``, which
+maps a 32-bit draw :math:`x` to :math:`\\lfloor x \\cdot \\mathrm{range} / 2^{32} \\rfloor`,
+drawing again while the low 32 bits of the product fall below
+:math:`(2^{32} - \\mathrm{range}) \\bmod \\mathrm{range}` (Lemire's unbiased method).
+``svm_binary_svc_probability`` shuffles the points of a pair with it, Fisher and Yates' way
+(``j = i + bounded_rand_int(l - i)`` for ``i = 0 .. l - 1``), and fold :math:`i` is the points
+``perm[i l / 5 : (i + 1) l / 5]``. The seed is
+``check_random_state(random_state).randint(2**31 - 1)``, drawn in ``BaseLibSVM.fit``
+(``sklearn/svm/_base.py``). Two details of the C code decide the numbers:
+
+* every training run re-seeds the generator with the same seed (``svm_train`` calls
+  ``set_seed(param->random_seed)``, and the five training runs of the folds copy that
+  parameter), so the shuffle of every pair starts from the freshly seeded generator;
+* the training part of a fold is grouped by class with the labels sorted, so the negative
+  points come first and are the positive class of that run; its decision values are then
+  multiplied by -1 (``dec_values[perm[j]] *= submodel->label[0]``).
+
+:class:`LibsvmRandom` is that generator and :func:`cross_validated_decisions` that procedure, so
+that ``A`` and ``B``, and with them :meth:`~ebantenna.ml.SVC.predict_proba`, are scikit-learn's
+for the same ``random_state``, within what the stopping tolerance of the fold's training runs
+leaves of their decision values.
 
 The functions take checked values: :class:`~ebantenna.ml.SVC` validates its input once.
 """
@@ -31,7 +54,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-__all__ = ["sigmoid_train", "sigmoid_predict", "multiclass_probability",
+__all__ = ["sigmoid_train", "sigmoid_predict", "multiclass_probability", "LibsvmRandom",
            "cross_validated_decisions", "pairwise_sigmoids", "pairwise_coupling",
            "MIN_PROBABILITY"]
 
@@ -182,11 +205,62 @@ def multiclass_probability(r: np.ndarray) -> np.ndarray:
     return p
 
 
+class LibsvmRandom:
+    """The random generator of scikit-learn's libsvm: ``std::mt19937`` and Lemire's bounded ints.
+
+    Parameters
+    ----------
+    seed : int
+        In [0, 2**32): libsvm's ``random_seed``.
+
+    Examples
+    --------
+    The C++ standard fixes the 10000th draw of ``std::mt19937`` with its default seed:
+
+    >>> rng = LibsvmRandom(5489)
+    >>> [rng.raw() for _ in range(10000)][-1]
+    4123659995
+    >>> LibsvmRandom(0).permutation(8)
+    array([4, 5, 6, 7, 2, 3, 1, 0])
+    """
+
+    def __init__(self, seed: int):
+        self.seed = int(seed)
+        self.reseed()
+
+    def reseed(self) -> None:
+        """``set_seed(seed)``: back to the first draw."""
+        self._mt = np.random.RandomState(self.seed)  # init_genrand(seed), as std::mt19937
+
+    def raw(self) -> int:
+        """The next 32-bit output of the twister."""
+        return int(self._mt.randint(0, 2**32, dtype=np.uint32))
+
+    def bounded(self, bound: int) -> int:
+        """``bounded_rand_int(bound)``: uniform in [0, bound), Lemire's method as libsvm's."""
+        m = self.raw() * bound
+        low = m & 0xFFFFFFFF
+        if low < bound:
+            threshold = (2**32 - bound) % bound
+            while low < threshold:
+                m = self.raw() * bound
+                low = m & 0xFFFFFFFF
+        return m >> 32
+
+    def permutation(self, n: int) -> np.ndarray:
+        """libsvm's shuffle of ``0 .. n - 1``: swap ``i`` with ``i + bounded(n - i)``."""
+        perm = list(range(n))
+        for i in range(n):
+            j = i + self.bounded(n - i)
+            perm[i], perm[j] = perm[j], perm[i]
+        return np.array(perm, dtype=np.intp)
+
+
 def cross_validated_decisions(
     n: int,
     positive: np.ndarray,
     decide: Callable[[np.ndarray, np.ndarray], np.ndarray],
-    rng: np.random.Generator,
+    rng: LibsvmRandom,
     n_folds: int = 5,
 ) -> np.ndarray:
     """Decision values of each point from a machine trained without it (libsvm's five folds).
@@ -198,10 +272,11 @@ def cross_validated_decisions(
     positive : ndarray of bool, shape (n,)
         The points of the positive class.
     decide : callable
-        ``decide(train, test)`` trains on the points ``train`` (indices) and returns the decision
-        values of the points ``test``.
-    rng : numpy.random.Generator
-        Draws the random permutation that makes the folds.
+        ``decide(train, test)`` trains on the points ``train`` (indices, in the order of the
+        training run) and returns the decision values of the points ``test``, positive for the
+        first class of ``train``.
+    rng : LibsvmRandom
+        Shuffles the points; re-seeded after a training run, as libsvm's ``svm_train`` does.
     n_folds : int
         Number of folds (libsvm: 5).
 
@@ -224,7 +299,11 @@ def cross_validated_decisions(
         elif n_pos == 0:
             dec[test] = -1.0 if train.size else 0.0
         else:
-            dec[test] = decide(train, test)
+            # libsvm groups the training part by sorted label: the negatives come first and are
+            # the first class of that run, whose decision values it then negates
+            grouped = np.concatenate([train[~positive[train]], train[positive[train]]])
+            dec[test] = -decide(grouped, test)
+            rng.reseed()
     return dec
 
 
@@ -232,7 +311,7 @@ def pairwise_sigmoids(
     members: list[np.ndarray],
     kernel_block: Callable[[np.ndarray, np.ndarray], np.ndarray],
     solve: Callable[[np.ndarray, np.ndarray, np.ndarray], tuple[np.ndarray, float]],
-    rng: np.random.Generator,
+    rng: LibsvmRandom,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Platt's ``A`` and ``B`` for every pair of classes, from five-fold decision values.
 
@@ -245,7 +324,7 @@ def pairwise_sigmoids(
     solve : callable
         ``solve(points, labels, K)``: train on ``points`` with labels +-1 and their kernel matrix
         ``K``; return the dual coefficients :math:`y_t \\alpha_t` and :math:`\\rho`.
-    rng : numpy.random.Generator
+    rng : LibsvmRandom
         Draws the folds.
 
     Returns
@@ -261,7 +340,9 @@ def pairwise_sigmoids(
             ys = np.concatenate([np.ones(members[a].size), -np.ones(members[b].size)])
 
             def decide(train, test, idx=idx, ys=ys):
-                coef, rho = solve(idx[train], ys[train], kernel_block(idx[train], idx[train]))
+                # the first class of the run (the pair's negatives) is its positive class
+                labels = ys[train[0]] * ys[train]
+                coef, rho = solve(idx[train], labels, kernel_block(idx[train], idx[train]))
                 return kernel_block(idx[test], idx[train]) @ coef - rho
 
             dec = cross_validated_decisions(idx.size, ys > 0, decide, rng)

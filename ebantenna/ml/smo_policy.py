@@ -8,6 +8,24 @@ summed, in which precision kernel entries are stored) are fields of a frozen :cl
 Two presets: :data:`DEFAULT`, the package's own, and :data:`LIBSVM`, the conventions of libsvm as
 bundled with scikit-learn, which reproduce its path and its digits.
 The module text of :mod:`ebantenna.ml.smo` says which digit each convention moves.
+
+Kernels that are not positive semi-definite
+-------------------------------------------
+With a positive semi-definite (PSD) kernel the dual is a convex quadratic problem: every path of
+SMO ends at the same optimum, within what the stopping tolerance allows, so the package's own
+conventions are free to take another path than libsvm's. The sigmoid kernel
+:math:`\\tanh(\\gamma x^T y + r)` is not PSD in general (H.-T. Lin and C.-J. Lin, "A study on
+sigmoid kernels for SVM and the training of non-PSD kernels by SMO-type methods", 2003), and a
+precomputed or callable kernel need not be. Then the quadratic form :math:`\\alpha^T Q \\alpha` has
+directions of negative curvature, the dual is not convex and has several stationary points, and
+SMO stops at the one its path leads to: the index taken on a tie (every gradient equals -1 at the
+start, so the very first working set is a tie) and the curvature floor (a negative :math:`a_{ij}`
+is a step along a direction of negative curvature, which the floor turns into a finite step)
+choose among them. The default conventions then land elsewhere than scikit-learn: on
+breast_cancer (standardised), sigmoid kernel, C = 100, decision values 1407 apart and 61 of 569
+predictions different. So :func:`fit_policy` takes libsvm's conventions, the whole of
+:data:`LIBSVM` with its float32 kernel storage, for every kernel that :func:`positive_semidefinite`
+does not accept; SMO then takes libsvm's path step by step and stops where scikit-learn stops.
 """
 
 from __future__ import annotations
@@ -15,8 +33,10 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 import numpy as np
+from scipy.linalg import lapack
 
-__all__ = ["SMOPolicy", "DEFAULT", "LIBSVM", "SELECTIONS", "TAU", "fit_policy"]
+__all__ = ["SMOPolicy", "DEFAULT", "LIBSVM", "SELECTIONS", "TAU", "fit_policy",
+           "positive_semidefinite"]
 
 #: Working-set selection rules.
 SELECTIONS = ("second-order", "first-order")
@@ -109,10 +129,12 @@ LIBSVM = SMOPolicy(ties="last", curvature_floor="nonpositive", bias_sum="sequent
 
 
 def fit_policy(libsvm_compat: bool, selection: str, shrinking: bool,
-               whole_kernel: bool) -> SMOPolicy:
+               whole_kernel: bool, convex: bool = True) -> SMOPolicy:
     """The SMO conventions of an :class:`~ebantenna.ml.SVC` fit.
 
-    ``libsvm_compat`` takes all of libsvm's (:data:`LIBSVM`), with ``shrinking`` as given.
+    ``libsvm_compat`` takes all of libsvm's (:data:`LIBSVM`), with ``shrinking`` as given, and so
+    does a kernel that is not positive semi-definite (``convex=False``): its dual has several
+    stationary points, and only libsvm's path leads to scikit-learn's (see the module text).
     Otherwise the package's (:data:`DEFAULT`): shrinking only pays with the row cache, where the
     solver then shrinks as libsvm does, with libsvm's curvature floor, and keeps the default
     tie-breaking and bias sum.
@@ -123,10 +145,58 @@ def fit_policy(libsvm_compat: bool, selection: str, shrinking: bool,
     False
     >>> fit_policy(True, "first-order", True, whole_kernel=True).ties
     'last'
+    >>> fit_policy(False, "second-order", True, whole_kernel=True, convex=False) == LIBSVM
+    True
     """
-    if libsvm_compat:
+    if libsvm_compat or not convex:
         return replace(LIBSVM, selection=selection, shrinking=shrinking)
     if shrinking and not whole_kernel:
         return replace(DEFAULT, selection=selection, shrinking=True,
                        curvature_floor="nonpositive")
     return replace(DEFAULT, selection=selection)
+
+
+def positive_semidefinite(kernel, gram: np.ndarray | None = None) -> bool:
+    """Whether a kernel counts as positive semi-definite, so that the SVM dual is convex.
+
+    Parameters
+    ----------
+    kernel : str or callable
+        The kernel of the :class:`~ebantenna.ml.SVC`. 'linear', 'poly' and 'rbf' are PSD;
+        'sigmoid' never counts as PSD (it is not, for most of its parameters); for
+        'precomputed' and a callable the answer is that of their Gram matrix.
+    gram : ndarray of shape (n, n), optional
+        The training Gram matrix of a precomputed or callable kernel.
+
+    Returns
+    -------
+    bool
+        For a Gram matrix :math:`K`: whether the Cholesky factorisation of
+        :math:`K + \\delta I` exists, with :math:`\\delta = 2 n \\varepsilon \\max|K_{ij}|`.
+        A matrix that differs from a PSD one by rounding errors of at most
+        :math:`\\varepsilon \\max|K_{ij}|` per entry has no eigenvalue below
+        :math:`-n \\varepsilon \\max|K_{ij}|` (Gershgorin's circles bound the perturbation's
+        spectral norm by its largest row sum); the second :math:`n \\varepsilon \\max|K_{ij}|`
+        covers the backward error of the factorisation itself. It costs about :math:`n^3/3`
+        flops, once per fit.
+
+    Examples
+    --------
+    >>> X = np.array([[0.0, 1.0], [1.0, 0.0], [1.0, 1.0]])
+    >>> positive_semidefinite("precomputed", X @ X.T)
+    True
+    >>> positive_semidefinite("precomputed", np.tanh(X @ X.T - 1.0))
+    False
+    >>> positive_semidefinite("sigmoid"), positive_semidefinite("rbf")
+    (False, True)
+    """
+    if isinstance(kernel, str) and kernel != "precomputed":
+        return kernel != "sigmoid"
+    K = np.asarray(gram, dtype=np.float64)
+    n = K.shape[0]
+    if n == 0:
+        return True
+    delta = 2.0 * n * np.finfo(np.float64).eps * float(np.abs(K).max())
+    shifted = K + delta * np.eye(n)
+    _, info = lapack.dpotrf(shifted, lower=1, overwrite_a=1, clean=0)
+    return info == 0

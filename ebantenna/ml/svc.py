@@ -44,9 +44,9 @@ from .fitted import INPUT_ATTRIBUTES, FittedAttribute
 from .kernels import Kernel, KernelRows, call_kernel, resolve_gamma
 from .ovo import dual_layout, one_vs_one_coef, ovo_votes, ovr_decision_function
 from .pair_kernels import PairKernels
-from .platt import pairwise_coupling, pairwise_sigmoids
+from .platt import LibsvmRandom, pairwise_coupling, pairwise_sigmoids
 from .smo import reference_smo, solve_smo
-from .smo_policy import DEFAULT, LIBSVM, fit_policy
+from .smo_policy import DEFAULT, LIBSVM, fit_policy, positive_semidefinite
 from .sparse_input import as_csr
 
 __all__ = ["SVC", "ovr_decision_function"]
@@ -109,8 +109,10 @@ class SVC(ClassifierMixin, BaseEstimator):
         With 'ovr' and more than two classes, predict the argmax of the decision function instead
         of the majority vote.
     random_state : int, Generator, RandomState instance or None, default=None
-        Seeds the folds of ``probability=True`` (NumPy's generator, not libsvm's: the folds
-        differ from scikit-learn's); the solver itself is deterministic.
+        Seeds the folds of ``probability=True`` as scikit-learn does: the seed is
+        ``check_random_state(random_state).randint(2**31 - 1)``, and the folds are drawn by
+        libsvm's own generator (:class:`~ebantenna.ml.platt.LibsvmRandom`), so that they are
+        scikit-learn's; the solver itself is deterministic.
     selection : {'second-order', 'first-order'}, default='second-order'
         Working-set selection: libsvm's second-order rule or the maximal violating pair.
     libsvm_compat : bool, default=False
@@ -123,6 +125,11 @@ class SVC(ClassifierMixin, BaseEstimator):
         :mod:`ebantenna.ml.kernels`): its path, like libsvm's, changes when every feature is
         shifted by the same amount. Predictions use centred points in both modes, as close as a
         GEMM gets to libsvm's direct differences when it predicts.
+        A kernel that is not positive semi-definite is always fitted this way, whatever
+        ``libsvm_compat`` says: 'sigmoid', and a precomputed or callable kernel whose training
+        Gram matrix :func:`~ebantenna.ml.smo_policy.positive_semidefinite` refuses. Its dual is
+        not convex, and the default conventions would stop at another of its stationary points
+        than scikit-learn (see :mod:`ebantenna.ml.smo_policy`).
     solver : {'auto', 'reference'}, default='auto'
         Which SMO solves the dual problems. 'auto': the engines, chosen by the other parameters
         (libsvm's solver with shrinking and a row cache, or a run over the whole kernel of a
@@ -131,7 +138,8 @@ class SVC(ClassifierMixin, BaseEstimator):
         (:func:`~ebantenna.ml.smo.reference_smo`), slower, to read and to step through; it
         finds the same support vectors and decision values within what ``tol`` allows. It
         follows neither libsvm's conventions nor its shrinking: ``libsvm_compat=True`` or
-        ``shrinking=True`` with it raise a ``ValueError``.
+        ``shrinking=True`` with it raise a ``ValueError``. With a kernel that is not positive
+        semi-definite it may stop at another stationary point of the dual than the engines.
 
     Attributes
     ----------
@@ -286,15 +294,17 @@ class SVC(ClassifierMixin, BaseEstimator):
         c_vec = float(self.C) * self.class_weight_[y_idx] * sw
         keep = c_vec > 0
         cache_bytes = int(float(self.cache_size) * 2**20)
-        base = LIBSVM if self.libsvm_compat else DEFAULT
+        # a kernel that is not PSD takes libsvm's conventions whole: see smo_policy's module text
+        compat = self.libsvm_compat or not positive_semidefinite(self.kernel, given)
+        base = LIBSVM if compat else DEFAULT
         dtype = base.kernel_dtype(int(keep.sum()), cache_bytes)
         members = [np.flatnonzero((y_idx == c) & keep) for c in range(classes.size)]
         if any(m.size == 0 for m in members):
             raise ValueError("every class needs at least one sample with a positive weight")
         kernels = PairKernels(X, members, kern, dtype, cache_bytes, given=given,
-                              libsvm_compat=self.libsvm_compat)
+                              libsvm_compat=compat)
         diag = np.diag(given).astype(np.float64) if given is not None else kern.diagonal(X)
-        policy = fit_policy(self.libsvm_compat, self.selection, bool(self.shrinking),
+        policy = fit_policy(compat, self.selection, bool(self.shrinking),
                             whole_kernel=kernels.stored)
         # -1: no cap, as in scikit-learn's libsvm ("set max_iter to -1 to disable the mechanism"
         # in its Solver::Solve; upstream libsvm stops at max(1e7, 100 n) updates instead)
@@ -304,7 +314,8 @@ class SVC(ClassifierMixin, BaseEstimator):
         self._store(X, classes, members, coefs, rhos, n_iter)
         self.probA_ = self.probB_ = np.empty(0)
         if self.probability:
-            self._fit_probability(X, members, given, kern, dtype, c_vec, diag, policy, max_iter)
+            self._fit_probability(X, members, given, kern, dtype, c_vec, diag, policy, max_iter,
+                                  compat)
         self.fit_status_ = status
         self.shape_fit_ = X.shape
         self._check_solution(status)
@@ -404,9 +415,10 @@ class SVC(ClassifierMixin, BaseEstimator):
         if sparse:
             self.dual_coef_ = sp.csr_matrix(self.dual_coef_)
 
-    def _fit_probability(self, X, members, given, kern, dtype, c_vec, diag, policy, max_iter):
+    def _fit_probability(self, X, members, given, kern, dtype, c_vec, diag, policy, max_iter,
+                         compat):
         """Platt's sigmoids of every pair, on five-fold decision values (libsvm's procedure)."""
-        center = not self.libsvm_compat
+        center = not compat
 
         def kernel_block(rows, cols):
             if given is not None:
@@ -419,11 +431,17 @@ class SVC(ClassifierMixin, BaseEstimator):
             res = self._solve_dual(rows, ys, c_vec[points], diag[points], policy, max_iter)
             return res.alpha * ys, res.rho
 
-        rs = self.random_state
-        seed = rs if rs is None or isinstance(rs, (Integral, np.random.Generator)) else (
-            check_random_state(rs).randint(2**31 - 1))
         self.probA_, self.probB_ = pairwise_sigmoids(members, kernel_block, solve,
-                                                     np.random.default_rng(seed))
+                                                     LibsvmRandom(self._libsvm_seed()))
+
+    def _libsvm_seed(self) -> int:
+        """libsvm's ``random_seed`` for ``random_state``, drawn as ``BaseLibSVM.fit`` draws it:
+        ``check_random_state(random_state).randint(2**31 - 1)`` (a Generator, which
+        scikit-learn refuses, gives ``integers(2**31 - 1)``)."""
+        rs = self.random_state
+        if isinstance(rs, np.random.Generator):
+            return int(rs.integers(np.iinfo(np.int32).max))
+        return int(check_random_state(rs).randint(np.iinfo(np.int32).max))
 
     def _check_proba(self):
         if not self.probability:

@@ -26,8 +26,8 @@ def test_points_sit_at_the_hinge_the_contact_and_the_tip(length, contact):
     assert texts["Q"][0] == pytest.approx(100 * contact, rel=1e-15)
     assert texts["R"][0] == pytest.approx(100 * length, rel=1e-15)
     # the two elements' dimensions add up to the length
-    l1 = next(float(k.split("= ")[-1].split()[0]) for k in texts if k.startswith("l1"))
-    l2 = next(float(k.split("= ")[-1].split()[0]) for k in texts if k.startswith("l2"))
+    l1 = next(float(k.split("= ")[-1].split()[0]) for k in texts if k.startswith("$l_1"))
+    l2 = next(float(k.split("= ")[-1].split()[0]) for k in texts if k.startswith("$l_2"))
     assert l1 + l2 == pytest.approx(100 * length, rel=1e-3)  # each printed to 4 digits
     assert ax.get_xlabel() == "distance from the hinge (cm)"
     plt.close(fig)

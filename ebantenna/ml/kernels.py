@@ -475,8 +475,8 @@ class KernelRows:
         >>> K = Kernel("linear").gram(X)
         >>> matrix, index = KernelRows(None, Kernel("linear"), np.float64, 0, full=K,
         ...                            parts=[slice(0, 1), slice(2, 3)]).stored_entries()
-        >>> index, matrix[index[1], index[1]]
-        (array([0, 2]), np.float64(9.0))
+        >>> index, float(matrix[index[1], index[1]])
+        (array([0, 2]), 9.0)
         """
         if self.matrix is None:
             return None

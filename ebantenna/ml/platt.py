@@ -40,7 +40,7 @@ drawing again while the low 32 bits of the product fall below
   multiplied by -1 (``dec_values[perm[j]] *= submodel->label[0]``).
 
 :class:`LibsvmRandom` is that generator and :func:`cross_validated_decisions` that procedure, so
-that ``A`` and ``B``, and with them :meth:`~ebantenna.ml.SVC.predict_proba`, are scikit-learn's
+that ``A`` and ``B``, and with them :meth:`~ebantenna.ml.svc.SVC.predict_proba`, are scikit-learn's
 for the same ``random_state``, within what the stopping tolerance of the fold's training runs
 leaves of their decision values.
 

@@ -113,10 +113,19 @@ def test_expected_answers_on_the_page_are_the_solutions(page):
     stated = _page_answers(page.read_text())
     answers = run_solution(DOCS / "exercises" / "solutions" / f"{page.stem}.py")[0]["ANSWERS"]
     assert stated and set(stated) == set(answers), (sorted(stated), sorted(answers))
+    stated_tolerances = tolerances(page.stem)
     for name, text in stated.items():
+        value = float(answers[name])
+        if stated_tolerances[name].kind == "factor":
+            # a size of rounding error: its digits depend on the order of the operations (the
+            # library versions, the BLAS kernel), so the page's value is held to the factor the
+            # self-check allows between two right answers
+            width = stated_tolerances[name].width
+            assert value / width <= float(text) <= value * width, (name, text)
+            continue
         # the page rounds to its last printed digit: the value is within half a unit of it
         half_unit = 0.5 * 10.0 ** Decimal(text).as_tuple().exponent
-        assert abs(float(answers[name]) - float(text)) <= half_unit * (1 + 1e-9), (name, text)
+        assert abs(value - float(text)) <= half_unit * (1 + 1e-9), (name, text)
 
 
 def test_a_wrong_answer_fails(tmp_path):
@@ -145,9 +154,16 @@ def test_answer_key_is_what_the_solution_computes(script):
         assert {k: stored[k] for k in ("kind", "width", "reason")} == {
             k: entry[k] for k in ("kind", "width", "reason")
         }, name
-        # the key holds the printed repr of the same float: equal, up to the last bits another
-        # BLAS may round differently (far below every tolerance)
-        assert stored["value"] == pytest.approx(entry["value"], rel=1e-9, abs=1e-300), name
+        # The key was written on one machine; another NumPy, SciPy or BLAS kernel rounds the
+        # solution's arithmetic differently (an order of convergence from differences of small
+        # errors moves in its seventh digit). A stale key moves by more than a hundredth of the
+        # tolerance; a rounding error of size ("factor") is held to its factor.
+        value, width = entry["value"], entry["width"]
+        if entry["kind"] == "factor":
+            assert value / width <= stored["value"] <= value * width, name
+        else:
+            scale = width * abs(value) if entry["kind"] == "rel" else width
+            assert abs(stored["value"] - value) <= 0.01 * scale, name
 
 
 @pytest.mark.parametrize("script", SOLUTIONS, ids=lambda p: p.stem)
@@ -155,8 +171,10 @@ def test_each_check_accepts_the_solution_and_rejects_just_outside(script):
     answers = run_solution(script)[0]["ANSWERS"]
     stated = tolerances(script.stem)
     assert check(script.stem, **{n: float(v) for n, v in answers.items()}).ok
-    for name, value in answers.items():
-        value, tol = float(value), stated[name]
+    for name in answers:
+        # around the key's value, which the check compares with (the solution's value on this
+        # machine may differ from it by rounding, see the test above)
+        value, tol = float(ANSWER_KEY[script.stem][name]["value"]), stated[name]
         assert tol.reason and len(tol.reason) < 140  # one line
         if tol.kind == "abs":
             outside = [value + tol.width + max(1e-6, 1e-3 * tol.width)]

@@ -25,3 +25,18 @@ def assert_follows_reference(n, dec, n_ref, dec_ref, *, tol, same_path_atol):
     assert abs(int(n) - int(n_ref)) <= iteration_slack(n_ref), (n, n_ref)
     bound = same_path_atol if n == n_ref else 10.0 * tol
     assert np.abs(np.asarray(dec) - np.asarray(dec_ref)).max() <= bound
+
+
+def assert_pairs_follow_reference(ours, ref, X, *, tol):
+    """Every pair's dual of two fitted one-against-one SVCs (``decision_function_shape="ovo"``)
+    against the reference's, by :func:`assert_follows_reference` on the decision values at ``X``.
+
+    ``tol`` is the solvers' stopping tolerance; both bounds scale with the largest decision value
+    (at least 1), as the violations do.
+    """
+    d_ours = ours.decision_function(X).reshape(X.shape[0], -1)
+    d_ref = ref.decision_function(X).reshape(X.shape[0], -1)
+    scale = max(1.0, float(np.abs(d_ref).max()))
+    for p in range(ours.n_iter_.size):
+        assert_follows_reference(ours.n_iter_[p], d_ours[:, p], ref.n_iter_[p], d_ref[:, p],
+                                 tol=tol * scale, same_path_atol=1e-12 * scale)

@@ -13,7 +13,7 @@ from sklearn import datasets
 from sklearn.metrics.pairwise import sigmoid_kernel
 from sklearn.preprocessing import StandardScaler
 from sklearn.svm import SVC as LibSVC
-from smo_reference import assert_follows_reference
+from smo_reference import assert_pairs_follow_reference
 
 from ebantenna.ml import SVC
 from ebantenna.ml.kernels import Kernel
@@ -98,14 +98,9 @@ def test_sigmoid_kernel_takes_libsvms_path_by_default(name, scaled, C):
     params = dict(kernel="sigmoid", C=C, tol=TOL, decision_function_shape="ovo")
     ours = SVC(**params).fit(X, y)
     ref = LibSVC(**params).fit(X, y)
-    d_ours = ours.decision_function(X).reshape(X.shape[0], -1)
-    d_ref = ref.decision_function(X).reshape(X.shape[0], -1)
-    scale = max(1.0, float(np.abs(d_ref).max()))
-    for p in range(ours.n_iter_.size):
-        # the same path: what is left is the summation order of the kernel sums (1e-12 of the
-        # values' scale, as with libsvm_compat); a fork by a last-bit tie: a few tol
-        assert_follows_reference(ours.n_iter_[p], d_ours[:, p], ref.n_iter_[p], d_ref[:, p],
-                                 tol=TOL * scale, same_path_atol=1e-12 * scale)
+    # the same path: what is left is the summation order of the kernel sums (1e-12 of the
+    # values' scale, as with libsvm_compat); a fork by a last-bit tie: a few tol
+    assert_pairs_follow_reference(ours, ref, X, tol=TOL)
     np.testing.assert_array_equal(ours.predict(X), ref.predict(X))
 
 

@@ -11,9 +11,11 @@ Subpackages, in the order the data flows:
 Below them all, :mod:`ebantenna.chips` holds the chips' register maps and datasheet constants.
 """
 
+from ._budget import MemoryBudgetError, memory_budget, set_memory_budget
 from .probe import MATERIALS, Material, Probe, material
 from .recording import Recording
 
 __version__ = "0.2.0"
 
-__all__ = ["Probe", "Material", "MATERIALS", "material", "Recording", "__version__"]
+__all__ = ["Probe", "Material", "MATERIALS", "material", "Recording", "memory_budget",
+           "set_memory_budget", "MemoryBudgetError", "__version__"]

@@ -24,19 +24,22 @@ from pathlib import Path
 
 import pytest
 
-#: The base: small modules every layer may use (data types, argument checks, progress bars, the
-#: chips' datasheet facts, report writing).
-BASE = frozenset({"__init__", "_validate", "_progress", "probe", "recording", "chips", "report"})
+#: The base: small modules every layer may use (data types, argument checks, the memory budget,
+#: progress bars, the chips' datasheet facts, report writing).
+BASE = frozenset(
+    {"__init__", "_validate", "_budget", "_progress", "probe", "recording", "chips", "report"}
+)
 STAGES = frozenset({"fem", "signal", "ml", "simulate", "device"})
 
 #: part -> the parts it may import (besides itself).
 MAY_IMPORT: dict[str, frozenset[str]] = {
-    "_validate": frozenset(),
+    "_validate": frozenset({"_budget"}),
+    "_budget": frozenset(),
     "_progress": frozenset(),
     "probe": frozenset({"_validate"}),
     "recording": frozenset({"_validate"}),
     "chips": frozenset({"_validate"}),
-    "__init__": frozenset({"probe", "recording"}),
+    "__init__": frozenset({"probe", "recording", "_budget"}),
     "report": frozenset({"_validate"}),
     # the students' self-check and its answer key, generated from the exercises' solutions
     "course": frozenset(),
@@ -141,7 +144,7 @@ def test_no_private_name_of_another_part(path):
     here = part_of(module_name(path))
     wrong = []
     for line, target, names in imports(path):
-        if part_of(target) in (here, "_validate", "_progress"):
+        if part_of(target) in (here, "_validate", "_budget", "_progress"):
             continue  # a part's own private modules; the package-wide private helpers
         private = [n for n in names if n.startswith("_") and n != "__version__"]
         if private or any(p.startswith("_") for p in target.split(".")[1:]):

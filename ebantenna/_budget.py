@@ -1,0 +1,121 @@
+"""One memory budget for every allocation that grows with what a user asks for.
+
+Before an array whose size follows from user input is made (a scalogram's frequency grid, a mesh,
+a batch of simulations, an array read from a file's header), its size is estimated and checked
+here. A request over the budget is refused with an error that names the parameter, the estimate
+and the budget, instead of a :class:`MemoryError` (or the operating system's out-of-memory
+killer) part-way through the work.
+
+The budget is, by default, half of the memory the operating system reports as available when the
+check runs. Half, because the NumPy code that fills an array makes temporaries of about its size
+and the machine keeps running other programs. Set ``EBANTENNA_MEMORY_BUDGET`` (bytes, or a number
+with ``K``, ``M``, ``G`` or ``T``, powers of 1024) or call :func:`set_memory_budget` to choose it.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+
+__all__ = ["MemoryBudgetError", "memory_budget", "set_memory_budget", "check_allocation",
+           "DEFAULT_FRACTION"]
+
+#: The fraction of available memory one allocation may take, unless the budget is set.
+DEFAULT_FRACTION = 0.5
+
+#: Used when the operating system does not report its available memory.
+_FALLBACK_AVAILABLE = 2 * 1024**3
+
+_UNITS = {"": 1, "K": 1024, "M": 1024**2, "G": 1024**3, "T": 1024**4}
+_chosen: int | None = None
+
+
+class MemoryBudgetError(ValueError):
+    """A requested size is over the memory budget; the message names the parameter."""
+
+
+def _available_bytes() -> int:
+    """Memory available to a new allocation: ``MemAvailable`` on Linux, free pages elsewhere."""
+    try:
+        with open("/proc/meminfo", encoding="ascii") as meminfo:
+            for line in meminfo:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    try:
+        return os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (AttributeError, ValueError, OSError):
+        return _FALLBACK_AVAILABLE
+
+
+def _parse(text: str) -> int:
+    match = re.fullmatch(r"\s*(\d+(?:\.\d+)?)\s*([KMGT]?)(?:i?B)?\s*", text, flags=re.IGNORECASE)
+    if not match or float(match[1]) <= 0:
+        raise ValueError(
+            f"EBANTENNA_MEMORY_BUDGET must be a positive size such as 4G or 500000000, got {text!r}"
+        )
+    return int(float(match[1]) * _UNITS[match[2].upper()])
+
+
+def memory_budget() -> int:
+    """The budget in bytes: the one set, else ``$EBANTENNA_MEMORY_BUDGET``, else half available.
+
+    Examples
+    --------
+    >>> memory_budget() > 0
+    True
+    """
+    if _chosen is not None:
+        return _chosen
+    text = os.environ.get("EBANTENNA_MEMORY_BUDGET")
+    if text:
+        return _parse(text)
+    return int(DEFAULT_FRACTION * _available_bytes())
+
+
+def set_memory_budget(nbytes: int | None) -> None:
+    """Set the budget to ``nbytes`` bytes, or back to its default with ``None``.
+
+    Examples
+    --------
+    >>> set_memory_budget(10**6); memory_budget()
+    1000000
+    >>> set_memory_budget(None)
+    """
+    global _chosen
+    if nbytes is not None:
+        if isinstance(nbytes, bool) or not isinstance(nbytes, int) or nbytes <= 0:
+            raise ValueError(f"nbytes must be a positive int or None, got {nbytes!r}")
+    _chosen = nbytes
+
+
+def _size(nbytes: float) -> str:
+    for unit in ("B", "KiB", "MiB", "GiB", "TiB"):
+        if nbytes < 1024 or unit == "TiB":
+            return f"{nbytes:.3g} {unit}" if unit != "B" else f"{int(nbytes)} B"
+        nbytes /= 1024
+    raise AssertionError("unreachable")
+
+
+def check_allocation(nbytes, *, parameter: str, what: str) -> None:
+    """Raise :class:`MemoryBudgetError` if ``nbytes`` (any size of number) exceeds the budget.
+
+    ``parameter`` is the argument the user passed that sets the size, ``what`` the array it makes.
+
+    Examples
+    --------
+    >>> check_allocation(8 * 10**3, parameter="n_points", what="the grid")
+    >>> check_allocation(8 * 10**15, parameter="n_points", what="the grid")
+    Traceback (most recent call last):
+    ...
+    ebantenna._budget.MemoryBudgetError: n_points asks for the grid of about 7.11 PiB...
+    """
+    budget = memory_budget()
+    if nbytes > budget:
+        size = _size(float(nbytes)) if nbytes < 1024**5 else f"{nbytes / 1024**5:.3g} PiB"
+        raise MemoryBudgetError(
+            f"{parameter} asks for {what} of about {size}, over the memory budget of "
+            f"{_size(budget)} (set EBANTENNA_MEMORY_BUDGET or ebantenna.set_memory_budget "
+            "to change it)"
+        )

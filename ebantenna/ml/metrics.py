@@ -8,7 +8,9 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["confusion_matrix", "accuracy", "per_class_rates", "absolute_errors"]
+__all__ = [
+    "confusion_matrix", "accuracy", "accuracy_interval", "per_class_rates", "absolute_errors"
+]
 
 
 def confusion_matrix(y_true, y_pred, labels) -> np.ndarray:
@@ -71,6 +73,40 @@ def accuracy(matrix) -> float:
     if total <= 0:
         raise ValueError("matrix must contain at least one sample")
     return float(np.trace(m) / total)
+
+
+def accuracy_interval(correct: int, n: int, *, z: float = 1.959963984540054) -> tuple[float, float]:
+    """Wilson score interval of an accuracy of ``correct`` out of ``n`` (95 % for the default z).
+
+    Unlike the normal approximation :math:`p \\pm z\\sqrt{p(1-p)/n}`, Wilson's interval stays
+    within [0, 1] and keeps close to its nominal coverage for small ``n`` and for accuracies near
+    0 or 1 (Wilson 1927, *J. Am. Stat. Assoc.* 22:209; Brown, Cai & DasGupta 2001, *Statist.
+    Sci.* 16:101). With :math:`p = k/n`,
+
+    .. math:: \\frac{p + z^2/2n \\pm z\\sqrt{p(1-p)/n + z^2/4n^2}}{1 + z^2/n}.
+
+    ``z`` defaults to the standard normal's 97.5 % quantile.
+
+    Examples
+    --------
+    >>> lo, hi = accuracy_interval(80, 100)
+    >>> round(lo, 4), round(hi, 4)
+    (0.7112, 0.8666)
+    >>> accuracy_interval(0, 10)[0]
+    0.0
+    """
+    if isinstance(correct, bool) or isinstance(n, bool):
+        raise TypeError("correct and n must be integers, not bool")
+    correct, n = int(correct), int(n)
+    if n < 1 or not 0 <= correct <= n:
+        raise ValueError(f"need 0 <= correct <= n and n >= 1, got correct={correct}, n={n}")
+    if not z > 0:
+        raise ValueError(f"z must be > 0, got {z!r}")
+    p = correct / n
+    centre = p + z * z / (2 * n)
+    half = z * np.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
+    scale = 1 + z * z / n
+    return float(max(0.0, (centre - half) / scale)), float(min(1.0, (centre + half) / scale))
 
 
 def per_class_rates(matrix) -> tuple[np.ndarray, np.ndarray]:

@@ -6,10 +6,17 @@ import warnings
 import numpy as np
 import pytest
 import sklearn.metrics as skm
+from scipy.stats import binomtest
 from sklearn.exceptions import ConvergenceWarning
 
 from ebantenna.ml import SVC, MLPClassifier, MLPRegressor
-from ebantenna.ml.metrics import absolute_errors, accuracy, confusion_matrix, per_class_rates
+from ebantenna.ml.metrics import (
+    absolute_errors,
+    accuracy,
+    accuracy_interval,
+    confusion_matrix,
+    per_class_rates,
+)
 from ebantenna.ml.persistence import load_model, save_model
 
 
@@ -85,3 +92,17 @@ def test_metrics_reject_bad_input():
         accuracy(np.zeros((2, 2)))
     with pytest.raises(ValueError, match="shapes"):
         absolute_errors([1.0], [1.0, 2.0])
+
+
+@pytest.mark.parametrize("correct, n", [(0, 1), (0, 10), (3, 7), (80, 100), (399, 400), (400, 400)])
+def test_accuracy_interval_is_scipys_wilson_interval(correct, n):
+    witness = binomtest(correct, n).proportion_ci(confidence_level=0.95, method="wilson")
+    # a closed form of a few operations on numbers of order 1: agreement to a few ulps of 1
+    np.testing.assert_allclose(accuracy_interval(correct, n), (witness.low, witness.high),
+                               rtol=0, atol=1e-14)
+
+
+@pytest.mark.parametrize("correct, n", [(-1, 5), (6, 5), (0, 0), (True, 5)])
+def test_accuracy_interval_refuses_counts_that_are_not_a_proportion(correct, n):
+    with pytest.raises((ValueError, TypeError), match="correct"):
+        accuracy_interval(correct, n)

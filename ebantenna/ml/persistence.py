@@ -39,7 +39,7 @@ from .svc import SVC
 __all__ = ["save_model", "load_model", "FORMAT_VERSION"]
 
 #: Version of the file layout: 2 adds attributes that version 1 did not store (see each
-#: attribute's ``since``), 3 a checksum, 4 requires the attributes in :data:`REQUIRED_SINCE_4`.
+#: attribute's ``since``), 3 a checksum, 4 requires the attributes in ``REQUIRED_SINCE_4``.
 #: Files of versions 1 to 3 still load. A file that carries a checksum must match it whatever
 #: version it claims; a file of version 1 or 2 without one loads only when asked for explicitly
 #: (``load_model(path, unchecked=True)``), so that editing the version cannot skip the check.

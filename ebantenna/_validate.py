@@ -7,8 +7,13 @@ the value given, instead of a NaN or a traceback from deep inside NumPy.
 
 from __future__ import annotations
 
+import errno
+import json
 import math
 import os
+import re
+import stat
+import tempfile
 import zipfile
 import zlib
 from collections.abc import Iterable, Iterator
@@ -17,6 +22,9 @@ from numbers import Real
 from pathlib import Path
 
 import numpy as np
+from numpy.lib import format as npformat
+
+from ._budget import MemoryBudgetError, check_allocation
 
 __all__ = [
     "check_real",
@@ -161,6 +169,198 @@ def check_per_row(n: int, of: str, **arrays) -> None:
         )
 
 
+# --- Files: the paths a user names, and what a loader may read from them -----------------------
+
+#: How deep the JSON that a loader reads may nest. The package's own files nest at most 6
+#: levels (a model's parameters); 100 keeps the parser far below Python's recursion limit.
+MAX_JSON_DEPTH = 100
+
+#: The largest text file (a scene) a loader reads, bytes: a scene is under 2 KiB; 1 MiB leaves
+#: room for comments and still bounds the parsed objects to a few tens of MiB.
+MAX_TEXT_BYTES = 2**20
+
+_FILE_KINDS = (
+    (stat.S_ISDIR, "a directory"),
+    (stat.S_ISFIFO, "a FIFO (named pipe)"),
+    (stat.S_ISCHR, "a character device"),
+    (stat.S_ISBLK, "a block device"),
+    (stat.S_ISSOCK, "a socket"),
+)
+
+
+def check_path(name: str, path) -> str:
+    """Return ``path`` as text; raise unless it is a ``str`` or ``os.PathLike`` naming a file.
+
+    Bytes are refused (decode them with :func:`os.fsdecode`), and so is a NUL character, which
+    no file name can hold.
+
+    Examples
+    --------
+    >>> check_path("path", b"rec.npz")
+    Traceback (most recent call last):
+    ...
+    TypeError: path must be a str or os.PathLike, got bytes b'rec.npz' (decode it with os.fsdecode)
+    >>> check_path("--out", "a\\x00b")
+    Traceback (most recent call last):
+    ...
+    ValueError: --out holds a NUL character, which no file name can contain: 'a\\x00b'
+    """
+    if isinstance(path, bytes | bytearray | memoryview):
+        raise TypeError(
+            f"{name} must be a str or os.PathLike, got bytes {bytes(path)!r:.80} "
+            "(decode it with os.fsdecode)"
+        )
+    try:
+        text = os.fspath(path)
+    except TypeError:
+        raise TypeError(
+            f"{name} must be a str or os.PathLike, got {type(path).__name__} {path!r:.80}"
+        ) from None
+    if not isinstance(text, str):
+        raise TypeError(f"{name} must be a str or os.PathLike giving a str, got bytes {text!r:.80}")
+    if "\x00" in text:
+        raise ValueError(
+            f"{name} holds a NUL character, which no file name can contain: {text!r:.80}"
+        )
+    if not text:
+        raise ValueError(f"{name} must name a file, got an empty path")
+    return text
+
+
+def _kind(mode: int) -> str | None:
+    """What a file of ``st_mode`` ``mode`` is, unless it is a regular file (then None)."""
+    if stat.S_ISREG(mode):
+        return None
+    return next((kind for test, kind in _FILE_KINDS if test(mode)), "not a regular file")
+
+
+def open_regular(path, what: str, *, name: str = "path"):
+    """Open ``path`` for binary reading; raise unless it is a regular file.
+
+    A FIFO, a device or a directory is refused before it is opened (opening a FIFO waits for a
+    writer: forever). The file is opened non-blocking and checked again through its descriptor,
+    so that a FIFO put in its place after the first check is refused too, not waited on.
+
+    Raises
+    ------
+    FileNotFoundError
+        If there is no such file (or a directory on the way is missing).
+    IsADirectoryError
+        If it is a directory.
+    ValueError
+        Naming the file, if it is a FIFO, a device or a socket.
+    """
+    path = Path(check_path(name, path))
+    kind = _kind(os.stat(path).st_mode)  # follows symlinks; a missing file raises here
+    if kind == "a directory":  # as open() reports it
+        raise IsADirectoryError(errno.EISDIR, f"Is a directory, not {what}", str(path))
+    if kind is not None:
+        raise ValueError(f"{path} is {kind}, not {what}")
+    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0)
+    fd = os.open(path, flags)
+    try:
+        kind = _kind(os.fstat(fd).st_mode)
+        if kind is not None:
+            raise ValueError(f"{path} is {kind}, not {what}")
+        if hasattr(os, "set_blocking"):
+            os.set_blocking(fd, True)
+    except BaseException:
+        os.close(fd)
+        raise
+    return os.fdopen(fd, "rb")
+
+
+def read_text(path, what: str, *, max_bytes: int = MAX_TEXT_BYTES) -> str:
+    """The UTF-8 text of the regular file ``path``, at most ``max_bytes`` bytes long.
+
+    Raises
+    ------
+    ValueError
+        Naming the file, if it is not a regular file, is longer, or is not UTF-8 text.
+    """
+    with open_regular(path, what) as file:
+        raw = file.read(max_bytes + 1)  # a file of /proc reports a size of 0: read, then count
+    path = Path(os.fspath(path))
+    if len(raw) > max_bytes:
+        raise ValueError(f"{path} is not {what}: it is longer than {max_bytes} bytes")
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ValueError(
+            f"{path} is not {what}: it is not UTF-8 text (byte {raw[exc.start]:#04x} at "
+            f"offset {exc.start})"
+        ) from None
+
+
+_JSON_STRING = re.compile(r'"(?:[^"\\]|\\.)*"', re.DOTALL)
+
+
+def json_depth(text: str) -> int:
+    """How deep the arrays and objects of the JSON ``text`` nest (0 for a bare value).
+
+    Brackets inside strings do not count. Counted without parsing, so that a document nested
+    deeper than the parser's recursion limit is measured, not crashed on.
+
+    Examples
+    --------
+    >>> json_depth('{"a": [1, "]]", {"b": []}]}')
+    4
+    """
+    skeleton = _JSON_STRING.sub("", text).encode("utf-8", "surrogatepass")
+    codes = np.frombuffer(skeleton, dtype=np.uint8)
+    steps = np.isin(codes, (ord("["), ord("{"))).astype(np.int64)
+    steps -= np.isin(codes, (ord("]"), ord("}")))
+    return int(np.cumsum(steps).max(initial=0))
+
+
+def load_json(text: str, path, what: str):
+    """Parse the JSON ``text`` read from ``path``; any fault is one ``ValueError`` naming it.
+
+    Documents nested deeper than :data:`MAX_JSON_DEPTH` are refused before parsing.
+    """
+    depth = json_depth(text)
+    if depth > MAX_JSON_DEPTH:
+        raise ValueError(
+            f"{path} is not {what}: its JSON nests {depth} levels deep, more than the "
+            f"{MAX_JSON_DEPTH} allowed"
+        )
+    try:
+        return json.loads(text)
+    except (ValueError, RecursionError) as exc:
+        raise ValueError(f"{path} is not {what}: not valid JSON ({exc})") from None
+
+
+def _probe_directory(name: str, directory: Path) -> None:
+    """Raise unless a file can be created in ``directory`` (by creating and removing one)."""
+    try:
+        fd, probe = tempfile.mkstemp(prefix=".ebantenna-write-test-", dir=directory)
+    except OSError as exc:
+        why = exc.strerror or str(exc)
+        if exc.errno == errno.ENOENT:  # the directory exists: it refuses files (/proc, /sys)
+            why = "it does not accept new files (a kernel file system such as /proc or /sys?)"
+        raise OSError(f"{name}: cannot write in {directory}: {why}") from None
+    os.close(fd)
+    os.unlink(probe)
+
+
+def _check_writable(name: str, target: Path) -> None:
+    """Raise unless ``target`` can be written: a regular file or a new name in a directory that
+    exists and accepts files."""
+    if os.path.exists(target):
+        kind = _kind(os.stat(target).st_mode)
+        if kind is not None:
+            raise ValueError(f"{name} must name a regular file, got {str(target)!r} ({kind})")
+        if not os.access(target, os.W_OK):
+            raise PermissionError(f"{name}: {target} is not writable")
+        return
+    parent = target.parent
+    if not parent.exists():
+        raise FileNotFoundError(f"{name}: the directory {parent} does not exist (for {target})")
+    if not parent.is_dir():
+        raise NotADirectoryError(f"{name}: {parent} is not a directory")
+    _probe_directory(name, parent)
+
+
 def output_path(name: str, path, suffix: str, *, any_suffix: bool = False) -> Path:
     """The file a writer creates for ``path``: ``suffix`` appended as the writer would append it.
 
@@ -169,25 +369,95 @@ def output_path(name: str, path, suffix: str, *, any_suffix: bool = False) -> Pa
     not the one given, keeps what is reported equal to what is written. A name that is empty or
     a directory is refused instead of becoming a hidden file such as ``..npz``.
 
+    The path is checked as a writer would meet it, so that a command can refuse it before its
+    work starts: its directory must exist and accept a new file (one is created and removed), and
+    an existing file there must be a regular, writable file (a FIFO would block the writer).
+
     Examples
     --------
-    >>> output_path("out", "runs/rec", ".npz").as_posix()
-    'runs/rec.npz'
+    >>> output_path("out", "rec", ".npz").as_posix()
+    'rec.npz'
     >>> output_path("plot", "modes.svg", ".png", any_suffix=True).as_posix()
     'modes.svg'
     >>> output_path("out", ".", ".npz")
     Traceback (most recent call last):
     ...
     ValueError: out must name a file, got '.' (a directory)
+    >>> output_path("--out", "no-such-dir/rec", ".npz")
+    Traceback (most recent call last):
+    ...
+    FileNotFoundError: --out: the directory no-such-dir does not exist (for no-such-dir/rec.npz)
     """
-    text = os.fspath(path)
-    if not isinstance(text, str) or not text.strip():
-        raise ValueError(f"{name} must name a file, got {text!r}")
+    if isinstance(path, str) and not path.strip():
+        raise ValueError(f"{name} must name a file, got {path!r}")
+    text = check_path(name, path)
     target = Path(text)
     if text.endswith(("/", os.sep)) or target.name in ("", ".", "..") or target.is_dir():
         raise ValueError(f"{name} must name a file, got {text!r} (a directory)")
     has_suffix = bool(target.suffix) if any_suffix else target.name.endswith(suffix)
-    return target if has_suffix else target.with_name(target.name + suffix)
+    target = target if has_suffix else target.with_name(target.name + suffix)
+    _check_writable(name, target)
+    return target
+
+
+def output_dir(name: str, path) -> Path:
+    """The directory ``path`` that a command will write into, checked before its work starts.
+
+    An existing directory must accept new files; a missing one must be creatable (its nearest
+    existing ancestor a directory that accepts new files). It is not created here.
+
+    Examples
+    --------
+    >>> output_dir("--out", "runs/today").as_posix()
+    'runs/today'
+    """
+    target = Path(check_path(name, path))
+    if target.exists():
+        kind = _kind(os.stat(target).st_mode)
+        if kind != "a directory":
+            raise NotADirectoryError(
+                f"{name} must be a directory, got {str(target)!r} ({kind or 'a regular file'})"
+            )
+        _probe_directory(name, target)
+        return target
+    ancestor = target.parent
+    while not ancestor.exists() and ancestor != ancestor.parent:
+        ancestor = ancestor.parent
+    if not ancestor.is_dir():
+        raise NotADirectoryError(
+            f"{name}: {ancestor} is not a directory, so {target} cannot be made"
+        )
+    _probe_directory(name, ancestor)
+    return target
+
+
+def _check_npz_sizes(archive: zipfile.ZipFile, path: Path) -> None:
+    """Raise unless every array's header in ``archive`` declares a size within the budget.
+
+    The headers are read, not the arrays: a header that declares 2**40 values is refused before
+    NumPy allocates them. The error names the file and the array.
+    """
+    readers = {(1, 0): npformat.read_array_header_1_0, (2, 0): npformat.read_array_header_2_0}
+    total = 0
+    for info in archive.infolist():
+        if not info.filename.endswith(".npy"):
+            continue
+        with archive.open(info) as member:
+            version = npformat.read_magic(member)
+            if version not in readers:
+                raise ValueError(f"its array {info.filename} has .npy version {version}")
+            try:
+                shape, _, dtype = readers[version](member)
+            except ValueError as exc:  # NumPy's message runs over several lines
+                first = str(exc).strip().splitlines()[0]
+                raise ValueError(f"its array {info.filename} has a bad header: {first}") from None
+        if any(n < 0 for n in shape):
+            raise ValueError(f"its array {info.filename} declares the shape {shape}")
+        nbytes = math.prod(shape) * dtype.itemsize
+        total += nbytes
+        check_allocation(nbytes, parameter=f"the file {path}",
+                         what=f"its array {info.filename[:-4]!r} of shape {shape}")
+    check_allocation(total, parameter=f"the file {path}", what="its arrays together")
 
 
 @contextmanager
@@ -198,7 +468,9 @@ def open_npz(path, what: str) -> Iterator[np.lib.npyio.NpzFile]:
     kinds of errors (``BadZipFile``, ``EOFError``, ``zlib.error``, a ``KeyError`` for a missing
     array, a ``ValueError`` for pickled data), some only when an array is read. Inside this
     context they all end as ``ValueError("<path> is not <what>: ...")``; a missing file stays a
-    :class:`FileNotFoundError`.
+    :class:`FileNotFoundError`. Only a regular file is opened (:func:`open_regular`), and every
+    array's size is read from its header and checked against the memory budget
+    (:func:`ebantenna.memory_budget`) before any array is read.
 
     Examples
     --------
@@ -213,12 +485,15 @@ def open_npz(path, what: str) -> Iterator[np.lib.npyio.NpzFile]:
     ...
     ValueError: ...x.npz is not a recording: not an .npz archive (it does not begin like a zip file)
     """
-    path = Path(os.fspath(path))
-    if path.is_dir():
-        raise ValueError(f"{path} is a directory, not {what}")
-    damaged = (zipfile.BadZipFile, EOFError, zlib.error, ValueError, OSError)
+    # zipfile raises NotImplementedError for an unknown compression method, RuntimeError for
+    # an encrypted member
+    damaged = (zipfile.BadZipFile, EOFError, zlib.error, ValueError, OSError,
+               NotImplementedError, RuntimeError)
+    if os.path.isdir(check_path("path", path)):
+        raise ValueError(f"{Path(path)} is a directory, not {what}")
     # The file is opened here, not by NumPy, so that it is closed whatever fails.
-    with open(path, "rb") as file:  # a missing file raises FileNotFoundError here
+    with open_regular(path, what) as file:  # a missing file raises FileNotFoundError here
+        path = Path(os.fspath(path))
         head = file.read(4)
         file.seek(0)
         if not head:
@@ -234,9 +509,17 @@ def open_npz(path, what: str) -> Iterator[np.lib.npyio.NpzFile]:
             raise ValueError(f"{path} is not {what}: {damage}") from None
         with data:
             try:
+                _check_npz_sizes(data.zip, path)
+            except MemoryBudgetError:
+                raise
+            except damaged as exc:
+                raise ValueError(f"{path} is not {what}: the file is damaged ({exc})") from None
+            try:
                 yield data
             except KeyError as exc:
                 raise ValueError(f"{path} is not {what}: it lacks the array {exc}") from None
+            except RecursionError:
+                raise ValueError(f"{path} is not {what}: it nests too deeply") from None
             except damaged as exc:
                 if isinstance(exc, ValueError) and str(path) in str(exc):
                     raise  # already names the file

@@ -14,6 +14,10 @@ released, and the servo supply must be cut by hand), or, on Ctrl-C or SIGTERM, o
 so (exit codes 130 and 143, as a shell reports a process killed by those signals). A command
 that has partial results worth keeping (a recording) saves them before it stops; with ``--json``
 it then prints what it kept, marked ``"interrupted"``.
+
+The signal handlers are the first thing :func:`main` installs, before it imports any command
+module (and ``import ebantenna`` imports nothing heavy), so an interrupt during the start-up
+imports ends in the same one line as one during the work.
 """
 
 from __future__ import annotations
@@ -92,14 +96,39 @@ def _raise_terminated(signum, frame):
 
 @contextlib.contextmanager
 def _sigterm_as_interrupt():
+    """SIGINT raises :class:`KeyboardInterrupt` and SIGTERM :class:`Terminated` inside.
+
+    SIGINT gets Python's own handler back even if the caller changed it, unless it was ignored
+    (a command started in the background by a shell ignores Ctrl-C, and keeps doing so).
+    """
     if threading.current_thread() is not threading.main_thread():
         yield  # signal handlers can be set from the main thread only
         return
+    previous_int = signal.getsignal(signal.SIGINT)
+    if previous_int is not signal.SIG_IGN:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
     previous = signal.signal(signal.SIGTERM, _raise_terminated)
     try:
         yield
     finally:
         signal.signal(signal.SIGTERM, previous)
+        if previous_int is not None:
+            signal.signal(signal.SIGINT, previous_int)
+
+
+@contextlib.contextmanager
+def _signals_ignored():
+    """While the one line is written: a second Ctrl-C or SIGTERM must not cut it short."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = {signum: signal.signal(signum, signal.SIG_IGN)
+                for signum in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
 
 
 def interrupted(exc: KeyboardInterrupt, partial: dict) -> KeyboardInterrupt:
@@ -108,28 +137,46 @@ def interrupted(exc: KeyboardInterrupt, partial: dict) -> KeyboardInterrupt:
     return exc
 
 
+def _exit(code: int, message: str):
+    """End the command with one line on stderr (what :meth:`argparse.ArgumentParser.exit` does)."""
+    sys.stderr.write(message)
+    sys.stderr.flush()
+    raise SystemExit(code)
+
+
+def _interrupted(exc: KeyboardInterrupt, args, argv) -> None:
+    """End an interrupted command: one line, and with ``--json`` the JSON of what it kept."""
+    signum = exc.signum if isinstance(exc, Terminated) else signal.SIGINT
+    partial = getattr(exc, "partial", None)
+    # interrupted before its arguments were parsed, the command's --json is looked for by hand
+    wants_json = getattr(args, "json", False) if args is not None else "--json" in argv
+    where = "ebantenna" if args is None else f"ebantenna {args.command}"
+    kept = f"; kept {partial['out']}" if partial and partial.get("out") else ""
+    with _signals_ignored():
+        if wants_json:
+            print_json({"interrupted": signal.Signals(signum).name, **(partial or {})})
+            sys.stdout.flush()
+        _exit(128 + signum, f"{where}: interrupted{kept}\n")
+
+
 def main(argv=None) -> int:
     """Run the ``ebantenna`` command line; returns the exit code."""
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    logging.basicConfig(
-        level=logging.INFO if args.verbose else logging.WARNING,
-        format="%(levelname)s %(name)s: %(message)s",
-        stream=sys.stderr,
-    )
-    where = f"ebantenna {args.command}"
+    args = None
+    argv = sys.argv[1:] if argv is None else list(argv)
     try:
-        with _sigterm_as_interrupt():
+        with _sigterm_as_interrupt():  # first: every import below is interruptible cleanly
+            parser = build_parser()
+            args = parser.parse_args(argv)
+            logging.basicConfig(
+                level=logging.INFO if args.verbose else logging.WARNING,
+                format="%(levelname)s %(name)s: %(message)s",
+                stream=sys.stderr,
+            )
             return int(args.func(args) or 0)
     except KeyboardInterrupt as exc:
-        signum = exc.signum if isinstance(exc, Terminated) else signal.SIGINT
-        partial = getattr(exc, "partial", None)
-        if getattr(args, "json", False):
-            print_json({"interrupted": signal.Signals(signum).name, **(partial or {})})
-        kept = f"; kept {partial['out']}" if partial and partial.get("out") else ""
-        parser.exit(128 + signum, f"{where}: interrupted{kept}\n")
-    except MemoryError:
-        parser.exit(2, f"{where}: error: not enough memory for this request\n")
-    except (ValueError, TypeError, OSError) as exc:
+        _interrupted(exc, args, argv)
+    except (MemoryError, ValueError, TypeError, OSError) as exc:
         # Bad input, damaged files and I/O problems end with one clear line, not a traceback.
-        parser.exit(2, f"{where}: error: {exc}\n")
+        where = "ebantenna" if args is None else f"ebantenna {args.command}"
+        text = "not enough memory for this request" if isinstance(exc, MemoryError) else str(exc)
+        _exit(2, f"{where}: error: {' '.join(text.splitlines())}\n")  # one line, always

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._validate import check_array, check_positive, open_npz, output_path
+from ._validate import check_array, check_positive, load_json, open_npz, output_path
 
 __all__ = ["Recording"]
 
@@ -104,14 +104,20 @@ class Recording:
         ------
         FileNotFoundError
             If there is no such file.
+        TypeError
+            If ``path`` is not a ``str`` or ``os.PathLike`` (bytes are refused).
         ValueError
-            Naming the file, if it is truncated, damaged, or not a recording (an array missing or
-            of the wrong shape, metadata that is not a JSON object).
+            Naming the file, if it is not a regular file (a directory, a FIFO), truncated,
+            damaged, declares arrays over the memory budget, or is not a recording (an array
+            missing or of the wrong shape, metadata that is not a JSON object or nests too
+            deeply).
         """
         what = "a recording"
         with open_npz(path, what) as data:
+            path = Path(path)
             try:
-                metadata = json.loads(str(data["metadata"])) if "metadata" in data else {}
+                text = str(data["metadata"]) if "metadata" in data else "{}"
+                metadata = load_json(text, path, what)
                 if not isinstance(metadata, dict):
                     raise ValueError("metadata must be a JSON object")
                 fs = data["fs"]
@@ -119,4 +125,6 @@ class Recording:
                     raise ValueError(f"fs must be one number, got shape {fs.shape}")
                 return cls(data["t"], data["ax"], data["az"], float(fs), metadata)
             except (TypeError, ValueError) as exc:  # json's errors are ValueErrors
-                raise ValueError(f"{Path(path)} is not {what}: {exc}") from None
+                if str(path) in str(exc):
+                    raise
+                raise ValueError(f"{path} is not {what}: {exc}") from None

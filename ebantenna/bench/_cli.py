@@ -54,9 +54,11 @@ def json_ready(value):
 
 def run_bench(args) -> int:
     """Run ``ebantenna bench``."""
+    from .._validate import output_dir
     from ..cli import print_json
     from . import run_benchmarks
 
+    output_dir("--out", args.out)  # refused before any work is done
     results = run_benchmarks(
         args.out, quick=args.quick, only=args.only, show_progress=False if args.json else None
     )

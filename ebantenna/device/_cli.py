@@ -17,6 +17,17 @@ ENABLE_I2C_HINT = (
 
 
 
+def device_number(text: str) -> int:
+    """The type of ``--bus`` and ``--oe-gpio``: a number >= 0, as Linux numbers its devices."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a whole number >= 0, got {text!r}") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must be a whole number >= 0, got {text}")
+    return value
+
+
 def register(subparsers) -> None:
     """Add the ``acquire`` subcommand."""
     from ..cli import seed_argument
@@ -34,7 +45,7 @@ def register(subparsers) -> None:
     )
     where = parser.add_mutually_exclusive_group(required=True)
     where.add_argument("--simulated", action="store_true", help="use the simulated rig")
-    where.add_argument("--bus", type=int, metavar="N", help="I2C bus number of the real rig")
+    where.add_argument("--bus", type=device_number, metavar="N", help="I2C bus of the real rig")
     parser.add_argument("--material", default="brass",
                         help="touched material (simulated: what is simulated; hardware: a label)")
     parser.add_argument("--ratio", type=float, default=0.5,
@@ -62,7 +73,7 @@ def register(subparsers) -> None:
                         help="simulated only: every write that switches the servos off fails")
     parser.add_argument("--bus-hz", type=float, default=RASPBERRY_PI_BUS_HZ, metavar="HZ",
                         help="simulated only: I2C clock (default 100000, a Raspberry Pi's)")
-    parser.add_argument("--oe-gpio", type=int, metavar="PIN",
+    parser.add_argument("--oe-gpio", type=device_number, metavar="PIN",
                         help="BCM GPIO wired to the PCA9685's OE pin: releases the servos when "
                         "I2C cannot (needs the gpio extra; simulated: the rig's OE line)")
     parser.add_argument("--oscillator-hz", type=float, metavar="HZ",
@@ -161,8 +172,8 @@ def _hardware(args) -> dict:
     if given:
         raise ValueError(f"{', '.join(given)} work(s) only with --simulated")
     if not os.path.exists(f"/dev/i2c-{args.bus}"):
-        raise FileNotFoundError(f"/dev/i2c-{args.bus} does not exist: no I2C bus {args.bus} "
-                                f"on this machine. To {ENABLE_I2C_HINT}")
+        raise FileNotFoundError(f"--bus {args.bus}: /dev/i2c-{args.bus} does not exist: no I2C "
+                                f"bus {args.bus} on this machine. To {ENABLE_I2C_HINT}")
     from smbus2 import SMBus
 
     from .clock import SystemClock

@@ -26,22 +26,31 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-import os
 import warnings
 from pathlib import Path
 
 import numpy as np
 import scipy.sparse as sp
 
-from .._validate import open_npz, output_path
+from .._validate import check_path, load_json, open_npz, output_path
 from .mlp import MLPClassifier, MLPRegressor
 from .svc import SVC
 
 __all__ = ["save_model", "load_model", "FORMAT_VERSION"]
 
 #: Version of the file layout: 2 adds attributes that version 1 did not store (see each
-#: attribute's ``since``), 3 a checksum; files of versions 1 and 2 still load, unchecksummed.
-FORMAT_VERSION = 3
+#: attribute's ``since``), 3 a checksum, 4 requires the attributes in ``REQUIRED_SINCE_4``.
+#: Files of versions 1 to 3 still load. A file that carries a checksum must match it whatever
+#: version it claims; a file of version 1 or 2 without one loads only when asked for explicitly
+#: (``load_model(path, unchecked=True)``), so that editing the version cannot skip the check.
+FORMAT_VERSION = 4
+
+#: The versions :func:`load_model` reads.
+READABLE_VERSIONS = (1, 2, 3, 4)
+
+#: Attributes that the estimators' schemas mark optional, because files written before they
+#: were kept lack them, and that files of format 4 must hold (the final loss of an MLP).
+REQUIRED_SINCE_4 = frozenset({"loss_"})
 
 _CLASSES = {cls.__name__: cls for cls in (SVC, MLPClassifier, MLPRegressor)}
 
@@ -208,7 +217,9 @@ def save_model(model, path) -> Path:
     path = output_path("path", path, ".npz")
     arrays, values, lengths, sparse_shapes = {}, {}, {}, {}
     for attr in model._fitted_schema:
-        if attr.kind == "rebuilt" or (attr.optional and not hasattr(model, attr.name)):
+        if attr.kind == "rebuilt" or (
+            attr.optional and attr.name not in REQUIRED_SINCE_4 and not hasattr(model, attr.name)
+        ):
             continue
         if not hasattr(model, attr.name):
             raise ValueError(f"model lacks its fitted attribute {attr.name}: fit it again")
@@ -243,13 +254,16 @@ def save_model(model, path) -> Path:
     return path
 
 
-def load_model(path):
+def load_model(path, *, unchecked: bool = False):
     """Load a model written by :func:`save_model` (no pickle involved).
 
     Parameters
     ----------
     path : str or os.PathLike
-        A file written by :func:`save_model` (format version 1, 2 or 3).
+        A file written by :func:`save_model` (format version 1 to 4).
+    unchecked : bool
+        Accept a file of format 1 or 2 that carries no checksum (those versions wrote none).
+        Without it such a file is refused: anyone can write that version number into a file.
 
     Returns
     -------
@@ -260,35 +274,60 @@ def load_model(path):
     ------
     FileNotFoundError
         If there is no such file.
+    TypeError
+        If ``path`` is not a ``str`` or ``os.PathLike`` (bytes are refused).
     ValueError
-        Naming the file, if it is truncated or damaged, not a model file of this package, of an
-        unknown version or class, changed since it was written (checksum), or if a parameter or
-        fitted attribute is missing, undeclared, of the wrong type or shape, or not finite.
+        Naming the file, if it is not a regular file, truncated or damaged, declares arrays
+        over the memory budget, is not a model file of this package, of an unknown version or
+        class, changed since it was written (checksum), or if a parameter or fitted attribute is
+        missing, undeclared, of the wrong type or shape, or not finite.
     """
-    path = Path(os.fspath(path))
+    path = Path(check_path("path", path))
+    if not isinstance(unchecked, bool):
+        raise TypeError(f"unchecked must be True or False, got {unchecked!r}")
     what = "a model file of ebantenna.ml"
     with open_npz(path, what) as data:
         if "__meta__" not in data.files:
             raise ValueError(f"{path} is not {what} (no metadata)")
         arrays = {k: data[k] for k in data.files if k != "__meta__"}
         text = data["__meta__"]
+    meta = load_json(str(text), path, what)
     try:
-        return _rebuild(path, arrays, json.loads(str(text)))
+        return _rebuild(path, arrays, meta, unchecked)
     except (KeyError, TypeError, AttributeError, ValueError) as exc:
         if isinstance(exc, ValueError) and str(path) in str(exc):
             raise
         raise ValueError(f"{path} is not {what}: {type(exc).__name__}: {exc}") from None
 
 
-def _rebuild(path: Path, arrays: dict, meta):
+def _check_version(path: Path, arrays: dict, meta: dict, unchecked: bool) -> int:
+    """The file's format version, once its checksum (required from version 3) is verified."""
+    version = meta.get("format_version")
+    if type(version) is not int or version not in READABLE_VERSIONS:  # not True, not 3.0
+        raise ValueError(f"{path}: unsupported format version {version!r}")
+    if "checksum_sha256" in meta or version >= 3:
+        if meta.get("checksum_sha256") != _checksum(arrays, meta):
+            raise ValueError(f"{path}: checksum mismatch, the file is corrupt or was modified")
+    elif not unchecked:
+        raise ValueError(
+            f"{path}: a file of format {version} carries no checksum, so a change to it cannot "
+            "be detected; load it with load_model(path, unchecked=True) if you trust it"
+        )
+    return version
+
+
+def _required(attr, version: int) -> bool:
+    """Whether a file of format ``version`` must hold ``attr``."""
+    if attr.name in REQUIRED_SINCE_4 and version >= 4:
+        return True
+    return not attr.optional and attr.since <= version
+
+
+def _rebuild(path: Path, arrays: dict, meta, unchecked: bool = False):
     """The model described by a file's arrays and JSON, checked at every step."""
     if not isinstance(meta, dict):
         raise ValueError("its metadata is not a JSON object")
-    version = meta.get("format_version")
-    if version not in (1, 2, FORMAT_VERSION):
-        raise ValueError(f"{path}: unsupported format version {version!r}")
-    if version >= 3 and meta.get("checksum_sha256") != _checksum(arrays, meta):
-        raise ValueError(f"{path}: checksum mismatch, the file is corrupt or was modified")
+    version = _check_version(path, arrays, meta, unchecked)
     name = meta["class"]
     if name not in _CLASSES:
         raise ValueError(f"{path}: unknown model class {name!r}")
@@ -326,7 +365,7 @@ def _rebuild(path: Path, arrays: dict, meta):
         elif attr.kind == "value" and attr.name in stored["value"]:
             _check_plain(attr.name, attributes[attr.name])
             setattr(model, attr.name, _unplain(attributes[attr.name]))
-        elif not attr.optional and attr.since <= version:
+        elif _required(attr, version):
             raise ValueError(f"{path}: the fitted attribute {attr.name} of {name} is missing")
         used.add(attr.name)
     unknown = (stored["array"] - used) | ((stored["arrays"] | stored["value"]) - used)

@@ -29,9 +29,11 @@ def run_dataset(args) -> int:
 
     import numpy as np
 
+    from .._validate import output_dir
     from ..cli import interrupted, print_json
     from .data import build_paper_dataset
 
+    output_dir("--out", args.out)  # refused before any work is done
     start = time.perf_counter()
     try:
         data = build_paper_dataset(args.out, seed=args.seed, quick=args.quick, n_jobs=args.jobs)

@@ -39,7 +39,14 @@ from joblib import Parallel, delayed
 
 from .. import __version__
 from .._progress import progress
-from .._validate import check_int, check_nonnegative, check_positive, open_npz
+from .._validate import (
+    check_int,
+    check_nonnegative,
+    check_path,
+    check_positive,
+    load_json,
+    open_npz,
+)
 from ..probe import material
 from ._dataset_files import remove_leftovers, stale_reason, write_whole
 from .scene import Scene
@@ -433,11 +440,14 @@ def load_dataset(path) -> Dataset:
     ------
     FileNotFoundError
         If there is no such file.
+    TypeError
+        If ``path`` is not a ``str`` or ``os.PathLike`` (bytes are refused).
     ValueError
-        Naming the file, if it is truncated, damaged, not such a data set, of another format, or
-        its arrays do not match the checksum.
+        Naming the file, if it is not a regular file, truncated, damaged, declares arrays over
+        the memory budget, is not such a data set, of another format, or its arrays do not match
+        the checksum.
     """
-    path = Path(path)
+    path = Path(check_path("path", path))
     what = "an ebantenna data set"
     with open_npz(path, what) as data:
         missing = [k for k in (*_ARRAYS, "fs", "metadata") if k not in data]
@@ -447,9 +457,9 @@ def load_dataset(path) -> Dataset:
         fs_array, text = data["fs"], data["metadata"]
     try:
         fs = float(fs_array)
-        metadata = json.loads(str(text))
     except (TypeError, ValueError) as exc:  # a foreign file with arrays of these names
         raise ValueError(f"{path} is not {what}: {exc}") from None
+    metadata = load_json(str(text), path, what)
     if not isinstance(metadata, dict):
         raise ValueError(f"{path} is not {what}: its metadata is not a JSON object")
     config = metadata.get("config")

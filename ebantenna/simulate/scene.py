@@ -23,7 +23,15 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .._validate import check_int, check_nonnegative, check_positive
+from .._validate import (
+    check_int,
+    check_nonnegative,
+    check_path,
+    check_positive,
+    load_json,
+    output_path,
+    read_text,
+)
 from ..fem.guards import check_contact, check_resolvable
 from ..fem.supports import HINGES
 from ..probe import Probe, material
@@ -311,8 +319,11 @@ class Scene:
         return cls(**data)
 
     def save(self, path) -> Path:
-        """Save as TOML (``.toml``) or JSON (any other suffix); returns the path."""
-        path = Path(path)
+        """Save as TOML (``.toml``) or JSON (any other suffix); returns the path.
+
+        The path must be a ``str`` or ``os.PathLike`` naming a file in a directory that exists.
+        """
+        path = output_path("path", path, "")
         data = self.to_dict()
         if path.suffix.lower() == ".toml":
             path.write_text(_to_toml(data), encoding="utf-8")
@@ -349,9 +360,22 @@ def _to_toml(data: dict) -> str:
 
 
 def load_scene(path) -> Scene:
-    """Load a scene saved by :meth:`Scene.save` (TOML by suffix ``.toml``, otherwise JSON)."""
-    path = Path(path)
-    text = path.read_text(encoding="utf-8")
+    """Load a scene saved by :meth:`Scene.save` (TOML by suffix ``.toml``, otherwise JSON).
+
+    Raises
+    ------
+    FileNotFoundError
+        If there is no such file.
+    TypeError
+        If ``path`` is not a ``str`` or ``os.PathLike`` (bytes are refused), or a field has the
+        wrong type.
+    ValueError
+        Naming the file, if it is not a regular file (a directory, a FIFO), is longer than a
+        scene can be, is not UTF-8 text, not valid TOML or JSON, nests too deeply, or does not
+        hold one table; or if a field is unknown or out of its range.
+    """
+    path = Path(check_path("path", path))
+    text = read_text(path, "a scene file")
     if path.suffix.lower() == ".toml":
         try:
             import tomllib  # novermin (guarded: Python 3.10 falls back to tomli below)
@@ -359,17 +383,17 @@ def load_scene(path) -> Scene:
             import tomli as tomllib
         try:
             data = tomllib.loads(text)
-        except tomllib.TOMLDecodeError as exc:
-            raise ValueError(f"{path}: not valid TOML: {exc}") from exc
+        except (tomllib.TOMLDecodeError, RecursionError) as exc:
+            raise ValueError(f"{path}: not valid TOML: {exc}") from None
     else:
-        try:
-            data = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise ValueError(f"{path}: not valid JSON: {exc}") from exc
+        data = load_json(text, path, "a scene file")
     if not isinstance(data, dict):
         kind = type(data).__name__
         raise ValueError(f"{path}: a scene file holds one table/object, not a {kind}")
-    return Scene.from_dict(data)
+    try:
+        return Scene.from_dict(data)
+    except (TypeError, ValueError) as exc:  # a field out of its range: say in which file
+        raise (TypeError if isinstance(exc, TypeError) else ValueError)(f"{path}: {exc}") from None
 
 
 def scene_names() -> tuple[str, ...]:
@@ -405,9 +429,10 @@ def builtin_scene(name: str) -> Scene:
 
 def resolve_scene(name_or_path) -> Scene:
     """A built-in scene by name, or a scene file (TOML or JSON) by path."""
-    if str(name_or_path) in scene_names():
-        return builtin_scene(str(name_or_path))
-    path = Path(name_or_path)
+    text = check_path("scene", name_or_path)
+    if text in scene_names():
+        return builtin_scene(text)
+    path = Path(text)
     if not path.is_file():
         raise ValueError(
             f"scene must be one of {', '.join(scene_names())} or an existing .toml/.json file; "

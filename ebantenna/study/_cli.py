@@ -28,10 +28,14 @@ def register(subparsers) -> None:
 
 def run_reproduce(args) -> int:
     """Run ``ebantenna reproduce``."""
+    from .._validate import output_dir
     from ..cli import interrupted, print_json
     from ..paper import printed
     from .reproduce import reproduce
 
+    output_dir("--out", args.out)  # refused before any work is done
+    if args.cache is not None:
+        output_dir("--cache", args.cache)
     try:
         result = reproduce(
             args.out,

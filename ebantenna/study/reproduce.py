@@ -65,13 +65,18 @@ STEPS = ("modes", "hinge", "data set", "features", "frequency", "decay", "ml", "
 def default_cache_dir() -> Path:
     """Where data sets are cached: ``$EBANTENNA_CACHE``, else ``~/.cache/ebantenna``.
 
+    The path is made absolute (``~`` expanded, a relative one taken from the current directory
+    when this is called), so that what is reported and reused does not change with a later
+    change of directory.
+
     Examples
     --------
-    >>> isinstance(default_cache_dir(), Path)
+    >>> default_cache_dir().is_absolute()
     True
     """
     env = os.environ.get("EBANTENNA_CACHE")
-    return Path(env) if env else Path.home() / ".cache" / "ebantenna"
+    path = Path(env).expanduser() if env else Path.home() / ".cache" / "ebantenna"
+    return path.absolute()
 
 
 @dataclass(frozen=True, eq=False)

@@ -45,7 +45,7 @@ class HertzContact(Effect):
     >>> from ebantenna.probe import Probe, material
     >>> spring = HertzContact().spring(material("steel"), Probe(), 0.012, 0.5)
     >>> spring.bound <= 0.01, spring.slopes.size
-    (True, 16)
+    (True, 10)
     """
 
     name: ClassVar[str] = "hertz_contact"

@@ -33,7 +33,7 @@ effect never changes the random numbers of another.
 
 from __future__ import annotations
 
-from .contact_law import HertzContact
+from .hertz import HertzContact
 from .objects import CoulombFriction, ObjectDamping, ObjectModes, UnilateralContact
 from .physics import GY521_MASS, ContactCompliance, StructuralDamping, TipMass
 from .sensor import (

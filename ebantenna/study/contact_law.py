@@ -196,4 +196,5 @@ def _verdict(r: ContactLawResult) -> str:
             + ("overlap: the linearisation changes nothing this design can resolve"
                if same else "do not overlap: the contact law matters")  # fmt: skip
         )
-    return "; ".join(parts).capitalize() + "."
+    text = "; ".join(parts)
+    return text[0].upper() + text[1:] + "."

@@ -45,7 +45,7 @@ def test_the_verdict_follows_the_intervals(tmp_path, hertz_svm, word):
     contact_law.render(_result(hertz_svm), report, FigureSet(tmp_path))
     text = report.markdown()
     assert "95 % CI" in text and "n = 80" in text
-    assert f"for the svm the two laws' intervals {word}" in text.lower()
+    assert f"For the SVM the two laws' intervals {word}" in text
 
 
 def test_the_two_scenes_differ_by_the_hertz_law_only():

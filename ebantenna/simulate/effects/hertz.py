@@ -1,10 +1,11 @@
 """The contact's force law in the strike: crossed-cylinder Hertz in series with the tube wall.
 
 :class:`HertzContact` replaces the strike's contact spring, linearised at the preload, by the
-whole law ``p(F) = delta_H(1 N) F^(2/3) + F / k_ring`` (:class:`~ebantenna.simulate.contact.
-HertzInSeries`; K. L. Johnson, *Contact Mechanics*, 1985, section 4.2, and Roark's ring, as in
-:mod:`ebantenna.simulate.contact`), replaced by chords within a proven force bound and integrated
-exactly between the chords' nodes (:class:`~ebantenna.simulate.unilateral.HertzStrikeLaw`).
+whole law ``p(F) = delta_H(1 N) F^(2/3) + F / k_ring``
+(:class:`~ebantenna.simulate.contact.HertzInSeries`; K. L. Johnson, *Contact Mechanics*, 1985,
+section 4.2, and Roark's ring, as in :mod:`ebantenna.simulate.contact`), replaced by chords
+within a proven force bound and integrated exactly between the chords' nodes
+(:class:`~ebantenna.simulate.unilateral.HertzStrikeLaw`).
 """
 
 from __future__ import annotations

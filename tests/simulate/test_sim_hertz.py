@@ -9,6 +9,7 @@ import pytest
 import scipy.integrate as spi
 import scipy.optimize as spo
 
+from ebantenna.bench import BENCHMARKS, contact_cost
 from ebantenna.fem.coupling import craig_bampton, probe_substructure, rod_substructure
 from ebantenna.probe import MATERIALS, Probe, material
 from ebantenna.simulate import Scene, builtin_scene, simulate_batch
@@ -225,3 +226,17 @@ def test_the_scene_with_hertz_contact_strikes_through_the_chords():
     _, a_hz, _, x_hz, _ = simulate_batch(hz, **kw)
     assert np.all(np.isfinite(a_hz)) and not np.allclose(a_lin, a_hz)
     assert np.all(x_hz.restrikes >= 1)
+
+
+def test_the_bench_times_both_laws_on_the_same_rows():
+    # the chords' nodes are events of their own: the Hertz strike cannot cost less than the
+    # linearised one (measured about six times as much); the linearised row adds nothing
+    assert "contact_cost" in BENCHMARKS
+    tables = contact_cost.run(signals=4, repeat=1)
+    linear, hertz = tables["rows"]
+    assert linear["ratio"] == 1.0 and linear["added_seconds"] == 0.0
+    assert hertz["ratio"] > 1.0 and hertz["added_seconds"] > 0
+    text = contact_cost.to_text(tables)
+    assert "Hertz law" in text and "budget of 60 s" in text
+    with pytest.raises(ValueError, match="signals and repeat"):
+        contact_cost.run(signals=0)

@@ -319,7 +319,10 @@ class PiecewiseSpring:
             raise ValueError("forces and approaches must increase from node to node")
         object.__setattr__(self, "forces", F)
         object.__setattr__(self, "approaches", p)
-        object.__setattr__(self, "bounds", np.asarray(self.bounds, float))
+        bounds = np.asarray(self.bounds, float)
+        if bounds.shape != (F.size - 1,) or np.any(bounds < 0):
+            raise ValueError("bounds: one non-negative bound per chord")
+        object.__setattr__(self, "bounds", bounds)
 
     @classmethod
     def linear(cls, stiffness: float) -> PiecewiseSpring:
@@ -395,14 +398,18 @@ class HertzInSeries:
         return float(out) if out.ndim == 0 else out
 
     def force(self, approach):
-        """Force at ``approach`` (m; 0 where ``p <= 0``), N: ``p(F)`` inverted by Newton's method,
-        which converges from above on this concave ``p(F)`` (15 iterations reach rounding)."""
+        """Force at ``approach`` (m; 0 where ``p <= 0``), N: ``p(F)`` inverted by Newton's method.
+
+        It starts above the root (either compliance alone gives a larger force); ``p(F)`` is
+        concave, so a Newton step lands at or below the root and the iteration then climbs to it
+        monotonically; a step is kept from falling below an eighth of the last iterate, which
+        keeps ``F`` positive."""
         p = np.asarray(approach, float)
         F = np.minimum((np.maximum(p, 0) / self.hertz.approach(1.0)) ** 1.5, p * self.ring)
         F = np.where(p > 0, np.maximum(F, 0.0), 0.0)
         for _ in range(40):
             step = np.where(p > 0, (self.approach(F) - p) * self.stiffness(F), 0.0)
-            F = F - np.nan_to_num(step)
+            F = np.maximum(F - np.nan_to_num(step), F / 8)
         out = np.where(p > 0, F, 0.0)
         return float(out) if out.ndim == 0 else out
 

@@ -240,3 +240,17 @@ def test_the_bench_times_both_laws_on_the_same_rows():
     assert "Hertz law" in text and "budget of 60 s" in text
     with pytest.raises(ValueError, match="signals and repeat"):
         contact_cost.run(signals=0)
+
+
+def test_a_piecewise_spring_rejects_nodes_that_do_not_climb_from_zero():
+    with pytest.raises(ValueError, match="from 0"):
+        PiecewiseSpring(np.array([0.1, 1.0]), np.array([0.0, 1e-5]), np.zeros(1))
+    with pytest.raises(ValueError, match="increase"):
+        PiecewiseSpring(np.array([0.0, 1.0, 0.5]), np.array([0.0, 1e-5, 2e-5]), np.zeros(2))
+    with pytest.raises(ValueError, match="one non-negative bound per chord"):
+        PiecewiseSpring(np.array([0.0, 1.0]), np.array([0.0, 1e-5]), np.zeros(2))
+    spring = PiecewiseSpring(np.array([0.0, 1.0, 3.0]), np.array([0.0, 1e-5, 2e-5]), np.zeros(2))
+    # the chords' force and its inverse: exact at and between the nodes, continued beyond
+    assert spring.force(1.5e-5) == pytest.approx(2.0, rel=4 * EPS)
+    assert spring.approach_at(2.0) == pytest.approx(1.5e-5, rel=4 * EPS)
+    assert spring.force(3e-5) == pytest.approx(5.0, rel=4 * EPS) and spring.force(-1e-6) == 0.0

@@ -12,6 +12,7 @@ report through :func:`write_sweep`.
 - :mod:`~ebantenna.bench.signal_accuracy`: frequency estimators (window, zero padding,
   interpolation), STFT against wavelets, decay-fit methods, distance estimators.
 - :mod:`~ebantenna.bench.simulate_cost`: seconds per 1000 signals for each simulated effect.
+- :mod:`~ebantenna.bench.contact_cost`: the strike's Hertz contact against the linearised one.
 - :mod:`~ebantenna.bench.ml_speed`: the hand-written SVC and MLP against scikit-learn.
 
 Timings are measured side by side in one run; on a shared machine read the ratios, not the seconds.
@@ -33,6 +34,7 @@ BENCHMARKS = {
     "fem_accuracy": "Finite elements: error against the exact solution, and solve time",
     "signal_accuracy": "Signal processing: estimator error against time",
     "simulate_cost": "Simulator: cost of each effect",
+    "contact_cost": "Simulator: the Hertz contact's cost against the linearised one",
     "ml_speed": "Machine learning: hand-written estimators against scikit-learn",
 }
 

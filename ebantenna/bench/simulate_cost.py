@@ -39,6 +39,7 @@ PREREQUISITES = {
     "object_damping": ("object_modes",),
     "preload_scatter": ("object_modes",),
     "unilateral_contact": ("structural_damping", "object_modes", "object_damping"),
+    "hertz_contact": ("structural_damping", "object_modes", "object_damping", "unilateral_contact"),
     "coulomb_friction": ("structural_damping", "object_modes"),
 }
 

@@ -38,13 +38,22 @@ Three compliances act in series at the contact point:
 
 3. **Wood across the grain.** A wooden rod (a dowel) has its grain along its axis, so the tube
    indents it *across* the grain. The contact modulus of this orthotropic body is approximated
-   by the isotropic Hertz formula with the modulus across the grain, taken as the geometric mean
-   of the radial and tangential moduli (the growth-ring orientation at the touched spot is
-   random). Ratios for red oak at 12 % moisture: ``E_R/E_L = 0.154``, ``E_T/E_L = 0.082``
-   (USDA Forest Products Laboratory, *Wood Handbook*, FPL-GTR-282, 2021, table 5-1; same values
-   in FPL-GTR-190, 2010). The fibres lying in the surface stiffen the indentation somewhat, so
-   this rule errs on the soft side; the longitudinal modulus would overestimate the stiffness
-   about nine-fold.
+   by the isotropic Hertz formula with the modulus across the grain, the material's own
+   ``transverse_modulus`` (:data:`ebantenna.probe.MATERIALS` states it, with its source: for red
+   oak the mean of the radial and tangential moduli, 1.48 GPa). The fibres lying in the surface
+   stiffen the indentation somewhat, so this rule errs on the soft side; the longitudinal
+   modulus would overestimate the stiffness about eight-fold.
+
+**The law, not only its slope.** The three compliances add in approach:
+``p(F) = delta_H(F) + F / k_ring`` with ``delta_H = delta_H(1 N) F^(2/3)``. :class:`HertzInSeries`
+is that law; :meth:`HertzInSeries.piecewise` replaces it by chords between nodes with a proven
+bound on the force's error (the strike integrates the chords exactly,
+:mod:`ebantenna.simulate.unilateral`). ``F(p)`` is convex (``dp/dF`` falls as ``F`` grows), so
+on a chord ``[p_a, p_b]`` of slope ``s`` the chord lies above the law and below both tangents,
+
+    0 <= chord(p) - F(p) <= (s - F'(p_a)) (F'(p_b) - s) (p_b - p_a) / (F'(p_b) - F'(p_a)),
+
+the height at which the two tangents' bounds meet (each tangent lies below the convex law).
 
 All quantities are SI: m, N, Pa.
 """
@@ -62,21 +71,17 @@ import scipy.special as spsp
 from .._validate import check_in_range, check_positive
 
 __all__ = [
-    "RED_OAK_RADIAL_RATIO",
-    "RED_OAK_TANGENTIAL_RATIO",
     "TUBE_POISSON_RATIO",
     "contact_modulus",
-    "across_grain_modulus",
     "CrossedCylinders",
     "ring_stiffness",
     "ContactStiffness",
     "tube_on_rod_stiffness",
+    "HertzInSeries",
+    "PiecewiseSpring",
+    "tube_on_rod_law",
 ]
 
-#: Red oak, 12 % moisture: E_R / E_L (Wood Handbook FPL-GTR-282, 2021, table 5-1).
-RED_OAK_RADIAL_RATIO = 0.154
-#: Red oak, 12 % moisture: E_T / E_L (Wood Handbook FPL-GTR-282, 2021, table 5-1).
-RED_OAK_TANGENTIAL_RATIO = 0.082
 #: Poisson's ratio of PMMA, 0.38-0.40 (M. F. Ashby, *Materials Selection in Mechanical Design*,
 #: 4th ed., 2011, appendix C); the value the simulator's contact effect uses.
 TUBE_POISSON_RATIO = 0.39
@@ -126,35 +131,6 @@ def contact_modulus(body1, body2, *, poisson_ratio1=None, poisson_ratio2=None) -
     E1, nu1 = _elastic("body1", body1, poisson_ratio1)
     E2, nu2 = _elastic("body2", body2, poisson_ratio2)
     return 1.0 / ((1 - nu1**2) / E1 + (1 - nu2**2) / E2)
-
-
-def across_grain_modulus(
-    longitudinal_modulus: float,
-    *,
-    radial_ratio: float = RED_OAK_RADIAL_RATIO,
-    tangential_ratio: float = RED_OAK_TANGENTIAL_RATIO,
-) -> float:
-    """Modulus of wood across the grain for indentation of a dowel's side, Pa.
-
-    The geometric mean ``E_L sqrt((E_R/E_L)(E_T/E_L))`` of the radial and tangential moduli
-    (see the module notes for the rule and its source).
-
-    Parameters
-    ----------
-    longitudinal_modulus : float
-        ``E_L``, along the grain, Pa (> 0).
-    radial_ratio, tangential_ratio : float
-        ``E_R/E_L`` and ``E_T/E_L`` in (0, 1]; defaults: red oak, Wood Handbook table 5-1.
-
-    Examples
-    --------
-    >>> round(across_grain_modulus(12.5e9) / 1e9, 3)  # red oak, GPa
-    1.405
-    """
-    EL = check_positive("longitudinal_modulus", longitudinal_modulus)
-    r = check_in_range("radial_ratio", radial_ratio, 0.0, 1.0, high_inclusive=True)
-    s = check_in_range("tangential_ratio", tangential_ratio, 0.0, 1.0, high_inclusive=True)
-    return EL * math.sqrt(r * s)
 
 
 def _ratio_of_curvatures(p: float) -> float:
@@ -296,6 +272,186 @@ def ring_stiffness(
     return E * inertia / (Rm**3 * (K1 * math.pi / 4 - 2 * K2**2 / math.pi))
 
 
+def _chord_bound(pa, pb, fa, fb, da, db) -> float:
+    """Most a chord of a convex law lies above it on ``[pa, pb]`` (module notes), N.
+
+    ``fa, fb``: the law's values (N) at the ends; ``da, db``: its slopes there (N/m).
+    """
+    if pb <= pa or db <= da:
+        return 0.0
+    s = (fb - fa) / (pb - pa)
+    return max(0.0, (s - da) * (db - s) * (pb - pa) / (db - da))
+
+
+@dataclass(frozen=True)
+class PiecewiseSpring:
+    """A spring that only pushes, its force law given by chords between nodes.
+
+    Segment ``j`` holds for ``approaches[j] <= p <= approaches[j+1]``, where the force is
+    ``slopes[j] (p - offsets[j])``; the last chord continues beyond the last node, so a single
+    chord is the linear spring ``k p``.
+
+    Attributes
+    ----------
+    forces : ndarray of shape (n + 1,)
+        Force at the nodes, N; ``forces[0] = 0``, increasing.
+    approaches : ndarray of shape (n + 1,)
+        Approach at the nodes, m; ``approaches[0] = 0``, increasing.
+    bounds : ndarray of shape (n,)
+        Most each chord's force differs from the law it replaces, N (0 for a linear spring).
+
+    Examples
+    --------
+    >>> spring = PiecewiseSpring.linear(1e5)
+    >>> spring.slopes, spring.offsets, spring.bound
+    (array([100000.]), array([0.]), 0.0)
+    """
+
+    forces: np.ndarray
+    approaches: np.ndarray
+    bounds: np.ndarray
+
+    def __post_init__(self):
+        F, p = np.asarray(self.forces, float), np.asarray(self.approaches, float)
+        if F.ndim != 1 or F.shape != p.shape or F.size < 2 or F[0] != 0 or p[0] != 0:
+            raise ValueError("forces and approaches: equal 1-D arrays of >= 2 nodes from 0")
+        if not (np.all(np.diff(F) > 0) and np.all(np.diff(p) > 0)):
+            raise ValueError("forces and approaches must increase from node to node")
+        object.__setattr__(self, "forces", F)
+        object.__setattr__(self, "approaches", p)
+        bounds = np.asarray(self.bounds, float)
+        if bounds.shape != (F.size - 1,) or np.any(bounds < 0):
+            raise ValueError("bounds: one non-negative bound per chord")
+        object.__setattr__(self, "bounds", bounds)
+
+    @classmethod
+    def linear(cls, stiffness: float) -> PiecewiseSpring:
+        """The linear spring ``k p`` (N/m): one chord, exact, continued without end."""
+        k = check_positive("stiffness", stiffness)
+        return cls(np.array([0.0, k]), np.array([0.0, 1.0]), np.zeros(1))
+
+    @property
+    def slopes(self) -> np.ndarray:
+        """Each chord's slope, N/m."""
+        return np.diff(self.forces) / np.diff(self.approaches)
+
+    @property
+    def offsets(self) -> np.ndarray:
+        """Where each chord, extended, meets zero force, m (``p - F / k`` at its lower node)."""
+        return self.approaches[:-1] - self.forces[:-1] / self.slopes
+
+    @property
+    def bound(self) -> float:
+        """Most the chords' force differs from the law up to the last node, N."""
+        return float(self.bounds.max())
+
+    def force(self, approach):
+        """Force of the chords at ``approach`` (m; 0 where ``p <= 0``), N."""
+        p = np.asarray(approach, float)
+        j = np.clip(np.searchsorted(self.approaches, p, side="right") - 1, 0, self.slopes.size - 1)
+        out = np.where(p > 0, self.slopes[j] * (p - self.offsets[j]), 0.0)
+        return float(out) if out.ndim == 0 else out
+
+    def approach_at(self, force: float) -> float:
+        """Approach of the chords at ``force`` (N, >= 0), m."""
+        j = int(np.clip(np.searchsorted(self.forces, force, side="right") - 1, 0,
+                        self.slopes.size - 1))  # fmt: skip
+        return float(self.offsets[j] + force / self.slopes[j])
+
+
+@dataclass(frozen=True)
+class HertzInSeries:
+    """The contact's law: crossed-cylinder Hertz in series with the tube wall's ring spring.
+
+    ``p(F) = delta_H(1 N) F^(2/3) + F / k_ring``: the approach of the two compliances in series
+    (module notes). ``F(p)`` is its inverse.
+
+    Parameters
+    ----------
+    hertz : CrossedCylinders
+        The Hertz contact.
+    ring : float
+        The tube wall's stiffness, N/m (``inf``: a solid probe).
+
+    Examples
+    --------
+    >>> law = HertzInSeries(CrossedCylinders(0.004, 0.006, 3.5e9), 2.7e5)
+    >>> round(float(law.force(law.approach(0.5))), 12)  # N
+    0.5
+    """
+
+    hertz: CrossedCylinders
+    ring: float
+
+    def approach(self, force):
+        """Approach under ``force`` (N, >= 0), m."""
+        F = np.asarray(force, float)
+        out = self.hertz.approach(1.0) * np.cbrt(F) ** 2 + F / self.ring
+        return float(out) if out.ndim == 0 else out
+
+    def stiffness(self, force):
+        """``dF/dp`` at ``force`` (N, >= 0), N/m: 0 at zero force, where Hertz starts soft."""
+        F = np.asarray(force, float)
+        with np.errstate(divide="ignore"):
+            compliance = 2 / 3 * self.hertz.approach(1.0) / np.cbrt(F) + 1 / self.ring
+        out = 1 / compliance
+        return float(out) if out.ndim == 0 else out
+
+    def force(self, approach):
+        """Force at ``approach`` (m; 0 where ``p <= 0``), N: ``p(F)`` inverted by Newton's method.
+
+        It starts above the root (either compliance alone gives a larger force); ``p(F)`` is
+        concave, so a Newton step lands at or below the root and the iteration then climbs to it
+        monotonically; a step is kept from falling below an eighth of the last iterate, which
+        keeps ``F`` positive."""
+        p = np.asarray(approach, float)
+        F = np.minimum((np.maximum(p, 0) / self.hertz.approach(1.0)) ** 1.5, p * self.ring)
+        F = np.where(p > 0, np.maximum(F, 0.0), 0.0)
+        for _ in range(40):
+            step = np.where(p > 0, (self.approach(F) - p) * self.stiffness(F), 0.0)
+            F = np.maximum(F - np.nan_to_num(step), F / 8)
+        out = np.where(p > 0, F, 0.0)
+        return float(out) if out.ndim == 0 else out
+
+    def chord_bound(self, fa: float, fb: float) -> float:
+        """Most the chord between the forces ``fa < fb`` (N) lies above the law, N."""
+        pa, pb = self.approach(fa), self.approach(fb)
+        return _chord_bound(pa, pb, fa, fb, self.stiffness(fa), self.stiffness(fb))
+
+    def piecewise(self, tolerance: float, max_force: float, through=()) -> PiecewiseSpring:
+        """Chords of the law whose force is within ``tolerance`` (N) of it up to ``max_force``.
+
+        Nodes are placed from zero force up, each chord as long as its bound allows; the forces
+        in ``through`` (N, e.g. the preload, where the law is then exact) are nodes too.
+
+        Examples
+        --------
+        >>> law = HertzInSeries(CrossedCylinders(0.004, 0.006, 3.5e9), 2.7e5)
+        >>> spring = law.piecewise(0.01, 5.0, through=(0.5,))
+        >>> spring.bound <= 0.01, bool(np.any(spring.forces == 0.5))
+        (True, True)
+        """
+        tol = check_positive("tolerance", tolerance)
+        top = check_positive("max_force", max_force)
+        stops = sorted({top, *(float(f) for f in through if 0 < f < top)})
+        nodes, bounds = [0.0], []
+        for stop in stops:
+            while nodes[-1] < stop:
+                a = nodes[-1]
+                if self.chord_bound(a, stop) <= tol:
+                    b = stop
+                else:
+                    # aim a little inside the tolerance, so that the root's error keeps it
+                    def excess(f, a=a):
+                        return self.chord_bound(a, f) - tol * (1 - 1e-6)
+
+                    b = spo.brentq(excess, a + (stop - a) * 1e-12, stop, xtol=1e-14, rtol=1e-10)
+                bounds.append(self.chord_bound(a, b))
+                nodes.append(b)
+        F = np.array(nodes)
+        return PiecewiseSpring(F, self.approach(F), np.array(bounds))
+
+
 @dataclass(frozen=True)
 class ContactStiffness:
     """The contact's stiffnesses in series, N/m.
@@ -340,8 +496,8 @@ def tube_on_rod_stiffness(
     probe : Probe
         The probe (its outer and inner diameter and Young's modulus are used).
     obj : Material
-        The rod's material. Wood (``obj.name == "wood"``) is indented across the grain: its
-        modulus becomes :func:`across_grain_modulus` of its ``youngs_modulus`` (along the grain).
+        The rod's material; its ``transverse_modulus`` (across the rod's axis: for wood, across
+        the grain, as the material table states it) is the one the contact feels.
     rod_diameter : float
         Diameter of the rod, m (> 0).
     preload : float
@@ -360,20 +516,48 @@ def tube_on_rod_stiffness(
     >>> round(ks.hertz / 1e5, 2), round(ks.ring / 1e5, 2), ks.dominant
     (5.64, 2.75, 'ring')
     """
+    law = tube_on_rod_law(
+        probe, obj, rod_diameter, probe_poisson_ratio=probe_poisson_ratio,
+        object_modulus=object_modulus, wall=wall,
+    )  # fmt: skip
+    k_h = law.hertz.stiffness(preload)
+    k_r = law.ring
+    total = 1.0 / (1.0 / k_h + 1.0 / k_r)
+    return ContactStiffness(k_h, k_r, total, law.hertz.modulus)
+
+
+def tube_on_rod_law(
+    probe,
+    obj,
+    rod_diameter: float,
+    *,
+    probe_poisson_ratio: float = TUBE_POISSON_RATIO,
+    object_modulus: float | None = None,
+    wall: bool = True,
+) -> HertzInSeries:
+    """The contact's whole force law: crossed-cylinder Hertz in series with the tube wall.
+
+    Parameters as :func:`tube_on_rod_stiffness` (without the preload: the law holds at every
+    force). The rod's modulus is its material's ``transverse_modulus``.
+
+    Examples
+    --------
+    >>> from ebantenna.probe import Probe, material
+    >>> law = tube_on_rod_law(Probe(), material("steel"), 0.012)
+    >>> round(law.stiffness(0.5) / 1e5, 2)  # N/m, the linearised spring at 0.5 N
+    1.85
+    """
     Ep = check_positive("probe.youngs_modulus", probe.youngs_modulus)
     if object_modulus is not None:
         Eo = check_positive("object_modulus", object_modulus)
-    elif getattr(obj, "name", None) == "wood":
-        Eo = across_grain_modulus(obj.youngs_modulus)
     else:
-        Eo = obj.youngs_modulus
+        Eo = getattr(obj, "transverse_modulus", None) or obj.youngs_modulus
     _, nu_o = _elastic("obj", obj, None)
     Es = contact_modulus(Ep, Eo, poisson_ratio1=probe_poisson_ratio, poisson_ratio2=nu_o)
     R2 = check_positive("rod_diameter", rod_diameter) / 2
-    k_h = CrossedCylinders(probe.outer_diameter / 2, R2, Es).stiffness(preload)
+    hertz = CrossedCylinders(probe.outer_diameter / 2, R2, Es)
     if wall and probe.inner_diameter > 0:
         k_r = ring_stiffness(probe.outer_diameter, probe.inner_diameter, Ep, probe_poisson_ratio)
     else:
         k_r = math.inf
-    total = 1.0 / (1.0 / k_h + 1.0 / k_r)
-    return ContactStiffness(k_h, k_r, total, Es)
+    return HertzInSeries(hertz, k_r)

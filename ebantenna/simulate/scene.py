@@ -42,7 +42,9 @@ from .effects import EFFECT_TYPES, GY521_MASS, effect_names, make_effect
 #: coefficient of the tube on four of the five materials is tabulated (a scene that asks for it
 #: lists it with its own). Its contact only pushes (``unilateral_contact``); what a linear
 #: contact would change is measured by ``ebantenna reproduce``.
-PAPER_LEAVES_OUT = frozenset({"contact_compliance", "coulomb_friction"})
+#: ``hertz_contact`` too: it costs several times the linearised contact's strike (``ebantenna
+#: bench``); ``ebantenna reproduce`` measures what it changes on the controls' design.
+PAPER_LEAVES_OUT = frozenset({"contact_compliance", "coulomb_friction", "hertz_contact"})
 
 __all__ = ["Scene", "builtin_scene", "scene_names", "load_scene", "resolve_scene"]
 
@@ -56,6 +58,7 @@ EFFECT_NEEDS = (
         "object_modes",
         "it is the contact with the touched rod that only pushes",
     ),
+    ("hertz_contact", "unilateral_contact", "it is the force law of the strike's contact"),
     ("coulomb_friction", "object_modes", "its normal force is the rod contact's preload"),
     ("preload_scatter", "object_modes", "the preload it scatters is the rod contact's"),
 )

@@ -48,6 +48,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 
+from .contact import PiecewiseSpring
 from .modes import sweep_velocity
 from .structure import ContactModel
 from .unilateral import unilateral_response
@@ -78,8 +79,8 @@ class StrikeModel:
         ``output``, all in the stacked reduced coordinates.
     contact : float
         Contact position from the hinge, m (the approach speed is ``sweep_speed * contact``).
-    contact_stiffness : float
-        The contact spring, N/m.
+    contact_stiffness : float or PiecewiseSpring
+        The contact spring, N/m; or, with ``hertz_contact``, the chords of its Hertz law.
     preload : float
         The static contact force once the servo has stopped, N.
     """
@@ -164,8 +165,10 @@ def strike_model(
         substructure's loss factor (0 for none).
     contact : float
         Contact position from the hinge, m.
-    contact_stiffness, preload : float
-        The contact spring (N/m) and the static contact force (N).
+    contact_stiffness : float or PiecewiseSpring
+        The contact spring (N/m), or the chords of its force law.
+    preload : float
+        The static contact force (N).
     max_frequency : float
         Fixed-interface modes at or above it are dropped, Hz.
 
@@ -195,7 +198,10 @@ def strike_model(
     structure = ContactModel(
         _side_by_side(Mp, Mr), _side_by_side(Kp, Kr), _side_by_side(Cp, Cr), c, base, output
     )
-    return StrikeModel(structure, float(contact), float(contact_stiffness), float(preload))
+    spring = contact_stiffness
+    if not isinstance(spring, PiecewiseSpring):
+        spring = float(spring)
+    return StrikeModel(structure, float(contact), spring, float(preload))
 
 
 def strike_accelerations(
@@ -228,11 +234,14 @@ def strike_accelerations(
     Warns
     -----
     RuntimeWarning
-        Once, naming how many strikes reached ``max_events`` (their contact is then held).
+        Once, naming how many strikes reached ``max_events`` (their contact is then held); once,
+        naming how many pressed a Hertz contact beyond its chords' last node (sampled at
+        ``rate``).
     """
     out = np.empty((len(inverse), n_samples))
     restrikes = np.zeros(len(inverse), dtype=int)
     held = np.zeros(len(inverse), dtype=bool)
+    beyond = np.zeros(len(inverse), dtype=bool)
     duration = (n_samples - 1) / rate
     for i, (k, speed) in enumerate(zip(inverse, speeds, strict=True)):
         m = models[k]
@@ -248,12 +257,23 @@ def strike_accelerations(
         out[i] = res.acceleration[:n_samples]
         restrikes[i] = res.n_impacts - 1
         held[i] = res.bilateral_from is not None
+        beyond[i] = isinstance(m.contact_stiffness, PiecewiseSpring) and bool(
+            res.contact_force.max() > m.contact_stiffness.forces[-1]
+        )
     if held.any():
         warnings.warn(
             f"{held.sum()} of {held.size} strikes chattered beyond max_events={max_events} "
             "contact changes; their contact was held closed from then on (undamped bodies "
             "chatter without end: list structural_damping and object_damping, or raise "
             "max_events)",
+            RuntimeWarning,
+            stacklevel=2,
+        )
+    if beyond.any():
+        warnings.warn(
+            f"{beyond.sum()} of {beyond.size} strikes pressed the contact beyond the Hertz "
+            "chords' last node (hertz_contact's max_force), where their force bound does not "
+            "hold; raise max_force",
             RuntimeWarning,
             stacklevel=2,
         )

@@ -126,12 +126,18 @@ def _coupled_model(case: ContactCase) -> ArrestModes:
 
 
 def _unilateral_model(case: ContactCase):
-    """The ``unilateral`` model: the same reductions, struck through a contact that only pushes."""
+    """The ``unilateral`` model: the same reductions, struck through a contact that only pushes
+    (with ``hertz_contact``: its force law the Hertz law's chords, not the linearised spring)."""
+    spring = case.stiffness
+    hertz = case.scene.effect("hertz_contact")
+    if hertz is not None:
+        diameter = case.scene.effect("object_modes").diameter
+        spring = hertz.spring(case.rod.material, case.probe, diameter, case.preload)
     return strike_model(
         case.probe_reduction,
         case.rod_reduction,
         case.contact,
-        case.stiffness,
+        spring,
         case.preload,
         case.scene.max_frequency,
     )

@@ -67,6 +67,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validate import check_choice, check_int, check_nonnegative, check_positive
+from .contact import PiecewiseSpring
 from .linear_state import MARCHES, LinearState, SwitchedSystem, crossing, step_grid
 from .structure import check_dof_vector, check_symmetric_matrix, mass_inverse
 
@@ -74,7 +75,9 @@ __all__ = [
     "ChatterError",
     "ContactEvent",
     "StrikeLaw",
+    "HertzStrikeLaw",
     "contact_states",
+    "segment_states",
     "preload_overtravel",
     "UnilateralResponse",
     "unilateral_response",
@@ -177,8 +180,10 @@ def unilateral_response(
         Stiffness matrix without the contact, symmetric positive semidefinite (N/m).
     contact : int or array of shape (n,)
         The contact point's displacement toward the object: a DOF index or a vector ``c``.
-    contact_stiffness : float
-        Contact spring ``k_c``, N/m (> 0).
+    contact_stiffness : float or PiecewiseSpring
+        Contact spring ``k_c``, N/m (> 0); or a spring whose force law is chords
+        (:class:`.contact.PiecewiseSpring`, e.g. the Hertz law of
+        :meth:`.contact.HertzInSeries.piecewise`), marched by :class:`HertzStrikeLaw`.
     base : int or array of shape (n,)
         The servo's rigid motion per metre of its travel at the contact point, ``r``.
     approach_speed : float
@@ -238,7 +243,8 @@ def unilateral_response(
     c = check_dof_vector("contact", contact, n)
     r = check_dof_vector("base", base, n)
     o = c if output is None else check_dof_vector("output", output, n)
-    kc = check_positive("contact_stiffness", contact_stiffness)
+    spring = contact_stiffness if isinstance(contact_stiffness, PiecewiseSpring) else None
+    kc = spring.slopes[0] if spring else check_positive("contact_stiffness", contact_stiffness)
     v0 = check_positive("approach_speed", approach_speed)
     T = check_positive("duration", duration)
     fs = check_positive("fs", fs)
@@ -251,13 +257,10 @@ def unilateral_response(
     if np.linalg.eigvalsh(K).min() < -1e-10 * max(1.0, np.abs(K).max()):
         raise ValueError("stiffness must be positive semidefinite")
 
-    overtravel = preload_overtravel(K, c, kc, F0)
-    free, closed, pen = contact_states(Minv, K, C, c, kc, o)
-    grid = step_grid([free, closed], fs, T, STEPS_PER_PERIOD)
-    law = StrikeLaw(
-        free, closed, pen, r, overtravel / v0, grid, max_events=max_events,
-        on_max_events=on_max_events, time_tolerance=xtol, return_states=return_states,
-    )  # fmt: skip
+    options = dict(max_events=max_events, on_max_events=on_max_events, time_tolerance=xtol,
+                   return_states=return_states)  # fmt: skip
+    law, grid, overtravel = _strike_law((Minv, K, C, c, r, o), spring or kc, F0, v0, fs, T,
+                                        options)  # fmt: skip
     x, state = law.first_touch(v0)
     MARCHES[method](law, x, state, grid[3])
     logger.debug("unilateral strike: %d events, %d steps of %.3g s", len(law.events), grid[3],
@@ -266,6 +269,24 @@ def unilateral_response(
         np.arange(grid[2]) / fs, law.acc, law.force, tuple(law.events), law.stop_time,
         overtravel, law.bilateral_from, law.trajectory,
     )  # fmt: skip
+
+
+def _strike_law(structure, spring, F0, v0, fs, T, options):
+    """The law of a strike, its step grid and the overtravel, for a linear spring (a float) or
+    chords (:class:`.contact.PiecewiseSpring`). Takes checked values."""
+    Minv, K, C, c, r, o = structure
+    if not isinstance(spring, PiecewiseSpring):
+        overtravel = preload_overtravel(K, c, spring, F0)
+        free, closed, pen = contact_states(Minv, K, C, c, spring, o)
+        grid = step_grid([free, closed], fs, T, STEPS_PER_PERIOD)
+        return StrikeLaw(free, closed, pen, r, overtravel / v0, grid, **options), grid, overtravel
+    # the overtravel from the chords' own p(F0) (a node: the law's, exactly)
+    secant = F0 / spring.approach_at(F0) if F0 > 0 else float(spring.slopes[0])
+    overtravel = preload_overtravel(K, c, secant, F0)
+    free, segments, pen = segment_states(Minv, K, C, c, spring, o)
+    grid = step_grid([free, *segments], fs, T, STEPS_PER_PERIOD)
+    law = HertzStrikeLaw(free, segments, pen, r, overtravel / v0, grid, spring, **options)
+    return law, grid, overtravel
 
 
 def preload_overtravel(K, c, contact_stiffness: float, preload: float) -> float:
@@ -479,3 +500,166 @@ class StrikeLaw(SwitchedSystem):
             x = st.at(x, z, tau)
             t0 = t0 + tau
             st = self.switch(st, x, t0)
+
+
+def segment_states(Minv, K, C, c, spring, output):
+    """The free state and one closed state per chord of ``spring``, ``(free, segments, pen)``.
+
+    In the closed state of chord ``j`` the force is ``k_j (p - e_j)`` (slope ``k_j``, offset
+    ``e_j``): the linear contact's state with the spring ``k_j`` and the servo's coordinate
+    shifted by ``e_j``. :class:`HertzStrikeLaw` keeps ``x`` in the coordinates of the state
+    that holds (``s - e_j``), so each state watches and records the true force ``k_j p~``.
+    Takes checked values.
+    """
+    n = K.shape[0]
+    free, _, pen = contact_states(Minv, K, C, c, float(spring.slopes[0]), output)
+    segments = []
+    for k in spring.slopes:
+        A = state_matrix(Minv, K, C, c, float(k), closed=True)
+        kp = float(k) * pen
+        segments.append(LinearState(A, n, kp, kp, output @ A[n : 2 * n]))
+    return free, segments, pen
+
+
+class HertzStrikeLaw(StrikeLaw):
+    """The strike through a contact whose force law is chords (:class:`.contact.PiecewiseSpring`).
+
+    Each chord is a linear state (:func:`segment_states`), propagated exactly as the linear
+    contact's; the state also ends where the force reaches the chord's upper node (the next
+    chord takes over) or, above the first chord, its lower node (the previous one does). The
+    force is continuous at a node, so a change of chord changes the equations only. Contact and
+    separation are the first chord's lower end and the gap's closing, as in :class:`StrikeLaw`;
+    only they count toward ``max_events``. The error of the force law is the spring's
+    ``bound`` (up to its last node); the integration of the chords adds only the event
+    tolerance and rounding.
+
+    Parameters
+    ----------
+    free : LinearState
+        The contact open.
+    segments : list of LinearState
+        The contact closed on each chord.
+    pen, base, stop_time, grid
+        As in :class:`StrikeLaw`.
+    spring : PiecewiseSpring
+        The chords.
+    max_events, on_max_events, time_tolerance, return_states
+        As in :func:`unilateral_response`.
+    """
+
+    #: Most changes of chord in one step before the march gives up (a node grazed by rounding).
+    MAX_CHORD_CHANGES = 10_000
+
+    def __init__(self, free, segments, pen, base, stop_time, grid, spring, **options):
+        super().__init__(free, segments[0], pen, base, stop_time, grid, **options)
+        self.segments = segments
+        self.index = {id(st): j for j, st in enumerate(segments)}
+        self.offsets = np.asarray(spring.offsets, float)
+        self.nodes = np.append(spring.forces[:-1], math.inf)  # the last chord continues
+        self.chord_changes = 0
+
+    def limits(self, st):
+        """The forces ``(lower, upper)`` between which the chord of ``st`` holds, N."""
+        j = self.index[id(st)]
+        lower = -math.inf if (j == 0 and self.frozen) else float(self.nodes[j])
+        return lower, float(self.nodes[j + 1])
+
+    def shift(self, st) -> float:
+        """The offset ``e_j`` of the state's coordinates, m (0 when free)."""
+        return 0.0 if st is self.free else float(self.offsets[self.index[id(st)]])
+
+    def ends(self, key):
+        """Where a chord's state ends: at either of its nodes; the free state: the gap closes."""
+        if key is self.free:
+            return None
+        lower, upper = self.limits(key)
+        return lambda values: (values[:, 0] <= lower) | (values[:, 0] >= upper)
+
+    def quiet(self, key, x, z, m):
+        """No event within ``m`` steps: the force provably stays between the chord's nodes."""
+        if key is self.free:
+            return key.stays_positive(x, z, m)
+        if not key.eigen:
+            return False
+        lower, upper = self.limits(key)
+        k = 2 * self.base.size
+        s, sigma = x[k], x[k + 1]
+        a, b = key.row_s[0], key.row_speed[0]
+        ends = (s * a, (s + sigma * self.h * m) * a)
+        if key.growing:
+            rate = key.lam.real
+            peak = np.exp(np.where(rate > 0, rate * m, rate) * self.h)
+        else:
+            peak = key.peak
+        swing = float(np.abs(key.row_modes[0] * z) @ peak)
+        return bool(min(ends) + sigma * b - swing > lower and max(ends) + sigma * b + swing < upper)
+
+    def first_exit(self, st, x, span, fresh):
+        """The first node (or the gap's closing) reached within ``span`` after ``x``:
+        ``(tau, x there, "up" or "down")``, or None. ``fresh``: ``st`` was entered at ``x``."""
+        z = st.modal(x)
+        curve = st.curve(x, z)
+        if st is self.free:
+            sides = (("up", 0.0, 1.0),)  # the gap, watched as it is
+        else:
+            lower, upper = self.limits(st)
+            sides = (("down", lower, 1.0), ("up", upper, -1.0))
+        found = None
+        for which, node, sign in sides:
+            if math.isinf(node):
+                continue
+
+            def g(tau, node=node, sign=sign):
+                value, rate = curve(tau)
+                return sign * (value - node), sign * rate
+
+            end = g(span)[0]
+            if end > 0:
+                continue
+            start = g(0.0)[0]
+            if start <= 0 and not fresh:
+                tau = 0.0
+            else:
+                tau = crossing(g, span, self.xtol, max(start, np.finfo(float).tiny), end)
+            if found is None or tau < found[0]:
+                found = (tau, which)
+        return None if found is None else (found[0], st.at(x, z, found[0]), found[1])
+
+    def change(self, st, x, t, which):
+        """Enter the next state at an event at ``t``: ``(state, x)``, another chord (``x``
+        shifted to its coordinates) or contact and separation (:meth:`StrikeLaw.switch`)."""
+        j = self.index.get(id(st))
+        if st is self.free or (j == 0 and which == "down"):
+            return self.switch(st, x, t), x
+        self.chord_changes += 1
+        if self.chord_changes > self.MAX_CHORD_CHANGES * (len(self.events) + 1):
+            raise ChatterError(f"the force keeps crossing a node of the contact law at t={t:.6g} s")
+        new = self.segments[j + 1 if which == "up" else j - 1]
+        x = x.copy()
+        x[2 * self.base.size] += self.shift(st) - self.shift(new)
+        return new, x
+
+    def advance(self, x, st, t0, t1, crosses=False):
+        """Propagate from ``t0`` to ``t1`` (at most one step) through any events on the way:
+        the first node or gap reached (:meth:`first_exit`), then the state it enters."""
+        fresh = False
+        while True:
+            found = self.first_exit(st, x, t1 - t0, fresh)
+            if found is None:
+                return st.step(x, t1 - t0), st
+            tau, x, which = found
+            t0 += tau
+            st, x = self.change(st, x, t0, which)
+            fresh = True
+
+    def record(self, i, x, key):
+        """Record step ``i`` as :class:`StrikeLaw` does, the state in true coordinates."""
+        super().record(i, x, key)
+        if self.trajectory is not None and i % self.sub == 0:
+            self.trajectory[i // self.sub, 2 * self.base.size] += self.shift(key)
+
+    def record_block(self, i, j, values, x, z, key):
+        """Record a block read ahead, the states in true coordinates."""
+        super().record_block(i, j, values, x, z, key)
+        if self.trajectory is not None and len(j):
+            self.trajectory[(i + 1 + j) // self.sub, 2 * self.base.size] += self.shift(key)

@@ -15,6 +15,7 @@ SHAPE_THE_MODES = {
     "contact_compliance",
     "object_modes",
     "object_damping",
+    "hertz_contact",  # the force law of the "unilateral" model's strike
     "tip_mass",
     "dlpf",
 }

@@ -9,7 +9,8 @@ which change the modal parameters: :class:`StructuralDamping`, :class:`ContactCo
 object behind a spring), :class:`ObjectModes` (the object as a rod with its own modes, coupled to
 the probe), :class:`ObjectDamping` (that rod's material damping), :class:`PreloadScatter` (the
 contact's preload from strike to strike), :class:`UnilateralContact` (the probe lifts off and
-strikes again), :class:`CoulombFriction` (the probe sticks to the rod and slips along it),
+strikes again), :class:`HertzContact` (the strike's contact follows the Hertz law),
+:class:`CoulombFriction` (the probe sticks to the rod and slips along it),
 :class:`TipMass`.
 
 *The sensor and the acquisition* (:mod:`.sensor`), which act on the sampled signals, in this order:
@@ -32,6 +33,7 @@ effect never changes the random numbers of another.
 
 from __future__ import annotations
 
+from .hertz import HertzContact
 from .objects import CoulombFriction, ObjectDamping, ObjectModes, UnilateralContact
 from .physics import GY521_MASS, ContactCompliance, StructuralDamping, TipMass
 from .sensor import (
@@ -58,6 +60,7 @@ __all__ = [
     "ObjectDamping",
     "PreloadScatter",
     "UnilateralContact",
+    "HertzContact",
     "CoulombFriction",
     "SensorDrift",
     "TipMass",
@@ -82,6 +85,7 @@ EFFECT_TYPES = (
     ObjectDamping,
     PreloadScatter,
     UnilateralContact,
+    HertzContact,
     CoulombFriction,
     TipMass,
     ClockJitter,

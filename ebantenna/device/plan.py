@@ -154,7 +154,7 @@ class Plan:
         return SearchConfig(**self.search)
 
     def to_dict(self) -> dict:
-        """The plan as plain JSON values (what :func:`load_plan` reads back, simulation included)."""
+        """The plan as plain JSON values (what :func:`load_plan` reads back)."""
         out = {"name": self.name, "materials": list(self.materials),
                "contacts_m": list(self.contacts), "repetitions": self.repetitions,
                "probe_length": self.probe_length, "search": dict(self.search)}

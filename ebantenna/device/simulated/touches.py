@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from ..._validate import check_int
-from ..session import Connection
+from ..recording_session import Connection
 from .faults import Faults
 from .rig import SimulatedRig
 
@@ -22,8 +22,8 @@ __all__ = ["simulated_connect"]
 
 
 def simulated_connect(scene, *, faults: Faults | None = None, seed: int = 0):
-    """``connect(touch, attempt)`` for :class:`~ebantenna.device.session.RecordingSession` on
-    simulated rigs of ``scene``.
+    """``connect(touch, attempt)`` on simulated rigs of ``scene``, for
+    :class:`~ebantenna.device.recording_session.RecordingSession`.
 
     Parameters
     ----------

@@ -1,9 +1,9 @@
 """A data set from a session's recordings, in the package's data-set format.
 
-:func:`assemble_dataset` reads a recording session's manifest (:mod:`ebantenna.device.session`)
-and puts its recordings together as a :class:`~ebantenna.simulate.Dataset` that
-:func:`~ebantenna.simulate.load_dataset` reads and the study runs on. Each recording is cut at its
-contact sample (the detector's trigger) to the session's recorded duration and resampled onto the
+:func:`assemble_dataset` reads a recording session's manifest
+(:mod:`ebantenna.device.recording_session`) and puts its recordings together as a
+:class:`~ebantenna.simulate.Dataset` that :func:`~ebantenna.simulate.load_dataset` reads and
+the study runs on. Each recording is cut at its contact sample (the detector's trigger) to the session's recorded duration and resampled onto the
 nominal sample grid from its own timestamps (linear interpolation: it bridges the few samples a
 bus fault lost, and turns the chip's own clock into host time). Inconsistent inputs are refused
 by name, with the file at fault:
@@ -31,7 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from ... import __version__
-from ...device.session import MANIFEST, file_sha256, read_manifest, write_atomic
+from ...device.recording_session import MANIFEST, file_sha256, read_manifest, write_atomic
 from ...paper.protocol import DATASET
 from ...recording import Recording
 from ...simulate import Dataset
@@ -150,11 +150,15 @@ def _resampled(rec: Recording, name: str, fs: float, n: int, max_lost: float):
         raise ValueError(f"{name}: missing label trigger_time (the contact sample's time)")
     start = round(meta["trigger_time"] * fs) / rec.fs  # the trigger slot on the estimated grid
     grid = start + np.arange(n) / fs
-    if rec.t[-1] < grid[-1] - 1.0 / fs or rec.t[0] > start + 1.0 / fs:
+    budget = int(max_lost * n)  # samples that may be missing, at the ends as inside
+    if rec.t[-1] < grid[-1] - budget / fs or rec.t[0] > start + budget / fs:
         raise ValueError(f"{name}: too short: it covers {rec.t[-1] - start:.3f} s after the "
                          f"contact, the data set needs {(n - 1) / fs:.3f} s ({n} samples)")
     slots = np.rint((rec.t - start) * fs).astype(np.int64)
     interpolated = n - np.intersect1d(slots, np.arange(n)).size
+    if interpolated > budget:
+        raise ValueError(f"{name}: {interpolated} of the {n} samples after the contact lost, "
+                         f"more than {max_lost:.0%}")
     return (np.interp(grid, rec.t, rec.ax), np.interp(grid, rec.t, rec.az), int(interpolated))
 
 

@@ -166,7 +166,7 @@ class RecordingSession:
         Largest share of a recording's window that may be missing (samples lost to bus faults),
         in [0, 1). A touch that loses more is made again. Default 0.02.
     attempts : int
-        Tries of a touch whose recording lost too much, >= 1. Default 3.
+        Tries of a touch whose recording lost too much, >= 1. Default 5.
     say : callable, optional
         ``say(text)`` tells the operator what happens (default: the log).
     confirm : callable, optional
@@ -177,7 +177,7 @@ class RecordingSession:
     """
 
     def __init__(self, directory, plan: Plan, connect, *, rig: dict | None = None,
-                 max_lost: float = 0.02, attempts: int = 3, say=None, confirm=None,
+                 max_lost: float = 0.02, attempts: int = 5, say=None, confirm=None,
                  show_progress=None):
         if not isinstance(plan, Plan):
             raise TypeError(f"plan must be a Plan, got {type(plan).__name__}")

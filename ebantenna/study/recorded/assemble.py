@@ -3,9 +3,10 @@
 :func:`assemble_dataset` reads a recording session's manifest
 (:mod:`ebantenna.device.recording_session`) and puts its recordings together as a
 :class:`~ebantenna.simulate.Dataset` that :func:`~ebantenna.simulate.load_dataset` reads and
-the study runs on. Each recording is cut at its contact sample (the detector's trigger) to the session's recorded duration and resampled onto the
-nominal sample grid from its own timestamps (linear interpolation: it bridges the few samples a
-bus fault lost, and turns the chip's own clock into host time). Inconsistent inputs are refused
+the study runs on. Each recording is cut at its contact sample (the detector's trigger) to the
+session's recorded duration and resampled onto the nominal sample grid from its own timestamps
+(linear interpolation: it bridges the few samples a bus fault lost, and turns the chip's own
+clock into host time). Inconsistent inputs are refused
 by name, with the file at fault:
 
 - a damaged file (its checksum differs from the manifest's, or it does not load);

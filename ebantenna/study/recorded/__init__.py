@@ -2,7 +2,16 @@
 sections that need only recordings run on it."""
 
 from .assemble import LABELS, MIN_SAMPLES, assemble_dataset
-from .study import NOT_APPLICABLE, RECORDED_STEPS, intervals, reproduce_recorded
+from .planning import protocol_plan
+from .study import (
+    NOT_APPLICABLE,
+    RECORDED_STEPS,
+    classification_interval,
+    intervals,
+    placement_interval,
+    reproduce_recorded,
+)
 
-__all__ = ["assemble_dataset", "LABELS", "MIN_SAMPLES", "reproduce_recorded", "intervals",
-           "NOT_APPLICABLE", "RECORDED_STEPS"]
+__all__ = ["assemble_dataset", "LABELS", "MIN_SAMPLES", "protocol_plan", "reproduce_recorded",
+           "intervals", "classification_interval", "placement_interval", "NOT_APPLICABLE",
+           "RECORDED_STEPS"]

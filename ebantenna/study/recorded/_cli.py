@@ -54,29 +54,15 @@ def register(subparsers) -> None:
 
 def _plan_and_connect(args):
     """The plan, the ``connect`` of the rig, and the rig's description."""
-    from ...device.plan import Plan, load_plan
-    from ...paper.data import design
-    from ...paper.protocol import DATASET
-    from ...simulate import dataset_plan
+    from ...device.plan import load_plan
     from ...simulate.scene import resolve_scene
+    from .planning import protocol_plan
 
-    chosen = design(args.quick)
-    if args.simulated:
-        scene = resolve_scene(args.scene)
-        length = scene.probe.length
-    else:
-        length = DATASET.probe_length
+    scene = resolve_scene(args.scene) if args.simulated else None
     if args.plan is not None:
         plan = load_plan(args.plan)
     else:
-        rows = dataset_plan(scene, chosen, args.seed) if args.simulated else None
-        simulation = () if rows is None else tuple(
-            {"contact_true": float(rows["contact_true"][i]),
-             "sweep_speed": float(rows["sweep_speed"][i]),
-             "tilt_ratio": float(rows["tilt_ratio"][i]), "seed": int(rows["seed_row"][i])}
-            for i in range(rows["contact"].size))
-        plan = Plan(chosen.name, chosen.materials, tuple(chosen.contacts(length).tolist()),
-                    chosen.repetitions, length, {}, simulation)
+        plan = protocol_plan(quick=args.quick, scene=scene, seed=args.seed)
     if args.simulated:
         if abs(scene.probe.length - plan.probe_length) > 1e-9:
             raise ValueError(f"the plan's probe is {plan.probe_length:g} m long, the scene's "

@@ -29,7 +29,8 @@ from ...report import FigureSet, Report
 from ...simulate import load_dataset
 from .. import full_range, learning, material_splits, signals
 
-__all__ = ["NOT_APPLICABLE", "reproduce_recorded", "intervals", "RECORDED_STEPS"]
+__all__ = ["NOT_APPLICABLE", "reproduce_recorded", "intervals", "classification_interval",
+           "placement_interval", "RECORDED_STEPS"]
 
 #: The sections run on recordings, in order.
 RECORDED_STEPS = ("features", "frequency", "decay", "ml", "splits", "full range")
@@ -64,20 +65,38 @@ def intervals(learnt, contact_step: float) -> dict:
         ``linear_region`` and ``full_length`` the mean absolute error (cm), the share placed, its
         size and interval.
     """
-    out = {}
-    for name, result in (("svm", learnt.svm), ("ann", learnt.ann)):
-        m = result.confusions["test"]
-        correct, n = int(np.trace(m)), int(m.sum())
-        out[name] = {"test_accuracy": correct / n, "n_test": n,
-                     "interval95": list(accuracy_interval(correct, n))}
-    for name, result in (("linear_region", learnt.linear_region),
-                         ("full_length", learnt.full_length)):
-        errors = result.errors_cm
-        placed = int(np.sum(errors <= 50.0 * contact_step))  # half a step, in cm
-        out[name] = {"mae_cm": float(errors.mean()), "placed": placed / errors.size,
-                     "n_test": int(errors.size),
-                     "interval95": list(accuracy_interval(placed, errors.size))}
-    return out
+    return {"svm": classification_interval(learnt.svm),
+            "ann": classification_interval(learnt.ann),
+            "linear_region": placement_interval(learnt.linear_region, contact_step),
+            "full_length": placement_interval(learnt.full_length, contact_step)}
+
+
+def classification_interval(result) -> dict:
+    """A classifier's test accuracy, test size and 95 % Wilson interval.
+
+    Parameters
+    ----------
+    result : ebantenna.paper.experiments.ClassificationResult
+    """
+    m = result.confusions["test"]
+    correct, n = int(np.trace(m)), int(m.sum())
+    return {"test_accuracy": correct / n, "n_test": n,
+            "interval95": list(accuracy_interval(correct, n))}
+
+
+def placement_interval(result, contact_step: float) -> dict:
+    """A distance network's mean absolute error (cm) and the share of its test contacts placed
+    within half a contact step (``contact_step``, m), with the share's 95 % Wilson interval.
+
+    Parameters
+    ----------
+    result : ebantenna.paper.experiments.RegressionResult
+    contact_step : float
+    """
+    errors = result.errors_cm
+    placed = int(np.sum(errors <= 50.0 * contact_step))  # half a step, in cm
+    return {"mae_cm": float(errors.mean()), "placed": placed / errors.size,
+            "n_test": int(errors.size), "interval95": list(accuracy_interval(placed, errors.size))}
 
 
 def reproduce_recorded(data, out_dir="ebantenna-recorded", *, seed: int = 0,

@@ -50,6 +50,55 @@ def register(subparsers) -> None:
                      help="hardware only: do not wait for Enter when the object is to be moved")
     rec.add_argument("--json", action="store_true", help="print one JSON object")
     rec.set_defaults(func=run_record)
+    cal = subparsers.add_parser(
+        "calibrate",
+        help="fit the hinge stiffness, tip mass and loss factor to recordings",
+        description="Fit the probe's hinge stiffness, tip mass and loss factor to a data set of "
+        "recordings at known contact distances (e.g. from 'ebantenna dataset "
+        "--from-recordings'), with their 95 %% intervals; write the scene with the fitted values "
+        "(usable by 'ebantenna simulate --scene FILE'), a figure of measured against simulated "
+        "frequency versus distance, and calibration.json in --out.",
+    )
+    cal.add_argument("--data", required=True, metavar="FILE", help="the data set of recordings")
+    cal.add_argument("--scene", default="paper", metavar="NAME|FILE",
+                     help="the scene to calibrate (paper)")
+    cal.add_argument("--out", required=True, metavar="DIR", help="output directory")
+    cal.add_argument("--json", action="store_true", help="print one JSON object")
+    cal.set_defaults(func=run_calibrate)
+
+
+def run_calibrate(args) -> int:
+    """Run ``ebantenna calibrate``."""
+    import json
+    from pathlib import Path
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from ...cli import print_json
+    from ...simulate import load_dataset
+    from ...simulate.scene import resolve_scene
+    from .calibration import calibrate, plot_calibration
+
+    base = resolve_scene(args.scene)
+    cal = calibrate(load_dataset(args.data), base.probe)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    scene = cal.scene(base)
+    summary = {**cal.to_dict(), "data": str(args.data),
+               "scene": str(scene.save(out / f"{scene.name}.toml"))}
+    fig = plot_calibration(cal, base.probe)
+    fig.savefig(out / "calibration.png", dpi=120)
+    summary["figure"] = str(out / "calibration.png")
+    (out / "calibration.json").write_text(json.dumps(summary, indent=2), encoding="utf-8")
+    if args.json:
+        print_json(summary)
+        return 0
+    for name, unit in (("hinge_stiffness", "N m/rad"), ("tip_mass", "kg"), ("loss_factor", "")):
+        lo, hi = cal.interval(name)
+        print(f"{name}: {getattr(cal, name):.4g} {unit} (95 % {lo:.4g} - {hi:.4g})")
+    print(f"scene written to {summary['scene']}")
+    return 0
 
 
 def _plan_and_connect(args):

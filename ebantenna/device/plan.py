@@ -31,11 +31,16 @@ import json
 from dataclasses import dataclass, field, fields
 from pathlib import Path
 
-from .._validate import check_int, check_positive, check_real
+from .._validate import check_int, check_nonnegative, check_positive, check_real
+from ..chips.mpu6050 import RESET_WAIT
+from ..chips.pca9685 import OSCILLATOR_STARTUP
 from ..probe import material as lookup_material
 from .pantilt import SearchConfig
 
-__all__ = ["Touch", "Plan", "load_plan", "SEARCH_SETTINGS"]
+__all__ = ["Touch", "Plan", "load_plan", "session_time", "SEARCH_SETTINGS", "MOVE_SECONDS"]
+
+#: Assumed time for the operator to move the object to a new distance or material, s.
+MOVE_SECONDS = 30.0
 
 #: The :class:`~ebantenna.device.pantilt.SearchConfig` settings a plan file may set (numbers).
 SEARCH_SETTINGS = tuple(f.name for f in fields(SearchConfig) if f.name != "path")
@@ -182,9 +187,45 @@ class Plan:
         except (TypeError, ValueError) as exc:
             raise ValueError(f"{where}: {exc}") from None
 
-    def seconds(self, per_touch: float) -> float:
-        """How long the session takes at ``per_touch`` seconds a touch, s."""
-        return len(self) * check_positive("per_touch", per_touch)
+    @property
+    def placements(self) -> int:
+        """How many times the operator places an object: once per material and distance."""
+        return len(self.materials) * len(self.contacts)
+
+
+def session_time(plan: Plan, *, move: float = MOVE_SECONDS) -> dict:
+    """How long a session of ``plan`` takes on the rig, from its search settings, s.
+
+    Each touch checks the rig (the PCA9685's oscillator start-up and the MPU-6050's reset wait),
+    searches, and records ``pre_trigger + duration`` around the contact. An object anywhere on
+    the search path is met within one loop of it: half a loop on average, ``max_search_time``
+    at worst (then the session stops). The operator moves the object ``plan.placements`` times,
+    ``move`` seconds each (an assumption; default :data:`MOVE_SECONDS`).
+
+    Returns
+    -------
+    dict
+        ``touch_s`` (a touch on average), ``touch_worst_s``, ``touches``, ``placements``,
+        ``total_s`` and ``worst_s`` (every search taking its longest).
+
+    Examples
+    --------
+    >>> t = session_time(Plan("demo", ("brass",), (0.1, 0.2), 2))
+    >>> round(t["touch_s"], 4), t["placements"], round(t["total_s"], 1)
+    (3.1505, 2, 72.6)
+    """
+    if not isinstance(plan, Plan):
+        raise TypeError(f"plan must be a Plan, got {type(plan).__name__}")
+    move = check_nonnegative("move", move)
+    config = plan.search_config()
+    check = OSCILLATOR_STARTUP + RESET_WAIT
+    window = config.pre_trigger + config.duration
+    typical = check + 0.5 * config.path.period + window
+    worst = check + config.max_search_time + window
+    moving = plan.placements * move
+    return {"touch_s": typical, "touch_worst_s": worst, "touches": len(plan),
+            "placements": plan.placements, "total_s": len(plan) * typical + moving,
+            "worst_s": len(plan) * worst + moving}
 
 
 def load_plan(path) -> Plan:

@@ -87,10 +87,10 @@ class Connection:
 
     Attributes
     ----------
-    bus : smbus2.SMBus or SimulatedBus
-    clock : SystemClock or VirtualClock
-    output_enable : OutputEnable or None
-    simulated : SimulatedRig or None
+    bus : smbus2.SMBus or ebantenna.device.simulated.SimulatedBus
+    clock : ebantenna.device.clock.SystemClock or ebantenna.device.clock.VirtualClock
+    output_enable : ebantenna.device.oe.OutputEnable or None
+    simulated : ebantenna.device.simulated.SimulatedRig or None
     """
 
     bus: object

@@ -79,9 +79,14 @@ class Calibration:
     decay_used: int
 
     def interval(self, name: str) -> tuple[float, float]:
-        """The 95 % interval of ``"hinge_stiffness"``, ``"tip_mass"`` or ``"loss_factor"``."""
+        """The 95 % interval of ``"hinge_stiffness"``, ``"tip_mass"`` or ``"loss_factor"``
+        (``(0, inf)`` for a stiffness the recordings do not determine, e.g. a hinge stiffer than
+        the tube can feel)."""
         if name == "hinge_stiffness":
-            spread = 10.0 ** (Z95 * self.log10_stiffness_sd)
+            exponent = Z95 * self.log10_stiffness_sd
+            if not exponent < 300:  # the recordings do not pin the stiffness down
+                return 0.0, math.inf
+            spread = 10.0 ** exponent
             return self.hinge_stiffness / spread, self.hinge_stiffness * spread
         value, sd = getattr(self, name), getattr(self, f"{name}_sd")
         return value - Z95 * sd, value + Z95 * sd
@@ -100,7 +105,8 @@ class Calibration:
                           hinge=self.hinge_stiffness)
 
     def to_dict(self) -> dict:
-        """JSON values: each parameter with its uncertainty and 95 % interval."""
+        """JSON values: each parameter with its uncertainty and 95 % interval (an unbounded end
+        as None)."""
         out = {"recordings": int(self.contacts.size), "decay_recordings": self.decay_used,
                "rms_residual_hz": self.rms_residual_hz,
                "log10_hinge_stiffness_sd": self.log10_stiffness_sd,
@@ -108,7 +114,8 @@ class Calibration:
                "hinge_stiffness_n_m_per_rad": self.hinge_stiffness, "tip_mass_kg": self.tip_mass,
                "loss_factor": self.loss_factor}
         for name in ("hinge_stiffness", "tip_mass", "loss_factor"):
-            out[f"{name}_interval95"] = list(self.interval(name))
+            out[f"{name}_interval95"] = [v if math.isfinite(v) else None
+                                         for v in self.interval(name)]
         return out
 
 

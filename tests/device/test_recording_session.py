@@ -25,7 +25,7 @@ from ebantenna.device.recording_session import (
 from ebantenna.device.simulated import Faults
 from ebantenna.device.simulated.touches import simulated_connect
 from ebantenna.recording import Recording
-from ebantenna.simulate import builtin_scene
+from ebantenna.simulate import builtin_scene, simulate
 
 SCENE = builtin_scene("paper")
 
@@ -36,7 +36,7 @@ def small_plan(**search) -> Plan:
 
 def session(tmp_path, plan=None, connect=None, **kwargs) -> RecordingSession:
     return RecordingSession(tmp_path / "s", plan or small_plan(),
-                            connect or simulated_connect(SCENE, seed=3),
+                            connect or simulated_connect(SCENE, simulate, seed=3),
                             rig={"simulated": True}, show_progress=False, **kwargs)
 
 
@@ -128,7 +128,7 @@ def test_another_plan_in_the_same_folder_is_refused(tmp_path):
 
 
 def test_servos_not_released_stop_the_session_and_block_it_until_the_rig_checks_out(tmp_path):
-    broken = simulated_connect(SCENE, seed=3, faults=Faults(release_fails=True))
+    broken = simulated_connect(SCENE, simulate, seed=3, faults=Faults(release_fails=True))
     s = session(tmp_path, connect=broken)
     with pytest.raises(UnsafeRigError, match="could not be released") as err:
         s.run()
@@ -148,7 +148,7 @@ def test_servos_not_released_stop_the_session_and_block_it_until_the_rig_checks_
 
 
 def test_a_dead_bus_is_refused_saying_what_to_do(tmp_path):
-    dead = simulated_connect(SCENE, faults=Faults(stuck_at=0.0, stuck_duration=1e6))
+    dead = simulated_connect(SCENE, simulate, faults=Faults(stuck_at=0.0, stuck_duration=1e6))
     with pytest.raises(UnsafeRigError, match="does not answer on the bus") as err:
         session(tmp_path, connect=dead).run()
     assert "i2cdetect" in str(err.value)
@@ -157,7 +157,7 @@ def test_a_dead_bus_is_refused_saying_what_to_do(tmp_path):
 
 def test_a_touch_that_lost_too_much_is_made_again(tmp_path):
     s = session(tmp_path, plan=Plan("one", ("brass",), (0.2,), 3), max_lost=0.0,
-                connect=simulated_connect(SCENE, seed=1, faults=Faults.every_kind(0.003)),
+                connect=simulated_connect(SCENE, simulate, seed=1, faults=Faults.every_kind(0.003)),
                 attempts=10)
     manifest = s.run()
     assert manifest["retakes"]  # a failed FIFO read restarts the FIFO: its samples are lost

@@ -30,7 +30,7 @@ def recorded(tmp_path_factory):
     """Six distances x 2 repetitions of brass, recorded through the simulated rig, assembled."""
     where = tmp_path_factory.mktemp("calibration")
     plan = Plan("calibration", ("brass",), (0.05, 0.10, 0.15, 0.20, 0.25, 0.30), 2)
-    RecordingSession(where / "session", plan, simulated_connect(RIG, seed=1),
+    RecordingSession(where / "session", plan, simulated_connect(RIG, simulate, seed=1),
                      show_progress=False).run()
     return assemble_dataset(where / "session", where)
 

@@ -13,7 +13,7 @@ from ebantenna.device.plan import Plan
 from ebantenna.device.recording_session import MANIFEST, RecordingSession, file_sha256
 from ebantenna.device.simulated.touches import simulated_connect
 from ebantenna.recording import Recording
-from ebantenna.simulate import builtin_scene, load_dataset
+from ebantenna.simulate import builtin_scene, load_dataset, simulate
 from ebantenna.study.recorded import MIN_SAMPLES, assemble_dataset
 
 
@@ -22,7 +22,7 @@ def recorded(tmp_path_factory):
     """A finished session of 2 materials x 2 distances x 2 repetitions on the simulated rig."""
     where = tmp_path_factory.mktemp("session") / "s"
     plan = Plan("tiny", ("brass", "pvc"), (0.1, 0.3), 2)
-    RecordingSession(where, plan, simulated_connect(builtin_scene("paper"), seed=2),
+    RecordingSession(where, plan, simulated_connect(builtin_scene("paper"), simulate, seed=2),
                      rig={"simulated": True}, show_progress=False).run()
     return where
 

@@ -17,7 +17,7 @@ from ebantenna.device.simulated.touches import simulated_connect
 from ebantenna.paper import experiments
 from ebantenna.paper.data import build_paper_dataset
 from ebantenna.paper.feature_table import signal_features
-from ebantenna.simulate import builtin_scene
+from ebantenna.simulate import builtin_scene, simulate
 from ebantenna.study.recorded import (
     NOT_APPLICABLE,
     classification_interval,
@@ -54,7 +54,7 @@ class InterruptingBus:
 def record_with_an_interruption(out, plan, scene, at: int) -> dict:
     """Record ``plan``, interrupted mid-touch at touch ``at``, then resumed to the end."""
     faults = Faults.every_kind(FAULT_RATE)
-    connect = simulated_connect(scene, faults=faults, seed=0)
+    connect = simulated_connect(scene, simulate, faults=faults, seed=0)
 
     def interrupted(touch, attempt):
         conn = connect(touch, attempt)

@@ -21,7 +21,7 @@ from .rig import SimulatedRig
 __all__ = ["simulated_connect"]
 
 
-def simulated_connect(scene, *, faults: Faults | None = None, seed: int = 0):
+def simulated_connect(scene, simulate, *, faults: Faults | None = None, seed: int = 0):
     """``connect(touch, attempt)`` on simulated rigs of ``scene``, for
     :class:`~ebantenna.device.recording_session.RecordingSession`.
 
@@ -29,6 +29,10 @@ def simulated_connect(scene, *, faults: Faults | None = None, seed: int = 0):
     ----------
     scene : ebantenna.simulate.Scene
         The scene every touch is simulated in (its probe must be the plan's).
+    simulate : callable
+        The scene simulator, :func:`ebantenna.simulate.simulate`: ``simulate(scene, seed=...)``
+        returns a :class:`~ebantenna.recording.Recording`. Passed in, so that the device package
+        imports the simulator in one place only (:mod:`~ebantenna.device.simulated.rig`).
     faults : Faults, optional
         Faults injected on every touch's bus.
     seed : int
@@ -36,13 +40,15 @@ def simulated_connect(scene, *, faults: Faults | None = None, seed: int = 0):
 
     Examples
     --------
-    >>> from ebantenna.simulate import builtin_scene
+    >>> from ebantenna.simulate import builtin_scene, simulate
     >>> from ebantenna.device.plan import Plan
-    >>> connect = simulated_connect(builtin_scene("paper"))
+    >>> connect = simulated_connect(builtin_scene("paper"), simulate)
     >>> conn = connect(Plan("demo", ("brass",), (0.2,), 1)[0], 1)
     >>> round(conn.simulated.clock.monotonic(), 6)
     0.0
     """
+    if not callable(simulate):
+        raise TypeError(f"simulate must be callable, got {type(simulate).__name__}")
     if not (faults is None or isinstance(faults, Faults)):
         raise TypeError(f"faults must be Faults or None, got {type(faults).__name__}")
     seed = check_int("seed", seed, minimum=0)
@@ -58,8 +64,6 @@ def simulated_connect(scene, *, faults: Faults | None = None, seed: int = 0):
         signal_seed = int(sim.get("seed", _derived(seed, touch.index, 0)))
 
         def vibration(fs: float):
-            from ...simulate import simulate
-
             return simulate(run if math.isclose(run.fs, fs) else run.with_(fs=fs),
                             seed=signal_seed)
 

@@ -123,13 +123,14 @@ def _plan_and_connect(args):
 def _simulated(args, scene):
     from ...device.simulated import Faults
     from ...device.simulated.touches import simulated_connect
+    from ...simulate import simulate
 
     if args.oe_gpio is not None or args.no_wait:
         raise ValueError("--oe-gpio and --no-wait work only on the real rig (--bus)")
     faults = Faults.every_kind(args.inject_faults) if args.inject_faults else None
     rig = {"simulated": True, "scene": scene.name, "seed": args.seed,
            "inject_faults": args.inject_faults}
-    return simulated_connect(scene, faults=faults, seed=args.seed), rig, None
+    return simulated_connect(scene, simulate, faults=faults, seed=args.seed), rig, None
 
 
 def _hardware(args):

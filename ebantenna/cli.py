@@ -39,6 +39,7 @@ COMMAND_MODULES = (
     "ebantenna.simulate._cli",
     "ebantenna.paper._cli",
     "ebantenna.device._cli",
+    "ebantenna.study.recorded._cli",
     "ebantenna.study._cli",
     "ebantenna.bench._cli",
 )

@@ -6,6 +6,7 @@ from __future__ import annotations
 def register(subparsers) -> None:
     """Add the ``dataset`` command."""
     from ..cli import seed_argument
+    from ..study.recorded._cli import add_from_recordings
 
     data = subparsers.add_parser(
         "dataset",
@@ -20,6 +21,7 @@ def register(subparsers) -> None:
     data.add_argument("--quick", action="store_true", help="a small version for tests and docs")
     data.add_argument("--jobs", type=int, default=1, metavar="N", help="worker processes (1)")
     data.add_argument("--json", action="store_true", help="print one JSON object")
+    add_from_recordings(data)
     data.set_defaults(func=run_dataset)
 
 
@@ -31,9 +33,12 @@ def run_dataset(args) -> int:
 
     from .._validate import output_dir
     from ..cli import interrupted, print_json
+    from ..study.recorded._cli import run_from_recordings
     from .data import build_paper_dataset
 
     output_dir("--out", args.out)  # refused before any work is done
+    if args.from_recordings is not None:
+        return run_from_recordings(args)
     start = time.perf_counter()
     try:
         data = build_paper_dataset(args.out, seed=args.seed, quick=args.quick, n_jobs=args.jobs)

@@ -6,6 +6,7 @@ from __future__ import annotations
 def register(subparsers) -> None:
     """Add the ``reproduce`` command."""
     from ..cli import seed_argument
+    from .recorded._cli import add_data
 
     rep = subparsers.add_parser(
         "reproduce",
@@ -23,6 +24,7 @@ def register(subparsers) -> None:
     rep.add_argument("--jobs", type=int, default=-1, help="parallel workers (-1: all cores)")
     rep.add_argument("--cache", metavar="DIR", help="data set cache (default ~/.cache/ebantenna)")
     rep.add_argument("--json", action="store_true", help="print the summary as one JSON object")
+    add_data(rep)
     rep.set_defaults(func=run_reproduce)
 
 
@@ -31,11 +33,14 @@ def run_reproduce(args) -> int:
     from .._validate import output_dir
     from ..cli import interrupted, print_json
     from ..paper import printed
+    from .recorded._cli import run_data
     from .reproduce import reproduce
 
     output_dir("--out", args.out)  # refused before any work is done
     if args.cache is not None:
         output_dir("--cache", args.cache)
+    if args.data is not None:
+        return run_data(args)
     try:
         result = reproduce(
             args.out,

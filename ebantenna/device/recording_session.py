@@ -1,0 +1,464 @@
+"""A recording session: every touch of a :class:`~ebantenna.device.plan.Plan`, saved as it is made.
+
+For each touch the session checks the rig (the servo outputs switched off and read back, the
+accelerometer's identity), runs the search of :func:`~ebantenna.device.pantilt.search_and_record`
+(search, touch, stop, record, release) and saves the recording with its labels, the rig's settings,
+the driver's fault counts, the timestamps' uncertainty and the release's outcome. A session lives
+in one folder::
+
+    DIR/session.json           the plan, the rig's settings and every saved touch (the manifest)
+    DIR/recordings/*.npz       one recording per touch (ebantenna.recording.Recording files)
+
+*Nothing twice, nothing lost.* A recording is written under a temporary name, flushed to disk and
+renamed, and only then entered in the manifest, itself replaced whole the same way. A session
+that stops, however it stops (Ctrl-C, SIGTERM, a power cut), is resumed by running it again on the
+same folder: the touches in the manifest are kept (their checksums verified), a recording that
+was renamed into place but not yet entered (the power failed between the two) is entered, and a
+touch that was under way is made again from the start, its partial window never kept.
+
+*Safety first.* The session stops, saying why and what to do, when the rig is unsafe: the servos
+could not be released (:class:`UnsafeRigError`, ``servos_may_be_powered``), or the bus does not
+answer. The reason is written into the manifest; the next run checks the rig before anything
+else and goes on only when the servo outputs read back switched off.
+"""
+
+from __future__ import annotations
+
+import datetime
+import hashlib
+import json
+import logging
+import os
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+from .._progress import progress
+from .._validate import check_in_range, check_int
+from ..recording import Recording
+from .i2c import I2CError
+from .mpu6050 import MPU6050, ChipIdentityError
+from .pantilt import PanTilt, search_and_record
+from .pca9685 import PCA9685
+from .plan import Plan, Touch
+from .safety import ReleaseError
+from .watchdog import StreamStalledError
+
+__all__ = ["Connection", "RecordingSession", "UnsafeRigError", "NoContactError",
+           "SESSION_FORMAT", "MANIFEST", "CUT_SUPPLY", "file_sha256", "write_atomic",
+           "read_manifest"]
+
+log = logging.getLogger(__name__)
+
+#: Format tag of a session's manifest.
+SESSION_FORMAT = "ebantenna-session-1"
+#: The manifest's file name in the session folder.
+MANIFEST = "session.json"
+#: What to do when the servos could not be released.
+CUT_SUPPLY = ("switch off the servo supply (V+ of the PCA9685) now, check the I2C wiring and "
+              "'i2cdetect -y N' (0x40 and 0x68 must answer), then run the same command again: "
+              "the session resumes once the servo outputs read back switched off")
+#: What to do when the bus does not answer.
+CHECK_BUS = ("check the I2C wiring, the 3.3 V supply of both boards and 'i2cdetect -y N' "
+             "(0x40 PCA9685, 0x68 MPU-6050), then run the same command again to resume")
+
+
+class UnsafeRigError(OSError):
+    """The rig is not safe to go on with; the message says why and what the operator should do.
+
+    Attributes
+    ----------
+    servos_may_be_powered : bool
+        Whether the servos could not be confirmed released.
+    """
+
+    def __init__(self, message: str, *, servos_may_be_powered: bool):
+        super().__init__(message)
+        self.servos_may_be_powered = servos_may_be_powered
+
+
+class NoContactError(RuntimeError):
+    """A search ended without a contact: the object is not where the plan puts it."""
+
+
+@dataclass
+class Connection:
+    """An open rig: the bus and clock the drivers use, and optionally its OE line and the
+    simulated rig behind it (for its fault counts).
+
+    Attributes
+    ----------
+    bus : smbus2.SMBus or ebantenna.device.simulated.SimulatedBus
+    clock : ebantenna.device.clock.SystemClock or ebantenna.device.clock.VirtualClock
+    output_enable : ebantenna.device.oe.OutputEnable or None
+    simulated : ebantenna.device.simulated.SimulatedRig or None
+    """
+
+    bus: object
+    clock: object
+    output_enable: object = None
+    simulated: object = None
+
+    def close(self) -> None:
+        """Close the bus and the OE line."""
+        self.bus.close()
+        if self.output_enable is not None:
+            self.output_enable.close()
+
+
+def file_sha256(path) -> str:
+    """SHA-256 (hex) of a file's bytes."""
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def _fsync_dir(path: Path) -> None:
+    try:
+        fd = os.open(path, os.O_RDONLY)
+    except OSError:  # a platform without directory handles: the rename is all there is
+        return
+    try:
+        os.fsync(fd)
+    except OSError:
+        pass
+    finally:
+        os.close(fd)
+
+
+def write_atomic(path, write) -> Path:
+    """Write a file whole or not at all: ``write(tmp)`` fills a temporary file beside ``path``,
+    which is flushed to disk and renamed over ``path`` (a reader sees the old file or the new
+    one, never half of one, whenever the power fails)."""
+    path = Path(path)
+    tmp = path.with_name(f".{path.stem}.tmp{os.getpid()}{path.suffix}")
+    try:
+        write(tmp)
+        with open(tmp, "rb+") as f:
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    finally:
+        tmp.unlink(missing_ok=True)
+    _fsync_dir(path.parent)
+    return path
+
+
+def _now() -> str:
+    return datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")
+
+
+class RecordingSession:
+    """Make, save and resume the touches of a plan in a session folder.
+
+    Parameters
+    ----------
+    directory : path
+        The session's folder (created if missing).
+    plan : Plan
+        The touches. A folder that holds a session of another plan is refused.
+    connect : callable
+        ``connect(touch, attempt)`` returns an open :class:`Connection` for one attempt (from 1)
+        at a touch; the session closes it after the attempt.
+    rig : dict
+        JSON description of the rig (bus, simulated or not, scene, faults), stored in the manifest.
+    max_lost : float
+        Largest share of a recording's window that may be missing (samples lost to bus faults),
+        in [0, 1). A touch that loses more is made again. Default 0.02.
+    attempts : int
+        Tries of a touch whose recording lost too much, >= 1. Default 5.
+    say : callable, optional
+        ``say(text)`` tells the operator what happens (default: the log).
+    confirm : callable, optional
+        ``confirm(text)`` waits for the operator to place the object as ``text`` asks (on the
+        real rig); None goes on at once.
+    show_progress : bool, optional
+        Progress bar over the touches (default: on a terminal).
+    """
+
+    def __init__(self, directory, plan: Plan, connect, *, rig: dict | None = None,
+                 max_lost: float = 0.02, attempts: int = 5, say=None, confirm=None,
+                 show_progress=None):
+        if not isinstance(plan, Plan):
+            raise TypeError(f"plan must be a Plan, got {type(plan).__name__}")
+        if not callable(connect):
+            raise TypeError(f"connect must be callable, got {type(connect).__name__}")
+        self.directory = Path(directory)
+        self.plan, self.connect = plan, connect
+        self.rig = json.loads(json.dumps(rig or {}))
+        self.max_lost = check_in_range("max_lost", max_lost, 0.0, 1.0, low_inclusive=True)
+        self.attempts = check_int("attempts", attempts, minimum=1)
+        self.say = say or log.info
+        self.confirm = confirm
+        self.show_progress = show_progress
+        self.config = plan.search_config()
+        self.manifest = None
+
+    @property
+    def manifest_path(self) -> Path:
+        """The manifest's path."""
+        return self.directory / MANIFEST
+
+    # -- the manifest ----------------------------------------------------------------------
+    def _new_manifest(self) -> dict:
+        return {"format": SESSION_FORMAT, "plan": self.plan.to_dict(), "rig": self.rig,
+                "search": _search_settings(self.config), "created": _now(), "unsafe": None,
+                "recordings": {}, "retakes": []}
+
+    def _save_manifest(self) -> None:
+        text = json.dumps(self.manifest, indent=1)
+        write_atomic(self.manifest_path, lambda tmp: tmp.write_text(text, encoding="utf-8"))
+
+    def open(self) -> dict:
+        """Load (or start) the manifest, verify what it lists, enter recordings saved but not yet
+        listed, and remove temporary files a power cut left; returns the manifest."""
+        (self.directory / "recordings").mkdir(parents=True, exist_ok=True)
+        for leftover in self.directory.rglob(".*.tmp*"):
+            leftover.unlink()
+        if not self.manifest_path.exists():
+            self.manifest = self._new_manifest()
+            self._save_manifest()
+            return self.manifest
+        self.manifest = read_manifest(self.manifest_path)
+        if self.manifest["plan"] != self.plan.to_dict():
+            raise ValueError(f"{self.directory} holds a session of another plan "
+                             f"({self.manifest['plan']['name']!r}); give a new folder, or the "
+                             "same plan to resume it")
+        self._verify_listed()
+        self._adopt_unlisted()
+        return self.manifest
+
+    def _verify_listed(self) -> None:
+        for key, entry in list(self.manifest["recordings"].items()):
+            path = self.directory / entry["file"]
+            if not path.exists():
+                log.warning("%s is listed but missing: touch %s will be made again", path, key)
+                del self.manifest["recordings"][key]
+            elif file_sha256(path) != entry["sha256"]:
+                raise ValueError(f"{path}: checksum mismatch, the file was changed or damaged "
+                                 f"since it was recorded; move it away and run again to record "
+                                 f"touch {key} again")
+        self._save_manifest()
+
+    def _adopt_unlisted(self) -> None:
+        """Enter recordings renamed into place whose manifest entry the power cut prevented."""
+        listed = {e["file"] for e in self.manifest["recordings"].values()}
+        for touch in self.plan:
+            name = _file_name(touch)
+            path = self.directory / name
+            if name in listed or not path.exists():
+                continue
+            try:
+                rec = Recording.load(path)
+            except ValueError as exc:
+                log.warning("%s is damaged (%s): touch %s will be made again", path, exc,
+                            touch.key)
+                path.rename(path.with_suffix(".damaged"))
+                continue
+            if rec.metadata.get("touch_key") != touch.key:
+                raise ValueError(f"{path} holds touch {rec.metadata.get('touch_key')!r}, not "
+                                 f"{touch.key!r}: it belongs to another session")
+            self.manifest["recordings"][touch.key] = _entry(touch, name, path, rec)
+            log.info("entered %s, saved before the session stopped", path)
+        self._save_manifest()
+
+    # -- running -----------------------------------------------------------------------------
+    def remaining(self) -> list[Touch]:
+        """The touches not yet saved, in plan order."""
+        done = self.manifest["recordings"]
+        return [t for t in self.plan if t.key not in done]
+
+    def run(self) -> dict:
+        """Make every remaining touch; returns the manifest.
+
+        Raises
+        ------
+        UnsafeRigError
+            The rig is unsafe (servos not released, bus dead); the manifest says why.
+        NoContactError
+            A search found nothing: the object is not where the plan puts it.
+        """
+        if self.manifest is None:
+            self.open()
+        self._check_after_stop()
+        todo = self.remaining()
+        done = len(self.plan) - len(todo)
+        if done:
+            self.say(f"resuming: {done} of {len(self.plan)} touches already saved")
+        bar = progress(total=len(self.plan), initial=done, desc="record",
+                       enabled=self.show_progress)
+        previous = None
+        try:
+            for touch in todo:
+                self._place(touch, previous)
+                self._record(touch)
+                previous = touch
+                bar.update()
+        finally:
+            bar.close()
+        self.manifest["finished"] = _now()
+        self._save_manifest()
+        return self.manifest
+
+    def _place(self, touch: Touch, previous: Touch | None) -> None:
+        """Tell the operator what to place where, when it changes."""
+        where = (f"place {touch.material} so that the probe touches it "
+                 f"{100 * touch.contact:.1f} cm from the hinge")
+        if previous is None or (previous.material, previous.contact) != (touch.material,
+                                                                          touch.contact):
+            self.say(where)
+            if self.confirm is not None:
+                self.confirm(where)
+
+    def _record(self, touch: Touch) -> None:
+        """One touch: made up to ``attempts`` times until its window is whole enough, saved."""
+        n = len(self.plan)
+        for attempt in range(1, self.attempts + 1):
+            self.say(f"touch {touch.index + 1}/{n} ({touch.key}), attempt {attempt}: searching")
+            result, conn = self._touch(touch, attempt)
+            rec = result.recording
+            lost = rec.metadata["samples_lost"] / (rec.n_samples + rec.metadata["samples_lost"])
+            if lost <= self.max_lost or attempt == self.attempts:
+                break
+            self.manifest["retakes"].append({"touch": touch.key, "attempt": attempt,
+                                             "samples_lost_fraction": lost, "at": _now()})
+            self._save_manifest()
+            self.say(f"touch {touch.key}: {lost:.1%} of the window lost to bus faults; again")
+        if lost > self.max_lost:
+            raise UnsafeRigError(
+                f"touch {touch.key}: every one of {self.attempts} attempts lost more than "
+                f"{self.max_lost:.0%} of its window to bus faults; {CHECK_BUS}",
+                servos_may_be_powered=False)
+        self._save(touch, self._labelled(touch, result, conn))
+        self.say(f"touch {touch.key}: saved ({rec.n_samples} samples, servos released)")
+
+    def _touch(self, touch: Touch, attempt: int):
+        """Check the rig and run one search; returns the result and the connection used."""
+        conn = self.connect(touch, attempt)
+        try:
+            unit, mpu = self._checked_rig(conn)
+            try:
+                result = search_and_record(mpu, unit, self.config,
+                                           labels=touch.labels(self.plan.probe_length),
+                                           output_enable=conn.output_enable)
+            except ReleaseError as exc:
+                self._unreleased(touch, exc)
+            except StreamStalledError as exc:
+                released = getattr(exc, "servos_released", False)
+                self._stop_unsafe(f"touch {touch.key}: the accelerometer stopped producing "
+                                  f"({exc}); {CHECK_BUS}", not released)
+        finally:
+            conn.close()
+        if not result.contact_detected:
+            raise NoContactError(
+                f"touch {touch.key}: no contact within {self.config.max_search_time:g} s: put "
+                f"{touch.material} in the probe's sweep {100 * touch.contact:.1f} cm from the "
+                "hinge and run the same command again to resume")
+        return result, conn
+
+    def _checked_rig(self, conn: Connection):
+        """Switch the servo outputs off and read them back, check the accelerometer."""
+        try:
+            unit = PanTilt(PCA9685(conn.bus, clock=conn.clock))
+            unit.initialize()  # the outputs off before anything else
+            if unit.pca.pulse(0) or unit.pca.pulse(1):
+                self._stop_unsafe("the servo outputs read back ON after being switched off; "
+                                  + CUT_SUPPLY, True)
+            mpu = MPU6050(conn.bus, clock=conn.clock)
+            mpu.initialize()
+        except (I2CError, ChipIdentityError) as exc:
+            self._stop_unsafe(f"the rig does not answer on the bus ({exc}); the servos may "
+                              f"still be powered: {CUT_SUPPLY}", True)
+        return unit, mpu
+
+    def _unreleased(self, touch: Touch, exc: ReleaseError) -> None:
+        """The release failed: keep the finished recording, then stop."""
+        if exc.result is not None and exc.result.recording is not None:
+            self._save(touch, self._labelled(touch, exc.result, None))
+        self._stop_unsafe(f"touch {touch.key}: the servos could not be released ({exc}); "
+                          + CUT_SUPPLY, True)
+
+    def _stop_unsafe(self, why: str, powered: bool) -> None:
+        self.manifest["unsafe"] = {"reason": why, "servos_may_be_powered": powered, "at": _now()}
+        self._save_manifest()
+        raise UnsafeRigError(why, servos_may_be_powered=powered)
+
+    def _check_after_stop(self) -> None:
+        """After a stop on an unsafe rig: go on only if the rig now checks out."""
+        unsafe = self.manifest.get("unsafe")
+        if not unsafe:
+            return
+        self.say(f"the last run stopped: {unsafe['reason']}; checking the rig first")
+        todo = self.remaining()
+        conn = self.connect(todo[0] if todo else self.plan[0], 0)
+        try:
+            self._checked_rig(conn)
+        finally:
+            conn.close()
+        self.say("the rig checks out: servo outputs switched off, accelerometer answering")
+        self.manifest["unsafe"] = None
+        self._save_manifest()
+
+    def _labelled(self, touch: Touch, result, conn: Connection | None) -> Recording:
+        """The touch's recording with the session's labels and the rig's account."""
+        rec = result.recording
+        meta = dict(rec.metadata)
+        meta.update(touch.labels(self.plan.probe_length))
+        meta.update({"plan": self.plan.name, "recorded_at": _now(), "rig": self.rig,
+                     "search": _search_settings(self.config),
+                     "release": {"servos_released": result.servos_released,
+                                 "by": result.servos_released_by,
+                                 "servos_stopped": result.servos_stopped},
+                     "fault_counts": _fault_counts(result, conn)})
+        return Recording(rec.t, rec.ax, rec.az, rec.fs, meta)
+
+    def _save(self, touch: Touch, rec: Recording) -> None:
+        """Write the recording whole, then enter it in the manifest."""
+        name = _file_name(touch)
+        path = write_atomic(self.directory / name, rec.save)
+        self.manifest["recordings"][touch.key] = _entry(touch, name, path, rec)
+        self._save_manifest()
+
+
+def _file_name(touch: Touch) -> str:
+    return (f"recordings/t{touch.index:05d}-{touch.material}-"
+            f"{1000 * touch.contact:.1f}mm-r{touch.repetition}.npz")
+
+
+def _entry(touch: Touch, name: str, path: Path, rec: Recording) -> dict:
+    meta = rec.metadata
+    return {"file": name, "sha256": file_sha256(path), "touch": touch.index,
+            "material": touch.material, "contact": touch.contact, "repetition": touch.repetition,
+            "samples": rec.n_samples, "fs_hz": rec.fs, "samples_lost": meta.get("samples_lost"),
+            "timestamp_uncertainty_s": meta.get("timestamp_uncertainty_s"),
+            "servos_released": meta.get("release", {}).get("servos_released"),
+            "recorded_at": meta.get("recorded_at")}
+
+
+def _fault_counts(result, conn: Connection | None) -> dict:
+    stream = result.stream
+    counts = {"i2c_retries": result.i2c_retries, "samples_lost": result.samples_lost,
+              "stream_samples_lost": result.stream_samples_lost,
+              "fifo_restarts": stream.get("fifo_restarts", 0),
+              "fifo_overflows": stream.get("fifo_overflows", 0),
+              "fifo_counts_rejected": stream.get("fifo_counts_rejected", 0),
+              "faults": len(stream.get("faults", []))}
+    if conn is not None and conn.simulated is not None:
+        counts["i2c_errors_injected"] = conn.simulated.bus.errors_injected
+    return counts
+
+
+def _search_settings(config) -> dict:
+    return json.loads(json.dumps(asdict(config)))
+
+
+def read_manifest(path) -> dict:
+    """Read a session's manifest (``DIR/session.json``); ValueError naming it if it is not one."""
+    path = Path(path)
+    try:
+        manifest = json.loads(path.read_text(encoding="utf-8"))
+    except ValueError as exc:
+        raise ValueError(f"{path} is not a session manifest: {exc}") from None
+    if not isinstance(manifest, dict) or manifest.get("format") != SESSION_FORMAT:
+        raise ValueError(f"{path} is not a session manifest of format {SESSION_FORMAT!r}")
+    return manifest

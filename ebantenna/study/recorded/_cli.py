@@ -1,0 +1,268 @@
+"""``ebantenna record``, ``ebantenna dataset --from-recordings`` and ``ebantenna reproduce --data``:
+from the rig to the report."""
+
+from __future__ import annotations
+
+import os
+import sys
+import time
+
+#: Exit code of ``record`` when the servos may still be powered (as ``acquire``'s).
+EXIT_SERVOS_POWERED = 3
+
+
+def register(subparsers) -> None:
+    """Add the ``record`` command."""
+    from ...cli import seed_argument
+
+    rec = subparsers.add_parser(
+        "record",
+        help="record a whole data set on the rig: the paper's protocol or a plan file",
+        description="Walk the operator through the touches of the paper's protocol (5 materials "
+        "x every 5 mm x 25 repetitions), of its quick version, or of a plan file: for each "
+        "touch search, touch, stop, record and release, and save the recording with its labels "
+        "and the rig's account in DIR, with a manifest (DIR/session.json) holding every file's "
+        "checksum. Run the same command again to resume after any stop: nothing is recorded "
+        "twice and nothing saved is lost. Exit code 0 when every touch is saved, 1 when a search "
+        "found no contact, 3 when the servos may still be powered (cut their supply).",
+    )
+    where = rec.add_mutually_exclusive_group(required=True)
+    where.add_argument("--simulated", action="store_true", help="use the simulated rig")
+    where.add_argument("--bus", type=int, metavar="N", help="I2C bus number of the real rig")
+    rec.add_argument("--out", required=True, metavar="DIR", help="the session folder")
+    what = rec.add_mutually_exclusive_group()
+    what.add_argument("--plan", metavar="FILE", help="a plan file (.toml or .json)")
+    what.add_argument("--quick", action="store_true",
+                      help="the quick design (every 5 cm, 3 repetitions) instead of the paper's")
+    rec.add_argument("--scene", default="paper", metavar="NAME|FILE",
+                     help="simulated only: the scene every touch is simulated in (paper)")
+    rec.add_argument("--seed", type=seed_argument, default=0,
+                     help="simulated only: seed of the design's variation and the faults (0)")
+    rec.add_argument("--inject-faults", type=float, default=0.0, metavar="RATE",
+                     help="simulated only: fraction of I2C transfers that fail, every kind")
+    rec.add_argument("--oe-gpio", type=int, metavar="PIN",
+                     help="hardware only: BCM GPIO wired to the PCA9685's OE pin")
+    rec.add_argument("--max-lost", type=float, default=0.02, metavar="F",
+                     help="a touch whose window lost more than this share is made again (0.02)")
+    rec.add_argument("--attempts", type=int, default=5, metavar="N",
+                     help="tries of a touch that lost too much before the session stops (5)")
+    rec.add_argument("--no-wait", action="store_true",
+                     help="hardware only: do not wait for Enter when the object is to be moved")
+    rec.add_argument("--json", action="store_true", help="print one JSON object")
+    rec.set_defaults(func=run_record)
+    cal = subparsers.add_parser(
+        "calibrate",
+        help="fit the hinge stiffness, tip mass and loss factor to recordings",
+        description="Fit the probe's hinge stiffness, tip mass and loss factor to a data set of "
+        "recordings at known contact distances (e.g. from 'ebantenna dataset "
+        "--from-recordings'), with their 95 %% intervals; write the scene with the fitted values "
+        "(usable by 'ebantenna simulate --scene FILE'), a figure of measured against simulated "
+        "frequency versus distance, and calibration.json in --out.",
+    )
+    cal.add_argument("--data", required=True, metavar="FILE", help="the data set of recordings")
+    cal.add_argument("--scene", default="paper", metavar="NAME|FILE",
+                     help="the scene to calibrate (paper)")
+    cal.add_argument("--out", required=True, metavar="DIR", help="output directory")
+    cal.add_argument("--json", action="store_true", help="print one JSON object")
+    cal.set_defaults(func=run_calibrate)
+
+
+def run_calibrate(args) -> int:
+    """Run ``ebantenna calibrate``."""
+    import json
+    from pathlib import Path
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from ...cli import print_json
+    from ...simulate import load_dataset
+    from ...simulate.scene import resolve_scene
+    from .calibration import calibrate, plot_calibration
+
+    base = resolve_scene(args.scene)
+    cal = calibrate(load_dataset(args.data), base.probe)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    scene = cal.scene(base)
+    summary = {**cal.to_dict(), "data": str(args.data),
+               "scene": str(scene.save(out / f"{scene.name}.toml"))}
+    fig = plot_calibration(cal, base.probe)
+    fig.savefig(out / "calibration.png", dpi=120)
+    summary["figure"] = str(out / "calibration.png")
+    (out / "calibration.json").write_text(json.dumps(summary, indent=2), encoding="utf-8")
+    if args.json:
+        print_json(summary)
+        return 0
+    for name, unit in (("hinge_stiffness", "N m/rad"), ("tip_mass", "kg"), ("loss_factor", "")):
+        lo, hi = cal.interval(name)
+        print(f"{name}: {getattr(cal, name):.4g} {unit} (95 % {lo:.4g} - {hi:.4g})")
+    print(f"scene written to {summary['scene']}")
+    return 0
+
+
+def _plan_and_connect(args):
+    """The plan, the ``connect`` of the rig, and the rig's description."""
+    from ...device.plan import load_plan
+    from ...simulate.scene import resolve_scene
+    from .planning import protocol_plan
+
+    scene = resolve_scene(args.scene) if args.simulated else None
+    if args.plan is not None:
+        plan = load_plan(args.plan)
+    else:
+        plan = protocol_plan(quick=args.quick, scene=scene, seed=args.seed)
+    if args.simulated:
+        if abs(scene.probe.length - plan.probe_length) > 1e-9:
+            raise ValueError(f"the plan's probe is {plan.probe_length:g} m long, the scene's "
+                             f"{scene.probe.length:g} m")
+        return plan, *_simulated(args, scene)
+    return plan, *_hardware(args)
+
+
+def _simulated(args, scene):
+    from ...device.simulated import Faults
+    from ...device.simulated.touches import simulated_connect
+    from ...simulate import simulate
+
+    if args.oe_gpio is not None or args.no_wait:
+        raise ValueError("--oe-gpio and --no-wait work only on the real rig (--bus)")
+    faults = Faults.every_kind(args.inject_faults) if args.inject_faults else None
+    rig = {"simulated": True, "scene": scene.name, "seed": args.seed,
+           "inject_faults": args.inject_faults}
+    return simulated_connect(scene, simulate, faults=faults, seed=args.seed), rig, None
+
+
+def _hardware(args):
+    from ...device.clock import SystemClock
+    from ...device.oe import OutputEnable
+    from ...device.recording_session import Connection
+
+    if args.inject_faults or args.seed or args.scene != "paper":
+        raise ValueError("--inject-faults, --seed and --scene work only with --simulated")
+    if not os.path.exists(f"/dev/i2c-{args.bus}"):
+        raise FileNotFoundError(f"/dev/i2c-{args.bus} does not exist: no I2C bus {args.bus} on "
+                                "this machine (see 'ebantenna acquire --help' and the hardware "
+                                "page to enable I2C)")
+
+    def connect(touch, attempt):
+        from smbus2 import SMBus
+
+        oe = None if args.oe_gpio is None else OutputEnable.gpio(args.oe_gpio)
+        return Connection(SMBus(args.bus), SystemClock(), oe)
+
+    def confirm(text):
+        if not args.no_wait:
+            input(f"{text}, then press Enter ")
+
+    return connect, {"simulated": False, "bus": args.bus, "oe_gpio": args.oe_gpio}, confirm
+
+
+def run_record(args) -> int:
+    """Run ``ebantenna record``."""
+    from ...cli import Terminated, interrupted, print_json
+    from ...device.recording_session import NoContactError, RecordingSession, UnsafeRigError
+    from ...device.safety import SignalReceived
+
+    plan, connect, rig, confirm = _plan_and_connect(args)
+    session = RecordingSession(
+        args.out, plan, connect, rig=rig, max_lost=args.max_lost, attempts=args.attempts,
+        confirm=confirm,
+        say=lambda text: print(f"ebantenna record: {text}", file=sys.stderr, flush=True),
+        show_progress=False if args.json else None)
+    start = time.perf_counter()
+    code, stopped = 0, None
+    try:
+        session.open()
+        session.run()
+    except NoContactError as exc:
+        code, stopped = 1, str(exc)
+    except UnsafeRigError as exc:
+        code, stopped = (EXIT_SERVOS_POWERED if exc.servos_may_be_powered else 2), str(exc)
+    except (KeyboardInterrupt, SignalReceived) as exc:
+        if isinstance(exc, SignalReceived):
+            exc = Terminated(exc.signum)
+        raise interrupted(exc, _summary(args, session, start)) from None
+    summary = _summary(args, session, start)
+    if stopped:
+        summary["stopped"] = stopped
+        print(f"ebantenna record: stopped: {stopped}", file=sys.stderr)
+    if args.json:
+        print_json(summary)
+    elif not stopped:
+        print(f"saved {summary['saved']} of {summary['touches']} touches in {args.out} "
+              f"({summary['retakes']} made again); manifest {summary['manifest']}")
+    return code
+
+
+def _summary(args, session, start) -> dict:
+    manifest = session.manifest or {"recordings": {}, "retakes": []}
+    return {"out": str(args.out), "plan": session.plan.name, "touches": len(session.plan),
+            "saved": len(manifest["recordings"]), "retakes": len(manifest["retakes"]),
+            "manifest": str(session.manifest_path),
+            "seconds": round(time.perf_counter() - start, 3)}
+
+
+def add_from_recordings(parser) -> None:
+    """The ``--from-recordings`` option of ``ebantenna dataset``."""
+    parser.add_argument("--from-recordings", metavar="DIR",
+                        help="assemble the recordings of a session (ebantenna record) into a "
+                        "data set in --out instead of simulating one")
+
+
+def run_from_recordings(args) -> int:
+    """``ebantenna dataset --from-recordings DIR``."""
+    from ...cli import print_json
+    from .assemble import assemble_dataset
+
+    if args.quick:
+        raise ValueError("--quick builds the simulated data set; not with --from-recordings")
+    start = time.perf_counter()
+    data = assemble_dataset(args.from_recordings, args.out)
+    summary = {"path": str(data.path), "signals": data.n_signals, "samples": data.n_samples,
+               "fs": data.fs, "materials": sorted({str(m) for m in data.material}),
+               "source": "recordings", "session": data.metadata["provenance"]["session"],
+               "samples_interpolated": int(sum(data.metadata["provenance"]
+                                               ["samples_interpolated"])),
+               "checksum_sha256": data.metadata["checksum_sha256"],
+               "seconds": round(time.perf_counter() - start, 3)}
+    if args.json:
+        print_json(summary)
+    else:
+        print(f"{summary['signals']} recordings of {summary['samples']} samples at "
+              f"{data.fs:g} Hz assembled into {data.path}")
+    return 0
+
+
+def add_data(parser) -> None:
+    """The ``--data`` option of ``ebantenna reproduce``."""
+    parser.add_argument("--data", metavar="FILE",
+                        help="run the sections that need only recordings on this data set (e.g. "
+                        "one assembled by 'ebantenna dataset --from-recordings'); the others are "
+                        "reported as not applicable")
+
+
+def run_data(args) -> int:
+    """``ebantenna reproduce --data FILE``."""
+    from ...cli import interrupted, print_json
+    from .study import reproduce_recorded
+
+    if args.quick or args.cache:
+        raise ValueError("--quick and --cache choose the simulated data set; not with --data")
+    try:
+        summary = reproduce_recorded(args.data, args.out, seed=args.seed, n_jobs=args.jobs,
+                                     show_progress=None if not args.json else False)
+    except KeyboardInterrupt as exc:
+        raise interrupted(exc, {"out": None, "data": args.data}) from None
+    if args.json:
+        print_json(summary)
+        return 0
+    found = summary["intervals"]
+    print(f"Study on {summary['data']['path']} ({summary['data']['source']}) written to "
+          f"{args.out}/; report {summary['report']['html']}")
+    for name in ("svm", "ann"):
+        lo, hi = found[name]["interval95"]
+        print(f"  {name.upper()} material accuracy: test {found[name]['test_accuracy']:.1%} "
+              f"(95 % {lo:.1%} - {hi:.1%}, {found[name]['n_test']} tests)")
+    print(f"  not applicable: {', '.join(summary['not_applicable'])}")
+    return 0

@@ -1,0 +1,106 @@
+"""A data set assembled from a session's recordings, and the inconsistent inputs it refuses by
+name (ebantenna.study.recorded.assemble_dataset)."""
+
+from __future__ import annotations
+
+import json
+import shutil
+
+import numpy as np
+import pytest
+
+from ebantenna.device.plan import Plan
+from ebantenna.device.recording_session import MANIFEST, RecordingSession, file_sha256
+from ebantenna.device.simulated.touches import simulated_connect
+from ebantenna.recording import Recording
+from ebantenna.simulate import builtin_scene, load_dataset, simulate
+from ebantenna.study.recorded import MIN_SAMPLES, assemble_dataset
+
+
+@pytest.fixture(scope="module")
+def recorded(tmp_path_factory):
+    """A finished session of 2 materials x 2 distances x 2 repetitions on the simulated rig."""
+    where = tmp_path_factory.mktemp("session") / "s"
+    plan = Plan("tiny", ("brass", "pvc"), (0.1, 0.3), 2)
+    RecordingSession(where, plan, simulated_connect(builtin_scene("paper"), simulate, seed=2),
+                     rig={"simulated": True}, show_progress=False).run()
+    return where
+
+
+@pytest.fixture
+def session(recorded, tmp_path):
+    """A copy of the finished session to spoil."""
+    return shutil.copytree(recorded, tmp_path / "s")
+
+
+def rewrite(session, touch: int, change) -> str:
+    """Replace one recording by ``change(recording)``, the manifest's checksum updated (so that
+    only the change itself is wrong)."""
+    manifest = json.loads((session / MANIFEST).read_text())
+    entry = next(e for e in manifest["recordings"].values() if e["touch"] == touch)
+    path = session / entry["file"]
+    rec = change(Recording.load(path))
+    rec.save(path)
+    entry["sha256"] = file_sha256(path)
+    (session / MANIFEST).write_text(json.dumps(manifest))
+    return entry["file"]
+
+
+def with_meta(rec, **changes):
+    meta = {**rec.metadata, **changes}
+    return Recording(rec.t, rec.ax, rec.az, rec.fs, {k: v for k, v in meta.items()
+                                                    if v is not None})
+
+
+def test_assembled_data_set_loads_with_its_labels_and_provenance(recorded, tmp_path):
+    data = assemble_dataset(recorded, tmp_path)
+    again = load_dataset(data.path)  # its checksum verified
+    assert again.n_signals == 8 and again.n_samples == 1000 and again.fs == 1000.0
+    assert again.material.tolist() == ["brass"] * 4 + ["pvc"] * 4
+    np.testing.assert_array_equal(again.contact, [0.1, 0.1, 0.3, 0.3] * 2)
+    np.testing.assert_array_equal(again.repetition, [0, 1] * 4)
+    assert np.isnan(again.sweep_speed).all() and (again.seed_row == -1).all()  # not invented
+    provenance = again.metadata["provenance"]
+    assert provenance["manifest_sha256"] == file_sha256(recorded / MANIFEST)
+    assert len(provenance["recordings"]) == 8
+    assert again.metadata["config"]["source"] == "recordings"
+
+
+def test_a_damaged_file_is_refused_by_name(session, tmp_path):
+    manifest = json.loads((session / MANIFEST).read_text())
+    entry = manifest["recordings"]["pvc/0.1000/1"]
+    path = session / entry["file"]
+    path.write_bytes(path.read_bytes()[:200])
+    with pytest.raises(ValueError, match=f"{path.name}: damaged file"):
+        assemble_dataset(session, tmp_path)
+
+
+def test_a_missing_label_is_refused_by_name(session, tmp_path):
+    name = rewrite(session, 3, lambda r: with_meta(r, material=None))
+    with pytest.raises(ValueError, match=f"{name}: missing label\\(s\\) material"):
+        assemble_dataset(session, tmp_path)
+
+
+def test_a_duplicate_is_refused_by_name(session, tmp_path):
+    name = rewrite(session, 1, lambda r: with_meta(r, repetition=0))
+    with pytest.raises(ValueError, match=f"{name}: duplicate of .*t00000"):
+        assemble_dataset(session, tmp_path)
+
+
+def test_a_sample_rate_that_differs_is_refused_by_name(session, tmp_path):
+    name = rewrite(session, 5, lambda r: with_meta(r, sample_rate_hz=500.0))
+    with pytest.raises(ValueError, match=f"{name}: sample rate 500 Hz differs from 1000 Hz"):
+        assemble_dataset(session, tmp_path)
+    rewrite(session, 5, lambda r: with_meta(r, sample_rate_hz=1000.0))
+    fast = rewrite(session, 6, lambda r: Recording(r.t / 1.03, r.ax, r.az, r.fs * 1.03,
+                                                   r.metadata))
+    with pytest.raises(ValueError, match=f"{fast}: sample rate estimated .* by more than 1.0%"):
+        assemble_dataset(session, tmp_path)
+
+
+def test_a_recording_too_short_for_the_features_is_refused_by_name(session, tmp_path):
+    cut = MIN_SAMPLES  # the window from the contact on then holds fewer samples than needed
+    name = rewrite(session, 2, lambda r: Recording(r.t[:cut], r.ax[:cut], r.az[:cut], r.fs,
+                                                   r.metadata))
+    with pytest.raises(ValueError, match=f"{name}: too short"):
+        assemble_dataset(session, tmp_path)

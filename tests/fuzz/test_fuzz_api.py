@@ -2556,7 +2556,7 @@ ROWS += [
         TONE,
         FS,
         nperseg=HUGE_INT,
-        match="x must have at least",
+        match="nperseg (an integer of 22 digits",
     ),
     bad(
         "signal.spectrogram",

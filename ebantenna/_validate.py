@@ -25,6 +25,7 @@ __all__ = [
     "check_positive",
     "check_nonnegative",
     "check_in_range",
+    "check_range",
     "check_int",
     "check_choice",
     "real_array",
@@ -138,6 +139,26 @@ def check_in_range(
             f"{name} must lie in {left}{low:g}, {high:g}{right}{why}, got {value!r}"
         )
     return value
+
+
+def check_range(name: str, value, bounds: tuple[float, float], reason: str) -> float:
+    """Return ``value`` as a float; raise unless ``bounds[0] <= value <= bounds[1]`` (inclusive).
+
+    For a physical parameter with a documented range: a value <= 0 is first refused as not
+    positive (``"must be > 0"``) unless ``bounds[0]`` is 0, and the range's error carries
+    ``reason``, why the range is what it is.
+
+    Examples
+    --------
+    >>> check_range("loss_factor", 2.0, (0.0, 1.0), "the model is for light damping")
+    Traceback (most recent call last):
+    ...
+    ValueError: loss_factor must lie in [0, 1] (the model is for light damping), got 2.0
+    """
+    if bounds[0] > 0:
+        check_positive(name, value)
+    return check_in_range(name, value, *bounds, low_inclusive=True, high_inclusive=True,
+                          reason=reason)
 
 
 def check_int(name: str, value, *, minimum: int | None = None, maximum: int | None = None) -> int:

@@ -224,7 +224,9 @@ def real_array(name: str, value) -> np.ndarray:
             f"{name} must be a rectangular array: its rows have different lengths (a ragged list)"
         ) from None
     except (TypeError, OverflowError, RecursionError, MemoryError) as exc:
-        raise TypeError(f"{name} must be array-like of numbers, got {type(value).__name__}") from exc
+        raise TypeError(
+            f"{name} must be array-like of numbers, got {type(value).__name__}"
+        ) from exc
     kind = raw.dtype.kind
     if kind not in "fiu":
         refused = _REFUSED_KINDS.get(kind, kind)

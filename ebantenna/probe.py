@@ -25,7 +25,7 @@ __all__ = ["Probe", "Material", "MATERIALS", "ALIASES", "material", "material_na
 SIZE_RANGE = (1e-6, 1e3)
 SIZE_REASON = "a continuum beam from 1 µm to 1 km; d**4 and L**3 stay inside the float range"
 #: Young's modulus, Pa: from a soft gel (1 kPa) to 1e30 Pa, far beyond diamond (about 1.2e12 Pa)
-#: but still a finite stand-in for a rigid body; ``E I`` and ``E / rho`` stay inside the float range.
+#: but still a finite stand-in for a rigid body; ``E I`` and ``E / rho`` stay in the float range.
 MODULUS_RANGE = (1e3, 1e30)
 MODULUS_REASON = "from a soft gel, 1 kPa, to a rigid stand-in far beyond diamond's 1.2e12 Pa"
 #: Density, kg/m^3: from an aerogel (a few kg/m^3) to beyond osmium (22 590 kg/m^3).

@@ -38,8 +38,8 @@ import numpy as np
 from joblib import Parallel, delayed
 
 from .. import __version__
-from .._progress import progress
 from .._budget import check_allocation
+from .._progress import progress
 from .._validate import check_int, check_nonnegative, check_positive, open_npz
 from ..probe import material
 from ._dataset_files import remove_leftovers, stale_reason, write_whole

@@ -128,7 +128,7 @@ def number_cases(name: str, make, param: str, *, positive=True, optional=False,
 def array_cases(name: str, make, param: str, good: np.ndarray, *,
                 optional=False) -> list[Case]:
     """A case per bad array of ``param``: ``make(value)`` must refuse each naming ``param``."""
-    return [Case(f"{name}:{param}={label}", _bind(make, v), param=param)
+    return [Case(f"{name}:{param}=array-{label}", _bind(make, v), param=param)
             for label, v in _array_kinds(good) if not (optional and v is None)]
 
 
@@ -228,11 +228,11 @@ def _fem_cases() -> list[Case]:
                      "contacts", np.array([0.1, 0.2]))
     c += number_cases("natural_frequencies",
                       lambda v: fem.natural_frequencies(PROBE, [0.2], n_modes=2, n_elements=v),
-                      "n_elements", beyond=[("10**400", 10**400), ("5000", 5000)])
+                      "n_elements", beyond=[("5000", 5000)])
     c += number_cases("modal_analysis",
                       lambda v: fem.modal_analysis(PROBE, fem.Supports(0.2), n_elements=8,
                                                    n_modes=v), "n_modes",
-                      beyond=[("10**400", 10**400)])
+                      beyond=[("17", 17)])
     c += number_cases("modal_analysis",
                       lambda v: fem.modal_analysis(PROBE, fem.Supports(v), n_elements=8),
                       "contact", optional=True, beyond=[("beyond-tip", 1.0)])
@@ -292,7 +292,7 @@ def _ml_cases() -> list[Case]:
                _bind(lambda w: ml.SVC(class_weight={0: w}).fit(X2, Y2), w), param="class_weight")
           for w in (-1, -1.0, math.nan, math.inf, 10**400)]
     c += number_cases("SVC.fit", lambda v: ml.SVC(kernel="poly", degree=v).fit(X2, Y2),
-                      "degree", positive=False, beyond=[("10**400", 10**400)])
+                      "degree", positive=False, beyond=[("2**31", 2**31), ("-1", -1)])
     for p in ("alpha", "learning_rate_init", "tol"):
         c += number_cases("MLPClassifier.fit",
                           lambda v, p=p: ml.MLPClassifier(**{p: v}, max_iter=5).fit(X2, Y2), p,
@@ -364,7 +364,7 @@ def _right_cases() -> list[Case]:
         c.append(Case(f"dominant_frequency:bin-{k}-{dtype.__name__}-scale-{scale:.0e}",
                       _bind(lambda x: sig.dominant_frequency(x, FS), x),
                       check=_near(k * FS / N, 1e-3 * FS / N)))
-    for i in range(30):  # a decaying sine: tau in samples is the generating one at any fs
+    for _ in range(30):  # a decaying sine: tau in samples is the generating one at any fs
         tau = float(rng.uniform(60, 200))
         fs = 10.0 ** float(rng.choice([-300, -100, -3, 0, 3, 100, 300]) + rng.uniform(-1, 1))
         n = np.arange(2048)
@@ -373,7 +373,7 @@ def _right_cases() -> list[Case]:
         c.append(Case(f"fit_decay:tau-{tau:.0f}-samples-fs-{fs:.1e}",
                       _bind(lambda x, fs=fs: sig.fit_decay(x, fs), x),
                       check=_decay_near(tau, fs)))
-    for i in range(20):  # a steady tone at any scale: the tracker ends on it
+    for _ in range(20):  # a steady tone at any scale: the tracker ends on it
         f0 = float(rng.uniform(60, 300))
         scale = 10.0 ** float(rng.uniform(-300, 300))
         x = scale * np.sin(2 * np.pi * f0 * np.arange(2000) / FS)
@@ -386,7 +386,7 @@ def _right_cases() -> list[Case]:
                       _bind(lambda ax: Recording(T, ax, ax, FS).ax, ax),
                       check=(lambda r, ax=ax: r.dtype == np.float64
                                         and np.array_equal(r, [float(v) for v in ax]))))
-    for i in range(20):  # a cantilever's first frequency: the Euler-Bernoulli closed form
+    for _ in range(20):  # a cantilever's first frequency: the Euler-Bernoulli closed form
         length = float(rng.uniform(0.1, 2.0))
         d = float(rng.uniform(0.002, 0.05))
         probe = Probe(length=length, outer_diameter=d, inner_diameter=0.5 * d,
@@ -399,7 +399,7 @@ def _right_cases() -> list[Case]:
                       _bind(lambda p: fem.modal_analysis(p, fem.Supports(None), n_elements=16,
                                                          n_modes=1).frequencies[0], probe),
                       check=_near(exact, 1e-5 * exact)))
-    for i in range(10):  # huge gamma: K = I, every training point its own support vector
+    for _ in range(10):  # huge gamma: K = I, every training point its own support vector
         gamma = 10.0 ** float(rng.uniform(10, 300))
         X = rng.normal(size=(30, 3))
         y = (rng.uniform(size=30) > 0.4).astype(int)

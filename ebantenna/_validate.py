@@ -21,6 +21,7 @@ import numpy as np
 __all__ = [
     "describe",
     "check_real",
+    "check_python_number",
     "check_bool",
     "check_positive",
     "check_nonnegative",
@@ -79,6 +80,20 @@ def check_real(name: str, value, *, allow_inf: bool = False) -> float:
     if math.isnan(number) or (math.isinf(number) and not allow_inf):
         raise ValueError(f"{name} must be a finite number, got {number!r}")
     return number
+
+
+def check_python_number(name: str, value) -> None:
+    """Refuse what scikit-learn's parameter checks cannot: an int beyond the float range
+    (``10**400`` passes them, then ``float()`` overflows) and a non-builtin real such as a
+    :class:`~fractions.Fraction` (NumPy's ``isnan`` fails on it). Anything else is left to them.
+    """
+    if isinstance(value, bool) or not isinstance(value, Real):
+        return
+    if not isinstance(value, int | float | np.number):
+        raise TypeError(f"{name} must be a float or an int, got {describe(value)} "
+                        f"({type(value).__name__})")
+    if isinstance(value, int) and not isinstance(value, np.number):
+        check_real(name, value)
 
 
 def check_bool(name: str, value) -> bool:

@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import logging
 
-from .._validate import check_in_range, check_int, check_nonnegative, check_positive
+from .._validate import check_int, check_nonnegative, check_positive
 from ..chips.pca9685 import (
     COUNTS_PER_PERIOD,
     DEFAULT_ADDRESS,
@@ -64,11 +64,6 @@ class NotInitializedError(RuntimeError):
     """A PCA9685 was asked for pulses before :meth:`PCA9685.initialize` set its frequency."""
 
 
-#: The oscillator frequencies :func:`prescale_for` accepts, Hz: the internal oscillator runs
-#: near 25 MHz and the EXTCLK input takes at most 50 MHz (DS 7.3.5); 1 MHz is far below either.
-OSCILLATOR_RANGE = (1e6, 50e6)
-
-
 def prescale_for(frequency: float, oscillator_hz: float = OSCILLATOR_HZ) -> int:
     """``PRE_SCALE`` for a PWM ``frequency`` (Hz), DS equation 1.
 
@@ -90,10 +85,7 @@ def prescale_for(frequency: float, oscillator_hz: float = OSCILLATOR_HZ) -> int:
     ValueError: frequency must lie in [24, 1526] Hz (the PCA9685's range at 25 MHz), got 1600.0
     """
     frequency = check_positive("frequency", frequency)
-    oscillator_hz = check_in_range("oscillator_hz", oscillator_hz, *OSCILLATOR_RANGE,
-                                   low_inclusive=True, high_inclusive=True,
-                                   reason="the internal oscillator runs near 25 MHz; EXTCLK "
-                                   "takes at most 50 MHz (DS 7.3.5)")
+    oscillator_hz = _check_oscillator(oscillator_hz)
     low = round(oscillator_hz / (COUNTS_PER_PERIOD * (PRESCALE_MAX + 1)))
     high = round(oscillator_hz / (COUNTS_PER_PERIOD * (PRESCALE_MIN + 1)))
     if not low <= frequency <= high:
@@ -138,7 +130,7 @@ def pwm_frequency(prescale: int, oscillator_hz: float = OSCILLATOR_HZ) -> float:
     50.029
     """
     prescale = check_int("prescale", prescale, minimum=PRESCALE_MIN, maximum=PRESCALE_MAX)
-    return check_positive("oscillator_hz", oscillator_hz) / (COUNTS_PER_PERIOD * (prescale + 1))
+    return _check_oscillator(oscillator_hz) / (COUNTS_PER_PERIOD * (prescale + 1))
 
 
 class PCA9685:

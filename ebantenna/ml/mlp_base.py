@@ -29,7 +29,7 @@ from sklearn.utils._param_validation import Interval, Options, StrOptions
 from sklearn.utils.validation import check_is_fitted
 
 from .._budget import check_allocation
-from .._validate import check_real, describe
+from .._validate import check_python_number, check_real, describe
 from ._backprop_engine import Workspace, loss_and_gradients_into
 from .backprop import ACTIVATIONS, glorot_uniform, loss_and_gradients, pack, unpack
 from .fitted import INPUT_ATTRIBUTES, FittedAttribute
@@ -165,8 +165,10 @@ class BaseMLP(BaseEstimator):
                         "validation_fraction", "beta_1", "beta_2", "epsilon", "sigma0", "lambda0")
 
     def _validate_params(self):
-        """The real parameters first (any Python size), then scikit-learn's constraints."""
-        self._check_numbers()
+        """Numbers scikit-learn's constraints cannot take (10**400, a Fraction) refused by name,
+        then those constraints, with scikit-learn's errors."""
+        for name in self._REAL_PARAMETERS:
+            check_python_number(name, getattr(self, name))
         super()._validate_params()
 
     def _check_numbers(self) -> None:

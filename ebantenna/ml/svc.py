@@ -40,7 +40,13 @@ from sklearn.utils.validation import (
     validate_data,
 )
 
-from .._validate import check_int, check_nonnegative, check_positive, check_real
+from .._validate import (
+    check_int,
+    check_nonnegative,
+    check_positive,
+    check_python_number,
+    check_real,
+)
 from .fitted import INPUT_ATTRIBUTES, FittedAttribute
 from .kernels import Kernel, KernelRows, call_kernel, resolve_gamma
 from .ovo import dual_layout, one_vs_one_coef, ovo_votes, ovr_decision_function
@@ -389,8 +395,10 @@ class SVC(ClassifierMixin, BaseEstimator):
         return self
 
     def _validate_params(self):
-        """The numbers first (any Python size), then scikit-learn's constraints."""
-        self._check_numbers()
+        """Numbers scikit-learn's constraints cannot take (10**400, a Fraction) refused by name,
+        then those constraints, with scikit-learn's errors."""
+        for name in ("C", "gamma", "coef0", "tol", "cache_size", "degree"):
+            check_python_number(name, getattr(self, name))
         super()._validate_params()
 
     def _check_combination(self):

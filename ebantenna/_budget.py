@@ -98,6 +98,13 @@ def _size(nbytes: float) -> str:
     raise AssertionError("unreachable")
 
 
+def _petabytes(nbytes) -> str:
+    """``nbytes`` in PiB, for an int of any size (``10**400 / 1024**5`` overflows a float)."""
+    if isinstance(nbytes, int) and nbytes.bit_length() > 1000:
+        return f"2**{nbytes.bit_length() - 1} bytes or more"
+    return f"{float(nbytes) / 1024**5:.3g} PiB"
+
+
 def check_allocation(nbytes, *, parameter: str, what: str) -> None:
     """Raise :class:`MemoryBudgetError` if ``nbytes`` (any size of number) exceeds the budget.
 
@@ -113,7 +120,7 @@ def check_allocation(nbytes, *, parameter: str, what: str) -> None:
     """
     budget = memory_budget()
     if nbytes > budget:
-        size = _size(float(nbytes)) if nbytes < 1024**5 else f"{nbytes / 1024**5:.3g} PiB"
+        size = _size(float(nbytes)) if nbytes < 1024**5 else _petabytes(nbytes)
         raise MemoryBudgetError(
             f"{parameter} asks for {what} of about {size}, over the memory budget of "
             f"{_size(budget)} (set EBANTENNA_MEMORY_BUDGET or ebantenna.set_memory_budget "

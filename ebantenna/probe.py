@@ -13,9 +13,33 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
-from ._validate import check_in_range, check_nonnegative, check_positive
+from ._validate import check_in_range, check_nonnegative, check_positive, check_range
 
-__all__ = ["Probe", "Material", "MATERIALS", "ALIASES", "material", "material_names"]
+__all__ = ["Probe", "Material", "MATERIALS", "ALIASES", "material", "material_names",
+           "SIZE_RANGE", "MODULUS_RANGE", "DENSITY_RANGE", "MAX_LOSS_FACTOR", "MAX_TIP_MASS_RATIO"]
+
+
+#: A beam's length or diameter, m, and why: a continuum beam from a micrometre to a kilometre;
+#: there ``d**4`` and ``L**3`` of the stiffness and of the frequencies stay far inside the float
+#: range (a diameter of 5e-324 m would make the second moment of area 0).
+SIZE_RANGE = (1e-6, 1e3)
+SIZE_REASON = "a continuum beam from 1 µm to 1 km; d**4 and L**3 stay inside the float range"
+#: Young's modulus, Pa: from a soft gel (1 kPa) to 1e30 Pa, far beyond diamond (about 1.2e12 Pa)
+#: but still a finite stand-in for a rigid body; ``E I`` and ``E / rho`` stay in the float range.
+MODULUS_RANGE = (1e3, 1e30)
+MODULUS_REASON = "from a soft gel, 1 kPa, to a rigid stand-in far beyond diamond's 1.2e12 Pa"
+#: Density, kg/m^3: from an aerogel (a few kg/m^3) to beyond osmium (22 590 kg/m^3).
+DENSITY_RANGE = (1.0, 1e5)
+DENSITY_REASON = "from an aerogel to beyond osmium, 22 590 kg/m^3"
+#: The largest structural loss factor: eta = 1 is a damping ratio of 0.5 per mode, far beyond
+#: any solid (rubber reaches about 1); the hysteretic model describes light damping.
+MAX_LOSS_FACTOR = 1.0
+LOSS_REASON = "eta = 1 is a damping ratio of 0.5, beyond any solid; the model is for light damping"
+#: The heaviest tip mass, as a multiple of the tube's mass. Beyond it the probe is a point mass
+#: on a massless spring: its first frequency (about sqrt(3 EI / (M L^3)) / 2 pi) is all the
+#: beam model could say, and the exact solution's root search no longer separates the modes.
+MAX_TIP_MASS_RATIO = 1e4
+TIP_MASS_REASON = "beyond, the probe is a point mass on a spring, not a beam"
 
 
 @dataclass(frozen=True)
@@ -38,12 +62,17 @@ class Probe:
         Mass density rho of the tube, kg/m^3. Default 1190 kg/m^3: PMMA, 1170-1200 kg/m^3
         (Ashby, ibid.).
     tip_mass : float
-        Point mass at the free tip, kg (the accelerometer board). Default 0: none.
+        Point mass at the free tip, kg (the accelerometer board). Default 0: none. At most
+        :data:`MAX_TIP_MASS_RATIO` times the tube's mass.
     loss_factor : float
         Structural loss factor eta of the tube (hysteretic damping, dimensionless), used by the
         simulator's structural-damping effect; the modal analysis ignores it. Default 0.03: PMMA,
         0.02-0.04 in L. Cremer, M. Heckl, B. A. T. Petersson, *Structure-Borne Sound*, 3rd ed.,
-        Springer, 2005, table 2.4 ("Plexiglas").
+        Springer, 2005, table 2.4 ("Plexiglas"). At most :data:`MAX_LOSS_FACTOR`.
+
+    Each parameter has a range with its reason (:data:`SIZE_RANGE` for the length and the
+    diameters, :data:`MODULUS_RANGE`, :data:`DENSITY_RANGE`); a value outside it raises a
+    :class:`ValueError` that names the parameter, the range and the reason.
 
     Examples
     --------
@@ -64,18 +93,26 @@ class Probe:
     loss_factor: float = 0.03
 
     def __post_init__(self):
-        check_positive("length", self.length)
-        check_positive("outer_diameter", self.outer_diameter)
+        for name in ("length", "outer_diameter"):
+            check_range(name, getattr(self, name), SIZE_RANGE, SIZE_REASON)
         check_nonnegative("inner_diameter", self.inner_diameter)
         if not self.inner_diameter < self.outer_diameter:
             raise ValueError(
                 "inner_diameter must be < outer_diameter "
                 f"({self.outer_diameter!r} m), got {self.inner_diameter!r}"
             )
-        check_positive("youngs_modulus", self.youngs_modulus)
-        check_positive("density", self.density)
-        check_nonnegative("tip_mass", self.tip_mass)
+        if not self.outer_diameter - self.inner_diameter >= 2 * SIZE_RANGE[0] * 1e-3:
+            raise ValueError(
+                f"the wall (outer_diameter - inner_diameter)/2 must be at least 1 nm, got "
+                f"{(self.outer_diameter - self.inner_diameter) / 2!r} m"
+            )
+        check_range("youngs_modulus", self.youngs_modulus, MODULUS_RANGE, MODULUS_REASON)
+        check_range("density", self.density, DENSITY_RANGE, DENSITY_REASON)
         check_nonnegative("loss_factor", self.loss_factor)
+        check_range("loss_factor", self.loss_factor, (0.0, MAX_LOSS_FACTOR), LOSS_REASON)
+        check_nonnegative("tip_mass", self.tip_mass)
+        check_range("tip_mass", self.tip_mass, (0.0, MAX_TIP_MASS_RATIO * self.mass),
+                    f"{MAX_TIP_MASS_RATIO:g} times the tube's mass; {TIP_MASS_REASON}")
 
     @property
     def area(self) -> float:

@@ -8,9 +8,72 @@ from pathlib import Path
 
 import numpy as np
 
-from ._validate import check_array, check_positive, load_json, open_npz, output_path
+from ._validate import check_array, check_positive, describe, load_json, open_npz, output_path
 
 __all__ = ["Recording"]
+
+#: How far a step of ``t`` may lie from one sampling period, in periods: a device's sample times
+#: carry timing jitter. A longer step is a gap where samples were lost (the device counts them).
+STEP_TOLERANCE = 0.25
+
+
+def _check_times(t: np.ndarray, fs: float) -> None:
+    """Raise unless ``t`` increases in steps of one sampling period ``1/fs``, gaps aside.
+
+    Samples may be missing (a device that loses some leaves gaps), but no step may be shorter
+    than a period, and the typical (median) step must be one period: a ``t`` sampled at 500 Hz
+    given with ``fs = 1000`` is refused, and so is a ``t`` with steps of random length.
+    """
+    steps = np.diff(t)
+    if np.any(steps <= 0):
+        i = int(np.argmax(steps <= 0))
+        raise ValueError(
+            f"t must increase strictly (sample times, s), got t[{i + 1}] = {t[i + 1]!r} "
+            f"after t[{i}] = {t[i]!r}"
+        )
+    if steps.size == 0:
+        return
+    with np.errstate(over="ignore"):
+        periods = steps * fs
+    short = periods < 1.0 - STEP_TOLERANCE
+    if np.any(short):
+        i = int(np.argmax(short))
+        raise ValueError(
+            f"t must be sampled at fs = {fs:g} Hz, got a step of {periods[i]:.3g} periods of "
+            f"1/fs after t[{i}] (no step may be shorter than {1 - STEP_TOLERANCE:g} period)"
+        )
+    typical = float(np.median(periods))
+    if abs(typical - 1.0) > STEP_TOLERANCE:
+        raise ValueError(
+            f"t is not sampled uniformly at fs = {fs:g} Hz: its median step is {typical:.3g} "
+            f"periods of 1/fs, not 1 (within {STEP_TOLERANCE:g})"
+        )
+
+
+def _check_metadata(metadata, where: str = "metadata") -> None:
+    """Raise unless ``metadata`` is a dict with ``str`` keys (at every depth), JSON-serialisable.
+
+    JSON turns a key ``1`` into ``"1"``: a recording saved and loaded would not equal itself.
+    """
+    if not isinstance(metadata, dict):
+        raise TypeError(f"metadata must be a dict, got {type(metadata).__name__}")
+    stack = [(metadata, where)]
+    while stack:
+        value, path = stack.pop()
+        if isinstance(value, dict):
+            for key, item in value.items():
+                if not isinstance(key, str):
+                    raise TypeError(
+                        f"metadata keys must be str (JSON would turn {describe(key)} into a "
+                        f"string), got {describe(key)} in {path}"
+                    )
+                stack.append((item, f"{path}[{key!r}]"))
+        elif isinstance(value, list | tuple):
+            stack.extend((item, f"{path}[{i}]") for i, item in enumerate(value))
+    try:
+        json.dumps(metadata)
+    except (TypeError, ValueError, RecursionError) as exc:
+        raise TypeError(f"metadata must be JSON-serialisable: {exc}") from exc
 
 
 @dataclass(frozen=True, eq=False)
@@ -53,21 +116,13 @@ class Recording:
             raise ValueError(
                 f"t, ax and az must have the same length, got {t.shape}, {ax.shape}, {az.shape}"
             )
-        steps = np.diff(t)
-        if np.any(steps <= 0):
-            i = int(np.argmax(steps <= 0))
-            raise ValueError(
-                f"t must increase strictly (sample times, s), got t[{i + 1}] = {t[i + 1]!r} "
-                f"after t[{i}] = {t[i]!r}"
-            )
+        fs = check_positive("fs", self.fs)
+        _check_times(t, fs)
         for name, value in (("t", t), ("ax", ax), ("az", az)):
             value.setflags(write=False)
             object.__setattr__(self, name, value)
-        object.__setattr__(self, "fs", check_positive("fs", self.fs))
-        try:
-            json.dumps(self.metadata)
-        except TypeError as exc:
-            raise TypeError(f"metadata must be JSON-serialisable: {exc}") from exc
+        object.__setattr__(self, "fs", fs)
+        _check_metadata(self.metadata)
 
     @property
     def n_samples(self) -> int:

@@ -64,6 +64,7 @@ import warnings
 
 import numpy as np
 
+from .._budget import check_allocation
 from .._validate import check_nonnegative, check_positive
 from ..chips.mpu6050 import (
     ACCEL_DLPF_6500,
@@ -308,7 +309,15 @@ class MPU6050:
 
     @staticmethod
     def decode(raw: bytes) -> np.ndarray:
-        """Bytes of whole samples (big-endian X, Y, Z, RM 59-64) to (n, 3) int16 counts."""
+        """Bytes of whole samples (big-endian X, Y, Z, RM 59-64) to (n, 3) int16 counts.
+
+        ``raw`` must be bytes-like and hold whole samples of 6 bytes.
+        """
+        if not isinstance(raw, bytes | bytearray | memoryview):
+            raise TypeError(f"raw must be bytes, got {type(raw).__name__}")
+        if len(raw) % SAMPLE_BYTES:
+            raise ValueError(f"raw must hold whole samples of {SAMPLE_BYTES} bytes (X, Y, Z), "
+                             f"got {len(raw)} bytes")
         return np.frombuffer(raw, dtype=DATA_DTYPE).astype(np.int16).reshape(-1, 3)
 
     def read_acceleration(self) -> np.ndarray:
@@ -459,6 +468,11 @@ class MPU6050:
         StreamStalledError
             When no sample came for ``watchdog`` seconds; it holds what was recorded so far.
         """
+        duration = check_positive("duration", duration)
+        # per sample: its counts and slot, its time and uncertainty, then the accelerations and
+        # the recording's t, ax and az: about 100 bytes
+        check_allocation(100 * duration * self.config.fs, parameter="duration",
+                         what=f"a recording of {duration * self.config.fs:.3g} samples")
         return record_stream(self, duration, poll_interval=poll_interval, watchdog=watchdog)
 
 

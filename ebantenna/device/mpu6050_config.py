@@ -58,7 +58,8 @@ def sample_rate_divider(fs: float, dlpf_cfg: int) -> int:
         raise ValueError(f"fs must be <= {ACCEL_OUTPUT_RATE:g} Hz (the accelerometer's output "
                          f"rate), got {fs!r}")
     gyro_rate = gyro_output_rate(dlpf_cfg)
-    divider = round(gyro_rate / fs) - 1
+    # below gyro_rate / 256 no divider fits; there gyro_rate / fs would overflow for a subnormal fs
+    divider = round(gyro_rate / fs) - 1 if fs >= gyro_rate / 257 else 256
     if not (0 <= divider <= 255 and math.isclose(gyro_rate / (1 + divider), fs, rel_tol=1e-12)):
         raise ValueError(
             f"fs must be {gyro_rate:g} Hz / (1 + n) for an integer n in [0, 255] when "

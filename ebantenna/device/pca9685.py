@@ -85,7 +85,7 @@ def prescale_for(frequency: float, oscillator_hz: float = OSCILLATOR_HZ) -> int:
     ValueError: frequency must lie in [24, 1526] Hz (the PCA9685's range at 25 MHz), got 1600.0
     """
     frequency = check_positive("frequency", frequency)
-    oscillator_hz = check_positive("oscillator_hz", oscillator_hz)
+    oscillator_hz = _check_oscillator(oscillator_hz)
     low = round(oscillator_hz / (COUNTS_PER_PERIOD * (PRESCALE_MAX + 1)))
     high = round(oscillator_hz / (COUNTS_PER_PERIOD * (PRESCALE_MIN + 1)))
     if not low <= frequency <= high:
@@ -130,7 +130,7 @@ def pwm_frequency(prescale: int, oscillator_hz: float = OSCILLATOR_HZ) -> float:
     50.029
     """
     prescale = check_int("prescale", prescale, minimum=PRESCALE_MIN, maximum=PRESCALE_MAX)
-    return check_positive("oscillator_hz", oscillator_hz) / (COUNTS_PER_PERIOD * (prescale + 1))
+    return _check_oscillator(oscillator_hz) / (COUNTS_PER_PERIOD * (prescale + 1))
 
 
 class PCA9685:

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_array, check_int
+from .._validate import check_array, check_int, real_array
 from ..probe import Probe
 from ._parallel import map_on_cores
 from .coupling import Rod, coupled_modes, craig_bampton, probe_substructure, rod_substructure
@@ -144,7 +144,7 @@ def _stiffness_table(contact_stiffness, n_rods: int, n_contacts: int) -> np.ndar
     A number holds for all, an array of shape ``(n_rods,)`` per rod, ``(n_rods, n_contacts)``
     per rod and position.
     """
-    k_c = np.asarray(contact_stiffness, dtype=float)
+    k_c = real_array("contact_stiffness", contact_stiffness)
     if k_c.ndim == 1:
         k_c = k_c[:, None]
     try:

@@ -47,10 +47,10 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 
-from .._validate import check_choice, check_int, check_nonnegative
-from ..probe import Probe
+from .._validate import check_choice, check_in_range, check_int, check_nonnegative, describe
+from ..probe import MAX_LOSS_FACTOR, Probe
 from .assembly import assemble, beam_mesh, free_dofs, support_diagonals
-from .guards import check_contact
+from .guards import check_contact, check_resolvable
 from .modal import eigenvalue_shift, solve_modes
 from .rod import Rod
 from .supports import Supports
@@ -128,7 +128,7 @@ def rod_substructure(rod: Rod, *, n_elements: int = 32) -> Substructure:
         check_contact("contact_height", rod.contact_height, rod.free_length)
         nodes = beam_mesh(rod.free_length, rod.contact_height, n_elements)
     else:
-        n_elements = check_int("n_elements", n_elements, minimum=1)
+        n_elements = check_resolvable(n_elements)
         nodes = np.linspace(0.0, rod.free_length, n_elements + 1)
     return _substructure(nodes, beam, Supports(contact=None), rod.contact_height, beam.loss_factor)
 
@@ -263,9 +263,25 @@ class CoupledModes:
 
 def _check_coupling(contact_stiffness, contact_loss_factor, n_modes):
     k_c = check_nonnegative("contact_stiffness (N/m, 0 to inf)", contact_stiffness, allow_inf=True)
-    eta_c = check_nonnegative("contact_loss_factor", contact_loss_factor)
+    check_nonnegative("contact_loss_factor", contact_loss_factor)
+    eta_c = check_in_range("contact_loss_factor", contact_loss_factor, 0.0, MAX_LOSS_FACTOR,
+                           low_inclusive=True, high_inclusive=True,
+                           reason="a loss factor of 1 is a damping ratio of 0.5: the contact's "
+                           "hysteretic model is for light damping")
     check_int("n_modes", n_modes, minimum=1)
     return k_c, eta_c
+
+
+def _check_kept(name: str, kept, sub: Substructure, mesh: str) -> int:
+    """The number of fixed-interface modes ``kept`` of ``sub``; the error names ``mesh`` too."""
+    most = sub.stiffness.shape[0] - 1
+    kept = check_int(name, kept, minimum=0)
+    if kept > most:
+        raise ValueError(
+            f"{name} must be <= {most} (the interior degrees of freedom of {mesh}'s mesh), got "
+            f"{describe(kept)}; lower {name} or refine {mesh}"
+        )
+    return kept
 
 
 def _couple(parts, k_c, eta_c):
@@ -417,11 +433,13 @@ def coupled_modes(
     check_choice("damping", damping, ("exact", "perturbation"))
     p = probe_reduction
     if p is None:
-        sub = probe_substructure(probe, contact, hinge=hinge, n_elements=n_elements)
-        p = craig_bampton(sub, probe_modes)
+        sub = probe_substructure(probe, contact, hinge=hinge,
+                                 n_elements=check_resolvable(n_elements))
+        p = craig_bampton(sub, _check_kept("probe_modes", probe_modes, sub, "n_elements"))
     r = rod_reduction
     if r is None:
-        r = craig_bampton(rod_substructure(rod, n_elements=rod_elements), rod_modes)
+        sub = rod_substructure(rod, n_elements=check_resolvable(rod_elements, "rod_elements"))
+        r = craig_bampton(sub, _check_kept("rod_modes", rod_modes, sub, "rod_elements"))
     parts = [(c.stiffness, c.mass, c.interface, c.loss_factor) for c in (p, r)]
     K, K_im, M, G = _couple(parts, k_c, eta_c)
     lam, z, eig, zeta = _solve_coupled(K, K_im, M, n_modes, eigenvalue_shift(probe), damping)

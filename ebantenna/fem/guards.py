@@ -34,7 +34,7 @@ import os
 
 import numpy as np
 
-from .._validate import check_in_range, check_int
+from .._validate import check_in_range, check_int, describe
 
 __all__ = [
     "roundoff_error",
@@ -76,16 +76,22 @@ def roundoff_error(n_elements: int) -> float:
 MAX_ELEMENTS = int((math.sqrt(ROUNDOFF_RTOL) / (_ROUNDOFF_C * np.finfo(float).eps)) ** 0.25)
 
 
-def check_resolvable(n_elements: int) -> int:
-    """Return ``n_elements``; raise ``ValueError`` above :data:`MAX_ELEMENTS` (round-off limit)."""
-    n_elements = check_int("n_elements", n_elements, minimum=1)
+def check_resolvable(n_elements: int, name: str = "n_elements") -> int:
+    """Return ``n_elements``; raise ``ValueError`` above :data:`MAX_ELEMENTS` (round-off limit).
+
+    ``name`` is the parameter the user passed (``rod_elements`` for the touched rod's mesh).
+    """
+    n_elements = check_int(name, n_elements, minimum=1)
     if n_elements > MAX_ELEMENTS:
+        # the estimates in floats: N^4 and its square overflow beyond N ~ 1e38
+        here = min(n_elements, 10**30)
+        least = "" if here == n_elements else "at least "
         raise ValueError(
-            f"n_elements must be <= {MAX_ELEMENTS}, got {n_elements}: the stiffness matrix's "
-            f"condition number grows like N^4 (here {float(n_elements) ** 4:.0e}), and in double "
-            f"precision the lowest frequency would be off by about {roundoff_error(n_elements):.0e}"
-            f" (relative), beyond {ROUNDOFF_RTOL:g}; at {MAX_ELEMENTS} elements the discretisation "
-            "error is already far below that"
+            f"{name} must be <= {MAX_ELEMENTS}, got {describe(n_elements)}: the stiffness "
+            f"matrix's condition number grows like N^4 (here {least}{float(here) ** 4:.0e}), "
+            f"and in double precision the lowest frequency would be off by {least}about "
+            f"{roundoff_error(here):.0e} (relative), beyond {ROUNDOFF_RTOL:g}; at {MAX_ELEMENTS} "
+            "elements the discretisation error is already far below that"
         )
     return n_elements
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._budget import check_allocation
 from .._validate import check_int
 
 __all__ = ["plot_probe", "plot_modes", "plot_zones"]
@@ -140,6 +141,9 @@ def plot_modes(result, ax=None, modes=None, n_points: int = 400, label: str = "m
         if isinstance(modes, int | np.integer):
             modes = [modes]
         modes = [check_int("modes", m, minimum=0, maximum=result.n_modes - 1) for m in modes]
+    # the positions, the deflection of every mode there, and matplotlib's copy of each curve
+    check_allocation(8 * n_points * (1 + 3 * result.n_modes), parameter="n_points",
+                     what=f"mode shapes on {n_points} points")
     ax = _axes(ax)
     x = np.linspace(0.0, result.probe.length, n_points)
     w = result.displacement(x)

@@ -5,8 +5,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .._validate import check_in_range, check_positive
-from ..probe import Material, Probe, material
+from .._validate import check_in_range, check_range
+from ..probe import SIZE_RANGE, Material, Probe, material
 
 __all__ = ["Rod"]
 
@@ -47,8 +47,8 @@ class Rod:
     def __post_init__(self):
         mat = self.material if isinstance(self.material, Material) else material(self.material)
         object.__setattr__(self, "material", mat)
-        check_positive("diameter", self.diameter)
-        check_positive("free_length", self.free_length)
+        for name in ("diameter", "free_length"):  # the probe's range for a beam, with its reason
+            check_range(name, getattr(self, name), SIZE_RANGE, "a continuum beam from 1 µm to 1 km")
         height = self.free_length if self.contact_height is None else self.contact_height
         height = check_in_range(
             "contact_height (m above the clamp, within the rod's free length)",

@@ -28,6 +28,8 @@ from sklearn.utils import check_random_state
 from sklearn.utils._param_validation import Interval, Options, StrOptions
 from sklearn.utils.validation import check_is_fitted
 
+from .._budget import check_allocation
+from .._validate import check_python_number, check_real, describe
 from ._backprop_engine import Workspace, loss_and_gradients_into
 from .backprop import ACTIVATIONS, glorot_uniform, loss_and_gradients, pack, unpack
 from .fitted import INPUT_ATTRIBUTES, FittedAttribute
@@ -158,6 +160,34 @@ class BaseMLP(BaseEstimator):
         self.lambda0 = lambda0
         self.max_fun = max_fun
 
+    #: The real-valued parameters; each must be a finite number (``n_iter_no_change`` may be inf).
+    _REAL_PARAMETERS = ("alpha", "learning_rate_init", "power_t", "tol", "momentum",
+                        "validation_fraction", "beta_1", "beta_2", "epsilon", "sigma0", "lambda0")
+
+    def _validate_params(self):
+        """Numbers scikit-learn's constraints cannot take (10**400, a Fraction) refused by name,
+        then those constraints, with scikit-learn's errors."""
+        for name in self._REAL_PARAMETERS:
+            check_python_number(name, getattr(self, name))
+        super()._validate_params()
+
+    def _check_numbers(self) -> None:
+        """Every real parameter finite, whatever its Python size (scikit-learn's constraints take
+        ``alpha=10**400`` as a real number, and ``float()`` of it would overflow)."""
+        for name in self._REAL_PARAMETERS:
+            check_real(name, getattr(self, name))
+
+    def _check_size(self, sizes: list[int], n_rows: int) -> None:
+        """Refuse a network over the memory budget before its weights are drawn.
+
+        The weights, and about five copies of them (gradients, the optimiser's state, the best
+        network kept), plus the activations and their gradients for every row of a batch.
+        """
+        n_weights = sum((a + 1) * b for a, b in zip(sizes[:-1], sizes[1:], strict=False))
+        check_allocation(8 * (6 * n_weights + 3 * n_rows * sum(sizes)),
+                         parameter="hidden_layer_sizes",
+                         what=f"a network of {describe(n_weights)} weights")
+
     # ------------------------------------------------------------ network
     def _hidden_sizes(self) -> list[int]:
         """``hidden_layer_sizes`` as a list (the constraints have checked int or array-like)."""
@@ -227,7 +257,9 @@ class BaseMLP(BaseEstimator):
         the shuffles of the epochs; the validation split is scikit-learn's (see
         :meth:`_split_random_state`).
         """
+        self._check_numbers()
         sizes = [X.shape[1], *self._hidden_sizes(), Y.shape[1]]
+        self._check_size(sizes, X.shape[0])
         if incremental and self.early_stopping:
             raise ValueError("partial_fit does not support early_stopping=True")
         rng = np.random.default_rng(self.random_state)

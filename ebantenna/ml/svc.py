@@ -40,6 +40,13 @@ from sklearn.utils.validation import (
     validate_data,
 )
 
+from .._validate import (
+    check_int,
+    check_nonnegative,
+    check_positive,
+    check_python_number,
+    check_real,
+)
 from .fitted import INPUT_ATTRIBUTES, FittedAttribute
 from .kernels import Kernel, KernelRows, call_kernel, resolve_gamma
 from .ovo import dual_layout, one_vs_one_coef, ovo_votes, ovr_decision_function
@@ -52,6 +59,72 @@ from .sparse_input import as_csr
 __all__ = ["SVC", "ovr_decision_function"]
 
 logger = logging.getLogger(__name__)
+
+
+#: The largest error of the RBF exponent ``gamma * d`` that the expansion of the squared distance
+#: may leave at prediction, 2**-20 (about 1e-6 relative in the kernel value); above it the
+#: distances are recomputed from direct differences.
+EXPONENT_RTOL = 2.0**-20
+
+
+def _expansion_unreliable(X: np.ndarray, S: np.ndarray, gamma: float) -> bool:
+    """Could the expanded squared distance, times ``gamma``, be off by more than 2**-20?
+
+    The expansion ``|x|^2 + |s|^2 - 2 x.s`` is off by up to ``(p + 5) u (|x| + |s|)^2``
+    (:mod:`ebantenna.ml.kernels`), here bounded with the norms about the origin (an upper bound
+    of the centred ones' error). At ``gamma = 1e300`` that error of about 1e-15 makes
+    ``exp(-gamma d)`` of a point and itself 0 instead of 1, and a training point is
+    misclassified; libsvm predicts with direct differences (``Kernel::k_function``), so
+    recomputing them keeps the drop-in's answers.
+    """
+    if X.size == 0 or S.size == 0:
+        return False
+    u = np.finfo(np.float64).eps / 2
+    reach = float(np.sqrt(np.max(np.einsum("ij,ij->i", X, X)))
+                  + np.sqrt(np.max(np.einsum("ij,ij->i", S, S))))
+    return gamma * (X.shape[1] + 5) * u * reach**2 > EXPONENT_RTOL
+
+
+def _rbf_direct(X: np.ndarray, S: np.ndarray, gamma: float) -> np.ndarray:
+    """``exp(-gamma |x - s|^2)`` from direct differences, in blocks of about 8 MB."""
+    out = np.empty((X.shape[0], S.shape[0]))
+    rows = max(1, 2**20 // max(1, S.shape[0] * X.shape[1]))
+    for i in range(0, X.shape[0], rows):
+        diff = X[i : i + rows, None, :] - S[None, :, :]
+        out[i : i + rows] = np.exp(-gamma * np.einsum("ijk,ijk->ij", diff, diff))
+    return out
+
+
+def plain_training_data(X, y):
+    """``(X, y)`` when both are plain and valid, checked without scikit-learn; else None.
+
+    Plain: ``X`` a 2-D NumPy array of floats or ints with at least one row and one column,
+    finite; ``y`` a 1-D NumPy array of ints, floats (finite) or strings, one label per row. These
+    are what scikit-learn's ``validate_data``, ``column_or_1d`` and
+    ``check_classification_targets`` accept unchanged (a float label must be a whole number, or
+    scikit-learn calls the target continuous); everything else returns None, for scikit-learn's
+    own conversions and error messages. About half of an iris fit went into those checks.
+
+    Examples
+    --------
+    >>> X, y = plain_training_data(np.eye(2, dtype=np.float32), np.array([0, 1]))
+    >>> X.dtype, X.flags.c_contiguous, y
+    (dtype('float64'), True, array([0, 1]))
+    >>> plain_training_data(np.eye(2), np.array([0.5, 1.0])) is None  # continuous: sklearn's error
+    True
+    """
+    if type(X) is not np.ndarray or type(y) is not np.ndarray:
+        return None
+    if X.ndim != 2 or X.dtype.kind not in "fiu" or 0 in X.shape or y.ndim != 1:
+        return None
+    if y.shape[0] != X.shape[0] or y.dtype.kind not in "fiuU":
+        return None
+    X = np.ascontiguousarray(X, dtype=np.float64)
+    if not np.isfinite(X).all():
+        return None
+    if y.dtype.kind == "f" and not (np.isfinite(y).all() and np.array_equal(y, np.round(y))):
+        return None
+    return X, y
 
 
 class SVC(ClassifierMixin, BaseEstimator):
@@ -321,8 +394,16 @@ class SVC(ClassifierMixin, BaseEstimator):
         self._check_solution(status)
         return self
 
+    def _validate_params(self):
+        """Numbers scikit-learn's constraints cannot take (10**400, a Fraction) refused by name,
+        then those constraints, with scikit-learn's errors."""
+        for name in ("C", "gamma", "coef0", "tol", "cache_size", "degree"):
+            check_python_number(name, getattr(self, name))
+        super()._validate_params()
+
     def _check_combination(self):
         """Refuse the parameters that do not go together (their types are checked already)."""
+        self._check_numbers()
         if self.break_ties and self.decision_function_shape == "ovo":
             raise ValueError("break_ties must be False when decision_function_shape is 'ovo'")
         if self.solver == "reference":
@@ -334,22 +415,59 @@ class SVC(ClassifierMixin, BaseEstimator):
 
     def _training_data(self, X, y, sample_weight):
         """Validated ``X``, the class index of each sample and the sample weights; sets
-        ``classes_`` and ``class_weight_``."""
-        X, y = validate_data(self, X, y, dtype=np.float64, order="C", accept_sparse="csr")
-        X = self._sparse_input(X)
+        ``classes_``, ``class_weight_`` and ``n_features_in_``.
+
+        A plain 2-D real array with labels of one 1-D array takes the package's own checks
+        (:func:`plain_training_data`); anything else (sparse matrices, data frames, lists, bad
+        input) goes through scikit-learn's validation, for its conversions and its messages.
+        """
+        plain = plain_training_data(X, y)
+        if plain is None or self.kernel == "precomputed":
+            X, y = validate_data(self, X, y, dtype=np.float64, order="C", accept_sparse="csr")
+            X = self._sparse_input(X)
+            y = column_or_1d(y, warn=True)
+            check_classification_targets(y)
+        else:
+            X, y = plain
+            self.n_features_in_ = X.shape[1]
+            if hasattr(self, "feature_names_in_"):
+                del self.feature_names_in_
         if self.kernel == "precomputed" and X.shape[0] != X.shape[1]:
             raise ValueError("Precomputed matrix must be a square matrix. Input is a "
                              f"{X.shape[0]}x{X.shape[1]} matrix.")
-        y = column_or_1d(y, warn=True)
-        check_classification_targets(y)
         classes, y_idx = np.unique(y, return_inverse=True)
         self.classes_ = classes
         if classes.size < 2:
             raise ValueError(
                 f"The number of classes has to be greater than one; got {classes.size} class"
             )
-        self.class_weight_ = compute_class_weight(self.class_weight, classes=classes, y=y)
+        self.class_weight_ = self._class_weights(classes, y)
+        if sample_weight is None:
+            return X, y_idx, np.ones(X.shape[0])
         return X, y_idx, _check_sample_weight(sample_weight, X, dtype=np.float64)
+
+    def _class_weights(self, classes, y) -> np.ndarray:
+        """``class_weight_``: scikit-learn's, each given weight a finite number >= 0."""
+        if self.class_weight is None:  # scikit-learn's answer, without its validation's cost
+            return np.ones(classes.shape[0])
+        if isinstance(self.class_weight, dict):
+            for label, weight in self.class_weight.items():
+                check_nonnegative(f"class_weight[{label!r}]", weight)
+        return compute_class_weight(self.class_weight, classes=classes, y=y)
+
+    def _check_numbers(self):
+        """The numeric parameters as finite numbers in range, whatever their Python size.
+
+        scikit-learn's constraints take ``C=10**400`` as a real number; ``float()`` of it would
+        overflow. ``degree`` is a 32-bit int in libsvm.
+        """
+        check_positive("C", self.C)
+        if not isinstance(self.gamma, str):
+            check_nonnegative("gamma", self.gamma)
+        check_real("coef0", self.coef0)
+        check_positive("tol", self.tol)
+        check_positive("cache_size", self.cache_size)
+        check_int("degree", self.degree, minimum=0, maximum=2**31 - 1)
 
     def _solve_pairs(self, kernels, members, c_vec, diag, policy, max_iter):
         """One binary dual per pair of classes: ``(coefs, rhos, n_iter, status)``, the pairs in
@@ -491,6 +609,9 @@ class SVC(ClassifierMixin, BaseEstimator):
             return X[:, self.support_]
         if callable(self.kernel):
             return call_kernel(self.kernel, X, self._X_fit[self.support_])
+        if self.kernel == "rbf" and not sp.issparse(X) and not sp.issparse(self.support_vectors_):
+            if _expansion_unreliable(X, self.support_vectors_, self._gamma):
+                return _rbf_direct(X, self.support_vectors_, self._gamma)
         return self._kernel().gram(X, self.support_vectors_)
 
     @property

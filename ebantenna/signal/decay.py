@@ -267,7 +267,10 @@ def fit_decay(
     clipped = clipped_mask(x)  # guard: samples of a saturated sensor
     xc = x - x.mean() if remove_mean else x
     env = analytic_envelope(xc)
-    t = np.arange(x.shape[0]) / fs
+    # guard: at an extreme fs the squared times of the line fit under- or overflow; the fit is
+    # then made in samples (a time unit of 1/fs) and its rate converted to 1/s at the end.
+    unit = 1.0 if 1e-100 <= fs <= 1e100 else 1.0 / fs  # s
+    t = np.arange(x.shape[0]) / (fs * unit)
     period = fs / dominant_frequency(xc, fs, method="bin", window="rectangular")  # samples
     region = decay_region(env, clipped, period, floor_factor)  # guard: edges, clipping, noise
     keep = None if region is None else region.keep
@@ -281,7 +284,7 @@ def fit_decay(
     decaying = b < 0 and r2 >= min_r_squared
     first = region.first
     sine = damped_sinusoid_fit(xc[first:], t[first:], region.end - first, a, b,
-                               2 * np.pi / period * fs)
+                               2 * np.pi / period * (fs * unit))
     n_points = keep.size
     if method == "sinusoid":
         status = sinusoid_status(sine, decaying)
@@ -289,7 +292,7 @@ def fit_decay(
             a, b, r2, n_points = sine
     else:
         status = envelope_status(b, decaying, region.too_short, sine)
-    return _decay_fit(a, b, status, r2, n_points, exponent, clipped, method)
+    return _decay_fit(a, b / unit, status, r2, n_points, exponent, clipped, method)
 
 
 def _checked_arguments(x, fs, method, remove_mean, floor_factor, min_r_squared):

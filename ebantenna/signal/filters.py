@@ -40,6 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import signal as sps
 
+from .._budget import check_allocation
 from .._validate import check_array, check_choice, check_int, check_positive
 from ._checks import check_band, check_fs
 
@@ -316,6 +317,9 @@ def check_specification(sos, spec: FilterSpec, *, n_points: int = 8192) -> SpecR
     if not isinstance(spec, FilterSpec):
         raise TypeError(f"spec must be a FilterSpec, got {type(spec).__name__}")
     n_points = check_int("n_points", n_points, minimum=16)
+    # three grids, and per grid the complex response, its magnitude and its decibels
+    check_allocation(3 * n_points * (8 + 16 + 8 + 8) * (1 + sos.shape[0]), parameter="n_points",
+                     what=f"the frequency response on {3 * n_points} points")
     nyq = spec.fs / 2.0
     f_pass = np.linspace(spec.passband[0], spec.passband[1], n_points)
     f_stop = np.concatenate([np.linspace(0.0, spec.stopband[0], n_points),

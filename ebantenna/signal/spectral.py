@@ -35,6 +35,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.signal import get_window
 
+from .._budget import check_allocation
 from .._validate import check_bool, check_choice, check_int, check_nonnegative, check_positive
 from ._checks import check_fs, check_signal
 from ._guards import analysed_part, unit_scaled
@@ -160,6 +161,11 @@ def _checked_arguments(x, fs, method, window, zero_pad, fmin, fmax, remove_mean)
     check_choice("method", method, FREQUENCY_METHODS)
     check_choice("window", window, WINDOWS)
     zero_pad = check_int("zero_pad", zero_pad, minimum=1, maximum=64)
+    # the scaled, windowed copies of x and the complex spectrum with its magnitude
+    n_fft = x.shape[0] * zero_pad
+    check_allocation(32 * x.shape[0] + 24 * (n_fft // 2 + 1),
+                     parameter="x" if zero_pad == 1 else "x and zero_pad",
+                     what=f"the spectrum of {n_fft} points")
     check_bool("remove_mean", remove_mean)
     if method == "jacobsen" and window not in ("hann", "rectangular"):
         raise ValueError(f"method 'jacobsen' needs window 'hann' or 'rectangular', got {window!r}")

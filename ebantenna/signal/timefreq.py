@@ -30,7 +30,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.signal import get_window
 
-from .._validate import check_array, check_choice, check_int, check_positive
+from .._budget import check_allocation
+from .._validate import check_array, check_choice, check_int, check_positive, describe
 from ._checks import MAX_FFT, check_fs, check_signal
 from .spectral import WINDOWS
 
@@ -134,8 +135,11 @@ def spectrogram(x, fs, *, nperseg: int = 64, noverlap: int | None = None,
     ((33, 30), 125.0, 2.0)
     """
     fs = check_fs(fs)
+    x = check_signal("x", x, min_length=4)
     nperseg = check_int("nperseg", nperseg, minimum=4)
-    x = check_signal("x", x, min_length=nperseg)
+    if nperseg > x.shape[0]:
+        raise ValueError(f"nperseg ({describe(nperseg)}) must not exceed the length of x "
+                         f"({x.shape[0]} samples)")
     noverlap = nperseg // 2 if noverlap is None else check_int(
         "noverlap", noverlap, minimum=0, maximum=nperseg - 1)
     check_choice("window", window, WINDOWS)
@@ -145,6 +149,9 @@ def spectrogram(x, fs, *, nperseg: int = 64, noverlap: int | None = None,
     w = np.ones(nperseg) if window == "rectangular" else get_window(window, nperseg, fftbins=True)
     hop = nperseg - noverlap
     n_frames = 1 + (x.shape[0] - nperseg) // hop
+    # frames (and their windowed copy), then the complex spectrum and its amplitude
+    check_allocation(n_frames * (16 * nperseg + 24 * (n_fft // 2 + 1)), parameter="n_fft",
+                     what=f"a spectrogram of {n_frames} frames of {n_fft} points")
     starts = hop * np.arange(n_frames)
     frames = x[starts[:, None] + np.arange(nperseg)[None, :]]
     spectrum = np.abs(np.fft.rfft(frames * w, n=n_fft, axis=1)).T
@@ -217,6 +224,9 @@ def morlet_scalogram(x, fs, frequencies, *, bandwidth: float = 1.5,
         )
     pad = int(np.ceil(span))
     n_fft = 1 << int(np.ceil(np.log2(n + pad)))
+    # The result (16 bytes a value) and, per frequency, 7 aliases of the FFT grid and two spectra.
+    check_allocation(16 * freqs.shape[0] * n + 16 * 9 * n_fft, parameter="frequencies",
+                     what=f"a scalogram of {freqs.shape[0]} frequencies by {n} samples")
     spectrum = np.fft.fft(x, n_fft)
     nu = np.fft.fftfreq(n_fft)
     out = np.empty((freqs.shape[0], n), dtype=complex)

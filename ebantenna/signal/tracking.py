@@ -41,8 +41,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_in_range, check_int, check_positive
+from .._validate import check_in_range, check_int, check_positive, describe
 from ._checks import check_fs, check_signal
+from ._guards import unit_scaled
 from .spectral import dominant_frequency
 
 __all__ = ["TrackingResult", "FrequencyTracker"]
@@ -185,7 +186,15 @@ class FrequencyTracker:
         -------
         TrackingResult
         """
-        x = check_signal("x", x, min_length=self.block, allow_constant=False)
+        x = check_signal("x", x, min_length=8, allow_constant=False)
+        if x.shape[0] < self.block:
+            raise ValueError(
+                f"block ({describe(self.block)} samples) must not exceed the length of x "
+                f"({x.shape[0]} samples)"
+            )
+        # The adaptation is scale-free; a power-of-two scaling keeps x * x from overflowing
+        # near 1e300 or underflowing near 1e-300, and is undone exactly on the band output.
+        x, exponent = unit_scaled(x)
         x = x - x.mean()
         n = x.shape[0]
         locked = self._lock_gate(x)
@@ -233,8 +242,8 @@ class FrequencyTracker:
                             settle_until = k + 1 + warmup
                             restarts.append(k + 1)
                     block_in = block_out = 0.0
-        return TrackingResult(np.arange(n) / self.fs, freq, band, np.asarray(restarts, dtype=int),
-                              locked)
+        return TrackingResult(np.arange(n) / self.fs, freq, np.ldexp(band, exponent),
+                              np.asarray(restarts, dtype=int), locked)
 
     def _lock_gate(self, x: np.ndarray) -> np.ndarray:
         """Per sample: does its block stand ``lock_snr`` above the quietest block's power?"""

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from .._validate import check_positive
+from .._validate import check_int, check_positive
 from .modes import ArrestModes, arrest_modes, damped_exponentials, modal_exponentials
 from .scene import Scene
 from .touched_object import object_modes, pinned_modes
@@ -53,12 +53,18 @@ class ModalTerms:
     preload: np.ndarray | None = None
     restrikes: np.ndarray | None = None
 
+    def _row(self, row) -> int:
+        """``row`` checked: a signal's index, ``0 <= row < n_signals`` (no negative indexing)."""
+        return check_int("row", row, minimum=0, maximum=self.omega.shape[0] - 1)
+
     def frequencies(self, row: int = 0) -> np.ndarray:
         """Natural frequencies of signal ``row`` (padding dropped), Hz."""
+        row = self._row(row)
         return self.omega[row, self.live[row]] / (2 * math.pi)
 
     def damping_ratios(self, row: int = 0) -> np.ndarray:
         """Damping ratios of signal ``row`` (padding dropped)."""
+        row = self._row(row)
         return self.zeta[row, self.live[row]]
 
     def dynamic_contact_force(self, t) -> np.ndarray:

@@ -38,6 +38,7 @@ import numpy as np
 from joblib import Parallel, delayed
 
 from .. import __version__
+from .._budget import check_allocation
 from .._progress import progress
 from .._validate import (
     check_int,
@@ -120,6 +121,12 @@ class DatasetDesign:
                 f"materials must be a non-empty tuple of names, got {self.materials!r}"
             )
         object.__setattr__(self, "materials", tuple(material(m).name for m in self.materials))
+        repeated = sorted({m for m in self.materials if self.materials.count(m) > 1})
+        if repeated:
+            raise ValueError(
+                f"materials must name each material once (a repeated one would make two "
+                f"classes of the same recordings), got {', '.join(repeated)} more than once"
+            )
         check_positive("first_contact", self.first_contact)
         check_positive("contact_step", self.contact_step)
         check_int("repetitions", self.repetitions, minimum=1)
@@ -131,7 +138,12 @@ class DatasetDesign:
     def contacts(self, length: float) -> np.ndarray:
         """The nominal contact positions on a probe of ``length`` (m), m."""
         check_positive("length", length)
-        k = np.arange(int(np.floor((length - self.first_contact) / self.contact_step + 1e-9)) + 1)
+        with np.errstate(over="ignore"):
+            count = np.floor((length - self.first_contact) / self.contact_step + 1e-9) + 1
+        # three float arrays of that many positions are made below
+        check_allocation(24 * max(float(count), 0.0), parameter="contact_step",
+                         what=f"{count:.3g} nominal contact positions")
+        k = np.arange(max(int(count), 0))
         nominal = self.first_contact + k * self.contact_step
         nominal = nominal[nominal < length - 1e-12]
         if nominal.size == 0:
@@ -248,6 +260,12 @@ def _plan(scene: Scene, design: DatasetDesign, seed: int) -> dict:
     length = scene.probe.length
     nominal = design.contacts(length)
     materials = design.materials
+    n_rows = len(materials) * nominal.size * design.repetitions
+    # two float32 signals per row, and about 10 label and variation arrays of 8 bytes a row
+    check_allocation(n_rows * (8 * scene.n_samples + 80), parameter="design",
+                     what=f"a data set of {n_rows} recordings of {scene.n_samples} samples "
+                     f"({len(materials)} materials x {nominal.size} contacts x "
+                     f"{design.repetitions} repetitions)")
     mat, con, rep = np.meshgrid(
         np.arange(len(materials)), nominal, np.arange(design.repetitions), indexing="ij"
     )

@@ -53,7 +53,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validate import check_array, check_int
+from .._budget import check_allocation
+from .._validate import check_array, check_int, check_real
 from ..fem.guards import check_contact
 from ..probe import material as lookup_material
 from ..recording import Recording
@@ -312,11 +313,26 @@ def _per_signal(name, value, default, n):
     if isinstance(value, str):
         return np.array([value] * n, dtype=object)
     if np.ndim(value) == 0:
-        return np.full(n, value, dtype=float)
-    array = np.asarray(value)
+        value = value.item() if isinstance(value, np.ndarray | np.generic) else value
+        return np.full(n, check_real(name, value))
+    if isinstance(value, np.ma.MaskedArray):
+        array = value  # refused by check_array, naming it: its mask would be lost here
+    else:
+        try:
+            array = np.asarray(value)
+        except ValueError:
+            raise ValueError(f"{name} must be a scalar or a 1-D array, got a ragged list") from None
     if array.shape != (n,):
         raise ValueError(f"{name} must be a scalar or have shape ({n},), got shape {array.shape}")
     return array
+
+
+def _size_of(name: str, value) -> int:
+    """The number of values of an argument that is a scalar or a 1-D sequence."""
+    try:
+        return int(np.size(value))
+    except ValueError:
+        raise ValueError(f"{name} must be a scalar or a 1-D array, got a ragged list") from None
 
 
 def _seeds(seeds, n: int) -> list[int]:
@@ -336,10 +352,15 @@ def _checked_batch(scene, contact, material, sweep_speed, tilt_ratio, seeds, **o
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
-    sizes = [np.size(v) for v in (contact, sweep_speed, tilt_ratio, seeds) if v is not None]
+    given = {"contact": contact, "sweep_speed": sweep_speed, "tilt_ratio": tilt_ratio,
+             "seeds": seeds}
+    sizes = {k: _size_of(k, v) for k, v in given.items() if v is not None}
     if material is not None and not isinstance(material, str):
-        sizes.append(len(material))
-    n = max(sizes + [1])
+        sizes["material"] = len(material)
+    n = max([*sizes.values(), 1])
+    # the signals ax and az, and about as much again in the modal sums that make them
+    check_allocation(32 * n * scene.n_samples, parameter=max(sizes, key=sizes.get, default="n"),
+                     what=f"{n} signals of {scene.n_samples} samples")
     contacts = check_array("contact", _per_signal("contact", contact, scene.contact, n), ndim=1)
     for c in contacts:  # the one contact check of the probe model (fem.guards)
         check_contact("contact", float(c), scene.probe.length)

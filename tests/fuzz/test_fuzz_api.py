@@ -1095,7 +1095,7 @@ ROWS += [
         0.2,
         1e4,
         rod_elements=0,
-        match="n_elements",
+        match="rod_elements",
     ),
     bad(
         "fem.coupled_modes",
@@ -1108,7 +1108,7 @@ ROWS += [
         n_elements=4,
         rod_elements=2,
         probe_modes=-1,
-        match="n_modes",
+        match="probe_modes",
     ),
     bad(
         "fem.coupled_modes",
@@ -2556,7 +2556,7 @@ ROWS += [
         TONE,
         FS,
         nperseg=HUGE_INT,
-        match="x must have at least",
+        match="nperseg (an integer of 22 digits",
     ),
     bad(
         "signal.spectrogram",

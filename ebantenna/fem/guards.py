@@ -16,7 +16,7 @@ elements). :func:`roundoff_error` is that estimate with ``c = 0.05``, an upper b
 :func:`check_resolvable` refuses finer ones, where more elements buy no accuracy, only noise.
 
 **Memory.** :func:`check_memory` refuses a dense solve or a batch of sweeps that would take more
-than half of the machine's memory, before it is allocated.
+than the package's memory budget, before it is allocated.
 
 **A contact the mesh can hold.** :func:`check_contact` refuses a contact closer to the hinge or
 the tip than :data:`MIN_SPAN` of the length, where the short element beside it would leave the
@@ -30,10 +30,10 @@ The public entry points (:func:`~ebantenna.fem.modal.modal_analysis`,
 from __future__ import annotations
 
 import math
-import os
 
 import numpy as np
 
+from .._budget import check_allocation
 from .._validate import check_in_range, check_int, describe
 
 __all__ = [
@@ -96,21 +96,15 @@ def check_resolvable(n_elements: int, name: str = "n_elements") -> int:
     return n_elements
 
 
-def check_memory(nbytes: float, what: str) -> None:
-    """Raise ``ValueError`` before ``what`` allocates more than half of the machine's memory.
+def check_memory(nbytes: float, what: str, parameter: str = "n_elements") -> None:
+    """Raise before ``what`` allocates more than the package's memory budget.
 
-    ``nbytes`` is the caller's a-priori estimate. Without a way to ask the machine (no
-    ``os.sysconf``), nothing is checked.
+    ``nbytes`` is the caller's a-priori estimate and ``parameter`` the argument that sets it.
+    The budget is the one every allocation is held to (:func:`ebantenna.memory_budget`: half
+    the available memory unless set), so the error is a :class:`ebantenna.MemoryBudgetError`, a
+    :class:`ValueError`.
     """
-    try:
-        total = os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
-    except (AttributeError, ValueError, OSError):
-        return
-    if nbytes > total / 2:
-        raise ValueError(
-            f"{what} needs about {nbytes / 1e9:.3g} GB, more than half of this machine's "
-            f"{total / 1e9:.3g} GB of memory"
-        )
+    check_allocation(nbytes, parameter=parameter, what=what)
 
 
 #: The shortest span, as a fraction of the probe's length, between the contact and the hinge or

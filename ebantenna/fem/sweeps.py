@@ -169,6 +169,7 @@ def _check_batch_memory(method: str, n_positions: int, chunk: int, n_elements: i
         batch * _BYTES_PER_POSITION[method](n_elements, n_modes),
         f"natural_frequencies(method={method!r}) with {n_elements} elements and batches of "
         f"{per_batch} positions (pass a smaller chunk, or method='banded')",
+        "chunk",
     )
 
 

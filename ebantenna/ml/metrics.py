@@ -92,8 +92,8 @@ def accuracy_interval(correct: int, n: int, *, z: float = 1.959963984540054) -> 
     >>> lo, hi = accuracy_interval(80, 100)
     >>> round(lo, 4), round(hi, 4)
     (0.7112, 0.8666)
-    >>> accuracy_interval(0, 10)[0]
-    0.0
+    >>> accuracy_interval(0, 7)[0], accuracy_interval(7, 7)[1]
+    (0.0, 1.0)
     """
     if isinstance(correct, bool) or isinstance(n, bool):
         raise TypeError("correct and n must be integers, not bool")
@@ -106,7 +106,10 @@ def accuracy_interval(correct: int, n: int, *, z: float = 1.959963984540054) -> 
     centre = p + z * z / (2 * n)
     half = z * np.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
     scale = 1 + z * z / n
-    return float(max(0.0, (centre - half) / scale)), float(min(1.0, (centre + half) / scale))
+    # At k = 0 (k = n) the lower (upper) end is 0 (1) exactly; computed, it is off by rounding.
+    low = 0.0 if correct == 0 else float((centre - half) / scale)
+    high = 1.0 if correct == n else float((centre + half) / scale)
+    return low, high
 
 
 def per_class_rates(matrix) -> tuple[np.ndarray, np.ndarray]:

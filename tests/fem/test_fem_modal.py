@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from ebantenna import Probe
+from ebantenna import MemoryBudgetError, Probe
 from ebantenna.fem import (
     Supports,
     dominant_mode_zones,
@@ -305,7 +305,7 @@ def test_exact_contact_at_the_hinge_tends_to_the_cantilever(contact, hinge):
 
 
 def test_a_sweep_that_cannot_fit_in_memory_is_refused_before_allocating():
-    # 10^6 positions x (2 x 3000)^2 x 32 bytes = 1.15e15 bytes: more than any machine's memory
+    # 10^6 positions x (2 x 3000)^2 x 32 bytes = 1.15e15 bytes = 1.02 PiB: over any budget
     contacts = np.linspace(0.01, 0.39, 10**6)
-    with pytest.raises(ValueError, match=r"smaller chunk.*needs about 1.15e\+06 GB"):
+    with pytest.raises(MemoryBudgetError, match=r"^chunk asks for .*smaller chunk.* 1.02 PiB"):
         natural_frequencies(PROBE, contacts, n_elements=3000, method="dense", chunk=10**6)

@@ -217,10 +217,7 @@ def reproduce(
     )
     data_summary.render(data_result, report, figures)
     _learn_materials_and_distance(study, ds, feats, data_result.materials, seed)
-    controls = study.run("controls", physics_controls.compute, physics_controls.render,
-                         scene, seed, quick, cache_dir, workers)
-    study.run("rod geometry", rod_geometry.compute, rod_geometry.render,
-              scene, seed, quick, cache_dir, workers)
+    controls = _controls(study, scene, seed, quick, cache_dir, workers)
     study.run("full range", full_range.compute, full_range.render, ds, feats)
     study.run("time-frequency", time_frequency.compute, time_frequency.render, scene, seed)
     timer.close()
@@ -286,6 +283,15 @@ def _learn_materials_and_distance(study: _Sections, ds, feats, materials, seed: 
     study.run("seeds", seed_spread.compute, seed_spread.render,
               ds, feats, seed, (grouped.accuracies["test"], grouped.counts["test"]))
     study.run("ann setup", ann_setup.compute, ann_setup.render, ds, feats, seed)
+
+
+def _controls(study: _Sections, scene, seed: int, quick: bool, cache_dir, workers: int):
+    """The controls and the rod's geometry varied: the small data sets rebuilt and measured."""
+    controls = study.run("controls", physics_controls.compute, physics_controls.render,
+                         scene, seed, quick, cache_dir, workers)
+    study.run("rod geometry", rod_geometry.compute, rod_geometry.render,
+              scene, seed, quick, cache_dir, workers)
+    return controls
 
 
 def _run_time(report: Report, seconds: dict, workers: int, cached: bool, dataset: str,

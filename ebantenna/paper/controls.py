@@ -361,7 +361,9 @@ def equivalent_pair_scenes(scene: Scene, *, reference: str = "aluminium", other:
     Returns
     -------
     (Scene, Scene)
-        Touching ``reference`` and ``other``, named ``<scene>-pair-<material>``.
+        Touching ``reference`` and ``other``, named ``<scene>-pair-<reference>`` and
+        ``<scene>-pair-<other>-of-<reference>`` (one cache file per twin: two references may
+        share the other material).
     """
     effect = scene.effect("object_modes")
     if effect is None:
@@ -384,7 +386,8 @@ def equivalent_pair_scenes(scene: Scene, *, reference: str = "aluminium", other:
     effects = [twin_effect if e.name == "object_modes" else e for e in scene.effects]
     return (
         scene.with_(name=f"{scene.name}-pair-{reference}", material=reference),
-        scene.with_(name=f"{scene.name}-pair-{other}", material=other, effects=effects),
+        scene.with_(name=f"{scene.name}-pair-{other}-of-{reference}", material=other,
+                    effects=effects),
     )
 
 

@@ -110,7 +110,15 @@ class _SummaryTable(SphinxDirective):
 
     def run(self):
         self.env.note_dependency(str(SUMMARY_PATH))
-        lines = type(self).build(load_summary()["summary"])
+        record = load_summary()
+        try:
+            lines = type(self).build(record["summary"])
+        except KeyError as missing:  # a summary stored before the study wrote this key
+            lines = [
+                f"*The stored summary (commit {record['made']['commit']}) holds no "
+                f"{missing.args[0]!r} yet: refresh* ``docs/_data/reproduce_summary.json`` *from "
+                "a full run (``python docs/_ext/paper_map.py SUMMARY.json``) to fill this table.*"
+            ]
         return self.parse_text_to_nodes("\n".join(lines))
 
 

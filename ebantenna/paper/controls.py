@@ -126,7 +126,7 @@ class Ablation:
         Effects that could not be switched off at all, with the scene's reason.
     changed : dict of str to str
         Effects that could only be switched off with a scene parameter changed, and how.
-    spreads : dict of str to SeedSpread
+    spreads : dict of str to ebantenna.paper.uncertainty.SeedSpread
         For every entry of ``accuracies``: the accuracy over the split seeds (the data set's
         seed fixed), ``values[0]`` the one in ``accuracies``, with each seed's test count.
     """
@@ -220,7 +220,7 @@ def ablation_accuracies(
     n_jobs : int
         Worker processes of each build.
     splits : int
-        Split seeds per data set (``seed ...``), for :attr:`Ablation.spreads`.
+        Split seeds per data set (``seed ...``), for the ``spreads`` of :class:`Ablation`.
 
     Returns
     -------

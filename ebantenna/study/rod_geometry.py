@@ -27,8 +27,8 @@ from ..probe import material
 from ..simulate import build_dataset
 from .physics_controls import control_design
 
-__all__ = ["DIAMETER_FACTORS", "LENGTH_FACTORS", "GeometryResult", "closest_materials",
-           "compute", "render"]
+__all__ = ["DIAMETER_FACTORS", "LENGTH_FACTORS", "GAP_POSITIONS", "GeometryResult",
+           "closest_materials", "compute", "render"]
 
 #: Diameters tried, as factors of the scene's (12 mm: 8, 12 and 16 mm).
 DIAMETER_FACTORS = (2 / 3, 1.0, 4 / 3)
@@ -41,8 +41,9 @@ GAP_POSITIONS = np.linspace(0.05, 0.95, 10)
 def closest_materials(scene, diameter: float, free_length: float, materials=None):
     """The two materials whose rods of this geometry move the probe's modes most alike.
 
-    For each material, the probe's coupled modes with the rod (:func:`ebantenna.fem.coupled_sweep.
-    coupled_sweep`, the scene's contact spring per material) at :data:`GAP_POSITIONS`; the gap of
+    For each material, the probe's coupled modes with the rod
+    (:func:`~ebantenna.fem.coupled_sweep.coupled_sweep`, the scene's contact spring per material)
+    at :data:`GAP_POSITIONS`; the gap of
     two materials is the median over the positions of the difference of their second coupled
     modes, Hz, and the pair with the smallest gap is returned.
 
@@ -112,7 +113,9 @@ def _geometries(effect):
 
 
 def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> GeometryResult | None:
-    """Each geometry of :func:`_geometries` on the controls' design; None without rod modes."""
+    """The scene's rod and each of its diameter and free length varied alone
+    (:data:`DIAMETER_FACTORS`, :data:`LENGTH_FACTORS`), on the controls' design; None without
+    rod modes."""
     effect = scene.effect("object_modes")
     if effect is None:
         return None

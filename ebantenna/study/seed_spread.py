@@ -20,8 +20,8 @@ from ..paper.position_aware import classify_materials_position_aware
 from ..paper.splits import SPLITS, distinct_split_seeds, grouped_split, split_rows
 from ..paper.uncertainty import SeedSpread, accuracy_entries, format_interval, seed_spread
 
-__all__ = ["SPLIT_SEEDS", "SUBSET_REPETITIONS", "TRAINING_REPETITIONS", "SeedSpreadResult",
-           "compute", "render"]
+__all__ = ["SPLIT_SEEDS", "SUBSET_REPETITIONS", "TRAINING_REPETITIONS", "CLASSIFIERS",
+           "SeedSpreadResult", "compute", "render"]
 
 #: Split seeds per classifier and split, from ``seed`` up, each holding out other recordings
 #: (:func:`~ebantenna.paper.splits.distinct_split_seeds`).

@@ -39,6 +39,7 @@ extensions = [
     "matplotlib.sphinxext.plot_directive",
     "ebantenna_docs",
     "paper_map",
+    "study_tables",
     "exercise_notebooks",
     # a reference may use the name a user imports (ebantenna.signal.fit_decay): linked to the page
     # of the very object it imports to, in the module that defines it

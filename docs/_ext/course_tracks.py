@@ -178,7 +178,7 @@ CLASSIFIERS = Session(
     ("write and check the dual of a soft-margin SVM and the gradient of a neural network",
      "test a classifier on contact positions it never saw",
      "say what the rig's driver promises, on the simulated bus"),
-    ("theory/svm", "theory/mlp", "user_guide/rig"),
+    ("theory/svm", "theory/mlp", "theory/uncertainty", "user_guide/rig"),
     (("The SVM dual and SMO", 15),
      ("Backpropagation through one hidden layer", 10),
      ("The rig: its parts, and the driver on the simulated bus", 5)),

@@ -15,6 +15,8 @@
   contact distance) and :mod:`~ebantenna.paper.mode_curves` (material and distance fitted
   together from two mode frequencies); :mod:`~ebantenna.paper.controls` (what a classifier
   learns).
+- :mod:`~ebantenna.paper.uncertainty`: what an accuracy can carry, its test count, its Wilson
+  95 % interval and its spread over split seeds.
 
 The generic stages (:mod:`ebantenna.fem`, :mod:`ebantenna.simulate`, :mod:`ebantenna.signal`,
 :mod:`ebantenna.ml`) know nothing of this paper's numbers; this package may use all of them.

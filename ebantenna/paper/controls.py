@@ -34,23 +34,36 @@ from .data import PAPER_DESIGN
 from .experiments import classify_materials_svm
 from .feature_table import signal_features
 from .mode_curves import classify_materials_by_mode_curves
-from .splits import grouped_split
+from .splits import distinct_split_seeds, grouped_split
+from .uncertainty import seed_spread
 
 __all__ = [
     "ABLATION_DESIGN",
     "Ablation",
     "ablation_accuracies",
     "grouped_svm_accuracy",
+    "grouped_svm_spread",
+    "SPLIT_SEEDS",
     "equivalent_rod",
     "equivalent_pair_scenes",
     "equivalent_pair_accuracy",
+    "equivalent_pair_spread",
 ]
 
 #: The reduced data set of the controls: the paper's materials, positions (every 5 mm) and
-#: scatter, one recording per material and position: 395 recordings. The positions stay 5 mm
-#: apart because the grouped split asks the classifier to interpolate between neighbours; with
-#: 2 cm between them the SVM is at chance even with every effect on.
-ABLATION_DESIGN = replace(PAPER_DESIGN, name="controls", repetitions=1)
+#: scatter, three recordings per material and position: 1,185 recordings, 240 of them in a
+#: grouped test set (16 of the 79 positions held out). Two accuracies near 65 % on 240
+#: recordings each differ by two standard deviations of their difference at
+#: ``2 sqrt(2 * 0.65 * 0.35 / 240)``, 8.7 points: the design resolves a 10-point change (one
+#: repetition, 80 test recordings, would need 15 points,
+#: :func:`~ebantenna.paper.uncertainty.resolvable_difference`). The positions stay 5 mm apart
+#: because the grouped split asks the classifier to interpolate between neighbours; with 2 cm
+#: between them the SVM is at chance even with every effect on.
+ABLATION_DESIGN = replace(PAPER_DESIGN, name="controls-3rep", repetitions=3)
+
+#: How many split seeds every control is measured with (the data set's seed fixed): the
+#: accuracy's spread over them is a second measure of its uncertainty.
+SPLIT_SEEDS = 5
 
 
 def grouped_svm_accuracy(ds, *, seed: int = 0, every: int = 5) -> float:
@@ -76,6 +89,28 @@ def grouped_svm_accuracy(ds, *, seed: int = 0, every: int = 5) -> float:
     return result.accuracies["test"]
 
 
+def grouped_svm_spread(ds, *, seed: int = 0, splits: int = SPLIT_SEEDS):
+    """:func:`grouped_svm_accuracy` over ``splits`` split seeds from ``seed`` that hold out
+    different positions (:func:`~ebantenna.paper.splits.distinct_split_seeds`; with five,
+    every position is held out once).
+
+    Returns
+    -------
+    ebantenna.paper.uncertainty.SeedSpread
+        One accuracy and one test count per split seed; ``values[0]`` is
+        ``grouped_svm_accuracy(ds, seed=seed)``.
+    """
+    X = fft_features(np.asarray(ds.ax, float), np.asarray(ds.az, float))
+
+    def measure(s):
+        result = classify_materials_svm(X, ds.material, split=grouped_split(ds.contact, seed=s))
+        return result.accuracies["test"], result.counts["test"]
+
+    seeds = distinct_split_seeds("grouped", ds.material, ds.contact, seed=seed,
+                                 count=check_int("splits", splits, minimum=2))
+    return seed_spread(measure, seeds)
+
+
 @dataclass(frozen=True)
 class Ablation:
     """Grouped-split SVM accuracy with each effect switched off.
@@ -91,12 +126,16 @@ class Ablation:
         Effects that could not be switched off at all, with the scene's reason.
     changed : dict of str to str
         Effects that could only be switched off with a scene parameter changed, and how.
+    spreads : dict of str to ebantenna.paper.uncertainty.SeedSpread
+        For every entry of ``accuracies``: the accuracy over the split seeds (the data set's
+        seed fixed), ``values[0]`` the one in ``accuracies``, with each seed's test count.
     """
 
     accuracies: dict
     dropped_together: dict
     refused: dict
     changed: dict = field(default_factory=dict)
+    spreads: dict = field(default_factory=dict)
 
 
 #: What an ablation may not leave behind although the scene itself allows it: a contact that only
@@ -156,6 +195,7 @@ def ablation_accuracies(
     seed: int = 0,
     cache_dir,
     n_jobs: int = 1,
+    splits: int = SPLIT_SEEDS,
 ) -> Ablation:
     """Rebuild the data set with each effect switched off; the grouped SVM accuracy of each.
 
@@ -179,6 +219,8 @@ def ablation_accuracies(
         Where the data sets are cached (one file per ablated scene).
     n_jobs : int
         Worker processes of each build.
+    splits : int
+        Split seeds per data set (``seed ...``), for the ``spreads`` of :class:`Ablation`.
 
     Returns
     -------
@@ -207,11 +249,14 @@ def ablation_accuracies(
         )
     seed = check_int("seed", seed, minimum=0)
 
-    def accuracy(s: Scene) -> float:
-        ds = _build(cache_dir, s, design, seed, n_jobs=n_jobs, show_progress=False)
-        return grouped_svm_accuracy(ds, seed=seed)
+    spreads = {}
 
-    accuracies = {"none": accuracy(scene)}
+    def accuracy(s: Scene, label: str) -> float:
+        ds = _build(cache_dir, s, design, seed, n_jobs=n_jobs, show_progress=False)
+        spreads[label] = grouped_svm_spread(ds, seed=seed, splits=splits)
+        return float(spreads[label].values[0])
+
+    accuracies = {"none": accuracy(scene, "none")}
     together, refused, changed = {}, {}, {}
     for name in names:
         ablated, dropped, reason, change = _ablated_scene(scene, name)
@@ -223,8 +268,8 @@ def ablation_accuracies(
         if change is not None:
             changed[name] = change
         label = "+".join(dropped)
-        accuracies[label] = accuracy(ablated.with_(name=f"{scene.name}-without-{label}"))
-    return Ablation(accuracies, together, refused, changed)
+        accuracies[label] = accuracy(ablated.with_(name=f"{scene.name}-without-{label}"), label)
+    return Ablation(accuracies, together, refused, changed, spreads)
 
 
 # ------------------------------------------------------------------ the equivalent pair
@@ -316,7 +361,9 @@ def equivalent_pair_scenes(scene: Scene, *, reference: str = "aluminium", other:
     Returns
     -------
     (Scene, Scene)
-        Touching ``reference`` and ``other``, named ``<scene>-pair-<material>``.
+        Touching ``reference`` and ``other``, named ``<scene>-pair-<reference>`` and
+        ``<scene>-pair-<other>-of-<reference>`` (one cache file per twin: two references may
+        share the other material).
     """
     effect = scene.effect("object_modes")
     if effect is None:
@@ -339,7 +386,8 @@ def equivalent_pair_scenes(scene: Scene, *, reference: str = "aluminium", other:
     effects = [twin_effect if e.name == "object_modes" else e for e in scene.effects]
     return (
         scene.with_(name=f"{scene.name}-pair-{reference}", material=reference),
-        scene.with_(name=f"{scene.name}-pair-{other}", material=other, effects=effects),
+        scene.with_(name=f"{scene.name}-pair-{other}-of-{reference}", material=other,
+                    effects=effects),
     )
 
 
@@ -351,12 +399,14 @@ def equivalent_pair_accuracy(
     cache_dir,
     n_jobs: int = 1,
     classifier: str = "svm",
+    reference: str = "aluminium",
+    other: str = "steel",
 ) -> float:
-    """Grouped-split accuracy between an aluminium rod and its steel equivalent.
+    """Grouped-split accuracy between a ``reference`` rod and its equivalent of ``other``.
 
-    Both data sets follow ``design`` with one material each (aluminium in one scene, steel in
-    the other, :func:`equivalent_pair_scenes`), the same seed and so the same scatter, and are
-    put together with the material as the label. Two classes: 0.5 is chance.
+    Both data sets follow ``design`` with one material each (``reference`` in one scene,
+    ``other`` in the other, :func:`equivalent_pair_scenes`), the same seed and so the same
+    scatter, and are put together with the material as the label. Two classes: 0.5 is chance.
 
     Parameters
     ----------
@@ -364,32 +414,78 @@ def equivalent_pair_accuracy(
         The paper's SVM on the FFT features, or
         :func:`~ebantenna.paper.mode_curves.classify_materials_by_mode_curves` on the two
         strongest peaks.
+    reference, other : str
+        The material of the scene's rod and that of its twin.
 
     Returns
     -------
     float
-        Test accuracy on whole held-out positions.
+        Test accuracy on whole held-out positions (split seed ``seed``).
+    """
+    spread = equivalent_pair_spread(
+        scene, design=design, seed=seed, cache_dir=cache_dir, n_jobs=n_jobs,
+        classifier=classifier, reference=reference, other=other, splits=2,
+    )  # fmt: skip
+    return float(spread.values[0])
+
+
+def equivalent_pair_spread(
+    scene: Scene,
+    *,
+    design: DatasetDesign = ABLATION_DESIGN,
+    seed: int = 0,
+    cache_dir,
+    n_jobs: int = 1,
+    classifier: str = "svm",
+    reference: str = "aluminium",
+    other: str = "steel",
+    splits: int = SPLIT_SEEDS,
+):
+    """:func:`equivalent_pair_accuracy` over ``splits`` split seeds from ``seed`` that hold out
+    different positions (the data sets' seed fixed).
+
+    Returns
+    -------
+    ebantenna.paper.uncertainty.SeedSpread
+        One accuracy and one test count per split seed.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from ebantenna.simulate import builtin_scene
+    >>> design = replace(ABLATION_DESIGN, contact_step=0.05, repetitions=1)
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     s = equivalent_pair_spread(builtin_scene("paper"), design=design, cache_dir=tmp,
+    ...                                reference="brass", splits=2)
+    >>> [int(n) % 2 for n in s.n_test]  # whole positions, each with both materials
+    [0, 0]
     """
     check_choice("classifier", classifier, ("svm", "mode_curves"))
     parts = []
-    for s, name in zip(equivalent_pair_scenes(scene), ("aluminium", "steel"), strict=True):
+    for s, name in zip(equivalent_pair_scenes(scene, reference=reference, other=other),
+                       (reference, other), strict=True):
         parts.append(
-            _build(
-                cache_dir,
-                s,
-                replace(design, materials=(name,)),
-                seed,
-                n_jobs=n_jobs,
-                show_progress=False,
-            )
+            _build(cache_dir, s, replace(design, materials=(name,)), seed, n_jobs=n_jobs,
+                   show_progress=False)
         )
     ax = np.vstack([np.asarray(p.ax, float) for p in parts])
     az = np.vstack([np.asarray(p.az, float) for p in parts])
     y = np.concatenate([p.material for p in parts])
     contact = np.concatenate([p.contact for p in parts])
-    split = grouped_split(contact, seed=seed)
     if classifier == "svm":
-        return classify_materials_svm(fft_features(ax, az), y, split=split).accuracies["test"]
-    feats = signal_features(ax, az, parts[0].fs, n_jobs=n_jobs, show_progress=False)
-    result = classify_materials_by_mode_curves(feats.peaks, feats.dominant, y, contact, split)
-    return result.accuracies["test"]
+        X = fft_features(ax, az)
+    else:
+        feats = signal_features(ax, az, parts[0].fs, n_jobs=n_jobs, show_progress=False)
+
+    def measure(split_seed):
+        split = grouped_split(contact, seed=split_seed)
+        if classifier == "svm":
+            result = classify_materials_svm(X, y, split=split)
+        else:
+            result = classify_materials_by_mode_curves(feats.peaks, feats.dominant, y, contact,
+                                                       split)
+        return result.accuracies["test"], result.counts["test"]
+
+    seeds = distinct_split_seeds("grouped", y, contact, seed=seed,
+                                 count=check_int("splits", splits, minimum=2))
+    return seed_spread(measure, seeds)

@@ -82,6 +82,11 @@ class ClassificationResult:
         """Accuracy (fraction) of every split."""
         return {k: accuracy(m) for k, m in self.confusions.items()}
 
+    @property
+    def counts(self) -> dict:
+        """Recordings (rows) of every split: what each accuracy was measured on."""
+        return {k: int(m.sum()) for k, m in self.confusions.items()}
+
     def report(self) -> str:
         """The confusion matrices and accuracies as text."""
         lines = []
@@ -203,7 +208,8 @@ def classify_materials_svm(X, materials, *, test_fraction=MATERIAL_SVM.test_frac
     labels : sequence of str, optional
         Row order of the confusion matrices (default: sorted).
     normalise : bool, default=True
-        Divide ``X`` by its largest magnitude first, as the paper did.
+        Divide ``X`` by its largest magnitude, as the paper did, taken over the training rows
+        only (:func:`~ebantenna.paper.protocol.normalise_by_max`).
     tol : float, default=1e-3
         SMO stopping tolerance.
     split : (ndarray, ndarray), optional
@@ -230,8 +236,6 @@ def classify_materials_svm(X, materials, *, test_fraction=MATERIAL_SVM.test_frac
     check_in_range("test_fraction", test_fraction, 0.0, 1.0)
     check_positive("C", C)
     order = _label_order(y, labels)
-    if normalise:
-        X = normalise_by_max(X)
     if split is None:
         train, test = train_test_split(np.arange(X.shape[0]), test_size=test_fraction,
                                        random_state=seed, stratify=y)
@@ -239,6 +243,8 @@ def classify_materials_svm(X, materials, *, test_fraction=MATERIAL_SVM.test_frac
         train, test = (np.asarray(rows, dtype=np.intp) for rows in split)
         if np.intersect1d(train, test).size:
             raise ValueError("split must not put one row in both train and test")
+    if normalise:  # the scale from the training rows only: the test rows stay unseen
+        X = normalise_by_max(X, train)
     model = OneVsRestClassifier(SVC(kernel="rbf", C=C, gamma=gamma, tol=tol))
     start = time.perf_counter()
     model.fit(X[train], y[train])
@@ -310,9 +316,9 @@ def classify_materials_ann(X, materials, *, hidden_layer_sizes=MATERIAL_ANN.hidd
     y = _labels(materials, X.shape[0])
     check_fractions(fractions)
     order = _label_order(y, labels)
-    if normalise:
-        X = normalise_by_max(X)
     train, val, test = three_way_split(X.shape[0], fractions, seed, stratify=y)
+    if normalise:  # the scale from the rows the network learns and stops on, never the test's
+        X = normalise_by_max(X, np.concatenate([train, val]))
     model = MLPClassifier(hidden_layer_sizes=hidden_layer_sizes, activation=activation,
                           solver=solver, learning_rate_init=learning_rate_init, max_iter=1,
                           random_state=seed, warm_start=True, alpha=0.0)
@@ -410,7 +416,7 @@ def regress_distance_linear_region(X, distances, *, probe_length,
     seed : int
         Seed of the split and the initial weights.
     normalise : bool
-        Divide ``X`` by its largest magnitude first.
+        Divide ``X`` by its largest magnitude on the training and validation rows.
 
     Returns
     -------
@@ -435,8 +441,9 @@ def regress_distance_linear_region(X, distances, *, probe_length,
     if keep.sum() < 10:
         raise ValueError("fewer than 10 samples lie within fraction_of_length of the hinge")
     X, d = X[keep], d[keep]
-    if normalise:
-        X = normalise_by_max(X)
+    if normalise:  # the scale from the rows the network learns and stops on, never the test's
+        train, val, _ = three_way_split(X.shape[0], fractions, seed)
+        X = normalise_by_max(X, np.concatenate([train, val]))
     model = MLPRegressor(hidden_layer_sizes=hidden_layer_sizes, activation=activation,
                          solver=solver, learning_rate_init=learning_rate_init, max_iter=max_iter,
                          random_state=seed, alpha=0.0, n_iter_no_change=20)

@@ -238,7 +238,8 @@ def classify_materials_position_aware(
     Parameters
     ----------
     X : array-like of shape (n, n_features)
-        Features (the paper's FFT magnitudes), divided by their largest magnitude first.
+        Features (the paper's FFT magnitudes), divided by their largest magnitude on the
+        training rows first.
     materials : array-like of shape (n,)
         Material label of each row.
     positions : array-like of shape (n,)
@@ -273,11 +274,12 @@ def classify_materials_position_aware(
     >>> res.accuracies["test"] > 0.9
     True
     """
-    X = normalise_by_max(check_array("X", X, ndim=2))
+    X = check_array("X", X, ndim=2)
     y = np.asarray(materials)
     d = check_array("positions", positions, ndim=1)
     check_per_row(X.shape[0], "X", materials=y, positions=d)
     train, test = (np.asarray(rows, dtype=np.intp) for rows in split)
+    X = normalise_by_max(X, train)  # the scale from the training rows only
     order = tuple(np.unique(y).tolist()) if labels is None else tuple(labels)
     start = time.perf_counter()
     clf = PositionAwareMaterialClassifier(C=C, gamma=gamma)

@@ -159,19 +159,35 @@ DECAY_REGION = 0.8
 TIME_FREQUENCY_RATIOS = (0.25, 0.5, 0.75, 0.8, 0.9)
 
 
-def normalise_by_max(X) -> np.ndarray:
-    """Divide the whole feature matrix by its largest magnitude, as in section 4.2.
+def normalise_by_max(X, rows=None) -> np.ndarray:
+    """Divide the whole feature matrix by the largest magnitude of its training rows (section 4.2).
+
+    The paper divides by the largest magnitude of all its features; a scaler fitted on the test
+    rows too lets them shape the training, so here the peak is taken over ``rows`` only (the
+    training rows) and every row, test rows included, is divided by it.
+
+    Parameters
+    ----------
+    X : array-like of shape (n, n_features)
+    rows : array-like of int, optional
+        The rows the peak is taken from (default: all of them).
 
     Examples
     --------
     >>> normalise_by_max(np.array([[1.0, -4.0], [2.0, 0.0]]))
     array([[ 0.25, -1.  ],
            [ 0.5 ,  0.  ]])
+    >>> normalise_by_max(np.array([[1.0, -4.0], [2.0, 0.0]]), rows=[1])
+    array([[ 0.5, -2. ],
+           [ 1. ,  0. ]])
     """
     X = np.asarray(X, dtype=np.float64)
-    peak = np.abs(X).max()
+    fit = X if rows is None else X[np.asarray(rows, dtype=np.intp)]
+    if fit.size == 0:
+        raise ValueError("rows must select at least one row of X")
+    peak = np.abs(fit).max()
     if peak == 0:
-        raise ValueError("X must not be all zeros")
+        raise ValueError("X must not be all zeros on the rows the peak is taken from")
     return X / peak
 
 

@@ -34,7 +34,10 @@ from sklearn.model_selection import train_test_split
 
 from .._validate import check_array, check_choice, check_in_range, check_int
 
-__all__ = ["SPLITS", "random_split", "grouped_split", "blocked_split", "split_rows"]
+__all__ = [
+    "SPLITS", "random_split", "grouped_split", "blocked_split", "split_rows",
+    "distinct_split_seeds",
+]  # fmt: skip
 
 #: The splits, from the most to the least flattering.
 SPLITS = ("random", "grouped", "blocked")
@@ -197,3 +200,53 @@ def split_rows(kind: str, labels, positions, *, seed: int = 0, test_fraction: fl
         check_in_range("test_fraction", test_fraction, 0.0, 1.0)
         return grouped_split(positions, every=max(2, round(1 / test_fraction)), seed=seed)
     return blocked_split(positions, test_fraction=test_fraction, seed=seed)
+
+
+def distinct_split_seeds(kind: str, labels, positions, *, seed: int = 0, count: int = 5,
+                         search: int = 1000) -> tuple[int, ...]:
+    """``count`` split seeds from ``seed`` upward whose test sets all differ.
+
+    The grouped split draws only an offset among ``every`` (five) from its seed, and the
+    blocked split a start among a few, so consecutive seeds can repeat a split. Repeating an
+    accuracy over seeds measures its uncertainty only if the splits differ: the seeds are taken
+    in order from ``seed`` (which always comes first), skipping any whose test set was seen.
+    For the grouped split with ``count = every`` the test sets are the five interleaved folds:
+    every recording is tested exactly once.
+
+    Parameters
+    ----------
+    kind, labels, positions
+        As in :func:`split_rows`.
+    seed : int
+        The first seed.
+    count : int
+        How many seeds.
+    search : int
+        How many seeds to try at most; fewer distinct splits than ``count`` raise.
+
+    Returns
+    -------
+    tuple of int
+
+    Examples
+    --------
+    >>> pos = np.repeat(np.arange(1, 11) / 100, 2)
+    >>> y = np.tile(["al", "pvc"], 10)
+    >>> seeds = distinct_split_seeds("grouped", y, pos, count=5)
+    >>> seeds[0], len({tuple(split_rows("grouped", y, pos, seed=s)[1]) for s in seeds})
+    (0, 5)
+    """
+    seed = check_int("seed", seed, minimum=0)
+    count = check_int("count", count, minimum=1)
+    seen, seeds = set(), []
+    for s in range(seed, seed + check_int("search", search, minimum=count)):
+        test = tuple(split_rows(kind, labels, positions, seed=s)[1].tolist())
+        if test not in seen:
+            seen.add(test)
+            seeds.append(s)
+            if len(seeds) == count:
+                return tuple(seeds)
+    raise ValueError(
+        f"only {len(seeds)} distinct {kind} splits among seeds {seed} ... {seed + search - 1}; "
+        f"asked for count={count}"
+    )

@@ -11,7 +11,8 @@ from ..paper import printed
 from ..paper.estimators import FrequencyDistanceEstimator, MultiModeDistanceEstimator
 from ..paper.mode_curves import ModeCurveClassifier
 from ..paper.protocol import DISTANCE_LINEAR_REGION
-from ._common import pct, per_contact, probe_length
+from ..paper.uncertainty import accuracy_entries, format_interval
+from ._common import per_contact, probe_length
 
 __all__ = ["FullRangeResult", "compute", "render"]
 
@@ -73,7 +74,10 @@ class FullRangeResult:
             "first_mode_only_mae_cm": float(self.error_one_cm.mean()),
             "full_range_known_material_mae_cm": float(self.error_known_material_cm.mean()),
             "full_range_joint_mae_cm": float(self.error_joint_cm.mean()),
-            "full_range_joint_material_accuracy": self.joint_material_accuracy,
+            **accuracy_entries(
+                "full_range_joint_material_accuracy", self.joint_material_accuracy,
+                self.contact_two.size,
+            ),
             "first_mode_turning_point_cm": 100 * self.turning_point,
             "recordings_without_two_peaks": self.without_two_peaks,
         }
@@ -153,7 +157,9 @@ def render(result: FullRangeResult, report, figures) -> None:
         f"{r.error_two_cm.mean() / max(r.error_known_material_cm.mean(), 1e-12):.0f} times more "
         "accurate: on this rig the probe must know what it touched to know where. It need not "
         "be told: placed on every material's curves at once, the two peaks find the material "
-        f"too (right in {pct(r.joint_material_accuracy)} of these recordings) and the distance "
+        "too (right in "
+        f"{format_interval(r.joint_material_accuracy, r.contact_two.size)} of these recordings) "
+        "and the distance "
         f"within {r.error_joint_cm.mean():.2f} cm on average (the mode-curve classifier of the "
         "section above)."
     )

@@ -16,7 +16,8 @@ from ..paper.protocol import (
     MATERIAL_ANN,
     MATERIAL_SVM,
 )
-from ._common import pct, probe_length
+from ..paper.uncertainty import accuracy_entries, format_interval
+from ._common import probe_length
 
 __all__ = ["LearningResult", "compute", "render"]
 
@@ -39,19 +40,20 @@ class LearningResult:
     full_length: experiments.RegressionResult
 
     def to_dict(self) -> dict:
-        """Accuracies and fit times of the classifiers, under ``svm`` and ``ann``."""
-        sa, aa = self.svm.accuracies, self.ann.accuracies
+        """Accuracies and fit times of the classifiers, under ``svm`` and ``ann``; each accuracy
+        with its count of recordings (``*_n_test``) and Wilson 95 % interval (``*_ci95``)."""
+        svm, ann = self.svm, self.ann
         return {
             "svm": {
-                "train_accuracy": sa["train"],
-                "test_accuracy": sa["test"],
-                "fit_seconds": self.svm.fit_seconds,
+                **_entries("train_accuracy", svm, "train"),
+                **_entries("test_accuracy", svm, "test"),
+                "fit_seconds": svm.fit_seconds,
             },
             "ann": {
-                "train_accuracy": aa["train"],
-                "test_accuracy": aa["test"],
-                "all_accuracy": aa["all"],
-                "fit_seconds": self.ann.fit_seconds,
+                **_entries("train_accuracy", ann, "train"),
+                **_entries("test_accuracy", ann, "test"),
+                **_entries("all_accuracy", ann, "all"),
+                "fit_seconds": ann.fit_seconds,
             },
         }
 
@@ -87,7 +89,6 @@ def render(result: LearningResult, report, figures) -> None:
 def _render_classifiers(svm, ann, report, fig12: str, fig15: str) -> None:
     """The material classifiers beside the paper's: features, accuracies, the ANN's training
     loss against guessing, the confusion matrices (Figs. 12, 15)."""
-    sa, aa = svm.accuracies, ann.accuracies
     report.heading("Material classification: ANN and SVM (Figs. 12, 15)")
     svm_split = _split((1 - MATERIAL_SVM.test_fraction, MATERIAL_SVM.test_fraction))
     report.paragraph(
@@ -103,12 +104,12 @@ def _render_classifiers(svm, ann, report, fig12: str, fig15: str) -> None:
     report.table(
         ["model", "split", "paper", "this reproduction", "fit time (s)"],
         [
-            ["SVM", "train", printed.percent(printed.SVM_TRAIN_ACCURACY), pct(sa["train"]),
+            ["SVM", "train", printed.percent(printed.SVM_TRAIN_ACCURACY), _cell(svm, "train"),
              f"{svm.fit_seconds:.1f}"],
-            ["SVM", "test", printed.percent(printed.SVM_TEST_ACCURACY), pct(sa["test"]), ""],
-            ["ANN", "all", printed.percent(printed.ANN_ACCURACY), pct(aa["all"]),
+            ["SVM", "test", printed.percent(printed.SVM_TEST_ACCURACY), _cell(svm, "test"), ""],
+            ["ANN", "all", printed.percent(printed.ANN_ACCURACY), _cell(ann, "all"),
              f"{ann.fit_seconds:.1f}"],
-            ["ANN", "test", "-", pct(aa["test"]), ""],
+            ["ANN", "test", "-", _cell(ann, "test"), ""],
         ],
     )
     curve = np.asarray(getattr(ann.model, "loss_curve_", [np.nan]))
@@ -149,6 +150,16 @@ def _render_distance_networks(lin, full, report, fig1314: str) -> None:
         ],
     )
     report.figure(fig1314, "Mean absolute distance error along the probe (cf. Figs. 13, 14)")
+
+
+def _entries(name: str, result, split: str) -> dict:
+    """One classifier's accuracy on ``split`` with its count and interval."""
+    return accuracy_entries(name, result.accuracies[split], result.counts[split])
+
+
+def _cell(result, split: str) -> str:
+    """An accuracy with its count and interval, for the report."""
+    return format_interval(result.accuracies[split], result.counts[split])
 
 
 def _split(fractions) -> str:

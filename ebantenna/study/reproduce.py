@@ -14,14 +14,18 @@
    (Figs. 12 and 15) and the two distance networks (Figs. 13 and 14); the SVM on three splits
    (random recordings, whole positions held out interleaved, a contiguous range held out) beside
    a position-aware classifier that estimates the contact distance first; the networks with
-   other trainers (SCG, Adam); what the classifier learns: the ablation of every effect of the
-   scene and the equivalent-pair control;
+   other trainers (SCG, Adam); the classifiers over five split seeds and the grouped SVM
+   against the repetitions per position; the paper network's training budget; what the
+   classifier learns: the ablation of every effect of the scene and two equivalent pairs, over
+   five split seeds; the touched rod's diameter and free length varied;
 7. beyond the paper: the contact distance over the *whole* probe from two modes, tested on
    contact positions that the calibration never saw, against the first-mode-only estimator that
    stops at 80 %;
 8. spectrograms and scalograms at 0.25 L ... 0.9 L (Figs. 18 and 19);
 
-and writes every figure as PNG, a report in Markdown and HTML, and a JSON summary.
+and writes every figure as PNG, a report in Markdown and HTML, and a JSON summary. Every
+accuracy comes with its number of test recordings and its Wilson 95 % interval
+(:mod:`ebantenna.paper.uncertainty`).
 
 Each section is a module with a pure ``compute(...)`` returning a frozen result (with
 ``to_dict()``) and a ``render(result, report, figures)`` that draws its figures and writes its
@@ -42,6 +46,7 @@ from .._progress import progress
 from .._validate import check_bool, check_int
 from ..report import FigureSet, Report
 from . import (
+    ann_setup,
     data_summary,
     full_range,
     hinge_fit,
@@ -49,6 +54,8 @@ from . import (
     material_splits,
     mode_zones,
     physics_controls,
+    rod_geometry,
+    seed_spread,
     signals,
     time_frequency,
 )
@@ -59,7 +66,7 @@ log = logging.getLogger(__name__)
 
 #: The steps of the study, timed one by one, in order.
 STEPS = ("modes", "hinge", "data set", "features", "frequency", "decay", "ml", "splits",
-         "controls", "full range", "time-frequency")
+         "seeds", "ann setup", "controls", "rod geometry", "full range", "time-frequency")
 
 
 def default_cache_dir() -> Path:
@@ -215,8 +222,7 @@ def reproduce(
     )
     data_summary.render(data_result, report, figures)
     _learn_materials_and_distance(study, ds, feats, data_result.materials, seed)
-    controls = study.run("controls", physics_controls.compute, physics_controls.render,
-                         scene, seed, quick, cache_dir, workers)
+    controls = _controls(study, scene, seed, quick, cache_dir, workers)
     study.run("full range", full_range.compute, full_range.render, ds, feats)
     study.run("time-frequency", time_frequency.compute, time_frequency.render, scene, seed)
     timer.close()
@@ -278,6 +284,19 @@ def _learn_materials_and_distance(study: _Sections, ds, feats, materials, seed: 
                                         paper_ann=learnt.ann, paper_distance=learnt.linear_region),
         material_splits.render,
     )
+    grouped = study.results["splits"].svm["grouped"]
+    study.run("seeds", seed_spread.compute, seed_spread.render,
+              ds, feats, seed, (grouped.accuracies["test"], grouped.counts["test"]))
+    study.run("ann setup", ann_setup.compute, ann_setup.render, ds, feats, seed)
+
+
+def _controls(study: _Sections, scene, seed: int, quick: bool, cache_dir, workers: int):
+    """The controls and the rod's geometry varied: the small data sets rebuilt and measured."""
+    controls = study.run("controls", physics_controls.compute, physics_controls.render,
+                         scene, seed, quick, cache_dir, workers)
+    study.run("rod geometry", rod_geometry.compute, rod_geometry.render,
+              scene, seed, quick, cache_dir, workers)
+    return controls
 
 
 def _run_time(report: Report, seconds: dict, workers: int, cached: bool, dataset: str,
@@ -288,7 +307,7 @@ def _run_time(report: Report, seconds: dict, workers: int, cached: bool, dataset
         f"Wall time of every step on {workers} worker(s). The data set was "
         + ("reused from its cache" if cached else "simulated in this run")
         + f" ({dataset}); the controls rebuild {control_sets} small "
-        "data sets, cached likewise."
+        "data sets, and the rod's geometry a few more, cached likewise."
     )
     report.table(["step", "seconds"], [[k, f"{v:.1f}"] for k, v in seconds.items()]
                  + [["total", f"{sum(seconds.values()):.1f}"]])
@@ -303,7 +322,13 @@ def _summary(results: dict) -> dict:
         "frequency": results["frequency"].to_dict(),
         "decay": results["decay"].to_dict(),
         **learnt.to_dict(),
-        "materials": {**splits["materials"], **results["controls"].to_dict()},
+        "materials": {
+            **splits["materials"],
+            **results["seeds"].to_dict(),
+            **results["ann setup"].to_dict(),
+            **results["controls"].to_dict(),
+            **(results["rod geometry"].to_dict() if results["rod geometry"] else {}),
+        },
         "distance": {**results["full range"].to_dict(), **learnt.distance_dict(),
                      **splits["distance"]},
         "hinge": results["hinge"].to_dict(),

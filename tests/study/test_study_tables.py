@@ -1,0 +1,37 @@
+"""The documentation's tables of the study's uncertainty are built from a summary as
+``reproduce`` writes it: one row per classifier and split, per repetition count, per rod."""
+
+import sys
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("sphinx")
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "docs" / "_ext"))
+
+import study_tables  # noqa: E402
+
+
+def _rows(lines):
+    """The list-table's rows after the header: each starts with '   * - '."""
+    return [line for line in lines if line.startswith("   * - ")][1:]
+
+
+def test_tables_have_a_row_per_measurement(quick_study):
+    result, _ = quick_study
+    s = result.summary
+    m = s["materials"]
+    assert len(_rows(study_tables.interval_lines(s))) == 9  # 3 classifiers x 3 splits
+    assert len(_rows(study_tables.repetition_lines(s))) == len(m["svm_grouped_by_repetitions"]) + 1
+    assert len(_rows(study_tables.sensitivity_lines(s))) == len(m["rod_geometry"])
+    runs = [k for k, v in m["ann_training_setup"].items() if isinstance(v, dict)]
+    assert len(_rows(study_tables.ann_budget_lines(s))) == len(runs)
+
+
+def test_a_cell_shows_the_summary_count_and_interval(quick_study):
+    result, _ = quick_study
+    m = result.summary["materials"]
+    a, n, ci = (m["svm_grouped_test_accuracy"], m["svm_grouped_test_accuracy_n_test"],
+                m["svm_grouped_test_accuracy_ci95"])
+    cell = f"{100 * a:.1f} % (n = {n}, {100 * ci[0]:.1f}-{100 * ci[1]:.1f})"
+    assert any(cell in line for line in study_tables.interval_lines(result.summary))

@@ -47,6 +47,7 @@ from .._validate import check_bool, check_int
 from ..report import FigureSet, Report
 from . import (
     ann_setup,
+    contact_law,
     data_summary,
     full_range,
     hinge_fit,
@@ -66,7 +67,8 @@ log = logging.getLogger(__name__)
 
 #: The steps of the study, timed one by one, in order.
 STEPS = ("modes", "hinge", "data set", "features", "frequency", "decay", "ml", "splits",
-         "seeds", "ann setup", "controls", "rod geometry", "full range", "time-frequency")
+         "seeds", "ann setup", "controls", "contact law", "rod geometry", "full range",
+         "time-frequency")
 
 
 def default_cache_dir() -> Path:
@@ -228,7 +230,8 @@ def reproduce(
     timer.close()
 
     cached = before.get(ds.path) == ds.path.stat().st_mtime_ns
-    _run_time(report, timer.seconds, workers, cached, ds.path.name, controls.data_sets)
+    _run_time(report, timer.seconds, workers, cached, ds.path.name,
+              controls.data_sets + int(study.results["contact law"] is not None))
     md, page = report.write(out_dir)
     summary = {
         "quick": quick,
@@ -291,9 +294,12 @@ def _learn_materials_and_distance(study: _Sections, ds, feats, materials, seed: 
 
 
 def _controls(study: _Sections, scene, seed: int, quick: bool, cache_dir, workers: int):
-    """The controls and the rod's geometry varied: the small data sets rebuilt and measured."""
+    """The controls, the two contact laws and the rod's geometry varied: the small data sets
+    rebuilt and measured."""
     controls = study.run("controls", physics_controls.compute, physics_controls.render,
                          scene, seed, quick, cache_dir, workers)
+    study.run("contact law", contact_law.compute, contact_law.render,
+              scene, seed, quick, cache_dir, workers)
     study.run("rod geometry", rod_geometry.compute, rod_geometry.render,
               scene, seed, quick, cache_dir, workers)
     return controls
@@ -306,7 +312,7 @@ def _run_time(report: Report, seconds: dict, workers: int, cached: bool, dataset
     report.paragraph(
         f"Wall time of every step on {workers} worker(s). The data set was "
         + ("reused from its cache" if cached else "simulated in this run")
-        + f" ({dataset}); the controls rebuild {control_sets} small "
+        + f" ({dataset}); the controls and the contact law rebuild {control_sets} small "
         "data sets, and the rod's geometry a few more, cached likewise."
     )
     report.table(["step", "seconds"], [[k, f"{v:.1f}"] for k, v in seconds.items()]
@@ -332,5 +338,6 @@ def _summary(results: dict) -> dict:
         "distance": {**results["full range"].to_dict(), **learnt.distance_dict(),
                      **splits["distance"]},
         "hinge": results["hinge"].to_dict(),
+        "contact_law": None if results["contact law"] is None else results["contact law"].to_dict(),
         **results["time-frequency"].to_dict(),
     }

@@ -135,13 +135,24 @@ def fit_policy(libsvm_compat: bool, selection: str, shrinking: bool,
     ``libsvm_compat`` takes all of libsvm's (:data:`LIBSVM`), with ``shrinking`` as given, and so
     does a kernel that is not positive semi-definite (``convex=False``): its dual has several
     stationary points, and only libsvm's path leads to scikit-learn's (see the module text).
-    Otherwise the package's (:data:`DEFAULT`): shrinking only pays with the row cache, where the
-    solver then shrinks as libsvm does, with libsvm's curvature floor, and keeps the default
-    tie-breaking and bias sum.
+    Otherwise the package's (:data:`DEFAULT`), with ``shrinking`` as given: the solver then
+    shrinks as libsvm does, with libsvm's curvature floor, and keeps the default tie-breaking
+    and bias sum, whether the whole kernel is stored or its rows are cached (``whole_kernel``
+    no longer changes the policy, so a fit's result does not depend on ``cache_size``).
+
+    Shrinking pays on the whole kernel too. Without it every update passes over all the
+    variables of the problem, where libsvm's passes over the few it keeps active: unscaled
+    breast_cancer, linear kernel, C = 1 (3 million updates) took 3.2 us per update without
+    shrinking and 0.4 us with it, over 23 active variables on average out of 569, on the
+    compiled engine. The default mode had kept the run over all variables because, on the
+    NumPy engines at the paper's size, that loop (few NumPy calls per update) had been faster
+    than the one with shrinking.
 
     Examples
     --------
     >>> fit_policy(False, "second-order", True, whole_kernel=True).shrinking
+    True
+    >>> fit_policy(False, "second-order", False, whole_kernel=True).shrinking
     False
     >>> fit_policy(True, "first-order", True, whole_kernel=True).ties
     'last'
@@ -150,7 +161,7 @@ def fit_policy(libsvm_compat: bool, selection: str, shrinking: bool,
     """
     if libsvm_compat or not convex:
         return replace(LIBSVM, selection=selection, shrinking=shrinking)
-    if shrinking and not whole_kernel:
+    if shrinking:
         return replace(DEFAULT, selection=selection, shrinking=True,
                        curvature_floor="nonpositive")
     return replace(DEFAULT, selection=selection)

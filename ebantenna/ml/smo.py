@@ -102,7 +102,7 @@ from ._smo_compiled import (
     run_compiled,
 )
 from ._smo_state import DualState, run_general
-from ._smo_whole import run_whole, runs_whole
+from ._smo_whole import run_whole, runs_whole, updates_before_shrinking
 from .kernels import KernelRows
 from .smo_policy import DEFAULT, TAU, SMOPolicy
 
@@ -343,6 +343,30 @@ def reference_smo(K, y, C, *, tol=1e-3, max_iter=10_000_000, selection="second-o
 
 
 # ----------------------------------------------------------------------------- the engines
+def _run_numpy(rows, y, C, diagonal, policy, tol, max_iter):
+    """The NumPy engines: ``(alpha, yG, perm, n_iter, converged, violation)``, the arrays in
+    the engine's order (``perm`` None when it is the callers').
+
+    The whole-kernel loop takes every update it can: all of them without shrinking, those
+    before the first shrinking otherwise (the same steps, with fewer NumPy calls each), and
+    libsvm's engine with its shrinking takes over from there.
+    """
+    if not runs_whole(policy, C):
+        state = DualState(rows, y, C, diagonal, policy)
+        n_iter, converged, violation = run_general(state, tol, max_iter)
+        return state.alpha, state.yG, state.perm, n_iter, converged, violation
+    first = min(max_iter, updates_before_shrinking(y.size)) if policy.shrinking else max_iter
+    alpha, yG, n_iter, converged, violation, yGbar = run_whole(
+        rows, y, diagonal, C, policy.selection == "second-order", tol, first,
+        policy.curvature_floor == "nonpositive", policy.shrinking)
+    if converged or n_iter >= max_iter:
+        return alpha, yG, None, n_iter, converged, violation
+    state = DualState(rows, y, C, diagonal, policy)
+    state.resume(alpha, yG, yGbar)
+    n_iter, converged, violation = run_general(state, tol, max_iter, n_iter)
+    return state.alpha, state.yG, state.perm, n_iter, converged, violation
+
+
 def solve_smo(
     rows: KernelRows,
     y: np.ndarray,
@@ -414,14 +438,12 @@ def solve_smo(
     if compiled is not None:
         y, C, alpha, yG, perm, n_iter, converged, violation = compiled
         state_alpha = alpha
-    elif runs_whole(policy, C):
-        alpha, yG, n_iter, converged, violation = run_whole(
-            rows, y, diagonal, C, policy.selection == "second-order", tol, max_iter)
     else:
-        state = DualState(rows, y, C, diagonal, policy)
-        n_iter, converged, violation = run_general(state, tol, max_iter)
-        y, C, alpha, yG, perm = state.y, state.C, state.alpha, state.yG, state.perm
-        state_alpha = alpha
+        alpha, yG, perm, n_iter, converged, violation = _run_numpy(rows, y, C, diagonal,
+                                                                   policy, tol, max_iter)
+        if perm is not None:
+            y, C = y[perm], C[perm]
+            state_alpha = alpha
     if not converged:
         logger.info("SMO stopped at max_iter=%d with violation %.3g", max_iter, violation)
     G = y * yG  # in the engine's order: the sums of the objective and the bias follow it

@@ -44,10 +44,10 @@ def test_solve_smo_refuses_anything_but_a_policy():
     (dict(libsvm_compat=True), True, LIBSVM),
     (dict(libsvm_compat=True, shrinking=False), True, replace(LIBSVM, shrinking=False)),
     (dict(selection="first-order"), True,
-     replace(DEFAULT, selection="first-order", shrinking=True, curvature_floor="nonpositive")),
+     replace(DEFAULT, selection="first-order", shrinking=True)),
     # shrinking whether the whole kernel is in memory or not: the same policy either way
-    (dict(), True, replace(DEFAULT, shrinking=True, curvature_floor="nonpositive")),
-    (dict(), False, replace(DEFAULT, shrinking=True, curvature_floor="nonpositive")),
+    (dict(), True, replace(DEFAULT, shrinking=True)),
+    (dict(), False, replace(DEFAULT, shrinking=True)),
     (dict(shrinking=False), True, DEFAULT),
     (dict(shrinking=False), False, DEFAULT),
 ])

@@ -1,11 +1,13 @@
-"""The SMO engine over all variables (no shrinking), with few NumPy calls per update (private).
+"""The SMO engine over all variables, with few NumPy calls per update (private).
 
 :func:`ebantenna.ml.smo.solve_smo` runs this engine for the package's default conventions
-(:data:`~ebantenna.ml.smo_policy.DEFAULT`: first index on ties, the :math:`\\max(a, \\tau)`
-curvature floor, no shrinking). It takes the same steps in the same floating-point arithmetic as
-the general engine :mod:`ebantenna.ml._smo_state` (the second-order scores and the two-variable
-step are the same code, :mod:`ebantenna.ml._smo_step`), so the two return the same numbers to the
-last bit; only the bookkeeping differs. Both take the steps of the reference loop
+(:data:`~ebantenna.ml.smo_policy.DEFAULT`: first index on ties): the whole run without
+shrinking, and with shrinking the updates before libsvm's first shrinking, after which the
+general engine goes on from the state this one hands over (:math:`\\bar G` included). It
+takes the same steps in the same floating-point arithmetic as the general engine
+:mod:`ebantenna.ml._smo_state` (the second-order scores and the two-variable step are the same
+code, :mod:`ebantenna.ml._smo_step`), so the two return the same numbers to the last bit; only
+the bookkeeping differs. Both take the steps of the reference loop
 :func:`ebantenna.ml.smo.reference_smo`, in libsvm's arithmetic. On vectors of a few thousand
 entries a NumPy call costs more than its arithmetic, so the loop is built to make few calls:
 

@@ -38,9 +38,11 @@ which either holds the whole matrix (one GEMM) or keeps a least-recently-used ca
 are computed on demand. How an engine selects, breaks ties, floors the curvature, shrinks and
 sums the bias is an :class:`~ebantenna.ml.smo_policy.SMOPolicy`, a frozen value with two
 presets: :data:`~ebantenna.ml.smo_policy.DEFAULT` and :data:`~ebantenna.ml.smo_policy.LIBSVM`.
-For the default conventions without shrinking, ``_smo_whole`` runs over all variables with few
-NumPy calls per update; every other policy runs on ``_smo_state``, libsvm's solver with its
-shrinking, its variable order and a memo of kernel rows. The two share libsvm's two-variable
+``_smo_whole`` runs over all variables with few NumPy calls per update: the whole run for the
+default conventions without shrinking, and with shrinking the updates before the first one
+(libsvm shrinks after ``min(n, 1000)`` updates), where it hands its state to ``_smo_state``,
+libsvm's solver with its shrinking, its variable order and a memo of kernel rows, which also
+runs libsvm's conventions from the start. The two share libsvm's two-variable
 step and the second-order scores (``_smo_step``) and return the same numbers to the last bit for
 the same policy. Tests hold both equal to the reference within what the stopping rule allows.
 

@@ -143,13 +143,10 @@ def fit_policy(libsvm_compat: bool, selection: str, shrinking: bool,
     (two points closer than about :math:`10^{-6}`), and costs the NumPy engines one call per
     update less.
 
-    Shrinking pays on the whole kernel too. Without it every update passes over all the
-    variables of the problem, where libsvm's passes over the few it keeps active: unscaled
-    breast_cancer, linear kernel, C = 1 (3 million updates) took 3.2 us per update without
-    shrinking and 0.4 us with it, over 23 active variables on average out of 569, on the
-    compiled engine. The default mode had kept the run over all variables because, on the
-    NumPy engines at the paper's size, that loop (few NumPy calls per update) had been faster
-    than the one with shrinking.
+    Shrinking pays on the whole kernel too: without it every update passes over all the
+    variables of the problem, where libsvm's passes over those it keeps active, on a long run
+    a small part of them. (The NumPy engines still take the updates before the first
+    shrinking on the loop over all variables, which makes fewer NumPy calls per update.)
 
     Examples
     --------

@@ -153,8 +153,9 @@ def _initial_state(y, QD, C, index):
     n = y.shape[0]
     F = np.zeros((6, n))
     F[0], F[1], F[2], F[4] = y, QD, C, -y  # y, QD, C, alpha = 0, yG = -y, yGbar = 0
-    pos = y > 0  # alpha = 0: positives can go up, negatives down
-    return F, pos.copy(), ~pos, np.array(index, dtype=np.int64), np.arange(n, dtype=np.int64)
+    pos = y > 0  # alpha = 0: positives can go up, negatives down (penalties 0 or -inf)
+    up, low = np.where(pos, 0.0, -np.inf), np.where(pos, -np.inf, 0.0)
+    return F, up, low, np.array(index, dtype=np.int64), np.arange(n, dtype=np.int64)
 
 
 def _compiled_for(matrix) -> bool:

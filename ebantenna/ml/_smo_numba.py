@@ -16,9 +16,14 @@ with plain loops so that one call runs every update, with no NumPy call per upda
   each operation rounds as NumPy's does;
 * sums appear only as these per-entry updates; maxima and arg-maxima (the first index on a tie,
   or the last, libsvm's ``>=``) are exact whatever the order;
-* the variables live in the columns of one array ``F`` (``y, QD, C, alpha, yG, yGbar``) and two
-  flags (membership of :math:`I_{up}`, :math:`I_{low}`), in libsvm's permuted order when
-  shrinking; ``g[p]`` is the row of the stored kernel matrix that position ``p`` holds.
+* the variables live in the columns of one array ``F`` (``y, QD, C, alpha, yG, yGbar``) and
+  two penalties, 0 or :math:`-\\infty`, for membership of :math:`I_{up}` and :math:`I_{low}`
+  (``up`` and ``low``), in libsvm's permuted order when shrinking; ``g[p]`` is the row of the
+  stored kernel matrix that position ``p`` holds. The penalties are added to the scores, as the
+  NumPy engines add theirs (``0 - yG`` or ``-inf``, the same numbers as a test of a flag): a
+  flag would be a branch per variable that the processor mispredicts half the time, where an
+  addition costs a cycle. The second-order scores are branch-free for the same reason:
+  ``max(b, 0)**2 / a`` is 0 for every variable outside :math:`I_{low}`, as in NumPy.
 
 Kernel entries are read from the stored matrix (float64, or float32 widened exactly to float64,
 as :meth:`~ebantenna.ml.kernels.KernelRows.row64` does).
@@ -125,10 +130,10 @@ def _scan(F, up, low, a, last):
     yG = F[_YG]
     i, Gmax, j, top = 0, -np.inf, 0, -np.inf
     for t in range(a):
-        v = (0.0 - yG[t]) if up[t] else -np.inf
+        v = up[t] - yG[t]
         if _better(v, Gmax, last):
             i, Gmax = t, v
-        w = (yG[t] + 0.0) if low[t] else -np.inf
+        w = yG[t] + low[t]
         if _better(w, top, last):
             j, top = t, w
     return i, Gmax, j, top
@@ -152,19 +157,17 @@ def _select(K, g, F, low, a, tol, opts, pair_sum, Ki, scan):
     for t in range(a):  # the scores of ebantenna.ml._smo_step.second_order_gain, and the row
         K_it = np.float64(K[r, g[t]])
         Ki[t] = K_it
-        score = 0.0  # max(b, 0)**2 / a is 0 for b <= 0 (a >= tau > 0): no division there
-        b = ((yG[t] + 0.0) + Gmax) if low[t] else 0.0
-        if b > 0.0:
-            if same_diagonal:
-                quad = K_it * -2.0 + pair_sum
-            else:
-                quad = (QD[t] + QD_i) - K_it * 2.0
-            if floor_nonpositive:
-                if quad <= 0:
-                    quad = TAU
-            elif quad < TAU:
-                quad = TAU
-            score = b * b / quad
+        b = (yG[t] + low[t]) + Gmax  # -inf outside I_low
+        b = b if b > 0.0 else 0.0
+        if same_diagonal:
+            quad = K_it * -2.0 + pair_sum
+        else:
+            quad = (QD[t] + QD_i) - K_it * 2.0
+        if floor_nonpositive:
+            quad = quad if quad > 0 else TAU
+        else:
+            quad = quad if quad >= TAU else TAU
+        score = b * b / quad
         if _better(score, best, last):
             j, best = t, score
     if not best > 0:
@@ -177,7 +180,8 @@ def _set_membership(F, up, low, t):
     """``t`` in :math:`I_{up}` (can move so that :math:`y_t\\alpha_t` grows) and in
     :math:`I_{low}`, from its value."""
     a, C_t = F[_ALPHA, t], F[_C, t]
-    below, above = not a >= C_t, not a <= 0
+    below = 0.0 if not a >= C_t else -np.inf
+    above = 0.0 if not a <= 0 else -np.inf
     if F[_Y, t] > 0:
         up[t], low[t] = below, above
     else:
@@ -200,10 +204,10 @@ def _update(K, g, F, up, low, a, i, j, Ki, shrinking, last):
     for t in range(a):  # G += Q_i dalpha_i + Q_j dalpha_j, on y G; then the next scan
         v = yG[t] + (Ki[t] * c_i + np.float64(K[r, g[t]]) * c_j)
         yG[t] = v
-        u = (0.0 - v) if up[t] else -np.inf
+        u = up[t] - v
         if _better(u, Gmax, last):
             i_next, Gmax = t, u
-        w = (v + 0.0) if low[t] else -np.inf
+        w = v + low[t]
         if _better(w, top, last):
             j_next, top = t, w
     if shrinking:
@@ -250,9 +254,9 @@ def _shrink(K, g, F, up, low, perm, a, tol, unshrink):
     yG = F[_YG]
     Gmax1, Gmax2 = -np.inf, -np.inf
     for t in range(a):
-        if up[t] and -yG[t] > Gmax1:
+        if up[t] == 0 and -yG[t] > Gmax1:
             Gmax1 = -yG[t]
-        if low[t] and yG[t] > Gmax2:
+        if low[t] == 0 and yG[t] > Gmax2:
             Gmax2 = yG[t]
     if not unshrink and Gmax1 + Gmax2 <= tol * 10:
         unshrink = True
@@ -260,8 +264,9 @@ def _shrink(K, g, F, up, low, perm, a, tol, unshrink):
     marks = np.empty(a, dtype=np.bool_)
     count = 0
     for t in range(a):
-        marks[t] = ((low[t] and not up[t] and -yG[t] > Gmax1)
-                    or (up[t] and not low[t] and yG[t] > Gmax2))
+        in_up, in_low = up[t] == 0, low[t] == 0
+        marks[t] = ((in_low and not in_up and -yG[t] > Gmax1)
+                    or (in_up and not in_low and yG[t] > Gmax2))
         count += marks[t]
     keep = a - count
     front, back = 0, a - 1  # the k-th set aside among the first `keep` trades with the k-th
@@ -289,10 +294,10 @@ def _max_violation(F, up, low):
     yG = F[_YG]
     top_up, top_low = -np.inf, -np.inf
     for t in range(F.shape[1]):
-        if up[t] and 0.0 - yG[t] > top_up:
-            top_up = 0.0 - yG[t]
-        if low[t] and yG[t] + 0.0 > top_low:
-            top_low = yG[t] + 0.0
+        if up[t] - yG[t] > top_up:
+            top_up = up[t] - yG[t]
+        if yG[t] + low[t] > top_low:
+            top_low = yG[t] + low[t]
     return top_up + top_low
 
 
@@ -300,7 +305,7 @@ def _max_violation(F, up, low):
 #: that a view and a contiguous matrix share one compiled loop.
 _SIGNATURES = [] if numba is None else [
     (numba.types.Array(dtype, 2, "A"), numba.int64[::1], numba.float64[:, ::1],
-     numba.boolean[::1], numba.boolean[::1], numba.int64[::1], numba.float64, numba.float64,
+     numba.float64[::1], numba.float64[::1], numba.int64[::1], numba.float64, numba.float64,
      numba.types.UniTuple(numba.boolean, 4), numba.boolean, numba.float64)
     for dtype in (numba.float64, numba.float32)]
 _jit_loop = numba.njit(_SIGNATURES, cache=True) if numba is not None else _plain

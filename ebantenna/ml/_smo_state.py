@@ -126,6 +126,17 @@ class DualState:
         self._memo_capacity = max(2, ROW_MEMO_BYTES // (8 * n))
         self._activate(n)
 
+    def resume(self, alpha: np.ndarray, yG: np.ndarray, yGbar: np.ndarray) -> None:
+        """Take over a run that has made updates without shrinking yet (all variables active,
+        in their own order): its :math:`\\alpha`, :math:`y G` and :math:`y \\bar G`, and the
+        membership of :math:`I_{up}` and :math:`I_{low}` that :meth:`update` would have set."""
+        self.alpha[:], self.yG[:], self.yGbar[:] = alpha, yG, yGbar
+        can_up = np.where(self.alpha >= self.C, -np.inf, 0.0)
+        can_down = np.where(self.alpha <= 0, -np.inf, 0.0)
+        pos = self.y > 0
+        self.up_pen[:] = np.where(pos, can_up, can_down)
+        self.low_pen[:] = np.where(pos, can_down, can_up)
+
     def _activate(self, active: int) -> None:
         """Make the first ``active`` positions the active set: their views, no kept rows."""
         self.active = a = active
@@ -276,15 +287,17 @@ class DualState:
         self._activate(keep)
 
 
-def run_general(state: DualState, tol: float, max_iter: float) -> tuple[int, bool, float]:
-    """SMO on a fresh :class:`DualState`, any policy: ``(n_iter, converged, violation)``.
+def run_general(state: DualState, tol: float, max_iter: float,
+                n_iter: int = 0) -> tuple[int, bool, float]:
+    """SMO on a :class:`DualState`, any policy: ``(n_iter, converged, violation)``.
 
-    ``state`` holds the solution in its own (permuted) order when this returns.
+    ``state`` is fresh, or has been :meth:`~DualState.resume`\\ d after ``n_iter`` updates that
+    came before the first shrinking. It holds the solution in its own (permuted) order when
+    this returns.
     """
     policy = state.policy
     n = state.n
-    n_iter = 0
-    counter = min(n, 1000) + 1
+    counter = min(n, 1000) + 1 - n_iter
     converged = False
     violation = np.inf
     while n_iter < max_iter:

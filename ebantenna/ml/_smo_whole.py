@@ -1,11 +1,13 @@
-"""The SMO engine over all variables (no shrinking), with few NumPy calls per update (private).
+"""The SMO engine over all variables, with few NumPy calls per update (private).
 
 :func:`ebantenna.ml.smo.solve_smo` runs this engine for the package's default conventions
-(:data:`~ebantenna.ml.smo_policy.DEFAULT`: first index on ties, the :math:`\\max(a, \\tau)`
-curvature floor, no shrinking). It takes the same steps in the same floating-point arithmetic as
-the general engine :mod:`ebantenna.ml._smo_state` (the second-order scores and the two-variable
-step are the same code, :mod:`ebantenna.ml._smo_step`), so the two return the same numbers to the
-last bit; only the bookkeeping differs. Both take the steps of the reference loop
+(:data:`~ebantenna.ml.smo_policy.DEFAULT`: first index on ties): the whole run without
+shrinking, and with shrinking the updates before libsvm's first shrinking, after which the
+general engine goes on from the state this one hands over (:math:`\\bar G` included). It
+takes the same steps in the same floating-point arithmetic as the general engine
+:mod:`ebantenna.ml._smo_state` (the second-order scores and the two-variable step are the same
+code, :mod:`ebantenna.ml._smo_step`), so the two return the same numbers to the last bit; only
+the bookkeeping differs. Both take the steps of the reference loop
 :func:`ebantenna.ml.smo.reference_smo`, in libsvm's arithmetic. On vectors of a few thousand
 entries a NumPy call costs more than its arithmetic, so the loop is built to make few calls:
 
@@ -43,8 +45,10 @@ _largest = np.maximum.reduce
 
 
 def runs_whole(policy: SMOPolicy, C: np.ndarray) -> bool:
-    """Whether :func:`run_whole` solves a problem with this policy and these bounds: no
-    shrinking, first index on ties, the ``'tau'`` floor and every :math:`C_t > 0`.
+    """Whether :func:`run_whole` takes this policy's first steps with these bounds: first index
+    on ties and every :math:`C_t > 0`. Without shrinking it runs to the end; with shrinking it
+    takes the updates before libsvm's first shrinking (:func:`updates_before_shrinking`), the
+    same steps as :mod:`ebantenna.ml._smo_state` takes until then, and hands over to it.
 
     Examples
     --------
@@ -52,12 +56,23 @@ def runs_whole(policy: SMOPolicy, C: np.ndarray) -> bool:
     >>> runs_whole(DEFAULT, np.ones(3)), runs_whole(LIBSVM, np.ones(3))
     (True, False)
     """
-    return (not policy.shrinking and policy.ties == "first" and policy.curvature_floor == "tau"
-            and bool(np.all(C > 0)))
+    return policy.ties == "first" and bool(np.all(C > 0))
+
+
+def updates_before_shrinking(n: int) -> int:
+    """libsvm's first shrinking comes after ``min(n, 1000)`` updates: before it, an SMO run with
+    shrinking takes the same steps over all variables as one without.
+
+    Examples
+    --------
+    >>> updates_before_shrinking(150), updates_before_shrinking(6000)
+    (150, 1000)
+    """
+    return min(n, 1000)
 
 
 def run_whole(rows, y: np.ndarray, QD: np.ndarray, C: np.ndarray, second_order: bool, tol: float,
-              max_iter: float):
+              max_iter: float, floor_nonpositive: bool = False, track_gbar: bool = False):
     """Run SMO from :math:`\\alpha = 0` until the violation is below ``tol`` or ``max_iter``
     updates are done.
 
@@ -71,18 +86,25 @@ def run_whole(rows, y: np.ndarray, QD: np.ndarray, C: np.ndarray, second_order: 
         Fan, Chen and Lin's selection; else the maximal violating pair.
     tol, max_iter : float
         Stopping tolerance on the maximal violation, and the largest number of updates.
+    floor_nonpositive : bool
+        The policy's curvature floor in the second-order scores: libsvm's (only
+        :math:`a_{ij} \\le 0` replaced by :math:`\\tau`) or :math:`\\max(a_{ij}, \\tau)`.
+    track_gbar : bool
+        Also keep :math:`y_t \\bar G_t` (:math:`\\bar G_t = \\sum_{s: \\alpha_s = C_s} C_s
+        Q_{ts}`) as the general engine keeps it for shrinking, in the same order of additions.
 
     Returns
     -------
     tuple
-        ``(alpha, yG, n_iter, converged, violation)``: the solution, :math:`y_t G_t` there, and
-        the loop's report as the general engine makes it.
+        ``(alpha, yG, n_iter, converged, violation, yGbar)``: the solution, :math:`y_t G_t`
+        there, the loop's report as the general engine makes it, and :math:`y_t \\bar G_t`
+        (None without ``track_gbar``).
 
     Examples
     --------
     >>> from ebantenna.ml.kernels import Kernel, KernelRows
     >>> rows = KernelRows(np.array([[0.0], [2.0]]), Kernel("linear"), np.float64, 1 << 20)
-    >>> alpha, yG, n_iter, converged, _ = run_whole(rows, np.array([-1.0, 1.0]),
+    >>> alpha, yG, n_iter, converged, _, _ = run_whole(rows, np.array([-1.0, 1.0]),
     ...     np.array([0.0, 4.0]), np.full(2, 10.0), True, 1e-3, np.inf)
     >>> alpha, yG, n_iter, converged
     (array([0.5, 0.5]), array([1., 1.]), 1, True)
@@ -94,6 +116,7 @@ def run_whole(rows, y: np.ndarray, QD: np.ndarray, C: np.ndarray, second_order: 
     # K_ii + K_jj is one number for a constant diagonal (as for 'rbf', all 1)
     pair_diagonal = QDs[0] + QDs[0] if bool(np.all(QD == QD[0])) else None
     taus, zeros = np.full(QD.shape, TAU), np.zeros(QD.shape)
+    yGbar = np.zeros(QD.shape) if track_gbar else None
     n_iter, converged, violation = 0, False, np.inf
     while n_iter < max_iter:
         i = int(up.argmax())
@@ -106,7 +129,7 @@ def run_whole(rows, y: np.ndarray, QD: np.ndarray, C: np.ndarray, second_order: 
                 break
             Ki = row(i)
             second_order_gain(b, Ki, (QD, QDs[i]) if pair_diagonal is None else pair_diagonal,
-                              taus, zeros, False)
+                              taus, zeros, floor_nonpositive)
             j = int(b.argmax())
             if not b.item(j) > 0:
                 converged = True
@@ -119,14 +142,16 @@ def run_whole(rows, y: np.ndarray, QD: np.ndarray, C: np.ndarray, second_order: 
                 break
             Ki = row(i)
         n_iter += 1
-        _update(row(j), Ki, i, j, Gmax, up, low, ys, QDs, Cs, alpha)
+        _update(row(j), Ki, i, j, Gmax, up, low, ys, QDs, Cs, alpha, yGbar)
     if not converged:
         violation = _largest(up) + _largest(low)
-    return np.array(alpha), np.where(low > -np.inf, low, -up), n_iter, converged, float(violation)
+    return (np.array(alpha), np.where(low > -np.inf, low, -up), n_iter, converged,
+            float(violation), yGbar)
 
 
-def _update(Kj, Ki, i, j, Gmax, up, low, y, QD, C, alpha) -> None:
-    """Solve for the pair ``(i, j)`` and move the scores ``up`` and ``low`` (in place)."""
+def _update(Kj, Ki, i, j, Gmax, up, low, y, QD, C, alpha, yGbar) -> None:
+    """Solve for the pair ``(i, j)`` and move the scores ``up`` and ``low`` (in place), and
+    ``yGbar`` unless it is None."""
     yi, yj, old_i, old_j = y[i], y[j], alpha[i], alpha[j]
     yG_i, yG_j = -Gmax, low.item(j)  # i is in I_up, j in I_low
     a_i, a_j = pair_step(yi, yj, QD[i], QD[j], C[i], C[j], old_i, old_j, yi * yG_i, yj * yG_j,
@@ -137,6 +162,15 @@ def _update(Kj, Ki, i, j, Gmax, up, low, y, QD, C, alpha) -> None:
     step += step_j
     up -= step
     low += step
+    if yGbar is not None:  # in the general engine's order: i, then j
+        for t, K_t, a, old in ((i, Ki, a_i, old_i), (j, Kj, a_j, old_j)):
+            was_upper = old >= C[t]
+            if was_upper != (a >= C[t]):
+                gbar_step = (C[t] * y[t]) * K_t  # Gbar_k += C_t Q_tk, in y-scaled form
+                if was_upper:
+                    yGbar -= gbar_step
+                else:
+                    yGbar += gbar_step
     alpha[i], alpha[j] = a_i, a_j
     for t, a in ((i, a_i), (j, a_j)):  # the two may have changed sets
         lo = low.item(t)

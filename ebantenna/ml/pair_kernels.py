@@ -15,10 +15,14 @@ kept in one of three ways, the first that applies:
   where it is copied to the corner instead of being computed again. Each pair then costs its
   cross block and one diagonal block: for five classes of equal size about 1.5 times the
   entries of the whole matrix, but one pair's kernel in memory instead of all of them (at 6000
-  points in five classes, 46 MB instead of 288 MB in float64 or 144 MB in float32). Memory is
-  not free: fresh memory is faulted in page by page, which on a virtual machine can cost about
-  as much per entry as computing the entry; and float64 keeps the error bound of
-  :mod:`ebantenna.ml.kernels` without a float32 rounding on top.
+  points in five classes, 46 MB instead of 288 MB in float64 or 144 MB in float32). When the
+  diagonal blocks of all classes fit in ``cache_bytes`` beside the buffer (another 58 MB
+  there), each is computed once and kept until its class has been the first of its last pair:
+  every entry of the whole matrix is then computed once, the diagonal blocks a quarter more
+  (their strips, see :meth:`~ebantenna.ml.kernels.Kernel.gram`). Keeping a block costs a copy,
+  about 1 ms for 1200 points against about 30 ms to compute its 1.4 million entries in 256
+  dimensions (fresh memory, faulted in page by page, costs about twice the copy). float64
+  keeps the error bound of :mod:`ebantenna.ml.kernels` without a float32 rounding on top.
 * **the whole matrix** (``libsvm_compat``, sparse points, or when a pair does not fit but the
   whole matrix does in ``dtype``): one Gram product over the points sorted by class; the rows of
   a pair are assembled from two slices of it.
@@ -103,6 +107,10 @@ class PairKernels:
             self._norms = squared_norms(points) if kernel.name == "rbf" else None
             self._buffer = np.empty((largest, largest))
             self._corner = self._last = self._lower = None
+            # the diagonal block of each class, once computed, while all of them fit
+            self._diagonal: dict[int, np.ndarray] | None = None
+            if (largest**2 + sum(m.size**2 for m in members)) * 8 <= cache_bytes:
+                self._diagonal = {}
         elif n * n * self.dtype.itemsize <= cache_bytes:
             self.layout = "whole"
             self._matrix = kernel.gram(X[order], dtype=self.dtype, center=self.center)
@@ -146,7 +154,9 @@ class PairKernels:
         na, n = A.stop - A.start, A.stop - A.start + B.stop - B.start
         K = self._buffer[:n, :n]
         if self._corner != a:  # the block of the first class stays while the second changes
-            if self._last == a:  # left by the pair (a - 1, a) in the lower right: moved up
+            if self._diagonal is not None and a in self._diagonal:  # its last use as a corner
+                K[:na, :na] = self._diagonal.pop(a)
+            elif self._last == a:  # left by the pair (a - 1, a) in the lower right: moved up
                 m = self._lower
                 K[:na, :na] = self._buffer[m : m + na, m : m + na]
             else:
@@ -155,7 +165,13 @@ class PairKernels:
         self._last, self._lower = b, na
         self._block(A, B, K[:na, na:])
         K[na:, :na] = K[:na, na:].T
-        self._block(B, None, K[na:, na:])
+        if self._diagonal is None:
+            self._block(B, None, K[na:, na:])
+        elif b in self._diagonal:
+            K[na:, na:] = self._diagonal[b]
+        else:  # computed where it is used, then kept: the same numbers every time
+            self._block(B, None, K[na:, na:])
+            self._diagonal[b] = K[na:, na:].copy()
         return K
 
     def _block(self, rows: slice, cols: slice | None, out: np.ndarray) -> None:

@@ -38,9 +38,11 @@ which either holds the whole matrix (one GEMM) or keeps a least-recently-used ca
 are computed on demand. How an engine selects, breaks ties, floors the curvature, shrinks and
 sums the bias is an :class:`~ebantenna.ml.smo_policy.SMOPolicy`, a frozen value with two
 presets: :data:`~ebantenna.ml.smo_policy.DEFAULT` and :data:`~ebantenna.ml.smo_policy.LIBSVM`.
-For the default conventions without shrinking, ``_smo_whole`` runs over all variables with few
-NumPy calls per update; every other policy runs on ``_smo_state``, libsvm's solver with its
-shrinking, its variable order and a memo of kernel rows. The two share libsvm's two-variable
+``_smo_whole`` runs over all variables with few NumPy calls per update: the whole run for the
+default conventions without shrinking, and with shrinking the updates before the first one
+(libsvm shrinks after ``min(n, 1000)`` updates), where it hands its state to ``_smo_state``,
+libsvm's solver with its shrinking, its variable order and a memo of kernel rows, which also
+runs libsvm's conventions from the start. The two share libsvm's two-variable
 step and the second-order scores (``_smo_step``) and return the same numbers to the last bit for
 the same policy. Tests hold both equal to the reference within what the stopping rule allows.
 
@@ -102,7 +104,7 @@ from ._smo_compiled import (
     run_compiled,
 )
 from ._smo_state import DualState, run_general
-from ._smo_whole import run_whole, runs_whole
+from ._smo_whole import run_whole, runs_whole, updates_before_shrinking
 from .kernels import KernelRows
 from .smo_policy import DEFAULT, TAU, SMOPolicy
 
@@ -343,6 +345,30 @@ def reference_smo(K, y, C, *, tol=1e-3, max_iter=10_000_000, selection="second-o
 
 
 # ----------------------------------------------------------------------------- the engines
+def _run_numpy(rows, y, C, diagonal, policy, tol, max_iter):
+    """The NumPy engines: ``(alpha, yG, perm, n_iter, converged, violation)``, the arrays in
+    the engine's order (``perm`` None when it is the callers').
+
+    The whole-kernel loop takes every update it can: all of them without shrinking, those
+    before the first shrinking otherwise (the same steps, with fewer NumPy calls each), and
+    libsvm's engine with its shrinking takes over from there.
+    """
+    if not runs_whole(policy, C):
+        state = DualState(rows, y, C, diagonal, policy)
+        n_iter, converged, violation = run_general(state, tol, max_iter)
+        return state.alpha, state.yG, state.perm, n_iter, converged, violation
+    first = min(max_iter, updates_before_shrinking(y.size)) if policy.shrinking else max_iter
+    alpha, yG, n_iter, converged, violation, yGbar = run_whole(
+        rows, y, diagonal, C, policy.selection == "second-order", tol, first,
+        policy.curvature_floor == "nonpositive", policy.shrinking)
+    if converged or n_iter >= max_iter:
+        return alpha, yG, None, n_iter, converged, violation
+    state = DualState(rows, y, C, diagonal, policy)
+    state.resume(alpha, yG, yGbar)
+    n_iter, converged, violation = run_general(state, tol, max_iter, n_iter)
+    return state.alpha, state.yG, state.perm, n_iter, converged, violation
+
+
 def solve_smo(
     rows: KernelRows,
     y: np.ndarray,
@@ -414,14 +440,12 @@ def solve_smo(
     if compiled is not None:
         y, C, alpha, yG, perm, n_iter, converged, violation = compiled
         state_alpha = alpha
-    elif runs_whole(policy, C):
-        alpha, yG, n_iter, converged, violation = run_whole(
-            rows, y, diagonal, C, policy.selection == "second-order", tol, max_iter)
     else:
-        state = DualState(rows, y, C, diagonal, policy)
-        n_iter, converged, violation = run_general(state, tol, max_iter)
-        y, C, alpha, yG, perm = state.y, state.C, state.alpha, state.yG, state.perm
-        state_alpha = alpha
+        alpha, yG, perm, n_iter, converged, violation = _run_numpy(rows, y, C, diagonal,
+                                                                   policy, tol, max_iter)
+        if perm is not None:
+            y, C = y[perm], C[perm]
+            state_alpha = alpha
     if not converged:
         logger.info("SMO stopped at max_iter=%d with violation %.3g", max_iter, violation)
     G = y * yG  # in the engine's order: the sums of the objective and the bias follow it

@@ -31,10 +31,11 @@ def _problem(seed):
 
 
 def _solve_both(monkeypatch, rows, y, C, diagonal, **kwargs):
-    fast = smo.solve_smo(rows, y, C, diagonal=diagonal, **kwargs)
+    # the NumPy engines, whether numba is installed or not
+    fast = smo.solve_smo(rows, y, C, diagonal=diagonal, engine="numpy", **kwargs)
     with monkeypatch.context() as m:
         m.setattr(smo, "runs_whole", lambda policy, C: False)
-        general = smo.solve_smo(rows, y, C, diagonal=diagonal, **kwargs)
+        general = smo.solve_smo(rows, y, C, diagonal=diagonal, engine="numpy", **kwargs)
     return fast, general
 
 
@@ -79,11 +80,34 @@ def test_which_policies_run_the_whole_loop():
     assert runs_whole(DEFAULT, C)
     assert runs_whole(replace(DEFAULT, selection="first-order", bias_sum="sequential"), C)
     assert not runs_whole(LIBSVM, C)
-    assert not runs_whole(replace(DEFAULT, shrinking=True), C)
+    # with shrinking or libsvm's floor it takes the updates before the first shrinking
+    assert runs_whole(replace(DEFAULT, shrinking=True), C)
+    assert runs_whole(replace(DEFAULT, curvature_floor="nonpositive"), C)
     assert not runs_whole(replace(DEFAULT, ties="last"), C)
-    assert not runs_whole(replace(DEFAULT, curvature_floor="nonpositive"), C)
     # a zero bound puts a variable in neither I_up nor I_low: its gradient would be lost
     assert not runs_whole(DEFAULT, np.array([1.0, 0.0, 1.0, 1.0]))
+
+
+@pytest.mark.parametrize("floor", ["tau", "nonpositive"])
+@pytest.mark.parametrize("max_iter", [10_000_000, 1000, 1500])
+def test_hand_over_to_shrinking_takes_the_same_steps(monkeypatch, floor, max_iter):
+    # the whole-kernel loop takes the updates before libsvm's first shrinking (1000 here), then
+    # the general engine goes on from its state: the path and the numbers of the general engine
+    # alone, to the last bit, through several shrinkings and a gradient reconstruction, and
+    # when max_iter stops the run at the hand-over or after it
+    rng = np.random.default_rng(7)
+    X = rng.normal(size=(1300, 2))
+    y = np.where(X[:, 0] + X[:, 1] ** 2 + 0.8 * rng.normal(size=1300) > 1.0, 1.0, -1.0)
+    kern = Kernel("rbf", gamma=0.5)
+    rows = KernelRows(X, kern, np.float64, cache_bytes=1 << 24)
+    policy = replace(DEFAULT, shrinking=True, curvature_floor=floor)
+    fast, general = _solve_both(monkeypatch, rows, y, np.full(y.size, 4.0), kern.diagonal(X),
+                                tol=1e-5, policy=policy, max_iter=max_iter)
+    assert fast.n_iter == general.n_iter and fast.n_iter >= 1000
+    assert fast.converged == general.converged == (max_iter > 1500)
+    np.testing.assert_array_equal(fast.alpha, general.alpha)
+    assert (fast.rho, fast.objective, fast.violation) == (
+        general.rho, general.objective, general.violation)
 
 
 def test_pair_step_keeps_the_equality_constraint_and_the_box():

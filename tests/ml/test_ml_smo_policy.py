@@ -43,9 +43,12 @@ def test_solve_smo_refuses_anything_but_a_policy():
 @pytest.mark.parametrize("params, whole_kernel, expected", [
     (dict(libsvm_compat=True), True, LIBSVM),
     (dict(libsvm_compat=True, shrinking=False), True, replace(LIBSVM, shrinking=False)),
-    (dict(selection="first-order"), True, replace(DEFAULT, selection="first-order")),
-    (dict(), True, DEFAULT),  # the whole kernel in memory: no shrinking
-    (dict(), False, replace(DEFAULT, shrinking=True, curvature_floor="nonpositive")),
+    (dict(selection="first-order"), True,
+     replace(DEFAULT, selection="first-order", shrinking=True)),
+    # shrinking whether the whole kernel is in memory or not: the same policy either way
+    (dict(), True, replace(DEFAULT, shrinking=True)),
+    (dict(), False, replace(DEFAULT, shrinking=True)),
+    (dict(shrinking=False), True, DEFAULT),
     (dict(shrinking=False), False, DEFAULT),
 ])
 def test_each_svc_mode_runs_its_policy(params, whole_kernel, expected):

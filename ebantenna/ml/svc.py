@@ -147,10 +147,11 @@ class SVC(ClassifierMixin, BaseEstimator):
         Constant term of the 'poly' and 'sigmoid' kernels.
     shrinking : bool, default=True
         libsvm's shrinking heuristic (see :class:`~ebantenna.ml.smo_policy.SMOPolicy`); the
-        solution is the same within ``tol`` either way. Shrinking saves kernel evaluations, so it
-        is used with the row cache and in ``libsvm_compat`` mode; when the kernel of each pair
-        of classes is in memory the default mode solves without it, which is faster in NumPy.
-        ``solver="reference"`` never shrinks and refuses ``shrinking=True``.
+        solution is the same within ``tol`` either way. Shrinking leaves out the variables that
+        sit at a bound, so each update passes over the few that can still move; it is used
+        whether the kernel of a pair of classes is stored whole or cached by rows, so the result
+        does not depend on ``cache_size``. ``shrinking=False`` passes over every variable at
+        every update. ``solver="reference"`` never shrinks and refuses ``shrinking=True``.
     probability : bool, default=False
         Also fit Platt's sigmoids on five-fold cross-validated decision values (five more fits
         per pair of classes), for :meth:`predict_proba`. As in scikit-learn, :meth:`predict`

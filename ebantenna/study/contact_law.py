@@ -58,9 +58,10 @@ class Accuracy:
         return accuracy_interval(self.correct, self.n)
 
     def to_dict(self) -> dict:
-        """``accuracy``, ``test_recordings``, ``ci95`` (fractions)."""
+        """``accuracy``, ``accuracy_n_test``, ``accuracy_ci95`` (fractions), named as every
+        accuracy of ``summary.json`` is."""
         lo, hi = self.interval
-        return {"accuracy": self.value, "test_recordings": self.n, "ci95": [lo, hi]}
+        return {"accuracy": self.value, "accuracy_n_test": self.n, "accuracy_ci95": [lo, hi]}
 
     def text(self) -> str:
         """``"83.0 % (95 % CI 74.1-89.2 %, n = 80)"``."""

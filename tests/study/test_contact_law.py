@@ -28,7 +28,8 @@ def test_each_accuracy_carries_its_count_and_wilson_interval():
     assert acc.value == 52 / 80
     assert acc.interval == accuracy_interval(52, 80)
     d = acc.to_dict()
-    assert d["test_recordings"] == 80 and d["ci95"] == list(accuracy_interval(52, 80))
+    assert d["accuracy_n_test"] == 80
+    assert d["accuracy_ci95"] == list(accuracy_interval(52, 80))
     assert "n = 80" in acc.text()
 
 

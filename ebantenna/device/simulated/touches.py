@@ -75,5 +75,5 @@ def simulated_connect(scene, simulate, *, faults: Faults | None = None, seed: in
 
 def _derived(seed: int, index: int, attempt: int) -> int:
     """A seed of its own for each (touch, attempt), from the session's."""
-    return int(np.random.SeedSequence([seed, index, attempt]).generate_state(1, np.uint64)[0]
-               >> 1)
+    # shifted as a Python int: NumPy 1.24 refuses uint64 >> int (it casts the int to int64)
+    return int(np.random.SeedSequence([seed, index, attempt]).generate_state(1, np.uint64)[0]) >> 1

@@ -94,7 +94,9 @@ def test_metrics_reject_bad_input():
         absolute_errors([1.0], [1.0, 2.0])
 
 
-@pytest.mark.parametrize("correct, n", [(0, 1), (0, 7), (0, 10), (3, 7), (80, 100), (399, 400), (7, 7), (400, 400)])
+@pytest.mark.parametrize(
+    "correct, n", [(0, 1), (0, 7), (0, 10), (3, 7), (80, 100), (399, 400), (7, 7), (400, 400)]
+)
 def test_accuracy_interval_is_scipys_wilson_interval(correct, n):
     witness = binomtest(correct, n).proportion_ci(confidence_level=0.95, method="wilson")
     # a closed form of a few operations on numbers of order 1: agreement to a few ulps of 1

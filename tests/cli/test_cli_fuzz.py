@@ -12,8 +12,8 @@ import io
 import os
 import tempfile
 
+from cli_fuzzing import command_lines, working_directory
 from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
 
 from ebantenna.cli import main
 
@@ -105,31 +105,6 @@ REQUIRED = {
 }
 
 
-@contextlib.contextmanager
-def working_directory(path):
-    before = os.getcwd()
-    os.chdir(path)
-    try:
-        yield
-    finally:
-        os.chdir(before)
-
-
-@st.composite
-def command_lines(draw):
-    command = draw(st.sampled_from(sorted(COMMANDS)))
-    options = COMMANDS[command]
-    chosen = [draw(st.sampled_from(group)) for group in REQUIRED[command]]
-    others = sorted(set(options) - set(chosen))
-    chosen += draw(st.lists(st.sampled_from(others), max_size=3, unique=True))
-    argv = [command]
-    for name in chosen:
-        argv.append(name)
-        if options[name] is not None:
-            argv.append(draw(st.sampled_from(options[name])))
-    return argv
-
-
 def run(argv) -> int:
     """``main(argv)`` in a scratch directory holding a folder ``OUT``; its exit code."""
     with tempfile.TemporaryDirectory() as tmp, working_directory(tmp):
@@ -161,7 +136,7 @@ def test_any_arguments_end_in_success_or_one_clear_error():
         database=None,
         suppress_health_check=[HealthCheck.too_slow],
     )
-    @given(argv=command_lines())
+    @given(argv=command_lines(COMMANDS, REQUIRED))
     def fuzz(argv):
         outcomes.add((argv[0], run(argv)))
 

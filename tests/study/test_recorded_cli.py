@@ -10,8 +10,8 @@ import shutil
 import tempfile
 
 import pytest
+from cli_fuzzing import command_lines, working_directory
 from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
 
 from ebantenna.cli import main
 from ebantenna.device.plan import Plan
@@ -59,31 +59,6 @@ def scratch(tmp_path_factory):
     return where
 
 
-@contextlib.contextmanager
-def working_directory(path):
-    before = os.getcwd()
-    os.chdir(path)
-    try:
-        yield
-    finally:
-        os.chdir(before)
-
-
-@st.composite
-def command_lines(draw):
-    command = draw(st.sampled_from(sorted(COMMANDS)))
-    options = COMMANDS[command]
-    chosen = [draw(st.sampled_from(group)) for group in REQUIRED[command]]
-    others = sorted(set(options) - set(chosen))
-    chosen += draw(st.lists(st.sampled_from(others), max_size=3, unique=True))
-    argv = [command]
-    for name in chosen:
-        argv.append(name)
-        if options[name] is not None:
-            argv.append(draw(st.sampled_from(options[name])))
-    return argv
-
-
 def run(scratch, argv) -> int:
     """``main(argv)`` in a fresh copy of the scratch folder holding a folder ``OUT``."""
     with tempfile.TemporaryDirectory() as tmp:
@@ -110,7 +85,7 @@ def test_any_arguments_end_in_success_or_one_clear_error(scratch):
     @settings(max_examples=40, derandomize=True, deadline=None, database=None,
               suppress_health_check=[HealthCheck.too_slow,
                                      HealthCheck.function_scoped_fixture])
-    @given(argv=command_lines())
+    @given(argv=command_lines(COMMANDS, REQUIRED))
     def fuzz(argv):
         outcomes.add((argv[0], run(scratch, argv)))
 

@@ -13,7 +13,7 @@ import os
 import tempfile
 
 from cli_fuzzing import command_lines, working_directory
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 
 from ebantenna.cli import main
 
@@ -137,11 +137,21 @@ def test_any_arguments_end_in_success_or_one_clear_error():
         suppress_health_check=[HealthCheck.too_slow],
     )
     @given(argv=command_lines(COMMANDS, REQUIRED))
+    # one valid run and one refused value per command, whatever examples this hypothesis draws
+    @example(argv=["modes", "--no-contact"])
+    @example(argv=["modes", "--ratio", "nan"])
+    @example(argv=["exact", "--ratio", "0.5"])
+    @example(argv=["exact", "--contact", "x"])
+    @example(argv=["simulate", "--scene", "ideal", "--out", "rec.npz"])
+    @example(argv=["simulate", "--scene", "nope", "--out", "rec.npz"])
+    @example(argv=["acquire", "--simulated"])
+    @example(argv=["acquire", "--simulated", "--duration", "-1"])
     def fuzz(argv):
         outcomes.add((argv[0], run(argv)))
 
     fuzz()
     # a fuzz whose examples all fail at parsing would test nothing of the commands themselves
+    # (the explicit examples above make sure both outcomes are tried, under any hypothesis)
     for command in ("modes", "exact", "simulate", "acquire"):
         assert {(command, 0), (command, 2)} <= outcomes, sorted(outcomes)
 

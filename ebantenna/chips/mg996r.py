@@ -16,7 +16,13 @@ Examples
 
 from __future__ import annotations
 
-__all__ = ["SLEW_RATE", "PULSE_RANGE", "TRAVEL", "SAFE_PULSE_RANGE", "SAFE_ANGLES"]
+__all__ = ["SLEW_RATE", "PULSE_RANGE", "TRAVEL", "SAFE_PULSE_RANGE", "SAFE_ANGLES",
+           "OPERATING_VOLTAGE", "STALL_CURRENT"]
+
+#: Operating voltage, V (DS, specifications).
+OPERATING_VOLTAGE = (4.8, 7.2)
+#: Stall current at 6 V, A (DS, specifications).
+STALL_CURRENT = 2.5
 
 #: Operating speed at 4.8 V, no load: 0.17 s per 60 degrees (DS), in degrees/s.
 SLEW_RATE = 60.0 / 0.17

@@ -33,6 +33,8 @@ __all__ = [
     "ADDRESS_AD0_LOW",
     "ADDRESS_AD0_HIGH",
     "ADDRESSES",
+    "SUPPLY_VOLTAGE",
+    "MAX_I2C_CLOCK_HZ",
     "Register",
     "READ_ONLY",
     "POWER_ON",
@@ -78,6 +80,11 @@ STANDARD_GRAVITY = 9.80665
 ADDRESS_AD0_LOW = 0x68
 ADDRESS_AD0_HIGH = 0x69
 ADDRESSES = (ADDRESS_AD0_LOW, ADDRESS_AD0_HIGH)
+
+#: Supply voltage range, V (PS 6.3, "VDD power supply, operating voltages").
+SUPPLY_VOLTAGE = (2.375, 3.46)
+#: Fastest I2C clock, Hz: fast mode, 400 kHz (PS 6.4, "I2C operating frequency").
+MAX_I2C_CLOCK_HZ = 400_000
 
 
 class Register(IntEnum):

@@ -24,6 +24,8 @@ from .bitfield import BitField
 
 __all__ = [
     "DEFAULT_ADDRESS",
+    "SUPPLY_VOLTAGE",
+    "MAX_I2C_CLOCK_HZ",
     "N_CHANNELS",
     "COUNTS_PER_PERIOD",
     "Register",
@@ -45,6 +47,10 @@ __all__ = [
 
 #: 7-bit I2C address with the address pins A5-A0 all low: ``1 A5 A4 A3 A2 A1 A0`` (DS 7.1).
 DEFAULT_ADDRESS = 0x40
+#: Supply voltage range, V (DS 1, "General description").
+SUPPLY_VOLTAGE = (2.3, 5.5)
+#: Fastest I2C clock, Hz: Fast-mode Plus, 1 MHz (DS 1).
+MAX_I2C_CLOCK_HZ = 1_000_000
 #: Number of PWM outputs, LED0-LED15 (DS 1).
 N_CHANNELS = 16
 #: Steps of the 12-bit counter in one PWM period (DS 7.3.3).

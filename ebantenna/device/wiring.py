@@ -34,6 +34,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..chips import mg996r, mpu6050, pca9685
 from ..chips.mpu6050 import ADDRESS_AD0_HIGH, ADDRESS_AD0_LOW
 from ..chips.pca9685 import DEFAULT_ADDRESS as PCA9685_ADDRESS
 from .mpu6050_config import MPU6050Config
@@ -58,18 +59,18 @@ HEADER_PIN = {"3.3 V": 1, f"GPIO {SDA_GPIO}": 3, f"GPIO {SCL_GPIO}": 5, "GND": 6
 #: The accelerometer's address as the driver's default configuration has it.
 MPU6050_ADDRESS = MPU6050Config().address
 
-#: Supply voltage range of the MPU-6050, V (PS 6.3, "VDD power supply, operating voltages"); the
-#: Raspberry Pi's 3.3 V pin lies inside it.
-MPU6050_VDD = (2.375, 3.46)
-#: Supply voltage range of the PCA9685, V (DS 1, "General description").
-PCA9685_VDD = (2.3, 5.5)
-#: Fastest I2C clock both chips accept, Hz: the MPU-6050's fast mode, 400 kHz (PS 6.4, "I2C
-#: operating frequency"); the PCA9685 accepts Fast-mode Plus, up to 1 MHz (DS 1).
-FAST_MODE_HZ = 400_000
-#: Operating voltage of the MG996R, V (TowerPro *MG996R* data sheet, specifications).
-SERVO_VOLTAGE = (4.8, 7.2)
-#: Stall current of one MG996R at 6 V, A (TowerPro *MG996R* data sheet, specifications).
-SERVO_STALL_CURRENT = 2.5
+#: Supply voltage range of the MPU-6050, V (from :mod:`ebantenna.chips.mpu6050`); the Raspberry
+#: Pi's 3.3 V pin lies inside it.
+MPU6050_VDD = mpu6050.SUPPLY_VOLTAGE
+#: Supply voltage range of the PCA9685, V (from :mod:`ebantenna.chips.pca9685`).
+PCA9685_VDD = pca9685.SUPPLY_VOLTAGE
+#: Fastest I2C clock both chips accept, Hz: the MPU-6050's fast mode, 400 kHz (the PCA9685
+#: accepts Fast-mode Plus, 1 MHz).
+FAST_MODE_HZ = min(mpu6050.MAX_I2C_CLOCK_HZ, pca9685.MAX_I2C_CLOCK_HZ)
+#: Operating voltage of the MG996R, V (from :mod:`ebantenna.chips.mg996r`).
+SERVO_VOLTAGE = mg996r.OPERATING_VOLTAGE
+#: Stall current of one MG996R at 6 V, A (from :mod:`ebantenna.chips.mg996r`).
+SERVO_STALL_CURRENT = mg996r.STALL_CURRENT
 #: Servo supply voltage the rig uses, V: inside :data:`SERVO_VOLTAGE`, and the range the data
 #: sheet's figures are given for (4.8 V and 6 V).
 SERVO_SUPPLY = (5.0, 6.0)

@@ -27,6 +27,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.special import expit, log_expit
 
+from ._mlp_numba import ACTIVATION_CODES
 from .backprop import activate, activation_derivative, l2_penalty
 
 __all__ = ["Workspace", "forward_into", "output_loss_into", "backprop_into",
@@ -55,7 +56,7 @@ class Workspace:
     ([(4, 2), (4, 1)], [(4, 2)])
     """
 
-    def __init__(self, n_samples: int, sizes):
+    def __init__(self, n_samples: int, sizes, compiled=None):
         widths = list(sizes[1:])
         #: output of each layer (the last holds the logits, then their gradient)
         self.activations = [np.empty((n_samples, w)) for w in widths]
@@ -66,6 +67,13 @@ class Workspace:
         #: the L2 term ``alpha_per_sample * W`` of each weight gradient
         self.penalties = [np.empty((fan_in, fan_out))
                           for fan_in, fan_out in zip(sizes[:-1], sizes[1:], strict=True)]
+        #: each weight gradient's product, transposed: ``delta.T @ a``
+        self.products = [np.empty((fan_out, fan_in))
+                         for fan_in, fan_out in zip(sizes[:-1], sizes[1:], strict=True)]
+        #: the row indices, which pick each row's largest logit
+        self.rows = np.arange(n_samples)
+        #: the compiled loops (:mod:`ebantenna.ml._mlp_numba`) or None: NumPy calls
+        self.compiled = compiled
 
 
 def forward_into(X, coefs, intercepts, activation: str, work: Workspace) -> list[np.ndarray]:
@@ -93,8 +101,10 @@ def forward_into(X, coefs, intercepts, activation: str, work: Workspace) -> list
     return acts
 
 
-def output_loss_into(out_activation: str, z: np.ndarray, Y: np.ndarray) -> tuple[float, np.ndarray]:
-    """:func:`ebantenna.ml.backprop.output_loss`, the gradient written over ``z``.
+def output_loss_into(out_activation: str, z: np.ndarray, Y: np.ndarray,
+                     rows=None) -> tuple[float, np.ndarray]:
+    """:func:`ebantenna.ml.backprop.output_loss`, the gradient written over ``z``; ``rows`` is
+    ``np.arange(len(z))`` (made when not given).
 
     Examples
     --------
@@ -105,7 +115,8 @@ def output_loss_into(out_activation: str, z: np.ndarray, Y: np.ndarray) -> tuple
     """
     n = z.shape[0]
     if out_activation == "softmax":
-        shift = z[np.arange(n), z.argmax(axis=1)][:, np.newaxis]
+        rows = np.arange(n) if rows is None else rows
+        shift = z[rows, z.argmax(axis=1)][:, np.newaxis]
         y_dot_z = np.einsum("ij,ij->", Y, z)  # before z is overwritten
         prob = np.subtract(z, shift, out=z)
         np.exp(prob, out=prob)
@@ -129,10 +140,29 @@ def output_loss_into(out_activation: str, z: np.ndarray, Y: np.ndarray) -> tuple
     return loss, diff
 
 
+def _weight_gradient_into(a, delta, W, alpha_per_sample: float, out, layer: int,
+                          work: Workspace) -> None:
+    """``out = a.T @ delta + alpha_per_sample * W``, the product computed as ``delta.T @ a``
+    into ``work.products`` (the same sums, about a tenth faster for a wide input than with
+    the batch's rows as the inner dimension of a transposed operand), then added transposed."""
+    if not isinstance(a, np.ndarray):  # sparse input: scipy's product, copied in
+        out[...] = a.T @ delta
+        out += np.multiply(W, alpha_per_sample, out=work.penalties[layer])
+        return
+    product = np.matmul(delta.T, a, out=work.products[layer])
+    if work.compiled is not None:
+        work.compiled.weight_gradient(out, product, W, alpha_per_sample)
+    else:
+        np.add(product.T, np.multiply(W, alpha_per_sample, out=work.penalties[layer]), out=out)
+
+
 def backprop_into(acts, delta, coefs, activation: str, alpha_per_sample: float, grads,
                   work: Workspace) -> None:
     """:func:`ebantenna.ml.backprop.backprop`, the gradients written into ``grads`` (two lists of
     arrays of the weights' and biases' shapes), the hidden deltas into ``work``.
+
+    With the compiled loops (``work.compiled``), each hidden delta's activation derivative and
+    the column sums that are its layer's bias gradient take one pass.
 
     Examples
     --------
@@ -145,17 +175,24 @@ def backprop_into(acts, delta, coefs, activation: str, alpha_per_sample: float, 
     (array([1., 2.]), array([1.]))
     """
     coef_grads, intercept_grads = grads
-    for layer in range(len(coefs) - 1, -1, -1):
-        if isinstance(acts[layer], np.ndarray):
-            np.matmul(acts[layer].T, delta, out=coef_grads[layer])
-        else:  # sparse input: scipy's product, copied in
-            coef_grads[layer][...] = acts[layer].T @ delta
-        coef_grads[layer] += np.multiply(coefs[layer], alpha_per_sample,
-                                         out=work.penalties[layer])
-        delta.sum(axis=0, out=intercept_grads[layer])  # the method: no Python wrapper
+    compiled = work.compiled
+    last = len(coefs) - 1
+    if compiled is not None:  # the output layer's bias gradient: code 0, no derivative
+        compiled.derivative_and_bias_gradient(0, delta, delta, intercept_grads[last])
+    for layer in range(last, -1, -1):
+        _weight_gradient_into(acts[layer], delta, coefs[layer], alpha_per_sample,
+                              coef_grads[layer], layer, work)
+        if compiled is None:
+            delta.sum(axis=0, out=intercept_grads[layer])  # the method: no Python wrapper
         if layer > 0:
             delta = np.matmul(delta, coefs[layer].T, out=work.deltas[layer - 1])
-            activation_derivative(activation, acts[layer], delta, work.derivatives[layer - 1])
+            if compiled is None:
+                activation_derivative(activation, acts[layer], delta,
+                                      work.derivatives[layer - 1])
+            else:
+                compiled.derivative_and_bias_gradient(ACTIVATION_CODES[activation],
+                                                      acts[layer], delta,
+                                                      intercept_grads[layer - 1])
 
 
 def loss_and_gradients_into(X, Y, coefs, intercepts, activation: str, out_activation: str,
@@ -179,7 +216,7 @@ def loss_and_gradients_into(X, Y, coefs, intercepts, activation: str, out_activa
     """
     n = X.shape[0]
     acts = forward_into(X, coefs, intercepts, activation, work)
-    data_loss, delta = output_loss_into(out_activation, acts[-1], Y)
+    data_loss, delta = output_loss_into(out_activation, acts[-1], Y, work.rows)
     loss = data_loss + l2_penalty(coefs, alpha, n)
     backprop_into(acts, delta, coefs, activation, alpha / n, grads, work)
     return loss

@@ -8,7 +8,7 @@ import pytest
 import scipy.sparse as sp
 from sklearn.exceptions import ConvergenceWarning
 
-from ebantenna.ml import MLPClassifier
+from ebantenna.ml import MLPClassifier, _mlp_numba
 from ebantenna.ml._backprop_engine import Workspace, loss_and_gradients_into
 from ebantenna.ml.backprop import (
     activation_derivative,
@@ -38,17 +38,19 @@ def _problem(out_activation, activation, n=25, seed=5, sparse=False):
     return X, Y, coefs, intercepts
 
 
+@pytest.mark.parametrize("compiled", [False, True])
 @pytest.mark.parametrize("sparse", [False, True])
 @pytest.mark.parametrize("activation", ["tanh", "logistic", "identity", "relu"])
 @pytest.mark.parametrize("out_activation", ["softmax", "logistic", "identity"])
-def test_engine_equals_reference_bit_for_bit(activation, out_activation, sparse):
+def test_engine_equals_reference_bit_for_bit(activation, out_activation, sparse, compiled):
     """The engine claims the reference's arithmetic in reused arrays: the same bits, also when
     its arrays still hold the previous batch's values and the gradient lands in views of one
-    flat vector."""
+    flat vector; and with the compiled loops (run as Python loops when numba is missing, so
+    that their arithmetic is checked either way)."""
     X, Y, coefs, intercepts = _problem(out_activation, activation, sparse=sparse)
     loss, coef_grads, intercept_grads = loss_and_gradients(
         X, Y, coefs, intercepts, activation, out_activation, alpha=0.3)
-    work = Workspace(X.shape[0], SIZES)
+    work = Workspace(X.shape[0], SIZES, _mlp_numba if compiled else None)
     flat = np.empty(pack(coefs, intercepts).size)
     grads = unpack(flat, [c.shape for c in coefs])
     for _ in range(2):  # the second pass writes over the arrays of the first

@@ -1,0 +1,114 @@
+"""The compiled loops of the MLP (numba, optional) against its NumPy path: the same bits."""
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+from sklearn.exceptions import ConvergenceWarning
+
+from ebantenna.ml import MLPClassifier, MLPRegressor, _mlp_numba
+from ebantenna.ml.optimizers import Adam
+
+ENGINE = "EBANTENNA_ENGINE"
+
+
+def _gradients(rng, shape, steps):
+    """Gradients spanning many magnitudes, zeros included (sqrt(v) + eps then near eps)."""
+    out = []
+    for _ in range(steps):
+        g = rng.normal(size=shape) * 10.0 ** rng.integers(-12, 3, size=shape)
+        g[rng.random(shape) < 0.05] = 0.0
+        out.append(g)
+    return out
+
+
+def test_compiled_adam_step_equals_numpy_bit_for_bit(monkeypatch):
+    """The compiled step (a Python loop without numba) does Adam's operations in NumPy's order:
+    parameters and both moments equal to the last bit over 30 steps."""
+    rng = np.random.default_rng(3)
+    start = rng.normal(size=257)
+    grads = _gradients(rng, start.shape, 30)
+    monkeypatch.setenv(ENGINE, "numpy")
+    p_numpy = [start.copy()]
+    numpy_opt = Adam(p_numpy, learning_rate=0.01)
+    for g in grads:
+        numpy_opt.update(p_numpy, [g])
+    p_loop, m, v = start.copy(), np.zeros_like(start), np.zeros_like(start)
+    for t, g in enumerate(grads, start=1):
+        lr = 0.01 * np.sqrt(1 - 0.999**t) / (1 - 0.9**t)
+        _mlp_numba.adam_step(p_loop, g, m, v, 0.9, 0.999, 1 - 0.9, 1 - 0.999, lr, 1e-8)
+    assert np.array_equal(p_loop, p_numpy[0])
+    assert np.array_equal(m, numpy_opt.ms[0]) and np.array_equal(v, numpy_opt.vs[0])
+
+
+def test_adam_takes_the_compiled_loop_on_contiguous_arrays_only(monkeypatch):
+    """A 2-D C-ordered array goes through the loop as a flat view, a transposed one through
+    NumPy calls; both land on the NumPy path's numbers."""
+    if _mlp_numba.compiled_kernels() is None:
+        pytest.skip("numba is not available here")
+    rng = np.random.default_rng(4)
+    start = [rng.normal(size=(6, 5)), rng.normal(size=(5, 6)).T]
+    grads = list(zip(_gradients(rng, (6, 5), 5), _gradients(rng, (6, 5), 5), strict=True))
+    results = {}
+    for engine in ("numpy", "compiled"):
+        monkeypatch.setenv(ENGINE, engine)
+        params = [p.copy(order="K") for p in start]
+        opt = Adam(params, learning_rate=0.05)
+        for pair in grads:
+            opt.update(params, pair)
+        results[engine] = params
+    for a, b in zip(results["numpy"], results["compiled"], strict=True):
+        assert np.array_equal(a, b)
+
+
+@pytest.mark.parametrize("activation", ["tanh", "relu", "logistic"])
+@pytest.mark.parametrize("solver", ["adam", "sgd", "lbfgs"])
+def test_fits_on_both_paths_are_bit_identical(monkeypatch, solver, activation):
+    """A whole fit, with mini-batches of two sizes (the last one shorter): the same weights and
+    the same loss curve whichever path ran."""
+    if _mlp_numba.compiled_kernels() is None:
+        pytest.skip("numba is not available here")
+    rng = np.random.default_rng(5)
+    X = rng.normal(size=(70, 6))
+    y = rng.integers(0, 3, 70)
+    fits = {}
+    for engine in ("numpy", "compiled"):
+        monkeypatch.setenv(ENGINE, engine)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ConvergenceWarning)
+            fits[engine] = MLPClassifier((7, 4), activation=activation, solver=solver,
+                                         batch_size=16, max_iter=6, alpha=0.01,
+                                         random_state=0).fit(X, y)
+    a, b = fits["numpy"], fits["compiled"]
+    assert a.loss_curve_ == b.loss_curve_
+    for u, w in zip(a.coefs_ + a.intercepts_, b.coefs_ + b.intercepts_, strict=True):
+        assert np.array_equal(u, w)
+
+
+def test_regressor_fits_on_both_paths_are_bit_identical(monkeypatch):
+    if _mlp_numba.compiled_kernels() is None:
+        pytest.skip("numba is not available here")
+    rng = np.random.default_rng(6)
+    X = rng.normal(size=(50, 3))
+    y = np.column_stack([X[:, 0] - X[:, 1] ** 2, X[:, 2]])
+    fits = {}
+    for engine in ("numpy", "compiled"):
+        monkeypatch.setenv(ENGINE, engine)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ConvergenceWarning)
+            fits[engine] = MLPRegressor((5,), batch_size=12, max_iter=5,
+                                        random_state=0).fit(X, y)
+    assert fits["numpy"].loss_curve_ == fits["compiled"].loss_curve_
+    assert np.array_equal(fits["numpy"].coefs_[0], fits["compiled"].coefs_[0])
+
+
+def test_engine_choice(monkeypatch):
+    assert _mlp_numba.compiled_kernels("numpy") is None
+    with pytest.raises(ValueError, match="EBANTENNA_ENGINE must be one of"):
+        monkeypatch.setenv(ENGINE, "fast")
+        _mlp_numba.compiled_kernels()
+    monkeypatch.setattr(_mlp_numba, "_status", lambda: (False, "numba is not installed", math.nan))
+    assert _mlp_numba.compiled_kernels("auto") is None
+    with pytest.raises(RuntimeError, match="numba is not installed"):
+        _mlp_numba.compiled_kernels("compiled")

@@ -67,11 +67,10 @@ class Workspace:
         #: the L2 term ``alpha_per_sample * W`` of each weight gradient
         self.penalties = [np.empty((fan_in, fan_out))
                           for fan_in, fan_out in zip(sizes[:-1], sizes[1:], strict=True)]
-        #: each weight gradient's product, transposed: ``delta.T @ a``
-        self.products = [np.empty((fan_out, fan_in))
-                         for fan_in, fan_out in zip(sizes[:-1], sizes[1:], strict=True)]
         #: the row indices, which pick each row's largest logit
         self.rows = np.arange(n_samples)
+        #: each row's largest logit
+        self.shift = np.empty((n_samples, 1))
         #: the compiled loops (:mod:`ebantenna.ml._mlp_numba`) or None: NumPy calls
         self.compiled = compiled
 
@@ -94,17 +93,49 @@ def forward_into(X, coefs, intercepts, activation: str, work: Workspace) -> list
         else:  # sparse input: scipy's product, copied in
             z = work.activations[layer]
             z[...] = acts[-1] @ W
-        z += b
+        if work.compiled is not None:
+            work.compiled.add_bias(z, b)
+        else:
+            z += b
         if layer < last:
             activate(activation, z)
         acts.append(z)
     return acts
 
 
+def _softmax_loss_into(z, Y, work) -> tuple[float, np.ndarray]:
+    """The softmax's cross-entropy and its gradient over ``z``, as the reference computes them;
+    with the compiled loops, the row maxima and their subtraction take one pass, and so do the
+    three operations from the exponentials to the gradient."""
+    n = z.shape[0]
+    compiled = None if work is None else work.compiled
+    y_dot_z = np.einsum("ij,ij->", Y, z)  # before z is overwritten
+    if compiled is not None:
+        shift = work.shift
+        compiled.subtract_row_max(z, shift)
+        prob = z
+    else:
+        rows = np.arange(n) if work is None else work.rows
+        shift = z[rows, z.argmax(axis=1)][:, np.newaxis]
+        prob = np.subtract(z, shift, out=z)
+    np.exp(prob, out=prob)
+    total = prob.sum(axis=1, keepdims=True)
+    log_sum_exp = np.log(total)
+    log_sum_exp += shift
+    loss = float(log_sum_exp.sum() - y_dot_z) / n
+    if compiled is not None:
+        compiled.softmax_gradient(prob, total, Y, float(n))
+    else:
+        prob /= total
+        prob -= Y
+        prob /= n
+    return loss, prob
+
+
 def output_loss_into(out_activation: str, z: np.ndarray, Y: np.ndarray,
-                     rows=None) -> tuple[float, np.ndarray]:
-    """:func:`ebantenna.ml.backprop.output_loss`, the gradient written over ``z``; ``rows`` is
-    ``np.arange(len(z))`` (made when not given).
+                     work: Workspace | None = None) -> tuple[float, np.ndarray]:
+    """:func:`ebantenna.ml.backprop.output_loss`, the gradient written over ``z``; ``work``
+    (optional) gives the row indices and the compiled loops.
 
     Examples
     --------
@@ -115,19 +146,7 @@ def output_loss_into(out_activation: str, z: np.ndarray, Y: np.ndarray,
     """
     n = z.shape[0]
     if out_activation == "softmax":
-        rows = np.arange(n) if rows is None else rows
-        shift = z[rows, z.argmax(axis=1)][:, np.newaxis]
-        y_dot_z = np.einsum("ij,ij->", Y, z)  # before z is overwritten
-        prob = np.subtract(z, shift, out=z)
-        np.exp(prob, out=prob)
-        total = prob.sum(axis=1, keepdims=True)
-        log_sum_exp = np.log(total)
-        log_sum_exp += shift
-        loss = float(log_sum_exp.sum() - y_dot_z) / n
-        prob /= total
-        prob -= Y
-        prob /= n
-        return loss, prob
+        return _softmax_loss_into(z, Y, work)
     if out_activation == "logistic":
         loss = float(-np.sum(Y * log_expit(z) + (1.0 - Y) * log_expit(-z))) / n
         delta = expit(z, out=z)
@@ -142,18 +161,16 @@ def output_loss_into(out_activation: str, z: np.ndarray, Y: np.ndarray,
 
 def _weight_gradient_into(a, delta, W, alpha_per_sample: float, out, layer: int,
                           work: Workspace) -> None:
-    """``out = a.T @ delta + alpha_per_sample * W``, the product computed as ``delta.T @ a``
-    into ``work.products`` (the same sums, about a tenth faster for a wide input than with
-    the batch's rows as the inner dimension of a transposed operand), then added transposed."""
-    if not isinstance(a, np.ndarray):  # sparse input: scipy's product, copied in
+    """``out = a.T @ delta + alpha_per_sample * W``: the product, then the L2 term added (one
+    compiled pass, or two NumPy calls through ``work.penalties``)."""
+    if isinstance(a, np.ndarray):
+        np.matmul(a.T, delta, out=out)
+    else:  # sparse input: scipy's product, copied in
         out[...] = a.T @ delta
-        out += np.multiply(W, alpha_per_sample, out=work.penalties[layer])
-        return
-    product = np.matmul(delta.T, a, out=work.products[layer])
     if work.compiled is not None:
-        work.compiled.weight_gradient(out, product, W, alpha_per_sample)
+        work.compiled.add_scaled(out, W, alpha_per_sample)
     else:
-        np.add(product.T, np.multiply(W, alpha_per_sample, out=work.penalties[layer]), out=out)
+        out += np.multiply(W, alpha_per_sample, out=work.penalties[layer])
 
 
 def backprop_into(acts, delta, coefs, activation: str, alpha_per_sample: float, grads,
@@ -216,7 +233,7 @@ def loss_and_gradients_into(X, Y, coefs, intercepts, activation: str, out_activa
     """
     n = X.shape[0]
     acts = forward_into(X, coefs, intercepts, activation, work)
-    data_loss, delta = output_loss_into(out_activation, acts[-1], Y, work.rows)
+    data_loss, delta = output_loss_into(out_activation, acts[-1], Y, work)
     loss = data_loss + l2_penalty(coefs, alpha, n)
     backprop_into(acts, delta, coefs, activation, alpha / n, grads, work)
     return loss

@@ -42,8 +42,9 @@ except ImportError as exc:  # not installed, or not working with this NumPy
 else:
     IMPORT_ERROR = ""
 
-__all__ = ["ACTIVATION_CODES", "adam_step", "weight_gradient", "derivative_and_bias_gradient",
-           "compiled_kernels", "IMPORT_ERROR"]
+__all__ = ["ACTIVATION_CODES", "adam_step", "add_scaled", "derivative_and_bias_gradient",
+           "add_bias", "subtract_row_max", "softmax_gradient", "compiled_kernels",
+           "IMPORT_ERROR"]
 
 logger = logging.getLogger(__name__)
 
@@ -76,13 +77,12 @@ def adam_step(p, g, m, v, beta_1, beta_2, one_minus_beta_1, one_minus_beta_2, lr
 
 
 @_jit
-def weight_gradient(grad, product_t, W, alpha_per_sample):
-    """``grad = product_t.T + W * alpha_per_sample`` (the product computed transposed, the L2
-    term of the penalty added), ``grad`` and ``W`` of shape (fan_in, fan_out)."""
-    fan_in, fan_out = W.shape
-    for i in range(fan_in):
-        for j in range(fan_out):
-            grad[i, j] = product_t[j, i] + W[i, j] * alpha_per_sample
+def add_scaled(out, W, scale):
+    """``out += W * scale`` in place (the L2 term of a weight gradient), for 2-D arrays."""
+    rows, cols = W.shape
+    for i in range(rows):
+        for j in range(cols):
+            out[i, j] = out[i, j] + W[i, j] * scale
 
 
 @_jit
@@ -109,12 +109,46 @@ def derivative_and_bias_gradient(code, a, delta, bias_grad):
                 bias_grad[j] = bias_grad[j] + delta[i, j]
 
 
+@_jit
+def add_bias(z, b):
+    """``z += b`` in place, ``b`` added to every row."""
+    rows, cols = z.shape
+    for i in range(rows):
+        for j in range(cols):
+            z[i, j] = z[i, j] + b[j]
+
+
+@_jit
+def subtract_row_max(z, shift):
+    """``shift[i, 0]`` = the largest entry of row ``i`` (the first NaN if there is one, as
+    ``argmax`` picks), subtracted from the row in place."""
+    rows, cols = z.shape
+    for i in range(rows):
+        m = z[i, 0]
+        for j in range(1, cols):
+            if z[i, j] > m or (z[i, j] != z[i, j] and m == m):
+                m = z[i, j]
+        shift[i, 0] = m
+        for j in range(cols):
+            z[i, j] = z[i, j] - m
+
+
+@_jit
+def softmax_gradient(prob, total, Y, n):
+    """``prob = (prob / total - Y) / n`` in place: the softmax's probabilities from the
+    exponentials and their row sums ``total`` (shape (rows, 1)), minus the targets, per sample."""
+    rows, cols = prob.shape
+    for i in range(rows):
+        for j in range(cols):
+            prob[i, j] = (prob[i, j] / total[i, 0] - Y[i, j]) / n
+
+
 def _smoke_test() -> None:
     """Compile (or load) the loops and check one known value of each."""
     p, g, m, v = np.ones(2), np.full(2, 3.0), np.zeros(2), np.zeros(2)
     adam_step(p, g, m, v, 0.9, 0.999, 0.1, 0.001, 0.5, 0.0)
-    grad = np.empty((2, 1))
-    weight_gradient(grad, np.array([[1.0, 2.0]]), np.array([[1.0], [1.0]]), 0.5)
+    grad = np.array([[1.0], [2.0]])
+    add_scaled(grad, np.array([[1.0], [1.0]]), 0.5)
     delta, bias = np.ones((2, 1)), np.empty(1)
     derivative_and_bias_gradient(1, np.full((2, 1), 0.5), delta, bias)
     expected = (np.allclose(m, 0.3) and np.allclose(p, 1.0 - 0.5 * 0.3 / np.sqrt(0.009))

@@ -8,6 +8,7 @@ import pytest
 from sklearn.exceptions import ConvergenceWarning
 
 from ebantenna.ml import MLPClassifier, MLPRegressor, _mlp_numba
+from ebantenna.ml._backprop_engine import Workspace, output_loss_into
 from ebantenna.ml.optimizers import Adam
 
 ENGINE = "EBANTENNA_ENGINE"
@@ -112,3 +113,23 @@ def test_engine_choice(monkeypatch):
     assert _mlp_numba.compiled_kernels("auto") is None
     with pytest.raises(RuntimeError, match="numba is not installed"):
         _mlp_numba.compiled_kernels("compiled")
+
+
+@pytest.mark.parametrize("value", [np.inf, -np.inf, np.nan, 1e308])
+def test_compiled_softmax_matches_numpy_on_extreme_logits(value):
+    """The row maximum the compiled loop picks is the one ``argmax`` picks (the first NaN, an
+    infinity): the same loss and gradient, NaN where NumPy's is NaN."""
+    rng = np.random.default_rng(7)
+    z = rng.normal(size=(6, 4))
+    z[1, 2] = value
+    z[3, 0], z[3, 3] = value, -value
+    Y = np.eye(4)[rng.integers(0, 4, 6)]
+    results = []
+    for compiled in (None, _mlp_numba):
+        work = Workspace(6, [3, 4], compiled)
+        with np.errstate(all="ignore"):
+            loss, delta = output_loss_into("softmax", z.copy(), Y, work)
+        results.append((loss, delta.copy()))
+    (loss_a, delta_a), (loss_b, delta_b) = results
+    assert loss_a == loss_b or (np.isnan(loss_a) and np.isnan(loss_b))
+    assert np.array_equal(delta_a, delta_b, equal_nan=True)

@@ -17,7 +17,13 @@ What differs from the reference, and why:
 * a sparse input is multiplied by scipy, which has no ``out=``: its product is copied in;
 * the softmax's row maxima are picked through ``argmax``: with a few classes ``z.max(axis=1)``
   runs one tiny reduction per row and costs three times as much; the values picked are the same;
-* the logits' array receives their gradient, since nothing reads them after the loss.
+* the logits' array receives their gradient, since nothing reads them after the loss;
+* with numba installed, :class:`Workspace` carries the compiled loops of
+  :mod:`ebantenna.ml._mlp_numba` (``compiled``), and the arithmetic between the NumPy calls
+  that must stay (the products, ``tanh``, ``exp``, ``log`` and the loss's sums) runs in them:
+  the biases added, the softmax's row maxima subtracted and its gradient formed, the weight
+  gradient's L2 term, each hidden delta's derivative with its bias gradient. One pass each
+  instead of two to four NumPy calls, the same operations in the same order.
 
 The functions take checked values, as the reference's do.
 """
@@ -48,6 +54,9 @@ class Workspace:
         Rows of the batches that will use it.
     sizes : sequence of int
         Width of every layer, input and output included.
+    compiled : module or None
+        The compiled loops (:func:`ebantenna.ml._mlp_numba.compiled_kernels`), or None for
+        NumPy calls only; both give the same bits.
 
     Examples
     --------
@@ -194,22 +203,24 @@ def backprop_into(acts, delta, coefs, activation: str, alpha_per_sample: float, 
     coef_grads, intercept_grads = grads
     compiled = work.compiled
     last = len(coefs) - 1
-    if compiled is not None:  # the output layer's bias gradient: code 0, no derivative
-        compiled.derivative_and_bias_gradient(0, delta, delta, intercept_grads[last])
+    # the compiled loop sums the columns of a delta of several columns as NumPy does
+    fused = compiled is not None and delta.shape[1] > 1
+    if fused:  # the output layer's bias gradient: code 0, no derivative
+        compiled.derivative_and_bias_gradient(0, delta, delta, intercept_grads[last], True)
     for layer in range(last, -1, -1):
         _weight_gradient_into(acts[layer], delta, coefs[layer], alpha_per_sample,
                               coef_grads[layer], layer, work)
-        if compiled is None:
+        if not fused:
             delta.sum(axis=0, out=intercept_grads[layer])  # the method: no Python wrapper
         if layer > 0:
             delta = np.matmul(delta, coefs[layer].T, out=work.deltas[layer - 1])
             if compiled is None:
                 activation_derivative(activation, acts[layer], delta,
                                       work.derivatives[layer - 1])
-            else:
-                compiled.derivative_and_bias_gradient(ACTIVATION_CODES[activation],
-                                                      acts[layer], delta,
-                                                      intercept_grads[layer - 1])
+                continue
+            fused = delta.shape[1] > 1
+            compiled.derivative_and_bias_gradient(ACTIVATION_CODES[activation], acts[layer],
+                                                  delta, intercept_grads[layer - 1], fused)
 
 
 def loss_and_gradients_into(X, Y, coefs, intercepts, activation: str, out_activation: str,

@@ -14,8 +14,9 @@ NumPy does in several passes over the arrays, each pass one NumPy call:
   0 where ``a <= 0`` (relu). numba compiles without ``fastmath``: no reassociation and no fused
   multiply-add, so each operation rounds as NumPy's does;
 * the only sums are the bias gradients, the column sums of ``delta``: NumPy adds the rows of a
-  C-ordered array one after the other (its reduction runs along the outer axis), and so do these
-  loops, from the first row.
+  C-ordered array of several columns one after the other (its reduction runs along the outer
+  axis), and so do these loops, from the first row. A single column NumPy sums pairwise, as a
+  contiguous vector; that sum stays NumPy's.
 
 The tests hold both paths equal bit for bit.
 """
@@ -86,9 +87,12 @@ def add_scaled(out, W, scale):
 
 
 @_jit
-def derivative_and_bias_gradient(code, a, delta, bias_grad):
+def derivative_and_bias_gradient(code, a, delta, bias_grad, with_sums):
     """``delta`` multiplied in place by the activation's derivative written with its output
-    ``a`` (``code`` from :data:`ACTIVATION_CODES`), then ``bias_grad`` = its column sums."""
+    ``a`` (``code`` from :data:`ACTIVATION_CODES`), then, if ``with_sums``, ``bias_grad`` = its
+    column sums, each row added after the other from the first, as NumPy adds the rows of an
+    array of several columns (a single column it sums pairwise, as a contiguous vector: that
+    sum is left to NumPy)."""
     rows, cols = delta.shape
     for i in range(rows):
         if code == 1:
@@ -101,6 +105,8 @@ def derivative_and_bias_gradient(code, a, delta, bias_grad):
             for j in range(cols):
                 if a[i, j] <= 0.0:
                     delta[i, j] = 0.0
+        if not with_sums:
+            continue
         if i == 0:
             for j in range(cols):
                 bias_grad[j] = delta[0, j]
@@ -150,7 +156,7 @@ def _smoke_test() -> None:
     grad = np.array([[1.0], [2.0]])
     add_scaled(grad, np.array([[1.0], [1.0]]), 0.5)
     delta, bias = np.ones((2, 1)), np.empty(1)
-    derivative_and_bias_gradient(1, np.full((2, 1), 0.5), delta, bias)
+    derivative_and_bias_gradient(1, np.full((2, 1), 0.5), delta, bias, True)
     expected = (np.allclose(m, 0.3) and np.allclose(p, 1.0 - 0.5 * 0.3 / np.sqrt(0.009))
                 and np.array_equal(grad.ravel(), [1.5, 2.5]) and np.array_equal(bias, [1.5]))
     if not expected:

@@ -17,7 +17,13 @@ What differs from the reference, and why:
 * a sparse input is multiplied by scipy, which has no ``out=``: its product is copied in;
 * the softmax's row maxima are picked through ``argmax``: with a few classes ``z.max(axis=1)``
   runs one tiny reduction per row and costs three times as much; the values picked are the same;
-* the logits' array receives their gradient, since nothing reads them after the loss.
+* the logits' array receives their gradient, since nothing reads them after the loss;
+* with numba installed, :class:`Workspace` carries the compiled loops of
+  :mod:`ebantenna.ml._mlp_numba` (``compiled``), and the arithmetic between the NumPy calls
+  that must stay (the products, ``tanh``, ``exp``, ``log`` and the loss's sums) runs in them:
+  the biases added, the softmax's row maxima subtracted and its gradient formed, the weight
+  gradient's L2 term, each hidden delta's derivative with its bias gradient. One pass each
+  instead of two to four NumPy calls, the same operations in the same order.
 
 The functions take checked values, as the reference's do.
 """
@@ -27,6 +33,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.special import expit, log_expit
 
+from ._mlp_numba import ACTIVATION_CODES
 from .backprop import activate, activation_derivative, l2_penalty
 
 __all__ = ["Workspace", "forward_into", "output_loss_into", "backprop_into",
@@ -47,6 +54,9 @@ class Workspace:
         Rows of the batches that will use it.
     sizes : sequence of int
         Width of every layer, input and output included.
+    compiled : module or None
+        The compiled loops (:func:`ebantenna.ml._mlp_numba.compiled_kernels`), or None for
+        NumPy calls only; both give the same bits.
 
     Examples
     --------
@@ -55,7 +65,7 @@ class Workspace:
     ([(4, 2), (4, 1)], [(4, 2)])
     """
 
-    def __init__(self, n_samples: int, sizes):
+    def __init__(self, n_samples: int, sizes, compiled=None):
         widths = list(sizes[1:])
         #: output of each layer (the last holds the logits, then their gradient)
         self.activations = [np.empty((n_samples, w)) for w in widths]
@@ -66,6 +76,12 @@ class Workspace:
         #: the L2 term ``alpha_per_sample * W`` of each weight gradient
         self.penalties = [np.empty((fan_in, fan_out))
                           for fan_in, fan_out in zip(sizes[:-1], sizes[1:], strict=True)]
+        #: the row indices, which pick each row's largest logit
+        self.rows = np.arange(n_samples)
+        #: each row's largest logit
+        self.shift = np.empty((n_samples, 1))
+        #: the compiled loops (:mod:`ebantenna.ml._mlp_numba`) or None: NumPy calls
+        self.compiled = compiled
 
 
 def forward_into(X, coefs, intercepts, activation: str, work: Workspace) -> list[np.ndarray]:
@@ -86,15 +102,49 @@ def forward_into(X, coefs, intercepts, activation: str, work: Workspace) -> list
         else:  # sparse input: scipy's product, copied in
             z = work.activations[layer]
             z[...] = acts[-1] @ W
-        z += b
+        if work.compiled is not None:
+            work.compiled.add_bias(z, b)
+        else:
+            z += b
         if layer < last:
             activate(activation, z)
         acts.append(z)
     return acts
 
 
-def output_loss_into(out_activation: str, z: np.ndarray, Y: np.ndarray) -> tuple[float, np.ndarray]:
-    """:func:`ebantenna.ml.backprop.output_loss`, the gradient written over ``z``.
+def _softmax_loss_into(z, Y, work) -> tuple[float, np.ndarray]:
+    """The softmax's cross-entropy and its gradient over ``z``, as the reference computes them;
+    with the compiled loops, the row maxima and their subtraction take one pass, and so do the
+    three operations from the exponentials to the gradient."""
+    n = z.shape[0]
+    compiled = None if work is None else work.compiled
+    y_dot_z = np.einsum("ij,ij->", Y, z)  # before z is overwritten
+    if compiled is not None:
+        shift = work.shift
+        compiled.subtract_row_max(z, shift)
+        prob = z
+    else:
+        rows = np.arange(n) if work is None else work.rows
+        shift = z[rows, z.argmax(axis=1)][:, np.newaxis]
+        prob = np.subtract(z, shift, out=z)
+    np.exp(prob, out=prob)
+    total = prob.sum(axis=1, keepdims=True)
+    log_sum_exp = np.log(total)
+    log_sum_exp += shift
+    loss = float(log_sum_exp.sum() - y_dot_z) / n
+    if compiled is not None:
+        compiled.softmax_gradient(prob, total, Y, float(n))
+    else:
+        prob /= total
+        prob -= Y
+        prob /= n
+    return loss, prob
+
+
+def output_loss_into(out_activation: str, z: np.ndarray, Y: np.ndarray,
+                     work: Workspace | None = None) -> tuple[float, np.ndarray]:
+    """:func:`ebantenna.ml.backprop.output_loss`, the gradient written over ``z``; ``work``
+    (optional) gives the row indices and the compiled loops.
 
     Examples
     --------
@@ -105,18 +155,7 @@ def output_loss_into(out_activation: str, z: np.ndarray, Y: np.ndarray) -> tuple
     """
     n = z.shape[0]
     if out_activation == "softmax":
-        shift = z[np.arange(n), z.argmax(axis=1)][:, np.newaxis]
-        y_dot_z = np.einsum("ij,ij->", Y, z)  # before z is overwritten
-        prob = np.subtract(z, shift, out=z)
-        np.exp(prob, out=prob)
-        total = prob.sum(axis=1, keepdims=True)
-        log_sum_exp = np.log(total)
-        log_sum_exp += shift
-        loss = float(log_sum_exp.sum() - y_dot_z) / n
-        prob /= total
-        prob -= Y
-        prob /= n
-        return loss, prob
+        return _softmax_loss_into(z, Y, work)
     if out_activation == "logistic":
         loss = float(-np.sum(Y * log_expit(z) + (1.0 - Y) * log_expit(-z))) / n
         delta = expit(z, out=z)
@@ -129,10 +168,27 @@ def output_loss_into(out_activation: str, z: np.ndarray, Y: np.ndarray) -> tuple
     return loss, diff
 
 
+def _weight_gradient_into(a, delta, W, alpha_per_sample: float, out, layer: int,
+                          work: Workspace) -> None:
+    """``out = a.T @ delta + alpha_per_sample * W``: the product, then the L2 term added (one
+    compiled pass, or two NumPy calls through ``work.penalties``)."""
+    if isinstance(a, np.ndarray):
+        np.matmul(a.T, delta, out=out)
+    else:  # sparse input: scipy's product, copied in
+        out[...] = a.T @ delta
+    if work.compiled is not None:
+        work.compiled.add_scaled(out, W, alpha_per_sample)
+    else:
+        out += np.multiply(W, alpha_per_sample, out=work.penalties[layer])
+
+
 def backprop_into(acts, delta, coefs, activation: str, alpha_per_sample: float, grads,
                   work: Workspace) -> None:
     """:func:`ebantenna.ml.backprop.backprop`, the gradients written into ``grads`` (two lists of
     arrays of the weights' and biases' shapes), the hidden deltas into ``work``.
+
+    With the compiled loops (``work.compiled``), each hidden delta's activation derivative and
+    the column sums that are its layer's bias gradient take one pass.
 
     Examples
     --------
@@ -145,17 +201,26 @@ def backprop_into(acts, delta, coefs, activation: str, alpha_per_sample: float, 
     (array([1., 2.]), array([1.]))
     """
     coef_grads, intercept_grads = grads
-    for layer in range(len(coefs) - 1, -1, -1):
-        if isinstance(acts[layer], np.ndarray):
-            np.matmul(acts[layer].T, delta, out=coef_grads[layer])
-        else:  # sparse input: scipy's product, copied in
-            coef_grads[layer][...] = acts[layer].T @ delta
-        coef_grads[layer] += np.multiply(coefs[layer], alpha_per_sample,
-                                         out=work.penalties[layer])
-        delta.sum(axis=0, out=intercept_grads[layer])  # the method: no Python wrapper
+    compiled = work.compiled
+    last = len(coefs) - 1
+    # the compiled loop sums the columns of a delta of several columns as NumPy does
+    fused = compiled is not None and delta.shape[1] > 1
+    if fused:  # the output layer's bias gradient: code 0, no derivative
+        compiled.derivative_and_bias_gradient(0, delta, delta, intercept_grads[last], True)
+    for layer in range(last, -1, -1):
+        _weight_gradient_into(acts[layer], delta, coefs[layer], alpha_per_sample,
+                              coef_grads[layer], layer, work)
+        if not fused:
+            delta.sum(axis=0, out=intercept_grads[layer])  # the method: no Python wrapper
         if layer > 0:
             delta = np.matmul(delta, coefs[layer].T, out=work.deltas[layer - 1])
-            activation_derivative(activation, acts[layer], delta, work.derivatives[layer - 1])
+            if compiled is None:
+                activation_derivative(activation, acts[layer], delta,
+                                      work.derivatives[layer - 1])
+                continue
+            fused = delta.shape[1] > 1
+            compiled.derivative_and_bias_gradient(ACTIVATION_CODES[activation], acts[layer],
+                                                  delta, intercept_grads[layer - 1], fused)
 
 
 def loss_and_gradients_into(X, Y, coefs, intercepts, activation: str, out_activation: str,
@@ -179,7 +244,7 @@ def loss_and_gradients_into(X, Y, coefs, intercepts, activation: str, out_activa
     """
     n = X.shape[0]
     acts = forward_into(X, coefs, intercepts, activation, work)
-    data_loss, delta = output_loss_into(out_activation, acts[-1], Y)
+    data_loss, delta = output_loss_into(out_activation, acts[-1], Y, work)
     loss = data_loss + l2_penalty(coefs, alpha, n)
     backprop_into(acts, delta, coefs, activation, alpha / n, grads, work)
     return loss

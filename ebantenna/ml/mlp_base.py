@@ -31,6 +31,7 @@ from sklearn.utils.validation import check_is_fitted
 from .._budget import check_allocation
 from .._validate import check_python_number, check_real, describe
 from ._backprop_engine import Workspace, loss_and_gradients_into
+from ._mlp_numba import compiled_kernels
 from .backprop import ACTIVATIONS, glorot_uniform, loss_and_gradients, pack, unpack
 from .fitted import INPUT_ATTRIBUTES, FittedAttribute
 from .optimizers import Adam, Momentum, scg_init, scg_step
@@ -213,7 +214,7 @@ class BaseMLP(BaseEstimator):
         """``f(w) -> (loss, gradient)`` at flattened parameters ``w`` on the whole training set,
         for 'lbfgs' and 'scg' (each call returns a gradient array of its own)."""
         shapes = [c.shape for c in self.coefs_]
-        work = Workspace(X.shape[0], [X.shape[1], *(s[1] for s in shapes)])
+        work = Workspace(X.shape[0], [X.shape[1], *(s[1] for s in shapes)], compiled_kernels())
         grad = np.empty(sum(fan_in * fan_out + fan_out for fan_in, fan_out in shapes))
         grads = unpack(grad, shapes)
 
@@ -446,11 +447,12 @@ class BaseMLP(BaseEstimator):
         # the arrays of one batch's forward and backward pass, reused by every batch of the same
         # size (two sizes at most: the full batches and the last, shorter one)
         workspaces = {}
+        compiled = compiled_kernels()
 
         def step(Xb, Yb):
             rows = Xb.shape[0]
             if rows not in workspaces:
-                workspaces[rows] = Workspace(rows, sizes)
+                workspaces[rows] = Workspace(rows, sizes, compiled)
             loss = self._loss_and_gradients_into(Xb, Yb, self.coefs_, self.intercepts_, grads,
                                                  workspaces[rows])
             opt.update([w], [grad])

@@ -8,7 +8,7 @@ import pytest
 import scipy.sparse as sp
 from sklearn.exceptions import ConvergenceWarning
 
-from ebantenna.ml import MLPClassifier
+from ebantenna.ml import MLPClassifier, _mlp_numba
 from ebantenna.ml._backprop_engine import Workspace, loss_and_gradients_into
 from ebantenna.ml.backprop import (
     activation_derivative,
@@ -22,33 +22,40 @@ EPS = np.finfo(float).eps
 SIZES = [6, 7, 4, 3]
 
 
-def _problem(out_activation, activation, n=25, seed=5, sparse=False):
+def _problem(out_activation, activation, n=25, seed=5, sparse=False, sizes=SIZES):
     rng = np.random.default_rng(seed)
-    X = rng.normal(size=(n, SIZES[0]))
+    X = rng.normal(size=(n, sizes[0]))
     if sparse:
         X[np.abs(X) < 0.7] = 0.0
         X = sp.csr_matrix(X)
-    coefs, intercepts = glorot_uniform(SIZES, activation, rng)
+    coefs, intercepts = glorot_uniform(sizes, activation, rng)
     if out_activation == "identity":
-        Y = rng.normal(size=(n, SIZES[-1]))
+        Y = rng.normal(size=(n, sizes[-1]))
     elif out_activation == "softmax":
-        Y = np.eye(SIZES[-1])[rng.integers(0, SIZES[-1], n)]
+        Y = np.eye(sizes[-1])[rng.integers(0, sizes[-1], n)]
     else:  # logistic: several labels
-        Y = (rng.random((n, SIZES[-1])) < 0.5).astype(float)
+        Y = (rng.random((n, sizes[-1])) < 0.5).astype(float)
     return X, Y, coefs, intercepts
 
 
+@pytest.mark.parametrize("sizes", [SIZES, [6, 1, 5, 1]])
+@pytest.mark.parametrize("compiled", [False, True])
 @pytest.mark.parametrize("sparse", [False, True])
 @pytest.mark.parametrize("activation", ["tanh", "logistic", "identity", "relu"])
 @pytest.mark.parametrize("out_activation", ["softmax", "logistic", "identity"])
-def test_engine_equals_reference_bit_for_bit(activation, out_activation, sparse):
+def test_engine_equals_reference_bit_for_bit(activation, out_activation, sparse, compiled,
+                                             sizes):
     """The engine claims the reference's arithmetic in reused arrays: the same bits, also when
     its arrays still hold the previous batch's values and the gradient lands in views of one
-    flat vector."""
-    X, Y, coefs, intercepts = _problem(out_activation, activation, sparse=sparse)
+    flat vector; and with the compiled loops (run as Python loops when numba is missing, so
+    that their arithmetic is checked either way). Layers of one unit too: NumPy sums a single
+    column pairwise, several columns row after row."""
+    if out_activation == "softmax" and sizes[-1] == 1:
+        pytest.skip("a softmax over one output is constant")
+    X, Y, coefs, intercepts = _problem(out_activation, activation, sparse=sparse, sizes=sizes)
     loss, coef_grads, intercept_grads = loss_and_gradients(
         X, Y, coefs, intercepts, activation, out_activation, alpha=0.3)
-    work = Workspace(X.shape[0], SIZES)
+    work = Workspace(X.shape[0], sizes, _mlp_numba if compiled else None)
     flat = np.empty(pack(coefs, intercepts).size)
     grads = unpack(flat, [c.shape for c in coefs])
     for _ in range(2):  # the second pass writes over the arrays of the first

@@ -1,0 +1,222 @@
+"""The multilayer perceptron's elementwise steps compiled by numba: the NumPy engine's arithmetic,
+one entry at a time (private).
+
+Used only by :mod:`ebantenna.ml._backprop_engine` and :class:`ebantenna.ml.optimizers.Adam`,
+through :func:`compiled_kernels`, when numba is installed and these loops compile (``IMPORT_ERROR``
+says why not); otherwise those steps run as NumPy calls. The matrix products, ``tanh``, ``exp``
+and ``log`` stay NumPy's on both paths; what is compiled is the arithmetic around them, which
+NumPy does in several passes over the arrays, each pass one NumPy call:
+
+* every number is computed by the same IEEE operations in the same order as the NumPy path:
+  Adam's ``m b_1 + g (1 - b_1)``, ``v b_2 + (g (1 - b_2)) g`` and
+  ``p - (m \\, lr) / (\\sqrt{v} + \\epsilon)``; the weight gradient's ``product + W \\alpha/n``;
+  the activation's derivative ``delta (1 - a a)`` (tanh), ``delta ((1 - a) a)`` (logistic) or
+  0 where ``a <= 0`` (relu). numba compiles without ``fastmath``: no reassociation and no fused
+  multiply-add, so each operation rounds as NumPy's does;
+* the only sums are the bias gradients, the column sums of ``delta``: NumPy adds the rows of a
+  C-ordered array of several columns one after the other (its reduction runs along the outer
+  axis), and so do these loops, from the first row. A single column NumPy sums pairwise, as a
+  contiguous vector; that sum stays NumPy's.
+
+The tests hold both paths equal bit for bit.
+"""
+
+from __future__ import annotations
+
+import functools
+import importlib.util
+import logging
+import os
+import sys
+import time
+import warnings
+
+import numpy as np
+
+from .smo import ENGINE_VARIABLE
+
+try:
+    import numba
+except ImportError as exc:  # not installed, or not working with this NumPy
+    numba = None
+    IMPORT_ERROR = f"{type(exc).__name__}: {exc}"
+else:
+    IMPORT_ERROR = ""
+
+__all__ = ["ACTIVATION_CODES", "adam_step", "add_scaled", "derivative_and_bias_gradient",
+           "add_bias", "subtract_row_max", "softmax_gradient", "compiled_kernels",
+           "IMPORT_ERROR"]
+
+logger = logging.getLogger(__name__)
+
+
+def _plain(function):
+    """Without numba the loops stay Python functions (this module still imports, and nothing
+    uses it: :func:`compiled_kernels` returns None)."""
+    return function
+
+
+# error_model="numpy": a division by zero gives inf or NaN as NumPy's does, with no test per
+# division, which lets LLVM vectorise the loops (the IEEE operations stay the same)
+_jit = numba.njit(cache=True, error_model="numpy") if numba is not None else _plain
+
+#: The activations' codes in :func:`derivative_and_bias_gradient`.
+ACTIVATION_CODES = {"identity": 0, "tanh": 1, "logistic": 2, "relu": 3}
+
+
+@_jit
+def adam_step(p, g, m, v, beta_1, beta_2, one_minus_beta_1, one_minus_beta_2, lr, epsilon):
+    """One Adam step on flat float64 vectors, in place: the moments ``m``, ``v`` and the
+    parameters ``p`` (:meth:`ebantenna.ml.optimizers.Adam.update`'s operations)."""
+    for i in range(p.size):
+        gi = g[i]
+        mi = m[i] * beta_1 + gi * one_minus_beta_1
+        vi = v[i] * beta_2 + (gi * one_minus_beta_2) * gi
+        m[i] = mi
+        v[i] = vi
+        p[i] = p[i] - (mi * lr) / (np.sqrt(vi) + epsilon)
+
+
+@_jit
+def add_scaled(out, W, scale):
+    """``out += W * scale`` in place (the L2 term of a weight gradient), for 2-D arrays."""
+    rows, cols = W.shape
+    for i in range(rows):
+        for j in range(cols):
+            out[i, j] = out[i, j] + W[i, j] * scale
+
+
+@_jit
+def derivative_and_bias_gradient(code, a, delta, bias_grad, with_sums):
+    """``delta`` multiplied in place by the activation's derivative written with its output
+    ``a`` (``code`` from :data:`ACTIVATION_CODES`), then, if ``with_sums``, ``bias_grad`` = its
+    column sums, each row added after the other from the first, as NumPy adds the rows of an
+    array of several columns (a single column it sums pairwise, as a contiguous vector: that
+    sum is left to NumPy)."""
+    rows, cols = delta.shape
+    for i in range(rows):
+        if code == 1:
+            for j in range(cols):
+                delta[i, j] = delta[i, j] * (1.0 - a[i, j] * a[i, j])
+        elif code == 2:
+            for j in range(cols):
+                delta[i, j] = delta[i, j] * ((1.0 - a[i, j]) * a[i, j])
+        elif code == 3:
+            for j in range(cols):
+                if a[i, j] <= 0.0:
+                    delta[i, j] = 0.0
+        if not with_sums:
+            continue
+        if i == 0:
+            for j in range(cols):
+                bias_grad[j] = delta[0, j]
+        else:
+            for j in range(cols):
+                bias_grad[j] = bias_grad[j] + delta[i, j]
+
+
+@_jit
+def add_bias(z, b):
+    """``z += b`` in place, ``b`` added to every row."""
+    rows, cols = z.shape
+    for i in range(rows):
+        for j in range(cols):
+            z[i, j] = z[i, j] + b[j]
+
+
+@_jit
+def subtract_row_max(z, shift):
+    """``shift[i, 0]`` = the largest entry of row ``i`` (the first NaN if there is one, as
+    ``argmax`` picks), subtracted from the row in place."""
+    rows, cols = z.shape
+    for i in range(rows):
+        m = z[i, 0]
+        for j in range(1, cols):
+            if z[i, j] > m or (z[i, j] != z[i, j] and m == m):
+                m = z[i, j]
+        shift[i, 0] = m
+        for j in range(cols):
+            z[i, j] = z[i, j] - m
+
+
+@_jit
+def softmax_gradient(prob, total, Y, n):
+    """``prob = (prob / total - Y) / n`` in place: the softmax's probabilities from the
+    exponentials and their row sums ``total`` (shape (rows, 1)), minus the targets, per sample."""
+    rows, cols = prob.shape
+    for i in range(rows):
+        for j in range(cols):
+            prob[i, j] = (prob[i, j] / total[i, 0] - Y[i, j]) / n
+
+
+def _smoke_test() -> None:
+    """Compile (or load) the loops and check one known value of each."""
+    p, g, m, v = np.ones(2), np.full(2, 3.0), np.zeros(2), np.zeros(2)
+    adam_step(p, g, m, v, 0.9, 0.999, 0.1, 0.001, 0.5, 0.0)
+    grad = np.array([[1.0], [2.0]])
+    add_scaled(grad, np.array([[1.0], [1.0]]), 0.5)
+    delta, bias = np.ones((2, 1)), np.empty(1)
+    derivative_and_bias_gradient(1, np.full((2, 1), 0.5), delta, bias, True)
+    expected = (np.allclose(m, 0.3) and np.allclose(p, 1.0 - 0.5 * 0.3 / np.sqrt(0.009))
+                and np.array_equal(grad.ravel(), [1.5, 2.5]) and np.array_equal(bias, [1.5]))
+    if not expected:
+        raise RuntimeError("the compiled MLP loops computed a known step wrongly")
+
+
+@functools.cache
+def _status() -> tuple[bool, str, float]:
+    """Compile the loops once per process: (available, reason if not, seconds it took); says
+    once why not."""
+    start = time.perf_counter()
+    fallback = "the MLP's elementwise steps run as NumPy calls (the same numbers, slower)"
+    if importlib.util.find_spec("numba") is None:
+        reason = (f"numba is not installed: {fallback}; `pip install ebantenna[fast]` adds "
+                  "the compiled loops")
+        logger.info(reason)
+        return False, reason, np.nan
+    try:
+        if IMPORT_ERROR:
+            raise ImportError(IMPORT_ERROR)
+        _smoke_test()
+    except Exception as exc:  # numba is installed but cannot build the loops here
+        reason = (f"numba is installed but the compiled MLP loops failed with NumPy "
+                  f"{np.__version__} ({type(exc).__name__}: {exc}): {fallback}")
+        warnings.warn(reason, RuntimeWarning, stacklevel=3)
+        return False, reason, np.nan
+    return True, "", time.perf_counter() - start
+
+
+def compiled_kernels(engine: str | None = None):
+    """This module when its loops are to run, else None.
+
+    Parameters
+    ----------
+    engine : {'auto', 'numpy', 'compiled'} or None
+        None reads the environment variable ``EBANTENNA_ENGINE`` (default ``'auto'``), which
+        chooses the SMO engine too: the compiled loops when numba works, NumPy otherwise.
+
+    Raises
+    ------
+    ValueError
+        For another value.
+    RuntimeError
+        For ``'compiled'`` when numba is missing or fails (the reason in the message).
+
+    Examples
+    --------
+    >>> compiled_kernels("numpy") is None
+    True
+    """
+    source = "engine"
+    if engine is None:
+        engine, source = os.environ.get(ENGINE_VARIABLE, "auto"), ENGINE_VARIABLE
+    if engine not in ("auto", "numpy", "compiled"):
+        raise ValueError(f"{source} must be one of 'auto', 'numpy', 'compiled'; got {engine!r}")
+    if engine == "numpy":
+        return None
+    available, reason, _ = _status()
+    if available:
+        return sys.modules[__name__]
+    if engine == "compiled":
+        raise RuntimeError(reason)
+    return None

@@ -22,8 +22,10 @@ with plain loops so that one call runs every update, with no NumPy call per upda
   stored kernel matrix that position ``p`` holds. The penalties are added to the scores, as the
   NumPy engines add theirs (``0 - yG`` or ``-inf``, the same numbers as a test of a flag): a
   flag would be a branch per variable that the processor mispredicts half the time, where an
-  addition costs a cycle. The second-order scores are branch-free for the same reason:
-  ``max(b, 0)**2 / a`` is 0 for every variable outside :math:`I_{low}`, as in NumPy.
+  addition costs a cycle. The second-order score ``max(b, 0)**2 / a`` is 0 for every
+  variable with :math:`b \\le 0` (all those outside :math:`I_{low}` among them), as in NumPy,
+  and a score of 0 never wins (the selection stops unless the best score is above 0): those
+  variables skip the division, the costliest operation of the pass.
 
 Kernel entries are read from the stored matrix (float64, or float32 widened exactly to float64,
 as :meth:`~ebantenna.ml.kernels.KernelRows.row64` does).
@@ -158,7 +160,8 @@ def _select(K, g, F, low, a, tol, opts, pair_sum, Ki, scan):
         K_it = np.float64(K[r, g[t]])
         Ki[t] = K_it
         b = (yG[t] + low[t]) + Gmax  # -inf outside I_low
-        b = b if b > 0.0 else 0.0
+        if not b > 0.0:  # scores 0, which cannot win: only a score above 0 is taken
+            continue
         if same_diagonal:
             quad = K_it * -2.0 + pair_sum
         else:

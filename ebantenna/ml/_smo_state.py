@@ -29,11 +29,16 @@ from ._smo_step import argmax, pair_step, second_order_gain
 from .kernels import KernelRows
 from .smo_policy import TAU, SMOPolicy
 
-__all__ = ["DualState", "ROW_MEMO_BYTES", "run_general", "shrink_order"]
+__all__ = ["DualState", "ROW_MEMO_BYTES", "RECONSTRUCT_BYTES", "run_general",
+           "shrink_order"]
 
 #: Memory for the kernel rows that the SMO state keeps between updates (float64, in bytes), on
 #: top of the kernel's own storage; rows that are views of a float64 kernel take none.
 ROW_MEMO_BYTES = 64 << 20
+
+#: Memory for one piece of the kernel block that rebuilds the gradient of the variables set
+#: aside (float64, in bytes; :meth:`DualState.reconstruct`).
+RECONSTRUCT_BYTES = 8 << 20
 
 #: ``ndarray.max()`` without its Python wrapper.
 _largest = np.maximum.reduce
@@ -72,6 +77,28 @@ def shrink_order(shrink: np.ndarray) -> tuple[np.ndarray, int]:
     order = np.arange(a)
     order[front], order[back] = back, front
     return order, keep
+
+
+def _sum_down(K: np.ndarray) -> np.ndarray:
+    """The sum of the rows of a C-ordered ``K``, one row after the other: ``(K[0] + K[1]) +
+    K[2] ...``, libsvm's order of additions, in one call.
+
+    NumPy sums pairwise only along the fast axis in memory (see :func:`numpy.sum`); down the
+    rows of a C-ordered array of two columns or more it adds row after row. A single column is
+    the fast axis, so there the running sum, sequential by definition, gives the last entry.
+
+    Examples
+    --------
+    Sequentially, 1e16 + 1 rounds back to 1e16 (the spacing of floats there is 2):
+
+    >>> _sum_down(np.array([[1e16, 1.0], [1.0, 1e16], [-1e16, -1e16]]))
+    array([0., 0.])
+    >>> _sum_down(np.array([[1e16], [1.0], [-1e16]]))
+    array([0.])
+    """
+    if K.shape[1] > 1:
+        return np.add.reduce(K, axis=0)
+    return np.add.accumulate(K[:, 0])[-1:]
 
 
 class DualState:
@@ -171,8 +198,9 @@ class DualState:
 
     def _assemble_row(self, p: int, length: int) -> np.ndarray:
         """Kernel row of position ``p`` over positions ``[0, length)``, from the stored rows."""
-        if self.permuted:
-            return self.rows.row(self.perm[p])[self.perm[:length]].astype(np.float64)
+        if self.permuted:  # one gather, a new array already (astype copies float32 only)
+            row = self.rows.row(self.perm[p]).take(self.perm[:length])
+            return row.astype(np.float64, copy=False)
         row = self.rows.row64(p)
         return row if length == self.n else row[:length]
 
@@ -250,16 +278,18 @@ class DualState:
         # G = Gbar + p with p = -1, in y-scaled form: yG = yGbar - y
         inactive = self.yGbar[active:] - y[active:]
         free = np.flatnonzero(((alpha > 0) & (alpha < self.C))[:active])
-        if free.size:
-            # G_t += alpha_s Q_ts for every inactive t, over the free s one after the other in
-            # their order. libsvm has two loops for this (by inactive t, or by free s, whichever
-            # computes fewer kernel rows); both add the same terms in this order, and the kernel
-            # is symmetric, so one gather of the (free, inactive) block gives libsvm's numbers.
-            K = self.rows.block64(perm[free], perm[active:])
-            weights = alpha[free] * y[free]  # alpha_s Q_ts = alpha_s y_s K_ts y_t
-            for K_s, w_s in zip(K, weights.tolist(), strict=True):  # in order: sequential sum
-                K_s *= w_s
-                inactive += K_s
+        # G_t += alpha_s Q_ts for every inactive t, over the free s one after the other in
+        # their order. libsvm has two loops for this (by inactive t, or by free s, whichever
+        # computes fewer kernel rows); both add the same terms in this order, and the kernel
+        # is symmetric, so gathers of the (free, inactive) block give libsvm's numbers: in
+        # pieces of rows, each summed down its rows in one call, starting from the last sum.
+        weights = alpha[free] * y[free]  # alpha_s Q_ts = alpha_s y_s K_ts y_t
+        piece = max(1, RECONSTRUCT_BYTES // (8 * (n - active)))
+        for start in range(0, free.size, piece):
+            K = self.rows.block64(perm[free[start : start + piece]], perm[active:])
+            K *= weights[start : start + piece, None]
+            K[0] += inactive
+            inactive = _sum_down(K)
         self.yG[active:] = inactive
         self._activate(n)
 

@@ -86,7 +86,15 @@ order and gradient reconstruction included) or off. What each convention does, w
   value is exactly 1, and so is the diagonal here for 'rbf'.
 
 What is left between libsvm and this package is the summation order of the kernel sums in the
-decision function: about 1e-14 of the values' scale.
+decision function: about 1e-14 of the values' scale, and the summation order of the kernel
+entries themselves: libsvm forms each dot product on its own, the package all of them in one
+matrix product, and the two can differ in the last bit of an entry. On a problem scaled as
+SVMs want, that bit rarely survives the float32 storage and the iteration counts agree. On one
+that SMO needs millions of updates to solve (unscaled features spanning several orders of
+magnitude, a large ``C``), a last bit changes the path: the same optimum within ``tol``, but
+another number of updates, and scikit-learn itself counts differently for the linear kernel
+and for the same kernel passed as a precomputed matrix. Given the same matrix
+(``kernel='precomputed'``) both take the same updates there too.
 """
 
 from __future__ import annotations

@@ -103,3 +103,28 @@ def test_shrinking_reaches_the_optimum_of_the_whole_problem():
     assert shrunk.objective == pytest.approx(whole.objective, rel=1e-9)
     assert abs(shrunk.rho - whole.rho) < 1e-5
 
+
+
+@pytest.mark.parametrize("piece_bytes", [0, 3 * 8 * 1000])
+def test_reconstruction_in_pieces_adds_in_the_same_order(monkeypatch, piece_bytes):
+    # the gradient of the variables set aside is rebuilt from the (free, set aside) block in
+    # pieces of rows, each piece's running sum starting from the last: one row per piece
+    # (0 bytes) or a few, the same additions in the same order as the whole block at once
+    rows, y, diagonal = _shrinking_problem()
+    C = np.full(y.size, 4.0)
+    calls = []
+    reconstruct = _smo_state.DualState.reconstruct
+
+    def counted(state):
+        free = (state.alpha > 0) & (state.alpha < state.C)
+        calls.append((int(np.count_nonzero(free[: state.active])), state.n - state.active))
+        reconstruct(state)
+
+    monkeypatch.setattr(_smo_state.DualState, "reconstruct", counted)
+    whole = solve_smo(rows, y, C, diagonal=diagonal, policy=LIBSVM)
+    assert any(free > 3 and aside > 0 for free, aside in calls)  # pieces of several rows
+    monkeypatch.setattr(_smo_state, "RECONSTRUCT_BYTES", piece_bytes)
+    pieces = solve_smo(rows, y, C, diagonal=diagonal, policy=LIBSVM)
+    assert whole.n_iter == pieces.n_iter
+    np.testing.assert_array_equal(whole.alpha, pieces.alpha)
+    assert (whole.rho, whole.objective) == (pieces.rho, pieces.objective)

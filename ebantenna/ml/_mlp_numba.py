@@ -24,16 +24,11 @@ The tests hold both paths equal bit for bit.
 from __future__ import annotations
 
 import functools
-import importlib.util
-import logging
-import os
 import sys
-import time
-import warnings
 
 import numpy as np
 
-from .smo import ENGINE_VARIABLE
+from ._engine_choice import EngineStatus, load_compiled, requested_engine
 
 try:
     import numba
@@ -46,8 +41,6 @@ else:
 __all__ = ["ACTIVATION_CODES", "adam_step", "add_scaled", "derivative_and_bias_gradient",
            "add_bias", "subtract_row_max", "softmax_gradient", "compiled_kernels",
            "IMPORT_ERROR"]
-
-logger = logging.getLogger(__name__)
 
 
 def _plain(function):
@@ -164,26 +157,19 @@ def _smoke_test() -> None:
 
 
 @functools.cache
-def _status() -> tuple[bool, str, float]:
-    """Compile the loops once per process: (available, reason if not, seconds it took); says
-    once why not."""
-    start = time.perf_counter()
-    fallback = "the MLP's elementwise steps run as NumPy calls (the same numbers, slower)"
-    if importlib.util.find_spec("numba") is None:
-        reason = (f"numba is not installed: {fallback}; `pip install ebantenna[fast]` adds "
-                  "the compiled loops")
-        logger.info(reason)
-        return False, reason, np.nan
-    try:
-        if IMPORT_ERROR:
-            raise ImportError(IMPORT_ERROR)
-        _smoke_test()
-    except Exception as exc:  # numba is installed but cannot build the loops here
-        reason = (f"numba is installed but the compiled MLP loops failed with NumPy "
-                  f"{np.__version__} ({type(exc).__name__}: {exc}): {fallback}")
-        warnings.warn(reason, RuntimeWarning, stacklevel=3)
-        return False, reason, np.nan
-    return True, "", time.perf_counter() - start
+def _status() -> EngineStatus:
+    """Compile the loops once per process; say once why not."""
+    return load_compiled(
+        "compiled MLP loops",
+        "the MLP's elementwise steps run as NumPy calls (the same numbers, slower)",
+        _import_and_check,
+    )
+
+
+def _import_and_check() -> None:
+    if IMPORT_ERROR:
+        raise ImportError(IMPORT_ERROR)
+    _smoke_test()
 
 
 def compiled_kernels(engine: str | None = None):
@@ -207,16 +193,12 @@ def compiled_kernels(engine: str | None = None):
     >>> compiled_kernels("numpy") is None
     True
     """
-    source = "engine"
-    if engine is None:
-        engine, source = os.environ.get(ENGINE_VARIABLE, "auto"), ENGINE_VARIABLE
-    if engine not in ("auto", "numpy", "compiled"):
-        raise ValueError(f"{source} must be one of 'auto', 'numpy', 'compiled'; got {engine!r}")
+    engine = requested_engine(engine)
     if engine == "numpy":
         return None
-    available, reason, _ = _status()
-    if available:
+    status = _status()
+    if status.available:
         return sys.modules[__name__]
     if engine == "compiled":
-        raise RuntimeError(reason)
+        raise RuntimeError(status.reason)
     return None

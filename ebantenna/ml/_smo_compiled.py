@@ -24,48 +24,14 @@ fails (for instance a numba release that does not support the installed NumPy). 
 from __future__ import annotations
 
 import functools
-import importlib.util
-import logging
-import os
-import time
-import warnings
-from dataclasses import dataclass
 
 import numpy as np
 
+from ._engine_choice import ENGINE_VARIABLE, ENGINES, EngineStatus, load_compiled, requested_engine
 from .smo_policy import SMOPolicy
 
 __all__ = ["ENGINES", "ENGINE_VARIABLE", "EngineStatus", "engine_status", "choose_engine",
            "run_compiled"]
-
-logger = logging.getLogger(__name__)
-
-#: The values of the engine choice.
-ENGINES = ("auto", "numpy", "compiled")
-
-#: The environment variable that chooses the engine when ``solve_smo`` is not told.
-ENGINE_VARIABLE = "EBANTENNA_ENGINE"
-
-
-@dataclass(frozen=True)
-class EngineStatus:
-    """Whether the compiled engine works here, why not, and what loading it cost.
-
-    Attributes
-    ----------
-    available : bool
-        True when numba imported and compiled the loop.
-    reason : str
-        The sentence said once when it is not available ('' otherwise).
-    load_seconds : float
-        Wall time of importing numba and compiling the loop, or loading it from numba's cache
-        (s); NaN when not available.
-    """
-
-    available: bool
-    reason: str
-    load_seconds: float
-
 
 @functools.cache
 def engine_status() -> EngineStatus:
@@ -77,25 +43,19 @@ def engine_status() -> EngineStatus:
     >>> status.available or "NumPy engines" in status.reason
     True
     """
-    start = time.perf_counter()
-    fallback = "SMO runs on the NumPy engines (the same numbers, slower on small problems)"
-    if importlib.util.find_spec("numba") is None:
-        reason = (f"numba is not installed: {fallback}; `pip install ebantenna[fast]` adds "
-                  "the compiled engine")
-        logger.info(reason)
-        return EngineStatus(False, reason, np.nan)
-    try:
-        from . import _smo_numba
+    return load_compiled(
+        "compiled SMO engine",
+        "SMO runs on the NumPy engines (the same numbers, slower on small problems)",
+        _import_and_check,
+    )
 
-        if _smo_numba.IMPORT_ERROR:
-            raise ImportError(_smo_numba.IMPORT_ERROR)
-        _smoke_test(_smo_numba)
-    except Exception as exc:  # numba is installed but cannot build the loop here
-        reason = (f"numba is installed but the compiled SMO engine failed with NumPy "
-                  f"{np.__version__} ({type(exc).__name__}: {exc}): {fallback}")
-        warnings.warn(reason, RuntimeWarning, stacklevel=2)
-        return EngineStatus(False, reason, np.nan)
-    return EngineStatus(True, "", time.perf_counter() - start)
+
+def _import_and_check() -> None:
+    from . import _smo_numba
+
+    if _smo_numba.IMPORT_ERROR:
+        raise ImportError(_smo_numba.IMPORT_ERROR)
+    _smoke_test(_smo_numba)
 
 
 def _smoke_test(module) -> None:
@@ -132,12 +92,7 @@ def choose_engine(engine: str | None = None) -> str:
     >>> choose_engine("numpy")
     'numpy'
     """
-    source = "engine"
-    if engine is None:
-        engine, source = os.environ.get(ENGINE_VARIABLE, "auto"), ENGINE_VARIABLE
-    if engine not in ENGINES:
-        raise ValueError(f"{source} must be one of {', '.join(map(repr, ENGINES))}; "
-                         f"got {engine!r}")
+    engine = requested_engine(engine)
     if engine == "numpy":
         return engine
     status = engine_status()

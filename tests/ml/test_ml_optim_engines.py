@@ -9,6 +9,7 @@ from sklearn.exceptions import ConvergenceWarning
 
 from ebantenna.ml import MLPClassifier, MLPRegressor, _mlp_numba
 from ebantenna.ml._backprop_engine import Workspace, output_loss_into
+from ebantenna.ml._engine_choice import EngineStatus
 from ebantenna.ml.optimizers import Adam
 
 ENGINE = "EBANTENNA_ENGINE"
@@ -115,7 +116,8 @@ def test_engine_choice(monkeypatch):
     with pytest.raises(ValueError, match="EBANTENNA_ENGINE must be one of"):
         monkeypatch.setenv(ENGINE, "fast")
         _mlp_numba.compiled_kernels()
-    monkeypatch.setattr(_mlp_numba, "_status", lambda: (False, "numba is not installed", math.nan))
+    missing = EngineStatus(False, "numba is not installed", math.nan)
+    monkeypatch.setattr(_mlp_numba, "_status", lambda: missing)
     assert _mlp_numba.compiled_kernels("auto") is None
     with pytest.raises(RuntimeError, match="numba is not installed"):
         _mlp_numba.compiled_kernels("compiled")

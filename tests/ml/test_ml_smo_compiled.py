@@ -11,7 +11,7 @@ from sklearn import datasets
 from sklearn.preprocessing import StandardScaler
 
 import ebantenna.ml
-from ebantenna.ml import SVC, _smo_compiled, smo
+from ebantenna.ml import SVC, _engine_choice, _smo_compiled, smo
 from ebantenna.ml import svc as svc_module
 from ebantenna.ml._smo_compiled import ENGINE_VARIABLE, choose_engine, engine_status
 from ebantenna.ml.kernels import Kernel, KernelRows
@@ -161,17 +161,17 @@ def fresh_status():
 
 
 def test_without_numba_numpy_runs_and_says_why_once(monkeypatch, fresh_status, caplog):
-    monkeypatch.setattr(_smo_compiled.importlib.util, "find_spec",
+    monkeypatch.setattr(_engine_choice.importlib.util, "find_spec",
                         lambda name, *args: None if name == "numba" else sys.modules[name])
     monkeypatch.delenv(ENGINE_VARIABLE, raising=False)
-    with caplog.at_level(logging.INFO, logger=_smo_compiled.__name__):
+    with caplog.at_level(logging.INFO, logger=_engine_choice.__name__):
         assert choose_engine() == "numpy"
         assert choose_engine("auto") == "numpy"
         res = smo.solve_smo(KernelRows(np.array([[0.0], [2.0]]), Kernel("linear"), np.float64,
                                        1 << 20), np.array([-1.0, 1.0]), np.full(2, 10.0),
                             diagonal=np.array([0.0, 4.0]))
     assert res.n_iter == 1 and np.array_equal(res.alpha, [0.5, 0.5])  # alpha = 2 / 2**2
-    messages = [r.getMessage() for r in caplog.records if r.name == _smo_compiled.__name__]
+    messages = [r.getMessage() for r in caplog.records if r.name == _engine_choice.__name__]
     assert len(messages) == 1 and "numba is not installed" in messages[0]
     assert "ebantenna[fast]" in messages[0]
     with pytest.raises(RuntimeError, match="compiled SMO engine was asked for but numba is not"):
@@ -181,7 +181,7 @@ def test_without_numba_numpy_runs_and_says_why_once(monkeypatch, fresh_status, c
 def test_a_broken_numba_warns_once_and_falls_back(monkeypatch, fresh_status):
     # numba present but unable to build the loop (for instance too old for this NumPy, where
     # importing numba itself raises ImportError): one RuntimeWarning, then the NumPy engines
-    monkeypatch.setattr(_smo_compiled.importlib.util, "find_spec", lambda name, *args: object())
+    monkeypatch.setattr(_engine_choice.importlib.util, "find_spec", lambda name, *args: object())
     monkeypatch.delattr(ebantenna.ml, "_smo_numba", raising=False)
     monkeypatch.setitem(sys.modules, "ebantenna.ml._smo_numba", None)  # import fails
     with pytest.warns(RuntimeWarning, match="compiled SMO engine failed with NumPy") as caught:

@@ -1,0 +1,102 @@
+"""Which engine runs, NumPy or compiled (numba), for every estimator that has both (private).
+
+The SVM's SMO loop (:mod:`ebantenna.ml._smo_compiled`) and the MLP's elementwise steps
+(:mod:`ebantenna.ml._mlp_numba`) each have a compiled twin that returns the same bits. One
+choice governs both: ``'auto'`` unless the ``engine`` argument or the environment variable
+:data:`ENGINE_VARIABLE` (``EBANTENNA_ENGINE=numpy|compiled|auto``) says otherwise. Each twin is
+loaded once per process by :func:`load_compiled`, which says once why it falls back: a logged
+INFO when numba is not installed, a :class:`RuntimeWarning` when it is installed but fails (for
+instance a numba release that does not support the installed NumPy).
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import logging
+import os
+import time
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["ENGINES", "ENGINE_VARIABLE", "EngineStatus", "requested_engine", "load_compiled"]
+
+logger = logging.getLogger(__name__)
+
+#: The values of the engine choice.
+ENGINES = ("auto", "numpy", "compiled")
+
+#: The environment variable that chooses the engine when the call does not.
+ENGINE_VARIABLE = "EBANTENNA_ENGINE"
+
+
+@dataclass(frozen=True)
+class EngineStatus:
+    """Whether a compiled engine works here, why not, and what loading it cost.
+
+    Attributes
+    ----------
+    available : bool
+        True when numba imported and compiled the loops.
+    reason : str
+        The sentence said once when it is not available ('' otherwise).
+    load_seconds : float
+        Wall time of importing numba and compiling the loops, or loading them from numba's
+        cache (s); NaN when not available.
+    """
+
+    available: bool
+    reason: str
+    load_seconds: float
+
+
+def requested_engine(engine: str | None) -> str:
+    """``engine``, or :data:`ENGINE_VARIABLE` (default ``'auto'``) when None, checked.
+
+    Raises
+    ------
+    ValueError
+        For a value not in :data:`ENGINES`, naming the argument or the variable.
+
+    Examples
+    --------
+    >>> requested_engine("numpy")
+    'numpy'
+    """
+    source = "engine"
+    if engine is None:
+        engine, source = os.environ.get(ENGINE_VARIABLE, "auto"), ENGINE_VARIABLE
+    if engine not in ENGINES:
+        raise ValueError(f"{source} must be one of {', '.join(map(repr, ENGINES))}; "
+                         f"got {engine!r}")
+    return engine
+
+
+def load_compiled(what: str, fallback: str, import_and_check) -> EngineStatus:
+    """Run ``import_and_check()`` (import numba, compile or load the loops, check a known
+    answer; it raises on any failure) and time it; say once why not, when it fails.
+
+    Parameters
+    ----------
+    what : str
+        The compiled twin's name in the messages, e.g. ``'compiled SMO engine'``.
+    fallback : str
+        What runs instead, e.g. ``'SMO runs on the NumPy engines (...)'``.
+    import_and_check : callable
+        No arguments; raises when the compiled loops cannot be used.
+    """
+    start = time.perf_counter()
+    if importlib.util.find_spec("numba") is None:
+        reason = (f"numba is not installed: {fallback}; `pip install ebantenna[fast]` adds "
+                  f"the {what}")
+        logger.info(reason)
+        return EngineStatus(False, reason, np.nan)
+    try:
+        import_and_check()
+    except Exception as exc:  # numba is installed but cannot build the loops here
+        reason = (f"numba is installed but the {what} failed with NumPy {np.__version__} "
+                  f"({type(exc).__name__}: {exc}): {fallback}")
+        warnings.warn(reason, RuntimeWarning, stacklevel=3)
+        return EngineStatus(False, reason, np.nan)
+    return EngineStatus(True, "", time.perf_counter() - start)

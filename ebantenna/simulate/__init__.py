@@ -20,7 +20,14 @@ Examples
 ((1000,), 1000.0)
 """
 
-from .dataset import Dataset, DatasetDesign, build_dataset, dataset_plan, load_dataset
+from .dataset import (
+    Dataset,
+    DatasetDesign,
+    build_dataset,
+    build_datasets,
+    dataset_plan,
+    load_dataset,
+)
 from .effects import effect_names, make_effect
 from .scene import Scene, builtin_scene, load_scene, scene_names
 from .simulator import ModalTerms, modal_terms, simulate, simulate_batch
@@ -39,6 +46,7 @@ __all__ = [
     "Dataset",
     "DatasetDesign",
     "build_dataset",
+    "build_datasets",
     "dataset_plan",
     "load_dataset",
 ]

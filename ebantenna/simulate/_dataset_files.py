@@ -64,11 +64,13 @@ def write_whole(path: Path, arrays: dict, metadata: dict, fs: float) -> None:
     """Save the data set at ``path`` so that a reader never sees half a file.
 
     Written under a name of its own, then renamed: concurrent builds into one folder each write
-    their own. Interrupted, it is removed.
+    their own. Interrupted, it is removed. The archive is not compressed: the signals are
+    noise-dominated float32, which zlib barely shrinks, at seconds per main data set to write
+    and again to read.
     """
     tmp = path.with_name(path.name + f".tmp{os.getpid()}.npz")
     try:
-        np.savez_compressed(
+        np.savez(
             tmp, fs=np.float64(fs), metadata=np.array(json.dumps(metadata)), **arrays
         )
         os.replace(tmp, path)

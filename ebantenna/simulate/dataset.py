@@ -14,16 +14,16 @@ Every row can be reproduced alone: row ``i`` equals ``simulate(scene.with_(conta
 material=material[i], sweep_speed=sweep_speed[i], tilt_ratio=tilt_ratio[i]), seed=seed_row[i])``.
 The paper's own design, and the data set it recorded, are in :mod:`ebantenna.paper.data`.
 
-A data set is saved as a compressed ``.npz`` (accelerations as float32) with a JSON metadata
-record and a SHA-256 checksum of the arrays, and reused when the same configuration asks again.
-The configuration is the cache key: the file format, the package version, the seed, the design,
-every parameter of the scene (probe, supports, sampling, each effect's parameters) and every
+A data set is saved as an ``.npz`` archive (accelerations as float32; not compressed, since
+noise-dominated signals barely shrink under zlib, which costs seconds per build) with a JSON
+metadata record and a SHA-256 checksum of the arrays, and reused when the same configuration asks
+again. The configuration is the cache key: the file format, the package version, the seed, the
+design, every parameter of the scene (probe, supports, sampling, each effect's parameters) and every
 property of the touched materials, so that changed physics never reuses stale data. A cached file
-that is damaged, truncated, foreign or stale is rebuilt, and the log says why. The simulation
-runs through :class:`joblib.Parallel`, one task per material, so any joblib backend can run it:
-local processes, or a Dask cluster (``joblib.parallel_config(backend="dask")``) to grow a sweep
-beyond one machine without changing code.
-"""
+that is damaged, truncated, foreign or stale is rebuilt, and the log says why. The simulation runs
+through :class:`joblib.Parallel`, one task per material, so any joblib backend can run it: local
+processes, or a Dask cluster (``joblib.parallel_config(backend="dask")``) to grow a sweep beyond one
+machine without changing code. """
 
 from __future__ import annotations
 
@@ -51,9 +51,12 @@ from .._validate import (
 from ..probe import material
 from ._dataset_files import remove_leftovers, stale_reason, write_whole
 from .scene import Scene
-from .simulator import simulate_batch
+from .simulator import physics_key, simulate_batch, simulate_sensor_variants
 
-__all__ = ["Dataset", "DatasetDesign", "build_dataset", "load_dataset", "dataset_plan", "FORMAT"]
+__all__ = [
+    "Dataset", "DatasetDesign", "build_dataset", "build_datasets", "load_dataset", "dataset_plan",
+    "FORMAT",
+]  # fmt: skip
 
 log = logging.getLogger(__name__)
 
@@ -314,9 +317,10 @@ def _tasks(plan: dict, materials) -> list[np.ndarray]:
     return tasks
 
 
-def _simulate_rows(scene: Scene, rows: np.ndarray, plan: dict):
-    _, bx, bz, x, _ = simulate_batch(
-        scene,
+def _simulate_rows(scenes, rows: np.ndarray, plan: dict):
+    """The signals of ``rows`` of ``plan`` in each of ``scenes`` (the same physics key), as
+    float32, and each row's restrikes."""
+    given = dict(
         contact=plan["contact_true"][rows],
         material=plan["material"][rows],
         sweep_speed=plan["sweep_speed"][rows],
@@ -325,7 +329,12 @@ def _simulate_rows(scene: Scene, rows: np.ndarray, plan: dict):
         show_progress=False,
         x_modes=False,  # the data set keeps the signals, not the modes
     )
-    return rows, bx.astype(np.float32), bz.astype(np.float32), x.restrikes
+    if len(scenes) == 1:
+        done = [simulate_batch(scenes[0], **given)]
+    else:
+        done = simulate_sensor_variants(scenes, **given)
+    signals = [(bx.astype(np.float32), bz.astype(np.float32)) for _, bx, bz, _, _ in done]
+    return rows, signals, done[0][3].restrikes
 
 
 def build_dataset(
@@ -377,27 +386,80 @@ def build_dataset(
     ((12, 1000), 'paper-small-seed1.npz')
     """
     seed = check_int("seed", seed, minimum=0)
-    if n_jobs is not None:
-        n_jobs = check_int("n_jobs", n_jobs, minimum=1)
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
+    return build_datasets(out_dir, [scene], design, seed, n_jobs=n_jobs,
+                          show_progress=show_progress)[0]
+
+
+def build_datasets(
+    out_dir,
+    scenes,
+    design: DatasetDesign,
+    seed: int = 0,
+    *,
+    n_jobs: int | None = None,
+    show_progress=None,
+) -> list[Dataset]:
+    """:func:`build_dataset` of each of ``scenes`` with the same design and seed.
+
+    Scenes that differ only in their sensor stage (the same
+    :func:`~ebantenna.simulate.simulator.physics_key`: gravity, hum, noise, drift, clipping,
+    quantisation, Kalman filter) are simulated together: the physics once, then each scene's
+    sensor stage (:func:`~ebantenna.simulate.simulator.simulate_sensor_variants`). Each data set
+    is bit for bit the one :func:`build_dataset` makes of its scene alone, saved and reused
+    from the cache the same way.
+
+    Parameters
+    ----------
+    out_dir, design, seed, n_jobs, show_progress
+        As in :func:`build_dataset`.
+    scenes : sequence of Scene
+        Each with its own name (one file each).
+
+    Returns
+    -------
+    list of Dataset
+        In the order of ``scenes``.
+    """
+    seed = check_int("seed", seed, minimum=0)
+    if n_jobs is not None:
+        n_jobs = check_int("n_jobs", n_jobs, minimum=1)
+    scenes = list(scenes)
+    bad = [type(s).__name__ for s in scenes if not isinstance(s, Scene)]
+    if bad or not scenes:
+        raise TypeError(f"scenes must be Scenes, got {', '.join(bad) or 'none'}")
     if not isinstance(design, DatasetDesign):
         raise TypeError(f"design must be a DatasetDesign, got {type(design).__name__}")
+    names = [s.name for s in scenes]
+    if len(set(names)) < len(names):
+        raise ValueError(f"scenes must have distinct names (one file each), got {names}")
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    path = out_dir / f"{scene.name}-{design.name}-seed{seed}.npz"
-    remove_leftovers(path)
-    config = _config(scene, design, seed)
-    cached = _reusable(path, config)
-    if cached is not None:
-        return cached
-    plan = _plan(scene, design, seed)
-    ax, az, restrikes = _simulate_plan(scene, plan, design.materials, n_jobs, show_progress)
-    arrays = dict(plan, ax=ax, az=az)
+    found, todo = {}, {}
+    for i, scene in enumerate(scenes):
+        path = out_dir / f"{scene.name}-{design.name}-seed{seed}.npz"
+        remove_leftovers(path)
+        config = _config(scene, design, seed)
+        found[i] = _reusable(path, config)
+        if found[i] is None:  # grouped by what the steps before the sensor stage read
+            todo.setdefault(physics_key(scene), []).append((i, scene, path, config))
+    for group in todo.values():
+        plan = _plan(group[0][1], design, seed)  # the plan reads only the physics key's values
+        signals, restrikes = _simulate_plan(
+            [g[1] for g in group], plan, design.materials, n_jobs, show_progress
+        )
+        for (i, scene, path, config), (ax, az) in zip(group, signals, strict=True):
+            found[i] = _save(path, scene, config, dict(plan, ax=ax, az=az), restrikes)
+    return [found[i] for i in range(len(scenes))]
+
+
+def _save(path: Path, scene: Scene, config: dict, arrays: dict, restrikes) -> Dataset:
+    """Write the data set of ``arrays`` (the plan and the signals) to ``path``; return it."""
     metadata = {
         "config": config,
         "ebantenna_version": __version__,
-        "n_signals": int(ax.shape[0]),
+        "n_signals": int(arrays["ax"].shape[0]),
         "units": {"ax": "m/s^2", "az": "m/s^2", "contact": "m", "sweep_speed": "rad/s", "fs": "Hz"},
         "checksum_sha256": _checksum(arrays, scene.fs),
     }
@@ -426,29 +488,33 @@ def _reusable(path: Path, config: dict) -> Dataset | None:
     return cached
 
 
-def _simulate_plan(scene: Scene, plan: dict, materials, n_jobs, show_progress):
-    """The signals of every row of ``plan``, one joblib task per range of contacts.
+def _simulate_plan(scenes, plan: dict, materials, n_jobs, show_progress):
+    """The signals of every row of ``plan`` in each of ``scenes`` (the same physics key), one
+    joblib task per range of contacts.
 
-    Returns ``ax`` and ``az`` (float32, ``(n, n_samples)``) and each row's restrikes (0 without
-    ``unilateral_contact``). Takes checked values.
+    Returns per scene ``ax`` and ``az`` (float32, ``(n, n_samples)``), and each row's restrikes
+    (0 without ``unilateral_contact``). Takes checked values.
     """
     n = plan["contact"].size
-    ax = np.empty((n, scene.n_samples), dtype=np.float32)
-    az = np.empty_like(ax)
+    signals = [
+        (np.empty((n, s.n_samples), dtype=np.float32), np.empty((n, s.n_samples), np.float32))
+        for s in scenes
+    ]
     tasks = _tasks(plan, materials)
     if n_jobs is not None:
         n_jobs = min(n_jobs, len(tasks))
     parts = Parallel(n_jobs=n_jobs, return_as="generator")(
-        delayed(_simulate_rows)(scene, rows, plan) for rows in tasks
+        delayed(_simulate_rows)(scenes, rows, plan) for rows in tasks
     )
     restrikes = np.zeros(n, dtype=int)
-    for rows, bx, bz, again in progress(
+    for rows, part, again in progress(
         parts, total=len(tasks), desc="dataset", enabled=show_progress
     ):
-        ax[rows], az[rows] = bx, bz
+        for (ax, az), (bx, bz) in zip(signals, part, strict=True):
+            ax[rows], az[rows] = bx, bz
         if again is not None:
             restrikes[rows] = again
-    return ax, az, restrikes
+    return signals, restrikes
 
 
 def load_dataset(path) -> Dataset:

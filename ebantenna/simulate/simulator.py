@@ -47,6 +47,8 @@ Inputs are checked once, where they enter (:class:`~ebantenna.simulate.Scene`, :
 
 from __future__ import annotations
 
+import copy
+import json
 import logging
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -71,6 +73,9 @@ __all__ = [
     "modal_terms",
     "simulate",
     "simulate_batch",
+    "SENSOR_EFFECTS",
+    "physics_key",
+    "simulate_sensor_variants",
 ]
 
 log = logging.getLogger(__name__)
@@ -294,9 +299,40 @@ CHAIN = (
 )
 
 
-def _run_chain(batch: SignalBatch) -> SignalBatch:
-    """Apply every step of :data:`CHAIN` that the scene asks for, in order."""
-    for step in CHAIN:
+#: The sensor stage: the effects of the steps at the end of :data:`CHAIN`, from ``gravity`` on.
+#: They read the signals, the sample instants, the seeds and the sampling, never the physics, and
+#: the physics never reads them: scenes that differ only in these share the steps before them.
+SENSOR_EFFECTS = ("gravity", "mains_hum", "sensor_noise", "sensor_drift", "clipping",
+                  "quantisation", "kalman")
+_SENSOR_STAGE = next(i for i, s in enumerate(CHAIN) if s.effect in SENSOR_EFFECTS)
+assert all(s.effect in SENSOR_EFFECTS for s in CHAIN[_SENSOR_STAGE:])
+
+
+def physics_key(scene: Scene) -> str:
+    """What the steps before the sensor stage read of ``scene``: its parameters without its name
+    and without the :data:`SENSOR_EFFECTS`, as canonical JSON. Two scenes with the same key
+    give the same signals up to the sensor stage.
+
+    Examples
+    --------
+    >>> from ebantenna.simulate import builtin_scene
+    >>> paper = builtin_scene("paper")
+    >>> quiet = paper.with_(name="quiet", effects=[e for e in paper.effects
+    ...                                            if e.name != "sensor_noise"])
+    >>> physics_key(quiet) == physics_key(paper)
+    True
+    >>> physics_key(paper.with_(contact=0.3)) == physics_key(paper)
+    False
+    """
+    d = scene.to_dict()
+    del d["name"]
+    d["effects"] = {k: v for k, v in d["effects"].items() if k not in SENSOR_EFFECTS}
+    return json.dumps(d, sort_keys=True)
+
+
+def _run_chain(batch: SignalBatch, steps=CHAIN) -> SignalBatch:
+    """Apply every step of ``steps`` (default :data:`CHAIN`) that the scene asks for, in order."""
+    for step in steps:
         effect = None if step.effect is None else batch.scene.effect(step.effect)
         if step.effect is None or effect is not None:
             step.apply(effect, batch)
@@ -454,6 +490,55 @@ def simulate_batch(
     )  # fmt: skip
     _run_chain(batch)
     return batch.t, batch.ax, batch.az, batch.x, batch.z
+
+
+def simulate_sensor_variants(
+    scenes, *, contact=None, material=None, sweep_speed=None, tilt_ratio=None, seeds=0,
+    show_progress=None, x_modes=True,
+):
+    """:func:`simulate_batch` of each of ``scenes``, which differ only in their sensor stage
+    (the same :func:`physics_key`): the steps before it run once, on the first scene.
+
+    Each result is bit for bit :func:`simulate_batch` of that scene with the same ``rows``: the
+    steps of the sensor stage change only the signals and the levels, which are copied for each
+    scene, and every random effect draws from its own stream (:meth:`SignalBatch.rngs`).
+
+    Parameters
+    ----------
+    scenes : sequence of Scene
+        At least one, all with the same :func:`physics_key`.
+    contact, material, sweep_speed, tilt_ratio, seeds, show_progress, x_modes
+        As in :func:`simulate_batch`.
+
+    Returns
+    -------
+    list of tuple
+        Per scene, what :func:`simulate_batch` returns.
+    """
+    scenes = list(scenes)
+    if not scenes or not all(isinstance(s, Scene) for s in scenes):
+        raise TypeError("scenes must be a non-empty sequence of Scene")
+    key = physics_key(scenes[0])
+    other = [s.name for s in scenes[1:] if physics_key(s) != key]
+    if other:
+        raise ValueError(
+            f"scenes must differ from {scenes[0].name!r} only in the sensor stage "
+            f"({', '.join(SENSOR_EFFECTS)}); {', '.join(map(repr, other))} differ in more"
+        )
+    batch = _checked_batch(
+        scenes[0], contact, material, sweep_speed, tilt_ratio, seeds,
+        show_progress=show_progress, x_modes=x_modes,
+    )  # fmt: skip
+    shared = _run_chain(batch, CHAIN[:_SENSOR_STAGE])
+    out = []
+    for scene in scenes:
+        batch = copy.copy(shared)
+        batch.scene = scene
+        batch.ax, batch.az = shared.ax.copy(), shared.az.copy()
+        batch.levels_x, batch.levels_z = shared.levels_x.copy(), shared.levels_z.copy()
+        _run_chain(batch, CHAIN[_SENSOR_STAGE:])
+        out.append((batch.t, batch.ax, batch.az, batch.x, batch.z))
+    return out
 
 
 def simulate(scene: Scene, seed: int = 0) -> Recording:

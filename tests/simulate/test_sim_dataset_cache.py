@@ -124,7 +124,7 @@ def test_an_interrupted_write_leaves_no_temporary_file(tmp_path, monkeypatch):
             f.write(b"PK\x03\x04 half")
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(dataset_module.np, "savez_compressed", interrupted_savez)
+    monkeypatch.setattr(dataset_module.np, "savez", interrupted_savez)
     with pytest.raises(KeyboardInterrupt):
         build(tmp_path)
     assert list(tmp_path.iterdir()) == []

@@ -330,9 +330,9 @@ def physics_key(scene: Scene) -> str:
     return json.dumps(d, sort_keys=True)
 
 
-def _run_chain(batch: SignalBatch, steps=CHAIN) -> SignalBatch:
+def _run_chain(batch: SignalBatch, steps=None) -> SignalBatch:
     """Apply every step of ``steps`` (default :data:`CHAIN`) that the scene asks for, in order."""
-    for step in steps:
+    for step in CHAIN if steps is None else steps:
         effect = None if step.effect is None else batch.scene.effect(step.effect)
         if step.effect is None or effect is not None:
             step.apply(effect, batch)

@@ -12,7 +12,7 @@ def register(subparsers) -> None:
         "dataset",
         help="build the paper's data set (5 materials x contacts x 25 repetitions)",
         description="Simulate the paper's data set with the paper scene and save it as a "
-        "compressed .npz with metadata and a checksum; an identical existing file is reused.",
+        ".npz (not compressed) with metadata and a checksum; an identical existing file is reused.",
     )
     data.add_argument("--out", required=True, metavar="DIR", help="output directory")
     data.add_argument(

@@ -53,7 +53,8 @@ def test_sensor_variants_equal_each_scene_simulated_alone(paper):
     shared = simulate_sensor_variants(scenes, **rows)
     for scene, (t, ax, az, x, _) in zip(scenes, shared, strict=True):
         t1, ax1, az1, x1, _ = simulate_batch(scene, **rows)
-        assert np.array_equal(ax, ax1) and np.array_equal(az, az1), scene.name
+        assert np.array_equal(t, t1) and np.array_equal(ax, ax1) and np.array_equal(az, az1), \
+            scene.name
         assert np.array_equal(x.restrikes, x1.restrikes)
     # the variants do differ: the test would not pass by giving every scene the first's signals
     assert not np.array_equal(shared[0][2], shared[2][2])  # Z without gravity

@@ -36,6 +36,7 @@ from pathlib import Path
 
 import numpy as np
 from joblib import Parallel, delayed
+from threadpoolctl import threadpool_limits
 
 from .. import __version__
 from .._budget import check_allocation
@@ -319,7 +320,16 @@ def _tasks(plan: dict, materials) -> list[np.ndarray]:
 
 def _simulate_rows(scenes, rows: np.ndarray, plan: dict):
     """The signals of ``rows`` of ``plan`` in each of ``scenes`` (the same physics key), as
-    float32, and each row's restrikes."""
+    float32, and each row's restrikes.
+
+    BLAS runs on one thread here, as in a joblib worker: some OpenBLAS builds (NumPy 1.24's)
+    round a product differently on two threads, and a data set must not depend on ``n_jobs``.
+    """
+    with threadpool_limits(limits=1, user_api="blas"):
+        return _simulated_rows(scenes, rows, plan)
+
+
+def _simulated_rows(scenes, rows: np.ndarray, plan: dict):
     given = dict(
         contact=plan["contact_true"][rows],
         material=plan["material"][rows],

@@ -20,7 +20,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["ENGINES", "ENGINE_VARIABLE", "EngineStatus", "requested_engine", "load_compiled"]
+__all__ = ["ENGINES", "ENGINE_VARIABLE", "EngineStatus", "requested_engine", "load_compiled",
+           "use_compiled"]
 
 logger = logging.getLogger(__name__)
 
@@ -100,3 +101,25 @@ def load_compiled(what: str, fallback: str, import_and_check) -> EngineStatus:
         warnings.warn(reason, RuntimeWarning, stacklevel=3)
         return EngineStatus(False, reason, np.nan)
     return EngineStatus(True, "", time.perf_counter() - start)
+
+
+def use_compiled(engine: str | None, status, what: str) -> bool:
+    """Whether the compiled twin runs: ``engine`` (or the variable) asks for it or leaves it to
+    ``'auto'``, and ``status()`` (an :class:`EngineStatus`, loaded once) says it works.
+
+    Raises
+    ------
+    ValueError
+        For an engine not in :data:`ENGINES`.
+    RuntimeError
+        For ``'compiled'`` when the twin is not available, with the reason.
+    """
+    engine = requested_engine(engine)
+    if engine == "numpy":
+        return False
+    loaded = status()
+    if loaded.available:
+        return True
+    if engine == "compiled":
+        raise RuntimeError(f"the {what} was asked for but {loaded.reason}")
+    return False

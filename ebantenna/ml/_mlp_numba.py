@@ -28,7 +28,7 @@ import sys
 
 import numpy as np
 
-from ._engine_choice import EngineStatus, load_compiled, requested_engine
+from ._engine_choice import EngineStatus, load_compiled, use_compiled
 
 try:
     import numba
@@ -193,12 +193,6 @@ def compiled_kernels(engine: str | None = None):
     >>> compiled_kernels("numpy") is None
     True
     """
-    engine = requested_engine(engine)
-    if engine == "numpy":
-        return None
-    status = _status()
-    if status.available:
+    if use_compiled(engine, _status, "compiled MLP loops"):
         return sys.modules[__name__]
-    if engine == "compiled":
-        raise RuntimeError(status.reason)
     return None

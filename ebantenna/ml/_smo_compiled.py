@@ -27,7 +27,7 @@ import functools
 
 import numpy as np
 
-from ._engine_choice import ENGINE_VARIABLE, ENGINES, EngineStatus, load_compiled, requested_engine
+from ._engine_choice import ENGINE_VARIABLE, ENGINES, EngineStatus, load_compiled, use_compiled
 from .smo_policy import SMOPolicy
 
 __all__ = ["ENGINES", "ENGINE_VARIABLE", "EngineStatus", "engine_status", "choose_engine",
@@ -92,14 +92,8 @@ def choose_engine(engine: str | None = None) -> str:
     >>> choose_engine("numpy")
     'numpy'
     """
-    engine = requested_engine(engine)
-    if engine == "numpy":
-        return engine
-    status = engine_status()
-    if status.available:
+    if use_compiled(engine, engine_status, "compiled SMO engine"):
         return "compiled"
-    if engine == "compiled":
-        raise RuntimeError(f"the compiled SMO engine was asked for but {status.reason}")
     return "numpy"
 
 

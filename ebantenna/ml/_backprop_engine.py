@@ -33,7 +33,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.special import expit, log_expit
 
-from ._mlp_numba import ACTIVATION_CODES
+from ._mlp_compiled import ACTIVATION_CODES
 from .backprop import activate, activation_derivative, l2_penalty
 
 __all__ = ["Workspace", "forward_into", "output_loss_into", "backprop_into",
@@ -55,7 +55,7 @@ class Workspace:
     sizes : sequence of int
         Width of every layer, input and output included.
     compiled : module or None
-        The compiled loops (:func:`ebantenna.ml._mlp_numba.compiled_kernels`), or None for
+        The compiled loops (:func:`ebantenna.ml._mlp_compiled.compiled_kernels`), or None for
         NumPy calls only; both give the same bits.
 
     Examples

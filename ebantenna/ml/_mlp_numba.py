@@ -2,10 +2,11 @@
 one entry at a time (private).
 
 Used only by :mod:`ebantenna.ml._backprop_engine` and :class:`ebantenna.ml.optimizers.Adam`,
-through :func:`compiled_kernels`, when numba is installed and these loops compile (``IMPORT_ERROR``
-says why not); otherwise those steps run as NumPy calls. The matrix products, ``tanh``, ``exp``
-and ``log`` stay NumPy's on both paths; what is compiled is the arithmetic around them, which
-NumPy does in several passes over the arrays, each pass one NumPy call:
+through :func:`ebantenna.ml._mlp_compiled.compiled_kernels`, when numba is installed and these
+loops compile (``IMPORT_ERROR`` says why not); otherwise those steps run as NumPy calls. The
+matrix products, ``tanh``, ``exp`` and ``log`` stay NumPy's on both paths; what is compiled is
+the arithmetic around them, which NumPy does in several passes over the arrays, each pass one
+NumPy call:
 
 * every number is computed by the same IEEE operations in the same order as the NumPy path:
   Adam's ``m b_1 + g (1 - b_1)``, ``v b_2 + (g (1 - b_2)) g`` and
@@ -23,12 +24,7 @@ The tests hold both paths equal bit for bit.
 
 from __future__ import annotations
 
-import functools
-import sys
-
 import numpy as np
-
-from ._engine_choice import EngineStatus, load_compiled, use_compiled
 
 try:
     import numba
@@ -38,24 +34,19 @@ except ImportError as exc:  # not installed, or not working with this NumPy
 else:
     IMPORT_ERROR = ""
 
-__all__ = ["ACTIVATION_CODES", "adam_step", "add_scaled", "derivative_and_bias_gradient",
-           "add_bias", "subtract_row_max", "softmax_gradient", "compiled_kernels",
-           "IMPORT_ERROR"]
+__all__ = ["adam_step", "add_scaled", "derivative_and_bias_gradient", "add_bias",
+           "subtract_row_max", "softmax_gradient", "smoke_test", "IMPORT_ERROR"]
 
 
 def _plain(function):
     """Without numba the loops stay Python functions (this module still imports, and nothing
-    uses it: :func:`compiled_kernels` returns None)."""
+    uses it: :func:`~ebantenna.ml._mlp_compiled.compiled_kernels` returns None)."""
     return function
 
 
 # error_model="numpy": a division by zero gives inf or NaN as NumPy's does, with no test per
 # division, which lets LLVM vectorise the loops (the IEEE operations stay the same)
 _jit = numba.njit(cache=True, error_model="numpy") if numba is not None else _plain
-
-#: The activations' codes in :func:`derivative_and_bias_gradient`.
-ACTIVATION_CODES = {"identity": 0, "tanh": 1, "logistic": 2, "relu": 3}
-
 
 @_jit
 def adam_step(p, g, m, v, beta_1, beta_2, one_minus_beta_1, one_minus_beta_2, lr, epsilon):
@@ -82,10 +73,10 @@ def add_scaled(out, W, scale):
 @_jit
 def derivative_and_bias_gradient(code, a, delta, bias_grad, with_sums):
     """``delta`` multiplied in place by the activation's derivative written with its output
-    ``a`` (``code`` from :data:`ACTIVATION_CODES`), then, if ``with_sums``, ``bias_grad`` = its
-    column sums, each row added after the other from the first, as NumPy adds the rows of an
-    array of several columns (a single column it sums pairwise, as a contiguous vector: that
-    sum is left to NumPy)."""
+    ``a`` (``code`` from :data:`ebantenna.ml._mlp_compiled.ACTIVATION_CODES`), then, if
+    ``with_sums``, ``bias_grad`` = its column sums, each row added after the other from the
+    first, as NumPy adds the rows of an array of several columns (a single column it sums
+    pairwise, as a contiguous vector: that sum is left to NumPy)."""
     rows, cols = delta.shape
     for i in range(rows):
         if code == 1:
@@ -142,7 +133,7 @@ def softmax_gradient(prob, total, Y, n):
             prob[i, j] = (prob[i, j] / total[i, 0] - Y[i, j]) / n
 
 
-def _smoke_test() -> None:
+def smoke_test() -> None:
     """Compile (or load) the loops and check one known value of each."""
     p, g, m, v = np.ones(2), np.full(2, 3.0), np.zeros(2), np.zeros(2)
     adam_step(p, g, m, v, 0.9, 0.999, 0.1, 0.001, 0.5, 0.0)
@@ -154,45 +145,3 @@ def _smoke_test() -> None:
                 and np.array_equal(grad.ravel(), [1.5, 2.5]) and np.array_equal(bias, [1.5]))
     if not expected:
         raise RuntimeError("the compiled MLP loops computed a known step wrongly")
-
-
-@functools.cache
-def _status() -> EngineStatus:
-    """Compile the loops once per process; say once why not."""
-    return load_compiled(
-        "compiled MLP loops",
-        "the MLP's elementwise steps run as NumPy calls (the same numbers, slower)",
-        _import_and_check,
-    )
-
-
-def _import_and_check() -> None:
-    if IMPORT_ERROR:
-        raise ImportError(IMPORT_ERROR)
-    _smoke_test()
-
-
-def compiled_kernels(engine: str | None = None):
-    """This module when its loops are to run, else None.
-
-    Parameters
-    ----------
-    engine : {'auto', 'numpy', 'compiled'} or None
-        None reads the environment variable ``EBANTENNA_ENGINE`` (default ``'auto'``), which
-        chooses the SMO engine too: the compiled loops when numba works, NumPy otherwise.
-
-    Raises
-    ------
-    ValueError
-        For another value.
-    RuntimeError
-        For ``'compiled'`` when numba is missing or fails (the reason in the message).
-
-    Examples
-    --------
-    >>> compiled_kernels("numpy") is None
-    True
-    """
-    if use_compiled(engine, _status, "compiled MLP loops"):
-        return sys.modules[__name__]
-    return None

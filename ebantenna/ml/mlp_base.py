@@ -31,7 +31,7 @@ from sklearn.utils.validation import check_is_fitted
 from .._budget import check_allocation
 from .._validate import check_python_number, check_real, describe
 from ._backprop_engine import Workspace, loss_and_gradients_into
-from ._mlp_numba import compiled_kernels
+from ._mlp_compiled import compiled_kernels
 from .backprop import ACTIVATIONS, glorot_uniform, loss_and_gradients, pack, unpack
 from .fitted import INPUT_ATTRIBUTES, FittedAttribute
 from .optimizers import Adam, Momentum, scg_init, scg_step

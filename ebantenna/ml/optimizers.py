@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._mlp_numba import compiled_kernels
+from ._mlp_compiled import compiled_kernels
 
 __all__ = ["Momentum", "Adam", "SCGState", "scg_step", "scg_init"]
 

@@ -1,13 +1,15 @@
 """The compiled loops of the MLP (numba, optional) against its NumPy path: the same bits."""
 
 import math
+import subprocess
+import sys
 import warnings
 
 import numpy as np
 import pytest
 from sklearn.exceptions import ConvergenceWarning
 
-from ebantenna.ml import MLPClassifier, MLPRegressor, _mlp_numba
+from ebantenna.ml import MLPClassifier, MLPRegressor, _mlp_compiled, _mlp_numba
 from ebantenna.ml._backprop_engine import Workspace, output_loss_into
 from ebantenna.ml._engine_choice import EngineStatus
 from ebantenna.ml.optimizers import Adam
@@ -47,7 +49,7 @@ def test_compiled_adam_step_equals_numpy_bit_for_bit(monkeypatch):
 def test_adam_takes_the_compiled_loop_on_contiguous_arrays_only(monkeypatch):
     """A 2-D C-ordered array goes through the loop as a flat view, a transposed one through
     NumPy calls; both land on the NumPy path's numbers."""
-    if _mlp_numba.compiled_kernels() is None:
+    if _mlp_compiled.compiled_kernels() is None:
         pytest.skip("numba is not available here")
     rng = np.random.default_rng(4)
     start = [rng.normal(size=(6, 5)), rng.normal(size=(5, 6)).T]
@@ -69,7 +71,7 @@ def test_adam_takes_the_compiled_loop_on_contiguous_arrays_only(monkeypatch):
 def test_fits_on_both_paths_are_bit_identical(monkeypatch, solver, activation):
     """A whole fit, with mini-batches of two sizes (the last one shorter): the same weights and
     the same loss curve whichever path ran."""
-    if _mlp_numba.compiled_kernels() is None:
+    if _mlp_compiled.compiled_kernels() is None:
         pytest.skip("numba is not available here")
     rng = np.random.default_rng(5)
     X = rng.normal(size=(70, 6))
@@ -93,7 +95,7 @@ def test_fits_on_both_paths_are_bit_identical(monkeypatch, solver, activation):
 def test_regressor_fits_on_both_paths_are_bit_identical(monkeypatch, solver, hidden, outputs):
     """Regression, one output or two, a hidden layer of one unit: layers of one column, whose
     bias gradient NumPy sums pairwise, as well as wider ones."""
-    if _mlp_numba.compiled_kernels() is None:
+    if _mlp_compiled.compiled_kernels() is None:
         pytest.skip("numba is not available here")
     rng = np.random.default_rng(6)
     X = rng.normal(size=(50, 3))
@@ -112,15 +114,15 @@ def test_regressor_fits_on_both_paths_are_bit_identical(monkeypatch, solver, hid
 
 
 def test_engine_choice(monkeypatch):
-    assert _mlp_numba.compiled_kernels("numpy") is None
+    assert _mlp_compiled.compiled_kernels("numpy") is None
     with pytest.raises(ValueError, match="EBANTENNA_ENGINE must be one of"):
         monkeypatch.setenv(ENGINE, "fast")
-        _mlp_numba.compiled_kernels()
+        _mlp_compiled.compiled_kernels()
     missing = EngineStatus(False, "numba is not installed", math.nan)
-    monkeypatch.setattr(_mlp_numba, "_status", lambda: missing)
-    assert _mlp_numba.compiled_kernels("auto") is None
+    monkeypatch.setattr(_mlp_compiled, "_status", lambda: missing)
+    assert _mlp_compiled.compiled_kernels("auto") is None
     with pytest.raises(RuntimeError, match="numba is not installed"):
-        _mlp_numba.compiled_kernels("compiled")
+        _mlp_compiled.compiled_kernels("compiled")
 
 
 @pytest.mark.parametrize("value", [np.inf, -np.inf, np.nan, 1e308])
@@ -141,3 +143,11 @@ def test_compiled_softmax_matches_numpy_on_extreme_logits(value):
     (loss_a, delta_a), (loss_b, delta_b) = results
     assert loss_a == loss_b or (np.isnan(loss_a) and np.isnan(loss_b))
     assert np.array_equal(delta_a, delta_b, equal_nan=True)
+
+
+def test_importing_the_estimators_does_not_import_numba():
+    # numba is imported the first time a compiled loop is asked for, not on `import
+    # ebantenna.ml` (about a second of start-up when the fast extra is installed)
+    code = "import sys, ebantenna.ml; print('numba' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"

@@ -11,6 +11,7 @@ instance a numba release that does not support the installed NumPy).
 
 from __future__ import annotations
 
+import importlib
 import importlib.util
 import logging
 import os
@@ -74,9 +75,9 @@ def requested_engine(engine: str | None) -> str:
     return engine
 
 
-def load_compiled(what: str, fallback: str, import_and_check) -> EngineStatus:
-    """Run ``import_and_check()`` (import numba, compile or load the loops, check a known
-    answer; it raises on any failure) and time it; say once why not, when it fails.
+def load_compiled(what: str, fallback: str, module: str, check) -> EngineStatus:
+    """Import the compiled loops' module (which imports numba and compiles or loads the loops),
+    run ``check`` on it and time both; say once why not, when any of it fails.
 
     Parameters
     ----------
@@ -84,8 +85,11 @@ def load_compiled(what: str, fallback: str, import_and_check) -> EngineStatus:
         The compiled twin's name in the messages, e.g. ``'compiled SMO engine'``.
     fallback : str
         What runs instead, e.g. ``'SMO runs on the NumPy engines (...)'``.
-    import_and_check : callable
-        No arguments; raises when the compiled loops cannot be used.
+    module : str
+        The module of the loops, relative to :mod:`ebantenna.ml` (e.g. ``'_smo_numba'``); its
+        ``IMPORT_ERROR`` says why numba did not import there ('' when it did).
+    check : callable
+        Called with that module; raises when its loops give a known answer wrongly.
     """
     start = time.perf_counter()
     if importlib.util.find_spec("numba") is None:
@@ -94,7 +98,10 @@ def load_compiled(what: str, fallback: str, import_and_check) -> EngineStatus:
         logger.info(reason)
         return EngineStatus(False, reason, np.nan)
     try:
-        import_and_check()
+        loops = importlib.import_module(f"{__package__}.{module}")
+        if loops.IMPORT_ERROR:
+            raise ImportError(loops.IMPORT_ERROR)
+        check(loops)
     except Exception as exc:  # numba is installed but cannot build the loops here
         reason = (f"numba is installed but the {what} failed with NumPy {np.__version__} "
                   f"({type(exc).__name__}: {exc}): {fallback}")

@@ -24,16 +24,9 @@ def _status() -> EngineStatus:
     return load_compiled(
         "compiled MLP loops",
         "the MLP's elementwise steps run as NumPy calls (the same numbers, slower)",
-        _import_and_check,
+        "_mlp_numba",
+        lambda loops: loops.smoke_test(),
     )
-
-
-def _import_and_check() -> None:
-    from . import _mlp_numba
-
-    if _mlp_numba.IMPORT_ERROR:
-        raise ImportError(_mlp_numba.IMPORT_ERROR)
-    _mlp_numba.smoke_test()
 
 
 def compiled_kernels(engine: str | None = None):

@@ -46,16 +46,9 @@ def engine_status() -> EngineStatus:
     return load_compiled(
         "compiled SMO engine",
         "SMO runs on the NumPy engines (the same numbers, slower on small problems)",
-        _import_and_check,
+        "_smo_numba",
+        _smoke_test,
     )
-
-
-def _import_and_check() -> None:
-    from . import _smo_numba
-
-    if _smo_numba.IMPORT_ERROR:
-        raise ImportError(_smo_numba.IMPORT_ERROR)
-    _smoke_test(_smo_numba)
 
 
 def _smoke_test(module) -> None:

@@ -238,8 +238,9 @@ class Kernel:
                 (X[start:stop] @ Y[first:].T).toarray(out=product)
             else:
                 np.matmul(X[start:stop], Y[first:].T, out=product)
-            self._apply_to_strip(product, out, (start, first), direct, scratch, sums,
-                                 (X, Y, xn, yn, sparse and center))
+            if not (direct and self.name == "linear"):  # a linear kernel's products are in out
+                self._apply_to_strip(product, out, (start, first), direct, scratch, sums,
+                                     (X, Y, xn, yn, sparse and center))
             if same and stop < X.shape[0]:
                 out[stop:, start:stop] = out[start:stop, stop:].T
         if same and self.name == "rbf":

@@ -68,6 +68,32 @@ def test_ml_speed_parts_count_the_solver_updates_and_restore_what_they_clock():
         assert p["share"] == p["seconds"] / (2.0 if p["part"].startswith("SVC") else 4.0)
     products = rows["MLP adam, 1 BLAS thread: gathers and the two 64x8x53 products"]
     assert "3 mini-batches" in products["note"]
+    mlp = [p for p in parts if p["part"].startswith("MLP")]
+    assert mlp[-1]["part"].endswith("the three parts above together")
+    assert mlp[-1]["seconds"] == sum(p["seconds"] for p in mlp[:-1])
+
+
+def test_small_set_parts_clock_the_compiled_fits_and_restore_what_they_clock():
+    from ebantenna.bench import ml_speed
+    from ebantenna.ml import smo as smo_module
+    from ebantenna.ml.kernels import Kernel
+
+    rows = [{"task": task, "data": "iris 112x4", "engine": engine, "sklearn_seconds": 2.0}
+            for task in ml_speed.SMALL_CASES for engine in ("numpy", "compiled")]
+    gram, loop = Kernel.gram, smo_module.run_compiled
+    parts = ml_speed.small_set_parts(rows, repeat=1)
+    assert Kernel.gram is gram and smo_module.run_compiled is loop
+    if "compiled" not in ml_speed.engines():
+        assert parts == []  # nothing to clock without numba
+        return
+    # one part per compiled row, each share over that row's scikit-learn time
+    assert [p["part"] for p in parts] == [
+        f"{task}, iris: kernel entries + compiled loop" for task in ml_speed.SMALL_CASES]
+    for p in parts:
+        kernel, loop_share = (float(w.split()[1]) for w in
+                              p["note"].split(", ")[:2])
+        assert p["seconds"] > 0 and p["share"] == p["seconds"] / 2.0
+        assert abs(kernel + loop_share - p["share"]) <= 0.011  # two shares rounded to 0.01
 
 
 def test_clocked_restores_the_attribute_when_the_call_raises():

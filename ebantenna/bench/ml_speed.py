@@ -91,8 +91,8 @@ from ebantenna.ml.smo import ENGINE_VARIABLE, engine_status
 from ebantenna.report import text_table
 
 __all__ = ["spectra_like", "SMALL_SETS", "SMALL_CASES", "small_set", "engines", "on_engine", "run",
-           "compare", "svc_rows", "small_set_rows", "small_set_parts", "engine_rows", "mlp_rows",
-           "where_time_goes", "to_text", "main"]
+           "compare", "svc_rows", "small_set_rows", "small_set_parts", "engine_rows",
+           "sklearn_adam", "mlp_rows", "where_time_goes", "to_text", "main"]
 
 
 def spectra_like(n, d, k, seed):
@@ -181,7 +181,8 @@ def run(quick: bool = False, repeat: int = 5) -> dict:
         mlp = mlp_rows(Xtr, ytr, acc, repeat, epochs)
         adam = next(r for r in mlp if r["task"] == ADAM_ONE_THREAD)
         parts = where_time_goes(Xtr, ytr, svc[0]["sklearn_seconds"], adam["sklearn_seconds"],
-                                epochs) + small_set_parts(small)
+                                epochs, adam_fit=sklearn_adam(Xtr, ytr, epochs),
+                                repeat=repeat) + small_set_parts(small)
     return {"rows": svc + small + mlp, "parts": parts, "engine": engine}
 
 
@@ -361,13 +362,25 @@ def engine_rows() -> list[dict]:
              "seconds": status.load_seconds, "note": "loaded from numba's cache if it was there"}]
 
 
+def _mlp_common(epochs: int) -> dict:
+    """The network and training length both sides of every MLP row share."""
+    return dict(hidden_layer_sizes=(53,), activation="tanh", max_iter=epochs, tol=0.0,
+                n_iter_no_change=10**6, random_state=0, alpha=1e-4)
+
+
+def sklearn_adam(X, y, epochs: int):
+    """A function that fits scikit-learn's MLP of :data:`ADAM_ONE_THREAD` on one BLAS thread
+    (Adam, mini-batches of 200) and returns it."""
+    return lambda: _on_one_thread(SkMLP(solver="adam", batch_size=200, **_mlp_common(epochs)),
+                                  X, y)
+
+
 def mlp_rows(X, y, score, repeat: int, epochs: int) -> list[dict]:
     """Our ``MLPClassifier`` against scikit-learn's with the same network, solver and epochs:
     full-batch gradient descent, Adam (also with both sides on one BLAS thread), SGD with
     scikit-learn's 'invscaling' schedule and L-BFGS."""
     n = len(X)
-    common = dict(hidden_layer_sizes=(53,), activation="tanh", max_iter=epochs, tol=0.0,
-                  n_iter_no_change=10**6, random_state=0, alpha=1e-4)
+    common = _mlp_common(epochs)
     pairs = [
         (f"MLP 53 tanh, full-batch gd, {epochs} epochs",
          lambda: MLPClassifier(solver="gd", learning_rate_init=0.1, **common).fit(X, y),
@@ -378,7 +391,7 @@ def mlp_rows(X, y, score, repeat: int, epochs: int) -> list[dict]:
          lambda: SkMLP(solver="adam", batch_size=200, **common).fit(X, y)),
         (ADAM_ONE_THREAD,
          lambda: _on_one_thread(MLPClassifier(solver="adam", batch_size=200, **common), X, y),
-         lambda: _on_one_thread(SkMLP(solver="adam", batch_size=200, **common), X, y)),
+         sklearn_adam(X, y, epochs)),
         (f"MLP 53 tanh, sgd invscaling batch 200, {epochs} epochs",
          lambda: MLPClassifier(solver="sgd", batch_size=200, learning_rate="invscaling",
                                learning_rate_init=0.5, **common).fit(X, y),
@@ -394,7 +407,7 @@ def mlp_rows(X, y, score, repeat: int, epochs: int) -> list[dict]:
 
 
 def where_time_goes(X, y, svc_seconds: float, adam_seconds: float, epochs: int,
-                    batch_size: int = 200) -> list[dict]:
+                    batch_size: int = 200, adam_fit=None, repeat: int = 2) -> list[dict]:
     """Split our fits into their parts, each as a share of scikit-learn's fit time.
 
     ``SVC``: one fit per mode with :meth:`Kernel.gram` (every kernel entry) and the SMO solver
@@ -404,6 +417,9 @@ def where_time_goes(X, y, svc_seconds: float, adam_seconds: float, epochs: int,
     with the two ``batch x n_features x n_hidden`` products, Adam's update of the parameters (as
     many steps as mini-batches), and the hidden layer's tanh with its derivative. A target ratio
     below the sum of these shares cannot be met by a loop that keeps the same arithmetic.
+    With ``adam_fit`` (scikit-learn's fit, :func:`sklearn_adam`) each MLP part is timed
+    alternately with it, as :func:`compare` times a row, and its share is the median of the
+    ratios within a repetition, which load that comes and goes moves least.
 
     Parameters
     ----------
@@ -414,6 +430,10 @@ def where_time_goes(X, y, svc_seconds: float, adam_seconds: float, epochs: int,
         thread).
     epochs, batch_size : int
         The MLP's epochs and mini-batch size.
+    adam_fit : callable, optional
+        scikit-learn's Adam fit on one BLAS thread, to time each MLP part against.
+    repeat : int
+        Timings of each MLP part (alternated with ``adam_fit`` when it is given).
 
     Returns
     -------
@@ -422,7 +442,7 @@ def where_time_goes(X, y, svc_seconds: float, adam_seconds: float, epochs: int,
         also ``updates``, the solver's updates over all pairs of classes.
     """
     return (_svc_parts(X, y, svc_seconds)
-            + _mlp_parts(X, y, adam_seconds, epochs, batch_size))
+            + _mlp_parts(X, y, adam_seconds, epochs, batch_size, adam_fit, repeat))
 
 
 def _svc_parts(X, y, svc_seconds: float) -> list[dict]:
@@ -453,9 +473,11 @@ def _svc_parts(X, y, svc_seconds: float) -> list[dict]:
     return parts
 
 
-def _mlp_parts(X, y, adam_seconds: float, epochs: int, batch_size: int) -> list[dict]:
+def _mlp_parts(X, y, adam_seconds: float, epochs: int, batch_size: int, adam_fit=None,
+               repeat: int = 2) -> list[dict]:
     """The Adam fit's work shared with scikit-learn's, each part timed alone on one BLAS
-    thread, as shares of ``adam_seconds``."""
+    thread, as shares of ``adam_seconds`` (or, with ``adam_fit``, as the median ratio to it
+    timed alternately)."""
     parts = []
     rng = np.random.default_rng(0)
     n, d = X.shape
@@ -496,12 +518,17 @@ def _mlp_parts(X, y, adam_seconds: float, epochs: int, batch_size: int) -> list[
                  f"{steps} mini-batches, the same BLAS calls on both sides"),
                 ("Adam's update of the parameters", adam, f"{steps} steps"),
                 ("tanh and its derivative in the hidden layer", tanh, f"{steps} mini-batches")):
-            seconds = best_time(fn, 2)[0]
+            if adam_fit is None:
+                seconds = best_time(fn, repeat)[0]
+                share = seconds / adam_seconds
+            else:
+                row = compare(part, fn, adam_fit, lambda model: 0.0, repeat)
+                seconds, share = row["ours_seconds"], row["ratio_median"]
             parts.append({"part": f"MLP adam, 1 BLAS thread: {part}", "seconds": seconds,
-                          "share": seconds / adam_seconds, "note": note})
-    together = sum(p["seconds"] for p in parts)
+                          "share": share, "note": note})
     parts.append({"part": "MLP adam, 1 BLAS thread: the three parts above together",
-                  "seconds": together, "share": together / adam_seconds,
+                  "seconds": sum(p["seconds"] for p in parts),
+                  "share": sum(p["share"] for p in parts),
                   "note": "the lowest ratio with scikit-learn's arithmetic (the output loss "
                           "comes on top)"})
     return parts

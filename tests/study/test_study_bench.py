@@ -71,6 +71,20 @@ def test_ml_speed_parts_count_the_solver_updates_and_restore_what_they_clock():
     mlp = [p for p in parts if p["part"].startswith("MLP")]
     assert mlp[-1]["part"].endswith("the three parts above together")
     assert mlp[-1]["seconds"] == sum(p["seconds"] for p in mlp[:-1])
+    assert mlp[-1]["share"] == sum(p["share"] for p in mlp[:-1])
+
+
+def test_ml_speed_mlp_parts_alternate_with_the_fit_they_are_shares_of():
+    from ebantenna.bench import ml_speed
+
+    X, y = ml_speed.spectra_like(150, 8, 3, seed=1)
+    calls = []
+    fit = lambda: calls.append("theirs")  # noqa: E731
+    parts = ml_speed.where_time_goes(X, y, 2.0, 4.0, epochs=1, batch_size=64, adam_fit=fit,
+                                     repeat=3)
+    assert calls == ["theirs"] * 9  # three repetitions for each of the three parts
+    for p in (p for p in parts if p["part"].startswith("MLP")):
+        assert p["share"] > 0 and p["share"] != p["seconds"] / 4.0  # not over adam_seconds
 
 
 def test_small_set_parts_clock_the_compiled_fits_and_restore_what_they_clock():

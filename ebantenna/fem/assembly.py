@@ -88,8 +88,9 @@ def assemble_elements(element_matrices: np.ndarray) -> np.ndarray:
     """Assemble the 4x4 matrices of a chain of elements: the direct stiffness method, as a loop.
 
     Element ``e`` joins nodes ``e`` and ``e + 1``; its local DOFs ``(v1, theta1, v2, theta2)`` are
-    the global DOFs ``2e, 2e + 1, 2e + 2, 2e + 3``. Each of its 16 entries is added where its row
-    and column DOFs meet.
+    the global DOFs ``2e, 2e + 1, 2e + 2, 2e + 3``, that is ``(v_e, theta_e, v_{e+1},
+    theta_{e+1})`` (the local 1 and 2 are the element's two ends, not nodes 1 and 2). Each of
+    its 16 entries is added where its row and column DOFs meet.
 
     Parameters
     ----------
@@ -136,7 +137,9 @@ def assemble(nodes: np.ndarray, probe: Probe, *, sparse: bool = False, engine: s
     engine : {"scatter", "loop"}
         ``"loop"``: the reference, the element matrices written out
         (:func:`~ebantenna.fem.elements.element_stiffness`,
-        :func:`~ebantenna.fem.elements.consistent_mass`) and added by :func:`assemble_elements`.
+        :func:`~ebantenna.fem.elements.consistent_mass`) and added by :func:`assemble_elements`
+        into dense matrices (with ``sparse=True`` a ``ValueError``: the loop is for reading, not
+        for meshes too large to hold densely).
         ``"scatter"`` (default): the engines, the same matrices as polynomials in the element
         length (``ebantenna.fem._element_engine``) added one parity of elements at a time
         (``ebantenna.fem._scatter``), or into sparse matrices; the same result bit for bit.
@@ -154,9 +157,12 @@ def assemble(nodes: np.ndarray, probe: Probe, *, sparse: bool = False, engine: s
     True
     """
     check_choice("engine", engine, ASSEMBLY_ENGINES)
+    if engine == "loop" and sparse:
+        raise ValueError("engine='loop' builds dense matrices; use sparse=False with it, or "
+                         "engine='scatter' for sparse ones")
     lengths = np.diff(nodes)
     EI, rhoA = probe.flexural_rigidity, probe.mass_per_length
-    if engine == "loop" and not sparse:
+    if engine == "loop":
         Ke, Me = element_stiffness(EI, lengths), consistent_mass(rhoA, lengths)
         return assemble_elements(Ke), assemble_elements(Me)
     Ke, Me = stiffness_polynomial(EI, lengths), mass_polynomial(rhoA, lengths)

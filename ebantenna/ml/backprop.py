@@ -1,29 +1,30 @@
 """The multilayer perceptron as the textbook writes it: forward pass, output loss, backpropagation.
 
-Plain functions on lists of arrays: ``coefs[l]`` is the weight matrix of layer ``l``, of shape
-(fan_in, fan_out), and ``intercepts[l]`` its bias vector. This module is the **reference**: read
-it top to bottom to follow one gradient evaluation, or call its functions to take one step by
-hand. With :math:`a_0 = X` and layers :math:`l = 1, \\dots, L`,
+Plain functions on lists of arrays: with the layers numbered :math:`l = 1, \\dots, N`,
+``coefs[l - 1]`` is the weight matrix :math:`W_l` of layer :math:`l`, of shape (fan_in,
+fan_out), and ``intercepts[l - 1]`` its bias vector :math:`b_l` (Python counts from 0). This
+module is the **reference**: read it top to bottom to follow one gradient evaluation, or call its
+functions to take one step by hand. With :math:`a_0 = X`,
 
 .. math::
 
-   z_l = a_{l-1} W_l + b_l, \\qquad a_l = f(z_l) \\ (l < L), \\qquad
-   \\delta_L = \\frac{\\partial \\ell}{\\partial z_L}, \\qquad
+   z_l = a_{l-1} W_l + b_l, \\qquad a_l = f(z_l) \\ (l < N), \\qquad
+   \\delta_N = \\frac{\\partial \\ell}{\\partial z_N}, \\qquad
    \\delta_{l-1} = (\\delta_l W_l^T) \\odot f'(z_{l-1}),
 
    \\frac{\\partial L}{\\partial W_l} = a_{l-1}^T \\delta_l + \\frac{\\alpha}{n} W_l, \\qquad
    \\frac{\\partial L}{\\partial b_l} = \\sum_{\\text{samples}} \\delta_l.
 
-:math:`\\ell` is the loss *averaged* over the ``n`` samples, so :math:`\\delta_L` already holds
-the factor :math:`1/n`: with the per-sample deltas :math:`\\delta^{(i)}` of the textbooks,
-:math:`a^T \\delta = \\frac{1}{n}\\sum_i a^{(i)T} \\delta^{(i)}` and :math:`\\sum \\delta` is
-their mean.
+:math:`\\ell` is the loss *averaged* over the ``n`` samples and :math:`L` that loss with the L2
+penalty, so :math:`\\delta_N` already holds the factor :math:`1/n`: with the per-sample deltas
+:math:`\\delta^{(i)}` of the textbooks, :math:`a^T \\delta = \\frac{1}{n}\\sum_i a^{(i)T}
+\\delta^{(i)}` and :math:`\\sum \\delta` is their mean.
 
 The hidden layers apply one activation; the output layer applies ``'softmax'`` (several classes,
 cross-entropy), ``'logistic'`` (two classes or several labels, cross-entropy) or ``'identity'``
 (regression, half the mean squared error over all entries). Every loss is returned with its exact
 gradient with respect to the output pre-activations (the derivative of the output nonlinearity
-cancels against that of the loss: :math:`\\delta_L = (\\hat y - y)/n`, divided by the number of
+cancels against that of the loss: :math:`\\delta_N = (\\hat y - y)/n`, divided by the number of
 outputs as well for the squared error).
 
 The estimators of :mod:`ebantenna.ml.mlp` train with an **engine** that does the same arithmetic in
@@ -35,6 +36,8 @@ Examples
 --------
 One gradient evaluation of a network with one hidden layer, by hand:
 
+>>> import numpy as np
+>>> from ebantenna.ml.backprop import glorot_uniform, loss_and_gradients
 >>> rng = np.random.default_rng(0)
 >>> X, Y = rng.normal(size=(4, 3)), np.eye(2)[[0, 1, 1, 0]]
 >>> coefs, intercepts = glorot_uniform([3, 5, 2], "tanh", rng)
@@ -182,7 +185,7 @@ def forward(X, coefs, intercepts, activation: str) -> list[np.ndarray]:
     Returns
     -------
     list of ndarray
-        ``[X, a_1, ..., a_{L-1}, z_L]``.
+        ``[X, a_1, ..., a_{N-1}, z_N]``.
 
     Examples
     --------
@@ -304,7 +307,7 @@ def backprop(acts, delta, coefs, activation: str, alpha_per_sample: float):
     n_layers = len(coefs)
     coef_grads, intercept_grads = [None] * n_layers, [None] * n_layers
     for layer in reversed(range(n_layers)):
-        # acts[layer] is the input a_{l-1} of this layer: acts[0] is X
+        # layer = l - 1: coefs[layer] is W_l, acts[layer] is a_{l-1} (acts[0] is X)
         coef_grads[layer] = acts[layer].T @ delta + coefs[layer] * alpha_per_sample
         intercept_grads[layer] = delta.sum(axis=0)
         if layer > 0:

@@ -7,10 +7,11 @@ conjugate gradient in the form of Netlab's ``scg.m`` (I. Nabney, *Netlab: Algori
 Recognition*, Springer 2002), a variant of M. F. Møller's (1993) algorithm.
 
 Netlab's variant differs from Møller's published one in how the Levenberg-Marquardt scale
-:math:`\\lambda` is adapted (multiplied by 4 after a poor step and halved after a good one, kept
-in :math:`[10^{-15}, 10^{100}]`, where Møller raises it by an amount computed from the step) and
-in its defaults, :math:`\\sigma_0 = 10^{-4}` and :math:`\\lambda_0 = 1`; MATLAB's ``trainscg``
-uses :math:`\\sigma = 5\\cdot 10^{-5}` and :math:`\\lambda = 5\\cdot 10^{-7}`. Both are settable.
+:math:`\\lambda` (``beta`` in the code, ``lambda0`` its starting value) is adapted (multiplied by
+4 after a poor step and halved after a good one, kept in :math:`[10^{-15}, 10^{100}]`, where
+Møller raises it by an amount computed from the step) and in its defaults,
+:math:`\\sigma_0 = 10^{-4}` and :math:`\\lambda_0 = 1`; MATLAB's ``trainscg`` uses
+:math:`\\sigma = 5\\cdot 10^{-5}` and :math:`\\lambda = 5\\cdot 10^{-7}`. Both are settable.
 """
 
 from __future__ import annotations
@@ -28,8 +29,9 @@ __all__ = ["Momentum", "Adam", "SCGState", "scg_step", "scg_init"]
 class Momentum:
     """Stochastic gradient descent with (optionally Nesterov) momentum, as scikit-learn's.
 
-    ``update = momentum * velocity - lr * grad``; with Nesterov the step taken is
-    ``momentum * update - lr * grad``. With ``momentum=0`` both are plain gradient descent.
+    Each update first sets the velocity ``v <- momentum * v - lr * grad``; the step added to
+    the parameters is then ``v`` itself, or with Nesterov ``momentum * v - lr * grad`` (with
+    the new ``v``). With ``momentum=0`` both are plain gradient descent.
 
     Examples
     --------
@@ -67,6 +69,21 @@ class Momentum:
 class Adam:
     """Adam (Kingma and Ba, 2015) with scikit-learn's bias-corrected learning rate.
 
+    At step :math:`t` (counted from 1), for each parameter array :math:`w` and its gradient
+    :math:`g`:
+
+    .. math::
+
+        m &\\leftarrow \\beta_1 m + (1 - \\beta_1) g, \\qquad
+        v \\leftarrow \\beta_2 v + (1 - \\beta_2) g^2, \\\\
+        \\mathrm{lr}_t &= \\mathrm{lr} \\, \\sqrt{1 - \\beta_2^t} / (1 - \\beta_1^t), \\qquad
+        w \\leftarrow w - \\mathrm{lr}_t \\, m / (\\sqrt{v} + \\epsilon).
+
+    This is the "efficient" ordering of Kingma and Ba's section 2, which scikit-learn uses: the
+    bias corrections of :math:`m` and :math:`v` are folded into :math:`\\mathrm{lr}_t`, so
+    :math:`\\epsilon` is added to :math:`\\sqrt{v}` rather than to :math:`\\sqrt{\\hat v}` of their
+    Algorithm 1 (it acts as :math:`\\epsilon / \\sqrt{1 - \\beta_2^t}` there).
+
     ``update`` runs the same operations as NumPy calls, or, on C-ordered float64 arrays when
     numba is installed (``pip install ebantenna[fast]``; ``EBANTENNA_ENGINE=numpy`` turns it
     off), as one compiled loop per array: the same numbers, one pass over the memory instead of
@@ -97,16 +114,16 @@ class Adam:
     def update(self, params, grads) -> None:
         """Move ``params`` in place."""
         self.t += 1
-        lr = (self.learning_rate * np.sqrt(1 - self.beta_2**self.t)
+        lr_t = (self.learning_rate * np.sqrt(1 - self.beta_2**self.t)
               / (1 - self.beta_1**self.t))
         for p, g, m, v, step, tmp in zip(params, grads, self.ms, self.vs, self._steps,
                                          self._scratch, strict=True):
             if self._compiled is not None and _flat_views(p, g):
                 self._compiled.adam_step(p.reshape(-1), g.reshape(-1), m.reshape(-1),
                                          v.reshape(-1), self.beta_1, self.beta_2,
-                                         1 - self.beta_1, 1 - self.beta_2, lr, self.epsilon)
+                                         1 - self.beta_1, 1 - self.beta_2, lr_t, self.epsilon)
                 continue
-            # the same operations as p -= lr m / (sqrt(v) + eps), in place on two temporaries
+            # the same operations as p -= lr_t m / (sqrt(v) + eps), in place on two temporaries
             np.multiply(g, 1 - self.beta_1, out=tmp)
             m *= self.beta_1
             m += tmp
@@ -116,7 +133,7 @@ class Adam:
             v += tmp
             np.sqrt(v, out=tmp)
             tmp += self.epsilon
-            np.multiply(m, lr, out=step)
+            np.multiply(m, lr_t, out=step)
             step /= tmp
             p -= step
 
@@ -134,7 +151,7 @@ class SCGState:
     f: float
     grad: np.ndarray
     d: np.ndarray  # search direction
-    beta: float = 1.0  # Levenberg-Marquardt scale (Møller's lambda)
+    beta: float = 1.0  # Levenberg-Marquardt scale: lambda of the module text (Møller's)
     success: bool = True
     n_success: int = 0
     mu: float = 0.0
@@ -155,13 +172,15 @@ def scg_init(w: np.ndarray, fg: Callable[[np.ndarray], tuple[float, np.ndarray]]
 
     Examples
     --------
-    On a quadratic bowl SCG behaves like conjugate gradients: two steps reach the minimum of a
-    two-parameter problem.
+    On a quadratic bowl SCG without damping (``lambda0=0``) behaves like conjugate
+    gradients: two steps reach the minimum of a two-parameter problem (up to the rounding of
+    the finite-difference curvature). With the default ``lambda0=1`` the Levenberg-Marquardt
+    term shortens the first steps, and it takes ten to get as close.
 
     >>> A = np.array([[3.0, 1.0], [1.0, 2.0]])
     >>> fg = lambda w: (0.5 * float(w @ A @ w), A @ w)
-    >>> st = scg_init(np.array([3.0, -4.0]), fg)
-    >>> for _ in range(10):
+    >>> st = scg_init(np.array([3.0, -4.0]), fg, lambda0=0.0)
+    >>> for _ in range(2):
     ...     _ = scg_step(st, fg)
     >>> bool(np.linalg.norm(st.w) < 1e-6)
     True
@@ -179,8 +198,9 @@ def scg_step(state: SCGState, fg, sigma0: float = 1e-4) -> bool:
 
     The curvature along the search direction :math:`d` is estimated by a finite difference of
     gradients, :math:`\gamma = d^T(E'(w + \sigma d) - E'(w)) / \sigma`; a Levenberg–Marquardt term
-    :math:`\beta |d|^2` keeps it positive and is adapted by the ratio :math:`\Delta` of the actual
-    to the predicted decrease, so no line search is needed. Directions follow Polak–Ribière and
+    :math:`\lambda |d|^2` (``beta * kappa`` in the code, their sum ``delta``) keeps it positive,
+    and :math:`\lambda` is adapted by the ratio :math:`\Delta` (``ratio``) of the actual to the
+    predicted decrease, so no line search is needed. Directions follow Polak–Ribière and
     restart at the steepest descent after as many successful steps as there are parameters. This is
     the formulation of Netlab's ``scg`` (Nabney, 2002); ``sigma0`` is its :math:`\sigma_0`.
 

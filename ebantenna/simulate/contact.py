@@ -8,11 +8,13 @@ Three compliances act in series at the contact point:
    ``h = A x^2 + B y^2`` with ``A = 1/(2 max(R1, R2))`` and ``B = 1/(2 min(R1, R2))``; the contact
    area is an ellipse of semi-axes ``a >= b`` and eccentricity ``e = sqrt(1 - b^2/a^2)``, found from
 
-       B/A = ((a/b)^2 E(e) - K(e)) / (K(e) - E(e))                            (Johnson 4.39)
+       B/A = ((a/b)^2 Ee(e) - Ke(e)) / (Ke(e) - Ee(e))                        (Johnson 4.39)
 
-   with ``K``, ``E`` the complete elliptic integrals. Then (Johnson 3.63-3.64, 4.38)
+   with ``Ke``, ``Ee`` the complete elliptic integrals of the first and second kind (Johnson
+   writes them ``K`` and ``E``; here ``E`` is Young's modulus and ``E*`` the contact modulus).
+   Then (Johnson 3.63-3.64, 4.38)
 
-       a^3 (b/a)^2 = 3 P E(e) / (2 pi (A + B) E*),   delta = 3 P K(e) / (2 pi a E*),
+       a^3 (b/a)^2 = 3 P Ee(e) / (2 pi (A + B) E*),   delta = 3 P Ke(e) / (2 pi a E*),
 
    so the approach ``delta`` grows as ``P^(2/3)`` and the stiffness linearised at a preload ``F0``
    is ``k = dP/d delta = 3 F0 / (2 delta(F0))``. For equal radii (``A = B``) the contact is a
@@ -26,10 +28,11 @@ Three compliances act in series at the contact point:
    ring of the tube's mean radius ``Rm``, wall ``t`` and axial width ``w`` under two equal and
    opposite diametral point loads ``P`` (W. C. Young, R. G. Budynas, *Roark's Formulas for Stress
    and Strain*, 7th ed., McGraw-Hill, 2002, table 9.2 case 1, with its corrections for hoop
-   stretch ``alpha = I/(A Rm^2)`` and shear ``beta = F E I/(G A Rm^2)``, ``F = 1.2``):
+   stretch ``alpha = I/(S Rm^2)`` and shear ``beta = F E I/(G S Rm^2)``, ``F = 1.2``; Roark's
+   section area ``A`` is written ``S`` here, where ``A`` is a curvature):
 
        Delta D = (P Rm^3 / (E I)) (K1 pi/4 - 2 K2^2 / pi),
-       K1 = 1 - alpha + beta,  K2 = 1 - alpha,  I = w t^3 / 12.
+       K1 = 1 - alpha + beta,  K2 = 1 - alpha,  I = w t^3 / 12,  S = w t.
 
    *Assumption*: the slice of tube that works as the ring is one outer diameter long
    (``w = 2 R1``), and the far side of the ring is held as by a second point load. The real tube
@@ -49,7 +52,7 @@ Three compliances act in series at the contact point:
 is that law; :meth:`HertzInSeries.piecewise` replaces it by chords between nodes with a proven
 bound on the force's error (the strike integrates the chords exactly,
 :mod:`ebantenna.simulate.unilateral`). ``F(p)`` is convex (``dp/dF`` falls as ``F`` grows), so
-on a chord ``[p_a, p_b]`` of slope ``s`` the chord lies above the law and below both tangents,
+on a chord ``[p_a, p_b]`` of slope ``s`` the law lies below the chord and above both tangents,
 
     0 <= chord(p) - F(p) <= (s - F'(p_a)) (F'(p_b) - s) (p_b - p_a) / (F'(p_b) - F'(p_a)),
 
@@ -133,11 +136,12 @@ def contact_modulus(body1, body2, *, poisson_ratio1=None, poisson_ratio2=None) -
     return 1.0 / ((1 - nu1**2) / E1 + (1 - nu2**2) / E2)
 
 
-def _ratio_of_curvatures(p: float) -> float:
-    """``B/A`` of an elliptical Hertz contact with axis ratio squared ``p = (b/a)^2``, 0 < p < 1."""
-    m = 1.0 - p
-    K, E = spsp.ellipkm1(p), spsp.ellipe(m)
-    return (E / p - K) / (K - E)
+def _ratio_of_curvatures(q: float) -> float:
+    """``B/A`` of an elliptical Hertz contact with axis ratio squared ``q = (b/a)^2``, 0 < q < 1
+    (Johnson 4.39, with ``(a/b)^2 = 1/q``)."""
+    m = 1.0 - q
+    Ke, Ee = spsp.ellipkm1(q), spsp.ellipe(m)
+    return (Ee / q - Ke) / (Ke - Ee)
 
 
 @dataclass(frozen=True)
@@ -178,11 +182,11 @@ class CrossedCylinders:
         A = 1 / (2 * max(self.radius1, self.radius2))
         B = 1 / (2 * min(self.radius1, self.radius2))
         if B / A - 1 <= _CIRCULAR:
-            p = 1.0
+            q = 1.0
         else:
-            # B/A rises from 1 (p -> 1) to infinity (p -> 0); solve in log p for a wide bracket.
+            # B/A rises from 1 (q -> 1) to infinity (q -> 0); solve in log q for a wide bracket.
             target = B / A
-            p = math.exp(
+            q = math.exp(
                 spo.brentq(
                     lambda s: _ratio_of_curvatures(math.exp(s)) - target,
                     -700.0,
@@ -191,26 +195,26 @@ class CrossedCylinders:
                     rtol=4 * np.finfo(float).eps,
                 )
             )
-        object.__setattr__(self, "_p", p)
+        object.__setattr__(self, "_q", q)  # (b/a)^2
         object.__setattr__(self, "_sum", A + B)
 
     @property
     def axis_ratio(self) -> float:
         """``b/a`` of the contact ellipse, dimensionless."""
-        return math.sqrt(self._p)
+        return math.sqrt(self._q)
 
     def semi_axes(self, force: float) -> tuple[float, float]:
         """Semi-axes ``(a, b)`` of the contact ellipse under the normal force ``force`` (N), m."""
         P = check_positive("force", force)
-        E = float(spsp.ellipe(1.0 - self._p))
-        a = (3 * P * E / (2 * math.pi * self._sum * self.modulus * self._p)) ** (1 / 3)
-        return a, a * math.sqrt(self._p)
+        Ee = float(spsp.ellipe(1.0 - self._q))
+        a = (3 * P * Ee / (2 * math.pi * self._sum * self.modulus * self._q)) ** (1 / 3)
+        return a, a * math.sqrt(self._q)
 
     def approach(self, force: float) -> float:
         """Approach ``delta`` of distant points of the two bodies under ``force`` (N), m."""
         a, _ = self.semi_axes(force)
-        K = float(spsp.ellipkm1(self._p))
-        return 3 * float(force) * K / (2 * math.pi * a * self.modulus)
+        Ke = float(spsp.ellipkm1(self._q))
+        return 3 * float(force) * Ke / (2 * math.pi * a * self.modulus)
 
     def force(self, approach) -> np.ndarray | float:
         """Normal force for an approach ``delta`` (m; 0 where ``delta <= 0``: no tension), N."""

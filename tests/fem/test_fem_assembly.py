@@ -28,6 +28,9 @@ def test_assemble_engines_agree_on_a_probe_mesh():
     K_sparse, M_sparse = assemble(nodes, Probe(), sparse=True)
     assert np.array_equal(K, K_loop) and np.array_equal(M, M_loop)
     assert np.array_equal(K, K_sparse.toarray()) and np.array_equal(M, M_sparse.toarray())
+    # the reference loop builds dense matrices: asked for sparse ones it says so by name
+    with pytest.raises(ValueError, match="engine='loop' builds dense matrices"):
+        assemble(nodes, Probe(), sparse=True, engine="loop")
 
 
 def test_scatter_assembles_a_stack_of_meshes_as_one_loop_each():

@@ -51,9 +51,13 @@ classifier, unlike this one, also takes a sparse label indicator matrix).
 The forward pass, the losses and backpropagation are plain functions of
 :mod:`ebantenna.ml.backprop`, written as the textbook writes them; training runs an engine that
 does the same arithmetic in arrays reused from batch to batch, held equal to them bit for bit by
-the tests. The parameters are checked by scikit-learn's own constraint
-mechanism (``_parameter_constraints``), so a bad value raises the error scikit-learn raises, in
-the same words.
+the tests. ``engine='reference'`` trains with those functions themselves (and Adam's NumPy
+update, without the compiled loops of the ``fast`` extra): the same network to the last bit,
+slower, for stepping through the code that actually runs.
+
+The parameters are checked by scikit-learn's own constraint mechanism
+(``_parameter_constraints``), so a bad value raises the error scikit-learn raises, in the same
+words.
 """
 
 from __future__ import annotations
@@ -100,7 +104,9 @@ class MLPClassifier(ClassifierMixin, BaseMLP):
 
     Parameters are those of :class:`sklearn.neural_network.MLPClassifier`, with ``solver`` one of
     'gd', 'sgd', 'adam', 'scg' or 'lbfgs', plus ``sigma0`` and ``lambda0`` of 'scg' (see the
-    module text).
+    module text) and ``engine``: 'auto' (default) trains on the engine, 'reference' with the
+    functions of :mod:`ebantenna.ml.backprop` and NumPy's optimiser steps, the same network to
+    the last bit.
     ``random_state`` seeds a
     :func:`numpy.random.default_rng` (initial weights, shuffling); the validation split of
     ``early_stopping`` is drawn as scikit-learn draws it, the same samples for the same
@@ -261,7 +267,9 @@ class MLPRegressor(RegressorMixin, BaseMLP):
 
     Parameters are those of :class:`sklearn.neural_network.MLPRegressor`, with ``solver`` one of
     'gd', 'sgd', 'adam', 'scg' or 'lbfgs', plus ``sigma0`` and ``lambda0`` of 'scg' (see the
-    module text).
+    module text) and ``engine``: 'auto' (default) trains on the engine, 'reference' with the
+    functions of :mod:`ebantenna.ml.backprop` and NumPy's optimiser steps, the same network to
+    the last bit.
     With several outputs the gradient is the true gradient of the
     reported loss, which is ``1 / n_outputs`` of scikit-learn's (see the module text).
 

@@ -81,6 +81,7 @@ class BaseMLP(BaseEstimator):
         "sigma0": [Interval(Real, 0, None, closed="neither")],
         "lambda0": [Interval(Real, 0, None, closed="neither")],
         "max_fun": [Interval(Integral, 1, None, closed="left")],
+        "engine": [StrOptions({"auto", "reference"})],
     }
 
     #: Attributes that ``fit`` sets on every network (see :mod:`ebantenna.ml.fitted`).
@@ -134,6 +135,7 @@ class BaseMLP(BaseEstimator):
         sigma0=1e-4,
         lambda0=1.0,
         max_fun=15000,
+        engine="auto",
     ):
         self.hidden_layer_sizes = hidden_layer_sizes
         self.activation = activation
@@ -160,6 +162,7 @@ class BaseMLP(BaseEstimator):
         self.sigma0 = sigma0
         self.lambda0 = lambda0
         self.max_fun = max_fun
+        self.engine = engine
 
     #: The real-valued parameters; each must be a finite number (``n_iter_no_change`` may be inf).
     _REAL_PARAMETERS = ("alpha", "learning_rate_init", "power_t", "tol", "momentum",
@@ -203,10 +206,19 @@ class BaseMLP(BaseEstimator):
     def _loss_and_gradients_into(self, X, Y, coefs, intercepts, grads, work) -> float:
         """The training engine's loss, the gradients written into ``grads`` (two lists of arrays)
         and the intermediate arrays into ``work``, a ``Workspace`` of ``X``'s number of rows
-        (:mod:`ebantenna.ml.backprop` holds the reference it equals). The values are checked."""
+        (:mod:`ebantenna.ml.backprop` holds the reference it equals); with ``engine='reference'``
+        the reference's own loss and gradients (``work`` unused, may be None). The values are
+        checked."""
         # Every solver checks that the loss is finite and stops with a clear error when it is
         # not; NumPy's overflow warnings on the way there would only be noise before it.
         with np.errstate(over="ignore", invalid="ignore"):
+            if self.engine == "reference":  # the textbook's functions, the same numbers
+                loss, coef_grads, intercept_grads = loss_and_gradients(
+                    X, Y, coefs, intercepts, self.activation, self.out_activation_, self.alpha)
+                for out, grad in zip((*grads[0], *grads[1]), (*coef_grads, *intercept_grads),
+                                     strict=True):
+                    out[...] = grad
+                return loss
             return loss_and_gradients_into(X, Y, coefs, intercepts, self.activation,
                                            self.out_activation_, self.alpha, grads, work)
 
@@ -214,7 +226,8 @@ class BaseMLP(BaseEstimator):
         """``f(w) -> (loss, gradient)`` at flattened parameters ``w`` on the whole training set,
         for 'lbfgs' and 'scg' (each call returns a gradient array of its own)."""
         shapes = [c.shape for c in self.coefs_]
-        work = Workspace(X.shape[0], [X.shape[1], *(s[1] for s in shapes)], compiled_kernels())
+        work = (None if self.engine == "reference" else
+                Workspace(X.shape[0], [X.shape[1], *(s[1] for s in shapes)], compiled_kernels()))
         grad = np.empty(sum(fan_in * fan_out + fan_out for fan_in, fan_out in shapes))
         grads = unpack(grad, shapes)
 
@@ -431,7 +444,7 @@ class BaseMLP(BaseEstimator):
         opt = getattr(self, "_optimizer", None) if incremental else None
         if opt is None and self.solver == "adam":
             opt = Adam([w], float(self.learning_rate_init), self.beta_1, self.beta_2,
-                       self.epsilon)
+                       self.epsilon, engine=self.engine)
         elif opt is None:
             mom = 0.0 if self.solver == "gd" else float(self.momentum)
             opt = Momentum([w], float(self.learning_rate_init), mom,
@@ -452,7 +465,8 @@ class BaseMLP(BaseEstimator):
         def step(Xb, Yb):
             rows = Xb.shape[0]
             if rows not in workspaces:
-                workspaces[rows] = Workspace(rows, sizes, compiled)
+                workspaces[rows] = (None if self.engine == "reference"
+                                    else Workspace(rows, sizes, compiled))
             loss = self._loss_and_gradients_into(Xb, Yb, self.coefs_, self.intercepts_, grads,
                                                  workspaces[rows])
             opt.update([w], [grad])

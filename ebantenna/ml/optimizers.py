@@ -21,6 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._validate import check_choice
 from ._mlp_compiled import compiled_kernels
 
 __all__ = ["Momentum", "Adam", "SCGState", "scg_step", "scg_init"]
@@ -85,9 +86,9 @@ class Adam:
     Algorithm 1 (it acts as :math:`\\epsilon / \\sqrt{1 - \\beta_2^t}` there).
 
     ``update`` runs the same operations as NumPy calls, or, on C-ordered float64 arrays when
-    numba is installed (``pip install ebantenna[fast]``; ``EBANTENNA_ENGINE=numpy`` turns it
-    off), as one compiled loop per array: the same numbers, one pass over the memory instead of
-    twelve.
+    numba is installed (``pip install ebantenna[fast]``; ``EBANTENNA_ENGINE=numpy`` or
+    ``engine="reference"`` turns it off), as one compiled loop per array: the same numbers, one
+    pass over the memory instead of twelve.
 
     Examples
     --------
@@ -98,7 +99,7 @@ class Adam:
     """
 
     def __init__(self, params, learning_rate: float = 1e-3, beta_1: float = 0.9,
-                 beta_2: float = 0.999, epsilon: float = 1e-8):
+                 beta_2: float = 0.999, epsilon: float = 1e-8, *, engine: str = "auto"):
         self.learning_rate = float(learning_rate)
         self.beta_1 = float(beta_1)
         self.beta_2 = float(beta_2)
@@ -109,7 +110,8 @@ class Adam:
         # two temporaries per parameter array, allocated once: update runs once per mini-batch
         self._steps = [np.empty_like(p) for p in params]
         self._scratch = [np.empty_like(p) for p in params]
-        self._compiled = compiled_kernels()
+        check_choice("engine", engine, ("auto", "reference"))
+        self._compiled = None if engine == "reference" else compiled_kernels()
 
     def update(self, params, grads) -> None:
         """Move ``params`` in place."""

@@ -127,3 +127,48 @@ def test_lbfgs_ignores_early_stopping():
     assert clf.validation_scores_ is None and clf.best_validation_score_ is None
     for a, b in zip(clf.coefs_ + clf.intercepts_, plain.coefs_ + plain.intercepts_, strict=True):
         assert np.array_equal(a, b)
+
+
+def _same_network(a, b) -> bool:
+    """The same weights, biases and loss curve, to the last bit."""
+    return (all(np.array_equal(p, q) for p, q in
+                zip(a.coefs_ + a.intercepts_, b.coefs_ + b.intercepts_, strict=True))
+            and a.loss_curve_ == b.loss_curve_)
+
+
+@pytest.mark.parametrize("solver", ["adam", "sgd", "gd", "scg", "lbfgs"])
+@pytest.mark.parametrize("target", ["classes", "labels", "outputs"])
+def test_engine_reference_trains_the_same_network_bit_for_bit(solver, target):
+    # engine='reference' trains with ebantenna.ml.backprop's functions and NumPy's optimiser
+    # steps; the engine claims their arithmetic, so the networks must be identical
+    from ebantenna.ml import MLPRegressor
+
+    rng = np.random.default_rng(3)
+    X = rng.normal(size=(90, 5))
+    if target == "classes":
+        cls, y = MLPClassifier, (X[:, 0] > 0).astype(int) + (X[:, 1] > 0.5)
+    elif target == "labels":
+        cls, y = MLPClassifier, (X[:, :3] > 0).astype(int)
+    else:
+        cls, y = MLPRegressor, X[:, :2] @ np.array([[1.0, -0.5], [0.3, 2.0]])
+    params = dict(hidden_layer_sizes=(6, 4), activation="tanh", solver=solver, max_iter=8,
+                  batch_size=32, random_state=0, early_stopping=solver == "adam")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        engine = cls(**params).fit(X, y)
+        reference = cls(engine="reference", **params).fit(X, y)
+        assert _same_network(engine, reference)
+        if solver in ("adam", "sgd"):  # partial_fit continues the same way on both
+            engine.set_params(early_stopping=False).partial_fit(X, y)
+            reference.set_params(early_stopping=False).partial_fit(X, y)
+            assert _same_network(engine, reference)
+
+
+def test_engine_takes_two_names_only():
+    from ebantenna.ml.optimizers import Adam
+
+    X, y = np.zeros((4, 2)), np.array([0, 1, 0, 1])
+    with pytest.raises(ValueError, match="'engine' parameter of MLPClassifier"):
+        MLPClassifier(engine="numba").fit(X, y)
+    with pytest.raises(ValueError, match="engine"):
+        Adam([np.zeros(2)], engine="fast")

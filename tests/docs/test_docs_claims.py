@@ -488,3 +488,105 @@ def test_touched_object_ablation_and_chords_as_stated():
     assert tolerance == 0.01
     preload = builtin_scene("paper").effect("object_modes").preload
     assert tolerance / preload == pytest.approx(0.02)
+
+
+def test_touched_object_rods_springs_and_filter_as_stated():
+    from ebantenna.probe import MATERIALS, material
+    from ebantenna.simulate.effects import LowPassFilter
+
+    page = _page_text("theory/touched_object.rst")
+    scene = builtin_scene("paper")
+    rods = scene.effect("object_modes")
+    # "lies at 39 Hz for PVC, 94 Hz for brass, 113 Hz for oak and 136-137 Hz for aluminium and
+    # steel": each to the whole hertz printed
+    assert ("lies at 39 Hz for PVC, 94 Hz for brass, 113 Hz for oak and 136-137 Hz for aluminium "
+            "and steel") in page
+    f = {n: rods.rod(material(n)).cantilever_frequency() for n in MATERIALS}
+    for name, stated in (("pvc", 39), ("brass", 94), ("wood", 113), ("aluminium", 136),
+                         ("steel", 137)):
+        assert abs(f[name] - stated) <= 0.5, (name, f[name])
+    # "steel is three times heavier and stiffer" (than aluminium), to the one digit printed
+    steel, aluminium = material("steel"), material("aluminium")
+    for quantity in ("density", "youngs_modulus"):
+        assert abs(getattr(steel, quantity) / getattr(aluminium, quantity) - 3) <= 0.5
+    # "the five materials' contact springs differ by less than 40 % (oak and PVC softer), and the
+    # metals' by 1 %"; oak across its grain at 1.48 GPa, the table's value
+    assert "springs differ by less than 40 % (oak and PVC softer), and the metals' by 1 %" in page
+    k = {n: rods.contact_stiffness(material(n), scene.probe) for n in MATERIALS}
+    assert max(k.values()) / min(k.values()) - 1 < 0.40
+    metals = [k[n] for n in ("aluminium", "brass", "steel")]
+    assert sorted(k, key=k.get)[:2] == ["wood", "pvc"]
+    assert abs(100 * (max(metals) / min(metals) - 1) - 1) <= 0.5  # 1 %, the digit printed
+    assert "with the across-grain modulus the material table states, 1.48 GPa" in page
+    assert material("wood").youngs_modulus_across == pytest.approx(1.48e9)
+    # "At 700 Hz the 260 Hz setting still passes 13 %: a 700 Hz mode is seen at 300 Hz"
+    assert "At 700 Hz the 260 Hz setting still passes 13 %: a 700 Hz mode is seen at 300 Hz" in page
+    dlpf = scene.effect("dlpf")
+    assert dlpf == LowPassFilter() and dlpf.bandwidth == 260.0
+    assert abs(100 * abs(dlpf.frequency_response(700.0)) - 13) <= 0.5
+    assert abs(700.0 - scene.fs) == 300.0
+
+
+def test_spectrum_windows_and_estimators_as_stated():
+    from ebantenna.signal import dominant_frequency
+    from ebantenna.signal.spectral import window_weights
+
+    page = _page_text("theory/spectrum.rst")
+    # "side lobes only 13 dB below the peak"; Hann: "the first side lobe to -31 dB ... a main lobe
+    # twice as wide (four bins)": the windows' spectra, zero-padded 64 times, to the digit printed
+    assert "has side lobes only 13 dB below the peak" in page
+    assert "brings the first side lobe to -31 dB" in page and "twice as wide (four bins)" in page
+    n, pad = 64, 64
+    lobes = {}
+    for name in ("rectangular", "hann"):
+        w = window_weights(name, n)
+        db = 20 * np.log10(np.abs(np.fft.rfft(w, pad * n)) / w.sum() + 1e-300)
+        null = int(np.argmax(np.diff(db) > 0))  # the first minimum: the main lobe's edge
+        lobes[name] = (2 * null / pad, db[null:].max())  # null-to-null width in bins, side lobe
+    assert lobes["rectangular"][0] == pytest.approx(2, abs=1 / pad)
+    assert lobes["hann"][0] == pytest.approx(4, abs=1 / pad)
+    assert abs(lobes["rectangular"][1] + 13) <= 0.5 and abs(lobes["hann"][1] + 31) <= 0.5
+    # the figure's tone: "the parabolic estimator is off by up to about 1e-3 bin here, and
+    # Jacobsen's by about 1e-9 Hz": the largest errors, to the order of magnitude printed
+    assert ("off by up to about :math:`10^{-3}` bin here, and Jacobsen's by about "
+            ":math:`10^{-9}` Hz") in page
+    fs, n = 1000.0, 1000
+    t = np.arange(n) / fs
+    worst = {}
+    for method in ("bin", "parabolic", "jacobsen"):
+        errors = []
+        for d in np.linspace(0.0, 1.0, 41):
+            f0 = 120.0 + d * fs / n
+            x = np.exp(-t / 0.2) * np.sin(2 * np.pi * f0 * t)
+            errors.append(abs(dominant_frequency(x, fs, method=method) - f0))
+        worst[method] = max(errors)
+    assert worst["bin"] == pytest.approx(0.5)  # "the plain bin is off by up to half a bin"
+    assert round(np.log10(worst["parabolic"] / (fs / n))) == -3  # in bins
+    assert round(np.log10(worst["jacobsen"])) == -9  # in Hz
+
+
+def test_decay_and_filter_numbers_as_stated():
+    from ebantenna.signal import (
+        PAPER_FILTERS,
+        check_specification,
+        filter_time_constant,
+        paper_filter,
+    )
+
+    # theory/decay.rst: tau = 1 / (pi f eta) is "about 0.1 s for the tube's eta = 0.03 at 100 Hz"
+    assert "about 0.1 s for the tube's :math:`\\eta = 0.03`" in _page_text("theory/decay.rst")
+    assert PROBE.loss_factor == 0.03
+    assert abs(1 / (np.pi * 100.0 * PROBE.loss_factor) - 0.1) <= 0.05
+    # theory/filters.rst: the stated second order attenuates the stop-band edges by "under 2 dB
+    # (1.6 dB for Table 1, 1.3 dB for Table 2) where the tables ask for 30 and 45 dB"; the Table 1
+    # filter rings with "about 0.42 s"
+    page = _page_text("theory/filters.rst")
+    assert ("is under 2 dB (1.6 dB for Table 1, 1.3 dB for Table 2) where the tables ask for 30 "
+            "and 45 dB") in page
+    for kind, stated, asked in (("chebyshev", 1.6, 30), ("elliptic", 1.3, 45)):
+        spec = PAPER_FILTERS[kind]
+        attenuation = check_specification(paper_filter(kind, "stated"), spec).stopband_attenuation
+        assert abs(attenuation - stated) <= 0.05 and attenuation < 2 and spec.attenuation == asked
+    assert "about 0.42 s for the 13th-order Table 1 filter" in page
+    tau = filter_time_constant(paper_filter("chebyshev"), 1000.0)
+    assert abs(tau - 0.42) <= 0.005

@@ -699,3 +699,29 @@ def test_device_guide_numbers_as_stated(capsys):
         rig.clock.sleep(0.1)
         mpu.read_fifo()
     assert abs(mpu.samples_lost - lost - 400) <= 50  # "about 400", to the hundred printed
+
+
+def test_svm_non_psd_kernel_with_the_default_conventions_as_stated(monkeypatch):
+    # theory/svm.rst: "On breast_cancer, standardised, with the sigmoid kernel and C = 100, the
+    # default conventions stopped at a machine whose decision values differed from scikit-learn's
+    # by 1407, with 61 of 569 predictions different": the default conventions, made to take the
+    # kernel for positive semi-definite (what SVC did before it tested), to the digits printed
+    from sklearn.datasets import load_breast_cancer
+    from sklearn.preprocessing import StandardScaler
+    from sklearn.svm import SVC as SklearnSVC
+
+    import ebantenna.ml.svc
+    from ebantenna.ml import SVC
+
+    page = _page_text("theory/svm.rst")
+    assert "differed from scikit-learn's by 1407, with 61 of 569 predictions different" in page
+    X, y = load_breast_cancer(return_X_y=True)
+    X = StandardScaler().fit_transform(X)
+    params = dict(kernel="sigmoid", C=100.0, decision_function_shape="ovo")
+    ref = SklearnSVC(**params).fit(X, y)
+    assert SVC(**params).fit(X, y).n_iter_[0] == ref.n_iter_[0]  # today: libsvm's path
+    monkeypatch.setattr(ebantenna.ml.svc, "positive_semidefinite", lambda kernel, given: True)
+    before = SVC(**params).fit(X, y)
+    gap = np.abs(before.decision_function(X) - ref.decision_function(X)).max()
+    assert abs(gap - 1407) <= 0.5
+    assert len(y) == 569 and int(np.sum(before.predict(X) != ref.predict(X))) == 61

@@ -764,3 +764,30 @@ def test_touched_object_cost_ratios_follow_their_measurements():
         page)
     more = 10.4 / 8.1 - 1  # "about a quarter": nearer 1/4 than 1/5 or 1/3
     assert abs(more - 1 / 4) < min(abs(more - 1 / 5), abs(more - 1 / 3))
+
+
+def test_touched_object_assumptions_are_the_codes_defaults():
+    # the page states the scene's assumptions as numbers; they are the effects' defaults
+    from ebantenna.simulate.effects import (
+        CoulombFriction,
+        ObjectModes,
+        PreloadScatter,
+        SensorDrift,
+    )
+
+    page = _page_text("theory/touched_object.rst")
+    rods = ObjectModes()
+    assert "a solid round rod of diameter 12 mm standing 250 mm out of a rigid clamp" in page
+    assert (rods.diameter, rods.free_length) == (0.012, 0.25)
+    # "the coupled problem that is left per strike has some 60 coordinates": each body's kept
+    # fixed-interface modes and its contact point; "with the scene's default 40 and 20"
+    assert "has some 60 coordinates" in page and "with the scene's default 40 and 20" in page
+    assert (rods.probe_modes, rods.rod_modes) == (40, 20)
+    assert abs(rods.probe_modes + 1 + rods.rod_modes + 1 - 60) <= 5  # "some 60": to the tens
+    assert "one pair of coefficients serves every material, 0.45 by default" in page
+    friction = CoulombFriction()
+    assert friction.static_friction == friction.kinetic_friction == 0.45
+    assert "(:class:`~ebantenna.simulate.effects.PreloadScatter`, log-normal, 20 %)" in page
+    assert PreloadScatter().spread == 0.2
+    assert "for a room whose temperature varies by 3 °C" in page
+    assert SensorDrift().temperature_std == 3.0

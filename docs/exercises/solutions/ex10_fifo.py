@@ -76,10 +76,17 @@ block = mpu.read_fifo()
 print(f"driver: {block.lost} samples lost, then {len(block.index)} returned")
 # the 300 ms undrained, plus the few samples due while the driver read the count and restarted
 assert 0.300 * fs <= block.lost <= 0.300 * fs + 5
+# How the driver counts them: the time between the two starts of the FIFO over its period. Before
+# any count it knows the rate only to within 5 %: the middle of [T / 1.05, T / 0.95], not T.
+gap_ms = 1e3 * (mpu.stream.starts[1] - mpu.stream.starts[0])
+period_us = 1e6 * mpu.stream.estimator.period
+print(f"{gap_ms:.1f} ms between the starts / {period_us:.2f} us = {1e3 * gap_ms / period_us:.2f}")
+assert block.lost == round(1e3 * gap_ms / period_us)
+assert abs(period_us - 1e6 / fs * (1 / 1.05 + 1 / 0.95) / 2) < 1e-9
 
 # The expected answers on the exercise page, checked against these values by the test suite.
 ANSWERS = {"samples_after_50ms": len(counts), "arrived_while_reading": arrived,
-           "overflow_count": count, "lost": block.lost}
+           "overflow_count": count, "lost": block.lost, "gap_ms": gap_ms, "period_us": period_us}
 # The tolerance of each answer: how far two correct ways of working may differ, and why.
 TRANSFERS = "the virtual clock advances with every transfer: fewer or more reads than here move it"
 TOLERANCES = {
@@ -89,5 +96,7 @@ TOLERANCES = {
     "arrived_while_reading": ("abs", 5, TRANSFERS + " by a few samples"),
     "overflow_count": ("abs", 0, "the FIFO's size in bytes"),
     "lost": ("abs", 5, TRANSFERS + ", by up to five samples"),
+    "gap_ms": ("abs", 5, TRANSFERS + ", by up to five milliseconds"),
+    "period_us": ("rel", 1e-9, "the middle of the bracket of a 5 % rate tolerance: rounding only"),
 }
 print("ok: the FIFO drained by hand; an overflow loses every sample since the last read")

@@ -369,7 +369,7 @@ def _mlp_common(epochs: int) -> dict:
 
 
 def sklearn_adam(X, y, epochs: int):
-    """A function that fits scikit-learn's MLP of :data:`ADAM_ONE_THREAD` on one BLAS thread
+    """A function that fits scikit-learn's MLP of the row ``ADAM_ONE_THREAD`` on one BLAS thread
     (Adam, mini-batches of 200) and returns it."""
     return lambda: _on_one_thread(SkMLP(solver="adam", batch_size=200, **_mlp_common(epochs)),
                                   X, y)

@@ -415,10 +415,11 @@ def damped_sinusoid_fit(x, t, n_fit, a0, b0, omega0):
 
     Returns
     -------
-    tuple (a, b, r_squared, n_fit) or None
-        ``a`` the amplitude at ``t = 0`` (unit of ``x``), ``b`` the rate (1/unit of ``t``),
-        ``r_squared`` of the signal against the fit; None when the window has fewer than 8
-        samples or less than one period of the fitted frequency, or the solver fails.
+    sine : tuple or None
+        ``(a, b, r_squared, n_fit)``: ``a`` the amplitude at ``t = 0`` (unit of ``x``), ``b``
+        the rate (1/unit of ``t``), ``r_squared`` of the signal against the fit, ``n_fit`` the
+        samples fitted; None when the window has fewer than 8 samples or less than one period
+        of the fitted frequency, or the solver fails.
 
     Examples
     --------

@@ -13,6 +13,9 @@ def map_on_cores(function, items) -> list:
 
     NumPy and SciPy release the GIL in their kernels, so threads run side by side; BLAS is held to
     one thread each, because threads inside such small matrices only get in each other's way.
+    One thread per core (``os.cpu_count()``), at most one per item; the results come back in
+    the order of ``items`` and do not depend on how many threads ran them, as long as
+    ``function`` only reads what the items share.
     """
     items = list(items)
     workers = max(1, min(len(items), os.cpu_count() or 1))

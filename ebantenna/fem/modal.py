@@ -34,7 +34,14 @@ import scipy.sparse.linalg as spla
 
 from .._validate import check_array, check_choice, check_int
 from ..probe import Probe
-from .assembly import apply_supports, assemble, beam_mesh, contact_node, support_diagonals
+from .assembly import (
+    ASSEMBLY_ENGINES,
+    apply_supports,
+    assemble,
+    beam_mesh,
+    contact_node,
+    support_diagonals,
+)
 from .elements import bending_energy, hermite, hermite_slope
 from .guards import check_contact, check_memory
 from .supports import Supports
@@ -253,6 +260,7 @@ def modal_analysis(
     n_elements: int = 64,
     n_modes: int = 3,
     solver: str = "auto",
+    assembly: str = "scatter",
 ) -> ModalResult:
     """Natural frequencies and mode shapes of the probe on its supports.
 
@@ -268,6 +276,13 @@ def modal_analysis(
         Number of lowest modes to return.
     solver : {"auto", "dense", "sparse", "naive"}
         Eigen solver; see :func:`solve_modes`.
+    assembly : {"scatter", "loop"}
+        How K and M are assembled, the ``engine`` of
+        :func:`~ebantenna.fem.assembly.assemble`: ``"loop"`` the reference (the element matrices
+        written out, added one by one), ``"scatter"`` (default) the engine; the same matrices,
+        hence the same modes, bit for bit. The loop builds dense matrices, so it takes a dense
+        solve: with ``solver="sparse"``, or ``"auto"`` on more than :data:`DENSE_LIMIT` DOFs
+        (100 elements or more), it is refused.
 
     Returns
     -------
@@ -287,11 +302,17 @@ def modal_analysis(
         raise TypeError(f"supports must be a Supports, got {type(supports).__name__}")
     if supports.contact is not None:
         check_contact("contact", supports.contact, probe.length)
+    check_choice("assembly", assembly, ASSEMBLY_ENGINES)
     nodes = beam_mesh(probe.length, supports.contact, n_elements)
     use_sparse = solver == "sparse" or (solver == "auto" and 2 * nodes.size > DENSE_LIMIT)
+    if use_sparse and assembly == "loop":
+        raise ValueError(
+            f"assembly='loop' builds dense matrices, but solver={solver!r} solves {n_elements} "
+            "elements as sparse ones; pass solver='dense' with it, or assembly='scatter'"
+        )
     if not use_sparse:  # K, M, the factor and two products, (2 n_nodes)^2 doubles each
         check_memory(5 * 8 * (2 * nodes.size) ** 2, f"a dense solve of {n_elements} elements")
-    K, M = assemble(nodes, probe, sparse=use_sparse)
+    K, M = assemble(nodes, probe, sparse=use_sparse, engine=assembly)
     K_free, M_free, free = apply_supports(K, M, nodes, probe, supports)
     lam, phi = solve_modes(K_free, M_free, n_modes, shift=eigenvalue_shift(probe), solver=solver)
     shapes = np.zeros((2 * nodes.size, lam.size))

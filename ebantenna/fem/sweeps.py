@@ -1,8 +1,9 @@
 """Natural frequencies for many contact positions at once: the contact sweeps.
 
 A study of where the probe is touched asks for the lowest frequencies at hundreds of contact
-positions. :func:`~ebantenna.fem.modal.modal_analysis` solves one position; this module solves a
-whole array of them as a batch, with no Python loop per position, by one of three engines:
+positions. :func:`~ebantenna.fem.modal.modal_analysis` solves one position; looping it over the
+positions is the reference, ``method="reference"``, the answer every engine is held to. The
+engines solve a whole array of positions as a batch, with no Python loop per position:
 
 - ``"banded"`` (default, :mod:`~ebantenna.fem.banded`): the matrices of a chain of beam elements
   are banded, so each position costs a banded Cholesky factorisation and a few Lanczos steps,
@@ -32,17 +33,18 @@ from ._scatter import scatter
 from .assembly import beam_mesh, free_dofs, support_diagonals
 from .banded import BANDED_MAX_MODES, MAX_LANCZOS_STEPS, banded_sweep
 from .guards import check_contact, check_memory, check_resolvable
-from .modal import clip_eigenvalues, eigenvalue_shift
+from .modal import clip_eigenvalues, eigenvalue_shift, modal_analysis
 from .secular import secular_sweep
 from .supports import Supports
 
-__all__ = ["natural_frequencies", "SWEEP_METHODS", "dense_sweep"]
+__all__ = ["natural_frequencies", "SWEEP_METHODS", "reference_sweep", "dense_sweep"]
 
 #: Methods of :func:`natural_frequencies`.
-SWEEP_METHODS = ("banded", "dense", "secular")
+SWEEP_METHODS = ("banded", "dense", "secular", "reference")
 
-#: Positions per batch by default: small enough for the cache, spread over the cores.
-_DEFAULT_CHUNK = {"banded": 256, "dense": 125, "secular": 1024}
+#: Positions per batch by default: small enough for the cache, spread over the cores (the
+#: reference solves one position at a time).
+_DEFAULT_CHUNK = {"banded": 256, "dense": 125, "secular": 1024, "reference": 1}
 
 #: Memory per position of a batch, bytes, as a function of ``(n_elements, n_modes)``.
 _BYTES_PER_POSITION = {
@@ -65,8 +67,11 @@ def natural_frequencies(
 ) -> np.ndarray:
     """Natural frequencies for many contact positions at once, Hz.
 
-    All positions share one mesh topology (``n_elements`` elements), so they are solved as a
-    batch, with no Python loop per position:
+    ``"reference"`` is the textbook: one :func:`~ebantenna.fem.modal.modal_analysis` per
+    position (the generalized eigen-solve on the mesh with a node at the contact), in a plain
+    loop. All positions share one mesh topology (``n_elements`` elements), so the engines solve
+    them as a batch, with no Python loop per position, and are held to the reference by the
+    tests (``"secular"`` where the contact is a node of its uniform mesh, see below):
 
     - ``"banded"`` (default): a banded Cholesky factorisation of ``K + s M`` per position, Lanczos
       for the lowest modes, then Rayleigh quotients from the element curvatures, all vectorised
@@ -81,7 +86,10 @@ def natural_frequencies(
       falls inside an element instead of on a node put there, with the compliance the mesh
       misses there added in series (its static correction); the same model where the contact
       is a node of the uniform mesh, and as accurate elsewhere (``ebantenna bench`` shows both
-      against the exact solution).
+      against the exact solution);
+    - ``"reference"``: the loop of :func:`~ebantenna.fem.modal.modal_analysis`, which checks
+      its own memory; slow (a Python loop and a full solve per position), for reading and for
+      testing the engines.
 
     Parameters
     ----------
@@ -95,8 +103,8 @@ def natural_frequencies(
     chunk : int, optional
         Positions solved per batch: default 125 dense, 256 banded, 1024 secular (memory about
         ``chunk * (2 n_elements)^2 * 32`` bytes dense, ``chunk * n_elements * 600`` banded,
-        ``chunk * n_modes * n_elements * 100`` secular).
-    method : {"banded", "dense", "secular"}
+        ``chunk * n_modes * n_elements * 100`` secular); not used by ``"reference"``.
+    method : {"banded", "dense", "secular", "reference"}
         See above.
 
     Returns
@@ -119,10 +127,13 @@ def natural_frequencies(
     chunk = check_int("chunk", _DEFAULT_CHUNK[method] if chunk is None else chunk, minimum=1)
     n_elements = check_resolvable(check_int("n_elements", n_elements, minimum=2))
     n_modes = _check_n_modes(n_modes, n_elements, method)
-    _check_batch_memory(method, contacts.size, chunk, n_elements, n_modes)
+    if method != "reference":  # modal_analysis checks the memory of its own solve
+        _check_batch_memory(method, contacts.size, chunk, n_elements, n_modes)
     supports = Supports(contact=None, hinge=hinge, contact_stiffness=contact_stiffness)
     for contact in (contacts.min(), contacts.max()):  # the two nearest the ends
         check_contact("contacts", contact, probe.length)
+    if method == "reference":
+        return reference_sweep(probe, contacts, supports, n_elements, n_modes)
     sweep = dict(
         hinge_stiffness=supports.hinge_stiffness,
         contact_stiffness=supports.contact_stiffness,
@@ -193,6 +204,24 @@ def _check_resolved(frequencies: np.ndarray, probe: Probe, contacts: np.ndarray,
         f"n_elements={n_elements}: the elements differ in length by a factor of "
         f"{h.max() / h.min():.1e}; use more elements or fewer modes"
     )
+
+
+def reference_sweep(
+    probe: Probe, contacts: np.ndarray, supports: Supports, n_elements: int, n_modes: int
+) -> np.ndarray:
+    """Lowest ``n_modes`` frequencies (Hz) at each contact, one modal analysis each, (n, n_modes).
+
+    The reference of every sweep: for each position, the mesh with a node at the contact and the
+    generalized eigen-solve of :func:`~ebantenna.fem.modal.modal_analysis`. Inputs are trusted
+    (the public entry is :func:`natural_frequencies`); ``supports`` gives the hinge and the
+    contact's stiffness, its ``contact`` is replaced by each of ``contacts``.
+    """
+    hinge, stiffness = supports.hinge, supports.contact_stiffness
+    return np.array([
+        modal_analysis(probe, Supports(float(c), hinge=hinge, contact_stiffness=stiffness),
+                       n_elements=n_elements, n_modes=n_modes).frequencies
+        for c in contacts
+    ])
 
 
 def dense_sweep(

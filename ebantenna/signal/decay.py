@@ -27,8 +27,7 @@ exponential cannot be fitted to the oscillation itself. Three methods:
 **The steps.** :func:`fit_decay` validates its arguments once, then follows the textbook: the
 envelope (:func:`analytic_envelope`), the log-linear fit (:func:`loglinear_fit`, refined by
 :func:`envelope_fit` for ``"nonlinear"``), the damped-sinusoid witness
-(``damped_sinusoid_fit``, in the private module ``ebantenna/signal/_damped_sinusoid.py``) and
-the checks (:func:`envelope_status`, :func:`sinusoid_status`).
+(:func:`damped_sinusoid_fit`) and the checks (:func:`envelope_status`, :func:`sinusoid_status`).
 The steps take checked values. The numerical guards below (the power-of-two scaling, the clipped
 samples, the fitted region) live in the private module ``ebantenna/signal/_guards.py``.
 
@@ -71,7 +70,6 @@ from scipy.signal import find_peaks
 
 from .._validate import check_bool, check_choice, check_in_range
 from ._checks import check_fs, check_signal
-from ._damped_sinusoid import damped_sinusoid_fit
 from ._guards import clipped_mask, decay_region, unit_scaled
 from .filters import apply_filter, paper_filter
 from .spectral import dominant_frequency
@@ -88,6 +86,7 @@ __all__ = [
     "weighted_line",
     "loglinear_fit",
     "envelope_fit",
+    "damped_sinusoid_fit",
     "envelope_status",
     "sinusoid_status",
 ]
@@ -393,6 +392,85 @@ def envelope_fit(tk, ek, *, nonlinear):
     ss_tot = (w * (ly - ym) ** 2).sum()
     r2 = 1.0 - (w * (ly - fitted) ** 2).sum() / ss_tot if ss_tot > 0 else 0.0
     return a, b, r2
+
+
+def damped_sinusoid_fit(x, t, n_fit, a0, b0, omega0):
+    """Fit ``exp(b t) (p cos wt + q sin wt) + c`` to the first ``n_fit`` samples of ``x``.
+
+    The ``"sinusoid"`` method of :func:`fit_decay` and the witness each envelope fit is checked
+    against. The model is the whole damped sinusoid, fitted to the signal itself (not to its
+    envelope) by :func:`scipy.optimize.least_squares` (Levenberg-Marquardt) with its Jacobian,
+    the columns ``d/db = t osc``, ``d/dw = t e (q cos wt - p sin wt)``, ``d/dp = e cos wt``,
+    ``d/dq = e sin wt``, ``d/dc = 1``, where ``e = exp(b t)`` and ``osc = e (p cos wt + q sin wt)``.
+    Times are counted from ``t[0]``; the amplitude at ``t = 0`` is then ``hypot(p, q) exp(-b t0)``.
+
+    The start: the rate ``b0`` of the envelope fit (or, if that does not decay, ``-1 / (2 t_E)``
+    with ``t_E`` the energy centroid of the window, since ``exp(2 b t)`` has its centroid at
+    ``1 / (2 |b|)``); the frequency of the strongest peak of the window's spectrum, zero-padded 8
+    times (``omega0``, rad/s, is the fallback of a spectrum with a single bin, which a window of 8
+    samples or more never has); the linear parameters ``p, q, c`` at their least-squares values
+    for that rate and frequency. ``a0`` is not used (the start needs only the rate). Takes
+    checked values: :func:`fit_decay` validates its arguments and scales the signal before
+    calling it.
+
+    Returns
+    -------
+    sine : tuple or None
+        ``(a, b, r_squared, n_fit)``: ``a`` the amplitude at ``t = 0`` (unit of ``x``), ``b``
+        the rate (1/unit of ``t``), ``r_squared`` of the signal against the fit, ``n_fit`` the
+        samples fitted; None when the window has fewer than 8 samples or less than one period
+        of the fitted frequency, or the solver fails.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ebantenna.signal.decay import damped_sinusoid_fit
+    >>> t = np.arange(600) / 1000.0
+    >>> x = 2.0 * np.exp(-t / 0.08) * np.sin(2 * np.pi * 61.3 * t + 0.9)
+    >>> a, b, r2, n = damped_sinusoid_fit(x, t, 600, 1.8, -11.0, 2 * np.pi * 61.0)
+    >>> round(a, 6), round(-1 / b, 6), n
+    (2.0, 0.08, 600)
+    """
+    n_fit = min(n_fit, x.size)
+    if n_fit < 8:
+        return None
+    y, t0 = x[:n_fit], t[0]
+    tw = t[:n_fit] - t0
+    if not b0 < 0:
+        energy = y**2
+        b0 = -0.5 / max(float((tw * energy).sum() / energy.sum()), tw[1])
+    # the strongest peak of the window's spectrum, 8x zero-padded, near the record's dominant bin
+    spectrum = np.abs(np.fft.rfft(y - y.mean(), 8 * n_fit))
+    omegas = 2 * np.pi * np.fft.rfftfreq(8 * n_fit, tw[1])
+    omega = float(omegas[1 + np.argmax(spectrum[1:])]) if spectrum.size > 1 else omega0
+
+    def columns(b, w):
+        e = np.exp(b * tw)
+        return e, np.cos(w * tw), np.sin(w * tw)
+
+    e, co, si = columns(b0, omega)
+    lin, *_ = np.linalg.lstsq(np.column_stack([e * co, e * si, np.ones(n_fit)]), y, rcond=None)
+
+    def residual(v):
+        b, w, p, q, c = v
+        e, co, si = columns(b, w)
+        return e * (p * co + q * si) + c - y
+
+    def jacobian(v):
+        b, w, p, q, c = v
+        e, co, si = columns(b, w)
+        osc = e * (p * co + q * si)
+        return np.column_stack([tw * osc, tw * e * (q * co - p * si), e * co, e * si,
+                                np.ones(n_fit)])
+
+    sol = optimize.least_squares(residual, x0=[b0, omega, *lin], jac=jacobian, method="lm",
+                                 x_scale="jac")
+    b, w, p, q, _ = sol.x
+    if not (sol.success and np.all(np.isfinite(sol.x))) or abs(w) * tw[-1] < 2 * np.pi:
+        return None
+    ss_tot = float(((y - y.mean()) ** 2).sum())
+    r2 = 1.0 - float((sol.fun**2).sum()) / ss_tot if ss_tot > 0 else 0.0
+    return math.hypot(p, q) * math.exp(-b * t0), float(b), r2, n_fit
 
 
 def envelope_status(b, decaying, too_short, sine) -> str:

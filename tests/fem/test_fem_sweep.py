@@ -1,4 +1,4 @@
-"""The banded contact sweep against one modal analysis per position and against the dense batch."""
+"""The contact sweeps against their reference, one modal analysis per position."""
 
 import math
 
@@ -16,14 +16,21 @@ EPS = np.finfo(float).eps
 
 
 def one_at_a_time(probe, contacts, hinge, k_c, n_elements, n_modes=3):
-    return np.array(
-        [
-            modal_analysis(
-                probe, Supports(float(c), hinge, k_c), n_elements=n_elements, n_modes=n_modes
-            ).frequencies
-            for c in contacts
-        ]
-    )
+    """The reference sweep, ``method="reference"``."""
+    return natural_frequencies(probe, np.asarray(contacts), hinge=hinge, contact_stiffness=k_c,
+                               n_elements=n_elements, n_modes=n_modes, method="reference")
+
+
+@pytest.mark.parametrize("hinge", ["clamped", "pinned", 5.0])
+def test_the_reference_is_modal_analysis_at_each_contact(hinge):
+    probe = Probe(tip_mass=0.003)
+    contacts = np.array([1e-3 * L, 0.13, 0.31, L - 1e-3 * L])
+    ref = natural_frequencies(probe, contacts, hinge=hinge, contact_stiffness=300.0,
+                              n_elements=16, n_modes=4, method="reference")
+    for row, c in zip(ref, contacts, strict=True):
+        one = modal_analysis(probe, Supports(float(c), hinge, 300.0), n_elements=16, n_modes=4)
+        # the same calls in the same order: the same bits
+        np.testing.assert_array_equal(row, one.frequencies)
 
 
 def test_the_batch_meshes_are_beam_mesh():
@@ -79,12 +86,17 @@ def test_batches_of_any_size_give_the_same_answer():
 
 
 def test_sweep_rejects_bad_input():
-    with pytest.raises(ValueError, match="method must be one of"):
+    with pytest.raises(ValueError, match="method must be one of .*'reference'"):
         natural_frequencies(PROBE, np.array([0.1]), method="magic")
     with pytest.raises(ValueError, match="n_modes must be <="):
         natural_frequencies(PROBE, np.array([0.1]), n_elements=2, n_modes=4)
-    with pytest.raises(ValueError, match=r"contacts must lie in \(0, 0.4\)"):
-        natural_frequencies(PROBE, np.array([0.0]))
+    for method in ("banded", "dense", "secular", "reference"):  # checked once, for every method
+        with pytest.raises(ValueError, match=r"contacts must lie in \(0, 0.4\)"):
+            natural_frequencies(PROBE, np.array([0.2, 0.0]), method=method)
+        with pytest.raises(ValueError, match=r"contacts must lie in \[4e-07"):
+            natural_frequencies(PROBE, np.array([0.2, 1e-9]), method=method)
+        with pytest.raises(ValueError, match="n_modes must be <= 3"):
+            natural_frequencies(PROBE, np.array([0.1]), n_elements=2, n_modes=4, method=method)
 
 
 @pytest.mark.parametrize("n_elements", [2, 3, 4])

@@ -12,7 +12,6 @@ import pytest
 from scipy import signal as sps
 
 from ebantenna.signal import dominant_frequency
-from ebantenna.signal._damped_sinusoid import damped_sinusoid_fit
 from ebantenna.signal._guards import (
     analysed_part,
     clipped_mask,
@@ -23,6 +22,7 @@ from ebantenna.signal._guards import (
 )
 from ebantenna.signal.decay import (
     analytic_envelope,
+    damped_sinusoid_fit,
     envelope_fit,
     envelope_status,
     loglinear_fit,

@@ -404,7 +404,8 @@ def friction_axis(scene, models, inverse, rotation_speeds, when) -> np.ndarray:
     Parameters
     ----------
     scene : Scene
-        Lists ``coulomb_friction`` (its coefficients) and perhaps ``dlpf``.
+        Lists ``coulomb_friction`` (its coefficients and its march, ``method``) and perhaps
+        ``dlpf``.
     models : list of FrictionModel
         The distinct Z models.
     inverse : array of int, shape (n,)
@@ -428,6 +429,6 @@ def friction_axis(scene, models, inverse, rotation_speeds, when) -> np.ndarray:
             m.mass, m.stiffness, m.mass.shape[0] - 1, m.normal_force,
             static_friction=effect.static_friction, kinetic_friction=effect.kinetic_friction,
             duration=(n_int - 1) / rate, fs=rate, velocity=m.rotation * float(speed),
-            damping=m.damping, output=m.output, max_events=effect.max_events,
+            damping=m.damping, output=m.output, max_events=effect.max_events, method=effect.method,
         ).acceleration[:n_int]  # fmt: skip
     return read_through_dlpf(scene, acc, rate, when)

@@ -1,18 +1,208 @@
 """The engine of the contact laws' march: read each linear state a block of steps ahead.
 
 :func:`.linear_state.march_step_by_step` takes every step in turn. Within one state the motion
-is a sum of modes, so whether an event lies ahead, and the output samples, can be read for a
-whole block of steps by one small matrix product (:meth:`.linear_state.LinearState.read_ahead`);
-where a bound shows that no event can happen (a settled contact), a longer span is read at the
-output samples only. Only the step that holds an event is taken through the law's
-``advance``. The same events and, up to the rounding of the propagation, the same signals as
-the reference; this is the default because it costs about one matrix product per block instead
-of a propagation per step.
+is a sum of modes: each row read along it (the monitored quantity, the acceleration, the force)
+is ``Re(sum_k w_k e^(lambda_k t)) + a (s + s' t) + b s'`` with ``w = row V * z`` for the modal
+coordinates ``z`` (:class:`.linear_state.LinearState`), so a block of ``m`` steps costs one
+``(m, 2n)`` by ``(2n, 3)`` product, not ``m`` state propagations (:func:`readings`). Whether an
+event lies ahead is read from those values (:func:`read_ahead`); where a bound shows that no
+event can happen over a longer span (a settled contact, :func:`stays_positive`), the span is
+read at the output samples only (:func:`samples`). Only the step that holds an event is taken
+through the law's ``advance``. The same events and, up to the rounding of the propagation, the
+same signals as the reference; this is the default because it costs about one matrix product
+per block instead of a propagation per step.
+
+Each state carries the engine's tables in its attribute ``blocks`` (:class:`BlockTables`, set by
+:func:`prepare_blocks` when the step grid is laid out). A law gives the engine four hooks (see
+:class:`.linear_state.SwitchedSystem`): ``horizon`` (how far a state may be read ahead),
+``quiet`` (no event within a span, usually :func:`stays_positive`), ``ends`` (where a state
+ends, read on the block's values) and ``record_block`` (record the samples of a block); the
+reference march uses none of them.
 """
 
 from __future__ import annotations
 
-__all__ = ["march_in_blocks"]
+import functools
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as spl
+
+__all__ = ["LONG_BLOCKS", "BLOCK_ELEMENTS", "BlockTables", "prepare_blocks", "readings", "samples",
+           "read_ahead", "swing", "stays_positive", "after", "march_in_blocks"]  # fmt: skip
+
+#: Where the contact provably keeps its state, up to this many blocks are read at once.
+LONG_BLOCKS = 32
+#: Most states propagated at once in one block (bounds the memory of the stacked powers).
+BLOCK_ELEMENTS = 2_000_000
+
+
+@dataclass(eq=False)
+class BlockTables:
+    """What the engine reads a state with, on steps of ``h`` in blocks of ``block`` steps.
+
+    Attributes
+    ----------
+    h : float
+        The step, s.
+    block : int
+        Steps per block.
+    sub : int
+        Steps per output sample.
+    span : int
+        The longest span read at once, in steps.
+    fine_real : ndarray or None
+        ``e^(lambda t)`` at the steps ``1..block``, as ``[Re, -Im]`` for real products (None
+        where the propagator is ``expm``).
+    growing : bool
+        Whether a mode grows (only by rounding, for a passive body).
+    peak : ndarray or None
+        ``|e^(lambda h)|``: the largest ``|e^(lambda t)|`` of a decaying mode over any span.
+    powers : ndarray or None
+        ``expm(A h)^j``, ``j = 1..block``, where the propagator is ``expm``.
+    """
+
+    h: float
+    block: int
+    sub: int
+    span: int
+    lam: np.ndarray
+    fine_real: np.ndarray | None = None
+    growing: bool = False
+    peak: np.ndarray | None = None
+    powers: np.ndarray | None = None
+
+    @functools.cached_property
+    def every_real(self):
+        """``e^(lambda sub h k)``, ``k = 0, 1, ...`` over a span, as ``[Re, -Im]``: powers by
+        repeated products (``k`` roundings); computed when a state first settles."""
+        every = np.full(
+            (-(-self.span // self.sub), self.lam.size), np.exp(self.lam * self.sub * self.h)
+        )
+        every[0] = 1.0
+        every = np.cumprod(every, axis=0)
+        return np.hstack([every.real, -every.imag])
+
+
+def prepare_blocks(states, h: float, sub: int, n_steps: int) -> int:
+    """Give each of ``states`` its :class:`BlockTables` for steps of ``h`` (``sub`` per output
+    sample, ``n_steps`` in all); returns the steps per block."""
+    size = states[0].A.shape[0]
+    block = int(max(1, min(256, n_steps, BLOCK_ELEMENTS // (size * size))))
+    for st in states:
+        lam, A = st.lam, st.A
+        if st.eigen:
+            fine = np.exp(np.multiply.outer(h * np.arange(1, block + 1), lam))
+            st.blocks = BlockTables(
+                h, block, sub, block * LONG_BLOCKS, lam,
+                fine_real=np.hstack([fine.real, -fine.imag]),
+                growing=bool(np.any(lam.real > 0)), peak=np.abs(fine[0]),
+            )  # fmt: skip
+        else:
+            Phi = spl.expm(A * h)
+            powers = np.empty((block,) + A.shape)
+            powers[0] = Phi
+            for j in range(1, block):
+                powers[j] = Phi @ powers[j - 1]
+            st.blocks = BlockTables(h, block, sub, block, lam, powers=powers)
+    return block
+
+
+def _affine(st, out, x, steps):
+    """Add the servo's part ``a (s + s' t) + b s'`` of the rows to ``out``."""
+    m = 2 * st.n
+    s, sigma = x[m], x[m + 1]
+    if sigma == 0:  # the servo has stopped
+        out += s * st.row_s
+    else:
+        out += np.multiply.outer(s + sigma * st.blocks.h * steps, st.row_s)
+        out += sigma * st.row_speed
+    return out
+
+
+def readings(st, x, z, m):
+    """The rows of state ``st`` at each of the ``m`` steps after ``x`` (at most ``block``),
+    shape ``(m, 3)``; ``z`` is ``st.modal(x)``."""
+    tables = st.blocks
+    if not st.eigen:
+        return (tables.powers[:m] @ x) @ st.rows.T
+    w = st.row_modes * z  # (3, 2n)
+    # Re(e w) = Re(e) Re(w) - Im(e) Im(w), as one real product
+    out = tables.fine_real[:m] @ np.concatenate([w.real, w.imag], axis=1).T
+    return _affine(st, out, x, np.arange(1, m + 1))
+
+
+def samples(st, x, z, first, m):
+    """The rows of ``st`` every ``sub`` steps from step ``first + 1`` after ``x`` up to step
+    ``m`` (at most ``span``)."""
+    tables = st.blocks
+    steps = np.arange(first + 1, m + 1, tables.sub)
+    if not st.eigen:
+        return (tables.powers[steps - 1] @ x) @ st.rows.T
+    w = st.row_modes * (z * np.exp(st.lam * (tables.h * (first + 1))))
+    out = tables.every_real[: steps.size] @ np.concatenate([w.real, w.imag], axis=1).T
+    return _affine(st, out, x, steps)
+
+
+def read_ahead(st, x, z, first, limit, quiet, ends=None):
+    """Read the rows of ``st`` from ``x`` on, up to the next event or ``limit`` steps.
+
+    ``quiet`` (no event possible within ``min(span, limit)`` steps, e.g. from
+    :func:`stays_positive`): all those steps are taken and only the output samples are read.
+    Otherwise at most a ``block`` of steps is read, and the motion stops before the first
+    step where ``ends(values)`` holds (default: the monitored row ``<= 0``). ``first`` is
+    the first step from ``x`` that is an output sample.
+
+    Returns
+    -------
+    tuple
+        ``(m, j, values, event)``: the steps safely inside the state, the output samples among
+        them (step indices from 0), the rows there, and whether an event lies in the next
+        step.
+    """
+    tables = st.blocks
+    if quiet:
+        m = min(tables.span, limit)
+        return m, np.arange(first, m, tables.sub), samples(st, x, z, first, m), False
+    m = min(tables.block, limit)
+    values = readings(st, x, z, m)
+    bad = np.flatnonzero(values[:, 0] <= 0 if ends is None else ends(values))
+    if len(bad):
+        m = int(bad[0])
+    j = np.arange(first, m, tables.sub)
+    return m, j, values[j], bool(len(bad))
+
+
+def swing(st, z, m):
+    """How far the modal part of the monitored row of ``st`` (modal coordinates ``z``, an
+    eigen state) can reach over the next ``m`` steps: ``sum_k |w_k| max|e^(lambda_k t)|``."""
+    tables = st.blocks
+    if tables.growing:
+        rate = st.lam.real
+        peak = np.exp(np.where(rate > 0, rate * m, rate) * tables.h)
+    else:  # every mode decays: the largest |e^(lambda t)| is at the first step
+        peak = tables.peak
+    return np.abs(st.row_modes[0] * z) @ peak
+
+
+def stays_positive(st, x, z, m):
+    """Whether the monitored quantity of ``st`` provably stays positive over the next ``m``
+    steps from ``x``: its modal part is at most :func:`swing` in size and the rest is linear
+    in time, so the bound needs no step to be taken."""
+    if not st.eigen:
+        return False
+    k = 2 * st.n
+    s, sigma = x[k], x[k + 1]
+    ends = (s * st.row_s[0], (s + sigma * st.blocks.h * m) * st.row_s[0])
+    trend = min(ends) + sigma * st.row_speed[0]
+    return bool(trend > swing(st, z, m))
+
+
+def after(st, x, z, steps):
+    """The state ``steps`` whole steps after ``x`` (``z``: ``st.modal(x)``)."""
+    if not st.eigen:
+        return st.blocks.powers[steps - 1] @ x
+    return st.at(x, z, steps * st.blocks.h)
 
 
 def march_in_blocks(system, x, key, n_steps: int):
@@ -31,11 +221,11 @@ def march_in_blocks(system, x, key, n_steps: int):
         limit = system.horizon(i, n_steps)
         first = (-(i + 1)) % sub  # the first step from here that is an output sample
         z = st.modal(x)
-        quiet = system.quiet(key, x, z, min(st.span, limit))
-        m, j, values, event = st.read_ahead(x, z, first, limit, quiet, system.ends(key))
+        quiet = system.quiet(key, x, z, min(st.blocks.span, limit))
+        m, j, values, event = read_ahead(st, x, z, first, limit, quiet, system.ends(key))
         system.record_block(i, j, values, x, z, key)
         if m:
-            x = st.after(x, z, m)
+            x = after(st, x, z, m)
             i += m
             system.moved()
         if event:

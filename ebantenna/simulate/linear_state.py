@@ -1,10 +1,9 @@
-"""One linear state of a structure on a moving base, propagated exactly and read in blocks.
+"""One linear state of a structure on a moving base, propagated exactly, and the march through
+the states.
 
 :func:`.unilateral.unilateral_response` switches between two such states, the contact closed and
-open. Within a state the motion is the closed-form modal solution, so what the strike needs at
-many steps (the contact force or gap that decides the next event, the acceleration and the
-force that are recorded) is a sum of the state's modes and costs one small matrix product per
-block of steps; :func:`crossing` finds the event inside a step.
+open. Within a state the motion is the closed-form modal solution (:class:`LinearState`), and
+:func:`crossing` finds an event inside a step.
 
 **Marching through the states.** A contact law (:class:`.unilateral.StrikeLaw`,
 :class:`.stick_slip.StickSlipLaw`) is a :class:`SwitchedSystem`: it says which state holds and
@@ -13,38 +12,35 @@ it takes every step in turn, as an event-driven integration is written in a text
 engine ``"blocks"`` (the default, in a private module) reads each state a block of steps ahead
 and takes only the steps that hold an event one at a time; both give the same events, and the
 same signals up to the rounding of the propagation (the test suite holds them together).
+:data:`MARCHES` names the two.
 """
 
 from __future__ import annotations
 
 import abc
 import copy
-import functools
 import math
 
 import numpy as np
 import scipy.linalg as spl
 
-from ._block_march import march_in_blocks
+from ._block_march import after, march_in_blocks, prepare_blocks, stays_positive
 
 __all__ = ["LinearState", "crossing", "step_grid", "SwitchedSystem", "march_step_by_step",
-           "MARCHES", "LONG_BLOCKS", "BLOCK_ELEMENTS"]  # fmt: skip
+           "MARCHES"]  # fmt: skip
 
 #: Most iterations of the event root finder (bisection alone needs log2(step / tolerance)).
 _MAX_ROOT_STEPS = 200
-#: Where the contact provably keeps its state, up to this many blocks are read at once.
-LONG_BLOCKS = 32
-#: Most states propagated at once in one block (bounds the memory of the stacked powers).
-BLOCK_ELEMENTS = 2_000_000
 
 
 def step_grid(states, fs: float, duration: float, steps_per_period: int):
-    """Prepare the steps on which ``states`` are propagated and watched (:meth:`LinearState.grid`).
+    """Lay out the steps on which ``states`` are propagated and watched.
 
     The step is at most a ``steps_per_period``-th of the fastest state's shortest period and
     divides the output sample interval ``1 / fs`` into ``sub`` whole steps. Returns ``(h, sub,
     n_samples, n_steps, block)``: the step (s), steps per output sample, output samples over
-    ``duration`` (both ends included), steps in all and steps per block.
+    ``duration`` (both ends included), steps in all, and steps per block of the engine
+    ``"blocks"``, which gets each state ready to be read in blocks here (its ``blocks``).
     """
     fastest = max(float(np.abs(st.lam).max()) for st in states)
     h_max = 2 * math.pi / (steps_per_period * fastest) if fastest > 0 else 1 / fs
@@ -52,10 +48,7 @@ def step_grid(states, fs: float, duration: float, steps_per_period: int):
     h = 1 / (fs * sub)
     n_samples = int(math.floor(duration * fs + 1e-9)) + 1
     n_steps = (n_samples - 1) * sub
-    size = states[0].A.shape[0]
-    block = int(max(1, min(256, n_steps, BLOCK_ELEMENTS // (size * size))))
-    for st in states:
-        st.grid(h, block, sub)
+    block = prepare_blocks(states, h, sub, n_steps)
     return h, sub, n_samples, n_steps, block
 
 
@@ -69,12 +62,14 @@ class LinearState:
 
     Three linear functions of the state are read along the motion (``rows``: the monitored
     quantity, the acceleration and the contact force). In modal coordinates ``z = V^-1 (y + G s
-    + H s')`` each of them is ``Re(sum_k w_k e^(lambda_k t)) + a (s + s' t) + b s'``, so a block
-    of ``m`` steps costs one ``(m, 2n)`` by ``(2n, 3)`` product, not ``m`` state propagations.
+    + H s')`` each of them is ``Re(sum_k w_k e^(lambda_k t)) + a (s + s' t) + b s'``
+    (:meth:`curve` for the monitored one). The engine ``"blocks"`` reads them a block of steps
+    at once from its tables in ``blocks``, set by :func:`step_grid`.
     """
 
     def __init__(self, A, n, monitor, force, accel):
         self.A, self.n = A, n
+        self.blocks = None  # the engine's tables, once the step grid is laid out
         Ay, f = A[: 2 * n, : 2 * n], A[: 2 * n, 2 * n]
         self.eigen = False
         with np.errstate(all="ignore"):
@@ -97,7 +92,7 @@ class LinearState:
 
     def watching(self, monitor, force, accel) -> LinearState:
         """The same state with other rows read along the motion; the decomposition of ``A`` is
-        shared, not computed again (call before :meth:`grid`)."""
+        shared, not computed again (call before :func:`step_grid`)."""
         twin = copy.copy(self)
         twin._read(monitor, force, accel)
         return twin
@@ -113,126 +108,12 @@ class LinearState:
             self.row_s = self.rows[:, m] - ry @ self.G  # ... on the servo's travel s(t)
             self.row_speed = self.rows[:, m + 1] - ry @ self.H  # ... on its speed s'
 
-    def grid(self, h, block, sub):
-        """Prepare steps of ``h``, read in blocks of ``block`` steps or every ``sub`` steps."""
-        self.h, self.block, self.sub = h, block, sub
-        lam, A = self.lam, self.A
-        if self.eigen:
-            # e^(lambda t) at the steps 1..block, as [Re, -Im] for real products
-            fine = np.exp(np.multiply.outer(h * np.arange(1, block + 1), lam))
-            self.fine_real = np.hstack([fine.real, -fine.imag])
-            self.growing = bool(np.any(lam.real > 0))  # only by rounding, for a passive body
-            self.peak = np.abs(fine[0])
-            self.span = block * LONG_BLOCKS  # the longest span read at once
-        else:
-            Phi = spl.expm(A * h)
-            powers = np.empty((block,) + A.shape)
-            powers[0] = Phi
-            for j in range(1, block):
-                powers[j] = Phi @ powers[j - 1]
-            self.powers = powers
-            self.span = block
-
-    @functools.cached_property
-    def every_real(self):
-        """``e^(lambda sub h k)``, ``k = 0, 1, ...`` over a span, as ``[Re, -Im]``: powers by
-        repeated products (``k`` roundings); computed when a state first settles."""
-        every = np.full(
-            (-(-self.span // self.sub), self.lam.size), np.exp(self.lam * self.sub * self.h)
-        )
-        every[0] = 1.0
-        every = np.cumprod(every, axis=0)
-        return np.hstack([every.real, -every.imag])
-
     def modal(self, x):
         """The modal coordinates ``z`` of ``x`` (None where the propagator is ``expm``)."""
         if not self.eigen:
             return None
         m = 2 * self.n
         return self.Vinv @ (x[:m] + self.G * x[m] + self.H * x[m + 1])
-
-    def _affine(self, out, x, steps):
-        """Add the servo's part ``a (s + s' t) + b s'`` of the rows to ``out``."""
-        m = 2 * self.n
-        s, sigma = x[m], x[m + 1]
-        if sigma == 0:  # the servo has stopped
-            out += s * self.row_s
-        else:
-            out += np.multiply.outer(s + sigma * self.h * steps, self.row_s)
-            out += sigma * self.row_speed
-        return out
-
-    def readings(self, x, z, m):
-        """``rows`` at each of the ``m`` steps after ``x`` (at most ``block``), shape ``(m, 3)``;
-        ``z`` is :meth:`modal` of ``x``."""
-        if not self.eigen:
-            return (self.powers[:m] @ x) @ self.rows.T
-        w = self.row_modes * z  # (3, 2n)
-        # Re(e w) = Re(e) Re(w) - Im(e) Im(w), as one real product
-        out = self.fine_real[:m] @ np.concatenate([w.real, w.imag], axis=1).T
-        return self._affine(out, x, np.arange(1, m + 1))
-
-    def samples(self, x, z, first, m):
-        """``rows`` every ``sub`` steps from step ``first + 1`` after ``x`` up to step ``m``
-        (at most ``span``)."""
-        steps = np.arange(first + 1, m + 1, self.sub)
-        if not self.eigen:
-            return (self.powers[steps - 1] @ x) @ self.rows.T
-        w = self.row_modes * (z * np.exp(self.lam * (self.h * (first + 1))))
-        out = self.every_real[: steps.size] @ np.concatenate([w.real, w.imag], axis=1).T
-        return self._affine(out, x, steps)
-
-    def read_ahead(self, x, z, first, limit, quiet, ends=None):
-        """Read the rows from ``x`` on, up to the next event or ``limit`` steps.
-
-        ``quiet`` (no event possible within ``min(span, limit)`` steps, from
-        :meth:`stays_positive`): all those steps are taken and only the output samples are read.
-        Otherwise at most a ``block`` of steps is read, and the motion stops before the first
-        step where ``ends(values)`` holds (default: the monitored row ``<= 0``). ``first`` is
-        the first step from ``x`` that is an output sample.
-
-        Returns
-        -------
-        tuple
-            ``(m, j, values, event)``: the steps safely inside the state, the output samples among
-            them (step indices from 0), the rows there, and whether an event lies in the next
-            step.
-        """
-        if quiet:
-            m = min(self.span, limit)
-            return m, np.arange(first, m, self.sub), self.samples(x, z, first, m), False
-        m = min(self.block, limit)
-        values = self.readings(x, z, m)
-        bad = np.flatnonzero(values[:, 0] <= 0 if ends is None else ends(values))
-        if len(bad):
-            m = int(bad[0])
-        j = np.arange(first, m, self.sub)
-        return m, j, values[j], bool(len(bad))
-
-    def stays_positive(self, x, z, m):
-        """Whether the monitored quantity provably stays positive over the next ``m`` steps.
-
-        Its modal part is at most ``sum_k |w_k| max|e^(lambda_k t)|`` in size and the rest is
-        linear in time, so the bound needs no step to be taken.
-        """
-        if not self.eigen:
-            return False
-        k = 2 * self.n
-        s, sigma = x[k], x[k + 1]
-        ends = (s * self.row_s[0], (s + sigma * self.h * m) * self.row_s[0])
-        trend = min(ends) + sigma * self.row_speed[0]
-        if self.growing:
-            rate = self.lam.real
-            peak = np.exp(np.where(rate > 0, rate * m, rate) * self.h)
-        else:  # every mode decays: the largest |e^(lambda t)| is at the first step
-            peak = self.peak
-        return bool(trend > np.abs(self.row_modes[0] * z) @ peak)
-
-    def after(self, x, z, steps):
-        """The state a whole number of steps after ``x`` (``z``: its :meth:`modal`)."""
-        if not self.eigen:
-            return self.powers[steps - 1] @ x
-        return self.at(x, z, steps * self.h)
 
     def at(self, x, z, tau):
         """The state ``tau`` after ``x`` (``z``: its :meth:`modal`)."""
@@ -319,6 +200,10 @@ class SwitchedSystem(abc.ABC):
     acceleration and the force (rows 1 and 2 of each state) at every ``sub``-th step, and with
     ``n_states`` the whole state there too.
 
+    :meth:`horizon`, :meth:`quiet`, :meth:`ends` and :meth:`record_block` are the engine's
+    interface: only the engine ``"blocks"`` calls them, to read a state a block of steps ahead;
+    :func:`march_step_by_step` needs none of them.
+
     Parameters
     ----------
     h : float
@@ -356,16 +241,18 @@ class SwitchedSystem(abc.ABC):
         return self.advance(x, key, i * self.h, (i + 1) * self.h)
 
     def horizon(self, i: int, n_steps: int) -> int:
-        """How many steps from step ``i`` on the current state may be read ahead."""
+        """The engine's hook: how many steps from step ``i`` on the current state may be read
+        ahead."""
         return n_steps - i
 
     def quiet(self, key, x, z, m: int) -> bool:
-        """Whether no event can happen within the next ``m`` steps
-        (:meth:`LinearState.stays_positive`)."""
-        return self.state(key).stays_positive(x, z, m)
+        """The engine's hook: whether no event can happen within the next ``m`` steps (the
+        engine's bound ``stays_positive``)."""
+        return stays_positive(self.state(key), x, z, m)
 
     def ends(self, key):
-        """Where the state ends, as :meth:`LinearState.read_ahead` takes it (None: monitor <= 0)."""
+        """The engine's hook: where the state ends, read on a block's rows (None: where the
+        monitored row is ``<= 0``)."""
         return None
 
     def moved(self) -> None:  # noqa: B027 - a hook that most laws leave empty
@@ -380,13 +267,13 @@ class SwitchedSystem(abc.ABC):
                 self.trajectory[k] = x
 
     def record_block(self, i: int, j, values, x, z, key) -> None:
-        """Record the output samples ``j`` (steps after ``i``) of a block read ahead from ``x``
-        (``z``: its modal coordinates), their rows ``values``."""
+        """The engine's hook: record the output samples ``j`` (steps after ``i``) of a block
+        read ahead from ``x`` (``z``: its modal coordinates), their rows ``values``."""
         k = (i + 1 + j) // self.sub
         self.acc[k], self.force[k] = values[:, 1], values[:, 2]
         if self.trajectory is not None and len(j):  # (an empty list would not broadcast)
             st = self.state(key)
-            self.trajectory[k] = [st.after(x, z, jj + 1) for jj in j]
+            self.trajectory[k] = [after(st, x, z, jj + 1) for jj in j]
 
 
 def march_step_by_step(system: SwitchedSystem, x, key, n_steps: int):

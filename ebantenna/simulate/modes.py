@@ -34,10 +34,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._validate import check_choice
 from ..fem import Supports, modal_analysis
 from ..fem.assembly import assemble
 from ..fem.coupling import coupled_modes
 from ..probe import Probe
+from ._exponential_grid import fits_grid, grid_exponentials
 
 __all__ = [
     "ArrestModes",
@@ -45,6 +47,7 @@ __all__ = [
     "coupled_arrest_modes",
     "modal_exponentials",
     "damped_exponentials",
+    "EXPONENTIAL_ENGINES",
     "modal_acceleration",
     "sweep_velocity",
 ]
@@ -315,18 +318,21 @@ def modal_exponentials(amplitude, omega, zeta):
     return amplitude * ((a * a - wd * wd) / wd - 2j * a), -a + 1j * wd
 
 
-#: Block length of the uniform-grid evaluation in :func:`damped_exponentials`.
-_GRID_BLOCK = 32
+#: The engines of :func:`damped_exponentials`: ``"grid"`` (the default) and ``"direct"``.
+EXPONENTIAL_ENGINES = ("grid", "direct")
 
 
-def damped_exponentials(t, coef, rate, *, max_elements: int = 500_000) -> np.ndarray:
+def damped_exponentials(
+    t, coef, rate, *, max_elements: int = 500_000, engine: str = "grid"
+) -> np.ndarray:
     """``Im(sum_k coef_k exp(rate_k t))`` for many signals at once.
 
-    On a uniform time grid ``t_n = t_0 + n dt`` the exponentials are not evaluated sample by
-    sample: with ``n = a B + b`` (``B`` = 32), ``exp(r t_n) = exp(r (t_0 + a B dt)) exp(r b dt)``,
-    so each term costs ``n / B + B`` complex exponentials and the sum over terms becomes one
-    batched matrix product. The rounding is that of the direct evaluation (both take the
-    exponential of arguments up to ``|r| t``), a few ulps more.
+    The reference (``engine="direct"``) evaluates the sum as it reads: one complex exponential
+    per term and sample, summed over the terms. The engine ``"grid"``, the default, takes most
+    of the exponentials of a uniform time grid longer than 64 samples as products instead (a
+    private module; with ``t_n = t_0 + n dt`` and ``n = a B + b``, ``exp(r t_n) = exp(r (t_0 +
+    a B dt)) exp(r b dt)``), and evaluates any other ``t`` as the reference does. The two agree
+    to a few ulps of ``|rate| t_max sum_k |coef_k|``: both round the arguments ``rate t``.
 
     Parameters
     ----------
@@ -336,6 +342,8 @@ def damped_exponentials(t, coef, rate, *, max_elements: int = 500_000) -> np.nda
         Amplitudes and rates (1/s) of each signal's exponentials.
     max_elements : int
         Work in blocks of signals so that no temporary exceeds this many complex numbers.
+    engine : {"grid", "direct"}
+        How the sum is evaluated (above).
 
     Returns
     -------
@@ -348,39 +356,19 @@ def damped_exponentials(t, coef, rate, *, max_elements: int = 500_000) -> np.nda
     >>> damped_exponentials(t, np.array([[1.0 + 0j]]), np.array([[2j * np.pi]])).round(12)
     array([[ 0.,  1.,  0., -1.]])
     """
+    check_choice("engine", engine, EXPONENTIAL_ENGINES)
     t = np.asarray(t, dtype=float)
+    if engine == "grid" and fits_grid(t):
+        return grid_exponentials(t, coef, rate, max_elements)
     n_signals, n_terms = coef.shape
     n_samples = t.shape[-1]
     out = np.empty((n_signals, n_samples))
-    uniform = t.ndim == 1 and n_samples > 2 * _GRID_BLOCK and _is_uniform(t)
-    if uniform:
-        dt = (t[-1] - t[0]) / (n_samples - 1)
-        n_blocks = -(-n_samples // _GRID_BLOCK)
-        inner = np.arange(_GRID_BLOCK) * dt
-        outer = t[0] + np.arange(n_blocks) * (_GRID_BLOCK * dt)
-        per_signal = n_terms * (n_blocks + _GRID_BLOCK) + n_samples
-    else:
-        per_signal = n_terms * n_samples
-    block = max(1, max_elements // max(1, per_signal))
+    block = max(1, max_elements // max(1, n_terms * n_samples))
     for start in range(0, n_signals, block):
         rows = slice(start, start + block)
-        r = rate[rows, :, None]
-        if uniform:
-            head = coef[rows, :, None] * np.exp(r * outer)  # (s, k, A)
-            tail = np.exp(r * inner)  # (s, k, B)
-            grid = np.matmul(head.transpose(0, 2, 1), tail).imag  # (s, A, B)
-            out[rows] = grid.reshape(grid.shape[0], -1)[:, :n_samples]
-        else:
-            tt = t[rows][:, None, :] if t.ndim == 2 else t[None, None, :]
-            out[rows] = np.einsum("sk,skn->sn", coef[rows], np.exp(r * tt)).imag
+        tt = t[rows][:, None, :] if t.ndim == 2 else t[None, None, :]
+        out[rows] = np.einsum("sk,skn->sn", coef[rows], np.exp(rate[rows, :, None] * tt)).imag
     return out
-
-
-def _is_uniform(t: np.ndarray) -> bool:
-    """Whether ``t`` is ``t_0 + n dt`` to rounding."""
-    n = np.arange(t.size)
-    dt = (t[-1] - t[0]) / (t.size - 1)
-    return bool(np.all(np.abs(t - (t[0] + n * dt)) <= 8 * np.finfo(float).eps * np.abs(t).max()))
 
 
 def modal_acceleration(t, amplitude, omega, zeta, *, max_elements: int = 500_000) -> np.ndarray:

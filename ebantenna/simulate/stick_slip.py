@@ -40,6 +40,7 @@ import numpy as np
 import scipy.linalg as sla
 
 from .._validate import check_choice, check_int, check_nonnegative, check_positive
+from ._block_march import stays_positive
 from .friction import check_coefficients
 from .linear_state import MARCHES, LinearState, SwitchedSystem, crossing, step_grid
 from .modes import sweep_velocity
@@ -218,21 +219,24 @@ class StickSlipLaw(SwitchedSystem):
         return x, name
 
     def both_limits(self, values):
-        """Where sticking ends: at the upper limit, mu_s N - F <= 0 (the monitored row), or at
-        the lower, mu_s N + F = 2 mu_s N - (mu_s N - F) <= 0."""
+        """For the engine (:meth:`ends`): where sticking ends, at the upper limit,
+        mu_s N - F <= 0 (the monitored row), or at the lower,
+        mu_s N + F = 2 mu_s N - (mu_s N - F) <= 0."""
         ends = values[:, 0] <= 0
         ends |= 2 * self.hold_limit - values[:, 0] <= 0
         return ends
 
     def ends(self, name):
-        """A stick ends at either limit; a slip where its speed reaches zero."""
+        """The engine's hook: a stick ends at either limit; a slip where its speed reaches
+        zero."""
         return self.both_limits if name == "stick" else None
 
     def quiet(self, name, x, z, m):
-        """No event within ``m`` steps: no friction, or every monitor provably stays > 0."""
+        """The engine's hook: no event within ``m`` steps, for there is no friction or every
+        monitor provably stays > 0."""
         return self.frictionless or (
-            self.linear[name].stays_positive(x, z, m)
-            and (name != "stick" or self.lower.stays_positive(x, self.lower.modal(x), m))
+            stays_positive(self.linear[name], x, z, m)
+            and (name != "stick" or stays_positive(self.lower, x, self.lower.modal(x), m))
         )
 
     def moved(self):
@@ -404,7 +408,8 @@ def friction_axis(scene, models, inverse, rotation_speeds, when) -> np.ndarray:
     Parameters
     ----------
     scene : Scene
-        Lists ``coulomb_friction`` (its coefficients) and perhaps ``dlpf``.
+        Lists ``coulomb_friction`` (its coefficients and its march, ``method``) and perhaps
+        ``dlpf``.
     models : list of FrictionModel
         The distinct Z models.
     inverse : array of int, shape (n,)
@@ -428,6 +433,6 @@ def friction_axis(scene, models, inverse, rotation_speeds, when) -> np.ndarray:
             m.mass, m.stiffness, m.mass.shape[0] - 1, m.normal_force,
             static_friction=effect.static_friction, kinetic_friction=effect.kinetic_friction,
             duration=(n_int - 1) / rate, fs=rate, velocity=m.rotation * float(speed),
-            damping=m.damping, output=m.output, max_events=effect.max_events,
+            damping=m.damping, output=m.output, max_events=effect.max_events, method=effect.method,
         ).acceleration[:n_int]  # fmt: skip
     return read_through_dlpf(scene, acc, rate, when)

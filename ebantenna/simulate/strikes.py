@@ -205,8 +205,9 @@ def strike_model(
 
 
 def strike_accelerations(
-    models, inverse, speeds, *, rate: float, n_samples: int, max_events: int
-) -> tuple[np.ndarray, np.ndarray]:
+    models, inverse, speeds, *, rate: float, n_samples: int, max_events: int,
+    method: str = "blocks",
+) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
     """The tip acceleration of every strike at ``rate``, and its number of re-strikes.
 
     Parameters
@@ -223,6 +224,9 @@ def strike_accelerations(
         Samples per signal from the first touch.
     max_events : int
         Most contact changes per strike before the contact is held closed (with a warning).
+    method : {"blocks", "steps"}
+        How each strike is marched: the engine (``"blocks"``) or the reference (``"steps"``),
+        as in :func:`.unilateral.unilateral_response`.
 
     Returns
     -------
@@ -252,7 +256,7 @@ def strike_accelerations(
                 s.mass, s.stiffness, s.contact, m.contact_stiffness,
                 base=s.base, approach_speed=float(speed) * m.contact, duration=duration, fs=rate,
                 damping=s.damping, output=s.output, preload=m.preload,
-                max_events=max_events, on_max_events="warn",
+                max_events=max_events, on_max_events="warn", method=method,
             )  # fmt: skip
         out[i] = res.acceleration[:n_samples]
         restrikes[i] = res.n_impacts - 1
@@ -306,12 +310,14 @@ def read_through_dlpf(scene, acc, rate, when) -> np.ndarray:
 def unilateral_axis(scene, models, inverse, speeds, when) -> tuple[np.ndarray, np.ndarray]:
     """The X axis of the ``unilateral_contact`` strikes, through the DLPF, read at ``when``.
 
-    Each strike is computed at :func:`timed_rate` and read through :func:`read_through_dlpf`.
-    Returns the accelerations ``(n, n_samples)`` (m/s^2) and each strike's number of re-strikes.
+    Each strike is computed at :func:`timed_rate`, marched by the effect's ``method``, and read
+    through :func:`read_through_dlpf`. Returns the accelerations ``(n, n_samples)`` (m/s^2)
+    and each strike's number of re-strikes.
     """
     rate, n_int = timed_rate(scene, when)
     effect = scene.effect("unilateral_contact")
     acc, restrikes = strike_accelerations(
-        models, inverse, speeds, rate=rate, n_samples=n_int, max_events=effect.max_events
-    )
+        models, inverse, speeds, rate=rate, n_samples=n_int, max_events=effect.max_events,
+        method=effect.method,
+    )  # fmt: skip
     return read_through_dlpf(scene, acc, rate, when), restrikes

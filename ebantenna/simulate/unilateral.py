@@ -67,6 +67,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validate import check_choice, check_int, check_nonnegative, check_positive
+from ._block_march import stays_positive, swing
 from .contact import PiecewiseSpring
 from .linear_state import MARCHES, LinearState, SwitchedSystem, crossing, step_grid
 from .structure import check_dof_vector, check_symmetric_matrix, mass_inverse
@@ -432,7 +433,7 @@ class StrikeLaw(SwitchedSystem):
         return self.advance(x, st, self.stop_time, (i + 1) * self.h)
 
     def horizon(self, i, n_steps):
-        """Steps ahead before the record's end or the servo's stop."""
+        """The engine's hook: steps ahead before the record's end or the servo's stop."""
         limit = n_steps - i
         if not self.stopped:
             limit = min(limit, int(math.floor(self.stop_time / self.h)) - i)
@@ -443,8 +444,9 @@ class StrikeLaw(SwitchedSystem):
         return not (self.frozen and st is self.closed)
 
     def quiet(self, st, x, z, m):
-        """No event within ``m`` steps: the state is held, or its monitor provably stays > 0."""
-        return not self.watched(st) or st.stays_positive(x, z, m)
+        """The engine's hook: no event within ``m`` steps, for the state is held or its monitor
+        provably stays > 0."""
+        return not self.watched(st) or stays_positive(st, x, z, m)
 
     def switch(self, st, x, t):
         """The switching law at an event at time ``t``: enter the other state, and count."""
@@ -569,16 +571,18 @@ class HertzStrikeLaw(StrikeLaw):
         return 0.0 if st is self.free else float(self.offsets[self.index[id(st)]])
 
     def ends(self, key):
-        """Where a chord's state ends: at either of its nodes; the free state: the gap closes."""
+        """The engine's hook: where a chord's state ends, at either of its nodes; the free
+        state's, where the gap closes."""
         if key is self.free:
             return None
         lower, upper = self.limits(key)
         return lambda values: (values[:, 0] <= lower) | (values[:, 0] >= upper)
 
     def quiet(self, key, x, z, m):
-        """No event within ``m`` steps: the force provably stays between the chord's nodes."""
+        """The engine's hook: no event within ``m`` steps, for the force provably stays between
+        the chord's nodes (its modal part within the engine's ``swing``)."""
         if key is self.free:
-            return key.stays_positive(x, z, m)
+            return stays_positive(key, x, z, m)
         if not key.eigen:
             return False
         lower, upper = self.limits(key)
@@ -586,13 +590,8 @@ class HertzStrikeLaw(StrikeLaw):
         s, sigma = x[k], x[k + 1]
         a, b = key.row_s[0], key.row_speed[0]
         ends = (s * a, (s + sigma * self.h * m) * a)
-        if key.growing:
-            rate = key.lam.real
-            peak = np.exp(np.where(rate > 0, rate * m, rate) * self.h)
-        else:
-            peak = key.peak
-        swing = float(np.abs(key.row_modes[0] * z) @ peak)
-        return bool(min(ends) + sigma * b - swing > lower and max(ends) + sigma * b + swing < upper)
+        reach = float(swing(key, z, m))
+        return bool(min(ends) + sigma * b - reach > lower and max(ends) + sigma * b + reach < upper)
 
     def first_exit(self, st, x, span, fresh):
         """The first node (or the gap's closing) reached within ``span`` after ``x``:
@@ -659,7 +658,7 @@ class HertzStrikeLaw(StrikeLaw):
             self.trajectory[i // self.sub, 2 * self.base.size] += self.shift(key)
 
     def record_block(self, i, j, values, x, z, key):
-        """Record a block read ahead, the states in true coordinates."""
+        """The engine's hook: record a block read ahead, the states in true coordinates."""
         super().record_block(i, j, values, x, z, key)
         if self.trajectory is not None and len(j):
             self.trajectory[(i + 1 + j) // self.sub, 2 * self.base.size] += self.shift(key)

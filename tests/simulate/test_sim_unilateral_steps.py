@@ -1,13 +1,21 @@
-"""How a unilateral strike is stepped: the event root finder, the no-event bound, the read-out."""
+"""How a unilateral strike is stepped: the event root finder, and the block engine's no-event
+bound and read-out."""
 
 import math
 
 import numpy as np
 import pytest
 
-import ebantenna.simulate.linear_state as linear_state
+from ebantenna.simulate._block_march import (
+    LONG_BLOCKS,
+    after,
+    prepare_blocks,
+    read_ahead,
+    readings,
+    stays_positive,
+)
 from ebantenna.simulate.linear_state import LinearState, crossing
-from ebantenna.simulate.unilateral import unilateral_response
+from ebantenna.simulate.unilateral import StrikeLaw, unilateral_response
 
 EPS = np.finfo(float).eps
 
@@ -64,7 +72,8 @@ def _two_dof_closed_state():
     pen = np.concatenate([c, np.zeros(n), [1.0, 0.0]])  # p = c @ q + s
     st = LinearState(A, n, kc * pen, kc * pen, A[n])
     fastest = np.abs(st.lam).max()
-    st.grid(2 * math.pi / (16 * fastest), 256, 7)
+    h = 2 * math.pi / (16 * fastest)
+    assert prepare_blocks([st], h, 7, 10_000) == 256  # a full block
     return st
 
 
@@ -80,15 +89,16 @@ def test_the_no_event_bound_never_promises_what_the_motion_breaks():
         dq, dv = rng.normal(size=n) * size, rng.normal(size=n) * size * 500.0
         x = np.concatenate([q_static + dq, dv, [s, 0.0]])
         z = st.modal(x)
-        if not st.stays_positive(x, z, st.span):
+        tables = st.blocks
+        if not stays_positive(st, x, z, tables.span):
             continue
         promised += 1
         # every step of the span, read through the exact propagator one block at a time
         y = x
-        for _ in range(st.span // st.block):
+        for _ in range(tables.span // tables.block):
             yz = st.modal(y)
-            assert st.readings(y, yz, st.block)[:, 0].min() > 0
-            y = st.after(y, yz, st.block)
+            assert readings(st, y, yz, tables.block)[:, 0].min() > 0
+            y = after(st, y, yz, tables.block)
     assert promised >= 20  # the witness is not vacuous: the bound holds for many states
 
 
@@ -100,7 +110,7 @@ def test_settled_spans_read_the_same_samples_as_every_step(monkeypatch):
         preload=2.0, max_events=10_000,
     )  # fmt: skip
     bound = unilateral_response(M, K, 1, 5.0e4, **kw)
-    monkeypatch.setattr(LinearState, "stays_positive", lambda self, x, z, m: False)
+    monkeypatch.setattr(StrikeLaw, "quiet", lambda self, key, x, z, m: False)
     stepped = unilateral_response(M, K, 1, 5.0e4, **kw)
     assert [e.kind for e in bound.events] == [e.kind for e in stepped.events]
     assert len(bound.events) >= 2  # it rebounds before it settles
@@ -111,7 +121,7 @@ def test_settled_spans_read_the_same_samples_as_every_step(monkeypatch):
     peak = np.abs(stepped.acceleration).max()
     # The settled spans use powers e^(lambda sub h k) built by k repeated products, k below
     # span/sub; each carries k roundings of the modal amplitudes (sum |w| ~ peak).
-    k = linear_state.LONG_BLOCKS * 256
+    k = LONG_BLOCKS * 256
     assert np.abs(bound.acceleration - stepped.acceleration).max() <= 4 * k * EPS * peak
     np.testing.assert_allclose(bound.contact_force, stepped.contact_force, rtol=0,
                                atol=4 * k * EPS * np.abs(stepped.contact_force).max())  # fmt: skip
@@ -128,12 +138,12 @@ def test_a_state_watching_other_rows_shares_the_decomposition_and_reads_the_same
     assert twin.V is st.V and twin.lam is st.lam  # not decomposed again
     np.testing.assert_array_equal(st.rows, before[0])  # the original reads what it read
     np.testing.assert_array_equal(st.row_modes, before[1])
-    for state in (twin, fresh):
-        state.grid(st.h, st.block, st.sub)
+    tables = st.blocks
+    prepare_blocks([twin, fresh], tables.h, tables.sub, 10_000)
     x = np.concatenate([rng.normal(size=2 * n) * 1e-4, [1e-5, 2e-3]])
     # the same eigenvectors (LAPACK is deterministic on the same matrix), so the same numbers
-    np.testing.assert_array_equal(twin.readings(x, twin.modal(x), st.block),
-                                  fresh.readings(x, fresh.modal(x), st.block))
+    np.testing.assert_array_equal(readings(twin, x, twin.modal(x), tables.block),
+                                  readings(fresh, x, fresh.modal(x), tables.block))
 
 
 def test_read_ahead_stops_before_the_first_step_that_ends_the_state():
@@ -142,16 +152,17 @@ def test_read_ahead_stops_before_the_first_step_that_ends_the_state():
     x = np.concatenate([np.full(2 * n, 1e-6), [1e-5, 0.0]])
     z = st.modal(x)
     first = 3
+    block, sub = st.blocks.block, st.blocks.sub
     never = lambda values: np.zeros(len(values), dtype=bool)  # noqa: E731
-    m, j, values, event = st.read_ahead(x, z, first, st.block, False, never)
-    assert m == st.block and not event
-    np.testing.assert_array_equal(j, np.arange(first, st.block, st.sub))
-    stop = st.block // 2
+    m, j, values, event = read_ahead(st, x, z, first, block, False, never)
+    assert m == block and not event
+    np.testing.assert_array_equal(j, np.arange(first, block, sub))
+    stop = block // 2
     at_stop = lambda values: np.arange(len(values)) >= stop  # noqa: E731
-    m2, j2, values2, event2 = st.read_ahead(x, z, first, st.block, False, at_stop)
+    m2, j2, values2, event2 = read_ahead(st, x, z, first, block, False, at_stop)
     assert event2 and m2 == stop
     np.testing.assert_array_equal(j2, j[j < stop])  # the samples up to the stop, the same numbers
     np.testing.assert_array_equal(values2, values[: len(j2)])
     # the limit bounds the steps read, quiet or not
-    assert st.read_ahead(x, z, first, 5, False, never)[0] == 5
-    assert st.read_ahead(x, z, first, 5, True)[0] == 5
+    assert read_ahead(st, x, z, first, 5, False, never)[0] == 5
+    assert read_ahead(st, x, z, first, 5, True)[0] == 5

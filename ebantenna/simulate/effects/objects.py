@@ -15,11 +15,12 @@ import math
 from dataclasses import dataclass
 from typing import ClassVar
 
-from ..._validate import check_int, check_positive
+from ..._validate import check_choice, check_int, check_positive
 from ...fem.rod import Rod
 from ...probe import Material, Probe
 from ..contact import TUBE_POISSON_RATIO, tube_on_rod_stiffness
 from ..friction import check_coefficients
+from ..linear_state import MARCHES
 from ._base import Effect
 
 
@@ -162,18 +163,29 @@ class UnilateralContact(Effect):
         warning (undamped bodies, or a probe resting on the rod without preload, could chatter
         without end). The default leaves room for the longest chatter of the damped ``paper``
         scene: about 1,300 changes near the tip with its low-pass filter switched off.
+    method : {"blocks", "steps"}
+        How each strike is marched (``method`` of
+        :func:`~ebantenna.simulate.unilateral.unilateral_response`): ``"blocks"``, the engine
+        and the default, reads each contact state a block of steps ahead; ``"steps"``, the
+        reference, takes every step in turn (:func:`.linear_state.march_step_by_step`), several
+        times slower. The same events; the signals agree within the rounding bound that the
+        test suite derives.
 
     Examples
     --------
     >>> UnilateralContact().max_events
     4000
+    >>> UnilateralContact(method="steps").method
+    'steps'
     """
 
     name: ClassVar[str] = "unilateral_contact"
     max_events: int = 4000
+    method: str = "blocks"
 
     def __post_init__(self):
         check_int("max_events", self.max_events, minimum=1)
+        check_choice("method", self.method, tuple(MARCHES))
 
 
 @dataclass(frozen=True)
@@ -201,6 +213,11 @@ class CoulombFriction(Effect):
     max_events : int
         Most stick/slip changes per signal (>= 1); more raise
         :class:`~ebantenna.simulate.unilateral.ChatterError`.
+    method : {"blocks", "steps"}
+        How stick and slip are marched (``method`` of
+        :func:`~ebantenna.simulate.stick_slip.stick_slip_response`): ``"blocks"``, the engine
+        and the default, or ``"steps"``, the reference, every step in turn. The same events;
+        the signals agree within the rounding bound that the test suite derives.
 
     Examples
     --------
@@ -212,7 +229,9 @@ class CoulombFriction(Effect):
     static_friction: float = 0.45
     kinetic_friction: float = 0.45
     max_events: int = 1000
+    method: str = "blocks"
 
     def __post_init__(self):
         check_coefficients(self.static_friction, self.kinetic_friction)
         check_int("max_events", self.max_events, minimum=1)
+        check_choice("method", self.method, tuple(MARCHES))

@@ -45,10 +45,6 @@ ROW_MEMO_BYTES = 64 << 20
 #: aside (float64, in bytes; :meth:`DualState.reconstruct`).
 RECONSTRUCT_BYTES = 8 << 20
 
-#: ``ndarray.max()`` without its Python wrapper.
-_largest = np.maximum.reduce
-
-
 def shrink_order(shrink: np.ndarray) -> tuple[np.ndarray, int]:
     """libsvm's reordering of the active variables when ``shrink`` marks those set aside.
 
@@ -224,7 +220,7 @@ class DualState:
         i = self._argmax(up_vals)
         Gmax = up_vals.item(i)
         np.add(yG, self._low_pen_a, out=low_vals)
-        violation = Gmax + _largest(low_vals)
+        violation = Gmax + low_vals.item(low_vals.argmax())  # the largest, cheaper than max
         if not violation >= tol:  # also stops on -inf (an empty set)
             return None, None, None, violation
         Ki = self.kernel_row(i)

@@ -22,7 +22,9 @@ entries a NumPy call costs more than its arithmetic, so the loop is built to mak
   finite.
 * In-place operators (``b *= b``) instead of ufunc calls with ``out=`` (about half the call
   cost), ``np.maximum`` against an array of the constant rather than the constant itself (a
-  third of the cost), and the scalar work of the two-variable step on Python floats.
+  third of the cost), the largest entry read where ``argmax`` finds it (the same number, and
+  the search costs less than the call of ``np.maximum.reduce``), and the scalar work of the
+  two-variable step on Python floats.
 * The floored curvatures :math:`a_{ij}` of a first index :math:`i` depend on :math:`i` alone:
   the general engine keeps them from one update to the next, as it keeps the kernel rows, until
   the active set changes (SMO picks the same :math:`i` again and again), which saves three or
@@ -41,10 +43,6 @@ from ._smo_step import pair_step, second_order_gain
 from .smo_policy import SMOPolicy
 
 __all__ = ["runs_whole", "run_whole"]
-
-#: ``ndarray.max()`` without its Python wrapper.
-_largest = np.maximum.reduce
-
 
 def runs_whole(policy: SMOPolicy, C: np.ndarray) -> bool:
     """Whether :func:`run_whole` takes this policy's updates with these bounds: first index
@@ -127,7 +125,7 @@ def run_whole(rows, up: np.ndarray, low: np.ndarray, lists, tol: float, budget: 
         Gmax = up.item(i)  # .item(): a Python float, without a NumPy scalar on the way
         if second_order:
             b = low + Gmax  # b_j = Gmax + y_j G_j: positive for the candidates j
-            violation = _largest(b)
+            violation = b.item(b.argmax())  # the largest b, as a Python float
             if not violation >= tol:  # also stops on -inf (an empty set)
                 converged = True
                 break

@@ -292,7 +292,8 @@ class DualState:
         alpha = self.alpha[:a].tolist()
         gbar = (self._full_row, self.yGbar) if self.policy.shrinking else None
         done, optimal, violation = run_whole(
-            (self.kernel_row, self.curvature_row), up, low,
+            (self._rows_memo.get, self.kernel_row, self._curvature_memo.get, self.curvature_row),
+            up, low,
             (self.y_list, self.QD_list, self.C_list, alpha), tol, budget, self._second_order,
             gbar)
         if done:

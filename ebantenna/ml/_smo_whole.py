@@ -78,10 +78,13 @@ def run_whole(rows, up: np.ndarray, low: np.ndarray, lists, tol: float, budget: 
 
     Parameters
     ----------
-    rows : tuple of two callables
-        ``row(p)``, the kernel row of position ``p`` over the active positions (float64, never
-        written), and ``curvature(p, row(p))``, the floored curvatures of the pairs of ``p``
-        (:func:`ebantenna.ml._smo_step.curvature`); both may keep what they return.
+    rows : tuple of four callables
+        ``(kept_row, row, kept_curvature, curvature)``: ``row(p)``, the kernel row of position
+        ``p`` over the active positions (float64, never written), and ``curvature(p, row(p))``,
+        the floored curvatures of the pairs of ``p``
+        (:func:`ebantenna.ml._smo_step.curvature`); both may keep what they return, and
+        ``kept_row(p)``, ``kept_curvature(p)`` return it when they have (else None: the
+        ``get`` of a dictionary, cheaper to call than a function).
     up, low : ndarray of shape (a,)
         The selection scores of the module text, updated in place.
     lists : tuple of four lists
@@ -110,14 +113,15 @@ def run_whole(rows, up: np.ndarray, low: np.ndarray, lists, tol: float, budget: 
     >>> K = np.array([[0.0, 0.0], [0.0, 4.0]])
     >>> alpha = [0.0, 0.0]
     >>> up, low = np.array([-np.inf, 1.0]), np.array([1.0, -np.inf])  # y G = -y at alpha = 0
-    >>> rows = (K.__getitem__, lambda p, Kp: np.maximum(K[p, p] + np.diag(K) - 2 * Kp, 1e-12))
+    >>> rows = ({}.get, K.__getitem__, {}.get,
+    ...         lambda p, Kp: np.maximum(K[p, p] + np.diag(K) - 2 * Kp, 1e-12))
     >>> run_whole(rows, up, low, ([-1.0, 1.0], [0.0, 4.0], [10.0, 10.0], alpha), 1e-3, np.inf,
     ...           True)
     (1, True, 0.0)
     >>> alpha
     [0.5, 0.5]
     """
-    row, curvature = rows
+    kept_row, row, kept_curvature, curvature = rows
     zeros = np.zeros(up.shape)  # np.maximum against an array of 0: about three times faster
     done, converged, violation = 0, False, np.inf
     while done < budget:
@@ -129,8 +133,11 @@ def run_whole(rows, up: np.ndarray, low: np.ndarray, lists, tol: float, budget: 
             if not violation >= tol:  # also stops on -inf (an empty set)
                 converged = True
                 break
-            Ki = row(i)
-            second_order_gain(b, curvature(i, Ki), zeros)
+            Ki = kept_row(i)
+            if Ki is None:
+                Ki = row(i)
+            quad = kept_curvature(i)
+            second_order_gain(b, curvature(i, Ki) if quad is None else quad, zeros)
             j = int(b.argmax())
             if not b.item(j) > 0:
                 converged = True
@@ -143,7 +150,8 @@ def run_whole(rows, up: np.ndarray, low: np.ndarray, lists, tol: float, budget: 
                 break
             Ki = row(i)
         done += 1
-        _update(row(j), Ki, i, j, Gmax, up, low, lists, gbar)
+        Kj = kept_row(j)
+        _update(row(j) if Kj is None else Kj, Ki, i, j, Gmax, up, low, lists, gbar)
     return done, converged, float(violation)
 
 
@@ -161,21 +169,21 @@ def _update(Kj, Ki, i, j, Gmax, up, low, lists, gbar) -> None:
     step += step_j
     up -= step
     low += step
-    if gbar is not None:  # in the general engine's order: i, then j
-        full_row, yGbar = gbar
-        for t, a, old in ((i, a_i, old_i), (j, a_j, old_j)):
-            was_upper = old >= C[t]
-            if was_upper != (a >= C[t]):
-                gbar_step = (C[t] * y[t]) * full_row(t)  # Gbar_k += C_t Q_tk, y-scaled
-                if was_upper:
-                    yGbar -= gbar_step
-                else:
-                    yGbar += gbar_step
     alpha[i], alpha[j] = a_i, a_j
-    for t, a in ((i, a_i), (j, a_j)):  # the two may have changed sets
+    for t, a, old in ((i, a_i, old_i), (j, a_j, old_j)):
+        C_t = C[t]
+        if (a < C_t) == (old < C_t) and (a > 0) == (old > 0):
+            continue  # in the same sets as before: the step has moved its scores already
+        if gbar is not None and (old >= C_t) != (a >= C_t):  # i first, then j, as libsvm
+            full_row, yGbar = gbar
+            gbar_step = (C_t * y[t]) * full_row(t)  # Gbar_k += C_t Q_tk, y-scaled
+            if old >= C_t:
+                yGbar -= gbar_step
+            else:
+                yGbar += gbar_step
         lo = low.item(t)
         yG_t = lo if lo > -np.inf else -up.item(t)
-        in_up, in_low = a < C[t], a > 0  # y = 1: up while below C, down while above 0
+        in_up, in_low = a < C_t, a > 0  # y = 1: up while below C, down while above 0
         if y[t] < 0:
             in_up, in_low = in_low, in_up
         up[t] = -yG_t if in_up else -np.inf

@@ -37,8 +37,9 @@ from .smo_policy import TAU, SMOPolicy
 __all__ = ["DualState", "ROW_MEMO_BYTES", "RECONSTRUCT_BYTES", "run_general",
            "shrink_order"]
 
-#: Memory for the kernel rows that the SMO state keeps between updates (float64, in bytes), on
-#: top of the kernel's own storage; rows that are views of a float64 kernel take none.
+#: Memory for the kernel rows and the rows of curvatures that the SMO state keeps between updates
+#: (float64, in bytes, the two together), on top of the kernel's own storage; kernel rows that
+#: are views of a float64 kernel take none.
 ROW_MEMO_BYTES = 64 << 20
 
 #: Memory for one piece of the kernel block that rebuilds the gradient of the variables set
@@ -149,9 +150,9 @@ class DualState:
         self._up, self._low, self._step, self._step_j = (np.empty(n) for _ in range(4))
         self._zeros, self._taus = np.zeros(n), np.full(n, TAU)
         # kernel rows over the active set by position, valid until the order or the active set
-        # changes; at most about ROW_MEMO_BYTES of them
+        # changes, and the floored curvatures of the pairs of a first index, likewise; the two
+        # together at most about ROW_MEMO_BYTES
         self._rows_memo: dict[int, np.ndarray] = {}
-        # and the floored curvatures of the pairs of a first index, likewise (as many rows)
         self._curvature_memo: dict[int, np.ndarray] = {}
         self._memo_capacity = max(2, ROW_MEMO_BYTES // (8 * n))
         self._activate(n)
@@ -184,8 +185,7 @@ class DualState:
             return self._assemble_row(p, length)
         row = self._rows_memo.get(p)
         if row is None:
-            if len(self._rows_memo) >= self._memo_capacity:
-                self._rows_memo.clear()
+            self._make_room()
             row = self._rows_memo[p] = self._assemble_row(p, self.active)
         return row
 
@@ -195,13 +195,18 @@ class DualState:
         kernel rows are, until the next change of the order or of the active set."""
         quad = self._curvature_memo.get(p)
         if quad is None:
-            if len(self._curvature_memo) >= self._memo_capacity:
-                self._curvature_memo.clear()
+            self._make_room()
             pair_diagonal = (self._diagonal_sum if self._same_diagonal
                              else (self._QD_a, self.QD_list[p]))
             quad = self._curvature_memo[p] = curvature(Kp, pair_diagonal, self._taus_a,
                                                        self._floor_nonpositive)
         return quad
+
+    def _make_room(self) -> None:
+        """Forget the kept rows when there are as many as :data:`ROW_MEMO_BYTES` allows."""
+        if len(self._rows_memo) + len(self._curvature_memo) >= self._memo_capacity:
+            self._rows_memo.clear()
+            self._curvature_memo.clear()
 
     def _assemble_row(self, p: int, length: int) -> np.ndarray:
         """Kernel row of position ``p`` over positions ``[0, length)``, from the stored rows."""

@@ -46,6 +46,7 @@ ROW_MEMO_BYTES = 64 << 20
 #: aside (float64, in bytes; :meth:`DualState.reconstruct`).
 RECONSTRUCT_BYTES = 8 << 20
 
+
 def shrink_order(shrink: np.ndarray) -> tuple[np.ndarray, int]:
     """libsvm's reordering of the active variables when ``shrink`` marks those set aside.
 

@@ -42,7 +42,8 @@ import numpy as np
 from ._smo_step import pair_step, second_order_gain
 from .smo_policy import SMOPolicy
 
-__all__ = ["runs_whole", "run_whole"]
+__all__ = ["runs_whole", "updates_before_shrinking", "run_whole"]
+
 
 def runs_whole(policy: SMOPolicy, C: np.ndarray) -> bool:
     """Whether :func:`run_whole` takes this policy's updates with these bounds: first index

@@ -156,6 +156,10 @@ class DualState:
         self._rows_memo: dict[int, np.ndarray] = {}
         self._curvature_memo: dict[int, np.ndarray] = {}
         self._memo_capacity = max(2, ROW_MEMO_BYTES // (8 * n))
+        # the stored rows themselves when they are views of a whole float64 kernel: while every
+        # variable is active and in its own place, they need no memo
+        reader = rows.row_reader()
+        self._views = None if reader == rows.row64 else reader
         self._activate(n)
 
     def _activate(self, active: int) -> None:
@@ -297,9 +301,12 @@ class DualState:
         low = self._yG_a + self._low_pen_a
         alpha = self.alpha[:a].tolist()
         gbar = (self._full_row, self.yGbar) if self.policy.shrinking else None
+        if self._views is not None and a == self.n and not self.permuted:
+            kept_row = row = self._views  # a view is always there: nothing to keep
+        else:
+            kept_row, row = self._rows_memo.get, self.kernel_row
         done, optimal, violation = run_whole(
-            (self._rows_memo.get, self.kernel_row, self._curvature_memo.get, self.curvature_row),
-            up, low,
+            (kept_row, row, self._curvature_memo.get, self.curvature_row), up, low,
             (self.y_list, self.QD_list, self.C_list, alpha), tol, budget, self._second_order,
             gbar)
         if done:

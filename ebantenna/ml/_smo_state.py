@@ -1,8 +1,11 @@
 """The SMO engine with shrinking, a kernel-row memo and libsvm's conventions (private).
 
-:func:`ebantenna.ml.smo.solve_smo` runs this engine for every policy that
-:mod:`ebantenna.ml._smo_whole` does not take: libsvm's conventions (``SVC(libsvm_compat=True)``)
-and shrinking with the row cache. It takes the steps of the reference loop of
+:func:`ebantenna.ml.smo.solve_smo` runs this engine for every policy. With the policies that
+the loop of :mod:`ebantenna.ml._smo_whole` takes (first index on ties, every bound above 0: the
+default conventions) the state is this engine's and the updates between two shrinkings are that
+loop's (:meth:`DualState.run_whole`); with the others (libsvm's conventions,
+``SVC(libsvm_compat=True)``) they are this engine's own (:meth:`DualState.run_steps`), the same
+steps with more NumPy calls each. It takes the steps of the reference loop of
 :mod:`ebantenna.ml.smo` (select a pair, solve it, update the gradient, and the bias at the end),
 with what makes them fast or libsvm's to the last digit:
 
@@ -12,11 +15,12 @@ with what makes them fast or libsvm's to the last digit:
 * the selection written on work buffers with membership of :math:`I_{up}` and :math:`I_{low}`
   kept as penalties 0 / :math:`-\\infty` (one vector operation each), the ties of the policy,
   and the second-order scores of :func:`ebantenna.ml._smo_step.second_order_gain`, the code
-  that the whole-kernel engine runs too. The reference's
+  that the whole-kernel loop runs too. The reference's
   :func:`~ebantenna.ml.smo.select_working_set` recomputes both sets from :math:`\\alpha` at
   every update, a few passes more per update than this engine can afford;
 * libsvm's two-variable step :func:`ebantenna.ml._smo_step.pair_step`;
-* kernel rows kept from one update to the next (:meth:`DualState.kernel_row`).
+* kernel rows, and the curvatures of the pairs of a first index, kept from one update to the
+  next (:meth:`DualState.kernel_row`, :meth:`DualState.curvature_row`).
 
 Inputs are taken as checked: :class:`~ebantenna.ml.SVC` validates them once.
 """
@@ -25,23 +29,22 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._smo_step import argmax, pair_step, second_order_gain
+from ._smo_step import argmax, curvature, pair_step, second_order_gain
+from ._smo_whole import run_whole, updates_before_shrinking
 from .kernels import KernelRows
 from .smo_policy import TAU, SMOPolicy
 
 __all__ = ["DualState", "ROW_MEMO_BYTES", "RECONSTRUCT_BYTES", "run_general",
            "shrink_order"]
 
-#: Memory for the kernel rows that the SMO state keeps between updates (float64, in bytes), on
-#: top of the kernel's own storage; rows that are views of a float64 kernel take none.
+#: Memory for the kernel rows and the rows of curvatures that the SMO state keeps between updates
+#: (float64, in bytes, the two together), on top of the kernel's own storage; kernel rows that
+#: are views of a float64 kernel take none.
 ROW_MEMO_BYTES = 64 << 20
 
 #: Memory for one piece of the kernel block that rebuilds the gradient of the variables set
 #: aside (float64, in bytes; :meth:`DualState.reconstruct`).
 RECONSTRUCT_BYTES = 8 << 20
-
-#: ``ndarray.max()`` without its Python wrapper.
-_largest = np.maximum.reduce
 
 
 def shrink_order(shrink: np.ndarray) -> tuple[np.ndarray, int]:
@@ -148,26 +151,22 @@ class DualState:
         self._up, self._low, self._step, self._step_j = (np.empty(n) for _ in range(4))
         self._zeros, self._taus = np.zeros(n), np.full(n, TAU)
         # kernel rows over the active set by position, valid until the order or the active set
-        # changes; at most about ROW_MEMO_BYTES of them
+        # changes, and the floored curvatures of the pairs of a first index, likewise; the two
+        # together at most about ROW_MEMO_BYTES
         self._rows_memo: dict[int, np.ndarray] = {}
+        self._curvature_memo: dict[int, np.ndarray] = {}
         self._memo_capacity = max(2, ROW_MEMO_BYTES // (8 * n))
+        # the stored rows themselves when they are views of a whole float64 kernel: while every
+        # variable is active and in its own place, they need no memo
+        reader = rows.row_reader()
+        self._views = None if reader == rows.row64 else reader
         self._activate(n)
-
-    def resume(self, alpha: np.ndarray, yG: np.ndarray, yGbar: np.ndarray) -> None:
-        """Take over a run that has made updates without shrinking yet (all variables active,
-        in their own order): its :math:`\\alpha`, :math:`y G` and :math:`y \\bar G`, and the
-        membership of :math:`I_{up}` and :math:`I_{low}` that :meth:`update` would have set."""
-        self.alpha[:], self.yG[:], self.yGbar[:] = alpha, yG, yGbar
-        can_up = np.where(self.alpha >= self.C, -np.inf, 0.0)
-        can_down = np.where(self.alpha <= 0, -np.inf, 0.0)
-        pos = self.y > 0
-        self.up_pen[:] = np.where(pos, can_up, can_down)
-        self.low_pen[:] = np.where(pos, can_down, can_up)
 
     def _activate(self, active: int) -> None:
         """Make the first ``active`` positions the active set: their views, no kept rows."""
         self.active = a = active
         self._rows_memo.clear()  # positions now hold other variables, or rows another length
+        self._curvature_memo.clear()
         self._yG_a, self._up_pen_a, self._low_pen_a, self._QD_a = (
             v[:a] for v in (self.yG, self.up_pen, self.low_pen, self.QD))
         self._up_a, self._low_a, self._step_a, self._step_j_a, self._zeros_a, self._taus_a = (
@@ -191,10 +190,28 @@ class DualState:
             return self._assemble_row(p, length)
         row = self._rows_memo.get(p)
         if row is None:
-            if len(self._rows_memo) >= self._memo_capacity:
-                self._rows_memo.clear()
+            self._make_room()
             row = self._rows_memo[p] = self._assemble_row(p, self.active)
         return row
+
+    def curvature_row(self, p: int, Kp: np.ndarray) -> np.ndarray:
+        """The floored curvatures :math:`a_{pq}` over the active positions ``q``
+        (:func:`~ebantenna.ml._smo_step.curvature`), from ``Kp = kernel_row(p)``; kept, as the
+        kernel rows are, until the next change of the order or of the active set."""
+        quad = self._curvature_memo.get(p)
+        if quad is None:
+            self._make_room()
+            pair_diagonal = (self._diagonal_sum if self._same_diagonal
+                             else (self._QD_a, self.QD_list[p]))
+            quad = self._curvature_memo[p] = curvature(Kp, pair_diagonal, self._taus_a,
+                                                       self._floor_nonpositive)
+        return quad
+
+    def _make_room(self) -> None:
+        """Forget the kept rows when there are as many as :data:`ROW_MEMO_BYTES` allows."""
+        if len(self._rows_memo) + len(self._curvature_memo) >= self._memo_capacity:
+            self._rows_memo.clear()
+            self._curvature_memo.clear()
 
     def _assemble_row(self, p: int, length: int) -> np.ndarray:
         """Kernel row of position ``p`` over positions ``[0, length)``, from the stored rows."""
@@ -213,17 +230,14 @@ class DualState:
         i = self._argmax(up_vals)
         Gmax = up_vals.item(i)
         np.add(yG, self._low_pen_a, out=low_vals)
-        violation = Gmax + _largest(low_vals)
+        violation = Gmax + low_vals.item(low_vals.argmax())  # the largest, cheaper than max
         if not violation >= tol:  # also stops on -inf (an empty set)
             return None, None, None, violation
         Ki = self.kernel_row(i)
         if not self._second_order:
             return i, self._argmax(low_vals), Ki, violation
-        # Fan, Chen and Lin's scores, as the whole-kernel engine computes them
-        pair_diagonal = (self._diagonal_sum if self._same_diagonal
-                         else (self._QD_a, self.QD_list[i]))
-        gain = second_order_gain(low_vals + Gmax, Ki, pair_diagonal, self._taus_a, self._zeros_a,
-                                 self._floor_nonpositive)
+        # Fan, Chen and Lin's scores, as the whole-kernel loop computes them
+        gain = second_order_gain(low_vals + Gmax, self.curvature_row(i, Ki), self._zeros_a)
         j = self._argmax(gain)
         if not gain.item(j) > 0:
             return None, None, None, violation
@@ -264,6 +278,51 @@ class DualState:
                     self.yGbar -= gbar_step
                 else:
                     self.yGbar += gbar_step
+
+    def run_steps(self, tol: float, budget: float) -> tuple[int, bool, float]:
+        """Up to ``budget`` updates on the active set, by :meth:`select` and :meth:`update`:
+        ``(done, optimal, violation)``, ``optimal`` when the active set is optimal within
+        ``tol`` (``violation`` then measured there)."""
+        done, violation = 0, np.inf
+        while done < budget:
+            i, j, Ki, violation = self.select(tol)
+            if i is None:
+                return done, True, violation
+            done += 1
+            self.update(i, j, Ki)
+        return done, False, violation
+
+    def run_whole(self, tol: float, budget: float) -> tuple[int, bool, float]:
+        """:meth:`run_steps` by the whole-kernel loop :func:`~ebantenna.ml._smo_whole.run_whole`
+        (first index on ties, every bound above 0): the same steps and numbers, fewer NumPy
+        calls per update. The state is read into its scores before and written back after."""
+        a = self.active
+        up = self._up_pen_a - self._yG_a  # the scores that select() computes
+        low = self._yG_a + self._low_pen_a
+        alpha = self.alpha[:a].tolist()
+        gbar = (self._full_row, self.yGbar) if self.policy.shrinking else None
+        if self._views is not None and a == self.n and not self.permuted:
+            kept_row = row = self._views  # a view is always there: nothing to keep
+        else:
+            kept_row, row = self._rows_memo.get, self.kernel_row
+        done, optimal, violation = run_whole(
+            (kept_row, row, self._curvature_memo.get, self.curvature_row), up, low,
+            (self.y_list, self.QD_list, self.C_list, alpha), tol, budget, self._second_order,
+            gbar)
+        if done:
+            self.alpha[:a] = alpha
+            self._yG_a[:] = np.where(low > -np.inf, low, -up)  # y G from its finite score
+            # membership of I_up and I_low, as update() sets it
+            can_up = np.where(self.alpha[:a] >= self.C[:a], -np.inf, 0.0)
+            can_down = np.where(self.alpha[:a] <= 0, -np.inf, 0.0)
+            pos = self.y[:a] > 0
+            self._up_pen_a[:] = np.where(pos, can_up, can_down)
+            self._low_pen_a[:] = np.where(pos, can_down, can_up)
+        return done, optimal, violation
+
+    def _full_row(self, p: int) -> np.ndarray:
+        """Kernel row of position ``p`` over all positions, active or not."""
+        return self.kernel_row(p, self.n)
 
     def violation(self) -> float:
         """Maximal violation over all variables (after :meth:`reconstruct`)."""
@@ -318,38 +377,44 @@ class DualState:
 
 
 def run_general(state: DualState, tol: float, max_iter: float,
-                n_iter: int = 0) -> tuple[int, bool, float]:
-    """SMO on a :class:`DualState`, any policy: ``(n_iter, converged, violation)``.
+                whole: bool = False) -> tuple[int, bool, float]:
+    """SMO on a fresh :class:`DualState`, any policy: ``(n_iter, converged, violation)``.
 
-    ``state`` is fresh, or has been :meth:`~DualState.resume`\\ d after ``n_iter`` updates that
-    came before the first shrinking. It holds the solution in its own (permuted) order when
-    this returns.
+    The updates between two shrinkings run on the active set by
+    :meth:`~DualState.run_whole` when ``whole`` (the policies of
+    :func:`~ebantenna.ml._smo_whole.runs_whole`), else by :meth:`~DualState.run_steps`: the
+    same steps and numbers either way. ``state`` holds the solution in its own (permuted) order
+    when this returns.
     """
-    policy = state.policy
-    n = state.n
-    counter = min(n, 1000) + 1 - n_iter
-    converged = False
-    violation = np.inf
+    run = state.run_whole if whole else state.run_steps
+    shrinking, n = state.policy.shrinking, state.n
+    every = updates_before_shrinking(n)
+    counter = every + 1  # libsvm's: shrink when it reaches 0, counted down before each update
+    n_iter, converged, violation = 0, False, np.inf
     while n_iter < max_iter:
-        if policy.shrinking:
+        budget = max_iter - n_iter
+        if shrinking:
             counter -= 1
             if counter == 0:
-                counter = min(n, 1000)
+                counter = every
                 state.shrink(tol)
-        i, j, Ki, violation = state.select(tol)
-        if i is None:
-            if state.active == n:
-                converged = True
-                break
-            # optimal on the active set: check again on all variables, and shrink at once
-            state.reconstruct()
-            i, j, Ki, violation = state.select(tol)
-            if i is None:
-                converged = True
-                break
-            counter = 1
-        n_iter += 1
-        state.update(i, j, Ki)
+            budget = min(budget, counter)  # this update and those before the next shrinking
+        done, optimal, violation = run(tol, budget)
+        n_iter += done
+        if not optimal:
+            counter -= done - 1
+            continue
+        if state.active == n:
+            converged = True
+            break
+        # optimal on the active set: check again on all variables, and shrink after one update
+        state.reconstruct()
+        done, optimal, violation = run(tol, 1)
+        n_iter += done
+        if optimal:
+            converged = True
+            break
+        counter = 1
     if not converged:
         state.reconstruct()
         violation = state.violation()

@@ -9,8 +9,10 @@ those of scikit-learn's ``SVC``; the two pieces they share are here, written onc
 * :func:`pair_step`, libsvm's closed-form solution of the two-variable problem, clipped in its
   order of cases (mathematically the reference's
   :func:`~ebantenna.ml.smo.solve_two_variable`, but not to the last bit);
-* :func:`second_order_gain`, the scores of Fan, Chen and Lin's second-order selection over a
-  whole vector of candidates, computed in place with as few NumPy calls as it takes.
+* :func:`curvature` and :func:`second_order_gain`, the scores of Fan, Chen and Lin's
+  second-order selection over a whole vector of candidates, computed with as few NumPy calls as
+  it takes (the curvatures, which depend on the first index alone, apart, so that an engine can
+  keep them from one update to the next).
 
 Inputs are taken as checked: :class:`~ebantenna.ml.SVC` validates them once.
 """
@@ -21,7 +23,7 @@ import numpy as np
 
 from .smo_policy import TAU
 
-__all__ = ["pair_step", "second_order_gain", "argmax"]
+__all__ = ["pair_step", "curvature", "second_order_gain", "argmax"]
 
 
 def argmax(values: np.ndarray, last: bool) -> int:
@@ -40,46 +42,33 @@ def argmax(values: np.ndarray, last: bool) -> int:
     return int(values.argmax())
 
 
-def second_order_gain(b: np.ndarray, Ki: np.ndarray, pair_diagonal, taus: np.ndarray,
-                      zeros: np.ndarray, floor_nonpositive: bool) -> np.ndarray:
-    """Fan, Chen and Lin's second-order scores :math:`\\max(b_{ij}, 0)^2 / a_{ij}`, in place.
+def curvature(Ki: np.ndarray, pair_diagonal, taus: np.ndarray,
+              floor_nonpositive: bool) -> np.ndarray:
+    """The floored curvatures :math:`a_{ij} = K_{ii} + K_{jj} - 2 K_{ij}` of the pairs
+    :math:`(i, j)` over all :math:`j`, as a new array.
 
-    For the chosen :math:`i`, libsvm minimises :math:`-b_{ij}^2 / a_{ij}` over the :math:`j` of
-    :math:`I_{low}` with :math:`b_{ij} = G_{max} + y_j G_j > 0`. The same :math:`j` maximises
-    these scores, with :math:`b` clipped at 0: the other candidates score 0, the best one more
-    than 0 (:math:`b \\ge` ``tol`` there).
+    They depend on :math:`i` alone, not on the gradient: an engine may keep them from one
+    update to the next while the positions stay (SMO picks the same :math:`i` again and again).
 
     Parameters
     ----------
-    b : ndarray of shape (a,)
-        :math:`G_{max} + y_j G_j` on :math:`I_{low}`, :math:`-\\infty` elsewhere; overwritten
-        by the scores and returned.
     Ki : ndarray of shape (a,)
         Kernel row of :math:`i`, float64.
     pair_diagonal : float or tuple (ndarray of shape (a,), float)
         :math:`K_{ii} + K_{jj}`: one number when the diagonal is constant (as the RBF kernel's),
         which saves a pass (``Ki * -2.0 + s`` is the same number as ``s - 2.0 * Ki``), else the
         diagonal and :math:`K_{ii}`.
-    taus, zeros : ndarray of shape (a,)
-        The constants :math:`\\tau` and 0 as arrays: ``np.maximum`` against an array gives the
-        same numbers about three times as fast as against a Python float.
+    taus : ndarray of shape (a,)
+        The constant :math:`\\tau` as an array: ``np.maximum`` against an array gives the same
+        numbers about three times as fast as against a Python float.
     floor_nonpositive : bool
         Replace only :math:`a_{ij} \\le 0` by :math:`\\tau` (libsvm), instead of
         :math:`\\max(a_{ij}, \\tau)`.
 
-    Returns
-    -------
-    ndarray
-        ``b``, now holding the scores.
-
     Examples
     --------
-    Candidates 1 and 2 improve the objective by :math:`b^2/(2a)`: 1/4 and 4/4.
-
-    >>> b = np.array([-np.inf, 1.0, 2.0])
-    >>> second_order_gain(b, np.array([1.0, 0.0, 0.0]), 2.0, np.full(3, 1e-12), np.zeros(3),
-    ...                   False)
-    array([0. , 0.5, 2. ])
+    >>> curvature(np.array([1.0, 0.0, 1.0]), 2.0, np.full(3, 1e-12), False)
+    array([1.e-12, 2.e+00, 1.e-12])
     """
     if isinstance(pair_diagonal, float):
         quad = Ki * -2.0
@@ -93,6 +82,40 @@ def second_order_gain(b: np.ndarray, Ki: np.ndarray, pair_diagonal, taus: np.nda
         quad[quad <= 0] = TAU  # exactly TAU where a <= 0, a itself elsewhere
     else:
         np.maximum(quad, taus, out=quad)
+    return quad
+
+
+def second_order_gain(b: np.ndarray, quad: np.ndarray, zeros: np.ndarray) -> np.ndarray:
+    """Fan, Chen and Lin's second-order scores :math:`\\max(b_{ij}, 0)^2 / a_{ij}`, in place.
+
+    For the chosen :math:`i`, libsvm minimises :math:`-b_{ij}^2 / a_{ij}` over the :math:`j` of
+    :math:`I_{low}` with :math:`b_{ij} = G_{max} + y_j G_j > 0`. The same :math:`j` maximises
+    these scores, with :math:`b` clipped at 0: the other candidates score 0, the best one more
+    than 0 (:math:`b \\ge` ``tol`` there).
+
+    Parameters
+    ----------
+    b : ndarray of shape (a,)
+        :math:`G_{max} + y_j G_j` on :math:`I_{low}`, :math:`-\\infty` elsewhere; overwritten
+        by the scores and returned.
+    quad : ndarray of shape (a,)
+        The floored curvatures :math:`a_{ij}` (:func:`curvature`).
+    zeros : ndarray of shape (a,)
+        The constant 0 as an array (faster in ``np.maximum``, as ``taus`` in :func:`curvature`).
+
+    Returns
+    -------
+    ndarray
+        ``b``, now holding the scores.
+
+    Examples
+    --------
+    Candidates 1 and 2 improve the objective by :math:`b^2/(2a)`: 1/4 and 4/4.
+
+    >>> b = np.array([-np.inf, 1.0, 2.0])
+    >>> second_order_gain(b, np.array([2.0, 2.0, 2.0]), np.zeros(3))
+    array([0. , 0.5, 2. ])
+    """
     np.maximum(b, zeros, out=b)
     b *= b
     b /= quad

@@ -1,13 +1,13 @@
-"""The SMO engine over all variables, with few NumPy calls per update (private).
+"""The SMO loop over the active variables, with few NumPy calls per update (private).
 
-:func:`ebantenna.ml.smo.solve_smo` runs this engine for the package's default conventions
-(:data:`~ebantenna.ml.smo_policy.DEFAULT`: first index on ties): the whole run without
-shrinking, and with shrinking the updates before libsvm's first shrinking, after which the
-general engine goes on from the state this one hands over (:math:`\\bar G` included). It
-takes the same steps in the same floating-point arithmetic as the general engine
-:mod:`ebantenna.ml._smo_state` (the second-order scores and the two-variable step are the same
-code, :mod:`ebantenna.ml._smo_step`), so the two return the same numbers to the last bit; only
-the bookkeeping differs. Both take the steps of the reference loop
+:func:`ebantenna.ml.smo.solve_smo` runs this loop for the package's default conventions
+(:data:`~ebantenna.ml.smo_policy.DEFAULT`: first index on ties): every update of the run, on
+the active variables of the general engine :mod:`ebantenna.ml._smo_state`, which keeps the
+state between the loop's runs and does libsvm's shrinking and reconstruction of the gradient
+(:math:`\\bar G` is kept here as it keeps it). It takes the same steps in the same
+floating-point arithmetic as the general engine's own update (the second-order scores and the
+two-variable step are the same code, :mod:`ebantenna.ml._smo_step`), so the two return the same
+numbers to the last bit; only the bookkeeping differs. Both take the steps of the reference loop
 :func:`ebantenna.ml.smo.reference_smo`, in libsvm's arithmetic. On vectors of a few thousand
 entries a NumPy call costs more than its arithmetic, so the loop is built to make few calls:
 
@@ -22,9 +22,13 @@ entries a NumPy call costs more than its arithmetic, so the loop is built to mak
   finite.
 * In-place operators (``b *= b``) instead of ufunc calls with ``out=`` (about half the call
   cost), ``np.maximum`` against an array of the constant rather than the constant itself (a
-  third of the cost), and the scalar work of the two-variable step on Python floats.
-* A constant kernel diagonal (the RBF kernel's is 1) saves one pass: :math:`a_{ij}` is then
-  ``Ki * -2.0 + (K_ii + K_jj)``, the same number as ``(K_ii + K_jj) - 2.0 * Ki``.
+  third of the cost), the largest entry read where ``argmax`` finds it (the same number, and
+  the search costs less than the call of ``np.maximum.reduce``), and the scalar work of the
+  two-variable step on Python floats.
+* The floored curvatures :math:`a_{ij}` of a first index :math:`i` depend on :math:`i` alone:
+  the general engine keeps them from one update to the next, as it keeps the kernel rows, until
+  the active set changes (SMO picks the same :math:`i` again and again), which saves three or
+  four passes per update (:func:`ebantenna.ml._smo_step.curvature`).
 * The stopping test uses :math:`\\max_j (\\mathrm{low}_j + G_{max})`, which rounding (monotone)
   makes equal to :math:`G_{max} + \\max_j \\mathrm{low}_j`, the general engine's violation.
 
@@ -36,19 +40,16 @@ from __future__ import annotations
 import numpy as np
 
 from ._smo_step import pair_step, second_order_gain
-from .smo_policy import TAU, SMOPolicy
+from .smo_policy import SMOPolicy
 
-__all__ = ["runs_whole", "run_whole"]
-
-#: ``ndarray.max()`` without its Python wrapper.
-_largest = np.maximum.reduce
+__all__ = ["runs_whole", "updates_before_shrinking", "run_whole"]
 
 
 def runs_whole(policy: SMOPolicy, C: np.ndarray) -> bool:
-    """Whether :func:`run_whole` takes this policy's first steps with these bounds: first index
-    on ties and every :math:`C_t > 0`. Without shrinking it runs to the end; with shrinking it
-    takes the updates before libsvm's first shrinking (:func:`updates_before_shrinking`), the
-    same steps as :mod:`ebantenna.ml._smo_state` takes until then, and hands over to it.
+    """Whether :func:`run_whole` takes this policy's updates with these bounds: first index
+    on ties and every :math:`C_t > 0` (each variable then lies in :math:`I_{up}` or
+    :math:`I_{low}`). It takes them all, between the shrinkings of
+    :mod:`ebantenna.ml._smo_state` when the policy shrinks: the same steps as that engine's own.
 
     Examples
     --------
@@ -60,8 +61,8 @@ def runs_whole(policy: SMOPolicy, C: np.ndarray) -> bool:
 
 
 def updates_before_shrinking(n: int) -> int:
-    """libsvm's first shrinking comes after ``min(n, 1000)`` updates: before it, an SMO run with
-    shrinking takes the same steps over all variables as one without.
+    """libsvm shrinks every ``min(n, 1000)`` updates: before the first shrinking, an SMO run
+    with shrinking takes the same steps over all variables as one without.
 
     Examples
     --------
@@ -71,65 +72,73 @@ def updates_before_shrinking(n: int) -> int:
     return min(n, 1000)
 
 
-def run_whole(rows, y: np.ndarray, QD: np.ndarray, C: np.ndarray, second_order: bool, tol: float,
-              max_iter: float, floor_nonpositive: bool = False, track_gbar: bool = False):
-    """Run SMO from :math:`\\alpha = 0` until the violation is below ``tol`` or ``max_iter``
-    updates are done.
+def run_whole(rows, up: np.ndarray, low: np.ndarray, lists, tol: float, budget: float,
+              second_order: bool, gbar=None):
+    """Run SMO on the active positions from the scores ``up`` and ``low`` until the violation
+    is below ``tol`` or ``budget`` updates are done.
 
     Parameters
     ----------
-    rows : KernelRows
-        Kernel rows of the training points.
-    y, QD, C : ndarray of shape (n,)
-        Labels (+1 or -1), kernel diagonal and bounds (all > 0), float64, checked.
+    rows : tuple of four callables
+        ``(kept_row, row, kept_curvature, curvature)``: ``row(p)``, the kernel row of position
+        ``p`` over the active positions (float64, never written), and ``curvature(p, row(p))``,
+        the floored curvatures of the pairs of ``p``
+        (:func:`ebantenna.ml._smo_step.curvature`); both may keep what they return, and
+        ``kept_row(p)``, ``kept_curvature(p)`` return it when they have (else None: the
+        ``get`` of a dictionary, cheaper to call than a function).
+    up, low : ndarray of shape (a,)
+        The selection scores of the module text, updated in place.
+    lists : tuple of four lists
+        Labels (+1 or -1), kernel diagonal, bounds (all > 0) and :math:`\\alpha` by position, as
+        Python floats; :math:`\\alpha` is updated in place.
+    tol, budget : float
+        Stopping tolerance on the maximal violation, and the largest number of updates.
     second_order : bool
         Fan, Chen and Lin's selection; else the maximal violating pair.
-    tol, max_iter : float
-        Stopping tolerance on the maximal violation, and the largest number of updates.
-    floor_nonpositive : bool
-        The policy's curvature floor in the second-order scores: libsvm's (only
-        :math:`a_{ij} \\le 0` replaced by :math:`\\tau`) or :math:`\\max(a_{ij}, \\tau)`.
-    track_gbar : bool
-        Also keep :math:`y_t \\bar G_t` (:math:`\\bar G_t = \\sum_{s: \\alpha_s = C_s} C_s
-        Q_{ts}`) as the general engine keeps it for shrinking, in the same order of additions.
+    gbar : tuple (callable, ndarray of shape (n,)), optional
+        ``(full_row, yGbar)``: also keep :math:`y_t \\bar G_t` (:math:`\\bar G_t = \\sum_{s:
+        \\alpha_s = C_s} C_s Q_{ts}`, over every position, active or not, with ``full_row(p)``
+        the kernel row over all of them) as the general engine keeps it for shrinking, in the
+        same order of additions.
 
     Returns
     -------
     tuple
-        ``(alpha, yG, n_iter, converged, violation, yGbar)``: the solution, :math:`y_t G_t`
-        there, the loop's report as the general engine makes it, and :math:`y_t \\bar G_t`
-        (None without ``track_gbar``).
+        ``(done, converged, violation)``: the updates made, whether the active positions are
+        optimal within ``tol``, and the violation last measured.
 
     Examples
     --------
-    >>> from ebantenna.ml.kernels import Kernel, KernelRows
-    >>> rows = KernelRows(np.array([[0.0], [2.0]]), Kernel("linear"), np.float64, 1 << 20)
-    >>> alpha, yG, n_iter, converged, _, _ = run_whole(rows, np.array([-1.0, 1.0]),
-    ...     np.array([0.0, 4.0]), np.full(2, 10.0), True, 1e-3, np.inf)
-    >>> alpha, yG, n_iter, converged
-    (array([0.5, 0.5]), array([1., 1.]), 1, True)
+    Two points at 0 and 2 (linear kernel), one per class, from :math:`\\alpha = 0`:
+
+    >>> K = np.array([[0.0, 0.0], [0.0, 4.0]])
+    >>> alpha = [0.0, 0.0]
+    >>> up, low = np.array([-np.inf, 1.0]), np.array([1.0, -np.inf])  # y G = -y at alpha = 0
+    >>> rows = ({}.get, K.__getitem__, {}.get,
+    ...         lambda p, Kp: np.maximum(K[p, p] + np.diag(K) - 2 * Kp, 1e-12))
+    >>> run_whole(rows, up, low, ([-1.0, 1.0], [0.0, 4.0], [10.0, 10.0], alpha), 1e-3, np.inf,
+    ...           True)
+    (1, True, 0.0)
+    >>> alpha
+    [0.5, 0.5]
     """
-    row = rows.row_reader()
-    up = np.where(y > 0, 0.0, -np.inf) + y  # -y G = y at alpha = 0, on I_up (y = 1)
-    low = np.where(y > 0, -np.inf, 0.0) - y  # y G = -y, on I_low (y = -1)
-    ys, QDs, Cs, alpha = (v.tolist() for v in (y, QD, C, np.zeros(y.shape)))
-    # K_ii + K_jj is one number for a constant diagonal (as for 'rbf', all 1)
-    pair_diagonal = QDs[0] + QDs[0] if bool(np.all(QD == QD[0])) else None
-    taus, zeros = np.full(QD.shape, TAU), np.zeros(QD.shape)
-    yGbar = np.zeros(QD.shape) if track_gbar else None
-    n_iter, converged, violation = 0, False, np.inf
-    while n_iter < max_iter:
+    kept_row, row, kept_curvature, curvature = rows
+    zeros = np.zeros(up.shape)  # np.maximum against an array of 0: about three times faster
+    done, converged, violation = 0, False, np.inf
+    while done < budget:
         i = int(up.argmax())
         Gmax = up.item(i)  # .item(): a Python float, without a NumPy scalar on the way
         if second_order:
             b = low + Gmax  # b_j = Gmax + y_j G_j: positive for the candidates j
-            violation = _largest(b)
+            violation = b.item(b.argmax())  # the largest b, as a Python float
             if not violation >= tol:  # also stops on -inf (an empty set)
                 converged = True
                 break
-            Ki = row(i)
-            second_order_gain(b, Ki, (QD, QDs[i]) if pair_diagonal is None else pair_diagonal,
-                              taus, zeros, floor_nonpositive)
+            Ki = kept_row(i)
+            if Ki is None:
+                Ki = row(i)
+            quad = kept_curvature(i)
+            second_order_gain(b, curvature(i, Ki) if quad is None else quad, zeros)
             j = int(b.argmax())
             if not b.item(j) > 0:
                 converged = True
@@ -141,17 +150,16 @@ def run_whole(rows, y: np.ndarray, QD: np.ndarray, C: np.ndarray, second_order: 
                 converged = True
                 break
             Ki = row(i)
-        n_iter += 1
-        _update(row(j), Ki, i, j, Gmax, up, low, ys, QDs, Cs, alpha, yGbar)
-    if not converged:
-        violation = _largest(up) + _largest(low)
-    return (np.array(alpha), np.where(low > -np.inf, low, -up), n_iter, converged,
-            float(violation), yGbar)
+        done += 1
+        Kj = kept_row(j)
+        _update(row(j) if Kj is None else Kj, Ki, i, j, Gmax, up, low, lists, gbar)
+    return done, converged, float(violation)
 
 
-def _update(Kj, Ki, i, j, Gmax, up, low, y, QD, C, alpha, yGbar) -> None:
+def _update(Kj, Ki, i, j, Gmax, up, low, lists, gbar) -> None:
     """Solve for the pair ``(i, j)`` and move the scores ``up`` and ``low`` (in place), and
-    ``yGbar`` unless it is None."""
+    :math:`y \\bar G` unless ``gbar`` is None."""
+    y, QD, C, alpha = lists
     yi, yj, old_i, old_j = y[i], y[j], alpha[i], alpha[j]
     yG_i, yG_j = -Gmax, low.item(j)  # i is in I_up, j in I_low
     a_i, a_j = pair_step(yi, yj, QD[i], QD[j], C[i], C[j], old_i, old_j, yi * yG_i, yj * yG_j,
@@ -162,20 +170,21 @@ def _update(Kj, Ki, i, j, Gmax, up, low, y, QD, C, alpha, yGbar) -> None:
     step += step_j
     up -= step
     low += step
-    if yGbar is not None:  # in the general engine's order: i, then j
-        for t, K_t, a, old in ((i, Ki, a_i, old_i), (j, Kj, a_j, old_j)):
-            was_upper = old >= C[t]
-            if was_upper != (a >= C[t]):
-                gbar_step = (C[t] * y[t]) * K_t  # Gbar_k += C_t Q_tk, in y-scaled form
-                if was_upper:
-                    yGbar -= gbar_step
-                else:
-                    yGbar += gbar_step
     alpha[i], alpha[j] = a_i, a_j
-    for t, a in ((i, a_i), (j, a_j)):  # the two may have changed sets
+    for t, a, old in ((i, a_i, old_i), (j, a_j, old_j)):
+        C_t = C[t]
+        if (a < C_t) == (old < C_t) and (a > 0) == (old > 0):
+            continue  # in the same sets as before: the step has moved its scores already
+        if gbar is not None and (old >= C_t) != (a >= C_t):  # i first, then j, as libsvm
+            full_row, yGbar = gbar
+            gbar_step = (C_t * y[t]) * full_row(t)  # Gbar_k += C_t Q_tk, y-scaled
+            if old >= C_t:
+                yGbar -= gbar_step
+            else:
+                yGbar += gbar_step
         lo = low.item(t)
         yG_t = lo if lo > -np.inf else -up.item(t)
-        in_up, in_low = a < C[t], a > 0  # y = 1: up while below C, down while above 0
+        in_up, in_low = a < C_t, a > 0  # y = 1: up while below C, down while above 0
         if y[t] < 0:
             in_up, in_low = in_low, in_up
         up[t] = -yG_t if in_up else -np.inf

@@ -38,13 +38,13 @@ which either holds the whole matrix (one GEMM) or keeps a least-recently-used ca
 are computed on demand. How an engine selects, breaks ties, floors the curvature, shrinks and
 sums the bias is an :class:`~ebantenna.ml.smo_policy.SMOPolicy`, a frozen value with two
 presets: :data:`~ebantenna.ml.smo_policy.DEFAULT` and :data:`~ebantenna.ml.smo_policy.LIBSVM`.
-``_smo_whole`` runs over all variables with few NumPy calls per update: the whole run for the
-default conventions without shrinking, and with shrinking the updates before the first one
-(libsvm shrinks after ``min(n, 1000)`` updates), where it hands its state to ``_smo_state``,
-libsvm's solver with its shrinking, its variable order and a memo of kernel rows, which also
-runs libsvm's conventions from the start. The two share libsvm's two-variable
-step and the second-order scores (``_smo_step``) and return the same numbers to the last bit for
-the same policy. Tests hold both equal to the reference within what the stopping rule allows.
+``_smo_state`` is libsvm's solver: its shrinking, its variable order, its reconstruction of the
+gradient and a memo of kernel rows. It runs libsvm's conventions with its own update, and the
+default conventions with the loop of ``_smo_whole``, which takes the updates between two
+shrinkings (all of them when the policy does not shrink) on the active variables with few NumPy
+calls each. The two share libsvm's two-variable step and the second-order scores
+(``_smo_step``) and return the same numbers to the last bit for the same policy. Tests hold
+both equal to the reference within what the stopping rule allows.
 
 The optional compiled engine
 ----------------------------
@@ -112,7 +112,7 @@ from ._smo_compiled import (
     run_compiled,
 )
 from ._smo_state import DualState, run_general
-from ._smo_whole import run_whole, runs_whole, updates_before_shrinking
+from ._smo_whole import runs_whole
 from .kernels import KernelRows
 from .smo_policy import DEFAULT, TAU, SMOPolicy
 
@@ -357,24 +357,14 @@ def _run_numpy(rows, y, C, diagonal, policy, tol, max_iter):
     """The NumPy engines: ``(alpha, yG, perm, n_iter, converged, violation)``, the arrays in
     the engine's order (``perm`` None when it is the callers').
 
-    The whole-kernel loop takes every update it can: all of them without shrinking, those
-    before the first shrinking otherwise (the same steps, with fewer NumPy calls each), and
-    libsvm's engine with its shrinking takes over from there.
+    libsvm's engine keeps the state, shrinks and rebuilds gradients; the whole-kernel loop
+    takes the updates in between when the policy allows it (the same steps, with fewer NumPy
+    calls each).
     """
-    if not runs_whole(policy, C):
-        state = DualState(rows, y, C, diagonal, policy)
-        n_iter, converged, violation = run_general(state, tol, max_iter)
-        return state.alpha, state.yG, state.perm, n_iter, converged, violation
-    first = min(max_iter, updates_before_shrinking(y.size)) if policy.shrinking else max_iter
-    alpha, yG, n_iter, converged, violation, yGbar = run_whole(
-        rows, y, diagonal, C, policy.selection == "second-order", tol, first,
-        policy.curvature_floor == "nonpositive", policy.shrinking)
-    if converged or n_iter >= max_iter:
-        return alpha, yG, None, n_iter, converged, violation
     state = DualState(rows, y, C, diagonal, policy)
-    state.resume(alpha, yG, yGbar)
-    n_iter, converged, violation = run_general(state, tol, max_iter, n_iter)
-    return state.alpha, state.yG, state.perm, n_iter, converged, violation
+    n_iter, converged, violation = run_general(state, tol, max_iter, runs_whole(policy, C))
+    perm = state.perm if state.permuted else None
+    return state.alpha, state.yG, perm, n_iter, converged, violation
 
 
 def solve_smo(

@@ -1,5 +1,5 @@
-"""The two SMO engines: the whole-kernel run (``_smo_whole``) against the general one
-(``_smo_state``), to the last bit, and libsvm's two-variable step (``_smo_step``)."""
+"""The two SMO loops: the whole-kernel one (``_smo_whole``) against the general engine's own
+update (``_smo_state``), to the last bit, and libsvm's two-variable step (``_smo_step``)."""
 
 from dataclasses import replace
 
@@ -90,11 +90,11 @@ def test_which_policies_run_the_whole_loop():
 
 @pytest.mark.parametrize("floor", ["tau", "nonpositive"])
 @pytest.mark.parametrize("max_iter", [10_000_000, 1000, 1500])
-def test_hand_over_to_shrinking_takes_the_same_steps(monkeypatch, floor, max_iter):
-    # the whole-kernel loop takes the updates before libsvm's first shrinking (1000 here), then
-    # the general engine goes on from its state: the path and the numbers of the general engine
-    # alone, to the last bit, through several shrinkings and a gradient reconstruction, and
-    # when max_iter stops the run at the hand-over or after it
+def test_runs_between_shrinkings_take_the_same_steps(monkeypatch, floor, max_iter):
+    # the whole-kernel loop takes the updates between libsvm's shrinkings (every 1000 here) on
+    # the general engine's state: the path and the numbers of the general engine alone, to the
+    # last bit, through several shrinkings and a gradient reconstruction, and when max_iter
+    # stops the run at the first shrinking or after it
     rng = np.random.default_rng(7)
     X = rng.normal(size=(1300, 2))
     y = np.where(X[:, 0] + X[:, 1] ** 2 + 0.8 * rng.normal(size=1300) > 1.0, 1.0, -1.0)
@@ -108,6 +108,27 @@ def test_hand_over_to_shrinking_takes_the_same_steps(monkeypatch, floor, max_ite
     np.testing.assert_array_equal(fast.alpha, general.alpha)
     assert (fast.rho, fast.objective, fast.violation) == (
         general.rho, general.objective, general.violation)
+
+
+@pytest.mark.parametrize("seed, kernel, C", [(0, "rbf", 10.0), (4, "linear", 1.0)])
+def test_every_stop_between_shrinkings_is_the_general_engines(monkeypatch, seed, kernel, C):
+    # 40 variables: shrinkings every 40 updates, gradient reconstructions (two and one here)
+    # and the single update after each; stopped by max_iter at every count, the loop leaves
+    # the state of the general engine, to the last bit
+    X, y, _ = _problem(seed)
+    X, y, C = X[:40], y[:40], np.full(40, C)
+    kern = Kernel(kernel, gamma=0.5)
+    rows = KernelRows(X, kern, np.float64, cache_bytes=1 << 24)
+    policy = replace(DEFAULT, shrinking=True)
+    full, _ = _solve_both(monkeypatch, rows, y, C, kern.diagonal(X), policy=policy)
+    assert full.converged and full.n_iter > 2 * 40  # past two shrinkings
+    for max_iter in range(1, full.n_iter + 2):
+        fast, general = _solve_both(monkeypatch, rows, y, C, kern.diagonal(X), policy=policy,
+                                    max_iter=max_iter)
+        assert fast.n_iter == general.n_iter == min(max_iter, full.n_iter)
+        assert fast.converged == general.converged == (max_iter > full.n_iter)
+        np.testing.assert_array_equal(fast.alpha, general.alpha)
+        assert (fast.rho, fast.violation) == (general.rho, general.violation)
 
 
 def test_pair_step_keeps_the_equality_constraint_and_the_box():

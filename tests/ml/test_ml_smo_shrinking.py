@@ -9,7 +9,7 @@ from ebantenna.ml import _smo_state
 from ebantenna.ml._smo_state import shrink_order
 from ebantenna.ml.kernels import Kernel, KernelRows
 from ebantenna.ml.smo import solve_smo
-from ebantenna.ml.smo_policy import LIBSVM
+from ebantenna.ml.smo_policy import DEFAULT, LIBSVM
 
 
 @pytest.fixture(autouse=True)
@@ -79,14 +79,16 @@ def _shrinking_problem():
     return KernelRows(X, kern, np.float32, 1 << 24), y, kern.diagonal(X)
 
 
-def test_kept_rows_do_not_change_the_solution(monkeypatch):
-    # the rows kept between updates are the rows themselves: with room for two of them only,
-    # the same steps to the last bit
+@pytest.mark.parametrize("policy", [LIBSVM, replace(DEFAULT, shrinking=True)])
+def test_kept_rows_do_not_change_the_solution(monkeypatch, policy):
+    # the kernel rows and curvatures kept between updates are the rows themselves: with room
+    # for two of them only, the same steps to the last bit, through the general engine's own
+    # update (LIBSVM) and through the whole-kernel loop (DEFAULT)
     rows, y, diagonal = _shrinking_problem()
     C = np.full(y.size, 4.0)
-    kept = solve_smo(rows, y, C, diagonal=diagonal, policy=LIBSVM)
+    kept = solve_smo(rows, y, C, diagonal=diagonal, policy=policy)
     monkeypatch.setattr(_smo_state, "ROW_MEMO_BYTES", 0)
-    few = solve_smo(rows, y, C, diagonal=diagonal, policy=LIBSVM)
+    few = solve_smo(rows, y, C, diagonal=diagonal, policy=policy)
     assert kept.converged and kept.n_iter > 2000
     assert kept.n_iter == few.n_iter
     np.testing.assert_array_equal(kept.alpha, few.alpha)

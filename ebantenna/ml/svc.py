@@ -165,9 +165,9 @@ class SVC(ClassifierMixin, BaseEstimator):
         kernel matrix is built with one matrix product when it fits (in float64 if that fits
         too, unless ``libsvm_compat``), else rows are computed on demand and the least recently
         used are dropped. With shrinking the solver also keeps the float64 rows it has used
-        since the last reordering, up to 64 MB. ``solver="reference"`` holds the kernel matrix
-        of each pair of classes as one float64 array, whatever ``cache_size`` (with the entries
-        of the storage above).
+        since the last reordering, up to 64 MB (kernel rows and their curvatures together).
+        ``solver="reference"`` holds the kernel matrix of each pair of classes as one float64
+        array, whatever ``cache_size`` (with the entries of the storage above).
     class_weight : dict or 'balanced', default=None
         Multiply ``C`` by this weight for the samples of each class.
     verbose : bool, default=False

@@ -110,9 +110,12 @@ def test_an_interrupted_dataset_ends_in_one_line_and_json(
 
 
 SIGNAL_SCRIPT = textwrap.dedent("""
-    import sys, time
+    import faulthandler, sys, time
     import ebantenna.simulate.dataset as d
     from ebantenna.cli import main
+
+    # a run that does not end: every thread's stack on stderr, for the test's message
+    faulthandler.dump_traceback_later(50, exit=True)
 
     def slow(*args, **kwargs):
         print("ready", file=sys.stderr, flush=True)
@@ -133,7 +136,11 @@ def test_a_real_signal_during_dataset_ends_cleanly(tmp_path, sig, code):
     )
     assert proc.stderr.readline() == "ready\n"  # inside the build, past every import
     proc.send_signal(sig)
-    out, err = proc.communicate(timeout=60)
+    try:
+        out, err = proc.communicate(timeout=60)
+    except subprocess.TimeoutExpired:  # never leave the process behind for another test
+        proc.kill()
+        out, err = proc.communicate()
     assert proc.returncode == code, err
     assert err == "ebantenna dataset: interrupted\n"
     report = json.loads(out)

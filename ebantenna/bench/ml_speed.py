@@ -76,7 +76,7 @@ import sys
 import tempfile
 import time
 import warnings
-from contextlib import contextmanager
+from contextlib import ExitStack, contextmanager
 
 import numpy as np
 from sklearn import datasets
@@ -306,6 +306,23 @@ def small_set_rows(repeat: int, batch_seconds: float = 0.02) -> list[dict]:
     return rows
 
 
+def _fastest_clocked_fit(model, X, y, clocks, repeat: int) -> tuple[float, dict]:
+    """Fit ``model`` ``repeat`` times with each ``(owner, name, count)`` of ``clocks`` clocked
+    (``clocked``): the fastest fit's seconds and its totals."""
+    whole, totals = np.inf, {}
+    for _ in range(repeat):
+        times: dict = {}
+        with ExitStack() as stack:
+            for owner, name, count in clocks:
+                stack.enter_context(clocked(owner, name, times, count=count))
+            start = time.perf_counter()
+            model.fit(X, y)
+            seconds = time.perf_counter() - start
+        if seconds < whole:
+            whole, totals = seconds, times
+    return whole, totals
+
+
 def small_set_parts(rows: list[dict], repeat: int = 5) -> list[dict]:
     """What the compiled engine's small-set fits of :func:`small_set_rows` spend in kernel
     entries and in the compiled SMO loop, as shares of scikit-learn's fit time in the same row.
@@ -330,15 +347,9 @@ def small_set_parts(rows: list[dict], repeat: int = 5) -> list[dict]:
             name = row["data"].split()[0]
             X, y, _, _ = small_set(name)
             params = SMALL_CASES[row["task"]][0]
-            whole = np.inf
-            for _ in range(repeat):
-                times: dict = {}
-                with clocked(Kernel, "gram", times), clocked(smo_module, "run_compiled", times):
-                    start = time.perf_counter()
-                    SVC(**params).fit(X, y)
-                    seconds = time.perf_counter() - start
-                if seconds < whole:
-                    whole, totals = seconds, times
+            whole, totals = _fastest_clocked_fit(
+                SVC(**params), X, y, [(Kernel, "gram", None), (smo_module, "run_compiled", None)],
+                repeat)
             kernel, loop = totals["gram"], totals["run_compiled"]
             parts.append({"part": f"{row['task']}, {name}: kernel entries + compiled loop",
                           "seconds": kernel + loop,
@@ -456,16 +467,9 @@ def _svc_parts(X, y, svc_seconds: float) -> list[dict]:
     kernel entries, the SMO loop (with its updates) and the rest, as shares of ``svc_seconds``."""
     parts = []
     for compat in (False, True):
-        whole = np.inf
-        for _ in range(2):  # the faster of two clocked fits
-            times: dict = {}
-            with (clocked(Kernel, "gram", times),
-                  clocked(svc_module, "solve_smo", times, count=lambda res: res.n_iter)):
-                start = time.perf_counter()
-                SVC(libsvm_compat=compat).fit(X, y)
-                seconds = time.perf_counter() - start
-            if seconds < whole:
-                whole, totals = seconds, times
+        whole, totals = _fastest_clocked_fit(  # the faster of two clocked fits
+            SVC(libsvm_compat=compat), X, y,
+            [(Kernel, "gram", None), (svc_module, "solve_smo", lambda res: res.n_iter)], 2)
         mode = "libsvm_compat" if compat else "default"
         updates = totals["solve_smo count"]
         for part, seconds, note in (

@@ -29,10 +29,12 @@ import hashlib
 import json
 import logging
 import os
+import re
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
 from .._progress import progress
+from .._tempfiles import TEMPORARY_PREFIX, process_running
 from .._validate import check_in_range, check_int
 from ..recording import Recording
 from .i2c import I2CError
@@ -53,6 +55,9 @@ log = logging.getLogger(__name__)
 SESSION_FORMAT = "ebantenna-session-1"
 #: The manifest's file name in the session folder.
 MANIFEST = "session.json"
+#: The name of a temporary file of :func:`write_atomic`: the prefix, the writer's process id,
+#: a dash and the name of the file it will become.
+_TEMPORARY = re.compile(re.escape(TEMPORARY_PREFIX) + r"(\d+)-(.+)")
 #: What to do when the servos could not be released.
 CUT_SUPPLY = ("switch off the servo supply (V+ of the PCA9685) now, check the I2C wiring and "
               "'i2cdetect -y N' (0x40 and 0x68 must answer), then run the same command again: "
@@ -132,7 +137,7 @@ def write_atomic(path, write) -> Path:
     which is flushed to disk and renamed over ``path`` (a reader sees the old file or the new
     one, never half of one, whenever the power fails)."""
     path = Path(path)
-    tmp = path.with_name(f".{path.stem}.tmp{os.getpid()}{path.suffix}")
+    tmp = path.with_name(f"{TEMPORARY_PREFIX}{os.getpid()}-{path.name}")
     try:
         write(tmp)
         with open(tmp, "rb+") as f:
@@ -142,6 +147,40 @@ def write_atomic(path, write) -> Path:
         tmp.unlink(missing_ok=True)
     _fsync_dir(path.parent)
     return path
+
+
+def remove_leftover_temporaries(folder: Path) -> None:
+    """Remove the temporary files :func:`write_atomic` left in ``folder`` (not below it) when
+    its process was stopped; a file of a process still running, or of any other name, stays."""
+    for leftover in folder.glob(f"{TEMPORARY_PREFIX}*"):
+        match = _TEMPORARY.fullmatch(leftover.name)
+        if match is None or not leftover.is_file() or process_running(int(match.group(1))):
+            continue
+        log.info("removing %s, left by an interrupted run", leftover)
+        leftover.unlink(missing_ok=True)
+
+
+def _check_session_folder(directory: Path) -> None:
+    """Refuse a folder that is neither new, empty, nor a session's (see :meth:`~RecordingSession.open`)."""
+    if not directory.exists():
+        return
+    if not directory.is_dir():
+        raise NotADirectoryError(f"directory {directory} is not a folder")
+    if (directory / MANIFEST).exists():
+        return
+    foreign = []
+    for entry in directory.iterdir():
+        if _TEMPORARY.fullmatch(entry.name):
+            continue
+        if entry.name == "recordings" and entry.is_dir() and not entry.is_symlink() and all(
+                _TEMPORARY.fullmatch(e.name) for e in entry.iterdir()):
+            continue  # made by a session stopped before its manifest was first written
+        foreign.append(entry.name)
+    if foreign:
+        shown = ", ".join(sorted(foreign)[:3]) + (", ..." if len(foreign) > 3 else "")
+        raise FileExistsError(f"directory {directory} holds files that are not a recording "
+                              f"session's ({shown}) and no {MANIFEST}: give a new or empty "
+                              "folder for the session")
 
 
 def _now() -> str:
@@ -183,6 +222,11 @@ class RecordingSession:
             raise TypeError(f"plan must be a Plan, got {type(plan).__name__}")
         if not callable(connect):
             raise TypeError(f"connect must be callable, got {type(connect).__name__}")
+        if not isinstance(directory, (str, os.PathLike)):
+            raise TypeError(f"directory must be a path, got {type(directory).__name__}")
+        if os.fspath(directory) in ("", b""):
+            raise ValueError("directory must name the session folder, got an empty path (it "
+                             "would record into the working directory)")
         self.directory = Path(directory)
         self.plan, self.connect = plan, connect
         self.rig = json.loads(json.dumps(rig or {}))
@@ -211,10 +255,18 @@ class RecordingSession:
 
     def open(self) -> dict:
         """Load (or start) the manifest, verify what it lists, enter recordings saved but not yet
-        listed, and remove temporary files a power cut left; returns the manifest."""
+        listed, and remove temporary files a power cut left; returns the manifest.
+
+        Only what the session writes is ever removed: temporary files of :func:`write_atomic`
+        (named ``.ebantenna-tmp<pid>-<name>``, of a process no longer running) in the two
+        folders it writes them to, never elsewhere. A folder that holds other files and no
+        manifest is refused: it is not a session folder, and the session would mix its files
+        with the user's.
+        """
+        _check_session_folder(self.directory)
         (self.directory / "recordings").mkdir(parents=True, exist_ok=True)
-        for leftover in self.directory.rglob(".*.tmp*"):
-            leftover.unlink()
+        for folder in (self.directory, self.directory / "recordings"):
+            remove_leftover_temporaries(folder)
         if not self.manifest_path.exists():
             self.manifest = self._new_manifest()
             self._save_manifest()

@@ -13,6 +13,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .._tempfiles import TEMPORARY_PREFIX, process_running
+
 __all__ = ["stale_reason", "remove_leftovers", "write_whole"]
 
 #: The data set module's own logger: what is logged here belongs to its build.
@@ -39,25 +41,13 @@ def stale_reason(stored, config: dict) -> str | None:
 
 def remove_leftovers(path: Path) -> None:
     """Delete temporary files of ``path`` left by builds whose process no longer runs."""
-    pattern = re.compile(re.escape(path.name) + r"\.tmp(\d+)\.npz")
-    for tmp in path.parent.glob(path.name + ".tmp*.npz"):
+    pattern = re.compile(re.escape(TEMPORARY_PREFIX) + r"(\d+)-" + re.escape(path.name))
+    for tmp in path.parent.glob(f"{TEMPORARY_PREFIX}*-{path.name}"):
         match = pattern.fullmatch(tmp.name)
-        if match is None or _running(int(match.group(1))):
+        if match is None or process_running(int(match.group(1))):
             continue  # another build still writing
         log.info("removing %s, left by an interrupted build", tmp)
         tmp.unlink(missing_ok=True)
-
-
-def _running(pid: int) -> bool:
-    if pid == os.getpid():
-        return True
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except (PermissionError, OverflowError, OSError):
-        return True  # someone else's process, or cannot tell: leave its file alone
-    return True
 
 
 def write_whole(path: Path, arrays: dict, metadata: dict, fs: float) -> None:
@@ -68,7 +58,7 @@ def write_whole(path: Path, arrays: dict, metadata: dict, fs: float) -> None:
     noise-dominated float32, which zlib barely shrinks, at seconds per main data set to write
     and again to read.
     """
-    tmp = path.with_name(path.name + f".tmp{os.getpid()}.npz")
+    tmp = path.with_name(f"{TEMPORARY_PREFIX}{os.getpid()}-{path.name}")
     try:
         np.savez(
             tmp, fs=np.float64(fs), metadata=np.array(json.dumps(metadata)), **arrays

@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from ebantenna._tempfiles import TEMPORARY_PREFIX
 from ebantenna.device.plan import Plan, load_plan
 from ebantenna.device.recording_session import (
     MANIFEST,
@@ -87,7 +88,7 @@ def test_session_saves_every_touch_with_its_account(tmp_path):
         assert {"i2c_retries", "fifo_restarts", "samples_lost"} <= set(meta["fault_counts"])
         assert meta["timestamp_uncertainty_s"] >= 0
         assert meta["sample_rate_hz"] == 1000.0
-    assert not list(s.directory.rglob(".*.tmp*"))
+    assert not list(s.directory.rglob(f"{TEMPORARY_PREFIX}*"))
 
 
 def test_a_recording_saved_but_not_entered_is_entered_on_resume(tmp_path):
@@ -98,12 +99,54 @@ def test_a_recording_saved_but_not_entered_is_entered_on_resume(tmp_path):
     key = small_plan()[5].key
     kept = manifest["recordings"].pop(key)
     (s.directory / MANIFEST).write_text(json.dumps(manifest))
-    (s.directory / "recordings" / ".t00006.tmp99.npz").write_bytes(b"half a file")
+    dead = _dead_pid()
+    (s.directory / "recordings" / f"{TEMPORARY_PREFIX}{dead}-t00006.npz").write_bytes(b"half")
     again = session(tmp_path, connect=_never)
     again.open()
     assert again.manifest["recordings"][key]["sha256"] == kept["sha256"]
     assert again.remaining() == []
-    assert not list(again.directory.rglob(".*.tmp*"))
+    assert not list(again.directory.rglob(f"{TEMPORARY_PREFIX}*"))
+
+
+def _dead_pid() -> int:
+    """The id of a process that has ended."""
+    done = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"],
+                          capture_output=True, text=True, check=True)
+    return int(done.stdout)
+
+
+def test_opening_a_session_removes_only_what_the_package_left(tmp_path):
+    """A file the user made, whatever its name, survives; only a dead writer's own temporary
+    file, in the folders the session writes, is removed."""
+    s = session(tmp_path)
+    s.run()
+    dead = _dead_pid()
+    users = [s.directory / ".bashrc.tmp-save", s.directory / "recordings" / ".draft.tmp.md",
+             s.directory / "deep" / f"{TEMPORARY_PREFIX}{dead}-x.npz",
+             s.directory / "recordings" / f"{TEMPORARY_PREFIX}{os.getppid()}-t00001.npz"]
+    for path in users:
+        path.parent.mkdir(exist_ok=True)
+        path.write_text("the user's")
+    left = s.directory / f"{TEMPORARY_PREFIX}{dead}-{MANIFEST}"
+    left.write_text("half a manifest")
+    session(tmp_path, connect=_never).open()
+    assert not left.exists()
+    assert all(path.read_text() == "the user's" for path in users)
+
+
+def test_a_folder_of_other_files_is_not_taken_over(tmp_path):
+    home = tmp_path / "home"
+    (home / "projects").mkdir(parents=True)
+    (home / ".bashrc.tmp-save").write_text("keep")
+    with pytest.raises(FileExistsError, match="not a recording session"):
+        RecordingSession(home, small_plan(), _never).open()
+    assert (home / ".bashrc.tmp-save").read_text() == "keep"
+    assert not (home / "recordings").exists() and not (home / MANIFEST).exists()
+
+
+def test_an_empty_folder_name_is_refused():
+    with pytest.raises(ValueError, match="directory must name"):
+        RecordingSession("", small_plan(), _never)
 
 
 def _never(touch, attempt):
@@ -197,7 +240,7 @@ def test_sigterm_mid_touch_then_resume_loses_nothing_and_repeats_nothing(tmp_pat
     assert "touch 3/8" in "".join(seen) and "brass/0.3000/0: saved" not in rest  # mid-touch
     before = read_manifest(out / MANIFEST)["recordings"]
     assert sorted(e["touch"] for e in before.values()) == [0, 1]
-    assert not list(out.rglob(".*.tmp*"))
+    assert not list(out.rglob(f"{TEMPORARY_PREFIX}*"))
     resumed = _run_record(out, plan)
     _, err = resumed.communicate(timeout=120)
     assert resumed.returncode == 0, err

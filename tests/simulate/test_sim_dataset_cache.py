@@ -9,6 +9,7 @@ import sys
 import numpy as np
 import pytest
 
+from ebantenna._tempfiles import TEMPORARY_PREFIX
 from ebantenna.simulate import DatasetDesign, build_dataset, builtin_scene, load_dataset
 from ebantenna.simulate import dataset as dataset_module
 
@@ -110,8 +111,8 @@ def test_leftover_temporary_files_of_dead_builds_are_removed(tmp_path, reference
         text=True,
         check=True,
     )
-    left = path.with_name(f"{path.name}.tmp{int(dead.stdout)}.npz")
-    alive = path.with_name(f"{path.name}.tmp{os.getppid()}.npz")  # a running process's
+    left = path.with_name(f"{TEMPORARY_PREFIX}{int(dead.stdout)}-{path.name}")
+    alive = path.with_name(f"{TEMPORARY_PREFIX}{os.getppid()}-{path.name}")  # a running one's
     left.write_bytes(b"half a file")
     alive.write_bytes(b"being written")
     build(tmp_path)

@@ -164,6 +164,9 @@ def run_record(args) -> int:
     from ...device.recording_session import NoContactError, RecordingSession, UnsafeRigError
     from ...device.safety import SignalReceived
 
+    if not args.out:
+        raise ValueError("--out must name the session folder, got an empty path (it would "
+                         "record into the working directory)")
     plan, connect, rig, confirm = _plan_and_connect(args)
     session = RecordingSession(
         args.out, plan, connect, rig=rig, max_lost=args.max_lost, attempts=args.attempts,

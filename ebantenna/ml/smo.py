@@ -222,7 +222,9 @@ def solve_two_variable(i, j, alpha, G, y, C, K, *, tau=TAU):
     :math:`\\alpha_j + y_j (E_i - E_j) / \\eta` with Platt's errors
     :math:`E_i - E_j = y_i G_i - y_j G_j`. Clip that to :math:`[L, H]`; :math:`\\alpha_i`
     follows from the constraint. An :math:`\\eta \\le \\tau` (a kernel that is not positive
-    definite) is replaced by ``tau``, as libsvm does.
+    definite, or two points too close to tell apart) is replaced by ``tau``. libsvm replaces
+    only :math:`\\eta \\le 0`, and keeps :math:`0 < \\eta < \\tau` as it is (the
+    ``'nonpositive'`` curvature floor of :class:`~ebantenna.ml.smo_policy.SMOPolicy`).
 
     Parameters
     ----------

@@ -20,6 +20,7 @@ Examples
 ((1000,), 1000.0)
 """
 
+from . import _block_march  # noqa: F401  (the contact laws' engine registers its march "blocks")
 from .dataset import (
     Dataset,
     DatasetDesign,

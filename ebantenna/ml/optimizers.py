@@ -32,7 +32,7 @@ class Momentum:
     the parameters is then ``v`` itself, or with Nesterov ``momentum * v - lr * grad`` (with
     the new ``v``). With ``momentum=0`` both are plain gradient descent. :meth:`update` writes
     these two lines as they stand; the estimators train with an engine that runs the same
-    operations in arrays allocated once (:mod:`ebantenna.ml._mlp_optimizers`, held equal bit
+    operations in arrays allocated once (``ml._mlp_optimizers``, held equal bit
     for bit).
 
     Examples
@@ -76,7 +76,7 @@ class Adam:
     Algorithm 1 (it acts as :math:`\\epsilon / \\sqrt{1 - \\beta_2^t}` there).
 
     :meth:`update` writes the three lines as they stand. The estimators train with an engine
-    (:mod:`ebantenna.ml._mlp_optimizers`) that runs the same operations in place on two
+    (``ml._mlp_optimizers``) that runs the same operations in place on two
     temporaries, or as one compiled loop per array when numba is installed (``pip install
     ebantenna[fast]``): the same numbers, held equal bit for bit by the tests.
 

@@ -18,7 +18,7 @@ order:
 4. *The responses* (always): X and Z after the arrest, each from its axis's time-stepped model
    if the scene lists one (``unilateral_contact``, ``coulomb_friction``), otherwise the sum of
    its modes, through the chip's low-pass filter (``dlpf``) and its decimation. The filter is
-   read from the scene once, into :attr:`SignalBatch.chip_filter`; steps 4, 7 and 8 read it
+   read from the scene once, into ``SignalBatch.chip_filter``; steps 4, 7 and 8 read it
    there.
 5. ``clock_jitter`` again: a sample taken before the arrest reads no acceleration.
 6. ``gravity``,
@@ -125,9 +125,9 @@ class SignalBatch:
         The signals, m/s^2, once the responses' step ran.
     levels_x, levels_z : ndarray of shape (n,)
         Each axis's resting reading, m/s^2 (gravity, the drift's offset), for the Kalman filter.
-    chip_filter : LowPassFilter or None
+    chip_filter : ebantenna.simulate.effects.LowPassFilter or None
         The chip's low-pass filter (the scene's ``dlpf``), read from the scene here only; the
-        steps whose :attr:`ChainStep.reads` name ``dlpf`` pass their part of the signal
+        steps whose ``reads`` (:class:`ChainStep`) name ``dlpf`` pass their part of the signal
         through it.
     """
 

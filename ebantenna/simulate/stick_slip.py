@@ -411,9 +411,9 @@ def friction_axis(scene, models, inverse, rotation_speeds, when, dlpf) -> np.nda
         Each signal's tilt rotation at the stop, ``tilt_ratio x sweep_speed``, rad/s.
     when : ndarray
         Sample times, shape ``(n_samples,)`` or ``(n, n_samples)``, s.
-    dlpf : LowPassFilter or None
+    dlpf : ebantenna.simulate.effects.LowPassFilter or None
         The chip's filter of the chain
-        (:attr:`~ebantenna.simulate.simulator.SignalBatch.chip_filter`).
+        (``chip_filter`` of :class:`~ebantenna.simulate.simulator.SignalBatch`).
 
     Returns
     -------

@@ -287,7 +287,7 @@ def strike_accelerations(
 def timed_rate(scene, when, dlpf) -> tuple[float, int]:
     """The rate at which a time-stepped axis is computed, and how many samples reach past the
     last reading at ``when``: the internal rate of the chip's filter ``dlpf`` (the chain's,
-    :attr:`~ebantenna.simulate.simulator.SignalBatch.chip_filter`), or without it
+    ``chip_filter`` of :class:`~ebantenna.simulate.simulator.SignalBatch`), or without it
     ``UNFILTERED_RATE`` times ``fs``."""
     rate = dlpf.internal_rate if dlpf is not None else UNFILTERED_RATE * scene.fs
     span = float(np.max(when)) if np.ndim(when) == 2 else (scene.n_samples - 1) / scene.fs

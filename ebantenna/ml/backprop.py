@@ -365,9 +365,9 @@ def train_epochs(X, Y, coefs, intercepts, optimizer, *, activation: str, out_act
     ----------
     X, Y, coefs, intercepts, activation, out_activation, alpha
         As for :func:`loss_and_gradients`; ``coefs`` and ``intercepts`` are moved in place.
-    optimizer : object with ``update(params, grads)``
-        Made for the list ``[*coefs, *intercepts]`` (:class:`~ebantenna.ml.optimizers.Adam`,
-        :class:`~ebantenna.ml.optimizers.Momentum`).
+    optimizer : ebantenna.ml.optimizers.Adam or ebantenna.ml.optimizers.Momentum
+        Made for the list ``[*coefs, *intercepts]``; any object with the method
+        ``update(params, grads)`` that moves ``params`` in place will do.
     batch_size : int
         Rows of a batch; the last batch of an epoch may be shorter. A batch of all the rows is
         ``X`` itself, in its order.

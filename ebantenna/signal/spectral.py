@@ -99,7 +99,7 @@ def dominant_frequency(
     remove_mean : bool
         Subtract the mean first (for a transient analysed on its own, the median of the
         record), so that the DC bin (gravity, offsets) cannot win.
-    transient : bool, default False
+    transient : bool, default=False
         Look for a short transient (a decay or a burst filling less than half of the record)
         and, when there is one, analyse its samples only (see the notes). The default analyses
         the whole record, whatever it holds.

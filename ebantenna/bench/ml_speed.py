@@ -90,9 +90,8 @@ from ebantenna.bench._timing import best_time, clocked
 from ebantenna.ml import SVC, MLPClassifier
 from ebantenna.ml import smo as smo_module
 from ebantenna.ml import svc as svc_module
-from ebantenna.ml.backprop import activation_derivative
 from ebantenna.ml.kernels import Kernel
-from ebantenna.ml.optimizers import Adam
+from ebantenna.ml.mlp_base import training_optimizer
 from ebantenna.ml.smo import ENGINE_VARIABLE, engine_status
 from ebantenna.report import text_table
 
@@ -509,7 +508,7 @@ def _mlp_parts(X, y, adam_seconds: float, epochs: int, batch_size: int, adam_fit
     grads = [1e-3 * rng.normal(size=shape) for shape in shapes]
 
     def adam():
-        opt = Adam(params)
+        opt = training_optimizer("adam", params)  # the Adam the estimators train with
         for _ in range(steps):
             opt.update(params, grads)
 
@@ -518,9 +517,12 @@ def _mlp_parts(X, y, adam_seconds: float, epochs: int, batch_size: int, adam_fit
 
     def tanh():  # the hidden layer's activation forward, its derivative backward
         for _ in range(steps):
-            np.tanh(hidden_layer, out=activated)  # what activate('tanh', z) does to z in place
+            np.tanh(hidden_layer, out=activated)  # what the engine's activation does in place
             np.copyto(back, delta)
-            activation_derivative("tanh", activated, back, scratch)
+            # and its derivative, on the delta in place: delta *= 1 - a * a
+            np.multiply(activated, activated, out=scratch)
+            np.subtract(1.0, scratch, out=scratch)
+            np.multiply(back, scratch, out=back)
 
     with threadpool_limits(1):  # steadier than two threads on a shared machine
         for part, fn, note in (

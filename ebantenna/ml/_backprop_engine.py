@@ -34,10 +34,52 @@ import numpy as np
 from scipy.special import expit, log_expit
 
 from ._mlp_compiled import ACTIVATION_CODES
-from .backprop import activate, activation_derivative, l2_penalty
+from .backprop import l2_penalty
 
 __all__ = ["Workspace", "forward_into", "output_loss_into", "backprop_into",
-           "loss_and_gradients_into"]
+           "loss_and_gradients_into", "activate_in_place", "derivative_in_place"]
+
+
+def activate_in_place(name: str, z: np.ndarray) -> np.ndarray:
+    """:func:`ebantenna.ml.backprop.activate` written over ``z`` (the workspace's own array).
+
+    Examples
+    --------
+    >>> z = np.array([-1.0, 2.0])
+    >>> _ = activate_in_place("relu", z); z
+    array([0., 2.])
+    """
+    if name == "tanh":
+        return np.tanh(z, out=z)
+    if name == "relu":
+        return np.maximum(z, 0.0, out=z)
+    if name == "logistic":
+        return expit(z, out=z)
+    return z
+
+
+def derivative_in_place(name: str, a: np.ndarray, delta: np.ndarray,
+                        scratch: np.ndarray | None = None) -> np.ndarray:
+    """:func:`ebantenna.ml.backprop.activation_derivative` written over ``delta`` (the
+    workspace's own array), the derivative formed in ``scratch``: the same operations.
+
+    Examples
+    --------
+    >>> delta = np.ones(2)
+    >>> _ = derivative_in_place("tanh", np.array([0.0, 0.5]), delta); delta
+    array([1.  , 0.75])
+    """
+    if name == "tanh":
+        d = np.multiply(a, a, out=scratch)
+        np.subtract(1.0, d, out=d)
+        delta *= d
+    elif name == "relu":
+        delta[a <= 0] = 0.0
+    elif name == "logistic":
+        d = np.subtract(1.0, a, out=scratch)
+        d *= a
+        delta *= d
+    return delta
 
 
 class Workspace:
@@ -107,7 +149,7 @@ def forward_into(X, coefs, intercepts, activation: str, work: Workspace) -> list
         else:
             z += b
         if layer < last:
-            activate(activation, z)
+            activate_in_place(activation, z)
         acts.append(z)
     return acts
 
@@ -215,8 +257,8 @@ def backprop_into(acts, delta, coefs, activation: str, alpha_per_sample: float, 
         if layer > 0:
             delta = np.matmul(delta, coefs[layer].T, out=work.deltas[layer - 1])
             if compiled is None:
-                activation_derivative(activation, acts[layer], delta,
-                                      work.derivatives[layer - 1])
+                derivative_in_place(activation, acts[layer], delta,
+                                    work.derivatives[layer - 1])
                 continue
             fused = delta.shape[1] > 1
             compiled.derivative_and_bias_gradient(ACTIVATION_CODES[activation], acts[layer],

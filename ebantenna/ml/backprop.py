@@ -27,9 +27,11 @@ gradient with respect to the output pre-activations (the derivative of the outpu
 cancels against that of the loss: :math:`\\delta_N = (\\hat y - y)/n`, divided by the number of
 outputs as well for the squared error).
 
-The estimators of :mod:`ebantenna.ml.mlp` train with an **engine** that does the same arithmetic in
-arrays allocated once per batch size (a private module); the tests hold it equal to these
-functions bit for bit. The functions here take checked values (float arrays of matching shapes,
+Training is :func:`train_epochs`: mini-batches, each one gradient evaluation and one update of
+an optimiser of :mod:`ebantenna.ml.optimizers`, which ``engine="reference"`` of the estimators
+runs. By default the estimators of :mod:`ebantenna.ml.mlp` train with an **engine** that does the
+same arithmetic in arrays allocated once per batch size (private modules); the tests hold it
+equal to these functions bit for bit. The functions here take checked values (float arrays of matching shapes,
 known activation names): the estimators validate their input once, at their public methods.
 
 Examples
@@ -65,6 +67,7 @@ __all__ = [
     "l2_penalty",
     "backprop",
     "loss_and_gradients",
+    "train_epochs",
     "pack",
     "unpack",
 ]
@@ -76,26 +79,27 @@ OUTPUT_ACTIVATIONS = ("softmax", "logistic", "identity")
 
 
 def activate(name: str, z: np.ndarray) -> np.ndarray:
-    """Apply an activation in place and return it (logistic via ``expit``: no overflow).
+    """The activation :math:`f(z)`, a new array (``z`` is left as it is; logistic via ``expit``:
+    no overflow).
 
     Examples
     --------
-    >>> activate("relu", np.array([-1.0, 2.0]))
-    array([0., 2.])
+    >>> z = np.array([-1.0, 2.0])
+    >>> activate("relu", z), z
+    (array([0., 2.]), array([-1.,  2.]))
     """
     if name == "tanh":
-        return np.tanh(z, out=z)
+        return np.tanh(z)
     if name == "relu":
-        return np.maximum(z, 0.0, out=z)
+        return np.maximum(z, 0.0)
     if name == "logistic":
-        return expit(z, out=z)
-    return z
+        return expit(z)
+    return z.copy()
 
 
-def activation_derivative(name: str, a: np.ndarray, delta: np.ndarray,
-                          scratch: np.ndarray | None = None) -> np.ndarray:
-    """Multiply ``delta`` in place by the activation's derivative :math:`f'(z)`, written with its
-    output ``a = f(z)``, and return it.
+def activation_derivative(name: str, a: np.ndarray, delta: np.ndarray) -> np.ndarray:
+    """``delta`` times the activation's derivative :math:`f'(z)`, written with its output
+    ``a = f(z)``: a new array.
 
     ``'tanh'``: :math:`1 - a^2`; ``'logistic'``: :math:`a (1 - a)`; ``'relu'``: 1 where
     :math:`a > 0`, else 0 (the entries are set to 0, not multiplied, so that an infinite
@@ -108,14 +112,12 @@ def activation_derivative(name: str, a: np.ndarray, delta: np.ndarray,
     a : ndarray
         The activation's output.
     delta : ndarray of ``a``'s shape
-        The gradient to multiply, overwritten.
-    scratch : ndarray of ``a``'s shape, optional
-        Holds the derivative on the way (a new array when not given).
+        The gradient to multiply; not modified.
 
     Returns
     -------
-    delta : ndarray
-        ``delta`` itself.
+    ndarray
+        :math:`\\delta \\odot f'(z)`.
 
     Examples
     --------
@@ -123,16 +125,12 @@ def activation_derivative(name: str, a: np.ndarray, delta: np.ndarray,
     array([1.  , 0.75])
     """
     if name == "tanh":
-        d = np.multiply(a, a, out=scratch)
-        np.subtract(1.0, d, out=d)
-        delta *= d
-    elif name == "relu":
-        delta[a <= 0] = 0.0
-    elif name == "logistic":
-        d = np.subtract(1.0, a, out=scratch)
-        d *= a
-        delta *= d
-    return delta
+        return delta * (1.0 - a * a)
+    if name == "relu":
+        return np.where(a <= 0, 0.0, delta)
+    if name == "logistic":
+        return delta * ((1.0 - a) * a)
+    return delta.copy()
 
 
 def glorot_uniform(sizes, activation: str, rng: np.random.Generator):
@@ -352,6 +350,71 @@ def loss_and_gradients(X, Y, coefs, intercepts, activation: str, out_activation:
     loss = data_loss + l2_penalty(coefs, alpha, n)
     coef_grads, intercept_grads = backprop(acts, delta, coefs, activation, alpha / n)
     return loss, coef_grads, intercept_grads
+
+
+def train_epochs(X, Y, coefs, intercepts, optimizer, *, activation: str, out_activation: str,
+                 alpha: float, batch_size: int, n_epochs: int, rng=None, end_of_epoch=None):
+    """Mini-batch training as the textbook writes it: the reference of the estimators' loop.
+
+    Each epoch shuffles the samples (when ``rng`` is given), then for each batch of
+    ``batch_size`` rows evaluates :func:`loss_and_gradients` and lets the ``optimizer`` move
+    the weights and biases, in place. ``MLPClassifier(engine="reference")`` and
+    ``MLPRegressor(engine="reference")`` train their 'gd', 'sgd' and 'adam' solvers with it.
+
+    Parameters
+    ----------
+    X, Y, coefs, intercepts, activation, out_activation, alpha
+        As for :func:`loss_and_gradients`; ``coefs`` and ``intercepts`` are moved in place.
+    optimizer : ebantenna.ml.optimizers.Adam or ebantenna.ml.optimizers.Momentum
+        Made for the list ``[*coefs, *intercepts]``; any object with the method
+        ``update(params, grads)`` that moves ``params`` in place will do.
+    batch_size : int
+        Rows of a batch; the last batch of an epoch may be shorter. A batch of all the rows is
+        ``X`` itself, in its order.
+    n_epochs : int
+        Passes over the samples.
+    rng : numpy.random.Generator, optional
+        Shuffles the order of the samples at the start of every epoch; None keeps their order.
+    end_of_epoch : callable, optional
+        ``end_of_epoch(mean_loss) -> bool`` after each epoch; True stops the training.
+
+    Returns
+    -------
+    list of float
+        The mean loss of each epoch run (over its batches, weighted by their sizes).
+
+    Examples
+    --------
+    >>> from ebantenna.ml.optimizers import Adam
+    >>> rng = np.random.default_rng(0)
+    >>> X = rng.normal(size=(40, 2))
+    >>> Y = np.eye(2)[(X[:, 0] > 0).astype(int)]
+    >>> coefs, intercepts = glorot_uniform([2, 4, 2], "tanh", rng)
+    >>> losses = train_epochs(X, Y, coefs, intercepts, Adam([*coefs, *intercepts], 0.05),
+    ...                       activation="tanh", out_activation="softmax", alpha=0.0,
+    ...                       batch_size=10, n_epochs=30, rng=rng)
+    >>> bool(losses[-1] < losses[0] / 2)
+    True
+    """
+    n = X.shape[0]
+    order = np.arange(n)
+    params = [*coefs, *intercepts]
+    losses = []
+    for _ in range(n_epochs):
+        if rng is not None:
+            rng.shuffle(order)
+        total = 0.0
+        for start in range(0, n, batch_size):
+            rows = order[start : start + batch_size]
+            Xb, Yb = (X, Y) if batch_size >= n else (X[rows], Y[rows])
+            loss, coef_grads, intercept_grads = loss_and_gradients(
+                Xb, Yb, coefs, intercepts, activation, out_activation, alpha)
+            optimizer.update(params, [*coef_grads, *intercept_grads])
+            total += loss * Xb.shape[0]
+        losses.append(total / n)
+        if end_of_epoch is not None and end_of_epoch(losses[-1]):
+            break
+    return losses
 
 
 def pack(coefs, intercepts) -> np.ndarray:

@@ -29,19 +29,60 @@ from sklearn.utils._param_validation import Interval, Options, StrOptions
 from sklearn.utils.validation import check_is_fitted
 
 from .._budget import check_allocation
-from .._validate import check_python_number, check_real, describe
+from .._validate import check_choice, check_python_number, check_real, describe
 from ._backprop_engine import Workspace, loss_and_gradients_into
 from ._mlp_compiled import compiled_kernels
-from .backprop import ACTIVATIONS, glorot_uniform, loss_and_gradients, pack, unpack
+from ._mlp_optimizers import InPlaceAdam, InPlaceMomentum
+from .backprop import (ACTIVATIONS, glorot_uniform, loss_and_gradients, pack, train_epochs,
+                       unpack)
 from .fitted import INPUT_ATTRIBUTES, FittedAttribute
 from .optimizers import Adam, Momentum, scg_init, scg_step
 
-__all__ = ["BaseMLP", "ACTIVATIONS", "SOLVERS"]
+__all__ = ["BaseMLP", "ACTIVATIONS", "SOLVERS", "training_optimizer"]
 
 logger = logging.getLogger(__name__)
 
 #: Training algorithms.
 SOLVERS = ("gd", "sgd", "adam", "scg", "lbfgs")
+
+
+def training_optimizer(name: str, params, learning_rate: float = 1e-3, *, momentum: float = 0.9,
+                       nesterov: bool = True, beta_1: float = 0.9, beta_2: float = 0.999,
+                       epsilon: float = 1e-8, engine: str = "auto"):
+    """The optimiser the estimators train with, made for the arrays ``params``.
+
+    ``engine="reference"`` gives the textbook classes of :mod:`ebantenna.ml.optimizers`;
+    ``"auto"`` their engine, which runs the same operations in place on temporaries allocated
+    once, and Adam's as one compiled loop per array when numba is installed (the same bits).
+
+    Parameters
+    ----------
+    name : {'adam', 'momentum'}
+        :class:`~ebantenna.ml.optimizers.Adam` or :class:`~ebantenna.ml.optimizers.Momentum`.
+    params : list of ndarray
+        The arrays the optimiser will move.
+    learning_rate, momentum, nesterov, beta_1, beta_2, epsilon
+        As for those classes (``momentum`` and ``nesterov`` for 'momentum', the others for
+        'adam').
+    engine : {'auto', 'reference'}
+
+    Examples
+    --------
+    >>> p = [np.array([1.0])]
+    >>> opt = training_optimizer("adam", p, 0.1, engine="reference")
+    >>> type(opt).__name__
+    'Adam'
+    >>> opt.update(p, [np.array([3.0])]); np.round(p[0], 6)
+    array([0.9])
+    """
+    check_choice("name", name, ("adam", "momentum"))
+    check_choice("engine", engine, ("auto", "reference"))
+    reference = engine == "reference"
+    if name == "adam":
+        args = (params, learning_rate, beta_1, beta_2, epsilon)
+        return Adam(*args) if reference else InPlaceAdam(*args, compiled=compiled_kernels())
+    args = (params, learning_rate, momentum, nesterov)
+    return Momentum(*args) if reference else InPlaceMomentum(*args)
 
 
 class BaseMLP(BaseEstimator):
@@ -413,42 +454,67 @@ class BaseMLP(BaseEstimator):
 
     def _train_first_order(self, X, Y, X_val, Y_val, rng, incremental=False):
         """Epochs of mini-batch steps of 'gd', 'sgd' or 'adam' (one epoch for ``partial_fit``),
-        until the loss (or the validation score) stops improving or ``max_iter``."""
-        # one flat vector holds every weight and bias (coefs_ and intercepts_ are views of it):
-        # the optimiser then moves all of them with a handful of NumPy calls per batch
-        shapes = [c.shape for c in self.coefs_]
-        w = pack(self.coefs_, self.intercepts_)
-        self.coefs_, self.intercepts_ = unpack(w, shapes)
-        grad = np.empty_like(w)
-        opt = self._first_order_optimizer(w, incremental)
-        step = self._mini_batch_step(X.shape[1], w, grad, opt)
-        order = np.arange(X.shape[0])
-        stopped = incremental  # one epoch, no convergence to report
-        for _ in range(1 if incremental else self.max_iter):
-            if self.shuffle and self.solver != "gd":
-                rng.shuffle(order)
-            loss = self._epoch(X, Y, order, step)
-            if self._stop_after_epoch(loss, X_val, Y_val, opt):
-                stopped = True
-                break
-        # own arrays again, not views of the flat training vector
-        self.coefs_ = [c.copy() for c in self.coefs_]
-        self.intercepts_ = [b.copy() for b in self.intercepts_]
-        if not stopped:
+        until the loss (or the validation score) stops improving or ``max_iter``: the reference
+        loop :func:`~ebantenna.ml.backprop.train_epochs` with ``engine='reference'``, else the
+        engine's loop, which does the same arithmetic in arrays allocated once."""
+        n = X.shape[0]
+        batch = n if self.solver == "gd" else min(
+            200 if self.batch_size == "auto" else int(self.batch_size), n)
+        shuffle = rng if self.shuffle and self.solver != "gd" else None
+        stopped = [incremental]  # one epoch, no convergence to report
+
+        def end_of_epoch(loss):
+            self.t_ += n
+            stopped[0] = self._stop_after_epoch(loss, X_val, Y_val, opt) or stopped[0]
+            return stopped[0] and not incremental
+
+        n_epochs = 1 if incremental else self.max_iter
+        if self.engine == "reference":
+            opt = self._first_order_optimizer([*self.coefs_, *self.intercepts_], incremental)
+            # Every solver stops with a clear error on a loss that is not finite; NumPy's
+            # overflow warnings on the way there would only be noise before it.
+            with np.errstate(over="ignore", invalid="ignore"):
+                train_epochs(X, Y, self.coefs_, self.intercepts_, opt,
+                             activation=self.activation, out_activation=self.out_activation_,
+                             alpha=self.alpha, batch_size=batch, n_epochs=n_epochs, rng=shuffle,
+                             end_of_epoch=end_of_epoch)
+        else:
+            # one flat vector holds every weight and bias (coefs_ and intercepts_ are views of
+            # it): the optimiser then moves all of them with a handful of NumPy calls per batch
+            shapes = [c.shape for c in self.coefs_]
+            w = pack(self.coefs_, self.intercepts_)
+            self.coefs_, self.intercepts_ = unpack(w, shapes)
+            grad = np.empty_like(w)
+            opt = self._first_order_optimizer([w], incremental)
+            step = self._mini_batch_step(X.shape[1], w, grad, opt)
+            order = np.arange(n)
+            for _ in range(n_epochs):
+                if shuffle is not None:
+                    shuffle.shuffle(order)
+                if end_of_epoch(self._epoch(X, Y, order, batch, step)):
+                    break
+            # own arrays again, not views of the flat training vector
+            self.coefs_ = [c.copy() for c in self.coefs_]
+            self.intercepts_ = [b.copy() for b in self.intercepts_]
+        if not stopped[0]:
             warnings.warn(f"{self.solver}: maximum iterations ({self.max_iter}) reached and the "
                           "optimization hasn't converged yet.", ConvergenceWarning, stacklevel=3)
 
-    def _first_order_optimizer(self, w, incremental):
-        """Adam or momentum (none for 'gd') on the flat parameters ``w``; ``partial_fit``
-        continues the optimiser of the previous ``partial_fit``."""
+    def _first_order_optimizer(self, params, incremental):
+        """Adam or momentum (none for 'gd') on ``params`` (:func:`training_optimizer`);
+        ``partial_fit`` continues the optimiser of the previous ``partial_fit``."""
         opt = getattr(self, "_optimizer", None) if incremental else None
-        if opt is None and self.solver == "adam":
-            opt = Adam([w], float(self.learning_rate_init), self.beta_1, self.beta_2,
-                       self.epsilon, engine=self.engine)
-        elif opt is None:
-            mom = 0.0 if self.solver == "gd" else float(self.momentum)
-            opt = Momentum([w], float(self.learning_rate_init), mom,
-                           bool(self.nesterovs_momentum) and mom > 0)
+        reference = self.engine == "reference"
+        if opt is not None and isinstance(opt, (InPlaceAdam, InPlaceMomentum)) == reference:
+            raise ValueError("engine changed between partial_fit calls: the optimiser's state "
+                             "of one engine cannot continue on the other; call fit first")
+        if opt is None:
+            momentum = 0.0 if self.solver == "gd" else float(self.momentum)
+            opt = training_optimizer(
+                "adam" if self.solver == "adam" else "momentum", params,
+                float(self.learning_rate_init), momentum=momentum,
+                nesterov=bool(self.nesterovs_momentum) and momentum > 0, beta_1=self.beta_1,
+                beta_2=self.beta_2, epsilon=self.epsilon, engine=self.engine)
         self._optimizer = opt
         return opt
 
@@ -465,8 +531,7 @@ class BaseMLP(BaseEstimator):
         def step(Xb, Yb):
             rows = Xb.shape[0]
             if rows not in workspaces:
-                workspaces[rows] = (None if self.engine == "reference"
-                                    else Workspace(rows, sizes, compiled))
+                workspaces[rows] = Workspace(rows, sizes, compiled)
             loss = self._loss_and_gradients_into(Xb, Yb, self.coefs_, self.intercepts_, grads,
                                                  workspaces[rows])
             opt.update([w], [grad])
@@ -474,13 +539,9 @@ class BaseMLP(BaseEstimator):
 
         return step
 
-    def _epoch(self, X, Y, order, step) -> float:
+    def _epoch(self, X, Y, order, batch, step) -> float:
         """One pass over the mini-batches of ``X`` in the given ``order``; the mean loss."""
         n = X.shape[0]
-        if self.solver == "gd":
-            batch = n
-        else:
-            batch = min(200 if self.batch_size == "auto" else int(self.batch_size), n)
         total = 0.0
         for start in range(0, n, batch):
             # a batch-sized copy stays in cache; one shuffled copy of X per epoch is slower.
@@ -489,7 +550,6 @@ class BaseMLP(BaseEstimator):
             rows = order[start : start + batch]
             Xb, Yb = (X, Y) if batch >= n else (X[rows], Y.take(rows, axis=0))
             total += step(Xb, Yb) * Xb.shape[0]
-            self.t_ += Xb.shape[0]
         return total / n
 
     def _stop_after_epoch(self, loss, X_val, Y_val, opt) -> bool:

@@ -21,8 +21,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_choice
-from ._mlp_compiled import compiled_kernels
 
 __all__ = ["Momentum", "Adam", "SCGState", "scg_step", "scg_init"]
 
@@ -32,7 +30,10 @@ class Momentum:
 
     Each update first sets the velocity ``v <- momentum * v - lr * grad``; the step added to
     the parameters is then ``v`` itself, or with Nesterov ``momentum * v - lr * grad`` (with
-    the new ``v``). With ``momentum=0`` both are plain gradient descent.
+    the new ``v``). With ``momentum=0`` both are plain gradient descent. :meth:`update` writes
+    these two lines as they stand; the estimators train with an engine that runs the same
+    operations in arrays allocated once (``ml._mlp_optimizers``, held equal bit
+    for bit).
 
     Examples
     --------
@@ -48,23 +49,12 @@ class Momentum:
         self.momentum = float(momentum)
         self.nesterov = bool(nesterov)
         self.velocities = [np.zeros_like(p) for p in params]
-        # two temporaries per parameter array, allocated once: update runs once per mini-batch
-        self._steps = [np.empty_like(p) for p in params]
-        self._scratch = [np.empty_like(p) for p in params]
 
     def update(self, params, grads) -> None:
-        """Move ``params`` in place."""
-        for p, g, v, step, tmp in zip(params, grads, self.velocities, self._steps,
-                                      self._scratch, strict=True):
-            np.multiply(g, self.learning_rate, out=step)  # lr * g
-            v *= self.momentum
-            v -= step
-            if self.nesterov:
-                np.multiply(v, self.momentum, out=tmp)
-                np.subtract(tmp, step, out=step)
-                p += step
-            else:
-                p += v
+        """Move ``params`` (the arrays this optimiser was made for) in place by ``grads``."""
+        for p, g, v in zip(params, grads, self.velocities, strict=True):
+            v[...] = self.momentum * v - self.learning_rate * g
+            p += self.momentum * v - self.learning_rate * g if self.nesterov else v
 
 
 class Adam:
@@ -85,10 +75,10 @@ class Adam:
     :math:`\\epsilon` is added to :math:`\\sqrt{v}` rather than to :math:`\\sqrt{\\hat v}` of their
     Algorithm 1 (it acts as :math:`\\epsilon / \\sqrt{1 - \\beta_2^t}` there).
 
-    ``update`` runs the same operations as NumPy calls, or, on C-ordered float64 arrays when
-    numba is installed (``pip install ebantenna[fast]``; ``EBANTENNA_ENGINE=numpy`` or
-    ``engine="reference"`` turns it off), as one compiled loop per array: the same numbers, one
-    pass over the memory instead of twelve.
+    :meth:`update` writes the three lines as they stand. The estimators train with an engine
+    (``ml._mlp_optimizers``) that runs the same operations in place on two
+    temporaries, or as one compiled loop per array when numba is installed (``pip install
+    ebantenna[fast]``): the same numbers, held equal bit for bit by the tests.
 
     Examples
     --------
@@ -99,7 +89,7 @@ class Adam:
     """
 
     def __init__(self, params, learning_rate: float = 1e-3, beta_1: float = 0.9,
-                 beta_2: float = 0.999, epsilon: float = 1e-8, *, engine: str = "auto"):
+                 beta_2: float = 0.999, epsilon: float = 1e-8):
         self.learning_rate = float(learning_rate)
         self.beta_1 = float(beta_1)
         self.beta_2 = float(beta_2)
@@ -107,42 +97,20 @@ class Adam:
         self.t = 0
         self.ms = [np.zeros_like(p) for p in params]
         self.vs = [np.zeros_like(p) for p in params]
-        # two temporaries per parameter array, allocated once: update runs once per mini-batch
-        self._steps = [np.empty_like(p) for p in params]
-        self._scratch = [np.empty_like(p) for p in params]
-        check_choice("engine", engine, ("auto", "reference"))
-        self._compiled = None if engine == "reference" else compiled_kernels()
+
+    def learning_rate_at_step(self) -> float:
+        """Advance the step count ``t`` and return :math:`\\mathrm{lr}_t`."""
+        self.t += 1
+        return (self.learning_rate * np.sqrt(1 - self.beta_2**self.t)
+                / (1 - self.beta_1**self.t))
 
     def update(self, params, grads) -> None:
-        """Move ``params`` in place."""
-        self.t += 1
-        lr_t = (self.learning_rate * np.sqrt(1 - self.beta_2**self.t)
-              / (1 - self.beta_1**self.t))
-        for p, g, m, v, step, tmp in zip(params, grads, self.ms, self.vs, self._steps,
-                                         self._scratch, strict=True):
-            if self._compiled is not None and _flat_views(p, g):
-                self._compiled.adam_step(p.reshape(-1), g.reshape(-1), m.reshape(-1),
-                                         v.reshape(-1), self.beta_1, self.beta_2,
-                                         1 - self.beta_1, 1 - self.beta_2, lr_t, self.epsilon)
-                continue
-            # the same operations as p -= lr_t m / (sqrt(v) + eps), in place on two temporaries
-            np.multiply(g, 1 - self.beta_1, out=tmp)
-            m *= self.beta_1
-            m += tmp
-            np.multiply(g, 1 - self.beta_2, out=tmp)
-            tmp *= g
-            v *= self.beta_2
-            v += tmp
-            np.sqrt(v, out=tmp)
-            tmp += self.epsilon
-            np.multiply(m, lr_t, out=step)
-            step /= tmp
-            p -= step
-
-
-def _flat_views(*arrays) -> bool:
-    """Whether every array is C-ordered float64 (``reshape(-1)`` is then a view)."""
-    return all(a.dtype == np.float64 and a.flags.c_contiguous for a in arrays)
+        """Move ``params`` (the arrays this optimiser was made for) in place by ``grads``."""
+        lr_t = self.learning_rate_at_step()
+        for w, g, m, v in zip(params, grads, self.ms, self.vs, strict=True):
+            m[...] = self.beta_1 * m + (1 - self.beta_1) * g
+            v[...] = self.beta_2 * v + (1 - self.beta_2) * g * g
+            w -= lr_t * m / (np.sqrt(v) + self.epsilon)
 
 
 @dataclass

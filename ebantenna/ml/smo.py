@@ -218,11 +218,14 @@ def solve_two_variable(i, j, alpha, G, y, C, K, *, tau=TAU):
     (:math:`L = \\max(0, \\alpha_j - \\alpha_i)`, :math:`H = \\min(C_j, C_i + \\alpha_j -
     \\alpha_i)` when :math:`y_i \\ne y_j`; :math:`L = \\max(0, \\alpha_i + \\alpha_j - C_i)`,
     :math:`H = \\min(C_j, \\alpha_i + \\alpha_j)` otherwise). Along it the objective is a
-    parabola of curvature :math:`\\eta = K_{ii} + K_{jj} - 2K_{ij}`, least at
-    :math:`\\alpha_j + y_j (E_i - E_j) / \\eta` with Platt's errors
+    parabola of curvature :math:`a_{ij} = K_{ii} + K_{jj} - 2K_{ij}` (Platt's
+    :math:`\\eta`, ``eta`` in the code), least at
+    :math:`\\alpha_j + y_j (E_i - E_j) / a_{ij}` with Platt's errors
     :math:`E_i - E_j = y_i G_i - y_j G_j`. Clip that to :math:`[L, H]`; :math:`\\alpha_i`
-    follows from the constraint. An :math:`\\eta \\le \\tau` (a kernel that is not positive
-    definite) is replaced by ``tau``, as libsvm does.
+    follows from the constraint. An :math:`a_{ij} \\le \\tau` (a kernel that is not positive
+    definite, or two points too close to tell apart) is replaced by ``tau``. libsvm replaces
+    only :math:`a_{ij} \\le 0`, and keeps :math:`0 < a_{ij} < \\tau` as it is (the
+    ``'nonpositive'`` curvature floor of :class:`~ebantenna.ml.smo_policy.SMOPolicy`).
 
     Parameters
     ----------

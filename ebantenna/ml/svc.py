@@ -151,7 +151,8 @@ class SVC(ClassifierMixin, BaseEstimator):
         sit at a bound, so each update passes over the few that can still move; it is used
         whether the kernel of a pair of classes is stored whole or cached by rows, so the result
         does not depend on ``cache_size``. ``shrinking=False`` passes over every variable at
-        every update. ``solver="reference"`` never shrinks and refuses ``shrinking=True``.
+        every update. It concerns the engines only: ``solver="reference"`` passes over every
+        variable whatever it says.
     probability : bool, default=False
         Also fit Platt's sigmoids on five-fold cross-validated decision values (five more fits
         per pair of classes), for :meth:`predict_proba`. As in scikit-learn, :meth:`predict`
@@ -166,8 +167,8 @@ class SVC(ClassifierMixin, BaseEstimator):
         too, unless ``libsvm_compat``), else rows are computed on demand and the least recently
         used are dropped. With shrinking the solver also keeps the float64 rows it has used
         since the last reordering, up to 64 MB (kernel rows and their curvatures together).
-        ``solver="reference"`` holds the kernel matrix of each pair of classes as one float64
-        array, whatever ``cache_size`` (with the entries of the storage above).
+        Engines only: ``solver="reference"`` holds the kernel matrix of each pair of classes as
+        one float64 array, whatever ``cache_size``.
     class_weight : dict or 'balanced', default=None
         Multiply ``C`` by this weight for the samples of each class.
     verbose : bool, default=False
@@ -210,10 +211,12 @@ class SVC(ClassifierMixin, BaseEstimator):
         pair of classes), fast and, with ``libsvm_compat``, libsvm's to the last digits.
         'reference': the textbook loop of :mod:`ebantenna.ml.smo`
         (:func:`~ebantenna.ml.smo.reference_smo`), slower, to read and to step through; it
-        finds the same support vectors and decision values within what ``tol`` allows. It
-        follows neither libsvm's conventions nor its shrinking: ``libsvm_compat=True`` or
-        ``shrinking=True`` with it raise a ``ValueError``. With a kernel that is not positive
-        semi-definite it may stop at another stationary point of the dual than the engines.
+        finds the same support vectors and decision values within what ``tol`` allows. It runs
+        with the other defaults as they are: it never shrinks (``shrinking`` is the engines'
+        heuristic) and its kernel is float64 whatever ``cache_size``. It does not follow
+        libsvm's conventions: ``libsvm_compat=True`` with it raises a ``ValueError``. With a
+        kernel that is not positive semi-definite it may stop at another stationary point of
+        the dual than the engines.
 
     Attributes
     ----------
@@ -251,7 +254,7 @@ class SVC(ClassifierMixin, BaseEstimator):
 
     The textbook SMO finds the same classifier:
 
-    >>> ref = SVC(kernel="rbf", C=1.0, solver="reference", shrinking=False).fit(X, y)
+    >>> ref = SVC(kernel="rbf", C=1.0, solver="reference").fit(X, y)
     >>> bool(np.array_equal(ref.support_, clf.support_))
     True
     """
@@ -372,6 +375,9 @@ class SVC(ClassifierMixin, BaseEstimator):
         compat = self.libsvm_compat or not positive_semidefinite(self.kernel, given)
         base = LIBSVM if compat else DEFAULT
         dtype = base.kernel_dtype(int(keep.sum()), cache_bytes)
+        if self.solver == "reference":  # each pair's whole kernel in float64, whatever the cache
+            dtype = np.float64
+            cache_bytes = max(cache_bytes, 8 * int(keep.sum()) ** 2)
         members = [np.flatnonzero((y_idx == c) & keep) for c in range(classes.size)]
         if any(m.size == 0 for m in members):
             raise ValueError("every class needs at least one sample with a positive weight")
@@ -407,12 +413,9 @@ class SVC(ClassifierMixin, BaseEstimator):
         self._check_numbers()
         if self.break_ties and self.decision_function_shape == "ovo":
             raise ValueError("break_ties must be False when decision_function_shape is 'ovo'")
-        if self.solver == "reference":
-            for name in ("libsvm_compat", "shrinking"):
-                if getattr(self, name):
-                    raise ValueError(f"{name}=True needs solver='auto': the reference SMO "
-                                     f"follows neither libsvm's conventions nor its shrinking; "
-                                     f"set {name}=False")
+        if self.solver == "reference" and self.libsvm_compat:
+            raise ValueError("libsvm_compat=True needs solver='auto': the reference SMO does not "
+                             "follow libsvm's conventions; set libsvm_compat=False")
 
     def _training_data(self, X, y, sample_weight):
         """Validated ``X``, the class index of each sample and the sample weights; sets

@@ -79,6 +79,8 @@ class AnalysedPart:
         True for a short transient: its baseline is the median of the whole record.
     lo, hi : int
         The first and last FFT bins of the search band.
+    fmin, fmax : float
+        The search band, Hz: the frequency returned lies in it.
     """
 
     samples: slice
@@ -87,31 +89,42 @@ class AnalysedPart:
     is_transient: bool
     lo: int
     hi: int
+    fmin: float
+    fmax: float
 
     @property
     def n_fft(self) -> int:
         """FFT length, ``n * zero_pad``."""
         return self.n * self.zero_pad
 
+    def in_band(self, f: float) -> float:
+        """``f`` moved to the nearer edge of the band when an interpolation put it beyond.
+
+        The strongest bin lies in the band; an interpolated peak past an edge means that the
+        interpolated spectrum grows up to that edge, where its largest value in the band is.
+        """
+        return float(min(max(f, self.fmin), self.fmax))
+
 
 def analysed_part(x: np.ndarray, fs: float, zero_pad: int, fmin: float | None,
-                  fmax: float) -> AnalysedPart:
+                  fmax: float, transient: bool = False) -> AnalysedPart:
     """Keep a short transient from vanishing under the window: analyse only the part holding it.
 
-    ``fmin=None`` (the caller's default band start) is the one case where a transient is looked
-    for (:func:`transient_span`); the band then starts two bins of the transient above 0 Hz,
-    because below that the window's DC lobe holds what is left of the baseline. Otherwise the
-    whole record is analysed, from ``fmin`` (or one bin, ``fs / n``) up. Takes checked values:
-    ``fmin < fmax <= fs / 2`` for the whole record.
+    With ``transient=False`` (the default of the public functions) the whole record is
+    analysed, from ``fmin`` (None: one bin, ``fs / n``) up to ``fmax``. With ``transient=True``
+    a short transient is looked for (:func:`transient_span`); when one is found only its samples
+    are analysed, and the band starts at ``fmin`` or, for ``fmin=None``, two bins of the
+    transient above 0 Hz, because below that the window's DC lobe holds what is left of the
+    baseline. Takes checked values: ``fmin < fmax <= fs / 2`` for the whole record.
 
     Raises
     ------
     ValueError
-        When the transient is too short for any frequency below ``fmax``, or the band holds no
+        When the transient is too short for any frequency of the band, or the band holds no
         FFT bin.
     """
     n = x.shape[0]
-    segment = transient_span(x) if fmin is None else None
+    segment = transient_span(x) if transient else None
     if segment is None:
         fmin = fs / n if fmin is None else fmin
         part = slice(0, n)
@@ -120,14 +133,15 @@ def analysed_part(x: np.ndarray, fs: float, zero_pad: int, fmin: float | None,
         m = segment.stop - segment.start
         zero_pad *= -(-n // m)
         n = m
-        fmin = 2.0 * fs / m
-        if not fmin < fmax:
-            raise ValueError(
-                f"x is a transient of {m} samples: no frequency below its two-bin limit "
-                f"{fmin:g} Hz can be resolved; fmax={fmax:g}"
-            )
+        if fmin is None:
+            fmin = 2.0 * fs / m
+            if not fmin < fmax:
+                raise ValueError(
+                    f"x is a transient of {m} samples: no frequency below its two-bin limit "
+                    f"{fmin:g} Hz can be resolved; fmax={fmax:g}"
+                )
     lo, hi = search_bins(fmin, fmax, fs / (n * zero_pad))
-    return AnalysedPart(part, n, zero_pad, segment is not None, lo, hi)
+    return AnalysedPart(part, n, zero_pad, segment is not None, lo, hi, float(fmin), float(fmax))
 
 
 def search_bins(fmin: float, fmax: float, df: float) -> tuple[int, int]:

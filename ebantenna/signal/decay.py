@@ -6,7 +6,7 @@ negative; here
 ``tau = -1/b > 0`` (s), the time in which the envelope falls by the factor ``e``.
 
 The fit works on the envelope, the magnitude of the analytic signal (Hilbert transform), because an
-exponential cannot be fitted to the oscillation itself. Three methods:
+exponential cannot be fitted to the oscillation itself. Four methods:
 
 ``"loglinear"``
     weighted least squares of ``log env = log a + b t`` with weights ``env^2`` (the variance of the
@@ -270,7 +270,9 @@ def fit_decay(
     # then made in samples (a time unit of 1/fs) and its rate converted to 1/s at the end.
     unit = 1.0 if 1e-100 <= fs <= 1e100 else 1.0 / fs  # s
     t = np.arange(x.shape[0]) / (fs * unit)
-    period = fs / dominant_frequency(xc, fs, method="bin", window="rectangular")  # samples
+    # the period, in samples, of the strongest bin of the decay's own samples: a decay that is
+    # over within half of the record is analysed on its span (the transient of the spectral peak)
+    period = fs / dominant_frequency(xc, fs, method="bin", window="rectangular", transient=True)
     region = decay_region(env, clipped, period, floor_factor)  # guard: edges, clipping, noise
     keep = None if region is None else region.keep
     if keep is not None and method == "peaks":
@@ -282,8 +284,7 @@ def fit_decay(
                             nonlinear=method == "nonlinear")
     decaying = b < 0 and r2 >= min_r_squared
     first = region.first
-    sine = damped_sinusoid_fit(xc[first:], t[first:], region.end - first, a, b,
-                               2 * np.pi / period * (fs * unit))
+    sine = damped_sinusoid_fit(xc[first:], t[first:], region.end - first, b)
     n_points = keep.size
     if method == "sinusoid":
         status = sinusoid_status(sine, decaying)
@@ -394,7 +395,7 @@ def envelope_fit(tk, ek, *, nonlinear):
     return a, b, r2
 
 
-def damped_sinusoid_fit(x, t, n_fit, a0, b0, omega0):
+def damped_sinusoid_fit(x, t, n_fit, b0):
     """Fit ``exp(b t) (p cos wt + q sin wt) + c`` to the first ``n_fit`` samples of ``x``.
 
     The ``"sinusoid"`` method of :func:`fit_decay` and the witness each envelope fit is checked
@@ -407,11 +408,19 @@ def damped_sinusoid_fit(x, t, n_fit, a0, b0, omega0):
     The start: the rate ``b0`` of the envelope fit (or, if that does not decay, ``-1 / (2 t_E)``
     with ``t_E`` the energy centroid of the window, since ``exp(2 b t)`` has its centroid at
     ``1 / (2 |b|)``); the frequency of the strongest peak of the window's spectrum, zero-padded 8
-    times (``omega0``, rad/s, is the fallback of a spectrum with a single bin, which a window of 8
-    samples or more never has); the linear parameters ``p, q, c`` at their least-squares values
-    for that rate and frequency. ``a0`` is not used (the start needs only the rate). Takes
-    checked values: :func:`fit_decay` validates its arguments and scales the signal before
-    calling it.
+    times; the linear parameters ``p, q, c`` at their least-squares values for that rate and
+    frequency. Takes checked values: :func:`fit_decay` validates its arguments and scales the
+    signal before calling it.
+
+    Parameters
+    ----------
+    x, t : ndarray of shape (n,)
+        Signal and its sample times (any time unit; ``b`` comes out in its inverse).
+    n_fit : int
+        Number of samples fitted, from the first (at most ``n``).
+    b0 : float
+        Starting rate, from the envelope fit; a value that is not negative is replaced by the
+        energy-centroid start above.
 
     Returns
     -------
@@ -427,7 +436,7 @@ def damped_sinusoid_fit(x, t, n_fit, a0, b0, omega0):
     >>> from ebantenna.signal.decay import damped_sinusoid_fit
     >>> t = np.arange(600) / 1000.0
     >>> x = 2.0 * np.exp(-t / 0.08) * np.sin(2 * np.pi * 61.3 * t + 0.9)
-    >>> a, b, r2, n = damped_sinusoid_fit(x, t, 600, 1.8, -11.0, 2 * np.pi * 61.0)
+    >>> a, b, r2, n = damped_sinusoid_fit(x, t, 600, -11.0)
     >>> round(a, 6), round(-1 / b, 6), n
     (2.0, 0.08, 600)
     """
@@ -442,7 +451,7 @@ def damped_sinusoid_fit(x, t, n_fit, a0, b0, omega0):
     # the strongest peak of the window's spectrum, 8x zero-padded, near the record's dominant bin
     spectrum = np.abs(np.fft.rfft(y - y.mean(), 8 * n_fit))
     omegas = 2 * np.pi * np.fft.rfftfreq(8 * n_fit, tw[1])
-    omega = float(omegas[1 + np.argmax(spectrum[1:])]) if spectrum.size > 1 else omega0
+    omega = float(omegas[1 + np.argmax(spectrum[1:])])  # n_fit >= 8: bins beyond DC exist
 
     def columns(b, w):
         e = np.exp(b * tw)

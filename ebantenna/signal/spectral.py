@@ -11,8 +11,10 @@
 :func:`peak_frequencies` shares steps 1 and 3 and picks several peaks in step 2
 (:func:`local_maxima`, :func:`strongest_separated`). The arguments are validated once, by the two
 public functions; the steps take checked values. The numerical guards (an exact power-of-two
-scaling against overflow, the search for a short transient, the slack of a band edge on a bin)
-live in the private module ``ebantenna/signal/_guards.py``, each explained there.
+scaling against overflow, the slack of a band edge on a bin) and the search for a short transient
+that ``transient=True`` asks for live in the private module ``ebantenna/signal/_guards.py``, each
+explained there. By default the whole record is analysed and the frequency returned lies in the
+search band ``[fmin, fmax]``.
 
 The plain estimate is the frequency of the largest FFT bin; its error is up to half a bin, ``fs / (2
 n)`` (0.5 Hz for one second of data). Two interpolating estimators refine it from the peak bin and
@@ -72,6 +74,7 @@ def dominant_frequency(
     fmin: float | None = None,
     fmax: float | None = None,
     remove_mean: bool = True,
+    transient: bool = False,
 ) -> float:
     """Frequency of the strongest spectral peak of ``x``, Hz.
 
@@ -90,16 +93,23 @@ def dominant_frequency(
         FFT length as a multiple of ``n`` (1 = no padding). Padding interpolates the spectrum: it
         shrinks the bin spacing (and the plain-bin error) but not the resolution.
     fmin, fmax : float, optional
-        Search band, Hz. Default: from one bin above DC up to the Nyquist frequency ``fs / 2``
-        (for a short transient, from two bins of the analysed segment, see the notes).
+        Search band, Hz. Default: from one bin above DC, ``fs / n``, up to the Nyquist
+        frequency ``fs / 2`` (for a transient analysed on its own, from two bins of its
+        samples, see the notes).
     remove_mean : bool
-        Subtract the mean first (for a short transient, the median of the record), so that the
-        DC bin (gravity, offsets) cannot win.
+        Subtract the mean first (for a transient analysed on its own, the median of the
+        record), so that the DC bin (gravity, offsets) cannot win.
+    transient : bool, default=False
+        Look for a short transient (a decay or a burst filling less than half of the record)
+        and, when there is one, analyse its samples only (see the notes). The default analyses
+        the whole record, whatever it holds.
 
     Returns
     -------
     float
-        Dominant frequency, Hz.
+        Dominant frequency, Hz, within the search band: when the strongest bin sits on an edge
+        of the band and the interpolation places the peak beyond it, the edge itself (where the
+        interpolated spectrum is largest within the band).
 
     Raises
     ------
@@ -111,12 +121,14 @@ def dominant_frequency(
     -----
     **Short transients.** A window over the whole record weights its start by about zero, so a
     decay of a few tens of milliseconds at the start of a one-second record would vanish under
-    it. Without ``fmin``, a record whose energy sits in less than half of it (a decay or a burst,
-    found block by block) is analysed on that part only: baseline (the median) removed, windowed
-    over the part, padded to keep the record's bin spacing.
+    it. With ``transient=True``, a record whose energy sits in less than half of it (a decay or a
+    burst, found block by block) is analysed on that part only: baseline (the median) removed,
+    windowed over the part, padded to keep the record's bin spacing. Which samples are analysed
+    then depends on the record, so the choice is the caller's: by default every sample is.
 
     **Accuracy.** For a clean damped tone :math:`e^{-t/\\tau}\\sin(2\\pi f t + \\phi)` plus any
-    offset (checked for :math:`\\tau` from 5 ms to 10 s, offsets up to 10 g, 1 s at 1 kHz) the
+    offset (checked for :math:`\\tau` from a tenth of the record to 10 s on the whole record, and
+    from 5 ms with ``transient=True``, offsets up to 10 g, 1 s at 1 kHz) the
     Jacobsen estimate with the Hann window is within :math:`0.15/(2\\pi\\tau) + 0.01 f_s/n` of
     :math:`f`, provided the tone is at least its half-bandwidth plus six bins,
     :math:`1/(2\\pi\\tau) + 6 f_s/n`, away from 0 and from :math:`f_s/2` (closer, its peak merges
@@ -134,27 +146,30 @@ def dominant_frequency(
     >>> dominant_frequency(x, 1000.0, method="bin")
     123.0
     >>> short = np.exp(-t / 0.03) * np.sin(2 * np.pi * 25.0 * t) + 9.81  # a 30 ms tap, gravity
-    >>> round(dominant_frequency(short, 1000.0), 1)
+    >>> round(dominant_frequency(short, 1000.0, transient=True), 1)
     25.0
     """
     x, fs, zero_pad, fmin, fmax = _checked_arguments(x, fs, method, window, zero_pad, fmin,
-                                                     fmax, remove_mean)
-    spectrum, part = windowed_spectrum(x, fs, window, zero_pad, fmin, fmax, remove_mean)
+                                                     fmax, remove_mean, transient)
+    spectrum, part = windowed_spectrum(x, fs, window, zero_pad, fmin, fmax, remove_mean,
+                                       transient)
     magnitude = np.abs(spectrum)
     k = strongest_bin(magnitude, part.lo, part.hi)
     if magnitude[k] == 0.0:
         raise ValueError("x has no energy in the search band [fmin, fmax]")
-    return interpolated_frequency(spectrum, k, fs, part.n, method, window, part.zero_pad)
+    return part.in_band(interpolated_frequency(spectrum, k, fs, part.n, method, window,
+                                               part.zero_pad))
 
 
-def _checked_arguments(x, fs, method, window, zero_pad, fmin, fmax, remove_mean):
+def _checked_arguments(x, fs, method, window, zero_pad, fmin, fmax, remove_mean, transient):
     """Validate the arguments of :func:`dominant_frequency` once, at the public boundary.
 
     Returns ``(x, fs, zero_pad, fmin, fmax)``.
 
-    ``fmin=None`` is returned as None: it asks for the automatic band start, and for the search
-    of a short transient (:func:`~ebantenna.signal._guards.analysed_part`); the band is checked
-    with its default start ``fs / n``. ``fmax=None`` becomes the Nyquist frequency.
+    ``fmin=None`` is returned as None: it asks for the default band start, ``fs / n`` of the
+    analysed samples (two bins of a transient analysed on its own, see
+    :func:`~ebantenna.signal._guards.analysed_part`); the band is checked with the start
+    ``fs / n``. ``fmax=None`` becomes the Nyquist frequency.
     """
     fs = check_fs(fs)
     x = check_signal("x", x, min_length=4, allow_constant=False)
@@ -167,6 +182,7 @@ def _checked_arguments(x, fs, method, window, zero_pad, fmin, fmax, remove_mean)
                      parameter="x" if zero_pad == 1 else "x and zero_pad",
                      what=f"the spectrum of {n_fft} points")
     check_bool("remove_mean", remove_mean)
+    check_bool("transient", transient)
     if method == "jacobsen" and window not in ("hann", "rectangular"):
         raise ValueError(f"method 'jacobsen' needs window 'hann' or 'rectangular', got {window!r}")
     nyquist = fs / 2.0
@@ -180,13 +196,14 @@ def _checked_arguments(x, fs, method, window, zero_pad, fmin, fmax, remove_mean)
     return x, fs, zero_pad, None if fmin is None else low, fmax
 
 
-def windowed_spectrum(x, fs, window, zero_pad, fmin, fmax, remove_mean):
+def windowed_spectrum(x, fs, window, zero_pad, fmin, fmax, remove_mean, transient=False):
     """Spectrum the peak is read from: the mean removed, the window applied, the real FFT.
 
-    The textbook steps, behind two numerical guards: ``x`` is first scaled by a power of two
-    (exact) so that the FFT's sums cannot overflow near 1e308, and a short transient is analysed
-    on its own part of the record (see the notes of :func:`dominant_frequency`). Takes checked
-    arguments (as :func:`dominant_frequency` returns them after validation).
+    The textbook steps, behind a numerical guard: ``x`` is first scaled by a power of two
+    (exact) so that the FFT's sums cannot overflow near 1e308. With ``transient=True`` a short
+    transient is analysed on its own part of the record (see the notes of
+    :func:`dominant_frequency`). Takes checked arguments (as :func:`dominant_frequency` returns
+    them after validation).
 
     Returns
     -------
@@ -205,7 +222,7 @@ def windowed_spectrum(x, fs, window, zero_pad, fmin, fmax, remove_mean):
     (10, 1, 50)
     """
     x, _ = unit_scaled(x)
-    part = analysed_part(x, fs, zero_pad, fmin, fmax)
+    part = analysed_part(x, fs, zero_pad, fmin, fmax, transient)
     y = x[part.samples]
     if remove_mean:
         # a transient's baseline is the level outside it, the median of the whole record (its
@@ -324,6 +341,7 @@ def peak_frequencies(
     fmin: float | None = None,
     fmax: float | None = None,
     remove_mean: bool = True,
+    transient: bool = False,
 ) -> np.ndarray:
     """Frequencies of the ``n_peaks`` strongest spectral peaks of ``x`` (several modes), Hz.
 
@@ -339,7 +357,7 @@ def peak_frequencies(
         Sampling frequency, Hz.
     n_peaks : int
         Number of peaks wanted (>= 1).
-    method, window, fmin, fmax, remove_mean
+    method, window, fmin, fmax, remove_mean, transient
         As for :func:`dominant_frequency`.
     min_separation : float, optional
         Smallest distance between two reported peaks, Hz; default four bins, ``4 fs / n``
@@ -348,7 +366,8 @@ def peak_frequencies(
     Returns
     -------
     ndarray of shape (n_peaks,)
-        Peak frequencies in ascending order, Hz.
+        Peak frequencies in ascending order, Hz, each within the search band (as for
+        :func:`dominant_frequency`).
 
     Raises
     ------
@@ -367,10 +386,11 @@ def peak_frequencies(
     array([ 43.21, 187.65])
     """
     n_peaks = check_int("n_peaks", n_peaks, minimum=1)
-    x, fs, _, fmin, fmax = _checked_arguments(x, fs, method, window, 1, fmin, fmax, remove_mean)
+    x, fs, _, fmin, fmax = _checked_arguments(x, fs, method, window, 1, fmin, fmax, remove_mean,
+                                              transient)
     if min_separation is not None:
         min_separation = check_positive("min_separation", min_separation)
-    spectrum, part = windowed_spectrum(x, fs, window, 1, fmin, fmax, remove_mean)
+    spectrum, part = windowed_spectrum(x, fs, window, 1, fmin, fmax, remove_mean, transient)
     separation = 4.0 * fs / part.n if min_separation is None else min_separation
     magnitude = np.abs(spectrum)
     candidates = local_maxima(magnitude, part.lo, part.hi)
@@ -380,8 +400,8 @@ def peak_frequencies(
             f"x holds only {len(chosen)} spectral peak(s) at least {separation:g} Hz apart in the "
             f"search band; n_peaks={n_peaks} requested"
         )
-    freqs = [interpolated_frequency(spectrum, k, fs, part.n, method, window, part.zero_pad)
-             for k in chosen]
+    freqs = [part.in_band(interpolated_frequency(spectrum, k, fs, part.n, method, window,
+                                                 part.zero_pad)) for k in chosen]
     return np.sort(np.array(freqs))
 
 

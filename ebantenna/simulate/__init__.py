@@ -20,6 +20,9 @@ Examples
 ((1000,), 1000.0)
 """
 
+# the engines register themselves beside their references: the contact laws' march "blocks"
+# (linear_state.MARCHES) and the modal sum's "grid" (modes.EXPONENTIAL_ENGINES)
+from . import _block_march, _exponential_grid  # noqa: F401
 from .dataset import (
     Dataset,
     DatasetDesign,

@@ -13,11 +13,14 @@ same signals as the reference; this is the default because it costs about one ma
 per block instead of a propagation per step.
 
 Each state carries the engine's tables in its attribute ``blocks`` (:class:`BlockTables`, set by
-:func:`prepare_blocks` when the step grid is laid out). A law gives the engine four hooks (see
-:class:`.linear_state.SwitchedSystem`): ``horizon`` (how far a state may be read ahead),
-``quiet`` (no event within a span, usually :func:`stays_positive`), ``ends`` (where a state
-ends, read on the block's values) and ``record_block`` (record the samples of a block); the
-reference march uses none of them.
+:func:`prepare_blocks` when the march starts: the reference march needs none). What the engine
+asks of a law beyond the reference's :class:`.linear_state.SwitchedSystem` is in the law's
+adapter here (:class:`LawBlocks` and its subclasses, one per law): ``states`` (the states to
+prepare), ``horizon`` (how far a state may be read ahead), ``quiet`` (no event within a span,
+usually :func:`stays_positive`), ``ends`` (where a state ends, read on the block's values) and
+``record_block`` (record the samples of a block). This module imports the laws; they import
+nothing from it. Importing it adds ``"blocks"`` to :data:`.linear_state.MARCHES` (the package
+does, when it is imported).
 """
 
 from __future__ import annotations
@@ -25,11 +28,18 @@ from __future__ import annotations
 import functools
 from dataclasses import dataclass
 
+import math
+
 import numpy as np
 import scipy.linalg as spl
 
+from .linear_state import MARCHES
+from .stick_slip import StickSlipLaw
+from .unilateral import HertzStrikeLaw, StrikeLaw
+
 __all__ = ["LONG_BLOCKS", "BLOCK_ELEMENTS", "BlockTables", "prepare_blocks", "readings", "samples",
-           "read_ahead", "swing", "stays_positive", "after", "march_in_blocks"]  # fmt: skip
+           "read_ahead", "swing", "stays_positive", "after", "LawBlocks", "StrikeBlocks",
+           "HertzStrikeBlocks", "StickSlipBlocks", "adapter", "march_in_blocks"]  # fmt: skip
 
 #: Where the contact provably keeps its state, up to this many blocks are read at once.
 LONG_BLOCKS = 32
@@ -205,11 +215,161 @@ def after(st, x, z, steps):
     return st.at(x, z, steps * st.blocks.h)
 
 
+class LawBlocks:
+    """What the engine asks of a law besides the reference's interface: its adapter.
+
+    The defaults suit a law with nothing but its states. A subclass per law gives the states
+    to prepare (:meth:`states`) and whatever the law changes.
+
+    Parameters
+    ----------
+    law : SwitchedSystem
+        The contact law marched.
+    """
+
+    def __init__(self, law):
+        self.law = law
+
+    def states(self) -> list:
+        """Every :class:`.linear_state.LinearState` the march may read."""
+        raise NotImplementedError
+
+    def horizon(self, i: int, n_steps: int) -> int:
+        """How many steps from step ``i`` on the current state may be read ahead."""
+        return n_steps - i
+
+    def quiet(self, key, x, z, m: int) -> bool:
+        """Whether no event can happen within the next ``m`` steps (:func:`stays_positive`)."""
+        return stays_positive(self.law.state(key), x, z, m)
+
+    def ends(self, key):
+        """Where the state ends, read on a block's rows (None: where the monitored row is
+        ``<= 0``)."""
+        return None
+
+    def record_block(self, i: int, j, values, x, z, key) -> None:
+        """Record the output samples ``j`` (steps after ``i``) of a block read ahead from ``x``
+        (``z``: its modal coordinates), their rows ``values``, as the law's ``record`` would."""
+        law = self.law
+        k = (i + 1 + j) // law.sub
+        law.acc[k], law.force[k] = values[:, 1], values[:, 2]
+        if law.trajectory is not None and len(j):  # (an empty list would not broadcast)
+            st = law.state(key)
+            law.trajectory[k] = [after(st, x, z, jj + 1) for jj in j]
+
+
+class StrikeBlocks(LawBlocks):
+    """The adapter of :class:`.unilateral.StrikeLaw`."""
+
+    def states(self) -> list:
+        """The contact open and closed."""
+        return [self.law.free, self.law.closed]
+
+    def horizon(self, i, n_steps):
+        """Steps ahead before the record's end or the servo's stop."""
+        law = self.law
+        limit = n_steps - i
+        if not law.stopped:
+            limit = min(limit, int(math.floor(law.stop_time / law.h)) - i)
+        return limit
+
+    def quiet(self, st, x, z, m):
+        """No event within ``m`` steps: the state is held or its monitor provably stays > 0."""
+        return not self.law.watched(st) or stays_positive(st, x, z, m)
+
+
+class HertzStrikeBlocks(StrikeBlocks):
+    """The adapter of :class:`.unilateral.HertzStrikeLaw`: a chord's state ends at its nodes."""
+
+    def states(self) -> list:
+        """The contact open, and closed on each chord."""
+        return [self.law.free, *self.law.segments]
+
+    def ends(self, key):
+        """A chord's state ends at either of its nodes; the free state where the gap closes."""
+        if key is self.law.free:
+            return None
+        lower, upper = self.law.limits(key)
+        return lambda values: (values[:, 0] <= lower) | (values[:, 0] >= upper)
+
+    def quiet(self, key, x, z, m):
+        """No event within ``m`` steps: the force provably stays between the chord's nodes (its
+        modal part within :func:`swing`)."""
+        law = self.law
+        if key is law.free:
+            return stays_positive(key, x, z, m)
+        if not key.eigen:
+            return False
+        lower, upper = law.limits(key)
+        k = 2 * law.base.size
+        s, sigma = x[k], x[k + 1]
+        a, b = key.row_s[0], key.row_speed[0]
+        ends = (s * a, (s + sigma * law.h * m) * a)
+        reach = float(swing(key, z, m))
+        return bool(min(ends) + sigma * b - reach > lower and max(ends) + sigma * b + reach < upper)
+
+    def record_block(self, i, j, values, x, z, key):
+        """Record a block read ahead, the states in true coordinates (as the law's
+        ``record``)."""
+        super().record_block(i, j, values, x, z, key)
+        law = self.law
+        if law.trajectory is not None and len(j):
+            law.trajectory[(i + 1 + j) // law.sub, 2 * law.base.size] += law.shift(key)
+
+
+class StickSlipBlocks(LawBlocks):
+    """The adapter of :class:`.stick_slip.StickSlipLaw`: a stick ends at either limit."""
+
+    def states(self) -> list:
+        """The slips and the stick, watched at both limits."""
+        return list(self.law.linear.values())
+
+    def ends(self, name):
+        """A stick ends at the upper limit, ``mu_s N - F <= 0`` (the monitored row), or at the
+        lower, ``mu_s N + F = 2 mu_s N - (mu_s N - F) <= 0``; a slip where its speed reaches
+        zero."""
+        if name != "stick":
+            return None
+        hold = self.law.hold_limit
+        return lambda values: (values[:, 0] <= 0) | (2 * hold - values[:, 0] <= 0)
+
+    def quiet(self, name, x, z, m):
+        """No event within ``m`` steps: there is no friction, or every monitor provably stays
+        > 0."""
+        law = self.law
+        return law.frictionless or (
+            stays_positive(law.linear[name], x, z, m)
+            and (name != "stick" or stays_positive(law.lower, x, law.lower.modal(x), m))
+        )
+
+
+#: The adapter of each law, the most specific first.
+ADAPTERS = ((HertzStrikeLaw, HertzStrikeBlocks), (StrikeLaw, StrikeBlocks),
+            (StickSlipLaw, StickSlipBlocks))
+
+
+def adapter(law) -> LawBlocks:
+    """The engine's adapter of ``law`` (:data:`ADAPTERS`).
+
+    Raises
+    ------
+    TypeError
+        For a law the engine has no adapter of.
+    """
+    for cls, blocks in ADAPTERS:
+        if isinstance(law, cls):
+            return blocks(law)
+    raise TypeError(f"the engine 'blocks' has no adapter of {type(law).__name__}; march it with "
+                    "method='steps'")
+
+
 def march_in_blocks(system, x, key, n_steps: int):
     """March ``system`` (a :class:`.linear_state.SwitchedSystem`) ``n_steps`` steps from the
     state ``(x, key)`` at step 0, reading each state in blocks; returns ``(x, key)`` after the
     last step. Takes the checked values a contact law was built from."""
     h, sub = system.h, system.sub
+    blocks = adapter(system)
+    prepare_blocks(blocks.states(), h, sub, n_steps)
     i = 0
     while i < n_steps:
         if system.interrupts(i):
@@ -218,12 +378,12 @@ def march_in_blocks(system, x, key, n_steps: int):
             system.record(i, x, key)
             continue
         st = system.state(key)
-        limit = system.horizon(i, n_steps)
+        limit = blocks.horizon(i, n_steps)
         first = (-(i + 1)) % sub  # the first step from here that is an output sample
         z = st.modal(x)
-        quiet = system.quiet(key, x, z, min(st.blocks.span, limit))
-        m, j, values, event = read_ahead(st, x, z, first, limit, quiet, system.ends(key))
-        system.record_block(i, j, values, x, z, key)
+        quiet = blocks.quiet(key, x, z, min(st.blocks.span, limit))
+        m, j, values, event = read_ahead(st, x, z, first, limit, quiet, blocks.ends(key))
+        blocks.record_block(i, j, values, x, z, key)
         if m:
             x = after(st, x, z, m)
             i += m
@@ -234,3 +394,6 @@ def march_in_blocks(system, x, key, n_steps: int):
             i += 1
             system.record(i, x, key)
     return x, key
+
+
+MARCHES["blocks"] = march_in_blocks

@@ -10,14 +10,19 @@ so each term costs ``n / B + B`` exponentials, and the sum over terms becomes on
 matrix product ``(A, k) x (k, B)`` per signal. The arguments are rounded as the direct
 evaluation's are (both reach ``|r| t``), so the two agree to a few ulps of
 ``|r| t_max sum_k |C_k|``; the test suite holds them to that bound. The simulator uses this
-engine by default (``engine="grid"``) wherever it applies (:func:`fits_grid`).
+engine by default (``engine="grid"``) wherever it applies (:func:`fits_grid`), and the reference
+:func:`.modes.direct_exponentials` elsewhere (:func:`grid_or_direct`). This module imports the
+reference and adds ``"grid"`` to :data:`.modes.EXPONENTIAL_ENGINES` (the package does, when
+it is imported); the reference imports nothing from it.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["GRID_BLOCK", "fits_grid", "grid_exponentials"]
+from .modes import EXPONENTIAL_ENGINES, direct_exponentials
+
+__all__ = ["GRID_BLOCK", "fits_grid", "grid_exponentials", "grid_or_direct"]
 
 #: Block length ``B`` of the grid: the samples whose exponentials are taken once per term.
 GRID_BLOCK = 32
@@ -54,3 +59,14 @@ def grid_exponentials(t: np.ndarray, coef, rate, max_elements: int) -> np.ndarra
         grid = np.matmul(head.transpose(0, 2, 1), tail).imag  # (s, A, B)
         out[rows] = grid.reshape(grid.shape[0], -1)[:, :n_samples]
     return out
+
+
+def grid_or_direct(t: np.ndarray, coef, rate, max_elements: int) -> np.ndarray:
+    """The engine ``"grid"`` of :func:`.modes.damped_exponentials`: :func:`grid_exponentials`
+    where the grid applies (:func:`fits_grid`), the reference elsewhere."""
+    if fits_grid(t):
+        return grid_exponentials(t, coef, rate, max_elements)
+    return direct_exponentials(t, coef, rate, max_elements)
+
+
+EXPONENTIAL_ENGINES["grid"] = grid_or_direct

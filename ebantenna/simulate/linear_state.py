@@ -9,10 +9,12 @@ open. Within a state the motion is the closed-form modal solution (:class:`Linea
 :class:`.stick_slip.StickSlipLaw`) is a :class:`SwitchedSystem`: it says which state holds and
 how one step is taken through any event on the way. :func:`march_step_by_step` is the reference:
 it takes every step in turn, as an event-driven integration is written in a textbook. The
-engine ``"blocks"`` (the default, in a private module) reads each state a block of steps ahead
-and takes only the steps that hold an event one at a time; both give the same events, and the
-same signals up to the rounding of the propagation (the test suite holds them together).
-:data:`MARCHES` names the two.
+engine ``"blocks"`` (the default, in the private module ``simulate/_block_march.py``, which
+imports this module and the laws and registers itself in :data:`MARCHES` when the package is
+imported) reads each state a block of steps ahead and takes only the steps that hold an event
+one at a time, through an adapter of each law that holds what only it needs; both give the same
+events, and the same signals up to the rounding of the propagation (the test suite holds them
+together). Nothing here imports the engine.
 """
 
 from __future__ import annotations
@@ -23,8 +25,6 @@ import math
 
 import numpy as np
 import scipy.linalg as spl
-
-from ._block_march import after, march_in_blocks, prepare_blocks, stays_positive
 
 __all__ = ["LinearState", "crossing", "step_grid", "SwitchedSystem", "march_step_by_step",
            "MARCHES"]  # fmt: skip
@@ -38,9 +38,8 @@ def step_grid(states, fs: float, duration: float, steps_per_period: int):
 
     The step is at most a ``steps_per_period``-th of the fastest state's shortest period and
     divides the output sample interval ``1 / fs`` into ``sub`` whole steps. Returns ``(h, sub,
-    n_samples, n_steps, block)``: the step (s), steps per output sample, output samples over
-    ``duration`` (both ends included), steps in all, and steps per block of the engine
-    ``"blocks"``, which gets each state ready to be read in blocks here (its ``blocks``).
+    n_samples, n_steps)``: the step (s), steps per output sample, output samples over
+    ``duration`` (both ends included) and steps in all.
     """
     fastest = max(float(np.abs(st.lam).max()) for st in states)
     h_max = 2 * math.pi / (steps_per_period * fastest) if fastest > 0 else 1 / fs
@@ -48,14 +47,16 @@ def step_grid(states, fs: float, duration: float, steps_per_period: int):
     h = 1 / (fs * sub)
     n_samples = int(math.floor(duration * fs + 1e-9)) + 1
     n_steps = (n_samples - 1) * sub
-    block = prepare_blocks(states, h, sub, n_steps)
-    return h, sub, n_samples, n_steps, block
+    return h, sub, n_samples, n_steps
 
 
 class LinearState:
     """One of the two linear states: exact propagator, and what is monitored and recorded in it.
 
-    The state ``x = (y, s, s')`` with ``y = (q, q')`` obeys ``y' = A y + f s``. With ``G = A^-1 f``
+    The state ``x = (y, s, s')`` with ``y = (q, q')`` obeys ``y' = A y + f s``: ``s(t) = s + s' t``
+    is the drive, a load or base motion along ``f`` that grows linearly in time (a strike: the
+    servo's travel at its speed ``s'``; stick-slip: the friction's constant load, ``s = 1``,
+    ``s' = 0``). With ``G = A^-1 f``
     and ``H = A^-1 G`` the motion is ``y(t) = e^(At) (y + G s + H s') - G s(t) - H s'``, and
     ``e^(At) = V e^(Lambda t) V^-1`` from the eigenvectors of ``A``. Where ``A`` is defective or
     singular with a load on it (a rigid-body motion), the matrix exponential is used instead.
@@ -63,13 +64,11 @@ class LinearState:
     Three linear functions of the state are read along the motion (``rows``: the monitored
     quantity, the acceleration and the contact force). In modal coordinates ``z = V^-1 (y + G s
     + H s')`` each of them is ``Re(sum_k w_k e^(lambda_k t)) + a (s + s' t) + b s'``
-    (:meth:`curve` for the monitored one). The engine ``"blocks"`` reads them a block of steps
-    at once from its tables in ``blocks``, set by :func:`step_grid`.
+    (:meth:`curve` for the monitored one).
     """
 
     def __init__(self, A, n, monitor, force, accel):
         self.A, self.n = A, n
-        self.blocks = None  # the engine's tables, once the step grid is laid out
         Ay, f = A[: 2 * n, : 2 * n], A[: 2 * n, 2 * n]
         self.eigen = False
         with np.errstate(all="ignore"):
@@ -92,7 +91,7 @@ class LinearState:
 
     def watching(self, monitor, force, accel) -> LinearState:
         """The same state with other rows read along the motion; the decomposition of ``A`` is
-        shared, not computed again (call before :func:`step_grid`)."""
+        shared, not computed again."""
         twin = copy.copy(self)
         twin._read(monitor, force, accel)
         return twin
@@ -105,7 +104,7 @@ class LinearState:
             m = 2 * self.n
             ry = self.rows[:, :m]
             self.row_modes = ry @ self.V  # (3, 2n): each row's weight on each mode
-            self.row_s = self.rows[:, m] - ry @ self.G  # ... on the servo's travel s(t)
+            self.row_s = self.rows[:, m] - ry @ self.G  # ... on the drive s(t)
             self.row_speed = self.rows[:, m + 1] - ry @ self.H  # ... on its speed s'
 
     def modal(self, x):
@@ -195,14 +194,11 @@ class SwitchedSystem(abc.ABC):
     """A structure that switches between linear states at events, as a march takes it.
 
     A contact law subclasses it and gives :meth:`state` (the :class:`LinearState` of a state's
-    key) and :meth:`advance` (one step, through any event on the way); the other hooks have
-    defaults that suit a law with nothing but its states. Along the march it records the
-    acceleration and the force (rows 1 and 2 of each state) at every ``sub``-th step, and with
-    ``n_states`` the whole state there too.
-
-    :meth:`horizon`, :meth:`quiet`, :meth:`ends` and :meth:`record_block` are the engine's
-    interface: only the engine ``"blocks"`` calls them, to read a state a block of steps ahead;
-    :func:`march_step_by_step` needs none of them.
+    key) and :meth:`advance` (one step, through any event on the way); :meth:`interrupts`,
+    :meth:`interrupted_step` and :meth:`moved` have defaults that suit a law with nothing but
+    its states. Along the march it records the acceleration and the force (rows 1 and 2 of each
+    state) at every ``sub``-th step, and with ``n_states`` the whole state there too. What the
+    engine ``"blocks"`` needs besides is in its adapters, not here.
 
     Parameters
     ----------
@@ -240,21 +236,6 @@ class SwitchedSystem(abc.ABC):
         gives its own (here, for a law with nothing but its states, an ordinary step)."""
         return self.advance(x, key, i * self.h, (i + 1) * self.h)
 
-    def horizon(self, i: int, n_steps: int) -> int:
-        """The engine's hook: how many steps from step ``i`` on the current state may be read
-        ahead."""
-        return n_steps - i
-
-    def quiet(self, key, x, z, m: int) -> bool:
-        """The engine's hook: whether no event can happen within the next ``m`` steps (the
-        engine's bound ``stays_positive``)."""
-        return stays_positive(self.state(key), x, z, m)
-
-    def ends(self, key):
-        """The engine's hook: where the state ends, read on a block's rows (None: where the
-        monitored row is ``<= 0``)."""
-        return None
-
     def moved(self) -> None:  # noqa: B027 - a hook that most laws leave empty
         """Called once the march has moved on from where a state was entered."""
 
@@ -265,15 +246,6 @@ class SwitchedSystem(abc.ABC):
             self.acc[k], self.force[k] = self.state(key).rows[1:] @ x
             if self.trajectory is not None:
                 self.trajectory[k] = x
-
-    def record_block(self, i: int, j, values, x, z, key) -> None:
-        """The engine's hook: record the output samples ``j`` (steps after ``i``) of a block
-        read ahead from ``x`` (``z``: its modal coordinates), their rows ``values``."""
-        k = (i + 1 + j) // self.sub
-        self.acc[k], self.force[k] = values[:, 1], values[:, 2]
-        if self.trajectory is not None and len(j):  # (an empty list would not broadcast)
-            st = self.state(key)
-            self.trajectory[k] = [after(st, x, z, jj + 1) for jj in j]
 
 
 def march_step_by_step(system: SwitchedSystem, x, key, n_steps: int):
@@ -306,6 +278,6 @@ def march_step_by_step(system: SwitchedSystem, x, key, n_steps: int):
     return x, key
 
 
-#: The marches a contact law may take, by name: ``"blocks"`` (the engine, the default) and
-#: ``"steps"`` (the reference).
-MARCHES = {"blocks": march_in_blocks, "steps": march_step_by_step}
+#: The marches a contact law may take, by name: ``"steps"`` (the reference) and ``"blocks"``
+#: (the engine, the default), which the private engine module adds when the package is imported.
+MARCHES = {"steps": march_step_by_step}

@@ -39,7 +39,6 @@ from ..fem import Supports, modal_analysis
 from ..fem.assembly import assemble
 from ..fem.coupling import coupled_modes
 from ..probe import Probe
-from ._exponential_grid import fits_grid, grid_exponentials
 
 __all__ = [
     "ArrestModes",
@@ -47,6 +46,7 @@ __all__ = [
     "coupled_arrest_modes",
     "modal_exponentials",
     "damped_exponentials",
+    "direct_exponentials",
     "EXPONENTIAL_ENGINES",
     "modal_acceleration",
     "sweep_velocity",
@@ -318,8 +318,33 @@ def modal_exponentials(amplitude, omega, zeta):
     return amplitude * ((a * a - wd * wd) / wd - 2j * a), -a + 1j * wd
 
 
-#: The engines of :func:`damped_exponentials`: ``"grid"`` (the default) and ``"direct"``.
-EXPONENTIAL_ENGINES = ("grid", "direct")
+def direct_exponentials(t: np.ndarray, coef, rate, max_elements: int) -> np.ndarray:
+    """The reference of :func:`damped_exponentials`: the sum as it reads, one complex
+    exponential per term and sample, summed over the terms, in blocks of signals of at most
+    ``max_elements`` complex numbers. Takes checked values (``t`` a float array).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.arange(4) / 4.0
+    >>> direct_exponentials(t, np.array([[1.0 + 0j]]), np.array([[2j * np.pi]]), 100).round(12)
+    array([[ 0.,  1.,  0., -1.]])
+    """
+    n_signals, n_terms = coef.shape
+    n_samples = t.shape[-1]
+    out = np.empty((n_signals, n_samples))
+    block = max(1, max_elements // max(1, n_terms * n_samples))
+    for start in range(0, n_signals, block):
+        rows = slice(start, start + block)
+        tt = t[rows][:, None, :] if t.ndim == 2 else t[None, None, :]
+        out[rows] = np.einsum("sk,skn->sn", coef[rows], np.exp(rate[rows, :, None] * tt)).imag
+    return out
+
+
+#: The evaluations of :func:`damped_exponentials` by name: ``"direct"`` (the reference,
+#: :func:`direct_exponentials`) and ``"grid"`` (the engine, the default), which the private
+#: module ``simulate/_exponential_grid.py`` adds when the package is imported.
+EXPONENTIAL_ENGINES = {"direct": direct_exponentials}
 
 
 def damped_exponentials(
@@ -327,8 +352,9 @@ def damped_exponentials(
 ) -> np.ndarray:
     """``Im(sum_k coef_k exp(rate_k t))`` for many signals at once.
 
-    The reference (``engine="direct"``) evaluates the sum as it reads: one complex exponential
-    per term and sample, summed over the terms. The engine ``"grid"``, the default, takes most
+    The reference (``engine="direct"``, :func:`direct_exponentials`) evaluates the sum as it
+    reads: one complex exponential per term and sample, summed over the terms. The engine
+    ``"grid"``, the default, takes most
     of the exponentials of a uniform time grid longer than 64 samples as products instead (a
     private module; with ``t_n = t_0 + n dt`` and ``n = a B + b``, ``exp(r t_n) = exp(r (t_0 +
     a B dt)) exp(r b dt)``), and evaluates any other ``t`` as the reference does. The two agree
@@ -356,19 +382,8 @@ def damped_exponentials(
     >>> damped_exponentials(t, np.array([[1.0 + 0j]]), np.array([[2j * np.pi]])).round(12)
     array([[ 0.,  1.,  0., -1.]])
     """
-    check_choice("engine", engine, EXPONENTIAL_ENGINES)
-    t = np.asarray(t, dtype=float)
-    if engine == "grid" and fits_grid(t):
-        return grid_exponentials(t, coef, rate, max_elements)
-    n_signals, n_terms = coef.shape
-    n_samples = t.shape[-1]
-    out = np.empty((n_signals, n_samples))
-    block = max(1, max_elements // max(1, n_terms * n_samples))
-    for start in range(0, n_signals, block):
-        rows = slice(start, start + block)
-        tt = t[rows][:, None, :] if t.ndim == 2 else t[None, None, :]
-        out[rows] = np.einsum("sk,skn->sn", coef[rows], np.exp(rate[rows, :, None] * tt)).imag
-    return out
+    check_choice("engine", engine, tuple(EXPONENTIAL_ENGINES))
+    return EXPONENTIAL_ENGINES[engine](np.asarray(t, dtype=float), coef, rate, max_elements)
 
 
 def modal_acceleration(t, amplitude, omega, zeta, *, max_elements: int = 500_000) -> np.ndarray:

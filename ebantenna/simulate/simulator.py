@@ -1,18 +1,25 @@
 """``simulate(scene) -> Recording``, and the same for many signals at once.
 
 The simulator is a chain of steps, applied in one loop over an ordered list, :data:`CHAIN`. Each
-entry names the effect that switches the step on (None: the step always runs) and the step, a
-function that takes the effect and the :class:`SignalBatch` it works on. A scene that does not
-list an effect skips its step, and a new effect is one more entry in the list. In order:
+entry names the effect that switches the step on (None: the step always runs), the step, a
+function that takes the effect and the :class:`SignalBatch` it works on, and the other effects
+the step reads (``reads``): every effect of the scene is a step or is read by one. A scene that
+does not list an effect skips its step, and a new effect is one more entry in the list. In
+order:
 
 1. ``preload_scatter``: each strike's preload. It sets the contact spring, so it comes before
    the modes.
-2. *The touched object* (always): the modal parameters of X and Z, and the time-stepped models,
-   from one physics model of the touched object (below).
+2. *The touched object* (always, :func:`~ebantenna.simulate.touched_object.signal_terms`): the
+   modal parameters of X and Z, and the time-stepped models, from one physics model of the
+   touched object (below). Reads ``object_modes``, ``structural_damping``,
+   ``contact_compliance``, ``tip_mass``, ``object_damping``, ``unilateral_contact``,
+   ``hertz_contact`` and ``coulomb_friction``.
 3. ``clock_jitter``: when each sample is taken. The responses are evaluated at these instants.
 4. *The responses* (always): X and Z after the arrest, each from its axis's time-stepped model
-   if the scene lists one, otherwise the sum of its modes, through the chip's low-pass filter
-   (``dlpf``) and its decimation.
+   if the scene lists one (``unilateral_contact``, ``coulomb_friction``), otherwise the sum of
+   its modes, through the chip's low-pass filter (``dlpf``) and its decimation. The filter is
+   read from the scene once, into ``SignalBatch.chip_filter``; steps 4, 7 and 8 read it
+   there.
 5. ``clock_jitter`` again: a sample taken before the arrest reads no acceleration.
 6. ``gravity``,
 7. ``mains_hum`` and
@@ -60,10 +67,9 @@ from .._validate import check_array, check_int, check_real
 from ..fem.guards import check_contact
 from ..probe import material as lookup_material
 from ..recording import Recording
-from ._terms import ModalTerms, signal_terms
 from .modes import damped_exponentials, modal_exponentials
 from .scene import Scene
-from .touched_object import OBJECT_MODELS
+from .touched_object import OBJECT_MODELS, ModalTerms, signal_terms
 
 __all__ = [
     "ModalTerms",
@@ -119,6 +125,10 @@ class SignalBatch:
         The signals, m/s^2, once the responses' step ran.
     levels_x, levels_z : ndarray of shape (n,)
         Each axis's resting reading, m/s^2 (gravity, the drift's offset), for the Kalman filter.
+    chip_filter : ebantenna.simulate.effects.LowPassFilter or None
+        The chip's low-pass filter (the scene's ``dlpf``), read from the scene here only; the
+        steps whose ``reads`` (:class:`ChainStep`) name ``dlpf`` pass their part of the signal
+        through it.
     """
 
     scene: Scene
@@ -140,11 +150,13 @@ class SignalBatch:
     az: np.ndarray | None = None
     levels_x: np.ndarray = field(init=False)
     levels_z: np.ndarray = field(init=False)
+    chip_filter: object = field(init=False)
 
     def __post_init__(self):
         self.t = np.arange(self.scene.n_samples) / self.scene.fs
         self.when = self.t
         self.levels_x, self.levels_z = np.zeros(self.n), np.zeros(self.n)
+        self.chip_filter = self.scene.effect("dlpf")
 
     @property
     def n(self) -> int:
@@ -187,9 +199,8 @@ def _jitter_instants(jitter, batch: SignalBatch) -> None:
 def _modal_axis(terms: ModalTerms, batch: SignalBatch) -> np.ndarray:
     """The sum of ``terms``' modes read at ``batch.when``, through the chip's filter if listed."""
     coef, rate = modal_exponentials(terms.amplitude, terms.omega, terms.zeta)
-    dlpf = batch.scene.effect("dlpf")
-    if dlpf is not None:  # the chip's filter at its internal rate, then its decimation
-        coef, rate = dlpf.filter_exponentials(coef, rate)
+    if batch.chip_filter is not None:  # the chip's filter at its internal rate, then decimation
+        coef, rate = batch.chip_filter.filter_exponentials(coef, rate)
     return damped_exponentials(batch.when, coef, rate)
 
 
@@ -222,7 +233,7 @@ def _add_gravity(gravity, batch: SignalBatch) -> None:
 
 def _add_hum(hum, batch: SignalBatch) -> None:
     """``mains_hum``: a steady tone, which the filter scales and delays."""
-    dlpf = batch.scene.effect("dlpf")
+    dlpf = batch.chip_filter
     gain = complex(dlpf.frequency_response(hum.frequency)) if dlpf is not None else 1.0
     phases = np.stack([hum.phases(r) for r in batch.rngs(hum)]) + np.angle(gain)  # (n, 2)
     tt = batch.when if np.ndim(batch.when) == 2 else batch.when[None, :]
@@ -233,7 +244,7 @@ def _add_hum(hum, batch: SignalBatch) -> None:
 def _add_noise(noise, batch: SignalBatch) -> None:
     """``sensor_noise``: white at the chip's rate, through its filter and decimation."""
     scene = batch.scene
-    draws = noise.draw_signals(batch.rngs(noise), scene.n_samples, scene.fs, scene.effect("dlpf"))
+    draws = noise.draw_signals(batch.rngs(noise), scene.n_samples, scene.fs, batch.chip_filter)
     batch.ax = batch.ax + draws[:, 0]  # draws: (n, 2, n_samples)
     batch.az = batch.az + draws[:, 1]
 
@@ -276,22 +287,30 @@ class ChainStep:
     apply : callable
         ``apply(effect, batch)``: changes the :class:`SignalBatch` in place (``effect`` is the
         scene's instance, or None for a step that always runs).
+    reads : tuple of str
+        The other effects the step reads when the scene lists them: every effect of
+        :func:`~ebantenna.simulate.effects.effect_names` is the ``effect`` of a step or read by
+        one.
     """
 
     effect: str | None
     apply: Callable
+    reads: tuple[str, ...] = ()
 
 
 #: The simulator's steps, in the order it applies them (see the module's docstring for why).
 CHAIN = (
-    ChainStep("preload_scatter", _scatter_preloads),
-    ChainStep(None, _touched_object),
+    ChainStep("preload_scatter", _scatter_preloads, reads=("object_modes",)),
+    ChainStep(None, _touched_object,
+              reads=("object_modes", "structural_damping", "contact_compliance", "tip_mass",
+                     "object_damping", "unilateral_contact", "hertz_contact",
+                     "coulomb_friction")),
     ChainStep("clock_jitter", _jitter_instants),
-    ChainStep(None, _respond),
+    ChainStep(None, _respond, reads=("unilateral_contact", "coulomb_friction", "dlpf")),
     ChainStep("clock_jitter", _rest_before_arrest),
     ChainStep("gravity", _add_gravity),
-    ChainStep("mains_hum", _add_hum),
-    ChainStep("sensor_noise", _add_noise),
+    ChainStep("mains_hum", _add_hum, reads=("dlpf",)),
+    ChainStep("sensor_noise", _add_noise, reads=("dlpf",)),
     ChainStep("sensor_drift", _drift),
     ChainStep("clipping", _clip),
     ChainStep("quantisation", _quantise),

@@ -17,8 +17,8 @@ closed-form modal solution (:class:`.linear_state.LinearState`, as the contact s
 Newton iteration (:func:`.linear_state.crossing`): slip ends where ``u`` reaches zero, stick where
 ``|F|`` reaches ``mu_s N``. At a slip's end the contact sticks if holding takes at most
 ``mu_s N``; otherwise, as at a stick's end, it slips the way the structure pulls.
-:func:`.friction.coulomb_response` integrates the same law with :func:`scipy.integrate.solve_ivp`
-and is this module's witness in the test suite.
+:func:`.friction_ode.coulomb_response` integrates the same law with
+:func:`scipy.integrate.solve_ivp` and is this module's witness in the test suite.
 
 **In the scene** (:class:`~ebantenna.simulate.effects.CoulombFriction`): the probe's Z axis is its
 Craig-Bampton reduction at the contact (the same basis as the strikes', :mod:`.strikes`), damped by
@@ -40,16 +40,14 @@ import numpy as np
 import scipy.linalg as sla
 
 from .._validate import check_choice, check_int, check_nonnegative, check_positive
-from ._block_march import stays_positive
-from .friction import check_coefficients
 from .linear_state import MARCHES, LinearState, SwitchedSystem, crossing, step_grid
 from .modes import sweep_velocity
 from .strikes import read_through_dlpf, reduced_body, timed_rate
 from .structure import check_dof_vector, check_symmetric_matrix, mass_inverse
 from .unilateral import STEPS_PER_PERIOD, ChatterError
 
-__all__ = ["StickSlipResponse", "stick_slip_response", "StickSlipLaw", "friction_states",
-           "FrictionModel", "friction_model", "friction_axis"]  # fmt: skip
+__all__ = ["StickSlipResponse", "check_coefficients", "stick_slip_response", "StickSlipLaw",
+           "friction_states", "FrictionModel", "friction_model", "friction_axis"]  # fmt: skip
 
 log = logging.getLogger(__name__)
 
@@ -75,6 +73,23 @@ class StickSlipResponse:
     acceleration: np.ndarray
     friction_force: np.ndarray
     events: tuple
+
+
+def check_coefficients(static_friction, kinetic_friction) -> tuple[float, float]:
+    """``(mu_s, mu_k)`` as floats, checked: both >= 0 and ``mu_k <= mu_s``.
+
+    Examples
+    --------
+    >>> check_coefficients(0.5, 0.4)
+    (0.5, 0.4)
+    """
+    mus = check_nonnegative("static_friction", static_friction)
+    muk = check_nonnegative("kinetic_friction", kinetic_friction)
+    if muk > mus:
+        raise ValueError(
+            f"kinetic_friction must be <= static_friction ({mus!r}), got {kinetic_friction!r}"
+        )
+    return mus, muk
 
 
 def stick_slip_response(
@@ -191,7 +206,7 @@ class StickSlipLaw(SwitchedSystem):
     """
 
     def __init__(self, states, contact, grid, *, hold_limit, max_events, time_tolerance):
-        h, sub, n_samples, _, _ = grid
+        h, sub, n_samples, _ = grid
         super().__init__(h, sub, n_samples)
         self.linear, self.b = states, contact
         self.n = states["stick"].n
@@ -211,33 +226,12 @@ class StickSlipLaw(SwitchedSystem):
         n = self.n
         x = np.zeros(2 * n + 2)
         x[n : 2 * n] = velocity
-        x[2 * n] = 1.0  # the constant load's multiplier (LinearState's "servo travel", at rest)
+        x[2 * n] = 1.0  # the drive s = 1, s' = 0: each state's constant load f s at full size
         name = "slip+" if self.frictionless else self.entered(x)
         self.events.append((0.0, name))
         self.record(0, x, name)
         self.fresh = name != "stick" and x[n + self.b] == 0  # a slip from rest: on its boundary
         return x, name
-
-    def both_limits(self, values):
-        """For the engine (:meth:`ends`): where sticking ends, at the upper limit,
-        mu_s N - F <= 0 (the monitored row), or at the lower,
-        mu_s N + F = 2 mu_s N - (mu_s N - F) <= 0."""
-        ends = values[:, 0] <= 0
-        ends |= 2 * self.hold_limit - values[:, 0] <= 0
-        return ends
-
-    def ends(self, name):
-        """The engine's hook: a stick ends at either limit; a slip where its speed reaches
-        zero."""
-        return self.both_limits if name == "stick" else None
-
-    def quiet(self, name, x, z, m):
-        """The engine's hook: no event within ``m`` steps, for there is no friction or every
-        monitor provably stays > 0."""
-        return self.frictionless or (
-            stays_positive(self.linear[name], x, z, m)
-            and (name != "stick" or stays_positive(self.lower, x, self.lower.modal(x), m))
-        )
 
     def moved(self):
         """The march has left the point where the state was entered."""
@@ -402,14 +396,13 @@ def friction_model(probe_reduction, preload: float, max_frequency: float) -> Fri
     return FrictionModel(M, K, C, rotation, output, check_positive("preload", preload))
 
 
-def friction_axis(scene, models, inverse, rotation_speeds, when) -> np.ndarray:
-    """The Z axis with ``coulomb_friction``, through the DLPF, read at ``when``.
+def friction_axis(scene, models, inverse, rotation_speeds, when, dlpf) -> np.ndarray:
+    """The Z axis with ``coulomb_friction``, through the chip's filter, read at ``when``.
 
     Parameters
     ----------
     scene : Scene
-        Lists ``coulomb_friction`` (its coefficients and its march, ``method``) and perhaps
-        ``dlpf``.
+        Lists ``coulomb_friction`` (its coefficients and its march, ``method``).
     models : list of FrictionModel
         The distinct Z models.
     inverse : array of int, shape (n,)
@@ -418,6 +411,9 @@ def friction_axis(scene, models, inverse, rotation_speeds, when) -> np.ndarray:
         Each signal's tilt rotation at the stop, ``tilt_ratio x sweep_speed``, rad/s.
     when : ndarray
         Sample times, shape ``(n_samples,)`` or ``(n, n_samples)``, s.
+    dlpf : ebantenna.simulate.effects.LowPassFilter or None
+        The chip's filter of the chain
+        (``chip_filter`` of :class:`~ebantenna.simulate.simulator.SignalBatch`).
 
     Returns
     -------
@@ -425,7 +421,7 @@ def friction_axis(scene, models, inverse, rotation_speeds, when) -> np.ndarray:
         m/s^2.
     """
     effect = scene.effect("coulomb_friction")
-    rate, n_int = timed_rate(scene, when)
+    rate, n_int = timed_rate(scene, when, dlpf)
     acc = np.empty((len(inverse), n_int))
     for i, (k, speed) in enumerate(zip(inverse, rotation_speeds, strict=True)):
         m = models[k]
@@ -435,4 +431,4 @@ def friction_axis(scene, models, inverse, rotation_speeds, when) -> np.ndarray:
             duration=(n_int - 1) / rate, fs=rate, velocity=m.rotation * float(speed),
             damping=m.damping, output=m.output, max_events=effect.max_events, method=effect.method,
         ).acceleration[:n_int]  # fmt: skip
-    return read_through_dlpf(scene, acc, rate, when)
+    return read_through_dlpf(dlpf, acc, rate, when)

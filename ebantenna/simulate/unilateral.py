@@ -67,7 +67,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validate import check_choice, check_int, check_nonnegative, check_positive
-from ._block_march import stays_positive, swing
 from .contact import PiecewiseSpring
 from .linear_state import MARCHES, LinearState, SwitchedSystem, crossing, step_grid
 from .structure import check_dof_vector, check_symmetric_matrix, mass_inverse
@@ -387,7 +386,7 @@ class StrikeLaw(SwitchedSystem):
 
     def __init__(self, free, closed, pen, base, stop_time, grid, *, max_events, on_max_events,
                  time_tolerance, return_states):  # fmt: skip
-        h, sub, n_samples, _, _ = grid
+        h, sub, n_samples, _ = grid
         n = base.size
         super().__init__(h, sub, n_samples, 2 * n + 2 if return_states else None)
         self.free, self.closed, self.base, self.stop_time = free, closed, base, stop_time
@@ -432,21 +431,9 @@ class StrikeLaw(SwitchedSystem):
         x = self.stop_servo(x)
         return self.advance(x, st, self.stop_time, (i + 1) * self.h)
 
-    def horizon(self, i, n_steps):
-        """The engine's hook: steps ahead before the record's end or the servo's stop."""
-        limit = n_steps - i
-        if not self.stopped:
-            limit = min(limit, int(math.floor(self.stop_time / self.h)) - i)
-        return limit
-
     def watched(self, st) -> bool:
         """Whether ``st`` can end (not a contact held closed after ``max_events``)."""
         return not (self.frozen and st is self.closed)
-
-    def quiet(self, st, x, z, m):
-        """The engine's hook: no event within ``m`` steps, for the state is held or its monitor
-        provably stays > 0."""
-        return not self.watched(st) or stays_positive(st, x, z, m)
 
     def switch(self, st, x, t):
         """The switching law at an event at time ``t``: enter the other state, and count."""
@@ -570,29 +557,6 @@ class HertzStrikeLaw(StrikeLaw):
         """The offset ``e_j`` of the state's coordinates, m (0 when free)."""
         return 0.0 if st is self.free else float(self.offsets[self.index[id(st)]])
 
-    def ends(self, key):
-        """The engine's hook: where a chord's state ends, at either of its nodes; the free
-        state's, where the gap closes."""
-        if key is self.free:
-            return None
-        lower, upper = self.limits(key)
-        return lambda values: (values[:, 0] <= lower) | (values[:, 0] >= upper)
-
-    def quiet(self, key, x, z, m):
-        """The engine's hook: no event within ``m`` steps, for the force provably stays between
-        the chord's nodes (its modal part within the engine's ``swing``)."""
-        if key is self.free:
-            return stays_positive(key, x, z, m)
-        if not key.eigen:
-            return False
-        lower, upper = self.limits(key)
-        k = 2 * self.base.size
-        s, sigma = x[k], x[k + 1]
-        a, b = key.row_s[0], key.row_speed[0]
-        ends = (s * a, (s + sigma * self.h * m) * a)
-        reach = float(swing(key, z, m))
-        return bool(min(ends) + sigma * b - reach > lower and max(ends) + sigma * b + reach < upper)
-
     def first_exit(self, st, x, span, fresh):
         """The first node (or the gap's closing) reached within ``span`` after ``x``:
         ``(tau, x there, "up" or "down")``, or None. ``fresh``: ``st`` was entered at ``x``."""
@@ -656,9 +620,3 @@ class HertzStrikeLaw(StrikeLaw):
         super().record(i, x, key)
         if self.trajectory is not None and i % self.sub == 0:
             self.trajectory[i // self.sub, 2 * self.base.size] += self.shift(key)
-
-    def record_block(self, i, j, values, x, z, key):
-        """The engine's hook: record a block read ahead, the states in true coordinates."""
-        super().record_block(i, j, values, x, z, key)
-        if self.trajectory is not None and len(j):
-            self.trajectory[(i + 1 + j) // self.sub, 2 * self.base.size] += self.shift(key)

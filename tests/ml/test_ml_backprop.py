@@ -110,8 +110,9 @@ def test_reference_gradient_matches_central_differences(activation, out_activati
 def test_relu_derivative_zeroes_an_infinite_delta():
     """The relu's derivative is 0 for a <= 0: the entry is set, not multiplied (inf * 0 = NaN)."""
     delta = np.array([np.inf, -np.inf, 2.0])
-    activation_derivative("relu", np.array([0.0, 1.0, -1.0]), delta)
-    assert np.array_equal(delta, [0.0, -np.inf, 0.0])
+    assert np.array_equal(activation_derivative("relu", np.array([0.0, 1.0, -1.0]), delta),
+                          [0.0, -np.inf, 0.0])
+    assert np.array_equal(delta, [np.inf, -np.inf, 2.0])  # the input is left as it is
 
 
 def test_lbfgs_ignores_early_stopping():
@@ -170,5 +171,47 @@ def test_engine_takes_two_names_only():
     X, y = np.zeros((4, 2)), np.array([0, 1, 0, 1])
     with pytest.raises(ValueError, match="'engine' parameter of MLPClassifier"):
         MLPClassifier(engine="numba").fit(X, y)
-    with pytest.raises(ValueError, match="engine"):
+    with pytest.raises(TypeError, match="engine"):  # the reference has one engine: itself
         Adam([np.zeros(2)], engine="fast")
+
+
+@pytest.mark.parametrize("name", ["identity", "tanh", "relu", "logistic"])
+def test_activate_and_its_derivative_leave_their_inputs_alone(name):
+    from ebantenna.ml.backprop import activate
+
+    z = np.array([-2.0, -0.0, 0.5, 3.0])
+    a = activate(name, z)
+    delta = np.array([1.0, -2.0, 3.0, np.inf])
+    activation_derivative(name, a, delta)
+    assert np.array_equal(z, [-2.0, -0.0, 0.5, 3.0])
+    assert np.array_equal(delta, [1.0, -2.0, 3.0, np.inf])
+    assert not np.shares_memory(a, z)
+
+
+@pytest.mark.parametrize("solver", ["adam", "sgd"])
+def test_the_reference_loop_trains_the_default_engines_network_bit_for_bit(solver):
+    # train_epochs with the textbook optimiser, from the estimator's own start (its generator
+    # draws the initial weights, then the shuffles), against a fit on the default engine: the
+    # engine claims the reference's operations in their order, so the weights are identical.
+    from ebantenna.ml.backprop import glorot_uniform, train_epochs
+    from ebantenna.ml.optimizers import Adam, Momentum
+
+    rng = np.random.default_rng(8)
+    X = rng.normal(size=(70, 4))
+    y = (X[:, 0] > 0).astype(int) + (X[:, 1] > 0.3)
+    params = dict(hidden_layer_sizes=(5,), activation="tanh", solver=solver, batch_size=16,
+                  max_iter=6, tol=0.0, n_iter_no_change=100, random_state=2)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        engine = MLPClassifier(**params).fit(X, y)
+    draws = np.random.default_rng(2)
+    coefs, intercepts = glorot_uniform([4, 5, 3], "tanh", draws)
+    weights = [*coefs, *intercepts]
+    optimizer = (Adam(weights, 1e-3) if solver == "adam"
+                 else Momentum(weights, 1e-3, 0.9, nesterov=True))
+    losses = train_epochs(X, np.eye(3)[y], coefs, intercepts, optimizer, activation="tanh",
+                          out_activation="softmax", alpha=1e-4, batch_size=16, n_epochs=6,
+                          rng=draws)
+    assert losses == engine.loss_curve_
+    for a, b in zip(weights, engine.coefs_ + engine.intercepts_, strict=True):
+        assert np.array_equal(a, b)

@@ -12,7 +12,8 @@ from sklearn.exceptions import ConvergenceWarning
 from ebantenna.ml import MLPClassifier, MLPRegressor, _mlp_compiled, _mlp_numba
 from ebantenna.ml._backprop_engine import Workspace, output_loss_into
 from ebantenna.ml._engine_choice import EngineStatus
-from ebantenna.ml.optimizers import Adam
+from ebantenna.ml._mlp_optimizers import InPlaceAdam, InPlaceMomentum
+from ebantenna.ml.optimizers import Adam, Momentum
 
 ENGINE = "EBANTENNA_ENGINE"
 
@@ -58,12 +59,32 @@ def test_adam_takes_the_compiled_loop_on_contiguous_arrays_only(monkeypatch):
     for engine in ("numpy", "compiled"):
         monkeypatch.setenv(ENGINE, engine)
         params = [p.copy(order="K") for p in start]
-        opt = Adam(params, learning_rate=0.05)
+        opt = InPlaceAdam(params, learning_rate=0.05, compiled=_mlp_compiled.compiled_kernels())
         for pair in grads:
             opt.update(params, pair)
         results[engine] = params
     for a, b in zip(results["numpy"], results["compiled"], strict=True):
         assert np.array_equal(a, b)
+
+
+@pytest.mark.parametrize("nesterov", [False, True])
+def test_the_in_place_optimisers_equal_the_textbook_updates_bit_for_bit(nesterov):
+    """The engine's updates on two temporaries against the reference's formulas, as written:
+    the same operations in the same order, hence the same bits, over 30 steps."""
+    rng = np.random.default_rng(5)
+    start = [rng.normal(size=(7, 3)), rng.normal(size=3)]
+    grads = list(zip(_gradients(rng, (7, 3), 30), _gradients(rng, (3,), 30), strict=True))
+    for make_ref, make_engine in (
+            (lambda p: Adam(p, 0.01), lambda p: InPlaceAdam(p, 0.01)),
+            (lambda p: Momentum(p, 0.01, 0.9, nesterov),
+             lambda p: InPlaceMomentum(p, 0.01, 0.9, nesterov))):
+        p_ref, p_engine = [a.copy() for a in start], [a.copy() for a in start]
+        ref, engine = make_ref(p_ref), make_engine(p_engine)
+        for pair in grads:
+            ref.update(p_ref, pair)
+            engine.update(p_engine, pair)
+        for a, b in zip(p_ref, p_engine, strict=True):
+            assert np.array_equal(a, b)
 
 
 @pytest.mark.parametrize("activation", ["tanh", "relu", "logistic"])

@@ -200,7 +200,7 @@ def test_svc_reference_solver_matches_the_default_fit():
     X, y, _, _ = _problem(7, n=80)
     labels = np.digitize(X[:, 1], [-0.4, 0.4])  # three classes
     fast = SVC(C=2.0, tol=1e-8).fit(X, labels)
-    ref = SVC(C=2.0, tol=1e-8, solver="reference", shrinking=False).fit(X, labels)
+    ref = SVC(C=2.0, tol=1e-8, solver="reference").fit(X, labels)  # the other defaults as they are
     np.testing.assert_array_equal(ref.support_, fast.support_)
     # the bound of the test above with sum(C) of the largest pair problem, k_xx = 1 (RBF)
     bound = 4 * np.sqrt(2 * 1e-8 * 2.0 * X.shape[0]) + 2e-8
@@ -210,9 +210,19 @@ def test_svc_reference_solver_matches_the_default_fit():
     assert np.abs(ref.decision_function(X) - fast.decision_function(X)).max() <= bound
 
 
-@pytest.mark.parametrize("params", [dict(libsvm_compat=True, shrinking=False), dict()])
-def test_svc_reference_solver_names_what_it_does_not_do(params):
+def test_svc_reference_solver_names_what_it_does_not_do():
     X, y, _, _ = _problem(0)
-    name = "libsvm_compat" if params else "shrinking"
-    with pytest.raises(ValueError, match=f"{name}=True needs solver='auto'"):
-        SVC(solver="reference", **params).fit(X, y)
+    with pytest.raises(ValueError, match="libsvm_compat=True needs solver='auto'"):
+        SVC(solver="reference", libsvm_compat=True).fit(X, y)
+
+
+def test_svc_reference_solver_keeps_a_float64_kernel_whatever_cache_size():
+    # A cache too small for the kernel in float64 sends the engines to float32 storage; the
+    # reference keeps float64, so its fit does not depend on cache_size, bit for bit, and
+    # shrinking (the engines' heuristic) changes nothing either.
+    X, y, _, _ = _problem(3, n=60)
+    fits = [SVC(C=2.0, solver="reference", cache_size=size, shrinking=shrinking).fit(X, y)
+            for size in (200, 1e-4) for shrinking in (True, False)]
+    for fit in fits[1:]:
+        np.testing.assert_array_equal(fit.dual_coef_, fits[0].dual_coef_)
+        np.testing.assert_array_equal(fit.intercept_, fits[0].intercept_)

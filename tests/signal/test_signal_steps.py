@@ -80,7 +80,7 @@ def test_windowed_spectrum_analyses_a_short_tap_on_its_own():
     fs, n = 1000.0, 1000
     t = np.arange(n) / fs
     tap = np.where(t >= 0.6, np.exp(-(t - 0.6) / 0.02) * np.sin(2 * np.pi * 140 * (t - 0.6)), 0)
-    _, part = windowed_spectrum(tap + 9.81, fs, "hann", 1, None, fs / 2, True)
+    _, part = windowed_spectrum(tap + 9.81, fs, "hann", 1, None, fs / 2, True, transient=True)
     assert part.is_transient and part.samples.start <= 600 < part.samples.stop
     assert 2 * part.n < n
     assert part.n_fft >= n  # padded to the record's bin spacing or finer
@@ -206,11 +206,13 @@ def test_analysed_part_starts_the_band_two_bins_into_a_transient():
     fs, n = 1000.0, 1000
     t = np.arange(n) / fs
     tap, _ = unit_scaled(np.exp(-t / 0.02) * np.sin(2 * np.pi * 140 * t))
-    part = analysed_part(tap, fs, 1, None, fs / 2)
+    part = analysed_part(tap, fs, 1, None, fs / 2, transient=True)
     assert part.is_transient
     assert part.lo == math.ceil(2.0 * fs / part.n / (fs / part.n_fft) - 1e-9)
-    whole = analysed_part(tap, fs, 1, 0.0, fs / 2)  # a given fmin: no transient search
-    assert not whole.is_transient and (whole.n, whole.lo) == (n, 0)
+    given = analysed_part(tap, fs, 1, 0.0, fs / 2, transient=True)  # a given fmin is kept
+    assert given.is_transient and given.lo == 0
+    whole = analysed_part(tap, fs, 1, None, fs / 2)  # the default: the whole record
+    assert not whole.is_transient and (whole.n, whole.lo) == (n, 1)
 
 
 # --- the decay fit ----------------------------------------------------------------------------
@@ -264,12 +266,12 @@ def test_damped_sinusoid_fit_recovers_an_exact_damped_sinusoid():
     fs = 1000.0
     t = np.arange(600) / fs
     x = 2.0 * np.exp(-t / 0.08) * np.sin(2 * np.pi * 61.3 * t + 0.9)
-    a, b, r2, n_fit = damped_sinusoid_fit(x, t, 600, 1.8, -11.0, 2 * np.pi * 61.0)
+    a, b, r2, n_fit = damped_sinusoid_fit(x, t, 600, -11.0)
     # exact model, noise-free: least_squares stops at its relative step tolerance xtol=1e-8
     assert (a, b) == pytest.approx((2.0, -1 / 0.08), rel=1e-6)
     assert r2 == pytest.approx(1.0, abs=1e-9) and n_fit == 600
     # a window shorter than one period of the tone cannot name its frequency
-    assert damped_sinusoid_fit(x, t, 12, 1.8, -11.0, 2 * np.pi * 61.0) is None
+    assert damped_sinusoid_fit(x, t, 12, -11.0) is None
 
 
 def test_the_checks_follow_the_documented_rules():

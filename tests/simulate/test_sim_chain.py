@@ -7,18 +7,6 @@ from ebantenna.simulate import builtin_scene, effect_names, simulate, simulator
 from ebantenna.simulate.simulator import CHAIN, ChainStep
 from ebantenna.simulate.touched_object import OBJECT_MODELS
 
-#: Effects that change the modal parameters or the responses rather than acting as a step of
-#: their own: the probe's and the rod's damping, the contact spring, the tip mass, and the
-#: chip's filter (which the responses, the hum and the noise each pass through).
-SHAPE_THE_MODES = {
-    "structural_damping",
-    "contact_compliance",
-    "object_modes",
-    "object_damping",
-    "hertz_contact",  # the force law of the "unilateral" model's strike
-    "tip_mass",
-    "dlpf",
-}
 
 
 def _chain_effects():
@@ -29,10 +17,27 @@ def _chain_effects():
     return seen
 
 
-def test_every_effect_has_its_place_in_the_chain_or_the_models():
+def test_every_effect_is_a_step_of_the_chain_or_read_by_one():
+    read = {name for step in CHAIN for name in step.reads}
+    assert set(effect_names()) == set(_chain_effects()) | read
     models = {model.effect for model in OBJECT_MODELS if model.effect is not None}
-    placed = set(_chain_effects()) | models | SHAPE_THE_MODES
-    assert set(effect_names()) == placed
+    touched, respond = CHAIN[1], CHAIN[3]  # the touched object and the responses
+    assert models <= set(touched.reads) and models <= set(respond.reads)
+
+
+def test_the_chip_filter_is_read_from_the_scene_in_one_place():
+    # the package's source reads the scene's dlpf once, where the batch is made; the steps
+    # that pass a part of the signal through it say so in their reads
+    from pathlib import Path
+
+    import ebantenna.simulate as package
+
+    root = Path(package.__file__).parent
+    readers = [str(p.relative_to(root)) for p in root.rglob("*.py")
+               if 'effect("dlpf")' in p.read_text()]
+    assert sorted(readers) == ["scene.py", "simulator.py"]  # scene.py: checks its settings
+    assert Path(root, "simulator.py").read_text().count('effect("dlpf")') == 1
+    assert [i for i, step in enumerate(CHAIN) if "dlpf" in step.reads] == [3, 6, 7]
 
 
 def test_the_chain_applies_effects_in_the_order_a_scene_lists_them():

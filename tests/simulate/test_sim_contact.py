@@ -16,7 +16,7 @@ from ebantenna.simulate.contact import (
     tube_on_rod_stiffness,
 )
 from ebantenna.simulate.effects import ContactCompliance
-from ebantenna.simulate.friction import coulomb_response
+from ebantenna.simulate.friction_ode import coulomb_response
 from ebantenna.simulate.stick_slip import stick_slip_response
 from ebantenna.simulate.structure import mass_inverse, probe_contact_model
 from ebantenna.simulate.unilateral import ChatterError, unilateral_response

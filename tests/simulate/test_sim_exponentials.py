@@ -54,5 +54,5 @@ def test_where_the_grid_does_not_apply_the_engine_is_the_reference():
 
 
 def test_the_engine_is_named():
-    with pytest.raises(ValueError, match="engine must be one of 'grid', 'direct'"):
+    with pytest.raises(ValueError, match="engine must be one of 'direct', 'grid'"):
         damped_exponentials(np.zeros(3), np.ones((1, 1), complex), -np.ones((1, 1)), engine="fast")

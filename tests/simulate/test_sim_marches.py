@@ -189,7 +189,7 @@ def test_a_paper_recording_marched_step_by_step_equals_the_engines():
     s = engine_scene
     batch = _up_to_the_march(s, seed)
     model = batch.timed["unilateral"][0]
-    rate, n_int = timed_rate(s, batch.when)
+    rate, n_int = timed_rate(s, batch.when, batch.chip_filter)
     strike, _ = strike_accelerations([model], [0], batch.speeds, rate=rate, n_samples=n_int,
                                      max_events=s.effect("unilateral_contact").max_events)
     st = model.structure
@@ -213,7 +213,7 @@ def test_a_paper_recording_with_friction_marched_step_by_step_equals_the_engines
     batch = _up_to_the_march(s, seed)
     m = batch.timed["friction"][0]
     effect = s.effect("coulomb_friction")
-    rate, n_int = timed_rate(s, batch.when)
+    rate, n_int = timed_rate(s, batch.when, batch.chip_filter)
     b = m.mass.shape[0] - 1  # the contact's coordinate, last
     velocity = m.rotation * float(batch.tilts[0] * batch.speeds[0])
     z = stick_slip_response(
@@ -242,7 +242,7 @@ def test_the_march_is_a_parameter_of_the_effects_and_of_a_scene_file(tmp_path):
     text = (tmp_path / "scene.toml").read_text(encoding="utf-8")
     bad = tmp_path / "bad.toml"
     bad.write_text(text.replace('method = "steps"', 'method = "fast"'), encoding="utf-8")
-    with pytest.raises(ValueError, match="method must be one of 'blocks', 'steps'; got 'fast'"):
+    with pytest.raises(ValueError, match="method must be one of 'steps', 'blocks'; got 'fast'"):
         load_scene(bad)
     with pytest.raises(ValueError, match="method must be one of"):
         CoulombFriction(method="fast")

@@ -13,7 +13,7 @@ from ebantenna.fem import Supports, modal_analysis
 from ebantenna.fem.coupling import craig_bampton, probe_substructure
 from ebantenna.simulate import Scene, builtin_scene, simulate_batch
 from ebantenna.simulate.effects import CoulombFriction
-from ebantenna.simulate.friction import coulomb_response
+from ebantenna.simulate.friction_ode import coulomb_response
 from ebantenna.simulate.stick_slip import friction_model, stick_slip_response
 from ebantenna.simulate.unilateral import ChatterError
 

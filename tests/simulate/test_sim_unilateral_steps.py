@@ -8,6 +8,7 @@ import pytest
 
 from ebantenna.simulate._block_march import (
     LONG_BLOCKS,
+    StrikeBlocks,
     after,
     prepare_blocks,
     read_ahead,
@@ -15,7 +16,7 @@ from ebantenna.simulate._block_march import (
     stays_positive,
 )
 from ebantenna.simulate.linear_state import LinearState, crossing
-from ebantenna.simulate.unilateral import StrikeLaw, unilateral_response
+from ebantenna.simulate.unilateral import unilateral_response
 
 EPS = np.finfo(float).eps
 
@@ -110,7 +111,7 @@ def test_settled_spans_read_the_same_samples_as_every_step(monkeypatch):
         preload=2.0, max_events=10_000,
     )  # fmt: skip
     bound = unilateral_response(M, K, 1, 5.0e4, **kw)
-    monkeypatch.setattr(StrikeLaw, "quiet", lambda self, key, x, z, m: False)
+    monkeypatch.setattr(StrikeBlocks, "quiet", lambda self, key, x, z, m: False)
     stepped = unilateral_response(M, K, 1, 5.0e4, **kw)
     assert [e.kind for e in bound.events] == [e.kind for e in stepped.events]
     assert len(bound.events) >= 2  # it rebounds before it settles

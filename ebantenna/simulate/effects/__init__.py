@@ -21,9 +21,11 @@ decimation), :class:`SensorDrift` (offset and gain between sessions), :class:`Cl
 
 The simulator applies them in one loop over an ordered list of steps,
 :data:`ebantenna.simulate.simulator.CHAIN`; :mod:`~ebantenna.simulate.simulator` gives the order
-and why (the filter is linear, so it acts on each part of the signal as that part enters). The
-touched rod's models are the list :data:`ebantenna.simulate.simulator.OBJECT_MODELS`. A new effect
-is a class here, an entry of :data:`EFFECT_TYPES` and one step in the simulator's list.
+and why (the filter is linear, so it acts on each part of the signal as that part enters). Each
+effect is a step of that list or is read by one (a step's ``reads``). The touched rod's models
+are the list :data:`ebantenna.simulate.touched_object.OBJECT_MODELS`. A new effect is a class
+here, an entry of :data:`EFFECT_TYPES` and one step in the simulator's list (or a name in the
+``reads`` of the step that uses it).
 
 All arrays here have shape ``(n_signals, n_samples)``: every effect is vectorised over signals.
 Random effects draw from a :class:`numpy.random.Generator` per signal that the simulator makes

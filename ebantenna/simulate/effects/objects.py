@@ -19,8 +19,8 @@ from ..._validate import check_choice, check_int, check_positive
 from ...fem.rod import Rod
 from ...probe import Material, Probe
 from ..contact import TUBE_POISSON_RATIO, tube_on_rod_stiffness
-from ..friction import check_coefficients
 from ..linear_state import MARCHES
+from ..stick_slip import check_coefficients
 from ._base import Effect
 
 

@@ -1,4 +1,8 @@
-"""Coulomb friction at the contact, along the rod: stick and slip of a linear structure.
+"""Coulomb friction at the contact, along the rod, integrated as an ODE: the law's witness.
+
+The law itself, propagated exactly between its events, is :mod:`.stick_slip`
+(:func:`.stick_slip.stick_slip_response`, the ``coulomb_friction`` effect of a scene). This
+module integrates the same law another way, with an ODE solver, to hold it against in the tests.
 
 Where the probe presses on the rod with a normal force ``N``, its motion along the rod (the
 tangential direction ``t``: ``u = t @ q'`` is the contact point's speed along the rod) is resisted
@@ -26,28 +30,11 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from .._validate import check_int, check_nonnegative, check_positive
+from .stick_slip import check_coefficients
 from .structure import check_dof_vector, check_symmetric_matrix
 from .unilateral import ChatterError
 
-__all__ = ["FrictionEvent", "FrictionResponse", "coulomb_response", "check_coefficients",
-           "CoulombLaw"]  # fmt: skip
-
-
-def check_coefficients(static_friction, kinetic_friction) -> tuple[float, float]:
-    """``(mu_s, mu_k)`` as floats, checked: both >= 0 and ``mu_k <= mu_s``.
-
-    Examples
-    --------
-    >>> check_coefficients(0.5, 0.4)
-    (0.5, 0.4)
-    """
-    mus = check_nonnegative("static_friction", static_friction)
-    muk = check_nonnegative("kinetic_friction", kinetic_friction)
-    if muk > mus:
-        raise ValueError(
-            f"kinetic_friction must be <= static_friction ({mus!r}), got {kinetic_friction!r}"
-        )
-    return mus, muk
+__all__ = ["FrictionEvent", "FrictionResponse", "coulomb_response", "CoulombLaw"]
 
 
 @dataclass(frozen=True)

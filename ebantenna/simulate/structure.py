@@ -3,7 +3,7 @@
 :class:`ContactModel` holds the mass, stiffness and damping matrices in some generalised
 coordinates and the three vectors that say where the contact point, the servo's rigid motion
 and the accelerometer are in them; :func:`probe_contact_model` builds it for the probe from the
-FEM. :func:`.unilateral.unilateral_response` and :func:`.friction.coulomb_response` take these
+FEM. :func:`.unilateral.unilateral_response` and :func:`.friction_ode.coulomb_response` take these
 matrices and vectors (or any others of the same meaning).
 """
 

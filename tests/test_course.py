@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from ebantenna.course import ANSWER_KEY, Tolerance, check, exercises, tolerances
+from ebantenna.course import ANSWER_KEY, Tolerance, check, exercises, seal, tolerances, unseal
 
 
 def test_every_exercise_and_answer_has_a_tolerance_with_a_reason():
@@ -83,3 +83,76 @@ def test_unknown_exercise_or_name_is_refused(exercise, values, message):
 def test_exercise_must_be_a_string():
     with pytest.raises(TypeError, match="exercise must be a str"):
         check(5, tau_fit_ms=80.0)
+
+
+# --- the sealed key: the check decides as if the answer were stored, without storing it ---------
+
+
+@pytest.mark.parametrize(
+    "tol",
+    [Tolerance("abs", 0.05, "r"), Tolerance("abs", 0, "r"), Tolerance("rel", 1e-3, "r"),
+     Tolerance("rel", 0.1, "r"), Tolerance("factor", 10, "r")],
+    ids=lambda t: f"{t.kind}-{t.width:g}",
+)
+def test_a_sealed_answer_accepts_exactly_what_the_tolerance_accepts(tol):
+    # random answers and values around them, many of them near a cell's edge or the tolerance's
+    # edge; the sealed check and the plain comparison agree on every one, except within 1e-9 of
+    # the tolerance's edge, where the answer given back (to a few ulp) may fall either side
+    rng = np.random.default_rng(7)
+    for _ in range(60):
+        if tol.kind == "abs" and tol.width == 0:
+            answer = float(rng.integers(-50, 50))
+            values = [answer, answer + 1, answer - 1, answer + 1e-9, answer + 4e-15]
+        else:
+            answer = float(rng.choice([-1, 1]) * 10.0 ** rng.uniform(-6, 6))
+            if tol.kind == "abs":
+                offsets = answer + tol.width * rng.uniform(-3, 3, 4)
+            elif tol.kind == "rel":
+                offsets = answer * (1 + tol.width * rng.uniform(-3, 3, 4))
+            else:
+                offsets = answer * tol.width ** rng.uniform(-2, 2, 4)
+            values = [answer, *offsets, -answer]
+        sealed = seal(answer, tol, "test/answer")
+        assert "value" not in sealed
+        if answer != round(answer):  # an integer's place in its cell is 0.0, like any integer's
+            assert repr(answer) not in repr(sealed)
+        for value in values:
+            opened = unseal(sealed, tol, value)
+            plain = tol.accepts(value, answer)
+            if plain:  # every accepted value opens the seal, onto the answer to rounding
+                assert opened is not None and math.isclose(opened, answer, rel_tol=1e-12,
+                                                           abs_tol=1e-300)
+            sealed_verdict = opened is not None and tol.accepts(value, opened)
+            if tol.kind == "abs":
+                margin = abs(abs(value - answer) - tol.width) / max(tol.width, 1.0)
+            elif tol.kind == "rel":
+                margin = abs(abs(value - answer) / abs(answer) - tol.width) / tol.width
+            else:
+                margin = abs(abs(math.log(abs(value / answer))) - math.log(tol.width))
+            if margin > 1e-9:
+                assert sealed_verdict == plain, (tol, answer, value)
+
+
+def test_far_values_do_not_open_the_seal_and_salts_differ():
+    tol = Tolerance("rel", 0.01, "r")
+    sealed = seal(80.29, tol, "ex05_decay/tau_fit_ms")
+    assert unseal(sealed, tol, 80.29 * 1.05) is None and unseal(sealed, tol, 0.0) is None
+    assert unseal(sealed, tol, 80.29 * 1.005) == pytest.approx(80.29, rel=1e-12)
+    # the same answer under another name is another digest: equal answers do not show
+    assert seal(80.29, tol, "ex05_decay/other")["digest"] != sealed["digest"]
+
+
+@pytest.mark.parametrize(
+    ("value", "tol", "salt", "error", "match"),
+    [
+        (math.nan, Tolerance("abs", 1, "r"), "s", ValueError, "value must be finite"),
+        (0.0, Tolerance("rel", 0.1, "r"), "s", ValueError, "must not be zero"),
+        (1.0, Tolerance("rel", 1.0, "r"), "s", ValueError, "relative tolerance to seal"),
+        (1.0, Tolerance("factor", 1.0, "r"), "s", ValueError, "factor tolerance to seal"),
+        (1.0, Tolerance("abs", 1, "r"), "", ValueError, "salt must be"),
+        (1.0, ("abs", 1), "s", TypeError, "tolerance must be a Tolerance"),
+    ],
+)
+def test_bad_seals_are_refused(value, tol, salt, error, match):
+    with pytest.raises(error, match=match):
+        seal(value, tol, salt)

@@ -12,7 +12,7 @@ from pathlib import Path
 import make_answer_key
 import pytest
 
-from ebantenna.course import ANSWER_KEY, check, tolerances
+from ebantenna.course import ANSWER_KEY, check, tolerances, unseal
 
 DOCS = Path(__file__).resolve().parents[2] / "docs"
 SOLUTIONS = sorted((DOCS / "exercises" / "solutions").glob("ex*.py"))
@@ -143,6 +143,13 @@ def test_a_wrong_answer_fails(tmp_path):
 # --- the answer key behind ebantenna.course.check ------------------------------------------------
 
 
+def _key_value(stem: str, name: str, near: float) -> float:
+    """The key's sealed answer, opened with a value near it (the solution's own)."""
+    value = unseal(ANSWER_KEY[stem][name], tolerances(stem)[name], near)
+    assert value is not None, f"{stem}.{name}: run python docs/_tools/make_answer_key.py"
+    return value
+
+
 @pytest.mark.parametrize("script", SOLUTIONS, ids=lambda p: p.stem)
 def test_answer_key_is_what_the_solution_computes(script):
     namespace = run_solution(script)[0]
@@ -154,16 +161,18 @@ def test_answer_key_is_what_the_solution_computes(script):
         assert {k: stored[k] for k in ("kind", "width", "reason")} == {
             k: entry[k] for k in ("kind", "width", "reason")
         }, name
+        assert "value" not in stored  # sealed: no answer in readable form
         # The key was written on one machine; another NumPy, SciPy or BLAS kernel rounds the
         # solution's arithmetic differently (an order of convergence from differences of small
         # errors moves in its seventh digit). A stale key moves by more than a hundredth of the
         # tolerance; a rounding error of size ("factor") is held to its factor.
         value, width = entry["value"], entry["width"]
+        sealed = _key_value(script.stem, name, value)
         if entry["kind"] == "factor":
-            assert value / width <= stored["value"] <= value * width, name
+            assert value / width <= sealed <= value * width, name
         else:
             scale = width * abs(value) if entry["kind"] == "rel" else width
-            assert abs(stored["value"] - value) <= 0.01 * scale, name
+            assert abs(sealed - value) <= 0.01 * scale, name
 
 
 @pytest.mark.parametrize("script", SOLUTIONS, ids=lambda p: p.stem)
@@ -174,7 +183,7 @@ def test_each_check_accepts_the_solution_and_rejects_just_outside(script):
     for name in answers:
         # around the key's value, which the check compares with (the solution's value on this
         # machine may differ from it by rounding, see the test above)
-        value, tol = float(ANSWER_KEY[script.stem][name]["value"]), stated[name]
+        value, tol = _key_value(script.stem, name, float(answers[name])), stated[name]
         assert tol.reason and len(tol.reason) < 140  # one line
         if tol.kind == "abs":
             outside = [value + tol.width + max(1e-6, 1e-3 * tol.width)]
@@ -223,8 +232,100 @@ def test_answer_key_module_is_the_tools_output():
     # written by docs/_tools/make_answer_key.py, not by hand: its text is the tool's text of it
     text = make_answer_key.module_text(ANSWER_KEY)
     assert make_answer_key.MODULE.read_text() == text
+    assert "'value'" not in text
     namespace = {}
     exec(compile(text, str(make_answer_key.MODULE), "exec"), namespace)
     assert namespace["ANSWER_KEY"] == ANSWER_KEY
     with pytest.raises(ValueError, match="every answer needs a tolerance"):
         make_answer_key.entries({"a": 1.0, "b": 2.0}, {"a": ("abs", 0, "a count")})
+
+
+# --- what a student installs: the wheel and the sdist hold no answer and no solution ------------
+
+
+def _distributions(tmp: Path) -> dict[str, str]:
+    """The text of every file of the sdist and of the wheel (or, without the ``wheel`` package,
+    of what its pure-Python build copies: ``build_py``'s output), by name."""
+    import shutil
+    import subprocess
+    import sys
+    import tarfile
+    import zipfile
+
+    root = DOCS.parent
+    project = tmp / "project"
+    project.mkdir()
+    for name in ("pyproject.toml", "README.md", "MANIFEST.in", "setup.py", "setup.cfg", "LICENSE"):
+        if (root / name).is_file():
+            shutil.copy(root / name, project / name)
+    shutil.copytree(root / "ebantenna", project / "ebantenna",
+                    ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
+    out = tmp / "dist"
+    build = ("import sys, setuptools.build_meta as b\n"
+             "out = sys.argv[1]\n"  # build_meta resets sys.argv
+             "b.build_sdist(out)\n"
+             "try:\n    import wheel  # noqa: F401\nexcept ImportError:\n"
+             "    sys.argv[1:] = ['build_py', '--build-lib', out + '/purelib']\n"
+             "    import setuptools; setuptools.setup()\n"
+             "else:\n    b.build_wheel(out)\n")
+    subprocess.run([sys.executable, "-c", build, str(out)], cwd=project, check=True,
+                   capture_output=True)
+    texts = {}
+    for path in out.rglob("*"):
+        if path.suffix == ".gz":
+            with tarfile.open(path) as archive:
+                for member in archive.getmembers():
+                    if member.isfile():
+                        data = archive.extractfile(member).read()
+                        texts[f"sdist:{member.name}"] = data.decode("utf-8", "replace")
+        elif path.suffix == ".whl":
+            with zipfile.ZipFile(path) as archive:
+                for member in archive.namelist():
+                    texts[f"wheel:{member}"] = archive.read(member).decode("utf-8", "replace")
+        elif path.is_file():
+            texts[f"wheel:{path.relative_to(out)}"] = path.read_text("utf-8", "replace")
+    assert any(n.startswith("sdist:") for n in texts) and any(n.startswith("wheel:") for n in texts)
+    return texts
+
+
+def _searched_forms(value: float) -> set[str]:
+    """How a student would search for an answer: its repr and its roundings to 3 to 8
+    significant digits, as ``%g`` and fixed-point. Forms of fewer than three significant digits
+    ("0.2", "13", "1024") are left out: they are everywhere in any source and give nothing away
+    that a few tries of the self-check would not."""
+    forms = {repr(value), repr(float(value))}
+    for digits in range(3, 9):
+        forms.add(f"{value:.{digits}g}")
+        forms.add(f"{value:.{digits - 1}e}")
+    return {f for f in forms if len(re.sub(r"[^1-9]", "", f.split("e")[0])) >= 3}
+
+
+def test_wheel_and_sdist_hold_no_answer_and_no_solution(tmp_path):
+    from exercise_secrets import answer_pairs, solution_lines
+
+    texts = _distributions(tmp_path)
+    assert any(name.endswith("course/_answer_key.py") for name in texts)  # the sealed key ships
+    assert not any("solutions/" in name or name.endswith(".rst") for name in texts)
+    # every number-like token and every stripped line of every file, searched once
+    tokens, lines = {}, {}
+    for name, text in texts.items():
+        for token in re.findall(r"\d[\d.]*(?:[eE][-+]?\d+)?", text):
+            tokens.setdefault(token.rstrip("."), set()).add(name)
+        for line in text.splitlines():
+            lines.setdefault(line.strip(), set()).add(name)
+    found = []
+    for script in SOLUTIONS:
+        answers = run_solution(script)[0]["ANSWERS"]
+        pairs = answer_pairs(script.stem)
+        if script.stem == "ex01_element":
+            # the exercise derives the element's mass matrix and checks it against the package's
+            # (ebantenna.fem.symbolic), so its answers are the package's own textbook matrix;
+            # its solution's lines are still searched
+            answers, pairs = {}, []
+        numbers = {f.lstrip("-") for v in answers.values() for f in _searched_forms(float(v))}
+        numbers |= {pair.split(" = ")[1].lstrip("-") for pair in pairs
+                    if len(re.sub(r"[^1-9]", "", pair.split(" = ")[1])) >= 3}
+        found += [(script.stem, n, sorted(tokens[n])[:3]) for n in numbers if n in tokens]
+        found += [(script.stem, line, sorted(lines[line])[:3])
+                  for line in solution_lines(script.stem) if line in lines]
+    assert not found, found

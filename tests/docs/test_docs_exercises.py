@@ -329,3 +329,21 @@ def test_wheel_and_sdist_hold_no_answer_and_no_solution(tmp_path):
         found += [(script.stem, line, sorted(lines[line])[:3])
                   for line in solution_lines(script.stem) if line in lines]
     assert not found, found
+
+
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: p.stem)
+def test_every_checked_value_is_defined_in_the_students_statement(page):
+    # a value the self-check checks but the statement never asks, or asks without saying which of
+    # several right values (which meshes, which normalisation, which unit), rejects right answers
+    import exercise_notebooks
+
+    text = page.read_text()
+    asked = exercise_notebooks.asked_values(text, page.stem)
+    assert list(asked) == list(tolerances(page.stem))
+    for name, definition in asked.items():
+        assert len(definition.split()) >= 4, (name, definition)
+    statement = text[: text.index(".. teacher::")]
+    assert all(f":{name}: " in statement for name in asked)
+    with pytest.raises(ValueError, match="must define every checked value"):
+        exercise_notebooks.asked_values(text.replace(f"   :{next(iter(asked))}: ", "   :x: "),
+                                        page.stem)

@@ -156,3 +156,60 @@ def test_far_values_do_not_open_the_seal_and_salts_differ():
 def test_bad_seals_are_refused(value, tol, salt, error, match):
     with pytest.raises(error, match=match):
         seal(value, tol, salt)
+
+
+# --- graded variants -------------------------------------------------------------------------
+
+
+def test_parameters_published_and_per_student():
+    from ebantenna.course import VARIANTS, parameters
+
+    assert parameters("ex05") == {"tau_ms": 80.0, "f0_hz": 120.0, "seed": 42}
+    for exercise, space in VARIANTS.items():
+        drawn = [parameters(exercise, student=f"s{k}") for k in range(20)]
+        assert parameters(exercise, student="s3") == drawn[3]  # the same id, the same data
+        assert parameters(exercise, student=" s3 ") == drawn[3]  # spaces around an id
+        for values in drawn:
+            for key, (_, low, high, decimals) in space.items():
+                assert low <= values[key] <= high, (exercise, key)
+                if decimals is None:
+                    assert isinstance(values[key], int)
+        # twenty students, twenty different data sets
+        assert len({tuple(v.items()) for v in drawn}) == 20
+
+
+@pytest.mark.parametrize(
+    ("args", "match"),
+    [(("ex03",), "graded variants"), (("ex05", ""), "student must be"),
+     (("ex05", 12), "student must be")],
+)
+def test_bad_parameters_are_refused(args, match):
+    from ebantenna.course import parameters
+
+    with pytest.raises(ValueError, match=match):
+        parameters(*args)
+
+
+def test_check_follows_a_variant_key(tmp_path):
+    import json
+
+    tol = tolerances("ex05")
+    variant = {"tau_hand_ms": 61.8, "tau_fit_ms": 61.86, "a_fit": 5.0087}
+    key = {"exercise": "ex05_decay", "students": {"s2": {
+        n: seal(v, tol[n], f"ex05_decay/s2/{n}") for n, v in variant.items()}}}
+    path = tmp_path / "ex05_key.json"
+    path.write_text(json.dumps(key))
+    assert check("ex05", student="s2", key=path, **variant).ok
+    assert check("ex05", student="s2", key=key, tau_fit_ms=61.86 * 1.0009).ok
+    # the published answer is not the variant's, and the variant's is not the published one
+    assert not check("ex05", student="s2", key=path, tau_fit_ms=80.29).ok
+    assert not check("ex05", tau_fit_ms=61.86).ok
+    with pytest.raises(ValueError, match="not in this key"):
+        check("ex05", student="s9", key=path, tau_fit_ms=61.86)
+    with pytest.raises(ValueError, match="go together"):
+        check("ex05", student="s2", tau_fit_ms=61.86)
+    with pytest.raises(ValueError, match="not of 'ex06_svm_dual'"):
+        check("ex06", student="s2", key=path, w1=1.0)
+    (tmp_path / "bad.json").write_text("{}")
+    with pytest.raises(ValueError, match="variant key file"):
+        check("ex05", student="s2", key=tmp_path / "bad.json", tau_fit_ms=61.86)

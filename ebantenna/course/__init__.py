@@ -23,6 +23,14 @@ What this does not prevent, and the installation page tells teachers: :func:`che
 tolerance, which for a small count takes a few tries; and the worked solutions are in the public
 repository. The check is a help for learning, not a grader.
 
+**Graded variants.** For graded work a teacher gives each student their own data:
+:func:`parameters` draws an exercise's parameters from a student's id (the same id, the same
+parameters, on any machine), the exercise's data block reads them, and
+``docs/_tools/make_variant_key.py`` (in the repository, for the teacher) runs the worked solution
+for every student of a list and writes the teacher's answer sheet and a sealed key for the
+students' self-checks, ``check(..., student=id, key=path)``. A student's answer is then of no
+use to another student, and the published answers are of no use to anyone.
+
 The key comes from ``ebantenna/course/_answer_key.py``, which ``docs/_tools/make_answer_key.py``
 writes by running the worked solutions; the test suite checks that it still seals what they
 compute.
@@ -36,7 +44,10 @@ from dataclasses import dataclass
 
 from ._answer_key import ANSWER_KEY
 
-__all__ = ["Tolerance", "CheckReport", "exercises", "tolerances", "check", "seal", "unseal"]
+__all__ = [
+    "Tolerance", "CheckReport", "exercises", "tolerances", "check", "seal", "unseal", "VARIANTS",
+    "parameters", "load_variant_key",
+]
 
 #: rounds of PBKDF2-HMAC-SHA256 per sealed cell: about a millisecond, so a check of a value (up to
 #: five cells) stays instant while a search over many cells is slowed by the same factor
@@ -189,6 +200,90 @@ def unseal(sealed: dict, tolerance: Tolerance, near: float) -> float | None:
     return None
 
 
+#: The exercises with graded variants: for each parameter, its published value and the range a
+#: variant draws it from, ``(published, low, high, decimals)`` (``decimals=None``: an integer
+#: seed). The ranges keep every step of the exercise meaningful (ex04: a partner beyond the peak
+#: exists for a contact from 0.66 L; ex05: the decay spans the record; ex06: the two clouds
+#: overlap a little, so that the soft margin matters).
+VARIANTS = {
+    "ex04_peak": {"twin_of": (0.7, 0.66, 0.75, 2), "length_m": (0.4, 0.35, 0.45, 3)},
+    "ex05_decay": {"tau_ms": (80.0, 60.0, 100.0, 0), "f0_hz": (120.0, 100.0, 140.0, 0),
+                   "seed": (42, 0, 2**31 - 1, None)},
+    "ex06_svm_dual": {"seed": (3, 0, 2**31 - 1, None), "spread": (0.7, 0.55, 0.8, 2)},
+}
+
+
+def _variant_seed(exercise: str, student: str) -> int:
+    digest = hashlib.sha256(f"ebantenna.course/{exercise}/{student}".encode()).digest()
+    return int.from_bytes(digest[:8], "little")
+
+
+def parameters(exercise: str, student: str | None = None) -> dict:
+    """The parameters of an exercise with graded variants: the published ones, or a student's.
+
+    Parameters
+    ----------
+    exercise : str
+        ``"ex05"`` or ``"ex05_decay"``; one of :data:`VARIANTS`.
+    student : str or None
+        The student's id as the teacher gives it (any non-empty text). ``None``: the published
+        parameters, those of the expected answers on the exercise's page.
+
+    Returns
+    -------
+    dict
+        Parameter name -> value; the same id gives the same values on any machine (the draw is
+        seeded by a SHA-256 of the exercise and the id).
+
+    Examples
+    --------
+    >>> parameters("ex05")
+    {'tau_ms': 80.0, 'f0_hz': 120.0, 'seed': 42}
+    >>> parameters("ex05", student="s1") == parameters("ex05", student="s1")
+    True
+    """
+    import numpy as np
+
+    name = _full_name(exercise)
+    if name not in VARIANTS:
+        raise ValueError(f"exercise must be one with graded variants, {sorted(VARIANTS)}, "
+                         f"got {exercise!r}")
+    space = VARIANTS[name]
+    if student is None:
+        return {key: published for key, (published, *_rest) in space.items()}
+    if not isinstance(student, str) or not student.strip():
+        raise ValueError(f"student must be a non-empty str (the id the teacher gave), "
+                         f"got {student!r}")
+    rng = np.random.default_rng(_variant_seed(name, student.strip()))
+    out = {}
+    for key, (_, low, high, decimals) in space.items():
+        if decimals is None:
+            out[key] = int(rng.integers(low, high))
+        else:
+            out[key] = round(float(rng.uniform(low, high)), decimals)
+    return out
+
+
+def load_variant_key(path) -> dict:
+    """Read a variant key written by ``docs/_tools/make_variant_key.py`` (a JSON file).
+
+    Returns ``{"exercise": name, "students": {id: {value name: sealed answer}}}``; raises
+    ValueError if the file is not such a key.
+    """
+    import json
+    from pathlib import Path
+
+    try:
+        key = json.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, json.JSONDecodeError) as error:
+        raise ValueError(f"key must be a variant key file, could not read {path!r}: "
+                         f"{error}") from error
+    if not (isinstance(key, dict) and isinstance(key.get("students"), dict)
+            and key.get("exercise") in ANSWER_KEY):
+        raise ValueError(f"key must be a variant key file, {path!r} is not one")
+    return key
+
+
 @dataclass(frozen=True)
 class CheckReport:
     """The outcome of :func:`check`: one line per value, and whether all of them passed.
@@ -266,7 +361,7 @@ def _verdict(name: str, value, sealed: dict, tolerance: Tolerance) -> tuple[str,
     return f"{name}: not yet: not {stated}", False
 
 
-def check(exercise: str, **values) -> CheckReport:
+def check(exercise: str, *, student: str | None = None, key=None, **values) -> CheckReport:
     """Whether each value is within the stated tolerance of the exercise's expected answer.
 
     The answers themselves are not shown: a value is either within the tolerance or "not yet".
@@ -275,6 +370,9 @@ def check(exercise: str, **values) -> CheckReport:
     ----------
     exercise : str
         ``"ex05"`` or ``"ex05_decay"``.
+    student, key : str and path, optional
+        For a graded variant: the student's id and the variant key the teacher handed out
+        (``docs/_tools/make_variant_key.py`` writes it). Both or neither.
     **values : float or None
         The answers to check, by the names the exercise page gives (``tau_fit_ms=80.1``); ``None``
         for one not computed yet.
@@ -294,9 +392,20 @@ def check(exercise: str, **values) -> CheckReport:
     False
     """
     name = _full_name(exercise)
-    key, stated = ANSWER_KEY[name], tolerances(name)
-    unknown = sorted(set(values) - set(key))
+    sealed, stated = ANSWER_KEY[name], tolerances(name)
+    if (student is None) != (key is None):
+        raise ValueError("student and key go together: give both for a graded variant, or "
+                         "neither for the published exercise")
+    if key is not None:
+        variants = key if isinstance(key, dict) else load_variant_key(key)
+        if variants.get("exercise") != name:
+            raise ValueError(f"key is a key of {variants.get('exercise')!r}, not of {name!r}")
+        if not isinstance(student, str) or student.strip() not in variants["students"]:
+            raise ValueError(f"student {student!r} is not in this key: ask the teacher for the "
+                             "key of your group")
+        sealed = variants["students"][student.strip()]
+    unknown = sorted(set(values) - set(sealed))
     if unknown or not values:
-        raise ValueError(f"the values of {name} are named {sorted(key)}, got {sorted(values)}")
-    verdicts = [_verdict(v, values[v], key[v], stated[v]) for v in values]
+        raise ValueError(f"the values of {name} are named {sorted(sealed)}, got {sorted(values)}")
+    verdicts = [_verdict(v, values[v], sealed[v], stated[v]) for v in values]
     return CheckReport(name, tuple(v[0] for v in verdicts), tuple(v[1] for v in verdicts))

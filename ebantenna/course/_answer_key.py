@@ -115,7 +115,7 @@ ANSWER_KEY = {
             'salt': 'ex04_peak/a_twin', 'offset': 0.631295997013126,
             'digest': '7b737c2f0e8c107a3da68a0d95fb96e1',
             'reason': (
-                'any root-finder (or a 1e-3 grid) on f(a) - f(0.7 L) beyond the maximum'
+                'any root-finder (or a 1e-3 grid) on f(a) - f(twin_of L) beyond the maximum'
             ),
         },
     },

@@ -614,3 +614,64 @@ def test_a_right_answer_found_another_way_passes_and_a_typical_wrong_one_does_no
     for name, (right, wrong) in alternatives.items():
         assert check(script.stem, **{name: float(right)}).ok, (name, right)
         assert not check(script.stem, **{name: float(wrong)}).ok, (name, wrong)
+
+
+# --- graded variants: the teacher's sheet and the students' key follow each student's data -------
+
+
+def test_variant_key_and_sheet_follow_the_students_data(tmp_path):
+    import csv
+
+    import make_variant_key
+
+    from ebantenna.course import parameters
+
+    (tmp_path / "ids.txt").write_text("s1\n# a comment\n\nab-17\n")
+    assert make_variant_key.main(["ex06", str(tmp_path / "ids.txt"), "--out", str(tmp_path)]) == 0
+    rows = list(csv.DictReader((tmp_path / "ex06_answers.csv").read_text().splitlines()))
+    key = tmp_path / "ex06_key.json"
+    assert [r["student"] for r in rows] == ["s1", "ab-17"]
+    assert "value" not in key.read_text()
+    published = run_solution(DOCS / "exercises" / "solutions" / "ex06_svm_dual.py")[0]["ANSWERS"]
+    for row in rows:
+        student = row["student"]
+        drawn = parameters("ex06", student=student)
+        assert int(row["seed"]) == drawn["seed"] and float(row["spread"]) == drawn["spread"]
+        answers = {n: float(row[n]) for n in published}
+        # the sheet is the worked solution on the student's data (an independent run of it)
+        assert answers == make_variant_key.answers_for("ex06_svm_dual", student)
+        # the student's self-check accepts the student's answers and rejects the published ones
+        assert check("ex06", student=student, key=key, **answers).ok
+        for name in ("w1", "w2", "b"):
+            assert not check("ex06", student=student, key=key, **{name: published[name]}).ok
+    # a right answer found another way passes on a variant too: scikit-learn's SVC on s1's data
+    from sklearn.svm import SVC as LibSVC
+
+    source = make_variant_key.solution_for("ex06_svm_dual", "s1")
+    data = source[source.index("# [data]"): source.index("# [/data]")]
+    namespace = {"np": np, "parameters": parameters}
+    exec(data, namespace)
+    svc = LibSVC(C=1.0, kernel="linear", tol=1e-10).fit(namespace["X"], namespace["y"])
+    assert check("ex06", student="s1", key=key, w1=svc.coef_[0, 0], w2=svc.coef_[0, 1],
+                 b=svc.intercept_[0], n_support=len(svc.support_)).ok
+
+
+def test_variant_tool_refuses_bad_lists():
+    import make_variant_key
+
+    with pytest.raises(ValueError, match="repeated"):
+        make_variant_key.read_ids("a\nb\na\n")
+    with pytest.raises(ValueError, match="empty"):
+        make_variant_key.read_ids("# nobody\n")
+
+
+@pytest.mark.parametrize("stem", ["ex04_peak", "ex05_decay", "ex06_svm_dual"])
+def test_the_published_data_are_the_variant_of_no_student(stem):
+    # the data block draws from ebantenna.course.parameters; with STUDENT = None it gives the
+    # published data, so the answers on the page are the published exercise's
+    import make_variant_key
+
+    source = (DOCS / "exercises" / "solutions" / f"{stem}.py").read_text()
+    assert make_variant_key.solution_for(stem, None) == source
+    data = source[source.index("# [data]"): source.index("# [/data]")]
+    assert make_variant_key.STUDENT_LINE in data and f'parameters("{stem[:4]}"' in data

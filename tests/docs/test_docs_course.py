@@ -177,3 +177,32 @@ def test_course_page_has_every_track_and_no_ascii_powers():
     for page in [text, *sheets]:
         assert not re.search(r"\w\^\d", page), "write h⁴ or :math:`h^4`, not h^4"
     assert "   course\n" in (DOCS / "index.rst").read_text()  # in the site's toctree
+
+
+#: how a symbol of the notation table is written in a page's source
+_WRITTEN = {"ρ": (r"\rho", "ρ"), "α": (r"\alpha", "α"), "η": (r"\eta", "η"),
+            "β": (r"\beta", "β"), "λ": (r"\lambda", "λ"), "γ": (r"\gamma", "γ")}
+
+
+def _notation_rows() -> list[tuple[str, str, list[str]]]:
+    text = (DOCS / "glossary.rst").read_text()
+    table = text.split("Symbols with more than one meaning", 1)[1].split("\nGlossary\n", 1)[0]
+    rows = re.findall(r"   \* - (\S+)\n     - (.*)\n     - (.*)\n", table)
+    return [(s, m, re.findall(r":doc:`([^`]+)`", pages)) for s, m, pages in rows[1:]]
+
+
+def test_the_notation_lists_every_symbol_that_changes_meaning_with_its_pages():
+    rows = _notation_rows()
+    meanings = {}
+    for symbol, meaning, pages in rows:
+        meanings.setdefault(symbol, []).append(meaning)
+        assert pages, (symbol, meaning)
+        for page in pages:  # each page named for a meaning uses the symbol
+            source = (DOCS / f"{page}.rst").read_text()
+            forms = _WRITTEN.get(symbol, ())
+            found = any(f in source for f in forms) or re.search(
+                rf"(?<![A-Za-z\\]){symbol}(?![A-Za-z])", source)
+            assert found, (symbol, page)
+    # the symbols a reader of the course meets with more than one meaning, each with two or more
+    assert {"P", "Q", "K", "b", "a", "L", "ρ", "α", "η", "β", "λ", "C"} <= set(meanings)
+    assert all(len(m) >= 2 for m in meanings.values()), meanings

@@ -23,7 +23,9 @@ The format of an exercise page ``docs/exercises/exNN_name.rst``, in this order:
    ``</details>`` fold.
 6. ``.. exercise-check:: exNN_name``: the self-check section (the names, tolerances and reasons
    of the expected answers, from :mod:`ebantenna.course`, the call that checks them, and the link
-   to the notebook).
+   to the notebook). Its content is a field list, ``:name: what exactly``, that defines every
+   checked value for the student (which of several right values, its unit, its normalisation);
+   the build stops if a checked value is not defined there.
 7. ``.. teacher:: answers``: the expected answers, each number written ````name = value```` with
    ``name`` a key of the solution's ``ANSWERS``, to the digits the test suite checks.
 8. ``.. teacher:: solution``: a ``literalinclude`` of the whole solution script, then any notes.

@@ -6,8 +6,9 @@ are run and which exercises belong to it; a :class:`Track` is a list of sessions
 exercise, its role in that track: **core** (done in class, counted in the session's budget),
 **optional** (in class if time is left, otherwise at home), **homework** (before the next
 session) or **further** (after the course, beyond its goals). The last session has no homework:
-every goal is reached in class or before the last session. An exercise's minutes are read from its page's ``:Time: about N minutes`` field,
-never written here; a gallery example's from its source (:func:`example_minutes`).
+every goal is reached in class or before the last session. An exercise's minutes are read from
+its page's ``:Time: about N minutes`` field, never written here; a gallery example's from its
+source (:func:`example_minutes`).
 
 When the build starts, :func:`write_sheets` writes one page per session into ``docs/course/``
 (only pages whose text changed, so that a build stays incremental), and the ``course-tracks``

@@ -5,7 +5,10 @@ Every worked solution in ``docs/exercises/solutions/`` ends with two dictionarie
 solution and writes the tolerances and the *sealed* answers (:func:`ebantenna.course.seal`: a
 salted hash of the answer's cell and its place in the cell, never the value) into one module of
 the package, so that a student's self-check needs neither the solutions nor the documentation,
-and the installed package holds no answer in readable form. Run it after changing a solution::
+and the installed package holds no answer in readable form. Next to the solutions, in the
+repository only, it writes the same answers in plain form, ``docs/exercises/solutions/answers.json``
+(the teacher's sheet of the published exercises, and what the test of the wheel searches it for).
+Run it after changing a solution::
 
     python docs/_tools/make_answer_key.py
 
@@ -17,6 +20,7 @@ from __future__ import annotations
 
 import contextlib
 import io
+import json
 import runpy
 import sys
 import textwrap
@@ -27,8 +31,9 @@ from ebantenna.course import Tolerance, seal
 ROOT = Path(__file__).resolve().parents[2]
 SOLUTIONS = ROOT / "docs" / "exercises" / "solutions"
 MODULE = ROOT / "ebantenna" / "course" / "_answer_key.py"
+PLAIN = SOLUTIONS / "answers.json"
 
-__all__ = ["entries", "sealed", "answer_key", "module_text", "main"]
+__all__ = ["entries", "sealed", "computed", "answer_key", "plain_text", "module_text", "main"]
 
 HEADER = '''"""Sealed answers of the exercises and their tolerances: ebantenna.course's key.
 
@@ -71,14 +76,24 @@ def _run(script: Path) -> dict:
         return runpy.run_path(str(script), run_name="__main__")
 
 
-def answer_key(solutions: Path = SOLUTIONS, run=_run) -> dict[str, dict[str, dict]]:
-    """The key of every solution script ``ex*.py`` in ``solutions``, by exercise name."""
-    key = {}
+def computed(solutions: Path = SOLUTIONS, run=_run) -> dict[str, dict[str, dict]]:
+    """The entries (values included) of every solution script ``ex*.py``, by exercise name."""
+    out = {}
     for script in sorted(solutions.glob("ex*.py")):
         namespace = run(script)
-        key[script.stem] = sealed(script.stem,
-                                  entries(namespace["ANSWERS"], namespace["TOLERANCES"]))
-    return key
+        out[script.stem] = entries(namespace["ANSWERS"], namespace["TOLERANCES"])
+    return out
+
+
+def answer_key(solutions: Path = SOLUTIONS, run=_run) -> dict[str, dict[str, dict]]:
+    """The sealed key of every solution script ``ex*.py`` in ``solutions``, by exercise name."""
+    return {name: sealed(name, found) for name, found in computed(solutions, run).items()}
+
+
+def plain_text(found: dict[str, dict[str, dict]]) -> str:
+    """``answers.json``: every expected answer in plain form, ``{exercise: {name: value}}``."""
+    plain = {name: {n: e["value"] for n, e in values.items()} for name, values in found.items()}
+    return json.dumps(plain, indent=1) + "\n"
 
 
 def module_text(key: dict) -> str:
@@ -104,8 +119,10 @@ def module_text(key: dict) -> str:
 
 
 def main() -> int:
-    MODULE.write_text(module_text(answer_key()))
-    print(f"wrote {MODULE.relative_to(ROOT)}")
+    found = computed()
+    MODULE.write_text(module_text({name: sealed(name, v) for name, v in found.items()}))
+    PLAIN.write_text(plain_text(found))
+    print(f"wrote {MODULE.relative_to(ROOT)} and {PLAIN.relative_to(ROOT)}")
     return 0
 
 

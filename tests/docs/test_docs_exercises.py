@@ -3,6 +3,7 @@
 import contextlib
 import functools
 import io
+import json
 import re
 import runpy
 import warnings
@@ -17,6 +18,8 @@ from ebantenna.course import ANSWER_KEY, check, tolerances, unseal
 
 DOCS = Path(__file__).resolve().parents[2] / "docs"
 SOLUTIONS = sorted((DOCS / "exercises" / "solutions").glob("ex*.py"))
+#: the expected answers in plain form, written with the sealed key (repository only)
+PLAIN = json.loads(make_answer_key.PLAIN.read_text())
 PAGES = sorted((DOCS / "exercises").glob("ex*.rst"))
 
 
@@ -169,11 +172,13 @@ def test_answer_key_is_what_the_solution_computes(script):
         # tolerance; a rounding error of size ("factor") is held to its factor.
         value, width = entry["value"], entry["width"]
         sealed = _key_value(script.stem, name, value)
-        if entry["kind"] == "factor":
-            assert value / width <= sealed <= value * width, name
-        else:
-            scale = width * abs(value) if entry["kind"] == "rel" else width
-            assert abs(sealed - value) <= 0.01 * scale, name
+        plain = PLAIN[script.stem][name]  # the teacher's sheet, written with the key
+        for stored_value in (sealed, plain):
+            if entry["kind"] == "factor":
+                assert value / width <= stored_value <= value * width, name
+            else:
+                scale = width * abs(value) if entry["kind"] == "rel" else width
+                assert abs(stored_value - value) <= 0.01 * scale, name
 
 
 @pytest.mark.parametrize("script", SOLUTIONS, ids=lambda p: p.stem)
@@ -234,6 +239,13 @@ def test_answer_key_module_is_the_tools_output():
     text = make_answer_key.module_text(ANSWER_KEY)
     assert make_answer_key.MODULE.read_text() == text
     assert "'value'" not in text
+    # the plain sheet is the tool's text too, and holds the values the key seals (written together)
+    found = {ex: {n: {"value": v} for n, v in values.items()} for ex, values in PLAIN.items()}
+    assert make_answer_key.plain_text(found) == make_answer_key.PLAIN.read_text()
+    assert {ex: list(v) for ex, v in PLAIN.items()} == {ex: list(v) for ex, v in ANSWER_KEY.items()}
+    for exercise, values in PLAIN.items():
+        for name, value in values.items():
+            assert _key_value(exercise, name, value) == pytest.approx(value, rel=1e-12, abs=1e-12)
     namespace = {}
     exec(compile(text, str(make_answer_key.MODULE), "exec"), namespace)
     assert namespace["ANSWER_KEY"] == ANSWER_KEY
@@ -323,7 +335,7 @@ def test_wheel_and_sdist_hold_no_answer_and_no_solution(tmp_path):
             lines.setdefault(line.strip(), set()).add(name)
     found = []
     for script in SOLUTIONS:
-        answers = run_solution(script)[0]["ANSWERS"]
+        answers = PLAIN[script.stem]  # what the key seals, in plain form
         own = PACKAGE_OWN.get(script.stem, set())
         answers = {n: v for n, v in answers.items() if n not in own}
         pairs = [p for p in answer_pairs(script.stem) if p.split(" = ")[0] not in own]

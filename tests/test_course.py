@@ -4,6 +4,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from ebantenna.course import ANSWER_KEY, Tolerance, check, exercises, seal, tolerances, unseal
 
@@ -140,6 +142,10 @@ def test_far_values_do_not_open_the_seal_and_salts_differ():
     assert unseal(sealed, tol, 80.29 * 1.005) == pytest.approx(80.29, rel=1e-12)
     # the same answer under another name is another digest: equal answers do not show
     assert seal(80.29, tol, "ex05_decay/other")["digest"] != sealed["digest"]
+    # a value far beyond any answer is "not yet", not an overflow
+    assert unseal(seal(1.0, Tolerance("abs", 1e-9, "r"), "s"), Tolerance("abs", 1e-9, "r"),
+                  1e308) is None
+    assert not check("ex01", M11=1e308).ok and not check("ex05", tau_fit_ms=-1e-320).ok
 
 
 @pytest.mark.parametrize(
@@ -213,3 +219,13 @@ def test_check_follows_a_variant_key(tmp_path):
     (tmp_path / "bad.json").write_text("{}")
     with pytest.raises(ValueError, match="variant key file"):
         check("ex05", student="s2", key=tmp_path / "bad.json", tau_fit_ms=61.86)
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.floats(allow_nan=True, allow_infinity=True),
+       st.sampled_from([("ex05", "tau_fit_ms"), ("ex01", "M14"), ("ex11", "error_1e6"),
+                        ("ex06", "n_support"), ("ex03", "order_mode1")]))
+def test_any_float_gets_a_verdict_never_an_error(value, target):
+    exercise, name = target
+    report = check(exercise, **{name: value})
+    assert len(report.lines) == 1 and report.lines[0].startswith(f"{name}: ")

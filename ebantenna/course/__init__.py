@@ -173,6 +173,9 @@ def seal(value: float, tolerance: Tolerance, salt: str) -> dict:
     if scale == "log" and value == 0:
         raise ValueError("value must not be zero for a relative or factor tolerance")
     sign, u = _coordinate(scale, cell, value)
+    if not math.isfinite(u):
+        raise ValueError(f"value must be within the range of floats in cells of the tolerance, "
+                         f"got {value!r} in cells of {cell!r}")
     index = math.floor(u)
     return {"salt": salt, "digest": _digest(salt, sign, index), "offset": u - index}
 
@@ -190,6 +193,8 @@ def unseal(sealed: dict, tolerance: Tolerance, near: float) -> float | None:
     if scale == "log" and near == 0:
         return None  # no relative tolerance or factor accepts a zero
     sign, u = _coordinate(scale, cell, near)
+    if not math.isfinite(u):  # far beyond any answer (1e308 in cells of 1e-6)
+        return None
     start = math.floor(u)
     for index in (start, start - 1, start + 1, start - 2, start + 2):
         if _digest(sealed["salt"], sign, index) == sealed["digest"]:

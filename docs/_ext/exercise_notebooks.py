@@ -217,12 +217,12 @@ def _student_cells(page: ExercisePage, solution: str, names, md) -> list[tuple[s
         hints = "".join(f"<details><summary>{s}</summary>\n\n{md(h)}\n\n</details>\n\n"
                         for s, h in page.hints)
         cells.append(("markdown", "## Hints\n\nOpen one at a time.\n\n" + hints))
-    table = "".join(f"| `{n}` | {md(page.asked[n])} | {t.describe()} | {t.reason} |\n"
+    table = "".join(f"| `{n}` | {t.describe()} | {md(page.asked[n])} | {t.reason} |\n"
                     for n, t in names.items())
     cells += [
         ("markdown", "## Check your answers\n\nPut your values in place of `None` and run the "
          "check: it says whether each is within its tolerance, without showing the answer.\n\n"
-         "| value | what exactly | tolerance | why that much |\n| --- | --- | --- | --- |\n"
+         "| value | tolerance | what exactly | why that much |\n| --- | --- | --- | --- |\n"
          + table),
         ("code", "from ebantenna.course import check\n\nanswers = dict(\n"
          + "".join(f"    {n}=None,\n" for n in names) + ")\n"),
@@ -331,7 +331,7 @@ class ExerciseCheckDirective(Directive):
         name, edition = self.arguments[0], _edition(self.state.document.settings.env)
         asked = asked_values(f".. exercise-check:: {name}\n\n"
                              + "".join(f"   {line}\n" for line in self.content), name)
-        rows = "".join(f"   * - ``{n}``\n     - {asked[n]}\n     - {t.describe()}\n"
+        rows = "".join(f"   * - ``{n}``\n     - {t.describe()}\n     - {asked[n]}\n"
                        f"     - {t.reason}\n" for n, t in tolerances(name).items())
         call = textwrap.indent(_check_call(name, list(tolerances(name)), "{n}"), "   ")
         text = (
@@ -340,7 +340,7 @@ class ExerciseCheckDirective(Directive):
             "whether each is within its tolerance of the expected answer, without showing the "
             "answer. A tolerance is how far two correct ways of working may differ.\n\n"
             ".. list-table::\n   :header-rows: 1\n   :class: exercise-checks\n\n"
-            "   * - value\n     - what exactly\n     - tolerance\n     - why that much\n"
+            "   * - value\n     - tolerance\n     - what exactly\n     - why that much\n"
             + rows +
             "\n.. code-block:: python\n\n   from ebantenna.course import check\n\n" + call
         )

@@ -4,8 +4,10 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
-from ebantenna.course import ANSWER_KEY, Tolerance, check, exercises, tolerances
+from ebantenna.course import ANSWER_KEY, Tolerance, check, exercises, seal, tolerances, unseal
 
 
 def test_every_exercise_and_answer_has_a_tolerance_with_a_reason():
@@ -83,3 +85,147 @@ def test_unknown_exercise_or_name_is_refused(exercise, values, message):
 def test_exercise_must_be_a_string():
     with pytest.raises(TypeError, match="exercise must be a str"):
         check(5, tau_fit_ms=80.0)
+
+
+# --- the sealed key: the check decides as if the answer were stored, without storing it ---------
+
+
+@pytest.mark.parametrize(
+    "tol",
+    [Tolerance("abs", 0.05, "r"), Tolerance("abs", 0, "r"), Tolerance("rel", 1e-3, "r"),
+     Tolerance("rel", 0.1, "r"), Tolerance("factor", 10, "r")],
+    ids=lambda t: f"{t.kind}-{t.width:g}",
+)
+def test_a_sealed_answer_accepts_exactly_what_the_tolerance_accepts(tol):
+    # random answers and values around them, many of them near a cell's edge or the tolerance's
+    # edge; the sealed check and the plain comparison agree on every one, except within 1e-9 of
+    # the tolerance's edge, where the answer given back (to a few ulp) may fall either side
+    rng = np.random.default_rng(7)
+    for _ in range(60):
+        if tol.kind == "abs" and tol.width == 0:
+            answer = float(rng.integers(-50, 50))
+            values = [answer, answer + 1, answer - 1, answer + 1e-9, answer + 4e-15]
+        else:
+            answer = float(rng.choice([-1, 1]) * 10.0 ** rng.uniform(-6, 6))
+            if tol.kind == "abs":
+                offsets = answer + tol.width * rng.uniform(-3, 3, 4)
+            elif tol.kind == "rel":
+                offsets = answer * (1 + tol.width * rng.uniform(-3, 3, 4))
+            else:
+                offsets = answer * tol.width ** rng.uniform(-2, 2, 4)
+            values = [answer, *offsets, -answer]
+        sealed = seal(answer, tol, "test/answer")
+        assert "value" not in sealed
+        if answer != round(answer):  # an integer's place in its cell is 0.0, like any integer's
+            assert repr(answer) not in repr(sealed)
+        for value in values:
+            opened = unseal(sealed, tol, value)
+            plain = tol.accepts(value, answer)
+            if plain:  # every accepted value opens the seal, onto the answer to rounding
+                assert opened is not None and math.isclose(opened, answer, rel_tol=1e-12,
+                                                           abs_tol=1e-300)
+            sealed_verdict = opened is not None and tol.accepts(value, opened)
+            if tol.kind == "abs":
+                margin = abs(abs(value - answer) - tol.width) / max(tol.width, 1.0)
+            elif tol.kind == "rel":
+                margin = abs(abs(value - answer) / abs(answer) - tol.width) / tol.width
+            else:
+                margin = abs(abs(math.log(abs(value / answer))) - math.log(tol.width))
+            if margin > 1e-9:
+                assert sealed_verdict == plain, (tol, answer, value)
+
+
+def test_far_values_do_not_open_the_seal_and_salts_differ():
+    tol = Tolerance("rel", 0.01, "r")
+    sealed = seal(80.29, tol, "ex05_decay/tau_fit_ms")
+    assert unseal(sealed, tol, 80.29 * 1.05) is None and unseal(sealed, tol, 0.0) is None
+    assert unseal(sealed, tol, 80.29 * 1.005) == pytest.approx(80.29, rel=1e-12)
+    # the same answer under another name is another digest: equal answers do not show
+    assert seal(80.29, tol, "ex05_decay/other")["digest"] != sealed["digest"]
+    # a value far beyond any answer is "not yet", not an overflow
+    assert unseal(seal(1.0, Tolerance("abs", 1e-9, "r"), "s"), Tolerance("abs", 1e-9, "r"),
+                  1e308) is None
+    assert not check("ex01", M11=1e308).ok and not check("ex05", tau_fit_ms=-1e-320).ok
+
+
+@pytest.mark.parametrize(
+    ("value", "tol", "salt", "error", "match"),
+    [
+        (math.nan, Tolerance("abs", 1, "r"), "s", ValueError, "value must be finite"),
+        (0.0, Tolerance("rel", 0.1, "r"), "s", ValueError, "must not be zero"),
+        (1.0, Tolerance("rel", 1.0, "r"), "s", ValueError, "relative tolerance to seal"),
+        (1.0, Tolerance("factor", 1.0, "r"), "s", ValueError, "factor tolerance to seal"),
+        (1.0, Tolerance("abs", 1, "r"), "", ValueError, "salt must be"),
+        (1.0, ("abs", 1), "s", TypeError, "tolerance must be a Tolerance"),
+    ],
+)
+def test_bad_seals_are_refused(value, tol, salt, error, match):
+    with pytest.raises(error, match=match):
+        seal(value, tol, salt)
+
+
+# --- graded variants -------------------------------------------------------------------------
+
+
+def test_parameters_published_and_per_student():
+    from ebantenna.course import VARIANTS, parameters
+
+    assert parameters("ex05") == {"tau_ms": 80.0, "f0_hz": 120.0, "seed": 42}
+    for exercise, space in VARIANTS.items():
+        drawn = [parameters(exercise, student=f"s{k}") for k in range(20)]
+        assert parameters(exercise, student="s3") == drawn[3]  # the same id, the same data
+        assert parameters(exercise, student=" s3 ") == drawn[3]  # spaces around an id
+        for values in drawn:
+            for key, (_, low, high, decimals) in space.items():
+                assert low <= values[key] <= high, (exercise, key)
+                if decimals is None:
+                    assert isinstance(values[key], int)
+        # twenty students, twenty different data sets
+        assert len({tuple(v.items()) for v in drawn}) == 20
+
+
+@pytest.mark.parametrize(
+    ("args", "match"),
+    [(("ex03",), "graded variants"), (("ex05", ""), "student must be"),
+     (("ex05", 12), "student must be")],
+)
+def test_bad_parameters_are_refused(args, match):
+    from ebantenna.course import parameters
+
+    with pytest.raises(ValueError, match=match):
+        parameters(*args)
+
+
+def test_check_follows_a_variant_key(tmp_path):
+    import json
+
+    tol = tolerances("ex05")
+    variant = {"tau_hand_ms": 61.8, "tau_fit_ms": 61.86, "a_fit": 5.0087}
+    key = {"exercise": "ex05_decay", "students": {"s2": {
+        n: seal(v, tol[n], f"ex05_decay/s2/{n}") for n, v in variant.items()}}}
+    path = tmp_path / "ex05_key.json"
+    path.write_text(json.dumps(key))
+    assert check("ex05", student="s2", key=path, **variant).ok
+    assert check("ex05", student="s2", key=key, tau_fit_ms=61.86 * 1.0009).ok
+    # the published answer is not the variant's, and the variant's is not the published one
+    assert not check("ex05", student="s2", key=path, tau_fit_ms=80.29).ok
+    assert not check("ex05", tau_fit_ms=61.86).ok
+    with pytest.raises(ValueError, match="not in this key"):
+        check("ex05", student="s9", key=path, tau_fit_ms=61.86)
+    with pytest.raises(ValueError, match="go together"):
+        check("ex05", student="s2", tau_fit_ms=61.86)
+    with pytest.raises(ValueError, match="not of 'ex06_svm_dual'"):
+        check("ex06", student="s2", key=path, w1=1.0)
+    (tmp_path / "bad.json").write_text("{}")
+    with pytest.raises(ValueError, match="variant key file"):
+        check("ex05", student="s2", key=tmp_path / "bad.json", tau_fit_ms=61.86)
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.floats(allow_nan=True, allow_infinity=True),
+       st.sampled_from([("ex05", "tau_fit_ms"), ("ex01", "M14"), ("ex11", "error_1e6"),
+                        ("ex06", "n_support"), ("ex03", "order_mode1")]))
+def test_any_float_gets_a_verdict_never_an_error(value, target):
+    exercise, name = target
+    report = check(exercise, **{name: value})
+    assert len(report.lines) == 1 and report.lines[0].startswith(f"{name}: ")

@@ -4,14 +4,17 @@ One description serves the course page, the session sheets and the tests. A :cla
 what a student reads before it, what the teacher presents (with minutes), which gallery examples
 are run and which exercises belong to it; a :class:`Track` is a list of sessions and, for each
 exercise, its role in that track: **core** (done in class, counted in the session's budget),
-**optional** (in class if time is left, otherwise at home) or **homework** (before the next
-session). An exercise's minutes are read from its page's ``:Time: about N minutes`` field, never
-written here.
+**optional** (in class if time is left, otherwise at home), **homework** (before the next
+session) or **further** (after the course, beyond its goals). The last session has no homework:
+every goal is reached in class or before the last session. An exercise's minutes are read from
+its page's ``:Time: about N minutes`` field, never written here; a gallery example's from its
+source (:func:`example_minutes`).
 
 When the build starts, :func:`write_sheets` writes one page per session into ``docs/course/``
 (only pages whose text changed, so that a build stays incremental), and the ``course-tracks``
-directive puts the three tracks on the course page as tables. The build stops if a session's core
-work does not fit its budget.
+directive puts the three tracks on the course page as tables. The build stops if a session's
+presentation, examples and core exercises do not fit its budget, or if the last session leaves
+homework.
 """
 
 from __future__ import annotations
@@ -21,17 +24,26 @@ from dataclasses import dataclass
 from pathlib import Path
 
 __all__ = [
-    "BUDGET", "ROLES", "Session", "Track", "TRACKS", "exercise_minutes", "core_minutes",
-    "overloaded", "track_table", "session_sheet", "sheet_name", "write_sheets", "setup",
+    "BUDGET", "ROLES", "Session", "Track", "TRACKS", "exercise_minutes", "example_minutes",
+    "examples_minutes", "core_minutes", "class_minutes", "overloaded", "track_table",
+    "session_sheet", "sheet_name", "write_sheets", "setup",
 ]  # fmt: skip
 
 #: Length of a session, min.
 BUDGET = 90
 #: What an exercise can be in a track.
-ROLES = ("core", "optional", "homework")
+ROLES = ("core", "optional", "homework", "further")
+#: Minutes to run a gallery example in class: each runs in 4 to 11 s on one core of a shared
+#: machine (``python docs/examples/plot_NN_*.py``, measured for all thirteen), so a minute covers
+#: starting it and reading its printed lines on a student's laptop.
+RUN_MINUTES = 1
+#: Minutes to read one figure of an example with the class: say what is plotted, point at what
+#: the session is about in it.
+FIGURE_MINUTES = 2
 #: Where the pages are, relative to this file.
 DOCS = Path(__file__).resolve().parents[1]
 _TIME = re.compile(r"^:Time: about (\d+) minutes$", re.M)
+_FIGURE = re.compile(r"\bplt\.(?:subplots|figure)\(")
 
 
 @dataclass(frozen=True)
@@ -76,14 +88,19 @@ def _run(name: str) -> str:
     return f"auto_examples/{name}"
 
 
+RIG_INTRO = ("The rig: its parts, and the driver reading the FIFO on the simulated bus", 5)
+RIG_GOAL = "name the rig's parts and see its driver read the accelerometer on the simulated bus"
+
 ELEMENT = Session(
-    "The probe as a beam: the Euler–Bernoulli element",
+    "The probe as a beam: the Euler–Bernoulli element, and the rig",
     ("derive the element's shape functions, stiffness and mass matrices with sympy",
-     "check a mass matrix by the total mass, and tell the consistent from the lumped one"),
-    ("theory/element",),
+     "check a mass matrix by the total mass, and tell the consistent from the lumped one",
+     RIG_GOAL),
+    ("theory/element", "user_guide/rig"),
     (("The Euler–Bernoulli equation and the cubic element", 15),
-     ("Shape functions, stiffness and consistent mass, derived with sympy", 20)),
-    (_run("plot_01_two_element_modes"),),
+     ("Shape functions, stiffness and consistent mass, derived with sympy", 20),
+     RIG_INTRO),
+    (_run("plot_01_two_element_modes"), _run("plot_12_device_simulated_bus")),
     (_ex("ex01_element"),),
 )
 ASSEMBLY = Session(
@@ -98,18 +115,20 @@ ASSEMBLY = Session(
     (_ex("ex02_assembly"),),
 )
 BEAM = Session(
-    "The probe as a beam: element, assembly and the paper's model",
-    ELEMENT.goals + ASSEMBLY.goals,
+    "The probe as a beam: element, assembly and the paper's model, and the rig",
+    ELEMENT.goals[:2] + ASSEMBLY.goals + (RIG_GOAL,),
     ELEMENT.reading + ASSEMBLY.reading,
     (("The Euler–Bernoulli element and its matrices, derived with sympy", 25),
      ("Assembly and supports: P, Q and R", 10),
-     ("The printed matrices and their errata", 5)),
+     ("The printed matrices and their errata", 5),
+     RIG_INTRO),
     ELEMENT.examples + ASSEMBLY.examples,
     ELEMENT.exercises + ASSEMBLY.exercises,
 )
 MODES = Session(
     "Modes and their accuracy: the eigenproblem and convergence as h⁴",
-    ("solve the generalized eigenproblem of a supported beam, and say why not with inv(M) K",
+    ("solve the generalized eigenproblem K φ = ω² M φ of a supported beam, and say why a plain "
+     "scipy.linalg.eigh(K, M) loses the low modes on a fine mesh",
      "measure an order of convergence and say how many digits a frequency has and what the "
      "next digit costs"),
     ("theory/eigenproblem", "theory/convergence"),
@@ -132,10 +151,10 @@ MODES_AND_ZONES = Session(
     "Modes, their accuracy and the three zones",
     MODES.goals + ZONES.goals,
     MODES.reading + ZONES.reading,
-    (("The generalized eigenproblem, solved stably", 10),
-     ("Convergence to the exact solution as h⁴", 10),
+    (("The generalized eigenproblem, solved stably", 5),
+     ("Convergence to the exact solution as h⁴", 5),
      ("The zones of the lowest mode, and why the frequency turns over", 15),
-     ("The touched object", 10)),
+     ("The touched object", 5)),
     MODES.examples + ZONES.examples,
     MODES.exercises + ZONES.exercises,
 )
@@ -143,21 +162,21 @@ FEATURES = Session(
     "From vibration to features: spectra, filters and time–frequency pictures",
     ("choose a record length and a window for a frequency resolution",
      "design a band-pass to a specification, and say why it runs as second-order sections"),
-    ("theory/spectrum", "theory/filters", "theory/timefreq"),
-    (("Bins, windows and the peak between two bins", 15),
-     ("Band-pass filters to a specification, as second-order sections", 15),
+    ("theory/spectrum", "theory/filters", "theory/timefreq", "theory/uncertainty"),
+    (("Bins, windows and the peak between two bins", 10),
+     ("Band-pass filters to a specification, as second-order sections", 10),
      ("Spectrograms and wavelet scalograms", 10)),
     (_run("plot_06_paper_filters"), _run("plot_10_spectrogram_scalogram"),
      _run("plot_11_simulated_signals")),
-    (_ex("ex08_filter_order"), _ex("ex13_mode_curves")),
+    (_ex("ex08_filter_order"), _ex("ex13_mode_curves"), _ex("ex12_splits")),
 )
 DECAY = Session(
     "How fast the ringing dies: the decay fit and the Kalman filter",
     ("fit an exponential decay robustly and name what biases it",
-     "track a ringing mode with a Kalman filter and read its state"),
+     "track a slowly drifting level with a Kalman filter, and find its steady gain by hand"),
     ("theory/decay", "theory/kalman"),
     (("The decay a·eᵇᵗ, the time constant τ = −1/b, and what biases its fit", 10),
-     ("A Kalman filter that follows a ringing mode", 10)),
+     ("The Kalman filter: predict, gain, update; the steady gain of the Riccati recursion", 20)),
     (_run("plot_07_decay_fit"),),
     (_ex("ex05_decay"), _ex("ex14_kalman")),
 )
@@ -168,58 +187,61 @@ SIGNALS = Session(
     (("Bins, windows and the peak between two bins", 10),
      ("Band-pass filters as second-order sections", 10),
      ("Spectrograms and wavelet scalograms", 5),
-     ("The decay fit and its time constant τ", 10),
-     ("The Kalman filter", 5)),
+     ("The decay fit and its time constant τ", 5),
+     ("The Kalman filter and its steady gain", 10)),
     FEATURES.examples + DECAY.examples,
     FEATURES.exercises + DECAY.exercises,
 )
 CLASSIFIERS = Session(
-    "Classifiers by hand, and the rig",
-    ("write and check the dual of a soft-margin SVM and the gradient of a neural network",
-     "test a classifier on contact positions it never saw",
-     "say what the rig's driver promises, on the simulated bus"),
-    ("theory/svm", "theory/mlp", "theory/uncertainty", "user_guide/rig"),
+    "Classifiers by hand: the SVM's dual, and a network that learns",
+    ("write and solve the dual of a soft-margin SVM, and check it against SMO and the package",
+     "watch a NumPy network learn and read its loss curve"),
+    ("theory/svm", "theory/mlp"),
     (("The SVM dual and SMO", 15),
-     ("Backpropagation through one hidden layer", 10),
-     ("The rig: its parts, and the driver on the simulated bus", 5)),
-    (_run("plot_08_svm_vs_sklearn"), _run("plot_09_mlp_training"),
-     _run("plot_12_device_simulated_bus")),
-    (_ex("ex06_svm_dual"), _ex("ex07_backprop"), _ex("ex10_fifo"), _ex("ex11_rbf_cancellation"),
-     _ex("ex12_splits")),
+     ("A network of one hidden layer, trained by backpropagation", 5)),
+    (_run("plot_08_svm_vs_sklearn"), _run("plot_09_mlp_training")),
+    (_ex("ex06_svm_dual"), _ex("ex07_backprop"), _ex("ex10_fifo"),
+     _ex("ex11_rbf_cancellation")),
 )
 
 
-def _roles(core=(), optional=(), homework=()) -> dict:
+def _roles(core=(), optional=(), homework=(), further=()) -> dict:
     return {
         **{_ex(n): "core" for n in core},
         **{_ex(n): "optional" for n in optional},
         **{_ex(n): "homework" for n in homework},
+        **{_ex(n): "further" for n in further},
     }
 
 
-_LAST = ("ex07_backprop", "ex10_fifo", "ex11_rbf_cancellation", "ex12_splits")
+#: after the course: the last session's exercises beyond its goals (backpropagation by hand, the
+#: FIFO by hand, the RBF kernel's cancellation)
+_AFTER = ("ex07_backprop", "ex10_fifo", "ex11_rbf_cancellation")
 
 #: The three tracks, by number of sessions.
 TRACKS = {
     7: Track(
         (ELEMENT, ASSEMBLY, MODES, ZONES, FEATURES, DECAY, CLASSIFIERS),
         _roles(core=("ex01_element", "ex02_assembly", "ex03_convergence", "ex04_peak",
-                     "ex08_filter_order", "ex05_decay", "ex14_kalman", "ex06_svm_dual"),
+                     "ex08_filter_order", "ex14_kalman", "ex06_svm_dual"),
                optional=("ex09_mesh_budget",),
-               homework=("ex13_mode_curves",) + _LAST),
+               homework=("ex13_mode_curves", "ex12_splits", "ex05_decay"),
+               further=_AFTER),
     ),
     6: Track(
         (BEAM, MODES, ZONES, FEATURES, DECAY, CLASSIFIERS),
         _roles(core=("ex01_element", "ex03_convergence", "ex04_peak", "ex08_filter_order",
-                     "ex05_decay", "ex14_kalman", "ex06_svm_dual"),
-               homework=("ex02_assembly", "ex09_mesh_budget", "ex13_mode_curves") + _LAST),
+                     "ex14_kalman", "ex06_svm_dual"),
+               homework=("ex02_assembly", "ex09_mesh_budget", "ex13_mode_curves",
+                         "ex12_splits", "ex05_decay"),
+               further=_AFTER),
     ),
     4: Track(
         (BEAM, MODES_AND_ZONES, SIGNALS, CLASSIFIERS),
-        _roles(core=("ex01_element", "ex04_peak", "ex08_filter_order", "ex06_svm_dual"),
-               optional=("ex05_decay",),
+        _roles(core=("ex01_element", "ex04_peak", "ex05_decay", "ex06_svm_dual"),
                homework=("ex02_assembly", "ex03_convergence", "ex09_mesh_budget",
-                         "ex13_mode_curves", "ex14_kalman") + _LAST),
+                         "ex08_filter_order", "ex14_kalman"),
+               further=("ex13_mode_curves", "ex12_splits") + _AFTER),
     ),
 }
 
@@ -236,20 +258,56 @@ def exercise_minutes(docname: str, docs: Path = DOCS) -> int:
     return int(found[0])
 
 
+def example_minutes(docname: str, docs: Path = DOCS) -> int:
+    """Minutes a gallery example takes in class: :data:`RUN_MINUTES` to run it, plus
+    :data:`FIGURE_MINUTES` for each figure it draws (its ``plt.subplots(``/``plt.figure(`` calls,
+    counted in its source ``docs/examples/plot_NN_*.py``)."""
+    name = docname.split("/", 1)[1]
+    source = docs / "examples" / f"{name}.py"
+    if not source.is_file():
+        raise FileNotFoundError(f"the course runs {docname}, but {source} does not exist")
+    figures = len(_FIGURE.findall(source.read_text(encoding="utf-8")))
+    return RUN_MINUTES + FIGURE_MINUTES * figures
+
+
+def examples_minutes(session: Session, docs: Path = DOCS) -> int:
+    """Minutes of the gallery examples a session runs in class."""
+    return sum(example_minutes(d, docs) for d in session.examples)
+
+
 def core_minutes(track: Track, session: Session, docs: Path = DOCS) -> int:
-    """Presented minutes plus the minutes of the session's core exercises in ``track``."""
+    """Minutes of the session's core exercises in ``track``."""
     core = [e for e in session.exercises if track.roles[e] == "core"]
-    return session.presented_minutes + sum(exercise_minutes(e, docs) for e in core)
+    return sum(exercise_minutes(e, docs) for e in core)
+
+
+def class_minutes(track: Track, session: Session, docs: Path = DOCS) -> int:
+    """Minutes in class: presented + examples run + core exercises."""
+    return (session.presented_minutes + examples_minutes(session, docs)
+            + core_minutes(track, session, docs))
 
 
 def overloaded(tracks: dict = TRACKS, docs: Path = DOCS) -> list[str]:
-    """Every session whose core work exceeds :data:`BUDGET`, as readable lines (none: ``[]``)."""
-    return [
-        f"{track.key}, session {i}: {core_minutes(track, s, docs)} min of core work"
+    """Every session over :data:`BUDGET` in class, and every last session that sets homework,
+    as readable lines (none: ``[]``)."""
+    late = [
+        f"{track.key}, session {i}: {class_minutes(track, s, docs)} min in class"
         for track in tracks.values()
         for i, s in enumerate(track.sessions, 1)
-        if core_minutes(track, s, docs) > BUDGET
+        if class_minutes(track, s, docs) > BUDGET
     ]
+    for track in tracks.values():
+        last = track.sessions[-1]
+        homework = [e for e in last.exercises if track.roles[e] == "homework"]
+        if homework:
+            late.append(f"{track.key}, last session: homework after the course ({homework})")
+    return late
+
+
+def _minutes_line(track: Track, session: Session, docs: Path) -> str:
+    return (f"{session.presented_minutes} presented + {examples_minutes(session, docs)} examples + "
+            f"{core_minutes(track, session, docs)} core = {class_minutes(track, session, docs)} "
+            f"of {BUDGET}")
 
 
 def sheet_name(track: Track, number: int) -> str:
@@ -267,16 +325,15 @@ def track_table(track: Track, docs: Path = DOCS) -> list[str]:
         f".. list-table:: {len(track.sessions)} sessions of {BUDGET} minutes",
         "   :header-rows: 1", "   :widths: 3 24 22 27 12", "",
         "   * - #", "     - session", "     - read before", "     - exercises (role, time)",
-        "     - in class, min: presented + core",
+        "     - in class, min: presented + examples + core",
     ]  # fmt: skip
     for i, s in enumerate(track.sessions, 1):
-        core = core_minutes(track, s, docs)
         lines += [
             f"   * - {i}",
             f"     - :doc:`{s.title} </{sheet_name(track, i)}>`",
             "     - " + ", ".join(f":doc:`/{d}`" for d in s.reading),
             "     - " + "; ".join(_exercise_line(track, e, docs) for e in s.exercises),
-            f"     - {s.presented_minutes} + {core - s.presented_minutes} = {core} of {BUDGET}",
+            f"     - {_minutes_line(track, s, docs)}",
         ]
     return lines
 
@@ -299,7 +356,9 @@ def _prepare(track: Track, number: int, docs: Path) -> list[str]:
     if number < len(track.sessions):
         todo += [f"read :doc:`/{d}`" for d in track.sessions[number].reading]
     else:
-        todo.append("the course ends here: the homework above is the last work of the course")
+        todo.append("the course ends here: every goal above was reached in class")
+        todo += [f"after the course, beyond its goals: :doc:`/{e}` ({exercise_minutes(e, docs)} "
+                 "min)" for e in track.sessions[-1].exercises if track.roles[e] == "further"]
     return _bullets(todo)
 
 
@@ -307,20 +366,20 @@ def session_sheet(track: Track, number: int, docs: Path = DOCS) -> str:
     """The sheet of session ``number`` (1-based) of ``track``, as reST."""
     s = track.sessions[number - 1]
     title = f"Session {number} of {len(track.sessions)}: {s.title}"
-    core = core_minutes(track, s, docs)
     lines = [
         title, "=" * len(title), "",
         f":Track: {len(track.sessions)} sessions of {BUDGET} minutes (all tracks: :doc:`/course`)",
-        f":In class: {s.presented_minutes} min presented + {core - s.presented_minutes} min of "
-        f"core exercises = {core} of {BUDGET} min", "",
+        f":In class, min: {_minutes_line(track, s, docs)}", "",
         *_section("Goals"), *_bullets(s.goals),
         *_section("Read before the session"), *_bullets(f":doc:`/{d}`" for d in s.reading),
         *_section("Presented in class"),
         *_bullets(f"{topic} ({minutes} min)" for topic, minutes in s.presented),
-        *_section("Run in class"), *_bullets(f":doc:`/{d}`" for d in s.examples),
+        *_section("Run in class"),
+        *_bullets(f":doc:`/{d}` ({example_minutes(d, docs)} min)" for d in s.examples),
         *_section("Exercises"),
         "Core exercises are done in class; optional ones too if time is left, otherwise at home;",
-        "homework is done before the next session.", "",
+        "homework is done before the next session; further ones are for after the course, beyond",
+        "its goals.", "",
         *_bullets(_exercise_line(track, e, docs) for e in s.exercises),
         *_section("Prepare for next time"), *_prepare(track, number, docs),
     ]  # fmt: skip
@@ -330,11 +389,13 @@ def session_sheet(track: Track, number: int, docs: Path = DOCS) -> str:
 def write_sheets(app=None, docs: Path = DOCS) -> list[Path]:
     """Write every session's sheet into ``docs/course/`` (unchanged pages are left alone).
 
-    Raises ``ValueError`` naming each session whose core work does not fit its budget.
+    Raises ``ValueError`` naming each session whose work in class does not fit its budget, and
+    each last session that sets homework.
     """
     late = overloaded(TRACKS, docs)
     if late:
-        raise ValueError(f"core work over the {BUDGET}-minute budget: " + "; ".join(late))
+        raise ValueError(f"a session over the {BUDGET}-minute budget or homework after the "
+                         "course: " + "; ".join(late))
     written = []
     for track in TRACKS.values():
         for i in range(1, len(track.sessions) + 1):
@@ -363,6 +424,8 @@ def _directive():
             for session in track.sessions:
                 for docname in session.exercises:
                     self.env.note_dependency(str(DOCS / f"{docname}.rst"))
+                for docname in session.examples:
+                    self.env.note_dependency(str(DOCS / "examples" / f"{docname[14:]}.py"))
             self.env.note_dependency(__file__)
             return self._parse(track_table(track))
 

@@ -23,7 +23,9 @@ The format of an exercise page ``docs/exercises/exNN_name.rst``, in this order:
    ``</details>`` fold.
 6. ``.. exercise-check:: exNN_name``: the self-check section (the names, tolerances and reasons
    of the expected answers, from :mod:`ebantenna.course`, the call that checks them, and the link
-   to the notebook).
+   to the notebook). Its content is a field list, ``:name: what exactly``, that defines every
+   checked value for the student (which of several right values, its unit, its normalisation);
+   the build stops if a checked value is not defined there.
 7. ``.. teacher:: answers``: the expected answers, each number written ````name = value```` with
    ``name`` a key of the solution's ``ANSWERS``, to the digits the test suite checks.
 8. ``.. teacher:: solution``: a ``literalinclude`` of the whole solution script, then any notes.
@@ -84,11 +86,29 @@ class ExercisePage:
     answers: str
     solution_notes: str
     has_data: bool = field(default=False)
+    asked: dict[str, str] = field(default_factory=dict)
 
 
 def _field_list(text: str) -> dict[str, str]:
     found = re.findall(r"^:(\w+): (.*(?:\n   .*)*)", text, flags=re.M)
     return {name: " ".join(value.split()) for name, value in found}
+
+
+def asked_values(text: str, name: str) -> dict[str, str]:
+    """What each checked value is, from the field list of the page's ``.. exercise-check::``.
+
+    Every value the self-check checks is defined there, in the student's edition, with what makes
+    it one value among several right ones (which meshes, which normalisation, which unit); raises
+    ValueError when the list and the self-check's names differ.
+    """
+    match = re.search(rf"^\.\. exercise-check:: {name}\n\n((?:   .*\n|\n)*)", text + "\n",
+                      flags=re.M)
+    asked = _field_list(textwrap.dedent(match.group(1))) if match else {}
+    checked = list(tolerances(name))
+    if sorted(asked) != sorted(checked):
+        raise ValueError(f"{name}: the exercise-check block must define every checked value "
+                         f"{checked}, it defines {list(asked)}")
+    return {n: asked[n] for n in checked}
 
 
 def _teacher_block(text: str, kind: str) -> str:
@@ -130,6 +150,7 @@ def parse_page(text: str, name: str) -> ExercisePage:
         name=name, title=title, theory=theory.group(0) if theory else "", about=about,
         intro=intro, steps=steps, hints=hints, answers=_teacher_block(text, "answers"),
         solution_notes=notes, has_data=".. rubric:: The data" in text,
+        asked=asked_values(text, name),
     )
 
 
@@ -196,11 +217,13 @@ def _student_cells(page: ExercisePage, solution: str, names, md) -> list[tuple[s
         hints = "".join(f"<details><summary>{s}</summary>\n\n{md(h)}\n\n</details>\n\n"
                         for s, h in page.hints)
         cells.append(("markdown", "## Hints\n\nOpen one at a time.\n\n" + hints))
-    table = "".join(f"| `{n}` | {t.describe()} | {t.reason} |\n" for n, t in names.items())
+    table = "".join(f"| `{n}` | {t.describe()} | {md(page.asked[n])} | {t.reason} |\n"
+                    for n, t in names.items())
     cells += [
         ("markdown", "## Check your answers\n\nPut your values in place of `None` and run the "
          "check: it says whether each is within its tolerance, without showing the answer.\n\n"
-         "| value | tolerance | why that much |\n| --- | --- | --- |\n" + table),
+         "| value | tolerance | what exactly | why that much |\n| --- | --- | --- | --- |\n"
+         + table),
         ("code", "from ebantenna.course import check\n\nanswers = dict(\n"
          + "".join(f"    {n}=None,\n" for n in names) + ")\n"),
         ("code", f'print(check("{page.name}", **answers))\n'),
@@ -302,11 +325,14 @@ class ExerciseCheckDirective(Directive):
     """``.. exercise-check:: exNN_name``: the self-check section of an exercise page."""
 
     required_arguments = 1
+    has_content = True
 
     def run(self):
         name, edition = self.arguments[0], _edition(self.state.document.settings.env)
-        rows = "".join(f"   * - ``{n}``\n     - {t.describe()}\n     - {t.reason}\n"
-                       for n, t in tolerances(name).items())
+        asked = asked_values(f".. exercise-check:: {name}\n\n"
+                             + "".join(f"   {line}\n" for line in self.content), name)
+        rows = "".join(f"   * - ``{n}``\n     - {t.describe()}\n     - {asked[n]}\n"
+                       f"     - {t.reason}\n" for n, t in tolerances(name).items())
         call = textwrap.indent(_check_call(name, list(tolerances(name)), "{n}"), "   ")
         text = (
             ".. rubric:: Check your answers\n\n"
@@ -314,7 +340,8 @@ class ExerciseCheckDirective(Directive):
             "whether each is within its tolerance of the expected answer, without showing the "
             "answer. A tolerance is how far two correct ways of working may differ.\n\n"
             ".. list-table::\n   :header-rows: 1\n   :class: exercise-checks\n\n"
-            "   * - value\n     - tolerance\n     - why that much\n" + rows +
+            "   * - value\n     - tolerance\n     - what exactly\n     - why that much\n"
+            + rows +
             "\n.. code-block:: python\n\n   from ebantenna.course import check\n\n" + call
         )
         section = nodes.container(classes=["exercise-check"])

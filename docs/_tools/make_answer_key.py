@@ -2,8 +2,13 @@
 
 Every worked solution in ``docs/exercises/solutions/`` ends with two dictionaries: ``ANSWERS``
 (name -> value) and ``TOLERANCES`` (name -> ``(kind, width, reason)``). This script runs each
-solution and writes them, side by side, into one module of the package, so that a student's
-self-check needs neither the solutions nor the documentation. Run it after changing a solution::
+solution and writes the tolerances and the *sealed* answers (:func:`ebantenna.course.seal`: a
+salted hash of the answer's cell and its place in the cell, never the value) into one module of
+the package, so that a student's self-check needs neither the solutions nor the documentation,
+and the installed package holds no answer in readable form. Next to the solutions, in the
+repository only, it writes the same answers in plain form, ``docs/exercises/solutions/answers.json``
+(the teacher's sheet of the published exercises, and what the test of the wheel searches it for).
+Run it after changing a solution::
 
     python docs/_tools/make_answer_key.py
 
@@ -15,22 +20,27 @@ from __future__ import annotations
 
 import contextlib
 import io
+import json
 import runpy
 import sys
 import textwrap
 from pathlib import Path
 
+from ebantenna.course import Tolerance, seal
+
 ROOT = Path(__file__).resolve().parents[2]
 SOLUTIONS = ROOT / "docs" / "exercises" / "solutions"
 MODULE = ROOT / "ebantenna" / "course" / "_answer_key.py"
+PLAIN = SOLUTIONS / "answers.json"
 
-__all__ = ["entries", "answer_key", "module_text", "main"]
+__all__ = ["entries", "sealed", "computed", "answer_key", "plain_text", "module_text", "main"]
 
-HEADER = '''"""Expected answers of the exercises and their tolerances: ebantenna.course's key.
+HEADER = '''"""Sealed answers of the exercises and their tolerances: ebantenna.course's key.
 
 Written by ``docs/_tools/make_answer_key.py`` from the worked solutions in
-``docs/exercises/solutions/``; do not edit by hand. The test suite checks that it equals what the
-solutions compute.
+``docs/exercises/solutions/``; do not edit by hand. Each answer is held as the salted hash of its
+cell and its place in the cell (see :func:`ebantenna.course.seal`), not as a value. The test
+suite checks that it seals what the solutions compute.
 """
 
 '''
@@ -51,22 +61,43 @@ def entries(answers: dict, tolerances: dict) -> dict[str, dict]:
     return out
 
 
+def sealed(exercise: str, entries_: dict[str, dict]) -> dict[str, dict]:
+    """The key's form of one exercise's entries: the value replaced by its seal."""
+    out = {}
+    for name, entry in entries_.items():
+        tolerance = Tolerance(entry["kind"], entry["width"], entry["reason"])
+        out[name] = {"kind": entry["kind"], "width": entry["width"], "reason": entry["reason"],
+                     **seal(entry["value"], tolerance, f"{exercise}/{name}")}
+    return out
+
+
 def _run(script: Path) -> dict:
     with contextlib.redirect_stdout(io.StringIO()):
         return runpy.run_path(str(script), run_name="__main__")
 
 
-def answer_key(solutions: Path = SOLUTIONS, run=_run) -> dict[str, dict[str, dict]]:
-    """The key of every solution script ``ex*.py`` in ``solutions``, by exercise name."""
-    key = {}
+def computed(solutions: Path = SOLUTIONS, run=_run) -> dict[str, dict[str, dict]]:
+    """The entries (values included) of every solution script ``ex*.py``, by exercise name."""
+    out = {}
     for script in sorted(solutions.glob("ex*.py")):
         namespace = run(script)
-        key[script.stem] = entries(namespace["ANSWERS"], namespace["TOLERANCES"])
-    return key
+        out[script.stem] = entries(namespace["ANSWERS"], namespace["TOLERANCES"])
+    return out
+
+
+def answer_key(solutions: Path = SOLUTIONS, run=_run) -> dict[str, dict[str, dict]]:
+    """The sealed key of every solution script ``ex*.py`` in ``solutions``, by exercise name."""
+    return {name: sealed(name, found) for name, found in computed(solutions, run).items()}
+
+
+def plain_text(found: dict[str, dict[str, dict]]) -> str:
+    """``answers.json``: every expected answer in plain form, ``{exercise: {name: value}}``."""
+    plain = {name: {n: e["value"] for n, e in values.items()} for name, values in found.items()}
+    return json.dumps(plain, indent=1) + "\n"
 
 
 def module_text(key: dict) -> str:
-    """The source of ``ebantenna/course/_answer_key.py`` holding ``key``, one answer a line."""
+    """The source of ``ebantenna/course/_answer_key.py`` holding the sealed ``key``."""
     lines = [HEADER, "ANSWER_KEY = {\n"]
     for exercise, answers in key.items():
         lines.append(f"    {exercise!r}: {{\n")
@@ -74,8 +105,9 @@ def module_text(key: dict) -> str:
             reason = textwrap.wrap(entry["reason"], 80, drop_whitespace=False)
             lines += [
                 f"        {name!r}: {{\n",
-                f"            'value': {entry['value']!r}, 'kind': {entry['kind']!r}, "
-                f"'width': {entry['width']!r},\n",
+                f"            'kind': {entry['kind']!r}, 'width': {entry['width']!r},\n",
+                f"            'salt': {entry['salt']!r}, 'offset': {entry['offset']!r},\n",
+                f"            'digest': {entry['digest']!r},\n",
                 "            'reason': (\n",
                 *(f"                {part!r}\n" for part in reason),
                 "            ),\n",
@@ -87,8 +119,10 @@ def module_text(key: dict) -> str:
 
 
 def main() -> int:
-    MODULE.write_text(module_text(answer_key()))
-    print(f"wrote {MODULE.relative_to(ROOT)}")
+    found = computed()
+    MODULE.write_text(module_text({name: sealed(name, v) for name, v in found.items()}))
+    PLAIN.write_text(plain_text(found))
+    print(f"wrote {MODULE.relative_to(ROOT)} and {PLAIN.relative_to(ROOT)}")
     return 0
 
 

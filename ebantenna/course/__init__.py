@@ -9,19 +9,49 @@ the worked solution, without printing the answer::
     >>> print(check("ex05", tau_fit_ms=None))
     tau_fit_ms: not yet: no value given (None)
 
-The expected values come from ``ebantenna/course/_answer_key.py``, which
-``docs/_tools/make_answer_key.py`` writes by running the worked solutions; the test suite checks
-that it still equals what they compute.
+The package does not hold the answers in readable form. Each one is *sealed* (:func:`seal`): the
+answer is written as a coordinate ``u`` in units of its tolerance (``value / width`` for an
+absolute tolerance, ``log|value| / log-width`` for a relative one or a factor); the key keeps the
+salted, iterated hash of the cell ``floor(u)`` and the position ``u - floor(u)`` inside the cell,
+which alone says nothing of the value. A value is checked by hashing its own cell and the cells
+next to it: a match gives back the answer, and the stated tolerance decides, exactly as if the
+answer were stored (so a right value near a cell's edge passes, and the tolerance's edges are
+where they were).
+
+What this does not prevent, and the installation page tells teachers: :func:`check` answers
+"within" or "not yet", so a search over it (or over the cells) finds a value within the
+tolerance, which for a small count takes a few tries; and the worked solutions are in the public
+repository. The check is a help for learning, not a grader.
+
+**Graded variants.** For graded work a teacher gives each student their own data:
+:func:`parameters` draws an exercise's parameters from a student's id (the same id, the same
+parameters, on any machine), the exercise's data block reads them, and
+``docs/_tools/make_variant_key.py`` (in the repository, for the teacher) runs the worked solution
+for every student of a list and writes the teacher's answer sheet and a sealed key for the
+students' self-checks, ``check(..., student=id, key=path)``. A student's answer is then of no
+use to another student, and the published answers are of no use to anyone.
+
+The key comes from ``ebantenna/course/_answer_key.py``, which ``docs/_tools/make_answer_key.py``
+writes by running the worked solutions; the test suite checks that it still seals what they
+compute.
 """
 
 from __future__ import annotations
 
+import hashlib
 import math
 from dataclasses import dataclass
 
 from ._answer_key import ANSWER_KEY
 
-__all__ = ["Tolerance", "CheckReport", "exercises", "tolerances", "check"]
+__all__ = [
+    "Tolerance", "CheckReport", "exercises", "tolerances", "check", "seal", "unseal", "VARIANTS",
+    "parameters", "load_variant_key",
+]
+
+#: rounds of PBKDF2-HMAC-SHA256 per sealed cell: about a millisecond, so a check of a value (up to
+#: five cells) stays instant while a search over many cells is slowed by the same factor
+ROUNDS = 1000
 
 #: how a tolerance is measured: an absolute difference, a relative one, or a ratio
 KINDS = ("abs", "rel", "factor")
@@ -81,6 +111,184 @@ class Tolerance:
         return 1 / self.width <= ratio <= self.width
 
 
+def _scale(tolerance: Tolerance) -> tuple[str, float]:
+    """The coordinate a tolerance is measured in, and the width of one cell of it.
+
+    ``"lin"``: ``u = value / cell``, with ``cell = width`` (an exact answer: cells of 1, the
+    answer's position in its cell kept); ``"log"``: ``u = log|value| / cell``, with ``cell`` the
+    widest log-distance the tolerance accepts, ``-log(1 - width)`` for a relative one and
+    ``log(width)`` for a factor. Either way every accepted value is within one cell of the answer.
+    """
+    if tolerance.kind == "abs":
+        return "lin", tolerance.width if tolerance.width > 0 else 1.0
+    if tolerance.kind == "rel":
+        if not 0 < tolerance.width < 1:
+            raise ValueError(f"a relative tolerance to seal must be in (0, 1), got "
+                             f"{tolerance.width!r}")
+        return "log", -math.log1p(-tolerance.width)
+    if tolerance.width <= 1:
+        raise ValueError(f"a factor tolerance to seal must be > 1, got {tolerance.width!r}")
+    return "log", math.log(tolerance.width)
+
+
+def _coordinate(scale: str, cell: float, value: float) -> tuple[str, float]:
+    """``(sign, u)``: the value in cells of its tolerance (the sign kept apart on a log scale)."""
+    if scale == "lin":
+        return "", value / cell
+    return ("+" if value > 0 else "-"), math.log(abs(value)) / cell
+
+
+def _digest(salt: str, sign: str, cell_index: int) -> str:
+    text = f"{sign}{cell_index}".encode()
+    return hashlib.pbkdf2_hmac("sha256", text, salt.encode(), ROUNDS).hex()[:32]
+
+
+def seal(value: float, tolerance: Tolerance, salt: str) -> dict:
+    """The answer ``value`` in the form the key holds: a cell's hash and a place in the cell.
+
+    Parameters
+    ----------
+    value : float
+        The expected answer (finite; not zero when the tolerance is relative or a factor).
+    tolerance : Tolerance
+        Its tolerance: it sets the cells (see the module's description).
+    salt : str
+        Text hashed with the cell, different for every answer (``"ex05_decay/tau_fit_ms"``), so
+        that two answers in the same cell do not show it.
+
+    Returns
+    -------
+    dict
+        ``{"salt", "digest", "offset"}``: :func:`unseal` gives the value back from any value
+        within one cell of it, and nothing without one.
+    """
+    if not isinstance(tolerance, Tolerance):
+        raise TypeError(f"tolerance must be a Tolerance, got {type(tolerance).__name__}")
+    if not isinstance(salt, str) or not salt:
+        raise ValueError(f"salt must be a non-empty str, got {salt!r}")
+    value = float(value)
+    if not math.isfinite(value):
+        raise ValueError(f"value must be finite, got {value!r}")
+    scale, cell = _scale(tolerance)
+    if scale == "log" and value == 0:
+        raise ValueError("value must not be zero for a relative or factor tolerance")
+    sign, u = _coordinate(scale, cell, value)
+    if not math.isfinite(u):
+        raise ValueError(f"value must be within the range of floats in cells of the tolerance, "
+                         f"got {value!r} in cells of {cell!r}")
+    index = math.floor(u)
+    return {"salt": salt, "digest": _digest(salt, sign, index), "offset": u - index}
+
+
+def unseal(sealed: dict, tolerance: Tolerance, near: float) -> float | None:
+    """The sealed answer, if ``near`` is within two cells of it; else ``None``.
+
+    ``near`` must be a finite number. Two cells cover every value the tolerance accepts (one
+    cell) with room for rounding at the edge; the tolerance then decides.
+    """
+    near = float(near)
+    if not math.isfinite(near):
+        raise ValueError(f"near must be finite, got {near!r}")
+    scale, cell = _scale(tolerance)
+    if scale == "log" and near == 0:
+        return None  # no relative tolerance or factor accepts a zero
+    sign, u = _coordinate(scale, cell, near)
+    if not math.isfinite(u):  # far beyond any answer (1e308 in cells of 1e-6)
+        return None
+    start = math.floor(u)
+    for index in (start, start - 1, start + 1, start - 2, start + 2):
+        if _digest(sealed["salt"], sign, index) == sealed["digest"]:
+            u = index + sealed["offset"]
+            if scale == "lin":
+                return u * cell
+            return (1.0 if sign == "+" else -1.0) * math.exp(u * cell)
+    return None
+
+
+#: The exercises with graded variants: for each parameter, its published value and the range a
+#: variant draws it from, ``(published, low, high, decimals)`` (``decimals=None``: an integer
+#: seed). The ranges keep every step of the exercise meaningful (ex04: a partner beyond the peak
+#: exists for a contact from 0.66 L; ex05: the decay spans the record; ex06: the two clouds
+#: overlap a little, so that the soft margin matters).
+VARIANTS = {
+    "ex04_peak": {"twin_of": (0.7, 0.66, 0.75, 2), "length_m": (0.4, 0.35, 0.45, 3)},
+    "ex05_decay": {"tau_ms": (80.0, 60.0, 100.0, 0), "f0_hz": (120.0, 100.0, 140.0, 0),
+                   "seed": (42, 0, 2**31 - 1, None)},
+    "ex06_svm_dual": {"seed": (3, 0, 2**31 - 1, None), "spread": (0.7, 0.55, 0.8, 2)},
+}
+
+
+def _variant_seed(exercise: str, student: str) -> int:
+    digest = hashlib.sha256(f"ebantenna.course/{exercise}/{student}".encode()).digest()
+    return int.from_bytes(digest[:8], "little")
+
+
+def parameters(exercise: str, student: str | None = None) -> dict:
+    """The parameters of an exercise with graded variants: the published ones, or a student's.
+
+    Parameters
+    ----------
+    exercise : str
+        ``"ex05"`` or ``"ex05_decay"``; one of :data:`VARIANTS`.
+    student : str or None
+        The student's id as the teacher gives it (any non-empty text). ``None``: the published
+        parameters, those of the expected answers on the exercise's page.
+
+    Returns
+    -------
+    dict
+        Parameter name -> value; the same id gives the same values on any machine (the draw is
+        seeded by a SHA-256 of the exercise and the id).
+
+    Examples
+    --------
+    >>> parameters("ex05")
+    {'tau_ms': 80.0, 'f0_hz': 120.0, 'seed': 42}
+    >>> parameters("ex05", student="s1") == parameters("ex05", student="s1")
+    True
+    """
+    import numpy as np
+
+    name = _full_name(exercise)
+    if name not in VARIANTS:
+        raise ValueError(f"exercise must be one with graded variants, {sorted(VARIANTS)}, "
+                         f"got {exercise!r}")
+    space = VARIANTS[name]
+    if student is None:
+        return {key: published for key, (published, *_rest) in space.items()}
+    if not isinstance(student, str) or not student.strip():
+        raise ValueError(f"student must be a non-empty str (the id the teacher gave), "
+                         f"got {student!r}")
+    rng = np.random.default_rng(_variant_seed(name, student.strip()))
+    out = {}
+    for key, (_, low, high, decimals) in space.items():
+        if decimals is None:
+            out[key] = int(rng.integers(low, high))
+        else:
+            out[key] = round(float(rng.uniform(low, high)), decimals)
+    return out
+
+
+def load_variant_key(path) -> dict:
+    """Read a variant key written by ``docs/_tools/make_variant_key.py`` (a JSON file).
+
+    Returns ``{"exercise": name, "students": {id: {value name: sealed answer}}}``; raises
+    ValueError if the file is not such a key.
+    """
+    import json
+    from pathlib import Path
+
+    try:
+        key = json.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, json.JSONDecodeError) as error:
+        raise ValueError(f"key must be a variant key file, could not read {path!r}: "
+                         f"{error}") from error
+    if not (isinstance(key, dict) and isinstance(key.get("students"), dict)
+            and key.get("exercise") in ANSWER_KEY):
+        raise ValueError(f"key must be a variant key file, {path!r} is not one")
+    return key
+
+
 @dataclass(frozen=True)
 class CheckReport:
     """The outcome of :func:`check`: one line per value, and whether all of them passed.
@@ -138,7 +346,7 @@ def tolerances(exercise: str) -> dict[str, Tolerance]:
     return {name: Tolerance(a["kind"], a["width"], a["reason"]) for name, a in key.items()}
 
 
-def _verdict(name: str, value, expected: float, tolerance: Tolerance) -> tuple[str, bool]:
+def _verdict(name: str, value, sealed: dict, tolerance: Tolerance) -> tuple[str, bool]:
     stated = tolerance.describe()
     stated = "equal to" if stated == "exact" else f"within {stated} of"
     stated += " the expected value"
@@ -152,12 +360,13 @@ def _verdict(name: str, value, expected: float, tolerance: Tolerance) -> tuple[s
         return f"{name}: not yet: {value!r} is not a number", False
     if not math.isfinite(value):
         return f"{name}: not yet: {value} is not a finite number", False
-    if tolerance.accepts(value, expected):
+    expected = unseal(sealed, tolerance, value)
+    if expected is not None and tolerance.accepts(value, expected):
         return f"{name}: {stated}", True
     return f"{name}: not yet: not {stated}", False
 
 
-def check(exercise: str, **values) -> CheckReport:
+def check(exercise: str, *, student: str | None = None, key=None, **values) -> CheckReport:
     """Whether each value is within the stated tolerance of the exercise's expected answer.
 
     The answers themselves are not shown: a value is either within the tolerance or "not yet".
@@ -166,6 +375,9 @@ def check(exercise: str, **values) -> CheckReport:
     ----------
     exercise : str
         ``"ex05"`` or ``"ex05_decay"``.
+    student, key : str and path, optional
+        For a graded variant: the student's id and the variant key the teacher handed out
+        (``docs/_tools/make_variant_key.py`` writes it). Both or neither.
     **values : float or None
         The answers to check, by the names the exercise page gives (``tau_fit_ms=80.1``); ``None``
         for one not computed yet.
@@ -185,9 +397,20 @@ def check(exercise: str, **values) -> CheckReport:
     False
     """
     name = _full_name(exercise)
-    key, stated = ANSWER_KEY[name], tolerances(name)
-    unknown = sorted(set(values) - set(key))
+    sealed, stated = ANSWER_KEY[name], tolerances(name)
+    if (student is None) != (key is None):
+        raise ValueError("student and key go together: give both for a graded variant, or "
+                         "neither for the published exercise")
+    if key is not None:
+        variants = key if isinstance(key, dict) else load_variant_key(key)
+        if variants.get("exercise") != name:
+            raise ValueError(f"key is a key of {variants.get('exercise')!r}, not of {name!r}")
+        if not isinstance(student, str) or student.strip() not in variants["students"]:
+            raise ValueError(f"student {student!r} is not in this key: ask the teacher for the "
+                             "key of your group")
+        sealed = variants["students"][student.strip()]
+    unknown = sorted(set(values) - set(sealed))
     if unknown or not values:
-        raise ValueError(f"the values of {name} are named {sorted(key)}, got {sorted(values)}")
-    verdicts = [_verdict(v, values[v], key[v]["value"], stated[v]) for v in values]
+        raise ValueError(f"the values of {name} are named {sorted(sealed)}, got {sorted(values)}")
+    verdicts = [_verdict(v, values[v], sealed[v], stated[v]) for v in values]
     return CheckReport(name, tuple(v[0] for v in verdicts), tuple(v[1] for v in verdicts))

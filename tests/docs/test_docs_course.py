@@ -35,22 +35,59 @@ def test_the_three_tracks():
 
 
 @pytest.mark.parametrize("track", TRACKS, ids=IDS)
-def test_core_work_of_every_session_fits_its_budget(track):
+def test_work_in_class_of_every_session_fits_its_budget(track):
     for i, session in enumerate(track.sessions, 1):
-        minutes = course.core_minutes(track, session)
+        minutes = course.class_minutes(track, session)
+        assert minutes == (session.presented_minutes + course.examples_minutes(session)
+                           + course.core_minutes(track, session))
         assert minutes <= course.BUDGET, f"{track.key} session {i}: {minutes} min"
     assert course.overloaded({len(track.sessions): track}) == []
 
 
-def test_an_overloaded_session_is_reported():
-    # one more core exercise in the fullest session must push it over: the check can fail
+@pytest.mark.parametrize("track", TRACKS, ids=IDS)
+def test_the_last_session_sets_no_homework(track):
+    # every goal is reached in class or before the last session: after it come only the
+    # "further" exercises, beyond the course's goals
+    last = track.sessions[-1]
+    assert all(track.roles[e] in ("core", "optional", "further") for e in last.exercises)
+    assert any(track.roles[e] == "core" for e in last.exercises)
+
+
+def test_an_overloaded_session_is_reported(monkeypatch):
+    # one more core exercise, or one more example, in the fullest session must push it over
     track = course.TRACKS[7]
-    fullest = max(track.sessions, key=lambda s: course.core_minutes(track, s))
+    fullest = max(track.sessions, key=lambda s: course.class_minutes(track, s))
     extra = "exercises/ex02_assembly"
     heavy = dataclasses.replace(fullest, exercises=fullest.exercises + (extra,))
     sessions = tuple(heavy if s is fullest else s for s in track.sessions)
     bad = course.Track(sessions, {**track.roles, extra: "core"})
     assert course.overloaded({7: bad}) and "session" in course.overloaded({7: bad})[0]
+    slack = course.BUDGET - course.class_minutes(track, fullest)
+    longest = "auto_examples/plot_01_two_element_modes"
+    assert course.example_minutes(longest) > slack  # one more example does not fit either
+    busy = dataclasses.replace(fullest, examples=fullest.examples + (longest,))
+    bad = course.Track(tuple(busy if s is fullest else s for s in track.sessions), track.roles)
+    assert course.overloaded({7: bad})
+    # and homework after the last session is refused
+    last = track.sessions[-1]
+    further = next(e for e in last.exercises if track.roles[e] == "further")
+    bad = course.Track(track.sessions, {**track.roles, further: "homework"})
+    assert "homework after the course" in course.overloaded({7: bad})[0]
+    # the build refuses it
+    monkeypatch.setitem(course.TRACKS, 7, bad)
+    with pytest.raises(ValueError, match="homework after the course"):
+        course.write_sheets()  # refused before anything is written
+
+
+def test_example_minutes_count_its_run_and_its_figures(tmp_path):
+    # the cost of an example follows its source: a minute to run, two per figure it draws
+    for docname in EXAMPLES:
+        source = _source_of(docname).read_text()
+        figures = source.count("plt.subplots(") + source.count("plt.figure(")
+        assert figures >= 1, docname
+        assert course.example_minutes(docname) == course.RUN_MINUTES + 2 * figures
+    with pytest.raises(FileNotFoundError, match="plot_99"):
+        course.example_minutes("auto_examples/plot_99", tmp_path)
 
 
 def test_minutes_are_the_pages_own(tmp_path):
@@ -107,18 +144,24 @@ def test_sheet_has_goals_reading_exercises_and_what_to_prepare():
                 assert f"read :doc:`/{docname}`" in sheet
 
 
-def test_table_shows_the_budget_of_every_session():
+def test_table_and_sheets_show_the_minutes_of_every_session():
     for track in TRACKS:
         table = "\n".join(course.track_table(track))
-        for session in track.sessions:
-            assert f"= {course.core_minutes(track, session)} of {course.BUDGET}" in table
+        for number, session in enumerate(track.sessions, 1):
+            line = (f"{session.presented_minutes} presented + {course.examples_minutes(session)} "
+                    f"examples + {course.core_minutes(track, session)} core = "
+                    f"{course.class_minutes(track, session)} of {course.BUDGET}")
+            assert line in table and line in course.session_sheet(track, number)
 
 
 def test_sheets_are_written_and_left_alone_when_unchanged(tmp_path):
-    # the exercise pages are read from a copy of docs/, so the sheets land in tmp_path
+    # the exercise pages and examples are read from a copy of docs/, so the sheets land in
+    # tmp_path
     (tmp_path / "exercises").mkdir()
-    for docname in EXERCISES:
-        (tmp_path / f"{docname}.rst").write_text(_source_of(docname).read_text())
+    (tmp_path / "examples").mkdir()
+    for docname in EXERCISES + EXAMPLES:
+        (tmp_path / _source_of(docname).relative_to(DOCS)).write_text(
+            _source_of(docname).read_text())
     written = course.write_sheets(docs=tmp_path)
     assert len(written) == sum(len(t.sessions) for t in TRACKS)
     stamps = [p.stat().st_mtime_ns for p in written]
@@ -134,3 +177,32 @@ def test_course_page_has_every_track_and_no_ascii_powers():
     for page in [text, *sheets]:
         assert not re.search(r"\w\^\d", page), "write h⁴ or :math:`h^4`, not h^4"
     assert "   course\n" in (DOCS / "index.rst").read_text()  # in the site's toctree
+
+
+#: how a symbol of the notation table is written in a page's source
+_WRITTEN = {"ρ": (r"\rho", "ρ"), "α": (r"\alpha", "α"), "η": (r"\eta", "η"),
+            "β": (r"\beta", "β"), "λ": (r"\lambda", "λ"), "γ": (r"\gamma", "γ")}
+
+
+def _notation_rows() -> list[tuple[str, str, list[str]]]:
+    text = (DOCS / "glossary.rst").read_text()
+    table = text.split("Symbols with more than one meaning", 1)[1].split("\nGlossary\n", 1)[0]
+    rows = re.findall(r"   \* - (\S+)\n     - (.*)\n     - (.*)\n", table)
+    return [(s, m, re.findall(r":doc:`([^`]+)`", pages)) for s, m, pages in rows[1:]]
+
+
+def test_the_notation_lists_every_symbol_that_changes_meaning_with_its_pages():
+    rows = _notation_rows()
+    meanings = {}
+    for symbol, meaning, pages in rows:
+        meanings.setdefault(symbol, []).append(meaning)
+        assert pages, (symbol, meaning)
+        for page in pages:  # each page named for a meaning uses the symbol
+            source = (DOCS / f"{page}.rst").read_text()
+            forms = _WRITTEN.get(symbol, ())
+            found = any(f in source for f in forms) or re.search(
+                rf"(?<![A-Za-z\\]){symbol}(?![A-Za-z])", source)
+            assert found, (symbol, page)
+    # the symbols a reader of the course meets with more than one meaning, each with two or more
+    assert {"P", "Q", "K", "b", "a", "L", "ρ", "α", "η", "β", "λ", "C"} <= set(meanings)
+    assert all(len(m) >= 2 for m in meanings.values()), meanings

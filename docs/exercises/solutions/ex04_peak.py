@@ -3,9 +3,15 @@
 from scipy.optimize import brentq, minimize_scalar
 
 from ebantenna import Probe
+from ebantenna.course import parameters
 from ebantenna.fem import Supports, exact_frequencies, modal_analysis
 
-probe = Probe()
+# [data]
+STUDENT = None  # a graded variant: the id your teacher gave you, e.g. "s1234"
+p = parameters("ex04", student=STUDENT)
+probe = Probe(length=p["length_m"])  # the default probe: 40 cm
+twin_of = p["twin_of"]  # the contact (fraction of L) whose partner step 3 asks for
+# [/data]
 L = probe.length
 
 
@@ -33,13 +39,13 @@ assert 0.75 < a_exact < 0.82, a_exact
 # It is a maximum: lower on both sides.
 assert f_exact(a_exact - 0.05) < f_max and f_exact(a_exact + 0.05) < f_max
 # Not monotonic: the same frequency belongs to two contact positions, one on each side.
-assert f_exact(0.7) < f_max and f_exact(0.95) < f_max
-# The partner of 0.7 L: the root of f(a) - f(0.7 L) beyond the maximum. It exists because the
-# frequency at the far end of the range is lower still (the root is bracketed).
-assert f_exact(0.97) < f_exact(0.7) < f_max
-a_twin = brentq(lambda a: f_exact(a) - f_exact(0.7), a_exact, 0.97)
-print(f"{f_exact(0.7):.2f} Hz belongs to a contact at 0.700 L and at {a_twin:.3f} L")
-assert a_twin > a_exact and abs(f_exact(a_twin) - f_exact(0.7)) < 1e-6
+assert f_exact(twin_of) < f_max and f_exact(0.95) < f_max
+# The partner of twin_of: the root of f(a) - f(twin_of L) beyond the maximum. It exists because
+# the frequency at the far end of the range is lower still (the root is bracketed).
+assert f_exact(0.97) < f_exact(twin_of) < f_max
+a_twin = brentq(lambda a: f_exact(a) - f_exact(twin_of), a_exact, 0.97)
+print(f"{f_exact(twin_of):.2f} Hz belongs to a contact at {twin_of:.3f} L and at {a_twin:.3f} L")
+assert a_twin > a_exact and abs(f_exact(a_twin) - f_exact(twin_of)) < 1e-6
 # The two-element model puts the maximum further out, by several per cent of the length.
 assert a_two - a_exact > 0.03, (a_two, a_exact)
 
@@ -54,7 +60,7 @@ TOLERANCES = {
         "than 1e-4"
     )),
     "a_twin": ("abs", 1e-3, (
-        "any root-finder (or a 1e-3 grid) on f(a) - f(0.7 L) beyond the maximum"
+        "any root-finder (or a 1e-3 grid) on f(a) - f(twin_of L) beyond the maximum"
     )),
 }
 

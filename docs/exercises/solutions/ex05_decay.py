@@ -3,13 +3,16 @@
 import numpy as np
 from scipy.signal import hilbert
 
+from ebantenna.course import parameters
 from ebantenna.signal import fit_decay
 
 # [data]
+STUDENT = None  # a graded variant: the id your teacher gave you, e.g. "s1234"
+p = parameters("ex05", student=STUDENT)  # published: 80 ms, 120 Hz, seed 42
 fs = 1000.0  # Hz
 t = np.arange(800) / fs
-tau_true, f0 = 0.08, 120.0  # s, Hz
-rng = np.random.default_rng(42)
+tau_true, f0 = p["tau_ms"] / 1e3, p["f0_hz"]  # s, Hz
+rng = np.random.default_rng(p["seed"])
 x = 5.0 * np.exp(-t / tau_true) * np.cos(2 * np.pi * f0 * t) + 0.02 * rng.standard_normal(t.size)
 # [/data]
 

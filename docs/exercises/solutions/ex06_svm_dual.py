@@ -3,12 +3,16 @@
 import numpy as np
 from scipy.optimize import minimize
 
+from ebantenna.course import parameters
 from ebantenna.ml import SVC
 from ebantenna.ml.smo import reference_smo
 
 # [data]
-rng = np.random.default_rng(3)
-X = np.vstack([rng.normal([-1, -1], 0.7, (15, 2)), rng.normal([1, 1], 0.7, (15, 2))])
+STUDENT = None  # a graded variant: the id your teacher gave you, e.g. "s1234"
+p = parameters("ex06", student=STUDENT)  # published: seed 3, spread 0.7
+rng = np.random.default_rng(p["seed"])
+s = p["spread"]
+X = np.vstack([rng.normal([-1, -1], s, (15, 2)), rng.normal([1, 1], s, (15, 2))])
 y = np.repeat([-1.0, 1.0], 15)
 C = 1.0
 # [/data]
@@ -29,7 +33,17 @@ alpha = result.x
 w = (alpha * y) @ X
 # The bias from the free support vectors (0 < alpha < C), where y_i f(x_i) = 1 exactly.
 free = (alpha > 1e-6) & (alpha < C - 1e-6)
-b = np.mean(y[free] - X[free] @ w)
+g = y - X @ w
+if np.any(free):
+    b = np.mean(g[free])
+else:
+    # No free multiplier (it happens for a few draws of the data): the KKT conditions only
+    # bound b, from below by the points at 0 with y = +1 and at C with y = -1, from above by the
+    # others; libsvm, and so SVC, take the middle of that interval.
+    at_zero, at_c = alpha <= 1e-6, alpha >= C - 1e-6
+    lower = g[(at_zero & (y > 0)) | (at_c & (y < 0))].max()
+    upper = g[(at_zero & (y < 0)) | (at_c & (y > 0))].min()
+    b = (lower + upper) / 2
 print("w =", w.round(4), " b =", round(b, 4), " support vectors:", int((alpha > 1e-6).sum()))
 
 # The same problem by the package's SMO.
@@ -45,8 +59,9 @@ assert np.allclose(w, w_smo, atol=1e-5)
 assert abs(b - svc.intercept_[0]) < 1e-4
 # Both satisfy the constraints of the dual.
 assert abs(alpha_smo @ y) < 1e-10 and np.all((alpha_smo >= 0) & (alpha_smo <= C))
-# The multipliers are continuous, not +-1: the paper's remark confuses them with the labels.
-assert np.any(free)
+# The multipliers are continuous, not +-1: the paper's remark confuses them with the labels
+# (the published data have multipliers strictly between 0 and C).
+assert np.any(free) or STUDENT is not None
 
 # The textbook SMO (ebantenna/ml/smo.py) on the kernel matrix: the same multipliers, and its
 # rho is -b (f(x) = sum alpha_i y_i k(x_i, x) - rho).

@@ -204,5 +204,7 @@ def test_the_notation_lists_every_symbol_that_changes_meaning_with_its_pages():
                 rf"(?<![A-Za-z\\]){symbol}(?![A-Za-z])", source)
             assert found, (symbol, page)
     # the symbols a reader of the course meets with more than one meaning, each with two or more
-    assert {"P", "Q", "K", "b", "a", "L", "ρ", "α", "η", "β", "λ", "C"} <= set(meanings)
+    # (η is the loss factor only: the MLP page writes its learning rate lr)
+    assert {"P", "Q", "K", "b", "a", "L", "ρ", "α", "β", "λ", "C"} <= set(meanings)
+    assert "η" not in meanings
     assert all(len(m) >= 2 for m in meanings.values()), meanings

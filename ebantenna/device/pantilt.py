@@ -17,6 +17,7 @@ accelerometer stops producing ends with
 
 from __future__ import annotations
 
+import errno
 import logging
 import math
 from dataclasses import dataclass, field
@@ -91,15 +92,31 @@ class PanTilt:
         if self.pan.calibration.channel == self.tilt.calibration.channel:
             raise ValueError("pan and tilt servos must be on different channels, both are on "
                              f"{self.pan.calibration.channel}")
+        #: Whether the servo outputs were last read back switched off (False once a servo is
+        #: commanded, or while that could not be confirmed).
+        self.released = False
 
     def initialize(self) -> None:
         """Set up the PCA9685: outputs off first, then 50 Hz. Call it before anything else is
-        started, so that servos left driven by an earlier run go limp at once."""
+        started, so that servos left driven by an earlier run go limp at once. The servo
+        outputs are read back switched off (:attr:`released`)."""
+        self.released = False
         self.pca.initialize()
+        self._confirm_off()
+
+    def _confirm_off(self) -> None:
+        """Read both servo channels back; :class:`I2CError` unless both are off."""
+        on = [servo.name for servo in (self.pan, self.tilt)
+              if self.pca.pulse(servo.calibration.channel)]
+        if on:
+            raise I2CError(errno.EIO, f"the {' and '.join(on)} servo output(s) read back ON "
+                           "after being switched off")
+        self.released = True
 
     def move(self, pan: float, tilt: float) -> tuple[float, float]:
         """Command both servos (clamped to their limits); returns the angles commanded, degrees."""
         pan, tilt = check_real("pan", pan), check_real("tilt", tilt)
+        self.released = False
         return self.pan.move(pan), self.tilt.move(tilt)
 
     def stop(self, back_off: float = 0.0, at: tuple | None = None) -> bool:
@@ -111,6 +128,7 @@ class PanTilt:
         pulse of the held angle (to within one count).
         """
         back_off = check_nonnegative("back_off", back_off)
+        self.released = False
         ok = True
         for k, servo in enumerate((self.pan, self.tilt)):
             if servo.angle is None:
@@ -128,10 +146,13 @@ class PanTilt:
 
     def release(self) -> None:
         """Switch every PWM output off (the servos go limp); raises :class:`I2CError` if the
-        bus fails (:class:`~ebantenna.device.safety.ServoGuard` retries)."""
+        bus fails or a servo output reads back ON afterwards
+        (:class:`~ebantenna.device.safety.ServoGuard` retries)."""
+        self.released = False
         self.pca.all_off()
         self.pan.angle = self.tilt.angle = None
         self.pan.previous = self.tilt.previous = None
+        self._confirm_off()
 
     def __enter__(self):
         return self

@@ -46,6 +46,7 @@ estimates the sample period from the timestamps of its interrupts), are:
 
 from __future__ import annotations
 
+import errno
 import logging
 from dataclasses import asdict, dataclass
 
@@ -60,7 +61,7 @@ from ..chips.mpu6050 import (
     UserControl,
 )
 from ..recording import Recording
-from .i2c import SMBUS_BLOCK_MAX, I2CError
+from .i2c import SMBUS_BLOCK_MAX, I2CError, SettingError
 from .timing import CLOCK_TOLERANCE, PeriodEstimator
 
 __all__ = ["PeriodEstimator", "StreamFault", "FifoBlock", "FifoStream", "CLOCK_TOLERANCE"]
@@ -156,6 +157,9 @@ class FifoStream:
         self._segment, self._position, self._slot, self._counts = [], [], [], []
         self.next_slot = 0
         self.overflows = 0
+        self.discarded = 0  # samples read but dropped: their drain could not be confirmed
+        self.foreign = 0  # drains dropped because another reader took bytes from the FIFO
+        self._last_times = (0.0, 0.0)
         self.pending: str | None = "start"
         self.unconfigured = False  # a reset chip whose configuration is not written back yet
         self.last_progress = self.clock.monotonic()
@@ -174,14 +178,18 @@ class FifoStream:
     def _restart(self) -> None:
         """Empty the FIFO and start a new segment (raises :class:`I2CError` if the bus fails)."""
         device = self.device
-        device.write_byte(Register.FIFO_EN, 0)
+        self.mpu.write_verified(Register.FIFO_EN, 0)
         # FIFO_RESET only acts while USER_CTRL.FIFO_EN is 0 (RM 106).
-        device.write_byte(Register.USER_CTRL, UserControl.FIFO_RESET)
+        self.mpu.write_verified(Register.USER_CTRL, UserControl.FIFO_RESET)
         device.read_byte(Register.INT_STATUS)  # clears a stale overflow flag (RM 58)
-        device.write_byte(Register.FIFO_EN, FifoEnable.ACCEL)
+        self.mpu.write_verified(Register.FIFO_EN, FifoEnable.ACCEL)
         before = self.clock.monotonic()
         device.write_byte(Register.USER_CTRL, UserControl.FIFO_EN, retry=False)
         start = self.clock.monotonic()  # the write landed at its last acknowledge, just before
+        seen = device.read_byte(Register.USER_CTRL)  # read back: the segment starts only if
+        if not seen & UserControl.FIFO_EN:  # the enable landed
+            raise SettingError(errno.EIO, f"USER_CTRL (0x6A) reads back 0x{seen:02X} after "
+                               f"0x{int(UserControl.FIFO_EN):02X} was written")
         period = self.estimator.period
         if self.starts:
             offset = max(round((start - self.starts[0]) / period), self.next_slot)
@@ -206,13 +214,34 @@ class FifoStream:
         due = (now - self.starts[-1]) / self.estimator.period - self.delivered[-1]
         if due < QUIET_SAMPLES:
             return _empty_block()
+        return self._diagnose("no samples from the FIFO")
+
+    def _diagnose(self, cause: str) -> FifoBlock:
+        """A count that cannot be trusted, or a quiet FIFO: read the settings back; a changed
+        one is named (from what to what) and the chip reconfigured, else ``cause`` restarts."""
         try:
-            why = self.mpu.configuration_lost()
+            why = self.mpu.configuration_lost(streaming=True)
         except OSError as exc:
             return self._fail(_cause(_as_i2c_error(exc)))
         if why is not None:
-            return self._fail(why, reconfigure=True)
-        return self._fail("no samples from the FIFO")
+            return self._fail(f"{cause}: {why}", reconfigure=True)
+        return self._fail(cause)
+
+    def _rate_seen(self, count: int, after: float) -> str:
+        """What a count says about the rate: ``"N bytes (n samples) X ms after the FIFO was
+        started: a rate of R Hz, not F Hz"``, with a hint when the rate is a part's known one."""
+        fs = 1.0 / self.estimator.nominal
+        since = after - self.starts[-1]
+        samples = self.delivered[-1] + count / ACCEL_SAMPLE_BYTES
+        if since <= 0:
+            return f"FIFO count {count}"
+        rate = samples / since
+        text = (f"FIFO count {count} ({samples:g} samples in {1e3 * since:.1f} ms since the FIFO "
+                f"was started: a rate of {_hz(rate)}, not {_hz(fs)})")
+        if self.mpu.model.fifo_size == 1024 and abs(rate / 8000.0 - 1) < 0.2 and fs < 8000.0:
+            text += ("; is this an MPU-6500-family clone answering WHO_AM_I 0x68? Its divider "
+                     "is ignored with DLPF_CFG = 0, so it samples at 8 kHz")
+        return text
 
     def _trusted_count(self) -> tuple[int | None, tuple | None, str | None]:
         """Read ``FIFO_COUNT`` and check it before any data is read (rule 1 of the module notes).
@@ -224,6 +253,7 @@ class FifoStream:
         before = self.clock.monotonic()
         count = self.mpu.fifo_count()
         after = self.clock.monotonic()
+        self._last_times = (before, after)
         if count > self.fifo_size:
             self.estimator.rejected += 1
             logger.warning("MPU-6050 FIFO: a count of %d bytes exceeds the FIFO's %d; rejected",
@@ -232,11 +262,22 @@ class FifoStream:
         if count == self.fifo_size:
             return None, None, "overflow"
         if count % ACCEL_SAMPLE_BYTES:
-            return None, None, f"FIFO count {count} is not a whole number of samples"
+            return None, None, (f"{self._rate_seen(count, after)} is not a whole number of "
+                                "samples")
         produced = self.delivered[-1] + count // ACCEL_SAMPLE_BYTES
         if count and not self.estimator.check(produced=produced, before=before, after=after):
-            return None, None, f"FIFO count {count} is more than the chip can have produced"
+            return None, None, f"{self._rate_seen(count, after)} is {self._impossible(produced)}"
         return count, (produced, before, after), None
+
+    def _impossible(self, produced: int) -> str:
+        """Which side of the rate's bracket an impossible count lies on."""
+        low, _ = self.estimator.bounds(produced, *self._last_times)
+        if low >= self.estimator.high:  # the count needs a longer period than allowed
+            return ("fewer than the chip must have produced (its clock slower than the "
+                    f"{100 * self.estimator.tolerance:g} % tolerance, or another program read "
+                    "the FIFO)")
+        return ("more than the chip can have produced (its clock faster than the "
+                f"{100 * self.estimator.tolerance:g} % tolerance, or a corrupted count)")
 
     def drain(self) -> FifoBlock:
         """Drain every whole sample waiting; on any fault restart and return what was kept."""
@@ -255,29 +296,77 @@ class FifoStream:
         if refused == "overflow":
             return self._fail("FIFO full (overflow)", overflow=True)
         if refused is not None:
-            return self._fail(refused)
+            return self._diagnose(refused)
         if count == 0:
             return self._quiet(observed[2])
         return self._drain_data(count, observed)
 
     def _drain_data(self, count: int, observed: tuple) -> FifoBlock:
-        """Read ``count`` bytes of samples, confirm them from the status registers, keep them."""
+        """Read ``count`` bytes of samples, confirm them from the settings read back and the
+        count after the drain, keep them."""
         raw, broken = self._read_data(count)
+        n = len(raw) // ACCEL_SAMPLE_BYTES
         try:
-            status = self.device.read_byte(Register.INT_STATUS, retry=False)
-            # USER_CTRL and PWR_MGMT_1 (RM 106-107) in one burst: a chip reset during the drain
-            # would have emptied the FIFO, and the data port then reads filler bytes.
-            user_ctrl, power = self.device.read_block(Register.USER_CTRL, 2)
+            # every setting and INT_STATUS: a register changed since the last drain costs this
+            # drain, never more (a chip reset during the drain would have emptied the FIFO, and
+            # the data port then reads filler bytes)
+            seen, status = self.mpu.read_registers()
+            before = after = self.clock.monotonic()
+            # after a failed transfer nothing can be placed: no count to compare
+            after_count = self.mpu.fifo_count() if broken is None else 0
+            after = self.clock.monotonic()
         except OSError as exc:
-            return self._fail(_cause(_as_i2c_error(exc)))
+            return self._fail(_cause(_as_i2c_error(exc)), discarded=n)
         if status & Interrupt.FIFO_OFLOW:
-            return self._fail("FIFO overflow", overflow=True)
-        if not user_ctrl & UserControl.FIFO_EN or power & PowerManagement1.SLEEP:
-            return self._fail("the chip was reset during the drain", reconfigure=True)
+            return self._fail("FIFO overflow", overflow=True, discarded=n)
+        changed = self.mpu.changed_registers(seen)
+        if changed:
+            return self._fail(self.mpu.describe_changes(changed), reconfigure=True, discarded=n)
+        foreign = self._check_after(observed, n, after_count, before, after, broken is None)
+        if foreign is not None:
+            self.foreign += 1
+            return self._fail(foreign, discarded=n)
         block = self._keep(raw, observed)
         if broken is not None:  # the whole chunks before the failed transfer are kept
             self._fail(_cause(broken))
         return block
+
+    def _check_after(self, observed, n: int, count: int, before: float, after: float,
+                     whole: bool) -> str | None:
+        """Why the count read after a drain shows that the drain's bytes were not the ones
+        counted (another program read the FIFO), or None. ``count`` bytes waited after ``n``
+        samples were read; they must be whole samples, and with the count before the drain
+        they must be a number the chip can have produced by then."""
+        if count > self.fifo_size:  # a corrupted count: no reader can make it
+            self.estimator.rejected += 1
+            logger.warning("MPU-6050 FIFO: a count of %d bytes after the drain exceeds the "
+                           "FIFO's %d; rejected", count, self.fifo_size)
+            return None
+        if count == self.fifo_size or not whole:
+            return None  # an overflow shows at the next drain; a failed transfer restarts
+        if count % ACCEL_SAMPLE_BYTES:
+            return (f"the FIFO count after the drain, {count}, is not a whole number of samples: "
+                    "another program read bytes from the FIFO (i2cget, i2cdump, a second "
+                    "driver); the drain is dropped")
+        produced, b1, a1 = observed
+        total = self.delivered[-1] + n + count // ACCEL_SAMPLE_BYTES
+        est = self.estimator
+        low, high = est.bounds(produced, b1, a1)
+        if low < high:
+            saved = est.low, est.high
+            est.low, est.high = low, high
+            est.segments[-1].append((produced, b1, a1))
+            possible = est.bounds(total, before, after)
+            est.segments[-1].pop()
+            est.low, est.high = saved
+            if possible[0] < possible[1]:
+                return None
+        est.rejected += 1
+        logger.warning("MPU-6050 FIFO: a count of %d bytes after the drain does not follow from "
+                       "the %d samples before it; rejected", count, produced - self.delivered[-1])
+        return (f"the FIFO count after the drain, {count}, does not follow from the one before "
+                f"it ({produced - self.delivered[-1]} samples) at the sample rate: another "
+                "program read samples from the FIFO; the drain is dropped")
 
     def _read_data(self, count: int) -> tuple[bytes, I2CError | None]:
         """Read ``count`` bytes of the data port in whole-sample transfers, one attempt each.
@@ -302,8 +391,12 @@ class FifoStream:
                 return bytes(raw), _as_i2c_error(exc)
         return bytes(raw), None
 
-    def _fail(self, cause: str, *, overflow: bool = False, reconfigure: bool = False):
+    def _fail(self, cause: str, *, overflow: bool = False, reconfigure: bool = False,
+              discarded: int = 0):
         self.overflows += overflow
+        self.discarded += discarded
+        if discarded:
+            cause += f" ({discarded} samples read and discarded)"
         self.pending = cause
         if reconfigure:
             self._note(cause, "reconfigure")
@@ -473,8 +566,14 @@ class FifoStream:
             "fifo_restarts": len(self.starts) - 1,
             "fifo_overflows": self.overflows,
             "fifo_counts_rejected": est.rejected,
+            "samples_discarded": self.discarded,
+            "foreign_reads_detected": self.foreign,
             "faults": [f.to_dict() for f in self.faults],
         }
+
+
+def _hz(rate: float) -> str:
+    return f"{rate / 1e3:.3g} kHz" if rate >= 1e3 else f"{rate:.4g} Hz"
 
 
 def _saturated(counts: np.ndarray, full_scale_g: int) -> int:

@@ -89,6 +89,11 @@ class I2CError(OSError):
     """A bus transfer that still failed after every permitted retry."""
 
 
+class SettingError(I2CError):
+    """A register does not read back the value written to it (a bit flipped on the wire, a
+    write the chip did not take, a second device at the address answering too)."""
+
+
 class BusDeadError(I2CError):
     """Nothing on the bus has succeeded for the :class:`RetryPolicy`'s ``dead_after`` seconds: no
     more transfers are attempted on it (errno ``ETIMEDOUT``)."""

@@ -78,6 +78,7 @@ class PeriodEstimator:
         nominal = check_positive("nominal", nominal)
         tolerance = check_in_range("tolerance", tolerance, 0.0, 1.0)
         self.nominal = nominal
+        self.tolerance = tolerance
         self.low = nominal / (1.0 + tolerance)
         self.high = nominal / (1.0 - tolerance)
         self.rejected = 0

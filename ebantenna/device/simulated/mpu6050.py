@@ -120,11 +120,16 @@ class SimulatedMPU6050:
 
     def __init__(self, source: Callable, clock, *, who_am_i: int = WHO_AM_I_VALUE,
                  clock_drift: float = 0.0, free_running_divider: bool = False,
-                 repeat_last_byte: bool = False):
+                 repeat_last_byte: bool = False, samples_like: int | None = None,
+                 stuck_from: float | None = None):
         self.source = source
         self.clock = clock
         self.who_am_i = who_am_i
-        self.model = CHIP_MODELS.get(who_am_i, CHIP_MODELS[WHO_AM_I_VALUE])
+        self.model = CHIP_MODELS.get(who_am_i if samples_like is None else samples_like,
+                                     CHIP_MODELS[WHO_AM_I_VALUE])
+        #: From this virtual time on, every sample repeats the one before (a stuck sensor).
+        self.stuck_from = stuck_from
+        self._stuck_value = None
         #: FIFO size, bytes (512 for the MPU-6500 family).
         self.FIFO_SIZE = self.model.fifo_size
         self.clock_drift = float(clock_drift)
@@ -198,7 +203,22 @@ class SimulatedMPU6050:
     def _counts(self, times: np.ndarray) -> np.ndarray:
         acc = np.asarray(self.source(times, self.sample_rate()), dtype=np.float64)
         counts = np.rint(acc / STANDARD_GRAVITY * self.lsb_per_g())
-        return np.clip(counts, _COUNT_LIMITS.min, _COUNT_LIMITS.max).astype(DATA_DTYPE)
+        counts = np.clip(counts, _COUNT_LIMITS.min, _COUNT_LIMITS.max).astype(DATA_DTYPE)
+        if self.stuck_from is not None:
+            stuck = times >= self.stuck_from
+            if stuck.any():
+                if self._stuck_value is None:
+                    self._stuck_value = counts[np.argmax(stuck)].copy()
+                counts[stuck] = self._stuck_value
+        return counts
+
+    def corrupt(self, register: int, value: int) -> None:
+        """A register takes ``value`` by itself (a fault): the samples due so far are produced
+        with the old settings first."""
+        self._catch_up()
+        was = self._producing()
+        self.regs[register] = value
+        self._update_state(was)
 
     def _catch_up(self) -> None:
         if self._since is None:

@@ -396,10 +396,13 @@ def _print_text(summary: dict, result, config) -> None:
         print(f"recorded {result.samples} samples at {result.recording.fs:.2f} Hz "
               f"(estimated), {result.samples_lost} lost, {result.i2c_retries} I2C retries, "
               f"{summary['fifo_restarts']} FIFO restarts, {summary['fifo_counts_rejected']} "
-              f"FIFO counts rejected; timestamps within "
+              f"FIFO counts rejected, {summary['samples_discarded']} samples read and "
+              f"discarded; timestamps within "
               f"{1e6 * summary['timestamp_uncertainty_s']:.0f} us")
         if summary["out"]:
             print(f"saved {summary['out']}")
+        for warning in result.warnings():
+            print(f"warning: {warning}")
     else:
         print(f"no contact within {config.max_search_time:g} s")
     if result.servos_released:

@@ -385,6 +385,8 @@ class RecordingSession:
                 servos_may_be_powered=False)
         self._save(touch, self._labelled(touch, result, conn))
         self.say(f"touch {touch.key}: saved ({rec.n_samples} samples, servos released)")
+        for warning in result.warnings():  # kept: the operator decides
+            self.say(f"touch {touch.key}: warning: {warning}")
 
     def _touch(self, touch: Touch, attempt: int):
         """Check the rig and run one search; returns the result and the connection used."""

@@ -200,7 +200,7 @@ def test_bit_errors_in_the_data_cannot_be_detected(bus_hz):
 
 def test_every_silent_fault_is_exercised_by_name():
     exercised = {"write bit flip", "register lost", "foreign read", "undercount", "bit error",
-                 "clone", "stuck sensor"}
+                 "clone", "stuck sensor", "pca brown-out"}
     assert exercised == set(SILENT_FAULTS)
 
 
@@ -218,3 +218,37 @@ def test_silent_fault_settings_are_checked(bad, words):
         Faults(**bad)
     with pytest.raises(TypeError, match="clone_6500"):
         Faults(clone_6500=1)
+
+
+def _search(faults, seed=1):
+    from ebantenna.device import PCA9685, PanTilt, search_and_record
+
+    rig = SimulatedRig.for_contact(seed=seed, faults=faults)
+    unit = PanTilt(PCA9685(rig.bus, clock=rig.clock))
+    unit.initialize()
+    mpu = MPU6050(rig.bus, clock=rig.clock)
+    mpu.initialize()
+    return rig, search_and_record(mpu, unit)
+
+
+def test_a_pca9685_brown_out_in_the_search_is_read_back_and_set_up_again():
+    # asleep at 200 Hz with its writes acknowledged: the servos went dead and the search reported
+    # "no contact" 12 s later
+    rig, result = _search(Faults(pca_brown_out_at=0.2))
+    assert "pca brown-out" in {k for _, k in rig.bus.injector.log}
+    assert result.contact_detected and result.servos_released
+    (fault,) = result.summary()["pca9685_faults"]
+    assert "MODE1 changed from 0x21 to 0x11" in fault and "PRE_SCALE changed from 0x79 to 0x1E" in fault
+
+
+def test_a_pre_scale_that_does_not_land_is_written_again_or_refused():
+    from ebantenna.chips.pca9685 import Register as PcaRegister
+    from ebantenna.device import PCA9685
+
+    once = Faults(pca_flip_write=((PcaRegister.PRE_SCALE, 0x80, 1),))
+    rig, result = _search(once)
+    assert result.contact_detected and rig.pca.frequency() == pytest.approx(50.0, rel=1e-3)
+    always = SimulatedRig.for_contact(seed=1, faults=Faults(
+        pca_flip_write=((PcaRegister.PRE_SCALE, 0x80, 9),)))
+    with pytest.raises(SettingError, match=r"PRE_SCALE \(0xFE\) reads back 0xF9 after 0x79"):
+        PCA9685(always.bus, clock=always.clock).initialize()

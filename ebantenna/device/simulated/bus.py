@@ -119,6 +119,8 @@ class SimulatedBus:
             self.devices[self.reset_address].brown_out()
         if self.reset_address in self.devices:
             injector.chip_events(now, self.devices[self.reset_address])
+        if injector.pca_brown_out(now) and DEFAULT_ADDRESS in self.devices:
+            self.devices[DEFAULT_ADDRESS].reset()
         stuck = injector.stuck(now)
         if stuck is not None:
             raise self._fail(stuck)
@@ -176,6 +178,8 @@ class SimulatedBus:
             raise self._fail(self.injector.early_error("eio"))
         if address == self.reset_address and self.faults.flip_write:
             data = [self.injector.flipped(register + k, v) for k, v in enumerate(data)]
+        elif address == DEFAULT_ADDRESS and self.faults.pca_flip_write:
+            data = [self.injector.flipped(register + k, v, pca=True) for k, v in enumerate(data)]
         chip.write(register, data)
         self.writes.append((address, register, tuple(data)))
         if kind == "late":

@@ -56,6 +56,10 @@ what it reads (the kinds of :data:`SILENT_FAULTS`, by the name each logs):
 ``"stuck sensor"``
     From a given time the sensor's output stops changing (``stuck_sensor_at``): the FIFO goes on
     filling with the same sample.
+``"pca brown-out"``
+    The PCA9685 loses power for a moment (``pca_brown_out_at``): asleep at 200 Hz, every
+    output off, its later writes still acknowledged. (``pca_flip_write`` flips bits of its
+    writes, logged as ``"write bit flip"``.)
 
 A sample clock off by more than ``MAX_CLOCK_DRIFT`` (up to 50 %) is also allowed, as a fault:
 outside the tolerance the driver assumes.
@@ -88,7 +92,7 @@ _LAST_REGISTER = _REGISTER_SPACE - 1
 
 #: Faults that no bus error reveals (see the module notes), by the name each logs.
 SILENT_FAULTS = ("write bit flip", "register lost", "foreign read", "undercount", "bit error",
-                 "clone", "stuck sensor")
+                 "clone", "stuck sensor", "pca brown-out")
 #: Largest sample-clock error the faults allow, relative (beyond MAX_CLOCK_DRIFT: a fault).
 MAX_FAULT_DRIFT = 0.5
 
@@ -161,6 +165,12 @@ class Faults:
         The accelerometer samples like the MPU-6500 family while answering WHO_AM_I 0x68.
     stuck_sensor_at : float or None
         Virtual time from which the sensor's output stops changing.
+    pca_brown_out_at : float or None
+        Virtual time at which the PCA9685 browns out once: power-on registers (asleep, every
+        output off, 200 Hz), its later writes still acknowledged ("pca brown-out").
+    pca_flip_write : tuple of (int, int, int)
+        ``(register, mask, n)`` as ``flip_write``, for the PCA9685 (e.g. a ``PRE_SCALE`` that
+        does not land as written).
 
     Examples
     --------
@@ -189,6 +199,8 @@ class Faults:
     bit_error_rate: float = 0.0
     clone_6500: bool = False
     stuck_sensor_at: float | None = None
+    pca_brown_out_at: float | None = None
+    pca_flip_write: tuple = ()
 
     def __post_init__(self):
         check_in_range("error_rate", self.error_rate, 0.0, 1.0, low_inclusive=True)
@@ -216,11 +228,17 @@ class Faults:
                        high_inclusive=True)
         if not isinstance(self.clone_6500, bool):
             raise TypeError(f"clone_6500 must be a bool, got {self.clone_6500!r}")
-        if self.stuck_sensor_at is not None:
-            check_nonnegative("stuck_sensor_at", self.stuck_sensor_at)
+        for name in ("stuck_sensor_at", "pca_brown_out_at"):
+            if getattr(self, name) is not None:
+                check_nonnegative(name, getattr(self, name))
         flips = tuple((check_int("flip_write register", r, minimum=0, maximum=_LAST_REGISTER),
                        check_int("flip_write mask", m, minimum=1, maximum=0xFF),
                        check_int("flip_write n", n, minimum=1)) for r, m, n in self.flip_write)
+        pca_flips = tuple((check_int("pca_flip_write register", r, minimum=0, maximum=0xFF),
+                           check_int("pca_flip_write mask", m, minimum=1, maximum=0xFF),
+                           check_int("pca_flip_write n", n, minimum=1))
+                          for r, m, n in self.pca_flip_write)
+        object.__setattr__(self, "pca_flip_write", pca_flips)
         lost = tuple((check_nonnegative("register_lost time", t),
                       check_int("register_lost register", r, minimum=0, maximum=_LAST_REGISTER),
                       check_int("register_lost value", v, minimum=0, maximum=0xFF))
@@ -279,7 +297,8 @@ class FaultInjector:
         self._reset_done = False
         # the silent faults draw from their own generator: the transfer faults stay as they were
         self._bits = np.random.default_rng([check_int("seed", seed, minimum=0), 1])
-        self._flips_done: dict[int, int] = {}
+        self._flips_done: dict[tuple, int] = {}
+        self._pca_reset_done = False
         self._lost_done = self._reads_done = self._under_done = 0
         self._now = 0.0
         self.errors_injected = 0
@@ -344,14 +363,25 @@ class FaultInjector:
         """How long a transfer failing with ``error`` hangs first, s (``ETIMEDOUT`` only)."""
         return self.faults.transfer_timeout if error.errno == errno.ETIMEDOUT else 0.0
 
-    def flipped(self, register: int, value: int) -> int:
-        """The value a write of ``value`` to accelerometer ``register`` delivers."""
-        for k, (reg, mask, n) in enumerate(self.faults.flip_write):
-            if reg == register and self._flips_done.get(k, 0) < n:
-                self._flips_done[k] = self._flips_done.get(k, 0) + 1
+    def flipped(self, register: int, value: int, pca: bool = False) -> int:
+        """The value a write of ``value`` to ``register`` of the accelerometer (or, with
+        ``pca``, of the PCA9685) delivers."""
+        table = self.faults.pca_flip_write if pca else self.faults.flip_write
+        for k, (reg, mask, n) in enumerate(table):
+            if reg == register and self._flips_done.get((pca, k), 0) < n:
+                self._flips_done[(pca, k)] = self._flips_done.get((pca, k), 0) + 1
                 self.log.append((self._now, "write bit flip"))
                 return value ^ mask
         return value
+
+    def pca_brown_out(self, now: float) -> bool:
+        """Whether the PCA9685 browns out before a transfer at ``now`` (once)."""
+        at = self.faults.pca_brown_out_at
+        if at is None or self._pca_reset_done or now < at:
+            return False
+        self._pca_reset_done = True
+        self.log.append((now, "pca brown-out"))
+        return True
 
     def chip_events(self, now: float, mpu) -> None:
         """Apply the lost registers and foreign reads due by ``now`` to the accelerometer."""

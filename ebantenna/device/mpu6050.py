@@ -111,6 +111,11 @@ logger = logging.getLogger(__name__)
 
 #: Bytes per FIFO sample with only the accelerometer enabled.
 SAMPLE_BYTES = ACCEL_SAMPLE_BYTES
+#: Memory a recorded sample takes, bytes: about 100 in the stream (counts, slot, segment,
+#: position), then the recording's t, ax and az and its raw account as JSON-ready lists (each
+#: count and index a Python object): 340 measured by tracemalloc at 30 s, with a margin
+#: (tests/device/test_device_silent_faults.py measures it).
+BYTES_PER_SAMPLE = 400
 #: Samples kept free in the FIFO by the poll-interval limit (Linux's ``inv_mpu6050`` resets its
 #: FIFO when fewer than three samples' room is left).
 FIFO_MARGIN = 3
@@ -557,9 +562,7 @@ class MPU6050:
             When no sample came for ``watchdog`` seconds; it holds what was recorded so far.
         """
         duration = check_positive("duration", duration)
-        # per sample: its counts and slot, its time and uncertainty, then the accelerations and
-        # the recording's t, ax and az: about 100 bytes
-        check_allocation(100 * duration * self.config.fs, parameter="duration",
+        check_allocation(BYTES_PER_SAMPLE * duration * self.config.fs, parameter="duration",
                          what=f"a recording of {duration * self.config.fs:.3g} samples")
         return record_stream(self, duration, poll_interval=poll_interval, watchdog=watchdog)
 

@@ -20,6 +20,10 @@ __all__ = ["PeriodEstimator", "CLOCK_TOLERANCE"]
 
 logger = logging.getLogger(__name__)
 
+#: Observations kept per segment (:meth:`PeriodEstimator.add` prunes beyond it): the cost of a
+#: count stays constant however long a segment runs.
+MAX_OBSERVATIONS = 64
+
 #: How far the sample clock may be off its nominal rate before the estimate is not trusted,
 #: relative: a few times the +/-1 % variation over temperature of the gyro oscillators that the PLL
 #: locks to (PS rev. 3.4, section 7.15).
@@ -126,7 +130,25 @@ class PeriodEstimator:
             return False
         self.low, self.high = self.bounds(produced, before, after)
         self.segments[-1].append((produced, before, after))
+        if len(self.segments[-1]) > MAX_OBSERVATIONS:
+            self._prune(self.segments[-1])
         return True
+
+    def _prune(self, observations: list) -> None:
+        """Keep a segment's observations few, so that a count costs the same however long the
+        segment: the enable, the newest, and those that bound the phase most tightly (the
+        earliest ``after`` and the latest ``before`` on the grid of the current period). Any
+        subset of true observations gives a true bracket; these lose almost nothing of it."""
+        keep = MAX_OBSERVATIONS // 4
+        period = self.period
+        rest = observations[1:]
+        chosen = {0} | {len(observations) - 1 - k for k in range(keep)}
+        by_after = sorted(range(1, len(observations)),
+                          key=lambda i: rest[i - 1][2] - rest[i - 1][0] * period)
+        by_before = sorted(range(1, len(observations)),
+                           key=lambda i: rest[i - 1][1] - rest[i - 1][0] * period, reverse=True)
+        chosen |= set(by_after[:keep]) | set(by_before[:keep])
+        observations[:] = [observations[i] for i in sorted(chosen)]
 
     def sample_interval(self, segment: int, j: int) -> tuple[float, float]:
         """Host times ``(earliest, latest)`` (s) at which sample ``j`` of ``segment`` can have

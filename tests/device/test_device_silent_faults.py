@@ -57,10 +57,10 @@ def _wrong_each(rig, mpu, rec) -> np.ndarray:
     return np.asarray(out, bool)
 
 
-def _judge(rig, mpu, rec):
+def _judge(rig, mpu, rec, asked=ASKED):
     """The contract, for a run that kept something."""
-    kept = mpu.stream.kept(0, ASKED)
-    assert rec.n_samples + rec.metadata["samples_lost"] == ASKED
+    kept = mpu.stream.kept(0, asked)
+    assert rec.n_samples + rec.metadata["samples_lost"] == asked
     assert not np.any(_wrong_each(rig, mpu, rec) & ~kept["suspect"])
     error = np.abs(kept["time"] - rig.true_times(mpu, rec))
     assert np.all((error <= kept["uncertainty"] + ROUND_OFF) | kept["suspect"])
@@ -252,3 +252,32 @@ def test_a_pre_scale_that_does_not_land_is_written_again_or_refused():
         pca_flip_write=((PcaRegister.PRE_SCALE, 0x80, 9),)))
     with pytest.raises(SettingError, match=r"PRE_SCALE \(0xFE\) reads back 0xF9 after 0x79"):
         PCA9685(always.bus, clock=always.clock).initialize()
+
+
+def test_a_drain_costs_the_same_and_a_sample_stays_within_its_memory_budget():
+    # The period estimator keeps a bounded number of observations per segment: its work per
+    # count does not grow with the recording. Memory per sample is measured against the
+    # allocation check's figure.
+    import tracemalloc
+
+    from ebantenna.device import mpu6050 as module
+    from ebantenna.device.timing import MAX_OBSERVATIONS
+
+    t = np.arange(12_000) / 1000.0
+    rig = SimulatedRig.from_arrays(np.sin(2 * np.pi * 37 * t), np.cos(2 * np.pi * 37 * t),
+                                   fs=1000.0, obstacle=None)
+    rig.bus.bus_hz = 400e3
+    mpu = MPU6050(rig.bus, clock=rig.clock)
+    mpu.initialize()
+    rig.touch()
+    tracemalloc.start()
+    try:
+        before = tracemalloc.get_traced_memory()[0]
+        rec = mpu.record(10.0, poll_interval=0.02)
+        used = tracemalloc.get_traced_memory()[0] - before
+    finally:
+        tracemalloc.stop()
+    assert rec.metadata["fifo_restarts"] == 0
+    assert max(len(obs) for obs in mpu.stream.estimator.segments) <= MAX_OBSERVATIONS
+    assert used / 10_000 <= module.BYTES_PER_SAMPLE
+    _judge(rig, mpu, rec, 10_000)  # pruning kept the timestamps within their (true) bound

@@ -43,6 +43,7 @@ from .clock import SystemClock
 __all__ = [
     "RetryPolicy",
     "I2CError",
+    "SettingError",
     "BusDeadError",
     "transfer_bits",
     "transfer_time",

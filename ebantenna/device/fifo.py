@@ -42,6 +42,16 @@ estimates the sample period from the timestamps of its interrupts), are:
 5. **A chip that went quiet** (no sample where some were due) is asked for its configuration; if
    it has been reset (a brown-out leaves it asleep, RM 107), it is configured again and the
    stream restarted. Every fault goes into the ``faults`` of the :class:`FifoStream`.
+6. **Read back, every drain.** After the data, every setting the driver wrote is read again
+   (:meth:`~ebantenna.device.mpu6050.MPU6050.read_registers`, ``INT_STATUS`` among them) and
+   ``FIFO_COUNT`` once more. A changed register discards the drain (counted in
+   ``samples_discarded``), names itself from what to what, and the chip is configured again; a
+   count after the data that is not whole samples, or does not follow from the count before at
+   any rate the tolerance allows, means another reader took bytes: the drain is dropped.
+   A count that contradicts the clock's tolerance flags the timestamps of its segment (all of
+   them once two counts fall off the same side: the clock itself is suspected); the samples'
+   own plausibility is reported by :func:`sensor_check`. What none of this can see is listed
+   in the device guide ("What the driver cannot detect").
 """
 
 from __future__ import annotations
@@ -645,7 +655,10 @@ def sensor_check(counts: np.ndarray, lsb_per_g: int) -> dict:
     >>> sensor_check(np.full((100, 3), 7, np.int16), 2048)["flags"][0]
     'all 100 samples are identical: a stuck or dead sensor'
     """
-    counts = np.asarray(counts)
+    if not isinstance(counts, np.ndarray) or counts.ndim != 2 or counts.shape[1] != 3 or (
+            counts.dtype.kind not in "iu"):
+        raise TypeError("counts must be an (n, 3) integer array of X, Y, Z counts, got "
+                        f"{getattr(counts, 'shape', type(counts).__name__)}")
     n = counts.shape[0]
     out = {"noise_lsb": [0.0, 0.0, 0.0], "longest_repeat": 0, "constant_axes": [], "flags": []}
     if n < 2:

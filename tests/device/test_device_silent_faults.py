@@ -284,3 +284,10 @@ def test_a_drain_costs_the_same_and_a_sample_stays_within_its_memory_budget():
     assert max(len(obs) for obs in mpu.stream.estimator.segments) <= MAX_OBSERVATIONS
     assert used / 10_000 <= module.BYTES_PER_SAMPLE
     _judge(rig, mpu, rec, 10_000)  # pruning kept the timestamps within their (true) bound
+
+
+@pytest.mark.parametrize("bad", [[[1, 2, 3]], np.zeros((4, 2), np.int16), np.zeros((4, 3)),
+                                 np.zeros(3, np.int16)])
+def test_the_sensor_check_refuses_what_is_not_counts(bad):
+    with pytest.raises(TypeError, match="counts must be an"):
+        sensor_check(bad, 2048)

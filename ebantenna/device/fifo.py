@@ -301,6 +301,8 @@ class FifoStream:
         it, a count read wrong, or another reader. The timestamps of the samples the segment
         kept rest on that tolerance: they are flagged (``samples_timing_suspect``)."""
         seg = len(self.starts) - 1
+        if seg not in self.estimator.excluded:
+            self.estimator.forget(seg)
         if self.delivered[seg] and seg not in self.suspect:
             self.suspect.add(seg)
             logger.warning("MPU-6050 FIFO: the timestamps of the %d samples of FIFO segment %d "
@@ -368,6 +370,9 @@ class FifoStream:
         if foreign is not None:
             return self._fail(foreign, discarded=n)
         block = self._keep(raw, observed)
+        if broken is None and after_count < self.fifo_size:  # one more observation of the clock
+            self.estimator.add(produced=self.delivered[-1] + after_count // ACCEL_SAMPLE_BYTES,
+                               before=before, after=after)
         if broken is not None:  # the whole chunks before the failed transfer are kept
             self._fail(_cause(broken))
         return block

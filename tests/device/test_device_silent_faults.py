@@ -291,3 +291,13 @@ def test_a_drain_costs_the_same_and_a_sample_stays_within_its_memory_budget():
 def test_the_sensor_check_refuses_what_is_not_counts(bad):
     with pytest.raises(TypeError, match="counts must be an"):
         sensor_check(bad, 2048)
+
+
+def test_forty_recordings_with_a_sample_taken_keep_nothing_unflagged_as_the_guide_says():
+    # device guide: "In 40 one-second recordings at 100 kHz with one sample taken at a random
+    # time, none kept an unflagged sample at the wrong place or an unflagged timestamp outside
+    # its stated uncertainty"
+    for seed in range(40):
+        at = 0.05 + 0.9 * np.random.default_rng(seed).random()
+        rig, mpu, rec = _record(Faults(foreign_reads=((at, "sample"),)), 100e3, seed)
+        _judge(rig, mpu, rec)

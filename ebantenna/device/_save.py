@@ -22,7 +22,7 @@ def fallback_paths(name: str) -> list[Path]:
     """Where a recording goes when its own path cannot be written: the working directory, then
     the system's temporary folder, each under ``name`` with the process id (two runs never
     overwrite each other's fallback)."""
-    stem = Path(name).stem
+    stem = Path(name).name.removesuffix(".npz")
     unique = f"{stem}-{os.getpid()}.npz"
     return [Path.cwd() / unique, Path(tempfile.gettempdir()) / unique]
 

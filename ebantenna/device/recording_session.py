@@ -42,7 +42,7 @@ from .mpu6050 import MPU6050, ChipIdentityError
 from .pantilt import PanTilt, search_and_record
 from .pca9685 import PCA9685
 from .plan import Plan, Touch
-from .safety import ReleaseError
+from .safety import ReleaseError, signals_held
 from .watchdog import StreamStalledError
 
 __all__ = ["Connection", "RecordingSession", "UnsafeRigError", "NoContactError",
@@ -442,18 +442,23 @@ class RecordingSession:
         can fail; elsewhere when the session folder cannot be written), then stop."""
         self.servos_may_be_powered = True
         kept = ""
-        if exc.result is not None and exc.result.recording is not None:
-            rec = self._labelled(touch, exc.result, None)
-            try:
-                self._save(touch, rec)
-            except OSError as error:
-                from ._save import save_recording
+        with signals_held():  # the recording saved and the session marked, whatever arrives
+            if exc.result is not None and exc.result.recording is not None:
+                rec = self._labelled(touch, exc.result, None)
+                try:
+                    self._save(touch, rec)
+                except OSError as error:
+                    from ._save import save_recording
 
-                saved, _ = save_recording(rec, None, fallback_name="record-" + touch.key.replace("/", "_"))
-                kept = (f" The recording could not be saved in the session ({error}); "
-                        + (f"it was saved to {saved}." if saved else "it was lost."))
-        self._stop_unsafe(f"touch {touch.key}: the servos could not be released ({exc}); "
-                          + CUT_SUPPLY + kept, True)
+                    saved, _ = save_recording(
+                        rec, None, fallback_name="record-" + touch.key.replace("/", "_"))
+                    kept = (f" The recording could not be saved in the session ({error}); "
+                            + (f"it was saved to {saved}." if saved else "it was lost."))
+            why = (f"touch {touch.key}: the servos could not be released ({exc}); "
+                   + CUT_SUPPLY + kept)
+            if not self.mark_unsafe(why):
+                why += f" ({self.manifest_path} could not be written)"
+        raise UnsafeRigError(why, servos_may_be_powered=True)
 
     def mark_unsafe(self, why: str, powered: bool = True) -> bool:
         """Write ``why`` into the manifest's ``unsafe`` entry, so that the next run checks the

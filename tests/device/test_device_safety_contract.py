@@ -197,4 +197,8 @@ def test_record_marks_the_session_unsafe_and_exits_3_whatever_else_fails(in_tmp,
     assert unsafe["servos_may_be_powered"] is True
     if failure == "full disk":  # the finished recording went elsewhere, and the operator is told
         (saved,) = in_tmp.glob("record-*.npz")
+        assert saved.name.startswith("record-brass_0.2000_0-")
         assert str(saved) in err and Recording.load(saved).n_samples > 0
+    else:  # the signal is held until the recording is saved and the session marked
+        (saved,) = (out / "recordings").glob("*.npz")
+        assert Recording.load(saved).metadata["release"]["servos_released"] is False

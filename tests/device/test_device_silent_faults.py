@@ -107,6 +107,7 @@ def test_a_register_lost_mid_run_costs_one_drain_and_is_named(bus_hz, lost):
             assert (f"{Register(register).name} (0x{int(register):02X}) changed from "
                     f"0x{expected[register]:02X} to 0x{value:02X}") in causes
     assert rig.mpu.regs[Register.ACCEL_CONFIG] == mpu.config.accel_config  # reconfigured
+    assert rig.wrong_samples(mpu, rec) == 0  # counts and the range they were taken at
     # at most one drain's samples are discarded, and they are counted: a drain holds at most
     # the FIFO's samples
     assert 0 < rec.metadata["samples_discarded"] <= mpu.fifo_size // 6

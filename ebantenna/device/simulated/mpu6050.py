@@ -137,6 +137,9 @@ class SimulatedMPU6050:
         self.repeat_last_byte = bool(repeat_last_byte)
         self._last_byte = _EMPTY_FIFO_BYTE
         self.epochs: list[tuple[float, list[np.ndarray]]] = []
+        #: Ground truth: for each epoch, the sensitivity (LSB/g) each of its samples was
+        #: taken at, in blocks as ``epochs`` (a range changed mid-run by a fault shows here).
+        self.epoch_scales: list[list[np.ndarray]] = []
         self.first_sample: list[float] = []
         self.regs = bytearray(_REGISTER_SPACE)
         self.fifo = bytearray()
@@ -158,6 +161,11 @@ class SimulatedMPU6050:
         """Lose power for a moment: the samples due so far are produced, then the power-on state."""
         self._catch_up()
         self.reset()
+
+    def truth_scale(self, epoch: int) -> np.ndarray:
+        """The sensitivity (LSB/g) each sample of epoch ``epoch`` was taken at."""
+        blocks = self.epoch_scales[epoch]
+        return np.concatenate(blocks) if blocks else np.empty(0, np.int32)
 
     def truth(self, epoch: int) -> np.ndarray:
         """Every sample (n, 3) int16 that epoch ``epoch`` put into the FIFO, in order."""
@@ -238,6 +246,7 @@ class SimulatedMPU6050:
             times = self._since + (k + 1) / fs
         counts = self._counts(times)
         self.epochs[-1][1].append(counts.astype(np.int16))
+        self.epoch_scales[-1].append(np.full(k.size, self.lsb_per_g(), np.int32))
         self.fifo += counts.tobytes()
         self.samples_pushed += k.size
         self._produced = target
@@ -255,6 +264,7 @@ class SimulatedMPU6050:
             self._since = self.clock.monotonic()
             self._produced = 0
             self.epochs.append((self._since, []))
+            self.epoch_scales.append([])
             fs = self.true_rate()
             if self.free_running_divider:  # the next tick of the chip's own grid
                 first = (math.floor(self._since * fs + 1e-9) + 1) / fs

@@ -164,7 +164,8 @@ class SimulatedRig:
         what the simulated chip put into its FIFO: the ground truth.
 
         A kept sample is right when the chip's epoch that started when the driver's segment did
-        holds, at the same position, the same counts on all three axes.
+        holds, at the same position, the same counts on all three axes, taken at the range the
+        driver converts them with (a range the chip lost makes right counts wrong m/s^2).
         """
         raw = recording.metadata["raw"]
         starts = mpu.stream.starts
@@ -178,9 +179,10 @@ class SimulatedRig:
                 wrong += 1
                 continue
             if k not in truths:
-                truths[k] = self.mpu.truth(k)
-            truth = truths[k]
-            wrong += not (pos < len(truth) and list(truth[pos]) == list(counts))
+                truths[k] = self.mpu.truth(k), self.mpu.truth_scale(k)
+            truth, scale = truths[k]
+            wrong += not (pos < len(truth) and list(truth[pos]) == list(counts)
+                          and scale[pos] == mpu.config.lsb_per_g)
         return wrong
 
     def oe_line(self):

@@ -11,9 +11,9 @@ Every command ends in one of three ways: success (exit code 0, or 1 where the co
 one line on stderr naming what was wrong (exit code 2: bad input, a damaged file, too little
 memory; exit code 3 from ``acquire``: the recording was saved but the servos could not be
 released, and the servo supply must be cut by hand), or, on Ctrl-C, SIGTERM or SIGHUP, one line
-saying so (exit codes 130, 143 and 129, as a shell reports a process killed by those signals). A command
-that has partial results worth keeping (a recording) saves them before it stops; with ``--json``
-it then prints what it kept, marked ``"interrupted"``.
+saying so (exit codes 130, 143 and 129, as a shell reports a process killed by those signals). A
+command that has partial results worth keeping (a recording) saves them before it stops; with
+``--json`` it then prints what it kept, marked ``"interrupted"``.
 
 The signal handlers are the first thing :func:`main` installs, before it imports any command
 module (and ``import ebantenna`` imports nothing heavy), so an interrupt during the start-up

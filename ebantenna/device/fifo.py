@@ -66,7 +66,6 @@ from ..chips.mpu6050 import (
     ACCEL_SAMPLE_BYTES,
     FifoEnable,
     Interrupt,
-    PowerManagement1,
     Register,
     UserControl,
 )

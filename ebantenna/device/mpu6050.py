@@ -450,9 +450,10 @@ class MPU6050:
 
         A drain loop sleeps ``P``, then reads the ``N`` samples waiting, ``c`` seconds each on
         the bus, plus ``F`` seconds of fixed transfers (the count before and after the data,
-        and the settings read back, :meth:`read_registers`) and ``busy`` seconds of other traffic (servo updates). Samples arrive at up to ``r =
-        fs (1 + tolerance)`` while it sleeps *and* while it drains, so ``N = r (P + F + busy +
-        N c)``: ``N = r (P + F + busy) / (1 - r c)``. Keeping ``N`` three samples below the
+        and the settings read back, :meth:`read_registers`) and ``busy`` seconds of other
+        traffic (servo updates). Samples arrive at up to ``r = fs (1 + tolerance)`` while it
+        sleeps *and* while it drains, so ``N = r (P + F + busy + N c)``: ``N = r (P + F +
+        busy) / (1 - r c)``. Keeping ``N`` three samples below the
         FIFO's size (Linux's ``inv_mpu6050`` keeps the same margin) gives
         ``P < N_max (1 - r c) / r - F - busy``. When ``r c >= 1`` the bus cannot keep up at all.
 

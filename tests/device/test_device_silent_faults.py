@@ -242,7 +242,8 @@ def test_a_pca9685_brown_out_in_the_search_is_read_back_and_set_up_again():
     assert "pca brown-out" in {k for _, k in rig.bus.injector.log}
     assert result.contact_detected and result.servos_released
     (fault,) = result.summary()["pca9685_faults"]
-    assert "MODE1 changed from 0x21 to 0x11" in fault and "PRE_SCALE changed from 0x79 to 0x1E" in fault
+    assert "MODE1 changed from 0x21 to 0x11" in fault
+    assert "PRE_SCALE changed from 0x79 to 0x1E" in fault
 
 
 def test_a_pre_scale_that_does_not_land_is_written_again_or_refused():

@@ -10,10 +10,10 @@ With ``--json`` a command prints exactly one JSON object on stdout and nothing e
 Every command ends in one of three ways: success (exit code 0, or 1 where the command says so),
 one line on stderr naming what was wrong (exit code 2: bad input, a damaged file, too little
 memory; exit code 3 from ``acquire``: the recording was saved but the servos could not be
-released, and the servo supply must be cut by hand), or, on Ctrl-C or SIGTERM, one line saying
-so (exit codes 130 and 143, as a shell reports a process killed by those signals). A command
-that has partial results worth keeping (a recording) saves them before it stops; with ``--json``
-it then prints what it kept, marked ``"interrupted"``.
+released, and the servo supply must be cut by hand), or, on Ctrl-C, SIGTERM or SIGHUP, one line
+saying so (exit codes 130, 143 and 129, as a shell reports a process killed by those signals). A
+command that has partial results worth keeping (a recording) saves them before it stops; with
+``--json`` it then prints what it kept, marked ``"interrupted"``.
 
 The signal handlers are the first thing :func:`main` installs, before it imports any command
 module (and ``import ebantenna`` imports nothing heavy), so an interrupt during the start-up
@@ -95,6 +95,12 @@ def _raise_terminated(signum, frame):
     raise Terminated(signum)
 
 
+#: Signals that end a command like SIGTERM: terminate, and hang-up (the terminal closed, an SSH
+#: session dropped), which would otherwise kill the process with no cleanup at all.
+_TERMINATING = tuple(getattr(signal, name) for name in ("SIGTERM", "SIGHUP")
+                     if hasattr(signal, name))
+
+
 @contextlib.contextmanager
 def _sigterm_as_interrupt():
     """SIGINT raises :class:`KeyboardInterrupt` and SIGTERM :class:`Terminated` inside.
@@ -108,23 +114,25 @@ def _sigterm_as_interrupt():
     previous_int = signal.getsignal(signal.SIGINT)
     if previous_int is not signal.SIG_IGN:
         signal.signal(signal.SIGINT, signal.default_int_handler)
-    previous = signal.signal(signal.SIGTERM, _raise_terminated)
+    previous = {signum: signal.signal(signum, _raise_terminated) for signum in _TERMINATING}
     try:
         yield
     finally:
-        signal.signal(signal.SIGTERM, previous)
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
         if previous_int is not None:
             signal.signal(signal.SIGINT, previous_int)
 
 
 @contextlib.contextmanager
-def _signals_ignored():
-    """While the one line is written: a second Ctrl-C or SIGTERM must not cut it short."""
+def signals_ignored():
+    """While the last lines are written (and a command's safety ending runs): a second Ctrl-C,
+    SIGTERM or SIGHUP must not cut it short."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
     previous = {signum: signal.signal(signum, signal.SIG_IGN)
-                for signum in (signal.SIGINT, signal.SIGTERM)}
+                for signum in (signal.SIGINT, *_TERMINATING)}
     try:
         yield
     finally:
@@ -153,7 +161,7 @@ def _interrupted(exc: KeyboardInterrupt, args, argv) -> None:
     wants_json = getattr(args, "json", False) if args is not None else "--json" in argv
     where = "ebantenna" if args is None else f"ebantenna {args.command}"
     kept = f"; kept {partial['out']}" if partial and partial.get("out") else ""
-    with _signals_ignored():
+    with signals_ignored():
         if wants_json:
             print_json({"interrupted": signal.Signals(signum).name, **(partial or {})})
             sys.stdout.flush()

@@ -40,8 +40,10 @@ def register(subparsers) -> None:
         "stop the servos when the accelerometer reports a contact, record the vibration window "
         "and release the servos. --simulated runs on a simulated I2C bus (the scene simulator "
         "provides the vibration); --bus N drives the real rig on /dev/i2c-N. Exit code 0 on "
-        "contact, 1 without one, 3 when the servos could not be released (the recording is "
-        "saved all the same, to --out or acquire-unreleased.npz; cut the servo supply).",
+        "contact, 1 without one, 3 whenever the servos were not confirmed released, whatever "
+        "else happened (an error, a signal, a full disk, a stall): the recording is saved "
+        "first, to --out or, when that cannot be written, to acquire-unreleased-PID.npz in the "
+        "working or temporary folder, and the last line says to cut the servo supply.",
     )
     where = parser.add_mutually_exclusive_group(required=True)
     where.add_argument("--simulated", action="store_true", help="use the simulated rig")
@@ -100,15 +102,23 @@ CUT_SUPPLY = ("the servos could not be released and may still be powered: switch
 
 
 def run(args: argparse.Namespace) -> int:
-    """Run the acquisition; returns the exit code (0 on contact, 1 without one, 3 when the servos
-    could not be released: the recording is then saved all the same)."""
+    """Run the acquisition; returns the exit code (0 on contact, 1 without one, 3 whenever the
+    servos were not confirmed released, whatever else happened: the recording is then saved
+    first, the instruction to cut the servo supply printed last)."""
     from .._validate import check_in_range
     from .pantilt import MAX_DURATION
 
     ratio = check_in_range("--ratio", args.ratio, 0.0, 1.0)
     check_in_range("--duration", args.duration, 0.0, MAX_DURATION, high_inclusive=True)
     setup = _setup(args, ratio)
-    result, unreleased = _acquire(args, setup)
+    try:
+        result = _acquire(args, setup)
+    except BaseException as exc:  # noqa: BLE001 - every way out is checked for the servos
+        if not _servos_safe(setup):
+            return _end_unsafe(args, setup, exc, _result_of(exc))
+        raise _released_error(args, setup, exc) from None
+    if not _servos_safe(setup):
+        return _end_unsafe(args, setup, None, result)
     summary = _summary(args, setup, result)
     if args.json:
         from ..cli import print_json
@@ -116,10 +126,118 @@ def run(args: argparse.Namespace) -> int:
         print_json(summary)
     else:
         _print_text(summary, result, setup["config"])
-    if unreleased:
-        print(f"ebantenna acquire: {CUT_SUPPLY}", file=sys.stderr)
-        return EXIT_NOT_RELEASED
+    if summary.get("save_failed"):
+        raise OSError(f"{summary['save_failed']}; the recording was saved to {summary['out']}"
+                      if summary["out"] else summary["save_failed"])
     return 0 if result.contact_detected else 1
+
+
+def _servos_safe(setup: dict) -> bool:
+    """Whether nothing can be driving the servos: the controller was never written to, or its
+    servo outputs last read back switched off, or the OE pin holds every output off."""
+    unit, oe = setup.get("unit"), setup.get("oe")
+    return unit is None or unit.released or (oe is not None and oe.disabled)
+
+
+def _result_of(exc):
+    """The finished result an exception carries (a failed release's), if any."""
+    while exc is not None:
+        result = getattr(exc, "result", None)
+        if result is not None:
+            return result
+        exc = exc.__context__
+    return None
+
+
+def _released_error(args, setup: dict, exc: BaseException) -> BaseException:
+    """The error to end with when the servos are known to be off: a stall or an interrupt saves
+    what it kept first."""
+    from ..cli import Terminated, interrupted
+    from .safety import SignalReceived
+    from .watchdog import StreamStalledError
+
+    if isinstance(exc, StreamStalledError):
+        return _stalled(exc, setup["out"])
+    if isinstance(exc, KeyboardInterrupt | SignalReceived):
+        partial = _interrupted_partial(args, setup, exc)
+        if isinstance(exc, SignalReceived):  # SIGTERM or SIGHUP, as the servo guard saw it
+            exc = Terminated(exc.signum)
+        return interrupted(exc, partial)
+    return exc
+
+
+def _kept_recording(setup: dict, exc):
+    """What a run that ended without a result kept: the error's recording (a stall's, an
+    interrupted window's), else every sample the stream kept, marked ``interrupted``."""
+    recording = getattr(exc, "recording", None)
+    if recording is not None:
+        return recording
+    mpu = setup.get("mpu")
+    if mpu is None or mpu.stream is None or mpu.samples_read == 0:
+        return None
+    try:
+        return mpu.to_recording(0, mpu.stream_position,
+                                metadata={**setup["labels"], "interrupted": True})
+    except (ValueError, OSError):
+        return None
+
+
+def _end_unsafe(args, setup: dict, exc: BaseException | None, result) -> int:
+    """End a run whose servos were not confirmed released, however it ended: save the recording
+    (atomically; a fallback location when ``--out`` cannot be written), say what happened,
+    print the instruction to cut the servo supply last, and return 3. Signals are ignored
+    meanwhile: the operator must see the instruction."""
+    from ..cli import print_json, signals_ignored
+    from ._save import save_recording
+
+    with signals_ignored():
+        recording = result.recording if result is not None else _kept_recording(setup, exc)
+        saved, failures = (None, []) if recording is None else save_recording(
+            recording, setup["out"], fallback_name="acquire-unreleased.npz")
+        if result is not None:
+            summary = _summary(args, setup, result, saved=(saved, failures))
+        else:
+            summary = {"mode": "simulated" if args.simulated else "hardware",
+                       **setup["labels"], "servos_released": False,
+                       "samples": 0 if recording is None else recording.n_samples,
+                       "out": None if saved is None else str(saved)}
+            if failures:
+                summary["save_failed"] = "; ".join(failures)
+        if exc is not None:
+            summary["error"] = _describe(exc)
+        summary["action_required"] = CUT_SUPPLY
+        lines = []
+        if exc is not None:
+            lines.append(f"ebantenna acquire: {summary['error']}")
+        lines += [f"ebantenna acquire: {line}" for line in failures]
+        if saved is not None:
+            lines.append(f"ebantenna acquire: recording saved to {saved}")
+        elif recording is not None:
+            lines.append("ebantenna acquire: the recording could not be saved anywhere")
+        try:
+            if args.json:
+                print_json(summary)
+            elif result is not None:
+                _print_text(summary, result, setup["config"])
+            sys.stdout.flush()
+        except OSError:
+            pass  # stdout gone (a closed pipe): the instruction still goes to stderr
+        for line in lines + [f"ebantenna acquire: {CUT_SUPPLY}"]:
+            print(line, file=sys.stderr, flush=True)
+    return EXIT_NOT_RELEASED
+
+
+def _describe(exc: BaseException) -> str:
+    """One line for what ended the run."""
+    import signal
+
+    signum = getattr(exc, "signum", None)
+    if signum is not None:
+        return f"interrupted by {signal.Signals(signum).name}"
+    if isinstance(exc, KeyboardInterrupt):
+        return "interrupted by SIGINT"
+    text = " ".join(str(exc).splitlines()) or type(exc).__name__
+    return text
 
 
 def _setup(args, ratio: float) -> dict:
@@ -185,58 +303,54 @@ def _hardware(args) -> dict:
 
 
 def _acquire(args, setup: dict):
-    """Search and record; returns the result and whether the servos stayed unreleased.
-
-    A recording that was made survives any failure after it: a stall saves the partial one and
-    raises :class:`OSError`; a failed release keeps the finished one (saved by the caller).
-    """
-    from ..cli import Terminated, interrupted
+    """Search and record; returns the result (the servos' state is the unit's, see
+    :func:`_servos_safe`). A failed release hands back its finished result in the error."""
     from .mpu6050 import MPU6050
     from .pantilt import PanTilt, search_and_record
     from .pca9685 import PCA9685
-    from .safety import ReleaseError, SignalReceived
-    from .watchdog import StreamStalledError
+    from .safety import ReleaseError
 
     bus, clock = setup["bus"], setup["clock"]
     try:
         # The servos first: switched off before anything else can fail (a missing
         # accelerometer must not leave them where an earlier run put them).
-        unit = PanTilt(PCA9685(bus, clock=clock, oscillator_hz=setup["oscillator"]))
+        setup["unit"] = unit = PanTilt(PCA9685(bus, clock=clock,
+                                               oscillator_hz=setup["oscillator"]))
         unit.initialize()
         setup["mpu"] = mpu = MPU6050(bus, clock=clock)
         mpu.initialize()
         return search_and_record(mpu, unit, setup["config"], labels=setup["labels"],
-                                 output_enable=setup["oe"]), False
+                                 output_enable=setup["oe"])
     except ReleaseError as exc:
         if exc.result is None:
             raise
-        return exc.result, True
-    except StreamStalledError as exc:
-        raise _stalled(exc, setup["out"]) from None
-    except (KeyboardInterrupt, SignalReceived) as exc:
-        partial = _interrupted_partial(args, setup, exc)
-        if isinstance(exc, SignalReceived):  # SIGTERM or SIGHUP, as the servo guard saw it
-            exc = Terminated(exc.signum)
-        raise interrupted(exc, partial) from None
+        return exc.result
     finally:
         bus.close()
-        if setup["oe"] is not None:
-            setup["oe"].close()
+        if setup["oe"] is not None and not setup["oe"].disabled:
+            setup["oe"].close()  # a line driven high is kept: closed, it would float low
 
 
 def _stalled(exc, out) -> OSError:
-    """The error a stalled stream ends ``acquire`` with, once its partial recording is saved."""
-    saved = exc.recording.save(out or "acquire-partial.npz") if exc.recording is not None else None
-    released = getattr(exc, "servos_released", False)
-    return OSError(f"{exc}; servos {'released' if released else 'NOT confirmed released'}; "
-                   + (f"partial recording saved to {saved}" if saved else "nothing to save"))
+    """The error a stalled stream ends ``acquire`` with (servos released), once its partial
+    recording is saved."""
+    from ._save import save_recording
+
+    saved, failures = (None, []) if exc.recording is None else save_recording(
+        exc.recording, out, fallback_name="acquire-partial.npz")
+    where = (f"partial recording saved to {saved}" if saved else "nothing to save"
+             if exc.recording is None else "the partial recording could not be saved")
+    return OSError(f"{exc}; servos released; " + "; ".join([*failures, where]))
 
 
 def _interrupted_partial(args, setup: dict, exc) -> dict:
     """What an interrupted run kept: search_and_record has released the servos on its way out;
     no recording is complete, but what the window held after a contact is saved, marked."""
+    from ._save import save_recording
+
     recording = getattr(exc, "recording", None)
-    saved = None if recording is None else recording.save(setup["out"] or "acquire-partial.npz")
+    saved = None if recording is None else save_recording(
+        recording, setup["out"], fallback_name="acquire-partial.npz")[0]
     return {"mode": "simulated" if args.simulated else "hardware", **setup["labels"],
             "contact_detected": True if recording is not None else None,
             "samples": None if recording is None else recording.n_samples,
@@ -244,9 +358,12 @@ def _interrupted_partial(args, setup: dict, exc) -> dict:
             "servos_released": getattr(exc, "servos_released", None)}
 
 
-def _summary(args, setup: dict, result) -> dict:
+def _summary(args, setup: dict, result, saved=None) -> dict:
     """The JSON summary (the command's contract), with the recording saved if asked (always
-    when the servos could not be released: nothing made is dropped)."""
+    when the servos could not be released: nothing made is dropped). ``saved`` is the outcome
+    of a save already made, ``(path or None, failures)``."""
+    from ._save import save_recording
+
     summary = {"mode": "simulated" if args.simulated else "hardware", **setup["labels"],
                **result.summary(), "out": None, "pca9685_oscillator_hz": setup["oscillator"]}
     rig = setup["rig"]
@@ -257,10 +374,14 @@ def _summary(args, setup: dict, result) -> dict:
                                     if result.recording is not None else 0)
         summary["virtual_time_s"] = rig.clock.monotonic()
     out = setup["out"]
-    if out is None and result.recording is not None and not result.servos_released:
-        out = "acquire-unreleased.npz"
-    if out is not None and result.recording is not None:
-        summary["out"] = str(result.recording.save(out))
+    if saved is None and result.recording is not None and (
+            out is not None or not result.servos_released):
+        saved = save_recording(result.recording, out, fallback_name="acquire-unreleased.npz")
+    if saved is not None:
+        path, failures = saved
+        summary["out"] = None if path is None else str(path)
+        if failures:
+            summary["save_failed"] = "; ".join(failures)
     if not result.servos_released:
         summary["action_required"] = CUT_SUPPLY
     return summary
@@ -275,10 +396,13 @@ def _print_text(summary: dict, result, config) -> None:
         print(f"recorded {result.samples} samples at {result.recording.fs:.2f} Hz "
               f"(estimated), {result.samples_lost} lost, {result.i2c_retries} I2C retries, "
               f"{summary['fifo_restarts']} FIFO restarts, {summary['fifo_counts_rejected']} "
-              f"FIFO counts rejected; timestamps within "
+              f"FIFO counts rejected, {summary['samples_discarded']} samples read and "
+              f"discarded; timestamps within "
               f"{1e6 * summary['timestamp_uncertainty_s']:.0f} us")
         if summary["out"]:
             print(f"saved {summary['out']}")
+        for warning in result.warnings():
+            print(f"warning: {warning}")
     else:
         print(f"no contact within {config.max_search_time:g} s")
     if result.servos_released:

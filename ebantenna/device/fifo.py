@@ -42,10 +42,21 @@ estimates the sample period from the timestamps of its interrupts), are:
 5. **A chip that went quiet** (no sample where some were due) is asked for its configuration; if
    it has been reset (a brown-out leaves it asleep, RM 107), it is configured again and the
    stream restarted. Every fault goes into the ``faults`` of the :class:`FifoStream`.
+6. **Read back, every drain.** After the data, every setting the driver wrote is read again
+   (:meth:`~ebantenna.device.mpu6050.MPU6050.read_registers`, ``INT_STATUS`` among them) and
+   ``FIFO_COUNT`` once more. A changed register discards the drain (counted in
+   ``samples_discarded``), names itself from what to what, and the chip is configured again; a
+   count after the data that is not whole samples, or does not follow from the count before at
+   any rate the tolerance allows, means another reader took bytes: the drain is dropped.
+   A count that contradicts the clock's tolerance flags the timestamps of its segment (all of
+   them once two counts fall off the same side: the clock itself is suspected); the samples'
+   own plausibility is reported by :func:`sensor_check`. What none of this can see is listed
+   in the device guide ("What the driver cannot detect").
 """
 
 from __future__ import annotations
 
+import errno
 import logging
 from dataclasses import asdict, dataclass
 
@@ -55,15 +66,15 @@ from ..chips.mpu6050 import (
     ACCEL_SAMPLE_BYTES,
     FifoEnable,
     Interrupt,
-    PowerManagement1,
     Register,
     UserControl,
 )
 from ..recording import Recording
-from .i2c import SMBUS_BLOCK_MAX, I2CError
+from .i2c import SMBUS_BLOCK_MAX, I2CError, SettingError
 from .timing import CLOCK_TOLERANCE, PeriodEstimator
 
-__all__ = ["PeriodEstimator", "StreamFault", "FifoBlock", "FifoStream", "CLOCK_TOLERANCE"]
+__all__ = ["PeriodEstimator", "StreamFault", "FifoBlock", "FifoStream", "CLOCK_TOLERANCE",
+           "sensor_check"]
 
 logger = logging.getLogger(__name__)
 
@@ -71,6 +82,9 @@ logger = logging.getLogger(__name__)
 FIFO_CHUNK = (SMBUS_BLOCK_MAX // ACCEL_SAMPLE_BYTES) * ACCEL_SAMPLE_BYTES
 #: A chip is asked whether it was reset when this many samples were due and none came.
 QUIET_SAMPLES = 3
+#: Counts off the same side of the clock's tolerance after which the clock itself is suspected
+#: (one can be a count read wrong; two on one side point at the clock).
+CLOCK_SUSPECT_AFTER = 2
 
 
 @dataclass(frozen=True)
@@ -156,10 +170,22 @@ class FifoStream:
         self._segment, self._position, self._slot, self._counts = [], [], [], []
         self.next_slot = 0
         self.overflows = 0
+        self.discarded = 0  # samples read but dropped: their drain could not be confirmed
+        self.foreign = 0  # drains dropped because another reader took bytes from the FIFO
+        self.suspect: set[int] = set()  # segments whose timestamps are flagged (_suspect)
+        self.contradictions = {"more": 0, "fewer": 0}  # counts off the tolerance, by side
+        self._last_times = (0.0, 0.0)
         self.pending: str | None = "start"
         self.unconfigured = False  # a reset chip whose configuration is not written back yet
         self.last_progress = self.clock.monotonic()
         self._try_restart()
+
+    @property
+    def clock_suspect(self) -> bool:
+        """Whether counts fell off the same side of the clock's tolerance more than once: the
+        clock itself is then likely outside it, and every timestamp of the stream is flagged
+        (each segment's bracket rests on the tolerance)."""
+        return max(self.contradictions.values()) >= CLOCK_SUSPECT_AFTER
 
     @property
     def counts_rejected(self) -> int:
@@ -174,14 +200,18 @@ class FifoStream:
     def _restart(self) -> None:
         """Empty the FIFO and start a new segment (raises :class:`I2CError` if the bus fails)."""
         device = self.device
-        device.write_byte(Register.FIFO_EN, 0)
+        self.mpu.write_verified(Register.FIFO_EN, 0)
         # FIFO_RESET only acts while USER_CTRL.FIFO_EN is 0 (RM 106).
-        device.write_byte(Register.USER_CTRL, UserControl.FIFO_RESET)
+        self.mpu.write_verified(Register.USER_CTRL, UserControl.FIFO_RESET)
         device.read_byte(Register.INT_STATUS)  # clears a stale overflow flag (RM 58)
-        device.write_byte(Register.FIFO_EN, FifoEnable.ACCEL)
+        self.mpu.write_verified(Register.FIFO_EN, FifoEnable.ACCEL)
         before = self.clock.monotonic()
         device.write_byte(Register.USER_CTRL, UserControl.FIFO_EN, retry=False)
         start = self.clock.monotonic()  # the write landed at its last acknowledge, just before
+        seen = device.read_byte(Register.USER_CTRL)  # read back: the segment starts only if
+        if not seen & UserControl.FIFO_EN:  # the enable landed
+            raise SettingError(errno.EIO, f"USER_CTRL (0x6A) reads back 0x{seen:02X} after "
+                               f"0x{int(UserControl.FIFO_EN):02X} was written")
         period = self.estimator.period
         if self.starts:
             offset = max(round((start - self.starts[0]) / period), self.next_slot)
@@ -206,13 +236,38 @@ class FifoStream:
         due = (now - self.starts[-1]) / self.estimator.period - self.delivered[-1]
         if due < QUIET_SAMPLES:
             return _empty_block()
+        return self._diagnose("no samples from the FIFO")
+
+    def _diagnose(self, cause: str) -> FifoBlock:
+        """A count that cannot be trusted, or a quiet FIFO: read the settings back; a changed
+        one is named (from what to what) and the chip reconfigured, else ``cause`` restarts."""
         try:
-            why = self.mpu.configuration_lost()
+            why = self.mpu.configuration_lost(streaming=True)
         except OSError as exc:
             return self._fail(_cause(_as_i2c_error(exc)))
         if why is not None:
-            return self._fail(why, reconfigure=True)
-        return self._fail("no samples from the FIFO")
+            return self._fail(f"{why} ({cause.split('; is this')[0]})", reconfigure=True)
+        return self._fail(cause)
+
+    def _rate_seen(self, count: int, after: float, verdict: str) -> str:
+        """What a count says about the rate: ``"N bytes (n samples) X ms after the FIFO was
+        started: a rate of R Hz, not F Hz"``, with a hint when the rate is a part's known one."""
+        fs = 1.0 / self.estimator.nominal
+        since = after - self.starts[-1]
+        samples = self.delivered[-1] + count / ACCEL_SAMPLE_BYTES
+        if since <= 0:
+            return f"FIFO count {count} {verdict}"
+        rate = samples / since
+        text = (f"FIFO count {count} {verdict} ({samples:g} samples in {1e3 * since:.1f} ms "
+                f"since the FIFO was started: a rate of {_hz(rate)}, not {_hz(fs)})")
+        clone = self.mpu.model.fifo_size == 1024 and fs < 8000.0 and (
+            abs(rate / 8000.0 - 1) < 0.2 or count == 512)
+        if count == 512 and self.mpu.model.fifo_size == 1024:
+            text += "; 512 bytes is the FIFO size of the MPU-6500 family (a full FIFO)"
+        if clone:
+            text += ("; is this an MPU-6500-family clone answering WHO_AM_I 0x68? Its divider "
+                     "is ignored with DLPF_CFG = 0, so it samples at 8 kHz")
+        return text
 
     def _trusted_count(self) -> tuple[int | None, tuple | None, str | None]:
         """Read ``FIFO_COUNT`` and check it before any data is read (rule 1 of the module notes).
@@ -224,6 +279,7 @@ class FifoStream:
         before = self.clock.monotonic()
         count = self.mpu.fifo_count()
         after = self.clock.monotonic()
+        self._last_times = (before, after)
         if count > self.fifo_size:
             self.estimator.rejected += 1
             logger.warning("MPU-6050 FIFO: a count of %d bytes exceeds the FIFO's %d; rejected",
@@ -232,11 +288,37 @@ class FifoStream:
         if count == self.fifo_size:
             return None, None, "overflow"
         if count % ACCEL_SAMPLE_BYTES:
-            return None, None, f"FIFO count {count} is not a whole number of samples"
+            return None, None, self._rate_seen(count, after, "is not a whole number of samples")
         produced = self.delivered[-1] + count // ACCEL_SAMPLE_BYTES
         if count and not self.estimator.check(produced=produced, before=before, after=after):
-            return None, None, f"FIFO count {count} is more than the chip can have produced"
+            self._suspect()
+            return None, None, self._rate_seen(count, after, f"is {self._impossible(produced)}")
         return count, (produced, before, after), None
+
+    def _suspect(self) -> None:
+        """A count of the current segment contradicts the clock's tolerance: a clock outside
+        it, a count read wrong, or another reader. The timestamps of the samples the segment
+        kept rest on that tolerance: they are flagged (``samples_timing_suspect``)."""
+        seg = len(self.starts) - 1
+        if seg not in self.estimator.excluded:
+            self.estimator.forget(seg)
+        if self.delivered[seg] and seg not in self.suspect:
+            self.suspect.add(seg)
+            logger.warning("MPU-6050 FIFO: the timestamps of the %d samples of FIFO segment %d "
+                           "are flagged: its counts contradict the clock's tolerance",
+                           self.delivered[seg], seg)
+
+    def _impossible(self, produced: int) -> str:
+        """Which side of the rate's bracket an impossible count lies on."""
+        low, _ = self.estimator.bounds(produced, *self._last_times)
+        fewer = low >= self.estimator.high  # the count needs a longer period than allowed
+        self.contradictions["fewer" if fewer else "more"] += 1
+        if fewer:
+            return ("fewer than the chip must have produced (its clock slower than the "
+                    f"{100 * self.estimator.tolerance:g} % tolerance, or another program read "
+                    "the FIFO)")
+        return ("more than the chip can have produced (its clock faster than the "
+                f"{100 * self.estimator.tolerance:g} % tolerance, or a corrupted count)")
 
     def drain(self) -> FifoBlock:
         """Drain every whole sample waiting; on any fault restart and return what was kept."""
@@ -255,29 +337,91 @@ class FifoStream:
         if refused == "overflow":
             return self._fail("FIFO full (overflow)", overflow=True)
         if refused is not None:
-            return self._fail(refused)
+            return self._diagnose(refused)
         if count == 0:
             return self._quiet(observed[2])
         return self._drain_data(count, observed)
 
     def _drain_data(self, count: int, observed: tuple) -> FifoBlock:
-        """Read ``count`` bytes of samples, confirm them from the status registers, keep them."""
+        """Read ``count`` bytes of samples, confirm them from the settings read back and the
+        count after the drain, keep them."""
         raw, broken = self._read_data(count)
+        n = len(raw) // ACCEL_SAMPLE_BYTES
         try:
-            status = self.device.read_byte(Register.INT_STATUS, retry=False)
-            # USER_CTRL and PWR_MGMT_1 (RM 106-107) in one burst: a chip reset during the drain
-            # would have emptied the FIFO, and the data port then reads filler bytes.
-            user_ctrl, power = self.device.read_block(Register.USER_CTRL, 2)
+            # every setting and INT_STATUS: a register changed since the last drain costs this
+            # drain, never more (a chip reset during the drain would have emptied the FIFO, and
+            # the data port then reads filler bytes)
+            seen, status = self.mpu.read_registers()
+            before = after = self.clock.monotonic()
+            # after a failed transfer nothing can be placed: no count to compare
+            after_count = self.mpu.fifo_count() if broken is None else 0
+            after = self.clock.monotonic()
         except OSError as exc:
-            return self._fail(_cause(_as_i2c_error(exc)))
+            return self._fail(_cause(_as_i2c_error(exc)), discarded=n)
+        changed = self.mpu.changed_registers(seen)
+        if changed:
+            overflow = bool(status & Interrupt.FIFO_OFLOW)
+            return self._fail(self.mpu.describe_changes(changed), reconfigure=True, discarded=n,
+                              overflow=overflow)
         if status & Interrupt.FIFO_OFLOW:
-            return self._fail("FIFO overflow", overflow=True)
-        if not user_ctrl & UserControl.FIFO_EN or power & PowerManagement1.SLEEP:
-            return self._fail("the chip was reset during the drain", reconfigure=True)
+            return self._fail("FIFO overflow", overflow=True, discarded=n)
+        foreign = self._check_after(observed, n, after_count, before, after, broken is None)
+        if foreign is not None:
+            return self._fail(foreign, discarded=n)
         block = self._keep(raw, observed)
+        if broken is None and after_count < self.fifo_size:  # one more observation of the clock
+            self.estimator.add(produced=self.delivered[-1] + after_count // ACCEL_SAMPLE_BYTES,
+                               before=before, after=after)
         if broken is not None:  # the whole chunks before the failed transfer are kept
             self._fail(_cause(broken))
         return block
+
+    def _check_after(self, observed, n: int, count: int, before: float, after: float,
+                     whole: bool) -> str | None:
+        """Why the count read after a drain shows that the drain's bytes were not the ones
+        counted (another program read the FIFO), or None. ``count`` bytes waited after ``n``
+        samples were read; they must be whole samples, and with the count before the drain
+        they must be a number the chip can have produced by then."""
+        if count > self.fifo_size:  # a corrupted count: no reader can make it
+            self.estimator.rejected += 1
+            logger.warning("MPU-6050 FIFO: a count of %d bytes after the drain exceeds the "
+                           "FIFO's %d; rejected", count, self.fifo_size)
+            return None
+        if count == self.fifo_size or not whole:
+            return None  # an overflow shows at the next drain; a failed transfer restarts
+        if count % ACCEL_SAMPLE_BYTES:
+            self.foreign += 1
+            return (f"the FIFO count after the drain, {count}, is not a whole number of samples: "
+                    "another program read bytes from the FIFO (i2cget, i2cdump, a second "
+                    "driver); the drain is dropped")
+        produced, b1, a1 = observed
+        total = self.delivered[-1] + n + count // ACCEL_SAMPLE_BYTES
+        est = self.estimator
+        low, high = est.bounds(produced, b1, a1)
+        if low < high:
+            saved = est.low, est.high
+            est.low, est.high = low, high
+            est.segments[-1].append((produced, b1, a1))
+            possible = est.bounds(total, before, after)
+            est.segments[-1].pop()
+            est.low, est.high = saved
+            if possible[0] < possible[1]:
+                return None
+            fewer = possible[0] >= est.high  # it needs a longer period than allowed
+        else:
+            fewer = low >= est.high
+        est.rejected += 1
+        self._suspect()
+        self.contradictions["fewer" if fewer else "more"] += 1
+        logger.warning("MPU-6050 FIFO: a count of %d bytes after the drain does not follow from "
+                       "the %d samples before it; rejected", count, produced - self.delivered[-1])
+        why = ("fewer samples than the clock's tolerance allows: another program read samples "
+               "from the FIFO, or the clock is slower than the tolerance" if fewer else
+               "more samples than the clock's tolerance allows: the clock is faster than the "
+               "tolerance, or a count was read wrong")
+        self.foreign += fewer
+        return (f"the FIFO count after the drain, {count}, does not follow from the one before "
+                f"it ({produced - self.delivered[-1]} samples): {why}; the drain is dropped")
 
     def _read_data(self, count: int) -> tuple[bytes, I2CError | None]:
         """Read ``count`` bytes of the data port in whole-sample transfers, one attempt each.
@@ -302,8 +446,12 @@ class FifoStream:
                 return bytes(raw), _as_i2c_error(exc)
         return bytes(raw), None
 
-    def _fail(self, cause: str, *, overflow: bool = False, reconfigure: bool = False):
+    def _fail(self, cause: str, *, overflow: bool = False, reconfigure: bool = False,
+              discarded: int = 0):
         self.overflows += overflow
+        self.discarded += discarded
+        if discarded:
+            cause += f" ({discarded} samples read and discarded)"
         self.pending = cause
         if reconfigure:
             self._note(cause, "reconfigure")
@@ -402,6 +550,8 @@ class FifoStream:
             t0 = uncertainty = np.zeros(1)
         out["time"] = t0[out["segment"]] + out["position"] * self.estimator.period
         out["uncertainty"] = uncertainty[out["segment"]]
+        out["suspect"] = (np.ones(out["segment"].shape, bool) if self.clock_suspect else
+                          np.isin(out["segment"], sorted(self.suspect)))
         return out
 
     def recording(self, first: int, stop: int, *, metadata: dict | None = None):
@@ -438,6 +588,8 @@ class FifoStream:
                 "samples_saturated": saturated,
                 "first_index": int(kept["slot"][0]),
                 "timestamp_uncertainty_s": float(kept["uncertainty"].max()),
+                "samples_timing_suspect": int(kept["suspect"].sum()),
+                "sensor_check": sensor_check(counts, mpu.config.lsb_per_g),
             }
         )
         meta.update(metadata or {})
@@ -458,6 +610,7 @@ class FifoStream:
             "segment_uncertainty_s": uncertainty.tolist(),
             "drain_time_s": (np.asarray(self.drain_times) - self.starts[0]).tolist(),
             "drain_samples": list(self.drain_sizes),
+            "timing_suspect_segments": sorted(self.suspect),
         }
 
     def report(self) -> dict:
@@ -473,8 +626,72 @@ class FifoStream:
             "fifo_restarts": len(self.starts) - 1,
             "fifo_overflows": self.overflows,
             "fifo_counts_rejected": est.rejected,
+            "clock_outside_tolerance_suspected": self.clock_suspect,
+            "samples_discarded": self.discarded,
+            "foreign_reads_detected": self.foreign,
             "faults": [f.to_dict() for f in self.faults],
         }
+
+
+#: Longest run of identical consecutive samples (all three axes) a live sensor plausibly gives:
+#: its noise (about 16 LSB rms at +/-16 g, see :func:`sensor_check`) makes a repeat rare, and
+#: ten in a row practically impossible.
+MAX_REPEATS = 10
+#: Sample-to-sample noise below which a live MPU-6050 is implausible, LSB rms: the data sheet's
+#: 400 ug/sqrt(Hz) (PS rev. 3.4, table 6.2) over a 260 Hz filter is about 8 mg, 16 LSB at
+#: +/-16 g; less than a tenth of an LSB means the values are not being measured.
+MIN_NOISE_LSB = 0.1
+
+
+def sensor_check(counts: np.ndarray, lsb_per_g: int) -> dict:
+    """Signs of a dead, stuck or duplicated sensor in ``counts`` ((n, 3) int16), for the
+    operator to judge (nothing is dropped).
+
+    Returns a JSON-ready dict: ``noise_lsb`` (per axis, the rms of the sample-to-sample change
+    over sqrt(2): the noise floor of a slowly varying signal), ``longest_repeat`` (the longest
+    run of identical consecutive samples), ``constant_axes`` (axes that never change) and
+    ``flags``, a list of sentences, empty when nothing looks wrong.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ebantenna.device.fifo import sensor_check
+    >>> sensor_check(np.full((100, 3), 7, np.int16), 2048)["flags"][0]
+    'all 100 samples are identical: a stuck or dead sensor'
+    """
+    if not isinstance(counts, np.ndarray) or counts.ndim != 2 or counts.shape[1] != 3 or (
+            counts.dtype.kind not in "iu"):
+        raise TypeError("counts must be an (n, 3) integer array of X, Y, Z counts, got "
+                        f"{getattr(counts, 'shape', type(counts).__name__)}")
+    n = counts.shape[0]
+    out = {"noise_lsb": [0.0, 0.0, 0.0], "longest_repeat": 0, "constant_axes": [], "flags": []}
+    if n < 2:
+        return out
+    diff = np.diff(counts.astype(np.int32), axis=0)
+    noise = np.sqrt(np.mean(diff.astype(np.float64) ** 2, axis=0) / 2.0)
+    same = np.all(diff == 0, axis=1)
+    edges = np.flatnonzero(np.diff(np.concatenate(([0], same.astype(np.int8), [0]))))
+    longest = int((edges[1::2] - edges[::2]).max()) + 1 if edges.size else 1
+    constant = [axis for k, axis in enumerate("xyz") if np.all(diff[:, k] == 0)]
+    out.update(noise_lsb=[round(float(v), 3) for v in noise], longest_repeat=longest,
+               constant_axes=constant)
+    if same.all():
+        out["flags"].append(f"all {n} samples are identical: a stuck or dead sensor")
+    else:
+        if longest >= MAX_REPEATS:
+            out["flags"].append(f"{longest} identical samples in a row: the sensor stopped "
+                                "updating for a while")
+        if constant:
+            out["flags"].append(f"axis {', '.join(constant)} never changes: a dead axis")
+        quiet = [axis for k, axis in enumerate("xyz") if 0 < noise[k] < MIN_NOISE_LSB]
+        if quiet:
+            out["flags"].append(f"axis {', '.join(quiet)}: noise below {MIN_NOISE_LSB} LSB, "
+                                "implausibly quiet for a live MPU-6050")
+    return out
+
+
+def _hz(rate: float) -> str:
+    return f"{rate / 1e3:.3g} kHz" if rate >= 1e3 else f"{rate:.4g} Hz"
 
 
 def _saturated(counts: np.ndarray, full_scale_g: int) -> int:

@@ -43,6 +43,7 @@ from .clock import SystemClock
 __all__ = [
     "RetryPolicy",
     "I2CError",
+    "SettingError",
     "BusDeadError",
     "transfer_bits",
     "transfer_time",
@@ -87,6 +88,11 @@ _FIRST_ADDRESS, _LAST_ADDRESS = 0x03, 0x77
 
 class I2CError(OSError):
     """A bus transfer that still failed after every permitted retry."""
+
+
+class SettingError(I2CError):
+    """A register does not read back the value written to it (a bit flipped on the wire, a
+    write the chip did not take, a second device at the address answering too)."""
 
 
 class BusDeadError(I2CError):

@@ -58,6 +58,7 @@ keep, is the subject of :mod:`ebantenna.device.fifo`.
 
 from __future__ import annotations
 
+import errno
 import logging
 import math
 import warnings
@@ -77,16 +78,19 @@ from ..chips.mpu6050 import (
     GYRO_STARTUP,
     RESET_WAIT,
     STANDARD_GRAVITY,
+    USER_CONTROL_SELF_CLEARING,
     WHO_AM_I_VALUE,
     ClockSource,
+    FifoEnable,
     Interrupt,
     PowerManagement1,
     Register,
+    UserControl,
 )
 from ..recording import Recording
 from .clock import SystemClock
 from .fifo import CLOCK_TOLERANCE, FIFO_CHUNK, FifoBlock, FifoStream
-from .i2c import RASPBERRY_PI_BUS_HZ, I2CDevice, RetryPolicy, transfer_time
+from .i2c import RASPBERRY_PI_BUS_HZ, I2CDevice, RetryPolicy, SettingError, transfer_time
 from .mpu6050_config import LSB_PER_G, MPU6050Config, accel_bandwidth, sample_rate_divider
 from .watchdog import StreamStalledError, record_stream
 
@@ -95,6 +99,7 @@ __all__ = [
     "MPU6050Config",
     "ChipIdentityError",
     "CompatibleChipWarning",
+    "SettingError",
     "FifoBlock",
     "STANDARD_GRAVITY",
     "LSB_PER_G",
@@ -106,6 +111,11 @@ logger = logging.getLogger(__name__)
 
 #: Bytes per FIFO sample with only the accelerometer enabled.
 SAMPLE_BYTES = ACCEL_SAMPLE_BYTES
+#: Memory a recorded sample takes, bytes: about 100 in the stream (counts, slot, segment,
+#: position), then the recording's t, ax and az and its raw account as JSON-ready lists (each
+#: count and index a Python object): 340 measured by tracemalloc at 30 s, with a margin
+#: (tests/device/test_device_silent_faults.py measures it).
+BYTES_PER_SAMPLE = 400
 #: Samples kept free in the FIFO by the poll-interval limit (Linux's ``inv_mpu6050`` resets its
 #: FIFO when fewer than three samples' room is left).
 FIFO_MARGIN = 3
@@ -117,6 +127,18 @@ class ChipIdentityError(OSError):
 
 class CompatibleChipWarning(UserWarning):
     """The chip is not an MPU-6050 but a part known to answer the same registers."""
+
+
+#: Bits of ``USER_CTRL`` that read back as written (the reset bits clear themselves, RM 106).
+USER_CTRL_STABLE = 0xFF & ~int(USER_CONTROL_SELF_CLEARING)
+
+
+def register_name(register: int) -> str:
+    """``"ACCEL_CONFIG (0x1C)"`` for a register of the map, else its number."""
+    try:
+        return f"{Register(register).name} (0x{int(register):02X})"
+    except ValueError:
+        return f"register 0x{int(register):02X}"
 
 
 class MPU6050:
@@ -229,7 +251,8 @@ class MPU6050:
     def configure(self) -> None:
         """Wake the chip and set rate, filter, range and the overflow interrupt.
 
-        Register writes, in order: ``USER_CTRL = 0`` (FIFO off while the clock starts),
+        Every write is read back (:meth:`write_verified`). Register writes, in order:
+        ``USER_CTRL = 0`` (FIFO off while the clock starts),
         ``PWR_MGMT_1 = 0x01`` (SLEEP cleared, CLKSEL = 1: PLL on the X
         gyroscope, recommended over the internal 8 MHz oscillator for stability, RM 107), a wait
         of :data:`~ebantenna.chips.mpu6050.GYRO_STARTUP` (30 ms, the gyroscope's start-up time,
@@ -238,11 +261,11 @@ class MPU6050:
         (a brown-out) in the middle of a run.
         """
         cfg = self.config
-        self.device.write_byte(Register.USER_CTRL, 0)
-        self.device.write_byte(Register.PWR_MGMT_1, CLKSEL.put(ClockSource.PLL_X_GYRO))
+        self.write_verified(Register.USER_CTRL, 0)
+        self.write_verified(Register.PWR_MGMT_1, CLKSEL.put(ClockSource.PLL_X_GYRO))
         self.clock.sleep(GYRO_STARTUP)
         for register, value in self._settings().items():
-            self.device.write_byte(register, value)
+            self.write_verified(register, value)
         logger.info("%s at 0x%02X: %g Hz, DLPF %d (%g Hz), +/-%d g", self.part, cfg.address,
                     cfg.fs, cfg.dlpf_cfg, self.bandwidth, cfg.full_scale_g)
 
@@ -271,15 +294,85 @@ class MPU6050:
             return ACCEL_DLPF_6500[max(self.config.dlpf_cfg, 1)]
         return self.config.bandwidth
 
-    def configuration_lost(self) -> str | None:
-        """Why the chip no longer runs as configured (asleep, or a setting changed), or None."""
-        power = self.device.read_byte(Register.PWR_MGMT_1)
-        if power & PowerManagement1.SLEEP:
-            return "the chip is asleep (reset, e.g. by a brown-out)"
-        for register, value in self._settings().items():
-            if self.device.read_byte(register) != value:
-                return f"register 0x{int(register):02X} lost its setting (chip reset)"
-        return None
+    def write_verified(self, register: int, value: int) -> None:
+        """Write a setting and read it back; written once more if it reads back wrong.
+
+        Raises
+        ------
+        SettingError
+            When it still reads back wrong: the message says what was written and what was
+            seen (a bit flipped on the wire twice in a row, a register the chip does not take,
+            two devices answering at one address).
+        """
+        mask = USER_CTRL_STABLE if register == Register.USER_CTRL else 0xFF
+        for attempt in range(2):
+            self.device.write_byte(register, value)
+            seen = self.device.read_byte(register)
+            if seen & mask == value & mask:
+                return
+            logger.warning("%s of the %s reads back 0x%02X after 0x%02X was written%s",
+                           register_name(register), self.part, seen, value,
+                           "; writing it again" if attempt == 0 else "")
+        raise SettingError(
+            errno.EIO, f"{register_name(register)} of the {self.part} at 0x"
+            f"{self.config.address:02X} reads back 0x{seen:02X} after 0x{value:02X} was written "
+            "twice: a bit error on the bus, or two devices answering at this address "
+            "('i2cdetect' cannot tell two of one kind apart: check the AD0 pins)")
+
+    def expected_registers(self, streaming: bool = True) -> dict:
+        """Every setting the driver wrote, as ``{register: value}``: rate, filter, range, the
+        overflow interrupt, the clock (awake), and with ``streaming`` the FIFO's enables."""
+        expected = {Register.PWR_MGMT_1: CLKSEL.put(ClockSource.PLL_X_GYRO), **self._settings()}
+        if streaming:
+            expected[Register.FIFO_EN] = FifoEnable.ACCEL
+            expected[Register.USER_CTRL] = UserControl.FIFO_EN
+        return {Register(r): int(v) for r, v in expected.items()}
+
+    def read_registers(self) -> tuple[dict, int]:
+        """Read every setting of :meth:`expected_registers` back in four bursts, and
+        ``INT_STATUS`` (clear on read, read once, in the burst that starts at ``INT_ENABLE``).
+
+        Returns ``({register: value}, int_status)``.
+        """
+        device = self.device
+        first = Register.SMPLRT_DIV
+        last = Register.ACCEL_CONFIG2 if self.model.accel_config2 else Register.ACCEL_CONFIG
+        seen = dict(zip(range(first, last + 1), device.read_block(first, last - first + 1),
+                        strict=True))
+        seen[Register.FIFO_EN] = device.read_byte(Register.FIFO_EN)
+        # INT_ENABLE (0x38), 0x39, INT_STATUS (0x3A): one attempt, INT_STATUS clears on read
+        enable, _, status = device.read_block(Register.INT_ENABLE, 3, retry=False)
+        seen[Register.INT_ENABLE] = enable
+        seen[Register.USER_CTRL], seen[Register.PWR_MGMT_1] = device.read_block(
+            Register.USER_CTRL, 2)
+        return {Register(r): v for r, v in seen.items()}, status
+
+    def changed_registers(self, seen: dict, streaming: bool = True) -> list:
+        """The settings of ``seen`` (from :meth:`read_registers`) that differ from what was
+        written: ``[(register, written, seen), ...]``."""
+        changed = []
+        for register, value in self.expected_registers(streaming).items():
+            mask = USER_CTRL_STABLE if register == Register.USER_CTRL else 0xFF
+            if seen[register] & mask != value & mask:
+                changed.append((register, value, seen[register]))
+        return changed
+
+    @staticmethod
+    def describe_changes(changed: list) -> str:
+        """``"ACCEL_CONFIG (0x1C) changed from 0x18 to 0x00, ..."``, with what the values mean
+        when the chip is asleep (a reset, e.g. a brown-out)."""
+        text = ", ".join(f"{register_name(r)} changed from 0x{w:02X} to 0x{s:02X}"
+                         for r, w, s in changed)
+        if any(r == Register.PWR_MGMT_1 and s & PowerManagement1.SLEEP for r, _, s in changed):
+            text += " (the chip is asleep: reset, e.g. by a brown-out)"
+        return text
+
+    def configuration_lost(self, streaming: bool = False) -> str | None:
+        """Why the chip no longer runs as configured (which settings changed, from what to
+        what), or None. ``streaming``: also check the FIFO's enables."""
+        seen, _ = self.read_registers()
+        changed = self.changed_registers(seen, streaming)
+        return self.describe_changes(changed) if changed else None
 
     # -- conversion ------------------------------------------------------------------------
     def to_acceleration(self, counts) -> np.ndarray:
@@ -356,10 +449,11 @@ class MPU6050:
         """The longest wait between drains after which the FIFO still cannot overflow, s.
 
         A drain loop sleeps ``P``, then reads the ``N`` samples waiting, ``c`` seconds each on
-        the bus, plus ``F`` seconds of fixed transfers (two counts, ``INT_STATUS``, ``USER_CTRL``)
-        and ``busy`` seconds of other traffic (servo updates). Samples arrive at up to ``r =
-        fs (1 + tolerance)`` while it sleeps *and* while it drains, so ``N = r (P + F + busy +
-        N c)``: ``N = r (P + F + busy) / (1 - r c)``. Keeping ``N`` three samples below the
+        the bus, plus ``F`` seconds of fixed transfers (the count before and after the data,
+        and the settings read back, :meth:`read_registers`) and ``busy`` seconds of other
+        traffic (servo updates). Samples arrive at up to ``r = fs (1 + tolerance)`` while it
+        sleeps *and* while it drains, so ``N = r (P + F + busy + N c)``: ``N = r (P + F +
+        busy) / (1 - r c)``. Keeping ``N`` three samples below the
         FIFO's size (Linux's ``inv_mpu6050`` keeps the same margin) gives
         ``P < N_max (1 - r c) / r - F - busy``. When ``r c >= 1`` the bus cannot keep up at all.
 
@@ -374,16 +468,16 @@ class MPU6050:
         >>> from ebantenna.device.mpu6050 import MPU6050
         >>> rig = SimulatedRig.quiet()
         >>> round(MPU6050(rig.bus, clock=rig.clock).max_poll_interval() * 1e3, 1)  # ms, 100 kHz
-        58.9
+        57.8
         >>> rig.bus.bus_hz = 400e3
         >>> round(MPU6050(rig.bus, clock=rig.clock).max_poll_interval() * 1e3, 1)  # ms, 400 kHz
-        132.6
+        132.2
         """
         busy = check_nonnegative("busy", busy)
         rate = self.config.fs * (1.0 + CLOCK_TOLERANCE)
         per_sample = transfer_time(FIFO_CHUNK, self.bus_hz) / (FIFO_CHUNK // SAMPLE_BYTES)
-        fixed = 2 * transfer_time(2, self.bus_hz) + transfer_time(1, self.bus_hz) + transfer_time(
-            2, self.bus_hz)
+        settings = 5 if self.model.accel_config2 else 4
+        fixed = sum(transfer_time(n, self.bus_hz) for n in (2, 2, settings, 1, 3, 2))
         most = self.fifo_size // SAMPLE_BYTES - FIFO_MARGIN
         return most * (1.0 - rate * per_sample) / rate - fixed - busy
 
@@ -453,7 +547,7 @@ class MPU6050:
         duration : float
             Length of the recording, s: ``round(duration * fs)`` slots.
         poll_interval : float
-            Time between drains, s. Must be below :meth:`max_poll_interval` (59 ms at 1 kHz on
+            Time between drains, s. Must be below :meth:`max_poll_interval` (58 ms at 1 kHz on
             a 100 kHz bus); a host that stalls for longer loses samples (and counts them).
         watchdog : float
             Longest time without a new sample, s. Default 1 s.
@@ -469,9 +563,7 @@ class MPU6050:
             When no sample came for ``watchdog`` seconds; it holds what was recorded so far.
         """
         duration = check_positive("duration", duration)
-        # per sample: its counts and slot, its time and uncertainty, then the accelerations and
-        # the recording's t, ax and az: about 100 bytes
-        check_allocation(100 * duration * self.config.fs, parameter="duration",
+        check_allocation(BYTES_PER_SAMPLE * duration * self.config.fs, parameter="duration",
                          what=f"a recording of {duration * self.config.fs:.3g} samples")
         return record_stream(self, duration, poll_interval=poll_interval, watchdog=watchdog)
 

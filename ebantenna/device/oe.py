@@ -65,6 +65,8 @@ class OutputEnable:
                             f"{type(line).__name__}")
         self.line = line
         self.line.off()
+        #: Whether ``OE`` is driven high (every output off) by :meth:`disable_outputs`.
+        self.disabled = False
 
     @classmethod
     def gpio(cls, pin: int) -> OutputEnable:
@@ -85,11 +87,13 @@ class OutputEnable:
     def disable_outputs(self) -> None:
         """Drive ``OE`` high: every output off, the servos limp (no I2C involved)."""
         self.line.on()
+        self.disabled = True
         logger.warning("PCA9685 outputs switched off through the OE pin")
 
     def enable_outputs(self) -> None:
         """Drive ``OE`` low: the outputs follow the registers again."""
         self.line.off()
+        self.disabled = False
 
     def close(self) -> None:
         """Release the GPIO line (a released line floats; the breakout's pull-down keeps ``OE``

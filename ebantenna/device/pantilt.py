@@ -17,6 +17,7 @@ accelerometer stops producing ends with
 
 from __future__ import annotations
 
+import errno
 import logging
 import math
 from dataclasses import dataclass, field
@@ -52,6 +53,11 @@ logger = logging.getLogger(__name__)
 
 #: Longest recording a search makes after a contact, s: the paper's windows last about 1 s.
 MAX_DURATION = 60.0
+
+
+#: The PCA9685's settings are read back every this many steps of the search (10 steps of
+#: the default 20 ms poll: a brown-out costs at most 0.2 s of dead servos).
+PCA_CHECK_EVERY = 10
 
 
 class PanTilt:
@@ -91,15 +97,31 @@ class PanTilt:
         if self.pan.calibration.channel == self.tilt.calibration.channel:
             raise ValueError("pan and tilt servos must be on different channels, both are on "
                              f"{self.pan.calibration.channel}")
+        #: Whether the servo outputs were last read back switched off (False once a servo is
+        #: commanded, or while that could not be confirmed).
+        self.released = False
 
     def initialize(self) -> None:
         """Set up the PCA9685: outputs off first, then 50 Hz. Call it before anything else is
-        started, so that servos left driven by an earlier run go limp at once."""
+        started, so that servos left driven by an earlier run go limp at once. The servo
+        outputs are read back switched off (:attr:`released`)."""
+        self.released = False
         self.pca.initialize()
+        self._confirm_off()
+
+    def _confirm_off(self) -> None:
+        """Read both servo channels back; :class:`I2CError` unless both are off."""
+        on = [servo.name for servo in (self.pan, self.tilt)
+              if self.pca.pulse(servo.calibration.channel)]
+        if on:
+            raise I2CError(errno.EIO, f"the {' and '.join(on)} servo output(s) read back ON "
+                           "after being switched off")
+        self.released = True
 
     def move(self, pan: float, tilt: float) -> tuple[float, float]:
         """Command both servos (clamped to their limits); returns the angles commanded, degrees."""
         pan, tilt = check_real("pan", pan), check_real("tilt", tilt)
+        self.released = False
         return self.pan.move(pan), self.tilt.move(tilt)
 
     def stop(self, back_off: float = 0.0, at: tuple | None = None) -> bool:
@@ -111,6 +133,7 @@ class PanTilt:
         pulse of the held angle (to within one count).
         """
         back_off = check_nonnegative("back_off", back_off)
+        self.released = False
         ok = True
         for k, servo in enumerate((self.pan, self.tilt)):
             if servo.angle is None:
@@ -128,10 +151,13 @@ class PanTilt:
 
     def release(self) -> None:
         """Switch every PWM output off (the servos go limp); raises :class:`I2CError` if the
-        bus fails (:class:`~ebantenna.device.safety.ServoGuard` retries)."""
+        bus fails or a servo output reads back ON afterwards
+        (:class:`~ebantenna.device.safety.ServoGuard` retries)."""
+        self.released = False
         self.pca.all_off()
         self.pan.angle = self.tilt.angle = None
         self.pan.previous = self.tilt.previous = None
+        self._confirm_off()
 
     def __enter__(self):
         return self
@@ -263,9 +289,33 @@ class AcquisitionResult:
             "fifo_restarts": self.stream.get("fifo_restarts", 0),
             "faults": len(self.stream.get("faults", [])),
         }
+        out["pca9685_faults"] = self.stream.get("pca9685_faults", [])
+        out["samples_discarded"] = self.stream.get("samples_discarded", 0)
+        out["foreign_reads_detected"] = self.stream.get("foreign_reads_detected", 0)
+        out["clock_outside_tolerance_suspected"] = self.stream.get(
+            "clock_outside_tolerance_suspected", False)
         if self.recording is not None:
+            meta = self.recording.metadata
             out["fs_hz"] = self.recording.fs
-            out["samples_saturated"] = self.recording.metadata.get("samples_saturated", 0)
+            out["samples_saturated"] = meta.get("samples_saturated", 0)
+            out["samples_timing_suspect"] = meta.get("samples_timing_suspect", 0)
+            out["sensor_flags"] = meta.get("sensor_check", {}).get("flags", [])
+        return out
+
+    def warnings(self) -> list[str]:
+        """What the operator should judge before using the recording (one sentence each)."""
+        out = [f"sensor: {flag}" for flag in self.summary().get("sensor_flags", [])]
+        summary = self.summary()
+        if summary.get("samples_timing_suspect"):
+            out.append(f"{summary['samples_timing_suspect']} samples have flagged timestamps: "
+                       "FIFO counts contradicted the clock's 5 % tolerance"
+                       + (" (the clock itself is suspected)"
+                          if summary["clock_outside_tolerance_suspected"] else ""))
+        for fault in summary["pca9685_faults"]:
+            out.append(f"PCA9685 {fault} during the search: set up again")
+        if summary["foreign_reads_detected"]:
+            out.append(f"another program read the FIFO {summary['foreign_reads_detected']} "
+                       "time(s): those drains were dropped")
         return out
 
 
@@ -322,8 +372,11 @@ def search_and_record(mpu: MPU6050, pantilt: PanTilt, config: SearchConfig | Non
     if not (output_enable is None or isinstance(output_enable, OutputEnable)):
         raise TypeError(f"output_enable must be an OutputEnable or None, got "
                         f"{type(output_enable).__name__}")
-    # two 4-byte pulse writes per poll share the bus with the FIFO
-    mpu.check_poll_interval(config.poll_interval, busy=2 * transfer_time(len(Led), mpu.bus_hz))
+    # two 4-byte pulse writes per poll share the bus with the FIFO, and on some polls the
+    # PCA9685's settings read back (MODE1-MODE2, PRE_SCALE)
+    busy = 2 * transfer_time(len(Led), mpu.bus_hz) + transfer_time(2, mpu.bus_hz) + (
+        transfer_time(1, mpu.bus_hz))
+    mpu.check_poll_interval(config.poll_interval, busy=busy)
     search = _Search(mpu, pantilt, config, labels)
     guard = ServoGuard(pantilt.release, mpu.clock,
                        fallback=None if output_enable is None else output_enable.disable_outputs)
@@ -351,6 +404,8 @@ class _Search:
         self.angles = None
         self.stream = None
         self.report: dict = {}
+        self.steps = 0
+        self.pca_faults: list[str] = []  # PCA9685 settings found changed, and set up again
 
     def run(self) -> None:
         """Poll until the window after a contact is recorded or the search time is up."""
@@ -382,6 +437,7 @@ class _Search:
         finally:
             stop_quietly(mpu)
             self.report = {} if self.stream is None else self.stream.report()
+            self.report["pca9685_faults"] = list(self.pca_faults)
 
     def detect(self, block) -> None:
         """Look for the contact in a drained block; on contact hold the servos where they had
@@ -400,12 +456,33 @@ class _Search:
                     self.trigger / self.mpu.config.fs, self.angles)
 
     def sweep(self, elapsed: float) -> None:
-        """Command the next point of the path; a failed update leaves the last command."""
+        """Command the next point of the path; a failed update leaves the last command. Every
+        :data:`PCA_CHECK_EVERY` steps the PCA9685's settings are read back; one that changed (a
+        brown-out: asleep at 200 Hz, its writes still acknowledged) is logged and the chip set
+        up again, so that the search does not sweep with dead or pinned servos."""
+        self.steps += 1
+        if self.steps % PCA_CHECK_EVERY == 0:
+            self.check_pca()
         try:
             moved = self.pantilt.move(*self.config.path.angles(elapsed))
             self.commands.append((self.mpu.clock.monotonic(), *moved))
         except I2CError as exc:  # the servos keep their last command
             logger.warning("servo update failed (%s); the search goes on", exc)
+
+    def check_pca(self) -> None:
+        """Read the PCA9685's settings back; set it up again if one changed."""
+        pca = self.pantilt.pca
+        try:
+            changed = pca.changed_settings()
+            if not changed:
+                return
+            what = ", ".join(f"{name} changed from 0x{w:02X} to 0x{v:02X}"
+                             for name, w, v in changed)
+            logger.warning("PCA9685: %s (a brown-out?); setting it up again", what)
+            self.pca_faults.append(what)
+            self.pantilt.initialize()
+        except I2CError as exc:
+            logger.warning("PCA9685 check failed (%s); the search goes on", exc)
 
     def result(self, guard: ServoGuard) -> AcquisitionResult:
         """What the search produced, with the release's outcome."""

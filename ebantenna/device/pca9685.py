@@ -28,6 +28,7 @@ a pulse is never half updated. Bit 4 of ``LEDn_OFF_H`` (full OFF) switches a cha
 
 from __future__ import annotations
 
+import errno
 import logging
 
 from .._validate import check_int, check_nonnegative, check_positive
@@ -49,7 +50,7 @@ from ..chips.pca9685 import (
     split_count,
 )
 from .clock import SystemClock
-from .i2c import I2CDevice, RetryPolicy
+from .i2c import I2CDevice, RetryPolicy, SettingError
 
 __all__ = ["PCA9685", "prescale_for", "pwm_frequency", "oscillator_from_measurement",
            "OSCILLATOR_RANGE", "NotInitializedError"]
@@ -59,6 +60,10 @@ __all__ = ["PCA9685", "prescale_for", "pwm_frequency", "oscillator_from_measurem
 OSCILLATOR_RANGE = (23e6, 27e6)
 
 logger = logging.getLogger(__name__)
+
+#: Bits of ``MODE1`` that read back as written (``RESTART`` reads the PWM's own state).
+_MODE1_STABLE = 0xFF & ~int(Mode1.RESTART)
+
 
 class NotInitializedError(RuntimeError):
     """A PCA9685 was asked for pulses before :meth:`PCA9685.initialize` set its frequency."""
@@ -181,20 +186,56 @@ class PCA9685:
         Register writes, in order: ``ALL_LED_OFF_H = 0x10`` (all outputs full off), ``MODE2 = 0x04``
         (totem-pole outputs, change on STOP), ``MODE1 = old | SLEEP`` (RESTART bit written as 0),
         ``PRE_SCALE``, ``MODE1 = old & ~SLEEP | AI`` (wake, register auto-increment), 500 us
-        wait, ``MODE1 |= RESTART``.
+        wait, ``MODE1 |= RESTART``. ``MODE2``, ``MODE1`` and ``PRE_SCALE`` are read back after
+        each write (:meth:`write_verified`): a ``PRE_SCALE`` that did not land would give pulses
+        of the wrong width, pinning the servos at an end stop.
         """
         self.device.write_byte(Register.ALL_LED_OFF_H, LED_FULL)
-        self.device.write_byte(Register.MODE2, Mode2.OUTDRV)
+        self.write_verified(Register.MODE2, Mode2.OUTDRV)
         old = self.device.read_byte(Register.MODE1) & ~int(Mode1.RESTART) & 0xFF
-        self.device.write_byte(Register.MODE1, old | Mode1.SLEEP)
-        self.device.write_byte(Register.PRE_SCALE, self.prescale)
+        self.write_verified(Register.MODE1, old | Mode1.SLEEP)
+        self.write_verified(Register.PRE_SCALE, self.prescale)
         awake = (old & ~int(Mode1.SLEEP) & 0xFF) | Mode1.AI
-        self.device.write_byte(Register.MODE1, awake)
+        self.write_verified(Register.MODE1, awake)
         self.clock.sleep(OSCILLATOR_STARTUP)
         self.device.write_byte(Register.MODE1, awake | Mode1.RESTART)
+        #: The settings :meth:`changed_settings` checks, as written.
+        self.expected = {Register.MODE1: awake, Register.MODE2: int(Mode2.OUTDRV),
+                         Register.PRE_SCALE: self.prescale}
         self.initialized = True
         logger.info("PCA9685 at 0x%02X: prescale %d, %.3f Hz", self.device.address, self.prescale,
                     self.frequency)
+
+    def write_verified(self, register: int, value: int) -> None:
+        """Write a setting and read it back (``MODE1``'s self-clearing ``RESTART`` bit aside);
+        written once more if it reads back wrong, then :class:`SettingError`."""
+        mask = _MODE1_STABLE if register == Register.MODE1 else 0xFF
+        for attempt in range(2):
+            self.device.write_byte(register, value)
+            seen = self.device.read_byte(register)
+            if seen & mask == value & mask:
+                return
+            logger.warning("PCA9685 %s reads back 0x%02X after 0x%02X was written%s",
+                           Register(register).name, seen, value,
+                           "; writing it again" if attempt == 0 else "")
+        raise SettingError(errno.EIO, f"PCA9685 {Register(register).name} (0x{register:02X}) "
+                           f"reads back 0x{seen:02X} after 0x{value:02X} was written twice")
+
+    def changed_settings(self) -> list:
+        """The settings of :meth:`initialize` that no longer read back as written (a brown-out
+        puts the chip to sleep at 200 Hz with its writes still acknowledged):
+        ``[(name, written, seen), ...]``, empty when all hold."""
+        if not self.initialized:
+            return []
+        mode1, mode2 = self.device.read_block(Register.MODE1, 2)
+        seen = {Register.MODE1: mode1, Register.MODE2: mode2,
+                Register.PRE_SCALE: self.device.read_byte(Register.PRE_SCALE)}
+        changed = []
+        for register, value in self.expected.items():
+            mask = _MODE1_STABLE if register == Register.MODE1 else 0xFF
+            if seen[register] & mask != value & mask:
+                changed.append((Register(register).name, value, seen[register]))
+        return changed
 
     @staticmethod
     def _check_channel(channel) -> int:

@@ -42,7 +42,7 @@ from .mpu6050 import MPU6050, ChipIdentityError
 from .pantilt import PanTilt, search_and_record
 from .pca9685 import PCA9685
 from .plan import Plan, Touch
-from .safety import ReleaseError
+from .safety import ReleaseError, signals_held
 from .watchdog import StreamStalledError
 
 __all__ = ["Connection", "RecordingSession", "UnsafeRigError", "NoContactError",
@@ -237,6 +237,8 @@ class RecordingSession:
         self.show_progress = show_progress
         self.config = plan.search_config()
         self.manifest = None
+        #: Set when the servos of this run could not be confirmed released.
+        self.servos_may_be_powered = False
 
     @property
     def manifest_path(self) -> Path:
@@ -383,6 +385,8 @@ class RecordingSession:
                 servos_may_be_powered=False)
         self._save(touch, self._labelled(touch, result, conn))
         self.say(f"touch {touch.key}: saved ({rec.n_samples} samples, servos released)")
+        for warning in result.warnings():  # kept: the operator decides
+            self.say(f"touch {touch.key}: warning: {warning}")
 
     def _touch(self, touch: Touch, attempt: int):
         """Check the rig and run one search; returns the result and the connection used."""
@@ -396,11 +400,21 @@ class RecordingSession:
             except ReleaseError as exc:
                 self._unreleased(touch, exc)
             except StreamStalledError as exc:
-                released = getattr(exc, "servos_released", False)
+                released = _servos_off(unit, conn)
                 self._stop_unsafe(f"touch {touch.key}: the accelerometer stopped producing "
-                                  f"({exc}); {CHECK_BUS}", not released)
+                                  f"({exc}); " + (CHECK_BUS if released else CUT_SUPPLY),
+                                  not released)
+            except BaseException as exc:  # an interrupt, any error: are the servos off?
+                if not _servos_off(unit, conn):
+                    self.servos_may_be_powered = True
+                    self.mark_unsafe(f"touch {touch.key}: stopped ({describe_stop(exc)}) with "
+                                     f"the servos not confirmed released; {CUT_SUPPLY}")
+                raise
         finally:
-            conn.close()
+            if not (conn.output_enable is not None and conn.output_enable.disabled):
+                conn.close()  # an OE line driven high is kept: closed, it would float low
+            else:
+                conn.bus.close()
         if not result.contact_detected:
             raise NoContactError(
                 f"touch {touch.key}: no contact within {self.config.max_search_time:g} s: put "
@@ -424,15 +438,47 @@ class RecordingSession:
         return unit, mpu
 
     def _unreleased(self, touch: Touch, exc: ReleaseError) -> None:
-        """The release failed: keep the finished recording, then stop."""
-        if exc.result is not None and exc.result.recording is not None:
-            self._save(touch, self._labelled(touch, exc.result, None))
-        self._stop_unsafe(f"touch {touch.key}: the servos could not be released ({exc}); "
-                          + CUT_SUPPLY, True)
+        """The release failed: keep the finished recording (first, before anything else that
+        can fail; elsewhere when the session folder cannot be written), then stop."""
+        self.servos_may_be_powered = True
+        kept = ""
+        with signals_held():  # the recording saved and the session marked, whatever arrives
+            if exc.result is not None and exc.result.recording is not None:
+                rec = self._labelled(touch, exc.result, None)
+                try:
+                    self._save(touch, rec)
+                except OSError as error:
+                    from ._save import save_recording
+
+                    saved, _ = save_recording(
+                        rec, None, fallback_name="record-" + touch.key.replace("/", "_"))
+                    kept = (f" The recording could not be saved in the session ({error}); "
+                            + (f"it was saved to {saved}." if saved else "it was lost."))
+            why = (f"touch {touch.key}: the servos could not be released ({exc}); "
+                   + CUT_SUPPLY + kept)
+            if not self.mark_unsafe(why):
+                why += f" ({self.manifest_path} could not be written)"
+        raise UnsafeRigError(why, servos_may_be_powered=True)
+
+    def mark_unsafe(self, why: str, powered: bool = True) -> bool:
+        """Write ``why`` into the manifest's ``unsafe`` entry, so that the next run checks the
+        rig first; returns whether the manifest could be written (a full disk or a removed
+        folder is logged, never raised: the operator's instruction matters more)."""
+        self.servos_may_be_powered |= powered
+        if self.manifest is None:
+            return False
+        self.manifest["unsafe"] = {"reason": why, "servos_may_be_powered": powered, "at": _now()}
+        try:
+            self._save_manifest()
+        except OSError as exc:
+            log.error("could not write %s (%s): the next run will not be warned",
+                      self.manifest_path, exc)
+            return False
+        return True
 
     def _stop_unsafe(self, why: str, powered: bool) -> None:
-        self.manifest["unsafe"] = {"reason": why, "servos_may_be_powered": powered, "at": _now()}
-        self._save_manifest()
+        if not self.mark_unsafe(why, powered):
+            why += f" ({self.manifest_path} could not be written)"
         raise UnsafeRigError(why, servos_may_be_powered=powered)
 
     def _check_after_stop(self) -> None:
@@ -470,6 +516,24 @@ class RecordingSession:
         path = write_atomic(self.directory / name, rec.save)
         self.manifest["recordings"][touch.key] = _entry(touch, name, path, rec)
         self._save_manifest()
+
+
+def _servos_off(unit, conn: Connection) -> bool:
+    """Whether the servo outputs last read back off, or the OE pin holds them off."""
+    oe = conn.output_enable
+    return bool(unit.released) or (oe is not None and oe.disabled)
+
+
+def describe_stop(exc: BaseException) -> str:
+    """One line for what stopped a run: the signal's name, or the error's text."""
+    signum = getattr(exc, "signum", None)
+    if signum is not None:
+        import signal
+
+        return f"interrupted by {signal.Signals(signum).name}"
+    if isinstance(exc, KeyboardInterrupt):
+        return "interrupted by SIGINT"
+    return " ".join(str(exc).splitlines()) or type(exc).__name__
 
 
 def _file_name(touch: Touch) -> str:

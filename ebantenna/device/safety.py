@@ -15,6 +15,7 @@ elsewhere the guard still releases on exit and says so in the log.
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import signal
 import threading
@@ -22,7 +23,7 @@ import threading
 from .._validate import check_int, check_nonnegative, check_positive
 from .i2c import BusDeadError, I2CError
 
-__all__ = ["ServoGuard", "SignalReceived", "GUARDED_SIGNALS", "ReleaseError"]
+__all__ = ["ServoGuard", "SignalReceived", "GUARDED_SIGNALS", "ReleaseError", "signals_held"]
 
 logger = logging.getLogger(__name__)
 
@@ -30,6 +31,22 @@ logger = logging.getLogger(__name__)
 GUARDED_SIGNALS = tuple(
     getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name)
 )
+
+
+@contextlib.contextmanager
+def signals_held():
+    """Ignore SIGINT, SIGTERM and SIGHUP inside (main thread only): for the few steps that must
+    finish once the servos could not be released (saving the recording, marking the session
+    unsafe), after which the run ends anyway with the instruction to cut the servo supply."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = {signum: signal.signal(signum, signal.SIG_IGN) for signum in GUARDED_SIGNALS}
+    try:
+        yield
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
 
 
 class SignalReceived(BaseException):

@@ -20,6 +20,10 @@ __all__ = ["PeriodEstimator", "CLOCK_TOLERANCE"]
 
 logger = logging.getLogger(__name__)
 
+#: Observations kept per segment (:meth:`PeriodEstimator.add` prunes beyond it): the cost of a
+#: count stays constant however long a segment runs.
+MAX_OBSERVATIONS = 64
+
 #: How far the sample clock may be off its nominal rate before the estimate is not trusted,
 #: relative: a few times the +/-1 % variation over temperature of the gyro oscillators that the PLL
 #: locks to (PS rev. 3.4, section 7.15).
@@ -78,10 +82,13 @@ class PeriodEstimator:
         nominal = check_positive("nominal", nominal)
         tolerance = check_in_range("tolerance", tolerance, 0.0, 1.0)
         self.nominal = nominal
+        self.tolerance = tolerance
         self.low = nominal / (1.0 + tolerance)
         self.high = nominal / (1.0 - tolerance)
         self.rejected = 0
         self.segments: list[list[tuple[int, float, float]]] = []
+        #: Segments whose observations no longer narrow the bracket (:meth:`forget`).
+        self.excluded: set[int] = set()
 
     def begin(self, *, before: float, after: float) -> None:
         """A new segment: the FIFO was enabled by a write made between host times ``before`` and
@@ -125,17 +132,79 @@ class PeriodEstimator:
             return False
         self.low, self.high = self.bounds(produced, before, after)
         self.segments[-1].append((produced, before, after))
+        if len(self.segments[-1]) > MAX_OBSERVATIONS:
+            self._prune(self.segments[-1])
         return True
+
+    def _prune(self, observations: list) -> None:
+        """Keep a segment's observations few, so that a count costs the same however long the
+        segment: the enable, the newest, and those that bound the phase most tightly (the
+        earliest ``after`` and the latest ``before`` on the grid of the current period). Any
+        subset of true observations gives a true bracket; these lose almost nothing of it."""
+        keep = MAX_OBSERVATIONS // 4
+        period = self.period
+        rest = observations[1:]
+        chosen = {0} | {len(observations) - 1 - k for k in range(keep)}
+        by_after = sorted(range(1, len(observations)),
+                          key=lambda i: rest[i - 1][2] - rest[i - 1][0] * period)
+        by_before = sorted(range(1, len(observations)),
+                           key=lambda i: rest[i - 1][1] - rest[i - 1][0] * period, reverse=True)
+        chosen |= set(by_after[:keep]) | set(by_before[:keep])
+        observations[:] = [observations[i] for i in sorted(chosen)]
+
+    def forget(self, segment: int) -> None:
+        """Take ``segment``'s observations out of the bracket (they contradicted it: a sample
+        taken by another reader, a count read wrong, a clock off its tolerance, and the ones
+        before the contradiction may have narrowed the bracket wrongly). The bracket is
+        recomputed from the tolerance and the other segments' observations, pair by pair; the
+        segment's own observations stay for its timestamps, which the caller flags."""
+        self.excluded.add(segment)
+        low, high = self.nominal / (1.0 + self.tolerance), self.nominal / (1.0 - self.tolerance)
+        for k, observations in enumerate(self.segments):
+            if k in self.excluded:
+                continue
+            for i, (n2, b2, a2) in enumerate(observations):
+                for n1, b1, a1 in observations[:i]:
+                    if n2 < n1:
+                        continue
+                    low = max(low, (b2 - a1) / (n2 - n1 + 1))
+                    if n2 - n1 > 1:
+                        high = min(high, (a2 - b1) / (n2 - n1 - 1))
+        self.low, self.high = low, high
+
+    def _own_bracket(self, segment: int) -> tuple[float, float]:
+        """The period bracket from ``segment``'s observations alone, no tolerance assumed (for a
+        segment taken out of the bracket, :meth:`forget`); where they bound it from one side
+        only, the tolerance's bound (widened to the other side's) stands in."""
+        low, high = 0.0, math.inf
+        observations = self.segments[segment]
+        for i, (n2, b2, a2) in enumerate(observations):
+            for n1, b1, a1 in observations[:i]:
+                if n2 < n1:
+                    continue
+                low = max(low, (b2 - a1) / (n2 - n1 + 1))
+                if n2 - n1 > 1:
+                    high = min(high, (a2 - b1) / (n2 - n1 - 1))
+        prior_low = self.nominal / (1.0 + self.tolerance)
+        prior_high = self.nominal / (1.0 - self.tolerance)
+        if not math.isfinite(high):
+            high = max(prior_high, low)
+        if low <= 0.0:
+            low = min(prior_low, high)
+        return low, high
 
     def sample_interval(self, segment: int, j: int) -> tuple[float, float]:
         """Host times ``(earliest, latest)`` (s) at which sample ``j`` of ``segment`` can have
-        been taken, from that segment's observations and the bracket."""
+        been taken, from that segment's observations and the bracket (a segment taken out of
+        the bracket by :meth:`forget` uses its own observations' bracket)."""
+        low, high = (self._own_bracket(segment) if segment in self.excluded
+                     else (self.low, self.high))
         earliest, latest = -math.inf, math.inf
         for n, before, after in self.segments[segment]:
             k = j - n  # t_j = t_n + k T > before + k T
-            earliest = max(earliest, before + k * (self.low if k >= 0 else self.high))
+            earliest = max(earliest, before + k * (low if k >= 0 else high))
             k += 1  # t_j = t_(n-1) + k T <= after + k T
-            latest = min(latest, after + k * (self.high if k >= 0 else self.low))
+            latest = min(latest, after + k * (high if k >= 0 else low))
         return earliest, latest
 
     def timestamps(self, segment: int, last: int) -> tuple[float, float]:

@@ -117,6 +117,10 @@ class SimulatedBus:
         self.transfers += 1
         if injector.chip_reset(now) and self.reset_address in self.devices:
             self.devices[self.reset_address].brown_out()
+        if self.reset_address in self.devices:
+            injector.chip_events(now, self.devices[self.reset_address])
+        if injector.pca_brown_out(now) and DEFAULT_ADDRESS in self.devices:
+            self.devices[DEFAULT_ADDRESS].reset()
         stuck = injector.stuck(now)
         if stuck is not None:
             raise self._fail(stuck)
@@ -143,6 +147,11 @@ class SimulatedBus:
             extra = chip.impossible_samples() + self.injector.overcount()
             count = min(((data[0] << 8) | data[1]) + ACCEL_SAMPLE_BYTES * extra, (1 << 16) - 1)
             data[0], data[1] = count >> 8, count & 0xFF
+        elif counting and length >= 2 and self.injector.undercount(self.clock.monotonic()):
+            count = max(((data[0] << 8) | data[1]) - ACCEL_SAMPLE_BYTES, 0)
+            data[0], data[1] = count >> 8, count & 0xFF
+        if address == self.reset_address and register == Register.FIFO_R_W:
+            data = self.injector.bit_errors(data)
         return data
 
     def _releases(self, address: int, register: int, data: list[int]) -> bool:
@@ -167,6 +176,10 @@ class SimulatedBus:
             self.injector.errors_injected += 1
             self.injector.log.append((self.clock.monotonic(), "release refused"))
             raise self._fail(self.injector.early_error("eio"))
+        if address == self.reset_address and self.faults.flip_write:
+            data = [self.injector.flipped(register + k, v) for k, v in enumerate(data)]
+        elif address == DEFAULT_ADDRESS and self.faults.pca_flip_write:
+            data = [self.injector.flipped(register + k, v, pca=True) for k, v in enumerate(data)]
         chip.write(register, data)
         self.writes.append((address, register, tuple(data)))
         if kind == "late":

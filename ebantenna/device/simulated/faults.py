@@ -31,6 +31,38 @@ run free (the first sample of a FIFO segment then comes anywhere within a period
 not one period after it), make it repeat its last byte when the FIFO is read past its end (as the
 real part does), make every transfer that times out hang for a stated time first (the adapter's
 timeout), and make every write that releases the servos fail.
+
+The faults below happen with no error on the bus at all; a driver can only notice them from
+what it reads (the kinds of :data:`SILENT_FAULTS`, by the name each logs):
+
+``"write bit flip"``
+    A write to a register arrives with bits flipped (``flip_write``): the chip takes a setting
+    nobody asked for (another range, a self-test bit).
+``"register lost"``
+    A register of the accelerometer changes on its own at a given time (``register_lost``):
+    a partial reset, a glitch, another program writing it.
+``"foreign read"``
+    Another program reads the accelerometer at a given time (``foreign_reads``): ``i2cget -y 1
+    0x68 0x74`` takes one byte of the FIFO, a second driver a whole sample, ``i2cdump`` every
+    register once (the FIFO's byte and the clear-on-read ``INT_STATUS`` included).
+``"undercount"``
+    A FIFO count reads one sample low, once, at the first count read after each given time.
+``"bit error"``
+    Bytes read from the FIFO data port arrive with bits flipped at ``bit_error_rate`` per bit,
+    with no error reported: I2C carries no checksum.
+``"clone"``
+    The accelerometer answers ``WHO_AM_I`` 0x68 but samples like a part of the MPU-6500 family
+    (``clone_6500``): its divider is ignored with ``DLPF_CFG = 0`` and its FIFO holds 512 bytes.
+``"stuck sensor"``
+    From a given time the sensor's output stops changing (``stuck_sensor_at``): the FIFO goes on
+    filling with the same sample.
+``"pca brown-out"``
+    The PCA9685 loses power for a moment (``pca_brown_out_at``): asleep at 200 Hz, every
+    output off, its later writes still acknowledged. (``pca_flip_write`` flips bits of its
+    writes, logged as ``"write bit flip"``.)
+
+A sample clock off by more than ``MAX_CLOCK_DRIFT`` (up to 50 %) is also allowed, as a fault:
+outside the tolerance the driver assumes.
 """
 
 from __future__ import annotations
@@ -41,10 +73,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..._validate import check_in_range, check_int, check_nonnegative, check_real
-from ...chips.mpu6050 import WHO_AM_I_VALUE
-from .mpu6050 import MAX_CLOCK_DRIFT
+from ...chips.mpu6050 import ACCEL_SAMPLE_BYTES, WHO_AM_I_VALUE, Register
+from .mpu6050 import _REGISTER_SPACE, MAX_CLOCK_DRIFT
 
-__all__ = ["Faults", "FaultInjector", "TRANSFER_FAULTS", "MAX_CLOCK_DRIFT", "MAX_OVERCOUNT"]
+__all__ = ["Faults", "FaultInjector", "TRANSFER_FAULTS", "SILENT_FAULTS", "MAX_CLOCK_DRIFT",
+           "MAX_OVERCOUNT", "MAX_FAULT_DRIFT"]
 
 #: Kinds of failed transfer the injector can draw (see the module notes).
 TRANSFER_FAULTS = ("nack", "eio", "etimedout", "eagain", "late", "short", "eintr", "overcount")
@@ -53,6 +86,15 @@ _EARLY_ERRNO = {"nack": errno.EREMOTEIO, "eio": errno.EIO, "etimedout": errno.ET
                 "eagain": errno.EAGAIN, "eintr": errno.EINTR}
 #: Largest over-report of a FIFO count, samples: up to a whole FIFO's worth.
 MAX_OVERCOUNT = 170
+#: The last register of the accelerometer that ``i2cdump`` reads: the last the simulated chip
+#: models (its map ends at WHO_AM_I, RM section 3).
+_LAST_REGISTER = _REGISTER_SPACE - 1
+
+#: Faults that no bus error reveals (see the module notes), by the name each logs.
+SILENT_FAULTS = ("write bit flip", "register lost", "foreign read", "undercount", "bit error",
+                 "clone", "stuck sensor", "pca brown-out")
+#: Largest sample-clock error the faults allow, relative (beyond MAX_CLOCK_DRIFT: a fault).
+MAX_FAULT_DRIFT = 0.5
 
 
 def _error(code: int) -> OSError:
@@ -89,7 +131,8 @@ class Faults:
         How long the bus stays stuck, s.
     clock_drift : float
         Relative error of the accelerometer's sample clock: it samples at ``fs * (1 +
-        clock_drift)``. At most ``MAX_CLOCK_DRIFT`` in magnitude.
+        clock_drift)``. Within ``MAX_CLOCK_DRIFT`` the driver's tolerance holds; up to
+        ``MAX_FAULT_DRIFT`` in magnitude it is a fault the driver must notice.
     free_running_divider : bool
         The accelerometer's sample-rate divider runs free instead of restarting when the FIFO is
         enabled: a segment's first sample comes at the next tick of its own grid, anywhere in
@@ -104,6 +147,30 @@ class Faults:
         Once the PCA9685 is awake (initialised), every write that switches its outputs off
         (``ALL_LED_OFF_H``, an ``LEDn_OFF_H`` with the full-OFF bit) fails with ``EIO``, before
         it reaches the chip.
+    flip_write : tuple of (int, int, int)
+        ``(register, mask, n)``: the first ``n`` writes of that accelerometer register arrive
+        with ``mask`` XOR-ed in ("write bit flip").
+    register_lost : tuple of (float, int, int)
+        ``(time, register, value)``: at that virtual time the accelerometer's register takes
+        ``value`` by itself ("register lost").
+    foreign_reads : tuple of (float, str)
+        ``(time, what)``: at that virtual time another program reads the accelerometer, ``what``
+        being ``"byte"`` (one FIFO byte, ``i2cget``), ``"sample"`` (six FIFO bytes) or
+        ``"dump"`` (every register once, ``i2cdump``) ("foreign read").
+    undercount_at : tuple of float
+        The first FIFO count read after each of these virtual times reads one sample low.
+    bit_error_rate : float
+        Probability that a bit read from the FIFO data port arrives flipped, in [0, 0.5].
+    clone_6500 : bool
+        The accelerometer samples like the MPU-6500 family while answering WHO_AM_I 0x68.
+    stuck_sensor_at : float or None
+        Virtual time from which the sensor's output stops changing.
+    pca_brown_out_at : float or None
+        Virtual time at which the PCA9685 browns out once: power-on registers (asleep, every
+        output off, 200 Hz), its later writes still acknowledged ("pca brown-out").
+    pca_flip_write : tuple of (int, int, int)
+        ``(register, mask, n)`` as ``flip_write``, for the PCA9685 (e.g. a ``PRE_SCALE`` that
+        does not land as written).
 
     Examples
     --------
@@ -125,6 +192,15 @@ class Faults:
     repeat_last_byte: bool = False
     transfer_timeout: float = 0.0
     release_fails: bool = False
+    flip_write: tuple = ()
+    register_lost: tuple = ()
+    foreign_reads: tuple = ()
+    undercount_at: tuple = ()
+    bit_error_rate: float = 0.0
+    clone_6500: bool = False
+    stuck_sensor_at: float | None = None
+    pca_brown_out_at: float | None = None
+    pca_flip_write: tuple = ()
 
     def __post_init__(self):
         check_in_range("error_rate", self.error_rate, 0.0, 1.0, low_inclusive=True)
@@ -145,9 +221,38 @@ class Faults:
             if not isinstance(getattr(self, name), bool):
                 raise TypeError(f"{name} must be a bool, got {getattr(self, name)!r}")
         drift = check_real("clock_drift", self.clock_drift)
-        if abs(drift) > MAX_CLOCK_DRIFT:
-            raise ValueError(f"clock_drift must lie in [-{MAX_CLOCK_DRIFT}, {MAX_CLOCK_DRIFT}], "
+        if abs(drift) > MAX_FAULT_DRIFT:
+            raise ValueError(f"clock_drift must lie in [-{MAX_FAULT_DRIFT}, {MAX_FAULT_DRIFT}], "
                              f"got {drift!r}")
+        check_in_range("bit_error_rate", self.bit_error_rate, 0.0, 0.5, low_inclusive=True,
+                       high_inclusive=True)
+        if not isinstance(self.clone_6500, bool):
+            raise TypeError(f"clone_6500 must be a bool, got {self.clone_6500!r}")
+        for name in ("stuck_sensor_at", "pca_brown_out_at"):
+            if getattr(self, name) is not None:
+                check_nonnegative(name, getattr(self, name))
+        flips = tuple((check_int("flip_write register", r, minimum=0, maximum=_LAST_REGISTER),
+                       check_int("flip_write mask", m, minimum=1, maximum=0xFF),
+                       check_int("flip_write n", n, minimum=1)) for r, m, n in self.flip_write)
+        pca_flips = tuple((check_int("pca_flip_write register", r, minimum=0, maximum=0xFF),
+                           check_int("pca_flip_write mask", m, minimum=1, maximum=0xFF),
+                           check_int("pca_flip_write n", n, minimum=1))
+                          for r, m, n in self.pca_flip_write)
+        object.__setattr__(self, "pca_flip_write", pca_flips)
+        lost = tuple((check_nonnegative("register_lost time", t),
+                      check_int("register_lost register", r, minimum=0, maximum=_LAST_REGISTER),
+                      check_int("register_lost value", v, minimum=0, maximum=0xFF))
+                     for t, r, v in self.register_lost)
+        reads = tuple((check_nonnegative("foreign_reads time", t), what)
+                      for t, what in self.foreign_reads)
+        bad = [what for _, what in reads if what not in ("byte", "sample", "dump")]
+        if bad:
+            raise ValueError(f"foreign_reads must read a 'byte', a 'sample' or a 'dump', got "
+                             f"{bad[0]!r}")
+        under = tuple(sorted(check_nonnegative("undercount_at", t) for t in self.undercount_at))
+        for name, value in (("flip_write", flips), ("register_lost", lost),
+                            ("foreign_reads", reads), ("undercount_at", under)):
+            object.__setattr__(self, name, value)
 
     @classmethod
     def every_kind(cls, error_rate: float, **kwargs) -> Faults:
@@ -190,6 +295,12 @@ class FaultInjector:
         self._rng = np.random.default_rng(check_int("seed", seed, minimum=0))
         self._stalled = False
         self._reset_done = False
+        # the silent faults draw from their own generator: the transfer faults stay as they were
+        self._bits = np.random.default_rng([check_int("seed", seed, minimum=0), 1])
+        self._flips_done: dict[tuple, int] = {}
+        self._pca_reset_done = False
+        self._lost_done = self._reads_done = self._under_done = 0
+        self._now = 0.0
         self.errors_injected = 0
         self.log: list[tuple[float, str]] = []
 
@@ -251,6 +362,68 @@ class FaultInjector:
     def timeout_wait(self, error: OSError) -> float:
         """How long a transfer failing with ``error`` hangs first, s (``ETIMEDOUT`` only)."""
         return self.faults.transfer_timeout if error.errno == errno.ETIMEDOUT else 0.0
+
+    def flipped(self, register: int, value: int, pca: bool = False) -> int:
+        """The value a write of ``value`` to ``register`` of the accelerometer (or, with
+        ``pca``, of the PCA9685) delivers."""
+        table = self.faults.pca_flip_write if pca else self.faults.flip_write
+        for k, (reg, mask, n) in enumerate(table):
+            if reg == register and self._flips_done.get((pca, k), 0) < n:
+                self._flips_done[(pca, k)] = self._flips_done.get((pca, k), 0) + 1
+                self.log.append((self._now, "write bit flip"))
+                return value ^ mask
+        return value
+
+    def pca_brown_out(self, now: float) -> bool:
+        """Whether the PCA9685 browns out before a transfer at ``now`` (once)."""
+        at = self.faults.pca_brown_out_at
+        if at is None or self._pca_reset_done or now < at:
+            return False
+        self._pca_reset_done = True
+        self.log.append((now, "pca brown-out"))
+        return True
+
+    def chip_events(self, now: float, mpu) -> None:
+        """Apply the lost registers and foreign reads due by ``now`` to the accelerometer."""
+        self._now = now
+        faults = self.faults
+        while self._lost_done < len(faults.register_lost) and (
+                faults.register_lost[self._lost_done][0] <= now):
+            _, register, value = faults.register_lost[self._lost_done]
+            mpu.corrupt(register, value)
+            self._lost_done += 1
+            self.log.append((now, "register lost"))
+        while self._reads_done < len(faults.foreign_reads) and (
+                faults.foreign_reads[self._reads_done][0] <= now):
+            what = faults.foreign_reads[self._reads_done][1]
+            if what == "dump":
+                for register in range(_LAST_REGISTER + 1):
+                    mpu.read(register, 1)
+            else:
+                mpu.read(Register.FIFO_R_W, 1 if what == "byte" else ACCEL_SAMPLE_BYTES)
+            self._reads_done += 1
+            self.log.append((now, "foreign read"))
+
+    def undercount(self, now: float) -> bool:
+        """Whether this FIFO count read reports one sample fewer (once per ``undercount_at``)."""
+        due = self.faults.undercount_at
+        if self._under_done < len(due) and due[self._under_done] <= now:
+            self._under_done += 1
+            self.log.append((now, "undercount"))
+            return True
+        return False
+
+    def bit_errors(self, data: list[int]) -> list[int]:
+        """``data`` (bytes read from the FIFO) with bits flipped at ``bit_error_rate``."""
+        rate = self.faults.bit_error_rate
+        if not rate or not data:
+            return data
+        flips = self._bits.random((len(data), 8)) < rate
+        if not flips.any():
+            return data
+        masks = (flips * (1 << np.arange(8))).sum(axis=1)
+        self.log.append((self._now, "bit error"))
+        return [b ^ int(m) for b, m in zip(data, masks, strict=True)]
 
     def overcount(self) -> int:
         """Samples a corrupted FIFO count claims beyond what the chip can have produced: 1 to

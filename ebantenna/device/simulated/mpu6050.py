@@ -120,11 +120,16 @@ class SimulatedMPU6050:
 
     def __init__(self, source: Callable, clock, *, who_am_i: int = WHO_AM_I_VALUE,
                  clock_drift: float = 0.0, free_running_divider: bool = False,
-                 repeat_last_byte: bool = False):
+                 repeat_last_byte: bool = False, samples_like: int | None = None,
+                 stuck_from: float | None = None):
         self.source = source
         self.clock = clock
         self.who_am_i = who_am_i
-        self.model = CHIP_MODELS.get(who_am_i, CHIP_MODELS[WHO_AM_I_VALUE])
+        self.model = CHIP_MODELS.get(who_am_i if samples_like is None else samples_like,
+                                     CHIP_MODELS[WHO_AM_I_VALUE])
+        #: From this virtual time on, every sample repeats the one before (a stuck sensor).
+        self.stuck_from = stuck_from
+        self._stuck_value = None
         #: FIFO size, bytes (512 for the MPU-6500 family).
         self.FIFO_SIZE = self.model.fifo_size
         self.clock_drift = float(clock_drift)
@@ -132,6 +137,9 @@ class SimulatedMPU6050:
         self.repeat_last_byte = bool(repeat_last_byte)
         self._last_byte = _EMPTY_FIFO_BYTE
         self.epochs: list[tuple[float, list[np.ndarray]]] = []
+        #: Ground truth: for each epoch, the sensitivity (LSB/g) each of its samples was
+        #: taken at, in blocks as ``epochs`` (a range changed mid-run by a fault shows here).
+        self.epoch_scales: list[list[np.ndarray]] = []
         self.first_sample: list[float] = []
         self.regs = bytearray(_REGISTER_SPACE)
         self.fifo = bytearray()
@@ -153,6 +161,11 @@ class SimulatedMPU6050:
         """Lose power for a moment: the samples due so far are produced, then the power-on state."""
         self._catch_up()
         self.reset()
+
+    def truth_scale(self, epoch: int) -> np.ndarray:
+        """The sensitivity (LSB/g) each sample of epoch ``epoch`` was taken at."""
+        blocks = self.epoch_scales[epoch]
+        return np.concatenate(blocks) if blocks else np.empty(0, np.int32)
 
     def truth(self, epoch: int) -> np.ndarray:
         """Every sample (n, 3) int16 that epoch ``epoch`` put into the FIFO, in order."""
@@ -198,7 +211,22 @@ class SimulatedMPU6050:
     def _counts(self, times: np.ndarray) -> np.ndarray:
         acc = np.asarray(self.source(times, self.sample_rate()), dtype=np.float64)
         counts = np.rint(acc / STANDARD_GRAVITY * self.lsb_per_g())
-        return np.clip(counts, _COUNT_LIMITS.min, _COUNT_LIMITS.max).astype(DATA_DTYPE)
+        counts = np.clip(counts, _COUNT_LIMITS.min, _COUNT_LIMITS.max).astype(DATA_DTYPE)
+        if self.stuck_from is not None:
+            stuck = times >= self.stuck_from
+            if stuck.any():
+                if self._stuck_value is None:
+                    self._stuck_value = counts[np.argmax(stuck)].copy()
+                counts[stuck] = self._stuck_value
+        return counts
+
+    def corrupt(self, register: int, value: int) -> None:
+        """A register takes ``value`` by itself (a fault): the samples due so far are produced
+        with the old settings first."""
+        self._catch_up()
+        was = self._producing()
+        self.regs[register] = value
+        self._update_state(was)
 
     def _catch_up(self) -> None:
         if self._since is None:
@@ -218,6 +246,7 @@ class SimulatedMPU6050:
             times = self._since + (k + 1) / fs
         counts = self._counts(times)
         self.epochs[-1][1].append(counts.astype(np.int16))
+        self.epoch_scales[-1].append(np.full(k.size, self.lsb_per_g(), np.int32))
         self.fifo += counts.tobytes()
         self.samples_pushed += k.size
         self._produced = target
@@ -235,6 +264,7 @@ class SimulatedMPU6050:
             self._since = self.clock.monotonic()
             self._produced = 0
             self.epochs.append((self._since, []))
+            self.epoch_scales.append([])
             fs = self.true_rate()
             if self.free_running_divider:  # the next tick of the chip's own grid
                 first = (math.floor(self._since * fs + 1e-9) + 1) / fs

@@ -17,7 +17,7 @@ import math
 import numpy as np
 
 from ..._validate import check_in_range, check_int, check_nonnegative, check_positive
-from ...chips.mpu6050 import ADDRESS_AD0_LOW
+from ...chips.mpu6050 import ADDRESS_AD0_LOW, CHIP_MODELS
 from ...chips.pca9685 import DEFAULT_ADDRESS
 from ...recording import Recording
 from ..clock import VirtualClock
@@ -28,6 +28,10 @@ from .pca9685 import SimulatedPCA9685
 from .world import DEFAULT_OBSTACLE, MG996R_SLEW_RATE, Obstacle, World
 
 __all__ = ["SimulatedRig"]
+
+
+#: The part a clone (``Faults.clone_6500``) samples like: the first of the MPU-6500 family.
+CLONE_OF = next(value for value, model in CHIP_MODELS.items() if model.accel_config2)
 
 
 class SimulatedRig:
@@ -96,7 +100,9 @@ class SimulatedRig:
                                     who_am_i=self.bus.faults.who_am_i,
                                     clock_drift=self.bus.faults.clock_drift,
                                     free_running_divider=self.bus.faults.free_running_divider,
-                                    repeat_last_byte=self.bus.faults.repeat_last_byte)
+                                    repeat_last_byte=self.bus.faults.repeat_last_byte,
+                                    samples_like=CLONE_OF if self.bus.faults.clone_6500 else None,
+                                    stuck_from=self.bus.faults.stuck_sensor_at)
         self.pca = SimulatedPCA9685(self.world, self.clock)
         self.bus.devices = {ADDRESS_AD0_LOW: self.mpu, DEFAULT_ADDRESS: self.pca}
         #: Time of the first sample at or after the contact, s.
@@ -158,7 +164,8 @@ class SimulatedRig:
         what the simulated chip put into its FIFO: the ground truth.
 
         A kept sample is right when the chip's epoch that started when the driver's segment did
-        holds, at the same position, the same counts on all three axes.
+        holds, at the same position, the same counts on all three axes, taken at the range the
+        driver converts them with (a range the chip lost makes right counts wrong m/s^2).
         """
         raw = recording.metadata["raw"]
         starts = mpu.stream.starts
@@ -172,9 +179,10 @@ class SimulatedRig:
                 wrong += 1
                 continue
             if k not in truths:
-                truths[k] = self.mpu.truth(k)
-            truth = truths[k]
-            wrong += not (pos < len(truth) and list(truth[pos]) == list(counts))
+                truths[k] = self.mpu.truth(k), self.mpu.truth_scale(k)
+            truth, scale = truths[k]
+            wrong += not (pos < len(truth) and list(truth[pos]) == list(counts)
+                          and scale[pos] == mpu.config.lsb_per_g)
         return wrong
 
     def oe_line(self):
@@ -239,7 +247,9 @@ class SimulatedRig:
             if not isinstance(self._recording, Recording):
                 raise TypeError("vibration(fs) must return a Recording")
         rec = self._recording
-        if rec is not None and not math.isclose(rec.fs, fs):
+        faults = self.bus.faults
+        if rec is not None and not math.isclose(rec.fs, fs) and not (
+                faults.register_lost or faults.flip_write or faults.clone_6500):
             raise ValueError(f"the vibration is sampled at {rec.fs:g} Hz but the simulated "
                              f"MPU-6050 is set to {fs:g} Hz")
         acc = self.rest + self._rng.normal(0.0, self.noise, (times.size, 3))
@@ -253,11 +263,11 @@ class SimulatedRig:
             self.contact_sample_time = float(times[after][0])
         # Played sample for sample at the chip's actual rate: with a drifting clock the
         # vibration runs that much faster or slower (a time scale within MAX_CLOCK_DRIFT, as
-        # Faults checks).
-        rate = self.mpu.true_rate()
+        # Faults checks). A chip whose rate a fault changed (a setting lost, a clone) plays it
+        # in real time, each sample held until the next.
+        rate = self.mpu.true_rate() * rec.fs / fs
         j = np.rint((times - self.contact_sample_time) * rate).astype(np.int64)
         play = after & (j >= 0) & (j < rec.n_samples)
-        acc[play, 0] = rec.ax[j[play]]
-        acc[play, 1] = 0.0
+        acc[play, 0] = rec.ax[j[play]]  # Y keeps its rest reading and noise, as a live axis
         acc[play, 2] = rec.az[j[play]]
         return acc

@@ -182,10 +182,25 @@ def run_record(args) -> int:
         code, stopped = 1, str(exc)
     except UnsafeRigError as exc:
         code, stopped = (EXIT_SERVOS_POWERED if exc.servos_may_be_powered else 2), str(exc)
-    except (KeyboardInterrupt, SignalReceived) as exc:
-        if isinstance(exc, SignalReceived):
-            exc = Terminated(exc.signum)
-        raise interrupted(exc, _summary(args, session, start)) from None
+    except BaseException as exc:  # noqa: BLE001 - the servos decide the exit code first
+        if session.servos_may_be_powered:  # whatever else happened: exit 3, the instruction
+            code, stopped = EXIT_SERVOS_POWERED, _unsafe_stop(session, exc)
+        elif isinstance(exc, KeyboardInterrupt | SignalReceived):
+            if isinstance(exc, SignalReceived):
+                exc = Terminated(exc.signum)
+            raise interrupted(exc, _summary(args, session, start)) from None
+        else:
+            raise
+    if code == EXIT_SERVOS_POWERED:
+        from ...cli import signals_ignored
+
+        with signals_ignored():  # the instruction must reach the operator
+            summary = _summary(args, session, start)
+            summary["stopped"] = stopped
+            if args.json:
+                print_json(summary)
+            print(f"ebantenna record: stopped: {stopped}", file=sys.stderr, flush=True)
+        return code
     summary = _summary(args, session, start)
     if stopped:
         summary["stopped"] = stopped
@@ -196,6 +211,18 @@ def run_record(args) -> int:
         print(f"saved {summary['saved']} of {summary['touches']} touches in {args.out} "
               f"({summary['retakes']} made again); manifest {summary['manifest']}")
     return code
+
+
+def _unsafe_stop(session, exc: BaseException) -> str:
+    """Why a run whose servos may be powered stopped, with the instruction, recorded in the
+    manifest (when it can be written) so that the next run checks the rig first."""
+    from ...device.recording_session import CUT_SUPPLY, describe_stop
+
+    why = f"{describe_stop(exc)}; the servos were not confirmed released: {CUT_SUPPLY}"
+    unsafe = (session.manifest or {}).get("unsafe")
+    if not unsafe:
+        session.mark_unsafe(why)
+    return why
 
 
 def _summary(args, session, start) -> dict:

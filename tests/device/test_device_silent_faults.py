@@ -1,0 +1,306 @@
+"""Faults with no error on the bus (ebantenna.device.simulated.faults.SILENT_FAULTS), each
+injected by name, judged against the simulated chip's ground truth: no wrong sample is kept
+unflagged, kept + lost = asked, every unflagged timestamp lies within its stated uncertainty, and
+what happened is said. Bit errors in the data are the exception the device guide documents:
+I2C carries no checksum, and they are kept.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from ebantenna.chips.mpu6050 import Register
+from ebantenna.device import MPU6050, SimulatedRig
+from ebantenna.device.fifo import sensor_check
+from ebantenna.device.i2c import SettingError
+from ebantenna.device.simulated import Faults
+from ebantenna.device.simulated.faults import SILENT_FAULTS
+from ebantenna.device.watchdog import StreamStalledError
+
+ASKED = 1000
+#: Float round-off of a timestamp: sums of a few hundred periods of 1e-3 s.
+ROUND_OFF = 1e-9
+
+
+def _ring(seed=0):
+    t = np.arange(3000) / 1000.0
+    rng = np.random.default_rng(seed)
+    ring = 30.0 * np.exp(-t / 0.4) * np.sin(2 * np.pi * 37.0 * t)
+    return ring + rng.normal(0, 0.5, t.size), 0.5 * ring
+
+
+def _record(faults, bus_hz=100e3, seed=0):
+    ax, az = _ring(seed)
+    rig = SimulatedRig.from_arrays(ax, az, fs=1000.0, obstacle=None, faults=faults, seed=seed)
+    rig.bus.bus_hz = bus_hz
+    mpu = MPU6050(rig.bus, clock=rig.clock)
+    mpu.initialize()
+    rig.touch()
+    try:
+        rec = mpu.record(ASKED / 1000.0)
+    except StreamStalledError as exc:
+        rec = exc.recording
+    return rig, mpu, rec
+
+
+def _wrong_each(rig, mpu, rec) -> np.ndarray:
+    """Per kept sample: differs from what the chip put at its place (the ground truth)."""
+    raw = rec.metadata["raw"]
+    epochs = {round(start, 12): k for k, (start, _) in enumerate(rig.mpu.epochs)}
+    out = []
+    for seg, pos, counts in zip(raw["segment"], raw["position"], raw["counts_xyz"],
+                                strict=True):
+        k = epochs.get(round(mpu.stream.starts[seg], 12))
+        truth = None if k is None else rig.mpu.truth(k)
+        out.append(truth is None or not (pos < len(truth) and list(truth[pos]) == counts))
+    return np.asarray(out, bool)
+
+
+def _judge(rig, mpu, rec, asked=ASKED):
+    """The contract, for a run that kept something."""
+    kept = mpu.stream.kept(0, asked)
+    assert rec.n_samples + rec.metadata["samples_lost"] == asked
+    assert not np.any(_wrong_each(rig, mpu, rec) & ~kept["suspect"])
+    error = np.abs(kept["time"] - rig.true_times(mpu, rec))
+    assert np.all((error <= kept["uncertainty"] + ROUND_OFF) | kept["suspect"])
+    assert np.all(kept["uncertainty"] > 0)  # no timestamp claims to be exact
+    assert rec.metadata["samples_timing_suspect"] == int(kept["suspect"].sum())
+
+
+BUSES = [100e3, 400e3]
+
+
+@pytest.mark.parametrize("bus_hz", BUSES)
+def test_a_bit_flipped_in_a_setting_write_is_read_back_and_written_again(bus_hz):
+    rig, mpu, rec = _record(Faults(flip_write=((Register.ACCEL_CONFIG, 0x08, 1),)), bus_hz)
+    assert ("write bit flip" in {k for _, k in rig.bus.injector.log})
+    assert rig.mpu.regs[Register.ACCEL_CONFIG] == mpu.config.accel_config
+    _judge(rig, mpu, rec)
+    assert rec.metadata["samples_lost"] == 0
+
+
+def test_a_setting_that_never_lands_is_a_clear_error():
+    ax, az = _ring()
+    rig = SimulatedRig.from_arrays(ax, az, fs=1000.0, obstacle=None,
+                                   faults=Faults(flip_write=((Register.ACCEL_CONFIG, 0x08, 9),)))
+    with pytest.raises(SettingError, match=r"ACCEL_CONFIG \(0x1C\) .* reads back 0x10 after "
+                                           r"0x18 was written twice"):
+        MPU6050(rig.bus, clock=rig.clock).initialize()
+
+
+@pytest.mark.parametrize("bus_hz", BUSES)
+@pytest.mark.parametrize("lost", [
+    ((0.4, Register.ACCEL_CONFIG, 0x00),),  # back to +/-2 g, awake, FIFO running
+    ((0.4, Register.CONFIG, 0x00), (0.4, Register.SMPLRT_DIV, 0x00)),  # 8 kHz
+    tuple((0.4, r, v) for r, v in ((Register.SMPLRT_DIV, 0), (Register.CONFIG, 0),
+                                   (Register.ACCEL_CONFIG, 0), (Register.INT_ENABLE, 0),
+                                   (Register.PWR_MGMT_1, 0x40))),  # everything, asleep
+], ids=["accel_config", "rate", "all"])
+def test_a_register_lost_mid_run_costs_one_drain_and_is_named(bus_hz, lost):
+    rig, mpu, rec = _record(Faults(register_lost=lost), bus_hz)
+    _judge(rig, mpu, rec)
+    causes = " ".join(f["cause"] for f in rec.metadata["faults"])
+    expected = mpu.expected_registers()
+    for _, register, value in lost:  # every one that changed is named, from what to what
+        if expected[register] != value:
+            assert (f"{Register(register).name} (0x{int(register):02X}) changed from "
+                    f"0x{expected[register]:02X} to 0x{value:02X}") in causes
+    assert rig.mpu.regs[Register.ACCEL_CONFIG] == mpu.config.accel_config  # reconfigured
+    assert rig.wrong_samples(mpu, rec) == 0  # counts and the range they were taken at
+    # at most one drain's samples are discarded, and they are counted: a drain holds at most
+    # the FIFO's samples
+    assert 0 < rec.metadata["samples_discarded"] <= mpu.fifo_size // 6
+    assert rec.metadata["fifo_restarts"] == 1
+
+
+@pytest.mark.parametrize("bus_hz", BUSES)
+@pytest.mark.parametrize("what", ["byte", "dump"])
+def test_a_foreign_read_of_bytes_drops_the_drain_it_misaligned(bus_hz, what):
+    for at in (0.4, 0.4123, 0.6071):
+        rig, mpu, rec = _record(Faults(foreign_reads=((at, what),)), bus_hz)
+        _judge(rig, mpu, rec)
+        assert rec.metadata["foreign_reads_detected"] + rec.metadata["fifo_restarts"] >= 1
+        assert rig.wrong_samples(mpu, rec) == 0
+
+
+@pytest.mark.parametrize("bus_hz", BUSES)
+def test_a_foreign_read_of_whole_samples_is_never_kept_unflagged(bus_hz):
+    for seed, at in enumerate((0.4, 0.4123, 0.6071, 0.25)):
+        rig, mpu, rec = _record(Faults(foreign_reads=((at, "sample"),)), bus_hz, seed)
+        _judge(rig, mpu, rec)
+
+
+@pytest.mark.parametrize("bus_hz", BUSES)
+def test_an_under_reported_count_is_never_kept_unflagged(bus_hz):
+    rig, mpu, rec = _record(Faults(undercount_at=(0.3, 0.5, 0.7)), bus_hz)
+    assert sum(k == "undercount" for _, k in rig.bus.injector.log) == 3
+    _judge(rig, mpu, rec)
+
+
+@pytest.mark.parametrize("bus_hz", BUSES)
+@pytest.mark.parametrize("drift", [-0.10, -0.07, 0.07, 0.10])
+def test_a_clock_beyond_the_tolerance_is_flagged_or_refused(bus_hz, drift):
+    rig, mpu, rec = _record(Faults(clock_drift=drift), bus_hz)
+    causes = " ".join(f.cause for f in mpu.stream.faults)
+    side = "slower" if drift < 0 else "faster"
+    assert f"{side} than the" in causes or "tolerance" in causes
+    if rec is not None:
+        _judge(rig, mpu, rec)
+
+
+def test_a_clone_of_the_mpu6500_family_is_named():
+    ax, az = _ring()
+    rig = SimulatedRig.from_arrays(ax, az, fs=1000.0, obstacle=None,
+                                   faults=Faults(clone_6500=True))
+    mpu = MPU6050(rig.bus, clock=rig.clock)
+    mpu.initialize()
+    rig.touch()
+    with pytest.raises(StreamStalledError, match="FIFO count 512 .* MPU-6500-family clone"):
+        mpu.record(0.5)
+
+
+def test_a_stuck_sensor_is_kept_and_flagged():
+    rig, mpu, rec = _record(Faults(stuck_sensor_at=0.2))
+    _judge(rig, mpu, rec)
+    check = rec.metadata["sensor_check"]
+    assert check["longest_repeat"] >= 790 and "identical samples in a row" in check["flags"][0]
+    rig, mpu, rec = _record(Faults(stuck_sensor_at=0.0))
+    assert rec.metadata["sensor_check"]["flags"] == [
+        f"all {rec.n_samples} samples are identical: a stuck or dead sensor"]
+
+
+def test_a_live_sensor_raises_no_flag():
+    rig, mpu, rec = _record(Faults())
+    _judge(rig, mpu, rec)
+    assert rec.metadata["sensor_check"]["flags"] == []
+    assert rec.metadata["samples_timing_suspect"] == 0
+
+
+def test_the_sensor_check_sees_dead_axes_and_implausible_noise():
+    rng = np.random.default_rng(0)
+    live = rng.normal(0, 16, (500, 3)).round().astype(np.int16)
+    assert sensor_check(live, 2048)["flags"] == []
+    dead = live.copy()
+    dead[:, 1] = 40
+    assert sensor_check(dead, 2048)["flags"] == ["axis y never changes: a dead axis"]
+    quiet = live.copy()
+    quiet[:, 2] = 0
+    quiet[::100, 2] = 1  # changes, but far less than any live sensor
+    assert "implausibly quiet" in sensor_check(quiet, 2048)["flags"][0]
+
+
+@pytest.mark.parametrize("bus_hz", BUSES)
+def test_bit_errors_in_the_data_cannot_be_detected(bus_hz):
+    # What the device guide says the driver cannot detect: I2C carries no checksum, so a bit
+    # flipped in a FIFO byte is kept as a wrong sample, with no fault.
+    rig, mpu, rec = _record(Faults(bit_error_rate=1e-4), bus_hz)
+    assert "bit error" in {k for _, k in rig.bus.injector.log}
+    # 48 bits a sample: 1 - (1 - 1e-4)^48 = 0.48 % of 1000, about 4.8 wrong ("about five" in the
+    # guide); 15 or more has a binomial probability below 1e-4
+    assert 0 < rig.wrong_samples(mpu, rec) < 15 and not rec.metadata["faults"]
+    assert abs(1 - (1 - 1e-4) ** 48 - 0.0048) < 0.00005
+
+
+def test_every_silent_fault_is_exercised_by_name():
+    exercised = {"write bit flip", "register lost", "foreign read", "undercount", "bit error",
+                 "clone", "stuck sensor", "pca brown-out"}
+    assert exercised == set(SILENT_FAULTS)
+
+
+@pytest.mark.parametrize("bad, words", [
+    ({"flip_write": ((0x1C, 0, 1),)}, "flip_write mask"),
+    ({"register_lost": ((-1.0, 0x1C, 0),)}, "register_lost time"),
+    ({"foreign_reads": ((0.1, "word"),)}, "foreign_reads must read"),
+    ({"undercount_at": (-0.5,)}, "undercount_at"),
+    ({"bit_error_rate": 0.7}, "bit_error_rate"),
+    ({"clock_drift": 0.6}, "clock_drift"),
+    ({"stuck_sensor_at": -1.0}, "stuck_sensor_at"),
+])
+def test_silent_fault_settings_are_checked(bad, words):
+    with pytest.raises(ValueError, match=words):
+        Faults(**bad)
+    with pytest.raises(TypeError, match="clone_6500"):
+        Faults(clone_6500=1)
+
+
+def _search(faults, seed=1):
+    from ebantenna.device import PCA9685, PanTilt, search_and_record
+
+    rig = SimulatedRig.for_contact(seed=seed, faults=faults)
+    unit = PanTilt(PCA9685(rig.bus, clock=rig.clock))
+    unit.initialize()
+    mpu = MPU6050(rig.bus, clock=rig.clock)
+    mpu.initialize()
+    return rig, search_and_record(mpu, unit)
+
+
+def test_a_pca9685_brown_out_in_the_search_is_read_back_and_set_up_again():
+    # asleep at 200 Hz with its writes acknowledged: the servos went dead and the search reported
+    # "no contact" 12 s later
+    rig, result = _search(Faults(pca_brown_out_at=0.2))
+    assert "pca brown-out" in {k for _, k in rig.bus.injector.log}
+    assert result.contact_detected and result.servos_released
+    (fault,) = result.summary()["pca9685_faults"]
+    assert "MODE1 changed from 0x21 to 0x11" in fault
+    assert "PRE_SCALE changed from 0x79 to 0x1E" in fault
+
+
+def test_a_pre_scale_that_does_not_land_is_written_again_or_refused():
+    from ebantenna.chips.pca9685 import Register as PcaRegister
+    from ebantenna.device import PCA9685
+
+    once = Faults(pca_flip_write=((PcaRegister.PRE_SCALE, 0x80, 1),))
+    rig, result = _search(once)
+    assert result.contact_detected and rig.pca.frequency() == pytest.approx(50.0, rel=1e-3)
+    always = SimulatedRig.for_contact(seed=1, faults=Faults(
+        pca_flip_write=((PcaRegister.PRE_SCALE, 0x80, 9),)))
+    with pytest.raises(SettingError, match=r"PRE_SCALE \(0xFE\) reads back 0xF9 after 0x79"):
+        PCA9685(always.bus, clock=always.clock).initialize()
+
+
+def test_a_drain_costs_the_same_and_a_sample_stays_within_its_memory_budget():
+    # The period estimator keeps a bounded number of observations per segment: its work per
+    # count does not grow with the recording. Memory per sample is measured against the
+    # allocation check's figure.
+    import tracemalloc
+
+    from ebantenna.device import mpu6050 as module
+    from ebantenna.device.timing import MAX_OBSERVATIONS
+
+    t = np.arange(12_000) / 1000.0
+    rig = SimulatedRig.from_arrays(np.sin(2 * np.pi * 37 * t), np.cos(2 * np.pi * 37 * t),
+                                   fs=1000.0, obstacle=None)
+    rig.bus.bus_hz = 400e3
+    mpu = MPU6050(rig.bus, clock=rig.clock)
+    mpu.initialize()
+    rig.touch()
+    tracemalloc.start()
+    try:
+        before = tracemalloc.get_traced_memory()[0]
+        rec = mpu.record(10.0, poll_interval=0.02)
+        used = tracemalloc.get_traced_memory()[0] - before
+    finally:
+        tracemalloc.stop()
+    assert rec.metadata["fifo_restarts"] == 0
+    assert max(len(obs) for obs in mpu.stream.estimator.segments) <= MAX_OBSERVATIONS
+    assert used / 10_000 <= module.BYTES_PER_SAMPLE
+    _judge(rig, mpu, rec, 10_000)  # pruning kept the timestamps within their (true) bound
+
+
+@pytest.mark.parametrize("bad", [[[1, 2, 3]], np.zeros((4, 2), np.int16), np.zeros((4, 3)),
+                                 np.zeros(3, np.int16)])
+def test_the_sensor_check_refuses_what_is_not_counts(bad):
+    with pytest.raises(TypeError, match="counts must be an"):
+        sensor_check(bad, 2048)
+
+
+@pytest.mark.parametrize("half", [0, 1])
+def test_forty_recordings_with_a_sample_taken_keep_nothing_unflagged_as_the_guide_says(half):
+    # device guide: "In 40 one-second recordings at 100 kHz with one sample taken at a random
+    # time, none kept an unflagged sample at the wrong place or an unflagged timestamp outside
+    # its stated uncertainty" (in two halves of 20, each a few seconds)
+    for seed in range(20 * half, 20 * half + 20):
+        at = 0.05 + 0.9 * np.random.default_rng(seed).random()
+        rig, mpu, rec = _record(Faults(foreign_reads=((at, "sample"),)), 100e3, seed)
+        _judge(rig, mpu, rec)

@@ -55,6 +55,27 @@ def register(subparsers) -> None:
     parser.add_argument("--scene", default="paper", help="built-in scene for --simulated")
     parser.add_argument("--seed", type=seed_argument, default=0,
                         help="seed of the simulation, 0 ... 2**63 - 1 (0)")
+    _simulated_options(parser)
+    parser.add_argument("--oe-gpio", type=device_number, metavar="PIN",
+                        help="BCM GPIO wired to the PCA9685's OE pin: releases the servos when "
+                        "I2C cannot (needs the gpio extra; simulated: the rig's OE line)")
+    parser.add_argument("--oscillator-hz", type=float, metavar="HZ",
+                        help="PCA9685 oscillator frequency as calibrated (default 25 MHz)")
+    parser.add_argument("--measured-pwm-hz", type=float, metavar="HZ",
+                        help="PWM frequency measured on a PCA9685 output at the default 50 Hz "
+                        "setting; calibrates the oscillator from it")
+    parser.add_argument("--threshold", type=float, default=2.0,
+                        help="contact threshold on the acceleration change, m/s^2 (default 2)")
+    parser.add_argument("--duration", type=float, default=1.0,
+                        help=f"recorded time after the contact, s, in (0, {MAX_DURATION:g}] "
+                        "(default 1)")
+    parser.add_argument("--out", metavar="FILE.npz", help="save the recording here")
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.set_defaults(func=run)
+
+
+def _simulated_options(parser) -> None:
+    """The faults and settings of the simulated rig (``--simulated`` only)."""
     parser.add_argument("--inject-faults", type=float, default=0.0, metavar="RATE",
                         help="simulated only: fraction of I2C transfers that fail, every kind "
                         "(no acknowledge, EIO, ETIMEDOUT, EAGAIN, late errors, short reads)")
@@ -75,22 +96,6 @@ def register(subparsers) -> None:
                         help="simulated only: every write that switches the servos off fails")
     parser.add_argument("--bus-hz", type=float, default=RASPBERRY_PI_BUS_HZ, metavar="HZ",
                         help="simulated only: I2C clock (default 100000, a Raspberry Pi's)")
-    parser.add_argument("--oe-gpio", type=device_number, metavar="PIN",
-                        help="BCM GPIO wired to the PCA9685's OE pin: releases the servos when "
-                        "I2C cannot (needs the gpio extra; simulated: the rig's OE line)")
-    parser.add_argument("--oscillator-hz", type=float, metavar="HZ",
-                        help="PCA9685 oscillator frequency as calibrated (default 25 MHz)")
-    parser.add_argument("--measured-pwm-hz", type=float, metavar="HZ",
-                        help="PWM frequency measured on a PCA9685 output at the default 50 Hz "
-                        "setting; calibrates the oscillator from it")
-    parser.add_argument("--threshold", type=float, default=2.0,
-                        help="contact threshold on the acceleration change, m/s^2 (default 2)")
-    parser.add_argument("--duration", type=float, default=1.0,
-                        help=f"recorded time after the contact, s, in (0, {MAX_DURATION:g}] "
-                        "(default 1)")
-    parser.add_argument("--out", metavar="FILE.npz", help="save the recording here")
-    parser.add_argument("--json", action="store_true", help="print one JSON object")
-    parser.set_defaults(func=run)
 
 
 #: Exit code of ``acquire`` when the servos could not be released (the recording is saved).
@@ -188,7 +193,7 @@ def _end_unsafe(args, setup: dict, exc: BaseException | None, result) -> int:
     print the instruction to cut the servo supply last, and return 3. Signals are ignored
     meanwhile: the operator must see the instruction."""
     from ..cli import print_json, signals_ignored
-    from ._save import save_recording
+    from .recording_session import save_recording
 
     with signals_ignored():
         recording = result.recording if result is not None else _kept_recording(setup, exc)
@@ -334,7 +339,7 @@ def _acquire(args, setup: dict):
 def _stalled(exc, out) -> OSError:
     """The error a stalled stream ends ``acquire`` with (servos released), once its partial
     recording is saved."""
-    from ._save import save_recording
+    from .recording_session import save_recording
 
     saved, failures = (None, []) if exc.recording is None else save_recording(
         exc.recording, out, fallback_name="acquire-partial.npz")
@@ -346,7 +351,7 @@ def _stalled(exc, out) -> OSError:
 def _interrupted_partial(args, setup: dict, exc) -> dict:
     """What an interrupted run kept: search_and_record has released the servos on its way out;
     no recording is complete, but what the window held after a contact is saved, marked."""
-    from ._save import save_recording
+    from .recording_session import save_recording
 
     recording = getattr(exc, "recording", None)
     saved = None if recording is None else save_recording(
@@ -362,7 +367,7 @@ def _summary(args, setup: dict, result, saved=None) -> dict:
     """The JSON summary (the command's contract), with the recording saved if asked (always
     when the servos could not be released: nothing made is dropped). ``saved`` is the outcome
     of a save already made, ``(path or None, failures)``."""
-    from ._save import save_recording
+    from .recording_session import save_recording
 
     summary = {"mode": "simulated" if args.simulated else "hardware", **setup["labels"],
                **result.summary(), "out": None, "pca9685_oscillator_hz": setup["oscillator"]}

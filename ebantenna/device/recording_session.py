@@ -30,6 +30,7 @@ import json
 import logging
 import os
 import re
+import tempfile
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
@@ -47,6 +48,7 @@ from .watchdog import StreamStalledError
 
 __all__ = ["Connection", "RecordingSession", "UnsafeRigError", "NoContactError",
            "SESSION_FORMAT", "MANIFEST", "CUT_SUPPLY", "file_sha256", "write_atomic",
+           "save_recording", "fallback_paths",
            "read_manifest"]
 
 log = logging.getLogger(__name__)
@@ -147,6 +149,36 @@ def write_atomic(path, write) -> Path:
         tmp.unlink(missing_ok=True)
     _fsync_dir(path.parent)
     return path
+
+
+def fallback_paths(name: str) -> list[Path]:
+    """Where a recording goes when its own path cannot be written: the working directory, then
+    the system's temporary folder, each under ``name`` with the process id (two runs never
+    overwrite each other's fallback)."""
+    stem = Path(name).name.removesuffix(".npz")
+    unique = f"{stem}-{os.getpid()}.npz"
+    return [Path.cwd() / unique, Path(tempfile.gettempdir()) / unique]
+
+
+def save_recording(recording, path, *, fallback_name: str) -> tuple[Path | None, list[str]]:
+    """Write ``recording`` atomically to ``path`` (None: straight to the fallbacks), else to the
+    first of :func:`fallback_paths` that can be written.
+
+    Returns the path written (None when nothing could be) and what failed on the way, one line
+    per failed location; it never raises :class:`OSError` (an interrupt does go through: the
+    caller decides what it means).
+    """
+    candidates = ([] if path is None else [Path(path)]) + fallback_paths(fallback_name)
+    failures = []
+    for candidate in candidates:
+        try:
+            target = candidate if candidate.suffix == ".npz" else candidate.with_name(
+                candidate.name + ".npz")
+            return write_atomic(target, recording.save), failures
+        except (OSError, ValueError) as exc:
+            failures.append(f"could not write {candidate} ({exc})")
+            log.error("could not save the recording to %s: %s", candidate, exc)
+    return None, failures
 
 
 def remove_leftover_temporaries(folder: Path) -> None:
@@ -448,7 +480,6 @@ class RecordingSession:
                 try:
                     self._save(touch, rec)
                 except OSError as error:
-                    from ._save import save_recording
 
                     saved, _ = save_recording(
                         rec, None, fallback_name="record-" + touch.key.replace("/", "_"))

@@ -74,7 +74,7 @@ import numpy as np
 
 from ..._validate import check_in_range, check_int, check_nonnegative, check_real
 from ...chips.mpu6050 import ACCEL_SAMPLE_BYTES, WHO_AM_I_VALUE, Register
-from .mpu6050 import _REGISTER_SPACE, MAX_CLOCK_DRIFT
+from .mpu6050 import REGISTER_SPACE, MAX_CLOCK_DRIFT
 
 __all__ = ["Faults", "FaultInjector", "TRANSFER_FAULTS", "SILENT_FAULTS", "MAX_CLOCK_DRIFT",
            "MAX_OVERCOUNT", "MAX_FAULT_DRIFT"]
@@ -88,7 +88,7 @@ _EARLY_ERRNO = {"nack": errno.EREMOTEIO, "eio": errno.EIO, "etimedout": errno.ET
 MAX_OVERCOUNT = 170
 #: The last register of the accelerometer that ``i2cdump`` reads: the last the simulated chip
 #: models (its map ends at WHO_AM_I, RM section 3).
-_LAST_REGISTER = _REGISTER_SPACE - 1
+_LAST_REGISTER = REGISTER_SPACE - 1
 
 #: Faults that no bus error reveals (see the module notes), by the name each logs.
 SILENT_FAULTS = ("write bit flip", "register lost", "foreign read", "undercount", "bit error",

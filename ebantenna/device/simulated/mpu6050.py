@@ -57,7 +57,7 @@ MAX_CLOCK_DRIFT = 0.05
 
 #: Registers modelled: the 128 addresses 0x00-0x7F, which hold the whole map (RM section 3 ends at
 #: 0x75); a burst read stops advancing at the last of them.
-_REGISTER_SPACE = 128
+REGISTER_SPACE = 128
 #: What a read of the empty FIFO returns in this model.
 _EMPTY_FIFO_BYTE = 0xFF
 _COUNT_LIMITS = np.iinfo(np.int16)
@@ -141,7 +141,7 @@ class SimulatedMPU6050:
         #: taken at, in blocks as ``epochs`` (a range changed mid-run by a fault shows here).
         self.epoch_scales: list[list[np.ndarray]] = []
         self.first_sample: list[float] = []
-        self.regs = bytearray(_REGISTER_SPACE)
+        self.regs = bytearray(REGISTER_SPACE)
         self.fifo = bytearray()
         self.overflowed_bytes = 0
         self.samples_pushed = 0
@@ -149,7 +149,7 @@ class SimulatedMPU6050:
 
     def reset(self) -> None:
         """Power-on state (RM section 3): all zero but ``PWR_MGMT_1`` (asleep) and ``WHO_AM_I``."""
-        self.regs[:] = bytes(_REGISTER_SPACE)
+        self.regs[:] = bytes(REGISTER_SPACE)
         for register, value in POWER_ON.items():
             self.regs[register] = value
         self.regs[Register.WHO_AM_I] = self.who_am_i
@@ -293,14 +293,14 @@ class SimulatedMPU6050:
                 value = len(self.fifo) & 0xFF
             elif Register.ACCEL_XOUT_H <= reg <= Register.ACCEL_ZOUT_L:
                 value = self._latest()[reg - Register.ACCEL_XOUT_H]
-            elif reg >= _REGISTER_SPACE:
+            elif reg >= REGISTER_SPACE:
                 value = 0  # not modelled: reads as 0
             else:
                 value = self.regs[reg]
                 if reg == Register.INT_STATUS:
                     self.regs[reg] = 0  # cleared by reading (INT_PIN_CFG.INT_RD_CLEAR = 0)
             out.append(value)
-            reg = min(reg + 1, _REGISTER_SPACE - 1) if reg < _REGISTER_SPACE else reg
+            reg = min(reg + 1, REGISTER_SPACE - 1) if reg < REGISTER_SPACE else reg
         return out
 
     def _latest(self) -> bytes:
@@ -315,7 +315,7 @@ class SimulatedMPU6050:
         self._catch_up()
         for k, value in enumerate(data):
             reg = (register + k) % 256
-            if reg >= _REGISTER_SPACE:
+            if reg >= REGISTER_SPACE:
                 continue  # not modelled: the write is ignored
             was = self._producing()
             if reg == Register.PWR_MGMT_1 and value & PowerManagement1.DEVICE_RESET:

@@ -40,7 +40,7 @@ from .pantilt import SearchConfig
 
 __all__ = ["Touch", "Plan", "load_plan", "session_time", "check_session_length",
            "SEARCH_SETTINGS", "MOVE_SECONDS", "MAX_TOUCHES", "MAX_NAME", "LONG_SESSION_S",
-           "KEY_RESOLUTION"]
+           "LONG_WORST_S", "KEY_RESOLUTION"]
 
 #: Assumed time for the operator to move the object to a new distance or material, s.
 MOVE_SECONDS = 30.0
@@ -51,6 +51,8 @@ MAX_TOUCHES = 100_000
 MAX_NAME = 64
 #: A session expected to take longer than this (s) starts only when the operator agrees.
 LONG_SESSION_S = 3600.0
+#: ... and so does one that may take longer than this at worst (every search its longest), s.
+LONG_WORST_S = 86400.0
 #: Contact distances closer than this (m) share a touch's key (``%.4f`` m, 0.1 mm).
 KEY_RESOLUTION = 1e-4
 _NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9-]*")
@@ -258,7 +260,8 @@ def session_time(plan: Plan, *, move: float = MOVE_SECONDS) -> dict:
 
 def check_session_length(plan: Plan, *, agreed: bool = False,
                          flag: str = "--yes") -> dict:
-    """Refuse to start a session expected to last over :data:`LONG_SESSION_S` unless ``agreed``.
+    """Refuse to start a session expected to last over :data:`LONG_SESSION_S` (or, every search
+    taking its longest, over :data:`LONG_WORST_S`) unless ``agreed``.
 
     Returns :func:`session_time`'s estimate. The message gives the estimate and names ``flag``,
     the command's way of agreeing.
@@ -271,7 +274,7 @@ def check_session_length(plan: Plan, *, agreed: bool = False,
     ValueError: plan 'long': 2000 touches take about 1.8 h (at worst 7.3 h); pass --yes to start it
     """
     t = session_time(plan)
-    if t["total_s"] > LONG_SESSION_S and not agreed:
+    if (t["total_s"] > LONG_SESSION_S or t["worst_s"] > LONG_WORST_S) and not agreed:
         raise ValueError(f"plan {plan.name!r}: {len(plan)} touches take about "
                          f"{_hours(t['total_s'])} (at worst {_hours(t['worst_s'])}); pass "
                          f"{flag} to start it")

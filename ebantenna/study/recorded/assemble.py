@@ -119,7 +119,7 @@ def _load_checked(directory: Path, entry: dict) -> Recording:
 
 
 def _label(entry: dict, rec: Recording, name: str, ok, what: str):
-    """The label ``name`` of ``rec``, refused unless ``ok(value)``; ``what`` says what it must be."""
+    """The label ``name`` of ``rec``, refused unless ``ok(value)`` (``what`` it must be)."""
     value = rec.metadata.get(name)
     if value is None:
         raise ValueError(f"{entry['file']}: missing label(s) {name}")

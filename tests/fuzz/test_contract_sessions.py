@@ -457,6 +457,8 @@ def contract_rows() -> dict[str, list[str]]:
     rows: dict[str, list[str]] = {}
     for row in all_rows():
         rows.setdefault(row.surface, []).append(row.id)
+    rows["file:plan"] = rows["ebantenna.device.plan.load_plan"]
+    rows["file:manifest"] = rows["ebantenna.device.recording_session.read_manifest"]
     return rows
 
 

@@ -392,7 +392,7 @@ class RecordingSession:
 
     def _touch(self, touch: Touch, attempt: int):
         """Check the rig and run one search; returns the result and the connection used."""
-        conn = self.connect(touch, attempt)
+        conn = _connection(self.connect(touch, attempt))
         try:
             unit, mpu = self._checked_rig(conn)
             try:
@@ -448,7 +448,7 @@ class RecordingSession:
             return
         self.say(f"the last run stopped: {unsafe['reason']}; checking the rig first")
         todo = self.remaining()
-        conn = self.connect(todo[0] if todo else self.plan[0], 0)
+        conn = _connection(self.connect(todo[0] if todo else self.plan[0], 0))
         try:
             self._checked_rig(conn)
         finally:
@@ -476,6 +476,13 @@ class RecordingSession:
         path = write_atomic(self.directory / name, rec.save)
         self.manifest["recordings"][touch.key] = _entry(touch, name, path, rec)
         self._save_manifest()
+
+
+def _connection(conn) -> Connection:
+    """``conn``, returned by the session's ``connect``, if it is a :class:`Connection`."""
+    if not isinstance(conn, Connection):
+        raise TypeError(f"connect must return a Connection, got {type(conn).__name__}")
+    return conn
 
 
 def _file_name(touch: Touch) -> str:

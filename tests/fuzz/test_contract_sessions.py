@@ -319,6 +319,21 @@ def _manifest_rows() -> list[Row]:
                         lambda ctx, r=read: r(_link_out(ctx, ctx.session()))))
         rows.append(Row(surface, "manifest-link-out", "error", ("session.json",),
                         lambda ctx, r=read: r(_manifest_link_out(ctx))))
+    for id_, value in (("none", None), ("an-int", 5), ("a-tuple", ("bus", "clock"))):
+        rows.append(Row("ebantenna.device.recording_session.RecordingSession.run",
+                        f"connect-returns-{id_}", "error", ("connect",),
+                        lambda ctx, v=value: RecordingSession(
+                            ctx.fresh() / "s", PLAN, lambda touch, attempt: v,
+                            show_progress=False).run()))
+    for id_, kw in (("max-lost-1", {"max_lost": 1.0}), ("attempts-0", {"attempts": 0}),
+                    ("directory-empty", {"directory": ""}), ("connect-none", {"connect": None}),
+                    ("plan-dict", {"plan": PLAN.to_dict()})):
+        def make(ctx, kw=kw):
+            args = {"directory": ctx.fresh() / "s", "plan": PLAN, "connect": _no_rig, **kw}
+            return RecordingSession(args.pop("directory"), args.pop("plan"),
+                                    args.pop("connect"), **args)
+        rows.append(Row("ebantenna.device.recording_session.RecordingSession", id_, "error",
+                        (id_.split("-")[0].replace("max", "max_lost"),), make))
     rows.append(Row("ebantenna.device.recording_session.read_manifest", "right", "equal", (),
                     lambda ctx: read_manifest(ctx.recorded / MANIFEST),
                     same=lambda m: len(m["recordings"]) == len(PLAN)))

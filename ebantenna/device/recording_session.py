@@ -520,8 +520,8 @@ def _search_settings(config) -> dict:
 def read_manifest(path) -> dict:
     """Read a session's manifest (``DIR/session.json``), every key it must hold checked.
 
-    The manifest must be a regular file of at most :data:`~ebantenna._files.MAX_DOCUMENT_BYTES`
-    of JSON nested at most :data:`~ebantenna._validate.MAX_JSON_DEPTH` deep, holding
+    The manifest must be a regular file of at most 64 MiB of JSON nested at most 100 levels
+    deep, holding
     :data:`MANIFEST_KEYS`; its plan must be a valid plan with every key of
     :meth:`~ebantenna.device.plan.Plan.to_dict`, its search the plan's; each entry of
     ``recordings`` must be a touch of the plan, under the touch's key, holding

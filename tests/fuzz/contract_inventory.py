@@ -115,15 +115,33 @@ def file_surface() -> list[str]:
     return [f"file:{name}" for name in FILE_FORMATS]
 
 
+_INDEXES: dict[int, tuple[dict, dict[str, set[str]]]] = {}
+
+
+def _index(entries: dict[str, set[str]]) -> dict[str, set[str]]:
+    """Every dotted ending of every entry's name and alias, mapped to the entries it names."""
+    cached = _INDEXES.get(id(entries))
+    if cached is not None and cached[0] is entries:
+        return cached[1]
+    index: dict[str, set[str]] = {}
+    for entry, aliases in entries.items():
+        for name in (entry, *aliases):
+            parts = name.split(".")
+            for i in range(len(parts)):
+                index.setdefault(".".join(parts[i:]), set()).add(entry)
+    _INDEXES[id(entries)] = (entries, index)
+    return index
+
+
 def resolve(name: str, entries: dict[str, set[str]]) -> str:
-    """The entry a row's surface name means; KeyError if none or several."""
+    """The entry a row's surface name means: the entry itself, or the one entry whose name or
+    alias ends with ``.name``; KeyError if none or several."""
     if name in entries:
         return name
-    found = {entry for entry, aliases in entries.items()
-             if any(n == name or n.endswith("." + name) for n in (entry, *aliases))}
+    found = _index(entries).get(name, set())
     if len(found) != 1:
         raise KeyError(f"{name!r} names {sorted(found) or 'no surface'}")
-    return found.pop()
+    return next(iter(found))
 
 
 def row_modules() -> list[Path]:

@@ -190,26 +190,6 @@ def _interrupted(exc: KeyboardInterrupt, args, argv) -> None:
         _exit(128 + signum, f"{where}: interrupted{kept}\n")
 
 
-def _check_engine() -> None:
-    """Refuse, before any work, an engine choice in the environment that cannot be honoured.
-
-    ``EBANTENNA_ENGINE`` must be one of the engines; ``compiled`` needs the compiled engines to
-    load here (numba installed and working), or a command would stop part-way with a traceback.
-    """
-    from .ml._engine_choice import ENGINE_VARIABLE, requested_engine
-
-    if requested_engine(None) != "compiled":
-        return
-    from .ml._mlp_compiled import _status as mlp_status
-    from .ml._smo_compiled import engine_status as smo_status
-
-    for status in (smo_status(), mlp_status()):
-        if not status.available:
-            raise ValueError(f"{ENGINE_VARIABLE}=compiled asks for the compiled engines, but "
-                             f"{status.reason}; set {ENGINE_VARIABLE}=auto (or numpy) to run "
-                             "on NumPy")
-
-
 def main(argv=None) -> int:
     """Run the ``ebantenna`` command line; returns the exit code."""
     args = None
@@ -223,7 +203,10 @@ def main(argv=None) -> int:
                 format="%(levelname)s %(name)s: %(message)s",
                 stream=sys.stderr,
             )
-            _check_engine()
+            if os.environ.get("EBANTENNA_ENGINE") is not None:  # checked before any work
+                from .ml import check_engine
+
+                check_engine()
             return int(args.func(args) or 0)
     except KeyboardInterrupt as exc:
         _interrupted(exc, args, argv)

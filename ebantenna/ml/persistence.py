@@ -344,13 +344,7 @@ def _rebuild(path: Path, arrays: dict, meta, unchecked: bool = False):
     if not isinstance(shapes, dict):
         raise ValueError(f"{path}: sparse_shapes must be a JSON object")
     stored = {"array": set(arrays), "arrays": set(lengths), "value": set(attributes)}
-    for kind, key in (("arrays", "list_lengths"), ("value", "attributes")):
-        declared = {a.name for a in cls._fitted_schema if a.kind == kind}
-        misplaced = sorted(n for n in stored[kind] & {a.name for a in cls._fitted_schema}
-                           if n not in declared)
-        if misplaced:
-            raise ValueError(f"{path}: {key} holds {', '.join(misplaced)}, which {name} "
-                             f"stores otherwise (not as a {kind})")
+    _check_kinds(path, cls, stored)
     used = set()
     for attr in cls._fitted_schema:
         if attr.kind == "rebuilt":
@@ -388,6 +382,16 @@ def _rebuild(path: Path, arrays: dict, meta, unchecked: bool = False):
         model._rebuild_fitted()
     _check_predicts(model, path)
     return model
+
+
+def _check_kinds(path: Path, cls, stored: dict) -> None:
+    """Refuse a list length or a value given for an attribute the schema stores otherwise."""
+    schema = {a.name: a.kind for a in cls._fitted_schema}
+    for kind, key in (("arrays", "list_lengths"), ("value", "attributes")):
+        misplaced = sorted(n for n in stored[kind] if n in schema and schema[n] != kind)
+        if misplaced:
+            raise ValueError(f"{path}: {key} holds {', '.join(misplaced)}, which "
+                             f"{cls.__name__} stores otherwise (not as a {kind})")
 
 
 def _check_consistent(model, path: Path) -> None:

@@ -9,7 +9,7 @@ any work.
 import pytest
 
 from ebantenna.cli import main
-from ebantenna.ml import _engine_choice, _mlp_compiled, _smo_compiled
+from ebantenna.ml import _engine_check, _engine_choice
 
 UNAVAILABLE = _engine_choice.EngineStatus(False, "numba is not installed: (test)", float("nan"))
 
@@ -25,8 +25,8 @@ def _error(capsys, argv) -> str:
 @pytest.mark.parametrize("argv", [["modes", "--no-contact"], ["exact", "--ratio", "0.5"]])
 def test_compiled_without_its_engines_is_one_clear_error(monkeypatch, capsys, argv):
     monkeypatch.setenv("EBANTENNA_ENGINE", "compiled")
-    monkeypatch.setattr(_smo_compiled, "engine_status", lambda: UNAVAILABLE)
-    monkeypatch.setattr(_mlp_compiled, "_status", lambda: UNAVAILABLE)
+    monkeypatch.setattr(_engine_check, "smo_status", lambda: UNAVAILABLE)
+    monkeypatch.setattr(_engine_check, "mlp_status", lambda: UNAVAILABLE)
     line = _error(capsys, argv)
     assert "EBANTENNA_ENGINE=compiled" in line and "numba is not installed" in line
 
@@ -46,4 +46,17 @@ def test_a_valid_choice_runs(monkeypatch, capsys, value):
 def contract_rows() -> dict[str, list[str]]:
     """The environment's engine choice, met by every command (read by the inventory test)."""
     return {"cli:modes": ["engine-compiled-unavailable", "engine-unknown"],
-            "cli:exact": ["engine-compiled-unavailable", "engine-valid"]}
+            "cli:exact": ["engine-compiled-unavailable", "engine-valid"],
+            "ml.check_engine": ["engine-compiled-unavailable", "engine-unknown"]}
+
+
+def test_check_engine_returns_the_choice(monkeypatch):
+    from ebantenna.ml import check_engine
+
+    monkeypatch.setenv("EBANTENNA_ENGINE", "numpy")
+    assert check_engine() == "numpy"
+    monkeypatch.delenv("EBANTENNA_ENGINE")
+    assert check_engine() == "auto"
+    monkeypatch.setenv("EBANTENNA_ENGINE", "x")
+    with pytest.raises(ValueError, match="EBANTENNA_ENGINE must be one of"):
+        check_engine()

@@ -130,4 +130,3 @@ def use_compiled(engine: str | None, status, what: str) -> bool:
     if engine == "compiled":
         raise RuntimeError(f"the {what} was asked for but {loaded.reason}")
     return False
-

@@ -3992,6 +3992,28 @@ ROWS += [
 ]
 
 
+def _check_engine_with(value: str):
+    """``ml.check_engine()`` with ``EBANTENNA_ENGINE`` set to ``value`` (restored after)."""
+    import os
+
+    before = os.environ.get("EBANTENNA_ENGINE")
+    os.environ["EBANTENNA_ENGINE"] = value
+    try:
+        return ml.check_engine()
+    finally:
+        if before is None:
+            del os.environ["EBANTENNA_ENGINE"]
+        else:
+            os.environ["EBANTENNA_ENGINE"] = before
+
+
+ROWS += [
+    bad("ml.check_engine", "unknown", _check_engine_with, "fast",
+        match="EBANTENNA_ENGINE must be one of"),
+    bad("ml.check_engine", "empty", _check_engine_with, "", match="EBANTENNA_ENGINE must be one of"),
+]
+
+
 def _resolve(value, folder):
     return make_file(value.kind, folder) if isinstance(value, File) else value
 

@@ -4010,7 +4010,8 @@ def _check_engine_with(value: str):
 ROWS += [
     bad("ml.check_engine", "unknown", _check_engine_with, "fast",
         match="EBANTENNA_ENGINE must be one of"),
-    bad("ml.check_engine", "empty", _check_engine_with, "", match="EBANTENNA_ENGINE must be one of"),
+    bad("ml.check_engine", "empty", _check_engine_with, "",
+        match="EBANTENNA_ENGINE must be one of"),
 ]
 
 

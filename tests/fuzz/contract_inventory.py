@@ -16,9 +16,9 @@ The *inventory* (:func:`inventory`) is read from the code, never written by hand
 ``tests/cli/test_*.py`` that defines ``contract_rows()``: a mapping from a surface's name (its
 entry, or any unique ending of it or of one of its aliases, such as ``SVC.fit``) to the ids
 of the rows that give it bad input. An engineer who adds a public name adds its rows in a file
-of their own, and nothing else. A module may also define ``contract_exempt()``, ``{surface: reason}`` for a public name
-that takes no input from a user (a result type the package builds, a function of no
-argument); exemptions are counted apart, with their reasons.
+of their own, and nothing else. A module may also define ``contract_exempt()``,
+``{surface: reason}`` for a public name that takes no input from a user (a result type the
+package builds, a function of no argument); exemptions are counted apart, with their reasons.
 
 :data:`PENDING` (``contract_pending.txt``) lists the surfaces that were public before the
 inventory existed and have no rows yet. It may only shrink: :func:`problems` reports a surface

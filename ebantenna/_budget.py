@@ -6,8 +6,11 @@ here. A request over the budget is refused with an error that names the paramete
 and the budget, instead of a :class:`MemoryError` (or the operating system's out-of-memory
 killer) part-way through the work.
 
-The budget is, by default, half of the memory the operating system reports as available when the
-check runs. Half, because the NumPy code that fills an array makes temporaries of about its size
+The budget is, by default, half of the memory this process may still take when the check runs:
+the memory the operating system reports as available, or less where the process's own limits
+are lower (its address-space limit ``RLIMIT_AS``, as ``ulimit -v`` sets it, less what it has
+already mapped; a container's cgroup v2 ``memory.max``, less the group's ``memory.current``).
+Half, because the NumPy code that fills an array makes temporaries of about its size
 and the machine keeps running other programs. Set ``EBANTENNA_MEMORY_BUDGET`` (bytes, or a number
 with ``K``, ``M``, ``G`` or ``T``, powers of 1024) or call :func:`set_memory_budget` to choose it.
 """
@@ -49,6 +52,56 @@ def _available_bytes() -> int:
         return _FALLBACK_AVAILABLE
 
 
+def _address_space_left() -> int | None:
+    """What ``RLIMIT_AS`` leaves this process (the limit less its mapped size), or None."""
+    try:
+        import resource
+    except ImportError:  # not on this platform
+        return None
+    try:
+        limit = resource.getrlimit(resource.RLIMIT_AS)[0]
+    except (OSError, ValueError):
+        return None
+    if limit == resource.RLIM_INFINITY or limit < 0:
+        return None
+    mapped = 0
+    try:
+        with open("/proc/self/statm", encoding="ascii") as statm:
+            mapped = int(statm.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
+    except (OSError, ValueError, IndexError, AttributeError):
+        pass
+    return max(limit - mapped, 0)
+
+
+def _cgroup_left(root: str = "/sys/fs/cgroup") -> int | None:
+    """What the cgroup v2 ``memory.max`` of this process's group leaves it, or None."""
+    try:
+        with open("/proc/self/cgroup", encoding="ascii") as cgroup:
+            line = next((ln for ln in cgroup if ln.startswith("0::")), None)
+        if line is None:
+            return None
+        folder = os.path.join(root, line.strip()[3:].lstrip("/"))
+        with open(os.path.join(folder, "memory.max"), encoding="ascii") as f:
+            text = f.read().strip()
+        if text == "max":
+            return None
+        used = 0
+        try:
+            with open(os.path.join(folder, "memory.current"), encoding="ascii") as f:
+                used = int(f.read().strip())
+        except (OSError, ValueError):
+            pass
+        return max(int(text) - used, 0)
+    except (OSError, ValueError):
+        return None
+
+
+def _process_available() -> int:
+    """The least of: available memory, what RLIMIT_AS leaves, what the cgroup leaves."""
+    limits = [_available_bytes(), _address_space_left(), _cgroup_left()]
+    return min(n for n in limits if n is not None)
+
+
 def _parse(text: str) -> int:
     match = re.fullmatch(r"\s*(\d+(?:\.\d+)?)\s*([KMGT]?)(?:i?B)?\s*", text, flags=re.IGNORECASE)
     if not match or float(match[1]) <= 0:
@@ -59,7 +112,8 @@ def _parse(text: str) -> int:
 
 
 def memory_budget() -> int:
-    """The budget in bytes: the one set, else ``$EBANTENNA_MEMORY_BUDGET``, else half available.
+    """The budget in bytes: the one set, else ``$EBANTENNA_MEMORY_BUDGET``, else half of what
+    the process may still take (available memory, ``RLIMIT_AS``, cgroup ``memory.max``).
 
     Examples
     --------
@@ -71,7 +125,7 @@ def memory_budget() -> int:
     text = os.environ.get("EBANTENNA_MEMORY_BUDGET")
     if text:
         return _parse(text)
-    return int(DEFAULT_FRACTION * _available_bytes())
+    return int(DEFAULT_FRACTION * _process_available())
 
 
 def set_memory_budget(nbytes: int | None) -> None:

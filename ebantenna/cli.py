@@ -27,6 +27,7 @@ import contextlib
 import importlib
 import json
 import logging
+import os
 import signal
 import sys
 import threading
@@ -64,15 +65,44 @@ def build_parser() -> argparse.ArgumentParser:
 MAX_SEED = 2**63 - 1
 
 
-def seed_argument(text: str) -> int:
-    """The ``--seed`` type: an integer in ``[0, MAX_SEED]``."""
+def seed_argument(text: str, maximum: int = MAX_SEED) -> int:
+    """The ``--seed`` type: an integer in ``[0, maximum]`` (default :data:`MAX_SEED`)."""
     try:
         value = int(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"must be an integer, got {text!r}") from None
-    if not 0 <= value <= MAX_SEED:
-        raise argparse.ArgumentTypeError(f"must lie in [0, 2**63 - 1], got {text}")
+    if not 0 <= value <= maximum:
+        shown = "2**63 - 1" if maximum == MAX_SEED else str(maximum)
+        raise argparse.ArgumentTypeError(f"must lie in [0, {shown}], got {text:.40}")
     return value
+
+
+def seeds_up_to(maximum: int):
+    """A ``--seed`` type for a command whose seeds end at ``maximum`` (what its help says)."""
+    def seed(text: str) -> int:
+        return seed_argument(text, maximum)
+    seed.__name__ = "seed"
+    return seed
+
+
+def jobs_argument(text: str) -> int:
+    """The ``--jobs`` type: -1 (every core) or a count of workers >= 1."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be an integer, got {text!r:.40}") from None
+    if value != -1 and value < 1:
+        raise argparse.ArgumentTypeError(f"must be -1 (every core) or a count >= 1, got {text}")
+    return value
+
+
+def check_jobs(jobs: int, force: bool, flag: str = "--jobs") -> None:
+    """Refuse more workers than the machine has cores, unless ``force`` (``--force-jobs``)."""
+    cores = os.cpu_count() or 1
+    if jobs > cores and not force:
+        raise ValueError(f"{flag} {jobs} asks for more workers than this machine's {cores} "
+                         f"core{'s' if cores > 1 else ''}; give at most {cores} (or -1), or add "
+                         "--force-jobs")
 
 
 def print_json(obj) -> None:
@@ -181,6 +211,10 @@ def main(argv=None) -> int:
                 format="%(levelname)s %(name)s: %(message)s",
                 stream=sys.stderr,
             )
+            if os.environ.get("EBANTENNA_ENGINE") is not None:  # checked before any work
+                from .ml import check_engine
+
+                check_engine()
             return int(args.func(args) or 0)
     except KeyboardInterrupt as exc:
         _interrupted(exc, args, argv)

@@ -37,6 +37,8 @@ import logging
 import weakref
 from dataclasses import dataclass
 
+import numpy as np
+
 from .._validate import check_int, check_nonnegative, check_positive
 from .clock import SystemClock
 
@@ -348,9 +350,10 @@ class I2CDevice:
         """Read one register; ``retry=False`` for a clear-on-read register (retried only when
         the chip provably sent nothing, see :data:`NOTHING_READ_ERRNOS`)."""
         register = _check_byte("register", register)
-        return int(self._transfer(
-            "read", register, lambda: self.bus.read_byte_data(self.address, register),
-            retryable=TRANSIENT_ERRNOS if retry else NOTHING_READ_ERRNOS))
+        return self._transfer(
+            "read", register,
+            lambda: _bus_byte(self.bus, self.bus.read_byte_data(self.address, register)),
+            retryable=TRANSIENT_ERRNOS if retry else NOTHING_READ_ERRNOS)
 
     def write_byte(self, register: int, value: int, *, retry: bool = True) -> None:
         """Write one register; ``retry=False`` when the caller must know the single write that
@@ -422,10 +425,30 @@ class I2CDevice:
             start = register + len(out) if increment else register
             out += self._transfer(
                 "block read", start,
-                lambda n=n, start=start: _whole(
-                    bytes(self.bus.read_i2c_block_data(self.address, start, n)), n),
+                lambda n=n, start=start: _whole(_bus_bytes(
+                    self.bus, self.bus.read_i2c_block_data(self.address, start, n)), n),
                 retryable=retryable)
         return bytes(out)
+
+
+def _bus_byte(bus, value) -> int:
+    """``value``, returned by ``bus.read_byte_data``, if it is a byte (an int in 0-255)."""
+    if isinstance(value, bool) or not isinstance(value, int | np.integer) or not 0 <= value <= 255:
+        raise TypeError(f"bus: {type(bus).__name__}.read_byte_data returned {value!r:.40} "
+                        f"({type(value).__name__}), not a byte (an int in 0-255)")
+    return int(value)
+
+
+def _bus_bytes(bus, values) -> bytes:
+    """``values``, returned by ``bus.read_i2c_block_data``, if they are bytes (ints in 0-255)."""
+    if isinstance(values, bytes | bytearray):
+        return bytes(values)
+    if isinstance(values, list | tuple) and all(
+            not isinstance(v, bool) and isinstance(v, int | np.integer) and 0 <= v <= 255
+            for v in values):
+        return bytes(int(v) for v in values)
+    raise TypeError(f"bus: {type(bus).__name__}.read_i2c_block_data returned {values!r:.40} "
+                    f"({type(values).__name__}), not a list of bytes (ints in 0-255)")
 
 
 def _whole(data: bytes, asked: int) -> bytes:

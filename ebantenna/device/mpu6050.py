@@ -105,9 +105,15 @@ __all__ = [
     "LSB_PER_G",
     "sample_rate_divider",
     "accel_bandwidth",
+    "MAX_RECORD_SAMPLES",
 ]
 
 logger = logging.getLogger(__name__)
+
+#: Most samples one :meth:`MPU6050.record` takes: ten minutes at 1 kHz. A longer stream is a
+#: count no window of the package needs (a search records at most a minute), and on the
+#: simulated rig it takes a minute of computing per 10**6 samples.
+MAX_RECORD_SAMPLES = 600_000
 
 #: Bytes per FIFO sample with only the accelerometer enabled.
 SAMPLE_BYTES = ACCEL_SAMPLE_BYTES
@@ -545,7 +551,8 @@ class MPU6050:
         Parameters
         ----------
         duration : float
-            Length of the recording, s: ``round(duration * fs)`` slots.
+            Length of the recording, s: ``round(duration * fs)`` slots, at most
+            :data:`MAX_RECORD_SAMPLES`.
         poll_interval : float
             Time between drains, s. Must be below :meth:`max_poll_interval` (58 ms at 1 kHz on
             a 100 kHz bus); a host that stalls for longer loses samples (and counts them).
@@ -563,6 +570,10 @@ class MPU6050:
             When no sample came for ``watchdog`` seconds; it holds what was recorded so far.
         """
         duration = check_positive("duration", duration)
+        if duration * self.config.fs > MAX_RECORD_SAMPLES:
+            raise ValueError(f"duration {duration:g} s asks for {duration * self.config.fs:.3g} "
+                             f"samples at {self.config.fs:g} Hz, more than the "
+                             f"{MAX_RECORD_SAMPLES} one recording may hold; record in parts")
         check_allocation(BYTES_PER_SAMPLE * duration * self.config.fs, parameter="duration",
                          what=f"a recording of {duration * self.config.fs:.3g} samples")
         return record_stream(self, duration, poll_interval=poll_interval, watchdog=watchdog)

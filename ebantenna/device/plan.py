@@ -27,20 +27,37 @@ Examples
 
 from __future__ import annotations
 
-import json
+import re
 from dataclasses import dataclass, field, fields
 from pathlib import Path
 
-from .._validate import check_int, check_nonnegative, check_positive, check_real
+from .._files import read_document, require
+from .._validate import check_int, check_nonnegative, check_path, check_positive, check_real
 from ..chips.mpu6050 import RESET_WAIT
 from ..chips.pca9685 import OSCILLATOR_STARTUP
 from ..probe import material as lookup_material
 from .pantilt import SearchConfig
 
-__all__ = ["Touch", "Plan", "load_plan", "session_time", "SEARCH_SETTINGS", "MOVE_SECONDS"]
+__all__ = ["Touch", "Plan", "load_plan", "session_time", "check_session_length",
+           "SEARCH_SETTINGS", "MOVE_SECONDS", "MAX_TOUCHES", "MAX_NAME", "LONG_SESSION_S",
+           "LONG_WORST_S", "KEY_RESOLUTION"]
 
 #: Assumed time for the operator to move the object to a new distance or material, s.
 MOVE_SECONDS = 30.0
+
+#: Most touches a plan may hold: at the rig's ~3 s a touch, 100,000 touches take about 4 days.
+MAX_TOUCHES = 100_000
+#: Longest plan name, characters.
+MAX_NAME = 64
+#: A session expected to take longer than this (s) starts only when the operator agrees.
+LONG_SESSION_S = 3600.0
+#: ... and so does one that may take longer than this at worst (every search its longest), s.
+LONG_WORST_S = 86400.0
+#: Contact distances closer than this (m) share a touch's key (``%.4f`` m, 0.1 mm).
+KEY_RESOLUTION = 1e-4
+_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9-]*")
+#: The keys of a plan file; the first four are required.
+_KEYS = ("name", "materials", "contacts_m", "repetitions", "probe_length", "search", "simulation")
 
 #: The :class:`~ebantenna.device.pantilt.SearchConfig` settings a plan file may set (numbers).
 SEARCH_SETTINGS = tuple(f.name for f in fields(SearchConfig) if f.name != "path")
@@ -115,22 +132,28 @@ class Plan:
     simulation: tuple = ()
 
     def __post_init__(self):
-        if not (isinstance(self.name, str) and self.name.replace("-", "").isalnum()):
-            raise ValueError(f"plan name must be letters, digits and '-', got {self.name!r}")
-        if isinstance(self.materials, str) or not self.materials:
-            raise ValueError(f"materials must be a non-empty list of names, got "
-                             f"{self.materials!r}")
-        object.__setattr__(self, "materials",
-                           tuple(lookup_material(m).name for m in self.materials))
+        if not (isinstance(self.name, str) and len(self.name) <= MAX_NAME
+                and _NAME.fullmatch(self.name)):
+            raise ValueError(f"plan name must be 1 to {MAX_NAME} letters, digits and '-' "
+                             f"(ASCII, not starting with '-'), got {self.name!r:.100}")
+        object.__setattr__(self, "materials", _materials(self.materials))
         check_positive("probe_length", self.probe_length)
-        contacts = tuple(float(check_real("contacts_m", c)) for c in self.contacts)
-        outside = [c for c in contacts if not 0.0 < c < self.probe_length]
-        if not contacts or outside:
-            raise ValueError(f"contacts_m must be distances in (0, {self.probe_length:g}) m, got "
-                             f"{list(self.contacts)!r}")
-        object.__setattr__(self, "contacts", contacts)
-        check_int("repetitions", self.repetitions, minimum=1)
+        object.__setattr__(self, "probe_length", float(self.probe_length))
+        object.__setattr__(self, "contacts", _contacts(self.contacts, self.probe_length))
+        check_int("repetitions", self.repetitions, minimum=1, maximum=MAX_TOUCHES)
+        touches = len(self.materials) * len(self.contacts) * self.repetitions
+        if touches > MAX_TOUCHES:
+            raise ValueError(
+                f"the plan holds {touches} touches ({len(self.materials)} materials x "
+                f"{len(self.contacts)} contacts_m x {self.repetitions} repetitions), more than "
+                f"the {MAX_TOUCHES} a plan may hold")
+        if not isinstance(self.search, dict):
+            raise TypeError(f"search must be a table of settings, got "
+                            f"{type(self.search).__name__}")
         self.search_config()  # refuses unknown or bad settings now, not at the first touch
+        if isinstance(self.simulation, str | dict) or not all(
+                isinstance(s, dict) for s in self.simulation):
+            raise TypeError("simulation must be a list of tables, one per touch")
         if self.simulation and len(self.simulation) != len(self):
             raise ValueError(f"simulation must hold one entry per touch ({len(self)}), got "
                              f"{len(self.simulation)}")
@@ -168,18 +191,25 @@ class Plan:
         return out
 
     @classmethod
-    def from_dict(cls, data: dict, where: str = "plan") -> Plan:
-        """A plan from the values of a plan file (see the module notes)."""
-        if not isinstance(data, dict):
-            raise ValueError(f"{where}: a plan must be a table of settings")
-        known = {"name", "materials", "contacts_m", "repetitions", "probe_length", "search",
-                 "simulation"}
-        unknown = sorted(set(data) - known)
-        missing = sorted({"name", "materials", "contacts_m", "repetitions"} - set(data))
-        if unknown or missing:
-            raise ValueError(f"{where}: " + "; ".join(
-                ([f"unknown key(s) {', '.join(unknown)}"] if unknown else [])
-                + ([f"missing key(s) {', '.join(missing)}"] if missing else [])))
+    def from_dict(cls, data: dict, where: str = "plan", *, complete: bool = False) -> Plan:
+        """A plan from the values of a plan file (see the module notes).
+
+        ``where`` names the file in the messages; with ``complete`` every key of
+        :meth:`to_dict` is required (a session's manifest stores them all).
+        """
+        require(data, ("name", "materials", "contacts_m", "repetitions")
+                + (("probe_length", "search") if complete else ()), where)
+        unknown = sorted(str(k) for k in set(data) - set(_KEYS))
+        if unknown:
+            raise ValueError(f"{where}: unknown key(s) {', '.join(unknown)}; a plan has "
+                             f"{', '.join(_KEYS)}")
+        for key in ("materials", "contacts_m", "simulation"):
+            if key in data and not isinstance(data[key], list | tuple):
+                raise ValueError(f"{where}: {key} must be a list, got "
+                                 f"{type(data[key]).__name__} {data[key]!r:.60}")
+        if "search" in data and not isinstance(data["search"], dict):
+            raise ValueError(f"{where}: search must be a table of settings, got "
+                             f"{type(data['search']).__name__}")
         try:
             return cls(data["name"], tuple(data["materials"]), tuple(data["contacts_m"]),
                        data["repetitions"], data.get("probe_length", 0.40),
@@ -228,19 +258,85 @@ def session_time(plan: Plan, *, move: float = MOVE_SECONDS) -> dict:
             "worst_s": len(plan) * worst + moving}
 
 
+def check_session_length(plan: Plan, *, agreed: bool = False,
+                         flag: str = "--yes") -> dict:
+    """Refuse to start a session expected to last over :data:`LONG_SESSION_S` (or, every search
+    taking its longest, over :data:`LONG_WORST_S`) unless ``agreed``.
+
+    Returns :func:`session_time`'s estimate. The message gives the estimate and names ``flag``,
+    the command's way of agreeing.
+
+    Examples
+    --------
+    >>> check_session_length(Plan("long", ("brass",), (0.1,), 2000))
+    Traceback (most recent call last):
+    ...
+    ValueError: plan 'long': 2000 touches take about 1.8 h (at worst 7.3 h); pass --yes to start it
+    """
+    t = session_time(plan)
+    if (t["total_s"] > LONG_SESSION_S or t["worst_s"] > LONG_WORST_S) and not agreed:
+        raise ValueError(f"plan {plan.name!r}: {len(plan)} touches take about "
+                         f"{_hours(t['total_s'])} (at worst {_hours(t['worst_s'])}); pass "
+                         f"{flag} to start it")
+    return t
+
+
+def _hours(seconds: float) -> str:
+    return f"{seconds / 3600:.2g} h" if seconds < 360000 else f"{seconds / 86400:.3g} days"
+
+
+def _materials(materials) -> tuple[str, ...]:
+    """The materials' canonical names; a string, an empty list or a repeat refused."""
+    if isinstance(materials, str) or not isinstance(materials, list | tuple) or not materials:
+        raise ValueError(f"materials must be a non-empty list of names, got {materials!r:.80}")
+    if len(materials) > MAX_TOUCHES:
+        raise ValueError(f"materials lists {len(materials)} names, more than {MAX_TOUCHES}")
+    names, given = [], {}
+    for m in materials:
+        name = lookup_material(m).name
+        if name in given:
+            raise ValueError(f"materials names {name} twice ({given[name]!r} and {m!r}); each "
+                             "material is placed once")
+        given[name] = m
+        names.append(name)
+    return tuple(names)
+
+
+def _contacts(contacts, probe_length: float) -> tuple[float, ...]:
+    """The contact distances as floats, each in (0, probe_length), no two sharing a key."""
+    if isinstance(contacts, str) or not isinstance(contacts, list | tuple) or not contacts:
+        raise ValueError(f"contacts_m must be a non-empty list of distances, m, got "
+                         f"{contacts!r:.80}")
+    if len(contacts) > MAX_TOUCHES:
+        raise ValueError(f"contacts_m lists {len(contacts)} distances, more than {MAX_TOUCHES}")
+    values = tuple(check_real("contacts_m", c) for c in contacts)
+    outside = [c for c in values if not 0.0 < c < probe_length]
+    if outside:
+        raise ValueError(f"contacts_m must be distances in (0, {probe_length:g}) m, got "
+                         f"{outside[0]!r}")
+    keys: dict = {}
+    for c in values:
+        key = f"{c:.4f}"
+        if key in keys:
+            raise ValueError(f"contacts_m {keys[key]!r} and {c!r} m are the same touch (a "
+                             f"touch's key holds a distance to {KEY_RESOLUTION * 1000:g} mm, "
+                             f"{key}); give distances at least 0.1 mm apart")
+        keys[key] = c
+    return values
+
+
 def load_plan(path) -> Plan:
-    """Read a plan file: TOML by suffix ``.toml``, otherwise JSON (see the module notes)."""
-    path = Path(path)
-    text = path.read_text(encoding="utf-8")
-    try:
-        if path.suffix.lower() == ".toml":
-            try:
-                import tomllib  # novermin (guarded: Python 3.10 falls back to tomli below)
-            except ModuleNotFoundError:  # Python 3.10: the same parser, from PyPI
-                import tomli as tomllib
-            data = tomllib.loads(text)
-        else:
-            data = json.loads(text)
-    except ValueError as exc:  # TOMLDecodeError and JSONDecodeError are ValueErrors
-        raise ValueError(f"{path}: not a valid plan file: {exc}") from None
+    """Read a plan file: TOML by suffix ``.toml``, otherwise JSON (see the module notes).
+
+    Raises
+    ------
+    FileNotFoundError
+        If there is no such file.
+    ValueError
+        Naming the file (and the key): not a regular file, too long or nested too deeply, not
+        valid TOML/JSON, a key missing or unknown, or a value out of range.
+    """
+    path = Path(check_path("plan", path))
+    data = read_document(path, "a plan file", max_bytes=2**24,
+                         toml=path.suffix.lower() == ".toml")
     return Plan.from_dict(data, str(path))

@@ -34,9 +34,10 @@ import tempfile
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
+from .._files import inside, read_document, require
 from .._progress import progress
 from .._tempfiles import TEMPORARY_PREFIX, process_running
-from .._validate import check_in_range, check_int
+from .._validate import check_in_range, check_int, check_path, open_regular
 from ..recording import Recording
 from .i2c import I2CError
 from .mpu6050 import MPU6050, ChipIdentityError
@@ -48,8 +49,7 @@ from .watchdog import StreamStalledError
 
 __all__ = ["Connection", "RecordingSession", "UnsafeRigError", "NoContactError",
            "SESSION_FORMAT", "MANIFEST", "CUT_SUPPLY", "file_sha256", "write_atomic",
-           "save_recording", "fallback_paths",
-           "read_manifest"]
+           "save_recording", "fallback_paths", "read_manifest", "MANIFEST_KEYS", "ENTRY_KEYS"]
 
 log = logging.getLogger(__name__)
 
@@ -57,6 +57,9 @@ log = logging.getLogger(__name__)
 SESSION_FORMAT = "ebantenna-session-1"
 #: The manifest's file name in the session folder.
 MANIFEST = "session.json"
+#: The keys a manifest must hold, and those of each entry of its ``recordings``.
+MANIFEST_KEYS = ("format", "plan", "rig", "search", "recordings")
+ENTRY_KEYS = ("file", "sha256", "touch", "material", "contact", "repetition")
 #: The name of a temporary file of :func:`write_atomic`: the prefix, the writer's process id,
 #: a dash and the name of the file it will become.
 _TEMPORARY = re.compile(re.escape(TEMPORARY_PREFIX) + r"(\d+)-(.+)")
@@ -113,9 +116,9 @@ class Connection:
 
 
 def file_sha256(path) -> str:
-    """SHA-256 (hex) of a file's bytes."""
+    """SHA-256 (hex) of a regular file's bytes (a FIFO or a device is refused, not read)."""
     h = hashlib.sha256()
-    with open(path, "rb") as f:
+    with open_regular(path, "a recording") as f:
         for block in iter(lambda: f.read(1 << 20), b""):
             h.update(block)
     return h.hexdigest()
@@ -301,10 +304,11 @@ class RecordingSession:
         (self.directory / "recordings").mkdir(parents=True, exist_ok=True)
         for folder in (self.directory, self.directory / "recordings"):
             remove_leftover_temporaries(folder)
-        if not self.manifest_path.exists():
+        if not os.path.lexists(self.manifest_path):
             self.manifest = self._new_manifest()
             self._save_manifest()
             return self.manifest
+        inside(self.directory, MANIFEST, str(self.manifest_path))  # no link out of the folder
         self.manifest = read_manifest(self.manifest_path)
         if self.manifest["plan"] != self.plan.to_dict():
             raise ValueError(f"{self.directory} holds a session of another plan "
@@ -315,9 +319,10 @@ class RecordingSession:
         return self.manifest
 
     def _verify_listed(self) -> None:
+        where = str(self.manifest_path)
         for key, entry in list(self.manifest["recordings"].items()):
-            path = self.directory / entry["file"]
-            if not path.exists():
+            path = inside(self.directory, entry["file"], where)
+            if not os.path.lexists(path):
                 log.warning("%s is listed but missing: touch %s will be made again", path, key)
                 del self.manifest["recordings"][key]
             elif file_sha256(path) != entry["sha256"]:
@@ -331,8 +336,8 @@ class RecordingSession:
         listed = {e["file"] for e in self.manifest["recordings"].values()}
         for touch in self.plan:
             name = _file_name(touch)
-            path = self.directory / name
-            if name in listed or not path.exists():
+            path = inside(self.directory, name, str(self.manifest_path))
+            if name in listed or not os.path.lexists(path):
                 continue
             try:
                 rec = Recording.load(path)
@@ -422,7 +427,7 @@ class RecordingSession:
 
     def _touch(self, touch: Touch, attempt: int):
         """Check the rig and run one search; returns the result and the connection used."""
-        conn = self.connect(touch, attempt)
+        conn = _connection(self.connect(touch, attempt))
         try:
             unit, mpu = self._checked_rig(conn)
             try:
@@ -519,7 +524,7 @@ class RecordingSession:
             return
         self.say(f"the last run stopped: {unsafe['reason']}; checking the rig first")
         todo = self.remaining()
-        conn = self.connect(todo[0] if todo else self.plan[0], 0)
+        conn = _connection(self.connect(todo[0] if todo else self.plan[0], 0))
         try:
             self._checked_rig(conn)
         finally:
@@ -567,6 +572,13 @@ def describe_stop(exc: BaseException) -> str:
     return " ".join(str(exc).splitlines()) or type(exc).__name__
 
 
+def _connection(conn) -> Connection:
+    """``conn``, returned by the session's ``connect``, if it is a :class:`Connection`."""
+    if not isinstance(conn, Connection):
+        raise TypeError(f"connect must return a Connection, got {type(conn).__name__}")
+    return conn
+
+
 def _file_name(touch: Touch) -> str:
     return (f"recordings/t{touch.index:05d}-{touch.material}-"
             f"{1000 * touch.contact:.1f}mm-r{touch.repetition}.npz")
@@ -600,12 +612,69 @@ def _search_settings(config) -> dict:
 
 
 def read_manifest(path) -> dict:
-    """Read a session's manifest (``DIR/session.json``); ValueError naming it if it is not one."""
-    path = Path(path)
-    try:
-        manifest = json.loads(path.read_text(encoding="utf-8"))
-    except ValueError as exc:
-        raise ValueError(f"{path} is not a session manifest: {exc}") from None
+    """Read a session's manifest (``DIR/session.json``), every key it must hold checked.
+
+    The manifest must be a regular file of at most 64 MiB of JSON nested at most 100 levels
+    deep, holding
+    :data:`MANIFEST_KEYS`; its plan must be a valid plan with every key of
+    :meth:`~ebantenna.device.plan.Plan.to_dict`, its search the plan's; each entry of
+    ``recordings`` must be a touch of the plan, under the touch's key, holding
+    :data:`ENTRY_KEYS` that agree with the touch, and naming the touch's own file inside the
+    session folder (so no two entries name one file, and no entry a file elsewhere).
+
+    Raises
+    ------
+    FileNotFoundError
+        If there is no such file.
+    ValueError
+        Naming the file and the key at fault.
+    """
+    path = Path(check_path("path", path))
+    where = str(path)
+    manifest = read_document(path, "a session manifest")
     if not isinstance(manifest, dict) or manifest.get("format") != SESSION_FORMAT:
         raise ValueError(f"{path} is not a session manifest of format {SESSION_FORMAT!r}")
+    require(manifest, MANIFEST_KEYS, where)
+    plan = Plan.from_dict(manifest["plan"], f"{where}: plan", complete=True)
+    for key in ("rig", "search", "recordings"):
+        if not isinstance(manifest[key], dict):
+            raise ValueError(f"{where}: {key} must be a table (a JSON object), got "
+                             f"{type(manifest[key]).__name__}")
+    if manifest["search"] != _search_settings(plan.search_config()):
+        raise ValueError(f"{where}: search differs from the settings of the plan's search "
+                         "(the manifest was edited)")
+    for key in ("retakes",):
+        if not isinstance(manifest.get(key, []), list):
+            raise ValueError(f"{where}: {key} must be a list")
+    unsafe = manifest.get("unsafe")
+    if unsafe is not None and not (isinstance(unsafe, dict)
+                                   and isinstance(unsafe.get("reason"), str)):
+        raise ValueError(f"{where}: unsafe must be null or a table with a 'reason'")
+    touches = {t.key: t for t in plan} if manifest["recordings"] else {}
+    for key, entry in manifest["recordings"].items():
+        _check_entry(where, key, entry, touches.get(key))
     return manifest
+
+
+def _check_entry(where: str, key: str, entry, touch: Touch | None) -> None:
+    """Raise unless ``entry`` is the manifest entry of ``touch`` (a touch of the plan)."""
+    if touch is None:
+        raise ValueError(f"{where}: recordings holds an entry {key!r:.80} for a touch the plan "
+                         "does not have")
+    require(entry, ENTRY_KEYS, f"{where}: recordings[{key!r}]")
+    expected = _file_name(touch)
+    if entry["file"] != expected:
+        raise ValueError(f"{where}: recordings[{key!r}] names the file {entry['file']!r:.100}, "
+                         f"not the touch's own {expected!r}")
+    sha = entry["sha256"]
+    if not (isinstance(sha, str) and len(sha) == 64
+            and all(c in "0123456789abcdef" for c in sha)):
+        raise ValueError(f"{where}: recordings[{key!r}]: sha256 must be 64 hex digits, got "
+                         f"{sha!r:.80}")
+    labels = {"touch": touch.index, "material": touch.material, "contact": touch.contact,
+              "repetition": touch.repetition}
+    for name, value in labels.items():
+        given = entry[name]
+        if type(given) is not type(value) or given != value:
+            raise ValueError(f"{where}: recordings[{key!r}]: {name} is {given!r:.60}, the "
+                             f"plan's touch has {value!r}")

@@ -12,7 +12,7 @@ import functools
 
 from ._engine_choice import EngineStatus, load_compiled, use_compiled
 
-__all__ = ["ACTIVATION_CODES", "compiled_kernels"]
+__all__ = ["ACTIVATION_CODES", "compiled_kernels", "engine_status"]
 
 #: The activations' codes in :func:`ebantenna.ml._mlp_numba.derivative_and_bias_gradient`.
 ACTIVATION_CODES = {"identity": 0, "tanh": 1, "logistic": 2, "relu": 3}
@@ -27,6 +27,10 @@ def _status() -> EngineStatus:
         "_mlp_numba",
         lambda loops: loops.smoke_test(),
     )
+
+
+#: Whether the compiled MLP loops load here (loaded once per process).
+engine_status = _status
 
 
 def compiled_kernels(engine: str | None = None):

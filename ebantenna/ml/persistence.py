@@ -344,6 +344,7 @@ def _rebuild(path: Path, arrays: dict, meta, unchecked: bool = False):
     if not isinstance(shapes, dict):
         raise ValueError(f"{path}: sparse_shapes must be a JSON object")
     stored = {"array": set(arrays), "arrays": set(lengths), "value": set(attributes)}
+    _check_kinds(path, cls, stored)
     used = set()
     for attr in cls._fitted_schema:
         if attr.kind == "rebuilt":
@@ -359,6 +360,9 @@ def _rebuild(path: Path, arrays: dict, meta, unchecked: bool = False):
             count = lengths[attr.name]
             if isinstance(count, bool) or not isinstance(count, int) or count < 0:
                 raise ValueError(f"{path}: list_lengths of {attr.name} must be a count")
+            if count > len(arrays):  # checked before a list of names is made for it
+                raise ValueError(f"{path}: list_lengths of {attr.name} declares {count} arrays; "
+                                 f"the file holds {len(arrays)}")
             keys = [f"{attr.name}{i}" for i in range(count)]
             setattr(model, attr.name, [_loaded_array(attr, arrays[k], path) for k in keys])
             used.update(keys)
@@ -373,10 +377,53 @@ def _rebuild(path: Path, arrays: dict, meta, unchecked: bool = False):
         raise ValueError(
             f"{path}: {name} declares no fitted attribute {', '.join(sorted(unknown))}"
         )
+    _check_consistent(model, path)
     if hasattr(model, "_rebuild_fitted"):
         model._rebuild_fitted()
     _check_predicts(model, path)
     return model
+
+
+def _check_kinds(path: Path, cls, stored: dict) -> None:
+    """Refuse a list length or a value given for an attribute the schema stores otherwise."""
+    schema = {a.name: a.kind for a in cls._fitted_schema}
+    for kind, key in (("arrays", "list_lengths"), ("value", "attributes")):
+        misplaced = sorted(n for n in stored[kind] if n in schema and schema[n] != kind)
+        if misplaced:
+            raise ValueError(f"{path}: {key} holds {', '.join(misplaced)}, which "
+                             f"{cls.__name__} stores otherwise (not as a {kind})")
+
+
+def _check_consistent(model, path: Path) -> None:
+    """Refuse a model whose parameters contradict its arrays (each checked alone passes).
+
+    Classes must be distinct; an MLP's layer count, ``hidden_layer_sizes`` and the shapes of
+    its weights and biases must describe one network; an SVC's support counts one per class.
+    """
+    classes = getattr(model, "classes_", None)
+    if classes is not None and len(np.unique(classes)) != len(classes):
+        raise ValueError(f"{path}: classes_ names a class twice ({classes.tolist()!r:.80})")
+    if isinstance(model, MLPClassifier | MLPRegressor):
+        coefs, intercepts = model.coefs_, model.intercepts_
+        hidden = model.hidden_layer_sizes
+        hidden = [hidden] if isinstance(hidden, int) else list(hidden)
+        n_out = model.n_outputs_
+        sizes = [model.n_features_in_, *hidden, n_out]
+        if model.n_layers_ != len(sizes) or len(coefs) != len(sizes) - 1 or len(
+                intercepts) != len(sizes) - 1:
+            raise ValueError(f"{path}: n_layers_ is {model.n_layers_!r}, hidden_layer_sizes "
+                             f"{model.hidden_layer_sizes!r} makes {len(sizes)} layers, and the "
+                             f"file holds {len(coefs)} weight and {len(intercepts)} bias arrays")
+        for i, (w, b) in enumerate(zip(coefs, intercepts, strict=True)):
+            if w.shape != (sizes[i], sizes[i + 1]) or b.shape != (sizes[i + 1],):
+                raise ValueError(f"{path}: layer {i}'s weights are {w.shape} and biases "
+                                 f"{b.shape}; n_features_in_, hidden_layer_sizes and n_outputs_ "
+                                 f"make {(sizes[i], sizes[i + 1])} and {(sizes[i + 1],)}")
+    if isinstance(model, SVC) and classes is not None:
+        n_support = getattr(model, "n_support_", None)
+        if n_support is not None and len(n_support) != len(classes):
+            raise ValueError(f"{path}: n_support_ counts {len(n_support)} classes, classes_ "
+                             f"holds {len(classes)}")
 
 
 #: The most input features a loaded model may declare (a bound for the prediction check).

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 def register(subparsers) -> None:
     """Add the ``dataset`` command."""
-    from ..cli import seed_argument
+    from ..cli import jobs_argument, seed_argument
     from ..study.recorded._cli import add_from_recordings
 
     data = subparsers.add_parser(
@@ -19,7 +19,10 @@ def register(subparsers) -> None:
         "--seed", type=seed_argument, default=0, metavar="S", help="seed, 0 ... 2**63 - 1 (0)"
     )
     data.add_argument("--quick", action="store_true", help="a small version for tests and docs")
-    data.add_argument("--jobs", type=int, default=1, metavar="N", help="worker processes (1)")
+    data.add_argument("--jobs", type=jobs_argument, default=1, metavar="N",
+                      help="worker processes, at most the machine's cores (1; -1: all cores)")
+    data.add_argument("--force-jobs", action="store_true",
+                      help="allow --jobs above the number of cores")
     data.add_argument("--json", action="store_true", help="print one JSON object")
     add_from_recordings(data)
     data.set_defaults(func=run_dataset)
@@ -27,6 +30,7 @@ def register(subparsers) -> None:
 
 def run_dataset(args) -> int:
     """Run ``ebantenna dataset``."""
+    import os
     import time
 
     import numpy as np
@@ -36,12 +40,16 @@ def run_dataset(args) -> int:
     from ..study.recorded._cli import run_from_recordings
     from .data import build_paper_dataset
 
+    from ..cli import check_jobs
+
+    check_jobs(args.jobs, args.force_jobs)
     output_dir("--out", args.out)  # refused before any work is done
     if args.from_recordings is not None:
         return run_from_recordings(args)
     start = time.perf_counter()
     try:
-        data = build_paper_dataset(args.out, seed=args.seed, quick=args.quick, n_jobs=args.jobs)
+        jobs = (os.cpu_count() or 1) if args.jobs == -1 else args.jobs
+        data = build_paper_dataset(args.out, seed=args.seed, quick=args.quick, n_jobs=jobs)
     except KeyboardInterrupt as exc:
         # an unfinished data set is not kept: a partial file would pass for the whole one
         raise interrupted(

@@ -153,7 +153,16 @@ def filter_order(spec: FilterSpec) -> int:
     if not isinstance(spec, FilterSpec):
         raise TypeError(f"spec must be a FilterSpec, got {type(spec).__name__}")
     ordfunc = sps.cheb1ord if spec.kind == "chebyshev" else sps.ellipord
-    order, _ = ordfunc(spec.passband, spec.stopband, spec.ripple, spec.attenuation, fs=spec.fs)
+    try:
+        with np.errstate(all="ignore"):  # edges far below fs make SciPy's estimate NaN
+            order, _ = ordfunc(spec.passband, spec.stopband, spec.ripple, spec.attenuation,
+                               fs=spec.fs)
+    except ValueError:  # SciPy's "cannot convert float NaN to integer"
+        order = np.nan
+    if not np.isfinite(order):
+        raise ValueError(f"fs = {spec.fs:g} Hz puts the band edges ({spec.passband[0]:g} Hz...) "
+                         "too far below the sampling frequency for a filter to be designed in "
+                         "float64; filter at a lower sampling frequency")
     return int(order)
 
 
@@ -231,7 +240,22 @@ def paper_filter(kind: str, order=None, *, fs=None) -> np.ndarray:
     False """
     check_choice("kind", kind, tuple(PAPER_FILTERS))
     spec = PAPER_FILTERS[kind] if fs is None else PAPER_FILTERS[kind].at(fs)
-    return _designed(spec, order).copy()
+    with np.errstate(all="ignore"):  # a design too far below fs is refused just below
+        sos = _designed(spec, order)
+        fails = fs is not None and order is None and not (np.all(np.isfinite(sos))
+                                                          and _meets(spec))
+    if fails:
+        raise ValueError(
+            f"fs = {spec.fs:g} Hz: the filter of the table's order designed in float64 at this "
+            "sampling frequency does not meet the table (its band edges are too small a fraction "
+            "of fs); filter at a lower sampling frequency")
+    return sos.copy()
+
+
+@functools.lru_cache(maxsize=32)
+def _meets(spec: FilterSpec) -> bool:
+    """Whether the design of the table's order at ``spec.fs`` meets ``spec`` (checked once)."""
+    return check_specification(_designed(spec, None), spec).meets
 
 
 @functools.lru_cache(maxsize=32)
@@ -250,6 +274,13 @@ def _check_sos(sos) -> np.ndarray:
         raise ValueError(f"sos must have shape (n_sections, 6), got {sos.shape}")
     if not np.all(np.isfinite(sos)):
         raise ValueError("sos must contain only finite values")
+    a0 = sos[:, 3]
+    if np.any(a0 != 1.0):
+        i = int(np.argmax(a0 != 1.0))
+        why = ("a section with a0 = 0 has no output" if a0[i] == 0 else
+               "divide each section by its a0 first")
+        raise ValueError(f"sos[:, 3] (each section's a0) must be 1, got {a0[i]:g} in section "
+                         f"{i} ({why})")
     return sos
 
 

@@ -44,6 +44,7 @@ from .._progress import progress
 from .._validate import (
     check_int,
     check_nonnegative,
+    check_per_row,
     check_path,
     check_positive,
     load_json,
@@ -527,6 +528,30 @@ def _simulate_plan(scenes, plan: dict, materials, n_jobs, show_progress):
     return signals, restrikes
 
 
+def _check_rows(path, arrays: dict) -> None:
+    """Raise, naming the file, unless the arrays describe one set of rows (a forged archive
+    whose checksum was recomputed may not: its rows would be read out of range later)."""
+    ax, az = arrays["ax"], arrays["az"]
+    if ax.ndim != 2 or az.shape != ax.shape or ax.shape[0] < 1 or ax.shape[1] < 1:
+        raise ValueError(f"{path}: ax and az must be two arrays of the same shape (signals, "
+                         f"samples), got {ax.shape} and {az.shape}")
+    if ax.dtype.kind != "f" or az.dtype.kind != "f" or not (
+            np.all(np.isfinite(ax)) and np.all(np.isfinite(az))):
+        raise ValueError(f"{path}: ax and az must hold finite real numbers")
+    per_row = {k: v for k, v in arrays.items() if k not in ("ax", "az")}
+    try:
+        check_per_row(ax.shape[0], "ax", **per_row)
+    except ValueError as exc:
+        raise ValueError(f"{path}: {exc}") from None
+    contact = arrays["contact"]
+    if contact.dtype.kind != "f" or not np.all(np.isfinite(contact)) or np.any(contact <= 0):
+        raise ValueError(f"{path}: contact must hold positive distances, m")
+    if arrays["material"].dtype.kind != "U":
+        raise ValueError(f"{path}: material must hold names")
+    if arrays["repetition"].dtype.kind not in "iu" or np.any(arrays["repetition"] < 0):
+        raise ValueError(f"{path}: repetition must hold whole numbers >= 0")
+
+
 def load_dataset(path) -> Dataset:
     """Load a data set written by :func:`build_dataset`, verifying its checksum.
 
@@ -562,6 +587,7 @@ def load_dataset(path) -> Dataset:
         raise ValueError(f"{path}: data set format {fmt!r}, this version reads {FORMAT!r}")
     if _checksum(arrays, fs) != metadata.get("checksum_sha256"):
         raise ValueError(f"{path}: checksum mismatch, the file is corrupt or was modified")
+    _check_rows(path, arrays)
     for a in arrays.values():
         a.setflags(write=False)
     return Dataset(fs=fs, metadata=metadata, path=path, **arrays)

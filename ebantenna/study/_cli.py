@@ -5,8 +5,9 @@ from __future__ import annotations
 
 def register(subparsers) -> None:
     """Add the ``reproduce`` command."""
-    from ..cli import seed_argument
+    from ..cli import jobs_argument, seeds_up_to
     from .recorded._cli import add_data
+    from .reproduce import MAX_SEED
 
     rep = subparsers.add_parser(
         "reproduce",
@@ -17,11 +18,14 @@ def register(subparsers) -> None:
     rep.add_argument("--quick", action="store_true", help="a reduced run for tests and docs")
     rep.add_argument(
         "--seed",
-        type=seed_argument,
+        type=seeds_up_to(MAX_SEED),
         default=0,
         help="seed of the data set and the models, 0 ... 2**32 - 2 (0)",
     )
-    rep.add_argument("--jobs", type=int, default=-1, help="parallel workers (-1: all cores)")
+    rep.add_argument("--jobs", type=jobs_argument, default=-1,
+                     help="parallel workers, at most the machine's cores (-1: all cores)")
+    rep.add_argument("--force-jobs", action="store_true",
+                     help="allow --jobs above the number of cores")
     rep.add_argument("--cache", metavar="DIR", help="data set cache (default ~/.cache/ebantenna)")
     rep.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     add_data(rep)
@@ -36,6 +40,9 @@ def run_reproduce(args) -> int:
     from .recorded._cli import run_data
     from .reproduce import reproduce
 
+    from ..cli import check_jobs
+
+    check_jobs(args.jobs, args.force_jobs)
     output_dir("--out", args.out)  # refused before any work is done
     if args.cache is not None:
         output_dir("--cache", args.cache)

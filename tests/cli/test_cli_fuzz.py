@@ -164,3 +164,13 @@ def test_the_fuzz_table_covers_every_command():
     # bench runs minutes whatever its arguments; its --json has a test of its own; record and
     # calibrate are fuzzed in tests/study/test_recorded_cli.py
     assert commands - set(COMMANDS) == {"bench", "record", "calibrate"}
+
+
+def contract_rows() -> dict[str, list[str]]:
+    """``cli:<command> <flag>`` for every flag the fuzz draws (read by the inventory test)."""
+    rows = {}
+    for command, flags in COMMANDS.items():
+        rows[f"cli:{command}"] = [f"{command}: drawn with {len(flags)} flags"]
+        for flag, values in flags.items():
+            rows[f"cli:{command} {flag}"] = [f"{command} {flag} {v}" for v in (values or [""])]
+    return rows

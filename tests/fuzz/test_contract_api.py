@@ -520,3 +520,12 @@ def test_at_least_a_thousand_cases_across_the_kinds():
 def test_every_outcome_is_a_clear_error_or_a_right_answer(case):
     outcome, detail = classify(case)
     assert outcome in ("clear error", "right"), f"{outcome}: {detail}"
+
+
+def contract_rows() -> dict[str, list[str]]:
+    """The surfaces these cases cover, by the name before ``:`` (read by the inventory test)."""
+    rows: dict[str, list[str]] = {}
+    for case in CASES:
+        surface = case.name.split(":")[0].split("[")[0].split(" ")[0]
+        rows.setdefault(surface, []).append(case.name)
+    return rows

@@ -90,3 +90,27 @@ def test_the_classifier_tells_each_class_apart(tmp_path):
     assert outcome(blocks)[0] == "memory/timeout"
     unicode = Case("u", lambda: b"\xff".decode(), "error", ("",))
     assert outcome(unicode)[0] == "traceback"  # a ValueError, but one that names nothing
+
+
+#: What each group's cases read or write, by the prefix of their ids.
+SURFACES = {
+    "file:recording": ("loaders", "recording/"),
+    "Recording.load": ("loaders", "recording/"),
+    "file:dataset": ("loaders", "dataset/"),
+    "load_dataset": ("loaders", "dataset/"),
+    "file:model": ("loaders", "svc/"),
+    "load_model": ("loaders", "mlp/"),
+    "file:scene": ("scenes", "scene/"),
+    "load_scene": ("scenes", "scene/"),
+    "Recording.save": ("savers", "save-recording/"),
+}
+
+
+def contract_rows() -> dict[str, list[str]]:
+    """The surfaces these cases cover (read by the inventory test; held true by the test below)."""
+    return {surface: [f"{group}: {prefix}*"] for surface, (group, prefix) in SURFACES.items()}
+
+
+def test_every_surface_named_has_cases(cases):
+    for surface, (group, prefix) in SURFACES.items():
+        assert any(c.id.startswith(prefix) for c in cases[group]), surface

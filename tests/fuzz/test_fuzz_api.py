@@ -3992,6 +3992,29 @@ ROWS += [
 ]
 
 
+def _check_engine_with(value: str):
+    """``ml.check_engine()`` with ``EBANTENNA_ENGINE`` set to ``value`` (restored after)."""
+    import os
+
+    before = os.environ.get("EBANTENNA_ENGINE")
+    os.environ["EBANTENNA_ENGINE"] = value
+    try:
+        return ml.check_engine()
+    finally:
+        if before is None:
+            del os.environ["EBANTENNA_ENGINE"]
+        else:
+            os.environ["EBANTENNA_ENGINE"] = before
+
+
+ROWS += [
+    bad("ml.check_engine", "unknown", _check_engine_with, "fast",
+        match="EBANTENNA_ENGINE must be one of"),
+    bad("ml.check_engine", "empty", _check_engine_with, "",
+        match="EBANTENNA_ENGINE must be one of"),
+]
+
+
 def _resolve(value, folder):
     return make_file(value.kind, folder) if isinstance(value, File) else value
 
@@ -4048,3 +4071,18 @@ def test_every_public_callable_has_rows():
         name = part.__name__.removeprefix("ebantenna.")
         public |= {f"{name}.{n}" for n in part.__all__ if callable(getattr(part, n))}
     assert sorted(public - targets - RESULTS - NO_INPUT) == []
+
+
+def contract_rows() -> dict[str, list[str]]:
+    """The surfaces these rows cover, by their target (read by the inventory test)."""
+    rows: dict[str, list[str]] = {}
+    for row in ROWS:
+        rows.setdefault(row.values[0], []).append(row.id)
+    return rows
+
+
+def contract_exempt() -> dict[str, str]:
+    """Public names that take no input from a user, and why (read by the inventory test)."""
+    return {**{name: "a result type the package builds and hands back" for name in RESULTS},
+            **{name: "an exception, a clock or a function without arguments"
+               for name in NO_INPUT}}

@@ -48,6 +48,9 @@ def register(subparsers) -> None:
                      help="tries of a touch that lost too much before the session stops (5)")
     rec.add_argument("--no-wait", action="store_true",
                      help="hardware only: do not wait for Enter when the object is to be moved")
+    rec.add_argument("--yes", action="store_true",
+                     help="start a session expected to take over an hour on the rig (without "
+                     "it, such a plan is refused with its estimate)")
     rec.add_argument("--json", action="store_true", help="print one JSON object")
     rec.set_defaults(func=run_record)
     cal = subparsers.add_parser(
@@ -168,6 +171,9 @@ def run_record(args) -> int:
         raise ValueError("--out must name the session folder, got an empty path (it would "
                          "record into the working directory)")
     plan, connect, rig, confirm = _plan_and_connect(args)
+    from ...device.plan import check_session_length
+
+    check_session_length(plan, agreed=args.yes)
     session = RecordingSession(
         args.out, plan, connect, rig=rig, max_lost=args.max_lost, attempts=args.attempts,
         confirm=confirm,

@@ -10,7 +10,9 @@ clock into host time). Inconsistent inputs are refused
 by name, with the file at fault:
 
 - a damaged file (its checksum differs from the manifest's, or it does not load);
-- a missing label (material, contact distance, repetition);
+- a missing label (material, contact distance, repetition), or one out of range or not the
+  manifest's (a contact distance that is NaN or outside the probe, a fractional or boolean
+  repetition, a material the plan does not place, a negative count of lost samples);
 - a duplicate (the same material, distance and repetition twice, or the same file twice);
 - a sample rate that differs (the configured rates, or an estimated rate off the configured one by
   more than ``rate_tolerance``);
@@ -29,9 +31,15 @@ import datetime
 import json
 from pathlib import Path
 
+import math
+from numbers import Integral, Real
+
 import numpy as np
 
 from ... import __version__
+from ..._files import inside
+from ..._validate import check_in_range, check_path, check_positive
+from ...device.plan import Plan
 from ...device.recording_session import MANIFEST, file_sha256, read_manifest, write_atomic
 from ...paper.protocol import DATASET
 from ...recording import Recording
@@ -72,13 +80,19 @@ def assemble_dataset(directory, out_dir=None, *, max_lost: float = 0.02,
     ValueError
         Naming the file and what is wrong with it (see the module notes).
     """
-    directory = Path(directory)
-    manifest = read_manifest(directory / MANIFEST)
+    directory = Path(check_path("directory", directory))
+    max_lost = check_in_range("max_lost", max_lost, 0.0, 1.0, low_inclusive=True)
+    rate_tolerance = check_positive("rate_tolerance", rate_tolerance, maximum=1.0)
+    if out_dir is not None:
+        out_dir = Path(check_path("out_dir", out_dir))
+    manifest_path = inside(directory, MANIFEST, str(directory / MANIFEST))
+    manifest = read_manifest(manifest_path)
+    plan = Plan.from_dict(manifest["plan"], f"{manifest_path}: plan", complete=True)
     entries = sorted(manifest["recordings"].values(), key=lambda e: e["touch"])
     if not entries:
         raise ValueError(f"{directory}: the session holds no recordings yet")
     recordings = [_load_checked(directory, e) for e in entries]
-    _check_labels_and_duplicates(recordings, entries)
+    _check_labels_and_duplicates(recordings, entries, plan)
     fs = _common_rate(recordings, entries, rate_tolerance)
     n = round(manifest["search"]["duration"] * fs)
     if n < MIN_SAMPLES:
@@ -88,13 +102,12 @@ def assemble_dataset(directory, out_dir=None, *, max_lost: float = 0.02,
                                                                            strict=True)]
     arrays = _arrays(recordings, rows)
     metadata = _metadata(directory, manifest, entries, rows, fs)
-    return _write(arrays, metadata, fs, Path(out_dir or directory) /
-                  f"recorded-{manifest['plan']['name']}.npz")
+    return _write(arrays, metadata, fs, Path(out_dir or directory) / f"recorded-{plan.name}.npz")
 
 
 def _load_checked(directory: Path, entry: dict) -> Recording:
-    """The entry's recording, its checksum verified."""
-    path = directory / entry["file"]
+    """The entry's recording, inside the session folder, its checksum verified."""
+    path = inside(directory, entry["file"], str(directory / MANIFEST))
     if not path.exists():
         raise ValueError(f"{path}: listed in the manifest but missing")
     if file_sha256(path) != entry["sha256"]:
@@ -105,21 +118,52 @@ def _load_checked(directory: Path, entry: dict) -> Recording:
         raise ValueError(f"{path}: damaged file ({exc})") from None
 
 
-def _check_labels_and_duplicates(recordings, entries) -> None:
+def _label(entry: dict, rec: Recording, name: str, ok, what: str):
+    """The label ``name`` of ``rec``, refused unless ``ok(value)`` (``what`` it must be)."""
+    value = rec.metadata.get(name)
+    if value is None:
+        raise ValueError(f"{entry['file']}: missing label(s) {name}")
+    if not ok(value):
+        raise ValueError(f"{entry['file']}: label {name} must be {what}, got {value!r:.60}")
+    return value
+
+
+def _is_int(v) -> bool:
+    return isinstance(v, Integral) and not isinstance(v, bool)
+
+
+def _is_real(v) -> bool:
+    return isinstance(v, Real) and not isinstance(v, bool) and math.isfinite(v)
+
+
+def _check_labels_and_duplicates(recordings, entries, plan: Plan) -> None:
+    """Every label in range and equal to the manifest's entry; no touch or file twice."""
     seen: dict = {}
     files: dict = {}
+    length = plan.probe_length
     for rec, entry in zip(recordings, entries, strict=True):
-        missing = [k for k in LABELS if rec.metadata.get(k) is None]
-        if missing:
-            raise ValueError(f"{entry['file']}: missing label(s) {', '.join(missing)}")
-        key = (rec.metadata["material"], round(float(rec.metadata["contact"]), 6),
-               int(rec.metadata["repetition"]))
+        material = _label(entry, rec, "material", lambda v: v in plan.materials,
+                          f"one of the plan's materials ({', '.join(plan.materials)})")
+        contact = _label(entry, rec, "contact", lambda v: _is_real(v) and 0 < v < length,
+                         f"a distance in (0, {length:g}) m")
+        repetition = _label(entry, rec, "repetition",
+                             lambda v: _is_int(v) and 0 <= v < plan.repetitions,
+                             f"a whole number in [0, {plan.repetitions})")
+        _label(entry, rec, "samples_lost", lambda v: _is_int(v) and v >= 0,
+               "a whole number >= 0")
+        _label(entry, rec, "trigger_time", _is_real, "a finite time, s")
+        key = (material, round(float(contact), 6), int(repetition))
         if key in seen:
             raise ValueError(f"{entry['file']}: duplicate of {seen[key]} (material {key[0]}, "
                              f"contact {key[1]} m, repetition {key[2]})")
         if entry["sha256"] in files:
             raise ValueError(f"{entry['file']}: duplicate of {files[entry['sha256']]} (the "
                              "same file twice)")
+        for name, value in (("material", material), ("contact", contact),
+                            ("repetition", repetition)):
+            if value != entry[name]:
+                raise ValueError(f"{entry['file']}: label {name} is {value!r}, the manifest's "
+                                 f"entry has {entry[name]!r}")
         seen[key], files[entry["sha256"]] = entry["file"], entry["file"]
 
 
@@ -131,6 +175,9 @@ def _common_rate(recordings, entries, tolerance: float) -> float:
         if rate is None:
             raise ValueError(f"{entry['file']}: missing label sample_rate_hz (the configured "
                              "sample rate)")
+        if not (_is_real(rate) and rate > 0):
+            raise ValueError(f"{entry['file']}: label sample_rate_hz must be a positive "
+                             f"rate, Hz, got {rate!r:.60}")
         if rate != first:
             raise ValueError(f"{entry['file']}: sample rate {rate:g} Hz differs from "
                              f"{first:g} Hz of {entries[0]['file']}")
@@ -150,11 +197,13 @@ def _resampled(rec: Recording, name: str, fs: float, n: int, max_lost: float):
     if meta.get("trigger_time") is None:
         raise ValueError(f"{name}: missing label trigger_time (the contact sample's time)")
     start = round(meta["trigger_time"] * fs) / rec.fs  # the trigger slot on the estimated grid
-    grid = start + np.arange(n) / fs
     budget = int(max_lost * n)  # samples that may be missing, at the ends as inside
-    if rec.t[-1] < grid[-1] - budget / fs or rec.t[0] > start + budget / fs:
+    # checked before the grid is made: a window longer than the recording allocates nothing
+    if (n - budget > rec.n_samples + lost or rec.t[-1] < start + (n - 1 - budget) / fs
+            or rec.t[0] > start + budget / fs):
         raise ValueError(f"{name}: too short: it covers {rec.t[-1] - start:.3f} s after the "
                          f"contact, the data set needs {(n - 1) / fs:.3f} s ({n} samples)")
+    grid = start + np.arange(n) / fs
     slots = np.rint((rec.t - start) * fs).astype(np.int64)
     interpolated = n - np.intersect1d(slots, np.arange(n)).size
     if interpolated > budget:

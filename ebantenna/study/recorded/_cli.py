@@ -3,6 +3,7 @@ from the rig to the report."""
 
 from __future__ import annotations
 
+import math
 import os
 import sys
 import time
@@ -55,9 +56,11 @@ def register(subparsers) -> None:
         help="fit the hinge stiffness, tip mass and loss factor to recordings",
         description="Fit the probe's hinge stiffness, tip mass and loss factor to a data set of "
         "recordings at known contact distances (e.g. from 'ebantenna dataset "
-        "--from-recordings'), with their 95 %% intervals; write the scene with the fitted values "
-        "(usable by 'ebantenna simulate --scene FILE'), a figure of measured against simulated "
-        "frequency versus distance, and calibration.json in --out.",
+        "--from-recordings') with the scene's own model (the touched rod's modes included when "
+        "the scene has them), each with its 95 % interval; a parameter the recordings do not "
+        "determine is reported as not identifiable, with the reason and a warning. Writes the "
+        "scene with the fitted values (usable by 'ebantenna simulate --scene FILE'), a figure "
+        "of measured against modelled frequency versus distance, and calibration.json in --out.",
     )
     cal.add_argument("--data", required=True, metavar="FILE", help="the data set of recordings")
     cal.add_argument("--scene", default="paper", metavar="NAME|FILE",
@@ -70,6 +73,7 @@ def register(subparsers) -> None:
 def run_calibrate(args) -> int:
     """Run ``ebantenna calibrate``."""
     import json
+    import warnings
     from pathlib import Path
 
     import matplotlib
@@ -78,25 +82,41 @@ def run_calibrate(args) -> int:
     from ...cli import print_json
     from ...simulate import load_dataset
     from ...simulate.scene import resolve_scene
-    from .calibration import calibrate, plot_calibration
+    from .calibration import PARAMETERS, IdentifiabilityWarning, calibrate, plot_calibration
 
     base = resolve_scene(args.scene)
-    cal = calibrate(load_dataset(args.data), base.probe)
+    data = load_dataset(args.data)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", IdentifiabilityWarning)  # said below, once each
+        cal = calibrate(data, base)
+    for name, why in cal.not_identifiable.items():
+        print(f"ebantenna calibrate: warning: {name} is not identifiable from these recordings: "
+              f"{why}", file=sys.stderr)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     scene = cal.scene(base)
     summary = {**cal.to_dict(), "data": str(args.data),
                "scene": str(scene.save(out / f"{scene.name}.toml"))}
-    fig = plot_calibration(cal, base.probe)
+    fig = plot_calibration(cal, base)
     fig.savefig(out / "calibration.png", dpi=120)
     summary["figure"] = str(out / "calibration.png")
     (out / "calibration.json").write_text(json.dumps(summary, indent=2), encoding="utf-8")
     if args.json:
         print_json(summary)
         return 0
-    for name, unit in (("hinge_stiffness", "N m/rad"), ("tip_mass", "kg"), ("loss_factor", "")):
+    units = {"hinge_stiffness": "N m/rad", "tip_mass": "kg", "loss_factor": ""}
+    print(f"model: {cal.model}; {summary['positions']} contact positions, rms misfit "
+          f"{cal.rms_residual_hz:.3g} Hz")
+    for name in PARAMETERS:
         lo, hi = cal.interval(name)
-        print(f"{name}: {getattr(cal, name):.4g} {unit} (95 % {lo:.4g} - {hi:.4g})")
+        if name in cal.not_identifiable:
+            bound = (f"at least {lo:.4g} {units[name]}".rstrip() if lo > 0 and math.isinf(hi)
+                     else f"at most {hi:.4g} {units[name]}".rstrip() if math.isfinite(hi)
+                     else "no bound")
+            print(f"{name}: not identifiable ({bound}; see the warning)")
+        else:
+            print(f"{name}: {getattr(cal, name):.4g} {units[name]} (95 % {lo:.4g} - {hi:.4g})"
+                  .replace("  (", " ("))
     print(f"scene written to {summary['scene']}")
     return 0
 

@@ -273,8 +273,10 @@ def run_data(args) -> int:
     if args.quick or args.cache:
         raise ValueError("--quick and --cache choose the simulated data set; not with --data")
     try:
-        summary = reproduce_recorded(args.data, args.out, seed=args.seed, n_jobs=args.jobs,
-                                     show_progress=None if not args.json else False)
+        summary = reproduce_recorded(
+            args.data, args.out, seed=args.seed, n_jobs=args.jobs,
+            show_progress=None if not args.json else False,
+            say=lambda text: print(f"ebantenna reproduce: {text}", file=sys.stderr, flush=True))
     except KeyboardInterrupt as exc:
         raise interrupted(exc, {"out": None, "data": args.data}) from None
     if args.json:
@@ -283,7 +285,7 @@ def run_data(args) -> int:
     found = summary["intervals"]
     print(f"Study on {summary['data']['path']} ({summary['data']['source']}) written to "
           f"{args.out}/; report {summary['report']['html']}")
-    for name in ("svm", "ann"):
+    for name in ("svm", "ann") if found else ():
         lo, hi = found[name]["interval95"]
         print(f"  {name.upper()} material accuracy: test {found[name]['test_accuracy']:.1%} "
               f"(95 % {lo:.1%} - {hi:.1%}, {found[name]['n_test']} tests)")

@@ -15,6 +15,7 @@ EXIT_SERVOS_POWERED = 3
 def register(subparsers) -> None:
     """Add the ``record`` command."""
     from ...cli import seed_argument
+    from ...device._cli import device_number
 
     rec = subparsers.add_parser(
         "record",
@@ -24,12 +25,17 @@ def register(subparsers) -> None:
         "touch search, touch, stop, record and release, and save the recording with its labels "
         "and the rig's account in DIR, with a manifest (DIR/session.json) holding every file's "
         "checksum. Run the same command again to resume after any stop: nothing is recorded "
-        "twice and nothing saved is lost. Exit code 0 when every touch is saved, 1 when a search "
-        "found no contact, 3 when the servos may still be powered (cut their supply).",
+        "twice and nothing saved is lost; --dry-run shows the plan, its time estimate and the "
+        "touches done and missing without moving anything. Exit codes: 0 every touch saved (or "
+        "the dry run printed); 1 a search found no contact (place the object, run again); 2 bad "
+        "input, or the session stopped safely: the rig is unsafe (bus dead, a chip missing) or "
+        "a touch lost too many samples on every attempt (the message says which); 3 the servos "
+        "may still be powered (cut their supply); 130 and 143 on Ctrl-C and SIGTERM.",
     )
     where = rec.add_mutually_exclusive_group(required=True)
     where.add_argument("--simulated", action="store_true", help="use the simulated rig")
-    where.add_argument("--bus", type=int, metavar="N", help="I2C bus number of the real rig")
+    where.add_argument("--bus", type=device_number, metavar="N",
+                       help="I2C bus number of the real rig")
     rec.add_argument("--out", required=True, metavar="DIR", help="the session folder")
     what = rec.add_mutually_exclusive_group()
     what.add_argument("--plan", metavar="FILE", help="a plan file (.toml or .json)")
@@ -41,7 +47,7 @@ def register(subparsers) -> None:
                      help="simulated only: seed of the design's variation and the faults (0)")
     rec.add_argument("--inject-faults", type=float, default=0.0, metavar="RATE",
                      help="simulated only: fraction of I2C transfers that fail, every kind")
-    rec.add_argument("--oe-gpio", type=int, metavar="PIN",
+    rec.add_argument("--oe-gpio", type=device_number, metavar="PIN",
                      help="hardware only: BCM GPIO wired to the PCA9685's OE pin")
     rec.add_argument("--max-lost", type=float, default=0.02, metavar="F",
                      help="a touch whose window lost more than this share is made again (0.02)")
@@ -49,6 +55,9 @@ def register(subparsers) -> None:
                      help="tries of a touch that lost too much before the session stops (5)")
     rec.add_argument("--no-wait", action="store_true",
                      help="hardware only: do not wait for Enter when the object is to be moved")
+    rec.add_argument("--dry-run", action="store_true",
+                     help="print the plan, its time estimate and the touches already done and "
+                     "still missing; move nothing, write nothing")
     rec.add_argument("--json", action="store_true", help="print one JSON object")
     rec.set_defaults(func=run_record)
     cal = subparsers.add_parser(
@@ -121,17 +130,21 @@ def run_calibrate(args) -> int:
     return 0
 
 
-def _plan_and_connect(args):
-    """The plan, the ``connect`` of the rig, and the rig's description."""
+def _plan_of(args):
+    """The plan, and the scene of a simulated rig (None on hardware)."""
     from ...device.plan import load_plan
     from ...simulate.scene import resolve_scene
     from .planning import protocol_plan
 
     scene = resolve_scene(args.scene) if args.simulated else None
     if args.plan is not None:
-        plan = load_plan(args.plan)
-    else:
-        plan = protocol_plan(quick=args.quick, scene=scene, seed=args.seed)
+        return load_plan(args.plan), scene
+    return protocol_plan(quick=args.quick, scene=scene, seed=args.seed), scene
+
+
+def _plan_and_connect(args):
+    """The plan, the ``connect`` of the rig, and the rig's description."""
+    plan, scene = _plan_of(args)
     if args.simulated:
         if abs(scene.probe.length - plan.probe_length) > 1e-9:
             raise ValueError(f"the plan's probe is {plan.probe_length:g} m long, the scene's "
@@ -187,6 +200,8 @@ def run_record(args) -> int:
     if not args.out:
         raise ValueError("--out must name the session folder, got an empty path (it would "
                          "record into the working directory)")
+    if args.dry_run:
+        return _dry_run(args)
     plan, connect, rig, confirm = _plan_and_connect(args)
     session = RecordingSession(
         args.out, plan, connect, rig=rig, max_lost=args.max_lost, attempts=args.attempts,
@@ -220,10 +235,66 @@ def run_record(args) -> int:
 
 def _summary(args, session, start) -> dict:
     manifest = session.manifest or {"recordings": {}, "retakes": []}
+    released = [e.get("servos_released") for e in manifest["recordings"].values()]
     return {"out": str(args.out), "plan": session.plan.name, "touches": len(session.plan),
             "saved": len(manifest["recordings"]), "retakes": len(manifest["retakes"]),
+            # every saved touch's release read back; False when one is not (or none was saved)
+            "servos_released": bool(released) and all(r is True for r in released),
             "manifest": str(session.manifest_path),
             "seconds": round(time.perf_counter() - start, 3)}
+
+
+def _dry_run(args) -> int:
+    """``record --dry-run``: the plan, its time estimate, the touches done and missing."""
+    from pathlib import Path
+
+    from ...cli import print_json
+    from ...device.plan import session_time
+    from ...device.recording_session import MANIFEST, read_manifest
+
+    plan = _plan_of(args)[0]
+    path = Path(args.out) / MANIFEST
+    done = set()
+    if path.exists():
+        manifest = read_manifest(path)
+        if manifest["plan"] != plan.to_dict():
+            raise ValueError(f"{args.out} holds a session of another plan "
+                             f"({manifest['plan']['name']!r})")
+        done = {k for k, e in manifest["recordings"].items()
+                if (Path(args.out) / e["file"]).exists()}
+    missing = [t for t in plan if t.key not in done]
+    whole, left = session_time(plan), _time_of(plan, missing)
+    summary = {"out": str(args.out), "plan": plan.name, "touches": len(plan),
+               "materials": list(plan.materials), "contacts_m": list(plan.contacts),
+               "repetitions": plan.repetitions, "done": len(plan) - len(missing),
+               "missing": len(missing), "missing_touches": [t.key for t in missing],
+               "estimate_s": whole["total_s"], "estimate_worst_s": whole["worst_s"],
+               "remaining_s": left[0], "remaining_worst_s": left[1], "dry_run": True}
+    if args.json:
+        print_json(summary)
+        return 0
+    print(f"plan {plan.name!r}: {len(plan.materials)} materials x {len(plan.contacts)} contacts "
+          f"x {plan.repetitions} repetitions = {len(plan)} touches; about "
+          f"{whole['total_s'] / 60:.0f} min ({whole['worst_s'] / 60:.0f} min if every search "
+          "takes its longest)")
+    print(f"done {summary['done']}, missing {len(missing)} (about {left[0] / 60:.0f} min)")
+    for key in summary["missing_touches"][:10]:
+        print(f"  {key}")
+    if len(missing) > 10:
+        print(f"  ... and {len(missing) - 10} more")
+    return 0
+
+
+def _time_of(plan, touches) -> tuple[float, float]:
+    """Average and worst seconds of ``touches`` of ``plan`` (each placement counted once)."""
+    from ...device.plan import MOVE_SECONDS, session_time
+
+    if not touches:
+        return 0.0, 0.0
+    per = session_time(plan)
+    placements = len({(t.material, t.contact) for t in touches})
+    return (len(touches) * per["touch_s"] + placements * MOVE_SECONDS,
+            len(touches) * per["touch_worst_s"] + placements * MOVE_SECONDS)
 
 
 def add_from_recordings(parser) -> None:

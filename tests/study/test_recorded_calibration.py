@@ -212,3 +212,37 @@ def test_too_few_positions_are_refused(rig):
     one = _fake(rig, contact=np.full(rig.contact.size, 0.1))
     with pytest.raises(ValueError, match="at 2 or more distances"):
         calibrate(one, RIG)
+
+
+@pytest.mark.parametrize("unilateral", [True, False])
+def test_scene_modes_are_the_simulators_own(unilateral):
+    # The calibration's model is the simulator's: with a linear contact its modes are those of
+    # object_modes; with the strike's contact, the same bodies and damping with the contact closed.
+    scene = builtin_scene("paper")
+    if not unilateral:
+        scene = scene.with_(effects=tuple(e for e in scene.effects
+                                          if e.name != "unilateral_contact"))
+    contacts, materials = np.array([0.1, 0.25]), np.array(["brass", "pvc"])
+    ours = scene_modes(scene, contacts, materials)
+    from ebantenna.simulate.touched_object import object_modes
+
+    preload = np.full(2, scene.effect("object_modes").preload)
+    modes, inverse, timed = object_modes(scene, contacts, materials, preload, False)
+    for i, key in enumerate(zip(contacts.tolist(), materials.tolist())):
+        frequency, loss, _ = ours[key]
+        if unilateral:
+            s = timed["unilateral"][inverse[i]].structure
+            # the closed system's undamped frequencies: eigenvalues of (K + k c c^T, M)
+            k = timed["unilateral"][inverse[i]].contact_stiffness
+            import scipy.linalg as sla
+            w2 = sla.eigh(s.stiffness + k * np.outer(s.contact, s.contact), s.mass,
+                          eigvals_only=True)
+            undamped = np.sqrt(w2[w2 > 0]) / (2 * np.pi)
+            # damped = undamped sqrt(1 - zeta^2) to first order in the light damping (zeta < 0.1)
+            got = frequency / np.sqrt(1 - (loss / 2) ** 2)
+            np.testing.assert_allclose(got[:4], undamped[:4], rtol=1e-3)
+        else:
+            m = modes[inverse[i]]
+            np.testing.assert_allclose(loss, 2 * m.damping_ratio, rtol=1e-12)
+            np.testing.assert_allclose(frequency, m.frequencies * np.sqrt(1 - m.damping_ratio**2),
+                                       rtol=1e-12)

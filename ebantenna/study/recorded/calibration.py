@@ -303,7 +303,7 @@ def _closed_contact_modes(strike):
     return lam.imag / (2 * math.pi), -2 * lam.real / np.abs(lam), shown
 
 
-def scene_modes(scene, contacts, materials) -> dict:
+def scene_modes(scene, contacts, materials, *, rods=None) -> dict:
     """The modes the scene's model gives at each distinct (contact, material).
 
     Parameters
@@ -314,40 +314,64 @@ def scene_modes(scene, contacts, materials) -> dict:
         Contact distances, m.
     materials : array of str
         The touched material of each contact.
+    rods : dict, optional
+        The touched rods reduced once (:func:`touched_rods`): they do not depend on the probe,
+        so a fit that varies the probe reduces them once.
 
     Returns
     -------
     dict
         ``(contact, material) -> (frequency_hz, loss_factor, tip_displacement)``, each an array
         over the modes, lowest first: the damped frequency, the loss factor ``2 zeta`` and the
-        modal displacement at the tip after the arrest (see the module notes for the model).
+        modal displacement at the tip after the arrest (see the module notes for the model). With
+        ``object_modes`` these are the simulator's own contact cases
+        (:mod:`ebantenna.simulate.touched_object`), built as it builds them.
     """
-    from ...simulate.touched_object import object_modes, pinned_modes
+    from ...simulate import touched_object as obj
 
     keys = sorted(set(zip(np.asarray(contacts, float).tolist(),
                           np.asarray(materials).astype(str).tolist(), strict=True)))
-    where = np.array([c for c, _ in keys])
-    what = np.array([m for _, m in keys])
     out = {}
     if scene.has("object_modes"):
-        preload = np.full(where.size, scene.effect("object_modes").preload)
-        modes, inverse, timed = object_modes(scene, where, what, preload, False, x_modes=False)
-        for i, key in enumerate(keys):
-            if "unilateral" in timed:
-                out[key] = _closed_contact_modes(timed["unilateral"][inverse[i]])
-            else:
-                m = modes[inverse[i]]
-                zeta = np.zeros(m.omega.size) if m.damping_ratio is None else m.damping_ratio
-                out[key] = (m.omega * np.sqrt(1 - zeta**2) / (2 * math.pi), 2 * zeta,
-                            np.abs(m.tip * m.velocity) / m.omega)
+        probe = scene.probe
+        if not scene.has("structural_damping"):
+            probe = dataclasses.replace(probe, loss_factor=0.0)
+        if rods is None:
+            rods = touched_rods(scene, [m for _, m in keys])
+        preload = scene.effect("object_modes").preload
+        for contact in sorted({c for c, _ in keys}):
+            pairs = [(m, preload) for c, m in keys if c == contact]
+            for case in obj._contact_cases(scene, probe, contact, rods, pairs,
+                                           scene.has("object_damping")):
+                if scene.has("unilateral_contact"):
+                    modes = _closed_contact_modes(obj._unilateral_model(case))
+                else:
+                    m = obj._coupled_model(case)
+                    zeta = np.zeros(m.omega.size) if m.damping_ratio is None else m.damping_ratio
+                    modes = (m.omega * np.sqrt(1 - zeta**2) / (2 * math.pi), 2 * zeta,
+                             np.abs(m.tip * m.velocity) / m.omega)
+                out[contact, case.material] = modes
         return out
-    modes, inverse = pinned_modes(scene, where, what, False)
+    where = np.array([c for c, _ in keys])
+    what = np.array([m for _, m in keys])
+    modes, inverse = obj.pinned_modes(scene, where, what, False)
     eta = scene.probe.loss_factor if scene.has("structural_damping") else 0.0
     for i, key in enumerate(keys):
         m = modes[inverse[i]]
         out[key] = (m.omega * math.sqrt(1 - eta**2 / 4) / (2 * math.pi),
                     np.full(m.omega.size, eta), np.abs(m.tip * m.velocity) / m.omega)
     return out
+
+
+def touched_rods(scene, materials) -> dict:
+    """The touched rods of ``scene`` (``object_modes``) reduced once per material, as the
+    simulator reduces them; None for a scene without ``object_modes``."""
+    from ...simulate import touched_object as obj
+
+    if not scene.has("object_modes"):
+        return None
+    return obj._reduced_rods(scene, np.array(sorted(set(materials))),
+                             scene.has("object_damping"))
 
 
 def fitted_mode(modes, fs: float) -> int:
@@ -374,12 +398,14 @@ class _Model:
         self.index = np.array([self.keys.index(pair) for pair in pairs])
         self.evaluations = 0
         self._lags = {}
+        self.rods = touched_rods(scene, materials.tolist())
 
     def modes(self, log10_k, tip_mass, eta):
         """Frequency (Hz) and loss factor of the fitted mode at each position."""
         self.evaluations += 1
         trial = _candidate(self.scene, float(10.0 ** log10_k), tip_mass, eta)
-        by_key = scene_modes(trial, [k[0] for k in self.keys], [k[1] for k in self.keys])
+        by_key = scene_modes(trial, [k[0] for k in self.keys], [k[1] for k in self.keys],
+                             rods=self.rods)
         frequency, loss = np.full(len(self.keys), np.nan), np.full(len(self.keys), np.nan)
         for i, key in enumerate(self.keys):
             j = fitted_mode(by_key[key], self.fs)

@@ -10,6 +10,10 @@ import time
 
 #: Exit code of ``record`` when the servos may still be powered (as ``acquire``'s).
 EXIT_SERVOS_POWERED = 3
+#: ``record``'s default limit of the share of a window lost to bus faults: a failed FIFO read
+#: restarts the FIFO and costs about 5 % of a one-second window (measured on the simulated bus),
+#: so one is kept and two are made again.
+MAX_LOST = 0.06
 
 
 def register(subparsers) -> None:
@@ -49,8 +53,11 @@ def register(subparsers) -> None:
                      help="simulated only: fraction of I2C transfers that fail, every kind")
     rec.add_argument("--oe-gpio", type=device_number, metavar="PIN",
                      help="hardware only: BCM GPIO wired to the PCA9685's OE pin")
-    rec.add_argument("--max-lost", type=float, default=0.02, metavar="F",
-                     help="a touch whose window lost more than this share is made again (0.02)")
+    rec.add_argument("--max-lost", type=float, default=MAX_LOST, metavar="F",
+                     help="a touch whose window lost more than this share is made again; kept "
+                     "in the session, and 'dataset --from-recordings' holds its recordings to "
+                     f"the same limit ({MAX_LOST:g}: one failed FIFO read, about 5 %% of the "
+                     "window, is kept; two are not)")
     rec.add_argument("--attempts", type=int, default=5, metavar="N",
                      help="tries of a touch that lost too much before the session stops (5)")
     rec.add_argument("--no-wait", action="store_true",
@@ -311,6 +318,16 @@ def run_from_recordings(args) -> int:
 
     if args.quick:
         raise ValueError("--quick builds the simulated data set; not with --from-recordings")
+    from ...device.recording_session import MANIFEST, read_manifest
+
+    manifest = read_manifest(os.path.join(args.from_recordings, MANIFEST))
+    plan = manifest["plan"]
+    touches = len(plan["materials"]) * len(plan["contacts_m"]) * plan["repetitions"]
+    saved = len(manifest["recordings"])
+    if saved < touches:
+        print(f"ebantenna dataset: warning: the session is not finished: {saved} of {touches} "
+              f"touches saved; the data set holds those (run 'ebantenna record' with the same "
+              "settings to make the rest)", file=sys.stderr)
     start = time.perf_counter()
     data = assemble_dataset(args.from_recordings, args.out)
     summary = {"path": str(data.path), "signals": data.n_signals, "samples": data.n_samples,
@@ -319,6 +336,8 @@ def run_from_recordings(args) -> int:
                "samples_interpolated": int(sum(data.metadata["provenance"]
                                                ["samples_interpolated"])),
                "checksum_sha256": data.metadata["checksum_sha256"],
+               "touches_planned": touches, "complete": saved == touches,
+               "max_lost": manifest.get("max_lost", 0.02),
                "seconds": round(time.perf_counter() - start, 3)}
     if args.json:
         print_json(summary)

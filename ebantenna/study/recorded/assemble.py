@@ -46,7 +46,7 @@ MIN_SAMPLES = 2 * DATASET.fft_bins
 LABELS = ("material", "contact", "repetition")
 
 
-def assemble_dataset(directory, out_dir=None, *, max_lost: float = 0.02,
+def assemble_dataset(directory, out_dir=None, *, max_lost: float | None = None,
                      rate_tolerance: float = 0.01) -> Dataset:
     """Assemble a session's recordings into a data set file.
 
@@ -56,8 +56,10 @@ def assemble_dataset(directory, out_dir=None, *, max_lost: float = 0.02,
         The session folder (holding ``session.json``).
     out_dir : path, optional
         Where to write ``recorded-<plan name>.npz``; default the session folder.
-    max_lost : float
-        Largest share of a recording's window that may be missing, in [0, 1). Default 0.02.
+    max_lost : float, optional
+        Largest share of a recording's window that may be missing, in [0, 1). Default the
+        session's own limit (``max_lost`` in its manifest, the one ``record`` kept its
+        recordings by; 0.02 for a session that does not record it).
     rate_tolerance : float
         Largest relative difference between a recording's estimated sample rate and the
         configured one. Default 0.01 (the MPU-6050's clock is specified to 1 %).
@@ -74,6 +76,8 @@ def assemble_dataset(directory, out_dir=None, *, max_lost: float = 0.02,
     """
     directory = Path(directory)
     manifest = read_manifest(directory / MANIFEST)
+    if max_lost is None:
+        max_lost = manifest.get("max_lost", 0.02)
     entries = sorted(manifest["recordings"].values(), key=lambda e: e["touch"])
     if not entries:
         raise ValueError(f"{directory}: the session holds no recordings yet")

@@ -445,7 +445,10 @@ class RecordingSession:
                                              "samples_lost_fraction": lost, "at": _now()})
             self._save_manifest()
             self.say(f"touch {touch.key}: {lost:.1%} of the window lost to bus faults; again")
-        if lost > self.max_lost:
+        if lost > self.max_lost:  # the last attempt is a retake too: the manifest lists them all
+            self.manifest["retakes"].append({"touch": touch.key, "attempt": attempt,
+                                             "samples_lost_fraction": lost, "at": _now()})
+            self._save_manifest()
             raise UnsafeRigError(
                 f"touch {touch.key}: every one of {self.attempts} attempts lost more than "
                 f"{self.max_lost:.0%} of its window to bus faults; {CHECK_BUS}",

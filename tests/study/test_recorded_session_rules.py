@@ -118,3 +118,18 @@ def test_a_half_done_session_is_assembled_with_a_warning(tmp_path, capsys):
     captured = capsys.readouterr()
     assert "the session is not finished: 1 of 2 touches saved" in captured.err
     assert json.loads(captured.out)["complete"] is False
+
+
+def test_every_failed_attempt_is_listed_in_retakes(tmp_path):
+    # a session that loses too much on every attempt stops; the manifest lists all the attempts
+    from ebantenna.device.recording_session import UnsafeRigError
+    from ebantenna.device.simulated import Faults
+
+    s = RecordingSession(tmp_path / "s", PLAN,
+                         simulated_connect(builtin_scene("ideal"), simulate,
+                                           faults=Faults.every_kind(0.05), seed=0),
+                         rig={"simulated": True}, max_lost=0.0, attempts=2, show_progress=False)
+    with pytest.raises(UnsafeRigError, match="every one of 2 attempts"):
+        s.run()
+    retakes = json.loads((tmp_path / "s" / MANIFEST).read_text())["retakes"]
+    assert [r["attempt"] for r in retakes] == [1, 2]

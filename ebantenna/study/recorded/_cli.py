@@ -213,7 +213,7 @@ def run_record(args) -> int:
     session = RecordingSession(
         args.out, plan, connect, rig=rig, max_lost=args.max_lost, attempts=args.attempts,
         confirm=confirm,
-        say=lambda text: print(f"ebantenna record: {text}", file=sys.stderr, flush=True),
+        say=_status_line,
         show_progress=False if args.json else None)
     start = time.perf_counter()
     code, stopped = 0, None
@@ -238,6 +238,13 @@ def run_record(args) -> int:
         print(f"saved {summary['saved']} of {summary['touches']} touches in {args.out} "
               f"({summary['retakes']} made again); manifest {summary['manifest']}")
     return code
+
+
+def _status_line(text: str) -> None:
+    """One status line on stderr, written above the progress bar (not onto its line)."""
+    import tqdm.std
+
+    tqdm.std.tqdm.write(f"ebantenna record: {text}", file=sys.stderr)
 
 
 def _summary(args, session, start) -> dict:

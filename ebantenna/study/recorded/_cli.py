@@ -17,7 +17,13 @@ MAX_LOST = 0.06
 
 
 def register(subparsers) -> None:
-    """Add the ``record`` command."""
+    """Add the ``record`` and ``calibrate`` commands."""
+    _add_record(subparsers)
+    _add_calibrate(subparsers)
+
+
+def _add_record(subparsers) -> None:
+    """The ``record`` command."""
     from ...cli import seed_argument
     from ...device._cli import device_number
 
@@ -67,6 +73,10 @@ def register(subparsers) -> None:
                      "still missing; move nothing, write nothing")
     rec.add_argument("--json", action="store_true", help="print one JSON object")
     rec.set_defaults(func=run_record)
+
+
+def _add_calibrate(subparsers) -> None:
+    """The ``calibrate`` command."""
     cal = subparsers.add_parser(
         "calibrate",
         help="fit the hinge stiffness, tip mass and loss factor to recordings",

@@ -24,9 +24,18 @@ The mode fitted, by identity
     higher mode or one of the rod's. Its frequency is measured where the model puts it: the
     recording is band-passed about the predicted frequency (+/- 25 %) and the mode's frequency
     read from the analytic signal's phase slope (:func:`loss_factor_of`). The fit starts from
-    the hinge, on a grid of decades, whose predicted lowest modes lie closest to the peaks of
-    the recordings' displacement spectra, and alternates measuring at the prediction and fitting
-    until the measured set no longer changes.
+    the hinge (a grid of decades) and the tip mass (a few values) whose modes fall on the
+    recordings' spectral peaks, and alternates measuring at the prediction and fitting until the
+    measured frequencies change by less than :data:`SETTLED`.
+
+The measurement, modelled
+    The estimator has a bias of its own on a short decay: a few parts in 10^4 of the frequency
+    and 10 % of the loss factor for an 11 Hz mode over one second (it fits the band-passed
+    signal's envelope and phase between the filter's transients), which is more than the time
+    base's 10^-4 and would pass for a hinge softer than the truth. The model is therefore read
+    through the same estimator (:func:`as_measured`): the fitted mode rings alone over the
+    recording's length, its envelope peaking where the recording's does, and what the estimator
+    reads from it is compared with what it reads from the recording, so the bias cancels.
 
 Frequencies: hinge and tip mass
     The independent unit is the contact position (a material at a distance): repetitions there
@@ -51,15 +60,21 @@ Identifiability
     A tip mass whose interval is wider than ``mass_bounds`` is reported not identifiable too.
 
 Loss factor
-    The decay of the fitted mode in each recording gives its loss factor ``eta_i``: the
-    band-passed Hilbert envelope falls as ``exp(-eta_i omega t / 2)``. The model's loss factor of
-    the same mode is affine in the tube's, ``a_i + b_i eta`` (the rod's and the contact's damping
-    in ``a_i``; ``b_i`` the tube's share), so each recording gives ``eta = (eta_i - a_i) / b_i``.
-    Only recordings whose fitted stretch spans at least :data:`MIN_CYCLES` periods are used (a band
-    filter smears a shorter decay, and the estimate falls short by a few per cent), and whose mode
-    the tube damps (``b_i`` at least :data:`MIN_SHARE`); the uncertainty is the estimates' spread
-    (their standard deviation), which holds that bias, not their standard error. A scene without
+    The decay of the fitted mode in each recording gives its loss factor as read: the band-passed
+    Hilbert envelope falls as ``exp(-eta omega t / 2)``. The mode's loss factor that the
+    estimator reads as that (:func:`as_measured`, inverted by secant steps) is, in the model,
+    affine in the tube's, ``a_i + b_i eta`` (the rod's and the contact's damping in ``a_i``;
+    ``b_i`` the tube's share), so each recording gives one ``eta``; each position's are averaged.
+    Only recordings whose fitted stretch spans at least :data:`MIN_CYCLES` periods are used, and
+    whose mode the tube damps (``b_i`` at least :data:`MIN_SHARE`); the uncertainty is the
+    positions' spread (their standard deviation), not its standard error. A scene without
     ``structural_damping`` has no tube loss to fit: the loss factor is then not identifiable.
+
+Measured on the simulated rig (``ebantenna record --simulated``, brass at 5, 10, 15, 20, 25 and
+30 cm, two repetitions): the ``paper`` scene gives a tip mass of 2.4999 g (95 % 2.493-2.504 g,
+truth 2.5 g), a loss factor of 0.0298 (0.0294-0.0303, truth 0.03) and a hinge not identifiable,
+stiffer than about 800 N m/rad (a clamp); the same scene with a 5 N m/rad hinge gives 4.91
+(4.75-5.09) N m/rad. ``tests/study/test_recorded_calibration.py`` holds these to the truth.
 """
 
 from __future__ import annotations
@@ -71,16 +86,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import least_squares
-from scipy.stats import t as student_t
 from scipy.signal import butter, hilbert, sosfiltfilt
+from scipy.stats import t as student_t
 
 from ..._validate import check_in_range, check_int, check_real, describe
 from ...paper.protocol import DECAY_REGION
 from ...probe import MAX_LOSS_FACTOR, MAX_TIP_MASS_RATIO
 
-__all__ = ["Calibration", "calibrate", "loss_factor_of", "as_measured", "scene_modes",
-           "fitted_mode",
-           "IdentifiabilityWarning", "MIN_CYCLES", "MIN_SHARE", "TIME_BASE", "plot_calibration"]
+__all__ = ["Calibration", "calibrate", "loss_factor_of", "IdentifiabilityWarning", "MIN_CYCLES",
+           "MIN_SHARE", "TIME_BASE", "plot_calibration"]
 
 #: Fewest periods of the fitted mode a decay fit must span.
 MIN_CYCLES = 8
@@ -240,7 +254,8 @@ def _decay(x, fs, frequency):
 
 
 def as_measured(frequency: float, loss: float, n: int, fs: float, peak: int, *, lag=None):
-    """What :func:`loss_factor_of` reads from one mode alone: ``(eta, f)``.
+    """What :func:`loss_factor_of` reads from one mode alone: ``(eta, f)`` (takes checked
+    values: a frequency whose band lies below ``fs / 2``).
 
     The mode (damped frequency ``frequency`` Hz, loss factor ``loss``) rings from rest over ``n``
     samples at ``fs``, shifted so that its band envelope peaks at sample ``peak``, as the
@@ -304,7 +319,8 @@ def _closed_contact_modes(strike):
 
 
 def scene_modes(scene, contacts, materials, *, rods=None) -> dict:
-    """The modes the scene's model gives at each distinct (contact, material).
+    """The modes the scene's model gives at each distinct (contact, material) (takes checked
+    values: contacts inside the probe, materials the scene knows).
 
     Parameters
     ----------
@@ -324,37 +340,20 @@ def scene_modes(scene, contacts, materials, *, rods=None) -> dict:
         ``(contact, material) -> (frequency_hz, loss_factor, tip_displacement)``, each an array
         over the modes, lowest first: the damped frequency, the loss factor ``2 zeta`` and the
         modal displacement at the tip after the arrest (see the module notes for the model). With
-        ``object_modes`` these are the simulator's own contact cases
-        (:mod:`ebantenna.simulate.touched_object`), built as it builds them.
+        ``object_modes`` each contact case is built as the simulator builds it
+        (:class:`~ebantenna.simulate.touched_object.ContactCase`, its models of
+        :data:`~ebantenna.simulate.touched_object.OBJECT_MODELS`).
     """
-    from ...simulate import touched_object as obj
+    from ...simulate.touched_object import pinned_modes
 
     keys = sorted(set(zip(np.asarray(contacts, float).tolist(),
                           np.asarray(materials).astype(str).tolist(), strict=True)))
-    out = {}
     if scene.has("object_modes"):
-        probe = scene.probe
-        if not scene.has("structural_damping"):
-            probe = dataclasses.replace(probe, loss_factor=0.0)
-        if rods is None:
-            rods = touched_rods(scene, [m for _, m in keys])
-        preload = scene.effect("object_modes").preload
-        for contact in sorted({c for c, _ in keys}):
-            pairs = [(m, preload) for c, m in keys if c == contact]
-            for case in obj._contact_cases(scene, probe, contact, rods, pairs,
-                                           scene.has("object_damping")):
-                if scene.has("unilateral_contact"):
-                    modes = _closed_contact_modes(obj._unilateral_model(case))
-                else:
-                    m = obj._coupled_model(case)
-                    zeta = np.zeros(m.omega.size) if m.damping_ratio is None else m.damping_ratio
-                    modes = (m.omega * np.sqrt(1 - zeta**2) / (2 * math.pi), 2 * zeta,
-                             np.abs(m.tip * m.velocity) / m.omega)
-                out[contact, case.material] = modes
-        return out
-    where = np.array([c for c, _ in keys])
-    what = np.array([m for _, m in keys])
-    modes, inverse = obj.pinned_modes(scene, where, what, False)
+        return _rod_modes(scene, keys, rods if rods is not None else touched_rods(
+            scene, [m for _, m in keys]))
+    out = {}
+    where, what = np.array([c for c, _ in keys]), np.array([m for _, m in keys])
+    modes, inverse = pinned_modes(scene, where, what, False)
     eta = scene.probe.loss_factor if scene.has("structural_damping") else 0.0
     for i, key in enumerate(keys):
         m = modes[inverse[i]]
@@ -363,15 +362,61 @@ def scene_modes(scene, contacts, materials, *, rods=None) -> dict:
     return out
 
 
-def touched_rods(scene, materials) -> dict:
+def _rod_modes(scene, keys, rods) -> dict:
+    """:func:`scene_modes` with ``object_modes``: each (contact, material) a contact case as
+    :func:`~ebantenna.simulate.touched_object.object_modes` builds it, the probe reduced once
+    per contact."""
+    from ...fem.coupling import craig_bampton, probe_substructure
+    from ...simulate.touched_object import OBJECT_MODELS, ContactCase
+
+    effect = scene.effect("object_modes")
+    probe = scene.probe
+    if not scene.has("structural_damping"):
+        probe = dataclasses.replace(probe, loss_factor=0.0)
+    object_loss = scene.has("object_damping")
+    build = {model.name: model.build for model in OBJECT_MODELS}
+    out = {}
+    for contact in sorted({c for c, _ in keys}):
+        reduced = craig_bampton(probe_substructure(probe, contact, hinge=scene.hinge,
+                                                   n_elements=scene.n_elements),
+                                effect.probe_modes)
+        for name in sorted(m for c, m in keys if c == contact):
+            rod, rod_reduced = rods[name]
+            case = ContactCase(
+                scene=scene, probe=probe, contact=contact, material=name,
+                preload=effect.preload, rod=rod, probe_reduction=reduced,
+                rod_reduction=rod_reduced,
+                stiffness=effect.contact_stiffness(rod.material, probe, effect.preload),
+                loss_factor=effect.contact_loss_factor(rod.material, probe,
+                                                       object_loss=object_loss,
+                                                       preload=effect.preload))
+            if scene.has("unilateral_contact"):
+                out[contact, name] = _closed_contact_modes(build["unilateral"](case))
+                continue
+            m = build["coupled"](case)
+            zeta = np.zeros(m.omega.size) if m.damping_ratio is None else m.damping_ratio
+            out[contact, name] = (m.omega * np.sqrt(1 - zeta**2) / (2 * math.pi), 2 * zeta,
+                                  np.abs(m.tip * m.velocity) / m.omega)
+    return out
+
+
+def touched_rods(scene, materials) -> dict | None:
     """The touched rods of ``scene`` (``object_modes``) reduced once per material, as the
-    simulator reduces them; None for a scene without ``object_modes``."""
-    from ...simulate import touched_object as obj
+    simulator reduces them: ``name -> (rod, reduction)``; None without ``object_modes``."""
+    from ...fem.coupling import craig_bampton, rod_substructure
+    from ...probe import material as lookup
 
     if not scene.has("object_modes"):
         return None
-    return obj._reduced_rods(scene, np.array(sorted(set(materials))),
-                             scene.has("object_damping"))
+    effect = scene.effect("object_modes")
+    rods = {}
+    for name in sorted(set(materials)):
+        rod = effect.rod(lookup(name))
+        sub = rod_substructure(rod, n_elements=effect.rod_elements)
+        if not scene.has("object_damping"):
+            sub = dataclasses.replace(sub, loss_factor=0.0)
+        rods[name] = (rod, craig_bampton(sub, effect.rod_modes))
+    return rods
 
 
 def fitted_mode(modes, fs: float) -> int:
@@ -554,7 +599,52 @@ def calibrate(ds, scene, *, stiffness_bounds=None, mass_bounds=None,
     time_base = check_in_range("time_base", time_base, 0.0, 0.01, low_inclusive=True,
                                high_inclusive=True)
     max_rounds = check_int("max_rounds", max_rounds, minimum=1, maximum=20)
-    probe = scene.probe
+    bounds = _search_bounds(scene.probe, stiffness_bounds, mass_bounds)
+    use = np.flatnonzero(contact <= region * scene.probe.length)
+    if use.size < 3 or np.unique(contact[use]).size < 2:
+        raise ValueError(f"calibration needs at least 3 recordings at 2 or more distances within "
+                         f"region={region:g} L of the hinge, got {use.size}")
+    contact, material, ax = contact[use], material[use], ax[use]
+    model = _Model(scene, contact, material, fs, ax.shape[1])
+    eta0 = scene.probe.loss_factor if scene.probe.loss_factor > 0 else 0.03
+    p = _start(model, ax, fs, bounds, eta0)
+    fit, target, decays = _measure_and_fit(model, ax, fs, contact, p, bounds, eta0, max_rounds)
+    p, ok = fit.x, np.isfinite(target)
+    n = int(ok.sum())
+    s2 = 2.0 * fit.cost / max(n - 2, 1)
+    shift = np.linalg.lstsq(fit.jac, np.full(n, time_base), rcond=None)[0]
+    cov = s2 * np.linalg.pinv(fit.jac.T @ fit.jac) + np.outer(shift, shift)
+    quantile = float(student_t.ppf(0.975, max(n - 2, 1)))
+    k_interval, masses = _profile_hinge(model, p, bounds, target, ok, eta0, 2.0 * fit.cost,
+                                        quantile**2 * (s2 + time_base**2),
+                                        quantile * math.sqrt(cov[0, 0]))
+    missing = {}
+    hinge = _hinge_interval(k_interval, bounds, missing)
+    sd_m = math.sqrt(cov[1, 1])
+    m_low, m_high = min(masses) - quantile * sd_m, max(masses) + quantile * sd_m
+    if m_low <= bounds[0][1] and m_high >= bounds[1][1]:
+        missing["tip_mass"] = (f"its 95 % interval ({m_low:.3g}, {m_high:.3g}) kg covers the whole "
+                               f"range searched ({bounds[0][1]:g}, {bounds[1][1]:g}) kg")
+    eta, eta_sd, used, reason = _loss_factor(model, p, decays, eta0)
+    if reason:
+        missing["loss_factor"] = reason
+    for name, why in missing.items():
+        warnings.warn(f"{name} is not identifiable from these recordings: {why}",
+                      IdentifiabilityWarning, stacklevel=2)
+    where = np.array([c for c, _ in model.keys])
+    return Calibration(
+        float(10.0 ** p[0]),
+        math.inf if "hinge_stiffness" in missing else math.sqrt(cov[0, 0]),
+        float(p[1]), sd_m, eta, eta_sd, where[ok], target[ok], model.read(p[0], p[1])[ok], used,
+        intervals={"hinge_stiffness": hinge,
+                   "tip_mass": (max(m_low, bounds[0][1]), min(m_high, bounds[1][1])),
+                   "loss_factor": (0.0, math.inf) if reason else (eta - Z95 * eta_sd,
+                                                                  eta + Z95 * eta_sd)},
+        not_identifiable=missing, model=_describe_model(scene))
+
+
+def _search_bounds(probe, stiffness_bounds, mass_bounds):
+    """``([log10 k_lo, m_lo], [log10 k_hi, m_hi])``, the bounds checked (module constants)."""
     ei_l = probe.flexural_rigidity / probe.length
     k_lo, k_hi = (STIFFNESS_RANGE[0] * ei_l, STIFFNESS_RANGE[1] * ei_l)
     if stiffness_bounds is not None:
@@ -567,29 +657,27 @@ def calibrate(ds, scene, *, stiffness_bounds=None, mass_bounds=None,
     if mass_bounds is not None:
         m_lo, m_hi = _check_bounds("mass_bounds", mass_bounds, 0.0, m_max, "kg",
                                    "a mass is not negative, and the probe's limit")
+    return [math.log10(k_lo), m_lo], [math.log10(k_hi), m_hi]
 
-    use = np.flatnonzero(contact <= region * probe.length)
-    if use.size < 3 or np.unique(contact[use]).size < 2:
-        raise ValueError(f"calibration needs at least 3 recordings at 2 or more distances within "
-                         f"region={region:g} L of the hinge, got {use.size}")
-    contact, material, ax = contact[use], material[use], ax[use]
-    model = _Model(scene, contact, material, fs, ax.shape[1])
-    eta0 = probe.loss_factor if probe.loss_factor > 0 else 0.03
-    bounds = ([math.log10(k_lo), m_lo], [math.log10(k_hi), m_hi])
-    m_start = min(max(probe.tip_mass, m_lo), m_hi)
 
-    # start: the hinge (a grid of decades), then the tip mass, then the hinge again, whose
-    # modes fall on the recordings' spectral peaks
+def _start(model, ax, fs, bounds, eta0) -> np.ndarray:
+    """The hinge (a grid of decades), then the tip mass, then the hinge again, whose modes fall
+    on the recordings' spectral peaks."""
     score = _peak_score(model, ax, fs)
-    grid = np.unique(np.clip(np.arange(math.floor(bounds[0][0]), math.ceil(bounds[1][0]) + 1),
-                             bounds[0][0], bounds[1][0]))
+    (k_lo, m_lo), (k_hi, m_hi) = bounds
+    m_start = min(max(model.scene.probe.tip_mass, m_lo), m_hi)
+    grid = np.unique(np.clip(np.arange(math.floor(k_lo), math.ceil(k_hi) + 1), k_lo, k_hi))
     masses = np.unique([m_start, *(m_lo + (m_hi - m_lo) * np.array([0, 1 / 16, 1 / 8, 1 / 4,
                                                                         1 / 2]))])
     k_start = grid[int(np.argmax([score(g, m_start, eta0) for g in grid]))]
     m_start = masses[int(np.argmax([score(k_start, m, eta0) for m in masses]))]
     k_start = grid[int(np.argmax([score(g, m_start, eta0) for g in grid]))]
-    p = np.array([k_start, m_start])
+    return np.array([k_start, m_start])
 
+
+def _measure_and_fit(model, ax, fs, contact, p, bounds, eta0, max_rounds):
+    """Measure at the model's prediction and fit, until the measured frequencies settle:
+    ``(fit, target, decays)``, the positions' frequencies and each recording's decay."""
     target, fit = np.full(len(model.keys), np.nan), None
     for _ in range(max_rounds):
         predicted, _ = model.modes(p[0], p[1], eta0)
@@ -614,54 +702,26 @@ def calibrate(ds, scene, *, stiffness_bounds=None, mass_bounds=None,
             break
         fit = _fit(model, p, bounds, target, ok, eta0)
         p = fit.x
-    n = int(ok.sum())
-    s2 = 2.0 * fit.cost / max(n - 2, 1)
-    shift = np.linalg.lstsq(fit.jac, np.full(n, time_base), rcond=None)[0]
-    cov = s2 * np.linalg.pinv(fit.jac.T @ fit.jac) + np.outer(shift, shift)
-    fitted = model.read(p[0], p[1])
+    return fit, target, decays
 
-    missing = {}
-    quantile = float(student_t.ppf(0.975, max(n - 2, 1)))
-    k_interval, masses = _profile_hinge(model, p, bounds, target, ok, eta0, 2.0 * fit.cost,
-                                        quantile**2 * (s2 + time_base**2), quantile * math.sqrt(
-                                            cov[0, 0]))
+
+def _hinge_interval(k_interval, bounds, missing) -> tuple[float, float]:
+    """The hinge's 95 % interval (N m/rad) from its profile set in log10; an end at the
+    search's bound is open, and the hinge then not identifiable (its reason put in
+    ``missing``)."""
     lo_open = k_interval[0] <= bounds[0][0] + 1e-9
     hi_open = k_interval[1] >= bounds[1][0] - 1e-9
-    k_lo_95 = 0.0 if lo_open else 10.0 ** k_interval[0]
-    k_hi_95 = math.inf if hi_open else 10.0 ** k_interval[1]
-    sd_k = math.sqrt(cov[0, 0]) if not (lo_open or hi_open) else math.inf
+    low = 0.0 if lo_open else 10.0 ** k_interval[0]
+    high = math.inf if hi_open else 10.0 ** k_interval[1]
     if hi_open or lo_open:
         where = "stiffer than" if hi_open else "softer than"
-        edge = k_lo_95 if hi_open else k_hi_95
+        edge = low if hi_open else high
         missing["hinge_stiffness"] = (
             f"the frequencies change by less than their uncertainty for any hinge {where} "
             f"{edge:.3g} N m/rad, up to the search's bound "
             f"{10.0 ** (bounds[1][0] if hi_open else bounds[0][0]):.3g} N m/rad: the recordings "
             f"{'cannot tell the hinge from a clamp' if hi_open else 'set no lower limit'}")
-    sd_m = math.sqrt(cov[1, 1])
-    m_low = min(masses) - quantile * sd_m
-    m_high = max(masses) + quantile * sd_m
-    if m_low <= m_lo and m_high >= m_hi:
-        missing["tip_mass"] = (f"its 95 % interval ({m_low:.3g}, {m_high:.3g}) kg covers the whole "
-                               f"range searched ({m_lo:g}, {m_hi:g}) kg")
-    tip_interval = (max(m_low, m_lo), min(m_high, m_hi))
-
-    eta, eta_sd, used, reason = _loss_factor(model, p, decays, eta0)
-    if reason:
-        missing["loss_factor"] = reason
-        eta_interval = (0.0, math.inf)
-    else:
-        eta_interval = (eta - Z95 * eta_sd, eta + Z95 * eta_sd)
-    for name, why in missing.items():
-        warnings.warn(f"{name} is not identifiable from these recordings: {why}",
-                      IdentifiabilityWarning, stacklevel=2)
-    where = np.array([c for c, _ in model.keys])
-    return Calibration(
-        float(10.0 ** p[0]), sd_k, float(p[1]), sd_m, eta, eta_sd, where[ok], target[ok],
-        fitted[ok], used,
-        intervals={"hinge_stiffness": (k_lo_95, k_hi_95), "tip_mass": tip_interval,
-                   "loss_factor": eta_interval},
-        not_identifiable=missing, model=_describe_model(scene))
+    return low, high
 
 
 def _describe_model(scene) -> str:

@@ -37,8 +37,7 @@ from ...simulate import load_dataset
 from .. import full_range, learning, material_splits, signals
 
 __all__ = ["NOT_APPLICABLE", "reproduce_recorded", "intervals", "classification_interval",
-           "placement_interval", "RECORDED_STEPS", "SECTION_MINIMUM", "check_design",
-           "design_of"]
+           "placement_interval", "RECORDED_STEPS", "SECTION_MINIMUM"]
 
 #: The sections run on recordings, in order.
 RECORDED_STEPS = ("features", "frequency", "decay", "ml", "splits", "full range")

@@ -68,7 +68,8 @@ NOT_APPLICABLE = {
 SECTION_MINIMUM = {
     "frequency": {"materials": 1, "positions": 2, "repetitions": 1,
                   "why": "a curve of frequency against distance needs two positions"},
-    "decay": {"materials": 1, "positions": 1, "repetitions": 1, "why": "one decay per material"},
+    "decay": {"materials": 1, "positions": 1, "repetitions": 1, "in_region": 1,
+              "why": "the decays are fitted within 0.8 L of the hinge"},
     "ml": {"materials": 2, "positions": 3, "repetitions": 2, "in_region": 10,
            "why": "the classifiers need two materials to tell apart and a test split of every "
                   "material; the distance networks three positions and ten recordings within "

@@ -133,3 +133,22 @@ def test_every_failed_attempt_is_listed_in_retakes(tmp_path):
         s.run()
     retakes = json.loads((tmp_path / "s" / MANIFEST).read_text())["retakes"]
     assert [r["attempt"] for r in retakes] == [1, 2]
+
+
+def test_what_record_keeps_the_data_set_takes(tmp_path, capsys):
+    # at 1 % faults a failed FIFO read costs about 5 % of the window: record's default keeps one,
+    # and dataset --from-recordings holds the recordings to the session's own limit, not another
+    plan = Plan("faults", ("brass",), (0.1, 0.2, 0.3), 2)
+    (tmp_path / "plan.json").write_text(json.dumps(plan.to_dict()))
+    assert main(["record", "--simulated", "--scene", "ideal", "--inject-faults", "0.01",
+                 "--plan", str(tmp_path / "plan.json"), "--out", str(tmp_path / "s"),
+                 "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["saved"] == 6
+    manifest = json.loads((tmp_path / "s" / MANIFEST).read_text())
+    kept = [e["samples_lost"] for e in manifest["recordings"].values()]
+    assert max(kept) > 0  # some kept recording did lose samples
+    assert main(["dataset", "--from-recordings", str(tmp_path / "s"), "--out", str(tmp_path),
+                 "--json"]) == 0
+    assembled = json.loads(capsys.readouterr().out)
+    assert assembled["signals"] == 6 and assembled["max_lost"] == 0.06

@@ -155,7 +155,9 @@ def _resampled(rec: Recording, name: str, fs: float, n: int, max_lost: float):
         raise ValueError(f"{name}: missing label trigger_time (the contact sample's time)")
     start = round(meta["trigger_time"] * fs) / rec.fs  # the trigger slot on the estimated grid
     grid = start + np.arange(n) / fs
-    budget = int(max_lost * n)  # samples that may be missing, at the ends as inside
+    # samples that may be missing, at the ends as inside: the budget record kept the recording
+    # by (a share of its whole window), so that what record keeps, the data set takes
+    budget = int(max_lost * (rec.n_samples + lost))
     if rec.t[-1] < grid[-1] - budget / fs or rec.t[0] > start + budget / fs:
         raise ValueError(f"{name}: too short: it covers {rec.t[-1] - start:.3f} s after the "
                          f"contact, the data set needs {(n - 1) / fs:.3f} s ({n} samples)")
@@ -163,7 +165,7 @@ def _resampled(rec: Recording, name: str, fs: float, n: int, max_lost: float):
     interpolated = n - np.intersect1d(slots, np.arange(n)).size
     if interpolated > budget:
         raise ValueError(f"{name}: {interpolated} of the {n} samples after the contact lost, "
-                         f"more than {max_lost:.0%}")
+                         f"more than {max_lost:.0%} of its {rec.n_samples + lost}-sample window")
     return (np.interp(grid, rec.t, rec.ax), np.interp(grid, rec.t, rec.az), int(interpolated))
 
 

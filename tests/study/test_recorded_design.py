@@ -20,6 +20,27 @@ def design(materials, positions, repetitions, in_region=None):
             "spacing": 0.05}
 
 
+def test_a_section_the_data_do_not_allow_is_listed_and_the_others_go_on(tmp_path, monkeypatch):
+    # a requirement only the data can show (here: the full-range calibration refuses them)
+    from ebantenna.study import full_range
+
+    def refuse(ds, feats):
+        raise ValueError("frequencies do not change monotonically with distance")
+
+    monkeypatch.setattr(full_range, "compute", refuse)
+    plan = Plan("five", ("brass", "pvc"), (0.05, 0.1, 0.15, 0.2, 0.25), 1)
+    RecordingSession(tmp_path / "s", plan, simulated_connect(builtin_scene("paper"), simulate),
+                     show_progress=False).run()
+    data = assemble_dataset(tmp_path / "s", tmp_path)
+    heard = []
+    summary = reproduce_recorded(data.path, tmp_path / "report", n_jobs=1, show_progress=False,
+                                 say=heard.append)
+    assert summary["not_applicable"]["full range"].startswith("did not run on this data set")
+    assert "frequency" in summary and "full range: did not run" in " ".join(heard)
+    report = (tmp_path / "report" / "report.md").read_text()
+    assert "Sections the data themselves did not allow" in report
+
+
 def test_the_quick_protocol_runs_every_section():
     runnable, missing = check_design(design(5, 8, 3, in_region=105))
     assert runnable == list(SECTION_MINIMUM) and not missing
@@ -38,7 +59,7 @@ def test_one_material_leaves_out_the_classifiers_and_what_reuses_them():
     assert "2 materials (has 1)" in missing["ml"]
     assert "the 'ml' section's results" in missing["splits"]
     message = design_message(design(1, 8, 3), runnable, missing)
-    assert message.endswith("sections that run: frequency, decay, full range")
+    assert message.endswith("sections that run: frequency, decay")
 
 
 def test_each_minimum_is_a_boundary():

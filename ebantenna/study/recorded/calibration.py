@@ -233,11 +233,17 @@ def loss_factor_of(x, fs: float, frequency: float) -> tuple[float, float, float]
     return _decay(x, fs, frequency)[:3]
 
 
-def _decay(x, fs, frequency):
-    """:func:`loss_factor_of` on checked values, and the index of the band envelope's peak."""
+def _band(frequency, fs):
+    """The estimator's band-pass filter about ``frequency`` (second-order sections)."""
+    return butter(2, [(1 - BAND) * frequency, (1 + BAND) * frequency], btype="band", fs=fs,
+                  output="sos")
+
+
+def _decay(x, fs, frequency, sos=None):
+    """:func:`loss_factor_of` on checked values (``sos``: its band filter about ``frequency``,
+    when already designed), and the index of the band envelope's peak."""
     x = np.asarray(x, dtype=float) - np.mean(x)
-    sos = butter(2, [(1 - BAND) * frequency, (1 + BAND) * frequency], btype="band", fs=fs,
-                 output="sos")
+    sos = _band(frequency, fs) if sos is None else sos
     analytic = hilbert(sosfiltfilt(sos, x))
     envelope = np.abs(analytic)
     t = np.arange(x.size) / fs
@@ -253,23 +259,27 @@ def _decay(x, fs, frequency):
             float(keep.sum() / fs * frequency), peak)
 
 
-def as_measured(frequency: float, loss: float, n: int, fs: float, peak: int, *, lag=None):
+def as_measured(frequency: float, loss: float, n: int, fs: float, peak: int, *, lag=None,
+                band=None, sos=None):
     """What :func:`loss_factor_of` reads from one mode alone: ``(eta, f)`` (takes checked
-    values: a frequency whose band lies below ``fs / 2``).
+    values: a band that lies below ``fs / 2``).
 
     The mode (damped frequency ``frequency`` Hz, loss factor ``loss``) rings from rest over ``n``
     samples at ``fs``, shifted so that its band envelope peaks at sample ``peak``, as the
-    recording's does (``lag``, the shift, when already known). The estimator's own bias on a
-    short decay -- a few parts in 10^4 of the frequency and 10 % of the loss factor for an 11 Hz
-    mode over one second -- is then in the model as in the measurement, and cancels in their
-    comparison.
+    recording's does (``lag``, the shift, when already known), and is read with the band about
+    ``band`` (Hz; default ``frequency``) the recording was read with (``sos``, that filter, when
+    already designed). The estimator's own bias on a short decay -- a few parts in 10^4 of the
+    frequency and 10 % of the loss factor for an 11 Hz mode over one second -- is then in the
+    model as in the measurement, and cancels in their comparison.
     """
+    band = frequency if band is None else band
+    sos = _band(band, fs) if sos is None else sos
     x = _ringing(frequency, loss, n, fs)
     if lag is None:
-        lag = peak - _decay(x, fs, frequency)[3]
+        lag = peak - _decay(x, fs, band, sos)[3]
     x = np.concatenate([np.zeros(lag), x[: n - lag]]) if lag >= 0 else np.concatenate(
         [x[-lag:], np.zeros(-lag)])
-    eta, f, _, _ = _decay(x, fs, frequency)
+    eta, f, _, _ = _decay(x, fs, band, sos)
     return eta, f
 
 
@@ -281,9 +291,9 @@ def _ringing(frequency, loss, n, fs):
     return np.exp(-zeta * omega_d / math.sqrt(1 - zeta**2) * t) * np.sin(omega_d * t)
 
 
-def _lag(frequency, loss, n, fs, peak) -> int:
+def _lag(frequency, loss, n, fs, peak, band, sos) -> int:
     """The shift that puts the ringing's band envelope peak at sample ``peak``."""
-    return peak - _decay(_ringing(frequency, loss, n, fs), fs, frequency)[3]
+    return peak - _decay(_ringing(frequency, loss, n, fs), fs, band, sos)[3]
 
 
 def _candidate(scene, hinge, tip_mass: float, loss_factor: float):
@@ -442,7 +452,7 @@ class _Model:
         self.keys = sorted(set(pairs))
         self.index = np.array([self.keys.index(pair) for pair in pairs])
         self.evaluations = 0
-        self._lags = {}
+        self._lags, self._filters = {}, {}
         self.rods = touched_rods(scene, materials.tolist())
 
     def modes(self, log10_k, tip_mass, eta):
@@ -466,12 +476,14 @@ class _Model:
         eta_read = np.full(self.index.size, np.nan)
         for r in np.flatnonzero(valid):
             k = self.index[r]
+            _, _, _, peak, band = decays[r]
+            sos = self._filters.setdefault(r, _band(band, self.fs))  # the recording's filter
             known = self._lags.get(r)  # the envelope's peak moves little with the frequency
             if known is None or abs(known[0] / frequency[k] - 1) > 0.01:
                 known = self._lags[r] = (frequency[k], _lag(frequency[k], loss[k], self.n,
-                                                            self.fs, decays[r][3]))
-            eta_read[r], f_read[r] = as_measured(frequency[k], loss[k], self.n, self.fs,
-                                                 decays[r][3], lag=known[1])
+                                                            self.fs, peak, band, sos))
+            eta_read[r], f_read[r] = as_measured(frequency[k], loss[k], self.n, self.fs, peak,
+                                                 lag=known[1], band=band, sos=sos)
         return self.per_position(f_read), eta_read
 
     def read(self, log10_k, tip_mass):
@@ -482,7 +494,7 @@ class _Model:
     def measured_on(self, decays, eta):
         """The recordings' decays (:func:`_measure`) the model is read against, and the tube's
         loss factor it is read at."""
-        self.decays, self.eta, self._lags = decays, eta, {}
+        self.decays, self.eta, self._lags, self._filters = decays, eta, {}, {}
         self.valid = np.array([np.isfinite(d[1]) for d in decays])
 
     def per_position(self, values) -> np.ndarray:
@@ -733,12 +745,13 @@ def _describe_model(scene) -> str:
 
 
 def _measure(ax, fs, predicted, contact):
-    """Each recording's decay of the mode at its prediction: ``(eta, f, periods, peak)`` (f NaN
-    where no mode is predicted, or the band holds another)."""
+    """Each recording's decay of the mode at its prediction: ``(eta, f, periods, peak, band)``
+    (f NaN where no mode is predicted, or the band holds another; band: the prediction the
+    band-pass was centred on)."""
     out = []
     for x, f, c in zip(ax, predicted, contact, strict=True):
         if not np.isfinite(f):
-            out.append((math.nan, math.nan, 0.0, 0))
+            out.append((math.nan, math.nan, 0.0, 0, math.nan))
             continue
         if not f < fs / 2 / (1 + BAND):
             raise ValueError(
@@ -748,7 +761,7 @@ def _measure(ax, fs, predicted, contact):
         eta, measured, cycles, peak = _decay(x, fs, f)
         if not abs(measured / f - 1) < BAND:  # the band's content is not the predicted mode
             measured = math.nan
-        out.append((eta, measured, cycles, peak))
+        out.append((eta, measured, cycles, peak, f))
     return out
 
 
@@ -833,10 +846,10 @@ def _loss_factor(model, p, decays, eta1):
     _, at = model.modes(p[0], p[1], eta1)
     b = (at - a) / eta1
     estimates = np.full(len(decays), np.nan)
-    for r, (eta, f, cycles, peak) in enumerate(decays):
+    for r, (eta, f, cycles, peak, band) in enumerate(decays):
         k = model.index[r]
         if cycles >= MIN_CYCLES and b[k] >= MIN_SHARE and eta > 0 and np.isfinite(f):
-            mode = _as_read_inverse(eta, frequency[k], model.n, model.fs, peak)
+            mode = _as_read_inverse(eta, frequency[k], model.n, model.fs, peak, band)
             estimates[r] = (mode - a[k]) / b[k]
     used = int(np.isfinite(estimates).sum())
     per_position = model.per_position(estimates)
@@ -849,13 +862,15 @@ def _loss_factor(model, p, decays, eta1):
     return float(per_position.mean()), float(per_position.std(ddof=1)), used, ""
 
 
-def _as_read_inverse(eta_read: float, frequency: float, n: int, fs: float, peak: int) -> float:
+def _as_read_inverse(eta_read: float, frequency: float, n: int, fs: float, peak: int,
+                     band: float) -> float:
     """The mode's loss factor whose decay :func:`as_measured` reads as ``eta_read`` (secant
     steps from ``eta_read``: the reading is within a few per cent of linear in it)."""
+    sos = _band(band, fs)
     x0, x1 = eta_read, 1.1 * eta_read
-    g0 = as_measured(frequency, x0, n, fs, peak)[0] - eta_read
+    g0 = as_measured(frequency, x0, n, fs, peak, band=band, sos=sos)[0] - eta_read
     for _ in range(4):
-        g1 = as_measured(frequency, x1, n, fs, peak)[0] - eta_read
+        g1 = as_measured(frequency, x1, n, fs, peak, band=band, sos=sos)[0] - eta_read
         if g1 == g0:
             break
         x0, x1, g0 = x1, x1 - g1 * (x1 - x0) / (g1 - g0), g1

@@ -60,6 +60,8 @@ MANIFEST = "session.json"
 #: The keys a manifest must hold, and those of each entry of its ``recordings``.
 MANIFEST_KEYS = ("format", "plan", "rig", "search", "recordings")
 ENTRY_KEYS = ("file", "sha256", "touch", "material", "contact", "repetition")
+#: The session folder's lock file (the pid of the process recording into it).
+LOCK = "session.lock"
 #: The name of a temporary file of :func:`write_atomic`: the prefix, the writer's process id,
 #: a dash and the name of the file it will become.
 _TEMPORARY = re.compile(re.escape(TEMPORARY_PREFIX) + r"(\d+)-(.+)")
@@ -205,7 +207,7 @@ def _check_session_folder(directory: Path) -> None:
         return
     foreign = []
     for entry in directory.iterdir():
-        if _TEMPORARY.fullmatch(entry.name):
+        if _TEMPORARY.fullmatch(entry.name) or entry.name == LOCK:
             continue
         if entry.name == "recordings" and entry.is_dir() and not entry.is_symlink() and all(
                 _TEMPORARY.fullmatch(e.name) for e in entry.iterdir()):
@@ -283,6 +285,7 @@ class RecordingSession:
     # -- the manifest ----------------------------------------------------------------------
     def _new_manifest(self) -> dict:
         return {"format": SESSION_FORMAT, "plan": self.plan.to_dict(), "rig": self.rig,
+                "max_lost": self.max_lost,
                 "search": _search_settings(self.config), "created": _now(), "unsafe": None,
                 "recordings": {}, "retakes": []}
 
@@ -302,6 +305,7 @@ class RecordingSession:
         """
         _check_session_folder(self.directory)
         (self.directory / "recordings").mkdir(parents=True, exist_ok=True)
+        self._lock()
         for folder in (self.directory, self.directory / "recordings"):
             remove_leftover_temporaries(folder)
         if not os.path.lexists(self.manifest_path):
@@ -311,12 +315,65 @@ class RecordingSession:
         inside(self.directory, MANIFEST, str(self.manifest_path))  # no link out of the folder
         self.manifest = read_manifest(self.manifest_path)
         if self.manifest["plan"] != self.plan.to_dict():
+            self.release()
             raise ValueError(f"{self.directory} holds a session of another plan "
                              f"({self.manifest['plan']['name']!r}); give a new folder, or the "
                              "same plan to resume it")
+        self._check_same_settings()
         self._verify_listed()
         self._adopt_unlisted()
         return self.manifest
+
+    def _check_same_settings(self) -> None:
+        """Refuse to resume with other settings than the session was started with: its
+        recordings and its manifest would describe two runs as one."""
+        was = {**self.manifest["rig"], "max_lost": self.manifest.get("max_lost", 0.02)}
+        now = {**self.rig, "max_lost": self.max_lost}
+        changed = sorted(k for k in set(was) | set(now) if was.get(k) != now.get(k))
+        if changed:
+            self.release()
+            raise ValueError(
+                f"{self.directory} holds a session started with other settings: "
+                + "; ".join(f"{k} was {was.get(k)!r}, now {now.get(k)!r}" for k in changed)
+                + ". Resume with the same settings, or record into a new folder")
+
+    # -- the lock ----------------------------------------------------------------------------
+    @property
+    def lock_path(self) -> Path:
+        """The lock file: it holds the pid of the process writing the session."""
+        return self.directory / LOCK
+
+    def _lock(self) -> None:
+        """Take the session folder for this process; refuse while another live process holds
+        it (two writers would drive one rig and mix their touches). A lock left by a process
+        that no longer runs (power cut, SIGKILL) is taken over."""
+        for _ in range(2):
+            try:
+                fd = os.open(self.lock_path, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
+            except FileExistsError:
+                try:
+                    holder = int(self.lock_path.read_text().strip() or 0)
+                except (OSError, ValueError):
+                    holder = 0
+                if holder == os.getpid():
+                    return
+                if holder > 0 and process_running(holder):
+                    raise ValueError(f"{self.directory} is being recorded by another process "
+                                     f"(pid {holder}, its lock {self.lock_path}); wait for it "
+                                     "to end, or stop it, before running this session") from None
+                self.lock_path.unlink(missing_ok=True)  # its writer no longer runs
+                continue
+            with os.fdopen(fd, "w") as f:
+                f.write(f"{os.getpid()}\n")
+            return
+
+    def release(self) -> None:
+        """Give the session folder up (the lock file is removed if this process holds it)."""
+        try:
+            if int(self.lock_path.read_text().strip() or 0) == os.getpid():
+                self.lock_path.unlink()
+        except (OSError, ValueError):
+            pass
 
     def _verify_listed(self) -> None:
         where = str(self.manifest_path)
@@ -387,6 +444,7 @@ class RecordingSession:
                 bar.update()
         finally:
             bar.close()
+            self.release()
         self.manifest["finished"] = _now()
         self._save_manifest()
         return self.manifest
@@ -415,7 +473,10 @@ class RecordingSession:
                                              "samples_lost_fraction": lost, "at": _now()})
             self._save_manifest()
             self.say(f"touch {touch.key}: {lost:.1%} of the window lost to bus faults; again")
-        if lost > self.max_lost:
+        if lost > self.max_lost:  # the last attempt is a retake too: the manifest lists them all
+            self.manifest["retakes"].append({"touch": touch.key, "attempt": attempt,
+                                             "samples_lost_fraction": lost, "at": _now()})
+            self._save_manifest()
             raise UnsafeRigError(
                 f"touch {touch.key}: every one of {self.attempts} attempts lost more than "
                 f"{self.max_lost:.0%} of its window to bus faults; {CHECK_BUS}",

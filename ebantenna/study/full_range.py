@@ -132,6 +132,13 @@ def compute(ds, feats) -> FullRangeResult:
     )
 
 
+def _step_cm(r: FullRangeResult) -> str:
+    """The calibration positions' spacing, cm: twice the data's, read from the test positions
+    (every other one)."""
+    grid = np.unique(r.contact_two)
+    return f"{100 * np.diff(grid).min():.3g}" if grid.size > 1 else "?"
+
+
 def render(result: FullRangeResult, report, figures) -> None:
     """The error along the probe, one mode against two, and its table."""
     r = result
@@ -142,7 +149,8 @@ def render(result: FullRangeResult, report, figures) -> None:
         "contact beyond its turning point. The two strongest spectral peaks together are unique "
         "along the whole length: each is calibrated against distance (median over recordings) and "
         "a new recording is placed where both fit best. Calibration uses every other contact "
-        "position (1 cm apart), the test the positions in between, which the calibration never saw."
+        f"position ({_step_cm(r)} cm apart), the test the positions in between, which the "
+        "calibration never saw."
     )
     report.table(
         ["estimator", "range", "MAE (cm)", f"MAE beyond {r.region:g} L (cm)",

@@ -76,17 +76,19 @@ def compute(ds, feats, seed: int) -> LearningResult:
     return LearningResult(svm, ann, lin, full)
 
 
-def render(result: LearningResult, report, figures) -> None:
-    """Figs. 12-15, the accuracy and error tables and the confusion matrices as text."""
+def render(result: LearningResult, report, figures, *, simulated: bool = True) -> None:
+    """Figs. 12-15, the accuracy and error tables and the confusion matrices as text
+    (``simulated``: the data come from the simulator, and the report says how its materials
+    differ)."""
     svm, ann, lin, full = result.svm, result.ann, result.linear_region, result.full_length
     fig12 = figures.save(plot_confusion_comparison(ann, printed.PAPER_ANN), "fig12_ann_confusion")
     fig15 = figures.save(plot_confusion_comparison(svm, printed.PAPER_SVM), "fig15_svm_confusion")
     fig1314 = figures.save(plot_distance_errors(lin, full), "fig13_14_distance_networks")
-    _render_classifiers(svm, ann, report, fig12, fig15)
+    _render_classifiers(svm, ann, report, fig12, fig15, simulated)
     _render_distance_networks(lin, full, report, fig1314)
 
 
-def _render_classifiers(svm, ann, report, fig12: str, fig15: str) -> None:
+def _render_classifiers(svm, ann, report, fig12: str, fig15: str, simulated=True) -> None:
     """The material classifiers beside the paper's: features, accuracies, the ANN's training
     loss against guessing, the confusion matrices (Figs. 12, 15)."""
     report.heading("Material classification: ANN and SVM (Figs. 12, 15)")
@@ -98,8 +100,9 @@ def _render_classifiers(svm, ann, report, fig12: str, fig15: str) -> None:
         f"{MATERIAL_ANN.hidden_layer_sizes[0]} {MATERIAL_ANN.activation} neurons, gradient "
         f"descent, {_split(MATERIAL_ANN.fractions)} split with validation stopping "
         "(section 4.2). "
-        "The simulator's materials differ only through contact damping and compliance; nothing "
-        "was tuned towards the paper's accuracies."
+        + ("The simulator's materials differ only through contact damping and compliance; "
+           "nothing was tuned towards the paper's accuracies." if simulated else
+           "Nothing was tuned towards the paper's accuracies.")
     )
     report.table(
         ["model", "split", "paper", "this reproduction", "fit time (s)"],

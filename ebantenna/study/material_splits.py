@@ -136,16 +136,17 @@ def _positions_cm(p) -> str:
     return ", ".join(f"{100 * v:g}" for v in p) if p.size else "none as a whole"
 
 
-def render(result: MaterialSplitsResult, report, figures) -> None:
+def render(result: MaterialSplitsResult, report, figures, *, seed_spread: bool = True) -> None:
     """The three splits side by side, the position-aware classifier, the mode-curve classifier
-    and the trainers, each a section of the report."""
-    _render_splits(result, report)
+    and the trainers, each a section of the report (``seed_spread``: the report has the section
+    on the spread over seeds, which the splits' paragraph points to)."""
+    _render_splits(result, report, seed_spread)
     _render_position_aware(result, report)
     _render_mode_curves(result, report, figures)
     _render_trainers(result, report)
 
 
-def _render_splits(r: MaterialSplitsResult, report) -> None:
+def _render_splits(r: MaterialSplitsResult, report, seed_spread: bool = True) -> None:
     """Why a random split flatters, and the paper's SVM on the three splits."""
     report.heading("How the split flatters: random recordings, held-out positions")
     report.paragraph(
@@ -179,7 +180,8 @@ def _render_splits(r: MaterialSplitsResult, report) -> None:
         f"Paper, random split: {printed.percent(printed.SVM_TEST_ACCURACY)}. Chance: "
         f"{pct(1 / len(r.svm['random'].labels))}. Each accuracy is followed by its number of "
         "test recordings n and its Wilson 95 % interval (seed "
-        "0); the spread over five split seeds follows in 'How much the numbers carry'."
+        + ("0); the spread over five split seeds follows in 'How much the numbers carry'."
+           if seed_spread else "0; the spread over split seeds is not measured here).")
     )
     grouped = r.svm["grouped"]
     report.paragraph(

@@ -94,7 +94,10 @@ def render_frequency(result: FrequencyResult, report, figures) -> None:
             [
                 "deviation from the linear trend",
                 f"{printed.DEVIATION_CM.value} cm ({printed.PROBE_LENGTH_CM.value:g} cm probe)",
-                f"dominant frequency peaks at {100 * peak:.1f} cm ({peak / L:.2f} L)",
+                (f"dominant frequency peaks at {100 * peak:.1f} cm ({peak / L:.2f} L)"
+                 if peak < result.grid.max() else
+                 f"dominant frequency rises up to the last position measured, {100 * peak:.1f} "
+                 f"cm ({peak / L:.2f} L): no peak inside the range"),
             ],
             [
                 "spread grows near",

@@ -29,6 +29,8 @@ COMMANDS = {
         "--attempts": ["1", "0", "x"],
         "--seed": ["0", "-1"],
         "--no-wait": None,
+        "--dry-run": None,
+        "--oe-gpio": ["17", "-1"],
         "--json": None,
     },
     "calibrate": {

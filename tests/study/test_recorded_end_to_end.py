@@ -111,7 +111,8 @@ def test_quick_design_from_the_rig_to_the_report(tmp_path, capsys):
     assert summary["data"]["checksum_sha256"] == assembled["checksum_sha256"]
     assert set(summary["not_applicable"]) == set(NOT_APPLICABLE)
     report = (tmp_path / "report" / "report.md").read_text()
-    assert "Sections not applicable to recorded data" in report
+    assert "Sections not applicable to this data set" in report
+    assert "How much the numbers carry" not in report  # the seeds section does not run here
     assert str(tmp_path / "session") in report  # it says which data it ran on
     for section in ("svm_grouped_test_accuracy", "svm_blocked_test_accuracy",
                     "mode_curve_test_accuracy"):

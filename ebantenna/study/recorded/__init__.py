@@ -2,11 +2,12 @@
 sections that need only recordings run on it, and the scene calibrated from recordings."""
 
 from .assemble import LABELS, MIN_SAMPLES, assemble_dataset
-from .calibration import Calibration, calibrate, plot_calibration
+from .calibration import Calibration, IdentifiabilityWarning, calibrate, plot_calibration
 from .planning import protocol_plan
 from .study import (
     NOT_APPLICABLE,
     RECORDED_STEPS,
+    SECTION_MINIMUM,
     classification_interval,
     intervals,
     placement_interval,
@@ -15,4 +16,5 @@ from .study import (
 
 __all__ = ["assemble_dataset", "LABELS", "MIN_SAMPLES", "protocol_plan", "reproduce_recorded",
            "intervals", "classification_interval", "placement_interval", "NOT_APPLICABLE",
-           "RECORDED_STEPS", "Calibration", "calibrate", "plot_calibration"]
+           "RECORDED_STEPS", "SECTION_MINIMUM", "Calibration", "calibrate", "plot_calibration",
+           "IdentifiabilityWarning"]

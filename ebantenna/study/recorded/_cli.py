@@ -3,17 +3,29 @@ from the rig to the report."""
 
 from __future__ import annotations
 
+import math
 import os
 import sys
 import time
 
 #: Exit code of ``record`` when the servos may still be powered (as ``acquire``'s).
 EXIT_SERVOS_POWERED = 3
+#: ``record``'s default limit of the share of a window lost to bus faults: a failed FIFO read
+#: restarts the FIFO and costs about 5 % of a one-second window (measured on the simulated bus),
+#: so one is kept and two are made again.
+MAX_LOST = 0.06
 
 
 def register(subparsers) -> None:
-    """Add the ``record`` command."""
+    """Add the ``record`` and ``calibrate`` commands."""
+    _add_record(subparsers)
+    _add_calibrate(subparsers)
+
+
+def _add_record(subparsers) -> None:
+    """The ``record`` command."""
     from ...cli import seed_argument
+    from ...device._cli import device_number
 
     rec = subparsers.add_parser(
         "record",
@@ -23,12 +35,17 @@ def register(subparsers) -> None:
         "touch search, touch, stop, record and release, and save the recording with its labels "
         "and the rig's account in DIR, with a manifest (DIR/session.json) holding every file's "
         "checksum. Run the same command again to resume after any stop: nothing is recorded "
-        "twice and nothing saved is lost. Exit code 0 when every touch is saved, 1 when a search "
-        "found no contact, 3 when the servos may still be powered (cut their supply).",
+        "twice and nothing saved is lost; --dry-run shows the plan, its time estimate and the "
+        "touches done and missing without moving anything. Exit codes: 0 every touch saved (or "
+        "the dry run printed); 1 a search found no contact (place the object, run again); 2 bad "
+        "input, or the session stopped safely: the rig is unsafe (bus dead, a chip missing) or "
+        "a touch lost too many samples on every attempt (the message says which); 3 the servos "
+        "may still be powered (cut their supply); 130 and 143 on Ctrl-C and SIGTERM.",
     )
     where = rec.add_mutually_exclusive_group(required=True)
     where.add_argument("--simulated", action="store_true", help="use the simulated rig")
-    where.add_argument("--bus", type=int, metavar="N", help="I2C bus number of the real rig")
+    where.add_argument("--bus", type=device_number, metavar="N",
+                       help="I2C bus number of the real rig")
     rec.add_argument("--out", required=True, metavar="DIR", help="the session folder")
     what = rec.add_mutually_exclusive_group()
     what.add_argument("--plan", metavar="FILE", help="a plan file (.toml or .json)")
@@ -40,10 +57,13 @@ def register(subparsers) -> None:
                      help="simulated only: seed of the design's variation and the faults (0)")
     rec.add_argument("--inject-faults", type=float, default=0.0, metavar="RATE",
                      help="simulated only: fraction of I2C transfers that fail, every kind")
-    rec.add_argument("--oe-gpio", type=int, metavar="PIN",
+    rec.add_argument("--oe-gpio", type=device_number, metavar="PIN",
                      help="hardware only: BCM GPIO wired to the PCA9685's OE pin")
-    rec.add_argument("--max-lost", type=float, default=0.02, metavar="F",
-                     help="a touch whose window lost more than this share is made again (0.02)")
+    rec.add_argument("--max-lost", type=float, default=MAX_LOST, metavar="F",
+                     help="a touch whose window lost more than this share is made again; kept "
+                     "in the session, and 'dataset --from-recordings' holds its recordings to "
+                     f"the same limit ({MAX_LOST:g}: one failed FIFO read, about 5 %% of the "
+                     "window, is kept; two are not)")
     rec.add_argument("--attempts", type=int, default=5, metavar="N",
                      help="tries of a touch that lost too much before the session stops (5)")
     rec.add_argument("--no-wait", action="store_true",
@@ -51,16 +71,25 @@ def register(subparsers) -> None:
     rec.add_argument("--yes", action="store_true",
                      help="start a session expected to take over an hour on the rig (without "
                      "it, such a plan is refused with its estimate)")
+    rec.add_argument("--dry-run", action="store_true",
+                     help="print the plan, its time estimate and the touches already done and "
+                     "still missing; move nothing, write nothing")
     rec.add_argument("--json", action="store_true", help="print one JSON object")
     rec.set_defaults(func=run_record)
+
+
+def _add_calibrate(subparsers) -> None:
+    """The ``calibrate`` command."""
     cal = subparsers.add_parser(
         "calibrate",
         help="fit the hinge stiffness, tip mass and loss factor to recordings",
         description="Fit the probe's hinge stiffness, tip mass and loss factor to a data set of "
         "recordings at known contact distances (e.g. from 'ebantenna dataset "
-        "--from-recordings'), with their 95 %% intervals; write the scene with the fitted values "
-        "(usable by 'ebantenna simulate --scene FILE'), a figure of measured against simulated "
-        "frequency versus distance, and calibration.json in --out.",
+        "--from-recordings') with the scene's own model (the touched rod's modes included when "
+        "the scene has them), each with its 95 % interval; a parameter the recordings do not "
+        "determine is reported as not identifiable, with the reason and a warning. Writes the "
+        "scene with the fitted values (usable by 'ebantenna simulate --scene FILE'), a figure "
+        "of measured against modelled frequency versus distance, and calibration.json in --out.",
     )
     cal.add_argument("--data", required=True, metavar="FILE", help="the data set of recordings")
     cal.add_argument("--scene", default="paper", metavar="NAME|FILE",
@@ -73,6 +102,7 @@ def register(subparsers) -> None:
 def run_calibrate(args) -> int:
     """Run ``ebantenna calibrate``."""
     import json
+    import warnings
     from pathlib import Path
 
     import matplotlib
@@ -81,40 +111,60 @@ def run_calibrate(args) -> int:
     from ...cli import print_json
     from ...simulate import load_dataset
     from ...simulate.scene import resolve_scene
-    from .calibration import calibrate, plot_calibration
+    from .calibration import PARAMETERS, IdentifiabilityWarning, calibrate, plot_calibration
 
     base = resolve_scene(args.scene)
-    cal = calibrate(load_dataset(args.data), base.probe)
+    data = load_dataset(args.data)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", IdentifiabilityWarning)  # said below, once each
+        cal = calibrate(data, base)
+    for name, why in cal.not_identifiable.items():
+        print(f"ebantenna calibrate: warning: {name} is not identifiable from these recordings: "
+              f"{why}", file=sys.stderr)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     scene = cal.scene(base)
     summary = {**cal.to_dict(), "data": str(args.data),
                "scene": str(scene.save(out / f"{scene.name}.toml"))}
-    fig = plot_calibration(cal, base.probe)
+    fig = plot_calibration(cal, base)
     fig.savefig(out / "calibration.png", dpi=120)
     summary["figure"] = str(out / "calibration.png")
     (out / "calibration.json").write_text(json.dumps(summary, indent=2), encoding="utf-8")
     if args.json:
         print_json(summary)
         return 0
-    for name, unit in (("hinge_stiffness", "N m/rad"), ("tip_mass", "kg"), ("loss_factor", "")):
+    units = {"hinge_stiffness": "N m/rad", "tip_mass": "kg", "loss_factor": ""}
+    print(f"model: {cal.model}; {summary['positions']} contact positions, rms misfit "
+          f"{cal.rms_residual_hz:.3g} Hz")
+    for name in PARAMETERS:
         lo, hi = cal.interval(name)
-        print(f"{name}: {getattr(cal, name):.4g} {unit} (95 % {lo:.4g} - {hi:.4g})")
+        if name in cal.not_identifiable:
+            bound = (f"at least {lo:.4g} {units[name]}".rstrip() if lo > 0 and math.isinf(hi)
+                     else f"at most {hi:.4g} {units[name]}".rstrip() if math.isfinite(hi)
+                     else "no bound")
+            print(f"{name}: not identifiable ({bound}; see the warning)")
+        else:
+            print(f"{name}: {getattr(cal, name):.4g} {units[name]} (95 % {lo:.4g} - {hi:.4g})"
+                  .replace("  (", " ("))
     print(f"scene written to {summary['scene']}")
     return 0
 
 
-def _plan_and_connect(args):
-    """The plan, the ``connect`` of the rig, and the rig's description."""
+def _plan_of(args):
+    """The plan, and the scene of a simulated rig (None on hardware)."""
     from ...device.plan import load_plan
     from ...simulate.scene import resolve_scene
     from .planning import protocol_plan
 
     scene = resolve_scene(args.scene) if args.simulated else None
     if args.plan is not None:
-        plan = load_plan(args.plan)
-    else:
-        plan = protocol_plan(quick=args.quick, scene=scene, seed=args.seed)
+        return load_plan(args.plan), scene
+    return protocol_plan(quick=args.quick, scene=scene, seed=args.seed), scene
+
+
+def _plan_and_connect(args):
+    """The plan, the ``connect`` of the rig, and the rig's description."""
+    plan, scene = _plan_of(args)
     if args.simulated:
         if abs(scene.probe.length - plan.probe_length) > 1e-9:
             raise ValueError(f"the plan's probe is {plan.probe_length:g} m long, the scene's "
@@ -170,6 +220,8 @@ def run_record(args) -> int:
     if not args.out:
         raise ValueError("--out must name the session folder, got an empty path (it would "
                          "record into the working directory)")
+    if args.dry_run:
+        return _dry_run(args)
     plan, connect, rig, confirm = _plan_and_connect(args)
     from ...device.plan import check_session_length
 
@@ -177,7 +229,7 @@ def run_record(args) -> int:
     session = RecordingSession(
         args.out, plan, connect, rig=rig, max_lost=args.max_lost, attempts=args.attempts,
         confirm=confirm,
-        say=lambda text: print(f"ebantenna record: {text}", file=sys.stderr, flush=True),
+        say=_status_line,
         show_progress=False if args.json else None)
     start = time.perf_counter()
     code, stopped = 0, None
@@ -231,12 +283,75 @@ def _unsafe_stop(session, exc: BaseException) -> str:
     return why
 
 
+def _status_line(text: str) -> None:
+    """One status line on stderr, written above the progress bar (not onto its line)."""
+    import tqdm.std
+
+    tqdm.std.tqdm.write(f"ebantenna record: {text}", file=sys.stderr)
+
+
 def _summary(args, session, start) -> dict:
     manifest = session.manifest or {"recordings": {}, "retakes": []}
+    released = [e.get("servos_released") for e in manifest["recordings"].values()]
     return {"out": str(args.out), "plan": session.plan.name, "touches": len(session.plan),
             "saved": len(manifest["recordings"]), "retakes": len(manifest["retakes"]),
+            # every saved touch's release read back; False when one is not (or none was saved)
+            "servos_released": bool(released) and all(r is True for r in released),
             "manifest": str(session.manifest_path),
             "seconds": round(time.perf_counter() - start, 3)}
+
+
+def _dry_run(args) -> int:
+    """``record --dry-run``: the plan, its time estimate, the touches done and missing."""
+    from pathlib import Path
+
+    from ...cli import print_json
+    from ...device.plan import session_time
+    from ...device.recording_session import MANIFEST, read_manifest
+
+    plan = _plan_of(args)[0]
+    path = Path(args.out) / MANIFEST
+    done = set()
+    if path.exists():
+        manifest = read_manifest(path)
+        if manifest["plan"] != plan.to_dict():
+            raise ValueError(f"{args.out} holds a session of another plan "
+                             f"({manifest['plan']['name']!r})")
+        done = {k for k, e in manifest["recordings"].items()
+                if (Path(args.out) / e["file"]).exists()}
+    missing = [t for t in plan if t.key not in done]
+    whole, left = session_time(plan), _time_of(plan, missing)
+    summary = {"out": str(args.out), "plan": plan.name, "touches": len(plan),
+               "materials": list(plan.materials), "contacts_m": list(plan.contacts),
+               "repetitions": plan.repetitions, "done": len(plan) - len(missing),
+               "missing": len(missing), "missing_touches": [t.key for t in missing],
+               "estimate_s": whole["total_s"], "estimate_worst_s": whole["worst_s"],
+               "remaining_s": left[0], "remaining_worst_s": left[1], "dry_run": True}
+    if args.json:
+        print_json(summary)
+        return 0
+    print(f"plan {plan.name!r}: {len(plan.materials)} materials x {len(plan.contacts)} contacts "
+          f"x {plan.repetitions} repetitions = {len(plan)} touches; about "
+          f"{whole['total_s'] / 60:.0f} min ({whole['worst_s'] / 60:.0f} min if every search "
+          "takes its longest)")
+    print(f"done {summary['done']}, missing {len(missing)} (about {left[0] / 60:.0f} min)")
+    for key in summary["missing_touches"][:10]:
+        print(f"  {key}")
+    if len(missing) > 10:
+        print(f"  ... and {len(missing) - 10} more")
+    return 0
+
+
+def _time_of(plan, touches) -> tuple[float, float]:
+    """Average and worst seconds of ``touches`` of ``plan`` (each placement counted once)."""
+    from ...device.plan import MOVE_SECONDS, session_time
+
+    if not touches:
+        return 0.0, 0.0
+    per = session_time(plan)
+    placements = len({(t.material, t.contact) for t in touches})
+    return (len(touches) * per["touch_s"] + placements * MOVE_SECONDS,
+            len(touches) * per["touch_worst_s"] + placements * MOVE_SECONDS)
 
 
 def add_from_recordings(parser) -> None:
@@ -253,6 +368,16 @@ def run_from_recordings(args) -> int:
 
     if args.quick:
         raise ValueError("--quick builds the simulated data set; not with --from-recordings")
+    from ...device.recording_session import MANIFEST, read_manifest
+
+    manifest = read_manifest(os.path.join(args.from_recordings, MANIFEST))
+    plan = manifest["plan"]
+    touches = len(plan["materials"]) * len(plan["contacts_m"]) * plan["repetitions"]
+    saved = len(manifest["recordings"])
+    if saved < touches:
+        print(f"ebantenna dataset: warning: the session is not finished: {saved} of {touches} "
+              f"touches saved; the data set holds those (run 'ebantenna record' with the same "
+              "settings to make the rest)", file=sys.stderr)
     start = time.perf_counter()
     data = assemble_dataset(args.from_recordings, args.out)
     summary = {"path": str(data.path), "signals": data.n_signals, "samples": data.n_samples,
@@ -261,6 +386,8 @@ def run_from_recordings(args) -> int:
                "samples_interpolated": int(sum(data.metadata["provenance"]
                                                ["samples_interpolated"])),
                "checksum_sha256": data.metadata["checksum_sha256"],
+               "touches_planned": touches, "complete": saved == touches,
+               "max_lost": manifest.get("max_lost", 0.02),
                "seconds": round(time.perf_counter() - start, 3)}
     if args.json:
         print_json(summary)
@@ -286,8 +413,10 @@ def run_data(args) -> int:
     if args.quick or args.cache:
         raise ValueError("--quick and --cache choose the simulated data set; not with --data")
     try:
-        summary = reproduce_recorded(args.data, args.out, seed=args.seed, n_jobs=args.jobs,
-                                     show_progress=None if not args.json else False)
+        summary = reproduce_recorded(
+            args.data, args.out, seed=args.seed, n_jobs=args.jobs,
+            show_progress=None if not args.json else False,
+            say=lambda text: print(f"ebantenna reproduce: {text}", file=sys.stderr, flush=True))
     except KeyboardInterrupt as exc:
         raise interrupted(exc, {"out": None, "data": args.data}) from None
     if args.json:
@@ -296,7 +425,7 @@ def run_data(args) -> int:
     found = summary["intervals"]
     print(f"Study on {summary['data']['path']} ({summary['data']['source']}) written to "
           f"{args.out}/; report {summary['report']['html']}")
-    for name in ("svm", "ann"):
+    for name in ("svm", "ann") if found else ():
         lo, hi = found[name]["interval95"]
         print(f"  {name.upper()} material accuracy: test {found[name]['test_accuracy']:.1%} "
               f"(95 % {lo:.1%} - {hi:.1%}, {found[name]['n_test']} tests)")

@@ -54,7 +54,7 @@ MIN_SAMPLES = 2 * DATASET.fft_bins
 LABELS = ("material", "contact", "repetition")
 
 
-def assemble_dataset(directory, out_dir=None, *, max_lost: float = 0.02,
+def assemble_dataset(directory, out_dir=None, *, max_lost: float | None = None,
                      rate_tolerance: float = 0.01) -> Dataset:
     """Assemble a session's recordings into a data set file.
 
@@ -64,8 +64,10 @@ def assemble_dataset(directory, out_dir=None, *, max_lost: float = 0.02,
         The session folder (holding ``session.json``).
     out_dir : path, optional
         Where to write ``recorded-<plan name>.npz``; default the session folder.
-    max_lost : float
-        Largest share of a recording's window that may be missing, in [0, 1). Default 0.02.
+    max_lost : float, optional
+        Largest share of a recording's window that may be missing, in [0, 1). Default the
+        session's own limit (``max_lost`` in its manifest, the one ``record`` kept its
+        recordings by; 0.02 for a session that does not record it).
     rate_tolerance : float
         Largest relative difference between a recording's estimated sample rate and the
         configured one. Default 0.01 (the MPU-6050's clock is specified to 1 %).
@@ -81,12 +83,14 @@ def assemble_dataset(directory, out_dir=None, *, max_lost: float = 0.02,
         Naming the file and what is wrong with it (see the module notes).
     """
     directory = Path(check_path("directory", directory))
+    manifest_path = inside(directory, MANIFEST, str(directory / MANIFEST))
+    manifest = read_manifest(manifest_path)
+    if max_lost is None:  # the limit the session recorded with
+        max_lost = manifest.get("max_lost", 0.02)
     max_lost = check_in_range("max_lost", max_lost, 0.0, 1.0, low_inclusive=True)
     rate_tolerance = check_positive("rate_tolerance", rate_tolerance, maximum=1.0)
     if out_dir is not None:
         out_dir = Path(check_path("out_dir", out_dir))
-    manifest_path = inside(directory, MANIFEST, str(directory / MANIFEST))
-    manifest = read_manifest(manifest_path)
     plan = Plan.from_dict(manifest["plan"], f"{manifest_path}: plan", complete=True)
     entries = sorted(manifest["recordings"].values(), key=lambda e: e["touch"])
     if not entries:
@@ -197,8 +201,10 @@ def _resampled(rec: Recording, name: str, fs: float, n: int, max_lost: float):
     if meta.get("trigger_time") is None:
         raise ValueError(f"{name}: missing label trigger_time (the contact sample's time)")
     start = round(meta["trigger_time"] * fs) / rec.fs  # the trigger slot on the estimated grid
-    budget = int(max_lost * n)  # samples that may be missing, at the ends as inside
-    # checked before the grid is made: a window longer than the recording allocates nothing
+    # samples that may be missing, at the ends as inside: the budget record kept the recording
+    # by (a share of its whole window), so that what record keeps, the data set takes; checked
+    # before the grid is made, so that a window longer than the recording allocates nothing
+    budget = int(max_lost * (rec.n_samples + lost))
     if (n - budget > rec.n_samples + lost or rec.t[-1] < start + (n - 1 - budget) / fs
             or rec.t[0] > start + budget / fs):
         raise ValueError(f"{name}: too short: it covers {rec.t[-1] - start:.3f} s after the "
@@ -208,7 +214,7 @@ def _resampled(rec: Recording, name: str, fs: float, n: int, max_lost: float):
     interpolated = n - np.intersect1d(slots, np.arange(n)).size
     if interpolated > budget:
         raise ValueError(f"{name}: {interpolated} of the {n} samples after the contact lost, "
-                         f"more than {max_lost:.0%}")
+                         f"more than {max_lost:.0%} of its {rec.n_samples + lost}-sample window")
     return (np.interp(grid, rec.t, rec.ax), np.interp(grid, rec.t, rec.az), int(interpolated))
 
 

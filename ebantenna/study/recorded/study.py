@@ -10,6 +10,12 @@ the whole probe. The sections that need the simulator or only the probe's model 
 report as not applicable, with the reason (:data:`NOT_APPLICABLE`). The report opens with the data
 it ran on: its file, checksum and, for an assembled data set, the session it came from.
 
+The design is checked before any work (:func:`check_design`): each section run on recordings has
+a minimum (:data:`SECTION_MINIMUM`: materials, distinct contact positions, repetitions of each
+material at each position); a section whose minimum the data set does not meet is listed as not
+applicable with what is missing, and the others run. A data set too small for every section is
+refused, with one message that says what each needs.
+
 Every accuracy carries its 95 % Wilson interval (:func:`ebantenna.ml.metrics.accuracy_interval`),
 and each distance network the share of test contacts placed within half a contact step, with its
 interval (:func:`intervals`): the numbers to compare with the same design simulated.
@@ -18,6 +24,7 @@ interval (:func:`intervals`): the numbers to compare with the same design simula
 from __future__ import annotations
 
 import json
+import math
 import os
 import time
 from pathlib import Path
@@ -30,7 +37,7 @@ from ...simulate import load_dataset
 from .. import full_range, learning, material_splits, signals
 
 __all__ = ["NOT_APPLICABLE", "reproduce_recorded", "intervals", "classification_interval",
-           "placement_interval", "RECORDED_STEPS"]
+           "placement_interval", "RECORDED_STEPS", "SECTION_MINIMUM"]
 
 #: The sections run on recordings, in order.
 RECORDED_STEPS = ("features", "frequency", "decay", "ml", "splits", "full range")
@@ -45,6 +52,35 @@ NOT_APPLICABLE = {
                 "re-simulate the data set with parts of the physics switched off: they need the "
                 "simulator",
     "time-frequency": "simulates its own recordings at five positions of one material",
+    "seeds": "the spread over split and initialisation seeds is measured on the simulated data "
+             "set, whose design it re-draws: simulator only",
+    "ann setup": "compares network set-ups on the simulated data set and its re-simulated "
+                 "variants: simulator only",
+    "contact law": "re-simulates the controls' design with the other contact law: simulator "
+                   "only",
+    "rod geometry": "re-simulates the controls' design with the touched rod's geometry varied: "
+                    "simulator only",
+}
+
+#: What each section run on recordings needs at least: distinct materials, distinct contact
+#: positions, repetitions of every material at every position, and recordings within the
+#: distance networks' region (0.8 L), with why. ``after``: the section reuses another's results.
+SECTION_MINIMUM = {
+    "frequency": {"materials": 1, "positions": 2, "repetitions": 1,
+                  "why": "a curve of frequency against distance needs two positions"},
+    "decay": {"materials": 1, "positions": 1, "repetitions": 1, "in_region": 1,
+              "why": "the decays are fitted within 0.8 L of the hinge"},
+    "ml": {"materials": 2, "positions": 3, "repetitions": 2, "in_region": 10,
+           "why": "the classifiers need two materials to tell apart and a test split of every "
+                  "material; the distance networks three positions and ten recordings within "
+                  "0.8 L"},
+    "splits": {"materials": 2, "positions": 5, "repetitions": 2, "after": "ml",
+               "why": "the grouped split holds out every fifth position; the mode curves need "
+                      "three training positions of each material"},
+    "full range": {"materials": 2, "positions": 5, "repetitions": 1,
+                   "why": "calibrates on every other position (three at least) and tests on "
+                          "those between; its joint estimate finds the material among two or "
+                          "more"},
 }
 
 
@@ -99,9 +135,63 @@ def placement_interval(result, contact_step: float) -> dict:
             "n_test": int(errors.size), "interval95": list(accuracy_interval(placed, errors.size))}
 
 
+def design_of(ds) -> dict:
+    """The design of a data set: its ``materials``, distinct contact ``positions``, the fewest
+    ``repetitions`` of a material at a position (0 if one is missing), the recordings within
+    0.8 L of the hinge (``in_region``) and the contact ``spacing`` (m)."""
+    from ...paper.protocol import DISTANCE_LINEAR_REGION
+    from .._common import probe_length
+
+    materials = list(dict.fromkeys(ds.material.tolist()))
+    grid = np.unique(ds.contact)
+    counts = [int(np.sum((ds.material == m) & (ds.contact == c))) for m in materials
+              for c in grid]
+    region = DISTANCE_LINEAR_REGION.region * probe_length(ds)
+    return {"materials": len(materials), "positions": int(grid.size),
+            "repetitions": min(counts) if counts else 0,
+            "in_region": int(np.sum(ds.contact <= region)),
+            "spacing": float(np.diff(grid).min()) if grid.size > 1 else math.nan}
+
+
+def check_design(design: dict) -> tuple[list, dict]:
+    """Which sections the design (:func:`design_of`) can run, and what the others miss.
+
+    Returns
+    -------
+    runnable : list of str
+        The sections of :data:`SECTION_MINIMUM` the design meets, in order.
+    missing : dict
+        ``section -> reason``: what the design lacks for each other section.
+    """
+    runnable, missing = [], {}
+    for section, need in SECTION_MINIMUM.items():
+        short = [f"{need[k]} {k.replace('_', ' ')} (has {design[k]})"
+                 for k in ("materials", "positions", "repetitions", "in_region")
+                 if k in need and design[k] < need[k]]
+        if "after" in need and need["after"] not in runnable:
+            short.append(f"the {need['after']!r} section's results")
+        if short:
+            missing[section] = f"needs at least {', '.join(short)}: {need['why']}"
+        else:
+            runnable.append(section)
+    return runnable, missing
+
+
+def design_message(design: dict, runnable: list, missing: dict) -> str:
+    """One message: the design, what each section it cannot run misses, and what still runs."""
+    lines = [f"the data set has {design['materials']} material(s) x {design['positions']} "
+             f"contact position(s), {design['repetitions']} repetition(s) at least; "]
+    lines += [f"{section}: {why}; " for section, why in missing.items()]
+    lines.append(f"sections that run: {', '.join(runnable) or 'none'}")
+    return "".join(lines)
+
+
 def reproduce_recorded(data, out_dir="ebantenna-recorded", *, seed: int = 0,
-                       n_jobs: int | None = -1, show_progress=None) -> dict:
+                       n_jobs: int | None = -1, show_progress=None, say=None) -> dict:
     """Run the recorded-data sections on the data set file ``data``; returns the summary.
+
+    The design is checked first (:func:`check_design`): the sections it cannot run are listed
+    as not applicable with what they miss, and ``say`` is told before any work.
 
     Parameters
     ----------
@@ -115,25 +205,44 @@ def reproduce_recorded(data, out_dir="ebantenna-recorded", *, seed: int = 0,
         joblib workers for the features (-1: all cores).
     show_progress : bool, optional
         Progress bars (default: on a terminal).
+    say : callable, optional
+        ``say(text)`` for the design check's message and each section as it starts.
 
     Returns
     -------
     dict
-        What ``summary.json`` holds: ``data`` (what it ran on), the sections' results as in the
-        simulated study's summary, ``intervals``, ``not_applicable`` and ``timings_s``.
+        What ``summary.json`` holds: ``data`` (what it ran on), ``design``, the sections'
+        results as in the simulated study's summary, ``intervals`` (of the learning results
+        that ran), ``not_applicable`` (every section not run, with why) and ``timings_s``.
+
+    Raises
+    ------
+    ValueError
+        When the design meets no section's minimum.
     """
     import matplotlib
 
     matplotlib.use("Agg")
     from ...paper.feature_table import signal_features
 
+    say = say or (lambda text: None)
     ds = load_dataset(data)
+    design = design_of(ds)
+    runnable, missing = check_design(design)
+    if not runnable:
+        raise ValueError(f"{data}: too small for any section of the study: "
+                         f"{design_message(design, runnable, missing)}")
+    if missing:
+        say(design_message(design, runnable, missing))
     out_dir = Path(os.fspath(out_dir))
     out_dir.mkdir(parents=True, exist_ok=True)
     figures, seconds = FigureSet(out_dir), {}
-    report = _opening(ds)
+    not_applicable = {**NOT_APPLICABLE, **missing}
+    report = _opening(ds, design, not_applicable)
+    steps = ["features", *runnable]
 
     def timed(step, fn, *args):
+        say(f"{step} ({steps.index(step) + 1}/{len(steps)})")
         start = time.perf_counter()
         result = fn(*args)
         seconds[step] = time.perf_counter() - start
@@ -142,31 +251,49 @@ def reproduce_recorded(data, out_dir="ebantenna-recorded", *, seed: int = 0,
     materials = tuple(dict.fromkeys(ds.material.tolist()))
     feats = timed("features", lambda: signal_features(ds.ax, ds.az, ds.fs, n_jobs=n_jobs,
                                                       show_progress=show_progress))
-    results = {"frequency": timed("frequency", signals.compute_frequency, ds, feats, materials),
-               "decay": timed("decay", signals.compute_decay, ds, feats, materials)}
-    signals.render_frequency(results["frequency"], report, figures)
-    signals.render_decay(results["decay"], report, figures)
-    learnt = results["ml"] = timed("ml", learning.compute, ds, feats, seed)
-    learning.render(learnt, report, figures)
-    results["splits"] = timed("splits", lambda: material_splits.compute(
-        ds, feats, seed, random_svm=learnt.svm, paper_ann=learnt.ann,
-        paper_distance=learnt.linear_region))
-    material_splits.render(results["splits"], report, figures)
-    results["full range"] = timed("full range", full_range.compute, ds, feats)
-    full_range.render(results["full range"], report, figures)
-    summary = _summary(ds, results, seed, _contact_step(ds))
+    results = {}
+    learnt = None
+
+    def section(step, compute, render):
+        """Compute and render one section; a requirement the design check cannot see (one the
+        data themselves miss) lists it as not run, with the reason, and the others go on."""
+        try:
+            results[step] = timed(step, compute)
+        except ValueError as exc:
+            not_applicable[step] = f"did not run on this data set: {exc}"
+            say(f"{step}: did not run: {exc}")
+            return None
+        render(results[step])
+        return results[step]
+
+    if "frequency" in runnable:
+        section("frequency", lambda: signals.compute_frequency(ds, feats, materials),
+                lambda r: signals.render_frequency(r, report, figures))
+    if "decay" in runnable:
+        section("decay", lambda: signals.compute_decay(ds, feats, materials),
+                lambda r: signals.render_decay(r, report, figures))
+    if "ml" in runnable:
+        learnt = section("ml", lambda: learning.compute(ds, feats, seed),
+                         lambda r: learning.render(r, report, figures, simulated=False))
+    if "splits" in runnable and learnt is not None:
+        section("splits", lambda: material_splits.compute(
+            ds, feats, seed, random_svm=learnt.svm, paper_ann=learnt.ann,
+            paper_distance=learnt.linear_region),
+            lambda r: material_splits.render(r, report, figures, seed_spread=False))
+    if "full range" in runnable:
+        section("full range", lambda: full_range.compute(ds, feats),
+                lambda r: full_range.render(r, report, figures))
+    failed = [[k, v] for k, v in not_applicable.items() if v.startswith("did not run")]
+    if failed:
+        report.heading("Sections the data themselves did not allow")
+        report.table(["section", "why not"], failed)
+    summary = _summary(ds, results, seed, design, not_applicable)
     _closing(report, summary["intervals"], seconds)
     md, page = report.write(out_dir)
     summary.update(timings_s=seconds, report={"markdown": str(md), "html": str(page)},
                    figures={k: str(v) for k, v in figures.paths.items()})
     (out_dir / "summary.json").write_text(json.dumps(summary, indent=2), encoding="utf-8")
     return summary
-
-
-def _contact_step(ds) -> float:
-    """The smallest spacing of the data set's contact positions, m."""
-    grid = np.unique(ds.contact)
-    return float(np.diff(grid).min()) if grid.size > 1 else float(grid[0])
 
 
 def _data_description(ds) -> dict:
@@ -181,8 +308,9 @@ def _data_description(ds) -> dict:
             "contacts": int(np.unique(ds.contact).size)}
 
 
-def _opening(ds) -> Report:
-    """The title and the paragraph that says which data the study ran on."""
+def _opening(ds, design: dict, not_applicable: dict) -> Report:
+    """The title, the paragraph that says which data the study ran on, and the sections that do
+    not run on it."""
     data = _data_description(ds)
     report = Report("ebantenna: the study on recorded data")
     origin = (f"recorded in the session {data['session']} (plan {data['plan']!r}, rig "
@@ -192,15 +320,23 @@ def _opening(ds) -> Report:
         f"Every number below comes from the data set {data['path']} (SHA-256 "
         f"{data['checksum_sha256']}): {data['signals']} recordings of {data['samples']} samples "
         f"at {data['fs']:g} Hz, {len(data['materials'])} materials x {data['contacts']} contact "
-        f"positions, {origin}. The paper's value stands beside each one.")
-    report.heading("Sections not applicable to recorded data")
-    report.table(["section", "why not"], [[k, v] for k, v in NOT_APPLICABLE.items()])
+        f"positions{_spacing(design)}, at least {design['repetitions']} repetitions of each, "
+        f"{origin}. The paper's value stands beside each one.")
+    report.heading("Sections not applicable to this data set")
+    report.table(["section", "why not"], [[k, v] for k, v in not_applicable.items()])
     return report
+
+
+def _spacing(design: dict) -> str:
+    """`` x cm apart`` from the design's contact spacing (nothing for one position)."""
+    return "" if math.isnan(design["spacing"]) else (
+        f" at least {100 * design['spacing']:.3g} cm apart")
 
 
 def _closing(report: Report, found: dict, seconds: dict) -> None:
     """The intervals of the four learning results, and the run time."""
-    report.heading("The learning results with their 95 % intervals")
+    if found:
+        report.heading("The learning results with their 95 % intervals")
     rows = [[name, f"{v['test_accuracy']:.3f}", str(v["n_test"]),
              f"{v['interval95'][0]:.3f} - {v['interval95'][1]:.3f}"]
             for name, v in found.items() if "test_accuracy" in v]
@@ -208,23 +344,31 @@ def _closing(report: Report, found: dict, seconds: dict) -> None:
               f"{v['placed']:.3f}", str(v["n_test"]),
               f"{v['interval95'][0]:.3f} - {v['interval95'][1]:.3f}"]
              for name, v in found.items() if "placed" in v]
-    report.table(["result", "share", "test size", "95 % interval (Wilson)"], rows)
+    if rows:
+        report.table(["result", "share", "test size", "95 % interval (Wilson)"], rows)
     report.heading("Run time")
     report.table(["step", "seconds"], [[k, f"{v:.1f}"] for k, v in seconds.items()]
                  + [["total", f"{sum(seconds.values()):.1f}"]])
 
 
-def _summary(ds, results: dict, seed: int, step: float) -> dict:
-    learnt, splits = results["ml"], results["splits"].to_dict()
-    return {
-        "data": _data_description(ds),
-        "seed": seed,
-        "frequency": results["frequency"].to_dict(),
-        "decay": results["decay"].to_dict(),
-        **learnt.to_dict(),
-        "materials": splits["materials"],
-        "distance": {**results["full range"].to_dict(), **learnt.distance_dict(),
-                     **splits["distance"]},
-        "intervals": intervals(learnt, step),
-        "not_applicable": dict(NOT_APPLICABLE),
-    }
+def _summary(ds, results: dict, seed: int, design: dict, not_applicable: dict) -> dict:
+    """The summary of the sections that ran (a section not run has no key)."""
+    out = {"data": _data_description(ds), "design": design, "seed": seed}
+    for name in ("frequency", "decay"):
+        if name in results:
+            out[name] = results[name].to_dict()
+    distance = {}
+    if "ml" in results:
+        out.update(results["ml"].to_dict())
+        distance.update(results["ml"].distance_dict())
+    if "splits" in results:
+        splits = results["splits"].to_dict()
+        out["materials"] = splits["materials"]
+        distance.update(splits["distance"])
+    if "full range" in results:
+        distance = {**results["full range"].to_dict(), **distance}
+    if distance:
+        out["distance"] = distance
+    out["intervals"] = (intervals(results["ml"], design["spacing"]) if "ml" in results else {})
+    out["not_applicable"] = dict(not_applicable)
+    return out

@@ -46,6 +46,8 @@ from ebantenna.recording import Recording  # noqa: E402
 #: (looked up so that the rows also run, and are counted, on a tree without it)
 check_session_length = getattr(_plan_module, "check_session_length", None)
 PLAN = Plan("fz", ("brass",), (0.1, 0.3), 2)
+#: The rig the sessions are recorded with (a resume must name the same).
+RIG = {"simulated": True}
 ACCEPTED = {"error": {"clear"}, "equal": {"right"}, "either": {"clear", "right"}}
 
 
@@ -95,7 +97,7 @@ def record_session(where: Path) -> Path:
 
     folder = where / "s"
     RecordingSession(folder, PLAN, simulated_connect(builtin_scene("paper"), simulate, seed=2),
-                     rig={"simulated": True}, show_progress=False).run()
+                     rig=RIG, show_progress=False).run()
     return folder
 
 
@@ -311,7 +313,8 @@ def _manifest_rows() -> list[Row]:
         "ebantenna.device.recording_session.read_manifest":
             lambda folder: read_manifest(folder / MANIFEST),  # (a copy of the manifest alone)
         "ebantenna.device.recording_session.RecordingSession.open":
-            lambda folder: RecordingSession(folder, PLAN, _no_rig, show_progress=False).open(),
+            lambda folder: RecordingSession(folder, PLAN, _no_rig, rig=RIG,
+                                            show_progress=False).open(),
         "ebantenna.study.recorded.assemble.assemble_dataset":
             lambda folder: _assemble(folder),
     }
@@ -357,7 +360,7 @@ def _manifest_rows() -> list[Row]:
                     same=lambda m: len(m["recordings"]) == len(PLAN)))
     rows.append(Row("ebantenna.device.recording_session.RecordingSession.open", "resume-right",
                     "equal", (), lambda ctx: RecordingSession(ctx.session(), PLAN, _no_rig,
-                                                              show_progress=False).open(),
+                                                              rig=RIG, show_progress=False).open(),
                     same=lambda m: sorted(m["recordings"]) == sorted(t.key for t in PLAN)))
     return rows
 
@@ -426,7 +429,8 @@ def _assemble_rows() -> list[Row]:
     rows = [Row(surface, f"label-{id_}", "error", (name,),
                 lambda ctx, c=changes: _assemble(_relabel(ctx.session(), **c)))
             for id_, (changes, name) in LABELS.items()]
-    for value in (1.5, float("nan"), "x", -0.1, None, True):
+    # (None is the session's own limit, a valid value)
+    for value in (1.5, float("nan"), "x", -0.1, True):
         rows.append(Row(surface, f"max_lost-{value!r}", "error", ("max_lost",),
                         lambda ctx, v=value: _assemble(ctx.session(), max_lost=v)))
     for value in (0.0, float("inf"), "x", 2.0):

@@ -248,11 +248,28 @@ def reproduce_recorded(data, out_dir="ebantenna-recorded", *, seed: int = 0,
         seconds[step] = time.perf_counter() - start
         return result
 
-    materials = tuple(dict.fromkeys(ds.material.tolist()))
     feats = timed("features", lambda: signal_features(ds.ax, ds.az, ds.fs, n_jobs=n_jobs,
                                                       show_progress=show_progress))
-    results = {}
-    learnt = None
+    results = _run_sections(ds, feats, runnable, seed, report, figures, not_applicable,
+                            timed, say)
+    failed = [[k, v] for k, v in not_applicable.items() if v.startswith("did not run")]
+    if failed:
+        report.heading("Sections the data themselves did not allow")
+        report.table(["section", "why not"], failed)
+    summary = _summary(ds, results, seed, design, not_applicable)
+    _closing(report, summary["intervals"], seconds)
+    md, page = report.write(out_dir)
+    summary.update(timings_s=seconds, report={"markdown": str(md), "html": str(page)},
+                   figures={k: str(v) for k, v in figures.paths.items()})
+    (out_dir / "summary.json").write_text(json.dumps(summary, indent=2), encoding="utf-8")
+    return summary
+
+
+def _run_sections(ds, feats, runnable, seed, report, figures, not_applicable, timed,
+                  say) -> dict:
+    """Compute and render every runnable section in order; returns their results."""
+    materials = tuple(dict.fromkeys(ds.material.tolist()))
+    results, learnt = {}, None
 
     def section(step, compute, render):
         """Compute and render one section; a requirement the design check cannot see (one the
@@ -283,17 +300,7 @@ def reproduce_recorded(data, out_dir="ebantenna-recorded", *, seed: int = 0,
     if "full range" in runnable:
         section("full range", lambda: full_range.compute(ds, feats),
                 lambda r: full_range.render(r, report, figures))
-    failed = [[k, v] for k, v in not_applicable.items() if v.startswith("did not run")]
-    if failed:
-        report.heading("Sections the data themselves did not allow")
-        report.table(["section", "why not"], failed)
-    summary = _summary(ds, results, seed, design, not_applicable)
-    _closing(report, summary["intervals"], seconds)
-    md, page = report.write(out_dir)
-    summary.update(timings_s=seconds, report={"markdown": str(md), "html": str(page)},
-                   figures={k: str(v) for k, v in figures.paths.items()})
-    (out_dir / "summary.json").write_text(json.dumps(summary, indent=2), encoding="utf-8")
-    return summary
+    return results
 
 
 def _data_description(ds) -> dict:

@@ -86,7 +86,8 @@ def load_compiled(what: str, fallback: str, module: str, check) -> EngineStatus:
     fallback : str
         What runs instead, e.g. ``'SMO runs on the NumPy engines (...)'``.
     module : str
-        The module of the loops, relative to :mod:`ebantenna.ml` (e.g. ``'_smo_numba'``); its
+        The module of the loops, relative to :mod:`ebantenna.ml` (e.g. ``'_smo_numba'``) or
+        absolute (``'ebantenna.simulate._march_numba'``); its
         ``IMPORT_ERROR`` says why numba did not import there ('' when it did).
     check : callable
         Called with that module; raises when its loops give a known answer wrongly.
@@ -98,7 +99,9 @@ def load_compiled(what: str, fallback: str, module: str, check) -> EngineStatus:
         logger.info(reason)
         return EngineStatus(False, reason, np.nan)
     try:
-        loops = importlib.import_module(f"{__package__}.{module}")
+        # relative to this package, or absolute (another subpackage's loops)
+        loops = importlib.import_module(module if module.startswith("ebantenna.")
+                                        else f"{__package__}.{module}")
         if loops.IMPORT_ERROR:
             raise ImportError(loops.IMPORT_ERROR)
         check(loops)

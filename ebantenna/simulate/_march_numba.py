@@ -326,6 +326,7 @@ def march_strike(x, st, n_steps, h, sub, block, span, stop_time, stopped, base,
     ctl[_STOPPED] = 1 if stopped else 0
     vals = np.empty(3)
     w3 = np.empty((3, K), np.complex128)
+    ek = np.empty(K, np.complex128)
     i = 0
     while i < n_steps:
         if ctl[_STOPPED] == 0 and stop_time < (i + 1) * h:  # the servo stops in this step
@@ -365,16 +366,18 @@ def march_strike(x, st, n_steps, h, sub, block, span, stop_time, stopped, base,
         if _quiet(st, z, s, sigma, min(span, limit), h, T, lower, upper, peak, growing, hertz):
             m = min(span, limit)
             # the output samples only, the powers of e^(lambda sub h) by repeated products
-            e = np.empty(K, np.complex128)
             for c in range(K):
-                e[c] = np.exp(lam[st, c] * (h * (first + 1)))
-            ek = np.ones(K, np.complex128)
+                e0 = np.exp(lam[st, c] * (h * (first + 1)))
+                for r in range(3):
+                    w3[r, c] = w3[r, c] * e0
+                ek[c] = 1.0
             j = first
             while j < m:
-                _values(e * ek, w3, row_s[st], row_speed[st], s, sigma, j + 1, h, vals)
+                _values(ek, w3, row_s[st], row_speed[st], s, sigma, j + 1, h, vals)
                 k = (i + 1 + j) // sub
                 acc[k], force[k] = vals[1], vals[2]
-                ek = ek * every[st]
+                for c in range(K):
+                    ek[c] = ek[c] * every[st, c]
                 j += sub
         else:
             m = min(block, limit)

@@ -21,6 +21,20 @@ usually :func:`stays_positive`), ``ends`` (where a state ends, read on the block
 ``record_block`` (record the samples of a block). This module imports the laws; they import
 nothing from it. Importing it adds ``"blocks"`` to :data:`.linear_state.MARCHES` (the package
 does, when it is imported).
+
+**The compiled march.** With the ``fast`` extra (numba), :func:`march_in_blocks` marches a strike
+(:class:`.unilateral.StrikeLaw` or :class:`.unilateral.HertzStrikeLaw`, every state modal, no
+states recorded: :func:`compiled_fits`) with :func:`march_compiled`, the same algorithm in
+:mod:`ebantenna.simulate._march_numba` in one compiled call. The choice is that of the SVM and
+the MLP (:mod:`ebantenna.ml._engine_choice`): ``EBANTENNA_ENGINE=auto`` (the default) takes it when
+numba imports and passes :func:`compiled_status`'s check, says once why not (a logged INFO when
+numba is not installed, a :class:`RuntimeWarning` when it fails), ``numpy`` never takes it,
+``compiled`` requires it. It finds the same events, each within the root finder's tolerance of
+this engine's, and the signals within the rounding of the propagation carried by the conditioning
+(its sums run in another order); near the tip, where a strike chatters and the NumPy march started
+one ulp away already moves the re-strikes and can change their number, it is held to what one
+ulp makes. A strike that reaches ``max_events`` (or changes chord too often) is marched here
+from the start, so that the law raises or warns as it says.
 """
 
 from __future__ import annotations

@@ -103,7 +103,7 @@ def paper_strikes():
     """The paper scene's strikes (0.4 s) on the five materials at four contacts away from the
     tip's chatter."""
     scene = builtin_scene("paper").with_(duration=0.4)
-    return _capture(scene, [0.05, 0.2, 0.3, 0.383], ["aluminium", "brass", "pvc", "steel",
+    return _capture(scene, [0.05, 0.15, 0.25, 0.35], ["aluminium", "brass", "pvc", "steel",
                                                      "wood"])
 
 

@@ -248,12 +248,13 @@ def _advance_hertz(x, st, t0, t1, T, lower, upper, shift, ctl, ev_t, ev_kind, ev
 
 
 @_jit
-def _values(fine_j, w3, row_s, row_speed, s, sigma, step, h, out):
-    """The three rows at ``step`` steps from the block's start: ``Re(sum w e) + affine``."""
+def _values(fr, fi, wr, wi, row_s, row_speed, s, sigma, step, h, out):
+    """The three rows at ``step`` steps from the block's start: ``Re(sum w e) + affine``, from
+    the real and imaginary parts of ``e`` (``fr``, ``fi``) and of ``w`` (``wr``, ``wi``)."""
     for r in range(3):
         acc = 0.0
-        for c in range(fine_j.size):
-            acc += (w3[r, c] * fine_j[c]).real
+        for c in range(fr.size):
+            acc += wr[r, c] * fr[c] - wi[r, c] * fi[c]
         out[r] = acc
     if sigma == 0:
         for r in range(3):
@@ -309,14 +310,14 @@ def _record(i, x, st, sub, rows, acc, force):
 @_jit
 def march_strike(x, st, n_steps, h, sub, block, span, stop_time, stopped, base,
                  V, Vinv, lam, G, H, rows, row_modes, row_s, row_speed, penA,
-                 fine, every, peak, growing, hertz, lower, upper, shift,
+                 fine_re, fine_im, every_re, every_im, peak, growing, hertz, lower, upper, shift,
                  xtol, max_events, max_chord_changes, acc, force, ev_t, ev_kind, ev_v):
     """March a strike ``n_steps`` steps from ``(x, st)``, recording into ``acc`` and ``force``
     and the events into ``ev_t``, ``ev_kind`` (1: contact, 0: separation), ``ev_v``.
 
     The states are stacked along the first axis of the tables (0: free; 1: closed, or the
     first chord, then the next chords); ``fine[st, j] = e^(lambda h (j + 1))``, ``every[st] =
-    e^(lambda sub h)``. Returns ``(x, st, control)`` with ``control = (status, events, chord
+    e^(lambda sub h)``, each as its real and imaginary parts. Returns ``(x, st, control)`` with ``control = (status, events, chord
     changes, stopped)``; status 1: gave up (``max_events`` reached or too many changes of
     chord), the records partial.
     """
@@ -325,8 +326,10 @@ def march_strike(x, st, n_steps, h, sub, block, span, stop_time, stopped, base,
     ctl = np.zeros(4, np.int64)
     ctl[_STOPPED] = 1 if stopped else 0
     vals = np.empty(3)
-    w3 = np.empty((3, K), np.complex128)
-    ek = np.empty(K, np.complex128)
+    wr = np.empty((3, K))
+    wi = np.empty((3, K))
+    ekr = np.empty(K)
+    eki = np.empty(K)
     i = 0
     while i < n_steps:
         if ctl[_STOPPED] == 0 and stop_time < (i + 1) * h:  # the servo stops in this step
@@ -361,7 +364,8 @@ def march_strike(x, st, n_steps, h, sub, block, span, stop_time, stopped, base,
         s, sigma = x[K], x[K + 1]
         for r in range(3):
             for c in range(K):
-                w3[r, c] = row_modes[st, r, c] * z[c]
+                w = row_modes[st, r, c] * z[c]
+                wr[r, c], wi[r, c] = w.real, w.imag
         event = False
         if _quiet(st, z, s, sigma, min(span, limit), h, T, lower, upper, peak, growing, hertz):
             m = min(span, limit)
@@ -369,22 +373,25 @@ def march_strike(x, st, n_steps, h, sub, block, span, stop_time, stopped, base,
             for c in range(K):
                 e0 = np.exp(lam[st, c] * (h * (first + 1)))
                 for r in range(3):
-                    w3[r, c] = w3[r, c] * e0
-                ek[c] = 1.0
+                    w = complex(wr[r, c], wi[r, c]) * e0
+                    wr[r, c], wi[r, c] = w.real, w.imag
+                ekr[c], eki[c] = 1.0, 0.0
             j = first
             while j < m:
-                _values(ek, w3, row_s[st], row_speed[st], s, sigma, j + 1, h, vals)
+                _values(ekr, eki, wr, wi, row_s[st], row_speed[st], s, sigma, j + 1, h, vals)
                 k = (i + 1 + j) // sub
                 acc[k], force[k] = vals[1], vals[2]
                 for c in range(K):
-                    ek[c] = ek[c] * every[st, c]
+                    a_, b_ = ekr[c], eki[c]
+                    ekr[c] = a_ * every_re[st, c] - b_ * every_im[st, c]
+                    eki[c] = a_ * every_im[st, c] + b_ * every_re[st, c]
                 j += sub
         else:
             m = min(block, limit)
             for j in range(m):
                 v0 = 0.0
                 for c in range(K):
-                    v0 += (w3[0, c] * fine[st, j, c]).real
+                    v0 += wr[0, c] * fine_re[st, j, c] - wi[0, c] * fine_im[st, j, c]
                 if sigma == 0:
                     v0 += s * row_s[st, 0]
                 else:
@@ -396,7 +403,8 @@ def march_strike(x, st, n_steps, h, sub, block, span, stop_time, stopped, base,
                     break
             j = first
             while j < m:
-                _values(fine[st, j], w3, row_s[st], row_speed[st], s, sigma, j + 1, h, vals)
+                _values(fine_re[st, j], fine_im[st, j], wr, wi, row_s[st], row_speed[st], s,
+                        sigma, j + 1, h, vals)
                 k = (i + 1 + j) // sub
                 acc[k], force[k] = vals[1], vals[2]
                 j += sub

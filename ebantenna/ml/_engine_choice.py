@@ -1,8 +1,10 @@
 """Which engine runs, NumPy or compiled (numba), for every estimator that has both (private).
 
 The SVM's SMO loop (:mod:`ebantenna.ml._smo_compiled`) and the MLP's elementwise steps
-(:mod:`ebantenna.ml._mlp_numba`) each have a compiled twin that returns the same bits. One
-choice governs both: ``'auto'`` unless the ``engine`` argument or the environment variable
+(:mod:`ebantenna.ml._mlp_numba`) each have a compiled twin that returns the same bits; the
+simulator's strike march (:mod:`ebantenna.simulate._march_numba`, run from
+:mod:`ebantenna.simulate._block_march`) has one that finds the same events. One choice governs
+them all: ``'auto'`` unless the ``engine`` argument or the environment variable
 :data:`ENGINE_VARIABLE` (``EBANTENNA_ENGINE=numpy|compiled|auto``) says otherwise. Each twin is
 loaded once per process by :func:`load_compiled`, which says once why it falls back: a logged
 INFO when numba is not installed, a :class:`RuntimeWarning` when it is installed but fails (for

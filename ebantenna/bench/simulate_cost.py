@@ -8,14 +8,18 @@ less than wall time. The last lines build the whole paper data set (9875 signals
 directory with one and with two worker processes and report wall and CPU time and the peak memory
 (target: under 10 s and 1 GB on 2 cores).
 
-:func:`run` returns the rows, :func:`to_text` prints them.
+:func:`run` returns the rows, :func:`to_text` prints them. :func:`march_engines` times the strike
+march alone, the NumPy block engine and the compiled one (the ``fast`` extra) side by side on the
+same strikes of the paper scene and of its Hertz variant (``--march``).
 
-Run: ``python benchmarks/simulate_cost.py [--signals N] [--repeat R] [--skip-dataset] [--quick]``
+Run: ``python benchmarks/simulate_cost.py [--signals N] [--repeat R] [--skip-dataset] [--quick]
+[--march]``
 """
 
 from __future__ import annotations
 
 import argparse
+import copy
 import os
 import resource
 import tempfile
@@ -27,10 +31,11 @@ from ebantenna.bench._timing import best_time
 from ebantenna.paper.data import build_paper_dataset
 from ebantenna.probe import Probe, material_names
 from ebantenna.report import text_table
-from ebantenna.simulate import builtin_scene, simulate_batch
+from ebantenna.simulate import builtin_scene, linear_state, simulate_batch
 from ebantenna.simulate.effects import GY521_MASS, effect_names
 
-__all__ = ["scenarios", "time_scene", "run", "to_text", "main"]
+__all__ = ["scenarios", "time_scene", "run", "to_text", "strike_laws", "march_engines",
+           "march_text", "main"]
 
 
 #: Effects that only make sense on top of others: measured together with them (a contact that
@@ -156,6 +161,121 @@ def to_text(tables: dict) -> str:
     return "\n".join(lines)
 
 
+def strike_laws(scene, contacts, materials, seed: int = 0) -> list:
+    """The strike laws the simulator builds for ``scene`` at ``contacts`` (m) on ``materials``
+    (one signal each), each ``(law, x, key, n_steps)`` as its march receives it, copied."""
+
+    got = []
+    march = linear_state.MARCHES["blocks"]
+
+    def spy(law, x, key, n_steps):
+        got.append(copy.deepcopy((law, x, key, n_steps)))
+        return march(law, x, key, n_steps)
+
+    n = len(contacts)
+    linear_state.MARCHES["blocks"] = spy
+    try:
+        simulate_batch(scene, contact=np.asarray(contacts, float),
+                       material=np.asarray(materials, dtype=object),
+                       sweep_speed=np.full(n, scene.sweep_speed),
+                       tilt_ratio=np.full(n, scene.tilt_ratio), seeds=seed + np.arange(n),
+                       show_progress=False, x_modes=False)  # fmt: skip
+    finally:
+        linear_state.MARCHES["blocks"] = march
+    return got
+
+
+def _copy(strike):
+    """A copy of a strike to march (a Hertz law finds its chords by identity: renewed)."""
+    from ebantenna.simulate.unilateral import HertzStrikeLaw
+
+    law, x, key, n_steps = copy.deepcopy(strike)
+    if isinstance(law, HertzStrikeLaw):
+        law.index = {id(st): j for j, st in enumerate(law.segments)}
+    return law, x, key, n_steps
+
+
+def _march_all(strikes, engine: str) -> float:
+    """March a copy of every strike with ``engine`` ('numpy' or 'compiled'); the CPU seconds
+    of the marches (the copies not counted)."""
+    march = linear_state.MARCHES["blocks"]
+    seconds = 0.0
+    for strike in strikes:
+        law, x, key, n_steps = _copy(strike)
+        start = time.process_time()
+        march(law, x, key, n_steps, engine=engine)
+        seconds += time.process_time() - start
+    return seconds
+
+
+def _compiled_status(strike) -> tuple[str, float]:
+    """Why the compiled march cannot run here ('' when it can), and the seconds its first
+    strike took with loading (compiling, or reading numba's cache) included."""
+    start = time.perf_counter()
+    try:
+        linear_state.MARCHES["blocks"](*_copy(strike), engine="compiled")
+    except RuntimeError as exc:  # asked for 'compiled' where it is not available: says why
+        return str(exc), np.nan
+    return "", time.perf_counter() - start
+
+
+def march_engines(n_paper: int = 50, n_hertz: int = 20, repeat: int = 3, seed: int = 0) -> dict:
+    """The strike march's CPU time per strike, NumPy block engine and compiled, side by side.
+
+    ``n_paper`` strikes of the ``paper`` scene and ``n_hertz`` of its Hertz variant (one second
+    each), at contacts drawn from the data set's 0.5 mm grid along the rod (2 mm to 0.397 m) and
+    the five materials, seeded; each engine marches copies of the same laws, best of
+    ``repeat``, in CPU seconds of this process. The set-up of a strike (reduction, states) is
+    not timed. The compiled engine is loaded (compiled or read from numba's cache) before the
+    timing; without it its column is NaN and ``reason`` says why.
+    """
+    rng = np.random.default_rng(seed)
+    paper = builtin_scene("paper")
+    hertz = paper.with_(name="paper-hertz_contact", effects=(*paper.effects, "hertz_contact"))
+    grid = np.round(np.arange(0.002, 0.3975, 0.0005), 4)
+    rows = []
+    for label, scene, n in (("paper (linearised contact)", paper, n_paper),
+                            ("paper + hertz_contact", hertz, n_hertz)):  # fmt: skip
+        contacts = rng.choice(grid, n)
+        materials = rng.choice(material_names(), n)
+        strikes = strike_laws(scene, contacts, materials, seed)
+        row = {"strikes": label, "n": len(strikes)}
+        if not rows:
+            reason, load_seconds = _compiled_status(strikes[0])
+        for engine in ("numpy", "compiled"):
+            if engine == "compiled" and reason:
+                row[engine] = np.nan
+                continue
+            seconds = min(_march_all(strikes, engine) for _ in range(repeat))
+            row[engine] = 1e3 * seconds / len(strikes)
+        row["ratio"] = row["numpy"] / row["compiled"]
+        rows.append(row)
+    return {"rows": rows, "repeat": repeat, "reason": reason,
+            "load_seconds": load_seconds}  # fmt: skip
+
+
+def march_text(tables: dict) -> str:
+    """The table of :func:`march_engines` as text."""
+    lines = [
+        f"the strike march alone, ms of CPU per one-second strike, best of {tables['repeat']}",
+        text_table(
+            [
+                ("strikes", "strikes", "<28"),
+                ("n", "n", "4d"),
+                ("numpy", "NumPy blocks", "13.3f"),
+                ("compiled", "compiled", "9.3f"),
+                ("ratio", "ratio", "6.1f"),
+            ],
+            tables["rows"],
+        ),
+    ]
+    if tables["reason"]:
+        lines.append(tables["reason"])
+    else:
+        lines.append(f"compiled engine loaded and its first strike marched in {tables['load_seconds']:.1f} s (not timed)")
+    return "\n".join(lines)
+
+
 def main(argv=None):
     """Command-line entry: print the tables."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -165,7 +285,14 @@ def main(argv=None):
     parser.add_argument(
         "--quick", action="store_true", help="200 signals, one timing, no data set build"
     )
+    parser.add_argument(
+        "--march", action="store_true",
+        help="time only the strike march, NumPy against compiled (50 + 20 strikes)",
+    )  # fmt: skip
     args = parser.parse_args(argv)
+    if args.march:
+        print(march_text(march_engines(repeat=args.repeat)))
+        return
     print(to_text(run(args.quick, args.signals, args.repeat, args.skip_dataset)))
 
 

@@ -1,8 +1,8 @@
-"""The engine choice checked before a command's work (private): see :mod:`._engine_choice`."""
+"""The engine choice checked before a command's work (private): see :mod:`ebantenna._engines`."""
 
 from __future__ import annotations
 
-from ._engine_choice import ENGINE_VARIABLE, requested_engine
+from .._engines import ENGINE_VARIABLE, requested_engine
 from ._mlp_compiled import engine_status as mlp_status
 from ._smo_compiled import engine_status as smo_status
 

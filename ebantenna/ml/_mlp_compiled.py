@@ -1,7 +1,7 @@
 """Whether the multilayer perceptron's elementwise steps run compiled (private).
 
 :func:`compiled_kernels` gives :mod:`ebantenna.ml._mlp_numba` (the loops numba compiles, the
-``fast`` extra) when the engine choice of :mod:`ebantenna.ml._engine_choice` allows it and the
+``fast`` extra) when the engine choice of :mod:`ebantenna._engines` allows it and the
 loops compile, else None: the NumPy calls. numba is imported only then, the first time a network
 is trained, not when :mod:`ebantenna.ml` is imported.
 """
@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import functools
 
-from ._engine_choice import EngineStatus, load_compiled, use_compiled
+from .._engines import EngineStatus, load_compiled, use_compiled
 
 __all__ = ["ACTIVATION_CODES", "compiled_kernels", "engine_status"]
 

@@ -27,7 +27,7 @@ import functools
 
 import numpy as np
 
-from ._engine_choice import ENGINE_VARIABLE, ENGINES, EngineStatus, load_compiled, use_compiled
+from .._engines import ENGINE_VARIABLE, ENGINES, EngineStatus, load_compiled, use_compiled
 from .smo_policy import SMOPolicy
 
 __all__ = ["ENGINES", "ENGINE_VARIABLE", "EngineStatus", "engine_status", "choose_engine",

@@ -21,6 +21,20 @@ usually :func:`stays_positive`), ``ends`` (where a state ends, read on the block
 ``record_block`` (record the samples of a block). This module imports the laws; they import
 nothing from it. Importing it adds ``"blocks"`` to :data:`.linear_state.MARCHES` (the package
 does, when it is imported).
+
+**The compiled march.** With the ``fast`` extra (numba), :func:`march_in_blocks` marches a strike
+(:class:`.unilateral.StrikeLaw` or :class:`.unilateral.HertzStrikeLaw`, every state modal, no
+states recorded: :func:`compiled_fits`) with :func:`march_compiled`, the same algorithm in
+:mod:`ebantenna.simulate._march_numba` in one compiled call. The choice is that of the SVM and
+the MLP (:mod:`ebantenna._engines`): ``EBANTENNA_ENGINE=auto`` (the default) takes it when
+numba imports and passes :func:`compiled_status`'s check, says once why not (a logged INFO when
+numba is not installed, a :class:`RuntimeWarning` when it fails), ``numpy`` never takes it,
+``compiled`` requires it. It finds the same events, each within the root finder's tolerance of
+this engine's, and the signals within the rounding of the propagation carried by the conditioning
+(its sums run in another order); near the tip, where a strike chatters and the NumPy march started
+one ulp away already moves the re-strikes and can change their number, it is held to what one
+ulp makes. A strike that reaches ``max_events`` (or changes chord too often) is marched here
+from the start, so that the law raises or warns as it says.
 """
 
 from __future__ import annotations
@@ -39,7 +53,8 @@ from .unilateral import HertzStrikeLaw, StrikeLaw
 
 __all__ = ["LONG_BLOCKS", "BLOCK_ELEMENTS", "BlockTables", "prepare_blocks", "readings", "samples",
            "read_ahead", "swing", "stays_positive", "after", "LawBlocks", "StrikeBlocks",
-           "HertzStrikeBlocks", "StickSlipBlocks", "adapter", "march_in_blocks"]  # fmt: skip
+           "HertzStrikeBlocks", "StickSlipBlocks", "adapter", "compiled_status", "compiled_fits",
+           "march_compiled", "march_in_blocks"]  # fmt: skip
 
 #: Where the contact provably keeps its state, up to this many blocks are read at once.
 LONG_BLOCKS = 32
@@ -363,10 +378,125 @@ def adapter(law) -> LawBlocks:
                     "method='steps'")
 
 
-def march_in_blocks(system, x, key, n_steps: int):
+@functools.cache
+def compiled_status():
+    """Compile the strike march once per process (or load it from numba's cache); say once
+    why not (:func:`ebantenna._engines.load_compiled`)."""
+    from .._engines import load_compiled
+
+    return load_compiled(
+        "compiled strike march",
+        "strikes are marched by the NumPy block engine (the same events, slower)",
+        "ebantenna.simulate._march_numba",
+        _check_compiled,
+    )
+
+
+def _one_strike(march):
+    """A mass of 1 kg on a 100 N/m spring strikes a 1e4 N/m contact at 1 m/s, marched by
+    ``march``; its events."""
+    from .unilateral import strike_law
+
+    one, zero = np.ones((1, 1)), np.zeros((1, 1))
+    options = dict(max_events=10, on_max_events="raise", time_tolerance=1e-12,
+                   return_states=False)  # fmt: skip
+    law, grid, _ = strike_law((one, 100 * one, zero, np.ones(1), np.ones(1), np.ones(1)),
+                               1e4, 0.0, 1.0, 1000.0, 0.05, options)  # fmt: skip
+    x, key = law.first_touch(1.0)
+    march(law, x, key, grid[3])
+    return law.events
+
+
+def _check_compiled(loops) -> None:
+    """The compiled march must find the NumPy engine's events on one strike (within the root
+    tolerance), or it is not used."""
+    numpy = _one_strike(lambda *args: march_in_blocks(*args, engine="numpy"))
+    compiled = _one_strike(march_compiled)
+    if len(numpy) != len(compiled) or any(
+        abs(a.time - b.time) > 1e-9 or a.kind != b.kind for a, b in zip(numpy, compiled)
+    ):
+        raise ArithmeticError(f"the compiled march found {compiled}, the NumPy one {numpy}")
+
+
+def compiled_fits(system) -> bool:
+    """Whether the compiled march takes ``system``: a strike law (linear or chords, not a
+    subclass), every state with the modal propagator, no states recorded."""
+    if type(system) not in (StrikeLaw, HertzStrikeLaw) or system.trajectory is not None:
+        return False
+    return all(st.eigen for st in adapter(system).states()) and not system.frozen
+
+
+def march_compiled(system, x, key, n_steps: int):
+    """March a strike law with :func:`ebantenna.simulate._march_numba.march_strike`: the
+    block engine's algorithm compiled. Returns ``(x, key)``, or None when the compiled march
+    gave up (``max_events`` reached, or too many changes of chord): then the law's events and
+    state are as they were (the samples it recorded are partial), and the NumPy engine marches
+    it from the start, recording every sample again."""
+    from . import _march_numba
+
+    law = system
+    hertz = isinstance(law, HertzStrikeLaw)
+    states = [law.free, *law.segments] if hertz else [law.free, law.closed]
+    h, sub = law.h, law.sub
+    size = states[0].A.shape[0]
+    block = int(max(1, min(256, n_steps, BLOCK_ELEMENTS // (size * size))))
+    lam = np.stack([st.lam for st in states])
+    fine = np.exp(np.multiply.outer(h * np.arange(1, block + 1), lam)).transpose(1, 0, 2)
+    every = np.exp(lam * sub * h)
+    if hertz:
+        lower = np.array([0.0] + [law.limits(st)[0] for st in law.segments])
+        upper = np.array([0.0] + [law.limits(st)[1] for st in law.segments])
+        shift = np.array([law.shift(st) for st in states])
+    else:
+        lower = upper = shift = np.zeros(2)
+    index = next(k for k, st in enumerate(states) if st is key)
+    n_events = max(law.max_events, 1)
+    ev_t, ev_kind, ev_v = np.zeros(n_events), np.zeros(n_events, np.int64), np.zeros(n_events)
+    x_end, st, ctl = _march_numba.march_strike(
+        np.array(x, float), index, n_steps, h, sub, block, block * LONG_BLOCKS,
+        float(law.stop_time), bool(law.stopped), np.asarray(law.base, float),
+        np.stack([st.V for st in states]), np.stack([st.Vinv for st in states]), lam,
+        np.stack([st.G for st in states]), np.stack([st.H for st in states]),
+        np.stack([st.rows for st in states]), np.stack([st.row_modes for st in states]),
+        np.stack([st.row_s for st in states]), np.stack([st.row_speed for st in states]),
+        np.stack([law.pen @ st.A for st in states]), np.ascontiguousarray(fine.real),
+        np.ascontiguousarray(fine.imag), every.real.copy(), every.imag.copy(),
+        np.abs(fine[:, 0]), np.array([bool(np.any(st.lam.real > 0)) for st in states]),
+        hertz, lower, upper, shift, float(law.xtol), int(law.max_events),
+        int(getattr(law, "MAX_CHORD_CHANGES", 0)), law.acc, law.force, ev_t, ev_kind, ev_v,
+    )  # fmt: skip
+    if ctl[0]:
+        return None
+    from .unilateral import ContactEvent
+
+    law.events.extend(
+        ContactEvent(float(t), "contact" if kind else "separation", float(v))
+        for t, kind, v in zip(ev_t[: ctl[1]], ev_kind[: ctl[1]], ev_v[: ctl[1]])
+    )
+    law.stopped = bool(ctl[3])
+    if hertz:
+        law.chord_changes = int(ctl[2])
+    return x_end, states[st]
+
+
+def march_in_blocks(system, x, key, n_steps: int, engine: str | None = None):
     """March ``system`` (a :class:`.linear_state.SwitchedSystem`) ``n_steps`` steps from the
     state ``(x, key)`` at step 0, reading each state in blocks; returns ``(x, key)`` after the
-    last step. Takes the checked values a contact law was built from."""
+    last step. Takes the checked values a contact law was built from.
+
+    ``engine`` (None: the environment variable ``EBANTENNA_ENGINE``, default ``'auto'``)
+    chooses, for a strike law that :func:`compiled_fits`, the compiled march
+    (:func:`march_compiled`, the ``fast`` extra) or this NumPy one: ``'auto'`` takes the
+    compiled march when numba works (:func:`compiled_status`), ``'numpy'`` never,
+    ``'compiled'`` always (a :class:`RuntimeError` when numba is missing). Any other law, and a
+    strike that reaches ``max_events``, is marched here.
+    """
+    from .._engines import use_compiled
+
+    if compiled_fits(system) and use_compiled(engine, compiled_status, "compiled strike march"):
+        done = march_compiled(system, x, key, n_steps)
+        if done is not None:
+            return done
     h, sub = system.h, system.sub
     blocks = adapter(system)
     prepare_blocks(blocks.states(), h, sub, n_steps)

@@ -259,7 +259,7 @@ def unilateral_response(
 
     options = dict(max_events=max_events, on_max_events=on_max_events, time_tolerance=xtol,
                    return_states=return_states)  # fmt: skip
-    law, grid, overtravel = _strike_law((Minv, K, C, c, r, o), spring or kc, F0, v0, fs, T,
+    law, grid, overtravel = strike_law((Minv, K, C, c, r, o), spring or kc, F0, v0, fs, T,
                                         options)  # fmt: skip
     x, state = law.first_touch(v0)
     MARCHES[method](law, x, state, grid[3])
@@ -271,7 +271,7 @@ def unilateral_response(
     )  # fmt: skip
 
 
-def _strike_law(structure, spring, F0, v0, fs, T, options):
+def strike_law(structure, spring, F0, v0, fs, T, options):
     """The law of a strike, its step grid and the overtravel, for a linear spring (a float) or
     chords (:class:`.contact.PiecewiseSpring`). Takes checked values."""
     Minv, K, C, c, r, o = structure

@@ -9,7 +9,8 @@ any work.
 import pytest
 
 from ebantenna.cli import main
-from ebantenna.ml import _engine_check, _engine_choice
+from ebantenna import _engines as _engine_choice
+from ebantenna.ml import _engine_check
 
 UNAVAILABLE = _engine_choice.EngineStatus(False, "numba is not installed: (test)", float("nan"))
 

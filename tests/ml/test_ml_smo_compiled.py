@@ -11,7 +11,8 @@ from sklearn import datasets
 from sklearn.preprocessing import StandardScaler
 
 import ebantenna.ml
-from ebantenna.ml import SVC, _engine_choice, _smo_compiled, smo
+from ebantenna import _engines as _engine_choice
+from ebantenna.ml import SVC, _smo_compiled, smo
 from ebantenna.ml import svc as svc_module
 from ebantenna.ml._smo_compiled import ENGINE_VARIABLE, choose_engine, engine_status
 from ebantenna.ml.kernels import Kernel, KernelRows

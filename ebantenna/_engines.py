@@ -1,8 +1,10 @@
-"""Which engine runs, NumPy or compiled (numba), for every estimator that has both (private).
+"""Which engine runs, NumPy or compiled (numba), wherever the package has both (private).
 
 The SVM's SMO loop (:mod:`ebantenna.ml._smo_compiled`) and the MLP's elementwise steps
-(:mod:`ebantenna.ml._mlp_numba`) each have a compiled twin that returns the same bits. One
-choice governs both: ``'auto'`` unless the ``engine`` argument or the environment variable
+(:mod:`ebantenna.ml._mlp_numba`) each have a compiled twin that returns the same bits; the
+simulator's strike march (:mod:`ebantenna.simulate._march_numba`, run from
+:mod:`ebantenna.simulate._block_march`) has one that finds the same events. One choice governs
+them all: ``'auto'`` unless the ``engine`` argument or the environment variable
 :data:`ENGINE_VARIABLE` (``EBANTENNA_ENGINE=numpy|compiled|auto``) says otherwise. Each twin is
 loaded once per process by :func:`load_compiled`, which says once why it falls back: a logged
 INFO when numba is not installed, a :class:`RuntimeWarning` when it is installed but fails (for
@@ -86,7 +88,8 @@ def load_compiled(what: str, fallback: str, module: str, check) -> EngineStatus:
     fallback : str
         What runs instead, e.g. ``'SMO runs on the NumPy engines (...)'``.
     module : str
-        The module of the loops, relative to :mod:`ebantenna.ml` (e.g. ``'_smo_numba'``); its
+        The module of the loops, relative to :mod:`ebantenna.ml` (e.g. ``'_smo_numba'``) or
+        absolute (``'ebantenna.simulate._march_numba'``); its
         ``IMPORT_ERROR`` says why numba did not import there ('' when it did).
     check : callable
         Called with that module; raises when its loops give a known answer wrongly.
@@ -98,7 +101,9 @@ def load_compiled(what: str, fallback: str, module: str, check) -> EngineStatus:
         logger.info(reason)
         return EngineStatus(False, reason, np.nan)
     try:
-        loops = importlib.import_module(f"{__package__}.{module}")
+        # relative to this package, or absolute (another subpackage's loops)
+        loops = importlib.import_module(module if module.startswith("ebantenna.")
+                                        else f"ebantenna.ml.{module}")
         if loops.IMPORT_ERROR:
             raise ImportError(loops.IMPORT_ERROR)
         check(loops)

@@ -680,7 +680,7 @@ def read_manifest(path) -> dict:
     :data:`MANIFEST_KEYS`; its plan must be a valid plan with every key of
     :meth:`~ebantenna.device.plan.Plan.to_dict`, its search the plan's; each entry of
     ``recordings`` must be a touch of the plan, under the touch's key, holding
-    :data:`ENTRY_KEYS` that agree with the touch, and naming the touch's own file inside the
+    ``ENTRY_KEYS`` that agree with the touch, and naming the touch's own file inside the
     session folder (so no two entries name one file, and no entry a file elsewhere).
 
     Raises

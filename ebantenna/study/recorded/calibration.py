@@ -26,14 +26,14 @@ The mode fitted, by identity
     read from the analytic signal's phase slope (:func:`loss_factor_of`). The fit starts from
     the hinge (a grid of decades) and the tip mass (a few values) whose modes fall on the
     recordings' spectral peaks, and alternates measuring at the prediction and fitting until the
-    measured frequencies change by less than :data:`SETTLED`.
+    measured frequencies change by less than ``SETTLED``.
 
 The measurement, modelled
     The estimator has a bias of its own on a short decay: a few parts in 10^4 of the frequency
     and 10 % of the loss factor for an 11 Hz mode over one second (it fits the band-passed
     signal's envelope and phase between the filter's transients), which is more than the time
     base's 10^-4 and would pass for a hinge softer than the truth. The model is therefore read
-    through the same estimator (:func:`as_measured`): the fitted mode rings alone over the
+    through the same estimator (``as_measured``): the fitted mode rings alone over the
     recording's length, its envelope peaking where the recording's does, and what the estimator
     reads from it is compared with what it reads from the recording, so the bias cancels.
 
@@ -62,7 +62,7 @@ Identifiability
 Loss factor
     The decay of the fitted mode in each recording gives its loss factor as read: the band-passed
     Hilbert envelope falls as ``exp(-eta omega t / 2)``. The mode's loss factor that the
-    estimator reads as that (:func:`as_measured`, inverted by secant steps) is, in the model,
+    estimator reads as that (``as_measured``, inverted by secant steps) is, in the model,
     affine in the tube's, ``a_i + b_i eta`` (the rod's and the contact's damping in ``a_i``;
     ``b_i`` the tube's share), so each recording gives one ``eta``; each position's are averaged.
     Only recordings whose fitted stretch spans at least :data:`MIN_CYCLES` periods are used, and
@@ -469,7 +469,7 @@ class _Model:
         return frequency, loss
 
     def predicted(self, log10_k, tip_mass, eta, decays, valid):
-        """What the measurement reads from the model (:func:`as_measured`): each position's mean
+        """What the measurement reads from the model (``as_measured``): each position's mean
         frequency over its ``valid`` recordings, and each recording's loss factor."""
         frequency, loss = self.modes(log10_k, tip_mass, eta)
         f_read = np.full(self.index.size, np.nan)
@@ -572,7 +572,7 @@ def calibrate(ds, scene, *, stiffness_bounds=None, mass_bounds=None,
         The scene the recordings are modelled with (e.g. ``builtin_scene("paper")``): its probe,
         rod and effects; its hinge, tip mass and loss factor are what is fitted.
     stiffness_bounds : (float, float), optional
-        Range of the hinge stiffness searched, N m/rad, within :data:`STIFFNESS_RANGE` times the
+        Range of the hinge stiffness searched, N m/rad, within ``STIFFNESS_RANGE`` times the
         tube's ``E I / L``. Default that whole range.
     mass_bounds : (float, float), optional
         Range of the tip mass, kg, ``0 <= low < high`` up to the probe's limit. Default 0 to
@@ -864,7 +864,7 @@ def _loss_factor(model, p, decays, eta1):
 
 def _as_read_inverse(eta_read: float, frequency: float, n: int, fs: float, peak: int,
                      band: float) -> float:
-    """The mode's loss factor whose decay :func:`as_measured` reads as ``eta_read`` (secant
+    """The mode's loss factor whose decay ``as_measured`` reads as ``eta_read`` (secant
     steps from ``eta_read``: the reading is within a few per cent of linear in it)."""
     sos = _band(band, fs)
     x0, x1 = eta_read, 1.1 * eta_read

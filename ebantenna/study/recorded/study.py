@@ -10,7 +10,7 @@ the whole probe. The sections that need the simulator or only the probe's model 
 report as not applicable, with the reason (:data:`NOT_APPLICABLE`). The report opens with the data
 it ran on: its file, checksum and, for an assembled data set, the session it came from.
 
-The design is checked before any work (:func:`check_design`): each section run on recordings has
+The design is checked before any work (``check_design``): each section run on recordings has
 a minimum (:data:`SECTION_MINIMUM`: materials, distinct contact positions, repetitions of each
 material at each position); a section whose minimum the data set does not meet is listed as not
 applicable with what is missing, and the others run. A data set too small for every section is
@@ -190,7 +190,7 @@ def reproduce_recorded(data, out_dir="ebantenna-recorded", *, seed: int = 0,
                        n_jobs: int | None = -1, show_progress=None, say=None) -> dict:
     """Run the recorded-data sections on the data set file ``data``; returns the summary.
 
-    The design is checked first (:func:`check_design`): the sections it cannot run are listed
+    The design is checked first (``check_design``): the sections it cannot run are listed
     as not applicable with what they miss, and ``say`` is told before any work.
 
     Parameters

@@ -287,9 +287,8 @@ def _learn_materials_and_distance(study: _Sections, ds, feats, materials, seed: 
                                         paper_ann=learnt.ann, paper_distance=learnt.linear_region),
         material_splits.render,
     )
-    grouped = study.results["splits"].svm["grouped"]
-    study.run("seeds", seed_spread.compute, seed_spread.render,
-              ds, feats, seed, (grouped.accuracies["test"], grouped.counts["test"]))
+    grouped = study.results["splits"].measured["svm", "grouped"]
+    study.run("seeds", seed_spread.compute, seed_spread.render, ds, feats, seed, grouped)
     study.run("ann setup", ann_setup.compute, ann_setup.render, ds, feats, seed)
 
 

@@ -416,10 +416,14 @@ def design_effect(k, n) -> float:
     """
     k, n = _counts(k, n)
     total, right = int(n.sum()), int(k.sum())
-    p = right / total
     if right in (0, total):
         return total / n.size
-    ratio = float(np.sum((k - p * n) ** 2)) / (total * p * (1 - p))
+    # sum_j (k_j - p n_j)^2 / (N p (1 - p)) in whole numbers, exact: clusters of one
+    # recording give 1 to the last bit
+    kk, kn, nn = (int(np.dot(a.astype(object), b.astype(object)))
+                  for a, b in ((k, k), (k, n), (n, n)))
+    num = total * total * kk - 2 * total * right * kn + right * right * nn
+    ratio = num / (total * right * (total - right))
     return max(1.0, ratio)
 
 

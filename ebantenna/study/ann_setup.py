@@ -47,9 +47,11 @@ RUNS = {
     "the study's step": (0.05, TRAINGD_DEFAULTS["epochs"]),
     "a ten times larger step": (0.5, TRAINGD_DEFAULTS["epochs"]),
 }
-#: The long run: the study's step, six times the epochs, no validation stop; the test and
-#: 'all' accuracies recorded every ``every`` epochs.
-LONG_RUN = {"lr": 0.05, "epochs": 6000, "every": 100}
+#: The long run: the larger step, up to three times MATLAB's epochs, no validation stop; the
+#: test and 'all' accuracies recorded every ``every`` epochs, and the run ended once the test
+#: accuracy reaches the paper's (what is asked of it is that epoch). One epoch of full-batch
+#: gradient descent on the subset costs about 10 ms on one core: the cap bounds the cost.
+LONG_RUN = {"lr": 0.5, "epochs": 3000, "every": 50}
 
 
 @dataclass(frozen=True, eq=False)
@@ -106,10 +108,10 @@ class AnnSetupResult:
 
 
 def long_run(X, y, positions, *, lr: float, epochs: int, every: int, seed: int) -> dict:
-    """The paper's network trained by full-batch gradient descent for ``epochs`` epochs with no
-    validation stop (and no tolerance stop), on the same 70/15/15 split and scaling as
+    """The paper's network trained by full-batch gradient descent for up to ``epochs`` epochs
+    with no validation stop (and no tolerance stop), on the same 70/15/15 split and scaling as
     :func:`~ebantenna.paper.experiments.classify_materials_ann`; its test and 'all' accuracies
-    every ``every`` epochs.
+    every ``every`` epochs, until the test accuracy reaches the paper's.
 
     Returns
     -------
@@ -126,15 +128,18 @@ def long_run(X, y, positions, *, lr: float, epochs: int, every: int, seed: int) 
     marks, on_test, on_all = [], [], []
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ConvergenceWarning)
+        paper, stopped = printed.ANN_ACCURACY.value, "epoch cap"
         for done in range(every, epochs + 1, every):
             model.fit(X[train], y[train])
             marks.append(done)
             on_test.append(float(np.mean(model.predict(X[test]) == y[test])))
             on_all.append(float(np.mean(model.predict(X) == y)))
-    paper = printed.ANN_ACCURACY.value
+            if on_test[-1] >= paper:
+                stopped = "the paper's accuracy reached on the test rows"
+                break
     correct = model.predict(X[test]) == y[test]
     return {
-        "epochs": marks, "test": on_test, "all": on_all, "stopped_by": "epoch cap",
+        "epochs": marks, "test": on_test, "all": on_all, "stopped_by": stopped,
         "reached_test": next((e for e, a in zip(marks, on_test, strict=True) if a >= paper),
                              None),
         "reached_all": next((e for e, a in zip(marks, on_all, strict=True) if a >= paper),
@@ -268,17 +273,16 @@ def _long_verdict(result: AnnSetupResult) -> str:
     lg = result.long
     paper = printed.percent(printed.ANN_ACCURACY)
     head = (
-        f"The same network at step {LONG_RUN['lr']:g} trained for {LONG_RUN['epochs']} epochs "
-        "with no validation stop (the epoch cap ends it): test accuracy "
-        f"{percent(lg['test'][0])} after {lg['epochs'][0]} epochs, "
-        f"{percent(lg['test'][len(lg['test']) // 2])} after {lg['epochs'][len(lg['epochs']) // 2]}"
-        f", and {lg['final']} after {lg['epochs'][-1]}. "
+        f"The same network at step {LONG_RUN['lr']:g} trained with no validation stop, for at "
+        f"most {LONG_RUN['epochs']} epochs (what ended it: {lg['stopped_by']}): test accuracy "
+        f"{percent(lg['test'][0])} after {lg['epochs'][0]} epochs and {lg['final']} after "
+        f"{lg['epochs'][-1]}. "
     )
     if lg["reached_test"] is not None:
         return head + (
             f"It reaches the paper's {paper} on its test recordings after {lg['reached_test']} "
-            "epochs: plain gradient descent gets there with more epochs, so what stops the "
-            "1000-epoch run short is its budget, not the features."
+            "epochs: plain gradient descent gets there with a larger budget, so what holds the "
+            "1000-epoch run at the study's step short is its budget, not the features."
         )
     if lg["reached_all"] is not None:
         return head + (

@@ -402,9 +402,12 @@ def confusions_and_tested(y, predicted: dict, rows: dict, order) -> tuple[dict, 
 
 
 # -------------------------------------------------------------------------- regression
-def _regression(name, X, d, model, fractions, seed, min_max) -> RegressionResult:
-    train, val, test = three_way_split(X.shape[0], fractions, seed)
-    fit_rows = np.concatenate([train, val])
+def _regression(name, X, d, model, fractions, seed, min_max, split=None) -> RegressionResult:
+    if split is None:
+        train, val, test = three_way_split(X.shape[0], fractions, seed)
+        fit_rows = np.concatenate([train, val])
+    else:  # whole positions held out: the estimator draws its validation share from the rest
+        fit_rows, test = split
     if min_max:
         lo = X[fit_rows].min(axis=0)
         span = X[fit_rows].max(axis=0) - lo
@@ -434,7 +437,7 @@ def regress_distance_linear_region(X, distances, *, probe_length,
                                    solver=DISTANCE_LINEAR_REGION.solver,
                                    learning_rate_init=0.01, max_iter=2000,
                                    fractions=DISTANCE_LINEAR_REGION.fractions, seed=0,
-                                   normalise=True):
+                                   normalise=True, split=None):
     """Contact distance on the first 80 % of the probe by a 2 x 20 tanh network (section 4.2).
 
     Parameters
@@ -455,6 +458,10 @@ def regress_distance_linear_region(X, distances, *, probe_length,
         Seed of the split and the initial weights.
     normalise : bool
         Divide ``X`` by its largest magnitude on the training and validation rows.
+    split : (ndarray, ndarray), optional
+        Rows (of ``X``) to learn from and to test on, replacing the random 70/15/15 split, e.g.
+        whole positions held out (:func:`~ebantenna.paper.splits.split_folds`); rows beyond the
+        region are dropped from both, and the validation share is drawn from the first.
 
     Returns
     -------
@@ -478,16 +485,25 @@ def regress_distance_linear_region(X, distances, *, probe_length,
     keep = d <= fraction_of_length * probe_length
     if keep.sum() < 10:
         raise ValueError("fewer than 10 samples lie within fraction_of_length of the hinge")
+    if split is not None:  # the given rows renumbered among those kept
+        index = np.full(X.shape[0], -1)
+        index[keep] = np.arange(int(keep.sum()))
+        split = tuple(index[r][index[r] >= 0] for r in (np.asarray(r, np.intp) for r in split))
+        if np.intersect1d(*split).size or min(r.size for r in split) < 1:
+            raise ValueError("split must give disjoint, non-empty rows within the region")
     X, d = X[keep], d[keep]
     if normalise:  # the scale from the rows the network learns and stops on, never the test's
-        train, val, _ = three_way_split(X.shape[0], fractions, seed)
-        X = normalise_by_max(X, np.concatenate([train, val]))
+        if split is None:
+            train, val, _ = three_way_split(X.shape[0], fractions, seed)
+            X = normalise_by_max(X, np.concatenate([train, val]))
+        else:
+            X = normalise_by_max(X, split[0])
     model = MLPRegressor(hidden_layer_sizes=hidden_layer_sizes, activation=activation,
                          solver=solver, learning_rate_init=learning_rate_init, max_iter=max_iter,
                          random_state=seed, alpha=0.0, n_iter_no_change=20)
     return _regression(f"{'x'.join(map(str, hidden_layer_sizes))} {activation} ({solver}), "
                        f"first {100 * fraction_of_length:.0f} % of the probe",
-                       X, d, model, fractions, seed, min_max=False)
+                       X, d, model, fractions, seed, min_max=False, split=split)
 
 
 def regress_distance_full_length(X, distances, *,

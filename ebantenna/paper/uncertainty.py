@@ -63,6 +63,7 @@ __all__ = [
     "span",
     "format_clustered",
     "format_difference",
+    "cluster_mean_interval",
 ]
 
 #: How far ``accuracy * n`` may sit from a whole number and still count as ``k`` right out of
@@ -709,6 +710,11 @@ class PairedDifference:
                                                         seed=seed)
 
     @property
+    def identical(self) -> bool:
+        """Whether every cluster has the same count right under both (nothing to resolve)."""
+        return self.se == 0.0 and self.difference == 0.0
+
+    @property
     def direction(self) -> str:
         """``"higher"``, ``"lower"`` (B against A) or ``"unresolved"``."""
         if not self.resolved:
@@ -728,11 +734,13 @@ class PairedDifference:
         return cls(k_a, k_b, n, unit, **kwargs)
 
     def to_dict(self) -> dict:
-        """``summary.json``'s entry: the two accuracies, the difference, its interval and
-        method, the verdict and the minimal detectable difference."""
+        """``summary.json``'s entry: the two accuracies (``reference_estimate`` of A,
+        ``estimate`` of B), the difference, its interval and method, the verdict
+        (``resolved``, ``direction``) and the minimal detectable difference, and
+        ``identical`` (every recording classified alike under both)."""
         return {
-            "reference_accuracy": self.accuracy_a,
-            "accuracy": self.accuracy_b,
+            "reference_estimate": self.accuracy_a,
+            "estimate": self.accuracy_b,
             "difference": self.difference,
             "se": self.se,
             "ci95": list(self.ci95),
@@ -743,6 +751,7 @@ class PairedDifference:
             "resolved": self.resolved,
             "direction": self.direction,
             "detectable_difference_80": self.detectable,
+            "identical": self.identical,
         }
 
     def __str__(self) -> str:
@@ -884,3 +893,34 @@ def format_difference(p: PairedDifference) -> str:
     detect = f"{_round_half_up(100 * p.detectable, 1):.1f}"
     return (f"{points(p.difference)} (95 % CI {lo} to {hi}, {p.n_units} {p.unit}s; "
             f"detectable at 80 % power: {detect} points)")
+
+
+def cluster_mean_interval(values, clusters) -> dict:
+    """The mean of a per-recording quantity (an error, cm) on its clusters: each cluster's
+    mean, their mean, and Student's t interval over the clusters.
+
+    Returns
+    -------
+    dict
+        ``estimate``, ``ci95``, ``n_units``, ``n_test``, ``method``.
+
+    Examples
+    --------
+    >>> r = cluster_mean_interval([1.0, 1.2, 3.0, 2.8, 2.0, 2.0], [0, 0, 1, 1, 2, 2])
+    >>> round(r["estimate"], 3), r["n_units"], [round(x, 2) for x in r["ci95"]]
+    (2.0, 3, [-0.24, 4.24])
+    """
+    v = np.asarray(values, dtype=float)
+    g = np.asarray(clusters)
+    if v.ndim != 1 or v.shape != g.shape or v.size == 0:
+        raise ValueError("values and clusters must be non-empty 1-D arrays of one shape")
+    _, inverse = np.unique(g, return_inverse=True)
+    inverse = inverse.ravel()
+    means = np.bincount(inverse, weights=v) / np.bincount(inverse)
+    if means.size < 2:
+        raise ValueError("need at least two clusters")
+    centre = float(means.mean())
+    half = _quantile95(means.size) * float(means.std(ddof=1)) / math.sqrt(means.size)
+    return {"estimate": centre, "ci95": [centre - half, centre + half],
+            "n_units": int(means.size), "n_test": int(v.size),
+            "method": f"t interval over the {means.size} positions' mean errors"}

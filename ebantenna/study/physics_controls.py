@@ -421,7 +421,8 @@ def _render_ablation(r: ControlsResult, report) -> None:
         if name != "none":
             pair = r.paired[f"ablation:{name}"]
             rows.append([name, format_clustered(spreads[name].folds()), _difference(pair),
-                         "yes" if pair.resolved else "no", _detectable(pair)])
+                         "unchanged" if pair.identical else "yes" if pair.resolved else "no",
+                         _detectable(pair)])
     report.table(["switched off", "grouped test accuracy, all folds",
                   "paired change (95 % CI)", "resolved", "detectable (80 % power)"], rows)
     for name, together in r.ablation.dropped_together.items():
@@ -563,6 +564,8 @@ def _change_words(pair, *, subject: str = "the change") -> str:
     >>> _change_words(PairedDifference([2, 1, 2, 1], [1, 2, 1, 2], [3] * 4, "position"))[:26]
     'not resolved: the interval'
     """
+    if pair.identical:
+        return "unchanged: every position counts as many right with the change as without"
     if pair.resolved:
         return f"{pair.direction}: the interval of the paired difference leaves out zero"
     return (f"not resolved: the interval of the paired difference holds zero, and the "

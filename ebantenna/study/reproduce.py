@@ -223,7 +223,7 @@ def reproduce(
         lambda: signal_features(ds.ax, ds.az, ds.fs, n_jobs=n_jobs, show_progress=show_progress),
     )
     data_summary.render(data_result, report, figures)
-    _learn_materials_and_distance(study, ds, feats, data_result.materials, seed)
+    _learn_materials_and_distance(study, ds, feats, data_result.materials, seed, quick)
     controls = _controls(study, scene, seed, quick, cache_dir, workers)
     study.run("full range", full_range.compute, full_range.render, ds, feats)
     study.run("time-frequency", time_frequency.compute, time_frequency.render, scene, seed)
@@ -274,7 +274,8 @@ def _opening(quick: bool) -> Report:
     return report
 
 
-def _learn_materials_and_distance(study: _Sections, ds, feats, materials, seed: int) -> None:
+def _learn_materials_and_distance(study: _Sections, ds, feats, materials, seed: int,
+                                  quick: bool = False) -> None:
     """Steps 4 to 6: the dominant frequency and the decay per material, the paper's classifiers
     and distance networks, and the same on the three splits and with other trainers."""
     study.run("frequency", signals.compute_frequency, signals.render_frequency,
@@ -289,7 +290,7 @@ def _learn_materials_and_distance(study: _Sections, ds, feats, materials, seed: 
     )
     grouped = study.results["splits"].measured["svm", "grouped"]
     study.run("seeds", seed_spread.compute, seed_spread.render, ds, feats, seed, grouped)
-    study.run("ann setup", ann_setup.compute, ann_setup.render, ds, feats, seed)
+    study.run("ann setup", ann_setup.compute, ann_setup.render, ds, feats, seed, quick)
 
 
 def _controls(study: _Sections, scene, seed: int, quick: bool, cache_dir, workers: int):

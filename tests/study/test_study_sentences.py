@@ -121,7 +121,7 @@ def test_the_step_verdict_follows_the_paired_difference():
 def test_the_long_run_reports_the_epoch_it_reached_or_that_it_did_not():
     final = ClusteredAccuracy(HIGH, N, "position")
     long = dict(epochs=[50, 100], test=[0.5, 0.9], all=[0.5, 0.95], reached_test=100,
-                reached_all=100, final=final, stopped_by="x")
+                reached_all=100, final=final, stopped_by="x", max_epochs=200)
     assert "after 100 epochs" in ann_setup._long_verdict(ann_setup.AnnSetupResult({}, 1, long))
     long.update(reached_test=None, test=[0.5, 0.6])
     text = ann_setup._long_verdict(ann_setup.AnnSetupResult({}, 1, long))

@@ -19,7 +19,8 @@ from sphinx.util.docutils import SphinxDirective
 
 from ebantenna.paper.uncertainty import percent, points, span
 
-__all__ = ["interval_lines", "design_effect_lines", "repetition_lines", "controls_lines", "sensitivity_lines",
+__all__ = ["value_text", "study_role", "interval_lines", "design_effect_lines",
+           "repetition_lines", "controls_lines", "sensitivity_lines",
            "ann_budget_lines", "cell", "setup"]
 
 SPLITS = ("random", "grouped", "blocked")
@@ -163,6 +164,54 @@ def ann_budget_lines(summary: dict) -> list[str]:
     return _table(["run", "step", "epochs (cap)", "stopped by", "final loss", "test"], rows)
 
 
+def _lookup(summary: dict, dotted: str):
+    """``a.b.c`` of the summary; a part that is no key of a dict is tried as a whole name
+    (keys such as ``ablation:gravity`` or ``object_damping+unilateral_contact`` hold dots
+    nowhere, but may hold colons and pluses)."""
+    node = summary
+    for part in dotted.split("."):
+        node = node[part]
+    return node
+
+
+def value_text(summary: dict, text: str) -> str:
+    """``KEY|SPEC`` of the summary as the report prints it: ``pct`` a percentage
+    (:func:`~ebantenna.paper.uncertainty.percent`), ``span`` an interval's ends, ``acc`` an
+    accuracy's cell (``KEY`` the accuracy's name: its ``_n_test``, ``_unit``, ``_n_units`` and
+    ``_ci95`` beside it), ``pair`` a paired comparison with its verdict (``KEY`` an entry of
+    ``controls_paired`` or the like), anything else a format specification."""
+    key, _, spec = text.partition("|")
+    if spec == "acc":
+        parent, _, name = key.rpartition(".")
+        return cell(_lookup(summary, parent) if parent else summary, name)
+    value = _lookup(summary, key)
+    if spec == "pct":
+        return percent(value)
+    if spec == "span":
+        return span(value)
+    if spec == "pair":
+        lo, hi = (points(v).split()[0] for v in value["ci95"])
+        verdict = ("unchanged" if value.get("identical") else
+                   f"resolved, {value['direction']}" if value["resolved"] else
+                   "not resolved; detectable at 80 % power: "
+                   + points(value["detectable_difference_80"]).lstrip("+"))
+        return f"{points(value['difference'])} (95 % CI {lo} to {hi}; {verdict})"
+    return format(value, spec)
+
+
+def study_role(name, rawtext, text, lineno, inliner, options=None, content=None):
+    """``:study:`KEY|SPEC``` inline: a number of the stored summary (:func:`value_text`)."""
+    from docutils import nodes
+
+    try:
+        shown = value_text(load_summary()["summary"], text)
+    except (KeyError, TypeError) as missing:
+        msg = inliner.reporter.warning(f"the stored summary has no {text!r}: {missing}",
+                                       line=lineno)
+        return [inliner.problematic(rawtext, rawtext, msg)], [msg]
+    return [nodes.Text(shown)], []
+
+
 class _SummaryTable(SphinxDirective):
     """A table from the stored summary, built by ``self.build``."""
 
@@ -208,6 +257,7 @@ class StudyAnnBudget(_SummaryTable):
 
 
 def setup(app):
+    app.add_role("study", study_role)
     app.add_directive("study-intervals", StudyIntervals)
     app.add_directive("study-design-effect", StudyDesignEffect)
     app.add_directive("study-repetitions", StudyRepetitions)

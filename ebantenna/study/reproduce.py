@@ -23,9 +23,12 @@
    stops at 80 %;
 8. spectrograms and scalograms at 0.25 L ... 0.9 L (Figs. 18 and 19);
 
-and writes every figure as PNG, a report in Markdown and HTML, and a JSON summary. Every
-accuracy comes with its number of test recordings and its Wilson 95 % interval
-(:mod:`ebantenna.paper.uncertainty`).
+and writes every figure as PNG, a report in Markdown and HTML, and a JSON summary. Every test
+accuracy comes with its number of test recordings, its unit of replication (the contact
+position; the held-out block for the blocked split) and the 95 % interval on that unit with its
+method; the grouped and blocked splits over all their folds; every comparison paired on the same
+recordings, with its interval, its verdict and the difference its design detects
+(:mod:`ebantenna.paper.uncertainty`). Training accuracies carry their count only.
 
 Each section is a module with a pure ``compute(...)`` returning a frozen result (with
 ``to_dict()``) and a ``render(result, report, figures)`` that draws its figures and writes its

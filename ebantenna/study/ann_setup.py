@@ -97,7 +97,7 @@ class AnnSetupResult:
                 "lr": LONG_RUN["lr"], "max_epochs": lg["max_epochs"],
                 "stopped_by": lg["stopped_by"], "epochs": list(lg["epochs"]),
                 "test_accuracy_curve": list(lg["test"]), "all_accuracy_curve": list(lg["all"]),
-                "paper_accuracy": printed.ANN_ACCURACY.value,
+                "paper_value": printed.ANN_ACCURACY.value,
                 "reached_paper_test_epoch": lg["reached_test"],
                 "reached_paper_all_epoch": lg["reached_all"],
                 **clustered_entries("test_accuracy", lg["final"]),

@@ -5,12 +5,14 @@ import numpy as np
 import pytest
 
 from ebantenna.ml.metrics import accuracy, accuracy_interval
+from ebantenna.paper.splits import split_folds
 from ebantenna.paper.uncertainty import (
     ClusteredAccuracy,
     FoldAccuracy,
     PairedDifference,
     cluster_bootstrap,
     cluster_counts,
+    cluster_mean_interval,
     design_effect,
     minimal_detectable_difference,
 )
@@ -47,6 +49,13 @@ ROWS = [
      "power"),
     (lambda: FoldAccuracy([(np.ones(3, bool), np.arange(3))], "position"), ValueError,
      "two folds"),
+    (lambda: cluster_mean_interval([1.0, 2.0], [0, 0]), ValueError, "two clusters"),
+    (lambda: cluster_mean_interval([1.0], [0, 1]), ValueError, "values and clusters"),
+    (lambda: split_folds("grouped", [0, 1] * 3, [0.1, 0.2] * 3, folds=5), ValueError, "folds"),
+    (lambda: split_folds("grouped", [0] * 6, np.arange(6), folds=1), ValueError, "folds"),
+    (lambda: split_folds("grouped", [0] * 6, np.arange(6), folds=2.5), TypeError, "folds"),
+    (lambda: split_folds("sideways", [0] * 6, np.arange(6)), ValueError, "kind"),
+    (lambda: split_folds("blocked", [0] * 6, np.arange(6), seed=-2), ValueError, "seed"),
 ]
 
 

@@ -485,7 +485,7 @@ def _baseline_relation(r: ControlsResult) -> str:
 
 def _render_equivalent_pair(r: ControlsResult, report) -> None:
     """Two rods of equal stiffness and frequencies in different materials told apart, or not."""
-    report.heading("The equivalent pair: impedance, not chemistry")
+    report.heading("The equivalent pair: impedance or chemistry?")
     if r.pairs is None:
         report.paragraph(f"The equivalent pair was {r.pair_note}.")
         return

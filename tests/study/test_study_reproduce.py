@@ -205,7 +205,7 @@ def test_report_sections_follow_the_recipe(quick_study):
         "How much the numbers carry: folds, clusters and repetitions",
         "Why the paper's network scores lower here: its training budget",
         "What the classifier learns: one effect at a time switched off",
-        "The equivalent pair: impedance, not chemistry",
+        "The equivalent pair: impedance or chemistry?",
         "A contact that only pushes",
         "Where the rod is touched: an assumption moved",
         "Friction along the rod",

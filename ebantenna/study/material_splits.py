@@ -90,7 +90,7 @@ class MaterialSplitsResult:
                                train.counts["train"]),
         }
         for kind in SPLITS:
-            materials.update(clustered_entries(f"svm_{kind}_test_accuracy", m["svm", kind]))
+            materials.update(clustered_entries(SVM_KEYS[kind], m["svm", kind]))
         for name, key in (("position_aware_test_accuracy", "position_aware"),
                           ("mode_curve_test_accuracy", "mode_curves")):
             materials.update(clustered_entries(name, {k: m[key, k] for k in SPLITS}))
@@ -125,6 +125,10 @@ def _distance_entry(r) -> dict:
     return {"mae_cm": r.mae_cm, **{f"mae_cm_{k}": v for k, v in
                                   cluster_mean_interval(r.errors_cm, r.distance_test).items()}}
 
+
+#: The paper SVM's test accuracy on each split, by its key in ``summary.json``.
+SVM_KEYS = {"random": "svm_random_test_accuracy", "grouped": "svm_grouped_test_accuracy",
+            "blocked": "svm_blocked_test_accuracy"}
 
 #: The classifiers of this section, by the key of :attr:`MaterialSplitsResult.measured`.
 CLASSIFIERS = ("svm", "position_aware", "mode_curves")

@@ -530,8 +530,8 @@ def _pair_verdict(f) -> str:
         return f"told apart: {span(f.ci95)} % lies above chance (50 %)"
     if hi < 0.5:
         return f"below chance: {span(f.ci95)} % lies under 50 %"
-    return (f"not told apart: {span(f.ci95)} % holds 50 %; a departure from chance of "
-            f"{points(max(0.5 - lo, hi - 0.5)).lstrip('+')} or more would have shown")
+    return (f"not told apart: {span(f.ci95)} % holds 50 %, and reaches at most "
+            f"{points(max(0.5 - lo, hi - 0.5)).lstrip('+')} from it")
 
 
 def _render_mid_height(r: ControlsResult, report) -> None:

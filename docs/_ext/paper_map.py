@@ -268,9 +268,14 @@ PAPER_MAP = (
         (),
         "ann_accuracy",
         here="[[summary:ann.all_accuracy|pct]] (all samples, gradient descent)",
-        status="differs: plain gradient descent learns little on these features before the "
-        "validation check stops it; the same network reaches [[summary:materials.ann.scg|pct]] "
-        "with scaled conjugate gradients and [[summary:materials.ann.adam|pct]] with Adam (test)",
+        status="differs: what ended the main run: [[summary:ann.stopped_by|s]], after "
+        "[[summary:ann.epochs|d]] of [[summary:ann.max_epochs|d]] epochs; with no validation "
+        "stop, at step [[summary:materials.ann_training_setup.long_run.lr|g]], its test "
+        "accuracy reaches [[summary:materials.ann_training_setup.long_run.test_accuracy|pct]] "
+        "(what ended that run: "
+        "[[summary:materials.ann_training_setup.long_run.stopped_by|s]]); the same network "
+        "reaches [[summary:materials.ann.scg|pct]] with scaled conjugate gradients and "
+        "[[summary:materials.ann.adam|pct]] with Adam (test)",
         check=("summary:ann.all_accuracy", 0.02),
     ),
     Item(
@@ -525,8 +530,12 @@ PLACEHOLDER = re.compile(r"\[\[([^|\]]+)\|([^\]]*)\]\]")
 
 
 def _formatted(value, spec: str) -> str:
+    """One value as the page shows it: ``pct`` through the report's own formatter
+    (:func:`ebantenna.paper.uncertainty.percent`), so a number reads the same in both."""
     if spec == "pct":
-        return f"{100 * value:.1f} %"
+        from ebantenna.paper.uncertainty import percent
+
+        return percent(value)
     return format(value, spec)
 
 

@@ -1,10 +1,15 @@
 """Tables of the study's uncertainty, from the stored summary of a full ``ebantenna reproduce`` run.
 
-``.. study-intervals::`` renders the material classifiers on the three splits, each with its test
-count, its Wilson 95 % interval and its spread over the split seeds; ``.. study-sensitivity::``
-the touched rod's diameter and free length varied; ``.. study-ann-budget::`` the paper network
-trained with two steps. Every number comes from ``docs/_data/reproduce_summary.json`` (see
-:mod:`paper_map` for how to refresh it), none is typed into a page.
+``.. study-intervals::`` renders the material classifiers on the three splits, each over all its
+folds with its unit of replication, its 95 % interval on that unit, the folds' spread and the
+design effect; ``.. study-repetitions::`` the grouped SVM against the repetitions per position;
+``.. study-controls::`` every control paired against its reference, with the verdict and the
+difference the design detects; ``.. study-sensitivity::`` the touched rod's diameter and free
+length varied; ``.. study-ann-budget::`` the paper network trained with two steps and the long
+run. Every number comes from ``docs/_data/reproduce_summary.json`` (see :mod:`paper_map` for how
+to refresh it) and is printed by the formatters the report uses
+(:func:`ebantenna.paper.uncertainty.percent`, :func:`~ebantenna.paper.uncertainty.span`,
+:func:`~ebantenna.paper.uncertainty.points`): none is typed into a page, none rounded twice.
 """
 
 from __future__ import annotations
@@ -12,19 +17,41 @@ from __future__ import annotations
 from paper_map import SUMMARY_PATH, load_summary
 from sphinx.util.docutils import SphinxDirective
 
-__all__ = ["interval_lines", "repetition_lines", "sensitivity_lines", "ann_budget_lines",
-           "setup"]
+from ebantenna.paper.uncertainty import percent, points, span
+
+__all__ = ["value_text", "study_role", "interval_lines", "design_effect_lines",
+           "repetition_lines", "controls_lines", "sensitivity_lines",
+           "ann_budget_lines", "cell", "setup"]
 
 SPLITS = ("random", "grouped", "blocked")
 
 
-def _cell(value, n, ci) -> str:
-    """``83.2 % (n = 2000, 81.5-84.8)``."""
-    return f"{100 * value:.1f} % (n = {n}, {100 * ci[0]:.1f}-{100 * ci[1]:.1f})"
+def cell(entries: dict, name: str, key: str | None = None) -> str:
+    """``83.2 % (n = 2000 in 16 positions, 76.0-90.5)`` from the summary's keys of accuracy
+    ``name`` (one value of a by-key dict when ``key`` is given)."""
+    def get(suffix):
+        v = entries[f"{name}{suffix}"]
+        return v if key is None else v[key]
+
+    unit, units = get("_unit"), get("_n_units")
+    plural = unit + ("s" if units != 1 and not unit.endswith("s") else "")
+    return (f"{percent(get(''))} (n = {get('_n_test')} in {units} {plural}, "
+            f"{span(get('_ci95'))})")
 
 
-def _spread(s: dict) -> str:
-    return f"{100 * s['mean']:.1f} ± {100 * s['std']:.1f} %"
+def _folds(entries: dict, name: str, key: str | None = None) -> str:
+    """The folds' standard deviation, or '-' for a single split."""
+    v = entries.get(f"{name}_fold_std")
+    if v is not None and key is not None:
+        v = v.get(key)
+    return "-" if v is None else percent(v)
+
+
+def _deff(entries: dict, name: str, key: str | None = None) -> str:
+    v = entries.get(f"{name}_design_effect")
+    if v is not None and key is not None:
+        v = v.get(key)
+    return "-" if v is None else f"{v:.1f}"
 
 
 def _table(headers, rows) -> list[str]:
@@ -37,69 +64,152 @@ def _table(headers, rows) -> list[str]:
 
 
 def interval_lines(summary: dict) -> list[str]:
-    """The three classifiers on the three splits: seed 0 with count and interval, and the spread
-    over the split seeds on the subset."""
+    """The three classifiers on the three splits of the main data set (random: the paper's one
+    split; grouped and blocked: all folds), with unit, interval, the folds' spread and the
+    design effect; the recording-level Wilson interval beside them for contrast."""
     m = summary["materials"]
     named = {
-        "paper's SVM": lambda k: (m[f"svm_{k}_test_accuracy"], m[f"svm_{k}_test_accuracy_n_test"],
-                                  m[f"svm_{k}_test_accuracy_ci95"]),
-        "position-aware": lambda k: _by_split(m, "position_aware_test_accuracy", k),
-        "mode curves": lambda k: _by_split(m, "mode_curve_test_accuracy", k),
+        "paper's SVM": lambda k: (m, f"svm_{k}_test_accuracy", None),
+        "position-aware": lambda k: (m, "position_aware_test_accuracy", k),
+        "mode curves": lambda k: (m, "mode_curve_test_accuracy", k),
     }
     rows = []
     for name, get in named.items():
         for k in SPLITS:
-            rows.append([name, k, _cell(*get(k)), _spread(m["seed_spread"][name][k])])
-    subset = m["seed_spread"]["subset_recordings"]
-    return _table(["classifier", "split", "seed 0 (n, 95 % interval)",
-                   f"over split seeds ({subset} recordings)"], rows)
+            entries, key, sub = get(k)
+            rec = entries[f"{key}_recording_ci95"]
+            rows.append([name, k, cell(entries, key, sub), _folds(entries, key, sub),
+                         _deff(entries, key, sub), span(rec if sub is None else rec[sub])])
+    return _table(["classifier", "split", "accuracy (n in units, 95 % interval on the unit)",
+                   "folds' std", "design effect",
+                   "recording-level Wilson (too narrow)"], rows)
 
 
-def _by_split(m: dict, name: str, k: str):
-    return m[name][k], m[f"{name}_n_test"][k], m[f"{name}_ci95"][k]
+def design_effect_lines(summary: dict) -> list[str]:
+    """One paragraph, generated from the summary: the main grouped SVM's recordings, units,
+    design effect and the two intervals."""
+    m = summary["materials"]
+    name = "svm_grouped_test_accuracy"
+    n, g, deff = m[f"{name}_n_test"], m[f"{name}_n_units"], m[f"{name}_design_effect"]
+    return [
+        f"The paper's SVM on whole held-out positions of the main data set, over all folds: "
+        f"{percent(m[name])} of {n} test recordings, which come from {g} positions "
+        f"({n // g} recordings each). Their design effect is {deff:.1f}: the {n} recordings "
+        f"carry about as much as {n / deff:.0f} independent ones. Counting every recording, "
+        f"Wilson's interval would be {span(m[f'{name}_recording_ci95'])} %; on the position "
+        f"it is {span(m[f'{name}_ci95'])} %.",
+        "",
+    ]
 
 
 def repetition_lines(summary: dict) -> list[str]:
-    """The grouped SVM with the first repetitions of every position only, and the controls'
-    baseline on its own reduced design."""
+    """The grouped SVM (all folds) with the first repetitions of every position only, and the
+    controls' baseline on its own reduced design."""
     m = summary["materials"]
-    rows = [[r, _cell(v["accuracy"], v["accuracy_n_test"], v["accuracy_ci95"])]
+    rows = [[r, cell(v, "accuracy"), _deff(v, "accuracy")]
             for r, v in sorted(m["svm_grouped_by_repetitions"].items(), key=lambda kv: int(kv[0]))]
     design = m["controls_design"]
     rows.append([f"controls' design ({design['recordings']} recordings), all effects on",
-                 _cell(m["ablation"]["none"], m["ablation_n_test"]["none"],
-                       m["ablation_ci95"]["none"])])
-    return _table(["repetitions per position", "grouped SVM, seed 0 (n, 95 % interval)"], rows)
+                 cell(m, "ablation", "none"), _deff(m, "ablation", "none")])
+    return _table(["repetitions per position", "grouped SVM, all folds", "design effect"], rows)
+
+
+def controls_lines(summary: dict) -> list[str]:
+    """Every control paired against its reference on the same rows and folds."""
+    paired = summary["materials"]["controls_paired"]
+    rows = []
+    for name, p in paired.items():
+        lo, hi = (points(v).split()[0] for v in p["ci95"])
+        rows.append([name.replace("ablation:", "switched off: "),
+                     f"{points(p['difference'])} ({lo} to {hi})",
+                     "yes" if p["resolved"] else "no",
+                     points(p["detectable_difference_80"]).lstrip("+")])
+    return _table(["comparison", "paired difference (95 % interval on the position)",
+                   "resolved", "detectable at 80 % power"], rows)
 
 
 def sensitivity_lines(summary: dict) -> list[str]:
-    """The rod's geometry varied: both classifiers and the closest materials' gap."""
-    rows = [
-        [f"{r['diameter_mm']:.0f}", f"{r['free_length_mm']:.0f}",
-         _cell(r["svm_grouped_accuracy"], r["svm_grouped_accuracy_n_test"],
-               r["svm_grouped_accuracy_ci95"]),
-         _spread(r["svm_grouped_seed_spread"]),
-         _cell(r["mode_curve_grouped_accuracy"], r["mode_curve_grouped_accuracy_n_test"],
-               r["mode_curve_grouped_accuracy_ci95"]),
-         " / ".join(r["closest_materials"]), f"{r['second_mode_gap_hz']:.2f}"]
-        for r in summary["materials"]["rod_geometry"]
-    ]
-    return _table(["diameter (mm)", "free length (mm)", "grouped SVM (seed 0)",
-                   "over split seeds", "mode curves (seed 0)", "closest materials",
+    """The rod's geometry varied: both classifiers over all folds and the closest materials'
+    gap."""
+    rows = []
+    for r in summary["materials"]["rod_geometry"]:
+        against = r.get("svm_against_scene_rod")
+        rows.append([
+            f"{r['diameter_mm']:.0f}", f"{r['free_length_mm']:.0f}",
+            cell(r, "svm_grouped_accuracy"),
+            "(the scene's rod)" if against is None else points(against["difference"])
+            + (" (resolved)" if against["resolved"] else " (not resolved)"),
+            cell(r, "mode_curve_grouped_accuracy"),
+            " / ".join(r["closest_materials"]), f"{r['second_mode_gap_hz']:.2f}"])
+    return _table(["diameter (mm)", "free length (mm)", "grouped SVM, all folds",
+                   "against the scene's rod", "mode curves, all folds", "closest materials",
                    "2nd-mode gap (Hz)"], rows)
 
 
 def ann_budget_lines(summary: dict) -> list[str]:
-    """The paper network trained by gradient descent with two steps."""
-    runs = {k: v for k, v in summary["materials"]["ann_training_setup"].items()
-            if isinstance(v, dict)}
+    """The paper network trained by gradient descent with two steps, and the long run."""
+    setup = summary["materials"]["ann_training_setup"]
+    runs = {k: v for k, v in setup.items() if isinstance(v, dict) and "max_epochs" in v
+            and k != "long_run"}
     rows = [
         [name, f"{r['lr']:g}", f"{r['epochs']} ({r['max_epochs']})", r["stopped_by"],
-         f"{r['final_loss']:.3f}",
-         _cell(r["test_accuracy"], r["test_accuracy_n_test"], r["test_accuracy_ci95"])]
+         f"{r['final_loss']:.3f}", cell(r, "test_accuracy")]
         for name, r in runs.items()
     ]
+    long = setup.get("long_run")
+    if long is not None:
+        rows.append(["no validation stop", f"{long['lr']:g}",
+                     f"{long['epochs'][-1]} ({long['max_epochs']})", long["stopped_by"], "-",
+                     cell(long, "test_accuracy")])
     return _table(["run", "step", "epochs (cap)", "stopped by", "final loss", "test"], rows)
+
+
+def _lookup(summary: dict, dotted: str):
+    """``a.b.c`` of the summary; a part that is no key of a dict is tried as a whole name
+    (keys such as ``ablation:gravity`` or ``object_damping+unilateral_contact`` hold dots
+    nowhere, but may hold colons and pluses)."""
+    node = summary
+    for part in dotted.split("."):
+        node = node[part]
+    return node
+
+
+def value_text(summary: dict, text: str) -> str:
+    """``KEY|SPEC`` of the summary as the report prints it: ``pct`` a percentage
+    (:func:`~ebantenna.paper.uncertainty.percent`), ``span`` an interval's ends, ``acc`` an
+    accuracy's cell (``KEY`` the accuracy's name: its ``_n_test``, ``_unit``, ``_n_units`` and
+    ``_ci95`` beside it), ``pair`` a paired comparison with its verdict (``KEY`` an entry of
+    ``controls_paired`` or the like), anything else a format specification."""
+    key, _, spec = text.partition("|")
+    if spec == "acc":
+        parent, _, name = key.rpartition(".")
+        return cell(_lookup(summary, parent) if parent else summary, name)
+    value = _lookup(summary, key)
+    if spec == "pct":
+        return percent(value)
+    if spec == "span":
+        return span(value)
+    if spec == "pair":
+        lo, hi = (points(v).split()[0] for v in value["ci95"])
+        verdict = ("unchanged" if value.get("identical") else
+                   f"resolved, {value['direction']}" if value["resolved"] else
+                   "not resolved; detectable at 80 % power: "
+                   + points(value["detectable_difference_80"]).lstrip("+"))
+        return f"{points(value['difference'])} (95 % CI {lo} to {hi}; {verdict})"
+    return format(value, spec)
+
+
+def study_role(name, rawtext, text, lineno, inliner, options=None, content=None):
+    """``:study:`KEY|SPEC``` inline: a number of the stored summary (:func:`value_text`)."""
+    from docutils import nodes
+
+    try:
+        shown = value_text(load_summary()["summary"], text)
+    except (KeyError, TypeError) as missing:
+        msg = inliner.reporter.warning(f"the stored summary has no {text!r}: {missing}",
+                                       line=lineno)
+        return [inliner.problematic(rawtext, rawtext, msg)], [msg]
+    return [nodes.Text(shown)], []
 
 
 class _SummaryTable(SphinxDirective):
@@ -126,8 +236,16 @@ class StudyIntervals(_SummaryTable):
     build = staticmethod(interval_lines)
 
 
+class StudyDesignEffect(_SummaryTable):
+    build = staticmethod(design_effect_lines)
+
+
 class StudyRepetitions(_SummaryTable):
     build = staticmethod(repetition_lines)
+
+
+class StudyControls(_SummaryTable):
+    build = staticmethod(controls_lines)
 
 
 class StudySensitivity(_SummaryTable):
@@ -139,8 +257,11 @@ class StudyAnnBudget(_SummaryTable):
 
 
 def setup(app):
+    app.add_role("study", study_role)
     app.add_directive("study-intervals", StudyIntervals)
+    app.add_directive("study-design-effect", StudyDesignEffect)
     app.add_directive("study-repetitions", StudyRepetitions)
+    app.add_directive("study-controls", StudyControls)
     app.add_directive("study-sensitivity", StudySensitivity)
     app.add_directive("study-ann-budget", StudyAnnBudget)
     return {"version": "1.0", "parallel_read_safe": True, "parallel_write_safe": True}

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._validate import describe
+
 __all__ = [
     "confusion_matrix", "accuracy", "accuracy_interval", "per_class_rates", "absolute_errors"
 ]
@@ -69,10 +71,30 @@ def accuracy(matrix) -> float:
     0.875
     """
     m = np.asarray(matrix, dtype=np.float64)
+    if m.ndim != 2 or m.shape[0] != m.shape[1]:
+        raise ValueError(f"matrix must be a square confusion matrix, got shape {m.shape}")
+    if not np.all(np.isfinite(m)) or np.any(m < 0):
+        raise ValueError("matrix must hold finite, non-negative counts")
     total = m.sum()
     if total <= 0:
         raise ValueError("matrix must contain at least one sample")
     return float(np.trace(m) / total)
+
+
+#: The largest count a float64 holds exactly: the interval is computed in floats.
+_EXACT_COUNT = 2**53
+
+
+def _count(name: str, value) -> int:
+    """``value`` as a whole count: an integer, or a float with no fractional part; a fraction
+    (3.7 recordings), a bool or a non-number is refused, naming ``name``."""
+    if isinstance(value, bool) or not isinstance(value, int | np.integer | float | np.floating):
+        raise TypeError(f"{name} must be a whole count, got {describe(value)} "
+                        f"({type(value).__name__})")
+    if isinstance(value, float | np.floating):
+        if not np.isfinite(value) or value != np.floor(value):
+            raise ValueError(f"{name} must be a whole count, got {describe(value)}")
+    return int(value)
 
 
 def accuracy_interval(correct: int, n: int, *, z: float = 1.959963984540054) -> tuple[float, float]:
@@ -95,9 +117,10 @@ def accuracy_interval(correct: int, n: int, *, z: float = 1.959963984540054) -> 
     >>> accuracy_interval(0, 7)[0], accuracy_interval(7, 7)[1]
     (0.0, 1.0)
     """
-    if isinstance(correct, bool) or isinstance(n, bool):
-        raise TypeError("correct and n must be integers, not bool")
-    correct, n = int(correct), int(n)
+    correct, n = _count("correct", correct), _count("n", n)
+    if n > _EXACT_COUNT:
+        raise ValueError(f"n must be at most 2**53 (a count a float holds exactly), got "
+                         f"{describe(n)}")
     if n < 1 or not 0 <= correct <= n:
         raise ValueError(f"need 0 <= correct <= n and n >= 1, got correct={correct}, n={n}")
     if not z > 0:

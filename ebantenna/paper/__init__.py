@@ -15,8 +15,9 @@
   contact distance) and :mod:`~ebantenna.paper.mode_curves` (material and distance fitted
   together from two mode frequencies); :mod:`~ebantenna.paper.controls` (what a classifier
   learns).
-- :mod:`~ebantenna.paper.uncertainty`: what an accuracy can carry, its test count, its Wilson
-  95 % interval and its spread over split seeds.
+- :mod:`~ebantenna.paper.uncertainty`: what an accuracy can carry: its unit of replication,
+  the 95 % interval on that unit (clustered repetitions, the design effect), its spread over
+  folds, and paired comparisons with the difference a design detects.
 
 The generic stages (:mod:`ebantenna.fem`, :mod:`ebantenna.simulate`, :mod:`ebantenna.signal`,
 :mod:`ebantenna.ml`) know nothing of this paper's numbers; this package may use all of them.

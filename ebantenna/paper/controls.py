@@ -48,6 +48,7 @@ __all__ = [
     "equivalent_pair_scenes",
     "equivalent_pair_accuracy",
     "equivalent_pair_spread",
+    "twin_seeds",
 ]
 
 #: The reduced data set of the controls: the paper's materials, positions (every 5 mm) and
@@ -104,11 +105,14 @@ def grouped_svm_spread(ds, *, seed: int = 0, splits: int = SPLIT_SEEDS):
 
     def measure(s):
         result = classify_materials_svm(X, ds.material, split=grouped_split(ds.contact, seed=s))
-        return result.accuracies["test"], result.counts["test"]
+        return (result.accuracies["test"], result.counts["test"], result.rows(),
+                result.correct())
 
     seeds = distinct_split_seeds("grouped", ds.material, ds.contact, seed=seed,
                                  count=check_int("splits", splits, minimum=2))
-    return seed_spread(measure, seeds)
+    spread = seed_spread(measure, seeds)
+    spread.positions = np.asarray(ds.contact)
+    return spread
 
 
 @dataclass(frozen=True)
@@ -128,7 +132,11 @@ class Ablation:
         Effects that could only be switched off with a scene parameter changed, and how.
     spreads : dict of str to ebantenna.paper.uncertainty.SeedSpread
         For every entry of ``accuracies``: the accuracy over the split seeds (the data set's
-        seed fixed), ``values[0]`` the one in ``accuracies``, with each seed's test count.
+        seed fixed; the five folds of the grouped split), ``values[0]`` the one in
+        ``accuracies``, with each seed's test rows and whether each was right.
+    contacts : ndarray, optional
+        The nominal contact position of every row, the same in every rebuilt data set (same
+        design, same seed): the rows pair up across the rows of the ablation.
     """
 
     accuracies: dict
@@ -136,6 +144,7 @@ class Ablation:
     refused: dict
     changed: dict = field(default_factory=dict)
     spreads: dict = field(default_factory=dict)
+    contacts: np.ndarray | None = None
 
 
 #: What an ablation may not leave behind although the scene itself allows it: a contact that only
@@ -268,7 +277,12 @@ def ablation_accuracies(
     spreads = {label: grouped_svm_spread(ds, seed=seed, splits=splits)
                for label, ds in zip(scenes, built, strict=True)}
     accuracies = {label: float(spread.values[0]) for label, spread in spreads.items()}
-    return Ablation(accuracies, together, refused, changed, spreads)
+    contacts = np.asarray(built[0].contact)
+    for ds in built[1:]:
+        if not (np.array_equal(ds.contact, contacts)
+                and np.array_equal(ds.material, built[0].material)):
+            raise RuntimeError("the rebuilt data sets do not hold the same rows in one order")
+    return Ablation(accuracies, together, refused, changed, spreads, contacts)
 
 
 # ------------------------------------------------------------------ the equivalent pair
@@ -390,6 +404,25 @@ def equivalent_pair_scenes(scene: Scene, *, reference: str = "aluminium", other:
     )
 
 
+def twin_seeds(seed: int) -> tuple[int, int]:
+    """The data-set seeds of the two twins: different, so that each twin draws its own scatter.
+
+    With one seed, the two one-material data sets would draw the same scatter row by row
+    (position error, sweep speed, tilt, noise): each twin pair would then be the same recording
+    but for the rod, and a classifier that cannot tell the rods apart would give both the same
+    label, scoring exactly one of two right, 50 %, however it classified. With their own
+    scatter, a classifier that cannot tell the rods apart scatters around 50 % as guessing
+    does, and one that can rises above it.
+
+    Examples
+    --------
+    >>> twin_seeds(0), twin_seeds(2**32 - 2)
+    ((0, 1), (4294967294, 4294967293))
+    """
+    seed = check_int("seed", seed, minimum=0)
+    return seed, (seed + 1 if seed < 2**32 - 2 else seed - 1)
+
+
 def equivalent_pair_accuracy(
     scene: Scene,
     *,
@@ -404,8 +437,9 @@ def equivalent_pair_accuracy(
     """Grouped-split accuracy between a ``reference`` rod and its equivalent of ``other``.
 
     Both data sets follow ``design`` with one material each (``reference`` in one scene,
-    ``other`` in the other, :func:`equivalent_pair_scenes`), the same seed and so the same
-    scatter, and are put together with the material as the label. Two classes: 0.5 is chance.
+    ``other`` in the other, :func:`equivalent_pair_scenes`), each with its own scatter
+    (:func:`twin_seeds`), and are put together with the material as the label. Two classes:
+    0.5 is chance.
 
     Parameters
     ----------
@@ -461,10 +495,10 @@ def equivalent_pair_spread(
     """
     check_choice("classifier", classifier, ("svm", "mode_curves"))
     parts = []
-    for s, name in zip(equivalent_pair_scenes(scene, reference=reference, other=other),
-                       (reference, other), strict=True):
+    for s, name, data_seed in zip(equivalent_pair_scenes(scene, reference=reference, other=other),
+                                  (reference, other), twin_seeds(seed), strict=True):
         parts.append(
-            _build(cache_dir, s, replace(design, materials=(name,)), seed, n_jobs=n_jobs,
+            _build(cache_dir, s, replace(design, materials=(name,)), data_seed, n_jobs=n_jobs,
                    show_progress=False)
         )
     ax = np.vstack([np.asarray(p.ax, float) for p in parts])
@@ -483,8 +517,11 @@ def equivalent_pair_spread(
         else:
             result = classify_materials_by_mode_curves(feats.peaks, feats.dominant, y, contact,
                                                        split)
-        return result.accuracies["test"], result.counts["test"]
+        return (result.accuracies["test"], result.counts["test"], result.rows(),
+                result.correct())
 
     seeds = distinct_split_seeds("grouped", y, contact, seed=seed,
                                  count=check_int("splits", splits, minimum=2))
-    return seed_spread(measure, seeds)
+    spread = seed_spread(measure, seeds)
+    spread.positions = contact
+    return spread

@@ -47,6 +47,7 @@ __all__ = [
     "regress_distance_linear_region",
     "regress_distance_full_length",
     "format_confusion",
+    "confusions_and_tested",
 ]
 
 logger = logging.getLogger(__name__)
@@ -69,6 +70,14 @@ class ClassificationResult:
         Wall time of training, in s.
     model : object
         The fitted estimator.
+    tested : dict of str to (ndarray, ndarray), optional
+        Per split: the row indices (into the ``X`` given) and whether each was classified
+        right, in the same order; what an interval on the design's clusters is computed from
+        (:mod:`ebantenna.paper.uncertainty`).
+    stopped_by : str, optional
+        What ended a network's training: ``"epoch cap"`` (it ran ``max_iter`` epochs),
+        ``"validation"`` (the validation check) or ``"tolerance"`` (the training loss stopped
+        falling by ``tol``); None for the SVM.
     """
 
     method: str
@@ -76,6 +85,21 @@ class ClassificationResult:
     confusions: dict
     fit_seconds: float
     model: object = None
+    tested: dict | None = None
+    stopped_by: str | None = None
+
+    def correct(self, split: str = "test") -> np.ndarray:
+        """Whether each recording of ``split`` was classified right (row order of
+        ``tested[split][0]``)."""
+        if not self.tested or split not in self.tested:
+            raise ValueError(f"split {split!r} was not recorded row by row; recorded: "
+                             f"{sorted(self.tested or ())}")
+        return self.tested[split][1]
+
+    def rows(self, split: str = "test") -> np.ndarray:
+        """Row indices of ``split`` (into the ``X`` the classifier was given)."""
+        self.correct(split)
+        return self.tested[split][0]
 
     @property
     def accuracies(self) -> dict:
@@ -249,13 +273,11 @@ def classify_materials_svm(X, materials, *, test_fraction=MATERIAL_SVM.test_frac
     start = time.perf_counter()
     model.fit(X[train], y[train])
     seconds = time.perf_counter() - start
-    confusions = {
-        "train": confusion_matrix(y[train], model.predict(X[train]), order),
-        "test": confusion_matrix(y[test], model.predict(X[test]), order),
-    }
+    predicted = {"train": model.predict(X[train]), "test": model.predict(X[test])}
+    confusions, tested = confusions_and_tested(y, predicted, {"train": train, "test": test}, order)
     logger.info("SVM: train %.3f, test %.3f in %.2f s", accuracy(confusions["train"]),
                 accuracy(confusions["test"]), seconds)
-    return ClassificationResult("svm", order, confusions, seconds, model)
+    return ClassificationResult("svm", order, confusions, seconds, model, tested)
 
 
 def classify_materials_ann(X, materials, *, hidden_layer_sizes=MATERIAL_ANN.hidden_layer_sizes,
@@ -331,8 +353,10 @@ def classify_materials_ann(X, materials, *, hidden_layer_sizes=MATERIAL_ANN.hidd
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", ConvergenceWarning)
             model.fit(X[fit_rows], y[fit_rows])
-        return _ann_result(model, X, y, order, {"train": fit_rows, "test": test}, start)
-    best, best_loss, since = None, np.inf, 0
+        stopped = "epoch cap" if model.n_iter_ >= max_iter else "validation"
+        return _ann_result(model, X, y, order, {"train": fit_rows, "test": test}, start,
+                           stopped)
+    best, best_loss, since, stopped = None, np.inf, 0, "epoch cap"
     X_train, y_train, X_val = X[train], y[train], X[val]
     with warnings.catch_warnings():
         # one epoch per call: the per-call iteration limit is reached on purpose
@@ -348,25 +372,42 @@ def classify_materials_ann(X, materials, *, hidden_layer_sizes=MATERIAL_ANN.hidd
             else:
                 since += 1
                 if since >= n_iter_no_change:
+                    stopped = "validation"
                     break
     model.coefs_, model.intercepts_ = best
     return _ann_result(model, X, y, order, {"train": train, "validation": val, "test": test},
-                       start)
+                       start, stopped)
 
 
-def _ann_result(model, X, y, order, parts, start) -> ClassificationResult:
+def _ann_result(model, X, y, order, parts, start, stopped) -> ClassificationResult:
     seconds = time.perf_counter() - start
     parts = {**parts, "all": np.arange(X.shape[0])}
-    confusions = {k: confusion_matrix(y[i], model.predict(X[i]), order) for k, i in parts.items()}
+    predicted = {k: model.predict(X[i]) for k, i in parts.items()}
+    confusions, tested = confusions_and_tested(y, predicted, parts, order)
     logger.info("ANN (%s): all %.3f, test %.3f after %d epochs", model.solver,
                 accuracy(confusions["all"]), accuracy(confusions["test"]), model.n_iter_)
-    return ClassificationResult("ann", order, confusions, seconds, model)
+    return ClassificationResult("ann", order, confusions, seconds, model, tested, stopped)
+
+
+def confusions_and_tested(y, predicted: dict, rows: dict, order) -> tuple[dict, dict]:
+    """Per split: the confusion matrix, and the rows with whether each was classified right
+    (the ``tested`` of :class:`ClassificationResult`)."""
+    confusions, tested = {}, {}
+    for k, pred in predicted.items():
+        r = np.asarray(rows[k], dtype=np.intp)
+        truth = np.asarray(y)[r]
+        confusions[k] = confusion_matrix(truth, pred, order)
+        tested[k] = (r, np.asarray(pred) == truth)
+    return confusions, tested
 
 
 # -------------------------------------------------------------------------- regression
-def _regression(name, X, d, model, fractions, seed, min_max) -> RegressionResult:
-    train, val, test = three_way_split(X.shape[0], fractions, seed)
-    fit_rows = np.concatenate([train, val])
+def _regression(name, X, d, model, fractions, seed, min_max, split=None) -> RegressionResult:
+    if split is None:
+        train, val, test = three_way_split(X.shape[0], fractions, seed)
+        fit_rows = np.concatenate([train, val])
+    else:  # whole positions held out: the estimator draws its validation share from the rest
+        fit_rows, test = split
     if min_max:
         lo = X[fit_rows].min(axis=0)
         span = X[fit_rows].max(axis=0) - lo
@@ -396,7 +437,7 @@ def regress_distance_linear_region(X, distances, *, probe_length,
                                    solver=DISTANCE_LINEAR_REGION.solver,
                                    learning_rate_init=0.01, max_iter=2000,
                                    fractions=DISTANCE_LINEAR_REGION.fractions, seed=0,
-                                   normalise=True):
+                                   normalise=True, split=None):
     """Contact distance on the first 80 % of the probe by a 2 x 20 tanh network (section 4.2).
 
     Parameters
@@ -417,6 +458,10 @@ def regress_distance_linear_region(X, distances, *, probe_length,
         Seed of the split and the initial weights.
     normalise : bool
         Divide ``X`` by its largest magnitude on the training and validation rows.
+    split : (ndarray, ndarray), optional
+        Rows (of ``X``) to learn from and to test on, replacing the random 70/15/15 split, e.g.
+        whole positions held out (:func:`~ebantenna.paper.splits.split_folds`); rows beyond the
+        region are dropped from both, and the validation share is drawn from the first.
 
     Returns
     -------
@@ -440,16 +485,25 @@ def regress_distance_linear_region(X, distances, *, probe_length,
     keep = d <= fraction_of_length * probe_length
     if keep.sum() < 10:
         raise ValueError("fewer than 10 samples lie within fraction_of_length of the hinge")
+    if split is not None:  # the given rows renumbered among those kept
+        index = np.full(X.shape[0], -1)
+        index[keep] = np.arange(int(keep.sum()))
+        split = tuple(index[r][index[r] >= 0] for r in (np.asarray(r, np.intp) for r in split))
+        if np.intersect1d(*split).size or min(r.size for r in split) < 1:
+            raise ValueError("split must give disjoint, non-empty rows within the region")
     X, d = X[keep], d[keep]
     if normalise:  # the scale from the rows the network learns and stops on, never the test's
-        train, val, _ = three_way_split(X.shape[0], fractions, seed)
-        X = normalise_by_max(X, np.concatenate([train, val]))
+        if split is None:
+            train, val, _ = three_way_split(X.shape[0], fractions, seed)
+            X = normalise_by_max(X, np.concatenate([train, val]))
+        else:
+            X = normalise_by_max(X, split[0])
     model = MLPRegressor(hidden_layer_sizes=hidden_layer_sizes, activation=activation,
                          solver=solver, learning_rate_init=learning_rate_init, max_iter=max_iter,
                          random_state=seed, alpha=0.0, n_iter_no_change=20)
     return _regression(f"{'x'.join(map(str, hidden_layer_sizes))} {activation} ({solver}), "
                        f"first {100 * fraction_of_length:.0f} % of the probe",
-                       X, d, model, fractions, seed, min_max=False)
+                       X, d, model, fractions, seed, min_max=False, split=split)
 
 
 def regress_distance_full_length(X, distances, *,

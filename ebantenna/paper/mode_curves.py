@@ -25,9 +25,8 @@ import time
 import numpy as np
 
 from .._validate import check_array, check_per_row
-from ..ml.metrics import confusion_matrix
 from .estimators import MultiModeDistanceEstimator
-from .experiments import ClassificationResult
+from .experiments import ClassificationResult, confusions_and_tested
 
 __all__ = ["ModeCurveClassifier", "classify_materials_by_mode_curves"]
 
@@ -193,8 +192,6 @@ def classify_materials_by_mode_curves(peaks, dominant, materials, positions, spl
             out[np.flatnonzero(~two[rows])[known]] = fallback.predict(dominant[rest[known], None])
         return out
 
-    confusions = {
-        "train": confusion_matrix(y[train], predict(train), order),
-        "test": confusion_matrix(y[test], predict(test), order),
-    }
-    return ClassificationResult("mode curves", order, confusions, seconds, model)
+    predicted = {"train": predict(train), "test": predict(test)}
+    confusions, tested = confusions_and_tested(y, predicted, {"train": train, "test": test}, order)
+    return ClassificationResult("mode curves", order, confusions, seconds, model, tested)

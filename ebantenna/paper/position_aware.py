@@ -29,9 +29,8 @@ from sklearn.utils.validation import check_is_fitted, validate_data
 
 from .._validate import check_array, check_per_row, check_positive
 from ..ml import SVC
-from ..ml.metrics import confusion_matrix
 from .estimators import FrequencyDistanceEstimator, MultiModeDistanceEstimator
-from .experiments import ClassificationResult
+from .experiments import ClassificationResult, confusions_and_tested
 from .protocol import normalise_by_max
 
 __all__ = ["PositionAwareMaterialClassifier", "classify_materials_position_aware"]
@@ -286,10 +285,9 @@ def classify_materials_position_aware(
     clf.fit(np.column_stack([d[train], X[train]]), y[train])
     seconds = time.perf_counter() - start
     d_test = estimate_distances(peaks, dominant, d, train, test)
-    confusions = {
-        "train": confusion_matrix(
-            y[train], clf.predict(np.column_stack([d[train], X[train]])), order
-        ),
-        "test": confusion_matrix(y[test], clf.predict(np.column_stack([d_test, X[test]])), order),
+    predicted = {
+        "train": clf.predict(np.column_stack([d[train], X[train]])),
+        "test": clf.predict(np.column_stack([d_test, X[test]])),
     }
-    return ClassificationResult("position-aware", order, confusions, seconds, clf)
+    confusions, tested = confusions_and_tested(y, predicted, {"train": train, "test": test}, order)
+    return ClassificationResult("position-aware", order, confusions, seconds, clf, tested)

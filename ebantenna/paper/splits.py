@@ -20,7 +20,9 @@ Three splits, from the most to the least flattering:
     A contiguous range of positions held out (its start drawn from the seed): the classifier must
     bridge a stretch of the probe it never saw.
 
-Every split returns sorted row indices ``(train, test)``; the grouped and blocked splits never
+:func:`split_folds` gives every fold of a split (each recording tested exactly once): a result
+is reported over all of them, never one fold as the result. Every split returns sorted row
+indices ``(train, test)``; the grouped and blocked splits never
 put one nominal position on both sides. Group by the *nominal* position (``Dataset.contact``),
 not the realised one (``Dataset.contact_true``), which scatters around it.
 """
@@ -36,8 +38,11 @@ from .._validate import check_array, check_choice, check_in_range, check_int
 
 __all__ = [
     "SPLITS", "random_split", "grouped_split", "blocked_split", "split_rows",
-    "distinct_split_seeds",
+    "distinct_split_seeds", "split_folds", "FOLDS",
 ]  # fmt: skip
+
+#: Folds of every split reported over all its folds: five, the paper's 20 % test share.
+FOLDS = 5
 
 #: The splits, from the most to the least flattering.
 SPLITS = ("random", "grouped", "blocked")
@@ -250,3 +255,72 @@ def distinct_split_seeds(kind: str, labels, positions, *, seed: int = 0, count: 
         f"only {len(seeds)} distinct {kind} splits among seeds {seed} ... {seed + search - 1}; "
         f"asked for count={count}"
     )
+
+
+def split_folds(kind: str, labels, positions, *, folds: int = FOLDS, seed: int = 0) -> list:
+    """Every fold of a split: ``folds`` test sets that together hold every recording once.
+
+    ``grouped``
+        Fold ``i`` holds out every ``folds``-th distinct position from offset ``i`` (the
+        interleaved folds); the first fold is the one :func:`grouped_split` draws from
+        ``seed`` with ``every=folds``, the others follow in order of their offset.
+    ``blocked``
+        The sorted distinct positions cut into ``folds`` contiguous blocks as equal as can be
+        (:func:`numpy.array_split`), from the hinge outwards.
+    ``random``
+        A stratified ``folds``-fold partition of the recordings, shuffled by ``seed``
+        (:class:`sklearn.model_selection.StratifiedKFold`).
+
+    Parameters
+    ----------
+    kind : {"random", "grouped", "blocked"}
+    labels, positions : array-like of shape (n,)
+        As in :func:`split_rows`.
+    folds : int
+        How many folds (at least 2, at most the number of distinct positions).
+    seed : int
+
+    Returns
+    -------
+    list of (ndarray, ndarray)
+        ``(train, test)`` sorted row indices per fold.
+
+    Examples
+    --------
+    >>> pos = np.repeat(np.arange(1, 11) / 100, 2)
+    >>> y = np.tile(["al", "pvc"], 10)
+    >>> tests = [t for _, t in split_folds("blocked", y, pos, folds=3)]
+    >>> [sorted(set((100 * pos[t]).round().astype(int).tolist())) for t in tests]
+    [[1, 2, 3, 4], [5, 6, 7], [8, 9, 10]]
+    >>> sorted(np.concatenate([t for _, t in split_folds("grouped", y, pos)]).tolist()) == list(
+    ...     range(20))
+    True
+    """
+    check_choice("kind", kind, SPLITS)
+    seed = check_int("seed", seed, minimum=0)
+    folds = check_int("folds", folds, minimum=2)
+    if kind == "random":
+        from sklearn.model_selection import StratifiedKFold
+
+        y = np.asarray(labels)
+        cv = StratifiedKFold(n_splits=folds, shuffle=True, random_state=seed)
+        return [(np.sort(a), np.sort(b)) for a, b in cv.split(np.zeros(y.size), y)]
+    grid, inverse = _positions(positions)
+    if folds > grid.size:
+        raise ValueError(
+            f"folds must be at most the number of distinct positions ({grid.size}), got {folds}"
+        )
+    if kind == "grouped":
+        first = int(np.random.default_rng([seed, 0x5917]).integers(folds))
+        out = []
+        for offset in [first, *(o for o in range(folds) if o != first)]:
+            held = np.zeros(grid.size, dtype=bool)
+            held[offset::folds] = True
+            out.append(_rows(held[inverse]))
+        return out
+    out = []
+    for block in np.array_split(np.arange(grid.size), folds):
+        held = np.zeros(grid.size, dtype=bool)
+        held[block] = True
+        out.append(_rows(held[inverse]))
+    return out

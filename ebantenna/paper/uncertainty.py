@@ -1,13 +1,30 @@
-"""How much an accuracy can carry: its test count, its 95 % interval, and its spread over seeds.
+"""How much an accuracy can carry: its independent units, its 95 % interval on them, and its
+spread over folds.
 
-An accuracy measured on ``n`` test recordings is a binomial proportion: ``k`` of them right. Its
-95 % interval here is Wilson's (:func:`ebantenna.ml.metrics.accuracy_interval`). A split's
-seed decides which recordings are tested, so a second, independent measure of the uncertainty is
-the spread of the accuracy over several split seeds (:func:`seed_spread`).
+An accuracy measured on ``n`` test recordings is ``k`` of them right. Were the recordings
+independent, ``k`` would be binomial and Wilson's interval
+(:func:`ebantenna.ml.metrics.accuracy_interval`, :func:`interval`) would hold. They are not:
+the recordings come in groups of near copies (the repetitions at one contact position), and a
+split draws whole positions. The errors within a group go together, so an accuracy carries
+about as much as ``n / deff`` independent recordings, where ``deff`` is the design effect
+(:func:`design_effect`). Every interval the study states is taken on its unit of replication
+(:data:`UNITS`):
 
-Every accuracy the study writes to ``summary.json`` goes through :func:`accuracy_entries`, which
-puts the test count and the interval beside it:
-``{"x_accuracy": a, "x_accuracy_n_test": n, "x_accuracy_ci95": [lo, hi]}``.
+* :class:`ClusteredAccuracy`: Wilson's interval at the design-effect sample size, the clusters
+  named; it is Wilson's interval itself when every cluster holds one recording;
+  :func:`cluster_bootstrap` resamples whole clusters instead, a check of it;
+* :class:`FoldAccuracy`: an accuracy over every fold of a split (each recording tested once),
+  with the spread of the folds, and Student's t over the folds when the fold is the unit;
+* :class:`PairedDifference`: two conditions on the same recordings compared recording by
+  recording, the difference's interval on the clusters, whether it is resolved, and the
+  smallest difference the design detects at 80 % power (:func:`minimal_detectable_difference`,
+  by resampling the design).
+
+Every accuracy the study writes to ``summary.json`` goes through :func:`clustered_entries`
+(training accuracies through :func:`training_entries`, which give no interval); every number
+the report and the documentation print goes through :func:`percent`, :func:`points` and
+:func:`span`. The recording-level helpers (:func:`accuracy_entries`, :func:`format_interval`,
+:func:`resolvable_difference`) stay for teaching the contrast.
 """
 
 from __future__ import annotations
@@ -16,7 +33,9 @@ import math
 
 import numpy as np
 
-from .._validate import check_int
+from scipy.stats import t as student_t
+
+from .._validate import check_in_range, check_int, describe
 from ..ml.metrics import accuracy_interval
 
 __all__ = [
@@ -28,6 +47,23 @@ __all__ = [
     "difference_resolved",
     "resolvable_difference",
     "format_interval",
+    "UNITS",
+    "cluster_labels",
+    "cluster_counts",
+    "design_effect",
+    "ClusteredAccuracy",
+    "FoldAccuracy",
+    "clustered_entries",
+    "training_entries",
+    "cluster_bootstrap",
+    "PairedDifference",
+    "minimal_detectable_difference",
+    "percent",
+    "points",
+    "span",
+    "format_clustered",
+    "format_difference",
+    "cluster_mean_interval",
 ]
 
 #: How far ``accuracy * n`` may sit from a whole number and still count as ``k`` right out of
@@ -109,9 +145,14 @@ class SeedSpread:
         Test recordings of each seed's split.
     mean, std : float
         Mean and sample standard deviation (``ddof=1``) of ``values``.
+    tested : list of (ndarray, ndarray) or None
+        Per seed, when recorded: the test rows and whether each was right.
+    positions : ndarray or None
+        The nominal contact position of every row of the data set measured, when the caller
+        sets it: the cluster of each row (:meth:`folds`, :meth:`paired_with`).
     """
 
-    def __init__(self, seeds, values, n_test):
+    def __init__(self, seeds, values, n_test, tested=None):
         self.seeds = tuple(int(s) for s in seeds)
         self.values = np.asarray(values, dtype=float)
         self.n_test = np.asarray(n_test, dtype=int)
@@ -119,18 +160,64 @@ class SeedSpread:
             raise ValueError("need at least two seeds, one value and one count per seed")
         self.mean = float(self.values.mean())
         self.std = float(self.values.std(ddof=1))
+        self.positions = None
+        self.tested = None if tested is None else [
+            (np.asarray(r, dtype=np.intp), np.asarray(c, dtype=bool)) for r, c in tested
+        ]
+
+    def correct_by_row(self, n_rows: int) -> np.ndarray:
+        """Whether each row of the data set was classified right when it was tested, when the
+        seeds' test sets are folds (every row tested exactly once).
+
+        Raises ``ValueError`` when the seeds did not record their rows, or when a row was tested
+        twice or never.
+        """
+        if self.tested is None:
+            raise ValueError("the seeds' test rows were not recorded")
+        n_rows = check_int("n_rows", n_rows, minimum=1)
+        out = np.zeros(n_rows, dtype=bool)
+        seen = np.zeros(n_rows, dtype=int)
+        for rows, correct in self.tested:
+            out[rows] = correct
+            np.add.at(seen, rows, 1)
+        if np.any(seen != 1):
+            raise ValueError("the seeds' test sets are not folds: some row was tested "
+                             f"{int(seen.max())} times and some {int(seen.min())} times")
+        return out
+
+    def paired_with(self, other: SeedSpread, unit: str = "position", **kwargs):
+        """``other`` against this one (the reference) on the same rows, over all the folds,
+        paired within each row's position (:attr:`positions`, which must be the same for
+        both): a :class:`PairedDifference`."""
+        if self.positions is None or other.positions is None:
+            raise ValueError("both spreads need the positions of their rows")
+        if not np.array_equal(self.positions, other.positions):
+            raise ValueError("the two spreads were not measured on the same rows")
+        n = self.positions.size
+        return PairedDifference.from_recordings(self.correct_by_row(n), other.correct_by_row(n),
+                                                self.positions, unit, **kwargs)
+
+    def folds(self, clusters=None, unit: str = "position", *,
+              by_fold: bool = False) -> FoldAccuracy:
+        """The seeds as the folds of one split (:class:`FoldAccuracy`), each row's cluster
+        from ``clusters`` (one label per row of the data set; default :attr:`positions`)."""
+        if self.tested is None:
+            raise ValueError("the seeds' test rows were not recorded")
+        g = np.asarray(self.positions if clusters is None else clusters)
+        return FoldAccuracy([(c, g[r]) for r, c in self.tested], unit, by_fold=by_fold)
 
     def to_dict(self) -> dict:
         """``mean``, ``std``, ``seeds``, ``values``, ``n_test`` and each value's Wilson 95 %
-        interval ``ci95``, as plain lists."""
+        interval counting every recording as independent, ``recording_ci95`` (too narrow when
+        the recordings cluster: the spread of the values is the measure), as plain lists."""
         return {
             "mean": self.mean,
             "std": self.std,
             "seeds": list(self.seeds),
             "values": self.values.tolist(),
             "n_test": self.n_test.tolist(),
-            "ci95": [_rounded(interval(a, n)) for a, n in zip(self.values, self.n_test,
-                                                              strict=True)],
+            "recording_ci95": [list(interval(a, n)) for a, n in zip(self.values, self.n_test,
+                                                                   strict=True)],
         }
 
     def __str__(self) -> str:
@@ -138,7 +225,9 @@ class SeedSpread:
 
 
 def seed_spread(measure, seeds) -> SeedSpread:
-    """``measure(seed)`` for every seed: each returns ``(accuracy, n_test)``.
+    """``measure(seed)`` for every seed: each returns ``(accuracy, n_test)``, or
+    ``(accuracy, n_test, rows, correct)`` to keep which rows it tested and whether each was
+    right (:meth:`SeedSpread.correct_by_row`, :meth:`SeedSpread.folds`).
 
     Examples
     --------
@@ -147,7 +236,8 @@ def seed_spread(measure, seeds) -> SeedSpread:
     (0.5, 0.25, '50.0 ± 25.0 %')
     """
     pairs = [measure(int(s)) for s in seeds]
-    return SeedSpread(seeds, [p[0] for p in pairs], [p[1] for p in pairs])
+    tested = [p[2:4] for p in pairs] if all(len(p) == 4 for p in pairs) else None
+    return SeedSpread(seeds, [p[0] for p in pairs], [p[1] for p in pairs], tested)
 
 
 def resolvable_difference(accuracy: float, n: int) -> float:
@@ -184,5 +274,653 @@ def format_interval(accuracy: float, n: int) -> str:
     >>> format_interval(0.65, 80)
     '65.0 % (n = 80, 95 % CI 54.1-74.5)'
     """
-    lo, hi = interval(accuracy, n)
-    return f"{100 * accuracy:.1f} % (n = {n}, 95 % CI {100 * lo:.1f}-{100 * hi:.1f})"
+    return f"{percent(accuracy)} (n = {n}, 95 % CI {span(interval(accuracy, n))})"
+
+
+# ------------------------------------------------------------------ the unit of replication
+#: What the study's intervals treat as one independent observation, by split or design. A split
+#: draws whole nominal positions (grouped) or whole blocks of them (blocked), and the
+#: repetitions at one position are near copies: the position, not the recording, is what is
+#: replicated. The random split draws recordings, but its test recordings still come in groups
+#: of near copies, so they are counted by position too.
+UNITS = {
+    "random": "position",
+    "grouped": "position",
+    "blocked": "held-out block",
+}
+
+#: Names of the interval methods, as ``summary.json`` and the report give them.
+METHOD_DESIGN_EFFECT = "Wilson at the design-effect sample size, clustered by {unit}"
+METHOD_FOLDS = "t interval over the {folds} folds (unit: {unit})"
+METHOD_PAIRED = "paired difference, cluster-robust normal interval over {unit}s"
+
+#: The standard normal's 97.5 % quantile: a two-sided 95 % interval.
+Z95 = 1.959963984540054
+
+
+def _wilson(p: float, n: float, z: float = Z95) -> tuple[float, float]:
+    """Wilson's score interval of a proportion ``p`` on ``n`` observations; ``n`` may be a real
+    number (an effective sample size). The same formula as
+    :func:`ebantenna.ml.metrics.accuracy_interval`."""
+    centre = p + z * z / (2 * n)
+    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
+    scale = 1 + z * z / n
+    low = 0.0 if p <= 0 else (centre - half) / scale
+    high = 1.0 if p >= 1 else (centre + half) / scale
+    return max(0.0, low), min(1.0, high)
+
+
+def cluster_labels(*keys) -> np.ndarray:
+    """One integer per recording naming its cluster: the distinct combinations of ``keys``.
+
+    Parameters
+    ----------
+    *keys : array-like of shape (n,)
+        One value per recording each (a position, a material, a block ...).
+
+    Returns
+    -------
+    ndarray of int of shape (n,)
+        ``0 ... G - 1``, in the sorted order of the combinations.
+
+    Examples
+    --------
+    >>> cluster_labels([0.1, 0.1, 0.2, 0.2], ["al", "pvc", "al", "al"]).tolist()
+    [0, 1, 2, 2]
+    """
+    if not keys:
+        raise ValueError("cluster_labels needs at least one key")
+    columns = [np.unique(np.asarray(k), return_inverse=True)[1].ravel() for k in keys]
+    sizes = {c.size for c in columns}
+    if len(sizes) != 1:
+        raise ValueError(f"keys must have one value per recording each, got sizes {sorted(sizes)}")
+    rows = np.column_stack(columns)
+    return np.unique(rows, axis=0, return_inverse=True)[1].ravel().astype(np.intp)
+
+
+def cluster_counts(correct, clusters) -> tuple[np.ndarray, np.ndarray]:
+    """Right answers ``k_j`` and recordings ``n_j`` of every cluster ``j``.
+
+    Parameters
+    ----------
+    correct : array-like of bool of shape (n,)
+        Whether each recording was classified right.
+    clusters : array-like of shape (n,)
+        Each recording's cluster (any labels).
+
+    Returns
+    -------
+    k, n : ndarray of int
+        Per cluster, in the sorted order of the labels.
+
+    Examples
+    --------
+    >>> k, n = cluster_counts([True, False, True, True], ["a", "a", "b", "c"])
+    >>> k.tolist(), n.tolist()
+    ([1, 1, 1], [2, 1, 1])
+    """
+    c = np.asarray(correct)
+    if c.ndim != 1 or c.size == 0:
+        raise ValueError(f"correct must be a non-empty 1-D array, got shape {c.shape}")
+    if c.dtype != bool:
+        if not np.all((c == 0) | (c == 1)):
+            raise ValueError("correct must hold booleans (or 0 and 1)")
+        c = c.astype(bool)
+    g = np.asarray(clusters)
+    if g.shape != c.shape:
+        raise ValueError(f"clusters must have one label per recording ({c.size}), got {g.shape}")
+    _, inverse = np.unique(g, return_inverse=True)
+    inverse = inverse.ravel()
+    n = np.bincount(inverse)
+    k = np.bincount(inverse, weights=c.astype(float)).astype(np.int64)
+    return k, n.astype(np.int64)
+
+
+def _counts(k, n) -> tuple[np.ndarray, np.ndarray]:
+    """Per-cluster counts checked: whole numbers, ``0 <= k_j <= n_j``, ``n_j >= 1``."""
+    k = np.asarray(k)
+    n = np.asarray(n)
+    if k.ndim != 1 or k.shape != n.shape or k.size == 0:
+        raise ValueError(f"k and n must be non-empty 1-D arrays of one shape, got {k.shape} "
+                         f"and {n.shape}")
+    for name, v in (("k", k), ("n", n)):
+        if v.dtype.kind not in "iu" and not (v.dtype.kind == "f" and np.all(v == np.round(v))):
+            raise ValueError(f"{name} must hold whole counts")
+    k, n = k.astype(np.int64), n.astype(np.int64)
+    if np.any(n < 1) or np.any(k < 0) or np.any(k > n):
+        raise ValueError("need 0 <= k_j <= n_j and n_j >= 1 in every cluster")
+    return k, n
+
+
+def design_effect(k, n) -> float:
+    """How many times the variance of an accuracy exceeds the binomial one, given its clusters.
+
+    With ``K = sum k_j`` right of ``N = sum n_j`` recordings and ``p = K / N``, the variance of
+    the accuracy (a ratio estimator) counting each cluster as one observation is
+    ``sum_j (k_j - p n_j)^2 / N^2``; the binomial variance, counting each recording as one, is
+    ``p (1 - p) / N``. Their ratio is the design effect (Kish 1965, *Survey Sampling*, 8.2):
+    for clusters of ``m`` recordings with intraclass correlation ``rho`` it is about
+    ``1 + (m - 1) rho``. ``N / deff`` recordings would carry as much as the clustered ones.
+
+    A ratio below one (errors anti-correlated within clusters) is taken as one: the interval on
+    the cluster is never narrower than the recording-level one. When every recording is right
+    (or every one wrong) the spread within the data says nothing; the design effect is then the
+    largest the design allows, the mean cluster size ``N / G`` (every cluster one observation).
+    Clusters of one recording give exactly 1.
+
+    Examples
+    --------
+    >>> design_effect([1, 0, 1, 1], [1, 1, 1, 1])
+    1.0
+    >>> design_effect([5, 0, 5, 0], [5, 5, 5, 5])  # whole clusters right or wrong: m
+    5.0
+    """
+    k, n = _counts(k, n)
+    total, right = int(n.sum()), int(k.sum())
+    if right in (0, total):
+        return total / n.size
+    # sum_j (k_j - p n_j)^2 / (N p (1 - p)) in whole numbers, exact: clusters of one
+    # recording give 1 to the last bit
+    kk, kn, nn = (int(np.dot(a.astype(object), b.astype(object)))
+                  for a, b in ((k, k), (k, n), (n, n)))
+    num = total * total * kk - 2 * total * right * kn + right * right * nn
+    ratio = num / (total * right * (total - right))
+    return max(1.0, ratio)
+
+
+class ClusteredAccuracy:
+    """An accuracy measured on clustered recordings, with its interval on the cluster.
+
+    Parameters
+    ----------
+    k, n : array-like of int
+        Right answers and recordings per cluster.
+    unit : str
+        What one cluster is (``"position"``, ``"twin pair"`` ...).
+
+    Attributes
+    ----------
+    estimate : float
+        ``sum k / sum n``.
+    n_recordings, n_units : int
+        Recordings, clusters.
+    design_effect, effective_n : float
+        :func:`design_effect` and ``n_recordings / design_effect``.
+    ci95 : (float, float)
+        Wilson's interval at the effective sample size (``method``).
+    recording_ci95 : (float, float)
+        Wilson's interval counting every recording as independent, for comparison only.
+    method : str
+
+    Examples
+    --------
+    >>> a = ClusteredAccuracy([5, 0, 5, 3], [5, 5, 5, 5], "position")
+    >>> a.estimate, a.n_units, round(a.design_effect, 2)
+    (0.65, 4, 3.68)
+    >>> [round(x, 3) for x in a.ci95], [round(x, 3) for x in a.recording_ci95]
+    ([0.275, 0.901], [0.433, 0.819])
+    """
+
+    def __init__(self, k, n, unit: str):
+        k, n = _counts(k, n)
+        if not isinstance(unit, str) or not unit:
+            raise TypeError(f"unit must be a non-empty string, got {describe(unit)}")
+        self.unit = unit
+        self.n_recordings = int(n.sum())
+        self.n_units = int(n.size)
+        self.correct = int(k.sum())
+        self.estimate = self.correct / self.n_recordings
+        self.design_effect = design_effect(k, n)
+        self.effective_n = self.n_recordings / self.design_effect
+        self.ci95 = _wilson(self.estimate, self.effective_n)
+        self.recording_ci95 = accuracy_interval(self.correct, self.n_recordings)
+        self.method = METHOD_DESIGN_EFFECT.format(unit=unit)
+
+    @classmethod
+    def from_recordings(cls, correct, clusters, unit: str) -> ClusteredAccuracy:
+        """From each recording's right/wrong and its cluster label (:func:`cluster_counts`)."""
+        return cls(*cluster_counts(correct, clusters), unit)
+
+    def entries(self, name: str) -> dict:
+        """``summary.json``'s keys for this accuracy under ``name`` (see
+        :func:`clustered_entries`)."""
+        return {
+            name: self.estimate,
+            f"{name}_n_test": self.n_recordings,
+            f"{name}_unit": self.unit,
+            f"{name}_n_units": self.n_units,
+            f"{name}_design_effect": self.design_effect,
+            f"{name}_ci95": list(self.ci95),
+            f"{name}_method": self.method,
+            f"{name}_recording_ci95": list(self.recording_ci95),
+        }
+
+    def __str__(self) -> str:
+        return format_clustered(self)
+
+
+def clustered_entries(name: str, measured) -> dict:
+    """``summary.json``'s keys of one accuracy, or of one accuracy per key.
+
+    ``measured`` is a :class:`ClusteredAccuracy`, a :class:`FoldAccuracy`, a dict of them (the
+    keys become dicts too), or None (not measured). The keys: ``name`` (the estimate),
+    ``name_n_test`` (recordings), ``name_unit``, ``name_n_units``, ``name_ci95`` (the 95 %
+    interval on the unit), ``name_method``, and ``name_recording_ci95`` (Wilson's interval
+    counting every recording as independent: for comparison, too narrow when the recordings
+    cluster); a :class:`ClusteredAccuracy` adds ``name_design_effect``, a :class:`FoldAccuracy`
+    ``name_folds`` (each fold's accuracy) and ``name_fold_std``.
+
+    Examples
+    --------
+    >>> e = clustered_entries("svm", ClusteredAccuracy([2, 1], [2, 2], "position"))
+    >>> e["svm"], e["svm_n_units"], e["svm_unit"]
+    (0.75, 2, 'position')
+    >>> clustered_entries("x", None)["x_ci95"] is None
+    True
+    """
+    keys = ("", "_n_test", "_unit", "_n_units", "_ci95", "_method", "_recording_ci95")
+    if measured is None:
+        return {f"{name}{s}": None for s in keys}
+    if isinstance(measured, dict):
+        parts = {k: v.entries(name) for k, v in measured.items()}
+        fields = {f for p in parts.values() for f in p}
+        return {f: {k: p.get(f) for k, p in parts.items()} for f in sorted(fields)}
+    return measured.entries(name)
+
+
+def training_entries(name: str, accuracy: float, n: int) -> dict:
+    """A training-set accuracy and its count: no interval, since it tests nothing unseen.
+
+    Examples
+    --------
+    >>> training_entries("train_accuracy", 0.9, 100)
+    {'train_accuracy': 0.9, 'train_accuracy_n_train': 100}
+    """
+    return {name: float(accuracy), f"{name}_n_train": check_int("n", n, minimum=1)}
+
+
+# --------------------------------------------------------------------------- folds
+class FoldAccuracy:
+    """An accuracy measured over every fold of a split: each recording tested once.
+
+    The estimate is the mean of the folds' accuracies; ``spread`` their sample standard
+    deviation. When the split's unit is the fold itself (a contiguous block of positions), the
+    interval is Student's t over the folds, ``mean ± t_{F-1} s / sqrt(F)``; otherwise
+    (``clusters`` given) the folds are pooled and the interval is that of
+    :class:`ClusteredAccuracy` on the clusters.
+
+    Parameters
+    ----------
+    folds : sequence of (ndarray of bool, ndarray)
+        Per fold: each test recording's right/wrong and its cluster label (labels shared
+        across folds name the same cluster).
+    unit : str
+        What one independent unit is.
+    by_fold : bool
+        True: the fold is the unit (t interval); False: the clusters are.
+
+    Examples
+    --------
+    >>> folds = [(np.array([1, 1, 0, 0], bool), np.array([0, 0, 1, 1])),
+    ...          (np.array([1, 1, 1, 0], bool), np.array([2, 2, 3, 3]))]
+    >>> f = FoldAccuracy(folds, "position")
+    >>> f.estimate, f.values.tolist(), f.n_units
+    (0.625, [0.5, 0.75], 4)
+    >>> b = FoldAccuracy(folds, "held-out block", by_fold=True)
+    >>> b.n_units, [round(x, 3) for x in b.ci95]
+    (2, [0.0, 1.0])
+    """
+
+    def __init__(self, folds, unit: str, *, by_fold: bool = False):
+        folds = [(np.asarray(c).astype(bool), np.asarray(g)) for c, g in folds]
+        if len(folds) < 2:
+            raise ValueError(f"need at least two folds, got {len(folds)}")
+        self.unit = unit
+        self.by_fold = bool(by_fold)
+        self.values = np.array([c.mean() for c, _ in folds])
+        self.n_test = np.array([c.size for c, _ in folds])
+        self.n_recordings = int(self.n_test.sum())
+        self.spread = float(self.values.std(ddof=1))
+        pooled_c = np.concatenate([c for c, _ in folds])
+        pooled_g = np.concatenate([g for _, g in folds])
+        self.pooled = ClusteredAccuracy.from_recordings(pooled_c, pooled_g, unit)
+        self.recording_ci95 = self.pooled.recording_ci95
+        if self.by_fold:
+            f = self.values.size
+            self.estimate = float(self.values.mean())
+            half = float(student_t.ppf(0.975, f - 1)) * self.spread / math.sqrt(f)
+            self.ci95 = (max(0.0, self.estimate - half), min(1.0, self.estimate + half))
+            self.n_units = f
+            self.method = METHOD_FOLDS.format(folds=f, unit=unit)
+        else:
+            self.estimate = self.pooled.estimate
+            self.ci95 = self.pooled.ci95
+            self.n_units = self.pooled.n_units
+            self.method = self.pooled.method
+            self.design_effect = self.pooled.design_effect
+
+    def entries(self, name: str) -> dict:
+        """As :meth:`ClusteredAccuracy.entries`, with ``name_folds`` and ``name_fold_std``."""
+        return {
+            name: self.estimate,
+            f"{name}_n_test": self.n_recordings,
+            f"{name}_unit": self.unit,
+            f"{name}_n_units": self.n_units,
+            f"{name}_ci95": list(self.ci95),
+            f"{name}_method": self.method,
+            f"{name}_recording_ci95": list(self.recording_ci95),
+            f"{name}_folds": self.values.tolist(),
+            f"{name}_fold_std": self.spread,
+            **({} if self.by_fold else {f"{name}_design_effect": self.design_effect}),
+        }
+
+    def __str__(self) -> str:
+        return format_clustered(self) + f", {self.values.size} folds ± {percent(self.spread)}"
+
+
+# ----------------------------------------------------------------- cluster bootstrap
+def cluster_bootstrap(k, n, *, resamples: int = 2000, seed: int = 0, level: float = 0.95):
+    """Percentile interval of ``sum k / sum n`` with whole clusters resampled.
+
+    Each resample draws ``G`` clusters with replacement (Davison & Hinkley 1997, *Bootstrap
+    Methods and their Application*, section 3.8) and takes the accuracy of what it drew; the
+    draws are one ``(resamples, G)`` array of indices, so the cost is one gather and two sums.
+
+    Parameters
+    ----------
+    k, n : array-like of int
+        Right answers and recordings per cluster.
+    resamples : int
+    seed : int
+        Seed of :func:`numpy.random.default_rng`; the indices are
+        ``rng.integers(0, G, size=(resamples, G))``.
+    level : float
+        Coverage of the interval, in (0, 1).
+
+    Returns
+    -------
+    (float, float)
+
+    Examples
+    --------
+    >>> lo, hi = cluster_bootstrap([5, 0, 5, 3, 4, 2], [5] * 6, seed=1)
+    >>> round(lo, 3), round(hi, 3)
+    (0.333, 0.9)
+    """
+    k, n = _counts(k, n)
+    resamples = check_int("resamples", resamples, minimum=10)
+    check_in_range("level", level, 0.0, 1.0)
+    rng = np.random.default_rng(check_int("seed", seed, minimum=0))
+    pick = rng.integers(0, k.size, size=(resamples, k.size))
+    stats = k[pick].sum(axis=1) / n[pick].sum(axis=1)
+    tail = (1 - level) / 2
+    lo, hi = np.quantile(stats, [tail, 1 - tail])
+    return float(lo), float(hi)
+
+
+# ----------------------------------------------------------------- paired comparisons
+class PairedDifference:
+    """Two classifiers' (or data sets') accuracies on the same recordings, compared in pairs.
+
+    Every recording is tested under both conditions (the same fold, seed and position), so the
+    difference is taken recording by recording and summed within each cluster:
+    ``d_j = k_j^B - k_j^A``. The difference of accuracies is ``D = sum d_j / N``; its
+    cluster-robust variance (Liang & Zeger 1986, *Biometrika* 73:13) is
+    ``G / (G - 1) * sum_j (d_j - D n_j)^2 / N^2``, and its 95 % interval ``D ± q SE`` with
+    ``q`` Student's 97.5 % quantile on ``G - 1`` degrees of freedom (1.96 for many clusters; a
+    few clusters, such as five blocks, widen it as they should). The difference is *resolved*
+    when that interval leaves out zero.
+
+    :attr:`detectable` is the minimal detectable difference at 80 % power of this design
+    (:func:`minimal_detectable_difference`).
+
+    Parameters
+    ----------
+    k_a, k_b, n : array-like of int
+        Per cluster: right answers under A (the reference) and under B, recordings.
+    unit : str
+    resamples, seed : int
+        Of the power computation.
+
+    Examples
+    --------
+    >>> p = PairedDifference([3, 3, 2, 3], [2, 1, 1, 2], [3, 3, 3, 3], "position")
+    >>> round(p.difference, 4), p.resolved, p.direction
+    (-0.4167, True, 'lower')
+    """
+
+    def __init__(self, k_a, k_b, n, unit: str, *, resamples: int = 4000, seed: int = 0):
+        k_a, n = _counts(k_a, n)
+        k_b, _ = _counts(k_b, n)
+        if k_a.size < 2:
+            raise ValueError("a paired difference needs at least two clusters")
+        self.unit = unit
+        self.n_recordings = int(n.sum())
+        self.n_units = int(n.size)
+        self.accuracy_a = float(k_a.sum() / self.n_recordings)
+        self.accuracy_b = float(k_b.sum() / self.n_recordings)
+        d = (k_b - k_a).astype(float)
+        self.difference = float(d.sum() / self.n_recordings)
+        self.se = _paired_se(d, n, self.difference)
+        q = _quantile95(self.n_units)
+        self.ci95 = (self.difference - q * self.se, self.difference + q * self.se)
+        self.resolved = bool(self.ci95[0] > 0 or self.ci95[1] < 0)
+        self.method = METHOD_PAIRED.format(unit=unit)
+        self.detectable = minimal_detectable_difference(k_a, k_b, n, resamples=resamples,
+                                                        seed=seed)
+
+    @property
+    def identical(self) -> bool:
+        """Whether every cluster has the same count right under both (nothing to resolve)."""
+        return self.se == 0.0 and self.difference == 0.0
+
+    @property
+    def direction(self) -> str:
+        """``"higher"``, ``"lower"`` (B against A) or ``"unresolved"``."""
+        if not self.resolved:
+            return "unresolved"
+        return "higher" if self.difference > 0 else "lower"
+
+    @classmethod
+    def from_recordings(cls, correct_a, correct_b, clusters, unit: str, **kwargs):
+        """From each recording's right/wrong under A and under B (the same recordings, in the
+        same order) and its cluster."""
+        correct_a, correct_b = np.asarray(correct_a), np.asarray(correct_b)
+        if correct_a.shape != correct_b.shape:
+            raise ValueError("correct_a and correct_b must hold the same recordings, got "
+                             f"shapes {correct_a.shape} and {correct_b.shape}")
+        k_a, n = cluster_counts(correct_a, clusters)
+        k_b, _ = cluster_counts(correct_b, clusters)
+        return cls(k_a, k_b, n, unit, **kwargs)
+
+    def to_dict(self) -> dict:
+        """``summary.json``'s entry: the two accuracies (``reference_estimate`` of A,
+        ``estimate`` of B), the difference, its interval and method, the verdict
+        (``resolved``, ``direction``) and the minimal detectable difference, and
+        ``identical`` (every recording classified alike under both)."""
+        return {
+            "reference_estimate": self.accuracy_a,
+            "estimate": self.accuracy_b,
+            "difference": self.difference,
+            "se": self.se,
+            "ci95": list(self.ci95),
+            "n_test": self.n_recordings,
+            "unit": self.unit,
+            "n_units": self.n_units,
+            "method": self.method,
+            "resolved": self.resolved,
+            "direction": self.direction,
+            "detectable_difference_80": self.detectable,
+            "identical": self.identical,
+        }
+
+    def __str__(self) -> str:
+        return format_difference(self)
+
+
+def _quantile95(units: int) -> float:
+    """Student's 97.5 % quantile on ``units - 1`` degrees of freedom."""
+    return float(student_t.ppf(0.975, units - 1))
+
+
+def _paired_se(d, n, difference) -> float:
+    """Cluster-robust standard error of ``sum d / sum n`` (see :class:`PairedDifference`)."""
+    g = d.size
+    resid = d - difference * n
+    return math.sqrt(g / (g - 1) * float(np.sum(resid**2))) / float(n.sum())
+
+
+def minimal_detectable_difference(k_a, k_b, n, *, power: float = 0.8, resamples: int = 4000,
+                                  seed: int = 0) -> float:
+    """The smallest true paired difference this design resolves with probability ``power``.
+
+    The design's own paired noise is resampled: the clusters' centred differences
+    ``r_j = d_j - D n_j`` are drawn with replacement (whole clusters), each resample giving an
+    error ``e`` of the difference and its own standard error ``s``. A true difference
+    ``delta > 0`` added to the noise is resolved when ``delta + e > q s`` (``q`` as in
+    :class:`PairedDifference`; the lower tail beyond ``-q s`` is negligible at the powers of
+    interest), so the power at ``delta`` is the share of resamples with ``q s - e < delta``,
+    and the difference reaching ``power`` is that quantity's ``power`` quantile; likewise for a
+    negative difference, and the larger of the two is returned. For normal noise and many
+    clusters this tends to ``(1.96 + 0.84) SE``.
+
+    Parameters
+    ----------
+    k_a, k_b, n : array-like of int
+        Per cluster, as in :class:`PairedDifference`.
+    power : float
+        In (0, 1).
+    resamples, seed : int
+        Of the resampling (:func:`numpy.random.default_rng`).
+
+    Returns
+    -------
+    float
+        A difference of accuracies (a fraction).
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(0)
+    >>> n = np.full(200, 3)
+    >>> k_a, k_b = rng.binomial(3, 0.6, 200), rng.binomial(3, 0.6, 200)
+    >>> mdd = minimal_detectable_difference(k_a, k_b, n)
+    >>> 0.05 < mdd < 0.15
+    True
+    """
+    k_a, n = _counts(k_a, n)
+    k_b, _ = _counts(k_b, n)
+    check_in_range("power", power, 0.0, 1.0)
+    resamples = check_int("resamples", resamples, minimum=10)
+    rng = np.random.default_rng(check_int("seed", seed, minimum=0))
+    d = (k_b - k_a).astype(float)
+    resid = d - d.sum() / n.sum() * n
+    pick = rng.integers(0, d.size, size=(resamples, d.size))
+    r, m = resid[pick], n[pick].astype(float)
+    total = m.sum(axis=1)
+    e = r.sum(axis=1) / total
+    g = d.size
+    s = np.sqrt(g / (g - 1) * np.sum((r - e[:, None] * m) ** 2, axis=1)) / total
+    q = _quantile95(g)
+    up = np.quantile(q * s - e, power)
+    down = np.quantile(q * s + e, power)
+    return float(max(up, down))
+
+
+# ------------------------------------------------------------------------- formatting
+def percent(x: float, digits: int = 1) -> str:
+    """A fraction as a percentage: the one way every accuracy is printed.
+
+    Rounds half away from zero on the decimal value of ``x`` (to 12 significant digits first,
+    so that 0.8155 prints 81.6 whether it arrives as a float that is a hair below or above).
+
+    Examples
+    --------
+    >>> percent(0.8155), percent(0.81549), percent(0.0)
+    ('81.6 %', '81.5 %', '0.0 %')
+    """
+    return f"{_round_half_up(100 * float(x), digits):.{digits}f} %"
+
+
+def points(x: float, digits: int = 1) -> str:
+    """A difference of fractions in percentage points, signed.
+
+    Examples
+    --------
+    >>> points(-0.104), points(0.05)
+    ('-10.4 points', '+5.0 points')
+    """
+    v = _round_half_up(100 * float(x), digits)
+    return f"{v:+.{digits}f} points"
+
+
+def _round_half_up(v: float, digits: int) -> float:
+    """``v`` rounded to ``digits`` decimals, halves away from zero, on its 12-digit decimal."""
+    from decimal import ROUND_HALF_UP, Decimal
+
+    d = Decimal(f"{v:.12g}").quantize(Decimal(1).scaleb(-digits), rounding=ROUND_HALF_UP)
+    return float(d)
+
+
+def span(ci, digits: int = 1) -> str:
+    """An interval's ends in percent without the unit: ``'76.0-90.5'``."""
+    lo, hi = (f"{_round_half_up(100 * float(v), digits):.{digits}f}" for v in ci)
+    return f"{lo}-{hi}"
+
+
+def format_clustered(a) -> str:
+    """An accuracy with its recordings, units and 95 % interval on the unit.
+
+    Examples
+    --------
+    >>> format_clustered(ClusteredAccuracy([5, 0, 5, 3], [5, 5, 5, 5], "position"))
+    '65.0 % (n = 20 in 4 positions, 95 % CI 27.5-90.1)'
+    """
+    unit = a.unit + ("s" if a.n_units != 1 and not a.unit.endswith("s") else "")
+    return (f"{percent(a.estimate)} (n = {a.n_recordings} in {a.n_units} {unit}, "
+            f"95 % CI {span(a.ci95)})")
+
+
+def format_difference(p: PairedDifference) -> str:
+    """A paired difference with its interval and the design's detectable difference.
+
+    Examples
+    --------
+    >>> p = PairedDifference([3, 3, 2, 3], [2, 1, 1, 2], [3] * 4, "position")
+    >>> print(format_difference(p))
+    -41.7 points (95 % CI -68.2 to -15.1, 4 positions; detectable at 80 % power: 39.0 points)
+    """
+    lo, hi = (f"{_round_half_up(100 * v, 1):.1f}" for v in p.ci95)
+    detect = f"{_round_half_up(100 * p.detectable, 1):.1f}"
+    return (f"{points(p.difference)} (95 % CI {lo} to {hi}, {p.n_units} {p.unit}s; "
+            f"detectable at 80 % power: {detect} points)")
+
+
+def cluster_mean_interval(values, clusters) -> dict:
+    """The mean of a per-recording quantity (an error, cm) on its clusters: each cluster's
+    mean, their mean, and Student's t interval over the clusters.
+
+    Returns
+    -------
+    dict
+        ``estimate``, ``ci95``, ``n_units``, ``n_test``, ``method``.
+
+    Examples
+    --------
+    >>> r = cluster_mean_interval([1.0, 1.2, 3.0, 2.8, 2.0, 2.0], [0, 0, 1, 1, 2, 2])
+    >>> round(r["estimate"], 3), r["n_units"], [round(x, 2) for x in r["ci95"]]
+    (2.0, 3, [-0.24, 4.24])
+    """
+    v = np.asarray(values, dtype=float)
+    g = np.asarray(clusters)
+    if v.ndim != 1 or v.shape != g.shape or v.size == 0:
+        raise ValueError("values and clusters must be non-empty 1-D arrays of one shape")
+    _, inverse = np.unique(g, return_inverse=True)
+    inverse = inverse.ravel()
+    means = np.bincount(inverse, weights=v) / np.bincount(inverse)
+    if means.size < 2:
+        raise ValueError("need at least two clusters")
+    centre = float(means.mean())
+    half = _quantile95(means.size) * float(means.std(ddof=1)) / math.sqrt(means.size)
+    return {"estimate": centre, "ci95": [centre - half, centre + half],
+            "n_units": int(means.size), "n_test": int(v.size),
+            "method": f"t interval over the {means.size} positions' mean errors"}

@@ -6,8 +6,8 @@ preload. This section rebuilds the controls' design
 (:func:`~ebantenna.study.physics_controls.control_design`) with ``hertz_contact`` added (the
 crossed-cylinder Hertz law in series with the tube wall, as chords within a proven force bound,
 :class:`~ebantenna.simulate.effects.HertzContact`) and gives the grouped-split SVM's and the
-mode-curve classifier's accuracy under either law, each with its test count and 95 % Wilson
-interval (:func:`ebantenna.ml.metrics.accuracy_interval`). The main data set keeps the
+mode-curve classifier's accuracy under either law over all folds, each with its 95 % interval
+on the position, and the two laws paired on the same rows. The main data set keeps the
 linearised law: ``ebantenna bench`` (``contact_cost``) measures what the Hertz law would cost.
 """
 
@@ -17,56 +17,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..ml.metrics import accuracy_interval
-from ..paper.controls import grouped_svm_accuracy
-from ..paper.feature_table import signal_features
-from ..paper.mode_curves import classify_materials_by_mode_curves
-from ..paper.splits import grouped_split
+from ..paper.controls import grouped_svm_spread
+from ..paper.uncertainty import clustered_entries, format_clustered
 from ..probe import material
 from ..simulate import build_dataset
 from ..simulate.effects import HertzContact
-from ._common import pct
-from .physics_controls import control_design
+from .physics_controls import control_design, mode_curve_spread
 
-__all__ = ["LAWS", "Accuracy", "ContactLawResult", "compute", "render"]
+__all__ = ["LAWS", "ContactLawResult", "compute", "render"]
 
 #: The two laws compared, in report order.
 LAWS = ("linearised", "hertz")
-
-
-@dataclass(frozen=True)
-class Accuracy:
-    """An accuracy with its test count and 95 % Wilson interval.
-
-    Attributes
-    ----------
-    correct, n : int
-        Test recordings classified right, and in all.
-    """
-
-    correct: int
-    n: int
-
-    @property
-    def value(self) -> float:
-        """The accuracy, a fraction."""
-        return self.correct / self.n
-
-    @property
-    def interval(self) -> tuple[float, float]:
-        """The 95 % Wilson interval, fractions."""
-        return accuracy_interval(self.correct, self.n)
-
-    def to_dict(self) -> dict:
-        """``accuracy``, ``accuracy_n_test``, ``accuracy_ci95`` (fractions), named as every
-        accuracy of ``summary.json`` is."""
-        lo, hi = self.interval
-        return {"accuracy": self.value, "accuracy_n_test": self.n, "accuracy_ci95": [lo, hi]}
-
-    def text(self) -> str:
-        """``"83.0 % (95 % CI 74.1-89.2 %, n = 80)"``."""
-        lo, hi = self.interval
-        return f"{pct(self.value)} (95 % CI {100 * lo:.1f}-{100 * hi:.1f} %, n = {self.n})"
 
 
 @dataclass(frozen=True, eq=False)
@@ -79,9 +40,12 @@ class ContactLawResult:
         Name of the design rebuilt.
     recordings : int
         Recordings per data set.
-    svm, mode_curves : dict of str to Accuracy
-        Grouped-split accuracy of the paper's SVM and of the mode-curve classifier, by law
-        (:data:`LAWS`).
+    svm, mode_curves : dict of str to SeedSpread
+        Grouped-split accuracy of the paper's SVM and of the mode-curve classifier over all
+        folds, by law (:data:`LAWS`), with each row's result.
+    paired : dict of str to PairedDifference
+        ``"svm"`` and ``"mode_curves"``: the Hertz law against the linearised one on the same
+        rows and folds, paired within the position.
     restrikes : dict of str to float
         Median contacts after the first touch per strike, by law.
     chords : dict of str to tuple
@@ -97,14 +61,19 @@ class ContactLawResult:
     restrikes: dict
     chords: dict
     force_tolerance: float
+    paired: dict = None
 
     def to_dict(self) -> dict:
         """The result as ``summary.json`` holds it."""
         return {
             "design": self.design,
             "recordings": self.recordings,
-            "svm_grouped": {law: self.svm[law].to_dict() for law in LAWS},
-            "mode_curve_grouped": {law: self.mode_curves[law].to_dict() for law in LAWS},
+            "svm_grouped": {law: clustered_entries("accuracy", self.svm[law].folds())
+                            for law in LAWS},
+            "mode_curve_grouped": {law: clustered_entries("accuracy",
+                                                          self.mode_curves[law].folds())
+                                   for law in LAWS},
+            "hertz_against_linearised": {k: p.to_dict() for k, p in (self.paired or {}).items()},
             "median_restrikes": dict(self.restrikes),
             "hertz_chords": {m: {"chords": n, "bound_N": b} for m, (n, b) in self.chords.items()},
             "force_tolerance_N": self.force_tolerance,
@@ -123,16 +92,9 @@ def _scenes(scene):
         name=f"{linear.name}-hertz_contact", effects=(*effects, "hertz_contact"))}  # fmt: skip
 
 
-def _accuracies(ds, seed: int, n_jobs: int) -> tuple[Accuracy, Accuracy]:
-    """The SVM's and the mode-curve classifier's accuracy on whole held-out positions."""
-    split = grouped_split(ds.contact, seed=seed)
-    n = int(np.size(split[1]))
-    svm = grouped_svm_accuracy(ds, seed=seed)
-    feats = signal_features(ds.ax, ds.az, ds.fs, n_jobs=n_jobs, show_progress=False)
-    curves = classify_materials_by_mode_curves(
-        feats.peaks, feats.dominant, ds.material, ds.contact, split
-    ).accuracies["test"]
-    return Accuracy(round(svm * n), n), Accuracy(round(curves * n), n)
+def _accuracies(ds, seed: int, n_jobs: int):
+    """The SVM and the mode-curve classifier over all folds of whole held-out positions."""
+    return grouped_svm_spread(ds, seed=seed), mode_curve_spread(ds, seed, n_jobs)
 
 
 def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ContactLawResult | None:
@@ -153,8 +115,10 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ContactLaw
         spring = hertz.spring(material(name), scene.probe, obj.diameter, obj.preload)
         chords[name] = (int(spring.slopes.size), spring.bound)
     recordings = len(ds.material)
+    paired = {"svm": svm["linearised"].paired_with(svm["hertz"]),
+              "mode_curves": curves["linearised"].paired_with(curves["hertz"])}
     return ContactLawResult(design.name, recordings, svm, curves, restrikes, chords,
-                            hertz.force_tolerance)  # fmt: skip
+                            hertz.force_tolerance, paired)  # fmt: skip
 
 
 def render(result: ContactLawResult | None, report, figures) -> None:
@@ -171,31 +135,40 @@ def render(result: ContactLawResult | None, report, figures) -> None:
         "series with the tube wall ('hertz_contact'), integrated as chords that differ from it "
         f"by at most {r.force_tolerance:g} N ({min(c for c, _ in r.chords.values())} to "
         f"{max(c for c, _ in r.chords.values())} chords per material). Each accuracy is on "
-        "whole held-out positions, with its number of test recordings and 95 % Wilson interval."
+        "whole held-out positions over all folds, with its 95 % interval on the position; the "
+        "two laws are compared on the same rows, paired."
     )
     rows = [
-        [law, r.svm[law].text(), r.mode_curves[law].text(), f"{r.restrikes[law]:g}"]
+        [law, format_clustered(r.svm[law].folds()), format_clustered(r.mode_curves[law].folds()),
+         f"{r.restrikes[law]:g}"]
         for law in LAWS
     ]
     report.table(["contact law", "SVM", "mode curves", "median re-strikes"], rows)
     report.paragraph(_verdict(r))
 
 
-def _overlap(a: Accuracy, b: Accuracy) -> bool:
-    """Whether the two 95 % intervals overlap."""
-    (a_lo, a_hi), (b_lo, b_hi) = a.interval, b.interval
-    return a_lo <= b_hi and b_lo <= a_hi
-
-
 def _verdict(r: ContactLawResult) -> str:
-    """What the comparison shows, in plain words."""
+    """What the comparison shows, from the paired differences of the two laws.
+
+    Examples
+    --------
+    >>> from ebantenna.paper.uncertainty import PairedDifference
+    >>> same = PairedDifference([2, 1, 2, 1], [1, 2, 1, 2], [3] * 4, "position")
+    >>> down = PairedDifference([3, 3, 2, 3], [2, 1, 1, 2], [3] * 4, "position")
+    >>> r = ContactLawResult("d", 10, {}, {}, {}, {}, 0.1, {"svm": same, "mode_curves": down})
+    >>> text = _verdict(r)
+    >>> "changes nothing this design resolves" in text, "lowers" in text
+    (True, True)
+    """
     parts = []
-    for label, acc in (("the SVM", r.svm), ("the mode-curve classifier", r.mode_curves)):
-        same = _overlap(acc["linearised"], acc["hertz"])
-        parts.append(
-            f"for {label} the two laws' intervals "
-            + ("overlap: the linearisation changes nothing this design can resolve"
-               if same else "do not overlap: the contact law matters")  # fmt: skip
-        )
+    for label, key in (("the SVM", "svm"), ("the mode-curve classifier", "mode_curves")):
+        pair = r.paired[key]
+        if pair.resolved:
+            verb = "raises" if pair.direction == "higher" else "lowers"
+            parts.append(f"for {label} the Hertz law {verb} the accuracy, {pair}: the contact "
+                         "law matters")
+        else:
+            parts.append(f"for {label} the Hertz law changes it by {pair}: the linearisation "
+                         "changes nothing this design resolves")
     text = "; ".join(parts)
     return text[0].upper() + text[1:] + "."

@@ -11,7 +11,7 @@ from ..paper import printed
 from ..paper.estimators import FrequencyDistanceEstimator, MultiModeDistanceEstimator
 from ..paper.mode_curves import ModeCurveClassifier
 from ..paper.protocol import DISTANCE_LINEAR_REGION
-from ..paper.uncertainty import accuracy_entries, format_interval
+from ..paper.uncertainty import ClusteredAccuracy, clustered_entries, format_clustered
 from ._common import per_contact, probe_length
 
 __all__ = ["FullRangeResult", "compute", "render"]
@@ -43,6 +43,8 @@ class FullRangeResult:
         Where the calibrated first-mode curve turns, m.
     without_two_peaks, recordings : int
         Recordings with fewer than two separable peaks, and all recordings.
+    joint_material : ClusteredAccuracy
+        ``joint_material_accuracy`` with its interval on the held-out position.
     """
 
     length: float
@@ -57,6 +59,7 @@ class FullRangeResult:
     turning_point: float
     without_two_peaks: int
     recordings: int
+    joint_material: ClusteredAccuracy = None
 
     @property
     def beyond(self) -> np.ndarray:
@@ -74,10 +77,7 @@ class FullRangeResult:
             "first_mode_only_mae_cm": float(self.error_one_cm.mean()),
             "full_range_known_material_mae_cm": float(self.error_known_material_cm.mean()),
             "full_range_joint_mae_cm": float(self.error_joint_cm.mean()),
-            **accuracy_entries(
-                "full_range_joint_material_accuracy", self.joint_material_accuracy,
-                self.contact_two.size,
-            ),
+            **clustered_entries("full_range_joint_material_accuracy", self.joint_material),
             "first_mode_turning_point_cm": 100 * self.turning_point,
             "recordings_without_two_peaks": self.without_two_peaks,
         }
@@ -111,6 +111,8 @@ def compute(ds, feats) -> FullRangeResult:
     material, distance = joint.place(feats.peaks[test])  # each row's curves found once
     joint_cm = 100 * np.abs(distance - ds.contact[test])
     joint_accuracy = float(np.mean(material == ds.material[test]))
+    joint_measured = ClusteredAccuracy.from_recordings(material == ds.material[test],
+                                                       ds.contact[test], "position")
     single = FrequencyDistanceEstimator(out_of_range="clip").fit(
         feats.dominant[calibration], ds.contact[calibration]
     )
@@ -129,6 +131,7 @@ def compute(ds, feats) -> FullRangeResult:
         turning_point=single.limit_,
         without_two_peaks=int((~ok).sum()),
         recordings=int(ok.size),
+        joint_material=joint_measured,
     )
 
 
@@ -166,7 +169,7 @@ def render(result: FullRangeResult, report, figures) -> None:
         "accurate: on this rig the probe must know what it touched to know where. It need not "
         "be told: placed on every material's curves at once, the two peaks find the material "
         "too (right in "
-        f"{format_interval(r.joint_material_accuracy, r.contact_two.size)} of these recordings) "
+        f"{format_clustered(r.joint_material)} of these recordings) "
         "and the distance "
         f"within {r.error_joint_cm.mean():.2f} cm on average (the mode-curve classifier of the "
         "section above)."

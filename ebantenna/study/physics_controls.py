@@ -15,25 +15,28 @@ from ..paper.controls import (
     ablation_accuracies,
     equivalent_pair_spread,
     equivalent_rod,
-    grouped_svm_accuracy,
     grouped_svm_spread,
+    twin_seeds,
 )
 from ..paper.data import QUICK_DESIGN
 from ..paper.feature_table import signal_features
 from ..paper.mode_curves import classify_materials_by_mode_curves
-from ..paper.splits import grouped_split
+from ..paper.splits import distinct_split_seeds, grouped_split
 from ..paper.uncertainty import (
-    accuracy_entries,
-    difference_resolved,
-    format_interval,
-    resolvable_difference,
+    UNITS,
+    clustered_entries,
+    format_clustered,
+    percent,
+    points,
+    seed_spread,
+    span,
 )
+from ..probe import material
 from ..simulate import build_dataset, dataset_plan, simulate_batch
-from ._common import beyond_chance, pct
 
 __all__ = [
     "ControlsResult", "ENERGY_ABSORPTION", "PAIR_REFERENCES", "control_design", "compute",
-    "render",
+    "render", "mode_curve_spread", "verdict_from",
 ]  # fmt: skip
 
 #: The effects through which the touched material absorbs the probe's vibration energy (the
@@ -114,6 +117,16 @@ class ControlsResult:
         (the two rods); None without ``object_modes``.
     spreads : dict or None
         ``"mid_height"`` and ``"friction"``: the SVM over the split seeds.
+    paired : dict of str to PairedDifference
+        Every comparison, on the same folds and rows, paired within the position: ``"ablation:"``
+        + each row of the ablation against all effects on; ``"mid_height"`` against the free
+        end; ``"friction"`` with it against without; ``"contact_law"`` and
+        ``"contact_law_mode_curves"``, the contact that only pushes against the linear one.
+    law_spreads : dict or None
+        ``("svm" | "mode_curves", "linear" | "unilateral")``: over the folds.
+    loss_factors : (float, float, float) or None
+        The design materials' smallest and largest loss factor (:func:`ebantenna.probe.material`)
+        and the probe's: what the damping verdict assumes.
     """
 
     ablation: Ablation
@@ -133,6 +146,9 @@ class ControlsResult:
     friction_accuracy: float | None = None
     pairs: dict | None = None
     spreads: dict | None = None
+    paired: dict | None = None
+    law_spreads: dict | None = None
+    loss_factors: tuple | None = None
 
     @property
     def data_sets(self) -> int:
@@ -151,32 +167,38 @@ class ControlsResult:
         )
 
     def to_dict(self) -> dict:
-        """Under ``materials``: ``ablation`` and ``equivalent_pair_accuracy``, ...; every
-        accuracy with its test count (``*_n_test``) and Wilson 95 % interval (``*_ci95``), the
-        ablation and the pairs also over the split seeds (``*_seed_spread``)."""
-        curves = self.mode_curve_accuracies or {}
+        """Under ``materials``: ``ablation`` (over all five folds, each accuracy with its
+        interval on the position, :func:`~ebantenna.paper.uncertainty.clustered_entries`),
+        ``controls_paired`` (every comparison paired on the same folds and rows, with its
+        interval, verdict and minimal detectable difference), the pairs, the contact laws and
+        the moved assumptions likewise."""
         ab = self.ablation
-        n = self.test_recordings
-        pair_n = _pair_test_count(self.pairs)
+        unit = UNITS["grouped"]
+        folds = {k: v.folds() for k, v in ab.spreads.items()}
+        first = (self.pairs or {}).get(PAIR_REFERENCES[0][0])
         out = {
             "controls_design": {
                 "recordings": self.recordings,
-                "test_recordings": n,
-                "split_seeds": SPLIT_SEEDS,
-                "resolvable_difference": resolvable_difference(ab.accuracies["none"], n),
+                "test_recordings_per_fold": self.test_recordings,
+                "folds": SPLIT_SEEDS,
+                "unit": unit,
+                "n_units": folds["none"].n_units,
             },
-            **accuracy_entries("ablation", dict(ab.accuracies),
-                               {k: int(v.n_test[0]) for k, v in ab.spreads.items()}),
+            **clustered_entries("ablation", folds),
             "ablation_seed_spread": {k: v.to_dict() for k, v in ab.spreads.items()},
             "ablation_dropped_together": {k: list(v) for k, v in ab.dropped_together.items()},
             "ablation_refused": dict(ab.refused),
             "ablation_changed": dict(ab.changed),
-            **accuracy_entries("equivalent_pair_accuracy", self.pair_accuracy, pair_n),
-            **accuracy_entries("equivalent_pair_mode_curve_accuracy",
-                               self.pair_mode_curve_accuracy, pair_n),
+            **clustered_entries("equivalent_pair_accuracy",
+                                None if first is None else first["svm"].folds()),
+            **clustered_entries("equivalent_pair_mode_curve_accuracy",
+                                None if first is None else first["mode_curves"].folds()),
             "equivalent_pairs": {
-                ref: {"note": p["note"], "svm": p["svm"].to_dict(),
-                      "mode_curves": p["mode_curves"].to_dict()}
+                ref: {"note": p["note"], "data_set_seeds": list(p["seeds"]),
+                      **clustered_entries("svm", p["svm"].folds()),
+                      **clustered_entries("mode_curves", p["mode_curves"].folds()),
+                      "svm_seed_spread": p["svm"].to_dict(),
+                      "mode_curves_seed_spread": p["mode_curves"].to_dict()}
                 for ref, p in (self.pairs or {}).items()
             },
             "contact_lift_off_share": self.lift_off_share,
@@ -186,28 +208,22 @@ class ControlsResult:
             "unilateral_median_restrikes": (
                 None if self.restrikes is None else float(np.median(self.restrikes))
             ),
+            "controls_paired": {k: v.to_dict() for k, v in (self.paired or {}).items()},
         }
+        laws = self.law_spreads or {}
+        spreads = self.spreads or {}
         grouped = {
-            "svm_grouped_unilateral_accuracy": self.unilateral_accuracy,
-            "svm_grouped_linear_accuracy": self.linear_accuracy,
-            "svm_grouped_mid_height_accuracy": self.mid_height_accuracy,
-            "svm_grouped_friction_accuracy": self.friction_accuracy,
-            "mode_curve_grouped_linear_accuracy": curves.get("linear"),
-            "mode_curve_grouped_unilateral_accuracy": curves.get("unilateral"),
+            "svm_grouped_unilateral_accuracy": laws.get(("svm", "unilateral")),
+            "svm_grouped_linear_accuracy": laws.get(("svm", "linear")),
+            "svm_grouped_mid_height_accuracy": spreads.get("mid_height"),
+            "svm_grouped_friction_accuracy": spreads.get("friction"),
+            "mode_curve_grouped_linear_accuracy": laws.get(("mode_curves", "linear")),
+            "mode_curve_grouped_unilateral_accuracy": laws.get(("mode_curves", "unilateral")),
         }
-        for name, a in grouped.items():
-            out.update(accuracy_entries(name, a, n))
-        out["svm_grouped_seed_spread"] = {
-            k: v.to_dict() for k, v in (self.spreads or {}).items()
-        }
+        for name, spread in grouped.items():
+            out.update(clustered_entries(name, None if spread is None else spread.folds()))
+        out["svm_grouped_seed_spread"] = {k: v.to_dict() for k, v in spreads.items()}
         return out
-
-
-def _pair_test_count(pairs) -> int | None:
-    """Test recordings of the first pair's seed-0 split, or None without pairs."""
-    if not pairs:
-        return None
-    return int(next(iter(pairs.values()))["svm"].n_test[0])
 
 
 def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ControlsResult:
@@ -225,21 +241,41 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ControlsRe
     n, n_test = _recordings(scene, design, seed)
     lift_off = unilateral = linear_accuracy = restrikes = curves = mid = friction = None
     pushes = scene.has("unilateral_contact")
+    base = ablation.spreads["none"]
+    paired = {f"ablation:{k}": base.paired_with(v) for k, v in ablation.spreads.items()
+              if k != "none"}
+    laws = None
     if scene.effect("object_modes") is not None:
-        lift_off, restrikes, unilateral, linear_accuracy, curves = _contact_laws_compared(
-            scene, ablation, **build
-        )
+        lift_off, restrikes, laws = _contact_laws_compared(scene, ablation, **build)
+        unilateral, linear_accuracy = (float(laws["svm", k].values[0])
+                                       for k in ("unilateral", "linear"))
+        curves = {k: float(laws["mode_curves", k].values[0]) for k in ("linear", "unilateral")}
         spreads = {
             "mid_height": _mid_height_spread(scene, **build),
             "friction": _friction_spread(scene, ablation, design, seed, cache_dir, n_jobs),
         }
         mid, friction = (float(spreads[k].values[0]) for k in ("mid_height", "friction"))
+        without = ablation.spreads.get("coulomb_friction", base)
+        paired.update(
+            mid_height=base.paired_with(spreads["mid_height"]),
+            friction=without.paired_with(spreads["friction"]),
+            contact_law=laws["svm", "linear"].paired_with(laws["svm", "unilateral"]),
+            contact_law_mode_curves=laws["mode_curves", "linear"].paired_with(
+                laws["mode_curves", "unilateral"]),
+        )  # fmt: skip
     else:
         spreads = None
     return ControlsResult(
         ablation, accuracy, note, pair_curves, n, 1 / len(design.materials), n_test, lift_off,
         unilateral, restrikes, mid, curves, linear_accuracy, pushes, friction, pairs, spreads,
+        paired, laws, _assumed_loss(scene, design),
     )  # fmt: skip
+
+
+def _assumed_loss(scene, design) -> tuple[float, float, float]:
+    """The touched materials' smallest and largest loss factor, and the probe's."""
+    rods = [material(m).loss_factor for m in design.materials]
+    return min(rods), max(rods), float(scene.probe.loss_factor)
 
 
 def _equivalent_pairs(scene, **build):
@@ -258,6 +294,7 @@ def _equivalent_pairs(scene, **build):
         twin = equivalent_rod(rod, other)
         pair = dict(reference=reference, other=other, **build)
         pairs[reference] = {
+            "seeds": twin_seeds(build["seed"]),
             "svm": equivalent_pair_spread(scene, **pair),
             "mode_curves": equivalent_pair_spread(scene, classifier="mode_curves", **pair),
             "note": (
@@ -280,8 +317,8 @@ def _recordings(scene, design, seed: int) -> tuple[int, int]:
 
 def _contact_laws_compared(scene, ablation, *, design, seed, cache_dir, n_jobs):
     """The contact that only pushes against the linear one: the share of strikes in which the
-    linear contact would pull, the re-strikes, the SVM's accuracy under each law and the
-    mode-curve classifier's (``{"linear": ..., "unilateral": ...}``)."""
+    linear contact would pull, the re-strikes, and the SVM and the mode-curve classifier over
+    the folds under each law (``{(classifier, law): SeedSpread}``)."""
     pushes = scene.has("unilateral_contact")
     pushing, linear = _contact_laws(scene)
     plan = dataset_plan(linear, design, seed)
@@ -297,16 +334,18 @@ def _contact_laws_compared(scene, ablation, *, design, seed, cache_dir, n_jobs):
     lin = build_dataset(cache_dir, linear, design, seed, **build)
     # The ablation has measured the scene itself ("none") and, when its contact pushes, the
     # linear variant (row "unilateral_contact", the same data set): fit only what is left.
-    measured = ablation.accuracies
-    unilateral = measured["none"] if pushes else grouped_svm_accuracy(ds, seed=seed)
-    linear_accuracy = measured.get("unilateral_contact") if pushes else measured["none"]
-    if linear_accuracy is None:  # the ablation could not switch the contact off alone
-        linear_accuracy = grouped_svm_accuracy(lin, seed=seed)
-    curves = {
-        "linear": _mode_curve_accuracy(lin, seed, n_jobs),
-        "unilateral": _mode_curve_accuracy(ds, seed, n_jobs),
+    measured = ablation.spreads
+    unilateral = measured["none"] if pushes else grouped_svm_spread(ds, seed=seed)
+    linear_spread = measured.get("unilateral_contact") if pushes else measured["none"]
+    if linear_spread is None:  # the ablation could not switch the contact off alone
+        linear_spread = grouped_svm_spread(lin, seed=seed)
+    laws = {
+        ("svm", "linear"): linear_spread,
+        ("svm", "unilateral"): unilateral,
+        ("mode_curves", "linear"): mode_curve_spread(lin, seed, n_jobs),
+        ("mode_curves", "unilateral"): mode_curve_spread(ds, seed, n_jobs),
     }
-    return lift_off, restrikes, unilateral, linear_accuracy, curves
+    return lift_off, restrikes, laws
 
 
 def _mid_height_spread(scene, *, design, seed, cache_dir, n_jobs):
@@ -363,30 +402,29 @@ def _render_ablation(r: ControlsResult, report) -> None:
     """One effect at a time switched off: the table, the effects that had to go together, and
     which effect carries the material."""
     acc, spreads = r.ablation.accuracies, r.ablation.spreads
-    base = acc["none"]
+    base = spreads["none"].folds()
     report.heading("What the classifier learns: one effect at a time switched off")
     report.paragraph(
         f"The data set ({r.recordings} recordings, a reduced design) is simulated again with one "
         "effect of the scene switched off, and the paper's SVM is tested on whole held-out "
-        f"positions (every 5th; {r.test_recordings} test recordings at split seed 0). The "
-        "effect whose removal drops the accuracy towards chance is the one that carries the "
-        "material; one whose removal leaves it unchanged does not. Each row is also measured "
-        f"over {SPLIT_SEEDS} split seeds on the same data set, each holding out other positions "
-        "(together every position once; mean ± standard deviation). Two "
-        "accuracies near the baseline differ by two standard deviations of their difference at "
-        f"{100 * resolvable_difference(base, r.test_recordings):.1f} points: a change is "
-        "'resolved' beyond that."
+        f"positions over all {SPLIT_SEEDS} folds of the grouped split, so that every recording "
+        f"is tested once ({base.n_units} positions). Every rebuilt data set holds the same "
+        "rows (same positions, same seeds), so each row is compared with the baseline "
+        "recording by recording on the same folds: the difference's 95 % interval is on the "
+        "position, and a change is 'resolved' when that interval leaves out zero. The last "
+        "column is the smallest change this design detects four times in five (80 % power), "
+        "found by resampling the design's own paired differences."
     )
     report.paragraph(_baseline_relation(r))
-    rows = [["none (all effects on)", format_interval(base, _n(spreads, "none", r)),
-             str(spreads["none"]), "", ""]]
-    for name, a in acc.items():
+    rows = [["none (all effects on)", format_clustered(base), "", "", ""]]
+    for name in acc:
         if name != "none":
-            resolved = difference_resolved(base, a, r.test_recordings)
-            rows.append([name, format_interval(a, _n(spreads, name, r)), str(spreads[name]),
-                         f"{100 * (a - base):+.1f} points", "yes" if resolved else "no"])
-    report.table(["switched off", "grouped test accuracy (seed 0)",
-                  f"over {SPLIT_SEEDS} split seeds", "change", "resolved"], rows)
+            pair = r.paired[f"ablation:{name}"]
+            rows.append([name, format_clustered(spreads[name].folds()), _difference(pair),
+                         "unchanged" if pair.identical else "yes" if pair.resolved else "no",
+                         _detectable(pair)])
+    report.table(["switched off", "grouped test accuracy, all folds",
+                  "paired change (95 % CI)", "resolved", "detectable (80 % power)"], rows)
     for name, together in r.ablation.dropped_together.items():
         report.paragraph(
             f"'{name}' cannot go alone (the scene requires it for "
@@ -398,12 +436,18 @@ def _render_ablation(r: ControlsResult, report) -> None:
         report.paragraph(f"'{name}' switched off with {change}.")
     for name, reason in r.ablation.refused.items():
         report.paragraph(f"'{name}' cannot be switched off by removing effects: {reason}")
-    report.paragraph(_verdict(acc, r.chance, r.test_recordings))
+    report.paragraph(_verdict(r))
 
 
-def _n(spreads: dict, name: str, r: ControlsResult) -> int:
-    """Test recordings of an ablation row at split seed 0."""
-    return int(spreads[name].n_test[0]) if name in spreads else r.test_recordings
+def _difference(pair) -> str:
+    """``'-10.4 points (-14.6 to -6.2)'``."""
+    lo, hi = (points(v).split()[0] for v in pair.ci95)
+    return f"{points(pair.difference)} ({lo} to {hi})"
+
+
+def _detectable(pair) -> str:
+    """The minimal detectable difference, unsigned, in points."""
+    return points(pair.detectable).lstrip("+")
 
 
 def _isolated(name: str, together, accuracies: dict) -> str:
@@ -429,67 +473,110 @@ def _isolated(name: str, together, accuracies: dict) -> str:
 def _baseline_relation(r: ControlsResult) -> str:
     """Why the ablation's baseline is not the main study's grouped accuracy."""
     return (
-        f"The baseline here ({pct(r.ablation.accuracies['none'])}) is measured on the reduced "
-        f"design, {r.recordings} recordings, not on the main data set: every position carries "
-        "fewer repetitions, so the SVM learns from fewer recordings of each material near a "
-        "held-out position, and its accuracy is lower than the main study's grouped split. "
-        "The section 'How much the numbers carry' measures it directly: the main data set's "
-        "grouped accuracy with its first 1, 3 and 5 repetitions only. The ablation compares "
-        "rows with one another on one design, which this does not change."
+        f"The baseline here ({percent(r.ablation.spreads['none'].folds().estimate)}) is "
+        f"measured on the reduced design, {r.recordings} recordings, not on the main data set: "
+        "every position carries fewer repetitions, so the SVM learns from fewer recordings of "
+        "each material near a held-out position than on the main data set. The section 'How "
+        "much the numbers carry' measures what the repetitions change: "
+        "the main data set's grouped accuracy with its first 1, 3 and 5 repetitions only. The "
+        "ablation compares rows with one another on one design, which this does not change."
     )
 
 
 def _render_equivalent_pair(r: ControlsResult, report) -> None:
     """Two rods of equal stiffness and frequencies in different materials told apart, or not."""
-    report.heading("The equivalent pair: impedance, not chemistry")
+    report.heading("The equivalent pair: impedance or chemistry?")
     if r.pairs is None:
         report.paragraph(f"The equivalent pair was {r.pair_note}.")
         return
     report.paragraph(
         "Two rods of different materials with the same cantilever stiffness 3EI/l^3 and the "
         "same bending frequencies, hence the same modal masses, so the probe meets the same "
-        "mechanical impedance but for the loss factor and the contact. Near 50 % (chance) the "
-        "probe feels impedance, not chemistry; well above it, what is left (loss factor, "
-        "Hertz contact) still tells them apart. Two twins, built from two reference rods, so "
-        f"that the verdict does not rest on one choice; each over {SPLIT_SEEDS} split seeds."
+        "mechanical impedance but for the loss factor and the contact. Each twin is simulated "
+        "with its own scatter (its own data-set seed): were the scatter shared, each pair of "
+        "twins would be one recording but for the rod, a classifier blind to the rod would "
+        "label both alike, and the accuracy would be 50 % by construction whatever the probe "
+        "feels. Two twins, built from two reference rods; each over all "
+        f"{SPLIT_SEEDS} folds of the grouped split, the interval on the position."
     )
     rows = []
     for p in r.pairs.values():
         for label, key in (("paper's SVM", "svm"), ("mode curves", "mode_curves")):
-            spread = p[key]
-            rows.append([p["note"], label,
-                         format_interval(float(spread.values[0]), int(spread.n_test[0])),
-                         str(spread)])
-    report.table(["pair", "classifier", "grouped test accuracy (seed 0)",
-                  f"over {SPLIT_SEEDS} split seeds"], rows)
+            f = p[key].folds()
+            rows.append([p["note"], label, format_clustered(f), _pair_verdict(f)])
+    report.table(["pair", "classifier", "grouped test accuracy, all folds", "what it shows"],
+                 rows)
+    report.paragraph(
+        "What the control can show: whether the simulated probe tells two rods of one "
+        "impedance apart by what is left (the loss factor, the contact). What it cannot: that "
+        "the rig would, since the rods' loss factors and the contact are the scene's "
+        "assumptions, not measurements."
+    )
+
+
+def _pair_verdict(f) -> str:
+    """What a twin pair's accuracy shows, from its interval against chance (50 %).
+
+    Examples
+    --------
+    >>> from ebantenna.paper.uncertainty import ClusteredAccuracy
+    >>> _pair_verdict(ClusteredAccuracy([3, 3, 2, 3, 3], [3] * 5, "position"))[:11]
+    'told apart:'
+    >>> _pair_verdict(ClusteredAccuracy([2, 1, 2, 1, 1, 2], [3] * 6, "position"))[:16]
+    'not told apart: '
+    """
+    lo, hi = f.ci95
+    if lo > 0.5:
+        return f"told apart: {span(f.ci95)} % lies above chance (50 %)"
+    if hi < 0.5:
+        return f"below chance: {span(f.ci95)} % lies under 50 %"
+    return (f"not told apart: {span(f.ci95)} % holds 50 %, and reaches at most "
+            f"{points(max(0.5 - lo, hi - 0.5)).lstrip('+')} from it")
 
 
 def _render_mid_height(r: ControlsResult, report) -> None:
     """The SVM with the rods touched halfway up instead of at their free end."""
-    acc = r.ablation.accuracies
+    pair = r.paired["mid_height"]
     report.heading("Where the rod is touched: an assumption moved")
     report.paragraph(
         "The paper does not say where on the rods the probe touched; the scene assumes their "
         "free end, the softest point, where the rod's modes move the contact most. Touched "
-        "halfway up instead, the same SVM on whole held-out positions reaches "
-        f"{format_interval(r.mid_height_accuracy, r.test_recordings)}; "
-        f"{_over_seeds(r, 'mid_height')} (free end: "
-        f"{format_interval(acc['none'], r.test_recordings)}, chance {pct(r.chance)}), "
-        + (
-            _resolved(acc["none"], r.mid_height_accuracy, r.test_recordings)
-            or "within two binomial standard deviations"
-        )
+        "halfway up instead, the same SVM on whole held-out positions (all folds) reaches "
+        f"{format_clustered(r.spreads['mid_height'].folds())} against "
+        f"{format_clustered(r.ablation.spreads['none'].folds())} at the free end (chance "
+        f"{percent(r.chance)}). Paired on the same rows and folds: {pair}, "
+        + _change_words(pair)
         + ". The accuracies of this report hold for the assumed rod and contact, not for "
         "every rod."
     )
 
 
+def _change_words(pair, *, subject: str = "the change") -> str:
+    """``'lower, resolved'`` and the like, from a paired difference's interval.
+
+    Examples
+    --------
+    >>> from ebantenna.paper.uncertainty import PairedDifference
+    >>> _change_words(PairedDifference([3, 3, 2, 3], [2, 1, 1, 2], [3] * 4, "position"))
+    'lower: the interval of the paired difference leaves out zero'
+    >>> _change_words(PairedDifference([2, 1, 1, 2], [3, 3, 2, 3], [3] * 4, "position"))
+    'higher: the interval of the paired difference leaves out zero'
+    >>> _change_words(PairedDifference([2, 1, 2, 1], [1, 2, 1, 2], [3] * 4, "position"))[:26]
+    'not resolved: the interval'
+    """
+    if pair.identical:
+        return "unchanged: every position counts as many right with the change as without"
+    if pair.resolved:
+        return f"{pair.direction}: the interval of the paired difference leaves out zero"
+    return (f"not resolved: the interval of the paired difference holds zero, and the "
+            f"design detects {points(pair.detectable).lstrip('+')} at 80 % power, so "
+            f"{subject} is either smaller than that or missed")
+
+
 def _render_friction(r: ControlsResult, report) -> None:
     """The SVM with dry friction along the rod against without."""
-    acc = r.ablation.accuracies
+    pair = r.paired["friction"]
     report.heading("Friction along the rod")
-    listed = "coulomb_friction" in acc
-    without = acc["coulomb_friction"] if listed else acc["none"]
     report.paragraph(
         "Across the sweep plane the probe slides along the rod. With dry friction there "
         "(the 'coulomb_friction' effect, mu = 0.45 unless the scene says otherwise, under "
@@ -497,55 +584,24 @@ def _render_friction(r: ControlsResult, report) -> None:
         "beyond a fifth of the probe from the hinge) and the Z axis then rings as the probe "
         "pinned at the contact, where without it Z rings at "
         "the free probe's frequencies whatever was touched. The SVM on whole held-out "
-        f"positions reaches {format_interval(r.friction_accuracy, r.test_recordings)} with "
-        f"friction ({_over_seeds(r, 'friction')}) against "
-        f"{format_interval(without, r.test_recordings)} without, "
-        + (_resolved(without, r.friction_accuracy, r.test_recordings)
-           or "within two binomial standard deviations")
+        f"positions (all folds) reaches {format_clustered(r.spreads['friction'].folds())} with "
+        f"friction; paired against without it on the same rows: {pair}, "
+        + _change_words(pair)
         + ". The rod is rigid along its axis, so friction adds the contact's position to "
         "Z, not the material."
     )
 
 
-def _over_seeds(r: ControlsResult, name: str) -> str:
-    """``"x ± y % over 5 split seeds"`` for a spread of ``r.spreads``, or ``""``."""
-    spread = (r.spreads or {}).get(name)
-    return "" if spread is None else f"{spread} over {len(spread.seeds)} split seeds"
-
-
-def _resolved(base: float, other: float, n: int) -> str | None:
-    """How ``other`` differs from ``base`` beyond two standard deviations of their difference
-    (binomial, ``n`` test recordings each), or None within them.
-
-    Examples
-    --------
-    >>> _resolved(0.6, 0.45, 240), _resolved(0.6, 0.55, 240)
-    ('lower by more than two binomial standard deviations', None)
-    """
-    if not difference_resolved(base, other, n):
-        return None
-    direction = "lower" if other < base else "higher"
-    return f"{direction} by more than two binomial standard deviations"
-
-
 def _lift_off(r: ControlsResult) -> str:
-    """The paragraph on the contact that only pushes.
-
-    Examples
-    --------
-    >>> from ebantenna.paper.controls import Ablation
-    >>> r = ControlsResult(Ablation({"none": 0.5}, {}, {}), None, "", None, 395, 0.2, 80, 0.6,
-    ...                    0.5, np.array([0, 3, 5, 9]), linear_accuracy=0.6, pushes=True)
-    >>> _lift_off(r).endswith("this design does not resolve a change by the contact law.")
-    True
-    """
+    """The paragraph on the contact that only pushes, its verdict from the paired difference
+    of the two laws on the same rows and folds."""
     law = (
         "the 'unilateral_contact' effect: the pan-tilt's approach, the overtravel that builds "
         "the preload, lift-off and re-strike, integrated between contact events"
     )
     pull = (
-        f"in {pct(r.lift_off_share)} of these strikes its dynamic force would have to exceed the "
-        "preload in pulling"
+        f"in {percent(r.lift_off_share)} of these strikes its dynamic force would have to "
+        "exceed the preload in pulling"
     )
     if r.pushes:
         text = (
@@ -557,111 +613,150 @@ def _lift_off(r: ControlsResult) -> str:
             f"The data set's contact is linear: it pushes and pulls, and {pull}: on the rig the "
             "probe would lift off the rod, ring free and strike again (chatter)."
         )
-    if r.unilateral_accuracy is None:
+    if r.law_spreads is None:
         return text + " How much that changes the accuracies above is not measured here."
     share = float(np.mean(r.restrikes > 0))
-    linear, pushing = r.linear_accuracy, r.unilateral_accuracy
-    difference = _resolved(linear, pushing, r.test_recordings)
-    verdict = (
-        "within two binomial standard deviations of each other: this design does not resolve "
-        "a change by the contact law"
-        if difference is None
-        else difference + ": the contact law matters here"
-    )
+    pair = r.paired["contact_law"]
+    verdict = (f"{pair}: " + _change_words(pair, subject="the effect of the contact law")
+               + (": the contact law matters here" if pair.resolved else ""))
     other = (
         ""
         if r.pushes
         else f" The same design simulated again with a contact that only pushes ({law}):"
     )
     measured = (
-        f"{other} {pct(share)} of the strikes strike again, a median of "
-        f"{np.median(r.restrikes):g} times. The SVM on whole held-out positions reaches "
-        f"{pct(pushing)} with the contact that only pushes against {pct(linear)} with the "
-        f"linear one ({r.test_recordings} test recordings), {verdict}."
+        f"{other} {percent(share)} of the strikes strike again, a median of "
+        f"{np.median(r.restrikes):g} times. The SVM on whole held-out positions (all folds) "
+        f"reaches {format_clustered(r.law_spreads['svm', 'unilateral'].folds())} with the "
+        "contact that only pushes against "
+        f"{format_clustered(r.law_spreads['svm', 'linear'].folds())} with the linear one; "
+        f"paired, {verdict}."
     )
     return text + measured + _curves_under_both_laws(r)
 
 
 def _curves_under_both_laws(r: ControlsResult) -> str:
     """The mode-curve classifier with either contact law, if measured."""
-    if r.mode_curve_accuracies is None:
+    if r.law_spreads is None:
         return ""
-    linear, pushing = r.mode_curve_accuracies["linear"], r.mode_curve_accuracies["unilateral"]
-    difference = _resolved(linear, pushing, r.test_recordings)
-    survives = beyond_chance(pushing, r.chance, r.test_recordings)
+    pushing = r.law_spreads["mode_curves", "unilateral"].folds()
+    pair = r.paired["contact_law_mode_curves"]
+    survives = pushing.ci95[0] > r.chance
     return (
-        f" The mode-curve classifier reaches {pct(pushing)} with it against {pct(linear)} with "
-        "the linear contact, "
-        + ("within two binomial standard deviations" if difference is None else difference)
+        f" The mode-curve classifier reaches {format_clustered(pushing)} with it; paired "
+        f"against the linear contact, {pair}, " + _change_words(pair)
         + (
             ": what the rod does to the probe's modes survives the lift-offs."
             if survives
-            else ": with lift-offs it falls to chance."
+            else ": with lift-offs its interval reaches chance."
         )
     )
 
 
-def _mode_curve_accuracy(ds, seed: int, n_jobs: int) -> float:
-    """The mode-curve classifier's accuracy on whole held-out positions of data set ``ds``."""
+def mode_curve_spread(ds, seed: int, n_jobs: int):
+    """The mode-curve classifier over the folds of the grouped split of data set ``ds``."""
     feats = signal_features(ds.ax, ds.az, ds.fs, n_jobs=n_jobs, show_progress=False)
-    split = grouped_split(ds.contact, seed=seed)
-    result = classify_materials_by_mode_curves(
-        feats.peaks, feats.dominant, ds.material, ds.contact, split
-    )
-    return result.accuracies["test"]
+
+    def measure(s):
+        result = classify_materials_by_mode_curves(
+            feats.peaks, feats.dominant, ds.material, ds.contact,
+            grouped_split(ds.contact, seed=s))  # fmt: skip
+        return (result.accuracies["test"], result.counts["test"], result.rows(),
+                result.correct())
+
+    seeds = distinct_split_seeds("grouped", ds.material, ds.contact, seed=seed,
+                                 count=SPLIT_SEEDS)
+    spread = seed_spread(measure, seeds)
+    spread.positions = np.asarray(ds.contact)
+    return spread
 
 
-def _verdict(accuracies: dict, chance: float, n: int) -> str:
-    """Which effect carries the material, in plain words; ``n`` test recordings per accuracy.
+def _verdict(r: ControlsResult) -> str:
+    """Which effect carries the material, and what the rod's damping does, in words generated
+    from the paired differences (:func:`verdict_from`)."""
+    return verdict_from(
+        {k.split(":", 1)[1]: v for k, v in (r.paired or {}).items() if k.startswith("ablation:")},
+        r.ablation.spreads["none"].folds(), r.chance, r.ablation.spreads, r.loss_factors)
 
-    A difference counts only beyond two binomial standard deviations of guessing
-    (:func:`~._common.beyond_chance`).
+
+def verdict_from(paired: dict, base, chance: float, spreads: dict | None = None,
+                 loss_factors=None) -> str:
+    """The ablation's verdict, every clause generated from a number.
+
+    Parameters
+    ----------
+    paired : dict of str to PairedDifference
+        Each ablation row against all effects on.
+    base : ClusteredAccuracy or FoldAccuracy
+        All effects on.
+    chance : float
+    spreads : dict, optional
+        The rows' spreads (their :meth:`~ebantenna.paper.uncertainty.SeedSpread.folds` give
+        each row's interval against chance).
+    loss_factors : (float, float, float), optional
+        The touched rods' smallest and largest assumed loss factor and the probe's.
 
     Examples
     --------
-    >>> _verdict({"none": 0.9, "gravity": 0.9, "object_modes": 0.25}, 0.2, 80)[:52]
-    "Switching off 'object_modes' costs the most (90.0 % "
-    >>> "contradicts" in _verdict({"none": 0.6, "object_modes": 0.2, "object_damping": 0.62},
-    ...                           0.2, 80)
+    >>> from ebantenna.paper.uncertainty import ClusteredAccuracy, PairedDifference
+    >>> base = ClusteredAccuracy([3] * 8 + [2] * 8, [3] * 16, "position")
+    >>> drop = PairedDifference([3] * 8 + [2] * 8, [0, 1] * 8, [3] * 16, "position")
+    >>> flat = PairedDifference([3] * 8 + [2] * 8, [3, 2] * 8, [3] * 16, "position")
+    >>> up = PairedDifference([3] * 8 + [2] * 8, [3] * 16, [3] * 16, "position")
+    >>> text = verdict_from({"object_modes": drop, "object_damping": up}, base, 0.2)
+    >>> "carries the material" in text, "raises the accuracy" in text
+    (True, True)
+    >>> text = verdict_from({"object_modes": drop, "object_damping": drop}, base, 0.2)
+    >>> "lowers it too" in text
     True
-    >>> "agrees" in _verdict({"none": 0.6, "object_modes": 0.2, "object_damping": 0.3}, 0.2, 80)
+    >>> "no single effect" in verdict_from({"gravity": flat}, base, 0.2)
     True
-    >>> _verdict({"none": 0.25, "gravity": 0.2}, 0.2, 40)[:40]
-    'With every effect on, the classifier is '
     """
-    base = accuracies["none"]
-    drops = {k: base - a for k, a in accuracies.items() if k != "none"}
-    carrier = max(drops, key=drops.get) if drops else None
-    if (
-        carrier is None
-        or not beyond_chance(base, chance, n)
-        or not beyond_chance(chance + drops[carrier], chance, n)
-    ):
+    lowered = {k: p for k, p in paired.items() if p.direction == "lower"}
+    if not lowered or not base.ci95[0] > chance:
         return (
-            f"With every effect on, the classifier is at {pct(base)} (chance {pct(chance)}, "
-            f"{n} test recordings) and no single effect's removal lowers it by more than "
-            "guessing would: in this data set no one effect is shown to carry the material."
+            f"With every effect on, the classifier reaches {format_clustered(base)} (chance "
+            f"{percent(chance)}); no single effect's removal is resolved as lowering it: in "
+            "this data set no one effect is shown to carry the material."
         )
-    alone = {k: d for k, d in drops.items() if k in ENERGY_ABSORPTION}  # switched off alone
-    absorbs = [k for k, d in alone.items() if beyond_chance(chance + d, chance, n)]
-    if absorbs:
-        paper = (
-            f"Switched off alone, '{absorbs[0]}' lowers it too: this agrees with the paper's "
-            "explanation, that the materials differ by how much vibration energy they absorb."
-        )
-    else:
-        measured = "; ".join(
-            f"switched off alone, '{k}' changes it by {100 * -d:+.1f} points"
-            for k, d in alone.items()
-        )
-        paper = (
-            "This contradicts the paper's explanation, that the materials differ by how much "
-            "vibration energy they absorb: "
-            + (measured + ", no more than guessing would. " if measured else "")
-            + "The probe tells the materials by the touched object's own modes, not by its damping."
-        )
-    return (
-        f"Switching off '{carrier}' costs the most ({pct(base)} to {pct(accuracies[carrier])}, "
-        f"chance {pct(chance)}, {n} test recordings): in this scene it carries the material "
-        "information. " + paper
+    carrier = min(lowered, key=lambda k: lowered[k].difference)
+    pair = lowered[carrier]
+    left = ""
+    if spreads is not None and carrier in spreads:
+        f = spreads[carrier].folds()
+        left = (f" Without it the classifier is at {format_clustered(f)}, "
+                + ("still above chance." if f.ci95[0] > chance else
+                   f"an interval that reaches chance ({percent(chance)}): no material-dependent "
+                   "physics is left in the scene without it."))
+    words = (
+        f"Switching off '{carrier}' costs the most, {pair}: in this scene it carries the "
+        f"material information.{left} "
     )
+    damping = {k: p for k, p in paired.items()
+               if ENERGY_ABSORPTION & set(k.split("+")) and k != carrier}
+    clauses = []
+    for k, p in damping.items():
+        if p.direction == "lower":
+            clauses.append(f"Switched off ('{k}'), the rod's damping lowers it too, {p}: in the "
+                           "simulator this agrees with the paper's explanation, that the "
+                           "materials differ by how much vibration energy they absorb.")
+        elif p.direction == "higher":
+            clauses.append(f"Switched off ('{k}'), the rod's damping raises the accuracy, {p}: "
+                           "in the simulator the rods' damping blurs the materials rather "
+                           "than separating them, against the paper's explanation that they "
+                           "differ by the energy they absorb.")
+        else:
+            clauses.append(f"Switched off ('{k}'), the rod's damping changes it by {p}, not "
+                           "resolved.")
+    if clauses and loss_factors is not None:
+        lo, hi, probe = loss_factors
+        relation = "all below" if hi < probe else "not all below"
+        clauses.append(
+            f"This is a statement about the simulator's assumptions, not about the rig: the "
+            f"rods' assumed loss factors ({lo:g} to {hi:g}) are {relation} the probe's own "
+            f"({probe:g}), and whether the real rods absorb as assumed was not measured."
+        )
+    elif clauses:
+        clauses.append("This is a statement about the simulator's assumptions, not about the "
+                       "rig.")
+    return words + " ".join(clauses)

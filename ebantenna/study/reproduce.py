@@ -23,9 +23,12 @@
    stops at 80 %;
 8. spectrograms and scalograms at 0.25 L ... 0.9 L (Figs. 18 and 19);
 
-and writes every figure as PNG, a report in Markdown and HTML, and a JSON summary. Every
-accuracy comes with its number of test recordings and its Wilson 95 % interval
-(:mod:`ebantenna.paper.uncertainty`).
+and writes every figure as PNG, a report in Markdown and HTML, and a JSON summary. Every test
+accuracy comes with its number of test recordings, its unit of replication (the contact
+position; the held-out block for the blocked split) and the 95 % interval on that unit with its
+method; the grouped and blocked splits over all their folds; every comparison paired on the same
+recordings, with its interval, its verdict and the difference its design detects
+(:mod:`ebantenna.paper.uncertainty`). Training accuracies carry their count only.
 
 Each section is a module with a pure ``compute(...)`` returning a frozen result (with
 ``to_dict()``) and a ``render(result, report, figures)`` that draws its figures and writes its
@@ -223,7 +226,7 @@ def reproduce(
         lambda: signal_features(ds.ax, ds.az, ds.fs, n_jobs=n_jobs, show_progress=show_progress),
     )
     data_summary.render(data_result, report, figures)
-    _learn_materials_and_distance(study, ds, feats, data_result.materials, seed)
+    _learn_materials_and_distance(study, ds, feats, data_result.materials, seed, quick)
     controls = _controls(study, scene, seed, quick, cache_dir, workers)
     study.run("full range", full_range.compute, full_range.render, ds, feats)
     study.run("time-frequency", time_frequency.compute, time_frequency.render, scene, seed)
@@ -274,7 +277,8 @@ def _opening(quick: bool) -> Report:
     return report
 
 
-def _learn_materials_and_distance(study: _Sections, ds, feats, materials, seed: int) -> None:
+def _learn_materials_and_distance(study: _Sections, ds, feats, materials, seed: int,
+                                  quick: bool = False) -> None:
     """Steps 4 to 6: the dominant frequency and the decay per material, the paper's classifiers
     and distance networks, and the same on the three splits and with other trainers."""
     study.run("frequency", signals.compute_frequency, signals.render_frequency,
@@ -287,10 +291,9 @@ def _learn_materials_and_distance(study: _Sections, ds, feats, materials, seed: 
                                         paper_ann=learnt.ann, paper_distance=learnt.linear_region),
         material_splits.render,
     )
-    grouped = study.results["splits"].svm["grouped"]
-    study.run("seeds", seed_spread.compute, seed_spread.render,
-              ds, feats, seed, (grouped.accuracies["test"], grouped.counts["test"]))
-    study.run("ann setup", ann_setup.compute, ann_setup.render, ds, feats, seed)
+    grouped = study.results["splits"].measured["svm", "grouped"]
+    study.run("seeds", seed_spread.compute, seed_spread.render, ds, feats, seed, grouped)
+    study.run("ann setup", ann_setup.compute, ann_setup.render, ds, feats, seed, quick)
 
 
 def _controls(study: _Sections, scene, seed: int, quick: bool, cache_dir, workers: int):

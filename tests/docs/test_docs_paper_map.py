@@ -110,8 +110,10 @@ def test_the_summary_keys_are_those_reproduce_writes():
     source = "\n".join(p.read_text() for p in study.glob("*.py"))
     for key in paper_map.flatten(RECORD["summary"]):
         section, name = key.split(".")[:2] if "." in key else (key, key)
-        # an accuracy's test count and interval are named after it by paper.uncertainty
-        name = re.sub(r"_(n_test|ci95)$", "", name)
+        # an accuracy's count, unit, interval and method are named after it by paper.uncertainty
+        # (clustered_entries, training_entries)
+        name = re.sub(r"_(n_test|n_train|ci95|recording_ci95|unit|n_units|method|design_effect|"
+                      r"folds|fold_std)$", "", name)
         assert f'"{section}"' in source, key
         if name not in ("figures", "report") and section not in ("figures", "report", "timings_s"):
             assert f'"{name}"' in source, key  # a key of its own, not a material or figure name

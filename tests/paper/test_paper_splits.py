@@ -92,3 +92,32 @@ def test_random_split_is_the_papers_stratified_80_20():
 def test_bad_input_names_the_parameter(call, match):
     with pytest.raises(ValueError, match=match):
         call()
+
+
+@pytest.mark.parametrize("kind", ["random", "grouped", "blocked"])
+def test_the_folds_test_every_recording_exactly_once(kind):
+    from ebantenna.paper.splits import split_folds
+
+    pos = np.repeat(np.arange(1, 24) / 100, 3)  # 23 positions, 3 recordings each
+    y = np.tile(["al", "pvc", "steel"], 23)
+    folds = split_folds(kind, y, pos, seed=3)
+    tested = np.concatenate([test for _, test in folds])
+    assert len(folds) == 5 and np.array_equal(np.sort(tested), np.arange(pos.size))
+    for train, test in folds:
+        assert np.array_equal(np.union1d(train, test), np.arange(pos.size))
+        if kind != "random":  # whole positions, never on both sides
+            assert not set(pos[train]) & set(pos[test])
+        if kind == "blocked":  # one contiguous run of the sorted grid
+            grid = np.unique(pos)
+            held = np.flatnonzero(np.isin(grid, pos[test]))
+            assert np.array_equal(held, np.arange(held[0], held[-1] + 1))
+
+
+def test_the_first_grouped_fold_is_the_split_seed_own():
+    from ebantenna.paper.splits import grouped_split, split_folds
+
+    pos = np.repeat(np.arange(1, 24) / 100, 2)
+    y = np.tile(["al", "pvc"], 23)
+    for seed in range(4):
+        first = split_folds("grouped", y, pos, seed=seed)[0]
+        assert np.array_equal(first[1], grouped_split(pos, every=5, seed=seed)[1])

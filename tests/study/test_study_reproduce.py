@@ -117,13 +117,16 @@ def test_summary_is_the_results_dicts_put_together(quick_study):
     assert list(s) == ["quick", "seed", "modes", "dataset", "frequency", "decay", "svm", "ann",
                        "materials", "distance", "hinge", "contact_law", "timings_s",
                        "dataset_cached", "report", "figures"]
+    joint = "full_range_joint_material_accuracy"
     assert list(s["distance"]) == [
         "full_range_mae_cm", "full_range_mae_beyond_80_cm", "first_mode_only_mae_cm",
         "full_range_known_material_mae_cm", "full_range_joint_mae_cm",
-        "full_range_joint_material_accuracy", "full_range_joint_material_accuracy_n_test",
-        "full_range_joint_material_accuracy_ci95", "first_mode_turning_point_cm",
+        joint, f"{joint}_n_test", f"{joint}_unit", f"{joint}_n_units",
+        f"{joint}_design_effect", f"{joint}_ci95", f"{joint}_method",
+        f"{joint}_recording_ci95", "first_mode_turning_point_cm",
         "recordings_without_two_peaks", "linear_region_mae_cm", "full_length_mae_cm",
         "linear_region_mae_cm_by_trainer", "linear_region_best_trainer",
+        "linear_region_random_split", "linear_region_positions_held_out",
     ]
     assert list(s["timings_s"]) == list(STEPS)
 
@@ -199,10 +202,10 @@ def test_report_sections_follow_the_recipe(quick_study):
         "Beyond the paper: distance first, then material",
         "Beyond the paper: material and distance from two frequencies",
         "The networks with other trainers",
-        "How much the numbers carry: split seeds and repetitions",
+        "How much the numbers carry: folds, clusters and repetitions",
         "Why the paper's network scores lower here: its training budget",
         "What the classifier learns: one effect at a time switched off",
-        "The equivalent pair: impedance, not chemistry",
+        "The equivalent pair: impedance or chemistry?",
         "A contact that only pushes",
         "Where the rod is touched: an assumption moved",
         "Friction along the rod",

@@ -24,14 +24,22 @@ def test_tables_have_a_row_per_measurement(quick_study):
     assert len(_rows(study_tables.interval_lines(s))) == 9  # 3 classifiers x 3 splits
     assert len(_rows(study_tables.repetition_lines(s))) == len(m["svm_grouped_by_repetitions"]) + 1
     assert len(_rows(study_tables.sensitivity_lines(s))) == len(m["rod_geometry"])
-    runs = [k for k, v in m["ann_training_setup"].items() if isinstance(v, dict)]
-    assert len(_rows(study_tables.ann_budget_lines(s))) == len(runs)
+    runs = [k for k, v in m["ann_training_setup"].items() if isinstance(v, dict)
+            and "max_epochs" in v]
+    assert len(_rows(study_tables.ann_budget_lines(s))) == len(runs)  # the long run among them
+    assert len(_rows(study_tables.controls_lines(s))) == len(m["controls_paired"])
 
 
-def test_a_cell_shows_the_summary_count_and_interval(quick_study):
+def test_a_cell_shows_what_the_report_shows(quick_study):
+    """The docs' cell and the report's cell of one accuracy are one string: one formatter."""
+    from ebantenna.paper.uncertainty import span
+
     result, _ = quick_study
     m = result.summary["materials"]
-    a, n, ci = (m["svm_grouped_test_accuracy"], m["svm_grouped_test_accuracy_n_test"],
-                m["svm_grouped_test_accuracy_ci95"])
-    cell = f"{100 * a:.1f} % (n = {n}, {100 * ci[0]:.1f}-{100 * ci[1]:.1f})"
+    n, units, ci = (m["svm_grouped_test_accuracy_n_test"],
+                    m["svm_grouped_test_accuracy_n_units"], m["svm_grouped_test_accuracy_ci95"])
+    cell = study_tables.cell(m, "svm_grouped_test_accuracy")
+    assert f"n = {n} in {units} positions, {span(ci)})" in cell
+    report = result.report_markdown.read_text()
+    assert cell.replace(f", {span(ci)})", f", 95 % CI {span(ci)})") in report
     assert any(cell in line for line in study_tables.interval_lines(result.summary))

@@ -296,7 +296,7 @@ def _run_sections(ds, feats, runnable, seed, report, figures, not_applicable, ti
         section("splits", lambda: material_splits.compute(
             ds, feats, seed, random_svm=learnt.svm, paper_ann=learnt.ann,
             paper_distance=learnt.linear_region),
-            lambda r: material_splits.render(r, report, figures, seed_spread=False))
+            lambda r: material_splits.render(r, report, figures))
     if "full range" in runnable:
         section("full range", lambda: full_range.compute(ds, feats),
                 lambda r: full_range.render(r, report, figures))

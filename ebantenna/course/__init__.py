@@ -42,6 +42,7 @@ import hashlib
 import math
 from dataclasses import dataclass
 
+from .._validate import check_path, check_real
 from ._answer_key import ANSWER_KEY
 
 __all__ = [
@@ -166,7 +167,12 @@ def seal(value: float, tolerance: Tolerance, salt: str) -> dict:
         raise TypeError(f"tolerance must be a Tolerance, got {type(tolerance).__name__}")
     if not isinstance(salt, str) or not salt:
         raise ValueError(f"salt must be a non-empty str, got {salt!r}")
-    value = float(value)
+    if isinstance(value, bool) or not isinstance(value, float | int):
+        value = check_real("value", value, allow_inf=True)  # a NumPy number, or refused
+    try:
+        value = float(value)
+    except OverflowError:
+        value = math.inf
     if not math.isfinite(value):
         raise ValueError(f"value must be finite, got {value!r}")
     scale, cell = _scale(tolerance)
@@ -184,11 +190,17 @@ def unseal(sealed: dict, tolerance: Tolerance, near: float) -> float | None:
     """The sealed answer, if ``near`` is within two cells of it; else ``None``.
 
     ``near`` must be a finite number. Two cells cover every value the tolerance accepts (one
-    cell) with room for rounding at the edge; the tolerance then decides.
+    cell) with room for rounding at the edge; the tolerance then decides. ``sealed`` is what
+    :func:`seal` returned.
     """
-    near = float(near)
-    if not math.isfinite(near):
-        raise ValueError(f"near must be finite, got {near!r}")
+    if not (isinstance(sealed, dict) and isinstance(sealed.get("salt"), str)
+            and isinstance(sealed.get("digest"), str)
+            and isinstance(sealed.get("offset"), float | int)):
+        raise ValueError(f"sealed must be a dict from seal() with 'salt', 'digest' and 'offset', "
+                         f"got {sealed!r:.80}")
+    if not isinstance(tolerance, Tolerance):
+        raise TypeError(f"tolerance must be a Tolerance, got {type(tolerance).__name__}")
+    near = check_real("near", near)
     scale, cell = _scale(tolerance)
     if scale == "log" and near == 0:
         return None  # no relative tolerance or factor accepts a zero
@@ -278,6 +290,7 @@ def load_variant_key(path) -> dict:
     import json
     from pathlib import Path
 
+    path = check_path("path", path)
     try:
         key = json.loads(Path(path).read_text(encoding="utf-8"))
     except (OSError, json.JSONDecodeError) as error:

@@ -40,9 +40,10 @@ from __future__ import annotations
 
 import hashlib
 import math
+import numbers
+import os
 from dataclasses import dataclass
 
-from .._validate import check_path, check_real
 from ._answer_key import ANSWER_KEY
 
 __all__ = [
@@ -144,6 +145,14 @@ def _digest(salt: str, sign: str, cell_index: int) -> str:
     return hashlib.pbkdf2_hmac("sha256", text, salt.encode(), ROUNDS).hex()[:32]
 
 
+def _real(name: str, value):
+    """``value``, once it is a real number (a bool or a string is not)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must be a real number, got {value!r:.40} "
+                        f"({type(value).__name__})")
+    return value
+
+
 def seal(value: float, tolerance: Tolerance, salt: str) -> dict:
     """The answer ``value`` in the form the key holds: a cell's hash and a place in the cell.
 
@@ -167,8 +176,7 @@ def seal(value: float, tolerance: Tolerance, salt: str) -> dict:
         raise TypeError(f"tolerance must be a Tolerance, got {type(tolerance).__name__}")
     if not isinstance(salt, str) or not salt:
         raise ValueError(f"salt must be a non-empty str, got {salt!r}")
-    if isinstance(value, bool) or not isinstance(value, float | int):
-        value = check_real("value", value, allow_inf=True)  # a NumPy number, or refused
+    value = _real("value", value)
     try:
         value = float(value)
     except OverflowError:
@@ -200,7 +208,13 @@ def unseal(sealed: dict, tolerance: Tolerance, near: float) -> float | None:
                          f"got {sealed!r:.80}")
     if not isinstance(tolerance, Tolerance):
         raise TypeError(f"tolerance must be a Tolerance, got {type(tolerance).__name__}")
-    near = check_real("near", near)
+    near = _real("near", near)
+    try:
+        near = float(near)
+    except OverflowError:
+        near = math.inf
+    if not math.isfinite(near):
+        raise ValueError(f"near must be finite, got {near!r}")
     scale, cell = _scale(tolerance)
     if scale == "log" and near == 0:
         return None  # no relative tolerance or factor accepts a zero
@@ -290,7 +304,10 @@ def load_variant_key(path) -> dict:
     import json
     from pathlib import Path
 
-    path = check_path("path", path)
+    if not isinstance(path, str | os.PathLike) or isinstance(os.fspath(path), bytes):
+        raise TypeError(f"path must be a str or os.PathLike, got {type(path).__name__}")
+    if not os.fspath(path):
+        raise ValueError("path must name a file, got an empty path")
     try:
         key = json.loads(Path(path).read_text(encoding="utf-8"))
     except (OSError, json.JSONDecodeError) as error:

@@ -40,6 +40,8 @@ from __future__ import annotations
 
 import hashlib
 import math
+import numbers
+import os
 from dataclasses import dataclass
 
 from ._answer_key import ANSWER_KEY
@@ -143,6 +145,14 @@ def _digest(salt: str, sign: str, cell_index: int) -> str:
     return hashlib.pbkdf2_hmac("sha256", text, salt.encode(), ROUNDS).hex()[:32]
 
 
+def _real(name: str, value):
+    """``value``, once it is a real number (a bool or a string is not)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must be a real number, got {value!r:.40} "
+                        f"({type(value).__name__})")
+    return value
+
+
 def seal(value: float, tolerance: Tolerance, salt: str) -> dict:
     """The answer ``value`` in the form the key holds: a cell's hash and a place in the cell.
 
@@ -166,7 +176,11 @@ def seal(value: float, tolerance: Tolerance, salt: str) -> dict:
         raise TypeError(f"tolerance must be a Tolerance, got {type(tolerance).__name__}")
     if not isinstance(salt, str) or not salt:
         raise ValueError(f"salt must be a non-empty str, got {salt!r}")
-    value = float(value)
+    value = _real("value", value)
+    try:
+        value = float(value)
+    except OverflowError:
+        value = math.inf
     if not math.isfinite(value):
         raise ValueError(f"value must be finite, got {value!r}")
     scale, cell = _scale(tolerance)
@@ -184,9 +198,21 @@ def unseal(sealed: dict, tolerance: Tolerance, near: float) -> float | None:
     """The sealed answer, if ``near`` is within two cells of it; else ``None``.
 
     ``near`` must be a finite number. Two cells cover every value the tolerance accepts (one
-    cell) with room for rounding at the edge; the tolerance then decides.
+    cell) with room for rounding at the edge; the tolerance then decides. ``sealed`` is what
+    :func:`seal` returned.
     """
-    near = float(near)
+    if not (isinstance(sealed, dict) and isinstance(sealed.get("salt"), str)
+            and isinstance(sealed.get("digest"), str)
+            and isinstance(sealed.get("offset"), float | int)):
+        raise ValueError(f"sealed must be a dict from seal() with 'salt', 'digest' and 'offset', "
+                         f"got {sealed!r:.80}")
+    if not isinstance(tolerance, Tolerance):
+        raise TypeError(f"tolerance must be a Tolerance, got {type(tolerance).__name__}")
+    near = _real("near", near)
+    try:
+        near = float(near)
+    except OverflowError:
+        near = math.inf
     if not math.isfinite(near):
         raise ValueError(f"near must be finite, got {near!r}")
     scale, cell = _scale(tolerance)
@@ -278,6 +304,10 @@ def load_variant_key(path) -> dict:
     import json
     from pathlib import Path
 
+    if not isinstance(path, str | os.PathLike) or isinstance(os.fspath(path), bytes):
+        raise TypeError(f"path must be a str or os.PathLike, got {type(path).__name__}")
+    if not os.fspath(path):
+        raise ValueError("path must name a file, got an empty path")
     try:
         key = json.loads(Path(path).read_text(encoding="utf-8"))
     except (OSError, json.JSONDecodeError) as error:

@@ -69,6 +69,7 @@ from ..chips.mpu6050 import (
     Register,
     UserControl,
 )
+from .._validate import check_int
 from ..recording import Recording
 from .i2c import SMBUS_BLOCK_MAX, I2CError, SettingError
 from .timing import CLOCK_TOLERANCE, PeriodEstimator
@@ -358,10 +359,10 @@ class FifoStream:
             after = self.clock.monotonic()
         except OSError as exc:
             return self._fail(_cause(_as_i2c_error(exc)), discarded=n)
-        changed = self.mpu.changed_registers(seen)
+        changed = self.mpu._changed_registers(seen)
         if changed:
             overflow = bool(status & Interrupt.FIFO_OFLOW)
-            return self._fail(self.mpu.describe_changes(changed), reconfigure=True, discarded=n,
+            return self._fail(self.mpu._describe_changes(changed), reconfigure=True, discarded=n,
                               overflow=overflow)
         if status & Interrupt.FIFO_OFLOW:
             return self._fail("FIFO overflow", overflow=True, discarded=n)
@@ -663,6 +664,7 @@ def sensor_check(counts: np.ndarray, lsb_per_g: int) -> dict:
             counts.dtype.kind not in "iu"):
         raise TypeError("counts must be an (n, 3) integer array of X, Y, Z counts, got "
                         f"{getattr(counts, 'shape', type(counts).__name__)}")
+    check_int("lsb_per_g", lsb_per_g, minimum=1)
     n = counts.shape[0]
     out = {"noise_lsb": [0.0, 0.0, 0.0], "longest_repeat": 0, "constant_axes": [], "flags": []}
     if n < 2:

@@ -66,7 +66,7 @@ import warnings
 import numpy as np
 
 from .._budget import check_allocation
-from .._validate import check_nonnegative, check_positive
+from .._validate import check_bool, check_nonnegative, check_positive
 from ..chips.mpu6050 import (
     ACCEL_DLPF_6500,
     ACCEL_SAMPLE_BYTES,
@@ -328,6 +328,7 @@ class MPU6050:
     def expected_registers(self, streaming: bool = True) -> dict:
         """Every setting the driver wrote, as ``{register: value}``: rate, filter, range, the
         overflow interrupt, the clock (awake), and with ``streaming`` the FIFO's enables."""
+        streaming = check_bool("streaming", streaming)
         expected = {Register.PWR_MGMT_1: CLKSEL.put(ClockSource.PLL_X_GYRO), **self._settings()}
         if streaming:
             expected[Register.FIFO_EN] = FifoEnable.ACCEL
@@ -353,7 +354,7 @@ class MPU6050:
             Register.USER_CTRL, 2)
         return {Register(r): v for r, v in seen.items()}, status
 
-    def changed_registers(self, seen: dict, streaming: bool = True) -> list:
+    def _changed_registers(self, seen: dict, streaming: bool = True) -> list:
         """The settings of ``seen`` (from :meth:`read_registers`) that differ from what was
         written: ``[(register, written, seen), ...]``."""
         changed = []
@@ -364,7 +365,7 @@ class MPU6050:
         return changed
 
     @staticmethod
-    def describe_changes(changed: list) -> str:
+    def _describe_changes(changed: list) -> str:
         """``"ACCEL_CONFIG (0x1C) changed from 0x18 to 0x00, ..."``, with what the values mean
         when the chip is asleep (a reset, e.g. a brown-out)."""
         text = ", ".join(f"{register_name(r)} changed from 0x{w:02X} to 0x{s:02X}"
@@ -377,8 +378,8 @@ class MPU6050:
         """Why the chip no longer runs as configured (which settings changed, from what to
         what), or None. ``streaming``: also check the FIFO's enables."""
         seen, _ = self.read_registers()
-        changed = self.changed_registers(seen, streaming)
-        return self.describe_changes(changed) if changed else None
+        changed = self._changed_registers(seen, streaming)
+        return self._describe_changes(changed) if changed else None
 
     # -- conversion ------------------------------------------------------------------------
     def to_acceleration(self, counts) -> np.ndarray:

@@ -37,7 +37,7 @@ from pathlib import Path
 from .._files import inside, read_document, require
 from .._progress import progress
 from .._tempfiles import TEMPORARY_PREFIX, process_running
-from .._validate import check_in_range, check_int, check_path, open_regular
+from .._validate import check_bool, check_in_range, check_int, check_path, open_regular
 from ..recording import Recording
 from .i2c import I2CError
 from .mpu6050 import MPU6050, ChipIdentityError
@@ -160,7 +160,9 @@ def fallback_paths(name: str) -> list[Path]:
     """Where a recording goes when its own path cannot be written: the working directory, then
     the system's temporary folder, each under ``name`` with the process id (two runs never
     overwrite each other's fallback)."""
-    stem = Path(name).name.removesuffix(".npz")
+    stem = Path(check_path("name", name)).name.removesuffix(".npz")
+    if not stem:
+        raise ValueError(f"name must end in a file name, got {name!r}")
     unique = f"{stem}-{os.getpid()}.npz"
     return [Path.cwd() / unique, Path(tempfile.gettempdir()) / unique]
 
@@ -173,7 +175,10 @@ def save_recording(recording, path, *, fallback_name: str) -> tuple[Path | None,
     per failed location; it never raises :class:`OSError` (an interrupt does go through: the
     caller decides what it means).
     """
-    candidates = ([] if path is None else [Path(path)]) + fallback_paths(fallback_name)
+    if not isinstance(recording, Recording):
+        raise TypeError(f"recording must be a Recording, got {type(recording).__name__}")
+    candidates = ([] if path is None else [Path(check_path("path", path))]) + fallback_paths(
+        check_path("fallback_name", fallback_name))
     failures = []
     for candidate in candidates:
         try:
@@ -561,6 +566,9 @@ class RecordingSession:
         """Write ``why`` into the manifest's ``unsafe`` entry, so that the next run checks the
         rig first; returns whether the manifest could be written (a full disk or a removed
         folder is logged, never raised: the operator's instruction matters more)."""
+        if not isinstance(why, str) or not why.strip():
+            raise ValueError(f"why must be a non-empty str (what the operator reads), got {why!r}")
+        powered = check_bool("powered", powered)
         self.servos_may_be_powered |= powered
         if self.manifest is None:
             return False

@@ -14,7 +14,7 @@ from __future__ import annotations
 import logging
 import math
 
-from .._validate import check_in_range, check_positive
+from .._validate import check_in_range, check_int, check_positive
 
 __all__ = ["PeriodEstimator", "CLOCK_TOLERANCE"]
 
@@ -157,7 +157,12 @@ class PeriodEstimator:
         taken by another reader, a count read wrong, a clock off its tolerance, and the ones
         before the contradiction may have narrowed the bracket wrongly). The bracket is
         recomputed from the tolerance and the other segments' observations, pair by pair; the
-        segment's own observations stay for its timestamps, which the caller flags."""
+        segment's own observations stay for its timestamps, which the caller flags.
+
+        ``segment`` is the index of a segment begun (0 for the first :meth:`begin`)."""
+        if not self.segments:
+            raise ValueError(f"segment must be a segment begun, and none is yet; got {segment!r}")
+        segment = check_int("segment", segment, minimum=0, maximum=len(self.segments) - 1)
         self.excluded.add(segment)
         low, high = self.nominal / (1.0 + self.tolerance), self.nominal / (1.0 - self.tolerance)
         for k, observations in enumerate(self.segments):

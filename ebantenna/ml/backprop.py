@@ -56,6 +56,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.special import expit, log_expit
 
+from .._validate import check_int
+
 __all__ = [
     "ACTIVATIONS",
     "OUTPUT_ACTIVATIONS",
@@ -396,6 +398,15 @@ def train_epochs(X, Y, coefs, intercepts, optimizer, *, activation: str, out_act
     >>> bool(losses[-1] < losses[0] / 2)
     True
     """
+    batch_size = check_int("batch_size", batch_size, minimum=1)
+    n_epochs = check_int("n_epochs", n_epochs, minimum=0)
+    if not callable(getattr(optimizer, "update", None)):
+        raise TypeError(f"optimizer must have a method update(params, grads), got "
+                        f"{type(optimizer).__name__}")
+    if rng is not None and not isinstance(rng, np.random.Generator):
+        raise TypeError(f"rng must be a numpy.random.Generator or None, got {type(rng).__name__}")
+    if end_of_epoch is not None and not callable(end_of_epoch):
+        raise TypeError(f"end_of_epoch must be callable or None, got {type(end_of_epoch).__name__}")
     n = X.shape[0]
     order = np.arange(n)
     params = [*coefs, *intercepts]

@@ -29,7 +29,8 @@ from sklearn.utils._param_validation import Interval, Options, StrOptions
 from sklearn.utils.validation import check_is_fitted
 
 from .._budget import check_allocation
-from .._validate import check_choice, check_python_number, check_real, describe
+from .._validate import (check_bool, check_choice, check_in_range, check_positive,
+                         check_python_number, check_real, describe)
 from ._backprop_engine import Workspace, loss_and_gradients_into
 from ._mlp_compiled import compiled_kernels
 from ._mlp_optimizers import InPlaceAdam, InPlaceMomentum
@@ -77,6 +78,17 @@ def training_optimizer(name: str, params, learning_rate: float = 1e-3, *, moment
     """
     check_choice("name", name, ("adam", "momentum"))
     check_choice("engine", engine, ("auto", "reference"))
+    if not isinstance(params, list | tuple) or not all(
+            isinstance(p, np.ndarray) and p.dtype.kind == "f" for p in params):
+        raise TypeError(f"params must be a list of float ndarrays (the arrays to move), got "
+                        f"{type(params).__name__}")
+    learning_rate = check_positive("learning_rate", learning_rate)
+    momentum = check_in_range("momentum", momentum, 0.0, 1.0, low_inclusive=True,
+                              high_inclusive=True)
+    nesterov = check_bool("nesterov", nesterov)
+    beta_1 = check_in_range("beta_1", beta_1, 0.0, 1.0, low_inclusive=True)
+    beta_2 = check_in_range("beta_2", beta_2, 0.0, 1.0, low_inclusive=True)
+    epsilon = check_positive("epsilon", epsilon)
     reference = engine == "reference"
     if name == "adam":
         args = (params, learning_rate, beta_1, beta_2, epsilon)

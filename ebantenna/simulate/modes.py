@@ -34,7 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_choice
+from .._validate import check_choice, check_int
 from ..fem import Supports, modal_analysis
 from ..fem.assembly import assemble
 from ..fem.coupling import coupled_modes
@@ -330,6 +330,17 @@ def direct_exponentials(t: np.ndarray, coef, rate, max_elements: int) -> np.ndar
     >>> direct_exponentials(t, np.array([[1.0 + 0j]]), np.array([[2j * np.pi]]), 100).round(12)
     array([[ 0.,  1.,  0., -1.]])
     """
+    for name, value in (("t", t), ("coef", coef), ("rate", rate)):
+        if not isinstance(value, np.ndarray) or value.dtype.kind not in "fc":
+            raise TypeError(f"{name} must be a float or complex ndarray, got "
+                            f"{type(value).__name__} {getattr(value, 'dtype', '')}")
+    if coef.ndim != 2 or rate.shape != coef.shape:
+        raise ValueError(f"coef and rate must be 2-D arrays of one shape (signals, terms), got "
+                         f"{coef.shape} and {rate.shape}")
+    if t.ndim not in (1, 2) or (t.ndim == 2 and t.shape[0] != coef.shape[0]):
+        raise ValueError(f"t must be 1-D, or 2-D with one row per signal ({coef.shape[0]}), got "
+                         f"shape {t.shape}")
+    check_int("max_elements", max_elements, minimum=1)
     n_signals, n_terms = coef.shape
     n_samples = t.shape[-1]
     out = np.empty((n_signals, n_samples))

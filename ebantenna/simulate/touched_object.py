@@ -36,8 +36,9 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from .._progress import progress
-from .._validate import check_int, check_positive
+from .._validate import check_bool, check_int, check_positive
 from ..fem.coupling import craig_bampton, probe_substructure, rod_substructure
+from ..fem.guards import check_contact
 from ..probe import Probe
 from ..probe import material as lookup_material
 from .modes import (ArrestModes, arrest_modes, coupled_arrest_modes, damped_exponentials,
@@ -427,6 +428,32 @@ def _z_terms(scene: Scene, speeds, tilts, zeta_s: float) -> ModalTerms:
     )
 
 
+def _check_signal_inputs(scene, contacts, materials, speeds, tilts, preloads) -> int:
+    """The number of signals, once every per-signal array is one finite entry per signal."""
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
+    arrays = {"contacts": contacts, "speeds": speeds, "tilts": tilts}
+    if preloads is not None:
+        arrays["preloads"] = preloads
+    for name, value in arrays.items():
+        if not isinstance(value, np.ndarray) or value.ndim != 1 or value.dtype.kind not in "fiu":
+            raise TypeError(f"{name} must be a 1-D real ndarray, one entry per signal, got "
+                            f"{type(value).__name__} {getattr(value, 'dtype', '')}")
+        if not np.all(np.isfinite(value)):
+            raise ValueError(f"{name} must be finite")
+    if not isinstance(materials, np.ndarray) or materials.dtype.kind not in "UO":
+        raise TypeError(f"materials must be an ndarray of material names, got "
+                        f"{type(materials).__name__}")
+    n = contacts.size
+    for name, value in {**arrays, "materials": materials}.items():
+        if value.shape != (n,):
+            raise ValueError(f"{name} must have one entry per contact ({n}), got shape "
+                             f"{value.shape}")
+    for contact in np.unique(contacts):  # the one contact check of the probe model
+        check_contact("contacts", float(contact), scene.probe.length)
+    return n
+
+
 def signal_terms(
     scene: Scene, contacts, materials, speeds, tilts, preloads=None, show_progress=None,
     x_modes=True,
@@ -473,7 +500,10 @@ def signal_terms(
     >>> x.frequencies().size > 0, timed
     (True, {})
     """
-    n = contacts.size
+    n = _check_signal_inputs(scene, contacts, materials, speeds, tilts, preloads)
+    if show_progress is not None:
+        show_progress = check_bool("show_progress", show_progress)
+    x_modes = check_bool("x_modes", x_modes)
     # Many small eigenproblems: BLAS threads only add overhead (and thrash on a busy machine).
     with threadpool_limits(limits=1):
         if scene.has("object_modes"):

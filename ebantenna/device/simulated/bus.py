@@ -118,8 +118,8 @@ class SimulatedBus:
         if injector.chip_reset(now) and self.reset_address in self.devices:
             self.devices[self.reset_address].brown_out()
         if self.reset_address in self.devices:
-            injector.chip_events(now, self.devices[self.reset_address])
-        if injector.pca_brown_out(now) and DEFAULT_ADDRESS in self.devices:
+            injector._chip_events(now, self.devices[self.reset_address])
+        if injector._pca_brown_out(now) and DEFAULT_ADDRESS in self.devices:
             self.devices[DEFAULT_ADDRESS].reset()
         stuck = injector.stuck(now)
         if stuck is not None:
@@ -147,11 +147,11 @@ class SimulatedBus:
             extra = chip.impossible_samples() + self.injector.overcount()
             count = min(((data[0] << 8) | data[1]) + ACCEL_SAMPLE_BYTES * extra, (1 << 16) - 1)
             data[0], data[1] = count >> 8, count & 0xFF
-        elif counting and length >= 2 and self.injector.undercount(self.clock.monotonic()):
+        elif counting and length >= 2 and self.injector._undercount(self.clock.monotonic()):
             count = max(((data[0] << 8) | data[1]) - ACCEL_SAMPLE_BYTES, 0)
             data[0], data[1] = count >> 8, count & 0xFF
         if address == self.reset_address and register == Register.FIFO_R_W:
-            data = self.injector.bit_errors(data)
+            data = self.injector._bit_errors(data)
         return data
 
     def _releases(self, address: int, register: int, data: list[int]) -> bool:
@@ -177,9 +177,9 @@ class SimulatedBus:
             self.injector.log.append((self.clock.monotonic(), "release refused"))
             raise self._fail(self.injector.early_error("eio"))
         if address == self.reset_address and self.faults.flip_write:
-            data = [self.injector.flipped(register + k, v) for k, v in enumerate(data)]
+            data = [self.injector._flipped(register + k, v) for k, v in enumerate(data)]
         elif address == DEFAULT_ADDRESS and self.faults.pca_flip_write:
-            data = [self.injector.flipped(register + k, v, pca=True) for k, v in enumerate(data)]
+            data = [self.injector._flipped(register + k, v, pca=True) for k, v in enumerate(data)]
         chip.write(register, data)
         self.writes.append((address, register, tuple(data)))
         if kind == "late":

@@ -363,7 +363,7 @@ class FaultInjector:
         """How long a transfer failing with ``error`` hangs first, s (``ETIMEDOUT`` only)."""
         return self.faults.transfer_timeout if error.errno == errno.ETIMEDOUT else 0.0
 
-    def flipped(self, register: int, value: int, pca: bool = False) -> int:
+    def _flipped(self, register: int, value: int, pca: bool = False) -> int:
         """The value a write of ``value`` to ``register`` of the accelerometer (or, with
         ``pca``, of the PCA9685) delivers."""
         table = self.faults.pca_flip_write if pca else self.faults.flip_write
@@ -374,7 +374,7 @@ class FaultInjector:
                 return value ^ mask
         return value
 
-    def pca_brown_out(self, now: float) -> bool:
+    def _pca_brown_out(self, now: float) -> bool:
         """Whether the PCA9685 browns out before a transfer at ``now`` (once)."""
         at = self.faults.pca_brown_out_at
         if at is None or self._pca_reset_done or now < at:
@@ -383,14 +383,14 @@ class FaultInjector:
         self.log.append((now, "pca brown-out"))
         return True
 
-    def chip_events(self, now: float, mpu) -> None:
+    def _chip_events(self, now: float, mpu) -> None:
         """Apply the lost registers and foreign reads due by ``now`` to the accelerometer."""
         self._now = now
         faults = self.faults
         while self._lost_done < len(faults.register_lost) and (
                 faults.register_lost[self._lost_done][0] <= now):
             _, register, value = faults.register_lost[self._lost_done]
-            mpu.corrupt(register, value)
+            mpu._corrupt(register, value)
             self._lost_done += 1
             self.log.append((now, "register lost"))
         while self._reads_done < len(faults.foreign_reads) and (
@@ -404,7 +404,7 @@ class FaultInjector:
             self._reads_done += 1
             self.log.append((now, "foreign read"))
 
-    def undercount(self, now: float) -> bool:
+    def _undercount(self, now: float) -> bool:
         """Whether this FIFO count read reports one sample fewer (once per ``undercount_at``)."""
         due = self.faults.undercount_at
         if self._under_done < len(due) and due[self._under_done] <= now:
@@ -413,7 +413,7 @@ class FaultInjector:
             return True
         return False
 
-    def bit_errors(self, data: list[int]) -> list[int]:
+    def _bit_errors(self, data: list[int]) -> list[int]:
         """``data`` (bytes read from the FIFO) with bits flipped at ``bit_error_rate``."""
         rate = self.faults.bit_error_rate
         if not rate or not data:

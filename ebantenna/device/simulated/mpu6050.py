@@ -162,7 +162,7 @@ class SimulatedMPU6050:
         self._catch_up()
         self.reset()
 
-    def truth_scale(self, epoch: int) -> np.ndarray:
+    def _truth_scale(self, epoch: int) -> np.ndarray:
         """The sensitivity (LSB/g) each sample of epoch ``epoch`` was taken at."""
         blocks = self.epoch_scales[epoch]
         return np.concatenate(blocks) if blocks else np.empty(0, np.int32)
@@ -220,7 +220,7 @@ class SimulatedMPU6050:
                 counts[stuck] = self._stuck_value
         return counts
 
-    def corrupt(self, register: int, value: int) -> None:
+    def _corrupt(self, register: int, value: int) -> None:
         """A register takes ``value`` by itself (a fault): the samples due so far are produced
         with the old settings first."""
         self._catch_up()

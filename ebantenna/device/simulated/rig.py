@@ -179,7 +179,7 @@ class SimulatedRig:
                 wrong += 1
                 continue
             if k not in truths:
-                truths[k] = self.mpu.truth(k), self.mpu.truth_scale(k)
+                truths[k] = self.mpu.truth(k), self.mpu._truth_scale(k)
             truth, scale = truths[k]
             wrong += not (pos < len(truth) and list(truth[pos]) == list(counts)
                           and scale[pos] == mpu.config.lsb_per_g)

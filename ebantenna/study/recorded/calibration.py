@@ -167,7 +167,7 @@ class Calibration:
     def interval(self, name: str) -> tuple[float, float]:
         """The 95 % interval of ``"hinge_stiffness"``, ``"tip_mass"`` or ``"loss_factor"``
         (an end the recordings do not bound is 0 or inf)."""
-        if name not in self.intervals:
+        if not isinstance(name, str) or name not in self.intervals:
             raise ValueError(f"name must be one of {', '.join(PARAMETERS)}; got {name!r}")
         return self.intervals[name]
 

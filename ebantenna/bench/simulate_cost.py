@@ -8,7 +8,7 @@ less than wall time. The last lines build the whole paper data set (9875 signals
 directory with one and with two worker processes and report wall and CPU time and the peak memory
 (target: under 10 s and 1 GB on 2 cores).
 
-:func:`run` returns the rows, :func:`to_text` prints them. :func:`march_engines` times the strike
+:func:`run` returns the rows, :func:`to_text` prints them. ``march_engines`` times the strike
 march alone, the NumPy block engine and the compiled one (the ``fast`` extra) side by side on the
 same strikes of the paper scene and of its Hertz variant (``--march``).
 
@@ -34,8 +34,7 @@ from ebantenna.report import text_table
 from ebantenna.simulate import builtin_scene, linear_state, simulate_batch
 from ebantenna.simulate.effects import GY521_MASS, effect_names
 
-__all__ = ["scenarios", "time_scene", "run", "to_text", "strike_laws", "march_engines",
-           "march_text", "main"]
+__all__ = ["scenarios", "time_scene", "run", "to_text", "main"]
 
 
 #: Effects that only make sense on top of others: measured together with them (a contact that
@@ -255,7 +254,7 @@ def march_engines(n_paper: int = 50, n_hertz: int = 20, repeat: int = 3, seed: i
 
 
 def march_text(tables: dict) -> str:
-    """The table of :func:`march_engines` as text."""
+    """The table of ``march_engines`` as text."""
     lines = [
         f"the strike march alone, ms of CPU per one-second strike, best of {tables['repeat']}",
         text_table(

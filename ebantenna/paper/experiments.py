@@ -47,7 +47,6 @@ __all__ = [
     "regress_distance_linear_region",
     "regress_distance_full_length",
     "format_confusion",
-    "confusions_and_tested",
 ]
 
 logger = logging.getLogger(__name__)
@@ -91,6 +90,8 @@ class ClassificationResult:
     def correct(self, split: str = "test") -> np.ndarray:
         """Whether each recording of ``split`` was classified right (row order of
         ``tested[split][0]``)."""
+        if not isinstance(split, str):
+            raise TypeError(f"split must be the name of a split, got {type(split).__name__}")
         if not self.tested or split not in self.tested:
             raise ValueError(f"split {split!r} was not recorded row by row; recorded: "
                              f"{sorted(self.tested or ())}")

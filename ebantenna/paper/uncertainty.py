@@ -35,7 +35,7 @@ import numpy as np
 
 from scipy.stats import t as student_t
 
-from .._validate import check_in_range, check_int, describe
+from .._validate import check_array, check_bool, check_in_range, check_int, check_real, describe
 from ..ml.metrics import accuracy_interval
 
 __all__ = [
@@ -175,6 +175,9 @@ class SeedSpread:
         if self.tested is None:
             raise ValueError("the seeds' test rows were not recorded")
         n_rows = check_int("n_rows", n_rows, minimum=1)
+        top = max(int(rows.max(initial=-1)) for rows, _ in self.tested)
+        if top >= n_rows:
+            raise ValueError(f"n_rows must exceed every tested row ({top}), got {n_rows}")
         out = np.zeros(n_rows, dtype=bool)
         seen = np.zeros(n_rows, dtype=int)
         for rows, correct in self.tested:
@@ -189,6 +192,8 @@ class SeedSpread:
         """``other`` against this one (the reference) on the same rows, over all the folds,
         paired within each row's position (:attr:`positions`, which must be the same for
         both): a :class:`PairedDifference`."""
+        if not isinstance(other, SeedSpread):
+            raise TypeError(f"other must be a SeedSpread, got {type(other).__name__}")
         if self.positions is None or other.positions is None:
             raise ValueError("both spreads need the positions of their rows")
         if not np.array_equal(self.positions, other.positions):
@@ -203,7 +208,11 @@ class SeedSpread:
         from ``clusters`` (one label per row of the data set; default :attr:`positions`)."""
         if self.tested is None:
             raise ValueError("the seeds' test rows were not recorded")
-        g = np.asarray(self.positions if clusters is None else clusters)
+        g = _labels("clusters", self.positions if clusters is None else clusters)
+        top = max(int(rows.max(initial=-1)) for rows, _ in self.tested)
+        if g.size <= top:
+            raise ValueError(f"clusters must hold one label per row of the data set (more than "
+                             f"{top}), got {g.size}")
         return FoldAccuracy([(c, g[r]) for r, c in self.tested], unit, by_fold=by_fold)
 
     def to_dict(self) -> dict:
@@ -310,6 +319,46 @@ def _wilson(p: float, n: float, z: float = Z95) -> tuple[float, float]:
     return max(0.0, low), min(1.0, high)
 
 
+#: The most resamples a bootstrap draws: each is a row of ``G`` cluster indices held in memory.
+MAX_RESAMPLES = 10**6
+
+
+def _check_unit(unit) -> str:
+    """``unit`` if it is a non-empty string: what one cluster is, named in the method."""
+    if not isinstance(unit, str) or not unit:
+        raise TypeError(f"unit must be a non-empty string, got {describe(unit)}")
+    return unit
+
+
+def _check_name(name) -> str:
+    """``name`` if it is a non-empty string: the key of an entry of ``summary.json``."""
+    if not isinstance(name, str) or not name:
+        raise TypeError(f"name must be a non-empty string, got {describe(name)}")
+    return name
+
+
+def _labels(name: str, labels) -> np.ndarray:
+    """``labels`` as a 1-D array of cluster labels; a NaN label (a missing value) is refused."""
+    g = np.asarray(labels)
+    if g.ndim != 1:
+        raise ValueError(f"{name} must be a 1-D array of labels, got shape {g.shape}")
+    if g.dtype.kind in "fc" and np.any(np.isnan(g)):
+        raise ValueError(f"{name} must not hold NaN (a missing label)")
+    return g
+
+
+def _correct(name: str, correct) -> np.ndarray:
+    """``correct`` as a non-empty 1-D bool array: booleans, or 0 and 1."""
+    c = np.asarray(correct)
+    if c.ndim != 1 or c.size == 0:
+        raise ValueError(f"{name} must be a non-empty 1-D array, got shape {c.shape}")
+    if c.dtype != bool:
+        if c.dtype.kind not in "iuf" or not np.all((c == 0) | (c == 1)):
+            raise ValueError(f"{name} must hold booleans (or 0 and 1)")
+        c = c.astype(bool)
+    return c
+
+
 def cluster_labels(*keys) -> np.ndarray:
     """One integer per recording naming its cluster: the distinct combinations of ``keys``.
 
@@ -330,7 +379,10 @@ def cluster_labels(*keys) -> np.ndarray:
     """
     if not keys:
         raise ValueError("cluster_labels needs at least one key")
-    columns = [np.unique(np.asarray(k), return_inverse=True)[1].ravel() for k in keys]
+    keys = [_labels("keys", k) for k in keys]
+    if keys[0].size == 0:
+        raise ValueError("keys must hold at least one recording")
+    columns = [np.unique(k, return_inverse=True)[1].ravel() for k in keys]
     sizes = {c.size for c in columns}
     if len(sizes) != 1:
         raise ValueError(f"keys must have one value per recording each, got sizes {sorted(sizes)}")
@@ -359,16 +411,11 @@ def cluster_counts(correct, clusters) -> tuple[np.ndarray, np.ndarray]:
     >>> k.tolist(), n.tolist()
     ([1, 1, 1], [2, 1, 1])
     """
-    c = np.asarray(correct)
-    if c.ndim != 1 or c.size == 0:
-        raise ValueError(f"correct must be a non-empty 1-D array, got shape {c.shape}")
-    if c.dtype != bool:
-        if not np.all((c == 0) | (c == 1)):
-            raise ValueError("correct must hold booleans (or 0 and 1)")
-        c = c.astype(bool)
+    c = _correct("correct", correct)
     g = np.asarray(clusters)
     if g.shape != c.shape:
         raise ValueError(f"clusters must have one label per recording ({c.size}), got {g.shape}")
+    _labels("clusters", g)
     _, inverse = np.unique(g, return_inverse=True)
     inverse = inverse.ravel()
     n = np.bincount(inverse)
@@ -386,6 +433,8 @@ def _counts(k, n) -> tuple[np.ndarray, np.ndarray]:
     for name, v in (("k", k), ("n", n)):
         if v.dtype.kind not in "iu" and not (v.dtype.kind == "f" and np.all(v == np.round(v))):
             raise ValueError(f"{name} must hold whole counts")
+        if np.any(v > 2**53):  # whole in int64 and in float64 below it
+            raise ValueError(f"{name} must hold counts at most 2**53, got {float(v.max()):g}")
     k, n = k.astype(np.int64), n.astype(np.int64)
     if np.any(n < 1) or np.any(k < 0) or np.any(k > n):
         raise ValueError("need 0 <= k_j <= n_j and n_j >= 1 in every cluster")
@@ -463,9 +512,7 @@ class ClusteredAccuracy:
 
     def __init__(self, k, n, unit: str):
         k, n = _counts(k, n)
-        if not isinstance(unit, str) or not unit:
-            raise TypeError(f"unit must be a non-empty string, got {describe(unit)}")
-        self.unit = unit
+        self.unit = _check_unit(unit)
         self.n_recordings = int(n.sum())
         self.n_units = int(n.size)
         self.correct = int(k.sum())
@@ -484,6 +531,7 @@ class ClusteredAccuracy:
     def entries(self, name: str) -> dict:
         """``summary.json``'s keys for this accuracy under ``name`` (see
         :func:`clustered_entries`)."""
+        name = _check_name(name)
         return {
             name: self.estimate,
             f"{name}_n_test": self.n_recordings,
@@ -519,6 +567,12 @@ def clustered_entries(name: str, measured) -> dict:
     True
     """
     keys = ("", "_n_test", "_unit", "_n_units", "_ci95", "_method", "_recording_ci95")
+    name = _check_name(name)
+    kinds = (ClusteredAccuracy, FoldAccuracy)
+    if not (measured is None or isinstance(measured, kinds) or (
+            isinstance(measured, dict) and all(isinstance(v, kinds) for v in measured.values()))):
+        raise TypeError("measured must be a ClusteredAccuracy, a FoldAccuracy, a dict of them "
+                        f"or None, got {type(measured).__name__}")
     if measured is None:
         return {f"{name}{s}": None for s in keys}
     if isinstance(measured, dict):
@@ -536,7 +590,10 @@ def training_entries(name: str, accuracy: float, n: int) -> dict:
     >>> training_entries("train_accuracy", 0.9, 100)
     {'train_accuracy': 0.9, 'train_accuracy_n_train': 100}
     """
-    return {name: float(accuracy), f"{name}_n_train": check_int("n", n, minimum=1)}
+    name = _check_name(name)
+    accuracy = check_in_range("accuracy", accuracy, 0.0, 1.0, low_inclusive=True,
+                              high_inclusive=True)
+    return {name: accuracy, f"{name}_n_train": check_int("n", n, minimum=1)}
 
 
 # --------------------------------------------------------------------------- folds
@@ -572,11 +629,24 @@ class FoldAccuracy:
     """
 
     def __init__(self, folds, unit: str, *, by_fold: bool = False):
-        folds = [(np.asarray(c).astype(bool), np.asarray(g)) for c, g in folds]
+        if isinstance(folds, str | np.ndarray) or not hasattr(folds, "__iter__"):
+            raise TypeError(f"folds must be a sequence of (correct, clusters) pairs, got "
+                            f"{type(folds).__name__}")
+        folds = list(folds)
+        for i, pair in enumerate(folds):
+            if isinstance(pair, str) or not hasattr(pair, "__len__") or len(pair) != 2:
+                raise TypeError(f"folds[{i}] must be a pair (correct, clusters), got "
+                                f"{type(pair).__name__}")
+        folds = [(_correct(f"folds[{i}]'s correct", c), _labels(f"folds[{i}]'s clusters", g))
+                 for i, (c, g) in enumerate(folds)]
         if len(folds) < 2:
             raise ValueError(f"need at least two folds, got {len(folds)}")
-        self.unit = unit
-        self.by_fold = bool(by_fold)
+        for i, (c, g) in enumerate(folds):
+            if c.shape != g.shape:
+                raise ValueError(f"folds[{i}]: clusters must have one label per recording "
+                                 f"({c.size}), got shape {g.shape}")
+        self.unit = _check_unit(unit)
+        self.by_fold = check_bool("by_fold", by_fold)
         self.values = np.array([c.mean() for c, _ in folds])
         self.n_test = np.array([c.size for c, _ in folds])
         self.n_recordings = int(self.n_test.sum())
@@ -601,6 +671,7 @@ class FoldAccuracy:
 
     def entries(self, name: str) -> dict:
         """As :meth:`ClusteredAccuracy.entries`, with ``name_folds`` and ``name_fold_std``."""
+        name = _check_name(name)
         return {
             name: self.estimate,
             f"{name}_n_test": self.n_recordings,
@@ -631,6 +702,7 @@ def cluster_bootstrap(k, n, *, resamples: int = 2000, seed: int = 0, level: floa
     k, n : array-like of int
         Right answers and recordings per cluster.
     resamples : int
+        10 to ``10**6`` (each resample is a row of ``G`` indices held in memory).
     seed : int
         Seed of :func:`numpy.random.default_rng`; the indices are
         ``rng.integers(0, G, size=(resamples, G))``.
@@ -648,7 +720,7 @@ def cluster_bootstrap(k, n, *, resamples: int = 2000, seed: int = 0, level: floa
     (0.333, 0.9)
     """
     k, n = _counts(k, n)
-    resamples = check_int("resamples", resamples, minimum=10)
+    resamples = check_int("resamples", resamples, minimum=10, maximum=MAX_RESAMPLES)
     check_in_range("level", level, 0.0, 1.0)
     rng = np.random.default_rng(check_int("seed", seed, minimum=0))
     pick = rng.integers(0, k.size, size=(resamples, k.size))
@@ -694,7 +766,7 @@ class PairedDifference:
         k_b, _ = _counts(k_b, n)
         if k_a.size < 2:
             raise ValueError("a paired difference needs at least two clusters")
-        self.unit = unit
+        self.unit = _check_unit(unit)
         self.n_recordings = int(n.sum())
         self.n_units = int(n.size)
         self.accuracy_a = float(k_a.sum() / self.n_recordings)
@@ -791,7 +863,8 @@ def minimal_detectable_difference(k_a, k_b, n, *, power: float = 0.8, resamples:
     power : float
         In (0, 1).
     resamples, seed : int
-        Of the resampling (:func:`numpy.random.default_rng`).
+        Of the resampling (:func:`numpy.random.default_rng`); ``resamples`` from 10 to
+        ``10**6``.
 
     Returns
     -------
@@ -810,7 +883,7 @@ def minimal_detectable_difference(k_a, k_b, n, *, power: float = 0.8, resamples:
     k_a, n = _counts(k_a, n)
     k_b, _ = _counts(k_b, n)
     check_in_range("power", power, 0.0, 1.0)
-    resamples = check_int("resamples", resamples, minimum=10)
+    resamples = check_int("resamples", resamples, minimum=10, maximum=MAX_RESAMPLES)
     rng = np.random.default_rng(check_int("seed", seed, minimum=0))
     d = (k_b - k_a).astype(float)
     resid = d - d.sum() / n.sum() * n
@@ -838,7 +911,8 @@ def percent(x: float, digits: int = 1) -> str:
     >>> percent(0.8155), percent(0.81549), percent(0.0)
     ('81.6 %', '81.5 %', '0.0 %')
     """
-    return f"{_round_half_up(100 * float(x), digits):.{digits}f} %"
+    x, digits = check_real("x", x), _check_digits(digits)
+    return f"{_round_half_up(100 * x, digits):.{digits}f} %"
 
 
 def points(x: float, digits: int = 1) -> str:
@@ -849,8 +923,15 @@ def points(x: float, digits: int = 1) -> str:
     >>> points(-0.104), points(0.05)
     ('-10.4 points', '+5.0 points')
     """
-    v = _round_half_up(100 * float(x), digits)
+    x, digits = check_real("x", x), _check_digits(digits)
+    v = _round_half_up(100 * x, digits)
     return f"{v:+.{digits}f} points"
+
+
+def _check_digits(digits) -> int:
+    """``digits`` if it is a whole number of decimals, 0 to 10 (the value is rounded from its
+    twelve significant digits, so a percentage carries at most ten decimals)."""
+    return check_int("digits", digits, minimum=0, maximum=10)
 
 
 def _round_half_up(v: float, digits: int) -> float:
@@ -862,8 +943,20 @@ def _round_half_up(v: float, digits: int) -> float:
 
 
 def span(ci, digits: int = 1) -> str:
-    """An interval's ends in percent without the unit: ``'76.0-90.5'``."""
-    lo, hi = (f"{_round_half_up(100 * float(v), digits):.{digits}f}" for v in ci)
+    """An interval's ends in percent without the unit: ``'76.0-90.5'``.
+
+    Examples
+    --------
+    >>> span((0.7605, 0.905))
+    '76.1-90.5'
+    """
+    if isinstance(ci, str) or not hasattr(ci, "__len__") or len(ci) != 2:
+        raise TypeError(f"ci must be a pair (low, high), got {describe(ci)}")
+    low, high = check_real("ci", ci[0]), check_real("ci", ci[1])
+    if low > high:
+        raise ValueError(f"ci must be (low, high) with low <= high, got {describe(ci)}")
+    digits = _check_digits(digits)
+    lo, hi = (f"{_round_half_up(100 * v, digits):.{digits}f}" for v in (low, high))
     return f"{lo}-{hi}"
 
 
@@ -875,6 +968,8 @@ def format_clustered(a) -> str:
     >>> format_clustered(ClusteredAccuracy([5, 0, 5, 3], [5, 5, 5, 5], "position"))
     '65.0 % (n = 20 in 4 positions, 95 % CI 27.5-90.1)'
     """
+    if not isinstance(a, ClusteredAccuracy | FoldAccuracy):
+        raise TypeError(f"a must be a ClusteredAccuracy or a FoldAccuracy, got {type(a).__name__}")
     unit = a.unit + ("s" if a.n_units != 1 and not a.unit.endswith("s") else "")
     return (f"{percent(a.estimate)} (n = {a.n_recordings} in {a.n_units} {unit}, "
             f"95 % CI {span(a.ci95)})")
@@ -889,6 +984,8 @@ def format_difference(p: PairedDifference) -> str:
     >>> print(format_difference(p))
     -41.7 points (95 % CI -68.2 to -15.1, 4 positions; detectable at 80 % power: 39.0 points)
     """
+    if not isinstance(p, PairedDifference):
+        raise TypeError(f"p must be a PairedDifference, got {type(p).__name__}")
     lo, hi = (f"{_round_half_up(100 * v, 1):.1f}" for v in p.ci95)
     detect = f"{_round_half_up(100 * p.detectable, 1):.1f}"
     return (f"{points(p.difference)} (95 % CI {lo} to {hi}, {p.n_units} {p.unit}s; "
@@ -910,10 +1007,11 @@ def cluster_mean_interval(values, clusters) -> dict:
     >>> round(r["estimate"], 3), r["n_units"], [round(x, 2) for x in r["ci95"]]
     (2.0, 3, [-0.24, 4.24])
     """
-    v = np.asarray(values, dtype=float)
-    g = np.asarray(clusters)
-    if v.ndim != 1 or v.shape != g.shape or v.size == 0:
-        raise ValueError("values and clusters must be non-empty 1-D arrays of one shape")
+    v = check_array("values", values, ndim=1)
+    g = _labels("clusters", clusters)
+    if v.shape != g.shape:
+        raise ValueError("values and clusters must be non-empty 1-D arrays of one shape, got "
+                         f"{v.shape} and {g.shape}")
     _, inverse = np.unique(g, return_inverse=True)
     inverse = inverse.ravel()
     means = np.bincount(inverse, weights=v) / np.bincount(inverse)

@@ -37,7 +37,7 @@ from ..paper.uncertainty import (
 from .learning import stop_sentence
 from .seed_spread import SUBSET_REPETITIONS
 
-__all__ = ["TRAINGD_DEFAULTS", "RUNS", "LONG_RUN", "AnnSetupResult", "long_run", "compute",
+__all__ = ["TRAINGD_DEFAULTS", "RUNS", "LONG_RUN", "AnnSetupResult", "compute",
            "render"]
 
 #: MATLAB ``traingd``'s defaults: epochs, learning rate, validation checks (``max_fail``).

@@ -23,8 +23,7 @@ from ..paper.uncertainty import (
 )
 from ._common import probe_length
 
-__all__ = ["MaterialSplitsResult", "TRAINERS", "STEP_SIZES", "CLASSIFIERS", "compute", "render",
-           "measured_over_folds", "paired_over_folds"]
+__all__ = ["MaterialSplitsResult", "TRAINERS", "STEP_SIZES", "CLASSIFIERS", "compute", "render"]
 
 #: The trainers compared: the paper's gradient descent, scaled conjugate gradient and Adam.
 TRAINERS = ("gd", "scg", "adam")

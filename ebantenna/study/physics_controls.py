@@ -36,7 +36,7 @@ from ..simulate import build_dataset, dataset_plan, simulate_batch
 
 __all__ = [
     "ControlsResult", "ENERGY_ABSORPTION", "PAIR_REFERENCES", "control_design", "compute",
-    "render", "mode_curve_spread", "verdict_from",
+    "render",
 ]  # fmt: skip
 
 #: The effects through which the touched material absorbs the probe's vibration energy (the
@@ -673,7 +673,7 @@ def mode_curve_spread(ds, seed: int, n_jobs: int):
 
 def _verdict(r: ControlsResult) -> str:
     """Which effect carries the material, and what the rod's damping does, in words generated
-    from the paired differences (:func:`verdict_from`)."""
+    from the paired differences (``verdict_from``)."""
     return verdict_from(
         {k.split(":", 1)[1]: v for k, v in (r.paired or {}).items() if k.startswith("ablation:")},
         r.ablation.spreads["none"].folds(), r.chance, r.ablation.spreads, r.loss_factors)

@@ -266,10 +266,10 @@ def split_folds(kind: str, labels, positions, *, folds: int = FOLDS, seed: int =
         ``seed`` with ``every=folds``, the others follow in order of their offset.
     ``blocked``
         The sorted distinct positions cut into ``folds`` contiguous blocks as equal as can be
-        (:func:`numpy.array_split`), from the hinge outwards.
+        (``numpy.array_split``), from the hinge outwards.
     ``random``
         A stratified ``folds``-fold partition of the recordings, shuffled by ``seed``
-        (:class:`sklearn.model_selection.StratifiedKFold`).
+        (scikit-learn's ``StratifiedKFold``).
 
     Parameters
     ----------

@@ -190,7 +190,7 @@ class SeedSpread:
 
     def paired_with(self, other: SeedSpread, unit: str = "position", **kwargs):
         """``other`` against this one (the reference) on the same rows, over all the folds,
-        paired within each row's position (:attr:`positions`, which must be the same for
+        paired within each row's position (``positions``, which must be the same for
         both): a :class:`PairedDifference`."""
         if not isinstance(other, SeedSpread):
             raise TypeError(f"other must be a SeedSpread, got {type(other).__name__}")
@@ -205,7 +205,7 @@ class SeedSpread:
     def folds(self, clusters=None, unit: str = "position", *,
               by_fold: bool = False) -> FoldAccuracy:
         """The seeds as the folds of one split (:class:`FoldAccuracy`), each row's cluster
-        from ``clusters`` (one label per row of the data set; default :attr:`positions`)."""
+        from ``clusters`` (one label per row of the data set; default ``positions``)."""
         if self.tested is None:
             raise ValueError("the seeds' test rows were not recorded")
         g = _labels("clusters", self.positions if clusters is None else clusters)
@@ -743,7 +743,7 @@ class PairedDifference:
     few clusters, such as five blocks, widen it as they should). The difference is *resolved*
     when that interval leaves out zero.
 
-    :attr:`detectable` is the minimal detectable difference at 80 % power of this design
+    ``detectable`` is the minimal detectable difference at 80 % power of this design
     (:func:`minimal_detectable_difference`).
 
     Parameters

@@ -156,7 +156,7 @@ QUICK_LONG_EPOCHS = 300
 
 def compute(ds, feats, seed: int, quick: bool = False) -> AnnSetupResult:
     """Each run of :data:`RUNS` and the long run on the subset, seed ``seed`` for the split and
-    the weights (the long run capped at :data:`QUICK_LONG_EPOCHS` when ``quick``)."""
+    the weights (the long run capped at ``QUICK_LONG_EPOCHS`` when ``quick``)."""
     rows = np.flatnonzero(np.asarray(ds.repetition) < SUBSET_REPETITIONS)
     X, y, d = feats.fft[rows], ds.material[rows], np.asarray(ds.contact)[rows]
     runs = {}

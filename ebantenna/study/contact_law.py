@@ -40,10 +40,10 @@ class ContactLawResult:
         Name of the design rebuilt.
     recordings : int
         Recordings per data set.
-    svm, mode_curves : dict of str to SeedSpread
+    svm, mode_curves : dict of str to ebantenna.paper.uncertainty.SeedSpread
         Grouped-split accuracy of the paper's SVM and of the mode-curve classifier over all
         folds, by law (:data:`LAWS`), with each row's result.
-    paired : dict of str to PairedDifference
+    paired : dict of str to ebantenna.paper.uncertainty.PairedDifference
         ``"svm"`` and ``"mode_curves"``: the Hertz law against the linearised one on the same
         rows and folds, paired within the position.
     restrikes : dict of str to float

@@ -129,7 +129,7 @@ def _distance_entry(r) -> dict:
 SVM_KEYS = {"random": "svm_random_test_accuracy", "grouped": "svm_grouped_test_accuracy",
             "blocked": "svm_blocked_test_accuracy"}
 
-#: The classifiers of this section, by the key of :attr:`MaterialSplitsResult.measured`.
+#: The classifiers of this section, by the key of ``MaterialSplitsResult.measured``.
 CLASSIFIERS = ("svm", "position_aware", "mode_curves")
 
 

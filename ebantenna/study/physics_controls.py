@@ -117,7 +117,7 @@ class ControlsResult:
         (the two rods); None without ``object_modes``.
     spreads : dict or None
         ``"mid_height"`` and ``"friction"``: the SVM over the split seeds.
-    paired : dict of str to PairedDifference
+    paired : dict of str to ebantenna.paper.uncertainty.PairedDifference
         Every comparison, on the same folds and rows, paired within the position: ``"ablation:"``
         + each row of the ablation against all effects on; ``"mid_height"`` against the free
         end; ``"friction"`` with it against without; ``"contact_law"`` and
@@ -685,7 +685,7 @@ def verdict_from(paired: dict, base, chance: float, spreads: dict | None = None,
 
     Parameters
     ----------
-    paired : dict of str to PairedDifference
+    paired : dict of str to ebantenna.paper.uncertainty.PairedDifference
         Each ablation row against all effects on.
     base : ClusteredAccuracy or FoldAccuracy
         All effects on.

@@ -271,7 +271,8 @@ def march_text(tables: dict) -> str:
     if tables["reason"]:
         lines.append(tables["reason"])
     else:
-        lines.append(f"compiled engine loaded and its first strike marched in {tables['load_seconds']:.1f} s (not timed)")
+        lines.append("compiled engine loaded and its first strike marched in "
+                     f"{tables['load_seconds']:.1f} s (not timed)")
     return "\n".join(lines)
 
 

@@ -62,6 +62,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
+from .._validate import check_int
 from ..chips.mpu6050 import (
     ACCEL_SAMPLE_BYTES,
     FifoEnable,
@@ -69,7 +70,6 @@ from ..chips.mpu6050 import (
     Register,
     UserControl,
 )
-from .._validate import check_int
 from ..recording import Recording
 from .i2c import SMBUS_BLOCK_MAX, I2CError, SettingError
 from .timing import CLOCK_TOLERANCE, PeriodEstimator

@@ -203,7 +203,8 @@ def remove_leftover_temporaries(folder: Path) -> None:
 
 
 def _check_session_folder(directory: Path) -> None:
-    """Refuse a folder that is neither new, empty, nor a session's (see :meth:`~RecordingSession.open`)."""
+    """Refuse a folder that is neither new, empty, nor a session's (see
+    :meth:`~RecordingSession.open`)."""
     if not directory.exists():
         return
     if not directory.is_dir():

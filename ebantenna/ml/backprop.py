@@ -31,8 +31,9 @@ Training is :func:`train_epochs`: mini-batches, each one gradient evaluation and
 an optimiser of :mod:`ebantenna.ml.optimizers`, which ``engine="reference"`` of the estimators
 runs. By default the estimators of :mod:`ebantenna.ml.mlp` train with an **engine** that does the
 same arithmetic in arrays allocated once per batch size (private modules); the tests hold it
-equal to these functions bit for bit. The functions here take checked values (float arrays of matching shapes,
-known activation names): the estimators validate their input once, at their public methods.
+equal to these functions bit for bit. The functions here take checked values (float arrays of
+matching shapes, known activation names): the estimators validate their input once, at their
+public methods.
 
 Examples
 --------

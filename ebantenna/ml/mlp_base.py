@@ -29,13 +29,19 @@ from sklearn.utils._param_validation import Interval, Options, StrOptions
 from sklearn.utils.validation import check_is_fitted
 
 from .._budget import check_allocation
-from .._validate import (check_bool, check_choice, check_in_range, check_positive,
-                         check_python_number, check_real, describe)
+from .._validate import (
+    check_bool,
+    check_choice,
+    check_in_range,
+    check_positive,
+    check_python_number,
+    check_real,
+    describe,
+)
 from ._backprop_engine import Workspace, loss_and_gradients_into
 from ._mlp_compiled import compiled_kernels
 from ._mlp_optimizers import InPlaceAdam, InPlaceMomentum
-from .backprop import (ACTIVATIONS, glorot_uniform, loss_and_gradients, pack, train_epochs,
-                       unpack)
+from .backprop import ACTIVATIONS, glorot_uniform, loss_and_gradients, pack, train_epochs, unpack
 from .fitted import INPUT_ATTRIBUTES, FittedAttribute
 from .optimizers import Adam, Momentum, scg_init, scg_step
 

@@ -21,7 +21,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-
 __all__ = ["Momentum", "Adam", "SCGState", "scg_step", "scg_init"]
 
 

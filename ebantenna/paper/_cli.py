@@ -36,11 +36,9 @@ def run_dataset(args) -> int:
     import numpy as np
 
     from .._validate import output_dir
-    from ..cli import interrupted, print_json
+    from ..cli import check_jobs, interrupted, print_json
     from ..study.recorded._cli import run_from_recordings
     from .data import build_paper_dataset
-
-    from ..cli import check_jobs
 
     check_jobs(args.jobs, args.force_jobs)
     output_dir("--out", args.out)  # refused before any work is done

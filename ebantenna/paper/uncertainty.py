@@ -32,7 +32,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-
 from scipy.stats import t as student_t
 
 from .._validate import check_array, check_bool, check_in_range, check_int, check_real, describe

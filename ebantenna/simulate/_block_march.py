@@ -40,9 +40,8 @@ from the start, so that the law raises or warns as it says.
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass
-
 import math
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg as spl
@@ -413,7 +412,8 @@ def _check_compiled(loops) -> None:
     numpy = _one_strike(lambda *args: march_in_blocks(*args, engine="numpy"))
     compiled = _one_strike(march_compiled)
     if len(numpy) != len(compiled) or any(
-        abs(a.time - b.time) > 1e-9 or a.kind != b.kind for a, b in zip(numpy, compiled)
+        abs(a.time - b.time) > 1e-9 or a.kind != b.kind
+        for a, b in zip(numpy, compiled, strict=True)
     ):
         raise ArithmeticError(f"the compiled march found {compiled}, the NumPy one {numpy}")
 
@@ -471,7 +471,7 @@ def march_compiled(system, x, key, n_steps: int):
 
     law.events.extend(
         ContactEvent(float(t), "contact" if kind else "separation", float(v))
-        for t, kind, v in zip(ev_t[: ctl[1]], ev_kind[: ctl[1]], ev_v[: ctl[1]])
+        for t, kind, v in zip(ev_t[: ctl[1]], ev_kind[: ctl[1]], ev_v[: ctl[1]], strict=True)
     )
     law.stopped = bool(ctl[3])
     if hertz:

@@ -317,9 +317,9 @@ def march_strike(x, st, n_steps, h, sub, block, span, stop_time, stopped, base,
 
     The states are stacked along the first axis of the tables (0: free; 1: closed, or the
     first chord, then the next chords); ``fine[st, j] = e^(lambda h (j + 1))``, ``every[st] =
-    e^(lambda sub h)``, each as its real and imaginary parts. Returns ``(x, st, control)`` with ``control = (status, events, chord
-    changes, stopped)``; status 1: gave up (``max_events`` reached or too many changes of
-    chord), the records partial.
+    e^(lambda sub h)``, each as its real and imaginary parts. Returns ``(x, st, control)`` with
+    ``control = (status, events, chord changes, stopped)``; status 1: gave up (``max_events``
+    reached or too many changes of chord), the records partial.
     """
     K = lam.shape[1]
     T = (V, Vinv, lam, G, H, rows, row_modes, row_s, row_speed, penA, K)

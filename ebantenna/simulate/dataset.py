@@ -44,8 +44,8 @@ from .._progress import progress
 from .._validate import (
     check_int,
     check_nonnegative,
-    check_per_row,
     check_path,
+    check_per_row,
     check_positive,
     load_json,
     open_npz,

@@ -41,8 +41,13 @@ from ..fem.coupling import craig_bampton, probe_substructure, rod_substructure
 from ..fem.guards import check_contact
 from ..probe import Probe
 from ..probe import material as lookup_material
-from .modes import (ArrestModes, arrest_modes, coupled_arrest_modes, damped_exponentials,
-                    modal_exponentials)
+from .modes import (
+    ArrestModes,
+    arrest_modes,
+    coupled_arrest_modes,
+    damped_exponentials,
+    modal_exponentials,
+)
 from .scene import Scene
 from .stick_slip import friction_axis, friction_model
 from .strikes import strike_model, unilateral_axis

@@ -35,12 +35,10 @@ def register(subparsers) -> None:
 def run_reproduce(args) -> int:
     """Run ``ebantenna reproduce``."""
     from .._validate import output_dir
-    from ..cli import interrupted, print_json
+    from ..cli import check_jobs, interrupted, print_json
     from ..paper import printed
     from .recorded._cli import run_data
     from .reproduce import reproduce
-
-    from ..cli import check_jobs
 
     check_jobs(args.jobs, args.force_jobs)
     output_dir("--out", args.out)  # refused before any work is done

@@ -8,8 +8,8 @@ any work.
 
 import pytest
 
-from ebantenna.cli import main
 from ebantenna import _engines as _engine_choice
+from ebantenna.cli import main
 from ebantenna.ml import _engine_check
 
 UNAVAILABLE = _engine_choice.EngineStatus(False, "numba is not installed: (test)", float("nan"))

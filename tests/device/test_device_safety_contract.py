@@ -19,8 +19,7 @@ from ebantenna.cli import Terminated, main
 from ebantenna.device._cli import CUT_SUPPLY
 from ebantenna.device.recording_session import CUT_SUPPLY as SESSION_CUT_SUPPLY
 from ebantenna.device.recording_session import RecordingSession, read_manifest
-from ebantenna.device.simulated import Faults
-from ebantenna.device.simulated import touches
+from ebantenna.device.simulated import Faults, touches
 from ebantenna.recording import Recording
 
 ACQUIRE = ["acquire", "--simulated", "--seed", "1", "--duration", "0.3"]

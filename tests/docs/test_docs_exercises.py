@@ -388,7 +388,7 @@ def _alt_ex02(ns):
     printed, derived = ns["printed"], ns["derived"]
     rng = np.random.default_rng(0)  # the entries compared in numbers at random lengths
     values = {s: v for s, v in zip(sorted(printed.free_symbols | derived.free_symbols, key=str),
-                                   rng.uniform(0.5, 2.0, 10))}
+                                   rng.uniform(0.5, 2.0, 10), strict=False)}
     diff = np.array((printed - derived).subs(values), dtype=float)
     return {"n_typos_K1": (int(np.sum(np.abs(diff) > 1e-9)), 3),  # wrong: mirror pairs once
             "K33": (12 * EI / a**3 + 12 * EI / b**3, 12 * EI / a**3),  # wrong: one element only

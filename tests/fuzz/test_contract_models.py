@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 from sklearn.exceptions import ConvergenceWarning
 
-from ebantenna.ml import MLPClassifier, MLPRegressor, SVC, load_model, persistence, save_model
+from ebantenna.ml import SVC, MLPClassifier, MLPRegressor, load_model, persistence, save_model
 
 X = np.random.default_rng(0).normal(size=(30, 4))
 Y3 = np.arange(30) % 3

@@ -31,7 +31,7 @@ from pathlib import Path
 import pytest
 
 sys.path.insert(0, os.path.dirname(__file__))
-from contract_files_cases import CLASSES, Case, CliError, outcome, run_cli  # noqa: E402
+from contract_files_cases import CLASSES, Case, outcome, run_cli  # noqa: E402
 
 from ebantenna.device import plan as _plan_module  # noqa: E402
 from ebantenna.device.plan import Plan, load_plan  # noqa: E402
@@ -328,8 +328,9 @@ def _manifest_rows() -> list[Row]:
             rows.append(Row(surface, f"manifest-{id_}", "error", names,
                             lambda ctx, e=edit, r=read, o=only: r(_edit_manifest(
                                 ctx.manifest_only() if o else ctx.session(), e))))
+        only_manifest = surface.endswith("read_manifest")
         for id_, make in MANIFEST_FILES.items():
-            def run(ctx, make=make, read=read, only=surface.endswith("read_manifest")):
+            def run(ctx, make=make, read=read, only=only_manifest):
                 folder = ctx.manifest_only() if only else ctx.session()
                 make(folder / MANIFEST)
                 return read(folder)

@@ -14,7 +14,8 @@ import math
 
 import numpy as np
 import pytest
-from scipy.stats import norm, t as student_t
+from scipy.stats import norm
+from scipy.stats import t as student_t
 
 from ebantenna.ml.metrics import accuracy, accuracy_interval
 from ebantenna.paper.controls import twin_seeds

@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 from sklearn.exceptions import ConvergenceWarning
 
+from ebantenna._engines import EngineStatus
 from ebantenna.ml import MLPClassifier, MLPRegressor, _mlp_compiled, _mlp_numba
 from ebantenna.ml._backprop_engine import Workspace, output_loss_into
-from ebantenna._engines import EngineStatus
 from ebantenna.ml._mlp_optimizers import InPlaceAdam, InPlaceMomentum
 from ebantenna.ml.optimizers import Adam, Momentum
 

@@ -8,7 +8,6 @@ from ebantenna.simulate.simulator import CHAIN, ChainStep
 from ebantenna.simulate.touched_object import OBJECT_MODELS
 
 
-
 def _chain_effects():
     seen = []
     for step in CHAIN:

@@ -142,7 +142,7 @@ def chattering_strikes():
 
 def _event_shift(a, b):
     """The largest shift of an event between two marches with the same events."""
-    return max(abs(e.time - f.time) for e, f in zip(a.events, b.events))
+    return max(abs(e.time - f.time) for e, f in zip(a.events, b.events, strict=True))
 
 
 @needs_numba

@@ -228,7 +228,7 @@ def test_scene_modes_are_the_simulators_own(unilateral):
 
     preload = np.full(2, scene.effect("object_modes").preload)
     modes, inverse, timed = object_modes(scene, contacts, materials, preload, False)
-    for i, key in enumerate(zip(contacts.tolist(), materials.tolist())):
+    for i, key in enumerate(zip(contacts.tolist(), materials.tolist(), strict=True)):
         frequency, loss, _ = ours[key]
         if unilateral:
             s = timed["unilateral"][inverse[i]].structure

@@ -74,7 +74,7 @@ import numpy as np
 
 from ..._validate import check_in_range, check_int, check_nonnegative, check_real
 from ...chips.mpu6050 import ACCEL_SAMPLE_BYTES, WHO_AM_I_VALUE, Register
-from .mpu6050 import REGISTER_SPACE, MAX_CLOCK_DRIFT
+from .mpu6050 import MAX_CLOCK_DRIFT, REGISTER_SPACE
 
 __all__ = ["Faults", "FaultInjector", "TRANSFER_FAULTS", "SILENT_FAULTS", "MAX_CLOCK_DRIFT",
            "MAX_OVERCOUNT", "MAX_FAULT_DRIFT"]

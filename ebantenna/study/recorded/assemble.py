@@ -29,10 +29,9 @@ from __future__ import annotations
 
 import datetime
 import json
-from pathlib import Path
-
 import math
 from numbers import Integral, Real
+from pathlib import Path
 
 import numpy as np
 

@@ -91,7 +91,7 @@ from scipy.stats import t as student_t
 
 from ..._validate import check_in_range, check_int, check_real, describe
 from ...paper.protocol import DECAY_REGION
-from ...probe import MAX_LOSS_FACTOR, MAX_TIP_MASS_RATIO
+from ...probe import MAX_TIP_MASS_RATIO
 
 __all__ = ["Calibration", "calibrate", "loss_factor_of", "IdentifiabilityWarning", "MIN_CYCLES",
            "MIN_SHARE", "TIME_BASE", "plot_calibration"]

@@ -166,30 +166,15 @@ class PeriodEstimator:
         self.excluded.add(segment)
         low, high = self.nominal / (1.0 + self.tolerance), self.nominal / (1.0 - self.tolerance)
         for k, observations in enumerate(self.segments):
-            if k in self.excluded:
-                continue
-            for i, (n2, b2, a2) in enumerate(observations):
-                for n1, b1, a1 in observations[:i]:
-                    if n2 < n1:
-                        continue
-                    low = max(low, (b2 - a1) / (n2 - n1 + 1))
-                    if n2 - n1 > 1:
-                        high = min(high, (a2 - b1) / (n2 - n1 - 1))
+            if k not in self.excluded:
+                low, high = _narrowed(observations, low, high)
         self.low, self.high = low, high
 
     def _own_bracket(self, segment: int) -> tuple[float, float]:
         """The period bracket from ``segment``'s observations alone, no tolerance assumed (for a
         segment taken out of the bracket, :meth:`forget`); where they bound it from one side
         only, the tolerance's bound (widened to the other side's) stands in."""
-        low, high = 0.0, math.inf
-        observations = self.segments[segment]
-        for i, (n2, b2, a2) in enumerate(observations):
-            for n1, b1, a1 in observations[:i]:
-                if n2 < n1:
-                    continue
-                low = max(low, (b2 - a1) / (n2 - n1 + 1))
-                if n2 - n1 > 1:
-                    high = min(high, (a2 - b1) / (n2 - n1 - 1))
+        low, high = _narrowed(self.segments[segment], 0.0, math.inf)
         prior_low = self.nominal / (1.0 + self.tolerance)
         prior_high = self.nominal / (1.0 - self.tolerance)
         if not math.isfinite(high):
@@ -236,3 +221,16 @@ class PeriodEstimator:
     def uncertainty(self) -> float:
         """Half the width of the bracket, s."""
         return 0.5 * (self.high - self.low)
+
+
+def _narrowed(observations, low: float, high: float) -> tuple[float, float]:
+    """The period bracket ``(low, high)`` narrowed by every ordered pair of one segment's
+    observations, as :meth:`PeriodEstimator.forget` and ``_own_bracket`` both narrow it."""
+    for i, (n2, b2, a2) in enumerate(observations):
+        for n1, b1, a1 in observations[:i]:
+            if n2 < n1:
+                continue
+            low = max(low, (b2 - a1) / (n2 - n1 + 1))
+            if n2 - n1 > 1:
+                high = min(high, (a2 - b1) / (n2 - n1 - 1))
+    return low, high

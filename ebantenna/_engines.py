@@ -13,6 +13,7 @@ instance a numba release that does not support the installed NumPy).
 
 from __future__ import annotations
 
+import contextlib
 import importlib
 import importlib.util
 import logging
@@ -102,11 +103,12 @@ def load_compiled(what: str, fallback: str, module: str, check) -> EngineStatus:
         return EngineStatus(False, reason, np.nan)
     try:
         # relative to this package, or absolute (another subpackage's loops)
-        loops = importlib.import_module(module if module.startswith("ebantenna.")
-                                        else f"ebantenna.ml.{module}")
-        if loops.IMPORT_ERROR:
-            raise ImportError(loops.IMPORT_ERROR)
-        check(loops)
+        with interrupts_pass_through():  # an interrupt while numba loads is no failure of it
+            loops = importlib.import_module(module if module.startswith("ebantenna.")
+                                            else f"ebantenna.ml.{module}")
+            if loops.IMPORT_ERROR:
+                raise ImportError(loops.IMPORT_ERROR)
+            check(loops)
     except Exception as exc:  # numba is installed but cannot build the loops here
         reason = (f"numba is installed but the {what} failed with NumPy {np.__version__} "
                   f"({type(exc).__name__}: {exc}): {fallback}")
@@ -135,3 +137,23 @@ def use_compiled(engine: str | None, status, what: str) -> bool:
     if engine == "compiled":
         raise RuntimeError(f"the {what} was asked for but {loaded.reason}")
     return False
+
+
+@contextlib.contextmanager
+def interrupts_pass_through():
+    """Let an interrupt raised while a compiled function runs reach the caller as itself.
+
+    A signal handler's exception (``KeyboardInterrupt``, or the CLI's ``SignalReceived``) raised
+    while numba's own C code runs, loading a compiled function from its cache for instance,
+    reaches Python as a :class:`SystemError` caused by it; the interrupt is re-raised instead, so
+    that the caller's clean-up for an interrupt runs whatever was running when it came.
+    """
+    try:
+        yield
+    except SystemError as exc:
+        cause = exc.__cause__ or exc.__context__
+        while cause is not None:
+            if not isinstance(cause, Exception):  # a BaseException: an interrupt
+                raise cause from None
+            cause = cause.__cause__ or cause.__context__
+        raise

@@ -432,6 +432,7 @@ def march_compiled(system, x, key, n_steps: int):
     gave up (``max_events`` reached, or too many changes of chord): then the law's events and
     state are as they were (the samples it recorded are partial), and the NumPy engine marches
     it from the start, recording every sample again."""
+    from .._engines import interrupts_pass_through
     from . import _march_numba
 
     law = system
@@ -452,19 +453,20 @@ def march_compiled(system, x, key, n_steps: int):
     index = next(k for k, st in enumerate(states) if st is key)
     n_events = max(law.max_events, 1)
     ev_t, ev_kind, ev_v = np.zeros(n_events), np.zeros(n_events, np.int64), np.zeros(n_events)
-    x_end, st, ctl = _march_numba.march_strike(
-        np.array(x, float), index, n_steps, h, sub, block, block * LONG_BLOCKS,
-        float(law.stop_time), bool(law.stopped), np.asarray(law.base, float),
-        np.stack([st.V for st in states]), np.stack([st.Vinv for st in states]), lam,
-        np.stack([st.G for st in states]), np.stack([st.H for st in states]),
-        np.stack([st.rows for st in states]), np.stack([st.row_modes for st in states]),
-        np.stack([st.row_s for st in states]), np.stack([st.row_speed for st in states]),
-        np.stack([law.pen @ st.A for st in states]), np.ascontiguousarray(fine.real),
-        np.ascontiguousarray(fine.imag), every.real.copy(), every.imag.copy(),
-        np.abs(fine[:, 0]), np.array([bool(np.any(st.lam.real > 0)) for st in states]),
-        hertz, lower, upper, shift, float(law.xtol), int(law.max_events),
-        int(getattr(law, "MAX_CHORD_CHANGES", 0)), law.acc, law.force, ev_t, ev_kind, ev_v,
-    )  # fmt: skip
+    with interrupts_pass_through():
+        x_end, st, ctl = _march_numba.march_strike(
+            np.array(x, float), index, n_steps, h, sub, block, block * LONG_BLOCKS,
+            float(law.stop_time), bool(law.stopped), np.asarray(law.base, float),
+            np.stack([st.V for st in states]), np.stack([st.Vinv for st in states]), lam,
+            np.stack([st.G for st in states]), np.stack([st.H for st in states]),
+            np.stack([st.rows for st in states]), np.stack([st.row_modes for st in states]),
+            np.stack([st.row_s for st in states]), np.stack([st.row_speed for st in states]),
+            np.stack([law.pen @ st.A for st in states]), np.ascontiguousarray(fine.real),
+            np.ascontiguousarray(fine.imag), every.real.copy(), every.imag.copy(),
+            np.abs(fine[:, 0]), np.array([bool(np.any(st.lam.real > 0)) for st in states]),
+            hertz, lower, upper, shift, float(law.xtol), int(law.max_events),
+            int(getattr(law, "MAX_CHORD_CHANGES", 0)), law.acc, law.force, ev_t, ev_kind, ev_v,
+        )  # fmt: skip
     if ctl[0]:
         return None
     from .unilateral import ContactEvent

@@ -241,3 +241,20 @@ def test_what_the_compiled_march_takes(paper_strikes):
     assert _block_march.compiled_fits(law)
     law.trajectory = np.zeros((law.acc.size, 2 * law.base.size + 2))
     assert not _block_march.compiled_fits(law)  # the states recorded: the NumPy engine
+
+
+@pytest.mark.parametrize("interrupt", [KeyboardInterrupt(), SystemExit(143)])
+def test_an_interrupt_inside_compiled_code_reaches_the_caller_as_itself(interrupt):
+    """numba turns a signal handler's exception raised inside its C code into a SystemError
+    caused by it; the engines re-raise the interrupt, so that the caller's clean-up runs."""
+    def compiled_call():
+        try:
+            raise interrupt
+        except BaseException as exc:
+            raise SystemError("<function _numba_unpickle> returned a result with an "
+                              "exception set") from exc
+
+    with pytest.raises(type(interrupt)), _engine_choice.interrupts_pass_through():
+        compiled_call()
+    with pytest.raises(SystemError), _engine_choice.interrupts_pass_through():
+        raise SystemError("a SystemError of its own")

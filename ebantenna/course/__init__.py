@@ -145,11 +145,17 @@ def _digest(salt: str, sign: str, cell_index: int) -> str:
     return hashlib.pbkdf2_hmac("sha256", text, salt.encode(), ROUNDS).hex()[:32]
 
 
-def _real(name: str, value):
-    """``value``, once it is a real number (a bool or a string is not)."""
+def _finite(name: str, value) -> float:
+    """``value`` as a float, once it is a finite real number (a bool or a string is not)."""
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise TypeError(f"{name} must be a real number, got {value!r:.40} "
                         f"({type(value).__name__})")
+    try:
+        value = float(value)
+    except OverflowError:
+        value = math.inf
+    if not math.isfinite(value):
+        raise ValueError(f"{name} must be finite, got {value!r}")
     return value
 
 
@@ -176,13 +182,7 @@ def seal(value: float, tolerance: Tolerance, salt: str) -> dict:
         raise TypeError(f"tolerance must be a Tolerance, got {type(tolerance).__name__}")
     if not isinstance(salt, str) or not salt:
         raise ValueError(f"salt must be a non-empty str, got {salt!r}")
-    value = _real("value", value)
-    try:
-        value = float(value)
-    except OverflowError:
-        value = math.inf
-    if not math.isfinite(value):
-        raise ValueError(f"value must be finite, got {value!r}")
+    value = _finite("value", value)
     scale, cell = _scale(tolerance)
     if scale == "log" and value == 0:
         raise ValueError("value must not be zero for a relative or factor tolerance")
@@ -208,13 +208,7 @@ def unseal(sealed: dict, tolerance: Tolerance, near: float) -> float | None:
                          f"got {sealed!r:.80}")
     if not isinstance(tolerance, Tolerance):
         raise TypeError(f"tolerance must be a Tolerance, got {type(tolerance).__name__}")
-    near = _real("near", near)
-    try:
-        near = float(near)
-    except OverflowError:
-        near = math.inf
-    if not math.isfinite(near):
-        raise ValueError(f"near must be finite, got {near!r}")
+    near = _finite("near", near)
     scale, cell = _scale(tolerance)
     if scale == "log" and near == 0:
         return None  # no relative tolerance or factor accepts a zero

@@ -364,6 +364,26 @@ class I2CDevice:
             "write", register, lambda: self.bus.write_byte_data(self.address, register, value),
             retryable=TRANSIENT_ERRNOS if retry else frozenset())
 
+    def write_read_back(self, register: int, value: int, mask: int, describe) -> int | None:
+        """Write a setting and read it back, bits ``mask``; once more if it reads back wrong.
+
+        Returns None when the setting landed, else the value the second read-back saw (the
+        caller raises its :class:`SettingError`, naming the chip). ``describe()`` names the
+        register in the warning logged after a wrong read-back (called only then, once the
+        register is known to be a byte).
+        """
+        mask = _check_byte("mask", mask)
+        if not callable(describe):
+            raise TypeError(f"describe must be callable, got {type(describe).__name__}")
+        for attempt in range(2):
+            self.write_byte(register, value)
+            seen = self.read_byte(register)
+            if seen & mask == value & mask:
+                return None
+            logger.warning("%s reads back 0x%02X after 0x%02X was written%s", describe(), seen,
+                           value, "; writing it again" if attempt == 0 else "")
+        return seen
+
     def write_block(self, register: int, data) -> None:
         """Write up to 32 bytes to consecutive registers in one transfer (one I2C STOP)."""
         register = _check_byte("register", register)

@@ -311,14 +311,10 @@ class MPU6050:
             two devices answering at one address).
         """
         mask = USER_CTRL_STABLE if register == Register.USER_CTRL else 0xFF
-        for attempt in range(2):
-            self.device.write_byte(register, value)
-            seen = self.device.read_byte(register)
-            if seen & mask == value & mask:
-                return
-            logger.warning("%s of the %s reads back 0x%02X after 0x%02X was written%s",
-                           register_name(register), self.part, seen, value,
-                           "; writing it again" if attempt == 0 else "")
+        seen = self.device.write_read_back(
+            register, value, mask, lambda: f"{register_name(register)} of the {self.part}")
+        if seen is None:
+            return
         raise SettingError(
             errno.EIO, f"{register_name(register)} of the {self.part} at 0x"
             f"{self.config.address:02X} reads back 0x{seen:02X} after 0x{value:02X} was written "

@@ -210,14 +210,10 @@ class PCA9685:
         """Write a setting and read it back (``MODE1``'s self-clearing ``RESTART`` bit aside);
         written once more if it reads back wrong, then :class:`SettingError`."""
         mask = _MODE1_STABLE if register == Register.MODE1 else 0xFF
-        for attempt in range(2):
-            self.device.write_byte(register, value)
-            seen = self.device.read_byte(register)
-            if seen & mask == value & mask:
-                return
-            logger.warning("PCA9685 %s reads back 0x%02X after 0x%02X was written%s",
-                           Register(register).name, seen, value,
-                           "; writing it again" if attempt == 0 else "")
+        seen = self.device.write_read_back(register, value, mask,
+                                           lambda: f"PCA9685 {Register(register).name}")
+        if seen is None:
+            return
         raise SettingError(errno.EIO, f"PCA9685 {Register(register).name} (0x{register:02X}) "
                            f"reads back 0x{seen:02X} after 0x{value:02X} was written twice")
 

@@ -74,6 +74,23 @@ def test_pca9685_write_verified_refuses_a_bad_byte(pca, row, register, value, er
         pca.write_verified(PcaRegister.MODE2 if register is None else register, value)
 
 
+@pytest.mark.parametrize(("row", "register", "value", "error", "name"),
+                         [*BAD_BYTES, ("mask-256", None, 0, ValueError, "mask")],
+                         ids=[*(b[0] for b in BAD_BYTES), "mask-256"])
+def test_a_device_write_read_back_refuses_a_bad_byte(mpu, row, register, value, error, name):
+    mask = 256 if row == "mask-256" else 0xFF
+    with pytest.raises(error, match=name):
+        mpu.device.write_read_back(Register.CONFIG if register is None else register, value,
+                                   mask, lambda: "CONFIG")
+
+
+def test_a_device_write_read_back_says_none_when_it_landed(rig, mpu):
+    before = rig.mpu.regs[Register.CONFIG]
+    assert mpu.device.write_read_back(Register.CONFIG, 5, 0xFF, lambda: "CONFIG") is None
+    assert rig.mpu.regs[Register.CONFIG] == 5  # the simulated chip's own register file
+    mpu.device.write_read_back(Register.CONFIG, before, 0xFF, lambda: "CONFIG")
+
+
 def test_a_verified_write_lands_in_the_chips_own_register(rig, mpu, pca):
     """The witness is the simulated chip's register file, not the driver's read."""
     before = rig.mpu.regs[Register.CONFIG]
@@ -238,6 +255,7 @@ def contract_rows() -> dict[str, list[str]]:
     return {
         "MPU6050.write_verified": bytes_rows,
         "PCA9685.write_verified": bytes_rows,
+        "I2CDevice.write_read_back": [b[0] for b in BAD_BYTES] + ["mask-256", "landed"],
         "MPU6050.expected_registers": ["streaming-not-bool", "what-the-chip-holds"],
         "ebantenna.device.fifo.sensor_check": ["counts-list", "counts-float", "counts-two-axes",
                                                "lsb-text", "lsb-zero", "noise-by-hand"],

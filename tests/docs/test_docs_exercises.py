@@ -449,17 +449,16 @@ def _alt_ex05(ns):
 def _alt_ex06(ns):
     from sklearn.svm import SVC as LibSVC
 
-    from ebantenna.ml.smo import reference_smo
-
     X, y = ns["X"], ns["y"]
     svc = LibSVC(C=1.0, kernel="linear", tol=1e-10).fit(X, y)
-    # the kernel matrix summed another way: the same steps
-    steps = reference_smo(np.einsum("ik,jk->ij", X, X), y, np.full(y.size, 1.0), tol=1e-8).n_iter
+    alpha_abs = np.abs(svc.dual_coef_[0])
     return {"w1": (svc.coef_[0, 0], (ns["alpha"] @ X)[0]),  # wrong: without the labels
             "w2": (svc.coef_[0, 1], (ns["alpha"] @ X)[1]),
             "b": (svc.intercept_[0], -svc.intercept_[0]),  # wrong: +rho, the other sign
             "n_support": (len(svc.support_), y.size),  # wrong: every point
-            "n_updates": (steps, 2 * steps)}  # wrong: the multipliers changed, two a step
+            # libsvm's multipliers; wrong: the quadratic term without its half
+            "dual_objective": (alpha_abs.sum() - 0.5 * svc.coef_[0] @ svc.coef_[0],
+                               alpha_abs.sum() - svc.coef_[0] @ svc.coef_[0])}
 
 
 def _alt_ex07(ns):
@@ -672,6 +671,49 @@ def test_variant_key_and_sheet_follow_the_students_data(tmp_path):
     svc = LibSVC(C=1.0, kernel="linear", tol=1e-10).fit(namespace["X"], namespace["y"])
     assert check("ex06", student="s1", key=key, w1=svc.coef_[0, 0], w2=svc.coef_[0, 1],
                  b=svc.intercept_[0], n_support=len(svc.support_)).ok
+
+
+#: a program that prints the worked solutions' answers for some students, run in a child
+#: process so that OpenBLAS reads the kernel named in its environment
+_ANSWERS_ELSEWHERE = """
+import json, sys
+sys.path.insert(0, sys.argv[1])
+import make_variant_key
+exercises, students = json.loads(sys.argv[2])
+print(json.dumps({ex: {s: make_variant_key.answers_for(ex, s) for s in students}
+                  for ex in exercises}))
+"""
+
+
+def test_a_variant_key_accepts_the_same_solution_computed_under_another_blas_kernel(tmp_path):
+    # A key made on the teacher's machine grades students on theirs. Every graded answer must
+    # then be within its tolerance whatever the BLAS kernel, and every worked solution must pass
+    # its own checks there (an iteration count or an optimiser's success flag need not).
+    import os
+    import subprocess
+    import sys
+
+    import make_variant_key
+
+    from ebantenna.course import VARIANTS
+
+    exercises, students = sorted(VARIANTS), [f"k{i}" for i in range(12)]
+    here = os.environ.get("OPENBLAS_CORETYPE", "")
+    other = "Haswell" if here.lower() == "prescott" else "Prescott"
+    child = subprocess.run(
+        [sys.executable, "-c", _ANSWERS_ELSEWHERE, str(DOCS / "_tools"),
+         json.dumps([exercises, students])],
+        env={**os.environ, "OPENBLAS_CORETYPE": other}, capture_output=True, text=True,
+        timeout=300, check=False)
+    assert child.returncode == 0, child.stderr[-2000:]
+    elsewhere = json.loads(child.stdout.strip().splitlines()[-1])
+    for exercise in exercises:
+        answers = {s: make_variant_key.answers_for(exercise, s) for s in students}
+        key = tmp_path / f"{exercise}_key.json"
+        key.write_text(json.dumps(make_variant_key.variant_key(exercise, answers)))
+        for student in students:
+            report = check(exercise, student=student, key=key, **elsewhere[exercise][student])
+            assert report.ok, f"{exercise}, {student}, OPENBLAS_CORETYPE={other}:\n{report}"
 
 
 def test_variant_tool_refuses_bad_lists():

@@ -31,6 +31,7 @@ import dataclasses
 import hashlib
 import json
 import logging
+import math
 from dataclasses import dataclass, fields
 from pathlib import Path
 
@@ -552,6 +553,20 @@ def _check_rows(path, arrays: dict) -> None:
         raise ValueError(f"{path}: repetition must hold whole numbers >= 0")
 
 
+def _check_probe_length(path, config: dict) -> None:
+    """Raise, naming the file, unless the data set names its probe's length (the studies place
+    the distance networks' region and the positions by it)."""
+    try:
+        length = config["scene"]["probe"]["length"]
+    except (KeyError, TypeError):
+        raise ValueError(f"{path}: its metadata does not give the probe's length "
+                         "(config.scene.probe.length)") from None
+    if isinstance(length, bool) or not isinstance(length, int | float) or not (
+            math.isfinite(length) and length > 0):
+        raise ValueError(f"{path}: the probe's length (config.scene.probe.length) must be a "
+                         f"positive number of metres, got {length!r:.40}")
+
+
 def load_dataset(path) -> Dataset:
     """Load a data set written by :func:`build_dataset`, verifying its checksum.
 
@@ -563,8 +578,8 @@ def load_dataset(path) -> Dataset:
         If ``path`` is not a ``str`` or ``os.PathLike`` (bytes are refused).
     ValueError
         Naming the file, if it is not a regular file, truncated, damaged, declares arrays over
-        the memory budget, is not such a data set, of another format, or its arrays do not match
-        the checksum.
+        the memory budget, is not such a data set, of another format, its arrays do not match
+        the checksum or one another, or its sample rate or probe length is not positive.
     """
     path = Path(check_path("path", path))
     what = "an ebantenna data set"
@@ -587,6 +602,9 @@ def load_dataset(path) -> Dataset:
         raise ValueError(f"{path}: data set format {fmt!r}, this version reads {FORMAT!r}")
     if _checksum(arrays, fs) != metadata.get("checksum_sha256"):
         raise ValueError(f"{path}: checksum mismatch, the file is corrupt or was modified")
+    if not (math.isfinite(fs) and fs > 0):
+        raise ValueError(f"{path}: fs must be a positive sample rate, Hz, got {fs!r}")
+    _check_probe_length(path, config)
     _check_rows(path, arrays)
     for a in arrays.values():
         a.setflags(write=False)

@@ -2,8 +2,9 @@
 
 The checksum catches a file changed by accident; someone who knows the format can recompute it.
 Rows of different lengths (``material`` shorter than ``ax``), a 1-D signal array, NaN signals, a
-negative contact distance or a fractional repetition must end in one error naming the file,
-not an ``IndexError`` in the study that reads it.
+negative contact distance, a fractional repetition, a sample rate or a probe length that is not
+positive (or absent) must end in one error naming the file, not an ``IndexError`` or a
+``KeyError`` in the study that reads it.
 """
 
 from __future__ import annotations
@@ -29,10 +30,13 @@ def _arrays():
             "tilt_ratio": np.full(N, np.nan), "seed_row": np.full(N, -1, dtype=np.int64)}
 
 
-def _write(path, **changes):
+PROBE = {"probe": {"length": 0.4}}
+
+
+def _write(path, fs=1000.0, scene=PROBE, **changes):
     arrays = {**_arrays(), **changes}
-    fs = 1000.0
-    meta = {"config": {"format": FORMAT}, "checksum_sha256": _checksum(arrays, fs)}
+    config = {"format": FORMAT} if scene is None else {"format": FORMAT, "scene": scene}
+    meta = {"config": config, "checksum_sha256": _checksum(arrays, fs)}
     np.savez(path, fs=np.float64(fs), metadata=np.array(json.dumps(meta)), **arrays)
     return path
 
@@ -46,6 +50,11 @@ ROWS = {
     "contact-negative": ({"contact": np.full(N, -0.1)}, "contact"),
     "repetition-fraction": ({"repetition": np.full(N, 1.5)}, "repetition"),
     "material-numbers": ({"material": np.arange(N)}, "material"),
+    "fs-zero": ({"fs": 0.0}, "fs"),
+    "fs-nan": ({"fs": float("nan")}, "fs"),
+    "no-scene": ({"scene": None}, "probe's length"),
+    "probe-length-negative": ({"scene": {"probe": {"length": -0.4}}}, "probe's length"),
+    "probe-length-text": ({"scene": {"probe": {"length": "0.4"}}}, "probe's length"),
 }
 
 

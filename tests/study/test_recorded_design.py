@@ -10,14 +10,19 @@ from ebantenna.device.plan import Plan
 from ebantenna.device.recording_session import RecordingSession
 from ebantenna.device.simulated.touches import simulated_connect
 from ebantenna.simulate import builtin_scene, simulate
-from ebantenna.study.recorded import SECTION_MINIMUM, assemble_dataset, reproduce_recorded
+from ebantenna.study.recorded import (
+    MIN_SAMPLES,
+    SECTION_MINIMUM,
+    assemble_dataset,
+    reproduce_recorded,
+)
 from ebantenna.study.recorded.study import check_design, design_message
 
 
-def design(materials, positions, repetitions, in_region=None):
+def design(materials, positions, repetitions, in_region=None, samples=MIN_SAMPLES):
     return {"materials": materials, "positions": positions, "repetitions": repetitions,
             "in_region": materials * positions * repetitions if in_region is None else in_region,
-            "spacing": 0.05}
+            "spacing": 0.05, "samples": samples}
 
 
 def test_a_section_the_data_do_not_allow_is_listed_and_the_others_go_on(tmp_path, monkeypatch):
@@ -69,9 +74,9 @@ def test_each_minimum_is_a_boundary():
                     in_region=need.get("in_region", 0))
         if "after" not in need:
             assert section in check_design(at)[0], section
-        for key in ("materials", "positions", "repetitions", "in_region"):
-            if key in need:
-                below = {**at, key: need[key] - 1}
+        for key in ("materials", "positions", "repetitions", "in_region", "samples"):
+            if key in need or key == "samples":  # every section needs the features' records
+                below = {**at, key: need.get(key, MIN_SAMPLES) - 1}
                 assert section in check_design(below)[1], (section, key)
 
 
@@ -86,3 +91,42 @@ def test_a_data_set_too_small_for_every_section_is_refused_before_any_work(tmp_p
     assert "frequency: needs at least 2 positions (has 1)" in str(error.value)
     assert "decay: needs at least 1 in region (has 0)" in str(error.value)
     assert not heard and not (tmp_path / "report").exists()  # no work started
+
+
+def test_records_too_short_for_the_features_are_refused_by_the_option_that_named_them(
+        tmp_path, capsys):
+    # a data set file written by other means (here by hand, in the format load_dataset reads),
+    # with a design every section accepts but records of 100 samples: shorter than one spectrum
+    import json
+
+    import numpy as np
+
+    from ebantenna.cli import main
+    from ebantenna.simulate.dataset import FORMAT, _checksum
+
+    materials, positions, repetitions = ("brass", "pvc"), np.linspace(0.05, 0.25, 5), 2
+    rows = [(m, c, r) for m in materials for c in positions for r in range(repetitions)]
+    n, fs = len(rows), 1000.0
+    rng = np.random.default_rng(0)
+    arrays = {"ax": rng.normal(size=(n, 100)).astype(np.float32),
+              "az": rng.normal(size=(n, 100)).astype(np.float32),
+              "material": np.array([m for m, _, _ in rows]),
+              "contact": np.array([c for _, c, _ in rows]),
+              "contact_true": np.array([c for _, c, _ in rows]),
+              "repetition": np.array([r for _, _, r in rows], dtype=np.int64),
+              "sweep_speed": np.full(n, np.nan), "tilt_ratio": np.full(n, np.nan),
+              "seed_row": np.full(n, -1, dtype=np.int64)}
+    meta = {"config": {"format": FORMAT, "scene": {"probe": {"length": 0.4}}},
+            "checksum_sha256": _checksum(arrays, fs)}
+    path = tmp_path / "short.npz"
+    np.savez(path, fs=np.float64(fs), metadata=np.array(json.dumps(meta)), **arrays)
+    out = tmp_path / "report"
+    with pytest.raises(SystemExit) as end:
+        main(["reproduce", "--data", str(path), "--out", str(out), "--jobs", "1"])
+    error = capsys.readouterr().err
+    assert end.value.code == 2 and "too small for any section" in error
+    assert f"records of {MIN_SAMPLES} samples at least (has 100)" in error
+    assert not out.exists()  # refused before any work
+    with pytest.raises(SystemExit) as end:
+        main(["reproduce", "--data", "", "--out", str(out)])
+    assert end.value.code == 2 and "--data must name a file" in capsys.readouterr().err

@@ -84,7 +84,7 @@ def simulated_directly(cache) -> dict:
     feats = signal_features(ds.ax, ds.az, ds.fs, n_jobs=1, show_progress=False)
     return {
         "svm": classification_interval(experiments.classify_materials_svm(feats.fft, ds.material,
-                                                                          seed=0)),
+                                                                          seed=0), ds.contact),
         "linear_region": placement_interval(experiments.regress_distance_linear_region(
             feats.fft, ds.contact, probe_length=0.40, seed=0), STEP),
         "full_length": placement_interval(experiments.regress_distance_full_length(

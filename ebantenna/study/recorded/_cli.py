@@ -108,13 +108,14 @@ def run_calibrate(args) -> int:
     import matplotlib
 
     matplotlib.use("Agg")
+    from ..._validate import check_path
     from ...cli import print_json
     from ...simulate import load_dataset
     from ...simulate.scene import resolve_scene
     from .calibration import PARAMETERS, IdentifiabilityWarning, calibrate, plot_calibration
 
     base = resolve_scene(args.scene)
-    data = load_dataset(args.data)
+    data = load_dataset(check_path("--data", args.data))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", IdentifiabilityWarning)  # said below, once each
         cal = calibrate(data, base)
@@ -407,11 +408,14 @@ def add_data(parser) -> None:
 
 def run_data(args) -> int:
     """``ebantenna reproduce --data FILE``."""
+    from ..._validate import check_path
     from ...cli import interrupted, print_json
+    from ...paper.uncertainty import percent, span
     from .study import reproduce_recorded
 
     if args.quick or args.cache:
         raise ValueError("--quick and --cache choose the simulated data set; not with --data")
+    check_path("--data", args.data)  # refused by its name before any work
     try:
         summary = reproduce_recorded(
             args.data, args.out, seed=args.seed, n_jobs=args.jobs,
@@ -426,8 +430,9 @@ def run_data(args) -> int:
     print(f"Study on {summary['data']['path']} ({summary['data']['source']}) written to "
           f"{args.out}/; report {summary['report']['html']}")
     for name in ("svm", "ann") if found else ():
-        lo, hi = found[name]["interval95"]
-        print(f"  {name.upper()} material accuracy: test {found[name]['test_accuracy']:.1%} "
-              f"(95 % {lo:.1%} - {hi:.1%}, {found[name]['n_test']} tests)")
+        f = found[name]
+        print(f"  {name.upper()} material accuracy: test {percent(f['test_accuracy'])} "
+              f"(95 % {span(f['interval95'])} on {f['n_units']} {f['unit']}s; "
+              f"{f['n_test']} recordings)")
     print(f"  not applicable: {', '.join(summary['not_applicable'])}")
     return 0

@@ -12,13 +12,15 @@ it ran on: its file, checksum and, for an assembled data set, the session it cam
 
 The design is checked before any work (``check_design``): each section run on recordings has
 a minimum (:data:`SECTION_MINIMUM`: materials, distinct contact positions, repetitions of each
-material at each position); a section whose minimum the data set does not meet is listed as not
-applicable with what is missing, and the others run. A data set too small for every section is
-refused, with one message that says what each needs.
+material at each position; and records long enough for the features,
+:data:`~ebantenna.study.recorded.assemble.MIN_SAMPLES`); a section whose minimum the data set
+does not meet is listed as not applicable with what is missing, and the others run. A data set
+too small for every section is refused, with one message that says what each needs.
 
-Every accuracy carries its 95 % Wilson interval (:func:`ebantenna.ml.metrics.accuracy_interval`),
-and each distance network the share of test contacts placed within half a contact step, with its
-interval (:func:`intervals`): the numbers to compare with the same design simulated.
+Every accuracy carries its 95 % interval on the contact position, the unit the repetitions
+cluster in, and each distance network the share of test contacts placed within half a contact
+step, with its interval on the position too (:func:`intervals`): the numbers to compare with the
+same design simulated.
 """
 
 from __future__ import annotations
@@ -31,10 +33,12 @@ from pathlib import Path
 
 import numpy as np
 
-from ...ml.metrics import accuracy_interval
+from ..._validate import check_positive
+from ...paper.uncertainty import UNITS, ClusteredAccuracy, percent, span
 from ...report import FigureSet, Report
 from ...simulate import load_dataset
 from .. import full_range, learning, material_splits, signals
+from .assemble import MIN_SAMPLES
 
 __all__ = ["NOT_APPLICABLE", "reproduce_recorded", "intervals", "classification_interval",
            "placement_interval", "RECORDED_STEPS", "SECTION_MINIMUM"]
@@ -85,7 +89,11 @@ SECTION_MINIMUM = {
 
 
 def intervals(learnt, contact_step: float) -> dict:
-    """The 95 % intervals of the paper's four learning results.
+    """The 95 % intervals of the paper's four learning results, on the contact position.
+
+    The repetitions at one position are near copies of each other, so the unit of every
+    interval is the position (:class:`~ebantenna.paper.uncertainty.ClusteredAccuracy`); the
+    interval counting every recording as independent is kept beside it, for comparison only.
 
     Parameters
     ----------
@@ -97,46 +105,63 @@ def intervals(learnt, contact_step: float) -> dict:
     Returns
     -------
     dict
-        Under ``svm`` and ``ann`` the test accuracy, its test size and interval; under
-        ``linear_region`` and ``full_length`` the mean absolute error (cm), the share placed, its
-        size and interval.
+        Under ``svm`` and ``ann`` the test accuracy (:func:`classification_interval`); under
+        ``linear_region`` and ``full_length`` the mean absolute error (cm) and the share placed
+        (:func:`placement_interval`).
     """
-    return {"svm": classification_interval(learnt.svm),
-            "ann": classification_interval(learnt.ann),
+    return {"svm": classification_interval(learnt.svm, learnt.positions),
+            "ann": classification_interval(learnt.ann, learnt.positions),
             "linear_region": placement_interval(learnt.linear_region, contact_step),
             "full_length": placement_interval(learnt.full_length, contact_step)}
 
 
-def classification_interval(result) -> dict:
-    """A classifier's test accuracy, test size and 95 % Wilson interval.
+def _on_the_position(share: str, measured: ClusteredAccuracy) -> dict:
+    return {share: measured.estimate, "n_test": measured.n_recordings, "unit": measured.unit,
+            "n_units": measured.n_units, "design_effect": measured.design_effect,
+            "interval95": list(measured.ci95), "method": measured.method,
+            "recording_interval95": list(measured.recording_ci95)}
+
+
+def classification_interval(result, positions) -> dict:
+    """A classifier's test accuracy with its 95 % interval on the contact position.
 
     Parameters
     ----------
     result : ebantenna.paper.experiments.ClassificationResult
+    positions : array-like
+        The nominal contact position of every row the classifier was given.
+
+    Returns
+    -------
+    dict
+        ``test_accuracy``, ``n_test`` (recordings), ``unit`` and ``n_units`` (positions),
+        ``design_effect``, ``interval95`` (on the position) with its ``method``, and
+        ``recording_interval95`` (Wilson's, every recording counted as independent: too narrow
+        when the repetitions at a position agree).
     """
-    m = result.confusions["test"]
-    correct, n = int(np.trace(m)), int(m.sum())
-    return {"test_accuracy": correct / n, "n_test": n,
-            "interval95": list(accuracy_interval(correct, n))}
+    return _on_the_position("test_accuracy", learning.held_out_accuracy(result, positions))
 
 
 def placement_interval(result, contact_step: float) -> dict:
     """A distance network's mean absolute error (cm) and the share of its test contacts placed
-    within half a contact step (``contact_step``, m), with the share's 95 % Wilson interval.
+    within half a contact step (``contact_step``, m), with the share's 95 % interval on the
+    contact position (the keys of :func:`classification_interval`, ``placed`` for the share).
 
     Parameters
     ----------
     result : ebantenna.paper.experiments.RegressionResult
     contact_step : float
     """
+    contact_step = check_positive("contact_step", contact_step)
     errors = result.errors_cm
-    placed = int(np.sum(errors <= 50.0 * contact_step))  # half a step, in cm
-    return {"mae_cm": float(errors.mean()), "placed": placed / errors.size,
-            "n_test": int(errors.size), "interval95": list(accuracy_interval(placed, errors.size))}
+    placed = ClusteredAccuracy.from_recordings(errors <= 50.0 * contact_step,  # half a step, cm
+                                               result.distance_test, UNITS["random"])
+    return {"mae_cm": float(errors.mean()), **_on_the_position("placed", placed)}
 
 
 def design_of(ds) -> dict:
-    """The design of a data set: its ``materials``, distinct contact ``positions``, the fewest
+    """The design of a data set: its ``materials``, distinct contact ``positions``, ``samples`` per
+    record, the fewest
     ``repetitions`` of a material at a position (0 if one is missing), the recordings within
     0.8 L of the hinge (``in_region``) and the contact ``spacing`` (m)."""
     from ...paper.protocol import DISTANCE_LINEAR_REGION
@@ -147,7 +172,7 @@ def design_of(ds) -> dict:
     counts = [int(np.sum((ds.material == m) & (ds.contact == c))) for m in materials
               for c in grid]
     region = DISTANCE_LINEAR_REGION.region * probe_length(ds)
-    return {"materials": len(materials), "positions": int(grid.size),
+    return {"materials": len(materials), "positions": int(grid.size), "samples": ds.n_samples,
             "repetitions": min(counts) if counts else 0,
             "in_region": int(np.sum(ds.contact <= region)),
             "spacing": float(np.diff(grid).min()) if grid.size > 1 else math.nan}
@@ -156,6 +181,10 @@ def design_of(ds) -> dict:
 def check_design(design: dict) -> tuple[list, dict]:
     """Which sections the design (:func:`design_of`) can run, and what the others miss.
 
+    Every section also needs records of
+    :data:`~ebantenna.study.recorded.assemble.MIN_SAMPLES` samples at least: the features are
+    spectra of ``2 * fft_bins`` samples.
+
     Returns
     -------
     runnable : list of str
@@ -163,6 +192,10 @@ def check_design(design: dict) -> tuple[list, dict]:
     missing : dict
         ``section -> reason``: what the design lacks for each other section.
     """
+    if design["samples"] < MIN_SAMPLES:  # every section starts from the features
+        return [], dict.fromkeys(SECTION_MINIMUM, (
+            f"needs records of {MIN_SAMPLES} samples at least (has {design['samples']}): the "
+            "features are spectra of that many samples"))
     runnable, missing = [], {}
     for section, need in SECTION_MINIMUM.items():
         short = [f"{need[k]} {k.replace('_', ' ')} (has {design[k]})"
@@ -344,15 +377,14 @@ def _closing(report: Report, found: dict, seconds: dict) -> None:
     """The intervals of the four learning results, and the run time."""
     if found:
         report.heading("The learning results with their 95 % intervals")
-    rows = [[name, f"{v['test_accuracy']:.3f}", str(v["n_test"]),
-             f"{v['interval95'][0]:.3f} - {v['interval95'][1]:.3f}"]
-            for name, v in found.items() if "test_accuracy" in v]
-    rows += [[f"{name} (placed within half a step; MAE {v['mae_cm']:.2f} cm)",
-              f"{v['placed']:.3f}", str(v["n_test"]),
-              f"{v['interval95'][0]:.3f} - {v['interval95'][1]:.3f}"]
-             for name, v in found.items() if "placed" in v]
+    rows = [[name if "test_accuracy" in v else
+             f"{name} (placed within half a step; MAE {v['mae_cm']:.2f} cm)",
+             percent(v.get("test_accuracy", v.get("placed"))),
+             f"{v['n_test']} ({v['n_units']})", span(v["interval95"]),
+             span(v["recording_interval95"])] for name, v in found.items()]
     if rows:
-        report.table(["result", "share", "test size", "95 % interval (Wilson)"], rows)
+        report.table(["result", "share", "test size (positions)", "95 % interval on the position",
+                      "if every recording were independent"], rows)
     report.heading("Run time")
     report.table(["step", "seconds"], [[k, f"{v:.1f}"] for k, v in seconds.items()]
                  + [["total", f"{sum(seconds.values()):.1f}"]])

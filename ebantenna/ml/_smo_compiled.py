@@ -27,7 +27,14 @@ import functools
 
 import numpy as np
 
-from .._engines import ENGINE_VARIABLE, ENGINES, EngineStatus, load_compiled, use_compiled
+from .._engines import (
+    ENGINE_VARIABLE,
+    ENGINES,
+    EngineStatus,
+    interrupts_pass_through,
+    load_compiled,
+    use_compiled,
+)
 from .smo_policy import SMOPolicy
 
 __all__ = ["ENGINES", "ENGINE_VARIABLE", "EngineStatus", "engine_status", "choose_engine",
@@ -127,7 +134,8 @@ def run_compiled(rows, y: np.ndarray, C: np.ndarray, diagonal: np.ndarray, polic
     same_diagonal = bool(np.all(diagonal == diagonal[0]))
     opts = (policy.selection == "second-order", policy.ties == "last",
             policy.curvature_floor == "nonpositive", same_diagonal)
-    n_iter, converged, violation = _smo_numba.smo_loop(
-        matrix, g, F, up, low, perm, float(tol), float(max_iter), opts, bool(policy.shrinking),
-        float(diagonal[0] + diagonal[0]))
+    with interrupts_pass_through():  # a Ctrl-C inside numba's code stays a KeyboardInterrupt
+        n_iter, converged, violation = _smo_numba.smo_loop(
+            matrix, g, F, up, low, perm, float(tol), float(max_iter), opts,
+            bool(policy.shrinking), float(diagonal[0] + diagonal[0]))
     return F[0], F[2], F[3], F[4], perm, int(n_iter), bool(converged), float(violation)

@@ -29,6 +29,7 @@ from sklearn.utils._param_validation import Interval, Options, StrOptions
 from sklearn.utils.validation import check_is_fitted
 
 from .._budget import check_allocation
+from .._engines import interrupts_pass_through
 from .._validate import (
     check_bool,
     check_choice,
@@ -319,6 +320,7 @@ class BaseMLP(BaseEstimator):
         return loss, pack(coef_grads, intercept_grads)
 
     # --------------------------------------------------------- training
+    @interrupts_pass_through()  # a Ctrl-C inside a compiled loop stays a KeyboardInterrupt
     def _fit(self, X, Y, y_for_split, incremental=False):
         """Train on checked ``X`` and encoded ``Y``; with ``incremental`` (``partial_fit``) one
         epoch, continuing the optimiser's state (velocities, moments, learning rate, samples

@@ -201,3 +201,38 @@ def test_the_engine_variable_and_argument(monkeypatch):
         choose_engine()
     with pytest.raises(ValueError, match="engine must be one of"):
         choose_engine("gpu")
+
+
+def _interrupted_inside_numba(*args, **kwargs):
+    """What numba makes of a Ctrl-C that arrives while its own C code runs: a SystemError caused
+    by the KeyboardInterrupt."""
+    try:
+        raise KeyboardInterrupt
+    except KeyboardInterrupt as exc:
+        raise SystemError("<function _numba_unpickle> returned a result with an exception "
+                          "set") from exc
+
+
+def test_a_ctrl_c_inside_the_compiled_loops_reaches_the_caller_as_itself(monkeypatch):
+    # the SMO loop: a stand-in module for the compiled one (numba need not be installed)
+    import types
+
+    from ebantenna.ml import MLPClassifier
+
+    fake = types.ModuleType("ebantenna.ml._smo_numba")
+    fake.smo_loop = _interrupted_inside_numba
+    monkeypatch.setitem(sys.modules, "ebantenna.ml._smo_numba", fake)
+    monkeypatch.setattr(ebantenna.ml, "_smo_numba", fake, raising=False)
+    X, y = _project_features()
+    X = X[:40]
+    rows = KernelRows(X, Kernel("linear"), np.float64, 1 << 20)
+    yy = np.where(y[:40] == y[0], 1.0, -1.0)
+    with pytest.raises(KeyboardInterrupt):
+        _smo_compiled.run_compiled(rows, yy, np.ones(yy.size), np.ones(yy.size), LIBSVM,
+                                   1e-3, 1e5)
+    # the network's training, where the compiled kernels run inside the epochs
+    from ebantenna.ml import mlp_base
+
+    monkeypatch.setattr(mlp_base.BaseMLP, "_loss_and_gradients_into", _interrupted_inside_numba)
+    with pytest.raises(KeyboardInterrupt):
+        MLPClassifier(hidden_layer_sizes=(3,), max_iter=2).fit(X[:20], y[:20])

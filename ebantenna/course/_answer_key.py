@@ -648,8 +648,7 @@ ANSWER_KEY = {
             'salt': 'ex15_design_effect/icc', 'offset': 0.16320544795416936,
             'digest': 'd9e9a173cd5b84435dfdf7117a47a0d7',
             'reason': (
-                'a closed form of the stated data: rounding, z = 1.96 for 1.95996, or five copied'
-                ' digits'
+                'sums of squares of whole counts: rounding only, or five copied digits'
             ),
         },
         'deff_icc': {
@@ -657,8 +656,7 @@ ANSWER_KEY = {
             'salt': 'ex15_design_effect/deff_icc', 'offset': 0.7292554981941066,
             'digest': 'f7dcaa2e534b718123feb4beaa439798',
             'reason': (
-                'a closed form of the stated data: rounding, z = 1.96 for 1.95996, or five copied'
-                ' digits'
+                'sums of squares of whole counts: rounding only, or five copied digits'
             ),
         },
         'deff': {
@@ -666,8 +664,7 @@ ANSWER_KEY = {
             'salt': 'ex15_design_effect/deff', 'offset': 0.04452423035581887,
             'digest': 'a64368363f3a899a22ebb2e6acb4f232',
             'reason': (
-                'a closed form of the stated data: rounding, z = 1.96 for 1.95996, or five copied'
-                ' digits'
+                'sums of squares of whole counts: rounding only, or five copied digits'
             ),
         },
         'n_eff': {
@@ -675,8 +672,7 @@ ANSWER_KEY = {
             'salt': 'ex15_design_effect/n_eff', 'offset': 0.47993841187417274,
             'digest': 'f845118bef977c93e7cae796b3927d27',
             'reason': (
-                'a closed form of the stated data: rounding, z = 1.96 for 1.95996, or five copied'
-                ' digits'
+                'sums of squares of whole counts: rounding only, or five copied digits'
             ),
         },
         'eff_low': {
@@ -702,8 +698,8 @@ ANSWER_KEY = {
             'salt': 'ex15_design_effect/boot_low', 'offset': 0.7999999999999972,
             'digest': '3dee1b2668bc8d0384d006f9af4635e1',
             'reason': (
-                "another seed's 10000 resamples move an end by 2 steps of 1/200 (4 sd of a "
-                'percentile), half a step for quantile conventions'
+                "another seed's 10000 resamples move an end by at most 2 steps of 1/200 (4 sd of "
+                'a percentile), half a step for quantile conventions'
             ),
         },
         'boot_high': {
@@ -711,8 +707,8 @@ ANSWER_KEY = {
             'salt': 'ex15_design_effect/boot_high', 'offset': 0.5999999999999943,
             'digest': 'e729c5262286f1395807ead549d7f181',
             'reason': (
-                "another seed's 10000 resamples move an end by 2 steps of 1/200 (4 sd of a "
-                'percentile), half a step for quantile conventions'
+                "another seed's 10000 resamples move an end by at most 2 steps of 1/200 (4 sd of "
+                'a percentile), half a step for quantile conventions'
             ),
         },
         'coverage_recording': {

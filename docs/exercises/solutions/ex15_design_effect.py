@@ -145,14 +145,15 @@ ANSWERS = {"accuracy": p_hat, "rec_low": rec_low, "rec_high": rec_high, "icc": i
            "eff_high": eff_high, "boot_low": boot_low, "boot_high": boot_high,
            "coverage_recording": coverage_recording, "coverage_deff": coverage_deff}
 # How far a right answer may lie from these values, and why.
+SUMS = "sums of squares of whole counts: rounding only, or five copied digits"
 CLOSED = "a closed form of the stated data: rounding, z = 1.96 for 1.95996, or five copied digits"
 COVER = ("a share of 1000 designs: no interval's end lies within 1e-4 of 0.8, so rounding or "
          "z = 1.96 flips none; half a design")
 TOLERANCES = {
     "accuracy": ("abs", 0.5 / N, "a count of right answers out of 200: half of one in 200"),
-    **{name: ("rel", 1e-4, CLOSED) for name in ("rec_low", "rec_high", "icc", "deff_icc", "deff",
-                                                "n_eff", "eff_low", "eff_high")},
-    **{name: ("abs", boot_tolerance, f"another seed's 10000 resamples move an end by {steps} "
+    **{name: ("rel", 1e-4, SUMS) for name in ("icc", "deff_icc", "deff", "n_eff")},
+    **{name: ("rel", 1e-4, CLOSED) for name in ("rec_low", "rec_high", "eff_low", "eff_high")},
+    **{name: ("abs", boot_tolerance, f"another seed's 10000 resamples move an end by at most {steps} "
               "steps of 1/200 (4 sd of a percentile), half a step for quantile conventions")
        for name in ("boot_low", "boot_high")},
     "coverage_recording": ("abs", 0.5 / len(designs), COVER),

@@ -161,14 +161,17 @@ MODES_AND_ZONES = Session(
 FEATURES = Session(
     "From vibration to features: spectra, filters and time–frequency pictures",
     ("choose a record length and a window for a frequency resolution",
-     "design a band-pass to a specification, and say why it runs as second-order sections"),
+     "design a band-pass to a specification, and say why it runs as second-order sections",
+     "say why the repetitions of one position are not independent tests, and widen an "
+     "accuracy's interval by the design effect"),
     ("theory/spectrum", "theory/filters", "theory/timefreq", "theory/uncertainty"),
     (("Bins, windows and the peak between two bins", 10),
      ("Band-pass filters to a specification, as second-order sections", 10),
      ("Spectrograms and wavelet scalograms", 10)),
     (_run("plot_06_paper_filters"), _run("plot_10_spectrogram_scalogram"),
      _run("plot_11_simulated_signals")),
-    (_ex("ex08_filter_order"), _ex("ex13_mode_curves"), _ex("ex12_splits")),
+    (_ex("ex08_filter_order"), _ex("ex13_mode_curves"), _ex("ex12_splits"),
+     _ex("ex15_design_effect")),
 )
 DECAY = Session(
     "How fast the ringing dies: the decay fit and the Kalman filter",
@@ -225,7 +228,7 @@ TRACKS = {
         _roles(core=("ex01_element", "ex02_assembly", "ex03_convergence", "ex04_peak",
                      "ex08_filter_order", "ex14_kalman", "ex06_svm_dual"),
                optional=("ex09_mesh_budget",),
-               homework=("ex13_mode_curves", "ex12_splits", "ex05_decay"),
+               homework=("ex13_mode_curves", "ex12_splits", "ex15_design_effect", "ex05_decay"),
                further=_AFTER),
     ),
     6: Track(
@@ -233,14 +236,14 @@ TRACKS = {
         _roles(core=("ex01_element", "ex03_convergence", "ex04_peak", "ex08_filter_order",
                      "ex14_kalman", "ex06_svm_dual"),
                homework=("ex02_assembly", "ex09_mesh_budget", "ex13_mode_curves",
-                         "ex12_splits", "ex05_decay"),
+                         "ex12_splits", "ex15_design_effect", "ex05_decay"),
                further=_AFTER),
     ),
     4: Track(
         (BEAM, MODES_AND_ZONES, SIGNALS, CLASSIFIERS),
         _roles(core=("ex01_element", "ex04_peak", "ex05_decay", "ex06_svm_dual"),
                homework=("ex02_assembly", "ex03_convergence", "ex09_mesh_budget",
-                         "ex08_filter_order", "ex14_kalman"),
+                         "ex08_filter_order", "ex14_kalman", "ex15_design_effect"),
                further=("ex13_mode_curves", "ex12_splits") + _AFTER),
     ),
 }

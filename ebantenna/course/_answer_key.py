@@ -616,4 +616,118 @@ ANSWER_KEY = {
             ),
         },
     },
+    'ex15_design_effect': {
+        'accuracy': {
+            'kind': 'abs', 'width': 0.0025,
+            'salt': 'ex15_design_effect/accuracy', 'offset': 0.0,
+            'digest': '7dff7b2e23c0b2ba337af04126c4e35e',
+            'reason': (
+                'a count of right answers out of 200: half of one in 200'
+            ),
+        },
+        'rec_low': {
+            'kind': 'rel', 'width': 0.0001,
+            'salt': 'ex15_design_effect/rec_low', 'offset': 0.37960415678207937,
+            'digest': 'dd8902668709ba137c19812e0bcfd79a',
+            'reason': (
+                'a closed form of the stated data: rounding, z = 1.96 for 1.95996, or five copied'
+                ' digits'
+            ),
+        },
+        'rec_high': {
+            'kind': 'rel', 'width': 0.0001,
+            'salt': 'ex15_design_effect/rec_high', 'offset': 0.08752746625418695,
+            'digest': 'b60f93f89fdda92ed36787db2ed71c11',
+            'reason': (
+                'a closed form of the stated data: rounding, z = 1.96 for 1.95996, or five copied'
+                ' digits'
+            ),
+        },
+        'icc': {
+            'kind': 'rel', 'width': 0.0001,
+            'salt': 'ex15_design_effect/icc', 'offset': 0.16320544795416936,
+            'digest': 'd9e9a173cd5b84435dfdf7117a47a0d7',
+            'reason': (
+                'sums of squares of whole counts: rounding only, or five copied digits'
+            ),
+        },
+        'deff_icc': {
+            'kind': 'rel', 'width': 0.0001,
+            'salt': 'ex15_design_effect/deff_icc', 'offset': 0.7292554981941066,
+            'digest': 'f7dcaa2e534b718123feb4beaa439798',
+            'reason': (
+                'sums of squares of whole counts: rounding only, or five copied digits'
+            ),
+        },
+        'deff': {
+            'kind': 'rel', 'width': 0.0001,
+            'salt': 'ex15_design_effect/deff', 'offset': 0.04452423035581887,
+            'digest': 'a64368363f3a899a22ebb2e6acb4f232',
+            'reason': (
+                'sums of squares of whole counts: rounding only, or five copied digits'
+            ),
+        },
+        'n_eff': {
+            'kind': 'rel', 'width': 0.0001,
+            'salt': 'ex15_design_effect/n_eff', 'offset': 0.47993841187417274,
+            'digest': 'f845118bef977c93e7cae796b3927d27',
+            'reason': (
+                'sums of squares of whole counts: rounding only, or five copied digits'
+            ),
+        },
+        'eff_low': {
+            'kind': 'rel', 'width': 0.0001,
+            'salt': 'ex15_design_effect/eff_low', 'offset': 0.30837663854390485,
+            'digest': 'ea9ee0aa0ce82d3dd1a9eb36036583a6',
+            'reason': (
+                'a closed form of the stated data: rounding, z = 1.96 for 1.95996, or five copied'
+                ' digits'
+            ),
+        },
+        'eff_high': {
+            'kind': 'rel', 'width': 0.0001,
+            'salt': 'ex15_design_effect/eff_high', 'offset': 0.2649888226192161,
+            'digest': '14f7696fb317b2e255ea5df6960494c7',
+            'reason': (
+                'a closed form of the stated data: rounding, z = 1.96 for 1.95996, or five copied'
+                ' digits'
+            ),
+        },
+        'boot_low': {
+            'kind': 'abs', 'width': 0.0125,
+            'salt': 'ex15_design_effect/boot_low', 'offset': 0.7999999999999972,
+            'digest': '3dee1b2668bc8d0384d006f9af4635e1',
+            'reason': (
+                "another seed's 10000 resamples move an end by at most 2 steps of 1/200 (4 sd of "
+                'a percentile), half a step for quantile conventions'
+            ),
+        },
+        'boot_high': {
+            'kind': 'abs', 'width': 0.0125,
+            'salt': 'ex15_design_effect/boot_high', 'offset': 0.5999999999999943,
+            'digest': 'e729c5262286f1395807ead549d7f181',
+            'reason': (
+                "another seed's 10000 resamples move an end by at most 2 steps of 1/200 (4 sd of "
+                'a percentile), half a step for quantile conventions'
+            ),
+        },
+        'coverage_recording': {
+            'kind': 'abs', 'width': 0.0005,
+            'salt': 'ex15_design_effect/coverage_recording', 'offset': 0.0,
+            'digest': '18a206141937325ad7d7c555087d3729',
+            'reason': (
+                "a share of 1000 designs: no interval's end lies within 1e-4 of 0.8, so rounding "
+                'or z = 1.96 flips none; half a design'
+            ),
+        },
+        'coverage_deff': {
+            'kind': 'abs', 'width': 0.0005,
+            'salt': 'ex15_design_effect/coverage_deff', 'offset': 0.0,
+            'digest': '33000531aa879e62105c824b4818c711',
+            'reason': (
+                "a share of 1000 designs: no interval's end lies within 1e-4 of 0.8, so rounding "
+                'or z = 1.96 flips none; half a design'
+            ),
+        },
+    },
 }

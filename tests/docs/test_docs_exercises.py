@@ -616,6 +616,58 @@ def _alt_ex14(ns):
             "rms_q_large": (rms(own_loop(q * 100)[0] - level), rms(own_loop(q / 100)[0] - level))}
 
 
+
+def _alt_ex15(ns):
+    from scipy.optimize import brentq
+
+    from ebantenna.paper.uncertainty import ClusteredAccuracy
+
+    right, m, z, truth = ns["right"], ns["m"], 1.96, ns["true_accuracy"]
+    y = right.astype(float)
+    p, big_n, g = y.mean(axis=1).mean(), y.size, y.shape[0]  # the mean of the positions' means
+
+    def wilson(size):  # the roots of (p - x)^2 = z^2 x (1 - x) / size, found numerically
+        def f(x):
+            return (p - x) ** 2 - z * z * x * (1 - x) / size
+        return brentq(f, 1e-9, p), brentq(f, p, 1 - 1e-9)
+
+    def wald(size):
+        half = z * np.sqrt(p * (1 - p) / size)
+        return p - half, p + half
+
+    means = y.mean(axis=1)
+    msb = m * np.var(means, ddof=1)
+    msw = np.mean(np.var(y, axis=1, ddof=1))  # each position's sample variance, averaged
+    msw_population = np.mean(np.var(y, axis=1))  # the typical slip: ddof=0 within
+    icc = (msb - msw) / (msb + (m - 1) * msw)
+    icc_slip = (msb - msw_population) / (msb + (m - 1) * msw_population)
+    deff = m * np.var(means) / np.var(y)  # between over total variance, times m
+    n_eff = big_n / deff
+    # another student's bootstrap: another generator, another quantile convention
+    pick = np.random.default_rng(2024).integers(0, g, size=(10_000, g))
+    boot = np.quantile(means[pick].mean(axis=1), [0.025, 0.975], method="inverted_cdf")
+    flat = y.ravel()  # wrong: recordings resampled one by one, as if independent
+    single = np.random.default_rng(2024).integers(0, big_n, size=(10_000, big_n))
+    boot_slip = np.quantile(flat[single].mean(axis=1), [0.025, 0.975])
+    covered = np.array([
+        [lo <= truth <= hi for lo, hi in (c.recording_ci95, c.ci95)]
+        for c in (ClusteredAccuracy(d.sum(axis=1), np.full(g, m), "position")
+                  for d in ns["designs"])])
+    coverage = covered.mean(axis=0)
+    return {"accuracy": (p, [1 - p, np.median(means)]),  # wrong: the error; the median position
+            "rec_low": (wilson(big_n)[0], wald(big_n)[0]),  # wrong: the Wald interval
+            "rec_high": (wilson(big_n)[1], wald(big_n)[1]),
+            "icc": (icc, [icc_slip, (deff - 1) / (m - 1)]),  # wrong: ddof=0; G for G - 1
+            "deff_icc": (1 + (m - 1) * icc, 1 + m * icc),  # wrong: m for m - 1
+            "deff": (deff, [1 / deff, m]),  # wrong: the ratio upside down; every position one
+            "n_eff": (n_eff, [big_n * deff, g]),  # wrong: times deff; the positions' count
+            "eff_low": (wilson(n_eff)[0], [wald(n_eff)[0], wilson(big_n)[0]]),
+            "eff_high": (wilson(n_eff)[1], [wald(n_eff)[1], wilson(big_n)[1]]),
+            "boot_low": (boot[0], boot_slip[0]), "boot_high": (boot[1], boot_slip[1]),
+            "coverage_recording": (coverage[0], 0.95),  # wrong: what the interval claims
+            "coverage_deff": (coverage[1], coverage[0])}
+
+
 ALTERNATIVES = {f"{name[5:]}": fn for name, fn in dict(globals()).items()
                 if name.startswith("_alt_")}
 

@@ -3,8 +3,21 @@
 from __future__ import annotations
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
-__all__ = ["beyond_chance", "per_contact", "probe_length", "pct"]
+__all__ = ["beyond_chance", "per_contact", "probe_length", "pct", "BLAS_THREADS", "blas_limited"]
+
+#: BLAS threads while a step of a study runs. Measured side by side with
+#: ``python benchmarks/study_blas_threads.py`` (the quick study, two cores): no step ran faster
+#: on two threads, and the learning steps (ml, splits, seeds, ANN set-up) took 1.6 to 2.3 times
+#: the CPU time, and four to five times the wall time while another job ran: their products are
+#: too small to gain from a second thread, and a spinning thread takes a core from the rest.
+BLAS_THREADS = 1
+
+
+def blas_limited():
+    """A context in which BLAS runs on :data:`BLAS_THREADS` threads (``threadpoolctl``)."""
+    return threadpool_limits(limits=BLAS_THREADS, user_api="blas")
 
 
 def probe_length(ds) -> float:

@@ -63,6 +63,7 @@ from . import (
     signals,
     time_frequency,
 )
+from ._common import blas_limited
 
 __all__ = ["StudyResult", "reproduce", "default_cache_dir"]
 
@@ -129,7 +130,8 @@ class _Timer:
     def run(self, name, fn, *args):
         self._bar.set_postfix_str(name)
         start = time.perf_counter()
-        out = fn(*args)
+        with blas_limited():
+            out = fn(*args)
         self.seconds[name] = time.perf_counter() - start
         self._bar.update()
         log.info("%s done in %.1f s", name, self.seconds[name])

@@ -215,3 +215,22 @@ def test_report_sections_follow_the_recipe(quick_study):
         "Spectrograms and scalograms (Figs. 18, 19)",
         "Run time",
     ]
+
+
+def test_every_step_of_a_study_runs_on_the_measured_number_of_blas_threads():
+    # benchmarks/study_blas_threads.py measured one thread as never slower and cheaper in CPU
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    from ebantenna.study._common import BLAS_THREADS
+    from ebantenna.study.reproduce import _Timer
+
+    def blas_threads():
+        return {p["num_threads"] for p in threadpool_info() if p["user_api"] == "blas"}
+
+    timer = _Timer(show_progress=False)
+    with threadpool_limits(limits=2, user_api="blas"):
+        outside = blas_threads()
+        inside = timer.run("modes", blas_threads)
+        assert blas_threads() == outside  # the limit ends with the step
+    timer.close()
+    assert inside <= {BLAS_THREADS}  # empty if NumPy has no BLAS that threadpoolctl can see

@@ -38,6 +38,7 @@ from ...paper.uncertainty import UNITS, ClusteredAccuracy, percent, span
 from ...report import FigureSet, Report
 from ...simulate import load_dataset
 from .. import full_range, learning, material_splits, signals
+from .._common import blas_limited
 from .assemble import MIN_SAMPLES
 
 __all__ = ["NOT_APPLICABLE", "reproduce_recorded", "intervals", "classification_interval",
@@ -277,7 +278,8 @@ def reproduce_recorded(data, out_dir="ebantenna-recorded", *, seed: int = 0,
     def timed(step, fn, *args):
         say(f"{step} ({steps.index(step) + 1}/{len(steps)})")
         start = time.perf_counter()
-        result = fn(*args)
+        with blas_limited():
+            result = fn(*args)
         seconds[step] = time.perf_counter() - start
         return result
 

@@ -110,9 +110,14 @@ def test_an_interrupted_dataset_ends_in_one_line_and_json(
 
 
 SIGNAL_SCRIPT = textwrap.dedent("""
-    import faulthandler, sys, time
+    import faulthandler, signal, sys, time
     import ebantenna.simulate.dataset as d
     from ebantenna.cli import main
+
+    # Ctrl-C as a command in the foreground gets it, whatever launched this suite: a suite run
+    # in the background of a shell without job control inherits SIGINT ignored, and keeps it
+    # (the CLI leaves an ignored SIGINT ignored, as a background command should)
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
     # a run that does not end: every thread's stack on stderr, for the test's message
     faulthandler.dump_traceback_later(50, exit=True)

@@ -21,7 +21,7 @@ from ...chips.mpu6050 import ADDRESS_AD0_LOW, CHIP_MODELS
 from ...chips.pca9685 import DEFAULT_ADDRESS
 from ...recording import Recording
 from ..clock import VirtualClock
-from .bus import SimulatedBus, _SharedAddress
+from .bus import SimulatedBus
 from .faults import Faults
 from .mpu6050 import SimulatedMPU6050
 from .pca9685 import SimulatedPCA9685
@@ -32,6 +32,57 @@ __all__ = ["SimulatedRig"]
 
 #: The part a clone (``Faults.clone_6500``) samples like: the first of the MPU-6500 family.
 CLONE_OF = next(value for value, model in CHIP_MODELS.items() if model.accel_config2)
+
+
+class _SharedAddress:
+    """Two chips answering at one address (``Faults.second_device``).
+
+    Both acknowledge, both take every write, and both drive every read onto the open-drain bus,
+    which carries a 0 wherever either of them pulls it low: a read returns the bitwise AND of
+    their bytes (each chip shifts out its own bytes, so both FIFOs are popped together). The
+    faults that act on the accelerometer as a board (a brown-out, a register written by another
+    program, a foreign read) act on both.
+
+    Parameters
+    ----------
+    first, second : object
+        The two chips (``read(register, n)``, ``write(register, data)``, ``brown_out()``).
+
+    Examples
+    --------
+    >>> from ebantenna.device.simulated.rig import _SharedAddress
+    >>> class Chip:
+    ...     def __init__(self, value): self.value = value
+    ...     def read(self, register, n): return [self.value] * n
+    >>> _SharedAddress(Chip(0b1011), Chip(0b0110)).read(0, 2)
+    [2, 2]
+    """
+
+    def __init__(self, first, second):
+        self.first, self.second = first, second
+
+    def read(self, register: int, length: int) -> list[int]:
+        """The AND of what both chips shift out for this read."""
+        ours, theirs = self.first.read(register, length), self.second.read(register, length)
+        return [a & b for a, b in zip(ours, theirs, strict=True)]
+
+    def write(self, register: int, data) -> None:
+        """Both chips take the write."""
+        self.first.write(register, data)
+        self.second.write(register, data)
+
+    def brown_out(self) -> None:
+        """Both lose power (they share the supply)."""
+        self.first.brown_out()
+        self.second.brown_out()
+
+    def _corrupt(self, register: int, value: int) -> None:
+        self.first._corrupt(register, value)
+        self.second._corrupt(register, value)
+
+    def impossible_samples(self) -> int:
+        """Samples beyond what either chip can have produced (see the MPU-6050 model)."""
+        return max(self.first.impossible_samples(), self.second.impossible_samples())
 
 
 class SimulatedRig:

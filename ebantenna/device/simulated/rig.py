@@ -151,8 +151,8 @@ class SimulatedRig:
         self.world = World(obstacle, check_positive("slew_rate", slew_rate))
         self.mpu = self._chip(self._acceleration)
         self.pca = SimulatedPCA9685(self.world, self.clock)
-        #: The second MPU-6050 at the accelerometer's address (``Faults.second_device``), or
-        #: None: the same chip with noise of its own, from a third stream of the seed.
+        # a second MPU-6050 at the accelerometer's address: the same chip with noise of its
+        # own, from a third stream of the seed (the first two stay as they were)
         self.second_mpu = None
         accelerometer = self.mpu
         if self.bus.faults.second_device:

@@ -58,6 +58,7 @@ from __future__ import annotations
 
 import errno
 import logging
+import math
 from dataclasses import asdict, dataclass
 
 import numpy as np
@@ -75,7 +76,8 @@ from .i2c import SMBUS_BLOCK_MAX, I2CError, SettingError
 from .timing import CLOCK_TOLERANCE, PeriodEstimator
 
 __all__ = ["PeriodEstimator", "StreamFault", "FifoBlock", "FifoStream", "CLOCK_TOLERANCE",
-           "sensor_check"]
+           "sensor_check", "PARITY_MIN_NOISE_LSB", "PREDICTOR_ORDER", "ODD_SHARE_LIMIT",
+           "PARITY_BLOCK", "PARITY_FALSE_ALARM", "MIN_PARITY_READINGS"]
 
 logger = logging.getLogger(__name__)
 
@@ -642,6 +644,33 @@ MAX_REPEATS = 10
 #: 400 ug/sqrt(Hz) (PS rev. 3.4, table 6.2) over a 260 Hz filter is about 8 mg, 16 LSB at
 #: +/-16 g; less than a tenth of an LSB means the values are not being measured.
 MIN_NOISE_LSB = 0.1
+#: Unpredictable noise (LSB rms: the error of predicting a reading from the
+#: :data:`PREDICTOR_ORDER` before it, see :func:`sensor_check`) from which the parity of a live
+#: reading is a fair coin whatever came before: Gaussian noise of sigma LSB, rounded, is odd with
+#: a probability within (2/pi) exp(-pi^2 sigma^2 / 2) of 1/2 (the first Fourier term of the
+#: period-2 square wave (-1)^k; the bound is attained), below 2e-9 at 2 LSB. The MPU-6050's
+#: floor is about 16 LSB at +/-16 g (above); its narrow DLPF settings leave less.
+PARITY_MIN_NOISE_LSB = 2.0
+#: Readings before the one predicted, in that prediction (least squares, with a constant): the
+#: memory of a low-pass filter or a smooth signal is taken out of the noise the gate sees.
+PREDICTOR_ORDER = 4
+#: Odd share at or below which the readings are flagged as the AND of two devices: halfway
+#: between a live sensor's 1/2 and the 1/4 of two independent streams ANDed (odd only when
+#: both are).
+ODD_SHARE_LIMIT = 3 / 8
+#: Readings counted as one in the false-alarm bound. Given everything before it, a reading whose
+#: unpredictable part passes the gate is odd with a probability within 2e-9 of 1/2, so the odd
+#: count is a martingale and Hoeffding-Azuma's bound holds with no independence assumed; the
+#: bound is still taken on a quarter of the readings, a margin for the gate being an estimate.
+PARITY_BLOCK = 4
+#: Largest probability that a live sensor (odd share 1/2) is flagged, per recording.
+PARITY_FALSE_ALARM = 1e-6
+#: Readings (over the axes that pass the noise gate) from which the parity test decides:
+#: Hoeffding's bound exp(-2 (n / PARITY_BLOCK) (1/2 - ODD_SHARE_LIMIT)^2) on a share of n
+#: readings falling to the limit is then at most PARITY_FALSE_ALARM (n = 1769); the same
+#: bound holds for the share of two such noisy devices (1/4) rising to it.
+MIN_PARITY_READINGS = math.ceil(PARITY_BLOCK * math.log(1 / PARITY_FALSE_ALARM)
+                                / (2 * (0.5 - ODD_SHARE_LIMIT) ** 2))
 
 
 def sensor_check(counts: np.ndarray, lsb_per_g: int) -> dict:
@@ -650,8 +679,34 @@ def sensor_check(counts: np.ndarray, lsb_per_g: int) -> dict:
 
     Returns a JSON-ready dict: ``noise_lsb`` (per axis, the rms of the sample-to-sample change
     over sqrt(2): the noise floor of a slowly varying signal), ``longest_repeat`` (the longest
-    run of identical consecutive samples), ``constant_axes`` (axes that never change) and
+    run of identical consecutive samples), ``constant_axes`` (axes that never change),
+    ``odd_share`` (per axis, the share of odd readings; None with no reading),
+    ``unpredictable_lsb`` (per axis, the rms error of predicting each reading from the
+    :data:`PREDICTOR_ORDER` before it by least squares: the noise no filter memory or smooth
+    signal explains), ``parity_decided`` (whether the parity test below could decide) and
     ``flags``, a list of sentences, empty when nothing looks wrong.
+
+    The parity test looks for two devices answering at one address. Both drive the open-drain
+    bus, which carries the AND of their bits, so a reading is odd only when both devices' are:
+    about 1/4 of the time for two independent noisy streams, where one live sensor's
+    unpredictable noise (at least :data:`PARITY_MIN_NOISE_LSB`) makes it odd half of the time.
+    Over the axes that pass that gate, the readings are flagged when their share of odd ones is
+    at most :data:`ODD_SHARE_LIMIT`; the test decides only from :data:`MIN_PARITY_READINGS`
+    readings on, where a live sensor is flagged with a probability below
+    :data:`PARITY_FALSE_ALARM` (Hoeffding-Azuma's bound, on a quarter of the readings).
+    A quieter or more heavily filtered sensor, or a shorter recording, leaves
+    ``parity_decided`` False and says nothing.
+
+    Parameters
+    ----------
+    counts : ndarray
+        (n, 3) integer counts, X, Y, Z.
+    lsb_per_g : int
+        Sensitivity the counts were taken at, LSB/g (>= 1).
+
+    Returns
+    -------
+    dict
 
     Examples
     --------
@@ -659,6 +714,13 @@ def sensor_check(counts: np.ndarray, lsb_per_g: int) -> dict:
     >>> from ebantenna.device.fifo import sensor_check
     >>> sensor_check(np.full((100, 3), 7, np.int16), 2048)["flags"][0]
     'all 100 samples are identical: a stuck or dead sensor'
+    >>> rng = np.random.default_rng(0)
+    >>> one, two = (rng.normal(0, 16, (1000, 3)).round().astype(np.int16) for _ in range(2))
+    >>> sensor_check(one, 2048)["flags"], sensor_check(one, 2048)["parity_decided"]
+    ([], True)
+    >>> print(sensor_check(one & two, 2048)["flags"][0])  # doctest: +NORMALIZE_WHITESPACE
+    axis x, y, z: 26 %, 25 %, 23 % of 1000 readings are odd where a noisy live sensor gives
+    half: two devices answering at one address (the AND of their bits)? Check the AD0 pins.
     """
     if not isinstance(counts, np.ndarray) or counts.ndim != 2 or counts.shape[1] != 3 or (
             counts.dtype.kind not in "iu"):
@@ -666,7 +728,10 @@ def sensor_check(counts: np.ndarray, lsb_per_g: int) -> dict:
                         f"{getattr(counts, 'shape', type(counts).__name__)}")
     check_int("lsb_per_g", lsb_per_g, minimum=1)
     n = counts.shape[0]
-    out = {"noise_lsb": [0.0, 0.0, 0.0], "longest_repeat": 0, "constant_axes": [], "flags": []}
+    odd = np.count_nonzero(counts & 1, axis=0)
+    out = {"noise_lsb": [0.0, 0.0, 0.0], "longest_repeat": 0, "constant_axes": [],
+           "odd_share": [round(float(k) / n, 4) if n else None for k in odd],
+           "unpredictable_lsb": [0.0, 0.0, 0.0], "parity_decided": False, "flags": []}
     if n < 2:
         return out
     diff = np.diff(counts.astype(np.int32), axis=0)
@@ -689,7 +754,33 @@ def sensor_check(counts: np.ndarray, lsb_per_g: int) -> dict:
         if quiet:
             out["flags"].append(f"axis {', '.join(quiet)}: noise below {MIN_NOISE_LSB} LSB, "
                                 "implausibly quiet for a live MPU-6050")
+    unpredictable = [_unpredictable(counts[:, k]) for k in range(3)]
+    out["unpredictable_lsb"] = [round(v, 3) for v in unpredictable]
+    noisy = [k for k in range(3) if unpredictable[k] >= PARITY_MIN_NOISE_LSB]
+    if n * len(noisy) >= MIN_PARITY_READINGS:
+        out["parity_decided"] = True
+        if odd[noisy].sum() <= ODD_SHARE_LIMIT * n * len(noisy):
+            shares = ", ".join(f"{100 * odd[k] / n:.0f} %" for k in noisy)
+            out["flags"].append(
+                f"axis {', '.join('xyz'[k] for k in noisy)}: {shares} of {n} readings are odd "
+                "where a noisy live sensor gives half: two devices answering at one address "
+                "(the AND of their bits)? Check the AD0 pins.")
     return out
+
+
+def _unpredictable(x: np.ndarray) -> float:
+    """The rms error of predicting each of ``x`` from the :data:`PREDICTOR_ORDER` before it
+    (least squares with a constant, on the centred values), LSB; 0 when too short to fit."""
+    p = PREDICTOR_ORDER
+    x = x.astype(np.float64)
+    rows = x.size - p
+    if rows <= 2 * (p + 1):
+        return 0.0
+    x = x - x.mean()
+    past = np.column_stack([x[p - 1 - k:x.size - 1 - k] for k in range(p)] + [np.ones(rows)])
+    coef, *_ = np.linalg.lstsq(past, x[p:], rcond=None)
+    residual = x[p:] - past @ coef
+    return float(np.sqrt(residual @ residual / (rows - p - 1)))
 
 
 def _hz(rate: float) -> str:

@@ -12,7 +12,12 @@ import pytest
 
 from ebantenna.chips.mpu6050 import Register
 from ebantenna.device import MPU6050, SimulatedRig
-from ebantenna.device.fifo import sensor_check
+from ebantenna.device.fifo import (
+    MIN_PARITY_READINGS,
+    ODD_SHARE_LIMIT,
+    PARITY_MIN_NOISE_LSB,
+    sensor_check,
+)
 from ebantenna.device.i2c import SettingError
 from ebantenna.device.simulated import Faults
 from ebantenna.device.simulated.faults import SILENT_FAULTS
@@ -190,6 +195,88 @@ def test_the_sensor_check_sees_dead_axes_and_implausible_noise():
     assert "implausibly quiet" in sensor_check(quiet, 2048)["flags"][0]
 
 
+TWIN = "two devices answering at one address (the AND of their bits)? Check the AD0 pins."
+
+
+@pytest.mark.parametrize("bus_hz", BUSES)
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_a_second_device_at_the_address_is_flagged_by_its_odd_share(bus_hz, seed):
+    rig, mpu, rec = _record(Faults(second_device=True), bus_hz, seed)
+    # the bus gives the AND of both chips' bytes: every kept sample is the AND of their truths
+    both = rig.mpu.truth(0) & rig.second_mpu.truth(0)
+    raw = rec.metadata["raw"]
+    assert raw["counts_xyz"] == both[raw["position"]].tolist()
+    # nothing else sees it: the settings read back as written, the counts agree
+    assert not rec.metadata["faults"] and rec.metadata["samples_lost"] == 0
+    check = rec.metadata["sensor_check"]
+    # 3000 readings >= MIN_PARITY_READINGS: a share of two devices (1/4) reaches the limit
+    # (3/8) with a probability below 1e-6 (the bound of sensor_check)
+    assert check["parity_decided"] and check["flags"] == [check["flags"][0]]
+    assert check["flags"][0].endswith(TWIN) and "of 1000 readings are odd" in check["flags"][0]
+    assert max(check["odd_share"]) <= ODD_SHARE_LIMIT
+
+
+def test_one_device_is_never_taken_for_two():
+    # Each recording decides (2000 readings: X and Y pass the gate; Z plays the vibration
+    # without noise, which its predictor explains) and flags a live sensor with a probability
+    # below PARITY_FALSE_ALARM = 1e-6, so 30 recordings stay unflagged unless something of
+    # probability below 3e-5 happens. The simulated noise (0.02 m/s^2, 4 LSB at +/-16 g) is a
+    # quarter of the real part's: the gate is passed with less margin than on the rig.
+    for seed in range(30):
+        rig, mpu, rec = _record(Faults(), 100e3, seed)
+        check = rec.metadata["sensor_check"]
+        assert check["parity_decided"] and check["flags"] == []
+        assert min(check["odd_share"]) > ODD_SHARE_LIMIT
+
+
+def _noisy(rng, sigma, n=1000, rho=0.0):
+    """(n, 3) counts of rounded Gaussian noise of sigma LSB (AR(1) with coefficient ``rho``)."""
+    e = rng.normal(0.0, sigma * np.sqrt(1 - rho ** 2), (n, 3))
+    x = np.empty_like(e)
+    x[0] = rng.normal(0.0, sigma, 3)
+    for k in range(1, n):
+        x[k] = rho * x[k - 1] + e[k]
+    return (300.0 + x).round().astype(np.int16)
+
+
+def test_the_parity_test_flags_the_and_of_two_streams_and_not_one():
+    for seed in range(20):
+        rng = np.random.default_rng(seed)
+        one, two = _noisy(rng, 16.0), _noisy(rng, 16.0)
+        alone = sensor_check(one, 2048)
+        assert alone["parity_decided"] and alone["flags"] == []
+        anded = sensor_check(one & two, 2048)
+        assert anded["parity_decided"] and anded["flags"][0].endswith(TWIN)
+        witness = np.mean((one & two) & 1, axis=0)  # the share, counted independently
+        assert anded["odd_share"] == [round(float(v), 4) for v in witness]
+
+
+def test_neighbours_tied_by_a_filter_do_not_make_one_stream_look_like_two():
+    # strongly low-passed noise (AR(1), rho = 0.9: ten samples of memory) with a sample-to-sample
+    # noise just above the gate; the bound counts four readings as one, the test must hold here
+    for seed in range(50):
+        counts = _noisy(np.random.default_rng(seed), 7.0, rho=0.9)
+        check = sensor_check(counts, 2048)
+        assert min(check["unpredictable_lsb"]) >= PARITY_MIN_NOISE_LSB
+        assert check["parity_decided"] and check["flags"] == []
+
+
+def test_the_parity_test_says_nothing_when_it_cannot_tell():
+    rng = np.random.default_rng(3)
+    quiet = _noisy(rng, 0.4) & _noisy(rng, 0.4)  # two devices, but too quiet for parity
+    check = sensor_check(quiet, 2048)
+    assert max(check["unpredictable_lsb"]) < PARITY_MIN_NOISE_LSB
+    assert not check["parity_decided"] and not any(f.endswith(TWIN) for f in check["flags"])
+    short = _noisy(rng, 16.0, n=MIN_PARITY_READINGS // 3) & _noisy(rng, 16.0,
+                                                                  n=MIN_PARITY_READINGS // 3)
+    check = sensor_check(short, 2048)  # two devices, too few readings to bound a false alarm
+    assert not check["parity_decided"] and check["flags"] == []
+    one_axis = _noisy(rng, 16.0) & _noisy(rng, 16.0)
+    one_axis[:, :2] = _noisy(rng, 0.4)[:, :2]  # 1000 readings of one noisy axis: too few
+    assert not sensor_check(one_axis, 2048)["parity_decided"]
+    assert sensor_check(np.zeros((0, 3), np.int16), 2048)["odd_share"] == [None, None, None]
+
+
 @pytest.mark.parametrize("bus_hz", BUSES)
 def test_bit_errors_in_the_data_cannot_be_detected(bus_hz):
     # What the device guide says the driver cannot detect: I2C carries no checksum, so a bit
@@ -204,7 +291,7 @@ def test_bit_errors_in_the_data_cannot_be_detected(bus_hz):
 
 def test_every_silent_fault_is_exercised_by_name():
     exercised = {"write bit flip", "register lost", "foreign read", "undercount", "bit error",
-                 "clone", "stuck sensor", "pca brown-out"}
+                 "clone", "stuck sensor", "second device", "pca brown-out"}
     assert exercised == set(SILENT_FAULTS)
 
 
@@ -222,6 +309,8 @@ def test_silent_fault_settings_are_checked(bad, words):
         Faults(**bad)
     with pytest.raises(TypeError, match="clone_6500"):
         Faults(clone_6500=1)
+    with pytest.raises(TypeError, match="second_device"):
+        Faults(second_device="yes")
 
 
 def _search(faults, seed=1):

@@ -56,6 +56,12 @@ what it reads (the kinds of :data:`SILENT_FAULTS`, by the name each logs):
 ``"stuck sensor"``
     From a given time the sensor's output stops changing (``stuck_sensor_at``): the FIFO goes on
     filling with the same sample.
+``"second device"``
+    A second MPU-6050 answers at the accelerometer's address (``second_device``: its AD0 pin
+    set like the first's). Both acknowledge, both take every write and both answer every read;
+    the open-drain bus delivers the bitwise AND of their bytes. The settings read back as
+    written and the FIFO counts agree while the two clocks do; the samples are the AND of two
+    streams measuring the same acceleration with noise of their own.
 ``"pca brown-out"``
     The PCA9685 loses power for a moment (``pca_brown_out_at``): asleep at 200 Hz, every
     output off, its later writes still acknowledged. (``pca_flip_write`` flips bits of its
@@ -92,7 +98,7 @@ _LAST_REGISTER = REGISTER_SPACE - 1
 
 #: Faults that no bus error reveals (see the module notes), by the name each logs.
 SILENT_FAULTS = ("write bit flip", "register lost", "foreign read", "undercount", "bit error",
-                 "clone", "stuck sensor", "pca brown-out")
+                 "clone", "stuck sensor", "second device", "pca brown-out")
 #: Largest sample-clock error the faults allow, relative (beyond MAX_CLOCK_DRIFT: a fault).
 MAX_FAULT_DRIFT = 0.5
 
@@ -165,6 +171,10 @@ class Faults:
         The accelerometer samples like the MPU-6500 family while answering WHO_AM_I 0x68.
     stuck_sensor_at : float or None
         Virtual time from which the sensor's output stops changing.
+    second_device : bool
+        A second MPU-6050 shares the accelerometer's address ("second device"): it takes the
+        same writes, measures the same acceleration with its own noise, and every read returns
+        the AND of the two chips' bytes.
     pca_brown_out_at : float or None
         Virtual time at which the PCA9685 browns out once: power-on registers (asleep, every
         output off, 200 Hz), its later writes still acknowledged ("pca brown-out").
@@ -199,6 +209,7 @@ class Faults:
     bit_error_rate: float = 0.0
     clone_6500: bool = False
     stuck_sensor_at: float | None = None
+    second_device: bool = False
     pca_brown_out_at: float | None = None
     pca_flip_write: tuple = ()
 
@@ -226,8 +237,9 @@ class Faults:
                              f"got {drift!r}")
         check_in_range("bit_error_rate", self.bit_error_rate, 0.0, 0.5, low_inclusive=True,
                        high_inclusive=True)
-        if not isinstance(self.clone_6500, bool):
-            raise TypeError(f"clone_6500 must be a bool, got {self.clone_6500!r}")
+        for name in ("clone_6500", "second_device"):
+            if not isinstance(getattr(self, name), bool):
+                raise TypeError(f"{name} must be a bool, got {getattr(self, name)!r}")
         for name in ("stuck_sensor_at", "pca_brown_out_at"):
             if getattr(self, name) is not None:
                 check_nonnegative(name, getattr(self, name))

@@ -34,6 +34,57 @@ __all__ = ["SimulatedRig"]
 CLONE_OF = next(value for value, model in CHIP_MODELS.items() if model.accel_config2)
 
 
+class _SharedAddress:
+    """Two chips answering at one address (``Faults.second_device``).
+
+    Both acknowledge, both take every write, and both drive every read onto the open-drain bus,
+    which carries a 0 wherever either of them pulls it low: a read returns the bitwise AND of
+    their bytes (each chip shifts out its own bytes, so both FIFOs are popped together). The
+    faults that act on the accelerometer as a board (a brown-out, a register written by another
+    program, a foreign read) act on both.
+
+    Parameters
+    ----------
+    first, second : object
+        The two chips (``read(register, n)``, ``write(register, data)``, ``brown_out()``).
+
+    Examples
+    --------
+    >>> from ebantenna.device.simulated.rig import _SharedAddress
+    >>> class Chip:
+    ...     def __init__(self, value): self.value = value
+    ...     def read(self, register, n): return [self.value] * n
+    >>> _SharedAddress(Chip(0b1011), Chip(0b0110)).read(0, 2)
+    [2, 2]
+    """
+
+    def __init__(self, first, second):
+        self.first, self.second = first, second
+
+    def read(self, register: int, length: int) -> list[int]:
+        """The AND of what both chips shift out for this read."""
+        ours, theirs = self.first.read(register, length), self.second.read(register, length)
+        return [a & b for a, b in zip(ours, theirs, strict=True)]
+
+    def write(self, register: int, data) -> None:
+        """Both chips take the write."""
+        self.first.write(register, data)
+        self.second.write(register, data)
+
+    def brown_out(self) -> None:
+        """Both lose power (they share the supply)."""
+        self.first.brown_out()
+        self.second.brown_out()
+
+    def _corrupt(self, register: int, value: int) -> None:
+        self.first._corrupt(register, value)
+        self.second._corrupt(register, value)
+
+    def impossible_samples(self) -> int:
+        """Samples beyond what either chip can have produced (see the MPU-6050 model)."""
+        return max(self.first.impossible_samples(), self.second.impossible_samples())
+
+
 class SimulatedRig:
     """Pan-tilt unit, probe, accelerometer and obstacle, behind a :class:`SimulatedBus`.
 
@@ -64,6 +115,8 @@ class SimulatedRig:
         Servos, post and contact.
     mpu : SimulatedMPU6050
         The accelerometer, at address 0x68.
+    second_mpu : SimulatedMPU6050 or None
+        A second accelerometer at the same address (``Faults.second_device``), else None.
     pca : SimulatedPCA9685
         The servo controller, at address 0x40.
 
@@ -96,17 +149,30 @@ class SimulatedRig:
         if not (obstacle is None or isinstance(obstacle, Obstacle)):
             raise TypeError(f"obstacle must be an Obstacle or None, got {type(obstacle).__name__}")
         self.world = World(obstacle, check_positive("slew_rate", slew_rate))
-        self.mpu = SimulatedMPU6050(self._acceleration, self.clock,
-                                    who_am_i=self.bus.faults.who_am_i,
-                                    clock_drift=self.bus.faults.clock_drift,
-                                    free_running_divider=self.bus.faults.free_running_divider,
-                                    repeat_last_byte=self.bus.faults.repeat_last_byte,
-                                    samples_like=CLONE_OF if self.bus.faults.clone_6500 else None,
-                                    stuck_from=self.bus.faults.stuck_sensor_at)
+        self.mpu = self._chip(self._acceleration)
         self.pca = SimulatedPCA9685(self.world, self.clock)
-        self.bus.devices = {ADDRESS_AD0_LOW: self.mpu, DEFAULT_ADDRESS: self.pca}
+        # a second MPU-6050 at the accelerometer's address: the same chip with noise of its
+        # own, from a third stream of the seed (the first two stay as they were)
+        self.second_mpu = None
+        accelerometer = self.mpu
+        if self.bus.faults.second_device:
+            self._second_rng = np.random.default_rng(np.random.SeedSequence(seed,
+                                                                             spawn_key=(2,)))
+            self.second_mpu = self._chip(self._second_acceleration)
+            accelerometer = _SharedAddress(self.mpu, self.second_mpu)
+        self.bus.devices = {ADDRESS_AD0_LOW: accelerometer, DEFAULT_ADDRESS: self.pca}
         #: Time of the first sample at or after the contact, s.
         self.contact_sample_time = None
+
+    def _chip(self, source) -> SimulatedMPU6050:
+        """An MPU-6050 measuring ``source``, as the faults make it."""
+        faults = self.bus.faults
+        return SimulatedMPU6050(source, self.clock, who_am_i=faults.who_am_i,
+                                clock_drift=faults.clock_drift,
+                                free_running_divider=faults.free_running_divider,
+                                repeat_last_byte=faults.repeat_last_byte,
+                                samples_like=CLONE_OF if faults.clone_6500 else None,
+                                stuck_from=faults.stuck_sensor_at)
 
     @classmethod
     def quiet(cls, *, seed: int = 0, faults: Faults | None = None) -> SimulatedRig:
@@ -240,7 +306,14 @@ class SimulatedRig:
         tail = max(1, rec.n_samples // 10)
         return np.array([rec.ax[-tail:].mean(), 0.0, rec.az[-tail:].mean()])
 
-    def _acceleration(self, times: np.ndarray, fs: float) -> np.ndarray:
+    def _second_acceleration(self, times: np.ndarray, fs: float) -> np.ndarray:
+        """What the second device measures: the same acceleration with noise of its own (the
+        played vibration carries the first device's noise; the second adds its own to it)."""
+        return self._acceleration(times, fs, self._second_rng, own_noise=True)
+
+    def _acceleration(self, times: np.ndarray, fs: float, rng=None, *,
+                      own_noise: bool = False) -> np.ndarray:
+        rng = self._rng if rng is None else rng
         self.world.advance_to(self.clock.monotonic())
         if self._vibration is not None and self._recording is None:
             self._recording = self._vibration(fs)
@@ -252,7 +325,7 @@ class SimulatedRig:
                 faults.register_lost or faults.flip_write or faults.clone_6500):
             raise ValueError(f"the vibration is sampled at {rec.fs:g} Hz but the simulated "
                              f"MPU-6050 is set to {fs:g} Hz")
-        acc = self.rest + self._rng.normal(0.0, self.noise, (times.size, 3))
+        acc = self.rest + rng.normal(0.0, self.noise, (times.size, 3))
         contact = self.world.contact_time
         if contact is None or rec is None:
             return acc
@@ -268,6 +341,10 @@ class SimulatedRig:
         rate = self.mpu.true_rate() * rec.fs / fs
         j = np.rint((times - self.contact_sample_time) * rate).astype(np.int64)
         play = after & (j >= 0) & (j < rec.n_samples)
+        own = acc[play] - self.rest  # this draw's noise, for a device that adds its own
         acc[play, 0] = rec.ax[j[play]]  # Y keeps its rest reading and noise, as a live axis
         acc[play, 2] = rec.az[j[play]]
+        if own_noise:
+            acc[play, 0] += own[:, 0]
+            acc[play, 2] += own[:, 2]
         return acc

@@ -12,6 +12,11 @@ __all__ = ["beyond_chance", "per_contact", "probe_length", "pct", "BLAS_THREADS"
 #: on two threads, and the learning steps (ml, splits, seeds, ANN set-up) took 1.6 to 2.3 times
 #: the CPU time, and four to five times the wall time while another job ran: their products are
 #: too small to gain from a second thread, and a spinning thread takes a core from the rest.
+#: The full study's splits step is the exception on an idle machine (its kernel products are
+#: large): 190 s on two threads against 271 s on one, for 1.26 times the CPU time. One thread
+#: is kept for it too: the numbers then depend neither on the core count nor on the thread
+#: count (two threads round a few kernel entries differently, enough to flip a recording within
+#: the solver's tolerance of a tie), and the CPU time does not grow when the machine is busy.
 BLAS_THREADS = 1
 
 

@@ -153,8 +153,9 @@ TOLERANCES = {
     "accuracy": ("abs", 0.5 / N, "a count of right answers out of 200: half of one in 200"),
     **{name: ("rel", 1e-4, SUMS) for name in ("icc", "deff_icc", "deff", "n_eff")},
     **{name: ("rel", 1e-4, CLOSED) for name in ("rec_low", "rec_high", "eff_low", "eff_high")},
-    **{name: ("abs", boot_tolerance, f"another seed's 10000 resamples move an end by at most {steps} "
-              "steps of 1/200 (4 sd of a percentile), half a step for quantile conventions")
+    **{name: ("abs", boot_tolerance, "another seed's 10000 resamples move an end by at most "
+              f"{steps} steps of 1/200 (4 sd of a percentile), half a step for quantile "
+              "conventions")
        for name in ("boot_low", "boot_high")},
     "coverage_recording": ("abs", 0.5 / len(designs), COVER),
     "coverage_deff": ("abs", 0.5 / len(designs), COVER),

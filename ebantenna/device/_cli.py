@@ -193,7 +193,7 @@ def _end_unsafe(args, setup: dict, exc: BaseException | None, result) -> int:
     print the instruction to cut the servo supply last, and return 3. Signals are ignored
     meanwhile: the operator must see the instruction."""
     from ..cli import print_json, signals_ignored
-    from .recording_session import save_recording
+    from .recording_session import describe_stop, save_recording
 
     with signals_ignored():
         recording = result.recording if result is not None else _kept_recording(setup, exc)
@@ -209,7 +209,7 @@ def _end_unsafe(args, setup: dict, exc: BaseException | None, result) -> int:
             if failures:
                 summary["save_failed"] = "; ".join(failures)
         if exc is not None:
-            summary["error"] = _describe(exc)
+            summary["error"] = describe_stop(exc)
         summary["action_required"] = CUT_SUPPLY
         lines = []
         if exc is not None:
@@ -230,19 +230,6 @@ def _end_unsafe(args, setup: dict, exc: BaseException | None, result) -> int:
         for line in lines + [f"ebantenna acquire: {CUT_SUPPLY}"]:
             print(line, file=sys.stderr, flush=True)
     return EXIT_NOT_RELEASED
-
-
-def _describe(exc: BaseException) -> str:
-    """One line for what ended the run."""
-    import signal
-
-    signum = getattr(exc, "signum", None)
-    if signum is not None:
-        return f"interrupted by {signal.Signals(signum).name}"
-    if isinstance(exc, KeyboardInterrupt):
-        return "interrupted by SIGINT"
-    text = " ".join(str(exc).splitlines()) or type(exc).__name__
-    return text
 
 
 def _setup(args, ratio: float) -> dict:

@@ -531,19 +531,23 @@ class ClusteredAccuracy:
         """``summary.json``'s keys for this accuracy under ``name`` (see
         :func:`clustered_entries`)."""
         name = _check_name(name)
-        return {
-            name: self.estimate,
-            f"{name}_n_test": self.n_recordings,
-            f"{name}_unit": self.unit,
-            f"{name}_n_units": self.n_units,
-            f"{name}_design_effect": self.design_effect,
-            f"{name}_ci95": list(self.ci95),
-            f"{name}_method": self.method,
-            f"{name}_recording_ci95": list(self.recording_ci95),
-        }
+        return {**_shared_entries(self, name), f"{name}_design_effect": self.design_effect}
 
     def __str__(self) -> str:
         return format_clustered(self)
+
+
+def _shared_entries(measured, name: str) -> dict:
+    """The keys every measured accuracy gives under ``name`` (see :func:`clustered_entries`)."""
+    return {
+        name: measured.estimate,
+        f"{name}_n_test": measured.n_recordings,
+        f"{name}_unit": measured.unit,
+        f"{name}_n_units": measured.n_units,
+        f"{name}_ci95": list(measured.ci95),
+        f"{name}_method": measured.method,
+        f"{name}_recording_ci95": list(measured.recording_ci95),
+    }
 
 
 def clustered_entries(name: str, measured) -> dict:
@@ -672,13 +676,7 @@ class FoldAccuracy:
         """As :meth:`ClusteredAccuracy.entries`, with ``name_folds`` and ``name_fold_std``."""
         name = _check_name(name)
         return {
-            name: self.estimate,
-            f"{name}_n_test": self.n_recordings,
-            f"{name}_unit": self.unit,
-            f"{name}_n_units": self.n_units,
-            f"{name}_ci95": list(self.ci95),
-            f"{name}_method": self.method,
-            f"{name}_recording_ci95": list(self.recording_ci95),
+            **_shared_entries(self, name),
             f"{name}_folds": self.values.tolist(),
             f"{name}_fold_std": self.spread,
             **({} if self.by_fold else {f"{name}_design_effect": self.design_effect}),

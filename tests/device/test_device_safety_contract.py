@@ -7,6 +7,7 @@ saved first, atomically, elsewhere when --out cannot be written; and ``session.j
 from __future__ import annotations
 
 import errno
+import json
 import os
 import shutil
 import signal
@@ -40,6 +41,19 @@ def _fallbacks(folder):
     return sorted(folder.glob("acquire-unreleased-*.npz"))
 
 
+def _full_disk_at(folder, monkeypatch):
+    """Make ``folder``, where saving a recording fails as on a full disk (ENOSPC)."""
+    save = Recording.save
+
+    def full(self, path):
+        if Path(path).parent.name == folder.name:
+            raise OSError(errno.ENOSPC, "No space left on device")
+        return save(self, path)
+
+    monkeypatch.setattr(Recording, "save", full)
+    folder.mkdir()
+
+
 def test_a_removed_out_folder_saves_elsewhere_and_still_says_cut_the_supply(in_tmp, monkeypatch,
                                                                             capsys):
     folder = in_tmp / "gone"
@@ -60,19 +74,9 @@ def test_a_removed_out_folder_saves_elsewhere_and_still_says_cut_the_supply(in_t
 
 
 def test_a_full_disk_saves_elsewhere_and_exits_3_in_json_too(in_tmp, monkeypatch, capsys):
-    save = Recording.save
-
-    def full(self, path):
-        if Path(path).parent.name == "full":
-            raise OSError(errno.ENOSPC, "No space left on device")
-        return save(self, path)
-
-    monkeypatch.setattr(Recording, "save", full)
-    (in_tmp / "full").mkdir()
+    _full_disk_at(in_tmp / "full", monkeypatch)
     code = main([*ACQUIRE, "--release-fails", "--out", str(in_tmp / "full" / "r.npz"), "--json"])
     captured = capsys.readouterr()
-    import json
-
     data = json.loads(captured.out)
     assert code == 3 and data["action_required"] == CUT_SUPPLY and "No space" in data[
         "save_failed"]
@@ -140,15 +144,7 @@ def test_an_error_after_the_search_with_the_servos_released_keeps_its_own_code(i
                                                                               capsys):
     # the counterpart: servos released, a full disk is an ordinary error (exit 2) naming where
     # the recording went instead
-    save = Recording.save
-
-    def full(self, path):
-        if Path(path).parent.name == "full":
-            raise OSError(errno.ENOSPC, "No space left on device")
-        return save(self, path)
-
-    monkeypatch.setattr(Recording, "save", full)
-    (in_tmp / "full").mkdir()
+    _full_disk_at(in_tmp / "full", monkeypatch)
     with pytest.raises(SystemExit) as info:
         main([*ACQUIRE, "--out", str(in_tmp / "full" / "r.npz")])
     err = capsys.readouterr().err

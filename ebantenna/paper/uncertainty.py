@@ -531,19 +531,25 @@ class ClusteredAccuracy:
         """``summary.json``'s keys for this accuracy under ``name`` (see
         :func:`clustered_entries`)."""
         name = _check_name(name)
-        return {**_shared_entries(self, name), f"{name}_design_effect": self.design_effect}
+        return _shared_entries(self, name, self.design_effect)
 
     def __str__(self) -> str:
         return format_clustered(self)
 
 
-def _shared_entries(measured, name: str) -> dict:
-    """The keys every measured accuracy gives under ``name`` (see :func:`clustered_entries`)."""
-    return {
+def _shared_entries(measured, name: str, design_effect: float | None = None) -> dict:
+    """The keys every measured accuracy gives under ``name`` (see :func:`clustered_entries`),
+    in ``summary.json``'s order, with ``name_design_effect`` after the units when given."""
+    entries = {
         name: measured.estimate,
         f"{name}_n_test": measured.n_recordings,
         f"{name}_unit": measured.unit,
         f"{name}_n_units": measured.n_units,
+    }
+    if design_effect is not None:
+        entries[f"{name}_design_effect"] = design_effect
+    return {
+        **entries,
         f"{name}_ci95": list(measured.ci95),
         f"{name}_method": measured.method,
         f"{name}_recording_ci95": list(measured.recording_ci95),

@@ -148,3 +148,17 @@ def test_the_rod_geometry_sentence_follows_the_rank_order():
     assert "goes with lower accuracy here" in rod_geometry.gap_sentence(up)
     assert "falls as the gap grows" in rod_geometry.gap_sentence(down)
     assert "does not go with lower accuracy" in rod_geometry.gap_sentence(down)
+
+
+def test_the_long_runs_crossing_is_as_sharp_as_its_intervals_say():
+    final = ClusteredAccuracy(HIGH, N, "position")
+    long = dict(epochs=[50, 100, 150], test=[0.5, 0.79, 0.81], all=[0.5, 0.8, 0.9],
+                test_ci95=[(0.4, 0.6), (0.7, 0.85), (0.72, 0.88)], reached_test=150,
+                reached_all=100, final=final, stopped_by="x", max_epochs=200)
+    long["within_from"] = ann_setup.within_from(long["epochs"], long["test_ci95"], 0.808)
+    text = ann_setup._long_verdict(ann_setup.AnnSetupResult({}, 1, long))
+    assert long["within_from"] == 100 and "anywhere from epoch 100 to 150" in text
+    long["test_ci95"][1] = (0.7, 0.8)  # the paper's value above the interval before the crossing
+    long["within_from"] = ann_setup.within_from(long["epochs"], long["test_ci95"], 0.808)
+    text = ann_setup._long_verdict(ann_setup.AnnSetupResult({}, 1, long))
+    assert long["within_from"] == 150 and "within the last 50 epochs" in text

@@ -164,3 +164,26 @@ def test_closest_materials_is_the_smallest_pairwise_gap():
     gaps = [np.median(np.abs(f[i] - f[j])) for i, j in combinations(range(3), 2)]
     assert gap == pytest.approx(min(gaps), rel=1e-12)
     assert {a, b} <= {"brass", "wood", "steel"}
+
+
+def test_the_held_out_distance_holds_out_every_region_position_once():
+    """Every recording of the linear region is tested exactly once, in the fold that holds its
+    position out; the pooled errors are those of the folds' own networks."""
+    from ebantenna.paper import experiments
+    from ebantenna.paper.splits import split_folds
+    from ebantenna.study.material_splits import _held_out_distance
+
+    d = np.repeat(np.linspace(0.02, 0.38, 19), 3)
+    y = np.tile(["brass", "steel", "pvc"], 19)
+    X = np.column_stack([np.cos(8 * d), np.sin(8 * d)])
+    X = X + np.random.default_rng(0).normal(0, 0.01, X.shape)
+    pooled = _held_out_distance(X, d, y, 0.4, seed=0)
+    region = d[d <= 0.8 * 0.4]
+    assert np.array_equal(np.sort(pooled.distance_test), np.sort(region))
+    assert np.array_equal(pooled.positions, np.unique(region))
+    train, test = split_folds("grouped", y, d, seed=0)[1]
+    one = experiments.regress_distance_linear_region(X, d, probe_length=0.4, seed=0,
+                                                     split=(train, test))
+    at = np.isin(pooled.distance_test, one.distance_test)
+    # the same network on the same rows: its predictions, bit for bit
+    assert np.array_equal(np.sort(pooled.predicted_test[at]), np.sort(one.predicted_test))

@@ -42,7 +42,8 @@ class PeriodEstimator:
     ``n2 > n1``, give ``t_(n2) > b2`` and ``t_(n1 - 1) <= a1``, so ``(n2 - n1 + 1) T > b2 - a1``;
     and ``t_(n2 - 1) <= a2``, ``t_(n1) > b1``, so ``(n2 - n1 - 1) T < a2 - b1``. The time of the
     first sample cancels: the bracket needs no phase. It starts from the rate's tolerance, two
-    sided on the *rate*: ``nominal / (1 + tolerance) <= T <= nominal / (1 - tolerance)``.
+    sided on the *rate*: ``nominal / (1 + tolerance) <= T <= nominal / (1 - tolerance)``, the
+    *prior*; a clock that the counts show outside it widens the prior (:meth:`widen`).
 
     A count that contradicts the bracket (no period in it can explain the count) is not used:
     it is logged at WARNING and counted in ``rejected``.
@@ -58,6 +59,9 @@ class PeriodEstimator:
     ----------
     low, high : float
         The bracket of the period, s.
+    prior : tuple of float
+        The bracket before any observation, s: the tolerance's, or wider once :meth:`widen` let
+        in a period the counts showed (a clock outside the tolerance).
     rejected : int
         Counts rejected because they contradict the bracket.
     segments : list of list of (int, float, float)
@@ -83,8 +87,9 @@ class PeriodEstimator:
         tolerance = check_in_range("tolerance", tolerance, 0.0, 1.0)
         self.nominal = nominal
         self.tolerance = tolerance
-        self.low = nominal / (1.0 + tolerance)
-        self.high = nominal / (1.0 - tolerance)
+        #: The bracket the observations narrow, s: the tolerance's, until :meth:`widen`.
+        self.prior = (nominal / (1.0 + tolerance), nominal / (1.0 - tolerance))
+        self.low, self.high = self.prior
         self.rejected = 0
         self.segments: list[list[tuple[int, float, float]]] = []
         #: Segments whose observations no longer narrow the bracket (:meth:`forget`).
@@ -164,19 +169,49 @@ class PeriodEstimator:
             raise ValueError(f"segment must be a segment begun, and none is yet; got {segment!r}")
         segment = check_int("segment", segment, minimum=0, maximum=len(self.segments) - 1)
         self.excluded.add(segment)
-        low, high = self.nominal / (1.0 + self.tolerance), self.nominal / (1.0 - self.tolerance)
+        self._recompute()
+
+    def widen(self, low: float, high: float) -> None:
+        """Let the period lie in ``[low, high]`` (s) too: the prior bracket becomes the smallest
+        that holds both it and ``[low, high]``, and the bracket is recomputed from it and the
+        observations of the segments not taken out (:meth:`forget`).
+
+        For a clock that the counts show outside the tolerance: observations bound the period
+        whatever the prior, so once the prior holds the true period the bracket does too.
+
+        Parameters
+        ----------
+        low, high : float
+            The period's bounds to take in, s; ``0 < low <= high``, both finite.
+        """
+        low = check_positive("low", low)
+        high = check_positive("high", high)
+        if not high >= low:
+            raise ValueError(f"high must be >= low ({low!r} s), got {high!r}")
+        self.prior = (min(self.prior[0], low), max(self.prior[1], high))
+        self._recompute()
+
+    def _recompute(self) -> None:
+        low, high = self.prior
         for k, observations in enumerate(self.segments):
             if k not in self.excluded:
                 low, high = _narrowed(observations, low, high)
         self.low, self.high = low, high
+
+    def _seen(self, extra=()) -> tuple[float, float]:
+        """The period bracket ``(low, high)`` (s) that the current segment's observations and
+        the observations ``extra`` (``(n, before, after)`` each) give alone, no prior assumed:
+        empty (``low >= high``) when they contradict each other, ``high`` infinite when they
+        bound the period from below only."""
+        observations = (self.segments[-1] if self.segments else []) + list(extra)
+        return _narrowed(observations, 0.0, math.inf)
 
     def _own_bracket(self, segment: int) -> tuple[float, float]:
         """The period bracket from ``segment``'s observations alone, no tolerance assumed (for a
         segment taken out of the bracket, :meth:`forget`); where they bound it from one side
         only, the tolerance's bound (widened to the other side's) stands in."""
         low, high = _narrowed(self.segments[segment], 0.0, math.inf)
-        prior_low = self.nominal / (1.0 + self.tolerance)
-        prior_high = self.nominal / (1.0 - self.tolerance)
+        prior_low, prior_high = self.prior
         if not math.isfinite(high):
             high = max(prior_high, low)
         if low <= 0.0:

@@ -243,12 +243,15 @@ class AcquisitionResult:
     i2c_retries : int
         Transient bus errors retried on the way.
     servos_released : bool
-        Whether the PWM outputs were switched off at the end (confirmed by the release).
+        Whether the PWM outputs were switched off at the end and read back so over I2C (the
+        ``OE`` pin alone is not a release: :data:`~ebantenna.device.oe.OE_ONLY`).
     stream : dict
         The FIFO stream's report: estimated sample rate, restarts, overflows, rejected counts,
         timestamp uncertainty, fault log.
     servos_released_by : str or None
-        How they were released: ``"i2c"``, ``"oe"`` (the ``OE`` pin) or None.
+        What switched the outputs off: ``"i2c"`` (the release), ``"oe"`` (the ``OE`` pin
+        alone, which holds them off only while the program runs; ``servos_released`` is then
+        False) or None.
     """
 
     contact_detected: bool

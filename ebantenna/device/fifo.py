@@ -186,10 +186,14 @@ class FifoStream:
         self.foreign = 0  # drains dropped because another reader took bytes from the FIFO
         self.suspect: set[int] = set()  # segments whose timestamps are flagged (_suspect)
         self.contradictions = {"more": 0, "fewer": 0}  # counts off the tolerance, by side
-        # the period bracket each contradicting count showed with its segment's observations
-        # (when they agree with each other and lie within MAX_CLOCK_ADAPT), by side: what the
-        # clock is adapted to (_adapt)
-        self.clock_seen: dict[str, list] = {"more": [], "fewer": []}
+        # what the contradicting counts showed of the period with their segments' observations
+        # (when they agree with each other and lie within MAX_CLOCK_ADAPT), by side: how many,
+        # the hull and the common part of their brackets, the foreign reads they were blamed
+        # on, the last one's count and time since its segment began; what the clock is adapted
+        # to (_adapt). A fixed size, whatever the number of counts.
+        self.clock_seen = {side: {"counts": 0, "hull": (math.inf, 0.0),
+                                  "common": (0.0, math.inf), "blamed": 0, "last": (0, 0.0)}
+                           for side in ("more", "fewer")}
         self.clock_adapted = False  # the period's prior bracket took in what the counts showed
         self._last_times = (0.0, 0.0)
         self.pending: str | None = "start"
@@ -350,11 +354,15 @@ class FifoStream:
         cap_low = est.nominal / (1.0 + MAX_CLOCK_ADAPT)
         cap_high = est.nominal / (1.0 - MAX_CLOCK_ADAPT)
         if low < high and low < cap_high and high > cap_low:
+            low, high = max(low, cap_low), min(high, cap_high)
+            seen = self.clock_seen[side]
             n, _, after = extra[-1]
-            self.clock_seen[side].append(
-                {"low": max(low, cap_low), "high": min(high, cap_high), "foreign": foreign,
-                 "produced": n, "since": after - self.starts[-1]})
-            if len(self.clock_seen[side]) >= CLOCK_SUSPECT_AFTER:
+            seen["counts"] += 1
+            seen["hull"] = min(seen["hull"][0], low), max(seen["hull"][1], high)
+            seen["common"] = max(seen["common"][0], low), min(seen["common"][1], high)
+            seen["blamed"] += foreign
+            seen["last"] = (n, after - self.starts[-1])
+            if seen["counts"] >= CLOCK_SUSPECT_AFTER:
                 self._adapt(side)
 
     def _adapt(self, side: str) -> None:
@@ -363,25 +371,22 @@ class FifoStream:
         what was seen. Foreign reads those counts were blamed on go back to the clock."""
         est = self.estimator
         seen = self.clock_seen[side]
-        low = min(s["low"] for s in seen)
-        high = max(s["high"] for s in seen)
+        low, high = seen["hull"]
         if est.prior[0] <= low and high <= est.prior[1]:
-            return
+            return  # the prior holds them: they contradict other segments' counts, not it
         est.widen(low, high)
         self.clock_adapted = True
-        blamed = [s for s in seen if s["foreign"]]
-        for s in blamed:
-            s["foreign"] = False
-        self.foreign -= len(blamed)
+        self.foreign -= seen["blamed"]
+        seen["blamed"] = 0
         # the rate all the counts agree on (their brackets' common part), else their hull
-        both = max(s["low"] for s in seen), min(s["high"] for s in seen)
-        p_low, p_high = both if both[0] < both[1] else (low, high)
+        common = seen["common"]
+        p_low, p_high = common if common[0] < common[1] else (low, high)
         fs = 1.0 / est.nominal
         error = 50 * (1 / (p_high * fs) + 1 / (p_low * fs) - 2)  # %, the rate's middle
-        last = seen[-1]
+        produced, since = seen["last"]
         runs = f"{abs(error):.1f} % {'slow' if error < 0 else 'fast'}"
         self._note(
-            f"the chip produced {last['produced']} samples in {1e3 * last['since']:.1f} ms "
+            f"the chip produced {produced} samples in {1e3 * since:.1f} ms "
             f"since the FIFO was started: its clock runs {runs} (a rate between "
             f"{_hz(1 / p_high)} and {_hz(1 / p_low)}, not {_hz(fs)}), outside the "
             f"{100 * est.tolerance:g} % tolerance; the period's bracket takes that rate in "

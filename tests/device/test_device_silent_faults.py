@@ -165,6 +165,8 @@ def test_a_clock_beyond_the_tolerance_is_measured_and_every_timestamp_holds(bus_
     adapted = [f.cause for f in mpu.stream.faults if f.action == "adapt"]
     assert adapted and all(f"% {side} (a rate between" in cause for cause in adapted)
     assert "produced" in adapted[0] and "since the FIFO was started" in adapted[0]
+    wrong_side = "more than the chip can have" if drift < 0 else "fewer than the chip must"
+    assert not any(wrong_side in f.cause for f in mpu.stream.faults)  # no message says false
     assert rec.metadata["foreign_reads_detected"] == 0  # the clock, not a reader, is named
 
 

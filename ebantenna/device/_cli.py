@@ -138,10 +138,17 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _servos_safe(setup: dict) -> bool:
-    """Whether nothing can be driving the servos: the controller was never written to, or its
-    servo outputs last read back switched off, or the OE pin holds every output off."""
-    unit, oe = setup.get("unit"), setup.get("oe")
-    return unit is None or unit.released or (oe is not None and oe.disabled)
+    """Whether nothing can be driving the servos once the program has exited: the controller
+    was never written to, or its servo outputs last read back switched off. The OE pin held
+    high does not count: it holds the outputs off only while the program runs (``OE_ONLY``)."""
+    unit = setup.get("unit")
+    return unit is None or unit.released
+
+
+def _held_by_oe(setup: dict) -> bool:
+    """Whether the OE pin holds every output off now (until the program exits)."""
+    oe = setup.get("oe")
+    return oe is not None and oe.disabled
 
 
 def _result_of(exc):
@@ -193,6 +200,7 @@ def _end_unsafe(args, setup: dict, exc: BaseException | None, result) -> int:
     print the instruction to cut the servo supply last, and return 3. Signals are ignored
     meanwhile: the operator must see the instruction."""
     from ..cli import print_json, signals_ignored
+    from .oe import OE_ONLY
     from .recording_session import describe_stop, save_recording
 
     with signals_ignored():
@@ -211,9 +219,12 @@ def _end_unsafe(args, setup: dict, exc: BaseException | None, result) -> int:
         if exc is not None:
             summary["error"] = describe_stop(exc)
         summary["action_required"] = CUT_SUPPLY
+        summary["servo_outputs_held_by_oe"] = _held_by_oe(setup)
         lines = []
         if exc is not None:
             lines.append(f"ebantenna acquire: {summary['error']}")
+        if summary["servo_outputs_held_by_oe"] and OE_ONLY not in summary.get("error", ""):
+            lines.append(f"ebantenna acquire: {OE_ONLY}")
         lines += [f"ebantenna acquire: {line}" for line in failures]
         if saved is not None:
             lines.append(f"ebantenna acquire: recording saved to {saved}")
@@ -398,10 +409,11 @@ def _print_text(summary: dict, result, config) -> None:
     else:
         print(f"no contact within {config.max_search_time:g} s")
     if result.servos_released:
-        print("servos released" + (" through the OE pin" if result.servos_released_by == "oe"
-                                   else ""))
+        print("servos released")
     else:
-        print("servos NOT confirmed released")
+        print("servos NOT confirmed released" + (
+            " (their outputs held off by the OE pin until this program exits)"
+            if result.servos_released_by == "oe" else ""))
 
 
 def _oscillator(args) -> float:

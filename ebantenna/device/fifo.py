@@ -48,9 +48,13 @@ estimates the sample period from the timestamps of its interrupts), are:
    ``samples_discarded``), names itself from what to what, and the chip is configured again; a
    count after the data that is not whole samples, or does not follow from the count before at
    any rate the tolerance allows, means another reader took bytes: the drain is dropped.
-   A count that contradicts the clock's tolerance flags the timestamps of its segment (all of
-   them once two counts fall off the same side: the clock itself is suspected); the samples'
-   own plausibility is reported by :func:`sensor_check`. What none of this can see is listed
+   A count that contradicts the clock's tolerance flags the timestamps of its segment. Once two
+   counts fall off the same side, the clock itself is suspected: if the counts agree with the
+   other counts of their segments (a clock, not a wrong count), the period's prior bracket is
+   widened to take in the rates they show, up to :data:`MAX_CLOCK_ADAPT`, and the stream goes
+   on with timestamps measured from the counts (the fault log says how fast or slow the clock
+   runs); if not, every timestamp is flagged. The samples' own plausibility is reported by
+   :func:`sensor_check`. What none of this can see is listed
    in the device guide ("What the driver cannot detect").
 """
 
@@ -76,8 +80,8 @@ from .i2c import SMBUS_BLOCK_MAX, I2CError, SettingError
 from .timing import CLOCK_TOLERANCE, PeriodEstimator
 
 __all__ = ["PeriodEstimator", "StreamFault", "FifoBlock", "FifoStream", "CLOCK_TOLERANCE",
-           "sensor_check", "PARITY_MIN_NOISE_LSB", "PREDICTOR_ORDER", "ODD_SHARE_LIMIT",
-           "PARITY_BLOCK", "PARITY_FALSE_ALARM", "MIN_PARITY_READINGS"]
+           "MAX_CLOCK_ADAPT", "sensor_check", "PARITY_MIN_NOISE_LSB", "PREDICTOR_ORDER",
+           "ODD_SHARE_LIMIT", "PARITY_BLOCK", "PARITY_FALSE_ALARM", "MIN_PARITY_READINGS"]
 
 logger = logging.getLogger(__name__)
 
@@ -88,6 +92,11 @@ QUIET_SAMPLES = 3
 #: Counts off the same side of the clock's tolerance after which the clock itself is suspected
 #: (one can be a count read wrong; two on one side point at the clock).
 CLOCK_SUSPECT_AFTER = 2
+#: Largest error of the sample clock the stream adapts to, relative to the nominal rate. A
+#: part whose counts show a rate further off is not sampling as configured (an MPU-6500-family
+#: clone at 8 kHz, a divider that did not land): its counts go on being refused, with the rate
+#: they show.
+MAX_CLOCK_ADAPT = 0.5
 
 
 @dataclass(frozen=True)
@@ -177,6 +186,15 @@ class FifoStream:
         self.foreign = 0  # drains dropped because another reader took bytes from the FIFO
         self.suspect: set[int] = set()  # segments whose timestamps are flagged (_suspect)
         self.contradictions = {"more": 0, "fewer": 0}  # counts off the tolerance, by side
+        # what the contradicting counts showed of the period with their segments' observations
+        # (when they agree with each other and lie within MAX_CLOCK_ADAPT), by side: how many,
+        # the hull and the common part of their brackets, the foreign reads they were blamed
+        # on, the last one's count and time since its segment began; what the clock is adapted
+        # to (_adapt). A fixed size, whatever the number of counts.
+        self.clock_seen = {side: {"counts": 0, "hull": (math.inf, 0.0),
+                                  "common": (0.0, math.inf), "blamed": 0, "last": (0, 0.0)}
+                           for side in ("more", "fewer")}
+        self.clock_adapted = False  # the period's prior bracket took in what the counts showed
         self._last_times = (0.0, 0.0)
         self.pending: str | None = "start"
         self.unconfigured = False  # a reset chip whose configuration is not written back yet
@@ -186,9 +204,17 @@ class FifoStream:
     @property
     def clock_suspect(self) -> bool:
         """Whether counts fell off the same side of the clock's tolerance more than once: the
-        clock itself is then likely outside it, and every timestamp of the stream is flagged
+        clock itself is then likely outside it. Unless the stream adapted to the rate the
+        counts showed (:attr:`clock_adapted`), every timestamp of the stream is then flagged
         (each segment's bracket rests on the tolerance)."""
         return max(self.contradictions.values()) >= CLOCK_SUSPECT_AFTER
+
+    @property
+    def timing_flagged_all(self) -> bool:
+        """Whether every timestamp is flagged: the clock is suspected and the stream could not
+        adapt to it (the counts disagree with each other, or show a rate beyond
+        :data:`MAX_CLOCK_ADAPT`)."""
+        return self.clock_suspect and not self.clock_adapted
 
     @property
     def counts_rejected(self) -> int:
@@ -311,11 +337,67 @@ class FifoStream:
                            "are flagged: its counts contradict the clock's tolerance",
                            self.delivered[seg], seg)
 
+    def _contradicted(self, fewer: bool, extra: list, *, foreign: bool = False) -> None:
+        """A count of the current segment contradicts the period's bracket, on the side
+        ``fewer`` says; ``extra`` are the observations ``(n, before, after)`` that contradict,
+        newest last; ``foreign`` says whether it was counted as a foreign read.
+
+        What the segment's observations and ``extra`` show of the period alone (no prior) is
+        kept when they agree with each other and lie within :data:`MAX_CLOCK_ADAPT` of the
+        nominal rate; after :data:`CLOCK_SUSPECT_AFTER` such counts on one side the stream
+        adapts to the clock (:meth:`_adapt`). Counts that disagree with each other are a count
+        read wrong or a reader that took samples, not a clock."""
+        side = "fewer" if fewer else "more"
+        self.contradictions[side] += 1
+        est = self.estimator
+        low, high = est._seen(extra)
+        cap_low = est.nominal / (1.0 + MAX_CLOCK_ADAPT)
+        cap_high = est.nominal / (1.0 - MAX_CLOCK_ADAPT)
+        if low < high and low < cap_high and high > cap_low:
+            low, high = max(low, cap_low), min(high, cap_high)
+            seen = self.clock_seen[side]
+            n, _, after = extra[-1]
+            seen["counts"] += 1
+            seen["hull"] = min(seen["hull"][0], low), max(seen["hull"][1], high)
+            seen["common"] = max(seen["common"][0], low), min(seen["common"][1], high)
+            seen["blamed"] += foreign
+            seen["last"] = (n, after - self.starts[-1])
+            if seen["counts"] >= CLOCK_SUSPECT_AFTER:
+                self._adapt(side)
+
+    def _adapt(self, side: str) -> None:
+        """Let the period's prior take in every bracket the counts of ``side`` showed, so that
+        the stream goes on with timestamps whose stated uncertainty holds the true period; say
+        what was seen. Foreign reads those counts were blamed on go back to the clock."""
+        est = self.estimator
+        seen = self.clock_seen[side]
+        low, high = seen["hull"]
+        if est.prior[0] <= low and high <= est.prior[1]:
+            return  # the prior holds them: they contradict other segments' counts, not it
+        est.widen(low, high)
+        self.clock_adapted = True
+        self.foreign -= seen["blamed"]
+        seen["blamed"] = 0
+        # the rate all the counts agree on (their brackets' common part), else their hull
+        common = seen["common"]
+        p_low, p_high = common if common[0] < common[1] else (low, high)
+        fs = 1.0 / est.nominal
+        error = 50 * (1 / (p_high * fs) + 1 / (p_low * fs) - 2)  # %, the rate's middle
+        produced, since = seen["last"]
+        runs = f"{abs(error):.1f} % {'slow' if error < 0 else 'fast'}"
+        self._note(
+            f"the chip produced {produced} samples in {1e3 * since:.1f} ms "
+            f"since the FIFO was started: its clock runs {runs} (a rate between "
+            f"{_hz(1 / p_high)} and {_hz(1 / p_low)}, not {_hz(fs)}), outside the "
+            f"{100 * est.tolerance:g} % tolerance; the period's bracket takes that rate in "
+            f"({1e3 * est.low:.4g} to {1e3 * est.high:.4g} ms) and narrows with the counts",
+            "adapt")
+
     def _impossible(self, produced: int) -> str:
         """Which side of the rate's bracket an impossible count lies on."""
         low, _ = self.estimator.bounds(produced, *self._last_times)
         fewer = low >= self.estimator.high  # the count needs a longer period than allowed
-        self.contradictions["fewer" if fewer else "more"] += 1
+        self._contradicted(fewer, [(produced, *self._last_times)])
         if fewer:
             return ("fewer than the chip must have produced (its clock slower than the "
                     f"{100 * self.estimator.tolerance:g} % tolerance, or another program read "
@@ -415,14 +497,14 @@ class FifoStream:
             fewer = low >= est.high
         est.rejected += 1
         self._suspect()
-        self.contradictions["fewer" if fewer else "more"] += 1
+        self.foreign += fewer
+        self._contradicted(fewer, [observed, (total, before, after)], foreign=fewer)
         logger.warning("MPU-6050 FIFO: a count of %d bytes after the drain does not follow from "
                        "the %d samples before it; rejected", count, produced - self.delivered[-1])
         why = ("fewer samples than the clock's tolerance allows: another program read samples "
                "from the FIFO, or the clock is slower than the tolerance" if fewer else
                "more samples than the clock's tolerance allows: the clock is faster than the "
                "tolerance, or a count was read wrong")
-        self.foreign += fewer
         return (f"the FIFO count after the drain, {count}, does not follow from the one before "
                 f"it ({produced - self.delivered[-1]} samples): {why}; the drain is dropped")
 
@@ -553,7 +635,7 @@ class FifoStream:
             t0 = uncertainty = np.zeros(1)
         out["time"] = t0[out["segment"]] + out["position"] * self.estimator.period
         out["uncertainty"] = uncertainty[out["segment"]]
-        out["suspect"] = (np.ones(out["segment"].shape, bool) if self.clock_suspect else
+        out["suspect"] = (np.ones(out["segment"].shape, bool) if self.timing_flagged_all else
                           np.isin(out["segment"], sorted(self.suspect)))
         return out
 
@@ -630,6 +712,8 @@ class FifoStream:
             "fifo_overflows": self.overflows,
             "fifo_counts_rejected": est.rejected,
             "clock_outside_tolerance_suspected": self.clock_suspect,
+            "clock_rate_adapted": self.clock_adapted,
+            "clock_error_estimated": 1.0 / (est.period * (1.0 / est.nominal)) - 1.0,
             "samples_discarded": self.discarded,
             "foreign_reads_detected": self.foreign,
             "faults": [f.to_dict() for f in self.faults],

@@ -4,7 +4,10 @@ The PCA9685's ``OE`` input is active low (DS 7.4): while it is low the outputs f
 registers; driven high, every output is switched off at once (with ``MODE2.OUTNE = 00``, as
 :meth:`~ebantenna.device.pca9685.PCA9685.initialize` sets it, the outputs go low), whatever the
 registers say and whatever the bus does. A servo that gets no pulses goes limp. When the I2C bus
-is dead, this is the only way left to release the servos short of cutting their supply.
+is dead, this is the only way left to switch the servos off short of cutting their supply; but
+it lasts only while the program drives the line (:data:`OE_ONLY`), so it is not a release: the
+servos count as released only when their outputs are written full-off and read back so over
+I2C, and a run that could only drive ``OE`` ends with the instruction to cut the servo supply.
 
 Wiring (Raspberry Pi header): the PCA9685 breakout's ``OE`` pin to a free GPIO, e.g. GPIO 17
 (header pin 11). Adafruit's breakout pulls ``OE`` low with a resistor, so the outputs stay enabled
@@ -23,13 +26,22 @@ import logging
 
 from .._validate import check_int
 
-__all__ = ["OutputEnable", "GPIO_HINT"]
+__all__ = ["OutputEnable", "GPIO_HINT", "OE_ONLY"]
 
 logger = logging.getLogger(__name__)
 
 #: What to install for :meth:`OutputEnable.gpio`.
 GPIO_HINT = ('the OE release needs gpiozero: pip install "ebantenna[gpio]" (gpiozero and lgpio; '
              "on Raspberry Pi OS also 'sudo apt install python3-lgpio')")
+
+#: Why ``OE`` alone is not a release: it holds the outputs off only while this process drives
+#: the line. At exit the GPIO line is released (gpiozero closes its devices, the kernel frees
+#: the line of a process that ends): it floats, the breakout's pull-down takes ``OE`` low, and
+#: the outputs follow the registers again, which still hold the servos' pulses when the release
+#: over I2C failed.
+OE_ONLY = ("the OE pin holds the servo outputs off only while this program runs: at exit its "
+           "GPIO line is released, the board's pull-down enables the outputs again and the "
+           "servos get the pulses their registers still hold")
 
 #: Highest BCM GPIO number of the Raspberry Pi's 40-pin header.
 _LAST_GPIO = 27
@@ -96,8 +108,8 @@ class OutputEnable:
         self.disabled = False
 
     def close(self) -> None:
-        """Release the GPIO line (a released line floats; the breakout's pull-down keeps ``OE``
-        low)."""
+        """Release the GPIO line: it floats, and the breakout's pull-down takes ``OE`` low (the
+        outputs follow the registers again, :data:`OE_ONLY`)."""
         close = getattr(self.line, "close", None)
         if callable(close):
             close()

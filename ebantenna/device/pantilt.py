@@ -38,6 +38,7 @@ from .pca9685 import PCA9685
 from .safety import ReleaseError, ServoGuard, SignalReceived
 from .servo import Servo, ServoCalibration
 from .sweep import ContactDetector, EllipticalPath
+from .timing import CLOCK_TOLERANCE
 from .watchdog import check_watchdog, stop_quietly
 
 __all__ = [
@@ -242,12 +243,15 @@ class AcquisitionResult:
     i2c_retries : int
         Transient bus errors retried on the way.
     servos_released : bool
-        Whether the PWM outputs were switched off at the end (confirmed by the release).
+        Whether the PWM outputs were switched off at the end and read back so over I2C (the
+        ``OE`` pin alone is not a release: :data:`~ebantenna.device.oe.OE_ONLY`).
     stream : dict
         The FIFO stream's report: estimated sample rate, restarts, overflows, rejected counts,
         timestamp uncertainty, fault log.
     servos_released_by : str or None
-        How they were released: ``"i2c"``, ``"oe"`` (the ``OE`` pin) or None.
+        What switched the outputs off: ``"i2c"`` (the release), ``"oe"`` (the ``OE`` pin
+        alone, which holds them off only while the program runs; ``servos_released`` is then
+        False) or None.
     """
 
     contact_detected: bool
@@ -294,6 +298,8 @@ class AcquisitionResult:
         out["foreign_reads_detected"] = self.stream.get("foreign_reads_detected", 0)
         out["clock_outside_tolerance_suspected"] = self.stream.get(
             "clock_outside_tolerance_suspected", False)
+        out["clock_rate_adapted"] = self.stream.get("clock_rate_adapted", False)
+        out["clock_error_estimated"] = self.stream.get("clock_error_estimated")
         if self.recording is not None:
             meta = self.recording.metadata
             out["fs_hz"] = self.recording.fs
@@ -311,6 +317,12 @@ class AcquisitionResult:
                        "FIFO counts contradicted the clock's 5 % tolerance"
                        + (" (the clock itself is suspected)"
                           if summary["clock_outside_tolerance_suspected"] else ""))
+        if summary["clock_rate_adapted"]:
+            error = summary["clock_error_estimated"]
+            side = "slow" if error < 0 else "fast"
+            out.append(f"the accelerometer's clock runs {100 * abs(error):.1f} % {side}, "
+                       f"outside its {100 * CLOCK_TOLERANCE:g} % tolerance: the timestamps and "
+                       "the sample rate are those the FIFO counts measured")
         for fault in summary["pca9685_faults"]:
             out.append(f"PCA9685 {fault} during the search: set up again")
         if summary["foreign_reads_detected"]:

@@ -41,6 +41,7 @@ from .._validate import check_bool, check_in_range, check_int, check_path, open_
 from ..recording import Recording
 from .i2c import I2CError
 from .mpu6050 import MPU6050, ChipIdentityError
+from .oe import OE_ONLY
 from .pantilt import PanTilt, search_and_record
 from .pca9685 import PCA9685
 from .plan import Plan, Touch
@@ -506,13 +507,13 @@ class RecordingSession:
             except StreamStalledError as exc:
                 released = _servos_off(unit, conn)
                 self._stop_unsafe(f"touch {touch.key}: the accelerometer stopped producing "
-                                  f"({exc}); " + (CHECK_BUS if released else CUT_SUPPLY),
+                                  f"({exc}); " + (CHECK_BUS if released else _cut_supply(conn)),
                                   not released)
             except BaseException as exc:  # an interrupt, any error: are the servos off?
                 if not _servos_off(unit, conn):
                     self.servos_may_be_powered = True
                     self.mark_unsafe(f"touch {touch.key}: stopped ({describe_stop(exc)}) with "
-                                     f"the servos not confirmed released; {CUT_SUPPLY}")
+                                     f"the servos not confirmed released; {_cut_supply(conn)}")
                 raise
         finally:
             if not (conn.output_enable is not None and conn.output_enable.disabled):
@@ -625,9 +626,17 @@ class RecordingSession:
 
 
 def _servos_off(unit, conn: Connection) -> bool:
-    """Whether the servo outputs last read back off, or the OE pin holds them off."""
+    """Whether the servo outputs last read back off over I2C. The OE pin held high does not
+    count: it holds them off only while the program runs
+    (:data:`~ebantenna.device.oe.OE_ONLY`)."""
+    return bool(unit.released)
+
+
+def _cut_supply(conn: Connection) -> str:
+    """The instruction to cut the servo supply, saying first when the OE pin holds the outputs
+    off for now."""
     oe = conn.output_enable
-    return bool(unit.released) or (oe is not None and oe.disabled)
+    return (f"{OE_ONLY}; {CUT_SUPPLY}" if oe is not None and oe.disabled else CUT_SUPPLY)
 
 
 def describe_stop(exc: BaseException) -> str:

@@ -22,6 +22,7 @@ import threading
 
 from .._validate import check_int, check_nonnegative, check_positive
 from .i2c import BusDeadError, I2CError
+from .oe import OE_ONLY
 
 __all__ = ["ServoGuard", "SignalReceived", "GUARDED_SIGNALS", "ReleaseError", "signals_held"]
 
@@ -92,15 +93,18 @@ class ServoGuard:
         longest attempt so far, s. Default 2 s. A bus declared dead
         (:class:`~ebantenna.device.i2c.BusDeadError`) ends the attempts at once.
     fallback : callable, optional
-        A release that needs no I2C, called when the I2C release failed (e.g.
-        :meth:`~ebantenna.device.oe.OutputEnable.disable_outputs`).
+        A way to switch the outputs off that needs no I2C, called when the I2C release failed
+        (e.g. :meth:`~ebantenna.device.oe.OutputEnable.disable_outputs`). It holds them off
+        only while the program runs (:data:`~ebantenna.device.oe.OE_ONLY`): not a release,
+        and :class:`ReleaseError` is raised all the same.
 
     Attributes
     ----------
     released : bool
-        Whether the last release succeeded.
+        Whether the last release succeeded: the outputs written off over I2C and read back so.
     released_by : str or None
-        How: ``"i2c"``, ``"oe"`` (the fallback) or None.
+        What switched the outputs off: ``"i2c"`` (the release), ``"oe"`` (the fallback alone,
+        :attr:`released` False) or None.
     signal_received : int or None
         The guarded signal that ended the run, if one did.
 
@@ -182,25 +186,26 @@ class ServoGuard:
         raise AssertionError("unreachable")  # pragma: no cover
 
     def release_with_retries(self) -> None:
-        """Release over I2C, retrying a failure within ``deadline`` seconds; then, if it
-        still failed, through ``fallback``. :class:`ReleaseError` if nothing worked."""
+        """Release over I2C, retrying a failure within ``deadline`` seconds; if it still failed,
+        switch the outputs off through ``fallback`` for as long as the program runs, and raise
+        :class:`ReleaseError` (the servos are not released: at exit the fallback lets go)."""
         last = self._release_over_i2c()
         if last is None:
             self.released, self.released_by = True, "i2c"
             return
+        held = False
         if self.fallback is not None:
             try:
                 self.fallback()
             except Exception as exc:  # noqa: BLE001 - any failure of the fallback is reported
-                logger.error("the release without I2C failed too: %s", exc)
+                logger.error("switching the outputs off without I2C failed too: %s", exc)
             else:
-                self.released, self.released_by = True, "oe"
-                return
-        self.released, self.released_by = False, None
+                held = True
+        self.released, self.released_by = False, "oe" if held else None
+        state = OE_ONLY if held else "they may still be powered"
         raise ReleaseError(
             last.errno,
-            f"the servos could not be released ({last}): they may still be powered; switch off "
-            "the servo supply",
+            f"the servos could not be released ({last}): {state}; switch off the servo supply",
         ) from last
 
     def __exit__(self, exc_type, exc, tb):

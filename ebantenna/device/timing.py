@@ -42,7 +42,8 @@ class PeriodEstimator:
     ``n2 > n1``, give ``t_(n2) > b2`` and ``t_(n1 - 1) <= a1``, so ``(n2 - n1 + 1) T > b2 - a1``;
     and ``t_(n2 - 1) <= a2``, ``t_(n1) > b1``, so ``(n2 - n1 - 1) T < a2 - b1``. The time of the
     first sample cancels: the bracket needs no phase. It starts from the rate's tolerance, two
-    sided on the *rate*: ``nominal / (1 + tolerance) <= T <= nominal / (1 - tolerance)``.
+    sided on the *rate*: ``nominal / (1 + tolerance) <= T <= nominal / (1 - tolerance)``, the
+    *prior*; a clock that the counts show outside it widens the prior (:meth:`widen`).
 
     A count that contradicts the bracket (no period in it can explain the count) is not used:
     it is logged at WARNING and counted in ``rejected``.
@@ -58,6 +59,9 @@ class PeriodEstimator:
     ----------
     low, high : float
         The bracket of the period, s.
+    prior : tuple of float
+        The bracket before any observation, s: the tolerance's, or wider once :meth:`widen` let
+        in a period the counts showed (a clock outside the tolerance).
     rejected : int
         Counts rejected because they contradict the bracket.
     segments : list of list of (int, float, float)
@@ -83,10 +87,15 @@ class PeriodEstimator:
         tolerance = check_in_range("tolerance", tolerance, 0.0, 1.0)
         self.nominal = nominal
         self.tolerance = tolerance
-        self.low = nominal / (1.0 + tolerance)
-        self.high = nominal / (1.0 - tolerance)
+        #: The bracket the observations narrow, s: the tolerance's, until :meth:`widen`.
+        self.prior = (nominal / (1.0 + tolerance), nominal / (1.0 - tolerance))
+        self.low, self.high = self.prior
         self.rejected = 0
         self.segments: list[list[tuple[int, float, float]]] = []
+        # each segment's bracket from its own observations alone (every pair of them, pruned
+        # ones included), no prior: kept as they come, so that recomputing the bracket costs
+        # one step per segment, not one per pair of observations
+        self._own: list[tuple[float, float]] = []
         #: Segments whose observations no longer narrow the bracket (:meth:`forget`).
         self.excluded: set[int] = set()
 
@@ -94,19 +103,13 @@ class PeriodEstimator:
         """A new segment: the FIFO was enabled by a write made between host times ``before`` and
         ``after`` (s)."""
         self.segments.append([(0, before, after)])
+        self._own.append((0.0, math.inf))
 
     def bounds(self, produced: int, before: float, after: float) -> tuple[float, float]:
         """The bracket ``(low, high)`` of the period, s, if ``produced`` samples of the current
         segment were counted between host times ``before`` and ``after``; empty (``low >=
         high``) when the count contradicts what is known."""
-        low, high = self.low, self.high
-        for n1, b1, a1 in self.segments[-1]:
-            if produced < n1:  # fewer samples than an earlier count: impossible
-                return math.inf, -math.inf
-            low = max(low, (before - a1) / (produced - n1 + 1))
-            if produced - n1 > 1:
-                high = min(high, (after - b1) / (produced - n1 - 1))
-        return low, high
+        return _narrowed_by(self.segments[-1], (produced, before, after), self.low, self.high)
 
     def check(self, *, produced: int, before: float, after: float) -> bool:
         """Whether the count is possible; if not it is rejected: logged and counted."""
@@ -131,7 +134,9 @@ class PeriodEstimator:
         if not self.check(produced=produced, before=before, after=after):
             return False
         self.low, self.high = self.bounds(produced, before, after)
-        self.segments[-1].append((produced, before, after))
+        observation = (produced, before, after)
+        self._own[-1] = _narrowed_by(self.segments[-1], observation, *self._own[-1])
+        self.segments[-1].append(observation)
         if len(self.segments[-1]) > MAX_OBSERVATIONS:
             self._prune(self.segments[-1])
         return True
@@ -156,27 +161,65 @@ class PeriodEstimator:
         """Take ``segment``'s observations out of the bracket (they contradicted it: a sample
         taken by another reader, a count read wrong, a clock off its tolerance, and the ones
         before the contradiction may have narrowed the bracket wrongly). The bracket is
-        recomputed from the tolerance and the other segments' observations, pair by pair; the
-        segment's own observations stay for its timestamps, which the caller flags.
+        recomputed from the prior and the other segments' own brackets (every pair of their
+        observations, kept as they came: one step per segment, however long the recording);
+        the segment's own observations stay for its timestamps, which the caller flags.
 
         ``segment`` is the index of a segment begun (0 for the first :meth:`begin`)."""
         if not self.segments:
             raise ValueError(f"segment must be a segment begun, and none is yet; got {segment!r}")
         segment = check_int("segment", segment, minimum=0, maximum=len(self.segments) - 1)
         self.excluded.add(segment)
-        low, high = self.nominal / (1.0 + self.tolerance), self.nominal / (1.0 - self.tolerance)
-        for k, observations in enumerate(self.segments):
+        self._recompute()
+
+    def widen(self, low: float, high: float) -> None:
+        """Let the period lie in ``[low, high]`` (s) too: the prior bracket becomes the smallest
+        that holds both it and ``[low, high]``, and the bracket is recomputed from it and the
+        observations of the segments not taken out (:meth:`forget`).
+
+        For a clock that the counts show outside the tolerance: observations bound the period
+        whatever the prior, so once the prior holds the true period the bracket does too.
+
+        Parameters
+        ----------
+        low, high : float
+            The period's bounds to take in, s; ``0 < low <= high``, both finite.
+        """
+        low = check_positive("low", low)
+        high = check_positive("high", high)
+        if not high >= low:
+            raise ValueError(f"high must be >= low ({low!r} s), got {high!r}")
+        self.prior = (min(self.prior[0], low), max(self.prior[1], high))
+        self._recompute()
+
+    def _recompute(self) -> None:
+        """The bracket from the prior and the segments not taken out: one step per segment."""
+        low, high = self.prior
+        for k, (own_low, own_high) in enumerate(self._own):
             if k not in self.excluded:
-                low, high = _narrowed(observations, low, high)
+                low, high = max(low, own_low), min(high, own_high)
         self.low, self.high = low, high
+
+    def _seen(self, extra=()) -> tuple[float, float]:
+        """The period bracket ``(low, high)`` (s) that the current segment's observations and
+        the observations ``extra`` (``(n, before, after)`` each) give alone, no prior assumed:
+        empty (``low >= high``) when they contradict each other, ``high`` infinite when they
+        bound the period from below only."""
+        if not self.segments:
+            return 0.0, math.inf
+        low, high = self._own[-1]
+        observations = list(self.segments[-1])
+        for observation in extra:
+            low, high = _narrowed_by(observations, observation, low, high)
+            observations.append(observation)
+        return low, high
 
     def _own_bracket(self, segment: int) -> tuple[float, float]:
         """The period bracket from ``segment``'s observations alone, no tolerance assumed (for a
         segment taken out of the bracket, :meth:`forget`); where they bound it from one side
         only, the tolerance's bound (widened to the other side's) stands in."""
-        low, high = _narrowed(self.segments[segment], 0.0, math.inf)
-        prior_low = self.nominal / (1.0 + self.tolerance)
-        prior_high = self.nominal / (1.0 - self.tolerance)
+        low, high = self._own[segment]
+        prior_low, prior_high = self.prior
         if not math.isfinite(high):
             high = max(prior_high, low)
         if low <= 0.0:
@@ -223,14 +266,16 @@ class PeriodEstimator:
         return 0.5 * (self.high - self.low)
 
 
-def _narrowed(observations, low: float, high: float) -> tuple[float, float]:
-    """The period bracket ``(low, high)`` narrowed by every ordered pair of one segment's
-    observations, as :meth:`PeriodEstimator.forget` and ``_own_bracket`` both narrow it."""
-    for i, (n2, b2, a2) in enumerate(observations):
-        for n1, b1, a1 in observations[:i]:
-            if n2 < n1:
-                continue
-            low = max(low, (b2 - a1) / (n2 - n1 + 1))
-            if n2 - n1 > 1:
-                high = min(high, (a2 - b1) / (n2 - n1 - 1))
+def _narrowed_by(observations, observation, low: float, high: float) -> tuple[float, float]:
+    """The period bracket ``(low, high)`` narrowed by every pair of one of a segment's
+    ``observations`` and a later ``observation`` ``(n, before, after)`` of it (the pair rule of
+    :class:`PeriodEstimator`); empty when ``observation`` counts fewer samples than one of
+    them."""
+    produced, before, after = observation
+    for n1, b1, a1 in observations:
+        if produced < n1:  # fewer samples than an earlier count: impossible
+            return math.inf, -math.inf
+        low = max(low, (before - a1) / (produced - n1 + 1))
+        if produced - n1 > 1:
+            high = min(high, (after - b1) / (produced - n1 - 1))
     return low, high

@@ -28,7 +28,7 @@ from ebantenna.device import (
     SimulatedRig,
     search_and_record,
 )
-from ebantenna.device.oe import OutputEnable
+from ebantenna.device.oe import OE_ONLY, OutputEnable
 from ebantenna.device.pca9685 import NotInitializedError
 from ebantenna.device.simulated.faults import TRANSFER_FAULTS
 from ebantenna.device.watchdog import StreamStalledError
@@ -186,11 +186,42 @@ def test_a_release_that_never_lands_keeps_the_finished_recording():
     assert result is not None and result.contact_detected and not result.servos_released
     assert result.samples + result.samples_lost == 1050
     assert rig.wrong_samples(mpu, result.recording) == 0 and rig.pca.outputs_enabled()
-    # with the OE pin wired, the same failure still ends with the servos limp
+
+
+
+def test_the_oe_pin_alone_is_not_a_release():
+    # With the OE pin wired, the same failure leaves the servos limp while the program runs,
+    # and only then: the release is still refused, since at exit the line floats low.
     rig, mpu, search = _search(Faults(release_fails=True), oe=True)
-    result = search()
-    assert result.servos_released and result.servos_released_by == "oe"
-    assert not rig.pca.outputs_enabled()
+    with pytest.raises(ReleaseError, match="only while this program runs.*switch off the "
+                                           "servo supply") as info:
+        search()
+    result = info.value.result
+    assert not result.servos_released and result.servos_released_by == "oe"
+    assert result.samples + result.samples_lost == 1050
+    assert not rig.pca.outputs_enabled()  # held off now
+    # what exiting does to the line: released, pulled low, and the registers drive the servos
+    oe = OutputEnable(rig.pca.oe_line())
+    oe.disable_outputs()
+    oe.close()
+    assert rig.pca.outputs_enabled() and all(rig.pca.pulse(ch) > 0 for ch in (0, 1))
+
+
+def test_acquire_with_only_the_oe_pin_holding_the_servos_exits_3(capsys, tmp_path):
+    out = tmp_path / "rec.npz"
+    code = main(["acquire", "--simulated", "--seed", "1", "--release-fails", "--oe-gpio", "17",
+                 "--out", str(out), "--json"])
+    captured = capsys.readouterr()
+    data = json.loads(captured.out)
+    assert code == 3 and data["servos_released"] is False and data["servos_released_by"] == "oe"
+    assert data["servo_outputs_held_by_oe"] is True and data["action_required"]
+    err = captured.err.strip().splitlines()
+    assert OE_ONLY in captured.err and "switch off the servo supply" in err[-1]
+    assert Recording.load(out).n_samples == 1050 and data["samples_wrong"] == 0
+    # released over I2C, the OE pin wired but never needed: a release, exit 0
+    code = main(["acquire", "--simulated", "--seed", "1", "--oe-gpio", "17", "--json"])
+    data = json.loads(capsys.readouterr().out)
+    assert code == 0 and data["servos_released"] is True and data["servos_released_by"] == "i2c"
 
 
 def test_acquire_saves_the_recording_when_the_release_fails(capsys, tmp_path):
@@ -215,7 +246,8 @@ def test_a_dead_bus_gives_up_within_five_seconds(stuck_at, oe):
         search()
     assert rig.clock.monotonic() - stuck_at <= 2.0 + 1.0 + 0.02 <= 5.0
     assert info.value.recording is not None and info.value.recording.n_samples > 0
-    assert info.value.servos_released is oe and rig.pca.outputs_enabled() is not oe
+    # the OE pin holds the outputs off for now, which is not a release (it floats at exit)
+    assert info.value.servos_released is False and rig.pca.outputs_enabled() is not oe
 
 
 def test_the_mpu6500_family_is_configured_as_itself():

@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 from ebantenna._tempfiles import TEMPORARY_PREFIX
+from ebantenna.device.oe import OE_ONLY, OutputEnable
 from ebantenna.device.plan import Plan, load_plan
 from ebantenna.device.recording_session import (
     MANIFEST,
@@ -188,6 +189,31 @@ def test_servos_not_released_stop_the_session_and_block_it_until_the_rig_checks_
     # repaired: it goes on, and makes the rest
     done = session(tmp_path).run()
     assert done["unsafe"] is None and len(done["recordings"]) == len(small_plan())
+
+
+def test_the_oe_pin_alone_does_not_count_as_released(tmp_path):
+    # the release over I2C fails; the OE pin switches the outputs off, but only while the
+    # program runs: the session stops, marked unsafe, saying both
+    broken = simulated_connect(SCENE, simulate, seed=3, faults=Faults(release_fails=True))
+    held = []
+
+    def with_oe(touch, attempt):
+        conn = broken(touch, attempt)
+        conn.output_enable = OutputEnable(conn.simulated.oe_line())
+        held.append(conn)
+        return conn
+
+    s = session(tmp_path, connect=with_oe)
+    with pytest.raises(UnsafeRigError, match="could not be released") as err:
+        s.run()
+    assert OE_ONLY in str(err.value) and "switch off the servo supply" in str(err.value)
+    assert err.value.servos_may_be_powered
+    manifest = read_manifest(s.manifest_path)
+    assert manifest["unsafe"]["servos_may_be_powered"] is True
+    (entry,) = manifest["recordings"].values()
+    assert entry["servos_released"] is False
+    rig = held[-1].simulated
+    assert held[-1].output_enable.disabled and not rig.pca.outputs_enabled()  # kept high
 
 
 def test_a_dead_bus_is_refused_saying_what_to_do(tmp_path):

@@ -54,7 +54,10 @@ class SimulatedLine:
         self._drive(False)
 
     def close(self) -> None:
-        """Release the line (nothing to do in the simulation)."""
+        """Release the line: it floats, and the breakout's pull-down takes it low (on ``OE``:
+        the outputs follow the registers again), as when the program that drove it exits."""
+        self.value = 0
+        self._drive(False)
 
 #: Register addresses are one byte; with ``MODE1.AI`` set they roll over from 0xFF to 0x00.
 _REGISTER_SPACE = 256

@@ -3,9 +3,11 @@
 The simulator is a chain of steps, applied in one loop over an ordered list, :data:`CHAIN`. Each
 entry names the effect that switches the step on (None: the step always runs), the step, a
 function that takes the effect and the :class:`SignalBatch` it works on, and the other effects
-the step reads (``reads``): every effect of the scene is a step or is read by one. A scene that
-does not list an effect skips its step, and a new effect is one more entry in the list. In
-order:
+the step reads (``reads``): every effect of the scene is a step or is read by one. The steps of
+the sensor and the acquisition (``clock_jitter`` and every step from ``gravity`` on) are methods
+of their effect's class in :mod:`~ebantenna.simulate.effects.sensor`, beside the physics they
+apply; the two that run always, and the preload's, are here. A scene that does not list an
+effect skips its step, and a new effect is one more entry in the list. In order:
 
 1. ``preload_scatter``: each strike's preload. It sets the contact spring, so it comes before
    the modes.
@@ -67,6 +69,16 @@ from .._validate import check_array, check_int, check_real
 from ..fem.guards import check_contact
 from ..probe import material as lookup_material
 from ..recording import Recording
+from .effects import (
+    Clipping,
+    ClockJitter,
+    Gravity,
+    MainsHum,
+    Quantisation,
+    SensorDrift,
+    SensorNoise,
+    SteadyStateKalman,
+)
 from .modes import damped_exponentials, modal_exponentials
 from .scene import Scene
 from .touched_object import OBJECT_MODELS, ModalTerms, signal_terms
@@ -191,11 +203,6 @@ def _touched_object(_, batch: SignalBatch) -> None:
     )
 
 
-def _jitter_instants(jitter, batch: SignalBatch) -> None:
-    """``clock_jitter``: each sample taken at ``n / fs + e_n``."""
-    batch.when = batch.t + np.stack([jitter.offsets(r, batch.t.size) for r in batch.rngs(jitter)])
-
-
 def _modal_axis(terms: ModalTerms, batch: SignalBatch) -> np.ndarray:
     """The sum of ``terms``' modes read at ``batch.when``, through the chip's filter if listed."""
     coef, rate = modal_exponentials(terms.amplitude, terms.omega, terms.zeta)
@@ -216,64 +223,6 @@ def _respond(_, batch: SignalBatch) -> None:
     """X and Z after the arrest, read at the sample instants."""
     batch.ax = _axis_response(batch, "x")
     batch.az = _axis_response(batch, "z")
-
-
-def _rest_before_arrest(_, batch: SignalBatch) -> None:
-    """``clock_jitter``: a sample taken before the arrest reads rigid rotation, no acceleration."""
-    before = batch.when < 0
-    batch.ax[before] = 0.0
-    batch.az[before] = 0.0
-
-
-def _add_gravity(gravity, batch: SignalBatch) -> None:
-    """``gravity``: a constant, which the settled filter passes unchanged; Z rests at ``g``."""
-    batch.ax, batch.az = gravity.apply(batch.ax, batch.az)
-    batch.levels_z = np.full(batch.n, gravity.g)
-
-
-def _add_hum(hum, batch: SignalBatch) -> None:
-    """``mains_hum``: a steady tone, which the filter scales and delays."""
-    dlpf = batch.chip_filter
-    gain = complex(dlpf.frequency_response(hum.frequency)) if dlpf is not None else 1.0
-    phases = np.stack([hum.phases(r) for r in batch.rngs(hum)]) + np.angle(gain)  # (n, 2)
-    tt = batch.when if np.ndim(batch.when) == 2 else batch.when[None, :]
-    batch.ax = batch.ax + abs(gain) * hum.signal(tt, phases[:, :1])
-    batch.az = batch.az + abs(gain) * hum.signal(tt, phases[:, 1:])
-
-
-def _add_noise(noise, batch: SignalBatch) -> None:
-    """``sensor_noise``: white at the chip's rate, through its filter and decimation."""
-    scene = batch.scene
-    draws = noise.draw_signals(batch.rngs(noise), scene.n_samples, scene.fs, batch.chip_filter)
-    batch.ax = batch.ax + draws[:, 0]  # draws: (n, 2, n_samples)
-    batch.az = batch.az + draws[:, 1]
-
-
-def _drift(drift, batch: SignalBatch) -> None:
-    """``sensor_drift``: after the filter, the chip's offset and sensitivity of this session."""
-    draws = [drift.draw(r) for r in batch.rngs(drift)]
-    gains = np.stack([g for g, _ in draws])
-    offsets = np.stack([o for _, o in draws])
-    batch.ax = gains[:, :1] * batch.ax + offsets[:, :1]
-    batch.az = gains[:, 1:] * batch.az + offsets[:, 1:]
-    batch.levels_x = offsets[:, 0].copy()
-    batch.levels_z = gains[:, 1] * batch.levels_z + offsets[:, 1]
-
-
-def _clip(clipping, batch: SignalBatch) -> None:
-    """``clipping``: the chip's range."""
-    batch.ax, batch.az = clipping.apply(batch.ax), clipping.apply(batch.az)
-
-
-def _quantise(quantisation, batch: SignalBatch) -> None:
-    """``quantisation``: the chip's 16-bit output."""
-    batch.ax, batch.az = quantisation.apply(batch.ax), quantisation.apply(batch.az)
-
-
-def _kalman(kalman, batch: SignalBatch) -> None:
-    """``kalman``: the steady-state filter on the Raspberry Pi, about each axis's resting level."""
-    batch.ax = kalman.apply(batch.ax, batch.levels_x)
-    batch.az = kalman.apply(batch.az, batch.levels_z)
 
 
 @dataclass(frozen=True)
@@ -305,16 +254,16 @@ CHAIN = (
               reads=("object_modes", "structural_damping", "contact_compliance", "tip_mass",
                      "object_damping", "unilateral_contact", "hertz_contact",
                      "coulomb_friction")),
-    ChainStep("clock_jitter", _jitter_instants),
+    ChainStep("clock_jitter", ClockJitter.sample_instants),
     ChainStep(None, _respond, reads=("unilateral_contact", "coulomb_friction", "dlpf")),
-    ChainStep("clock_jitter", _rest_before_arrest),
-    ChainStep("gravity", _add_gravity),
-    ChainStep("mains_hum", _add_hum, reads=("dlpf",)),
-    ChainStep("sensor_noise", _add_noise, reads=("dlpf",)),
-    ChainStep("sensor_drift", _drift),
-    ChainStep("clipping", _clip),
-    ChainStep("quantisation", _quantise),
-    ChainStep("kalman", _kalman),
+    ChainStep("clock_jitter", ClockJitter.rest_before_arrest),
+    ChainStep("gravity", Gravity.add_to),
+    ChainStep("mains_hum", MainsHum.add_to, reads=("dlpf",)),
+    ChainStep("sensor_noise", SensorNoise.add_to, reads=("dlpf",)),
+    ChainStep("sensor_drift", SensorDrift.apply_to),
+    ChainStep("clipping", Clipping.apply_to),
+    ChainStep("quantisation", Quantisation.apply_to),
+    ChainStep("kalman", SteadyStateKalman.apply_to),
 )
 
 

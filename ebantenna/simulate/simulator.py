@@ -4,9 +4,10 @@ The simulator is a chain of steps, applied in one loop over an ordered list, :da
 entry names the effect that switches the step on (None: the step always runs), the step, a
 function that takes the effect and the :class:`SignalBatch` it works on, and the other effects
 the step reads (``reads``): every effect of the scene is a step or is read by one. The steps of
-the sensor and the acquisition (``clock_jitter`` and every step from ``gravity`` on) are methods
-of their effect's class in :mod:`~ebantenna.simulate.effects.sensor`, beside the physics they
-apply; the two that run always, and the preload's, are here. A scene that does not list an
+the sensor and the acquisition (``clock_jitter``'s and every step from ``gravity`` on) are
+written beside their effects, whose physics they apply, in
+:mod:`~ebantenna.simulate.effects.sensor` (its ``CHAIN_STEPS``); the two that always run, and
+the preload's, are here. A scene that does not list an
 effect skips its step, and a new effect is one more entry in the list. In order:
 
 1. ``preload_scatter``: each strike's preload. It sets the contact spring, so it comes before
@@ -69,16 +70,7 @@ from .._validate import check_array, check_int, check_real
 from ..fem.guards import check_contact
 from ..probe import material as lookup_material
 from ..recording import Recording
-from .effects import (
-    Clipping,
-    ClockJitter,
-    Gravity,
-    MainsHum,
-    Quantisation,
-    SensorDrift,
-    SensorNoise,
-    SteadyStateKalman,
-)
+from .effects.sensor import CHAIN_STEPS as SENSOR_STEPS
 from .modes import damped_exponentials, modal_exponentials
 from .scene import Scene
 from .touched_object import OBJECT_MODELS, ModalTerms, signal_terms
@@ -167,8 +159,8 @@ class SignalBatch:
     def __post_init__(self):
         self.t = np.arange(self.scene.n_samples) / self.scene.fs
         self.when = self.t
-        self.levels_x, self.levels_z = np.zeros(self.n), np.zeros(self.n)
         self.chip_filter = self.scene.effect("dlpf")
+        self.levels_x, self.levels_z = np.zeros(self.n), np.zeros(self.n)
 
     @property
     def n(self) -> int:
@@ -254,16 +246,16 @@ CHAIN = (
               reads=("object_modes", "structural_damping", "contact_compliance", "tip_mass",
                      "object_damping", "unilateral_contact", "hertz_contact",
                      "coulomb_friction")),
-    ChainStep("clock_jitter", ClockJitter.sample_instants),
+    ChainStep("clock_jitter", SENSOR_STEPS["sample_instants"]),
     ChainStep(None, _respond, reads=("unilateral_contact", "coulomb_friction", "dlpf")),
-    ChainStep("clock_jitter", ClockJitter.rest_before_arrest),
-    ChainStep("gravity", Gravity.add_to),
-    ChainStep("mains_hum", MainsHum.add_to, reads=("dlpf",)),
-    ChainStep("sensor_noise", SensorNoise.add_to, reads=("dlpf",)),
-    ChainStep("sensor_drift", SensorDrift.apply_to),
-    ChainStep("clipping", Clipping.apply_to),
-    ChainStep("quantisation", Quantisation.apply_to),
-    ChainStep("kalman", SteadyStateKalman.apply_to),
+    ChainStep("clock_jitter", SENSOR_STEPS["rest_before_arrest"]),
+    ChainStep("gravity", SENSOR_STEPS["gravity"]),
+    ChainStep("mains_hum", SENSOR_STEPS["mains_hum"], reads=("dlpf",)),
+    ChainStep("sensor_noise", SENSOR_STEPS["sensor_noise"], reads=("dlpf",)),
+    ChainStep("sensor_drift", SENSOR_STEPS["sensor_drift"]),
+    ChainStep("clipping", SENSOR_STEPS["clipping"]),
+    ChainStep("quantisation", SENSOR_STEPS["quantisation"]),
+    ChainStep("kalman", SENSOR_STEPS["kalman"]),
 )
 
 

@@ -55,17 +55,18 @@ class ClockJitter(Effect):
         """Offsets ``e_n`` of one signal's sampling instants, s, shape ``(n_samples,)``."""
         return rng.normal(0.0, self.rms, n_samples)
 
-    def sample_instants(self, batch) -> None:
-        """The chain's step ``clock_jitter``: each sample of the signals of ``batch`` (a
-        :class:`~ebantenna.simulate.simulator.SignalBatch`) is taken at ``n / fs + e_n``; the responses are read there."""
-        batch.when = batch.t + np.stack([self.offsets(r, batch.t.size) for r in batch.rngs(self)])
 
-    def rest_before_arrest(self, batch) -> None:
-        """The chain's second step of ``clock_jitter``, after the responses: a sample taken
-        before the arrest reads rigid rotation, no acceleration."""
-        before = batch.when < 0
-        batch.ax[before] = 0.0
-        batch.az[before] = 0.0
+def _sample_instants(jitter: ClockJitter, batch) -> None:
+    """The chain's step ``clock_jitter``: each sample taken at ``n / fs + e_n``."""
+    batch.when = batch.t + np.stack([jitter.offsets(r, batch.t.size) for r in batch.rngs(jitter)])
+
+
+def _rest_before_arrest(jitter: ClockJitter, batch) -> None:
+    """The chain's step ``clock_jitter`` after the responses: a sample taken before the arrest
+    reads rigid rotation, no acceleration."""
+    before = batch.when < 0
+    batch.ax[before] = 0.0
+    batch.az[before] = 0.0
 
 
 @dataclass(frozen=True)
@@ -100,11 +101,12 @@ class Gravity(Effect):
         """Add ``g`` to ``az``; ``ax`` is returned unchanged."""
         return ax, az + self.g
 
-    def add_to(self, batch) -> None:
-        """The chain's step ``gravity`` on a :class:`~ebantenna.simulate.simulator.SignalBatch`: a constant, which the settled
-        filter passes unchanged; Z rests at ``g``."""
-        batch.ax, batch.az = self.apply(batch.ax, batch.az)
-        batch.levels_z = np.full(batch.n, self.g)
+
+def _add_gravity(gravity: Gravity, batch) -> None:
+    """The chain's step ``gravity``: a constant, which the settled filter passes unchanged; Z
+    rests at ``g``."""
+    batch.ax, batch.az = gravity.apply(batch.ax, batch.az)
+    batch.levels_z = np.full(batch.n, gravity.g)
 
 
 @dataclass(frozen=True)
@@ -148,15 +150,16 @@ class MainsHum(Effect):
         """``amplitude * sin(2 pi f t + phase)``, m/s^2; ``t`` and ``phase`` broadcast."""
         return self.amplitude * np.sin(2 * math.pi * self.frequency * np.asarray(t) + phase)
 
-    def add_to(self, batch) -> None:
-        """The chain's step ``mains_hum`` on a :class:`~ebantenna.simulate.simulator.SignalBatch`: a steady tone, which the
-        chip's filter (``batch.chip_filter``, if listed) scales and delays."""
-        dlpf = batch.chip_filter
-        gain = complex(dlpf.frequency_response(self.frequency)) if dlpf is not None else 1.0
-        phases = np.stack([self.phases(r) for r in batch.rngs(self)]) + np.angle(gain)  # (n, 2)
-        tt = batch.when if np.ndim(batch.when) == 2 else batch.when[None, :]
-        batch.ax = batch.ax + abs(gain) * self.signal(tt, phases[:, :1])
-        batch.az = batch.az + abs(gain) * self.signal(tt, phases[:, 1:])
+
+def _add_hum(hum: MainsHum, batch) -> None:
+    """The chain's step ``mains_hum``: a steady tone, which the chip's filter scales and
+    delays."""
+    dlpf = batch.chip_filter
+    gain = complex(dlpf.frequency_response(hum.frequency)) if dlpf is not None else 1.0
+    phases = np.stack([hum.phases(r) for r in batch.rngs(hum)]) + np.angle(gain)  # (n, 2)
+    tt = batch.when if np.ndim(batch.when) == 2 else batch.when[None, :]
+    batch.ax = batch.ax + abs(gain) * hum.signal(tt, phases[:, :1])
+    batch.az = batch.az + abs(gain) * hum.signal(tt, phases[:, 1:])
 
 
 @dataclass(frozen=True)
@@ -215,13 +218,14 @@ class SensorNoise(Effect):
             out[start : start + len(block)] = dlpf.apply_internal(raw, fs)[..., lead:]
         return out
 
-    def add_to(self, batch) -> None:
-        """The chain's step ``sensor_noise`` on a :class:`~ebantenna.simulate.simulator.SignalBatch`: white at the chip's rate,
-        through its filter (``batch.chip_filter``, if listed) and decimation."""
-        scene = batch.scene
-        draws = self.draw_signals(batch.rngs(self), scene.n_samples, scene.fs, batch.chip_filter)
-        batch.ax = batch.ax + draws[:, 0]  # draws: (n, 2, n_samples)
-        batch.az = batch.az + draws[:, 1]
+
+def _add_noise(noise: SensorNoise, batch) -> None:
+    """The chain's step ``sensor_noise``: white at the chip's rate, through its filter and
+    decimation."""
+    scene = batch.scene
+    draws = noise.draw_signals(batch.rngs(noise), scene.n_samples, scene.fs, batch.chip_filter)
+    batch.ax = batch.ax + draws[:, 0]  # draws: (n, 2, n_samples)
+    batch.az = batch.az + draws[:, 1]
 
 
 #: Signals whose internal-rate noise is drawn and filtered at once (bounds the memory).
@@ -426,16 +430,17 @@ class SensorDrift(Effect):
         """Standard deviation of the gain factor (dimensionless)."""
         return SENSITIVITY_DRIFT * self.temperature_std
 
-    def apply_to(self, batch) -> None:
-        """The chain's step ``sensor_drift`` on a :class:`~ebantenna.simulate.simulator.SignalBatch`: after the filter, the chip's
-        offset and sensitivity of this session; the axes' resting levels move with them."""
-        draws = [self.draw(r) for r in batch.rngs(self)]
-        gains = np.stack([g for g, _ in draws])
-        offsets = np.stack([o for _, o in draws])
-        batch.ax = gains[:, :1] * batch.ax + offsets[:, :1]
-        batch.az = gains[:, 1:] * batch.az + offsets[:, 1:]
-        batch.levels_x = offsets[:, 0].copy()
-        batch.levels_z = gains[:, 1] * batch.levels_z + offsets[:, 1]
+
+def _drift(drift: SensorDrift, batch) -> None:
+    """The chain's step ``sensor_drift``: after the filter, the chip's offset and sensitivity of
+    this session; the axes' resting levels move with them."""
+    draws = [drift.draw(r) for r in batch.rngs(drift)]
+    gains = np.stack([g for g, _ in draws])
+    offsets = np.stack([o for _, o in draws])
+    batch.ax = gains[:, :1] * batch.ax + offsets[:, :1]
+    batch.az = gains[:, 1:] * batch.az + offsets[:, 1:]
+    batch.levels_x = offsets[:, 0].copy()
+    batch.levels_z = gains[:, 1] * batch.levels_z + offsets[:, 1]
 
 
 @dataclass(frozen=True)
@@ -474,9 +479,10 @@ class Clipping(Effect):
         low, high = self.limits()
         return np.clip(a, low, high)
 
-    def apply_to(self, batch) -> None:
-        """The chain's step ``clipping`` on both axes of a :class:`~ebantenna.simulate.simulator.SignalBatch`."""
-        batch.ax, batch.az = self.apply(batch.ax), self.apply(batch.az)
+
+def _clip(clipping: Clipping, batch) -> None:
+    """The chain's step ``clipping``: the chip's range, on both axes."""
+    batch.ax, batch.az = clipping.apply(batch.ax), clipping.apply(batch.az)
 
 
 @dataclass(frozen=True)
@@ -515,9 +521,10 @@ class Quantisation(Effect):
         lsb = self.lsb()
         return np.round(a / lsb) * lsb
 
-    def apply_to(self, batch) -> None:
-        """The chain's step ``quantisation`` on both axes of a :class:`~ebantenna.simulate.simulator.SignalBatch`."""
-        batch.ax, batch.az = self.apply(batch.ax), self.apply(batch.az)
+
+def _quantise(quantisation: Quantisation, batch) -> None:
+    """The chain's step ``quantisation``: the chip's 16-bit output, on both axes."""
+    batch.ax, batch.az = quantisation.apply(batch.ax), quantisation.apply(batch.az)
 
 
 @dataclass(frozen=True)
@@ -562,8 +569,26 @@ class SteadyStateKalman(Effect):
         y, _ = sps.lfilter([k], [1.0, -(1.0 - k)], a, axis=-1, zi=zi)
         return y
 
-    def apply_to(self, batch) -> None:
-        """The chain's step ``kalman`` on a :class:`~ebantenna.simulate.simulator.SignalBatch`: each axis filtered about its
-        resting level (``batch.levels_x``, ``batch.levels_z``)."""
-        batch.ax = self.apply(batch.ax, batch.levels_x)
-        batch.az = self.apply(batch.az, batch.levels_z)
+
+def _kalman(kalman: SteadyStateKalman, batch) -> None:
+    """The chain's step ``kalman``: the filter on the Raspberry Pi, about each axis's resting
+    level."""
+    batch.ax = kalman.apply(batch.ax, batch.levels_x)
+    batch.az = kalman.apply(batch.az, batch.levels_z)
+
+
+#: The chain's steps of the sensor and the acquisition, each ``step(effect, batch)`` beside the
+#: effect whose physics it applies: it changes the simulator's
+#: :class:`~ebantenna.simulate.simulator.SignalBatch` in place, with values the simulator
+#: checked. :data:`ebantenna.simulate.simulator.CHAIN` puts them in order, and says why.
+CHAIN_STEPS = {
+    "sample_instants": _sample_instants,
+    "rest_before_arrest": _rest_before_arrest,
+    "gravity": _add_gravity,
+    "mains_hum": _add_hum,
+    "sensor_noise": _add_noise,
+    "sensor_drift": _drift,
+    "clipping": _clip,
+    "quantisation": _quantise,
+    "kalman": _kalman,
+}

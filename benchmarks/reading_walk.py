@@ -185,12 +185,14 @@ def module_of(filename: str, root: Path) -> str | None:
 
 def _code_names(module) -> dict:
     """Qualified name of every function and method defined in ``module``, by code object."""
-    names, todo = {}, [module]
+    names, todo, classes = {}, [module], set()
     while todo:
         owner = todo.pop()
         for value in vars(owner).values():
-            if inspect.isclass(value) and value.__module__ == module.__name__:
-                todo.append(value)
+            if inspect.isclass(value):
+                if value.__module__ == module.__name__ and value not in classes:
+                    classes.add(value)
+                    todo.append(value)
                 continue
             for f in (value, getattr(value, "__func__", None), getattr(value, "fget", None),
                       getattr(value, "func", None)):

@@ -11,9 +11,10 @@ matrix product ``(A, k) x (k, B)`` per signal. The arguments are rounded as the 
 evaluation's are (both reach ``|r| t``), so the two agree to a few ulps of
 ``|r| t_max sum_k |C_k|``; the test suite holds them to that bound. The simulator uses this
 engine by default (``engine="grid"``) wherever it applies (:func:`fits_grid`), and the reference
-:func:`.modes.direct_exponentials` elsewhere (:func:`grid_or_direct`). This module imports the
-reference and adds ``"grid"`` to :data:`.modes.EXPONENTIAL_ENGINES` (the package does, when
-it is imported); the reference imports nothing from it.
+:func:`.modes.direct_exponentials` elsewhere (:func:`grid_or_direct`); times given per signal (a
+jittered clock) never reach it, :func:`.modes.damped_exponentials` sends them to the reference.
+This module imports the reference and adds ``"grid"`` to :data:`.modes.EXPONENTIAL_ENGINES` (the
+package does, when it is imported); the reference imports nothing from it.
 """
 
 from __future__ import annotations

@@ -262,6 +262,10 @@ def coupled_arrest_modes(
         + int(np.sum(rod_reduction.fixed_interface_omega < limit))
         + 2,
     )
+    # As in arrest_modes, the hinge takes the velocity of the DOFs it fixes: the modal velocities
+    # are Phi^T M u0 over the probe's free DOFs only (its mass matrix there holds the tip mass).
+    sub = probe_reduction.substructure
+    momentum = sub.mass @ sweep_velocity(sub.nodes)[sub.free]
     res = coupled_modes(
         probe,
         rod,
@@ -274,10 +278,6 @@ def coupled_arrest_modes(
         probe_reduction=probe_reduction,
         damping="perturbation",
     )
-    # As in arrest_modes, the hinge takes the velocity of the DOFs it fixes: the modal velocities
-    # are Phi^T M u0 over the probe's free DOFs only (its mass matrix there holds the tip mass).
-    sub = probe_reduction.substructure
-    momentum = sub.mass @ sweep_velocity(sub.nodes)[sub.free]
     velocity = res.probe_shapes[sub.free].T @ momentum
     nodes = res.probe_nodes
     freqs = res.frequencies
@@ -368,7 +368,8 @@ def damped_exponentials(
     ``"grid"``, the default, takes most
     of the exponentials of a uniform time grid longer than 64 samples as products instead (a
     private module; with ``t_n = t_0 + n dt`` and ``n = a B + b``, ``exp(r t_n) = exp(r (t_0 +
-    a B dt)) exp(r b dt)``), and evaluates any other ``t`` as the reference does. The two agree
+    a B dt)) exp(r b dt)``), and evaluates any other ``t`` as the reference does; times given
+    per signal (a jittered clock) go to the reference here, whatever ``engine`` says. The two agree
     to a few ulps of ``|rate| t_max sum_k |coef_k|``: both round the arguments ``rate t``.
 
     Parameters
@@ -394,7 +395,10 @@ def damped_exponentials(
     array([[ 0.,  1.,  0., -1.]])
     """
     check_choice("engine", engine, tuple(EXPONENTIAL_ENGINES))
-    return EXPONENTIAL_ENGINES[engine](np.asarray(t, dtype=float), coef, rate, max_elements)
+    t = np.asarray(t, dtype=float)
+    if t.ndim == 2:  # each signal its own times (a jittered clock): no grid an engine could share
+        return direct_exponentials(t, coef, rate, max_elements)
+    return EXPONENTIAL_ENGINES[engine](t, coef, rate, max_elements)
 
 
 def modal_acceleration(t, amplitude, omega, zeta, *, max_elements: int = 500_000) -> np.ndarray:

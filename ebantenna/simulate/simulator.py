@@ -3,9 +3,12 @@
 The simulator is a chain of steps, applied in one loop over an ordered list, :data:`CHAIN`. Each
 entry names the effect that switches the step on (None: the step always runs), the step, a
 function that takes the effect and the :class:`SignalBatch` it works on, and the other effects
-the step reads (``reads``): every effect of the scene is a step or is read by one. A scene that
-does not list an effect skips its step, and a new effect is one more entry in the list. In
-order:
+the step reads (``reads``): every effect of the scene is a step or is read by one. The steps of
+the sensor and the acquisition (``clock_jitter``'s and every step from ``gravity`` on) are
+written beside their effects, whose physics they apply, in
+:mod:`~ebantenna.simulate.effects.sensor` (its ``CHAIN_STEPS``); the two that always run, and
+the preload's, are here. A scene that does not list an
+effect skips its step, and a new effect is one more entry in the list. In order:
 
 1. ``preload_scatter``: each strike's preload. It sets the contact spring, so it comes before
    the modes.
@@ -67,6 +70,7 @@ from .._validate import check_array, check_int, check_real
 from ..fem.guards import check_contact
 from ..probe import material as lookup_material
 from ..recording import Recording
+from .effects.sensor import CHAIN_STEPS as SENSOR_STEPS
 from .modes import damped_exponentials, modal_exponentials
 from .scene import Scene
 from .touched_object import OBJECT_MODELS, ModalTerms, signal_terms
@@ -155,8 +159,8 @@ class SignalBatch:
     def __post_init__(self):
         self.t = np.arange(self.scene.n_samples) / self.scene.fs
         self.when = self.t
-        self.levels_x, self.levels_z = np.zeros(self.n), np.zeros(self.n)
         self.chip_filter = self.scene.effect("dlpf")
+        self.levels_x, self.levels_z = np.zeros(self.n), np.zeros(self.n)
 
     @property
     def n(self) -> int:
@@ -191,11 +195,6 @@ def _touched_object(_, batch: SignalBatch) -> None:
     )
 
 
-def _jitter_instants(jitter, batch: SignalBatch) -> None:
-    """``clock_jitter``: each sample taken at ``n / fs + e_n``."""
-    batch.when = batch.t + np.stack([jitter.offsets(r, batch.t.size) for r in batch.rngs(jitter)])
-
-
 def _modal_axis(terms: ModalTerms, batch: SignalBatch) -> np.ndarray:
     """The sum of ``terms``' modes read at ``batch.when``, through the chip's filter if listed."""
     coef, rate = modal_exponentials(terms.amplitude, terms.omega, terms.zeta)
@@ -216,64 +215,6 @@ def _respond(_, batch: SignalBatch) -> None:
     """X and Z after the arrest, read at the sample instants."""
     batch.ax = _axis_response(batch, "x")
     batch.az = _axis_response(batch, "z")
-
-
-def _rest_before_arrest(_, batch: SignalBatch) -> None:
-    """``clock_jitter``: a sample taken before the arrest reads rigid rotation, no acceleration."""
-    before = batch.when < 0
-    batch.ax[before] = 0.0
-    batch.az[before] = 0.0
-
-
-def _add_gravity(gravity, batch: SignalBatch) -> None:
-    """``gravity``: a constant, which the settled filter passes unchanged; Z rests at ``g``."""
-    batch.ax, batch.az = gravity.apply(batch.ax, batch.az)
-    batch.levels_z = np.full(batch.n, gravity.g)
-
-
-def _add_hum(hum, batch: SignalBatch) -> None:
-    """``mains_hum``: a steady tone, which the filter scales and delays."""
-    dlpf = batch.chip_filter
-    gain = complex(dlpf.frequency_response(hum.frequency)) if dlpf is not None else 1.0
-    phases = np.stack([hum.phases(r) for r in batch.rngs(hum)]) + np.angle(gain)  # (n, 2)
-    tt = batch.when if np.ndim(batch.when) == 2 else batch.when[None, :]
-    batch.ax = batch.ax + abs(gain) * hum.signal(tt, phases[:, :1])
-    batch.az = batch.az + abs(gain) * hum.signal(tt, phases[:, 1:])
-
-
-def _add_noise(noise, batch: SignalBatch) -> None:
-    """``sensor_noise``: white at the chip's rate, through its filter and decimation."""
-    scene = batch.scene
-    draws = noise.draw_signals(batch.rngs(noise), scene.n_samples, scene.fs, batch.chip_filter)
-    batch.ax = batch.ax + draws[:, 0]  # draws: (n, 2, n_samples)
-    batch.az = batch.az + draws[:, 1]
-
-
-def _drift(drift, batch: SignalBatch) -> None:
-    """``sensor_drift``: after the filter, the chip's offset and sensitivity of this session."""
-    draws = [drift.draw(r) for r in batch.rngs(drift)]
-    gains = np.stack([g for g, _ in draws])
-    offsets = np.stack([o for _, o in draws])
-    batch.ax = gains[:, :1] * batch.ax + offsets[:, :1]
-    batch.az = gains[:, 1:] * batch.az + offsets[:, 1:]
-    batch.levels_x = offsets[:, 0].copy()
-    batch.levels_z = gains[:, 1] * batch.levels_z + offsets[:, 1]
-
-
-def _clip(clipping, batch: SignalBatch) -> None:
-    """``clipping``: the chip's range."""
-    batch.ax, batch.az = clipping.apply(batch.ax), clipping.apply(batch.az)
-
-
-def _quantise(quantisation, batch: SignalBatch) -> None:
-    """``quantisation``: the chip's 16-bit output."""
-    batch.ax, batch.az = quantisation.apply(batch.ax), quantisation.apply(batch.az)
-
-
-def _kalman(kalman, batch: SignalBatch) -> None:
-    """``kalman``: the steady-state filter on the Raspberry Pi, about each axis's resting level."""
-    batch.ax = kalman.apply(batch.ax, batch.levels_x)
-    batch.az = kalman.apply(batch.az, batch.levels_z)
 
 
 @dataclass(frozen=True)
@@ -305,16 +246,16 @@ CHAIN = (
               reads=("object_modes", "structural_damping", "contact_compliance", "tip_mass",
                      "object_damping", "unilateral_contact", "hertz_contact",
                      "coulomb_friction")),
-    ChainStep("clock_jitter", _jitter_instants),
+    ChainStep("clock_jitter", SENSOR_STEPS["sample_instants"]),
     ChainStep(None, _respond, reads=("unilateral_contact", "coulomb_friction", "dlpf")),
-    ChainStep("clock_jitter", _rest_before_arrest),
-    ChainStep("gravity", _add_gravity),
-    ChainStep("mains_hum", _add_hum, reads=("dlpf",)),
-    ChainStep("sensor_noise", _add_noise, reads=("dlpf",)),
-    ChainStep("sensor_drift", _drift),
-    ChainStep("clipping", _clip),
-    ChainStep("quantisation", _quantise),
-    ChainStep("kalman", _kalman),
+    ChainStep("clock_jitter", SENSOR_STEPS["rest_before_arrest"]),
+    ChainStep("gravity", SENSOR_STEPS["gravity"]),
+    ChainStep("mains_hum", SENSOR_STEPS["mains_hum"], reads=("dlpf",)),
+    ChainStep("sensor_noise", SENSOR_STEPS["sensor_noise"], reads=("dlpf",)),
+    ChainStep("sensor_drift", SENSOR_STEPS["sensor_drift"]),
+    ChainStep("clipping", SENSOR_STEPS["clipping"]),
+    ChainStep("quantisation", SENSOR_STEPS["quantisation"]),
+    ChainStep("kalman", SENSOR_STEPS["kalman"]),
 )
 
 

@@ -36,7 +36,13 @@ effect never changes the random numbers of another.
 from __future__ import annotations
 
 from .hertz import HertzContact
-from .objects import CoulombFriction, ObjectDamping, ObjectModes, UnilateralContact
+from .objects import (
+    CoulombFriction,
+    ObjectDamping,
+    ObjectModes,
+    PreloadScatter,
+    UnilateralContact,
+)
 from .physics import GY521_MASS, ContactCompliance, StructuralDamping, TipMass
 from .sensor import (
     DLPF_BANDWIDTHS,
@@ -47,10 +53,10 @@ from .sensor import (
     LowPassFilter,
     MainsHum,
     Quantisation,
+    SensorDrift,
     SensorNoise,
     SteadyStateKalman,
 )
-from .session import PreloadScatter, SensorDrift
 
 __all__ = [
     "STANDARD_GRAVITY",

@@ -1,7 +1,8 @@
 """Effects of the sensor and the acquisition: they act on the sampled signals, in this order.
 
 :class:`ClockJitter` (when the samples are taken), :class:`Gravity`, :class:`MainsHum`,
-:class:`SensorNoise`, :class:`LowPassFilter` (the MPU6050's DLPF), :class:`Clipping`,
+:class:`SensorNoise`, :class:`LowPassFilter` (the MPU6050's DLPF), :class:`SensorDrift` (offset
+and sensitivity between sessions), :class:`Clipping`,
 :class:`Quantisation`, :class:`SteadyStateKalman` (on the Raspberry Pi).
 """
 
@@ -55,6 +56,19 @@ class ClockJitter(Effect):
         return rng.normal(0.0, self.rms, n_samples)
 
 
+def _sample_instants(jitter: ClockJitter, batch) -> None:
+    """The chain's step ``clock_jitter``: each sample taken at ``n / fs + e_n``."""
+    batch.when = batch.t + np.stack([jitter.offsets(r, batch.t.size) for r in batch.rngs(jitter)])
+
+
+def _rest_before_arrest(jitter: ClockJitter, batch) -> None:
+    """The chain's step ``clock_jitter`` after the responses: a sample taken before the arrest
+    reads rigid rotation, no acceleration."""
+    before = batch.when < 0
+    batch.ax[before] = 0.0
+    batch.az[before] = 0.0
+
+
 @dataclass(frozen=True)
 class Gravity(Effect):
     """Gravity as the accelerometer sees it.
@@ -86,6 +100,13 @@ class Gravity(Effect):
     def apply(self, ax, az):
         """Add ``g`` to ``az``; ``ax`` is returned unchanged."""
         return ax, az + self.g
+
+
+def _add_gravity(gravity: Gravity, batch) -> None:
+    """The chain's step ``gravity``: a constant, which the settled filter passes unchanged; Z
+    rests at ``g``."""
+    batch.ax, batch.az = gravity.apply(batch.ax, batch.az)
+    batch.levels_z = np.full(batch.n, gravity.g)
 
 
 @dataclass(frozen=True)
@@ -128,6 +149,17 @@ class MainsHum(Effect):
     def signal(self, t, phase) -> np.ndarray:
         """``amplitude * sin(2 pi f t + phase)``, m/s^2; ``t`` and ``phase`` broadcast."""
         return self.amplitude * np.sin(2 * math.pi * self.frequency * np.asarray(t) + phase)
+
+
+def _add_hum(hum: MainsHum, batch) -> None:
+    """The chain's step ``mains_hum``: a steady tone, which the chip's filter scales and
+    delays."""
+    dlpf = batch.chip_filter
+    gain = complex(dlpf.frequency_response(hum.frequency)) if dlpf is not None else 1.0
+    phases = np.stack([hum.phases(r) for r in batch.rngs(hum)]) + np.angle(gain)  # (n, 2)
+    tt = batch.when if np.ndim(batch.when) == 2 else batch.when[None, :]
+    batch.ax = batch.ax + abs(gain) * hum.signal(tt, phases[:, :1])
+    batch.az = batch.az + abs(gain) * hum.signal(tt, phases[:, 1:])
 
 
 @dataclass(frozen=True)
@@ -185,6 +217,15 @@ class SensorNoise(Effect):
             raw = np.stack([self.draw(r, size, dlpf.internal_rate) for r in block])
             out[start : start + len(block)] = dlpf.apply_internal(raw, fs)[..., lead:]
         return out
+
+
+def _add_noise(noise: SensorNoise, batch) -> None:
+    """The chain's step ``sensor_noise``: white at the chip's rate, through its filter and
+    decimation."""
+    scene = batch.scene
+    draws = noise.draw_signals(batch.rngs(noise), scene.n_samples, scene.fs, batch.chip_filter)
+    batch.ax = batch.ax + draws[:, 0]  # draws: (n, 2, n_samples)
+    batch.az = batch.az + draws[:, 1]
 
 
 #: Signals whose internal-rate noise is drawn and filtered at once (bounds the memory).
@@ -329,6 +370,79 @@ class LowPassFilter(Effect):
         return y[..., :: self.divider(fs)]
 
 
+#: MPU6050 zero-g level change over 0-70 degC, X and Y axes, g (PS rev. 3.4, table 6.2).
+ZERO_G_DRIFT_XY = 35e-3
+#: The same for the Z axis, g (PS rev. 3.4, table 6.2).
+ZERO_G_DRIFT_Z = 60e-3
+#: Span of temperature those drifts are specified over, degC (PS rev. 3.4, table 6.2).
+DRIFT_SPAN = 70.0
+#: MPU6050 sensitivity change with temperature, per degC (+-0.02 %/degC, PS rev. 3.4, table 6.2).
+SENSITIVITY_DRIFT = 2e-4
+
+
+@dataclass(frozen=True)
+class SensorDrift(Effect):
+    """The accelerometer's offset and gain differ between recording sessions.
+
+    The MPU6050's zero-g level moves by up to 35 mg (X) and 60 mg (Z) over 0-70 degC and its
+    sensitivity by 0.02 %/degC (product specification rev. 3.4, table 6.2). Taking the drifts
+    as linear in temperature, a session at a room temperature ``delta`` away from another reads
+    ``(1 + s_g delta) a + (o / 70 degC) delta`` instead of ``a``, per axis, with the datasheet's
+    ``o`` and ``s_g``. Assumptions: the room's temperature varies between sessions with a standard
+    deviation of ``temperature_std``; the paper does not say how the recordings were grouped in
+    time, so each recording is taken as its own session (the drift is drawn per recording and
+    axis, independent of the material, so it can never label one). Applied after the sensor's
+    filter, before clipping.
+
+    Parameters
+    ----------
+    temperature_std : float
+        Standard deviation of the room's temperature between sessions, degC. Default 3 degC.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> gain, offset = SensorDrift().draw(np.random.default_rng(0))
+    >>> gain.shape, offset.shape
+    ((2,), (2,))
+    """
+
+    name: ClassVar[str] = "sensor_drift"
+    stream: ClassVar[int] = 5
+    temperature_std: float = 3.0
+
+    def __post_init__(self):
+        check_nonnegative("temperature_std", self.temperature_std)
+
+    def draw(self, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+        """One session's gain factors and offsets (m/s^2) for X and Z."""
+        delta = rng.normal(0.0, self.temperature_std, 2)
+        gain = 1.0 + SENSITIVITY_DRIFT * delta
+        offset = np.array([ZERO_G_DRIFT_XY, ZERO_G_DRIFT_Z]) / DRIFT_SPAN * delta
+        return gain, offset * STANDARD_GRAVITY
+
+    def offset_std(self) -> np.ndarray:
+        """Standard deviation of the offsets of X and Z, m/s^2."""
+        scale = self.temperature_std / DRIFT_SPAN * STANDARD_GRAVITY
+        return np.array([ZERO_G_DRIFT_XY, ZERO_G_DRIFT_Z]) * scale
+
+    def gain_std(self) -> float:
+        """Standard deviation of the gain factor (dimensionless)."""
+        return SENSITIVITY_DRIFT * self.temperature_std
+
+
+def _drift(drift: SensorDrift, batch) -> None:
+    """The chain's step ``sensor_drift``: after the filter, the chip's offset and sensitivity of
+    this session; the axes' resting levels move with them."""
+    draws = [drift.draw(r) for r in batch.rngs(drift)]
+    gains = np.stack([g for g, _ in draws])
+    offsets = np.stack([o for _, o in draws])
+    batch.ax = gains[:, :1] * batch.ax + offsets[:, :1]
+    batch.az = gains[:, 1:] * batch.az + offsets[:, 1:]
+    batch.levels_x = offsets[:, 0].copy()
+    batch.levels_z = gains[:, 1] * batch.levels_z + offsets[:, 1]
+
+
 @dataclass(frozen=True)
 class Clipping(Effect):
     """The accelerometer's full-scale range.
@@ -366,6 +480,11 @@ class Clipping(Effect):
         return np.clip(a, low, high)
 
 
+def _clip(clipping: Clipping, batch) -> None:
+    """The chain's step ``clipping``: the chip's range, on both axes."""
+    batch.ax, batch.az = clipping.apply(batch.ax), clipping.apply(batch.az)
+
+
 @dataclass(frozen=True)
 class Quantisation(Effect):
     """16-bit quantisation of the readings.
@@ -401,6 +520,11 @@ class Quantisation(Effect):
         """Round ``a`` (m/s^2) to the nearest count."""
         lsb = self.lsb()
         return np.round(a / lsb) * lsb
+
+
+def _quantise(quantisation: Quantisation, batch) -> None:
+    """The chain's step ``quantisation``: the chip's 16-bit output, on both axes."""
+    batch.ax, batch.az = quantisation.apply(batch.ax), quantisation.apply(batch.az)
 
 
 @dataclass(frozen=True)
@@ -444,3 +568,27 @@ class SteadyStateKalman(Effect):
         zi = (1 - k) * np.asarray(level, dtype=float)[:, None]
         y, _ = sps.lfilter([k], [1.0, -(1.0 - k)], a, axis=-1, zi=zi)
         return y
+
+
+def _kalman(kalman: SteadyStateKalman, batch) -> None:
+    """The chain's step ``kalman``: the filter on the Raspberry Pi, about each axis's resting
+    level."""
+    batch.ax = kalman.apply(batch.ax, batch.levels_x)
+    batch.az = kalman.apply(batch.az, batch.levels_z)
+
+
+#: The chain's steps of the sensor and the acquisition, each ``step(effect, batch)`` beside the
+#: effect whose physics it applies: it changes the simulator's
+#: :class:`~ebantenna.simulate.simulator.SignalBatch` in place, with values the simulator
+#: checked. :data:`ebantenna.simulate.simulator.CHAIN` puts them in order, and says why.
+CHAIN_STEPS = {
+    "sample_instants": _sample_instants,
+    "rest_before_arrest": _rest_before_arrest,
+    "gravity": _add_gravity,
+    "mains_hum": _add_hum,
+    "sensor_noise": _add_noise,
+    "sensor_drift": _drift,
+    "clipping": _clip,
+    "quantisation": _quantise,
+    "kalman": _kalman,
+}

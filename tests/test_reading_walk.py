@@ -1,0 +1,88 @@
+"""One recording followed from ``Scene`` to a predicted material (``benchmarks/reading_walk.py``):
+the modules it passes at run time and the files a student reads, held within their ceilings."""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+SCRIPT = ROOT / "benchmarks" / "reading_walk.py"
+
+
+def _script():
+    spec = importlib.util.spec_from_file_location("reading_walk", SCRIPT)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+walk_script = _script()
+
+
+@pytest.fixture(scope="module")
+def walk():
+    # A fresh process: a function another test already ran behind a cache (the filter designs,
+    # the block march's tables) would otherwise be skipped, and the walk would look shorter.
+    path = os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH", "")) if p)
+    env = dict(os.environ, PYTHONPATH=path, OPENBLAS_NUM_THREADS="1")
+    done = subprocess.run([sys.executable, str(SCRIPT), "--json"], capture_output=True,
+                          text=True, env=env, timeout=300, check=False)
+    assert done.returncode == 0, done.stderr
+    return json.loads(done.stdout)
+
+
+def test_the_walk_as_run_stays_within_its_ceiling(walk):
+    ceilings = walk_script.CEILINGS
+    assert walk["run"]["distinct"] <= ceilings["run_modules"], walk["run"]["path"]
+    assert walk["run"]["returns"] <= ceilings["run_returns"], walk["run"]["path"]
+    assert walk["prediction"] in walk_script.TRAIN_MATERIALS
+
+
+def test_the_walk_as_read_is_the_run_restricted_and_stays_within_its_ceiling(walk):
+    assert walk["reading_order_matches_run"], "update READING_ORDER to the run's (see --help)"
+    ceilings = walk_script.CEILINGS
+    assert walk["read"]["distinct"] <= ceilings["read_files"]
+    assert walk["read"]["returns"] <= ceilings["read_returns"]
+
+
+def test_the_ceilings_never_exceed_the_walk_before_it_was_shortened():
+    # The walk measured before the simulator's sensor steps moved beside their effects: 32
+    # modules and 90 returns as run, 23 files and 44 returns as read.
+    before = {"run_modules": 32, "run_returns": 90, "read_files": 23, "read_returns": 44}
+    assert all(walk_script.CEILINGS[k] <= before[k] for k in before), walk_script.CEILINGS
+    assert all(walk_script.TARGETS[k] <= walk_script.CEILINGS[k] for k in before)
+
+
+def test_count_walk_merges_repeats_and_counts_returns():
+    counted = walk_script.count_walk(["a", "a", "b", "c", "a", "b", "b", "d"])
+    assert counted == {"path": ["a", "b", "c", "a", "b", "d"], "distinct": 4, "returns": 2}
+    assert walk_script.count_walk([]) == {"path": [], "distinct": 0, "returns": 0}
+
+
+def test_first_calls_leave_out_the_checks_and_what_they_call():
+    import numpy as np
+
+    import ebantenna
+    from ebantenna.recording import Recording
+
+    recorder = walk_script.FirstCalls(Path(ebantenna.__file__).resolve().parent)
+    with recorder:
+        for _ in range(2):  # the second time adds nothing: first calls only
+            Recording(np.arange(3) / 10.0, np.zeros(3), np.zeros(3), 10.0)
+    names = [name for _, name in recorder.calls]
+    assert names == ["Recording.__post_init__"]  # _check_times, _check_metadata: checks
+    assert {m for m, _ in recorder.calls} == {"ebantenna.recording"}
+
+
+def test_the_architecture_page_states_the_ceilings():
+    c = walk_script.CEILINGS
+    page = " ".join((ROOT / "docs" / "architecture.rst").read_text(encoding="utf-8").split())
+    assert (f"The ceilings today: {c['run_modules']} modules with {c['run_returns']} returns as "
+            f"run, {c['read_files']} files with {c['read_returns']} returns as read.") in page

@@ -3,9 +3,15 @@
 from __future__ import annotations
 
 import numpy as np
+from joblib import Parallel, delayed
 from threadpoolctl import threadpool_limits
 
-__all__ = ["beyond_chance", "per_contact", "probe_length", "pct", "BLAS_THREADS", "blas_limited"]
+from ..paper import experiments
+from ..paper.mode_curves import classify_materials_by_mode_curves
+from ..paper.position_aware import classify_materials_position_aware
+
+__all__ = ["beyond_chance", "per_contact", "probe_length", "pct", "BLAS_THREADS", "blas_limited",
+           "fits_in_parallel", "classifier_call"]
 
 #: BLAS threads while a step of a study runs. Measured side by side with
 #: ``python benchmarks/study_blas_threads.py`` (the quick study, two cores): no step ran faster
@@ -23,6 +29,48 @@ BLAS_THREADS = 1
 def blas_limited():
     """A context in which BLAS runs on :data:`BLAS_THREADS` threads (``threadpoolctl``)."""
     return threadpool_limits(limits=BLAS_THREADS, user_api="blas")
+
+
+def fits_in_parallel(calls, n_jobs: int) -> list:
+    """Each call ``(function, args, kwargs)`` of ``calls`` on ``n_jobs`` worker processes
+    (:class:`joblib.Parallel`), every one with BLAS on :data:`BLAS_THREADS` threads; the results
+    in the order of ``calls``.
+
+    The calls are independent fits (one fold, one classifier each) that share no state, and
+    each runs single-threaded wherever it runs, so the results are those of making the calls
+    in turn: the workers change the wall time, not a number.
+
+    Examples
+    --------
+    >>> fits_in_parallel([(divmod, (7, 2), {}), (pow, (2,), {"exp": 3})], n_jobs=1)
+    [(3, 1), 8]
+    """
+    if n_jobs == 1 or len(calls) < 2:
+        return [_limited(f, args, kwargs) for f, args, kwargs in calls]
+    return Parallel(n_jobs=min(n_jobs, len(calls)))(
+        delayed(_limited)(f, args, kwargs) for f, args, kwargs in calls)
+
+
+def classifier_call(classifier: str, X, y, positions, peaks, dominant, split) -> tuple:
+    """The fit of one of the study's three material classifiers on one split, as a call
+    ``(function, args, kwargs)`` for :func:`fits_in_parallel`: ``"svm"`` the paper's SVM
+    (:func:`~ebantenna.paper.experiments.classify_materials_svm`), ``"position_aware"``
+    (:func:`~ebantenna.paper.position_aware.classify_materials_position_aware`) or
+    ``"mode_curves"`` (:func:`~ebantenna.paper.mode_curves.classify_materials_by_mode_curves`).
+    """
+    if classifier == "svm":
+        return experiments.classify_materials_svm, (X, y), {"split": split}
+    if classifier == "position_aware":
+        return classify_materials_position_aware, (X, y, positions, peaks, dominant, split), {}
+    if classifier == "mode_curves":
+        return classify_materials_by_mode_curves, (peaks, dominant, y, positions, split), {}
+    raise ValueError(f"classifier must be 'svm', 'position_aware' or 'mode_curves', got "
+                     f"{classifier!r}")
+
+
+def _limited(function, args, kwargs):
+    with blas_limited():
+        return function(*args, **kwargs)
 
 
 def probe_length(ds) -> float:

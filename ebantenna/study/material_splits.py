@@ -8,8 +8,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..paper import experiments, printed
-from ..paper.mode_curves import classify_materials_by_mode_curves
-from ..paper.position_aware import classify_materials_position_aware
 from ..paper.protocol import DISTANCE_LINEAR_REGION
 from ..paper.splits import SPLITS, split_folds, split_rows
 from ..paper.uncertainty import (
@@ -22,7 +20,7 @@ from ..paper.uncertainty import (
     percent,
     training_entries,
 )
-from ._common import probe_length
+from ._common import classifier_call, fits_in_parallel, probe_length
 
 __all__ = ["MaterialSplitsResult", "TRAINERS", "STEP_SIZES", "CLASSIFIERS", "compute", "render"]
 
@@ -60,7 +58,7 @@ class MaterialSplitsResult:
         ``"mode_curves"``).
     distance_held_out : RegressionResult or None
         The paper's distance network (gradient descent) trained with whole positions held out,
-        over every fold of the grouped split (:func:`_held_out_distance`), beside its random
+        over every fold of the grouped split (:func:`_region_folds`), beside its random
         split.
     """
 
@@ -165,57 +163,55 @@ def paired_over_folds(reference, other, positions, kind: str) -> PairedDifferenc
                                             np.concatenate(clusters), UNITS[kind])
 
 
-def compute(ds, feats, seed: int, *, random_svm, paper_ann, paper_distance) -> MaterialSplitsResult:
+def compute(ds, feats, seed: int, *, random_svm, paper_ann, paper_distance,
+            n_jobs: int = 1) -> MaterialSplitsResult:
     """Train and test on the three splits and with the three trainers.
 
     ``random_svm``, ``paper_ann`` and ``paper_distance`` are the paper's experiments already run
     by :mod:`.learning` (random split, gradient descent): they are reused, not run again. The
     grouped and blocked splits run over all their folds
-    (:func:`~ebantenna.paper.splits.split_folds`).
+    (:func:`~ebantenna.paper.splits.split_folds`). Every fit is independent of the others and
+    runs on one of ``n_jobs`` worker processes (:func:`~._common.fits_in_parallel`): the same
+    numbers whatever ``n_jobs``.
     """
     X, y, positions = feats.fft, ds.material, ds.contact
-    fits = {
-        "svm": lambda split: experiments.classify_materials_svm(X, y, split=split),
-        "position_aware": lambda split: classify_materials_position_aware(
-            X, y, positions, feats.peaks, feats.dominant, split),
-        "mode_curves": lambda split: classify_materials_by_mode_curves(
-            feats.peaks, feats.dominant, y, positions, split),
-    }  # fmt: skip
-    by_fold, held = {}, {}
+    length = probe_length(ds)
+    folds = {kind: ([split_rows(kind, y, positions, seed=seed)] if kind == "random"
+                    else split_folds(kind, y, positions, seed=seed)) for kind in SPLITS}
+    held = {kind: np.array([]) if kind == "random" else np.unique(positions[f[0][1]])
+            for kind, f in folds.items()}
+    regions = _region_folds(positions, y, length, seed)
+    calls = {}  # key -> (function, args, kwargs), every fit of the step
     for kind in SPLITS:
-        folds = ([split_rows(kind, y, positions, seed=seed)] if kind == "random"
-                 else split_folds(kind, y, positions, seed=seed))
-        held[kind] = np.array([]) if kind == "random" else np.unique(positions[folds[0][1]])
-        for c, fit in fits.items():
-            if c == "svm" and kind == "random":
-                by_fold[c, kind] = [random_svm]
-            else:
-                by_fold[c, kind] = [fit(f) for f in folds]
+        for c in CLASSIFIERS:
+            if not (c == "svm" and kind == "random"):  # the paper's, run by .learning
+                for i, split in enumerate(folds[kind]):
+                    calls[c, kind, i] = classifier_call(c, X, y, positions, feats.peaks,
+                                                        feats.dominant, split)
+    for trainer in TRAINERS[1:]:
+        calls["ann", trainer] = (experiments.classify_materials_ann, (X, y), dict(
+            solver=trainer, seed=seed,
+            learning_rate_init=STEP_SIZES["ann"].get(trainer, 0.001)))
+        calls["distance", trainer] = (experiments.regress_distance_linear_region, (X, positions),
+                                      dict(probe_length=length, solver=trainer, seed=seed,
+                                           learning_rate_init=STEP_SIZES["distance"].get(
+                                               trainer, 0.001)))
+    for i, split in enumerate(regions):
+        calls["held_out", i] = (experiments.regress_distance_linear_region, (X, positions),
+                                dict(probe_length=length, seed=seed, split=split))
+    done = dict(zip(calls, fits_in_parallel(list(calls.values()), n_jobs), strict=True))
+    by_fold = {(c, kind): [random_svm] if (c, kind) == ("svm", "random") else
+               [done[c, kind, i] for i in range(len(folds[kind]))]
+               for kind in SPLITS for c in CLASSIFIERS}
     measured = {key: measured_over_folds(r, positions, key[1]) for key, r in by_fold.items()}
     paired = {kind: {c: paired_over_folds(by_fold["svm", kind], by_fold[c, kind], positions, kind)
                      for c in CLASSIFIERS[1:]} for kind in ("grouped", "blocked")}
-    ann = {"gd": paper_ann}
-    distance = {"gd": paper_distance}
-    for trainer in TRAINERS[1:]:
-        ann[trainer] = experiments.classify_materials_ann(
-            X,
-            y,
-            solver=trainer,
-            seed=seed,
-            learning_rate_init=STEP_SIZES["ann"].get(trainer, 0.001),
-        )
-        distance[trainer] = experiments.regress_distance_linear_region(
-            X,
-            positions,
-            probe_length=probe_length(ds),
-            solver=trainer,
-            seed=seed,
-            learning_rate_init=STEP_SIZES["distance"].get(trainer, 0.001),
-        )
+    ann = {"gd": paper_ann, **{t: done["ann", t] for t in TRAINERS[1:]}}
+    distance = {"gd": paper_distance, **{t: done["distance", t] for t in TRAINERS[1:]}}
     for trainer, a in ann.items():
         measured["ann", trainer] = ClusteredAccuracy.from_recordings(
             a.correct(), positions[a.rows()], UNITS["random"])
-    held_out = _held_out_distance(X, positions, y, probe_length(ds), seed)
+    held_out = _pooled_distance([done["held_out", i] for i in range(len(regions))])
     first = {key: r[0] for key, r in by_fold.items()}
     return MaterialSplitsResult(
         {k: first["svm", k] for k in SPLITS}, {k: first["position_aware", k] for k in SPLITS},
@@ -223,22 +219,21 @@ def compute(ds, feats, seed: int, *, random_svm, paper_ann, paper_distance) -> M
         held_out)
 
 
-def _held_out_distance(X, positions, labels, probe_length: float, seed: int):
-    """The paper's distance network (gradient descent) over every fold of the grouped split,
-    each position of the linear region held out once, its test predictions pooled.
-
-    A fold whose held-out positions all lie beyond the linear region has nothing to test and
-    is left out (it happens only on designs with few positions). The pooled
-    :class:`~ebantenna.paper.experiments.RegressionResult` carries every fold's test
-    recordings; its interval is taken over the test positions
-    (:func:`_distance_entry`), each of which was held out in exactly one fold.
-    """
+def _region_folds(positions, labels, probe_length: float, seed: int) -> list:
+    """The grouped split's folds that hold out a position of the distance network's linear
+    region. A fold whose held-out positions all lie beyond the region has nothing to test and
+    is left out (it happens only on designs with few positions)."""
     positions = np.asarray(positions)
     region = DISTANCE_LINEAR_REGION.region * probe_length
-    folds = [(tr, te) for tr, te in split_folds("grouped", labels, positions, seed=seed)
-             if np.any(positions[te] <= region)]
-    runs = [experiments.regress_distance_linear_region(
-        X, positions, probe_length=probe_length, seed=seed, split=f) for f in folds]
+    return [(tr, te) for tr, te in split_folds("grouped", labels, positions, seed=seed)
+            if np.any(positions[te] <= region)]
+
+
+def _pooled_distance(runs):
+    """The distance networks of :func:`_region_folds`, their test predictions pooled into one
+    :class:`~ebantenna.paper.experiments.RegressionResult`: every position of the region held
+    out in exactly one fold. Its interval is taken over the test positions
+    (:func:`_distance_entry`)."""
     truth = np.concatenate([r.distance_test for r in runs])
     predicted = np.concatenate([r.predicted_test for r in runs])
     at = np.unique(truth)

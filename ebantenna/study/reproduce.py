@@ -228,7 +228,7 @@ def reproduce(
         lambda: signal_features(ds.ax, ds.az, ds.fs, n_jobs=n_jobs, show_progress=show_progress),
     )
     data_summary.render(data_result, report, figures)
-    _learn_materials_and_distance(study, ds, feats, data_result.materials, seed, quick)
+    _learn_materials_and_distance(study, ds, feats, data_result.materials, seed, quick, workers)
     controls = _controls(study, scene, seed, quick, cache_dir, workers)
     study.run("full range", full_range.compute, full_range.render, ds, feats)
     study.run("time-frequency", time_frequency.compute, time_frequency.render, scene, seed)
@@ -280,9 +280,10 @@ def _opening(quick: bool) -> Report:
 
 
 def _learn_materials_and_distance(study: _Sections, ds, feats, materials, seed: int,
-                                  quick: bool = False) -> None:
+                                  quick: bool = False, workers: int = 1) -> None:
     """Steps 4 to 6: the dominant frequency and the decay per material, the paper's classifiers
-    and distance networks, and the same on the three splits and with other trainers."""
+    and distance networks, and the same on the three splits and with other trainers (their
+    independent fits on ``workers`` processes)."""
     study.run("frequency", signals.compute_frequency, signals.render_frequency,
               ds, feats, materials)
     study.run("decay", signals.compute_decay, signals.render_decay, ds, feats, materials)
@@ -290,11 +291,13 @@ def _learn_materials_and_distance(study: _Sections, ds, feats, materials, seed: 
     study.run(
         "splits",
         lambda: material_splits.compute(ds, feats, seed, random_svm=learnt.svm,
-                                        paper_ann=learnt.ann, paper_distance=learnt.linear_region),
+                                        paper_ann=learnt.ann, paper_distance=learnt.linear_region,
+                                        n_jobs=workers),
         material_splits.render,
     )
     grouped = study.results["splits"].measured["svm", "grouped"]
-    study.run("seeds", seed_spread.compute, seed_spread.render, ds, feats, seed, grouped)
+    study.run("seeds", seed_spread.compute, seed_spread.render, ds, feats, seed, grouped,
+              workers)
     study.run("ann setup", ann_setup.compute, ann_setup.render, ds, feats, seed, quick)
 
 

@@ -14,10 +14,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..paper import experiments
-from ..paper.mode_curves import classify_materials_by_mode_curves
-from ..paper.position_aware import classify_materials_position_aware
 from ..paper.splits import SPLITS, split_folds
 from ..paper.uncertainty import UNITS, FoldAccuracy, clustered_entries, format_clustered, percent
+from ._common import classifier_call, fits_in_parallel
 
 __all__ = ["SPLIT_SEEDS", "SUBSET_REPETITIONS", "TRAINING_REPETITIONS", "CLASSIFIERS",
            "SeedSpreadResult", "compute", "render"]
@@ -31,6 +30,8 @@ SUBSET_REPETITIONS = 5
 TRAINING_REPETITIONS = (1, 3, 5)
 #: The classifiers repeated over the seeds, by the name the report gives them.
 CLASSIFIERS = ("paper's SVM", "position-aware", "mode curves")
+#: Each of :data:`CLASSIFIERS` by its name for :func:`~._common.classifier_call`.
+FITTED = dict(zip(CLASSIFIERS, ("svm", "position_aware", "mode_curves"), strict=True))
 
 
 @dataclass(frozen=True, eq=False)
@@ -94,41 +95,42 @@ def _subset(ds, repetitions: int) -> np.ndarray:
     return np.flatnonzero(np.asarray(ds.repetition) < repetitions)
 
 
-def compute(ds, feats, seed: int, grouped_full: FoldAccuracy) -> SeedSpreadResult:
+def compute(ds, feats, seed: int, grouped_full: FoldAccuracy, n_jobs: int = 1) -> SeedSpreadResult:
     """The three classifiers on every fold of the three splits (on the subset), and the grouped
     SVM over all folds on 1, 3, 5 repetitions; ``grouped_full`` is the whole data set's grouped
-    SVM over its folds, already measured."""
+    SVM over its folds, already measured. Every fit runs on one of ``n_jobs`` worker processes
+    (:func:`~._common.fits_in_parallel`): the same numbers whatever ``n_jobs``."""
     rows = _subset(ds, SUBSET_REPETITIONS)
     X, y, d = feats.fft[rows], ds.material[rows], ds.contact[rows]
     peaks, dominant = feats.peaks[rows], feats.dominant[rows]
-
-    def run(classifier, kind):
-        results = []
-        for split in split_folds(kind, y, d, folds=SPLIT_SEEDS, seed=seed):
-            if classifier == CLASSIFIERS[0]:
-                r = experiments.classify_materials_svm(X, y, split=split)
-            elif classifier == CLASSIFIERS[1]:
-                r = classify_materials_position_aware(X, y, d, peaks, dominant, split)
-            else:
-                r = classify_materials_by_mode_curves(peaks, dominant, y, d, split)
-            results.append(r)
-        return FoldAccuracy([(r.correct(), d[r.rows()]) for r in results], UNITS[kind],
-                            by_fold=kind == "blocked")
-
-    spreads = {(c, k): run(c, k) for c in CLASSIFIERS for k in SPLITS}
-    repetitions = {}
+    calls, tested = {}, {}  # every fit of the step, and the positions of its data's rows
+    for c in CLASSIFIERS:
+        for k in SPLITS:
+            for i, split in enumerate(split_folds(k, y, d, folds=SPLIT_SEEDS, seed=seed)):
+                calls[c, k, i] = classifier_call(FITTED[c], X, y, d, peaks, dominant, split)
+                tested[c, k, i] = d
+    depth = int(np.max(ds.repetition)) + 1
     for r in TRAINING_REPETITIONS:
-        if r >= int(np.max(ds.repetition)) + 1:
+        if r >= depth:
             continue
         sub = _subset(ds, r)
         d_sub = ds.contact[sub]
-        results = [
-            experiments.classify_materials_svm(feats.fft[sub], ds.material[sub], split=split)
-            for split in split_folds("grouped", ds.material[sub], d_sub, seed=seed)
-        ]
-        repetitions[r] = FoldAccuracy([(x.correct(), d_sub[x.rows()]) for x in results],
-                                      UNITS["grouped"])
-    repetitions[int(np.max(ds.repetition)) + 1] = grouped_full
+        for i, split in enumerate(split_folds("grouped", ds.material[sub], d_sub, seed=seed)):
+            calls["repetitions", r, i] = (experiments.classify_materials_svm,
+                                          (feats.fft[sub], ds.material[sub]), {"split": split})
+            tested["repetitions", r, i] = d_sub
+    done = dict(zip(calls, fits_in_parallel(list(calls.values()), n_jobs), strict=True))
+
+    def over_folds(head, unit, by_fold=False):
+        keys = [key for key in calls if key[:2] == head]
+        return FoldAccuracy([(done[key].correct(), tested[key][done[key].rows()]) for key in keys],
+                            unit, by_fold=by_fold)
+
+    spreads = {(c, k): over_folds((c, k), UNITS[k], by_fold=k == "blocked")
+               for c in CLASSIFIERS for k in SPLITS}
+    repetitions = {r: over_folds(("repetitions", r), UNITS["grouped"])
+                   for r in TRAINING_REPETITIONS if r < depth}
+    repetitions[depth] = grouped_full
     return SeedSpreadResult(spreads, int(rows.size), repetitions)
 
 

@@ -171,13 +171,15 @@ def test_the_held_out_distance_holds_out_every_region_position_once():
     position out; the pooled errors are those of the folds' own networks."""
     from ebantenna.paper import experiments
     from ebantenna.paper.splits import split_folds
-    from ebantenna.study.material_splits import _held_out_distance
+    from ebantenna.study.material_splits import _pooled_distance, _region_folds
 
     d = np.repeat(np.linspace(0.02, 0.38, 19), 3)
     y = np.tile(["brass", "steel", "pvc"], 19)
     X = np.column_stack([np.cos(8 * d), np.sin(8 * d)])
     X = X + np.random.default_rng(0).normal(0, 0.01, X.shape)
-    pooled = _held_out_distance(X, d, y, 0.4, seed=0)
+    folds = _region_folds(d, y, 0.4, seed=0)
+    pooled = _pooled_distance([experiments.regress_distance_linear_region(
+        X, d, probe_length=0.4, seed=0, split=f) for f in folds])
     region = d[d <= 0.8 * 0.4]
     assert np.array_equal(np.sort(pooled.distance_test), np.sort(region))
     assert np.array_equal(pooled.positions, np.unique(region))
@@ -187,3 +189,25 @@ def test_the_held_out_distance_holds_out_every_region_position_once():
     at = np.isin(pooled.distance_test, one.distance_test)
     # the same network on the same rows: its predictions, bit for bit
     assert np.array_equal(np.sort(pooled.predicted_test[at]), np.sort(one.predicted_test))
+
+
+def test_fits_in_parallel_are_the_fits_in_turn():
+    """Worker processes change where a fit runs, not its numbers: the SVM's decision values
+    and the network's predictions are bit for bit those of the calls made in turn."""
+    from ebantenna.paper import experiments
+    from ebantenna.paper.splits import split_folds
+    from ebantenna.study._common import fits_in_parallel
+
+    rng = np.random.default_rng(1)
+    d = np.repeat(np.linspace(0.02, 0.38, 10), 6)
+    y = np.tile(["brass", "steel", "pvc"], 20)
+    X = rng.normal(size=(60, 6)) + (y[:, None] == "steel")
+    calls = [(experiments.classify_materials_svm, (X, y), {"split": f, "gamma": "scale"})
+             for f in split_folds("grouped", y, d, seed=0)[:2]]
+    calls.append((experiments.regress_distance_linear_region, (X, d),
+                  {"probe_length": 0.4, "max_iter": 50}))
+    turn, pool = fits_in_parallel(calls, 1), fits_in_parallel(calls, 2)
+    for a, b in zip(turn[:2], pool[:2], strict=True):
+        assert np.array_equal(a.model.decision_function(X), b.model.decision_function(X))
+        assert np.array_equal(a.confusions["test"], b.confusions["test"])
+    assert np.array_equal(turn[2].predicted_test, pool[2].predicted_test)

@@ -245,7 +245,7 @@ def classify_materials_svm(X, materials, *, test_fraction=MATERIAL_SVM.test_frac
     -------
     ClassificationResult
         Confusion matrices for 'train' and 'test'. Its ``model`` is a
-        :class:`sklearn.multiclass.OneVsRestClassifier` of RBF :class:`ebantenna.ml.SVC`
+        ``sklearn.multiclass.OneVsRestClassifier`` of RBF :class:`ebantenna.ml.SVC`
         machines that predicts from features scaled as they were here
         (``model.predict(normalise_by_max(X, train)[rows])``). Each machine holds the whole
         kernel matrix of the training rows in float64 when it fits the memory budget (else

@@ -12,11 +12,12 @@ from sklearn.svm import SVC as LibSVC
 
 from ebantenna._budget import set_memory_budget
 from ebantenna.ml import SVC
-from ebantenna.ml.kernels import Kernel
+from ebantenna.ml.kernels import Kernel, resolve_gamma
 from ebantenna.ml.pair_kernels import PairKernels
 from ebantenna.ml.smo_policy import DEFAULT
 from ebantenna.paper._ovr_svm import DEFAULT_CACHE_MB, OneVsRestSVC, whole_kernel_svc
 from ebantenna.paper.experiments import classify_materials_svm
+from ebantenna.paper.position_aware import PositionAwareMaterialClassifier
 from ebantenna.paper.protocol import normalise_by_max
 
 U = np.finfo(np.float64).eps / 2
@@ -52,7 +53,7 @@ def test_the_machines_are_those_of_the_plain_one_vs_rest(fitted):
     np.testing.assert_array_equal(shared.support_rows_, union)
 
 
-def _rounding_bound(model, rows):
+def _rounding_bound(model, X, rows, gamma="scale"):
     """How far one machine's decision values from the shared kernel may be from its own.
 
     Each kernel entry is computed twice, about two centres (the mean of the union of the
@@ -62,17 +63,15 @@ def _rounding_bound(model, rows):
     vectors, and K <= 1. The sums over ``n_SV`` terms add ``n_SV u sum |c K|`` each, and the
     intercept one rounding of the result.
     """
-    gamma = model._shared["gamma"]
-    points = np.vstack([rows, model._shared["points"]])
-    R2 = float(np.max(Kernel("linear").gram(points) * -2 + np.add.outer(*[np.einsum(
-        "ij,ij->i", points, points)] * 2)))
+    gamma = resolve_gamma(gamma, X)
+    points = np.vstack([rows, X[model.support_rows_]])
+    R2 = float(np.max(np.sum((points[:, None, :] - points[None, :, :]) ** 2, axis=-1)))
     p = rows.shape[1]
     bounds = []
     for e in model.estimators_:
         c = np.abs(e.dual_coef_[0]).sum()
-        n_sv = e.support_.size
         entry = 2 * U * (gamma * (p + 5) * 4 * R2 + 1)
-        bounds.append(c * (entry + 2 * n_sv * U) + 2 * U * (c + abs(e.intercept_[0])))
+        bounds.append(c * (entry + 2 * e.support_.size * U) + 2 * U * (c + abs(e.intercept_[0])))
     return np.array(bounds)
 
 
@@ -82,7 +81,7 @@ def test_one_test_kernel_gives_every_machines_own_decision(fitted):
         dec = shared.decision_function(rows)
         own = plain.decision_function(rows)
         assert dec.shape == own.shape == (rows.shape[0], 5)
-        bound = _rounding_bound(shared, rows)
+        bound = _rounding_bound(shared, X, rows)
         assert np.all(np.abs(dec - own) <= bound), (np.abs(dec - own).max(axis=0), bound)
         # the same class wherever the two largest values are further apart than that
         top = np.sort(own, axis=1)
@@ -180,3 +179,23 @@ def test_the_svm_experiments_model_predicts_from_features():
     plain = OneVsRestClassifier(SVC(kernel="rbf", gamma=2.0)).fit(Xn[train], y[train])
     assert res.model.estimators_[0].dual_coef_.tobytes() == \
         plain.estimators_[0].dual_coef_.tobytes()
+
+
+def test_the_position_aware_classifier_uses_the_same_machines():
+    X, y, test = _data(k=3, n_per=24, p=8, seed=3)
+    d = np.tile(np.repeat([0.1, 0.2, 0.3], 8), 3)
+    clf = PositionAwareMaterialClassifier(gamma=0.2).fit(np.column_stack([d, X]), y)
+    assert isinstance(clf.svm_, OneVsRestSVC) and clf.svm_.support_rows_ is not None
+    Z = clf.standardise(np.column_stack([d, X]))
+    plain = OneVsRestClassifier(SVC(kernel="rbf", gamma=0.2)).fit(Z, y)
+    for a, b in zip(clf.svm_.estimators_, plain.estimators_, strict=True):
+        assert a.dual_coef_.tobytes() == b.dual_coef_.tobytes()
+    rows = np.column_stack([np.full(len(test), 0.15), test])
+    Zrows = clf.standardise(rows)
+    own = plain.decision_function(Zrows)
+    bound = _rounding_bound(clf.svm_, Z, Zrows, gamma=0.2)
+    assert np.all(np.abs(clf.svm_.decision_function(Zrows) - own) <= bound)
+    top = np.sort(own, axis=1)
+    clear = top[:, -1] - top[:, -2] > 2 * bound.max()
+    assert clear.sum() >= 0.9 * len(test)
+    np.testing.assert_array_equal(clf.predict(rows)[clear], plain.predict(Zrows)[clear])

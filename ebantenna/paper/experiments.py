@@ -24,11 +24,11 @@ from dataclasses import dataclass
 import numpy as np
 from sklearn.exceptions import ConvergenceWarning
 from sklearn.model_selection import train_test_split
-from sklearn.multiclass import OneVsRestClassifier
 
 from .._validate import check_array, check_in_range, check_positive
-from ..ml import SVC, MLPClassifier, MLPRegressor
+from ..ml import MLPClassifier, MLPRegressor
 from ..ml.metrics import absolute_errors, accuracy, confusion_matrix
+from ._ovr_svm import OneVsRestSVC, whole_kernel_svc
 from .protocol import (
     DISTANCE_FULL_LENGTH,
     DISTANCE_LINEAR_REGION,
@@ -244,7 +244,13 @@ def classify_materials_svm(X, materials, *, test_fraction=MATERIAL_SVM.test_frac
     Returns
     -------
     ClassificationResult
-        Confusion matrices for 'train' and 'test'.
+        Confusion matrices for 'train' and 'test'. Its ``model`` is a
+        ``sklearn.multiclass.OneVsRestClassifier`` of RBF :class:`ebantenna.ml.SVC`
+        machines that predicts from features scaled as they were here
+        (``model.predict(normalise_by_max(X, train)[rows])``). Each machine holds the whole
+        kernel matrix of the training rows in float64 when it fits the memory budget (else
+        rows computed on demand and stored in float32, with a warning), and the machines share
+        one test kernel per prediction.
 
     Examples
     --------
@@ -270,7 +276,7 @@ def classify_materials_svm(X, materials, *, test_fraction=MATERIAL_SVM.test_frac
             raise ValueError("split must not put one row in both train and test")
     if normalise:  # the scale from the training rows only: the test rows stay unseen
         X = normalise_by_max(X, train)
-    model = OneVsRestClassifier(SVC(kernel="rbf", C=C, gamma=gamma, tol=tol))
+    model = OneVsRestSVC(whole_kernel_svc(train.size, C=C, gamma=gamma, tol=tol))
     start = time.perf_counter()
     model.fit(X[train], y[train])
     seconds = time.perf_counter() - start

@@ -23,12 +23,11 @@ import time
 
 import numpy as np
 from sklearn.base import BaseEstimator, ClassifierMixin
-from sklearn.multiclass import OneVsRestClassifier
 from sklearn.utils.multiclass import check_classification_targets
 from sklearn.utils.validation import check_is_fitted, validate_data
 
 from .._validate import check_array, check_per_row, check_positive
-from ..ml import SVC
+from ._ovr_svm import OneVsRestSVC, whole_kernel_svc
 from .estimators import FrequencyDistanceEstimator, MultiModeDistanceEstimator
 from .experiments import ClassificationResult, confusions_and_tested
 from .protocol import normalise_by_max
@@ -52,7 +51,9 @@ class PositionAwareMaterialClassifier(ClassifierMixin, BaseEstimator):
     from bin to bin with the distance, and between two training distances far apart the
     interpolated mean can miss it by up to that much. Features the distance moves are damped;
     those it leaves in place (the object's own lines) keep their contrast. A one-vs-rest RBF SVM
-    (:class:`ebantenna.ml.SVC`) classifies ``z``.
+    (:class:`ebantenna.ml.SVC`) classifies ``z``: each machine holds the whole float64 kernel
+    of the training rows when it fits the memory budget, and the machines share one test kernel
+    per prediction.
 
     Parameters
     ----------
@@ -140,7 +141,7 @@ class PositionAwareMaterialClassifier(ClassifierMixin, BaseEstimator):
         self.distances_ = grid
         self.means_ = means
         self.spreads_ = np.sqrt(spreads**2 + moved**2)
-        self.svm_ = OneVsRestClassifier(SVC(kernel="rbf", C=self.C, gamma=self.gamma))
+        self.svm_ = OneVsRestSVC(whole_kernel_svc(X.shape[0], C=self.C, gamma=self.gamma))
         self.svm_.fit(self.standardise(X), y)
         return self
 

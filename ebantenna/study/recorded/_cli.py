@@ -108,12 +108,13 @@ def run_calibrate(args) -> int:
     import matplotlib
 
     matplotlib.use("Agg")
-    from ..._validate import check_path
+    from ..._validate import check_path, output_dir
     from ...cli import print_json
     from ...simulate import load_dataset
     from ...simulate.scene import resolve_scene
     from .calibration import PARAMETERS, IdentifiabilityWarning, calibrate, plot_calibration
 
+    output_dir("--out", args.out)  # refused before any work is done
     base = resolve_scene(args.scene)
     data = load_dataset(check_path("--data", args.data))
     with warnings.catch_warnings():

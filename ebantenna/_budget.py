@@ -177,6 +177,8 @@ def check_allocation(nbytes, *, parameter: str, what: str) -> None:
     ...
     ebantenna._budget.MemoryBudgetError: n_points asks for the grid of about 7.11 PiB...
     """
+    if not nbytes >= 0:  # NaN, or a negative size: an estimate gone wrong, never "fits"
+        raise ValueError(f"{parameter}: the size of {what} is not a size in bytes, got {nbytes!r}")
     budget = memory_budget()
     if nbytes > budget:
         size = _size(float(nbytes)) if nbytes < 1024**5 else _petabytes(nbytes)

@@ -24,12 +24,12 @@ import math
 import numpy as np
 import scipy.sparse as sps
 
-from .._validate import check_choice, check_int
+from .._validate import check_choice, check_int, check_positive
 from ..probe import Probe
 from ._element_engine import mass_polynomial, stiffness_polynomial
 from ._scatter import scatter, scatter_sparse
 from .elements import consistent_mass, element_stiffness
-from .guards import check_resolvable
+from .guards import check_contact, check_resolvable
 from .supports import Supports
 
 __all__ = [
@@ -68,8 +68,10 @@ def beam_mesh(length: float, contact: float | None, n_elements: int) -> np.ndarr
     array([0. , 0.3, 0.4])
     """
     n_elements = check_resolvable(n_elements)
+    length = check_positive("length", length)
     if contact is None:
         return np.linspace(0.0, length, n_elements + 1)
+    contact = check_contact("contact", contact, length)
     n_elements = check_int("n_elements", n_elements, minimum=2)
     n1 = min(max(1, round(n_elements * contact / length)), n_elements - 1)
     span = np.linspace(0.0, contact, n1 + 1)
@@ -81,6 +83,10 @@ def contact_node(nodes: np.ndarray, contact: float | None) -> int | None:
     """Index of the node at the contact (None without contact)."""
     if contact is None:
         return None
+    nodes = np.asarray(nodes, dtype=float)
+    if nodes.ndim != 1 or nodes.size < 2:
+        raise ValueError(f"nodes must be a 1-D mesh of 2 nodes at least, got shape {nodes.shape}")
+    contact = check_contact("contact", contact, nodes[-1])
     return int(np.argmin(np.abs(nodes - contact)))
 
 

@@ -191,6 +191,7 @@ def analytic_envelope(x: np.ndarray) -> np.ndarray:
     >>> analytic_envelope(np.array([1.0, 0.0, -1.0, 0.0]))  # cos(pi n / 2): envelope 1
     array([1., 1., 1., 1.])
     """
+    x = check_signal("x", x, min_length=1)
     n = x.shape[0]
     x, exponent = unit_scaled(x)
     spectrum = np.fft.fft(x)

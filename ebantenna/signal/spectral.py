@@ -240,6 +240,9 @@ def window_weights(window: str, n: int) -> np.ndarray:
     >>> window_weights("hann", 4)  # (1 - cos(2 pi k / 4)) / 2
     array([0. , 0.5, 1. , 0.5])
     """
+    check_choice("window", window, WINDOWS)
+    n = check_int("n", n, minimum=1)
+    check_allocation(8 * n, parameter="n", what="the window's weights")
     return np.ones(n) if window == "rectangular" else get_window(window, n, fftbins=True)
 
 

@@ -345,6 +345,9 @@ def equivalent_rod(reference: Rod, other) -> Rod:
     if not isinstance(reference, Rod):
         raise TypeError(f"reference must be a Rod, got {type(reference).__name__}")
     a, b = reference.material, material(other) if isinstance(other, str) else other
+    if not (hasattr(b, "youngs_modulus") and hasattr(b, "density")):
+        raise TypeError(f"other must be a material name or a Material, got "
+                        f"{type(other).__name__}")
     epsilon = b.youngs_modulus / a.youngs_modulus
     kappa = math.sqrt((b.youngs_modulus / b.density) / (a.youngs_modulus / a.density))
     lam = (kappa**4 / epsilon) ** 0.2
@@ -378,6 +381,8 @@ def equivalent_pair_scenes(scene: Scene, *, reference: str = "aluminium", other:
         ``<scene>-pair-<other>-of-<reference>`` (one cache file per twin: two references may
         share the other material).
     """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
     effect = scene.effect("object_modes")
     if effect is None:
         raise ValueError(

@@ -14,7 +14,7 @@ import numpy as np
 
 from ..._validate import check_nonnegative
 from ...chips.mpu6050 import STANDARD_GRAVITY
-from ._base import Effect
+from ._base import Effect, check_rng
 
 
 @dataclass(frozen=True)
@@ -51,7 +51,7 @@ class PreloadScatter(Effect):
 
     def factor(self, rng: np.random.Generator) -> float:
         """One strike's preload relative to the nominal one (dimensionless, > 0)."""
-        return float(np.exp(rng.normal(0.0, self.spread)))
+        return float(np.exp(check_rng(rng).normal(0.0, self.spread)))
 
 
 #: MPU6050 zero-g level change over 0-70 degC, X and Y axes, g (PS rev. 3.4, table 6.2).
@@ -100,7 +100,7 @@ class SensorDrift(Effect):
 
     def draw(self, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
         """One session's gain factors and offsets (m/s^2) for X and Z."""
-        delta = rng.normal(0.0, self.temperature_std, 2)
+        delta = check_rng(rng).normal(0.0, self.temperature_std, 2)
         gain = 1.0 + SENSITIVITY_DRIFT * delta
         offset = np.array([ZERO_G_DRIFT_XY, ZERO_G_DRIFT_Z]) / DRIFT_SPAN * delta
         return gain, offset * STANDARD_GRAVITY

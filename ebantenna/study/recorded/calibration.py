@@ -191,6 +191,11 @@ class Calibration:
         loss factor; save it with :meth:`~ebantenna.simulate.Scene.save` for ``simulate`` and
         ``dataset``. A hinge not bounded from above is written as a clamp (what the recordings
         cannot tell it from); a loss factor not identifiable keeps ``base``'s."""
+        from ...simulate.scene import Scene
+
+        if not isinstance(base, Scene):
+            raise TypeError(f"base must be a Scene (the one calibrated), got "
+                            f"{type(base).__name__}")
         hinge = self.hinge_stiffness
         if math.isinf(self.intervals["hinge_stiffness"][1]):
             hinge = "clamped"
@@ -235,7 +240,10 @@ def loss_factor_of(x, fs: float, frequency: float) -> tuple[float, float, float]
     check_in_range(
         "frequency", frequency, 0.0, fs / 2 / (1 + BAND),
         reason=f"the band +/- {BAND:.0%} about it must lie below fs / 2 = {fs / 2:g} Hz")
-    return _decay(x, fs, frequency)[:3]
+    from ...signal._checks import check_signal
+
+    # the band filter runs forwards and backwards: longer than its 15 samples of edge padding
+    return _decay(check_signal("x", x, min_length=16), fs, frequency)[:3]
 
 
 def _band(frequency, fs):

@@ -49,6 +49,12 @@ RESULTS = [
     "ebantenna.study.signals.DecayResult",
     "ebantenna.study.signals.FrequencyResult",
     "ebantenna.study.time_frequency.TimeFrequencyResult",
+    "ebantenna.simulate.contact.ContactStiffness",
+    "ebantenna.simulate.modes.ArrestModes",
+    "ebantenna.fem.hinge.HingeFit",
+    "ebantenna.fem.coupled_sweep.CoupledSweep",
+    "ebantenna.fem.coupling.CraigBampton",
+    "ebantenna.fem.symbolic.Erratum",
 ]
 #: The types of the paper's printed numbers, which the package defines as constants.
 PRINTED = ["ebantenna.paper.printed.PrintedNumber", "ebantenna.paper.printed.PaperConfusion"]
@@ -58,6 +64,17 @@ NO_ARGUMENT = [
     "ebantenna.paper.experiments.RegressionResult.report",
     "ebantenna.study.learning.LearningResult.distance_dict",
     "ebantenna.study.recorded.calibration.Calibration.to_dict",
+    "ebantenna.simulate.dataset.Dataset.checksum",
+    "ebantenna.simulate.dataset.DatasetDesign.to_dict",
+    "ebantenna.simulate.modes.ArrestModes.strain_energy_share",
+    "ebantenna.fem.supports.Supports.describe",
+    "ebantenna.fem.rod.Rod.as_beam",
+    "ebantenna.fem.modal.ModalResult.overhang_mass_fraction",
+    "ebantenna.fem.zones.ZoneResult.boundaries",
+    "ebantenna.signal.timefreq.TimeFrequency.ridge",
+    "ebantenna.fem.symbolic.paper_errata",
+    "ebantenna.fem.symbolic.paper_matrices",
+    "ebantenna.fem.symbolic.lambdify_element_matrices",
 ] + [f"ebantenna.study.{m}.to_dict" for m in (
     "ann_setup.AnnSetupResult", "contact_law.ContactLawResult", "data_summary.DatasetResult",
     "full_range.FullRangeResult", "hinge_fit.HingeResult", "learning.LearningResult",
@@ -89,7 +106,7 @@ def test_an_exempt_result_is_a_dataclass_of_the_package(name):
 
 @pytest.mark.parametrize("name", NO_ARGUMENT)
 def test_an_exempt_method_takes_no_argument(name):
-    assert list(inspect.signature(_find(name)).parameters) == ["self"]
+    assert list(inspect.signature(_find(name)).parameters) in (["self"], [])
 
 
 def _calibration() -> Calibration:
@@ -154,4 +171,4 @@ def contract_exempt() -> dict[str, str]:
     return {**{name: "a result type the package builds and hands back" for name in RESULTS},
             **{name: "the type of the paper's printed numbers, constants the package defines"
                for name in PRINTED},
-            **{name: "a method of a result that takes no argument" for name in NO_ARGUMENT}}
+            **{name: "a method or function that takes no argument" for name in NO_ARGUMENT}}

@@ -49,8 +49,14 @@ def plot_probe(probe, supports=None, ax=None):
     >>> [t.get_text() for t in ax.texts][:3]
     ['P', 'Q', 'R']
     """
-    from .._validate import check_in_range
+    from ..probe import Probe
     from .supports import Supports
+
+    if not isinstance(probe, Probe):
+        raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")
+    if supports is not None and not isinstance(supports, Supports):
+        raise TypeError(f"supports must be a Supports or None, got {type(supports).__name__}")
+    from .._validate import check_in_range
 
     supports = Supports() if supports is None else supports
     length = 100 * probe.length  # cm, as on every other figure of the probe
@@ -134,6 +140,11 @@ def plot_modes(result, ax=None, modes=None, n_points: int = 400, label: str = "m
     -------
     matplotlib.axes.Axes
     """
+    from .modal import ModalResult
+
+    if not isinstance(result, ModalResult):
+        raise TypeError(f"result must be a ModalResult (modal_analysis), got "
+                        f"{type(result).__name__}")
     n_points = check_int("n_points", n_points, minimum=2)
     if modes is None:
         modes = range(result.n_modes)
@@ -175,6 +186,10 @@ def plot_zones(zones, ax=None):
     -------
     matplotlib.axes.Axes
     """
+    from .zones import ZoneResult
+
+    if not isinstance(zones, ZoneResult):
+        raise TypeError(f"zones must be a ZoneResult (mode_zones), got {type(zones).__name__}")
     ax = _axes(ax)
     x = 100 * zones.contacts
     # each sample's zone covers the half-way points to its neighbours

@@ -149,8 +149,13 @@ class DecayFit:
         return self.status == "ok"
 
     def model(self, t) -> np.ndarray:
-        """The fitted envelope ``a exp(b t)`` at times ``t`` (s)."""
-        return self.a * np.exp(self.b * np.asarray(t, dtype=float))
+        """The fitted envelope ``a exp(b t)`` at times ``t`` (s, finite)."""
+        from .._validate import real_array
+
+        t = real_array("t", t)
+        if not np.all(np.isfinite(t)):
+            raise ValueError("t must contain only finite times (no NaN or inf)")
+        return self.a * np.exp(self.b * t)
 
 
 def envelope(x) -> np.ndarray:

@@ -120,6 +120,9 @@ def sweep_velocity(nodes: np.ndarray) -> np.ndarray:
     >>> sweep_velocity(np.array([0.0, 0.1, 0.2]))
     array([0. , 1. , 0.1, 1. , 0.2, 1. ])
     """
+    from .._validate import check_array
+
+    nodes = check_array("nodes", nodes, ndim=1)
     u0 = np.zeros(2 * nodes.size)
     u0[0::2] = nodes  # v = Omega x per unit Omega
     u0[1::2] = 1.0  # theta = Omega
@@ -312,7 +315,7 @@ def modal_exponentials(amplitude, omega, zeta):
     omega = np.asarray(omega, dtype=float)
     zeta = np.asarray(zeta, dtype=float)
     if np.any(zeta < 0) or np.any(zeta >= 1):
-        raise ValueError("damping ratios must lie in [0, 1) (underdamped modes)")
+        raise ValueError("zeta, the damping ratios, must lie in [0, 1) (underdamped modes)")
     a = zeta * omega
     wd = omega * np.sqrt(1 - zeta**2)
     return amplitude * ((a * a - wd * wd) / wd - 2j * a), -a + 1j * wd
@@ -394,7 +397,9 @@ def damped_exponentials(
     array([[ 0.,  1.,  0., -1.]])
     """
     check_choice("engine", engine, tuple(EXPONENTIAL_ENGINES))
-    return EXPONENTIAL_ENGINES[engine](np.asarray(t, dtype=float), coef, rate, max_elements)
+    from .._validate import real_array
+
+    return EXPONENTIAL_ENGINES[engine](real_array("t", t), coef, rate, max_elements)
 
 
 def modal_acceleration(t, amplitude, omega, zeta, *, max_elements: int = 500_000) -> np.ndarray:

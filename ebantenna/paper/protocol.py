@@ -185,6 +185,8 @@ def normalise_by_max(X, rows=None) -> np.ndarray:
     X = check_array("X", X, ndim=2)
     if rows is not None:
         rows = np.asarray(rows)
+        if rows.size == 0:
+            raise ValueError("rows must select at least one row of X")
         if rows.ndim != 1 or rows.dtype.kind not in "iu":
             raise TypeError(f"rows must be a 1-D array of row indices, got dtype {rows.dtype} "
                             f"and shape {rows.shape}")

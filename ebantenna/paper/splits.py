@@ -55,8 +55,9 @@ MAX_SEARCH = 100_000
 
 
 def _labels(labels, test_fraction=None, folds=None) -> np.ndarray:
-    """``labels`` as a 1-D array of at least 2 rows, each class with rows enough for a
-    stratified split of ``test_fraction`` (or into ``folds``), else a ValueError naming it."""
+    """``labels`` as a 1-D array of at least 2 rows, with rows enough for a stratified split of
+    ``test_fraction`` (every class twice, and as many rows as classes on either side) or into
+    ``folds`` (a class as large as ``folds``), else a ValueError naming it."""
     y = np.asarray(labels)
     if y.ndim != 1 or y.size < 2:
         raise ValueError(f"labels must be 1-D with at least 2 rows, got shape {y.shape}")
@@ -72,9 +73,10 @@ def _labels(labels, test_fraction=None, folds=None) -> np.ndarray:
                 f"class twice and as many rows as classes ({classes.size}) on each side; "
                 f"{y.size} rows, the rarest class {classes[counts.argmin()]!r} has "
                 f"{counts.min()}, {y.size - n_test} would train and {n_test} test")
-    if folds is not None and counts.min() < folds:
-        raise ValueError(f"labels: {folds} stratified folds need every class {folds} times at "
-                         f"least; {classes[counts.argmin()]!r} has {counts.min()}")
+    if folds is not None and counts.max() < folds:  # (scikit-learn's own limit, in its words)
+        raise ValueError(f"labels: {folds} stratified folds need a class with {folds} rows at "
+                         f"least; the largest, {classes[counts.argmax()]!r}, has "
+                         f"{counts.max()}")
     return y
 
 

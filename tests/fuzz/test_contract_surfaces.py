@@ -139,8 +139,8 @@ def _split_rows():
             same=lambda seeds: len(seeds) == 5 and len({tuple(splits.split_rows(
                 "grouped", LABELS, POSITIONS, seed=x)[1]) for x in seeds}) == 5),
     ]
-    rows += [Row(s + "split_folds", "labels-class-below-folds", lambda: splits.split_folds(
-        "random", ["a"] * 18 + ["b"] * 2, POSITIONS), ("labels",)),
+    rows += [Row(s + "split_folds", "labels-every-class-below-folds", lambda: splits.split_folds(
+        "random", ["a", "b"] * 4, POSITIONS[:8]), ("labels",)),
              Row(s + "split_folds", "seed-2**32", lambda: splits.split_folds(
                  "random", LABELS, POSITIONS, seed=2**32), ("seed",))]
     return rows

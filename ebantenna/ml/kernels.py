@@ -402,6 +402,8 @@ def call_kernel(kernel, X, Y) -> np.ndarray:
     array([[1.],
            [1.]])
     """
+    if not callable(kernel):
+        raise TypeError(f"kernel must be a callable kernel(X, Y), got {type(kernel).__name__}")
     K = kernel(X, Y)
     K = K.toarray() if issparse(K) else np.asarray(K, dtype=np.float64)
     if K.shape != (X.shape[0], Y.shape[0]):
@@ -450,6 +452,11 @@ class KernelRows:
 
     def __init__(self, X, kernel: Kernel, dtype, cache_bytes: int, full=None, parts=None,
                  center: bool = True):
+        if kernel is not None and not isinstance(kernel, Kernel):  # None: a precomputed matrix
+            raise TypeError(f"kernel must be a Kernel, got {type(kernel).__name__}")
+        if X is not None:
+            X = _points("X", X)
+        check_int("cache_bytes", cache_bytes, minimum=0)
         sparse = issparse(X)
         if sparse:
             X = as_csr(X)

@@ -33,8 +33,8 @@ the *returns*: switches from a module A to a module B where B was entered before
 the recording from the public entry, in the order they open them. It is the walk as run
 restricted (:func:`reading_order`) to the public modules (no private engine: the reader follows
 the reference) and to the functions that do the work: not a special method (``__init__``,
-``__post_init__``, ...), not a property, and not a function whose body is one statement, which
-a reader takes from its name at the call (``Scene.has``, ``StructuralDamping.damping_ratio``).
+``__post_init__``, ...), not a property, and not a function whose body is one statement besides
+its checks of the input, which a reader takes from its name at the call (``Scene.has``, ``StructuralDamping.damping_ratio``).
 Its count is the number of files and the returns to a file already read, as above.
 :func:`check_reading_order` holds the list to the run.
 
@@ -361,12 +361,26 @@ def run_walk() -> dict:
 
 
 def _statements(function) -> int:
-    """The statements of a function's body, its docstring aside, at any depth."""
+    """The statements of a function's body, at any depth, its docstring and its checks of the
+    input aside (:func:`_checks_only`): the checks are left out of the walk, as are the
+    validation helpers they call."""
     node = ast.parse(textwrap.dedent(inspect.getsource(function))).body[0]
     body = node.body
     if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant):
         body = body[1:]
+    body = [b for b in body if not _checks_only(b)]
     return sum(isinstance(n, ast.stmt) for b in body for n in ast.walk(b))
+
+
+def _checks_only(statement) -> bool:
+    """Whether a statement of a function's body only checks its input: a call of a ``check_*``
+    helper whose value is dropped, or an ``if`` whose body only raises."""
+    if isinstance(statement, ast.Expr) and isinstance(statement.value, ast.Call):
+        f = statement.value.func
+        name = f.attr if isinstance(f, ast.Attribute) else getattr(f, "id", "")
+        return name.startswith(("check_", "_check_"))
+    return (isinstance(statement, ast.If) and not statement.orelse
+            and all(isinstance(s, ast.Raise) for s in statement.body))
 
 
 def does_work(module: str, qualname: str) -> bool:

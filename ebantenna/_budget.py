@@ -139,8 +139,13 @@ def set_memory_budget(nbytes: int | None) -> None:
     """
     global _chosen
     if nbytes is not None:
-        if isinstance(nbytes, bool) or not isinstance(nbytes, int) or nbytes <= 0:
-            raise ValueError(f"nbytes must be a positive int or None, got {nbytes!r}")
+        if isinstance(nbytes, bool | float) or not hasattr(nbytes, "__index__"):
+            raise TypeError(f"nbytes must be a positive int or None, got "
+                            f"{type(nbytes).__name__}")
+        nbytes = nbytes.__index__()  # a NumPy integer too
+        if nbytes <= 0:
+            shown = nbytes if nbytes.bit_length() < 64 else f"-2**{nbytes.bit_length() - 1} or less"
+            raise ValueError(f"nbytes must be a positive int or None, got {shown}")
     _chosen = nbytes
 
 
@@ -172,6 +177,8 @@ def check_allocation(nbytes, *, parameter: str, what: str) -> None:
     ...
     ebantenna._budget.MemoryBudgetError: n_points asks for the grid of about 7.11 PiB...
     """
+    if not nbytes >= 0:  # NaN, or a negative size: an estimate gone wrong, never "fits"
+        raise ValueError(f"{parameter}: the size of {what} is not a size in bytes, got {nbytes!r}")
     budget = memory_budget()
     if nbytes > budget:
         size = _size(float(nbytes)) if nbytes < 1024**5 else _petabytes(nbytes)

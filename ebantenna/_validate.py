@@ -36,6 +36,8 @@ __all__ = [
     "check_in_range",
     "check_range",
     "check_int",
+    "check_n_jobs",
+    "more_jobs_allowed",
     "check_choice",
     "real_array",
     "check_array",
@@ -195,6 +197,55 @@ def check_int(name: str, value, *, minimum: int | None = None, maximum: int | No
         raise ValueError(f"{name} must be >= {minimum}, got {describe(value)}")
     if maximum is not None and value > maximum:
         raise ValueError(f"{name} must be <= {maximum}, got {describe(value)}")
+    return value
+
+
+#: Set by :func:`more_jobs_allowed`: counts of workers above the cores are then accepted.
+_MORE_JOBS = False
+
+
+@contextmanager
+def more_jobs_allowed(allowed: bool = True) -> Iterator[None]:
+    """A context in which :func:`check_n_jobs` accepts more workers than the machine's cores
+    (what ``--force-jobs`` asks for on the command line)."""
+    global _MORE_JOBS
+    before, _MORE_JOBS = _MORE_JOBS, bool(allowed)
+    try:
+        yield
+    finally:
+        _MORE_JOBS = before
+
+
+def check_n_jobs(name: str, value):
+    """Return ``value``, a count of workers: None (one, or the caller's default), -1 (every
+    core) or an integer from 1 to the machine's cores (``os.cpu_count()``).
+
+    More workers than cores only compete for them, and a count such as 100000 starts a process
+    for each task until memory runs out: it is refused, naming ``name``, unless inside
+    :func:`more_jobs_allowed`.
+
+    Examples
+    --------
+    >>> check_n_jobs("n_jobs", -1)
+    -1
+    >>> check_n_jobs("n_jobs", 0)
+    Traceback (most recent call last):
+    ...
+    ValueError: n_jobs must be -1 (every core), None or a count of workers >= 1, got 0
+    """
+    if value is None:
+        return None
+    value = check_int(name, value)
+    if value == -1:
+        return value
+    if value < 1:
+        raise ValueError(f"{name} must be -1 (every core), None or a count of workers >= 1, "
+                         f"got {describe(value)}")
+    cores = os.cpu_count() or 1
+    if value > cores and not _MORE_JOBS:
+        raise ValueError(f"{name} must be at most this machine's {cores} core"
+                         f"{'s' if cores > 1 else ''} (or -1), got {describe(value)}: more "
+                         "workers than cores only compete for them")
     return value
 
 

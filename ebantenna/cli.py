@@ -215,7 +215,11 @@ def main(argv=None) -> int:
                 from .ml import check_engine
 
                 check_engine()
-            return int(args.func(args) or 0)
+            from ._validate import more_jobs_allowed
+
+            # --force-jobs (checked by check_jobs) lets the workers through to the functions
+            with more_jobs_allowed(getattr(args, "force_jobs", False)):
+                return int(args.func(args) or 0)
     except KeyboardInterrupt as exc:
         _interrupted(exc, args, argv)
     except (MemoryError, ValueError, TypeError, OSError) as exc:

@@ -9,8 +9,11 @@ feeds both renderers, Markdown and standalone HTML, so the two files can never d
 from __future__ import annotations
 
 import html
+import os
 from dataclasses import dataclass, field
 from pathlib import Path
+
+from ._validate import check_int, describe
 
 __all__ = ["Report", "FigureSet", "text_table"]
 
@@ -31,27 +34,46 @@ class Report:
     title: str
     blocks: list = field(default_factory=list)
 
+    def __post_init__(self):
+        _text("title", self.title)
+        if not isinstance(self.blocks, list):
+            raise TypeError(f"blocks must be a list, got {type(self.blocks).__name__}")
+
     def heading(self, text: str) -> None:
         """A section heading."""
-        self.blocks.append(("h2", text))
+        self.blocks.append(("h2", _text("text", text)))
 
     def paragraph(self, text: str) -> None:
         """A paragraph of plain text."""
-        self.blocks.append(("p", text))
+        self.blocks.append(("p", _text("text", text)))
 
     def table(self, headers, rows) -> None:
-        """A table; cells are formatted with ``str``."""
-        self.blocks.append(
-            ("table", [str(h) for h in headers], [[str(c) for c in r] for r in rows])
-        )
+        """A table; cells are formatted with ``str`` (each row as long as ``headers``)."""
+        if isinstance(headers, str | bytes) or not hasattr(headers, "__iter__"):
+            raise TypeError(f"headers must be a sequence of column names, got "
+                            f"{describe(headers)}")
+        headers = [str(h) for h in headers]
+        if isinstance(rows, str | bytes) or not hasattr(rows, "__iter__"):
+            raise TypeError(f"rows must be a sequence of rows, got {describe(rows)}")
+        cells = []
+        for i, row in enumerate(rows):
+            if isinstance(row, str | bytes) or not hasattr(row, "__iter__"):
+                raise TypeError(f"rows[{i}] must be a sequence of cells, got {describe(row)}")
+            cells.append([str(c) for c in row])
+            if len(cells[-1]) != len(headers):
+                raise ValueError(f"rows[{i}] has {len(cells[-1])} cells for {len(headers)} "
+                                 "headers")
+        self.blocks.append(("table", headers, cells))
 
     def figure(self, path: str, caption: str) -> None:
         """A figure, given by its path relative to the report."""
-        self.blocks.append(("img", path, caption))
+        if not isinstance(path, str | os.PathLike) or not str(path):
+            raise TypeError(f"path must be a file name or path, got {describe(path)}")
+        self.blocks.append(("img", str(path), _text("caption", caption)))
 
     def preformatted(self, text: str) -> None:
         """Fixed-width text (confusion matrices, logs)."""
-        self.blocks.append(("pre", text))
+        self.blocks.append(("pre", _text("text", text)))
 
     def markdown(self) -> str:
         """The report as GitHub-flavoured Markdown."""
@@ -112,7 +134,10 @@ class Report:
 
     def write(self, directory, stem: str = "report") -> tuple[Path, Path]:
         """Write ``stem.md`` and ``stem.html`` into ``directory``; returns both paths."""
-        directory = Path(directory)
+        from ._validate import check_path
+
+        directory = Path(check_path("directory", directory))
+        _stem("stem", stem)
         md, page = directory / f"{stem}.md", directory / f"{stem}.html"
         md.write_text(self.markdown(), encoding="utf-8")
         page.write_text(self.html(), encoding="utf-8")
@@ -147,21 +172,39 @@ class FigureSet:
     """
 
     def __init__(self, out_dir, dpi: int = 120):
-        self.out_dir = Path(out_dir)
-        self.dpi = dpi
+        from ._validate import check_path
+
+        self.out_dir = Path(check_path("out_dir", out_dir))
+        self.dpi = check_int("dpi", dpi, minimum=10, maximum=2400)
         self.paths: dict[str, Path] = {}
 
     def save(self, fig, name: str) -> str:
         """Save ``fig`` as ``name.png``, close it, and return the file name (relative)."""
         import matplotlib.pyplot as plt
 
-        if not name or "/" in name:
-            raise ValueError(f"name must be a plain file stem, got {name!r}")
+        _stem("name", name)
         path = self.out_dir / f"{name}.png"
         fig.savefig(path, dpi=self.dpi, bbox_inches="tight")
         plt.close(fig)
         self.paths[name] = path
         return path.name
+
+
+def _text(name: str, value) -> str:
+    """``value`` if it is a string, else a TypeError naming ``name``."""
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be a string, got {describe(value)} "
+                        f"({type(value).__name__})")
+    return value
+
+
+def _stem(name: str, value) -> str:
+    """``value`` if it is a plain file stem: a non-empty string naming no folder."""
+    _text(name, value)
+    if value in ("", ".", "..") or any(c in value for c in "/\\\0"):
+        raise ValueError(f"{name} must be a plain file stem (no folder, not empty), got "
+                         f"{value!r:.60}")
+    return value
 
 
 def text_table(columns, rows) -> str:
@@ -193,6 +236,12 @@ def text_table(columns, rows) -> str:
     for c in columns:
         if len(c) != 3:
             raise ValueError(f"columns must hold (key, header, format) triples, got {c!r}")
+    rows = list(rows)
+    for i, row in enumerate(rows):
+        missing = [key for key, _, _ in columns if not isinstance(row, dict) or key not in row]
+        if missing:
+            raise ValueError(f"rows[{i}] must be a dict holding every column's key; missing "
+                             f"{', '.join(map(repr, missing))}")
     cells = [[format(row[key], fmt) for key, _, fmt in columns] for row in rows]
     widths = [
         max([len(header)] + [len(r[i]) for r in cells])

@@ -54,6 +54,7 @@ class BitField:
 
     def get(self, register_value: int) -> int:
         """The field's value inside the byte ``register_value``."""
+        register_value = check_int("register_value", register_value, minimum=0, maximum=0xFF)
         return (register_value & self.mask) >> self.shift
 
     def put(self, value: int, register_value: int = 0) -> int:
@@ -65,4 +66,5 @@ class BitField:
             When ``value`` does not fit in the field.
         """
         value = check_int("value", value, minimum=0, maximum=self.maximum)
+        register_value = check_int("register_value", register_value, minimum=0, maximum=0xFF)
         return (register_value & ~self.mask & 0xFF) | (value << self.shift)

@@ -94,12 +94,21 @@ def led_register(channel: int, part: Led = Led.ON_L) -> int:
     (6, 69)
     """
     channel = check_int("channel", channel, minimum=0, maximum=N_CHANNELS - 1)
-    return Register.LED0_ON_L + len(Led) * channel + Led(part)
+    return Register.LED0_ON_L + len(Led) * channel + _led(part)
 
 
 def all_led_register(part: Led) -> Register:
     """Address of the ``ALL_LED`` register that writes ``part`` of every output (DS 7.3.4)."""
-    return Register(Register.ALL_LED_ON_L + Led(part))
+    return Register(Register.ALL_LED_ON_L + _led(part))
+
+
+def _led(part) -> Led:
+    """``part`` as a :class:`Led`, else an error naming it."""
+    try:
+        return Led(part)
+    except (ValueError, TypeError):
+        raise ValueError(f"part must be one of {', '.join(p.name for p in Led)} (0 to "
+                         f"{len(Led) - 1}), got {part!r:.40}") from None
 
 
 class Mode1(IntFlag):
@@ -148,6 +157,8 @@ def split_count(count: int) -> tuple[int, int]:
 
 def join_count(low: int, high: int) -> int:
     """The 12-bit count held in a ``_L`` and an ``_H`` register (the full ON/OFF bit ignored)."""
+    low = check_int("low", low, minimum=0, maximum=0xFF)  # register bytes
+    high = check_int("high", high, minimum=0, maximum=0xFF)
     return (high & _COUNT_HIGH_MASK) << 8 | low
 
 

@@ -83,7 +83,9 @@ class Tolerance:
     def __post_init__(self):
         if self.kind not in KINDS:
             raise ValueError(f"kind must be one of {KINDS}, got {self.kind!r}")
-        if not (self.width >= 0 and math.isfinite(self.width)):
+        if not isinstance(self.reason, str):
+            raise TypeError(f"reason must be a sentence (str), got {type(self.reason).__name__}")
+        if not _finite("width", self.width) >= 0:
             raise ValueError(f"width must be finite and >= 0, got {self.width!r}")
         if self.kind == "factor" and self.width < 1:
             raise ValueError(f"a factor tolerance must be >= 1, got {self.width!r}")
@@ -99,7 +101,8 @@ class Tolerance:
         return f"a factor {self.width:g}"
 
     def accepts(self, value: float, expected: float) -> bool:
-        """Whether ``value`` is within this tolerance of ``expected``."""
+        """Whether ``value`` is within this tolerance of ``expected`` (finite real numbers)."""
+        value, expected = _finite("value", value), _finite("expected", expected)
         if self.kind == "abs":
             # a few ulps of the answer let "exactly" accept the same share or count reached by
             # another order of operations; an answer of zero has no rounding, so none there

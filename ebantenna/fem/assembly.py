@@ -24,12 +24,12 @@ import math
 import numpy as np
 import scipy.sparse as sps
 
-from .._validate import check_choice, check_int
+from .._validate import check_choice, check_int, check_positive
 from ..probe import Probe
 from ._element_engine import mass_polynomial, stiffness_polynomial
 from ._scatter import scatter, scatter_sparse
 from .elements import consistent_mass, element_stiffness
-from .guards import check_resolvable
+from .guards import check_contact, check_resolvable
 from .supports import Supports
 
 __all__ = [
@@ -68,8 +68,10 @@ def beam_mesh(length: float, contact: float | None, n_elements: int) -> np.ndarr
     array([0. , 0.3, 0.4])
     """
     n_elements = check_resolvable(n_elements)
+    length = check_positive("length", length)
     if contact is None:
         return np.linspace(0.0, length, n_elements + 1)
+    contact = check_contact("contact", contact, length)
     n_elements = check_int("n_elements", n_elements, minimum=2)
     n1 = min(max(1, round(n_elements * contact / length)), n_elements - 1)
     span = np.linspace(0.0, contact, n1 + 1)
@@ -81,6 +83,10 @@ def contact_node(nodes: np.ndarray, contact: float | None) -> int | None:
     """Index of the node at the contact (None without contact)."""
     if contact is None:
         return None
+    nodes = np.asarray(nodes, dtype=float)
+    if nodes.ndim != 1 or nodes.size < 2:
+        raise ValueError(f"nodes must be a 1-D mesh of 2 nodes at least, got shape {nodes.shape}")
+    contact = check_contact("contact", contact, nodes[-1])
     return int(np.argmin(np.abs(nodes - contact)))
 
 
@@ -112,6 +118,9 @@ def assemble_elements(element_matrices: np.ndarray) -> np.ndarray:
            [0., 0., 1., 1., 1., 1.],
            [0., 0., 1., 1., 1., 1.]])
     """
+    if np.ndim(element_matrices) != 3 or np.shape(element_matrices)[1:] != (4, 4):
+        raise ValueError(f"element_matrices must have shape (n_elements, 4, 4), got "
+                         f"{np.shape(element_matrices)}")
     n_elements = element_matrices.shape[0]
     n_dofs = 2 * n_elements + 2
     A = np.zeros((n_dofs, n_dofs))
@@ -160,6 +169,9 @@ def assemble(nodes: np.ndarray, probe: Probe, *, sparse: bool = False, engine: s
     if engine == "loop" and sparse:
         raise ValueError("engine='loop' builds dense matrices; use sparse=False with it, or "
                          "engine='scatter' for sparse ones")
+    if not isinstance(probe, Probe):
+        raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")
+    nodes = _nodes(nodes)
     lengths = np.diff(nodes)
     EI, rhoA = probe.flexural_rigidity, probe.mass_per_length
     if engine == "loop":
@@ -173,12 +185,25 @@ def assemble(nodes: np.ndarray, probe: Probe, *, sparse: bool = False, engine: s
 
 def free_dofs(nodes: np.ndarray, supports: Supports) -> np.ndarray:
     """Indices of the DOFs left free by the supports, increasing."""
+    if not isinstance(supports, Supports):
+        raise TypeError(f"supports must be a Supports, got {type(supports).__name__}")
+    nodes = _nodes(nodes)
     fixed = [0]  # the hinge never moves sideways
     if supports.hinge == "clamped":
         fixed.append(1)
     if supports.rigid_contact:
         fixed.append(2 * contact_node(nodes, supports.contact))
     return np.setdiff1d(np.arange(2 * nodes.size), fixed)
+
+
+def _nodes(nodes) -> np.ndarray:
+    """``nodes`` if they are a mesh: 1-D, 2 or more, finite and increasing (m)."""
+    from .._validate import check_array
+
+    nodes = check_array("nodes", nodes, ndim=1, min_length=2)
+    if np.any(np.diff(nodes) <= 0):
+        raise ValueError("nodes must increase from the hinge to the tip")
+    return nodes
 
 
 def support_diagonals(nodes: np.ndarray, probe: Probe, supports: Supports):
@@ -209,6 +234,12 @@ def apply_supports(K, M, nodes: np.ndarray, probe: Probe, supports: Supports):
         Their indices in the global DOF vector.
     """
     free = free_dofs(nodes, supports)
+    for name, matrix in (("K", K), ("M", M)):
+        if np.shape(matrix) != (2 * np.size(nodes),) * 2:
+            raise ValueError(f"{name} must be the {2 * np.size(nodes)} x {2 * np.size(nodes)} "
+                             f"matrix of these nodes, got shape {np.shape(matrix)}")
+    if not isinstance(probe, Probe):
+        raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")
     k_diag, m_diag = support_diagonals(nodes, probe, supports)
     if sps.issparse(K):
         K = (K + sps.diags(k_diag)).tocsc()[free][:, free]

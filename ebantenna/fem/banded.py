@@ -48,6 +48,15 @@ def sweep_meshes(length: float, contacts: np.ndarray, n_elements: int):
 
     Returns ``(nodes, contact_node)``: arrays of shape ``(n, n_elements + 1)`` (m) and ``(n,)``.
     """
+    from .._validate import check_array, check_positive
+    from .guards import MIN_SPAN, check_resolvable
+
+    length = check_positive("length", length)
+    n_elements = check_resolvable(n_elements)
+    contacts = check_array("contacts", contacts, ndim=1)
+    if np.any((contacts < MIN_SPAN * length) | (contacts > (1 - MIN_SPAN) * length)):
+        raise ValueError(f"contacts must lie in the probe, {MIN_SPAN:g} of its length from "
+                         f"either end (0 < contact < {length:g} m)")
     n1 = np.clip(np.round(n_elements * contacts / length).astype(int), 1, n_elements - 1)
     k = np.arange(n_elements + 1)
     c = contacts[:, None]

@@ -129,6 +129,8 @@ def coupled_sweep(
 
 def _check_rods(rods) -> tuple:
     """The rods as a tuple of at least one :class:`~ebantenna.fem.rod.Rod`."""
+    if isinstance(rods, Rod) or not hasattr(rods, "__iter__"):
+        raise TypeError(f"rods must be a sequence of Rod objects, got {type(rods).__name__}")
     rods = tuple(rods)
     for rod in rods:
         if not isinstance(rod, Rod):

@@ -199,6 +199,9 @@ def craig_bampton(sub: Substructure, n_modes: int) -> CraigBampton:
     >>> round(cb.stiffness[-1, -1])  # static stiffness of the tip, 3 EI / l^3, N/m
     20520
     """
+    if not isinstance(sub, Substructure):
+        raise TypeError(f"sub must be a Substructure (probe_substructure, rod_substructure), "
+                        f"got {type(sub).__name__}")
     n = sub.stiffness.shape[0]
     n_modes = check_int("n_modes", n_modes, minimum=0, maximum=n - 1)
     b = sub.interface

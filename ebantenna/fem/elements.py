@@ -24,6 +24,9 @@ equal to these bit for bit (``ebantenna.fem._element_engine``).
 
 from __future__ import annotations
 
+import math
+from numbers import Real
+
 import numpy as np
 
 __all__ = [
@@ -33,6 +36,46 @@ __all__ = [
     "hermite_slope",
     "bending_energy",
 ]
+
+
+def _checked(name: str, value, *, positive: bool = True):
+    """``value`` as an array of finite real numbers (floats, integers, or exact
+    :class:`fractions.Fraction` objects), all > 0 if ``positive``; else an error naming it."""
+    a = np.asarray(value)
+    if a.dtype.kind == "O":
+        if not all(isinstance(v, Real) and not isinstance(v, bool) for v in a.flat):
+            raise TypeError(f"{name} must hold real numbers, got {a.dtype} values")
+        finite = all(_finite(v) for v in a.flat)
+    elif a.dtype.kind in "fiu":
+        finite = bool(np.all(np.isfinite(a)))
+    else:
+        raise TypeError(f"{name} must be a real number or an array of them, got dtype {a.dtype}")
+    if a.size == 0 or not finite or (positive and not all(v > 0 for v in a.flat)):
+        raise ValueError(f"{name} must be {'positive and ' if positive else ''}finite, got "
+                         f"{a.ravel()[:4].tolist() if a.size else 'an empty array'}")
+    return a
+
+
+def _finite(v) -> bool:
+    """Whether the real number ``v`` is finite (an int beyond the float range is not)."""
+    try:
+        return math.isfinite(v)
+    except OverflowError:
+        return False
+
+
+#: How far outside [0, 1] a local coordinate may lie and count as on the element: a rounding's
+#: worth, as ``(x - x_i) / h`` gives at a node.
+_XI_SLACK = 1e-9
+
+
+def _local(xi, l):
+    """``xi`` and ``l`` checked and as float arrays (shape functions)."""
+    xi = _checked("xi", xi, positive=False).astype(float)
+    if np.any((xi < -_XI_SLACK) | (xi > 1 + _XI_SLACK)):
+        raise ValueError(f"xi must lie in [0, 1] (x / l along the element), got values from "
+                         f"{xi.min():g} to {xi.max():g}")
+    return xi, _checked("l", l).astype(float)
 
 
 def _matrix(rows, *scalars) -> np.ndarray:
@@ -70,7 +113,7 @@ def element_stiffness(EI, l):
     >>> element_stiffness(1.0, 1.0)[0]
     array([ 12.,   6., -12.,   6.])
     """
-    EI, l = np.asarray(EI), np.asarray(l)
+    EI, l = _checked("EI", EI), _checked("l", l)
     K = _matrix(
         [
             [12, 6 * l, -12, 6 * l],
@@ -106,7 +149,7 @@ def consistent_mass(rhoA, l):
     >>> float(M[::2, ::2].sum())              # a rigid translation carries the whole mass rho A l
     1.0
     """
-    rhoA, l = np.asarray(rhoA), np.asarray(l)
+    rhoA, l = _checked("rhoA", rhoA), _checked("l", l)
     M = _matrix(
         [
             [156, 22 * l, 54, -13 * l],
@@ -126,8 +169,7 @@ def hermite(xi, l):
     Returns an array of shape ``(..., 4)``:
     deflection = ``hermite(xi, l) @ (v1, theta1, v2, theta2)``.
     """
-    xi = np.asarray(xi, dtype=float)
-    l = np.asarray(l, dtype=float)
+    xi, l = _local(xi, l)
     return np.stack(
         [
             1 - 3 * xi**2 + 2 * xi**3,
@@ -141,8 +183,7 @@ def hermite(xi, l):
 
 def hermite_slope(xi, l):
     """Derivatives ``dN/dx``, shape (..., 4): 1/m for the deflection DOFs, 1 for the slopes."""
-    xi = np.asarray(xi, dtype=float)
-    l = np.asarray(l, dtype=float)
+    xi, l = _local(xi, l)
     return np.stack(
         [
             (-6 * xi + 6 * xi**2) / l,
@@ -187,6 +228,11 @@ def bending_energy(EI, l, u) -> np.ndarray:
     >>> bool(np.isclose(bending_energy(2.0, 0.1, u), u @ element_stiffness(2.0, 0.1) @ u))
     True
     """
+    EI, l = _checked("EI", EI), _checked("l", l)
+    u = _checked("u", u, positive=False)
+    if u.ndim not in (1, 2) or u.shape[0] < 4 or u.shape[0] % 2:
+        raise ValueError(f"u must hold 2 n_elements + 2 DOFs (v, theta per node) along its first "
+                         f"axis, n_elements >= 1, got shape {u.shape}")
     v1, t1, v2, t2 = u[0:-2:2], u[1:-2:2], u[2::2], u[3::2]
     k1 = (6 * (v2 - v1) - l * (4 * t1 + 2 * t2)) / l**2
     k2 = (6 * (v1 - v2) + l * (2 * t1 + 4 * t2)) / l**2

@@ -36,7 +36,7 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-from .._validate import check_int
+from .._validate import check_choice, check_in_range, check_int, check_positive, check_real
 from ..probe import Probe
 
 __all__ = ["exact_frequencies", "frequency_equation"]
@@ -96,6 +96,10 @@ def frequency_equation(beta: float, length: float, contact: float | None, hinge:
         Probe length and contact position from the hinge, m (``contact=None``: no contact).
     hinge : {"clamped", "pinned"}
     """
+    hinge = check_choice("hinge", hinge, ("clamped", "pinned"))
+    beta, length = check_real("beta", beta), check_positive("length", length)
+    if contact is not None:  # anywhere inside: the series keep a contact at 1e-100 m accurate
+        contact = check_in_range("contact", contact, 0.0, length)
     if contact is None:
         if hinge == "clamped":
             return _Hplus_over_cosh(beta * length)

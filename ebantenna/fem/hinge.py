@@ -26,7 +26,14 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.optimize import brentq, least_squares, minimize_scalar
 
-from .._validate import check_array, check_choice, check_int, check_positive
+from .._validate import (
+    check_array,
+    check_choice,
+    check_int,
+    check_positive,
+    check_real,
+    describe,
+)
 from ..probe import Probe
 from .modal import modal_analysis
 from .supports import Supports
@@ -67,6 +74,8 @@ def transition_position(
     >>> round(transition_position(Probe()) / Probe().length, 3)  # a bare clamped tube
     0.783
     """
+    if not isinstance(probe, Probe):
+        raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")
     check_choice("criterion", criterion, CRITERIA)
     n_elements = check_int("n_elements", n_elements, minimum=4)
     L = probe.length
@@ -200,6 +209,8 @@ def fit_hinge_and_tip(
     >>> fit.rms_residual < 1e-6  # m
     True
     """
+    if not isinstance(probe, Probe):
+        raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")
     check_choice("criterion", criterion, CRITERIA)
     lengths, observed = _check_observations(lengths, observed)
     (k_lo, k_hi), (m_lo, m_hi) = _check_bounds(stiffness_bounds, mass_bounds)
@@ -255,9 +266,13 @@ def _check_observations(lengths, observed):
 
 def _check_bounds(stiffness_bounds, mass_bounds):
     """``(k_lo, k_hi), (m_lo, m_hi)`` with ``0 < k_lo < k_hi`` and ``0 <= m_lo < m_hi < inf``."""
+    for name, pair in (("stiffness_bounds", stiffness_bounds), ("mass_bounds", mass_bounds)):
+        if isinstance(pair, str | bytes) or not hasattr(pair, "__len__") or len(pair) != 2:
+            raise TypeError(f"{name} must be a pair (low, high), got {describe(pair)}")
     k_lo = check_positive("stiffness_bounds[0]", stiffness_bounds[0])
     k_hi = check_positive("stiffness_bounds[1]", stiffness_bounds[1])
-    m_lo, m_hi = (float(v) for v in mass_bounds)
+    m_lo = check_real("mass_bounds[0]", mass_bounds[0])
+    m_hi = check_real("mass_bounds[1]", mass_bounds[1])
     if not (k_lo < k_hi and 0 <= m_lo < m_hi and math.isfinite(m_hi)):
         raise ValueError(
             "need 0 < stiffness_bounds[0] < stiffness_bounds[1] and "

@@ -32,7 +32,7 @@ import scipy.linalg as sla
 import scipy.sparse as sps
 import scipy.sparse.linalg as spla
 
-from .._validate import check_array, check_choice, check_int
+from .._validate import check_array, check_choice, check_int, check_positive, real_array
 from ..probe import Probe
 from .assembly import (
     ASSEMBLY_ENGINES,
@@ -77,6 +77,8 @@ def eigenvalue_shift(beam: Probe) -> float:
     >>> eigenvalue_shift(p) == p.flexural_rigidity / (p.mass_per_length * p.length**4)
     True
     """
+    if not isinstance(beam, Probe):
+        raise TypeError(f"beam must be a Probe (or Rod.as_beam()), got {type(beam).__name__}")
     return beam.flexural_rigidity / (beam.mass_per_length * beam.length**4)
 
 
@@ -86,7 +88,8 @@ def clip_eigenvalues(lam: np.ndarray, shift: float) -> np.ndarray:
     Rounding can leave a rigid-body eigenvalue a hair below zero (``|lam| ~ eps * shift``); below
     ``-1e-8 shift`` the stiffness was not semi-definite.
     """
-    tiny = 1e-8 * shift
+    lam = real_array("lam", lam)
+    tiny = 1e-8 * check_positive("shift", shift)
     if np.any(lam < -tiny):
         raise np.linalg.LinAlgError(f"negative eigenvalue {lam.min():g}: K is not semi-definite")
     return np.maximum(lam, 0.0)
@@ -114,6 +117,10 @@ def solve_modes(K, M, n_modes: int, *, shift: float, solver: str = "auto"):
         Mass-normalised eigenvectors (``phi.T @ M @ phi = I``).
     """
     check_choice("solver", solver, EIGEN_SOLVERS)
+    shift = check_positive("shift", shift)
+    if len(np.shape(K)) != 2 or np.shape(K)[0] != np.shape(K)[1] or np.shape(M) != np.shape(K):
+        raise ValueError(f"K and M must be square matrices of one shape, got {np.shape(K)} and "
+                         f"{np.shape(M)}")
     n = K.shape[0]
     n_modes = check_int("n_modes", n_modes, minimum=1, maximum=n)
     if solver == "auto":

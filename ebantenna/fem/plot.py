@@ -49,8 +49,14 @@ def plot_probe(probe, supports=None, ax=None):
     >>> [t.get_text() for t in ax.texts][:3]
     ['P', 'Q', 'R']
     """
-    from .._validate import check_in_range
+    from ..probe import Probe
     from .supports import Supports
+
+    if not isinstance(probe, Probe):
+        raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")
+    if supports is not None and not isinstance(supports, Supports):
+        raise TypeError(f"supports must be a Supports or None, got {type(supports).__name__}")
+    from .._validate import check_in_range
 
     supports = Supports() if supports is None else supports
     length = 100 * probe.length  # cm, as on every other figure of the probe
@@ -134,6 +140,8 @@ def plot_modes(result, ax=None, modes=None, n_points: int = 400, label: str = "m
     -------
     matplotlib.axes.Axes
     """
+    _check_result("result", result, "ModalResult (modal_analysis)",
+                  ("n_modes", "probe", "nodes", "supports", "frequencies", "displacement"))
     n_points = check_int("n_points", n_points, minimum=2)
     if modes is None:
         modes = range(result.n_modes)
@@ -175,6 +183,7 @@ def plot_zones(zones, ax=None):
     -------
     matplotlib.axes.Axes
     """
+    _check_result("zones", zones, "ZoneResult (mode_zones)", ("contacts", "frequency", "zone"))
     ax = _axes(ax)
     x = 100 * zones.contacts
     # each sample's zone covers the half-way points to its neighbours
@@ -191,3 +200,11 @@ def plot_zones(zones, ax=None):
     ax.set_ylabel("dominant (lowest) frequency (Hz)")
     ax.legend(fontsize="small")
     return ax
+
+
+def _check_result(name: str, value, kind: str, attributes) -> None:
+    """Refuse ``value`` unless it has the ``attributes`` the figure reads (by what it holds,
+    not by class: the result classes call these functions, so importing them here would make
+    a circle)."""
+    if not all(hasattr(value, a) for a in attributes):
+        raise TypeError(f"{name} must be a {kind}, got {type(value).__name__}")

@@ -216,12 +216,21 @@ def reference_sweep(
     (the public entry is :func:`natural_frequencies`); ``supports`` gives the hinge and the
     contact's stiffness, its ``contact`` is replaced by each of ``contacts``.
     """
+    _check_bodies(probe, supports)
     hinge, stiffness = supports.hinge, supports.contact_stiffness
     return np.array([
         modal_analysis(probe, Supports(float(c), hinge=hinge, contact_stiffness=stiffness),
                        n_elements=n_elements, n_modes=n_modes).frequencies
         for c in contacts
     ])
+
+
+def _check_bodies(probe, supports) -> None:
+    """Refuse a ``probe`` that is not a Probe or ``supports`` that are not Supports."""
+    if not isinstance(probe, Probe):
+        raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")
+    if not isinstance(supports, Supports):
+        raise TypeError(f"supports must be a Supports, got {type(supports).__name__}")
 
 
 def dense_sweep(
@@ -234,6 +243,7 @@ def dense_sweep(
     Inputs are trusted (the public entry is :func:`natural_frequencies`); ``supports`` gives the
     hinge and the contact's stiffness, its ``contact`` is replaced by each of ``contacts``.
     """
+    _check_bodies(probe, supports)
     hinge, stiffness = supports.hinge, supports.contact_stiffness
     members = [Supports(float(c), hinge=hinge, contact_stiffness=stiffness) for c in contacts]
     meshes = np.stack([beam_mesh(probe.length, s.contact, n_elements) for s in members])

@@ -57,7 +57,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.special import expit, log_expit
 
-from .._validate import check_int
+from .._budget import check_allocation
+from .._validate import check_choice, check_int, check_nonnegative, describe
 
 __all__ = [
     "ACTIVATIONS",
@@ -97,6 +98,7 @@ def activate(name: str, z: np.ndarray) -> np.ndarray:
         return np.maximum(z, 0.0)
     if name == "logistic":
         return expit(z)
+    check_choice("name", name, ACTIVATIONS)  # only "identity" is left
     return z.copy()
 
 
@@ -133,6 +135,7 @@ def activation_derivative(name: str, a: np.ndarray, delta: np.ndarray) -> np.nda
         return np.where(a <= 0, 0.0, delta)
     if name == "logistic":
         return delta * ((1.0 - a) * a)
+    check_choice("name", name, ACTIVATIONS)  # only "identity" is left
     return delta.copy()
 
 
@@ -159,6 +162,15 @@ def glorot_uniform(sizes, activation: str, rng: np.random.Generator):
     >>> [c.shape for c in coefs], [b.shape for b in intercepts]
     ([(3, 2), (2, 1)], [(2,), (1,)])
     """
+    check_choice("activation", activation, ACTIVATIONS)
+    if not isinstance(rng, np.random.Generator):
+        raise TypeError(f"rng must be a numpy.random.Generator, got {type(rng).__name__}")
+    if isinstance(sizes, str | bytes) or not hasattr(sizes, "__len__") or len(sizes) < 2:
+        raise ValueError(f"sizes must list 2 layer widths at least (input and output), got "
+                         f"{describe(sizes)}")
+    sizes = [check_int("sizes", w, minimum=1) for w in sizes]
+    check_allocation(8 * sum(a * b + b for a, b in zip(sizes[:-1], sizes[1:], strict=True)),
+                     parameter="sizes", what="the weights")
     factor = 2.0 if activation == "logistic" else 6.0
     coefs, intercepts = [], []
     for fan_in, fan_out in zip(sizes[:-1], sizes[1:], strict=True):
@@ -250,6 +262,7 @@ def output_loss(out_activation: str, z: np.ndarray, Y: np.ndarray) -> tuple[floa
         # log_expit(z) = log(sigma(z)), finite for any z
         loss = float(-np.sum(Y * log_expit(z) + (1.0 - Y) * log_expit(-z))) / n
         return loss, (expit(z) - Y) / n
+    check_choice("out_activation", out_activation, OUTPUT_ACTIVATIONS)  # only "identity" left
     diff = z - Y
     loss = 0.5 * float(np.mean(diff * diff))
     return loss, diff / diff.size
@@ -264,6 +277,8 @@ def l2_penalty(coefs, alpha: float, n_samples: int) -> float:
     >>> l2_penalty([np.full((2, 1), 3.0)], alpha=1.0, n_samples=9)
     1.0
     """
+    alpha = check_nonnegative("alpha", alpha)
+    n_samples = check_int("n_samples", n_samples, minimum=1)
     # einsum, not a BLAS dot: no thread start-up for a reduction this small
     squares = sum(float(np.einsum("ij,ij->", W, W)) for W in coefs)
     return 0.5 * alpha * squares / n_samples
@@ -437,6 +452,10 @@ def pack(coefs, intercepts) -> np.ndarray:
     >>> pack([np.ones((2, 1))], [np.zeros(1)])
     array([1., 1., 0.])
     """
+    coefs, intercepts = list(coefs), list(intercepts)
+    if len(coefs) != len(intercepts):
+        raise ValueError(f"coefs and intercepts must list one array per layer, got {len(coefs)} "
+                         f"and {len(intercepts)}")
     return np.concatenate([a.ravel() for pair in zip(coefs, intercepts, strict=True)
                            for a in pair])
 
@@ -451,6 +470,11 @@ def unpack(w: np.ndarray, shapes):
     >>> coefs[0].ravel(), intercepts[0]
     (array([0., 1.]), array([2.]))
     """
+    shapes = [(check_int("shapes", a, minimum=1), check_int("shapes", b, minimum=1))
+              for a, b in shapes]
+    if np.ndim(w) != 1 or np.size(w) != sum(a * b + b for a, b in shapes):
+        raise ValueError(f"w must be a flat vector of {sum(a * b + b for a, b in shapes)} "
+                         f"weights and biases for these shapes, got shape {np.shape(w)}")
     coefs, intercepts, pos = [], [], 0
     for fan_in, fan_out in shapes:
         coefs.append(w[pos : pos + fan_in * fan_out].reshape(fan_in, fan_out))

@@ -61,7 +61,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.sparse import issparse
 
-from .._validate import check_choice, check_int, check_real
+from .._budget import check_allocation
+from .._validate import check_choice, check_int, check_real, real_array
 from .sparse_input import as_csr, recompute_cancelled, sparse_variance, squared_norms_sparse
 
 __all__ = ["KERNELS", "Kernel", "KernelRows", "resolve_gamma", "gram_matrix", "squared_norms",
@@ -125,6 +126,9 @@ def squared_norms(X) -> np.ndarray:
     """
     if issparse(X):
         return squared_norms_sparse(as_csr(X))
+    X = real_array("X", X)
+    if X.ndim != 2:
+        raise ValueError(f"X must be 2-D (one point per row), got shape {X.shape}")
     return np.einsum("ij,ij->i", X, X)
 
 
@@ -205,8 +209,15 @@ class Kernel:
             without the staging buffer; the numbers are the same.
         """
         same = Y is None
+        X = _points("X", X)
+        if not same:
+            Y = _points("Y", Y)
+            if Y.shape[1] != X.shape[1]:
+                raise ValueError(f"Y must have the {X.shape[1]} features of X, got {Y.shape[1]}")
         X, Y, sparse, xn, yn = self._expansion_points(X, Y, x_norms, y_norms, center)
         if out is None:
+            check_allocation(X.shape[0] * Y.shape[0] * np.dtype(dtype).itemsize,
+                             parameter="X", what="the kernel matrix")
             out = np.empty((X.shape[0], Y.shape[0]), dtype=dtype)
         elif out.shape != (X.shape[0], Y.shape[0]):
             raise ValueError(f"out must have shape {(X.shape[0], Y.shape[0])}; got {out.shape}")
@@ -307,6 +318,7 @@ class Kernel:
 
     def diagonal(self, X: np.ndarray) -> np.ndarray:
         """The diagonal :math:`k(x_i, x_i)` in float64 (exactly 1 for 'rbf')."""
+        X = _points("X", X)
         if self.name == "rbf":
             return np.ones(X.shape[0])
         sq = squared_norms(X)
@@ -344,6 +356,23 @@ def rbf_in_place(block, gamma, x_norms, y_norms, sparse_rows=None, scratch=None)
     np.exp(block, out=block)
 
 
+def _points(name: str, X):
+    """``X`` as a 2-D real array (or a sparse matrix, as given), else an error naming it."""
+    if issparse(X):
+        return X
+    X = real_array(name, X)
+    if X.ndim != 2:
+        raise ValueError(f"{name} must be 2-D (one point per row), got shape {X.shape}")
+    return X
+
+
+def _finite(name: str, X) -> None:
+    """Refuse NaN or inf in ``X`` (dense or sparse), naming it."""
+    values = X.data if issparse(X) else X
+    if not np.all(np.isfinite(values)):
+        raise ValueError(f"{name} must contain only finite values (no NaN or inf)")
+
+
 def gram_matrix(X, Y=None, *, kernel="rbf", gamma=1.0, degree=3, coef0=0.0) -> np.ndarray:
     """Kernel matrix between the rows of ``X`` and ``Y`` (float64); arrays or sparse matrices.
 
@@ -353,9 +382,13 @@ def gram_matrix(X, Y=None, *, kernel="rbf", gamma=1.0, degree=3, coef0=0.0) -> n
     array([[1., 0.],
            [0., 1.]])
     """
-    X = X if issparse(X) else np.asarray(X, dtype=np.float64)
-    Y = Y if Y is None or issparse(Y) else np.asarray(Y, dtype=np.float64)
-    return Kernel(kernel, gamma=gamma, degree=degree, coef0=coef0).gram(X, Y)
+    k = Kernel(kernel, gamma=gamma, degree=degree, coef0=coef0)
+    X = _points("X", X)
+    _finite("X", X)
+    if Y is not None:
+        Y = _points("Y", Y)
+        _finite("Y", Y)
+    return k.gram(X, Y)
 
 
 def call_kernel(kernel, X, Y) -> np.ndarray:
@@ -369,6 +402,8 @@ def call_kernel(kernel, X, Y) -> np.ndarray:
     array([[1.],
            [1.]])
     """
+    if not callable(kernel):
+        raise TypeError(f"kernel must be a callable kernel(X, Y), got {type(kernel).__name__}")
     K = kernel(X, Y)
     K = K.toarray() if issparse(K) else np.asarray(K, dtype=np.float64)
     if K.shape != (X.shape[0], Y.shape[0]):
@@ -417,6 +452,11 @@ class KernelRows:
 
     def __init__(self, X, kernel: Kernel, dtype, cache_bytes: int, full=None, parts=None,
                  center: bool = True):
+        if kernel is not None and not isinstance(kernel, Kernel):  # None: a precomputed matrix
+            raise TypeError(f"kernel must be a Kernel, got {type(kernel).__name__}")
+        if X is not None:
+            X = _points("X", X)
+        check_int("cache_bytes", cache_bytes, minimum=0)
         sparse = issparse(X)
         if sparse:
             X = as_csr(X)

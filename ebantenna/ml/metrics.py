@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import describe
+from .._validate import describe, real_array
 
 __all__ = [
     "confusion_matrix", "accuracy", "accuracy_interval", "per_class_rates", "absolute_errors"
@@ -70,15 +70,22 @@ def accuracy(matrix) -> float:
     >>> accuracy(np.array([[3, 1], [0, 4]]))
     0.875
     """
-    m = np.asarray(matrix, dtype=np.float64)
-    if m.ndim != 2 or m.shape[0] != m.shape[1]:
-        raise ValueError(f"matrix must be a square confusion matrix, got shape {m.shape}")
-    if not np.all(np.isfinite(m)) or np.any(m < 0):
-        raise ValueError("matrix must hold finite, non-negative counts")
+    m = _confusion(matrix)
     total = m.sum()
     if total <= 0:
         raise ValueError("matrix must contain at least one sample")
     return float(np.trace(m) / total)
+
+
+def _confusion(matrix) -> np.ndarray:
+    """``matrix`` as a float array if it is a square matrix of finite, non-negative, whole
+    counts; else an error naming ``matrix``."""
+    m = real_array("matrix", matrix)
+    if m.ndim != 2 or m.shape[0] != m.shape[1] or m.size == 0:
+        raise ValueError(f"matrix must be a square confusion matrix, got shape {m.shape}")
+    if not np.all(np.isfinite(m)) or np.any(m < 0) or np.any(m != np.floor(m)):
+        raise ValueError("matrix must hold finite, non-negative, whole counts")
+    return m
 
 
 #: The largest count a float64 holds exactly: the interval is computed in floats.
@@ -146,7 +153,7 @@ def per_class_rates(matrix) -> tuple[np.ndarray, np.ndarray]:
     >>> recall, precision
     (array([0.75, 1.  ]), array([1. , 0.8]))
     """
-    m = np.asarray(matrix, dtype=np.float64)
+    m = _confusion(matrix)
     rows, cols = m.sum(axis=1), m.sum(axis=0)
     diag = np.diag(m)
     recall = np.divide(diag, rows, out=np.zeros_like(diag), where=rows > 0)
@@ -162,8 +169,11 @@ def absolute_errors(y_true, y_pred) -> np.ndarray:
     >>> absolute_errors([0.25, 0.5], [0.5, 0.375])
     array([0.25 , 0.125])
     """
-    a = np.asarray(y_true, dtype=np.float64)
-    b = np.asarray(y_pred, dtype=np.float64)
+    a = real_array("y_true", y_true)
+    b = real_array("y_pred", y_pred)
     if a.shape != b.shape:
         raise ValueError(f"y_true and y_pred must have equal shapes, got {a.shape} and {b.shape}")
+    for name, v in (("y_true", a), ("y_pred", b)):
+        if not np.all(np.isfinite(v)):
+            raise ValueError(f"{name} must contain only finite values (no NaN or inf)")
     return np.abs(b - a)

@@ -21,6 +21,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._validate import check_bool, check_in_range, check_positive
+
 __all__ = ["Momentum", "Adam", "SCGState", "scg_step", "scg_init"]
 
 
@@ -44,13 +46,15 @@ class Momentum:
 
     def __init__(self, params, learning_rate: float, momentum: float = 0.9,
                  nesterov: bool = True):
-        self.learning_rate = float(learning_rate)
-        self.momentum = float(momentum)
-        self.nesterov = bool(nesterov)
+        self.learning_rate = check_positive("learning_rate", learning_rate)
+        self.momentum = check_in_range("momentum", momentum, 0.0, 1.0, low_inclusive=True,
+                                       high_inclusive=True)
+        self.nesterov = check_bool("nesterov", nesterov)
         self.velocities = [np.zeros_like(p) for p in params]
 
     def update(self, params, grads) -> None:
         """Move ``params`` (the arrays this optimiser was made for) in place by ``grads``."""
+        _same_layout(params, grads, self.velocities)
         for p, g, v in zip(params, grads, self.velocities, strict=True):
             v[...] = self.momentum * v - self.learning_rate * g
             p += self.momentum * v - self.learning_rate * g if self.nesterov else v
@@ -89,10 +93,10 @@ class Adam:
 
     def __init__(self, params, learning_rate: float = 1e-3, beta_1: float = 0.9,
                  beta_2: float = 0.999, epsilon: float = 1e-8):
-        self.learning_rate = float(learning_rate)
-        self.beta_1 = float(beta_1)
-        self.beta_2 = float(beta_2)
-        self.epsilon = float(epsilon)
+        self.learning_rate = check_positive("learning_rate", learning_rate)
+        self.beta_1 = check_in_range("beta_1", beta_1, 0.0, 1.0, low_inclusive=True)
+        self.beta_2 = check_in_range("beta_2", beta_2, 0.0, 1.0, low_inclusive=True)
+        self.epsilon = check_positive("epsilon", epsilon)
         self.t = 0
         self.ms = [np.zeros_like(p) for p in params]
         self.vs = [np.zeros_like(p) for p in params]
@@ -105,11 +109,21 @@ class Adam:
 
     def update(self, params, grads) -> None:
         """Move ``params`` (the arrays this optimiser was made for) in place by ``grads``."""
+        _same_layout(params, grads, self.ms)
         lr_t = self.learning_rate_at_step()
         for w, g, m, v in zip(params, grads, self.ms, self.vs, strict=True):
             m[...] = self.beta_1 * m + (1 - self.beta_1) * g
             v[...] = self.beta_2 * v + (1 - self.beta_2) * g * g
             w -= lr_t * m / (np.sqrt(v) + self.epsilon)
+
+
+def _same_layout(params, grads, state) -> None:
+    """Refuse ``params`` and ``grads`` unless each holds one array of the optimiser's shapes."""
+    for name, arrays in (("params", params), ("grads", grads)):
+        shapes = [np.shape(a) for a in arrays]
+        if shapes != [s.shape for s in state]:
+            raise ValueError(f"{name} must hold arrays of the shapes the optimiser was made for, "
+                             f"{[s.shape for s in state]}, got {shapes}")
 
 
 @dataclass

@@ -56,6 +56,14 @@ def ovo_votes(decisions: np.ndarray, n_classes: int) -> np.ndarray:
     >>> ovo_votes(np.array([[1.0, -2.0, 0.5]]), 3)
     array([[1, 1, 1]])
     """
+    from .._validate import check_array, check_int
+
+    n_classes = check_int("n_classes", n_classes, minimum=2)
+    decisions = check_array("decisions", decisions, ndim=2, min_length=0, finite=False)
+    pairs = n_classes * (n_classes - 1) // 2
+    if decisions.shape[1] != pairs:
+        raise ValueError(f"decisions must have one column per pair of the {n_classes} classes "
+                         f"({pairs}), got shape {decisions.shape}")
     votes = np.zeros((decisions.shape[0], n_classes), dtype=np.int64)
     p = 0
     for a in range(n_classes):

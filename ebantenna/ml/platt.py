@@ -54,6 +54,9 @@ from collections.abc import Callable
 
 import numpy as np
 
+from .._budget import check_allocation
+from .._validate import check_array, check_int, check_real, real_array
+
 __all__ = ["sigmoid_train", "sigmoid_predict", "multiclass_probability", "LibsvmRandom",
            "cross_validated_decisions", "pairwise_sigmoids", "pairwise_coupling",
            "MIN_PROBABILITY"]
@@ -83,8 +86,12 @@ def sigmoid_train(dec_values, labels) -> tuple[float, float]:
     >>> A < 0
     True
     """
-    f = np.asarray(dec_values, dtype=np.float64)
-    positive = np.asarray(labels) > 0
+    f = check_array("dec_values", dec_values, ndim=1)
+    labels = real_array("labels", labels)
+    if labels.shape != f.shape:
+        raise ValueError(f"labels must hold one label per decision value ({f.size}), got shape "
+                         f"{labels.shape}")
+    positive = labels > 0
     prior1 = float(np.count_nonzero(positive))
     prior0 = float(f.size - prior1)
     hi, lo = (prior1 + 1.0) / (prior1 + 2.0), 1.0 / (prior0 + 2.0)
@@ -144,7 +151,8 @@ def sigmoid_predict(dec_values, A: float, B: float) -> np.ndarray:
     >>> sigmoid_predict(np.array([0.0, 1e3]), -2.0, 0.0)
     array([0.5, 1. ])
     """
-    fab = np.asarray(dec_values, dtype=np.float64) * A + B
+    A, B = check_real("A", A), check_real("B", B)
+    fab = real_array("dec_values", dec_values) * A + B
     e = np.exp(-np.abs(fab))
     return np.where(fab >= 0, e / (1.0 + e), 1.0 / (1.0 + e))
 
@@ -170,7 +178,9 @@ def multiclass_probability(r: np.ndarray) -> np.ndarray:
     >>> np.round(multiclass_probability(r), 2)  # stopped within 0.005 / 3 of the optimum
     array([[0.82, 0.09, 0.09]])
     """
-    r = np.asarray(r, dtype=np.float64)
+    r = check_array("r", r, ndim=3)
+    if r.shape[1] != r.shape[2] or r.shape[1] < 2:
+        raise ValueError(f"r must have shape (n_samples, k, k), k >= 2, got {r.shape}")
     n, k = r.shape[0], r.shape[1]
     Q = np.empty((n, k, k))
     for t in range(k):
@@ -225,7 +235,7 @@ class LibsvmRandom:
     """
 
     def __init__(self, seed: int):
-        self.seed = int(seed)
+        self.seed = check_int("seed", seed, minimum=0, maximum=2**32 - 1)
         self.reseed()
 
     def reseed(self) -> None:
@@ -238,6 +248,7 @@ class LibsvmRandom:
 
     def bounded(self, bound: int) -> int:
         """``bounded_rand_int(bound)``: uniform in [0, bound), Lemire's method as libsvm's."""
+        bound = check_int("bound", bound, minimum=1, maximum=2**32)
         m = self.raw() * bound
         low = m & 0xFFFFFFFF
         if low < bound:
@@ -249,6 +260,8 @@ class LibsvmRandom:
 
     def permutation(self, n: int) -> np.ndarray:
         """libsvm's shuffle of ``0 .. n - 1``: swap ``i`` with ``i + bounded(n - i)``."""
+        n = check_int("n", n, minimum=0)
+        check_allocation(40 * n, parameter="n", what="the permutation (a list of Python ints)")
         perm = list(range(n))
         for i in range(n):
             j = i + self.bounded(n - i)

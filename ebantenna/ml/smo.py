@@ -104,6 +104,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._validate import check_array, check_choice, check_positive
 from ._smo_compiled import (
     ENGINE_VARIABLE,
     EngineStatus,
@@ -311,11 +312,26 @@ def bias(G, y, alpha, C, *, sequential=False) -> float:
                   + (below.max() if below.size else -np.inf)) / 2)
 
 
+def _checked_problem(K, y, C):
+    """``(K, y, C)`` of a dual problem checked: ``K`` a finite square matrix, ``y`` its labels,
+    each +1 or -1, ``C`` one finite bound > 0 per label."""
+    K = check_array("K", K, ndim=2)
+    if K.shape[0] != K.shape[1]:
+        raise ValueError(f"K must be a square kernel matrix, got shape {K.shape}")
+    y = check_array("y", y, ndim=1)
+    if y.size != K.shape[0] or not np.all(np.abs(y) == 1):
+        raise ValueError(f"y must hold one label, +1 or -1, per row of K ({K.shape[0]})")
+    C = check_array("C", C, ndim=1)
+    if C.shape != y.shape or np.any(C <= 0):
+        raise ValueError(f"C must hold one bound > 0 per label ({y.size})")
+    return K, y, C
+
+
 def reference_smo(K, y, C, *, tol=1e-3, max_iter=10_000_000, selection="second-order"):
     """SMO as the textbook writes it: select a pair, solve it, update the gradient; repeat.
 
-    Like the steps it calls, it takes checked values (:class:`~ebantenna.ml.SVC` validates them
-    once) and computes nothing that it does not need.
+    It checks its arguments once; the steps it calls take checked values (as
+    :class:`~ebantenna.ml.SVC` gives them) and compute nothing that they do not need.
 
     Parameters
     ----------
@@ -341,6 +357,12 @@ def reference_smo(K, y, C, *, tol=1e-3, max_iter=10_000_000, selection="second-o
     >>> res.alpha, res.rho, res.n_iter
     (array([0.5, 0.5]), 1.0, 1)
     """
+    K, y, C = _checked_problem(K, y, C)
+    tol = check_positive("tol", tol)
+    if not (isinstance(max_iter, int | float | np.integer | np.floating)
+            and not isinstance(max_iter, bool) and max_iter >= 1):  # NaN fails too
+        raise ValueError(f"max_iter must be a number of updates >= 1, got {max_iter!r:.40}")
+    check_choice("selection", selection, ("second-order", "first-order"))
     alpha = np.zeros(y.size)
     G = -np.ones(y.size)  # Q alpha - e at alpha = 0
     n_iter = 0

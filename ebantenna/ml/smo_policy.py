@@ -113,6 +113,10 @@ class SMOPolicy:
         >>> DEFAULT.kernel_dtype(100, 1 << 20), LIBSVM.kernel_dtype(100, 1 << 20)
         (<class 'numpy.float64'>, <class 'numpy.float32'>)
         """
+        from .._validate import check_int
+
+        n = check_int("n", n, minimum=0)
+        cache_bytes = check_int("cache_bytes", cache_bytes, minimum=0)
         if self.float32_kernel or n * n * 8 > cache_bytes:
             return np.float32
         return np.float64

@@ -88,11 +88,25 @@ def as_csr(X) -> sp.csr_matrix:
     2
     """
     if not (sp.issparse(X) and X.format == "csr" and X.dtype == np.float64):
+        if not sp.issparse(X):
+            from .._validate import real_array
+
+            X = real_array("X", X)  # refused by name: strings, objects, complex, ragged
+            if X.ndim != 2:
+                raise ValueError(f"X must be 2-D (one point per row), got shape {X.shape}")
+        elif X.dtype.kind not in "fiub":
+            raise TypeError(f"X must hold real numbers, got a sparse matrix of {X.dtype}")
         X = sp.csr_matrix(X, dtype=np.float64)
     if not X.has_canonical_format:
         X = X.copy()
         X.sum_duplicates()
     return X
+
+
+def _check_csr(X) -> None:
+    """Refuse anything but a CSR matrix (in :func:`as_csr` form), naming ``X``."""
+    if not (sp.issparse(X) and X.format == "csr"):
+        raise TypeError(f"X must be a CSR matrix (see as_csr), got {type(X).__name__}")
 
 
 def _row_of_entries(X) -> np.ndarray:
@@ -107,6 +121,7 @@ def squared_norms_sparse(X) -> np.ndarray:
     >>> squared_norms_sparse(sp.csr_matrix(np.array([[3.0, 4.0], [0.0, 0.0]])))
     array([25.,  0.])
     """
+    _check_csr(X)
     return np.bincount(_row_of_entries(X), weights=X.data * X.data, minlength=X.shape[0])
 
 
@@ -123,6 +138,7 @@ def sparse_variance(X) -> float:
     >>> sparse_variance(sp.csr_matrix(np.array([[0.0, 2.0], [2.0, 0.0]])))
     1.0
     """
+    _check_csr(X)
     total = X.shape[0] * X.shape[1]
     data = X.data
     mean = float(data.sum()) / total

@@ -67,6 +67,14 @@ ABLATION_DESIGN = replace(PAPER_DESIGN, name="controls-3rep", repetitions=3)
 SPLIT_SEEDS = 5
 
 
+def _check_dataset(ds) -> None:
+    """Refuse a ``ds`` that is not a data set of recordings (``ax``, ``az``, labels)."""
+    needed = ("ax", "az", "material", "contact")
+    if not all(hasattr(ds, a) for a in needed):
+        raise TypeError(f"ds must be a data set (ebantenna.simulate.Dataset) with "
+                        f"{', '.join(needed)}; got {type(ds).__name__}")
+
+
 def grouped_svm_accuracy(ds, *, seed: int = 0, every: int = 5) -> float:
     """SVM test accuracy on whole held-out positions of data set ``ds``.
 
@@ -84,6 +92,7 @@ def grouped_svm_accuracy(ds, *, seed: int = 0, every: int = 5) -> float:
     >>> 0.0 <= grouped_svm_accuracy(ds, every=2) <= 1.0
     True
     """
+    _check_dataset(ds)
     X = fft_features(np.asarray(ds.ax, float), np.asarray(ds.az, float))
     split = grouped_split(ds.contact, every=every, seed=seed)
     result = classify_materials_svm(X, ds.material, split=split)
@@ -101,6 +110,7 @@ def grouped_svm_spread(ds, *, seed: int = 0, splits: int = SPLIT_SEEDS):
         One accuracy and one test count per split seed; ``values[0]`` is
         ``grouped_svm_accuracy(ds, seed=seed)``.
     """
+    _check_dataset(ds)
     X = fft_features(np.asarray(ds.ax, float), np.asarray(ds.az, float))
 
     def measure(s):
@@ -345,6 +355,9 @@ def equivalent_rod(reference: Rod, other) -> Rod:
     if not isinstance(reference, Rod):
         raise TypeError(f"reference must be a Rod, got {type(reference).__name__}")
     a, b = reference.material, material(other) if isinstance(other, str) else other
+    if not (hasattr(b, "youngs_modulus") and hasattr(b, "density")):
+        raise TypeError(f"other must be a material name or a Material, got "
+                        f"{type(other).__name__}")
     epsilon = b.youngs_modulus / a.youngs_modulus
     kappa = math.sqrt((b.youngs_modulus / b.density) / (a.youngs_modulus / a.density))
     lam = (kappa**4 / epsilon) ** 0.2
@@ -378,6 +391,8 @@ def equivalent_pair_scenes(scene: Scene, *, reference: str = "aluminium", other:
         ``<scene>-pair-<other>-of-<reference>`` (one cache file per twin: two references may
         share the other material).
     """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
     effect = scene.effect("object_modes")
     if effect is None:
         raise ValueError(

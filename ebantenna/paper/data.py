@@ -18,6 +18,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+from .._validate import check_bool
 from ..simulate import Dataset, DatasetDesign, Scene, build_dataset, builtin_scene, dataset_plan
 from .protocol import DATASET
 
@@ -50,7 +51,7 @@ def design(quick: bool = False) -> DatasetDesign:
     >>> design().repetitions, design(quick=True).contact_step
     (25, 0.05)
     """
-    return QUICK_DESIGN if quick else PAPER_DESIGN
+    return QUICK_DESIGN if check_bool("quick", quick) else PAPER_DESIGN
 
 
 def paper_dataset_plan(seed: int = 0, quick: bool = False, *, scene: Scene | None = None) -> dict:

@@ -20,7 +20,7 @@ import numpy as np
 from joblib import Parallel, delayed
 
 from .._progress import progress
-from .._validate import check_int, check_positive
+from .._validate import check_int, check_n_jobs, check_positive
 from ..signal import (
     apply_filter,
     dominant_frequency,
@@ -98,7 +98,8 @@ def signal_features(ax, az, fs, *, n_jobs=None, chunk: int = 250, show_progress=
     fs : float
         Sampling frequency, Hz.
     n_jobs : int, optional
-        joblib workers (``-1``: all cores; ``None``: joblib's current default).
+        joblib workers, at most the machine's cores (``-1``: all cores; ``None``: joblib's
+        current default).
     chunk : int
         Rows per task.
     show_progress : bool, optional
@@ -114,6 +115,7 @@ def signal_features(ax, az, fs, *, n_jobs=None, chunk: int = 250, show_progress=
         raise ValueError(f"ax and az must be 2-D of one shape, got {ax.shape} and {az.shape}")
     fs = check_positive("fs", fs)
     chunk = check_int("chunk", chunk, minimum=1)
+    n_jobs = check_n_jobs("n_jobs", n_jobs)
     # Table 1 (before the decay fit) and Table 2 (before the full-length network), each at the
     # order its specification needs; see ebantenna.signal.filters.
     cheb = paper_filter("chebyshev", fs=fs)

@@ -103,7 +103,9 @@ class ModeCurveClassifier:
     def misfit(self, X) -> np.ndarray:
         """Each material's smallest misfit over distance, shape ``(n, n_classes)``."""
         if not hasattr(self, "curves_"):
-            raise RuntimeError("this ModeCurveClassifier is not fitted yet: call fit first")
+            from sklearn.exceptions import NotFittedError  # a ValueError, as scikit-learn's
+
+            raise NotFittedError("this ModeCurveClassifier is not fitted yet: call fit first")
         X = check_array("X", X, ndim=2)
         weights = np.ones(self.n_modes_)
         out = np.empty((X.shape[0], self.classes_.size))

@@ -69,6 +69,13 @@ def plot_confusion_comparison(result: ClassificationResult, paper: PaperConfusio
     """
     from matplotlib.figure import Figure
 
+    from .experiments import ClassificationResult
+    from .printed import PaperConfusion
+
+    if not isinstance(result, ClassificationResult):
+        raise TypeError(f"result must be a ClassificationResult, got {type(result).__name__}")
+    if paper is not None and not isinstance(paper, PaperConfusion):
+        raise TypeError(f"paper must be a PaperConfusion or None, got {type(paper).__name__}")
     if paper is None:
         paper = PAPER_SVM if result.method == "svm" else PAPER_ANN
     splits = list(paper.matrices)
@@ -106,8 +113,13 @@ def plot_distance_errors(*results: RegressionResult):
     """
     from matplotlib.figure import Figure
 
+    from .experiments import RegressionResult
+
     if not results:
         raise ValueError("plot_distance_errors needs at least one RegressionResult")
+    bad = [type(r).__name__ for r in results if not isinstance(r, RegressionResult)]
+    if bad:
+        raise TypeError(f"results must be RegressionResults, got {', '.join(bad)}")
     fig = Figure(figsize=(7.0, 4.0), layout="constrained")
     ax = fig.subplots()
     for r in results:

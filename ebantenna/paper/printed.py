@@ -98,6 +98,8 @@ def percent(number: PrintedNumber) -> str:
     >>> percent(SVM_TRAIN_ACCURACY)
     '99.7 %'
     """
+    if not isinstance(number, PrintedNumber):
+        raise TypeError(f"number must be a PrintedNumber, got {type(number).__name__}")
     if number.unit not in ("fraction", "fraction of L"):
         raise ValueError(f"number must be a fraction, got unit {number.unit!r}")
     return f"{100 * number.value:.1f} %"

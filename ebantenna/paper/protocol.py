@@ -22,7 +22,8 @@ from dataclasses import dataclass
 import numpy as np
 from sklearn.model_selection import train_test_split
 
-from .._validate import check_in_range
+from .._budget import check_allocation
+from .._validate import check_array, check_in_range, check_int
 
 __all__ = [
     "DatasetProtocol",
@@ -181,8 +182,18 @@ def normalise_by_max(X, rows=None) -> np.ndarray:
     array([[ 0.5, -2. ],
            [ 1. ,  0. ]])
     """
-    X = np.asarray(X, dtype=np.float64)
-    fit = X if rows is None else X[np.asarray(rows, dtype=np.intp)]
+    X = check_array("X", X, ndim=2)
+    if rows is not None:
+        rows = np.asarray(rows)
+        if rows.size == 0:
+            raise ValueError("rows must select at least one row of X")
+        if rows.ndim != 1 or rows.dtype.kind not in "iu":
+            raise TypeError(f"rows must be a 1-D array of row indices, got dtype {rows.dtype} "
+                            f"and shape {rows.shape}")
+        if rows.size and (rows.min() < -X.shape[0] or rows.max() >= X.shape[0]):
+            raise ValueError(f"rows must index the {X.shape[0]} rows of X, got indices from "
+                             f"{rows.min()} to {rows.max()}")
+    fit = X if rows is None else X[rows]
     if fit.size == 0:
         raise ValueError("rows must select at least one row of X")
     peak = np.abs(fit).max()
@@ -215,6 +226,17 @@ def three_way_split(n, fractions, seed, stratify=None):
     The test part is drawn first (seed ``seed``), the validation part from the rest (seed
     ``seed + 1``); both stratified by ``stratify`` when given.
 
+    Parameters
+    ----------
+    n : int
+        Number of samples, at least 3.
+    fractions : (float, float, float)
+        Train, validation and test shares (:func:`check_fractions`).
+    seed : int
+        0 ... 2**32 - 2 (scikit-learn's seeds; the validation part uses ``seed + 1``).
+    stratify : array-like of shape (n,), optional
+        Class of each sample.
+
     Examples
     --------
     >>> train, val, test = three_way_split(20, (0.7, 0.15, 0.15), seed=0)
@@ -222,12 +244,25 @@ def three_way_split(n, fractions, seed, stratify=None):
     (14, 3, 3)
     """
     fractions = check_fractions(fractions)
+    n = check_int("n", n, minimum=3)
+    check_allocation(32 * n, parameter="n", what="the split's index arrays")
+    seed = check_int("seed", seed, minimum=0, maximum=2**32 - 2)  # scikit-learn's, and seed + 1
     _, f_val, f_test = fractions
     n_test, n_val = int(round(f_test * n)), int(round(f_val * n))
     if min(n_test, n_val, n - n_test - n_val) < 1:
         raise ValueError(f"{n} samples cannot be split by fractions {fractions!r}")
     idx = np.arange(n)
     stratify = None if stratify is None else np.asarray(stratify)
+    if stratify is not None:
+        if stratify.shape != (n,):
+            raise ValueError(f"stratify must hold one label for each of the n={n} samples, got "
+                             f"shape {stratify.shape}")
+        classes, counts = np.unique(stratify, return_counts=True)
+        if counts.min() < 2 or min(n_test, n_val) < classes.size:
+            raise ValueError(f"stratify: each part of a stratified split needs a sample of every "
+                             f"class ({classes.size}) and every class 2 samples at least; the "
+                             f"parts hold {n_test} (test) and {n_val} (validation), the rarest "
+                             f"class {counts.min()}")
     rest, test = train_test_split(idx, test_size=n_test, random_state=seed, stratify=stratify)
     strat_rest = None if stratify is None else stratify[rest]
     train, val = train_test_split(rest, test_size=n_val, random_state=seed + 1,

@@ -47,6 +47,38 @@ FOLDS = 5
 #: The splits, from the most to the least flattering.
 SPLITS = ("random", "grouped", "blocked")
 
+#: Largest seed of a split: scikit-learn's ``random_state`` takes 0 ... 2**32 - 1.
+MAX_SPLIT_SEED = 2**32 - 1
+
+#: Most seeds :func:`distinct_split_seeds` tries (a split takes about 0.1 ms: seconds at most).
+MAX_SEARCH = 100_000
+
+
+def _labels(labels, test_fraction=None, folds=None) -> np.ndarray:
+    """``labels`` as a 1-D array of at least 2 rows, with rows enough for a stratified split of
+    ``test_fraction`` (every class twice, and as many rows as classes on either side) or into
+    ``folds`` (a class as large as ``folds``), else a ValueError naming it."""
+    y = np.asarray(labels)
+    if y.ndim != 1 or y.size < 2:
+        raise ValueError(f"labels must be 1-D with at least 2 rows, got shape {y.shape}")
+    if y.dtype.kind not in "iuUSO" or (y.dtype.kind == "O" and not all(
+            isinstance(v, str | int | np.integer) and not isinstance(v, bool) for v in y)):
+        raise TypeError(f"labels must be class names (str) or integers, got dtype {y.dtype}")
+    classes, counts = np.unique(y, return_counts=True)
+    if test_fraction is not None:
+        n_test = math.ceil(test_fraction * y.size)
+        if counts.min() < 2 or min(n_test, y.size - n_test) < classes.size:
+            raise ValueError(
+                f"labels: a stratified split of test_fraction={test_fraction:g} needs every "
+                f"class twice and as many rows as classes ({classes.size}) on each side; "
+                f"{y.size} rows, the rarest class {classes[counts.argmin()]!r} has "
+                f"{counts.min()}, {y.size - n_test} would train and {n_test} test")
+    if folds is not None and counts.max() < folds:  # (scikit-learn's own limit, in its words)
+        raise ValueError(f"labels: {folds} stratified folds need a class with {folds} rows at "
+                         f"least; the largest, {classes[counts.argmax()]!r}, has "
+                         f"{counts.max()}")
+    return y
+
 
 def _positions(positions) -> tuple[np.ndarray, np.ndarray]:
     """The distinct nominal positions and each row's index among them."""
@@ -73,7 +105,7 @@ def random_split(labels, *, test_fraction: float = 0.2, seed: int = 0):
     test_fraction : float
         Share of the recordings in the test set, in (0, 1).
     seed : int
-        Seed of the split.
+        Seed of the split, 0 ... :data:`MAX_SPLIT_SEED`.
 
     Returns
     -------
@@ -86,9 +118,9 @@ def random_split(labels, *, test_fraction: float = 0.2, seed: int = 0):
     >>> train.size, test.size
     (8, 2)
     """
-    y = np.asarray(labels)
-    check_in_range("test_fraction", test_fraction, 0.0, 1.0)
-    seed = check_int("seed", seed, minimum=0)
+    test_fraction = check_in_range("test_fraction", test_fraction, 0.0, 1.0)
+    seed = check_int("seed", seed, minimum=0, maximum=MAX_SPLIT_SEED)
+    y = _labels(labels, test_fraction=test_fraction)
     train, test = train_test_split(
         np.arange(y.size), test_size=test_fraction, random_state=seed, stratify=y
     )
@@ -199,6 +231,9 @@ def split_rows(kind: str, labels, positions, *, seed: int = 0, test_fraction: fl
     [4, 4, 4]
     """
     check_choice("kind", kind, SPLITS)
+    if np.shape(labels)[:1] != np.shape(positions)[:1]:
+        raise ValueError(f"labels and positions must have one entry per recording, got "
+                         f"{np.shape(labels)[:1]} and {np.shape(positions)[:1]}")
     if kind == "random":
         return random_split(labels, test_fraction=test_fraction, seed=seed)
     if kind == "grouped":
@@ -227,7 +262,8 @@ def distinct_split_seeds(kind: str, labels, positions, *, seed: int = 0, count: 
     count : int
         How many seeds.
     search : int
-        How many seeds to try at most; fewer distinct splits than ``count`` raise.
+        How many seeds to try at most (up to :data:`MAX_SEARCH`); fewer distinct splits than
+        ``count`` raise.
 
     Returns
     -------
@@ -241,10 +277,11 @@ def distinct_split_seeds(kind: str, labels, positions, *, seed: int = 0, count: 
     >>> seeds[0], len({tuple(split_rows("grouped", y, pos, seed=s)[1]) for s in seeds})
     (0, 5)
     """
-    seed = check_int("seed", seed, minimum=0)
-    count = check_int("count", count, minimum=1)
+    seed = check_int("seed", seed, minimum=0, maximum=MAX_SPLIT_SEED)
+    search = check_int("search", search, minimum=1, maximum=MAX_SEARCH)
+    count = check_int("count", count, minimum=1, maximum=search)
     seen, seeds = set(), []
-    for s in range(seed, seed + check_int("search", search, minimum=count)):
+    for s in range(seed, seed + search):
         test = tuple(split_rows(kind, labels, positions, seed=s)[1].tolist())
         if test not in seen:
             seen.add(test)
@@ -297,12 +334,12 @@ def split_folds(kind: str, labels, positions, *, folds: int = FOLDS, seed: int =
     True
     """
     check_choice("kind", kind, SPLITS)
-    seed = check_int("seed", seed, minimum=0)
+    seed = check_int("seed", seed, minimum=0, maximum=MAX_SPLIT_SEED)
     folds = check_int("folds", folds, minimum=2)
     if kind == "random":
         from sklearn.model_selection import StratifiedKFold
 
-        y = np.asarray(labels)
+        y = _labels(labels, folds=folds)
         cv = StratifiedKFold(n_splits=folds, shuffle=True, random_state=seed)
         return [(np.sort(a), np.sort(b)) for a, b in cv.split(np.zeros(y.size), y)]
     grid, inverse = _positions(positions)

@@ -81,12 +81,17 @@ def correct_count(accuracy: float, n: int) -> int:
     >>> correct_count(0.8325, 400)
     333
     """
-    n = check_int("n", n, minimum=1)
-    accuracy = float(accuracy)
+    n = check_int("n", n, minimum=1, maximum=2**53)  # a count a float holds exactly
+    accuracy = _accuracy("accuracy", accuracy)
     k = round(accuracy * n)
     if not 0 <= k <= n or abs(accuracy * n - k) > _COUNT_TOLERANCE:
         raise ValueError(f"accuracy {accuracy!r} is not a count out of n={n}")
     return int(k)
+
+
+def _accuracy(name: str, value) -> float:
+    """``value`` as a float in [0, 1] (an accuracy), else an error naming ``name``."""
+    return check_in_range(name, value, 0.0, 1.0, low_inclusive=True, high_inclusive=True)
 
 
 def interval(accuracy: float, n: int) -> tuple[float, float]:
@@ -115,16 +120,20 @@ def accuracy_entries(name: str, accuracy, n) -> dict:
     >>> accuracy_entries("by", {"a": 0.5}, {"a": 4})["by_n_test"]
     {'a': 4}
     """
+    name = _check_name(name)
     if accuracy is None:
         return {name: None, f"{name}_n_test": None, f"{name}_ci95": None}
     if isinstance(accuracy, dict):
+        if not isinstance(n, dict) or set(n) != set(accuracy):
+            raise ValueError(f"n must be a dict with the keys of accuracy "
+                             f"({', '.join(map(str, accuracy))}), got {describe(n)}")
         return {
             name: dict(accuracy),
             f"{name}_n_test": {k: n[k] for k in accuracy},
             f"{name}_ci95": {k: _rounded(interval(a, n[k])) for k, a in accuracy.items()},
         }
     ci95 = _rounded(interval(accuracy, n))
-    return {name: accuracy, f"{name}_n_test": int(n), f"{name}_ci95": ci95}
+    return {name: accuracy, f"{name}_n_test": check_int("n", n), f"{name}_ci95": ci95}
 
 
 def _rounded(pair) -> list:
@@ -152,11 +161,15 @@ class SeedSpread:
     """
 
     def __init__(self, seeds, values, n_test, tested=None):
-        self.seeds = tuple(int(s) for s in seeds)
-        self.values = np.asarray(values, dtype=float)
-        self.n_test = np.asarray(n_test, dtype=int)
+        self.seeds = tuple(check_int("seeds", s, minimum=0) for s in seeds)
+        self.values = check_array("values", values, ndim=1)
+        self.n_test = np.array([check_int("n_test", n, minimum=1) for n in np.ravel(n_test)])
         if not (len(self.seeds) == self.values.size == self.n_test.size >= 2):
-            raise ValueError("need at least two seeds, one value and one count per seed")
+            raise ValueError(f"seeds, values and n_test need at least two seeds, one value and "
+                             f"one count per seed; got {len(self.seeds)}, {self.values.size} "
+                             f"and {self.n_test.size}")
+        if np.any((self.values < 0) | (self.values > 1)):
+            raise ValueError("values must be accuracies, in [0, 1]")
         self.mean = float(self.values.mean())
         self.std = float(self.values.std(ddof=1))
         self.positions = None
@@ -243,7 +256,15 @@ def seed_spread(measure, seeds) -> SeedSpread:
     >>> s.mean, s.std, str(s)
     (0.5, 0.25, '50.0 ± 25.0 %')
     """
-    pairs = [measure(int(s)) for s in seeds]
+    if not callable(measure):
+        raise TypeError(f"measure must be a function of a seed, got {type(measure).__name__}")
+    seeds = [check_int("seeds", s, minimum=0) for s in seeds]
+    if len(seeds) < 2:
+        raise ValueError(f"seeds must hold at least two seeds, got {len(seeds)}")
+    pairs = [measure(s) for s in seeds]
+    if not all(isinstance(p, tuple) and len(p) in (2, 4) for p in pairs):
+        raise TypeError("measure must return (accuracy, n_test) or (accuracy, n_test, rows, "
+                        "correct) for each seed")
     tested = [p[2:4] for p in pairs] if all(len(p) == 4 for p in pairs) else None
     return SeedSpread(seeds, [p[0] for p in pairs], [p[1] for p in pairs], tested)
 
@@ -258,8 +279,9 @@ def resolvable_difference(accuracy: float, n: int) -> float:
     >>> round(resolvable_difference(0.65, 80), 3), round(resolvable_difference(0.65, 240), 3)
     (0.151, 0.087)
     """
-    n = check_int("n", n, minimum=1)
-    return 2 * math.sqrt(2 * accuracy * (1 - accuracy) / n)
+    n = check_int("n", n, minimum=1, maximum=2**53)
+    accuracy = _accuracy("accuracy", accuracy)
+    return 2 * math.sqrt(2 * accuracy * (1 - accuracy) / float(n))
 
 
 def difference_resolved(a: float, b: float, n: int) -> bool:
@@ -271,6 +293,7 @@ def difference_resolved(a: float, b: float, n: int) -> bool:
     >>> difference_resolved(0.65, 0.55, 240), difference_resolved(0.65, 0.55, 80)
     (True, False)
     """
+    a, b = _accuracy("a", a), _accuracy("b", b)
     return bool(abs(a - b) > resolvable_difference((a + b) / 2, n))
 
 
@@ -282,7 +305,8 @@ def format_interval(accuracy: float, n: int) -> str:
     >>> format_interval(0.65, 80)
     '65.0 % (n = 80, 95 % CI 54.1-74.5)'
     """
-    return f"{percent(accuracy)} (n = {n}, 95 % CI {span(interval(accuracy, n))})"
+    low_high = interval(accuracy, n)  # checks both
+    return f"{percent(accuracy)} (n = {n}, 95 % CI {span(low_high)})"
 
 
 # ------------------------------------------------------------------ the unit of replication

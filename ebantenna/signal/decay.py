@@ -149,8 +149,13 @@ class DecayFit:
         return self.status == "ok"
 
     def model(self, t) -> np.ndarray:
-        """The fitted envelope ``a exp(b t)`` at times ``t`` (s)."""
-        return self.a * np.exp(self.b * np.asarray(t, dtype=float))
+        """The fitted envelope ``a exp(b t)`` at times ``t`` (s, finite)."""
+        from .._validate import real_array
+
+        t = real_array("t", t)
+        if not np.all(np.isfinite(t)):
+            raise ValueError("t must contain only finite times (no NaN or inf)")
+        return self.a * np.exp(self.b * t)
 
 
 def envelope(x) -> np.ndarray:
@@ -191,6 +196,7 @@ def analytic_envelope(x: np.ndarray) -> np.ndarray:
     >>> analytic_envelope(np.array([1.0, 0.0, -1.0, 0.0]))  # cos(pi n / 2): envelope 1
     array([1., 1., 1., 1.])
     """
+    x = check_signal("x", x, min_length=1)
     n = x.shape[0]
     x, exponent = unit_scaled(x)
     spectrum = np.fft.fft(x)

@@ -240,6 +240,9 @@ def window_weights(window: str, n: int) -> np.ndarray:
     >>> window_weights("hann", 4)  # (1 - cos(2 pi k / 4)) / 2
     array([0. , 0.5, 1. , 0.5])
     """
+    check_choice("window", window, WINDOWS)
+    n = check_int("n", n, minimum=1)
+    check_allocation(8 * n, parameter="n", what="the window's weights")
     return np.ones(n) if window == "rectangular" else get_window(window, n, fftbins=True)
 
 
@@ -253,6 +256,7 @@ def strongest_bin(magnitude: np.ndarray, lo: int, hi: int) -> int:
     >>> strongest_bin(np.array([9.0, 1.0, 4.0, 2.0]), 1, 3)  # the search band leaves out bin 0
     2
     """
+    lo, hi = _band_of("magnitude", magnitude, lo, hi)
     return lo + int(np.argmax(magnitude[lo : hi + 1]))
 
 
@@ -274,6 +278,8 @@ def interpolated_frequency(spectrum, k, fs, n, method, window, zero_pad) -> floa
     >>> round(interpolated_frequency(spectrum, 10, 64.0, n, "jacobsen", "hann", 1), 6)
     10.25
     """
+    check_choice("method", method, FREQUENCY_METHODS)
+    check_choice("window", window, WINDOWS)
     df = fs / (n * zero_pad)
     # Jacobsen's neighbours are one unpadded bin (zero_pad padded bins) away on either side: the
     # derivation holds about any reference frequency, so it is exact on a padded grid too.
@@ -300,6 +306,7 @@ def parabolic_offset(spectrum: np.ndarray, k: int) -> float:
     >>> round(parabolic_offset(np.exp(-((bins - 2.3) ** 2)), 2), 12)  # a Gaussian peak at 2.3
     0.3
     """
+    k = check_int("k", k, minimum=1, maximum=np.shape(spectrum)[0] - 2)  # both neighbours
     lm = np.log(np.maximum(np.abs(spectrum[k - 1 : k + 2]), np.finfo(float).tiny))
     curvature = lm[0] - 2.0 * lm[1] + lm[2]
     delta = 0.0 if curvature == 0.0 else 0.5 * (lm[0] - lm[2]) / curvature
@@ -323,6 +330,12 @@ def jacobsen_offset(spectrum: np.ndarray, k: int, step: int, window: str) -> flo
     >>> round(jacobsen_offset(spectrum, 50, 1, "hann"), 9)  # Hann: exact as n grows
     0.4
     """
+    check_choice("window", window, WINDOWS)
+    k = check_int("k", k, minimum=0, maximum=np.shape(spectrum)[0] - 1)
+    step = check_int("step", step, minimum=1)
+    if k - step < 0 or k + step > np.shape(spectrum)[0] - 1:
+        raise ValueError(f"k must be at least step = {step} bins from either end of the "
+                         f"spectrum ({np.shape(spectrum)[0]} bins), got {k}")
     a, b, c = spectrum[k - step], spectrum[k], spectrum[k + step]
     scale = 2.0 if window == "hann" else 1.0
     denominator = 2.0 * b - a - c
@@ -405,6 +418,16 @@ def peak_frequencies(
     return np.sort(np.array(freqs))
 
 
+def _band_of(name: str, magnitude, lo, hi) -> tuple[int, int]:
+    """``(lo, hi)`` if they are bins of ``magnitude`` with ``lo <= hi``, else an error."""
+    size = np.shape(magnitude)[0] if np.ndim(magnitude) == 1 else 0
+    if size == 0:
+        raise ValueError(f"{name} must be a non-empty 1-D spectrum, got shape "
+                         f"{np.shape(magnitude)}")
+    lo = check_int("lo", lo, minimum=0, maximum=size - 1)
+    return lo, check_int("hi", hi, minimum=lo, maximum=size - 1)
+
+
 def local_maxima(magnitude: np.ndarray, lo: int, hi: int) -> np.ndarray:
     """Bins strictly inside ``[lo, hi]`` above their left and not below their right neighbour.
 
@@ -417,6 +440,7 @@ def local_maxima(magnitude: np.ndarray, lo: int, hi: int) -> np.ndarray:
     >>> local_maxima(np.array([0.0, 3.0, 1.0, 5.0, 5.0, 2.0]), 0, 5)
     array([3, 1])
     """
+    lo, hi = _band_of("magnitude", magnitude, lo, hi)
     band = magnitude[lo : hi + 1]
     inner = (band[1:-1] > band[:-2]) & (band[1:-1] >= band[2:])
     candidates = lo + 1 + np.flatnonzero(inner)

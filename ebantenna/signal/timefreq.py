@@ -83,9 +83,16 @@ class TimeFrequency:
         import matplotlib.pyplot as plt
 
         check_positive("dynamic_range", dynamic_range)
+        from .._validate import check_bool
+
+        db = check_bool("db", db)
         if ax is None:
             fig, ax = plt.subplots(figsize=(6.0, 3.5))
         else:
+            from matplotlib.axes import Axes
+
+            if not isinstance(ax, Axes):
+                raise TypeError(f"ax must be matplotlib Axes or None, got {type(ax).__name__}")
             fig = ax.figure
         mag = self.magnitude
         if db:

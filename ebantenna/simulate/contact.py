@@ -71,7 +71,7 @@ import numpy as np
 import scipy.optimize as spo
 import scipy.special as spsp
 
-from .._validate import check_in_range, check_positive
+from .._validate import check_in_range, check_nonnegative, check_positive, real_array
 
 __all__ = [
     "TUBE_POISSON_RATIO",
@@ -218,7 +218,7 @@ class CrossedCylinders:
 
     def force(self, approach) -> np.ndarray | float:
         """Normal force for an approach ``delta`` (m; 0 where ``delta <= 0``: no tension), N."""
-        d = np.asarray(approach, dtype=float)
+        d = _finite("approach", approach)
         scale = self.approach(1.0)  # delta at 1 N; P = (delta / scale)^(3/2)
         out = np.where(d > 0, np.abs(d) / scale, 0.0) ** 1.5
         return float(out) if out.ndim == 0 else out
@@ -351,16 +351,33 @@ class PiecewiseSpring:
 
     def force(self, approach):
         """Force of the chords at ``approach`` (m; 0 where ``p <= 0``), N."""
-        p = np.asarray(approach, float)
+        p = _finite("approach", approach)
         j = np.clip(np.searchsorted(self.approaches, p, side="right") - 1, 0, self.slopes.size - 1)
         out = np.where(p > 0, self.slopes[j] * (p - self.offsets[j]), 0.0)
         return float(out) if out.ndim == 0 else out
 
     def approach_at(self, force: float) -> float:
         """Approach of the chords at ``force`` (N, >= 0), m."""
+        force = check_nonnegative("force", force)
         j = int(np.clip(np.searchsorted(self.forces, force, side="right") - 1, 0,
                         self.slopes.size - 1))  # fmt: skip
         return float(self.offsets[j] + force / self.slopes[j])
+
+
+def _finite(name: str, value) -> np.ndarray:
+    """``value`` as a float array of finite numbers, else an error naming ``name``."""
+    a = real_array(name, value)
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"{name} must contain only finite values (no NaN or inf)")
+    return a
+
+
+def _forces(name: str, value) -> np.ndarray:
+    """``value`` as a float array of finite forces >= 0 (N), else an error naming ``name``."""
+    F = _finite(name, value)
+    if np.any(F < 0):
+        raise ValueError(f"{name} must be >= 0 N (the contact only pushes), got {F.min()!r}")
+    return F
 
 
 @dataclass(frozen=True)
@@ -387,15 +404,20 @@ class HertzInSeries:
     hertz: CrossedCylinders
     ring: float
 
+    def __post_init__(self):
+        if not isinstance(self.hertz, CrossedCylinders):
+            raise TypeError(f"hertz must be a CrossedCylinders, got {type(self.hertz).__name__}")
+        check_positive("ring", self.ring, allow_inf=True)  # inf: the wall neglected
+
     def approach(self, force):
         """Approach under ``force`` (N, >= 0), m."""
-        F = np.asarray(force, float)
+        F = _forces("force", force)
         out = self.hertz.approach(1.0) * np.cbrt(F) ** 2 + F / self.ring
         return float(out) if out.ndim == 0 else out
 
     def stiffness(self, force):
         """``dF/dp`` at ``force`` (N, >= 0), N/m: 0 at zero force, where Hertz starts soft."""
-        F = np.asarray(force, float)
+        F = _forces("force", force)
         with np.errstate(divide="ignore"):
             compliance = 2 / 3 * self.hertz.approach(1.0) / np.cbrt(F) + 1 / self.ring
         out = 1 / compliance
@@ -408,7 +430,7 @@ class HertzInSeries:
         concave, so a Newton step lands at or below the root and the iteration then climbs to it
         monotonically; a step is kept from falling below an eighth of the last iterate, which
         keeps ``F`` positive."""
-        p = np.asarray(approach, float)
+        p = _finite("approach", approach)
         F = np.minimum((np.maximum(p, 0) / self.hertz.approach(1.0)) ** 1.5, p * self.ring)
         F = np.where(p > 0, np.maximum(F, 0.0), 0.0)
         for _ in range(40):
@@ -419,6 +441,9 @@ class HertzInSeries:
 
     def chord_bound(self, fa: float, fb: float) -> float:
         """Most the chord between the forces ``fa < fb`` (N) lies above the law, N."""
+        fa = check_nonnegative("fa", fa)
+        if not fa < check_nonnegative("fb", fb):
+            raise ValueError(f"fa must be below fb, got fa = {fa!r}, fb = {fb!r}")
         pa, pb = self.approach(fa), self.approach(fb)
         return _chord_bound(pa, pb, fa, fb, self.stiffness(fa), self.stiffness(fb))
 
@@ -437,6 +462,9 @@ class HertzInSeries:
         """
         tol = check_positive("tolerance", tolerance)
         top = check_positive("max_force", max_force)
+        if tol < 1e-9 * top:  # the chords' ends are found to 1e-10 of the force
+            raise ValueError(f"tolerance must be at least 1e-9 of max_force ({1e-9 * top:.3g} N), "
+                             f"got {tol!r}")
         stops = sorted({top, *(float(f) for f in through if 0 < f < top)})
         nodes, bounds = [0.0], []
         for stop in stops:
@@ -551,6 +579,13 @@ def tube_on_rod_law(
     >>> round(law.stiffness(0.5) / 1e5, 2)  # N/m, the linearised spring at 0.5 N
     1.85
     """
+    from ..probe import Probe
+
+    if not isinstance(probe, Probe):
+        raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")
+    if not hasattr(obj, "youngs_modulus"):
+        raise TypeError(f"obj must be a Material (ebantenna.probe.material(name)), got "
+                        f"{type(obj).__name__}")
     Ep = check_positive("probe.youngs_modulus", probe.youngs_modulus)
     if object_modulus is not None:
         Eo = check_positive("object_modulus", object_modulus)

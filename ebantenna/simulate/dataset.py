@@ -44,6 +44,7 @@ from .._budget import check_allocation
 from .._progress import progress
 from .._validate import (
     check_int,
+    check_n_jobs,
     check_nonnegative,
     check_path,
     check_per_row,
@@ -373,9 +374,10 @@ def build_dataset(
     seed : int
         Seed of everything random in the data set.
     n_jobs : int, optional
-        Workers (:class:`joblib.Parallel`; each task a range of contact positions of one material);
-        default: the active ``joblib.parallel_config`` (one process outside any). The result
-        does not depend on it, nor on the backend.
+        Workers (:class:`joblib.Parallel`; each task a range of contact positions of one material),
+        at most the machine's cores, or -1 (every core); default: the active
+        ``joblib.parallel_config`` (one process outside any). The result does not depend on it,
+        nor on the backend.
     show_progress : bool, optional
         Force the progress bar on or off (default: on a terminal).
 
@@ -435,8 +437,7 @@ def build_datasets(
         In the order of ``scenes``.
     """
     seed = check_int("seed", seed, minimum=0)
-    if n_jobs is not None:
-        n_jobs = check_int("n_jobs", n_jobs, minimum=1)
+    n_jobs = check_n_jobs("n_jobs", n_jobs)
     scenes = list(scenes)
     bad = [type(s).__name__ for s in scenes if not isinstance(s, Scene)]
     if bad or not scenes:

@@ -34,7 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_choice, check_int
+from .._validate import check_choice, check_int, real_array
 from ..fem import Supports, modal_analysis
 from ..fem.assembly import assemble
 from ..fem.coupling import coupled_modes
@@ -120,6 +120,9 @@ def sweep_velocity(nodes: np.ndarray) -> np.ndarray:
     >>> sweep_velocity(np.array([0.0, 0.1, 0.2]))
     array([0. , 1. , 0.1, 1. , 0.2, 1. ])
     """
+    from .._validate import check_array
+
+    nodes = check_array("nodes", nodes, ndim=1)
     u0 = np.zeros(2 * nodes.size)
     u0[0::2] = nodes  # v = Omega x per unit Omega
     u0[1::2] = 1.0  # theta = Omega
@@ -312,7 +315,7 @@ def modal_exponentials(amplitude, omega, zeta):
     omega = np.asarray(omega, dtype=float)
     zeta = np.asarray(zeta, dtype=float)
     if np.any(zeta < 0) or np.any(zeta >= 1):
-        raise ValueError("damping ratios must lie in [0, 1) (underdamped modes)")
+        raise ValueError("zeta, the damping ratios, must lie in [0, 1) (underdamped modes)")
     a = zeta * omega
     wd = omega * np.sqrt(1 - zeta**2)
     return amplitude * ((a * a - wd * wd) / wd - 2j * a), -a + 1j * wd
@@ -395,7 +398,7 @@ def damped_exponentials(
     array([[ 0.,  1.,  0., -1.]])
     """
     check_choice("engine", engine, tuple(EXPONENTIAL_ENGINES))
-    t = np.asarray(t, dtype=float)
+    t = real_array("t", t)
     if t.ndim == 2:  # each signal its own times (a jittered clock): no grid an engine could share
         return direct_exponentials(t, coef, rate, max_elements)
     return EXPONENTIAL_ENGINES[engine](t, coef, rate, max_elements)

@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .._validate import (
+    check_choice,
     check_int,
     check_nonnegative,
     check_path,
@@ -260,11 +261,14 @@ class Scene:
         return tuple(e.name for e in self.effects)
 
     def has(self, name: str) -> bool:
-        """Whether the effect ``name`` is listed."""
-        return name in self.effect_names
+        """Whether the effect ``name`` (one of :func:`~ebantenna.simulate.effect_names`) is
+        listed."""
+        return _check_effect_name(name) in self.effect_names
 
     def effect(self, name: str):
-        """The listed effect called ``name``, or None."""
+        """The listed effect called ``name`` (one of :func:`~ebantenna.simulate.effect_names`),
+        or None."""
+        _check_effect_name(name)
         for e in self.effects:
             if e.name == name:
                 return e
@@ -333,6 +337,13 @@ class Scene:
         else:
             path.write_text(json.dumps(data, indent=2) + "\n", encoding="utf-8")
         return path
+
+
+def _check_effect_name(name) -> str:
+    """``name`` if it names an effect of the package (a misspelt one is never "not listed")."""
+    from .effects import effect_names
+
+    return check_choice("name", name, effect_names())
 
 
 def _toml_value(value) -> str:

@@ -284,6 +284,8 @@ def physics_key(scene: Scene) -> str:
     >>> physics_key(paper.with_(contact=0.3)) == physics_key(paper)
     False
     """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
     d = scene.to_dict()
     del d["name"]
     d["effects"] = {k: v for k, v in d["effects"].items() if k not in SENSOR_EFFECTS}
@@ -475,6 +477,9 @@ def simulate_sensor_variants(
     list of tuple
         Per scene, what :func:`simulate_batch` returns.
     """
+    if isinstance(scenes, Scene) or not hasattr(scenes, "__iter__"):
+        raise TypeError(f"scenes must be a non-empty sequence of Scene, got "
+                        f"{type(scenes).__name__}")
     scenes = list(scenes)
     if not scenes or not all(isinstance(s, Scene) for s in scenes):
         raise TypeError("scenes must be a non-empty sequence of Scene")

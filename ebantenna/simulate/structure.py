@@ -129,6 +129,10 @@ def probe_contact_model(
     >>> model.contact.shape, model.output.shape
     ((5,), (5,))
     """
+    from ..probe import Probe
+
+    if not isinstance(probe, Probe):
+        raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")
     from ..fem import Supports
     from ..fem.assembly import apply_supports, assemble, beam_mesh, contact_node
 

@@ -46,7 +46,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .._progress import progress
-from .._validate import check_bool, check_int
+from .._validate import check_bool, check_int, check_n_jobs
 from ..report import FigureSet, Report
 from . import (
     ann_setup,
@@ -188,7 +188,8 @@ def reproduce(
     seed : int
         Seed of the data set and of every split and initialisation, 0 ... ``MAX_SEED``.
     n_jobs : int or None
-        joblib workers for the data set and the features (``-1``: all cores).
+        joblib workers for the data set and the features, at most the machine's cores
+        (``-1``: all cores).
     cache_dir : path, optional
         Data set cache; default :func:`default_cache_dir`.
     show_progress : bool, optional
@@ -252,11 +253,10 @@ def reproduce(
 
 
 def _checked_options(seed, quick, n_jobs) -> tuple[int, bool]:
-    """``seed`` and ``quick`` checked; ``n_jobs`` -1, None or a count >= 1."""
+    """``seed`` and ``quick`` checked; ``n_jobs`` -1, None or a count >= 1, at most the cores."""
     seed = check_int("seed", seed, minimum=0, maximum=MAX_SEED)
     quick = check_bool("quick", quick)
-    if n_jobs is not None and check_int("n_jobs", n_jobs) == 0:
-        raise ValueError("n_jobs must be -1 (all cores), None or a count >= 1, got 0")
+    check_n_jobs("n_jobs", n_jobs)
     return seed, quick
 
 

@@ -1643,7 +1643,7 @@ ROWS += [
         SCENE,
         DESIGN,
         n_jobs=0,
-        match="n_jobs must be >= 1",
+        match="n_jobs must be -1 (every core), None or a count of workers >= 1",
     ),
     bad(
         "simulate.build_dataset",
@@ -1693,7 +1693,7 @@ ROWS += [
         [SCENE],
         DESIGN,
         n_jobs=0,
-        match="n_jobs must be >= 1",
+        match="n_jobs must be -1 (every core), None or a count of workers >= 1",
     ),
     bad(
         "simulate.build_datasets",
@@ -3954,7 +3954,7 @@ ROWS += [
         study.reproduce,
         File("missing"),
         n_jobs=0,
-        match="n_jobs must be -1 (all cores), None or a count >= 1",
+        match="n_jobs must be -1 (every core), None or a count of workers >= 1",
     ),
     bad(
         "study.reproduce",

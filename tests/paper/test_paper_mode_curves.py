@@ -62,7 +62,7 @@ def test_bad_input_names_the_parameter():
         ModeCurveClassifier().fit(f, y[:-1], d)
     with pytest.raises(ValueError, match="at least 2 materials"):
         ModeCurveClassifier().fit(f, np.full(y.size, "al"), d)
-    with pytest.raises(RuntimeError, match="not fitted"):
+    with pytest.raises(ValueError, match="not fitted"):
         ModeCurveClassifier().predict(f)
     clf = ModeCurveClassifier().fit(f, y, d)
     with pytest.raises(ValueError, match="weights"):

@@ -15,7 +15,7 @@ from typing import ClassVar
 
 from ..._validate import check_positive
 from ..contact import PiecewiseSpring, tube_on_rod_law
-from ._base import Effect
+from ._base import Effect, check_bodies
 
 
 @dataclass(frozen=True)
@@ -60,5 +60,7 @@ class HertzContact(Effect):
     def spring(self, obj, probe, diameter: float, preload: float) -> PiecewiseSpring:
         """The chords of the tube's contact on a rod of ``obj`` and ``diameter`` (m), with a
         node at ``preload`` (N)."""
+        check_bodies(obj, probe)
+        preload = check_positive("preload", preload)
         law = tube_on_rod_law(probe, obj, diameter)
         return law.piecewise(self.force_tolerance, self.max_force, through=(preload,))

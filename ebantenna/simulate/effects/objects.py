@@ -24,7 +24,7 @@ from ...probe import Material, Probe
 from ..contact import TUBE_POISSON_RATIO, tube_on_rod_stiffness
 from ..linear_state import MARCHES
 from ..stick_slip import check_coefficients
-from ._base import Effect
+from ._base import Effect, check_bodies, check_rng
 
 
 @dataclass(frozen=True)
@@ -88,9 +88,12 @@ class ObjectModes(Effect):
 
     def __post_init__(self):
         check_positive("preload", self.preload)
-        check_int("rod_elements", self.rod_elements, minimum=1)
-        check_int("probe_modes", self.probe_modes, minimum=1)
-        check_int("rod_modes", self.rod_modes, minimum=1)
+        from ...fem.guards import MAX_ELEMENTS
+
+        check_int("rod_elements", self.rod_elements, minimum=1, maximum=MAX_ELEMENTS)
+        # no mesh the package solves has more than 2 (MAX_ELEMENTS + 1) degrees of freedom
+        check_int("probe_modes", self.probe_modes, minimum=1, maximum=2 * (MAX_ELEMENTS + 1))
+        check_int("rod_modes", self.rod_modes, minimum=1, maximum=2 * (MAX_ELEMENTS + 1))
         self.rod("steel")  # validates diameter, free_length and contact_height
 
     def rod(self, material: Material | str) -> Rod:
@@ -100,6 +103,7 @@ class ObjectModes(Effect):
     def contact_stiffness(self, obj: Material, probe: Probe, preload: float | None = None) -> float:
         """The contact spring: Hertz and tube wall in series, at ``preload`` (default the
         effect's), N/m."""
+        check_bodies(obj, probe)
         force = self.preload if preload is None else check_positive("preload", preload)
         return tube_on_rod_stiffness(probe, obj, self.diameter, force).total
 
@@ -113,6 +117,10 @@ class ObjectModes(Effect):
         loss factor, so the spring's loss factor is their compliance-weighted mean. With
         ``object_loss`` False the rod's share is lossless (:class:`ObjectDamping` not listed).
         """
+        from ..._validate import check_bool
+
+        check_bodies(obj, probe)
+        object_loss = check_bool("object_loss", object_loss)
         force = self.preload if preload is None else check_positive("preload", preload)
         ks = tube_on_rod_stiffness(probe, obj, self.diameter, force)
         e_probe = probe.youngs_modulus / (1 - TUBE_POISSON_RATIO**2)
@@ -176,7 +184,7 @@ class PreloadScatter(Effect):
 
     def factor(self, rng: np.random.Generator) -> float:
         """One strike's preload relative to the nominal one (dimensionless, > 0)."""
-        return float(np.exp(rng.normal(0.0, self.spread)))
+        return float(np.exp(check_rng(rng).normal(0.0, self.spread)))
 
 
 @dataclass(frozen=True)

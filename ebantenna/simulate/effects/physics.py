@@ -11,7 +11,7 @@ from typing import ClassVar
 
 from ..._validate import check_in_range, check_positive
 from ...probe import Material, Probe
-from ._base import Effect
+from ._base import Effect, check_bodies
 
 #: The accelerometer board at the tip: an MPU6050 breakout (GY-521), kg. Estimate: FR-4 board
 #: 20 x 15.5 x 1.6 mm at 1850 kg/m^3 (0.9 g), 8-pin header (0.6 g), chip and parts (0.3 g), plus
@@ -39,6 +39,7 @@ class StructuralDamping(Effect):
 
     def damping_ratio(self, probe: Probe) -> float:
         """Modal damping ratio ``eta / 2`` of every mode (dimensionless)."""
+        check_bodies(probe=probe)
         return probe.loss_factor / 2
 
 
@@ -90,6 +91,7 @@ class ContactCompliance(Effect):
 
     def effective_modulus(self, obj: Material, probe: Probe) -> float:
         """Hertz's contact modulus ``E*`` of tube and object, Pa."""
+        check_bodies(obj, probe)
         return 1.0 / (
             (1 - self.probe_poisson_ratio**2) / probe.youngs_modulus
             + (1 - obj.poisson_ratio**2) / obj.youngs_modulus
@@ -97,6 +99,7 @@ class ContactCompliance(Effect):
 
     def stiffness(self, obj: Material, probe: Probe) -> float:
         """Linearised Hertz contact stiffness ``k``, N/m."""
+        check_bodies(obj, probe)
         radius = probe.outer_diameter / 2
         return (6 * self.preload * self.effective_modulus(obj, probe) ** 2 * radius) ** (1 / 3)
 

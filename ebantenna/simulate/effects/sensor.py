@@ -15,9 +15,15 @@ from typing import ClassVar
 import numpy as np
 import scipy.signal as sps
 
-from ..._validate import check_choice, check_int, check_nonnegative, check_positive
+from ..._validate import (
+    check_choice,
+    check_int,
+    check_nonnegative,
+    check_positive,
+    real_array,
+)
 from ...chips.mpu6050 import ACCEL_NOISE_DENSITY, ACCEL_RANGES_G, DLPF, STANDARD_GRAVITY
-from ._base import Effect
+from ._base import Effect, check_rng, check_samples
 
 
 @dataclass(frozen=True)
@@ -53,7 +59,7 @@ class ClockJitter(Effect):
 
     def offsets(self, rng: np.random.Generator, n_samples: int) -> np.ndarray:
         """Offsets ``e_n`` of one signal's sampling instants, s, shape ``(n_samples,)``."""
-        return rng.normal(0.0, self.rms, n_samples)
+        return check_rng(rng).normal(0.0, self.rms, check_samples(n_samples))
 
 
 def _sample_instants(jitter: ClockJitter, batch) -> None:
@@ -99,6 +105,11 @@ class Gravity(Effect):
 
     def apply(self, ax, az):
         """Add ``g`` to ``az``; ``ax`` is returned unchanged."""
+        _real("ax", ax)
+        _real("az", az)
+        if np.shape(ax) != np.shape(az):
+            raise ValueError(f"ax and az must have one shape, got {np.shape(ax)} and "
+                             f"{np.shape(az)}")
         return ax, az + self.g
 
 
@@ -144,10 +155,12 @@ class MainsHum(Effect):
 
     def phases(self, rng: np.random.Generator) -> np.ndarray:
         """Random phases (rad) for X and Z, shape ``(2,)``."""
-        return rng.uniform(0.0, 2 * math.pi, 2)
+        return check_rng(rng).uniform(0.0, 2 * math.pi, 2)
 
     def signal(self, t, phase) -> np.ndarray:
         """``amplitude * sin(2 pi f t + phase)``, m/s^2; ``t`` and ``phase`` broadcast."""
+        _real("t", t)
+        _real("phase", phase)
         return self.amplitude * np.sin(2 * math.pi * self.frequency * np.asarray(t) + phase)
 
 
@@ -192,11 +205,11 @@ class SensorNoise(Effect):
 
     def std(self, fs: float) -> float:
         """Standard deviation of the sampled noise, m/s^2."""
-        return self.density * math.sqrt(fs / 2)
+        return self.density * math.sqrt(check_positive("fs", fs) / 2)
 
     def draw(self, rng: np.random.Generator, n_samples: int, fs: float) -> np.ndarray:
         """Noise of one signal for X and Z, m/s^2, shape ``(2, n_samples)``."""
-        return rng.normal(0.0, self.std(fs), (2, n_samples))
+        return check_rng(rng).normal(0.0, self.std(fs), (2, check_samples(n_samples, 2)))
 
     def draw_signals(self, generators, n_samples: int, fs: float, dlpf=None) -> np.ndarray:
         """Noise of X and Z for every signal (one generator each), shape ``(n, 2, n_samples)``.
@@ -206,6 +219,10 @@ class SensorNoise(Effect):
         decimated as the chip does, from :data:`NOISE_WARM_UP` filter time constants before
         the first kept sample, so that the filter starts in its steady state.
         """
+        if isinstance(generators, np.random.Generator) or not hasattr(generators, "__len__"):
+            raise TypeError(f"generators must be a sequence of numpy.random.Generator, got "
+                            f"{type(generators).__name__}")
+        check_samples(n_samples, 2 * max(len(generators), 1))
         if dlpf is None:
             return np.stack([self.draw(r, n_samples, fs) for r in generators])
         step = dlpf.divider(fs)
@@ -226,6 +243,14 @@ def _add_noise(noise: SensorNoise, batch) -> None:
     draws = noise.draw_signals(batch.rngs(noise), scene.n_samples, scene.fs, batch.chip_filter)
     batch.ax = batch.ax + draws[:, 0]  # draws: (n, 2, n_samples)
     batch.az = batch.az + draws[:, 1]
+
+
+def _real(name: str, x) -> None:
+    """Refuse ``x`` unless it is real, finite numeric data (checked, not converted: the
+    simulator's arrays keep their type), naming it."""
+    values = real_array(name, x)
+    if not np.all(np.isfinite(values)):
+        raise ValueError(f"{name} must contain only finite values (no NaN or inf)")
 
 
 #: Signals whose internal-rate noise is drawn and filtered at once (bounds the memory).
@@ -323,8 +348,11 @@ class LowPassFilter(Effect):
 
     def frequency_response(self, frequency) -> np.ndarray:
         """Complex gain ``H(exp(2 pi i f / internal_rate))`` at ``frequency`` (Hz)."""
+        frequency = real_array("frequency", frequency)
+        if not np.all(np.isfinite(frequency)):
+            raise ValueError("frequency must contain only finite values (no NaN or inf)")
         _, _, gain = self._transfer()
-        return gain(np.exp(2j * math.pi * np.asarray(frequency, dtype=float) / self.internal_rate))
+        return gain(np.exp(2j * math.pi * frequency / self.internal_rate))
 
     def filter_exponentials(self, coef: np.ndarray, rate: np.ndarray):
         """The filter's output for an input ``Im(sum_k coef_k exp(rate_k t))`` sampled from t = 0.
@@ -416,7 +444,7 @@ class SensorDrift(Effect):
 
     def draw(self, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
         """One session's gain factors and offsets (m/s^2) for X and Z."""
-        delta = rng.normal(0.0, self.temperature_std, 2)
+        delta = check_rng(rng).normal(0.0, self.temperature_std, 2)
         gain = 1.0 + SENSITIVITY_DRIFT * delta
         offset = np.array([ZERO_G_DRIFT_XY, ZERO_G_DRIFT_Z]) / DRIFT_SPAN * delta
         return gain, offset * STANDARD_GRAVITY
@@ -564,6 +592,11 @@ class SteadyStateKalman(Effect):
 
     def apply(self, a: np.ndarray, level) -> np.ndarray:
         """Filter every row of ``a`` (m/s^2) starting from the settled ``level`` (one per row)."""
+        _real("a", a)
+        _real("level", level)
+        if np.ndim(a) != 2 or np.shape(level) != np.shape(a)[:1]:
+            raise ValueError(f"a must be 2-D and level hold one level per row of it, got shapes "
+                             f"{np.shape(a)} and {np.shape(level)}")
         k = self.gain()
         zi = (1 - k) * np.asarray(level, dtype=float)[:, None]
         y, _ = sps.lfilter([k], [1.0, -(1.0 - k)], a, axis=-1, zi=zi)

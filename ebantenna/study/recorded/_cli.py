@@ -22,6 +22,34 @@ def register(subparsers) -> None:
     _add_calibrate(subparsers)
 
 
+def _share(text: str) -> float:
+    """The type of ``--inject-faults`` and ``--max-lost``: a share in [0, 1)."""
+    import argparse
+
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a number in [0, 1), got {text!r:.40}") from None
+    if not 0.0 <= value < 1.0:  # NaN fails too
+        raise argparse.ArgumentTypeError(f"must be a number in [0, 1), got {text:.40}")
+    return value
+
+
+def _attempts(text: str) -> int:
+    """The type of ``--attempts``: 1 to the I2C layer's own bound on retries."""
+    import argparse
+
+    from ...device.i2c import MAX_ATTEMPTS
+
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a whole number, got {text!r:.40}") from None
+    if not 1 <= value <= MAX_ATTEMPTS:
+        raise argparse.ArgumentTypeError(f"must lie in [1, {MAX_ATTEMPTS}], got {text:.40}")
+    return value
+
+
 def _add_record(subparsers) -> None:
     """The ``record`` command."""
     from ...cli import seed_argument
@@ -55,17 +83,18 @@ def _add_record(subparsers) -> None:
                      help="simulated only: the scene every touch is simulated in (paper)")
     rec.add_argument("--seed", type=seed_argument, default=0,
                      help="simulated only: seed of the design's variation and the faults (0)")
-    rec.add_argument("--inject-faults", type=float, default=0.0, metavar="RATE",
+    rec.add_argument("--inject-faults", type=_share, default=0.0, metavar="RATE",
                      help="simulated only: fraction of I2C transfers that fail, every kind")
     rec.add_argument("--oe-gpio", type=device_number, metavar="PIN",
                      help="hardware only: BCM GPIO wired to the PCA9685's OE pin")
-    rec.add_argument("--max-lost", type=float, default=MAX_LOST, metavar="F",
+    rec.add_argument("--max-lost", type=_share, default=MAX_LOST, metavar="F",
                      help="a touch whose window lost more than this share is made again; kept "
                      "in the session, and 'dataset --from-recordings' holds its recordings to "
                      f"the same limit ({MAX_LOST:g}: one failed FIFO read, about 5 %% of the "
                      "window, is kept; two are not)")
-    rec.add_argument("--attempts", type=int, default=5, metavar="N",
-                     help="tries of a touch that lost too much before the session stops (5)")
+    rec.add_argument("--attempts", type=_attempts, default=5, metavar="N",
+                     help="tries of a touch that lost too much before the session stops, 1 to "
+                     "100 (5)")
     rec.add_argument("--no-wait", action="store_true",
                      help="hardware only: do not wait for Enter when the object is to be moved")
     rec.add_argument("--yes", action="store_true",
@@ -108,12 +137,13 @@ def run_calibrate(args) -> int:
     import matplotlib
 
     matplotlib.use("Agg")
-    from ..._validate import check_path
+    from ..._validate import check_path, output_dir
     from ...cli import print_json
     from ...simulate import load_dataset
     from ...simulate.scene import resolve_scene
     from .calibration import PARAMETERS, IdentifiabilityWarning, calibrate, plot_calibration
 
+    output_dir("--out", args.out)  # refused before any work is done
     base = resolve_scene(args.scene)
     data = load_dataset(check_path("--data", args.data))
     with warnings.catch_warnings():

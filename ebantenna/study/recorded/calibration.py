@@ -89,7 +89,7 @@ from scipy.optimize import least_squares
 from scipy.signal import butter, hilbert, sosfiltfilt
 from scipy.stats import t as student_t
 
-from ..._validate import check_in_range, check_int, check_real, describe
+from ..._validate import check_array, check_in_range, check_int, check_real, describe
 from ...paper.protocol import DECAY_REGION
 from ...probe import MAX_TIP_MASS_RATIO
 
@@ -115,6 +115,11 @@ BAND = 0.25
 #: (its compliance changes a frequency by about 1e-6 relative, below the 1e-4 time base), and one
 #: a thousandth of it lets the tube swing as a pendulum on the spring.
 STIFFNESS_RANGE = (1e-3, 1e6)
+#: Periods of a mode a recording must hold for the decay reading to see it: the band envelope
+#: of a mode ringing from rest peaks 0.5 to 1.5 periods in (measured from 11 to 120 Hz at
+#: 1000 Hz), and :func:`loss_factor_of` reads from two periods past the peak to two before the
+#: end.
+READ_PERIODS = 5.5
 
 
 class IdentifiabilityWarning(UserWarning):
@@ -186,6 +191,11 @@ class Calibration:
         loss factor; save it with :meth:`~ebantenna.simulate.Scene.save` for ``simulate`` and
         ``dataset``. A hinge not bounded from above is written as a clamp (what the recordings
         cannot tell it from); a loss factor not identifiable keeps ``base``'s."""
+        from ...simulate.scene import Scene
+
+        if not isinstance(base, Scene):
+            raise TypeError(f"base must be a Scene (the one calibrated), got "
+                            f"{type(base).__name__}")
         hinge = self.hinge_stiffness
         if math.isinf(self.intervals["hinge_stiffness"][1]):
             hinge = "clamped"
@@ -230,7 +240,8 @@ def loss_factor_of(x, fs: float, frequency: float) -> tuple[float, float, float]
     check_in_range(
         "frequency", frequency, 0.0, fs / 2 / (1 + BAND),
         reason=f"the band +/- {BAND:.0%} about it must lie below fs / 2 = {fs / 2:g} Hz")
-    return _decay(x, fs, frequency)[:3]
+    # the band filter runs forwards and backwards: longer than its 15 samples of edge padding
+    return _decay(check_array("x", x, ndim=1, min_length=16), fs, frequency)[:3]
 
 
 def _band(frequency, fs):
@@ -546,7 +557,8 @@ def _peak_score(model, ax, fs):
     per_position = np.array([spectrum[model.index == k].mean(axis=0)
                              for k in range(len(model.keys))])
     band = (f > 0) & (f < fs / 2)
-    level = np.log(per_position / np.median(per_position[:, band], axis=1, keepdims=True))
+    with np.errstate(divide="ignore"):  # an empty bin (the mean's) is -inf: never a peak
+        level = np.log(per_position / np.median(per_position[:, band], axis=1, keepdims=True))
 
     def score(log10_k, tip_mass, eta):
         total = 0.0
@@ -619,6 +631,7 @@ def calibrate(ds, scene, *, stiffness_bounds=None, mass_bounds=None,
     contact, material, ax = contact[use], material[use], ax[use]
     model = _Model(scene, contact, material, fs, ax.shape[1])
     eta0 = scene.probe.loss_factor if scene.probe.loss_factor > 0 else 0.03
+    _check_length(model, bounds, eta0)
     p = _start(model, ax, fs, bounds, eta0)
     fit, target, decays = _measure_and_fit(model, ax, fs, contact, p, bounds, eta0, max_rounds)
     p, ok = fit.x, np.isfinite(target)
@@ -672,6 +685,29 @@ def _search_bounds(probe, stiffness_bounds, mass_bounds):
     return [math.log10(k_lo), m_lo], [math.log10(k_hi), m_hi]
 
 
+def _samples_needed(frequency, fs) -> np.ndarray:
+    """The samples a recording needs to read the mode at each frequency (Hz), fewest first:
+    :data:`READ_PERIODS` of its periods and the 3 samples of the stretch fitted."""
+    return np.sort([math.ceil(READ_PERIODS * fs / f) + 3 for f in frequency
+                    if np.isfinite(f) and f > 0])
+
+
+def _check_length(model, bounds, eta0) -> None:
+    """Refuse, before any fitting, recordings too short to read the fitted mode at 3 positions.
+
+    The frequencies are the model's at the stiffest hinge and the lightest tip mass searched,
+    the highest it can fit (a stiffer hinge and a lighter tip raise every mode), so recordings
+    refused here are too short at any value the fit could reach.
+    """
+    need = _samples_needed(model.modes(bounds[1][0], bounds[0][1], eta0)[0], model.fs)
+    if need.size >= 3 and model.n < need[2]:
+        raise ValueError(
+            f"records of {model.n} samples (ds.ax) are too short to calibrate from: at fs = "
+            f"{model.fs:g} Hz reading the mode the model fits at 3 of the {len(model.keys)} "
+            f"positions needs {int(need[2])} samples at least ({READ_PERIODS:g} periods of it, "
+            "at the highest frequency the search allows); record longer")
+
+
 def _start(model, ax, fs, bounds, eta0) -> np.ndarray:
     """The hinge (a grid of decades), then the tip mass, then the hinge again, whose modes fall
     on the recordings' spectral peaks."""
@@ -706,6 +742,11 @@ def _measure_and_fit(model, ax, fs, contact, p, bounds, eta0, max_rounds):
             why = (f"; at {', '.join(f'{c:g}' for c in unread)} m the model has no mode below "
                    f"{fs / 2 / (1 + BAND):.4g} Hz, the highest whose band recordings at fs = "
                    f"{fs:g} Hz resolve" if unread else "")
+            need = _samples_needed(predicted, fs)
+            if need.size >= 3 and ax.shape[1] < need[2]:
+                why += (f"; records of {ax.shape[1]} samples are too short for the modes "
+                        f"predicted: reading 3 positions needs {int(need[2])} samples at least "
+                        f"({READ_PERIODS:g} periods)")
             raise ValueError(f"only {int(ok.sum())} of {ok.size} distinct contact positions show "
                              f"the mode the model predicts (3 are needed){why}; check that the "
                              "scene describes these recordings (--scene: the probe, the "

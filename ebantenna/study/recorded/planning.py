@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from ..._validate import check_int
 from ...device.plan import Plan
 from ...paper.data import design
 from ...paper.protocol import DATASET
@@ -34,7 +35,12 @@ def protocol_plan(*, quick: bool = False, scene=None, seed: int = 0) -> Plan:
     >>> len(protocol_plan())  # the paper's: 5 materials x 79 distances x 25 repetitions
     9875
     """
+    from ...simulate import Scene
+
     chosen = design(quick)
+    seed = check_int("seed", seed, minimum=0)
+    if scene is not None and not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a Scene (or None), got {type(scene).__name__}")
     length = DATASET.probe_length if scene is None else scene.probe.length
     simulation = ()
     if scene is not None:

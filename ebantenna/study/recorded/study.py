@@ -33,7 +33,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..._validate import check_positive
+from ..._validate import check_n_jobs, check_positive
 from ...paper.uncertainty import UNITS, ClusteredAccuracy, percent, span
 from ...report import FigureSet, Report
 from ...simulate import load_dataset
@@ -236,7 +236,7 @@ def reproduce_recorded(data, out_dir="ebantenna-recorded", *, seed: int = 0,
     seed : int
         Seed of every split and initialisation.
     n_jobs : int or None
-        joblib workers for the features (-1: all cores).
+        joblib workers for the features, at most the machine's cores (-1: all cores).
     show_progress : bool, optional
         Progress bars (default: on a terminal).
     say : callable, optional
@@ -260,6 +260,7 @@ def reproduce_recorded(data, out_dir="ebantenna-recorded", *, seed: int = 0,
     from ...paper.feature_table import signal_features
 
     say = say or (lambda text: None)
+    n_jobs = check_n_jobs("n_jobs", n_jobs)
     ds = load_dataset(data)
     design = design_of(ds)
     runnable, missing = check_design(design)

@@ -91,11 +91,13 @@ def _simulated_options(parser) -> None:
     parser.add_argument("--repeat-last-byte", action="store_true",
                         help="simulated only: reading the FIFO past its end repeats the last byte")
     parser.add_argument("--transfer-timeout", type=float, default=0.0, metavar="S",
-                        help="simulated only: a transfer that times out hangs S seconds first")
+                        help="simulated only: a transfer that times out hangs S seconds first, "
+                        "0 to 10 (Linux gives an adapter one second by default)")
     parser.add_argument("--release-fails", action="store_true",
                         help="simulated only: every write that switches the servos off fails")
     parser.add_argument("--bus-hz", type=float, default=RASPBERRY_PI_BUS_HZ, metavar="HZ",
-                        help="simulated only: I2C clock (default 100000, a Raspberry Pi's)")
+                        help="simulated only: I2C clock, up to 3.4e6 (the High-speed mode) "
+                        "(default 100000, a Raspberry Pi's)")
 
 
 #: Exit code of ``acquire`` when the servos could not be released (the recording is saved).

@@ -50,6 +50,8 @@ __all__ = [
     "transfer_bits",
     "transfer_time",
     "RASPBERRY_PI_BUS_HZ",
+    "MAX_BUS_HZ",
+    "MAX_TRANSFER_TIMEOUT",
     "TRANSFER_OVERHEAD",
     "ShortReadError",
     "I2CDevice",
@@ -76,6 +78,15 @@ NOTHING_READ_ERRNOS = frozenset({errno.EREMOTEIO})
 #: I2C clock of a Raspberry Pi's bus unless ``dtparam=i2c_arm_baudrate`` says otherwise, Hz
 #: (Raspberry Pi documentation, "config.txt", ``i2c_arm_baudrate``: default 100000).
 RASPBERRY_PI_BUS_HZ = 100e3
+
+#: The fastest I2C clock, Hz: the High-speed mode's 3.4 Mbit/s (NXP UM10204, "I2C-bus
+#: specification and user manual", rev. 7.0, section 1). A simulated bus refuses a faster one.
+MAX_BUS_HZ = 3.4e6
+
+#: The longest adapter timeout a simulated transfer may hang for, s. Linux gives an adapter that
+#: sets none one second (``adap->timeout = HZ`` in ``i2c_register_adapter``,
+#: drivers/i2c/i2c-core-base.c); ten times that bounds what any adapter is set to here.
+MAX_TRANSFER_TIMEOUT = 10.0
 #: Fixed cost of one transfer besides its bits on the wire (the system call and the adapter's
 #: set-up), s: an assumed 50 us, of the order of a Linux ``ioctl`` on a Raspberry Pi.
 TRANSFER_OVERHEAD = 50e-6

@@ -5,7 +5,9 @@ nothing is written, nothing is printed on stdout.
 Counts and shares are bounded by the flag's own type: ``record --attempts`` from 1 to 100 (the
 I2C layer's bound on retries: 10**6 attempts were accepted), ``--max-lost`` and
 ``--inject-faults`` in [0, 1) (their errors named the Python parameter, ``error_rate``, not the
-flag).
+flag). The simulated bus's clock ``--bus-hz`` is bounded by the fastest I2C mode (3.4 MHz) and
+``--transfer-timeout`` by ten times Linux's default adapter timeout (0, NaN and 1e300 were accepted
+and ended the run as "servos could not be released").
 """
 
 from __future__ import annotations
@@ -71,6 +73,13 @@ ROWS = {
                                 (ACQUIRE + ["--stuck-bus", "-1", "5"], ["stuck_at"]),
                                 (ACQUIRE + ["--stuck-bus", "5", "nan"], ["stuck_duration"]),
                                 (ACQUIRE + ["--stuck-bus", "5"], ["--stuck-bus"])],
+    "cli:acquire --bus-hz": [(ACQUIRE + ["--bus-hz", v], ["bus_hz"])
+                             for v in ("0", "-1", "nan", "inf", "1e300", "3.5e6")]
+    + [(ACQUIRE + ["--bus-hz", "x"], ["--bus-hz"]),
+       (HARDWARE + ["--bus-hz", "400000"], ["--bus-hz", "--simulated"])],
+    "cli:acquire --transfer-timeout": [(ACQUIRE + ["--transfer-timeout", v], ["transfer_timeout"])
+                                       for v in ("-1", "nan", "1e300", "11")]
+    + [(HARDWARE + ["--transfer-timeout", "1"], ["--transfer-timeout", "--simulated"])],
     "cli:bench": [(["bench", "--only", "x"], ["only", "x"])],
     "cli:bench --only": [(["bench", "--only", "nope"], ["only", "nope"]),
                          (["bench", "--only"], ["--only"])],

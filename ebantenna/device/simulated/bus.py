@@ -17,12 +17,18 @@ from __future__ import annotations
 
 import errno
 
-from ..._validate import check_int, check_nonnegative, check_positive
+from ..._validate import check_in_range, check_int, check_nonnegative
 from ...chips.mpu6050 import ACCEL_SAMPLE_BYTES, ADDRESS_AD0_LOW, Register
 from ...chips.pca9685 import DEFAULT_ADDRESS, LED_FULL, N_CHANNELS, Led, Mode1, led_register
 from ...chips.pca9685 import Register as PcaRegister
 from ..clock import VirtualClock
-from ..i2c import RASPBERRY_PI_BUS_HZ, SMBUS_BLOCK_MAX, TRANSFER_OVERHEAD, transfer_bits
+from ..i2c import (
+    MAX_BUS_HZ,
+    RASPBERRY_PI_BUS_HZ,
+    SMBUS_BLOCK_MAX,
+    TRANSFER_OVERHEAD,
+    transfer_bits,
+)
 from .faults import FaultInjector, Faults
 
 __all__ = ["SimulatedBus", "transfer_bits", "RASPBERRY_PI_BUS_HZ"]
@@ -81,7 +87,7 @@ class SimulatedBus:
                  reset_address: int = ADDRESS_AD0_LOW):
         self.clock = VirtualClock() if clock is None else clock
         self.faults = Faults() if faults is None else faults
-        self.bus_hz = check_positive("bus_hz", bus_hz)
+        self.bus_hz = bus_hz
         self.overhead = check_nonnegative("overhead", overhead)
         self.injector = FaultInjector(self.faults, seed)
         self.devices: dict[int, object] = dict(devices or {})
@@ -90,6 +96,17 @@ class SimulatedBus:
         self.closed = False
         #: The chip that the ``chip_reset_at`` of :class:`Faults` browns out.
         self.reset_address = reset_address
+
+    @property
+    def bus_hz(self) -> float:
+        """The bus clock, Hz, in (0, :data:`~ebantenna.device.i2c.MAX_BUS_HZ`]: checked whenever
+        it is set."""
+        return self._bus_hz
+
+    @bus_hz.setter
+    def bus_hz(self, value) -> None:
+        self._bus_hz = check_in_range("bus_hz", value, 0.0, MAX_BUS_HZ, high_inclusive=True,
+                                      reason="no I2C mode clocks faster (NXP UM10204)")
 
     @property
     def errors_injected(self) -> int:

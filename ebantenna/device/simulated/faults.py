@@ -80,6 +80,7 @@ import numpy as np
 
 from ..._validate import check_in_range, check_int, check_nonnegative, check_real
 from ...chips.mpu6050 import ACCEL_SAMPLE_BYTES, WHO_AM_I_VALUE, Register
+from ..i2c import MAX_TRANSFER_TIMEOUT
 from .mpu6050 import MAX_CLOCK_DRIFT, REGISTER_SPACE
 
 __all__ = ["Faults", "FaultInjector", "TRANSFER_FAULTS", "SILENT_FAULTS", "MAX_CLOCK_DRIFT",
@@ -227,7 +228,9 @@ class Faults:
                 check_nonnegative(name, getattr(self, name))
         check_nonnegative("stall_duration", self.stall_duration)
         check_nonnegative("stuck_duration", self.stuck_duration)
-        check_nonnegative("transfer_timeout", self.transfer_timeout)
+        check_in_range("transfer_timeout", self.transfer_timeout, 0.0, MAX_TRANSFER_TIMEOUT,
+                       low_inclusive=True, high_inclusive=True,
+                       reason="no I2C adapter waits longer (Linux: one second by default)")
         for name in ("free_running_divider", "repeat_last_byte", "release_fails"):
             if not isinstance(getattr(self, name), bool):
                 raise TypeError(f"{name} must be a bool, got {getattr(self, name)!r}")

@@ -29,6 +29,8 @@ from numbers import Real
 
 import numpy as np
 
+from .._validate import check_bool, real_array
+
 __all__ = [
     "element_stiffness",
     "consistent_mass",
@@ -195,7 +197,7 @@ def hermite_slope(xi, l):
     )
 
 
-def bending_energy(EI, l, u) -> np.ndarray:
+def bending_energy(EI, l, u, *, check_finite: bool = True) -> np.ndarray:
     r"""Twice the bending strain energy ``u^T K u`` of a chain of elements, from curvatures, J.
 
     Inside an element the curvature ``v''`` is linear between its end values
@@ -215,6 +217,10 @@ def bending_energy(EI, l, u) -> np.ndarray:
         Element lengths, m, broadcasting against ``u[:-2:2]``.
     u : array of shape (2 n_elements + 2,) or (2 n_elements + 2, m)
         DOF vectors ``(v0, theta0, v1, ...)`` (m, rad), one per column.
+    check_finite : bool, default=True
+        Refuse NaN or infinite entries of ``u``, as SciPy's linear algebra does. A solver that
+        passes its own mode shapes turns it off: a shape it could not resolve then gives NaN,
+        which the solver reports in its own words.
 
     Returns
     -------
@@ -229,7 +235,10 @@ def bending_energy(EI, l, u) -> np.ndarray:
     True
     """
     EI, l = _checked("EI", EI), _checked("l", l)
-    u = _checked("u", u, positive=False)
+    if check_bool("check_finite", check_finite):
+        u = _checked("u", u, positive=False)
+    else:
+        u = real_array("u", u)
     if u.ndim not in (1, 2) or u.shape[0] < 4 or u.shape[0] % 2:
         raise ValueError(f"u must hold 2 n_elements + 2 DOFs (v, theta per node) along its first "
                          f"axis, n_elements >= 1, got shape {u.shape}")

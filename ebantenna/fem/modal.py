@@ -327,7 +327,7 @@ def modal_analysis(
     _, m_diag = support_diagonals(nodes, probe, supports)  # the tip mass, as in apply_supports
     M_full = (M + sps.diags(m_diag)).tocsr() if use_sparse else M + np.diag(m_diag)
     if solver != "naive":
-        lam = strain_energy(nodes, probe, supports, shapes) / np.einsum(
+        lam = strain_energy(nodes, probe, supports, shapes, check_finite=False) / np.einsum(
             "im,im->m", shapes, M_full @ shapes
         )
         order = np.argsort(lam)
@@ -335,7 +335,8 @@ def modal_analysis(
     return ModalResult(probe, supports, nodes, np.sqrt(np.maximum(lam, 0.0)), shapes, free, M_full)
 
 
-def strain_energy(nodes: np.ndarray, probe: Probe, supports: Supports, u: np.ndarray) -> np.ndarray:
+def strain_energy(nodes: np.ndarray, probe: Probe, supports: Supports, u: np.ndarray, *,
+                  check_finite: bool = True) -> np.ndarray:
     """Twice the strain energy ``u^T K u`` of DOF vectors, summed from element curvatures (J).
 
     The beam's share is :func:`~ebantenna.fem.elements.bending_energy`, ``EI l (k1^2 + k1 k2 +
@@ -347,9 +348,12 @@ def strain_energy(nodes: np.ndarray, probe: Probe, supports: Supports, u: np.nda
     ----------
     u : array of shape (2 * n_nodes,) or (2 * n_nodes, m)
         Full DOF vectors (m, rad).
+    check_finite : bool, default=True
+        As in :func:`~ebantenna.fem.elements.bending_energy`.
     """
-    l = np.diff(nodes).reshape((-1,) + (1,) * (u.ndim - 1))
-    energy = bending_energy(probe.flexural_rigidity, l, u)
+    l = np.diff(nodes).reshape((-1,) + (1,) * (np.ndim(u) - 1))
+    energy = bending_energy(probe.flexural_rigidity, l, u, check_finite=check_finite)
+    u = np.asarray(u, dtype=float)  # checked by bending_energy
     if not isinstance(supports.hinge, str):
         energy = energy + supports.hinge_stiffness * u[1] ** 2
     if supports.contact is not None and not math.isinf(supports.contact_stiffness):

@@ -353,6 +353,12 @@ def _fem_rows():
             ("u",)),
         Row(e + "bending_energy", "u-nan",
             lambda: elements.bending_energy(1.0, 0.1, [0.0, NAN, 0.0, 0.0]), ("u",)),
+        # a solver's own unresolved shape: NaN passes through for it to report in its words
+        Row(e + "bending_energy", "u-nan-unchecked", lambda: elements.bending_energy(
+            1.0, 0.1, [0.0, NAN, 0.0, 0.0], check_finite=False), same=math.isnan),
+        Row(e + "bending_energy", "check_finite-str",
+            lambda: elements.bending_energy(1.0, 0.1, [0.0] * 4, check_finite="no"),
+            ("check_finite",)),
         Row(e + "bending_energy", "EI-negative",
             lambda: elements.bending_energy(-1.0, 0.1, [0.0] * 4), ("EI",)),
         # a uniform curvature k = 2 / l^2 ... : u^T K u with K from element_stiffness

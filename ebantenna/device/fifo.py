@@ -205,7 +205,7 @@ class FifoStream:
     def clock_suspect(self) -> bool:
         """Whether counts fell off the same side of the clock's tolerance more than once: the
         clock itself is then likely outside it. Unless the stream adapted to the rate the
-        counts showed (:attr:`clock_adapted`), every timestamp of the stream is then flagged
+        counts showed (``clock_adapted``), every timestamp of the stream is then flagged
         (each segment's bracket rests on the tolerance)."""
         return max(self.contradictions.values()) >= CLOCK_SUSPECT_AFTER
 

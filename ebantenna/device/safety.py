@@ -104,7 +104,7 @@ class ServoGuard:
         Whether the last release succeeded: the outputs written off over I2C and read back so.
     released_by : str or None
         What switched the outputs off: ``"i2c"`` (the release), ``"oe"`` (the fallback alone,
-        :attr:`released` False) or None.
+        ``released`` False) or None.
     signal_received : int or None
         The guarded signal that ended the run, if one did.
 

@@ -105,7 +105,7 @@ def random_split(labels, *, test_fraction: float = 0.2, seed: int = 0):
     test_fraction : float
         Share of the recordings in the test set, in (0, 1).
     seed : int
-        Seed of the split, 0 ... :data:`MAX_SPLIT_SEED`.
+        Seed of the split, 0 ... ``MAX_SPLIT_SEED`` (2**32 - 1).
 
     Returns
     -------
@@ -262,7 +262,7 @@ def distinct_split_seeds(kind: str, labels, positions, *, seed: int = 0, count: 
     count : int
         How many seeds.
     search : int
-        How many seeds to try at most (up to :data:`MAX_SEARCH`); fewer distinct splits than
+        How many seeds to try at most (up to ``MAX_SEARCH``, 100,000); fewer distinct splits than
         ``count`` raise.
 
     Returns

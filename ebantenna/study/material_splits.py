@@ -58,7 +58,7 @@ class MaterialSplitsResult:
         ``"mode_curves"``).
     distance_held_out : RegressionResult or None
         The paper's distance network (gradient descent) trained with whole positions held out,
-        over every fold of the grouped split (:func:`_region_folds`), beside its random
+        over every fold of the grouped split (``_region_folds``), beside its random
         split.
     """
 
@@ -171,7 +171,7 @@ def compute(ds, feats, seed: int, *, random_svm, paper_ann, paper_distance,
     by :mod:`.learning` (random split, gradient descent): they are reused, not run again. The
     grouped and blocked splits run over all their folds
     (:func:`~ebantenna.paper.splits.split_folds`). Every fit is independent of the others and
-    runs on one of ``n_jobs`` worker processes (:func:`~._common.fits_in_parallel`): the same
+    runs on one of ``n_jobs`` worker processes (``_common.fits_in_parallel``): the same
     numbers whatever ``n_jobs``.
     """
     X, y, positions = feats.fft, ds.material, ds.contact

@@ -99,7 +99,7 @@ def compute(ds, feats, seed: int, grouped_full: FoldAccuracy, n_jobs: int = 1) -
     """The three classifiers on every fold of the three splits (on the subset), and the grouped
     SVM over all folds on 1, 3, 5 repetitions; ``grouped_full`` is the whole data set's grouped
     SVM over its folds, already measured. Every fit runs on one of ``n_jobs`` worker processes
-    (:func:`~._common.fits_in_parallel`): the same numbers whatever ``n_jobs``."""
+    (``_common.fits_in_parallel``): the same numbers whatever ``n_jobs``."""
     rows = _subset(ds, SUBSET_REPETITIONS)
     X, y, d = feats.fft[rows], ds.material[rows], ds.contact[rows]
     peaks, dominant = feats.peaks[rows], feats.dominant[rows]

@@ -34,7 +34,8 @@ the recording from the public entry, in the order they open them. It is the walk
 restricted (:func:`reading_order`) to the public modules (no private engine: the reader follows
 the reference) and to the functions that do the work: not a special method (``__init__``,
 ``__post_init__``, ...), not a property, and not a function whose body is one statement besides
-its checks of the input, which a reader takes from its name at the call (``Scene.has``, ``StructuralDamping.damping_ratio``).
+its checks of the input, which a reader takes from its name at the call (``Scene.has``,
+``StructuralDamping.damping_ratio``).
 Its count is the number of files and the returns to a file already read, as above.
 :func:`check_reading_order` holds the list to the run.
 

@@ -41,6 +41,7 @@ __all__ = [
     "check_choice",
     "real_array",
     "check_array",
+    "check_split",
     "output_path",
     "open_npz",
 ]
@@ -717,3 +718,35 @@ def open_npz(path, what: str) -> Iterator[np.lib.npyio.NpzFile]:
                 if isinstance(exc, ValueError) and str(path) in str(exc):
                     raise  # already names the file
                 raise ValueError(f"{path} is not {what}: {exc}") from None
+
+
+def check_split(split, n_rows: int) -> tuple[np.ndarray, np.ndarray]:
+    """``split`` as ``(train, test)`` row indices of ``n_rows`` rows: a pair of non-empty 1-D
+    integer arrays, each index in ``0 ... n_rows - 1``, no row in both; else an error naming
+    ``split``.
+
+    Examples
+    --------
+    >>> [r.tolist() for r in check_split(([0, 2], [1]), 3)]
+    [[0, 2], [1]]
+    >>> check_split("x", 3)
+    Traceback (most recent call last):
+    ...
+    TypeError: split must be a pair (train rows, test rows), got 'x'
+    """
+    if isinstance(split, str | bytes | dict) or not hasattr(split, "__len__") or len(split) != 2:
+        raise TypeError(f"split must be a pair (train rows, test rows), got {describe(split)}")
+    out = []
+    for part, rows in zip(("train", "test"), split, strict=True):
+        a = np.asarray(rows)
+        if a.ndim != 1 or a.size == 0 or a.dtype.kind not in "iu":
+            raise ValueError(f"split's {part} rows must be a non-empty 1-D array of integer row "
+                             f"indices, got {a.dtype} of shape {a.shape}")
+        if a.min() < 0 or a.max() >= n_rows:
+            raise ValueError(f"split's {part} rows must lie in 0 ... {n_rows - 1}, got "
+                             f"{int(a.min())} ... {int(a.max())}")
+        out.append(a.astype(np.intp))
+    if np.intersect1d(*out).size:
+        raise ValueError("split must not put one row in both train and test")
+    return out[0], out[1]
+

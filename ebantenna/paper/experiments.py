@@ -25,7 +25,7 @@ import numpy as np
 from sklearn.exceptions import ConvergenceWarning
 from sklearn.model_selection import train_test_split
 
-from .._validate import check_array, check_in_range, check_positive
+from .._validate import check_array, check_in_range, check_positive, check_split
 from ..ml import MLPClassifier, MLPRegressor
 from ..ml.metrics import absolute_errors, accuracy, confusion_matrix
 from ._ovr_svm import OneVsRestSVC, whole_kernel_svc
@@ -271,9 +271,7 @@ def classify_materials_svm(X, materials, *, test_fraction=MATERIAL_SVM.test_frac
         train, test = train_test_split(np.arange(X.shape[0]), test_size=test_fraction,
                                        random_state=seed, stratify=y)
     else:
-        train, test = (np.asarray(rows, dtype=np.intp) for rows in split)
-        if np.intersect1d(train, test).size:
-            raise ValueError("split must not put one row in both train and test")
+        train, test = check_split(split, X.shape[0])
     if normalise:  # the scale from the training rows only: the test rows stay unseen
         X = normalise_by_max(X, train)
     model = OneVsRestSVC(whole_kernel_svc(train.size, C=C, gamma=gamma, tol=tol))
@@ -495,7 +493,7 @@ def regress_distance_linear_region(X, distances, *, probe_length,
     if split is not None:  # the given rows renumbered among those kept
         index = np.full(X.shape[0], -1)
         index[keep] = np.arange(int(keep.sum()))
-        split = tuple(index[r][index[r] >= 0] for r in (np.asarray(r, np.intp) for r in split))
+        split = tuple(index[r][index[r] >= 0] for r in check_split(split, X.shape[0]))
         if np.intersect1d(*split).size or min(r.size for r in split) < 1:
             raise ValueError("split must give disjoint, non-empty rows within the region")
     X, d = X[keep], d[keep]

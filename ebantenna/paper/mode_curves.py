@@ -24,7 +24,7 @@ import time
 
 import numpy as np
 
-from .._validate import check_array, check_per_row
+from .._validate import check_array, check_per_row, check_split
 from .estimators import MultiModeDistanceEstimator
 from .experiments import ClassificationResult, confusions_and_tested
 
@@ -166,7 +166,7 @@ def classify_materials_by_mode_curves(peaks, dominant, materials, positions, spl
     y = np.asarray(materials)
     d = check_array("positions", positions, ndim=1)
     check_per_row(peaks.shape[0], "peaks", dominant=dominant, materials=y, positions=d)
-    train, test = (np.asarray(rows, dtype=np.intp) for rows in split)
+    train, test = check_split(split, peaks.shape[0])
     order = tuple(np.unique(y).tolist()) if labels is None else tuple(labels)
     two = np.all(np.isfinite(peaks), axis=1) & np.all(peaks > 0, axis=1)
     one = np.isfinite(dominant) & (dominant > 0)

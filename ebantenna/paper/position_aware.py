@@ -26,7 +26,7 @@ from sklearn.base import BaseEstimator, ClassifierMixin
 from sklearn.utils.multiclass import check_classification_targets
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from .._validate import check_array, check_per_row, check_positive
+from .._validate import check_array, check_per_row, check_positive, check_split
 from ._ovr_svm import OneVsRestSVC, whole_kernel_svc
 from .estimators import FrequencyDistanceEstimator, MultiModeDistanceEstimator
 from .experiments import ClassificationResult, confusions_and_tested
@@ -278,7 +278,7 @@ def classify_materials_position_aware(
     y = np.asarray(materials)
     d = check_array("positions", positions, ndim=1)
     check_per_row(X.shape[0], "X", materials=y, positions=d)
-    train, test = (np.asarray(rows, dtype=np.intp) for rows in split)
+    train, test = check_split(split, X.shape[0])
     X = normalise_by_max(X, train)  # the scale from the training rows only
     order = tuple(np.unique(y).tolist()) if labels is None else tuple(labels)
     start = time.perf_counter()

@@ -7,8 +7,9 @@ one, unsorted or non-numeric nodes, a non-symmetric stiffness and damping ratios
 
 Found by these rows and fixed: ``AttributeError`` from the plots given a number for a result,
 from the grouped-split controls given a number for a data set, from the probe's contact model,
-``physics_key`` and ``sweep_velocity`` given a number or a string, and "damping ratios must lie
-in [0, 1)" (now naming ``zeta``).
+``physics_key`` and ``sweep_velocity`` given a number or a string, "damping ratios must lie
+in [0, 1)" (now naming ``zeta``), and a ``split`` of the classifiers that is not a pair of row
+index arrays ("invalid literal for int()", an ``IndexError`` for rows beyond ``X``).
 """
 
 from __future__ import annotations
@@ -44,6 +45,18 @@ ROWS = {
         ("test_fraction-2", lambda: experiments.classify_materials_svm(X, MATS,
                                                                        test_fraction=2.0),
          ("test_fraction",), None),
+        ("split-str", lambda: experiments.classify_materials_svm(X, MATS, split="x"),
+         ("split",), None),
+        ("split-beyond-rows", lambda: experiments.classify_materials_svm(
+            X, MATS, split=(np.arange(30), np.arange(35, 45))), ("split", "0 ... 39"), None),
+        ("split-fractional-rows", lambda: experiments.classify_materials_svm(
+            X, MATS, split=(np.arange(30) + 0.5, np.arange(30, 40))), ("split",), None),
+        ("split-overlap", lambda: experiments.classify_materials_svm(
+            X, MATS, split=(np.arange(30), np.arange(29, 40))), ("split", "both"), None),
+        # a given split is the one used: its 10 test rows are the ones tested
+        ("split-used", lambda: experiments.classify_materials_svm(
+            X, MATS, split=(np.arange(30), np.arange(30, 40)), gamma="scale"), None,
+         lambda r: int(r.confusions["test"].sum()) == 10),
     ],
     e + "classify_materials_ann": [
         ("materials-short", lambda: experiments.classify_materials_ann(X, MATS[:3]),
@@ -57,6 +70,8 @@ ROWS = {
     e + "regress_distance_linear_region": [
         ("probe_length-negative", lambda: experiments.regress_distance_linear_region(
             X, DIST, probe_length=-1.0), ("probe_length",), None),
+        ("split-one-part", lambda: experiments.regress_distance_linear_region(
+            X, DIST, probe_length=0.4, split=(np.arange(30),)), ("split",), None),
     ],
     "ebantenna.paper.plots.plot_confusion_comparison": [
         ("result-int", lambda: plots.plot_confusion_comparison(5), ("result",), None),
@@ -68,6 +83,8 @@ ROWS = {
     "ebantenna.paper.mode_curves.classify_materials_by_mode_curves": [
         ("materials-short", lambda: mode_curves.classify_materials_by_mode_curves(
             np.abs(X), np.abs(X[:, 0]), MATS[:3], DIST, "random"), ("materials",), None),
+        ("split-str", lambda: mode_curves.classify_materials_by_mode_curves(
+            np.abs(X), np.abs(X[:, 0]), MATS, DIST, "random"), ("split",), None),
     ],
     "ebantenna.paper.controls.grouped_svm_accuracy": [
         ("ds-int", lambda: controls.grouped_svm_accuracy(5), ("ds",), None),

@@ -72,6 +72,38 @@ def _on_alarm(signum, frame):
     raise Timeout()
 
 
+@dataclass
+class Row:
+    """One row of a contract table: ``call()`` must refuse naming one of ``names``, or return
+    what ``same`` checks (``same(result) -> bool``, for a good input)."""
+
+    surface: str
+    id: str
+    call: object
+    names: tuple = ()
+    same: object = None
+
+    @property
+    def expect(self) -> str:
+        return "equal" if self.same is not None else "error"
+
+
+def check_row(row: Row, row_id: str) -> None:
+    """Run ``row`` and assert its outcome: a clear error for a bad input, the right answer for a
+    good one."""
+    kind, what = outcome(Case(row_id, row.call, row.expect, row.names, row.same, timeout=10))
+    assert kind == ("right" if row.same is not None else "clear"), what
+
+
+def rows_by_surface(rows) -> dict[str, list[str]]:
+    """The surfaces ``rows`` cover, each with its row ids (what ``contract_rows()`` returns to
+    the inventory test)."""
+    out: dict[str, list[str]] = {}
+    for row in rows:
+        out.setdefault(row.surface, []).append(row.id)
+    return out
+
+
 def outcome(case: Case) -> tuple[str, str]:
     """Run ``case`` and return its class and a short description of what happened."""
     previous = signal.signal(signal.SIGALRM, _on_alarm)

@@ -24,7 +24,7 @@ import numpy as np
 import pytest
 
 sys.path.insert(0, os.path.dirname(__file__))
-from contract_files_cases import Case, outcome  # noqa: E402
+from contract_files_cases import Row, check_row, rows_by_surface  # noqa: E402
 
 from ebantenna import Probe  # noqa: E402
 from ebantenna.chips.mpu6050 import STANDARD_GRAVITY  # noqa: E402
@@ -42,15 +42,6 @@ UNBOUNDED = {"max_events"}
 
 def _rng():
     return np.random.default_rng(0)
-
-
-@dataclasses.dataclass
-class Row:
-    surface: str
-    id: str
-    call: object
-    names: tuple = ()
-    same: object = None
 
 
 def _construction_rows():
@@ -228,18 +219,12 @@ def test_the_rows_are_distinct():
 
 @pytest.mark.parametrize("index", range(len(IDS)), ids=IDS)
 def test_every_row_ends_in_a_clear_error_or_the_right_answer(index):
-    row = all_rows()[index]
-    expect = "equal" if row.same is not None else "error"
-    kind, what = outcome(Case(IDS[index], row.call, expect, row.names, row.same, timeout=10))
-    assert kind == ("right" if row.same is not None else "clear"), what
+    check_row(all_rows()[index], IDS[index])
 
 
 def contract_rows() -> dict[str, list[str]]:
     """The surfaces these rows cover (read by the inventory test)."""
-    rows: dict[str, list[str]] = {}
-    for row in all_rows():
-        rows.setdefault(row.surface, []).append(row.id)
-    return rows
+    return rows_by_surface(all_rows())
 
 
 def contract_exempt() -> dict[str, str]:

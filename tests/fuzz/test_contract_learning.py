@@ -22,14 +22,13 @@ from __future__ import annotations
 import math
 import os
 import sys
-from dataclasses import dataclass
 
 import numpy as np
 import pytest
 import scipy.sparse as sp
 
 sys.path.insert(0, os.path.dirname(__file__))
-from contract_files_cases import Case, outcome  # noqa: E402
+from contract_files_cases import Row, check_row, rows_by_surface  # noqa: E402
 
 from ebantenna.fem import Rod  # noqa: E402
 from ebantenna.ml import backprop, kernels, optimizers, ovo, platt, sparse_input  # noqa: E402
@@ -45,21 +44,6 @@ X = RNG.normal(size=(12, 3))
 Y = np.array([0, 1] * 6)
 NOT_REAL = {"nan": NAN, "inf": math.inf, "10**400": 10**400, "str": "1", "None": None,
             "bool": True}
-
-
-@dataclass
-class Row:
-    """One row: ``call()`` must refuse naming one of ``names``, or return what ``same`` checks."""
-
-    surface: str
-    id: str
-    call: object
-    names: tuple = ()
-    same: object = None
-
-    @property
-    def expect(self) -> str:
-        return "equal" if self.same is not None else "error"
 
 
 def _numbers(surface, param, make, extra=()):
@@ -447,15 +431,9 @@ def test_the_rows_are_distinct():
 
 @pytest.mark.parametrize("index", range(len(IDS)), ids=IDS)
 def test_every_row_ends_in_a_clear_error_or_the_right_answer(index):
-    row = all_rows()[index]
-    kind, what = outcome(Case(IDS[index], row.call, row.expect, row.names, row.same,
-                              timeout=10))
-    assert kind in ({"right"} if row.same is not None else {"clear"}), what
+    check_row(all_rows()[index], IDS[index])
 
 
 def contract_rows() -> dict[str, list[str]]:
     """The surfaces these rows cover (read by the inventory test)."""
-    rows: dict[str, list[str]] = {}
-    for row in all_rows():
-        rows.setdefault(row.surface, []).append(row.id)
-    return rows
+    return rows_by_surface(all_rows())

@@ -22,14 +22,13 @@ from __future__ import annotations
 import math
 import os
 import sys
-from dataclasses import dataclass
 from fractions import Fraction
 
 import numpy as np
 import pytest
 
 sys.path.insert(0, os.path.dirname(__file__))
-from contract_files_cases import Case, outcome  # noqa: E402
+from contract_files_cases import Row, check_row, rows_by_surface  # noqa: E402
 
 from ebantenna import Probe, course  # noqa: E402
 from ebantenna.fem import assembly, elements, exact, guards, hinge  # noqa: E402
@@ -46,21 +45,6 @@ NOT_REAL = {"nan": NAN, "inf": math.inf, "10**400": 10**400, "str": "1", "None":
 LABELS = np.array(["al", "pvc"] * 10)
 POSITIONS = np.repeat(np.arange(10) / 100, 2)
 X = np.array([[1.0, -4.0], [2.0, 0.0], [0.5, 0.5]])
-
-
-@dataclass
-class Row:
-    """One row: ``call()`` must refuse naming one of ``names``, or return what ``same`` checks."""
-
-    surface: str
-    id: str
-    call: object
-    names: tuple = ()
-    same: object = None  # for a good input: same(result) -> bool
-
-    @property
-    def expect(self) -> str:
-        return "equal" if self.same is not None else "error"
 
 
 def _numbers(surface, param, make, extra=(), arrays=False):
@@ -572,16 +556,10 @@ def test_the_rows_are_distinct():
 def test_every_row_ends_in_a_clear_error_or_the_right_answer(tmp_path, monkeypatch, index):
     monkeypatch.chdir(tmp_path)  # a row that writes where it should not is seen here
     (tmp_path / "out").mkdir()
-    row = all_rows(tmp_path / "out")[index]
-    kind, what = outcome(Case(IDS[index], row.call, row.expect, row.names, row.same,
-                              timeout=10))
-    assert kind in ({"right"} if row.same is not None else {"clear"}), what
+    check_row(all_rows(tmp_path / "out")[index], IDS[index])
     assert sorted(os.listdir(tmp_path)) == ["out"]  # nothing written beside the folder
 
 
 def contract_rows() -> dict[str, list[str]]:
     """The surfaces these rows cover (read by the inventory test)."""
-    rows: dict[str, list[str]] = {}
-    for row in all_rows():
-        rows.setdefault(row.surface, []).append(row.id)
-    return rows
+    return rows_by_surface(all_rows())

@@ -88,10 +88,11 @@ class Row:
         return "equal" if self.same is not None else "error"
 
 
-def check_row(row: Row, row_id: str) -> None:
+def check_row(row: Row, row_id: str, timeout: float = 10.0) -> None:
     """Run ``row`` and assert its outcome: a clear error for a bad input, the right answer for a
-    good one."""
-    kind, what = outcome(Case(row_id, row.call, row.expect, row.names, row.same, timeout=10))
+    good one, within ``timeout`` seconds."""
+    kind, what = outcome(Case(row_id, row.call, row.expect, row.names, row.same,
+                              timeout=timeout))
     assert kind == ("right" if row.same is not None else "clear"), what
 
 

@@ -22,7 +22,7 @@ import numpy as np
 import pytest
 
 sys.path.insert(0, os.path.dirname(__file__))
-from contract_files_cases import Case, outcome  # noqa: E402
+from contract_files_cases import Row, check_row  # noqa: E402
 
 from ebantenna import Probe  # noqa: E402
 from ebantenna.paper import controls, experiments, mode_curves, plots  # noqa: E402
@@ -165,9 +165,7 @@ CASES = [(surface, *row) for surface, rows in ROWS.items() for row in rows]
 @pytest.mark.parametrize(("surface", "id_", "call", "names", "same"), CASES,
                          ids=[f"{s_.rsplit('.', 1)[-1]}:{i}" for s_, i, *_ in CASES])
 def test_every_row_ends_in_a_clear_error_or_the_right_answer(surface, id_, call, names, same):
-    expect = "error" if same is None else "equal"
-    kind, what = outcome(Case(id_, call, expect, names or (), same, timeout=10))
-    assert kind == ("clear" if same is None else "right"), what
+    check_row(Row(surface, id_, call, names or (), same), id_)
 
 
 def contract_rows() -> dict[str, list[str]]:

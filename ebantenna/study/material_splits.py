@@ -180,7 +180,7 @@ def compute(ds, feats, seed: int, *, random_svm, paper_ann, paper_distance,
                     else split_folds(kind, y, positions, seed=seed)) for kind in SPLITS}
     held = {kind: np.array([]) if kind == "random" else np.unique(positions[f[0][1]])
             for kind, f in folds.items()}
-    regions = _region_folds(positions, y, length, seed)
+    regions = _region_folds(folds["grouped"], positions, length)
     calls = {}  # key -> (function, args, kwargs), every fit of the step
     for kind in SPLITS:
         for c in CLASSIFIERS:
@@ -219,14 +219,13 @@ def compute(ds, feats, seed: int, *, random_svm, paper_ann, paper_distance,
         held_out)
 
 
-def _region_folds(positions, labels, probe_length: float, seed: int) -> list:
-    """The grouped split's folds that hold out a position of the distance network's linear
-    region. A fold whose held-out positions all lie beyond the region has nothing to test and
-    is left out (it happens only on designs with few positions)."""
+def _region_folds(folds, positions, probe_length: float) -> list:
+    """Those of the grouped split's ``folds`` that hold out a position of the distance network's
+    linear region. A fold whose held-out positions all lie beyond the region has nothing to
+    test and is left out (it happens only on designs with few positions)."""
     positions = np.asarray(positions)
     region = DISTANCE_LINEAR_REGION.region * probe_length
-    return [(tr, te) for tr, te in split_folds("grouped", labels, positions, seed=seed)
-            if np.any(positions[te] <= region)]
+    return [(tr, te) for tr, te in folds if np.any(positions[te] <= region)]
 
 
 def _pooled_distance(runs):

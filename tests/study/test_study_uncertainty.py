@@ -177,7 +177,7 @@ def test_the_held_out_distance_holds_out_every_region_position_once():
     y = np.tile(["brass", "steel", "pvc"], 19)
     X = np.column_stack([np.cos(8 * d), np.sin(8 * d)])
     X = X + np.random.default_rng(0).normal(0, 0.01, X.shape)
-    folds = _region_folds(d, y, 0.4, seed=0)
+    folds = _region_folds(split_folds("grouped", y, d, seed=0), d, 0.4)
     pooled = _pooled_distance([experiments.regress_distance_linear_region(
         X, d, probe_length=0.4, seed=0, split=f) for f in folds])
     region = d[d <= 0.8 * 0.4]

@@ -11,7 +11,11 @@ the memory the operating system reports as available, or less where the process'
 are lower (its address-space limit ``RLIMIT_AS``, as ``ulimit -v`` sets it, less what it has
 already mapped; a container's cgroup v2 ``memory.max``, less the group's ``memory.current``).
 Half, because the NumPy code that fills an array makes temporaries of about its size
-and the machine keeps running other programs. Set ``EBANTENNA_MEMORY_BUDGET`` (bytes, or a number
+and the machine keeps running other programs. With that default, a request of at most
+:data:`UNCHECKED_BYTES` (1 MiB) is allowed without reading the system's state: the reading (three
+files under ``/proc`` and ``/sys``) costs more than such an allocation, and the package's feature
+and simulation steps ask for many of them; a process with less than that left fails in Python's
+own allocations first. Set ``EBANTENNA_MEMORY_BUDGET`` (bytes, or a number
 with ``K``, ``M``, ``G`` or ``T``, powers of 1024) or call :func:`set_memory_budget` to choose it.
 """
 
@@ -21,10 +25,14 @@ import os
 import re
 
 __all__ = ["MemoryBudgetError", "memory_budget", "set_memory_budget", "check_allocation",
-           "DEFAULT_FRACTION"]
+           "DEFAULT_FRACTION", "UNCHECKED_BYTES"]
 
 #: The fraction of available memory one allocation may take, unless the budget is set.
 DEFAULT_FRACTION = 0.5
+
+#: With the default budget, requests up to this size (bytes) are allowed without reading the
+#: system's memory (see the module's text). A budget set by the user is checked at every size.
+UNCHECKED_BYTES = 2**20
 
 #: Used when the operating system does not report its available memory.
 _FALLBACK_AVAILABLE = 2 * 1024**3
@@ -179,6 +187,9 @@ def check_allocation(nbytes, *, parameter: str, what: str) -> None:
     """
     if not nbytes >= 0:  # NaN, or a negative size: an estimate gone wrong, never "fits"
         raise ValueError(f"{parameter}: the size of {what} is not a size in bytes, got {nbytes!r}")
+    if nbytes <= UNCHECKED_BYTES and _chosen is None and not os.environ.get(
+            "EBANTENNA_MEMORY_BUDGET"):
+        return  # the default budget: not worth reading the system's state for (module text)
     budget = memory_budget()
     if nbytes > budget:
         size = _size(float(nbytes)) if nbytes < 1024**5 else _petabytes(nbytes)

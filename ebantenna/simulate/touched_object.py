@@ -29,6 +29,8 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import threading
+from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -245,8 +247,7 @@ def _contact_cases(scene: Scene, probe: Probe, contact: float, rods: dict, pairs
     :class:`ContactCase` per distinct pair, in sorted order.
     """
     obj = scene.effect("object_modes")
-    sub = probe_substructure(probe, contact, hinge=scene.hinge, n_elements=scene.n_elements)
-    reduced = craig_bampton(sub, obj.probe_modes)
+    reduced = _probe_reduction(probe, contact, scene.hinge, scene.n_elements, obj.probe_modes)
     for name, preload in sorted(set(pairs)):
         rod, rod_reduced = rods[name]
         yield ContactCase(
@@ -265,10 +266,44 @@ def _contact_cases(scene: Scene, probe: Probe, contact: float, rods: dict, pairs
         )
 
 
+#: The probe's reductions kept for reuse in this process, least recently used first, at most
+#: :data:`_KEPT_BYTES` of arrays in all. A reduction depends only on the probe, the contact, the
+#: hinge and the mesh, and a study's data sets touch the same contacts again (the controls
+#: rebuild one design a dozen times, each effect switched off in turn, every one with the same
+#: positions): 537 distinct contacts there, about 155 KB each with the paper's mesh.
+_KEPT: OrderedDict = OrderedDict()
+_KEPT_BYTES = 128 * 2**20
+_kept_lock = threading.Lock()
+
+
+def _probe_reduction(probe: Probe, contact: float, hinge, n_elements: int, n_modes: int):
+    """The probe's Craig-Bampton reduction at ``contact``, computed once per process (see
+    :data:`_KEPT`); its arrays are read-only, as they are shared."""
+    key = (probe, contact, hinge, n_elements, n_modes)
+    with _kept_lock:
+        got = _KEPT.get(key)
+        if got is not None:
+            _KEPT.move_to_end(key)
+            return got[0]
+    sub = probe_substructure(probe, contact, hinge=hinge, n_elements=n_elements)
+    reduced = craig_bampton(sub, n_modes)
+    arrays = [reduced.stiffness, reduced.mass, reduced.basis, reduced.fixed_interface_omega,
+              sub.stiffness, sub.mass, sub.nodes, sub.free]
+    for a in arrays:
+        a.flags.writeable = False
+    with _kept_lock:
+        _KEPT[key] = (reduced, sum(a.nbytes for a in arrays))
+        total = sum(size for _, size in _KEPT.values())
+        while total > _KEPT_BYTES and len(_KEPT) > 1:
+            total -= _KEPT.popitem(last=False)[1][1]
+    return reduced
+
+
 def object_modes(scene: Scene, contacts, materials, preloads, show_progress, x_modes=True):
     """The models of the touched rod (the ``object_modes`` effect), coupled to the probe.
 
-    Each rod is reduced once, the probe once per distinct contact position; what is left per
+    Each rod is reduced once, the probe once per distinct contact position (and kept for the
+    process's later calls: a study's data sets touch the same positions); what is left per
     (position, material, preload) is each model of :data:`OBJECT_MODELS` the scene needs.
     Takes checked values. Returns the coupled modes (X), which case each signal uses, and the
     models stepped in time by name (``timed``, only those built).

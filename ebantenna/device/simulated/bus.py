@@ -4,7 +4,8 @@ Each transfer advances the :class:`~ebantenna.device.clock.VirtualClock` by its 
 bus plus a fixed per-transfer overhead, and sleeping advances it instantly, so a ten-second search
 takes a fraction of a second. Every transfer passes through one place, ``SimulatedBus._begin``,
 where the :class:`~ebantenna.device.simulated.faults.FaultInjector` may stall the host, reset the
-accelerometer, time out on a stuck bus or fail the transfer early; reads then go through
+accelerometer, make the host slow for a moment, time out on a stuck bus or fail the transfer
+early; reads then go through
 ``SimulatedBus._read`` and writes through ``SimulatedBus._write``, where a transfer may
 fail late (after the chip has done its part) or, for a read, come back short.
 
@@ -130,6 +131,7 @@ class SimulatedBus:
         injector = self.injector
         self.clock.advance(self.overhead + transfer_bits(nbytes) / self.bus_hz)
         self.clock.advance(injector.host_stall(self.clock.monotonic()))
+        self.clock.advance(injector.preemption(self.clock.monotonic()))
         now = self.clock.monotonic()
         self.transfers += 1
         if injector.chip_reset(now) and self.reset_address in self.devices:

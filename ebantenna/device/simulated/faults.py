@@ -26,7 +26,8 @@ adapter's errno from the ``ioctl``):
 
 Besides those, a :class:`Faults` can reset the accelerometer once (a brown-out: power-on
 registers, asleep), hold the whole bus stuck for a while (every transfer times out), stall the
-host once, run the accelerometer's sample clock off its nominal rate, let its sample-rate divider
+host once, make the host slow at moments (``"slow host"``: before a drawn share of transfers
+it loses the processor for a random time, as a loaded or throttled host does), run the accelerometer's sample clock off its nominal rate, let its sample-rate divider
 run free (the first sample of a FIFO segment then comes anywhere within a period of the enable,
 not one period after it), make it repeat its last byte when the FIFO is read past its end (as the
 real part does), make every transfer that times out hang for a stated time first (the adapter's
@@ -84,7 +85,7 @@ from ..i2c import MAX_TRANSFER_TIMEOUT
 from .mpu6050 import MAX_CLOCK_DRIFT, REGISTER_SPACE
 
 __all__ = ["Faults", "FaultInjector", "TRANSFER_FAULTS", "SILENT_FAULTS", "MAX_CLOCK_DRIFT",
-           "MAX_OVERCOUNT", "MAX_FAULT_DRIFT"]
+           "MAX_OVERCOUNT", "MAX_FAULT_DRIFT", "MAX_PREEMPTION"]
 
 #: Kinds of failed transfer the injector can draw (see the module notes).
 TRANSFER_FAULTS = ("nack", "eio", "etimedout", "eagain", "late", "short", "eintr", "overcount")
@@ -102,6 +103,8 @@ SILENT_FAULTS = ("write bit flip", "register lost", "foreign read", "undercount"
                  "clone", "stuck sensor", "second device", "pca brown-out")
 #: Largest sample-clock error the faults allow, relative (beyond MAX_CLOCK_DRIFT: a fault).
 MAX_FAULT_DRIFT = 0.5
+#: Longest time a slow host (``Faults.slow_host``) loses the processor at one moment, s.
+MAX_PREEMPTION = 10.0
 
 
 def _error(code: int) -> OSError:
@@ -182,6 +185,12 @@ class Faults:
     pca_flip_write : tuple of (int, int, int)
         ``(register, mask, n)`` as ``flip_write``, for the PCA9685 (e.g. a ``PRE_SCALE`` that
         does not land as written).
+    slow_host : tuple of (float, float)
+        ``(share, longest)``: before each transfer, with probability ``share`` (in [0, 1)), the
+        host loses the processor for a time drawn uniformly in ``[0, longest]`` s (``longest``
+        at most :data:`MAX_PREEMPTION`), from a generator of its own ("slow host"): a host
+        loaded by other programs or throttled, slow at moments, between the count and the data
+        of a drain as well as between drains. Empty (the default): never.
 
     Examples
     --------
@@ -213,6 +222,7 @@ class Faults:
     second_device: bool = False
     pca_brown_out_at: float | None = None
     pca_flip_write: tuple = ()
+    slow_host: tuple = ()
 
     def __post_init__(self):
         check_in_range("error_rate", self.error_rate, 0.0, 1.0, low_inclusive=True)
@@ -264,6 +274,17 @@ class Faults:
         if bad:
             raise ValueError(f"foreign_reads must read a 'byte', a 'sample' or a 'dump', got "
                              f"{bad[0]!r}")
+        if self.slow_host != ():
+            if not isinstance(self.slow_host, tuple | list) or len(self.slow_host) != 2:
+                raise TypeError("slow_host must be a pair (share, longest) or (), got "
+                                f"{self.slow_host!r}")
+            share = check_in_range("slow_host share", self.slow_host[0], 0.0, 1.0,
+                                   low_inclusive=True)
+            longest = check_in_range("slow_host longest", self.slow_host[1], 0.0,
+                                     MAX_PREEMPTION, low_inclusive=True, high_inclusive=True,
+                                     reason="a longer loss of the processor is a stall "
+                                     "(stall_at)")
+            object.__setattr__(self, "slow_host", (share, longest))
         under = tuple(sorted(check_nonnegative("undercount_at", t) for t in self.undercount_at))
         for name, value in (("flip_write", flips), ("register_lost", lost),
                             ("foreign_reads", reads), ("undercount_at", under)):
@@ -312,6 +333,8 @@ class FaultInjector:
         self._reset_done = False
         # the silent faults draw from their own generator: the transfer faults stay as they were
         self._bits = np.random.default_rng([check_int("seed", seed, minimum=0), 1])
+        # and the slow host from a third, so that asking for it changes no other draw
+        self._slow = np.random.default_rng([seed, 2])
         self._flips_done: dict[tuple, int] = {}
         self._pca_reset_done = False
         self._lost_done = self._reads_done = self._under_done = 0
@@ -331,6 +354,18 @@ class FaultInjector:
         self._stalled = True
         self.log.append((now, "stall"))
         return faults.stall_duration
+
+    def preemption(self, now: float) -> float:
+        """How long the host loses the processor before a transfer at virtual time ``now``, s
+        (``slow_host`` of :class:`Faults`; 0 most of the time). Each one is logged as
+        ``"slow host"``."""
+        if not self.faults.slow_host:
+            return 0.0
+        share, longest = self.faults.slow_host
+        if not self._slow.random() < share:
+            return 0.0
+        self.log.append((now, "slow host"))
+        return float(self._slow.uniform(0.0, longest))
 
     def chip_reset(self, now: float) -> bool:
         """Whether the accelerometer browns out before a transfer at virtual time ``now`` (once)."""

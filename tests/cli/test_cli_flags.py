@@ -56,7 +56,7 @@ ROWS = {
                                     (HARDWARE + ["--chip-reset-at", "0.1"],
                                      ["--chip-reset-at", "--simulated"])],
     "cli:acquire --clock-drift": [(ACQUIRE + ["--clock-drift", v], ["clock_drift"])
-                                  for v in ("nan", "1e300", "-0.6")],
+                                  for v in ("nan", "1e300", "-0.95")],
     "cli:acquire --free-running-divider": [(HARDWARE + ["--free-running-divider"],
                                             ["--free-running-divider", "--simulated"])],
     "cli:acquire --measured-pwm-hz": [(ACQUIRE + ["--measured-pwm-hz", v], ["measured_pwm_hz"])

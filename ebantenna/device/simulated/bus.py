@@ -41,6 +41,13 @@ _LAST_ADDRESS = 0x7F
 _I2C_M_RD = 0x0001
 
 
+def _byte_list(data) -> list[int]:
+    """``data`` (a sequence of bytes 0-255) as a list, or a clear error naming ``data``."""
+    if isinstance(data, str) or not hasattr(data, "__iter__"):
+        raise TypeError(f"data must be a sequence of bytes (0-255), got {type(data).__name__}")
+    return [check_int("data", value, minimum=0, maximum=0xFF) for value in data]
+
+
 class SimulatedBus:
     """The :class:`smbus2.SMBus` subset the drivers use, with simulated chips behind it.
 
@@ -174,8 +181,12 @@ class SimulatedBus:
         return data
 
     def _releases(self, address: int, register: int, data: list[int]) -> bool:
-        """Whether this write switches PCA9685 outputs off (for :attr:`Faults.release_fails`)."""
-        if address != DEFAULT_ADDRESS or not self.faults.release_fails:
+        """Whether this write switches PCA9685 outputs off and must fail (``release_fails``,
+        ``release_fails_until`` of :class:`Faults`)."""
+        until = self.faults.release_fails_until
+        failing = self.faults.release_fails or (
+            until is not None and self.clock.monotonic() < until)
+        if address != DEFAULT_ADDRESS or not failing:
             return False
         if self.devices[address].regs[PcaRegister.MODE1] & Mode1.SLEEP:
             return False  # not set up yet: the outputs are off anyway
@@ -227,20 +238,24 @@ class SimulatedBus:
     def read_i2c_block_data(self, i2c_addr: int, register: int, length: int, force=None):
         """Read ``length`` (at most 32) bytes from ``register`` on."""
         self._check(i2c_addr, register)
-        if length > SMBUS_BLOCK_MAX:
-            raise ValueError("Desired block length over 32 bytes")
+        length = check_int("length", length, minimum=0, maximum=SMBUS_BLOCK_MAX)
         return self._read(i2c_addr, register, length, length)
 
     def write_i2c_block_data(self, i2c_addr: int, register: int, data, force=None) -> None:
         """Write up to 32 bytes from ``register`` on."""
         self._check(i2c_addr, register)
-        data = [check_int("data", value, minimum=0, maximum=0xFF) for value in data]
+        data = _byte_list(data)
         if len(data) > SMBUS_BLOCK_MAX:
-            raise ValueError("Data length cannot exceed 32 bytes")
+            raise ValueError(f"data must hold at most {SMBUS_BLOCK_MAX} bytes (an SMBus block), "
+                             f"got {len(data)}")
         self._write(i2c_addr, register, data)
 
     def i2c_rdwr(self, *msgs) -> None:
         """Combined transfer: a one-byte register write followed by a read of any length."""
+        if len(msgs) == 2 and not all(hasattr(m, name) for m in msgs
+                                      for name in ("flags", "len", "addr", "buf")):
+            raise TypeError("msgs must be i2c_msg objects (smbus2.i2c_msg.write and .read), got "
+                            f"{', '.join(type(m).__name__ for m in msgs)}")
         if (len(msgs) != 2 or msgs[0].flags & _I2C_M_RD or not msgs[1].flags & _I2C_M_RD
                 or msgs[0].len != 1):
             raise ValueError("the simulated bus supports i2c_rdwr(write [register], read n) only")

@@ -629,6 +629,9 @@ class FifoStream:
         if discarded:
             cause += f" ({discarded} samples read and discarded)"
         self.pending = cause
+        if self.clock_refused is not None:  # nothing more is kept: no restart
+            self._note(cause, "stop")
+            return _empty_block()
         if reconfigure:
             self._note(cause, "reconfigure")
             self.unconfigured = True
@@ -705,7 +708,7 @@ class FifoStream:
         """The kept samples with slots in ``[first, stop)``: arrays ``slot``, ``segment``,
         ``position`` (within the segment), ``counts``, ``time`` (s, estimated, from the stream's
         first segment start), ``uncertainty`` (s: that of the sample's segment, widened for a
-        flagged one, see :meth:`_anchored`) and ``suspect`` (its timestamp flagged)."""
+        flagged one, see ``_anchored``) and ``suspect`` (its timestamp flagged)."""
         first = check_int("first", first, minimum=0)
         if stop is not None:
             stop = check_int("stop", stop, minimum=first)

@@ -112,7 +112,7 @@ class ServoGuard:
         Wait between those retries, s (> 0). Default 1 s.
     revive : callable, optional
         Called before each of those retries to let the bus be tried though it was declared
-        dead (:meth:`~ebantenna.device.i2c.BusHealth.revive` of the servo controller's bus).
+        dead (``BusHealth.revive`` of the servo controller's bus, :mod:`ebantenna.device.i2c`).
 
     Attributes
     ----------

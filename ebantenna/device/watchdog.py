@@ -89,8 +89,8 @@ def check_watchdog(
             f"no sample from the MPU-6050 for {silent:.3f} s (watchdog {watchdog:g} s); last "
             f"fault: {cause}")
     raise StreamStalledError(
-        f"{head}. {kept} samples were recorded before the stall and are kept in the error's "
-        "recording",
+        f"{head}. {kept} samples were recorded before the {'refusal' if refused else 'stall'} "
+        "and are kept in the error's recording",
         partial,
         cause,
     )

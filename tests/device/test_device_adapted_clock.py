@@ -127,3 +127,13 @@ def test_a_clock_whose_counts_reach_within_the_limit_is_adapted_to_as_measured(b
     assert rec.metadata["clock_rate_adapted"] and rec.metadata["clock_refused"] is None
     est = mpu.stream.estimator
     assert 1.0 / est.high <= rig.mpu.true_rate() <= 1.0 / est.low
+
+
+def test_acquire_says_the_clock_is_refused_and_its_rate(capsys):
+    from ebantenna.cli import main
+
+    with pytest.raises(SystemExit) as info:
+        main(["acquire", "--simulated", "--seed", "1", "--clock-drift", "0.7"])
+    err = capsys.readouterr().err.strip().splitlines()[-1]
+    assert info.value.code == 2 and "sample clock is refused" in err and "68.7 % fast" in err
+    assert "servos released" in err  # the servos let go before the error

@@ -63,6 +63,7 @@ from __future__ import annotations
 import errno
 import logging
 import math
+from array import array
 from dataclasses import asdict, dataclass
 
 import numpy as np
@@ -202,12 +203,14 @@ class FifoStream:
         self.starts: list[float] = []  # host time each segment started (its enable write ended)
         self.offsets: list[int] = []  # slot of each segment's first sample
         self.delivered: list[int] = []  # samples kept from each segment
-        self.drain_times: list[float] = []
-        self.drain_sizes: list[int] = []
+        # per kept drain, as compact arrays (a recording's memory per sample is budgeted)
+        self.drain_times = array("d")  # host time its count was read (ended)
+        self.drain_sizes = array("q")
         self._segment, self._position, self._slot, self._counts = [], [], [], []
         # each kept drain's own count, as (position of the newest sample the FIFO held when it
-        # was read, before, after): the anchor of the drain's samples (_anchored)
-        self._anchor: list[tuple[int, float, float]] = []
+        # was read, when its read began): with drain_times (when it ended), the anchor of the
+        # drain's samples (_anchored)
+        self._anchor = array("d")
         self.next_slot = 0
         self.overflows = 0
         self.discarded = 0  # samples read but dropped: their drain could not be confirmed
@@ -669,7 +672,7 @@ class FifoStream:
         self._position.append(first + np.arange(n))
         self._slot.append(slots)
         self._counts.append(counts)
-        self._anchor.append((produced - 1, before, after))
+        self._anchor.extend((produced - 1, before))
         self.delivered[seg] += n
         self._beyond.update(_seen_record(side=None))  # a drain kept: no run of refusals
         self.next_slot = int(slots[-1]) + 1
@@ -727,8 +730,9 @@ class FifoStream:
                 "position": np.concatenate(self._position),
                 "counts": np.concatenate(self._counts),
             }
-        out["anchor"] = (np.repeat(np.array(self._anchor), [len(c) for c in self._counts],
-                                   axis=0) if self._anchor else np.empty((0, 3)))
+        anchor = np.column_stack([np.frombuffer(self._anchor, np.float64).reshape(-1, 2),
+                                  np.frombuffer(self.drain_times, np.float64)])
+        out["anchor"] = np.repeat(anchor, [len(c) for c in self._counts], axis=0)
         stop = self.next_slot if stop is None else stop
         keep = (out["slot"] >= first) & (out["slot"] < stop)
         out = {k: v[keep] for k, v in out.items()}

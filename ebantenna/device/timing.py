@@ -288,6 +288,9 @@ class PeriodEstimator:
 def _observation(produced, before, after) -> tuple[int, float, float]:
     """A count's observation ``(produced, before, after)``, checked: ``produced`` an int >= 0,
     ``after`` a finite time not before ``before`` (which may be ``-inf``, nothing known)."""
+    if (type(produced) is int and produced >= 0 and type(before) is float
+            and type(after) is float and before <= after and -math.inf < after < math.inf):
+        return produced, before, after  # the stream's own counts: checked at once
     produced = check_int("produced", produced, minimum=0)
     after = check_real("after", after)
     before = check_real("before", before, allow_inf=True)

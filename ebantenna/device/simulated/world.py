@@ -109,7 +109,8 @@ class ServoMotion:
 
     def position(self, dt: float) -> float:
         """Where it will be ``dt`` seconds from now, degrees."""
-        dt = check_nonnegative("dt", dt)
+        if not (type(dt) is float and 0.0 <= dt < math.inf):
+            dt = check_nonnegative("dt", dt)
         if self.target is None:
             return self.angle
         step = self.rate * dt

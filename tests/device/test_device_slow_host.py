@@ -51,8 +51,11 @@ def test_the_slow_host_is_drawn_from_its_own_generator_and_replays_from_its_seed
     # asking for it changes none of the transfer faults' draws
     plain, slow = FaultInjector(Faults(error_rate=0.3), 7), FaultInjector(
         Faults(error_rate=0.3, slow_host=(0.5, 0.1)), 7)
-    assert [plain.draw() for _ in range(100)] == [
-        slow.preemption(0.0) * 0 or slow.draw() for _ in range(100)]
+    drawn = []
+    for _ in range(100):
+        slow.preemption(0.0)  # its own generator's draw, between the transfer faults' draws
+        drawn.append(slow.draw())
+    assert [plain.draw() for _ in range(100)] == drawn
     assert draws(Faults(), 7)[0] == [0.0] * 200
 
 

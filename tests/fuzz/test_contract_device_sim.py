@@ -33,6 +33,7 @@ from ebantenna.device.recording_session import (  # noqa: E402
     file_sha256,
     write_atomic,
 )
+from ebantenna.device.safety import MAX_HELD_RETRY, ServoGuard  # noqa: E402
 from ebantenna.device.servo import ServoCalibration  # noqa: E402
 from ebantenna.device.simulated import Faults, SimulatedRig  # noqa: E402
 from ebantenna.device.simulated.faults import FaultInjector  # noqa: E402
@@ -601,6 +602,21 @@ ROWS = {
         ("move-negative", lambda: session_time(Plan("p", ("brass",), (0.1,), 1), move=-1.0),
          ("move",), None),
     ],
+    "ebantenna.device.safety.ServoGuard": [
+        ("held_retry-negative", lambda: ServoGuard(lambda: None, VirtualClock(), held_retry=-1.0),
+         ("held_retry",), None),
+        ("held_retry-past-the-limit", lambda: ServoGuard(lambda: None, VirtualClock(),
+                                                         held_retry=MAX_HELD_RETRY + 1),
+         ("held_retry",), None),
+        ("held_interval-0", lambda: ServoGuard(lambda: None, VirtualClock(), held_interval=0.0),
+         ("held_interval",), None),
+        ("revive-int", lambda: ServoGuard(lambda: None, VirtualClock(), revive=3), ("revive",),
+         None),
+        # a release failing three times, then landing: retried while the fallback holds, and
+        # released over I2C after three one-second waits
+        ("retried-while-held", lambda: _held_release(fails=3), None,
+         lambda r: r == (True, "i2c", 4.0)),
+    ],
     "ebantenna.device.clock.VirtualClock.advance": [
         ("seconds-negative", lambda: VirtualClock().advance(-1.0), ("seconds",), None),
         ("seconds-nan", lambda: VirtualClock().advance(NAN), ("seconds",), None),
@@ -633,6 +649,27 @@ def _pantilt():
     unit.move(100.0, 80.0)
     unit.move(105.0, 85.0)
     return unit
+
+
+def _held_release(fails: int):
+    """A guard whose release fails ``fails`` times in a row past its first round, with a
+    fallback: (released, released_by, time spent after the first round, s)."""
+    from ebantenna.device.i2c import I2CError
+
+    clock = VirtualClock()
+    calls = {"n": 0, "first_round_end": None}
+
+    def release():
+        calls["n"] += 1
+        if calls["n"] <= 1 + fails:  # the first round has one attempt (attempts=1)
+            raise I2CError(5, "release refused")
+
+    def fallback():
+        calls["first_round_end"] = clock.monotonic()
+
+    guard = ServoGuard(release, clock, attempts=1, fallback=fallback)
+    guard.release_with_retries()
+    return guard.released, guard.released_by, clock.monotonic() - calls["first_round_end"]
 
 
 def _pca9685():

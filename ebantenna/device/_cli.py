@@ -95,6 +95,9 @@ def _simulated_options(parser) -> None:
                         "0 to 10 (Linux gives an adapter one second by default)")
     parser.add_argument("--release-fails", action="store_true",
                         help="simulated only: every write that switches the servos off fails")
+    parser.add_argument("--slow-host", type=float, nargs=2, metavar=("SHARE", "LONGEST"),
+                        help="simulated only: before a SHARE of the transfers (0 to 1) the host "
+                        "loses the processor for up to LONGEST seconds (0 to 10)")
     parser.add_argument("--bus-hz", type=float, default=RASPBERRY_PI_BUS_HZ, metavar="HZ",
                         help="simulated only: I2C clock, up to 3.4e6 (the High-speed mode) "
                         "(default 100000, a Raspberry Pi's)")
@@ -272,7 +275,8 @@ def _simulated(args, material: str, ratio: float) -> dict:
         args.inject_faults, chip_reset_at=args.chip_reset_at, stuck_at=stuck_at,
         stuck_duration=stuck_for, clock_drift=args.clock_drift,
         free_running_divider=args.free_running_divider, repeat_last_byte=args.repeat_last_byte,
-        transfer_timeout=args.transfer_timeout, release_fails=args.release_fails)
+        transfer_timeout=args.transfer_timeout, release_fails=args.release_fails,
+        slow_host=tuple(args.slow_host or ()))
     rig = SimulatedRig.for_contact(scene=args.scene, material=material, ratio=ratio,
                                    seed=args.seed, faults=faults)
     rig.bus.bus_hz = args.bus_hz
@@ -290,6 +294,7 @@ def _hardware(args) -> dict:
                       "--repeat-last-byte": args.repeat_last_byte,
                       "--transfer-timeout": args.transfer_timeout,
                       "--release-fails": args.release_fails,
+                      "--slow-host": args.slow_host,
                       "--bus-hz": args.bus_hz != RASPBERRY_PI_BUS_HZ}
     given = [name for name, value in simulated_only.items() if value]
     if given:

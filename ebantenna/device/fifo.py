@@ -63,11 +63,12 @@ from __future__ import annotations
 import errno
 import logging
 import math
+from array import array
 from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from .._validate import check_int
+from .._validate import check_int, check_real
 from ..chips.mpu6050 import (
     ACCEL_SAMPLE_BYTES,
     FifoEnable,
@@ -80,8 +81,9 @@ from .i2c import SMBUS_BLOCK_MAX, I2CError, SettingError
 from .timing import CLOCK_TOLERANCE, PeriodEstimator
 
 __all__ = ["PeriodEstimator", "StreamFault", "FifoBlock", "FifoStream", "CLOCK_TOLERANCE",
-           "MAX_CLOCK_ADAPT", "sensor_check", "PARITY_MIN_NOISE_LSB", "PREDICTOR_ORDER",
-           "ODD_SHARE_LIMIT", "PARITY_BLOCK", "PARITY_FALSE_ALARM", "MIN_PARITY_READINGS"]
+           "MAX_CLOCK_ADAPT", "REFUSE_AFTER", "sensor_check", "PARITY_MIN_NOISE_LSB",
+           "PREDICTOR_ORDER", "ODD_SHARE_LIMIT", "PARITY_BLOCK", "PARITY_FALSE_ALARM",
+           "MIN_PARITY_READINGS"]
 
 logger = logging.getLogger(__name__)
 
@@ -93,10 +95,14 @@ QUIET_SAMPLES = 3
 #: (one can be a count read wrong; two on one side point at the clock).
 CLOCK_SUSPECT_AFTER = 2
 #: Largest error of the sample clock the stream adapts to, relative to the nominal rate. A
-#: part whose counts show a rate further off is not sampling as configured (an MPU-6500-family
-#: clone at 8 kHz, a divider that did not land): its counts go on being refused, with the rate
-#: they show.
+#: part whose counts agree on a rate further off is not sampling as configured (an
+#: MPU-6500-family clone at 8 kHz, a divider that did not land): the stream refuses it, naming
+#: the rate, and keeps nothing more (``FifoStream.clock_refused``).
 MAX_CLOCK_ADAPT = 0.5
+#: Counts in a row, no drain kept between them, that must agree on a rate beyond
+#: :data:`MAX_CLOCK_ADAPT` before the stream refuses the clock: a corrupted count shows such a
+#: rate once, a part sampling at another rate at every count.
+REFUSE_AFTER = 3
 
 
 @dataclass(frozen=True)
@@ -116,6 +122,12 @@ class StreamFault:
     time: float
     cause: str
     action: str
+
+    def __post_init__(self):
+        check_real("time", self.time)
+        for name in ("cause", "action"):
+            if not isinstance(getattr(self, name), str):
+                raise TypeError(f"{name} must be a str, got {type(getattr(self, name)).__name__}")
 
     def to_dict(self) -> dict:
         """JSON-ready form."""
@@ -139,6 +151,20 @@ class FifoBlock:
     index: np.ndarray
     counts: np.ndarray
     lost: int
+
+    def __post_init__(self):
+        index, counts = self.index, self.counts
+        if not (isinstance(index, np.ndarray) and index.ndim == 1 and index.dtype.kind in "iu"):
+            raise TypeError(f"index must be a 1-D integer array of slots, got "
+                            f"{getattr(index, 'shape', type(index).__name__)}")
+        if not (isinstance(counts, np.ndarray) and counts.ndim == 2 and counts.shape[1] == 3
+                and counts.dtype.kind in "iu"):
+            raise TypeError(f"counts must be an (n, 3) integer array, got "
+                            f"{getattr(counts, 'shape', type(counts).__name__)}")
+        if index.size != counts.shape[0]:
+            raise ValueError(f"index must give one slot per sample ({counts.shape[0]}), got "
+                             f"{index.size}")
+        check_int("lost", self.lost, minimum=0)
 
 
 def _empty_block(lost: int = 0) -> FifoBlock:
@@ -177,9 +203,14 @@ class FifoStream:
         self.starts: list[float] = []  # host time each segment started (its enable write ended)
         self.offsets: list[int] = []  # slot of each segment's first sample
         self.delivered: list[int] = []  # samples kept from each segment
-        self.drain_times: list[float] = []
-        self.drain_sizes: list[int] = []
+        # per kept drain, as compact arrays (a recording's memory per sample is budgeted)
+        self.drain_times = array("d")  # host time its count was read (ended)
+        self.drain_sizes = array("q")
         self._segment, self._position, self._slot, self._counts = [], [], [], []
+        # each kept drain's own count, as (position of the newest sample the FIFO held when it
+        # was read, when its read began): with drain_times (when it ended), the anchor of the
+        # drain's samples (_anchored)
+        self._anchor = array("d")
         self.next_slot = 0
         self.overflows = 0
         self.discarded = 0  # samples read but dropped: their drain could not be confirmed
@@ -191,10 +222,15 @@ class FifoStream:
         # the hull and the common part of their brackets, the foreign reads they were blamed
         # on, the last one's count and time since its segment began; what the clock is adapted
         # to (_adapt). A fixed size, whatever the number of counts.
-        self.clock_seen = {side: {"counts": 0, "hull": (math.inf, 0.0),
-                                  "common": (0.0, math.inf), "blamed": 0, "last": (0, 0.0)}
-                           for side in ("more", "fewer")}
+        self.clock_seen = {side: _seen_record() for side in ("more", "fewer")}
+        # the same for brackets wholly beyond MAX_CLOCK_ADAPT, in a row on one side (a drain
+        # kept breaks the row): what _refuse decides from
+        self._beyond = _seen_record(side=None)
         self.clock_adapted = False  # the period's prior bracket took in what the counts showed
+        #: The least rate a FIFO found full too soon showed, Hz (0 until one did).
+        self.rate_at_least = 0.0
+        #: Why the stream refuses the chip's clock (a rate beyond MAX_CLOCK_ADAPT), or None.
+        self.clock_refused: str | None = None
         self._last_times = (0.0, 0.0)
         self.pending: str | None = "start"
         self.unconfigured = False  # a reset chip whose configuration is not written back yet
@@ -343,27 +379,71 @@ class FifoStream:
         newest last; ``foreign`` says whether it was counted as a foreign read.
 
         What the segment's observations and ``extra`` show of the period alone (no prior) is
-        kept when they agree with each other and lie within :data:`MAX_CLOCK_ADAPT` of the
-        nominal rate; after :data:`CLOCK_SUSPECT_AFTER` such counts on one side the stream
-        adapts to the clock (:meth:`_adapt`). Counts that disagree with each other are a count
-        read wrong or a reader that took samples, not a clock."""
+        kept when they agree with each other and bound it on both sides, as it is (a bracket
+        clipped to a limit would no longer hold the truth). When it reaches within
+        :data:`MAX_CLOCK_ADAPT` of the nominal rate, after :data:`CLOCK_SUSPECT_AFTER` such
+        counts on one side the stream adapts to the clock (:meth:`_adapt`). When it lies wholly
+        beyond, and :data:`REFUSE_AFTER` such counts in a row, with no drain kept between them,
+        agree on one rate, the stream refuses the clock (:meth:`_refuse`): a part sampling at
+        another rate shows it at every count, a corrupted count once. Counts that disagree with
+        each other are a count read wrong or a reader that took samples, not a clock."""
         side = "fewer" if fewer else "more"
         self.contradictions[side] += 1
         est = self.estimator
         low, high = est._seen(extra)
+        if not (0.0 < low < high < math.inf):
+            return  # they disagree, or bound the period from one side only
         cap_low = est.nominal / (1.0 + MAX_CLOCK_ADAPT)
         cap_high = est.nominal / (1.0 - MAX_CLOCK_ADAPT)
-        if low < high and low < cap_high and high > cap_low:
-            low, high = max(low, cap_low), min(high, cap_high)
-            seen = self.clock_seen[side]
-            n, _, after = extra[-1]
-            seen["counts"] += 1
-            seen["hull"] = min(seen["hull"][0], low), max(seen["hull"][1], high)
-            seen["common"] = max(seen["common"][0], low), min(seen["common"][1], high)
-            seen["blamed"] += foreign
-            seen["last"] = (n, after - self.starts[-1])
+        beyond = high <= cap_low or low >= cap_high
+        seen = self._beyond if beyond else self.clock_seen[side]
+        if beyond and seen["side"] != side:  # the other side's run is broken
+            seen.update(_seen_record(), side=side)
+        n, _, after = extra[-1]
+        seen["counts"] += 1
+        seen["hull"] = min(seen["hull"][0], low), max(seen["hull"][1], high)
+        seen["common"] = max(seen["common"][0], low), min(seen["common"][1], high)
+        seen["blamed"] += foreign
+        seen["last"] = (n, after - self.starts[-1])
+        if self.clock_refused is not None:
+            return
+        if not beyond:
             if seen["counts"] >= CLOCK_SUSPECT_AFTER:
                 self._adapt(side)
+        elif seen["counts"] >= REFUSE_AFTER and seen["common"][0] < seen["common"][1]:
+            self._refuse()
+
+    def _rate_text(self, seen: dict) -> tuple[str, float]:
+        """What the counts recorded in ``seen`` (a :func:`_seen_record`) showed, as a sentence
+        (samples since the FIFO started, the rate's bracket against the nominal one), and the
+        clock's error there, %."""
+        est = self.estimator
+        common = seen["common"]
+        p_low, p_high = common if common[0] < common[1] else seen["hull"]
+        fs = 1.0 / est.nominal
+        error = 50 * (1 / (p_high * fs) + 1 / (p_low * fs) - 2)  # %, the rate's middle
+        produced, since = seen["last"]
+        runs = f"{abs(error):.1f} % {'slow' if error < 0 else 'fast'}"
+        return (f"the chip produced {produced} samples in {1e3 * since:.1f} ms since the FIFO "
+                f"was started: its clock runs {runs} (a rate between {_hz(1 / p_high)} and "
+                f"{_hz(1 / p_low)}, not {_hz(fs)})"), error
+
+    def _refuse(self) -> None:
+        """The counts agree on a rate beyond :data:`MAX_CLOCK_ADAPT` of the nominal one: the
+        part is not sampling as configured. The period's prior takes in what they showed, so
+        that the samples kept so far state timestamps that hold (all flagged, the clock not
+        being adapted to), and the stream keeps nothing more (``clock_refused``; the watchdog
+        ends the run with it at once)."""
+        self.estimator.widen(*self._beyond["hull"])
+        text, error = self._rate_text(self._beyond)
+        rate = (1.0 + error / 100.0) / self.estimator.nominal
+        hint = ("; an MPU-6500-family clone answering WHO_AM_I 0x68 samples at 8 kHz with "
+                "DLPF_CFG = 0" if abs(rate / 8000.0 - 1) < 0.2 else "")
+        self.clock_refused = (
+            f"{text}: beyond the {100 * MAX_CLOCK_ADAPT:g} % the driver adapts to, the part is "
+            f"not sampling as configured (a divider or filter setting that did not land, a "
+            f"part of another family{hint}); no more samples are kept")
+        self._note(self.clock_refused, "stop")
 
     def _adapt(self, side: str) -> None:
         """Let the period's prior take in every bracket the counts of ``side`` showed, so that
@@ -378,20 +458,11 @@ class FifoStream:
         self.clock_adapted = True
         self.foreign -= seen["blamed"]
         seen["blamed"] = 0
-        # the rate all the counts agree on (their brackets' common part), else their hull
-        common = seen["common"]
-        p_low, p_high = common if common[0] < common[1] else (low, high)
-        fs = 1.0 / est.nominal
-        error = 50 * (1 / (p_high * fs) + 1 / (p_low * fs) - 2)  # %, the rate's middle
-        produced, since = seen["last"]
-        runs = f"{abs(error):.1f} % {'slow' if error < 0 else 'fast'}"
+        text, _ = self._rate_text(seen)
         self._note(
-            f"the chip produced {produced} samples in {1e3 * since:.1f} ms "
-            f"since the FIFO was started: its clock runs {runs} (a rate between "
-            f"{_hz(1 / p_high)} and {_hz(1 / p_low)}, not {_hz(fs)}), outside the "
-            f"{100 * est.tolerance:g} % tolerance; the period's bracket takes that rate in "
-            f"({1e3 * est.low:.4g} to {1e3 * est.high:.4g} ms) and narrows with the counts",
-            "adapt")
+            f"{text}, outside the {100 * est.tolerance:g} % tolerance; the period's bracket "
+            f"takes that rate in ({1e3 * est.low:.4g} to {1e3 * est.high:.4g} ms) and narrows "
+            "with the counts", "adapt")
 
     def _impossible(self, produced: int) -> str:
         """Which side of the rate's bracket an impossible count lies on."""
@@ -405,8 +476,31 @@ class FifoStream:
         return ("more than the chip can have produced (its clock faster than the "
                 f"{100 * self.estimator.tolerance:g} % tolerance, or a corrupted count)")
 
+    def _overflow_seen(self) -> str:
+        """A full FIFO at the count just read: the chip had produced at least the FIFO's samples
+        since the segment began. Sooner than any period in the bracket allows, that is a count
+        on the fast side of the clock's tolerance (an observation "``n`` samples by ``after``",
+        nothing said of ``before``), so that a clock too fast to be drained in time is still
+        measured and adapted to (:meth:`_contradicted`) instead of overflowing every poll."""
+        after = self._last_times[1]
+        produced = self.delivered[-1] + self.fifo_size // ACCEL_SAMPLE_BYTES
+        observation = (produced, -math.inf, after)
+        low, high = self.estimator.bounds(*observation)
+        if low < high:
+            return "FIFO full (overflow)"
+        self._contradicted(False, [observation])
+        # a full FIFO bounds the rate from below only: too little to adapt the timestamps to,
+        # enough for the poll to follow (MPU6050.fastest_rate), until drains that do not
+        # overflow bracket the rate on both sides
+        self.rate_at_least = max(self.rate_at_least, 1.0 / self.estimator._seen([observation])[1])
+        return (f"FIFO full (overflow) {1e3 * (after - self.starts[-1]):.1f} ms after the FIFO "
+                f"was started: sooner than the chip can fill it at the "
+                f"{100 * self.estimator.tolerance:g} % tolerance (its clock runs fast)")
+
     def drain(self) -> FifoBlock:
         """Drain every whole sample waiting; on any fault restart and return what was kept."""
+        if self.clock_refused is not None:  # a part not sampling as configured: nothing kept
+            return _empty_block()
         if self.unconfigured:  # never restart a chip whose rate and range are not set again
             self._try_configure()
             if self.unconfigured:
@@ -420,7 +514,7 @@ class FifoStream:
         except OSError as exc:
             return self._fail(_cause(_as_i2c_error(exc)))
         if refused == "overflow":
-            return self._fail("FIFO full (overflow)", overflow=True)
+            return self._fail(self._overflow_seen(), overflow=True)
         if refused is not None:
             return self._diagnose(refused)
         if count == 0:
@@ -538,6 +632,9 @@ class FifoStream:
         if discarded:
             cause += f" ({discarded} samples read and discarded)"
         self.pending = cause
+        if self.clock_refused is not None:  # nothing more is kept: no restart
+            self._note(cause, "stop")
+            return _empty_block()
         if reconfigure:
             self._note(cause, "reconfigure")
             self.unconfigured = True
@@ -575,7 +672,9 @@ class FifoStream:
         self._position.append(first + np.arange(n))
         self._slot.append(slots)
         self._counts.append(counts)
+        self._anchor.extend((produced - 1, before))
         self.delivered[seg] += n
+        self._beyond.update(_seen_record(side=None))  # a drain kept: no run of refusals
         self.next_slot = int(slots[-1]) + 1
         self.last_progress = after
         self.drain_times.append(after)
@@ -584,6 +683,7 @@ class FifoStream:
 
     def host_time(self, slot: int) -> float:
         """Host time at which the sample in ``slot`` of the current segment was taken, s."""
+        slot = check_int("slot", slot, minimum=0)
         seg = len(self.starts) - 1
         j = slot - self.offsets[seg]
         t0, _ = self.estimator.timestamps(seg, max(j, 0))
@@ -610,7 +710,11 @@ class FifoStream:
     def kept(self, first: int = 0, stop: int | None = None) -> dict:
         """The kept samples with slots in ``[first, stop)``: arrays ``slot``, ``segment``,
         ``position`` (within the segment), ``counts``, ``time`` (s, estimated, from the stream's
-        first segment start) and ``uncertainty`` (s, that of the sample's segment)."""
+        first segment start), ``uncertainty`` (s: that of the sample's segment, widened for a
+        flagged one, see ``_anchored``) and ``suspect`` (its timestamp flagged)."""
+        first = check_int("first", first, minimum=0)
+        if stop is not None:
+            stop = check_int("stop", stop, minimum=first)
         if not self._slot:
             slot = np.empty(0, np.int64)
             out = {
@@ -626,6 +730,9 @@ class FifoStream:
                 "position": np.concatenate(self._position),
                 "counts": np.concatenate(self._counts),
             }
+        anchor = np.column_stack([np.frombuffer(self._anchor, np.float64).reshape(-1, 2),
+                                  np.frombuffer(self.drain_times, np.float64)])
+        out["anchor"] = np.repeat(anchor, [len(c) for c in self._counts], axis=0)
         stop = self.next_slot if stop is None else stop
         keep = (out["slot"] >= first) & (out["slot"] < stop)
         out = {k: v[keep] for k, v in out.items()}
@@ -637,7 +744,48 @@ class FifoStream:
         out["uncertainty"] = uncertainty[out["segment"]]
         out["suspect"] = (np.ones(out["segment"].shape, bool) if self.timing_flagged_all else
                           np.isin(out["segment"], sorted(self.suspect)))
+        if out["suspect"].any():
+            self._anchored(out)
+        del out["anchor"]
         return out
+
+    def _anchored(self, out: dict) -> None:
+        """Timestamps of flagged samples that hold whatever contradicted their segment.
+
+        A flagged segment's counts contradict each other: samples taken by another reader
+        (every later position of the segment is then that many samples late), or a count read
+        low (its own observation false). Either way the segment's timestamps, which rest on all
+        its counts and on its positions, can be wrong by whole periods. Each flagged sample
+        is given the hull of three intervals, one of which holds its true time in each case:
+        its segment's timestamp and uncertainty; the *enable's* anchor (the segment began
+        between ``before`` and ``after`` of its enable, its first sample at most a period
+        later: ``t_j`` in ``(b0 + j T_low, a0 + (j + 1) T_high]``), which no count can
+        mislead; and its *drain's* anchor (the newest of the ``n`` samples the FIFO held when
+        the drain's count was read, between ``b`` and ``a``, was taken in ``(b - T, a]``; the
+        sample ``k`` before it ``k`` periods earlier; one more period of slack for a count read
+        one sample low), which no sample taken before that count can mislead. ``T`` ranges
+        over the bracket the other segments give (the prior, when every segment is flagged).
+        The timestamp stays on its segment's grid (a recording's steps stay regular); its
+        uncertainty grows to reach both ends of the hull.
+        """
+        flagged = out["suspect"]
+        est = self.estimator
+        t_low, t_high = est.prior if self.timing_flagged_all else (est.low, est.high)
+        origin = self.starts[0]
+        seg = out["segment"][flagged]
+        j = out["position"][flagged].astype(np.float64)
+        enable = np.array([est.segments[k][0][1:] for k in range(len(self.starts))])
+        b0, a0 = enable[seg, 0] - origin, enable[seg, 1] - origin
+        lo = np.minimum(out["time"][flagged] - out["uncertainty"][flagged], b0 + j * t_low)
+        hi = np.maximum(out["time"][flagged] + out["uncertainty"][flagged],
+                        a0 + (j + 1) * t_high)
+        newest, b, a = out["anchor"][flagged].T
+        k = newest - j
+        lo = np.minimum(lo, b - origin - (k + 2) * t_high)
+        hi = np.maximum(hi, a - origin - k * t_low)
+        time = out["time"][flagged]
+        out["uncertainty"] = out["uncertainty"].copy()
+        out["uncertainty"][flagged] = np.maximum(time - lo, hi - time)
 
     def recording(self, first: int, stop: int, *, metadata: dict | None = None):
         """The stream's samples in slots ``[first, stop)`` as a
@@ -658,6 +806,8 @@ class FifoStream:
         -------
         Recording
         """
+        first = check_int("first", first, minimum=0)
+        stop = check_int("stop", stop, minimum=first + 1)
         mpu = self.mpu
         kept = self.kept(first, stop)
         if kept["slot"].size == 0:
@@ -713,6 +863,7 @@ class FifoStream:
             "fifo_counts_rejected": est.rejected,
             "clock_outside_tolerance_suspected": self.clock_suspect,
             "clock_rate_adapted": self.clock_adapted,
+            "clock_refused": self.clock_refused,
             "clock_error_estimated": 1.0 / (est.period * (1.0 / est.nominal)) - 1.0,
             "samples_discarded": self.discarded,
             "foreign_reads_detected": self.foreign,
@@ -865,6 +1016,15 @@ def _unpredictable(x: np.ndarray) -> float:
     coef, *_ = np.linalg.lstsq(past, x[p:], rcond=None)
     residual = x[p:] - past @ coef
     return float(np.sqrt(residual @ residual / (rows - p - 1)))
+
+
+def _seen_record(**extra) -> dict:
+    """An empty record of what contradicting counts showed of the period (see
+    :meth:`FifoStream._contradicted`): how many, the hull and the common part of their
+    brackets, the foreign reads they were blamed on, the last one's count and time since its
+    segment began."""
+    return {"counts": 0, "hull": (math.inf, 0.0), "common": (0.0, math.inf), "blamed": 0,
+            "last": (0, 0.0), **extra}
 
 
 def _hz(rate: float) -> str:

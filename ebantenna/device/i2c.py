@@ -138,6 +138,7 @@ def transfer_time(nbytes: int, bus_hz: float = RASPBERRY_PI_BUS_HZ,
     >>> round(transfer_time(30) * 1e3, 2)  # ms: five FIFO samples in one SMBus block at 100 kHz
     2.95
     """
+    overhead = check_nonnegative("overhead", overhead)
     return overhead + transfer_bits(nbytes) / check_positive("bus_hz", bus_hz)
 
 
@@ -237,6 +238,12 @@ class BusHealth:
 
     def succeeded(self) -> None:
         """A transfer succeeded: the bus answers."""
+        self.failing_since = None
+
+    def revive(self) -> None:
+        """Let the next transfer try the bus though it was declared dead (``dead_after``): for
+        a transfer worth its timeout, the release of the servos retried while the ``OE`` pin
+        holds their outputs off. A failure declares it failing again from that transfer on."""
         self.failing_since = None
 
     def failing_for(self, now: float) -> float:

@@ -191,6 +191,7 @@ class MPU6050:
                                 use_rdwr=use_rdwr)
         #: The running FIFO stream (None before :meth:`start_fifo`).
         self.stream: FifoStream | None = None
+        self._shortened = None  # the poll wait last announced as shortened (poll_wait)
         #: The part found by :meth:`check_identity` (an MPU-6050 until then).
         self.model = CHIP_MODELS[WHO_AM_I_VALUE]
         #: The I2C clock assumed for the poll-interval limit, Hz.
@@ -395,12 +396,16 @@ class MPU6050:
         >>> MPU6050(rig.bus, clock=rig.clock).to_acceleration([2048, -32768]).round(3)
         array([  9.807, -156.906])
         """
-        counts = np.asarray(counts, dtype=np.float64)
+        try:
+            counts = np.asarray(counts, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise TypeError(f"counts must be 16-bit register values (integers), got "
+                            f"{type(counts).__name__}") from None
         limit = np.iinfo(np.int16)
-        bad = ~((counts >= limit.min) & (counts <= limit.max))  # NaN compares False
-        if bad.any():
-            raise ValueError(f"counts must be 16-bit register values in [{limit.min}, "
-                             f"{limit.max}], got {counts[bad].flat[0]!r}")
+        bad = ~((counts >= limit.min) & (counts <= limit.max) & (counts == np.round(counts)))
+        if bad.any():  # NaN compares False
+            raise ValueError(f"counts must be 16-bit register values, whole numbers in "
+                             f"[{limit.min}, {limit.max}], got {counts[bad].flat[0]!r}")
         return counts * (STANDARD_GRAVITY / self.config.lsb_per_g)
 
     @staticmethod
@@ -454,8 +459,9 @@ class MPU6050:
         A drain loop sleeps ``P``, then reads the ``N`` samples waiting, ``c`` seconds each on
         the bus, plus ``F`` seconds of fixed transfers (the count before and after the data,
         and the settings read back, :meth:`read_registers`) and ``busy`` seconds of other
-        traffic (servo updates). Samples arrive at up to ``r = fs (1 + tolerance)`` while it
-        sleeps *and* while it drains, so ``N = r (P + F + busy + N c)``: ``N = r (P + F +
+        traffic (servo updates). Samples arrive at up to ``r`` while it sleeps *and* while it
+        drains (``r``: :meth:`fastest_rate`, ``fs (1 + tolerance)`` until a running stream has
+        measured a faster clock), so ``N = r (P + F + busy + N c)``: ``N = r (P + F +
         busy) / (1 - r c)``. Keeping ``N`` three samples below the
         FIFO's size (Linux's ``inv_mpu6050`` keeps the same margin) gives
         ``P < N_max (1 - r c) / r - F - busy``. When ``r c >= 1`` the bus cannot keep up at all.
@@ -477,12 +483,43 @@ class MPU6050:
         132.2
         """
         busy = check_nonnegative("busy", busy)
-        rate = self.config.fs * (1.0 + CLOCK_TOLERANCE)
+        rate = self.fastest_rate()
         per_sample = transfer_time(FIFO_CHUNK, self.bus_hz) / (FIFO_CHUNK // SAMPLE_BYTES)
         settings = 5 if self.model.accel_config2 else 4
         fixed = sum(transfer_time(n, self.bus_hz) for n in (2, 2, settings, 1, 3, 2))
         most = self.fifo_size // SAMPLE_BYTES - FIFO_MARGIN
         return most * (1.0 - rate * per_sample) / rate - fixed - busy
+
+    def fastest_rate(self) -> float:
+        """The fastest the chip can be sampling, Hz: ``fs (1 + tolerance)``, or, once the
+        running stream has adapted to a clock outside that tolerance
+        (:class:`~ebantenna.device.fifo.FifoStream`), the fastest rate its period's prior
+        bracket now holds (the counts measured it). A FIFO found full sooner than the bracket
+        allows shows a least rate (``rate_at_least``), which counts too: the poll then follows
+        the fast clock until drains that do not overflow bracket it."""
+        rate = self.config.fs * (1.0 + CLOCK_TOLERANCE)
+        if self.stream is not None:
+            stream = self.stream
+            rate = max(rate, 1.0 / stream.estimator.prior[0], stream.rate_at_least)
+        return rate
+
+    def poll_wait(self, poll_interval: float, busy: float = 0.0) -> float:
+        """How long a drain loop polling every ``poll_interval`` s should sleep now, s: the
+        interval itself while it stays below :meth:`max_poll_interval` (which follows the clock
+        the stream measured), else nine tenths of that limit (0 when the bus cannot keep up at
+        all), said once at WARNING. ``busy``: other bus time per poll, s."""
+        poll_interval = check_positive("poll_interval", poll_interval)
+        limit = self.max_poll_interval(busy)
+        if poll_interval < limit:
+            return poll_interval
+        wait = max(0.9 * limit, 0.0)
+        if self._shortened != round(wait, 6):
+            self._shortened = round(wait, 6)
+            logger.warning(
+                "the %s samples at up to %s Hz (its clock, as the FIFO counts measured it): "
+                "the poll interval is shortened from %.4g to %.4g s so that the FIFO cannot "
+                "overflow", self.part, f"{self.fastest_rate():.4g}", poll_interval, wait)
+        return wait
 
     def check_poll_interval(self, poll_interval: float, busy: float = 0.0) -> float:
         """Return ``poll_interval`` (s) if the FIFO, drained that often, cannot overflow (see

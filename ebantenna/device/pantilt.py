@@ -134,6 +134,10 @@ class PanTilt:
         pulse of the held angle (to within one count).
         """
         back_off = check_nonnegative("back_off", back_off)
+        if at is not None:
+            if not isinstance(at, tuple | list) or len(at) != 2:
+                raise TypeError(f"at must be a (pan, tilt) pair of angles or None, got {at!r}")
+            at = (check_real("at pan", at[0]), check_real("at tilt", at[1]))
         self.released = False
         ok = True
         for k, servo in enumerate((self.pan, self.tilt)):
@@ -389,9 +393,10 @@ def search_and_record(mpu: MPU6050, pantilt: PanTilt, config: SearchConfig | Non
     busy = 2 * transfer_time(len(Led), mpu.bus_hz) + transfer_time(2, mpu.bus_hz) + (
         transfer_time(1, mpu.bus_hz))
     mpu.check_poll_interval(config.poll_interval, busy=busy)
-    search = _Search(mpu, pantilt, config, labels)
+    search = _Search(mpu, pantilt, config, labels, busy)
     guard = ServoGuard(pantilt.release, mpu.clock,
-                       fallback=None if output_enable is None else output_enable.disable_outputs)
+                       fallback=None if output_enable is None else output_enable.disable_outputs,
+                       revive=pantilt.pca.device.health.revive)
     try:
         with guard:
             search.run()
@@ -404,8 +409,9 @@ def search_and_record(mpu: MPU6050, pantilt: PanTilt, config: SearchConfig | Non
 class _Search:
     """The steps of one :func:`search_and_record`: sweep and watch, stop on contact, record."""
 
-    def __init__(self, mpu, pantilt, config, labels):
+    def __init__(self, mpu, pantilt, config, labels, busy=0.0):
         self.mpu, self.pantilt, self.config, self.labels = mpu, pantilt, config, labels
+        self.busy = busy  # the servos' bus time per poll, s
         fs = mpu.config.fs
         self.pre = int(round(config.pre_trigger * fs))
         self.post = int(round(config.duration * fs))
@@ -439,7 +445,9 @@ class _Search:
                 window = (None if self.trigger is None
                           else (max(self.trigger - self.pre, 0), self.trigger + self.post))
                 check_watchdog(mpu, config.watchdog, window=window, metadata=self.labels)
-                clock.sleep(config.poll_interval)
+                # the poll follows the clock the stream measured (a fast one fills the FIFO
+                # sooner than the check at the start assumed)
+                clock.sleep(mpu.poll_wait(config.poll_interval, self.busy))
         except (KeyboardInterrupt, SignalReceived) as exc:
             # Interrupted after the contact: hand back what the window holds so far, marked.
             if self.trigger is not None:

@@ -88,6 +88,16 @@ class Touch:
     repetition: int
     simulation: dict = field(default_factory=dict, compare=False)
 
+    def __post_init__(self):
+        check_int("index", self.index, minimum=0)
+        if not isinstance(self.material, str) or not self.material:
+            raise TypeError(f"material must be a material's name, got {self.material!r}")
+        check_positive("contact", self.contact)
+        check_int("repetition", self.repetition, minimum=0)
+        if not isinstance(self.simulation, dict):
+            raise TypeError(f"simulation must be a dict, got "
+                            f"{type(self.simulation).__name__}")
+
     @property
     def key(self) -> str:
         """The name of the touch in the manifest: ``material/contact in m/repetition``."""
@@ -95,6 +105,7 @@ class Touch:
 
     def labels(self, probe_length: float) -> dict:
         """The labels a recording of this touch carries (JSON values)."""
+        probe_length = check_positive("probe_length", probe_length)
         return {"material": self.material, "contact": self.contact,
                 "ratio": self.contact / probe_length, "repetition": self.repetition,
                 "touch": self.index, "touch_key": self.key}
@@ -197,6 +208,11 @@ class Plan:
         ``where`` names the file in the messages; with ``complete`` every key of
         :meth:`to_dict` is required (a session's manifest stores them all).
         """
+        if not isinstance(where, str):
+            raise TypeError(f"where must be a str (the file's name), got {type(where).__name__}")
+        if not isinstance(data, dict):
+            raise ValueError(f"{where}: a plan must be a table of settings, got "
+                             f"{type(data).__name__}")
         require(data, ("name", "materials", "contacts_m", "repetitions")
                 + (("probe_length", "search") if complete else ()), where)
         unknown = sorted(str(k) for k in set(data) - set(_KEYS))

@@ -111,6 +111,13 @@ class Connection:
     output_enable: object = None
     simulated: object = None
 
+    def __post_init__(self):
+        if not callable(getattr(self.bus, "read_byte_data", None)):
+            raise TypeError(f"bus must be an open I2C bus, got {type(self.bus).__name__}")
+        if not callable(getattr(self.clock, "monotonic", None)):
+            raise TypeError(f"clock must be a clock (with monotonic()), got "
+                            f"{type(self.clock).__name__}")
+
     def close(self) -> None:
         """Close the bus and the OE line."""
         self.bus.close()
@@ -144,7 +151,10 @@ def write_atomic(path, write) -> Path:
     """Write a file whole or not at all: ``write(tmp)`` fills a temporary file beside ``path``,
     which is flushed to disk and renamed over ``path`` (a reader sees the old file or the new
     one, never half of one, whenever the power fails)."""
-    path = Path(path)
+    if not callable(write):
+        raise TypeError(f"write must be callable (a temporary path) -> None, got "
+                        f"{type(write).__name__}")
+    path = Path(check_path("path", path))
     tmp = path.with_name(f"{TEMPORARY_PREFIX}{os.getpid()}-{path.name}")
     try:
         write(tmp)

@@ -20,11 +20,12 @@ import logging
 import signal
 import threading
 
-from .._validate import check_int, check_nonnegative, check_positive
+from .._validate import check_in_range, check_int, check_nonnegative, check_positive
 from .i2c import BusDeadError, I2CError
 from .oe import OE_ONLY
 
-__all__ = ["ServoGuard", "SignalReceived", "GUARDED_SIGNALS", "ReleaseError", "signals_held"]
+__all__ = ["ServoGuard", "SignalReceived", "GUARDED_SIGNALS", "ReleaseError", "signals_held",
+           "MAX_HELD_RETRY"]
 
 logger = logging.getLogger(__name__)
 
@@ -32,6 +33,10 @@ logger = logging.getLogger(__name__)
 GUARDED_SIGNALS = tuple(
     getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name)
 )
+
+#: Longest time a :class:`ServoGuard` retries the I2C release while the ``OE`` pin holds the
+#: outputs off, s: the operator is told to cut the supply only after it.
+MAX_HELD_RETRY = 60.0
 
 
 @contextlib.contextmanager
@@ -95,8 +100,19 @@ class ServoGuard:
     fallback : callable, optional
         A way to switch the outputs off that needs no I2C, called when the I2C release failed
         (e.g. :meth:`~ebantenna.device.oe.OutputEnable.disable_outputs`). It holds them off
-        only while the program runs (:data:`~ebantenna.device.oe.OE_ONLY`): not a release,
-        and :class:`ReleaseError` is raised all the same.
+        only while the program runs (:data:`~ebantenna.device.oe.OE_ONLY`): not a release.
+        While it holds them, the I2C release is tried again, every ``held_interval`` seconds
+        for ``held_retry`` seconds (the servos are limp meanwhile, so waiting costs nothing
+        but time); if it still fails, :class:`ReleaseError` is raised all the same.
+    held_retry : float
+        How long the I2C release is retried while the fallback holds the outputs off, s, at
+        most :data:`MAX_HELD_RETRY`. Default 10 s: a bus that a brown-out or a stuck slave
+        held for a few seconds. 0: not retried.
+    held_interval : float
+        Wait between those retries, s (> 0). Default 1 s.
+    revive : callable, optional
+        Called before each of those retries to let the bus be tried though it was declared
+        dead (``BusHealth.revive`` of the servo controller's bus, :mod:`ebantenna.device.i2c`).
 
     Attributes
     ----------
@@ -122,13 +138,20 @@ class ServoGuard:
     """
 
     def __init__(self, release, clock, *, attempts: int = 6, delay: float = 0.05,
-                 deadline: float = 2.0, fallback=None):
+                 deadline: float = 2.0, fallback=None, held_retry: float = 10.0,
+                 held_interval: float = 1.0, revive=None):
         if not callable(release):
             raise TypeError(f"release must be callable, got {type(release).__name__}")
-        if fallback is not None and not callable(fallback):
-            raise TypeError(f"fallback must be callable or None, got {type(fallback).__name__}")
+        for name, value in (("fallback", fallback), ("revive", revive)):
+            if value is not None and not callable(value):
+                raise TypeError(f"{name} must be callable or None, got {type(value).__name__}")
         self.release = release
         self.fallback = fallback
+        self.revive = revive
+        self.held_retry = check_in_range(
+            "held_retry", held_retry, 0.0, MAX_HELD_RETRY, low_inclusive=True,
+            high_inclusive=True, reason="the operator waits for the instruction meanwhile")
+        self.held_interval = check_positive("held_interval", held_interval)
         self.clock = clock
         self.attempts = check_int("attempts", attempts, minimum=1)
         self.delay = check_nonnegative("delay", delay)
@@ -185,9 +208,40 @@ class ServoGuard:
             return None
         raise AssertionError("unreachable")  # pragma: no cover
 
+    def _retry_while_held(self, last: I2CError) -> I2CError | None:
+        """While the fallback holds the outputs off, try the I2C release again every
+        ``held_interval`` s for ``held_retry`` s (no attempt starts that would end later,
+        judged by the longest so far); returns the last error, None once one succeeded."""
+        first = self.clock.monotonic()
+        longest = 0.0
+        tries = 0
+        while True:
+            spent = self.clock.monotonic() - first
+            if spent + self.held_interval + longest > self.held_retry:
+                if tries:
+                    logger.error("releasing the servos over I2C failed %d more times in %.1f s "
+                                 "while the OE pin held their outputs off", tries, spent)
+                return last
+            self.clock.sleep(self.held_interval)
+            if self.revive is not None:
+                self.revive()
+            began = self.clock.monotonic()
+            tries += 1
+            try:
+                self.release()
+            except I2CError as exc:
+                longest = max(longest, self.clock.monotonic() - began)
+                last = exc
+                continue
+            logger.warning("the servos were released over I2C at the %d. retry, %.1f s after "
+                           "the OE pin switched their outputs off", tries,
+                           self.clock.monotonic() - first)
+            return None
+
     def release_with_retries(self) -> None:
         """Release over I2C, retrying a failure within ``deadline`` seconds; if it still failed,
-        switch the outputs off through ``fallback`` for as long as the program runs, and raise
+        switch the outputs off through ``fallback`` for as long as the program runs and retry
+        the release for ``held_retry`` seconds more; if that fails too, raise
         :class:`ReleaseError` (the servos are not released: at exit the fallback lets go)."""
         last = self._release_over_i2c()
         if last is None:
@@ -201,6 +255,11 @@ class ServoGuard:
                 logger.error("switching the outputs off without I2C failed too: %s", exc)
             else:
                 held = True
+        if held:
+            last = self._retry_while_held(last)
+            if last is None:
+                self.released, self.released_by = True, "i2c"
+                return
         self.released, self.released_by = False, "oe" if held else None
         state = OE_ONLY if held else "they may still be powered"
         raise ReleaseError(

@@ -14,7 +14,7 @@ from __future__ import annotations
 import logging
 import math
 
-from .._validate import check_in_range, check_int, check_positive
+from .._validate import check_in_range, check_int, check_positive, check_real
 
 __all__ = ["PeriodEstimator", "CLOCK_TOLERANCE"]
 
@@ -102,17 +102,23 @@ class PeriodEstimator:
     def begin(self, *, before: float, after: float) -> None:
         """A new segment: the FIFO was enabled by a write made between host times ``before`` and
         ``after`` (s)."""
+        _, before, after = _observation(0, before, after)
         self.segments.append([(0, before, after)])
         self._own.append((0.0, math.inf))
 
     def bounds(self, produced: int, before: float, after: float) -> tuple[float, float]:
         """The bracket ``(low, high)`` of the period, s, if ``produced`` samples of the current
         segment were counted between host times ``before`` and ``after``; empty (``low >=
-        high``) when the count contradicts what is known."""
-        return _narrowed_by(self.segments[-1], (produced, before, after), self.low, self.high)
+        high``) when the count contradicts what is known. ``before`` may be ``-inf``: nothing
+        known of when the sample after the count came (a full FIFO)."""
+        observation = _observation(produced, before, after)
+        if not self.segments:
+            raise ValueError("a count needs a segment begun (begin()), and none is yet")
+        return _narrowed_by(self.segments[-1], observation, self.low, self.high)
 
     def check(self, *, produced: int, before: float, after: float) -> bool:
         """Whether the count is possible; if not it is rejected: logged and counted."""
+        produced, before, after = _observation(produced, before, after)
         low, high = self.bounds(produced, before, after)
         if low < high:
             return True
@@ -129,6 +135,9 @@ class PeriodEstimator:
         ``start`` (s), if given, is the instant the count's segment began, for a segment whose
         enable is known to that precision: a new segment unless the current one began then.
         """
+        produced, before, after = _observation(produced, before, after)
+        if start is not None:
+            start = check_real("start", start)
         if start is not None and (not self.segments or self.segments[-1][0] != (0, start, start)):
             self.begin(before=start, after=start)
         if not self.check(produced=produced, before=before, after=after):
@@ -230,6 +239,7 @@ class PeriodEstimator:
         """Host times ``(earliest, latest)`` (s) at which sample ``j`` of ``segment`` can have
         been taken, from that segment's observations and the bracket (a segment taken out of
         the bracket by :meth:`forget` uses its own observations' bracket)."""
+        segment, j = self._segment_and("j", segment, j)
         low, high = (self._own_bracket(segment) if segment in self.excluded
                      else (self.low, self.high))
         earliest, latest = -math.inf, math.inf
@@ -248,12 +258,21 @@ class PeriodEstimator:
         true T)`` is linear in ``j``, so its largest size is at ``j = 0`` or ``j = last``, where
         :meth:`sample_interval` bounds it.
         """
+        segment, last = self._segment_and("last", segment, last)
         earliest, latest = self.sample_interval(segment, 0)
         t0 = 0.5 * (earliest + latest)
         uncertainty = 0.5 * (latest - earliest)
         lo, hi = self.sample_interval(segment, last)
         t_last = t0 + last * self.period
         return t0, max(uncertainty, t_last - lo, hi - t_last)
+
+    def _segment_and(self, name: str, segment, j) -> tuple[int, int]:
+        """``segment`` (a segment begun) and the sample index ``j`` (>= 0, called ``name``),
+        checked."""
+        if not self.segments:
+            raise ValueError(f"segment must be a segment begun, and none is yet; got {segment!r}")
+        segment = check_int("segment", segment, minimum=0, maximum=len(self.segments) - 1)
+        return segment, check_int(name, j, minimum=0)
 
     @property
     def period(self) -> float:
@@ -264,6 +283,22 @@ class PeriodEstimator:
     def uncertainty(self) -> float:
         """Half the width of the bracket, s."""
         return 0.5 * (self.high - self.low)
+
+
+def _observation(produced, before, after) -> tuple[int, float, float]:
+    """A count's observation ``(produced, before, after)``, checked: ``produced`` an int >= 0,
+    ``after`` a finite time not before ``before`` (which may be ``-inf``, nothing known)."""
+    if (type(produced) is int and produced >= 0 and type(before) is float
+            and type(after) is float and before <= after and -math.inf < after < math.inf):
+        return produced, before, after  # the stream's own counts: checked at once
+    produced = check_int("produced", produced, minimum=0)
+    after = check_real("after", after)
+    before = check_real("before", before, allow_inf=True)
+    if before == math.inf:
+        raise ValueError(f"before must be finite or -inf, got {before!r}")
+    if not before <= after:
+        raise ValueError(f"after must be >= before ({before!r} s), got {after!r}")
+    return produced, before, after
 
 
 def _narrowed_by(observations, observation, low: float, high: float) -> tuple[float, float]:

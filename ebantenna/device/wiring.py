@@ -34,6 +34,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from .._validate import check_bool, check_int
 from ..chips import mg996r, mpu6050, pca9685
 from ..chips.mpu6050 import ADDRESS_AD0_HIGH, ADDRESS_AD0_LOW
 from ..chips.pca9685 import DEFAULT_ADDRESS as PCA9685_ADDRESS
@@ -82,6 +83,7 @@ def servo_supply_current(n_servos: int = 2) -> float:
     >>> servo_supply_current()  # pan and tilt
     5.0
     """
+    n_servos = check_int("n_servos", n_servos, minimum=0)
     return n_servos * SERVO_STALL_CURRENT
 
 
@@ -93,6 +95,16 @@ class Wire:
     end: tuple[str, str]
     signal: str
     optional: bool = False
+
+    def __post_init__(self):
+        for name in ("start", "end"):
+            value = getattr(self, name)
+            if not (isinstance(value, tuple) and len(value) == 2
+                    and all(isinstance(v, str) for v in value)):
+                raise TypeError(f"{name} must be a (part, pin) pair of str, got {value!r}")
+        if not isinstance(self.signal, str):
+            raise TypeError(f"signal must be a str, got {type(self.signal).__name__}")
+        check_bool("optional", self.optional)
 
 
 def _pi(signal: str) -> tuple[str, str]:
@@ -213,6 +225,8 @@ def draw_wiring(ax=None):
 
     if ax is None:
         _, ax = plt.subplots(figsize=(11, 6))
+    elif not callable(getattr(ax, "add_patch", None)):
+        raise TypeError(f"ax must be a matplotlib Axes or None, got {type(ax).__name__}")
     where = pin_positions()
     _draw_parts(ax, where)
     for k, (wire, lane) in enumerate(zip(WIRES, _lanes(where), strict=True)):

@@ -56,7 +56,7 @@ ROWS = {
                                     (HARDWARE + ["--chip-reset-at", "0.1"],
                                      ["--chip-reset-at", "--simulated"])],
     "cli:acquire --clock-drift": [(ACQUIRE + ["--clock-drift", v], ["clock_drift"])
-                                  for v in ("nan", "1e300", "-0.6")],
+                                  for v in ("nan", "1e300", "-0.95")],
     "cli:acquire --free-running-divider": [(HARDWARE + ["--free-running-divider"],
                                             ["--free-running-divider", "--simulated"])],
     "cli:acquire --measured-pwm-hz": [(ACQUIRE + ["--measured-pwm-hz", v], ["measured_pwm_hz"])
@@ -73,6 +73,14 @@ ROWS = {
                                 (ACQUIRE + ["--stuck-bus", "-1", "5"], ["stuck_at"]),
                                 (ACQUIRE + ["--stuck-bus", "5", "nan"], ["stuck_duration"]),
                                 (ACQUIRE + ["--stuck-bus", "5"], ["--stuck-bus"])],
+    "cli:acquire --slow-host": [(ACQUIRE + ["--slow-host", a, b], [f"slow_host {which}"])
+                                for a, b, which in (("1", "0.1", "share"), ("nan", "0.1", "share"),
+                                                    ("-0.1", "0.1", "share"),
+                                                    ("0.1", "nan", "longest"),
+                                                    ("0.1", "11", "longest"),
+                                                    ("0.1", "-1", "longest"))]
+    + [(ACQUIRE + ["--slow-host", "0.1"], ["--slow-host"]),
+       (HARDWARE + ["--slow-host", "0.1", "0.1"], ["--slow-host", "--simulated"])],
     "cli:acquire --bus-hz": [(ACQUIRE + ["--bus-hz", v], ["bus_hz"])
                              for v in ("0", "-1", "nan", "inf", "1e300", "3.5e6")]
     + [(ACQUIRE + ["--bus-hz", "x"], ["--bus-hz"]),

@@ -325,7 +325,7 @@ def test_every_silent_fault_is_exercised_by_name():
     ({"foreign_reads": ((0.1, "word"),)}, "foreign_reads must read"),
     ({"undercount_at": (-0.5,)}, "undercount_at"),
     ({"bit_error_rate": 0.7}, "bit_error_rate"),
-    ({"clock_drift": 0.6}, "clock_drift"),
+    ({"clock_drift": 0.95}, "clock_drift"),
     ({"stuck_sensor_at": -1.0}, "stuck_sensor_at"),
 ])
 def test_silent_fault_settings_are_checked(bad, words):
@@ -417,3 +417,36 @@ def test_forty_recordings_with_a_sample_taken_keep_nothing_unflagged_as_the_guid
         at = 0.05 + 0.9 * np.random.default_rng(seed).random()
         rig, mpu, rec = _record(Faults(foreign_reads=((at, "sample"),)), 100e3, seed)
         _judge(rig, mpu, rec)
+
+
+def _times(seed, k):
+    return tuple(sorted(0.05 + 0.9 * np.random.default_rng(1000 + seed).random(k)))
+
+
+@pytest.mark.parametrize("bus_hz", BUSES)
+@pytest.mark.parametrize("kind", ["two samples taken", "two counts read low", "one of each"])
+def test_counts_contradicting_twice_on_one_side_leave_every_timestamp_within_its_bound(
+        bus_hz, kind):
+    """Samples taken by another reader, or counts read low, twice in a recording: the stream
+    cannot tell a clock from them, so it flags the samples of the segments they touched (or
+    all of them). Every kept timestamp, flagged or not, still lies within its stated
+    uncertainty of the chip's true time: a flagged one's bound reaches the anchors that no
+    stolen sample or false count can mislead (FifoStream._anchored). Before, with two samples
+    taken at 100 kHz, 258 flagged samples in 20 recordings lay outside their bound (up to
+    18 ms off against 16 ms stated)."""
+    for seed in range(0, 20, 3):
+        at = _times(seed, 2)
+        faults = {"two samples taken": Faults(foreign_reads=tuple((t, "sample") for t in at)),
+                  "two counts read low": Faults(undercount_at=at),
+                  "one of each": Faults(foreign_reads=((at[0], "sample"),),
+                                        undercount_at=(at[1],))}[kind]
+        rig, mpu, rec = _record(faults, bus_hz, seed)
+        _judge(rig, mpu, rec)
+        kept = mpu.stream.kept(0, ASKED)
+        error = np.abs(kept["time"] - rig.true_times(mpu, rec))
+        assert np.all(error <= kept["uncertainty"] + ROUND_OFF)  # the flagged ones too
+        assert rec.metadata["timestamp_uncertainty_s"] == kept["uncertainty"].max()
+        # the operator is told: the flagged samples are counted, and the counts that
+        # contradicted are in the fault log, with what they showed
+        assert rec.metadata["samples_timing_suspect"] == 0 or any(
+            "fewer" in f["cause"] or "more" in f["cause"] for f in rec.metadata["faults"])

@@ -3,43 +3,31 @@ counted losses, never wrong samples kept (judged against the simulated chip's gr
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
 
 from ebantenna.device import MPU6050, SimulatedRig, timing
+from ebantenna.device.simulated import FaultInjector, Faults
 from ebantenna.device.timing import PeriodEstimator
 
 #: Float round-off of a timestamp: sums of a few thousand periods of 1e-3 s.
 ROUND_OFF = 1e-9
 
 
-def _preempted(rig, seed: int, share: float, longest: float):
-    """Make the host lose the processor before a ``share`` of the read transfers, drawn at
-    random (its own seeded generator), for a time uniform in [0, longest] s: a host too slow at
-    moments, between the count and the data of a drain as well as between drains."""
-    rng = np.random.default_rng(seed)
-    read = rig.bus.read_i2c_block_data
-
-    def slow(*args, **kwargs):
-        if rng.random() < share:
-            rig.clock.advance(float(rng.uniform(0.0, longest)))
-        return read(*args, **kwargs)
-
-    rig.bus.read_i2c_block_data = slow
-
-
 @pytest.mark.parametrize("bus_hz", [100e3, 400e3])
 def test_a_host_too_slow_at_moments_loses_counted_samples_and_keeps_none_wrong(bus_hz):
-    rig = SimulatedRig.quiet(seed=4)
+    # one transfer in a hundred (a drain makes about ten) waits up to 0.4 s: often more than the
+    # 170 ms the FIFO holds at 1 kHz ("slow host", drawn by the bus's fault injector)
+    rig = SimulatedRig.quiet(seed=4, faults=Faults(slow_host=(0.01, 0.4)))
     rig.bus.bus_hz = bus_hz
     mpu = MPU6050(rig.bus, clock=rig.clock)
     mpu.initialize()
-    # one read in fifty (a drain makes about ten) waits up to 0.4 s: often more than the
-    # 170 ms the FIFO holds at 1 kHz
-    _preempted(rig, seed=4, share=0.02, longest=0.4)
     asked = 3000
     rec = mpu.record(asked / 1000.0)
     meta = rec.metadata
+    assert "slow host" in {kind for _, kind in rig.bus.injector.log}
     assert meta["fifo_overflows"] >= 1  # the host was too slow: the FIFO overflowed
     assert meta["fifo_overflows"] == sum("overflow" in f["cause"].lower()
                                          for f in meta["faults"])
@@ -48,6 +36,53 @@ def test_a_host_too_slow_at_moments_loses_counted_samples_and_keeps_none_wrong(b
     kept = mpu.stream.kept(0, asked)
     error = np.abs(kept["time"] - rig.true_times(mpu, rec))
     assert np.all(error <= kept["uncertainty"] + ROUND_OFF)
+
+
+def test_the_slow_host_is_drawn_from_its_own_generator_and_replays_from_its_seed():
+    def draws(faults, seed):
+        injector = FaultInjector(faults, seed)
+        return [injector.preemption(0.0) for _ in range(200)], injector
+
+    first, injector = draws(Faults(slow_host=(0.1, 0.3)), 7)
+    again, _ = draws(Faults(slow_host=(0.1, 0.3)), 7)
+    assert first == again and any(first)  # the same seed, the same moments
+    assert all(0.0 <= d <= 0.3 for d in first)
+    assert sum(k == "slow host" for _, k in injector.log) == sum(d > 0 for d in first)
+    # asking for it changes none of the transfer faults' draws
+    plain, slow = FaultInjector(Faults(error_rate=0.3), 7), FaultInjector(
+        Faults(error_rate=0.3, slow_host=(0.5, 0.1)), 7)
+    drawn = []
+    for _ in range(100):
+        slow.preemption(0.0)  # its own generator's draw, between the transfer faults' draws
+        drawn.append(slow.draw())
+    assert [plain.draw() for _ in range(100)] == drawn
+    assert draws(Faults(), 7)[0] == [0.0] * 200
+
+
+@pytest.mark.parametrize("bad, error, words", [
+    ((0.5,), TypeError, "slow_host must be a pair"),
+    ((1.0, 0.1), ValueError, "slow_host share"),
+    ((0.1, -0.1), ValueError, "slow_host longest"),
+    ((0.1, 11.0), ValueError, "slow_host longest"),
+    ("ab", TypeError, "slow_host must be a pair"),
+])
+def test_slow_host_settings_are_checked(bad, error, words):
+    with pytest.raises(error, match=words):
+        Faults(slow_host=bad)
+
+
+def test_acquire_reproduces_a_slow_host_from_the_command_line(capsys):
+    from ebantenna.cli import main
+
+    args = ["acquire", "--simulated", "--seed", "1", "--slow-host", "0.02", "0.4", "--json"]
+    code = main(args)
+    data = json.loads(capsys.readouterr().out)
+    assert code == 0 and "slow host" in data["faults_injected"]
+    assert data["samples"] + data["samples_lost"] == 1050 and data["samples_wrong"] == 0
+    assert main(args) == 0 and json.loads(capsys.readouterr().out) == data  # replayed
+    with pytest.raises(SystemExit):  # a setting of the simulated bus, refused on a real one
+        main(["acquire", "--bus", "1", "--slow-host", "0.1", "0.1"])
+    assert "--slow-host work(s) only with --simulated" in capsys.readouterr().err
 
 
 def _observations(segments: int, per_segment: int) -> PeriodEstimator:

@@ -4,7 +4,8 @@ Each transfer advances the :class:`~ebantenna.device.clock.VirtualClock` by its 
 bus plus a fixed per-transfer overhead, and sleeping advances it instantly, so a ten-second search
 takes a fraction of a second. Every transfer passes through one place, ``SimulatedBus._begin``,
 where the :class:`~ebantenna.device.simulated.faults.FaultInjector` may stall the host, reset the
-accelerometer, time out on a stuck bus or fail the transfer early; reads then go through
+accelerometer, make the host slow for a moment, time out on a stuck bus or fail the transfer
+early; reads then go through
 ``SimulatedBus._read`` and writes through ``SimulatedBus._write``, where a transfer may
 fail late (after the chip has done its part) or, for a read, come back short.
 
@@ -38,6 +39,13 @@ __all__ = ["SimulatedBus", "transfer_bits", "RASPBERRY_PI_BUS_HZ"]
 _LAST_ADDRESS = 0x7F
 #: Read/write flag of an I2C message (``I2C_M_RD`` in Linux's ``i2c.h``, as smbus2 sets it).
 _I2C_M_RD = 0x0001
+
+
+def _byte_list(data) -> list[int]:
+    """``data`` (a sequence of bytes 0-255) as a list, or a clear error naming ``data``."""
+    if isinstance(data, str) or not hasattr(data, "__iter__"):
+        raise TypeError(f"data must be a sequence of bytes (0-255), got {type(data).__name__}")
+    return [check_int("data", value, minimum=0, maximum=0xFF) for value in data]
 
 
 class SimulatedBus:
@@ -130,6 +138,7 @@ class SimulatedBus:
         injector = self.injector
         self.clock.advance(self.overhead + transfer_bits(nbytes) / self.bus_hz)
         self.clock.advance(injector.host_stall(self.clock.monotonic()))
+        self.clock.advance(injector.preemption(self.clock.monotonic()))
         now = self.clock.monotonic()
         self.transfers += 1
         if injector.chip_reset(now) and self.reset_address in self.devices:
@@ -172,8 +181,12 @@ class SimulatedBus:
         return data
 
     def _releases(self, address: int, register: int, data: list[int]) -> bool:
-        """Whether this write switches PCA9685 outputs off (for :attr:`Faults.release_fails`)."""
-        if address != DEFAULT_ADDRESS or not self.faults.release_fails:
+        """Whether this write switches PCA9685 outputs off and must fail (``release_fails``,
+        ``release_fails_until`` of :class:`Faults`)."""
+        until = self.faults.release_fails_until
+        failing = self.faults.release_fails or (
+            until is not None and self.clock.monotonic() < until)
+        if address != DEFAULT_ADDRESS or not failing:
             return False
         if self.devices[address].regs[PcaRegister.MODE1] & Mode1.SLEEP:
             return False  # not set up yet: the outputs are off anyway
@@ -225,20 +238,24 @@ class SimulatedBus:
     def read_i2c_block_data(self, i2c_addr: int, register: int, length: int, force=None):
         """Read ``length`` (at most 32) bytes from ``register`` on."""
         self._check(i2c_addr, register)
-        if length > SMBUS_BLOCK_MAX:
-            raise ValueError("Desired block length over 32 bytes")
+        length = check_int("length", length, minimum=0, maximum=SMBUS_BLOCK_MAX)
         return self._read(i2c_addr, register, length, length)
 
     def write_i2c_block_data(self, i2c_addr: int, register: int, data, force=None) -> None:
         """Write up to 32 bytes from ``register`` on."""
         self._check(i2c_addr, register)
-        data = [check_int("data", value, minimum=0, maximum=0xFF) for value in data]
+        data = _byte_list(data)
         if len(data) > SMBUS_BLOCK_MAX:
-            raise ValueError("Data length cannot exceed 32 bytes")
+            raise ValueError(f"data must hold at most {SMBUS_BLOCK_MAX} bytes (an SMBus block), "
+                             f"got {len(data)}")
         self._write(i2c_addr, register, data)
 
     def i2c_rdwr(self, *msgs) -> None:
         """Combined transfer: a one-byte register write followed by a read of any length."""
+        if len(msgs) == 2 and not all(hasattr(m, name) for m in msgs
+                                      for name in ("flags", "len", "addr", "buf")):
+            raise TypeError("msgs must be i2c_msg objects (smbus2.i2c_msg.write and .read), got "
+                            f"{', '.join(type(m).__name__ for m in msgs)}")
         if (len(msgs) != 2 or msgs[0].flags & _I2C_M_RD or not msgs[1].flags & _I2C_M_RD
                 or msgs[0].len != 1):
             raise ValueError("the simulated bus supports i2c_rdwr(write [register], read n) only")

@@ -26,11 +26,14 @@ adapter's errno from the ``ioctl``):
 
 Besides those, a :class:`Faults` can reset the accelerometer once (a brown-out: power-on
 registers, asleep), hold the whole bus stuck for a while (every transfer times out), stall the
-host once, run the accelerometer's sample clock off its nominal rate, let its sample-rate divider
-run free (the first sample of a FIFO segment then comes anywhere within a period of the enable,
-not one period after it), make it repeat its last byte when the FIFO is read past its end (as the
-real part does), make every transfer that times out hang for a stated time first (the adapter's
-timeout), and make every write that releases the servos fail.
+host once, make the host slow at moments (``"slow host"``: before a drawn share of transfers
+it loses the processor for a random time, as a loaded or throttled host does), run the
+accelerometer's sample clock off its nominal rate, let its sample-rate divider run free (the
+first sample of a FIFO segment then comes anywhere within a period of the enable, not one
+period after it), make it repeat its last byte when the FIFO is read past its end (as the real
+part does), make every transfer that times out hang for a stated time first (the adapter's
+timeout), and make every write that releases the servos fail (for good, or until a given
+time).
 
 The faults below happen with no error on the bus at all; a driver can only notice them from
 what it reads (the kinds of :data:`SILENT_FAULTS`, by the name each logs):
@@ -67,13 +70,15 @@ what it reads (the kinds of :data:`SILENT_FAULTS`, by the name each logs):
     output off, its later writes still acknowledged. (``pca_flip_write`` flips bits of its
     writes, logged as ``"write bit flip"``.)
 
-A sample clock off by more than ``MAX_CLOCK_DRIFT`` (up to 50 %) is also allowed, as a fault:
-outside the tolerance the driver assumes.
+A sample clock off by more than ``MAX_CLOCK_DRIFT`` (up to ``MAX_FAULT_DRIFT``, 90 %) is also
+allowed, as a fault: outside the tolerance the driver assumes (and beyond 50 %, outside what it
+adapts to).
 """
 
 from __future__ import annotations
 
 import errno
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -84,7 +89,7 @@ from ..i2c import MAX_TRANSFER_TIMEOUT
 from .mpu6050 import MAX_CLOCK_DRIFT, REGISTER_SPACE
 
 __all__ = ["Faults", "FaultInjector", "TRANSFER_FAULTS", "SILENT_FAULTS", "MAX_CLOCK_DRIFT",
-           "MAX_OVERCOUNT", "MAX_FAULT_DRIFT"]
+           "MAX_OVERCOUNT", "MAX_FAULT_DRIFT", "MAX_PREEMPTION"]
 
 #: Kinds of failed transfer the injector can draw (see the module notes).
 TRANSFER_FAULTS = ("nack", "eio", "etimedout", "eagain", "late", "short", "eintr", "overcount")
@@ -100,8 +105,33 @@ _LAST_REGISTER = REGISTER_SPACE - 1
 #: Faults that no bus error reveals (see the module notes), by the name each logs.
 SILENT_FAULTS = ("write bit flip", "register lost", "foreign read", "undercount", "bit error",
                  "clone", "stuck sensor", "second device", "pca brown-out")
-#: Largest sample-clock error the faults allow, relative (beyond MAX_CLOCK_DRIFT: a fault).
-MAX_FAULT_DRIFT = 0.5
+#: Largest sample-clock error the faults allow, relative (beyond MAX_CLOCK_DRIFT: a fault;
+#: beyond the driver's MAX_CLOCK_ADAPT of 50 %: a part not sampling as configured).
+MAX_FAULT_DRIFT = 0.9
+#: Longest time a slow host (``Faults.slow_host``) loses the processor at one moment, s.
+MAX_PREEMPTION = 10.0
+
+
+def _time(now) -> float:
+    """A virtual time ``now`` (s), checked: a float is taken at once (the bus asks five times a
+    transfer), anything else goes through the full check."""
+    if type(now) is float and 0.0 <= now < math.inf:
+        return now
+    return check_nonnegative("now", now)
+
+
+def _slow_host(value) -> tuple:
+    """``Faults.slow_host`` checked: ``()`` or ``(share, longest)``, share in [0, 1), longest in
+    [0, :data:`MAX_PREEMPTION`] s."""
+    if value == ():
+        return ()
+    if not isinstance(value, tuple | list) or len(value) != 2:
+        raise TypeError(f"slow_host must be a pair (share, longest) or (), got {value!r}")
+    share = check_in_range("slow_host share", value[0], 0.0, 1.0, low_inclusive=True)
+    longest = check_in_range("slow_host longest", value[1], 0.0, MAX_PREEMPTION,
+                             low_inclusive=True, high_inclusive=True,
+                             reason="a longer loss of the processor is a stall (stall_at)")
+    return share, longest
 
 
 def _error(code: int) -> OSError:
@@ -154,6 +184,9 @@ class Faults:
         Once the PCA9685 is awake (initialised), every write that switches its outputs off
         (``ALL_LED_OFF_H``, an ``LEDn_OFF_H`` with the full-OFF bit) fails with ``EIO``, before
         it reaches the chip.
+    release_fails_until : float or None
+        As ``release_fails``, but only until this virtual time, s: a release that fails for a
+        while (a bus held by a stuck slave, a controller browning out) and then lands.
     flip_write : tuple of (int, int, int)
         ``(register, mask, n)``: the first ``n`` writes of that accelerometer register arrive
         with ``mask`` XOR-ed in ("write bit flip").
@@ -182,6 +215,12 @@ class Faults:
     pca_flip_write : tuple of (int, int, int)
         ``(register, mask, n)`` as ``flip_write``, for the PCA9685 (e.g. a ``PRE_SCALE`` that
         does not land as written).
+    slow_host : tuple of (float, float)
+        ``(share, longest)``: before each transfer, with probability ``share`` (in [0, 1)), the
+        host loses the processor for a time drawn uniformly in ``[0, longest]`` s (``longest``
+        at most :data:`MAX_PREEMPTION`), from a generator of its own ("slow host"): a host
+        loaded by other programs or throttled, slow at moments, between the count and the data
+        of a drain as well as between drains. Empty (the default): never.
 
     Examples
     --------
@@ -203,6 +242,7 @@ class Faults:
     repeat_last_byte: bool = False
     transfer_timeout: float = 0.0
     release_fails: bool = False
+    release_fails_until: float | None = None
     flip_write: tuple = ()
     register_lost: tuple = ()
     foreign_reads: tuple = ()
@@ -213,6 +253,7 @@ class Faults:
     second_device: bool = False
     pca_brown_out_at: float | None = None
     pca_flip_write: tuple = ()
+    slow_host: tuple = ()
 
     def __post_init__(self):
         check_in_range("error_rate", self.error_rate, 0.0, 1.0, low_inclusive=True)
@@ -223,7 +264,7 @@ class Faults:
                              f"{self.kinds!r}")
         object.__setattr__(self, "kinds", kinds)
         check_int("who_am_i", self.who_am_i, minimum=0, maximum=255)
-        for name in ("stall_at", "chip_reset_at", "stuck_at"):
+        for name in ("stall_at", "chip_reset_at", "stuck_at", "release_fails_until"):
             if getattr(self, name) is not None:
                 check_nonnegative(name, getattr(self, name))
         check_nonnegative("stall_duration", self.stall_duration)
@@ -264,6 +305,7 @@ class Faults:
         if bad:
             raise ValueError(f"foreign_reads must read a 'byte', a 'sample' or a 'dump', got "
                              f"{bad[0]!r}")
+        object.__setattr__(self, "slow_host", _slow_host(self.slow_host))
         under = tuple(sorted(check_nonnegative("undercount_at", t) for t in self.undercount_at))
         for name, value in (("flip_write", flips), ("register_lost", lost),
                             ("foreign_reads", reads), ("undercount_at", under)):
@@ -312,6 +354,8 @@ class FaultInjector:
         self._reset_done = False
         # the silent faults draw from their own generator: the transfer faults stay as they were
         self._bits = np.random.default_rng([check_int("seed", seed, minimum=0), 1])
+        # and the slow host from a third, so that asking for it changes no other draw
+        self._slow = np.random.default_rng([seed, 2])
         self._flips_done: dict[tuple, int] = {}
         self._pca_reset_done = False
         self._lost_done = self._reads_done = self._under_done = 0
@@ -325,6 +369,7 @@ class FaultInjector:
         The stall at ``stall_at`` (:class:`Faults`) happens once, at the first transfer from then
         on.
         """
+        now = _time(now)
         faults = self.faults
         if faults.stall_at is None or self._stalled or now < faults.stall_at:
             return 0.0
@@ -332,8 +377,22 @@ class FaultInjector:
         self.log.append((now, "stall"))
         return faults.stall_duration
 
+    def preemption(self, now: float) -> float:
+        """How long the host loses the processor before a transfer at virtual time ``now``, s
+        (``slow_host`` of :class:`Faults`; 0 most of the time). Each one is logged as
+        ``"slow host"``."""
+        now = _time(now)
+        if not self.faults.slow_host:
+            return 0.0
+        share, longest = self.faults.slow_host
+        if not self._slow.random() < share:
+            return 0.0
+        self.log.append((now, "slow host"))
+        return float(self._slow.uniform(0.0, longest))
+
     def chip_reset(self, now: float) -> bool:
         """Whether the accelerometer browns out before a transfer at virtual time ``now`` (once)."""
+        now = _time(now)
         at = self.faults.chip_reset_at
         if at is None or self._reset_done or now < at:
             return False
@@ -343,6 +402,7 @@ class FaultInjector:
 
     def stuck(self, now: float) -> OSError | None:
         """``ETIMEDOUT`` while the bus is stuck at virtual time ``now``, else None."""
+        now = _time(now)
         at = self.faults.stuck_at
         if at is None or not at <= now < at + self.faults.stuck_duration:
             return None
@@ -353,6 +413,7 @@ class FaultInjector:
     def draw(self, now: float = 0.0) -> str | None:
         """The kind of failure of this transfer (one of the ``kinds`` of :class:`Faults`), or
         None."""
+        now = _time(now)
         faults = self.faults
         if not (faults.error_rate and self._rng.random() < faults.error_rate):
             return None
@@ -367,7 +428,10 @@ class FaultInjector:
         self.log.pop()
 
     def early_error(self, kind: str) -> OSError:
-        """The error of a transfer that fails before its data phase."""
+        """The error of a transfer that fails before its data phase (``kind``: one of the early
+        kinds of :data:`TRANSFER_FAULTS`, or ``"short"``, a write cut short: no acknowledge)."""
+        if not isinstance(kind, str) or kind not in (*_EARLY_ERRNO, "short"):
+            raise ValueError(f"kind must be one of {(*_EARLY_ERRNO, 'short')}, got {kind!r}")
         return _error(_EARLY_ERRNO.get(kind, errno.EREMOTEIO))
 
     def late_error(self) -> OSError:
@@ -376,6 +440,8 @@ class FaultInjector:
 
     def timeout_wait(self, error: OSError) -> float:
         """How long a transfer failing with ``error`` hangs first, s (``ETIMEDOUT`` only)."""
+        if not isinstance(error, OSError):
+            raise TypeError(f"error must be an OSError, got {type(error).__name__}")
         return self.faults.transfer_timeout if error.errno == errno.ETIMEDOUT else 0.0
 
     def _flipped(self, register: int, value: int, pca: bool = False) -> int:
@@ -447,6 +513,7 @@ class FaultInjector:
 
     def short_length(self, length: int) -> int:
         """How many of ``length`` bytes a short read delivers: 0 to ``length - 1``."""
+        length = check_int("length", length, minimum=1)
         return int(self._rng.integers(length))
 
     def transfer_error(self) -> OSError | None:

@@ -27,6 +27,7 @@ from collections.abc import Callable
 
 import numpy as np
 
+from ..._validate import check_bool, check_int, check_nonnegative, check_real
 from ...chips.mpu6050 import (
     ACCEL_LSB_PER_G,
     ACCEL_SAMPLE_BYTES,
@@ -61,6 +62,13 @@ REGISTER_SPACE = 128
 #: What a read of the empty FIFO returns in this model.
 _EMPTY_FIFO_BYTE = 0xFF
 _COUNT_LIMITS = np.iinfo(np.int16)
+
+
+def _byte_list(data) -> list[int]:
+    """``data`` (a sequence of bytes 0-255) as a list, or a clear error naming ``data``."""
+    if isinstance(data, str) or not hasattr(data, "__iter__"):
+        raise TypeError(f"data must be a sequence of bytes (0-255), got {type(data).__name__}")
+    return [check_int("data", value, minimum=0, maximum=0xFF) for value in data]
 
 
 class SimulatedMPU6050:
@@ -122,6 +130,25 @@ class SimulatedMPU6050:
                  clock_drift: float = 0.0, free_running_divider: bool = False,
                  repeat_last_byte: bool = False, samples_like: int | None = None,
                  stuck_from: float | None = None):
+        if not callable(source):
+            raise TypeError(f"source must be callable (times, fs) -> accelerations, got "
+                            f"{type(source).__name__}")
+        if not callable(getattr(clock, "monotonic", None)):
+            raise TypeError(f"clock must be a clock (with monotonic()), got "
+                            f"{type(clock).__name__}")
+        who_am_i = check_int("who_am_i", who_am_i, minimum=0, maximum=0xFF)
+        clock_drift = check_real("clock_drift", clock_drift)
+        if not -1.0 < clock_drift < 1.0:
+            raise ValueError(f"clock_drift must lie in (-1, 1) (a rate (1 + clock_drift) times "
+                             f"the set one), got {clock_drift!r}")
+        for name, value in (("free_running_divider", free_running_divider),
+                            ("repeat_last_byte", repeat_last_byte)):
+            check_bool(name, value)
+        if samples_like is not None and samples_like not in CHIP_MODELS:
+            raise ValueError(f"samples_like must be a known WHO_AM_I value "
+                             f"({sorted(CHIP_MODELS)}) or None, got {samples_like!r}")
+        if stuck_from is not None:
+            stuck_from = check_nonnegative("stuck_from", stuck_from)
         self.source = source
         self.clock = clock
         self.who_am_i = who_am_i
@@ -169,6 +196,9 @@ class SimulatedMPU6050:
 
     def truth(self, epoch: int) -> np.ndarray:
         """Every sample (n, 3) int16 that epoch ``epoch`` put into the FIFO, in order."""
+        if not self.epochs:
+            raise ValueError(f"epoch must be an epoch begun, and none is yet; got {epoch!r}")
+        epoch = check_int("epoch", epoch, minimum=0, maximum=len(self.epochs) - 1)
         blocks = self.epochs[epoch][1]
         return np.concatenate(blocks) if blocks else np.empty((0, 3), np.int16)
 
@@ -276,6 +306,8 @@ class SimulatedMPU6050:
 
     def read(self, register: int, length: int) -> list[int]:
         """Read ``length`` bytes from ``register`` on, as one I2C read transfer does."""
+        register = check_int("register", register, minimum=0, maximum=0xFF)
+        length = check_int("length", length, minimum=0)
         self._catch_up()
         out = []
         reg = register
@@ -312,6 +344,8 @@ class SimulatedMPU6050:
 
     def write(self, register: int, data) -> None:
         """Write ``data`` from ``register`` on, as one I2C write transfer does."""
+        register = check_int("register", register, minimum=0, maximum=0xFF)
+        data = _byte_list(data)
         self._catch_up()
         for k, value in enumerate(data):
             reg = (register + k) % 256

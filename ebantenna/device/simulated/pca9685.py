@@ -8,7 +8,7 @@ changes the pulse width on a servo's output it commands that servo of the :class
 
 from __future__ import annotations
 
-from ..._validate import check_int
+from ..._validate import check_bool, check_int, check_positive
 from ...chips.pca9685 import (
     COUNTS_PER_PERIOD,
     LED_FULL,
@@ -40,6 +40,9 @@ class SimulatedLine:
     """
 
     def __init__(self, drive):
+        if not callable(drive):
+            raise TypeError(f"drive must be callable (high: bool) -> None, got "
+                            f"{type(drive).__name__}")
         self._drive = drive
         self.value = 0
 
@@ -102,12 +105,21 @@ class SimulatedPCA9685:
 
     def __init__(self, world: World, clock, *, pan_channel: int = 0, tilt_channel: int = 1,
                  oscillator_hz: float = OSCILLATOR_HZ):
+        if not isinstance(world, World):
+            raise TypeError(f"world must be a World, got {type(world).__name__}")
+        if not callable(getattr(clock, "monotonic", None)):
+            raise TypeError(f"clock must be a clock (with monotonic()), got "
+                            f"{type(clock).__name__}")
         self.world = world
         self.clock = clock
         last = N_CHANNELS - 1
-        self.channels = {check_int("pan_channel", pan_channel, minimum=0, maximum=last): "pan",
-                         check_int("tilt_channel", tilt_channel, minimum=0, maximum=last): "tilt"}
-        self.oscillator_hz = oscillator_hz
+        pan_channel = check_int("pan_channel", pan_channel, minimum=0, maximum=last)
+        tilt_channel = check_int("tilt_channel", tilt_channel, minimum=0, maximum=last)
+        if tilt_channel == pan_channel:
+            raise ValueError(f"tilt_channel must differ from pan_channel ({pan_channel}), got "
+                             f"{tilt_channel!r}")
+        self.channels = {pan_channel: "pan", tilt_channel: "tilt"}
+        self.oscillator_hz = check_positive("oscillator_hz", oscillator_hz)
         self.regs = bytearray(_REGISTER_SPACE)
         self.prescale_blocked = 0
         self.output_disabled = False
@@ -127,6 +139,7 @@ class SimulatedPCA9685:
 
     def pulse(self, channel: int) -> float:
         """Pulse width now on ``channel``, s (0 when it is off, the chip sleeps or OE is high)."""
+        channel = check_int("channel", channel, minimum=0, maximum=N_CHANNELS - 1)
         if self.regs[Register.MODE1] & Mode1.SLEEP or self.output_disabled:
             return 0.0
         first = led_register(channel)
@@ -143,7 +156,7 @@ class SimulatedPCA9685:
     def set_oe(self, high: bool) -> None:
         """Drive the ``OE`` pin: high switches every output off at once, low lets the registers
         rule again (no I2C involved)."""
-        self.output_disabled = bool(high)
+        self.output_disabled = check_bool("high", high)
         self._apply()
 
     def oe_line(self) -> SimulatedLine:
@@ -163,11 +176,18 @@ class SimulatedPCA9685:
 
     def read(self, register: int, length: int) -> list[int]:
         """Read ``length`` bytes from ``register`` on, as one I2C read transfer does."""
+        register = check_int("register", register, minimum=0, maximum=0xFF)
+        length = check_int("length", length, minimum=0)
         step = self._step()
         return [self.regs[(register + k * step) % _REGISTER_SPACE] for k in range(length)]
 
     def write(self, register: int, data) -> None:
         """Write ``data`` from ``register`` on, as one I2C write transfer does."""
+        register = check_int("register", register, minimum=0, maximum=0xFF)
+        if isinstance(data, str) or not hasattr(data, "__iter__"):
+            raise TypeError(f"data must be a sequence of bytes (0-255), got "
+                            f"{type(data).__name__}")
+        data = [check_int("data", value, minimum=0, maximum=0xFF) for value in data]
         step = self._step()
         for k, value in enumerate(data):
             reg = (register + k * step) % _REGISTER_SPACE

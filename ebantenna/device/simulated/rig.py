@@ -85,6 +85,20 @@ class _SharedAddress:
         return max(self.first.impossible_samples(), self.second.impossible_samples())
 
 
+def _raw_of(mpu, recording) -> dict:
+    """The raw record of ``recording``, made by ``mpu``'s stream (checked: a driver with a
+    stream, a recording the FIFO stream made)."""
+    if getattr(getattr(mpu, "stream", None), "starts", None) is None:
+        raise TypeError(f"mpu must be the MPU6050 whose stream made the recording, got "
+                        f"{type(mpu).__name__}")
+    raw = getattr(recording, "metadata", {}).get("raw") if isinstance(
+        getattr(recording, "metadata", None), dict) else None
+    if not isinstance(raw, dict) or "segment" not in raw:
+        raise TypeError(f"recording must be a Recording made by the FIFO stream (with its raw "
+                        f"record), got {type(recording).__name__}")
+    return raw
+
+
 class SimulatedRig:
     """Pan-tilt unit, probe, accelerometer and obstacle, behind a :class:`SimulatedBus`.
 
@@ -194,6 +208,10 @@ class SimulatedRig:
         The simulator is imported and run only when the accelerometer first samples, at its
         configured sample rate.
         """
+        if not (callable(getattr(scene, "with_", None)) and hasattr(scene, "fs")):
+            raise TypeError(f"scene must be a Scene (ebantenna.simulate), got "
+                            f"{type(scene).__name__}")
+
         def vibration(fs: float) -> Recording:
             from ...simulate import simulate
 
@@ -233,7 +251,7 @@ class SimulatedRig:
         holds, at the same position, the same counts on all three axes, taken at the range the
         driver converts them with (a range the chip lost makes right counts wrong m/s^2).
         """
-        raw = recording.metadata["raw"]
+        raw = _raw_of(mpu, recording)
         starts = mpu.stream.starts
         epochs = {round(start, 12): k for k, (start, _) in enumerate(self.mpu.epochs)}
         truths = {}
@@ -260,7 +278,7 @@ class SimulatedRig:
         """The true host time (s, from the stream's first segment start) at which each sample of
         ``recording`` (made by ``mpu``'s stream on this rig) was taken: the ground truth of its
         timestamps. NaN for a sample of no epoch."""
-        raw = recording.metadata["raw"]
+        raw = _raw_of(mpu, recording)
         starts = mpu.stream.starts
         epochs = {round(start, 12): k for k, (start, _) in enumerate(self.mpu.epochs)}
         period = 1.0 / self.mpu.true_rate()

@@ -52,6 +52,9 @@ def simulated_connect(scene, simulate, *, faults: Faults | None = None, seed: in
     if not (faults is None or isinstance(faults, Faults)):
         raise TypeError(f"faults must be Faults or None, got {type(faults).__name__}")
     seed = check_int("seed", seed, minimum=0)
+    if not (callable(getattr(scene, "with_", None)) and hasattr(scene, "fs")):
+        raise TypeError(f"scene must be a Scene (ebantenna.simulate), got "
+                        f"{type(scene).__name__}")
 
     def connect(touch, attempt: int) -> Connection:
         sim = touch.simulation

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..._validate import check_real
+from ..._validate import check_nonnegative, check_positive, check_real
 from ...chips.mg996r import PULSE_RANGE, SLEW_RATE, TRAVEL
 
 __all__ = [
@@ -39,6 +39,7 @@ def mg996r_angle(width: float) -> float | None:
     >>> mg996r_angle(1.5e-3), mg996r_angle(3e-3), mg996r_angle(0.0) is None
     (90.0, 180.0, True)
     """
+    width = check_nonnegative("width", width)
     if width == 0:
         return None
     low, high = PULSE_RANGE
@@ -76,7 +77,8 @@ class Obstacle:
                 f"tilt_low must be < tilt_high ({self.tilt_high!r}), got {self.tilt_low!r}")
 
     def blocks(self, tilt: float) -> bool:
-        """Whether the post is there at this tilt."""
+        """Whether the post is there at this tilt (degrees)."""
+        tilt = check_real("tilt", tilt)
         return self.tilt_low <= tilt <= self.tilt_high
 
 
@@ -101,12 +103,14 @@ class ServoMotion:
     """
 
     def __init__(self, angle: float, rate: float):
-        self.angle = angle
+        self.angle = check_real("angle", angle)
         self.target = None
-        self.rate = rate
+        self.rate = check_positive("rate", rate)
 
     def position(self, dt: float) -> float:
         """Where it will be ``dt`` seconds from now, degrees."""
+        if not (type(dt) is float and 0.0 <= dt < math.inf):
+            dt = check_nonnegative("dt", dt)
         if self.target is None:
             return self.angle
         step = self.rate * dt
@@ -152,6 +156,10 @@ class World:
     """
 
     def __init__(self, obstacle: Obstacle | None, rate: float):
+        if not (obstacle is None or isinstance(obstacle, Obstacle)):
+            raise TypeError(f"obstacle must be an Obstacle or None, got "
+                            f"{type(obstacle).__name__}")
+        rate = check_positive("rate", rate)
         self.obstacle = obstacle
         self.pan = ServoMotion(90.0, rate)
         self.tilt = ServoMotion(90.0, rate)
@@ -165,7 +173,9 @@ class World:
         self.commands: list[tuple[float, str, float | None]] = []
 
     def advance_to(self, now: float) -> None:
-        """Move everything on to virtual time ``now`` (s), noting the contact when it happens."""
+        """Move everything on to virtual time ``now`` (s), noting the contact when it happens
+        (a time already passed moves nothing)."""
+        now = check_real("now", now)
         while now > self.time:
             # Move in pieces that end where a servo arrives, so motion within a piece is linear.
             dt = now - self.time
@@ -199,6 +209,10 @@ class World:
     def command(self, now: float, axis: str, angle: float | None) -> None:
         """At virtual time ``now`` (s), send servo ``axis`` ("pan" or "tilt") towards ``angle``
         (degrees; None: stop the pulses)."""
+        if axis not in ("pan", "tilt"):
+            raise ValueError(f"axis must be 'pan' or 'tilt', got {axis!r}")
+        if angle is not None:
+            angle = check_real("angle", angle)
         self.advance_to(now)
         servo = self.pan if axis == "pan" else self.tilt
         servo.target = angle

@@ -46,6 +46,7 @@ from .._validate import (
     check_positive,
     check_python_number,
     check_real,
+    check_samples,
 )
 from .fitted import INPUT_ATTRIBUTES, FittedAttribute
 from .kernels import Kernel, KernelRows, call_kernel, resolve_gamma
@@ -646,6 +647,8 @@ class SVC(ClassifierMixin, BaseEstimator):
     def _ovo_decision(self, X) -> np.ndarray:
         """libsvm's pairwise decision values (positive: the pair's first class)."""
         check_is_fitted(self)
+        check_samples(X, n_features=getattr(self, "n_features_in_", None),
+                      owner=type(self).__name__)
         X = validate_data(self, X, dtype=np.float64, order="C", accept_sparse="csr", reset=False)
         X = self._sparse_input(X)
         kx = self._test_kernel(X)

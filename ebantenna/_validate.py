@@ -43,6 +43,7 @@ __all__ = [
     "check_array",
     "check_split",
     "check_samples",
+    "check_targets",
     "output_path",
     "open_npz",
 ]
@@ -799,9 +800,9 @@ def check_samples(X, *, n_features: int | None = None, owner: str = "the estimat
                              f"(dtype {values.dtype})")
     if len(shape) != 2:
         raise ValueError(
-            f"{name} must be a 2-D array (n_samples, n_features), got shape {shape}: Expected 2D "
-            f"array. Reshape your data with {name}.reshape(-1, 1) if it has a single feature, "
-            f"or {name}.reshape(1, -1) if it is a single sample.")
+            f"{name} must be a 2-D array (n_samples, n_features), got {len(shape)} dimension(s), "
+            f"shape {shape}: Expected 2D array. Reshape your data with {name}.reshape(-1, 1) "
+            f"if it has a single feature, or {name}.reshape(1, -1) if it is a single sample.")
     if shape[0] == 0:
         raise ValueError(f"{name} must hold at least one sample, got 0 sample(s) (shape={shape})")
     if values.dtype.kind in "fiu" and values.size:
@@ -815,3 +816,34 @@ def check_samples(X, *, n_features: int | None = None, owner: str = "the estimat
     if n_features is not None and shape[1] != n_features:
         raise ValueError(f"{name} has {shape[1]} features, but {owner} is expecting "
                          f"{n_features} features as input.")
+
+
+def check_targets(X, y, *, numeric: bool = False):
+    """Refuse, in the package's words, targets ``y`` of another length than the rows of ``X``
+    (samples checked by :func:`check_samples`), a ragged ``y``, and for a regressor
+    (``numeric``) NaN or infinity; return ``y`` as given. None, a string and a sparse ``y`` are
+    left to the estimator's own conversion.
+
+    Examples
+    --------
+    >>> check_targets([[1.0], [2.0]], [0])
+    Traceback (most recent call last):
+    ...
+    ValueError: y must hold one target per row of X (2), got 1: inconsistent numbers of samples
+    """
+    if y is None or isinstance(y, str | bytes) or (hasattr(y, "tocsr") and hasattr(y, "nnz")):
+        return y
+    try:
+        values = np.asarray(y)
+    except ValueError:
+        raise ValueError("y must be a rectangular array: its rows have different lengths "
+                         "(a ragged list)") from None
+    except (TypeError, OverflowError, RecursionError, MemoryError):
+        raise TypeError(f"y must be array-like, got {type(y).__name__}") from None
+    n = X.shape[0] if hasattr(X, "shape") else np.asarray(X).shape[0]  # (no array functions)
+    if values.ndim and values.shape[0] != n:
+        raise ValueError(f"y must hold one target per row of X ({n}), got {values.shape[0]}: "
+                         "inconsistent numbers of samples")
+    if numeric and values.dtype.kind in "fc" and not np.all(np.isfinite(values)):
+        raise ValueError("y must contain only finite values (no NaN, no infinity)")
+    return y

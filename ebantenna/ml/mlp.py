@@ -72,7 +72,7 @@ from sklearn.utils.metaestimators import available_if
 from sklearn.utils.multiclass import check_classification_targets, type_of_target
 from sklearn.utils.validation import check_array, check_is_fitted, column_or_1d, validate_data
 
-from .._validate import check_samples
+from .._validate import check_samples, check_targets
 from .backprop import forward
 from .fitted import FittedAttribute
 from .mlp_base import ACTIVATIONS, SOLVERS, BaseMLP
@@ -181,7 +181,8 @@ class MLPClassifier(ClassifierMixin, BaseMLP):
     def fit(self, X, y):
         """Train on features ``X`` (n_samples, n_features) and labels ``y``."""
         reset = not (self.warm_start and hasattr(self, "coefs_"))
-        X, y = validate_data(self, _samples(self, X, reset=reset), _dense_target(y),
+        X = _samples(self, X, reset=reset)
+        X, y = validate_data(self, X, _dense_target(check_targets(X, y, numeric=False)),
                              dtype=np.float64, accept_sparse=SPARSE, multi_output=True,
                              reset=reset)
         if y.ndim == 2 and y.shape[1] == 1:
@@ -229,7 +230,8 @@ class MLPClassifier(ClassifierMixin, BaseMLP):
                                                                     np.unique(classes)):
             raise ValueError(f"`classes={classes!r}` is not the same as on the first call to "
                              f"partial_fit, was: {self.classes_!r}")
-        X, y = validate_data(self, _samples(self, X, reset=first), _dense_target(y),
+        X = _samples(self, X, reset=first)
+        X, y = validate_data(self, X, _dense_target(check_targets(X, y, numeric=False)),
                              dtype=np.float64, accept_sparse=SPARSE, multi_output=True,
                              reset=first)
         if y.ndim == 2 and y.shape[1] == 1:
@@ -345,7 +347,8 @@ class MLPRegressor(RegressorMixin, BaseMLP):
     def fit(self, X, y):
         """Train on features ``X`` (n_samples, n_features) and targets ``y``."""
         reset = not (self.warm_start and hasattr(self, "coefs_"))
-        X, y = validate_data(self, _samples(self, X, reset=reset), _dense_target(y),
+        X = _samples(self, X, reset=reset)
+        X, y = validate_data(self, X, _dense_target(check_targets(X, y, numeric=True)),
                              dtype=np.float64, accept_sparse=SPARSE, multi_output=True,
                              y_numeric=True, reset=reset)
         self._y_ndim = y.ndim
@@ -362,7 +365,8 @@ class MLPRegressor(RegressorMixin, BaseMLP):
         self
         """
         first = not hasattr(self, "coefs_")
-        X, y = validate_data(self, _samples(self, X, reset=first), _dense_target(y),
+        X = _samples(self, X, reset=first)
+        X, y = validate_data(self, X, _dense_target(check_targets(X, y, numeric=True)),
                              dtype=np.float64, accept_sparse=SPARSE, multi_output=True,
                              y_numeric=True, reset=first)
         if not first and y.ndim != self._y_ndim:

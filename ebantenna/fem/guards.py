@@ -185,7 +185,7 @@ def check_sweep(probe, contacts, hinge_stiffness, contact_stiffness, n_elements,
 
 def check_uniform_mesh(nodes) -> tuple[np.ndarray, float]:
     """``nodes`` checked as a uniform mesh from 0 (at least two nodes, equal steps): ``(nodes,
-    step)``. The steps may differ by the rounding of :func:`numpy.linspace` (a few units in
+    step)``. The steps may differ by the rounding of ``numpy.linspace`` (a few units in
     the last place of the length; 1e-9 of the step is far above it)."""
     nodes = check_array("nodes", nodes, ndim=1, min_length=2)
     step = (nodes[-1] - nodes[0]) / (nodes.size - 1)

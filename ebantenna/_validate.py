@@ -42,6 +42,8 @@ __all__ = [
     "real_array",
     "check_array",
     "check_split",
+    "check_samples",
+    "check_targets",
     "output_path",
     "open_npz",
 ]
@@ -750,3 +752,98 @@ def check_split(split, n_rows: int) -> tuple[np.ndarray, np.ndarray]:
         raise ValueError("split must not put one row in both train and test")
     return out[0], out[1]
 
+
+
+def check_samples(X, *, n_features: int | None = None, owner: str = "the estimator",
+                  name: str = "X") -> None:
+    """Refuse, in the package's words, samples ``X`` that no estimator can read: not a
+    rectangular 2-D array of numbers, no row, a NaN or an infinity, or (``n_features`` given)
+    another number of columns than the fit saw. ``X`` itself is left as it is, for the
+    estimator's own conversion (scikit-learn's ``validate_data``) that follows.
+
+    Sparse matrices are checked by their stored values and their shape; arrays of objects (a
+    DataFrame of mixed columns) by their shape only, their conversion names what fails. The
+    messages keep the phrases scikit-learn's estimator checks look for ("Reshape your data",
+    "NaN", "inf", "X has 2 features, but SVC is expecting 3 features as input").
+
+    Examples
+    --------
+    >>> check_samples([[1.0, float("nan")]])
+    Traceback (most recent call last):
+    ...
+    ValueError: X must contain only finite values (no NaN, no infinity): row 0, column 1 is nan
+    >>> check_samples([[1.0, 2.0]], n_features=3, owner="SVC")
+    Traceback (most recent call last):
+    ...
+    ValueError: X has 2 features, but SVC is expecting 3 features as input.
+    """
+    if hasattr(X, "tocsr") and hasattr(X, "nnz"):  # a SciPy sparse matrix or array
+        shape, values = tuple(X.shape), np.asarray(X.tocsr().data)
+    else:
+        if isinstance(X, str | bytes):
+            raise TypeError(f"{name} must be a 2-D array of numbers (n_samples, n_features), "
+                            f"got {type(X).__name__} {describe(X)}")
+        try:
+            values = np.asarray(X)
+        except ValueError:
+            raise ValueError(f"{name} must be a rectangular array: its rows have different "
+                             "lengths (a ragged list)") from None
+        except (TypeError, OverflowError, RecursionError, MemoryError):
+            raise TypeError(f"{name} must be array-like of numbers, got "
+                            f"{type(X).__name__}") from None
+        shape = values.shape
+        if values.dtype.kind in "USV":
+            raise TypeError(f"{name} must be array-like of real numbers, got a "
+                            f"{_REFUSED_KINDS[values.dtype.kind]} array (dtype {values.dtype})")
+        if values.dtype.kind == "c":
+            raise ValueError(f"{name} must hold real numbers: Complex data not supported "
+                             f"(dtype {values.dtype})")
+    if len(shape) != 2:
+        raise ValueError(
+            f"{name} must be a 2-D array (n_samples, n_features), got {len(shape)} dimension(s), "
+            f"shape {shape}: Expected 2D array. Reshape your data with {name}.reshape(-1, 1) "
+            f"if it has a single feature, or {name}.reshape(1, -1) if it is a single sample.")
+    if shape[0] == 0:
+        raise ValueError(f"{name} must hold at least one sample, got 0 sample(s) (shape={shape})")
+    if values.dtype.kind in "fiu" and values.size:
+        finite = np.isfinite(values)
+        if not finite.all():
+            where = np.argwhere(~finite)[0]
+            at = (f"row {where[0]}, column {where[1]}" if values.ndim == 2
+                  else "a stored value")
+            raise ValueError(f"{name} must contain only finite values (no NaN, no infinity): "
+                             f"{at} is {values[tuple(where)]}")
+    if n_features is not None and shape[1] != n_features:
+        raise ValueError(f"{name} has {shape[1]} features, but {owner} is expecting "
+                         f"{n_features} features as input.")
+
+
+def check_targets(X, y, *, numeric: bool = False):
+    """Refuse, in the package's words, targets ``y`` of another length than the rows of ``X``
+    (samples checked by :func:`check_samples`), a ragged ``y``, and for a regressor
+    (``numeric``) NaN or infinity; return ``y`` as given. None, a string and a sparse ``y`` are
+    left to the estimator's own conversion.
+
+    Examples
+    --------
+    >>> check_targets([[1.0], [2.0]], [0])
+    Traceback (most recent call last):
+    ...
+    ValueError: y must hold one target per row of X (2), got 1: inconsistent numbers of samples
+    """
+    if y is None or isinstance(y, str | bytes) or (hasattr(y, "tocsr") and hasattr(y, "nnz")):
+        return y
+    try:
+        values = np.asarray(y)
+    except ValueError:
+        raise ValueError("y must be a rectangular array: its rows have different lengths "
+                         "(a ragged list)") from None
+    except (TypeError, OverflowError, RecursionError, MemoryError):
+        raise TypeError(f"y must be array-like, got {type(y).__name__}") from None
+    n = X.shape[0] if hasattr(X, "shape") else np.asarray(X).shape[0]  # (no array functions)
+    if values.ndim and values.shape[0] != n:
+        raise ValueError(f"y must hold one target per row of X ({n}), got {values.shape[0]}: "
+                         "inconsistent numbers of samples")
+    if numeric and values.dtype.kind in "fc" and not np.all(np.isfinite(values)):
+        raise ValueError("y must contain only finite values (no NaN, no infinity)")
+    return y

@@ -22,9 +22,9 @@ from __future__ import annotations
 
 import importlib
 import time
-from pathlib import Path
 
 from .._progress import progress
+from .._validate import check_bool, check_choice, output_dir
 from ..report import FigureSet, Report
 
 __all__ = ["BENCHMARKS", "run_benchmarks", "write_sweep"]
@@ -60,6 +60,14 @@ def write_sweep(report: Report, figures: FigureSet, name: str, module, rows) -> 
     str
         The tables as text.
     """
+    if not isinstance(report, Report):
+        raise TypeError(f"report must be a Report, got {type(report).__name__}")
+    if not isinstance(figures, FigureSet):
+        raise TypeError(f"figures must be a FigureSet, got {type(figures).__name__}")
+    check_choice("name", name, BENCHMARKS)
+    if not callable(getattr(module, "to_text", None)):
+        raise TypeError(f"module must be a sweep's module, with to_text(rows); got "
+                        f"{type(module).__name__}")
     text = module.to_text(rows)
     report.heading(BENCHMARKS[name])
     report.preformatted(text.strip())
@@ -94,11 +102,20 @@ def run_benchmarks(
 
     matplotlib.use("Agg")
 
+    quick = check_bool("quick", quick)
+    if show_progress is not None:
+        check_bool("show_progress", show_progress)
+    if isinstance(only, str | bytes):  # a name would be read letter by letter
+        raise TypeError(f"only must be a list of names such as [{only!r}], got a string")
+    if only is not None and not hasattr(only, "__iter__"):
+        raise TypeError(f"only must be an iterable of names, got {type(only).__name__}")
     names = list(BENCHMARKS) if only is None else list(only)
+    if not all(isinstance(name, str) for name in names):
+        raise TypeError("only must hold names (str) of the benchmarks")
     unknown = sorted(set(names) - set(BENCHMARKS))
     if unknown:
         raise ValueError(f"only must name benchmarks among {', '.join(BENCHMARKS)}; got {unknown}")
-    out_dir = Path(out_dir)
+    out_dir = output_dir("out_dir", out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     figures = FigureSet(out_dir)
     report = Report("ebantenna: accuracy against time" + (" (quick)" if quick else ""))

@@ -23,6 +23,8 @@ import time
 
 import numpy as np
 
+from ebantenna._validate import check_bool, check_int
+from ebantenna.bench._arguments import check_argv, check_count, check_tables
 from ebantenna.bench._timing import best_time
 from ebantenna.paper.data import paper_dataset_plan
 from ebantenna.report import text_table
@@ -81,11 +83,11 @@ def run(quick: bool = False, signals: int = 200, repeat: int = 2) -> dict:
         ``added_seconds`` (what the law adds to the linearised one's build of the paper data set
         on :data:`CORES` cores, s).
     """
-    if quick:
+    if check_bool("quick", quick):
         signals, repeat = 40, 1
-    if signals < 1 or repeat < 1:
-        raise ValueError(f"signals and repeat must be >= 1, got {signals} and {repeat}")
+    repeat = check_count("repeat", repeat)
     plan = paper_dataset_plan(seed=0)
+    signals = check_int("signals", signals, minimum=1, maximum=plan["contact"].size)
     pick = np.sort(np.random.default_rng(0).choice(plan["contact"].size, signals, replace=False))
     rows = {key: np.asarray(plan[key])[pick] for key in
             ("contact_true", "material", "sweep_speed", "tilt_ratio", "seed_row")}  # fmt: skip
@@ -105,6 +107,7 @@ def run(quick: bool = False, signals: int = 200, repeat: int = 2) -> dict:
 
 def to_text(tables: dict) -> str:
     """The table of :func:`run` as text, with the data set's budget."""
+    check_tables(tables, "run", signals=int, repeat=int, rows=list)
     hertz = tables["rows"][-1]
     fits = hertz["added_seconds"] <= DATASET_BUDGET
     return "\n".join([
@@ -132,7 +135,7 @@ def main(argv=None):
     parser.add_argument("--signals", type=int, default=200)
     parser.add_argument("--repeat", type=int, default=2)
     parser.add_argument("--quick", action="store_true", help="40 signals, one timing")
-    args = parser.parse_args(argv)
+    args = parser.parse_args(check_argv(argv))
     print(to_text(run(args.quick, args.signals, args.repeat)))
 
 

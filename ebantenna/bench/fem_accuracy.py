@@ -19,6 +19,8 @@ import math
 import numpy as np
 
 from ebantenna import Probe
+from ebantenna._validate import check_bool
+from ebantenna.bench._arguments import check_argv, check_tables
 from ebantenna.bench._timing import best_time
 from ebantenna.fem import Supports, exact_frequencies, modal_analysis, natural_frequencies
 from ebantenna.fem.secular import secular_sweep
@@ -44,6 +46,7 @@ def accuracy_rows(quick: bool) -> list[dict]:
         One row per mesh: ``N``, and for each solver ``<solver>_error`` (largest relative error of
         f1..f3, NaN where the solver was not run) and ``<solver>_seconds`` (best wall time, s).
     """
+    quick = check_bool("quick", quick)
     probe = Probe()
     contact = 0.8 * probe.length
     exact = exact_frequencies(probe, contact, n_modes=3)
@@ -85,6 +88,7 @@ def sweep_rows(quick: bool) -> list[dict]:
         Rows with ``method``, ``seconds`` (for the whole sweep, s), ``positions_per_second`` and
         ``max_error``.
     """
+    quick = check_bool("quick", quick)
     probe = Probe()
     n = 2000 if quick else 10000
     contacts = np.linspace(0.01, 0.39, n)
@@ -141,11 +145,13 @@ def sweep_rows(quick: bool) -> list[dict]:
 
 def run(quick: bool = False) -> dict:
     """Both sweeps: ``{"accuracy": accuracy_rows(quick), "sweep": sweep_rows(quick)}``."""
+    check_bool("quick", quick)
     return {"accuracy": accuracy_rows(quick), "sweep": sweep_rows(quick)}
 
 
 def to_text(tables: dict) -> str:
     """The tables of :func:`run` as text."""
+    check_tables(tables, "run", accuracy=list, sweep=list)
     columns = [("N", "N", "6d")]
     for s in SOLVER_MARKERS:
         columns += [(f"{s}_error", f"{s} err", "10.2e"), (f"{s}_seconds", "time", "9.5f")]
@@ -180,7 +186,7 @@ def plot(tables: dict):
     """
     from matplotlib.figure import Figure
 
-    rows = tables["accuracy"]
+    rows = check_tables(tables, "run", accuracy=list)["accuracy"]
     fig = Figure(figsize=(7, 4.2))
     ax = fig.subplots()
     for solver, marker in SOLVER_MARKERS.items():
@@ -206,7 +212,7 @@ def main(argv=None):
     """Command-line entry: print the tables."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="smaller meshes and sweep")
-    args = parser.parse_args(argv)
+    args = parser.parse_args(check_argv(argv))
     print(to_text(run(args.quick)))
 
 

@@ -86,6 +86,17 @@ from sklearn.preprocessing import StandardScaler
 from sklearn.svm import SVC as LibSVC
 from threadpoolctl import threadpool_limits
 
+from ebantenna._budget import check_allocation
+from ebantenna._engines import ENGINES
+from ebantenna._validate import check_bool, check_choice, check_in_range, check_int, check_positive
+from ebantenna.bench._arguments import (
+    MAX_TRIALS,
+    check_argv,
+    check_callable,
+    check_count,
+    check_features,
+    check_tables,
+)
 from ebantenna.bench._timing import best_time, clocked
 from ebantenna.ml import SVC, MLPClassifier
 from ebantenna.ml import smo as smo_module
@@ -103,7 +114,10 @@ __all__ = ["spectra_like", "SMALL_SETS", "SMALL_CASES", "small_set", "engines", 
 def spectra_like(n, d, k, seed):
     """Non-negative features with overlapping classes (folded Gaussians in 256 dimensions),
     so that held-out accuracy lies near 95 % (not trivial, not chance)."""
-    rng = np.random.default_rng(seed)
+    n, d = check_int("n", n, minimum=1), check_int("d", d, minimum=1)
+    k = check_int("k", k, minimum=1, maximum=n)
+    check_allocation(24 * n * d, parameter="n and d", what="the features")
+    rng = np.random.default_rng(check_int("seed", seed, minimum=0))
     centers = rng.normal(size=(k, d))
     y = rng.integers(0, k, n)
     X = np.abs(centers[y] * 0.55 + rng.normal(size=(n, d)))
@@ -122,6 +136,7 @@ SMALL_SETS = ("iris", "wine", "breast_cancer", "digits")
 def small_set(name: str):
     """One of :data:`SMALL_SETS`, features standardised as a student would, shuffled (seed 0)
     and split three to one: ``(X_train, y_train, X_test, y_test)``."""
+    check_choice("name", name, SMALL_SETS)
     X, y = getattr(datasets, f"load_{name}")(return_X_y=True)
     order = np.random.default_rng(0).permutation(len(y))
     X, y = StandardScaler().fit_transform(X[order]), y[order]
@@ -136,7 +151,10 @@ def engines() -> list[str]:
 
 @contextmanager
 def on_engine(engine: str):
-    """Run the enclosed fits on one SMO engine (through ``EBANTENNA_ENGINE``), then restore."""
+    """Run the enclosed fits on one SMO engine (through ``EBANTENNA_ENGINE``), then restore.
+
+    ``engine`` is one of ``'auto'``, ``'numpy'`` or ``'compiled'``, checked on entering."""
+    check_choice("engine", engine, ENGINES)
     before = os.environ.get(ENGINE_VARIABLE)
     os.environ[ENGINE_VARIABLE] = engine
     try:
@@ -168,8 +186,8 @@ def run(quick: bool = False, repeat: int = 5) -> dict:
         ``sklearn_accuracy`` (held out); ``parts``: the rows of :func:`where_time_goes`;
         ``engine``: the rows of :func:`engine_rows`.
     """
-    if repeat < 1:
-        raise ValueError(f"repeat must be >= 1, got {repeat}")
+    quick = check_bool("quick", quick)
+    repeat = check_count("repeat", repeat)
     n = 1500 if quick else 6000
     d, k = 256, 5
     X, y = spectra_like(n + n // 4, d, k, seed=0)
@@ -201,6 +219,11 @@ def compare(task: str, ours, theirs, score, repeat: int, *, data: str = "",
     smallest and the median of the ``repeat`` ratios within a repetition, and ``score`` of each
     side's last fitted model.
     """
+    if not isinstance(task, str):
+        raise TypeError(f"task must be a str (the row's name), got {type(task).__name__}")
+    for name, f in (("ours", ours), ("theirs", theirs), ("score", score), ("clock", clock)):
+        check_callable(name, f)
+    repeat = check_count("repeat", repeat)
     times_ours, times_theirs = [], []
     m_ours = m_theirs = None
     for _ in range(repeat):  # alternate
@@ -228,6 +251,9 @@ def svc_rows(X, y, score, repeat: int) -> list[dict]:
     """Our ``SVC`` against libsvm's on the paper's data, both on one BLAS thread (libsvm uses
     one): the default and ``libsvm_compat`` (both shrink, as by default) on each SMO engine,
     then ``probability=True``; the first row is the reference of :func:`where_time_goes`."""
+    X, y = check_features(X, y)
+    check_callable("score", score)
+    check_count("repeat", repeat)
     n, d = X.shape
     data = f"paper-like {n}x{d}, {len(np.unique(y))} classes"
     rows = []
@@ -286,6 +312,9 @@ def small_set_rows(repeat: int, batch_seconds: float = 0.02) -> list[dict]:
     of fits lasting about ``batch_seconds`` on scikit-learn's side, and the seconds reported are
     per fit.
     """
+    check_count("repeat", repeat)
+    check_in_range("batch_seconds", batch_seconds, 0.0, 60.0, low_inclusive=True,
+                   high_inclusive=True)
     rows = []
     with threadpool_limits(1):
         for name in SMALL_SETS:
@@ -338,6 +367,12 @@ def small_set_parts(rows: list[dict], repeat: int = 5) -> list[dict]:
     repeat : int
         Clocked fits per row; the fastest is kept.
     """
+    if not isinstance(rows, list) or not all(
+            isinstance(r, dict) and {"engine", "data", "task", "sklearn_seconds"} <= set(r)
+            for r in rows):
+        raise TypeError("rows must be the list of rows of small_set_rows (dicts with 'engine', "
+                        "'data', 'task' and 'sklearn_seconds')")
+    check_count("repeat", repeat)
     parts = []
     if "compiled" not in engines():
         return parts
@@ -387,6 +422,8 @@ def _mlp_common(epochs: int) -> dict:
 def sklearn_adam(X, y, epochs: int):
     """A function that fits scikit-learn's MLP of the row ``ADAM_ONE_THREAD`` on one BLAS thread
     (Adam, mini-batches of 200) and returns it."""
+    X, y = check_features(X, y)
+    check_count("epochs", epochs)
     return lambda: _on_one_thread(SkMLP(solver="adam", batch_size=200, **_mlp_common(epochs)),
                                   X, y)
 
@@ -395,6 +432,10 @@ def mlp_rows(X, y, score, repeat: int, epochs: int) -> list[dict]:
     """Our ``MLPClassifier`` against scikit-learn's with the same network, solver and epochs:
     full-batch gradient descent, Adam (also with both sides on one BLAS thread), SGD with
     scikit-learn's 'invscaling' schedule and L-BFGS."""
+    X, y = check_features(X, y)
+    check_callable("score", score)
+    check_count("repeat", repeat)
+    check_count("epochs", epochs)
     n = len(X)
     common = _mlp_common(epochs)
     pairs = [
@@ -457,6 +498,14 @@ def where_time_goes(X, y, svc_seconds: float, adam_seconds: float, epochs: int,
         ``part``, ``seconds``, ``share`` (of scikit-learn's time) and ``note``; the SMO rows
         also ``updates``, the solver's updates over all pairs of classes.
     """
+    X, y = check_features(X, y)
+    check_positive("svc_seconds", svc_seconds)
+    check_positive("adam_seconds", adam_seconds)
+    check_count("epochs", epochs)
+    check_int("batch_size", batch_size, minimum=1, maximum=MAX_TRIALS)
+    if adam_fit is not None:
+        check_callable("adam_fit", adam_fit)
+    check_count("repeat", repeat)
     return (_svc_parts(X, y, svc_seconds)
             + _mlp_parts(X, y, adam_seconds, epochs, batch_size, adam_fit, repeat))
 
@@ -548,6 +597,7 @@ def _mlp_parts(X, y, adam_seconds: float, epochs: int, batch_size: int, adam_fit
 
 def to_text(tables: dict) -> str:
     """The tables of :func:`run` as text."""
+    check_tables(tables, "run", rows=list, parts=list, engine=list)
     return text_table(
         [("task", "task", "<36"), ("data", "data", "<34"), ("engine", "engine", "<8"),
          ("ours_seconds", "ours (s)", "9.4f"), ("sklearn_seconds", "sklearn (s)", "11.4f"),
@@ -570,7 +620,7 @@ def main(argv=None):
     parser.add_argument("--quick", action="store_true", help="smaller problems")
     parser.add_argument("--repeat", type=int, default=5,
                         help="interleaved timings per row (at least 5 for a median)")
-    args = parser.parse_args(argv)
+    args = parser.parse_args(check_argv(argv))
     print(to_text(run(args.quick, args.repeat)))
 
 

@@ -24,6 +24,8 @@ import time
 
 import numpy as np
 
+from ebantenna._validate import check_bool, check_int
+from ebantenna.bench._arguments import check_argv, check_count, check_generator, check_tables
 from ebantenna.report import text_table
 from ebantenna.signal import (
     DECAY_METHODS,
@@ -64,6 +66,8 @@ def frequency_rows(n_trials, rng) -> list[dict]:
         ``method``, ``window``, ``pad`` (zero-padding factor), ``rms_hz`` and ``max_hz`` (error,
         Hz), ``seconds`` (per call, s) and ``ratio`` (time relative to the first row).
     """
+    n_trials = check_count("n_trials", n_trials)
+    check_generator("rng", rng)
     signals = []
     for _ in range(n_trials):
         f0 = rng.uniform(20.0, 450.0)
@@ -133,6 +137,8 @@ def decay_rows(n_trials, rng) -> list[dict]:
         ``tau`` (true time constant, s), ``method``, ``band_pass``, ``median_error`` and
         ``max_error`` (relative error of tau), ``seconds`` (per fit, s) and ``ratio``.
     """
+    n_trials = check_count("n_trials", n_trials)
+    check_generator("rng", rng)
     sos = paper_filter("chebyshev")
     stated = paper_filter("chebyshev", "stated")
     rows = []
@@ -164,6 +170,7 @@ def distance_rows(rng) -> dict:
         and ``rows``: per estimator ``estimator``, ``max_error_cm`` (one value per band, NaN
         where no test contact falls in it) and ``us_per_contact``.
     """
+    check_generator("rng", rng)
     from ebantenna.fem import natural_frequencies
     from ebantenna.paper.estimators import FrequencyDistanceEstimator, MultiModeDistanceEstimator
     from ebantenna.probe import Probe
@@ -215,7 +222,8 @@ def run(quick: bool = False, seed: int = 0) -> dict:
         ``n_trials`` and the rows of ``frequency``, ``timefreq``, ``decay`` (with
         ``decay_trials``) and ``distance``.
     """
-    rng = np.random.default_rng(seed)
+    quick = check_bool("quick", quick)
+    rng = np.random.default_rng(check_int("seed", seed, minimum=0))
     n = 20 if quick else 200
     n_decay = 5 if quick else 30
     return {
@@ -230,6 +238,8 @@ def run(quick: bool = False, seed: int = 0) -> dict:
 
 def to_text(tables: dict) -> str:
     """The tables of :func:`run` as text."""
+    check_tables(tables, "run", n_trials=int, frequency=list, timefreq=list, decay_trials=int,
+                 decay=list, distance=dict)
     frequency = text_table(
         [("method", "method", "<10"), ("window", "window", "<12"), ("pad", "pad", "4d"),
          ("rms_hz", "rms err Hz", "11.4f"), ("max_hz", "max err Hz", "11.4f"),
@@ -285,6 +295,7 @@ def plot(tables: dict):
     """
     from matplotlib.figure import Figure
 
+    check_tables(tables, "run", frequency=list)
     fig = Figure(figsize=(7, 4.2))
     ax = fig.subplots()
     for r in tables["frequency"]:
@@ -303,7 +314,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="fewer trials")
     parser.add_argument("--seed", type=int, default=0)
-    args = parser.parse_args(argv)
+    args = parser.parse_args(check_argv(argv))
     print(to_text(run(args.quick, args.seed)))
 
 

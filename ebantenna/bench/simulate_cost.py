@@ -27,7 +27,8 @@ import time
 
 import numpy as np
 
-from ebantenna._validate import more_jobs_allowed
+from ebantenna._validate import check_bool, more_jobs_allowed
+from ebantenna.bench._arguments import check_argv, check_count, check_tables
 from ebantenna.bench._timing import best_time
 from ebantenna.paper.data import build_paper_dataset
 from ebantenna.probe import Probe, material_names
@@ -64,7 +65,13 @@ def scenarios():
 
 
 def time_scene(scene, contacts, materials, seeds, repeat):
-    """Best CPU seconds of ``repeat`` simulations of the batch."""
+    """Best CPU seconds of ``repeat`` simulations of the batch (``contacts``, ``materials`` and
+    ``seeds`` as :func:`~ebantenna.simulate.simulate_batch` takes them)."""
+    from ebantenna.simulate import Scene
+
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
+    repeat = check_count("repeat", repeat)
 
     def batch():
         return simulate_batch(
@@ -98,10 +105,11 @@ def run(
         ``jobs``, ``signals``, ``wall_seconds``, ``cpu_seconds``; empty when skipped),
         ``peak_mb`` and ``load``.
     """
-    if quick:
+    check_bool("skip_dataset", skip_dataset)
+    if check_bool("quick", quick):
         signals, repeat, skip_dataset = 200, 1, True
-    if signals < 1 or repeat < 1:
-        raise ValueError(f"signals and repeat must be >= 1, got {signals} and {repeat}")
+    signals = check_count("signals", signals)
+    repeat = check_count("repeat", repeat)
     rng = np.random.default_rng(0)
     n = signals
     contacts = np.round(rng.uniform(0.005, 0.395, n) / 5e-4) * 5e-4
@@ -136,6 +144,7 @@ def run(
 
 def to_text(tables: dict) -> str:
     """The tables of :func:`run` as text."""
+    check_tables(tables, "run", signals=int, repeat=int, rows=list, dataset=list)
     lines = [
         f"{tables['signals']} one-second signals at 1 kHz, best of {tables['repeat']}, CPU seconds",
         text_table(
@@ -291,7 +300,7 @@ def main(argv=None):
         "--march", action="store_true",
         help="time only the strike march, NumPy against compiled (50 + 20 strikes)",
     )  # fmt: skip
-    args = parser.parse_args(argv)
+    args = parser.parse_args(check_argv(argv))
     if args.march:
         print(march_text(march_engines(repeat=args.repeat)))
         return

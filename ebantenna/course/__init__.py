@@ -336,6 +336,18 @@ class CheckReport:
     lines: tuple[str, ...]
     passed: tuple[bool, ...]
 
+    def __post_init__(self):
+        if not isinstance(self.exercise, str):
+            raise TypeError(f"exercise must be a str, got {type(self.exercise).__name__}")
+        if not isinstance(self.lines, tuple) or not all(isinstance(x, str) for x in self.lines):
+            raise TypeError("lines must be a tuple of str")
+        if not isinstance(self.passed, tuple) or not all(isinstance(x, bool)
+                                                         for x in self.passed):
+            raise TypeError("passed must be a tuple of True or False (one per line)")
+        if len(self.passed) != len(self.lines):
+            raise ValueError(f"passed must hold one verdict per line: {len(self.lines)} lines, "
+                             f"{len(self.passed)} verdicts")
+
     @property
     def ok(self) -> bool:
         """True when every value given is within its tolerance."""

@@ -32,6 +32,7 @@ import numpy as np
 from ..probe import Probe
 from ._element_engine import mass_polynomial, stiffness_polynomial
 from .elements import bending_energy
+from .guards import check_sweep
 
 __all__ = ["banded_sweep", "sweep_meshes"]
 
@@ -177,6 +178,8 @@ def banded_sweep(
     ``hinge_stiffness`` is inf for a clamped hinge, 0 for a pinned one, N m/rad for a spring;
     ``contact_stiffness`` inf for a rigid contact, N/m for a spring.
     """
+    contacts, n_elements, n_modes = check_sweep(probe, contacts, hinge_stiffness,
+                                                contact_stiffness, n_elements, n_modes, shift)
     B = contacts.size
     # Two uniform spans per position (see sweep_meshes): two element lengths, two matrices.
     _, c_node = sweep_meshes(probe.length, contacts, n_elements)

@@ -47,7 +47,15 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 
-from .._validate import check_choice, check_in_range, check_int, check_nonnegative, describe
+from .._validate import (
+    check_array,
+    check_choice,
+    check_in_range,
+    check_int,
+    check_nonnegative,
+    check_positive,
+    describe,
+)
 from ..probe import MAX_LOSS_FACTOR, Probe
 from .assembly import assemble, beam_mesh, free_dofs, support_diagonals
 from .guards import check_contact, check_resolvable
@@ -97,6 +105,27 @@ class Substructure:
     free: np.ndarray
     loss_factor: float
     scale: float
+
+    def __post_init__(self):
+        stiffness = check_array("stiffness", self.stiffness, ndim=2)
+        n = stiffness.shape[0]
+        if stiffness.shape != (n, n):
+            raise ValueError(f"stiffness must be a square matrix, got shape {stiffness.shape}")
+        if check_array("mass", self.mass, ndim=2).shape != (n, n):
+            raise ValueError(f"mass must have the shape of stiffness {(n, n)}, got "
+                             f"{np.shape(self.mass)}")
+        check_int("interface", self.interface, minimum=0, maximum=n - 1)
+        nodes = check_array("nodes", self.nodes, ndim=1, min_length=2)
+        if not np.all(np.diff(nodes) > 0):
+            raise ValueError("nodes must be increasing positions along the beam")
+        free = np.asarray(self.free)
+        if (free.shape != (n,) or free.dtype.kind not in "iu" or free.min() < 0
+                or free.max() >= 2 * nodes.size or np.unique(free).size != n):
+            raise ValueError(f"free must hold the {n} distinct indices of the free DOFs among "
+                             f"the {2 * nodes.size} of the nodes")
+        check_in_range("loss_factor", self.loss_factor, 0.0, MAX_LOSS_FACTOR,
+                       low_inclusive=True, high_inclusive=True)
+        check_positive("scale", self.scale)
 
     def full(self, x: np.ndarray) -> np.ndarray:
         """Full DOF vectors (zeros at the fixed DOFs) from vectors on the free DOFs."""

@@ -34,13 +34,22 @@ import math
 import numpy as np
 
 from .._budget import check_allocation
-from .._validate import check_in_range, check_int, describe
+from .._validate import (
+    check_array,
+    check_in_range,
+    check_int,
+    check_nonnegative,
+    check_positive,
+    describe,
+)
 
 __all__ = [
     "roundoff_error",
     "check_resolvable",
     "check_memory",
     "check_contact",
+    "check_sweep",
+    "check_uniform_mesh",
     "ROUNDOFF_RTOL",
     "MAX_ELEMENTS",
     "MIN_SPAN",
@@ -137,3 +146,50 @@ def check_contact(name: str, contact, length: float) -> float:
             f"from the hinge and from the tip), got {contact!r}"
         )
     return contact
+
+
+def check_sweep(probe, contacts, hinge_stiffness, contact_stiffness, n_elements, n_modes,
+                shift=None):
+    """The arguments of a sweep engine checked: ``(contacts, n_elements, n_modes)``.
+
+    ``probe`` a :class:`~ebantenna.probe.Probe`; ``contacts`` a 1-D array of positions on it
+    (:func:`check_contact`); ``hinge_stiffness`` >= 0 N m/rad (0 pinned, inf clamped);
+    ``contact_stiffness`` > 0 N/m (inf rigid); ``n_elements`` from 2 to :data:`MAX_ELEMENTS`;
+    ``n_modes`` from 1 to ``2 n_elements - 1`` (the free DOFs of the mesh); ``shift`` (1/s^2),
+    when given, > 0. Anything else raises, naming the parameter.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ebantenna.probe import Probe
+    >>> check_sweep(Probe(), np.array([0.1]), np.inf, np.inf, 8, 20)
+    Traceback (most recent call last):
+    ...
+    ValueError: n_modes must be <= 15, got 20
+    """
+    from ..probe import Probe
+
+    if not isinstance(probe, Probe):
+        raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")
+    contacts = check_array("contacts", contacts, ndim=1)
+    for contact in (contacts.min(), contacts.max()):  # the two nearest the ends
+        check_contact("contacts", contact, probe.length)
+    check_nonnegative("hinge_stiffness", hinge_stiffness, allow_inf=True)
+    check_positive("contact_stiffness", contact_stiffness, allow_inf=True)
+    n_elements = check_resolvable(check_int("n_elements", n_elements, minimum=2))
+    n_modes = check_int("n_modes", n_modes, minimum=1, maximum=2 * n_elements - 1)
+    if shift is not None:
+        check_positive("shift", shift)
+    return contacts, n_elements, n_modes
+
+
+def check_uniform_mesh(nodes) -> tuple[np.ndarray, float]:
+    """``nodes`` checked as a uniform mesh from 0 (at least two nodes, equal steps): ``(nodes,
+    step)``. The steps may differ by the rounding of ``numpy.linspace`` (a few units in
+    the last place of the length; 1e-9 of the step is far above it)."""
+    nodes = check_array("nodes", nodes, ndim=1, min_length=2)
+    step = (nodes[-1] - nodes[0]) / (nodes.size - 1)
+    if nodes[0] != 0.0 or not step > 0 or np.any(np.abs(np.diff(nodes) - step) > 1e-9 * step):
+        raise ValueError("nodes must be a uniform mesh from 0 (equal steps, increasing), as "
+                         "numpy.linspace(0, length, n_elements + 1) makes")
+    return nodes, float(nodes[1] - nodes[0])

@@ -11,10 +11,16 @@ __all__ = ["plot_probe", "plot_modes", "plot_zones"]
 
 
 def _axes(ax):
+    """``ax``, or new axes when it is None; anything but matplotlib axes is refused."""
     if ax is None:
         import matplotlib.pyplot as plt
 
         _fig, ax = plt.subplots(figsize=(7, 4))
+        return ax
+    from matplotlib.axes import Axes
+
+    if not isinstance(ax, Axes):
+        raise TypeError(f"ax must be matplotlib Axes or None, got {type(ax).__name__}")
     return ax
 
 

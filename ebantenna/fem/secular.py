@@ -57,10 +57,12 @@ import math
 import numpy as np
 import scipy.linalg as sla
 
+from .._validate import check_array, check_bool, check_int, check_positive
 from ..probe import Probe
 from ._parallel import map_on_cores
 from .assembly import assemble
 from .elements import bending_energy, hermite
+from .guards import check_sweep, check_uniform_mesh
 
 __all__ = ["secular_sweep", "contact_weights", "static_correction"]
 
@@ -86,9 +88,28 @@ def _unconstrained(probe: Probe, n_elements: int, hinge_stiffness: float):
     return nodes, free, M, np.maximum(lam, 0.0), phi
 
 
+def _on_the_mesh(contacts, nodes) -> np.ndarray:
+    """``contacts`` as a 1-D array of positions within the mesh ``nodes`` (0 to its length)."""
+    contacts = check_array("contacts", contacts, ndim=1)
+    if contacts.min() < 0 or contacts.max() > nodes[-1]:
+        raise ValueError(f"contacts must lie on the mesh, from 0 to {nodes[-1]:g} m")
+    return contacts
+
+
 def contact_weights(nodes: np.ndarray, free: np.ndarray, phi: np.ndarray, contacts: np.ndarray):
     """``c(a)^T phi_k`` for every contact ``a``: each mode's deflection there, shape (B, n)."""
-    h = nodes[1] - nodes[0]
+    nodes, h = check_uniform_mesh(nodes)
+    free = np.asarray(free)
+    if (free.ndim != 1 or free.dtype.kind not in "iu" or free.size == 0
+            or free.min() < 0 or free.max() >= 2 * nodes.size
+            or np.unique(free).size != free.size):
+        raise ValueError(f"free must be distinct DOF indices of the mesh (0 to "
+                         f"{2 * nodes.size - 1})")
+    phi = check_array("phi", phi, ndim=2)
+    if phi.shape[0] != free.size:
+        raise ValueError(f"phi must have one row per free DOF ({free.size}), got shape "
+                         f"{phi.shape}")
+    contacts = _on_the_mesh(contacts, nodes)
     element = np.clip((contacts // h).astype(int), 0, nodes.size - 2)
     N = hermite((contacts - nodes[element]) / h, h)  # (B, 4)
     full = np.zeros((2 * nodes.size, phi.shape[1]))
@@ -112,7 +133,9 @@ def static_correction(nodes: np.ndarray, contacts: np.ndarray, flexural_rigidity
     >>> bool(delta[0] == 0.0), bool(delta[1] > 0)  # a node, then the middle of an element
     (True, True)
     """
-    h = nodes[1] - nodes[0]
+    nodes, h = check_uniform_mesh(nodes)
+    contacts = _on_the_mesh(contacts, nodes)
+    flexural_rigidity = check_positive("flexural_rigidity", flexural_rigidity)
     element = np.clip((contacts // h).astype(int), 0, nodes.size - 2)
     N = hermite((contacts - nodes[element]) / h, h)  # (B, 4): v, theta at each end
     x = nodes[element[:, None] + np.array([0, 0, 1, 1])]  # (B, 4): where each DOF sits
@@ -207,6 +230,10 @@ def secular_sweep(
     array([[ 21.35, 137.77],
            [ 38.97, 243.51]])
     """
+    contacts, n_elements, n_modes = check_sweep(probe, contacts, hinge_stiffness,
+                                                contact_stiffness, n_elements, n_modes)
+    chunk = check_int("chunk", chunk, minimum=1)
+    static = check_bool("static", static)
     nodes, free, M, lam, phi = _unconstrained(probe, n_elements, hinge_stiffness)
     inv_k = 0.0 if math.isinf(contact_stiffness) else 1.0 / contact_stiffness
 

@@ -105,6 +105,15 @@ def assemble_chain(element_list: list[sp.Matrix]) -> sp.Matrix:
     The sympy counterpart of :func:`~ebantenna.fem.assembly.assemble_elements`: element ``e``
     adds its block into rows and columns ``2e .. 2e + 3``.
     """
+    if isinstance(element_list, sp.MatrixBase) or not isinstance(element_list, list | tuple):
+        raise TypeError(f"element_list must be a list of 4x4 sympy matrices, got "
+                        f"{type(element_list).__name__}")
+    if not element_list:
+        raise ValueError("element_list must hold at least one element matrix")
+    for e, Ke in enumerate(element_list):
+        if not isinstance(Ke, sp.MatrixBase) or Ke.shape != (4, 4):
+            raise ValueError(f"element_list[{e}] must be a 4x4 sympy matrix, got "
+                             f"{type(Ke).__name__} {getattr(Ke, 'shape', '')}")
     n = len(element_list)
     G = sp.zeros(2 * n + 2, 2 * n + 2)
     for e, Ke in enumerate(element_list):

@@ -180,6 +180,33 @@ def glorot_uniform(sizes, activation: str, rng: np.random.Generator):
     return coefs, intercepts
 
 
+def _check_network(X, coefs, intercepts, activation: str) -> None:
+    """Refuse a network whose layers do not chain: ``coefs`` and ``intercepts`` lists of one
+    2-D weight matrix and one bias vector per layer, each layer's fan-in the previous one's
+    fan-out, the first the columns of ``X``. Shapes only (the values are the training's own)."""
+    check_choice("activation", activation, ACTIVATIONS)
+    for name, layers in (("coefs", coefs), ("intercepts", intercepts)):
+        if not isinstance(layers, list | tuple) or not layers:
+            raise TypeError(f"{name} must be a non-empty list of arrays, one per layer, got "
+                            f"{type(layers).__name__}")
+    if len(coefs) != len(intercepts):
+        raise ValueError(f"intercepts must hold one bias vector per weight matrix of coefs "
+                         f"({len(coefs)}), got {len(intercepts)}")
+    if getattr(X, "ndim", None) != 2:
+        raise ValueError(f"X must be a 2-D array (n_samples, n_features), got "
+                         f"{type(X).__name__} {getattr(X, 'shape', '')}")
+    fan_in = X.shape[1]
+    for layer, (W, b) in enumerate(zip(coefs, intercepts, strict=True)):
+        shape = getattr(W, "shape", None)
+        if shape is None or len(shape) != 2 or shape[0] != fan_in:
+            raise ValueError(f"coefs[{layer}] must be a ({fan_in}, fan_out) weight matrix, got "
+                             f"{type(W).__name__} {shape or ''}")
+        if np.shape(b) != (shape[1],):
+            raise ValueError(f"intercepts[{layer}] must hold {shape[1]} biases, got shape "
+                             f"{np.shape(b)}")
+        fan_in = shape[1]
+
+
 def forward(X, coefs, intercepts, activation: str) -> list[np.ndarray]:
     """Activations of every layer, ``X`` first; the last entry is the output pre-activation.
 
@@ -206,6 +233,7 @@ def forward(X, coefs, intercepts, activation: str) -> list[np.ndarray]:
     >>> acts[-1]
     array([[2.]])
     """
+    _check_network(X, coefs, intercepts, activation)
     acts = [X]
     last = len(coefs) - 1
     for layer, (W, b) in enumerate(zip(coefs, intercepts, strict=True)):
@@ -320,6 +348,16 @@ def backprop(acts, delta, coefs, activation: str, alpha_per_sample: float):
     ([array([[1.],
            [2.]])], [array([1.])])
     """
+    if not isinstance(acts, list | tuple) or not isinstance(coefs, list | tuple) or (
+            len(acts) != len(coefs) + 1):
+        raise ValueError("acts must be the activations from forward: one more array than coefs")
+    _check_network(acts[0], coefs, [np.empty(getattr(W, "shape", (0, 0))[-1]) for W in coefs],
+                   activation)
+    n_out = coefs[-1].shape[1]
+    if np.shape(delta) != (acts[0].shape[0], n_out):
+        raise ValueError(f"delta must have shape (n_samples, n_outputs) = "
+                         f"{(acts[0].shape[0], n_out)}, got {np.shape(delta)}")
+    alpha_per_sample = check_nonnegative("alpha_per_sample", alpha_per_sample)
     n_layers = len(coefs)
     coef_grads, intercept_grads = [None] * n_layers, [None] * n_layers
     for layer in reversed(range(n_layers)):
@@ -362,7 +400,12 @@ def loss_and_gradients(X, Y, coefs, intercepts, activation: str, out_activation:
     >>> loss, coef_grads, intercept_grads
     (0.5, [array([[1.]])], [array([1.])])
     """
+    _check_network(X, coefs, intercepts, activation)
     n = X.shape[0]
+    if np.shape(Y) != (n, coefs[-1].shape[1]):
+        raise ValueError(f"Y must have shape (n_samples, n_outputs) = {(n, coefs[-1].shape[1])}, "
+                         f"got {np.shape(Y)}")
+    alpha = check_nonnegative("alpha", alpha)
     acts = forward(X, coefs, intercepts, activation)
     data_loss, delta = output_loss(out_activation, acts[-1], Y)
     loss = data_loss + l2_penalty(coefs, alpha, n)

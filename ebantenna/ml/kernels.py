@@ -62,7 +62,7 @@ import numpy as np
 from scipy.sparse import issparse
 
 from .._budget import check_allocation
-from .._validate import check_choice, check_int, check_real, real_array
+from .._validate import check_choice, check_int, check_real, describe, real_array
 from .sparse_input import as_csr, recompute_cancelled, sparse_variance, squared_norms_sparse
 
 __all__ = ["KERNELS", "Kernel", "KernelRows", "resolve_gamma", "gram_matrix", "squared_norms",
@@ -346,6 +346,23 @@ def rbf_in_place(block, gamma, x_norms, y_norms, sparse_rows=None, scratch=None)
     >>> np.round(block, 6)
     array([[1.      , 0.367879]])
     """
+    if not (isinstance(block, np.ndarray) and block.ndim == 2 and block.dtype == np.float64
+            and block.flags.writeable):
+        raise TypeError(f"block must be a writeable 2-D float64 array (it is changed in place), "
+                        f"got {type(block).__name__} {getattr(block, 'dtype', '')}")
+    gamma = check_real("gamma", gamma)
+    if not gamma > 0:
+        raise ValueError(f"gamma must be > 0, got {gamma!r}")
+    for name, norms, size in (("x_norms", x_norms, block.shape[0]),
+                              ("y_norms", y_norms, block.shape[1])):
+        if np.shape(norms) != (size,):
+            raise ValueError(f"{name} must hold one squared norm per {name[0]} row of block "
+                             f"({size}), got shape {np.shape(norms)}")
+    if scratch is not None and not (isinstance(scratch, np.ndarray) and scratch.ndim == 1
+                                    and scratch.dtype == np.float64
+                                    and scratch.size >= block.size):
+        raise ValueError(f"scratch must be a 1-D float64 array of at least block.size "
+                         f"({block.size}) entries")
     block *= -2.0
     sums = None if scratch is None else scratch[: block.size].reshape(block.shape)
     block += np.add(x_norms[:, None], y_norms[None, :], out=sums)
@@ -525,8 +542,15 @@ class KernelRows:
             return self.matrix, self._rows
         return self.matrix, np.arange(self.n)
 
+    def _index(self, i) -> int:
+        """``i`` checked as a row of the problem (a negative index would silently wrap)."""
+        if isinstance(i, bool) or not isinstance(i, int | np.integer) or not 0 <= i < self.n:
+            raise ValueError(f"i must be a row index from 0 to {self.n - 1}, got {describe(i)}")
+        return i
+
     def row64(self, i: int) -> np.ndarray:
         """Kernel row :math:`k(x_i, x_t)` as float64 (a new array, or a view of float64 storage)."""
+        self._index(i)
         if self._parts is not None:
             r = self.matrix[self._rows[i]]
             if len(self._parts) == 1:
@@ -549,6 +573,13 @@ class KernelRows:
         ...                                                               np.array([0, 1]))
         array([[0., 3.]])
         """
+        for name, index in (("rows", rows), ("cols", cols)):
+            if (not isinstance(index, np.ndarray) or index.ndim != 1
+                    or index.dtype.kind not in "iu"):
+                raise TypeError(f"{name} must be a 1-D integer NumPy array of row indices, got "
+                                f"{type(index).__name__} {getattr(index, 'dtype', '')}")
+            if index.size and (index.min() < 0 or index.max() >= self.n):
+                raise ValueError(f"{name} must index the {self.n} rows (0 to {self.n - 1})")
         if self.matrix is None:
             row = self.row
         else:
@@ -569,6 +600,7 @@ class KernelRows:
 
     def row(self, i: int) -> np.ndarray:
         """Kernel row :math:`k(x_i, x_t)` for all t, in the storage type."""
+        self._index(i)
         if self._parts is not None:
             r = self.matrix[self._rows[i]]
             if len(self._parts) == 1:

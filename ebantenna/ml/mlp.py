@@ -72,6 +72,7 @@ from sklearn.utils.metaestimators import available_if
 from sklearn.utils.multiclass import check_classification_targets, type_of_target
 from sklearn.utils.validation import check_array, check_is_fitted, column_or_1d, validate_data
 
+from .._validate import check_samples, check_targets
 from .backprop import forward
 from .fitted import FittedAttribute
 from .mlp_base import ACTIVATIONS, SOLVERS, BaseMLP
@@ -88,6 +89,32 @@ def _dense_target(y):
     if issparse(y):
         check_array(y, accept_sparse=False, ensure_2d=False, dtype=None, input_name="y")
     return y
+
+
+def _samples(estimator, X, *, reset: bool):
+    """Refuse samples ``X`` the network cannot read, in the package's words, before
+    scikit-learn's conversion: not 2-D numbers, NaN or inf, or (``reset`` false) another number
+    of features than the network was fitted on."""
+    n_features = None if reset else getattr(estimator, "n_features_in_", None)
+    check_samples(X, n_features=n_features, owner=type(estimator).__name__)
+    return X
+
+
+def _partial_classes(classes) -> np.ndarray:
+    """The ``classes`` of a first ``partial_fit`` call as a non-empty 1-D array of labels."""
+    if isinstance(classes, str | bytes | dict | set):
+        raise TypeError(f"classes must be an array-like of class labels, got "
+                        f"{type(classes).__name__} {classes!r:.60}")
+    try:
+        out = np.asarray(classes)
+    except ValueError:
+        raise ValueError("classes must be a 1-D array of class labels, got a ragged list") from None
+    if out.ndim != 1 or out.size == 0:
+        raise ValueError(f"classes must be a non-empty 1-D array of class labels, got shape "
+                         f"{out.shape}")
+    if out.dtype.kind == "f" and not np.all(np.isfinite(out)):
+        raise ValueError("classes must not hold NaN or infinity")
+    return out
 
 
 def _first_order(estimator) -> bool:
@@ -153,15 +180,23 @@ class MLPClassifier(ClassifierMixin, BaseMLP):
     @_fit_context(prefer_skip_nested_validation=True)
     def fit(self, X, y):
         """Train on features ``X`` (n_samples, n_features) and labels ``y``."""
-        X, y = validate_data(self, X, _dense_target(y), dtype=np.float64, accept_sparse=SPARSE,
-                             multi_output=True,
-                             reset=not (self.warm_start and hasattr(self, "coefs_")))
+        reset = not (self.warm_start and hasattr(self, "coefs_"))
+        X = _samples(self, X, reset=reset)
+        X, y = validate_data(self, X, _dense_target(check_targets(X, y, numeric=False)),
+                             dtype=np.float64, accept_sparse=SPARSE, multi_output=True,
+                             reset=reset)
         if y.ndim == 2 and y.shape[1] == 1:
             y = column_or_1d(y, warn=True)
         check_classification_targets(y)
         if not (self.warm_start and hasattr(self, "_label_binarizer")):
             self._label_binarizer = LabelBinarizer().fit(y)
             self.classes_ = self._label_binarizer.classes_
+        elif not type_of_target(y).startswith("multilabel"):
+            unseen = np.setdiff1d(np.unique(y), self.classes_)
+            if unseen.size:  # LabelBinarizer would give their rows no class at all
+                raise ValueError(f"y holds labels {unseen.tolist()!r} that are not in classes_ "
+                                 f"{self.classes_.tolist()!r} of the previous fit (warm_start "
+                                 "continues that network, with its classes)")
         Y = self._label_binarizer.transform(y).astype(np.float64)
         self._multilabel = type_of_target(y).startswith("multilabel")
         self.out_activation_ = "logistic" if (Y.shape[1] == 1 or self._multilabel) else "softmax"
@@ -195,18 +230,24 @@ class MLPClassifier(ClassifierMixin, BaseMLP):
                                                                     np.unique(classes)):
             raise ValueError(f"`classes={classes!r}` is not the same as on the first call to "
                              f"partial_fit, was: {self.classes_!r}")
-        X, y = validate_data(self, X, _dense_target(y), dtype=np.float64, accept_sparse=SPARSE,
-                             multi_output=True, reset=first)
+        X = _samples(self, X, reset=first)
+        X, y = validate_data(self, X, _dense_target(check_targets(X, y, numeric=False)),
+                             dtype=np.float64, accept_sparse=SPARSE, multi_output=True,
+                             reset=first)
         if y.ndim == 2 and y.shape[1] == 1:
             y = column_or_1d(y, warn=True)
         check_classification_targets(y)
         if first:
             self._multilabel = type_of_target(y).startswith("multilabel")
-            fit_on = np.asarray(classes) if not self._multilabel else y
+            fit_on = _partial_classes(classes) if not self._multilabel else y
             self._label_binarizer = LabelBinarizer().fit(fit_on)
             self.classes_ = self._label_binarizer.classes_
-        elif not self._multilabel and not np.isin(np.unique(y), self.classes_).all():
-            raise ValueError(f"y holds labels not in classes_ {self.classes_!r}")
+        if not self._multilabel:
+            unseen = np.setdiff1d(np.unique(y), self.classes_)
+            if unseen.size:  # LabelBinarizer would give their rows no class at all
+                where = "given on the first call" if first else "of the first call"
+                raise ValueError(f"y holds labels {unseen.tolist()!r} that are not in classes "
+                                 f"{self.classes_.tolist()!r} ({where} to partial_fit)")
         Y = self._label_binarizer.transform(y).astype(np.float64)
         n_classes = self.classes_.size
         self.out_activation_ = ("logistic" if (n_classes <= 2 or self._multilabel)
@@ -226,7 +267,8 @@ class MLPClassifier(ClassifierMixin, BaseMLP):
     def predict_proba(self, X):
         """Class probabilities, shape (n_samples, n_classes)."""
         check_is_fitted(self)
-        X = validate_data(self, X, dtype=np.float64, accept_sparse=SPARSE, reset=False)
+        X = validate_data(self, _samples(self, X, reset=False), dtype=np.float64,
+                          accept_sparse=SPARSE, reset=False)
         z = forward(X, self.coefs_, self.intercepts_, self.activation)[-1]
         if self.out_activation_ == "softmax":
             z = z - z.max(axis=1, keepdims=True)
@@ -240,7 +282,8 @@ class MLPClassifier(ClassifierMixin, BaseMLP):
     def predict_log_proba(self, X):
         """Logarithm of :meth:`predict_proba`, computed stably."""
         check_is_fitted(self)
-        X = validate_data(self, X, dtype=np.float64, accept_sparse=SPARSE, reset=False)
+        X = validate_data(self, _samples(self, X, reset=False), dtype=np.float64,
+                          accept_sparse=SPARSE, reset=False)
         z = forward(X, self.coefs_, self.intercepts_, self.activation)[-1]
         if self.out_activation_ == "softmax":
             return z - logsumexp(z, axis=1, keepdims=True)
@@ -303,9 +346,11 @@ class MLPRegressor(RegressorMixin, BaseMLP):
     @_fit_context(prefer_skip_nested_validation=True)
     def fit(self, X, y):
         """Train on features ``X`` (n_samples, n_features) and targets ``y``."""
-        X, y = validate_data(self, X, _dense_target(y), dtype=np.float64, accept_sparse=SPARSE,
-                             multi_output=True, y_numeric=True,
-                             reset=not (self.warm_start and hasattr(self, "coefs_")))
+        reset = not (self.warm_start and hasattr(self, "coefs_"))
+        X = _samples(self, X, reset=reset)
+        X, y = validate_data(self, X, _dense_target(check_targets(X, y, numeric=True)),
+                             dtype=np.float64, accept_sparse=SPARSE, multi_output=True,
+                             y_numeric=True, reset=reset)
         self._y_ndim = y.ndim
         Y = y.reshape(-1, 1) if y.ndim == 1 else y
         return self._fit(X, np.asarray(Y, dtype=np.float64), None)
@@ -320,8 +365,10 @@ class MLPRegressor(RegressorMixin, BaseMLP):
         self
         """
         first = not hasattr(self, "coefs_")
-        X, y = validate_data(self, X, _dense_target(y), dtype=np.float64, accept_sparse=SPARSE,
-                             multi_output=True, y_numeric=True, reset=first)
+        X = _samples(self, X, reset=first)
+        X, y = validate_data(self, X, _dense_target(check_targets(X, y, numeric=True)),
+                             dtype=np.float64, accept_sparse=SPARSE, multi_output=True,
+                             y_numeric=True, reset=first)
         if not first and y.ndim != self._y_ndim:
             raise ValueError(f"y has {y.ndim} dimension(s); the first call had {self._y_ndim}")
         self._y_ndim = y.ndim
@@ -334,7 +381,8 @@ class MLPRegressor(RegressorMixin, BaseMLP):
     def predict(self, X):
         """Predicted targets, shape (n_samples,) or (n_samples, n_outputs)."""
         check_is_fitted(self)
-        X = validate_data(self, X, dtype=np.float64, accept_sparse=SPARSE, reset=False)
+        X = validate_data(self, _samples(self, X, reset=False), dtype=np.float64,
+                          accept_sparse=SPARSE, reset=False)
         z = forward(X, self.coefs_, self.intercepts_, self.activation)[-1]
         return z[:, 0] if self._y_ndim == 1 else z
 

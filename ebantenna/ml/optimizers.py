@@ -21,7 +21,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_bool, check_in_range, check_positive
+from .._validate import (
+    check_array,
+    check_bool,
+    check_in_range,
+    check_int,
+    check_positive,
+    check_real,
+)
 
 __all__ = ["Momentum", "Adam", "SCGState", "scg_step", "scg_init"]
 
@@ -141,6 +148,21 @@ class SCGState:
     kappa: float = 0.0
     gamma: float = 0.0
 
+    def __post_init__(self):
+        if not (isinstance(self.w, np.ndarray) and self.w.ndim == 1 and self.w.size
+                and self.w.dtype == np.float64):
+            raise TypeError(f"w must be a non-empty 1-D float64 array (the packed weights), got "
+                            f"{type(self.w).__name__} {getattr(self.w, 'shape', '')}")
+        for name in ("grad", "d"):
+            if np.shape(getattr(self, name)) != self.w.shape:
+                raise ValueError(f"{name} must have the shape of w {self.w.shape}, got "
+                                 f"{np.shape(getattr(self, name))}")
+        check_real("f", self.f, allow_inf=True)
+        if check_real("beta", self.beta) < 0:
+            raise ValueError(f"beta must be >= 0, got {self.beta!r}")
+        check_bool("success", self.success)
+        check_int("n_success", self.n_success, minimum=0)
+
 
 #: Bounds of the scale parameter, as in Netlab's ``scg``.
 _BETA_MIN, _BETA_MAX = 1e-15, 1e100
@@ -168,7 +190,17 @@ def scg_init(w: np.ndarray, fg: Callable[[np.ndarray], tuple[float, np.ndarray]]
     >>> bool(np.linalg.norm(st.w) < 1e-6)
     True
     """
-    f, g = fg(np.asarray(w, dtype=np.float64))
+    w = np.asarray(check_array("w", w, ndim=1))
+    if not callable(fg):
+        raise TypeError(f"fg must be a callable fg(w) -> (loss, gradient), got "
+                        f"{type(fg).__name__}")
+    lambda0 = check_real("lambda0", lambda0)
+    if lambda0 < 0:
+        raise ValueError(f"lambda0 must be >= 0, got {lambda0!r}")
+    f, g = fg(w.copy())
+    if np.shape(g) != w.shape:
+        raise ValueError(f"fg must return a gradient of the shape of w {w.shape}, got "
+                         f"{np.shape(g)}")
     if not (np.isfinite(f) and np.all(np.isfinite(g))):
         raise ValueError(f"scg: the loss ({f!r}) or its gradient is not finite at the start: "
                          "scale the features and targets")
@@ -190,6 +222,12 @@ def scg_step(state: SCGState, fg, sigma0: float = 1e-4) -> bool:
     A step to a point where the loss is not finite counts as a failed step (the scale grows); a
     curvature estimate that is not finite raises a ``ValueError``.
     """
+    if not isinstance(state, SCGState):
+        raise TypeError(f"state must be an SCGState (from scg_init), got {type(state).__name__}")
+    if not callable(fg):
+        raise TypeError(f"fg must be a callable fg(w) -> (loss, gradient), got "
+                        f"{type(fg).__name__}")
+    check_positive("sigma0", sigma0)
     st = state
     if st.success:
         st.mu = float(st.d @ st.grad)

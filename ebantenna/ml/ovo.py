@@ -34,6 +34,21 @@ def ovr_decision_function(predictions: np.ndarray, confidences: np.ndarray, n_cl
     >>> ovr_decision_function(np.array([[0, 0, 1]]), np.array([[-1.0, -2.0, 0.5]]), 3)
     array([[ 2.25, -0.2 ,  0.8 ]])
     """
+    from .._validate import check_array, check_int
+
+    n_classes = check_int("n_classes", n_classes, minimum=2, maximum=10**4)
+    pairs = n_classes * (n_classes - 1) // 2
+    predictions = np.asarray(predictions)
+    if predictions.dtype == bool:  # which class of each pair won: True is the second
+        predictions = predictions.astype(np.int8)
+    predictions = check_array("predictions", predictions, ndim=2, min_length=0)
+    confidences = check_array("confidences", confidences, ndim=2, min_length=0)
+    if predictions.shape[1] != pairs or not np.all((predictions == 0) | (predictions == 1)):
+        raise ValueError(f"predictions must be 0 or 1 in one column per pair of the {n_classes} "
+                         f"classes ({pairs}), got shape {predictions.shape}")
+    if confidences.shape != predictions.shape:
+        raise ValueError(f"confidences must have the shape of predictions "
+                         f"{predictions.shape}, got {confidences.shape}")
     n = predictions.shape[0]
     votes = np.zeros((n, n_classes))
     conf = np.zeros((n, n_classes))
@@ -97,6 +112,23 @@ def one_vs_one_coef(dual_coef: np.ndarray, n_support: np.ndarray,
     >>> one_vs_one_coef(np.array([[-0.5, 0.5]]), np.array([1, 1]), np.array([[0.0], [2.0]]))
     array([[1.]])
     """
+    from .._validate import check_array
+
+    dual_coef = check_array("dual_coef", dual_coef, ndim=2)
+    if not (hasattr(support_vectors, "tocsr") and getattr(support_vectors, "ndim", 0) == 2):
+        support_vectors = check_array("support_vectors", support_vectors, ndim=2)  # or sparse
+    n_support = np.asarray(n_support)
+    if (n_support.ndim != 1 or n_support.dtype.kind not in "iu" or n_support.size < 2
+            or np.any(n_support < 0)):
+        raise ValueError(f"n_support must be a 1-D array of counts (one per class, two at "
+                         f"least), got {n_support!r:.60}")
+    n_sv = int(n_support.sum())
+    if dual_coef.shape != (n_support.size - 1, n_sv):
+        raise ValueError(f"dual_coef must have shape (n_classes - 1, n_SV) = "
+                         f"({n_support.size - 1}, {n_sv}), got {dual_coef.shape}")
+    if support_vectors.shape[0] != n_sv:
+        raise ValueError(f"support_vectors must hold the {n_sv} support vectors of n_support, "
+                         f"got {support_vectors.shape[0]}")
     if dual_coef.shape[0] == 1:
         return dual_coef @ support_vectors
     bounds = np.concatenate([[0], np.cumsum(n_support)])
@@ -140,7 +172,30 @@ def dual_layout(n: int, members: list[np.ndarray], coefs: dict) -> tuple:
     >>> support, n_sv, dual
     (array([0, 2], dtype=int32), array([1, 1], dtype=int32), array([[ 0.5, -0.5]]))
     """
+    from .._validate import check_int
+
+    n = check_int("n", n, minimum=1)
+    if not isinstance(members, list | tuple) or len(members) < 2:
+        raise TypeError("members must be a list of index arrays, one per class (two at least)")
+    for c, m in enumerate(members):
+        if (not isinstance(m, np.ndarray) or m.ndim != 1 or m.dtype.kind not in "iu"
+                or (m.size and (m.min() < 0 or m.max() >= n))):
+            raise ValueError(f"members[{c}] must be a 1-D integer array of indices below n={n}")
     k = len(members)
+    if not isinstance(coefs, dict):
+        raise TypeError(f"coefs must be a dict {{(a, b): (idx, y_alpha)}}, got "
+                        f"{type(coefs).__name__}")
+    for key, value in coefs.items():
+        if (not isinstance(key, tuple) or len(key) != 2 or not 0 <= key[0] < key[1] < k
+                or not isinstance(value, tuple) or len(value) != 2):
+            raise ValueError(f"coefs must map pairs (a, b) of classes a < b < {k} to "
+                             f"(idx, y_alpha), got the entry {key!r:.40}")
+        idx, coef = np.asarray(value[0]), np.asarray(value[1])
+        a, b = key
+        if (idx.dtype.kind not in "iu" or idx.shape != coef.shape
+                or idx.shape != (members[a].size + members[b].size,)):
+            raise ValueError(f"coefs[{a}, {b}] must hold the points of classes {a} and {b} "
+                             f"({members[a].size + members[b].size}) and one y_alpha each")
     nonzero = np.zeros(n, dtype=bool)
     for idx, coef in coefs.values():
         nonzero[idx[coef != 0]] = True

@@ -37,6 +37,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.sparse import issparse
 
+from .._validate import check_int
 from .kernels import Kernel, KernelRows, squared_norms
 
 __all__ = ["PairKernels"]
@@ -81,6 +82,29 @@ class PairKernels:
 
     def __init__(self, X, members, kernel: Kernel | None, dtype, cache_bytes: int, *,
                  given=None, libsvm_compat: bool = False):
+        if isinstance(members, np.ndarray) or not isinstance(members, list | tuple) or len(
+                members) < 2:
+            raise TypeError("members must be a list of index arrays, one per class (two at "
+                            "least)")
+        n_points = given.shape[0] if given is not None else getattr(X, "shape", (0,))[0]
+        for c, m in enumerate(members):
+            if (not isinstance(m, np.ndarray) or m.ndim != 1 or m.dtype.kind not in "iu"
+                    or m.size == 0 or m.min() < 0 or m.max() >= n_points):
+                raise ValueError(f"members[{c}] must be a non-empty 1-D integer array of row "
+                                 f"indices below {n_points}")
+        check_int("cache_bytes", cache_bytes, minimum=0)
+        if given is not None:
+            if (not isinstance(given, np.ndarray) or given.ndim != 2
+                    or given.shape[0] != given.shape[1]):
+                raise ValueError(f"given must be a square kernel matrix (NumPy array), got "
+                                 f"{type(given).__name__} {getattr(given, 'shape', '')}")
+        else:
+            if not isinstance(kernel, Kernel):
+                raise TypeError(f"kernel must be a Kernel (or given the whole matrix), got "
+                                f"{type(kernel).__name__}")
+            if not (issparse(X) or (isinstance(X, np.ndarray) and X.ndim == 2)):
+                raise TypeError(f"X must be a 2-D NumPy array or a sparse matrix of points, got "
+                                f"{type(X).__name__}")
         self.members = members
         self.kernel = kernel
         self.dtype = np.dtype(dtype)
@@ -136,6 +160,9 @@ class PairKernels:
 
         With the 'pairs' layout the rows are views of the buffer, valid until the next call.
         """
+        k = len(self.members)
+        check_int("a", a, minimum=0, maximum=k - 2)
+        check_int("b", b, minimum=a + 1, maximum=k - 1)
         if self.layout == "pairs":
             return KernelRows(None, self.kernel, np.float64, 0, full=self._pair_matrix(a, b))
         if self._matrix is not None:

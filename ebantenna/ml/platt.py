@@ -298,6 +298,17 @@ def cross_validated_decisions(
     ndarray of shape (n,)
         As libsvm: a fold whose training part holds one class only gets +1 or -1.
     """
+    n = check_int("n", n, minimum=1)
+    positive = np.asarray(positive)
+    if positive.dtype != bool or positive.shape != (n,):
+        raise ValueError(f"positive must be a boolean array with one entry per point (n={n}), "
+                         f"got {positive.dtype} of shape {positive.shape}")
+    if not callable(decide):
+        raise TypeError(f"decide must be a callable decide(train, test), got "
+                        f"{type(decide).__name__}")
+    if not isinstance(rng, LibsvmRandom):
+        raise TypeError(f"rng must be a LibsvmRandom, got {type(rng).__name__}")
+    n_folds = check_int("n_folds", n_folds, minimum=2, maximum=n)
     perm = rng.permutation(n)
     dec = np.empty(n)
     for i in range(n_folds):
@@ -345,6 +356,17 @@ def pairwise_sigmoids(
     probA, probB : ndarray of shape (n_pairs,)
         In the order of the pairs ``(0, 1), (0, 2), ..., (1, 2), ...``.
     """
+    if not isinstance(members, list | tuple) or len(members) < 2:
+        raise TypeError("members must be a list of index arrays, one per class (two at least)")
+    for c, m in enumerate(members):
+        if not isinstance(m, np.ndarray) or m.ndim != 1 or m.dtype.kind not in "iu" or (
+                m.size == 0 or m.min() < 0):
+            raise ValueError(f"members[{c}] must be a non-empty 1-D array of point indices")
+    for name, f in (("kernel_block", kernel_block), ("solve", solve)):
+        if not callable(f):
+            raise TypeError(f"{name} must be a callable, got {type(f).__name__}")
+    if not isinstance(rng, LibsvmRandom):
+        raise TypeError(f"rng must be a LibsvmRandom, got {type(rng).__name__}")
     prob_a, prob_b = [], []
     k = len(members)
     for a in range(k):
@@ -388,6 +410,19 @@ def pairwise_coupling(decisions: np.ndarray, prob_a: np.ndarray, prob_b: np.ndar
     >>> np.round(pairwise_coupling(np.array([[2.0]]), np.array([-1.0]), np.array([0.0]), 2), 4)
     array([[0.8808, 0.1192]])
     """
+    n_classes = check_int("n_classes", n_classes, minimum=2, maximum=10**4)
+    pairs = n_classes * (n_classes - 1) // 2
+    decisions = check_array("decisions", decisions, ndim=2, min_length=0)
+    if decisions.shape[1] != pairs:
+        raise ValueError(f"decisions must have one column per pair of the {n_classes} classes "
+                         f"({pairs}), got shape {decisions.shape}")
+    prob_a = check_array("prob_a", prob_a, ndim=1)
+    prob_b = check_array("prob_b", prob_b, ndim=1)
+    if prob_a.shape != (pairs,) or prob_b.shape != (pairs,):
+        raise ValueError(f"prob_a and prob_b must hold one sigmoid per pair ({pairs}), got "
+                         f"{prob_a.shape} and {prob_b.shape}")
+    check_allocation(8 * decisions.shape[0] * n_classes**2, parameter="decisions",
+                     what="the pairwise probabilities")
     n = decisions.shape[0]
     r = np.zeros((n, n_classes, n_classes))
     p = 0

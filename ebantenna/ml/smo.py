@@ -100,11 +100,12 @@ and for the same kernel passed as a precomputed matrix. Given the same matrix
 from __future__ import annotations
 
 import logging
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_array, check_choice, check_positive
+from .._validate import check_array, check_choice, check_int, check_positive
 from ._smo_compiled import (
     ENGINE_VARIABLE,
     EngineStatus,
@@ -153,6 +154,37 @@ class SMOResult:
 
 
 # ----------------------------------------------------------------------------- the reference
+def _vectors(**arrays) -> int:
+    """The common length of ``arrays``, each a non-empty 1-D NumPy array of numbers; else an
+    error naming the first that is not. Shapes only: the step functions run once per SMO
+    iteration, where a pass over the values would cost as much as the step."""
+    n = None
+    for name, a in arrays.items():
+        if not isinstance(a, np.ndarray) or a.ndim != 1 or a.dtype.kind not in "fiu":
+            raise TypeError(f"{name} must be a 1-D NumPy array of numbers, got "
+                            f"{type(a).__name__} {getattr(a, 'shape', '')}")
+        if a.size == 0:
+            raise ValueError(f"{name} must not be empty")
+        if n is None:
+            n = a.size
+        elif a.size != n:
+            first = next(iter(arrays))
+            raise ValueError(f"{name} must have one entry per variable ({n}, as {first}), got "
+                             f"{a.size}")
+    return n
+
+
+def _square(K, n: int) -> None:
+    if not isinstance(K, np.ndarray) or K.shape != (n, n) or K.dtype.kind not in "fiu":
+        raise ValueError(f"K must be the ({n}, {n}) NumPy kernel matrix of the {n} variables, got "
+                         f"{type(K).__name__} {getattr(K, 'shape', '')}")
+
+
+def _pair(i, j, n: int) -> None:
+    check_int("i", i, minimum=0, maximum=n - 1)
+    check_int("j", j, minimum=0, maximum=n - 1)
+
+
 def select_working_set(G, y, alpha, C, K, *, rule="second-order", tol=1e-3, tau=TAU):
     """The working pair :math:`(i, j)` of an SMO step, or none when :math:`\\alpha` is optimal.
 
@@ -194,6 +226,10 @@ def select_working_set(G, y, alpha, C, K, *, rule="second-order", tol=1e-3, tau=
     >>> select_working_set(-np.ones(3), y, np.zeros(3), np.ones(3), K)
     (0, 2, 2.0)
     """
+    n = _vectors(G=G, y=y, alpha=alpha, C=C)
+    check_choice("rule", rule, ("second-order", "first-order"))
+    if rule == "second-order":
+        _square(K, n)
     minus_yG = -y * G
     up = ((y > 0) & (alpha < C)) | ((y < 0) & (alpha > 0))  # I_up
     low = ((y > 0) & (alpha > 0)) | ((y < 0) & (alpha < C))  # I_low
@@ -251,6 +287,9 @@ def solve_two_variable(i, j, alpha, G, y, C, K, *, tau=TAU):
     ...                    np.full(2, 10.0), K)
     (0.5, 0.5)
     """
+    n = _vectors(alpha=alpha, G=G, y=y, C=C)
+    _square(K, n)
+    _pair(i, j, n)
     if y[i] != y[j]:  # alpha_i - alpha_j = d stays
         d = alpha[i] - alpha[j]
         L, H, top = max(0.0, -d), min(C[j], C[i] - d), C[i] - d
@@ -278,6 +317,9 @@ def update_gradient(G, K, y, i, j, delta_i, delta_j):
     >>> update_gradient(-np.ones(2), K, y, 0, 1, 0.5, 0.5)
     array([ 1., -1.])
     """
+    n = _vectors(G=G, y=y)
+    _square(K, n)
+    _pair(i, j, n)
     return G + y * (K[i] * (y[i] * delta_i) + K[j] * (y[j] * delta_j))
 
 
@@ -300,6 +342,7 @@ def bias(G, y, alpha, C, *, sequential=False) -> float:
     >>> bias(np.array([0.5, -0.25]), np.array([1.0, -1.0]), np.array([0.5, 0.5]), np.ones(2))
     0.375
     """
+    _vectors(G=G, y=y, alpha=alpha, C=C)
     yG = y * G
     free = (alpha > 0) & (alpha < C)
     if free.any():
@@ -455,7 +498,20 @@ def solve_smo(
     """
     if not isinstance(policy, SMOPolicy):
         raise TypeError(f"policy must be an SMOPolicy, got {type(policy).__name__}")
-    y, C, diagonal = (np.array(v, dtype=np.float64) for v in (y, C, diagonal))
+    if not isinstance(rows, KernelRows):
+        raise TypeError(f"rows must be KernelRows, got {type(rows).__name__}")
+    y, C, diagonal = (np.array(check_array(name, v, ndim=1)) for name, v in
+                      (("y", y), ("C", C), ("diagonal", diagonal)))  # copies: the engines sort
+
+    if y.size != rows.n or not np.all(np.abs(y) == 1):
+        raise ValueError(f"y must hold one label, +1 or -1, per kernel row ({rows.n})")
+    if C.shape != y.shape or np.any(C <= 0):
+        raise ValueError(f"C must hold one bound > 0 per label ({y.size})")
+    if diagonal.shape != y.shape:
+        raise ValueError(f"diagonal must hold k(x_t, x_t) for each of the {y.size} points")
+    check_positive("tol", tol)
+    if max_iter != math.inf:  # no limit
+        check_int("max_iter", max_iter, minimum=1)
     perm = None
     compiled = None
     if choose_engine(engine) == "compiled":

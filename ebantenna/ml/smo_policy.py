@@ -35,6 +35,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.linalg import lapack
 
+from .._validate import check_array
+
 __all__ = ["SMOPolicy", "DEFAULT", "LIBSVM", "SELECTIONS", "TAU", "fit_policy",
            "positive_semidefinite"]
 
@@ -205,8 +207,19 @@ def positive_semidefinite(kernel, gram: np.ndarray | None = None) -> bool:
     (False, True)
     """
     if isinstance(kernel, str) and kernel != "precomputed":
+        if kernel not in ("linear", "poly", "rbf", "sigmoid"):
+            raise ValueError(f"kernel must be 'linear', 'poly', 'rbf', 'sigmoid', 'precomputed' "
+                             f"or a callable, got {kernel!r}")
         return kernel != "sigmoid"
-    K = np.asarray(gram, dtype=np.float64)
+    if not (isinstance(kernel, str) or callable(kernel)):
+        raise TypeError(f"kernel must be a kernel's name or a callable, got "
+                        f"{type(kernel).__name__}")
+    if gram is None:
+        raise ValueError("gram must be given: the training Gram matrix of a precomputed or "
+                         "callable kernel")
+    K = check_array("gram", gram, ndim=2, min_length=0)
+    if K.shape[0] != K.shape[1]:
+        raise ValueError(f"gram must be a square matrix, got shape {K.shape}")
     n = K.shape[0]
     if n == 0:
         return True

@@ -103,10 +103,10 @@ def as_csr(X) -> sp.csr_matrix:
     return X
 
 
-def _check_csr(X) -> None:
-    """Refuse anything but a CSR matrix (in :func:`as_csr` form), naming ``X``."""
+def _check_csr(X, name: str = "X") -> None:
+    """Refuse anything but a CSR matrix (in :func:`as_csr` form), naming ``name``."""
     if not (sp.issparse(X) and X.format == "csr"):
-        raise TypeError(f"X must be a CSR matrix (see as_csr), got {type(X).__name__}")
+        raise TypeError(f"{name} must be a CSR matrix (see as_csr), got {type(X).__name__}")
 
 
 def _row_of_entries(X) -> np.ndarray:
@@ -164,6 +164,19 @@ def recompute_cancelled(d, X, Y, x_norms, y_norms) -> int:
     int
         How many entries were recomputed.
     """
+    _check_csr(X, "X")
+    _check_csr(Y, "Y")
+    if X.shape[1] != Y.shape[1]:
+        raise ValueError(f"Y must have the {X.shape[1]} columns of X, got {Y.shape[1]}")
+    if not (isinstance(d, np.ndarray) and d.shape == (X.shape[0], Y.shape[0])
+            and d.dtype == np.float64 and d.flags.writeable):
+        raise ValueError(f"d must be a writeable float64 array of shape (rows of X, rows of Y) "
+                         f"= {(X.shape[0], Y.shape[0])} (it is changed in place), got "
+                         f"{type(d).__name__} {getattr(d, 'shape', '')}")
+    for name, norms, size in (("x_norms", x_norms, X.shape[0]), ("y_norms", y_norms, Y.shape[0])):
+        if np.shape(norms) != (size,):
+            raise ValueError(f"{name} must hold one squared norm per row ({size}), got shape "
+                             f"{np.shape(norms)}")
     x_nnz, y_nnz = np.diff(X.indptr), np.diff(Y.indptr)
     bound = (np.maximum.outer(x_nnz, y_nnz) + 3) * U
     bound *= (np.sqrt(x_norms)[:, None] + np.sqrt(y_norms)[None, :]) ** 2

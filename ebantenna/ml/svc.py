@@ -46,6 +46,8 @@ from .._validate import (
     check_positive,
     check_python_number,
     check_real,
+    check_samples,
+    check_targets,
 )
 from .fitted import INPUT_ATTRIBUTES, FittedAttribute
 from .kernels import Kernel, KernelRows, call_kernel, resolve_gamma
@@ -423,10 +425,13 @@ class SVC(ClassifierMixin, BaseEstimator):
 
         A plain 2-D real array with labels of one 1-D array takes the package's own checks
         (:func:`plain_training_data`); anything else (sparse matrices, data frames, lists, bad
-        input) goes through scikit-learn's validation, for its conversions and its messages.
+        input) is checked in the package's words (``check_samples``, ``check_targets``: shape,
+        values, one label per row), then converted by scikit-learn's validation.
         """
         plain = plain_training_data(X, y)
         if plain is None or self.kernel == "precomputed":
+            check_samples(X)  # in the package's words, before scikit-learn's conversion
+            check_targets(X, y)
             X, y = validate_data(self, X, y, dtype=np.float64, order="C", accept_sparse="csr")
             X = self._sparse_input(X)
             y = column_or_1d(y, warn=True)
@@ -646,6 +651,8 @@ class SVC(ClassifierMixin, BaseEstimator):
     def _ovo_decision(self, X) -> np.ndarray:
         """libsvm's pairwise decision values (positive: the pair's first class)."""
         check_is_fitted(self)
+        check_samples(X, n_features=getattr(self, "n_features_in_", None),
+                      owner=type(self).__name__)
         X = validate_data(self, X, dtype=np.float64, order="C", accept_sparse="csr", reset=False)
         X = self._sparse_input(X)
         kx = self._test_kernel(X)

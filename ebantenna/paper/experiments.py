@@ -555,8 +555,26 @@ def format_confusion(matrix, labels) -> str:
     true \\ predicted     al    pvc
     al                    5      1
     pvc                   0      4
+
+    ``matrix`` must be a square array of counts (non-negative whole numbers, at least one of
+    them not zero) and ``labels`` a sequence of one name per class; anything else is refused
+    with an error naming the parameter.
     """
-    m = np.asarray(matrix)
+    m = check_array("matrix", matrix, ndim=2)
+    if m.shape[0] != m.shape[1]:
+        raise ValueError(f"matrix must be square (one row and one column per class), got shape "
+                         f"{m.shape}")
+    if np.any(m < 0) or np.any(m != np.round(m)) or np.any(m >= 2.0**53):
+        raise ValueError("matrix must hold counts: whole numbers from 0 to 2**53 (no fractions, "
+                         "no negatives)")
+    if not m.sum() > 0:
+        raise ValueError("matrix must hold at least one count: it is all zeros (no sample)")
+    if isinstance(labels, str | bytes) or not hasattr(labels, "__len__"):
+        raise TypeError(f"labels must be a sequence of class names, got "
+                        f"{type(labels).__name__} {labels!r:.60}")
+    if len(labels) != m.shape[0]:
+        raise ValueError(f"labels must name each of the {m.shape[0]} classes of matrix, got "
+                         f"{len(labels)} label(s)")
     width = max(6, *(len(str(lab)) for lab in labels), len(str(int(m.max()))))
     head = "true \\ predicted".ljust(16) + "".join(str(lab).rjust(width + 1) for lab in labels)
     rows = [str(lab).ljust(16) + "".join(str(int(v)).rjust(width + 1) for v in row)

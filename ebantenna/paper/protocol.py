@@ -23,7 +23,8 @@ import numpy as np
 from sklearn.model_selection import train_test_split
 
 from .._budget import check_allocation
-from .._validate import check_array, check_in_range, check_int
+from .._validate import check_array, check_choice, check_in_range, check_int, check_positive
+from ..ml.mlp_base import ACTIVATIONS, SOLVERS
 
 __all__ = [
     "DatasetProtocol",
@@ -40,6 +41,26 @@ __all__ = [
     "check_fractions",
     "three_way_split",
 ]
+
+
+def check_fractions(fractions) -> tuple[float, float, float]:
+    """Check (train, validation, test) shares: three values in (0, 1) adding up to 1.
+
+    Examples
+    --------
+    >>> check_fractions((0.7, 0.15, 0.15))
+    (0.7, 0.15, 0.15)
+    """
+    if isinstance(fractions, str | bytes) or not hasattr(fractions, "__iter__"):
+        raise TypeError(f"fractions must be (train, validation, test), got {fractions!r:.60}")
+    fractions = tuple(fractions)
+    if len(fractions) != 3:
+        raise ValueError(f"fractions must be (train, validation, test), got {fractions!r}")
+    for name, f in zip(("train", "validation", "test"), fractions, strict=True):
+        check_in_range(f"fractions[{name}]", f, 0.0, 1.0)
+    if abs(sum(fractions) - 1.0) > 1e-9:
+        raise ValueError(f"fractions must add up to 1, got {fractions!r}")
+    return fractions
 
 
 @dataclass(frozen=True)
@@ -69,6 +90,17 @@ class DatasetProtocol:
     fft_bins: int
     where: str
 
+    def __post_init__(self):
+        _check_names("materials", self.materials)
+        length = check_positive("probe_length", self.probe_length)
+        step = check_positive("contact_step", self.contact_step)
+        if step > length:
+            raise ValueError(f"contact_step must be at most probe_length ({length!r} m), got "
+                             f"{step!r}")
+        check_int("repetitions", self.repetitions, minimum=1)
+        check_int("fft_bins", self.fft_bins, minimum=1)
+        _check_text("where", self.where)
+
 
 @dataclass(frozen=True)
 class SVMProtocol:
@@ -90,6 +122,12 @@ class SVMProtocol:
     test_fraction: float
     strategy: str
     where: str
+
+    def __post_init__(self):
+        check_positive("gamma", self.gamma)
+        check_in_range("test_fraction", self.test_fraction, 0.0, 1.0)
+        check_choice("strategy", self.strategy, ("one-vs-rest", "one-vs-one"))
+        _check_text("where", self.where)
 
 
 @dataclass(frozen=True)
@@ -122,6 +160,34 @@ class NetworkProtocol:
     region: float
     normalisation: str
     where: str
+
+    def __post_init__(self):
+        sizes = self.hidden_layer_sizes
+        if not isinstance(sizes, tuple) or not sizes:
+            raise TypeError(f"hidden_layer_sizes must be a non-empty tuple of layer sizes, got "
+                            f"{sizes!r:.60}")
+        for i, size in enumerate(sizes):
+            check_int(f"hidden_layer_sizes[{i}]", size, minimum=1, maximum=10**6)
+        check_choice("activation", self.activation, ACTIVATIONS)
+        check_choice("solver", self.solver, SOLVERS)
+        check_fractions(self.fractions)
+        check_in_range("region", self.region, 0.0, 1.0, high_inclusive=True)
+        check_choice("normalisation", self.normalisation, ("max", "min-max"))
+        _check_text("where", self.where)
+
+
+def _check_text(name: str, value) -> None:
+    if not isinstance(value, str) or not value.strip():
+        raise TypeError(f"{name} must be a non-empty string, got {value!r:.60}")
+
+
+def _check_names(name: str, value) -> None:
+    if not isinstance(value, tuple) or not value:
+        raise TypeError(f"{name} must be a non-empty tuple of names, got {value!r:.60}")
+    for item in value:
+        _check_text(f"each of {name}", item)
+    if len({v.casefold() for v in value}) != len(value):
+        raise ValueError(f"{name} must not name one thing twice, got {value!r}")
 
 
 #: Sections 4.1.1 and 4.2: five materials, every 5 mm, 25 samples per contact, 256 FFT bins.
@@ -200,24 +266,6 @@ def normalise_by_max(X, rows=None) -> np.ndarray:
     if peak == 0:
         raise ValueError("X must not be all zeros on the rows the peak is taken from")
     return X / peak
-
-
-def check_fractions(fractions) -> tuple[float, float, float]:
-    """Check (train, validation, test) shares: three values in (0, 1) adding up to 1.
-
-    Examples
-    --------
-    >>> check_fractions((0.7, 0.15, 0.15))
-    (0.7, 0.15, 0.15)
-    """
-    fractions = tuple(fractions)
-    if len(fractions) != 3:
-        raise ValueError(f"fractions must be (train, validation, test), got {fractions!r}")
-    for name, f in zip(("train", "validation", "test"), fractions, strict=True):
-        check_in_range(f"fractions[{name}]", f, 0.0, 1.0)
-    if abs(sum(fractions) - 1.0) > 1e-9:
-        raise ValueError(f"fractions must add up to 1, got {fractions!r}")
-    return fractions
 
 
 def three_way_split(n, fractions, seed, stratify=None):

@@ -68,7 +68,7 @@ import numpy as np
 from scipy import optimize
 from scipy.signal import find_peaks
 
-from .._validate import check_bool, check_choice, check_in_range
+from .._validate import check_array, check_bool, check_choice, check_in_range, check_int, check_real
 from ._checks import check_fs, check_signal
 from ._guards import clipped_mask, decay_region, unit_scaled
 from .filters import apply_filter, paper_filter
@@ -323,6 +323,33 @@ def _decay_fit(a, b, status, r_squared, n_points, exponent, clipped, method) -> 
                     bool(clipped.any()), method, float(r_squared), int(n_points))
 
 
+def _series(min_length: int = 1, **arrays) -> list[np.ndarray]:
+    """``arrays`` as 1-D finite float arrays of one length (at least ``min_length``); else an
+    error naming the first that is not."""
+    out, n, first = [], None, None
+    for name, value in arrays.items():
+        a = check_array(name, value, ndim=1, min_length=min_length)
+        if n is None:
+            n, first = a.size, name
+        elif a.size != n:
+            raise ValueError(f"{name} must have one value per entry of {first} ({n}), got "
+                             f"{a.size}")
+        out.append(a)
+    return out
+
+
+def _check_sine(sine) -> None:
+    """``sine`` is None or ``(a, b, r_squared, n_fit)`` as :func:`damped_sinusoid_fit` returns."""
+    if sine is None:
+        return
+    if not isinstance(sine, tuple) or len(sine) != 4:
+        raise TypeError(f"sine must be None or a tuple (a, b, r_squared, n_fit), got "
+                        f"{sine!r:.60}")
+    for name, value in zip(("a", "b", "r_squared"), sine[:3], strict=True):
+        check_real(f"sine's {name}", value)
+    check_int("sine's n_fit", sine[3], minimum=1)
+
+
 def weighted_line(t, y, w):
     """Weighted least squares ``y ~ c0 + c1 t``; returns ``(c0, c1, r_squared)``.
 
@@ -338,6 +365,9 @@ def weighted_line(t, y, w):
     >>> weighted_line(t, 1.0 + 2.0 * t, np.ones(3))
     (1.0, 2.0, 1.0)
     """
+    t, y, w = _series(t=t, y=y, w=w)
+    if np.any(w < 0) or not w.sum() > 0:
+        raise ValueError("w must hold weights >= 0, not all zero")
     sw = w.sum()
     tm = (w * t).sum() / sw
     ym = (w * y).sum() / sw
@@ -369,6 +399,9 @@ def loglinear_fit(t, env):
     >>> round(a, 12), round(b, 12)
     (2.0, -3.0)
     """
+    t, env = _series(t=t, env=env)
+    if not np.all(env > 0):
+        raise ValueError("env must be > 0 everywhere (its logarithm is fitted)")
     log_a, b, _ = weighted_line(t, np.log(env), env**2)
     return math.exp(log_a), b
 
@@ -380,6 +413,10 @@ def envelope_fit(tk, ek, *, nonlinear):
     itself if ``nonlinear``; ``r2`` is the weighted R^2 of ``log ek`` against the final line.
     Takes checked values.
     """
+    tk, ek = _series(tk=tk, ek=ek)
+    if not np.all(ek > 0):
+        raise ValueError("ek must be > 0 everywhere (its logarithm is fitted)")
+    nonlinear = check_bool("nonlinear", nonlinear)
     a, b = loglinear_fit(tk, ek)
     if nonlinear:
         def residual(p):
@@ -446,7 +483,11 @@ def damped_sinusoid_fit(x, t, n_fit, b0):
     >>> round(a, 6), round(-1 / b, 6), n
     (2.0, 0.08, 600)
     """
-    n_fit = min(n_fit, x.size)
+    x, t = _series(x=x, t=t)
+    if x.size > 1 and not np.all(np.diff(t) > 0):
+        raise ValueError("t must be strictly increasing sample times")
+    n_fit = min(check_int("n_fit", n_fit, minimum=1), x.size)
+    b0 = check_real("b0", b0, allow_inf=True)
     if n_fit < 8:
         return None
     y, t0 = x[:n_fit], t[0]
@@ -504,6 +545,12 @@ def envelope_status(b, decaying, too_short, sine) -> str:
     >>> envelope_status(-10.0, True, False, (1.0, -12.0, 0.999, 500))  # 20 % apart
     'inconsistent'
     """
+    b = check_real("b", b)
+    decaying = check_bool("decaying", decaying)
+    too_short = check_bool("too_short", too_short)
+    _check_sine(sine)
+    if decaying and not b < 0:
+        raise ValueError(f"b must be < 0 when decaying is True, got {b!r}")
     if not decaying:
         return "not_decaying"
     if too_short:
@@ -527,6 +574,8 @@ def sinusoid_status(sine, envelope_decays: bool) -> str:
     >>> sinusoid_status((1.0, -10.0, 0.999, 500), True), sinusoid_status(None, True)
     ('ok', 'poor_fit')
     """
+    _check_sine(sine)
+    envelope_decays = check_bool("envelope_decays", envelope_decays)
     if sine is None:
         return "poor_fit" if envelope_decays else "not_decaying"
     good = sine[2] >= SINUSOID_R_SQUARED

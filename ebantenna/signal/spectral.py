@@ -38,7 +38,14 @@ import numpy as np
 from scipy.signal import get_window
 
 from .._budget import check_allocation
-from .._validate import check_bool, check_choice, check_int, check_nonnegative, check_positive
+from .._validate import (
+    check_array,
+    check_bool,
+    check_choice,
+    check_int,
+    check_nonnegative,
+    check_positive,
+)
 from ._checks import check_fs, check_signal
 from ._guards import analysed_part, unit_scaled
 
@@ -171,9 +178,18 @@ def _checked_arguments(x, fs, method, window, zero_pad, fmin, fmax, remove_mean,
     :func:`~ebantenna.signal._guards.analysed_part`); the band is checked with the start
     ``fs / n``. ``fmax=None`` becomes the Nyquist frequency.
     """
+    check_choice("method", method, FREQUENCY_METHODS)
+    if method == "jacobsen" and window not in ("hann", "rectangular"):
+        check_choice("window", window, WINDOWS)
+        raise ValueError(f"method 'jacobsen' needs window 'hann' or 'rectangular', got {window!r}")
+    return _checked_spectrum(x, fs, window, zero_pad, fmin, fmax, remove_mean, transient)
+
+
+def _checked_spectrum(x, fs, window, zero_pad, fmin, fmax, remove_mean, transient):
+    """The checks of :func:`_checked_arguments` but the method's: those of
+    :func:`windowed_spectrum`. Returns ``(x, fs, zero_pad, fmin, fmax)``."""
     fs = check_fs(fs)
     x = check_signal("x", x, min_length=4, allow_constant=False)
-    check_choice("method", method, FREQUENCY_METHODS)
     check_choice("window", window, WINDOWS)
     zero_pad = check_int("zero_pad", zero_pad, minimum=1, maximum=64)
     # the scaled, windowed copies of x and the complex spectrum with its magnitude
@@ -183,8 +199,6 @@ def _checked_arguments(x, fs, method, window, zero_pad, fmin, fmax, remove_mean,
                      what=f"the spectrum of {n_fft} points")
     check_bool("remove_mean", remove_mean)
     check_bool("transient", transient)
-    if method == "jacobsen" and window not in ("hann", "rectangular"):
-        raise ValueError(f"method 'jacobsen' needs window 'hann' or 'rectangular', got {window!r}")
     nyquist = fs / 2.0
     low = fs / x.shape[0] if fmin is None else check_nonnegative("fmin", fmin)
     fmax = nyquist if fmax is None else check_nonnegative("fmax", fmax)
@@ -221,6 +235,8 @@ def windowed_spectrum(x, fs, window, zero_pad, fmin, fmax, remove_mean, transien
     >>> int(np.argmax(np.abs(spectrum))), part.lo, part.hi  # 1 Hz bins; DC left out
     (10, 1, 50)
     """
+    x, fs, zero_pad, fmin, fmax = _checked_spectrum(x, fs, window, zero_pad, fmin, fmax,
+                                                    remove_mean, transient)
     x, _ = unit_scaled(x)
     part = analysed_part(x, fs, zero_pad, fmin, fmax, transient)
     y = x[part.samples]
@@ -462,6 +478,18 @@ def strongest_separated(magnitude, candidates, n_peaks: int, separation: float,
     >>> strongest_separated(magnitude, np.array([1, 2, 4]), 2, 2.0, 1.0)  # bin 2 is too close
     [1, 4]
     """
+    magnitude = check_array("magnitude", magnitude, ndim=1)
+    if np.any(magnitude < 0):
+        raise ValueError("magnitude must be a magnitude spectrum (values >= 0)")
+    candidates = np.asarray(candidates)
+    if candidates.ndim != 1 or (candidates.size and candidates.dtype.kind not in "iu"):
+        raise TypeError(f"candidates must be a 1-D array of bin indices, got "
+                        f"{candidates.dtype} of shape {candidates.shape}")
+    if candidates.size and (candidates.min() < 0 or candidates.max() >= magnitude.size):
+        raise ValueError(f"candidates must be bins of magnitude (0 to {magnitude.size - 1})")
+    n_peaks = check_int("n_peaks", n_peaks, minimum=1)
+    separation = check_positive("separation", separation)
+    df = check_positive("df", df)
     chosen: list[int] = []
     for k in candidates:
         if magnitude[k] > 0.0 and all(abs(k - j) * df >= separation for j in chosen):

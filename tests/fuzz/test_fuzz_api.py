@@ -3107,7 +3107,8 @@ ROWS += [
     bad("ml.SVC.fit", "X-inf", fit(SVC()), XINF, Y2, match="infinity"),
     bad("ml.SVC.fit", "X-1d", fit(SVC()), Y2.astype(float), Y2, match="Expected 2D array"),
     bad("ml.SVC.fit", "X-empty", fit(SVC()), np.zeros((0, 2)), [], match="0 sample"),
-    bad("ml.SVC.fit", "X-str", fit(SVC()), [["a", "b"]] * 12, Y2, match="could not convert"),
+    bad("ml.SVC.fit", "X-str", fit(SVC()), [["a", "b"]] * 12, Y2, raises=TypeError,
+        match="X must be array-like of real numbers"),
     bad("ml.SVC.fit", "lengths", fit(SVC()), X2, Y2[:-1], match="inconsistent numbers of samples"),
     bad("ml.SVC.fit", "one-class", fit(SVC()), X2, np.zeros(12), match="class"),
     bad(

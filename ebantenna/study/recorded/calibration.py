@@ -921,9 +921,19 @@ def _as_read_inverse(eta_read: float, frequency: float, n: int, fs: float, peak:
 
 
 def plot_calibration(cal: Calibration, scene):
-    """Measured against modelled frequency of the fitted mode versus contact distance."""
+    """Measured against modelled frequency of the fitted mode versus contact distance.
+
+    ``cal`` is a :class:`Calibration` and ``scene`` the :class:`ebantenna.simulate.Scene` it
+    calibrated; anything else is refused, naming the parameter, before a figure is made.
+    """
     import matplotlib.pyplot as plt
 
+    from ...simulate.scene import Scene
+
+    if not isinstance(cal, Calibration):
+        raise TypeError(f"cal must be a Calibration, got {type(cal).__name__}")
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be an ebantenna.simulate.Scene, got {type(scene).__name__}")
     grid = np.linspace(cal.contacts.min(), cal.contacts.max(), 24)
     fitted = cal.scene(scene)
     material = np.full(grid.size, scene.material)

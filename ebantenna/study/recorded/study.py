@@ -33,7 +33,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..._validate import check_n_jobs, check_positive
+from ..._validate import check_array, check_n_jobs, check_positive
+from ...paper.experiments import ClassificationResult, RegressionResult
 from ...paper.uncertainty import UNITS, ClusteredAccuracy, percent, span
 from ...report import FigureSet, Report
 from ...simulate import load_dataset
@@ -110,6 +111,10 @@ def intervals(learnt, contact_step: float) -> dict:
         ``linear_region`` and ``full_length`` the mean absolute error (cm) and the share placed
         (:func:`placement_interval`).
     """
+    if not isinstance(learnt, learning.LearningResult):
+        raise TypeError(f"learnt must be a LearningResult (of ebantenna.study.learning), got "
+                        f"{type(learnt).__name__}")
+    contact_step = check_positive("contact_step", contact_step)
     return {"svm": classification_interval(learnt.svm, learnt.positions),
             "ann": classification_interval(learnt.ann, learnt.positions),
             "linear_region": placement_interval(learnt.linear_region, contact_step),
@@ -140,6 +145,13 @@ def classification_interval(result, positions) -> dict:
         ``recording_interval95`` (Wilson's, every recording counted as independent: too narrow
         when the repetitions at a position agree).
     """
+    if not isinstance(result, ClassificationResult):
+        raise TypeError(f"result must be a ClassificationResult, got {type(result).__name__}")
+    positions = check_array("positions", positions, ndim=1)
+    rows = result.rows()
+    if rows.size and int(rows.max()) >= positions.size:
+        raise ValueError(f"positions must hold the position of every row the classifier was "
+                         f"given (at least {int(rows.max()) + 1}), got {positions.size}")
     return _on_the_position("test_accuracy", learning.held_out_accuracy(result, positions))
 
 
@@ -153,6 +165,8 @@ def placement_interval(result, contact_step: float) -> dict:
     result : ebantenna.paper.experiments.RegressionResult
     contact_step : float
     """
+    if not isinstance(result, RegressionResult):
+        raise TypeError(f"result must be a RegressionResult, got {type(result).__name__}")
     contact_step = check_positive("contact_step", contact_step)
     errors = result.errors_cm
     placed = ClusteredAccuracy.from_recordings(errors <= 50.0 * contact_step,  # half a step, cm

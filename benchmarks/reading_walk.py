@@ -122,14 +122,6 @@ READING_ORDER = (
     "ebantenna/simulate/touched_object.py",
     "ebantenna/simulate/strikes.py",
     "ebantenna/simulate/unilateral.py",
-    "ebantenna/simulate/structure.py",
-    "ebantenna/simulate/unilateral.py",
-    "ebantenna/simulate/linear_state.py",
-    "ebantenna/simulate/unilateral.py",
-    "ebantenna/simulate/linear_state.py",
-    "ebantenna/simulate/unilateral.py",
-    "ebantenna/simulate/linear_state.py",
-    "ebantenna/simulate/unilateral.py",
     "ebantenna/simulate/strikes.py",
     "ebantenna/simulate/effects/sensor.py",
     "ebantenna/simulate/simulator.py",
@@ -150,7 +142,7 @@ TARGETS = {"read_files": 15, "read_returns": 5, "run_modules": 25, "run_returns"
 
 #: The walk as it stands, which ``tests/test_reading_walk.py`` keeps it within so that it cannot
 #: grow back unnoticed: lower these as the walk shrinks, down to :data:`TARGETS`.
-CEILINGS = {"read_files": 22, "read_returns": 36, "run_modules": 30, "run_returns": 69}
+CEILINGS = {"read_files": 20, "read_returns": 30, "run_modules": 28, "run_returns": 58}
 
 SCENE, MATERIAL, CONTACT, SEED = "paper", "brass", 0.25, 0
 

@@ -1,9 +1,9 @@
 """The engine of the contact laws' march: read each linear state a block of steps ahead.
 
-:func:`.linear_state.march_step_by_step` takes every step in turn. Within one state the motion
+:func:`.unilateral.march_step_by_step` takes every step in turn. Within one state the motion
 is a sum of modes: each row read along it (the monitored quantity, the acceleration, the force)
 is ``Re(sum_k w_k e^(lambda_k t)) + a (s + s' t) + b s'`` with ``w = row V * z`` for the modal
-coordinates ``z`` (:class:`.linear_state.LinearState`), so a block of ``m`` steps costs one
+coordinates ``z`` (:class:`.unilateral.LinearState`), so a block of ``m`` steps costs one
 ``(m, 2n)`` by ``(2n, 3)`` product, not ``m`` state propagations (:func:`readings`). Whether an
 event lies ahead is read from those values (:func:`read_ahead`); where a bound shows that no
 event can happen over a longer span (a settled contact, :func:`stays_positive`), the span is
@@ -14,12 +14,12 @@ per block instead of a propagation per step.
 
 Each state carries the engine's tables in its attribute ``blocks`` (:class:`BlockTables`, set by
 :func:`prepare_blocks` when the march starts: the reference march needs none). What the engine
-asks of a law beyond the reference's :class:`.linear_state.SwitchedSystem` is in the law's
+asks of a law beyond the reference's :class:`.unilateral.SwitchedSystem` is in the law's
 adapter here (:class:`LawBlocks` and its subclasses, one per law): ``states`` (the states to
 prepare), ``horizon`` (how far a state may be read ahead), ``quiet`` (no event within a span,
 usually :func:`stays_positive`), ``ends`` (where a state ends, read on the block's values) and
 ``record_block`` (record the samples of a block). This module imports the laws; they import
-nothing from it. Importing it adds ``"blocks"`` to :data:`.linear_state.MARCHES` (the package
+nothing from it. Importing it adds ``"blocks"`` to :data:`.unilateral.MARCHES` (the package
 does, when it is imported).
 
 **The compiled march.** With the ``fast`` extra (numba), :func:`march_in_blocks` marches a strike
@@ -46,9 +46,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as spl
 
-from .linear_state import MARCHES
 from .stick_slip import StickSlipLaw
-from .unilateral import HertzStrikeLaw, StrikeLaw
+from .unilateral import MARCHES, HertzStrikeLaw, StrikeLaw
 
 __all__ = ["LONG_BLOCKS", "BLOCK_ELEMENTS", "BlockTables", "prepare_blocks", "readings", "samples",
            "read_ahead", "swing", "stays_positive", "after", "LawBlocks", "StrikeBlocks",
@@ -245,7 +244,7 @@ class LawBlocks:
         self.law = law
 
     def states(self) -> list:
-        """Every :class:`.linear_state.LinearState` the march may read."""
+        """Every :class:`.unilateral.LinearState` the march may read."""
         raise NotImplementedError
 
     def horizon(self, i: int, n_steps: int) -> int:
@@ -482,7 +481,7 @@ def march_compiled(system, x, key, n_steps: int):
 
 
 def march_in_blocks(system, x, key, n_steps: int, engine: str | None = None):
-    """March ``system`` (a :class:`.linear_state.SwitchedSystem`) ``n_steps`` steps from the
+    """March ``system`` (a :class:`.unilateral.SwitchedSystem`) ``n_steps`` steps from the
     state ``(x, key)`` at step 0, reading each state in blocks; returns ``(x, key)`` after the
     last step. Takes the checked values a contact law was built from.
 

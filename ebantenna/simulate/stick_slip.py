@@ -12,9 +12,9 @@ motion at the contact coordinate ``q_b`` (its speed ``u = q_b'``):
   ``F = (M q'' + C q' + K q)_b``, as long as ``|F| <= mu_s N``.
 
 Each of the three states is a linear system with a constant load, so it is propagated by its
-closed-form modal solution (:class:`.linear_state.LinearState`, as the contact states of
+closed-form modal solution (:class:`.unilateral.LinearState`, as the contact states of
 :mod:`.unilateral` are), read in blocks of steps, and its end found inside a step by a bracketed
-Newton iteration (:func:`.linear_state.crossing`): slip ends where ``u`` reaches zero, stick where
+Newton iteration (:func:`.unilateral.crossing`): slip ends where ``u`` reaches zero, stick where
 ``|F|`` reaches ``mu_s N``. At a slip's end the contact sticks if holding takes at most
 ``mu_s N``; otherwise, as at a stick's end, it slips the way the structure pulls.
 :func:`.friction_ode.coulomb_response` integrates the same law with
@@ -40,11 +40,19 @@ import numpy as np
 import scipy.linalg as sla
 
 from .._validate import check_choice, check_int, check_nonnegative, check_positive
-from .linear_state import MARCHES, LinearState, SwitchedSystem, crossing, step_grid
 from .modes import sweep_velocity
 from .strikes import read_through_dlpf, reduced_body, timed_rate
-from .structure import check_dof_vector, check_symmetric_matrix, mass_inverse
-from .unilateral import STEPS_PER_PERIOD, ChatterError
+from .structure import check_dof_vector, check_symmetric_matrix
+from .unilateral import (
+    MARCHES,
+    STEPS_PER_PERIOD,
+    ChatterError,
+    LinearState,
+    SwitchedSystem,
+    crossing,
+    mass_inverse,
+    step_grid,
+)
 
 __all__ = ["StickSlipResponse", "check_coefficients", "stick_slip_response", "StickSlipLaw",
            "friction_states", "FrictionModel", "friction_model", "friction_axis"]  # fmt: skip
@@ -135,7 +143,7 @@ def stick_slip_response(
         Each change is placed within this many seconds after the exact instant, s.
     method : {"blocks", "steps"}
         How the states are marched: ``"blocks"`` (the engine, fast) or ``"steps"`` (the
-        reference, :func:`.linear_state.march_step_by_step`), as in
+        reference, :func:`.unilateral.march_step_by_step`), as in
         :func:`.unilateral.unilateral_response`.
 
     Returns
@@ -188,7 +196,7 @@ class StickSlipLaw(SwitchedSystem):
     """Coulomb's law at one coordinate: the three states and when each ends.
 
     Built by :func:`stick_slip_response` from checked values; marched by
-    :data:`.linear_state.MARCHES`. The state keys are ``"slip+"``, ``"slip-"`` and ``"stick"``.
+    :data:`.unilateral.MARCHES`. The state keys are ``"slip+"``, ``"slip-"`` and ``"stick"``.
 
     Parameters
     ----------
@@ -198,7 +206,7 @@ class StickSlipLaw(SwitchedSystem):
     contact : int
         The coordinate ``b`` along which friction acts.
     grid : tuple
-        :func:`.linear_state.step_grid` of the states.
+        :func:`.unilateral.step_grid` of the states.
     hold_limit : float
         ``mu_s N``, N: the most friction can hold; 0 means no friction.
     max_events, time_tolerance

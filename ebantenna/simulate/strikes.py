@@ -35,7 +35,7 @@ same events (the test suite checks it).
 The ``paper`` scene with this effect costs about 2.3 times as much as with a linear contact,
 12.8 against 5.5 CPU seconds per thousand one-second strikes (``ebantenna bench``): most of it
 in the events (a few dozen per strike near the tip), each found within one step of a grid of 16
-steps per period of the fastest mode (:mod:`.linear_state`).
+steps per period of the fastest mode (:mod:`.unilateral`).
 """
 
 from __future__ import annotations

@@ -22,8 +22,8 @@ from ..._validate import check_choice, check_int, check_nonnegative, check_posit
 from ...fem.rod import Rod
 from ...probe import Material, Probe
 from ..contact import TUBE_POISSON_RATIO, tube_on_rod_stiffness
-from ..linear_state import MARCHES
 from ..stick_slip import check_coefficients
+from ..unilateral import MARCHES
 from ._base import Effect, check_bodies, check_rng
 
 
@@ -215,7 +215,7 @@ class UnilateralContact(Effect):
         How each strike is marched (``method`` of
         :func:`~ebantenna.simulate.unilateral.unilateral_response`): ``"blocks"``, the engine
         and the default, reads each contact state a block of steps ahead; ``"steps"``, the
-        reference, takes every step in turn (:func:`.linear_state.march_step_by_step`), several
+        reference, takes every step in turn (:func:`.unilateral.march_step_by_step`), several
         times slower. The same events; the signals agree within the rounding bound that the
         test suite derives.
 

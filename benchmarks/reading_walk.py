@@ -95,8 +95,6 @@ READING_ORDER = (
     "ebantenna/simulate/simulator.py",
     "ebantenna/simulate/touched_object.py",
     "ebantenna/fem/coupling.py",
-    "ebantenna/fem/rod.py",
-    "ebantenna/fem/coupling.py",
     "ebantenna/fem/assembly.py",
     "ebantenna/fem/coupling.py",
     "ebantenna/fem/modal.py",
@@ -142,7 +140,7 @@ TARGETS = {"read_files": 15, "read_returns": 5, "run_modules": 25, "run_returns"
 
 #: The walk as it stands, which ``tests/test_reading_walk.py`` keeps it within so that it cannot
 #: grow back unnoticed: lower these as the walk shrinks, down to :data:`TARGETS`.
-CEILINGS = {"read_files": 20, "read_returns": 30, "run_modules": 28, "run_returns": 58}
+CEILINGS = {"read_files": 19, "read_returns": 29, "run_modules": 27, "run_returns": 58}
 
 SCENE, MATERIAL, CONTACT, SEED = "paper", "brass", 0.25, 0
 

@@ -83,7 +83,7 @@ numpydoc_xref_aliases = {
     "ZoneResult": "ebantenna.fem.zones.ZoneResult",
     "Erratum": "ebantenna.fem.symbolic.Erratum",
     "Material": "ebantenna.probe.Material",
-    "Rod": "ebantenna.fem.rod.Rod",
+    "Rod": "ebantenna.fem.coupling.Rod",
     "Scene": "ebantenna.simulate.scene.Scene",
     "SystemClock": "ebantenna.device.clock.SystemClock",
     "VirtualClock": "ebantenna.device.clock.VirtualClock",

@@ -227,7 +227,7 @@ def coupled_arrest_modes(
         The probe's hinge.
     contact : float
         Contact position from the hinge, m.
-    rod : ebantenna.fem.rod.Rod
+    rod : ebantenna.fem.coupling.Rod
         The touched rod.
     probe_reduction, rod_reduction : ebantenna.fem.coupling.CraigBampton
         The probe reduced at this contact, and the rod (with the loss factor it should carry).

@@ -68,7 +68,7 @@ NO_ARGUMENT = [
     "ebantenna.simulate.dataset.DatasetDesign.to_dict",
     "ebantenna.simulate.modes.ArrestModes.strain_energy_share",
     "ebantenna.fem.supports.Supports.describe",
-    "ebantenna.fem.rod.Rod.as_beam",
+    "ebantenna.fem.coupling.Rod.as_beam",
     "ebantenna.fem.modal.ModalResult.overhang_mass_fraction",
     "ebantenna.fem.zones.ZoneResult.boundaries",
     "ebantenna.signal.timefreq.TimeFrequency.ridge",

@@ -19,7 +19,7 @@ from typing import ClassVar
 import numpy as np
 
 from ..._validate import check_choice, check_int, check_nonnegative, check_positive
-from ...fem.rod import Rod
+from ...fem.coupling import Rod
 from ...probe import Material, Probe
 from ..contact import TUBE_POISSON_RATIO, tube_on_rod_stiffness
 from ..stick_slip import check_coefficients
@@ -31,11 +31,12 @@ from ._base import Effect, check_bodies, check_rng
 class ObjectModes(Effect):
     """The touched object as a rod with its own modes, coupled to the probe by the contact spring.
 
-    The object is a solid round rod clamped upright in a stand (:class:`ebantenna.fem.rod.Rod`),
-    touched at ``contact_height`` above the clamp. Probe and rod are modelled with the same
-    Euler-Bernoulli elements, reduced each on its own by Craig-Bampton component-mode synthesis
-    and joined through the contact spring (:func:`ebantenna.fem.coupling.coupled_modes`; the
-    witness is :func:`ebantenna.fem.coupling.monolithic_modes`, one FEM system of both bodies).
+    The object is a solid round rod clamped upright in a stand
+    (:class:`~ebantenna.fem.coupling.Rod`), touched at ``contact_height`` above the clamp. Probe and
+    rod are modelled with the same Euler-Bernoulli elements, reduced each on its own by
+    Craig-Bampton component-mode synthesis and joined through the contact spring
+    (:func:`ebantenna.fem.coupling.coupled_modes`; the witness is
+    :func:`ebantenna.fem.coupling.monolithic_modes`, one FEM system of both bodies).
     The spring is the tube pressed on the rod at ``preload``: Hertz contact of crossed cylinders
     in series with the tube wall's ring compliance, wood indented across its grain
     (:func:`ebantenna.simulate.contact.tube_on_rod_stiffness`).

@@ -262,7 +262,7 @@ class LawBlocks:
 
     def record_block(self, i: int, j, values, x, z, key) -> None:
         """Record the output samples ``j`` (steps after ``i``) of a block read ahead from ``x``
-        (``z``: its modal coordinates), their rows ``values``, as the law's ``record`` would."""
+        (``z``: its modal coordinates), their rows ``values``, as the law's ``_record`` would."""
         law = self.law
         k = (i + 1 + j) // law.sub
         law.acc[k], law.force[k] = values[:, 1], values[:, 2]
@@ -288,7 +288,7 @@ class StrikeBlocks(LawBlocks):
 
     def quiet(self, st, x, z, m):
         """No event within ``m`` steps: the state is held or its monitor provably stays > 0."""
-        return not self.law.watched(st) or stays_positive(st, x, z, m)
+        return not self.law._watched(st) or stays_positive(st, x, z, m)
 
 
 class HertzStrikeBlocks(StrikeBlocks):
@@ -302,7 +302,7 @@ class HertzStrikeBlocks(StrikeBlocks):
         """A chord's state ends at either of its nodes; the free state where the gap closes."""
         if key is self.law.free:
             return None
-        lower, upper = self.law.limits(key)
+        lower, upper = self.law._limits(key)
         return lambda values: (values[:, 0] <= lower) | (values[:, 0] >= upper)
 
     def quiet(self, key, x, z, m):
@@ -313,7 +313,7 @@ class HertzStrikeBlocks(StrikeBlocks):
             return stays_positive(key, x, z, m)
         if not key.eigen:
             return False
-        lower, upper = law.limits(key)
+        lower, upper = law._limits(key)
         k = 2 * law.base.size
         s, sigma = x[k], x[k + 1]
         a, b = key.row_s[0], key.row_speed[0]
@@ -323,11 +323,11 @@ class HertzStrikeBlocks(StrikeBlocks):
 
     def record_block(self, i, j, values, x, z, key):
         """Record a block read ahead, the states in true coordinates (as the law's
-        ``record``)."""
+        ``_record``)."""
         super().record_block(i, j, values, x, z, key)
         law = self.law
         if law.trajectory is not None and len(j):
-            law.trajectory[(i + 1 + j) // law.sub, 2 * law.base.size] += law.shift(key)
+            law.trajectory[(i + 1 + j) // law.sub, 2 * law.base.size] += law._shift(key)
 
 
 class StickSlipBlocks(LawBlocks):
@@ -444,9 +444,9 @@ def march_compiled(system, x, key, n_steps: int):
     fine = np.exp(np.multiply.outer(h * np.arange(1, block + 1), lam)).transpose(1, 0, 2)
     every = np.exp(lam * sub * h)
     if hertz:
-        lower = np.array([0.0] + [law.limits(st)[0] for st in law.segments])
-        upper = np.array([0.0] + [law.limits(st)[1] for st in law.segments])
-        shift = np.array([law.shift(st) for st in states])
+        lower = np.array([0.0] + [law._limits(st)[0] for st in law.segments])
+        upper = np.array([0.0] + [law._limits(st)[1] for st in law.segments])
+        shift = np.array([law._shift(st) for st in states])
     else:
         lower = upper = shift = np.zeros(2)
     index = next(k for k, st in enumerate(states) if st is key)
@@ -503,10 +503,10 @@ def march_in_blocks(system, x, key, n_steps: int, engine: str | None = None):
     prepare_blocks(blocks.states(), h, sub, n_steps)
     i = 0
     while i < n_steps:
-        if system.interrupts(i):
-            x, key = system.interrupted_step(x, key, i)
+        if system._interrupts(i):
+            x, key = system._interrupted_step(x, key, i)
             i += 1
-            system.record(i, x, key)
+            system._record(i, x, key)
             continue
         st = system.state(key)
         limit = blocks.horizon(i, n_steps)
@@ -518,12 +518,12 @@ def march_in_blocks(system, x, key, n_steps: int, engine: str | None = None):
         if m:
             x = after(st, x, z, m)
             i += m
-            system.moved()
+            system._moved()
         if event:
             x, key = system.advance(x, key, i * h, (i + 1) * h, crosses=True)
-            system.moved()
+            system._moved()
             i += 1
-            system.record(i, x, key)
+            system._record(i, x, key)
     return x, key
 
 

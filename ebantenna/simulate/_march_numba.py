@@ -194,7 +194,7 @@ def _advance_linear(x, st, t0, t1, crosses, T, ctl, ev_t, ev_kind, ev_v, max_eve
 def _advance_hertz(x, st, t0, t1, T, lower, upper, shift, ctl, ev_t, ev_kind, ev_v,
                    max_events, xtol, max_chord_changes):
     """:meth:`ebantenna.simulate.unilateral.HertzStrikeLaw.advance` (through
-    ``first_exit`` and ``change``); state 0 is free, state ``j + 1`` chord ``j``."""
+    ``_first_exit`` and ``_change``); state 0 is free, state ``j + 1`` chord ``j``."""
     V, Vinv, lam, G, H, rows, row_modes, row_s, row_speed, penA, K = T
     fresh = False
     while True:
@@ -296,7 +296,7 @@ def _ends(st, value, lower, upper, hertz):
 
 @_jit
 def _record(i, x, st, sub, rows, acc, force):
-    """:meth:`ebantenna.simulate.unilateral.SwitchedSystem.record`."""
+    """``SwitchedSystem._record`` of :mod:`ebantenna.simulate.unilateral`."""
     if i % sub == 0:
         k = i // sub
         a = 0.0

@@ -235,17 +235,17 @@ class StickSlipLaw(SwitchedSystem):
         x = np.zeros(2 * n + 2)
         x[n : 2 * n] = velocity
         x[2 * n] = 1.0  # the drive s = 1, s' = 0: each state's constant load f s at full size
-        name = "slip+" if self.frictionless else self.entered(x)
+        name = "slip+" if self.frictionless else self._entered(x)
         self.events.append((0.0, name))
-        self.record(0, x, name)
+        self._record(0, x, name)
         self.fresh = name != "stick" and x[n + self.b] == 0  # a slip from rest: on its boundary
         return x, name
 
-    def moved(self):
+    def _moved(self):
         """The march has left the point where the state was entered."""
         self.fresh = False
 
-    def entered(self, x):
+    def _entered(self, x):
         """The state taken at ``x`` where ``u = 0`` (or at the start): stick if holding takes
         at most ``mu_s N``, otherwise slip the way the structure pulls."""
         u = x[self.n + self.b]
@@ -258,10 +258,10 @@ class StickSlipLaw(SwitchedSystem):
         return "slip-" if F > 0 else "slip+"  # holding would take more: it slips the way it pulls
 
     def switch(self, name, x, t):
-        """The switching law at an event at ``t``: a slip's end as :meth:`entered`; a stick's
+        """The switching law at an event at ``t``: a slip's end as ``_entered``; a stick's
         end slips against the force that holding took."""
         if name != "stick":
-            new = self.entered(x)
+            new = self._entered(x)
         else:
             new = "slip-" if self.stick.rows[2] @ x > 0 else "slip+"
         self.events.append((t, new))
@@ -272,7 +272,7 @@ class StickSlipLaw(SwitchedSystem):
             )
         return new
 
-    def first_crossing(self, name, x, span, fresh):
+    def _first_crossing(self, name, x, span, fresh):
         """Which monitor ends state ``name`` first within ``span`` after ``x``, and when
         (``None`` if neither does); ``fresh``: the state was entered at ``x``."""
         found = None
@@ -296,7 +296,7 @@ class StickSlipLaw(SwitchedSystem):
         (``crosses`` is not needed: every step looks for the first crossing)."""
         fresh = self.fresh
         while True:
-            found = None if self.frictionless else self.first_crossing(name, x, t1 - t0, fresh)
+            found = None if self.frictionless else self._first_crossing(name, x, t1 - t0, fresh)
             if found is None:
                 return self.linear[name].step(x, t1 - t0), name
             tau, x = found

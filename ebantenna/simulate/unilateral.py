@@ -561,8 +561,8 @@ class SwitchedSystem(abc.ABC):
     """A structure that switches between linear states at events, as a march takes it.
 
     A contact law subclasses it and gives :meth:`state` (the :class:`LinearState` of a state's
-    key) and :meth:`advance` (one step, through any event on the way); :meth:`interrupts`,
-    :meth:`interrupted_step` and :meth:`moved` have defaults that suit a law with nothing but
+    key) and :meth:`advance` (one step, through any event on the way); ``_interrupts``,
+    ``_interrupted_step`` and ``_moved`` have defaults that suit a law with nothing but
     its states. Along the march it records the acceleration and the force (rows 1 and 2 of each
     state) at every ``sub``-th step, and with ``n_states`` the whole state there too. What the
     engine ``"blocks"`` needs besides is in its adapters, not here.
@@ -594,19 +594,19 @@ class SwitchedSystem(abc.ABC):
         """The state ``(x, key)`` at ``t1`` from ``t0`` (at most one step), through any event;
         ``crosses``: an event is known to lie before ``t1``."""
 
-    def interrupts(self, i: int) -> bool:
+    def _interrupts(self, i: int) -> bool:
         """Whether something besides the states' own motion happens within step ``i``."""
         return False
 
-    def interrupted_step(self, x, key, i: int):
-        """Step ``i`` when :meth:`interrupts` says so; a law whose :meth:`interrupts` can be true
+    def _interrupted_step(self, x, key, i: int):
+        """Step ``i`` when ``_interrupts`` says so; a law whose ``_interrupts`` can be true
         gives its own (here, for a law with nothing but its states, an ordinary step)."""
         return self.advance(x, key, i * self.h, (i + 1) * self.h)
 
-    def moved(self) -> None:  # noqa: B027 - a hook that most laws leave empty
+    def _moved(self) -> None:  # noqa: B027 - a hook that most laws leave empty
         """Called once the march has moved on from where a state was entered."""
 
-    def record(self, i: int, x, key) -> None:
+    def _record(self, i: int, x, key) -> None:
         """Record step ``i`` if it is an output sample."""
         if i % self.sub == 0:
             k = i // self.sub
@@ -636,12 +636,12 @@ def march_step_by_step(system: SwitchedSystem, x, key, n_steps: int):
     """
     h = system.h
     for i in range(n_steps):
-        if system.interrupts(i):
-            x, key = system.interrupted_step(x, key, i)
+        if system._interrupts(i):
+            x, key = system._interrupted_step(x, key, i)
         else:
             x, key = system.advance(x, key, i * h, (i + 1) * h)
-        system.moved()
-        system.record(i + 1, x, key)
+        system._moved()
+        system._record(i + 1, x, key)
     return x, key
 
 
@@ -698,7 +698,7 @@ class StrikeLaw(SwitchedSystem):
         x[2 * n + 1] = approach_speed
         if self.stop_time == 0.0:
             x = self.stop_servo(x)
-        self.record(0, x, self.closed)
+        self._record(0, x, self.closed)
         return x, self.closed
 
     def stop_servo(self, x):
@@ -710,17 +710,17 @@ class StrikeLaw(SwitchedSystem):
         self.stopped = True
         return x
 
-    def interrupts(self, i):
+    def _interrupts(self, i):
         """The servo stops within step ``i``."""
         return not self.stopped and self.stop_time < (i + 1) * self.h
 
-    def interrupted_step(self, x, st, i):
+    def _interrupted_step(self, x, st, i):
         """Step ``i`` with the servo's stop inside: up to it, stop, and on to the step's end."""
         x, st = self.advance(x, st, i * self.h, self.stop_time)
         x = self.stop_servo(x)
         return self.advance(x, st, self.stop_time, (i + 1) * self.h)
 
-    def watched(self, st) -> bool:
+    def _watched(self, st) -> bool:
         """Whether ``st`` can end (not a contact held closed after ``max_events``)."""
         return not (self.frozen and st is self.closed)
 
@@ -730,12 +730,12 @@ class StrikeLaw(SwitchedSystem):
         kind = "contact" if entering is self.closed else "separation"
         self.events.append(ContactEvent(t, kind, float(self.pen @ (st.A @ x))))
         if len(self.events) >= self.max_events and not self.frozen:
-            self.too_many_events(t)
+            self._too_many_events(t)
         if self.frozen and entering is self.closed and self.bilateral_from is None:
             self.bilateral_from = t
         return entering
 
-    def too_many_events(self, t):
+    def _too_many_events(self, t):
         """``max_events`` reached at ``t``: raise, or warn and hold the next contact closed."""
         if self.on_max_events == "raise":
             raise ChatterError(
@@ -761,7 +761,7 @@ class StrikeLaw(SwitchedSystem):
         while True:
             if not crosses:
                 x1 = st.step(x, t1 - t0)
-                if not self.watched(st) or st.monitor @ x1 > 0:
+                if not self._watched(st) or st.monitor @ x1 > 0:
                     return x1, st
             z = st.modal(x)
             g = st.curve(x, z)
@@ -836,17 +836,17 @@ class HertzStrikeLaw(StrikeLaw):
         self.nodes = np.append(spring.forces[:-1], math.inf)  # the last chord continues
         self.chord_changes = 0
 
-    def limits(self, st):
+    def _limits(self, st):
         """The forces ``(lower, upper)`` between which the chord of ``st`` holds, N."""
         j = self.index[id(st)]
         lower = -math.inf if (j == 0 and self.frozen) else float(self.nodes[j])
         return lower, float(self.nodes[j + 1])
 
-    def shift(self, st) -> float:
+    def _shift(self, st) -> float:
         """The offset ``e_j`` of the state's coordinates, m (0 when free)."""
         return 0.0 if st is self.free else float(self.offsets[self.index[id(st)]])
 
-    def first_exit(self, st, x, span, fresh):
+    def _first_exit(self, st, x, span, fresh):
         """The first node (or the gap's closing) reached within ``span`` after ``x``:
         ``(tau, x there, "up" or "down")``, or None. ``fresh``: ``st`` was entered at ``x``."""
         z = st.modal(x)
@@ -854,7 +854,7 @@ class HertzStrikeLaw(StrikeLaw):
         if st is self.free:
             sides = (("up", 0.0, 1.0),)  # the gap, watched as it is
         else:
-            lower, upper = self.limits(st)
+            lower, upper = self._limits(st)
             sides = (("down", lower, 1.0), ("up", upper, -1.0))
         found = None
         for which, node, sign in sides:
@@ -877,7 +877,7 @@ class HertzStrikeLaw(StrikeLaw):
                 found = (tau, which)
         return None if found is None else (found[0], st.at(x, z, found[0]), found[1])
 
-    def change(self, st, x, t, which):
+    def _change(self, st, x, t, which):
         """Enter the next state at an event at ``t``: ``(state, x)``, another chord (``x``
         shifted to its coordinates) or contact and separation (:meth:`StrikeLaw.switch`)."""
         j = self.index.get(id(st))
@@ -888,24 +888,24 @@ class HertzStrikeLaw(StrikeLaw):
             raise ChatterError(f"the force keeps crossing a node of the contact law at t={t:.6g} s")
         new = self.segments[j + 1 if which == "up" else j - 1]
         x = x.copy()
-        x[2 * self.base.size] += self.shift(st) - self.shift(new)
+        x[2 * self.base.size] += self._shift(st) - self._shift(new)
         return new, x
 
     def advance(self, x, st, t0, t1, crosses=False):
         """Propagate from ``t0`` to ``t1`` (at most one step) through any events on the way:
-        the first node or gap reached (:meth:`first_exit`), then the state it enters."""
+        the first node or gap reached (``_first_exit``), then the state it enters."""
         fresh = False
         while True:
-            found = self.first_exit(st, x, t1 - t0, fresh)
+            found = self._first_exit(st, x, t1 - t0, fresh)
             if found is None:
                 return st.step(x, t1 - t0), st
             tau, x, which = found
             t0 += tau
-            st, x = self.change(st, x, t0, which)
+            st, x = self._change(st, x, t0, which)
             fresh = True
 
-    def record(self, i, x, key):
+    def _record(self, i, x, key):
         """Record step ``i`` as :class:`StrikeLaw` does, the state in true coordinates."""
-        super().record(i, x, key)
+        super()._record(i, x, key)
         if self.trajectory is not None and i % self.sub == 0:
-            self.trajectory[i // self.sub, 2 * self.base.size] += self.shift(key)
+            self.trajectory[i // self.sub, 2 * self.base.size] += self._shift(key)

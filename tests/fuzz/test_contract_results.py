@@ -140,8 +140,6 @@ NO_ARGUMENT = [
     "ebantenna.ml.pair_kernels.PairKernels.pairs",
     "ebantenna.probe.Probe.summary",
     "ebantenna.probe.Probe.to_dict",
-    "ebantenna.simulate.unilateral.SwitchedSystem.moved",
-    "ebantenna.simulate.stick_slip.StickSlipLaw.moved",
 ] + [f"ebantenna.study.{m}.to_dict" for m in (
     "ann_setup.AnnSetupResult", "contact_law.ContactLawResult", "data_summary.DatasetResult",
     "full_range.FullRangeResult", "hinge_fit.HingeResult", "learning.LearningResult",

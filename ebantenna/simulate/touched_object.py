@@ -36,7 +36,7 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from .._progress import progress
-from .._validate import check_bool, check_int, check_positive
+from .._validate import check_array, check_bool, check_int, check_positive
 from ..fem.coupling import craig_bampton, probe_substructure, rod_substructure
 from ..fem.guards import check_contact
 from ..probe import Probe
@@ -355,10 +355,11 @@ class ModalTerms:
         """
         if self.contact_force is None:
             raise ValueError("these modal terms have no contact spring (contact_force is None)")
+        t = check_array("t", t, ndim=1)
         # q_k(t) = q_dot_k(0) / omega_dk e^(-a_k t) sin(omega_dk t), on the modes' own rates
         _, rate = modal_exponentials(self.contact_force, self.omega, self.zeta)
         coef = (self.contact_force / rate.imag).astype(complex)
-        return damped_exponentials(np.asarray(t, dtype=float), coef, rate)
+        return damped_exponentials(t, coef, rate)
 
     def lift_off_ratio(self, duration: float = 1.0, rate: float = 8000.0) -> np.ndarray:
         """Largest pull of the linear contact over its preload, per strike (dimensionless).
@@ -369,7 +370,9 @@ class ModalTerms:
         """
         if self.preload is None:
             raise ValueError("these modal terms have no preload (listed without object_modes)")
-        t = np.arange(int(round(check_positive("duration", duration) * rate))) / rate
+        duration = check_positive("duration", duration)
+        rate = check_positive("rate", rate)
+        t = np.arange(int(round(duration * rate))) / rate
         return np.max(-self.dynamic_contact_force(t), axis=1) / self.preload
 
 

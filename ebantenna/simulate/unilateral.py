@@ -327,13 +327,28 @@ def preload_overtravel(K, c, contact_stiffness: float, preload: float) -> float:
     """The servo's travel past the first touch that leaves the contact carrying ``preload``.
 
     ``s_stop = F0 (1/k_c + c @ K^-1 @ c)``: the contact spring in series with the structure's
-    static flexibility at the contact. Takes checked values (:func:`unilateral_response`).
+    static flexibility at the contact.
+
+    Parameters
+    ----------
+    K : array of shape (n, n)
+        The structure's stiffness without the contact, symmetric.
+    c : array of shape (n,)
+        The contact point's displacement toward the object per unit coordinate.
+    contact_stiffness : float
+        ``k_c``, N/m (> 0).
+    preload : float
+        ``F0``, N (>= 0); 0 stops the servo at the first touch.
 
     Examples
     --------
     >>> preload_overtravel(np.array([[100.0]]), np.array([1.0]), 100.0, 1.0)  # 1 N on 50 N/m, m
     0.02
     """
+    K = check_symmetric_matrix("K", K)
+    c = check_dof_vector("c", c, K.shape[0])
+    contact_stiffness = check_positive("contact_stiffness", contact_stiffness)
+    preload = check_nonnegative("preload", preload)
     if preload == 0:
         return 0.0
     try:
@@ -407,7 +422,23 @@ def step_grid(states, fs: float, duration: float, steps_per_period: int):
     divides the output sample interval ``1 / fs`` into ``sub`` whole steps. Returns ``(h, sub,
     n_samples, n_steps)``: the step (s), steps per output sample, output samples over
     ``duration`` (both ends included) and steps in all.
+
+    Examples
+    --------
+    One mass of 1 kg on 100 N/m pressed by a 300 N/m contact rings at 20 rad/s: 16 steps of its
+    period, ``pi / 160`` s, are longer than the sample interval of 1 ms, which is the step.
+
+    >>> free, closed, _ = contact_states(np.eye(1), np.array([[100.0]]), np.zeros((1, 1)),
+    ...                                  np.ones(1), 300.0, np.ones(1))
+    >>> step_grid([free, closed], fs=1000.0, duration=0.05, steps_per_period=16)
+    (0.001, 1, 51, 50)
     """
+    states = list(states)
+    if not states or not all(isinstance(st, LinearState) for st in states):
+        raise TypeError("states must be a non-empty sequence of LinearState")
+    fs = check_positive("fs", fs)
+    duration = check_positive("duration", duration)
+    steps_per_period = check_int("steps_per_period", steps_per_period, minimum=1)
     fastest = max(float(np.abs(st.lam).max()) for st in states)
     h_max = 2 * math.pi / (steps_per_period * fastest) if fastest > 0 else 1 / fs
     sub = max(1, math.ceil(1 / (fs * h_max)))

@@ -1,0 +1,171 @@
+"""The input contract of the contact laws' public steps and of the modal terms.
+
+The strike and the stick-slip take matrices, forces, coefficients and a march; the overtravel and
+the step grid take the structure and the rates they are built from; the modal terms are read per
+signal. Each gets bad inputs (a matrix that is not symmetric, a negative spring, a NaN speed, a
+march the package does not have, a row beyond the signals, a duration of zero) and must refuse
+each naming the parameter; a few results are checked against the closed form of one mass.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import sys
+
+import numpy as np
+import pytest
+
+sys.path.insert(0, os.path.dirname(__file__))
+from contract_files_cases import Row, check_row, rows_by_surface  # noqa: E402
+
+from ebantenna.simulate import stick_slip as S  # noqa: E402
+from ebantenna.simulate import unilateral as U  # noqa: E402
+from ebantenna.simulate.touched_object import ModalTerms  # noqa: E402
+
+NAN = math.nan
+#: One mass of 1 kg striking a 1e4 N/m contact at 1 m/s, recorded 50 ms at 1 kHz.
+ONE = dict(base=0, approach_speed=1.0, duration=0.05, fs=1000.0)
+
+
+def _one_mass(**kw):
+    return U.unilateral_response([[1.0]], [[0.0]], 0, 1e4, **{**ONE, **kw})
+
+
+def _states():
+    """The two states of 1 kg on 100 N/m pressed by a 300 N/m contact (20 rad/s closed)."""
+    free, closed, _ = U.contact_states(np.eye(1), np.array([[100.0]]), np.zeros((1, 1)),
+                                       np.ones(1), 300.0, np.ones(1))
+    return [free, closed]
+
+
+def _terms(preload=None, force=True):
+    """One signal, one mode at 100 rad/s damped 0.1 (and a padded one), 2 N/s of contact force."""
+    return ModalTerms(np.array([[100.0, 1.0]]), np.array([[0.1, 0.0]]), np.array([[1.0, 0.0]]),
+                      np.array([[True, False]]),
+                      np.array([[2.0, 0.0]]) if force else None, preload)
+
+
+def _force_by_hand(t):
+    """``F q'(0) / omega_d e^(-zeta omega t) sin(omega_d t)`` for the one mode of :func:`_terms`."""
+    wd = 100.0 * math.sqrt(1 - 0.1**2)
+    return 2.0 / wd * np.exp(-10.0 * t) * np.sin(wd * t)
+
+
+def _stick_slip(**kw):
+    args = dict(static_friction=1.0, kinetic_friction=1.0, duration=2.0, fs=100.0,
+                velocity=[1.0])
+    return S.stick_slip_response([[1.0]], [[100.0]], kw.pop("contact", 0),
+                                 kw.pop("normal_force", 1.0), **{**args, **kw})
+
+
+def all_rows():
+    u, s = "ebantenna.simulate.unilateral.", "ebantenna.simulate.stick_slip."
+    t = "ebantenna.simulate.touched_object."
+    t_fine = np.linspace(0.0, 0.1, 201)
+    return [
+        Row(u + "unilateral_response", "mass-not-symmetric", lambda: U.unilateral_response(
+            [[1.0, 2.0], [0.0, 1.0]], np.zeros((2, 2)), 0, 1e4, **ONE), ("mass",)),
+        Row(u + "unilateral_response", "contact_stiffness-negative", lambda: U.unilateral_response(
+            [[1.0]], [[0.0]], 0, -1e4, **ONE), ("contact_stiffness",)),
+        Row(u + "unilateral_response", "approach_speed-nan",
+            lambda: _one_mass(approach_speed=NAN), ("approach_speed",)),
+        Row(u + "unilateral_response", "contact-beyond", lambda: U.unilateral_response(
+            [[1.0]], [[0.0]], 3, 1e4, **ONE), ("contact",)),
+        Row(u + "unilateral_response", "method-unknown", lambda: _one_mass(method="rk4"),
+            ("method",)),
+        # the mass leaves the spring after half its period, pi sqrt(m / k) = pi / 100 s, at the
+        # speed it came with; the event is placed within time_tolerance (1e-12 s) of the root,
+        # and the propagation's rounding over 32 steps moves it by far less than 1e-9 s
+        Row(u + "unilateral_response", "one-mass-by-hand", _one_mass,
+            same=lambda r: len(r.events) == 1 and r.events[0].kind == "separation"
+            and abs(r.events[0].time - math.pi / 100) < 1e-9
+            and abs(r.events[0].velocity + 1.0) < 1e-9),
+        Row(u + "preload_overtravel", "free-structure", lambda: U.preload_overtravel(
+            np.zeros((1, 1)), np.ones(1), 100.0, 1.0), ("preload",)),
+        Row(u + "preload_overtravel", "contact_stiffness-zero", lambda: U.preload_overtravel(
+            np.array([[100.0]]), np.ones(1), 0.0, 1.0), ("contact_stiffness",)),
+        Row(u + "preload_overtravel", "preload-nan", lambda: U.preload_overtravel(
+            np.array([[100.0]]), np.ones(1), 100.0, NAN), ("preload",)),
+        Row(u + "preload_overtravel", "c-wrong-length", lambda: U.preload_overtravel(
+            np.array([[100.0]]), np.ones(2), 100.0, 1.0), ("c",)),
+        # 1 N on the contact spring (100 N/m) in series with the structure (100 N/m): 1/50 m
+        Row(u + "preload_overtravel", "in-series-by-hand", lambda: U.preload_overtravel(
+            np.array([[100.0]]), np.ones(1), 100.0, 1.0),
+            same=lambda r: math.isclose(r, 0.02, rel_tol=4 * np.finfo(float).eps)),
+        Row(u + "step_grid", "fs-negative", lambda: U.step_grid(_states(), -1.0, 0.05, 16),
+            ("fs",)),
+        Row(u + "step_grid", "duration-zero", lambda: U.step_grid(_states(), 1000.0, 0.0, 16),
+            ("duration",)),
+        Row(u + "step_grid", "steps_per_period-zero",
+            lambda: U.step_grid(_states(), 1000.0, 0.05, 0), ("steps_per_period",)),
+        Row(u + "step_grid", "states-empty", lambda: U.step_grid([], 1000.0, 0.05, 16),
+            ("states",)),
+        # 16 steps of the closed state's period (2 pi / 20 s) are longer than 1 ms: the step is
+        # the sample interval; 51 samples over 50 ms, both ends included
+        Row(u + "step_grid", "by-hand", lambda: U.step_grid(_states(), 1000.0, 0.05, 16),
+            same=lambda r: r == (0.001, 1, 51, 50)),
+        Row(s + "check_coefficients", "kinetic-above-static",
+            lambda: S.check_coefficients(0.3, 0.4), ("kinetic_friction",)),
+        Row(s + "check_coefficients", "static-negative",
+            lambda: S.check_coefficients(-0.1, 0.0), ("static_friction",)),
+        Row(s + "check_coefficients", "static-str", lambda: S.check_coefficients("0.5", 0.4),
+            ("static_friction",)),
+        Row(s + "check_coefficients", "as-given", lambda: S.check_coefficients(0.5, 0.4),
+            same=lambda r: r == (0.5, 0.4)),
+        Row(s + "stick_slip_response", "contact-beyond", lambda: _stick_slip(contact=1),
+            ("contact",)),
+        Row(s + "stick_slip_response", "normal_force-negative",
+            lambda: _stick_slip(normal_force=-1.0), ("normal_force",)),
+        Row(s + "stick_slip_response", "kinetic-above-static",
+            lambda: _stick_slip(kinetic_friction=2.0), ("kinetic_friction",)),
+        Row(s + "stick_slip_response", "method-unknown", lambda: _stick_slip(method="rk4"),
+            ("method",)),
+        # Coulomb's oscillator loses 2 mu N / k = 2 cm of amplitude every half period and sticks
+        # where the spring no longer overcomes mu_s N (the docstring's example)
+        Row(s + "stick_slip_response", "oscillator-by-hand", _stick_slip,
+            same=lambda r: [kind for _, kind in r.events]
+            == ["slip+", "slip-", "slip+", "slip-", "slip+", "slip-", "stick"]),
+        Row(t + "ModalTerms.damping_ratios", "row-negative",
+            lambda: _terms().damping_ratios(-1), ("row",)),
+        Row(t + "ModalTerms.damping_ratios", "row-beyond",
+            lambda: _terms().damping_ratios(1), ("row",)),
+        Row(t + "ModalTerms.damping_ratios", "padding-dropped",
+            lambda: _terms().damping_ratios(0), same=lambda r: r.tolist() == [0.1]),
+        Row(t + "ModalTerms.dynamic_contact_force", "no-contact-spring",
+            lambda: _terms(force=False).dynamic_contact_force(t_fine), ("contact_force",)),
+        Row(t + "ModalTerms.dynamic_contact_force", "t-nan",
+            lambda: _terms().dynamic_contact_force(np.array([0.0, NAN])), ("t",)),
+        Row(t + "ModalTerms.dynamic_contact_force", "t-2d",
+            lambda: _terms().dynamic_contact_force(np.zeros((2, 2))), ("t",)),
+        # one mode: each value a few roundings of exp and sin of size <= 0.02 N
+        Row(t + "ModalTerms.dynamic_contact_force", "one-mode-by-hand",
+            lambda: _terms().dynamic_contact_force(t_fine),
+            same=lambda r: r.shape == (1, t_fine.size)
+            and np.abs(r[0] - _force_by_hand(t_fine)).max() < 64 * np.finfo(float).eps * 0.02),
+        Row(t + "ModalTerms.lift_off_ratio", "no-preload",
+            lambda: _terms().lift_off_ratio(), ("preload",)),
+        Row(t + "ModalTerms.lift_off_ratio", "duration-zero",
+            lambda: _terms(np.array([1.0])).lift_off_ratio(0.0), ("duration",)),
+        Row(t + "ModalTerms.lift_off_ratio", "rate-negative",
+            lambda: _terms(np.array([1.0])).lift_off_ratio(1.0, -8000.0), ("rate",)),
+        Row(t + "ModalTerms.lift_off_ratio", "rate-nan",
+            lambda: _terms(np.array([1.0])).lift_off_ratio(1.0, NAN), ("rate",)),
+    ]
+
+
+IDS = [f"{row.surface.removeprefix('ebantenna.simulate.')}:{row.id}" for row in all_rows()]
+
+
+def test_the_rows_are_distinct():
+    assert len(set(IDS)) == len(IDS)
+
+
+@pytest.mark.parametrize("index", range(len(IDS)), ids=IDS)
+def test_every_row_ends_in_a_clear_error_or_the_right_answer(index):
+    check_row(all_rows()[index], IDS[index])
+
+
+def contract_rows() -> dict[str, list[str]]:
+    """The surfaces these rows cover (read by the inventory test)."""
+    return rows_by_surface(all_rows())

@@ -41,7 +41,7 @@ import scipy.linalg as sla
 
 from .._validate import check_choice, check_int, check_nonnegative, check_positive
 from .modes import sweep_velocity
-from .strikes import read_through_dlpf, reduced_body, timed_rate
+from .strikes import reduced_body
 from .structure import check_dof_vector, check_symmetric_matrix
 from .unilateral import (
     MARCHES,
@@ -55,7 +55,8 @@ from .unilateral import (
 )
 
 __all__ = ["StickSlipResponse", "check_coefficients", "stick_slip_response", "StickSlipLaw",
-           "friction_states", "FrictionModel", "friction_model", "friction_axis"]  # fmt: skip
+           "friction_states", "FrictionModel", "friction_model",
+           "friction_accelerations"]  # fmt: skip
 
 log = logging.getLogger(__name__)
 
@@ -404,8 +405,9 @@ def friction_model(probe_reduction, preload: float, max_frequency: float) -> Fri
     return FrictionModel(M, K, C, rotation, output, check_positive("preload", preload))
 
 
-def friction_axis(scene, models, inverse, rotation_speeds, when, dlpf) -> np.ndarray:
-    """The Z axis with ``coulomb_friction``, through the chip's filter, read at ``when``.
+def friction_accelerations(scene, models, inverse, rotation_speeds, *, rate: float,
+                           n_samples: int) -> np.ndarray:
+    """The tip acceleration along Z of every signal with ``coulomb_friction``, at ``rate``.
 
     Parameters
     ----------
@@ -417,19 +419,21 @@ def friction_axis(scene, models, inverse, rotation_speeds, when, dlpf) -> np.nda
         Which model each signal uses.
     rotation_speeds : array of shape (n,)
         Each signal's tilt rotation at the stop, ``tilt_ratio x sweep_speed``, rad/s.
-    when : ndarray
-        Sample times, shape ``(n_samples,)`` or ``(n, n_samples)``, s.
-    dlpf : ebantenna.simulate.effects.LowPassFilter or None
-        The chip's filter of the chain
-        (``chip_filter`` of :class:`~ebantenna.simulate.simulator.SignalBatch`).
+    rate : float
+        Sample rate, Hz (:func:`~ebantenna.simulate.strikes.timed_rate`).
+    n_samples : int
+        Samples per signal from the servo's stop.
 
     Returns
     -------
     ndarray of shape (n, n_samples)
-        m/s^2.
+        m/s^2, 0 at the stop.
     """
+    rate = check_positive("rate", rate)
+    n_int = check_int("n_samples", n_samples, minimum=2)
     effect = scene.effect("coulomb_friction")
-    rate, n_int = timed_rate(scene, when, dlpf)
+    if effect is None:
+        raise ValueError("scene must list coulomb_friction (its coefficients and its march)")
     acc = np.empty((len(inverse), n_int))
     for i, (k, speed) in enumerate(zip(inverse, rotation_speeds, strict=True)):
         m = models[k]
@@ -439,4 +443,4 @@ def friction_axis(scene, models, inverse, rotation_speeds, when, dlpf) -> np.nda
             duration=(n_int - 1) / rate, fs=rate, velocity=m.rotation * float(speed),
             damping=m.damping, output=m.output, max_events=effect.max_events, method=effect.method,
         ).acceleration[:n_int]  # fmt: skip
-    return read_through_dlpf(dlpf, acc, rate, when)
+    return acc

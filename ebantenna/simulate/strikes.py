@@ -58,8 +58,6 @@ __all__ = [
     "strike_model",
     "strike_accelerations",
     "timed_rate",
-    "read_through_dlpf",
-    "unilateral_axis",
     "reduced_body",
 ]
 
@@ -292,32 +290,3 @@ def timed_rate(scene, when, dlpf) -> tuple[float, int]:
     rate = dlpf.internal_rate if dlpf is not None else UNFILTERED_RATE * scene.fs
     span = float(np.max(when)) if np.ndim(when) == 2 else (scene.n_samples - 1) / scene.fs
     return rate, math.floor(span * rate) + 2
-
-
-def read_through_dlpf(dlpf, acc, rate, when) -> np.ndarray:
-    """Accelerations ``acc`` (shape ``(n, n_int)``, computed at :func:`timed_rate`) through the
-    chip's filter ``dlpf`` (None: none), and read at the sample times ``when`` (shape
-    ``(n_samples,)`` or, with clock jitter, ``(n, n_samples)``) by linear interpolation, which
-    is exact at whole internal samples; the chip's register holds such samples."""
-    if dlpf is not None:
-        acc = dlpf.apply_internal(acc, rate)  # filtered, at the internal rate
-    grid = np.arange(acc.shape[1]) / rate
-    rows = np.broadcast_to(when, acc.shape[:1] + np.shape(when)[-1:])
-    return np.stack([np.interp(w, grid, a) for w, a in zip(rows, acc, strict=True)])
-
-
-def unilateral_axis(scene, models, inverse, speeds, when, dlpf) -> tuple[np.ndarray, np.ndarray]:
-    """The X axis of the ``unilateral_contact`` strikes, through the chip's filter ``dlpf``
-    (None: none), read at ``when``.
-
-    Each strike is computed at :func:`timed_rate`, marched by the effect's ``method``, and read
-    through :func:`read_through_dlpf`. Returns the accelerations ``(n, n_samples)`` (m/s^2)
-    and each strike's number of re-strikes.
-    """
-    rate, n_int = timed_rate(scene, when, dlpf)
-    effect = scene.effect("unilateral_contact")
-    acc, restrikes = strike_accelerations(
-        models, inverse, speeds, rate=rate, n_samples=n_int, max_events=effect.max_events,
-        method=effect.method,
-    )  # fmt: skip
-    return read_through_dlpf(dlpf, acc, rate, when), restrikes

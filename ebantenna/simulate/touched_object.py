@@ -41,6 +41,7 @@ from ..fem.coupling import craig_bampton, probe_substructure, rod_substructure
 from ..fem.guards import check_contact
 from ..probe import Probe
 from ..probe import material as lookup_material
+from .effects.sensor import read_through_dlpf
 from .modes import (
     ArrestModes,
     arrest_modes,
@@ -49,8 +50,8 @@ from .modes import (
     modal_exponentials,
 )
 from .scene import Scene
-from .stick_slip import friction_axis, friction_model
-from .strikes import strike_model, unilateral_axis
+from .stick_slip import friction_accelerations, friction_model
+from .strikes import strike_accelerations, strike_model, timed_rate
 
 __all__ = [
     "ContactCase",
@@ -165,17 +166,26 @@ def _friction_model(case: ContactCase):
 
 
 def _strike_axis(batch, models) -> np.ndarray:
-    """X from the ``unilateral`` strikes; records each strike's contacts after the first."""
-    ax, restrikes = unilateral_axis(batch.scene, models, batch.inverse, batch.speeds, batch.when,
-                                    batch.chip_filter)
+    """X from the ``unilateral`` strikes, each computed at :func:`.strikes.timed_rate`, marched by
+    the effect's ``method``, and read through the chip's filter
+    (:func:`.effects.sensor.read_through_dlpf`); records each strike's contacts after the first."""
+    rate, n_int = timed_rate(batch.scene, batch.when, batch.chip_filter)
+    effect = batch.scene.effect("unilateral_contact")
+    acc, restrikes = strike_accelerations(
+        models, batch.inverse, batch.speeds, rate=rate, n_samples=n_int,
+        max_events=effect.max_events, method=effect.method,
+    )  # fmt: skip
     batch.x = dataclasses.replace(batch.x, restrikes=restrikes)
-    return ax
+    return read_through_dlpf(batch.chip_filter, acc, rate, batch.when)
 
 
 def _friction_axis(batch, models) -> np.ndarray:
-    """Z from the ``friction`` model: stick and slip along the rod, at the tilt rotation's speed."""
-    return friction_axis(batch.scene, models, batch.inverse, batch.tilts * batch.speeds, batch.when,
-                         batch.chip_filter)
+    """Z from the ``friction`` model: stick and slip along the rod, at the tilt rotation's speed,
+    computed and read as the strikes are (:func:`_strike_axis`)."""
+    rate, n_int = timed_rate(batch.scene, batch.when, batch.chip_filter)
+    acc = friction_accelerations(batch.scene, models, batch.inverse, batch.tilts * batch.speeds,
+                                 rate=rate, n_samples=n_int)
+    return read_through_dlpf(batch.chip_filter, acc, rate, batch.when)
 
 
 @dataclass(frozen=True)

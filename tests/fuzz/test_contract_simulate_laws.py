@@ -15,12 +15,15 @@ import sys
 
 import numpy as np
 import pytest
+import scipy.signal as sps
 
 sys.path.insert(0, os.path.dirname(__file__))
 from contract_files_cases import Row, check_row, rows_by_surface  # noqa: E402
 
+from ebantenna.simulate import builtin_scene  # noqa: E402
 from ebantenna.simulate import stick_slip as S  # noqa: E402
 from ebantenna.simulate import unilateral as U  # noqa: E402
+from ebantenna.simulate.effects import LowPassFilter, read_through_dlpf  # noqa: E402
 from ebantenna.simulate.touched_object import ModalTerms  # noqa: E402
 
 NAN = math.nan
@@ -59,11 +62,46 @@ def _stick_slip(**kw):
                                  kw.pop("normal_force", 1.0), **{**args, **kw})
 
 
+#: Two rows of accelerations at the DLPF's internal rate (8 kHz), 10 ms and one sample.
+ACC = np.random.default_rng(5).normal(size=(2, 81))
+#: The sample times at 1 kHz: whole internal samples.
+WHEN = np.arange(10) / 1000.0
+
+
 def all_rows():
     u, s = "ebantenna.simulate.unilateral.", "ebantenna.simulate.stick_slip."
     t = "ebantenna.simulate.touched_object."
+    d = "ebantenna.simulate.effects.sensor.read_through_dlpf"
     t_fine = np.linspace(0.0, 0.1, 201)
+    dlpf = LowPassFilter()
+    no_friction = builtin_scene("ideal")
     return [
+        Row(d, "dlpf-str", lambda: read_through_dlpf("dlpf", ACC, 8000.0, WHEN), ("dlpf",)),
+        Row(d, "acc-1d", lambda: read_through_dlpf(None, ACC[0], 8000.0, WHEN), ("acc",)),
+        Row(d, "acc-nan", lambda: read_through_dlpf(None, ACC * NAN, 8000.0, WHEN), ("acc",)),
+        Row(d, "rate-zero", lambda: read_through_dlpf(None, ACC, 0.0, WHEN), ("rate",)),
+        Row(d, "rate-not-the-filter's", lambda: read_through_dlpf(dlpf, ACC, 1000.0, WHEN),
+            ("rate",)),
+        Row(d, "when-rows", lambda: read_through_dlpf(None, ACC, 8000.0, np.zeros((3, 10))),
+            ("when",)),
+        Row(d, "when-3d", lambda: read_through_dlpf(None, ACC, 8000.0, np.zeros((2, 2, 2))),
+            ("when",)),
+        # at whole internal samples the reading is the filter's output there, exactly: the
+        # witness is SciPy's filter at the internal rate, every eighth sample
+        Row(d, "filtered-at-whole-samples", lambda: read_through_dlpf(dlpf, ACC, 8000.0, WHEN),
+            same=lambda r: np.array_equal(r, sps.sosfilt(dlpf.sos(), ACC)[:, ::8][:, :10])),
+        Row(d, "unfiltered-ramp", lambda: read_through_dlpf(
+            None, np.arange(16.0)[None, :], 8000.0, np.array([0.0, 0.001, 0.0005])),
+            same=lambda r: r.tolist() == [[0.0, 8.0, 4.0]]),
+        Row(s + "friction_accelerations", "scene-without-coulomb_friction",
+            lambda: S.friction_accelerations(no_friction, [], [], [], rate=8000.0, n_samples=9),
+            ("coulomb_friction",)),
+        Row(s + "friction_accelerations", "rate-zero",
+            lambda: S.friction_accelerations(no_friction, [], [], [], rate=0.0, n_samples=9),
+            ("rate",)),
+        Row(s + "friction_accelerations", "n_samples-one",
+            lambda: S.friction_accelerations(no_friction, [], [], [], rate=8000.0, n_samples=1),
+            ("n_samples",)),
         Row(u + "unilateral_response", "mass-not-symmetric", lambda: U.unilateral_response(
             [[1.0, 2.0], [0.0, 1.0]], np.zeros((2, 2)), 0, 1e4, **ONE), ("mass",)),
         Row(u + "unilateral_response", "contact_stiffness-negative", lambda: U.unilateral_response(

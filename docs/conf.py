@@ -78,7 +78,7 @@ numpydoc_xref_param_type = True
 numpydoc_xref_aliases = {
     "Probe": "ebantenna.probe.Probe",
     "Recording": "ebantenna.recording.Recording",
-    "Supports": "ebantenna.fem.supports.Supports",
+    "Supports": "ebantenna.fem.assembly.Supports",
     "ModalResult": "ebantenna.fem.modal.ModalResult",
     "ZoneResult": "ebantenna.fem.zones.ZoneResult",
     "Erratum": "ebantenna.fem.symbolic.Erratum",

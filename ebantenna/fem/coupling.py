@@ -57,10 +57,9 @@ from .._validate import (
     describe,
 )
 from ..probe import MAX_LOSS_FACTOR, SIZE_RANGE, Material, Probe, material
-from .assembly import assemble, beam_mesh, free_dofs, support_diagonals
+from .assembly import Supports, assemble, beam_mesh, free_dofs, support_diagonals
 from .guards import check_contact, check_resolvable
 from .modal import eigenvalue_shift, solve_modes
-from .supports import Supports
 
 __all__ = [
     "Rod",

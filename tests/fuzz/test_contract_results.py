@@ -67,7 +67,7 @@ NO_ARGUMENT = [
     "ebantenna.simulate.dataset.Dataset.checksum",
     "ebantenna.simulate.dataset.DatasetDesign.to_dict",
     "ebantenna.simulate.modes.ArrestModes.strain_energy_share",
-    "ebantenna.fem.supports.Supports.describe",
+    "ebantenna.fem.assembly.Supports.describe",
     "ebantenna.fem.coupling.Rod.as_beam",
     "ebantenna.fem.modal.ModalResult.overhang_mass_fraction",
     "ebantenna.fem.zones.ZoneResult.boundaries",

@@ -34,7 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_choice, check_int, real_array
+from .._validate import check_choice, check_int, check_positive, real_array
 from ..fem import Supports, modal_analysis
 from ..fem.assembly import assemble
 from ..fem.coupling import coupled_modes
@@ -249,6 +249,9 @@ def coupled_arrest_modes(
     >>> m.frequencies.round(1)
     array([ 38.4, 133.9, 243.5, 347.6])
     """
+    if not isinstance(probe, Probe):
+        raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")
+    max_frequency = check_positive("max_frequency", max_frequency)
     for label, red in (("probe_modes", probe_reduction), ("rod_modes", rod_reduction)):
         top = red.fixed_interface_omega[-1] / (2 * math.pi) if red.fixed_interface_omega.size else 0
         if not top >= max_frequency:

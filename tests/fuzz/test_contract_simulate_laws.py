@@ -20,7 +20,11 @@ import scipy.signal as sps
 sys.path.insert(0, os.path.dirname(__file__))
 from contract_files_cases import Row, check_row, rows_by_surface  # noqa: E402
 
+from ebantenna.fem.coupling import Rod, craig_bampton, probe_substructure, rod_substructure  # noqa: E402, E501
+from ebantenna.probe import Probe  # noqa: E402
 from ebantenna.simulate import builtin_scene  # noqa: E402
+from ebantenna.simulate import friction_ode as F  # noqa: E402
+from ebantenna.simulate import modes as MO  # noqa: E402
 from ebantenna.simulate import stick_slip as S  # noqa: E402
 from ebantenna.simulate import unilateral as U  # noqa: E402
 from ebantenna.simulate.effects import LowPassFilter, read_through_dlpf  # noqa: E402
@@ -68,10 +72,28 @@ ACC = np.random.default_rng(5).normal(size=(2, 81))
 WHEN = np.arange(10) / 1000.0
 
 
+def _coulomb(**kw):
+    args = dict(static_friction=1.0, kinetic_friction=1.0, duration=2.0, fs=100.0,
+                displacement=[0.1])
+    return F.coulomb_response([[1.0]], [[100.0]], kw.pop("tangential", 0),
+                              kw.pop("normal_force", 1.0), **{**args, **kw})
+
+
+def _coupled(**kw):
+    """The probe arrested at 0.2 m on a steel rod (the docstring's example), or with ``kw``."""
+    p = craig_bampton(probe_substructure(Probe(), 0.2, n_elements=40), 16)
+    r = craig_bampton(rod_substructure(Rod("steel"), n_elements=16), 8)
+    args = dict(probe_reduction=p, rod_reduction=r, contact_stiffness=1.8e5,
+                contact_loss_factor=0.0, max_frequency=480.0)
+    return MO.coupled_arrest_modes(kw.pop("probe", Probe()), "clamped", 0.2, Rod("steel"),
+                                   **{**args, **kw})
+
+
 def all_rows():
     u, s = "ebantenna.simulate.unilateral.", "ebantenna.simulate.stick_slip."
     t = "ebantenna.simulate.touched_object."
     d = "ebantenna.simulate.effects.sensor.read_through_dlpf"
+    f, m = "ebantenna.simulate.friction_ode.", "ebantenna.simulate.modes."
     t_fine = np.linspace(0.0, 0.1, 201)
     dlpf = LowPassFilter()
     no_friction = builtin_scene("ideal")
@@ -164,6 +186,34 @@ def all_rows():
         Row(s + "stick_slip_response", "oscillator-by-hand", _stick_slip,
             same=lambda r: [kind for _, kind in r.events]
             == ["slip+", "slip-", "slip+", "slip-", "slip+", "slip-", "stick"]),
+        Row(f + "coulomb_response", "mass-not-symmetric", lambda: F.coulomb_response(
+            [[1.0, 2.0], [0.0, 1.0]], np.zeros((2, 2)), 0, 1.0, static_friction=1.0,
+            kinetic_friction=1.0, duration=1.0, fs=100.0), ("mass",)),
+        Row(f + "coulomb_response", "tangential-beyond", lambda: _coulomb(tangential=4),
+            ("tangential",)),
+        Row(f + "coulomb_response", "normal_force-nan", lambda: _coulomb(normal_force=NAN),
+            ("normal_force",)),
+        Row(f + "coulomb_response", "surface_speed-inf",
+            lambda: _coulomb(surface_speed=math.inf), ("surface_speed",)),
+        Row(f + "coulomb_response", "kinetic-above-static",
+            lambda: _coulomb(kinetic_friction=2.0), ("kinetic_friction",)),
+        # released from 10 cm against mu N = 1 N on 100 N/m: 4 cm of amplitude lost per cycle,
+        # stuck within mu_s N / k = 1 cm of rest (the docstring's example); the integrator's
+        # rtol of 1e-10 places each turning point far within 1e-6 m
+        Row(f + "coulomb_response", "oscillator-by-hand", _coulomb,
+            same=lambda r: [e.kind for e in r.events]
+            == ["slip-", "slip+", "slip-", "slip+", "slip-", "stick"]
+            and np.allclose([e.position for e in r.events],
+                            [0.1, -0.08, 0.06, -0.04, 0.02, 0.0], rtol=0, atol=1e-6)),
+        Row(m + "coupled_arrest_modes", "probe-int", lambda: _coupled(probe=5), ("probe",)),
+        Row(m + "coupled_arrest_modes", "max_frequency-nan",
+            lambda: _coupled(max_frequency=NAN), ("max_frequency",)),
+        Row(m + "coupled_arrest_modes", "max_frequency-beyond-the-reductions",
+            lambda: _coupled(max_frequency=1e6), ("max_frequency",)),
+        Row(m + "coupled_arrest_modes", "contact_stiffness-negative",
+            lambda: _coupled(contact_stiffness=-1.0), ("contact_stiffness",)),
+        Row(m + "coupled_arrest_modes", "contact_loss_factor-nan",
+            lambda: _coupled(contact_loss_factor=NAN), ("contact_loss_factor",)),
         Row(t + "ModalTerms.damping_ratios", "row-negative",
             lambda: _terms().damping_ratios(-1), ("row",)),
         Row(t + "ModalTerms.damping_ratios", "row-beyond",
@@ -207,3 +257,16 @@ def test_every_row_ends_in_a_clear_error_or_the_right_answer(index):
 def contract_rows() -> dict[str, list[str]]:
     """The surfaces these rows cover (read by the inventory test)."""
     return rows_by_surface(all_rows())
+
+
+#: What the contact laws and the touched object's step build and hand back: nothing a user gives.
+RESULTS = ("unilateral.ContactEvent", "unilateral.UnilateralResponse",
+           "stick_slip.StickSlipResponse", "friction_ode.FrictionEvent",
+           "friction_ode.FrictionResponse", "strikes.StrikeModel", "stick_slip.FrictionModel",
+           "touched_object.ContactCase")
+
+
+def contract_exempt() -> dict[str, str]:
+    """Result types (read by the inventory test)."""
+    return {f"ebantenna.simulate.{name}": "a result type the package builds and hands back"
+            for name in RESULTS}

@@ -41,7 +41,7 @@ import scipy.linalg as sla
 
 from .._validate import check_choice, check_int, check_nonnegative, check_positive
 from .modes import sweep_velocity
-from .strikes import reduced_body
+from .strikes import check_reduction, reduced_body
 from .structure import check_dof_vector, check_symmetric_matrix
 from .unilateral import (
     MARCHES,
@@ -393,6 +393,8 @@ def friction_model(probe_reduction, preload: float, max_frequency: float) -> Fri
     max_frequency : float
         Fixed-interface modes at or above it are dropped, Hz.
     """
+    check_reduction("probe_reduction", probe_reduction)
+    max_frequency = check_positive("max_frequency", max_frequency)
     cached = _Z_BODIES.setdefault(probe_reduction, {})
     if max_frequency not in cached:
         K, M, T, C = reduced_body(probe_reduction, max_frequency)

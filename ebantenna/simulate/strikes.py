@@ -48,10 +48,12 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 
+from .._validate import check_array, check_choice, check_int, check_nonnegative, check_positive
+from ..fem.coupling import CraigBampton
 from .contact import PiecewiseSpring
 from .modes import sweep_velocity
 from .structure import ContactModel
-from .unilateral import unilateral_response
+from .unilateral import MARCHES, unilateral_response
 
 __all__ = [
     "StrikeModel",
@@ -59,6 +61,7 @@ __all__ = [
     "strike_accelerations",
     "timed_rate",
     "reduced_body",
+    "check_reduction",
 ]
 
 #: Without the DLPF, strikes are computed at this multiple of ``fs`` and read at the sample times.
@@ -94,6 +97,14 @@ class StrikeModel:
 _BODIES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
+def check_reduction(name: str, reduction) -> None:
+    """Raise a ``TypeError`` naming ``name`` unless ``reduction`` is a Craig-Bampton reduction
+    (:func:`ebantenna.fem.coupling.craig_bampton`)."""
+    if not isinstance(reduction, CraigBampton):
+        raise TypeError(f"{name} must be a CraigBampton reduction (ebantenna.fem.coupling."
+                        f"craig_bampton), got {type(reduction).__name__}")
+
+
 def reduced_body(reduction, max_frequency: float):
     """One body of a strike: its Craig-Bampton reduction truncated at ``max_frequency``.
 
@@ -115,6 +126,8 @@ def reduced_body(reduction, max_frequency: float):
         ``K, M, T, C``: stiffness (N/m), mass (kg) and damping (N s/m) in the kept coordinates,
         and the basis ``T`` from them to the body's free DOFs.
     """
+    check_reduction("reduction", reduction)
+    max_frequency = check_positive("max_frequency", max_frequency)
     cached = _BODIES.setdefault(reduction, {})
     if max_frequency not in cached:
         keep = np.flatnonzero(reduction.fixed_interface_omega < 2 * math.pi * max_frequency)
@@ -180,6 +193,12 @@ def strike_model(
     >>> m.structure.mass.shape  # probe: 8 modes below 3 kHz + interface; rod: 2 + interface
     (12, 12)
     """
+    check_reduction("probe_reduction", probe_reduction)
+    check_reduction("rod_reduction", rod_reduction)
+    contact = check_positive("contact", contact)
+    if not isinstance(contact_stiffness, PiecewiseSpring):
+        contact_stiffness = check_positive("contact_stiffness", contact_stiffness)
+    preload = check_nonnegative("preload", preload)
     Kp, Mp, Tp, Cp = reduced_body(probe_reduction, max_frequency)
     Kr, Mr, _, Cr = reduced_body(rod_reduction, max_frequency)
     n_p, n_r = Kp.shape[0], Kr.shape[0]
@@ -240,6 +259,18 @@ def strike_accelerations(
         naming how many pressed a Hertz contact beyond its chords' last node (sampled at
         ``rate``).
     """
+    rate = check_positive("rate", rate)
+    n_samples = check_int("n_samples", n_samples, minimum=2)
+    max_events = check_int("max_events", max_events, minimum=1)
+    check_choice("method", method, tuple(MARCHES))
+    speeds = check_array("speeds", speeds, ndim=1)
+    inverse = np.asarray(inverse)
+    if inverse.shape != speeds.shape or inverse.dtype.kind not in "iu" or (
+            inverse.size and not 0 <= inverse.min() <= inverse.max() < len(models)):
+        raise ValueError(f"inverse must hold one index into models (0 to {len(models) - 1}) per "
+                         f"speed ({speeds.size}), got {inverse!r}")
+    if not all(isinstance(m, StrikeModel) for m in models):
+        raise TypeError("models must be StrikeModel, as strike_model builds them")
     out = np.empty((len(inverse), n_samples))
     restrikes = np.zeros(len(inverse), dtype=int)
     held = np.zeros(len(inverse), dtype=bool)

@@ -87,6 +87,7 @@ __all__ = [
     "StrikeLaw",
     "HertzStrikeLaw",
     "contact_states",
+    "check_structure",
     "segment_states",
     "preload_overtravel",
     "UnilateralResponse",
@@ -392,13 +393,40 @@ def state_matrix(Minv, K, C, c, contact_stiffness: float, closed: bool) -> np.nd
     return A
 
 
+def check_structure(Minv, K, C, c, output):
+    """``(Minv, K, C, c, output)`` of a contact's states, checked: ``K`` and ``C`` symmetric,
+    ``Minv`` finite of the same size, ``c`` and ``output`` vectors of that length (or DOF
+    indices); raise a ``ValueError`` naming the first that is not."""
+    K = check_symmetric_matrix("K", K)
+    n = K.shape[0]
+    C = check_symmetric_matrix("C", C, n)
+    Minv = np.asarray(Minv, dtype=float)
+    if Minv.shape != (n, n) or not np.all(np.isfinite(Minv)):
+        raise ValueError(f"Minv must be a finite {n} x {n} matrix, got shape {Minv.shape}")
+    return Minv, K, C, check_dof_vector("c", c, n), check_dof_vector("output", output, n)
+
+
 def contact_states(Minv, K, C, c, contact_stiffness: float, output):
     """The two linear states, ``(free, closed, pen)``, with what each watches and records.
 
     The free state watches the gap ``-p`` and records zero force; the closed state watches and
     records the contact force ``k_c p``. Both record the acceleration at ``output``. ``pen``
-    reads the penetration ``p = pen @ x``. Takes checked values.
+    reads the penetration ``p = pen @ x``.
+
+    Parameters
+    ----------
+    Minv : array of shape (n, n)
+        The inverse of the mass matrix (:func:`mass_inverse`).
+    K, C : array of shape (n, n)
+        Stiffness and viscous damping without the contact, symmetric.
+    c, output : array of shape (n,)
+        The contact point's displacement toward the object, and the accelerometer's, per unit
+        coordinate.
+    contact_stiffness : float
+        ``k_c``, N/m (> 0).
     """
+    Minv, K, C, c, output = check_structure(Minv, K, C, c, output)
+    contact_stiffness = check_positive("contact_stiffness", contact_stiffness)
     n = K.shape[0]
     pen = np.zeros(2 * n + 2)  # p = pen @ x
     pen[:n], pen[2 * n] = c, 1.0
@@ -818,8 +846,11 @@ def segment_states(Minv, K, C, c, spring, output):
     ``e_j``): the linear contact's state with the spring ``k_j`` and the servo's coordinate
     shifted by ``e_j``. :class:`HertzStrikeLaw` keeps ``x`` in the coordinates of the state
     that holds (``s - e_j``), so each state watches and records the true force ``k_j p~``.
-    Takes checked values.
+    The other parameters are those of :func:`contact_states`.
     """
+    if not isinstance(spring, PiecewiseSpring):
+        raise TypeError(f"spring must be a PiecewiseSpring, got {type(spring).__name__}")
+    Minv, K, C, c, output = check_structure(Minv, K, C, c, output)
     n = K.shape[0]
     free, _, pen = contact_states(Minv, K, C, c, float(spring.slopes[0]), output)
     segments = []

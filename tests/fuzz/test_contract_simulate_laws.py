@@ -9,6 +9,7 @@ each naming the parameter; a few results are checked against the closed form of 
 
 from __future__ import annotations
 
+import functools
 import math
 import os
 import sys
@@ -26,7 +27,9 @@ from ebantenna.simulate import builtin_scene  # noqa: E402
 from ebantenna.simulate import friction_ode as F  # noqa: E402
 from ebantenna.simulate import modes as MO  # noqa: E402
 from ebantenna.simulate import stick_slip as S  # noqa: E402
+from ebantenna.simulate import strikes as ST  # noqa: E402
 from ebantenna.simulate import unilateral as U  # noqa: E402
+from ebantenna.simulate.contact import PiecewiseSpring  # noqa: E402
 from ebantenna.simulate.effects import LowPassFilter, read_through_dlpf  # noqa: E402
 from ebantenna.simulate.touched_object import ModalTerms  # noqa: E402
 
@@ -79,10 +82,36 @@ def _coulomb(**kw):
                               kw.pop("normal_force", 1.0), **{**args, **kw})
 
 
+@functools.cache
+def _reductions():
+    """The probe reduced at 0.2 m and a steel rod (the docstrings' examples)."""
+    return (craig_bampton(probe_substructure(Probe(), 0.2, n_elements=40), 16),
+            craig_bampton(rod_substructure(Rod("steel"), n_elements=16), 8))
+
+
+def _strike_model(**kw):
+    p, r = _reductions()
+    args = dict(contact=0.2, contact_stiffness=1.8e5, preload=0.5, max_frequency=3000.0)
+    return ST.strike_model(kw.pop("probe_reduction", p), kw.pop("rod_reduction", r),
+                           **{**args, **kw})
+
+
+def _strike_accelerations(**kw):
+    args = dict(rate=8000.0, n_samples=9, max_events=200, method="blocks")
+    return ST.strike_accelerations(kw.pop("models", [_strike_model()]), kw.pop("inverse", [0]),
+                                   kw.pop("speeds", [1.0]), **{**args, **kw})
+
+
+def _structure(**kw):
+    """1 kg on 100 N/m and 2 N s/m, touching a 300 N/m contact (the docstring's example)."""
+    args = dict(Minv=np.eye(1), K=np.array([[100.0]]), C=np.array([[2.0]]), c=np.ones(1),
+                contact_stiffness=300.0, output=np.ones(1))
+    return U.contact_states(**{**args, **kw})
+
+
 def _coupled(**kw):
     """The probe arrested at 0.2 m on a steel rod (the docstring's example), or with ``kw``."""
-    p = craig_bampton(probe_substructure(Probe(), 0.2, n_elements=40), 16)
-    r = craig_bampton(rod_substructure(Rod("steel"), n_elements=16), 8)
+    p, r = _reductions()
     args = dict(probe_reduction=p, rod_reduction=r, contact_stiffness=1.8e5,
                 contact_loss_factor=0.0, max_frequency=480.0)
     return MO.coupled_arrest_modes(kw.pop("probe", Probe()), "clamped", 0.2, Rod("steel"),
@@ -94,6 +123,7 @@ def all_rows():
     t = "ebantenna.simulate.touched_object."
     d = "ebantenna.simulate.effects.sensor.read_through_dlpf"
     f, m = "ebantenna.simulate.friction_ode.", "ebantenna.simulate.modes."
+    st = "ebantenna.simulate.strikes."
     t_fine = np.linspace(0.0, 0.1, 201)
     dlpf = LowPassFilter()
     no_friction = builtin_scene("ideal")
@@ -214,6 +244,84 @@ def all_rows():
             lambda: _coupled(contact_stiffness=-1.0), ("contact_stiffness",)),
         Row(m + "coupled_arrest_modes", "contact_loss_factor-nan",
             lambda: _coupled(contact_loss_factor=NAN), ("contact_loss_factor",)),
+        Row(u + "contact_states", "K-not-symmetric",
+            lambda: _structure(K=np.array([[1.0, 2.0], [0.0, 1.0]])), ("K",)),
+        Row(u + "contact_states", "C-wrong-size", lambda: _structure(C=np.zeros((2, 2))),
+            ("C",)),
+        Row(u + "contact_states", "Minv-nan", lambda: _structure(Minv=np.array([[NAN]])),
+            ("Minv",)),
+        Row(u + "contact_states", "c-wrong-length", lambda: _structure(c=np.ones(2)), ("c",)),
+        Row(u + "contact_states", "output-index-beyond", lambda: _structure(output=3),
+            ("output",)),
+        Row(u + "contact_states", "contact_stiffness-zero",
+            lambda: _structure(contact_stiffness=0.0), ("contact_stiffness",)),
+        # closed: M q'' = -(K + k_c) q - C q' - k_c s, every entry an integer
+        Row(u + "contact_states", "closed-by-hand", lambda: _structure()[1].A,
+            same=lambda A: np.array_equal(A, [[0, 1, 0, 0], [-400, -2, -300, 0],
+                                              [0, 0, 0, 1], [0, 0, 0, 0]])),
+        Row(u + "check_structure", "K-nan", lambda: U.check_structure(
+            np.eye(1), [[NAN]], np.zeros((1, 1)), np.ones(1), np.ones(1)), ("K",)),
+        Row(u + "check_structure", "c-index", lambda: U.check_structure(
+            np.eye(2), np.eye(2), np.zeros((2, 2)), 1, 0),
+            same=lambda r: r[3].tolist() == [0.0, 1.0] and r[4].tolist() == [1.0, 0.0]),
+        Row(u + "segment_states", "spring-float", lambda: U.segment_states(
+            np.eye(1), np.array([[100.0]]), np.zeros((1, 1)), np.ones(1), 300.0, np.ones(1)),
+            ("spring",)),
+        Row(u + "segment_states", "K-wrong-size", lambda: U.segment_states(
+            np.eye(1), np.eye(2), np.zeros((1, 1)), np.ones(1), PiecewiseSpring.linear(300.0),
+            np.ones(1)), ("C",)),
+        # one chord of slope 300 N/m through 0: the linear contact's closed state
+        Row(u + "segment_states", "one-chord-is-the-linear-contact", lambda: U.segment_states(
+            np.eye(1), np.array([[100.0]]), np.array([[2.0]]), np.ones(1),
+            PiecewiseSpring.linear(300.0), np.ones(1))[1][0].A,
+            same=lambda A: np.array_equal(A, _structure()[1].A)),
+        Row(st + "check_reduction", "substructure", lambda: ST.check_reduction(
+            "probe_reduction", _reductions()[0].substructure), ("probe_reduction",)),
+        Row(st + "check_reduction", "a-reduction", lambda: ST.check_reduction(
+            "probe_reduction", _reductions()[0]), same=lambda r: r is None),
+        Row(st + "reduced_body", "reduction-str", lambda: ST.reduced_body("probe", 3000.0),
+            ("reduction",)),
+        Row(st + "reduced_body", "max_frequency-negative",
+            lambda: ST.reduced_body(_reductions()[0], -1.0), ("max_frequency",)),
+        # the probe at 0.2 m keeps 8 fixed-interface modes below 3 kHz, and its interface
+        Row(st + "reduced_body", "probe-below-3-kHz",
+            lambda: ST.reduced_body(_reductions()[0], 3000.0),
+            same=lambda r: [a.shape for a in r] == [(9, 9), (9, 9), (r[2].shape[0], 9), (9, 9)]),
+        Row(st + "strike_model", "rod_reduction-None",
+            lambda: _strike_model(rod_reduction=None), ("rod_reduction",)),
+        Row(st + "strike_model", "contact-negative", lambda: _strike_model(contact=-0.2),
+            ("contact",)),
+        Row(st + "strike_model", "contact_stiffness-nan",
+            lambda: _strike_model(contact_stiffness=NAN), ("contact_stiffness",)),
+        Row(st + "strike_model", "preload-negative", lambda: _strike_model(preload=-0.5),
+            ("preload",)),
+        Row(st + "strike_model", "max_frequency-zero", lambda: _strike_model(max_frequency=0.0),
+            ("max_frequency",)),
+        # probe: 8 modes below 3 kHz and the interface; rod: 2 and the interface
+        Row(st + "strike_model", "sizes", _strike_model,
+            same=lambda m: m.structure.mass.shape == (12, 12) and m.preload == 0.5),
+        Row(st + "strike_accelerations", "rate-zero", lambda: _strike_accelerations(rate=0.0),
+            ("rate",)),
+        Row(st + "strike_accelerations", "n_samples-one",
+            lambda: _strike_accelerations(n_samples=1), ("n_samples",)),
+        Row(st + "strike_accelerations", "max_events-zero",
+            lambda: _strike_accelerations(max_events=0), ("max_events",)),
+        Row(st + "strike_accelerations", "method-unknown",
+            lambda: _strike_accelerations(method="rk4"), ("method",)),
+        Row(st + "strike_accelerations", "speeds-nan",
+            lambda: _strike_accelerations(speeds=[NAN]), ("speeds",)),
+        Row(st + "strike_accelerations", "inverse-beyond",
+            lambda: _strike_accelerations(inverse=[1]), ("inverse",)),
+        Row(st + "strike_accelerations", "inverse-float",
+            lambda: _strike_accelerations(inverse=[0.0]), ("inverse",)),
+        Row(st + "strike_accelerations", "models-str",
+            lambda: _strike_accelerations(models=["strike"]), ("models",)),
+        Row(s + "friction_model", "probe_reduction-str",
+            lambda: S.friction_model("probe", 0.5, 3000.0), ("probe_reduction",)),
+        Row(s + "friction_model", "max_frequency-nan",
+            lambda: S.friction_model(_reductions()[0], 0.5, NAN), ("max_frequency",)),
+        Row(s + "friction_model", "preload-zero",
+            lambda: S.friction_model(_reductions()[0], 0.0, 3000.0), ("preload",)),
         Row(t + "ModalTerms.damping_ratios", "row-negative",
             lambda: _terms().damping_ratios(-1), ("row",)),
         Row(t + "ModalTerms.damping_ratios", "row-beyond",

@@ -118,6 +118,18 @@ def _coupled(**kw):
                                    **{**args, **kw})
 
 
+def _filtered_by_hand():
+    """One damped exponential (100 Hz, decaying at 50/s) through the DLPF: its closed form and
+    the witness, SciPy's filter at the internal rate, over 800 internal samples."""
+    dlpf = LowPassFilter()
+    coef, rate = np.array([[1.0 + 0.0j]]), np.array([[-50.0 + 2j * math.pi * 100.0]])
+    n = np.arange(800)
+    u = np.imag(coef[0, 0] * np.exp(rate[0, 0] * n / dlpf.internal_rate))
+    out_coef, out_rate = dlpf.filter_exponentials(coef, rate)
+    closed = np.imag(np.exp(np.multiply.outer(n / dlpf.internal_rate, out_rate[0])) @ out_coef[0])
+    return closed, sps.sosfilt(dlpf.sos(), u)
+
+
 def all_rows():
     u, s = "ebantenna.simulate.unilateral.", "ebantenna.simulate.stick_slip."
     t = "ebantenna.simulate.touched_object."
@@ -145,6 +157,19 @@ def all_rows():
         Row(d, "unfiltered-ramp", lambda: read_through_dlpf(
             None, np.arange(16.0)[None, :], 8000.0, np.array([0.0, 0.001, 0.0005])),
             same=lambda r: r.tolist() == [[0.0, 8.0, 4.0]]),
+        Row(d.replace("read_through_dlpf", "LowPassFilter.filter_exponentials"), "coef-1d",
+            lambda: dlpf.filter_exponentials(np.ones(3), np.ones(3)), ("coef",)),
+        Row(d.replace("read_through_dlpf", "LowPassFilter.filter_exponentials"), "rate-nan",
+            lambda: dlpf.filter_exponentials(np.ones((1, 2)), np.array([[NAN, 1.0]])), ("rate",)),
+        Row(d.replace("read_through_dlpf", "LowPassFilter.filter_exponentials"), "rate-shape",
+            lambda: dlpf.filter_exponentials(np.ones((1, 2)), np.ones((1, 3))), ("rate",)),
+        Row(d.replace("read_through_dlpf", "LowPassFilter.filter_exponentials"), "coef-str",
+            lambda: dlpf.filter_exponentials(np.array([["a"]]), np.ones((1, 1))), ("coef",)),
+        # the closed form is the filter's recursion exactly; SciPy's rounding grows at most by
+        # one eps of the signal (of size 1) per sample, over 800 samples
+        Row(d.replace("read_through_dlpf", "LowPassFilter.filter_exponentials"),
+            "one-exponential-against-sosfilt", _filtered_by_hand,
+            same=lambda r: np.abs(r[0] - r[1]).max() < 64 * 800 * np.finfo(float).eps),
         Row(s + "friction_accelerations", "scene-without-coulomb_friction",
             lambda: S.friction_accelerations(no_friction, [], [], [], rate=8000.0, n_samples=9),
             ("coulomb_friction",)),

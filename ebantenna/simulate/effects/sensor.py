@@ -380,6 +380,13 @@ class LowPassFilter(Effect):
         coef, rate : complex arrays of shape (n_signals, n_terms + 2)
             The output's exponentials, the filter's two transient terms last.
         """
+        coef, rate = np.asarray(coef), np.asarray(rate)
+        for name, value in (("coef", coef), ("rate", rate)):
+            if value.ndim != 2 or value.dtype.kind not in "fc" or not np.all(np.isfinite(value)):
+                raise ValueError(f"{name} must be a finite real or complex array of shape "
+                                 f"(n_signals, n_terms), got {value.dtype} of shape {value.shape}")
+        if rate.shape != coef.shape:
+            raise ValueError(f"rate must have the shape of coef {coef.shape}, got {rate.shape}")
         b, a, gain = self._transfer()
         poles = np.roots(a)  # distinct: a Butterworth pair
         fi = self.internal_rate

@@ -49,6 +49,7 @@ from .unilateral import (
     ChatterError,
     LinearState,
     SwitchedSystem,
+    check_structure,
     crossing,
     mass_inverse,
     step_grid,
@@ -313,9 +314,28 @@ def friction_states(M, K, C, Minv, b, o, hold, slide):
     ``+-u``. Stick: ``q_b' = q_b'' = 0`` and the other coordinates move as the structure pinned
     at ``b``, watching ``mu_s N -+ F`` (``hold`` is ``mu_s N``) with
     ``F = (M q'' + C q' + K q)_b``. Every state records the acceleration at ``o`` and the
-    friction force. Takes checked values (:func:`stick_slip_response`).
+    friction force.
+
+    Parameters
+    ----------
+    M, K, C : array of shape (n, n)
+        Mass, stiffness and viscous damping, symmetric.
+    Minv : array of shape (n, n)
+        The inverse of ``M`` (:func:`.unilateral.mass_inverse`).
+    b : int
+        The coordinate along which friction acts.
+    o : int or array of shape (n,)
+        Where the acceleration is read.
+    hold, slide : float
+        ``mu_s N`` and ``mu_k N``, N (>= 0).
     """
+    M = check_symmetric_matrix("M", M)
     n = M.shape[0]
+    Minv, K, C, _, _ = check_structure(Minv, K, C, np.zeros(n), np.zeros(n))
+    o = check_dof_vector("o", o, n)
+    b = check_int("b", b, minimum=0, maximum=n - 1)
+    hold = check_nonnegative("hold", hold)
+    slide = check_nonnegative("slide", slide)
     size = 2 * n + 2
 
     def system(load, held):

@@ -36,11 +36,12 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from .._progress import progress
-from .._validate import check_array, check_bool, check_int, check_positive
+from .._validate import check_array, check_bool, check_choice, check_int, check_positive
 from ..fem.coupling import craig_bampton, probe_substructure, rod_substructure
 from ..fem.guards import check_contact
 from ..probe import Probe
 from ..probe import material as lookup_material
+from .effects import effect_names
 from .effects.sensor import read_through_dlpf
 from .modes import (
     ArrestModes,
@@ -218,9 +219,26 @@ class ObjectModel:
     respond: Callable | None = None
     unless: str | None = None
 
+    def __post_init__(self):
+        if not isinstance(self.name, str) or not self.name:
+            raise TypeError(f"name must be a non-empty str, got {self.name!r}")
+        check_choice("axis", self.axis, ("x", "z"))
+        for field in ("effect", "unless"):
+            value = getattr(self, field)
+            if value is not None and value not in effect_names():
+                raise ValueError(f"{field} must be None or an effect of effect_names(), got "
+                                 f"{value!r}")
+        if not callable(self.build):
+            raise TypeError(f"build must be callable, got {type(self.build).__name__}")
+        if self.respond is not None and not callable(self.respond):
+            raise TypeError(f"respond must be callable or None, got {type(self.respond).__name__}")
+
     def wanted(self, scene: Scene, x_modes: bool) -> bool:
         """Whether ``scene`` needs this model (``x_modes`` as in
         :func:`~ebantenna.simulate.simulator.simulate_batch`)."""
+        if not isinstance(scene, Scene):
+            raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
+        x_modes = check_bool("x_modes", x_modes)
         if self.effect is not None and not scene.has(self.effect):
             return False
         return x_modes or self.unless is None or not scene.has(self.unless)

@@ -494,6 +494,10 @@ class LinearState:
     """
 
     def __init__(self, A, n, monitor, force, accel):
+        n = check_int("n", n, minimum=1)
+        if np.shape(A) != (2 * n + 2, 2 * n + 2) or not np.all(np.isfinite(A)):
+            raise ValueError(f"A must be a finite {2 * n + 2} x {2 * n + 2} matrix (n = {n}), "
+                             f"got shape {np.shape(A)}")
         self.A, self.n = A, n
         Ay, f = A[: 2 * n, : 2 * n], A[: 2 * n, 2 * n]
         self.eigen = False
@@ -524,6 +528,10 @@ class LinearState:
 
     def _read(self, monitor, force, accel):
         """Set the rows read along the motion, and their weights on the modes."""
+        for name, row in (("monitor", monitor), ("force", force), ("accel", accel)):
+            if np.shape(row) != (2 * self.n + 2,) or not np.all(np.isfinite(row)):
+                raise ValueError(f"{name} must be a finite row of length {2 * self.n + 2}, got "
+                                 f"shape {np.shape(row)}")
         self.monitor = monitor
         self.rows = np.stack([monitor, accel, force])
         if self.eigen:
@@ -693,6 +701,10 @@ def march_step_by_step(system: SwitchedSystem, x, key, n_steps: int):
     tuple
         ``(x, key)`` after the last step.
     """
+    if not isinstance(system, SwitchedSystem):
+        raise TypeError(f"system must be a SwitchedSystem (a contact law), got "
+                        f"{type(system).__name__}")
+    n_steps = check_int("n_steps", n_steps, minimum=0)
     h = system.h
     for i in range(n_steps):
         if system._interrupts(i):

@@ -31,7 +31,7 @@ from ebantenna.simulate import strikes as ST  # noqa: E402
 from ebantenna.simulate import unilateral as U  # noqa: E402
 from ebantenna.simulate.contact import PiecewiseSpring  # noqa: E402
 from ebantenna.simulate.effects import LowPassFilter, read_through_dlpf  # noqa: E402
-from ebantenna.simulate.touched_object import ModalTerms  # noqa: E402
+from ebantenna.simulate.touched_object import OBJECT_MODELS, ModalTerms, ObjectModel  # noqa: E402
 
 NAN = math.nan
 #: One mass of 1 kg striking a 1e4 N/m contact at 1 m/s, recorded 50 ms at 1 kHz.
@@ -128,6 +128,26 @@ def _filtered_by_hand():
     out_coef, out_rate = dlpf.filter_exponentials(coef, rate)
     closed = np.imag(np.exp(np.multiply.outer(n / dlpf.internal_rate, out_rate[0])) @ out_coef[0])
     return closed, sps.sosfilt(dlpf.sos(), u)
+
+
+def _strike_law():
+    """The one-mass strike's law, its first state and its steps (as unilateral_response)."""
+    options = dict(max_events=10, on_max_events="raise", time_tolerance=1e-12,
+                   return_states=False)
+    law, grid, _ = U.strike_law((np.eye(1), np.zeros((1, 1)), np.zeros((1, 1)), np.ones(1),
+                                 np.ones(1), np.ones(1)), 1e4, 0.0, 1.0, 1000.0, 0.05, options)
+    return (law, *law.first_touch(1.0), grid[3])
+
+
+def _friction_states(**kw):
+    args = dict(M=np.eye(1), K=np.array([[100.0]]), C=np.zeros((1, 1)), Minv=np.eye(1), b=0,
+                o=0, hold=1.0, slide=1.0)
+    return S.friction_states(**{**args, **kw})
+
+
+def _model(**kw):
+    args = dict(name="mine", axis="x", effect=None, build=lambda case: case)
+    return ObjectModel(**{**args, **kw})
 
 
 def all_rows():
@@ -347,6 +367,58 @@ def all_rows():
             lambda: S.friction_model(_reductions()[0], 0.5, NAN), ("max_frequency",)),
         Row(s + "friction_model", "preload-zero",
             lambda: S.friction_model(_reductions()[0], 0.0, 3000.0), ("preload",)),
+        Row(u + "march_step_by_step", "system-str",
+            lambda: U.march_step_by_step("law", np.zeros(4), None, 10), ("system",)),
+        Row(u + "march_step_by_step", "n_steps-negative",
+            lambda: U.march_step_by_step(*_strike_law()[:3], -1), ("n_steps",)),
+        # the one-mass strike leaves the spring after pi / 100 s (as unilateral_response's row)
+        Row(u + "march_step_by_step", "one-mass-by-hand", lambda: (
+            lambda law, x, key, n: (U.march_step_by_step(law, x, key, n), law.events)[1])(
+                *_strike_law()),
+            same=lambda ev: len(ev) == 1 and abs(ev[0].time - math.pi / 100) < 1e-9),
+        Row(u + "LinearState", "A-not-square",
+            lambda: U.LinearState(np.zeros((4, 3)), 1, np.ones(4), np.ones(4), np.ones(4)),
+            ("A",)),
+        Row(u + "LinearState", "n-zero",
+            lambda: U.LinearState(np.zeros((4, 4)), 0, np.ones(4), np.ones(4), np.ones(4)),
+            ("n",)),
+        Row(u + "LinearState", "monitor-short",
+            lambda: U.LinearState(np.zeros((4, 4)), 1, np.ones(3), np.ones(4), np.ones(4)),
+            ("monitor",)),
+        Row(u + "LinearState", "accel-nan",
+            lambda: U.LinearState(np.zeros((4, 4)), 1, np.ones(4), np.ones(4),
+                                  np.array([1.0, NAN, 0.0, 0.0])), ("accel",)),
+        # 1 kg on 100 + 300 N/m with 2 N s/m: -1 +- i sqrt(399) rad/s (and the servo's double
+        # zero); eig's error is a few eps of |lambda| = 20 for this well-conditioned 4 x 4
+        Row(u + "LinearState", "closed-eigenvalues", lambda: _structure()[1].lam,
+            same=lambda lam: np.allclose(np.sort_complex(lam[np.abs(lam) > 1]),
+                                         [-1 - 1j * math.sqrt(399), -1 + 1j * math.sqrt(399)],
+                                         rtol=0, atol=64 * 20 * np.finfo(float).eps)),
+        Row(u + "LinearState.watching", "force-long",
+            lambda: _structure()[1].watching(np.ones(4), np.ones(5), np.ones(4)), ("force",)),
+        Row(s + "friction_states", "b-beyond", lambda: _friction_states(b=1), ("b",)),
+        Row(s + "friction_states", "hold-negative", lambda: _friction_states(hold=-1.0),
+            ("hold",)),
+        Row(s + "friction_states", "M-not-symmetric",
+            lambda: _friction_states(M=np.array([[1.0, 2.0], [0.0, 1.0]])), ("M",)),
+        Row(s + "friction_states", "o-beyond", lambda: _friction_states(o=2), ("o",)),
+        Row(s + "friction_states", "the-four-states", _friction_states,
+            same=lambda st: sorted(st) == ["slip+", "slip-", "stick", "stick lower"]),
+        Row(t + "ObjectModel", "axis-y", lambda: _model(axis="y"), ("axis",)),
+        Row(t + "ObjectModel", "effect-misspelt", lambda: _model(effect="unilateral"),
+            ("effect",)),
+        Row(t + "ObjectModel", "build-None", lambda: _model(build=None), ("build",)),
+        Row(t + "ObjectModel", "respond-int", lambda: _model(respond=3), ("respond",)),
+        Row(t + "ObjectModel", "name-empty", lambda: _model(name=""), ("name",)),
+        Row(t + "ObjectModel.wanted", "scene-str",
+            lambda: OBJECT_MODELS[0].wanted("paper", True), ("scene",)),
+        Row(t + "ObjectModel.wanted", "x_modes-str",
+            lambda: OBJECT_MODELS[0].wanted(builtin_scene("paper"), "no"), ("x_modes",)),
+        # the paper scene strikes through unilateral_contact: its linear modes only when X's
+        # modes are asked for
+        Row(t + "ObjectModel.wanted", "paper-scene", lambda: [
+            [m.wanted(builtin_scene("paper"), x) for m in OBJECT_MODELS] for x in (True, False)],
+            same=lambda r: r == [[True, True, False], [False, True, False]]),
         Row(t + "ModalTerms.damping_ratios", "row-negative",
             lambda: _terms().damping_ratios(-1), ("row",)),
         Row(t + "ModalTerms.damping_ratios", "row-beyond",
@@ -396,7 +468,7 @@ def contract_rows() -> dict[str, list[str]]:
 RESULTS = ("unilateral.ContactEvent", "unilateral.UnilateralResponse",
            "stick_slip.StickSlipResponse", "friction_ode.FrictionEvent",
            "friction_ode.FrictionResponse", "strikes.StrikeModel", "stick_slip.FrictionModel",
-           "touched_object.ContactCase")
+           "touched_object.ContactCase", "structure.ContactModel")
 
 
 def contract_exempt() -> dict[str, str]:

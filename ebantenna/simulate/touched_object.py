@@ -68,8 +68,28 @@ __all__ = [
 def pinned_modes(scene: Scene, contacts, materials, show_progress):
     """Arrest modes on a rigid object (a pin, or the ``contact_compliance`` spring).
 
-    One FEM solve per distinct (contact, spring); takes checked values.
+    One FEM solve per distinct (contact, spring).
+
+    Parameters
+    ----------
+    scene : Scene
+    contacts : ndarray of shape (n,)
+        Per-signal contact position, m.
+    materials : ndarray of str, shape (n,)
+        Per-signal material names.
+    show_progress : bool or None
+        The progress bar over the solves (None: on a terminal).
+
+    Returns
+    -------
+    modes : list of ArrestModes
+        The modes of each distinct (contact, spring).
+    inverse : ndarray of int, shape (n,)
+        Which of them each signal uses.
     """
+    _check_signal_inputs(scene, contacts, materials)
+    if show_progress is not None:
+        show_progress = check_bool("show_progress", show_progress)
     probe = scene.probe
     kw = dict(n_elements=scene.n_elements, n_modes=scene.n_modes, max_frequency=scene.max_frequency)
     compliance = scene.effect("contact_compliance")
@@ -298,9 +318,16 @@ def object_modes(scene: Scene, contacts, materials, preloads, show_progress, x_m
 
     Each rod is reduced once, the probe once per distinct contact position; what is left per
     (position, material, preload) is each model of :data:`OBJECT_MODELS` the scene needs.
-    Takes checked values. Returns the coupled modes (X), which case each signal uses, and the
-    models stepped in time by name (``timed``, only those built).
+    Returns the coupled modes (X), which case each signal uses, and the models stepped in time
+    by name (``timed``, only those built); the parameters are those of :func:`signal_terms`,
+    ``preloads`` given.
     """
+    _check_signal_inputs(scene, contacts, materials, preloads)
+    if preloads is None or not scene.has("object_modes"):
+        raise ValueError("object_modes needs a scene that lists object_modes, and the preloads")
+    if show_progress is not None:
+        show_progress = check_bool("show_progress", show_progress)
+    x_modes = check_bool("x_modes", x_modes)
     probe = scene.probe
     if not scene.has("structural_damping"):
         probe = dataclasses.replace(probe, loss_factor=0.0)
@@ -464,11 +491,12 @@ def _z_terms(scene: Scene, speeds, tilts, zeta_s: float) -> ModalTerms:
     )
 
 
-def _check_signal_inputs(scene, contacts, materials, speeds, tilts, preloads) -> int:
-    """The number of signals, once every per-signal array is one finite entry per signal."""
+def _check_signal_inputs(scene, contacts, materials, preloads=None, **per_signal) -> int:
+    """The number of signals, once every per-signal array (``per_signal`` by name, such as
+    ``speeds`` and ``tilts``) is one finite entry per signal."""
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
-    arrays = {"contacts": contacts, "speeds": speeds, "tilts": tilts}
+    arrays = {"contacts": contacts, **per_signal}
     if preloads is not None:
         arrays["preloads"] = preloads
     for name, value in arrays.items():
@@ -536,7 +564,7 @@ def signal_terms(
     >>> x.frequencies().size > 0, timed
     (True, {})
     """
-    n = _check_signal_inputs(scene, contacts, materials, speeds, tilts, preloads)
+    n = _check_signal_inputs(scene, contacts, materials, preloads, speeds=speeds, tilts=tilts)
     if show_progress is not None:
         show_progress = check_bool("show_progress", show_progress)
     x_modes = check_bool("x_modes", x_modes)

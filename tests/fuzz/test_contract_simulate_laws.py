@@ -31,7 +31,14 @@ from ebantenna.simulate import strikes as ST  # noqa: E402
 from ebantenna.simulate import unilateral as U  # noqa: E402
 from ebantenna.simulate.contact import PiecewiseSpring  # noqa: E402
 from ebantenna.simulate.effects import LowPassFilter, read_through_dlpf  # noqa: E402
-from ebantenna.simulate.touched_object import OBJECT_MODELS, ModalTerms, ObjectModel  # noqa: E402
+from ebantenna.simulate.simulator import ChainStep, SignalBatch  # noqa: E402
+from ebantenna.simulate.touched_object import (  # noqa: E402
+    OBJECT_MODELS,
+    ModalTerms,
+    ObjectModel,
+    object_modes,
+    pinned_modes,
+)
 
 NAN = math.nan
 #: One mass of 1 kg striking a 1e4 N/m contact at 1 m/s, recorded 50 ms at 1 kHz.
@@ -150,12 +157,30 @@ def _model(**kw):
     return ObjectModel(**{**args, **kw})
 
 
+def _batch(**kw):
+    one = np.ones(1)
+    args = dict(scene=builtin_scene("paper"), contacts=0.25 * one,
+                materials=np.array(["brass"], dtype=object), speeds=one, tilts=0.1 * one,
+                seeds=[3])
+    return SignalBatch(**{**args, **kw})
+
+
+def _cases(which, **kw):
+    scene = builtin_scene("ideal")
+    args = dict(scene=scene, contacts=np.array([0.2]), materials=np.array(["brass"]),
+                show_progress=False)
+    if which is object_modes:
+        scene = builtin_scene("paper")
+        args.update(scene=scene, preloads=np.array([scene.effect("object_modes").preload]))
+    return which(**{**args, **kw})
+
+
 def all_rows():
     u, s = "ebantenna.simulate.unilateral.", "ebantenna.simulate.stick_slip."
     t = "ebantenna.simulate.touched_object."
     d = "ebantenna.simulate.effects.sensor.read_through_dlpf"
     f, m = "ebantenna.simulate.friction_ode.", "ebantenna.simulate.modes."
-    st = "ebantenna.simulate.strikes."
+    st, sim = "ebantenna.simulate.strikes.", "ebantenna.simulate.simulator."
     t_fine = np.linspace(0.0, 0.1, 201)
     dlpf = LowPassFilter()
     no_friction = builtin_scene("ideal")
@@ -419,6 +444,45 @@ def all_rows():
         Row(t + "ObjectModel.wanted", "paper-scene", lambda: [
             [m.wanted(builtin_scene("paper"), x) for m in OBJECT_MODELS] for x in (True, False)],
             same=lambda r: r == [[True, True, False], [False, True, False]]),
+        Row(sim + "ChainStep", "effect-misspelt", lambda: ChainStep("gravty", print), ("effect",)),
+        Row(sim + "ChainStep", "apply-str", lambda: ChainStep("gravity", "apply"), ("apply",)),
+        Row(sim + "ChainStep", "reads-str", lambda: ChainStep(None, print, reads="dlpf"),
+            ("reads",)),
+        Row(sim + "ChainStep", "a-step", lambda: ChainStep("gravity", print, ("dlpf",)),
+            same=lambda s: s.reads == ("dlpf",)),
+        Row(sim + "SignalBatch", "scene-str", lambda: _batch(scene="paper"), ("scene",)),
+        Row(sim + "SignalBatch", "speeds-list", lambda: _batch(speeds=[1.0]), ("speeds",)),
+        Row(sim + "SignalBatch", "tilts-two", lambda: _batch(tilts=np.ones(2)), ("tilts",)),
+        Row(sim + "SignalBatch", "seeds-none", lambda: _batch(seeds=[]), ("seeds",)),
+        # the paper scene's 1000 samples at 1 kHz, read through its DLPF
+        Row(sim + "SignalBatch", "paper", _batch,
+            same=lambda b: b.t.size == 1000 and b.chip_filter is not None and b.n == 1),
+        Row(sim + "SignalBatch.rngs", "effect-name", lambda: _batch().rngs("sensor_noise"),
+            ("effect",)),
+        # one generator per signal, seeded by (seed, stream): the same draws as numpy's own
+        Row(sim + "SignalBatch.rngs", "seed-and-stream", lambda: _batch().rngs(
+            builtin_scene("paper").effect("sensor_noise"))[0].random(3),
+            same=lambda r: np.array_equal(r, np.random.default_rng([3, 3]).random(3))),
+        Row(t + "pinned_modes", "scene-str", lambda: _cases(pinned_modes, scene="ideal"),
+            ("scene",)),
+        Row(t + "pinned_modes", "contacts-beyond-tip",
+            lambda: _cases(pinned_modes, contacts=np.array([5.0])), ("contacts",)),
+        Row(t + "pinned_modes", "materials-two",
+            lambda: _cases(pinned_modes, materials=np.array(["brass", "pvc"])), ("materials",)),
+        Row(t + "pinned_modes", "show_progress-str",
+            lambda: _cases(pinned_modes, show_progress="no"), ("show_progress",)),
+        Row(t + "pinned_modes", "one-pin", lambda: _cases(pinned_modes),
+            same=lambda r: len(r[0]) == 1 and r[1].tolist() == [0]),
+        Row(t + "object_modes", "preloads-nan",
+            lambda: _cases(object_modes, preloads=np.array([NAN])), ("preloads",)),
+        Row(t + "object_modes", "preloads-None",
+            lambda: _cases(object_modes, preloads=None), ("preloads",)),
+        Row(t + "object_modes", "scene-without-object_modes",
+            lambda: _cases(object_modes, scene=builtin_scene("ideal")), ("object_modes",)),
+        Row(t + "object_modes", "x_modes-str", lambda: _cases(object_modes, x_modes="yes"),
+            ("x_modes",)),
+        Row(t + "object_modes", "contacts-nan",
+            lambda: _cases(object_modes, contacts=np.array([NAN])), ("contacts",)),
         Row(t + "ModalTerms.damping_ratios", "row-negative",
             lambda: _terms().damping_ratios(-1), ("row",)),
         Row(t + "ModalTerms.damping_ratios", "row-beyond",

@@ -49,6 +49,8 @@ from .unilateral import (
     ChatterError,
     LinearState,
     SwitchedSystem,
+    check_state,
+    check_step,
     check_structure,
     crossing,
     mass_inverse,
@@ -229,11 +231,15 @@ class StickSlipLaw(SwitchedSystem):
 
     def state(self, key):
         """The linear state called ``key``."""
-        return self.linear[key]
+        try:
+            return self.linear[key]
+        except (KeyError, TypeError):
+            raise ValueError(f"key must be one of {sorted(self.linear)}, got {key!r}") from None
 
     def start(self, velocity):
         """The state at ``t = 0``: ``q = 0``, ``q' = velocity``, and the state it takes."""
         n = self.n
+        velocity = check_dof_vector("velocity", velocity, n)
         x = np.zeros(2 * n + 2)
         x[n : 2 * n] = velocity
         x[2 * n] = 1.0  # the drive s = 1, s' = 0: each state's constant load f s at full size
@@ -262,6 +268,8 @@ class StickSlipLaw(SwitchedSystem):
     def switch(self, name, x, t):
         """The switching law at an event at ``t``: a slip's end as ``_entered``; a stick's
         end slips against the force that holding took."""
+        check_choice("name", name, ("slip+", "slip-", "stick"))
+        check_state("x", x, 2 * self.n + 2)
         if name != "stick":
             new = self._entered(x)
         else:
@@ -296,6 +304,7 @@ class StickSlipLaw(SwitchedSystem):
     def advance(self, x, name, t0, t1, crosses=False):
         """Propagate from ``t0`` to ``t1`` (at most one step) through any events on the way
         (``crosses`` is not needed: every step looks for the first crossing)."""
+        check_step(t0, t1)
         fresh = self.fresh
         while True:
             found = None if self.frictionless else self._first_crossing(name, x, t1 - t0, fresh)

@@ -88,6 +88,8 @@ __all__ = [
     "HertzStrikeLaw",
     "contact_states",
     "check_structure",
+    "check_step",
+    "check_state",
     "segment_states",
     "preload_overtravel",
     "UnilateralResponse",
@@ -624,6 +626,20 @@ def crossing(curve, span: float, xtol: float, ga: float, gb: float) -> float:
     return b
 
 
+def check_step(t0, t1) -> None:
+    """Raise a ``ValueError`` naming ``t1`` unless ``t0 <= t1``, both finite: a step of a march
+    goes forward in time (or nowhere, at an event on its start)."""
+    if not (math.isfinite(t0) and math.isfinite(t1) and t0 <= t1):
+        raise ValueError(f"t1 must be finite and not before t0, got t0={t0!r}, t1={t1!r}")
+
+
+def check_state(name: str, x, size: int) -> None:
+    """Raise a ``ValueError`` naming ``name`` unless ``x`` is a finite state vector of ``size``."""
+    if np.shape(x) != (size,) or not np.all(np.isfinite(x)):
+        raise ValueError(f"{name} must be a finite state vector of length {size}, got shape "
+                         f"{np.shape(x)}")
+
+
 class SwitchedSystem(abc.ABC):
     """A structure that switches between linear states at events, as a march takes it.
 
@@ -764,6 +780,7 @@ class StrikeLaw(SwitchedSystem):
 
     def first_touch(self, approach_speed: float):
         """The state at ``t = 0``: the contact just closed, ``p = 0``, closing at ``v0``."""
+        approach_speed = check_positive("approach_speed", approach_speed)
         n = self.base.size
         x = np.zeros(2 * n + 2)
         x[2 * n + 1] = approach_speed
@@ -775,6 +792,7 @@ class StrikeLaw(SwitchedSystem):
     def stop_servo(self, x):
         """The servo stops: its speed passes to the structure (``q' += r s'``, ``s' = 0``)."""
         n = self.base.size
+        check_state("x", x, 2 * n + 2)
         x = x.copy()
         x[n : 2 * n] += self.base * x[2 * n + 1]
         x[2 * n + 1] = 0.0
@@ -797,6 +815,9 @@ class StrikeLaw(SwitchedSystem):
 
     def switch(self, st, x, t):
         """The switching law at an event at time ``t``: enter the other state, and count."""
+        if st is not self.free and st is not self.closed:
+            raise ValueError("st must be the law's free or closed state (its attribute free or "
+                             "closed)")
         entering = self.free if st is self.closed else self.closed
         kind = "contact" if entering is self.closed else "separation"
         self.events.append(ContactEvent(t, kind, float(self.pen @ (st.A @ x))))
@@ -829,6 +850,7 @@ class StrikeLaw(SwitchedSystem):
         falls to zero, :func:`crossing` finds when, and :meth:`switch` enters the
         other state there. ``crosses``: the monitor is known to reach zero by ``t1``.
         """
+        check_step(t0, t1)
         while True:
             if not crosses:
                 x1 = st.step(x, t1 - t0)
@@ -968,6 +990,7 @@ class HertzStrikeLaw(StrikeLaw):
     def advance(self, x, st, t0, t1, crosses=False):
         """Propagate from ``t0`` to ``t1`` (at most one step) through any events on the way:
         the first node or gap reached (``_first_exit``), then the state it enters."""
+        check_step(t0, t1)
         fresh = False
         while True:
             found = self._first_exit(st, x, t1 - t0, fresh)

@@ -146,6 +146,27 @@ def _strike_law():
     return (law, *law.first_touch(1.0), grid[3])
 
 
+def _hertz_law():
+    """The one-mass strike through a Hertz law's chords."""
+    from ebantenna.simulate.contact import CrossedCylinders, HertzInSeries
+
+    spring = HertzInSeries(CrossedCylinders(0.004, 0.006, 3.5e9), 2.7e5).piecewise(0.01, 5.0)
+    options = dict(max_events=10, on_max_events="raise", time_tolerance=1e-12,
+                   return_states=False)
+    law, _, _ = U.strike_law((np.eye(1), np.zeros((1, 1)), np.zeros((1, 1)), np.ones(1),
+                              np.ones(1), np.ones(1)), spring, 0.0, 1.0, 1000.0, 0.05, options)
+    return law
+
+
+def _stick_slip_law():
+    """Coulomb's oscillator of stick_slip_response's example, as its law."""
+    states = S.friction_states(np.eye(1), np.array([[100.0]]), np.zeros((1, 1)), np.eye(1), 0,
+                               0, 1.0, 1.0)
+    grid = U.step_grid(list(states.values()), 100.0, 2.0, U.STEPS_PER_PERIOD)
+    return S.StickSlipLaw(states, 0, grid, hold_limit=1.0, max_events=100,
+                          time_tolerance=1e-12)
+
+
 def _friction_states(**kw):
     args = dict(M=np.eye(1), K=np.array([[100.0]]), C=np.zeros((1, 1)), Minv=np.eye(1), b=0,
                 o=0, hold=1.0, slide=1.0)
@@ -401,6 +422,55 @@ def all_rows():
             lambda law, x, key, n: (U.march_step_by_step(law, x, key, n), law.events)[1])(
                 *_strike_law()),
             same=lambda ev: len(ev) == 1 and abs(ev[0].time - math.pi / 100) < 1e-9),
+        Row(u + "StrikeLaw.first_touch", "approach_speed-zero",
+            lambda: _strike_law()[0].first_touch(0.0), ("approach_speed",)),
+        Row(u + "StrikeLaw.first_touch", "at-the-touch", lambda: _strike_law()[1],
+            same=lambda x: x.tolist() == [0.0, 1.0, 0.0, 0.0]),  # stopped at once: q' = r v0
+        Row(u + "StrikeLaw.stop_servo", "x-short",
+            lambda: _strike_law()[0].stop_servo(np.zeros(3)), ("x",)),
+        # the servo's speed passes to the structure, q' += r s', and the servo rests
+        Row(u + "StrikeLaw.stop_servo", "by-hand",
+            lambda: _strike_law()[0].stop_servo(np.array([0.0, 0.5, 0.1, 2.0])),
+            same=lambda x: x.tolist() == [0.0, 2.5, 0.1, 0.0]),
+        Row(u + "StrikeLaw.switch", "st-not-the-law's",
+            lambda: _strike_law()[0].switch(_structure()[1], np.zeros(4), 0.0), ("st",)),
+        Row(u + "StrikeLaw.switch", "closed-to-free", lambda: (
+            lambda law: (law.switch(law.closed, np.zeros(4), 0.01) is law.free,
+                         law.events[-1].kind))(_strike_law()[0]),
+            same=lambda r: r == (True, "separation")),
+        Row(u + "StrikeLaw.advance", "t1-before-t0", lambda: (
+            lambda law, x, key, n: law.advance(x, key, 0.002, 0.001))(*_strike_law()), ("t1",)),
+        Row(u + "StrikeLaw.advance", "t1-nan", lambda: (
+            lambda law, x, key, n: law.advance(x, key, 0.0, NAN))(*_strike_law()), ("t1",)),
+        # closing at 1 m/s on 1e4 N/m: after 1 ms, p = sin(100 t) / 100 m
+        Row(u + "StrikeLaw.advance", "one-step-by-hand", lambda: (
+            lambda law, x, key, n: law.advance(x, key, 0.0, 0.001))(*_strike_law()),
+            same=lambda r: abs(r[0][0] - math.sin(0.1) / 100) < 1e-15),
+        Row(u + "HertzStrikeLaw.advance", "t1-before-t0",
+            lambda: _hertz_law().advance(np.zeros(4), _hertz_law().closed, 0.002, 0.001),
+            ("t1",)),
+        Row(s + "StickSlipLaw.start", "velocity-long",
+            lambda: _stick_slip_law().start(np.ones(2)), ("velocity",)),
+        Row(s + "StickSlipLaw.start", "from-rest-it-sticks",
+            lambda: _stick_slip_law().start(np.zeros(1))[1], same=lambda name: name == "stick"),
+        Row(s + "StickSlipLaw.state", "key-unknown", lambda: _stick_slip_law().state("slide"),
+            ("key",)),
+        Row(s + "StickSlipLaw.state", "the-stick", lambda: (
+            lambda law: law.state("stick") is law.stick)(_stick_slip_law()),
+            same=lambda r: r is True),
+        Row(s + "StickSlipLaw.switch", "name-unknown",
+            lambda: _stick_slip_law().switch("slide", np.zeros(4), 0.0), ("name",)),
+        Row(s + "StickSlipLaw.switch", "x-short",
+            lambda: _stick_slip_law().switch("stick", np.zeros(3), 0.0), ("x",)),
+        Row(s + "StickSlipLaw.advance", "t1-before-t0",
+            lambda: _stick_slip_law().advance(np.zeros(4), "stick", 1.0, 0.5), ("t1",)),
+        Row(u + "check_step", "backwards", lambda: U.check_step(1.0, 0.5), ("t1",)),
+        Row(u + "check_step", "nowhere", lambda: U.check_step(1.0, 1.0),
+            same=lambda r: r is None),
+        Row(u + "check_state", "nan", lambda: U.check_state("x", np.array([NAN, 0.0]), 2),
+            ("x",)),
+        Row(u + "check_state", "a-state", lambda: U.check_state("x", np.zeros(4), 4),
+            same=lambda r: r is None),
         Row(u + "LinearState", "A-not-square",
             lambda: U.LinearState(np.zeros((4, 3)), 1, np.ones(4), np.ones(4), np.ones(4)),
             ("A",)),

@@ -49,6 +49,7 @@ from .unilateral import (
     ChatterError,
     LinearState,
     SwitchedSystem,
+    check_grid,
     check_state,
     check_step,
     check_structure,
@@ -218,7 +219,16 @@ class StickSlipLaw(SwitchedSystem):
     """
 
     def __init__(self, states, contact, grid, *, hold_limit, max_events, time_tolerance):
-        h, sub, n_samples, _ = grid
+        h, sub, n_samples, _ = check_grid(grid)
+        names = ("slip+", "slip-", "stick", "stick lower")
+        if not isinstance(states, dict) or sorted(states) != sorted(names) or not all(
+                isinstance(st, LinearState) for st in states.values()):
+            raise TypeError(f"states must map {names} to LinearState, as friction_states "
+                            "builds them")
+        contact = check_int("contact", contact, minimum=0, maximum=states["stick"].n - 1)
+        hold_limit = check_nonnegative("hold_limit", hold_limit)
+        max_events = check_int("max_events", max_events, minimum=1)
+        time_tolerance = check_positive("time_tolerance", time_tolerance)
         super().__init__(h, sub, n_samples)
         self.linear, self.b = states, contact
         self.n = states["stick"].n

@@ -77,7 +77,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as spl
 
-from .._validate import check_choice, check_int, check_nonnegative, check_positive
+from .._validate import check_bool, check_choice, check_int, check_nonnegative, check_positive
 from .contact import PiecewiseSpring
 from .structure import check_dof_vector, check_symmetric_matrix
 
@@ -89,6 +89,7 @@ __all__ = [
     "contact_states",
     "check_structure",
     "check_step",
+    "check_grid",
     "check_state",
     "segment_states",
     "preload_overtravel",
@@ -633,6 +634,14 @@ def check_step(t0, t1) -> None:
         raise ValueError(f"t1 must be finite and not before t0, got t0={t0!r}, t1={t1!r}")
 
 
+def check_grid(grid) -> tuple:
+    """``grid`` as :func:`step_grid` lays it out, ``(h, sub, n_samples, n_steps)``; raise a
+    ``TypeError`` naming ``grid`` otherwise (the values are checked where they are used)."""
+    if not isinstance(grid, tuple) or len(grid) != 4:
+        raise TypeError(f"grid must be step_grid's (h, sub, n_samples, n_steps), got {grid!r}")
+    return grid
+
+
 def check_state(name: str, x, size: int) -> None:
     """Raise a ``ValueError`` naming ``name`` unless ``x`` is a finite state vector of ``size``."""
     if np.shape(x) != (size,) or not np.all(np.isfinite(x)):
@@ -663,6 +672,11 @@ class SwitchedSystem(abc.ABC):
     """
 
     def __init__(self, h: float, sub: int, n_samples: int, n_states: int | None = None):
+        h = check_positive("h", h)
+        sub = check_int("sub", sub, minimum=1)
+        n_samples = check_int("n_samples", n_samples, minimum=1)
+        if n_states is not None:
+            n_states = check_int("n_states", n_states, minimum=1)
         self.h, self.sub = h, sub
         self.acc = np.zeros(n_samples)
         self.force = np.zeros(n_samples)
@@ -762,8 +776,20 @@ class StrikeLaw(SwitchedSystem):
 
     def __init__(self, free, closed, pen, base, stop_time, grid, *, max_events, on_max_events,
                  time_tolerance, return_states):  # fmt: skip
-        h, sub, n_samples, _ = grid
+        h, sub, n_samples, _ = check_grid(grid)
+        if np.ndim(base) != 1 or not np.all(np.isfinite(base)):
+            raise ValueError(f"base must be a finite vector, got shape {np.shape(base)}")
         n = base.size
+        for name, st in (("free", free), ("closed", closed)):
+            if not isinstance(st, LinearState) or st.n != n:
+                raise TypeError(f"{name} must be a LinearState of {n} coordinates (base's), got "
+                                f"{type(st).__name__}")
+        check_state("pen", pen, 2 * n + 2)
+        stop_time = check_nonnegative("stop_time", stop_time)
+        max_events = check_int("max_events", max_events, minimum=1)
+        check_choice("on_max_events", on_max_events, ("raise", "warn"))
+        time_tolerance = check_positive("time_tolerance", time_tolerance)
+        return_states = check_bool("return_states", return_states)
         super().__init__(h, sub, n_samples, 2 * n + 2 if return_states else None)
         self.free, self.closed, self.base, self.stop_time = free, closed, base, stop_time
         self.max_events, self.on_max_events = max_events, on_max_events
@@ -925,6 +951,12 @@ class HertzStrikeLaw(StrikeLaw):
     MAX_CHORD_CHANGES = 10_000
 
     def __init__(self, free, segments, pen, base, stop_time, grid, spring, **options):
+        if not isinstance(spring, PiecewiseSpring):
+            raise TypeError(f"spring must be a PiecewiseSpring, got {type(spring).__name__}")
+        if not isinstance(segments, list | tuple) or len(segments) != len(spring.slopes) or not all(
+                isinstance(st, LinearState) for st in segments):
+            raise TypeError(f"segments must be a list of LinearState, one per chord of spring "
+                            f"({len(spring.slopes)})")
         super().__init__(free, segments[0], pen, base, stop_time, grid, **options)
         self.segments = segments
         self.index = {id(st): j for j, st in enumerate(segments)}

@@ -167,6 +167,36 @@ def _stick_slip_law():
                           time_tolerance=1e-12)
 
 
+class _Resting(U.SwitchedSystem):
+    """The smallest law: one state that never ends (each step the state's own propagation)."""
+
+    def state(self, key):
+        return key
+
+    def advance(self, x, key, t0, t1, crosses=False):
+        return key.step(x, t1 - t0), key
+
+
+def _new_strike_law(**kw):
+    """A StrikeLaw of the one-mass strike's states, built as strike_law builds it."""
+    free, closed, pen = _structure()
+    args = dict(free=free, closed=closed, pen=pen, base=np.ones(1), stop_time=0.0,
+                grid=(0.001, 1, 51, 50), max_events=10, on_max_events="raise",
+                time_tolerance=1e-12, return_states=False)
+    args.update(kw)
+    return U.StrikeLaw(args.pop("free"), args.pop("closed"), args.pop("pen"), args.pop("base"),
+                       args.pop("stop_time"), args.pop("grid"), **args)
+
+
+def _new_stick_slip_law(**kw):
+    states = S.friction_states(np.eye(1), np.array([[100.0]]), np.zeros((1, 1)), np.eye(1), 0,
+                               0, 1.0, 1.0)
+    args = dict(states=states, contact=0, grid=(0.01, 1, 201, 200), hold_limit=1.0,
+                max_events=100, time_tolerance=1e-12)
+    args.update(kw)
+    return S.StickSlipLaw(args.pop("states"), args.pop("contact"), args.pop("grid"), **args)
+
+
 def _friction_states(**kw):
     args = dict(M=np.eye(1), K=np.array([[100.0]]), C=np.zeros((1, 1)), Minv=np.eye(1), b=0,
                 o=0, hold=1.0, slide=1.0)
@@ -471,6 +501,54 @@ def all_rows():
             ("x",)),
         Row(u + "check_state", "a-state", lambda: U.check_state("x", np.zeros(4), 4),
             same=lambda r: r is None),
+        Row(u + "SwitchedSystem", "h-zero", lambda: _Resting(0.0, 1, 10), ("h",)),
+        Row(u + "SwitchedSystem", "sub-zero", lambda: _Resting(0.001, 0, 10), ("sub",)),
+        Row(u + "SwitchedSystem", "n_samples-float", lambda: _Resting(0.001, 1, 10.5),
+            ("n_samples",)),
+        Row(u + "SwitchedSystem", "n_states-zero", lambda: _Resting(0.001, 1, 10, 0),
+            ("n_states",)),
+        # a state at rest stays at rest: the march records zeros at every sample
+        Row(u + "SwitchedSystem", "at-rest", lambda: (
+            lambda law: (U.march_step_by_step(law, np.zeros(4), _structure()[0], 9), law.acc)[1])(
+                _Resting(0.001, 1, 10)), same=lambda acc: acc.tolist() == [0.0] * 10),
+        Row(u + "StrikeLaw", "free-str", lambda: _new_strike_law(free="free"), ("free",)),
+        Row(u + "StrikeLaw", "pen-short", lambda: _new_strike_law(pen=np.zeros(3)), ("pen",)),
+        Row(u + "StrikeLaw", "stop_time-negative", lambda: _new_strike_law(stop_time=-1.0),
+            ("stop_time",)),
+        Row(u + "StrikeLaw", "grid-list", lambda: _new_strike_law(grid=[0.001, 1, 51, 50]),
+            ("grid",)),
+        Row(u + "StrikeLaw", "on_max_events-ignore",
+            lambda: _new_strike_law(on_max_events="ignore"), ("on_max_events",)),
+        Row(u + "StrikeLaw", "time_tolerance-zero",
+            lambda: _new_strike_law(time_tolerance=0.0), ("time_tolerance",)),
+        Row(u + "StrikeLaw", "base-nan", lambda: _new_strike_law(base=np.array([NAN])),
+            ("base",)),
+        Row(u + "StrikeLaw", "as-built", _new_strike_law,
+            same=lambda law: law.state(law.closed) is law.closed and law.acc.size == 51),
+        Row(u + "StrikeLaw.state", "the-key-itself", lambda: (
+            lambda law: law.state(law.free) is law.free)(_new_strike_law()),
+            same=lambda r: r is True),
+        Row(u + "HertzStrikeLaw", "spring-float", lambda: U.HertzStrikeLaw(
+            _structure()[0], [_structure()[1]], _structure()[2], np.ones(1), 0.0,
+            (0.001, 1, 51, 50), 300.0, max_events=10, on_max_events="raise",
+            time_tolerance=1e-12, return_states=False), ("spring",)),
+        Row(u + "HertzStrikeLaw", "segments-one-too-many", lambda: U.HertzStrikeLaw(
+            _structure()[0], [_structure()[1]] * 2, _structure()[2], np.ones(1), 0.0,
+            (0.001, 1, 51, 50), PiecewiseSpring.linear(300.0), max_events=10,
+            on_max_events="raise", time_tolerance=1e-12, return_states=False), ("segments",)),
+        Row(s + "StickSlipLaw", "states-list", lambda: _new_stick_slip_law(states=[]),
+            ("states",)),
+        Row(s + "StickSlipLaw", "contact-beyond", lambda: _new_stick_slip_law(contact=1),
+            ("contact",)),
+        Row(s + "StickSlipLaw", "hold_limit-negative",
+            lambda: _new_stick_slip_law(hold_limit=-1.0), ("hold_limit",)),
+        Row(s + "StickSlipLaw", "max_events-zero", lambda: _new_stick_slip_law(max_events=0),
+            ("max_events",)),
+        Row(s + "StickSlipLaw", "frictionless", lambda: _new_stick_slip_law(hold_limit=0.0),
+            same=lambda law: law.frictionless),
+        Row(u + "check_grid", "three", lambda: U.check_grid((0.001, 1, 51)), ("grid",)),
+        Row(u + "check_grid", "step_grid's", lambda: U.check_grid(U.step_grid(
+            _states(), 1000.0, 0.05, 16)), same=lambda g: g == (0.001, 1, 51, 50)),
         Row(u + "LinearState", "A-not-square",
             lambda: U.LinearState(np.zeros((4, 3)), 1, np.ones(4), np.ones(4), np.ones(4)),
             ("A",)),

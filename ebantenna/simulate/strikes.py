@@ -317,7 +317,21 @@ def timed_rate(scene, when, dlpf) -> tuple[float, int]:
     """The rate at which a time-stepped axis is computed, and how many samples reach past the
     last reading at ``when``: the internal rate of the chip's filter ``dlpf`` (the chain's,
     ``chip_filter`` of :class:`~ebantenna.simulate.simulator.SignalBatch`), or without it
-    ``UNFILTERED_RATE`` times ``fs``."""
+    ``UNFILTERED_RATE`` times ``fs``.
+
+    Examples
+    --------
+    >>> from ebantenna.simulate import builtin_scene
+    >>> scene = builtin_scene("paper")  # 1000 samples at 1 kHz, through the DLPF at 8 kHz
+    >>> timed_rate(scene, np.arange(1000) / 1000.0, scene.effect("dlpf"))
+    (8000.0, 7994)
+    """
+    if not all(hasattr(scene, a) for a in ("fs", "n_samples")):
+        raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
+    when = check_array("when", when, ndim=(1, 2))
+    if dlpf is not None and not hasattr(dlpf, "internal_rate"):
+        raise TypeError(f"dlpf must be the scene's LowPassFilter or None, got "
+                        f"{type(dlpf).__name__}")
     rate = dlpf.internal_rate if dlpf is not None else UNFILTERED_RATE * scene.fs
     span = float(np.max(when)) if np.ndim(when) == 2 else (scene.n_samples - 1) / scene.fs
     return rate, math.floor(span * rate) + 2

@@ -421,6 +421,16 @@ def all_rows():
         # probe: 8 modes below 3 kHz and the interface; rod: 2 and the interface
         Row(st + "strike_model", "sizes", _strike_model,
             same=lambda m: m.structure.mass.shape == (12, 12) and m.preload == 0.5),
+        Row(st + "timed_rate", "scene-str", lambda: ST.timed_rate("paper", WHEN, None),
+            ("scene",)),
+        Row(st + "timed_rate", "when-nan", lambda: ST.timed_rate(
+            builtin_scene("paper"), np.array([0.0, NAN]), None), ("when",)),
+        Row(st + "timed_rate", "dlpf-str", lambda: ST.timed_rate(
+            builtin_scene("paper"), WHEN, "dlpf"), ("dlpf",)),
+        # without the DLPF: 8 fs; the samples reach one past the record's last reading
+        Row(st + "timed_rate", "unfiltered", lambda: ST.timed_rate(
+            builtin_scene("paper"), np.arange(1000) / 1000.0, None),
+            same=lambda r: r == (8000.0, 7994)),
         Row(st + "strike_accelerations", "rate-zero", lambda: _strike_accelerations(rate=0.0),
             ("rate",)),
         Row(st + "strike_accelerations", "n_samples-one",

@@ -322,8 +322,9 @@ def timed_rate(scene, when, dlpf) -> tuple[float, int]:
     Examples
     --------
     >>> from ebantenna.simulate import builtin_scene
-    >>> scene = builtin_scene("paper")  # 1000 samples at 1 kHz, through the DLPF at 8 kHz
-    >>> timed_rate(scene, np.arange(1000) / 1000.0, scene.effect("dlpf"))
+    >>> from ebantenna.simulate.effects import LowPassFilter
+    >>> scene = builtin_scene("paper")  # 1000 samples at 1 kHz
+    >>> timed_rate(scene, np.arange(1000) / 1000.0, LowPassFilter())  # the DLPF runs at 8 kHz
     (8000.0, 7994)
     """
     if not all(hasattr(scene, a) for a in ("fs", "n_samples")):

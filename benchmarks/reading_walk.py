@@ -95,8 +95,6 @@ READING_ORDER = (
     "ebantenna/simulate/simulator.py",
     "ebantenna/simulate/touched_object.py",
     "ebantenna/fem/coupling.py",
-    "ebantenna/fem/rod.py",
-    "ebantenna/fem/coupling.py",
     "ebantenna/fem/assembly.py",
     "ebantenna/fem/coupling.py",
     "ebantenna/fem/modal.py",
@@ -122,15 +120,6 @@ READING_ORDER = (
     "ebantenna/simulate/touched_object.py",
     "ebantenna/simulate/strikes.py",
     "ebantenna/simulate/unilateral.py",
-    "ebantenna/simulate/structure.py",
-    "ebantenna/simulate/unilateral.py",
-    "ebantenna/simulate/linear_state.py",
-    "ebantenna/simulate/unilateral.py",
-    "ebantenna/simulate/linear_state.py",
-    "ebantenna/simulate/unilateral.py",
-    "ebantenna/simulate/linear_state.py",
-    "ebantenna/simulate/unilateral.py",
-    "ebantenna/simulate/strikes.py",
     "ebantenna/simulate/effects/sensor.py",
     "ebantenna/simulate/simulator.py",
     "ebantenna/simulate/modes.py",
@@ -150,7 +139,7 @@ TARGETS = {"read_files": 15, "read_returns": 5, "run_modules": 25, "run_returns"
 
 #: The walk as it stands, which ``tests/test_reading_walk.py`` keeps it within so that it cannot
 #: grow back unnoticed: lower these as the walk shrinks, down to :data:`TARGETS`.
-CEILINGS = {"read_files": 22, "read_returns": 36, "run_modules": 30, "run_returns": 69}
+CEILINGS = {"read_files": 19, "read_returns": 28, "run_modules": 26, "run_returns": 57}
 
 SCENE, MATERIAL, CONTACT, SEED = "paper", "brass", 0.25, 0
 

@@ -33,7 +33,7 @@ from ebantenna.bench._timing import best_time
 from ebantenna.paper.data import build_paper_dataset
 from ebantenna.probe import Probe, material_names
 from ebantenna.report import text_table
-from ebantenna.simulate import builtin_scene, linear_state, simulate_batch
+from ebantenna.simulate import builtin_scene, simulate_batch, unilateral
 from ebantenna.simulate.effects import GY521_MASS, effect_names
 
 __all__ = ["scenarios", "time_scene", "run", "to_text", "main"]
@@ -176,14 +176,14 @@ def strike_laws(scene, contacts, materials, seed: int = 0) -> list:
     (one signal each), each ``(law, x, key, n_steps)`` as its march receives it, copied."""
 
     got = []
-    march = linear_state.MARCHES["blocks"]
+    march = unilateral.MARCHES["blocks"]
 
     def spy(law, x, key, n_steps):
         got.append(copy.deepcopy((law, x, key, n_steps)))
         return march(law, x, key, n_steps)
 
     n = len(contacts)
-    linear_state.MARCHES["blocks"] = spy
+    unilateral.MARCHES["blocks"] = spy
     try:
         simulate_batch(scene, contact=np.asarray(contacts, float),
                        material=np.asarray(materials, dtype=object),
@@ -191,7 +191,7 @@ def strike_laws(scene, contacts, materials, seed: int = 0) -> list:
                        tilt_ratio=np.full(n, scene.tilt_ratio), seeds=seed + np.arange(n),
                        show_progress=False, x_modes=False)  # fmt: skip
     finally:
-        linear_state.MARCHES["blocks"] = march
+        unilateral.MARCHES["blocks"] = march
     return got
 
 
@@ -208,7 +208,7 @@ def _copy(strike):
 def _march_all(strikes, engine: str) -> float:
     """March a copy of every strike with ``engine`` ('numpy' or 'compiled'); the CPU seconds
     of the marches (the copies not counted)."""
-    march = linear_state.MARCHES["blocks"]
+    march = unilateral.MARCHES["blocks"]
     seconds = 0.0
     for strike in strikes:
         law, x, key, n_steps = _copy(strike)
@@ -223,7 +223,7 @@ def _compiled_status(strike) -> tuple[str, float]:
     strike took with loading (compiling, or reading numba's cache) included."""
     start = time.perf_counter()
     try:
-        linear_state.MARCHES["blocks"](*_copy(strike), engine="compiled")
+        unilateral.MARCHES["blocks"](*_copy(strike), engine="compiled")
     except RuntimeError as exc:  # asked for 'compiled' where it is not available: says why
         return str(exc), np.nan
     return "", time.perf_counter() - start

@@ -20,10 +20,10 @@
 (:mod:`~ebantenna.fem.symbolic` imports sympy and is not loaded until asked for.)
 """
 
+from .assembly import Supports
 from .coupling import CoupledModes, Rod, coupled_modes, monolithic_modes
 from .exact import exact_frequencies
 from .modal import ModalResult, modal_analysis
-from .supports import Supports
 from .sweeps import natural_frequencies
 from .zones import ZoneResult, dominant_mode_zones
 

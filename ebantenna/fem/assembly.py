@@ -1,9 +1,10 @@
 """Mesh of the probe and assembly of the global stiffness and mass matrices.
 
 The global DOF vector is ``(v0, theta0, v1, theta1, ..., vN, thetaN)`` for nodes 0 (hinge) to N
-(tip). Supports are applied by removing the DOFs they fix (a clamped hinge removes ``v0`` and
-``theta0``, a rigid contact removes ``v`` at the contact node) and by adding spring stiffnesses and
-the tip mass to the diagonal.
+(tip). :class:`Supports` say how the probe is held: the hinge at x = 0, the touched object at
+the contact, the free tip. They are applied by removing the DOFs they fix (a clamped hinge
+removes ``v0`` and ``theta0``, a rigid contact removes ``v`` at the contact node) and by adding
+spring stiffnesses and the tip mass to the diagonal.
 
 The assembly itself is the *direct stiffness method*: every element adds its 4 x 4 matrix into the
 rows and columns of its four DOFs, ``(v_e, theta_e, v_{e+1}, theta_{e+1})``, so that two
@@ -20,6 +21,7 @@ The guards that come before a mesh (round-off, memory, a contact the mesh can ho
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sps
@@ -30,9 +32,10 @@ from ._element_engine import mass_polynomial, stiffness_polynomial
 from ._scatter import scatter, scatter_sparse
 from .elements import consistent_mass, element_stiffness
 from .guards import check_contact, check_resolvable
-from .supports import Supports
 
 __all__ = [
+    "Supports",
+    "HINGES",
     "beam_mesh",
     "contact_node",
     "assemble_elements",
@@ -181,6 +184,72 @@ def assemble(nodes: np.ndarray, probe: Probe, *, sparse: bool = False, engine: s
     if sparse:
         return scatter_sparse(Ke), scatter_sparse(Me)
     return scatter(Ke), scatter(Me)
+
+
+#: Named hinge conditions; a positive number instead means a rotational spring (N m/rad).
+HINGES = ("clamped", "pinned")
+
+
+@dataclass(frozen=True)
+class Supports:
+    """How the probe is held and touched.
+
+    Parameters
+    ----------
+    contact : float or None
+        Distance of the contact point from the hinge, m, inside ``(0, L)``; ``None`` for a probe
+        that touches nothing.
+    hinge : {"clamped", "pinned"} or float
+        The hinge at x = 0 (the servo shaft): clamped (no deflection, no rotation), pinned (no
+        deflection, free rotation) or, as a positive number, a rotational spring in N m/rad.
+    contact_stiffness : float
+        Translational stiffness of the contact, N/m; ``math.inf`` (default) is a rigid pin.
+
+    Examples
+    --------
+    >>> from ebantenna.fem import Supports
+    >>> Supports(contact=0.2).hinge
+    'clamped'
+    >>> Supports(contact=0.2, hinge=50.0).hinge_stiffness
+    50.0
+    """
+
+    contact: float | None = None
+    hinge: str | float = "clamped"
+    contact_stiffness: float = math.inf
+
+    def __post_init__(self):
+        if self.contact is not None:
+            check_positive("contact", self.contact)
+        if isinstance(self.hinge, str):
+            check_choice("hinge", self.hinge, HINGES)
+        else:
+            object.__setattr__(
+                self, "hinge", check_positive("hinge (rotational stiffness)", self.hinge)
+            )
+        object.__setattr__(
+            self,
+            "contact_stiffness",
+            check_positive("contact_stiffness", self.contact_stiffness, allow_inf=True),
+        )
+
+    @property
+    def hinge_stiffness(self) -> float:
+        """Rotational stiffness of the hinge, N m/rad: inf if clamped, 0 if pinned."""
+        if self.hinge == "clamped":
+            return math.inf
+        if self.hinge == "pinned":
+            return 0.0
+        return float(self.hinge)
+
+    @property
+    def rigid_contact(self) -> bool:
+        """True when the contact is a rigid pin (and there is a contact)."""
+        return self.contact is not None and math.isinf(self.contact_stiffness)
+
+    def describe(self) -> str:
+        """The hinge as the CLI's JSON reports it."""
+        return self.hinge if isinstance(self.hinge, str) else f"spring {self.hinge:g} N m/rad"
 
 
 def free_dofs(nodes: np.ndarray, supports: Supports) -> np.ndarray:

@@ -128,7 +128,7 @@ def coupled_sweep(
 
 
 def _check_rods(rods) -> tuple:
-    """The rods as a tuple of at least one :class:`~ebantenna.fem.rod.Rod`."""
+    """The rods as a tuple of at least one :class:`~ebantenna.fem.coupling.Rod`."""
     if isinstance(rods, Rod) or not hasattr(rods, "__iter__"):
         raise TypeError(f"rods must be a sequence of Rod objects, got {type(rods).__name__}")
     rods = tuple(rods)

@@ -141,7 +141,7 @@ def exact_frequencies(
     >>> exact_frequencies(Probe(), None, n_modes=2).round(4)   # cantilever, beta L = 1.8751, 4.6941
     array([13.8828, 87.0022])
     """
-    from .supports import Supports
+    from .assembly import Supports
 
     if not isinstance(probe, Probe):
         raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")

@@ -35,8 +35,8 @@ from .._validate import (
     describe,
 )
 from ..probe import Probe
+from .assembly import Supports
 from .modal import modal_analysis
-from .supports import Supports
 from .sweeps import natural_frequencies
 
 __all__ = ["CRITERIA", "HingeFit", "transition_position", "fit_hinge_and_tip"]

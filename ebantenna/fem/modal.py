@@ -36,6 +36,7 @@ from .._validate import check_array, check_choice, check_int, check_positive, re
 from ..probe import Probe
 from .assembly import (
     ASSEMBLY_ENGINES,
+    Supports,
     apply_supports,
     assemble,
     beam_mesh,
@@ -44,7 +45,6 @@ from .assembly import (
 )
 from .elements import bending_energy, hermite, hermite_slope
 from .guards import check_contact, check_memory
-from .supports import Supports
 
 __all__ = [
     "ModalResult",

@@ -56,7 +56,7 @@ def plot_probe(probe, supports=None, ax=None):
     ['P', 'Q', 'R']
     """
     from ..probe import Probe
-    from .supports import Supports
+    from .assembly import Supports
 
     if not isinstance(probe, Probe):
         raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")

@@ -30,12 +30,11 @@ from ..probe import Probe
 from ._element_engine import mass_polynomial, stiffness_polynomial
 from ._parallel import map_on_cores
 from ._scatter import scatter
-from .assembly import beam_mesh, free_dofs, support_diagonals
+from .assembly import Supports, beam_mesh, free_dofs, support_diagonals
 from .banded import BANDED_MAX_MODES, MAX_LANCZOS_STEPS, banded_sweep
 from .guards import check_contact, check_memory, check_resolvable
 from .modal import clip_eigenvalues, eigenvalue_shift, modal_analysis
 from .secular import secular_sweep
-from .supports import Supports
 
 __all__ = ["natural_frequencies", "SWEEP_METHODS", "reference_sweep", "dense_sweep"]
 
@@ -97,7 +96,7 @@ def natural_frequencies(
     contacts : array of shape (n,)
         Contact positions from the hinge, m, each in ``(0, L)``.
     hinge, contact_stiffness
-        As in :class:`~ebantenna.fem.supports.Supports`.
+        As in :class:`~ebantenna.fem.assembly.Supports`.
     n_elements, n_modes : int
         Mesh size and number of modes.
     chunk : int, optional

@@ -25,8 +25,8 @@ import numpy as np
 
 from .._validate import check_array, check_in_range
 from ..probe import Probe
+from .assembly import Supports
 from .modal import modal_analysis
-from .supports import Supports
 
 __all__ = ["ZoneResult", "dominant_mode_zones"]
 

@@ -25,7 +25,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from .._validate import check_choice, check_int, check_positive
-from ..fem.rod import Rod
+from ..fem.coupling import Rod
 from ..probe import material
 from ..signal import fft_features
 from ..simulate import DatasetDesign, Scene, build_datasets

@@ -21,7 +21,7 @@ Examples
 """
 
 # the engines register themselves beside their references: the contact laws' march "blocks"
-# (linear_state.MARCHES) and the modal sum's "grid" (modes.EXPONENTIAL_ENGINES)
+# (unilateral.MARCHES) and the modal sum's "grid" (modes.EXPONENTIAL_ENGINES)
 from . import _block_march, _exponential_grid  # noqa: F401
 from .dataset import (
     Dataset,

@@ -1,9 +1,9 @@
 """The engine of the contact laws' march: read each linear state a block of steps ahead.
 
-:func:`.linear_state.march_step_by_step` takes every step in turn. Within one state the motion
+:func:`.unilateral.march_step_by_step` takes every step in turn. Within one state the motion
 is a sum of modes: each row read along it (the monitored quantity, the acceleration, the force)
 is ``Re(sum_k w_k e^(lambda_k t)) + a (s + s' t) + b s'`` with ``w = row V * z`` for the modal
-coordinates ``z`` (:class:`.linear_state.LinearState`), so a block of ``m`` steps costs one
+coordinates ``z`` (:class:`.unilateral.LinearState`), so a block of ``m`` steps costs one
 ``(m, 2n)`` by ``(2n, 3)`` product, not ``m`` state propagations (:func:`readings`). Whether an
 event lies ahead is read from those values (:func:`read_ahead`); where a bound shows that no
 event can happen over a longer span (a settled contact, :func:`stays_positive`), the span is
@@ -14,12 +14,12 @@ per block instead of a propagation per step.
 
 Each state carries the engine's tables in its attribute ``blocks`` (:class:`BlockTables`, set by
 :func:`prepare_blocks` when the march starts: the reference march needs none). What the engine
-asks of a law beyond the reference's :class:`.linear_state.SwitchedSystem` is in the law's
+asks of a law beyond the reference's :class:`.unilateral.SwitchedSystem` is in the law's
 adapter here (:class:`LawBlocks` and its subclasses, one per law): ``states`` (the states to
 prepare), ``horizon`` (how far a state may be read ahead), ``quiet`` (no event within a span,
 usually :func:`stays_positive`), ``ends`` (where a state ends, read on the block's values) and
 ``record_block`` (record the samples of a block). This module imports the laws; they import
-nothing from it. Importing it adds ``"blocks"`` to :data:`.linear_state.MARCHES` (the package
+nothing from it. Importing it adds ``"blocks"`` to :data:`.unilateral.MARCHES` (the package
 does, when it is imported).
 
 **The compiled march.** With the ``fast`` extra (numba), :func:`march_in_blocks` marches a strike
@@ -46,9 +46,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as spl
 
-from .linear_state import MARCHES
 from .stick_slip import StickSlipLaw
-from .unilateral import HertzStrikeLaw, StrikeLaw
+from .unilateral import MARCHES, HertzStrikeLaw, StrikeLaw
 
 __all__ = ["LONG_BLOCKS", "BLOCK_ELEMENTS", "BlockTables", "prepare_blocks", "readings", "samples",
            "read_ahead", "swing", "stays_positive", "after", "LawBlocks", "StrikeBlocks",
@@ -245,7 +244,7 @@ class LawBlocks:
         self.law = law
 
     def states(self) -> list:
-        """Every :class:`.linear_state.LinearState` the march may read."""
+        """Every :class:`.unilateral.LinearState` the march may read."""
         raise NotImplementedError
 
     def horizon(self, i: int, n_steps: int) -> int:
@@ -263,7 +262,7 @@ class LawBlocks:
 
     def record_block(self, i: int, j, values, x, z, key) -> None:
         """Record the output samples ``j`` (steps after ``i``) of a block read ahead from ``x``
-        (``z``: its modal coordinates), their rows ``values``, as the law's ``record`` would."""
+        (``z``: its modal coordinates), their rows ``values``, as the law's ``_record`` would."""
         law = self.law
         k = (i + 1 + j) // law.sub
         law.acc[k], law.force[k] = values[:, 1], values[:, 2]
@@ -289,7 +288,7 @@ class StrikeBlocks(LawBlocks):
 
     def quiet(self, st, x, z, m):
         """No event within ``m`` steps: the state is held or its monitor provably stays > 0."""
-        return not self.law.watched(st) or stays_positive(st, x, z, m)
+        return not self.law._watched(st) or stays_positive(st, x, z, m)
 
 
 class HertzStrikeBlocks(StrikeBlocks):
@@ -303,7 +302,7 @@ class HertzStrikeBlocks(StrikeBlocks):
         """A chord's state ends at either of its nodes; the free state where the gap closes."""
         if key is self.law.free:
             return None
-        lower, upper = self.law.limits(key)
+        lower, upper = self.law._limits(key)
         return lambda values: (values[:, 0] <= lower) | (values[:, 0] >= upper)
 
     def quiet(self, key, x, z, m):
@@ -314,7 +313,7 @@ class HertzStrikeBlocks(StrikeBlocks):
             return stays_positive(key, x, z, m)
         if not key.eigen:
             return False
-        lower, upper = law.limits(key)
+        lower, upper = law._limits(key)
         k = 2 * law.base.size
         s, sigma = x[k], x[k + 1]
         a, b = key.row_s[0], key.row_speed[0]
@@ -324,11 +323,11 @@ class HertzStrikeBlocks(StrikeBlocks):
 
     def record_block(self, i, j, values, x, z, key):
         """Record a block read ahead, the states in true coordinates (as the law's
-        ``record``)."""
+        ``_record``)."""
         super().record_block(i, j, values, x, z, key)
         law = self.law
         if law.trajectory is not None and len(j):
-            law.trajectory[(i + 1 + j) // law.sub, 2 * law.base.size] += law.shift(key)
+            law.trajectory[(i + 1 + j) // law.sub, 2 * law.base.size] += law._shift(key)
 
 
 class StickSlipBlocks(LawBlocks):
@@ -445,9 +444,9 @@ def march_compiled(system, x, key, n_steps: int):
     fine = np.exp(np.multiply.outer(h * np.arange(1, block + 1), lam)).transpose(1, 0, 2)
     every = np.exp(lam * sub * h)
     if hertz:
-        lower = np.array([0.0] + [law.limits(st)[0] for st in law.segments])
-        upper = np.array([0.0] + [law.limits(st)[1] for st in law.segments])
-        shift = np.array([law.shift(st) for st in states])
+        lower = np.array([0.0] + [law._limits(st)[0] for st in law.segments])
+        upper = np.array([0.0] + [law._limits(st)[1] for st in law.segments])
+        shift = np.array([law._shift(st) for st in states])
     else:
         lower = upper = shift = np.zeros(2)
     index = next(k for k, st in enumerate(states) if st is key)
@@ -482,7 +481,7 @@ def march_compiled(system, x, key, n_steps: int):
 
 
 def march_in_blocks(system, x, key, n_steps: int, engine: str | None = None):
-    """March ``system`` (a :class:`.linear_state.SwitchedSystem`) ``n_steps`` steps from the
+    """March ``system`` (a :class:`.unilateral.SwitchedSystem`) ``n_steps`` steps from the
     state ``(x, key)`` at step 0, reading each state in blocks; returns ``(x, key)`` after the
     last step. Takes the checked values a contact law was built from.
 
@@ -504,10 +503,10 @@ def march_in_blocks(system, x, key, n_steps: int, engine: str | None = None):
     prepare_blocks(blocks.states(), h, sub, n_steps)
     i = 0
     while i < n_steps:
-        if system.interrupts(i):
-            x, key = system.interrupted_step(x, key, i)
+        if system._interrupts(i):
+            x, key = system._interrupted_step(x, key, i)
             i += 1
-            system.record(i, x, key)
+            system._record(i, x, key)
             continue
         st = system.state(key)
         limit = blocks.horizon(i, n_steps)
@@ -519,12 +518,12 @@ def march_in_blocks(system, x, key, n_steps: int, engine: str | None = None):
         if m:
             x = after(st, x, z, m)
             i += m
-            system.moved()
+            system._moved()
         if event:
             x, key = system.advance(x, key, i * h, (i + 1) * h, crosses=True)
-            system.moved()
+            system._moved()
             i += 1
-            system.record(i, x, key)
+            system._record(i, x, key)
     return x, key
 
 

@@ -15,7 +15,7 @@ propagator, written with plain loops so that one call marches the whole strike:
   products as the engine's ``every_real``;
 * the step that holds an event is taken through the law's ``advance``: the sign of the force
   or the gap (or a chord's nodes) watched, the root found by the same safeguarded Newton
-  iteration (:func:`crossing`, that of :func:`ebantenna.simulate.linear_state.crossing`), the
+  iteration (:func:`crossing`, that of :func:`ebantenna.simulate.unilateral.crossing`), the
   other state entered there;
 * the sums run in another order than NumPy's products, so the values read differ from the
   engine's by rounding (a few ulps of the largest term): the events are the same, each time
@@ -43,7 +43,7 @@ else:
 
 __all__ = ["march_strike", "crossing", "IMPORT_ERROR", "MAX_ROOT_STEPS"]
 
-#: Most iterations of the event root finder (as :mod:`ebantenna.simulate.linear_state`).
+#: Most iterations of the event root finder (as :mod:`ebantenna.simulate.unilateral`).
 MAX_ROOT_STEPS = 200
 _TINY = float(np.finfo(float).tiny)
 # the control array: status (0 ok, 1 gave up), events, chord changes, servo stopped
@@ -112,7 +112,7 @@ def _curve(w, lam, a, b, s, sigma, tau, sign, node):
 
 @_jit
 def crossing(w, lam, a, b, s, sigma, sign, node, span, xtol, ga, gb):
-    """:func:`ebantenna.simulate.linear_state.crossing` on the curve :func:`_curve`."""
+    """:func:`ebantenna.simulate.unilateral.crossing` on the curve :func:`_curve`."""
     lo, hi = 0.0, span
     t = lo + ga * (hi - lo) / (ga - gb)
     last = span
@@ -194,7 +194,7 @@ def _advance_linear(x, st, t0, t1, crosses, T, ctl, ev_t, ev_kind, ev_v, max_eve
 def _advance_hertz(x, st, t0, t1, T, lower, upper, shift, ctl, ev_t, ev_kind, ev_v,
                    max_events, xtol, max_chord_changes):
     """:meth:`ebantenna.simulate.unilateral.HertzStrikeLaw.advance` (through
-    ``first_exit`` and ``change``); state 0 is free, state ``j + 1`` chord ``j``."""
+    ``_first_exit`` and ``_change``); state 0 is free, state ``j + 1`` chord ``j``."""
     V, Vinv, lam, G, H, rows, row_modes, row_s, row_speed, penA, K = T
     fresh = False
     while True:
@@ -296,7 +296,7 @@ def _ends(st, value, lower, upper, hertz):
 
 @_jit
 def _record(i, x, st, sub, rows, acc, force):
-    """:meth:`ebantenna.simulate.linear_state.SwitchedSystem.record`."""
+    """``SwitchedSystem._record`` of :mod:`ebantenna.simulate.unilateral`."""
     if i % sub == 0:
         k = i // sub
         a = 0.0

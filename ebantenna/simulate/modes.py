@@ -34,7 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_choice, check_int, real_array
+from .._validate import check_choice, check_int, check_positive, real_array
 from ..fem import Supports, modal_analysis
 from ..fem.assembly import assemble
 from ..fem.coupling import coupled_modes
@@ -198,6 +198,22 @@ def arrest_modes(
     )
 
 
+def _check_coupled_arrest(probe, probe_reduction, rod_reduction, max_frequency) -> float:
+    """``max_frequency`` checked, once ``probe`` is a Probe and each reduction keeps its
+    fixed-interface modes up to it (:func:`coupled_arrest_modes`)."""
+    if not isinstance(probe, Probe):
+        raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")
+    max_frequency = check_positive("max_frequency", max_frequency)
+    for label, red in (("probe_modes", probe_reduction), ("rod_modes", rod_reduction)):
+        top = red.fixed_interface_omega[-1] / (2 * math.pi) if red.fixed_interface_omega.size else 0
+        if not top >= max_frequency:
+            raise ValueError(
+                f"the {label.split('_')[0]}'s reduction keeps modes up to {top:.0f} Hz only, "
+                f"below max_frequency={max_frequency:g} Hz; raise {label}"
+            )
+    return max_frequency
+
+
 def coupled_arrest_modes(
     probe: Probe,
     hinge,
@@ -227,7 +243,7 @@ def coupled_arrest_modes(
         The probe's hinge.
     contact : float
         Contact position from the hinge, m.
-    rod : ebantenna.fem.rod.Rod
+    rod : ebantenna.fem.coupling.Rod
         The touched rod.
     probe_reduction, rod_reduction : ebantenna.fem.coupling.CraigBampton
         The probe reduced at this contact, and the rod (with the loss factor it should carry).
@@ -249,13 +265,7 @@ def coupled_arrest_modes(
     >>> m.frequencies.round(1)
     array([ 38.4, 133.9, 243.5, 347.6])
     """
-    for label, red in (("probe_modes", probe_reduction), ("rod_modes", rod_reduction)):
-        top = red.fixed_interface_omega[-1] / (2 * math.pi) if red.fixed_interface_omega.size else 0
-        if not top >= max_frequency:
-            raise ValueError(
-                f"the {label.split('_')[0]}'s reduction keeps modes up to {top:.0f} Hz only, "
-                f"below max_frequency={max_frequency:g} Hz; raise {label}"
-            )
+    max_frequency = _check_coupled_arrest(probe, probe_reduction, rod_reduction, max_frequency)
     # Interlacing: joining the two fixed-interface systems through the two interface coordinates
     # adds at most two eigenvalues below any frequency, so this many coupled modes reach it.
     limit = 2 * math.pi * max_frequency

@@ -33,8 +33,8 @@ from .._validate import (
     output_path,
     read_text,
 )
+from ..fem.assembly import HINGES
 from ..fem.guards import check_contact, check_resolvable
-from ..fem.supports import HINGES
 from ..probe import Probe, material
 from .effects import EFFECT_TYPES, GY521_MASS, effect_names, make_effect
 

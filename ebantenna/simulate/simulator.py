@@ -70,6 +70,7 @@ from .._validate import check_array, check_int, check_real
 from ..fem.guards import check_contact
 from ..probe import material as lookup_material
 from ..recording import Recording
+from .effects import effect_names
 from .effects.sensor import CHAIN_STEPS as SENSOR_STEPS
 from .modes import damped_exponentials, modal_exponentials
 from .scene import Scene
@@ -157,6 +158,19 @@ class SignalBatch:
     chip_filter: object = field(init=False)
 
     def __post_init__(self):
+        if not isinstance(self.scene, Scene):
+            raise TypeError(f"scene must be a Scene, got {type(self.scene).__name__}")
+        for name in ("contacts", "materials", "speeds", "tilts"):
+            value = getattr(self, name)
+            if not isinstance(value, np.ndarray) or value.ndim != 1:
+                raise TypeError(f"{name} must be a 1-D ndarray, one entry per signal, got "
+                                f"{type(value).__name__}")
+            if value.shape != self.contacts.shape:
+                raise ValueError(f"{name} must have one entry per contact "
+                                 f"({self.contacts.size}), got shape {value.shape}")
+        if len(self.seeds) != self.contacts.size:
+            raise ValueError(f"seeds must have one seed per signal ({self.contacts.size}), got "
+                             f"{len(self.seeds)}")
         self.t = np.arange(self.scene.n_samples) / self.scene.fs
         self.when = self.t
         self.chip_filter = self.scene.effect("dlpf")
@@ -172,6 +186,9 @@ class SignalBatch:
 
         Adding or removing one effect never changes the random numbers of another.
         """
+        if not isinstance(getattr(effect, "stream", None), int):
+            raise TypeError(f"effect must be a random effect of the scene (with a stream "
+                            f"number), got {type(effect).__name__}")
         return [np.random.default_rng([s, effect.stream]) for s in self.seeds]
 
 
@@ -237,6 +254,17 @@ class ChainStep:
     effect: str | None
     apply: Callable
     reads: tuple[str, ...] = ()
+
+    def __post_init__(self):
+        names = effect_names()
+        if self.effect is not None and self.effect not in names:
+            raise ValueError(f"effect must be None or an effect of effect_names(), got "
+                             f"{self.effect!r}")
+        if not callable(self.apply):
+            raise TypeError(f"apply must be callable, got {type(self.apply).__name__}")
+        if not isinstance(self.reads, tuple) or not all(r in names for r in self.reads):
+            raise ValueError(f"reads must be a tuple of effects of effect_names(), got "
+                             f"{self.reads!r}")
 
 
 #: The simulator's steps, in the order it applies them (see the module's docstring for why).

@@ -12,9 +12,9 @@ motion at the contact coordinate ``q_b`` (its speed ``u = q_b'``):
   ``F = (M q'' + C q' + K q)_b``, as long as ``|F| <= mu_s N``.
 
 Each of the three states is a linear system with a constant load, so it is propagated by its
-closed-form modal solution (:class:`.linear_state.LinearState`, as the contact states of
+closed-form modal solution (:class:`.unilateral.LinearState`, as the contact states of
 :mod:`.unilateral` are), read in blocks of steps, and its end found inside a step by a bracketed
-Newton iteration (:func:`.linear_state.crossing`): slip ends where ``u`` reaches zero, stick where
+Newton iteration (:func:`.unilateral.crossing`): slip ends where ``u`` reaches zero, stick where
 ``|F|`` reaches ``mu_s N``. At a slip's end the contact sticks if holding takes at most
 ``mu_s N``; otherwise, as at a stick's end, it slips the way the structure pulls.
 :func:`.friction_ode.coulomb_response` integrates the same law with
@@ -40,14 +40,27 @@ import numpy as np
 import scipy.linalg as sla
 
 from .._validate import check_choice, check_int, check_nonnegative, check_positive
-from .linear_state import MARCHES, LinearState, SwitchedSystem, crossing, step_grid
 from .modes import sweep_velocity
-from .strikes import read_through_dlpf, reduced_body, timed_rate
-from .structure import check_dof_vector, check_symmetric_matrix, mass_inverse
-from .unilateral import STEPS_PER_PERIOD, ChatterError
+from .strikes import check_reduction, reduced_body
+from .structure import check_dof_vector, check_symmetric_matrix
+from .unilateral import (
+    MARCHES,
+    STEPS_PER_PERIOD,
+    ChatterError,
+    LinearState,
+    SwitchedSystem,
+    check_grid,
+    check_state,
+    check_step,
+    check_structure,
+    crossing,
+    mass_inverse,
+    step_grid,
+)
 
 __all__ = ["StickSlipResponse", "check_coefficients", "stick_slip_response", "StickSlipLaw",
-           "friction_states", "FrictionModel", "friction_model", "friction_axis"]  # fmt: skip
+           "friction_states", "FrictionModel", "friction_model",
+           "friction_accelerations"]  # fmt: skip
 
 log = logging.getLogger(__name__)
 
@@ -135,7 +148,7 @@ def stick_slip_response(
         Each change is placed within this many seconds after the exact instant, s.
     method : {"blocks", "steps"}
         How the states are marched: ``"blocks"`` (the engine, fast) or ``"steps"`` (the
-        reference, :func:`.linear_state.march_step_by_step`), as in
+        reference, :func:`.unilateral.march_step_by_step`), as in
         :func:`.unilateral.unilateral_response`.
 
     Returns
@@ -188,7 +201,7 @@ class StickSlipLaw(SwitchedSystem):
     """Coulomb's law at one coordinate: the three states and when each ends.
 
     Built by :func:`stick_slip_response` from checked values; marched by
-    :data:`.linear_state.MARCHES`. The state keys are ``"slip+"``, ``"slip-"`` and ``"stick"``.
+    :data:`.unilateral.MARCHES`. The state keys are ``"slip+"``, ``"slip-"`` and ``"stick"``.
 
     Parameters
     ----------
@@ -198,7 +211,7 @@ class StickSlipLaw(SwitchedSystem):
     contact : int
         The coordinate ``b`` along which friction acts.
     grid : tuple
-        :func:`.linear_state.step_grid` of the states.
+        :func:`.unilateral.step_grid` of the states.
     hold_limit : float
         ``mu_s N``, N: the most friction can hold; 0 means no friction.
     max_events, time_tolerance
@@ -206,7 +219,16 @@ class StickSlipLaw(SwitchedSystem):
     """
 
     def __init__(self, states, contact, grid, *, hold_limit, max_events, time_tolerance):
-        h, sub, n_samples, _ = grid
+        h, sub, n_samples, _ = check_grid(grid)
+        names = ("slip+", "slip-", "stick", "stick lower")
+        if not isinstance(states, dict) or sorted(states) != sorted(names) or not all(
+                isinstance(st, LinearState) for st in states.values()):
+            raise TypeError(f"states must map {names} to LinearState, as friction_states "
+                            "builds them")
+        contact = check_int("contact", contact, minimum=0, maximum=states["stick"].n - 1)
+        hold_limit = check_nonnegative("hold_limit", hold_limit)
+        max_events = check_int("max_events", max_events, minimum=1)
+        time_tolerance = check_positive("time_tolerance", time_tolerance)
         super().__init__(h, sub, n_samples)
         self.linear, self.b = states, contact
         self.n = states["stick"].n
@@ -219,25 +241,29 @@ class StickSlipLaw(SwitchedSystem):
 
     def state(self, key):
         """The linear state called ``key``."""
-        return self.linear[key]
+        try:
+            return self.linear[key]
+        except (KeyError, TypeError):
+            raise ValueError(f"key must be one of {sorted(self.linear)}, got {key!r}") from None
 
     def start(self, velocity):
         """The state at ``t = 0``: ``q = 0``, ``q' = velocity``, and the state it takes."""
         n = self.n
+        velocity = check_dof_vector("velocity", velocity, n)
         x = np.zeros(2 * n + 2)
         x[n : 2 * n] = velocity
         x[2 * n] = 1.0  # the drive s = 1, s' = 0: each state's constant load f s at full size
-        name = "slip+" if self.frictionless else self.entered(x)
+        name = "slip+" if self.frictionless else self._entered(x)
         self.events.append((0.0, name))
-        self.record(0, x, name)
+        self._record(0, x, name)
         self.fresh = name != "stick" and x[n + self.b] == 0  # a slip from rest: on its boundary
         return x, name
 
-    def moved(self):
+    def _moved(self):
         """The march has left the point where the state was entered."""
         self.fresh = False
 
-    def entered(self, x):
+    def _entered(self, x):
         """The state taken at ``x`` where ``u = 0`` (or at the start): stick if holding takes
         at most ``mu_s N``, otherwise slip the way the structure pulls."""
         u = x[self.n + self.b]
@@ -250,10 +276,12 @@ class StickSlipLaw(SwitchedSystem):
         return "slip-" if F > 0 else "slip+"  # holding would take more: it slips the way it pulls
 
     def switch(self, name, x, t):
-        """The switching law at an event at ``t``: a slip's end as :meth:`entered`; a stick's
+        """The switching law at an event at ``t``: a slip's end as ``_entered``; a stick's
         end slips against the force that holding took."""
+        check_choice("name", name, ("slip+", "slip-", "stick"))
+        check_state("x", x, 2 * self.n + 2)
         if name != "stick":
-            new = self.entered(x)
+            new = self._entered(x)
         else:
             new = "slip-" if self.stick.rows[2] @ x > 0 else "slip+"
         self.events.append((t, new))
@@ -264,7 +292,7 @@ class StickSlipLaw(SwitchedSystem):
             )
         return new
 
-    def first_crossing(self, name, x, span, fresh):
+    def _first_crossing(self, name, x, span, fresh):
         """Which monitor ends state ``name`` first within ``span`` after ``x``, and when
         (``None`` if neither does); ``fresh``: the state was entered at ``x``."""
         found = None
@@ -286,9 +314,10 @@ class StickSlipLaw(SwitchedSystem):
     def advance(self, x, name, t0, t1, crosses=False):
         """Propagate from ``t0`` to ``t1`` (at most one step) through any events on the way
         (``crosses`` is not needed: every step looks for the first crossing)."""
+        check_step(t0, t1)
         fresh = self.fresh
         while True:
-            found = None if self.frictionless else self.first_crossing(name, x, t1 - t0, fresh)
+            found = None if self.frictionless else self._first_crossing(name, x, t1 - t0, fresh)
             if found is None:
                 return self.linear[name].step(x, t1 - t0), name
             tau, x = found
@@ -304,9 +333,28 @@ def friction_states(M, K, C, Minv, b, o, hold, slide):
     ``+-u``. Stick: ``q_b' = q_b'' = 0`` and the other coordinates move as the structure pinned
     at ``b``, watching ``mu_s N -+ F`` (``hold`` is ``mu_s N``) with
     ``F = (M q'' + C q' + K q)_b``. Every state records the acceleration at ``o`` and the
-    friction force. Takes checked values (:func:`stick_slip_response`).
+    friction force.
+
+    Parameters
+    ----------
+    M, K, C : array of shape (n, n)
+        Mass, stiffness and viscous damping, symmetric.
+    Minv : array of shape (n, n)
+        The inverse of ``M`` (:func:`.unilateral.mass_inverse`).
+    b : int
+        The coordinate along which friction acts.
+    o : int or array of shape (n,)
+        Where the acceleration is read.
+    hold, slide : float
+        ``mu_s N`` and ``mu_k N``, N (>= 0).
     """
+    M = check_symmetric_matrix("M", M)
     n = M.shape[0]
+    Minv, K, C, _, _ = check_structure(Minv, K, C, np.zeros(n), np.zeros(n))
+    o = check_dof_vector("o", o, n)
+    b = check_int("b", b, minimum=0, maximum=n - 1)
+    hold = check_nonnegative("hold", hold)
+    slide = check_nonnegative("slide", slide)
     size = 2 * n + 2
 
     def system(load, held):
@@ -384,6 +432,8 @@ def friction_model(probe_reduction, preload: float, max_frequency: float) -> Fri
     max_frequency : float
         Fixed-interface modes at or above it are dropped, Hz.
     """
+    check_reduction("probe_reduction", probe_reduction)
+    max_frequency = check_positive("max_frequency", max_frequency)
     cached = _Z_BODIES.setdefault(probe_reduction, {})
     if max_frequency not in cached:
         K, M, T, C = reduced_body(probe_reduction, max_frequency)
@@ -396,8 +446,9 @@ def friction_model(probe_reduction, preload: float, max_frequency: float) -> Fri
     return FrictionModel(M, K, C, rotation, output, check_positive("preload", preload))
 
 
-def friction_axis(scene, models, inverse, rotation_speeds, when, dlpf) -> np.ndarray:
-    """The Z axis with ``coulomb_friction``, through the chip's filter, read at ``when``.
+def friction_accelerations(scene, models, inverse, rotation_speeds, *, rate: float,
+                           n_samples: int) -> np.ndarray:
+    """The tip acceleration along Z of every signal with ``coulomb_friction``, at ``rate``.
 
     Parameters
     ----------
@@ -409,19 +460,21 @@ def friction_axis(scene, models, inverse, rotation_speeds, when, dlpf) -> np.nda
         Which model each signal uses.
     rotation_speeds : array of shape (n,)
         Each signal's tilt rotation at the stop, ``tilt_ratio x sweep_speed``, rad/s.
-    when : ndarray
-        Sample times, shape ``(n_samples,)`` or ``(n, n_samples)``, s.
-    dlpf : ebantenna.simulate.effects.LowPassFilter or None
-        The chip's filter of the chain
-        (``chip_filter`` of :class:`~ebantenna.simulate.simulator.SignalBatch`).
+    rate : float
+        Sample rate, Hz (:func:`~ebantenna.simulate.strikes.timed_rate`).
+    n_samples : int
+        Samples per signal from the servo's stop.
 
     Returns
     -------
     ndarray of shape (n, n_samples)
-        m/s^2.
+        m/s^2, 0 at the stop.
     """
+    rate = check_positive("rate", rate)
+    n_int = check_int("n_samples", n_samples, minimum=2)
     effect = scene.effect("coulomb_friction")
-    rate, n_int = timed_rate(scene, when, dlpf)
+    if effect is None:
+        raise ValueError("scene must list coulomb_friction (its coefficients and its march)")
     acc = np.empty((len(inverse), n_int))
     for i, (k, speed) in enumerate(zip(inverse, rotation_speeds, strict=True)):
         m = models[k]
@@ -431,4 +484,4 @@ def friction_axis(scene, models, inverse, rotation_speeds, when, dlpf) -> np.nda
             duration=(n_int - 1) / rate, fs=rate, velocity=m.rotation * float(speed),
             damping=m.damping, output=m.output, max_events=effect.max_events, method=effect.method,
         ).acceleration[:n_int]  # fmt: skip
-    return read_through_dlpf(dlpf, acc, rate, when)
+    return acc

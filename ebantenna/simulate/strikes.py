@@ -35,7 +35,7 @@ same events (the test suite checks it).
 The ``paper`` scene with this effect costs about 2.3 times as much as with a linear contact,
 12.8 against 5.5 CPU seconds per thousand one-second strikes (``ebantenna bench``): most of it
 in the events (a few dozen per strike near the tip), each found within one step of a grid of 16
-steps per period of the fastest mode (:mod:`.linear_state`).
+steps per period of the fastest mode (:mod:`.unilateral`).
 """
 
 from __future__ import annotations
@@ -48,19 +48,20 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 
+from .._validate import check_array, check_choice, check_int, check_nonnegative, check_positive
+from ..fem.coupling import CraigBampton
 from .contact import PiecewiseSpring
 from .modes import sweep_velocity
 from .structure import ContactModel
-from .unilateral import unilateral_response
+from .unilateral import MARCHES, unilateral_response
 
 __all__ = [
     "StrikeModel",
     "strike_model",
     "strike_accelerations",
     "timed_rate",
-    "read_through_dlpf",
-    "unilateral_axis",
     "reduced_body",
+    "check_reduction",
 ]
 
 #: Without the DLPF, strikes are computed at this multiple of ``fs`` and read at the sample times.
@@ -96,6 +97,14 @@ class StrikeModel:
 _BODIES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
+def check_reduction(name: str, reduction) -> None:
+    """Raise a ``TypeError`` naming ``name`` unless ``reduction`` is a Craig-Bampton reduction
+    (:func:`ebantenna.fem.coupling.craig_bampton`)."""
+    if not isinstance(reduction, CraigBampton):
+        raise TypeError(f"{name} must be a CraigBampton reduction (ebantenna.fem.coupling."
+                        f"craig_bampton), got {type(reduction).__name__}")
+
+
 def reduced_body(reduction, max_frequency: float):
     """One body of a strike: its Craig-Bampton reduction truncated at ``max_frequency``.
 
@@ -117,6 +126,8 @@ def reduced_body(reduction, max_frequency: float):
         ``K, M, T, C``: stiffness (N/m), mass (kg) and damping (N s/m) in the kept coordinates,
         and the basis ``T`` from them to the body's free DOFs.
     """
+    check_reduction("reduction", reduction)
+    max_frequency = check_positive("max_frequency", max_frequency)
     cached = _BODIES.setdefault(reduction, {})
     if max_frequency not in cached:
         keep = np.flatnonzero(reduction.fixed_interface_omega < 2 * math.pi * max_frequency)
@@ -182,6 +193,12 @@ def strike_model(
     >>> m.structure.mass.shape  # probe: 8 modes below 3 kHz + interface; rod: 2 + interface
     (12, 12)
     """
+    check_reduction("probe_reduction", probe_reduction)
+    check_reduction("rod_reduction", rod_reduction)
+    contact = check_positive("contact", contact)
+    if not isinstance(contact_stiffness, PiecewiseSpring):
+        contact_stiffness = check_positive("contact_stiffness", contact_stiffness)
+    preload = check_nonnegative("preload", preload)
     Kp, Mp, Tp, Cp = reduced_body(probe_reduction, max_frequency)
     Kr, Mr, _, Cr = reduced_body(rod_reduction, max_frequency)
     n_p, n_r = Kp.shape[0], Kr.shape[0]
@@ -242,6 +259,18 @@ def strike_accelerations(
         naming how many pressed a Hertz contact beyond its chords' last node (sampled at
         ``rate``).
     """
+    rate = check_positive("rate", rate)
+    n_samples = check_int("n_samples", n_samples, minimum=2)
+    max_events = check_int("max_events", max_events, minimum=1)
+    check_choice("method", method, tuple(MARCHES))
+    speeds = check_array("speeds", speeds, ndim=1)
+    inverse = np.asarray(inverse)
+    if inverse.shape != speeds.shape or inverse.dtype.kind not in "iu" or (
+            inverse.size and not 0 <= inverse.min() <= inverse.max() < len(models)):
+        raise ValueError(f"inverse must hold one index into models (0 to {len(models) - 1}) per "
+                         f"speed ({speeds.size}), got {inverse!r}")
+    if not all(isinstance(m, StrikeModel) for m in models):
+        raise TypeError("models must be StrikeModel, as strike_model builds them")
     out = np.empty((len(inverse), n_samples))
     restrikes = np.zeros(len(inverse), dtype=int)
     held = np.zeros(len(inverse), dtype=bool)
@@ -288,36 +317,22 @@ def timed_rate(scene, when, dlpf) -> tuple[float, int]:
     """The rate at which a time-stepped axis is computed, and how many samples reach past the
     last reading at ``when``: the internal rate of the chip's filter ``dlpf`` (the chain's,
     ``chip_filter`` of :class:`~ebantenna.simulate.simulator.SignalBatch`), or without it
-    ``UNFILTERED_RATE`` times ``fs``."""
+    ``UNFILTERED_RATE`` times ``fs``.
+
+    Examples
+    --------
+    >>> from ebantenna.simulate import builtin_scene
+    >>> from ebantenna.simulate.effects import LowPassFilter
+    >>> scene = builtin_scene("paper")  # 1000 samples at 1 kHz
+    >>> timed_rate(scene, np.arange(1000) / 1000.0, LowPassFilter())  # the DLPF runs at 8 kHz
+    (8000.0, 7994)
+    """
+    if not all(hasattr(scene, a) for a in ("fs", "n_samples")):
+        raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
+    when = check_array("when", when, ndim=(1, 2))
+    if dlpf is not None and not hasattr(dlpf, "internal_rate"):
+        raise TypeError(f"dlpf must be the scene's LowPassFilter or None, got "
+                        f"{type(dlpf).__name__}")
     rate = dlpf.internal_rate if dlpf is not None else UNFILTERED_RATE * scene.fs
     span = float(np.max(when)) if np.ndim(when) == 2 else (scene.n_samples - 1) / scene.fs
     return rate, math.floor(span * rate) + 2
-
-
-def read_through_dlpf(dlpf, acc, rate, when) -> np.ndarray:
-    """Accelerations ``acc`` (shape ``(n, n_int)``, computed at :func:`timed_rate`) through the
-    chip's filter ``dlpf`` (None: none), and read at the sample times ``when`` (shape
-    ``(n_samples,)`` or, with clock jitter, ``(n, n_samples)``) by linear interpolation, which
-    is exact at whole internal samples; the chip's register holds such samples."""
-    if dlpf is not None:
-        acc = dlpf.apply_internal(acc, rate)  # filtered, at the internal rate
-    grid = np.arange(acc.shape[1]) / rate
-    rows = np.broadcast_to(when, acc.shape[:1] + np.shape(when)[-1:])
-    return np.stack([np.interp(w, grid, a) for w, a in zip(rows, acc, strict=True)])
-
-
-def unilateral_axis(scene, models, inverse, speeds, when, dlpf) -> tuple[np.ndarray, np.ndarray]:
-    """The X axis of the ``unilateral_contact`` strikes, through the chip's filter ``dlpf``
-    (None: none), read at ``when``.
-
-    Each strike is computed at :func:`timed_rate`, marched by the effect's ``method``, and read
-    through :func:`read_through_dlpf`. Returns the accelerations ``(n, n_samples)`` (m/s^2)
-    and each strike's number of re-strikes.
-    """
-    rate, n_int = timed_rate(scene, when, dlpf)
-    effect = scene.effect("unilateral_contact")
-    acc, restrikes = strike_accelerations(
-        models, inverse, speeds, rate=rate, n_samples=n_int, max_events=effect.max_events,
-        method=effect.method,
-    )  # fmt: skip
-    return read_through_dlpf(dlpf, acc, rate, when), restrikes

@@ -17,8 +17,7 @@ import scipy.linalg as spl
 from .._validate import check_int, check_nonnegative
 from ..fem.guards import check_contact
 
-__all__ = ["ContactModel", "probe_contact_model", "check_dof_vector", "check_symmetric_matrix",
-           "mass_inverse"]
+__all__ = ["ContactModel", "probe_contact_model", "check_dof_vector", "check_symmetric_matrix"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -70,22 +69,6 @@ def check_symmetric_matrix(name: str, value, n: int | None = None) -> np.ndarray
         raise ValueError(f"{name} must be symmetric")
     return out
 
-
-def mass_inverse(mass: np.ndarray) -> np.ndarray:
-    """:math:`M^{-1}` of a symmetric mass matrix, through its Cholesky factor; raise a
-    ``ValueError`` naming ``mass`` when it is not positive definite.
-
-    Examples
-    --------
-    >>> mass_inverse(np.array([[2.0, 0.0], [0.0, 4.0]]))
-    array([[0.5 , 0.  ],
-           [0.  , 0.25]])
-    """
-    try:
-        L = np.linalg.cholesky(mass)
-    except np.linalg.LinAlgError:
-        raise ValueError("mass must be positive definite") from None
-    return spl.cho_solve((L, True), np.eye(mass.shape[0]))
 
 
 def probe_contact_model(

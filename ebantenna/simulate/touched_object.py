@@ -38,11 +38,13 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from .._progress import progress
-from .._validate import check_bool, check_int, check_positive
+from .._validate import check_array, check_bool, check_choice, check_int, check_positive
 from ..fem.coupling import craig_bampton, probe_substructure, rod_substructure
 from ..fem.guards import check_contact
 from ..probe import Probe
 from ..probe import material as lookup_material
+from .effects import effect_names
+from .effects.sensor import read_through_dlpf
 from .modes import (
     ArrestModes,
     arrest_modes,
@@ -51,8 +53,8 @@ from .modes import (
     modal_exponentials,
 )
 from .scene import Scene
-from .stick_slip import friction_axis, friction_model
-from .strikes import strike_model, unilateral_axis
+from .stick_slip import friction_accelerations, friction_model
+from .strikes import strike_accelerations, strike_model, timed_rate
 
 __all__ = [
     "ContactCase",
@@ -68,8 +70,28 @@ __all__ = [
 def pinned_modes(scene: Scene, contacts, materials, show_progress):
     """Arrest modes on a rigid object (a pin, or the ``contact_compliance`` spring).
 
-    One FEM solve per distinct (contact, spring); takes checked values.
+    One FEM solve per distinct (contact, spring).
+
+    Parameters
+    ----------
+    scene : Scene
+    contacts : ndarray of shape (n,)
+        Per-signal contact position, m.
+    materials : ndarray of str, shape (n,)
+        Per-signal material names.
+    show_progress : bool or None
+        The progress bar over the solves (None: on a terminal).
+
+    Returns
+    -------
+    modes : list of ArrestModes
+        The modes of each distinct (contact, spring).
+    inverse : ndarray of int, shape (n,)
+        Which of them each signal uses.
     """
+    _check_signal_inputs(scene, contacts, materials)
+    if show_progress is not None:
+        show_progress = check_bool("show_progress", show_progress)
     probe = scene.probe
     kw = dict(n_elements=scene.n_elements, n_modes=scene.n_modes, max_frequency=scene.max_frequency)
     compliance = scene.effect("contact_compliance")
@@ -167,17 +189,26 @@ def _friction_model(case: ContactCase):
 
 
 def _strike_axis(batch, models) -> np.ndarray:
-    """X from the ``unilateral`` strikes; records each strike's contacts after the first."""
-    ax, restrikes = unilateral_axis(batch.scene, models, batch.inverse, batch.speeds, batch.when,
-                                    batch.chip_filter)
+    """X from the ``unilateral`` strikes, each computed at :func:`.strikes.timed_rate`, marched by
+    the effect's ``method``, and read through the chip's filter
+    (:func:`.effects.sensor.read_through_dlpf`); records each strike's contacts after the first."""
+    rate, n_int = timed_rate(batch.scene, batch.when, batch.chip_filter)
+    effect = batch.scene.effect("unilateral_contact")
+    acc, restrikes = strike_accelerations(
+        models, batch.inverse, batch.speeds, rate=rate, n_samples=n_int,
+        max_events=effect.max_events, method=effect.method,
+    )  # fmt: skip
     batch.x = dataclasses.replace(batch.x, restrikes=restrikes)
-    return ax
+    return read_through_dlpf(batch.chip_filter, acc, rate, batch.when)
 
 
 def _friction_axis(batch, models) -> np.ndarray:
-    """Z from the ``friction`` model: stick and slip along the rod, at the tilt rotation's speed."""
-    return friction_axis(batch.scene, models, batch.inverse, batch.tilts * batch.speeds, batch.when,
-                         batch.chip_filter)
+    """Z from the ``friction`` model: stick and slip along the rod, at the tilt rotation's speed,
+    computed and read as the strikes are (:func:`_strike_axis`)."""
+    rate, n_int = timed_rate(batch.scene, batch.when, batch.chip_filter)
+    acc = friction_accelerations(batch.scene, models, batch.inverse, batch.tilts * batch.speeds,
+                                 rate=rate, n_samples=n_int)
+    return read_through_dlpf(batch.chip_filter, acc, rate, batch.when)
 
 
 @dataclass(frozen=True)
@@ -210,9 +241,26 @@ class ObjectModel:
     respond: Callable | None = None
     unless: str | None = None
 
+    def __post_init__(self):
+        if not isinstance(self.name, str) or not self.name:
+            raise TypeError(f"name must be a non-empty str, got {self.name!r}")
+        check_choice("axis", self.axis, ("x", "z"))
+        for field in ("effect", "unless"):
+            value = getattr(self, field)
+            if value is not None and value not in effect_names():
+                raise ValueError(f"{field} must be None or an effect of effect_names(), got "
+                                 f"{value!r}")
+        if not callable(self.build):
+            raise TypeError(f"build must be callable, got {type(self.build).__name__}")
+        if self.respond is not None and not callable(self.respond):
+            raise TypeError(f"respond must be callable or None, got {type(self.respond).__name__}")
+
     def wanted(self, scene: Scene, x_modes: bool) -> bool:
         """Whether ``scene`` needs this model (``x_modes`` as in
         :func:`~ebantenna.simulate.simulator.simulate_batch`)."""
+        if not isinstance(scene, Scene):
+            raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
+        x_modes = check_bool("x_modes", x_modes)
         if self.effect is not None and not scene.has(self.effect):
             return False
         return x_modes or self.unless is None or not scene.has(self.unless)
@@ -305,9 +353,16 @@ def object_modes(scene: Scene, contacts, materials, preloads, show_progress, x_m
     Each rod is reduced once, the probe once per distinct contact position (and kept for the
     process's later calls: a study's data sets touch the same positions); what is left per
     (position, material, preload) is each model of :data:`OBJECT_MODELS` the scene needs.
-    Takes checked values. Returns the coupled modes (X), which case each signal uses, and the
-    models stepped in time by name (``timed``, only those built).
+    Returns the coupled modes (X), which case each signal uses, and the models stepped in time
+    by name (``timed``, only those built); the parameters are those of :func:`signal_terms`,
+    ``preloads`` given.
     """
+    _check_signal_inputs(scene, contacts, materials, preloads)
+    if preloads is None or not scene.has("object_modes"):
+        raise ValueError("object_modes needs a scene that lists object_modes, and the preloads")
+    if show_progress is not None:
+        show_progress = check_bool("show_progress", show_progress)
+    x_modes = check_bool("x_modes", x_modes)
     probe = scene.probe
     if not scene.has("structural_damping"):
         probe = dataclasses.replace(probe, loss_factor=0.0)
@@ -390,10 +445,11 @@ class ModalTerms:
         """
         if self.contact_force is None:
             raise ValueError("these modal terms have no contact spring (contact_force is None)")
+        t = check_array("t", t, ndim=1)
         # q_k(t) = q_dot_k(0) / omega_dk e^(-a_k t) sin(omega_dk t), on the modes' own rates
         _, rate = modal_exponentials(self.contact_force, self.omega, self.zeta)
         coef = (self.contact_force / rate.imag).astype(complex)
-        return damped_exponentials(np.asarray(t, dtype=float), coef, rate)
+        return damped_exponentials(t, coef, rate)
 
     def lift_off_ratio(self, duration: float = 1.0, rate: float = 8000.0) -> np.ndarray:
         """Largest pull of the linear contact over its preload, per strike (dimensionless).
@@ -404,7 +460,9 @@ class ModalTerms:
         """
         if self.preload is None:
             raise ValueError("these modal terms have no preload (listed without object_modes)")
-        t = np.arange(int(round(check_positive("duration", duration) * rate))) / rate
+        duration = check_positive("duration", duration)
+        rate = check_positive("rate", rate)
+        t = np.arange(int(round(duration * rate))) / rate
         return np.max(-self.dynamic_contact_force(t), axis=1) / self.preload
 
 
@@ -468,11 +526,12 @@ def _z_terms(scene: Scene, speeds, tilts, zeta_s: float) -> ModalTerms:
     )
 
 
-def _check_signal_inputs(scene, contacts, materials, speeds, tilts, preloads) -> int:
-    """The number of signals, once every per-signal array is one finite entry per signal."""
+def _check_signal_inputs(scene, contacts, materials, preloads=None, **per_signal) -> int:
+    """The number of signals, once every per-signal array (``per_signal`` by name, such as
+    ``speeds`` and ``tilts``) is one finite entry per signal."""
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
-    arrays = {"contacts": contacts, "speeds": speeds, "tilts": tilts}
+    arrays = {"contacts": contacts, **per_signal}
     if preloads is not None:
         arrays["preloads"] = preloads
     for name, value in arrays.items():
@@ -540,7 +599,7 @@ def signal_terms(
     >>> x.frequencies().size > 0, timed
     (True, {})
     """
-    n = _check_signal_inputs(scene, contacts, materials, speeds, tilts, preloads)
+    n = _check_signal_inputs(scene, contacts, materials, preloads, speeds=speeds, tilts=tilts)
     if show_progress is not None:
         show_progress = check_bool("show_progress", show_progress)
     x_modes = check_bool("x_modes", x_modes)

@@ -7,7 +7,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..fem.rod import Rod
+from ..fem.coupling import Rod
 from ..paper.controls import (
     ABLATION_DESIGN,
     SPLIT_SEEDS,

@@ -26,7 +26,7 @@ from contract_files_cases import Row, check_row  # noqa: E402
 
 from ebantenna import Probe  # noqa: E402
 from ebantenna.paper import controls, experiments, mode_curves, plots  # noqa: E402
-from ebantenna.simulate import builtin_scene, modes, simulator, structure  # noqa: E402
+from ebantenna.simulate import builtin_scene, modes, simulator, structure, unilateral  # noqa: E402
 
 NAN = math.nan
 RNG = np.random.default_rng(0)
@@ -134,9 +134,9 @@ ROWS = {
         ("nan", lambda: structure.check_symmetric_matrix("K", np.full((2, 2), NAN)), ("K",),
          None),
     ],
-    s + "structure.mass_inverse": [
-        ("singular", lambda: structure.mass_inverse(np.zeros((2, 2))), ("mass",), None),
-        ("diagonal-by-hand", lambda: structure.mass_inverse(np.diag([2.0, 4.0])), None,
+    s + "unilateral.mass_inverse": [
+        ("singular", lambda: unilateral.mass_inverse(np.zeros((2, 2))), ("mass",), None),
+        ("diagonal-by-hand", lambda: unilateral.mass_inverse(np.diag([2.0, 4.0])), None,
          lambda r: np.allclose(r, np.diag([0.5, 0.25]), rtol=1e-15, atol=0)),
     ],
     s + "structure.probe_contact_model": [

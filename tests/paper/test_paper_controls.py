@@ -7,7 +7,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from ebantenna.fem.rod import Rod
+from ebantenna.fem.coupling import Rod
 from ebantenna.paper.controls import (
     ABLATION_DESIGN,
     _ablated_scene,

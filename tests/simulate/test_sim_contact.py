@@ -18,8 +18,8 @@ from ebantenna.simulate.contact import (
 from ebantenna.simulate.effects import ContactCompliance
 from ebantenna.simulate.friction_ode import coulomb_response
 from ebantenna.simulate.stick_slip import stick_slip_response
-from ebantenna.simulate.structure import mass_inverse, probe_contact_model
-from ebantenna.simulate.unilateral import ChatterError, unilateral_response
+from ebantenna.simulate.structure import probe_contact_model
+from ebantenna.simulate.unilateral import ChatterError, mass_inverse, unilateral_response
 
 EPS = np.finfo(float).eps
 

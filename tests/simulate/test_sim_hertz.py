@@ -21,10 +21,14 @@ from ebantenna.simulate.contact import (
     tube_on_rod_stiffness,
 )
 from ebantenna.simulate.effects import HertzContact
-from ebantenna.simulate.linear_state import step_grid
 from ebantenna.simulate.strikes import strike_model
-from ebantenna.simulate.structure import mass_inverse
-from ebantenna.simulate.unilateral import STEPS_PER_PERIOD, segment_states, unilateral_response
+from ebantenna.simulate.unilateral import (
+    STEPS_PER_PERIOD,
+    mass_inverse,
+    segment_states,
+    step_grid,
+    unilateral_response,
+)
 
 EPS = np.finfo(float).eps
 PROBE = Probe(tip_mass=2.5e-3)

@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 
 from ebantenna import _engines as _engine_choice
-from ebantenna.simulate import _block_march, builtin_scene, linear_state, simulate_batch
+from ebantenna.simulate import _block_march, builtin_scene, simulate_batch, unilateral
 from ebantenna.simulate.unilateral import ChatterError, HertzStrikeLaw
 
 EPS = np.finfo(float).eps
@@ -34,7 +34,7 @@ def _capture(scene, contacts, materials):
     """The strike laws of ``scene`` at ``contacts`` x ``materials`` as the simulator builds
     them, each ``(law, x, key, n_steps)`` copied before its march."""
     got = []
-    march = linear_state.MARCHES["blocks"]
+    march = unilateral.MARCHES["blocks"]
 
     def spy(law, x, key, n_steps):
         got.append(copy.deepcopy((law, x, key, n_steps)))
@@ -42,13 +42,13 @@ def _capture(scene, contacts, materials):
 
     c = np.repeat(contacts, len(materials))
     m = np.array(list(materials) * len(contacts), dtype=object)
-    linear_state.MARCHES["blocks"] = spy
+    unilateral.MARCHES["blocks"] = spy
     try:
         simulate_batch(scene, contact=c, material=m, sweep_speed=np.full(c.size, 0.5),
                        tilt_ratio=np.full(c.size, 0.25), seeds=np.arange(c.size),
                        show_progress=False, x_modes=False)  # fmt: skip
     finally:
-        linear_state.MARCHES["blocks"] = march
+        unilateral.MARCHES["blocks"] = march
     return got
 
 

@@ -1,6 +1,6 @@
 """The contact laws' engine (``method="blocks"``) against their reference (``"steps"``).
 
-The reference takes every step in turn (:func:`ebantenna.simulate.linear_state.march_step_by_step`);
+The reference takes every step in turn (:func:`ebantenna.simulate.unilateral.march_step_by_step`);
 the engine reads each state a block of steps ahead and takes only the steps that hold an event.
 Both propagate the same exact modal solution and locate events with the same root finder, so
 they must find the same events, at times that differ by no more than the root finder's
@@ -17,12 +17,17 @@ import pytest
 from ebantenna.probe import Probe
 from ebantenna.simulate import builtin_scene, load_scene, simulate
 from ebantenna.simulate.effects import CoulombFriction, UnilateralContact
-from ebantenna.simulate.linear_state import step_grid
 from ebantenna.simulate.simulator import CHAIN, SignalBatch
 from ebantenna.simulate.stick_slip import friction_states, stick_slip_response
 from ebantenna.simulate.strikes import strike_accelerations, timed_rate
-from ebantenna.simulate.structure import check_dof_vector, mass_inverse, probe_contact_model
-from ebantenna.simulate.unilateral import STEPS_PER_PERIOD, contact_states, unilateral_response
+from ebantenna.simulate.structure import check_dof_vector, probe_contact_model
+from ebantenna.simulate.unilateral import (
+    STEPS_PER_PERIOD,
+    contact_states,
+    mass_inverse,
+    step_grid,
+    unilateral_response,
+)
 
 EPS = np.finfo(float).eps
 K_CHAIN = 1000.0 * np.array([[2.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]])

@@ -15,8 +15,7 @@ from ebantenna.simulate._block_march import (
     readings,
     stays_positive,
 )
-from ebantenna.simulate.linear_state import LinearState, crossing
-from ebantenna.simulate.unilateral import unilateral_response
+from ebantenna.simulate.unilateral import LinearState, crossing, unilateral_response
 
 EPS = np.finfo(float).eps
 

@@ -56,6 +56,7 @@ from .sensor import (
     SensorDrift,
     SensorNoise,
     SteadyStateKalman,
+    read_through_dlpf,
 )
 
 __all__ = [
@@ -80,6 +81,7 @@ __all__ = [
     "Clipping",
     "Quantisation",
     "SteadyStateKalman",
+    "read_through_dlpf",
     "EFFECT_TYPES",
     "effect_names",
     "make_effect",

@@ -19,11 +19,11 @@ from typing import ClassVar
 import numpy as np
 
 from ..._validate import check_choice, check_int, check_nonnegative, check_positive
-from ...fem.rod import Rod
+from ...fem.coupling import Rod
 from ...probe import Material, Probe
 from ..contact import TUBE_POISSON_RATIO, tube_on_rod_stiffness
-from ..linear_state import MARCHES
 from ..stick_slip import check_coefficients
+from ..unilateral import MARCHES
 from ._base import Effect, check_bodies, check_rng
 
 
@@ -31,11 +31,12 @@ from ._base import Effect, check_bodies, check_rng
 class ObjectModes(Effect):
     """The touched object as a rod with its own modes, coupled to the probe by the contact spring.
 
-    The object is a solid round rod clamped upright in a stand (:class:`ebantenna.fem.rod.Rod`),
-    touched at ``contact_height`` above the clamp. Probe and rod are modelled with the same
-    Euler-Bernoulli elements, reduced each on its own by Craig-Bampton component-mode synthesis
-    and joined through the contact spring (:func:`ebantenna.fem.coupling.coupled_modes`; the
-    witness is :func:`ebantenna.fem.coupling.monolithic_modes`, one FEM system of both bodies).
+    The object is a solid round rod clamped upright in a stand
+    (:class:`~ebantenna.fem.coupling.Rod`), touched at ``contact_height`` above the clamp. Probe and
+    rod are modelled with the same Euler-Bernoulli elements, reduced each on its own by
+    Craig-Bampton component-mode synthesis and joined through the contact spring
+    (:func:`ebantenna.fem.coupling.coupled_modes`; the witness is
+    :func:`ebantenna.fem.coupling.monolithic_modes`, one FEM system of both bodies).
     The spring is the tube pressed on the rod at ``preload``: Hertz contact of crossed cylinders
     in series with the tube wall's ring compliance, wood indented across its grain
     (:func:`ebantenna.simulate.contact.tube_on_rod_stiffness`).
@@ -215,7 +216,7 @@ class UnilateralContact(Effect):
         How each strike is marched (``method`` of
         :func:`~ebantenna.simulate.unilateral.unilateral_response`): ``"blocks"``, the engine
         and the default, reads each contact state a block of steps ahead; ``"steps"``, the
-        reference, takes every step in turn (:func:`.linear_state.march_step_by_step`), several
+        reference, takes every step in turn (:func:`.unilateral.march_step_by_step`), several
         times slower. The same events; the signals agree within the rounding bound that the
         test suite derives.
 

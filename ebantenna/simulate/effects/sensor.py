@@ -16,6 +16,7 @@ import numpy as np
 import scipy.signal as sps
 
 from ..._validate import (
+    check_array,
     check_choice,
     check_int,
     check_nonnegative,
@@ -379,6 +380,13 @@ class LowPassFilter(Effect):
         coef, rate : complex arrays of shape (n_signals, n_terms + 2)
             The output's exponentials, the filter's two transient terms last.
         """
+        coef, rate = np.asarray(coef), np.asarray(rate)
+        for name, value in (("coef", coef), ("rate", rate)):
+            if value.ndim != 2 or value.dtype.kind not in "fc" or not np.all(np.isfinite(value)):
+                raise ValueError(f"{name} must be a finite real or complex array of shape "
+                                 f"(n_signals, n_terms), got {value.dtype} of shape {value.shape}")
+        if rate.shape != coef.shape:
+            raise ValueError(f"rate must have the shape of coef {coef.shape}, got {rate.shape}")
         b, a, gain = self._transfer()
         poles = np.roots(a)  # distinct: a Butterworth pair
         fi = self.internal_rate
@@ -396,6 +404,57 @@ class LowPassFilter(Effect):
         """Filter rows sampled at the internal rate (m/s^2) from rest; decimate them to ``fs``."""
         y = sps.sosfilt(self.sos(), a, axis=-1)
         return y[..., :: self.divider(fs)]
+
+
+def read_through_dlpf(dlpf, acc, rate, when) -> np.ndarray:
+    """An axis stepped in time, through the chip's filter, read at the sample times.
+
+    The contact laws (``unilateral_contact``, ``coulomb_friction``) give the acceleration at a
+    fixed rate (:func:`~ebantenna.simulate.strikes.timed_rate`): the filter's internal rate
+    when the chain has a :class:`LowPassFilter` (the ``chip_filter`` of
+    :class:`~ebantenna.simulate.simulator.SignalBatch`). It is filtered there
+    (:meth:`LowPassFilter.apply_internal`) and read at the sample times by linear interpolation,
+    which is exact at whole internal samples: the chip's register holds such samples.
+
+    Parameters
+    ----------
+    dlpf : LowPassFilter or None
+        The chip's filter; None for none (the rows are only read at ``when``).
+    acc : ndarray of shape (n, n_int)
+        The accelerations from the first touch, sampled at ``rate``, m/s^2.
+    rate : float
+        Their sample rate, Hz: the filter's ``internal_rate`` when there is one.
+    when : ndarray of shape (n_samples,) or (n, n_samples)
+        The sample times, s (one row per signal with clock jitter).
+
+    Returns
+    -------
+    ndarray of shape (n, n_samples)
+        m/s^2.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> ramp = np.arange(16.0)[None, :]  # 1 m/s^2 more at every sample of 8 kHz
+    >>> read_through_dlpf(None, ramp, 8000.0, np.array([0.0, 0.001]))
+    array([[0., 8.]])
+    """
+    if dlpf is not None and not isinstance(dlpf, LowPassFilter):
+        raise TypeError(f"dlpf must be a LowPassFilter or None, got {type(dlpf).__name__}")
+    acc = check_array("acc", acc, ndim=2)
+    rate = check_positive("rate", rate)
+    when = check_array("when", when, ndim=(1, 2))
+    if when.ndim == 2 and when.shape[0] != acc.shape[0]:
+        raise ValueError(f"when must have one row per row of acc ({acc.shape[0]}), got shape "
+                         f"{when.shape}")
+    if dlpf is not None:
+        if rate != dlpf.internal_rate:
+            raise ValueError(f"rate must be the dlpf's internal_rate ({dlpf.internal_rate:g} Hz), "
+                             f"got {rate:g} Hz")
+        acc = dlpf.apply_internal(acc, rate)  # filtered, at the internal rate
+    grid = np.arange(acc.shape[1]) / rate
+    rows = np.broadcast_to(when, acc.shape[:1] + np.shape(when)[-1:])
+    return np.stack([np.interp(w, grid, a) for w, a in zip(rows, acc, strict=True)])
 
 
 #: MPU6050 zero-g level change over 0-70 degC, X and Y axes, g (PS rev. 3.4, table 6.2).

@@ -35,7 +35,7 @@ from contract_files_cases import Row, check_row, rows_by_surface  # noqa: E402
 from ebantenna import Probe  # noqa: E402
 from ebantenna.course import CheckReport, check  # noqa: E402
 from ebantenna.fem import banded, coupling, guards, secular, symbolic, zones  # noqa: E402
-from ebantenna.fem.supports import Supports  # noqa: E402
+from ebantenna.fem.assembly import Supports  # noqa: E402
 from ebantenna.fem.sweeps import reference_sweep  # noqa: E402
 from ebantenna.paper import experiments, position_aware, protocol  # noqa: E402
 from ebantenna.signal import decay, spectral  # noqa: E402

@@ -23,8 +23,10 @@ import math
 from dataclasses import dataclass, field, replace
 
 import numpy as np
+from joblib import Parallel, delayed
+from threadpoolctl import threadpool_limits
 
-from .._validate import check_choice, check_int, check_positive
+from .._validate import check_choice, check_int, check_n_jobs, check_positive
 from ..fem.coupling import Rod
 from ..probe import material
 from ..signal import fft_features
@@ -99,10 +101,16 @@ def grouped_svm_accuracy(ds, *, seed: int = 0, every: int = 5) -> float:
     return result.accuracies["test"]
 
 
-def grouped_svm_spread(ds, *, seed: int = 0, splits: int = SPLIT_SEEDS):
+def grouped_svm_spread(ds, *, seed: int = 0, splits: int = SPLIT_SEEDS, n_jobs: int = 1):
     """:func:`grouped_svm_accuracy` over ``splits`` split seeds from ``seed`` that hold out
     different positions (:func:`~ebantenna.paper.splits.distinct_split_seeds`; with five,
     every position is held out once).
+
+    Parameters
+    ----------
+    n_jobs : int
+        Worker processes for the fits (one fold each). Every fit runs with one BLAS thread
+        wherever it runs, so the result does not depend on ``n_jobs``.
 
     Returns
     -------
@@ -110,19 +118,45 @@ def grouped_svm_spread(ds, *, seed: int = 0, splits: int = SPLIT_SEEDS):
         One accuracy and one test count per split seed; ``values[0]`` is
         ``grouped_svm_accuracy(ds, seed=seed)``.
     """
-    _check_dataset(ds)
-    X = fft_features(np.asarray(ds.ax, float), np.asarray(ds.az, float))
+    return _grouped_svm_spreads([ds], seed=seed, splits=splits, n_jobs=n_jobs)[0]
 
-    def measure(s):
-        result = classify_materials_svm(X, ds.material, split=grouped_split(ds.contact, seed=s))
-        return (result.accuracies["test"], result.counts["test"], result.rows(),
-                result.correct())
 
-    seeds = distinct_split_seeds("grouped", ds.material, ds.contact, seed=seed,
-                                 count=check_int("splits", splits, minimum=2))
-    spread = seed_spread(measure, seeds)
-    spread.positions = np.asarray(ds.contact)
-    return spread
+def _fold_fit(X, y, contact, split_seed: int) -> tuple:
+    """The paper's SVM on one fold of the grouped split, with one BLAS thread: its accuracy,
+    test count, test rows and whether each was right (what :func:`seed_spread` keeps)."""
+    with threadpool_limits(limits=1, user_api="blas"):
+        result = classify_materials_svm(X, y, split=grouped_split(contact, seed=split_seed))
+    return (result.accuracies["test"], result.counts["test"], result.rows(), result.correct())
+
+
+def _fold_fits(calls, n_jobs: int) -> list:
+    """:func:`_fold_fit` of every call ``(X, y, contact, split_seed)``, on ``n_jobs`` workers,
+    in the order of ``calls``."""
+    if n_jobs == 1 or len(calls) < 2:
+        return [_fold_fit(*call) for call in calls]
+    return Parallel(n_jobs=min(n_jobs, len(calls)))(delayed(_fold_fit)(*call) for call in calls)
+
+
+def _grouped_svm_spreads(datasets, *, seed: int, splits: int, n_jobs: int) -> list:
+    """:func:`grouped_svm_spread` of every data set of ``datasets``, all their folds fitted in
+    one pool of ``n_jobs`` workers (a control has a dozen data sets of five folds each)."""
+    count = check_int("splits", splits, minimum=2)
+    n_jobs = check_n_jobs("n_jobs", n_jobs) or 1
+    plans = []
+    for ds in datasets:
+        _check_dataset(ds)
+        X = fft_features(np.asarray(ds.ax, float), np.asarray(ds.az, float))
+        seeds = distinct_split_seeds("grouped", ds.material, ds.contact, seed=seed, count=count)
+        plans.append((ds, X, seeds))
+    results = iter(_fold_fits(
+        [(X, ds.material, ds.contact, s) for ds, X, seeds in plans for s in seeds], n_jobs))
+    spreads = []
+    for ds, _, seeds in plans:
+        by_seed = {s: next(results) for s in seeds}
+        spread = seed_spread(by_seed.__getitem__, seeds)
+        spread.positions = np.asarray(ds.contact)
+        spreads.append(spread)
+    return spreads
 
 
 @dataclass(frozen=True)
@@ -237,7 +271,8 @@ def ablation_accuracies(
     cache_dir : path
         Where the data sets are cached (one file per ablated scene).
     n_jobs : int
-        Worker processes of each build.
+        Worker processes of each build, and of the fits (every fold of every data set in one
+        pool; each fit on one BLAS thread, so the numbers do not depend on it).
     splits : int
         Split seeds per data set (``seed ...``), for the ``spreads`` of :class:`Ablation`.
 
@@ -284,8 +319,8 @@ def ablation_accuracies(
     # built together: the rows that switch off a sensor effect share the physics of the others
     built = build_datasets(cache_dir, list(scenes.values()), design, seed, n_jobs=n_jobs,
                            show_progress=False)
-    spreads = {label: grouped_svm_spread(ds, seed=seed, splits=splits)
-               for label, ds in zip(scenes, built, strict=True)}
+    spreads = dict(zip(scenes, _grouped_svm_spreads(built, seed=seed, splits=splits,
+                                                    n_jobs=n_jobs), strict=True))
     accuracies = {label: float(spread.values[0]) for label, spread in spreads.items()}
     contacts = np.asarray(built[0].contact)
     for ds in built[1:]:
@@ -526,17 +561,17 @@ def equivalent_pair_spread(
         feats = signal_features(ax, az, parts[0].fs, n_jobs=n_jobs, show_progress=False)
 
     def measure(split_seed):
-        split = grouped_split(contact, seed=split_seed)
-        if classifier == "svm":
-            result = classify_materials_svm(X, y, split=split)
-        else:
-            result = classify_materials_by_mode_curves(feats.peaks, feats.dominant, y, contact,
-                                                       split)
+        result = classify_materials_by_mode_curves(feats.peaks, feats.dominant, y, contact,
+                                                   grouped_split(contact, seed=split_seed))
         return (result.accuracies["test"], result.counts["test"], result.rows(),
                 result.correct())
 
     seeds = distinct_split_seeds("grouped", y, contact, seed=seed,
                                  count=check_int("splits", splits, minimum=2))
+    if classifier == "svm":  # the folds' fits on the workers
+        fitted = dict(zip(seeds, _fold_fits([(X, y, contact, s) for s in seeds],
+                                            check_n_jobs("n_jobs", n_jobs) or 1), strict=True))
+        measure = fitted.__getitem__
     spread = seed_spread(measure, seeds)
     spread.positions = contact
     return spread

@@ -94,7 +94,7 @@ def _scenes(scene):
 
 def _accuracies(ds, seed: int, n_jobs: int):
     """The SVM and the mode-curve classifier over all folds of whole held-out positions."""
-    return grouped_svm_spread(ds, seed=seed), mode_curve_spread(ds, seed, n_jobs)
+    return grouped_svm_spread(ds, seed=seed, n_jobs=n_jobs), mode_curve_spread(ds, seed, n_jobs)
 
 
 def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ContactLawResult | None:

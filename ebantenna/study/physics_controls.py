@@ -335,10 +335,10 @@ def _contact_laws_compared(scene, ablation, *, design, seed, cache_dir, n_jobs):
     # The ablation has measured the scene itself ("none") and, when its contact pushes, the
     # linear variant (row "unilateral_contact", the same data set): fit only what is left.
     measured = ablation.spreads
-    unilateral = measured["none"] if pushes else grouped_svm_spread(ds, seed=seed)
+    unilateral = measured["none"] if pushes else grouped_svm_spread(ds, seed=seed, n_jobs=n_jobs)
     linear_spread = measured.get("unilateral_contact") if pushes else measured["none"]
     if linear_spread is None:  # the ablation could not switch the contact off alone
-        linear_spread = grouped_svm_spread(lin, seed=seed)
+        linear_spread = grouped_svm_spread(lin, seed=seed, n_jobs=n_jobs)
     laws = {
         ("svm", "linear"): linear_spread,
         ("svm", "unilateral"): unilateral,
@@ -358,7 +358,7 @@ def _mid_height_spread(scene, *, design, seed, cache_dir, n_jobs):
         effects=[halfway if e.name == "object_modes" else e for e in scene.effects],
     )
     ds = build_dataset(cache_dir, moved, design, seed, n_jobs=n_jobs, show_progress=False)
-    return grouped_svm_spread(ds, seed=seed)
+    return grouped_svm_spread(ds, seed=seed, n_jobs=n_jobs)
 
 
 def _friction_spread(scene, ablation, design, seed, cache_dir, n_jobs):
@@ -370,7 +370,7 @@ def _friction_spread(scene, ablation, design, seed, cache_dir, n_jobs):
         name=f"{scene.name}-with-coulomb_friction", effects=(*scene.effects, "coulomb_friction")
     )
     ds = build_dataset(cache_dir, rubbing, design, seed, n_jobs=n_jobs, show_progress=False)
-    return grouped_svm_spread(ds, seed=seed)
+    return grouped_svm_spread(ds, seed=seed, n_jobs=n_jobs)
 
 
 def _contact_laws(scene):

@@ -159,7 +159,7 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> GeometryRe
                 effects=[moved if e.name == "object_modes" else e for e in scene.effects],
             )
         ds = build_dataset(cache_dir, variant, design, seed, n_jobs=n_jobs, show_progress=False)
-        spread = grouped_svm_spread(ds, seed=seed)
+        spread = grouped_svm_spread(ds, seed=seed, n_jobs=n_jobs)
         curves = mode_curve_spread(ds, seed, n_jobs)
         a, b, gap = closest_materials(scene, d, ln, design.materials)
         rows.append({

@@ -20,7 +20,6 @@ from ..paper.controls import (
 )
 from ..paper.data import QUICK_DESIGN
 from ..paper.feature_table import signal_features
-from ..paper.mode_curves import classify_materials_by_mode_curves
 from ..paper.splits import distinct_split_seeds, grouped_split
 from ..paper.uncertainty import (
     UNITS,
@@ -33,6 +32,7 @@ from ..paper.uncertainty import (
 )
 from ..probe import material
 from ..simulate import build_dataset, dataset_plan, simulate_batch
+from ._common import classifier_call, fits_in_parallel
 
 __all__ = [
     "ControlsResult", "ENERGY_ABSORPTION", "PAIR_REFERENCES", "control_design", "compute",
@@ -656,16 +656,17 @@ def _curves_under_both_laws(r: ControlsResult) -> str:
 def mode_curve_spread(ds, seed: int, n_jobs: int):
     """The mode-curve classifier over the folds of the grouped split of data set ``ds``."""
     feats = signal_features(ds.ax, ds.az, ds.fs, n_jobs=n_jobs, show_progress=False)
+    seeds = distinct_split_seeds("grouped", ds.material, ds.contact, seed=seed,
+                                 count=SPLIT_SEEDS)
+    calls = [classifier_call("mode_curves", None, ds.material, ds.contact, feats.peaks,
+                             feats.dominant, grouped_split(ds.contact, seed=s)) for s in seeds]
+    fitted = dict(zip(seeds, fits_in_parallel(calls, n_jobs), strict=True))
 
     def measure(s):
-        result = classify_materials_by_mode_curves(
-            feats.peaks, feats.dominant, ds.material, ds.contact,
-            grouped_split(ds.contact, seed=s))  # fmt: skip
+        result = fitted[s]
         return (result.accuracies["test"], result.counts["test"], result.rows(),
                 result.correct())
 
-    seeds = distinct_split_seeds("grouped", ds.material, ds.contact, seed=seed,
-                                 count=SPLIT_SEEDS)
     spread = seed_spread(measure, seeds)
     spread.positions = np.asarray(ds.contact)
     return spread

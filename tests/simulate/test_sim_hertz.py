@@ -258,7 +258,7 @@ def test_the_bench_times_both_laws_on_the_same_rows():
     assert hertz["ratio"] > 1.0 and hertz["added_seconds"] > 0
     text = contact_cost.to_text(tables)
     assert "Hertz law" in text and "budget of 60 s" in text
-    with pytest.raises(ValueError, match="signals and repeat"):
+    with pytest.raises(ValueError, match="signals must be >= 1"):
         contact_cost.run(signals=0)
 
 

@@ -26,7 +26,7 @@ import numpy as np
 from joblib import Parallel, delayed
 from threadpoolctl import threadpool_limits
 
-from .._validate import check_choice, check_int, check_n_jobs, check_positive
+from .._validate import check_choice, check_int, check_n_jobs, check_positive, output_dir
 from ..fem.coupling import Rod
 from ..probe import material
 from ..signal import fft_features
@@ -67,6 +67,19 @@ ABLATION_DESIGN = replace(PAPER_DESIGN, name="controls-3rep", repetitions=3)
 #: How many split seeds every control is measured with (the data set's seed fixed): the
 #: accuracy's spread over them is a second measure of its uncertainty.
 SPLIT_SEEDS = 5
+
+
+def _check_build(design, cache_dir, n_jobs, splits) -> None:
+    """Refuse, naming the parameter and before any data set is built, a ``design`` that is not a
+    :class:`~ebantenna.simulate.DatasetDesign`, a ``cache_dir`` that cannot hold the data sets
+    (not a path, a file, a folder that refuses files: ``_validate.output_dir``), an ``n_jobs``
+    that is not -1, None or a count of workers within the machine's cores, and fewer than two
+    ``splits``."""
+    if not isinstance(design, DatasetDesign):
+        raise TypeError(f"design must be a DatasetDesign, got {type(design).__name__}")
+    output_dir("cache_dir", cache_dir)
+    check_n_jobs("n_jobs", n_jobs)
+    check_int("splits", splits, minimum=2)
 
 
 def _check_dataset(ds) -> None:
@@ -302,6 +315,7 @@ def ablation_accuracies(
             f"names must be effects of the scene ({', '.join(scene.effect_names)}); got {unknown}"
         )
     seed = check_int("seed", seed, minimum=0)
+    _check_build(design, cache_dir, n_jobs, splits)
 
     scenes = {"none": scene}
     together, refused, changed = {}, {}, {}
@@ -544,6 +558,7 @@ def equivalent_pair_spread(
     [0, 0]
     """
     check_choice("classifier", classifier, ("svm", "mode_curves"))
+    _check_build(design, cache_dir, n_jobs, splits)
     parts = []
     for s, name, data_seed in zip(equivalent_pair_scenes(scene, reference=reference, other=other),
                                   (reference, other), twin_seeds(seed), strict=True):

@@ -282,7 +282,9 @@ def ablation_accuracies(
     seed : int
         Seed of the data set and of the split.
     cache_dir : path
-        Where the data sets are cached (one file per ablated scene).
+        Where the data sets are cached (one file per ablated scene): a folder that accepts new
+        files, or one that can be made. The design, the cache folder, ``n_jobs`` and
+        ``splits`` are checked before any data set is built.
     n_jobs : int
         Worker processes of each build, and of the fits (every fold of every data set in one
         pool; each fit on one BLAS thread, so the numbers do not depend on it).
@@ -539,7 +541,8 @@ def equivalent_pair_spread(
     splits: int = SPLIT_SEEDS,
 ):
     """:func:`equivalent_pair_accuracy` over ``splits`` split seeds from ``seed`` that hold out
-    different positions (the data sets' seed fixed).
+    different positions (the data sets' seed fixed). The design, the cache folder, ``n_jobs``
+    and ``splits`` are checked, as in :func:`ablation_accuracies`, before any data set is built.
 
     Returns
     -------

@@ -26,7 +26,7 @@ import numpy as np
 from joblib import Parallel, delayed
 from threadpoolctl import threadpool_limits
 
-from .._validate import check_choice, check_int, check_n_jobs, check_positive
+from .._validate import check_choice, check_int, check_n_jobs, check_positive, output_dir
 from ..fem.coupling import Rod
 from ..probe import material
 from ..signal import fft_features
@@ -67,6 +67,19 @@ ABLATION_DESIGN = replace(PAPER_DESIGN, name="controls-3rep", repetitions=3)
 #: How many split seeds every control is measured with (the data set's seed fixed): the
 #: accuracy's spread over them is a second measure of its uncertainty.
 SPLIT_SEEDS = 5
+
+
+def _check_build(design, cache_dir, n_jobs, splits) -> None:
+    """Refuse, naming the parameter and before any data set is built, a ``design`` that is not a
+    :class:`~ebantenna.simulate.DatasetDesign`, a ``cache_dir`` that cannot hold the data sets
+    (not a path, a file, a folder that refuses files: ``_validate.output_dir``), an ``n_jobs``
+    that is not -1, None or a count of workers within the machine's cores, and fewer than two
+    ``splits``."""
+    if not isinstance(design, DatasetDesign):
+        raise TypeError(f"design must be a DatasetDesign, got {type(design).__name__}")
+    output_dir("cache_dir", cache_dir)
+    check_n_jobs("n_jobs", n_jobs)
+    check_int("splits", splits, minimum=2)
 
 
 def _check_dataset(ds) -> None:
@@ -269,7 +282,9 @@ def ablation_accuracies(
     seed : int
         Seed of the data set and of the split.
     cache_dir : path
-        Where the data sets are cached (one file per ablated scene).
+        Where the data sets are cached (one file per ablated scene): a folder that accepts new
+        files, or one that can be made. The design, the cache folder, ``n_jobs`` and
+        ``splits`` are checked before any data set is built.
     n_jobs : int
         Worker processes of each build, and of the fits (every fold of every data set in one
         pool; each fit on one BLAS thread, so the numbers do not depend on it).
@@ -302,6 +317,7 @@ def ablation_accuracies(
             f"names must be effects of the scene ({', '.join(scene.effect_names)}); got {unknown}"
         )
     seed = check_int("seed", seed, minimum=0)
+    _check_build(design, cache_dir, n_jobs, splits)
 
     scenes = {"none": scene}
     together, refused, changed = {}, {}, {}
@@ -525,7 +541,8 @@ def equivalent_pair_spread(
     splits: int = SPLIT_SEEDS,
 ):
     """:func:`equivalent_pair_accuracy` over ``splits`` split seeds from ``seed`` that hold out
-    different positions (the data sets' seed fixed).
+    different positions (the data sets' seed fixed). The design, the cache folder, ``n_jobs``
+    and ``splits`` are checked, as in :func:`ablation_accuracies`, before any data set is built.
 
     Returns
     -------
@@ -544,6 +561,7 @@ def equivalent_pair_spread(
     [0, 0]
     """
     check_choice("classifier", classifier, ("svm", "mode_curves"))
+    _check_build(design, cache_dir, n_jobs, splits)
     parts = []
     for s, name, data_seed in zip(equivalent_pair_scenes(scene, reference=reference, other=other),
                                   (reference, other), twin_seeds(seed), strict=True):

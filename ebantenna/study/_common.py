@@ -6,12 +6,21 @@ import numpy as np
 from joblib import Parallel, delayed
 from threadpoolctl import threadpool_limits
 
+from .._validate import check_bool, check_int, check_n_jobs, describe, output_dir
 from ..paper import experiments
+from ..paper.feature_table import SignalFeatures
 from ..paper.mode_curves import classify_materials_by_mode_curves
 from ..paper.position_aware import classify_materials_position_aware
+from ..probe import Probe
+from ..report import FigureSet, Report
+from ..simulate import Dataset, Scene
 
 __all__ = ["beyond_chance", "per_contact", "probe_length", "pct", "BLAS_THREADS", "blas_limited",
-           "fits_in_parallel", "classifier_call"]
+           "fits_in_parallel", "classifier_call", "MAX_SEED", "check_step", "check_instance",
+           "check_render"]
+
+#: The largest seed: scikit-learn takes 32-bit seeds, and the splits use ``seed + 1`` too.
+MAX_SEED = 2**32 - 2
 
 #: BLAS threads while a step of a study runs. Measured side by side with
 #: ``python benchmarks/study_blas_threads.py`` (the quick study, two cores): no step ran faster
@@ -133,3 +142,108 @@ def beyond_chance(accuracy: float, chance: float, n: int) -> bool:
     (True, False)
     """
     return bool(accuracy - chance > 2 * np.sqrt(chance * (1 - chance) / n))
+
+
+def check_instance(name: str, value, kind: type, *, optional: bool = False):
+    """Return ``value``; a :class:`TypeError` naming ``name`` unless it is a ``kind`` (or None,
+    when ``optional``).
+
+    Examples
+    --------
+    >>> check_instance("result", 5, Report)
+    Traceback (most recent call last):
+    ...
+    TypeError: result must be a Report, got 5 (int)
+    """
+    if not (isinstance(value, kind) or (optional and value is None)):
+        also = " or None" if optional else ""
+        raise TypeError(f"{name} must be a {kind.__name__}{also}, got {describe(value)} "
+                        f"({type(value).__name__})")
+    return value
+
+
+def _check_materials(materials, ds) -> None:
+    """Refuse ``materials`` unless it is a sequence of distinct names of ``ds``'s materials."""
+    if isinstance(materials, str | bytes) or not hasattr(materials, "__iter__"):
+        raise TypeError(f"materials must be a sequence of material names, got "
+                        f"{describe(materials)} ({type(materials).__name__})")
+    names = list(materials)
+    if not names or not all(isinstance(m, str) for m in names):
+        raise TypeError(f"materials must be a non-empty sequence of material names (str), got "
+                        f"{describe(materials)}")
+    if len(set(names)) < len(names):
+        raise ValueError(f"materials must name each material once, got {describe(materials)}")
+    if ds is not None:
+        absent = [m for m in names if m not in set(ds.material.tolist())]
+        if absent:
+            raise ValueError(f"materials must be materials of the data set "
+                             f"({', '.join(dict.fromkeys(ds.material.tolist()))}); "
+                             f"{', '.join(map(repr, absent))} is not")
+
+
+#: The default of :func:`check_step`'s parameters: an argument the step does not take.
+_NOT_GIVEN = object()
+
+
+def check_step(*, probe=_NOT_GIVEN, scene=_NOT_GIVEN, ds=_NOT_GIVEN, feats=_NOT_GIVEN,
+               materials=_NOT_GIVEN, seed=_NOT_GIVEN, quick=_NOT_GIVEN, cache_dir=_NOT_GIVEN,
+               n_jobs=_NOT_GIVEN) -> None:
+    """Refuse, naming the parameter, the arguments of a study step's ``compute`` that it cannot
+    run on, before any work starts; only the arguments given are checked (None included).
+
+    ``probe`` a :class:`~ebantenna.probe.Probe`; ``scene`` a
+    :class:`~ebantenna.simulate.Scene`; ``ds`` a :class:`~ebantenna.simulate.Dataset`;
+    ``feats`` the :class:`~ebantenna.paper.feature_table.SignalFeatures` of its rows, one row per
+    recording of ``ds``; ``materials`` distinct names of ``ds``'s materials; ``seed`` an
+    integer in 0 ... :data:`MAX_SEED`; ``quick`` True or False (a string such as ``"no"`` would
+    be taken as true); ``cache_dir`` a folder that exists and accepts files, or can be made
+    (``_validate.output_dir``; not made here); ``n_jobs`` -1 or a count of workers, at most
+    the machine's cores (``_validate.check_n_jobs``; not None: a step's fits need a count).
+
+    Examples
+    --------
+    >>> check_step(seed=0, quick=True)
+    >>> check_step(quick="no")
+    Traceback (most recent call last):
+    ...
+    TypeError: quick must be True or False, got 'no' (str)
+    """
+    for name, value, kind in (("probe", probe, Probe), ("scene", scene, Scene),
+                              ("ds", ds, Dataset), ("feats", feats, SignalFeatures)):
+        if value is not _NOT_GIVEN:
+            check_instance(name, value, kind)
+    if feats is not _NOT_GIVEN and ds is not _NOT_GIVEN:
+        rows = {np.shape(feats.dominant)[:1], np.shape(feats.fft)[:1]}
+        if rows != {(ds.n_signals,)}:
+            raise ValueError(f"feats must hold one row per recording of ds ({ds.n_signals}), got "
+                             f"{sorted(r[0] if r else 0 for r in rows)}")
+    if materials is not _NOT_GIVEN:
+        _check_materials(materials, None if ds is _NOT_GIVEN else ds)
+    if seed is not _NOT_GIVEN:
+        check_int("seed", seed, minimum=0, maximum=MAX_SEED)
+    if quick is not _NOT_GIVEN:
+        check_bool("quick", quick)
+    if cache_dir is not _NOT_GIVEN:
+        output_dir("cache_dir", cache_dir)
+    if n_jobs is not _NOT_GIVEN:
+        if n_jobs is None:
+            raise TypeError("n_jobs must be -1 (every core) or a count of workers >= 1, got None")
+        check_n_jobs("n_jobs", n_jobs)
+
+
+def check_render(result, kind: type, report, figures, *, optional: bool = False) -> None:
+    """Refuse, naming the parameter, what a study step's ``render`` cannot write: a ``result``
+    that is not the step's ``kind`` (or None, when the step may have measured nothing:
+    ``optional``), a ``report`` that is not a :class:`~ebantenna.report.Report`, ``figures``
+    that are not a :class:`~ebantenna.report.FigureSet`.
+
+    Examples
+    --------
+    >>> check_render(None, Report, Report("t"), None)
+    Traceback (most recent call last):
+    ...
+    TypeError: result must be a Report, got None (NoneType)
+    """
+    check_instance("result", result, kind, optional=optional)
+    check_instance("report", report, Report)
+    check_instance("figures", figures, FigureSet)

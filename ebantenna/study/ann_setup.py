@@ -34,6 +34,7 @@ from ..paper.uncertainty import (
     percent,
     training_entries,
 )
+from ._common import check_render, check_step
 from .learning import stop_sentence
 from .seed_spread import SUBSET_REPETITIONS
 
@@ -187,6 +188,7 @@ QUICK_LONG_EPOCHS = 300
 def compute(ds, feats, seed: int, quick: bool = False) -> AnnSetupResult:
     """Each run of :data:`RUNS` and the long run on the subset, seed ``seed`` for the split and
     the weights (the long run capped at ``QUICK_LONG_EPOCHS`` when ``quick``)."""
+    check_step(ds=ds, feats=feats, seed=seed, quick=quick)
     rows = np.flatnonzero(np.asarray(ds.repetition) < SUBSET_REPETITIONS)
     X, y, d = feats.fft[rows], ds.material[rows], np.asarray(ds.contact)[rows]
     runs = {}
@@ -220,6 +222,7 @@ def compute(ds, feats, seed: int, quick: bool = False) -> AnnSetupResult:
 
 def render(result: AnnSetupResult, report, figures) -> None:
     """The runs' table, the long run, and what they say about the gap to the paper's 80.8 %."""
+    check_render(result, AnnSetupResult, report, figures)
     report.heading("Why the paper's network scores lower here: its training budget")
     report.paragraph(
         "The paper trains its network by gradient descent in MATLAB but states neither the "

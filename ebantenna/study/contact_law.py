@@ -22,6 +22,7 @@ from ..paper.uncertainty import clustered_entries, format_clustered
 from ..probe import material
 from ..simulate import build_dataset
 from ..simulate.effects import HertzContact
+from ._common import check_render, check_step
 from .physics_controls import control_design, mode_curve_spread
 
 __all__ = ["LAWS", "ContactLawResult", "compute", "render"]
@@ -100,6 +101,7 @@ def _accuracies(ds, seed: int, n_jobs: int):
 def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ContactLawResult | None:
     """Build the controls' design under both laws and classify it; None when the scene has no
     ``object_modes`` effect (no rod, no strike)."""
+    check_step(scene=scene, seed=seed, quick=quick, cache_dir=cache_dir, n_jobs=n_jobs)
     obj = scene.effect("object_modes")
     if obj is None:
         return None
@@ -123,6 +125,7 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ContactLaw
 
 def render(result: ContactLawResult | None, report, figures) -> None:
     """The two laws side by side, and what the difference means."""
+    check_render(result, ContactLawResult, report, figures, optional=True)
     if result is None:
         return
     r = result

@@ -7,6 +7,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._common import check_render, check_step
+
 __all__ = ["DatasetResult", "compute", "render"]
 
 
@@ -58,6 +60,7 @@ class DatasetResult:
 
 def compute(ds) -> DatasetResult:
     """Describe the data set ``ds`` (an :class:`ebantenna.simulate.Dataset`)."""
+    check_step(ds=ds)
     return DatasetResult(
         path=str(ds.path) if ds.path else None,
         signals=ds.n_signals,
@@ -71,6 +74,7 @@ def compute(ds) -> DatasetResult:
 
 def render(result: DatasetResult, report, figures) -> None:
     """One paragraph: what the data set holds and where it came from."""
+    check_render(result, DatasetResult, report, figures)
     report.heading("Data set")
     report.paragraph(
         f"{result.signals} simulated recordings of {result.samples} samples at {result.fs:g} Hz: "

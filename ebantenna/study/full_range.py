@@ -12,7 +12,7 @@ from ..paper.estimators import FrequencyDistanceEstimator, MultiModeDistanceEsti
 from ..paper.mode_curves import ModeCurveClassifier
 from ..paper.protocol import DISTANCE_LINEAR_REGION
 from ..paper.uncertainty import ClusteredAccuracy, clustered_entries, format_clustered
-from ._common import per_contact, probe_length
+from ._common import check_render, check_step, per_contact, probe_length
 
 __all__ = ["FullRangeResult", "compute", "render"]
 
@@ -85,6 +85,7 @@ class FullRangeResult:
 
 def compute(ds, feats) -> FullRangeResult:
     """Calibrate on every other contact position, test on the ones in between."""
+    check_step(ds=ds, feats=feats)
     grid = np.unique(ds.contact)
     # The estimate must interpolate, it cannot just recognise a position it has seen.
     calibration = np.isin(ds.contact, grid[::2])
@@ -144,6 +145,7 @@ def _step_cm(r: FullRangeResult) -> str:
 
 def render(result: FullRangeResult, report, figures) -> None:
     """The error along the probe, one mode against two, and its table."""
+    check_render(result, FullRangeResult, report, figures)
     r = result
     name = _plot_error_along_probe(r, figures)
     report.heading("Beyond the paper: contact distance over the whole probe")

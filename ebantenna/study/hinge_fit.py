@@ -8,6 +8,7 @@ import numpy as np
 
 from ..fem.hinge import HingeFit, fit_hinge_and_tip
 from ..paper import printed
+from ._common import check_render, check_step
 
 __all__ = ["HingeResult", "compute", "render"]
 
@@ -54,6 +55,7 @@ class HingeResult:
 
 def compute(probe, quick: bool) -> HingeResult:
     """Fit the hinge and the tip mass to the paper's 29.5 cm of 40 and 39.5 cm of 50."""
+    check_step(probe=probe, quick=quick)
     observed = [printed.DEVIATION_CM.value / 100, printed.DEVIATION_50CM_PROBE_CM.value / 100]
     fit = fit_hinge_and_tip(
         probe, LENGTHS, observed, grid=3 if quick else 7, n_elements=16 if quick else 48
@@ -63,6 +65,7 @@ def compute(probe, quick: bool) -> HingeResult:
 
 def render(result: HingeResult, report, figures) -> None:
     """The fit, its residuals and the verdict in plain words."""
+    check_render(result, HingeResult, report, figures)
     f = result.fit
     report.heading("The hinge: one stiffness and one tip mass for both probes?")
     report.paragraph(

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._validate import check_bool
 from ..paper import experiments, printed
 from ..paper.plots import plot_confusion_comparison, plot_distance_errors
 from ..paper.protocol import (
@@ -24,7 +25,7 @@ from ..paper.uncertainty import (
     percent,
     training_entries,
 )
-from ._common import probe_length
+from ._common import check_render, check_step, probe_length
 
 __all__ = ["LearningResult", "compute", "render"]
 
@@ -85,6 +86,7 @@ class LearningResult:
 
 def compute(ds, feats, seed: int) -> LearningResult:
     """Train and test the two classifiers and the two distance networks."""
+    check_step(ds=ds, feats=feats, seed=seed)
     svm = experiments.classify_materials_svm(feats.fft, ds.material, seed=seed)
     ann = experiments.classify_materials_ann(feats.fft, ds.material, seed=seed,
                                              max_iter=ANN_MAX_EPOCHS)
@@ -134,6 +136,8 @@ def render(result: LearningResult, report, figures, *, simulated: bool = True) -
     """Figs. 12-15, the accuracy and error tables and the confusion matrices as text
     (``simulated``: the data come from the simulator, and the report says how its materials
     differ)."""
+    check_render(result, LearningResult, report, figures)
+    check_bool("simulated", simulated)
     svm, ann, lin, full = result.svm, result.ann, result.linear_region, result.full_length
     fig12 = figures.save(plot_confusion_comparison(ann, printed.PAPER_ANN), "fig12_ann_confusion")
     fig15 = figures.save(plot_confusion_comparison(svm, printed.PAPER_SVM), "fig15_svm_confusion")

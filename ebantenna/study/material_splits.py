@@ -20,7 +20,14 @@ from ..paper.uncertainty import (
     percent,
     training_entries,
 )
-from ._common import classifier_call, fits_in_parallel, probe_length
+from ._common import (
+    check_instance,
+    check_render,
+    check_step,
+    classifier_call,
+    fits_in_parallel,
+    probe_length,
+)
 
 __all__ = ["MaterialSplitsResult", "TRAINERS", "STEP_SIZES", "CLASSIFIERS", "compute", "render"]
 
@@ -174,6 +181,10 @@ def compute(ds, feats, seed: int, *, random_svm, paper_ann, paper_distance,
     runs on one of ``n_jobs`` worker processes (``_common.fits_in_parallel``): the same
     numbers whatever ``n_jobs``.
     """
+    check_step(ds=ds, feats=feats, seed=seed, n_jobs=n_jobs)
+    check_instance("random_svm", random_svm, experiments.ClassificationResult)
+    check_instance("paper_ann", paper_ann, experiments.ClassificationResult)
+    check_instance("paper_distance", paper_distance, experiments.RegressionResult)
     X, y, positions = feats.fft, ds.material, ds.contact
     length = probe_length(ds)
     folds = {kind: ([split_rows(kind, y, positions, seed=seed)] if kind == "random"
@@ -249,6 +260,7 @@ def _positions_cm(p) -> str:
 def render(result: MaterialSplitsResult, report, figures) -> None:
     """The three splits side by side, the position-aware classifier, the mode-curve classifier
     and the trainers, each a section of the report."""
+    check_render(result, MaterialSplitsResult, report, figures)
     _render_splits(result, report)
     _render_position_aware(result, report)
     _render_mode_curves(result, report, figures)

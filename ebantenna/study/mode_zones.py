@@ -12,6 +12,7 @@ from ..fem.symbolic import PAPER_NOTES, paper_errata
 from ..paper import printed
 from ..paper.protocol import TIME_FREQUENCY_RATIOS
 from ..probe import Probe
+from ._common import check_render, check_step
 
 __all__ = ["ModesResult", "compute", "render"]
 
@@ -71,6 +72,7 @@ def compute(probe, quick: bool) -> ModesResult:
     quick : bool
         50 contacts for the zones instead of 99.
     """
+    check_step(probe=probe, quick=quick)
     L = probe.length
     contacts = np.linspace(0.01, 0.99, 50 if quick else 99) * L
     zones = dominant_mode_zones(probe, contacts)
@@ -97,6 +99,7 @@ def compute(probe, quick: bool) -> ModesResult:
 
 def render(result: ModesResult, report, figures) -> None:
     """Figures 16 and 17, the comparison table and the errata."""
+    check_render(result, ModesResult, report, figures)
     fig16, fig17 = _plot_zones(result, figures), _plot_mode_shapes(result, figures)
     _render_zones(result, report, fig16, fig17)
     _render_two_elements_against_exact(result, report)

@@ -7,6 +7,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from .._validate import check_bool
 from ..fem.coupling import Rod
 from ..paper.controls import (
     ABLATION_DESIGN,
@@ -32,7 +33,7 @@ from ..paper.uncertainty import (
 )
 from ..probe import material
 from ..simulate import build_dataset, dataset_plan, simulate_batch
-from ._common import classifier_call, fits_in_parallel
+from ._common import check_render, check_step, classifier_call, fits_in_parallel
 
 __all__ = [
     "ControlsResult", "ENERGY_ABSORPTION", "PAIR_REFERENCES", "control_design", "compute",
@@ -62,6 +63,7 @@ def control_design(quick: bool):
     >>> control_design(False).repetitions
     3
     """
+    check_bool("quick", quick)
     return replace(QUICK_DESIGN, name="controls-quick", repetitions=1) if quick else ABLATION_DESIGN
 
 
@@ -229,6 +231,7 @@ class ControlsResult:
 def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ControlsResult:
     """Run the ablation over every effect of ``scene`` and, if it has rod modes, the pair, the
     two contact laws, the moved contact height and the friction along the rod."""
+    check_step(scene=scene, seed=seed, quick=quick, cache_dir=cache_dir, n_jobs=n_jobs)
     design = control_design(quick)
     ablation = ablation_accuracies(
         scene, design=design, seed=seed, cache_dir=cache_dir, n_jobs=n_jobs
@@ -386,6 +389,7 @@ def _contact_laws(scene):
 def render(result: ControlsResult, report, figures) -> None:
     """The ablation table and the pair, with what they mean; then, where they were measured,
     the contact that only pushes, the moved contact height and the friction along the rod."""
+    check_render(result, ControlsResult, report, figures)
     r = result
     _render_ablation(r, report)
     _render_equivalent_pair(r, report)

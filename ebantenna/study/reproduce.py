@@ -63,7 +63,7 @@ from . import (
     signals,
     time_frequency,
 )
-from ._common import blas_limited
+from ._common import MAX_SEED, blas_limited
 
 __all__ = ["StudyResult", "reproduce", "default_cache_dir"]
 
@@ -139,10 +139,6 @@ class _Timer:
 
     def close(self):
         self._bar.close()
-
-
-#: The largest seed: scikit-learn takes 32-bit seeds, and the splits use ``seed + 1`` too.
-MAX_SEED = 2**32 - 2
 
 
 def _directory(name: str, path) -> Path:

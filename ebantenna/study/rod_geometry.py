@@ -22,6 +22,7 @@ from ..paper.data import PAPER_DESIGN
 from ..paper.uncertainty import clustered_entries, format_clustered, percent
 from ..probe import material
 from ..simulate import build_dataset
+from ._common import check_render, check_step
 from .physics_controls import control_design, mode_curve_spread
 
 __all__ = ["DIAMETER_FACTORS", "LENGTH_FACTORS", "GAP_POSITIONS", "GeometryResult",
@@ -144,6 +145,7 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> GeometryRe
     """The scene's rod and each of its diameter and free length varied alone
     (:data:`DIAMETER_FACTORS`, :data:`LENGTH_FACTORS`), on the controls' design; None without
     rod modes."""
+    check_step(scene=scene, seed=seed, quick=quick, cache_dir=cache_dir, n_jobs=n_jobs)
     effect = scene.effect("object_modes")
     if effect is None:
         return None
@@ -177,6 +179,7 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> GeometryRe
 
 def render(result: GeometryResult | None, report, figures) -> None:
     """The sensitivity table and what it shows, generated from its numbers."""
+    check_render(result, GeometryResult, report, figures, optional=True)
     if result is None:
         return
     report.heading("How much the accuracies owe to the assumed rod")

@@ -16,7 +16,7 @@ import numpy as np
 from ..paper import experiments
 from ..paper.splits import SPLITS, split_folds
 from ..paper.uncertainty import UNITS, FoldAccuracy, clustered_entries, format_clustered, percent
-from ._common import classifier_call, fits_in_parallel
+from ._common import check_instance, check_render, check_step, classifier_call, fits_in_parallel
 
 __all__ = ["SPLIT_SEEDS", "SUBSET_REPETITIONS", "TRAINING_REPETITIONS", "CLASSIFIERS",
            "SeedSpreadResult", "compute", "render"]
@@ -100,6 +100,8 @@ def compute(ds, feats, seed: int, grouped_full: FoldAccuracy, n_jobs: int = 1) -
     SVM over all folds on 1, 3, 5 repetitions; ``grouped_full`` is the whole data set's grouped
     SVM over its folds, already measured. Every fit runs on one of ``n_jobs`` worker processes
     (``_common.fits_in_parallel``): the same numbers whatever ``n_jobs``."""
+    check_step(ds=ds, feats=feats, seed=seed, n_jobs=n_jobs)
+    check_instance("grouped_full", grouped_full, FoldAccuracy)
     rows = _subset(ds, SUBSET_REPETITIONS)
     X, y, d = feats.fft[rows], ds.material[rows], ds.contact[rows]
     peaks, dominant = feats.peaks[rows], feats.dominant[rows]
@@ -136,6 +138,7 @@ def compute(ds, feats, seed: int, grouped_full: FoldAccuracy, n_jobs: int = 1) -
 
 def render(result: SeedSpreadResult, report, figures) -> None:
     """The folds' spread against the binomial one, and the repetitions' table."""
+    check_render(result, SeedSpreadResult, report, figures)
     report.heading("How much the numbers carry: folds, clusters and repetitions")
     report.paragraph(
         "Every recording is tested once over the folds of a split. Were the recordings "

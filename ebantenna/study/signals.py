@@ -9,7 +9,7 @@ import numpy as np
 
 from ..paper import printed
 from ..paper.protocol import DECAY_REGION
-from ._common import per_contact, probe_length
+from ._common import check_render, check_step, per_contact, probe_length
 
 __all__ = ["FrequencyResult", "DecayResult", "compute_frequency", "render_frequency",
            "compute_decay", "render_decay"]
@@ -51,6 +51,7 @@ class FrequencyResult:
 
 def compute_frequency(ds, feats, materials) -> FrequencyResult:
     """Median dominant frequency per material and contact, and its spread over all recordings."""
+    check_step(ds=ds, feats=feats, materials=materials)
     per_material = []
     for m in materials:
         sel = ds.material == m
@@ -65,6 +66,7 @@ def compute_frequency(ds, feats, materials) -> FrequencyResult:
 
 def render_frequency(result: FrequencyResult, report, figures) -> None:
     """Figs. 9 and 10 and the comparison with the paper."""
+    check_render(result, FrequencyResult, report, figures)
     import matplotlib.pyplot as plt
 
     L = result.length
@@ -133,6 +135,7 @@ class DecayResult:
 
 def compute_decay(ds, feats, materials) -> DecayResult:
     """Median gain and time constant per material along the first 80 % of the probe."""
+    check_step(ds=ds, feats=feats, materials=materials)
     region = ds.contact <= DECAY_REGION * probe_length(ds)
     per_material = []
     for m in materials:
@@ -151,6 +154,7 @@ def compute_decay(ds, feats, materials) -> DecayResult:
 
 def render_decay(result: DecayResult, report, figures) -> None:
     """Fig. 11 and the table of medians."""
+    check_render(result, DecayResult, report, figures)
     import matplotlib.pyplot as plt
 
     fig, (ag, at) = plt.subplots(1, 2, figsize=(12, 4))

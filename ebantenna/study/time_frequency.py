@@ -9,6 +9,7 @@ import numpy as np
 from ..paper.protocol import TIME_FREQUENCY_RATIOS
 from ..signal import morlet_scalogram, spectrogram
 from ..simulate import simulate
+from ._common import check_render, check_step
 
 __all__ = ["TimeFrequencyResult", "compute", "render"]
 
@@ -39,6 +40,7 @@ class TimeFrequencyResult:
 
 def compute(scene, seed: int) -> TimeFrequencyResult:
     """Simulate a brass contact at each ratio and map its sweep-plane acceleration."""
+    check_step(scene=scene, seed=seed)
     L = scene.probe.length
     frequencies = np.linspace(5, 450, 120)
     spectrograms, scalograms = [], []
@@ -53,6 +55,7 @@ def compute(scene, seed: int) -> TimeFrequencyResult:
 
 def render(result: TimeFrequencyResult, report, figures) -> None:
     """Figs. 18 and 19 in one figure."""
+    check_render(result, TimeFrequencyResult, report, figures)
     import matplotlib.pyplot as plt
 
     n = len(result.ratios)

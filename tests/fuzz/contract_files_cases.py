@@ -105,6 +105,33 @@ def rows_by_surface(rows) -> dict[str, list[str]]:
     return out
 
 
+def row_tests(all_rows, prefix: str = "") -> tuple:
+    """What every row file defines, for the rows ``all_rows()`` returns: ``(IDS,
+    test_the_rows_are_distinct, test_every_row_ends_in_a_clear_error_or_the_right_answer,
+    contract_rows)``, each row's id its surface without ``prefix``, then the row's own id.
+
+    A row file assigns them to those names, so that pytest collects the two tests and the
+    inventory test reads ``contract_rows``.
+    """
+    import pytest
+
+    ids = [f"{row.surface.removeprefix(prefix)}:{row.id}" for row in all_rows()]
+
+    def test_the_rows_are_distinct():
+        assert len(set(ids)) == len(ids)
+
+    @pytest.mark.parametrize("index", range(len(ids)), ids=ids)
+    def test_every_row_ends_in_a_clear_error_or_the_right_answer(index):
+        check_row(all_rows()[index], ids[index])
+
+    def contract_rows() -> dict[str, list[str]]:
+        """The surfaces these rows cover (read by the inventory test)."""
+        return rows_by_surface(all_rows())
+
+    return ids, test_the_rows_are_distinct, \
+        test_every_row_ends_in_a_clear_error_or_the_right_answer, contract_rows
+
+
 def outcome(case: Case) -> tuple[str, str]:
     """Run ``case`` and return its class and a short description of what happened."""
     previous = signal.signal(signal.SIGALRM, _on_alarm)

@@ -13,7 +13,8 @@ The *inventory* (:func:`inventory`) is read from the code, never written by hand
 - every file format the package reads (``file:plan``), from ``ebantenna._files.FILE_FORMATS``.
 
 *Rows* come from any module ``tests/fuzz/test_*.py`` (``test_contract_*.py`` by convention) or
-``tests/cli/test_*.py`` that defines ``contract_rows()``: a mapping from a surface's name (its
+``tests/cli/test_*.py`` that defines ``contract_rows()`` (or assigns it, with its two tests, from
+``contract_files_cases.row_tests``): a mapping from a surface's name (its
 entry, or any unique ending of it or of one of its aliases, such as ``SVC.fit``) to the ids
 of the rows that give it bad input. An engineer who adds a public name adds its rows in a file
 of their own, and nothing else. A module may also define ``contract_exempt()``,
@@ -159,8 +160,8 @@ def collect_rows() -> dict[str, dict[str, list[str]]]:
         if folder not in sys.path:
             sys.path.insert(0, folder)
     for path in row_modules():
-        if "def contract_rows" not in path.read_text(encoding="utf-8"):
-            continue  # no rows: not imported
+        if "contract_rows" not in path.read_text(encoding="utf-8"):
+            continue  # no rows (defined, or assigned from contract_files_cases.row_tests)
         name = path.stem
         if name in sys.modules and getattr(sys.modules[name], "__file__", None) and Path(
                 sys.modules[name].__file__).resolve() == path:

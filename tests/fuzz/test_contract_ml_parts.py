@@ -24,11 +24,10 @@ import sys
 import warnings
 
 import numpy as np
-import pytest
 import scipy.sparse as sp
 
 sys.path.insert(0, os.path.dirname(__file__))
-from contract_files_cases import Row, check_row, rows_by_surface  # noqa: E402
+from contract_files_cases import Row, row_tests  # noqa: E402
 
 from ebantenna.ml import (  # noqa: E402
     SVC,
@@ -581,18 +580,5 @@ def all_rows():
     return _estimator_rows() + _network_rows() + _smo_rows() + _kernel_rows() + _ovo_platt_rows()
 
 
-IDS = [f"{row.surface.removeprefix('ebantenna.ml.')}:{row.id}" for row in all_rows()]
-
-
-def test_the_rows_are_distinct():
-    assert len(set(IDS)) == len(IDS)
-
-
-@pytest.mark.parametrize("index", range(len(IDS)), ids=IDS)
-def test_every_row_ends_in_a_clear_error_or_the_right_answer(index):
-    check_row(all_rows()[index], IDS[index])
-
-
-def contract_rows() -> dict[str, list[str]]:
-    """The surfaces these rows cover (read by the inventory test)."""
-    return rows_by_surface(all_rows())
+(IDS, test_the_rows_are_distinct, test_every_row_ends_in_a_clear_error_or_the_right_answer,
+ contract_rows) = row_tests(all_rows, 'ebantenna.ml.')

@@ -20,10 +20,9 @@ import os
 import sys
 
 import numpy as np
-import pytest
 
 sys.path.insert(0, os.path.dirname(__file__))
-from contract_files_cases import Row, check_row, rows_by_surface  # noqa: E402
+from contract_files_cases import Row, row_tests  # noqa: E402
 
 from ebantenna import Probe  # noqa: E402
 from ebantenna.probe import material  # noqa: E402
@@ -159,18 +158,5 @@ def all_rows():
     ]
 
 
-IDS = [f"{row.surface.removeprefix('ebantenna.simulate.')}:{row.id}" for row in all_rows()]
-
-
-def test_the_rows_are_distinct():
-    assert len(set(IDS)) == len(IDS)
-
-
-@pytest.mark.parametrize("index", range(len(IDS)), ids=IDS)
-def test_every_row_ends_in_a_clear_error_or_the_right_answer(index):
-    check_row(all_rows()[index], IDS[index])
-
-
-def contract_rows() -> dict[str, list[str]]:
-    """The surfaces these rows cover (read by the inventory test)."""
-    return rows_by_surface(all_rows())
+(IDS, test_the_rows_are_distinct, test_every_row_ends_in_a_clear_error_or_the_right_answer,
+ contract_rows) = row_tests(all_rows, 'ebantenna.simulate.')

@@ -125,9 +125,9 @@ numpydoc_xref_ignore = {
     "matplotlib", "sympy",
     # sizes in a shape
     "n", "m", "k", "p", "N", "n_SV", "n_bins", "n_classes", "n_contacts", "n_distances",
-    "n_elements", "n_features", "n_fft", "n_freqs", "n_labels", "n_modes", "n_nodes", "n_outputs",
-    "n_pairs", "n_recordings", "n_rods", "n_samples", "n_sections", "n_signals", "n_states",
-    "n_terms", "n_times",
+    "n_elements", "n_features", "n_fft", "n_freqs", "n_int", "n_labels", "n_modes", "n_nodes",
+    "n_outputs", "n_pairs", "n_recordings", "n_rods", "n_samples", "n_sections", "n_signals",
+    "n_states", "n_terms", "n_times",
     # names of the parts of a tuple
     "key", "header", "format", "field", "low", "high", "time", "axis", "angle", "address",
     "register",

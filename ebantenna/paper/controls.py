@@ -142,9 +142,10 @@ def _fold_fit(X, y, contact, split_seed: int) -> tuple:
     return (result.accuracies["test"], result.counts["test"], result.rows(), result.correct())
 
 
-def _fold_fits(calls, n_jobs: int) -> list:
-    """:func:`_fold_fit` of every call ``(X, y, contact, split_seed)``, on ``n_jobs`` workers,
-    in the order of ``calls``."""
+def _fold_fits(calls, n_jobs) -> list:
+    """:func:`_fold_fit` of every call ``(X, y, contact, split_seed)``, on ``n_jobs`` workers
+    (None: one), in the order of ``calls``."""
+    n_jobs = check_n_jobs("n_jobs", n_jobs) or 1
     if n_jobs == 1 or len(calls) < 2:
         return [_fold_fit(*call) for call in calls]
     return Parallel(n_jobs=min(n_jobs, len(calls)))(delayed(_fold_fit)(*call) for call in calls)
@@ -154,7 +155,7 @@ def _grouped_svm_spreads(datasets, *, seed: int, splits: int, n_jobs: int) -> li
     """:func:`grouped_svm_spread` of every data set of ``datasets``, all their folds fitted in
     one pool of ``n_jobs`` workers (a control has a dozen data sets of five folds each)."""
     count = check_int("splits", splits, minimum=2)
-    n_jobs = check_n_jobs("n_jobs", n_jobs) or 1
+    check_n_jobs("n_jobs", n_jobs)  # before the features, not after
     plans = []
     for ds in datasets:
         _check_dataset(ds)
@@ -573,23 +574,21 @@ def equivalent_pair_spread(
     az = np.vstack([np.asarray(p.az, float) for p in parts])
     y = np.concatenate([p.material for p in parts])
     contact = np.concatenate([p.contact for p in parts])
-    if classifier == "svm":
-        X = fft_features(ax, az)
-    else:
-        feats = signal_features(ax, az, parts[0].fs, n_jobs=n_jobs, show_progress=False)
-
-    def measure(split_seed):
-        result = classify_materials_by_mode_curves(feats.peaks, feats.dominant, y, contact,
-                                                   grouped_split(contact, seed=split_seed))
-        return (result.accuracies["test"], result.counts["test"], result.rows(),
-                result.correct())
-
     seeds = distinct_split_seeds("grouped", y, contact, seed=seed,
                                  count=check_int("splits", splits, minimum=2))
     if classifier == "svm":  # the folds' fits on the workers
-        fitted = dict(zip(seeds, _fold_fits([(X, y, contact, s) for s in seeds],
-                                            check_n_jobs("n_jobs", n_jobs) or 1), strict=True))
-        measure = fitted.__getitem__
+        X = fft_features(ax, az)
+        measure = dict(zip(seeds, _fold_fits([(X, y, contact, s) for s in seeds], n_jobs),
+                           strict=True)).__getitem__
+    else:
+        feats = signal_features(ax, az, parts[0].fs, n_jobs=n_jobs, show_progress=False)
+
+        def measure(split_seed):
+            result = classify_materials_by_mode_curves(feats.peaks, feats.dominant, y, contact,
+                                                       grouped_split(contact, seed=split_seed))
+            return (result.accuracies["test"], result.counts["test"], result.rows(),
+                    result.correct())
+
     spread = seed_spread(measure, seeds)
     spread.positions = contact
     return spread

@@ -8,24 +8,13 @@ from __future__ import annotations
 import json
 
 import pytest
+from test_device_trust import _search  # the rig, the chip and one search, as there
 
 from ebantenna.cli import main
-from ebantenna.device import MPU6050, PCA9685, PanTilt, SimulatedRig, search_and_record
 from ebantenna.device.i2c import BusHealth
-from ebantenna.device.oe import OutputEnable
 from ebantenna.device.safety import MAX_HELD_RETRY, ReleaseError, ServoGuard
 from ebantenna.device.simulated import Faults
 from ebantenna.device.watchdog import StreamStalledError
-
-
-def _search(faults, oe, seed=1):
-    rig = SimulatedRig.for_contact(seed=seed, faults=faults)
-    unit = PanTilt(PCA9685(rig.bus, clock=rig.clock))
-    unit.initialize()
-    mpu = MPU6050(rig.bus, clock=rig.clock)
-    mpu.initialize()
-    output_enable = OutputEnable(rig.oe_line()) if oe else None
-    return rig, mpu, lambda: search_and_record(mpu, unit, output_enable=output_enable)
 
 
 @pytest.fixture(scope="module")

@@ -39,6 +39,7 @@ from the start, so that the law raises or warns as it says.
 
 from __future__ import annotations
 
+import abc
 import functools
 import math
 from dataclasses import dataclass
@@ -228,7 +229,7 @@ def after(st, x, z, steps):
     return st.at(x, z, steps * st.blocks.h)
 
 
-class LawBlocks:
+class LawBlocks(abc.ABC):
     """What the engine asks of a law besides the reference's interface: its adapter.
 
     The defaults suit a law with nothing but its states. A subclass per law gives the states
@@ -243,9 +244,9 @@ class LawBlocks:
     def __init__(self, law):
         self.law = law
 
+    @abc.abstractmethod
     def states(self) -> list:
         """Every :class:`.unilateral.LinearState` the march may read."""
-        raise NotImplementedError
 
     def horizon(self, i: int, n_steps: int) -> int:
         """How many steps from step ``i`` on the current state may be read ahead."""

@@ -21,8 +21,11 @@ A new model of the touched rod is one entry of :data:`OBJECT_MODELS`.
 :func:`signal_terms` is the simulator's step of the touched object (the second step of
 :data:`~ebantenna.simulate.simulator.CHAIN`): it runs the physics model, then lays out each
 signal's modal parameters as :class:`ModalTerms`, the modes side by side, zero-padded, each
-signal's row scaled by its sweep speed. Every function here takes values checked by the
-simulator's public entries (:mod:`ebantenna.simulate.simulator`).
+signal's row scaled by its sweep speed. The responses' step (the fourth) reads each axis from
+its model stepped in time (an :class:`ObjectModel`'s ``respond``) or from the sum of its modes
+(:func:`~ebantenna.simulate.modes.modal_acceleration`). Both steps sit at the end of this module
+(``CHAIN_STEPS``), and every function here takes values checked by the simulator's public
+entries (:mod:`ebantenna.simulate.simulator`).
 """
 
 from __future__ import annotations
@@ -50,6 +53,7 @@ from .modes import (
     arrest_modes,
     coupled_arrest_modes,
     damped_exponentials,
+    modal_acceleration,
     modal_exponentials,
 )
 from .scene import Scene
@@ -617,3 +621,42 @@ def signal_terms(
     zeta_s = damping.damping_ratio(scene.probe) if damping is not None else 0.0
     x = _x_terms(scene, modes, inverse, speeds, preloads, zeta_s)
     return x, _z_terms(scene, speeds, tilts, zeta_s), timed, inverse
+
+
+# ------------------------------------------------------------- the simulator's steps
+def _touched_object(_, batch) -> None:
+    """The touched object: the modal parameters of X and Z, and the models stepped in time."""
+    batch.x, batch.z, batch.timed, batch.inverse = signal_terms(
+        batch.scene,
+        batch.contacts,
+        batch.materials,
+        batch.speeds,
+        batch.tilts,
+        batch.preloads,
+        batch.show_progress,
+        batch.x_modes,
+    )
+
+
+def _axis_response(batch, axis: str) -> np.ndarray:
+    """One axis: from its model stepped in time, if the scene built one, else the sum of its
+    modes read at ``batch.when`` through the chip's filter (if listed)."""
+    for model in OBJECT_MODELS:
+        if model.axis == axis and model.respond is not None and model.name in batch.timed:
+            return model.respond(batch, batch.timed[model.name])
+    terms = batch.x if axis == "x" else batch.z
+    return modal_acceleration(batch.when, terms.amplitude, terms.omega, terms.zeta,
+                              low_pass=batch.chip_filter)
+
+
+def _respond(_, batch) -> None:
+    """The responses: X and Z after the arrest, read at the sample instants."""
+    batch.ax = _axis_response(batch, "x")
+    batch.az = _axis_response(batch, "z")
+
+
+#: The simulator's two steps that always run, written beside the models they run: each takes
+#: ``(effect, batch)`` and changes the simulator's
+#: :class:`~ebantenna.simulate.simulator.SignalBatch` in place, with values the simulator
+#: checked. :data:`ebantenna.simulate.simulator.CHAIN` puts them in order, and says why.
+CHAIN_STEPS = {"touched_object": _touched_object, "responses": _respond}

@@ -302,6 +302,8 @@ def _contact_cases(scene: Scene, probe: Probe, contact: float, rods: dict, pairs
     reduced = _probe_reduction(probe, contact, scene.hinge, scene.n_elements, obj.probe_modes)
     for name, preload in sorted(set(pairs)):
         rod, rod_reduced = rods[name]
+        stiffness, loss_factor = obj.contact_spring(rod.material, probe, object_loss=object_loss,
+                                                    preload=preload)
         yield ContactCase(
             scene=scene,
             probe=probe,
@@ -311,10 +313,8 @@ def _contact_cases(scene: Scene, probe: Probe, contact: float, rods: dict, pairs
             rod=rod,
             probe_reduction=reduced,
             rod_reduction=rod_reduced,
-            stiffness=obj.contact_stiffness(rod.material, probe, preload),
-            loss_factor=obj.contact_loss_factor(
-                rod.material, probe, object_loss=object_loss, preload=preload
-            ),
+            stiffness=stiffness,
+            loss_factor=loss_factor,
         )
 
 

@@ -39,11 +39,13 @@ from ..fem import Supports, modal_analysis
 from ..fem.assembly import assemble
 from ..fem.coupling import coupled_modes
 from ..probe import Probe
+from .structure import check_case
 
 __all__ = [
     "ArrestModes",
     "arrest_modes",
     "coupled_arrest_modes",
+    "coupled_modes_of",
     "modal_exponentials",
     "damped_exponentials",
     "direct_exponentials",
@@ -305,6 +307,29 @@ def coupled_arrest_modes(
         force[keep],
         float(contact_stiffness),
         res.damping_ratio[keep],
+    )
+
+
+def coupled_modes_of(case) -> ArrestModes:
+    """The ``coupled`` model of a contact case: :func:`coupled_arrest_modes` of its probe and rod
+    joined by its contact spring, from its reductions.
+
+    Parameters
+    ----------
+    case : ebantenna.simulate.structure.ContactCase
+        The contact case (its scene gives the hinge and ``max_frequency``).
+    """
+    check_case(case)
+    return coupled_arrest_modes(
+        case.probe,
+        case.scene.hinge,
+        case.contact,
+        case.rod,
+        probe_reduction=case.probe_reduction,
+        rod_reduction=case.rod_reduction,
+        contact_stiffness=case.stiffness,
+        contact_loss_factor=case.loss_factor,
+        max_frequency=case.scene.max_frequency,
     )
 
 

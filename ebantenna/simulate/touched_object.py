@@ -4,17 +4,18 @@ Without the ``object_modes`` effect the touched object is rigid: :func:`pinned_m
 arrested by a pin (or by the ``contact_compliance`` spring), one FEM solve per distinct contact
 and spring. With it, :func:`object_modes` reduces each touched rod once and the probe once per
 distinct contact position (Craig-Bampton), and builds, for each distinct (contact, material,
-preload) -- a :class:`ContactCase` -- every model of :data:`OBJECT_MODELS` the scene needs:
+preload) -- a :class:`~ebantenna.simulate.structure.ContactCase` -- every model of
+:data:`OBJECT_MODELS` the scene needs, each built from the case by a function of its own module:
 
 ``coupled``
     X's modes: probe and rod joined by the contact spring
-    (:func:`~ebantenna.simulate.modes.coupled_arrest_modes`).
+    (:func:`~ebantenna.simulate.modes.coupled_modes_of`).
 ``unilateral``
     X struck through a contact that only pushes, stepped in time between contact events
-    (``unilateral_contact``, :mod:`ebantenna.simulate.strikes`).
+    (``unilateral_contact``, :func:`~ebantenna.simulate.strikes.strike_model_of`).
 ``friction``
     Z held by dry friction along the rod, stepped in time between stick and slip
-    (``coulomb_friction``, :mod:`ebantenna.simulate.stick_slip`).
+    (``coulomb_friction``, :func:`~ebantenna.simulate.stick_slip.friction_model_of`).
 
 A new model of the touched rod is one entry of :data:`OBJECT_MODELS`.
 
@@ -51,17 +52,17 @@ from .effects.sensor import read_through_dlpf
 from .modes import (
     ArrestModes,
     arrest_modes,
-    coupled_arrest_modes,
+    coupled_modes_of,
     damped_exponentials,
     modal_acceleration,
     modal_exponentials,
 )
 from .scene import Scene
-from .stick_slip import friction_accelerations, friction_model
-from .strikes import strike_accelerations, strike_model, timed_rate
+from .stick_slip import friction_accelerations, friction_model_of
+from .strikes import strike_accelerations, strike_model_of, timed_rate
+from .structure import ContactCase
 
 __all__ = [
-    "ContactCase",
     "ObjectModel",
     "OBJECT_MODELS",
     "pinned_modes",
@@ -113,85 +114,6 @@ def pinned_modes(scene: Scene, contacts, materials, show_progress):
     return modes, inverse.ravel()
 
 
-@dataclass(frozen=True, eq=False)
-class ContactCase:
-    """One distinct (contact position, material, preload) of a batch on a rod (``object_modes``).
-
-    What every model of the touched rod needs: the bodies, their Craig-Bampton reductions and
-    the contact spring. Built by the simulator from checked values.
-
-    Attributes
-    ----------
-    scene : Scene
-        The scene simulated.
-    probe : Probe
-        The probe (without its loss factor unless ``structural_damping`` is listed).
-    contact : float
-        Contact position from the hinge, m.
-    material : str
-        Canonical name of the touched material.
-    preload : float
-        The contact's static force, N.
-    rod : Rod
-        The touched rod.
-    probe_reduction, rod_reduction : ebantenna.fem.coupling.CraigBampton
-        The two bodies reduced at the contact (:func:`ebantenna.fem.coupling.craig_bampton`).
-    stiffness : float
-        The contact spring under ``preload``, N/m.
-    loss_factor : float
-        The contact's loss factor (dimensionless).
-    """
-
-    scene: Scene
-    probe: Probe
-    contact: float
-    material: str
-    preload: float
-    rod: object
-    probe_reduction: object
-    rod_reduction: object
-    stiffness: float
-    loss_factor: float
-
-
-def _coupled_model(case: ContactCase) -> ArrestModes:
-    """The ``coupled`` model: the arrest modes of probe and rod joined by the contact spring."""
-    return coupled_arrest_modes(
-        case.probe,
-        case.scene.hinge,
-        case.contact,
-        case.rod,
-        probe_reduction=case.probe_reduction,
-        rod_reduction=case.rod_reduction,
-        contact_stiffness=case.stiffness,
-        contact_loss_factor=case.loss_factor,
-        max_frequency=case.scene.max_frequency,
-    )
-
-
-def _unilateral_model(case: ContactCase):
-    """The ``unilateral`` model: the same reductions, struck through a contact that only pushes
-    (with ``hertz_contact``: its force law the Hertz law's chords, not the linearised spring)."""
-    spring = case.stiffness
-    hertz = case.scene.effect("hertz_contact")
-    if hertz is not None:
-        diameter = case.scene.effect("object_modes").diameter
-        spring = hertz.spring(case.rod.material, case.probe, diameter, case.preload)
-    return strike_model(
-        case.probe_reduction,
-        case.rod_reduction,
-        case.contact,
-        spring,
-        case.preload,
-        case.scene.max_frequency,
-    )
-
-
-def _friction_model(case: ContactCase):
-    """The ``friction`` model: Z along the rod, held by dry friction under the preload."""
-    return friction_model(case.probe_reduction, case.preload, case.scene.max_frequency)
-
-
 def _strike_axis(batch, models) -> np.ndarray:
     """X from the ``unilateral`` strikes, each computed at :func:`.strikes.timed_rate`, marched by
     the effect's ``method``, and read through the chip's filter
@@ -228,7 +150,8 @@ class ObjectModel:
     effect : str or None
         The effect that asks for the model (None: every scene with ``object_modes``).
     build : callable
-        ``build(case: ContactCase)``: the model of one contact case.
+        ``build(case)``: the model of one contact case
+        (:class:`~ebantenna.simulate.structure.ContactCase`).
     respond : callable or None
         ``respond(batch, models) -> (n, n_samples) array``: the axis, for a model stepped in
         time; None for modes, which the modal sum reads
@@ -273,9 +196,9 @@ class ObjectModel:
 #: The models of the touched rod (``object_modes``), in the order they are built for each
 #: contact case. A model stepped in time (``respond`` set) gives its axis instead of the modes.
 OBJECT_MODELS = (
-    ObjectModel("coupled", "x", None, _coupled_model, unless="unilateral_contact"),
-    ObjectModel("unilateral", "x", "unilateral_contact", _unilateral_model, _strike_axis),
-    ObjectModel("friction", "z", "coulomb_friction", _friction_model, _friction_axis),
+    ObjectModel("coupled", "x", None, coupled_modes_of, unless="unilateral_contact"),
+    ObjectModel("unilateral", "x", "unilateral_contact", strike_model_of, _strike_axis),
+    ObjectModel("friction", "z", "coulomb_friction", friction_model_of, _friction_axis),
 )
 
 
@@ -296,7 +219,7 @@ def _contact_cases(scene: Scene, probe: Probe, contact: float, rods: dict, pairs
     """The contact cases at one position: the probe reduced once, then each (material, preload).
 
     ``pairs`` lists the (material, preload) of the signals touching at ``contact``; yields one
-    :class:`ContactCase` per distinct pair, in sorted order.
+    :class:`~ebantenna.simulate.structure.ContactCase` per distinct pair, in sorted order.
     """
     obj = scene.effect("object_modes")
     reduced = _probe_reduction(probe, contact, scene.hinge, scene.n_elements, obj.probe_modes)

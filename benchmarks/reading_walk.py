@@ -100,28 +100,20 @@ READING_ORDER = (
     "ebantenna/fem/modal.py",
     "ebantenna/simulate/touched_object.py",
     "ebantenna/fem/coupling.py",
-    "ebantenna/fem/assembly.py",
     "ebantenna/simulate/effects/objects.py",
     "ebantenna/simulate/contact.py",
-    "ebantenna/simulate/effects/objects.py",
     "ebantenna/simulate/modes.py",
     "ebantenna/fem/coupling.py",
-    "ebantenna/simulate/touched_object.py",
     "ebantenna/simulate/strikes.py",
     "ebantenna/simulate/touched_object.py",
     "ebantenna/simulate/modes.py",
     "ebantenna/fem/modal.py",
-    "ebantenna/fem/assembly.py",
-    "ebantenna/fem/modal.py",
     "ebantenna/fem/elements.py",
     "ebantenna/fem/modal.py",
-    "ebantenna/fem/elements.py",
-    "ebantenna/simulate/simulator.py",
     "ebantenna/simulate/touched_object.py",
     "ebantenna/simulate/strikes.py",
     "ebantenna/simulate/unilateral.py",
     "ebantenna/simulate/effects/sensor.py",
-    "ebantenna/simulate/simulator.py",
     "ebantenna/simulate/modes.py",
     "ebantenna/simulate/effects/sensor.py",
     "ebantenna/simulate/modes.py",
@@ -139,7 +131,7 @@ TARGETS = {"read_files": 15, "read_returns": 5, "run_modules": 25, "run_returns"
 
 #: The walk as it stands, which ``tests/test_reading_walk.py`` keeps it within so that it cannot
 #: grow back unnoticed: lower these as the walk shrinks, down to :data:`TARGETS`.
-CEILINGS = {"read_files": 19, "read_returns": 28, "run_modules": 26, "run_returns": 57}
+CEILINGS = {"read_files": 19, "read_returns": 20, "run_modules": 25, "run_returns": 45}
 
 SCENE, MATERIAL, CONTACT, SEED = "paper", "brass", 0.25, 0
 

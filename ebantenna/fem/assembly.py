@@ -11,8 +11,7 @@ rows and columns of its four DOFs, ``(v_e, theta_e, v_{e+1}, theta_{e+1})``, so 
 neighbouring elements overlap on the 2 x 2 block of their common node.
 :func:`assemble_elements` is that loop, word for word, on the element matrices as
 :mod:`~ebantenna.fem.elements` writes them out; :func:`assemble` runs faster engines by default
-that give the same matrices bit for bit (``ebantenna.fem._element_engine`` and
-``ebantenna.fem._scatter`` explain how).
+that give the same matrices bit for bit (``ebantenna.fem._assembly_engine`` explains how).
 
 The guards that come before a mesh (round-off, memory, a contact the mesh can hold) are in
 :mod:`~ebantenna.fem.guards`; the functions here take checked values.
@@ -28,8 +27,7 @@ import scipy.sparse as sps
 
 from .._validate import check_choice, check_int, check_positive
 from ..probe import Probe
-from ._element_engine import mass_polynomial, stiffness_polynomial
-from ._scatter import scatter, scatter_sparse
+from ._assembly_engine import mass_polynomial, scatter, scatter_sparse, stiffness_polynomial
 from .elements import consistent_mass, element_stiffness
 from .guards import check_contact, check_resolvable
 
@@ -153,8 +151,8 @@ def assemble(nodes: np.ndarray, probe: Probe, *, sparse: bool = False, engine: s
         into dense matrices (with ``sparse=True`` a ``ValueError``: the loop is for reading, not
         for meshes too large to hold densely).
         ``"scatter"`` (default): the engines, the same matrices as polynomials in the element
-        length (``ebantenna.fem._element_engine``) added one parity of elements at a time
-        (``ebantenna.fem._scatter``), or into sparse matrices; the same result bit for bit.
+        length added one parity of elements at a time, or into sparse matrices
+        (``ebantenna.fem._assembly_engine``); the same result bit for bit.
 
     Examples
     --------

@@ -30,7 +30,7 @@ import math
 import numpy as np
 
 from ..probe import Probe
-from ._element_engine import mass_polynomial, stiffness_polynomial
+from ._assembly_engine import mass_polynomial, stiffness_polynomial
 from .elements import bending_energy
 from .guards import check_sweep
 

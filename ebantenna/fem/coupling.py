@@ -59,7 +59,7 @@ from .._validate import (
     describe,
 )
 from ..probe import MAX_LOSS_FACTOR, SIZE_RANGE, Material, Probe, material
-from .assembly import Supports, assemble, beam_mesh, free_dofs, support_diagonals
+from .assembly import Supports, apply_supports, assemble, beam_mesh
 from .guards import check_contact, check_resolvable
 from .modal import eigenvalue_shift, solve_modes
 
@@ -143,9 +143,7 @@ def probe_substructure(probe: Probe, contact: float, *, hinge="clamped", n_eleme
     if not isinstance(probe, Probe):
         raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")
     contact = check_contact("contact", contact, probe.length)
-    supports = Supports(contact=None, hinge=hinge)
-    nodes = beam_mesh(probe.length, contact, n_elements)
-    return _substructure(nodes, probe, supports, contact, probe.loss_factor)
+    return _substructure(probe, hinge, contact, contact, n_elements)
 
 
 @dataclass(frozen=True)
@@ -225,25 +223,23 @@ def rod_substructure(rod: Rod, *, n_elements: int = 32) -> Substructure:
     """The rod clamped at its foot, its interface the deflection at ``rod.contact_height``."""
     if not isinstance(rod, Rod):
         raise TypeError(f"rod must be a Rod, got {type(rod).__name__}")
-    beam = rod.as_beam()
+    node_at = None  # a contact at the free end is the last node of a uniform mesh
     if rod.contact_height < rod.free_length:
-        check_contact("contact_height", rod.contact_height, rod.free_length)
-        nodes = beam_mesh(rod.free_length, rod.contact_height, n_elements)
-    else:
-        n_elements = check_resolvable(n_elements)
-        nodes = np.linspace(0.0, rod.free_length, n_elements + 1)
-    return _substructure(nodes, beam, Supports(contact=None), rod.contact_height, beam.loss_factor)
+        node_at = check_contact("contact_height", rod.contact_height, rod.free_length)
+    return _substructure(rod.as_beam(), "clamped", rod.contact_height, node_at, n_elements)
 
 
-def _substructure(nodes, beam, supports, contact, loss_factor):
+def _substructure(beam: Probe, hinge, interface_at: float, node_at, n_elements: int):
+    """``beam`` on its hinge (with its tip mass, if any), its interface the deflection at
+    ``interface_at`` (m from the hinge), meshed by :func:`~ebantenna.fem.assembly.beam_mesh`
+    with a node at ``node_at`` (None: a uniform mesh); its loss factor the beam's."""
+    nodes = beam_mesh(beam.length, node_at, n_elements)
     K, M = assemble(nodes, beam)
-    k_diag, m_diag = support_diagonals(nodes, beam, supports)
-    free = free_dofs(nodes, supports)
-    K = (K + np.diag(k_diag))[np.ix_(free, free)]
-    M = (M + np.diag(m_diag))[np.ix_(free, free)]
-    v_contact = 2 * int(np.argmin(np.abs(nodes - contact)))
+    K, M, free = apply_supports(K, M, nodes, beam, Supports(contact=None, hinge=hinge))
+    v_contact = 2 * int(np.argmin(np.abs(nodes - interface_at)))
     interface = int(np.flatnonzero(free == v_contact)[0])
-    return Substructure(K, M, interface, nodes, free, float(loss_factor), eigenvalue_shift(beam))
+    return Substructure(K, M, interface, nodes, free, float(beam.loss_factor),
+                        eigenvalue_shift(beam))
 
 
 @dataclass(frozen=True, eq=False)

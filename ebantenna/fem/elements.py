@@ -19,7 +19,7 @@ exact, which is how the tests prove them equal to the sympy result. DOF order pe
 Filling sixteen entries one by one costs a few microseconds per call, which adds up when a sweep
 builds the matrices of thousands of meshes; the fast paths (:func:`~ebantenna.fem.assembly.assemble`
 by default, the sweeps) use an engine that writes the same matrices as ``K0 + K1 l + K2 l^2``,
-equal to these bit for bit (``ebantenna.fem._element_engine``).
+equal to these bit for bit (``ebantenna.fem._assembly_engine``).
 """
 
 from __future__ import annotations

@@ -27,9 +27,8 @@ import numpy as np
 
 from .._validate import check_array, check_choice, check_int
 from ..probe import Probe
-from ._element_engine import mass_polynomial, stiffness_polynomial
+from ._assembly_engine import mass_polynomial, scatter, stiffness_polynomial
 from ._parallel import map_on_cores
-from ._scatter import scatter
 from .assembly import Supports, beam_mesh, free_dofs, support_diagonals
 from .banded import BANDED_MAX_MODES, MAX_LANCZOS_STEPS, banded_sweep
 from .guards import check_contact, check_memory, check_resolvable

@@ -39,11 +39,13 @@ from ..fem import Supports, modal_analysis
 from ..fem.assembly import assemble
 from ..fem.coupling import coupled_modes
 from ..probe import Probe
+from .structure import check_case
 
 __all__ = [
     "ArrestModes",
     "arrest_modes",
     "coupled_arrest_modes",
+    "coupled_modes_of",
     "modal_exponentials",
     "damped_exponentials",
     "direct_exponentials",
@@ -182,7 +184,7 @@ def arrest_modes(
             f"{max_frequency:g} Hz; raise n_modes"
         )
     velocity = res.modal_coordinates(sweep_velocity(res.nodes))
-    tip = res.displacement(np.array([probe.length]))[0]
+    tip = res.shapes[-2]  # the tip is the mesh's last node: its deflection DOF
     keep = (freqs < max_frequency) & (freqs > RIGID_BODY_HZ)
     force = None
     if contact is not None:
@@ -308,6 +310,29 @@ def coupled_arrest_modes(
     )
 
 
+def coupled_modes_of(case) -> ArrestModes:
+    """The ``coupled`` model of a contact case: :func:`coupled_arrest_modes` of its probe and rod
+    joined by its contact spring, from its reductions.
+
+    Parameters
+    ----------
+    case : ebantenna.simulate.structure.ContactCase
+        The contact case (its scene gives the hinge and ``max_frequency``).
+    """
+    check_case(case)
+    return coupled_arrest_modes(
+        case.probe,
+        case.scene.hinge,
+        case.contact,
+        case.rod,
+        probe_reduction=case.probe_reduction,
+        rod_reduction=case.rod_reduction,
+        contact_stiffness=case.stiffness,
+        contact_loss_factor=case.loss_factor,
+        max_frequency=case.scene.max_frequency,
+    )
+
+
 def modal_exponentials(amplitude, omega, zeta):
     """The modes' tip acceleration as complex exponentials: ``C_k`` and ``s_k`` (module docstring).
 
@@ -414,8 +439,15 @@ def damped_exponentials(
     return EXPONENTIAL_ENGINES[engine](t, coef, rate, max_elements)
 
 
-def modal_acceleration(t, amplitude, omega, zeta, *, max_elements: int = 500_000) -> np.ndarray:
+def modal_acceleration(
+    t, amplitude, omega, zeta, *, max_elements: int = 500_000, low_pass=None
+) -> np.ndarray:
     """Sum of damped modal accelerations ``sum_k Im(C_k e^(s_k t))`` for many signals at once.
+
+    The exponentials (:func:`modal_exponentials`) are summed by :func:`damped_exponentials`;
+    with ``low_pass`` they first pass through the chip's filter
+    (:meth:`~ebantenna.simulate.effects.LowPassFilter.filter_exponentials`: the filter's output,
+    exactly, at its internal rate, then read at ``t``).
 
     Parameters
     ----------
@@ -429,11 +461,14 @@ def modal_acceleration(t, amplitude, omega, zeta, *, max_elements: int = 500_000
         Damping ratios, in ``[0, 1)``.
     max_elements : int
         Work in blocks of signals so that no temporary exceeds this many complex numbers.
+    low_pass : ebantenna.simulate.effects.LowPassFilter or None
+        The chip's low-pass filter (the scene's ``dlpf``) the acceleration is read through;
+        None: the acceleration itself.
 
     Returns
     -------
     ndarray of shape (n_signals, n_samples)
-        Tip acceleration, m/s^2.
+        Tip acceleration, m/s^2 (as read through ``low_pass``, if given).
 
     Examples
     --------
@@ -442,5 +477,10 @@ def modal_acceleration(t, amplitude, omega, zeta, *, max_elements: int = 500_000
     >>> modal_acceleration(t, np.array([[1.0]]), np.array([[2 * np.pi]]), np.zeros((1, 1))).round(6)
     array([[ 0.      , -6.283185]])
     """
+    if low_pass is not None and not callable(getattr(low_pass, "filter_exponentials", None)):
+        raise TypeError(f"low_pass must be a LowPassFilter (the scene's dlpf) or None, got "
+                        f"{type(low_pass).__name__}")
     coef, rate = modal_exponentials(amplitude, omega, zeta)
+    if low_pass is not None:  # the chip's filter at its internal rate, then its decimation
+        coef, rate = low_pass.filter_exponentials(coef, rate)
     return damped_exponentials(t, coef, rate, max_elements=max_elements)

@@ -3,12 +3,14 @@
 The simulator is a chain of steps, applied in one loop over an ordered list, :data:`CHAIN`. Each
 entry names the effect that switches the step on (None: the step always runs), the step, a
 function that takes the effect and the :class:`SignalBatch` it works on, and the other effects
-the step reads (``reads``): every effect of the scene is a step or is read by one. The steps of
-the sensor and the acquisition (``clock_jitter``'s and every step from ``gravity`` on) are
-written beside their effects, whose physics they apply, in
-:mod:`~ebantenna.simulate.effects.sensor` (its ``CHAIN_STEPS``); the two that always run, and
-the preload's, are here. A scene that does not list an
-effect skips its step, and a new effect is one more entry in the list. In order:
+the step reads (``reads``): every effect of the scene is a step or is read by one. Each step is
+written beside the physics it applies: the sensor's and the acquisition's (``clock_jitter``'s and
+every step from ``gravity`` on) beside their effects, in
+:mod:`~ebantenna.simulate.effects.sensor` (its ``CHAIN_STEPS``); the two that always run, the
+touched object and the responses, beside the models they run, in
+:mod:`~ebantenna.simulate.touched_object` (its ``CHAIN_STEPS``); the preload's is here. A scene
+that does not list an effect skips its step, and a new effect is one more entry in the list. In
+order:
 
 1. ``preload_scatter``: each strike's preload. It sets the contact spring, so it comes before
    the modes.
@@ -20,7 +22,8 @@ effect skips its step, and a new effect is one more entry in the list. In order:
 3. ``clock_jitter``: when each sample is taken. The responses are evaluated at these instants.
 4. *The responses* (always): X and Z after the arrest, each from its axis's time-stepped model
    if the scene lists one (``unilateral_contact``, ``coulomb_friction``), otherwise the sum of
-   its modes, through the chip's low-pass filter (``dlpf``) and its decimation. The filter is
+   its modes (:func:`~ebantenna.simulate.modes.modal_acceleration`), through the chip's
+   low-pass filter (``dlpf``) and its decimation. The filter is
    read from the scene once, into ``SignalBatch.chip_filter``; steps 4, 7 and 8 read it
    there.
 5. ``clock_jitter`` again: a sample taken before the arrest reads no acceleration.
@@ -72,9 +75,9 @@ from ..probe import material as lookup_material
 from ..recording import Recording
 from .effects import effect_names
 from .effects.sensor import CHAIN_STEPS as SENSOR_STEPS
-from .modes import damped_exponentials, modal_exponentials
 from .scene import Scene
-from .touched_object import OBJECT_MODELS, ModalTerms, signal_terms
+from .touched_object import CHAIN_STEPS as OBJECT_STEPS
+from .touched_object import ModalTerms, signal_terms
 
 __all__ = [
     "ModalTerms",
@@ -198,42 +201,6 @@ def _scatter_preloads(scatter, batch: SignalBatch) -> None:
     batch.preloads = np.array([nominal * scatter.factor(r) for r in batch.rngs(scatter)])
 
 
-def _touched_object(_, batch: SignalBatch) -> None:
-    """The touched object: the modal parameters of X and Z, and the models stepped in time."""
-    batch.x, batch.z, batch.timed, batch.inverse = signal_terms(
-        batch.scene,
-        batch.contacts,
-        batch.materials,
-        batch.speeds,
-        batch.tilts,
-        batch.preloads,
-        batch.show_progress,
-        batch.x_modes,
-    )
-
-
-def _modal_axis(terms: ModalTerms, batch: SignalBatch) -> np.ndarray:
-    """The sum of ``terms``' modes read at ``batch.when``, through the chip's filter if listed."""
-    coef, rate = modal_exponentials(terms.amplitude, terms.omega, terms.zeta)
-    if batch.chip_filter is not None:  # the chip's filter at its internal rate, then decimation
-        coef, rate = batch.chip_filter.filter_exponentials(coef, rate)
-    return damped_exponentials(batch.when, coef, rate)
-
-
-def _axis_response(batch: SignalBatch, axis: str) -> np.ndarray:
-    """One axis: from its model stepped in time, if the scene built one, else its modes."""
-    for model in OBJECT_MODELS:
-        if model.axis == axis and model.respond is not None and model.name in batch.timed:
-            return model.respond(batch, batch.timed[model.name])
-    return _modal_axis(batch.x if axis == "x" else batch.z, batch)
-
-
-def _respond(_, batch: SignalBatch) -> None:
-    """X and Z after the arrest, read at the sample instants."""
-    batch.ax = _axis_response(batch, "x")
-    batch.az = _axis_response(batch, "z")
-
-
 @dataclass(frozen=True)
 class ChainStep:
     """One entry of :data:`CHAIN`.
@@ -270,12 +237,13 @@ class ChainStep:
 #: The simulator's steps, in the order it applies them (see the module's docstring for why).
 CHAIN = (
     ChainStep("preload_scatter", _scatter_preloads, reads=("object_modes",)),
-    ChainStep(None, _touched_object,
+    ChainStep(None, OBJECT_STEPS["touched_object"],
               reads=("object_modes", "structural_damping", "contact_compliance", "tip_mass",
                      "object_damping", "unilateral_contact", "hertz_contact",
                      "coulomb_friction")),
     ChainStep("clock_jitter", SENSOR_STEPS["sample_instants"]),
-    ChainStep(None, _respond, reads=("unilateral_contact", "coulomb_friction", "dlpf")),
+    ChainStep(None, OBJECT_STEPS["responses"],
+              reads=("unilateral_contact", "coulomb_friction", "dlpf")),
     ChainStep("clock_jitter", SENSOR_STEPS["rest_before_arrest"]),
     ChainStep("gravity", SENSOR_STEPS["gravity"]),
     ChainStep("mains_hum", SENSOR_STEPS["mains_hum"], reads=("dlpf",)),

@@ -42,7 +42,7 @@ import scipy.linalg as sla
 from .._validate import check_choice, check_int, check_nonnegative, check_positive
 from .modes import sweep_velocity
 from .strikes import check_reduction, reduced_body
-from .structure import check_dof_vector, check_symmetric_matrix
+from .structure import check_case, check_dof_vector, check_symmetric_matrix
 from .unilateral import (
     MARCHES,
     STEPS_PER_PERIOD,
@@ -59,7 +59,7 @@ from .unilateral import (
 )
 
 __all__ = ["StickSlipResponse", "check_coefficients", "stick_slip_response", "StickSlipLaw",
-           "friction_states", "FrictionModel", "friction_model",
+           "friction_states", "FrictionModel", "friction_model", "friction_model_of",
            "friction_accelerations"]  # fmt: skip
 
 log = logging.getLogger(__name__)
@@ -444,6 +444,19 @@ def friction_model(probe_reduction, preload: float, max_frequency: float) -> Fri
         cached[max_frequency] = K, M, C, rotation, T[tip]
     K, M, C, rotation, output = cached[max_frequency]
     return FrictionModel(M, K, C, rotation, output, check_positive("preload", preload))
+
+
+def friction_model_of(case) -> FrictionModel:
+    """The ``friction`` model of a contact case: :func:`friction_model` of its probe's reduction,
+    Z held along the rod by dry friction under its preload.
+
+    Parameters
+    ----------
+    case : ebantenna.simulate.structure.ContactCase
+        The contact case (its scene gives ``max_frequency``).
+    """
+    check_case(case)
+    return friction_model(case.probe_reduction, case.preload, case.scene.max_frequency)
 
 
 def friction_accelerations(scene, models, inverse, rotation_speeds, *, rate: float,

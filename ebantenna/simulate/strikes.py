@@ -52,12 +52,13 @@ from .._validate import check_array, check_choice, check_int, check_nonnegative,
 from ..fem.coupling import CraigBampton
 from .contact import PiecewiseSpring
 from .modes import sweep_velocity
-from .structure import ContactModel
+from .structure import ContactModel, check_case
 from .unilateral import MARCHES, unilateral_response
 
 __all__ = [
     "StrikeModel",
     "strike_model",
+    "strike_model_of",
     "strike_accelerations",
     "timed_rate",
     "reduced_body",
@@ -219,6 +220,32 @@ def strike_model(
     if not isinstance(spring, PiecewiseSpring):
         spring = float(spring)
     return StrikeModel(structure, float(contact), spring, float(preload))
+
+
+def strike_model_of(case) -> StrikeModel:
+    """The ``unilateral`` model of a contact case: :func:`strike_model` of its reductions,
+    struck through a contact that only pushes (with ``hertz_contact`` listed, the spring is the
+    chords of the Hertz law, not the linearised spring).
+
+    Parameters
+    ----------
+    case : ebantenna.simulate.structure.ContactCase
+        The contact case (its scene gives the effects and ``max_frequency``).
+    """
+    check_case(case)
+    spring = case.stiffness
+    hertz = case.scene.effect("hertz_contact")
+    if hertz is not None:
+        diameter = case.scene.effect("object_modes").diameter
+        spring = hertz.spring(case.rod.material, case.probe, diameter, case.preload)
+    return strike_model(
+        case.probe_reduction,
+        case.rod_reduction,
+        case.contact,
+        spring,
+        case.preload,
+        case.scene.max_frequency,
+    )
 
 
 def strike_accelerations(

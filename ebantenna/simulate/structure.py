@@ -1,9 +1,11 @@
 """A linear structure with one contact point, as the contact dynamics take it.
 
-:class:`ContactModel` holds the mass, stiffness and damping matrices in some generalised
-coordinates and the three vectors that say where the contact point, the servo's rigid motion
-and the accelerometer are in them; :func:`probe_contact_model` builds it for the probe from the
-FEM. :func:`.unilateral.unilateral_response` and :func:`.friction_ode.coulomb_response` take these
+:class:`ContactCase` holds what every model of the touched rod starts from: the two bodies,
+their reductions at the contact and the contact spring. :class:`ContactModel` holds the mass,
+stiffness and damping matrices in some generalised coordinates and the three vectors that say
+where the contact point, the servo's rigid motion and the accelerometer are in them;
+:func:`probe_contact_model` builds it for the probe from the FEM.
+:func:`.unilateral.unilateral_response` and :func:`.friction_ode.coulomb_response` take these
 matrices and vectors (or any others of the same meaning).
 """
 
@@ -16,8 +18,10 @@ import scipy.linalg as spl
 
 from .._validate import check_int, check_nonnegative
 from ..fem.guards import check_contact
+from ..probe import Probe
 
-__all__ = ["ContactModel", "probe_contact_model", "check_dof_vector", "check_symmetric_matrix"]
+__all__ = ["ContactModel", "ContactCase", "probe_contact_model", "check_dof_vector",
+           "check_symmetric_matrix", "check_case"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -69,6 +73,56 @@ def check_symmetric_matrix(name: str, value, n: int | None = None) -> np.ndarray
         raise ValueError(f"{name} must be symmetric")
     return out
 
+
+
+@dataclass(frozen=True, eq=False)
+class ContactCase:
+    """One distinct (contact position, material, preload) of a batch on a rod (``object_modes``).
+
+    What every model of the touched rod needs: the bodies, their Craig-Bampton reductions and
+    the contact spring. Built by the simulator from checked values
+    (:func:`ebantenna.simulate.touched_object.object_modes`), and handed to each model of
+    :data:`~ebantenna.simulate.touched_object.OBJECT_MODELS`.
+
+    Attributes
+    ----------
+    scene : ebantenna.simulate.Scene
+        The scene simulated.
+    probe : Probe
+        The probe (without its loss factor unless ``structural_damping`` is listed).
+    contact : float
+        Contact position from the hinge, m.
+    material : str
+        Canonical name of the touched material.
+    preload : float
+        The contact's static force, N.
+    rod : Rod
+        The touched rod.
+    probe_reduction, rod_reduction : ebantenna.fem.coupling.CraigBampton
+        The two bodies reduced at the contact (:func:`ebantenna.fem.coupling.craig_bampton`).
+    stiffness : float
+        The contact spring under ``preload``, N/m.
+    loss_factor : float
+        The contact's loss factor (dimensionless).
+    """
+
+    scene: object
+    probe: Probe
+    contact: float
+    material: str
+    preload: float
+    rod: object
+    probe_reduction: object
+    rod_reduction: object
+    stiffness: float
+    loss_factor: float
+
+
+def check_case(case) -> None:
+    """Raise a ``TypeError`` unless ``case`` is a :class:`ContactCase`."""
+    if not isinstance(case, ContactCase):
+        raise TypeError(f"case must be a ContactCase (the touched object's contact case), got "
+                        f"{type(case).__name__}")
 
 
 def probe_contact_model(

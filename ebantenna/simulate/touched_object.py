@@ -4,25 +4,29 @@ Without the ``object_modes`` effect the touched object is rigid: :func:`pinned_m
 arrested by a pin (or by the ``contact_compliance`` spring), one FEM solve per distinct contact
 and spring. With it, :func:`object_modes` reduces each touched rod once and the probe once per
 distinct contact position (Craig-Bampton), and builds, for each distinct (contact, material,
-preload) -- a :class:`ContactCase` -- every model of :data:`OBJECT_MODELS` the scene needs:
+preload) -- a :class:`~ebantenna.simulate.structure.ContactCase` -- every model of
+:data:`OBJECT_MODELS` the scene needs, each built from the case by a function of its own module:
 
 ``coupled``
     X's modes: probe and rod joined by the contact spring
-    (:func:`~ebantenna.simulate.modes.coupled_arrest_modes`).
+    (:func:`~ebantenna.simulate.modes.coupled_modes_of`).
 ``unilateral``
     X struck through a contact that only pushes, stepped in time between contact events
-    (``unilateral_contact``, :mod:`ebantenna.simulate.strikes`).
+    (``unilateral_contact``, :func:`~ebantenna.simulate.strikes.strike_model_of`).
 ``friction``
     Z held by dry friction along the rod, stepped in time between stick and slip
-    (``coulomb_friction``, :mod:`ebantenna.simulate.stick_slip`).
+    (``coulomb_friction``, :func:`~ebantenna.simulate.stick_slip.friction_model_of`).
 
 A new model of the touched rod is one entry of :data:`OBJECT_MODELS`.
 
 :func:`signal_terms` is the simulator's step of the touched object (the second step of
 :data:`~ebantenna.simulate.simulator.CHAIN`): it runs the physics model, then lays out each
 signal's modal parameters as :class:`ModalTerms`, the modes side by side, zero-padded, each
-signal's row scaled by its sweep speed. Every function here takes values checked by the
-simulator's public entries (:mod:`ebantenna.simulate.simulator`).
+signal's row scaled by its sweep speed. The responses' step (the fourth) reads each axis from
+its model stepped in time (an :class:`ObjectModel`'s ``respond``) or from the sum of its modes
+(:func:`~ebantenna.simulate.modes.modal_acceleration`). Both steps sit at the end of this module
+(``CHAIN_STEPS``), and every function here takes values checked by the simulator's public
+entries (:mod:`ebantenna.simulate.simulator`).
 """
 
 from __future__ import annotations
@@ -48,16 +52,17 @@ from .effects.sensor import read_through_dlpf
 from .modes import (
     ArrestModes,
     arrest_modes,
-    coupled_arrest_modes,
+    coupled_modes_of,
     damped_exponentials,
+    modal_acceleration,
     modal_exponentials,
 )
 from .scene import Scene
-from .stick_slip import friction_accelerations, friction_model
-from .strikes import strike_accelerations, strike_model, timed_rate
+from .stick_slip import friction_accelerations, friction_model_of
+from .strikes import strike_accelerations, strike_model_of, timed_rate
+from .structure import ContactCase
 
 __all__ = [
-    "ContactCase",
     "ObjectModel",
     "OBJECT_MODELS",
     "pinned_modes",
@@ -109,85 +114,6 @@ def pinned_modes(scene: Scene, contacts, materials, show_progress):
     return modes, inverse.ravel()
 
 
-@dataclass(frozen=True, eq=False)
-class ContactCase:
-    """One distinct (contact position, material, preload) of a batch on a rod (``object_modes``).
-
-    What every model of the touched rod needs: the bodies, their Craig-Bampton reductions and
-    the contact spring. Built by the simulator from checked values.
-
-    Attributes
-    ----------
-    scene : Scene
-        The scene simulated.
-    probe : Probe
-        The probe (without its loss factor unless ``structural_damping`` is listed).
-    contact : float
-        Contact position from the hinge, m.
-    material : str
-        Canonical name of the touched material.
-    preload : float
-        The contact's static force, N.
-    rod : Rod
-        The touched rod.
-    probe_reduction, rod_reduction : ebantenna.fem.coupling.CraigBampton
-        The two bodies reduced at the contact (:func:`ebantenna.fem.coupling.craig_bampton`).
-    stiffness : float
-        The contact spring under ``preload``, N/m.
-    loss_factor : float
-        The contact's loss factor (dimensionless).
-    """
-
-    scene: Scene
-    probe: Probe
-    contact: float
-    material: str
-    preload: float
-    rod: object
-    probe_reduction: object
-    rod_reduction: object
-    stiffness: float
-    loss_factor: float
-
-
-def _coupled_model(case: ContactCase) -> ArrestModes:
-    """The ``coupled`` model: the arrest modes of probe and rod joined by the contact spring."""
-    return coupled_arrest_modes(
-        case.probe,
-        case.scene.hinge,
-        case.contact,
-        case.rod,
-        probe_reduction=case.probe_reduction,
-        rod_reduction=case.rod_reduction,
-        contact_stiffness=case.stiffness,
-        contact_loss_factor=case.loss_factor,
-        max_frequency=case.scene.max_frequency,
-    )
-
-
-def _unilateral_model(case: ContactCase):
-    """The ``unilateral`` model: the same reductions, struck through a contact that only pushes
-    (with ``hertz_contact``: its force law the Hertz law's chords, not the linearised spring)."""
-    spring = case.stiffness
-    hertz = case.scene.effect("hertz_contact")
-    if hertz is not None:
-        diameter = case.scene.effect("object_modes").diameter
-        spring = hertz.spring(case.rod.material, case.probe, diameter, case.preload)
-    return strike_model(
-        case.probe_reduction,
-        case.rod_reduction,
-        case.contact,
-        spring,
-        case.preload,
-        case.scene.max_frequency,
-    )
-
-
-def _friction_model(case: ContactCase):
-    """The ``friction`` model: Z along the rod, held by dry friction under the preload."""
-    return friction_model(case.probe_reduction, case.preload, case.scene.max_frequency)
-
-
 def _strike_axis(batch, models) -> np.ndarray:
     """X from the ``unilateral`` strikes, each computed at :func:`.strikes.timed_rate`, marched by
     the effect's ``method``, and read through the chip's filter
@@ -224,7 +150,8 @@ class ObjectModel:
     effect : str or None
         The effect that asks for the model (None: every scene with ``object_modes``).
     build : callable
-        ``build(case: ContactCase)``: the model of one contact case.
+        ``build(case)``: the model of one contact case
+        (:class:`~ebantenna.simulate.structure.ContactCase`).
     respond : callable or None
         ``respond(batch, models) -> (n, n_samples) array``: the axis, for a model stepped in
         time; None for modes, which the modal sum reads
@@ -269,9 +196,9 @@ class ObjectModel:
 #: The models of the touched rod (``object_modes``), in the order they are built for each
 #: contact case. A model stepped in time (``respond`` set) gives its axis instead of the modes.
 OBJECT_MODELS = (
-    ObjectModel("coupled", "x", None, _coupled_model, unless="unilateral_contact"),
-    ObjectModel("unilateral", "x", "unilateral_contact", _unilateral_model, _strike_axis),
-    ObjectModel("friction", "z", "coulomb_friction", _friction_model, _friction_axis),
+    ObjectModel("coupled", "x", None, coupled_modes_of, unless="unilateral_contact"),
+    ObjectModel("unilateral", "x", "unilateral_contact", strike_model_of, _strike_axis),
+    ObjectModel("friction", "z", "coulomb_friction", friction_model_of, _friction_axis),
 )
 
 
@@ -292,12 +219,14 @@ def _contact_cases(scene: Scene, probe: Probe, contact: float, rods: dict, pairs
     """The contact cases at one position: the probe reduced once, then each (material, preload).
 
     ``pairs`` lists the (material, preload) of the signals touching at ``contact``; yields one
-    :class:`ContactCase` per distinct pair, in sorted order.
+    :class:`~ebantenna.simulate.structure.ContactCase` per distinct pair, in sorted order.
     """
     obj = scene.effect("object_modes")
     reduced = _probe_reduction(probe, contact, scene.hinge, scene.n_elements, obj.probe_modes)
     for name, preload in sorted(set(pairs)):
         rod, rod_reduced = rods[name]
+        stiffness, loss_factor = obj.contact_spring(rod.material, probe, object_loss=object_loss,
+                                                    preload=preload)
         yield ContactCase(
             scene=scene,
             probe=probe,
@@ -307,10 +236,8 @@ def _contact_cases(scene: Scene, probe: Probe, contact: float, rods: dict, pairs
             rod=rod,
             probe_reduction=reduced,
             rod_reduction=rod_reduced,
-            stiffness=obj.contact_stiffness(rod.material, probe, preload),
-            loss_factor=obj.contact_loss_factor(
-                rod.material, probe, object_loss=object_loss, preload=preload
-            ),
+            stiffness=stiffness,
+            loss_factor=loss_factor,
         )
 
 
@@ -617,3 +544,42 @@ def signal_terms(
     zeta_s = damping.damping_ratio(scene.probe) if damping is not None else 0.0
     x = _x_terms(scene, modes, inverse, speeds, preloads, zeta_s)
     return x, _z_terms(scene, speeds, tilts, zeta_s), timed, inverse
+
+
+# ------------------------------------------------------------- the simulator's steps
+def _touched_object(_, batch) -> None:
+    """The touched object: the modal parameters of X and Z, and the models stepped in time."""
+    batch.x, batch.z, batch.timed, batch.inverse = signal_terms(
+        batch.scene,
+        batch.contacts,
+        batch.materials,
+        batch.speeds,
+        batch.tilts,
+        batch.preloads,
+        batch.show_progress,
+        batch.x_modes,
+    )
+
+
+def _axis_response(batch, axis: str) -> np.ndarray:
+    """One axis: from its model stepped in time, if the scene built one, else the sum of its
+    modes read at ``batch.when`` through the chip's filter (if listed)."""
+    for model in OBJECT_MODELS:
+        if model.axis == axis and model.respond is not None and model.name in batch.timed:
+            return model.respond(batch, batch.timed[model.name])
+    terms = batch.x if axis == "x" else batch.z
+    return modal_acceleration(batch.when, terms.amplitude, terms.omega, terms.zeta,
+                              low_pass=batch.chip_filter)
+
+
+def _respond(_, batch) -> None:
+    """The responses: X and Z after the arrest, read at the sample instants."""
+    batch.ax = _axis_response(batch, "x")
+    batch.az = _axis_response(batch, "z")
+
+
+#: The simulator's two steps that always run, written beside the models they run: each takes
+#: ``(effect, batch)`` and changes the simulator's
+#: :class:`~ebantenna.simulate.simulator.SignalBatch` in place, with values the simulator
+#: checked. :data:`ebantenna.simulate.simulator.CHAIN` puts them in order, and says why.
+CHAIN_STEPS = {"touched_object": _touched_object, "responses": _respond}

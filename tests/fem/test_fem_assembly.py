@@ -6,8 +6,12 @@ import pytest
 
 from ebantenna import Probe
 from ebantenna.fem import Supports, modal_analysis
-from ebantenna.fem._element_engine import mass_polynomial, stiffness_polynomial
-from ebantenna.fem._scatter import scatter, scatter_sparse
+from ebantenna.fem._assembly_engine import (
+    mass_polynomial,
+    scatter,
+    scatter_sparse,
+    stiffness_polynomial,
+)
 from ebantenna.fem.assembly import assemble, assemble_elements, beam_mesh
 from ebantenna.fem.elements import consistent_mass, element_stiffness
 

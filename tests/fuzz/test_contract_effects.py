@@ -32,6 +32,13 @@ from ebantenna.simulate import effects as fx  # noqa: E402
 
 NAN = math.nan
 BRASS, PROBE = material("brass"), Probe()
+
+
+def _tube_on_brass():
+    from ebantenna.simulate.contact import tube_on_rod_stiffness
+
+    effect = fx.ObjectModes()
+    return tube_on_rod_stiffness(PROBE, BRASS, effect.diameter, effect.preload)
 PARAMETERS = {cls: [f.name for f in dataclasses.fields(cls)]
               for cls in (getattr(fx, n) for n in fx.__all__)
               if isinstance(cls, type) and dataclasses.is_dataclass(cls)}
@@ -180,6 +187,26 @@ def _method_rows():
         Row(s + "objects.ObjectModes.contact_loss_factor", "object_loss-str",
             lambda: fx.ObjectModes().contact_loss_factor(BRASS, PROBE, object_loss="no"),
             ("object_loss",)),
+        Row(s + "objects.ObjectModes.contact_spring", "obj-int",
+            lambda: fx.ObjectModes().contact_spring(5, PROBE, object_loss=True), ("obj",)),
+        Row(s + "objects.ObjectModes.contact_spring", "object_loss-str",
+            lambda: fx.ObjectModes().contact_spring(BRASS, PROBE, object_loss="no"),
+            ("object_loss",)),
+        Row(s + "objects.ObjectModes.contact_spring", "preload-negative",
+            lambda: fx.ObjectModes().contact_spring(BRASS, PROBE, object_loss=True, preload=-1.0),
+            ("preload",)),
+        # the Hertz spring and the tube wall's ring in series: 1/k = 1/k_hertz + 1/k_ring, to
+        # the two divisions' and the sum's rounding
+        Row(s + "objects.ObjectModes.contact_spring", "in-series",
+            lambda: fx.ObjectModes().contact_spring(BRASS, PROBE, object_loss=True),
+            same=lambda r: math.isclose(r[0], 1 / (1 / _tube_on_brass().hertz
+                                                   + 1 / _tube_on_brass().ring),
+                                        rel_tol=4 * np.finfo(float).eps)),
+        # neither body loses energy: the spring is lossless, exactly
+        Row(s + "objects.ObjectModes.contact_spring", "lossless-bodies",
+            lambda: fx.ObjectModes().contact_spring(
+                BRASS, dataclasses.replace(PROBE, loss_factor=0.0), object_loss=False),
+            same=lambda r: r[1] == 0.0),
         Row(s + "physics.ContactCompliance.stiffness", "obj-int",
             lambda: fx.ContactCompliance().stiffness(5, PROBE), ("obj",)),
         Row(s + "physics.ContactCompliance.effective_modulus", "probe-int",

@@ -124,6 +124,18 @@ def _coupled(**kw):
                                    **{**args, **kw})
 
 
+def _case(**kw):
+    """The probe at 0.2 m on a steel rod (the docstrings' reductions) as one contact case of the
+    ``ideal`` scene (clamped, 480 Hz), or with ``kw``."""
+    from ebantenna.simulate.structure import ContactCase
+
+    p, r = _reductions()
+    args = dict(scene=builtin_scene("ideal"), probe=Probe(), contact=0.2, material="steel",
+                preload=0.5, rod=Rod("steel"), probe_reduction=p, rod_reduction=r,
+                stiffness=1.8e5, loss_factor=0.0)
+    return ContactCase(**{**args, **kw})
+
+
 def _filtered_by_hand():
     """One damped exponential (100 Hz, decaying at 50/s) through the DLPF: its closed form and
     the witness, SciPy's filter at the internal rate, over 800 internal samples."""
@@ -446,6 +458,27 @@ def all_rows():
             lambda: _strike_accelerations(inverse=[0.0]), ("inverse",)),
         Row(st + "strike_accelerations", "models-str",
             lambda: _strike_accelerations(models=["strike"]), ("models",)),
+        Row(s + "friction_model_of", "case-str", lambda: S.friction_model_of("case"), ("case",)),
+        # the case's reduction, preload and max_frequency, as friction_model takes them
+        Row(s + "friction_model_of", "as-friction_model", lambda: S.friction_model_of(_case()),
+            same=lambda m: np.array_equal(m.mass, S.friction_model(
+                _reductions()[0], 0.5, 480.0).mass) and m.normal_force == 0.5),
+        Row(st + "strike_model_of", "case-str", lambda: ST.strike_model_of(3), ("case",)),
+        # without hertz_contact: the linearised spring, as strike_model takes it
+        Row(st + "strike_model_of", "as-strike_model", lambda: ST.strike_model_of(_case()),
+            same=lambda m: np.array_equal(m.structure.stiffness, _strike_model(
+                max_frequency=480.0).structure.stiffness) and m.contact_stiffness == 1.8e5),
+        Row(m + "coupled_modes_of", "case-str", lambda: MO.coupled_modes_of(None), ("case",)),
+        # the case's bodies, reductions and spring, as coupled_arrest_modes takes them
+        Row(m + "coupled_modes_of", "as-coupled_arrest_modes",
+            lambda: MO.coupled_modes_of(_case()),
+            same=lambda a: np.array_equal(a.omega, _coupled().omega)),
+        Row("ebantenna.simulate.structure.check_case", "case-dict",
+            lambda: __import__("ebantenna.simulate.structure", fromlist=["x"]).check_case({}),
+            ("case",)),
+        Row("ebantenna.simulate.structure.check_case", "a-case",
+            lambda: __import__("ebantenna.simulate.structure", fromlist=["x"]).check_case(
+                _case()), same=lambda r: r is None),
         Row(s + "friction_model", "probe_reduction-str",
             lambda: S.friction_model("probe", 0.5, 3000.0), ("probe_reduction",)),
         Row(s + "friction_model", "max_frequency-nan",
@@ -676,7 +709,7 @@ def all_rows():
 RESULTS = ("unilateral.ContactEvent", "unilateral.UnilateralResponse",
            "stick_slip.StickSlipResponse", "friction_ode.FrictionEvent",
            "friction_ode.FrictionResponse", "strikes.StrikeModel", "stick_slip.FrictionModel",
-           "touched_object.ContactCase", "structure.ContactModel")
+           "structure.ContactCase", "structure.ContactModel")
 
 
 def contract_exempt() -> dict[str, str]:

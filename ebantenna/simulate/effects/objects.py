@@ -111,12 +111,28 @@ class ObjectModes(Effect):
     def contact_loss_factor(
         self, obj: Material, probe: Probe, *, object_loss: bool, preload: float | None = None
     ) -> float:
-        """Loss factor of the contact spring (dimensionless).
+        """Loss factor of the contact spring (dimensionless): the second value of
+        :meth:`contact_spring`."""
+        return self.contact_spring(obj, probe, object_loss=object_loss, preload=preload)[1]
+
+    def contact_spring(
+        self, obj: Material, probe: Probe, *, object_loss: bool, preload: float | None = None
+    ) -> tuple[float, float]:
+        """The contact spring at ``preload`` (default the effect's): its stiffness, N/m (as
+        :meth:`contact_stiffness`), and its loss factor (dimensionless).
 
         The spring's compliance is the sum of the tube's share (its Hertz share and the wall's
         ring compliance) and the rod's Hertz share; each share loses energy with its own body's
         loss factor, so the spring's loss factor is their compliance-weighted mean. With
         ``object_loss`` False the rod's share is lossless (:class:`ObjectDamping` not listed).
+
+        Examples
+        --------
+        >>> from ebantenna import Probe
+        >>> from ebantenna.probe import material
+        >>> k, eta = ObjectModes().contact_spring(material("steel"), Probe(), object_loss=True)
+        >>> k == ObjectModes().contact_stiffness(material("steel"), Probe())
+        True
         """
         from ..._validate import check_bool
 
@@ -131,7 +147,8 @@ class ObjectModes(Effect):
         rod_share = c_hertz - probe_share
         ring = 0.0 if math.isinf(ks.ring) else 1 / ks.ring
         eta_rod = obj.loss_factor if object_loss else 0.0
-        return (probe.loss_factor * (probe_share + ring) + eta_rod * rod_share) / (c_hertz + ring)
+        loss = (probe.loss_factor * (probe_share + ring) + eta_rod * rod_share) / (c_hertz + ring)
+        return ks.total, loss
 
 
 @dataclass(frozen=True)

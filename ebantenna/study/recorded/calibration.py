@@ -362,7 +362,7 @@ def scene_modes(scene, contacts, materials, *, rods=None) -> dict:
         over the modes, lowest first: the damped frequency, the loss factor ``2 zeta`` and the
         modal displacement at the tip after the arrest (see the module notes for the model). With
         ``object_modes`` each contact case is built as the simulator builds it
-        (:class:`~ebantenna.simulate.touched_object.ContactCase`, its models of
+        (:class:`~ebantenna.simulate.structure.ContactCase`, its models of
         :data:`~ebantenna.simulate.touched_object.OBJECT_MODELS`).
     """
     from ...simulate.touched_object import pinned_modes
@@ -388,7 +388,8 @@ def _rod_modes(scene, keys, rods) -> dict:
     :func:`~ebantenna.simulate.touched_object.object_modes` builds it, the probe reduced once
     per contact."""
     from ...fem.coupling import craig_bampton, probe_substructure
-    from ...simulate.touched_object import OBJECT_MODELS, ContactCase
+    from ...simulate.structure import ContactCase
+    from ...simulate.touched_object import OBJECT_MODELS
 
     effect = scene.effect("object_modes")
     probe = scene.probe

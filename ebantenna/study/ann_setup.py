@@ -34,7 +34,7 @@ from ..paper.uncertainty import (
     percent,
     training_entries,
 )
-from ._common import check_render, check_step
+from ._common import check_render, check_step, fits_in_parallel
 from .learning import stop_sentence
 from .seed_spread import SUBSET_REPETITIONS
 
@@ -185,18 +185,24 @@ def within_from(epochs, intervals, value: float):
 QUICK_LONG_EPOCHS = 300
 
 
-def compute(ds, feats, seed: int, quick: bool = False) -> AnnSetupResult:
+def compute(ds, feats, seed: int, quick: bool = False, n_jobs: int = 1) -> AnnSetupResult:
     """Each run of :data:`RUNS` and the long run on the subset, seed ``seed`` for the split and
-    the weights (the long run capped at ``QUICK_LONG_EPOCHS`` when ``quick``)."""
-    check_step(ds=ds, feats=feats, seed=seed, quick=quick)
+    the weights (the long run capped at ``QUICK_LONG_EPOCHS`` when ``quick``); each run on one
+    of ``n_jobs`` worker processes (``_common.fits_in_parallel``): the same numbers whatever
+    ``n_jobs``."""
+    check_step(ds=ds, feats=feats, seed=seed, quick=quick, n_jobs=n_jobs)
     rows = np.flatnonzero(np.asarray(ds.repetition) < SUBSET_REPETITIONS)
     X, y, d = feats.fft[rows], ds.material[rows], np.asarray(ds.contact)[rows]
+    calls = [(experiments.classify_materials_ann, (X, y),
+              {"learning_rate_init": lr, "max_iter": epochs, "seed": seed,
+               "n_iter_no_change": TRAINGD_DEFAULTS["max_fail"]})
+             for lr, epochs in RUNS.values()]
+    calls.append((long_run, (X, y, d), {
+        "lr": LONG_RUN["lr"], "epochs": QUICK_LONG_EPOCHS if quick else LONG_RUN["epochs"],
+        "every": LONG_RUN["every"], "seed": seed}))
+    *results, long = fits_in_parallel(calls, n_jobs)
     runs = {}
-    for name, (lr, epochs) in RUNS.items():
-        result = experiments.classify_materials_ann(
-            X, y, learning_rate_init=lr, max_iter=epochs, seed=seed,
-            n_iter_no_change=TRAINGD_DEFAULTS["max_fail"],
-        )  # fmt: skip
+    for (name, (lr, epochs)), result in zip(RUNS.items(), results, strict=True):
         curve = list(getattr(result.model, "loss_curve_", []))
         runs[name] = {
             "lr": lr,
@@ -214,9 +220,6 @@ def compute(ds, feats, seed: int, quick: bool = False) -> AnnSetupResult:
     first, larger = (runs[k]["result"] for k in RUNS)
     pair = PairedDifference.from_recordings(first.correct(), larger.correct(),
                                             d[first.rows()], UNITS["random"])
-    long = long_run(X, y, d, lr=LONG_RUN["lr"],
-                    epochs=QUICK_LONG_EPOCHS if quick else LONG_RUN["epochs"],
-                    every=LONG_RUN["every"], seed=seed)
     return AnnSetupResult(runs, int(rows.size), long, pair)
 
 

@@ -25,7 +25,7 @@ from ..paper.uncertainty import (
     percent,
     training_entries,
 )
-from ._common import check_render, check_step, probe_length
+from ._common import check_render, check_step, fits_in_parallel, probe_length
 
 __all__ = ["LearningResult", "compute", "render"]
 
@@ -84,16 +84,22 @@ class LearningResult:
         }
 
 
-def compute(ds, feats, seed: int) -> LearningResult:
-    """Train and test the two classifiers and the two distance networks."""
-    check_step(ds=ds, feats=feats, seed=seed)
-    svm = experiments.classify_materials_svm(feats.fft, ds.material, seed=seed)
-    ann = experiments.classify_materials_ann(feats.fft, ds.material, seed=seed,
-                                             max_iter=ANN_MAX_EPOCHS)
-    lin = experiments.regress_distance_linear_region(
-        feats.fft, ds.contact, probe_length=probe_length(ds), seed=seed
-    )
-    full = experiments.regress_distance_full_length(feats.fft_elliptic, ds.contact, seed=seed)
+def compute(ds, feats, seed: int, n_jobs: int = 1) -> LearningResult:
+    """Train and test the two classifiers and the two distance networks, each fit on one of
+    ``n_jobs`` worker processes (``_common.fits_in_parallel``): the same numbers whatever
+    ``n_jobs``."""
+    check_step(ds=ds, feats=feats, seed=seed, n_jobs=n_jobs)
+    # the longest fit first (the network's 1000 epochs: about six times the SVM's CPU time on
+    # the full data set), so that the three others share the second worker meanwhile
+    ann, svm, lin, full = fits_in_parallel([
+        (experiments.classify_materials_ann, (feats.fft, ds.material),
+         {"seed": seed, "max_iter": ANN_MAX_EPOCHS}),
+        (experiments.classify_materials_svm, (feats.fft, ds.material), {"seed": seed}),
+        (experiments.regress_distance_linear_region, (feats.fft, ds.contact),
+         {"probe_length": probe_length(ds), "seed": seed}),
+        (experiments.regress_distance_full_length, (feats.fft_elliptic, ds.contact),
+         {"seed": seed}),
+    ], n_jobs)
     return LearningResult(svm, ann, lin, full, np.asarray(ds.contact))
 
 

@@ -283,7 +283,7 @@ def _learn_materials_and_distance(study: _Sections, ds, feats, materials, seed: 
     study.run("frequency", signals.compute_frequency, signals.render_frequency,
               ds, feats, materials)
     study.run("decay", signals.compute_decay, signals.render_decay, ds, feats, materials)
-    learnt = study.run("ml", learning.compute, learning.render, ds, feats, seed)
+    learnt = study.run("ml", learning.compute, learning.render, ds, feats, seed, workers)
     study.run(
         "splits",
         lambda: material_splits.compute(ds, feats, seed, random_svm=learnt.svm,
@@ -294,7 +294,7 @@ def _learn_materials_and_distance(study: _Sections, ds, feats, materials, seed: 
     grouped = study.results["splits"].measured["svm", "grouped"]
     study.run("seeds", seed_spread.compute, seed_spread.render, ds, feats, seed, grouped,
               workers)
-    study.run("ann setup", ann_setup.compute, ann_setup.render, ds, feats, seed, quick)
+    study.run("ann setup", ann_setup.compute, ann_setup.render, ds, feats, seed, quick, workers)
 
 
 def _controls(study: _Sections, scene, seed: int, quick: bool, cache_dir, workers: int):

@@ -211,3 +211,30 @@ def test_fits_in_parallel_are_the_fits_in_turn():
         assert np.array_equal(a.model.decision_function(X), b.model.decision_function(X))
         assert np.array_equal(a.confusions["test"], b.confusions["test"])
     assert np.array_equal(turn[2].predicted_test, pool[2].predicted_test)
+
+
+def _without_times(entry):
+    """A summary's entry as JSON holds it, its fit times left out."""
+    entry = json.loads(json.dumps(entry))
+    if isinstance(entry, dict):
+        return {k: _without_times(v) for k, v in entry.items() if k != "fit_seconds"}
+    return entry
+
+
+def test_the_learning_steps_give_the_same_numbers_on_two_workers(quick_study):
+    """The study's 'ml' and 'ann setup' steps fit on worker processes: on two workers they give
+    the numbers the quick study reported from its fits made in turn (one worker)."""
+    from ebantenna.paper.data import build_paper_dataset
+    from ebantenna.paper.feature_table import signal_features
+    from ebantenna.study import learning
+
+    study, cache = quick_study
+    summary = _without_times(study.summary)
+    ds = build_paper_dataset(cache, seed=0, quick=True, n_jobs=1, show_progress=False)
+    feats = signal_features(ds.ax, ds.az, ds.fs, n_jobs=1, show_progress=False)
+    learnt = learning.compute(ds, feats, 0, n_jobs=2)
+    assert _without_times(learnt.to_dict()) == {k: summary[k] for k in ("svm", "ann")}
+    distance = _without_times(learnt.distance_dict())
+    assert distance == {k: summary["distance"][k] for k in distance}
+    setup = _without_times(ann_setup.compute(ds, feats, 0, quick=True, n_jobs=2).to_dict())
+    assert setup == {k: summary["materials"][k] for k in setup}

@@ -323,6 +323,10 @@ def test_every_silent_fault_is_exercised_by_name():
     ({"flip_write": ((0x1C, 0, 1),)}, "flip_write mask"),
     ({"register_lost": ((-1.0, 0x1C, 0),)}, "register_lost time"),
     ({"foreign_reads": ((0.1, "word"),)}, "foreign_reads must read"),
+    ({"foreign_reads": ((0.1, 0),)}, "foreign_reads n"),
+    ({"foreign_reads": ((0.1, True),)}, "foreign_reads must read"),
+    ({"drain_reads": ((-0.1, 6),)}, "drain_reads time"),
+    ({"drain_reads": ((0.1, 0),)}, "drain_reads n"),
     ({"undercount_at": (-0.5,)}, "undercount_at"),
     ({"bit_error_rate": 0.7}, "bit_error_rate"),
     ({"clock_drift": 0.95}, "clock_drift"),
@@ -417,6 +421,44 @@ def test_forty_recordings_with_a_sample_taken_keep_nothing_unflagged_as_the_guid
         at = 0.05 + 0.9 * np.random.default_rng(seed).random()
         rig, mpu, rec = _record(Faults(foreign_reads=((at, "sample"),)), 100e3, seed)
         _judge(rig, mpu, rec)
+
+
+def _family(kind, n, at):
+    """Another reader's theft of ``n`` (whole samples or bytes, as ``kind`` says) at ``at``."""
+    if kind == "samples at once":
+        return Faults(foreign_reads=((at, 6 * n),))
+    if kind == "bytes at once":
+        return Faults(foreign_reads=((at, n),))
+    return Faults(drain_reads=((at, 6 * n if kind == "samples mid-drain" else n),))
+
+
+@pytest.mark.parametrize("bus_hz", BUSES)
+@pytest.mark.parametrize("kind, n", [("samples at once", 2), ("samples at once", 3),
+                                     ("samples at once", 8), ("bytes at once", 4),
+                                     ("bytes at once", 13), ("samples mid-drain", 1),
+                                     ("samples mid-drain", 3), ("bytes mid-drain", 4)])
+def test_a_foreign_reader_taking_several_samples_or_part_of_one_is_never_kept_unflagged(
+        bus_hz, kind, n):
+    """The kinds of theft the device guide lists as detected: several whole samples at once
+    between drains (the next count contradicts the tolerance within one drain), any number of
+    bytes that is not whole samples (the count is not whole samples), and samples or bytes
+    taken between a drain's count and its data (the count after the data). Judged against the
+    chip's truth: no wrong sample and no timestamp outside its bound is kept unflagged."""
+    for seed in range(3):
+        at = 0.05 + 0.9 * np.random.default_rng(2000 + seed).random()
+        rig, mpu, rec = _record(_family(kind, n, at), bus_hz, seed)
+        assert sum(k == "foreign read" for _, k in rig.bus.injector.log) == 1
+        _judge(rig, mpu, rec)
+        assert rig.wrong_samples(mpu, rec) == int(
+            (_wrong_each(rig, mpu, rec) & mpu.stream.kept(0, ASKED)["suspect"]).sum())
+
+
+def test_a_foreign_read_of_n_bytes_takes_them_from_the_fifo():
+    # the injector's own witness: n bytes at once leave the FIFO n bytes shorter
+    rig, _, _ = _record(Faults(foreign_reads=((0.5, 9),)), 400e3)
+    assert [k for _, k in rig.bus.injector.log].count("foreign read") == 1
+    assert Faults(foreign_reads=((0.2, "sample"), (0.1, 7))).foreign_reads == (
+        (0.1, 7), (0.2, "sample"))
 
 
 def _times(seed, k):

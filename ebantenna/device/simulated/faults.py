@@ -92,7 +92,7 @@ from ..i2c import MAX_TRANSFER_TIMEOUT
 from .mpu6050 import MAX_CLOCK_DRIFT, REGISTER_SPACE
 
 __all__ = ["Faults", "FaultInjector", "TRANSFER_FAULTS", "SILENT_FAULTS", "MAX_CLOCK_DRIFT",
-           "MAX_OVERCOUNT", "MAX_FAULT_DRIFT", "MAX_PREEMPTION"]
+           "MAX_OVERCOUNT", "MAX_FAULT_DRIFT", "MAX_PREEMPTION", "MAX_READ_BYTES"]
 
 #: Kinds of failed transfer the injector can draw (see the module notes).
 TRANSFER_FAULTS = ("nack", "eio", "etimedout", "eagain", "late", "short", "eintr", "overcount")
@@ -111,6 +111,9 @@ SILENT_FAULTS = ("write bit flip", "register lost", "foreign read", "undercount"
 #: Largest sample-clock error the faults allow, relative (beyond MAX_CLOCK_DRIFT: a fault;
 #: beyond the driver's MAX_CLOCK_ADAPT of 50 %: a part not sampling as configured).
 MAX_FAULT_DRIFT = 0.9
+#: Most bytes one read of another program can take: the length of a Linux ``struct i2c_msg`` is
+#: 16 bits (``include/uapi/linux/i2c.h``).
+MAX_READ_BYTES = (1 << 16) - 1
 #: Longest time a slow host (``Faults.slow_host``) loses the processor at one moment, s.
 MAX_PREEMPTION = 10.0
 
@@ -129,7 +132,7 @@ def _what(what):
     if what in ("byte", "sample", "dump") and isinstance(what, str):
         return what
     if isinstance(what, int) and not isinstance(what, bool):
-        return check_int("foreign_reads n", what, minimum=1, maximum=0xFFFF)
+        return check_int("foreign_reads n", what, minimum=1, maximum=MAX_READ_BYTES)
     raise ValueError(f"foreign_reads must read a 'byte', a 'sample', a 'dump' or a number of "
                      f"bytes >= 1, got {what!r}")
 
@@ -322,7 +325,8 @@ class Faults:
         reads = tuple(sorted(((check_nonnegative("foreign_reads time", t), _what(what))
                               for t, what in self.foreign_reads), key=lambda r: r[0]))
         in_drain = tuple(sorted((check_nonnegative("drain_reads time", t),
-                                 check_int("drain_reads n", n, minimum=1, maximum=0xFFFF))
+                                 check_int("drain_reads n", n, minimum=1,
+                                           maximum=MAX_READ_BYTES))
                                 for t, n in self.drain_reads))
         object.__setattr__(self, "drain_reads", in_drain)
         object.__setattr__(self, "slow_host", _slow_host(self.slow_host))

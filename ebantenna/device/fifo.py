@@ -908,11 +908,15 @@ class FifoStream:
         the timestamps can be trusted, faults."""
         est = self.estimator
         _, uncertainty = self.segment_timing() if self.starts else (None, np.zeros(1))
+        sole = float(np.max(uncertainty))
+        kept = self.kept() if self._slot else None
         return {
             "sample_rate_estimated_hz": 1.0 / est.period,
             "sample_period_s": est.period,
             "sample_period_uncertainty_s": est.uncertainty,
-            "timestamp_uncertainty_s": float(np.max(uncertainty)),
+            # what the kept samples state (see kept), and their segments' alone
+            "timestamp_uncertainty_s": sole if kept is None else float(kept["uncertainty"].max()),
+            "timestamp_uncertainty_sole_reader_s": sole,
             "fifo_restarts": len(self.starts) - 1,
             "fifo_overflows": self.overflows,
             "fifo_counts_rejected": est.rejected,

@@ -294,8 +294,8 @@ class AcquisitionResult:
                 self.stream.get("timestamp_uncertainty_s") if self.recording is None
                 else self.recording.metadata["timestamp_uncertainty_s"]),
             "timestamp_uncertainty_sole_reader_s": (
-                None if self.recording is None
-                else self.recording.metadata.get("timestamp_uncertainty_sole_reader_s")),
+                self.stream.get("timestamp_uncertainty_sole_reader_s") if self.recording is None
+                else self.recording.metadata["timestamp_uncertainty_sole_reader_s"]),
             "fifo_counts_rejected": self.stream.get("fifo_counts_rejected", 0),
             "fifo_restarts": self.stream.get("fifo_restarts", 0),
             "faults": len(self.stream.get("faults", [])),

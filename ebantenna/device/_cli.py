@@ -397,6 +397,12 @@ def _summary(args, setup: dict, result, saved=None) -> dict:
     return summary
 
 
+def _sole(summary: dict) -> str:
+    """The timestamps' uncertainty when no other program reads the FIFO, as a clause."""
+    sole = summary.get("timestamp_uncertainty_sole_reader_s")
+    return "" if sole is None else f" ({1e6 * sole:.0f} us if no other program reads the FIFO)"
+
+
 def _print_text(summary: dict, result, config) -> None:
     """The human-readable report."""
     if result.contact_detected:
@@ -408,7 +414,7 @@ def _print_text(summary: dict, result, config) -> None:
               f"{summary['fifo_restarts']} FIFO restarts, {summary['fifo_counts_rejected']} "
               f"FIFO counts rejected, {summary['samples_discarded']} samples read and "
               f"discarded; timestamps within "
-              f"{1e6 * summary['timestamp_uncertainty_s']:.0f} us")
+              f"{1e6 * summary['timestamp_uncertainty_s']:.0f} us{_sole(summary)}")
         if summary["out"]:
             print(f"saved {summary['out']}")
         for warning in result.warnings():

@@ -35,10 +35,13 @@ estimates the sample period from the timestamps of its interrupts), are:
    checklist of the user guide). The period ``T`` is bracketed from *differences* of counts
    within a segment, in which the first sample's time cancels (:class:`PeriodEstimator`); each
    segment's first sample is then placed from its own counts, and sample ``j`` is at ``t_0 +
-   j T``. Every segment carries the uncertainty of its timestamps, and a recording says the
-   largest (``timestamp_uncertainty_s``). Each sample also gets a *slot*, its position on the
-   grid of the nominal stream, and the slots nobody filled are the lost samples, so kept +
-   lost is always the number of slots asked for.
+   j T``. Every segment carries the uncertainty of its timestamps, true when no other program
+   reads the FIFO (a recording says the largest, ``timestamp_uncertainty_sole_reader_s``);
+   each sample states the hull of that and its own drain's anchor, true too when another
+   reader took single samples unseen, which the counts cannot tell from a slower clock
+   (``timestamp_uncertainty_s``, the largest; ``FifoStream._drain_covered``). Each sample also
+   gets a *slot*, its position on the grid of the nominal stream, and the slots nobody filled
+   are the lost samples, so kept + lost is always the number of slots asked for.
 5. **A chip that went quiet** (no sample where some were due) is asked for its configuration; if
    it has been reset (a brown-out leaves it asleep, RM 107), it is configured again and the
    stream restarted. Every fault goes into the ``faults`` of the :class:`FifoStream`.
@@ -83,7 +86,7 @@ from .timing import CLOCK_TOLERANCE, PeriodEstimator
 __all__ = ["PeriodEstimator", "StreamFault", "FifoBlock", "FifoStream", "CLOCK_TOLERANCE",
            "MAX_CLOCK_ADAPT", "REFUSE_AFTER", "sensor_check", "PARITY_MIN_NOISE_LSB",
            "PREDICTOR_ORDER", "ODD_SHARE_LIMIT", "PARITY_BLOCK", "PARITY_FALSE_ALARM",
-           "MIN_PARITY_READINGS"]
+           "MIN_PARITY_READINGS", "STOLEN_SHARE_COVERED"]
 
 logger = logging.getLogger(__name__)
 
@@ -99,6 +102,12 @@ CLOCK_SUSPECT_AFTER = 2
 #: MPU-6500-family clone at 8 kHz, a divider that did not land): the stream refuses it, naming
 #: the rate, and keeps nothing more (``FifoStream.clock_refused``).
 MAX_CLOCK_ADAPT = 0.5
+#: How far, relative, samples taken unseen by another reader (whole samples between drains, a
+#: few at a time: a clock that much slower, as far as the counts can tell) may raise the low end
+#: of the period's bracket while every stated timestamp uncertainty still holds
+#: (``FifoStream._drain_covered``): one sample in a hundred over the stretch of counts that sets
+#: that end. A reader taking more is covered only if the bracket's other counts bound the period.
+STOLEN_SHARE_COVERED = 0.01
 #: Counts in a row, no drain kept between them, that must agree on a rate beyond
 #: :data:`MAX_CLOCK_ADAPT` before the stream refuses the clock: a corrupted count shows such a
 #: rate once, a part sampling at another rate at every count.
@@ -710,8 +719,11 @@ class FifoStream:
     def kept(self, first: int = 0, stop: int | None = None) -> dict:
         """The kept samples with slots in ``[first, stop)``: arrays ``slot``, ``segment``,
         ``position`` (within the segment), ``counts``, ``time`` (s, estimated, from the stream's
-        first segment start), ``uncertainty`` (s: that of the sample's segment, widened for a
-        flagged one, see ``_anchored``) and ``suspect`` (its timestamp flagged)."""
+        first segment start), ``uncertainty`` (s: how far ``time`` can be from the truth, even
+        with samples taken unseen by another reader, see ``_drain_covered``),
+        ``uncertainty_sole_reader`` (s: the same when no other program reads the FIFO: that of
+        the sample's segment, widened for a flagged one, see ``_anchored``) and ``suspect``
+        (its timestamp flagged)."""
         first = check_int("first", first, minimum=0)
         if stop is not None:
             stop = check_int("stop", stop, minimum=first)
@@ -746,8 +758,47 @@ class FifoStream:
                           np.isin(out["segment"], sorted(self.suspect)))
         if out["suspect"].any():
             self._anchored(out)
+        out["uncertainty_sole_reader"] = out["uncertainty"]
+        if out["slot"].size:
+            self._drain_covered(out)
         del out["anchor"]
         return out
+
+    def _drain_covered(self, out: dict) -> None:
+        """Widen every timestamp's uncertainty to reach its drain's anchor, so that it holds
+        whatever single samples another reader took unseen (see
+        :data:`STOLEN_SHARE_COVERED` for the limit).
+
+        A reader that takes whole samples from the FIFO between drains, a few at a time, makes
+        the segment's later counts short: a clock that slow, as far as the counts can tell
+        (``k`` samples taken in ``N`` is a clock ``k / N`` slower), and the segment's grid
+        then runs through its observations at the wrong slope, off the true times between them
+        by up to a period. What no such reader can mislead is the drain's own anchor: when the
+        drain's count was read (between ``b`` and ``a``), the newest of the samples the FIFO
+        held was taken in ``(b - T, a]`` (its successor was not yet there), and the sample
+        ``k`` before it ``k`` periods earlier (a reader takes the oldest bytes, so the FIFO's
+        samples stay consecutive). One more period is allowed after ``a``: a sample taken
+        between the count and the data, which the count after the data need not reveal, makes
+        the drain's newest sample the one after.
+
+        Stolen samples make counts short, which biases the bracket's *low* end up, never the
+        high end: a pair's upper bound on ``T`` counts the periods between a sample not yet
+        there at one count and one there by a later count, and a take only adds periods
+        between them. So ``T`` is taken in ``[low / (1 + STOLEN_SHARE_COVERED), high]``, no
+        lower than the prior. The timestamp stays on its segment's grid; only its uncertainty
+        grows, to reach both ends of the anchor's interval: one to two periods, plus the
+        drain's samples times the covered share of one.
+        """
+        est = self.estimator
+        t_high = est.high
+        t_low = max(est.prior[0], est.low / (1.0 + STOLEN_SHARE_COVERED))
+        origin = self.starts[0]
+        newest, b, a = out["anchor"].T
+        k = newest - out["position"]
+        lo = b - origin - (k + 1) * t_high
+        hi = a - origin - (k - 1) * t_low  # a period later: one sample taken mid-drain
+        time = out["time"]
+        out["uncertainty"] = np.maximum(out["uncertainty"], np.maximum(time - lo, hi - time))
 
     def _anchored(self, out: dict) -> None:
         """Timestamps of flagged samples that hold whatever contradicted their segment.
@@ -797,10 +848,12 @@ class FifoStream:
         metadata hold ``samples_lost`` (slots in the window without a sample), the stream's
         report (period estimate, restarts, rejected counts, fault log),
         ``timestamp_uncertainty_s`` (how far any timestamp of the window can be from the truth,
-        the largest of its segments') and under ``"raw"`` what the rig measured: the counts of
-        all three axes (Y included), each sample's slot, FIFO segment and position in it, each
-        segment's start, estimated first sample and its timestamps' uncertainty, and each
-        drain's host time (s from the stream's start) and size.
+        with up to :data:`STOLEN_SHARE_COVERED` of the samples taken unseen by another reader),
+        ``timestamp_uncertainty_sole_reader_s`` (the same when no other program reads the FIFO:
+        the largest of its segments', see :meth:`kept`) and under ``"raw"`` what the rig
+        measured: the counts of all three axes (Y included), each sample's slot, FIFO segment
+        and position in it, each segment's start, estimated first sample and its timestamps'
+        uncertainty, and each drain's host time (s from the stream's start) and size.
 
         Returns
         -------
@@ -823,6 +876,8 @@ class FifoStream:
                 "samples_saturated": saturated,
                 "first_index": int(kept["slot"][0]),
                 "timestamp_uncertainty_s": float(kept["uncertainty"].max()),
+                "timestamp_uncertainty_sole_reader_s": float(
+                    kept["uncertainty_sole_reader"].max()),
                 "samples_timing_suspect": int(kept["suspect"].sum()),
                 "sensor_check": sensor_check(counts, mpu.config.lsb_per_g),
             }
@@ -853,11 +908,15 @@ class FifoStream:
         the timestamps can be trusted, faults."""
         est = self.estimator
         _, uncertainty = self.segment_timing() if self.starts else (None, np.zeros(1))
+        sole = float(np.max(uncertainty))
+        kept = self.kept() if self._slot else None
         return {
             "sample_rate_estimated_hz": 1.0 / est.period,
             "sample_period_s": est.period,
             "sample_period_uncertainty_s": est.uncertainty,
-            "timestamp_uncertainty_s": float(np.max(uncertainty)),
+            # what the kept samples state (see kept), and their segments' alone
+            "timestamp_uncertainty_s": sole if kept is None else float(kept["uncertainty"].max()),
+            "timestamp_uncertainty_sole_reader_s": sole,
             "fifo_restarts": len(self.starts) - 1,
             "fifo_overflows": self.overflows,
             "fifo_counts_rejected": est.rejected,

@@ -293,6 +293,9 @@ class AcquisitionResult:
             "timestamp_uncertainty_s": (
                 self.stream.get("timestamp_uncertainty_s") if self.recording is None
                 else self.recording.metadata["timestamp_uncertainty_s"]),
+            "timestamp_uncertainty_sole_reader_s": (
+                self.stream.get("timestamp_uncertainty_sole_reader_s") if self.recording is None
+                else self.recording.metadata["timestamp_uncertainty_sole_reader_s"]),
             "fifo_counts_rejected": self.stream.get("fifo_counts_rejected", 0),
             "fifo_restarts": self.stream.get("fifo_restarts", 0),
             "faults": len(self.stream.get("faults", [])),

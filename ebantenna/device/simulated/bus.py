@@ -164,6 +164,8 @@ class SimulatedBus:
         """One read transfer of ``length`` bytes from ``register`` on (``nbytes`` on the wire)."""
         counting = address == self.reset_address and register == Register.FIFO_COUNTH
         chip, kind = self._begin(address, nbytes, counting=counting and length >= 2)
+        if address == self.reset_address and register == Register.FIFO_R_W:
+            self.injector._drain_read(self.clock.monotonic(), chip)
         if kind == "short":
             return chip.read(register, self.injector.short_length(length))
         data = chip.read(register, length)

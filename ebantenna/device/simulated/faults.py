@@ -46,8 +46,11 @@ what it reads (the kinds of :data:`SILENT_FAULTS`, by the name each logs):
     a partial reset, a glitch, another program writing it.
 ``"foreign read"``
     Another program reads the accelerometer at a given time (``foreign_reads``): ``i2cget -y 1
-    0x68 0x74`` takes one byte of the FIFO, a second driver a whole sample, ``i2cdump`` every
-    register once (the FIFO's byte and the clear-on-read ``INT_STATUS`` included).
+    0x68 0x74`` takes one byte of the FIFO, a second driver a whole sample or several at once
+    (any number of bytes, a partial sample included), ``i2cdump`` every register once (the
+    FIFO's byte and the clear-on-read ``INT_STATUS`` included). With ``drain_reads`` the other
+    program takes its bytes in the middle of a drain: after the drain's count was read, just
+    before its data are.
 ``"undercount"``
     A FIFO count reads one sample low, once, at the first count read after each given time.
 ``"bit error"``
@@ -89,7 +92,7 @@ from ..i2c import MAX_TRANSFER_TIMEOUT
 from .mpu6050 import MAX_CLOCK_DRIFT, REGISTER_SPACE
 
 __all__ = ["Faults", "FaultInjector", "TRANSFER_FAULTS", "SILENT_FAULTS", "MAX_CLOCK_DRIFT",
-           "MAX_OVERCOUNT", "MAX_FAULT_DRIFT", "MAX_PREEMPTION"]
+           "MAX_OVERCOUNT", "MAX_FAULT_DRIFT", "MAX_PREEMPTION", "MAX_READ_BYTES"]
 
 #: Kinds of failed transfer the injector can draw (see the module notes).
 TRANSFER_FAULTS = ("nack", "eio", "etimedout", "eagain", "late", "short", "eintr", "overcount")
@@ -108,6 +111,9 @@ SILENT_FAULTS = ("write bit flip", "register lost", "foreign read", "undercount"
 #: Largest sample-clock error the faults allow, relative (beyond MAX_CLOCK_DRIFT: a fault;
 #: beyond the driver's MAX_CLOCK_ADAPT of 50 %: a part not sampling as configured).
 MAX_FAULT_DRIFT = 0.9
+#: Most bytes one read of another program can take: the length of a Linux ``struct i2c_msg`` is
+#: 16 bits (``include/uapi/linux/i2c.h``).
+MAX_READ_BYTES = (1 << 16) - 1
 #: Longest time a slow host (``Faults.slow_host``) loses the processor at one moment, s.
 MAX_PREEMPTION = 10.0
 
@@ -118,6 +124,17 @@ def _time(now) -> float:
     if type(now) is float and 0.0 <= now < math.inf:
         return now
     return check_nonnegative("now", now)
+
+
+def _what(what):
+    """A ``foreign_reads`` entry's ``what``, checked: ``"byte"``, ``"sample"``, ``"dump"`` or a
+    number of FIFO bytes (an int >= 1)."""
+    if what in ("byte", "sample", "dump") and isinstance(what, str):
+        return what
+    if isinstance(what, int) and not isinstance(what, bool):
+        return check_int("foreign_reads n", what, minimum=1, maximum=MAX_READ_BYTES)
+    raise ValueError(f"foreign_reads must read a 'byte', a 'sample', a 'dump' or a number of "
+                     f"bytes >= 1, got {what!r}")
 
 
 def _slow_host(value) -> tuple:
@@ -195,8 +212,13 @@ class Faults:
         ``value`` by itself ("register lost").
     foreign_reads : tuple of (float, str)
         ``(time, what)``: at that virtual time another program reads the accelerometer, ``what``
-        being ``"byte"`` (one FIFO byte, ``i2cget``), ``"sample"`` (six FIFO bytes) or
-        ``"dump"`` (every register once, ``i2cdump``) ("foreign read").
+        being ``"byte"`` (one FIFO byte, ``i2cget``), ``"sample"`` (six FIFO bytes), an int
+        ``n`` >= 1 (``n`` FIFO bytes at once: ``6 k`` for ``k`` whole samples, any other number
+        a partial one) or ``"dump"`` (every register once, ``i2cdump``) ("foreign read").
+    drain_reads : tuple of (float, int)
+        ``(time, n)``: the first read of the FIFO data port after that virtual time is preceded
+        by another program's read of ``n`` >= 1 FIFO bytes, between the drain's count and its
+        data ("foreign read").
     undercount_at : tuple of float
         The first FIFO count read after each of these virtual times reads one sample low.
     bit_error_rate : float
@@ -246,6 +268,7 @@ class Faults:
     flip_write: tuple = ()
     register_lost: tuple = ()
     foreign_reads: tuple = ()
+    drain_reads: tuple = ()
     undercount_at: tuple = ()
     bit_error_rate: float = 0.0
     clone_6500: bool = False
@@ -299,12 +322,13 @@ class Faults:
                       check_int("register_lost register", r, minimum=0, maximum=_LAST_REGISTER),
                       check_int("register_lost value", v, minimum=0, maximum=0xFF))
                      for t, r, v in self.register_lost)
-        reads = tuple((check_nonnegative("foreign_reads time", t), what)
-                      for t, what in self.foreign_reads)
-        bad = [what for _, what in reads if what not in ("byte", "sample", "dump")]
-        if bad:
-            raise ValueError(f"foreign_reads must read a 'byte', a 'sample' or a 'dump', got "
-                             f"{bad[0]!r}")
+        reads = tuple(sorted(((check_nonnegative("foreign_reads time", t), _what(what))
+                              for t, what in self.foreign_reads), key=lambda r: r[0]))
+        in_drain = tuple(sorted((check_nonnegative("drain_reads time", t),
+                                 check_int("drain_reads n", n, minimum=1,
+                                           maximum=MAX_READ_BYTES))
+                                for t, n in self.drain_reads))
+        object.__setattr__(self, "drain_reads", in_drain)
         object.__setattr__(self, "slow_host", _slow_host(self.slow_host))
         under = tuple(sorted(check_nonnegative("undercount_at", t) for t in self.undercount_at))
         for name, value in (("flip_write", flips), ("register_lost", lost),
@@ -358,7 +382,7 @@ class FaultInjector:
         self._slow = np.random.default_rng([seed, 2])
         self._flips_done: dict[tuple, int] = {}
         self._pca_reset_done = False
-        self._lost_done = self._reads_done = self._under_done = 0
+        self._lost_done = self._reads_done = self._under_done = self._drain_done = 0
         self._now = 0.0
         self.errors_injected = 0
         self.log: list[tuple[float, str]] = []
@@ -481,8 +505,18 @@ class FaultInjector:
                 for register in range(_LAST_REGISTER + 1):
                     mpu.read(register, 1)
             else:
-                mpu.read(Register.FIFO_R_W, 1 if what == "byte" else ACCEL_SAMPLE_BYTES)
+                nbytes = {"byte": 1, "sample": ACCEL_SAMPLE_BYTES}.get(what, what)
+                mpu.read(Register.FIFO_R_W, nbytes)
             self._reads_done += 1
+            self.log.append((now, "foreign read"))
+
+    def _drain_read(self, now: float, mpu) -> None:
+        """Before a read of the FIFO data port at ``now``: another program's read, if one of
+        ``drain_reads`` is due (each once)."""
+        due = self.faults.drain_reads
+        if self._drain_done < len(due) and due[self._drain_done][0] <= now:
+            mpu.read(Register.FIFO_R_W, due[self._drain_done][1])
+            self._drain_done += 1
             self.log.append((now, "foreign read"))
 
     def _undercount(self, now: float) -> bool:

@@ -452,10 +452,10 @@ class KernelRows:
         For 'rbf': compute the rows without cancellation, from the points centred once on their
         mean or, for sparse points, with the cancelling entries recomputed (see
         :meth:`Kernel.gram`); ``False`` keeps libsvm's uncentred arithmetic.
-    parts : sequence of slice, optional
-        With ``full``: the problem's points are the rows of ``full`` in these slices, one after
-        the other (the classes of a one-vs-one pair). Rows are then assembled from the slices on
-        demand instead of copying the block.
+    parts : sequence of slice or of 1-D integer arrays, optional
+        With ``full``: the problem's points are the rows of ``full`` in these slices (or at these
+        indices), one after the other (the classes of a one-vs-one pair). Rows are then assembled
+        from the parts on demand instead of copying the block.
 
     Examples
     --------
@@ -488,14 +488,16 @@ class KernelRows:
         self._norms = squared_norms(X) if X is not None else None
         self._parts = None
         if full is not None and parts is not None:
-            parts = list(parts)
+            parts = [p if isinstance(p, slice) else np.asarray(p, dtype=np.intp) for p in parts]
             self.matrix = full
-            self.n = sum(p.stop - p.start for p in parts)
             # row i of the problem is row _rows[i] of `full`; touching slices are merged
-            self._rows = np.concatenate([np.arange(p.start, p.stop) for p in parts])
+            self._rows = np.concatenate([np.arange(p.start, p.stop) if isinstance(p, slice)
+                                         else p for p in parts])
+            self.n = self._rows.size
             merged = [parts[0]]
             for p in parts[1:]:
-                if p.start == merged[-1].stop:
+                if (isinstance(p, slice) and isinstance(merged[-1], slice)
+                        and p.start == merged[-1].stop):
                     merged[-1] = slice(merged[-1].start, p.stop)
                 else:
                     merged.append(p)

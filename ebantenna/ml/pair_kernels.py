@@ -5,7 +5,10 @@ the problem of the pair :math:`(a, b)` needs the kernel entries among the points
 classes. :class:`PairKernels` hands each problem its :class:`~ebantenna.ml.kernels.KernelRows`,
 kept in one of three ways, the first that applies:
 
-* **the given matrix**: a precomputed kernel or a callable's matrix, used as it is.
+* **the given matrix**: a precomputed kernel, a callable's matrix, or the kernel matrix that
+  machines trained on the same points share (:meth:`~ebantenna.ml.SVC.fit`'s
+  ``kernel_matrix``), used as it is: the rows of a pair are gathered from it at the pair's
+  indices (no copy when it is stored in ``dtype`` already).
 * **pair by pair, in float64** (the default mode, dense points, when the kernel of the two
   largest classes fits in ``cache_bytes`` in float64): the kernel matrix of each pair is built
   in one float64 buffer, reused from pair to pair, and each row is a contiguous view of it. The
@@ -41,6 +44,33 @@ from .._validate import check_int
 from .kernels import Kernel, KernelRows, squared_norms
 
 __all__ = ["PairKernels"]
+
+
+def _check_arguments(X, members, kernel, cache_bytes, given) -> None:
+    """The arguments of :class:`PairKernels` checked (see its parameters)."""
+    if isinstance(members, np.ndarray) or not isinstance(members, list | tuple) or len(
+            members) < 2:
+        raise TypeError("members must be a list of index arrays, one per class (two at "
+                        "least)")
+    n_points = given.shape[0] if given is not None else getattr(X, "shape", (0,))[0]
+    for c, m in enumerate(members):
+        if (not isinstance(m, np.ndarray) or m.ndim != 1 or m.dtype.kind not in "iu"
+                or m.size == 0 or m.min() < 0 or m.max() >= n_points):
+            raise ValueError(f"members[{c}] must be a non-empty 1-D integer array of row "
+                             f"indices below {n_points}")
+    check_int("cache_bytes", cache_bytes, minimum=0)
+    if given is not None:
+        if (not isinstance(given, np.ndarray) or given.ndim != 2
+                or given.shape[0] != given.shape[1]):
+            raise ValueError(f"given must be a square kernel matrix (NumPy array), got "
+                             f"{type(given).__name__} {getattr(given, 'shape', '')}")
+    else:
+        if not isinstance(kernel, Kernel):
+            raise TypeError(f"kernel must be a Kernel (or given the whole matrix), got "
+                            f"{type(kernel).__name__}")
+        if not (issparse(X) or (isinstance(X, np.ndarray) and X.ndim == 2)):
+            raise TypeError(f"X must be a 2-D NumPy array or a sparse matrix of points, got "
+                            f"{type(X).__name__}")
 
 
 class PairKernels:
@@ -82,29 +112,7 @@ class PairKernels:
 
     def __init__(self, X, members, kernel: Kernel | None, dtype, cache_bytes: int, *,
                  given=None, libsvm_compat: bool = False):
-        if isinstance(members, np.ndarray) or not isinstance(members, list | tuple) or len(
-                members) < 2:
-            raise TypeError("members must be a list of index arrays, one per class (two at "
-                            "least)")
-        n_points = given.shape[0] if given is not None else getattr(X, "shape", (0,))[0]
-        for c, m in enumerate(members):
-            if (not isinstance(m, np.ndarray) or m.ndim != 1 or m.dtype.kind not in "iu"
-                    or m.size == 0 or m.min() < 0 or m.max() >= n_points):
-                raise ValueError(f"members[{c}] must be a non-empty 1-D integer array of row "
-                                 f"indices below {n_points}")
-        check_int("cache_bytes", cache_bytes, minimum=0)
-        if given is not None:
-            if (not isinstance(given, np.ndarray) or given.ndim != 2
-                    or given.shape[0] != given.shape[1]):
-                raise ValueError(f"given must be a square kernel matrix (NumPy array), got "
-                                 f"{type(given).__name__} {getattr(given, 'shape', '')}")
-        else:
-            if not isinstance(kernel, Kernel):
-                raise TypeError(f"kernel must be a Kernel (or given the whole matrix), got "
-                                f"{type(kernel).__name__}")
-            if not (issparse(X) or (isinstance(X, np.ndarray) and X.ndim == 2)):
-                raise TypeError(f"X must be a 2-D NumPy array or a sparse matrix of points, got "
-                                f"{type(X).__name__}")
+        _check_arguments(X, members, kernel, cache_bytes, given)
         self.members = members
         self.kernel = kernel
         self.dtype = np.dtype(dtype)
@@ -116,9 +124,13 @@ class PairKernels:
         n = order.size
         largest = sum(sorted(m.size for m in members)[-2:])
         self._matrix = None
+        self._indexed = False  # the pairs' rows at the members' indices of the given matrix
         if given is not None:
             self.layout = "given"
-            self._matrix = np.asarray(given[np.ix_(order, order)], dtype=self.dtype)
+            if given.dtype == self.dtype:  # read in place, at the members' indices
+                self._matrix, self._indexed = given, True
+            else:  # stored in dtype, sorted by class: each class a slice
+                self._matrix = np.asarray(given[np.ix_(order, order)], dtype=self.dtype)
         elif not libsvm_compat and not issparse(X) and largest**2 * 8 <= cache_bytes:
             self.layout = "pairs"
             # the points sorted by class (each class a slice), centred once on their mean for
@@ -167,7 +179,8 @@ class PairKernels:
             return KernelRows(None, self.kernel, np.float64, 0, full=self._pair_matrix(a, b))
         if self._matrix is not None:
             s = self._starts
-            parts = (slice(s[a], s[a + 1]), slice(s[b], s[b + 1]))
+            parts = ((self.members[a], self.members[b]) if self._indexed
+                     else (slice(s[a], s[a + 1]), slice(s[b], s[b + 1])))
             return KernelRows(None, self.kernel, self.dtype, self.cache_bytes,
                               full=self._matrix, parts=parts)
         idx = np.concatenate([self.members[a], self.members[b]])

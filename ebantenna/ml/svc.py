@@ -347,7 +347,7 @@ class SVC(ClassifierMixin, BaseEstimator):
 
     # --------------------------------------------------------------------- fit
     @_fit_context(prefer_skip_nested_validation=True)
-    def fit(self, X, y, sample_weight=None):
+    def fit(self, X, y, sample_weight=None, kernel_matrix=None):
         """Train one binary SVM per pair of classes.
 
         Parameters
@@ -359,6 +359,16 @@ class SVC(ClassifierMixin, BaseEstimator):
             Class labels (dense).
         sample_weight : array-like of shape (n_samples,), optional
             Per-sample multiplier of ``C``; samples with weight <= 0 are left out.
+        kernel_matrix : ndarray of shape (n_samples, n_samples), optional
+            The kernel matrix :math:`k(x_i, x_j)` of ``X`` with itself, already computed, for a
+            named kernel: machines trained on the same rows with the same kernel share it (the
+            one-vs-rest machines of the paper's classifiers) instead of each computing it. It
+            is used as it is (rows gathered from it, not copied, when it is float64 and the
+            kernel is stored in float64), after a spot check: its diagonal and eight of its
+            rows must be those of the kernel within :math:`2^{-20}` relative (two evaluations
+            differ by rounding only, far below that; another ``X``, ``gamma`` or kernel differs
+            by much more). The check cannot see a wrong entry elsewhere. Prediction computes
+            its own kernel, as without it.
 
         Returns
         -------
@@ -368,8 +378,11 @@ class SVC(ClassifierMixin, BaseEstimator):
         X, y_idx, sw = self._training_data(X, y, sample_weight)
         classes = self.classes_
         self._gamma = resolve_gamma(self.gamma, X)
-        given = self._given_kernel_matrix(X)  # precomputed or callable: the whole matrix
-        kern = None if given is not None else self._kernel()
+        named = not (self.kernel == "precomputed" or callable(self.kernel))
+        kern = self._kernel() if named else None
+        # precomputed or callable: the whole matrix; a named kernel: the shared one, if given
+        given = (self._shared_kernel_matrix(kernel_matrix, X, kern) if named
+                 else self._given_kernel_matrix(X, kernel_matrix))
         c_vec = float(self.C) * self.class_weight_[y_idx] * sw
         keep = c_vec > 0
         cache_bytes = int(float(self.cache_size) * 2**20)
@@ -385,7 +398,7 @@ class SVC(ClassifierMixin, BaseEstimator):
             raise ValueError("every class needs at least one sample with a positive weight")
         kernels = PairKernels(X, members, kern, dtype, cache_bytes, given=given,
                               libsvm_compat=compat)
-        diag = np.diag(given).astype(np.float64) if given is not None else kern.diagonal(X)
+        diag = kern.diagonal(X) if named else np.diag(given).astype(np.float64)
         policy = fit_policy(compat, self.selection, bool(self.shrinking),
                             whole_kernel=kernels.stored)
         # -1: no cap, as in scikit-learn's libsvm ("set max_iter to -1 to disable the mechanism"
@@ -591,13 +604,44 @@ class SVC(ClassifierMixin, BaseEstimator):
         """Logarithm of :meth:`predict_proba`."""
         return np.log(self.predict_proba(X))
 
-    def _given_kernel_matrix(self, X):
+    def _given_kernel_matrix(self, X, kernel_matrix=None):
         """The training kernel matrix for 'precomputed' (``X`` itself) or a callable, else None."""
+        if kernel_matrix is not None:
+            raise ValueError("kernel_matrix is for a named kernel ('linear', 'poly', 'rbf', "
+                             "'sigmoid'); with 'precomputed' X is the kernel matrix, and a "
+                             "callable's matrix is computed once already")
         if self.kernel == "precomputed":
             return X
         if callable(self.kernel):
             return call_kernel(self.kernel, X, X)
         return None
+
+    def _shared_kernel_matrix(self, kernel_matrix, X, kern: Kernel):
+        """``kernel_matrix`` checked as the kernel matrix of ``X`` with itself (see :meth:`fit`),
+        or None."""
+        if kernel_matrix is None:
+            return None
+        n = X.shape[0]
+        if not isinstance(kernel_matrix, np.ndarray) or kernel_matrix.shape != (n, n):
+            raise ValueError(f"kernel_matrix must be a NumPy array of shape ({n}, {n}), the "
+                             f"kernel of X with itself; got {type(kernel_matrix).__name__} "
+                             f"{getattr(kernel_matrix, 'shape', '')}")
+        if kernel_matrix.dtype.kind != "f" or not np.isfinite(kernel_matrix).all():
+            raise ValueError("kernel_matrix must hold finite real numbers")
+        rows = np.unique(np.linspace(0, n - 1, min(n, 8)).astype(np.intp))
+        reference = kern.gram(X[rows], X)
+        diagonal = kern.diagonal(X)
+        # rounding differs between two evaluations far below 2**-20 relative (the kernels' error
+        # bound); a matrix of other points, another width or another kernel differs by much more
+        def close(a, b):
+            return bool(np.all(np.abs(a - b) <= 2.0**-20 * (1 + np.abs(b))))
+
+        if not (close(kernel_matrix[rows], reference)
+                and close(np.diagonal(kernel_matrix), diagonal)):
+            raise ValueError(f"kernel_matrix is not the {self.kernel!r} kernel of X with itself "
+                             f"(gamma={self._gamma!r}): its diagonal or its rows {rows.tolist()} "
+                             "differ from the kernel's")
+        return kernel_matrix
 
     def _sparse_input(self, X):
         """A validated sparse ``X`` in canonical CSR form (sorted, summed indices)."""

@@ -3,7 +3,18 @@ as one machine.
 
 The paper classifies five materials "with the one vs all strategy": five binary RBF machines
 (:class:`ebantenna.ml.SVC`), each trained on every training row, the class of the largest
-decision value winning. Two things make that cheaper here, without changing what is computed:
+decision value winning. Three things make that cheaper here, without changing what is computed
+beyond rounding:
+
+* **One training kernel for the five machines.** Each machine's dual needs the kernel of all
+  ``n`` training rows, the same matrix for every machine. :class:`OneVsRestSVC` computes it once
+  and gives it to each machine's fit (:meth:`ebantenna.ml.SVC.fit`'s ``kernel_matrix``), where
+  each machine would compute it again, centred on the mean of its rows sorted by its own
+  labels. The entries then differ from a machine's own by rounding only, and so do the duals:
+  each SMO stops within its tolerance of the same optimum, the decision values a few ``tol``
+  apart (on the paper's data set, at most 1.2e-3 over the five grouped folds and the random
+  split, with the same accuracies). On 7,900 rows of 256 features it took each fit from about
+  6.6 to 4.3 CPU seconds.
 
 * **The whole training kernel in float64.** Each binary fit needs the kernel of all ``n``
   training rows. With the SVC's default ``cache_size`` of 200 MB a kernel of more than 5,120 rows
@@ -32,7 +43,9 @@ import math
 
 import numpy as np
 import scipy.sparse as sp
+from sklearn.base import clone
 from sklearn.multiclass import OneVsRestClassifier
+from sklearn.preprocessing import LabelBinarizer
 from sklearn.utils.validation import check_is_fitted, validate_data
 
 from .._budget import MemoryBudgetError, check_allocation
@@ -99,8 +112,12 @@ def whole_kernel_svc(n_rows: int, **params) -> SVC:
 class OneVsRestSVC(OneVsRestClassifier):
     """:class:`sklearn.multiclass.OneVsRestClassifier` whose RBF machines share one test kernel.
 
-    Trained exactly as the class it extends: one clone of ``estimator`` per class, on all the
-    rows, that class against the rest. When there are more than two classes and the machines are
+    Trained as the class it extends: one clone of ``estimator`` per class, on all the rows, that
+    class against the rest. When there are more than two classes, the rows are a dense float
+    array and ``estimator`` is an RBF :class:`ebantenna.ml.SVC` whose cache holds the whole
+    kernel in float64 (see :func:`whole_kernel_svc`), with ``n_jobs`` None or 1, the training
+    kernel is computed once for all the machines (see the module text). When there are more
+    than two classes and the machines are
     RBF :class:`ebantenna.ml.SVC` fitted on dense rows, :meth:`decision_function` and
     :meth:`predict` compute the kernel of the rows to predict against the union of the machines'
     support vectors once, in blocks of at most ``GEMM_ENTRIES`` entries, and every machine's
@@ -151,7 +168,11 @@ class OneVsRestSVC(OneVsRestClassifier):
         -------
         self
         """
-        super().fit(X, y, **fit_params)
+        kernel = None if fit_params else self._training_kernel(X, y)
+        if kernel is None:
+            super().fit(X, y, **fit_params)
+        else:
+            self._fit_on_one_kernel(X, y, kernel)
         self.support_rows_ = None
         self._shared = None
         shared = (
@@ -163,6 +184,37 @@ class OneVsRestSVC(OneVsRestClassifier):
         if shared:
             self._gather(X)
         return self
+
+    def _training_kernel(self, X, y):
+        """The RBF kernel matrix of the training rows, computed once for every machine, or None
+        where the machines compute their own (see the class text)."""
+        e = self.estimator
+        if not (isinstance(e, SVC) and isinstance(e.kernel, str) and e.kernel == "rbf"
+                and self.n_jobs in (None, 1) and isinstance(X, np.ndarray) and X.ndim == 2
+                and X.dtype.kind == "f" and X.shape[0] >= 2):
+            return None
+        labels = np.asarray(y)
+        if labels.ndim != 1 or labels.shape[0] != X.shape[0] or np.unique(labels).size < 3:
+            return None
+        n = X.shape[0]
+        if 8 * n * n > float(e.cache_size) * 2**20:  # each machine stores it whole in float64
+            return None
+        # SVC.fit's own conversion, so that 'scale' resolves the same width from the same sums
+        X = np.ascontiguousarray(X, dtype=np.float64)
+        if not np.isfinite(X).all():
+            return None  # each machine's fit refuses it in its own words
+        return Kernel("rbf", gamma=resolve_gamma(e.gamma, X)).gram(X)
+
+    def _fit_on_one_kernel(self, X, y, kernel: np.ndarray) -> None:
+        """What :meth:`sklearn.multiclass.OneVsRestClassifier.fit` does, each machine given the
+        shared training kernel."""
+        self._validate_params()
+        self.label_binarizer_ = LabelBinarizer(sparse_output=True)
+        columns = self.label_binarizer_.fit_transform(y).tocsc()
+        self.classes_ = self.label_binarizer_.classes_
+        self.estimators_ = [clone(self.estimator).fit(X, c.toarray().ravel(), kernel_matrix=kernel)
+                            for c in columns.T]
+        self.n_features_in_ = self.estimators_[0].n_features_in_
 
     def _gather(self, X) -> None:
         """The union of the support vectors and, per machine, its dual coefficients at their

@@ -293,6 +293,20 @@ def _ml_cases() -> list[Case]:
           for w in (-1, -1.0, math.nan, math.inf, 10**400)]
     c += number_cases("SVC.fit", lambda v: ml.SVC(kernel="poly", degree=v).fit(X2, Y2),
                       "degree", positive=False, beyond=[("2**31", 2**31), ("-1", -1)])
+    # the shared training kernel: of another width, another shape, not finite, a list, or
+    # given beside a kernel that is its own matrix
+    K2 = ml.kernels.Kernel("rbf", gamma=0.5).gram(X2)
+    nan = K2.copy()
+    nan[3, 5] = math.nan
+    for label, K in (("gamma-2", ml.kernels.Kernel("rbf", gamma=2.0).gram(X2)),
+                     ("11-rows", K2[:11, :11]), ("nan", nan), ("list", K2.tolist()),
+                     ("int", K2.astype(int)), ("linear", ml.kernels.Kernel("linear").gram(X2))):
+        c.append(Case(f"SVC.fit:kernel_matrix={label}",
+                      _bind(lambda K: ml.SVC(gamma=0.5).fit(X2, Y2, kernel_matrix=K), K),
+                      param="kernel_matrix"))
+    c.append(Case("SVC.fit:kernel_matrix-with-precomputed",
+                  lambda: ml.SVC(kernel="precomputed").fit(K2, Y2, kernel_matrix=K2),
+                  param="kernel_matrix"))
     for p in ("alpha", "learning_rate_init", "tol"):
         c += number_cases("MLPClassifier.fit",
                           lambda v, p=p: ml.MLPClassifier(**{p: v}, max_iter=5).fit(X2, Y2), p,

@@ -121,3 +121,46 @@ def test_gram_into_a_block_of_a_larger_array():
     assert np.all(np.abs(big[:70, :70] - ref) <= bound(X, X, ref))
     with pytest.raises(ValueError, match="out must have shape"):
         kern.gram(X, Y, out=np.empty((70, 49)))
+
+
+def test_a_given_float64_matrix_is_read_in_place_at_the_members_indices():
+    """A float64 matrix is not copied: each pair's rows are gathered from it at its members'
+    indices, the same entries as the copy sorted by class that a float32 store makes."""
+    X, _, members = _dyadic_classes([6, 4, 5], 3, 0.0, seed=2)
+    K = Kernel("rbf", gamma=0.4).gram(X)
+    inplace = PairKernels(X, members, None, np.float64, 1 << 20, given=K)
+    copied = PairKernels(X, members, None, np.float32, 1 << 20, given=K)
+    assert inplace.layout == copied.layout == "given"
+    for (a, b, rows), (_, _, rows32) in zip(inplace.pairs(), copied.pairs(), strict=True):
+        idx = np.concatenate([members[a], members[b]])
+        matrix, index = rows.stored_entries()
+        assert matrix is K and np.array_equal(index, idx)
+        points = np.arange(idx.size)
+        np.testing.assert_array_equal(rows.block64(points, points), K[np.ix_(idx, idx)])
+        for i in (0, idx.size - 1):
+            np.testing.assert_array_equal(rows.row64(i), K[idx[i], idx])
+            np.testing.assert_array_equal(rows32.row64(i), K[idx[i], idx].astype(np.float32))
+
+
+def test_an_svc_on_a_shared_kernel_is_the_svc_on_that_kernel_precomputed():
+    """``SVC.fit(X, y, kernel_matrix=K)`` solves every pair's dual on the entries of ``K``, as
+    ``SVC(kernel='precomputed').fit(K, y)`` does: the same numbers, bit for bit, samples left
+    out by a zero weight included; its predictions then use the named kernel."""
+    from ebantenna.ml import SVC
+
+    X, _, members = _dyadic_classes([12, 9, 10], 4, 0.0, seed=3)
+    y = np.empty(X.shape[0], dtype=int)
+    for c, m in enumerate(members):
+        y[m] = c
+    weight = np.ones(X.shape[0])
+    weight[::7] = 0.0
+    K = Kernel("rbf", gamma=0.5).gram(X)
+    shared = SVC(gamma=0.5).fit(X, y, sample_weight=weight, kernel_matrix=K)
+    witness = SVC(kernel="precomputed").fit(K, y, sample_weight=weight)
+    np.testing.assert_array_equal(shared.support_, witness.support_)
+    assert shared.dual_coef_.tobytes() == witness.dual_coef_.tobytes()
+    assert shared.intercept_.tobytes() == witness.intercept_.tobytes()
+    np.testing.assert_array_equal(shared.support_vectors_, X[shared.support_])
+    # the named kernel's test matrix against the precomputed rows: entries a few 1e-16 apart
+    # (two expansions of the same distances), times sum |coef| <= C n = 31: far below 1e-9
+    assert np.abs(shared.decision_function(X) - witness.decision_function(K)).max() < 1e-9

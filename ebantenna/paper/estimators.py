@@ -305,8 +305,17 @@ class MultiModeDistanceEstimator(RegressorMixin, BaseEstimator):
                     f"weights must be {self.n_modes_} non-negative numbers, one per mode, got "
                     f"{weights.tolist()}"
                 )
-        diff = np.log(f)[:, None, :] - self._log_curves[None, :, :]
-        return (diff**2 * weights).sum(axis=2)
+        # sum_k w_k (log f_k - log curve_k)^2, one mode at a time: no (n, n_grid, n_modes)
+        # temporaries, and for fewer than eight modes the same additions in the same order as
+        # NumPy's sum over the last axis (which pairs terms only from eight on)
+        log_f = np.log(f)
+        out = np.zeros((f.shape[0], self._log_curves.shape[0]))
+        for k in range(self.n_modes_):
+            diff = log_f[:, k, None] - self._log_curves[None, :, k]
+            diff *= diff
+            diff *= weights[k]
+            out += diff
+        return out
 
     def predict(self, X) -> np.ndarray:
         """Contact distances (m) for rows of mode frequencies.

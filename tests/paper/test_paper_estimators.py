@@ -1,5 +1,6 @@
 import numpy as np
 import pytest
+from scipy.interpolate import PchipInterpolator
 
 from ebantenna import fem  # the beam model is the witness of the calibration curves
 from ebantenna.paper.estimators import (
@@ -191,3 +192,25 @@ def test_full_range_distance_from_signals_alone(calibration):
         predicted.append(est.predict(peak_frequencies(x, 1000.0, 2)[None, :])[0])
     err_cm = np.abs(np.array(predicted) - contacts) * 100
     assert err_cm.max() < 0.3
+
+
+@pytest.mark.parametrize("n_modes", [1, 2, 5, 7, 9])
+def test_the_misfit_is_the_weighted_sum_of_squared_log_differences(n_modes):
+    """``cost`` sums mode by mode; below eight modes the additions are those of NumPy's sum over
+    the last axis, bit for bit; from eight on NumPy pairs its terms, and the two orders of the
+    same non-negative terms agree within n_modes rounding errors of the total."""
+    rng = np.random.default_rng(n_modes)
+    d = np.repeat(np.linspace(0.02, 0.38, 12), 4)
+    f = (100.0 * np.arange(1, n_modes + 1) * (1 + d[:, None])) * rng.uniform(0.98, 1.02,
+                                                                              (d.size, n_modes))
+    est = MultiModeDistanceEstimator(50).fit(f, d)
+    X = f[::5] * 1.01
+    w = rng.uniform(0.1, 1.0, n_modes)
+    # the calibration curves on the dense grid, from the fitted medians (as fit builds them)
+    log_curves = np.log(PchipInterpolator(est.distances_, est.frequencies_, axis=0)(est.grid_))
+    reference = ((np.log(X)[:, None, :] - log_curves[None, :, :]) ** 2 * w).sum(axis=2)
+    cost = est.cost(X, w)
+    if n_modes < 8:
+        assert cost.tobytes() == reference.tobytes()
+    else:
+        assert np.all(np.abs(cost - reference) <= n_modes * np.finfo(float).eps * reference)

@@ -394,6 +394,7 @@ def add_from_recordings(parser) -> None:
 
 def run_from_recordings(args) -> int:
     """``ebantenna dataset --from-recordings DIR``."""
+    from ..._validate import output_file_in
     from ...cli import print_json
     from .assemble import assemble_dataset
 
@@ -403,6 +404,7 @@ def run_from_recordings(args) -> int:
 
     manifest = read_manifest(os.path.join(args.from_recordings, MANIFEST))
     plan = manifest["plan"]
+    output_file_in("--out", args.out, f"recorded-{plan['name']}.npz")  # before any reading
     touches = len(plan["materials"]) * len(plan["contacts_m"]) * plan["repetitions"]
     saved = len(manifest["recordings"])
     if saved < touches:

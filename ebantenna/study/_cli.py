@@ -37,13 +37,14 @@ def run_reproduce(args) -> int:
     from .._validate import output_dir
     from ..cli import check_jobs, interrupted, print_json
     from ..paper import printed
+    from ._common import study_folder
     from .recorded._cli import run_data
     from .reproduce import reproduce
 
     check_jobs(args.jobs, args.force_jobs)
-    output_dir("--out", args.out)  # refused before any work is done
     if args.cache is not None:
         output_dir("--cache", args.cache)
+    study_folder("--out", args.out, make=False)  # refused before any work is done
     if args.data is not None:
         return run_data(args)
     try:

@@ -1,4 +1,5 @@
-"""The input contract of the data-set builders' paths: checked before anything is simulated.
+"""The input contract of the output paths of the data-set builders and the studies: checked
+before any work.
 
 Every path a builder writes (``out_dir`` of :func:`~ebantenna.simulate.build_dataset`,
 :func:`~ebantenna.simulate.build_datasets` and :func:`~ebantenna.paper.data.build_paper_dataset`,
@@ -7,7 +8,10 @@ when a file stands where the directory goes, when the directory cannot be writte
 directory or a FIFO stands where the data set's file goes. The rows that build the paper's full
 design (about 10,000 simulated signals: minutes of work) end within the row's time limit, so
 the refusal comes before the simulation. :func:`~ebantenna.simulate.dataset.dataset_path`, the
-check itself, is held to the file the builder writes.
+check itself, is held to the file the builder writes. The studies (:func:`~ebantenna.study.
+reproduce`, :func:`~ebantenna.study.recorded.study.reproduce_recorded`, ``ebantenna
+reproduce --out``) refuse their folder likewise, and a directory where their report or
+summary goes, before minutes to hours of work.
 """
 
 from __future__ import annotations
@@ -25,6 +29,8 @@ from contract_files_cases import Row, row_tests, run_cli  # noqa: E402
 from ebantenna.paper.data import PAPER_DESIGN, build_paper_dataset  # noqa: E402
 from ebantenna.simulate import DatasetDesign, build_dataset, build_datasets, builtin_scene  # noqa: E402, E501
 from ebantenna.simulate.dataset import dataset_path  # noqa: E402
+from ebantenna.study.recorded.study import reproduce_recorded  # noqa: E402
+from ebantenna.study.reproduce import reproduce  # noqa: E402
 
 #: One brass signal at 0.3 m: the smallest data set.
 ONE = DatasetDesign("one", ("brass",), 0.3, 0.1, 1)
@@ -132,6 +138,34 @@ def all_rows():
             ("--out",)),
         Row("cli:dataset --out", "a-file",
             lambda: run_cli(["dataset", "--out", str(_a_file())]), ("--out",)),
+        *_study_rows(),
+    ]
+
+
+def _study_rows():
+    r = "ebantenna.study.reproduce.reproduce"
+    rec = "ebantenna.study.recorded.study.reproduce_recorded"
+    nowhere = "/nonexistent/data.npz"  # the folder is refused before the data are read
+    return [
+        Row(r, "out_dir-int", lambda: reproduce(5, quick=True, cache_dir=_folder()),
+            ("out_dir",)),
+        Row(r, "out_dir-bytes", lambda: reproduce(b"out", quick=True, cache_dir=_folder()),
+            ("out_dir",)),
+        Row(r, "out_dir-a-file", lambda: reproduce(_a_file(), quick=True, cache_dir=_folder()),
+            ("out_dir",)),
+        # the full study runs for hours: refused within the row's time limit
+        Row(r, "a-directory-where-summary.json-goes",
+            lambda: reproduce(_with_directory_at("summary.json"), cache_dir=_folder()),
+            ("out_dir",)),
+        Row(r, "cache_dir-a-file", lambda: reproduce(_folder(), cache_dir=_a_file()),
+            ("cache_dir",)),
+        Row(rec, "out_dir-int", lambda: reproduce_recorded(nowhere, 5), ("out_dir",)),
+        Row(rec, "a-directory-where-report.html-goes",
+            lambda: reproduce_recorded(nowhere, _with_directory_at("report.html")),
+            ("out_dir",)),
+        Row("cli:reproduce --out", "a-directory-where-summary.json-goes",
+            lambda: run_cli(["reproduce", "--out", str(_with_directory_at("summary.json")),
+                             "--cache", str(_folder())]), ("--out",)),
     ]
 
 

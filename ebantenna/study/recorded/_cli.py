@@ -137,7 +137,7 @@ def run_calibrate(args) -> int:
     import matplotlib
 
     matplotlib.use("Agg")
-    from ..._validate import check_path, output_dir
+    from ..._validate import check_path, output_dir, output_file_in
     from ...cli import print_json
     from ...simulate import load_dataset
     from ...simulate.scene import resolve_scene
@@ -145,6 +145,8 @@ def run_calibrate(args) -> int:
 
     output_dir("--out", args.out)  # refused before any work is done
     base = resolve_scene(args.scene)
+    for name in (f"{base.name}-calibrated.toml", "calibration.png", "calibration.json"):
+        output_file_in("--out", args.out, name)  # what is written there, at the end
     data = load_dataset(check_path("--data", args.data))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", IdentifiabilityWarning)  # said below, once each

@@ -579,7 +579,8 @@ class LinearState:
         x : array of shape (2 n + 2,)
             The state at the start, finite.
         z : ndarray of shape (2 n,) or None
-            ``modal(x)``, computed once for several ``tau`` (None where it is None).
+            ``modal(x)``, computed once for several ``tau`` (None for a state propagated by
+            ``expm``).
         tau : float
             Elapsed time, s (>= 0: a state is propagated forward).
         """

@@ -629,13 +629,15 @@ def output_dir(name: str, path) -> Path:
     return target
 
 
-def output_file_in(name: str, directory, file_name: str) -> Path:
+def output_file_in(name: str, directory, file_name: str, *, renamed: bool = False) -> Path:
     """The file ``file_name`` that a command will write in ``directory``, checked before its
     work starts; ``directory`` is checked by :func:`output_dir` (it may not exist yet).
 
     Where the file exists it must be a regular file, which the writer replaces: a directory, a
     FIFO or a device in its place is refused with a ``ValueError`` naming ``name`` and the path
-    (found only at the end of the work otherwise, when the finished file cannot take its place).
+    (found only at the end of the work otherwise, when the finished file cannot take its place,
+    or the writer waits on the FIFO for ever). A writer that puts its finished file in place by
+    renaming (``renamed``) replaces a FIFO or a device too; only a directory is refused then.
 
     Examples
     --------
@@ -658,7 +660,7 @@ def output_file_in(name: str, directory, file_name: str) -> Path:
     except OSError as exc:
         raise OSError(f"{name}: cannot reach {target}: {exc.strerror or exc}") from None
     kind = _kind(mode)
-    if kind is not None:
+    if kind is not None and (kind == "a directory" or not renamed):
         raise ValueError(f"{name}: {target} is {kind} where the file goes; move it or choose "
                          f"another {name}")
     return target

@@ -377,8 +377,9 @@ def dataset_path(out_dir, scene: Scene, design: DatasetDesign, seed: int = 0, *,
     TypeError
         If ``out_dir`` is not a path, ``scene`` not a Scene or ``design`` not a DatasetDesign.
     ValueError
-        Naming ``parameter``, if a directory, a FIFO or a device stands where the file goes, or
-        the scene's name cannot name a file.
+        Naming ``parameter``, if a directory stands where the file goes (a FIFO or a device
+        there is replaced, as a damaged cached file is), or the scene's name cannot name a
+        file.
     OSError
         Naming ``parameter``, if ``out_dir`` is a file or cannot be written.
 
@@ -398,7 +399,9 @@ def dataset_path(out_dir, scene: Scene, design: DatasetDesign, seed: int = 0, *,
     if not name or name in (".", "..") or any(c in name for c in ("/", "\\", "\x00", os.sep)):
         raise ValueError(f"scene's name must be a plain name (it names the data set's file), got "
                          f"{name!r:.80}")
-    return output_file_in(parameter, out_dir, f"{name}-{design.name}-seed{seed}.npz")
+    # the file is written whole and renamed into place: a FIFO or a device there is replaced
+    return output_file_in(parameter, out_dir, f"{name}-{design.name}-seed{seed}.npz",
+                          renamed=True)
 
 
 def build_dataset(

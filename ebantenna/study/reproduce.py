@@ -63,7 +63,7 @@ from . import (
     signals,
     time_frequency,
 )
-from ._common import MAX_SEED, blas_limited, study_folder
+from ._common import MAX_SEED, REPORT_FILES, blas_limited, study_folder  # noqa: F401 (the CLI)
 
 __all__ = ["StudyResult", "reproduce", "default_cache_dir"]
 

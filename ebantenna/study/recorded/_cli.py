@@ -406,7 +406,7 @@ def run_from_recordings(args) -> int:
 
     manifest = read_manifest(os.path.join(args.from_recordings, MANIFEST))
     plan = manifest["plan"]
-    output_file_in("--out", args.out, f"recorded-{plan['name']}.npz")  # before any reading
+    output_file_in("--out", args.out, f"recorded-{plan['name']}.npz", renamed=True)  # first
     touches = len(plan["materials"]) * len(plan["contacts_m"]) * plan["repetitions"]
     saved = len(manifest["recordings"])
     if saved < touches:

@@ -63,7 +63,7 @@ def assemble_dataset(directory, out_dir=None, *, max_lost: float | None = None,
         The session folder (holding ``session.json``).
     out_dir : path, optional
         Where to write ``recorded-<plan name>.npz``; default the session folder. Checked before
-        any recording is read (a directory or a FIFO where the file goes is refused).
+        any recording is read (a directory where the file goes is refused).
     max_lost : float, optional
         Largest share of a recording's window that may be missing, in [0, 1). Default the
         session's own limit (``max_lost`` in its manifest, the one ``record`` kept its
@@ -94,7 +94,7 @@ def assemble_dataset(directory, out_dir=None, *, max_lost: float | None = None,
     plan = Plan.from_dict(manifest["plan"], f"{manifest_path}: plan", complete=True)
     # the file written at the end, checked before any recording is read
     target = output_file_in("directory" if out_dir is None else "out_dir", out_dir or directory,
-                            f"recorded-{plan.name}.npz")
+                            f"recorded-{plan.name}.npz", renamed=True)
     entries = sorted(manifest["recordings"].values(), key=lambda e: e["touch"])
     if not entries:
         raise ValueError(f"{directory}: the session holds no recordings yet")

@@ -607,6 +607,8 @@ def output_dir(name: str, path) -> Path:
     >>> output_dir("--out", "runs/today").as_posix()
     'runs/today'
     """
+    if isinstance(path, str) and not path:
+        raise ValueError(f"{name} must name a directory, got an empty path")
     target = Path(check_path(name, path))
     if target.exists():
         kind = _kind(os.stat(target).st_mode)
@@ -624,6 +626,43 @@ def output_dir(name: str, path) -> Path:
             f"{name}: {ancestor} is not a directory, so {target} cannot be made"
         )
     _probe_directory(name, ancestor)
+    return target
+
+
+def output_file_in(name: str, directory, file_name: str, *, renamed: bool = False) -> Path:
+    """The file ``file_name`` that a command will write in ``directory``, checked before its
+    work starts; ``directory`` is checked by :func:`output_dir` (it may not exist yet).
+
+    Where the file exists it must be a regular file, which the writer replaces: a directory, a
+    FIFO or a device in its place is refused with a ``ValueError`` naming ``name`` and the path
+    (found only at the end of the work otherwise, when the finished file cannot take its place,
+    or the writer waits on the FIFO for ever). A writer that puts its finished file in place by
+    renaming (``renamed``) replaces a FIFO or a device too; only a directory is refused then.
+
+    Examples
+    --------
+    >>> output_file_in("--out", ".", "x.npz").as_posix()
+    'x.npz'
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     (Path(tmp) / "x.npz").mkdir()
+    ...     output_file_in("--out", tmp, "x.npz")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: --out: .../x.npz is a directory where the file goes; move it or choose another --out
+    """
+    directory = output_dir(name, directory)
+    target = directory / file_name
+    try:
+        mode = os.stat(target).st_mode  # follows a link: what the writer would meet
+    except FileNotFoundError:
+        return target  # new (or a dangling link, which the writer replaces)
+    except OSError as exc:
+        raise OSError(f"{name}: cannot reach {target}: {exc.strerror or exc}") from None
+    kind = _kind(mode)
+    if kind is not None and (kind == "a directory" or not renamed):
+        raise ValueError(f"{name}: {target} is {kind} where the file goes; move it or choose "
+                         f"another {name}")
     return target
 
 

@@ -37,13 +37,17 @@ def run_dataset(args) -> int:
 
     from .._validate import output_dir
     from ..cli import check_jobs, interrupted, print_json
+    from ..simulate import builtin_scene
+    from ..simulate.dataset import dataset_path
     from ..study.recorded._cli import run_from_recordings
-    from .data import build_paper_dataset
+    from .data import build_paper_dataset, design
 
     check_jobs(args.jobs, args.force_jobs)
     output_dir("--out", args.out)  # refused before any work is done
     if args.from_recordings is not None:
         return run_from_recordings(args)
+    # and the data set's own file in it (a directory in its place), before the simulation
+    dataset_path(args.out, builtin_scene("paper"), design(args.quick), args.seed, parameter="--out")
     start = time.perf_counter()
     try:
         jobs = (os.cpu_count() or 1) if args.jobs == -1 else args.jobs

@@ -226,7 +226,7 @@ def after(st, x, z, steps):
     """The state ``steps`` whole steps after ``x`` (``z``: ``st.modal(x)``)."""
     if not st.eigen:
         return st.blocks.powers[steps - 1] @ x
-    return st.at(x, z, steps * st.blocks.h)
+    return st._at(x, z, steps * st.blocks.h)
 
 
 class LawBlocks(abc.ABC):
@@ -353,7 +353,7 @@ class StickSlipBlocks(LawBlocks):
         law = self.law
         return law.frictionless or (
             stays_positive(law.linear[name], x, z, m)
-            and (name != "stick" or stays_positive(law.lower, x, law.lower.modal(x), m))
+            and (name != "stick" or stays_positive(law.lower, x, law.lower._modal(x), m))
         )
 
 
@@ -512,7 +512,7 @@ def march_in_blocks(system, x, key, n_steps: int, engine: str | None = None):
         st = system.state(key)
         limit = blocks.horizon(i, n_steps)
         first = (-(i + 1)) % sub  # the first step from here that is an output sample
-        z = st.modal(x)
+        z = st._modal(x)  # unchecked: the march's own state
         quiet = blocks.quiet(key, x, z, min(st.blocks.span, limit))
         m, j, values, event = read_ahead(st, x, z, first, limit, quiet, blocks.ends(key))
         blocks.record_block(i, j, values, x, z, key)

@@ -32,6 +32,7 @@ import hashlib
 import json
 import logging
 import math
+import os
 from dataclasses import dataclass, fields
 from pathlib import Path
 
@@ -51,6 +52,7 @@ from .._validate import (
     check_positive,
     load_json,
     open_npz,
+    output_file_in,
 )
 from ..probe import material
 from ._dataset_files import remove_leftovers, stale_reason, write_whole
@@ -59,7 +61,7 @@ from .simulator import physics_key, simulate_batch, simulate_sensor_variants
 
 __all__ = [
     "Dataset", "DatasetDesign", "build_dataset", "build_datasets", "load_dataset", "dataset_plan",
-    "FORMAT",
+    "dataset_path", "FORMAT",
 ]  # fmt: skip
 
 log = logging.getLogger(__name__)
@@ -350,6 +352,58 @@ def _simulated_rows(scenes, rows: np.ndarray, plan: dict):
     return rows, signals, done[0][3].restrikes
 
 
+def dataset_path(out_dir, scene: Scene, design: DatasetDesign, seed: int = 0, *,
+                 parameter: str = "out_dir") -> Path:
+    """Where :func:`build_dataset` saves (and looks for) the data set of ``design`` recorded in
+    ``scene`` with ``seed``: ``out_dir/<scene name>-<design name>-seed<seed>.npz``, checked
+    before anything is simulated.
+
+    Parameters
+    ----------
+    out_dir : path
+        The directory: an existing one must accept new files, a missing one must be creatable.
+    scene : Scene
+        Its name is the file name's first part: a plain name (no path separator, not ``.`` or
+        ``..``).
+    design : DatasetDesign
+        Its name is the second part.
+    seed : int
+        The seed (>= 0).
+    parameter : str
+        The name errors give the directory (``--out`` for a command).
+
+    Raises
+    ------
+    TypeError
+        If ``out_dir`` is not a path, ``scene`` not a Scene or ``design`` not a DatasetDesign.
+    ValueError
+        Naming ``parameter``, if a directory stands where the file goes (a FIFO or a device
+        there is replaced, as a damaged cached file is), or the scene's name cannot name a
+        file.
+    OSError
+        Naming ``parameter``, if ``out_dir`` is a file or cannot be written.
+
+    Examples
+    --------
+    >>> from ebantenna.simulate import builtin_scene
+    >>> design = DatasetDesign("small", ("brass", "pvc"), 0.1, 0.1, 2)
+    >>> dataset_path("cache", builtin_scene("paper"), design, 1).as_posix()
+    'cache/paper-small-seed1.npz'
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
+    if not isinstance(design, DatasetDesign):
+        raise TypeError(f"design must be a DatasetDesign, got {type(design).__name__}")
+    seed = check_int("seed", seed, minimum=0)
+    name = scene.name
+    if not name or name in (".", "..") or any(c in name for c in ("/", "\\", "\x00", os.sep)):
+        raise ValueError(f"scene's name must be a plain name (it names the data set's file), got "
+                         f"{name!r:.80}")
+    # the file is written whole and renamed into place: a FIFO or a device there is replaced
+    return output_file_in(parameter, out_dir, f"{name}-{design.name}-seed{seed}.npz",
+                          renamed=True)
+
+
 def build_dataset(
     out_dir,
     scene: Scene,
@@ -380,6 +434,13 @@ def build_dataset(
         nor on the backend.
     show_progress : bool, optional
         Force the progress bar on or off (default: on a terminal).
+
+    Raises
+    ------
+    TypeError, ValueError, OSError
+        Naming the parameter, for a bad input; ``out_dir`` is checked before anything is
+        simulated (:func:`dataset_path`: a file where the directory goes, a directory where the
+        data set's file goes, a directory that cannot be written).
 
     Returns
     -------
@@ -447,11 +508,10 @@ def build_datasets(
     names = [s.name for s in scenes]
     if len(set(names)) < len(names):
         raise ValueError(f"scenes must have distinct names (one file each), got {names}")
-    out_dir = Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
+    paths = [dataset_path(out_dir, scene, design, seed) for scene in scenes]  # before any work
+    paths[0].parent.mkdir(parents=True, exist_ok=True)
     found, todo = {}, {}
-    for i, scene in enumerate(scenes):
-        path = out_dir / f"{scene.name}-{design.name}-seed{seed}.npz"
+    for i, (scene, path) in enumerate(zip(scenes, paths, strict=True)):
         remove_leftovers(path)
         config = _config(scene, design, seed)
         found[i] = _reusable(path, config)

@@ -297,8 +297,8 @@ class StickSlipLaw(SwitchedSystem):
         (``None`` if neither does); ``fresh``: the state was entered at ``x``."""
         found = None
         for st in (self.stick, self.lower) if name == "stick" else (self.linear[name],):
-            z = st.modal(x)
-            curve = st.curve(x, z)
+            z = st._modal(x)  # the unchecked propagation: x is the march's own state
+            curve = st._curve(x, z)
             end = curve(span)[0]
             start = float(st.monitor @ x)
             if end > 0:  # stays (a graze that rounding decides)
@@ -308,7 +308,7 @@ class StickSlipLaw(SwitchedSystem):
             else:  # a slip entered at u = 0 starts on its boundary and leaves it at once
                 tau = crossing(curve, span, self.xtol, max(start, np.finfo(float).tiny), end)
             if found is None or tau < found[0]:
-                found = (tau, st.at(x, z, tau))
+                found = (tau, st._at(x, z, tau))
         return found
 
     def advance(self, x, name, t0, t1, crosses=False):
@@ -319,7 +319,7 @@ class StickSlipLaw(SwitchedSystem):
         while True:
             found = None if self.frictionless else self._first_crossing(name, x, t1 - t0, fresh)
             if found is None:
-                return self.linear[name].step(x, t1 - t0), name
+                return self.linear[name]._step(x, t1 - t0), name
             tau, x = found
             t0 += tau
             name, fresh = self.switch(name, x, t0), True

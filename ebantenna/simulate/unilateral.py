@@ -77,7 +77,16 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as spl
 
-from .._validate import check_bool, check_choice, check_int, check_nonnegative, check_positive
+from .._validate import (
+    check_bool,
+    check_choice,
+    check_int,
+    check_nonnegative,
+    check_positive,
+    check_real,
+    describe,
+    real_array,
+)
 from .contact import PiecewiseSpring
 from .structure import check_dof_vector, check_symmetric_matrix
 
@@ -545,14 +554,88 @@ class LinearState:
             self.row_speed = self.rows[:, m + 1] - ry @ self.H  # ... on its speed s'
 
     def modal(self, x):
-        """The modal coordinates ``z`` of ``x`` (None where the propagator is ``expm``)."""
+        """The modal coordinates ``z`` of the state ``x`` (None where the propagator is
+        ``expm``).
+
+        Parameters
+        ----------
+        x : array of shape (2 n + 2,)
+            A state ``(q, q', s, s')``, finite.
+
+        Examples
+        --------
+        >>> free, closed, _ = contact_states(np.eye(1), np.array([[100.0]]), np.zeros((1, 1)),
+        ...                                  np.ones(1), 300.0, np.ones(1))
+        >>> closed.modal([0.0, 1.0, 0.0, 0.0]).shape
+        (2,)
+        """
+        return self._modal(self._checked(x))
+
+    def at(self, x, z, tau):
+        """The state ``tau`` after ``x`` (``z``: its :meth:`modal`).
+
+        Parameters
+        ----------
+        x : array of shape (2 n + 2,)
+            The state at the start, finite.
+        z : ndarray of shape (2 n,) or None
+            ``modal(x)``, computed once for several ``tau`` (None for a state propagated by
+            ``expm``).
+        tau : float
+            Elapsed time, s (>= 0: a state is propagated forward).
+        """
+        x = self._checked(x)
+        return self._at(x, self._checked_modal(z), check_nonnegative("tau", tau))
+
+    def step(self, x, tau):
+        """The state ``tau`` (s, >= 0) after the state ``x`` (finite, of length ``2 n + 2``).
+
+        Examples
+        --------
+        1 kg on 100 N/m pressed by a 300 N/m contact, released at 1 m/s: a quarter period of
+        its 20 rad/s later it is at rest, 1/20 m in:
+
+        >>> free, closed, _ = contact_states(np.eye(1), np.array([[100.0]]), np.zeros((1, 1)),
+        ...                                  np.ones(1), 300.0, np.ones(1))
+        >>> np.round(closed.step([0.0, 1.0, 0.0, 0.0], np.pi / 40), 12) + 0.0
+        array([0.05, 0.  , 0.  , 0.  ])
+        """
+        return self._step(self._checked(x), check_nonnegative("tau", tau))
+
+    def curve(self, x, z):
+        """The monitored quantity along the motion from ``x`` (``z``: its :meth:`modal`) and
+        its rate, as a function of elapsed time (its argument is not checked: the function is
+        what :func:`crossing` evaluates)."""
+        x = self._checked(x)
+        return self._curve(x, self._checked_modal(z))
+
+    def _checked(self, x) -> np.ndarray:
+        """``x`` as a float state vector of this state's size; raise naming ``x`` otherwise."""
+        x = real_array("x", x)
+        check_state("x", x, 2 * self.n + 2)
+        return x
+
+    def _checked_modal(self, z):
+        """``z`` as :meth:`modal` gives it; raise naming ``z`` otherwise."""
+        if not self.eigen:
+            if z is not None:
+                raise ValueError("z must be None for a state propagated by expm (its modal(x) "
+                                 f"is None), got {type(z).__name__}")
+            return None
+        shape = np.shape(z) if isinstance(z, np.ndarray) else None
+        if shape != (2 * self.n,) or z.dtype.kind not in "fc" or not np.all(np.isfinite(z)):
+            raise ValueError(f"z must be modal(x): a finite vector of length {2 * self.n}, got "
+                             f"{describe(z) if shape is None else f'shape {shape}'}")
+        return z
+
+    # the unchecked propagation, which the marches call on states they built
+    def _modal(self, x):
         if not self.eigen:
             return None
         m = 2 * self.n
         return self.Vinv @ (x[:m] + self.G * x[m] + self.H * x[m + 1])
 
-    def at(self, x, z, tau):
-        """The state ``tau`` after ``x`` (``z``: its :meth:`modal`)."""
+    def _at(self, x, z, tau):
         if tau == 0:
             return x
         if not self.eigen:
@@ -565,17 +648,14 @@ class LinearState:
         out[m], out[m + 1] = s + sigma * tau, sigma
         return out
 
-    def step(self, x, tau):
-        """The state ``tau`` after ``x``."""
-        return self.at(x, self.modal(x), tau)
+    def _step(self, x, tau):
+        return self._at(x, self._modal(x), tau)
 
-    def curve(self, x, z):
-        """The monitored quantity along the motion from ``x`` (``z``: its :meth:`modal`) and
-        its rate, as a function of elapsed time."""
+    def _curve(self, x, z):
         if not self.eigen:
 
             def value_and_rate(tau):
-                xt = self.step(x, tau)
+                xt = self._step(x, tau)
                 return float(self.monitor @ xt), float(self.monitor @ (self.A @ xt))
 
             return value_and_rate
@@ -602,7 +682,40 @@ def crossing(curve, span: float, xtol: float, ga: float, gb: float) -> float:
     step would leave it or does not halve the last one (the safeguarded iteration ``rtsafe``,
     W. H. Press et al., *Numerical Recipes*, 3rd ed., Cambridge University Press, 2007, section
     9.4). Near the root a step just past it closes the bracket from the other side.
+
+    Parameters
+    ----------
+    curve : callable
+        ``curve(tau) -> (g, dg/dtau)``, as :meth:`LinearState.curve` gives it.
+    span : float
+        The step's length, s (> 0).
+    xtol : float
+        Width of the final bracket, s (> 0).
+    ga, gb : float
+        ``g(0) > 0`` and ``g(span) <= 0``, finite.
+
+    Examples
+    --------
+    ``g = 1 - tau`` reaches zero at 1; the root is bracketed from above within ``xtol``:
+
+    >>> b = crossing(lambda tau: (1.0 - tau, -1.0), 2.0, 1e-9, 1.0, -1.0)
+    >>> 1.0 <= b <= 1.0 + 1e-9
+    True
     """
+    if not callable(curve):
+        raise TypeError(f"curve must be a function of elapsed time (LinearState.curve's), got "
+                        f"{type(curve).__name__}")
+    span = check_positive("span", span)
+    xtol = check_positive("xtol", xtol)
+    if not check_real("ga", ga) > 0:
+        raise ValueError(f"ga must be > 0 (the monitored quantity at the step's start), got {ga!r}")
+    if not check_real("gb", gb) <= 0:
+        raise ValueError(f"gb must be <= 0 (the monitored quantity at the step's end), got {gb!r}")
+    return _crossing(curve, span, xtol, float(ga), float(gb))
+
+
+def _crossing(curve, span, xtol, ga, gb):
+    """:func:`crossing` of checked values, as the marches call it."""
     a, b = 0.0, span
     t = a + ga * (b - a) / (ga - gb)  # the secant through the ends
     last = span
@@ -644,9 +757,10 @@ def check_grid(grid) -> tuple:
 
 def check_state(name: str, x, size: int) -> None:
     """Raise a ``ValueError`` naming ``name`` unless ``x`` is a finite state vector of ``size``."""
-    if np.shape(x) != (size,) or not np.all(np.isfinite(x)):
-        raise ValueError(f"{name} must be a finite state vector of length {size}, got shape "
-                         f"{np.shape(x)}")
+    x = real_array(name, x)
+    if x.shape != (size,) or not np.all(np.isfinite(x)):
+        got = f"shape {x.shape}" if x.shape != (size,) else "NaN or inf in it"
+        raise ValueError(f"{name} must be a finite state vector of length {size}, got {got}")
 
 
 class SwitchedSystem(abc.ABC):
@@ -879,22 +993,22 @@ class StrikeLaw(SwitchedSystem):
         check_step(t0, t1)
         while True:
             if not crosses:
-                x1 = st.step(x, t1 - t0)
+                x1 = st._step(x, t1 - t0)
                 if not self._watched(st) or st.monitor @ x1 > 0:
                     return x1, st
-            z = st.modal(x)
-            g = st.curve(x, z)
+            z = st._modal(x)
+            g = st._curve(x, z)
             span = t1 - t0
             end = g(span)[0]
             if end > 0:  # a graze that rounding decides: the curve stays in this state
-                return st.at(x, z, span), st
+                return st._at(x, z, span), st
             crosses = False
             start = float(st.monitor @ x)
             if start <= 0:  # already at the boundary (a grazing touch): switch at once
                 tau = 0.0
             else:
-                tau = crossing(g, span, self.xtol, start, end)
-            x = st.at(x, z, tau)
+                tau = _crossing(g, span, self.xtol, start, end)
+            x = st._at(x, z, tau)
             t0 = t0 + tau
             st = self.switch(st, x, t0)
 
@@ -977,8 +1091,8 @@ class HertzStrikeLaw(StrikeLaw):
     def _first_exit(self, st, x, span, fresh):
         """The first node (or the gap's closing) reached within ``span`` after ``x``:
         ``(tau, x there, "up" or "down")``, or None. ``fresh``: ``st`` was entered at ``x``."""
-        z = st.modal(x)
-        curve = st.curve(x, z)
+        z = st._modal(x)
+        curve = st._curve(x, z)
         if st is self.free:
             sides = (("up", 0.0, 1.0),)  # the gap, watched as it is
         else:
@@ -1000,10 +1114,10 @@ class HertzStrikeLaw(StrikeLaw):
             if start <= 0 and not fresh:
                 tau = 0.0
             else:
-                tau = crossing(g, span, self.xtol, max(start, np.finfo(float).tiny), end)
+                tau = _crossing(g, span, self.xtol, max(start, np.finfo(float).tiny), end)
             if found is None or tau < found[0]:
                 found = (tau, which)
-        return None if found is None else (found[0], st.at(x, z, found[0]), found[1])
+        return None if found is None else (found[0], st._at(x, z, found[0]), found[1])
 
     def _change(self, st, x, t, which):
         """Enter the next state at an event at ``t``: ``(state, x)``, another chord (``x``
@@ -1027,7 +1141,7 @@ class HertzStrikeLaw(StrikeLaw):
         while True:
             found = self._first_exit(st, x, t1 - t0, fresh)
             if found is None:
-                return st.step(x, t1 - t0), st
+                return st._step(x, t1 - t0), st
             tau, x, which = found
             t0 += tau
             st, x = self._change(st, x, t0, which)

@@ -34,16 +34,17 @@ def register(subparsers) -> None:
 
 def run_reproduce(args) -> int:
     """Run ``ebantenna reproduce``."""
-    from .._validate import output_dir
+    from .._validate import output_dir, output_file_in
     from ..cli import check_jobs, interrupted, print_json
     from ..paper import printed
     from .recorded._cli import run_data
-    from .reproduce import reproduce
+    from .reproduce import REPORT_FILES, reproduce
 
     check_jobs(args.jobs, args.force_jobs)
-    output_dir("--out", args.out)  # refused before any work is done
     if args.cache is not None:
         output_dir("--cache", args.cache)
+    for name in REPORT_FILES:  # the folder and what goes in it, refused before any work
+        output_file_in("--out", args.out, name)
     if args.data is not None:
         return run_data(args)
     try:

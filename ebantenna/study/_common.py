@@ -2,11 +2,20 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 from joblib import Parallel, delayed
 from threadpoolctl import threadpool_limits
 
-from .._validate import check_bool, check_int, check_n_jobs, describe, output_dir
+from .._validate import (
+    check_bool,
+    check_int,
+    check_n_jobs,
+    describe,
+    output_dir,
+    output_file_in,
+)
 from ..paper import experiments
 from ..paper.feature_table import SignalFeatures
 from ..paper.mode_curves import classify_materials_by_mode_curves
@@ -17,7 +26,26 @@ from ..simulate import Dataset, Scene
 
 __all__ = ["beyond_chance", "per_contact", "probe_length", "pct", "BLAS_THREADS", "blas_limited",
            "fits_in_parallel", "classifier_call", "MAX_SEED", "check_step", "check_instance",
-           "check_render"]
+           "check_render", "REPORT_FILES", "study_folder"]
+
+#: The files a study writes into its output folder besides its figures.
+REPORT_FILES = ("report.md", "report.html", "summary.json")
+
+
+def study_folder(name: str, out_dir, *, make: bool = True) -> Path:
+    """The output folder of a study, checked before its work starts and made if missing
+    (unless ``make`` is false).
+
+    ``out_dir`` must be a path (not a file; writable, or creatable), and no directory or FIFO
+    may stand where one of ``REPORT_FILES`` goes (the finished report could not take its
+    place, after hours of work); errors name ``name``.
+    """
+    folder = output_dir(name, out_dir)
+    for file_name in REPORT_FILES:
+        output_file_in(name, folder, file_name)
+    if make:
+        folder.mkdir(parents=True, exist_ok=True)
+    return folder
 
 #: The largest seed: scikit-learn takes 32-bit seeds, and the splits use ``seed + 1`` too.
 MAX_SEED = 2**32 - 2

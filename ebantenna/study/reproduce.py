@@ -46,7 +46,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .._progress import progress
-from .._validate import check_bool, check_int, check_n_jobs
+from .._validate import check_bool, check_int, check_n_jobs, output_dir
 from ..report import FigureSet, Report
 from . import (
     ann_setup,
@@ -63,7 +63,7 @@ from . import (
     signals,
     time_frequency,
 )
-from ._common import MAX_SEED, blas_limited
+from ._common import MAX_SEED, REPORT_FILES, blas_limited, study_folder  # noqa: F401 (the CLI)
 
 __all__ = ["StudyResult", "reproduce", "default_cache_dir"]
 
@@ -139,14 +139,6 @@ class _Timer:
 
     def close(self):
         self._bar.close()
-
-
-def _directory(name: str, path) -> Path:
-    """``path`` as a Path; raise if it names an existing file (a folder is written there)."""
-    path = Path(os.fspath(path))
-    if path.exists() and not path.is_dir():
-        raise ValueError(f"{name} must be a directory, got {str(path)!r} (an existing file)")
-    return path
 
 
 class _Sections:
@@ -257,11 +249,11 @@ def _checked_options(seed, quick, n_jobs) -> tuple[int, bool]:
 
 
 def _folders(out_dir, cache_dir) -> tuple[Path, Path]:
-    """The output folder, made if missing, and the cache (default :func:`default_cache_dir`)."""
-    out_dir = _directory("out_dir", out_dir)
-    cache_dir = _directory("cache_dir", default_cache_dir() if cache_dir is None else cache_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
-    return out_dir, cache_dir
+    """The output folder, made if missing, and the cache (default :func:`default_cache_dir`),
+    both checked before any work (a file in the folder's place, a folder that cannot be
+    written, a directory where the report or the summary goes)."""
+    cache_dir = output_dir("cache_dir", default_cache_dir() if cache_dir is None else cache_dir)
+    return study_folder("out_dir", out_dir), cache_dir
 
 
 def _opening(quick: bool) -> Report:

@@ -56,6 +56,11 @@ CASES = {
     "out-empty": (lambda tmp: ["--data", _data_set(tmp / "s.npz"), "--out", ""], ["--out"]),
     "out-a-file": (lambda tmp: ["--data", _data_set(tmp / "s.npz"), "--out",
                                 str(tmp / "s.npz")], ["--out"]),
+    # a folder where the summary goes is found before the fitting, not after it
+    "out-a-directory-where-calibration.json-goes": (
+        lambda tmp: (tmp / "o" / "calibration.json").mkdir(parents=True) or [
+            "--data", _data_set(tmp / "s.npz"), "--out", str(tmp / "o")],
+        ["--out", "calibration.json", "is a directory"]),
     "out-json-short": (lambda tmp: ["--data", _data_set(tmp / "s.npz", samples=64), "--json",
                                     "--out", str(tmp / "o")], ["records of 64 samples"]),
 }
@@ -82,7 +87,8 @@ def contract_rows() -> dict[str, list[str]]:
     return {"cli:calibrate": list(CASES),
             "cli:calibrate --data": [c for c in CASES if c.startswith(("records", "data"))],
             "cli:calibrate --scene": ["scene-unknown"],
-            "cli:calibrate --out": ["out-empty", "out-a-file"],
+            "cli:calibrate --out": ["out-empty", "out-a-file",
+                                    "out-a-directory-where-calibration.json-goes"],
             "cli:calibrate --json": ["out-json-short"],
             "ebantenna.study.recorded.calibration.calibrate": ["records-too-short",
                                                                "records-one-short"]}

@@ -67,7 +67,11 @@ def _method_rows():
     s = "ebantenna.simulate.effects."
     big = 10**12
     return [
-        Row(s + "sensor.Clipping.apply", "a-str", lambda: fx.Clipping().apply("x"), ("'clip'",)),
+        Row(s + "sensor.Clipping.apply", "a-str", lambda: fx.Clipping().apply("x"), ("a must",)),
+        Row(s + "sensor.Clipping.apply", "a-nan", lambda: fx.Clipping().apply(np.array([NAN])),
+            ("a must",)),
+        Row(s + "sensor.Clipping.apply", "a-ragged",
+            lambda: fx.Clipping().apply([[1.0], [2.0, 3.0]]), ("a must",)),
         Row(s + "sensor.Clipping.limits", "by-hand", lambda: fx.Clipping(16).limits(),
             same=lambda r: r == (-16 * STANDARD_GRAVITY,
                                  16 * STANDARD_GRAVITY * (1 - 2.0**-15))),
@@ -116,7 +120,11 @@ def _method_rows():
         Row(s + "sensor.MainsHum.signal", "quarter-period", lambda: fx.MainsHum(50.0, 0.5).signal(
             np.array([0.005]), 0.0), same=lambda r: abs(r[0] - 0.5) < 1e-15),
         Row(s + "sensor.Quantisation.apply", "a-str", lambda: fx.Quantisation().apply("x"),
-            ("str",)),
+            ("a must",)),
+        Row(s + "sensor.Quantisation.apply", "a-nan",
+            lambda: fx.Quantisation().apply(np.array([1.0, NAN])), ("a must",)),
+        Row(s + "sensor.Quantisation.apply", "a-ragged",
+            lambda: fx.Quantisation().apply([[1.0], [2.0, 3.0]]), ("a must",)),
         Row(s + "sensor.Quantisation.lsb", "by-hand", lambda: fx.Quantisation(16).lsb(),
             same=lambda r: r == 32 * STANDARD_GRAVITY / 2**16),
         Row(s + "sensor.SensorNoise.draw", "rng-int", lambda: fx.SensorNoise().draw(

@@ -444,11 +444,28 @@ def _assemble_rows() -> list[Row]:
             lambda ctx: _assemble(ctx.fresh() / "nope")),
         Row(surface, "out-nul", "error", ("out_dir",),
             lambda ctx: _assembler()(ctx.session(), "o\x00ut")),
+        Row(surface, "out_dir-int", "error", ("out_dir",),
+            lambda ctx: _assembler()(ctx.session(), 5)),
+        Row(surface, "out_dir-a-file", "error", ("out_dir",),
+            lambda ctx: _assembler()(ctx.session(), ctx.session() / MANIFEST)),
+        # the place of the file is checked before any recording is read: a damaged label is
+        # not what the refusal names
+        Row(surface, "a-directory-where-the-file-goes", "error", ("out_dir",),
+            lambda ctx: _assembler()(_relabel(ctx.session(), contact=-0.1),
+                                     _holding_directory(ctx.fresh(), "recorded-fz.npz"))),
+        Row(surface, "a-directory-where-the-file-goes-in-the-session", "error", ("directory",),
+            lambda ctx: _assembler()(_holding_directory(ctx.session(), "recorded-fz.npz"))),
         Row(surface, "right", "equal", (), lambda ctx: _assemble(ctx.session()),
             same=lambda d: d.n_signals == len(PLAN) and d.path.name == "recorded-fz.npz"
             and d.path.parent.name == "out"),
     ]
     return rows
+
+
+def _holding_directory(folder: Path, name: str) -> Path:
+    """``folder``, with a directory named ``name`` in it."""
+    (folder / name).mkdir()
+    return folder
 
 
 # ------------------------------------------------------------------------ the command
@@ -478,6 +495,10 @@ def _cli_rows() -> list[Row]:
             lambda ctx: record(ctx, big_plan)),
         Row("cli:record --plan", "name-escapes", "error", ("plan name",),
             lambda ctx: record(ctx, escaping)),
+        Row("cli:dataset --from-recordings", "a-directory-where-the-file-goes", "error",
+            ("--out",), lambda ctx: run_cli([
+                "dataset", "--from-recordings", str(ctx.session()), "--out",
+                str(_holding_directory(ctx.fresh(), "recorded-fz.npz"))])),
         Row("cli:dataset --from-recordings", "entry-outside", "error", ("../elsewhere",),
             lambda ctx: run_cli(["dataset", "--from-recordings", str(_edit_manifest(
                 ctx.session(), _set_entry(file="../elsewhere/x.npz"))), "--out",

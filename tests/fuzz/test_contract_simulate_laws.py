@@ -15,6 +15,7 @@ import os
 import sys
 
 import numpy as np
+import scipy.linalg as spl
 import scipy.signal as sps
 
 sys.path.insert(0, os.path.dirname(__file__))
@@ -698,6 +699,249 @@ def all_rows():
             lambda: _terms(np.array([1.0])).lift_off_ratio(1.0, -8000.0), ("rate",)),
         Row(t + "ModalTerms.lift_off_ratio", "rate-nan",
             lambda: _terms(np.array([1.0])).lift_off_ratio(1.0, NAN), ("rate",)),
+        *_linear_state_rows(),
+        *_coulomb_law_rows(),
+    ]
+
+
+#: A state ``(q, q', s, s')`` of one mass: displaced, moving, the servo at 2 mm and 0.5 m/s.
+X = np.array([0.01, 1.0, 0.002, 0.5])
+EPS = np.finfo(float).eps
+
+
+def _damped_states():
+    """The free and closed states of 1 kg on 100 N/m and 2 N s/m, touching 300 N/m."""
+    free, closed, _ = _structure()
+    return free, closed
+
+
+def _rigid_free():
+    """The free state of 1 kg on no spring: a rigid-body motion, propagated by ``expm``."""
+    return U.contact_states(np.eye(1), np.zeros((1, 1)), np.zeros((1, 1)), np.ones(1), 300.0,
+                            np.ones(1))[0]
+
+
+def _exact(st, tau):
+    """The witness: SciPy's matrix exponential of the state's whole system matrix."""
+    return spl.expm(st.A * tau) @ X
+
+
+def _near(a, b, st, scale):
+    """``a`` equals ``b`` up to the propagation's rounding: the eigenvector route loses
+    ``cond(V)`` times a few eps of the largest value involved (``scale``)."""
+    return np.abs(np.asarray(a) - np.asarray(b)).max() <= 64 * EPS * np.linalg.cond(st.V) * scale
+
+
+class _NoAdvance(U.SwitchedSystem):
+    """A law that gives its states but no step."""
+
+    def state(self, key):
+        return key
+
+
+class _NoState(U.SwitchedSystem):
+    """A law that steps but does not say what its states are."""
+
+    def advance(self, x, key, t0, t1, crosses=False):
+        return x, key
+
+
+def _linear_state_rows():
+    """Rows of a linear state's propagation, the event finder and the march's interface."""
+    u = "ebantenna.simulate.unilateral."
+    ls = u + "LinearState."
+    free, closed = _damped_states()
+    scale = np.abs(closed.A).max() * np.abs(X).max()  # the largest rate of the closed state
+    return [
+        Row(ls + "modal", "x-short", lambda: closed.modal(np.zeros(3)), ("x",)),
+        Row(ls + "modal", "x-nan", lambda: closed.modal([0.0, NAN, 0.0, 0.0]), ("x",)),
+        Row(ls + "modal", "x-str", lambda: closed.modal(["a", "b", "c", "d"]), ("x",)),
+        # the modal coordinates rebuild y + G s + H s' through the eigenvectors
+        Row(ls + "modal", "rebuilds-the-state", lambda: closed.modal(X),
+            same=lambda z: _near(closed.V @ z, X[:2] + closed.G * X[2] + closed.H * X[3],
+                                 closed, 1.0)),
+        Row(ls + "modal", "none-for-a-rigid-body", lambda: _rigid_free().modal(X),
+            same=lambda z: z is None),
+        Row(ls + "at", "tau-negative", lambda: closed.at(X, closed.modal(X), -0.001), ("tau",)),
+        Row(ls + "at", "tau-nan", lambda: closed.at(X, closed.modal(X), NAN), ("tau",)),
+        Row(ls + "at", "z-short", lambda: closed.at(X, np.zeros(1), 0.001), ("z",)),
+        Row(ls + "at", "z-None-for-an-eigen-state", lambda: closed.at(X, None, 0.001), ("z",)),
+        Row(ls + "at", "z-given-to-an-expm-state",
+            lambda: _rigid_free().at(X, np.zeros(2), 0.001), ("z",)),
+        Row(ls + "at", "x-long", lambda: closed.at(np.zeros(5), closed.modal(X), 0.001),
+            ("x",)),
+        Row(ls + "at", "against-expm", lambda: (free.at(X, free.modal(X), 0.013),
+                                                closed.at(X, closed.modal(X), 0.013)),
+            same=lambda r: _near(r[0], _exact(free, 0.013), free, 1.0)
+            and _near(r[1], _exact(closed, 0.013), closed, 1.0)),
+        # no spring: q + q' tau, the servo at s + s' tau; expm of a nilpotent matrix is exact
+        Row(ls + "at", "rigid-body-by-hand", lambda: _rigid_free().at(X, None, 0.5),
+            same=lambda r: np.allclose(r, [0.51, 1.0, 0.252, 0.5], rtol=0, atol=4 * EPS)),
+        Row(ls + "step", "tau-inf", lambda: closed.step(X, math.inf), ("tau",)),
+        Row(ls + "step", "tau-str", lambda: closed.step(X, "0.001"), ("tau",)),
+        Row(ls + "step", "x-ragged", lambda: closed.step([[0.0], [1.0, 2.0]], 0.001), ("x",)),
+        # 1 kg on 100 + 300 N/m released at 1 m/s: a quarter period (pi / 40 s) later it rests
+        # at 1 / 20 m
+        Row(ls + "step", "quarter-period-by-hand",
+            lambda: _states()[1].step([0.0, 1.0, 0.0, 0.0], math.pi / 40),
+            same=lambda r: _near(r, [0.05, 0.0, 0.0, 0.0], _states()[1], 1.0)),
+        Row(ls + "curve", "x-nan", lambda: closed.curve([NAN] * 4, closed.modal(X)), ("x",)),
+        Row(ls + "curve", "z-wrong-length", lambda: closed.curve(X, np.zeros(3)), ("z",)),
+        # the force and its rate along the motion, against expm
+        Row(ls + "curve", "against-expm", lambda: closed.curve(X, closed.modal(X))(0.013),
+            same=lambda r: _near(r[0], closed.monitor @ _exact(closed, 0.013), closed, scale)
+            and _near(r[1], closed.monitor @ closed.A @ _exact(closed, 0.013), closed,
+                      scale * np.abs(closed.A).max())),
+        Row(u + "crossing", "curve-str", lambda: U.crossing("g", 1.0, 1e-9, 1.0, -1.0),
+            ("curve",)),
+        Row(u + "crossing", "span-zero", lambda: U.crossing(_line, 0.0, 1e-9, 1.0, -1.0),
+            ("span",)),
+        Row(u + "crossing", "xtol-nan", lambda: U.crossing(_line, 2.0, NAN, 1.0, -1.0),
+            ("xtol",)),
+        Row(u + "crossing", "ga-negative", lambda: U.crossing(_line, 2.0, 1e-9, -1.0, -1.0),
+            ("ga",)),
+        Row(u + "crossing", "gb-positive", lambda: U.crossing(_line, 2.0, 1e-9, 1.0, 0.5),
+            ("gb",)),
+        Row(u + "crossing", "ga-str", lambda: U.crossing(_line, 2.0, 1e-9, "1", -1.0),
+            ("ga",)),
+        # cos reaches zero at pi / 2: the far end of a bracket of width xtol, where cos <= 0
+        Row(u + "crossing", "cosine-by-hand", lambda: U.crossing(
+            lambda tau: (math.cos(tau), -math.sin(tau)), 3.0, 1e-12, 1.0, math.cos(3.0)),
+            same=lambda b: math.cos(b) <= 0 and b - math.pi / 2 <= 1e-12),
+        Row(u + "SwitchedSystem.advance", "a-law-without-advance",
+            lambda: _NoAdvance(0.001, 1, 10), ("advance",)),
+        Row(u + "SwitchedSystem.state", "a-law-without-state", lambda: _NoState(0.001, 1, 10),
+            ("state",)),
+    ]
+
+
+def _line(tau):
+    """``g = 1 - tau`` and its rate."""
+    return 1.0 - tau, -1.0
+
+
+def _coulomb_law(**kw):
+    """1 kg on 100 N/m (and ``C``), pressed by 1 N against mu_s = mu_k = 1, at rest (or ``kw``)."""
+    args = dict(K=[[100.0]], C=[[0.0]], Minv=[[1.0]], tangential=0, normal_force=lambda t: 1.0,
+                static_friction=1.0, kinetic_friction=1.0, surface_speed=0.0)
+    args.update(kw)
+    return F.CoulombLaw(**args)
+
+
+def _record(n_samples=3, n=1):
+    return np.zeros((n_samples, 2 * n)), np.zeros(n_samples), np.zeros(n_samples)
+
+
+def _coulomb_law_rows():
+    """Rows of Coulomb's law as the ODE witness integrates it, each method checked by hand."""
+    c = "ebantenna.simulate.friction_ode.CoulombLaw"
+    law = _coulomb_law()
+    y = [0.05, 0.0]  # 5 cm out, at rest: the spring pulls back with 5 N
+    t_out = np.linspace(0.0, 1.0, 101)  # four turns of the oscillator, every pi / 10 s
+    return [
+        Row(c, "K-not-symmetric", lambda: _coulomb_law(K=[[1.0, 2.0], [0.0, 1.0]]), ("K",)),
+        Row(c, "Minv-wrong-size", lambda: _coulomb_law(Minv=np.eye(2)), ("Minv",)),
+        Row(c, "tangential-zero", lambda: _coulomb_law(tangential=[0.0]), ("tangential",)),
+        Row(c, "tangential-beyond", lambda: _coulomb_law(tangential=3), ("tangential",)),
+        Row(c, "normal_force-float", lambda: _coulomb_law(normal_force=1.0), ("normal_force",)),
+        Row(c, "kinetic-above-static", lambda: _coulomb_law(kinetic_friction=2.0),
+            ("kinetic_friction",)),
+        Row(c, "surface_speed-nan", lambda: _coulomb_law(surface_speed=NAN), ("surface_speed",)),
+        Row(c, "as-built", _coulomb_law, same=lambda law: law.tMt == 1.0 and law.n == 1),
+        Row(c + ".stick_force", "t-nan", lambda: law.stick_force(NAN, y), ("t",)),
+        Row(c + ".stick_force", "y-short", lambda: law.stick_force(0.0, [0.05]), ("y",)),
+        Row(c + ".stick_force", "y-str", lambda: law.stick_force(0.0, ["a", "b"]), ("y",)),
+        # holding 5 cm on 100 N/m against a 2 N s/m dashpot moving at 0.5 m/s: 5 + 1 N
+        Row(c + ".stick_force", "spring-and-dashpot-by-hand",
+            lambda: _coulomb_law(C=[[2.0]]).stick_force(0.0, [0.05, 0.5]),
+            same=lambda r: r == 6.0),
+        Row(c + ".friction", "state-misspelt", lambda: law.friction("slide", 0.0, y),
+            ("state",)),
+        Row(c + ".friction", "t-inf", lambda: law.friction("stick", math.inf, y), ("t",)),
+        # slipping faster than the surface: -mu_k N = -0.5 x 2 N
+        Row(c + ".friction", "slip+-by-hand", lambda: _coulomb_law(
+            normal_force=lambda t: 2.0, kinetic_friction=0.5).friction("slip+", 0.0, y),
+            same=lambda r: r == -1.0),
+        Row(c + ".rhs", "state-None", lambda: law.rhs(None), ("state",)),
+        # slipping forward at 0.5 m/s from 5 cm: -100 x 0.05 - 1 N on 1 kg
+        Row(c + ".rhs", "slip+-by-hand", lambda: law.rhs("slip+")(0.0, np.array([0.05, 0.5])),
+            same=lambda r: r.tolist() == [0.5, -6.0]),
+        Row(c + ".relative_speed", "y-nan", lambda: law.relative_speed(0.0, [0.0, NAN]),
+            ("y",)),
+        Row(c + ".relative_speed", "t-str", lambda: law.relative_speed("0", y), ("t",)),
+        Row(c + ".relative_speed", "belt-by-hand",
+            lambda: _coulomb_law(surface_speed=0.2).relative_speed(0.0, [0.0, 0.5]),
+            same=lambda r: math.isclose(r, 0.3, rel_tol=2 * EPS)),
+        Row(c + ".stick_limit", "y-long", lambda: law.stick_limit(0.0, [0.0, 0.0, 0.0]),
+            ("y",)),
+        # 5 mm out: 0.5 N held of the 1 N the contact can hold
+        Row(c + ".stick_limit", "by-hand", lambda: law.stick_limit(0.0, [0.005, 0.0]),
+            same=lambda r: math.isclose(r, 0.5, rel_tol=4 * EPS)),
+        Row(c + ".end_event", "state-misspelt", lambda: law.end_event("stuck"), ("state",)),
+        # a stick ends as the margin falls, a forward slip as the speed falls, a backward one
+        # as it rises; each ends its state
+        Row(c + ".end_event", "directions", lambda: [law.end_event(s) for s in F.STATES],
+            same=lambda ev: [e.direction for e in ev] == [-1, -1, 1]
+            and all(e.terminal for e in ev)),
+        Row(c + ".entered", "previous-misspelt", lambda: law.entered(0.0, y, "slip"),
+            ("previous",)),
+        Row(c + ".entered", "y-3d", lambda: law.entered(0.0, np.zeros((2, 1, 1))), ("y",)),
+        # at rest within mu_s N / k = 1 cm it holds; beyond, it slips back; moving, it slips
+        Row(c + ".entered", "by-hand", lambda: [law.entered(0.0, p) for p in
+                                                 ([0.005, 0.0], y, [0.0, 1.0])],
+            same=lambda r: r == ["stick", "slip-", "slip+"]),
+        Row(c + ".next_state", "y-list", lambda: law.next_state("slip+", 0.0, [0.05, 0.001]),
+            ("y",)),
+        Row(c + ".next_state", "state-misspelt",
+            lambda: law.next_state("stuck", 0.0, np.array([0.05, 0.0])), ("state",)),
+        # a forward slip ends 5 cm out: the speed lands on 0 and the spring (5 N > 1 N) pulls
+        # the contact back
+        Row(c + ".next_state", "lands-on-the-surface-speed", lambda: (
+            lambda yy: (law.next_state("slip+", 0.0, yy), yy.tolist()))(np.array([0.05, 1e-3])),
+            same=lambda r: r == ("slip-", [0.05, 0.0])),
+        Row(c + ".respond", "t_out-decreasing",
+            lambda: law.respond([0.1], [0.0], t_out[::-1], 0, rtol=1e-10, max_events=100),
+            ("t_out",)),
+        Row(c + ".respond", "t_out-before-zero",
+            lambda: law.respond([0.1], [0.0], t_out - 1.0, 0, rtol=1e-10, max_events=100),
+            ("t_out",)),
+        Row(c + ".respond", "q0-short",
+            lambda: law.respond([], [0.0], t_out, 0, rtol=1e-10, max_events=100), ("q0",)),
+        Row(c + ".respond", "rtol-zero",
+            lambda: law.respond([0.1], [0.0], t_out, 0, rtol=0.0, max_events=100), ("rtol",)),
+        Row(c + ".respond", "max_events-zero",
+            lambda: law.respond([0.1], [0.0], t_out, 0, rtol=1e-10, max_events=0),
+            ("max_events",)),
+        Row(c + ".respond", "output-beyond",
+            lambda: law.respond([0.1], [0.0], t_out, 2, rtol=1e-10, max_events=100),
+            ("output",)),
+        # released from 10 cm: 4 cm of amplitude lost per cycle (4 mu N / k), a turn every
+        # pi / 10 s; rtol 1e-10 places each turn far within 1e-6 m and 1e-6 s
+        Row(c + ".respond", "oscillator-by-hand",
+            lambda: law.respond([0.1], [0.0], t_out, 0, rtol=1e-10, max_events=100),
+            same=lambda r: [e.kind for e in r.events] == ["slip-", "slip+", "slip-", "slip+"]
+            and np.allclose([e.position for e in r.events], [0.1, -0.08, 0.06, -0.04],
+                            rtol=0, atol=1e-6)
+            and np.allclose([e.time for e in r.events], np.arange(4) * math.pi / 10,
+                            rtol=0, atol=1e-6)),
+        Row(c + ".integrate", "record-list", lambda: law.integrate(
+            "slip-", 0.0, [0.1, 0.0], t_out, 0, [], rtol=1e-10, atol=1e-12), ("record",)),
+        Row(c + ".integrate", "record-short", lambda: law.integrate(
+            "slip-", 0.0, [0.1, 0.0], t_out, 0, _record(), rtol=1e-10, atol=1e-12),
+            ("record",)),
+        Row(c + ".integrate", "atol-negative", lambda: law.integrate(
+            "slip-", 0.0, [0.1, 0.0], t_out, 0, _record(101), rtol=1e-10, atol=-1.0), ("atol",)),
+        Row(c + ".integrate", "t-nan", lambda: law.integrate(
+            "slip-", NAN, [0.1, 0.0], t_out, 0, _record(101), rtol=1e-10, atol=1e-12), ("t",)),
+        Row(c + ".integrate", "state-misspelt", lambda: law.integrate(
+            "slip", 0.0, [0.1, 0.0], t_out, 0, _record(101), rtol=1e-10, atol=1e-12),
+            ("state",)),
+        # the first backward slip from 10 cm ends at the turn, pi / 10 s later, 8 cm the other
+        # side (the closed form of the oscillator about its shifted rest at -1 cm)
+        Row(c + ".integrate", "first-half-period-by-hand", lambda: law.integrate(
+            "slip-", 0.0, [0.1, 0.0], t_out, 0, _record(101), rtol=1e-10, atol=1e-12),
+            same=lambda sol: sol.status == 1 and abs(sol.t[-1] - math.pi / 10) < 1e-6
+            and abs(sol.y[0, -1] + 0.08) < 1e-6),
     ]
 
 

@@ -3980,6 +3980,7 @@ ROWS += [
         "out-a-file",
         study.reproduce,
         File("recording"),
+        raises=NotADirectoryError,
         match="out_dir must be a directory",
     ),
     bad(
@@ -3988,6 +3989,7 @@ ROWS += [
         study.reproduce,
         File("missing"),
         cache_dir=File("recording"),
+        raises=NotADirectoryError,
         match="cache_dir must be a directory",
     ),
 ]

@@ -562,7 +562,8 @@ class Clipping(Effect):
         return -full, full * (1 - 2.0**-15)
 
     def apply(self, a: np.ndarray) -> np.ndarray:
-        """Cap ``a`` (m/s^2) at the range."""
+        """Cap ``a`` (m/s^2, finite) at the range."""
+        _real("a", a)
         low, high = self.limits()
         return np.clip(a, low, high)
 
@@ -604,7 +605,8 @@ class Quantisation(Effect):
         return 2 * self.range_g * STANDARD_GRAVITY / 2**16
 
     def apply(self, a: np.ndarray) -> np.ndarray:
-        """Round ``a`` (m/s^2) to the nearest count."""
+        """Round ``a`` (m/s^2, finite) to the nearest count."""
+        _real("a", a)
         lsb = self.lsb()
         return np.round(a / lsb) * lsb
 

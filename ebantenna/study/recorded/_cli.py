@@ -137,7 +137,7 @@ def run_calibrate(args) -> int:
     import matplotlib
 
     matplotlib.use("Agg")
-    from ..._validate import check_path, output_dir
+    from ..._validate import check_path, output_dir, output_file_in
     from ...cli import print_json
     from ...simulate import load_dataset
     from ...simulate.scene import resolve_scene
@@ -145,6 +145,8 @@ def run_calibrate(args) -> int:
 
     output_dir("--out", args.out)  # refused before any work is done
     base = resolve_scene(args.scene)
+    for name in (f"{base.name}-calibrated.toml", "calibration.png", "calibration.json"):
+        output_file_in("--out", args.out, name)  # what is written there, at the end
     data = load_dataset(check_path("--data", args.data))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", IdentifiabilityWarning)  # said below, once each
@@ -394,6 +396,7 @@ def add_from_recordings(parser) -> None:
 
 def run_from_recordings(args) -> int:
     """``ebantenna dataset --from-recordings DIR``."""
+    from ..._validate import output_file_in
     from ...cli import print_json
     from .assemble import assemble_dataset
 
@@ -403,6 +406,7 @@ def run_from_recordings(args) -> int:
 
     manifest = read_manifest(os.path.join(args.from_recordings, MANIFEST))
     plan = manifest["plan"]
+    output_file_in("--out", args.out, f"recorded-{plan['name']}.npz", renamed=True)  # first
     touches = len(plan["materials"]) * len(plan["contacts_m"]) * plan["repetitions"]
     saved = len(manifest["recordings"])
     if saved < touches:

@@ -37,7 +37,7 @@ import numpy as np
 
 from ... import __version__
 from ..._files import inside
-from ..._validate import check_in_range, check_path, check_positive
+from ..._validate import check_in_range, check_path, check_positive, output_file_in
 from ...device.plan import Plan
 from ...device.recording_session import MANIFEST, file_sha256, read_manifest, write_atomic
 from ...paper.protocol import DATASET
@@ -62,7 +62,8 @@ def assemble_dataset(directory, out_dir=None, *, max_lost: float | None = None,
     directory : path
         The session folder (holding ``session.json``).
     out_dir : path, optional
-        Where to write ``recorded-<plan name>.npz``; default the session folder.
+        Where to write ``recorded-<plan name>.npz``; default the session folder. Checked before
+        any recording is read (a directory where the file goes is refused).
     max_lost : float, optional
         Largest share of a recording's window that may be missing, in [0, 1). Default the
         session's own limit (``max_lost`` in its manifest, the one ``record`` kept its
@@ -91,6 +92,9 @@ def assemble_dataset(directory, out_dir=None, *, max_lost: float | None = None,
     if out_dir is not None:
         out_dir = Path(check_path("out_dir", out_dir))
     plan = Plan.from_dict(manifest["plan"], f"{manifest_path}: plan", complete=True)
+    # the file written at the end, checked before any recording is read
+    target = output_file_in("directory" if out_dir is None else "out_dir", out_dir or directory,
+                            f"recorded-{plan.name}.npz", renamed=True)
     entries = sorted(manifest["recordings"].values(), key=lambda e: e["touch"])
     if not entries:
         raise ValueError(f"{directory}: the session holds no recordings yet")
@@ -105,7 +109,7 @@ def assemble_dataset(directory, out_dir=None, *, max_lost: float | None = None,
                                                                            strict=True)]
     arrays = _arrays(recordings, rows)
     metadata = _metadata(directory, manifest, entries, rows, fs)
-    return _write(arrays, metadata, fs, Path(out_dir or directory) / f"recorded-{plan.name}.npz")
+    return _write(arrays, metadata, fs, target)
 
 
 def _load_checked(directory: Path, entry: dict) -> Recording:

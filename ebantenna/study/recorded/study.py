@@ -27,9 +27,7 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import time
-from pathlib import Path
 
 import numpy as np
 
@@ -39,7 +37,7 @@ from ...paper.uncertainty import UNITS, ClusteredAccuracy, percent, span
 from ...report import FigureSet, Report
 from ...simulate import load_dataset
 from .. import full_range, learning, material_splits, signals
-from .._common import blas_limited
+from .._common import blas_limited, study_folder
 from .assemble import MIN_SAMPLES
 
 __all__ = ["NOT_APPLICABLE", "reproduce_recorded", "intervals", "classification_interval",
@@ -275,6 +273,7 @@ def reproduce_recorded(data, out_dir="ebantenna-recorded", *, seed: int = 0,
 
     say = say or (lambda text: None)
     n_jobs = check_n_jobs("n_jobs", n_jobs)
+    out_dir = study_folder("out_dir", out_dir, make=False)  # before any work
     ds = load_dataset(data)
     design = design_of(ds)
     runnable, missing = check_design(design)
@@ -283,7 +282,6 @@ def reproduce_recorded(data, out_dir="ebantenna-recorded", *, seed: int = 0,
                          f"{design_message(design, runnable, missing)}")
     if missing:
         say(design_message(design, runnable, missing))
-    out_dir = Path(os.fspath(out_dir))
     out_dir.mkdir(parents=True, exist_ok=True)
     figures, seconds = FigureSet(out_dir), {}
     not_applicable = {**NOT_APPLICABLE, **missing}

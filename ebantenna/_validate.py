@@ -631,7 +631,9 @@ def output_dir(name: str, path) -> Path:
 
 def output_file_in(name: str, directory, file_name: str, *, renamed: bool = False) -> Path:
     """The file ``file_name`` that a command will write in ``directory``, checked before its
-    work starts; ``directory`` is checked by :func:`output_dir` (it may not exist yet).
+    work starts; ``directory`` is checked by :func:`output_dir` (it may not exist yet), and
+    ``file_name`` must be a plain name (no path separator, not ``.`` or ``..``): a name made
+    from the user's input cannot write outside ``directory``.
 
     Where the file exists it must be a regular file, which the writer replaces: a directory, a
     FIFO or a device in its place is refused with a ``ValueError`` naming ``name`` and the path
@@ -652,6 +654,11 @@ def output_file_in(name: str, directory, file_name: str, *, renamed: bool = Fals
     ValueError: --out: .../x.npz is a directory where the file goes; move it or choose another --out
     """
     directory = output_dir(name, directory)
+    if (not isinstance(file_name, str) or file_name in ("", ".", "..")
+            or any(c in file_name for c in ("/", "\\", "\x00", os.sep))):
+        # a name made from the user's input (a scene's name) would write outside the folder
+        raise ValueError(f"{name}: {file_name!r:.80} is not a plain file name: it would be "
+                         f"written outside {directory}; rename what it was made from")
     target = directory / file_name
     try:
         mode = os.stat(target).st_mode  # follows a link: what the writer would meet

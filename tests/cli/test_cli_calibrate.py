@@ -53,6 +53,11 @@ CASES = {
         "--data", str(tmp / "x.npz"), "--out", str(tmp / "o")], ["is not an ebantenna data set"]),
     "scene-unknown": (lambda tmp: ["--data", _data_set(tmp / "s.npz"), "--scene", "nope",
                                    "--out", str(tmp / "o")], ["scene", "nope"]),
+    # a scene's name becomes the calibrated scene's file name: it may not lead out of --out
+    "scene-name-a-path": (lambda tmp: [
+        "--data", _data_set(tmp / "s.npz"), "--scene", str(builtin_scene("paper").with_(
+            name="x/../../escaped").save(tmp / "named.toml")), "--out", str(tmp / "o")],
+        ["--out", "not a plain file name"]),
     "out-empty": (lambda tmp: ["--data", _data_set(tmp / "s.npz"), "--out", ""], ["--out"]),
     "out-a-file": (lambda tmp: ["--data", _data_set(tmp / "s.npz"), "--out",
                                 str(tmp / "s.npz")], ["--out"]),
@@ -86,7 +91,7 @@ def contract_rows() -> dict[str, list[str]]:
     """The surfaces these rows cover (read by the inventory test)."""
     return {"cli:calibrate": list(CASES),
             "cli:calibrate --data": [c for c in CASES if c.startswith(("records", "data"))],
-            "cli:calibrate --scene": ["scene-unknown"],
+            "cli:calibrate --scene": ["scene-unknown", "scene-name-a-path"],
             "cli:calibrate --out": ["out-empty", "out-a-file",
                                     "out-a-directory-where-calibration.json-goes"],
             "cli:calibrate --json": ["out-json-short"],

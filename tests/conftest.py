@@ -1,20 +1,77 @@
-"""Test-wide settings: figures render off-screen; one BLAS thread per pytest-xdist worker."""
+"""Test-wide settings: figures render off-screen; one BLAS thread per pytest-xdist worker; the
+tests of a costly session fixture on one worker."""
 
 import os
+import re
+import shlex
+from pathlib import Path
+
+import pytest
 
 os.environ.setdefault("MPLBACKEND", "Agg")
 
 if os.environ.get("PYTEST_XDIST_WORKER"):
     # With ``-n N`` the workers already take the cores: a BLAS thread pool per worker on top only
     # spins against the other workers (the MLP's small products ran 2-3x the CPU time on two).
-    # Results do not depend on it: the suite runs under any kernel and thread count.
+    # Results do not depend on it: the suite runs under any kernel and thread count. Set, not
+    # defaulted: a library loaded later (SciPy's own OpenBLAS) reads the variable when it loads,
+    # and a count exported for other work must not multiply the workers' threads.
     for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-        os.environ.setdefault(_var, "1")
+        os.environ[_var] = "1"
     import numpy  # noqa: F401  (loads the BLAS library, so that the limit below reaches it)
     from threadpoolctl import threadpool_limits
 
     threadpool_limits(limits=1, user_api="blas")
 
+
+#: Session fixtures that cost tens of seconds: the test files that use one run on the same
+#: pytest-xdist worker, so that the fixture is built once per run, not once per worker.
+SHARED_FIXTURES = ("quick_study",)
+
+
+@pytest.hookimpl(tryfirst=True, optionalhook=True)
+def pytest_xdist_make_scheduler(config, log):
+    """``pytest -n N``: xdist's ``load`` distribution, except that the test files using a
+    fixture of :data:`SHARED_FIXTURES` form one unit, given to one worker (and first: the
+    longest unit starts first). Another ``--dist`` given on the command line is kept.
+
+    xdist's own ``--dist loadgroup`` would do this from ``xdist_group`` marks, but it names the
+    groups by editing ``Item._nodeid``, which pytest 9 no longer reads: the groups are lost.
+    """
+    if config.getvalue("dist") != "load" or _dist_given(config):
+        return None
+    from xdist.scheduler import LoadScopeScheduling
+
+    shared = _files_using(Path(config.rootpath), SHARED_FIXTURES)
+
+    class SharedFixtureScheduling(LoadScopeScheduling):
+        """One unit per test, but one for all the tests of the files in ``shared``."""
+
+        def _split_scope(self, nodeid: str) -> str:
+            path = nodeid.split("::", 1)[0]
+            return shared.get(path, nodeid)
+
+    return SharedFixtureScheduling(config, log)
+
+
+def _files_using(root: Path, fixtures) -> dict[str, str]:
+    """Test files (relative to ``root``, as in a node id) with a test taking one of ``fixtures``,
+    each with the first such fixture's name."""
+    found = {}
+    pattern = re.compile(r"^\s*def test\w*\(([^)]*)\)", re.MULTILINE)
+    for path in sorted((root / "tests").rglob("test_*.py")):
+        params = " ".join(pattern.findall(path.read_text(encoding="utf-8")))
+        for name in fixtures:
+            if re.search(rf"\b{name}\b", params):
+                found[path.relative_to(root).as_posix()] = name
+                break
+    return found
+
+
+def _dist_given(config) -> bool:
+    """Was ``--dist`` (or ``-d``) given, on the command line or in ``PYTEST_ADDOPTS``?"""
+    args = [*config.invocation_params.args, *shlex.split(os.environ.get("PYTEST_ADDOPTS", ""))]
+    return any(str(a).startswith("--dist") or a == "-d" for a in args)
 
 def pytest_terminal_summary(terminalreporter):
     """After every run, the modules past the length hint of ``test_layers`` (not a failure)."""

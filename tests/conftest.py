@@ -7,8 +7,16 @@ import shlex
 from pathlib import Path
 
 import pytest
+from hypothesis import HealthCheck, settings
 
 os.environ.setdefault("MPLBACKEND", "Agg")
+
+# Hypothesis's two wall-clock checks, off for every test (a test's own ``settings`` inherit
+# this): the 200 ms deadline per example and the "data generation too slow" health check fail
+# an example that a loaded machine merely delays, and say nothing about the code under test.
+# Loaded before the test modules are imported, so that their ``@settings`` take it as parent.
+settings.register_profile("suite", deadline=None, suppress_health_check=[HealthCheck.too_slow])
+settings.load_profile("suite")
 
 if os.environ.get("PYTEST_XDIST_WORKER"):
     # With ``-n N`` the workers already take the cores: a BLAS thread pool per worker on top only

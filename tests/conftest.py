@@ -39,39 +39,45 @@ SHARED_FIXTURES = ("quick_study",)
 
 @pytest.hookimpl(tryfirst=True, optionalhook=True)
 def pytest_xdist_make_scheduler(config, log):
-    """``pytest -n N``: xdist's ``load`` distribution, except that the test files using a
-    fixture of :data:`SHARED_FIXTURES` form one unit, given to one worker (and first: the
-    longest unit starts first). Another ``--dist`` given on the command line is kept.
+    """``pytest -n N``: xdist's ``load`` distribution, except that the tests of the files using
+    a fixture of :data:`SHARED_FIXTURES` go, all of them, to the first worker at the start (the
+    longest work starts first). Another ``--dist`` given on the command line is kept.
 
     xdist's own ``--dist loadgroup`` would do this from ``xdist_group`` marks, but it names the
     groups by editing ``Item._nodeid``, which pytest 9 no longer reads: the groups are lost.
     """
     if config.getvalue("dist") != "load" or _dist_given(config):
         return None
-    from xdist.scheduler import LoadScopeScheduling
+    from xdist.scheduler import LoadScheduling
 
     shared = _files_using(Path(config.rootpath), SHARED_FIXTURES)
 
-    class SharedFixtureScheduling(LoadScopeScheduling):
-        """One unit per test, but one for all the tests of the files in ``shared``."""
+    class SharedFixtureScheduling(LoadScheduling):
+        """``load``, with the first batch led by every test of the files in ``shared``."""
 
-        def _split_scope(self, nodeid: str) -> str:
-            path = nodeid.split("::", 1)[0]
-            return shared.get(path, nodeid)
+        _grouped = False
+
+        def _send_tests(self, node, num: int) -> None:
+            if not self._grouped:  # the first batch of the initial distribution
+                self._grouped = True
+                first = {i for i in self.pending if self.collection[i].split("::", 1)[0] in shared}
+                self.pending.sort(key=lambda i: i not in first)  # stable: the group, the rest
+                num = max(num, len(first))
+            super()._send_tests(node, num)
 
     return SharedFixtureScheduling(config, log)
 
 
-def _files_using(root: Path, fixtures) -> dict[str, str]:
-    """Test files (relative to ``root``, as in a node id) with a test taking one of ``fixtures``,
-    each with the first such fixture's name."""
-    found = {}
+def _files_using(root: Path, fixtures) -> set[str]:
+    """Test files (relative to ``root``, as in a node id) with a test taking one of ``fixtures``
+    (read from the ``def test...(...)`` lines: xdist's controller has node ids, not items)."""
+    found = set()
     pattern = re.compile(r"^\s*def test\w*\(([^)]*)\)", re.MULTILINE)
     for path in sorted((root / "tests").rglob("test_*.py")):
         params = " ".join(pattern.findall(path.read_text(encoding="utf-8")))
         for name in fixtures:
             if re.search(rf"\b{name}\b", params):
-                found[path.relative_to(root).as_posix()] = name
+                found.add(path.relative_to(root).as_posix())
                 break
     return found
 

@@ -32,8 +32,8 @@ def walk():
     # the block march's tables) would otherwise be skipped, and the walk would look shorter.
     path = os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH", "")) if p)
     env = dict(os.environ, PYTHONPATH=path, OPENBLAS_NUM_THREADS="1")
-    # a hang guard on the child's own time (waits for a CPU left out): the walk is a few seconds
-    # of CPU on a quiet core, 300 s of its own time is no walk
+    # a hang guard on the child's own time (waits for a CPU left out): the walk is about 3 s of
+    # CPU on a quiet core, 300 s of its own time is no walk
     done = run([sys.executable, str(SCRIPT), "--json"], 300, capture_output=True, text=True,
                env=env)
     assert done.returncode == 0, done.stderr

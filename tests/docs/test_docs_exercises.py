@@ -752,8 +752,8 @@ def test_a_variant_key_accepts_the_same_solution_computed_under_another_blas_ker
     exercises, students = sorted(VARIANTS), [f"k{i}" for i in range(12)]
     here = os.environ.get("OPENBLAS_CORETYPE", "")
     other = "Haswell" if here.lower() == "prescott" else "Prescott"
-    # every exercise's answers for 12 students, tens of seconds of CPU: 300 s of the child's
-    # own time (waits for a CPU left out) is a hang, whatever the load
+    # every exercise's answers for 12 students, a few seconds of CPU (the whole test 5 s on a
+    # quiet core): 300 s of the child's own time (waits for a CPU left out) is a hang
     child = run(
         [sys.executable, "-c", _ANSWERS_ELSEWHERE, str(DOCS / "_tools"),
          json.dumps([exercises, students])],

@@ -4,6 +4,8 @@ import subprocess
 import sys
 import textwrap
 
+from unloaded_time import run
+
 from ebantenna import _progress
 
 # A Jupyter kernel without ipywidgets, as tqdm.auto detects one (ipykernel's shell module is
@@ -33,9 +35,11 @@ FAKE_KERNEL = textwrap.dedent(
 
 
 def _run(code: str) -> subprocess.CompletedProcess:
-    return subprocess.run(
+    # importing tqdm and the package is a second or two of CPU: 120 s of the child's own time
+    # (waits for a CPU left out) is a hang, whatever the load
+    return run(
         [sys.executable, "-c", FAKE_KERNEL + textwrap.dedent(code)],
-        capture_output=True, text=True, timeout=120, check=False,
+        120, capture_output=True, text=True,
     )
 
 

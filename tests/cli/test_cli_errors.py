@@ -9,6 +9,7 @@ import textwrap
 
 import numpy as np
 import pytest
+from unloaded_time import communicate, readline
 
 from ebantenna import cli
 from ebantenna.cli import main
@@ -119,8 +120,8 @@ SIGNAL_SCRIPT = textwrap.dedent("""
     # (the CLI leaves an ignored SIGINT ignored, as a background command should)
     signal.signal(signal.SIGINT, signal.default_int_handler)
 
-    # a run that does not end: every thread's stack on stderr, for the test's message
-    faulthandler.dump_traceback_later(50, exit=True)
+    # a run that does not end: every thread's stack on stderr when the test asks (SIGUSR1)
+    faulthandler.register(signal.SIGUSR1, all_threads=True)
 
     def slow(*args, **kwargs):
         print("ready", file=sys.stderr, flush=True)
@@ -139,13 +140,23 @@ def test_a_real_signal_during_dataset_ends_cleanly(tmp_path, sig, code):
         stderr=subprocess.PIPE,
         text=True,
     )
-    assert proc.stderr.readline() == "ready\n"  # inside the build, past every import
-    proc.send_signal(sig)
+    # before "ready": the imports and the build's set-up, a few seconds of the child's time
+    def stacks(child):
+        child.send_signal(signal.SIGUSR1)
+
     try:
-        out, err = proc.communicate(timeout=60)
-    except subprocess.TimeoutExpired:  # never leave the process behind for another test
-        proc.kill()
-        out, err = proc.communicate()
+        ready = readline(proc, proc.stderr, 120, before_kill=stacks)
+    except subprocess.TimeoutExpired as exc:
+        raise AssertionError(f"never ready; the child's stacks:\n{exc.stderr}") from None
+    assert ready == "ready\n"  # inside the build, past every import
+    proc.send_signal(sig)
+    # What is left is milliseconds of work (unwind, remove the temporary file, print): 60 s of
+    # the child's own time (waits for a CPU left out) is a hang, whatever the machine's load.
+    try:
+        out, err = communicate(proc, 60, before_kill=stacks)
+    except subprocess.TimeoutExpired as exc:  # killed: never left behind for another test
+        raise AssertionError(f"no end after the signal; the child's stacks:\n{exc.stderr}") \
+            from None
     assert proc.returncode == code, err
     assert err == "ebantenna dataset: interrupted\n"
     report = json.loads(out)

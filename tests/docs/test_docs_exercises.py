@@ -742,21 +742,22 @@ def test_a_variant_key_accepts_the_same_solution_computed_under_another_blas_ker
     # then be within its tolerance whatever the BLAS kernel, and every worked solution must pass
     # its own checks there (an iteration count or an optimiser's success flag need not).
     import os
-    import subprocess
     import sys
 
     import make_variant_key
+    from unloaded_time import run
 
     from ebantenna.course import VARIANTS
 
     exercises, students = sorted(VARIANTS), [f"k{i}" for i in range(12)]
     here = os.environ.get("OPENBLAS_CORETYPE", "")
     other = "Haswell" if here.lower() == "prescott" else "Prescott"
-    child = subprocess.run(
+    # every exercise's answers for 12 students, a few seconds of CPU (the whole test 5 s on a
+    # quiet core): 300 s of the child's own time (waits for a CPU left out) is a hang
+    child = run(
         [sys.executable, "-c", _ANSWERS_ELSEWHERE, str(DOCS / "_tools"),
          json.dumps([exercises, students])],
-        env={**os.environ, "OPENBLAS_CORETYPE": other}, capture_output=True, text=True,
-        timeout=300, check=False)
+        300, env={**os.environ, "OPENBLAS_CORETYPE": other}, capture_output=True, text=True)
     assert child.returncode == 0, child.stderr[-2000:]
     elsewhere = json.loads(child.stdout.strip().splitlines()[-1])
     for exercise in exercises:

@@ -122,6 +122,8 @@ def test_notebook_executes(stem, edition, tmp_path):
     nbclient = pytest.importorskip("nbclient", reason="needs the teach extra (nbclient)")
     pytest.importorskip("ipykernel", reason="needs the teach extra (ipykernel)")
     nb = nbformat.reads(json.dumps(notebook(stem, edition)), as_version=4)  # as from a file
+    # a hang guard per cell (nbclient's clock is the wall): the slowest notebook takes about
+    # 13 s in all on a quiet core, so 600 s per cell leaves a slowdown of over forty
     client = nbclient.NotebookClient(
         nb, timeout=600, kernel_name="python3", resources={"metadata": {"path": str(tmp_path)}}
     )

@@ -4,11 +4,11 @@ only datasheet figures the package holds."""
 from __future__ import annotations
 
 import re
-import subprocess
 import sys
 from pathlib import Path
 
 import pytest
+from unloaded_time import run
 
 DOCS = Path(__file__).resolve().parents[2] / "docs"
 INSTALL = DOCS / "user_guide" / "install.rst"
@@ -42,7 +42,10 @@ def test_the_check_shows_the_version_and_a_model():
 @pytest.mark.parametrize("command, documented", SESSIONS, ids=[c for c, _ in SESSIONS])
 def test_documented_output_is_what_the_command_prints(command, documented):
     args = [sys.executable, "-m", "ebantenna", *command.split()[1:]]
-    done = subprocess.run(args, capture_output=True, text=True, timeout=120, check=True)
+    # a start-up and a 2-element model, about a second of CPU: 120 s of the child's own time
+    # (waits for a CPU left out) is a hang
+    done = run(args, 120, capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
     assert _mask_version(done.stdout.rstrip()) == _mask_version(documented)
 
 

@@ -28,7 +28,10 @@ def on_cores(monkeypatch, n, run):
 
 
 def test_the_threads_really_run_side_by_side_and_one_core_runs_in_order(monkeypatch):
-    meet = threading.Barrier(2, timeout=30)  # passes only if two items run at the same time
+    # passes only if two items run at the same time; run in turn, the first waits forever, and
+    # the timeout ends that: 30 s is for the second thread to be started and scheduled, which a
+    # scheduler does within milliseconds even at a load of tens of jobs per core (no CPU work)
+    meet = threading.Barrier(2, timeout=30)
 
     def wait(i):
         meet.wait()

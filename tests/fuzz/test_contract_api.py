@@ -25,15 +25,14 @@ that way, see ``docs/user_guide/input_contract.rst``).
 
 from __future__ import annotations
 
-import contextlib
 import math
-import signal as _signal
 import traceback
 from dataclasses import dataclass, field
 from fractions import Fraction
 
 import numpy as np
 import pytest
+from unloaded_time import time_limit  # tests/, on the path by its conftest
 
 import ebantenna
 from ebantenna import Probe, Recording, device, fem, ml, simulate
@@ -46,7 +45,7 @@ CLASSES = ("clear error", "right", "vague error", "refused a valid input",
 #: The memory budget the cases run under, bytes.
 BUDGET = 64 * 2**20
 
-#: Seconds a case may take before it counts as a timeout.
+#: Seconds a case may take before it counts as a timeout (on ``unloaded_time``'s clock).
 TIMEOUT = 20
 
 
@@ -456,18 +455,9 @@ class _Timeout(Exception):
     pass
 
 
-@contextlib.contextmanager
 def _time_limit(seconds: float):
-    def stop(signum, frame):
-        raise _Timeout
-
-    old = _signal.signal(_signal.SIGALRM, stop)
-    _signal.setitimer(_signal.ITIMER_REAL, seconds)
-    try:
-        yield
-    finally:
-        _signal.setitimer(_signal.ITIMER_REAL, 0)
-        _signal.signal(_signal.SIGALRM, old)
+    """``_Timeout`` after ``seconds`` of the case's own time (waits for a CPU left out)."""
+    return time_limit(seconds, _Timeout)
 
 
 def _raised_in_package(exc: BaseException) -> bool:

@@ -8,11 +8,11 @@ bare ``MemoryError`` from the limit. The budget is now half of the least of the 
 from __future__ import annotations
 
 import os
-import subprocess
 import sys
 import textwrap
 
 import pytest
+from unloaded_time import run
 
 from ebantenna import _budget
 
@@ -54,6 +54,7 @@ def test_rlimit_as_lowers_the_budget_and_a_request_over_it_is_refused_by_name():
             print("refused")
     """)
     env = {k: v for k, v in os.environ.items() if k != "EBANTENNA_MEMORY_BUDGET"}
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         timeout=60, env=env)
+    # an import and one refused allocation: 60 s of the child's own time (waits for a CPU left
+    # out) is a hang
+    out = run([sys.executable, "-c", code], 60, capture_output=True, text=True, env=env)
     assert out.returncode == 0 and out.stdout.strip() == "refused", out.stderr[-2000:]

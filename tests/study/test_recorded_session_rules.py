@@ -50,7 +50,8 @@ def test_resuming_with_other_settings_is_refused_by_name(tmp_path, rig, max_lost
 def test_a_second_writer_is_refused_naming_the_holder(tmp_path):
     where = tmp_path / "s"
     session(where).open()
-    holder = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"])
+    # alive until killed below, however long the machine takes to get there
+    holder = subprocess.Popen([sys.executable, "-c", "import signal; signal.pause()"])
     try:
         (where / LOCK).write_text(f"{holder.pid}\n")  # another live process holds it
         with pytest.raises(ValueError, match=f"another process \\(pid {holder.pid}"):

@@ -69,8 +69,11 @@ def test_a_bus_declared_dead_is_tried_again_while_the_outputs_are_held():
     assert not rig.pca.outputs_enabled() and rig.pca.pulse(0) == 0 and rig.pca.pulse(1) == 0
 
 
-def test_acquire_exits_0_when_the_held_retries_release_the_servos(search_end, capsys):
-    # acquire's simulated rig is the same as the search's here (seed 1, the paper scene)
+def test_acquire_exits_0_when_the_held_retries_release_the_servos(search_end, capsys, tmp_path,
+                                                                   monkeypatch):
+    # acquire's simulated rig is the same as the search's here (seed 1, the paper scene); with
+    # no --out, an unreleased run keeps its recording in the working folder: a fresh one
+    monkeypatch.chdir(tmp_path)
     code = main(["acquire", "--simulated", "--seed", "1", "--oe-gpio", "17", "--json"])
     plain = json.loads(capsys.readouterr().out)
     assert code == 0 and plain["servos_released_by"] == "i2c"
@@ -78,6 +81,7 @@ def test_acquire_exits_0_when_the_held_retries_release_the_servos(search_end, ca
                  "--json"])
     captured = capsys.readouterr()
     assert code == 3 and "switch off the servo supply" in captured.err.strip().splitlines()[-1]
+    assert len(list(tmp_path.glob("acquire-unreleased-*.npz"))) == 1  # what it recorded, kept
 
 
 def test_the_guard_refuses_bad_retry_settings():

@@ -452,7 +452,7 @@ class KernelRows:
         For 'rbf': compute the rows without cancellation, from the points centred once on their
         mean or, for sparse points, with the cancelling entries recomputed (see
         :meth:`Kernel.gram`); ``False`` keeps libsvm's uncentred arithmetic.
-    parts : sequence of slice or of 1-D integer arrays, optional
+    parts : sequence of slice or ndarray, optional
         With ``full``: the problem's points are the rows of ``full`` in these slices (or at these
         indices), one after the other (the classes of a one-vs-one pair). Rows are then assembled
         from the parts on demand instead of copying the block.

@@ -91,6 +91,19 @@ def time_limit(seconds: float, exception: type[BaseException]):
         signal.signal(signal.SIGALRM, previous)
 
 
+def _expire(proc: subprocess.Popen, seconds: float, before_kill) -> None:
+    """Past a limit of ``seconds``: ``before_kill(proc)`` (if given) and up to 5 s for the child
+    to answer it, then the child killed and ``subprocess.TimeoutExpired`` raised with what it
+    printed."""
+    if before_kill is not None:
+        before_kill(proc)
+        with contextlib.suppress(subprocess.TimeoutExpired):
+            proc.wait(timeout=5)
+    proc.kill()
+    out, err = proc.communicate()
+    raise subprocess.TimeoutExpired(proc.args, seconds, output=out, stderr=err)
+
+
 def communicate(proc: subprocess.Popen, seconds: float, poll: float = 0.5, before_kill=None):
     """``proc.communicate()`` with a limit of ``seconds`` on the child's :class:`UnloadedClock`.
 
@@ -106,13 +119,7 @@ def communicate(proc: subprocess.Popen, seconds: float, poll: float = 0.5, befor
         except subprocess.TimeoutExpired:
             if clock.elapsed() <= seconds:
                 continue
-        if before_kill is not None:
-            before_kill(proc)
-            with contextlib.suppress(subprocess.TimeoutExpired):
-                proc.wait(timeout=5)
-        proc.kill()
-        out, err = proc.communicate()
-        raise subprocess.TimeoutExpired(proc.args, seconds, output=out, stderr=err)
+        _expire(proc, seconds, before_kill)
 
 
 def readline(proc: subprocess.Popen, stream, seconds: float, poll: float = 0.5,
@@ -129,13 +136,7 @@ def readline(proc: subprocess.Popen, stream, seconds: float, poll: float = 0.5,
             return line[0]
         if clock.elapsed() > seconds:
             break
-    if before_kill is not None:
-        before_kill(proc)
-        with contextlib.suppress(subprocess.TimeoutExpired):
-            proc.wait(timeout=5)
-    proc.kill()
-    out, err = proc.communicate()
-    raise subprocess.TimeoutExpired(proc.args, seconds, output=out, stderr=err)
+    _expire(proc, seconds, before_kill)
 
 
 def run(args, seconds: float, **kwargs) -> subprocess.CompletedProcess:

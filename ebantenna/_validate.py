@@ -629,6 +629,19 @@ def output_dir(name: str, path) -> Path:
     return target
 
 
+def plain_name(text) -> bool:
+    """Whether ``text`` can name a file inside a folder and nothing else: a non-empty string,
+    not ``.`` or ``..``, with no path separator and no NUL.
+
+    Examples
+    --------
+    >>> plain_name("paper-small-seed1.npz"), plain_name("x/../../escaped"), plain_name("..")
+    (True, False, False)
+    """
+    return (isinstance(text, str) and text not in ("", ".", "..")
+            and not any(c in text for c in ("/", "\\", "\x00", os.sep)))
+
+
 def output_file_in(name: str, directory, file_name: str, *, renamed: bool = False) -> Path:
     """The file ``file_name`` that a command will write in ``directory``, checked before its
     work starts; ``directory`` is checked by :func:`output_dir` (it may not exist yet), and
@@ -654,8 +667,7 @@ def output_file_in(name: str, directory, file_name: str, *, renamed: bool = Fals
     ValueError: --out: .../x.npz is a directory where the file goes; move it or choose another --out
     """
     directory = output_dir(name, directory)
-    if (not isinstance(file_name, str) or file_name in ("", ".", "..")
-            or any(c in file_name for c in ("/", "\\", "\x00", os.sep))):
+    if not plain_name(file_name):
         # a name made from the user's input (a scene's name) would write outside the folder
         raise ValueError(f"{name}: {file_name!r:.80} is not a plain file name: it would be "
                          f"written outside {directory}; rename what it was made from")

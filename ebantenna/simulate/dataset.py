@@ -32,7 +32,6 @@ import hashlib
 import json
 import logging
 import math
-import os
 from dataclasses import dataclass, fields
 from pathlib import Path
 
@@ -53,6 +52,7 @@ from .._validate import (
     load_json,
     open_npz,
     output_file_in,
+    plain_name,
 )
 from ..probe import material
 from ._dataset_files import remove_leftovers, stale_reason, write_whole
@@ -396,7 +396,7 @@ def dataset_path(out_dir, scene: Scene, design: DatasetDesign, seed: int = 0, *,
         raise TypeError(f"design must be a DatasetDesign, got {type(design).__name__}")
     seed = check_int("seed", seed, minimum=0)
     name = scene.name
-    if not name or name in (".", "..") or any(c in name for c in ("/", "\\", "\x00", os.sep)):
+    if not plain_name(name):
         raise ValueError(f"scene's name must be a plain name (it names the data set's file), got "
                          f"{name!r:.80}")
     # the file is written whole and renamed into place: a FIFO or a device there is replaced

@@ -192,8 +192,12 @@ class Dataset:
     fs : float
         Sampling frequency, Hz.
     metadata : dict
-        Configuration (scene, design, seed), package version, checksum; with the
-        ``unilateral_contact`` effect also ``restrikes``, each strike's contacts after the first.
+        Configuration (scene, design, seed), package version, checksum, and what each strike
+        gives besides its signals: with the ``unilateral_contact`` effect ``restrikes``, each
+        strike's contacts after the first; with ``object_modes`` and the linear contact
+        ``lift_off_ratio``, each strike's largest pull of the contact over its preload
+        (:meth:`~ebantenna.simulate.ModalTerms.lift_off_ratio`; above 1 the probe would lift
+        off).
     path : Path or None
         The file it was loaded from.
     """
@@ -323,9 +327,39 @@ def _tasks(plan: dict, materials) -> list[np.ndarray]:
     return tasks
 
 
+def _per_strike_keys(scene: Scene) -> tuple[str, ...]:
+    """What a data set of ``scene`` keeps of each strike besides its signals, in its metadata:
+    ``"restrikes"`` with ``unilateral_contact`` (the contacts after the first touch), and
+    ``"lift_off_ratio"`` with ``object_modes`` and the linear contact (the largest pull of the
+    contact over its preload; above 1 the linear model holds the probe by a pull a real contact
+    cannot give). Kept so that a study reads them from the data set it built instead of
+    simulating its strikes again.
+
+    Examples
+    --------
+    >>> from ebantenna.simulate import builtin_scene
+    >>> paper = builtin_scene("paper")
+    >>> _per_strike_keys(paper)
+    ('restrikes',)
+    >>> _per_strike_keys(paper.with_(effects=[e for e in paper.effects
+    ...                                      if e.name != "unilateral_contact"]))
+    ('lift_off_ratio',)
+    """
+    if scene.has("unilateral_contact"):
+        return ("restrikes",)
+    return ("lift_off_ratio",) if scene.has("object_modes") else ()
+
+
+def _per_strike(scene: Scene, x) -> dict:
+    """The ``_per_strike_keys`` of ``scene`` read from its strikes' modal terms ``x``."""
+    got = {"restrikes": lambda: x.restrikes, "lift_off_ratio": lambda: x.lift_off_ratio(
+        scene.duration)}
+    return {key: got[key]() for key in _per_strike_keys(scene)}
+
+
 def _simulate_rows(scenes, rows: np.ndarray, plan: dict):
     """The signals of ``rows`` of ``plan`` in each of ``scenes`` (the same physics key), as
-    float32, and each row's restrikes.
+    float32, and what each row's strike gives besides (``_per_strike_keys``).
 
     BLAS runs on one thread here, as in a joblib worker: some OpenBLAS builds (NumPy 1.24's)
     round a product differently on two threads, and a data set must not depend on ``n_jobs``.
@@ -349,7 +383,7 @@ def _simulated_rows(scenes, rows: np.ndarray, plan: dict):
     else:
         done = simulate_sensor_variants(scenes, **given)
     signals = [(bx.astype(np.float32), bz.astype(np.float32)) for _, bx, bz, _, _ in done]
-    return rows, signals, done[0][3].restrikes
+    return rows, signals, _per_strike(scenes[0], done[0][3])
 
 
 def dataset_path(out_dir, scene: Scene, design: DatasetDesign, seed: int = 0, *,
@@ -514,21 +548,22 @@ def build_datasets(
     for i, (scene, path) in enumerate(zip(scenes, paths, strict=True)):
         remove_leftovers(path)
         config = _config(scene, design, seed)
-        found[i] = _reusable(path, config)
+        found[i] = _reusable(path, config, _per_strike_keys(scene))
         if found[i] is None:  # grouped by what the steps before the sensor stage read
             todo.setdefault(physics_key(scene), []).append((i, scene, path, config))
     for group in todo.values():
         plan = _plan(group[0][1], design, seed)  # the plan reads only the physics key's values
-        signals, restrikes = _simulate_plan(
+        signals, strikes = _simulate_plan(
             [g[1] for g in group], plan, design.materials, n_jobs, show_progress
         )
         for (i, scene, path, config), (ax, az) in zip(group, signals, strict=True):
-            found[i] = _save(path, scene, config, dict(plan, ax=ax, az=az), restrikes)
+            found[i] = _save(path, scene, config, dict(plan, ax=ax, az=az), strikes)
     return [found[i] for i in range(len(scenes))]
 
 
-def _save(path: Path, scene: Scene, config: dict, arrays: dict, restrikes) -> Dataset:
-    """Write the data set of ``arrays`` (the plan and the signals) to ``path``; return it."""
+def _save(path: Path, scene: Scene, config: dict, arrays: dict, strikes: dict) -> Dataset:
+    """Write the data set of ``arrays`` (the plan and the signals) to ``path``, with what each
+    strike gives besides (``strikes``, ``_per_strike_keys``) in its metadata; return it."""
     metadata = {
         "config": config,
         "ebantenna_version": __version__,
@@ -536,16 +571,16 @@ def _save(path: Path, scene: Scene, config: dict, arrays: dict, restrikes) -> Da
         "units": {"ax": "m/s^2", "az": "m/s^2", "contact": "m", "sweep_speed": "rad/s", "fs": "Hz"},
         "checksum_sha256": _checksum(arrays, scene.fs),
     }
-    if scene.has("unilateral_contact"):  # each strike's contacts after the first touch
-        metadata["restrikes"] = restrikes.tolist()
+    metadata.update({key: strikes[key].tolist() for key in _per_strike_keys(scene)})
     write_whole(path, arrays, metadata, scene.fs)
     for a in arrays.values():
         a.setflags(write=False)
     return Dataset(fs=float(scene.fs), metadata=metadata, path=path, **arrays)
 
 
-def _reusable(path: Path, config: dict) -> Dataset | None:
-    """The data set cached at ``path`` if it loads and has ``config``; None (logged why) if not."""
+def _reusable(path: Path, config: dict, keys) -> Dataset | None:
+    """The data set cached at ``path`` if it loads, has ``config`` and keeps ``keys`` of each
+    strike (``_per_strike_keys``); None (logged why) if not."""
     if not path.exists():
         return None
     try:
@@ -554,6 +589,9 @@ def _reusable(path: Path, config: dict) -> Dataset | None:
         log.warning("rebuilding %s: %s", path, exc)
         return None
     why = stale_reason(cached.metadata.get("config"), config)
+    missing = [key for key in keys if key not in cached.metadata]
+    if why is None and missing:  # written before the data set kept them
+        why = f"its metadata does not keep each strike's {', '.join(missing)}"
     if why is not None:
         log.warning("rebuilding %s: %s", path, why)
         return None
@@ -565,8 +603,9 @@ def _simulate_plan(scenes, plan: dict, materials, n_jobs, show_progress):
     """The signals of every row of ``plan`` in each of ``scenes`` (the same physics key), one
     joblib task per range of contacts.
 
-    Returns per scene ``ax`` and ``az`` (float32, ``(n, n_samples)``), and each row's restrikes
-    (0 without ``unilateral_contact``). Takes checked values.
+    Returns per scene ``ax`` and ``az`` (float32, ``(n, n_samples)``), and what each row's
+    strike gives besides (``{key: (n,) array}``, ``_per_strike_keys``; the scenes share
+    their strikes). Takes checked values.
     """
     n = plan["contact"].size
     signals = [
@@ -579,15 +618,15 @@ def _simulate_plan(scenes, plan: dict, materials, n_jobs, show_progress):
     parts = Parallel(n_jobs=n_jobs, return_as="generator")(
         delayed(_simulate_rows)(scenes, rows, plan) for rows in tasks
     )
-    restrikes = np.zeros(n, dtype=int)
-    for rows, part, again in progress(
+    strikes = {}
+    for rows, part, given in progress(
         parts, total=len(tasks), desc="dataset", enabled=show_progress
     ):
         for (ax, az), (bx, bz) in zip(signals, part, strict=True):
             ax[rows], az[rows] = bx, bz
-        if again is not None:
-            restrikes[rows] = again
-    return signals, restrikes
+        for key, values in given.items():
+            strikes.setdefault(key, np.zeros(n, dtype=values.dtype))[rows] = values
+    return signals, strikes
 
 
 def _check_rows(path, arrays: dict) -> None:

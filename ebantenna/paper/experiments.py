@@ -19,7 +19,7 @@ from __future__ import annotations
 import logging
 import time
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from sklearn.exceptions import ConvergenceWarning
@@ -142,6 +142,10 @@ class RegressionResult:
         Wall time of training, in s.
     model : object
         The fitted estimator.
+    test_rows : ndarray of int or None
+        The rows of the ``X`` given that were tested, in the order of ``distance_test``: two
+        networks tested on the same rows can be compared recording by recording (paired). None
+        where they are not known.
     """
 
     name: str
@@ -151,6 +155,7 @@ class RegressionResult:
     mean_error_cm: np.ndarray
     fit_seconds: float
     model: object = None
+    test_rows: np.ndarray | None = None
 
     @property
     def errors_cm(self) -> np.ndarray:
@@ -432,7 +437,8 @@ def _regression(name, X, d, model, fractions, seed, min_max, split=None) -> Regr
     positions = np.unique(truth)
     err_cm = 100.0 * np.abs(pred - truth)
     mean_err = np.array([err_cm[truth == p].mean() for p in positions])
-    return RegressionResult(name, truth, pred, positions, mean_err, seconds, model)
+    return RegressionResult(name, truth, pred, positions, mean_err, seconds, model,
+                            np.asarray(test, dtype=np.intp))
 
 
 def regress_distance_linear_region(X, distances, *, probe_length,
@@ -506,9 +512,11 @@ def regress_distance_linear_region(X, distances, *, probe_length,
     model = MLPRegressor(hidden_layer_sizes=hidden_layer_sizes, activation=activation,
                          solver=solver, learning_rate_init=learning_rate_init, max_iter=max_iter,
                          random_state=seed, alpha=0.0, n_iter_no_change=20)
-    return _regression(f"{'x'.join(map(str, hidden_layer_sizes))} {activation} ({solver}), "
-                       f"first {100 * fraction_of_length:.0f} % of the probe",
-                       X, d, model, fractions, seed, min_max=False, split=split)
+    result = _regression(f"{'x'.join(map(str, hidden_layer_sizes))} {activation} ({solver}), "
+                         f"first {100 * fraction_of_length:.0f} % of the probe",
+                         X, d, model, fractions, seed, min_max=False, split=split)
+    # the tested rows numbered among all the rows given, not among those kept
+    return replace(result, test_rows=np.flatnonzero(keep)[result.test_rows])
 
 
 def regress_distance_full_length(X, distances, *,

@@ -20,13 +20,15 @@ from ..paper import experiments
 from ..paper.feature_table import SignalFeatures
 from ..paper.mode_curves import classify_materials_by_mode_curves
 from ..paper.position_aware import classify_materials_position_aware
+from ..paper.uncertainty import cluster_mean_interval
 from ..probe import Probe
 from ..report import FigureSet, Report
 from ..simulate import Dataset, Scene
 
 __all__ = ["beyond_chance", "per_contact", "probe_length", "pct", "BLAS_THREADS", "blas_limited",
            "fits_in_parallel", "classifier_call", "MAX_SEED", "check_step", "check_instance",
-           "check_render", "REPORT_FILES", "study_folder"]
+           "check_render", "REPORT_FILES", "study_folder", "mae_entry", "format_mae",
+           "paired_mae"]
 
 #: The files a study writes into its output folder besides its figures.
 REPORT_FILES = ("report.md", "report.html", "summary.json")
@@ -158,6 +160,73 @@ def per_contact(values, contact, mask=None):
             med[i] = np.median(values[sel])
             spread[i] = np.std(values[sel])
     return grid, med, spread
+
+
+def mae_entry(errors_cm, positions) -> dict:
+    """A mean absolute distance error (cm) on its unit of replication, the test position (a
+    position's repetitions are near copies, not independent tests).
+
+    Returns ``mae_cm`` (over the recordings) and, from
+    :func:`~ebantenna.paper.uncertainty.cluster_mean_interval`, ``mae_cm_estimate`` (the mean of
+    the positions' mean errors), ``mae_cm_ci95``, ``mae_cm_n_units``, ``mae_cm_n_test`` and
+    ``mae_cm_method``; one test position gives no interval (``mae_cm_ci95`` None).
+
+    Examples
+    --------
+    >>> e = mae_entry([1.0, 1.2, 3.0, 2.8], [0.1, 0.1, 0.2, 0.2])
+    >>> round(e["mae_cm"], 2), e["mae_cm_n_units"], [round(v, 1) for v in e["mae_cm_ci95"]]
+    (2.0, 2, [-9.4, 13.4])
+    """
+    errors = np.asarray(errors_cm, dtype=float)
+    positions = np.asarray(positions)
+    if np.unique(positions).size < 2:  # one test position: no spread to take
+        return {"mae_cm": float(errors.mean()), "mae_cm_estimate": float(errors.mean()),
+                "mae_cm_ci95": None, "mae_cm_n_units": 1, "mae_cm_n_test": int(errors.size),
+                "mae_cm_method": "one test position: no interval"}
+    return {"mae_cm": float(errors.mean()), **{
+        f"mae_cm_{k}": v for k, v in cluster_mean_interval(errors, positions).items()}}
+
+
+def format_mae(entry: dict) -> str:
+    """A :func:`mae_entry` as the report prints it.
+
+    Examples
+    --------
+    >>> format_mae(mae_entry([1.0, 1.2, 3.0, 2.8], [0.1, 0.1, 0.2, 0.2]))
+    '2.00 cm (mean over 2 test positions 2.00 cm, 95 % CI -9.44 to 13.44)'
+    """
+    if entry["mae_cm_ci95"] is None:
+        return f"{entry['mae_cm']:.2f} cm (one test position, no interval)"
+    lo, hi = entry["mae_cm_ci95"]
+    return (f"{entry['mae_cm']:.2f} cm (mean over {entry['mae_cm_n_units']} test positions "
+            f"{entry['mae_cm_estimate']:.2f} cm, 95 % CI {lo:.2f} to {hi:.2f})")
+
+
+def paired_mae(errors_a, errors_b, positions) -> dict:
+    """How much larger the errors ``errors_a`` (cm) are than ``errors_b`` on the same test
+    recordings, paired recording by recording and taken on the test positions:
+    ``difference_cm`` (the mean of the positions' mean differences), ``ci95``, ``n_units``,
+    ``method`` and ``resolved`` (the interval excludes 0; never from one position).
+
+    Examples
+    --------
+    >>> d = paired_mae([2.0, 2.2, 3.1, 3.0, 2.5, 2.4], [1.0, 1.1, 2.0, 2.1, 1.4, 1.5],
+    ...                [0.1, 0.1, 0.2, 0.2, 0.3, 0.3])
+    >>> round(d["difference_cm"], 2), d["resolved"]
+    (1.02, True)
+    """
+    a, b = (np.asarray(e, dtype=float) for e in (errors_a, errors_b))
+    if a.shape != b.shape:
+        raise ValueError(f"errors_a and errors_b must be paired (one shape), got {a.shape} and "
+                         f"{b.shape}")
+    positions = np.asarray(positions)
+    if np.unique(positions).size < 2:
+        return {"difference_cm": float(np.mean(a - b)), "ci95": None, "n_units": 1,
+                "method": "one test position: no interval", "resolved": False}
+    e = cluster_mean_interval(a - b, positions)
+    return {"difference_cm": e["estimate"], "ci95": e["ci95"], "n_units": e["n_units"],
+            "method": "paired on the same test recordings, " + e["method"],
+            "resolved": bool(e["ci95"][0] > 0 or e["ci95"][1] < 0)}
 
 
 def beyond_chance(accuracy: float, chance: float, n: int) -> bool:

@@ -12,7 +12,15 @@ from ..paper.estimators import FrequencyDistanceEstimator, MultiModeDistanceEsti
 from ..paper.mode_curves import ModeCurveClassifier
 from ..paper.protocol import DISTANCE_LINEAR_REGION
 from ..paper.uncertainty import ClusteredAccuracy, clustered_entries, format_clustered
-from ._common import check_render, check_step, per_contact, probe_length
+from ._common import (
+    check_render,
+    check_step,
+    format_mae,
+    mae_entry,
+    paired_mae,
+    per_contact,
+    probe_length,
+)
 
 __all__ = ["FullRangeResult", "compute", "render"]
 
@@ -66,6 +74,13 @@ class FullRangeResult:
         """Which two-mode test contacts lie beyond the region."""
         return self.contact_two > self.region * self.length
 
+    @property
+    def known_material_gain(self) -> dict:
+        """How much larger the two-mode errors are with one calibration for every material than
+        calibrated per material, paired on the same test recordings and taken on the test
+        positions (:func:`~ebantenna.study._common.paired_mae`)."""
+        return paired_mae(self.error_two_cm, self.error_known_material_cm, self.contact_two)
+
     def to_dict(self) -> dict:
         """The summary numbers, in cm."""
         beyond = self.beyond
@@ -77,6 +92,13 @@ class FullRangeResult:
             "first_mode_only_mae_cm": float(self.error_one_cm.mean()),
             "full_range_known_material_mae_cm": float(self.error_known_material_cm.mean()),
             "full_range_joint_mae_cm": float(self.error_joint_cm.mean()),
+            # each with its interval over the test positions (their repetitions are near copies)
+            "full_range": mae_entry(self.error_two_cm, self.contact_two),
+            "first_mode_only": mae_entry(self.error_one_cm, self.contact_one),
+            "full_range_known_material": mae_entry(self.error_known_material_cm,
+                                                   self.contact_two),
+            "full_range_joint": mae_entry(self.error_joint_cm, self.contact_two),
+            "one_calibration_against_known_material": self.known_material_gain,
             **clustered_entries("full_range_joint_material_accuracy", self.joint_material),
             "first_mode_turning_point_cm": 100 * self.turning_point,
             "recordings_without_two_peaks": self.without_two_peaks,
@@ -158,7 +180,8 @@ def render(result: FullRangeResult, report, figures) -> None:
         "calibration never saw."
     )
     report.table(
-        ["estimator", "range", "MAE (cm)", f"MAE beyond {r.region:g} L (cm)",
+        ["estimator", "range", "MAE (95 % CI over the test positions)",
+         f"MAE beyond {r.region:g} L (cm)",
          "95th percentile (cm)"],
         _error_rows(r),
     )
@@ -166,15 +189,13 @@ def render(result: FullRangeResult, report, figures) -> None:
         "The touched rod is part of the vibrating system: a soft PVC rod lowers the coupled "
         "modes, a steel one hardly does, so one calibration for all materials places the same "
         "contact at different distances. Calibrated per material (the material taken as known, "
-        "as the classifier above gives it for most recordings), the two-mode estimate is "
-        f"{r.error_two_cm.mean() / max(r.error_known_material_cm.mean(), 1e-12):.0f} times more "
-        "accurate: on this rig the probe must know what it touched to know where. It need not "
-        "be told: placed on every material's curves at once, the two peaks find the material "
-        "too (right in "
-        f"{format_clustered(r.joint_material)} of these recordings) "
-        "and the distance "
-        f"within {r.error_joint_cm.mean():.2f} cm on average (the mode-curve classifier of the "
-        "section above)."
+        "as the classifier above gives it for most recordings), the two-mode estimate errs by "
+        f"{format_mae(mae_entry(r.error_known_material_cm, r.contact_two))}: "
+        + _known_material_verdict(r.known_material_gain)
+        + " Placed on every material's curves at once, the two peaks find the material too "
+        f"(right in {format_clustered(r.joint_material)} of these recordings) and the distance "
+        f"within {format_mae(mae_entry(r.error_joint_cm, r.contact_two))} (the mode-curve "
+        "classifier of the section above)."
     )
     report.paragraph(
         f"Paper: the earlier ANN reached about {printed.PRIOR_DISTANCE_ACCURACY_CM.value} cm on "
@@ -202,6 +223,33 @@ def _plot_error_along_probe(r: FullRangeResult, figures) -> str:
     return figures.save(fig, "beyond_full_range_distance")
 
 
+def _known_material_verdict(gain: dict) -> str:
+    """What knowing the material gains the two-mode estimate, from the paired difference.
+
+    Examples
+    --------
+    >>> gain = {"difference_cm": 2.3, "ci95": [1.9, 2.7], "n_units": 39, "resolved": True}
+    >>> _known_material_verdict(gain).split(" (")[0]
+    'one calibration for all materials errs by 2.30 cm more'
+    >>> "must know what it touched" in _known_material_verdict(gain)
+    True
+    >>> "does not show" in _known_material_verdict(dict(gain, ci95=[-0.1, 0.4], resolved=False))
+    True
+    """
+    if gain["ci95"] is None:
+        return (f"one calibration for all materials errs by {gain['difference_cm']:+.2f} cm "
+                "against it on one test position, which gives no interval.")
+    lo, hi = gain["ci95"]
+    said = (f"one calibration for all materials errs by {abs(gain['difference_cm']):.2f} cm "
+            f"{'more' if gain['difference_cm'] > 0 else 'less'} (paired, 95 % CI {lo:.2f} to "
+            f"{hi:.2f}, {gain['n_units']} positions)")
+    if gain["resolved"] and gain["difference_cm"] > 0:
+        return said + ": on this rig the probe must know what it touched to know where."
+    if gain["resolved"]:
+        return said + ": knowing the material makes the estimate worse here."
+    return said + ": this design does not show that knowing the material helps."
+
+
 def _error_rows(r: FullRangeResult) -> list[list[str]]:
     """One row per estimator: its MAE over the whole probe, beyond the first mode's region
     (``-`` if no test contact lies there) and its 95th percentile, in cm."""
@@ -211,28 +259,28 @@ def _error_rows(r: FullRangeResult) -> list[list[str]]:
         [
             "first mode only",
             "whole probe",
-            f"{r.error_one_cm.mean():.2f}",
+            format_mae(mae_entry(r.error_one_cm, r.contact_one)),
             f"{r.error_one_cm[beyond1].mean():.2f}",
             f"{np.percentile(r.error_one_cm, 95):.2f}",
         ],
         [
             "two modes",
             "whole probe",
-            f"{r.error_two_cm.mean():.2f}",
+            format_mae(mae_entry(r.error_two_cm, r.contact_two)),
             f"{r.error_two_cm[beyond].mean():.2f}" if np.any(beyond) else "-",
             f"{np.percentile(r.error_two_cm, 95):.2f}",
         ],
         [
             "two modes, calibrated per material (material known)",
             "whole probe",
-            f"{r.error_known_material_cm.mean():.2f}",
+            format_mae(mae_entry(r.error_known_material_cm, r.contact_two)),
             f"{r.error_known_material_cm[beyond].mean():.2f}" if np.any(beyond) else "-",
             f"{np.percentile(r.error_known_material_cm, 95):.2f}",
         ],
         [
             "two modes, material fitted with the distance",
             "whole probe",
-            f"{r.error_joint_cm.mean():.2f}",
+            format_mae(mae_entry(r.error_joint_cm, r.contact_two)),
             f"{r.error_joint_cm[beyond].mean():.2f}" if np.any(beyond) else "-",
             f"{np.percentile(r.error_joint_cm, 95):.2f}",
         ],

@@ -15,7 +15,6 @@ from ..paper.uncertainty import (
     ClusteredAccuracy,
     FoldAccuracy,
     PairedDifference,
-    cluster_mean_interval,
     clustered_entries,
     percent,
     training_entries,
@@ -26,6 +25,9 @@ from ._common import (
     check_step,
     classifier_call,
     fits_in_parallel,
+    format_mae,
+    mae_entry,
+    paired_mae,
     probe_length,
 )
 
@@ -80,9 +82,22 @@ class MaterialSplitsResult:
     distance_held_out: object = None
 
     @property
-    def best_distance_trainer(self) -> str:
-        """The trainer with the smallest distance error."""
-        return min(self.distance, key=lambda k: self.distance[k].mae_cm)
+    def distance_ranking(self) -> tuple[str, dict]:
+        """The trainer with the smallest distance error, and each other trainer's errors against
+        its, paired on the same test recordings and taken on the test positions
+        (:func:`~ebantenna.study._common.paired_mae`; None for a network tested on other rows).
+        The smallest is a ranking of this run, not a finding, unless every difference is
+        resolved."""
+        smallest = min(self.distance, key=lambda k: self.distance[k].mae_cm)
+        base = self.distance[smallest]
+        against = {}
+        for k, r in self.distance.items():
+            same = (r.test_rows is not None and base.test_rows is not None
+                    and np.array_equal(r.test_rows, base.test_rows))
+            if k != smallest:
+                against[k] = (paired_mae(r.errors_cm, base.errors_cm, r.distance_test) if same
+                              else None)
+        return smallest, against
 
     def to_dict(self) -> dict:
         """``materials`` (accuracies, fractions, each with its test count ``*_n_test``, unit,
@@ -110,9 +125,12 @@ class MaterialSplitsResult:
             "counts": svm["grouped"].confusions["test"].astype(int).tolist(),
             "fold": 0,
         }
+        smallest, against = self.distance_ranking
         distance = {
             "linear_region_mae_cm_by_trainer": {k: r.mae_cm for k, r in self.distance.items()},
-            "linear_region_best_trainer": self.best_distance_trainer,
+            "linear_region_by_trainer": {k: _distance_entry(r) for k, r in self.distance.items()},
+            "linear_region_smallest_error_trainer": smallest,
+            "linear_region_against_smallest": against,
             "linear_region_random_split": _distance_entry(self.distance["gd"]),
         }
         if self.distance_held_out is not None:
@@ -123,13 +141,8 @@ class MaterialSplitsResult:
 
 def _distance_entry(r) -> dict:
     """A distance network's mean absolute error (cm) with its interval over the test
-    positions (:func:`~ebantenna.paper.uncertainty.cluster_mean_interval`)."""
-    if np.unique(r.distance_test).size < 2:  # one test position: no spread to take
-        return {"mae_cm": r.mae_cm, "mae_cm_estimate": r.mae_cm, "mae_cm_ci95": None,
-                "mae_cm_n_units": 1, "mae_cm_n_test": int(r.distance_test.size),
-                "mae_cm_method": "one test position: no interval"}
-    return {"mae_cm": r.mae_cm, **{f"mae_cm_{k}": v for k, v in
-                                  cluster_mean_interval(r.errors_cm, r.distance_test).items()}}
+    positions (:func:`~ebantenna.study._common.mae_entry`)."""
+    return mae_entry(r.errors_cm, r.distance_test)
 
 
 #: The paper SVM's test accuracy on each split, by its key in ``summary.json``.
@@ -402,36 +415,85 @@ def _render_trainers(r: MaterialSplitsResult, report) -> None:
             for k, a in r.ann.items()
         ],
     )
-    best = r.best_distance_trainer
+    smallest, against = r.distance_ranking
     report.table(
-        ["distance network", "trainer", "MAE (cm)", "RMS (cm)", "fit time (s)"],
+        ["distance network", "trainer", "MAE (cm)", "against the smallest (cm, paired)",
+         "RMS (cm)", "fit time (s)"],
         [
             [
                 "2 x 20 tanh, 0-80 % of L",
-                k + (" (best)" if k == best else ""),
-                f"{d.mae_cm:.2f}",
+                k,
+                format_mae(_distance_entry(d)),
+                "smallest" if k == smallest else _paired_cm(against[k]),
                 f"{d.rmse_cm:.2f}",
                 f"{d.fit_seconds:.1f}",
             ]
             for k, d in r.distance.items()
         ],
     )
+    report.paragraph(_trainer_ranking(smallest, against))
     if r.distance_held_out is not None:
         report.paragraph(_distance_held_out(r))
+
+
+def _paired_cm(d) -> str:
+    """A :func:`~ebantenna.study._common.paired_mae` difference as the table prints it."""
+    if d is None:
+        return "not paired (other test rows)"
+    if d["ci95"] is None:
+        return f"{d['difference_cm']:+.2f} (one test position, no interval)"
+    lo, hi = d["ci95"]
+    return f"{d['difference_cm']:+.2f} (95 % CI {lo:+.2f} to {hi:+.2f}, {d['n_units']} positions)"
+
+
+def _trainer_ranking(smallest: str, against: dict) -> str:
+    """Which trainer's distance network errs least, and whether this design tells it from the
+    others: generated from the paired differences.
+
+    Examples
+    --------
+    >>> near = {"difference_cm": 0.02, "ci95": [-0.01, 0.05], "n_units": 64, "resolved": False}
+    >>> far = {"difference_cm": 1.9, "ci95": [1.6, 2.2], "n_units": 64, "resolved": True}
+    >>> text = _trainer_ranking("adam", {"gd": far, "scg": near})
+    >>> text.split(". ")[0]
+    'Adam has the smallest mean error in this run'
+    >>> "errs less than gradient descent (resolved)" in text, "rank by chance" in text
+    (True, True)
+    >>> "rank by chance" in _trainer_ranking("adam", {"gd": far, "scg": far})
+    False
+    """
+    names = {"gd": "gradient descent", "scg": "scaled conjugate gradient", "adam": "Adam",
+             "sgd": "stochastic gradient descent"}
+
+    def listed(keys):
+        words = [names.get(k, k) for k in keys]
+        return " and ".join(words[-2:]) if len(words) < 3 else (
+            ", ".join(words[:-1]) + " and " + words[-1])
+
+    resolved = [k for k, d in against.items() if d is not None and d["resolved"]]
+    tied = [k for k, d in against.items() if d is not None and not d["resolved"]]
+    unpaired = [k for k, d in against.items() if d is None]
+    first = names.get(smallest, smallest)
+    text = f"{first[0].upper()}{first[1:]} has the smallest mean error in this run."
+    if resolved or tied:
+        text += " Paired on the same test recordings and taken on the test positions, it "
+    if resolved:
+        text += f"errs less than {listed(resolved)} (resolved)"
+        text += "; " if tied else "."
+    if tied:
+        text += (f"from {listed(tied)} this design does not tell it apart (the interval "
+                 f"includes 0), so the {'two' if len(tied) == 1 else 'trainers'} rank by chance "
+                 "here.")
+    if unpaired:
+        text += f" {listed(unpaired).capitalize()}: tested on other rows, not compared."
+    return text
 
 
 def _distance_held_out(r: MaterialSplitsResult) -> str:
     """The distance network on the random split against whole positions held out, each with
     its interval over the test positions."""
     rnd, held = (_distance_entry(x) for x in (r.distance["gd"], r.distance_held_out))
-
-    def text(e):
-        if e["mae_cm_ci95"] is None:
-            return f"{e['mae_cm']:.2f} cm (one test position, no interval)"
-        lo, hi = e["mae_cm_ci95"]
-        return (f"{e['mae_cm']:.2f} cm (mean over {e['mae_cm_n_units']} test positions "
-                f"{e['mae_cm_estimate']:.2f} cm, 95 % CI {lo:.2f}-{hi:.2f})")
-
+    text = format_mae
     worse = (held["mae_cm_ci95"] is not None and rnd["mae_cm_ci95"] is not None
              and held["mae_cm_ci95"][0] > rnd["mae_cm_ci95"][1])
     return (

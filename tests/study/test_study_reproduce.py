@@ -123,11 +123,14 @@ def test_summary_is_the_results_dicts_put_together(quick_study):
     assert list(s["distance"]) == [
         "full_range_mae_cm", "full_range_mae_beyond_80_cm", "first_mode_only_mae_cm",
         "full_range_known_material_mae_cm", "full_range_joint_mae_cm",
+        "full_range", "first_mode_only", "full_range_known_material", "full_range_joint",
+        "one_calibration_against_known_material",
         joint, f"{joint}_n_test", f"{joint}_unit", f"{joint}_n_units",
         f"{joint}_design_effect", f"{joint}_ci95", f"{joint}_method",
         f"{joint}_recording_ci95", "first_mode_turning_point_cm",
         "recordings_without_two_peaks", "linear_region_mae_cm", "full_length_mae_cm",
-        "linear_region_mae_cm_by_trainer", "linear_region_best_trainer",
+        "full_length", "linear_region_mae_cm_by_trainer", "linear_region_by_trainer",
+        "linear_region_smallest_error_trainer", "linear_region_against_smallest",
         "linear_region_random_split", "linear_region_positions_held_out",
     ]
     assert list(s["timings_s"]) == list(STEPS)

@@ -1,0 +1,108 @@
+"""Distance errors on their unit of replication (the test position), the trainers' ranking
+paired on the same test recordings, and the sentences that read them."""
+
+import numpy as np
+import pytest
+from scipy import stats
+
+from ebantenna.paper.experiments import RegressionResult, regress_distance_linear_region
+from ebantenna.study._common import format_mae, mae_entry, paired_mae
+from ebantenna.study.full_range import _known_material_verdict
+from ebantenna.study.material_splits import MaterialSplitsResult, _trainer_ranking
+
+POSITIONS = np.repeat([0.05, 0.10, 0.15, 0.20, 0.25], 4)  # 5 positions x 4 repetitions
+
+
+def _t_interval(values, positions):
+    """Witness: Student's t interval over the positions' means, written out."""
+    means = np.array([values[positions == p].mean() for p in np.unique(positions)])
+    half = stats.t.ppf(0.975, means.size - 1) * means.std(ddof=1) / np.sqrt(means.size)
+    return means.mean(), (means.mean() - half, means.mean() + half)
+
+
+def test_a_mae_is_taken_on_the_positions_not_the_recordings():
+    errors = np.random.default_rng(0).gamma(2.0, 1.0, POSITIONS.size)
+    entry = mae_entry(errors, POSITIONS)
+    centre, ci = _t_interval(errors, POSITIONS)
+    assert entry["mae_cm"] == pytest.approx(errors.mean(), rel=1e-14)
+    assert entry["mae_cm_estimate"] == pytest.approx(centre, rel=1e-14)
+    # the same few operations on 20 numbers: a few eps of the interval's scale
+    assert np.allclose(entry["mae_cm_ci95"], ci, rtol=1e-12)
+    assert (entry["mae_cm_n_units"], entry["mae_cm_n_test"]) == (5, 20)
+    assert "5 test positions" in format_mae(entry)
+
+
+def test_one_test_position_gives_no_interval():
+    entry = mae_entry([1.0, 2.0, 3.0], [0.1, 0.1, 0.1])
+    assert entry["mae_cm_ci95"] is None and entry["mae_cm"] == 2.0
+    assert "no interval" in format_mae(entry)
+    assert paired_mae([1.0, 2.0], [0.0, 0.0], [0.1, 0.1])["resolved"] is False
+
+
+@pytest.mark.parametrize("shift", [1.0, -1.0, 0.0])
+def test_a_paired_difference_is_the_interval_of_the_differences_and_resolves_by_it(shift):
+    rng = np.random.default_rng(1)
+    base = rng.gamma(2.0, 1.0, POSITIONS.size)
+    other = base + shift + rng.normal(0.0, 0.05, POSITIONS.size)
+    d = paired_mae(other, base, POSITIONS)
+    centre, ci = _t_interval(other - base, POSITIONS)
+    assert d["difference_cm"] == pytest.approx(centre, abs=1e-12)
+    assert np.allclose(d["ci95"], ci, rtol=0, atol=1e-12)
+    assert d["resolved"] is (not ci[0] <= 0 <= ci[1])
+    assert d["resolved"] is (shift != 0.0)  # a 1 cm shift against 0.05 cm noise resolves
+
+
+def test_unpaired_errors_are_refused():
+    with pytest.raises(ValueError, match="errors_a and errors_b"):
+        paired_mae([1.0, 2.0], [1.0], [0.1, 0.2])
+
+
+def _net(errors, rows):
+    truth = POSITIONS[rows]
+    return RegressionResult("net", truth, truth + np.asarray(errors) / 100.0, np.unique(truth),
+                            np.zeros(np.unique(truth).size), 0.0, None, np.asarray(rows))
+
+
+def test_the_ranking_pairs_networks_tested_on_the_same_rows_only():
+    rng = np.random.default_rng(2)
+    rows = np.arange(POSITIONS.size)
+    base = rng.gamma(2.0, 0.2, rows.size)
+    tie = np.repeat([0.1, -0.1, 0.05, -0.05, 0.001], 4)  # positions' means: +0.0002 cm
+    distance = {"gd": _net(base + 1.0, rows), "scg": _net(base + tie, rows),
+                "adam": _net(base, rows), "sgd": _net(base, rows[::-1])}
+    result = MaterialSplitsResult({}, {}, {}, {}, {}, distance)
+    smallest, against = result.distance_ranking
+    assert smallest == "adam"
+    assert against["gd"]["resolved"] and against["gd"]["difference_cm"] == pytest.approx(1.0)
+    assert against["sgd"] is None  # other test rows: not compared
+    assert not against["scg"]["resolved"]
+    text = _trainer_ranking(smallest, against)
+    assert "errs less than gradient descent (resolved)" in text
+    assert "from scaled conjugate gradient this design does not tell it apart" in text
+    assert "Stochastic gradient descent: tested on other rows" in text
+
+
+def test_the_ranking_sentence_flips_with_the_interval():
+    near = {"difference_cm": 0.01, "ci95": [-0.02, 0.04], "n_units": 64, "resolved": False}
+    far = {"difference_cm": 1.9, "ci95": [1.6, 2.2], "n_units": 64, "resolved": True}
+    assert "rank by chance" in _trainer_ranking("adam", {"scg": near})
+    assert "rank by chance" not in _trainer_ranking("adam", {"scg": far})
+    assert "(resolved)" not in _trainer_ranking("adam", {"scg": near})
+
+
+def test_the_known_material_sentence_follows_the_paired_difference():
+    gain = {"difference_cm": 2.3, "ci95": [1.9, 2.7], "n_units": 39, "resolved": True}
+    assert "must know what it touched" in _known_material_verdict(gain)
+    unresolved = dict(gain, ci95=[-0.1, 0.4], resolved=False)
+    assert "does not show" in _known_material_verdict(unresolved)
+    worse = dict(gain, difference_cm=-2.3, ci95=[-2.7, -1.9])
+    assert "worse" in _known_material_verdict(worse)
+    assert "must know" not in _known_material_verdict(worse)
+
+
+def test_the_tested_rows_are_numbered_among_the_rows_given():
+    d = np.repeat(np.linspace(0.02, 0.40, 20), 6)  # the region keeps the first 80 % of 0.4 m
+    X = np.column_stack([np.cos(8 * d), np.sin(8 * d)])
+    res = regress_distance_linear_region(X, d, probe_length=0.4, max_iter=5)
+    assert np.array_equal(d[res.test_rows], res.distance_test)
+    assert np.all(d[res.test_rows] <= 0.8 * 0.4)

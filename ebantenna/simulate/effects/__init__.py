@@ -154,8 +154,8 @@ def make_effects(effects) -> tuple:
 
     Parameters
     ----------
-    effects : sequence of str or effect instances, or dict
-        Names, instances, or ``{name: {parameter: value}}``; none listed twice.
+    effects : sequence or dict
+        Effect names or instances, or ``{name: {parameter: value}}``; none listed twice.
 
     Raises
     ------

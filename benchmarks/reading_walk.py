@@ -87,11 +87,7 @@ NOT_FUNCTIONS = frozenset({"<module>", "<listcomp>", "<dictcomp>", "<setcomp>", 
 READING_ORDER = (
     "ebantenna/simulate/scene.py",
     "ebantenna/probe.py",
-    "ebantenna/simulate/scene.py",
     "ebantenna/simulate/effects/__init__.py",
-    "ebantenna/simulate/scene.py",
-    "ebantenna/simulate/simulator.py",
-    "ebantenna/simulate/scene.py",
     "ebantenna/simulate/simulator.py",
     "ebantenna/simulate/touched_object.py",
     "ebantenna/fem/coupling.py",
@@ -119,7 +115,6 @@ READING_ORDER = (
     "ebantenna/simulate/modes.py",
     "ebantenna/simulate/effects/sensor.py",
     "ebantenna/simulate/scene.py",
-    "ebantenna/simulate/touched_object.py",
     "ebantenna/signal/features.py",
     "ebantenna/ml/svc.py",
     "ebantenna/ml/kernels.py",
@@ -131,7 +126,7 @@ TARGETS = {"read_files": 15, "read_returns": 5, "run_modules": 25, "run_returns"
 
 #: The walk as it stands, which ``tests/test_reading_walk.py`` keeps it within so that it cannot
 #: grow back unnoticed: lower these as the walk shrinks, down to :data:`TARGETS`.
-CEILINGS = {"read_files": 19, "read_returns": 20, "run_modules": 25, "run_returns": 45}
+CEILINGS = {"read_files": 19, "read_returns": 15, "run_modules": 25, "run_returns": 45}
 
 SCENE, MATERIAL, CONTACT, SEED = "paper", "brass", 0.25, 0
 

@@ -36,7 +36,7 @@ from .._validate import (
 from ..fem.assembly import HINGES
 from ..fem.guards import check_contact, check_resolvable
 from ..probe import Probe, material
-from .effects import EFFECT_TYPES, GY521_MASS, effect_names, make_effect
+from .effects import EFFECT_TYPES, GY521_MASS, make_effects
 
 #: Effects the ``paper`` scene leaves out: ``contact_compliance``, because the rod's own contact
 #: spring (in ``object_modes``) replaces it, and ``coulomb_friction``, because no friction
@@ -48,8 +48,6 @@ from .effects import EFFECT_TYPES, GY521_MASS, effect_names, make_effect
 PAPER_LEAVES_OUT = frozenset({"contact_compliance", "coulomb_friction", "hertz_contact"})
 
 __all__ = ["Scene", "builtin_scene", "scene_names", "load_scene", "resolve_scene"]
-
-_ORDER = {name: i for i, name in enumerate(effect_names())}
 
 #: Effects that need another effect listed with them: (effect, needed, why).
 EFFECT_NEEDS = (
@@ -66,25 +64,6 @@ EFFECT_NEEDS = (
 
 #: Most samples one simulated recording may have.
 MAX_SAMPLES = 10_000_000
-
-
-def _normalise_effects(effects) -> tuple:
-    if isinstance(effects, str | bytes):
-        raise TypeError("effects must be a sequence of effect names or instances, not a string")
-    if isinstance(effects, dict):
-        items = [make_effect(name, params) for name, params in effects.items()]
-    else:
-        try:
-            items = [make_effect(e) for e in effects]
-        except TypeError as exc:
-            if "not iterable" in str(exc):
-                raise TypeError(f"effects must be a sequence, got {effects!r}") from exc
-            raise
-    names = [e.name for e in items]
-    duplicates = sorted({n for n in names if names.count(n) > 1})
-    if duplicates:
-        raise ValueError(f"effects must not repeat; {', '.join(duplicates)} listed twice")
-    return tuple(sorted(items, key=lambda e: _ORDER[e.name]))
 
 
 @dataclass(frozen=True)
@@ -164,7 +143,7 @@ class Scene:
     def __post_init__(self):
         self._check_setup()
         self._check_acquisition()
-        object.__setattr__(self, "effects", _normalise_effects(self.effects))
+        object.__setattr__(self, "effects", make_effects(self.effects))
         self._check_effects()
         self._check_rates()
 
@@ -269,10 +248,7 @@ class Scene:
         """The listed effect called ``name`` (one of :func:`~ebantenna.simulate.effect_names`),
         or None."""
         _check_effect_name(name)
-        for e in self.effects:
-            if e.name == name:
-                return e
-        return None
+        return next((e for e in self.effects if e.name == name), None)
 
     def with_(self, **changes) -> Scene:
         """A copy with some fields replaced, validated like a new scene.
@@ -283,13 +259,17 @@ class Scene:
         >>> builtin_scene("paper").with_(contact=0.25, material="wood").contact
         0.25
         """
+        self._check_fields(changes)
+        return dataclasses.replace(self, **changes)
+
+    def _check_fields(self, changes) -> None:
+        """Every name of ``changes`` is a field of the scene (a misspelt one is never ignored)."""
         valid = [f.name for f in dataclasses.fields(self)]
         unknown = sorted(set(changes) - set(valid))
         if unknown:
             raise TypeError(
                 f"Scene has no field(s) {', '.join(unknown)}; fields: {', '.join(valid)}"
             )
-        return dataclasses.replace(self, **changes)
 
     # ---------------------------------------------------------------------------------------------
     def to_dict(self) -> dict:

@@ -348,18 +348,19 @@ class ModalTerms:
     preload: np.ndarray | None = None
     restrikes: np.ndarray | None = None
 
-    def _row(self, row) -> int:
-        """``row`` checked: a signal's index, ``0 <= row < n_signals`` (no negative indexing)."""
-        return check_int("row", row, minimum=0, maximum=self.omega.shape[0] - 1)
+    def _check_row(self, row) -> None:
+        """``row`` is a signal's index, an integer ``0 <= row < n_signals`` (no negative
+        indexing)."""
+        check_int("row", row, minimum=0, maximum=self.omega.shape[0] - 1)
 
     def frequencies(self, row: int = 0) -> np.ndarray:
         """Natural frequencies of signal ``row`` (padding dropped), Hz."""
-        row = self._row(row)
+        self._check_row(row)
         return self.omega[row, self.live[row]] / (2 * math.pi)
 
     def damping_ratios(self, row: int = 0) -> np.ndarray:
         """Damping ratios of signal ``row`` (padding dropped)."""
-        row = self._row(row)
+        self._check_row(row)
         return self.zeta[row, self.live[row]]
 
     def dynamic_contact_force(self, t) -> np.ndarray:

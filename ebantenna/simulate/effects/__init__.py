@@ -85,6 +85,7 @@ __all__ = [
     "EFFECT_TYPES",
     "effect_names",
     "make_effect",
+    "make_effects",
 ]
 
 #: Every effect type, in the order the simulator applies them.
@@ -145,3 +146,43 @@ def make_effect(effect, params: dict | None = None):
     if effect not in _BY_NAME:
         raise ValueError(f"unknown effect {effect!r}; valid effects: {', '.join(_BY_NAME)}")
     return _BY_NAME[effect].from_parameters(params or {})
+
+
+def make_effects(effects) -> tuple:
+    """A scene's effects, each made by :func:`make_effect`, in the order the simulator applies
+    them (:func:`effect_names`).
+
+    Parameters
+    ----------
+    effects : sequence or dict
+        Effect names or instances, or ``{name: {parameter: value}}``; none listed twice.
+
+    Raises
+    ------
+    TypeError
+        For a string or anything else that is not a sequence of names or instances.
+    ValueError
+        For an unknown name, or an effect listed twice.
+
+    Examples
+    --------
+    >>> [e.name for e in make_effects(["sensor_noise", "gravity"])]
+    ['gravity', 'sensor_noise']
+    """
+    if isinstance(effects, str | bytes):
+        raise TypeError("effects must be a sequence of effect names or instances, not a string")
+    if isinstance(effects, dict):
+        items = [make_effect(name, params) for name, params in effects.items()]
+    else:
+        try:
+            items = [make_effect(e) for e in effects]
+        except TypeError as exc:
+            if "not iterable" in str(exc):
+                raise TypeError(f"effects must be a sequence, got {effects!r}") from exc
+            raise
+    names = [e.name for e in items]
+    duplicates = sorted({n for n in names if names.count(n) > 1})
+    if duplicates:
+        raise ValueError(f"effects must not repeat; {', '.join(duplicates)} listed twice")
+    position = {name: i for i, name in enumerate(effect_names())}
+    return tuple(sorted(items, key=lambda e: position[e.name]))

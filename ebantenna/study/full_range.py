@@ -190,7 +190,7 @@ def render(result: FullRangeResult, report, figures) -> None:
         "modes, a steel one hardly does, so one calibration for all materials places the same "
         "contact at different distances. Calibrated per material (the material taken as known, "
         "as the classifier above gives it for most recordings), the two-mode estimate errs by "
-        f"{format_mae(mae_entry(r.error_known_material_cm, r.contact_two))}: "
+        f"{format_mae(mae_entry(r.error_known_material_cm, r.contact_two))}; "
         + _known_material_verdict(r.known_material_gain)
         + " Placed on every material's curves at once, the two peaks find the material too "
         f"(right in {format_clustered(r.joint_material)} of these recordings) and the distance "

@@ -476,12 +476,12 @@ def _trainer_ranking(smallest: str, against: dict) -> str:
     first = names.get(smallest, smallest)
     text = f"{first[0].upper()}{first[1:]} has the smallest mean error in this run."
     if resolved or tied:
-        text += " Paired on the same test recordings and taken on the test positions, it "
+        text += " Paired on the same test recordings and taken on the test positions, "
     if resolved:
-        text += f"errs less than {listed(resolved)} (resolved)"
+        text += f"it errs less than {listed(resolved)} (resolved)"
         text += "; " if tied else "."
     if tied:
-        text += (f"from {listed(tied)} this design does not tell it apart (the interval "
+        text += (f"this design does not tell it apart from {listed(tied)} (the interval "
                  f"includes 0), so the {'two' if len(tied) == 1 else 'trainers'} rank by chance "
                  "here.")
     if unpaired:

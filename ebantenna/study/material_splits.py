@@ -310,12 +310,43 @@ def _render_splits(r: MaterialSplitsResult, report) -> None:
     grouped = r.svm["grouped"]
     report.paragraph(
         "The paper's SVM on whole held-out positions (grouped split, its first fold): its "
-        "confusion matrix, rows the true material, columns the predicted one. Where it errs, "
-        "it calls a material one whose rod moves the probe's modes most like it."
+        "confusion matrix, rows the true material, columns the predicted one. "
+        + _confusions_text(grouped.confusions["test"], grouped.labels)
     )
     report.preformatted(
         experiments.format_confusion(grouped.confusions["test"], grouped.labels)
     )
+
+
+def _confusions_text(matrix, labels) -> str:
+    """Each material's most frequent wrong answer, read from a confusion matrix (rows the true
+    material): counts of one fold, not a finding about the materials.
+
+    Examples
+    --------
+    >>> text = _confusions_text(np.array([[5, 3, 0], [0, 8, 0], [1, 0, 7]]), ["al", "pvc", "wood"])
+    >>> text.split(": ")[1].split(";")[0]
+    'al taken for pvc (3 of 8), wood taken for al (1 of 8)'
+    >>> text.split("; ")[1].split(".")[0]
+    'pvc is never taken for another'
+    """
+    m = np.asarray(matrix)
+    wrong, right = [], []
+    for i, name in enumerate(labels):
+        errors = m[i].copy()
+        errors[i] = 0
+        if errors.sum() == 0:
+            right.append(str(name))
+            continue
+        j = int(np.argmax(errors))  # the first of equal counts, in the order of the labels
+        wrong.append(f"{name} taken for {labels[j]} ({errors[j]} of {m[i].sum()})")
+    if not wrong:
+        return "It takes no material for another in this fold."
+    text = "Its most frequent wrong answers in this fold: " + ", ".join(wrong)
+    if right:
+        text += (f"; {' and '.join(right)} {'is' if len(right) == 1 else 'are'} never taken for "
+                 "another")
+    return text + ". Counts of one fold, not a finding about the materials."
 
 
 def _folds_text(r: MaterialSplitsResult, kind: str) -> str:

@@ -108,3 +108,14 @@ def test_the_tested_rows_are_numbered_among_the_rows_given():
     res = regress_distance_linear_region(X, d, probe_length=0.4, max_iter=5)
     assert np.array_equal(d[res.test_rows], res.distance_test)
     assert np.all(d[res.test_rows] <= 0.8 * 0.4)
+
+
+def test_the_confusion_sentence_is_read_from_the_matrix():
+    from ebantenna.study.material_splits import _confusions_text
+
+    labels = ["al", "pvc", "wood"]
+    one = _confusions_text(np.array([[5, 3, 0], [0, 8, 0], [1, 0, 7]]), labels)
+    other = _confusions_text(np.array([[5, 0, 3], [2, 6, 0], [0, 0, 8]]), labels)
+    assert "al taken for pvc (3 of 8)" in one and "al taken for wood (3 of 8)" in other
+    assert "pvc is never taken" in one and "wood is never taken" in other
+    assert "no material for another" in _confusions_text(np.eye(3, dtype=int) * 4, labels)

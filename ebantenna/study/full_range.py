@@ -11,7 +11,12 @@ from ..paper import printed
 from ..paper.estimators import FrequencyDistanceEstimator, MultiModeDistanceEstimator
 from ..paper.mode_curves import ModeCurveClassifier
 from ..paper.protocol import DISTANCE_LINEAR_REGION
-from ..paper.uncertainty import ClusteredAccuracy, clustered_entries, format_clustered
+from ..paper.uncertainty import (
+    ClusteredAccuracy,
+    clustered_entries,
+    format_clustered,
+    percent,
+)
 from ._common import (
     check_render,
     check_step,
@@ -53,6 +58,8 @@ class FullRangeResult:
         Recordings with fewer than two separable peaks, and all recordings.
     joint_material : ClusteredAccuracy
         ``joint_material_accuracy`` with its interval on the held-out position.
+    chance : float or None
+        Guessing among the tested materials, ``1 / n_materials``.
     """
 
     length: float
@@ -68,11 +75,21 @@ class FullRangeResult:
     without_two_peaks: int
     recordings: int
     joint_material: ClusteredAccuracy = None
+    chance: float | None = None
 
     @property
     def beyond(self) -> np.ndarray:
         """Which two-mode test contacts lie beyond the region."""
         return self.contact_two > self.region * self.length
+
+    @property
+    def two_against_one_mode(self) -> dict | None:
+        """The two-mode errors against the first mode's alone, paired on the same test
+        recordings (:func:`~ebantenna.study._common.paired_mae`); None where some recordings had
+        no two separable peaks, so that the two estimators were tested on different rows."""
+        if self.without_two_peaks or not np.array_equal(self.contact_one, self.contact_two):
+            return None
+        return paired_mae(self.error_two_cm, self.error_one_cm, self.contact_two)
 
     @property
     def known_material_gain(self) -> dict:
@@ -99,6 +116,7 @@ class FullRangeResult:
                                                    self.contact_two),
             "full_range_joint": mae_entry(self.error_joint_cm, self.contact_two),
             "one_calibration_against_known_material": self.known_material_gain,
+            "two_modes_against_first_mode": self.two_against_one_mode,
             **clustered_entries("full_range_joint_material_accuracy", self.joint_material),
             "first_mode_turning_point_cm": 100 * self.turning_point,
             "recordings_without_two_peaks": self.without_two_peaks,
@@ -155,6 +173,7 @@ def compute(ds, feats) -> FullRangeResult:
         without_two_peaks=int((~ok).sum()),
         recordings=int(ok.size),
         joint_material=joint_measured,
+        chance=1 / np.unique(ds.material[test]).size,
     )
 
 
@@ -172,12 +191,13 @@ def render(result: FullRangeResult, report, figures) -> None:
     name = _plot_error_along_probe(r, figures)
     report.heading("Beyond the paper: contact distance over the whole probe")
     report.paragraph(
-        "The first mode's frequency rises and then falls along the probe, so it cannot place a "
-        "contact beyond its turning point. The two strongest spectral peaks together are unique "
-        "along the whole length: each is calibrated against distance (median over recordings) and "
-        "a new recording is placed where both fit best. Calibration uses every other contact "
-        f"position ({_step_cm(r)} cm apart), the test the positions in between, which the "
-        "calibration never saw."
+        "Where the first mode's frequency rises and then falls along the probe, it cannot place a "
+        f"contact beyond its turning point. {_turning_point_text(r)} The second estimator "
+        "takes the two strongest spectral peaks together, on the premise that the pair is "
+        "unique along the whole length: each is calibrated against distance (median over "
+        "recordings) and a new recording is placed where both fit best. Calibration uses every "
+        f"other contact position ({_step_cm(r)} cm apart), the test the positions in between, "
+        "which the calibration never saw. " + _two_against_one_text(r.two_against_one_mode)
     )
     report.table(
         ["estimator", "range", "MAE (95 % CI over the test positions)",
@@ -186,16 +206,12 @@ def render(result: FullRangeResult, report, figures) -> None:
         _error_rows(r),
     )
     report.paragraph(
-        "The touched rod is part of the vibrating system: a soft PVC rod lowers the coupled "
-        "modes, a steel one hardly does, so one calibration for all materials places the same "
-        "contact at different distances. Calibrated per material (the material taken as known, "
-        "as the classifier above gives it for most recordings), the two-mode estimate errs by "
+        "In the simulator the touched rod is part of the vibrating system (by assumption, the "
+        "'object_modes' effect), and each material moves the coupled modes by its own amount; "
+        "whether one calibration for all materials suffers from it is measured here. Calibrated "
+        "per material (the material taken as known), the two-mode estimate errs by "
         f"{format_mae(mae_entry(r.error_known_material_cm, r.contact_two))}; "
-        + _known_material_verdict(r.known_material_gain)
-        + " Placed on every material's curves at once, the two peaks find the material too "
-        f"(right in {format_clustered(r.joint_material)} of these recordings) and the distance "
-        f"within {format_mae(mae_entry(r.error_joint_cm, r.contact_two))} (the mode-curve "
-        "classifier of the section above)."
+        + _known_material_verdict(r.known_material_gain) + " " + _joint_text(r)
     )
     report.paragraph(
         f"Paper: the earlier ANN reached about {printed.PRIOR_DISTANCE_ACCURACY_CM.value} cm on "
@@ -223,6 +239,59 @@ def _plot_error_along_probe(r: FullRangeResult, figures) -> str:
     return figures.save(fig, "beyond_full_range_distance")
 
 
+def _turning_point_text(r: FullRangeResult) -> str:
+    """Whether the first mode's calibrated curve turns inside the tested range, read from it."""
+    last = float(np.max(r.contact_one))
+    if r.turning_point < last - 1e-9:
+        return (f"Here its calibrated curve turns at {100 * r.turning_point:.1f} cm, before the "
+                f"last tested position ({100 * last:.1f} cm).")
+    return (f"Here its calibrated curve rises up to the last tested position "
+            f"({100 * last:.1f} cm): the first mode alone is not stopped by a turning point in "
+            "this range.")
+
+
+def _two_against_one_text(d: dict | None) -> str:
+    """The two-mode estimate against the first mode's alone, from their paired difference.
+
+    Examples
+    --------
+    >>> d = {"difference_cm": 0.4, "ci95": [0.1, 0.7], "n_units": 39, "resolved": True}
+    >>> _two_against_one_text(d).split(" (")[0]
+    'On the same test recordings the two modes err by 0.40 cm more than the first mode alone'
+    >>> "not resolved" in _two_against_one_text(dict(d, ci95=[-0.2, 0.7], resolved=False))
+    True
+    >>> "less" in _two_against_one_text(dict(d, difference_cm=-0.4, ci95=[-0.7, -0.1]))
+    True
+    """
+    if d is None:
+        return ("The two estimators were tested on different recordings (some had no two "
+                "separable peaks), so they are not compared.")
+    if d["ci95"] is None:
+        return (f"On the one test position the two modes err by {d['difference_cm']:+.2f} cm "
+                "against the first mode alone, which gives no interval.")
+    lo, hi = d["ci95"]
+    said = (f"On the same test recordings the two modes err by {abs(d['difference_cm']):.2f} cm "
+            f"{'more' if d['difference_cm'] > 0 else 'less'} than the first mode alone (paired, "
+            f"95 % CI {lo:.2f} to {hi:.2f}, {d['n_units']} positions)")
+    return said + (": resolved." if d["resolved"] else ": not resolved.")
+
+
+def _joint_text(r: FullRangeResult) -> str:
+    """What the two peaks placed on every material's curves find, from its interval against
+    chance."""
+    accuracy = format_clustered(r.joint_material)
+    if r.chance is not None and r.joint_material.ci95[0] > r.chance:
+        found = f"find the material too, right in {accuracy} of these recordings"
+    elif r.chance is not None:
+        found = (f"name the right material in {accuracy} of these recordings, an interval that "
+                 f"reaches chance ({percent(r.chance)})")
+    else:
+        found = f"name the right material in {accuracy} of these recordings"
+    joint = format_mae(mae_entry(r.error_joint_cm, r.contact_two))
+    return ("Placed on every material's curves at once (the mode-curve classifier of the "
+            f"section above), the two peaks {found}, and place the contact within {joint}.")
+
+
 def _known_material_verdict(gain: dict) -> str:
     """What knowing the material gains the two-mode estimate, from the paired difference.
 
@@ -244,7 +313,8 @@ def _known_material_verdict(gain: dict) -> str:
             f"{'more' if gain['difference_cm'] > 0 else 'less'} (paired, 95 % CI {lo:.2f} to "
             f"{hi:.2f}, {gain['n_units']} positions)")
     if gain["resolved"] and gain["difference_cm"] > 0:
-        return said + ": on this rig the probe must know what it touched to know where."
+        return said + (": the simulated probe must know what it touched to know where (a "
+                       "statement about the simulator's assumed rods, not about the rig).")
     if gain["resolved"]:
         return said + ": knowing the material makes the estimate worse here."
     return said + ": this design does not show that knowing the material helps."

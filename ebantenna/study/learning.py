@@ -176,8 +176,9 @@ def _render_classifiers(svm, ann, positions, report, fig12: str, fig15: str,
         f"{MATERIAL_ANN.hidden_layer_sizes[0]} {MATERIAL_ANN.activation} neurons, gradient "
         f"descent, {_split(MATERIAL_ANN.fractions)} split with validation stopping "
         "(section 4.2). "
-        + ("The simulator's materials differ only through contact damping and compliance; "
-           "nothing was tuned towards the paper's accuracies." if simulated else
+        + ("The simulated materials differ through the physics the scene lists (the ablation "
+           "below measures what each effect carries); nothing was tuned towards the paper's "
+           "accuracies." if simulated else
            "Nothing was tuned towards the paper's accuracies.")
     )
     report.table(

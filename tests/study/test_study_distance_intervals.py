@@ -119,3 +119,25 @@ def test_the_confusion_sentence_is_read_from_the_matrix():
     assert "al taken for pvc (3 of 8)" in one and "al taken for wood (3 of 8)" in other
     assert "pvc is never taken" in one and "wood is never taken" in other
     assert "no material for another" in _confusions_text(np.eye(3, dtype=int) * 4, labels)
+
+
+def test_the_two_estimators_are_compared_only_on_the_same_recordings():
+    from ebantenna.paper.uncertainty import ClusteredAccuracy
+    from ebantenna.study.full_range import FullRangeResult, _joint_text, _two_against_one_text
+
+    rng = np.random.default_rng(3)
+    one = rng.gamma(2.0, 1.0, POSITIONS.size)
+    joint = ClusteredAccuracy([4, 4, 4, 4, 4], [4] * 5, "position")
+
+    def result(two, without=0, chance=0.2):
+        return FullRangeResult(0.4, 0.8, POSITIONS, two, POSITIONS, one, one, one, 1.0, 0.395,
+                               without, POSITIONS.size, joint, chance)
+
+    worse = result(one + 1.0).two_against_one_mode
+    assert worse["resolved"] and "more than the first mode alone" in _two_against_one_text(worse)
+    better = result(one - 1.0).two_against_one_mode
+    assert "less than the first mode alone" in _two_against_one_text(better)
+    assert result(one, without=2).two_against_one_mode is None
+    assert "not compared" in _two_against_one_text(None)
+    assert "find the material too" in _joint_text(result(one))
+    assert "reaches chance" in _joint_text(result(one, chance=0.99))

@@ -124,7 +124,7 @@ def test_summary_is_the_results_dicts_put_together(quick_study):
         "full_range_mae_cm", "full_range_mae_beyond_80_cm", "first_mode_only_mae_cm",
         "full_range_known_material_mae_cm", "full_range_joint_mae_cm",
         "full_range", "first_mode_only", "full_range_known_material", "full_range_joint",
-        "one_calibration_against_known_material",
+        "one_calibration_against_known_material", "two_modes_against_first_mode",
         joint, f"{joint}_n_test", f"{joint}_unit", f"{joint}_n_units",
         f"{joint}_design_effect", f"{joint}_ci95", f"{joint}_method",
         f"{joint}_recording_ci95", "first_mode_turning_point_cm",

@@ -1,5 +1,6 @@
 """Distance errors on their unit of replication (the test position), the trainers' ranking
-paired on the same test recordings, and the sentences that read them."""
+paired on the same test recordings, and sentences of the report read from their numbers (the
+confusions, the full-range comparisons, the controls' damping share and chance baseline)."""
 
 import numpy as np
 import pytest
@@ -141,3 +142,46 @@ def test_the_two_estimators_are_compared_only_on_the_same_recordings():
     assert "not compared" in _two_against_one_text(None)
     assert "find the material too" in _joint_text(result(one))
     assert "reaches chance" in _joint_text(result(one, chance=0.99))
+
+
+def _spread(correct_share, seed):
+    """A SeedSpread over 2 folds of 16 positions x 3 repetitions, right in ``correct_share`` of
+    the rows of each position (which rows, drawn with ``seed``)."""
+    from ebantenna.paper.uncertainty import SeedSpread
+
+    rng = np.random.default_rng(seed)
+    positions = np.repeat(np.arange(16) / 40.0, 3)
+    right = rng.random(positions.size) < correct_share
+    folds = [np.arange(0, 48, 2), np.arange(1, 48, 2)]
+    spread = SeedSpread([0, 1], [right[f].mean() for f in folds], [24, 24],
+                        tested=[(f, right[f]) for f in folds])
+    spread.positions = positions
+    return spread
+
+
+def test_the_damping_share_of_a_bundled_row_is_read_against_its_partner_alone():
+    from ebantenna.study.physics_controls import verdict_from
+
+    base = _spread(0.95, 0)
+    contact_off = _spread(0.95, 1)
+    spreads = {"none": base, "object_modes": _spread(0.05, 2), "unilateral_contact": contact_off}
+    paired = {k: base.paired_with(v) for k, v in spreads.items() if k != "none"}
+    for share, word in ((0.05, "lowers it too"), (0.95, "not resolved")):
+        bundle = _spread(share, 3)
+        spreads["object_damping+unilateral_contact"] = bundle
+        paired["object_damping+unilateral_contact"] = base.paired_with(bundle)
+        text = verdict_from(paired, base.folds(), 0.2, spreads)
+        assert "against 'unilateral_contact' switched off alone" in text
+        assert word in text.split("switched off alone")[1]
+    del spreads["unilateral_contact"], paired["unilateral_contact"]
+    text = verdict_from(paired, base.folds(), 0.2, spreads)
+    assert "own share is not separated" in text
+
+
+def test_a_baseline_at_chance_shows_no_carrier():
+    from ebantenna.study.physics_controls import verdict_from
+
+    base = _spread(0.2, 0)
+    drop = base.paired_with(_spread(0.0, 1))
+    text = verdict_from({"object_modes": drop}, base.folds(), 0.2)
+    assert "cannot show what carries the material" in text and "costs the most" not in text

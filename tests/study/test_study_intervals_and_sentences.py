@@ -86,8 +86,8 @@ def test_the_ranking_pairs_networks_tested_on_the_same_rows_only():
 def test_the_ranking_sentence_flips_with_the_interval():
     near = {"difference_cm": 0.01, "ci95": [-0.02, 0.04], "n_units": 64, "resolved": False}
     far = {"difference_cm": 1.9, "ci95": [1.6, 2.2], "n_units": 64, "resolved": True}
-    assert "rank by chance" in _trainer_ranking("adam", {"scg": near})
-    assert "rank by chance" not in _trainer_ranking("adam", {"scg": far})
+    assert "does not rank" in _trainer_ranking("adam", {"scg": near})
+    assert "does not rank" not in _trainer_ranking("adam", {"scg": far})
     alone = _trainer_ranking("adam", {"scg": near, "gd": near})
     assert "(resolved)" not in alone
     assert "this design does not tell it apart from scaled conjugate gradient and gradient" in alone
@@ -185,3 +185,32 @@ def test_a_baseline_at_chance_shows_no_carrier():
     drop = base.paired_with(_spread(0.0, 1))
     text = verdict_from({"object_modes": drop}, base.folds(), 0.2)
     assert "cannot show what carries the material" in text and "costs the most" not in text
+
+
+def _splits_result(random_k, grouped_k, pair_direction_k):
+    """A MaterialSplitsResult whose three classifiers score ``random_k`` / ``grouped_k`` right of
+    5 per position on 16 positions, with the position-aware classifier against the SVM on the
+    grouped split paired from ``pair_direction_k`` (its own counts against the SVM's)."""
+    from ebantenna.paper.uncertainty import ClusteredAccuracy, PairedDifference
+
+    n = [5] * 16
+    measured = {}
+    for c in ("svm", "position_aware", "mode_curves"):
+        measured[c, "random"] = ClusteredAccuracy(random_k, n, "position")
+        measured[c, "grouped"] = ClusteredAccuracy(grouped_k, n, "position")
+    paired = {"grouped": {"position_aware": PairedDifference(grouped_k, pair_direction_k, n,
+                                                             "position", resamples=200)}}
+    return MaterialSplitsResult({}, {}, {}, {}, {}, {}, measured, paired)
+
+
+def test_the_random_split_flatters_only_where_the_intervals_show_it():
+    from ebantenna.study.material_splits import _flattery, _grouped_lift
+
+    high, low = [5] * 8 + [4] * 8, [3, 2] * 8
+    assert "flatters them here" in _flattery(_splits_result(high, low, low))
+    assert "does not show the random split flattering them" in _flattery(
+        _splits_result(high, high, high))
+    worse = _grouped_lift(_splits_result(high, high, [2] * 16))
+    assert "lower than the raw spectrum, resolved" in worse
+    assert "higher than the raw spectrum" in _grouped_lift(_splits_result(high, low, [5] * 16))
+    assert "not resolved" in _grouped_lift(_splits_result(high, high, high))

@@ -186,7 +186,8 @@ def test_hinge_fit_and_run_time_table_are_reported(quick_study):
     assert "hinge-and-tip model explains both" in md
     assert "| data set |" in md and "| total |" in md
     assert ("reused from its cache" in md) == s["dataset_cached"]
-    assert "A random split of neighbouring positions flatters any classifier" in md
+    assert "look better on such a split" in md
+    assert "the random split flatters" in md or "does not show the random split flattering" in md
 
 
 def test_report_sections_follow_the_recipe(quick_study):
@@ -203,7 +204,7 @@ def test_report_sections_follow_the_recipe(quick_study):
         "Gain and time constant by material (Fig. 11)",
         "Material classification: ANN and SVM (Figs. 12, 15)",
         "Distance networks (Figs. 13, 14)",
-        "How the split flatters: random recordings, held-out positions",
+        "Random recordings against held-out positions",
         "Beyond the paper: distance first, then material",
         "Beyond the paper: material and distance from two frequencies",
         "The networks with other trainers",

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._validate import check_bool
 from ..paper import printed
 from ..paper.estimators import FrequencyDistanceEstimator, MultiModeDistanceEstimator
 from ..paper.mode_curves import ModeCurveClassifier
@@ -184,9 +185,11 @@ def _step_cm(r: FullRangeResult) -> str:
     return f"{100 * np.diff(grid).min():.3g}" if grid.size > 1 else "?"
 
 
-def render(result: FullRangeResult, report, figures) -> None:
-    """The error along the probe, one mode against two, and its table."""
+def render(result: FullRangeResult, report, figures, *, simulated: bool = True) -> None:
+    """The error along the probe, one mode against two, and its table (``simulated``: the data
+    come from the simulator, and the report names the assumptions it reads them through)."""
     check_render(result, FullRangeResult, report, figures)
+    check_bool("simulated", simulated)
     r = result
     name = _plot_error_along_probe(r, figures)
     report.heading("Beyond the paper: contact distance over the whole probe")
@@ -206,12 +209,14 @@ def render(result: FullRangeResult, report, figures) -> None:
         _error_rows(r),
     )
     report.paragraph(
-        "In the simulator the touched rod is part of the vibrating system (by assumption, the "
-        "'object_modes' effect), and each material moves the coupled modes by its own amount; "
-        "whether one calibration for all materials suffers from it is measured here. Calibrated "
-        "per material (the material taken as known), the two-mode estimate errs by "
+        ("In the simulator the touched rod is part of the vibrating system (by assumption, the "
+         "'object_modes' effect), and each material moves the coupled modes by its own amount; "
+         if simulated else "The touched object can move the probe's modes by an amount of its "
+         "own; ")
+        + "whether one calibration for all materials suffers from it is measured here. "
+        "Calibrated per material (the material taken as known), the two-mode estimate errs by "
         f"{format_mae(mae_entry(r.error_known_material_cm, r.contact_two))}; "
-        + _known_material_verdict(r.known_material_gain) + " " + _joint_text(r)
+        + _known_material_verdict(r.known_material_gain, simulated) + " " + _joint_text(r)
     )
     report.paragraph(
         f"Paper: the earlier ANN reached about {printed.PRIOR_DISTANCE_ACCURACY_CM.value} cm on "
@@ -292,7 +297,7 @@ def _joint_text(r: FullRangeResult) -> str:
             f"section above), the two peaks {found}, and place the contact within {joint}.")
 
 
-def _known_material_verdict(gain: dict) -> str:
+def _known_material_verdict(gain: dict, simulated: bool = True) -> str:
     """What knowing the material gains the two-mode estimate, from the paired difference.
 
     Examples
@@ -314,7 +319,9 @@ def _known_material_verdict(gain: dict) -> str:
             f"{hi:.2f}, {gain['n_units']} positions)")
     if gain["resolved"] and gain["difference_cm"] > 0:
         return said + (": the simulated probe must know what it touched to know where (a "
-                       "statement about the simulator's assumed rods, not about the rig).")
+                       "statement about the simulator's assumed rods, not about the rig)."
+                       if simulated else ": on these recordings the probe must know what it "
+                       "touched to know where.")
     if gain["resolved"]:
         return said + ": knowing the material makes the estimate worse here."
     return said + ": this design does not show that knowing the material helps."

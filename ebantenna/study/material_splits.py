@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._validate import check_bool
 from ..paper import experiments, printed
 from ..paper.protocol import DISTANCE_LINEAR_REGION
 from ..paper.splits import SPLITS, split_folds, split_rows
@@ -270,13 +271,15 @@ def _positions_cm(p) -> str:
     return ", ".join(f"{100 * v:g}" for v in p) if p.size else "none as a whole"
 
 
-def render(result: MaterialSplitsResult, report, figures) -> None:
+def render(result: MaterialSplitsResult, report, figures, *, simulated: bool = True) -> None:
     """The three splits side by side, the position-aware classifier, the mode-curve classifier
-    and the trainers, each a section of the report."""
+    and the trainers, each a section of the report (``simulated``: the data come from the
+    simulator, and the report names the simulator's assumptions it reads them through)."""
     check_render(result, MaterialSplitsResult, report, figures)
+    check_bool("simulated", simulated)
     _render_splits(result, report)
     _render_position_aware(result, report)
-    _render_mode_curves(result, report, figures)
+    _render_mode_curves(result, report, figures, simulated)
     _render_trainers(result, report)
 
 
@@ -421,14 +424,16 @@ def _render_position_aware(r: MaterialSplitsResult, report) -> None:
     report.paragraph(_lift(r))
 
 
-def _render_mode_curves(r: MaterialSplitsResult, report, figures) -> None:
+def _render_mode_curves(r: MaterialSplitsResult, report, figures, simulated: bool) -> None:
     """Material and distance from the two strongest peaks, with the calibration curves."""
     name = _plot_mode_curves(r.mode_curves["random"].model, figures)
     report.heading("Beyond the paper: material and distance from two frequencies")
     report.paragraph(
-        "In the simulator the touched rod is part of the vibrating system (by assumption, the "
-        "'object_modes' effect), so each material can draw its own curves of the two strongest "
-        "modes' frequencies against the contact distance. The mode-curve "
+        ("In the simulator the touched rod is part of the vibrating system (by assumption, the "
+           "'object_modes' effect), so each material can draw its own curves"
+           if simulated else "The touched object can move the probe's modes, so each material "
+           "can draw its own curves")
+        + " of the two strongest modes' frequencies against the contact distance. The mode-curve "
         "classifier calibrates these curves per material on the training positions (median over "
         "repetitions) and places each test recording's two peaks on every material's curves "
         "at once: the material whose curves pass closest, at the distance where they do, is the "

@@ -184,6 +184,14 @@ def _renders():
             lambda: _rendered(None, rod_geometry.render), same=lambda md: "rod" not in md),
         Row(S + "learning.render", "simulated-str", lambda: learning.render(
             _learnt(), Report("t"), FigureSet(CACHE), simulated="no"), ("simulated",)),
+        # checked before anything is drawn: a result of the right type, made by hand
+        Row(S + "full_range.render", "simulated-str", lambda: full_range.render(
+            full_range.FullRangeResult(0.4, 0.8, *[np.array([0.1, 0.2]), np.zeros(2)] * 2,
+                                       np.zeros(2), np.zeros(2), 1.0, 0.395, 0, 2),
+            Report("t"), FigureSet(CACHE), simulated="no"), ("simulated",)),
+        Row(S + "material_splits.render", "simulated-str", lambda: material_splits.render(
+            material_splits.MaterialSplitsResult({}, {}, {}, {}, {}, {}), Report("t"),
+            FigureSet(CACHE), simulated=1), ("simulated",)),
     ]
     return rows
 

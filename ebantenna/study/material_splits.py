@@ -549,14 +549,14 @@ def _distance_held_out(r: MaterialSplitsResult) -> str:
     """The distance network on the random split against whole positions held out, each with
     its interval over the test positions."""
     rnd, held = (_distance_entry(x) for x in (r.distance["gd"], r.distance_held_out))
-    text = format_mae
     worse = (held["mae_cm_ci95"] is not None and rnd["mae_cm_ci95"] is not None
              and held["mae_cm_ci95"][0] > rnd["mae_cm_ci95"][1])
     return (
         "The paper's distance network (gradient descent) is scored on a random split, where "
         "nearly every test recording has a repetition of its own position in the training "
-        f"set: {text(rnd)}. Trained with whole positions held out (every fold of the grouped "
-        f"split, each position of the region held out once) it errs by {text(held)}: "
+        f"set: {format_mae(rnd)}. Trained with whole positions held out (every fold of the "
+        f"grouped split, each position of the region held out once) it errs by "
+        f"{format_mae(held)}: "
         + ("its interval lies above the random split's, so the random split flatters the "
            "network here." if worse else
            "the two intervals overlap; this design does not show the random split flattering "

@@ -287,7 +287,10 @@ def _verdict(result: AnnSetupResult) -> str:
         return words + (
             f"At step {other['lr']:g} the network's test accuracy is higher than at "
             f"{first['lr']:g} by {pair}: the training budget the paper leaves unstated (epochs "
-            "times step) accounts for part of the network's low accuracy here."
+            "times step) accounts for part of "
+            + (f"the network's shortfall from the paper's {printed.percent(printed.ANN_ACCURACY)}"
+               if first["test"].estimate < printed.ANN_ACCURACY.value else
+               "the network's accuracy") + " here."
         )
     if pair.direction == "lower":
         return words + (

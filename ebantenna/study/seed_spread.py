@@ -188,12 +188,18 @@ def repetitions_sentence(repetitions: dict) -> str:
     grow = a1.n_recordings / a0.n_recordings
     narrow = _width(a0.ci95) / _width(a1.ci95)
     independent = _width(a0.recording_ci95) / _width(a1.recording_ci95)
-    than = "less than" if narrow < independent else "at least as much as"
+    buys = ("less precision than their count suggests" if narrow < independent else
+            "at least the precision their count suggests")
     return text + (
-        f"The recordings grow {grow:.3g}-fold, and the interval counting every recording as "
-        f"independent narrows {independent:.3g}-fold; the interval on the position narrows "
-        f"{narrow:.3g}-fold, {than} the count of recordings suggests."
+        f"The recordings grow {grow:.3g}-fold; the interval counting every recording as "
+        f"independent {_fold(independent)}, the interval on the position {_fold(narrow)}: "
+        f"on whole held-out positions, these repetitions buy {buys}."
     )
+
+
+def _fold(ratio: float) -> str:
+    """``narrows 2-fold`` for a width ratio (before / after) of 2, ``widens 2-fold`` for 0.5."""
+    return f"narrows {ratio:.3g}-fold" if ratio >= 1 else f"widens {1 / ratio:.3g}-fold"
 
 
 def _width(ci) -> float:

@@ -77,8 +77,8 @@ def test_the_narrowing_is_compared_with_the_count_of_recordings():
     apart = seed_spread.repetitions_sentence({
         1: ClusteredAccuracy([1, 0] * 8, [1] * G, "position"),
         3: ClusteredAccuracy([3, 0] * 8, [3] * G, "position")})
-    assert "at least as much as the count" in alike
-    assert "less than the count" in apart
+    assert "at least the precision their count suggests" in alike
+    assert "less precision than their count suggests" in apart
 
 
 # ---------------------------------------------------------------- time-frequency
@@ -191,3 +191,30 @@ def test_the_hinge_paragraph_reads_the_observations_and_the_resolution(tmp_path)
     text = report.markdown()
     assert "No single hinge-and-tip model" in text and "largest residual, 1.00 cm" in text
     assert "cannot say which" in text
+
+
+def test_an_interval_that_widens_is_said_to_widen():
+    # the estimate moves from 0 towards one half: the interval on the position widens
+    text = seed_spread.repetitions_sentence({
+        1: ClusteredAccuracy([0] * G, [1] * G, "position"),
+        3: ClusteredAccuracy([3, 0] * 8, [3] * G, "position")})
+    assert "the interval on the position widens" in text and "narrows 0." not in text
+
+
+def test_times_within_one_step_are_not_told_apart():
+    told = time_frequency.profile_sentence((0.25, 0.9), (0.8, 0.4), (0.3, 0.1), step=0.032)
+    near = time_frequency.profile_sentence((0.25, 0.9), (0.8, 0.4), (0.3, 0.29), step=0.032)
+    assert "sooner (as the paper describes)" in told and "within one time step" not in told
+    assert "within one time step" in near and "sooner" not in near
+
+
+@pytest.mark.parametrize("k, words", [(1, "shortfall from the paper's"),
+                                      (3, "the network's accuracy")])
+def test_the_budget_is_said_to_close_a_shortfall_only_below_the_paper(k, words):
+    up = PairedDifference(np.array([2, 1] * 8), np.full(G, 3), N, "position", resamples=200)
+    run = dict(stopped_by="epoch cap", epochs=1000, max_epochs=1000, lr=0.05,
+               test=_accuracy(k))
+    text = ann_setup._verdict(ann_setup.AnnSetupResult({"a": run, "b": {**run, "lr": 0.5}},
+                                                       1, None, up))
+    assert "accounts for part of" in text and words in text
+    assert ("shortfall" in text) == (k == 1)

@@ -131,8 +131,8 @@ def profile_sentence(ratios, shares, times, step: float = 0.0) -> str:
     change goes the way the paper describes (one long-lived component near the hinge, several
     short-lived modes towards the tip: the strongest band's share and the time both fall).
 
-    ``step`` is the maps' time step, s: times no further apart than one step are not told
-    apart.
+    ``step`` is the maps' time step, s: the times are whole steps, and two no further apart
+    than one step are not told apart.
 
     Examples
     --------
@@ -149,13 +149,16 @@ def profile_sentence(ratios, shares, times, step: float = 0.0) -> str:
     spread = ("spreads over more frequencies" if s1 < s0 else
               "gathers more in its strongest band" if s1 > s0 else
               "keeps its strongest band's share")
-    if abs(t1 - t0) <= step:
-        timing = (f"as soon, within one time step ({1000 * step:.0f} ms), which does not show "
-                  "the shorter life the paper describes towards the tip")
+    # the times are differences of frame times, whole steps up to rounding of the frame times
+    if abs(t1 - t0) <= step * (1 + 1e-9):
+        when, verdict = "as soon", (f"within one time step ({1000 * step:.0f} ms), which does "
+                                    "not show the shorter life the paper describes towards "
+                                    "the tip")
     else:
-        timing = f"{'sooner' if t1 < t0 else 'later'} ({agree[t1 < t0]})"
+        when, verdict = ("sooner" if t1 < t0 else "later"), agree[t1 < t0]
     return (
         f"From {r0:.2f} L to {r1:.2f} L the energy {spread} (the strongest band holds "
         f"{percent(s0)} then {percent(s1)}), {agree[s1 < s0]}, and 90 % of it has arrived "
-        f"{timing} after the strongest frame ({1000 * t0:.0f} then {1000 * t1:.0f} ms)."
+        f"{when} after the strongest frame ({1000 * t0:.0f} then {1000 * t1:.0f} ms), "
+        f"{verdict}."
     )

@@ -204,8 +204,13 @@ def test_an_interval_that_widens_is_said_to_widen():
 def test_times_within_one_step_are_not_told_apart():
     told = time_frequency.profile_sentence((0.25, 0.9), (0.8, 0.4), (0.3, 0.1), step=0.032)
     near = time_frequency.profile_sentence((0.25, 0.9), (0.8, 0.4), (0.3, 0.29), step=0.032)
-    assert "sooner (as the paper describes)" in told and "within one time step" not in told
+    assert "sooner after" in told and told.endswith("ms), as the paper describes.")
+    assert "within one time step" not in told
     assert "within one time step" in near and "sooner" not in near
+    # one whole step apart, as frame times give it (0.704 - 0.672 is a hair below 0.032)
+    edge = time_frequency.profile_sentence((0.25, 0.9), (0.8, 0.4), (0.704, 0.672),
+                                           step=float(np.median(np.diff(np.arange(5) * 0.032))))
+    assert "within one time step" in edge
 
 
 @pytest.mark.parametrize("k, words", [(1, "shortfall from the paper's"),

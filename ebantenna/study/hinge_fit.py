@@ -68,9 +68,12 @@ def render(result: HingeResult, report, figures) -> None:
     check_render(result, HingeResult, report, figures)
     f = result.fit
     report.heading("The hinge: one stiffness and one tip mass for both probes?")
+    seen = " and ".join(f"at {100 * o:g} cm on a {100 * L:g} cm probe"
+                        for L, o in zip(f.lengths, f.observed, strict=True))
+    fractions = " and ".join(f"{o / L:.2f} L" for L, o in zip(f.lengths, f.observed, strict=True))
     report.paragraph(
-        "The paper saw the dominant frequency leave the first mode's branch at 29.5 cm on its "
-        "40 cm probe and at 39.5 cm on a 50 cm one: 0.74 L and 0.79 L. A bare clamped tube "
+        f"The paper saw the dominant frequency leave the first mode's branch {seen}: "
+        f"{fractions}. A bare clamped tube "
         "puts it at the same fraction of any length; a rotational spring at the hinge and a "
         "point mass at the tip (sensor board, cable) can move it. Least squares over both: "
         f"hinge {f.hinge_stiffness:.3g} N m/rad, tip mass {1e3 * f.tip_mass:.3g} g "
@@ -85,14 +88,16 @@ def render(result: HingeResult, report, figures) -> None:
     )
     if result.explains_both:
         verdict = (
-            "One hinge-and-tip model explains both observations within their 2.5 mm resolution."
+            "One hinge-and-tip model explains both observations within their "
+            f"{1000 * result.resolution:g} mm resolution."
         )
     else:
         verdict = (
             f"No single hinge-and-tip model explains both observations: the best fit "
-            f"misses by {100 * f.rms_residual:.2f} cm RMS, more than the observations' "
-            "2.5 mm resolution. Something else differs between the two probes (the "
-            "hinge's mounting, the cable, the contact), or the transition was located "
-            "differently."
+            f"misses by {100 * f.rms_residual:.2f} cm RMS, and its largest residual, "
+            f"{100 * np.max(np.abs(f.residual)):.2f} cm, is more than the observations' "
+            f"{1000 * result.resolution:g} mm resolution. What else differs between the two "
+            "probes, or in how the transition was located, lies outside this model's two "
+            "parameters: the fit cannot say which."
         )
     report.paragraph(verdict)

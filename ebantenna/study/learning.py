@@ -205,7 +205,7 @@ def _render_classifiers(svm, ann, positions, report, fig12: str, fig15: str,
         f"{curve.size} epochs of full-batch gradient descent; guessing among {n} classes scores "
         f"ln {n} = {np.log(n):.3f}. "
         + stop_sentence(ann.stopped_by, epochs_run(ann), ANN_MAX_EPOCHS).capitalize()
-        + ". 'Why the paper's network scores lower here' measures what more epochs give."
+        + ". 'What the paper's training budget changes' measures what more epochs give."
     )
     report.figure(fig12, "ANN confusion matrices beside the paper's Fig. 12")
     report.figure(fig15, "SVM confusion matrices beside the paper's Fig. 15")

@@ -261,7 +261,7 @@ def _opening(quick: bool) -> Report:
     report = Report("ebantenna: the study reproduced" + (" (quick run)" if quick else ""))
     report.paragraph(
         "Every number below comes from the simulated probe (scene 'paper'), not from the paper's "
-        "recordings; the paper's value stands beside each one. "
+        "recordings; a section that compares with the paper puts its value beside the number. "
         + ("This is the quick run: a small data set, numbers only indicative." if quick else "")
     )
     return report

@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.stats import chi2
 
 from ..paper import experiments
 from ..paper.splits import SPLITS, split_folds
@@ -84,6 +85,128 @@ def binomial_std(f: FoldAccuracy) -> float:
     return float(np.sqrt(p * (1 - p) / m))
 
 
+def ratio_interval(ratio: float, folds: int) -> tuple[float, float]:
+    """95 % interval of the true ratio of the folds' spread to the binomial one, from the ratio
+    measured on ``folds`` folds.
+
+    The folds' sample variance, were they independent normal draws, is ``sigma^2
+    chi2_{F-1} / (F - 1)``, so the measured ratio is the true one times ``sqrt(chi2_{F-1} /
+    (F - 1))``: five folds measure a spread only to within a factor of about two either way.
+
+    Examples
+    --------
+    >>> [round(x, 3) for x in ratio_interval(1.0, 5)]
+    [0.599, 2.874]
+    """
+    dof = folds - 1
+    return (ratio * float(np.sqrt(dof / chi2.ppf(0.975, dof))),
+            ratio * float(np.sqrt(dof / chi2.ppf(0.025, dof))))
+
+
+def _listed(labels) -> str:
+    """``a``, ``a and b``, ``a, b and c``."""
+    labels = list(labels)
+    return labels[0] if len(labels) == 1 else ", ".join(labels[:-1]) + " and " + labels[-1]
+
+
+def scatter_sentence(rows) -> str:
+    """What the folds' spread against the binomial one shows, from each row's ratio.
+
+    Parameters
+    ----------
+    rows : sequence of (str, float or None, int)
+        Per row: its label, the ratio of the folds' standard deviation to the binomial one
+        (None when the binomial one is zero) and the number of folds.
+
+    Examples
+    --------
+    >>> scatter_sentence([("a", 3.0, 5), ("b", 1.1, 5)])[:56]
+    'The folds scatter more than independent recordings would'
+    >>> "less than" in scatter_sentence([("a", 0.2, 5)])
+    True
+    >>> scatter_sentence([("a", 1.1, 5), ("b", 0.9, 5)])[:30]
+    'In every row the ratio is with'
+    """
+    above, below, open_ = [], [], []
+    for label, ratio, folds in rows:
+        if ratio is None:
+            continue
+        lo, hi = ratio_interval(ratio, folds)
+        (above if lo > 1 else below if hi < 1 else open_).append(label)
+    parts = []
+    if above:
+        parts.append("The folds scatter more than independent recordings would, beyond what "
+                     f"the folds' number leaves open, for {_listed(above)}: there the "
+                     "recordings do not behave as independent trials")
+    if below:
+        parts.append(f"{'they' if parts else 'The folds'} scatter less than independent "
+                     f"recordings would for {_listed(below)}")
+    n = len(open_)
+    if n and parts:
+        parts.append(f"in the other {n} row{'s' if n > 1 else ''} the ratio's 95 % interval "
+                     "holds one: the folds cannot tell the spread from the binomial one")
+    elif n:
+        parts.append("In every row the ratio is within what the folds leave open (its 95 % "
+                     "interval holds one): the folds' spread does not tell the recordings from "
+                     "independent trials here, which does not show that they are")
+    return "; ".join(parts) + "."
+
+
+def repetitions_sentence(repetitions: dict) -> str:
+    """What the grouped accuracy against the repetitions per position shows: the fewest and
+    the most repetitions' intervals, and how much the interval on the position narrows against
+    the one that counts every recording as independent.
+
+    Parameters
+    ----------
+    repetitions : dict of int to ClusteredAccuracy or FoldAccuracy
+        By repetitions per position.
+
+    Examples
+    --------
+    >>> from ebantenna.paper.uncertainty import ClusteredAccuracy
+    >>> few = ClusteredAccuracy([1, 0, 1, 0] * 4, [2] * 16, "position")
+    >>> many = ClusteredAccuracy([9, 10, 9, 10] * 4, [10] * 16, "position")
+    >>> repetitions_sentence({2: few, 10: many})[:60]
+    'From 2 to 10 repetitions per position the grouped accuracy r'
+    >>> "overlap" in repetitions_sentence({2: few, 10: few})
+    True
+    """
+    if len(repetitions) < 2:
+        return ""
+    (r0, a0), (r1, a1) = (min(repetitions.items()), max(repetitions.items()))
+    moves = f"from {percent(a0.estimate)} to {percent(a1.estimate)}"
+    head = f"From {r0} to {r1} repetitions per position the grouped accuracy "
+    if a1.ci95[0] > a0.ci95[1] or a1.ci95[1] < a0.ci95[0]:
+        way = "rises" if a1.estimate > a0.estimate else "falls"
+        text = (head + f"{way} {moves}, their 95 % intervals apart: the number of recordings "
+                "of each position the SVM learns from matters on whole held-out positions. ")
+    else:
+        text = (head + f"goes {moves}, but their 95 % intervals overlap: this design does not "
+                "show that the number of repetitions changes the accuracy on whole held-out "
+                "positions. ")
+    grow = a1.n_recordings / a0.n_recordings
+    narrow = _width(a0.ci95) / _width(a1.ci95)
+    independent = _width(a0.recording_ci95) / _width(a1.recording_ci95)
+    buys = ("less precision than their count suggests" if narrow < independent else
+            "at least the precision their count suggests")
+    return text + (
+        f"The recordings grow {grow:.3g}-fold; the interval counting every recording as "
+        f"independent {_fold(independent)}, the interval on the position {_fold(narrow)}: "
+        f"on whole held-out positions, these repetitions buy {buys}."
+    )
+
+
+def _fold(ratio: float) -> str:
+    """``narrows 2-fold`` for a width ratio (before / after) of 2, ``widens 2-fold`` for 0.5."""
+    return f"narrows {ratio:.3g}-fold" if ratio >= 1 else f"widens {1 / ratio:.3g}-fold"
+
+
+def _width(ci) -> float:
+    """Width of an interval (low, high)."""
+    return ci[1] - ci[0]
+
+
 def _spread_dict(f: FoldAccuracy) -> dict:
     b = binomial_std(f)
     return {**clustered_entries("accuracy", f), "binomial_std": b,
@@ -143,34 +266,38 @@ def render(result: SeedSpreadResult, report, figures) -> None:
     report.paragraph(
         "Every recording is tested once over the folds of a split. Were the recordings "
         "independent trials, the folds' accuracies would scatter by the binomial standard "
-        "deviation sqrt(p (1 - p) / m) of a fold of m recordings; they scatter more, because the "
-        "repetitions at one position are near copies and the split draws whole positions. "
-        "Below, every classifier on every split over its "
+        "deviation sqrt(p (1 - p) / m) of a fold of m recordings; the ratio of the folds' "
+        "standard deviation to it tests that, within what a spread measured on "
+        f"{SPLIT_SEEDS} folds leaves open (a chi-square interval on {SPLIT_SEEDS - 1} degrees "
+        "of freedom). Below, every classifier on every split over its "
         f"{SPLIT_SEEDS} folds, on the first {SUBSET_REPETITIONS} repetitions of every position "
         f"({result.subset_recordings} recordings; a fit of the paper's SVM on the whole data "
         "set takes tens of seconds): the accuracy with its interval on the split's unit, the "
         "folds' standard deviation, and how many times the binomial one it is."
     )
-    rows = []
+    rows, ratios = [], []
     for c in CLASSIFIERS:
         for kind in SPLITS:
             f: FoldAccuracy = result.spreads[c, kind]
             b = binomial_std(f)
             ratio = f"{f.spread / b:.1f} x" if b > 0 else "-"
             rows.append([c, kind, format_clustered(f), percent(f.spread), percent(b), ratio])
+            ratios.append((f"the {c} on the {kind} split", f.spread / b if b > 0 else None,
+                           f.values.size))
     report.table(["classifier", "split", "over all folds (95 % CI on the unit)",
                   "folds' std", "binomial std", "ratio"], rows)
+    report.paragraph(scatter_sentence(ratios))
     report.paragraph(
-        "How many recordings of each position the SVM learns from matters on whole held-out "
-        "positions: below, the grouped split (all folds) of the main data set with only its "
-        "first repetitions of every position. The controls' reduced design and the main data "
-        "set differ in this, not in the physics: the controls' baseline sits where its number "
-        "of repetitions puts it on this table. The interval is on the position: more "
-        "repetitions add recordings, not positions, so it narrows far less than the count of "
-        "recordings suggests."
+        "Below, the grouped split (all folds) of the main data set with only its first "
+        "repetitions of every position: what the number of recordings of each position the SVM "
+        "learns from changes on whole held-out positions. The controls' reduced design carries "
+        "fewer repetitions per position than the main data set: its baseline reads against the "
+        "row of its own number of repetitions. The interval is on the position: more "
+        "repetitions add recordings, not positions."
     )
     report.table(
         ["repetitions per position", "grouped SVM test accuracy", "design effect"],
         [[str(r), format_clustered(a), f"{a.pooled.design_effect:.1f}"]
          for r, a in sorted(result.repetitions.items())],
     )
+    report.paragraph(repetitions_sentence(result.repetitions))

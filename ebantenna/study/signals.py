@@ -9,6 +9,7 @@ import numpy as np
 
 from ..paper import printed
 from ..paper.protocol import DECAY_REGION
+from ..signal import filter_time_constant, paper_filter
 from ._common import check_render, check_step, per_contact, probe_length
 
 __all__ = ["FrequencyResult", "DecayResult", "compute_frequency", "render_frequency",
@@ -87,8 +88,10 @@ def render_frequency(result: FrequencyResult, report, figures) -> None:
     report.paragraph(
         "Dominant frequency of the sweep-plane (X) acceleration of every recording, median over "
         "repetitions per material, and its standard deviation over all recordings at a contact. "
-        "The resultant of eq. 1 is not used here: the Z axis carries gravity, so the square root "
-        "mixes the static 1 g with the vibration and moves the spectral peak."
+        "The resultant of eq. 1 is not used here: the Z axis carries gravity, and for a "
+        "vibration small against it the resultant is about 1 g + a_z + (a_x^2 + a_y^2) / (2 g), "
+        "so its spectrum carries the Z axis's vibration and the sweep-plane vibration squared "
+        "(at sums and differences of its frequencies), not the sweep-plane vibration itself."
     )
     report.table(
         ["quantity", "paper", "this reproduction"],
@@ -123,10 +126,14 @@ class DecayResult:
         that found a decay.
     ok_fraction : float
         Share of all recordings in the region whose fit found a decay.
+    filter_tau : float or None
+        Time constant of the Table 1 filter's slowest pole at the data set's sampling
+        frequency, s (:func:`~ebantenna.signal.filter_time_constant`); None when not computed.
     """
 
     per_material: tuple
     ok_fraction: float
+    filter_tau: float | None = None
 
     def to_dict(self) -> dict:
         """The summary number."""
@@ -149,7 +156,8 @@ def compute_decay(ds, feats, materials) -> DecayResult:
             "median_tau": float(np.nanmedian(feats.tau[sel][ok])),
             "ok": float(ok.mean()),
         })
-    return DecayResult(tuple(per_material), float(feats.decay_ok[region].mean()))
+    tau_filter = filter_time_constant(paper_filter("chebyshev", fs=ds.fs), ds.fs)
+    return DecayResult(tuple(per_material), float(feats.decay_ok[region].mean()), tau_filter)
 
 
 def render_decay(result: DecayResult, report, figures) -> None:
@@ -172,9 +180,9 @@ def render_decay(result: DecayResult, report, figures) -> None:
     report.paragraph(
         "Resultant acceleration band-passed by the Table 1 Chebyshev filter at the order its "
         "specification needs (zero phase), then a*exp(b t) fitted to the envelope (tau = -1/b), on "
-        "the first 80 % of the probe. The filter itself rings for about 0.4 s (see "
-        "ebantenna.signal.filters), which lengthens short time constants; recordings whose fit "
-        "finds no decay are left out and counted."
+        "the first 80 % of the probe; recordings whose fit finds no decay are left out and "
+        "counted. " + ringing_sentence(result.filter_tau,
+                                       [r["median_tau"] for r in result.per_material])
     )
     report.table(
         ["material", "median gain (m/s^2)", "median tau (ms)", "fits with a decay"],
@@ -185,3 +193,47 @@ def render_decay(result: DecayResult, report, figures) -> None:
         ],
     )
     report.figure(name, "Gain and time constant along the probe per material")
+
+
+def ringing_sentence(filter_tau, taus) -> str:
+    """The filter's own ringing against the fitted time constants, from their values.
+
+    A decay fitted over a record whose tail is the filter's ringing is pulled towards the
+    filter's time constant (:mod:`ebantenna.signal.decay`, "Filters ring too"): upwards for a
+    decay shorter than the filter's, downwards for a longer one.
+
+    Parameters
+    ----------
+    filter_tau : float or None
+        The filter's slowest time constant, s (None: not computed, nothing said).
+    taus : sequence of float
+        The medians of the fitted time constants, s (NaN where no fit found a decay).
+
+    Examples
+    --------
+    >>> ringing_sentence(0.42, [0.13, 0.18])[:60]
+    "The filter's own slowest pole decays with a time constant of"
+    >>> "every median here is shorter" in ringing_sentence(0.42, [0.13, 0.18])
+    True
+    >>> "every median here is longer" in ringing_sentence(0.05, [0.13, 0.18])
+    True
+    """
+    if filter_tau is None:
+        return ""
+    taus = np.asarray(taus, dtype=float)
+    taus = taus[np.isfinite(taus)]
+    head = (f"The filter's own slowest pole decays with a time constant of "
+            f"{1000 * filter_tau:.0f} ms (ebantenna.signal.filter_time_constant)")
+    if taus.size == 0:
+        return head + "."
+    shorter = int(np.sum(taus < filter_tau))
+    if shorter == taus.size:
+        where = ("every median here is shorter, so a fit that reaches into the filter's "
+                 "ringing is pulled upwards, towards it")
+    elif shorter == 0:
+        where = ("every median here is longer, so a fit that reaches into the filter's "
+                 "ringing is pulled downwards, towards it")
+    else:
+        where = (f"{shorter} of the {taus.size} medians here are shorter (a fit reaching into "
+                 "the ringing is pulled up towards it) and the others longer (pulled down)")
+    return head + f": {where}; how far depends on how much of the tail the fit uses."

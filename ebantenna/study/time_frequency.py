@@ -7,6 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..paper.protocol import TIME_FREQUENCY_RATIOS
+from ..paper.uncertainty import percent
 from ..signal import morlet_scalogram, spectrogram
 from ..simulate import simulate
 from ._common import check_render, check_step
@@ -34,7 +35,8 @@ class TimeFrequencyResult:
     max_frequency: float
 
     def to_dict(self) -> dict:
-        """Nothing of this section enters the summary: it is read from its figure."""
+        """Nothing of this section enters the summary: it is read from its figure and from
+        the two numbers :func:`render` reads off each spectrogram."""
         return {}
 
 
@@ -70,9 +72,93 @@ def render(result: TimeFrequencyResult, report, figures) -> None:
     name = figures.save(fig, "fig18_19_time_frequency")
     report.heading("Spectrograms and scalograms (Figs. 18, 19)")
     report.paragraph(
-        "Sweep-plane acceleration after contact with brass at 0.25 L ... 0.9 L: short-time FFT "
-        "(64-sample frames) above, Morlet scalogram below. Near the hinge one long-lived component "
-        "dominates; towards the tip several modes start strong and die out quickly, as the paper "
-        "describes."
+        "Sweep-plane acceleration after contact with brass at "
+        f"{result.ratios[0]:.2f} L ... {result.ratios[-1]:.2f} L: short-time FFT (64-sample "
+        "frames) above, Morlet scalogram below. The paper describes one long-lived component "
+        "near the hinge and, towards the tip, several modes that start strong and die out "
+        "quickly. Below, two numbers read from each spectrogram: the share of its energy in its "
+        "strongest frequency band, and the time from its strongest frame until 90 % of its "
+        "energy has arrived."
     )
+    shares = [band_share(m) for m in result.spectrograms]
+    times = [energy_time(m) for m in result.spectrograms]
+    report.table(
+        ["contact", "strongest band (Hz)", "its share of the energy", "90 % of the energy after"],
+        [[f"{r:.2f} L", f"{m.f[np.argmax((m.magnitude ** 2).sum(axis=1))]:.0f}", percent(s),
+          f"{1000 * t:.0f} ms"]
+         for r, m, s, t in zip(result.ratios, result.spectrograms, shares, times, strict=True)],
+    )
+    step = float(np.median(np.diff(result.spectrograms[0].t)))
+    report.paragraph(profile_sentence(result.ratios, shares, times, step))
     report.figure(name, "Spectrograms (top) and scalograms (bottom) at five contact positions")
+
+
+def band_share(tf) -> float:
+    """Share of a time-frequency map's energy (squared magnitude summed over time) in its
+    strongest frequency row.
+
+    Examples
+    --------
+    >>> from ebantenna.signal.timefreq import TimeFrequency
+    >>> m = TimeFrequency(np.arange(2.0), np.array([10.0, 20.0]),
+    ...                   np.array([[3.0, 0.0], [1.0, 1.0]]), "spectrogram")
+    >>> band_share(m)
+    0.8181818181818182
+    """
+    rows = (tf.magnitude ** 2).sum(axis=1)
+    return float(rows.max() / rows.sum())
+
+
+def energy_time(tf, share: float = 0.9) -> float:
+    """Time, s, from a map's strongest column (energy summed over frequency) to the column by
+    which ``share`` of its energy has arrived.
+
+    Examples
+    --------
+    >>> from ebantenna.signal.timefreq import TimeFrequency
+    >>> m = TimeFrequency(np.array([0.0, 0.1, 0.2, 0.3]), np.array([10.0]),
+    ...                   np.array([[0.0, 3.0, 1.0, 0.5]]), "spectrogram")
+    >>> round(energy_time(m), 3)
+    0.1
+    """
+    energy = (tf.magnitude ** 2).sum(axis=0)
+    arrived = np.cumsum(energy) / energy.sum()
+    return float(tf.t[np.searchsorted(arrived, share)] - tf.t[np.argmax(energy)])
+
+
+def profile_sentence(ratios, shares, times, step: float = 0.0) -> str:
+    """The hinge-most and the tip-most maps' shares and times compared, and whether each
+    change goes the way the paper describes (one long-lived component near the hinge, several
+    short-lived modes towards the tip: the strongest band's share and the time both fall).
+
+    ``step`` is the maps' time step, s: the times are whole steps, and two no further apart
+    than one step are not told apart.
+
+    Examples
+    --------
+    >>> profile_sentence([0.25, 0.9], [0.8, 0.4], [0.3, 0.1]).count("as the paper describes")
+    2
+    >>> profile_sentence([0.25, 0.9], [0.4, 0.8], [0.1, 0.3]).count("unlike the paper")
+    2
+    >>> "within one time step" in profile_sentence([0.25, 0.9], [0.8, 0.4], [0.3, 0.28], 0.032)
+    True
+    """
+    (r0, r1), (s0, s1), (t0, t1) = (ratios[0], ratios[-1]), (shares[0], shares[-1]), (
+        times[0], times[-1])
+    agree = {True: "as the paper describes", False: "unlike the paper's description"}
+    spread = ("spreads over more frequencies" if s1 < s0 else
+              "gathers more in its strongest band" if s1 > s0 else
+              "keeps its strongest band's share")
+    # the times are differences of frame times, whole steps up to rounding of the frame times
+    if abs(t1 - t0) <= step * (1 + 1e-9):
+        when, verdict = "as soon", (f"within one time step ({1000 * step:.0f} ms), which does "
+                                    "not show the shorter life the paper describes towards "
+                                    "the tip")
+    else:
+        when, verdict = ("sooner" if t1 < t0 else "later"), agree[t1 < t0]
+    return (
+        f"From {r0:.2f} L to {r1:.2f} L the energy {spread} (the strongest band holds "
+        f"{percent(s0)} then {percent(s1)}), {agree[s1 < s0]}, and 90 % of it has arrived "
+        f"{when} after the strongest frame ({1000 * t0:.0f} then {1000 * t1:.0f} ms), "
+        f"{verdict}."
+    )

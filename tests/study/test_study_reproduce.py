@@ -209,7 +209,7 @@ def test_report_sections_follow_the_recipe(quick_study):
         "Beyond the paper: material and distance from two frequencies",
         "The networks with other trainers",
         "How much the numbers carry: folds, clusters and repetitions",
-        "Why the paper's network scores lower here: its training budget",
+        "What the paper's training budget changes",
         "What the classifier learns: one effect at a time switched off",
         "The equivalent pair: impedance or chemistry?",
         "A contact that only pushes",

@@ -376,7 +376,7 @@ def _opening(ds, design: dict, not_applicable: dict) -> Report:
         f"{data['checksum_sha256']}): {data['signals']} recordings of {data['samples']} samples "
         f"at {data['fs']:g} Hz, {len(data['materials'])} materials x {data['contacts']} contact "
         f"positions{_spacing(design)}, at least {design['repetitions']} repetitions of each, "
-        f"{origin}. The paper's value stands beside each one.")
+        f"{origin}. A section that compares with the paper puts its value beside the number.")
     report.heading("Sections not applicable to this data set")
     report.table(["section", "why not"], [[k, v] for k, v in not_applicable.items()])
     return report

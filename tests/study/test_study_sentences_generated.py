@@ -1,0 +1,225 @@
+"""The report's interpretive sentences of the spread, time-frequency, training-budget, decay,
+contact-law and hinge sections are generated from their numbers: fed synthetic numbers whose
+direction flips, the words flip with them; where nothing measured tests a claim, the words
+describe the method instead."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from ebantenna.fem.hinge import HingeFit
+from ebantenna.paper.uncertainty import ClusteredAccuracy, PairedDifference
+from ebantenna.report import FigureSet, Report
+from ebantenna.signal.timefreq import TimeFrequency
+from ebantenna.study import (
+    ann_setup,
+    contact_law,
+    hinge_fit,
+    learning,
+    seed_spread,
+    signals,
+    time_frequency,
+)
+
+G = 16
+N = np.full(G, 3)
+
+
+def _accuracy(k_each, n_each=3):
+    return ClusteredAccuracy(np.full(G, k_each), np.full(G, n_each), "position")
+
+
+# ---------------------------------------------------------------- folds against binomial
+@pytest.mark.parametrize("ratio, words", [(3.0, "more than independent recordings"),
+                                          (0.2, "less than independent recordings"),
+                                          (1.0, "does not tell the recordings")])
+def test_the_spread_sentence_follows_the_ratio(ratio, words):
+    text = seed_spread.scatter_sentence([("the row", ratio, 5)])
+    assert words in text
+    others = {"more than independent", "less than independent", "does not tell"} - {
+        w for w in ("more than independent", "less than independent", "does not tell")
+        if w in words}
+    assert not any(w in text for w in others)
+
+
+def test_the_ratio_interval_is_the_chi_square_one():
+    # s^2 (F-1) / sigma^2 ~ chi2(F-1): the ends are where the measured ratio sits at the
+    # 2.5 % and 97.5 % quantiles; witnessed by simulating normal folds
+    lo, hi = seed_spread.ratio_interval(1.0, 5)
+    rng = np.random.default_rng(0)
+    s = rng.standard_normal((200_000, 5)).std(axis=1, ddof=1)
+    # 1/s covers the true ratio 1 within [lo, hi] 95 % of the time; 200 000 draws give the
+    # share to within 0.002 (binomial standard error 0.0005, four of them)
+    assert abs(np.mean((1 / s >= lo) & (1 / s <= hi)) - 0.95) < 0.002
+
+
+def test_a_borderline_ratio_is_not_called_above_one():
+    # 1.5 on five folds: above one, but within what five folds leave open
+    text = seed_spread.scatter_sentence([("a", 1.5, 5), ("b", 3.0, 5)])
+    assert "for b:" in text and "in the other 1 row" in text
+
+
+@pytest.mark.parametrize("few, many, words", [
+    (1, 3, "rises from"), (3, 1, "falls from"), (2, 2, "intervals overlap")])
+def test_the_repetitions_sentence_follows_the_intervals(few, many, words):
+    text = seed_spread.repetitions_sentence({1: _accuracy(few), 5: _accuracy(many)})
+    assert words in text
+    assert ("matters on whole held-out positions" in text) == (words != "intervals overlap")
+
+
+def test_the_narrowing_is_compared_with_the_count_of_recordings():
+    # one recording per position against three: with every position alike the interval on
+    # the position narrows as the recordings grow; with positions apart it narrows less
+    alike = seed_spread.repetitions_sentence({
+        1: ClusteredAccuracy([1, 0] * 8, [1] * G, "position"),
+        3: ClusteredAccuracy([2, 1] * 8, [3] * G, "position")})
+    apart = seed_spread.repetitions_sentence({
+        1: ClusteredAccuracy([1, 0] * 8, [1] * G, "position"),
+        3: ClusteredAccuracy([3, 0] * 8, [3] * G, "position")})
+    assert "at least the precision their count suggests" in alike
+    assert "less precision than their count suggests" in apart
+
+
+# ---------------------------------------------------------------- time-frequency
+def _map(rows, t=None):
+    rows = np.asarray(rows, dtype=float)
+    t = np.arange(rows.shape[1]) * 0.1 if t is None else t
+    return TimeFrequency(t, 10.0 * (1 + np.arange(rows.shape[0])), rows, "spectrogram")
+
+
+def test_the_band_share_and_the_energy_time_read_the_map():
+    one = _map([[1.0, 1.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0]])
+    two = _map([[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 1.0, 1.0]])
+    assert time_frequency.band_share(one) == 1.0
+    assert time_frequency.band_share(two) == 0.75
+    assert time_frequency.energy_time(one) == pytest.approx(0.1)  # half arrives at each frame
+    assert time_frequency.energy_time(two) == pytest.approx(0.3)
+
+
+@pytest.mark.parametrize("shares, times, agree", [
+    ((0.9, 0.4), (0.3, 0.1), 2), ((0.4, 0.9), (0.3, 0.1), 1), ((0.4, 0.9), (0.1, 0.3), 0)])
+def test_the_time_frequency_sentence_follows_the_maps(shares, times, agree):
+    text = time_frequency.profile_sentence((0.25, 0.9), shares, times)
+    assert text.count("as the paper describes") == agree
+    assert text.count("unlike the paper's description") == 2 - agree
+    assert ("spreads over more frequencies" in text) == (shares[1] < shares[0])
+    assert ("sooner" in text) == (times[1] < times[0])
+
+
+# ---------------------------------------------------------------- the training budget
+FLAT = PairedDifference(np.array([3, 2] * 8), np.array([2, 3] * 8), N, "position",
+                        resamples=200)
+
+
+def test_the_budget_heading_asks_and_learning_points_to_it():
+    assert "lower" not in ann_setup.HEADING and "Why" not in ann_setup.HEADING
+    source = Path(learning.__file__).read_text(encoding="utf-8")
+    assert f"'{ann_setup.HEADING}'" in source
+
+
+def test_an_unresolved_step_difference_is_not_read_as_no_effect():
+    run = dict(stopped_by="epoch cap", epochs=1000, max_epochs=1000, lr=0.05,
+               test=_accuracy(2))
+    text = ann_setup._verdict(ann_setup.AnnSetupResult({"a": run, "b": {**run, "lr": 0.5}},
+                                                       1, None, FLAT))
+    assert "not resolved" in text and "does not show whether" in text
+    assert "does not account" not in text
+
+
+def test_the_long_run_does_not_speak_for_the_features():
+    final = _accuracy(2)
+    long = dict(epochs=[50, 100], test=[0.5, 0.9], all=[0.5, 0.95], reached_test=100,
+                reached_all=100, final=final, stopped_by="x", max_epochs=200, within_from=None)
+    text = ann_setup._long_verdict(ann_setup.AnnSetupResult({}, 1, long))
+    assert "not the features" not in text and "not what this run tests" in text
+
+
+# ---------------------------------------------------------------- decay and filter ringing
+@pytest.mark.parametrize("taus, words", [
+    ([0.13, 0.18], "every median here is shorter"), ([0.6, 0.7], "every median here is longer"),
+    ([0.13, 0.7], "1 of the 2 medians here are shorter")])
+def test_the_ringing_sentence_follows_the_time_constants(taus, words):
+    text = signals.ringing_sentence(0.42, taus)
+    assert words in text and "420 ms" in text
+
+
+def test_the_decay_section_reads_the_filters_time_constant(tmp_path):
+    row = dict(material="brass", grid=np.zeros(1), gain=np.ones(1), tau=np.ones(1),
+               median_gain=1.0, median_tau=0.1, ok=1.0)
+    report = Report("t")
+    signals.render_decay(signals.DecayResult((row,), 1.0, 0.25), report, FigureSet(tmp_path))
+    text = report.markdown()
+    assert "250 ms" in text and "every median here is shorter" in text and "0.4 s" not in text
+
+
+# ---------------------------------------------------------------- the contact law
+@pytest.mark.parametrize("median, words", [(15, "at least half"), (0.5, "exactly half"),
+                                           (0, "fewer than half")])
+def test_the_restrike_words_follow_the_median(median, words):
+    assert contact_law.restrike_words(median).startswith(words)
+
+
+def test_the_restrike_words_hold_for_the_counts_they_summarise():
+    rng = np.random.default_rng(1)
+    for _ in range(200):
+        counts = rng.integers(0, 3, size=rng.integers(1, 12)) * rng.integers(0, 2)
+        share = np.mean(counts > 0)
+        words = contact_law.restrike_words(float(np.median(counts)))
+        if words.startswith("at least half"):
+            assert share >= 0.5
+        elif words.startswith("exactly half"):
+            assert share == 0.5
+        else:
+            assert share < 0.5
+
+
+# ---------------------------------------------------------------- the hinge
+def _hinge(observed, predicted):
+    return hinge_fit.HingeResult(HingeFit(1.0, 1e-3, np.array([0.4, 0.5]), np.array(observed),
+                                          np.array(predicted), "peak"))
+
+
+def test_the_hinge_paragraph_reads_the_observations_and_the_resolution(tmp_path):
+    report = Report("t")
+    hinge_fit.render(_hinge([0.3, 0.45], [0.3, 0.45]), report, FigureSet(tmp_path))
+    text = report.markdown()
+    assert "0.75 L and 0.90 L" in text and "at 30 cm on a 40 cm probe" in text
+    assert "explains both observations within their 2.5 mm" in text
+    report = Report("t")
+    hinge_fit.render(_hinge([0.3, 0.45], [0.3, 0.46]), report, FigureSet(tmp_path))
+    text = report.markdown()
+    assert "No single hinge-and-tip model" in text and "largest residual, 1.00 cm" in text
+    assert "cannot say which" in text
+
+
+def test_an_interval_that_widens_is_said_to_widen():
+    # the estimate moves from 0 towards one half: the interval on the position widens
+    text = seed_spread.repetitions_sentence({
+        1: ClusteredAccuracy([0] * G, [1] * G, "position"),
+        3: ClusteredAccuracy([3, 0] * 8, [3] * G, "position")})
+    assert "the interval on the position widens" in text and "narrows 0." not in text
+
+
+def test_times_within_one_step_are_not_told_apart():
+    told = time_frequency.profile_sentence((0.25, 0.9), (0.8, 0.4), (0.3, 0.1), step=0.032)
+    near = time_frequency.profile_sentence((0.25, 0.9), (0.8, 0.4), (0.3, 0.29), step=0.032)
+    assert "sooner after" in told and told.endswith("ms), as the paper describes.")
+    assert "within one time step" not in told
+    assert "within one time step" in near and "sooner" not in near
+    # one whole step apart, as frame times give it (0.704 - 0.672 is a hair below 0.032)
+    edge = time_frequency.profile_sentence((0.25, 0.9), (0.8, 0.4), (0.704, 0.672),
+                                           step=float(np.median(np.diff(np.arange(5) * 0.032))))
+    assert "within one time step" in edge
+
+
+@pytest.mark.parametrize("k, words", [(1, "shortfall from the paper's"),
+                                      (3, "the network's accuracy")])
+def test_the_budget_is_said_to_close_a_shortfall_only_below_the_paper(k, words):
+    up = PairedDifference(np.array([2, 1] * 8), np.full(G, 3), N, "position", resamples=200)
+    run = dict(stopped_by="epoch cap", epochs=1000, max_epochs=1000, lr=0.05,
+               test=_accuracy(k))
+    text = ann_setup._verdict(ann_setup.AnnSetupResult({"a": run, "b": {**run, "lr": 0.5}},
+                                                       1, None, up))
+    assert "accounts for part of" in text and words in text
+    assert ("shortfall" in text) == (k == 1)

@@ -474,10 +474,9 @@ def _baseline_relation(r: ControlsResult) -> str:
     return (
         f"The baseline here ({percent(r.ablation.spreads['none'].folds().estimate)}) is "
         f"measured on the reduced design, {r.recordings} recordings, not on the main data set: "
-        "every position carries fewer repetitions, so the SVM learns from fewer recordings of "
-        "each material near a held-out position than on the main data set. The section 'How "
-        "much the numbers carry' measures what the repetitions change: "
-        "the main data set's grouped accuracy with its first 1, 3 and 5 repetitions only. The "
+        "every position carries fewer repetitions. Whether that accounts for the difference is "
+        "measured in the section 'How much the numbers carry': the main data set's grouped "
+        "accuracy with its first 1, 3 and 5 repetitions only. The "
         "ablation compares rows with one another on one design, which this does not change."
     )
 

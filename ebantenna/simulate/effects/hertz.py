@@ -23,11 +23,11 @@ class HertzContact(Effect):
     """The strike's contact follows the Hertz law, not its tangent at the preload.
 
     Without this effect the strike (``unilateral_contact``) pushes through the spring linearised
-    at the preload. A strike that strikes again sweeps the force from zero to several times the
-    preload, where the Hertz contact is softer (near zero force its stiffness falls to zero as
-    ``F^(1/3)``) and stiffer (above the preload) than the tangent. With it, the force law is the
-    crossed cylinders' Hertz law in series with the tube wall's ring spring, as chords that
-    differ from it by at most ``force_tolerance`` up to ``max_force`` (and are exact at the
+    at the preload. A strike that lifts off and strikes again takes the force through zero, away
+    from the preload, where the Hertz contact is softer (near zero force its stiffness falls to
+    zero as ``F^(1/3)``) and stiffer (above the preload) than the tangent. With it, the force
+    law is the crossed cylinders' Hertz law in series with the tube wall's ring spring, as chords
+    that differ from it by at most ``force_tolerance`` up to ``max_force`` (and are exact at the
     preload, so the static contact is the linear one's). Requires ``unilateral_contact``.
 
     Parameters

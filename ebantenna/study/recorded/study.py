@@ -344,10 +344,10 @@ def _run_sections(ds, feats, runnable, seed, report, figures, not_applicable, ti
         section("splits", lambda: material_splits.compute(
             ds, feats, seed, random_svm=learnt.svm, paper_ann=learnt.ann,
             paper_distance=learnt.linear_region),
-            lambda r: material_splits.render(r, report, figures))
+            lambda r: material_splits.render(r, report, figures, simulated=False))
     if "full range" in runnable:
         section("full range", lambda: full_range.compute(ds, feats),
-                lambda r: full_range.render(r, report, figures))
+                lambda r: full_range.render(r, report, figures, simulated=False))
     return results
 
 

@@ -16,6 +16,8 @@ ran, why it stopped, its final training loss and its accuracies.
 
 from __future__ import annotations
 
+import inspect
+import math
 import warnings
 from dataclasses import dataclass
 
@@ -34,8 +36,8 @@ from ..paper.uncertainty import (
     percent,
     training_entries,
 )
-from ._common import check_render, check_step, fits_in_parallel
-from .learning import stop_sentence
+from ._common import check_instance, check_render, check_step, fits_in_parallel
+from .learning import ANN_MAX_EPOCHS, stop_sentence
 from .seed_spread import SUBSET_REPETITIONS
 
 __all__ = ["TRAINGD_DEFAULTS", "RUNS", "LONG_RUN", "AnnSetupResult", "compute",
@@ -188,22 +190,60 @@ HEADING = "What the paper's training budget changes"
 QUICK_LONG_EPOCHS = 300
 
 
-def compute(ds, feats, seed: int, quick: bool = False, n_jobs: int = 1) -> AnnSetupResult:
+def _same_fit(paper_ann, lr: float, epochs: int, seed: int) -> bool:
+    """Whether ``paper_ann`` (or None) is the fit that a run at step ``lr`` and cap ``epochs``
+    with seed ``seed`` would make on the whole data set: the paper network's step, cap and
+    patience, and a model trained by gradient descent at that step from that seed."""
+    if paper_ann is None or (lr, epochs) != _paper_run():
+        return False
+    model = paper_ann.model
+    return (getattr(model, "solver", None) == "gd" and model.learning_rate_init == lr
+            and model.random_state == seed)
+
+
+def _paper_run() -> tuple[float, int]:
+    """The step and epoch cap of the study's paper network (its 'ml' step): the default step of
+    :func:`~ebantenna.paper.experiments.classify_materials_ann` and
+    :data:`~.learning.ANN_MAX_EPOCHS`; its patience is the default too (``max_fail``)."""
+    defaults = inspect.signature(experiments.classify_materials_ann).parameters
+    if defaults["n_iter_no_change"].default != TRAINGD_DEFAULTS["max_fail"]:
+        return (math.nan, -1)  # another patience: no run of RUNS is that fit
+    return defaults["learning_rate_init"].default, ANN_MAX_EPOCHS
+
+
+def compute(ds, feats, seed: int, quick: bool = False, n_jobs: int = 1, *,
+            paper_ann=None) -> AnnSetupResult:
     """Each run of :data:`RUNS` and the long run on the subset, seed ``seed`` for the split and
     the weights (the long run capped at ``QUICK_LONG_EPOCHS`` when ``quick``); each run on one
     of ``n_jobs`` worker processes (``_common.fits_in_parallel``): the same numbers whatever
-    ``n_jobs``."""
+    ``n_jobs``.
+
+    ``paper_ann`` (optional) is the paper's network already trained on the whole data set with
+    seed ``seed`` (the study's 'ml' step, :data:`~.learning.ANN_MAX_EPOCHS` epochs, the default
+    step and patience of :func:`~ebantenna.paper.experiments.classify_materials_ann`). When the
+    subset is the whole data set (at most :data:`~.seed_spread.SUBSET_REPETITIONS` repetitions
+    per position) the run of :data:`RUNS` with that step and cap is that same fit, and it is
+    taken instead of being trained a second time."""
     check_step(ds=ds, feats=feats, seed=seed, quick=quick, n_jobs=n_jobs)
+    if paper_ann is not None:
+        check_instance("paper_ann", paper_ann, experiments.ClassificationResult)
     rows = np.flatnonzero(np.asarray(ds.repetition) < SUBSET_REPETITIONS)
     X, y, d = feats.fft[rows], ds.material[rows], np.asarray(ds.contact)[rows]
-    calls = [(experiments.classify_materials_ann, (X, y),
-              {"learning_rate_init": lr, "max_iter": epochs, "seed": seed,
-               "n_iter_no_change": TRAINGD_DEFAULTS["max_fail"]})
-             for lr, epochs in RUNS.values()]
-    calls.append((long_run, (X, y, d), {
+    whole = rows.size == np.asarray(ds.repetition).size
+    calls, reused = {}, {}
+    for name, (lr, epochs) in RUNS.items():
+        if whole and _same_fit(paper_ann, lr, epochs, seed):
+            reused[name] = paper_ann
+            continue
+        calls[name] = (experiments.classify_materials_ann, (X, y),
+                       {"learning_rate_init": lr, "max_iter": epochs, "seed": seed,
+                        "n_iter_no_change": TRAINGD_DEFAULTS["max_fail"]})
+    calls["long"] = (long_run, (X, y, d), {
         "lr": LONG_RUN["lr"], "epochs": QUICK_LONG_EPOCHS if quick else LONG_RUN["epochs"],
-        "every": LONG_RUN["every"], "seed": seed}))
-    *results, long = fits_in_parallel(calls, n_jobs)
+        "every": LONG_RUN["every"], "seed": seed})
+    done = {**reused, **dict(zip(calls, fits_in_parallel(list(calls.values()), n_jobs),
+                                  strict=True))}
+    results, long = [done[name] for name in RUNS], done["long"]
     runs = {}
     for (name, (lr, epochs)), result in zip(RUNS.items(), results, strict=True):
         curve = list(getattr(result.model, "loss_curve_", []))

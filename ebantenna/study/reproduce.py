@@ -286,7 +286,9 @@ def _learn_materials_and_distance(study: _Sections, ds, feats, materials, seed: 
     grouped = study.results["splits"].measured["svm", "grouped"]
     study.run("seeds", seed_spread.compute, seed_spread.render, ds, feats, seed, grouped,
               workers)
-    study.run("ann setup", ann_setup.compute, ann_setup.render, ds, feats, seed, quick, workers)
+    study.run("ann setup",
+              lambda: ann_setup.compute(ds, feats, seed, quick, workers, paper_ann=learnt.ann),
+              ann_setup.render)
 
 
 def _controls(study: _Sections, scene, seed: int, quick: bool, cache_dir, workers: int):

@@ -54,11 +54,14 @@ def _wrong_each(rig, mpu, rec) -> np.ndarray:
     """Per kept sample: differs from what the chip put at its place (the ground truth)."""
     raw = rec.metadata["raw"]
     epochs = {round(start, 12): k for k, (start, _) in enumerate(rig.mpu.epochs)}
+    truths = {}  # each epoch's samples joined once (a join per sample made a long run quadratic)
     out = []
     for seg, pos, counts in zip(raw["segment"], raw["position"], raw["counts_xyz"],
                                 strict=True):
         k = epochs.get(round(mpu.stream.starts[seg], 12))
-        truth = None if k is None else rig.mpu.truth(k)
+        if k is not None and k not in truths:
+            truths[k] = rig.mpu.truth(k)
+        truth = None if k is None else truths[k]
         out.append(truth is None or not (pos < len(truth) and list(truth[pos]) == counts))
     return np.asarray(out, bool)
 

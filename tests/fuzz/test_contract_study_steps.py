@@ -265,6 +265,8 @@ def _computes():
             lambda: ann_setup.compute(ds(), feats(), 0, True, None), ("n_jobs",)),
         Row(S + "ann_setup.compute", "ds-dict", lambda: ann_setup.compute({}, feats(), 0),
             ("ds",)),
+        Row(S + "ann_setup.compute", "paper_ann-dict",
+            lambda: ann_setup.compute(ds(), feats(), 0, paper_ann={}), ("paper_ann",)),
         Row(S + "material_splits.compute", "random_svm-int", lambda: material_splits.compute(
             ds(), feats(), 0, random_svm=5, paper_ann=_classification(), paper_distance=None),
             ("random_svm",)),

@@ -318,11 +318,20 @@ class SimulatedRig:
     def rest(self) -> np.ndarray:
         """The steady reading (X, Y, Z) outside the vibration, m/s^2: the mean of the last tenth
         of the vibration (where it has died away; gravity, if the simulator includes it), or 0."""
+        return self._rest().copy()
+
+    def _rest(self) -> np.ndarray:
+        """:attr:`rest`, computed once per vibration (read at every sample the chip catches up
+        on, it was a mean over a tenth of the vibration each time); not to be modified."""
         rec = self._recording
         if rec is None:
             return np.zeros(3)
-        tail = max(1, rec.n_samples // 10)
-        return np.array([rec.ax[-tail:].mean(), 0.0, rec.az[-tail:].mean()])
+        cached = getattr(self, "_rest_of", None)
+        if cached is None or cached[0] is not rec:
+            tail = max(1, rec.n_samples // 10)
+            cached = self._rest_of = (rec, np.array([rec.ax[-tail:].mean(), 0.0,
+                                                     rec.az[-tail:].mean()]))
+        return cached[1]
 
     def _second_acceleration(self, times: np.ndarray, fs: float) -> np.ndarray:
         """What the second device measures: the same acceleration with noise of its own (the
@@ -343,7 +352,8 @@ class SimulatedRig:
                 faults.register_lost or faults.flip_write or faults.clone_6500):
             raise ValueError(f"the vibration is sampled at {rec.fs:g} Hz but the simulated "
                              f"MPU-6050 is set to {fs:g} Hz")
-        acc = self.rest + rng.normal(0.0, self.noise, (times.size, 3))
+        rest = self._rest()
+        acc = rest + rng.normal(0.0, self.noise, (times.size, 3))
         contact = self.world.contact_time
         if contact is None or rec is None:
             return acc
@@ -359,7 +369,7 @@ class SimulatedRig:
         rate = self.mpu.true_rate() * rec.fs / fs
         j = np.rint((times - self.contact_sample_time) * rate).astype(np.int64)
         play = after & (j >= 0) & (j < rec.n_samples)
-        own = acc[play] - self.rest  # this draw's noise, for a device that adds its own
+        own = acc[play] - rest  # this draw's noise, for a device that adds its own
         acc[play, 0] = rec.ax[j[play]]  # Y keeps its rest reading and noise, as a live axis
         acc[play, 2] = rec.az[j[play]]
         if own_noise:

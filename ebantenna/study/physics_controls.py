@@ -706,31 +706,31 @@ def _damping_clauses(paired: dict, spreads, carrier: str) -> list[str]:
             continue
         others = "+".join(e for e in parts if e not in ENERGY_ABSORPTION)
         if not others:
-            words = _damping_words(f"'{k}'", p)
-            clauses.append(words[0].upper() + words[1:])
+            clauses.append(_damping_words(f"Switched off ('{k}'), the rod's damping", p))
         elif spreads is not None and others in spreads and k in spreads:
             own = spreads[others].paired_with(spreads[k])
-            clauses.append(f"Row '{k}' switches off '{others}' too ({p}); against '{others}' "
-                           "switched off alone, " + _damping_words("its own share", own))
+            clauses.append(f"Row '{k}' switches off '{others}' too: {p}. Against '{others}' "
+                           "switched off alone, " + _damping_words(
+                               "the rod's damping, switched off on its own,", own))
         else:
-            clauses.append(f"Row '{k}' switches off '{others}' too ({p}), and no row switches "
-                           f"off '{others}' alone: the rod's damping's own share is not "
+            clauses.append(f"Row '{k}' switches off '{others}' too: {p}; no row switches off "
+                           f"'{others}' alone, so the rod's damping's own share is not "
                            "separated.")
     return clauses
 
 
-def _damping_words(which: str, p) -> str:
-    """The rod's damping switched off (``which``: the row or its share), from the sign of its
-    paired difference."""
+def _damping_words(subject: str, p) -> str:
+    """What ``subject`` (the rod's damping switched off, as a row or as its own share) does to
+    the accuracy, from the sign of its paired difference ``p``."""
     if p.direction == "lower":
-        return (f"switched off ({which}), the rod's damping lowers it too, {p}: in the "
-                "simulator this agrees with the paper's explanation, that the materials differ "
-                "by how much vibration energy they absorb.")
+        return (f"{subject} lowers it too, {p}: in the simulator this agrees with the paper's "
+                "explanation, that the materials differ by how much vibration energy they "
+                "absorb.")
     if p.direction == "higher":
-        return (f"switched off ({which}), the rod's damping raises the accuracy, {p}: in the "
-                "simulator the rods' damping blurs the materials rather than separating them, "
-                "against the paper's explanation that they differ by the energy they absorb.")
-    return f"switched off ({which}), the rod's damping changes it by {p}, not resolved."
+        return (f"{subject} raises the accuracy, {p}: in the simulator the rods' damping blurs "
+                "the materials rather than separating them, against the paper's explanation "
+                "that they differ by the energy they absorb.")
+    return f"{subject} changes it by {p}, not resolved."
 
 
 def verdict_from(paired: dict, base, chance: float, spreads: dict | None = None,

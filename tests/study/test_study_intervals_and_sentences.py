@@ -171,7 +171,7 @@ def test_the_damping_share_of_a_bundled_row_is_read_against_its_partner_alone():
         spreads["object_damping+unilateral_contact"] = bundle
         paired["object_damping+unilateral_contact"] = base.paired_with(bundle)
         text = verdict_from(paired, base.folds(), 0.2, spreads)
-        assert "against 'unilateral_contact' switched off alone" in text
+        assert "Against 'unilateral_contact' switched off alone" in text
         assert word in text.split("switched off alone")[1]
     del spreads["unilateral_contact"], paired["unilateral_contact"]
     text = verdict_from(paired, base.folds(), 0.2, spreads)

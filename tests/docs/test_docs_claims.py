@@ -368,9 +368,6 @@ def test_plot_13_z_peaks_move_from_free_to_pinned():
 TOUCHED_OBJECT_STUDY = [
     ("on the ablation's design (below) {61.2} % of the strikes would lift off",
      ["pct:materials.contact_lift_off_share"]),
-    ("({97.6} % of the ablation design's strikes, a median of {18} times in the first second)",
-     ["pct:materials.unilateral_restrike_share", "materials.unilateral_median_restrikes"]),
-    ("pull harder than the preload in {61.2} % of them", ["pct:materials.contact_lift_off_share"]),
     ("on the main data set's {9875} recordings", ["dataset.signals"]),
     ("with the material unknown, {0.39} cm on average", ["distance.full_range_joint_mae_cm"]),
     ("The probe strikes again a median of {15} times instead of {18}",

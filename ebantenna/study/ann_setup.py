@@ -204,7 +204,7 @@ def _same_fit(paper_ann, lr: float, epochs: int, seed: int) -> bool:
 def _paper_run() -> tuple[float, int]:
     """The step and epoch cap of the study's paper network (its 'ml' step): the default step of
     :func:`~ebantenna.paper.experiments.classify_materials_ann` and
-    :data:`~.learning.ANN_MAX_EPOCHS`; its patience is the default too (``max_fail``)."""
+    ``learning.ANN_MAX_EPOCHS``; its patience is the default too (``max_fail``)."""
     defaults = inspect.signature(experiments.classify_materials_ann).parameters
     if defaults["n_iter_no_change"].default != TRAINGD_DEFAULTS["max_fail"]:
         return (math.nan, -1)  # another patience: no run of RUNS is that fit
@@ -219,7 +219,7 @@ def compute(ds, feats, seed: int, quick: bool = False, n_jobs: int = 1, *,
     ``n_jobs``.
 
     ``paper_ann`` (optional) is the paper's network already trained on the whole data set with
-    seed ``seed`` (the study's 'ml' step, :data:`~.learning.ANN_MAX_EPOCHS` epochs, the default
+    seed ``seed`` (the study's 'ml' step, ``learning.ANN_MAX_EPOCHS`` epochs, the default
     step and patience of :func:`~ebantenna.paper.experiments.classify_materials_ann`). When the
     subset is the whole data set (at most :data:`~.seed_spread.SUBSET_REPETITIONS` repetitions
     per position) the run of :data:`RUNS` with that step and cap is that same fit, and it is

@@ -86,7 +86,7 @@ class FullRangeResult:
     @property
     def two_against_one_mode(self) -> dict | None:
         """The two-mode errors against the first mode's alone, paired on the same test
-        recordings (:func:`~ebantenna.study._common.paired_mae`); None where some recordings had
+        recordings (``paired_mae``); None where some recordings had
         no two separable peaks, so that the two estimators were tested on different rows."""
         if self.without_two_peaks or not np.array_equal(self.contact_one, self.contact_two):
             return None
@@ -96,7 +96,7 @@ class FullRangeResult:
     def known_material_gain(self) -> dict:
         """How much larger the two-mode errors are with one calibration for every material than
         calibrated per material, paired on the same test recordings and taken on the test
-        positions (:func:`~ebantenna.study._common.paired_mae`)."""
+        positions (``paired_mae``)."""
         return paired_mae(self.error_two_cm, self.error_known_material_cm, self.contact_two)
 
     def to_dict(self) -> dict:

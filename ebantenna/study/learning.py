@@ -86,7 +86,7 @@ class LearningResult:
     def distance_dict(self) -> dict:
         """Mean absolute errors of the two distance networks, cm; the full-length network's
         also with its interval over the test positions (``full_length``,
-        :func:`~ebantenna.study._common.mae_entry`; the linear region's is under the splits)."""
+        ``mae_entry``; the linear region's is under the splits)."""
         full = self.full_length
         return {
             "linear_region_mae_cm": self.linear_region.mae_cm,

@@ -86,7 +86,7 @@ class MaterialSplitsResult:
     def distance_ranking(self) -> tuple[str, dict]:
         """The trainer with the smallest distance error, and each other trainer's errors against
         its, paired on the same test recordings and taken on the test positions
-        (:func:`~ebantenna.study._common.paired_mae`; None for a network tested on other rows).
+        (``paired_mae``; None for a network tested on other rows).
         The smallest is a ranking of this run, not a finding, unless every difference is
         resolved."""
         smallest = min(self.distance, key=lambda k: self.distance[k].mae_cm)
@@ -142,7 +142,7 @@ class MaterialSplitsResult:
 
 def _distance_entry(r) -> dict:
     """A distance network's mean absolute error (cm) with its interval over the test
-    positions (:func:`~ebantenna.study._common.mae_entry`)."""
+    positions (``mae_entry``)."""
     return mae_entry(r.errors_cm, r.distance_test)
 
 
@@ -493,7 +493,7 @@ def _render_trainers(r: MaterialSplitsResult, report) -> None:
 
 
 def _paired_cm(d) -> str:
-    """A :func:`~ebantenna.study._common.paired_mae` difference as the table prints it."""
+    """A ``paired_mae`` difference as the table prints it."""
     if d is None:
         return "not paired (other test rows)"
     if d["ci95"] is None:

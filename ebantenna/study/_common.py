@@ -28,7 +28,7 @@ from ..simulate import Dataset, Scene
 __all__ = ["beyond_chance", "per_contact", "probe_length", "pct", "BLAS_THREADS", "blas_limited",
            "fits_in_parallel", "classifier_call", "MAX_SEED", "check_step", "check_instance",
            "check_render", "REPORT_FILES", "study_folder", "mae_entry", "format_mae",
-           "paired_mae"]
+           "paired_mae", "format_paired_mae", "listed"]
 
 #: The files a study writes into its output folder besides its figures.
 REPORT_FILES = ("report.md", "report.html", "summary.json")
@@ -227,6 +227,34 @@ def paired_mae(errors_a, errors_b, positions) -> dict:
     return {"difference_cm": e["estimate"], "ci95": e["ci95"], "n_units": e["n_units"],
             "method": "paired on the same test recordings, " + e["method"],
             "resolved": bool(e["ci95"][0] > 0 or e["ci95"][1] < 0)}
+
+
+def format_paired_mae(d: dict, than: str = "") -> str:
+    """A :func:`paired_mae` difference with its interval, as the report's sentences print it
+    (``than``: what it is compared with, if the sentence names it).
+
+    Examples
+    --------
+    >>> format_paired_mae({"difference_cm": -0.4, "ci95": [-0.7, -0.1], "n_units": 39},
+    ...                   "the first mode alone")
+    '0.40 cm less than the first mode alone (paired, 95 % CI -0.70 to -0.10, 39 positions)'
+    """
+    lo, hi = d["ci95"]
+    more = "more" if d["difference_cm"] > 0 else "less"
+    return (f"{abs(d['difference_cm']):.2f} cm {more}{' than ' + than if than else ''} "
+            f"(paired, 95 % CI {lo:.2f} to {hi:.2f}, {d['n_units']} positions)")
+
+
+def listed(words) -> str:
+    """Words as a sentence lists them: ``a``, ``a and b``, ``a, b and c``.
+
+    Examples
+    --------
+    >>> listed(["a"]), listed(["a", "b"]), listed(["a", "b", "c"])
+    ('a', 'a and b', 'a, b and c')
+    """
+    words = list(words)
+    return words[0] if len(words) == 1 else ", ".join(words[:-1]) + " and " + words[-1]
 
 
 def beyond_chance(accuracy: float, chance: float, n: int) -> bool:

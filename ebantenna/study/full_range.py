@@ -22,6 +22,7 @@ from ._common import (
     check_render,
     check_step,
     format_mae,
+    format_paired_mae,
     mae_entry,
     paired_mae,
     per_contact,
@@ -274,10 +275,8 @@ def _two_against_one_text(d: dict | None) -> str:
     if d["ci95"] is None:
         return (f"On the one test position the two modes err by {d['difference_cm']:+.2f} cm "
                 "against the first mode alone, which gives no interval.")
-    lo, hi = d["ci95"]
-    said = (f"On the same test recordings the two modes err by {abs(d['difference_cm']):.2f} cm "
-            f"{'more' if d['difference_cm'] > 0 else 'less'} than the first mode alone (paired, "
-            f"95 % CI {lo:.2f} to {hi:.2f}, {d['n_units']} positions)")
+    said = ("On the same test recordings the two modes err by "
+            + format_paired_mae(d, "the first mode alone"))
     return said + (": resolved." if d["resolved"] else ": not resolved.")
 
 
@@ -313,10 +312,7 @@ def _known_material_verdict(gain: dict, simulated: bool = True) -> str:
     if gain["ci95"] is None:
         return (f"one calibration for all materials errs by {gain['difference_cm']:+.2f} cm "
                 "against it on one test position, which gives no interval.")
-    lo, hi = gain["ci95"]
-    said = (f"one calibration for all materials errs by {abs(gain['difference_cm']):.2f} cm "
-            f"{'more' if gain['difference_cm'] > 0 else 'less'} (paired, 95 % CI {lo:.2f} to "
-            f"{hi:.2f}, {gain['n_units']} positions)")
+    said = "one calibration for all materials errs by " + format_paired_mae(gain)
     if gain["resolved"] and gain["difference_cm"] > 0:
         return said + (": the simulated probe must know what it touched to know where (a "
                        "statement about the simulator's assumed rods, not about the rig)."

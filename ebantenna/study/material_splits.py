@@ -27,6 +27,7 @@ from ._common import (
     classifier_call,
     fits_in_parallel,
     format_mae,
+    listed,
     mae_entry,
     paired_mae,
     probe_length,
@@ -332,10 +333,10 @@ def _flattery(r: MaterialSplitsResult) -> str:
     words = []
     if above:
         words.append("The random split's interval lies above the grouped split's for "
-                     + " and ".join(names[c] for c in above) + ": the random split flatters "
+                     + listed(names[c] for c in above) + ": the random split flatters "
                      + ("it" if len(above) == 1 else "them") + " here.")
     if overlap:
-        words.append("For " + " and ".join(names[c] for c in overlap) + " the two intervals "
+        words.append("For " + listed(names[c] for c in overlap) + " the two intervals "
                      "overlap: this design does not show the random split flattering "
                      + ("it." if len(overlap) == 1 else "them."))
     return " ".join(words)
@@ -521,10 +522,8 @@ def _trainer_ranking(smallest: str, against: dict) -> str:
     names = {"gd": "gradient descent", "scg": "scaled conjugate gradient", "adam": "Adam",
              "sgd": "stochastic gradient descent"}
 
-    def listed(keys):
-        words = [names.get(k, k) for k in keys]
-        return " and ".join(words[-2:]) if len(words) < 3 else (
-            ", ".join(words[:-1]) + " and " + words[-1])
+    def named(keys):
+        return listed(names.get(k, k) for k in keys)
 
     resolved = [k for k, d in against.items() if d is not None and d["resolved"]]
     tied = [k for k, d in against.items() if d is not None and not d["resolved"]]
@@ -534,14 +533,14 @@ def _trainer_ranking(smallest: str, against: dict) -> str:
     if resolved or tied:
         text += " Paired on the same test recordings and taken on the test positions, "
     if resolved:
-        text += f"it errs less than {listed(resolved)} (resolved)"
+        text += f"it errs less than {named(resolved)} (resolved)"
         text += "; " if tied else "."
     if tied:
-        text += (f"this design does not tell it apart from {listed(tied)} (the interval "
+        text += (f"this design does not tell it apart from {named(tied)} (the interval "
                  f"includes 0), so this run does not rank "
                  f"{'the two' if len(tied) == 1 else 'them'}.")
     if unpaired:
-        text += f" {listed(unpaired).capitalize()}: tested on other rows, not compared."
+        text += f" {named(unpaired).capitalize()}: tested on other rows, not compared."
     return text
 
 

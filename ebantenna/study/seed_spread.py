@@ -17,7 +17,14 @@ from scipy.stats import chi2
 from ..paper import experiments
 from ..paper.splits import SPLITS, split_folds
 from ..paper.uncertainty import UNITS, FoldAccuracy, clustered_entries, format_clustered, percent
-from ._common import check_instance, check_render, check_step, classifier_call, fits_in_parallel
+from ._common import (
+    check_instance,
+    check_render,
+    check_step,
+    classifier_call,
+    fits_in_parallel,
+    listed,
+)
 
 __all__ = ["SPLIT_SEEDS", "SUBSET_REPETITIONS", "TRAINING_REPETITIONS", "CLASSIFIERS",
            "SeedSpreadResult", "compute", "render"]
@@ -103,12 +110,6 @@ def ratio_interval(ratio: float, folds: int) -> tuple[float, float]:
             ratio * float(np.sqrt(dof / chi2.ppf(0.025, dof))))
 
 
-def _listed(labels) -> str:
-    """``a``, ``a and b``, ``a, b and c``."""
-    labels = list(labels)
-    return labels[0] if len(labels) == 1 else ", ".join(labels[:-1]) + " and " + labels[-1]
-
-
 def scatter_sentence(rows) -> str:
     """What the folds' spread against the binomial one shows, from each row's ratio.
 
@@ -136,11 +137,11 @@ def scatter_sentence(rows) -> str:
     parts = []
     if above:
         parts.append("The folds scatter more than independent recordings would, beyond what "
-                     f"the folds' number leaves open, for {_listed(above)}: there the "
+                     f"the folds' number leaves open, for {listed(above)}: there the "
                      "recordings do not behave as independent trials")
     if below:
         parts.append(f"{'they' if parts else 'The folds'} scatter less than independent "
-                     f"recordings would for {_listed(below)}")
+                     f"recordings would for {listed(below)}")
     n = len(open_)
     if n and parts:
         parts.append(f"in the other {n} row{'s' if n > 1 else ''} the ratio's 95 % interval "

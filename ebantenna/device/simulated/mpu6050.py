@@ -309,23 +309,12 @@ class SimulatedMPU6050:
         register = check_int("register", register, minimum=0, maximum=0xFF)
         length = check_int("length", length, minimum=0)
         self._catch_up()
-        if register == Register.FIFO_R_W:  # the FIFO's bytes in one slice: the loop's, at once
-            taken = list(self.fifo[:length])
-            del self.fifo[:length]
-            if taken:
-                self._last_byte = taken[-1]
-            fill = self._last_byte if self.repeat_last_byte else _EMPTY_FIFO_BYTE
-            return taken + [fill] * (length - len(taken))
         out = []
         reg = register
-        for _ in range(length):
-            if reg == Register.FIFO_R_W:
-                if self.fifo:
-                    self._last_byte = self.fifo.pop(0)
-                    out.append(self._last_byte)
-                else:
-                    out.append(self._last_byte if self.repeat_last_byte else _EMPTY_FIFO_BYTE)
-                continue
+        for k in range(length):
+            if reg == Register.FIFO_R_W:  # the address stays: every byte left is the FIFO's
+                out += self._fifo_bytes(length - k)
+                break
             if reg == Register.FIFO_COUNTH:
                 value = len(self.fifo) >> 8
             elif reg == Register.FIFO_COUNTL:
@@ -341,6 +330,16 @@ class SimulatedMPU6050:
             out.append(value)
             reg = min(reg + 1, REGISTER_SPACE - 1) if reg < REGISTER_SPACE else reg
         return out
+
+    def _fifo_bytes(self, n: int) -> list[int]:
+        """``n`` bytes read at FIFO_R_W, taken from the FIFO in one slice; past its end the
+        last byte again (``repeat_last_byte``) or the empty FIFO's byte."""
+        taken = list(self.fifo[:n])
+        del self.fifo[:n]
+        if taken:
+            self._last_byte = taken[-1]
+        fill = self._last_byte if self.repeat_last_byte else _EMPTY_FIFO_BYTE
+        return taken + [fill] * (n - len(taken))
 
     def _latest(self) -> bytes:
         if self.regs[Register.PWR_MGMT_1] & PowerManagement1.SLEEP:

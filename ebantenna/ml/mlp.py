@@ -117,6 +117,32 @@ def _partial_classes(classes) -> np.ndarray:
     return out
 
 
+def _check_seen(y, classes) -> None:
+    """Refuse labels of ``y`` that are not in the fitted ``classes`` (a continued fit keeps the
+    network's outputs; LabelBinarizer would give those rows no class at all)."""
+    unseen = np.setdiff1d(np.unique(y), classes)
+    if unseen.size:
+        raise ValueError(f"y holds labels {unseen.tolist()!r} that are not in classes_ "
+                         f"{classes.tolist()!r} of the previous fit (warm_start continues that "
+                         "network, with its classes)")
+
+
+def _indicator(y, classes) -> np.ndarray:
+    """``LabelBinarizer().fit(classes).transform(y)`` as float64 for 1-D string labels ``y``,
+    all in the sorted ``classes``: one column per class (one 0/1 column for two classes, a
+    column of zeros for one), found by one binary search per label."""
+    column = np.searchsorted(classes, y)
+    found = column < classes.size
+    found[found] = classes[column[found]] == y[found]
+    if not found.all():
+        _check_seen(y, classes)
+    if classes.size > 2:
+        Y = np.zeros((y.size, classes.size))
+        Y[np.arange(y.size), column] = 1.0
+        return Y
+    return (column == 1).astype(np.float64)[:, None]
+
+
 def _first_order(estimator) -> bool:
     """``partial_fit`` exists for the first-order solvers only (as scikit-learn's for 'sgd' and
     'adam'): 'scg' and 'lbfgs' work on the full batch until they converge."""
@@ -187,16 +213,17 @@ class MLPClassifier(ClassifierMixin, BaseMLP):
                              reset=reset)
         if y.ndim == 2 and y.shape[1] == 1:
             y = column_or_1d(y, warn=True)
+        continued = self.warm_start and hasattr(self, "_label_binarizer")
+        if (continued and y.ndim == 1 and y.dtype.kind == "U" and not self._multilabel
+                and self.classes_.dtype.kind == "U"):
+            Y = _indicator(y, self.classes_)  # one search instead of sorting the labels 5 times
+            return self._fit(X, Y, y)
         check_classification_targets(y)
-        if not (self.warm_start and hasattr(self, "_label_binarizer")):
+        if not continued:
             self._label_binarizer = LabelBinarizer().fit(y)
             self.classes_ = self._label_binarizer.classes_
         elif not type_of_target(y).startswith("multilabel"):
-            unseen = np.setdiff1d(np.unique(y), self.classes_)
-            if unseen.size:  # LabelBinarizer would give their rows no class at all
-                raise ValueError(f"y holds labels {unseen.tolist()!r} that are not in classes_ "
-                                 f"{self.classes_.tolist()!r} of the previous fit (warm_start "
-                                 "continues that network, with its classes)")
+            _check_seen(y, self.classes_)
         Y = self._label_binarizer.transform(y).astype(np.float64)
         self._multilabel = type_of_target(y).startswith("multilabel")
         self.out_activation_ = "logistic" if (Y.shape[1] == 1 or self._multilabel) else "softmax"

@@ -97,6 +97,17 @@ def _rbf_direct(X: np.ndarray, S: np.ndarray, gamma: float) -> np.ndarray:
     return out
 
 
+def _all_finite(a: np.ndarray) -> bool:
+    """Whether every entry of the float array ``a`` is finite. A sum is finite only if every
+    term is (NaN and inf propagate, inf - inf is NaN): one pass over ``a`` without the boolean
+    copy of ``isfinite``, which is made only when the sum is not finite (finite entries whose
+    sum overflows)."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        if np.isfinite(np.add.reduce(a, axis=None)):
+            return True
+    return bool(np.isfinite(a).all())
+
+
 def plain_training_data(X, y):
     """``(X, y)`` when both are plain and valid, checked without scikit-learn; else None.
 
@@ -626,7 +637,7 @@ class SVC(ClassifierMixin, BaseEstimator):
             raise ValueError(f"kernel_matrix must be a NumPy array of shape ({n}, {n}), the "
                              f"kernel of X with itself; got {type(kernel_matrix).__name__} "
                              f"{getattr(kernel_matrix, 'shape', '')}")
-        if kernel_matrix.dtype.kind != "f" or not np.isfinite(kernel_matrix).all():
+        if kernel_matrix.dtype.kind != "f" or not _all_finite(kernel_matrix):
             raise ValueError("kernel_matrix must hold finite real numbers")
         rows = np.unique(np.linspace(0, n - 1, min(n, 8)).astype(np.intp))
         reference = kern.gram(X[rows], X)

@@ -297,8 +297,12 @@ def _ml_cases() -> list[Case]:
     K2 = ml.kernels.Kernel("rbf", gamma=0.5).gram(X2)
     nan = K2.copy()
     nan[3, 5] = math.nan
+    inf, both = K2.copy(), K2.copy()  # the finiteness check sums: inf, and inf - inf = NaN
+    inf[2, 1] = both[0, 4] = math.inf
+    both[4, 0] = -math.inf
     for label, K in (("gamma-2", ml.kernels.Kernel("rbf", gamma=2.0).gram(X2)),
-                     ("11-rows", K2[:11, :11]), ("nan", nan), ("list", K2.tolist()),
+                     ("11-rows", K2[:11, :11]), ("nan", nan), ("inf", inf),
+                     ("inf-and-minus-inf", both), ("list", K2.tolist()),
                      ("int", K2.astype(int)), ("linear", ml.kernels.Kernel("linear").gram(X2))):
         c.append(Case(f"SVC.fit:kernel_matrix={label}",
                       _bind(lambda K: ml.SVC(gamma=0.5).fit(X2, Y2, kernel_matrix=K), K),

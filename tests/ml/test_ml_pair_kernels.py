@@ -164,3 +164,18 @@ def test_an_svc_on_a_shared_kernel_is_the_svc_on_that_kernel_precomputed():
     # the named kernel's test matrix against the precomputed rows: entries a few 1e-16 apart
     # (two expansions of the same distances), times sum |coef| <= C n = 31: far below 1e-9
     assert np.abs(shared.decision_function(X) - witness.decision_function(K)).max() < 1e-9
+
+
+def test_a_finite_matrix_whose_sum_overflows_is_not_called_infinite():
+    # the given kernel's finiteness is read from its sum; finite entries near the largest
+    # float overflow it, and the entries themselves are then looked at: the matrix is refused
+    # for what it is (not the kernel of X), not as holding infinities
+    from ebantenna.ml import SVC
+
+    X = np.random.default_rng(0).normal(size=(6, 2))
+    y = np.array([0, 1] * 3)
+    huge = np.full((6, 6), np.finfo(float).max / 2)
+    with np.errstate(over="ignore"):
+        assert not np.isfinite(huge.sum())
+    with pytest.raises(ValueError, match="kernel_matrix is not the 'rbf' kernel of X"):
+        SVC(gamma=0.5).fit(X, y, kernel_matrix=huge)

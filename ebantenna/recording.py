@@ -68,8 +68,9 @@ def _check_metadata(metadata, where: str = "metadata") -> None:
                         f"string), got {describe(key)} in {path}"
                     )
                 stack.append((item, f"{path}[{key!r}]"))
-        elif isinstance(value, list | tuple):
-            stack.extend((item, f"{path}[{i}]") for i, item in enumerate(value))
+        elif isinstance(value, list | tuple):  # only containers can hold a key
+            stack.extend((item, f"{path}[{i}]") for i, item in enumerate(value)
+                         if isinstance(item, dict | list | tuple))
     try:
         json.dumps(metadata)
     except (TypeError, ValueError, RecursionError) as exc:

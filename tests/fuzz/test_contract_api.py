@@ -203,6 +203,9 @@ def _recording_cases() -> list[Case]:
              param="metadata"),
         Case("Recording:metadata-nested-int-key",
              lambda: Recording(T, TONE, TONE, FS, {"a": {2: "b"}}), param="metadata"),
+        Case("Recording:metadata-int-key-in-a-list-after-numbers",
+             lambda: Recording(T, TONE, TONE, FS, {"a": [0.5, "x", ([{4: "d"}],)]}),
+             param="metadata"),
         Case("Recording:metadata-not-json", lambda: Recording(T, TONE, TONE, FS, {"a": {1j}}),
              param="metadata"),
     ]

@@ -1,6 +1,5 @@
 """Exercise 12: what a random split hides, and what the SVM learns from the touched rod."""
 
-import tempfile
 from dataclasses import replace
 
 import numpy as np
@@ -10,13 +9,14 @@ from ebantenna.paper.experiments import classify_materials_svm
 from ebantenna.paper.splits import grouped_split, random_split
 from ebantenna.signal import fft_features
 from ebantenna.simulate import build_dataset, builtin_scene
+from ebantenna.study import default_cache_dir
 
 # [data]
 # A small data set of the paper scene: 5 materials, contacts every 2.5 cm, 2 repetitions.
 design = replace(QUICK_DESIGN, name="ex12", first_contact=0.025, contact_step=0.025, repetitions=2)
 scene = builtin_scene("paper")
-with tempfile.TemporaryDirectory() as tmp:
-    ds = build_dataset(tmp, scene, design, seed=12)
+# simulated on the first run, then read from the package's cache (as `ebantenna reproduce` does)
+ds = build_dataset(default_cache_dir(), scene, design, seed=12)
 X = fft_features(np.asarray(ds.ax, float), np.asarray(ds.az, float))
 # [/data]
 
@@ -42,8 +42,7 @@ assert accuracy["random"] > accuracy["grouped"]
 #    what needs the rod: its damping, its preload's scatter, its contact that only pushes).
 rod_effects = ("object_modes", "object_damping", "preload_scatter", "unilateral_contact")
 rigid = scene.with_(effects=[e for e in scene.effects if e.name not in rod_effects])
-with tempfile.TemporaryDirectory() as tmp:
-    flat = build_dataset(tmp, rigid, design, seed=12)
+flat = build_dataset(default_cache_dir(), rigid, design, seed=12)
 X_rigid = fft_features(np.asarray(flat.ax, float), np.asarray(flat.az, float))
 rigid_accuracy = classify_materials_svm(X_rigid, flat.material, split=splits["random"])
 rigid_accuracy = rigid_accuracy.accuracies["test"]

@@ -1,6 +1,5 @@
 """Exercise 13: the material and the contact distance from two frequencies."""
 
-import tempfile
 from dataclasses import replace
 
 import numpy as np
@@ -11,12 +10,13 @@ from ebantenna.paper.mode_curves import ModeCurveClassifier
 from ebantenna.paper.splits import grouped_split
 from ebantenna.signal import fft_features, peak_frequencies
 from ebantenna.simulate import build_dataset, builtin_scene
+from ebantenna.study import default_cache_dir
 
 # [data]
 # A small data set of the paper scene: 5 materials, contacts every 1 cm, 2 repetitions.
 design = replace(QUICK_DESIGN, name="ex13", first_contact=0.02, contact_step=0.01, repetitions=2)
-with tempfile.TemporaryDirectory() as tmp:
-    ds = build_dataset(tmp, builtin_scene("paper"), design, seed=13)
+# simulated on the first run, then read from the package's cache (as `ebantenna reproduce` does)
+ds = build_dataset(default_cache_dir(), builtin_scene("paper"), design, seed=13)
 ax = np.asarray(ds.ax, float)
 # [/data]
 

@@ -21,6 +21,7 @@ from ..paper.controls import (
     twin_seeds,
 )
 from ..paper.data import QUICK_DESIGN
+from ..paper.data import design as main_design
 from ..paper.feature_table import signal_features
 from ..paper.splits import distinct_split_seeds, grouped_split
 from ..paper.uncertainty import (
@@ -34,7 +35,8 @@ from ..paper.uncertainty import (
 )
 from ..probe import material
 from ..simulate import build_dataset
-from ._common import check_render, check_step, classifier_call, fits_in_parallel
+from ._common import check_render, check_step, classifier_call, fits_in_parallel, listed
+from .seed_spread import TRAINING_REPETITIONS
 
 __all__ = [
     "ControlsResult", "ENERGY_ABSORPTION", "PAIR_REFERENCES", "control_design", "compute",
@@ -133,6 +135,9 @@ class ControlsResult:
     contact_compliance : dict or None
         Per design material, the rod's compliance at the two contact heights the mid-height
         control compares (:func:`contact_compliance`); None without ``object_modes``.
+    repetitions : (int, int) or None
+        Repetitions of each material at each position in the controls' design and in the main
+        data set's (:func:`ebantenna.paper.data.design`).
     """
 
     ablation: Ablation
@@ -156,6 +161,7 @@ class ControlsResult:
     law_spreads: dict | None = None
     loss_factors: tuple | None = None
     contact_compliance: dict | None = None
+    repetitions: tuple | None = None
 
     @property
     def data_sets(self) -> int:
@@ -280,6 +286,7 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ControlsRe
         ablation, accuracy, note, pair_curves, n, 1 / len(design.materials), n_test, lift_off,
         unilateral, restrikes, mid, curves, linear_accuracy, pushes, friction, pairs, spreads,
         paired, laws, _assumed_loss(scene, design), compliance,
+        (design.repetitions, main_design(quick).repetitions),
     )  # fmt: skip
 
 
@@ -511,12 +518,32 @@ def _baseline_relation(r: ControlsResult) -> str:
     """Why the ablation's baseline is not the main study's grouped accuracy."""
     return (
         f"The baseline here ({percent(r.ablation.spreads['none'].folds().estimate)}) is "
-        f"measured on the reduced design, {r.recordings} recordings, not on the main data set: "
-        "every position carries fewer repetitions. Whether that accounts for the difference is "
+        f"measured on the reduced design, {r.recordings} recordings, not on the main data set"
+        + _repetitions_text(r.repetitions) + " Whether that accounts for the difference is "
         "measured in the section 'How much the numbers carry': the main data set's grouped "
-        "accuracy with its first 1, 3 and 5 repetitions only. The "
+        f"accuracy with its first {listed(str(n) for n in TRAINING_REPETITIONS)} repetitions "
+        "only. The "
         "ablation compares rows with one another on one design, which this does not change."
     )
+
+
+def _repetitions_text(repetitions) -> str:
+    """The controls' repetitions per position against the main data set's, as a clause.
+
+    Examples
+    --------
+    >>> _repetitions_text((3, 25))
+    ': every position carries 3 repetitions of each material, against 25 there.'
+    >>> _repetitions_text((25, 25))
+    ': every position carries as many repetitions of each material (25).'
+    """
+    if repetitions is None:
+        return "."
+    few, main = repetitions
+    if few == main:
+        return f": every position carries as many repetitions of each material ({few})."
+    return (f": every position carries {few} repetition{'s' if few != 1 else ''} of each "
+            f"material, against {main} there.")
 
 
 def _render_equivalent_pair(r: ControlsResult, report) -> None:

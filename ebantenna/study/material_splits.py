@@ -75,7 +75,7 @@ class MaterialSplitsResult:
         split.
     design : dict or None
         What the data set's design makes of a random split, read from the data set
-        (:func:`design_facts`): ``repetitions`` (the fewest and the most recordings of one
+        (``_design_facts``): ``repetitions`` (the fewest and the most recordings of one
         material at one contact position), ``spacing_m`` (the smallest distance between two
         distinct contact positions) and ``copies_in_training`` (the share of the random split's
         test recordings whose material and position have a recording in its training set).
@@ -161,7 +161,7 @@ def _distance_entry(r) -> dict:
     return mae_entry(r.errors_cm, r.distance_test)
 
 
-def design_facts(materials, positions, test_rows) -> dict:
+def _design_facts(materials, positions, test_rows) -> dict:
     """What a random split of a data set's design holds, read from its rows: ``repetitions``
     (``[fewest, most]`` recordings of one material at one contact position), ``spacing_m`` (the
     smallest step between two distinct contact positions, m; None with one position) and
@@ -170,7 +170,7 @@ def design_facts(materials, positions, test_rows) -> dict:
 
     Examples
     --------
-    >>> facts = design_facts(["a", "a", "a", "b", "b", "b"], [0.1, 0.1, 0.2, 0.1, 0.2, 0.2],
+    >>> facts = _design_facts(["a", "a", "a", "b", "b", "b"], [0.1, 0.1, 0.2, 0.1, 0.2, 0.2],
     ...                      [2, 3])
     >>> facts["repetitions"], facts["spacing_m"], facts["copies_in_training"]
     ([1, 2], 0.1, 0.0)
@@ -283,7 +283,7 @@ def compute(ds, feats, seed: int, *, random_svm, paper_ann, paper_distance,
     return MaterialSplitsResult(
         {k: first["svm", k] for k in SPLITS}, {k: first["position_aware", k] for k in SPLITS},
         {k: first["mode_curves", k] for k in SPLITS}, held, ann, distance, measured, paired,
-        held_out, design_facts(y, positions, random_svm.rows()))
+        held_out, _design_facts(y, positions, random_svm.rows()))
 
 
 def _region_folds(folds, positions, probe_length: float) -> list:
@@ -362,7 +362,7 @@ def _render_splits(r: MaterialSplitsResult, report) -> None:
 
 def _copies_text(design: dict | None) -> str:
     """How the data set's recordings come and what a random split therefore leaves in its
-    training set, read from :func:`design_facts`.
+    training set, read from ``_design_facts``.
 
     Examples
     --------

@@ -134,7 +134,7 @@ class ControlsResult:
         and the probe's: what the damping verdict assumes.
     contact_compliance : dict or None
         Per design material, the rod's compliance at the two contact heights the mid-height
-        control compares (:func:`contact_compliance`); None without ``object_modes``.
+        control compares (``_contact_compliance``); None without ``object_modes``.
     repetitions : (int, int) or None
         Repetitions of each material at each position in the controls' design and in the main
         data set's (:func:`ebantenna.paper.data.design`).
@@ -270,7 +270,7 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ControlsRe
             "friction": _friction_spread(scene, ablation, design, seed, cache_dir, n_jobs),
         }
         mid, friction = (float(spreads[k].values[0]) for k in ("mid_height", "friction"))
-        compliance = {m: contact_compliance(scene.effect("object_modes"), m)
+        compliance = {m: _contact_compliance(scene.effect("object_modes"), m)
                       for m in design.materials}
         without = ablation.spreads.get("coulomb_friction", base)
         paired.update(
@@ -290,7 +290,7 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ControlsRe
     )  # fmt: skip
 
 
-def contact_compliance(effect, material_name: str) -> dict:
+def _contact_compliance(effect, material_name: str) -> dict:
     """How far the rod of ``effect`` (an :class:`~ebantenna.simulate.effects.ObjectModes`) in
     ``material_name`` gives under the contact at its free end (``"free_end"``) and halfway up
     (``"mid_height"``), read from the rod's own beam model (its Euler-Bernoulli elements,
@@ -305,7 +305,7 @@ def contact_compliance(effect, material_name: str) -> dict:
     Examples
     --------
     >>> from ebantenna.simulate.effects import ObjectModes
-    >>> c = contact_compliance(ObjectModes(), "steel")
+    >>> c = _contact_compliance(ObjectModes(), "steel")
     >>> round(c["free_end"]["static_m_per_n"] / c["mid_height"]["static_m_per_n"], 6)  # 2^3
     8.0
     """
@@ -616,7 +616,7 @@ def _render_mid_height(r: ControlsResult, report) -> None:
 
 def _height_text(compliance: dict | None) -> str:
     """What the assumed contact height is for the rod, read from its model's compliance at the
-    two heights (:func:`contact_compliance`, per material): the static one and the first
+    two heights (``_contact_compliance``, per material): the static one and the first
     mode's share.
 
     Examples

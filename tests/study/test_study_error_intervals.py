@@ -160,11 +160,11 @@ def test_the_table_prints_what_the_summary_holds(tmp_path):
 def test_the_design_facts_are_read_from_the_rows():
     materials = np.array(["a", "b"] * 12)
     positions = np.repeat([0.1, 0.15, 0.2, 0.25], 6)
-    facts = material_splits.design_facts(materials, positions, [0, 1, 6, 7])
+    facts = material_splits._design_facts(materials, positions, [0, 1, 6, 7])
     assert facts["repetitions"] == [3, 3]
     assert facts["spacing_m"] == pytest.approx(0.05)
     assert facts["copies_in_training"] == 1.0  # each test row's material and position recur
-    alone = material_splits.design_facts(["a", "a"], [0.1, 0.2], [0])
+    alone = material_splits._design_facts(["a", "a"], [0.1, 0.2], [0])
     assert alone["repetitions"] == [1, 1] and alone["copies_in_training"] == 0.0
 
 
@@ -186,7 +186,7 @@ def test_the_rods_static_compliance_is_the_cantilevers(name):
     # cubic Hermite beam elements are exact for a static point load: h^3 / (3 EI) at the
     # load, to the rounding of a 50-unknown solve
     effect = ObjectModes()
-    c = physics_controls.contact_compliance(effect, name)
+    c = physics_controls._contact_compliance(effect, name)
     ei = Rod(name, effect.diameter, effect.free_length).as_beam().flexural_rigidity
     for where in ("free_end", "mid_height"):
         h = c[where]["height_m"]

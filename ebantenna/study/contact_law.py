@@ -53,6 +53,8 @@ class ContactLawResult:
         Per material: the Hertz law's chords and their force bound (N).
     force_tolerance : float
         The chords' tolerance, N.
+    preload : float or None
+        The preload the linearised spring is taken at (the scene's ``object_modes``), N.
     """
 
     design: str
@@ -63,6 +65,7 @@ class ContactLawResult:
     chords: dict
     force_tolerance: float
     paired: dict = None
+    preload: float | None = None
 
     def to_dict(self) -> dict:
         """The result as ``summary.json`` holds it."""
@@ -78,6 +81,7 @@ class ContactLawResult:
             "median_restrikes": dict(self.restrikes),
             "hertz_chords": {m: {"chords": n, "bound_N": b} for m, (n, b) in self.chords.items()},
             "force_tolerance_N": self.force_tolerance,
+            "preload_N": self.preload,
         }
 
 
@@ -120,7 +124,7 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ContactLaw
     paired = {"svm": svm["linearised"].paired_with(svm["hertz"]),
               "mode_curves": curves["linearised"].paired_with(curves["hertz"])}
     return ContactLawResult(design.name, recordings, svm, curves, restrikes, chords,
-                            hertz.force_tolerance, paired)  # fmt: skip
+                            hertz.force_tolerance, paired, float(obj.preload))  # fmt: skip
 
 
 def render(result: ContactLawResult | None, report, figures) -> None:
@@ -131,7 +135,8 @@ def render(result: ContactLawResult | None, report, figures) -> None:
     r = result
     report.heading("The contact's Hertz law against its linearisation")
     report.paragraph(
-        "The strike's contact pushes through the spring linearised at the 0.5 N preload; "
+        "The strike's contact pushes through the spring linearised at the "
+        + ("scene's preload; " if r.preload is None else f"{r.preload:g} N preload; ")
         + restrike_words(r.restrikes["linearised"]) + " The controls' design "
         f"({r.recordings} recordings) is simulated again with the crossed-cylinder Hertz law in "
         "series with the tube wall ('hertz_contact'), integrated as chords that differ from it "

@@ -4,6 +4,7 @@ on contact positions the calibration never saw, against the first-mode-only esti
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -21,6 +22,8 @@ from ..paper.uncertainty import (
 from ._common import (
     check_render,
     check_step,
+    error_entry,
+    format_error,
     format_mae,
     format_paired_mae,
     mae_entry,
@@ -100,9 +103,38 @@ class FullRangeResult:
         positions (``paired_mae``)."""
         return paired_mae(self.error_two_cm, self.error_known_material_cm, self.contact_two)
 
+    @property
+    def estimators(self) -> tuple:
+        """The four estimators of the table: each its summary key, its row's name, its errors
+        (cm) and its test contacts (m)."""
+        return (
+            ("first_mode_only", "first mode only", self.error_one_cm, self.contact_one),
+            ("full_range", "two modes", self.error_two_cm, self.contact_two),
+            ("full_range_known_material", "two modes, calibrated per material (material known)",
+             self.error_known_material_cm, self.contact_two),
+            ("full_range_joint", "two modes, material fitted with the distance",
+             self.error_joint_cm, self.contact_two),
+        )
+
+    @cached_property
+    def tails(self) -> dict:
+        """Per estimator (by its key of :attr:`estimators`): ``"beyond"``, its mean error beyond
+        the region (``mae_entry`` on the test contacts there; None if none lies there), and
+        ``"p95"``, the 95th percentile of its errors (``error_entry``, a bootstrap over the
+        test positions). Each interval is on the test position."""
+        out = {}
+        for key, _, errors, contact in self.estimators:
+            beyond = contact > self.region * self.length
+            out[key] = {
+                "beyond": mae_entry(errors[beyond], contact[beyond]) if np.any(beyond) else None,
+                "p95": error_entry(errors, contact, "p95"),
+            }
+        return out
+
     def to_dict(self) -> dict:
         """The summary numbers, in cm."""
         beyond = self.beyond
+        tails = self.tails
         return {
             "full_range_mae_cm": float(self.error_two_cm.mean()),
             "full_range_mae_beyond_80_cm": (
@@ -122,6 +154,17 @@ class FullRangeResult:
             **clustered_entries("full_range_joint_material_accuracy", self.joint_material),
             "first_mode_turning_point_cm": 100 * self.turning_point,
             "recordings_without_two_peaks": self.without_two_peaks,
+            # the table's other columns, each with its interval on the test position: the mean
+            # error beyond the region (t over the positions there) and the 95th percentile
+            # (position bootstrap)
+            "first_mode_only_beyond_80": tails["first_mode_only"]["beyond"],
+            "full_range_beyond_80": tails["full_range"]["beyond"],
+            "full_range_known_material_beyond_80": tails["full_range_known_material"]["beyond"],
+            "full_range_joint_beyond_80": tails["full_range_joint"]["beyond"],
+            "first_mode_only_p95": tails["first_mode_only"]["p95"],
+            "full_range_p95": tails["full_range"]["p95"],
+            "full_range_known_material_p95": tails["full_range_known_material"]["p95"],
+            "full_range_joint_p95": tails["full_range_joint"]["p95"],
         }
 
 
@@ -205,8 +248,8 @@ def render(result: FullRangeResult, report, figures, *, simulated: bool = True) 
     )
     report.table(
         ["estimator", "range", "MAE (95 % CI over the test positions)",
-         f"MAE beyond {r.region:g} L (cm)",
-         "95th percentile (cm)"],
+         f"MAE beyond {r.region:g} L (95 % CI over the test positions there)",
+         "95th percentile (cm, 95 % CI: bootstrap over the test positions)"],
         _error_rows(r),
     )
     report.paragraph(
@@ -325,36 +368,16 @@ def _known_material_verdict(gain: dict, simulated: bool = True) -> str:
 
 def _error_rows(r: FullRangeResult) -> list[list[str]]:
     """One row per estimator: its MAE over the whole probe, beyond the first mode's region
-    (``-`` if no test contact lies there) and its 95th percentile, in cm."""
-    beyond = r.beyond
-    beyond1 = r.contact_one > r.region * r.length
+    (``-`` if no test contact lies there) and its 95th percentile, in cm, each with its interval
+    on the test position (:attr:`FullRangeResult.tails`)."""
+    tails = r.tails
     return [
         [
-            "first mode only",
+            name,
             "whole probe",
-            format_mae(mae_entry(r.error_one_cm, r.contact_one)),
-            f"{r.error_one_cm[beyond1].mean():.2f}",
-            f"{np.percentile(r.error_one_cm, 95):.2f}",
-        ],
-        [
-            "two modes",
-            "whole probe",
-            format_mae(mae_entry(r.error_two_cm, r.contact_two)),
-            f"{r.error_two_cm[beyond].mean():.2f}" if np.any(beyond) else "-",
-            f"{np.percentile(r.error_two_cm, 95):.2f}",
-        ],
-        [
-            "two modes, calibrated per material (material known)",
-            "whole probe",
-            format_mae(mae_entry(r.error_known_material_cm, r.contact_two)),
-            f"{r.error_known_material_cm[beyond].mean():.2f}" if np.any(beyond) else "-",
-            f"{np.percentile(r.error_known_material_cm, 95):.2f}",
-        ],
-        [
-            "two modes, material fitted with the distance",
-            "whole probe",
-            format_mae(mae_entry(r.error_joint_cm, r.contact_two)),
-            f"{r.error_joint_cm[beyond].mean():.2f}" if np.any(beyond) else "-",
-            f"{np.percentile(r.error_joint_cm, 95):.2f}",
-        ],
+            format_mae(mae_entry(errors, contact)),
+            "-" if tails[key]["beyond"] is None else format_mae(tails[key]["beyond"]),
+            format_error(tails[key]["p95"], "p95"),
+        ]
+        for key, name, errors, contact in r.estimators
     ]

@@ -10,7 +10,7 @@ import numpy as np
 from .._validate import check_bool
 from ..paper import experiments, printed
 from ..paper.protocol import DISTANCE_LINEAR_REGION
-from ..paper.splits import SPLITS, split_folds, split_rows
+from ..paper.splits import FOLDS, SPLITS, split_folds, split_rows
 from ..paper.uncertainty import (
     UNITS,
     ClusteredAccuracy,
@@ -25,7 +25,9 @@ from ._common import (
     check_render,
     check_step,
     classifier_call,
+    error_entry,
     fits_in_parallel,
+    format_error,
     format_mae,
     listed,
     mae_entry,
@@ -71,6 +73,12 @@ class MaterialSplitsResult:
         The paper's distance network (gradient descent) trained with whole positions held out,
         over every fold of the grouped split (``_region_folds``), beside its random
         split.
+    design : dict or None
+        What the data set's design makes of a random split, read from the data set
+        (``_design_facts``): ``repetitions`` (the fewest and the most recordings of one
+        material at one contact position), ``spacing_m`` (the smallest distance between two
+        distinct contact positions) and ``copies_in_training`` (the share of the random split's
+        test recordings whose material and position have a recording in its training set).
     """
 
     svm: dict
@@ -82,6 +90,7 @@ class MaterialSplitsResult:
     measured: dict = None
     paired: dict = None
     distance_held_out: object = None
+    design: dict | None = None
 
     @property
     def distance_ranking(self) -> tuple[str, dict]:
@@ -134,10 +143,15 @@ class MaterialSplitsResult:
             "linear_region_smallest_error_trainer": smallest,
             "linear_region_against_smallest": against,
             "linear_region_random_split": _distance_entry(self.distance["gd"]),
+            # the table's RMS column, with its interval on the test position (a bootstrap)
+            "linear_region_rms_by_trainer": {k: error_entry(r.errors_cm, r.distance_test, "rms")
+                                             for k, r in self.distance.items()},
         }
         if self.distance_held_out is not None:
             distance["linear_region_positions_held_out"] = _distance_entry(
                 self.distance_held_out)
+        if self.design is not None:
+            materials["random_split_design"] = dict(self.design)
         return {"materials": materials, "distance": distance}
 
 
@@ -145,6 +159,33 @@ def _distance_entry(r) -> dict:
     """A distance network's mean absolute error (cm) with its interval over the test
     positions (``mae_entry``)."""
     return mae_entry(r.errors_cm, r.distance_test)
+
+
+def _design_facts(materials, positions, test_rows) -> dict:
+    """What a random split of a data set's design holds, read from its rows: ``repetitions``
+    (``[fewest, most]`` recordings of one material at one contact position), ``spacing_m`` (the
+    smallest step between two distinct contact positions, m; None with one position) and
+    ``copies_in_training`` (the share of the test rows ``test_rows`` whose material and
+    position have a recording among the other rows, the training set).
+
+    Examples
+    --------
+    >>> facts = _design_facts(["a", "a", "a", "b", "b", "b"], [0.1, 0.1, 0.2, 0.1, 0.2, 0.2],
+    ...                      [2, 3])
+    >>> facts["repetitions"], facts["spacing_m"], facts["copies_in_training"]
+    ([1, 2], 0.1, 0.0)
+    """
+    materials, positions = np.asarray(materials), np.asarray(positions, dtype=float)
+    groups = np.unique(np.stack([materials.astype(str), positions.astype(str)]), axis=1,
+                       return_inverse=True)[1].ravel()
+    counts = np.bincount(groups)
+    grid = np.unique(positions)
+    test = np.zeros(groups.size, dtype=bool)
+    test[np.asarray(test_rows, dtype=int)] = True
+    in_training = np.isin(groups[test], groups[~test])
+    return {"repetitions": [int(counts.min()), int(counts.max())],
+            "spacing_m": float(np.diff(grid).min()) if grid.size > 1 else None,
+            "copies_in_training": float(in_training.mean()) if in_training.size else None}
 
 
 #: The paper SVM's test accuracy on each split, by its key in ``summary.json``.
@@ -242,7 +283,7 @@ def compute(ds, feats, seed: int, *, random_svm, paper_ann, paper_distance,
     return MaterialSplitsResult(
         {k: first["svm", k] for k in SPLITS}, {k: first["position_aware", k] for k in SPLITS},
         {k: first["mode_curves", k] for k in SPLITS}, held, ann, distance, measured, paired,
-        held_out)
+        held_out, _design_facts(y, positions, random_svm.rows()))
 
 
 def _region_folds(folds, positions, probe_length: float) -> list:
@@ -288,15 +329,13 @@ def _render_splits(r: MaterialSplitsResult, report) -> None:
     """Why a random split can flatter, and the classifiers on the three splits."""
     report.heading("Random recordings against held-out positions")
     report.paragraph(
-        "The paper's 80/20 split draws recordings at random. Its recordings come 25 at a time "
-        "from one nominal contact position, and neighbouring positions are 5 mm apart, so "
-        "nearly every test recording has a near copy of itself (same position, another "
-        "repetition) or a close neighbour in the training set. A classifier can then score by "
-        "recognising the position and its recordings instead of the material, and look better "
-        "on such a split than it will at a contact it has never seen. Holding out "
-        "whole positions, interleaved (every 5th position, so the classifier interpolates "
-        "between neighbours it has seen) or as one contiguous range (it must bridge a stretch "
-        "of the probe it never saw), measures what the rig needs."
+        "The paper's 80/20 split draws recordings at random. " + _copies_text(r.design)
+        + " A classifier can then score by recognising the position and its recordings instead "
+        "of the material, and look better on such a split than it will at a contact it has "
+        "never seen. Holding out whole positions, interleaved (one position in "
+        f"{FOLDS}, so the classifier interpolates between neighbours it has seen) or as one "
+        "contiguous range (it must bridge a stretch of the probe it never saw), measures what "
+        "the rig needs."
     )
     rows = []
     for kind in SPLITS:
@@ -319,6 +358,54 @@ def _render_splits(r: MaterialSplitsResult, report) -> None:
     report.preformatted(
         experiments.format_confusion(grouped.confusions["test"], grouped.labels)
     )
+
+
+def _copies_text(design: dict | None) -> str:
+    """How the data set's recordings come and what a random split therefore leaves in its
+    training set, read from ``_design_facts``.
+
+    Examples
+    --------
+    >>> text = _copies_text({"repetitions": [3, 3], "spacing_m": 0.05,
+    ...                      "copies_in_training": 0.9})
+    >>> text.split(", and ")[0]
+    'Here its recordings come 3 at a time from one material at one nominal contact position'
+    >>> text.split(", and ")[1].split(":")[0]
+    'neighbouring positions are 5 cm apart'
+    >>> text.split(": ")[1][:6]
+    '90.0 %'
+    >>> "no other repetition" in _copies_text({"repetitions": [1, 1], "spacing_m": 0.005,
+    ...                                        "copies_in_training": 0.0})
+    True
+    """
+    if design is None:
+        return ("Where a data set holds several recordings of one material at one contact "
+                "position, a test recording can have a near copy of itself in the training set.")
+    few, most = design["repetitions"]
+    count = f"{few}" if few == most else f"{few} to {most}"
+    step = design["spacing_m"]
+    apart = ("" if step is None else
+             f", and neighbouring positions are {_length_text(step)} apart")
+    text = (f"Here its recordings come {count} at a time from one material at one nominal "
+            f"contact position{apart}")
+    share = design["copies_in_training"]
+    if most < 2:
+        return text + (": a test recording has no other repetition of its own position to "
+                       "find in the training set, only its neighbours.")
+    return text + (f": {percent(share)} of the random split's test recordings have a "
+                   "recording of their own material and position (another repetition, a near "
+                   "copy) in its training set.")
+
+
+def _length_text(metres: float) -> str:
+    """A distance in mm below 1 cm, else in cm.
+
+    Examples
+    --------
+    >>> _length_text(0.005), _length_text(0.05)
+    ('5 mm', '5 cm')
+    """
+    return f"{1e3 * metres:.3g} mm" if metres < 0.01 else f"{1e2 * metres:.3g} cm"
 
 
 def _flattery(r: MaterialSplitsResult) -> str:
@@ -439,13 +526,15 @@ def _render_mode_curves(r: MaterialSplitsResult, report, figures, simulated: boo
         "repetitions) and places each test recording's two peaks on every material's curves "
         "at once: the material whose curves pass closest, at the distance where they do, is the "
         "answer. Two numbers per recording instead of the spectrum's 256, and nothing learnt "
-        "but the curves. " + _curves(r)
+        "but the curves. " + _curves(r, simulated)
     )
     report.figure(
         name,
         "Each material's calibration curves (median over repetitions): the two strongest peaks "
-        "against the contact distance. Where another coupled mode, one the rod brings, becomes "
-        "one of the two strongest, a curve jumps to that mode's branch.",
+        "against the contact distance. Where another mode becomes one of the two strongest ("
+        + ("in the simulator, a coupled mode the rod brings" if simulated else
+           "a mode of the probe or of what it touches")
+        + "), a curve jumps to that mode's branch.",
     )
 
 
@@ -475,14 +564,14 @@ def _render_trainers(r: MaterialSplitsResult, report) -> None:
     smallest, against = r.distance_ranking
     report.table(
         ["distance network", "trainer", "MAE (cm)", "against the smallest (cm, paired)",
-         "RMS (cm)", "fit time (s)"],
+         "RMS (cm, 95 % CI: bootstrap over the test positions)", "fit time (s)"],
         [
             [
                 "2 x 20 tanh, 0-80 % of L",
                 k,
                 format_mae(_distance_entry(d)),
                 "smallest" if k == smallest else _paired_cm(against[k]),
-                f"{d.rmse_cm:.2f}",
+                format_error(error_entry(d.errors_cm, d.distance_test, "rms"), "rms"),
                 f"{d.fit_seconds:.1f}",
             ]
             for k, d in r.distance.items()
@@ -633,9 +722,31 @@ def _classes(r: MaterialSplitsResult) -> int:
     return 5
 
 
-def _curves(r: MaterialSplitsResult) -> str:
+def _curves(r: MaterialSplitsResult, simulated: bool = True) -> str:
     """What the mode curves do on the held-out positions, against the paper's SVM, paired on
-    the same folds."""
+    the same folds; what the curves read is named as the data set's source makes it
+    (``simulated``: the rod's effect on the probe's modes is the simulator's assumption).
+
+    Examples
+    --------
+    >>> from ebantenna.paper.uncertainty import FoldAccuracy, PairedDifference
+    >>> def folds(k):
+    ...     return FoldAccuracy([(np.arange(10) < k[i], np.full(10, i)) for i in range(5)],
+    ...                         "held-out block", by_fold=True)
+    >>> high, low = folds([6, 7, 6, 7, 6]), folds([2, 3, 2, 2, 3])
+    >>> up = PairedDifference([2, 3, 2, 2, 3], [6, 7, 6, 7, 6], [10] * 5, "held-out block")
+    >>> r = MaterialSplitsResult({"blocked": None}, {}, {}, {}, {}, {},
+    ...     {("svm", "blocked"): low, ("mode_curves", "blocked"): high,
+    ...      ("mode_curves", "grouped"): high},
+    ...     {"blocked": {"mode_curves": up}, "grouped": {"mode_curves": up}})
+    >>> "carries over" in _curves(r), "by assumption" in _curves(r)
+    (True, True)
+    >>> "by assumption" in _curves(r, simulated=False)
+    False
+    >>> r.measured["mode_curves", "blocked"] = low
+    >>> "not shown to carry over" in _curves(r)
+    True
+    """
     words = []
     for kind in ("grouped", "blocked"):
         pair = r.paired[kind]["mode_curves"]
@@ -644,9 +755,12 @@ def _curves(r: MaterialSplitsResult) -> str:
     blocked = r.measured["mode_curves", "blocked"]
     carried = blocked.ci95[0] > 1 / _classes(r)
     if carried:
+        read = ("the two strongest peaks' frequencies against the distance, which the touched "
+                "rod moves in the simulator by assumption (the 'object_modes' effect)"
+                if simulated else "the two strongest peaks' frequencies against the distance")
         why = (
-            "Its interval on the blocked split lies above chance: what it reads, how the rod "
-            "moves the probe's modes, carries over to a stretch of the probe it never saw"
+            f"Its interval on the blocked split lies above chance: what it reads, {read}, "
+            "carries over to a stretch of the probe it never saw"
         )
         better = r.paired["blocked"]["mode_curves"].direction == "higher"
         svm_at_chance = not r.measured["svm", "blocked"].ci95[0] > 1 / _classes(r)
@@ -670,5 +784,5 @@ def _plot_mode_curves(model, figures) -> str:
         ax.set_xlabel("contact distance (cm)")
         ax.set_ylabel(f"{('lower', 'upper')[j]} of the two strongest peaks (Hz)")
     axes[0].legend(fontsize="small")
-    fig.suptitle("The touched rod moves the probe's modes, each material in its own way")
+    fig.suptitle("Each material's two strongest peaks against the contact distance")
     return figures.save(fig, "beyond_mode_curves")

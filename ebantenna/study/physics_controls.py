@@ -8,7 +8,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .._validate import check_bool
-from ..fem.coupling import Rod
+from ..fem.coupling import Rod, craig_bampton, rod_substructure
+from ..fem.modal import solve_modes
 from ..paper.controls import (
     ABLATION_DESIGN,
     SPLIT_SEEDS,
@@ -20,6 +21,7 @@ from ..paper.controls import (
     twin_seeds,
 )
 from ..paper.data import QUICK_DESIGN
+from ..paper.data import design as main_design
 from ..paper.feature_table import signal_features
 from ..paper.splits import distinct_split_seeds, grouped_split
 from ..paper.uncertainty import (
@@ -33,7 +35,8 @@ from ..paper.uncertainty import (
 )
 from ..probe import material
 from ..simulate import build_dataset
-from ._common import check_render, check_step, classifier_call, fits_in_parallel
+from ._common import check_render, check_step, classifier_call, fits_in_parallel, listed
+from .seed_spread import TRAINING_REPETITIONS
 
 __all__ = [
     "ControlsResult", "ENERGY_ABSORPTION", "PAIR_REFERENCES", "control_design", "compute",
@@ -129,6 +132,12 @@ class ControlsResult:
     loss_factors : (float, float, float) or None
         The design materials' smallest and largest loss factor (:func:`ebantenna.probe.material`)
         and the probe's: what the damping verdict assumes.
+    contact_compliance : dict or None
+        Per design material, the rod's compliance at the two contact heights the mid-height
+        control compares (``_contact_compliance``); None without ``object_modes``.
+    repetitions : (int, int) or None
+        Repetitions of each material at each position in the controls' design and in the main
+        data set's (:func:`ebantenna.paper.data.design`).
     """
 
     ablation: Ablation
@@ -151,6 +160,8 @@ class ControlsResult:
     paired: dict | None = None
     law_spreads: dict | None = None
     loss_factors: tuple | None = None
+    contact_compliance: dict | None = None
+    repetitions: tuple | None = None
 
     @property
     def data_sets(self) -> int:
@@ -225,6 +236,7 @@ class ControlsResult:
         for name, spread in grouped.items():
             out.update(clustered_entries(name, None if spread is None else spread.folds()))
         out["svm_grouped_seed_spread"] = {k: v.to_dict() for k, v in spreads.items()}
+        out["mid_height_contact_compliance"] = self.contact_compliance
         return out
 
 
@@ -258,6 +270,8 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ControlsRe
             "friction": _friction_spread(scene, ablation, design, seed, cache_dir, n_jobs),
         }
         mid, friction = (float(spreads[k].values[0]) for k in ("mid_height", "friction"))
+        compliance = {m: _contact_compliance(scene.effect("object_modes"), m)
+                      for m in design.materials}
         without = ablation.spreads.get("coulomb_friction", base)
         paired.update(
             mid_height=base.paired_with(spreads["mid_height"]),
@@ -267,12 +281,43 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ControlsRe
                 laws["mode_curves", "unilateral"]),
         )  # fmt: skip
     else:
-        spreads = None
+        spreads = compliance = None
     return ControlsResult(
         ablation, accuracy, note, pair_curves, n, 1 / len(design.materials), n_test, lift_off,
         unilateral, restrikes, mid, curves, linear_accuracy, pushes, friction, pairs, spreads,
-        paired, laws, _assumed_loss(scene, design),
+        paired, laws, _assumed_loss(scene, design), compliance,
+        (design.repetitions, main_design(quick).repetitions),
     )  # fmt: skip
+
+
+def _contact_compliance(effect, material_name: str) -> dict:
+    """How far the rod of ``effect`` (an :class:`~ebantenna.simulate.effects.ObjectModes`) in
+    ``material_name`` gives under the contact at its free end (``"free_end"``) and halfway up
+    (``"mid_height"``), read from the rod's own beam model (its Euler-Bernoulli elements,
+    ``effect.rod_elements`` of them, clamped at the foot).
+
+    Each height gives ``height_m``; ``static_m_per_n``, the deflection there per newton there
+    (the inverse of the condensed stiffness at the contact,
+    :func:`~ebantenna.fem.coupling.craig_bampton` with no mode kept; ``h^3 / (3 EI)`` for the
+    uniform rod); and ``first_mode_m_per_n``, the first bending mode's share of it, its modal
+    compliance ``phi_1(h)^2 / omega_1^2`` (``phi_1`` mass-normalised).
+
+    Examples
+    --------
+    >>> from ebantenna.simulate.effects import ObjectModes
+    >>> c = _contact_compliance(ObjectModes(), "steel")
+    >>> round(c["free_end"]["static_m_per_n"] / c["mid_height"]["static_m_per_n"], 6)  # 2^3
+    8.0
+    """
+    out = {}
+    for where, height in (("free_end", effect.free_length), ("mid_height", effect.free_length / 2)):
+        rod = Rod(material_name, effect.diameter, effect.free_length, height)
+        sub = rod_substructure(rod, n_elements=effect.rod_elements)
+        static = 1.0 / float(craig_bampton(sub, 0).stiffness[-1, -1])
+        lam, phi = solve_modes(sub.stiffness, sub.mass, 1, shift=sub.scale)
+        out[where] = {"height_m": float(height), "static_m_per_n": static,
+                      "first_mode_m_per_n": float(phi[sub.interface, 0] ** 2 / lam[0])}
+    return out
 
 
 def _assumed_loss(scene, design) -> tuple[float, float, float]:
@@ -473,12 +518,32 @@ def _baseline_relation(r: ControlsResult) -> str:
     """Why the ablation's baseline is not the main study's grouped accuracy."""
     return (
         f"The baseline here ({percent(r.ablation.spreads['none'].folds().estimate)}) is "
-        f"measured on the reduced design, {r.recordings} recordings, not on the main data set: "
-        "every position carries fewer repetitions. Whether that accounts for the difference is "
+        f"measured on the reduced design, {r.recordings} recordings, not on the main data set"
+        + _repetitions_text(r.repetitions) + " Whether that accounts for the difference is "
         "measured in the section 'How much the numbers carry': the main data set's grouped "
-        "accuracy with its first 1, 3 and 5 repetitions only. The "
+        f"accuracy with its first {listed(str(n) for n in TRAINING_REPETITIONS)} repetitions "
+        "only. The "
         "ablation compares rows with one another on one design, which this does not change."
     )
+
+
+def _repetitions_text(repetitions) -> str:
+    """The controls' repetitions per position against the main data set's, as a clause.
+
+    Examples
+    --------
+    >>> _repetitions_text((3, 25))
+    ': every position carries 3 repetitions of each material, against 25 there.'
+    >>> _repetitions_text((25, 25))
+    ': every position carries as many repetitions of each material (25).'
+    """
+    if repetitions is None:
+        return "."
+    few, main = repetitions
+    if few == main:
+        return f": every position carries as many repetitions of each material ({few})."
+    return (f": every position carries {few} repetition{'s' if few != 1 else ''} of each "
+            f"material, against {main} there.")
 
 
 def _render_equivalent_pair(r: ControlsResult, report) -> None:
@@ -538,7 +603,7 @@ def _render_mid_height(r: ControlsResult, report) -> None:
     report.heading("Where the rod is touched: an assumption moved")
     report.paragraph(
         "The paper does not say where on the rods the probe touched; the scene assumes their "
-        "free end, the softest point, where the rod's modes move the contact most. Touched "
+        "free end. " + _height_text(r.contact_compliance) + " Touched "
         "halfway up instead, the same SVM on whole held-out positions (all folds) reaches "
         f"{format_clustered(r.spreads['mid_height'].folds())} against "
         f"{format_clustered(r.ablation.spreads['none'].folds())} at the free end (chance "
@@ -547,6 +612,50 @@ def _render_mid_height(r: ControlsResult, report) -> None:
         + ". The accuracies of this report hold for the assumed rod and contact, not for "
         "every rod."
     )
+
+
+def _height_text(compliance: dict | None) -> str:
+    """What the assumed contact height is for the rod, read from its model's compliance at the
+    two heights (``_contact_compliance``, per material): the static one and the first
+    mode's share.
+
+    Examples
+    --------
+    >>> end = {"height_m": 0.25, "static_m_per_n": 8e-5, "first_mode_m_per_n": 6e-5}
+    >>> mid = {"height_m": 0.125, "static_m_per_n": 1e-5, "first_mode_m_per_n": 7e-6}
+    >>> _height_text({"steel": {"free_end": end, "mid_height": mid}}).split(":")[0]
+    'In the rod model the free end is the softer of the two contact points'
+    >>> _height_text({"steel": {"free_end": mid, "mid_height": end}}).split(":")[0]
+    'In the rod model halfway up is the softer of the two contact points'
+    """
+    if not compliance:
+        return ""
+    static = [c["free_end"]["static_m_per_n"] / c["mid_height"]["static_m_per_n"]
+              for c in compliance.values()]
+    modal = [c["free_end"]["first_mode_m_per_n"] / c["mid_height"]["first_mode_m_per_n"]
+             for c in compliance.values()]
+
+    def ratio(values):
+        lo, hi = min(values), max(values)
+        return f"{lo:.3g}" if f"{lo:.3g}" == f"{hi:.3g}" else f"{lo:.3g} to {hi:.3g}"
+
+    def where(values):
+        """Which contact point the ratios (free end over halfway up) favour, for every
+        material; None where they do not agree."""
+        return "the free end" if min(values) > 1 else "halfway up" if max(values) < 1 else None
+
+    softer, moved = where(static), where(modal)
+    if softer is None:
+        said = ("In the rod model neither contact point is the softer for every material: the "
+                "rod's static compliance at the free end is")
+    else:
+        said = (f"In the rod model {softer} is the softer of the two contact points: the rod's "
+                "static compliance at the free end is")
+    said += (f" {ratio(static)} times that halfway up, and its first bending mode's modal "
+             f"compliance {ratio(modal)} times, so ")
+    said += (f"its first mode moves the contact more at {moved}" if moved else
+             "its first mode does not move the contact more at one point for every material")
+    return said + " (every material of the design; the clamped rod is the scene's assumption)."
 
 
 def _change_words(pair, *, subject: str = "the change") -> str:

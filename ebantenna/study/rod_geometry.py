@@ -185,13 +185,15 @@ def render(result: GeometryResult | None, report, figures) -> None:
     report.heading("How much the accuracies owe to the assumed rod")
     report.paragraph(
         "The paper gives no dimensions of the touched objects; the scene assumes a rod, and "
-        "the probe feels that rod's stiffness and mass through its coupled modes. Below, the "
+        "in the simulator the probe feels that rod's stiffness and mass through its coupled "
+        "modes (the 'object_modes' effect, an assumption). Below, the "
         "rod's diameter and free length varied one at a time, each on the controls' reduced "
         f"design ({result.recordings} recordings, the same rows for every rod): the paper's "
         "SVM and the mode-curve classifier on whole held-out positions over all folds, the "
         "SVM paired against the scene's rod on the same rows, and the two materials whose "
-        "rods put the probe's second coupled mode closest together (median over ten contact "
-        "positions)."
+        "rods put the probe's second coupled mode closest together (median over "
+        f"{GAP_POSITIONS.size} contact positions, {GAP_POSITIONS[0]:g} L to "
+        f"{GAP_POSITIONS[-1]:g} L)."
     )
     report.table(
         ["diameter (mm)", "free length (mm)", "grouped SVM, all folds",

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..chips.mpu6050 import STANDARD_GRAVITY
 from ..paper import printed
 from ..paper.protocol import DECAY_REGION
 from ..signal import filter_time_constant, paper_filter
@@ -33,6 +34,9 @@ class FrequencyResult:
         Contact where the median dominant frequency peaks, m.
     spread_rises_at : float
         First contact whose spread exceeds three times the median spread of the first half, m.
+    z_static : float or None
+        The static acceleration the Z axis reads, m/s^2: the median over the recordings of
+        each recording's mean ``az`` (gravity, where Z points up); None when not measured.
     """
 
     length: float
@@ -41,12 +45,14 @@ class FrequencyResult:
     spread: np.ndarray
     peak: float
     spread_rises_at: float
+    z_static: float | None = None
 
     def to_dict(self) -> dict:
         """The summary numbers, in cm."""
         return {
             "dominant_frequency_peak_cm": 100 * self.peak,
             "spread_rises_at_cm": 100 * self.spread_rises_at,
+            "z_axis_static_m_s2": self.z_static,
         }
 
 
@@ -61,8 +67,9 @@ def compute_frequency(ds, feats, materials) -> FrequencyResult:
     grid, med, spread = per_contact(feats.dominant, ds.contact)
     peak = float(grid[np.nanargmax(med)])
     first = int(np.argmax(spread > 3 * np.nanmedian(spread[: max(3, grid.size // 2)])))
+    z_static = float(np.median(np.mean(ds.az, axis=1)))
     return FrequencyResult(probe_length(ds), tuple(per_material), grid, spread, peak,
-                           float(grid[first]))
+                           float(grid[first]), z_static)
 
 
 def render_frequency(result: FrequencyResult, report, figures) -> None:
@@ -88,10 +95,7 @@ def render_frequency(result: FrequencyResult, report, figures) -> None:
     report.paragraph(
         "Dominant frequency of the sweep-plane (X) acceleration of every recording, median over "
         "repetitions per material, and its standard deviation over all recordings at a contact. "
-        "The resultant of eq. 1 is not used here: the Z axis carries gravity, and for a "
-        "vibration small against it the resultant is about 1 g + a_z + (a_x^2 + a_y^2) / (2 g), "
-        "so its spectrum carries the Z axis's vibration and the sweep-plane vibration squared "
-        "(at sums and differences of its frequencies), not the sweep-plane vibration itself."
+        + _resultant_text(result.z_static)
     )
     report.table(
         ["quantity", "paper", "this reproduction"],
@@ -112,6 +116,38 @@ def render_frequency(result: FrequencyResult, report, figures) -> None:
         ],
     )
     report.figure(name, "Dominant frequency per material (log scale) and its spread")
+
+
+def _resultant_text(z_static: float | None) -> str:
+    """Why the resultant of eq. 1 is not used, from the static acceleration the data's Z axis
+    reads (``z_static``, m/s^2; :attr:`FrequencyResult.z_static`): gravity where Z points up, as
+    the simulator's ``gravity`` effect puts it and as the rig's mounting is meant to.
+
+    Examples
+    --------
+    >>> _resultant_text(9.79).split(";")[0]
+    'The resultant of eq. 1 is not used here: the Z axis carries a static 9.79 m/s^2 (1.00 g'
+    >>> "no static acceleration of the order of gravity" in _resultant_text(0.02)
+    True
+    """
+    if z_static is None:
+        return ("The resultant of eq. 1 is not used here: it mixes the axes, and its spectrum "
+                "carries the vibration squared (at sums and differences of its frequencies), not "
+                "the sweep-plane vibration itself.")
+    g = abs(z_static)
+    if g > STANDARD_GRAVITY / 2:
+        return (f"The resultant of eq. 1 is not used here: the Z axis carries a static "
+                f"{z_static:.2f} m/s^2 ({g / STANDARD_GRAVITY:.2f} g; the median over the "
+                "recordings of each one's mean), gravity, as the probe is mounted, and for a "
+                "vibration small against it the resultant is about "
+                "g + a_z + (a_x^2 + a_y^2) / (2 g), so its spectrum carries the Z axis's "
+                "vibration and the sweep-plane vibration squared (at sums and differences of "
+                "its frequencies), not the sweep-plane vibration itself.")
+    return (f"The resultant of eq. 1 is not used here. The Z axis carries no static acceleration "
+            f"of the order of gravity in these recordings ({z_static:.2f} m/s^2; the median "
+            "over the recordings of each one's mean), so the resultant is about "
+            "sqrt(a_x^2 + a_y^2 + a_z^2): its spectrum carries the vibration squared (at sums "
+            "and differences of its frequencies), not the sweep-plane vibration itself.")
 
 
 @dataclass(frozen=True, eq=False)

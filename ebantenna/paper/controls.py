@@ -34,7 +34,7 @@ from ..simulate import DatasetDesign, Scene, build_datasets
 from ..simulate import build_dataset as _build
 from .data import PAPER_DESIGN
 from .experiments import classify_materials_svm
-from .feature_table import signal_features
+from .feature_table import mode_peaks
 from .mode_curves import classify_materials_by_mode_curves
 from .splits import distinct_split_seeds, grouped_split
 from .uncertainty import seed_spread
@@ -581,10 +581,10 @@ def equivalent_pair_spread(
         measure = dict(zip(seeds, _fold_fits([(X, y, contact, s) for s in seeds], n_jobs),
                            strict=True)).__getitem__
     else:
-        feats = signal_features(ax, az, parts[0].fs, n_jobs=n_jobs, show_progress=False)
+        dominant, peaks = mode_peaks(ax, parts[0].fs, n_jobs=n_jobs, show_progress=False)
 
         def measure(split_seed):
-            result = classify_materials_by_mode_curves(feats.peaks, feats.dominant, y, contact,
+            result = classify_materials_by_mode_curves(peaks, dominant, y, contact,
                                                        grouped_split(contact, seed=split_seed))
             return (result.accuracies["test"], result.counts["test"], result.rows(),
                     result.correct())

@@ -31,7 +31,7 @@ from ..signal import (
 )
 from ..signal.spectral import peak_frequencies
 
-__all__ = ["SignalFeatures", "signal_features"]
+__all__ = ["SignalFeatures", "signal_features", "mode_peaks"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -64,16 +64,11 @@ class SignalFeatures:
     fft_elliptic: np.ndarray
 
 
-def _chunk(ax, az, fs, cheb, ellip):
-    # Filters run on the whole chunk at once (row by row inside SciPy); the fits go one by one.
-    banded = apply_filter(cheb, resultant_acceleration(ax, az))
-    fx, fz = apply_filter(ellip, ax), apply_filter(ellip, az)
+def _peaks_chunk(ax, fs):
+    """The dominant frequency and the two strongest peaks of each row of ``ax``."""
     n = ax.shape[0]
     dominant = np.empty(n)
     peaks = np.full((n, 2), np.nan)
-    tau = np.full(n, np.nan)
-    gain = np.full(n, np.nan)
-    ok = np.zeros(n, dtype=bool)
     # The paper's spectrum is that of the whole record: the band starts one bin above DC, which
     # also keeps the spectral functions from analysing a short transient on its own span.
     band = {"fmin": fs / ax.shape[1]}
@@ -83,9 +78,67 @@ def _chunk(ax, az, fs, cheb, ellip):
             peaks[i] = peak_frequencies(ax[i], fs, 2, **band)
         except ValueError:
             pass  # fewer than two separated peaks: stays NaN and is counted by the caller
+    return dominant, peaks
+
+
+def _chunk(ax, az, fs, cheb, ellip):
+    # Filters run on the whole chunk at once (row by row inside SciPy); the fits go one by one.
+    banded = apply_filter(cheb, resultant_acceleration(ax, az))
+    fx, fz = apply_filter(ellip, ax), apply_filter(ellip, az)
+    dominant, peaks = _peaks_chunk(ax, fs)
+    n = ax.shape[0]
+    tau = np.full(n, np.nan)
+    gain = np.full(n, np.nan)
+    ok = np.zeros(n, dtype=bool)
+    for i in range(n):
         fit = fit_decay(banded[i], fs)
         tau[i], gain[i], ok[i] = fit.tau, fit.a, fit.ok
     return dominant, peaks, tau, gain, ok, fx, fz
+
+
+def _checked(ax, az, fs, chunk, n_jobs):
+    """The arguments of :func:`signal_features` and :func:`mode_peaks` checked."""
+    ax = np.asarray(ax, dtype=float)
+    az = ax if az is None else np.asarray(az, dtype=float)
+    if ax.ndim != 2 or ax.shape != az.shape:
+        raise ValueError(f"ax and az must be 2-D of one shape, got {ax.shape} and {az.shape}")
+    return (ax, az, check_positive("fs", fs), check_int("chunk", chunk, minimum=1),
+            check_n_jobs("n_jobs", n_jobs))
+
+
+def _in_chunks(function, rows: int, chunk: int, n_jobs, show_progress, *arrays, args=()):
+    """``function(*(a[s:s + chunk] for a in arrays), *args)`` for every chunk of ``rows`` on
+    joblib's workers, its outputs concatenated."""
+    starts = range(0, rows, chunk)
+    tasks = (delayed(function)(*(a[s : s + chunk] for a in arrays), *args) for s in starts)
+    parts = progress(Parallel(n_jobs=n_jobs, return_as="generator")(tasks), total=len(starts),
+                     desc="features", enabled=show_progress)
+    return [np.concatenate(p) for p in zip(*list(parts), strict=True)]
+
+
+def mode_peaks(ax, fs, *, n_jobs=None, chunk: int = 250, show_progress=None):
+    """The dominant frequency and the two strongest peaks of every row of X, as
+    :func:`signal_features` gives them (bit for bit), without its decay fits and filtered
+    spectra: what the mode-curve classifier reads
+    (:func:`~ebantenna.paper.mode_curves.classify_materials_by_mode_curves`).
+
+    Parameters
+    ----------
+    ax : array of shape (n, n_samples)
+        Accelerations along X, m/s^2.
+    fs, n_jobs, chunk, show_progress
+        As in :func:`signal_features`.
+
+    Returns
+    -------
+    dominant : ndarray (n,)
+    peaks : ndarray (n, 2)
+        As :attr:`SignalFeatures.dominant` and :attr:`SignalFeatures.peaks`.
+    """
+    ax, _, fs, chunk, n_jobs = _checked(ax, None, fs, chunk, n_jobs)
+    dominant, peaks = _in_chunks(_peaks_chunk, ax.shape[0], chunk, n_jobs, show_progress, ax,
+                                 args=(fs,))
+    return dominant, peaks
 
 
 def signal_features(ax, az, fs, *, n_jobs=None, chunk: int = 250, show_progress=None):
@@ -109,28 +162,13 @@ def signal_features(ax, az, fs, *, n_jobs=None, chunk: int = 250, show_progress=
     -------
     SignalFeatures
     """
-    ax = np.asarray(ax, dtype=float)
-    az = np.asarray(az, dtype=float)
-    if ax.ndim != 2 or ax.shape != az.shape:
-        raise ValueError(f"ax and az must be 2-D of one shape, got {ax.shape} and {az.shape}")
-    fs = check_positive("fs", fs)
-    chunk = check_int("chunk", chunk, minimum=1)
-    n_jobs = check_n_jobs("n_jobs", n_jobs)
+    ax, az, fs, chunk, n_jobs = _checked(ax, az, fs, chunk, n_jobs)
     # Table 1 (before the decay fit) and Table 2 (before the full-length network), each at the
     # order its specification needs; see ebantenna.signal.filters.
     cheb = paper_filter("chebyshev", fs=fs)
     ellip = paper_filter("elliptic", fs=fs)
-    starts = range(0, ax.shape[0], chunk)
-    tasks = (delayed(_chunk)(ax[s : s + chunk], az[s : s + chunk], fs, cheb, ellip) for s in starts)
-    parts = list(
-        progress(
-            Parallel(n_jobs=n_jobs, return_as="generator")(tasks),
-            total=len(starts),
-            desc="features",
-            enabled=show_progress,
-        )
-    )
-    dominant, peaks, tau, gain, ok, fx, fz = (np.concatenate(p) for p in zip(*parts, strict=True))
+    dominant, peaks, tau, gain, ok, fx, fz = _in_chunks(
+        _chunk, ax.shape[0], chunk, n_jobs, show_progress, ax, az, args=(fs, cheb, ellip))
     return SignalFeatures(
         dominant=dominant,
         peaks=peaks,

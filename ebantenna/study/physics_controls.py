@@ -22,7 +22,7 @@ from ..paper.controls import (
 )
 from ..paper.data import QUICK_DESIGN
 from ..paper.data import design as main_design
-from ..paper.feature_table import signal_features
+from ..paper.feature_table import mode_peaks
 from ..paper.splits import distinct_split_seeds, grouped_split
 from ..paper.uncertainty import (
     UNITS,
@@ -778,11 +778,11 @@ def _survives(pair, above_chance: bool, chance: str) -> str:
 
 def mode_curve_spread(ds, seed: int, n_jobs: int):
     """The mode-curve classifier over the folds of the grouped split of data set ``ds``."""
-    feats = signal_features(ds.ax, ds.az, ds.fs, n_jobs=n_jobs, show_progress=False)
+    dominant, peaks = mode_peaks(ds.ax, ds.fs, n_jobs=n_jobs, show_progress=False)
     seeds = distinct_split_seeds("grouped", ds.material, ds.contact, seed=seed,
                                  count=SPLIT_SEEDS)
-    calls = [classifier_call("mode_curves", None, ds.material, ds.contact, feats.peaks,
-                             feats.dominant, grouped_split(ds.contact, seed=s)) for s in seeds]
+    calls = [classifier_call("mode_curves", None, ds.material, ds.contact, peaks, dominant,
+                             grouped_split(ds.contact, seed=s)) for s in seeds]
     fitted = dict(zip(seeds, fits_in_parallel(calls, n_jobs), strict=True))
 
     def measure(s):

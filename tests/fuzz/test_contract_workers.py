@@ -22,7 +22,7 @@ from contract_files_cases import Case, outcome  # noqa: E402
 from ebantenna import memory_budget, set_memory_budget  # noqa: E402
 from ebantenna._validate import check_n_jobs, more_jobs_allowed  # noqa: E402
 from ebantenna.paper.data import build_paper_dataset  # noqa: E402
-from ebantenna.paper.feature_table import signal_features  # noqa: E402
+from ebantenna.paper.feature_table import mode_peaks, signal_features  # noqa: E402
 from ebantenna.simulate import DatasetDesign, build_dataset, build_datasets, builtin_scene  # noqa
 from ebantenna.study.recorded.study import reproduce_recorded  # noqa: E402
 from ebantenna.study.reproduce import reproduce  # noqa: E402
@@ -47,6 +47,8 @@ def _surfaces(where):
             lambda n: build_paper_dataset(where / "d", quick=True, n_jobs=n, show_progress=False),
         "ebantenna.paper.feature_table.signal_features":
             lambda n: signal_features(AX, AX, 1000.0, n_jobs=n, show_progress=False),
+        "ebantenna.paper.feature_table.mode_peaks":
+            lambda n: mode_peaks(AX, 1000.0, n_jobs=n, show_progress=False),
         "ebantenna.study.reproduce.reproduce":
             lambda n: reproduce(where / "r", quick=True, n_jobs=n, cache_dir=where / "c",
                                 show_progress=False),

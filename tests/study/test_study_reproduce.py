@@ -8,7 +8,7 @@ import pytest
 
 from ebantenna._validate import more_jobs_allowed
 from ebantenna.cli import main
-from ebantenna.paper.feature_table import signal_features
+from ebantenna.paper.feature_table import mode_peaks, signal_features
 from ebantenna.report import Report
 from ebantenna.study.reproduce import STEPS
 
@@ -74,6 +74,34 @@ def test_features_do_not_depend_on_the_number_of_jobs():
         np.testing.assert_array_equal(getattr(one, name), getattr(two, name))
     np.testing.assert_allclose(one.dominant, f1[:, 0], atol=0.05)
     np.testing.assert_allclose(one.peaks[:, 1], 4.1 * f1[:, 0], rtol=2e-3)
+
+
+def test_mode_peaks_are_the_features_dominant_frequency_and_peaks_bit_for_bit():
+    # what the mode-curve classifier reads, without the decay fits: the same functions on the
+    # same rows, in other chunks and on other workers
+    rng = np.random.default_rng(4)
+    t = np.arange(800) / 1000.0
+    f1 = rng.uniform(15, 60, 9)[:, None]
+    ax = np.exp(-t / 0.2) * (np.sin(2 * np.pi * f1 * t) + 0.5 * np.sin(2 * np.pi * 3.7 * f1 * t))
+    az = 9.81 + 0.1 * ax
+    feats = signal_features(ax, az, 1000.0, n_jobs=1, chunk=4, show_progress=False)
+    with more_jobs_allowed():
+        dominant, peaks = mode_peaks(ax, 1000.0, n_jobs=2, chunk=3, show_progress=False)
+    np.testing.assert_array_equal(dominant, feats.dominant)
+    np.testing.assert_array_equal(peaks, feats.peaks)
+    # the second mode found: its interpolated peak within about a tenth of a bin (1.25 Hz) of
+    # 3.7 f1 >= 55 Hz
+    np.testing.assert_allclose(peaks[:, 1], 3.7 * f1[:, 0], rtol=3e-3)
+
+
+@pytest.mark.parametrize("ax, fs, message", [
+    (np.zeros(10), 1000.0, "ax and az must be 2-D"),
+    (np.zeros((2, 10)), 0.0, "fs"),
+    (np.zeros((2, 10)), "1000", "fs"),
+])
+def test_mode_peaks_refuse_what_they_cannot_read(ax, fs, message):
+    with pytest.raises((ValueError, TypeError), match=message):
+        mode_peaks(ax, fs, n_jobs=1)
 
 
 def test_report_renders_the_same_blocks_twice():

@@ -369,9 +369,13 @@ class SimulatedRig:
         rate = self.mpu.true_rate() * rec.fs / fs
         j = np.rint((times - self.contact_sample_time) * rate).astype(np.int64)
         play = after & (j >= 0) & (j < rec.n_samples)
-        own = acc[play] - rest  # this draw's noise, for a device that adds its own
-        acc[play, 0] = rec.ax[j[play]]  # Y keeps its rest reading and noise, as a live axis
-        acc[play, 2] = rec.az[j[play]]
+        if play.all():  # the usual case: every sample plays (the same values, without masks)
+            play = slice(None)
+        else:
+            j = j[play]
+        own = acc[play] - rest if own_noise else None  # this draw's noise, for a device that
+        acc[play, 0] = rec.ax[j]  # adds its own; Y keeps its rest reading and noise, as a
+        acc[play, 2] = rec.az[j]  # live axis
         if own_noise:
             acc[play, 0] += own[:, 0]
             acc[play, 2] += own[:, 2]

@@ -481,7 +481,12 @@ def _bus_bytes(bus, values) -> bytes:
     """``values``, returned by ``bus.read_i2c_block_data``, if they are bytes (ints in 0-255)."""
     if isinstance(values, bytes | bytearray):
         return bytes(values)
-    if isinstance(values, list | tuple) and all(
+    if type(values) is list and set(map(type, values)) <= {int}:  # smbus2's: checked in C
+        try:
+            return bytes(values)
+        except ValueError:  # an int outside 0-255: the error below
+            pass
+    elif isinstance(values, list | tuple) and all(
             not isinstance(v, bool) and isinstance(v, int | np.integer) and 0 <= v <= 255
             for v in values):
         return bytes(int(v) for v in values)

@@ -293,16 +293,18 @@ class SimulatedMPU6050:
             target = int(math.floor((now - self._since) * fs + 1e-9))
         if target <= self._produced:
             return
-        k = np.arange(self._produced, target)
-        if self.free_running_divider:
-            times = self.first_sample[-1] + k / fs
-        else:
-            times = self._since + (k + 1) / fs
+        n = target - self._produced
+        if self.free_running_divider:  # sample k at first + k / fs
+            times = self.first_sample[-1] + np.arange(self._produced, target) / fs
+        else:  # sample k at since + (k + 1) / fs
+            times = self._since + np.arange(self._produced + 1, target + 1) / fs
         counts = self._counts(times)
         self.epochs[-1][1].append(counts.astype(np.int16))
-        self.epoch_scales[-1].append(np.full(k.size, self.lsb_per_g(), np.int32))
+        scale = np.empty(n, np.int32)
+        scale.fill(self.lsb_per_g())
+        self.epoch_scales[-1].append(scale)
         self.fifo += counts.tobytes()
-        self.samples_pushed += k.size
+        self.samples_pushed += n
         self._produced = target
         excess = len(self.fifo) - self.FIFO_SIZE
         if excess > 0:

@@ -358,7 +358,8 @@ class SimulatedRig:
         if contact is None or rec is None:
             return acc
         after = times >= contact - 1e-12
-        if not after.any():
+        played = after.tolist()  # a few samples a call: Python's any/all are the faster
+        if not any(played):
             return acc
         if self.contact_sample_time is None:
             self.contact_sample_time = float(times[after][0])
@@ -368,10 +369,11 @@ class SimulatedRig:
         # in real time, each sample held until the next.
         rate = self.mpu.true_rate() * rec.fs / fs
         j = np.rint((times - self.contact_sample_time) * rate).astype(np.int64)
-        play = after & (j >= 0) & (j < rec.n_samples)
-        if play.all():  # the usual case: every sample plays (the same values, without masks)
-            play = slice(None)
+        index = j.tolist()
+        if all(played) and min(index) >= 0 and max(index) < rec.n_samples:
+            play = slice(None)  # the usual case, every sample plays: the same, without masks
         else:
+            play = after & (j >= 0) & (j < rec.n_samples)
             j = j[play]
         own = acc[play] - rest if own_noise else None  # this draw's noise, for a device that
         acc[play, 0] = rec.ax[j]  # adds its own; Y keeps its rest reading and noise, as a

@@ -336,14 +336,17 @@ class I2CDevice:
 
     def _transfer(self, what: str, register: int, call, *, retryable=TRANSIENT_ERRNOS):
         self._check_alive(what, register)
-        delays = self.retry.delays()
+        delays = None  # the retry waits, worked out at the first transient error only
         first = self.clock.monotonic()
-        for attempt in range(len(delays) + 1):
+        attempt = 0
+        while True:
             try:
                 return self._attempt(call)
             except OSError as exc:
                 if exc.errno not in TRANSIENT_ERRNOS:
                     raise
+                if delays is None:
+                    delays = self.retry.delays()
                 late = self.clock.monotonic() - first + (
                     delays[attempt] if attempt < len(delays) else 0.0) > self.retry.deadline
                 if attempt == len(delays) or exc.errno not in retryable or late:
@@ -362,7 +365,7 @@ class I2CDevice:
                     1e3 * delays[attempt],
                 )
                 self.clock.sleep(delays[attempt])
-        raise AssertionError("unreachable")  # pragma: no cover
+                attempt += 1
 
     def read_byte(self, register: int, *, retry: bool = True) -> int:
         """Read one register; ``retry=False`` for a clear-on-read register (retried only when

@@ -345,8 +345,7 @@ class I2CDevice:
             except OSError as exc:
                 if exc.errno not in TRANSIENT_ERRNOS:
                     raise
-                if delays is None:
-                    delays = self.retry.delays()
+                delays = self.retry.delays() if delays is None else delays
                 late = self.clock.monotonic() - first + (
                     delays[attempt] if attempt < len(delays) else 0.0) > self.retry.deadline
                 if attempt == len(delays) or exc.errno not in retryable or late:
@@ -484,12 +483,10 @@ def _bus_bytes(bus, values) -> bytes:
     """``values``, returned by ``bus.read_i2c_block_data``, if they are bytes (ints in 0-255)."""
     if isinstance(values, bytes | bytearray):
         return bytes(values)
-    if type(values) is list and set(map(type, values)) <= {int}:  # smbus2's: checked in C
-        try:
-            return bytes(values)
-        except ValueError:  # an int outside 0-255: the error below
-            pass
-    elif isinstance(values, list | tuple) and all(
+    if type(values) is list and set(map(type, values)) <= {int} and (  # smbus2's: checked in C
+            0 <= min(values, default=0) and max(values, default=0) <= 255):
+        return bytes(values)
+    if isinstance(values, list | tuple) and all(
             not isinstance(v, bool) and isinstance(v, int | np.integer) and 0 <= v <= 255
             for v in values):
         return bytes(int(v) for v in values)

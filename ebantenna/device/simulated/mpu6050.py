@@ -64,13 +64,13 @@ _EMPTY_FIFO_BYTE = 0xFF
 _COUNT_LIMITS = np.iinfo(np.int16)
 #: The int16 range the counts saturate at, as floats (taken once: ``iinfo`` is slow to ask).
 _COUNT_MIN, _COUNT_MAX = float(_COUNT_LIMITS.min), float(_COUNT_LIMITS.max)
-#: ``ACCEL_CONFIG`` byte -> sensitivity, LSB/g (:meth:`SimulatedMPU6050.lsb_per_g`, for all 256
-#: bytes at once: the chip asks at every sample it produces).
-_LSB_PER_G = tuple(ACCEL_LSB_PER_G[AFS_SEL.get(value)] for value in range(256))
-
-
+#: The registers the chip reads at every sample block, as plain ints (an enum member is slower
+#: to look up).
 _CONFIG, _SMPLRT_DIV, _ACCEL_CONFIG = (int(Register.CONFIG), int(Register.SMPLRT_DIV),
                                       int(Register.ACCEL_CONFIG))
+#: ``ACCEL_CONFIG`` byte -> sensitivity, LSB/g (:meth:`SimulatedMPU6050.lsb_per_g`, for all 256
+#: bytes at once: the chip asks at every sample block it produces).
+_LSB_PER_G = tuple(ACCEL_LSB_PER_G[AFS_SEL.get(value)] for value in range(256))
 
 
 def _rate_set_by(config: int, smplrt_div: int, family_6500: bool) -> float:
@@ -192,8 +192,8 @@ class SimulatedMPU6050:
         self.fifo = bytearray()
         self.overflowed_bytes = 0
         self.samples_pushed = 0
-        #: :meth:`sample_rate` by (``CONFIG``, ``SMPLRT_DIV``, family): the chip asks at every
-        #: catch-up, and the registers change only when written.
+        #: :meth:`sample_rate` by (``CONFIG``, ``SMPLRT_DIV``, family): asked at every sample
+        #: block; keyed by the register bytes, it follows a register changed in any way.
         self._rates: dict[tuple, float] = {}
         self.reset()
 

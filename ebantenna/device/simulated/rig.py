@@ -375,9 +375,10 @@ class SimulatedRig:
         else:
             play = after & (j >= 0) & (j < rec.n_samples)
             j = j[play]
-        own = acc[play] - rest if own_noise else None  # this draw's noise, for a device that
-        acc[play, 0] = rec.ax[j]  # adds its own; Y keeps its rest reading and noise, as a
-        acc[play, 2] = rec.az[j]  # live axis
+        # this draw's noise, for a device that adds its own to the played vibration
+        own = acc[play] - rest if own_noise else None
+        acc[play, 0] = rec.ax[j]  # Y keeps its rest reading and noise, as a live axis
+        acc[play, 2] = rec.az[j]
         if own_noise:
             acc[play, 0] += own[:, 0]
             acc[play, 2] += own[:, 2]

@@ -336,14 +336,16 @@ class I2CDevice:
 
     def _transfer(self, what: str, register: int, call, *, retryable=TRANSIENT_ERRNOS):
         self._check_alive(what, register)
-        delays = self.retry.delays()
+        delays = None  # the retry waits, worked out at the first transient error only
         first = self.clock.monotonic()
-        for attempt in range(len(delays) + 1):
+        attempt = 0
+        while True:
             try:
                 return self._attempt(call)
             except OSError as exc:
                 if exc.errno not in TRANSIENT_ERRNOS:
                     raise
+                delays = self.retry.delays() if delays is None else delays
                 late = self.clock.monotonic() - first + (
                     delays[attempt] if attempt < len(delays) else 0.0) > self.retry.deadline
                 if attempt == len(delays) or exc.errno not in retryable or late:
@@ -362,7 +364,7 @@ class I2CDevice:
                     1e3 * delays[attempt],
                 )
                 self.clock.sleep(delays[attempt])
-        raise AssertionError("unreachable")  # pragma: no cover
+                attempt += 1
 
     def read_byte(self, register: int, *, retry: bool = True) -> int:
         """Read one register; ``retry=False`` for a clear-on-read register (retried only when
@@ -480,6 +482,9 @@ def _bus_byte(bus, value) -> int:
 def _bus_bytes(bus, values) -> bytes:
     """``values``, returned by ``bus.read_i2c_block_data``, if they are bytes (ints in 0-255)."""
     if isinstance(values, bytes | bytearray):
+        return bytes(values)
+    if type(values) is list and set(map(type, values)) <= {int} and (  # smbus2's: checked in C
+            0 <= min(values, default=0) and max(values, default=0) <= 255):
         return bytes(values)
     if isinstance(values, list | tuple) and all(
             not isinstance(v, bool) and isinstance(v, int | np.integer) and 0 <= v <= 255

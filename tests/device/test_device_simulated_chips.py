@@ -120,3 +120,70 @@ def test_pca9685_power_on_sub_addresses_and_the_prescale_floor():
     # DS 7.3.5: a PRE_SCALE below 3 (written while asleep) runs as 3
     pca.write(P.PRE_SCALE, [0])
     assert pca.frequency() == pca.oscillator_hz / (4096 * 4)
+
+
+@pytest.mark.parametrize("who_am_i", [mpu_map.WHO_AM_I_VALUE, 0x70])
+def test_mpu6050_rate_and_sensitivity_follow_every_register_value(who_am_i):
+    # The chip looks both up by register byte; the witness is RM 25 and 28 written out here:
+    # 8 kHz with the filter off (DLPF_CFG 0 or 7), else 1 kHz, divided by 1 + SMPLRT_DIV (on the
+    # MPU-6500 family the divider applies only when 0 < DLPF_CFG < 7); 16384 LSB/g halved per
+    # step of AFS_SEL. The registers are set behind the chip's back, as a fault sets them.
+    mpu = SimulatedMPU6050(lambda t, fs: np.ones((t.size, 3)), VirtualClock(), who_am_i=who_am_i)
+    family_6500 = who_am_i != mpu_map.WHO_AM_I_VALUE
+    for config in range(256):
+        dlpf = config & 0x07
+        for div in (0, 1, 7, 99, 255) if config > 8 else range(256):
+            mpu.regs[R.CONFIG], mpu.regs[R.SMPLRT_DIV] = config, div
+            gyro = 8000.0 if dlpf in (0, 7) else 1000.0
+            expected = gyro if family_6500 and dlpf in (0, 7) else gyro / (1 + div)
+            assert mpu.sample_rate() == expected, (config, div)
+    for value in range(256):
+        mpu.regs[R.ACCEL_CONFIG] = value
+        assert mpu.lsb_per_g() == 16384 >> ((value >> 3) & 0x03)
+
+
+def _played_as_masks(rig, times, fs, rng, own_noise=False):
+    """The vibration played through boolean masks, whatever the block: the reference the rig's
+    shortcut for a block that plays whole must equal, value for value."""
+    rec, rest = rig.vibration, rig.rest
+    acc = rest + rng.normal(0.0, rig.noise, (times.size, 3))
+    after = times >= rig.world.contact_time - 1e-12
+    if not after.any():
+        return acc
+    first = rig.contact_sample_time
+    first = float(times[after][0]) if first is None else first
+    j = np.rint((times - first) * rig.mpu.true_rate() * rec.fs / fs).astype(np.int64)
+    play = after & (j >= 0) & (j < rec.n_samples)
+    own = acc[play] - rest
+    acc[play, 0] = rec.ax[j[play]]
+    acc[play, 2] = rec.az[j[play]]
+    if own_noise:
+        acc[play, 0] += own[:, 0]
+        acc[play, 2] += own[:, 2]
+    return acc
+
+
+def test_the_rig_plays_its_vibration_as_the_masked_reference_does():
+    from ebantenna.device.simulated import SimulatedRig
+
+    fs, n = 1000.0, 50
+    ax, az = np.sin(np.arange(n) / 3.0), np.cos(np.arange(n) / 5.0)
+    rig = SimulatedRig.from_arrays(ax, az, fs=fs, obstacle=None, seed=4)
+    rig.mpu.write(R.PWR_MGMT_1, [0])
+    rig.mpu.write(R.CONFIG, [1])  # 1 kHz, the vibration's rate
+    rig.touch(at=0.0105)
+    blocks = [np.array([0.009, 0.010]),  # before the contact: noise only
+              0.0100 + np.arange(1, 4) / fs,  # the contact inside the block
+              np.array([0.020, 0.021, 0.022]),  # all played
+              np.array([0.030]),  # one sample
+              0.0575 + np.arange(6) / fs,  # the vibration ends inside the block
+              np.array([0.045, 0.025, 0.035]),  # not in order
+              np.array([0.080, 0.081])]  # after its end: noise only
+    for times in blocks:
+        for own_noise, rng in ((False, rig._rng), (True, np.random.default_rng(9))):
+            twin = np.random.default_rng()
+            twin.bit_generator.state = rng.bit_generator.state
+            expected = _played_as_masks(rig, times, fs, twin, own_noise)
+            got = rig._acceleration(times, fs, rng, own_noise=own_noise)
+            np.testing.assert_array_equal(got, expected)  # bit for bit: the same arithmetic
+            assert rng.bit_generator.state == twin.bit_generator.state  # the same draws

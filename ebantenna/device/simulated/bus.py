@@ -135,11 +135,16 @@ class SimulatedBus:
         """
         if self.closed:
             raise OSError(errno.EBADF, "the simulated bus is closed")
-        injector = self.injector
-        self.clock.advance(self.overhead + transfer_bits(nbytes) / self.bus_hz)
-        self.clock.advance(injector.host_stall(self.clock.monotonic()))
-        self.clock.advance(injector.preemption(self.clock.monotonic()))
-        now = self.clock.monotonic()
+        injector, clock = self.injector, self.clock
+        clock.advance(self.overhead + transfer_bits(nbytes) / self.bus_hz)
+        # a stall or a preemption of 0 s (most transfers) leaves the clock as it is: not added
+        stall = injector.host_stall(clock.monotonic())
+        if stall:
+            clock.advance(stall)
+        lost = injector.preemption(clock.monotonic())
+        if lost:
+            clock.advance(lost)
+        now = clock.monotonic()
         self.transfers += 1
         if injector.chip_reset(now) and self.reset_address in self.devices:
             self.devices[self.reset_address].brown_out()

@@ -62,6 +62,26 @@ REGISTER_SPACE = 128
 #: What a read of the empty FIFO returns in this model.
 _EMPTY_FIFO_BYTE = 0xFF
 _COUNT_LIMITS = np.iinfo(np.int16)
+#: The int16 range the counts saturate at, as floats (taken once: ``iinfo`` is slow to ask).
+_COUNT_MIN, _COUNT_MAX = float(_COUNT_LIMITS.min), float(_COUNT_LIMITS.max)
+#: The registers the chip reads at every sample block, as plain ints (an enum member is slower
+#: to look up).
+_CONFIG, _SMPLRT_DIV, _ACCEL_CONFIG = (int(Register.CONFIG), int(Register.SMPLRT_DIV),
+                                      int(Register.ACCEL_CONFIG))
+#: ``ACCEL_CONFIG`` byte -> sensitivity, LSB/g (:meth:`SimulatedMPU6050.lsb_per_g`, for all 256
+#: bytes at once: the chip asks at every sample block it produces).
+_LSB_PER_G = tuple(ACCEL_LSB_PER_G[AFS_SEL.get(value)] for value in range(256))
+
+
+def _rate_set_by(config: int, smplrt_div: int, family_6500: bool) -> float:
+    """Sample rate, Hz, that ``CONFIG`` and ``SMPLRT_DIV`` set (RM register 25; on the MPU-6500
+    family, ``family_6500``, the divider applies only when ``0 < DLPF_CFG < 7``)."""
+    dlpf_cfg = DLPF_CFG.get(config)
+    if family_6500:
+        if not 0 < dlpf_cfg < 7:
+            return GYRO_RATE_DLPF_OFF
+        return GYRO_RATE_DLPF_ON / (1 + smplrt_div)
+    return gyro_output_rate(dlpf_cfg) / (1 + smplrt_div)
 
 
 def _byte_list(data) -> list[int]:
@@ -172,6 +192,9 @@ class SimulatedMPU6050:
         self.fifo = bytearray()
         self.overflowed_bytes = 0
         self.samples_pushed = 0
+        #: :meth:`sample_rate` by (``CONFIG``, ``SMPLRT_DIV``, family): asked at every sample
+        #: block; keyed by the register bytes, it follows a register changed in any way.
+        self._rates: dict[tuple, float] = {}
         self.reset()
 
     def reset(self) -> None:
@@ -220,17 +243,16 @@ class SimulatedMPU6050:
     def sample_rate(self) -> float:
         """Sample rate set by CONFIG and SMPLRT_DIV, Hz (RM register 25; on the MPU-6500 family
         the divider applies only when ``0 < DLPF_CFG < 7``)."""
-        dlpf_cfg = DLPF_CFG.get(self.regs[Register.CONFIG])
-        if self.model.accel_config2:
-            if not 0 < dlpf_cfg < 7:
-                return GYRO_RATE_DLPF_OFF
-            return GYRO_RATE_DLPF_ON / (1 + self.regs[Register.SMPLRT_DIV])
-        gyro_rate = gyro_output_rate(dlpf_cfg)
-        return gyro_rate / (1 + self.regs[Register.SMPLRT_DIV])
+        regs = self.regs
+        key = (regs[_CONFIG], regs[_SMPLRT_DIV], self.model.accel_config2)
+        rate = self._rates.get(key)
+        if rate is None:
+            rate = self._rates[key] = _rate_set_by(*key)
+        return rate
 
     def lsb_per_g(self) -> int:
         """Sensitivity from ACCEL_CONFIG.AFS_SEL, LSB/g."""
-        return ACCEL_LSB_PER_G[AFS_SEL.get(self.regs[Register.ACCEL_CONFIG])]
+        return _LSB_PER_G[self.regs[_ACCEL_CONFIG]]
 
     def _producing(self) -> bool:
         regs = self.regs
@@ -241,7 +263,9 @@ class SimulatedMPU6050:
     def _counts(self, times: np.ndarray) -> np.ndarray:
         acc = np.asarray(self.source(times, self.sample_rate()), dtype=np.float64)
         counts = np.rint(acc / STANDARD_GRAVITY * self.lsb_per_g())
-        counts = np.clip(counts, _COUNT_LIMITS.min, _COUNT_LIMITS.max).astype(DATA_DTYPE)
+        # saturated at the int16 range: np.clip's minimum(maximum(.)), without its wrapper
+        np.maximum(counts, _COUNT_MIN, out=counts)
+        counts = np.minimum(counts, _COUNT_MAX, out=counts).astype(DATA_DTYPE)
         if self.stuck_from is not None:
             stuck = times >= self.stuck_from
             if stuck.any():
@@ -269,16 +293,18 @@ class SimulatedMPU6050:
             target = int(math.floor((now - self._since) * fs + 1e-9))
         if target <= self._produced:
             return
-        k = np.arange(self._produced, target)
-        if self.free_running_divider:
-            times = self.first_sample[-1] + k / fs
-        else:
-            times = self._since + (k + 1) / fs
+        n = target - self._produced
+        if self.free_running_divider:  # sample k at first + k / fs
+            times = self.first_sample[-1] + np.arange(self._produced, target) / fs
+        else:  # sample k at since + (k + 1) / fs
+            times = self._since + np.arange(self._produced + 1, target + 1) / fs
         counts = self._counts(times)
         self.epochs[-1][1].append(counts.astype(np.int16))
-        self.epoch_scales[-1].append(np.full(k.size, self.lsb_per_g(), np.int32))
+        scale = np.empty(n, np.int32)
+        scale.fill(self.lsb_per_g())
+        self.epoch_scales[-1].append(scale)
         self.fifo += counts.tobytes()
-        self.samples_pushed += k.size
+        self.samples_pushed += n
         self._produced = target
         excess = len(self.fifo) - self.FIFO_SIZE
         if excess > 0:

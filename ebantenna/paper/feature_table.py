@@ -133,7 +133,7 @@ def mode_peaks(ax, fs, *, n_jobs=None, chunk: int = 250, show_progress=None):
     -------
     dominant : ndarray (n,)
     peaks : ndarray (n, 2)
-        As :attr:`SignalFeatures.dominant` and :attr:`SignalFeatures.peaks`.
+        As ``SignalFeatures.dominant`` and ``SignalFeatures.peaks``.
     """
     ax, _, fs, chunk, n_jobs = _checked(ax, None, fs, chunk, n_jobs)
     dominant, peaks = _in_chunks(_peaks_chunk, ax.shape[0], chunk, n_jobs, show_progress, ax,

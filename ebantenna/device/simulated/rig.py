@@ -155,6 +155,7 @@ class SimulatedRig:
         self.noise = check_nonnegative("noise", noise)
         self._vibration = vibration
         self._recording = vibration if isinstance(vibration, Recording) else None
+        self._rest_of = None  # (recording, its rest reading): see _rest
         noise_seed, bus_seed = np.random.SeedSequence(seed).spawn(2)
         self._rng = np.random.default_rng(noise_seed)
         self.clock = VirtualClock()
@@ -326,7 +327,7 @@ class SimulatedRig:
         rec = self._recording
         if rec is None:
             return np.zeros(3)
-        cached = getattr(self, "_rest_of", None)
+        cached = self._rest_of
         if cached is None or cached[0] is not rec:
             tail = max(1, rec.n_samples // 10)
             cached = self._rest_of = (rec, np.array([rec.ax[-tail:].mean(), 0.0,

@@ -16,6 +16,7 @@ from ..paper.uncertainty import (
     ClusteredAccuracy,
     FoldAccuracy,
     PairedDifference,
+    cluster_labels,
     clustered_entries,
     percent,
     training_entries,
@@ -175,11 +176,9 @@ def _design_facts(materials, positions, test_rows) -> dict:
     >>> facts["repetitions"], facts["spacing_m"], facts["copies_in_training"]
     ([1, 2], 0.1, 0.0)
     """
-    materials, positions = np.asarray(materials), np.asarray(positions, dtype=float)
-    groups = np.unique(np.stack([materials.astype(str), positions.astype(str)]), axis=1,
-                       return_inverse=True)[1].ravel()
+    groups = cluster_labels(materials, positions)
     counts = np.bincount(groups)
-    grid = np.unique(positions)
+    grid = np.unique(np.asarray(positions, dtype=float))
     test = np.zeros(groups.size, dtype=bool)
     test[np.asarray(test_rows, dtype=int)] = True
     in_training = np.isin(groups[test], groups[~test])

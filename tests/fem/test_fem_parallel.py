@@ -67,3 +67,20 @@ def test_a_threaded_coupled_sweep_equals_the_serial_one_bit_for_bit(monkeypatch)
     threaded = on_cores(monkeypatch, 4, sweep)
     for name in ("frequencies", "damping_ratio", "tip_displacement"):
         np.testing.assert_array_equal(getattr(threaded, name), getattr(serial, name))
+
+
+def test_blas_runs_on_one_thread_inside_on_either_path_and_its_count_comes_back(monkeypatch):
+    # one item runs in the calling thread, several on a pool: both under the one-thread limit,
+    # which is lifted afterwards (the controller that sets it is found once and reused)
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    def blas_threads(_):
+        return {lib["num_threads"] for lib in threadpool_info() if lib["user_api"] == "blas"}
+
+    with threadpool_limits(limits=2, user_api="blas"):
+        outside = blas_threads(None)
+        for cores, items in ((1, range(1)), (4, range(1)), (4, range(3))):
+            inside = on_cores(monkeypatch, cores,
+                              lambda items=items: map_on_cores(blas_threads, items))
+            assert inside == [{1}] * len(items)
+            assert blas_threads(None) == outside

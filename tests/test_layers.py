@@ -25,10 +25,10 @@ from pathlib import Path
 import pytest
 
 #: The base: small modules every layer may use (data types, argument checks, the memory budget,
-#: progress bars, the chips' datasheet facts, report writing).
+#: progress bars, BLAS's thread count, the chips' datasheet facts, report writing).
 BASE = frozenset(
-    {"__init__", "_validate", "_budget", "_progress", "_files", "_tempfiles", "_engines", "probe",
-     "recording", "chips", "report"}
+    {"__init__", "_validate", "_budget", "_progress", "_files", "_tempfiles", "_engines",
+     "_threads", "probe", "recording", "chips", "report"}
 )
 STAGES = frozenset({"fem", "signal", "ml", "simulate", "device"})
 
@@ -40,6 +40,7 @@ MAY_IMPORT: dict[str, frozenset[str]] = {
     "_files": frozenset({"_validate"}),
     "_tempfiles": frozenset(),
     "_engines": frozenset(),
+    "_threads": frozenset(),
     "probe": frozenset({"_validate"}),
     "recording": frozenset({"_validate"}),
     "chips": frozenset({"_validate"}),
@@ -153,7 +154,7 @@ def test_no_private_name_of_another_part(path):
     wrong = []
     for line, target, names in imports(path):
         if part_of(target) in (here, "_validate", "_budget", "_progress", "_files", "_tempfiles",
-                               "_engines"):
+                               "_engines", "_threads"):
             continue  # a part's own private modules; the package-wide private helpers
         private = [n for n in names if n.startswith("_") and n != "__version__"]
         if private or any(p.startswith("_") for p in target.split(".")[1:]):

@@ -2,22 +2,10 @@
 
 from __future__ import annotations
 
-import functools
 import os
 from concurrent.futures import ThreadPoolExecutor
 
-from threadpoolctl import ThreadpoolController
-
-
-@functools.cache
-def _blas_controller() -> ThreadpoolController:
-    """The thread pools of the BLAS libraries loaded, found once.
-
-    Finding them reads the process's memory map (milliseconds); a fit that sweeps one position
-    at a time calls :func:`map_on_cores` a thousand times. Made at the first call, when NumPy's
-    and SciPy's BLAS are loaded (the finite-element modules import both).
-    """
-    return ThreadpoolController()
+from .._threads import limited_threads
 
 
 def map_on_cores(function, items) -> list:
@@ -32,7 +20,7 @@ def map_on_cores(function, items) -> list:
     """
     items = list(items)
     workers = max(1, min(len(items), os.cpu_count() or 1))
-    with _blas_controller().limit(limits=1, user_api="blas"):
+    with limited_threads(1):
         if workers == 1:
             return [function(item) for item in items]
         with ThreadPoolExecutor(workers) as pool:

@@ -24,8 +24,8 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 from joblib import Parallel, delayed
-from threadpoolctl import threadpool_limits
 
+from .._threads import limited_threads
 from .._validate import check_choice, check_int, check_n_jobs, check_positive, output_dir
 from ..fem.coupling import Rod
 from ..probe import material
@@ -137,7 +137,7 @@ def grouped_svm_spread(ds, *, seed: int = 0, splits: int = SPLIT_SEEDS, n_jobs: 
 def _fold_fit(X, y, contact, split_seed: int) -> tuple:
     """The paper's SVM on one fold of the grouped split, with one BLAS thread: its accuracy,
     test count, test rows and whether each was right (what :func:`seed_spread` keeps)."""
-    with threadpool_limits(limits=1, user_api="blas"):
+    with limited_threads(1):
         result = classify_materials_svm(X, y, split=grouped_split(contact, seed=split_seed))
     return (result.accuracies["test"], result.counts["test"], result.rows(), result.correct())
 

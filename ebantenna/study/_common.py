@@ -6,8 +6,8 @@ from pathlib import Path
 
 import numpy as np
 from joblib import Parallel, delayed
-from threadpoolctl import threadpool_limits
 
+from .._threads import limited_threads
 from .._validate import (
     check_bool,
     check_int,
@@ -68,7 +68,7 @@ BLAS_THREADS = 1
 
 def blas_limited():
     """A context in which BLAS runs on :data:`BLAS_THREADS` threads (``threadpoolctl``)."""
-    return threadpool_limits(limits=BLAS_THREADS, user_api="blas")
+    return limited_threads(BLAS_THREADS)
 
 
 def fits_in_parallel(calls, n_jobs: int) -> list:

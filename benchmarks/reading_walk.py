@@ -112,8 +112,6 @@ READING_ORDER = (
     "ebantenna/simulate/effects/sensor.py",
     "ebantenna/simulate/modes.py",
     "ebantenna/simulate/effects/sensor.py",
-    "ebantenna/simulate/modes.py",
-    "ebantenna/simulate/effects/sensor.py",
     "ebantenna/simulate/scene.py",
     "ebantenna/signal/features.py",
     "ebantenna/ml/svc.py",

@@ -33,6 +33,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.signal as sps
 
 from .._validate import check_choice, check_int, check_positive, real_array
 from ..fem import Supports, modal_analysis
@@ -47,6 +48,7 @@ __all__ = [
     "coupled_arrest_modes",
     "coupled_modes_of",
     "modal_exponentials",
+    "filtered_exponentials",
     "damped_exponentials",
     "direct_exponentials",
     "EXPONENTIAL_ENGINES",
@@ -356,6 +358,76 @@ def modal_exponentials(amplitude, omega, zeta):
     return amplitude * ((a * a - wd * wd) / wd - 2j * a), -a + 1j * wd
 
 
+def filtered_exponentials(coef, rate, sos, internal_rate: float):
+    """A digital filter's output for an input ``Im(sum_k coef_k exp(rate_k t))`` sampled from t = 0.
+
+    The filter is given by its design, as values: its second-order sections ``sos`` and the
+    rate it runs at (the chip's low-pass filter,
+    :meth:`~ebantenna.simulate.effects.LowPassFilter.sos` and its ``internal_rate``). Input
+    sample ``n`` is ``u_n = Im(sum_k C_k z_k^n)`` with ``z_k = exp(rate_k / f_i)`` and ``f_i``
+    the internal rate; the filter ``H(w) = B(w) / A(w)`` in ``w = z^-1`` starts at rest. For one
+    exponential the output's z-transform ``B(w) / (A(w) (1 - z_k w))`` splits into partial
+    fractions over the input's pole and the filter's poles ``p_j``:
+
+        y_n = Im( sum_k C_k [ H(z_k) z_k^n + sum_j R_jk p_j^n ] ),
+        R_jk = B(1/p_j) / ( (1 - z_k / p_j) prod_(i != j) (1 - p_i / p_j) ),
+
+    a sum of damped exponentials again: the input's, scaled by the filter's gain, and the
+    filter's own transient at its poles (rates ``f_i log p_j``). Evaluated at ``t = n / f_i``
+    it is the filter's output exactly; at every ``divider``-th sample, the decimated one. The
+    poles must be distinct (a Butterworth pair is).
+
+    Parameters
+    ----------
+    coef, rate : complex arrays of shape (n_signals, n_terms)
+        ``C_k`` and ``rate_k`` (1/s) of each signal's exponentials.
+    sos : ndarray of shape (n_sections, 6)
+        The filter's second-order sections at ``internal_rate``.
+    internal_rate : float
+        The rate the filter runs at, Hz.
+
+    Returns
+    -------
+    coef, rate : complex arrays of shape (n_signals, n_terms + n_poles)
+        The output's exponentials, the filter's transient terms last.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import scipy.signal as sps
+    >>> sos = sps.butter(2, 260.0, fs=8000.0, output="sos")
+    >>> coef, rate = filtered_exponentials(np.array([[1.0 + 0j]]), np.array([[-5.0 + 100j]]),
+    ...                                    sos, 8000.0)
+    >>> coef.shape, bool(np.all(rate[0, 1:].real < 0))  # the input's term, two filter transients
+    ((1, 3), True)
+    """
+    coef, rate = np.asarray(coef), np.asarray(rate)
+    for name, value in (("coef", coef), ("rate", rate)):
+        if value.ndim != 2 or value.dtype.kind not in "fc" or not np.all(np.isfinite(value)):
+            raise ValueError(f"{name} must be a finite real or complex array of shape "
+                             f"(n_signals, n_terms), got {value.dtype} of shape {value.shape}")
+    if rate.shape != coef.shape:
+        raise ValueError(f"rate must have the shape of coef {coef.shape}, got {rate.shape}")
+    sos = np.asarray(sos)
+    if sos.ndim != 2 or sos.shape[1] != 6 or sos.dtype.kind not in "fi" \
+            or not np.all(np.isfinite(sos)):
+        raise ValueError(f"sos must be a finite real array of second-order sections, shape "
+                         f"(n_sections, 6), got {sos.dtype} of shape {sos.shape}")
+    fi = check_positive("internal_rate", internal_rate)
+    b, a = sps.sos2tf(sos)
+    poles = np.roots(a)
+    z = np.exp(np.asarray(rate) / fi)
+    gain = np.polyval(b[::-1], 1 / z) / np.polyval(a[::-1], 1 / z)  # H(z_k) = B(1/z) / A(1/z)
+    out_coef = [coef * gain]
+    for j, p in enumerate(poles):
+        others = np.prod([1 - q / p for i, q in enumerate(poles) if i != j])
+        residue = np.polyval(b[::-1], 1 / p) / ((1 - z / p) * others)
+        out_coef.append(np.sum(coef * residue, axis=-1, keepdims=True))
+    n = coef.shape[0]
+    pole_rates = np.broadcast_to(fi * np.log(poles.astype(complex)), (n, poles.size))
+    return np.concatenate(out_coef, axis=-1), np.concatenate([rate, pole_rates], axis=-1)
+
+
 def direct_exponentials(t: np.ndarray, coef, rate, max_elements: int) -> np.ndarray:
     """The reference of :func:`damped_exponentials`: the sum as it reads, one complex
     exponential per term and sample, summed over the terms, in blocks of signals of at most
@@ -445,9 +517,9 @@ def modal_acceleration(
     """Sum of damped modal accelerations ``sum_k Im(C_k e^(s_k t))`` for many signals at once.
 
     The exponentials (:func:`modal_exponentials`) are summed by :func:`damped_exponentials`;
-    with ``low_pass`` they first pass through the chip's filter
-    (:meth:`~ebantenna.simulate.effects.LowPassFilter.filter_exponentials`: the filter's output,
-    exactly, at its internal rate, then read at ``t``).
+    with ``low_pass`` they first pass through the chip's filter, read as its design (its
+    ``sos`` and ``internal_rate``; :func:`filtered_exponentials`: the filter's output, exactly,
+    at its internal rate, then read at ``t``).
 
     Parameters
     ----------
@@ -477,10 +549,10 @@ def modal_acceleration(
     >>> modal_acceleration(t, np.array([[1.0]]), np.array([[2 * np.pi]]), np.zeros((1, 1))).round(6)
     array([[ 0.      , -6.283185]])
     """
-    if low_pass is not None and not callable(getattr(low_pass, "filter_exponentials", None)):
+    if low_pass is not None and not callable(getattr(low_pass, "sos", None)):
         raise TypeError(f"low_pass must be a LowPassFilter (the scene's dlpf) or None, got "
                         f"{type(low_pass).__name__}")
     coef, rate = modal_exponentials(amplitude, omega, zeta)
     if low_pass is not None:  # the chip's filter at its internal rate, then its decimation
-        coef, rate = low_pass.filter_exponentials(coef, rate)
+        coef, rate = filtered_exponentials(coef, rate, low_pass.sos(), low_pass.internal_rate)
     return damped_exponentials(t, coef, rate, max_elements=max_elements)

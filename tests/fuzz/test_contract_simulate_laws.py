@@ -80,6 +80,8 @@ def _stick_slip(**kw):
 ACC = np.random.default_rng(5).normal(size=(2, 81))
 #: The sample times at 1 kHz: whole internal samples.
 WHEN = np.arange(10) / 1000.0
+#: The chip's filter design at its default settings (second-order sections at 8 kHz).
+SOS = LowPassFilter().sos()
 
 
 def _coulomb(**kw):
@@ -144,7 +146,7 @@ def _filtered_by_hand():
     coef, rate = np.array([[1.0 + 0.0j]]), np.array([[-50.0 + 2j * math.pi * 100.0]])
     n = np.arange(800)
     u = np.imag(coef[0, 0] * np.exp(rate[0, 0] * n / dlpf.internal_rate))
-    out_coef, out_rate = dlpf.filter_exponentials(coef, rate)
+    out_coef, out_rate = MO.filtered_exponentials(coef, rate, dlpf.sos(), dlpf.internal_rate)
     closed = np.imag(np.exp(np.multiply.outer(n / dlpf.internal_rate, out_rate[0])) @ out_coef[0])
     return closed, sps.sosfilt(dlpf.sos(), u)
 
@@ -265,18 +267,29 @@ def all_rows():
         Row(d, "unfiltered-ramp", lambda: read_through_dlpf(
             None, np.arange(16.0)[None, :], 8000.0, np.array([0.0, 0.001, 0.0005])),
             same=lambda r: r.tolist() == [[0.0, 8.0, 4.0]]),
-        Row(d.replace("read_through_dlpf", "LowPassFilter.filter_exponentials"), "coef-1d",
-            lambda: dlpf.filter_exponentials(np.ones(3), np.ones(3)), ("coef",)),
-        Row(d.replace("read_through_dlpf", "LowPassFilter.filter_exponentials"), "rate-nan",
-            lambda: dlpf.filter_exponentials(np.ones((1, 2)), np.array([[NAN, 1.0]])), ("rate",)),
-        Row(d.replace("read_through_dlpf", "LowPassFilter.filter_exponentials"), "rate-shape",
-            lambda: dlpf.filter_exponentials(np.ones((1, 2)), np.ones((1, 3))), ("rate",)),
-        Row(d.replace("read_through_dlpf", "LowPassFilter.filter_exponentials"), "coef-str",
-            lambda: dlpf.filter_exponentials(np.array([["a"]]), np.ones((1, 1))), ("coef",)),
+        Row(m + "filtered_exponentials", "coef-1d",
+            lambda: MO.filtered_exponentials(np.ones(3), np.ones(3), SOS, 8000.0), ("coef",)),
+        Row(m + "filtered_exponentials", "rate-nan",
+            lambda: MO.filtered_exponentials(np.ones((1, 2)), np.array([[NAN, 1.0]]), SOS, 8000.0),
+            ("rate",)),
+        Row(m + "filtered_exponentials", "rate-shape",
+            lambda: MO.filtered_exponentials(np.ones((1, 2)), np.ones((1, 3)), SOS, 8000.0),
+            ("rate",)),
+        Row(m + "filtered_exponentials", "coef-str",
+            lambda: MO.filtered_exponentials(np.array([["a"]]), np.ones((1, 1)), SOS, 8000.0),
+            ("coef",)),
+        Row(m + "filtered_exponentials", "sos-one-section-of-5",
+            lambda: MO.filtered_exponentials(np.ones((1, 2)), np.ones((1, 2)), SOS[:, :5], 8000.0),
+            ("sos",)),
+        Row(m + "filtered_exponentials", "sos-nan",
+            lambda: MO.filtered_exponentials(np.ones((1, 2)), np.ones((1, 2)), SOS * NAN, 8000.0),
+            ("sos",)),
+        Row(m + "filtered_exponentials", "internal_rate-zero",
+            lambda: MO.filtered_exponentials(np.ones((1, 2)), np.ones((1, 2)), SOS, 0.0),
+            ("internal_rate",)),
         # the closed form is the filter's recursion exactly; SciPy's rounding grows at most by
         # one eps of the signal (of size 1) per sample, over 800 samples
-        Row(d.replace("read_through_dlpf", "LowPassFilter.filter_exponentials"),
-            "one-exponential-against-sosfilt", _filtered_by_hand,
+        Row(m + "filtered_exponentials", "one-exponential-against-sosfilt", _filtered_by_hand,
             same=lambda r: np.abs(r[0] - r[1]).max() < 64 * 800 * np.finfo(float).eps),
         Row(s + "friction_accelerations", "scene-without-coulomb_friction",
             lambda: S.friction_accelerations(no_friction, [], [], [], rate=8000.0, n_samples=9),

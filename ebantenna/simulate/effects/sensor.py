@@ -286,8 +286,9 @@ class LowPassFilter(Effect):
     power-on value of register 26.
 
     The simulator does not sample the modal response at the internal rate and filter it: a sum
-    of damped exponentials stays one through a linear filter, so :meth:`filter_exponentials`
-    gives the filtered and decimated signal in closed form (the witness,
+    of damped exponentials stays one through a linear filter, so the modal sum reads this
+    filter's design (:meth:`sos`, ``internal_rate``) and gives the filtered and decimated signal
+    in closed form (:func:`~ebantenna.simulate.modes.filtered_exponentials`; the witness,
     :func:`scipy.signal.sosfilt` at the internal rate followed by the decimation, agrees to
     rounding). Noise, which has no such form, is drawn at the internal rate and filtered
     (:meth:`apply_internal`).
@@ -354,51 +355,6 @@ class LowPassFilter(Effect):
             raise ValueError("frequency must contain only finite values (no NaN or inf)")
         _, _, gain = self._transfer()
         return gain(np.exp(2j * math.pi * frequency / self.internal_rate))
-
-    def filter_exponentials(self, coef: np.ndarray, rate: np.ndarray):
-        """The filter's output for an input ``Im(sum_k coef_k exp(rate_k t))`` sampled from t = 0.
-
-        Input sample ``n`` is ``u_n = Im(sum_k C_k z_k^n)`` with ``z_k = exp(rate_k / f_i)`` and
-        ``f_i`` the internal rate; the filter ``H(w) = B(w) / A(w)`` in ``w = z^-1`` starts at
-        rest. For one exponential the output's z-transform ``B(w) / (A(w) (1 - z_k w))`` splits
-        into partial fractions over the input's pole and the filter's poles ``p_j``:
-
-            y_n = Im( sum_k C_k [ H(z_k) z_k^n + sum_j R_jk p_j^n ] ),
-            R_jk = B(1/p_j) / ( (1 - z_k / p_j) prod_(i != j) (1 - p_i / p_j) ),
-
-        a sum of damped exponentials again: the input's, scaled by the filter's gain, and the
-        filter's own transient at its poles (rates ``f_i log p_j``). Evaluated at ``t = n / f_i``
-        it is the filter's output exactly; at every ``divider``-th sample, the decimated one.
-
-        Parameters
-        ----------
-        coef, rate : complex arrays of shape (n_signals, n_terms)
-            ``C_k`` and ``rate_k`` (1/s) of each signal's exponentials.
-
-        Returns
-        -------
-        coef, rate : complex arrays of shape (n_signals, n_terms + 2)
-            The output's exponentials, the filter's two transient terms last.
-        """
-        coef, rate = np.asarray(coef), np.asarray(rate)
-        for name, value in (("coef", coef), ("rate", rate)):
-            if value.ndim != 2 or value.dtype.kind not in "fc" or not np.all(np.isfinite(value)):
-                raise ValueError(f"{name} must be a finite real or complex array of shape "
-                                 f"(n_signals, n_terms), got {value.dtype} of shape {value.shape}")
-        if rate.shape != coef.shape:
-            raise ValueError(f"rate must have the shape of coef {coef.shape}, got {rate.shape}")
-        b, a, gain = self._transfer()
-        poles = np.roots(a)  # distinct: a Butterworth pair
-        fi = self.internal_rate
-        z = np.exp(np.asarray(rate) / fi)
-        out_coef = [coef * gain(z)]
-        for j, p in enumerate(poles):
-            others = np.prod([1 - q / p for i, q in enumerate(poles) if i != j])
-            residue = np.polyval(b[::-1], 1 / p) / ((1 - z / p) * others)
-            out_coef.append(np.sum(coef * residue, axis=-1, keepdims=True))
-        n = coef.shape[0]
-        pole_rates = np.broadcast_to(fi * np.log(poles.astype(complex)), (n, poles.size))
-        return np.concatenate(out_coef, axis=-1), np.concatenate([rate, pole_rates], axis=-1)
 
     def apply_internal(self, a: np.ndarray, fs: float) -> np.ndarray:
         """Filter rows sampled at the internal rate (m/s^2) from rest; decimate them to ``fs``."""

@@ -556,3 +556,24 @@ def modal_acceleration(
     if low_pass is not None:  # the chip's filter at its internal rate, then its decimation
         coef, rate = filtered_exponentials(coef, rate, low_pass.sos(), low_pass.internal_rate)
     return damped_exponentials(t, coef, rate, max_elements=max_elements)
+
+
+# ------------------------------------------------------------- the simulator's step
+def _respond(_, batch) -> None:
+    """The responses: X and Z after the arrest. Each axis read from its modes is their sum at
+    the sample instants, through the chip's filter if listed (:func:`modal_acceleration`); then
+    each axis a model stepped in time gives (``batch.responders``, set by the touched object's
+    step) is computed at that model's rate, for the chip to read (the sensor's next step)."""
+    for axis, terms in (("x", batch.x), ("z", batch.z)):
+        if axis not in batch.responders:  # the batch's field ax or az
+            setattr(batch, "a" + axis, modal_acceleration(
+                batch.when, terms.amplitude, terms.omega, terms.zeta, low_pass=batch.chip_filter))
+    for axis, (respond, models) in batch.responders.items():
+        batch.timed_acc[axis] = respond(batch, models)
+
+
+#: The simulator's responses step, written beside the modal sum it runs: it takes
+#: ``(effect, batch)`` and changes the simulator's
+#: :class:`~ebantenna.simulate.simulator.SignalBatch` in place, with values the simulator
+#: checked. :data:`ebantenna.simulate.simulator.CHAIN` puts it in order, and says why.
+CHAIN_STEPS = {"responses": _respond}

@@ -20,13 +20,12 @@ preload) -- a :class:`~ebantenna.simulate.structure.ContactCase` -- every model 
 A new model of the touched rod is one entry of :data:`OBJECT_MODELS`.
 
 :func:`signal_terms` is the simulator's step of the touched object (the second step of
-:data:`~ebantenna.simulate.simulator.CHAIN`): it runs the physics model, then lays out each
-signal's modal parameters as :class:`ModalTerms`, the modes side by side, zero-padded, each
-signal's row scaled by its sweep speed. The responses' step (the fourth) reads each axis from
-its model stepped in time (an :class:`ObjectModel`'s ``respond``) or from the sum of its modes
-(:func:`~ebantenna.simulate.modes.modal_acceleration`). Both steps sit at the end of this module
-(``CHAIN_STEPS``), and every function here takes values checked by the simulator's public
-entries (:mod:`ebantenna.simulate.simulator`).
+:data:`~ebantenna.simulate.simulator.CHAIN`, at the end of this module, ``CHAIN_STEPS``): it
+runs the physics model, then lays out each signal's modal parameters as :class:`ModalTerms`, the
+modes side by side, zero-padded, each signal's row scaled by its sweep speed, and hands the
+responses' step, beside the modal sum (:mod:`ebantenna.simulate.modes`), which axis a model
+stepped in time gives (an :class:`ObjectModel`'s ``respond``). Every function here takes values
+checked by the simulator's public entries (:mod:`ebantenna.simulate.simulator`).
 """
 
 from __future__ import annotations
@@ -48,18 +47,16 @@ from ..fem.guards import check_contact
 from ..probe import Probe
 from ..probe import material as lookup_material
 from .effects import effect_names
-from .effects.sensor import read_through_dlpf
 from .modes import (
     ArrestModes,
     arrest_modes,
     coupled_modes_of,
     damped_exponentials,
-    modal_acceleration,
     modal_exponentials,
 )
 from .scene import Scene
-from .stick_slip import friction_accelerations, friction_model_of
-from .strikes import strike_accelerations, strike_model_of, timed_rate
+from .stick_slip import friction_axis, friction_model_of
+from .strikes import strike_axis, strike_model_of
 from .structure import ContactCase
 
 __all__ = [
@@ -114,29 +111,6 @@ def pinned_modes(scene: Scene, contacts, materials, show_progress):
     return modes, inverse.ravel()
 
 
-def _strike_axis(batch, models) -> np.ndarray:
-    """X from the ``unilateral`` strikes, each computed at :func:`.strikes.timed_rate`, marched by
-    the effect's ``method``, and read through the chip's filter
-    (:func:`.effects.sensor.read_through_dlpf`); records each strike's contacts after the first."""
-    rate, n_int = timed_rate(batch.scene, batch.when, batch.chip_filter)
-    effect = batch.scene.effect("unilateral_contact")
-    acc, restrikes = strike_accelerations(
-        models, batch.inverse, batch.speeds, rate=rate, n_samples=n_int,
-        max_events=effect.max_events, method=effect.method,
-    )  # fmt: skip
-    batch.x = dataclasses.replace(batch.x, restrikes=restrikes)
-    return read_through_dlpf(batch.chip_filter, acc, rate, batch.when)
-
-
-def _friction_axis(batch, models) -> np.ndarray:
-    """Z from the ``friction`` model: stick and slip along the rod, at the tilt rotation's speed,
-    computed and read as the strikes are (:func:`_strike_axis`)."""
-    rate, n_int = timed_rate(batch.scene, batch.when, batch.chip_filter)
-    acc = friction_accelerations(batch.scene, models, batch.inverse, batch.tilts * batch.speeds,
-                                 rate=rate, n_samples=n_int)
-    return read_through_dlpf(batch.chip_filter, acc, rate, batch.when)
-
-
 @dataclass(frozen=True)
 class ObjectModel:
     """One physics model of the touched rod, built for each distinct contact case.
@@ -153,8 +127,9 @@ class ObjectModel:
         ``build(case)``: the model of one contact case
         (:class:`~ebantenna.simulate.structure.ContactCase`).
     respond : callable or None
-        ``respond(batch, models) -> (n, n_samples) array``: the axis, for a model stepped in
-        time; None for modes, which the modal sum reads
+        ``respond(batch, models) -> (acceleration, rate)``: the axis, for a model stepped in
+        time, at the rate it is computed (``(n, n_int)`` array, Hz), which the chip then reads
+        at the sample instants; None for modes, which the modal sum reads
         (:data:`~ebantenna.simulate.simulator.CHAIN`, the responses).
     unless : str or None
         An effect that gives the same axis in time: when it is listed and the caller asked for no
@@ -197,8 +172,8 @@ class ObjectModel:
 #: contact case. A model stepped in time (``respond`` set) gives its axis instead of the modes.
 OBJECT_MODELS = (
     ObjectModel("coupled", "x", None, coupled_modes_of, unless="unilateral_contact"),
-    ObjectModel("unilateral", "x", "unilateral_contact", strike_model_of, _strike_axis),
-    ObjectModel("friction", "z", "coulomb_friction", friction_model_of, _friction_axis),
+    ObjectModel("unilateral", "x", "unilateral_contact", strike_model_of, strike_axis),
+    ObjectModel("friction", "z", "coulomb_friction", friction_model_of, friction_axis),
 )
 
 
@@ -547,9 +522,10 @@ def signal_terms(
     return x, _z_terms(scene, speeds, tilts, zeta_s), timed, inverse
 
 
-# ------------------------------------------------------------- the simulator's steps
+# ------------------------------------------------------------- the simulator's step
 def _touched_object(_, batch) -> None:
-    """The touched object: the modal parameters of X and Z, and the models stepped in time."""
+    """The touched object: the modal parameters of X and Z, and the models stepped in time; for
+    the responses, which axis each of those gives, with its ``respond`` (:data:`OBJECT_MODELS`)."""
     batch.x, batch.z, batch.timed, batch.inverse = signal_terms(
         batch.scene,
         batch.contacts,
@@ -560,27 +536,13 @@ def _touched_object(_, batch) -> None:
         batch.show_progress,
         batch.x_modes,
     )
+    batch.responders = {model.axis: (model.respond, batch.timed[model.name])
+                        for model in OBJECT_MODELS
+                        if model.respond is not None and model.name in batch.timed}
 
 
-def _axis_response(batch, axis: str) -> np.ndarray:
-    """One axis: from its model stepped in time, if the scene built one, else the sum of its
-    modes read at ``batch.when`` through the chip's filter (if listed)."""
-    for model in OBJECT_MODELS:
-        if model.axis == axis and model.respond is not None and model.name in batch.timed:
-            return model.respond(batch, batch.timed[model.name])
-    terms = batch.x if axis == "x" else batch.z
-    return modal_acceleration(batch.when, terms.amplitude, terms.omega, terms.zeta,
-                              low_pass=batch.chip_filter)
-
-
-def _respond(_, batch) -> None:
-    """The responses: X and Z after the arrest, read at the sample instants."""
-    batch.ax = _axis_response(batch, "x")
-    batch.az = _axis_response(batch, "z")
-
-
-#: The simulator's two steps that always run, written beside the models they run: each takes
+#: The simulator's step of the touched object, written beside the models it runs: it takes
 #: ``(effect, batch)`` and changes the simulator's
 #: :class:`~ebantenna.simulate.simulator.SignalBatch` in place, with values the simulator
-#: checked. :data:`ebantenna.simulate.simulator.CHAIN` puts them in order, and says why.
-CHAIN_STEPS = {"touched_object": _touched_object, "responses": _respond}
+#: checked. :data:`ebantenna.simulate.simulator.CHAIN` puts it in order, and says why.
+CHAIN_STEPS = {"touched_object": _touched_object}

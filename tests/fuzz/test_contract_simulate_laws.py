@@ -240,6 +240,13 @@ def _cases(which, **kw):
     return which(**{**args, **kw})
 
 
+def _axis_batch(inverse=0):
+    """A batch of the paper scene as the responses step has it: which case each signal uses."""
+    batch = _batch()
+    batch.inverse = np.array([inverse])
+    return batch
+
+
 def all_rows():
     u, s = "ebantenna.simulate.unilateral.", "ebantenna.simulate.stick_slip."
     t = "ebantenna.simulate.touched_object."
@@ -456,6 +463,12 @@ def all_rows():
         Row(st + "timed_rate", "unfiltered", lambda: ST.timed_rate(
             builtin_scene("paper"), np.arange(1000) / 1000.0, None),
             same=lambda r: r == (8000.0, 7994)),
+        Row(st + "strike_axis", "batch-str", lambda: ST.strike_axis("batch", []), ("batch",)),
+        Row(st + "strike_axis", "models-not-strike-models",
+            lambda: ST.strike_axis(_axis_batch(), ["model"]), ("models",)),
+        Row(s + "friction_axis", "batch-str", lambda: S.friction_axis("batch", []), ("batch",)),
+        Row(s + "friction_axis", "scene-without-coulomb_friction",
+            lambda: S.friction_axis(_axis_batch(), []), ("coulomb_friction",)),
         Row(st + "strike_accelerations", "rate-zero", lambda: _strike_accelerations(rate=0.0),
             ("rate",)),
         Row(st + "strike_accelerations", "n_samples-one",

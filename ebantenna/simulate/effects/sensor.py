@@ -413,6 +413,14 @@ def read_through_dlpf(dlpf, acc, rate, when) -> np.ndarray:
     return np.stack([np.interp(w, grid, a) for w, a in zip(rows, acc, strict=True)])
 
 
+def _read_timed(_, batch) -> None:
+    """The axes stepped in time (``batch.timed_acc``, at their models' rate): read by the chip
+    at the sample instants, through its filter if listed (:func:`read_through_dlpf`)."""
+    for axis, (acc, rate) in batch.timed_acc.items():
+        # the batch's field ax or az
+        setattr(batch, "a" + axis, read_through_dlpf(batch.chip_filter, acc, rate, batch.when))
+
+
 #: MPU6050 zero-g level change over 0-70 degC, X and Y axes, g (PS rev. 3.4, table 6.2).
 ZERO_G_DRIFT_XY = 35e-3
 #: The same for the Z axis, g (PS rev. 3.4, table 6.2).
@@ -633,6 +641,7 @@ def _kalman(kalman: SteadyStateKalman, batch) -> None:
 #: checked. :data:`ebantenna.simulate.simulator.CHAIN` puts them in order, and says why.
 CHAIN_STEPS = {
     "sample_instants": _sample_instants,
+    "read_timed": _read_timed,
     "rest_before_arrest": _rest_before_arrest,
     "gravity": _add_gravity,
     "mains_hum": _add_hum,

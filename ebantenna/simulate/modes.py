@@ -363,7 +363,7 @@ def filtered_exponentials(coef, rate, sos, internal_rate: float):
 
     The filter is given by its design, as values: its second-order sections ``sos`` and the
     rate it runs at (the chip's low-pass filter,
-    :meth:`~ebantenna.simulate.effects.LowPassFilter.sos` and its ``internal_rate``). Input
+    :attr:`~ebantenna.simulate.effects.LowPassFilter.sos` and its ``internal_rate``). Input
     sample ``n`` is ``u_n = Im(sum_k C_k z_k^n)`` with ``z_k = exp(rate_k / f_i)`` and ``f_i``
     the internal rate; the filter ``H(w) = B(w) / A(w)`` in ``w = z^-1`` starts at rest. For one
     exponential the output's z-transform ``B(w) / (A(w) (1 - z_k w))`` splits into partial
@@ -549,12 +549,12 @@ def modal_acceleration(
     >>> modal_acceleration(t, np.array([[1.0]]), np.array([[2 * np.pi]]), np.zeros((1, 1))).round(6)
     array([[ 0.      , -6.283185]])
     """
-    if low_pass is not None and not callable(getattr(low_pass, "sos", None)):
+    if low_pass is not None and not isinstance(getattr(low_pass, "sos", None), np.ndarray):
         raise TypeError(f"low_pass must be a LowPassFilter (the scene's dlpf) or None, got "
                         f"{type(low_pass).__name__}")
     coef, rate = modal_exponentials(amplitude, omega, zeta)
     if low_pass is not None:  # the chip's filter at its internal rate, then its decimation
-        coef, rate = filtered_exponentials(coef, rate, low_pass.sos(), low_pass.internal_rate)
+        coef, rate = filtered_exponentials(coef, rate, low_pass.sos, low_pass.internal_rate)
     return damped_exponentials(t, coef, rate, max_elements=max_elements)
 
 

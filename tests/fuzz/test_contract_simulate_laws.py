@@ -81,7 +81,7 @@ ACC = np.random.default_rng(5).normal(size=(2, 81))
 #: The sample times at 1 kHz: whole internal samples.
 WHEN = np.arange(10) / 1000.0
 #: The chip's filter design at its default settings (second-order sections at 8 kHz).
-SOS = LowPassFilter().sos()
+SOS = LowPassFilter().sos
 
 
 def _coulomb(**kw):
@@ -146,9 +146,9 @@ def _filtered_by_hand():
     coef, rate = np.array([[1.0 + 0.0j]]), np.array([[-50.0 + 2j * math.pi * 100.0]])
     n = np.arange(800)
     u = np.imag(coef[0, 0] * np.exp(rate[0, 0] * n / dlpf.internal_rate))
-    out_coef, out_rate = MO.filtered_exponentials(coef, rate, dlpf.sos(), dlpf.internal_rate)
+    out_coef, out_rate = MO.filtered_exponentials(coef, rate, dlpf.sos, dlpf.internal_rate)
     closed = np.imag(np.exp(np.multiply.outer(n / dlpf.internal_rate, out_rate[0])) @ out_coef[0])
-    return closed, sps.sosfilt(dlpf.sos(), u)
+    return closed, sps.sosfilt(dlpf.sos, u)
 
 
 def _strike_law():
@@ -270,7 +270,7 @@ def all_rows():
         # at whole internal samples the reading is the filter's output there, exactly: the
         # witness is SciPy's filter at the internal rate, every eighth sample
         Row(d, "filtered-at-whole-samples", lambda: read_through_dlpf(dlpf, ACC, 8000.0, WHEN),
-            same=lambda r: np.array_equal(r, sps.sosfilt(dlpf.sos(), ACC)[:, ::8][:, :10])),
+            same=lambda r: np.array_equal(r, sps.sosfilt(dlpf.sos, ACC)[:, ::8][:, :10])),
         Row(d, "unfiltered-ramp", lambda: read_through_dlpf(
             None, np.arange(16.0)[None, :], 8000.0, np.array([0.0, 0.001, 0.0005])),
             same=lambda r: r.tolist() == [[0.0, 8.0, 4.0]]),

@@ -22,7 +22,7 @@ def _paper_exponentials():
     out = []
     for terms in modal_terms(scene):
         coef, rate = modal_exponentials(terms.amplitude, terms.omega, terms.zeta)
-        out.append(filtered_exponentials(coef, rate, dlpf.sos(), dlpf.internal_rate))
+        out.append(filtered_exponentials(coef, rate, dlpf.sos, dlpf.internal_rate))
     return out
 
 

@@ -287,7 +287,7 @@ class LowPassFilter(Effect):
 
     The simulator does not sample the modal response at the internal rate and filter it: a sum
     of damped exponentials stays one through a linear filter, so the modal sum reads this
-    filter's design (:meth:`sos`, ``internal_rate``) and gives the filtered and decimated signal
+    filter's design (:attr:`sos`, ``internal_rate``) and gives the filtered and decimated signal
     in closed form (:func:`~ebantenna.simulate.modes.filtered_exponentials`; the witness,
     :func:`scipy.signal.sosfilt` at the internal rate followed by the decimation, agrees to
     rounding). Noise, which has no such form, is drawn at the internal rate and filtered
@@ -300,10 +300,19 @@ class LowPassFilter(Effect):
     internal_rate : float
         The rate the filter runs at, Hz: an integer multiple of the scene's sampling frequency.
 
+    Attributes
+    ----------
+    sos : ndarray of shape (1, 6)
+        The filter's design: its second-order sections at ``internal_rate``, computed once from
+        the two parameters when the effect is made and shared by every use (not to be changed
+        in place).
+
     Examples
     --------
     >>> import numpy as np
     >>> dlpf = LowPassFilter()
+    >>> dlpf.sos.shape
+    (1, 6)
     >>> dlpf.divider(1000.0)
     8
     >>> float(abs(dlpf.frequency_response(700.0)).round(3))  # a 700 Hz mode, seen at 300 Hz
@@ -327,6 +336,11 @@ class LowPassFilter(Effect):
                 f"internal_rate must exceed twice the bandwidth ({2 * self.bandwidth:g} Hz), "
                 f"got {self.internal_rate!r} Hz"
             )
+        # The design, once: whoever passes a signal through the filter (the modal sum's closed
+        # form, the filtering at the internal rate, the gain) reads it as a value. Not a field:
+        # the effect's parameters stay the two above.
+        sos = sps.butter(2, self.bandwidth, btype="low", fs=self.internal_rate, output="sos")
+        object.__setattr__(self, "sos", sos)
 
     def divider(self, fs: float) -> int:
         """How many internal samples make one output sample at ``fs`` (Hz); raise unless whole."""
@@ -339,13 +353,9 @@ class LowPassFilter(Effect):
             )
         return int(whole)
 
-    def sos(self) -> np.ndarray:
-        """Second-order sections of the filter at the internal rate."""
-        return sps.butter(2, self.bandwidth, btype="low", fs=self.internal_rate, output="sos")
-
     def _transfer(self):
         """``(b, a)`` of the filter, and its gain ``B(1/z) / A(1/z)`` as a function of ``z``."""
-        b, a = sps.sos2tf(self.sos())
+        b, a = sps.sos2tf(self.sos)
         return b, a, lambda z: np.polyval(b[::-1], 1 / z) / np.polyval(a[::-1], 1 / z)
 
     def frequency_response(self, frequency) -> np.ndarray:
@@ -358,7 +368,7 @@ class LowPassFilter(Effect):
 
     def apply_internal(self, a: np.ndarray, fs: float) -> np.ndarray:
         """Filter rows sampled at the internal rate (m/s^2) from rest; decimate them to ``fs``."""
-        y = sps.sosfilt(self.sos(), a, axis=-1)
+        y = sps.sosfilt(self.sos, a, axis=-1)
         return y[..., :: self.divider(fs)]
 
 

@@ -101,7 +101,6 @@ READING_ORDER = (
     "ebantenna/simulate/modes.py",
     "ebantenna/fem/coupling.py",
     "ebantenna/simulate/strikes.py",
-    "ebantenna/simulate/touched_object.py",
     "ebantenna/simulate/modes.py",
     "ebantenna/fem/modal.py",
     "ebantenna/fem/elements.py",

@@ -78,9 +78,10 @@ from ..recording import Recording
 from .effects import effect_names
 from .effects.sensor import CHAIN_STEPS as SENSOR_STEPS
 from .modes import CHAIN_STEPS as RESPONSE_STEPS
+from .modes import ModalTerms
 from .scene import Scene
 from .touched_object import CHAIN_STEPS as OBJECT_STEPS
-from .touched_object import ModalTerms, signal_terms
+from .touched_object import signal_terms
 
 __all__ = [
     "ModalTerms",

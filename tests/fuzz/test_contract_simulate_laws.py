@@ -31,10 +31,10 @@ from ebantenna.simulate import strikes as ST  # noqa: E402
 from ebantenna.simulate import unilateral as U  # noqa: E402
 from ebantenna.simulate.contact import PiecewiseSpring  # noqa: E402
 from ebantenna.simulate.effects import LowPassFilter, read_through_dlpf  # noqa: E402
+from ebantenna.simulate.modes import ModalTerms  # noqa: E402
 from ebantenna.simulate.simulator import ChainStep, SignalBatch  # noqa: E402
 from ebantenna.simulate.touched_object import (  # noqa: E402
     OBJECT_MODELS,
-    ModalTerms,
     ObjectModel,
     object_modes,
     pinned_modes,
@@ -238,6 +238,11 @@ def _cases(which, **kw):
         scene = builtin_scene("paper")
         args.update(scene=scene, preloads=np.array([scene.effect("object_modes").preload]))
     return which(**{**args, **kw})
+
+
+def _one_arrest_mode():
+    """One mode at 100 rad/s whose tip starts at 2 x 0.5 = 1 m/s per unit sweep speed."""
+    return MO.ArrestModes(np.array([100.0]), np.array([2.0]), np.array([0.5]), None)
 
 
 def _axis_batch(inverse=0):
@@ -700,30 +705,58 @@ def all_rows():
             ("x_modes",)),
         Row(t + "object_modes", "contacts-nan",
             lambda: _cases(object_modes, contacts=np.array([NAN])), ("contacts",)),
-        Row(t + "ModalTerms.damping_ratios", "row-negative",
+        Row(m + "x_terms", "modes-not-arrest-modes",
+            lambda: MO.x_terms(["m"], np.array([0]), np.ones(1)), ("modes",)),
+        Row(m + "x_terms", "rows-beyond-modes",
+            lambda: MO.x_terms([_one_arrest_mode()], np.array([1]), np.ones(1)), ("rows",)),
+        Row(m + "x_terms", "speeds-nan",
+            lambda: MO.x_terms([_one_arrest_mode()], np.array([0]), np.array([NAN])),
+            ("speeds",)),
+        Row(m + "x_terms", "zeta-one",
+            lambda: MO.x_terms([_one_arrest_mode()], np.array([0]), np.ones(1), zeta=1.0),
+            ("zeta",)),
+        Row(m + "x_terms", "preloads-two-for-one",
+            lambda: MO.x_terms([_one_arrest_mode()], np.array([0]), np.ones(1),
+                               preloads=np.ones(2)), ("preloads",)),
+        # each signal's row is its modes' tip velocity times its own speed
+        Row(m + "x_terms", "scaled-by-speed",
+            lambda: MO.x_terms([_one_arrest_mode()], np.array([0, 0]), np.array([1.0, 3.0]),
+                               zeta=0.01),
+            same=lambda x: x.amplitude.tolist() == [[1.0], [3.0]] and x.zeta.tolist() == [[0.01],
+                                                                                     [0.01]]),
+        Row(m + "z_terms", "tilts-two-for-one", lambda: MO.z_terms(
+            Probe(), "clamped", np.ones(1), np.ones(2), 0.0, n_elements=8, n_modes=4,
+            max_frequency=100.0), ("tilts",)),
+        Row(m + "z_terms", "zeta-negative", lambda: MO.z_terms(
+            Probe(), "clamped", np.ones(1), np.ones(1), -0.1, n_elements=8, n_modes=4,
+            max_frequency=100.0), ("zeta",)),
+        Row(m + "z_terms", "speeds-2d", lambda: MO.z_terms(
+            Probe(), "clamped", np.ones((1, 1)), np.ones(1), 0.0, n_elements=8, n_modes=4,
+            max_frequency=100.0), ("speeds",)),
+        Row(m + "ModalTerms.damping_ratios", "row-negative",
             lambda: _terms().damping_ratios(-1), ("row",)),
-        Row(t + "ModalTerms.damping_ratios", "row-beyond",
+        Row(m + "ModalTerms.damping_ratios", "row-beyond",
             lambda: _terms().damping_ratios(1), ("row",)),
-        Row(t + "ModalTerms.damping_ratios", "padding-dropped",
+        Row(m + "ModalTerms.damping_ratios", "padding-dropped",
             lambda: _terms().damping_ratios(0), same=lambda r: r.tolist() == [0.1]),
-        Row(t + "ModalTerms.dynamic_contact_force", "no-contact-spring",
+        Row(m + "ModalTerms.dynamic_contact_force", "no-contact-spring",
             lambda: _terms(force=False).dynamic_contact_force(t_fine), ("contact_force",)),
-        Row(t + "ModalTerms.dynamic_contact_force", "t-nan",
+        Row(m + "ModalTerms.dynamic_contact_force", "t-nan",
             lambda: _terms().dynamic_contact_force(np.array([0.0, NAN])), ("t",)),
-        Row(t + "ModalTerms.dynamic_contact_force", "t-2d",
+        Row(m + "ModalTerms.dynamic_contact_force", "t-2d",
             lambda: _terms().dynamic_contact_force(np.zeros((2, 2))), ("t",)),
         # one mode: each value a few roundings of exp and sin of size <= 0.02 N
-        Row(t + "ModalTerms.dynamic_contact_force", "one-mode-by-hand",
+        Row(m + "ModalTerms.dynamic_contact_force", "one-mode-by-hand",
             lambda: _terms().dynamic_contact_force(t_fine),
             same=lambda r: r.shape == (1, t_fine.size)
             and np.abs(r[0] - _force_by_hand(t_fine)).max() < 64 * np.finfo(float).eps * 0.02),
-        Row(t + "ModalTerms.lift_off_ratio", "no-preload",
+        Row(m + "ModalTerms.lift_off_ratio", "no-preload",
             lambda: _terms().lift_off_ratio(), ("preload",)),
-        Row(t + "ModalTerms.lift_off_ratio", "duration-zero",
+        Row(m + "ModalTerms.lift_off_ratio", "duration-zero",
             lambda: _terms(np.array([1.0])).lift_off_ratio(0.0), ("duration",)),
-        Row(t + "ModalTerms.lift_off_ratio", "rate-negative",
+        Row(m + "ModalTerms.lift_off_ratio", "rate-negative",
             lambda: _terms(np.array([1.0])).lift_off_ratio(1.0, -8000.0), ("rate",)),
-        Row(t + "ModalTerms.lift_off_ratio", "rate-nan",
+        Row(m + "ModalTerms.lift_off_ratio", "rate-nan",
             lambda: _terms(np.array([1.0])).lift_off_ratio(1.0, NAN), ("rate",)),
         *_linear_state_rows(),
         *_coulomb_law_rows(),

@@ -25,6 +25,14 @@ it is a cantilever held only by the stopped servo. What drives Z is the tilt ser
 path is an ellipse (the paper's Fig. 7), so at the contact the probe also turns across the sweep
 plane, at ``tilt_ratio * Omega``; the servos' stop arrests that rotation at the hinge. Z thus rings
 at the free probe's frequencies, the same for every contact and material.
+
+**In the simulator.** The module reads in the order the simulator uses it: the modes after the
+arrest (:func:`arrest_modes`, :func:`coupled_arrest_modes`), laid out per signal
+(:class:`ModalTerms`, :func:`x_terms`, :func:`z_terms`), then their sum
+(:func:`modal_acceleration`): the exponentials, through the chip's filter read as its design
+(:func:`filtered_exponentials`), summed (:func:`damped_exponentials`). The simulator's responses
+step, at the end (``CHAIN_STEPS``), sums every axis read from its modes and runs the models
+stepped in time for the others.
 """
 
 from __future__ import annotations

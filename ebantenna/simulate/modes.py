@@ -577,12 +577,12 @@ def filtered_exponentials(coef, rate, sos, internal_rate: float):
     """A digital filter's output for an input ``Im(sum_k coef_k exp(rate_k t))`` sampled from t = 0.
 
     The filter is given by its design, as values: its second-order sections ``sos`` and the
-    rate it runs at (the chip's low-pass filter,
-    :attr:`~ebantenna.simulate.effects.LowPassFilter.sos` and its ``internal_rate``). Input
-    sample ``n`` is ``u_n = Im(sum_k C_k z_k^n)`` with ``z_k = exp(rate_k / f_i)`` and ``f_i``
-    the internal rate; the filter ``H(w) = B(w) / A(w)`` in ``w = z^-1`` starts at rest. For one
-    exponential the output's z-transform ``B(w) / (A(w) (1 - z_k w))`` splits into partial
-    fractions over the input's pole and the filter's poles ``p_j``:
+    rate it runs at (for the chip's low-pass filter, the ``sos`` and ``internal_rate`` of
+    :class:`~ebantenna.simulate.effects.LowPassFilter`). Input sample ``n`` is
+    ``u_n = Im(sum_k C_k z_k^n)`` with ``z_k = exp(rate_k / f_i)`` and ``f_i`` the internal
+    rate; the filter ``H(w) = B(w) / A(w)`` in ``w = z^-1`` starts at rest. For one exponential
+    the output's z-transform ``B(w) / (A(w) (1 - z_k w))`` splits into partial fractions over
+    the input's pole and the filter's poles ``p_j``:
 
         y_n = Im( sum_k C_k [ H(z_k) z_k^n + sum_j R_jk p_j^n ] ),
         R_jk = B(1/p_j) / ( (1 - z_k / p_j) prod_(i != j) (1 - p_i / p_j) ),
@@ -603,8 +603,9 @@ def filtered_exponentials(coef, rate, sos, internal_rate: float):
 
     Returns
     -------
-    coef, rate : complex arrays of shape (n_signals, n_terms + n_poles)
-        The output's exponentials, the filter's transient terms last.
+    coef, rate : complex arrays of shape (n_signals, n_terms + 2 n_sections)
+        The output's exponentials, the filter's transient terms last, one per pole (two per
+        section of second order, as the chip's filter has).
 
     Examples
     --------

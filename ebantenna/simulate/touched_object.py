@@ -81,7 +81,7 @@ def pinned_modes(scene: Scene, contacts, materials, show_progress):
 
     Returns
     -------
-    modes : list of ArrestModes
+    modes : list of ebantenna.simulate.modes.ArrestModes
         The modes of each distinct (contact, spring).
     inverse : ndarray of int, shape (n,)
         Which of them each signal uses.
@@ -339,7 +339,7 @@ def signal_terms(
 
     Returns
     -------
-    x, z : ModalTerms
+    x, z : ebantenna.simulate.modes.ModalTerms
         The modal parameters of X and Z per signal.
     timed : dict
         The models stepped in time by name (:data:`OBJECT_MODELS`), only those built.

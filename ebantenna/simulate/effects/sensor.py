@@ -287,7 +287,7 @@ class LowPassFilter(Effect):
 
     The simulator does not sample the modal response at the internal rate and filter it: a sum
     of damped exponentials stays one through a linear filter, so the modal sum reads this
-    filter's design (:attr:`sos`, ``internal_rate``) and gives the filtered and decimated signal
+    filter's design (``sos``, ``internal_rate``) and gives the filtered and decimated signal
     in closed form (:func:`~ebantenna.simulate.modes.filtered_exponentials`; the witness,
     :func:`scipy.signal.sosfilt` at the internal rate followed by the decimation, agrees to
     rounding). Noise, which has no such form, is drawn at the internal rate and filtered

@@ -510,9 +510,9 @@ def march_in_blocks(system, x, key, n_steps: int, engine: str | None = None):
             system._record(i, x, key)
             continue
         st = system.state(key)
+        z = st._modal(x)  # unchecked: the march's own state
         limit = blocks.horizon(i, n_steps)
         first = (-(i + 1)) % sub  # the first step from here that is an output sample
-        z = st._modal(x)  # unchecked: the march's own state
         quiet = blocks.quiet(key, x, z, min(st.blocks.span, limit))
         m, j, values, event = read_ahead(st, x, z, first, limit, quiet, blocks.ends(key))
         blocks.record_block(i, j, values, x, z, key)

@@ -25,6 +25,14 @@ it is a cantilever held only by the stopped servo. What drives Z is the tilt ser
 path is an ellipse (the paper's Fig. 7), so at the contact the probe also turns across the sweep
 plane, at ``tilt_ratio * Omega``; the servos' stop arrests that rotation at the hinge. Z thus rings
 at the free probe's frequencies, the same for every contact and material.
+
+**In the simulator.** The module reads in the order the simulator uses it: the modes after the
+arrest (:func:`arrest_modes`, :func:`coupled_arrest_modes`), laid out per signal
+(:class:`ModalTerms`, :func:`x_terms`, :func:`z_terms`), then their sum
+(:func:`modal_acceleration`): the exponentials, through the chip's filter read as its design
+(:func:`filtered_exponentials`), summed (:func:`damped_exponentials`). The simulator's responses
+step, at the end (``CHAIN_STEPS``), sums every axis read from its modes and runs the models
+stepped in time for the others.
 """
 
 from __future__ import annotations
@@ -33,8 +41,16 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.signal as sps
 
-from .._validate import check_choice, check_int, check_positive, real_array
+from .._validate import (
+    check_array,
+    check_choice,
+    check_in_range,
+    check_int,
+    check_positive,
+    real_array,
+)
 from ..fem import Supports, modal_analysis
 from ..fem.assembly import assemble
 from ..fem.coupling import coupled_modes
@@ -43,10 +59,14 @@ from .structure import check_case
 
 __all__ = [
     "ArrestModes",
+    "ModalTerms",
+    "x_terms",
+    "z_terms",
     "arrest_modes",
     "coupled_arrest_modes",
     "coupled_modes_of",
     "modal_exponentials",
+    "filtered_exponentials",
     "damped_exponentials",
     "direct_exponentials",
     "EXPONENTIAL_ENGINES",
@@ -333,6 +353,203 @@ def coupled_modes_of(case) -> ArrestModes:
     )
 
 
+# ------------------------------------------------------------- the terms of each signal
+@dataclass(frozen=True, eq=False)
+class ModalTerms:
+    """Modal parameters of many signals, zero-padded to a common number of modes.
+
+    Attributes
+    ----------
+    omega : ndarray of shape (n_signals, n_modes)
+        Undamped natural circular frequencies (with the contact compliance, if listed), rad/s.
+    zeta : ndarray of shape (n_signals, n_modes)
+        Damping ratios (dimensionless).
+    amplitude : ndarray of shape (n_signals, n_modes)
+        Tip velocity each mode starts with, ``phi_k(L) q_dot_k(0)``, m/s; 0 in padding.
+    live : ndarray of bool, shape (n_signals, n_modes)
+        True for a simulated mode, False for padding.
+    contact_force : ndarray of shape (n_signals, n_modes) or None
+        ``F_k q_dot_k(0)``: each mode's force in the contact spring per unit modal coordinate
+        times its initial modal velocity, N/s (the dynamic contact force is
+        ``sum_k F_k q_dot_k(0) / omega_dk e^(-a_k t) sin(omega_dk t)``); None without a contact
+        spring (a rigid pin, or the Z axis).
+    preload : ndarray of shape (n_signals,) or None
+        Each strike's static contact force, N, with the ``object_modes`` effect; None otherwise.
+    restrikes : ndarray of int, shape (n_signals,) or None
+        With ``unilateral_contact``, once simulated: contacts after the first touch per strike.
+    """
+
+    omega: np.ndarray
+    zeta: np.ndarray
+    amplitude: np.ndarray
+    live: np.ndarray
+    contact_force: np.ndarray | None = None
+    preload: np.ndarray | None = None
+    restrikes: np.ndarray | None = None
+
+    def _check_row(self, row) -> None:
+        """``row`` is a signal's index, an integer ``0 <= row < n_signals`` (no negative
+        indexing)."""
+        check_int("row", row, minimum=0, maximum=self.omega.shape[0] - 1)
+
+    def frequencies(self, row: int = 0) -> np.ndarray:
+        """Natural frequencies of signal ``row`` (padding dropped), Hz."""
+        self._check_row(row)
+        return self.omega[row, self.live[row]] / (2 * math.pi)
+
+    def damping_ratios(self, row: int = 0) -> np.ndarray:
+        """Damping ratios of signal ``row`` (padding dropped)."""
+        self._check_row(row)
+        return self.zeta[row, self.live[row]]
+
+    def dynamic_contact_force(self, t) -> np.ndarray:
+        """The contact spring's force about its static value at times ``t`` (s), N.
+
+        Shape ``(n_signals, t.size)``; positive presses the probe on the object. The linear
+        model lets it take either sign: a strike in which it falls below minus the preload
+        would, on the rig, lift the probe off the object (see
+        :func:`ebantenna.simulate.unilateral.unilateral_response`).
+        """
+        if self.contact_force is None:
+            raise ValueError("these modal terms have no contact spring (contact_force is None)")
+        t = check_array("t", t, ndim=1)
+        # q_k(t) = q_dot_k(0) / omega_dk e^(-a_k t) sin(omega_dk t), on the modes' own rates
+        _, rate = modal_exponentials(self.contact_force, self.omega, self.zeta)
+        coef = (self.contact_force / rate.imag).astype(complex)
+        return damped_exponentials(t, coef, rate)
+
+    def lift_off_ratio(self, duration: float = 1.0, rate: float = 8000.0) -> np.ndarray:
+        """Largest pull of the linear contact over its preload, per strike (dimensionless).
+
+        ``max_t (-F_dyn(t)) / F0`` over ``duration`` seconds sampled at ``rate`` Hz: above 1 the
+        linear (bilateral) model holds the probe to the object by a pull that a real contact
+        cannot give; the probe would lift off and strike again.
+        """
+        if self.preload is None:
+            raise ValueError("these modal terms have no preload (listed without object_modes)")
+        duration = check_positive("duration", duration)
+        rate = check_positive("rate", rate)
+        t = np.arange(int(round(duration * rate))) / rate
+        return np.max(-self.dynamic_contact_force(t), axis=1) / self.preload
+
+
+def _padded(modes) -> tuple[np.ndarray, ...]:
+    """The distinct modes side by side, zero-padded to a common width.
+
+    Returns ``omega`` (padding 1), ``zeta``, ``amplitude`` (``phi_k(L) q_dot_k(0)``),
+    ``force`` (``F_k q_dot_k(0)``, 0 without a finite contact spring) and ``live``, each of shape
+    ``(len(modes), width)``.
+    """
+    width = max(m.omega.size for m in modes)
+    omega = np.ones((len(modes), width))
+    amplitude = np.zeros((len(modes), width))
+    force = np.zeros((len(modes), width))
+    zeta = np.zeros((len(modes), width))
+    live = np.zeros((len(modes), width), dtype=bool)
+    for i, m in enumerate(modes):
+        k = m.omega.size
+        live[i, :k] = True
+        omega[i, :k] = m.omega
+        amplitude[i, :k] = m.tip * m.velocity
+        if m.contact_force is not None and math.isfinite(m.contact_stiffness):
+            force[i, :k] = m.contact_force * m.velocity
+        if m.damping_ratio is not None:
+            zeta[i, :k] = m.damping_ratio
+    return omega, zeta, amplitude, force, live
+
+
+def x_terms(modes, rows, speeds, *, zeta=None, preloads=None) -> ModalTerms:
+    """X's modal parameters per signal: ``modes[rows[i]]`` scaled by signal ``i``'s speed.
+
+    The distinct modes are laid side by side, zero-padded to a common width (:class:`ModalTerms`).
+
+    Parameters
+    ----------
+    modes : list of ArrestModes
+        The distinct modes of X; empty when none were asked for (each signal then has none).
+    rows : array of int, shape (n,)
+        Which of them each signal uses.
+    speeds : array of shape (n,)
+        Each signal's sweep speed, rad/s.
+    zeta : float or None
+        One damping ratio for every mode (the probe's structural damping, on a rigid object);
+        None: each mode's own (the coupled model carries every body's damping).
+    preloads : array of shape (n,) or None
+        Each strike's preload, N (with the ``object_modes`` effect).
+
+    Examples
+    --------
+    >>> m = ArrestModes(np.array([100.0]), np.array([2.0]), np.array([0.5]), None)
+    >>> x_terms([m], np.array([0, 0]), np.array([1.0, 3.0]), zeta=0.01).amplitude
+    array([[1.],
+           [3.]])
+    """
+    speeds = check_array("speeds", speeds, ndim=1)
+    n = speeds.size
+    if not isinstance(modes, list | tuple) or not all(isinstance(m, ArrestModes) for m in modes):
+        raise TypeError("modes must be a list of ArrestModes")
+    rows = np.asarray(rows)
+    if rows.shape != (n,) or rows.dtype.kind not in "iu" or (
+            n and modes and not 0 <= rows.min() <= rows.max() < len(modes)):
+        raise ValueError(f"rows must hold one index into modes per speed ({n}), got {rows!r}")
+    if zeta is not None:
+        zeta = check_in_range("zeta", zeta, 0.0, 1.0, low_inclusive=True)
+    if preloads is not None and check_array("preloads", preloads, ndim=1).shape != (n,):
+        raise ValueError(f"preloads must hold one preload per speed ({n}), got shape "
+                         f"{np.shape(preloads)}")
+    if not modes:  # X's modes not asked for (x_modes=False): none, for every signal
+        rows, modes = np.zeros(n, dtype=int), [ArrestModes(*[np.empty(0)] * 3, None)]
+    omega_u, zeta_u, amp_u, force_u, live_u = _padded(modes)
+    amplitude = amp_u[rows] * speeds[:, None]
+    if zeta is None:  # the coupled model carries every body's damping
+        zeta = zeta_u[rows]
+    else:
+        zeta = np.full((n, omega_u.shape[1]), zeta)
+    if np.any(zeta >= 1):
+        raise ValueError(f"a mode is overdamped (zeta up to {zeta.max():.3g}); not supported")
+    spring = any(math.isfinite(m.contact_stiffness) for m in modes)
+    force = force_u[rows] * speeds[:, None] if spring else None
+    return ModalTerms(omega_u[rows], zeta, amplitude, live_u[rows], force, preloads)
+
+
+def z_terms(probe: Probe, hinge, speeds, tilts, zeta: float, *, n_elements: int, n_modes: int,
+            max_frequency: float) -> ModalTerms:
+    """Z's modal parameters per signal: the free probe (:func:`arrest_modes` with no contact),
+    driven across the sweep plane at ``tilts * speeds``.
+
+    Parameters
+    ----------
+    probe, hinge, n_elements, n_modes, max_frequency
+        As in :func:`arrest_modes`.
+    speeds, tilts : arrays of shape (n,)
+        Each signal's sweep speed (rad/s) and tilt ratio.
+    zeta : float
+        The damping ratio of every mode (the probe's structural damping).
+
+    Examples
+    --------
+    >>> from ebantenna.probe import Probe
+    >>> z = z_terms(Probe(), "clamped", np.array([1.0]), np.array([0.5]), 0.0, n_elements=40,
+    ...             n_modes=6, max_frequency=480.0)
+    >>> z.frequencies().round(1)
+    array([ 13.9,  87. , 243.6, 477.4])
+    """
+    speeds = check_array("speeds", speeds, ndim=1)
+    if check_array("tilts", tilts, ndim=1).shape != speeds.shape:
+        raise ValueError(f"tilts must hold one tilt ratio per speed ({speeds.size}), got shape "
+                         f"{np.shape(tilts)}")
+    zeta = check_in_range("zeta", zeta, 0.0, 1.0, low_inclusive=True)
+    kw = dict(n_elements=n_elements, n_modes=n_modes, max_frequency=max_frequency)
+    z_modes = arrest_modes(probe, hinge, None, **kw)
+    z_amp = (z_modes.tip * z_modes.velocity)[None, :] * (tilts * speeds)[:, None]
+    return ModalTerms(
+        np.broadcast_to(z_modes.omega, z_amp.shape).copy(),
+        np.full(z_amp.shape, zeta),
+        z_amp,
+        np.ones(z_amp.shape, dtype=bool),
+    )
+
+
 def modal_exponentials(amplitude, omega, zeta):
     """The modes' tip acceleration as complex exponentials: ``C_k`` and ``s_k`` (module docstring).
 
@@ -354,6 +571,77 @@ def modal_exponentials(amplitude, omega, zeta):
     a = zeta * omega
     wd = omega * np.sqrt(1 - zeta**2)
     return amplitude * ((a * a - wd * wd) / wd - 2j * a), -a + 1j * wd
+
+
+def filtered_exponentials(coef, rate, sos, internal_rate: float):
+    """A digital filter's output for an input ``Im(sum_k coef_k exp(rate_k t))`` sampled from t = 0.
+
+    The filter is given by its design, as values: its second-order sections ``sos`` and the
+    rate it runs at (for the chip's low-pass filter, the ``sos`` and ``internal_rate`` of
+    :class:`~ebantenna.simulate.effects.LowPassFilter`). Input sample ``n`` is
+    ``u_n = Im(sum_k C_k z_k^n)`` with ``z_k = exp(rate_k / f_i)`` and ``f_i`` the internal
+    rate; the filter ``H(w) = B(w) / A(w)`` in ``w = z^-1`` starts at rest. For one exponential
+    the output's z-transform ``B(w) / (A(w) (1 - z_k w))`` splits into partial fractions over
+    the input's pole and the filter's poles ``p_j``:
+
+        y_n = Im( sum_k C_k [ H(z_k) z_k^n + sum_j R_jk p_j^n ] ),
+        R_jk = B(1/p_j) / ( (1 - z_k / p_j) prod_(i != j) (1 - p_i / p_j) ),
+
+    a sum of damped exponentials again: the input's, scaled by the filter's gain, and the
+    filter's own transient at its poles (rates ``f_i log p_j``). Evaluated at ``t = n / f_i``
+    it is the filter's output exactly; at every ``divider``-th sample, the decimated one. The
+    poles must be distinct (a Butterworth pair is).
+
+    Parameters
+    ----------
+    coef, rate : complex arrays of shape (n_signals, n_terms)
+        ``C_k`` and ``rate_k`` (1/s) of each signal's exponentials.
+    sos : ndarray of shape (n_sections, 6)
+        The filter's second-order sections at ``internal_rate``.
+    internal_rate : float
+        The rate the filter runs at, Hz.
+
+    Returns
+    -------
+    coef, rate : complex arrays of shape (n_signals, n_terms + 2 n_sections)
+        The output's exponentials, the filter's transient terms last, one per pole (two per
+        section of second order, as the chip's filter has).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import scipy.signal as sps
+    >>> sos = sps.butter(2, 260.0, fs=8000.0, output="sos")
+    >>> coef, rate = filtered_exponentials(np.array([[1.0 + 0j]]), np.array([[-5.0 + 100j]]),
+    ...                                    sos, 8000.0)
+    >>> coef.shape, bool(np.all(rate[0, 1:].real < 0))  # the input's term, two filter transients
+    ((1, 3), True)
+    """
+    coef, rate = np.asarray(coef), np.asarray(rate)
+    for name, value in (("coef", coef), ("rate", rate)):
+        if value.ndim != 2 or value.dtype.kind not in "fc" or not np.all(np.isfinite(value)):
+            raise ValueError(f"{name} must be a finite real or complex array of shape "
+                             f"(n_signals, n_terms), got {value.dtype} of shape {value.shape}")
+    if rate.shape != coef.shape:
+        raise ValueError(f"rate must have the shape of coef {coef.shape}, got {rate.shape}")
+    sos = np.asarray(sos)
+    if sos.ndim != 2 or sos.shape[1] != 6 or sos.dtype.kind not in "fi" \
+            or not np.all(np.isfinite(sos)):
+        raise ValueError(f"sos must be a finite real array of second-order sections, shape "
+                         f"(n_sections, 6), got {sos.dtype} of shape {sos.shape}")
+    fi = check_positive("internal_rate", internal_rate)
+    b, a = sps.sos2tf(sos)
+    poles = np.roots(a)
+    z = np.exp(np.asarray(rate) / fi)
+    gain = np.polyval(b[::-1], 1 / z) / np.polyval(a[::-1], 1 / z)  # H(z_k) = B(1/z) / A(1/z)
+    out_coef = [coef * gain]
+    for j, p in enumerate(poles):
+        others = np.prod([1 - q / p for i, q in enumerate(poles) if i != j])
+        residue = np.polyval(b[::-1], 1 / p) / ((1 - z / p) * others)
+        out_coef.append(np.sum(coef * residue, axis=-1, keepdims=True))
+    n = coef.shape[0]
+    pole_rates = np.broadcast_to(fi * np.log(poles.astype(complex)), (n, poles.size))
+    return np.concatenate(out_coef, axis=-1), np.concatenate([rate, pole_rates], axis=-1)
 
 
 def direct_exponentials(t: np.ndarray, coef, rate, max_elements: int) -> np.ndarray:
@@ -445,9 +733,9 @@ def modal_acceleration(
     """Sum of damped modal accelerations ``sum_k Im(C_k e^(s_k t))`` for many signals at once.
 
     The exponentials (:func:`modal_exponentials`) are summed by :func:`damped_exponentials`;
-    with ``low_pass`` they first pass through the chip's filter
-    (:meth:`~ebantenna.simulate.effects.LowPassFilter.filter_exponentials`: the filter's output,
-    exactly, at its internal rate, then read at ``t``).
+    with ``low_pass`` they first pass through the chip's filter, read as its design (its
+    ``sos`` and ``internal_rate``; :func:`filtered_exponentials`: the filter's output, exactly,
+    at its internal rate, then read at ``t``).
 
     Parameters
     ----------
@@ -477,10 +765,31 @@ def modal_acceleration(
     >>> modal_acceleration(t, np.array([[1.0]]), np.array([[2 * np.pi]]), np.zeros((1, 1))).round(6)
     array([[ 0.      , -6.283185]])
     """
-    if low_pass is not None and not callable(getattr(low_pass, "filter_exponentials", None)):
+    if low_pass is not None and not isinstance(getattr(low_pass, "sos", None), np.ndarray):
         raise TypeError(f"low_pass must be a LowPassFilter (the scene's dlpf) or None, got "
                         f"{type(low_pass).__name__}")
     coef, rate = modal_exponentials(amplitude, omega, zeta)
     if low_pass is not None:  # the chip's filter at its internal rate, then its decimation
-        coef, rate = low_pass.filter_exponentials(coef, rate)
+        coef, rate = filtered_exponentials(coef, rate, low_pass.sos, low_pass.internal_rate)
     return damped_exponentials(t, coef, rate, max_elements=max_elements)
+
+
+# ------------------------------------------------------------- the simulator's step
+def _respond(_, batch) -> None:
+    """The responses: X and Z after the arrest. Each axis read from its modes is their sum at
+    the sample instants, through the chip's filter if listed (:func:`modal_acceleration`); then
+    each axis a model stepped in time gives (``batch.responders``, set by the touched object's
+    step) is computed at that model's rate, for the chip to read (the sensor's next step)."""
+    for axis, terms in (("x", batch.x), ("z", batch.z)):
+        if axis not in batch.responders:  # the batch's field ax or az
+            setattr(batch, "a" + axis, modal_acceleration(
+                batch.when, terms.amplitude, terms.omega, terms.zeta, low_pass=batch.chip_filter))
+    for axis, (respond, models) in batch.responders.items():
+        batch.timed_acc[axis] = respond(batch, models)
+
+
+#: The simulator's responses step, written beside the modal sum it runs: it takes
+#: ``(effect, batch)`` and changes the simulator's
+#: :class:`~ebantenna.simulate.simulator.SignalBatch` in place, with values the simulator
+#: checked. :data:`ebantenna.simulate.simulator.CHAIN` puts it in order, and says why.
+CHAIN_STEPS = {"responses": _respond}

@@ -4,13 +4,14 @@ The simulator is a chain of steps, applied in one loop over an ordered list, :da
 entry names the effect that switches the step on (None: the step always runs), the step, a
 function that takes the effect and the :class:`SignalBatch` it works on, and the other effects
 the step reads (``reads``): every effect of the scene is a step or is read by one. Each step is
-written beside the physics it applies: the sensor's and the acquisition's (``clock_jitter``'s and
-every step from ``gravity`` on) beside their effects, in
-:mod:`~ebantenna.simulate.effects.sensor` (its ``CHAIN_STEPS``); the two that always run, the
-touched object and the responses, beside the models they run, in
-:mod:`~ebantenna.simulate.touched_object` (its ``CHAIN_STEPS``); the preload's is here. A scene
-that does not list an effect skips its step, and a new effect is one more entry in the list. In
-order:
+written beside the physics it applies: the sensor's and the acquisition's (``clock_jitter``'s,
+the chip's reading of the axes stepped in time, and every step from ``gravity`` on) beside their
+effects, in :mod:`~ebantenna.simulate.effects.sensor` (its ``CHAIN_STEPS``); the touched
+object's beside the models it runs, in :mod:`~ebantenna.simulate.touched_object`, and the
+responses' beside the modal sum, in :mod:`~ebantenna.simulate.modes` (their ``CHAIN_STEPS``);
+the preload's is here. Each step finishes its work before the next starts, and hands the next
+what it needs as values in the batch. A scene that does not list an effect skips its step, and a
+new effect is one more entry in the list. In order:
 
 1. ``preload_scatter``: each strike's preload. It sets the contact spring, so it comes before
    the modes.
@@ -20,24 +21,25 @@ order:
    ``contact_compliance``, ``tip_mass``, ``object_damping``, ``unilateral_contact``,
    ``hertz_contact`` and ``coulomb_friction``.
 3. ``clock_jitter``: when each sample is taken. The responses are evaluated at these instants.
-4. *The responses* (always): X and Z after the arrest, each from its axis's time-stepped model
-   if the scene lists one (``unilateral_contact``, ``coulomb_friction``), otherwise the sum of
-   its modes (:func:`~ebantenna.simulate.modes.modal_acceleration`), through the chip's
-   low-pass filter (``dlpf``) and its decimation. The filter is
-   read from the scene once, into ``SignalBatch.chip_filter``; steps 4, 7 and 8 read it
-   there.
-5. ``clock_jitter`` again: a sample taken before the arrest reads no acceleration.
-6. ``gravity``,
-7. ``mains_hum`` and
-8. ``sensor_noise``: what the chip measures besides the vibration. On the chip the filter acts
+4. *The responses* (always): X and Z after the arrest. An axis read from its modes is their sum
+   (:func:`~ebantenna.simulate.modes.modal_acceleration`) through the chip's low-pass filter
+   (``dlpf``) and its decimation, in closed form; an axis with a time-stepped model in the scene
+   (``unilateral_contact``, ``coulomb_friction``) is computed at the filter's internal rate.
+5. *The chip's reading* (always) of the axes stepped in time: through its filter at its
+   internal rate, then at the sample instants. The filter is read from the scene once, into
+   ``SignalBatch.chip_filter``; steps 4, 5, 8 and 9 read it there.
+6. ``clock_jitter`` again: a sample taken before the arrest reads no acceleration.
+7. ``gravity``,
+8. ``mains_hum`` and
+9. ``sensor_noise``: what the chip measures besides the vibration. On the chip the filter acts
    on the sum, after the noise; it is linear, so applying it to each part as that part enters
    gives the same: to the modal exponentials exactly (step 4), to the hum by its gain and phase
    at the hum's frequency, to the noise as drawn at the chip's internal rate; gravity, a
    constant, passes the settled filter unchanged.
-9. ``sensor_drift``: the chip's offset and sensitivity, after its filter.
-10. ``clipping`` and
-11. ``quantisation``: the chip's range and its 16-bit output.
-12. ``kalman``: the filter on the Raspberry Pi, about each axis's resting level.
+10. ``sensor_drift``: the chip's offset and sensitivity, after its filter.
+11. ``clipping`` and
+12. ``quantisation``: the chip's range and its 16-bit output.
+13. ``kalman``: the filter on the Raspberry Pi, about each axis's resting level.
 
 The touched object is one of four physics models, each a named step of
 :mod:`~ebantenna.simulate.touched_object`: without ``object_modes`` it is rigid
@@ -75,9 +77,11 @@ from ..probe import material as lookup_material
 from ..recording import Recording
 from .effects import effect_names
 from .effects.sensor import CHAIN_STEPS as SENSOR_STEPS
+from .modes import CHAIN_STEPS as RESPONSE_STEPS
+from .modes import ModalTerms
 from .scene import Scene
 from .touched_object import CHAIN_STEPS as OBJECT_STEPS
-from .touched_object import ModalTerms, signal_terms
+from .touched_object import signal_terms
 
 __all__ = [
     "ModalTerms",
@@ -123,6 +127,12 @@ class SignalBatch:
     timed : dict
         The models stepped in time by name
         (:data:`~ebantenna.simulate.touched_object.OBJECT_MODELS`).
+    responders : dict
+        For the responses: the axis (``"x"``, ``"z"``) each model stepped in time gives, to its
+        ``respond`` and its built models; an axis not listed is read from its modes.
+    timed_acc : dict
+        The axes stepped in time, once the responses ran: axis to ``(acceleration, rate)``, the
+        acceleration at the model's rate (Hz) until the chip reads it at the sample instants.
     inverse : ndarray of int or None
         Which contact case each signal uses.
     t : ndarray of shape (n_samples,)
@@ -151,6 +161,8 @@ class SignalBatch:
     x: ModalTerms | None = None
     z: ModalTerms | None = None
     timed: dict = field(default_factory=dict)
+    responders: dict = field(default_factory=dict)
+    timed_acc: dict = field(default_factory=dict)
     inverse: np.ndarray | None = None
     t: np.ndarray = field(init=False)
     when: np.ndarray = field(init=False)
@@ -242,8 +254,9 @@ CHAIN = (
                      "object_damping", "unilateral_contact", "hertz_contact",
                      "coulomb_friction")),
     ChainStep("clock_jitter", SENSOR_STEPS["sample_instants"]),
-    ChainStep(None, OBJECT_STEPS["responses"],
+    ChainStep(None, RESPONSE_STEPS["responses"],
               reads=("unilateral_contact", "coulomb_friction", "dlpf")),
+    ChainStep(None, SENSOR_STEPS["read_timed"], reads=("dlpf",)),
     ChainStep("clock_jitter", SENSOR_STEPS["rest_before_arrest"]),
     ChainStep("gravity", SENSOR_STEPS["gravity"]),
     ChainStep("mains_hum", SENSOR_STEPS["mains_hum"], reads=("dlpf",)),

@@ -41,7 +41,7 @@ import scipy.linalg as sla
 
 from .._validate import check_choice, check_int, check_nonnegative, check_positive
 from .modes import sweep_velocity
-from .strikes import check_reduction, reduced_body
+from .strikes import check_reduction, reduced_body, timed_rate
 from .structure import check_case, check_dof_vector, check_symmetric_matrix
 from .unilateral import (
     MARCHES,
@@ -60,7 +60,7 @@ from .unilateral import (
 
 __all__ = ["StickSlipResponse", "check_coefficients", "stick_slip_response", "StickSlipLaw",
            "friction_states", "FrictionModel", "friction_model", "friction_model_of",
-           "friction_accelerations"]  # fmt: skip
+           "friction_accelerations", "friction_axis"]  # fmt: skip
 
 log = logging.getLogger(__name__)
 
@@ -498,3 +498,32 @@ def friction_accelerations(scene, models, inverse, rotation_speeds, *, rate: flo
             damping=m.damping, output=m.output, max_events=effect.max_events, method=effect.method,
         ).acceleration[:n_int]  # fmt: skip
     return acc
+
+
+def friction_axis(batch, models) -> tuple[np.ndarray, float]:
+    """The ``friction`` model's axis (Z) in the simulator's responses step: stick and slip along
+    the rod at the tilt rotation's speed, computed at
+    :func:`~ebantenna.simulate.strikes.timed_rate` and left there for the chip to read, as the
+    strikes are (:func:`~ebantenna.simulate.strikes.strike_axis`).
+
+    Parameters
+    ----------
+    batch : ebantenna.simulate.simulator.SignalBatch
+        The chain's batch, once its sample instants are set.
+    models : list of FrictionModel
+        The distinct Z models (``batch.timed["friction"]``).
+
+    Returns
+    -------
+    acceleration : ndarray of shape (n, n_int)
+        m/s^2, from the servo's stop, at ``rate``.
+    rate : float
+        Its sample rate, Hz.
+    """
+    if not all(hasattr(batch, a) for a in ("scene", "when", "chip_filter", "inverse", "speeds",
+                                           "tilts")):
+        raise TypeError(f"batch must be the simulator's SignalBatch, got {type(batch).__name__}")
+    rate, n_int = timed_rate(batch.scene, batch.when, batch.chip_filter)
+    acc = friction_accelerations(batch.scene, models, batch.inverse, batch.tilts * batch.speeds,
+                                 rate=rate, n_samples=n_int)
+    return acc, rate

@@ -40,6 +40,7 @@ steps per period of the fastest mode (:mod:`.unilateral`).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import warnings
 import weakref
@@ -61,6 +62,7 @@ __all__ = [
     "strike_model_of",
     "strike_accelerations",
     "timed_rate",
+    "strike_axis",
     "reduced_body",
     "check_reduction",
 ]
@@ -363,3 +365,38 @@ def timed_rate(scene, when, dlpf) -> tuple[float, int]:
     rate = dlpf.internal_rate if dlpf is not None else UNFILTERED_RATE * scene.fs
     span = float(np.max(when)) if np.ndim(when) == 2 else (scene.n_samples - 1) / scene.fs
     return rate, math.floor(span * rate) + 2
+
+
+def strike_axis(batch, models) -> tuple[np.ndarray, float]:
+    """The ``unilateral`` model's axis (X) in the simulator's responses step: every strike
+    marched by the effect's ``method``, at :func:`timed_rate`.
+
+    The acceleration is left at that rate for the chip to read at the sample instants, through
+    its filter (:func:`~ebantenna.simulate.effects.sensor.read_through_dlpf`, the sensor's step
+    after the responses). Records each strike's contacts after the first in ``batch.x``
+    (``restrikes``).
+
+    Parameters
+    ----------
+    batch : ebantenna.simulate.simulator.SignalBatch
+        The chain's batch, once its sample instants are set.
+    models : list of StrikeModel
+        The distinct strike models (``batch.timed["unilateral"]``).
+
+    Returns
+    -------
+    acceleration : ndarray of shape (n, n_int)
+        m/s^2, from the first touch, at ``rate``.
+    rate : float
+        Its sample rate, Hz.
+    """
+    if not all(hasattr(batch, a) for a in ("scene", "when", "chip_filter", "inverse", "speeds")):
+        raise TypeError(f"batch must be the simulator's SignalBatch, got {type(batch).__name__}")
+    rate, n_int = timed_rate(batch.scene, batch.when, batch.chip_filter)
+    effect = batch.scene.effect("unilateral_contact")
+    acc, restrikes = strike_accelerations(
+        models, batch.inverse, batch.speeds, rate=rate, n_samples=n_int,
+        max_events=effect.max_events, method=effect.method,
+    )  # fmt: skip
+    batch.x = dataclasses.replace(batch.x, restrikes=restrikes)
+    return acc, rate

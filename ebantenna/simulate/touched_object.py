@@ -20,13 +20,14 @@ preload) -- a :class:`~ebantenna.simulate.structure.ContactCase` -- every model 
 A new model of the touched rod is one entry of :data:`OBJECT_MODELS`.
 
 :func:`signal_terms` is the simulator's step of the touched object (the second step of
-:data:`~ebantenna.simulate.simulator.CHAIN`): it runs the physics model, then lays out each
-signal's modal parameters as :class:`ModalTerms`, the modes side by side, zero-padded, each
-signal's row scaled by its sweep speed. The responses' step (the fourth) reads each axis from
-its model stepped in time (an :class:`ObjectModel`'s ``respond``) or from the sum of its modes
-(:func:`~ebantenna.simulate.modes.modal_acceleration`). Both steps sit at the end of this module
-(``CHAIN_STEPS``), and every function here takes values checked by the simulator's public
-entries (:mod:`ebantenna.simulate.simulator`).
+:data:`~ebantenna.simulate.simulator.CHAIN`, at the end of this module, ``CHAIN_STEPS``): it
+runs the physics model, then has each signal's modal parameters laid out as
+:class:`~ebantenna.simulate.modes.ModalTerms` beside the modal sum that reads them
+(:func:`~ebantenna.simulate.modes.x_terms`, :func:`~ebantenna.simulate.modes.z_terms`: the modes
+side by side, zero-padded, each signal's row scaled by its sweep speed), and hands the responses'
+step, also beside the modal sum (:mod:`ebantenna.simulate.modes`), which axis a model stepped in
+time gives (an :class:`ObjectModel`'s ``respond``). Every function here takes values checked by
+the simulator's public entries (:mod:`ebantenna.simulate.simulator`).
 """
 
 from __future__ import annotations
@@ -42,24 +43,16 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from .._progress import progress
-from .._validate import check_array, check_bool, check_choice, check_int, check_positive
+from .._validate import check_bool, check_choice
 from ..fem.coupling import craig_bampton, probe_substructure, rod_substructure
 from ..fem.guards import check_contact
 from ..probe import Probe
 from ..probe import material as lookup_material
 from .effects import effect_names
-from .effects.sensor import read_through_dlpf
-from .modes import (
-    ArrestModes,
-    arrest_modes,
-    coupled_modes_of,
-    damped_exponentials,
-    modal_acceleration,
-    modal_exponentials,
-)
+from .modes import arrest_modes, coupled_modes_of, x_terms, z_terms
 from .scene import Scene
-from .stick_slip import friction_accelerations, friction_model_of
-from .strikes import strike_accelerations, strike_model_of, timed_rate
+from .stick_slip import friction_axis, friction_model_of
+from .strikes import strike_axis, strike_model_of
 from .structure import ContactCase
 
 __all__ = [
@@ -67,7 +60,6 @@ __all__ = [
     "OBJECT_MODELS",
     "pinned_modes",
     "object_modes",
-    "ModalTerms",
     "signal_terms",
 ]
 
@@ -89,7 +81,7 @@ def pinned_modes(scene: Scene, contacts, materials, show_progress):
 
     Returns
     -------
-    modes : list of ArrestModes
+    modes : list of ebantenna.simulate.modes.ArrestModes
         The modes of each distinct (contact, spring).
     inverse : ndarray of int, shape (n,)
         Which of them each signal uses.
@@ -114,29 +106,6 @@ def pinned_modes(scene: Scene, contacts, materials, show_progress):
     return modes, inverse.ravel()
 
 
-def _strike_axis(batch, models) -> np.ndarray:
-    """X from the ``unilateral`` strikes, each computed at :func:`.strikes.timed_rate`, marched by
-    the effect's ``method``, and read through the chip's filter
-    (:func:`.effects.sensor.read_through_dlpf`); records each strike's contacts after the first."""
-    rate, n_int = timed_rate(batch.scene, batch.when, batch.chip_filter)
-    effect = batch.scene.effect("unilateral_contact")
-    acc, restrikes = strike_accelerations(
-        models, batch.inverse, batch.speeds, rate=rate, n_samples=n_int,
-        max_events=effect.max_events, method=effect.method,
-    )  # fmt: skip
-    batch.x = dataclasses.replace(batch.x, restrikes=restrikes)
-    return read_through_dlpf(batch.chip_filter, acc, rate, batch.when)
-
-
-def _friction_axis(batch, models) -> np.ndarray:
-    """Z from the ``friction`` model: stick and slip along the rod, at the tilt rotation's speed,
-    computed and read as the strikes are (:func:`_strike_axis`)."""
-    rate, n_int = timed_rate(batch.scene, batch.when, batch.chip_filter)
-    acc = friction_accelerations(batch.scene, models, batch.inverse, batch.tilts * batch.speeds,
-                                 rate=rate, n_samples=n_int)
-    return read_through_dlpf(batch.chip_filter, acc, rate, batch.when)
-
-
 @dataclass(frozen=True)
 class ObjectModel:
     """One physics model of the touched rod, built for each distinct contact case.
@@ -153,8 +122,9 @@ class ObjectModel:
         ``build(case)``: the model of one contact case
         (:class:`~ebantenna.simulate.structure.ContactCase`).
     respond : callable or None
-        ``respond(batch, models) -> (n, n_samples) array``: the axis, for a model stepped in
-        time; None for modes, which the modal sum reads
+        ``respond(batch, models) -> (acceleration, rate)``: the axis, for a model stepped in
+        time, at the rate it is computed (``(n, n_int)`` array, Hz), which the chip then reads
+        at the sample instants; None for modes, which the modal sum reads
         (:data:`~ebantenna.simulate.simulator.CHAIN`, the responses).
     unless : str or None
         An effect that gives the same axis in time: when it is listed and the caller asked for no
@@ -197,8 +167,8 @@ class ObjectModel:
 #: contact case. A model stepped in time (``respond`` set) gives its axis instead of the modes.
 OBJECT_MODELS = (
     ObjectModel("coupled", "x", None, coupled_modes_of, unless="unilateral_contact"),
-    ObjectModel("unilateral", "x", "unilateral_contact", strike_model_of, _strike_axis),
-    ObjectModel("friction", "z", "coulomb_friction", friction_model_of, _friction_axis),
+    ObjectModel("unilateral", "x", "unilateral_contact", strike_model_of, strike_axis),
+    ObjectModel("friction", "z", "coulomb_friction", friction_model_of, friction_axis),
 )
 
 
@@ -314,146 +284,6 @@ def object_modes(scene: Scene, contacts, materials, preloads, show_progress, x_m
     return modes, inverse, {name: got for name, got in built.items() if got}
 
 
-# ------------------------------------------------------------- the terms of each signal
-@dataclass(frozen=True, eq=False)
-class ModalTerms:
-    """Modal parameters of many signals, zero-padded to a common number of modes.
-
-    Attributes
-    ----------
-    omega : ndarray of shape (n_signals, n_modes)
-        Undamped natural circular frequencies (with the contact compliance, if listed), rad/s.
-    zeta : ndarray of shape (n_signals, n_modes)
-        Damping ratios (dimensionless).
-    amplitude : ndarray of shape (n_signals, n_modes)
-        Tip velocity each mode starts with, ``phi_k(L) q_dot_k(0)``, m/s; 0 in padding.
-    live : ndarray of bool, shape (n_signals, n_modes)
-        True for a simulated mode, False for padding.
-    contact_force : ndarray of shape (n_signals, n_modes) or None
-        ``F_k q_dot_k(0)``: each mode's force in the contact spring per unit modal coordinate
-        times its initial modal velocity, N/s (the dynamic contact force is
-        ``sum_k F_k q_dot_k(0) / omega_dk e^(-a_k t) sin(omega_dk t)``); None without a contact
-        spring (a rigid pin, or the Z axis).
-    preload : ndarray of shape (n_signals,) or None
-        Each strike's static contact force, N, with the ``object_modes`` effect; None otherwise.
-    restrikes : ndarray of int, shape (n_signals,) or None
-        With ``unilateral_contact``, once simulated: contacts after the first touch per strike.
-    """
-
-    omega: np.ndarray
-    zeta: np.ndarray
-    amplitude: np.ndarray
-    live: np.ndarray
-    contact_force: np.ndarray | None = None
-    preload: np.ndarray | None = None
-    restrikes: np.ndarray | None = None
-
-    def _check_row(self, row) -> None:
-        """``row`` is a signal's index, an integer ``0 <= row < n_signals`` (no negative
-        indexing)."""
-        check_int("row", row, minimum=0, maximum=self.omega.shape[0] - 1)
-
-    def frequencies(self, row: int = 0) -> np.ndarray:
-        """Natural frequencies of signal ``row`` (padding dropped), Hz."""
-        self._check_row(row)
-        return self.omega[row, self.live[row]] / (2 * math.pi)
-
-    def damping_ratios(self, row: int = 0) -> np.ndarray:
-        """Damping ratios of signal ``row`` (padding dropped)."""
-        self._check_row(row)
-        return self.zeta[row, self.live[row]]
-
-    def dynamic_contact_force(self, t) -> np.ndarray:
-        """The contact spring's force about its static value at times ``t`` (s), N.
-
-        Shape ``(n_signals, t.size)``; positive presses the probe on the object. The linear
-        model lets it take either sign: a strike in which it falls below minus the preload
-        would, on the rig, lift the probe off the object (see
-        :func:`ebantenna.simulate.unilateral.unilateral_response`).
-        """
-        if self.contact_force is None:
-            raise ValueError("these modal terms have no contact spring (contact_force is None)")
-        t = check_array("t", t, ndim=1)
-        # q_k(t) = q_dot_k(0) / omega_dk e^(-a_k t) sin(omega_dk t), on the modes' own rates
-        _, rate = modal_exponentials(self.contact_force, self.omega, self.zeta)
-        coef = (self.contact_force / rate.imag).astype(complex)
-        return damped_exponentials(t, coef, rate)
-
-    def lift_off_ratio(self, duration: float = 1.0, rate: float = 8000.0) -> np.ndarray:
-        """Largest pull of the linear contact over its preload, per strike (dimensionless).
-
-        ``max_t (-F_dyn(t)) / F0`` over ``duration`` seconds sampled at ``rate`` Hz: above 1 the
-        linear (bilateral) model holds the probe to the object by a pull that a real contact
-        cannot give; the probe would lift off and strike again.
-        """
-        if self.preload is None:
-            raise ValueError("these modal terms have no preload (listed without object_modes)")
-        duration = check_positive("duration", duration)
-        rate = check_positive("rate", rate)
-        t = np.arange(int(round(duration * rate))) / rate
-        return np.max(-self.dynamic_contact_force(t), axis=1) / self.preload
-
-
-def _padded(modes) -> tuple[np.ndarray, ...]:
-    """The distinct modes side by side, zero-padded to a common width.
-
-    Returns ``omega`` (padding 1), ``zeta``, ``amplitude`` (``phi_k(L) q_dot_k(0)``),
-    ``force`` (``F_k q_dot_k(0)``, 0 without a finite contact spring) and ``live``, each of shape
-    ``(len(modes), width)``.
-    """
-    width = max(m.omega.size for m in modes)
-    omega = np.ones((len(modes), width))
-    amplitude = np.zeros((len(modes), width))
-    force = np.zeros((len(modes), width))
-    zeta = np.zeros((len(modes), width))
-    live = np.zeros((len(modes), width), dtype=bool)
-    for i, m in enumerate(modes):
-        k = m.omega.size
-        live[i, :k] = True
-        omega[i, :k] = m.omega
-        amplitude[i, :k] = m.tip * m.velocity
-        if m.contact_force is not None and math.isfinite(m.contact_stiffness):
-            force[i, :k] = m.contact_force * m.velocity
-        if m.damping_ratio is not None:
-            zeta[i, :k] = m.damping_ratio
-    return omega, zeta, amplitude, force, live
-
-
-def _x_terms(scene: Scene, modes, rows, speeds, preloads, zeta_s: float) -> ModalTerms:
-    """X's modal parameters per signal: ``modes[rows[i]]`` scaled by signal ``i``'s speed.
-
-    Without ``object_modes`` every mode takes the probe's structural damping ``zeta_s``; with
-    it, the coupled modes carry every body's damping. Takes checked values.
-    """
-    n = speeds.size
-    if not modes:  # X's modes not asked for (x_modes=False): none, for every signal
-        rows, modes = np.zeros(n, dtype=int), [ArrestModes(*[np.empty(0)] * 3, None)]
-    omega_u, zeta_u, amp_u, force_u, live_u = _padded(modes)
-    amplitude = amp_u[rows] * speeds[:, None]
-    if scene.has("object_modes"):  # the coupled model carries every body's damping
-        zeta = zeta_u[rows]
-    else:
-        zeta = np.full((n, omega_u.shape[1]), zeta_s)
-    if np.any(zeta >= 1):
-        raise ValueError(f"a mode is overdamped (zeta up to {zeta.max():.3g}); not supported")
-    spring = any(math.isfinite(m.contact_stiffness) for m in modes)
-    force = force_u[rows] * speeds[:, None] if spring else None
-    return ModalTerms(omega_u[rows], zeta, amplitude, live_u[rows], force, preloads)
-
-
-def _z_terms(scene: Scene, speeds, tilts, zeta_s: float) -> ModalTerms:
-    """Z's modal parameters per signal: the free probe, driven across the sweep plane."""
-    kw = dict(n_elements=scene.n_elements, n_modes=scene.n_modes, max_frequency=scene.max_frequency)
-    z_modes = arrest_modes(scene.probe, scene.hinge, None, **kw)
-    z_amp = (z_modes.tip * z_modes.velocity)[None, :] * (tilts * speeds)[:, None]
-    return ModalTerms(
-        np.broadcast_to(z_modes.omega, z_amp.shape).copy(),
-        np.full(z_amp.shape, zeta_s),
-        z_amp,
-        np.ones(z_amp.shape, dtype=bool),
-    )
-
-
 def _check_signal_inputs(scene, contacts, materials, preloads=None, **per_signal) -> int:
     """The number of signals, once every per-signal array (``per_signal`` by name, such as
     ``speeds`` and ``tilts``) is one finite entry per signal."""
@@ -509,7 +339,7 @@ def signal_terms(
 
     Returns
     -------
-    x, z : ModalTerms
+    x, z : ebantenna.simulate.modes.ModalTerms
         The modal parameters of X and Z per signal.
     timed : dict
         The models stepped in time by name (:data:`OBJECT_MODELS`), only those built.
@@ -543,13 +373,18 @@ def signal_terms(
             (modes, inverse), timed = pinned_modes(scene, contacts, materials, show_progress), {}
     damping = scene.effect("structural_damping")
     zeta_s = damping.damping_ratio(scene.probe) if damping is not None else 0.0
-    x = _x_terms(scene, modes, inverse, speeds, preloads, zeta_s)
-    return x, _z_terms(scene, speeds, tilts, zeta_s), timed, inverse
+    # with object_modes the coupled modes carry every body's damping (zeta None: their own)
+    x = x_terms(modes, inverse, speeds, zeta=None if scene.has("object_modes") else zeta_s,
+                preloads=preloads)
+    z = z_terms(scene.probe, scene.hinge, speeds, tilts, zeta_s, n_elements=scene.n_elements,
+                n_modes=scene.n_modes, max_frequency=scene.max_frequency)
+    return x, z, timed, inverse
 
 
-# ------------------------------------------------------------- the simulator's steps
+# ------------------------------------------------------------- the simulator's step
 def _touched_object(_, batch) -> None:
-    """The touched object: the modal parameters of X and Z, and the models stepped in time."""
+    """The touched object: the modal parameters of X and Z, and the models stepped in time; for
+    the responses, which axis each of those gives, with its ``respond`` (:data:`OBJECT_MODELS`)."""
     batch.x, batch.z, batch.timed, batch.inverse = signal_terms(
         batch.scene,
         batch.contacts,
@@ -560,27 +395,13 @@ def _touched_object(_, batch) -> None:
         batch.show_progress,
         batch.x_modes,
     )
+    batch.responders = {model.axis: (model.respond, batch.timed[model.name])
+                        for model in OBJECT_MODELS
+                        if model.respond is not None and model.name in batch.timed}
 
 
-def _axis_response(batch, axis: str) -> np.ndarray:
-    """One axis: from its model stepped in time, if the scene built one, else the sum of its
-    modes read at ``batch.when`` through the chip's filter (if listed)."""
-    for model in OBJECT_MODELS:
-        if model.axis == axis and model.respond is not None and model.name in batch.timed:
-            return model.respond(batch, batch.timed[model.name])
-    terms = batch.x if axis == "x" else batch.z
-    return modal_acceleration(batch.when, terms.amplitude, terms.omega, terms.zeta,
-                              low_pass=batch.chip_filter)
-
-
-def _respond(_, batch) -> None:
-    """The responses: X and Z after the arrest, read at the sample instants."""
-    batch.ax = _axis_response(batch, "x")
-    batch.az = _axis_response(batch, "z")
-
-
-#: The simulator's two steps that always run, written beside the models they run: each takes
+#: The simulator's step of the touched object, written beside the models it runs: it takes
 #: ``(effect, batch)`` and changes the simulator's
 #: :class:`~ebantenna.simulate.simulator.SignalBatch` in place, with values the simulator
-#: checked. :data:`ebantenna.simulate.simulator.CHAIN` puts them in order, and says why.
-CHAIN_STEPS = {"touched_object": _touched_object, "responses": _respond}
+#: checked. :data:`ebantenna.simulate.simulator.CHAIN` puts it in order, and says why.
+CHAIN_STEPS = {"touched_object": _touched_object}

@@ -31,10 +31,10 @@ from ebantenna.simulate import strikes as ST  # noqa: E402
 from ebantenna.simulate import unilateral as U  # noqa: E402
 from ebantenna.simulate.contact import PiecewiseSpring  # noqa: E402
 from ebantenna.simulate.effects import LowPassFilter, read_through_dlpf  # noqa: E402
+from ebantenna.simulate.modes import ModalTerms  # noqa: E402
 from ebantenna.simulate.simulator import ChainStep, SignalBatch  # noqa: E402
 from ebantenna.simulate.touched_object import (  # noqa: E402
     OBJECT_MODELS,
-    ModalTerms,
     ObjectModel,
     object_modes,
     pinned_modes,
@@ -80,6 +80,8 @@ def _stick_slip(**kw):
 ACC = np.random.default_rng(5).normal(size=(2, 81))
 #: The sample times at 1 kHz: whole internal samples.
 WHEN = np.arange(10) / 1000.0
+#: The chip's filter design at its default settings (second-order sections at 8 kHz).
+SOS = LowPassFilter().sos
 
 
 def _coulomb(**kw):
@@ -144,9 +146,9 @@ def _filtered_by_hand():
     coef, rate = np.array([[1.0 + 0.0j]]), np.array([[-50.0 + 2j * math.pi * 100.0]])
     n = np.arange(800)
     u = np.imag(coef[0, 0] * np.exp(rate[0, 0] * n / dlpf.internal_rate))
-    out_coef, out_rate = dlpf.filter_exponentials(coef, rate)
+    out_coef, out_rate = MO.filtered_exponentials(coef, rate, dlpf.sos, dlpf.internal_rate)
     closed = np.imag(np.exp(np.multiply.outer(n / dlpf.internal_rate, out_rate[0])) @ out_coef[0])
-    return closed, sps.sosfilt(dlpf.sos(), u)
+    return closed, sps.sosfilt(dlpf.sos, u)
 
 
 def _strike_law():
@@ -238,6 +240,18 @@ def _cases(which, **kw):
     return which(**{**args, **kw})
 
 
+def _one_arrest_mode():
+    """One mode at 100 rad/s whose tip starts at 2 x 0.5 = 1 m/s per unit sweep speed."""
+    return MO.ArrestModes(np.array([100.0]), np.array([2.0]), np.array([0.5]), None)
+
+
+def _axis_batch(inverse=0):
+    """A batch of the paper scene as the responses step has it: which case each signal uses."""
+    batch = _batch()
+    batch.inverse = np.array([inverse])
+    return batch
+
+
 def all_rows():
     u, s = "ebantenna.simulate.unilateral.", "ebantenna.simulate.stick_slip."
     t = "ebantenna.simulate.touched_object."
@@ -261,22 +275,33 @@ def all_rows():
         # at whole internal samples the reading is the filter's output there, exactly: the
         # witness is SciPy's filter at the internal rate, every eighth sample
         Row(d, "filtered-at-whole-samples", lambda: read_through_dlpf(dlpf, ACC, 8000.0, WHEN),
-            same=lambda r: np.array_equal(r, sps.sosfilt(dlpf.sos(), ACC)[:, ::8][:, :10])),
+            same=lambda r: np.array_equal(r, sps.sosfilt(dlpf.sos, ACC)[:, ::8][:, :10])),
         Row(d, "unfiltered-ramp", lambda: read_through_dlpf(
             None, np.arange(16.0)[None, :], 8000.0, np.array([0.0, 0.001, 0.0005])),
             same=lambda r: r.tolist() == [[0.0, 8.0, 4.0]]),
-        Row(d.replace("read_through_dlpf", "LowPassFilter.filter_exponentials"), "coef-1d",
-            lambda: dlpf.filter_exponentials(np.ones(3), np.ones(3)), ("coef",)),
-        Row(d.replace("read_through_dlpf", "LowPassFilter.filter_exponentials"), "rate-nan",
-            lambda: dlpf.filter_exponentials(np.ones((1, 2)), np.array([[NAN, 1.0]])), ("rate",)),
-        Row(d.replace("read_through_dlpf", "LowPassFilter.filter_exponentials"), "rate-shape",
-            lambda: dlpf.filter_exponentials(np.ones((1, 2)), np.ones((1, 3))), ("rate",)),
-        Row(d.replace("read_through_dlpf", "LowPassFilter.filter_exponentials"), "coef-str",
-            lambda: dlpf.filter_exponentials(np.array([["a"]]), np.ones((1, 1))), ("coef",)),
+        Row(m + "filtered_exponentials", "coef-1d",
+            lambda: MO.filtered_exponentials(np.ones(3), np.ones(3), SOS, 8000.0), ("coef",)),
+        Row(m + "filtered_exponentials", "rate-nan",
+            lambda: MO.filtered_exponentials(np.ones((1, 2)), np.array([[NAN, 1.0]]), SOS, 8000.0),
+            ("rate",)),
+        Row(m + "filtered_exponentials", "rate-shape",
+            lambda: MO.filtered_exponentials(np.ones((1, 2)), np.ones((1, 3)), SOS, 8000.0),
+            ("rate",)),
+        Row(m + "filtered_exponentials", "coef-str",
+            lambda: MO.filtered_exponentials(np.array([["a"]]), np.ones((1, 1)), SOS, 8000.0),
+            ("coef",)),
+        Row(m + "filtered_exponentials", "sos-one-section-of-5",
+            lambda: MO.filtered_exponentials(np.ones((1, 2)), np.ones((1, 2)), SOS[:, :5], 8000.0),
+            ("sos",)),
+        Row(m + "filtered_exponentials", "sos-nan",
+            lambda: MO.filtered_exponentials(np.ones((1, 2)), np.ones((1, 2)), SOS * NAN, 8000.0),
+            ("sos",)),
+        Row(m + "filtered_exponentials", "internal_rate-zero",
+            lambda: MO.filtered_exponentials(np.ones((1, 2)), np.ones((1, 2)), SOS, 0.0),
+            ("internal_rate",)),
         # the closed form is the filter's recursion exactly; SciPy's rounding grows at most by
         # one eps of the signal (of size 1) per sample, over 800 samples
-        Row(d.replace("read_through_dlpf", "LowPassFilter.filter_exponentials"),
-            "one-exponential-against-sosfilt", _filtered_by_hand,
+        Row(m + "filtered_exponentials", "one-exponential-against-sosfilt", _filtered_by_hand,
             same=lambda r: np.abs(r[0] - r[1]).max() < 64 * 800 * np.finfo(float).eps),
         Row(s + "friction_accelerations", "scene-without-coulomb_friction",
             lambda: S.friction_accelerations(no_friction, [], [], [], rate=8000.0, n_samples=9),
@@ -443,6 +468,12 @@ def all_rows():
         Row(st + "timed_rate", "unfiltered", lambda: ST.timed_rate(
             builtin_scene("paper"), np.arange(1000) / 1000.0, None),
             same=lambda r: r == (8000.0, 7994)),
+        Row(st + "strike_axis", "batch-str", lambda: ST.strike_axis("batch", []), ("batch",)),
+        Row(st + "strike_axis", "models-not-strike-models",
+            lambda: ST.strike_axis(_axis_batch(), ["model"]), ("models",)),
+        Row(s + "friction_axis", "batch-str", lambda: S.friction_axis("batch", []), ("batch",)),
+        Row(s + "friction_axis", "scene-without-coulomb_friction",
+            lambda: S.friction_axis(_axis_batch(), []), ("coulomb_friction",)),
         Row(st + "strike_accelerations", "rate-zero", lambda: _strike_accelerations(rate=0.0),
             ("rate",)),
         Row(st + "strike_accelerations", "n_samples-one",
@@ -674,30 +705,58 @@ def all_rows():
             ("x_modes",)),
         Row(t + "object_modes", "contacts-nan",
             lambda: _cases(object_modes, contacts=np.array([NAN])), ("contacts",)),
-        Row(t + "ModalTerms.damping_ratios", "row-negative",
+        Row(m + "x_terms", "modes-not-arrest-modes",
+            lambda: MO.x_terms(["m"], np.array([0]), np.ones(1)), ("modes",)),
+        Row(m + "x_terms", "rows-beyond-modes",
+            lambda: MO.x_terms([_one_arrest_mode()], np.array([1]), np.ones(1)), ("rows",)),
+        Row(m + "x_terms", "speeds-nan",
+            lambda: MO.x_terms([_one_arrest_mode()], np.array([0]), np.array([NAN])),
+            ("speeds",)),
+        Row(m + "x_terms", "zeta-one",
+            lambda: MO.x_terms([_one_arrest_mode()], np.array([0]), np.ones(1), zeta=1.0),
+            ("zeta",)),
+        Row(m + "x_terms", "preloads-two-for-one",
+            lambda: MO.x_terms([_one_arrest_mode()], np.array([0]), np.ones(1),
+                               preloads=np.ones(2)), ("preloads",)),
+        # each signal's row is its modes' tip velocity times its own speed
+        Row(m + "x_terms", "scaled-by-speed",
+            lambda: MO.x_terms([_one_arrest_mode()], np.array([0, 0]), np.array([1.0, 3.0]),
+                               zeta=0.01),
+            same=lambda x: x.amplitude.tolist() == [[1.0], [3.0]] and x.zeta.tolist() == [[0.01],
+                                                                                     [0.01]]),
+        Row(m + "z_terms", "tilts-two-for-one", lambda: MO.z_terms(
+            Probe(), "clamped", np.ones(1), np.ones(2), 0.0, n_elements=8, n_modes=4,
+            max_frequency=100.0), ("tilts",)),
+        Row(m + "z_terms", "zeta-negative", lambda: MO.z_terms(
+            Probe(), "clamped", np.ones(1), np.ones(1), -0.1, n_elements=8, n_modes=4,
+            max_frequency=100.0), ("zeta",)),
+        Row(m + "z_terms", "speeds-2d", lambda: MO.z_terms(
+            Probe(), "clamped", np.ones((1, 1)), np.ones(1), 0.0, n_elements=8, n_modes=4,
+            max_frequency=100.0), ("speeds",)),
+        Row(m + "ModalTerms.damping_ratios", "row-negative",
             lambda: _terms().damping_ratios(-1), ("row",)),
-        Row(t + "ModalTerms.damping_ratios", "row-beyond",
+        Row(m + "ModalTerms.damping_ratios", "row-beyond",
             lambda: _terms().damping_ratios(1), ("row",)),
-        Row(t + "ModalTerms.damping_ratios", "padding-dropped",
+        Row(m + "ModalTerms.damping_ratios", "padding-dropped",
             lambda: _terms().damping_ratios(0), same=lambda r: r.tolist() == [0.1]),
-        Row(t + "ModalTerms.dynamic_contact_force", "no-contact-spring",
+        Row(m + "ModalTerms.dynamic_contact_force", "no-contact-spring",
             lambda: _terms(force=False).dynamic_contact_force(t_fine), ("contact_force",)),
-        Row(t + "ModalTerms.dynamic_contact_force", "t-nan",
+        Row(m + "ModalTerms.dynamic_contact_force", "t-nan",
             lambda: _terms().dynamic_contact_force(np.array([0.0, NAN])), ("t",)),
-        Row(t + "ModalTerms.dynamic_contact_force", "t-2d",
+        Row(m + "ModalTerms.dynamic_contact_force", "t-2d",
             lambda: _terms().dynamic_contact_force(np.zeros((2, 2))), ("t",)),
         # one mode: each value a few roundings of exp and sin of size <= 0.02 N
-        Row(t + "ModalTerms.dynamic_contact_force", "one-mode-by-hand",
+        Row(m + "ModalTerms.dynamic_contact_force", "one-mode-by-hand",
             lambda: _terms().dynamic_contact_force(t_fine),
             same=lambda r: r.shape == (1, t_fine.size)
             and np.abs(r[0] - _force_by_hand(t_fine)).max() < 64 * np.finfo(float).eps * 0.02),
-        Row(t + "ModalTerms.lift_off_ratio", "no-preload",
+        Row(m + "ModalTerms.lift_off_ratio", "no-preload",
             lambda: _terms().lift_off_ratio(), ("preload",)),
-        Row(t + "ModalTerms.lift_off_ratio", "duration-zero",
+        Row(m + "ModalTerms.lift_off_ratio", "duration-zero",
             lambda: _terms(np.array([1.0])).lift_off_ratio(0.0), ("duration",)),
-        Row(t + "ModalTerms.lift_off_ratio", "rate-negative",
+        Row(m + "ModalTerms.lift_off_ratio", "rate-negative",
             lambda: _terms(np.array([1.0])).lift_off_ratio(1.0, -8000.0), ("rate",)),
-        Row(t + "ModalTerms.lift_off_ratio", "rate-nan",
+        Row(m + "ModalTerms.lift_off_ratio", "rate-nan",
             lambda: _terms(np.array([1.0])).lift_off_ratio(1.0, NAN), ("rate",)),
         *_linear_state_rows(),
         *_coulomb_law_rows(),

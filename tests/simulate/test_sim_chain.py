@@ -36,7 +36,8 @@ def test_the_chip_filter_is_read_from_the_scene_in_one_place():
                if 'effect("dlpf")' in p.read_text()]
     assert sorted(readers) == ["scene.py", "simulator.py"]  # scene.py: checks its settings
     assert Path(root, "simulator.py").read_text().count('effect("dlpf")') == 1
-    assert [i for i, step in enumerate(CHAIN) if "dlpf" in step.reads] == [3, 6, 7]
+    # the responses, the chip's reading of the axes stepped in time, the hum and the noise
+    assert [i for i, step in enumerate(CHAIN) if "dlpf" in step.reads] == [3, 4, 7, 8]
 
 
 def test_the_chain_applies_effects_in_the_order_a_scene_lists_them():

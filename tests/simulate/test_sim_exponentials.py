@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from ebantenna.simulate import builtin_scene, modal_terms
-from ebantenna.simulate.modes import damped_exponentials, modal_exponentials
+from ebantenna.simulate.modes import damped_exponentials, filtered_exponentials, modal_exponentials
 
 EPS = np.finfo(float).eps
 
@@ -22,7 +22,7 @@ def _paper_exponentials():
     out = []
     for terms in modal_terms(scene):
         coef, rate = modal_exponentials(terms.amplitude, terms.omega, terms.zeta)
-        out.append(dlpf.filter_exponentials(coef, rate))
+        out.append(filtered_exponentials(coef, rate, dlpf.sos, dlpf.internal_rate))
     return out
 
 

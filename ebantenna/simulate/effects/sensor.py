@@ -286,8 +286,9 @@ class LowPassFilter(Effect):
     power-on value of register 26.
 
     The simulator does not sample the modal response at the internal rate and filter it: a sum
-    of damped exponentials stays one through a linear filter, so :meth:`filter_exponentials`
-    gives the filtered and decimated signal in closed form (the witness,
+    of damped exponentials stays one through a linear filter, so the modal sum reads this
+    filter's design (``sos``, ``internal_rate``) and gives the filtered and decimated signal
+    in closed form (:func:`~ebantenna.simulate.modes.filtered_exponentials`; the witness,
     :func:`scipy.signal.sosfilt` at the internal rate followed by the decimation, agrees to
     rounding). Noise, which has no such form, is drawn at the internal rate and filtered
     (:meth:`apply_internal`).
@@ -299,10 +300,19 @@ class LowPassFilter(Effect):
     internal_rate : float
         The rate the filter runs at, Hz: an integer multiple of the scene's sampling frequency.
 
+    Attributes
+    ----------
+    sos : ndarray of shape (1, 6)
+        The filter's design: its second-order sections at ``internal_rate``, computed once from
+        the two parameters when the effect is made and shared by every use (not to be changed
+        in place).
+
     Examples
     --------
     >>> import numpy as np
     >>> dlpf = LowPassFilter()
+    >>> dlpf.sos.shape
+    (1, 6)
     >>> dlpf.divider(1000.0)
     8
     >>> float(abs(dlpf.frequency_response(700.0)).round(3))  # a 700 Hz mode, seen at 300 Hz
@@ -326,6 +336,11 @@ class LowPassFilter(Effect):
                 f"internal_rate must exceed twice the bandwidth ({2 * self.bandwidth:g} Hz), "
                 f"got {self.internal_rate!r} Hz"
             )
+        # The design, once: whoever passes a signal through the filter (the modal sum's closed
+        # form, the filtering at the internal rate, the gain) reads it as a value. Not a field:
+        # the effect's parameters stay the two above.
+        sos = sps.butter(2, self.bandwidth, btype="low", fs=self.internal_rate, output="sos")
+        object.__setattr__(self, "sos", sos)
 
     def divider(self, fs: float) -> int:
         """How many internal samples make one output sample at ``fs`` (Hz); raise unless whole."""
@@ -338,13 +353,9 @@ class LowPassFilter(Effect):
             )
         return int(whole)
 
-    def sos(self) -> np.ndarray:
-        """Second-order sections of the filter at the internal rate."""
-        return sps.butter(2, self.bandwidth, btype="low", fs=self.internal_rate, output="sos")
-
     def _transfer(self):
         """``(b, a)`` of the filter, and its gain ``B(1/z) / A(1/z)`` as a function of ``z``."""
-        b, a = sps.sos2tf(self.sos())
+        b, a = sps.sos2tf(self.sos)
         return b, a, lambda z: np.polyval(b[::-1], 1 / z) / np.polyval(a[::-1], 1 / z)
 
     def frequency_response(self, frequency) -> np.ndarray:
@@ -355,54 +366,9 @@ class LowPassFilter(Effect):
         _, _, gain = self._transfer()
         return gain(np.exp(2j * math.pi * frequency / self.internal_rate))
 
-    def filter_exponentials(self, coef: np.ndarray, rate: np.ndarray):
-        """The filter's output for an input ``Im(sum_k coef_k exp(rate_k t))`` sampled from t = 0.
-
-        Input sample ``n`` is ``u_n = Im(sum_k C_k z_k^n)`` with ``z_k = exp(rate_k / f_i)`` and
-        ``f_i`` the internal rate; the filter ``H(w) = B(w) / A(w)`` in ``w = z^-1`` starts at
-        rest. For one exponential the output's z-transform ``B(w) / (A(w) (1 - z_k w))`` splits
-        into partial fractions over the input's pole and the filter's poles ``p_j``:
-
-            y_n = Im( sum_k C_k [ H(z_k) z_k^n + sum_j R_jk p_j^n ] ),
-            R_jk = B(1/p_j) / ( (1 - z_k / p_j) prod_(i != j) (1 - p_i / p_j) ),
-
-        a sum of damped exponentials again: the input's, scaled by the filter's gain, and the
-        filter's own transient at its poles (rates ``f_i log p_j``). Evaluated at ``t = n / f_i``
-        it is the filter's output exactly; at every ``divider``-th sample, the decimated one.
-
-        Parameters
-        ----------
-        coef, rate : complex arrays of shape (n_signals, n_terms)
-            ``C_k`` and ``rate_k`` (1/s) of each signal's exponentials.
-
-        Returns
-        -------
-        coef, rate : complex arrays of shape (n_signals, n_terms + 2)
-            The output's exponentials, the filter's two transient terms last.
-        """
-        coef, rate = np.asarray(coef), np.asarray(rate)
-        for name, value in (("coef", coef), ("rate", rate)):
-            if value.ndim != 2 or value.dtype.kind not in "fc" or not np.all(np.isfinite(value)):
-                raise ValueError(f"{name} must be a finite real or complex array of shape "
-                                 f"(n_signals, n_terms), got {value.dtype} of shape {value.shape}")
-        if rate.shape != coef.shape:
-            raise ValueError(f"rate must have the shape of coef {coef.shape}, got {rate.shape}")
-        b, a, gain = self._transfer()
-        poles = np.roots(a)  # distinct: a Butterworth pair
-        fi = self.internal_rate
-        z = np.exp(np.asarray(rate) / fi)
-        out_coef = [coef * gain(z)]
-        for j, p in enumerate(poles):
-            others = np.prod([1 - q / p for i, q in enumerate(poles) if i != j])
-            residue = np.polyval(b[::-1], 1 / p) / ((1 - z / p) * others)
-            out_coef.append(np.sum(coef * residue, axis=-1, keepdims=True))
-        n = coef.shape[0]
-        pole_rates = np.broadcast_to(fi * np.log(poles.astype(complex)), (n, poles.size))
-        return np.concatenate(out_coef, axis=-1), np.concatenate([rate, pole_rates], axis=-1)
-
     def apply_internal(self, a: np.ndarray, fs: float) -> np.ndarray:
         """Filter rows sampled at the internal rate (m/s^2) from rest; decimate them to ``fs``."""
-        y = sps.sosfilt(self.sos(), a, axis=-1)
+        y = sps.sosfilt(self.sos, a, axis=-1)
         return y[..., :: self.divider(fs)]
 
 
@@ -455,6 +421,14 @@ def read_through_dlpf(dlpf, acc, rate, when) -> np.ndarray:
     grid = np.arange(acc.shape[1]) / rate
     rows = np.broadcast_to(when, acc.shape[:1] + np.shape(when)[-1:])
     return np.stack([np.interp(w, grid, a) for w, a in zip(rows, acc, strict=True)])
+
+
+def _read_timed(_, batch) -> None:
+    """The axes stepped in time (``batch.timed_acc``, at their models' rate): read by the chip
+    at the sample instants, through its filter if listed (:func:`read_through_dlpf`)."""
+    for axis, (acc, rate) in batch.timed_acc.items():
+        # the batch's field ax or az
+        setattr(batch, "a" + axis, read_through_dlpf(batch.chip_filter, acc, rate, batch.when))
 
 
 #: MPU6050 zero-g level change over 0-70 degC, X and Y axes, g (PS rev. 3.4, table 6.2).
@@ -677,6 +651,7 @@ def _kalman(kalman: SteadyStateKalman, batch) -> None:
 #: checked. :data:`ebantenna.simulate.simulator.CHAIN` puts them in order, and says why.
 CHAIN_STEPS = {
     "sample_instants": _sample_instants,
+    "read_timed": _read_timed,
     "rest_before_arrest": _rest_before_arrest,
     "gravity": _add_gravity,
     "mains_hum": _add_hum,

@@ -121,7 +121,7 @@ TARGETS = {"read_files": 15, "read_returns": 5, "run_modules": 25, "run_returns"
 
 #: The walk as it stands, which ``tests/test_reading_walk.py`` keeps it within so that it cannot
 #: grow back unnoticed: lower these as the walk shrinks, down to :data:`TARGETS`.
-CEILINGS = {"read_files": 19, "read_returns": 15, "run_modules": 25, "run_returns": 45}
+CEILINGS = {"read_files": 19, "read_returns": 10, "run_modules": 25, "run_returns": 40}
 
 SCENE, MATERIAL, CONTACT, SEED = "paper", "brass", 0.25, 0
 

@@ -37,11 +37,11 @@ from pathlib import Path
 
 import numpy as np
 from joblib import Parallel, delayed
-from threadpoolctl import threadpool_limits
 
 from .. import __version__
 from .._budget import check_allocation
 from .._progress import progress
+from .._threads import limited_threads
 from .._validate import (
     check_int,
     check_n_jobs,
@@ -364,7 +364,7 @@ def _simulate_rows(scenes, rows: np.ndarray, plan: dict):
     BLAS runs on one thread here, as in a joblib worker: some OpenBLAS builds (NumPy 1.24's)
     round a product differently on two threads, and a data set must not depend on ``n_jobs``.
     """
-    with threadpool_limits(limits=1, user_api="blas"):
+    with limited_threads(1):
         return _simulated_rows(scenes, rows, plan)
 
 

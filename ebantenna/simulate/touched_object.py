@@ -40,9 +40,9 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
 from .._progress import progress
+from .._threads import limited_threads
 from .._validate import check_bool, check_choice
 from ..fem.coupling import craig_bampton, probe_substructure, rod_substructure
 from ..fem.guards import check_contact
@@ -362,7 +362,7 @@ def signal_terms(
         show_progress = check_bool("show_progress", show_progress)
     x_modes = check_bool("x_modes", x_modes)
     # Many small eigenproblems: BLAS threads only add overhead (and thrash on a busy machine).
-    with threadpool_limits(limits=1):
+    with limited_threads(1, user_api=None):
         if scene.has("object_modes"):
             if preloads is None:
                 preloads = np.full(n, scene.effect("object_modes").preload)

@@ -68,12 +68,15 @@ from pathlib import Path
 #: Modules left out of the walk as run, with whatever they call: the argument checks (which name
 #: a parameter, its range and the value given) of the package and of the signal stage, the
 #: finite-element model's guards (mesh, memory and contact checks), the memory budget's size
-#: check before a large allocation, and the progress bar. They are called from everywhere and
-#: teach nothing of the path.
+#: check before a large allocation, the progress bar, and BLAS's thread limit around a batch of
+#: small solves (``_threads``, which wraps the call to ``threadpoolctl`` that the package made
+#: directly before, outside the walk as code outside the package). They are called from
+#: everywhere and teach nothing of the path.
 LEFT_OUT = (
     "ebantenna._validate",
     "ebantenna._budget",
     "ebantenna._progress",
+    "ebantenna._threads",
     "ebantenna.signal._checks",
     "ebantenna.fem.guards",
 )

@@ -41,7 +41,7 @@ import scipy.linalg as sla
 
 from .._validate import check_choice, check_int, check_nonnegative, check_positive
 from .modes import sweep_velocity
-from .strikes import check_reduction, reduced_body, timed_rate
+from .strikes import batch_rate, check_reduction, reduced_body
 from .structure import check_case, check_dof_vector, check_symmetric_matrix
 from .unilateral import (
     MARCHES,
@@ -520,10 +520,7 @@ def friction_axis(batch, models) -> tuple[np.ndarray, float]:
     rate : float
         Its sample rate, Hz.
     """
-    if not all(hasattr(batch, a) for a in ("scene", "when", "chip_filter", "inverse", "speeds",
-                                           "tilts")):
-        raise TypeError(f"batch must be the simulator's SignalBatch, got {type(batch).__name__}")
-    rate, n_int = timed_rate(batch.scene, batch.when, batch.chip_filter)
+    rate, n_int = batch_rate(batch, "inverse", "speeds", "tilts")
     acc = friction_accelerations(batch.scene, models, batch.inverse, batch.tilts * batch.speeds,
                                  rate=rate, n_samples=n_int)
     return acc, rate

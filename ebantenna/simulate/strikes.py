@@ -62,6 +62,7 @@ __all__ = [
     "strike_model_of",
     "strike_accelerations",
     "timed_rate",
+    "batch_rate",
     "strike_axis",
     "reduced_body",
     "check_reduction",
@@ -367,9 +368,28 @@ def timed_rate(scene, when, dlpf) -> tuple[float, int]:
     return rate, math.floor(span * rate) + 2
 
 
+def batch_rate(batch, *needs: str) -> tuple[float, int]:
+    """:func:`timed_rate` of the chain's batch (its scene, sample instants and chip filter), for
+    a model stepped in time that also reads the batch's fields ``needs``; a TypeError unless
+    ``batch`` holds them all.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> from ebantenna.simulate import builtin_scene
+    >>> batch = SimpleNamespace(scene=builtin_scene("paper"), when=np.arange(1000) / 1000.0,
+    ...                         chip_filter=None)
+    >>> batch_rate(batch)  # no filter: UNFILTERED_RATE times fs
+    (8000.0, 7994)
+    """
+    if not all(hasattr(batch, a) for a in ("scene", "when", "chip_filter", *needs)):
+        raise TypeError(f"batch must be the simulator's SignalBatch, got {type(batch).__name__}")
+    return timed_rate(batch.scene, batch.when, batch.chip_filter)
+
+
 def strike_axis(batch, models) -> tuple[np.ndarray, float]:
     """The ``unilateral`` model's axis (X) in the simulator's responses step: every strike
-    marched by the effect's ``method``, at :func:`timed_rate`.
+    marched by the effect's ``method``, at :func:`timed_rate` (:func:`batch_rate`).
 
     The acceleration is left at that rate for the chip to read at the sample instants, through
     its filter (:func:`~ebantenna.simulate.effects.sensor.read_through_dlpf`, the sensor's step
@@ -390,9 +410,7 @@ def strike_axis(batch, models) -> tuple[np.ndarray, float]:
     rate : float
         Its sample rate, Hz.
     """
-    if not all(hasattr(batch, a) for a in ("scene", "when", "chip_filter", "inverse", "speeds")):
-        raise TypeError(f"batch must be the simulator's SignalBatch, got {type(batch).__name__}")
-    rate, n_int = timed_rate(batch.scene, batch.when, batch.chip_filter)
+    rate, n_int = batch_rate(batch, "inverse", "speeds")
     effect = batch.scene.effect("unilateral_contact")
     acc, restrikes = strike_accelerations(
         models, batch.inverse, batch.speeds, rate=rate, n_samples=n_int,

@@ -252,6 +252,13 @@ def _axis_batch(inverse=0):
     return batch
 
 
+def _batch_rate_and_timed_rate():
+    """``batch_rate`` of a batch, and ``timed_rate`` of its scene, instants and filter."""
+    batch = _axis_batch()
+    return (ST.batch_rate(batch, "inverse"),
+            ST.timed_rate(batch.scene, batch.when, batch.chip_filter))
+
+
 def all_rows():
     u, s = "ebantenna.simulate.unilateral.", "ebantenna.simulate.stick_slip."
     t = "ebantenna.simulate.touched_object."
@@ -468,6 +475,12 @@ def all_rows():
         Row(st + "timed_rate", "unfiltered", lambda: ST.timed_rate(
             builtin_scene("paper"), np.arange(1000) / 1000.0, None),
             same=lambda r: r == (8000.0, 7994)),
+        Row(st + "batch_rate", "batch-str", lambda: ST.batch_rate("batch"), ("batch",)),
+        # a batch without a field the caller reads is refused by name
+        Row(st + "batch_rate", "batch-without-tilts",
+            lambda: ST.batch_rate(_axis_batch(), "tilts", "no_such_field"), ("batch",)),
+        Row(st + "batch_rate", "axis-batch", _batch_rate_and_timed_rate,
+            same=lambda r: r[0] == r[1]),
         Row(st + "strike_axis", "batch-str", lambda: ST.strike_axis("batch", []), ("batch",)),
         Row(st + "strike_axis", "models-not-strike-models",
             lambda: ST.strike_axis(_axis_batch(), ["model"]), ("models",)),

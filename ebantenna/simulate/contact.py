@@ -411,17 +411,28 @@ class HertzInSeries:
 
     def approach(self, force):
         """Approach under ``force`` (N, >= 0), m."""
-        F = _forces("force", force)
-        out = self.hertz.approach(1.0) * np.cbrt(F) ** 2 + F / self.ring
+        out = self._approach(_forces("force", force), self.hertz.approach(1.0))
         return float(out) if out.ndim == 0 else out
 
     def stiffness(self, force):
         """``dF/dp`` at ``force`` (N, >= 0), N/m: 0 at zero force, where Hertz starts soft."""
-        F = _forces("force", force)
-        with np.errstate(divide="ignore"):
-            compliance = 2 / 3 * self.hertz.approach(1.0) / np.cbrt(F) + 1 / self.ring
-        out = 1 / compliance
+        out = self._stiffness(_forces("force", force), self.hertz.approach(1.0))
         return float(out) if out.ndim == 0 else out
+
+    # the law at checked forces F >= 0 (N), ``unit`` the Hertz approach at 1 N (m): what the
+    # chords' placement evaluates some hundred times per chord, without the checks
+    def _approach(self, F, unit: float):
+        return unit * np.cbrt(F) ** 2 + F / self.ring
+
+    def _stiffness(self, F, unit: float):
+        with np.errstate(divide="ignore"):
+            compliance = 2 / 3 * unit / np.cbrt(F) + 1 / self.ring
+        return 1 / compliance
+
+    def _chord_bound(self, fa: float, fb: float, unit: float) -> float:
+        return _chord_bound(float(self._approach(fa, unit)), float(self._approach(fb, unit)),
+                            fa, fb, float(self._stiffness(fa, unit)),
+                            float(self._stiffness(fb, unit)))
 
     def force(self, approach):
         """Force at ``approach`` (m; 0 where ``p <= 0``), N: ``p(F)`` inverted by Newton's method.
@@ -444,8 +455,7 @@ class HertzInSeries:
         fa = check_nonnegative("fa", fa)
         if not fa < check_nonnegative("fb", fb):
             raise ValueError(f"fa must be below fb, got fa = {fa!r}, fb = {fb!r}")
-        pa, pb = self.approach(fa), self.approach(fb)
-        return _chord_bound(pa, pb, fa, fb, self.stiffness(fa), self.stiffness(fb))
+        return self._chord_bound(fa, fb, self.hertz.approach(1.0))
 
     def piecewise(self, tolerance: float, max_force: float, through=()) -> PiecewiseSpring:
         """Chords of the law whose force is within ``tolerance`` (N) of it up to ``max_force``.
@@ -466,19 +476,20 @@ class HertzInSeries:
             raise ValueError(f"tolerance must be at least 1e-9 of max_force ({1e-9 * top:.3g} N), "
                              f"got {tol!r}")
         stops = sorted({top, *(float(f) for f in through if 0 < f < top)})
+        unit = self.hertz.approach(1.0)
         nodes, bounds = [0.0], []
         for stop in stops:
             while nodes[-1] < stop:
                 a = nodes[-1]
-                if self.chord_bound(a, stop) <= tol:
+                if self._chord_bound(a, stop, unit) <= tol:
                     b = stop
                 else:
                     # aim a little inside the tolerance, so that the root's error keeps it
                     def excess(f, a=a):
-                        return self.chord_bound(a, f) - tol * (1 - 1e-6)
+                        return self._chord_bound(a, f, unit) - tol * (1 - 1e-6)
 
                     b = spo.brentq(excess, a + (stop - a) * 1e-12, stop, xtol=1e-14, rtol=1e-10)
-                bounds.append(self.chord_bound(a, b))
+                bounds.append(self._chord_bound(a, b, unit))
                 nodes.append(b)
         F = np.array(nodes)
         return PiecewiseSpring(F, self.approach(F), np.array(bounds))

@@ -46,6 +46,19 @@ def test_the_chords_lie_above_the_law_within_their_bound(name):
     assert error.max() > 0.3 * spring.bound  # the bound is not loose by orders of magnitude
     assert 0.5 in spring.forces  # exact at the preload
 
+@pytest.mark.parametrize("preload", [0.05, 0.5, 3.0])
+def test_the_placed_chords_carry_the_checked_laws_own_bounds_and_approaches(preload):
+    # piecewise places its chords with the law's unchecked arithmetic: each chord's bound and
+    # each node's approach are, bit for bit, those of the public (checked) methods
+    law = tube_on_rod_law(Probe(), material("brass"), 0.012)
+    spring = law.piecewise(0.01, 10.0, through=(preload,))
+    F = spring.forces
+    assert [law.chord_bound(a, b) for a, b in zip(F[:-1], F[1:], strict=True)] == list(
+        spring.bounds)
+    assert [law.approach(f) for f in F] == list(spring.approaches)
+    assert [law.stiffness(f) for f in F] == list(law.stiffness(F))
+
+
 
 def test_the_law_is_the_linearised_spring_at_the_preload_and_inverts_its_approach():
     law = tube_on_rod_law(Probe(), material("pvc"), 0.012)

@@ -24,12 +24,14 @@ import math
 from dataclasses import dataclass, replace
 
 import numpy as np
+from joblib import Parallel, delayed
 from scipy.optimize import brentq, least_squares, minimize_scalar
 
 from .._validate import (
     check_array,
     check_choice,
     check_int,
+    check_n_jobs,
     check_positive,
     check_real,
     describe,
@@ -167,6 +169,7 @@ def fit_hinge_and_tip(
     mass_bounds: tuple[float, float] = (0.0, 0.02),
     grid: int = 7,
     n_elements: int = 48,
+    n_jobs: int | None = 1,
 ) -> HingeFit:
     """Least-squares fit of hinge stiffness and tip mass to observed transition positions.
 
@@ -191,6 +194,10 @@ def fit_hinge_and_tip(
         Points per parameter of the coarse search.
     n_elements : int
         Beam elements per contact position.
+    n_jobs : int or None
+        Worker processes for the coarse search (:class:`joblib.Parallel`; -1: every core; 1 or
+        None: in this process). Each point is computed alone, so the fit is the same whatever
+        ``n_jobs``.
 
     Returns
     -------
@@ -215,6 +222,7 @@ def fit_hinge_and_tip(
     lengths, observed = _check_observations(lengths, observed)
     (k_lo, k_hi), (m_lo, m_hi) = _check_bounds(stiffness_bounds, mass_bounds)
     grid = check_int("grid", grid, minimum=2)
+    n_jobs = check_n_jobs("n_jobs", n_jobs)
 
     def predict(log_k, mass):
         return np.array(
@@ -233,7 +241,7 @@ def fit_hinge_and_tip(
         return (predict(*p) - observed) / lengths
 
     bounds = ([math.log10(k_lo), m_lo], [math.log10(k_hi), m_hi])
-    best, best_cost = _grid_search(residual, bounds, grid)
+    best, best_cost = _grid_search(residual, bounds, grid, n_jobs)
     start = np.clip(best, np.array(bounds[0]) + 1e-9, np.array(bounds[1]) - 1e-9)
     scale = np.array([0.1, 0.02 * (m_hi - m_lo)])
     fit = least_squares(residual, start, bounds=bounds, x_scale=scale, diff_step=1e-4, xtol=1e-10)
@@ -281,16 +289,26 @@ def _check_bounds(stiffness_bounds, mass_bounds):
     return (k_lo, k_hi), (m_lo, m_hi)
 
 
-def _grid_search(residual, bounds, grid: int):
-    """The point of a ``grid x grid`` lattice inside ``bounds`` with the least squared residual.
+def _grid_search(residual, bounds, grid: int, n_jobs=1):
+    """The point of a ``grid x grid`` lattice inside ``bounds`` with the least squared residual
+    (the first in lattice order on a tie), its points computed on ``n_jobs`` processes.
 
     Returns ``((log_k, mass), cost)``; the lattice finds the basin that a local least-squares
     refinement then descends.
     """
+    lattice = [(log_k, mass) for log_k in np.linspace(bounds[0][0], bounds[1][0], grid)
+               for mass in np.linspace(bounds[0][1], bounds[1][1], grid)]
+    if n_jobs in (None, 1):
+        costs = [_cost(residual, point) for point in lattice]
+    else:
+        costs = Parallel(n_jobs=n_jobs)(delayed(_cost)(residual, point) for point in lattice)
     best, best_cost = None, math.inf
-    for log_k in np.linspace(bounds[0][0], bounds[1][0], grid):
-        for mass in np.linspace(bounds[0][1], bounds[1][1], grid):
-            cost = float(np.sum(residual((log_k, mass)) ** 2))
-            if cost < best_cost:
-                best, best_cost = (log_k, mass), cost
+    for point, cost in zip(lattice, costs, strict=True):
+        if cost < best_cost:
+            best, best_cost = point, cost
     return best, best_cost
+
+
+def _cost(residual, point) -> float:
+    """The squared residual at ``point`` of the lattice."""
+    return float(np.sum(residual(point) ** 2))

@@ -53,12 +53,14 @@ class HingeResult:
         }
 
 
-def compute(probe, quick: bool) -> HingeResult:
-    """Fit the hinge and the tip mass to the paper's 29.5 cm of 40 and 39.5 cm of 50."""
-    check_step(probe=probe, quick=quick)
+def compute(probe, quick: bool, n_jobs: int = 1) -> HingeResult:
+    """Fit the hinge and the tip mass to the paper's 29.5 cm of 40 and 39.5 cm of 50 (the
+    coarse search on ``n_jobs`` worker processes: the same fit whatever ``n_jobs``)."""
+    check_step(probe=probe, quick=quick, n_jobs=n_jobs)
     observed = [printed.DEVIATION_CM.value / 100, printed.DEVIATION_50CM_PROBE_CM.value / 100]
     fit = fit_hinge_and_tip(
-        probe, LENGTHS, observed, grid=3 if quick else 7, n_elements=16 if quick else 48
+        probe, LENGTHS, observed, grid=3 if quick else 7, n_elements=16 if quick else 48,
+        n_jobs=n_jobs,
     )
     return HingeResult(fit)
 

@@ -204,7 +204,7 @@ def reproduce(
     study = _Sections(timer, report, figures)
 
     study.run("modes", mode_zones.compute, mode_zones.render, scene.probe, quick)
-    study.run("hinge", hinge_fit.compute, hinge_fit.render, scene.probe, quick)
+    study.run("hinge", hinge_fit.compute, hinge_fit.render, scene.probe, quick, workers)
     before = {p: p.stat().st_mtime_ns for p in cache_dir.glob("*.npz")}
     ds = timer.run(
         "data set",

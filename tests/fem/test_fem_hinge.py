@@ -5,6 +5,7 @@ import pytest
 
 from ebantenna import Probe
 from ebantenna.fem import natural_frequencies
+from ebantenna._validate import more_jobs_allowed
 from ebantenna.fem.hinge import fit_hinge_and_tip, transition_position
 
 PROBE = Probe()
@@ -62,6 +63,17 @@ def test_observations_made_by_a_known_model_are_fitted_back():
     assert fit.hinge_stiffness == pytest.approx(truth["hinge"], rel=0.05)
 
 
+def test_the_fit_is_the_same_on_two_worker_processes():
+    # each point of the coarse search is computed alone, wherever it runs: the same lattice
+    # costs, the same start, the same refinement, bit for bit
+    args = dict(grid=3, n_elements=12, stiffness_bounds=(0.1, 100.0), mass_bounds=(0.0, 0.004))
+    one = fit_hinge_and_tip(PROBE, [0.4, 0.5], [0.3, 0.39], n_jobs=1, **args)
+    with more_jobs_allowed():  # two workers, on a machine of one core too
+        two = fit_hinge_and_tip(PROBE, [0.4, 0.5], [0.3, 0.39], n_jobs=2, **args)
+    assert (one.hinge_stiffness, one.tip_mass) == (two.hinge_stiffness, two.tip_mass)
+    np.testing.assert_array_equal(one.predicted, two.predicted)
+
+
 @pytest.mark.parametrize(
     ("kwargs", "message"),
     [
@@ -70,6 +82,7 @@ def test_observations_made_by_a_known_model_are_fitted_back():
         ({"criterion": "knee"}, "criterion must be one of"),
         ({"mass_bounds": (-0.001, 0.01)}, "mass_bounds"),
         ({"stiffness_bounds": (0.0, 1.0)}, r"stiffness_bounds\[0\] must be > 0"),
+        ({"n_jobs": 0}, "n_jobs must be -1"),
     ],
 )
 def test_bad_input_names_the_parameter(kwargs, message):

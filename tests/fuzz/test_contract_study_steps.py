@@ -290,6 +290,8 @@ def _computes():
             ("quick",)),
         Row(S + "hinge_fit.compute", "probe-a-scene", lambda: hinge_fit.compute(SCENE, True),
             ("probe",)),
+        Row(S + "hinge_fit.compute", "n_jobs-zero", lambda: hinge_fit.compute(PROBE, True, 0),
+            ("n_jobs",)),
         Row(S + "mode_zones.compute", "probe-a-scene", lambda: mode_zones.compute(SCENE, True),
             ("probe",)),
         Row(S + "mode_zones.compute", "quick-none", lambda: mode_zones.compute(PROBE, None),

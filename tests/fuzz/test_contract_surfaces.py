@@ -423,6 +423,8 @@ def _fem_rows():
         Row(h + "fit_hinge_and_tip", "mass_bounds-negative",
             lambda: hinge.fit_hinge_and_tip(Probe(), [0.4], [0.3], mass_bounds=(-1, 1)),
             ("mass_bounds",)),
+        Row(h + "fit_hinge_and_tip", "n_jobs-zero",
+            lambda: hinge.fit_hinge_and_tip(Probe(), [0.4], [0.3], n_jobs=0), ("n_jobs",)),
     ]
     return rows
 

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from ebantenna import Probe
-from ebantenna.fem import natural_frequencies
 from ebantenna._validate import more_jobs_allowed
+from ebantenna.fem import natural_frequencies
 from ebantenna.fem.hinge import fit_hinge_and_tip, transition_position
 
 PROBE = Probe()

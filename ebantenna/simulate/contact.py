@@ -425,7 +425,7 @@ class HertzInSeries:
         return float(out) if out.ndim == 0 else out
 
     # the law at checked forces F >= 0 (N), ``unit`` the Hertz approach at 1 N (m): what the
-    # chords' placement evaluates some hundred times per chord, without the checks
+    # chords' placement evaluates some hundred times per spring, without the checks
     def _approach(self, F, unit: float):
         return unit * np.cbrt(F) ** 2 + F / self.ring
 

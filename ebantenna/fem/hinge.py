@@ -298,10 +298,7 @@ def _grid_search(residual, bounds, grid: int, n_jobs=1):
     """
     lattice = [(log_k, mass) for log_k in np.linspace(bounds[0][0], bounds[1][0], grid)
                for mass in np.linspace(bounds[0][1], bounds[1][1], grid)]
-    if n_jobs in (None, 1):
-        costs = [_cost(residual, point) for point in lattice]
-    else:
-        costs = Parallel(n_jobs=n_jobs)(delayed(_cost)(residual, point) for point in lattice)
+    costs = Parallel(n_jobs=n_jobs or 1)(delayed(_cost)(residual, point) for point in lattice)
     best, best_cost = None, math.inf
     for point, cost in zip(lattice, costs, strict=True):
         if cost < best_cost:

@@ -434,7 +434,7 @@ class HertzInSeries:
             compliance = 2 / 3 * unit / np.cbrt(F) + 1 / self.ring
         return 1 / compliance
 
-    def _chord_bound(self, fa: float, fb: float, unit: float) -> float:
+    def _unchecked_chord_bound(self, fa: float, fb: float, unit: float) -> float:
         return _chord_bound(float(self._approach(fa, unit)), float(self._approach(fb, unit)),
                             fa, fb, float(self._stiffness(fa, unit)),
                             float(self._stiffness(fb, unit)))
@@ -460,7 +460,7 @@ class HertzInSeries:
         fa = check_nonnegative("fa", fa)
         if not fa < check_nonnegative("fb", fb):
             raise ValueError(f"fa must be below fb, got fa = {fa!r}, fb = {fb!r}")
-        return self._chord_bound(fa, fb, self.hertz.approach(1.0))
+        return self._unchecked_chord_bound(fa, fb, self.hertz.approach(1.0))
 
     def piecewise(self, tolerance: float, max_force: float, through=()) -> PiecewiseSpring:
         """Chords of the law whose force is within ``tolerance`` (N) of it up to ``max_force``.
@@ -486,15 +486,15 @@ class HertzInSeries:
         for stop in stops:
             while nodes[-1] < stop:
                 a = nodes[-1]
-                if self._chord_bound(a, stop, unit) <= tol:
+                if self._unchecked_chord_bound(a, stop, unit) <= tol:
                     b = stop
                 else:
                     # aim a little inside the tolerance, so that the root's error keeps it
                     def excess(f, a=a):
-                        return self._chord_bound(a, f, unit) - tol * (1 - 1e-6)
+                        return self._unchecked_chord_bound(a, f, unit) - tol * (1 - 1e-6)
 
                     b = spo.brentq(excess, a + (stop - a) * 1e-12, stop, xtol=1e-14, rtol=1e-10)
-                bounds.append(self._chord_bound(a, b, unit))
+                bounds.append(self._unchecked_chord_bound(a, b, unit))
                 nodes.append(b)
         F = np.array(nodes)
         return PiecewiseSpring(F, self.approach(F), np.array(bounds))

@@ -47,7 +47,7 @@ def _median_ms(function, repeats: int) -> float:
 
 
 def epoch_products(X, Y, W1, b1, W2, b2):
-    """One epoch's arithmetic as a function of no arguments, its arrays allocated once: the
+    """One epoch's arithmetic as a function of no arguments, its outputs allocated once: the
     forward pass (tanh, then the softmax), the error at the outputs and the backward pass to
     the two weight gradients, which it returns summed over the rows (``(G1, G2)``; the mean
     loss's are these over the number of rows)."""

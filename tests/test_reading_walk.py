@@ -3,27 +3,19 @@ the modules it passes at run time and the files a student reads, held within the
 
 from __future__ import annotations
 
-import importlib.util
 import json
 import os
 import sys
 from pathlib import Path
 
+import benchmark_scripts
 import pytest
 from unloaded_time import run
 
 ROOT = Path(__file__).resolve().parents[1]
-SCRIPT = ROOT / "benchmarks" / "reading_walk.py"
+SCRIPT = benchmark_scripts.FOLDER / "reading_walk.py"
 
-
-def _script():
-    spec = importlib.util.spec_from_file_location("reading_walk", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-walk_script = _script()
+walk_script = benchmark_scripts.load("reading_walk")
 
 
 @pytest.fixture(scope="module")

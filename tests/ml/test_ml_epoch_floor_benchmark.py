@@ -1,25 +1,13 @@
 """benchmarks/network_epoch_floor.py: its floor is an epoch's own arithmetic (the gradient the
 package's backpropagation gives), and the script runs and refuses bad sizes by name."""
 
-import importlib.util
-from pathlib import Path
-
+import benchmark_scripts
 import numpy as np
 import pytest
 
 from ebantenna.ml.backprop import loss_and_gradients
 
-SCRIPT = Path(__file__).resolve().parents[2] / "benchmarks" / "network_epoch_floor.py"
-
-
-def _script():
-    spec = importlib.util.spec_from_file_location("network_epoch_floor", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-floor = _script()
+floor = benchmark_scripts.load("network_epoch_floor")
 
 
 def test_the_floor_computes_the_epochs_gradient():

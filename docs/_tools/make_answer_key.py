@@ -1,7 +1,11 @@
 """Write ``ebantenna/course/_answer_key.py``: the key behind :func:`ebantenna.course.check`.
 
 Every worked solution in ``docs/exercises/solutions/`` ends with two dictionaries: ``ANSWERS``
-(name -> value) and ``TOLERANCES`` (name -> ``(kind, width, reason)``). This script runs each
+(name -> value) and ``TOLERANCES`` (name -> ``(kind, width, reason)``); a solution whose answers
+count (recordings of a held-out set, restrikes, whole positions) adds ``STEPS`` (name -> the
+answer's step): another machine's last-bit rounding may move such an answer by one step, so the
+tests hold the key and the page to the solution within one step, and the step must lie within
+the answer's ``"abs"`` tolerance, which grades the students' answers. This script runs each
 solution and writes the tolerances and the *sealed* answers (:func:`ebantenna.course.seal`: a
 salted hash of the answer's cell and its place in the cell, never the value) into one module of
 the package, so that a student's self-check needs neither the solutions nor the documentation,

@@ -64,4 +64,9 @@ TOLERANCES = {
     "accuracy_random": ("abs", 0.035, SPLIT), "accuracy_grouped": ("abs", 0.035, SPLIT),
     "accuracy_rigid": ("abs", 0.035, SPLIT),
 }
+# The accuracies count recordings: another machine's last-bit rounding may move one by one test
+# recording (a recording near a tie of the solver).
+STEPS = {"accuracy_random": 1 / len(splits["random"][1]),
+         "accuracy_grouped": 1 / len(splits["grouped"][1]),
+         "accuracy_rigid": 1 / len(splits["random"][1])}
 print("ok")

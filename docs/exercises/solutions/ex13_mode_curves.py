@@ -116,4 +116,11 @@ TOLERANCES.update(restrikes_median=("abs", 1, COUNT), restrikes_max=("abs", 1, C
 STRETCH = "one 1 cm step: a jump threshold other than 10 bins may move an end by a position"
 TOLERANCES.update({name: ("abs", 1, STRETCH) for name in (
     "metals_smooth_from_cm", "metals_smooth_to_cm", "pvc_smooth_from_cm", "pvc_smooth_to_cm")})
+# The answers that count: the step by which the last-bit rounding of another machine (its SIMD
+# paths in NumPy, its BLAS kernel) may move them, through a recording near a tie or a strike that
+# chatters: one recording of the 80 held out, one count, one 1 cm position.
+STEPS = {"curve_accuracy": 1 / len(test), "svm_accuracy": 1 / len(test), "n_correct": 1,
+         "restrikes_median": 1, "restrikes_max": 1, **{name: 1 for name in (
+             "metals_smooth_from_cm", "metals_smooth_to_cm", "pvc_smooth_from_cm",
+             "pvc_smooth_to_cm")}}
 print("ok")

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 from sklearn.exceptions import ConvergenceWarning
 
+from .._validate import check_bool
 from ..ml import MLPClassifier
 from ..paper import experiments, printed
 from ..paper.protocol import MATERIAL_ANN, normalise_by_max, three_way_split
@@ -36,12 +37,12 @@ from ..paper.uncertainty import (
     percent,
     training_entries,
 )
-from ._common import check_instance, check_render, check_step, fits_in_parallel
+from ._common import check_instance, check_render, check_step, fits_in_parallel, listed
 from .learning import ANN_MAX_EPOCHS, stop_sentence
 from .seed_spread import SUBSET_REPETITIONS
 
-__all__ = ["TRAINGD_DEFAULTS", "RUNS", "LONG_RUN", "AnnSetupResult", "compute",
-           "render"]
+__all__ = ["TRAINGD_DEFAULTS", "RUNS", "LONG_RUN", "AnnSetupResult", "compute", "fit_calls",
+           "from_fits", "render"]
 
 #: MATLAB ``traingd``'s defaults: epochs, learning rate, validation checks (``max_fail``).
 TRAINGD_DEFAULTS = {"epochs": 1000, "lr": 0.01, "max_fail": 6}
@@ -216,7 +217,7 @@ def compute(ds, feats, seed: int, quick: bool = False, n_jobs: int = 1, *,
     """Each run of :data:`RUNS` and the long run on the subset, seed ``seed`` for the split and
     the weights (the long run capped at ``QUICK_LONG_EPOCHS`` when ``quick``); each run on one
     of ``n_jobs`` worker processes (``_common.fits_in_parallel``): the same numbers whatever
-    ``n_jobs``.
+    ``n_jobs``. The same as :func:`from_fits` of the fits of :func:`fit_calls`.
 
     ``paper_ann`` (optional) is the paper's network already trained on the whole data set with
     seed ``seed`` (the study's 'ml' step, ``learning.ANN_MAX_EPOCHS`` epochs, the default
@@ -227,13 +228,26 @@ def compute(ds, feats, seed: int, quick: bool = False, n_jobs: int = 1, *,
     check_step(ds=ds, feats=feats, seed=seed, quick=quick, n_jobs=n_jobs)
     if paper_ann is not None:
         check_instance("paper_ann", paper_ann, experiments.ClassificationResult)
-    rows = np.flatnonzero(np.asarray(ds.repetition) < SUBSET_REPETITIONS)
-    X, y, d = feats.fft[rows], ds.material[rows], np.asarray(ds.contact)[rows]
-    whole = rows.size == np.asarray(ds.repetition).size
-    calls, reused = {}, {}
+    calls = fit_calls(ds, feats, seed, quick,
+                      paper_ann_given=_same_fit(paper_ann, *_paper_run(), seed))
+    fits = dict(zip(calls, fits_in_parallel(list(calls.values()), n_jobs), strict=True))
+    return from_fits(ds, feats, seed, fits, paper_ann=paper_ann)
+
+
+def fit_calls(ds, feats, seed: int, quick: bool = False, *,
+              paper_ann_given: bool = False) -> dict:
+    """The fits of :func:`compute` by name (each run of :data:`RUNS`, then ``"long"``), as calls
+    ``(function, args, kwargs)`` for ``_common.fits_in_parallel``.
+
+    With ``paper_ann_given``, the run that is the paper's network on the whole data set (see
+    :func:`compute`; there is one only when the subset is the whole data set) is left out: the
+    caller trains that network anyway and gives it to :func:`from_fits`."""
+    check_step(ds=ds, feats=feats, seed=seed, quick=quick)
+    paper_ann_given = check_bool("paper_ann_given", paper_ann_given)
+    X, y, d, whole = _subset(ds, feats)
+    calls = {}
     for name, (lr, epochs) in RUNS.items():
-        if whole and _same_fit(paper_ann, lr, epochs, seed):
-            reused[name] = paper_ann
+        if paper_ann_given and whole and (lr, epochs) == _paper_run():
             continue
         calls[name] = (experiments.classify_materials_ann, (X, y),
                        {"learning_rate_init": lr, "max_iter": epochs, "seed": seed,
@@ -241,8 +255,29 @@ def compute(ds, feats, seed: int, quick: bool = False, n_jobs: int = 1, *,
     calls["long"] = (long_run, (X, y, d), {
         "lr": LONG_RUN["lr"], "epochs": QUICK_LONG_EPOCHS if quick else LONG_RUN["epochs"],
         "every": LONG_RUN["every"], "seed": seed})
-    done = {**reused, **dict(zip(calls, fits_in_parallel(list(calls.values()), n_jobs),
-                                  strict=True))}
+    return calls
+
+
+def from_fits(ds, feats, seed: int, fits: dict, *, paper_ann=None) -> AnnSetupResult:
+    """The :class:`AnnSetupResult` of the results of :func:`fit_calls`' calls, by name; the run
+    left out for ``paper_ann_given`` is ``paper_ann``, which must then be that same fit."""
+    check_step(ds=ds, feats=feats, seed=seed)
+    if paper_ann is not None:
+        check_instance("paper_ann", paper_ann, experiments.ClassificationResult)
+    _, _, d, whole = _subset(ds, feats)
+    runs_given = set(fits) & set(RUNS) if isinstance(fits, dict) else set()
+    if (not isinstance(fits, dict) or not isinstance(fits.get("long"), dict)
+            or not set(fits) <= {*RUNS, "long"}
+            or not all(isinstance(fits[k], experiments.ClassificationResult) for k in runs_given)):
+        raise ValueError(f"fits must be the results of fit_calls' calls by name ({listed(RUNS)}"
+                         f" and 'long'), got {fits!r:.80}")
+    done = dict(fits)
+    for name, (lr, epochs) in RUNS.items():
+        if name not in done:
+            if not (whole and _same_fit(paper_ann, lr, epochs, seed)):
+                raise ValueError(f"fits lacks the run {name!r}, and paper_ann is not that fit "
+                                 "(the paper's network on the whole data set with this seed)")
+            done[name] = paper_ann
     results, long = [done[name] for name in RUNS], done["long"]
     runs = {}
     for (name, (lr, epochs)), result in zip(RUNS.items(), results, strict=True):
@@ -263,7 +298,14 @@ def compute(ds, feats, seed: int, quick: bool = False, n_jobs: int = 1, *,
     first, larger = (runs[k]["result"] for k in RUNS)
     pair = PairedDifference.from_recordings(first.correct(), larger.correct(),
                                             d[first.rows()], UNITS["random"])
-    return AnnSetupResult(runs, int(rows.size), long, pair)
+    return AnnSetupResult(runs, int(d.size), long, pair)
+
+
+def _subset(ds, feats) -> tuple:
+    """The subset's features, labels and positions, and whether it is the whole data set."""
+    rows = np.flatnonzero(np.asarray(ds.repetition) < SUBSET_REPETITIONS)
+    whole = rows.size == np.asarray(ds.repetition).size
+    return feats.fft[rows], ds.material[rows], np.asarray(ds.contact)[rows], whole
 
 
 def render(result: AnnSetupResult, report, figures) -> None:

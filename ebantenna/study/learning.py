@@ -36,7 +36,7 @@ from ._common import (
     probe_length,
 )
 
-__all__ = ["LearningResult", "compute", "render"]
+__all__ = ["LearningResult", "compute", "fit_calls", "from_fits", "render"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -102,11 +102,20 @@ class LearningResult:
 def compute(ds, feats, seed: int, n_jobs: int = 1) -> LearningResult:
     """Train and test the two classifiers and the two distance networks, each fit on one of
     ``n_jobs`` worker processes (``_common.fits_in_parallel``): the same numbers whatever
-    ``n_jobs``."""
+    ``n_jobs``. The same as :func:`from_fits` of the fits of :func:`fit_calls`."""
     check_step(ds=ds, feats=feats, seed=seed, n_jobs=n_jobs)
-    # the longest fit first (the network's 1000 epochs: about six times the SVM's CPU time on
-    # the full data set), so that the three others share the second worker meanwhile
-    ann, svm, lin, full = fits_in_parallel([
+    return from_fits(ds, fits_in_parallel(fit_calls(ds, feats, seed), n_jobs))
+
+
+def fit_calls(ds, feats, seed: int) -> list:
+    """The four fits of :func:`compute` as calls ``(function, args, kwargs)`` for
+    ``_common.fits_in_parallel``, in the order :func:`from_fits` takes their results.
+
+    The longest comes first (the network's 1000 epochs: about six times the SVM's CPU time on
+    the full data set), so that the others share the second worker meanwhile; a caller may
+    queue more fits behind them (the study queues the ANN setup's)."""
+    check_step(ds=ds, feats=feats, seed=seed)
+    return [
         (experiments.classify_materials_ann, (feats.fft, ds.material),
          {"seed": seed, "max_iter": ANN_MAX_EPOCHS}),
         (experiments.classify_materials_svm, (feats.fft, ds.material), {"seed": seed}),
@@ -114,7 +123,19 @@ def compute(ds, feats, seed: int, n_jobs: int = 1) -> LearningResult:
          {"probe_length": probe_length(ds), "seed": seed}),
         (experiments.regress_distance_full_length, (feats.fft_elliptic, ds.contact),
          {"seed": seed}),
-    ], n_jobs)
+    ]
+
+
+def from_fits(ds, fits) -> LearningResult:
+    """The :class:`LearningResult` of the results of :func:`fit_calls`' four calls, in order."""
+    check_step(ds=ds)
+    kinds = (experiments.ClassificationResult, experiments.ClassificationResult,
+             experiments.RegressionResult, experiments.RegressionResult)
+    if not isinstance(fits, list | tuple) or len(fits) != len(kinds) or not all(
+            isinstance(f, k) for f, k in zip(fits, kinds, strict=True)):
+        raise TypeError("fits must be the results of fit_calls' four calls, in order (the "
+                        f"network's, the SVM's, the two distance networks'), got {fits!r:.80}")
+    ann, svm, lin, full = fits
     return LearningResult(svm, ann, lin, full, np.asarray(ds.contact))
 
 

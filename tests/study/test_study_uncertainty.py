@@ -222,8 +222,10 @@ def _without_times(entry):
 
 
 def test_the_learning_steps_give_the_same_numbers_on_two_workers(quick_study):
-    """The study's 'ml' and 'ann setup' steps fit on worker processes: on two workers they give
-    the numbers the quick study reported from its fits made in turn (one worker)."""
+    """The study's 'ml' and 'ann setup' steps fit on worker processes, the setup's networks in
+    the ml step's pool, the paper network's run taken from the ml step: each step computed
+    alone on two workers (the setup training that run itself) gives the numbers the quick
+    study reported from its fits made in turn (one worker)."""
     from ebantenna.paper.data import build_paper_dataset
     from ebantenna.paper.feature_table import signal_features
     from ebantenna.study import learning

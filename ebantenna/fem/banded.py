@@ -15,6 +15,9 @@ position; here every position of a batch is handled at once, vectorised over the
    lowest modes), each step two triangular solves and a banded product, ``O(n)``; the
    ``mu`` of a beam fall off like ``j^-4``, so about a dozen steps reach the residual bound
    ``1e-14`` (B. N. Parlett, *The Symmetric Eigenvalue Problem*, SIAM, 1998, ch. 13);
+   A batch of one position (a root search sweeps one at a time) runs steps 2 and 3's node loops
+   on Python floats instead: the same IEEE operations in the same order, bit for bit, without
+   NumPy's cost per call on arrays of one element (about three times faster per sweep);
 4. the frequencies are the Rayleigh quotients of the Ritz vectors, the strain energy summed from
    the element curvatures (:func:`~ebantenna.fem.elements.bending_energy`): good to about
    ``1e-12``, like :func:`~ebantenna.fem.modal.modal_analysis`, where ``1/mu - s`` alone carries
@@ -91,6 +94,8 @@ def _cholesky(A: np.ndarray) -> np.ndarray:
     Row ``i`` of ``L`` holds ``L[i, i-3 .. i]``; it needs only the three rows above it.
     """
     B, _, n = A.shape
+    if B == 1:
+        return _cholesky_one(A[0])[:, :, None]
     # rows padded by three rows of the identity above and three zero rows below
     L = np.zeros((n + 2 * _BAND, _BAND + 1, B))
     L[:_BAND, 0] = 1.0
@@ -106,6 +111,28 @@ def _cholesky(A: np.ndarray) -> np.ndarray:
         s = Ad[i, 0] - L[r, 1] ** 2 - L[r, 2] ** 2 - L[r, 3] ** 2
         L[r, 0] = np.sqrt(s)
     return L
+
+
+def _cholesky_one(A: np.ndarray) -> np.ndarray:
+    """:func:`_cholesky` of one band (4, n), on Python floats: the same IEEE operations in the
+    same order, so the same bits, without NumPy's cost per call on arrays of one element (a
+    root search sweeps one position at a time). Returns L's band (n + 6, 4)."""
+    n = A.shape[1]
+    Ad = A.T.tolist()  # Ad[i][d] = A[i, i - d]
+    L = [[1.0, 0.0, 0.0, 0.0] for _ in range(_BAND)]
+    for i in range(n):
+        row = [0.0] * (_BAND + 1)
+        for d in range(_BAND, 0, -1):  # L[i, i-d], from the left
+            above = L[i + _BAND - d]
+            s = Ad[i][d]
+            for q in range(d + 1, _BAND + 1):
+                s -= row[q] * above[q - d]
+            row[d] = s / above[0] if above[0] else float(np.float64(s) / above[0])
+        # NumPy sums (0 + a) + b, as the reduction starts from its identity: squares as products
+        s = Ad[i][0] - row[1] * row[1] - row[2] * row[2] - row[3] * row[3]
+        row[0] = math.sqrt(s) if not s < 0 else float(np.sqrt(np.float64(s)))
+        L.append(row)
+    return np.array(L + [[0.0] * (_BAND + 1)] * _BAND)
 
 
 def _node_blocks(L: np.ndarray):
@@ -134,6 +161,8 @@ def _node_blocks(L: np.ndarray):
 def _forward(L, x: np.ndarray) -> np.ndarray:
     """``L^-1 x`` for x of shape (n, B): forward substitution, node by node."""
     inv, below = L
+    if x.shape[-1] == 1:
+        return _forward_one(inv[..., 0].tolist(), below[..., 0].tolist(), x[:, 0].tolist())
     x = x.reshape(inv.shape[0], 2, -1)
     z = np.empty_like(x)
     z[0] = (inv[0] * x[0]).sum(1)
@@ -145,12 +174,50 @@ def _forward(L, x: np.ndarray) -> np.ndarray:
 def _backward(L, x: np.ndarray) -> np.ndarray:
     """``L^-T x`` for x of shape (n, B): back substitution, node by node."""
     inv, below = L
+    if x.shape[-1] == 1:
+        return _backward_one(inv[..., 0].tolist(), below[..., 0].tolist(), x[:, 0].tolist())
     x = x.reshape(inv.shape[0], 2, -1)
     z = np.empty_like(x)
     z[-1] = (inv[-1] * x[-1][:, None]).sum(0)
     for k in range(x.shape[0] - 2, -1, -1):
         z[k] = (inv[k] * (x[k] - (below[k + 1] * z[k + 1][:, None]).sum(0))[:, None]).sum(0)
     return z.reshape(-1, x.shape[-1])
+
+
+def _forward_one(inv, below, x) -> np.ndarray:
+    """:func:`_forward` of a batch of one, on Python floats (``inv``, ``below``: the node
+    blocks as nested lists, ``x`` a list), the same operations in the same order: a sum over
+    the block's two columns is ``(0 + a) + b``, as NumPy's reduction starts from its identity.
+    Only products, sums and differences: IEEE arithmetic, bit for bit."""
+    z = []
+    (a, b), (c, d) = inv[0]
+    z0, z1 = 0.0 + a * x[0] + b * x[1], 0.0 + c * x[0] + d * x[1]
+    z += [z0, z1]
+    for k in range(1, len(inv)):
+        (a, b), (c, d) = inv[k]
+        (e, f), (g, h) = below[k]
+        r0 = x[2 * k] - (0.0 + e * z0 + f * z1)
+        r1 = x[2 * k + 1] - (0.0 + g * z0 + h * z1)
+        z0, z1 = 0.0 + a * r0 + b * r1, 0.0 + c * r0 + d * r1
+        z += [z0, z1]
+    return np.array(z)[:, None]
+
+
+def _backward_one(inv, below, x) -> np.ndarray:
+    """:func:`_backward` of a batch of one, on Python floats, as :func:`_forward_one`."""
+    n = len(inv)
+    z = [0.0] * (2 * n)
+    (a, b), (c, d) = inv[-1]
+    z0, z1 = 0.0 + a * x[-2] + c * x[-1], 0.0 + b * x[-2] + d * x[-1]
+    z[-2:] = z0, z1
+    for k in range(n - 2, -1, -1):
+        (a, b), (c, d) = inv[k]
+        (e, f), (g, h) = below[k + 1]
+        r0 = x[2 * k] - (0.0 + e * z0 + g * z1)
+        r1 = x[2 * k + 1] - (0.0 + f * z0 + h * z1)
+        z0, z1 = 0.0 + a * r0 + c * r1, 0.0 + b * r0 + d * r1
+        z[2 * k], z[2 * k + 1] = z0, z1
+    return np.array(z)[:, None]
 
 
 def _matvec(band: np.ndarray, x: np.ndarray) -> np.ndarray:

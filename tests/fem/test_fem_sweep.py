@@ -130,3 +130,32 @@ def test_banded_sweep_refuses_more_modes_than_lanczos_can_deliver():
     banded = natural_frequencies(PROBE, np.array([0.2]), n_elements=200, n_modes=50)
     single = modal_analysis(PROBE, Supports(0.2), n_elements=200, n_modes=50).frequencies
     np.testing.assert_allclose(banded[0], single, rtol=1e-12)
+
+
+def test_one_position_solves_on_floats_are_the_batch_solves_bit_for_bit():
+    """A batch of one position runs the banded Cholesky and the node-by-node triangular solves
+    on Python floats; each column of a batch runs the same IEEE operations in the same order on
+    arrays (a sum over a block's two columns from NumPy's identity, (0 + a) + b), so every bit
+    agrees, signed zeros included."""
+    from ebantenna.fem import banded
+
+    rng = np.random.default_rng(7)
+    n, B = 2 * 13, 3
+    A = np.zeros((B, 4, n))
+    A[:, 0] = 10 + rng.random((B, n))
+    A[:, 1:] = 0.5 * rng.random((B, 3, n))
+    A[:, 1:][rng.random((B, 3, n)) < 0.3] = -0.0  # entries of either sign of zero
+    x = rng.standard_normal((n, B))
+    x[rng.random((n, B)) < 0.2] = -0.0
+    x[:, -1] = -0.0  # a sum of two negative zeros is +0 from NumPy's identity, -0 without it
+    L = banded._cholesky(A)  # the array path (B > 1)
+    blocks = banded._node_blocks(L)
+    solves = banded._forward(blocks, x), banded._backward(blocks, x)
+    for b in range(B):
+        one = banded._cholesky(A[b : b + 1])  # the float path
+        assert one.shape == (n + 6, 4, 1)
+        assert np.array_equal(one[..., 0].view(np.int64), L[..., b].view(np.int64))
+        one_blocks = banded._node_blocks(one)
+        for solve, batch in zip((banded._forward, banded._backward), solves, strict=True):
+            column = solve(one_blocks, x[:, b : b + 1])
+            assert np.array_equal(column[:, 0].view(np.int64), batch[:, b].view(np.int64))

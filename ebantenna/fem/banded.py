@@ -128,7 +128,7 @@ def _cholesky_one(A: np.ndarray) -> np.ndarray:
             for q in range(d + 1, _BAND + 1):
                 s -= row[q] * above[q - d]
             row[d] = s / above[0] if above[0] else float(np.float64(s) / above[0])
-        # NumPy sums (0 + a) + b, as the reduction starts from its identity: squares as products
+        # the squares as products, as NumPy's ``** 2`` computes them
         s = Ad[i][0] - row[1] * row[1] - row[2] * row[2] - row[3] * row[3]
         row[0] = math.sqrt(s) if not s < 0 else float(np.sqrt(np.float64(s)))
         L.append(row)
@@ -141,7 +141,8 @@ def _node_blocks(L: np.ndarray):
     Row ``2k`` (the deflection of node ``k``) and ``2k + 1`` (its rotation) reach back to node
     ``k - 1`` only (``L[2k, 2k - 3]`` belongs to node ``k - 2`` and is zero: those nodes share no
     element, and a banded Cholesky fills nothing outside the band). Returns the inverses of the
-    diagonal blocks and the blocks below them, each (n_nodes, 2, 2, B).
+    diagonal blocks and the blocks below them, each (n_nodes, 2, 2, B); for a batch of one, each
+    as nested lists (n_nodes, 2, 2) of floats, read by the float path of the solves.
     """
     Lr = L[_BAND:-_BAND]  # (n, 4, B): Lr[i, d] = L[i, i - d]
     v, t = Lr[0::2], Lr[1::2]  # rows of deflections and of rotations, (n_nodes, 4, B)
@@ -155,14 +156,16 @@ def _node_blocks(L: np.ndarray):
         t[:, 3],
         t[:, 2],
     )
+    if inv.shape[-1] == 1:  # a batch of one: the blocks as the float path reads them, once
+        return inv[..., 0].tolist(), below[..., 0].tolist()
     return inv, below
 
 
 def _forward(L, x: np.ndarray) -> np.ndarray:
     """``L^-1 x`` for x of shape (n, B): forward substitution, node by node."""
     inv, below = L
-    if x.shape[-1] == 1:
-        return _forward_one(inv[..., 0].tolist(), below[..., 0].tolist(), x[:, 0].tolist())
+    if isinstance(inv, list):  # a batch of one (see _node_blocks)
+        return _forward_one(inv, below, x[:, 0].tolist())
     x = x.reshape(inv.shape[0], 2, -1)
     z = np.empty_like(x)
     z[0] = (inv[0] * x[0]).sum(1)
@@ -174,8 +177,8 @@ def _forward(L, x: np.ndarray) -> np.ndarray:
 def _backward(L, x: np.ndarray) -> np.ndarray:
     """``L^-T x`` for x of shape (n, B): back substitution, node by node."""
     inv, below = L
-    if x.shape[-1] == 1:
-        return _backward_one(inv[..., 0].tolist(), below[..., 0].tolist(), x[:, 0].tolist())
+    if isinstance(inv, list):  # a batch of one (see _node_blocks)
+        return _backward_one(inv, below, x[:, 0].tolist())
     x = x.reshape(inv.shape[0], 2, -1)
     z = np.empty_like(x)
     z[-1] = (inv[-1] * x[-1][:, None]).sum(0)

@@ -244,7 +244,8 @@ def fit_calls(ds, feats, seed: int, quick: bool = False, *,
     caller trains that network anyway and gives it to :func:`from_fits`."""
     check_step(ds=ds, feats=feats, seed=seed, quick=quick)
     paper_ann_given = check_bool("paper_ann_given", paper_ann_given)
-    X, y, d, whole = _subset(ds, feats)
+    rows, whole = _subset(ds)
+    X, y, d = feats.fft[rows], ds.material[rows], np.asarray(ds.contact)[rows]
     calls = {}
     for name, (lr, epochs) in RUNS.items():
         if paper_ann_given and whole and (lr, epochs) == _paper_run():
@@ -264,7 +265,8 @@ def from_fits(ds, feats, seed: int, fits: dict, *, paper_ann=None) -> AnnSetupRe
     check_step(ds=ds, feats=feats, seed=seed)
     if paper_ann is not None:
         check_instance("paper_ann", paper_ann, experiments.ClassificationResult)
-    _, _, d, whole = _subset(ds, feats)
+    rows, whole = _subset(ds)
+    d = np.asarray(ds.contact)[rows]
     runs_given = set(fits) & set(RUNS) if isinstance(fits, dict) else set()
     if (not isinstance(fits, dict) or not isinstance(fits.get("long"), dict)
             or not set(fits) <= {*RUNS, "long"}
@@ -301,11 +303,11 @@ def from_fits(ds, feats, seed: int, fits: dict, *, paper_ann=None) -> AnnSetupRe
     return AnnSetupResult(runs, int(d.size), long, pair)
 
 
-def _subset(ds, feats) -> tuple:
-    """The subset's features, labels and positions, and whether it is the whole data set."""
+def _subset(ds) -> tuple:
+    """The subset's rows (the first :data:`~.seed_spread.SUBSET_REPETITIONS` repetitions of
+    every position), and whether they are the whole data set."""
     rows = np.flatnonzero(np.asarray(ds.repetition) < SUBSET_REPETITIONS)
-    whole = rows.size == np.asarray(ds.repetition).size
-    return feats.fft[rows], ds.material[rows], np.asarray(ds.contact)[rows], whole
+    return rows, rows.size == np.asarray(ds.repetition).size
 
 
 def render(result: AnnSetupResult, report, figures) -> None:

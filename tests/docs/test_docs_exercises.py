@@ -115,7 +115,8 @@ def test_page_states_objectives_difficulty_time(page):
 @pytest.mark.parametrize("page", PAGES, ids=lambda p: p.stem)
 def test_expected_answers_on_the_page_are_the_solutions(page):
     stated = _page_answers(page.read_text())
-    answers = run_solution(DOCS / "exercises" / "solutions" / f"{page.stem}.py")[0]["ANSWERS"]
+    namespace = run_solution(DOCS / "exercises" / "solutions" / f"{page.stem}.py")[0]
+    answers, steps = namespace["ANSWERS"], namespace.get("STEPS", {})
     assert stated and set(stated) == set(answers), (sorted(stated), sorted(answers))
     stated_tolerances = tolerances(page.stem)
     for name, text in stated.items():
@@ -130,7 +131,7 @@ def test_expected_answers_on_the_page_are_the_solutions(page):
         # the page rounds to its last printed digit: the value is within half a unit of it, or,
         # for an answer that counts, within one step more (the page was computed on one machine)
         half_unit = 0.5 * 10.0 ** Decimal(text).as_tuple().exponent
-        margin = half_unit * (1 + 1e-9) + _steps(page.stem).get(name, 0.0)
+        margin = half_unit * (1 + 1e-9) + steps.get(name, 0.0)
         assert abs(value - float(text)) <= margin, (name, text)
 
 
@@ -194,11 +195,6 @@ def test_the_steps_of_counting_answers_are_within_their_tolerance(script):
     for name, step in steps.items():
         kind, width, _ = namespace["TOLERANCES"][name]
         assert kind == "abs" and 0 < step <= width, (name, step, width)
-
-
-def _steps(stem: str) -> dict:
-    """The ``STEPS`` of a solution (answers that count, and their step), or none."""
-    return run_solution(DOCS / "exercises" / "solutions" / f"{stem}.py")[0].get("STEPS", {})
 
 
 @pytest.mark.parametrize("script", SOLUTIONS, ids=lambda p: p.stem)

@@ -273,6 +273,71 @@ def test_no_import_circle():
     assert not found, f"modules that import each other (directly or round a circle): {found}"
 
 
+#: Each reference of the architecture page's "Reference and engine" table and the private
+#: modules of its engines. The reference imports none of them, at any depth: its engines import
+#: it (each that a public function dispatches to adds itself to the reference's registry,
+#: :data:`ENGINE_OF`), never the reverse, as the README and DESIGN.md say.
+SMO_ENGINES = {"ml._smo_state", "ml._smo_whole", "ml._smo_step", "ml._smo_compiled",
+               "ml._smo_numba"}
+MLP_ENGINES = {"ml._backprop_engine", "ml._mlp_optimizers", "ml._mlp_compiled", "ml._mlp_numba"}
+MARCH_ENGINES = {"simulate._block_march", "simulate._march_numba"}
+REFERENCE_ENGINES = {
+    "ml.smo": SMO_ENGINES,
+    "ml.backprop": MLP_ENGINES,
+    "ml.optimizers": MLP_ENGINES,
+    "fem.elements": {"fem._assembly_engine"},
+    "fem.assembly": {"fem._assembly_engine"},
+    "simulate.unilateral": MARCH_ENGINES,
+    "simulate.stick_slip": MARCH_ENGINES,
+    "simulate.modes": {"simulate._exponential_grid"},
+}
+#: Each engine and the reference it imports (and reuses, or registers itself with).
+ENGINE_OF = {
+    "ml._smo_state": "ml.smo",
+    "ml._smo_compiled": "ml.smo",
+    "ml._backprop_engine": "ml.backprop",
+    "ml._mlp_optimizers": "ml.optimizers",
+    "fem._assembly_engine": "fem.assembly",
+    "simulate._block_march": "simulate.unilateral",
+    "simulate._exponential_grid": "simulate.modes",
+}
+
+
+def reached(graph: dict[str, set[str]], start: str) -> set[str]:
+    """Every module ``start`` imports, at any depth."""
+    seen, todo = set(), [start]
+    while todo:
+        for nxt in graph.get(todo.pop(), ()):
+            if nxt not in seen:
+                seen.add(nxt)
+                todo.append(nxt)
+    return seen
+
+
+def test_reached_follows_imports_at_any_depth():
+    graph = {"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}
+    assert reached(graph, "a") == {"a", "b", "c"} and reached(graph, "c") == {"a", "b", "c"}
+    assert reached({"a": set()}, "a") == set()
+
+
+@pytest.mark.parametrize("reference", sorted(REFERENCE_ENGINES))
+def test_a_reference_imports_none_of_its_engines(reference):
+    graph = module_graph()
+    full = f"ebantenna.{reference}"
+    assert full in graph, f"{full} is no module of the package"
+    engines = {f"ebantenna.{e}" for e in REFERENCE_ENGINES[reference]}
+    assert engines <= set(graph), sorted(engines - set(graph))
+    wrong = sorted(reached(graph, full) & engines)
+    assert not wrong, f"{full} imports its engines {wrong} (the engine imports the reference)"
+
+
+@pytest.mark.parametrize("engine", sorted(ENGINE_OF))
+def test_an_engine_imports_its_reference(engine):
+    graph = module_graph()
+    assert f"ebantenna.{ENGINE_OF[engine]}" in graph[f"ebantenna.{engine}"]
+    assert engine in REFERENCE_ENGINES[ENGINE_OF[engine]]
+
+
 @pytest.mark.parametrize("path", MODULES, ids=lambda p: module_name(p))
 def test_no_private_name_of_another_module(path):
     here = module_name(path)

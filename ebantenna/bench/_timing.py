@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import time
 from contextlib import contextmanager
 
@@ -23,9 +24,9 @@ def best_time(fn, repeat: int, clock=time.perf_counter):
 
 @contextmanager
 def clocked(owner, name: str, totals: dict, count=None):
-    """While inside, add the wall time (s) of every call of ``owner.name`` to ``totals[name]``
-    (and ``count(result)`` to ``totals[name + ' count']``); the attribute is restored on exit,
-    also when a call raises.
+    """While inside, add the wall time (s) of every call of ``owner.name`` (``owner[name]`` for
+    a dict, such as an engine registry) to ``totals[name]`` (and ``count(result)`` to
+    ``totals[name + ' count']``); the attribute is restored on exit, also when a call raises.
 
     Examples
     --------
@@ -37,7 +38,11 @@ def clocked(owner, name: str, totals: dict, count=None):
     >>> totals["double count"], totals["double"] >= 0
     (14, True)
     """
-    inner = getattr(owner, name)
+    if isinstance(owner, dict):
+        get, put = owner.__getitem__, owner.__setitem__
+    else:
+        get, put = functools.partial(getattr, owner), functools.partial(setattr, owner)
+    inner = get(name)
 
     def timed(*args, **kwargs):
         start = time.perf_counter()
@@ -47,8 +52,8 @@ def clocked(owner, name: str, totals: dict, count=None):
             totals[name + " count"] = totals.get(name + " count", 0) + count(out)
         return out
 
-    setattr(owner, name, timed)
+    put(name, timed)
     try:
         yield totals
     finally:
-        setattr(owner, name, inner)
+        put(name, inner)

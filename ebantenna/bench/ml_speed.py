@@ -98,12 +98,12 @@ from ebantenna.bench._arguments import (
     check_tables,
 )
 from ebantenna.bench._timing import best_time, clocked
-from ebantenna.ml import SVC, MLPClassifier
+from ebantenna.ml import SVC, MLPClassifier, smo_engine_status
 from ebantenna.ml import smo as smo_module
 from ebantenna.ml import svc as svc_module
 from ebantenna.ml.kernels import Kernel
 from ebantenna.ml.mlp_base import training_optimizer
-from ebantenna.ml.smo import ENGINE_VARIABLE, engine_status
+from ebantenna.ml.smo import ENGINE_VARIABLE
 from ebantenna.report import text_table
 
 __all__ = ["spectra_like", "SMALL_SETS", "SMALL_CASES", "small_set", "engines", "on_engine", "run",
@@ -146,7 +146,7 @@ def small_set(name: str):
 
 def engines() -> list[str]:
     """The SMO engines to time: ``'numpy'``, and ``'compiled'`` when numba works here."""
-    return ["numpy", "compiled"] if engine_status().available else ["numpy"]
+    return ["numpy", "compiled"] if smo_engine_status().available else ["numpy"]
 
 
 @contextmanager
@@ -381,10 +381,9 @@ def small_set_parts(rows: list[dict], repeat: int = 5) -> list[dict]:
             name = row["data"].split()[0]
             X, y, _, _ = small_set(name)
             params = SMALL_CASES[row["task"]][0]
-            whole, totals = _fastest_clocked_fit(
-                SVC(**params), X, y, [(Kernel, "gram", None), (smo_module, "run_compiled", None)],
-                repeat)
-            kernel, loop = totals["gram"], totals["run_compiled"]
+            clocks = [(Kernel, "gram", None), (smo_module.SMO_ENGINES, "compiled", None)]
+            whole, totals = _fastest_clocked_fit(SVC(**params), X, y, clocks, repeat)
+            kernel, loop = totals["gram"], totals["compiled"]
             parts.append({"part": f"{row['task']}, {name}: kernel entries + compiled loop",
                           "seconds": kernel + loop,
                           "share": (kernel + loop) / row["sklearn_seconds"],
@@ -398,11 +397,11 @@ def engine_rows() -> list[dict]:
     """What the compiled engine costs before its first fit: importing numba and compiling the
     loop in a fresh process with an empty numba cache (the first call after installing), and
     in this process (a load from numba's cache when it holds the loop). Empty without numba."""
-    status = engine_status()
+    status = smo_engine_status()
     if not status.available:
         return [{"part": "compiled engine", "seconds": float("nan"), "note": status.reason}]
-    probe = ("from ebantenna.ml.smo import engine_status; "
-             "print(engine_status().load_seconds)")
+    probe = ("from ebantenna.ml import smo_engine_status; "
+             "print(smo_engine_status().load_seconds)")
     with tempfile.TemporaryDirectory() as cache:
         env = dict(os.environ, NUMBA_CACHE_DIR=cache)
         out = subprocess.run([sys.executable, "-c", probe], env=env, check=True,

@@ -20,6 +20,7 @@
 (:mod:`~ebantenna.fem.symbolic` imports sympy and is not loaded until asked for.)
 """
 
+from . import _assembly_engine  # noqa: F401  (adds "scatter" to assembly.ASSEMBLY_ENGINES)
 from .assembly import Supports
 from .coupling import CoupledModes, Rod, coupled_modes, monolithic_modes
 from .exact import exact_frequencies

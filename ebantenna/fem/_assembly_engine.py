@@ -28,6 +28,10 @@ point: the result equals the reference loop's **bit for bit** (``tests/fem`` hol
 
 :func:`scatter_sparse` builds the same matrix in :mod:`scipy.sparse` coordinate format, where
 repeated entries *are* summed on conversion (again two terms per entry).
+
+This module imports the reference and adds ``"scatter"`` to
+:data:`~ebantenna.fem.assembly.ASSEMBLY_ENGINES` (the package does, when it is imported); the
+reference imports nothing from it.
 """
 
 from __future__ import annotations
@@ -35,8 +39,10 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sps
 
+from .assembly import ASSEMBLY_ENGINES
+
 __all__ = ["stiffness_polynomial", "mass_polynomial", "element_dofs", "scatter",
-           "scatter_sparse"]
+           "scatter_sparse", "assemble_by_parity"]
 
 _K0 = np.array([[12, 0, -12, 0], [0, 0, 0, 0], [-12, 0, 12, 0], [0, 0, 0, 0]])
 _K1 = np.array([[0, 6, 0, 6], [6, 0, -6, 0], [0, -6, 0, -6], [6, 0, -6, 0]])
@@ -91,3 +97,15 @@ def scatter_sparse(element_matrices: np.ndarray) -> sps.csc_matrix:
     cols = np.tile(dofs, (1, 4)).reshape(-1)
     n = 2 * ne + 2
     return sps.coo_matrix((element_matrices.reshape(-1), (rows, cols)), shape=(n, n)).tocsc()
+
+
+def assemble_by_parity(EI: float, rhoA: float, lengths: np.ndarray, sparse: bool):
+    """K and M of elements of ``lengths`` (m) as polynomials, added by :func:`scatter` (or
+    :func:`scatter_sparse`): the default engine of :func:`~ebantenna.fem.assembly.assemble`."""
+    Ke, Me = stiffness_polynomial(EI, lengths), mass_polynomial(rhoA, lengths)
+    if sparse:
+        return scatter_sparse(Ke), scatter_sparse(Me)
+    return scatter(Ke), scatter(Me)
+
+
+ASSEMBLY_ENGINES["scatter"] = assemble_by_parity

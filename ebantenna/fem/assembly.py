@@ -10,8 +10,10 @@ The assembly itself is the *direct stiffness method*: every element adds its 4 x
 rows and columns of its four DOFs, ``(v_e, theta_e, v_{e+1}, theta_{e+1})``, so that two
 neighbouring elements overlap on the 2 x 2 block of their common node.
 :func:`assemble_elements` is that loop, word for word, on the element matrices as
-:mod:`~ebantenna.fem.elements` writes them out; :func:`assemble` runs faster engines by default
-that give the same matrices bit for bit (``ebantenna.fem._assembly_engine`` explains how).
+:mod:`~ebantenna.fem.elements` writes them out; :func:`assemble` runs a faster engine by default
+that gives the same matrices bit for bit (``ebantenna.fem._assembly_engine`` explains how). This
+module imports nothing of the engine: the engine imports it and adds itself to
+:data:`ASSEMBLY_ENGINES` when the package is imported.
 
 The guards that come before a mesh (round-off, memory, a contact the mesh can hold) are in
 :mod:`~ebantenna.fem.guards`; the functions here take checked values.
@@ -27,7 +29,6 @@ import scipy.sparse as sps
 
 from .._validate import check_choice, check_int, check_positive
 from ..probe import Probe
-from ._assembly_engine import mass_polynomial, scatter, scatter_sparse, stiffness_polynomial
 from .elements import consistent_mass, element_stiffness
 from .guards import check_contact, check_resolvable
 
@@ -42,9 +43,6 @@ __all__ = [
     "apply_supports",
     "free_dofs",
 ]
-
-#: Engines of :func:`assemble`: the parity scatter (fast, the default) and the reference loop.
-ASSEMBLY_ENGINES = ("scatter", "loop")
 
 
 def beam_mesh(length: float, contact: float | None, n_elements: int) -> np.ndarray:
@@ -133,6 +131,21 @@ def assemble_elements(element_matrices: np.ndarray) -> np.ndarray:
     return A
 
 
+def _with_loop(EI: float, rhoA: float, lengths: np.ndarray, sparse: bool):
+    """K and M of elements of ``lengths`` (m), written out by :mod:`~ebantenna.fem.elements` and
+    added by :func:`assemble_elements`: the reference of :func:`assemble` (dense: ``sparse`` is
+    False, as ``assemble`` checks)."""
+    Ke, Me = element_stiffness(EI, lengths), consistent_mass(rhoA, lengths)
+    return assemble_elements(Ke), assemble_elements(Me)
+
+
+#: The engines of :func:`assemble` by name, each ``(EI, rhoA, lengths, sparse) -> (K, M)``:
+#: ``"loop"``, the reference (:func:`assemble_elements` on the written-out element matrices),
+#: and ``"scatter"``, the default, which the private module ``fem/_assembly_engine.py`` adds
+#: when the package is imported.
+ASSEMBLY_ENGINES = {"loop": _with_loop}
+
+
 def assemble(nodes: np.ndarray, probe: Probe, *, sparse: bool = False, engine: str = "scatter"):
     """Global stiffness K (N/m...) and consistent mass M (kg...) of the bare beam, no supports.
 
@@ -173,15 +186,8 @@ def assemble(nodes: np.ndarray, probe: Probe, *, sparse: bool = False, engine: s
     if not isinstance(probe, Probe):
         raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")
     nodes = _nodes(nodes)
-    lengths = np.diff(nodes)
-    EI, rhoA = probe.flexural_rigidity, probe.mass_per_length
-    if engine == "loop":
-        Ke, Me = element_stiffness(EI, lengths), consistent_mass(rhoA, lengths)
-        return assemble_elements(Ke), assemble_elements(Me)
-    Ke, Me = stiffness_polynomial(EI, lengths), mass_polynomial(rhoA, lengths)
-    if sparse:
-        return scatter_sparse(Ke), scatter_sparse(Me)
-    return scatter(Ke), scatter(Me)
+    return ASSEMBLY_ENGINES[engine](probe.flexural_rigidity, probe.mass_per_length,
+                                    np.diff(nodes), sparse)
 
 
 #: Named hinge conditions; a positive number instead means a rotational spring (N m/rad).

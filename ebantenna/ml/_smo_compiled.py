@@ -1,6 +1,8 @@
 """Which SMO engine runs, and the compiled one (numba) when it is installed and works (private).
 
-:func:`ebantenna.ml.smo.solve_smo` asks :func:`choose_engine` for every problem:
+:func:`ebantenna.ml.smo.solve_smo` runs :func:`run_if_chosen` (which this module adds to
+:data:`ebantenna.ml.smo.SMO_ENGINES` as ``"compiled"`` when the package is imported) for every
+problem; it asks :func:`choose_engine`:
 
 * ``'numpy'``: the NumPy engines, :mod:`ebantenna.ml._smo_whole` and
   :mod:`ebantenna.ml._smo_state`, the reference path of the package and the one that needs
@@ -35,10 +37,11 @@ from .._engines import (
     load_compiled,
     use_compiled,
 )
+from .smo import SMO_ENGINES
 from .smo_policy import SMOPolicy
 
 __all__ = ["ENGINES", "ENGINE_VARIABLE", "EngineStatus", "engine_status", "choose_engine",
-           "run_compiled"]
+           "run_compiled", "run_if_chosen"]
 
 @functools.cache
 def engine_status() -> EngineStatus:
@@ -139,3 +142,14 @@ def run_compiled(rows, y: np.ndarray, C: np.ndarray, diagonal: np.ndarray, polic
             matrix, g, F, up, low, perm, float(tol), float(max_iter), opts,
             bool(policy.shrinking), float(diagonal[0] + diagonal[0]))
     return F[0], F[2], F[3], F[4], perm, int(n_iter), bool(converged), float(violation)
+
+
+def run_if_chosen(engine, rows, y, C, diagonal, policy, tol, max_iter):
+    """:func:`run_compiled` where :func:`choose_engine` chooses the compiled engine (raising as
+    it does), else None: ``"compiled"`` of :data:`ebantenna.ml.smo.SMO_ENGINES`."""
+    if choose_engine(engine) != "compiled":
+        return None
+    return run_compiled(rows, y, C, diagonal, policy, tol, max_iter)
+
+
+SMO_ENGINES["compiled"] = run_if_chosen

@@ -22,7 +22,9 @@ with what makes them fast or libsvm's to the last digit:
 * kernel rows, and the curvatures of the pairs of a first index, kept from one update to the
   next (:meth:`DualState.kernel_row`, :meth:`DualState.curvature_row`).
 
-Inputs are taken as checked: :class:`~ebantenna.ml.SVC` validates them once.
+Inputs are taken as checked: :class:`~ebantenna.ml.SVC` validates them once. This module adds
+:func:`run_numpy` to :data:`ebantenna.ml.smo.SMO_ENGINES` as ``"numpy"`` when the package is
+imported.
 """
 
 from __future__ import annotations
@@ -30,11 +32,12 @@ from __future__ import annotations
 import numpy as np
 
 from ._smo_step import argmax, curvature, pair_step, second_order_gain
-from ._smo_whole import run_whole, updates_before_shrinking
+from ._smo_whole import run_whole, runs_whole, updates_before_shrinking
 from .kernels import KernelRows
+from .smo import SMO_ENGINES
 from .smo_policy import TAU, SMOPolicy
 
-__all__ = ["DualState", "ROW_MEMO_BYTES", "RECONSTRUCT_BYTES", "run_general",
+__all__ = ["DualState", "ROW_MEMO_BYTES", "RECONSTRUCT_BYTES", "run_general", "run_numpy",
            "shrink_order"]
 
 #: Memory for the kernel rows and the rows of curvatures that the SMO state keeps between updates
@@ -419,3 +422,26 @@ def run_general(state: DualState, tol: float, max_iter: float,
         state.reconstruct()
         violation = state.violation()
     return n_iter, converged, violation
+
+
+def run_numpy(engine, rows, y, C, diagonal, policy, tol, max_iter):
+    """The NumPy engines, as :data:`ebantenna.ml.smo.SMO_ENGINES` calls them (``engine``, the
+    caller's choice, does not change what runs here): ``(y, C, alpha, yG, perm, n_iter,
+    converged, violation)``, the arrays in the engine's order (``perm`` None when it is the
+    callers').
+
+    libsvm's engine keeps the state, shrinks and rebuilds gradients; the whole-kernel loop
+    takes the updates in between when the policy allows it (the same steps, with fewer NumPy
+    calls each).
+    """
+    state = DualState(rows, y, C, diagonal, policy)
+    n_iter, converged, violation = run_general(state, tol, max_iter, runs_whole(policy, C))
+    if state.permuted:
+        perm = state.perm
+        y, C = y[perm], C[perm]
+    else:
+        perm = None
+    return y, C, state.alpha, state.yG, perm, n_iter, converged, violation
+
+
+SMO_ENGINES["numpy"] = run_numpy

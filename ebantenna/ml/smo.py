@@ -44,7 +44,9 @@ default conventions with the loop of ``_smo_whole``, which takes the updates bet
 shrinkings (all of them when the policy does not shrink) on the active variables with few NumPy
 calls each. The two share libsvm's two-variable step and the second-order scores
 (``_smo_step``) and return the same numbers to the last bit for the same policy. Tests hold
-both equal to the reference within what the stopping rule allows.
+both equal to the reference within what the stopping rule allows. This module imports none of
+them: each engine's module imports it and adds itself to :data:`SMO_ENGINES` when the package is
+imported, which is all :func:`solve_smo` reads.
 
 The optional compiled engine
 ----------------------------
@@ -53,11 +55,11 @@ compiled (``_smo_numba``): the same floating-point operations in the same order,
 :math:`\alpha`, :math:`\rho`, number of updates and violation to the last bit (tests hold it
 there on every kernel and both conventions), run in one call with no NumPy call per update.
 :func:`solve_smo` uses it whenever the whole kernel is stored and numba works
-(:func:`engine_status`); otherwise the NumPy engines run, and the reason is said once per
-process (an INFO log when numba is not installed, a :class:`RuntimeWarning` when it fails).
-The environment variable ``EBANTENNA_ENGINE`` (``ENGINE_VARIABLE`` here) set to ``numpy``,
-``compiled`` or ``auto`` (the default), or the ``engine`` argument of :func:`solve_smo`,
-chooses; ``compiled`` raises when it is not available.
+(``ebantenna.ml.smo_engine_status()``); otherwise the NumPy engines run, and the reason is
+said once per process (an INFO log when numba is not installed, a :class:`RuntimeWarning` when
+it fails). The environment variable ``EBANTENNA_ENGINE`` (``ENGINE_VARIABLE`` here) set to
+``numpy``, ``compiled`` or ``auto`` (the default), or the ``engine`` argument of
+:func:`solve_smo`, chooses; ``compiled`` raises when it is not available.
 
 Conventions and the digits they move
 ------------------------------------
@@ -105,21 +107,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._engines import ENGINE_VARIABLE, EngineStatus
 from .._validate import check_array, check_choice, check_int, check_positive
-from ._smo_compiled import (
-    ENGINE_VARIABLE,
-    EngineStatus,
-    choose_engine,
-    engine_status,
-    run_compiled,
-)
-from ._smo_state import DualState, run_general
-from ._smo_whole import runs_whole
 from .kernels import KernelRows
 from .smo_policy import DEFAULT, TAU, SMOPolicy
 
 __all__ = ["SMOResult", "select_working_set", "solve_two_variable", "update_gradient", "bias",
-           "reference_smo", "solve_smo", "ENGINE_VARIABLE", "EngineStatus", "engine_status"]
+           "reference_smo", "solve_smo", "SMO_ENGINES", "ENGINE_VARIABLE", "EngineStatus"]
 
 logger = logging.getLogger(__name__)
 
@@ -421,18 +415,16 @@ def reference_smo(K, y, C, *, tol=1e-3, max_iter=10_000_000, selection="second-o
 
 
 # ----------------------------------------------------------------------------- the engines
-def _run_numpy(rows, y, C, diagonal, policy, tol, max_iter):
-    """The NumPy engines: ``(alpha, yG, perm, n_iter, converged, violation)``, the arrays in
-    the engine's order (``perm`` None when it is the callers').
-
-    libsvm's engine keeps the state, shrinks and rebuilds gradients; the whole-kernel loop
-    takes the updates in between when the policy allows it (the same steps, with fewer NumPy
-    calls each).
-    """
-    state = DualState(rows, y, C, diagonal, policy)
-    n_iter, converged, violation = run_general(state, tol, max_iter, runs_whole(policy, C))
-    perm = state.perm if state.permuted else None
-    return state.alpha, state.yG, perm, n_iter, converged, violation
+#: The engines that run :func:`solve_smo`'s loop, by name, each added by its own private module
+#: when the package is imported: ``"numpy"``, libsvm's solver and the whole-kernel loop
+#: (``ml/_smo_state.py``), and ``"compiled"``, their numba twin (``ml/_smo_compiled.py``). Each is
+#: called as ``run(engine, rows, y, C, diagonal, policy, tol, max_iter)`` on checked values,
+#: with ``engine`` the caller's choice (None: ``EBANTENNA_ENGINE``), and returns ``(y, C, alpha,
+#: yG, perm, n_iter, converged, violation)``, the arrays in its own order (``perm[p]`` the
+#: variable at position ``p``; None: the caller's order). The compiled engine returns None where
+#: it does not run: the choice is ``'numpy'``, numba does not work under ``'auto'``, or the
+#: kernel is not stored whole.
+SMO_ENGINES: dict = {}
 
 
 def solve_smo(
@@ -512,25 +504,18 @@ def solve_smo(
     check_positive("tol", tol)
     if max_iter != math.inf:  # no limit
         check_int("max_iter", max_iter, minimum=1)
-    perm = None
-    compiled = None
-    if choose_engine(engine) == "compiled":
-        compiled = run_compiled(rows, y, C, diagonal, policy, tol, max_iter)
-    if compiled is not None:
-        y, C, alpha, yG, perm, n_iter, converged, violation = compiled
-        state_alpha = alpha
-    else:
-        alpha, yG, perm, n_iter, converged, violation = _run_numpy(rows, y, C, diagonal,
-                                                                   policy, tol, max_iter)
-        if perm is not None:
-            y, C = y[perm], C[perm]
-            state_alpha = alpha
+    args = (engine, rows, y, C, diagonal, policy, tol, max_iter)
+    ran = SMO_ENGINES["compiled"](*args)
+    if ran is None:
+        ran = SMO_ENGINES["numpy"](*args)
+    y, C, alpha, yG, perm, n_iter, converged, violation = ran
     if not converged:
         logger.info("SMO stopped at max_iter=%d with violation %.3g", max_iter, violation)
     G = y * yG  # in the engine's order: the sums of the objective and the bias follow it
     objective = float(np.sum(alpha * (G - 1.0)) / 2.0)
     rho = bias(G, y, alpha, C, sequential=policy.bias_sum == "sequential")
     if perm is not None:  # back to the callers' order
-        alpha = np.empty_like(alpha)
-        alpha[perm] = state_alpha
+        in_order = np.empty_like(alpha)
+        in_order[perm] = alpha
+        alpha = in_order
     return SMOResult(alpha, rho, n_iter, converged, objective, float(violation))

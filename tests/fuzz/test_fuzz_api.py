@@ -4061,6 +4061,7 @@ NO_INPUT = {
     "device.ServoLimitWarning",
     "device.SystemClock",
     "probe.material_names",
+    "ml.smo_engine_status",
     "simulate.scene_names",
     "simulate.effect_names",
     "study.default_cache_dir",

@@ -6,7 +6,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from ebantenna.ml import smo
+from ebantenna.ml import _smo_state, smo
 from ebantenna.ml._smo_step import pair_step
 from ebantenna.ml._smo_whole import runs_whole
 from ebantenna.ml.kernels import Kernel, KernelRows
@@ -34,7 +34,7 @@ def _solve_both(monkeypatch, rows, y, C, diagonal, **kwargs):
     # the NumPy engines, whether numba is installed or not
     fast = smo.solve_smo(rows, y, C, diagonal=diagonal, engine="numpy", **kwargs)
     with monkeypatch.context() as m:
-        m.setattr(smo, "runs_whole", lambda policy, C: False)
+        m.setattr(_smo_state, "runs_whole", lambda policy, C: False)
         general = smo.solve_smo(rows, y, C, diagonal=diagonal, engine="numpy", **kwargs)
     return fast, general
 

@@ -94,9 +94,9 @@ def test_small_set_parts_clock_the_compiled_fits_and_restore_what_they_clock():
 
     rows = [{"task": task, "data": "iris 112x4", "engine": engine, "sklearn_seconds": 2.0}
             for task in ml_speed.SMALL_CASES for engine in ("numpy", "compiled")]
-    gram, loop = Kernel.gram, smo_module.run_compiled
+    gram, loop = Kernel.gram, smo_module.SMO_ENGINES["compiled"]
     parts = ml_speed.small_set_parts(rows, repeat=1)
-    assert Kernel.gram is gram and smo_module.run_compiled is loop
+    assert Kernel.gram is gram and smo_module.SMO_ENGINES["compiled"] is loop
     if "compiled" not in ml_speed.engines():
         assert parts == []  # nothing to clock without numba
         return

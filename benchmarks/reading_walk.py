@@ -403,6 +403,66 @@ def check_reading_order(calls, order=READING_ORDER) -> list[str]:
     return list(difflib.unified_diff(list(order), derived, "READING_ORDER", "run", lineterm=""))
 
 
+def part_of(path: str) -> str:
+    """The part of the package a file of the walk belongs to: its folder below the package
+    (``ebantenna/fem/modal.py``: ``fem``), or the file itself at the top (``probe.py``)."""
+    parts = path.split("/")[1:]
+    return parts[0]
+
+
+def partitions(items):
+    """Every way to split the list ``items`` into groups, each a list (Bell's number of them).
+
+    Examples
+    --------
+    >>> sorted(sorted(map(sorted, p)) for p in partitions(["a", "b"]))
+    [[['a'], ['b']], [['a', 'b']]]
+    """
+    if not items:
+        yield []
+        return
+    first, rest = items[0], items[1:]
+    for split in partitions(rest):
+        for i in range(len(split)):
+            yield split[:i] + [[first] + split[i]] + split[i + 1:]
+        yield [[first]] + split
+
+
+def fewest_returns(order=READING_ORDER) -> dict:
+    """The fewest returns any merge of files could leave, with the walk's order kept: for each
+    part (:func:`part_of`), every way to merge its files into fewer files, the fewest returns to
+    them by the number of files left, ``{part: {files: returns}}``.
+
+    Files are merged within a part only (a merge across parts would import up the layers). The
+    files of other parts stay between a part's visits, so each part's returns do not depend on
+    how the others are merged: the whole walk's fewest returns is the sum of the parts' fewest.
+
+    Examples
+    --------
+    A part ``a`` read as x, then another part, then z and x again: merging x and z leaves one
+    return (to the merged file, after ``b``), as keeping them apart does (to x).
+
+    >>> fewest_returns(["p/a/x.py", "p/b/y.py", "p/a/z.py", "p/a/x.py"])
+    {'a': {1: 1, 2: 1}, 'b': {1: 0}}
+    """
+    fewest = {}
+    for part in sorted({part_of(p) for p in order}):
+        files = sorted({p for p in order if part_of(p) == part})
+        best = {}
+        for split in partitions(files):
+            merged = {f: i for i, group in enumerate(split) for f in group}
+            walk = count_walk(merged[p] if part_of(p) == part else ("other", part_of(p))
+                              for p in order)["path"]
+            seen, returns = set(), 0
+            for item in walk:
+                if not isinstance(item, tuple):
+                    returns += item in seen
+                    seen.add(item)
+            best[len(split)] = min(best.get(len(split), returns), returns)
+        fewest[part] = dict(sorted(best.items()))
+    return fewest
+
+
 def _print_walk(title: str, sequence) -> None:
     print(title)
     last = None
@@ -416,7 +476,18 @@ def _print_walk(title: str, sequence) -> None:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.add_argument("--merges", action="store_true",
+                        help="the fewest returns as read that merging files could leave "
+                             "(fewest_returns), without running the walk")
     args = parser.parse_args(argv)
+    if args.merges:
+        fewest = fewest_returns()
+        for part, best in fewest.items():
+            print(f"{part}: {max(best)} files; fewest returns by files kept: {best}")
+        print(f"fewest returns as read by any merge within parts: "
+              f"{sum(min(b.values()) for b in fewest.values())} "
+              f"(goal: at most {TARGETS['read_returns']})")
+        return 0
     walk = run_walk()
     read = read_walk()
     mismatch = check_reading_order(walk["calls"])

@@ -80,3 +80,58 @@ def test_the_architecture_page_states_the_ceilings():
     page = " ".join((ROOT / "docs" / "architecture.rst").read_text(encoding="utf-8").split())
     assert (f"The ceilings today: {c['run_modules']} modules with {c['run_returns']} returns as "
             f"run, {c['read_files']} files with {c['read_returns']} returns as read.") in page
+
+
+def test_partitions_are_every_split_once():
+    # Bell's numbers: 1, 1, 2, 5, 15, 52 ways to split 0 ... 5 items
+    for n, bell in enumerate([1, 1, 2, 5, 15, 52]):
+        items = list(range(n))
+        splits = [frozenset(frozenset(g) for g in p) for p in walk_script.partitions(items)]
+        assert len(splits) == len(set(splits)) == bell
+        assert all(sorted(x for g in p for x in g) == list(range(n)) for p in splits)
+
+
+def test_fewest_returns_by_hand():
+    order = ["p/a/x.py", "p/a/z.py", "p/a/x.py", "p/b/y.py", "p/a/z.py"]
+    # apart: x z x b z, returns to x and to z; merged: one file, read again after b only
+    assert walk_script.fewest_returns(order) == {"a": {1: 1, 2: 2}, "b": {1: 0}}
+    assert walk_script.part_of("ebantenna/fem/modal.py") == "fem"
+    assert walk_script.part_of("ebantenna/probe.py") == "probe.py"
+
+
+def test_fewest_returns_meet_the_bounds_of_the_walk_as_read():
+    # A part read in r separate runs (other parts between) returns r - 1 times as one file, at
+    # least r - g times as g files (each run enters a file; g of them are new), and with every
+    # file kept, as often as the walk itself returns to its files
+    order = walk_script.READING_ORDER
+    part_of = walk_script.part_of
+    runs = {}
+    for item in walk_script.count_walk(part_of(p) for p in order)["path"]:
+        runs[item] = runs.get(item, 0) + 1
+    seen, kept = set(), {}
+    for path in walk_script.count_walk(order)["path"]:
+        kept[part_of(path)] = kept.get(part_of(path), 0) + (path in seen)
+        seen.add(path)
+    fewest = walk_script.fewest_returns(order)
+    assert set(fewest) == set(runs)
+    for part, best in fewest.items():
+        assert best[1] == runs[part] - 1
+        assert all(returns >= runs[part] - g for g, returns in best.items())
+        assert best[max(best)] == kept[part]
+    assert sum(kept.values()) == walk_script.read_walk()["returns"]
+
+
+def test_the_merges_option_prints_the_fewest_returns(capsys):
+    assert walk_script.main(["--merges"]) == 0
+    out = capsys.readouterr().out
+    fewest = sum(min(b.values()) for b in walk_script.fewest_returns().values())
+    assert f"fewest returns as read by any merge within parts: {fewest} " in out
+
+
+def test_the_architecture_page_states_the_fewest_returns_of_a_merge():
+    fewest = walk_script.fewest_returns()
+    least = {part: min(best.values()) for part, best in fewest.items()}
+    page = " ".join((ROOT / "docs" / "architecture.rst").read_text(encoding="utf-8").split())
+    assert (f"The fewest today: {sum(least.values())} returns, {least['fem']} in ``fem`` and "
+            f"{least['simulate']} in ``simulate``") in page
+    assert all(v == 0 for k, v in least.items() if k not in ("fem", "simulate"))

@@ -287,6 +287,7 @@ REFERENCE_ENGINES = {
     "ml.optimizers": MLP_ENGINES,
     "fem.elements": {"fem._assembly_engine"},
     "fem.assembly": {"fem._assembly_engine"},
+    "fem.modal": {"fem.sweeps", "fem.banded", "fem.secular"},
     "simulate.unilateral": MARCH_ENGINES,
     "simulate.stick_slip": MARCH_ENGINES,
     "simulate.modes": {"simulate._exponential_grid"},
@@ -298,6 +299,7 @@ ENGINE_OF = {
     "ml._backprop_engine": "ml.backprop",
     "ml._mlp_optimizers": "ml.optimizers",
     "fem._assembly_engine": "fem.assembly",
+    "fem.sweeps": "fem.modal",
     "simulate._block_march": "simulate.unilateral",
     "simulate._exponential_grid": "simulate.modes",
 }

@@ -17,7 +17,7 @@ def register(subparsers) -> None:
         action="append",
         metavar="NAME",
         help="run only this sweep (repeatable): fem_accuracy, signal_accuracy, simulate_cost, "
-        "ml_speed",
+        "contact_cost, ml_speed",
     )
     bench.add_argument(
         "--json", action="store_true", help="print the measured rows as one JSON object"

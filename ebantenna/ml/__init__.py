@@ -12,7 +12,7 @@ here, why not, and what loading it cost. Importing this package adds the SMO eng
 
 from . import _smo_state  # noqa: F401  (adds "numpy" to smo.SMO_ENGINES)
 from ._engine_check import check_engine
-from ._smo_compiled import engine_status as smo_engine_status  # and adds "compiled"
+from ._smo_compiled import engine_status as smo_engine_status  # (adds "compiled" too)
 from .mlp import MLPClassifier, MLPRegressor
 from .persistence import load_model, save_model
 from .svc import SVC

@@ -95,5 +95,12 @@ def test_rig_page_states_the_packages_figures():
     for number in re.findall(r"(\d+(?:\.\d+)?) ?(?:V|A)\b", text):
         assert any(number in figure for figure in stated), number
     assert "\n   draw_wiring()\n" in text
+    # the device page's wiring list gives the same supply (a safety figure: a supply sized below
+    # the stall current browns out)
+    device = " ".join((DOCS / "user_guide" / "device.rst").read_text().split())
+    supply = (f"{_range(wiring.SERVO_SUPPLY, 'V')} supply able to give "
+              f"{wiring.SERVO_STALL_CURRENT:.1f} A per MG996R (its stall current: "
+              f"{wiring.servo_supply_current():.1f} A for the two)")
+    assert supply in device, supply
     # the checklist is linked, not copied: it lives on the device page
     assert "Hardware-in-the-loop checklist" in (DOCS / "user_guide" / "device.rst").read_text()

@@ -172,3 +172,19 @@ def test_small_set_rows_time_each_engine_on_each_set(monkeypatch):
     assert all(name == "iris" and env == engine for _, name, engine, env in seen)
     assert all(r["ours_accuracy"] > 0.9 for r in rows)  # iris held out: the fits are real
     assert ml_speed.os.environ.get("EBANTENNA_ENGINE") == before  # restored after
+
+
+def test_every_sweep_runs_alone_from_the_benchmarks_folder_and_is_named_in_the_help(capsys):
+    # the README and the CLI guide: "each runs alone from benchmarks/"
+    import benchmark_scripts
+
+    for name in BENCHMARKS:
+        script = benchmark_scripts.FOLDER / f"{name}.py"
+        assert script.is_file(), f"{name} has no script in benchmarks/"
+        assert f"from ebantenna.bench.{name} import main" in script.read_text(encoding="utf-8")
+        assert f"{name}.py`" in (benchmark_scripts.FOLDER.parent / "README.md").read_text(
+            encoding="utf-8")
+    with pytest.raises(SystemExit):
+        main(["bench", "--help"])
+    help_text = " ".join(capsys.readouterr().out.split())
+    assert all(name in help_text for name in BENCHMARKS)

@@ -325,6 +325,8 @@ UNITS = {
 METHOD_DESIGN_EFFECT = "Wilson at the design-effect sample size, clustered by {unit}"
 METHOD_FOLDS = "t interval over the {folds} folds (unit: {unit})"
 METHOD_PAIRED = "paired difference, cluster-robust normal interval over {unit}s"
+METHOD_PAIRED_FOLDS = ("paired difference, the folds' mean, t interval over the {folds} folds "
+                       "(unit: {unit})")
 
 #: The standard normal's 97.5 % quantile: a two-sided 95 % interval.
 Z95 = 1.959963984540054
@@ -773,11 +775,20 @@ class PairedDifference:
     ``detectable`` is the minimal detectable difference at 80 % power of this design
     (:func:`minimal_detectable_difference`).
 
+    With ``by_fold`` the clusters are the folds of a split whose unit is the fold (the blocked
+    split), and the accuracies are the folds' means, as :class:`FoldAccuracy` gives them with
+    ``by_fold``: the difference is the mean of the folds' differences of accuracies,
+    ``D = sum_f (k_f^B - k_f^A) / n_f / F``, its standard error their sample deviation over
+    ``sqrt(F)``, the interval Student's on ``F - 1`` degrees of freedom. That is the formula
+    above with each fold's accuracies in place of its counts and one in place of its size.
+
     Parameters
     ----------
     k_a, k_b, n : array-like of int
         Per cluster: right answers under A (the reference) and under B, recordings.
     unit : str
+    by_fold : bool
+        The clusters are folds, each weighing alike (see above).
     resamples, seed : int
         Of the power computation.
 
@@ -788,25 +799,31 @@ class PairedDifference:
     (-0.4167, True, 'lower')
     """
 
-    def __init__(self, k_a, k_b, n, unit: str, *, resamples: int = 4000, seed: int = 0):
+    def __init__(self, k_a, k_b, n, unit: str, *, by_fold: bool = False, resamples: int = 4000,
+                 seed: int = 0):
         k_a, n = _counts(k_a, n)
         k_b, _ = _counts(k_b, n)
         if k_a.size < 2:
             raise ValueError("a paired difference needs at least two clusters")
         self.unit = _check_unit(unit)
+        self.by_fold = check_bool("by_fold", by_fold)
+        resamples = check_int("resamples", resamples, minimum=10, maximum=MAX_RESAMPLES)
+        seed = check_int("seed", seed, minimum=0)
         self.n_recordings = int(n.sum())
         self.n_units = int(n.size)
-        self.accuracy_a = float(k_a.sum() / self.n_recordings)
-        self.accuracy_b = float(k_b.sum() / self.n_recordings)
-        d = (k_b - k_a).astype(float)
-        self.difference = float(d.sum() / self.n_recordings)
-        self.se = _paired_se(d, n, self.difference)
+        # each cluster's right answers and weight: its counts, or (by fold) its accuracies
+        a, b, w = (k_a / n, k_b / n, np.ones(n.size)) if self.by_fold else (k_a, k_b, n)
+        self.accuracy_a = float(a.sum() / w.sum())
+        self.accuracy_b = float(b.sum() / w.sum())
+        d = (b - a).astype(float)
+        self.difference = float(d.sum() / w.sum())
+        self.se = _paired_se(d, w, self.difference)
         q = _quantile95(self.n_units)
         self.ci95 = (self.difference - q * self.se, self.difference + q * self.se)
         self.resolved = bool(self.ci95[0] > 0 or self.ci95[1] < 0)
-        self.method = METHOD_PAIRED.format(unit=unit)
-        self.detectable = minimal_detectable_difference(k_a, k_b, n, resamples=resamples,
-                                                        seed=seed)
+        self.method = (METHOD_PAIRED_FOLDS.format(folds=self.n_units, unit=unit) if self.by_fold
+                       else METHOD_PAIRED.format(unit=unit))
+        self.detectable = _detectable(d, w, 0.8, resamples, seed)
 
     @property
     def identical(self) -> bool:
@@ -823,7 +840,7 @@ class PairedDifference:
     @classmethod
     def from_recordings(cls, correct_a, correct_b, clusters, unit: str, **kwargs):
         """From each recording's right/wrong under A and under B (the same recordings, in the
-        same order) and its cluster."""
+        same order) and its cluster (with ``by_fold``, its fold)."""
         correct_a, correct_b = np.asarray(correct_a), np.asarray(correct_b)
         if correct_a.shape != correct_b.shape:
             raise ValueError("correct_a and correct_b must hold the same recordings, got "
@@ -911,8 +928,15 @@ def minimal_detectable_difference(k_a, k_b, n, *, power: float = 0.8, resamples:
     k_b, _ = _counts(k_b, n)
     check_in_range("power", power, 0.0, 1.0)
     resamples = check_int("resamples", resamples, minimum=10, maximum=MAX_RESAMPLES)
-    rng = np.random.default_rng(check_int("seed", seed, minimum=0))
-    d = (k_b - k_a).astype(float)
+    seed = check_int("seed", seed, minimum=0)
+    return _detectable((k_b - k_a).astype(float), n, power, resamples, seed)
+
+
+def _detectable(d, n, power: float, resamples: int, seed: int) -> float:
+    """:func:`minimal_detectable_difference` of checked values: each cluster's difference ``d``
+    and weight ``n`` (its recordings, or one for a fold of :class:`PairedDifference`'s
+    ``by_fold``)."""
+    rng = np.random.default_rng(seed)
     resid = d - d.sum() / n.sum() * n
     pick = rng.integers(0, d.size, size=(resamples, d.size))
     r, m = resid[pick], n[pick].astype(float)

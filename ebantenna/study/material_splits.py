@@ -211,7 +211,9 @@ def measured_over_folds(results, positions, kind: str):
 
 def paired_over_folds(reference, other, positions, kind: str) -> PairedDifference:
     """``other`` against ``reference``, the same recordings of the same folds of ``kind``,
-    paired within the split's unit (a fold of the blocked split, a position otherwise)."""
+    paired within the split's unit (a fold of the blocked split, a position otherwise); on the
+    blocked split the accuracies are the folds' means, as :func:`measured_over_folds` gives
+    them there."""
     positions = np.asarray(positions)
     a, b, clusters = [], [], []
     for i, (ra, rb) in enumerate(zip(reference, other, strict=True)):
@@ -222,7 +224,8 @@ def paired_over_folds(reference, other, positions, kind: str) -> PairedDifferenc
         clusters.append(np.full(ra.rows().size, i) if kind == "blocked"
                         else positions[ra.rows()])
     return PairedDifference.from_recordings(np.concatenate(a), np.concatenate(b),
-                                            np.concatenate(clusters), UNITS[kind])
+                                            np.concatenate(clusters), UNITS[kind],
+                                            by_fold=kind == "blocked")
 
 
 def compute(ds, feats, seed: int, *, random_svm, paper_ann, paper_distance,
@@ -439,6 +442,9 @@ def _confusions_text(matrix, labels) -> str:
     'al taken for pvc (3 of 8), wood taken for al (1 of 8)'
     >>> text.split("; ")[1].split(".")[0]
     'pvc is never taken for another'
+    >>> _confusions_text(np.array([[0, 3, 3], [0, 6, 0], [0, 0, 6]]), ["st", "al", "pvc"])[46:]
+    'st taken for al or pvc (3 of 6 each); al and pvc are never taken for another. Counts of \
+one fold, not a finding about the materials.'
     """
     m = np.asarray(matrix)
     wrong, right = [], []
@@ -448,8 +454,9 @@ def _confusions_text(matrix, labels) -> str:
         if errors.sum() == 0:
             right.append(str(name))
             continue
-        j = int(np.argmax(errors))  # the first of equal counts, in the order of the labels
-        wrong.append(f"{name} taken for {labels[j]} ({errors[j]} of {m[i].sum()})")
+        most = [str(labels[j]) for j in np.flatnonzero(errors == errors.max())]  # ties: all
+        wrong.append(f"{name} taken for {' or '.join(most)} ({errors.max()} of {m[i].sum()}"
+                     + (" each)" if len(most) > 1 else ")"))
     if not wrong:
         return "It takes no material for another in this fold."
     text = "Its most frequent wrong answers in this fold: " + ", ".join(wrong)

@@ -124,6 +124,8 @@ BAD = [  # (id, call, error, name)
     ("paired-one-cluster", lambda: PairedDifference([1], [1], [2], "position"), ValueError,
      "two clusters"),
     ("paired-unit", lambda: PairedDifference([1, 1], [1, 2], [2, 2], 5), TypeError, "unit"),
+    ("paired-by-fold-not-bool", lambda: PairedDifference([1, 1], [1, 2], [2, 2], "fold",
+                                                         by_fold=1), TypeError, "by_fold"),
     ("paired-from-mismatched", lambda: PairedDifference.from_recordings(
         [1, 0], [1], [0, 1], "position"), ValueError, "correct_a"),
     ("paired-from-clusters", lambda: PairedDifference.from_recordings(

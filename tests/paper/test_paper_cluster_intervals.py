@@ -145,6 +145,32 @@ def test_paired_difference_written_out_and_mirrored():
     assert back.direction == "higher"
 
 
+def test_paired_by_fold_is_the_paired_t_interval_of_the_folds_accuracies():
+    """With ``by_fold`` the folds weigh alike, as FoldAccuracy(by_fold=True) has them: the
+    difference is the mean of the folds' differences and its interval scipy's paired t test's
+    (ttest_rel), whatever the folds' sizes; the two accuracies are FoldAccuracy's."""
+    from scipy.stats import ttest_rel
+
+    rng = np.random.default_rng(3)
+    sizes = [30, 30, 30, 15, 15]  # unequal folds: the fold mean is not the pooled accuracy
+    a = [rng.random(m) < 0.3 for m in sizes]
+    b = [x | (rng.random(x.size) < 0.2) for x in a]
+    folds = np.concatenate([np.full(m, i) for i, m in enumerate(sizes)])
+    p = PairedDifference.from_recordings(np.concatenate(a), np.concatenate(b), folds,
+                                         "held-out block", by_fold=True, resamples=200)
+    acc_a, acc_b = np.array([x.mean() for x in a]), np.array([x.mean() for x in b])
+    witness = ttest_rel(acc_b, acc_a).confidence_interval(0.95)
+    assert p.difference == pytest.approx(np.mean(acc_b - acc_a), rel=1e-12)
+    assert p.ci95 == pytest.approx((witness.low, witness.high), rel=1e-12)
+    for acc, x in ((p.accuracy_a, a), (p.accuracy_b, b)):
+        assert acc == FoldAccuracy([(c, np.zeros(c.size)) for c in x], "held-out block",
+                                   by_fold=True).estimate
+    pooled = PairedDifference.from_recordings(np.concatenate(a), np.concatenate(b), folds,
+                                              "held-out block", resamples=200)
+    assert pooled.difference != pytest.approx(p.difference)  # the folds' sizes differ
+    assert p.n_units == 5 and p.n_recordings == sum(sizes) and "5 folds" in p.method
+
+
 def test_paired_se_matches_a_brute_force_cluster_bootstrap_of_the_difference():
     """The cluster-robust standard error against the spread of a bootstrap written here
     (2000 resamples: its standard deviation is within about 5 % of the truth)."""

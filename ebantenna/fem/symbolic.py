@@ -228,8 +228,10 @@ class Erratum:
     printed, derived : str
         The entry as printed (with the printed factor) and as derived, both in sympy syntax.
     reason : str
-        ``"typo"`` (wrong even for equal element lengths) or ``"common factor"`` (right only when
-        ``l1 == l2``, because the printed factor cannot serve two element lengths).
+        ``"typo"`` (wrong however the printed factor's ``l`` is read: as the length of the
+        entry's own element, or with ``l1 == l2`` in an entry both elements share) or
+        ``"common factor"`` (an entry both elements share, right only when ``l1 == l2``, because
+        the printed factor cannot serve two element lengths).
     """
 
     matrix: str
@@ -273,9 +275,11 @@ def _compare(name: str, printed: sp.Matrix, derived: sp.Matrix) -> list[Erratum]
 def paper_errata() -> list[Erratum]:
     """Every printed entry of K, M, K1 and M1 that differs from the sympy derivation, and why.
 
-    An entry of one element alone is compared with that element's length in the printed factor.
-    An entry at the shared node (contact Q) mixes both elements: it is a ``"typo"`` if it is wrong
-    even for ``l1 == l2 == l``, and a ``"common factor"`` erratum if it is right only then.
+    An entry of one element alone is compared with that element's length in the printed factor,
+    and is a ``"typo"`` when it differs (a wrong subscript, ``l1`` where ``l2`` belongs, is one:
+    it would go unseen with ``l1 == l2``). An entry at the shared node (contact Q) mixes both
+    elements: it is a ``"typo"`` if it is wrong even for ``l1 == l2 == l``, and a
+    ``"common factor"`` erratum if it is right only then.
 
     Returns
     -------

@@ -77,12 +77,15 @@ class AnnSetupResult:
         ``final`` (the last test accuracy on the position), ``stopped_by`` ("epoch cap").
     larger_step : PairedDifference
         The ten times larger step against the study's step, on the same test recordings.
+    repetitions : int or None
+        Repetitions of each position in the subset (None: not said).
     """
 
     runs: dict
     recordings: int
     long: dict = None
     larger_step: PairedDifference = None
+    repetitions: int | None = None
 
     def to_dict(self) -> dict:
         """Under ``materials``: ``ann_training_setup``: each run with what stopped it, its test
@@ -300,7 +303,17 @@ def from_fits(ds, feats, seed: int, fits: dict, *, paper_ann=None) -> AnnSetupRe
     first, larger = (runs[k]["result"] for k in RUNS)
     pair = PairedDifference.from_recordings(first.correct(), larger.correct(),
                                             d[first.rows()], UNITS["random"])
-    return AnnSetupResult(runs, int(d.size), long, pair)
+    depth = int(np.max(ds.repetition)) + 1
+    return AnnSetupResult(runs, int(d.size), long, pair, min(SUBSET_REPETITIONS, depth))
+
+
+def _subset_words(result: AnnSetupResult) -> str:
+    """The subset the runs train on, in words."""
+    if result.repetitions is None:
+        return "a subset of every position's repetitions"
+    if result.repetitions == 1:
+        return "the first repetition of every position"
+    return f"the first {result.repetitions} repetitions of every position"
 
 
 def _subset(ds) -> tuple:
@@ -321,8 +334,8 @@ def render(result: AnnSetupResult, report, figures) -> None:
         f"failed validation checks, with a step of {TRAINGD_DEFAULTS['lr']:g}, unless told "
         "otherwise. Full-batch gradient descent moves the weights by the step times the "
         "gradient, once per epoch. "
-        f"Below, the same network on the first {SUBSET_REPETITIONS} repetitions of every "
-        f"position ({result.recordings} recordings, the same 70/15/15 split), two steps, each "
+        f"Below, the same network on {_subset_words(result)} "
+        f"({result.recordings} recordings, the same 70/15/15 split), two steps, each "
         "with what ended its training."
     )
     report.table(

@@ -175,8 +175,10 @@ def _render_errata(result: ModesResult, report) -> None:
     errata = result.errata
     report.paragraph(
         f"Errata of the printed element and two-element matrices: {len(errata)} entries differ "
-        "from the sympy derivation (typo: wrong even for equal element lengths; common factor: "
-        "right only when l1 = l2)."
+        "from the sympy derivation (typo: wrong however the printed factor's l is read, as the "
+        "entry's own element's length or, at the node both elements share, with l1 = l2; common "
+        "factor: a shared entry right only when l1 = l2, the one printed factor serving two "
+        "lengths)."
     )
     report.table(
         ["matrix", "row", "col", "printed", "derived", "why"],

@@ -521,10 +521,26 @@ def _baseline_relation(r: ControlsResult) -> str:
         f"measured on the reduced design, {r.recordings} recordings, not on the main data set"
         + _repetitions_text(r.repetitions) + " Whether that accounts for the difference is "
         "measured in the section 'How much the numbers carry': the main data set's grouped "
-        f"accuracy with its first {listed(str(n) for n in TRAINING_REPETITIONS)} repetitions "
-        "only. The "
+        f"accuracy {_fewer_repetitions(r.repetitions)}. The "
         "ablation compares rows with one another on one design, which this does not change."
     )
+
+
+def _fewer_repetitions(repetitions) -> str:
+    """Which fewer repetitions of the main data set the section 'How much the numbers carry'
+    measures (those of :data:`~.seed_spread.TRAINING_REPETITIONS` below the data set's own).
+
+    Examples
+    --------
+    >>> _fewer_repetitions((3, 25)), _fewer_repetitions((1, 3))
+    ('with only its first 1, 3 and 5 repetitions', 'with only its first repetition')
+    """
+    fewer = [n for n in TRAINING_REPETITIONS if repetitions is None or n < repetitions[1]]
+    if not fewer:
+        return "with every repetition (the data set holds no more than one)"
+    if fewer == [1]:
+        return "with only its first repetition"
+    return f"with only its first {listed(str(n) for n in fewer)} repetitions"
 
 
 def _repetitions_text(repetitions) -> str:

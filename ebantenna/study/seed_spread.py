@@ -58,11 +58,15 @@ class SeedSpreadResult:
     repetitions : dict of int to FoldAccuracy
         Grouped SVM over all folds on the first ``r`` repetitions of each position, for ``r`` in
         :data:`TRAINING_REPETITIONS` and the whole data set.
+    subset_repetitions : int
+        Repetitions of each position in the subset: :data:`SUBSET_REPETITIONS`, or all the data
+        set holds when it holds fewer.
     """
 
     spreads: dict
     subset_recordings: int
     repetitions: dict
+    subset_repetitions: int
 
     def to_dict(self) -> dict:
         """Under ``materials``: ``seed_spread`` (classifier -> split -> the accuracy over the
@@ -226,6 +230,7 @@ def compute(ds, feats, seed: int, grouped_full: FoldAccuracy, n_jobs: int = 1) -
     (``_common.fits_in_parallel``): the same numbers whatever ``n_jobs``."""
     check_step(ds=ds, feats=feats, seed=seed, n_jobs=n_jobs)
     check_instance("grouped_full", grouped_full, FoldAccuracy)
+    depth = int(np.max(ds.repetition)) + 1
     rows = _subset(ds, SUBSET_REPETITIONS)
     X, y, d = feats.fft[rows], ds.material[rows], ds.contact[rows]
     peaks, dominant = feats.peaks[rows], feats.dominant[rows]
@@ -235,7 +240,6 @@ def compute(ds, feats, seed: int, grouped_full: FoldAccuracy, n_jobs: int = 1) -
             for i, split in enumerate(split_folds(k, y, d, folds=SPLIT_SEEDS, seed=seed)):
                 calls[c, k, i] = classifier_call(FITTED[c], X, y, d, peaks, dominant, split)
                 tested[c, k, i] = d
-    depth = int(np.max(ds.repetition)) + 1
     for r in TRAINING_REPETITIONS:
         if r >= depth:
             continue
@@ -257,7 +261,7 @@ def compute(ds, feats, seed: int, grouped_full: FoldAccuracy, n_jobs: int = 1) -
     repetitions = {r: over_folds(("repetitions", r), UNITS["grouped"])
                    for r in TRAINING_REPETITIONS if r < depth}
     repetitions[depth] = grouped_full
-    return SeedSpreadResult(spreads, int(rows.size), repetitions)
+    return SeedSpreadResult(spreads, int(rows.size), repetitions, min(SUBSET_REPETITIONS, depth))
 
 
 def render(result: SeedSpreadResult, report, figures) -> None:
@@ -271,7 +275,8 @@ def render(result: SeedSpreadResult, report, figures) -> None:
         "standard deviation to it tests that, within what a spread measured on "
         f"{SPLIT_SEEDS} folds leaves open (a chi-square interval on {SPLIT_SEEDS - 1} degrees "
         "of freedom). Below, every classifier on every split over its "
-        f"{SPLIT_SEEDS} folds, on the first {SUBSET_REPETITIONS} repetitions of every position "
+        f"{SPLIT_SEEDS} folds, on the first {result.subset_repetitions} repetitions of every "
+        "position "
         f"({result.subset_recordings} recordings; a fit of the paper's SVM on the whole data "
         "set takes tens of seconds): the accuracy with its interval on the split's unit, the "
         "folds' standard deviation, and how many times the binomial one it is."

@@ -140,13 +140,13 @@ def _resultant_text(z_static: float | None) -> str:
                 f"{z_static:.2f} m/s^2 ({g / STANDARD_GRAVITY:.2f} g; the median over the "
                 "recordings of each one's mean), gravity, as the probe is mounted, and for a "
                 "vibration small against it the resultant is about "
-                "g + a_z + (a_x^2 + a_y^2) / (2 g), so its spectrum carries the Z axis's "
+                "g + a_z + a_x^2 / (2 g), so its spectrum carries the Z axis's "
                 "vibration and the sweep-plane vibration squared (at sums and differences of "
                 "its frequencies), not the sweep-plane vibration itself.")
     return (f"The resultant of eq. 1 is not used here. The Z axis carries no static acceleration "
             f"of the order of gravity in these recordings ({z_static:.2f} m/s^2; the median "
-            "over the recordings of each one's mean), so the resultant is about "
-            "sqrt(a_x^2 + a_y^2 + a_z^2): its spectrum carries the vibration squared (at sums "
+            "over the recordings of each one's mean), so the resultant, sqrt(a_x^2 + a_z^2), is "
+            "the vibration's own magnitude: its spectrum carries the vibration squared (at sums "
             "and differences of its frequencies), not the sweep-plane vibration itself.")
 
 

@@ -10,7 +10,7 @@ from ..paper.protocol import TIME_FREQUENCY_RATIOS
 from ..paper.uncertainty import percent
 from ..signal import morlet_scalogram, spectrogram
 from ..simulate import simulate
-from ._common import check_render, check_step
+from ._common import check_render, check_step, listed
 
 __all__ = ["TimeFrequencyResult", "compute", "render"]
 
@@ -127,9 +127,10 @@ def energy_time(tf, share: float = 0.9) -> float:
 
 
 def profile_sentence(ratios, shares, times, step: float = 0.0) -> str:
-    """The hinge-most and the tip-most maps' shares and times compared, and whether each
-    change goes the way the paper describes (one long-lived component near the hinge, several
-    short-lived modes towards the tip: the strongest band's share and the time both fall).
+    """Each map's strongest band's share and time to 90 % of its energy against the hinge-most
+    map's, and whether the change goes the way the paper describes (one long-lived component
+    near the hinge, several short-lived modes towards the tip: the share and the time both fall)
+    at every later position, at none, or at some only, which it names.
 
     ``step`` is the maps' time step, s: the times are whole steps, and two no further apart
     than one step are not told apart.
@@ -142,23 +143,47 @@ def profile_sentence(ratios, shares, times, step: float = 0.0) -> str:
     2
     >>> "within one time step" in profile_sentence([0.25, 0.9], [0.8, 0.4], [0.3, 0.28], 0.032)
     True
+    >>> text = profile_sentence([0.25, 0.5, 0.9], [0.8, 0.5, 0.4], [0.7, 0.3, 0.67], 0.032)
+    >>> text[text.index("ms after"):]
+    'ms after the strongest frame (time step 32 ms): sooner than at 0.25 L at 0.50 L, not at \
+0.90 L, so the shorter life the paper describes towards the tip shows at some positions only.'
     """
-    (r0, r1), (s0, s1), (t0, t1) = (ratios[0], ratios[-1]), (shares[0], shares[-1]), (
-        times[0], times[-1])
-    agree = {True: "as the paper describes", False: "unlike the paper's description"}
-    spread = ("spreads over more frequencies" if s1 < s0 else
-              "gathers more in its strongest band" if s1 > s0 else
-              "keeps its strongest band's share")
-    # the times are differences of frame times, whole steps up to rounding of the frame times
-    if abs(t1 - t0) <= step * (1 + 1e-9):
-        when, verdict = "as soon", (f"within one time step ({1000 * step:.0f} ms), which does "
-                                    "not show the shorter life the paper describes towards "
-                                    "the tip")
+    where = [f"{r:.2f} L" for r in ratios]
+    first, later = where[0], where[1:]
+    lower = [w for w, v in zip(later, shares[1:], strict=True) if v < shares[0]]
+    if len(lower) == len(later):
+        share_words = (f"less at every later position than at {first}: it spreads over more "
+                       "frequencies, as the paper describes")
+    elif not lower:
+        share_words = (f"no less at any later position than at {first}, unlike the paper's "
+                       "description")
     else:
-        when, verdict = ("sooner" if t1 < t0 else "later"), agree[t1 < t0]
+        share_words = (f"less than at {first} at {listed(lower)}, not at "
+                       f"{listed(w for w in later if w not in lower)}, so the paper's spread over "
+                       "more frequencies towards the tip shows at some positions only")
     return (
-        f"From {r0:.2f} L to {r1:.2f} L the energy {spread} (the strongest band holds "
-        f"{percent(s0)} then {percent(s1)}), {agree[s1 < s0]}, and 90 % of it has arrived "
-        f"{when} after the strongest frame ({1000 * t0:.0f} then {1000 * t1:.0f} ms), "
-        f"{verdict}."
+        f"From {first} to {where[-1]} the strongest band holds "
+        f"{listed(percent(v) for v in shares)} of the energy, {share_words}; 90 % of it has "
+        f"arrived {listed(f'{1000 * t:.0f}' for t in times)} ms after the strongest frame"
+        + (f" (time step {1000 * step:.0f} ms)" if step else "")
+        + f": {_time_words(first, later, times, step)}."
     )
+
+
+def _time_words(first: str, later, times, step: float) -> str:
+    """The later positions' times against the first one's, as :func:`profile_sentence` says
+    them (times within one ``step`` are not told apart; the frame times round to whole steps)."""
+    tol = step * (1 + 1e-9)
+    sooner = [w for w, t in zip(later, times[1:], strict=True) if t < times[0] - tol]
+    late = [w for w, t in zip(later, times[1:], strict=True) if t > times[0] + tol]
+    if len(sooner) == len(later):
+        return f"sooner at every later position than at {first}, as the paper describes"
+    if sooner:
+        return (f"sooner than at {first} at {listed(sooner)}, not at "
+                f"{listed(w for w in later if w not in sooner)}, so the shorter life the paper "
+                "describes towards the tip shows at some positions only")
+    if not late:
+        alike = (f"within one time step of {first}'s at every later position" if step else
+                 f"as soon at every later position as at {first}")
+        return f"{alike}, which does not show the shorter life the paper describes towards the tip"
+    return f"later than at {first} at {listed(late)}, unlike the paper's description"

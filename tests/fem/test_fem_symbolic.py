@@ -115,7 +115,8 @@ def test_two_element_model_is_the_assembly_of_two_elements():
 def test_errata_find_the_known_misprints():
     errata = paper_errata()
     typos = {(e.matrix, e.row, e.col) for e in errata if e.reason == "typo"}
-    # Checked by hand against the paper's section 2.2: each is wrong even for l1 == l2.
+    # Checked by hand against the paper's section 2.2: each is wrong even for l1 == l2, but for
+    # M1(6,3) and M1(6,4), l1 printed where their own element's l2 belongs.
     assert typos == {
         ("K", 3, 4),
         ("K1", 4, 1),

@@ -201,10 +201,25 @@ def test_an_interval_that_widens_is_said_to_widen():
     assert "the interval on the position widens" in text and "narrows 0." not in text
 
 
+def test_the_time_frequency_sentence_names_the_positions_that_go_each_way():
+    # the report's quick run: the time falls at 0.50, 0.75 and 0.80 L, not at the tip-most 0.90 L
+    ratios = (0.25, 0.5, 0.75, 0.8, 0.9)
+    text = time_frequency.profile_sentence(ratios, (0.713, 0.486, 0.525, 0.283, 0.305),
+                                           (0.704, 0.640, 0.320, 0.160, 0.672), step=0.032)
+    assert "704, 640, 320, 160 and 672 ms" in text
+    assert "sooner than at 0.25 L at 0.50 L, 0.75 L and 0.80 L, not at 0.90 L" in text
+    assert "less at every later position than at 0.25 L" in text
+    mixed = time_frequency.profile_sentence(ratios, (0.5, 0.6, 0.4, 0.3, 0.5), (1, 1, 1, 1, 1))
+    assert "less than at 0.25 L at 0.75 L and 0.80 L, not at 0.50 L and 0.90 L" in mixed
+    # no step given: the equal times are as soon, and said so without a step
+    assert "as soon at every later position as at 0.25 L, which does not show" in mixed
+
+
 def test_times_within_one_step_are_not_told_apart():
     told = time_frequency.profile_sentence((0.25, 0.9), (0.8, 0.4), (0.3, 0.1), step=0.032)
     near = time_frequency.profile_sentence((0.25, 0.9), (0.8, 0.4), (0.3, 0.29), step=0.032)
-    assert "sooner after" in told and told.endswith("ms), as the paper describes.")
+    assert "sooner at every later position" in told
+    assert told.endswith("than at 0.25 L, as the paper describes.")
     assert "within one time step" not in told
     assert "within one time step" in near and "sooner" not in near
     # one whole step apart, as frame times give it (0.704 - 0.672 is a hair below 0.032)

@@ -136,7 +136,8 @@ PAPER_MAP = (
     Item(
         "Fig. 3",
         "box plot of the data set: a high spread of the dominant frequency near 30 cm",
-        ("ebantenna.paper.data.build_paper_dataset", "ebantenna.study.data_summary.compute"),
+        ("ebantenna.paper.data.build_paper_dataset", "ebantenna.study.data_summary.compute",
+         "ebantenna.study.signals.compute_frequency"),
         (),
         "",
         here="[[summary:dataset.signals|d]] recordings, [[summary:dataset.contacts|d]] contacts "
@@ -209,7 +210,7 @@ PAPER_MAP = (
         ),
         ("plot_11_simulated_signals",),
         "deviation_cm",
-        here="the dominant frequency (median per material) peaks at "
+        here="the dominant frequency (median per material) is highest at "
         "[[summary:frequency.dominant_frequency_peak_cm|.1f]] cm",
         status="differs: the paper's 29.5 cm is where the curve leaves a straight line; beyond "
         "the lowest mode's peak the strongest bin jumps to a higher mode (the rod's or the "

@@ -179,6 +179,24 @@ def test_course_page_has_every_track_and_no_ascii_powers():
     assert "   course\n" in (DOCS / "index.rst").read_text()  # in the site's toctree
 
 
+def test_the_course_page_says_what_the_tracks_hold():
+    from collections import Counter
+
+    text = " ".join((DOCS / "course.rst").read_text().split())
+    roles = Counter(course.TRACKS[4].roles.values())
+    words = dict(enumerate(["no", "one", "two", "three", "four", "five", "six", "seven"]))
+    assert (f"{words[roles['core']]} exercises are done in class and {words[roles['homework']]} "
+            "are homework") in text.lower()
+    splits = "exercises/ex12_splits"
+    assert course.TRACKS[4].roles[splits] == "further"
+    where = {n: next(i for i, s in enumerate(t.sessions, 1) if splits in s.exercises)
+             for n, t in course.TRACKS.items()}
+    assert all(course.TRACKS[n].roles[splits] == "homework" for n in (6, 7))
+    assert f"(session {where[7]} of seven, {where[6]} of six)" in text
+    design = "exercises/ex15_design_effect"
+    assert all(t.roles[design] == "homework" for t in course.TRACKS.values())
+
+
 #: how a symbol of the notation table is written in a page's source
 _WRITTEN = {"ρ": (r"\rho", "ρ"), "α": (r"\alpha", "α"), "η": (r"\eta", "η"),
             "β": (r"\beta", "β"), "λ": (r"\lambda", "λ"), "γ": (r"\gamma", "γ")}

@@ -321,7 +321,8 @@ PAPER_MAP = (
         "svm_test_accuracy",
         here="[[summary:svm.test_accuracy|pct]] on a random split; on held-out positions "
         "[[summary:materials.svm_grouped_test_accuracy|pct]] (interleaved), "
-        "[[summary:materials.svm_blocked_test_accuracy|pct]] (one range)",
+        "[[summary:materials.svm_blocked_test_accuracy|pct]] (a contiguous range held out, the "
+        "mean of five such folds)",
         status="differs: simulated recordings, nothing tuned towards the paper; a random split "
         "of neighbouring positions can flatter a classifier (the report's section *random "
         "recordings against held-out positions* compares the intervals)",

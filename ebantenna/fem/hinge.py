@@ -139,6 +139,8 @@ class HingeFit:
         Transition positions observed and given by the fitted model, m.
     criterion : str
         How the transition was located.
+    stiffness_bounds, mass_bounds : (float, float)
+        The bounds the fit searched within (N m/rad, kg).
     """
 
     hinge_stiffness: float
@@ -147,6 +149,33 @@ class HingeFit:
     observed: np.ndarray
     predicted: np.ndarray
     criterion: str
+    stiffness_bounds: tuple = (1e-2, 1e3)
+    mass_bounds: tuple = (0.0, 0.02)
+
+    @property
+    def at_bound(self) -> dict:
+        """Each fitted parameter that sits on a bound of its search, ``{"hinge_stiffness" or
+        "tip_mass": "lower" or "upper"}``: there the data do not set the value, the bound does.
+        On a bound means within a millionth of the range (the fit's ``xtol`` is 1e-10).
+
+        Examples
+        --------
+        >>> f = HingeFit(5.0, 1e-16, np.ones(1), np.ones(1), np.ones(1), "peak")
+        >>> f.at_bound
+        {'tip_mass': 'lower'}
+        """
+        found = {}
+        for name, value, (lo, hi) in (
+            ("hinge_stiffness", math.log10(self.hinge_stiffness),
+             tuple(math.log10(b) for b in self.stiffness_bounds)),
+            ("tip_mass", self.tip_mass, self.mass_bounds),
+        ):
+            tol = 1e-6 * (hi - lo)
+            if value <= lo + tol:
+                found[name] = "lower"
+            elif value >= hi - tol:
+                found[name] = "upper"
+        return found
 
     @property
     def residual(self) -> np.ndarray:
@@ -253,6 +282,8 @@ def fit_hinge_and_tip(
         observed=observed,
         predicted=predict(log_k, mass),
         criterion=criterion,
+        stiffness_bounds=(k_lo, k_hi),
+        mass_bounds=(m_lo, m_hi),
     )
 
 

@@ -402,20 +402,29 @@ def _verdict(result: AnnSetupResult) -> str:
 
 
 def _crossing_sharpness(lg: dict, paper: str) -> str:
-    """How sharply the test set places the epoch at which the paper's accuracy is reached, and
-    what the epoch depends on besides."""
-    start, reached = lg.get("within_from"), lg["reached_test"]
-    if reached == lg["epochs"][0]:
+    """How sharply the test set places the epoch at which the paper's accuracy is reached (the
+    checkpoints before it whose test interval already held the paper's value, ``test_ci95``),
+    that the run's stop on the test rows biases the accuracy it stops at, and what the epoch
+    depends on besides."""
+    reached, value = lg["reached_test"], printed.ANN_ACCURACY.value
+    k = lg["epochs"].index(reached)
+    inside = [e for e, (lo, hi) in zip(lg["epochs"][:k], lg["test_ci95"][:k], strict=True)
+              if lo <= value <= hi]
+    if k == 0:
         placed = f"It is reached at the first checkpoint, within {reached} epochs."
-    elif start is None or start >= reached:
-        placed = ("At the checkpoint before, the paper's value lay above the test accuracy's "
+    elif not inside:
+        placed = ("At every checkpoint before, the paper's value lay above the test accuracy's "
                   "95 % interval, so the test set places the crossing within the last "
-                  f"{reached - lg['epochs'][-2]} epochs.")
+                  f"{reached - lg['epochs'][k - 1]} epochs.")
     else:
-        placed = (f"That epoch is not sharp: from epoch {start} on, the paper's {paper} lies "
-                  "inside the test accuracy's 95 % interval (on the position), so this test set "
-                  f"places the crossing anywhere from epoch {start} to {reached}.")
-    return placed + (" Gradient descent over this many epochs amplifies rounding: arithmetic "
+        placed = (f"That epoch is not sharp: the paper's {paper} already lay inside the test "
+                  "accuracy's 95 % interval (on the position) at epoch"
+                  f"{'s' if len(inside) > 1 else ''} {listed(str(e) for e in inside)}, so this "
+                  "test set cannot tell at which epoch the network reaches it.")
+    return placed + (" The run stops at the first checkpoint whose test accuracy reaches the "
+                     "paper's: picked on these test rows, the accuracy it stops at is biased "
+                     "upwards. Gradient descent over this many epochs amplifies rounding: "
+                     "arithmetic "
                      "that differs in its last bits (another BLAS kernel or thread count) "
                      "follows another path and may reach it at another epoch.")
 
@@ -428,7 +437,8 @@ def _long_verdict(result: AnnSetupResult) -> str:
     >>> from ebantenna.paper.uncertainty import ClusteredAccuracy
     >>> final = ClusteredAccuracy([4, 5], [5, 5], "position")
     >>> long = dict(epochs=[100, 200], test=[0.5, 0.9], all=[0.5, 0.92], reached_test=200,
-    ...             reached_all=200, final=final, stopped_by="epoch cap", max_epochs=300)
+    ...             reached_all=200, final=final, stopped_by="epoch cap", max_epochs=300,
+    ...             test_ci95=[(0.4, 0.6), (0.85, 0.95)])
     >>> "reaches the paper's" in _long_verdict(AnnSetupResult({}, 10, long))
     True
     >>> long.update(reached_test=None, reached_all=None, test=[0.5, 0.6], all=[0.5, 0.6])

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..paper.controls import grouped_svm_spread
-from ..paper.uncertainty import clustered_entries, format_clustered
+from ..paper.uncertainty import clustered_entries, format_clustered, percent
 from ..probe import material
 from ..simulate import build_dataset
 from ..simulate.effects import HertzContact
@@ -49,6 +49,8 @@ class ContactLawResult:
         rows and folds, paired within the position.
     restrikes : dict of str to float
         Median contacts after the first touch per strike, by law.
+    restrike_shares : dict of str to float or None
+        Share of the strikes with at least one contact after the first touch, by law.
     chords : dict of str to tuple
         Per material: the Hertz law's chords and their force bound (N).
     force_tolerance : float
@@ -66,6 +68,7 @@ class ContactLawResult:
     force_tolerance: float
     paired: dict = None
     preload: float | None = None
+    restrike_shares: dict | None = None
 
     def to_dict(self) -> dict:
         """The result as ``summary.json`` holds it."""
@@ -110,11 +113,12 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ContactLaw
     if obj is None:
         return None
     design = control_design(quick)
-    svm, curves, restrikes = {}, {}, {}
+    svm, curves, restrikes, shares = {}, {}, {}, {}
     for law, sc in _scenes(scene).items():
         ds = build_dataset(cache_dir, sc, design, seed, n_jobs=n_jobs, show_progress=False)
         svm[law], curves[law] = _accuracies(ds, seed, n_jobs)
         restrikes[law] = float(np.median(ds.metadata["restrikes"]))
+        shares[law] = float(np.mean(np.asarray(ds.metadata["restrikes"]) > 0))
     hertz = _scenes(scene)["hertz"].effect("hertz_contact") or HertzContact()
     chords = {}
     for name in design.materials:
@@ -124,7 +128,8 @@ def compute(scene, seed: int, quick: bool, cache_dir, n_jobs: int) -> ContactLaw
     paired = {"svm": svm["linearised"].paired_with(svm["hertz"]),
               "mode_curves": curves["linearised"].paired_with(curves["hertz"])}
     return ContactLawResult(design.name, recordings, svm, curves, restrikes, chords,
-                            hertz.force_tolerance, paired, float(obj.preload))  # fmt: skip
+                            hertz.force_tolerance, paired, float(obj.preload),
+                            shares)  # fmt: skip
 
 
 def render(result: ContactLawResult | None, report, figures) -> None:
@@ -137,7 +142,9 @@ def render(result: ContactLawResult | None, report, figures) -> None:
     report.paragraph(
         "The strike's contact pushes through the spring linearised at the "
         + ("scene's preload; " if r.preload is None else f"{r.preload:g} N preload; ")
-        + restrike_words(r.restrikes["linearised"]) + " The controls' design "
+        + restrike_words(r.restrikes["linearised"],
+                         None if r.restrike_shares is None else r.restrike_shares["linearised"])
+        + " The controls' design "
         f"({r.recordings} recordings) is simulated again with the crossed-cylinder Hertz law in "
         "series with the tube wall ('hertz_contact'), integrated as chords that differ from it "
         f"by at most {r.force_tolerance:g} N ({min(c for c, _ in r.chords.values())} to "
@@ -154,12 +161,13 @@ def render(result: ContactLawResult | None, report, figures) -> None:
     report.paragraph(_verdict(r))
 
 
-def restrike_words(median: float) -> str:
-    """What the median number of re-strikes per strike says about how many strikes strike
-    again, and what a re-strike does to the contact force.
+def restrike_words(median: float, share: float | None = None) -> str:
+    """How many strikes strike again (``share``, counted, or what the median number of
+    re-strikes per strike says of it), and what a re-strike does to the contact force.
 
-    A median of at least one means at least half the strikes strike again; one strictly
-    between zero and one (two middle values 0 and 1) exactly half; zero, fewer than half.
+    Without ``share``: a median of at least one means at least half the strikes strike again;
+    one strictly between zero and one (two middle values 0 and 1) exactly half; zero, fewer
+    than half.
 
     Examples
     --------
@@ -169,10 +177,15 @@ def restrike_words(median: float) -> str:
     'exactly half the strikes strike a'
     >>> restrike_words(0)[:36]
     'fewer than half the strikes strike a'
+    >>> restrike_words(18, 0.976)[:40]
+    '97.6 % of the strikes strike again (medi'
     """
-    share = ("at least half" if median >= 1 else "exactly half" if median > 0 else
-             "fewer than half")
-    return (f"{share} the strikes strike again (median {median:g} re-strikes per strike), "
+    if share is not None:
+        how_many = f"{percent(share)} of"
+    else:
+        how_many = ("at least half" if median >= 1 else "exactly half" if median > 0 else
+                    "fewer than half")
+    return (f"{how_many} the strikes strike again (median {median:g} re-strikes per strike), "
             "and a strike that strikes again has lifted off, so its contact force has passed "
             "through zero, away from the preload the spring is linearised at; how much that "
             "changes the accuracy is what the comparison below measures.")

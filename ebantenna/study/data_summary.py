@@ -79,5 +79,15 @@ def render(result: DatasetResult, report, figures) -> None:
     report.paragraph(
         f"{result.signals} simulated recordings of {result.samples} samples at {result.fs:g} Hz: "
         f"{len(result.materials)} materials x {result.contacts} contact positions x "
-        f"repetitions, from {result.path} (SHA-256 {result.checksum})."
+        f"{_repetitions(result)}, from {result.path} (SHA-256 {result.checksum})."
     )
+
+
+def _repetitions(result: DatasetResult) -> str:
+    """The repetitions per material and position, counted (the recordings over materials times
+    positions), or 'repetitions' when they do not divide evenly."""
+    cells = len(result.materials) * result.contacts
+    if cells and result.signals % cells == 0:
+        n = result.signals // cells
+        return f"{n} repetition{'s' if n != 1 else ''}"
+    return "repetitions"

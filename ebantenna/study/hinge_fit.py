@@ -39,11 +39,14 @@ class HingeResult:
         return bool(np.all(np.abs(self.fit.residual) <= self.resolution))
 
     def to_dict(self) -> dict:
-        """Best fit (N m/rad, g), observed and predicted transitions and residuals (cm)."""
+        """Best fit (N m/rad, g), which of its parameters sit on a bound of the search (there
+        the bound, not the data, sets the value: ``at_bound``), observed and predicted
+        transitions and residuals (cm)."""
         f = self.fit
         return {
             "hinge_stiffness_n_m_per_rad": f.hinge_stiffness,
             "tip_mass_g": 1e3 * f.tip_mass,
+            "at_bound": f.at_bound,
             "probe_lengths_cm": (100 * f.lengths).tolist(),
             "observed_cm": (100 * f.observed).tolist(),
             "predicted_cm": (100 * f.predicted).tolist(),
@@ -78,8 +81,7 @@ def render(result: HingeResult, report, figures) -> None:
         f"{fractions}. A bare clamped tube "
         "puts it at the same fraction of any length; a rotational spring at the hinge and a "
         "point mass at the tip (sensor board, cable) can move it. Least squares over both: "
-        f"hinge {f.hinge_stiffness:.3g} N m/rad, tip mass {1e3 * f.tip_mass:.3g} g "
-        f"(transition located at the lowest frequency's peak)."
+        f"{_fitted_words(f)} (transition located at the lowest frequency's peak)."
     )
     report.table(
         ["probe (cm)", "paper (cm)", "fitted model (cm)", "residual (cm)"],
@@ -103,3 +105,29 @@ def render(result: HingeResult, report, figures) -> None:
             "parameters: the fit cannot say which."
         )
     report.paragraph(verdict)
+
+
+def _fitted_words(f) -> str:
+    """The fitted hinge and tip mass, each at a bound of its search said to be the bound's
+    value, which the observations did not set.
+
+    Examples
+    --------
+    >>> from ebantenna.fem.hinge import HingeFit
+    >>> _fitted_words(HingeFit(5.83, 6.7e-17, np.ones(1), np.ones(1), np.ones(1), "peak"))
+    'hinge 5.83 N m/rad, tip mass at its lower bound, 0 g: the observations do not set it'
+    """
+    bound = f.at_bound
+    parts = []
+    for name, words, value, unit, scale, bounds in (
+        ("hinge_stiffness", "hinge", f.hinge_stiffness, "N m/rad", 1.0, f.stiffness_bounds),
+        ("tip_mass", "tip mass", f.tip_mass, "g", 1e3, f.mass_bounds),
+    ):
+        side = bound.get(name)
+        if side is None:
+            parts.append(f"{words} {scale * value:.3g} {unit}")
+        else:
+            at = bounds[0] if side == "lower" else bounds[1]
+            parts.append(f"{words} at its {side} bound, {scale * at:g} {unit}: the observations "
+                         "do not set it")
+    return ", ".join(parts)

@@ -267,8 +267,10 @@ def _render_distance_networks(lin, full, report, fig1314: str) -> None:
 
 
 def _train(result, split: str) -> str:
-    """A training accuracy with its count and no interval."""
-    return f"{percent(result.accuracies[split])} (n = {result.counts[split]}, training rows)"
+    """A training accuracy ('train', or 'all': mostly training rows) with its count and no
+    interval."""
+    rows = "training rows" if split == "train" else "all rows, mostly training"
+    return f"{percent(result.accuracies[split])} (n = {result.counts[split]}, {rows})"
 
 
 def _split(fractions) -> str:

@@ -487,18 +487,23 @@ def _units_text(r: MaterialSplitsResult) -> str:
     >>> _units_text(r).split(": ")[1]
     'random split'
     """
+    names = {"svm": "paper's SVM", "position_aware": "position-aware", "mode_curves": "mode curves"}
     parts = []
     for (c, kind), m in r.measured.items():
         if c == "svm":
+            effects = [f"{r.measured[k, kind].design_effect:.1f} ({names[k]})" for k in CLASSIFIERS
+                       if hasattr(r.measured.get((k, kind)), "design_effect")]
             parts.append(f"{kind} split: {m.method}" + (
-                f", design effect {m.design_effect:.1f}" if hasattr(m, "design_effect") else ""))
+                f", design effect {listed(effects)}" if effects else ""))
     return (
         "Each accuracy is followed by its test recordings n, the independent units they come in "
         "and its 95 % interval on those units: " + "; ".join(parts) + ". The repetitions at "
         "one position are near copies, so the units, not the recordings, are what is "
         "replicated; the recording-level Wilson interval, which counts every recording as "
         "independent, is in summary.json only, labelled as such. The grouped and blocked rows "
-        "are over all their folds; after the interval, the folds' standard deviation."
+        "are over all their folds, each recording tested once: the grouped split's accuracy "
+        "pools the folds' recordings, the blocked split's is the mean of its folds' accuracies "
+        "(its unit); after the interval, the folds' standard deviation."
     )
 
 

@@ -95,3 +95,18 @@ def test_a_peak_at_the_edge_of_the_search_is_refused():
     # a heavy tip pushes the lowest mode's peak to the tip: there is no interior peak to locate
     with pytest.raises(ValueError, match="edge of the searched contacts"):
         transition_position(Probe(tip_mass=0.2))
+
+
+def test_a_parameter_on_a_bound_of_its_search_is_said_to_be_there():
+    from ebantenna.fem.hinge import HingeFit
+
+    one = np.ones(1)
+    inside = HingeFit(5.0, 0.002, one, one, one, "peak")
+    assert inside.at_bound == {}
+    edges = HingeFit(1e3, 0.02, one, one, one, "peak", (1e-2, 1e3), (0.0, 0.02))
+    assert edges.at_bound == {"hinge_stiffness": "upper", "tip_mass": "upper"}
+    # a millionth of the range from a bound is on it; a thousandth is not
+    assert HingeFit(5.0, 2e-8, one, one, one, "peak").at_bound == {"tip_mass": "lower"}
+    assert HingeFit(5.0, 2e-5, one, one, one, "peak").at_bound == {}
+    assert HingeFit(1e-2 * 1.00001, 0.01, one, one, one, "peak").at_bound == {
+        "hinge_stiffness": "lower"}

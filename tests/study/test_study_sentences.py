@@ -121,7 +121,8 @@ def test_the_step_verdict_follows_the_paired_difference():
 def test_the_long_run_reports_the_epoch_it_reached_or_that_it_did_not():
     final = ClusteredAccuracy(HIGH, N, "position")
     long = dict(epochs=[50, 100], test=[0.5, 0.9], all=[0.5, 0.95], reached_test=100,
-                reached_all=100, final=final, stopped_by="x", max_epochs=200)
+                reached_all=100, final=final, stopped_by="x", max_epochs=200,
+                test_ci95=[(0.4, 0.6), (0.85, 0.95)])
     assert "after 100 epochs" in ann_setup._long_verdict(ann_setup.AnnSetupResult({}, 1, long))
     long.update(reached_test=None, test=[0.5, 0.6])
     text = ann_setup._long_verdict(ann_setup.AnnSetupResult({}, 1, long))
@@ -155,10 +156,24 @@ def test_the_long_runs_crossing_is_as_sharp_as_its_intervals_say():
     long = dict(epochs=[50, 100, 150], test=[0.5, 0.79, 0.81], all=[0.5, 0.8, 0.9],
                 test_ci95=[(0.4, 0.6), (0.7, 0.85), (0.72, 0.88)], reached_test=150,
                 reached_all=100, final=final, stopped_by="x", max_epochs=200)
-    long["within_from"] = ann_setup.within_from(long["epochs"], long["test_ci95"], 0.808)
     text = ann_setup._long_verdict(ann_setup.AnnSetupResult({}, 1, long))
-    assert long["within_from"] == 100 and "anywhere from epoch 100 to 150" in text
+    assert "inside the test accuracy's 95 % interval (on the position) at epoch 100, so" in text
+    assert "biased upwards" in text
     long["test_ci95"][1] = (0.7, 0.8)  # the paper's value above the interval before the crossing
-    long["within_from"] = ann_setup.within_from(long["epochs"], long["test_ci95"], 0.808)
     text = ann_setup._long_verdict(ann_setup.AnnSetupResult({}, 1, long))
-    assert long["within_from"] == 150 and "within the last 50 epochs" in text
+    assert "within the last 50 epochs" in text and "not sharp" not in text
+
+
+def test_a_crossing_is_not_placed_by_the_last_checkpoint_alone():
+    # the full run's curve: inside the interval at 950 to 1300, above it at 1350, reached at 1400
+    final = ClusteredAccuracy(HIGH, N, "position")
+    epochs = [900, 950, 1000, 1050, 1100, 1150, 1200, 1250, 1300, 1350, 1400]
+    ci = [(0.6, 0.8), (0.712, 0.831), (0.6, 0.8), (0.6, 0.8), (0.687, 0.815), (0.6, 0.8),
+          (0.6, 0.8), (0.684, 0.812), (0.746, 0.846), (0.665, 0.797), (0.78, 0.87)]
+    long = dict(epochs=epochs, test=[0.7] * 10 + [0.831], all=[0.7] * 11, test_ci95=ci,
+                reached_test=1400, reached_all=None, final=final, stopped_by="x",
+                max_epochs=2000, within_from=ann_setup.within_from(epochs, ci, 0.808))
+    text = ann_setup._long_verdict(ann_setup.AnnSetupResult({}, 1, long))
+    assert long["within_from"] == 1400  # the last interval only: no sign of a sharp crossing
+    assert "at epochs 950, 1100, 1250 and 1300, so this test set cannot tell" in text
+    assert "within the last" not in text

@@ -130,7 +130,8 @@ def test_an_unresolved_step_difference_is_not_read_as_no_effect():
 def test_the_long_run_does_not_speak_for_the_features():
     final = _accuracy(2)
     long = dict(epochs=[50, 100], test=[0.5, 0.9], all=[0.5, 0.95], reached_test=100,
-                reached_all=100, final=final, stopped_by="x", max_epochs=200, within_from=None)
+                reached_all=100, final=final, stopped_by="x", max_epochs=200, within_from=None,
+                test_ci95=[(0.4, 0.6), (0.85, 0.95)])
     text = ann_setup._long_verdict(ann_setup.AnnSetupResult({}, 1, long))
     assert "not the features" not in text and "not what this run tests" in text
 

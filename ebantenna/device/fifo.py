@@ -16,12 +16,13 @@ estimates the sample period from the timestamps of its interrupts), are:
    filler that decodes as a plausible sample. A count equal to the FIFO's size is an overflow.
    (A count too high by less than the clock's tolerance allows cannot be told from a true one
    by any check before the read; the check catches every count the chip cannot have reached.)
-2. **One drain** then reads the whole samples waiting in ``FIFO_R_W`` (one attempt per
-   transfer, never retried), then ``INT_STATUS`` (clear on read, one attempt). Its samples are
-   kept only if every step succeeded, every transfer brought all its bytes, ``INT_STATUS``
-   shows no overflow (RM 58, ``FIFO_OFLOW_INT``), which also catches an overflow between the
-   count and the data, and ``USER_CTRL``/``PWR_MGMT_1`` show the chip still running (not reset
-   during the drain).
+2. **One drain** then reads the whole samples waiting in ``FIFO_R_W``, then ``INT_STATUS`` (clear
+   on read): each transfer retried only after a missing acknowledge, which proves that nothing
+   was read (:mod:`~ebantenna.device.i2c`), any other failure ending the drain. Its samples are
+   kept only if every step succeeded, every transfer brought all its bytes, ``INT_STATUS`` shows
+   no overflow (RM 58, ``FIFO_OFLOW_INT``), which also catches an overflow between the count and
+   the data, and ``USER_CTRL``/``PWR_MGMT_1`` show the chip still running (not reset during the
+   drain).
 3. **On any failure**, whatever ``OSError`` it raised (``EINTR`` and ``EAGAIN`` are retried as
    transient where a retry is safe; an unknown errno becomes an :class:`I2CError`), the FIFO is
    **restarted** (``FIFO_EN = 0``, ``USER_CTRL.FIFO_RESET``, then ``FIFO_EN`` and

@@ -11,8 +11,9 @@ arbitration lost). These are retried with an exponential back-off that is bounde
 of attempts and in the longest wait; when the attempts are used up an :class:`I2CError` names the
 chip, the register, the operation and the last error. Every retry is counted in
 :attr:`I2CDevice.retries` and logged, so that nothing is lost silently. A system call interrupted
-by a signal (``EINTR``) is retried the same way. Other errors (a missing bus, a wrong address, a
-permission problem) are not retried.
+by a signal (``EINTR``) is retried the same way. A wrong address is a missing acknowledge too, so it
+is retried until the attempts are used up (the error then says to check the address). Other errors
+(a missing bus, a permission problem) are not retried.
 
 Giving up is bounded in *time*, not in attempts times retries: a transfer that hangs until the
 adapter's timeout (about a second on a stuck bus) is not tried again once

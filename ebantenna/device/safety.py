@@ -7,7 +7,8 @@ SIGINT, :class:`SignalReceived` for the others), so that the run unwinds through
 clauses. On exit, whatever the reason, it releases the servos, retrying a release that fails on a
 noisy bus, and puts the previous handlers back; an exception leaving the guard gets an attribute
 ``servos_released`` that says whether the release succeeded. Signals arriving during the release
-are held and re-raised after it.
+are held and re-raised after it, unless an exception is already leaving the guard: that exception
+goes on, and the held signal is dropped.
 
 Handlers can only be installed from the main thread (a rule of Python's :mod:`signal` module);
 elsewhere the guard still releases on exit and says so in the log.

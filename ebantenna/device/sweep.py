@@ -60,7 +60,8 @@ class EllipticalPath:
                 self.tilt_center + self.tilt_amplitude * math.cos(phase))
 
     def peak_rate(self) -> float:
-        """Fastest angular speed of the pan servo along the path, degrees/s."""
+        """Fastest angular speed of either servo along the path (the larger amplitude's),
+        degrees/s."""
         return 2.0 * math.pi * max(self.pan_amplitude, self.tilt_amplitude) / self.period
 
 

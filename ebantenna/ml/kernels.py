@@ -39,7 +39,7 @@ the origin: a common shift of the features no longer changes the machine.
 libsvm trains with the uncentred expansion (its ``Kernel::kernel_rbf``) and predicts with direct
 differences (``Kernel::k_function``), so its training path changes when the features are shifted
 (its decision values drift by about 2e-8 relative at a shift of :math:`10^3`, 2e-4 at :math:`10^6`;
-exercise 8 shows it). ``center=False`` reproduces its training arithmetic on purpose; the
+exercise 11 shows it). ``center=False`` reproduces its training arithmetic on purpose; the
 ``libsvm_compat`` mode of :class:`~ebantenna.ml.SVC` uses it to follow libsvm's path and digits.
 
 Sparse points (``scipy.sparse`` matrices, used as CSR) cannot be centred without filling them:

@@ -22,7 +22,7 @@ exponential cannot be fitted to the oscillation itself. Four methods:
     model holds one mode; for that case it is unbiased, where the envelope fits are not (the
     Hilbert envelope of a damped tone ripples at twice its frequency, by about
     ``1 / (4 pi f tau)``, and the first and last periods must be dropped): on clean decays they
-    overestimate ``tau`` by 0.5-3 %.
+    err by up to about 3 % either way, mostly by less than 0.5 %.
 
 **The steps.** :func:`fit_decay` validates its arguments once, then follows the textbook: the
 envelope (:func:`analytic_envelope`), the log-linear fit (:func:`loglinear_fit`, refined by
@@ -118,8 +118,9 @@ class DecayFit:
     status : str
         ``"ok"``; ``"not_decaying"`` (no exponential decay stands out of the noise: noise only, a
         steady or growing oscillation); ``"too_few_points"`` (the record holds fewer than four
-        periods of its dominant frequency, or the decay is over before two periods could be
-        fitted; then ``a = b = 0``); ``"inconsistent"`` (an envelope fit that disagrees by more
+        periods of its dominant frequency: then ``a = b = 0``; or the decay is over before two
+        periods could be fitted: then ``a`` and ``b`` are the envelope fit's, not to be
+        trusted); ``"inconsistent"`` (an envelope fit that disagrees by more
         than 3 % with a damped sinusoid that explains the record: ``a``, ``b`` and ``tau`` are
         the envelope's, not to be trusted); ``"poor_fit"`` (``"sinusoid"`` only: the model leaves
         more than 10 % of the signal unexplained, or did not converge).

@@ -13,12 +13,12 @@ elliptic      52 - 325      48 - 330      1           45
 **A contradiction in the paper.** Its text calls both filters "second order", yet their 5 Hz and 4
 Hz transition bands need far more: the order-selection routines (:func:`scipy.signal.cheb1ord`,
 :func:`scipy.signal.ellipord`) give 13 for the Chebyshev and 8 for the elliptic specification (a
-band-pass of prototype order ``N`` has ``2N`` poles). A second-order design leaves only about 2-3 dB
-of attenuation at the stop-band edges instead of 30 or 45 dB, so the Table 1 band does not isolate
-the 100-200 Hz region the paper chose it for; the high-order design meets the table but rings for a
-long time (its slowest pole has a time constant of about 0.42 s for Table 1 and 0.52 s for Table 2,
-against 0.01 s for the second-order designs). :func:`paper_filter` builds both: ``order=None`` for
-the order the table needs, ``order="stated"`` for the order the text states.
+band-pass of prototype order ``N`` has ``2N`` poles). A second-order design leaves only about
+1.3-2.7 dB of attenuation at the stop-band edges instead of 30 or 45 dB, so the Table 1 band does
+not isolate the 100-200 Hz region the paper chose it for; the high-order design meets the table but
+rings for a long time (its slowest pole has a time constant of about 0.42 s for Table 1 and 0.52 s
+for Table 2, against 0.01 s for the second-order designs). :func:`paper_filter` builds both:
+``order=None`` for the order the table needs, ``order="stated"`` for the order the text states.
 
 **Why second-order sections.** As one transfer function ``b(z)/a(z)`` of degree 26, the Table 1
 filter has coefficients that round-off cannot represent: the roots of the rounded denominator leave

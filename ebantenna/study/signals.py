@@ -37,6 +37,10 @@ class FrequencyResult:
     z_static : float or None
         The static acceleration the Z axis reads, m/s^2: the median over the recordings of
         each recording's mean ``az`` (gravity, where Z points up); None when not measured.
+    steps : dict or None
+        The largest rise between neighbouring contacts of the median dominant frequency
+        (``"median"``) and of its spread (``"spread"``): each ``(from_m, to_m, from_hz,
+        to_hz)``, where a curve leaves its trend at once; None when not measured.
     """
 
     length: float
@@ -46,6 +50,7 @@ class FrequencyResult:
     peak: float
     spread_rises_at: float
     z_static: float | None = None
+    steps: dict | None = None
 
     def to_dict(self) -> dict:
         """The summary numbers, in cm."""
@@ -69,7 +74,25 @@ def compute_frequency(ds, feats, materials) -> FrequencyResult:
     first = int(np.argmax(spread > 3 * np.nanmedian(spread[: max(3, grid.size // 2)])))
     z_static = float(np.median(np.mean(ds.az, axis=1)))
     return FrequencyResult(probe_length(ds), tuple(per_material), grid, spread, peak,
-                           float(grid[first]), z_static)
+                           float(grid[first]), z_static,
+                           {"median": _largest_step(grid, med),
+                            "spread": _largest_step(grid, spread)})
+
+
+def _largest_step(grid, values) -> tuple | None:
+    """The largest rise of ``values`` between neighbouring points of ``grid``:
+    ``(from, to, value_from, value_to)``, or None with fewer than two finite neighbours.
+
+    Examples
+    --------
+    >>> _largest_step(np.array([0.1, 0.2, 0.3, 0.4]), np.array([50.0, 52.0, 80.0, 81.0]))
+    (0.2, 0.3, 52.0, 80.0)
+    """
+    rise = np.diff(np.asarray(values, dtype=float))
+    if not np.any(np.isfinite(rise)):
+        return None
+    i = int(np.nanargmax(rise))
+    return (float(grid[i]), float(grid[i + 1]), float(values[i]), float(values[i + 1]))
 
 
 def render_frequency(result: FrequencyResult, report, figures) -> None:
@@ -106,16 +129,28 @@ def render_frequency(result: FrequencyResult, report, figures) -> None:
                 (f"dominant frequency peaks at {100 * peak:.1f} cm ({peak / L:.2f} L)"
                  if peak < result.grid.max() else
                  f"dominant frequency rises up to the last position measured, {100 * peak:.1f} "
-                 f"cm ({peak / L:.2f} L): no peak inside the range"),
+                 f"cm ({peak / L:.2f} L): no peak inside the range")
+                + _step_words(result, "median", "the median"),
             ],
             [
                 "spread grows near",
                 f"about 30 cm ({100 * printed.SPREAD_RATIO.value:g} % of L)",
-                f"{100 * rises:.1f} cm ({rises / L:.2f} L)",
+                f"above three times its first half's from {100 * rises:.1f} cm "
+                f"({rises / L:.2f} L)" + _step_words(result, "spread", "the spread"),
             ],
         ],
     )
     report.figure(name, "Dominant frequency per material (log scale) and its spread")
+
+
+def _step_words(result: FrequencyResult, key: str, what: str) -> str:
+    """``; its largest rise between neighbouring contacts ...`` of one curve, or ''."""
+    step = (result.steps or {}).get(key)
+    if step is None:
+        return ""
+    a, b, va, vb = step
+    return (f"; {what}'s largest rise between neighbouring contacts: {va:.1f} to {vb:.1f} Hz, "
+            f"{100 * a:.1f} to {100 * b:.1f} cm ({b / result.length:.2f} L)")
 
 
 def _resultant_text(z_static: float | None) -> str:

@@ -99,7 +99,14 @@ def test_fewest_returns_by_hand():
     assert walk_script.part_of("ebantenna/probe.py") == "probe.py"
 
 
-def test_fewest_returns_meet_the_bounds_of_the_walk_as_read():
+@pytest.fixture(scope="module")
+def fewest():
+    """The fewest returns of the walk as read by any merge (Bell(10) merges of ``simulate``'s
+    files, a few seconds): computed once for the tests below."""
+    return walk_script.fewest_returns(walk_script.READING_ORDER)
+
+
+def test_fewest_returns_meet_the_bounds_of_the_walk_as_read(fewest):
     # A part read in r separate runs (other parts between) returns r - 1 times as one file, at
     # least r - g times as g files (each run enters a file; g of them are new), and with every
     # file kept, as often as the walk itself returns to its files
@@ -112,7 +119,6 @@ def test_fewest_returns_meet_the_bounds_of_the_walk_as_read():
     for path in walk_script.count_walk(order)["path"]:
         kept[part_of(path)] = kept.get(part_of(path), 0) + (path in seen)
         seen.add(path)
-    fewest = walk_script.fewest_returns(order)
     assert set(fewest) == set(runs)
     for part, best in fewest.items():
         assert best[1] == runs[part] - 1
@@ -121,15 +127,16 @@ def test_fewest_returns_meet_the_bounds_of_the_walk_as_read():
     assert sum(kept.values()) == walk_script.read_walk()["returns"]
 
 
-def test_the_merges_option_prints_the_fewest_returns(capsys):
+def test_the_merges_option_prints_the_fewest_returns(capsys, monkeypatch, fewest):
+    # the option prints what fewest_returns gives (computed once, in the fixture)
+    monkeypatch.setattr(walk_script, "fewest_returns", lambda order=None: fewest)
     assert walk_script.main(["--merges"]) == 0
     out = capsys.readouterr().out
-    fewest = sum(min(b.values()) for b in walk_script.fewest_returns().values())
-    assert f"fewest returns as read by any merge within parts: {fewest} " in out
+    least = sum(min(b.values()) for b in fewest.values())
+    assert f"fewest returns as read by any merge within parts: {least} " in out
 
 
-def test_the_architecture_page_states_the_fewest_returns_of_a_merge():
-    fewest = walk_script.fewest_returns()
+def test_the_architecture_page_states_the_fewest_returns_of_a_merge(fewest):
     least = {part: min(best.values()) for part, best in fewest.items()}
     page = " ".join((ROOT / "docs" / "architecture.rst").read_text(encoding="utf-8").split())
     assert (f"The fewest today: {sum(least.values())} returns, {least['fem']} in ``fem`` and "

@@ -836,7 +836,8 @@ def _damping_clauses(paired: dict, spreads, carrier: str) -> list[str]:
             own = spreads[others].paired_with(spreads[k])
             clauses.append(f"Row '{k}' switches off '{others}' too: {p}. Against '{others}' "
                            "switched off alone, " + _damping_words(
-                               "the rod's damping, switched off on its own,", own))
+                               f"the rod's damping, switched off where '{others}' is off too,",
+                               own, f" without '{others}'"))
         else:
             clauses.append(f"Row '{k}' switches off '{others}' too: {p}; no row switches off "
                            f"'{others}' alone, so the rod's damping's own share is not "
@@ -844,17 +845,18 @@ def _damping_clauses(paired: dict, spreads, carrier: str) -> list[str]:
     return clauses
 
 
-def _damping_words(subject: str, p) -> str:
+def _damping_words(subject: str, p, where: str = "") -> str:
     """What ``subject`` (the rod's damping switched off, as a row or as its own share) does to
-    the accuracy, from the sign of its paired difference ``p``."""
+    the accuracy, from the sign of its paired difference ``p``; ``where`` names what else the
+    compared rows leave out (the scene the finding holds in)."""
     if p.direction == "lower":
-        return (f"{subject} lowers it too, {p}: in the simulator this agrees with the paper's "
-                "explanation, that the materials differ by how much vibration energy they "
-                "absorb.")
+        return (f"{subject} lowers it too, {p}: in the simulator{where} this agrees with the "
+                "paper's explanation, that the materials differ by how much vibration energy "
+                "they absorb.")
     if p.direction == "higher":
-        return (f"{subject} raises the accuracy, {p}: in the simulator the rods' damping blurs "
-                "the materials rather than separating them, against the paper's explanation "
-                "that they differ by the energy they absorb.")
+        return (f"{subject} raises the accuracy, {p}: in the simulator{where} the rods' damping "
+                "blurs the materials rather than separating them, against the paper's "
+                "explanation that they differ by the energy they absorb.")
     return f"{subject} changes it by {p}, not resolved."
 
 

@@ -11,7 +11,12 @@ from ebantenna.paper.uncertainty import (
     SeedSpread,
 )
 from ebantenna.study import ann_setup, contact_law, learning, material_splits, rod_geometry
-from ebantenna.study.physics_controls import _change_words, _pair_verdict, verdict_from
+from ebantenna.study.physics_controls import (
+    _change_words,
+    _damping_words,
+    _pair_verdict,
+    verdict_from,
+)
 
 G = 16
 N = np.full(G, 3)
@@ -177,3 +182,14 @@ def test_a_crossing_is_not_placed_by_the_last_checkpoint_alone():
     assert long["within_from"] == 1400  # the last interval only: no sign of a sharp crossing
     assert "at epochs 950, 1100, 1250 and 1300, so this test set cannot tell" in text
     assert "within the last" not in text
+
+
+@pytest.mark.parametrize("pair, words", [(UP, "raises the accuracy"), (DOWN, "lowers it too"),
+                                         (FLAT, "not resolved")])
+def test_the_dampings_share_says_in_which_scene_it_was_measured(pair, words):
+    subject = "the rod's damping, switched off where 'unilateral_contact' is off too,"
+    text = _damping_words(subject, pair, " without 'unilateral_contact'")
+    assert words in text
+    if pair is not FLAT:
+        assert "in the simulator without 'unilateral_contact'" in text
+    assert "switched off on its own" not in text

@@ -424,9 +424,8 @@ def _crossing_sharpness(lg: dict, paper: str) -> str:
     return placed + (" The run stops at the first checkpoint whose test accuracy reaches the "
                      "paper's: picked on these test rows, the accuracy it stops at is biased "
                      "upwards. Gradient descent over this many epochs amplifies rounding: "
-                     "arithmetic "
-                     "that differs in its last bits (another BLAS kernel or thread count) "
-                     "follows another path and may reach it at another epoch.")
+                     "arithmetic that differs in its last bits (another BLAS kernel or thread "
+                     "count) follows another path and may reach it at another epoch.")
 
 
 def _long_verdict(result: AnnSetupResult) -> str:

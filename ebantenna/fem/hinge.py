@@ -46,6 +46,10 @@ __all__ = ["CRITERIA", "HingeFit", "transition_position", "fit_hinge_and_tip"]
 #: Ways of locating where the dominant frequency leaves the first mode's branch.
 CRITERIA = ("peak", "zone2", "zone3")
 _THRESHOLDS = {"zone2": 0.9, "zone3": 0.1}
+#: The default search ranges of :func:`fit_hinge_and_tip` (and of a :class:`HingeFit` made
+#: without them): hinge stiffness, N m/rad, and tip mass, kg.
+_STIFFNESS_BOUNDS = (1e-2, 1e3)
+_MASS_BOUNDS = (0.0, 0.02)
 
 
 def transition_position(
@@ -149,8 +153,8 @@ class HingeFit:
     observed: np.ndarray
     predicted: np.ndarray
     criterion: str
-    stiffness_bounds: tuple = (1e-2, 1e3)
-    mass_bounds: tuple = (0.0, 0.02)
+    stiffness_bounds: tuple = _STIFFNESS_BOUNDS
+    mass_bounds: tuple = _MASS_BOUNDS
 
     @property
     def at_bound(self) -> dict:
@@ -194,8 +198,8 @@ def fit_hinge_and_tip(
     observed,
     *,
     criterion: str = "peak",
-    stiffness_bounds: tuple[float, float] = (1e-2, 1e3),
-    mass_bounds: tuple[float, float] = (0.0, 0.02),
+    stiffness_bounds: tuple[float, float] = _STIFFNESS_BOUNDS,
+    mass_bounds: tuple[float, float] = _MASS_BOUNDS,
     grid: int = 7,
     n_elements: int = 48,
     n_jobs: int | None = 1,

@@ -193,6 +193,9 @@ SVM_KEYS = {"random": "svm_random_test_accuracy", "grouped": "svm_grouped_test_a
 
 #: The classifiers of this section, by the key of ``MaterialSplitsResult.measured``.
 CLASSIFIERS = ("svm", "position_aware", "mode_curves")
+#: Each classifier's column heading in the report.
+_HEADINGS = {"svm": "paper's SVM", "position_aware": "position-aware",
+             "mode_curves": "mode curves"}
 
 
 def measured_over_folds(results, positions, kind: str):
@@ -344,7 +347,7 @@ def _render_splits(r: MaterialSplitsResult, report) -> None:
         rows.append([kind, _folds_text(r, kind)]
                     + [str(r.measured[c, kind]) for c in CLASSIFIERS])
     report.table(
-        ["split", "tested", "paper's SVM", "position-aware", "mode curves"],
+        ["split", "tested", *(_HEADINGS[c] for c in CLASSIFIERS)],
         rows,
     )
     report.paragraph(
@@ -487,12 +490,11 @@ def _units_text(r: MaterialSplitsResult) -> str:
     >>> _units_text(r).split(": ")[1]
     'random split'
     """
-    names = {"svm": "paper's SVM", "position_aware": "position-aware", "mode_curves": "mode curves"}
     parts = []
     for (c, kind), m in r.measured.items():
         if c == "svm":
-            effects = [f"{r.measured[k, kind].design_effect:.1f} ({names[k]})" for k in CLASSIFIERS
-                       if hasattr(r.measured.get((k, kind)), "design_effect")]
+            effects = [f"{r.measured[k, kind].design_effect:.1f} ({_HEADINGS[k]})"
+                       for k in CLASSIFIERS if hasattr(r.measured.get((k, kind)), "design_effect")]
             parts.append(f"{kind} split: {m.method}" + (
                 f", design effect {listed(effects)}" if effects else ""))
     return (

@@ -50,7 +50,8 @@ from .watchdog import StreamStalledError
 
 __all__ = ["Connection", "RecordingSession", "UnsafeRigError", "NoContactError",
            "SESSION_FORMAT", "MANIFEST", "CUT_SUPPLY", "file_sha256", "write_atomic",
-           "save_recording", "fallback_paths", "read_manifest", "MANIFEST_KEYS", "ENTRY_KEYS"]
+           "save_recording", "fallback_paths", "read_manifest", "MANIFEST_KEYS", "ENTRY_KEYS",
+           "MAX_LOST", "UNRECORDED_MAX_LOST"]
 
 log = logging.getLogger(__name__)
 
@@ -63,6 +64,12 @@ MANIFEST_KEYS = ("format", "plan", "rig", "search", "recordings")
 ENTRY_KEYS = ("file", "sha256", "touch", "material", "contact", "repetition")
 #: The session folder's lock file (the pid of the process recording into it).
 LOCK = "session.lock"
+#: Largest share of a recording's window that may be lost to bus faults before the touch is
+#: made again: one failed FIFO read (about 5 % of a one-second window) is kept, two are not.
+#: The default of :class:`RecordingSession` and of ``ebantenna record --max-lost``.
+MAX_LOST = 0.06
+#: The limit of a manifest written before the limit was kept in it (the default then).
+UNRECORDED_MAX_LOST = 0.02
 #: The name of a temporary file of :func:`write_atomic`: the prefix, the writer's process id,
 #: a dash and the name of the file it will become.
 _TEMPORARY = re.compile(re.escape(TEMPORARY_PREFIX) + r"(\d+)-(.+)")
@@ -257,7 +264,8 @@ class RecordingSession:
         JSON description of the rig (bus, simulated or not, scene, faults), stored in the manifest.
     max_lost : float
         Largest share of a recording's window that may be missing (samples lost to bus faults),
-        in [0, 1). A touch that loses more is made again. Default 0.02.
+        in [0, 1). A touch that loses more is made again. Default :data:`MAX_LOST` (0.06):
+        one failed FIFO read is kept.
     attempts : int
         Tries of a touch whose recording lost too much, >= 1. Default 5.
     say : callable, optional
@@ -270,7 +278,7 @@ class RecordingSession:
     """
 
     def __init__(self, directory, plan: Plan, connect, *, rig: dict | None = None,
-                 max_lost: float = 0.02, attempts: int = 5, say=None, confirm=None,
+                 max_lost: float = MAX_LOST, attempts: int = 5, say=None, confirm=None,
                  show_progress=None):
         if not isinstance(plan, Plan):
             raise TypeError(f"plan must be a Plan, got {type(plan).__name__}")
@@ -344,7 +352,8 @@ class RecordingSession:
     def _check_same_settings(self) -> None:
         """Refuse to resume with other settings than the session was started with: its
         recordings and its manifest would describe two runs as one."""
-        was = {**self.manifest["rig"], "max_lost": self.manifest.get("max_lost", 0.02)}
+        was = {**self.manifest["rig"],
+               "max_lost": self.manifest.get("max_lost", UNRECORDED_MAX_LOST)}
         now = {**self.rig, "max_lost": self.max_lost}
         changed = sorted(k for k in set(was) | set(now) if was.get(k) != now.get(k))
         if changed:

@@ -420,9 +420,9 @@ class BaseMLP(BaseEstimator):
         try:
             X, X_val, Y, Y_val = train_test_split(
                 X, Y, test_size=self.validation_fraction, random_state=state, stratify=stratify)
-        except ValueError:  # a class too small to stratify: scikit-learn raises, we split
-            X, X_val, Y, Y_val = train_test_split(
-                X, Y, test_size=self.validation_fraction, random_state=state)
+        except ValueError as e:  # a class too small to stratify: raised, as scikit-learn does
+            raise ValueError(f"early_stopping: the validation split cannot hold both classes "
+                             f"in proportion ({e})") from e
         if X.shape[0] < 1 or X_val.shape[0] < 1:
             raise ValueError("early_stopping needs at least one training and one "
                              "validation sample")

@@ -77,6 +77,11 @@ class ClassificationResult:
         What ended a network's training: ``"epoch cap"`` (it ran ``max_iter`` epochs),
         ``"validation"`` (the validation check) or ``"tolerance"`` (the training loss stopped
         falling by ``tol``); None for the SVM.
+    routes : dict of str to dict, optional
+        Per split, how many rows each way of classifying took, where a classifier has more than
+        one (:func:`~ebantenna.paper.mode_curves.classify_materials_by_mode_curves`: ``"two
+        peaks"``, ``"dominant frequency"``, ``"most common material"``); None where every row
+        takes the same way.
     """
 
     method: str
@@ -86,6 +91,7 @@ class ClassificationResult:
     model: object = None
     tested: dict | None = None
     stopped_by: str | None = None
+    routes: dict | None = None
 
     def correct(self, split: str = "test") -> np.ndarray:
         """Whether each recording of ``split`` was classified right (row order of
@@ -205,7 +211,20 @@ def _distances(distances, n) -> np.ndarray:
     return d
 
 
-def _label_order(y, labels):
+def label_order(y, labels):
+    """The class order of the confusion matrices: ``labels`` as given, which must list every
+    material of ``y`` (a row whose label it lacks would drop out of every matrix while the
+    accuracy still counted it as tested), or the sorted materials of ``y``.
+
+    Examples
+    --------
+    >>> label_order(["wood", "al", "wood"], None)
+    ('al', 'wood')
+    >>> label_order(["wood", "al"], ["al", "Wood"])
+    Traceback (most recent call last):
+    ...
+    ValueError: labels must list every material; missing ['wood']
+    """
     if labels is None:
         return tuple(np.unique(y).tolist())
     labels = tuple(labels)
@@ -236,7 +255,8 @@ def classify_materials_svm(X, materials, *, test_fraction=MATERIAL_SVM.test_frac
     seed : int, default=0
         Seed of the split.
     labels : sequence of str, optional
-        Row order of the confusion matrices (default: sorted).
+        Row order of the confusion matrices (default: sorted); it must list every material
+        of ``materials`` (:func:`~ebantenna.paper.experiments.label_order`).
     normalise : bool, default=True
         Divide ``X`` by its largest magnitude, as the paper did, taken over the training rows
         only (:func:`~ebantenna.paper.protocol.normalise_by_max`).
@@ -271,7 +291,7 @@ def classify_materials_svm(X, materials, *, test_fraction=MATERIAL_SVM.test_frac
     y = _labels(materials, X.shape[0])
     check_in_range("test_fraction", test_fraction, 0.0, 1.0)
     check_positive("C", C)
-    order = _label_order(y, labels)
+    order = label_order(y, labels)
     if split is None:
         train, test = train_test_split(np.arange(X.shape[0]), test_size=test_fraction,
                                        random_state=seed, stratify=y)
@@ -347,7 +367,7 @@ def classify_materials_ann(X, materials, *, hidden_layer_sizes=MATERIAL_ANN.hidd
     X = _features(X)
     y = _labels(materials, X.shape[0])
     check_fractions(fractions)
-    order = _label_order(y, labels)
+    order = label_order(y, labels)
     train, val, test = three_way_split(X.shape[0], fractions, seed, stratify=y)
     if normalise:  # the scale from the rows the network learns and stops on, never the test's
         X = normalise_by_max(X, np.concatenate([train, val]))

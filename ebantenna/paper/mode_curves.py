@@ -26,7 +26,7 @@ import numpy as np
 
 from .._validate import check_array, check_per_row, check_split
 from .estimators import MultiModeDistanceEstimator
-from .experiments import ClassificationResult, confusions_and_tested
+from .experiments import ClassificationResult, confusions_and_tested, label_order
 
 __all__ = ["ModeCurveClassifier", "classify_materials_by_mode_curves"]
 
@@ -153,13 +153,17 @@ def classify_materials_by_mode_curves(peaks, dominant, materials, positions, spl
     split : (ndarray, ndarray)
         Train and test row indices (:mod:`ebantenna.paper.splits`).
     labels : sequence of str, optional
-        Row order of the confusion matrices (default: sorted).
+        Row order of the confusion matrices (default: sorted); it must list every material
+        of ``materials`` (:func:`~ebantenna.paper.experiments.label_order`).
 
     Returns
     -------
     ClassificationResult
         Method ``'mode curves'``, confusion matrices for 'train' and 'test'; the model is the
-        two-peak :class:`ModeCurveClassifier`.
+        two-peak :class:`ModeCurveClassifier`. ``routes`` counts, per split, the rows placed
+        by their two peaks, those placed by the dominant frequency alone, and those given the
+        most common training material (no frequency at all, or no dominant-frequency curve to
+        place them on): all of them count in the accuracy.
     """
     peaks = check_array("peaks", peaks, ndim=2, finite=False)
     dominant = check_array("dominant", dominant, ndim=1, finite=False)
@@ -167,33 +171,37 @@ def classify_materials_by_mode_curves(peaks, dominant, materials, positions, spl
     d = check_array("positions", positions, ndim=1)
     check_per_row(peaks.shape[0], "peaks", dominant=dominant, materials=y, positions=d)
     train, test = check_split(split, peaks.shape[0])
-    order = tuple(np.unique(y).tolist()) if labels is None else tuple(labels)
+    order = label_order(y, labels)
     two = np.all(np.isfinite(peaks), axis=1) & np.all(peaks > 0, axis=1)
     one = np.isfinite(dominant) & (dominant > 0)
+    if not np.any(two[train]):
+        raise ValueError("peaks: no training row has two peaks; the mode curves need them")
     start = time.perf_counter()
     fit_two = train[two[train]]
     model = ModeCurveClassifier().fit(peaks[fit_two], y[fit_two], d[fit_two])
     seconds = time.perf_counter() - start
-    fallback = None
-
+    # a row lacking two peaks is placed on one curve per material by its dominant frequency,
+    # from the training rows that have one; a row with no frequency at all (or with no training
+    # row to learn one curve from) gets the most common training material: a guess, counted
+    fit_one = train[one[train]]
+    fallback = (ModeCurveClassifier().fit(dominant[fit_one, None], y[fit_one], d[fit_one])
+                if np.any(one[~two]) and np.unique(y[fit_one]).size >= 2 else None)
     values, counts = np.unique(y[train], return_counts=True)
     guess = values[np.argmax(counts)]
 
     def predict(rows):
-        nonlocal fallback
-        out = np.full(rows.size, guess, dtype=object)  # a row with no frequency at all: a guess
+        out = np.full(rows.size, guess, dtype=object)
         out[two[rows]] = model.predict(peaks[rows[two[rows]]])
-        rest = rows[~two[rows]]
-        if rest.size:
-            if fallback is None:
-                fit_one = train[one[train]]
-                fallback = ModeCurveClassifier().fit(
-                    dominant[fit_one, None], y[fit_one], d[fit_one]
-                )
-            known = one[rest]
-            out[np.flatnonzero(~two[rows])[known]] = fallback.predict(dominant[rest[known], None])
-        return out
+        alone = ~two[rows] & one[rows] & (fallback is not None)
+        if np.any(alone):
+            out[alone] = fallback.predict(dominant[rows[alone], None])
+        routes = {"two peaks": int(two[rows].sum()), "dominant frequency": int(alone.sum())}
+        routes["most common material"] = rows.size - sum(routes.values())
+        return out, routes
 
-    predicted = {"train": predict(train), "test": predict(test)}
-    confusions, tested = confusions_and_tested(y, predicted, {"train": train, "test": test}, order)
-    return ClassificationResult("mode curves", order, confusions, seconds, model, tested)
+    parts = {"train": train, "test": test}
+    done = {k: predict(rows) for k, rows in parts.items()}
+    predicted = {k: out for k, (out, _) in done.items()}
+    confusions, tested = confusions_and_tested(y, predicted, parts, order)
+    return ClassificationResult("mode curves", order, confusions, seconds, model, tested,
+                                routes={k: r for k, (_, r) in done.items()})

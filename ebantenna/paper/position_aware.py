@@ -29,7 +29,7 @@ from sklearn.utils.validation import check_is_fitted, validate_data
 from .._validate import check_array, check_per_row, check_positive, check_split
 from ._ovr_svm import OneVsRestSVC, whole_kernel_svc
 from .estimators import FrequencyDistanceEstimator, MultiModeDistanceEstimator
-from .experiments import ClassificationResult, confusions_and_tested
+from .experiments import ClassificationResult, confusions_and_tested, label_order
 from .protocol import normalise_by_max
 
 __all__ = ["PositionAwareMaterialClassifier", "classify_materials_position_aware"]
@@ -251,7 +251,8 @@ def classify_materials_position_aware(
     C, gamma
         Of the SVM.
     labels : sequence of str, optional
-        Row order of the confusion matrices (default: sorted).
+        Row order of the confusion matrices (default: sorted); it must list every material
+        of ``materials`` (:func:`~ebantenna.paper.experiments.label_order`).
 
     Returns
     -------
@@ -280,7 +281,7 @@ def classify_materials_position_aware(
     check_per_row(X.shape[0], "X", materials=y, positions=d)
     train, test = check_split(split, X.shape[0])
     X = normalise_by_max(X, train)  # the scale from the training rows only
-    order = tuple(np.unique(y).tolist()) if labels is None else tuple(labels)
+    order = label_order(y, labels)
     start = time.perf_counter()
     clf = PositionAwareMaterialClassifier(C=C, gamma=gamma)
     clf.fit(np.column_stack([d[train], X[train]]), y[train])

@@ -204,7 +204,9 @@ def blocked_split(positions, *, test_fraction: float = 0.2, seed: int = 0):
 def split_rows(kind: str, labels, positions, *, seed: int = 0, test_fraction: float = 0.2):
     """One of :data:`SPLITS` by name, with the test share the paper used.
 
-    ``grouped`` holds out every ``round(1 / test_fraction)``-th position.
+    ``grouped`` holds out every ``round(1 / test_fraction)``-th position: the share held out is
+    that of the rounded step (0.3 holds out every third position), and ``test_fraction`` above
+    2/3 (a step of 1, every position) is refused.
 
     Parameters
     ----------
@@ -238,7 +240,11 @@ def split_rows(kind: str, labels, positions, *, seed: int = 0, test_fraction: fl
         return random_split(labels, test_fraction=test_fraction, seed=seed)
     if kind == "grouped":
         check_in_range("test_fraction", test_fraction, 0.0, 1.0)
-        return grouped_split(positions, every=max(2, round(1 / test_fraction)), seed=seed)
+        if round(1 / test_fraction) < 2:  # every position held out: nothing left to train on
+            raise ValueError(f"test_fraction must be at most 2/3 for the grouped split (it holds "
+                             f"out every round(1/test_fraction)-th position, at least every "
+                             f"second), got {test_fraction!r}")
+        return grouped_split(positions, every=round(1 / test_fraction), seed=seed)
     return blocked_split(positions, test_fraction=test_fraction, seed=seed)
 
 

@@ -580,7 +580,8 @@ def filtered_exponentials(coef, rate, sos, internal_rate: float):
     rate it runs at (for the chip's low-pass filter, the ``sos`` and ``internal_rate`` of
     :class:`~ebantenna.simulate.effects.LowPassFilter`). Input sample ``n`` is
     ``u_n = Im(sum_k C_k z_k^n)`` with ``z_k = exp(rate_k / f_i)`` and ``f_i`` the internal
-    rate; the filter ``H(w) = B(w) / A(w)`` in ``w = z^-1`` starts at rest. For one exponential
+    rate; the filter ``H(z) = B(1/z) / A(1/z)``, with ``B`` and ``A`` polynomials in
+    ``w = z^-1`` (the difference equation's coefficients), starts at rest. For one exponential
     the output's z-transform ``B(w) / (A(w) (1 - z_k w))`` splits into partial fractions over
     the input's pole and the filter's poles ``p_j``:
 

@@ -463,3 +463,14 @@ def test_user_set_weights_on_a_fresh_estimator_take_one_gd_step():
     atol = rounding(X, (7, 5), max_abs(theirs.coefs_))
     for a, b in zip(fresh.coefs_, theirs.coefs_, strict=True):
         np.testing.assert_allclose(a, b, rtol=0, atol=atol)
+
+
+def test_early_stopping_refuses_a_class_too_small_to_stratify_as_scikit_learn_does():
+    # one member of a class cannot be split in proportion: scikit-learn raises; a silent
+    # unstratified split could leave the validation rows without that class
+    X = np.random.default_rng(0).normal(size=(40, 3))
+    y = np.array([0] * 39 + [1])
+    with pytest.raises(ValueError, match="least populated"):
+        SkClassifier(early_stopping=True, max_iter=5).fit(X, y)
+    with pytest.raises(ValueError, match="early_stopping: the validation split cannot hold"):
+        MLPClassifier((3,), early_stopping=True, max_iter=5).fit(X, y)

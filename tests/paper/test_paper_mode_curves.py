@@ -69,3 +69,43 @@ def test_bad_input_names_the_parameter():
         clf.curves_["al"].cost(f, weights=[1.0])
     with pytest.raises(ValueError, match="materials and positions"):
         classify_materials_by_mode_curves(f, f[:, 0], y[:-1], d, (np.arange(3), np.arange(3)))
+
+
+def test_every_row_is_counted_by_the_way_it_was_classified():
+    # rows lacking two peaks take the dominant frequency; rows with no frequency at all take
+    # the most common training material; routes counts each way, and every row is in the matrix
+    f, y, d = _calibration()
+    peaks, dominant = f.copy(), f[:, 0].copy()
+    peaks[::5, 1] = np.nan
+    dominant[::10] = np.nan  # every tenth row: no peak at all (a subset of the fifths)
+    test = np.flatnonzero(np.isin(d, np.unique(d)[1::4]))
+    train = np.setdiff1d(np.arange(d.size), test)
+    res = classify_materials_by_mode_curves(peaks, dominant, y, d, (train, test))
+    for split, rows in (("train", train), ("test", test)):
+        routes = res.routes[split]
+        two = np.isfinite(peaks[rows, 1])
+        none = ~two & ~np.isfinite(dominant[rows])
+        assert routes == {"two peaks": two.sum(), "dominant frequency": (~two & ~none).sum(),
+                          "most common material": none.sum()}
+        assert res.confusions[split].sum() == rows.size
+    # no training row has a dominant frequency: the rows lacking two peaks are guesses, counted
+    res = classify_materials_by_mode_curves(peaks, np.full(d.size, np.nan), y, d, (train, test))
+    assert res.routes["test"]["dominant frequency"] == 0
+    assert res.routes["test"]["most common material"] == np.isnan(peaks[test, 1]).sum()
+    assert res.confusions["test"].sum() == test.size
+
+
+def test_labels_must_list_every_material():
+    # a label missing from labels would drop its rows from the matrices while the accuracy
+    # still counted them tested (a one-letter typo turned 0.875 into 1.0)
+    f, y, d = _calibration()
+    test = np.flatnonzero(np.isin(d, np.unique(d)[1::4]))
+    train = np.setdiff1d(np.arange(d.size), test)
+    with pytest.raises(ValueError, match=r"labels must list every material; missing \['pvc'\]"):
+        classify_materials_by_mode_curves(f, f[:, 0], y, d, (train, test),
+                                          labels=["al", "brass", "PVC"])
+    res = classify_materials_by_mode_curves(f, f[:, 0], y, d, (train, test),
+                                            labels=["pvc", "brass", "al"])
+    assert res.labels == ("pvc", "brass", "al") and res.confusions["test"].sum() == test.size
+    with pytest.raises(ValueError, match="peaks: no training row has two peaks"):
+        classify_materials_by_mode_curves(np.full_like(f, np.nan), f[:, 0], y, d, (train, test))

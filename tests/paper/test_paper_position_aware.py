@@ -74,3 +74,9 @@ def test_bad_input():
         PositionAwareMaterialClassifier().fit(np.column_stack([d, X]), np.full(d.size, "al"))
     with pytest.raises(ValueError, match="one entry per row"):
         classify_materials_position_aware(X, y[:-1], d, X[:, :2], X[:, 0], ([0], [1]))
+    peaks = np.column_stack([10 + 30 * d, 80 - 50 * d])
+    split = grouped_split(d, every=4, seed=0)
+    # a material missing from labels would drop its rows from the matrices, not from the tested
+    with pytest.raises(ValueError, match=r"labels must list every material; missing \['pvc'\]"):
+        classify_materials_position_aware(X, y, d, peaks, peaks[:, 0], split,
+                                          labels=["al", "PVC"])

@@ -87,11 +87,21 @@ def test_random_split_is_the_papers_stratified_80_20():
         (lambda: blocked_split([0.1, 0.2], test_fraction=1.5), "test_fraction"),
         (lambda: split_rows("shuffled", [0, 1], [0.1, 0.2]), "kind"),
         (lambda: grouped_split([0.1, np.nan, 0.3]), "positions"),
+        # above 2/3 the rounded step is 1: every position would be held out (it gave 0.5)
+        (lambda: split_rows("grouped", np.zeros(6), np.arange(6.0), test_fraction=0.7),
+         "test_fraction must be at most 2/3"),
     ],
 )
 def test_bad_input_names_the_parameter(call, match):
     with pytest.raises(ValueError, match=match):
         call()
+
+
+def test_the_grouped_split_holds_out_the_share_of_its_rounded_step():
+    positions = np.repeat(np.arange(12.0), 2)
+    for fraction, every in ((0.2, 5), (0.3, 3), (0.5, 2), (2 / 3, 2)):
+        test = split_rows("grouped", np.zeros(24), positions, test_fraction=fraction)[1]
+        assert np.unique(positions[test]).size in (12 // every, -(-12 // every)), fraction
 
 
 @pytest.mark.parametrize("kind", ["random", "grouped", "blocked"])

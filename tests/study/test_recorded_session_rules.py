@@ -15,7 +15,7 @@ import pytest
 
 from ebantenna.cli import main
 from ebantenna.device.plan import Plan
-from ebantenna.device.recording_session import LOCK, MANIFEST, RecordingSession
+from ebantenna.device.recording_session import LOCK, MANIFEST, MAX_LOST, RecordingSession
 from ebantenna.device.simulated.touches import simulated_connect
 from ebantenna.simulate import builtin_scene, simulate
 from ebantenna.study.recorded import assemble_dataset
@@ -90,6 +90,11 @@ def test_record_cli_dry_run_exit_codes_and_servos_released(tmp_path, capsys):
     assert summary["servos_released"] is True and summary["saved"] == 2
     manifest = json.loads((tmp_path / "s" / MANIFEST).read_text())
     assert manifest["max_lost"] == 0.06  # record's default, kept in the session
+    # the function's default is the command's: a session recorded through the API keeps the
+    # same touches as one recorded by 'ebantenna record'
+    api = RecordingSession(tmp_path / "api", PLAN, simulated_connect(builtin_scene("ideal"),
+                                                                     simulate))
+    assert api.max_lost == MAX_LOST == 0.06
     assert main(["record", "--simulated", "--plan", plan, "--out", out, "--dry-run",
                  "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["missing"] == 0

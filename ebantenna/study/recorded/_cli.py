@@ -13,7 +13,6 @@ EXIT_SERVOS_POWERED = 3
 #: ``record``'s default limit of the share of a window lost to bus faults: a failed FIFO read
 #: restarts the FIFO and costs about 5 % of a one-second window (measured on the simulated bus),
 #: so one is kept and two are made again.
-MAX_LOST = 0.06
 
 
 def register(subparsers) -> None:
@@ -54,6 +53,7 @@ def _add_record(subparsers) -> None:
     """The ``record`` command."""
     from ...cli import seed_argument
     from ...device._cli import device_number
+    from ...device.recording_session import MAX_LOST
 
     rec = subparsers.add_parser(
         "record",
@@ -402,7 +402,7 @@ def run_from_recordings(args) -> int:
 
     if args.quick:
         raise ValueError("--quick builds the simulated data set; not with --from-recordings")
-    from ...device.recording_session import MANIFEST, read_manifest
+    from ...device.recording_session import MANIFEST, UNRECORDED_MAX_LOST, read_manifest
 
     manifest = read_manifest(os.path.join(args.from_recordings, MANIFEST))
     plan = manifest["plan"]
@@ -422,7 +422,7 @@ def run_from_recordings(args) -> int:
                                                ["samples_interpolated"])),
                "checksum_sha256": data.metadata["checksum_sha256"],
                "touches_planned": touches, "complete": saved == touches,
-               "max_lost": manifest.get("max_lost", 0.02),
+               "max_lost": manifest.get("max_lost", UNRECORDED_MAX_LOST),
                "seconds": round(time.perf_counter() - start, 3)}
     if args.json:
         print_json(summary)

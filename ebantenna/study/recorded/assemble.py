@@ -39,7 +39,13 @@ from ... import __version__
 from ..._files import inside
 from ..._validate import check_in_range, check_path, check_positive, output_file_in
 from ...device.plan import Plan
-from ...device.recording_session import MANIFEST, file_sha256, read_manifest, write_atomic
+from ...device.recording_session import (
+    MANIFEST,
+    UNRECORDED_MAX_LOST,
+    file_sha256,
+    read_manifest,
+    write_atomic,
+)
 from ...paper.protocol import DATASET
 from ...recording import Recording
 from ...simulate import Dataset
@@ -67,7 +73,8 @@ def assemble_dataset(directory, out_dir=None, *, max_lost: float | None = None,
     max_lost : float, optional
         Largest share of a recording's window that may be missing, in [0, 1). Default the
         session's own limit (``max_lost`` in its manifest, the one ``record`` kept its
-        recordings by; 0.02 for a session that does not record it).
+        recordings by; :data:`~ebantenna.device.recording_session.UNRECORDED_MAX_LOST`, 0.02, for a
+        session that does not record it).
     rate_tolerance : float
         Largest relative difference between a recording's estimated sample rate and the
         configured one. Default 0.01 (the MPU-6050's clock is specified to 1 %).
@@ -86,7 +93,7 @@ def assemble_dataset(directory, out_dir=None, *, max_lost: float | None = None,
     manifest_path = inside(directory, MANIFEST, str(directory / MANIFEST))
     manifest = read_manifest(manifest_path)
     if max_lost is None:  # the limit the session recorded with
-        max_lost = manifest.get("max_lost", 0.02)
+        max_lost = manifest.get("max_lost", UNRECORDED_MAX_LOST)
     max_lost = check_in_range("max_lost", max_lost, 0.0, 1.0, low_inclusive=True)
     rate_tolerance = check_positive("rate_tolerance", rate_tolerance, maximum=1.0)
     if out_dir is not None:

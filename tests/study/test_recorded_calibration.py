@@ -90,6 +90,8 @@ def test_paper_scene_clamped_hinge_is_reported_not_identifiable_not_at_a_bound(p
     assert "clamp" in cal.not_identifiable["hinge_stiffness"]
     assert [str(w.message).split()[0] for w in caught] == ["hinge_stiffness"]
     assert cal.to_dict()["hinge_stiffness_interval95"][1] is None
+    # no value for what the recordings do not determine: the fit is where the optimiser stopped
+    assert cal.to_dict()["hinge_stiffness_n_m_per_rad"] is None
     assert cal.scene(builtin_scene("paper")).hinge == "clamped"
 
 
@@ -126,6 +128,25 @@ def test_modal_rig_recovered_within_its_stated_uncertainty(rig):
         lo, hi = cal.interval(name)
         assert lo <= truth <= hi, (name, lo, truth, hi)
     assert cal.model == "probe arrested by a pin"
+
+
+def test_a_probe_without_a_tip_mass_is_bounded_from_above_not_given_the_bound(tmp_path):
+    # Recordings of a probe with no tip mass: the fit sits on the search's lower bound (0 kg).
+    # That is the optimiser's bound, not an estimate: the tip mass is reported not identifiable,
+    # with "at most" its interval's upper end, and no value in the JSON; the interval holds 0.
+    scene = Scene(name="no-tip", probe=Probe(tip_mass=0.0), hinge=TRUE_HINGE,
+                  effects=(StructuralDamping(), SensorNoise()))
+    ds = record(tmp_path, scene, "no-tip")
+    cal, caught = calibrated(ds, RIG.with_(hinge="clamped", probe=Probe(tip_mass=0.001)))
+    assert "tip_mass" in [str(w.message).split()[0] for w in caught]
+    assert "only from above" in cal.not_identifiable["tip_mass"]
+    lo, hi = cal.interval("tip_mass")
+    assert lo == 0.0 < hi
+    d = cal.to_dict()
+    assert d["tip_mass_kg"] is None and d["tip_mass_interval95"] == [0.0, hi]
+    for name, truth in (("hinge_stiffness", TRUE_HINGE), ("loss_factor", RIG.probe.loss_factor)):
+        lo, hi = cal.interval(name)
+        assert cal.identifiable(name) and lo <= truth <= hi, (name, lo, truth, hi)
 
 
 def test_loss_factor_without_tube_damping_in_the_model_is_not_identifiable(rig):

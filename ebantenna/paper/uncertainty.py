@@ -322,9 +322,11 @@ UNITS = {
 }
 
 #: Names of the interval methods, as ``summary.json`` and the report give them.
-METHOD_DESIGN_EFFECT = "Wilson at the design-effect sample size, clustered by {unit}"
+METHOD_DESIGN_EFFECT = ("Wilson at the design-effect sample size with Student's quantile on the "
+                        "{unit}s less one, clustered by {unit}")
 METHOD_FOLDS = "t interval over the {folds} folds (unit: {unit})"
-METHOD_PAIRED = "paired difference, cluster-robust normal interval over {unit}s"
+METHOD_PAIRED = ("paired difference, cluster-robust interval with Student's quantile over "
+                 "{unit}s")
 METHOD_PAIRED_FOLDS = ("paired difference, the folds' mean, t interval over the {folds} folds "
                        "(unit: {unit})")
 
@@ -521,7 +523,12 @@ class ClusteredAccuracy:
     design_effect, effective_n : float
         :func:`design_effect` and ``n_recordings / design_effect``.
     ci95 : (float, float)
-        Wilson's interval at the effective sample size (``method``).
+        Wilson's interval at the effective sample size, its normal quantile replaced by
+        Student's on ``G - 1`` degrees of freedom (Korn & Graubard 1998, *Survey
+        Methodology* 24:193): the design effect is estimated from ``G`` clusters, and a few of
+        them (four positions) must widen the interval as the t interval over them does. Clusters
+        of one recording each are independent recordings: the interval is then Wilson's itself.
+        One cluster bounds nothing: (0, 1).
     recording_ci95 : (float, float)
         Wilson's interval counting every recording as independent, for comparison only.
     method : str
@@ -532,7 +539,7 @@ class ClusteredAccuracy:
     >>> a.estimate, a.n_units, round(a.design_effect, 2)
     (0.65, 4, 3.68)
     >>> [round(x, 3) for x in a.ci95], [round(x, 3) for x in a.recording_ci95]
-    ([0.275, 0.901], [0.433, 0.819])
+    ([0.155, 0.949], [0.433, 0.819])
     """
 
     def __init__(self, k, n, unit: str):
@@ -544,7 +551,12 @@ class ClusteredAccuracy:
         self.estimate = self.correct / self.n_recordings
         self.design_effect = design_effect(k, n)
         self.effective_n = self.n_recordings / self.design_effect
-        self.ci95 = _wilson(self.estimate, self.effective_n)
+        if self.n_units == self.n_recordings:  # independent recordings: Wilson's itself
+            self.ci95 = _wilson(self.estimate, self.effective_n)
+        elif self.n_units < 2:
+            self.ci95 = (0.0, 1.0)
+        else:
+            self.ci95 = _wilson(self.estimate, self.effective_n, _quantile95(self.n_units))
         self.recording_ci95 = accuracy_interval(self.correct, self.n_recordings)
         self.method = METHOD_DESIGN_EFFECT.format(unit=unit)
 
@@ -1017,7 +1029,7 @@ def format_clustered(a) -> str:
     Examples
     --------
     >>> format_clustered(ClusteredAccuracy([5, 0, 5, 3], [5, 5, 5, 5], "position"))
-    '65.0 % (n = 20 in 4 positions, 95 % CI 27.5-90.1)'
+    '65.0 % (n = 20 in 4 positions, 95 % CI 15.5-94.9)'
     """
     if not isinstance(a, ClusteredAccuracy | FoldAccuracy):
         raise TypeError(f"a must be a ClusteredAccuracy or a FoldAccuracy, got {type(a).__name__}")

@@ -193,12 +193,20 @@ def repetitions_sentence(repetitions: dict) -> str:
     grow = a1.n_recordings / a0.n_recordings
     narrow = _width(a0.ci95) / _width(a1.ci95)
     independent = _width(a0.recording_ci95) / _width(a1.recording_ci95)
-    buys = ("less precision than their count suggests" if narrow < independent else
+    # what the repetitions buy is their effective number (the recordings over the design
+    # effect) against their count; the widths, printed beside it, also carry the quantile.
+    # Accuracies over folds have no effective number: their widths are compared
+    effective = all(hasattr(a, "effective_n") for a in (a0, a1))
+    gain = a1.effective_n / a0.effective_n if effective else None
+    less = gain < grow if effective else narrow < independent
+    buys = ("less precision than their count suggests" if less else
             "at least the precision their count suggests")
+    number = (f" and their effective number on the position (the recordings over the design "
+              f"effect) {gain:.3g}-fold" if effective else "")
     return text + (
-        f"The recordings grow {grow:.3g}-fold; the interval counting every recording as "
-        f"independent {_fold(independent)}, the interval on the position {_fold(narrow)}: "
-        f"on whole held-out positions, these repetitions buy {buys}."
+        f"The recordings grow {grow:.3g}-fold{number}; the interval counting every recording as "
+        f"independent {_fold(independent)}, the interval on the position {_fold(narrow)}: on "
+        f"whole held-out positions, these repetitions buy {buys}."
     )
 
 

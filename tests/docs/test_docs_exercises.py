@@ -665,8 +665,16 @@ def _alt_ex15(ns):
     flat = y.ravel()  # wrong: recordings resampled one by one, as if independent
     single = np.random.default_rng(2024).integers(0, big_n, size=(10_000, big_n))
     boot_slip = np.quantile(flat[single].mean(axis=1), [0.025, 0.975])
+    def wilson_of(q, size):  # Wilson's interval of a proportion q, by its closed form
+        centre, half = q + z * z / (2 * size), z * np.sqrt(q * (1 - q) / size
+                                                          + z * z / (4 * size * size))
+        return (centre - half) / (1 + z * z / size), (centre + half) / (1 + z * z / size)
+
+    def design_effect_interval(c):  # the exercise's: Wilson with z at N / deff
+        return wilson_of(c.estimate, c.effective_n)
+
     covered = np.array([
-        [lo <= truth <= hi for lo, hi in (c.recording_ci95, c.ci95)]
+        [lo <= truth <= hi for lo, hi in (c.recording_ci95, design_effect_interval(c))]
         for c in (ClusteredAccuracy(d.sum(axis=1), np.full(g, m), "position")
                   for d in ns["designs"])])
     coverage = covered.mean(axis=0)

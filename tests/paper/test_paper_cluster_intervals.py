@@ -73,9 +73,33 @@ def test_whole_clusters_right_or_wrong_give_the_cluster_size():
     k, n = np.array([4, 0, 4, 4, 0]), np.full(5, 4)
     assert design_effect(k, n) == pytest.approx(4.0)
     a = ClusteredAccuracy(k, n, "position")
-    # five independent units: Wilson's interval of 3 of 5
-    assert a.ci95 == pytest.approx(accuracy_interval(3, 5), abs=1e-15)
+    # five units, each one observation: Wilson's interval of 3 of 5, with Student's quantile
+    # on 4 degrees of freedom (the design effect is estimated from five clusters), written out
+    q = student_t.ppf(0.975, 4)
+    centre, scale = 0.6 + q * q / 10, 1 + q * q / 5
+    half = q * np.sqrt(0.6 * 0.4 / 5 + q * q / 100)
+    assert a.ci95 == pytest.approx(((centre - half) / scale, (centre + half) / scale), abs=1e-15)
+    assert a.ci95[0] < accuracy_interval(3, 5)[0] and a.ci95[1] > accuracy_interval(3, 5)[1]
 
+
+def test_few_clusters_widen_the_interval_as_the_t_interval_over_them_does():
+    # four positions (a recorded quick design): the normal quantile gave 57.9-84.6 %, where the
+    # t interval over the positions' own accuracies is 47.3-99.3 %; Student's quantile on three
+    # degrees of freedom widens it towards that, and with many clusters it is the normal one
+    def wilson(p, n, q):
+        centre, scale = p + q * q / (2 * n), 1 + q * q / n
+        half = q * np.sqrt(p * (1 - p) / n + q * q / (4 * n * n))
+        return (centre - half) / scale, (centre + half) / scale
+
+    k, n = np.array([9, 12, 14, 9]), np.full(4, 15)
+    for g in (1, 50):
+        a = ClusteredAccuracy(np.tile(k, g), np.tile(n, g), "position")
+        q = student_t.ppf(0.975, 4 * g - 1)
+        assert a.ci95 == pytest.approx(wilson(a.estimate, a.effective_n, q), abs=1e-14)
+        normal = wilson(a.estimate, a.effective_n, 1.959963984540054)
+        assert a.ci95[0] < normal[0] and a.ci95[1] > normal[1]
+    assert (q - 1.96) / 1.96 < 0.01  # 200 positions: within 1 % of the normal quantile
+    assert "Student's quantile" in a.method
 
 def test_all_right_takes_the_largest_design_effect_the_design_allows():
     assert design_effect([3, 3, 3], [3, 3, 3]) == 3.0

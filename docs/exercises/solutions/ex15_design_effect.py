@@ -3,6 +3,7 @@
 import math
 
 import numpy as np
+from scipy.stats import t as student_t
 
 from ebantenna.ml.metrics import accuracy_interval
 from ebantenna.paper.uncertainty import ClusteredAccuracy, cluster_bootstrap, design_effect
@@ -65,10 +66,14 @@ print(f"ICC {icc:.3f}: 1 + (m - 1) ICC = {deff_icc:.3f}; design effect {deff:.3f
 icc_g = (ssb / n_positions - msw) / (ssb / n_positions + (m - 1) * msw)
 assert abs(1 + (m - 1) * icc_g - deff) < 1e-12 * deff  # a few roundings of sums of squares
 assert deff < deff_icc < deff * n_positions / (n_positions - 1)
-# the package: the same ratio in whole numbers; its interval is Wilson's at N / deff
+# the package: the same ratio in whole numbers; its interval is Wilson's at N / deff with
+# Student's quantile on G - 1 = 19 degrees of freedom in place of z (the design effect is
+# estimated from 20 positions), a little wider than the one above
 assert abs(design_effect(k, n) / deff - 1) < 1e-12  # 20 rounded squares against exact integers
+t_19 = float(student_t.ppf(0.975, n_positions - 1))
 clustered = ClusteredAccuracy(k, n, "position")
-assert np.allclose(clustered.ci95, (eff_low, eff_high), rtol=0, atol=1e-12)
+assert np.allclose(clustered.ci95, wilson(p_hat, n_eff, t_19), rtol=0, atol=1e-12)
+assert clustered.ci95[0] < eff_low and clustered.ci95[1] > eff_high
 assert eff_high - eff_low > 1.5 * (rec_high - rec_low)  # far wider than the recordings say
 
 # 3. The cluster bootstrap by hand: draw 20 positions with replacement, whole, 10000 times, and
@@ -122,7 +127,8 @@ for design in designs:
         margin = min(margin, abs(lo - true_accuracy), abs(hi - true_accuracy))
     for size in (N, N / d):
         shift = max(shift, *np.abs(np.subtract(wilson(p, size, 1.96), wilson(p, size))))
-    assert np.allclose(ClusteredAccuracy(kd, n, "position").ci95, wilson(p, N / d), atol=1e-12)
+    assert np.allclose(ClusteredAccuracy(kd, n, "position").ci95, wilson(p, N / d, t_19),
+                       atol=1e-12)
 mean_deff = float(np.mean(deffs))
 coverage_recording = covered["recording"] / len(designs)
 coverage_deff = covered["deff"] / len(designs)

@@ -199,6 +199,11 @@ ERROR_STATISTICS = {
 #: intervals are the same on every run; 2000 resamples put the 2.5 % and 97.5 % quantiles of the
 #: bootstrap distribution on 50 draws each (Davison & Hinkley 1997, section 5.2.3).
 BOOTSTRAP_RESAMPLES, BOOTSTRAP_SEED = 2000, 0
+#: Fewest test positions for a 95 % interval of :func:`error_entry`. A bootstrap over ``G``
+#: positions never leaves the range of their values, and that range holds even the median of
+#: the positions' distribution only with probability ``1 - 2**(1 - G)`` (the chance that the
+#: ``G`` draws are not all on one side of it): 93.8 % at five positions, 96.9 % at six.
+BOOTSTRAP_MIN_UNITS = 6
 
 
 def position_bootstrap(values, clusters, statistic, *, resamples: int = BOOTSTRAP_RESAMPLES,
@@ -271,14 +276,18 @@ def error_entry(errors_cm, positions, statistic: str) -> dict:
     (:func:`position_bootstrap`, :data:`BOOTSTRAP_RESAMPLES` resamples, seed
     :data:`BOOTSTRAP_SEED`), the method named.
 
-    Returns ``{statistic}_cm``, ``{statistic}_cm_ci95`` (None with one test position),
-    ``{statistic}_cm_n_units``, ``{statistic}_cm_n_test`` and ``{statistic}_cm_method``.
+    Returns ``{statistic}_cm``, ``{statistic}_cm_ci95``, ``{statistic}_cm_n_units``,
+    ``{statistic}_cm_n_test`` and ``{statistic}_cm_method``. With fewer than
+    :data:`BOOTSTRAP_MIN_UNITS` test positions no interval can hold 95 %: ``_ci95`` is None and
+    ``{statistic}_cm_range`` gives the lowest and highest of the positions' own statistics.
 
     Examples
     --------
     >>> e = error_entry([1.0, 1.2, 3.0, 2.8, 2.0, 2.2], [0.1, 0.1, 0.2, 0.2, 0.3, 0.3], "rms")
-    >>> round(e["rms_cm"], 3), e["rms_cm_n_units"], e["rms_cm_n_test"]
-    (2.165, 3, 6)
+    >>> round(e["rms_cm"], 3), e["rms_cm_n_units"], e["rms_cm_n_test"], e["rms_cm_ci95"]
+    (2.165, 3, 6, None)
+    >>> [round(v, 3) for v in e["rms_cm_range"]]
+    [1.105, 2.902]
     """
     if statistic not in ERROR_STATISTICS:
         raise ValueError(f"statistic must be one of {', '.join(ERROR_STATISTICS)}, got "
@@ -295,6 +304,12 @@ def error_entry(errors_cm, positions, statistic: str) -> dict:
     if units < 2:  # one test position: nothing to resample
         return {**entry, f"{key}_ci95": None,
                 f"{key}_method": "one test position: no interval"}
+    if units < BOOTSTRAP_MIN_UNITS:
+        own = [f(errors[positions == p]) for p in np.unique(positions)]
+        return {**entry, f"{key}_ci95": None, f"{key}_range": [min(own), max(own)],
+                f"{key}_method": (f"{units} test positions: too few for a 95 % interval (at "
+                                  f"least {BOOTSTRAP_MIN_UNITS}); the range of the positions' "
+                                  f"own values")}
     return {**entry, f"{key}_ci95": list(position_bootstrap(errors, positions, f)),
             f"{key}_method": (f"percentile interval of a bootstrap over the {units} test "
                               f"positions (each drawn with all its recordings), "
@@ -310,10 +325,17 @@ def format_error(entry: dict, statistic: str) -> str:
     '2.18 (95 % CI 1.60 to 2.70, 3 positions)'
     >>> format_error({"p95_cm": 3.0, "p95_cm_ci95": None, "p95_cm_n_units": 1}, "p95")
     '3.00 (one test position, no interval)'
+    >>> format_error({"p95_cm": 3.0, "p95_cm_ci95": None, "p95_cm_n_units": 4,
+    ...               "p95_cm_range": [1.9, 5.0]}, "p95")
+    '3.00 (4 positions, too few for a 95 % interval; the positions range from 1.90 to 5.00)'
     """
     key = f"{statistic}_cm"
     if entry[f"{key}_ci95"] is None:
-        return f"{entry[key]:.2f} (one test position, no interval)"
+        if entry.get(f"{key}_range") is None:
+            return f"{entry[key]:.2f} (one test position, no interval)"
+        lo, hi = entry[f"{key}_range"]
+        return (f"{entry[key]:.2f} ({entry[f'{key}_n_units']} positions, too few for a 95 % "
+                f"interval; the positions range from {lo:.2f} to {hi:.2f})")
     lo, hi = entry[f"{key}_ci95"]
     return f"{entry[key]:.2f} (95 % CI {lo:.2f} to {hi:.2f}, {entry[f'{key}_n_units']} positions)"
 

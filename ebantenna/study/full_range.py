@@ -58,7 +58,8 @@ class FullRangeResult:
     joint_material_accuracy : float
         How often that fit found the right material.
     turning_point : float
-        Where the calibrated first-mode curve turns, m.
+        Where the calibrated first-mode curve turns, m: its highest calibration point, which is
+        the last one where the curve rises over the whole calibrated range.
     without_two_peaks, recordings : int
         Recordings with fewer than two separable peaks, and all recordings.
     joint_material : ClusteredAccuracy
@@ -81,6 +82,7 @@ class FullRangeResult:
     recordings: int
     joint_material: ClusteredAccuracy = None
     chance: float | None = None
+    calibrated_to: float | None = None
 
     @property
     def beyond(self) -> np.ndarray:
@@ -153,6 +155,8 @@ class FullRangeResult:
             "two_modes_against_first_mode": self.two_against_one_mode,
             **clustered_entries("full_range_joint_material_accuracy", self.joint_material),
             "first_mode_turning_point_cm": 100 * self.turning_point,
+            "first_mode_calibrated_to_cm": (None if self.calibrated_to is None
+                                            else 100 * self.calibrated_to),
             "recordings_without_two_peaks": self.without_two_peaks,
             # the table's other columns, each with its interval on the test position: the mean
             # error beyond the region (t over the positions there) and the 95th percentile
@@ -220,6 +224,7 @@ def compute(ds, feats) -> FullRangeResult:
         recordings=int(ok.size),
         joint_material=joint_measured,
         chance=1 / np.unique(ds.material[test]).size,
+        calibrated_to=float(single.distances_[-1]),
     )
 
 
@@ -290,14 +295,35 @@ def _plot_error_along_probe(r: FullRangeResult, figures) -> str:
 
 
 def _turning_point_text(r: FullRangeResult) -> str:
-    """Whether the first mode's calibrated curve turns inside the tested range, read from it."""
+    """Whether the first mode's calibrated curve turns inside the calibrated range, read from
+    it: a curve whose highest point is its last calibration position has shown no turn (it may
+    turn beyond, where nothing was calibrated).
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as S
+    >>> r = S(contact_one=np.array([0.05, 0.375]), turning_point=0.325, calibrated_to=0.325)
+    >>> text = _turning_point_text(r)
+    >>> text.split(": ")[0]
+    'Here its calibrated curve rises over every calibration position, up to the last (32.5 cm)'
+    >>> text.split(": ")[1].split(". ")[1]
+    'The tested positions beyond it, up to 37.5 cm, lie outside that range.'
+    >>> _turning_point_text(S(contact_one=np.array([0.05, 0.375]), turning_point=0.30,
+    ...                       calibrated_to=0.35)).split(":")[0]
+    'Here its calibrated curve turns at 30.0 cm, inside the calibrated range (up to 35.0 cm)'
+    """
     last = float(np.max(r.contact_one))
-    if r.turning_point < last - 1e-9:
-        return (f"Here its calibrated curve turns at {100 * r.turning_point:.1f} cm, before the "
-                f"last tested position ({100 * last:.1f} cm).")
-    return (f"Here its calibrated curve rises up to the last tested position "
-            f"({100 * last:.1f} cm): the first mode alone is not stopped by a turning point in "
-            "this range.")
+    end = r.calibrated_to if r.calibrated_to is not None else last
+    if r.turning_point < end - 1e-9:
+        return (f"Here its calibrated curve turns at {100 * r.turning_point:.1f} cm, inside the "
+                f"calibrated range (up to {100 * end:.1f} cm): the first mode alone cannot place "
+                "a contact beyond it.")
+    text = (f"Here its calibrated curve rises over every calibration position, up to the last "
+            f"({100 * end:.1f} cm): no turning point lies inside the calibrated range.")
+    if last > end + 1e-9:
+        text += (f" The tested positions beyond it, up to {100 * last:.1f} cm, lie outside that "
+                 "range.")
+    return text
 
 
 def _two_against_one_text(d: dict | None) -> str:

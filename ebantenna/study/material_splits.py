@@ -18,6 +18,7 @@ from ..paper.uncertainty import (
     PairedDifference,
     cluster_labels,
     clustered_entries,
+    format_difference,
     percent,
     training_entries,
 )
@@ -30,6 +31,7 @@ from ._common import (
     fits_in_parallel,
     format_error,
     format_mae,
+    format_paired_mae,
     listed,
     mae_entry,
     paired_mae,
@@ -74,6 +76,11 @@ class MaterialSplitsResult:
         The paper's distance network (gradient descent) trained with whole positions held out,
         over every fold of the grouped split (``_region_folds``), beside its random
         split.
+    flattery : dict of str to PairedDifference or None
+        Per classifier of :data:`CLASSIFIERS`: its random split (B) against whole positions held
+        out (A), paired on the random split's own test recordings, each of which the grouped
+        split tests once more in the fold that holds its position out
+        (:func:`random_against_grouped`).
     design : dict or None
         What the data set's design makes of a random split, read from the data set
         (``_design_facts``): ``repetitions`` (the fewest and the most recordings of one
@@ -92,6 +99,7 @@ class MaterialSplitsResult:
     paired: dict = None
     distance_held_out: object = None
     design: dict | None = None
+    flattery: dict | None = None
 
     @property
     def distance_ranking(self) -> tuple[str, dict]:
@@ -132,6 +140,9 @@ class MaterialSplitsResult:
             kind: {k: p.to_dict() for k, p in pairs.items()}
             for kind, pairs in (self.paired or {}).items()
         }
+        if self.flattery is not None:
+            materials["random_against_grouped"] = {c: p.to_dict()
+                                                   for c, p in self.flattery.items()}
         materials["svm_grouped_test_confusion"] = {
             "labels": list(svm["grouped"].labels),
             "counts": svm["grouped"].confusions["test"].astype(int).tolist(),
@@ -151,6 +162,8 @@ class MaterialSplitsResult:
         if self.distance_held_out is not None:
             distance["linear_region_positions_held_out"] = _distance_entry(
                 self.distance_held_out)
+            distance["linear_region_held_out_against_random"] = held_out_against_random(
+                self.distance["gd"], self.distance_held_out)
         if self.design is not None:
             materials["random_split_design"] = dict(self.design)
         return {"materials": materials, "distance": distance}
@@ -285,10 +298,30 @@ def compute(ds, feats, seed: int, *, random_svm, paper_ann, paper_distance,
             a.correct(), positions[a.rows()], UNITS["random"])
     held_out = _pooled_distance([done["held_out", i] for i in range(len(regions))])
     first = {key: r[0] for key, r in by_fold.items()}
+    flattery = {c: random_against_grouped(by_fold[c, "random"][0], by_fold[c, "grouped"],
+                                          positions) for c in CLASSIFIERS}
     return MaterialSplitsResult(
         {k: first["svm", k] for k in SPLITS}, {k: first["position_aware", k] for k in SPLITS},
         {k: first["mode_curves", k] for k in SPLITS}, held, ann, distance, measured, paired,
-        held_out, _design_facts(y, positions, random_svm.rows()))
+        held_out, _design_facts(y, positions, random_svm.rows()), flattery)
+
+
+def random_against_grouped(random, grouped, positions) -> PairedDifference:
+    """A classifier's random split (B) against its grouped split (A), paired on the random
+    split's test recordings: the grouped split's folds test every recording once, so each of
+    them has an answer from a network that saw other repetitions of its position (B) and one
+    from a network that saw none (A). Clustered on the position."""
+    answer = {}
+    for fold in grouped:
+        answer.update(zip(fold.rows().tolist(), fold.correct().tolist(), strict=True))
+    rows = random.rows()
+    missing = [r for r in rows.tolist() if r not in answer]
+    if missing:
+        raise ValueError(f"the grouped folds do not test {len(missing)} of the random split's "
+                         "test recordings: the two cannot be paired")
+    held = np.array([answer[r] for r in rows.tolist()])
+    return PairedDifference.from_recordings(held, random.correct(),
+                                            np.asarray(positions)[rows], UNITS["grouped"])
 
 
 def _region_folds(folds, positions, probe_length: float) -> list:
@@ -309,9 +342,28 @@ def _pooled_distance(runs):
     predicted = np.concatenate([r.predicted_test for r in runs])
     at = np.unique(truth)
     errors = 100.0 * np.abs(predicted - truth)
+    rows = (None if any(r.test_rows is None for r in runs)
+            else np.concatenate([r.test_rows for r in runs]))
     return experiments.RegressionResult(
         f"{runs[0].name}, {len(runs)} folds of whole positions held out", truth, predicted, at,
-        np.array([errors[truth == p].mean() for p in at]), sum(r.fit_seconds for r in runs))
+        np.array([errors[truth == p].mean() for p in at]), sum(r.fit_seconds for r in runs),
+        test_rows=rows)
+
+
+def held_out_against_random(random, held_out) -> dict | None:
+    """How much more the distance network errs with its test positions held out than on the
+    random split, paired on the random split's own test recordings (each is tested once more
+    by the fold that holds its position out) and taken on their positions
+    (:func:`~ebantenna.study._common.paired_mae`); None where the two share no test recording
+    or a result does not name its test rows."""
+    if random.test_rows is None or held_out.test_rows is None:
+        return None
+    common, in_random, in_held = np.intersect1d(random.test_rows, held_out.test_rows,
+                                                return_indices=True)
+    if common.size == 0:
+        return None
+    return paired_mae(held_out.errors_cm[in_held], random.errors_cm[in_random],
+                      random.distance_test[in_random])
 
 
 def _positions_cm(p) -> str:
@@ -414,23 +466,35 @@ def _length_text(metres: float) -> str:
 
 
 def _flattery(r: MaterialSplitsResult) -> str:
-    """Which classifiers the random split shows higher than whole held-out positions: where the
-    random split's interval lies above the grouped split's. The two are not paired (other test
-    rows), so intervals that overlap show nothing either way."""
+    """Which classifiers the random split flatters: its accuracy against whole positions held
+    out, paired on its own test recordings (:func:`random_against_grouped`); a difference
+    whose interval leaves out zero is resolved."""
     names = {"svm": "the paper's SVM", "position_aware": "the position-aware classifier",
              "mode_curves": "the mode curves"}
-    above = [c for c in CLASSIFIERS
-             if r.measured[c, "random"].ci95[0] > r.measured[c, "grouped"].ci95[1]]
-    overlap = [c for c in CLASSIFIERS if c not in above]
+    pairs = r.flattery or {}
+    above = [c for c in CLASSIFIERS if c in pairs and pairs[c].direction == "higher"]
+    below = [c for c in CLASSIFIERS if c in pairs and pairs[c].direction == "lower"]
+    even = [c for c in CLASSIFIERS if c in pairs and c not in above + below]
+
+    def they(group, one, many):
+        return one if len(group) == 1 else many
+
+    def named(group):
+        return listed(f"{names[c]}, by {format_difference(pairs[c])}" for c in group)
+
     words = []
     if above:
-        words.append("The random split's interval lies above the grouped split's for "
-                     + listed(names[c] for c in above) + ": the random split flatters "
-                     + ("it" if len(above) == 1 else "them") + " here.")
-    if overlap:
-        words.append("For " + listed(names[c] for c in overlap) + " the two intervals "
-                     "overlap: this design does not show the random split flattering "
-                     + ("it." if len(overlap) == 1 else "them."))
+        words.append("Paired on the random split's own test recordings (each tested again by "
+                     "the grouped fold that holds its position out), the random split scores "
+                     "higher for " + named(above) + ": resolved, it flatters "
+                     + they(above, "it", "them") + " here.")
+    if below:
+        words.append("The random split scores lower than whole positions held out for "
+                     + named(below) + ": resolved.")
+    if even:
+        words.append("The paired difference is not resolved for " + named(even)
+                     + ": this design does not show the random split flattering "
+                     + they(even, "it.", "them."))
     return " ".join(words)
 
 
@@ -650,21 +714,43 @@ def _distance_held_out(r: MaterialSplitsResult) -> str:
     """The distance network on the random split against whole positions held out, each with
     its interval over the test positions."""
     rnd, held = (_distance_entry(x) for x in (r.distance["gd"], r.distance_held_out))
-    worse = (held["mae_cm_ci95"] is not None and rnd["mae_cm_ci95"] is not None
-             and held["mae_cm_ci95"][0] > rnd["mae_cm_ci95"][1])
     return (
         "The paper's distance network (gradient descent) is scored on a random split, where "
         "nearly every test recording has a repetition of its own position in the training "
         f"set: {format_mae(rnd)}. Trained with whole positions held out (every fold of the "
         f"grouped split, each position of the region held out once) it errs by "
-        f"{format_mae(held)}: "
-        + ("its interval lies above the random split's, so the random split flatters the "
-           "network here." if worse else
-           "the two intervals overlap; this design does not show the random split flattering "
-           "the network.")
+        f"{format_mae(held)}. "
+        + flattery_sentence(held_out_against_random(r.distance["gd"], r.distance_held_out))
         + f" The earlier ANN the paper cites reached about "
           f"{printed.PRIOR_DISTANCE_ACCURACY_CM.value} cm."
     )
+
+
+def flattery_sentence(d: dict | None) -> str:
+    """Whether the random split flatters the distance network, from the paired difference of
+    :func:`held_out_against_random`.
+
+    Examples
+    --------
+    >>> d = {"difference_cm": 2.7, "ci95": [0.4, 5.0], "n_units": 6, "resolved": True}
+    >>> flattery_sentence(d).split(": ")[1]
+    'resolved, the random split flatters the network.'
+    >>> flattery_sentence({**d, "difference_cm": 0.3, "ci95": [-0.2, 0.8],
+    ...                    "resolved": False}).split(": ", 1)[1]
+    'not resolved: this design does not show the random split flattering the network.'
+    >>> flattery_sentence({**d, "difference_cm": -0.9, "ci95": [-1.5, -0.3]}).split(": ")[1]
+    'resolved, the network errs less with its positions held out.'
+    """
+    if d is None:
+        return "The two splits share no test recording to compare them on."
+    head = ("On the random split's own test recordings, holding their positions out errs by "
+            + format_paired_mae(d) + ": ")
+    if d["ci95"] is None or not d["resolved"]:
+        return head + ("not resolved: this design does not show the random split flattering "
+                       "the network.")
+    if d["difference_cm"] > 0:
+        return head + "resolved, the random split flatters the network."
+    return head + "resolved, the network errs less with its positions held out."
 
 
 def _lift(r: MaterialSplitsResult) -> str:

@@ -15,6 +15,7 @@ from ebantenna.report import FigureSet, Report
 from ebantenna.simulate.effects import ObjectModes
 from ebantenna.study import full_range, material_splits, physics_controls, signals
 from ebantenna.study._common import (
+    BOOTSTRAP_MIN_UNITS,
     BOOTSTRAP_RESAMPLES,
     BOOTSTRAP_SEED,
     ERROR_STATISTICS,
@@ -95,6 +96,25 @@ def test_bad_error_entries_are_refused(bad, error):
     args = dict(errors_cm=ERRORS, positions=POSITIONS, statistic="rms") | bad
     with pytest.raises(error):
         error_entry(**args)
+
+
+def test_fewer_positions_than_a_95_percent_interval_needs_give_their_range():
+    # A bootstrap over G positions stays inside the range of their values; that range misses
+    # the median whenever all G draws fall on one side, probability 2 * 2**-G. The fewest G for
+    # which it holds 95 % is BOOTSTRAP_MIN_UNITS; a simulation of the range agrees with it.
+    coverage = {g: 1 - 2.0 ** (1 - g) for g in range(2, 9)}
+    assert min(g for g, c in coverage.items() if c >= 0.95) == BOOTSTRAP_MIN_UNITS
+    draws = np.random.default_rng(0).normal(size=(20000, 5))  # median 0; G = 5
+    held = np.mean((draws.min(axis=1) < 0) & (draws.max(axis=1) > 0))
+    # 20000 draws: binomial sd sqrt(c(1-c)/n) = 0.0017; four of them bound the check
+    assert abs(held - coverage[5]) < 4 * np.sqrt(coverage[5] * (1 - coverage[5]) / 20000)
+    errors, at = ERRORS[POSITIONS < 0.05], POSITIONS[POSITIONS < 0.05]  # five positions
+    e = error_entry(errors, at, "rms")
+    own = [np.sqrt(np.mean(errors[at == p] ** 2)) for p in np.unique(at)]
+    assert e["rms_cm_ci95"] is None and e["rms_cm_range"] == [min(own), max(own)]
+    assert "5 positions, too few for a 95 % interval" in format_error(e, "rms")
+    six = POSITIONS < 0.06
+    assert error_entry(ERRORS[six], POSITIONS[six], "rms")["rms_cm_ci95"] is not None
 
 
 def test_position_bootstrap_refuses_what_it_cannot_resample():
@@ -234,7 +254,14 @@ def test_the_quick_study_stores_and_prints_the_new_intervals(quick_study):
     d = s["distance"]
     for key in ("first_mode_only_p95", "full_range_p95", "full_range_known_material_p95",
                 "full_range_joint_p95"):
-        assert d[key]["p95_cm_method"].startswith("percentile interval of a bootstrap")
+        entry = d[key]
+        if entry["p95_cm_n_units"] >= BOOTSTRAP_MIN_UNITS:
+            assert entry["p95_cm_method"].startswith("percentile interval of a bootstrap")
+        else:  # the quick design tests 4 positions: a bootstrap over them cannot hold 95 %
+            assert entry["p95_cm_ci95"] is None and "too few for a 95 % interval" in (
+                entry["p95_cm_method"])
+            lo, hi = entry["p95_cm_range"]
+            assert lo <= entry["p95_cm"] <= hi
     rms = d["linear_region_rms_by_trainer"]
     assert set(rms) == set(d["linear_region_mae_cm_by_trainer"])
     design = s["materials"]["random_split_design"]

@@ -200,17 +200,55 @@ def _splits_result(random_k, grouped_k, pair_direction_k):
         measured[c, "grouped"] = ClusteredAccuracy(grouped_k, n, "position")
     paired = {"grouped": {"position_aware": PairedDifference(grouped_k, pair_direction_k, n,
                                                              "position", resamples=200)}}
-    return MaterialSplitsResult({}, {}, {}, {}, {}, {}, measured, paired)
+    # the random split against the grouped one, paired on the same recordings
+    flattery = {c: PairedDifference(grouped_k, random_k, n, "position", resamples=200)
+                for c in ("svm", "position_aware", "mode_curves")}
+    return MaterialSplitsResult({}, {}, {}, {}, {}, {}, measured, paired, flattery=flattery)
 
 
-def test_the_random_split_flatters_only_where_the_intervals_show_it():
+def test_the_random_split_flatters_only_where_the_paired_difference_shows_it():
     from ebantenna.study.material_splits import _flattery, _grouped_lift
 
     high, low = [5] * 8 + [4] * 8, [3, 2] * 8
     assert "flatters them here" in _flattery(_splits_result(high, low, low))
     assert "does not show the random split flattering them" in _flattery(
         _splits_result(high, high, high))
+    flipped = _flattery(_splits_result(low, high, low))  # the direction flips, the words too
+    assert "scores lower than whole positions held out for" in flipped
+    assert "flatters" not in flipped.replace("does not show the random split flattering", "")
     worse = _grouped_lift(_splits_result(high, high, [2] * 16))
     assert "lower than the raw spectrum, resolved" in worse
     assert "higher than the raw spectrum" in _grouped_lift(_splits_result(high, low, [5] * 16))
     assert "not resolved" in _grouped_lift(_splits_result(high, high, high))
+
+
+def test_the_random_split_is_paired_with_the_folds_that_test_its_recordings_again():
+    # every random-split test recording is tested once more by the grouped fold that holds its
+    # position out: the paired difference is the mean, over those recordings, of (random right)
+    # minus (held-out right), clustered on the position
+    from ebantenna.paper.experiments import ClassificationResult, RegressionResult
+    from ebantenna.study.material_splits import held_out_against_random, random_against_grouped
+
+    rng = np.random.default_rng(3)
+    positions = np.repeat(np.arange(12) * 0.01, 4)
+    right_held = rng.random(positions.size) < 0.6
+    folds = [np.flatnonzero(np.isin(positions, np.unique(positions)[f::3])) for f in range(3)]
+    grouped = [ClassificationResult("svm", ("a",), {}, 0.0, None,
+                                    {"test": (rows, right_held[rows])}) for rows in folds]
+    rows = np.sort(rng.choice(positions.size, 12, replace=False))
+    right_random = rng.random(12) < 0.9
+    random = ClassificationResult("svm", ("a",), {}, 0.0, None, {"test": (rows, right_random)})
+    p = random_against_grouped(random, grouped, positions)
+    assert p.difference == pytest.approx(np.mean(right_random.astype(float) - right_held[rows]),
+                                         abs=1e-15)
+    assert p.n_units == np.unique(positions[rows]).size
+    with pytest.raises(ValueError, match="cannot be paired"):
+        random_against_grouped(random, grouped[:2], positions)
+    # the distance network likewise, on errors (cm), from each result's own test rows
+    truth = positions
+    held = RegressionResult("held", truth, truth + 0.02, np.unique(truth), np.zeros(12), 0.0,
+                            test_rows=np.arange(truth.size))
+    rnd = RegressionResult("rnd", truth[rows], truth[rows] + 0.005, np.unique(truth[rows]),
+                           np.zeros(1), 0.0, test_rows=rows)
+    d = held_out_against_random(rnd, held)
+    assert d["difference_cm"] == pytest.approx(1.5) and d["n_units"] == np.unique(truth[rows]).size

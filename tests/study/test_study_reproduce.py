@@ -155,7 +155,7 @@ def test_summary_is_the_results_dicts_put_together(quick_study):
         "one_calibration_against_known_material", "two_modes_against_first_mode",
         joint, f"{joint}_n_test", f"{joint}_unit", f"{joint}_n_units",
         f"{joint}_design_effect", f"{joint}_ci95", f"{joint}_method",
-        f"{joint}_recording_ci95", "first_mode_turning_point_cm",
+        f"{joint}_recording_ci95", "first_mode_turning_point_cm", "first_mode_calibrated_to_cm",
         "recordings_without_two_peaks", "first_mode_only_beyond_80", "full_range_beyond_80",
         "full_range_known_material_beyond_80", "full_range_joint_beyond_80",
         "first_mode_only_p95", "full_range_p95", "full_range_known_material_p95",
@@ -164,7 +164,7 @@ def test_summary_is_the_results_dicts_put_together(quick_study):
         "linear_region_by_trainer",
         "linear_region_smallest_error_trainer", "linear_region_against_smallest",
         "linear_region_random_split", "linear_region_rms_by_trainer",
-        "linear_region_positions_held_out",
+        "linear_region_positions_held_out", "linear_region_held_out_against_random",
     ]
     assert list(s["timings_s"]) == list(STEPS)
 

@@ -205,8 +205,16 @@ class MultiModeDistanceEstimator(RegressorMixin, BaseEstimator):
     between calibration distances) is sampled on a dense grid; a measurement ``(f_1, ..., f_k)`` is
     placed at the distance minimising ``sum_j w_j (log f_j - log f_j(d))^2``, found on the grid and
     refined by a parabola through the three best grid points. The weights ``w_j = 1 / s_j^2`` use
-    the spread ``s_j`` of ``log f_j`` among calibration replicates (equal weights without
-    replicates).
+    the spread ``s_j`` of ``log f_j`` among calibration replicates; equal weights without
+    replicates, and equal weights too when some mode's replicates all agree (a spread of zero
+    would give that mode all the weight; ``weights_`` shows which was used).
+
+    The grid spans the calibration distances only: every estimate lies in
+    ``[distances_[0], distances_[-1]]``, and a measurement from beyond that range is placed at
+    the nearer end (the best match the calibration holds), not extrapolated. Unlike
+    :class:`FrequencyDistanceEstimator` it has no ``out_of_range`` option: several modes have no
+    single frequency range to check a measurement against. An estimate at an end of the range
+    may lie beyond it.
 
     Parameters
     ----------

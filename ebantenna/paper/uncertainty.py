@@ -288,6 +288,11 @@ def difference_resolved(a: float, b: float, n: int) -> bool:
     """Whether two accuracies on ``n`` test recordings each differ by more than two standard
     deviations of their difference (the binomial variance at their mean, ``2 p (1-p) / n``).
 
+    It assumes two unpaired samples of independent recordings. The study's comparisons are
+    neither: repetitions of one position go together and both conditions test the same
+    recordings, so the study uses :class:`PairedDifference`, which is never less strict about
+    the clusters and gains from the pairing. Here it is the textbook rule only.
+
     Examples
     --------
     >>> difference_resolved(0.65, 0.55, 240), difference_resolved(0.65, 0.55, 80)

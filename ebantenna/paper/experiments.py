@@ -256,7 +256,7 @@ def classify_materials_svm(X, materials, *, test_fraction=MATERIAL_SVM.test_frac
         Seed of the split.
     labels : sequence of str, optional
         Row order of the confusion matrices (default: sorted); it must list every material
-        of ``materials`` (:func:`~ebantenna.paper.experiments.label_order`).
+        of ``materials``: a row whose material it lacks would leave every matrix.
     normalise : bool, default=True
         Divide ``X`` by its largest magnitude, as the paper did, taken over the training rows
         only (:func:`~ebantenna.paper.protocol.normalise_by_max`).

@@ -154,7 +154,7 @@ def classify_materials_by_mode_curves(peaks, dominant, materials, positions, spl
         Train and test row indices (:mod:`ebantenna.paper.splits`).
     labels : sequence of str, optional
         Row order of the confusion matrices (default: sorted); it must list every material
-        of ``materials`` (:func:`~ebantenna.paper.experiments.label_order`).
+        of ``materials``: a row whose material it lacks would leave every matrix.
 
     Returns
     -------

@@ -252,7 +252,7 @@ def classify_materials_position_aware(
         Of the SVM.
     labels : sequence of str, optional
         Row order of the confusion matrices (default: sorted); it must list every material
-        of ``materials`` (:func:`~ebantenna.paper.experiments.label_order`).
+        of ``materials``: a row whose material it lacks would leave every matrix.
 
     Returns
     -------

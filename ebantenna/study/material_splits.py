@@ -80,7 +80,7 @@ class MaterialSplitsResult:
         Per classifier of :data:`CLASSIFIERS`: its random split (B) against whole positions held
         out (A), paired on the random split's own test recordings, each of which the grouped
         split tests once more in the fold that holds its position out
-        (:func:`random_against_grouped`).
+        (``random_against_grouped``).
     design : dict or None
         What the data set's design makes of a random split, read from the data set
         (``_design_facts``): ``repetitions`` (the fewest and the most recordings of one

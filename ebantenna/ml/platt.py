@@ -433,5 +433,6 @@ def pairwise_coupling(decisions: np.ndarray, prob_a: np.ndarray, prob_b: np.ndar
             r[:, i, j], r[:, j, i] = rij, 1 - rij
             p += 1
     # scikit-learn's libsvm couples two classes too (upstream libsvm 3.x returns r_01, r_10): its
-    # fixed-point iteration then stops within 0.0025 of them
+    # fixed-point iteration then stops once its gradient is below 0.005, which leaves it up to
+    # about 0.005 from them
     return multiclass_probability(r)

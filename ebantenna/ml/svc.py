@@ -206,13 +206,14 @@ class SVC(ClassifierMixin, BaseEstimator):
     libsvm_compat : bool, default=False
         Follow libsvm's arithmetic (the :data:`~ebantenna.ml.smo_policy.LIBSVM` policy: float32
         kernel storage, ties broken by the last index, its curvature floor, sequential bias sum) so
-        that scikit-learn's ``SVC`` with the same ``shrinking`` is reproduced to about 1e-12 with
-        the same iteration counts. See :mod:`ebantenna.ml.smo` for what each convention
-        changes. On purpose this includes libsvm's cancelling RBF arithmetic in training (the
-        expansion of :math:`\\lVert x - y\\rVert^2` about the origin, see
-        :mod:`ebantenna.ml.kernels`): its path, like libsvm's, changes when every feature is
-        shifted by the same amount. Predictions use centred points in both modes, as close as a
-        GEMM gets to libsvm's direct differences when it predicts.
+        that scikit-learn's ``SVC`` with the same ``shrinking`` is usually reproduced to about
+        1e-12 with the same iteration counts (a last bit of a kernel entry formed another way can
+        change the path, most often with the linear kernel). See :mod:`ebantenna.ml.smo` for
+        what each convention changes. On purpose this includes libsvm's cancelling RBF
+        arithmetic in training (the expansion of :math:`\\lVert x - y\\rVert^2` about the
+        origin, see :mod:`ebantenna.ml.kernels`): its path, like libsvm's, changes when every
+        feature is shifted by the same amount. Predictions use centred points in both modes, as
+        close as a GEMM gets to libsvm's direct differences when it predicts.
         A kernel that is not positive semi-definite is always fitted this way, whatever
         ``libsvm_compat`` says: 'sigmoid', and a precomputed or callable kernel whose training
         Gram matrix :func:`~ebantenna.ml.smo_policy.positive_semidefinite` refuses. Its dual is

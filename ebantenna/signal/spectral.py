@@ -139,7 +139,10 @@ def dominant_frequency(
     Jacobsen estimate with the Hann window is within :math:`0.15/(2\\pi\\tau) + 0.01 f_s/n` of
     :math:`f`, provided the tone is at least its half-bandwidth plus six bins,
     :math:`1/(2\\pi\\tau) + 6 f_s/n`, away from 0 and from :math:`f_s/2` (closer, its peak merges
-    with its mirror image and is not :math:`f` any more). Values of ``x`` from 1e-300 to 1e308 are
+    with its mirror image and is not :math:`f` any more). With ``transient=True`` the band
+    searched starts at :math:`2 f_s/m`, ``m`` the samples of the part analysed, so the tone must
+    also lie its half-bandwidth above that: below, the band's edge is returned (a 28 Hz tone with
+    :math:`\\tau` = 8 ms gives 33.3 Hz). Values of ``x`` from 1e-300 to 1e308 are
     scaled by a power of two (exact) before the FFT.
 
     Examples
@@ -401,8 +404,10 @@ def peak_frequencies(
     Raises
     ------
     ValueError
-        When the band holds fewer than ``n_peaks`` separated peaks, and for the bad inputs of
-        :func:`dominant_frequency`.
+        When the band holds fewer than ``n_peaks`` separated local maxima of non-zero
+        magnitude, and for the bad inputs of :func:`dominant_frequency`. There is no threshold
+        on a peak's strength: a local maximum of rounding noise counts (a pure 50 Hz sine of one
+        second at 1 kHz asked for three peaks gives a second and a third near 290 dB below it).
 
     Examples
     --------
@@ -467,8 +472,9 @@ def strongest_separated(magnitude, candidates, n_peaks: int, separation: float,
                         df: float) -> list[int]:
     """The first ``n_peaks`` of ``candidates`` (strongest first) at least ``separation`` Hz apart.
 
-    Greedy: a candidate is taken when it has energy and lies ``separation`` Hz (``df`` Hz a bin)
-    or more from every peak taken before it. May return fewer than ``n_peaks``.
+    Greedy: a candidate is taken when its magnitude is not zero (however small: rounding noise
+    counts) and it lies ``separation`` Hz (``df`` Hz a bin) or more from every peak taken before
+    it. May return fewer than ``n_peaks``.
 
     Examples
     --------

@@ -78,7 +78,8 @@ def _simulated_options(parser) -> None:
     """The faults and settings of the simulated rig (``--simulated`` only)."""
     parser.add_argument("--inject-faults", type=float, default=0.0, metavar="RATE",
                         help="simulated only: fraction of I2C transfers that fail, every kind "
-                        "(no acknowledge, EIO, ETIMEDOUT, EAGAIN, late errors, short reads)")
+                        "(no acknowledge, EIO, ETIMEDOUT, EAGAIN, EINTR, late errors, short "
+                        "reads, over-reported FIFO counts)")
     parser.add_argument("--chip-reset-at", type=float, metavar="S",
                         help="simulated only: the accelerometer browns out at this time, s")
     parser.add_argument("--stuck-bus", type=float, nargs=2, metavar=("AT", "FOR"),

@@ -541,9 +541,11 @@ class FifoStream:
             # drain, never more (a chip reset during the drain would have emptied the FIFO, and
             # the data port then reads filler bytes)
             seen, status = self.mpu.read_registers()
-            before = after = self.clock.monotonic()
-            # after a failed transfer nothing can be placed: no count to compare
-            after_count = self.mpu.fifo_count() if broken is None else 0
+            before = self.clock.monotonic()
+            # after a failed transfer the count cannot be placed in time (what the transfer took
+            # is unknown), but it must still be whole samples: a reader that took part of one
+            # between the count and the data has shifted the chunks kept before the failure
+            after_count = self.mpu.fifo_count()
             after = self.clock.monotonic()
         except OSError as exc:
             return self._fail(_cause(_as_i2c_error(exc)), discarded=n)
@@ -554,7 +556,7 @@ class FifoStream:
                               overflow=overflow)
         if status & Interrupt.FIFO_OFLOW:
             return self._fail("FIFO overflow", overflow=True, discarded=n)
-        foreign = self._check_after(observed, n, after_count, before, after, broken is None)
+        foreign = self._check_after(observed, n, after_count, before, after, broken is not None)
         if foreign is not None:
             return self._fail(foreign, discarded=n)
         block = self._keep(raw, observed)
@@ -566,19 +568,26 @@ class FifoStream:
         return block
 
     def _check_after(self, observed, n: int, count: int, before: float, after: float,
-                     whole: bool) -> str | None:
+                     broken: bool) -> str | None:
         """Why the count read after a drain shows that the drain's bytes were not the ones
         counted (another program read the FIFO), or None. ``count`` bytes waited after ``n``
         samples were read; they must be whole samples, and with the count before the drain
-        they must be a number the chip can have produced by then."""
+        they must be a number the chip can have produced by then.
+
+        After a failed transfer (``broken``) what that transfer took out of the FIFO is unknown,
+        so only two things are judged: the count must still be whole samples (a reader that
+        took part of one between the count and the data has shifted the chunks kept before the
+        failure), and it may not claim more samples than the chip can have produced even if the
+        failed transfer took nothing. Fewer samples than expected say nothing there: whole
+        samples taken by another reader cannot be told from the failed transfer's."""
         if count > self.fifo_size:  # a corrupted count: no reader can make it
             self.estimator.rejected += 1
             logger.warning("MPU-6050 FIFO: a count of %d bytes after the drain exceeds the "
                            "FIFO's %d; rejected", count, self.fifo_size)
             return None
-        if count == self.fifo_size or not whole:
-            return None  # an overflow shows at the next drain; a failed transfer restarts
-        if count % ACCEL_SAMPLE_BYTES:
+        if count == self.fifo_size:
+            return None  # an overflow shows at the next drain
+        if count % ACCEL_SAMPLE_BYTES and not broken:
             self.foreign += 1
             return (f"the FIFO count after the drain, {count}, is not a whole number of samples: "
                     "another program read bytes from the FIFO (i2cget, i2cdump, a second "
@@ -595,10 +604,12 @@ class FifoStream:
             est.segments[-1].pop()
             est.low, est.high = saved
             if possible[0] < possible[1]:
-                return None
+                return _shifted(count) if broken else None
             fewer = possible[0] >= est.high  # it needs a longer period than allowed
         else:
             fewer = low >= est.high
+        if broken and fewer:  # the failed transfer may have taken the samples missing
+            return _shifted(count)
         est.rejected += 1
         self._suspect()
         self.foreign += fewer
@@ -1100,3 +1111,15 @@ def _saturated(counts: np.ndarray, full_scale_g: int) -> int:
         logger.warning("%d accelerometer readings at the +/-%d g limit (clipped)", saturated,
                        full_scale_g)
     return saturated
+
+
+def _shifted(count: int) -> str | None:
+    """After a drain with a failed transfer: why its count after shows the chunks kept before the
+    failure may be shifted (not a whole number of samples: another program, or the failed
+    transfer itself, took part of one, and the two cannot be told apart), or None."""
+    if count % ACCEL_SAMPLE_BYTES == 0:
+        return None
+    return (f"the FIFO count after a drain with a failed transfer, {count}, is not a whole "
+            "number of samples: the failed transfer or another program (i2cget, i2cdump, a "
+            "second driver) took part of a sample, and the chunks read before it may be shifted; "
+            "the drain is dropped")

@@ -9,6 +9,7 @@ import shutil
 import numpy as np
 import pytest
 
+from ebantenna.cli import main
 from ebantenna.device.plan import Plan
 from ebantenna.device.recording_session import MANIFEST, RecordingSession, file_sha256
 from ebantenna.device.simulated.touches import simulated_connect
@@ -64,6 +65,27 @@ def test_assembled_data_set_loads_with_its_labels_and_provenance(recorded, tmp_p
     assert provenance["manifest_sha256"] == file_sha256(recorded / MANIFEST)
     assert len(provenance["recordings"]) == 8
     assert again.metadata["config"]["source"] == "recordings"
+
+
+def test_the_drivers_flags_reach_the_data_set(session, tmp_path, capsys):
+    # a recording with suspect timestamps and one whose sensor check flagged a second device:
+    # resampled from their timestamps, they would enter the data set unmarked; the provenance
+    # names them, and the command says how many
+    rewrite(session, 1, lambda r: with_meta(r, samples_timing_suspect=37))
+    rewrite(session, 5, lambda r: with_meta(r, sensor_check={**r.metadata.get("sensor_check",
+                                                                                {}),
+                                                            "flags": ["second device"]}))
+    data = assemble_dataset(session, tmp_path)
+    flags = data.metadata["provenance"]["flags"]
+    assert len(flags) == data.n_signals and data.metadata["provenance"]["recordings_flagged"] == 2
+    assert flags[1] == {"samples_timing_suspect": 37}
+    assert flags[5] == {"sensor_check": ["second device"]}
+    assert not any(f for i, f in enumerate(flags) if i not in (1, 5))
+    assert main(["dataset", "--from-recordings", str(session), "--out", str(tmp_path / "cli"),
+                 "--json"]) == 0
+    out = capsys.readouterr()
+    assert json.loads(out.out)["recordings_flagged"] == 2
+    assert "2 of the recordings carry the driver's flags" in out.err
 
 
 def test_a_damaged_file_is_refused_by_name(session, tmp_path):

@@ -421,6 +421,7 @@ def run_from_recordings(args) -> int:
                "source": "recordings", "session": data.metadata["provenance"]["session"],
                "samples_interpolated": int(sum(data.metadata["provenance"]
                                                ["samples_interpolated"])),
+               "recordings_flagged": data.metadata["provenance"]["recordings_flagged"],
                "checksum_sha256": data.metadata["checksum_sha256"],
                "touches_planned": touches, "complete": saved == touches,
                "max_lost": manifest.get("max_lost", UNRECORDED_MAX_LOST),
@@ -430,6 +431,10 @@ def run_from_recordings(args) -> int:
     else:
         print(f"{summary['signals']} recordings of {summary['samples']} samples at "
               f"{data.fs:g} Hz assembled into {data.path}")
+    if summary["recordings_flagged"]:
+        print(f"ebantenna dataset: warning: {summary['recordings_flagged']} of the recordings "
+              "carry the driver's flags (suspect timestamps, a clock beyond its tolerance or the "
+              "sensor's check), listed under provenance.flags", file=sys.stderr)
     return 0
 
 

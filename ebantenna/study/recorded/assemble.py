@@ -116,6 +116,9 @@ def assemble_dataset(directory, out_dir=None, *, max_lost: float | None = None,
                                                                            strict=True)]
     arrays = _arrays(recordings, rows)
     metadata = _metadata(directory, manifest, entries, rows, fs)
+    metadata["provenance"]["flags"] = [_flags(rec) for rec in recordings]
+    metadata["provenance"]["recordings_flagged"] = sum(bool(f) for f in
+                                                       metadata["provenance"]["flags"])
     return _write(arrays, metadata, fs, target)
 
 
@@ -226,6 +229,22 @@ def _resampled(rec: Recording, name: str, fs: float, n: int, max_lost: float):
         raise ValueError(f"{name}: {interpolated} of the {n} samples after the contact lost, "
                          f"more than {max_lost:.0%} of its {rec.n_samples + lost}-sample window")
     return (np.interp(grid, rec.t, rec.ax), np.interp(grid, rec.t, rec.az), int(interpolated))
+
+
+def _flags(rec: Recording) -> dict:
+    """What the driver flagged in a recording and the data set would otherwise lose: samples
+    whose timestamps are suspect (resampling reads them), a clock beyond its tolerance, and the
+    sensor's own check (a stuck sensor, a second device); empty for a clean recording."""
+    meta = rec.metadata
+    flags = {}
+    if meta.get("samples_timing_suspect"):
+        flags["samples_timing_suspect"] = int(meta["samples_timing_suspect"])
+    if meta.get("clock_outside_tolerance_suspected"):
+        flags["clock_outside_tolerance_suspected"] = True
+    sensor = (meta.get("sensor_check") or {}).get("flags") or []
+    if sensor:
+        flags["sensor_check"] = list(sensor)
+    return flags
 
 
 def _arrays(recordings, rows) -> dict:

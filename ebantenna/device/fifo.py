@@ -362,8 +362,11 @@ class FifoStream:
             return None, None, f"FIFO count {count} exceeds the FIFO's {self.fifo_size} bytes"
         if count == self.fifo_size:
             return None, None, "overflow"
-        if count % ACCEL_SAMPLE_BYTES:
-            return None, None, self._rate_seen(count, after, "is not a whole number of samples")
+        if count % ACCEL_SAMPLE_BYTES:  # the driver reads whole samples: someone else read
+            self.foreign += 1
+            return None, None, self._rate_seen(
+                count, after, "is not a whole number of samples: another program read part of "
+                "a sample (i2cget, i2cdump, a second driver), or the count was read wrong")
         produced = self.delivered[-1] + count // ACCEL_SAMPLE_BYTES
         if count and not self.estimator.check(produced=produced, before=before, after=after):
             self._suspect()

@@ -471,6 +471,21 @@ def test_part_of_a_sample_taken_mid_drain_with_a_failed_transfer_is_never_kept(k
         assert rec.n_samples + rec.metadata["samples_lost"] == ASKED
 
 
+def test_every_count_that_is_not_whole_samples_is_counted_as_a_foreign_read():
+    # the driver reads whole samples only: a count that is not whole samples before a drain is
+    # another reader's doing (or a count read wrong), and it is counted as one; it was logged
+    # as a rate only, and one byte taken at 400 kHz was counted in 3 runs of 20
+    noticed = 0
+    for seed in range(10):
+        at = 0.05 + 0.9 * np.random.default_rng(seed).random()
+        _, _, rec = _record(Faults(foreign_reads=((at, "byte"),)), 400e3, seed)
+        partial = sum("not a whole number of samples" in f["cause"]
+                      for f in rec.metadata["faults"])
+        assert rec.metadata["foreign_reads_detected"] >= partial
+        noticed += partial > 0
+    assert noticed >= 8  # the byte lands on a FIFO that holds samples in nearly every run
+
+
 def test_a_foreign_read_of_n_bytes_takes_them_from_the_fifo():
     # the injector's own witness: n bytes at once leave the FIFO n bytes shorter
     rig, _, _ = _record(Faults(foreign_reads=((0.5, 9),)), 400e3)

@@ -946,19 +946,20 @@ class FifoStream:
 
 
 #: Longest run of identical consecutive samples (all three axes) a live sensor plausibly gives:
-#: its noise (about 16 LSB rms at +/-16 g, see :func:`sensor_check`) makes a repeat rare, and
+#: its noise (about 13 LSB rms at +/-16 g, see :func:`sensor_check`) makes a repeat rare, and
 #: ten in a row practically impossible.
 MAX_REPEATS = 10
 #: Sample-to-sample noise below which a live MPU-6050 is implausible, LSB rms: the data sheet's
-#: 400 ug/sqrt(Hz) (PS rev. 3.4, table 6.2) over a 260 Hz filter is about 8 mg, 16 LSB at
-#: +/-16 g; less than a tenth of an LSB means the values are not being measured.
+#: 400 ug/sqrt(Hz) (PS rev. 3.4, table 6.2) over a 260 Hz bandwidth is about 6.5 mg, 13 LSB at
+#: +/-16 g (the simulator's second-order filter lets through about 14); less than a tenth of
+#: an LSB means the values are not being measured.
 MIN_NOISE_LSB = 0.1
 #: Unpredictable noise (LSB rms: the error of predicting a reading from the
 #: :data:`PREDICTOR_ORDER` before it, see :func:`sensor_check`) from which the parity of a live
 #: reading is a fair coin whatever came before: Gaussian noise of sigma LSB, rounded, is odd with
 #: a probability within (2/pi) exp(-pi^2 sigma^2 / 2) of 1/2 (the first Fourier term of the
 #: period-2 square wave (-1)^k; the bound is attained), below 2e-9 at 2 LSB. The MPU-6050's
-#: floor is about 16 LSB at +/-16 g (above); its narrow DLPF settings leave less.
+#: floor is about 13 LSB at +/-16 g (above); its narrow DLPF settings leave less.
 PARITY_MIN_NOISE_LSB = 2.0
 #: Readings before the one predicted, in that prediction (least squares, with a constant): the
 #: memory of a low-pass filter or a smooth signal is taken out of the noise the gate sees.

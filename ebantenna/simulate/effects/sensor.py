@@ -134,8 +134,8 @@ class MainsHum(Effect):
     frequency : float
         Mains frequency, Hz. Default 50 Hz (the 230 V, 50 Hz grid where the rig was built).
     amplitude : float
-        Amplitude in each axis, m/s^2. Default 0.05 m/s^2 (about 5 mg): an assumption, a few
-        LSB at the +-16 g range.
+        Amplitude in each axis, m/s^2. Default 0.05 m/s^2 (about 5 mg): an assumption, about
+        10 LSB at the +-16 g range.
 
     Examples
     --------

@@ -64,6 +64,8 @@ from .guards import check_contact, check_resolvable
 from .modal import eigenvalue_shift, solve_modes
 
 __all__ = [
+    "ROD_DIAMETER",
+    "ROD_FREE_LENGTH",
     "Rod",
     "Substructure",
     "CraigBampton",
@@ -146,6 +148,13 @@ def probe_substructure(probe: Probe, contact: float, *, hinge="clamped", n_eleme
     return _substructure(probe, hinge, contact, contact, n_elements)
 
 
+#: The touched rod's diameter, m: an assumption (the paper gives no geometry of the touched
+#: objects), the default of :class:`Rod` and of the simulator's ``object_modes`` effect.
+ROD_DIAMETER = 0.012
+#: The touched rod's length above the stand's clamp, m: an assumption, as :data:`ROD_DIAMETER`.
+ROD_FREE_LENGTH = 0.25
+
+
 @dataclass(frozen=True)
 class Rod:
     """A solid round rod standing in a stand: the touched object.
@@ -157,9 +166,10 @@ class Rod:
         ``youngs_modulus`` (along the rod's axis; for wood, along the grain), ``density`` and
         ``loss_factor`` are used.
     diameter : float
-        Diameter, m. Default 12 mm: an assumption, the paper gives no geometry.
+        Diameter, m. Default :data:`ROD_DIAMETER` (12 mm), an assumption.
     free_length : float
-        Length above the clamp of the stand, m. Default 250 mm: an assumption, as above.
+        Length above the clamp of the stand, m. Default :data:`ROD_FREE_LENGTH` (250 mm), an
+        assumption.
     contact_height : float or None
         Height of the contact above the clamp, m, in ``(0, free_length]``; ``None`` (default)
         means the free end, ``free_length``.
@@ -175,8 +185,8 @@ class Rod:
     """
 
     material: Material | str
-    diameter: float = 0.012
-    free_length: float = 0.25
+    diameter: float = ROD_DIAMETER
+    free_length: float = ROD_FREE_LENGTH
     contact_height: float | None = None
 
     def __post_init__(self):

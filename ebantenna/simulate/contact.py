@@ -76,6 +76,7 @@ from .._validate import check_in_range, check_nonnegative, check_positive, real_
 
 __all__ = [
     "TUBE_POISSON_RATIO",
+    "PRELOAD",
     "contact_modulus",
     "CrossedCylinders",
     "ring_stiffness",
@@ -89,6 +90,11 @@ __all__ = [
 #: Poisson's ratio of PMMA, 0.38-0.40 (M. F. Ashby, *Materials Selection in Mechanical Design*,
 #: 4th ed., 2011, appendix C); the value the simulator's contact effect uses.
 TUBE_POISSON_RATIO = 0.39
+#: Contact force the contact spring is linearised at, N: an assumption (the paper gives none;
+#: the stopped servo keeps the probe pressed on the object, and the MG996R's stall torque, about
+#: 1 N m, could press up to several newtons at 0.2 m). The default of the ``contact_compliance``
+#: and ``object_modes`` effects.
+PRELOAD = 0.5
 #: Shear correction factor of a rectangular section (Roark, 7th ed., table 9.2 notes).
 _SHEAR_FACTOR = 1.2
 #: Below this relative difference of the two curvatures the contact is treated as circular; the

@@ -19,9 +19,9 @@ from typing import ClassVar
 import numpy as np
 
 from ..._validate import check_choice, check_int, check_nonnegative, check_positive
-from ...fem.coupling import Rod
+from ...fem.coupling import ROD_DIAMETER, ROD_FREE_LENGTH, Rod
 from ...probe import Material, Probe
-from ..contact import TUBE_POISSON_RATIO, tube_on_rod_stiffness
+from ..contact import PRELOAD, TUBE_POISSON_RATIO, tube_on_rod_stiffness
 from ..stick_slip import check_coefficients
 from ..unilateral import MARCHES
 from ._base import Effect, check_bodies, check_rng
@@ -48,9 +48,10 @@ class ObjectModes(Effect):
     a spring).
 
     **Assumptions** (the paper gives no geometry): a rod of ``diameter`` 12 mm, ``free_length``
-    250 mm above the stand's clamp, touched at its free end, pressed with ``preload`` 0.5 N (the
-    stopped servo keeps the probe on the object; the MG996R's stall torque, about 1 N m, could
-    press up to several newtons at 0.2 m). The clamp is rigid.
+    250 mm above the stand's clamp (:data:`~ebantenna.fem.coupling.ROD_DIAMETER`,
+    :data:`~ebantenna.fem.coupling.ROD_FREE_LENGTH`), touched at its free end, pressed with
+    ``preload`` 0.5 N (:data:`~ebantenna.simulate.contact.PRELOAD`, with its reason). The clamp
+    is rigid.
 
     Parameters
     ----------
@@ -79,10 +80,10 @@ class ObjectModes(Effect):
     """
 
     name: ClassVar[str] = "object_modes"
-    diameter: float = 0.012
-    free_length: float = 0.25
+    diameter: float = ROD_DIAMETER
+    free_length: float = ROD_FREE_LENGTH
     contact_height: float | None = None
-    preload: float = 0.5
+    preload: float = PRELOAD
     rod_elements: int = 24
     probe_modes: int = 40
     rod_modes: int = 20

@@ -11,6 +11,7 @@ from typing import ClassVar
 
 from ..._validate import check_in_range, check_positive
 from ...probe import Material, Probe
+from ..contact import PRELOAD, TUBE_POISSON_RATIO
 from ._base import Effect, check_bodies
 
 #: The accelerometer board at the tip: an MPU6050 breakout (GY-521), kg. Estimate: FR-4 board
@@ -66,12 +67,11 @@ class ContactCompliance(Effect):
     Parameters
     ----------
     preload : float
-        Contact force the linearisation is taken at, N. Default 0.5 N: an assumption (the stopped
-        servo keeps the probe pressed on the object; the MG996R's stall torque, about 1 N m, could
-        press up to several newtons at 0.2 m).
+        Contact force the linearisation is taken at, N. Default
+        :data:`~ebantenna.simulate.contact.PRELOAD` (0.5 N), an assumption.
     probe_poisson_ratio : float
-        Poisson's ratio of the tube, dimensionless. Default 0.39: PMMA, 0.38-0.40 in M. F. Ashby,
-        *Materials Selection in Mechanical Design*, 4th ed., 2011, appendix C.
+        Poisson's ratio of the tube, dimensionless. Default
+        :data:`~ebantenna.simulate.contact.TUBE_POISSON_RATIO` (0.39, PMMA).
 
     Examples
     --------
@@ -82,8 +82,8 @@ class ContactCompliance(Effect):
     """
 
     name: ClassVar[str] = "contact_compliance"
-    preload: float = 0.5
-    probe_poisson_ratio: float = 0.39
+    preload: float = PRELOAD
+    probe_poisson_ratio: float = TUBE_POISSON_RATIO
 
     def __post_init__(self):
         check_positive("preload", self.preload)

@@ -115,10 +115,8 @@ def assemble_dataset(directory, out_dir=None, *, max_lost: float | None = None,
     rows = [_resampled(rec, e["file"], fs, n, max_lost) for rec, e in zip(recordings, entries,
                                                                            strict=True)]
     arrays = _arrays(recordings, rows)
-    metadata = _metadata(directory, manifest, entries, rows, fs)
-    metadata["provenance"]["flags"] = [_flags(rec) for rec in recordings]
-    metadata["provenance"]["recordings_flagged"] = sum(bool(f) for f in
-                                                       metadata["provenance"]["flags"])
+    metadata = _metadata(directory, manifest, entries, rows, fs,
+                         [_flags(rec) for rec in recordings])
     return _write(arrays, metadata, fs, target)
 
 
@@ -264,7 +262,7 @@ def _arrays(recordings, rows) -> dict:
     }
 
 
-def _metadata(directory: Path, manifest: dict, entries, rows, fs: float) -> dict:
+def _metadata(directory: Path, manifest: dict, entries, rows, fs: float, flags) -> dict:
     plan = manifest["plan"]
     config = {"format": FORMAT, "source": "recordings", "ebantenna_version": __version__,
               "scene": {"name": "recorded", "fs": fs,
@@ -278,6 +276,8 @@ def _metadata(directory: Path, manifest: dict, entries, rows, fs: float) -> dict
         "recordings": [{"file": e["file"], "sha256": e["sha256"],
                         "recorded_at": e.get("recorded_at")} for e in entries],
         "samples_interpolated": [r[2] for r in rows],
+        "flags": flags,
+        "recordings_flagged": sum(bool(f) for f in flags),
         "resampling": "cut at the contact sample, linear interpolation onto the nominal grid "
                       "from each recording's own timestamps",
     }

@@ -253,6 +253,41 @@ def test_ex13_linear_contact_numbers_as_stated(tmp_path):
         assert abs(value - float(stated)) <= half_unit, (stated, value)
 
 
+def test_ex10_transfer_sizes_move_the_count_as_the_solution_states():
+    # the reason ex10 fixes its transfers at 32 bytes: the solution's comment, measured
+    from ebantenna.chips.mpu6050 import ACCEL_SAMPLE_BYTES, FifoEnable, Register, UserControl
+    from ebantenna.device import MPU6050, SimulatedRig
+
+    source = (DOCS / "exercises" / "solutions" / "ex10_fifo.py").read_text()
+    size, stated, published = map(int, re.search(
+        r"in transfers of (\d+) bytes \(one sample\) lets (\d+) samples in instead of (\d+)",
+        " ".join(line.lstrip("# ") for line in source.splitlines())).groups())
+
+    def arrived(transfer):
+        rig = SimulatedRig.for_contact(scene="paper", material="steel", ratio=0.5, seed=11)
+        mpu = MPU6050(rig.bus, clock=rig.clock)
+        mpu.initialize()
+        rig.touch()
+        bus, address = rig.bus, mpu.config.address
+        for register, value in ((Register.FIFO_EN, 0), (Register.USER_CTRL, UserControl.FIFO_RESET),
+                                (Register.FIFO_EN, FifoEnable.ACCEL),
+                                (Register.USER_CTRL, UserControl.FIFO_EN)):
+            bus.write_byte_data(address, register, value)
+        rig.clock.sleep(0.050)
+        high, low = bus.read_i2c_block_data(address, Register.FIFO_COUNTH, 2)
+        count, read = (high << 8) | low, 0
+        while read < count:
+            read += len(bus.read_i2c_block_data(address, Register.FIFO_R_W,
+                                                min(transfer, count - read)))
+        high, low = bus.read_i2c_block_data(address, Register.FIFO_COUNTH, 2)
+        return ((high << 8) | low) // ACCEL_SAMPLE_BYTES
+
+    assert size == ACCEL_SAMPLE_BYTES
+    assert (arrived(size), arrived(32)) == (stated, published)
+    assert published == run_solution(DOCS / "exercises" / "solutions" / "ex10_fifo.py")[0][
+        "arrived"]
+
+
 def test_answer_key_module_is_the_tools_output():
     # written by docs/_tools/make_answer_key.py, not by hand: its text is the tool's text of it
     text = make_answer_key.module_text(ANSWER_KEY)
@@ -336,7 +371,7 @@ def _searched_forms(value: float) -> set[str]:
 #: ex01's element mass matrix (ebantenna.fem.symbolic, which the exercise checks against) and the
 #: peak of ex04, whose place is fem.hinge.transition_position's example and whose frequency is the
 #: free cantilever's second mode (fem.exact's example): the contact then sits on that mode's node.
-PACKAGE_OWN = {"ex01_element": {"M11", "M14"}, "ex04_peak": {"a_peak", "f_peak"}}
+PACKAGE_OWN = {"ex01_element": {"M11", "M14"}, "ex04_peak": {"a_peak_cm", "f_peak"}}
 
 
 def test_wheel_and_sdist_hold_no_answer_and_no_solution(tmp_path):
@@ -437,30 +472,40 @@ def _alt_ex04(ns):
                              options={"xtol": 1e-8})
     grid = np.arange(0.80, 0.86, 5e-4)
     two = grid[np.argmax([ns["f_two_elements"](a) for a in grid])]
-    level = f(0.7)
+    twin_of = ns["twin_of"]
+    level = f(twin_of)
     beyond = np.arange(golden.x, 0.97, 1e-3)
     values = np.array([f(a) for a in beyond]) - level
     k = np.flatnonzero(values < 0)[0]  # the first grid point below the level, then linear
     twin = beyond[k - 1] + 1e-3 * values[k - 1] / (values[k - 1] - values[k])
-    partner_75 = ns["brentq"](lambda a: f(a) - f(0.75), ns["a_exact"], 0.97)
-    return {"a_peak": (golden.x, golden.x * L),  # wrong: metres
+    further = ns["brentq"](lambda a: f(a) - f(twin_of + 0.02), ns["a_exact"], 0.97)
+    cm = 100 * L
+    return {"a_peak_cm": (cm * golden.x, [golden.x, golden.x * L]),  # wrong: fraction; metres
             # wrong: rad/s; a factor 2 in omega^2 (f = sqrt(2 omega^2) / 2 pi)
             "f_peak": (-golden.fun, [-2 * np.pi * golden.fun, -np.sqrt(2) * golden.fun]),
-            "a_peak_two_elements": (two, ns["a_exact"]),  # wrong: the exact model's
-            "a_twin": (twin, partner_75)}  # wrong: the partner of 0.75 L
+            "a_peak_two_elements_cm": (cm * two, cm * ns["a_exact"]),  # wrong: the exact model's
+            # wrong: the partner of a contact 0.02 L further out
+            "a_twin_cm": (cm * twin, cm * further)}
 
 
 def _alt_ex05(ns):
     from ebantenna.signal import fit_decay
 
-    t, x, use = ns["t"], ns["x"], ns["use"]
-    # by hand, from 30 ms instead of 20 ms
-    later = use & (t > 0.03)
-    slope = np.polyfit(t[later], np.log(ns["env"][later]), 1)[0]
+    t, x, env = ns["t"], ns["x"], ns["env"]
+
+    def by_hand(use):
+        return -1e3 / np.polyfit(t[use], np.log(env[use]), 1)[0]
+
+    # by hand, in the window the tolerance names (from 10 to 30 ms, up to 5 to 20 times the
+    # noise) that moves the answer furthest from the solution's (from 20 ms, to 10 times)
+    windows = [(t > start) & (np.arange(t.size) < np.argmax(env < level * 0.02))
+               for start in (0.01, 0.02, 0.03) for level in (5, 10, 20)]
+    tau_hand = max((by_hand(use) for use in windows), key=lambda v: abs(v - by_hand(ns["use"])))
     # fit_decay on the record cut to 600 samples (the decay is over by then)
     fit = fit_decay(x[:600], ns["fs"])
     a, tau = fit.a, fit.tau
-    return {"tau_hand_ms": (-1e3 / slope, -1 / slope),  # wrong: seconds
+    # wrong: seconds; the noise floor fitted too (from 20 ms to the end of the record)
+    return {"tau_hand_ms": (tau_hand, [tau_hand / 1e3, by_hand(t > 0.02)]),
             "tau_fit_ms": (1e3 * tau, -1e3 * tau),  # wrong: the paper's sign, 1/b
             "a_fit": (a, np.log(a))}
 
@@ -530,11 +575,14 @@ def _alt_ex09(ns):
 def _alt_ex10(ns):
     fs, period_us = ns["fs"], 1e6 / ns["fs"] * (1 / 1.05 + 1 / 0.95) / 2
     return {"samples_after_50ms": (0.050 * fs, 6 * 0.050 * fs),  # wrong: bytes
-            # two samples more: a read-out in other transfers moves it by a few (the reason)
-            "arrived_while_reading": (ns["arrived"] + 2, 6 * ns["arrived"]),  # wrong: bytes
+            # two samples more: two extra register reads (the reason); wrong: bytes
+            "arrived_while_reading": (ns["arrived"] + 2, 6 * ns["arrived"]),
             "overflow_count": (ns["FIFO_SIZE"], ns["FIFO_SIZE"] // 6),  # wrong: in samples
-            "lost": (0.300 * fs, ns["FIFO_SIZE"] // 6),  # wrong: what the FIFO held
-            "gap_ms": (ns["block"].lost * period_us / 1e3, ns["gap_ms"] / 1e3),  # wrong: s
+            # wrong: the 300 ms wait alone (without the samples due while the driver read);
+            # what the FIFO held
+            "lost": (round(1e3 * ns["gap_ms"] / period_us), [0.300 * fs, ns["FIFO_SIZE"] // 6]),
+            # wrong: the 300 ms wait alone; in s
+            "gap_ms": (ns["block"].lost * period_us / 1e3, [300.0, ns["gap_ms"] / 1e3]),
             "period_us": (period_us, 1e6 / fs)}  # wrong: the nominal period
 
 
@@ -750,6 +798,37 @@ def test_variant_key_and_sheet_follow_the_students_data(tmp_path):
     svc = LibSVC(C=1.0, kernel="linear", tol=1e-10).fit(namespace["X"], namespace["y"])
     assert check("ex06", student="s1", key=key, w1=svc.coef_[0, 0], w2=svc.coef_[0, 1],
                  b=svc.intercept_[0], n_support=len(svc.support_)).ok
+
+
+#: how many students' variants the test below solves: ex05's by-hand answer depends on where the
+#: noisy envelope first crosses a threshold, so its spread shows only over many students (over
+#: 3000 it reaches 3.4 %, against 0.7 % on the published data), as does its fit on a shorter
+#: record (a decay of 100 ms); one run is about 50 ms
+VARIANT_STUDENTS = {"ex04_peak": 3, "ex05_decay": 60, "ex06_svm_dual": 3}
+
+
+@pytest.mark.parametrize("stem", sorted(VARIANT_STUDENTS))
+def test_on_every_variant_a_right_answer_found_another_way_passes(stem, tmp_path):
+    # A tolerance's reason must hold on every student's data, not only on the published ones:
+    # each variant is solved, then answered the other ways the published test uses
+    import make_variant_key
+
+    from ebantenna.course import VARIANTS
+
+    assert sorted(VARIANT_STUDENTS) == sorted(VARIANTS)
+    stated = tolerances(stem)
+    for i in range(VARIANT_STUDENTS[stem]):
+        script = tmp_path / f"{stem}_v{i}.py"
+        script.write_text(make_variant_key.solution_for(stem, f"v{i}"))
+        namespace = run_solution(script)[0]
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # curve_fit, scikit-learn: their own notes
+            alternatives = ALTERNATIVES[stem.split("_")[0]](namespace)
+        for name, (right, wrongs) in alternatives.items():
+            expected = float(namespace["ANSWERS"][name])
+            assert stated[name].accepts(float(right), expected), (f"v{i}", name, right, expected)
+            for wrong in np.atleast_1d(wrongs):
+                assert not stated[name].accepts(float(wrong), expected), (f"v{i}", name, wrong)
 
 
 #: a program that prints the worked solutions' answers for some students, run in a child

@@ -144,6 +144,8 @@ def test_a_probe_without_a_tip_mass_is_bounded_from_above_not_given_the_bound(tm
     assert lo == 0.0 < hi
     d = cal.to_dict()
     assert d["tip_mass_kg"] is None and d["tip_mass_interval95"] == [0.0, hi]
+    # what was fitted, counted as the design holds it: one material at the plan's distances
+    assert d["contact_materials"] == d["distances"] == len(CONTACTS)
     for name, truth in (("hinge_stiffness", TRUE_HINGE), ("loss_factor", RIG.probe.loss_factor)):
         lo, hi = cal.interval(name)
         assert cal.identifiable(name) and lo <= truth <= hi, (name, lo, truth, hi)

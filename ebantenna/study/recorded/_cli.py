@@ -167,8 +167,8 @@ def run_calibrate(args) -> int:
         print_json(summary)
         return 0
     units = {"hinge_stiffness": "N m/rad", "tip_mass": "kg", "loss_factor": ""}
-    print(f"model: {cal.model}; {summary['positions']} contacts fitted (each distance and "
-          f"material, at {len(set(cal.contacts.tolist()))} distances), rms misfit "
+    print(f"model: {cal.model}; {summary['contact_materials']} contacts fitted (each distance "
+          f"and material, at {summary['distances']} distances), rms misfit "
           f"{cal.rms_residual_hz:.3g} Hz")
     for name in PARAMETERS:
         lo, hi = cal.interval(name)

@@ -214,8 +214,12 @@ class Calibration:
 
     def to_dict(self) -> dict:
         """JSON values: each parameter with its uncertainty, 95 % interval (an unbounded end as
-        None) and identifiability (None, or the reason it is not identifiable)."""
-        out = {"positions": int(self.contacts.size), "decay_recordings": self.decay_used,
+        None) and identifiability (None, or the reason it is not identifiable); what was fitted:
+        ``contact_materials``, the (distance, material) pairs, each the mean of its recordings,
+        at ``distances`` distinct distances."""
+        out = {"contact_materials": int(self.contacts.size),
+               "distances": len(set(self.contacts.tolist())),
+               "decay_recordings": self.decay_used,
                "rms_residual_hz": self.rms_residual_hz, "model": self.model,
                "log10_hinge_stiffness_sd": _json(self.log10_stiffness_sd),
                "tip_mass_sd_kg": _json(self.tip_mass_sd),

@@ -381,7 +381,7 @@ def tolerances(exercise: str) -> dict[str, Tolerance]:
     Examples
     --------
     >>> tolerances("ex05")["tau_hand_ms"].describe()
-    '±1 %'
+    '±4 %'
     """
     key = ANSWER_KEY[_full_name(exercise)]
     return {name: Tolerance(a["kind"], a["width"], a["reason"]) for name, a in key.items()}

@@ -11,10 +11,11 @@ compared with the exact frequency.
 Two errors add up in this comparison. The mesh's own error falls like :math:`n^{-4}` (the theory
 page on convergence): on 16 elements it is about :math:`10^{-6}` and no solver can do better, so
 there the two solvers agree because both are limited by the mesh, not because the model has
-converged. Somewhere between 40 and 80 elements the mesh's error falls below the naive solver's
-rounding error, which grows like :math:`\varepsilon\,(\omega_\mathrm{max}/\omega_1)^2` (where
-exactly depends on the last bits of the linear algebra library's sums), and from there on only the
-inverted solver keeps following the mesh.
+converged. Somewhere between 40 and 80 elements the mesh's error falls below the bound of the
+naive solver's rounding error, :math:`\varepsilon\,\omega_\mathrm{max}^2/(2\,\omega_1^2)`, which
+grows like :math:`n^4`. The error a run actually makes lies under that bound, and how far under
+depends on the last bits of the linear algebra library's sums; from there on only the inverted
+solver keeps following the mesh.
 """
 
 import matplotlib.pyplot as plt

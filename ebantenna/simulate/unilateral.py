@@ -1088,10 +1088,10 @@ class HertzStrikeLaw(StrikeLaw):
         """The offset ``e_j`` of the state's coordinates, m (0 when free)."""
         return 0.0 if st is self.free else float(self.offsets[self.index[id(st)]])
 
-    def _first_exit(self, st, x, span, fresh):
-        """The first node (or the gap's closing) reached within ``span`` after ``x``:
-        ``(tau, x there, "up" or "down")``, or None. ``fresh``: ``st`` was entered at ``x``."""
-        z = st._modal(x)
+    def _first_exit(self, st, x, z, span, fresh):
+        """The first node (or the gap's closing) reached within ``span`` after ``x`` (``z``:
+        ``st.modal(x)``): ``(tau, x there, "up" or "down")``, or None. ``fresh``: ``st`` was
+        entered at ``x``."""
         curve = st._curve(x, z)
         if st is self.free:
             sides = (("up", 0.0, 1.0),)  # the gap, watched as it is
@@ -1099,6 +1099,13 @@ class HertzStrikeLaw(StrikeLaw):
             lower, upper = self._limits(st)
             sides = (("down", lower, 1.0), ("up", upper, -1.0))
         found = None
+        ends = {}  # the curve at the step's start and end, read once for both sides
+
+        def read(tau):
+            if tau not in ends:
+                ends[tau] = curve(tau)[0]
+            return ends[tau]
+
         for which, node, sign in sides:
             if math.isinf(node):
                 continue
@@ -1107,10 +1114,10 @@ class HertzStrikeLaw(StrikeLaw):
                 value, rate = curve(tau)
                 return sign * (value - node), sign * rate
 
-            end = g(span)[0]
+            end = sign * (read(span) - node)
             if end > 0:
                 continue
-            start = g(0.0)[0]
+            start = sign * (read(0.0) - node)
             if start <= 0 and not fresh:
                 tau = 0.0
             else:
@@ -1139,9 +1146,10 @@ class HertzStrikeLaw(StrikeLaw):
         check_step(t0, t1)
         fresh = False
         while True:
-            found = self._first_exit(st, x, t1 - t0, fresh)
+            z = st._modal(x)
+            found = self._first_exit(st, x, z, t1 - t0, fresh)
             if found is None:
-                return st._step(x, t1 - t0), st
+                return st._at(x, z, t1 - t0), st
             tau, x, which = found
             t0 += tau
             st, x = self._change(st, x, t0, which)

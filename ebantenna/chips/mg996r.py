@@ -12,20 +12,35 @@ Examples
 >>> from ebantenna.chips.mg996r import PULSE_RANGE, SAFE_ANGLES, SLEW_RATE, TRAVEL
 >>> round(SLEW_RATE, 1), PULSE_RANGE, TRAVEL, SAFE_ANGLES
 (352.9, (0.0005, 0.0025), 180.0, (22.5, 157.5))
+
+At 6 V it is 21 % faster, and its stall torque presses 5.4 N at 0.2 m:
+
+>>> from ebantenna.chips.mg996r import SLEW_RATE_6V, STALL_TORQUE_6V
+>>> round(SLEW_RATE_6V / SLEW_RATE - 1, 2), round(STALL_TORQUE_6V, 2)
+(0.21, 1.08)
+>>> round(STALL_TORQUE_6V / 0.2, 1)  # N
+5.4
 """
 
 from __future__ import annotations
 
 __all__ = ["SLEW_RATE", "PULSE_RANGE", "TRAVEL", "SAFE_PULSE_RANGE", "SAFE_ANGLES",
-           "OPERATING_VOLTAGE", "STALL_CURRENT"]
+           "OPERATING_VOLTAGE", "STALL_CURRENT", "SLEW_RATE_6V", "STALL_TORQUE_6V"]
 
 #: Operating voltage, V (DS, specifications).
 OPERATING_VOLTAGE = (4.8, 7.2)
 #: Stall current at 6 V, A (DS, specifications).
 STALL_CURRENT = 2.5
 
-#: Operating speed at 4.8 V, no load: 0.17 s per 60 degrees (DS), in degrees/s.
+#: Operating speed at 4.8 V, no load: 0.17 s per 60 degrees (DS), in degrees/s. The slower of
+#: the two ratings, which the simulated rig takes: the rig's supply
+#: (:data:`ebantenna.device.wiring.SERVO_SUPPLY`, 5-6 V) lies between them, and the probe is a
+#: load, which neither rating includes.
 SLEW_RATE = 60.0 / 0.17
+#: Operating speed at 6 V, no load: 0.14 s per 60 degrees (DS), in degrees/s (21 % faster).
+SLEW_RATE_6V = 60.0 / 0.14
+#: Stall torque at 6 V: 11 kgf cm (DS), in N m (11 * 9.80665 / 100).
+STALL_TORQUE_6V = 11.0 * 9.80665e-2
 #: Pulse widths at the two ends of the travel, s: 0.5 ms and 2.5 ms (vendors' listings; not in DS).
 PULSE_RANGE = (0.5e-3, 2.5e-3)
 #: Travel between those pulses, degrees (vendors' listings: "180 degrees").

@@ -91,8 +91,9 @@ __all__ = [
 #: 4th ed., 2011, appendix C); the value the simulator's contact effect uses.
 TUBE_POISSON_RATIO = 0.39
 #: Contact force the contact spring is linearised at, N: an assumption (the paper gives none;
-#: the stopped servo keeps the probe pressed on the object, and the MG996R's stall torque, about
-#: 1 N m, could press up to several newtons at 0.2 m). The default of the ``contact_compliance``
+#: the stopped servo keeps the probe pressed on the object, and the MG996R's stall torque,
+#: 1.08 N m at 6 V (:data:`ebantenna.chips.mg996r.STALL_TORQUE_6V`), could press up to 5.4 N at
+#: 0.2 m). The default of the ``contact_compliance``
 #: and ``object_modes`` effects.
 PRELOAD = 0.5
 #: Shear correction factor of a rectangular section (Roark, 7th ed., table 9.2 notes).

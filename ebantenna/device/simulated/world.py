@@ -1,9 +1,11 @@
 """The physical side of the simulated rig: two MG996R servos slewing towards their commands, the
 post in the probe's reach, and the moment the probe meets it.
 
-The servos slew at the MG996R's rated speed, 60 degrees in 0.17 s at 4.8 V. When the pan angle
-reaches the :class:`Obstacle` with the tilt inside its span, that is the contact: the probe stops
-there. Everything advances lazily, in virtual time, when somebody asks.
+The servos slew at the MG996R's rated speed, 60 degrees in 0.17 s at 4.8 V, the slower of its
+two no-load ratings (0.14 s at 6 V; the rig's 5-6 V supply lies between them): a real servo may
+arrive about a fifth sooner, or later under the probe's load. When the pan angle reaches the
+:class:`Obstacle` with the tilt inside its span, that is the contact: the probe stops there.
+Everything advances lazily, in virtual time, when somebody asks.
 """
 
 from __future__ import annotations

@@ -58,7 +58,7 @@ def test_inside_an_element_it_solves_its_model_as_a_dense_solve_does(static):
     # The dense generalized eigh is accurate to about n eps lambda_max absolute: relative to the
     # j-th eigenvalue n eps lambda_max / lambda_j; on 8 elements that is ~1e-9 for f1.
     n = 8
-    contacts = np.array([0.037, 0.1234, 0.29, 0.3999])
+    contacts = np.array([0.037, 0.1234, 0.29, 0.3998])
     lam = secular_sweep(
         PROBE, contacts, hinge_stiffness=math.inf, contact_stiffness=math.inf, n_elements=n,
         n_modes=3, static=static,

@@ -470,7 +470,7 @@ ROWS += [
         MA,
         PROBE,
         S(0.4 - 1e-10, contact_stiffness=1e4),
-        match="contact must lie in [4e-07",
+        match="contact must lie in [0.0002",
     ),
     bad(
         "fem.modal_analysis",
@@ -479,7 +479,7 @@ ROWS += [
         PROBE,
         S(1e-300),
         n_elements=4,
-        match="contact must lie in [4e-07",
+        match="contact must lie in [0.0002",
     ),
     bad(
         "fem.modal_analysis",
@@ -710,7 +710,7 @@ ROWS += [
         PROBE,
         [1e-300],
         n_elements=4,
-        match="contacts must lie in [4e-07",
+        match="contacts must lie in [0.0002",
     ),
     bad(
         "fem.natural_frequencies",
@@ -719,7 +719,7 @@ ROWS += [
         PROBE,
         [0.2, 0.4 - 1e-10],
         contact_stiffness=1e4,
-        match="contacts must lie in [4e-07",
+        match="contacts must lie in [0.0002",
     ),
     bad(
         "fem.natural_frequencies",
@@ -728,7 +728,7 @@ ROWS += [
         PROBE,
         [1e-9, 0.2],
         method="secular",
-        match="contacts must lie in [4e-07",
+        match="contacts must lie in [0.0002",
     ),
     bad(
         "fem.natural_frequencies",
@@ -738,7 +738,9 @@ ROWS += [
         [0.99999],
         n_elements=2,
         n_modes=2,
-        match="mode 2 at contacts[0] = 0.99999 m cannot be resolved with n_elements=2",
+        # a tiny element beside a long one left mode 2 unresolved (NaN, then a refusal naming
+        # the mesh); a contact so near the tip is now refused at the door (fem.guards.MIN_SPAN)
+        match="contacts must lie in [0.0005, 0.9995]",
     ),
     bad(
         "fem.natural_frequencies",

@@ -9,9 +9,10 @@ of ``EI phi / L^4``, so its condition number grows like ``(L/h)^4 = N^4``. Every
 (Cholesky, LU, shift-invert Lanczos) returns mode shapes carrying rounding noise of relative size
 about ``eps N^4`` at the mesh's own wavelength, and that noise, stiff as it is, raises the
 frequencies. Even refined by the curvature Rayleigh quotient (:mod:`~ebantenna.fem.modal`), the
-lowest frequency is then off by about ``(c eps N^4)^2``, with ``c`` between 1e-4 and 0.02 for
-the probe's hinges and contacts (measured against :mod:`~ebantenna.fem.exact` at 4096 and 8192
-elements). :func:`roundoff_error` is that estimate with ``c = 0.05``, an upper bound, and
+lowest frequency is then off by about ``(c eps N^4)^2``, with ``c`` between 1e-4 and 0.04 for
+the probe's hinges and contacts (measured against :mod:`~ebantenna.fem.exact` at 2048 to 8192
+elements). :func:`roundoff_error` is that estimate with ``c = 0.05``, above every ``c`` measured
+up to :data:`MAX_ELEMENTS` (at 16384 elements one run exceeded it), and
 :data:`MAX_ELEMENTS` the finest mesh whose estimate stays within :data:`ROUNDOFF_RTOL`:
 :func:`check_resolvable` refuses finer ones, where more elements buy no accuracy, only noise.
 

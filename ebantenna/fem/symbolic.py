@@ -185,9 +185,6 @@ PAPER_NOTES = (
     "I is called the 'moment of inertia (kg/m^2)'; it is the second moment of area, in m^4.",
     "K1 and M1 carry one factor EI/l^3 and rhoA*l/420 with an undefined l; with l1 != l2 the two "
     "elements' factors differ and cannot be taken out in common.",
-    "The text says that det(K - w^2 M) = 0 gives 'two frequencies'; the 4x4 element has four, and "
-    "the 6-DOF model with the hinge clamped and the contact pinned keeps three free DOFs, so "
-    "three.",
 )
 
 

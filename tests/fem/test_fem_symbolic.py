@@ -153,3 +153,16 @@ def test_every_unlisted_entry_really_agrees(matrix_name):
             # equal lengths make the printed factor well defined
             same = {l1: l, l2: l}
             assert sp.simplify(printed[i, j].subs(same) - derived[i, j].subs(same)) == 0
+
+
+def test_one_element_has_the_two_frequencies_the_paper_says():
+    # docs/theory/eigenproblem.rst: the paper's "two frequencies" of equation (2), one element, are
+    # right: free, det(K - w^2 M) = 0 has a double root at zero (the rigid motions) and two
+    # others, l^4 w^2 = 720 and 8400 (EI = rhoA = 1); clamped at one end, two DOFs, two roots
+    w2 = sp.Symbol("w2")
+    K, M = (m.subs({EI: 1, rhoA: 1}) for m in element_matrices())
+    free = sp.Poly(sp.factor((K - w2 * M).det()), w2)
+    roots = sp.roots(free)
+    assert free.degree() == 4 and roots.get(sp.Integer(0)) == 2
+    assert sorted(sp.simplify(r * l**4) for r in roots if r != 0) == [720, 8400]
+    assert sp.Poly((K - w2 * M)[2:, 2:].det(), w2).degree() == 2

@@ -5,8 +5,9 @@ Why not simply ``scipy.linalg.eigh(K, M)``? That routine reduces the problem to
 ``eps * omega_max^2``. On a fine mesh ``omega_max^2`` grows like ``(N/L)^4`` while the probe's
 first ``omega^2`` stays put, so the low modes, the only ones that matter, lose their digits
 (the bound on the first frequency's relative error, ``eps omega_max^2 / (2 omega_1^2)``, is 30 %
-at 2048 elements with the contact at 0.2 L; how much a run loses depends on the BLAS kernel). Here the problem is inverted instead, as in shift-invert Lanczos:
-with a small shift ``s > 0`` and ``K + s M = L L^T``,
+at 2048 elements with the contact at 0.2 L; how much a run loses depends on the BLAS kernel).
+Here the problem is inverted instead, as in shift-invert Lanczos: with a small shift ``s > 0``
+and ``K + s M = L L^T``,
 
     L^-1 M L^-T y = mu y,     omega^2 = 1/mu - s,     phi = L^-T y / sqrt(mu),
 

@@ -1,4 +1,4 @@
-"""The paper network's epoch against the arithmetic it cannot avoid, side by side in one run.
+"""The paper network's epoch against the arithmetic it cannot avoid, measured in one run.
 
 The study's ``ml`` step waits for the paper's network (``learning.ANN_MAX_EPOCHS`` epochs of
 full-batch gradient descent, MATLAB's traingd, in ``paper.experiments.classify_materials_ann``):

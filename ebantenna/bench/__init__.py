@@ -15,7 +15,9 @@ report through :func:`write_sweep`.
 - :mod:`~ebantenna.bench.contact_cost`: the strike's Hertz contact against the linearised one.
 - :mod:`~ebantenna.bench.ml_speed`: the hand-written SVC and MLP against scikit-learn.
 
-Timings are measured side by side in one run; on a shared machine read the ratios, not the seconds.
+Timings are measured in one run, the cases of a table alternating round by round where they are
+compared (``simulate_cost``, ``contact_cost``, the march engines, ``ml_speed``); on a shared
+machine read the ratios, not the seconds, and run twice to see how much they move.
 """
 
 from __future__ import annotations
@@ -120,7 +122,8 @@ def run_benchmarks(
     figures = FigureSet(out_dir)
     report = Report("ebantenna: accuracy against time" + (" (quick)" if quick else ""))
     report.paragraph(
-        "Every table is measured side by side in one run; compare ratios, not seconds."
+        "Every table is measured in one run; compare ratios, not seconds, and run twice to see "
+        "how much they move."
     )
     results: dict = {}
     for name in progress(names, desc="bench", enabled=show_progress):

@@ -6,7 +6,7 @@ import functools
 import time
 from contextlib import contextmanager
 
-__all__ = ["best_time", "clocked"]
+__all__ = ["best_time", "best_times", "clocked"]
 
 
 def best_time(fn, repeat: int, clock=time.perf_counter):
@@ -20,6 +20,28 @@ def best_time(fn, repeat: int, clock=time.perf_counter):
         out = fn()
         best = min(best, clock() - start)
     return best, out
+
+
+def best_times(fns, repeat: int, clock=time.perf_counter):
+    """Call each of ``fns`` once per round, ``repeat`` rounds; return, for each, the shortest
+    time (s) and its last result.
+
+    The cases alternate, so that a change of the machine's load during the run reaches all of
+    them alike and the ratios between them stay comparable, where timing every repeat of one
+    case before the next would put the load on one case only.
+
+    Examples
+    --------
+    >>> [(t >= 0, out) for t, out in best_times([lambda: 1, lambda: 2], 3)]
+    [(True, 1), (True, 2)]
+    """
+    best, out = [float("inf")] * len(fns), [None] * len(fns)
+    for _ in range(repeat):
+        for i, fn in enumerate(fns):
+            start = clock()
+            out[i] = fn()
+            best[i] = min(best[i], clock() - start)
+    return list(zip(best, out, strict=True))
 
 
 @contextmanager

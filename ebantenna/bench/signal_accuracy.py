@@ -1,4 +1,4 @@
-"""Accuracy against cost of the signal-processing estimators, measured side by side in one run.
+"""Accuracy against cost of the signal-processing estimators, measured in one run.
 
 Tables:
 

@@ -41,14 +41,15 @@ Run: ``python benchmarks/ml_speed.py [--quick] [--repeat N]``
   the loop in a fresh process with an empty numba cache, and loading it in this one.
 
 A second table (:func:`where_time_goes`) splits our fits into parts, each as a share of
-scikit-learn's time, and so shows how low each ratio can go. On the AMD EPYC machine: the default
-``SVC`` (two BLAS threads) spends 0.18-0.21 in kernel entries (float64 products at the cores'
-peak) and 0.18-0.22 in the SMO loop (14165 updates, the same number as libsvm's, at 13-14 us
-each, some fifteen NumPy calls on vectors of 2400 entries); a ratio of 0.3 would leave the loop
-about 4 us per update. ``libsvm_compat``: 0.14-0.17 in its float32 kernel matrix and 0.29-0.36
-in the loop with shrinking (22-23 us per update). Adam on one BLAS thread: the gathers and the
-two 200 x 256 x 53 products of each mini-batch, the same BLAS calls on both sides, take 0.51-0.53
-of scikit-learn's fit on that machine (0.43-0.44 on a later one), Adam's update of the parameters
+scikit-learn's time, and so shows how low each ratio can go. The ``SVC`` parts are timed on one
+BLAS thread, as the ``SVC`` rows and libsvm are: the default ``SVC`` spends its time in kernel
+entries (float64 products) and in the SMO loop (14165 updates, the same number as libsvm's,
+some fifteen NumPy calls each on vectors of 2400 entries), ``libsvm_compat`` in its float32
+kernel matrix and in the loop with shrinking. (An earlier run on the AMD EPYC machine timed
+them on two BLAS threads against libsvm's one: 0.18-0.21 in kernel entries and 0.18-0.22 in the
+loop at 13-14 us an update, where a ratio of 0.3 would leave the loop about 4 us.) Adam on one
+BLAS thread: the gathers and the two 200 x 256 x 53 products of each mini-batch, the same BLAS
+calls on both sides, take 0.51-0.53 of scikit-learn's fit on that machine (0.43-0.44 on a later one), Adam's update of the parameters
 0.10 as NumPy calls (0.03 compiled) and the hidden layer's tanh with its derivative 0.03, each the
 same arithmetic as scikit-learn's (which the 1e-15 parity needs). The rest is mostly the output
 loss (``exp``, ``log``, ``einsum`` and NumPy's pairwise sums, which the compiled loops cannot
@@ -57,7 +58,7 @@ Computing only the kernel rows that SMO reads (36 % of them, in blocks of 16-64 
 their violation) was tried and is slower: each block repacks the pair's points for the product,
 so an entry costs about twice as much (0.42-0.52 s against 0.40 s for the fit).
 
-Each pair is timed alternately ``--repeat`` times (at least 5: ours, theirs, ours, ...), so that
+Each pair is timed alternately ``--repeat`` times (5 by default: ours, theirs, ours, ...), so that
 other load on the machine affects both sides alike; the table gives the smallest and the median
 of the ratios ours / theirs taken within each repetition, which a load that comes and goes moves
 less than a ratio of times taken apart. :func:`run` returns the rows, :func:`to_text` prints
@@ -511,12 +512,14 @@ def where_time_goes(X, y, svc_seconds: float, adam_seconds: float, epochs: int,
 
 def _svc_parts(X, y, svc_seconds: float) -> list[dict]:
     """Per mode, the faster of two fits with :meth:`Kernel.gram` and the SMO solver clocked:
-    kernel entries, the SMO loop (with its updates) and the rest, as shares of ``svc_seconds``."""
+    kernel entries, the SMO loop (with its updates) and the rest, as shares of ``svc_seconds``
+    (scikit-learn's fit on one thread, so the fits are timed on one BLAS thread too)."""
     parts = []
     for compat in (False, True):
-        whole, totals = _fastest_clocked_fit(  # the faster of two clocked fits
-            SVC(libsvm_compat=compat), X, y,
-            [(Kernel, "gram", None), (svc_module, "solve_smo", lambda res: res.n_iter)], 2)
+        with threadpool_limits(1):
+            whole, totals = _fastest_clocked_fit(  # the faster of two clocked fits
+                SVC(libsvm_compat=compat), X, y,
+                [(Kernel, "gram", None), (svc_module, "solve_smo", lambda res: res.n_iter)], 2)
         mode = "libsvm_compat" if compat else "default"
         updates = totals["solve_smo count"]
         for part, seconds, note in (

@@ -41,22 +41,22 @@ Run: ``python benchmarks/ml_speed.py [--quick] [--repeat N]``
   the loop in a fresh process with an empty numba cache, and loading it in this one.
 
 A second table (:func:`where_time_goes`) splits our fits into parts, each as a share of
-scikit-learn's time, and so shows how low each ratio can go. The ``SVC`` parts are timed on one
-BLAS thread, as the ``SVC`` rows and libsvm are: the default ``SVC`` spends its time in kernel
-entries (float64 products) and in the SMO loop (14165 updates, the same number as libsvm's,
-some fifteen NumPy calls each on vectors of 2400 entries), ``libsvm_compat`` in its float32
-kernel matrix and in the loop with shrinking. (An earlier run on the AMD EPYC machine timed
-them on two BLAS threads against libsvm's one: 0.18-0.21 in kernel entries and 0.18-0.22 in the
-loop at 13-14 us an update, where a ratio of 0.3 would leave the loop about 4 us.) Adam on one
-BLAS thread: the gathers and the two 200 x 256 x 53 products of each mini-batch, the same BLAS
-calls on both sides, take 0.51-0.53 of scikit-learn's fit on that machine (0.43-0.44 on a later one), Adam's update of the parameters
-0.10 as NumPy calls (0.03 compiled) and the hidden layer's tanh with its derivative 0.03, each the
-same arithmetic as scikit-learn's (which the 1e-15 parity needs). The rest is mostly the output
-loss (``exp``, ``log``, ``einsum`` and NumPy's pairwise sums, which the compiled loops cannot
-copy bit for bit). (On two threads the products' share varies from run to run, 0.33-0.49.)
-Computing only the kernel rows that SMO reads (36 % of them, in blocks of 16-64 rows chosen by
-their violation) was tried and is slower: each block repacks the pair's points for the product,
-so an entry costs about twice as much (0.42-0.52 s against 0.40 s for the fit).
+scikit-learn's time, and so shows how low each ratio can go. The ``SVC`` parts are timed on one BLAS
+thread, as the ``SVC`` rows and libsvm are: the default ``SVC`` spends its time in kernel entries
+(float64 products) and in the SMO loop (14165 updates, the same number as libsvm's, some fifteen
+NumPy calls each on vectors of 2400 entries), ``libsvm_compat`` in its float32 kernel matrix and in
+the loop with shrinking. (An earlier run on the AMD EPYC machine timed them on two BLAS threads
+against libsvm's one: 0.18-0.21 in kernel entries and 0.18-0.22 in the loop at 13-14 us an update,
+where a ratio of 0.3 would leave the loop about 4 us.) Adam on one BLAS thread: the gathers and the
+two 200 x 256 x 53 products of each mini-batch, the same BLAS calls on both sides, take 0.51-0.53 of
+scikit-learn's fit on that machine (0.43-0.44 on a later one), Adam's update of the parameters 0.10
+as NumPy calls (0.03 compiled) and the hidden layer's tanh with its derivative 0.03, each the same
+arithmetic as scikit-learn's (which the 1e-15 parity needs). The rest is mostly the output loss
+(``exp``, ``log``, ``einsum`` and NumPy's pairwise sums, which the compiled loops cannot copy bit
+for bit). (On two threads the products' share varies from run to run, 0.33-0.49.) Computing only the
+kernel rows that SMO reads (36 % of them, in blocks of 16-64 rows chosen by their violation) was
+tried and is slower: each block repacks the pair's points for the product, so an entry costs about
+twice as much (0.42-0.52 s against 0.40 s for the fit).
 
 Each pair is timed alternately ``--repeat`` times (5 by default: ours, theirs, ours, ...), so that
 other load on the machine affects both sides alike; the table gives the smallest and the median

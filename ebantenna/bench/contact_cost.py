@@ -1,16 +1,15 @@
 """What the strike's Hertz contact costs against the contact linearised at the preload.
 
-The same signals (a seeded sample of the paper data set's rows: contacts, materials, speeds,
-tilts) are simulated with the ``paper`` scene, whose strike pushes through the spring linearised
-at the preload, and with the same scene plus ``hertz_contact`` (the Hertz law in series with the
-tube wall, as chords within 0.01 N, :class:`~ebantenna.simulate.effects.HertzContact`). Each is
-timed in CPU seconds of this process (best of ``repeat`` rounds, the two laws alternating); the
-table gives seconds per 1000
-signals, the ratio, the median re-strikes and what each law adds to the linearised one's time
-for the whole paper data set (9875 signals) on two cores, perfectly parallel, against the budget
-of 60 s for the whole build. (The sample's signals each touch their own position, so each pays
-its own reduction, which the data set's 25 repetitions share: the per-signal cost here is an
-upper one; the difference between the laws, the strikes themselves, is not.)
+The same signals (a seeded sample of the paper data set's rows: contacts, materials, speeds, tilts)
+are simulated with the ``paper`` scene, whose strike pushes through the spring linearised at the
+preload, and with the same scene plus ``hertz_contact`` (the Hertz law in series with the tube
+wall, as chords within 0.01 N, :class:`~ebantenna.simulate.effects.HertzContact`). Each is timed in
+CPU seconds of this process (best of ``repeat`` rounds, the two laws alternating); the table gives
+seconds per 1000 signals, the ratio, the median re-strikes and what each law adds to the linearised
+one's time for the whole paper data set (9875 signals) on two cores, perfectly parallel, against
+the budget of 60 s for the whole build. (The sample's signals each touch their own position, so
+each pays its own reduction, which the data set's 25 repetitions share: the per-signal cost here is
+an upper one; the difference between the laws, the strikes themselves, is not.)
 
 :func:`run` returns the rows, :func:`to_text` prints them.
 

@@ -45,7 +45,8 @@ Three compliances act in series at the contact point:
    ``transverse_modulus`` (:data:`ebantenna.probe.MATERIALS` states it, with its source: for red
    oak the mean of the radial and tangential moduli, 1.48 GPa). The fibres lying in the surface
    stiffen the indentation somewhat, so this rule errs on the soft side; the longitudinal
-   modulus would overestimate the stiffness about eight-fold.
+   modulus, 8.4 times larger, would raise the contact modulus 2.5-fold, the Hertz stiffness
+   1.8-fold and the contact's in series with the tube wall 1.3-fold.
 
 **The law, not only its slope.** The three compliances add in approach:
 ``p(F) = delta_H(F) + F / k_ring`` with ``delta_H = delta_H(1 N) F^(2/3)``. :class:`HertzInSeries`

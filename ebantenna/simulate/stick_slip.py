@@ -27,7 +27,9 @@ moving with the rigid rotation ``tilt_ratio x sweep_speed`` about the hinge, as 
 (:mod:`.modes`), so the contact point starts sliding along the rod at ``tilt_ratio x sweep_speed
 x contact``. **Assumption:** ``N`` is the contact's static preload: the normal force's swing
 during the strike, and its lift-offs with ``unilateral_contact``, are not fed into the friction.
-The rod is rigid along its axis (its axial modes lie far above the scene's band).
+The rod is rigid along its axis: its first axial mode, ``sqrt(E / rho) / (4 L)`` on the default
+rod, lies at 1.5 kHz for PVC and 3.5 to 5.1 kHz for the others, above what the sensor reads at
+1 kHz, though not above the probe's modes the scene keeps (up to 3 kHz).
 """
 
 from __future__ import annotations

@@ -2,6 +2,7 @@
 
 import json
 
+import numpy as np
 import pytest
 
 from ebantenna.probe import Probe
@@ -120,3 +121,28 @@ def test_load_rejects_unknown_fields(tmp_path):
         load_scene(path)
     with pytest.raises(ValueError, match="existing .toml/.json"):
         resolve_scene(tmp_path / "missing.toml")
+
+
+def test_the_default_sweep_keeps_the_readings_in_range_up_to_035_m():
+    # Scene.sweep_speed: "keeps the paper rig's readings inside +-16 g with the contact up to
+    # 0.35 m from the hinge; nearer the tip the metals' strikes reach up to 26 g (steel at
+    # 0.39 m), and the paper scene's clipping holds those samples at the rail"
+    from ebantenna.probe import material_names
+    from ebantenna.simulate import simulate_batch
+
+    paper = builtin_scene("paper")
+    sensor = {"clipping", "quantisation", "sensor_noise", "mains_hum", "sensor_drift",
+              "clock_jitter", "kalman"}
+    motion = paper.with_(effects=[e for e in paper.effects if e.name not in sensor])
+    names = material_names()
+    full_scale = 16 * 9.80665
+    for contact, within in ((0.35, True), (0.39, False)):
+        ax = simulate_batch(motion, contact=np.full(len(names), contact), material=names,
+                            show_progress=False)[1]
+        peaks = dict(zip(names, np.abs(ax).max(axis=1), strict=True))
+        assert (max(peaks.values()) < full_scale) == within, (contact, peaks)
+    assert 25 <= peaks["steel"] / 9.80665 < 27  # "up to 26 g": steel at 0.39 m
+    chip = paper.with_(effects=[e for e in paper.effects if e.name != "kalman"])
+    ax = simulate_batch(chip, contact=[0.39], material=["steel"], seeds=[0], show_progress=False)[1]
+    low, high = paper.effect("clipping").limits()
+    assert np.any((ax <= low) | (ax >= high))  # held at the rail

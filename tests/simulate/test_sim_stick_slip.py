@@ -186,6 +186,9 @@ def test_paper_probe_sticks_within_20_ms_beyond_a_fifth_of_its_length(contact):
 
 
 def test_paper_probe_near_the_hinge_slips_again_and_again():
-    # ... "nearer the hinge ... it slips again and again for up to half a second"
+    # ... "nearer the hinge ... it slips again and again: for about half a second with the
+    # contact 2 cm from the hinge, and through the whole one-second recording at 1 cm"
     events = _paper_z_events(0.02)
-    assert len(events) > 10 and 0.1 < events[-1][0] <= 0.5
+    assert len(events) > 10 and 0.4 < events[-1][0] <= 0.6
+    events = _paper_z_events(0.01)
+    assert len(events) > 10 and events[-1][0] > 0.9

@@ -220,8 +220,9 @@ class UnilateralContact(Effect):
     modes below the scene's ``max_frequency``; their loss factors become modal viscous damping.
     The Z axis is unchanged. Requires :class:`ObjectModes`.
 
-    The ``paper`` scene lists it; it makes that scene about 2.3 times as costly to simulate
-    (``ebantenna bench``). The study measures what a linear contact would change instead.
+    The ``paper`` scene lists it; it makes that scene about 4.8 times as costly to simulate (one
+    run on one machine; the theory page on the touched object gives it). The study measures what
+    a linear contact would change instead.
 
     Parameters
     ----------

@@ -143,11 +143,11 @@ class MaterialSplitsResult:
         if self.flattery is not None:
             materials["random_against_grouped"] = {c: p.to_dict()
                                                    for c, p in self.flattery.items()}
-        materials["svm_grouped_test_confusion"] = {
-            "labels": list(svm["grouped"].labels),
-            "counts": svm["grouped"].confusions["test"].astype(int).tolist(),
-            "fold": 0,
-        }
+        for name, first in (("svm_grouped_test_confusion", svm["grouped"]),
+                            ("mode_curve_grouped_test_confusion", self.mode_curves["grouped"])):
+            materials[name] = {"labels": list(first.labels),
+                               "counts": first.confusions["test"].astype(int).tolist(),
+                               "fold": 0}
         smallest, against = self.distance_ranking
         distance = {
             "linear_region_mae_cm_by_trainer": {k: r.mae_cm for k, r in self.distance.items()},

@@ -236,17 +236,26 @@ def test_plot_12_retries_as_stated(caplog):
     assert rig.wrong_samples(mpu, result.recording) == 0
 
 
+def _largest_omega2(supports, n_elements: int) -> float:
+    """The largest eigenvalue omega^2 of the supported model on ``n_elements`` (Lanczos), which
+    sets the naive solver's rounding bound eps omega_max^2 / (2 omega_1^2)."""
+    import scipy.sparse as sps
+    from scipy.sparse.linalg import eigsh
+
+    from ebantenna.fem.assembly import apply_supports, assemble, beam_mesh
+
+    nodes = beam_mesh(L, supports.contact, n_elements)
+    K, M = apply_supports(*assemble(nodes, PROBE, sparse=True), nodes, PROBE, supports)[:2]
+    return eigsh(sps.csc_matrix(K), k=1, M=sps.csc_matrix(M), which="LA",
+                 return_eigenvectors=False)[0]
+
+
 def test_plot_03_mesh_error_and_rounding_as_stated():
     # plot_03_naive_eigensolver, contact at L/2: "on 16 elements [the mesh's error] is about 1e-6";
     # "between 40 and 80 elements the mesh's error falls below the bound of the naive solver's
     # rounding error, eps w_max^2 / (2 w_1^2)"; "the error a run actually makes lies under that
     # bound" (where under it depends on the BLAS kernel and its threads: at 80 elements it was
     # above the mesh's error with one OpenBLAS thread and below it at the dependency floors)
-    import scipy.sparse as sps
-    from scipy.sparse.linalg import eigsh
-
-    from ebantenna.fem.assembly import apply_supports, assemble, beam_mesh
-
     supports = Supports(contact=0.5 * L)
     exact = exact_frequencies(PROBE, supports.contact, n_modes=1)[0]
 
@@ -255,11 +264,7 @@ def test_plot_03_mesh_error_and_rounding_as_stated():
             modal_analysis(PROBE, supports, n_elements=n, n_modes=1, solver=s).frequencies[0]
             for s in ("naive", "auto")
         )
-        nodes = beam_mesh(L, supports.contact, n)
-        K, M = apply_supports(*assemble(nodes, PROBE, sparse=True), nodes, PROBE, supports)[:2]
-        w_max2 = eigsh(sps.csc_matrix(K), k=1, M=sps.csc_matrix(M), which="LA",
-                       return_eigenvectors=False)[0]
-        bound = np.finfo(float).eps * w_max2 / (2 * (2 * np.pi * exact) ** 2)
+        bound = np.finfo(float).eps * _largest_omega2(supports, n) / (2 * (2 * np.pi * exact) ** 2)
         return abs(inverted / exact - 1), abs(naive / inverted - 1), bound
 
     mesh, _, _ = errors(16)
@@ -555,11 +560,7 @@ def test_decay_and_filter_numbers_as_stated():
 def test_eigenproblem_numbers_as_stated():
     import math
 
-    import scipy.sparse as sps
-    from scipy.sparse.linalg import eigsh
-
     from ebantenna.fem import natural_frequencies
-    from ebantenna.fem.assembly import apply_supports, assemble, beam_mesh
     from ebantenna.fem.guards import MAX_ELEMENTS, roundoff_error
     from ebantenna.fem.secular import secular_sweep
 
@@ -572,11 +573,7 @@ def test_eigenproblem_numbers_as_stated():
     supports = Supports(contact=0.2 * L)
     exact = exact_frequencies(PROBE, supports.contact, n_modes=1)[0]
     for n_elements, stated in ((1024, 0.02), (2048, 0.3)):
-        nodes = beam_mesh(L, supports.contact, n_elements)
-        K, M = assemble(nodes, PROBE, sparse=True)
-        K, M = apply_supports(K, M, nodes, PROBE, supports)[:2]
-        w_max2 = eigsh(sps.csc_matrix(K), k=1, M=sps.csc_matrix(M), which="LA",
-                       return_eigenvectors=False)[0]
+        w_max2 = _largest_omega2(supports, n_elements)
         bound = np.finfo(float).eps * w_max2 / (2 * (2 * np.pi * exact) ** 2)
         assert abs(bound - stated) <= stated / 4  # one significant digit
         if n_elements == 1024:
@@ -624,19 +621,12 @@ def test_rounding_figures_of_the_fem_modules_as_stated():
     # fem.banded: "a rounding bounded by eps w_max^2 / w^2 (5e-7 at 64 elements with the contact
     # at 0.2 L ...)"; the eigenproblem page: "with a clamped hinge and the contact at 0.2 L it is
     # already 1e-8 at 2048" (to the stated order: the last digits follow the BLAS kernel)
-    import scipy.sparse as sps
-    from scipy.sparse.linalg import eigsh
-
     import ebantenna.fem.banded as banded
-    from ebantenna.fem.assembly import apply_supports, assemble, beam_mesh
 
     assert "(5e-7 at 64 elements with the contact at\n   0.2 L" in banded.__doc__
     supports = Supports(contact=0.2 * L)
     exact = exact_frequencies(PROBE, supports.contact, n_modes=1)[0]
-    nodes = beam_mesh(L, supports.contact, 64)
-    K, M = apply_supports(*assemble(nodes, PROBE, sparse=True), nodes, PROBE, supports)[:2]
-    w_max2 = eigsh(sps.csc_matrix(K), k=1, M=sps.csc_matrix(M), which="LA",
-                   return_eigenvectors=False)[0]
+    w_max2 = _largest_omega2(supports, 64)
     assert f"{np.finfo(float).eps * w_max2 / (2 * np.pi * exact) ** 2:.0e}" == "5e-07"
     assert "already :math:`10^{-8}` at 2048" in _page_text("theory/eigenproblem.rst")
     fine = modal_analysis(PROBE, supports, n_elements=2048, n_modes=1).frequencies[0]

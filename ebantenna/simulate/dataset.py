@@ -197,7 +197,8 @@ class Dataset:
         strike's contacts after the first; with ``object_modes`` and the linear contact
         ``lift_off_ratio``, each strike's largest pull of the contact over its preload
         (:meth:`~ebantenna.simulate.ModalTerms.lift_off_ratio`; above 1 the probe would lift
-        off).
+        off); with the ``clipping`` effect ``samples_saturated``, each signal's samples (X and Z
+        together) that the chip's range moved to a rail.
     path : Path or None
         The file it was loaded from.
     """
@@ -350,6 +351,12 @@ def _per_strike_keys(scene: Scene) -> tuple[str, ...]:
     return ("lift_off_ratio",) if scene.has("object_modes") else ()
 
 
+def _kept_keys(scene: Scene) -> tuple[str, ...]:
+    """What a data set of ``scene`` keeps of each signal in its metadata: its strike's
+    (``_per_strike_keys``) and, with the ``clipping`` effect, ``"samples_saturated"``."""
+    return _per_strike_keys(scene) + (("samples_saturated",) if scene.has("clipping") else ())
+
+
 def _per_strike(scene: Scene, x) -> dict:
     """The ``_per_strike_keys`` of ``scene`` read from its strikes' modal terms ``x``."""
     got = {"restrikes": lambda: x.restrikes, "lift_off_ratio": lambda: x.lift_off_ratio(
@@ -379,10 +386,11 @@ def _simulated_rows(scenes, rows: np.ndarray, plan: dict):
         x_modes=False,  # the data set keeps the signals, not the modes
     )
     if len(scenes) == 1:
-        done = [simulate_batch(scenes[0], **given)]
+        done = [simulate_batch(scenes[0], **given, return_saturated=True)]
     else:
-        done = simulate_sensor_variants(scenes, **given)
-    signals = [(bx.astype(np.float32), bz.astype(np.float32)) for _, bx, bz, _, _ in done]
+        done = simulate_sensor_variants(scenes, **given, return_saturated=True)
+    signals = [(bx.astype(np.float32), bz.astype(np.float32), saturated)
+               for _, bx, bz, _, _, saturated in done]
     return rows, signals, _per_strike(scenes[0], done[0][3])
 
 
@@ -548,7 +556,7 @@ def build_datasets(
     for i, (scene, path) in enumerate(zip(scenes, paths, strict=True)):
         remove_leftovers(path)
         config = _config(scene, design, seed)
-        found[i] = _reusable(path, config, _per_strike_keys(scene))
+        found[i] = _reusable(path, config, _kept_keys(scene))
         if found[i] is None:  # grouped by what the steps before the sensor stage read
             todo.setdefault(physics_key(scene), []).append((i, scene, path, config))
     for group in todo.values():
@@ -556,14 +564,17 @@ def build_datasets(
         signals, strikes = _simulate_plan(
             [g[1] for g in group], plan, design.materials, n_jobs, show_progress
         )
-        for (i, scene, path, config), (ax, az) in zip(group, signals, strict=True):
-            found[i] = _save(path, scene, config, dict(plan, ax=ax, az=az), strikes)
+        for (i, scene, path, config), (ax, az, saturated) in zip(group, signals, strict=True):
+            found[i] = _save(path, scene, config, dict(plan, ax=ax, az=az), strikes, saturated)
     return [found[i] for i in range(len(scenes))]
 
 
-def _save(path: Path, scene: Scene, config: dict, arrays: dict, strikes: dict) -> Dataset:
+def _save(path: Path, scene: Scene, config: dict, arrays: dict, strikes: dict,
+          saturated) -> Dataset:
     """Write the data set of ``arrays`` (the plan and the signals) to ``path``, with what each
-    strike gives besides (``strikes``, ``_per_strike_keys``) in its metadata; return it."""
+    strike gives besides (``strikes``, ``_per_strike_keys``) and each signal's samples the
+    range moved to a rail (``saturated``, None without ``clipping``) in its metadata; return
+    it."""
     metadata = {
         "config": config,
         "ebantenna_version": __version__,
@@ -572,6 +583,8 @@ def _save(path: Path, scene: Scene, config: dict, arrays: dict, strikes: dict) -
         "checksum_sha256": _checksum(arrays, scene.fs),
     }
     metadata.update({key: strikes[key].tolist() for key in _per_strike_keys(scene)})
+    if saturated is not None:
+        metadata["samples_saturated"] = saturated.tolist()
     write_whole(path, arrays, metadata, scene.fs)
     for a in arrays.values():
         a.setflags(write=False)
@@ -580,7 +593,7 @@ def _save(path: Path, scene: Scene, config: dict, arrays: dict, strikes: dict) -
 
 def _reusable(path: Path, config: dict, keys) -> Dataset | None:
     """The data set cached at ``path`` if it loads, has ``config`` and keeps ``keys`` of each
-    strike (``_per_strike_keys``); None (logged why) if not."""
+    signal (``_kept_keys``); None (logged why) if not."""
     if not path.exists():
         return None
     try:
@@ -591,7 +604,7 @@ def _reusable(path: Path, config: dict, keys) -> Dataset | None:
     why = stale_reason(cached.metadata.get("config"), config)
     missing = [key for key in keys if key not in cached.metadata]
     if why is None and missing:  # written before the data set kept them
-        why = f"its metadata does not keep each strike's {', '.join(missing)}"
+        why = f"its metadata does not keep each signal's {', '.join(missing)}"
     if why is not None:
         log.warning("rebuilding %s: %s", path, why)
         return None
@@ -603,13 +616,15 @@ def _simulate_plan(scenes, plan: dict, materials, n_jobs, show_progress):
     """The signals of every row of ``plan`` in each of ``scenes`` (the same physics key), one
     joblib task per range of contacts.
 
-    Returns per scene ``ax`` and ``az`` (float32, ``(n, n_samples)``), and what each row's
+    Returns per scene ``ax`` and ``az`` (float32, ``(n, n_samples)``) and ``saturated`` (the
+    samples each row's range moved to a rail; None without ``clipping``), and what each row's
     strike gives besides (``{key: (n,) array}``, ``_per_strike_keys``; the scenes share
     their strikes). Takes checked values.
     """
     n = plan["contact"].size
     signals = [
-        (np.empty((n, s.n_samples), dtype=np.float32), np.empty((n, s.n_samples), np.float32))
+        (np.empty((n, s.n_samples), dtype=np.float32), np.empty((n, s.n_samples), np.float32),
+         np.zeros(n, dtype=np.int64) if s.has("clipping") else None)
         for s in scenes
     ]
     tasks = _tasks(plan, materials)
@@ -622,8 +637,10 @@ def _simulate_plan(scenes, plan: dict, materials, n_jobs, show_progress):
     for rows, part, given in progress(
         parts, total=len(tasks), desc="dataset", enabled=show_progress
     ):
-        for (ax, az), (bx, bz) in zip(signals, part, strict=True):
+        for (ax, az, saturated), (bx, bz, cx) in zip(signals, part, strict=True):
             ax[rows], az[rows] = bx, bz
+            if saturated is not None:
+                saturated[rows] = cx
         for key, values in given.items():
             strikes.setdefault(key, np.zeros(n, dtype=values.dtype))[rows] = values
     return signals, strikes

@@ -71,7 +71,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._budget import check_allocation
-from .._validate import check_array, check_int, check_real
+from .._validate import check_array, check_bool, check_int, check_real
 from ..fem.guards import check_contact
 from ..probe import material as lookup_material
 from ..recording import Recording
@@ -143,6 +143,9 @@ class SignalBatch:
         The signals, m/s^2, once the responses' step ran.
     levels_x, levels_z : ndarray of shape (n,)
         Each axis's resting reading, m/s^2 (gravity, the drift's offset), for the Kalman filter.
+    saturated : ndarray of int, shape (n,) or None
+        Per signal, the samples (X and Z together) that the chip's range moved to a rail, once
+        the ``clipping`` step ran; None without it.
     chip_filter : ebantenna.simulate.effects.LowPassFilter or None
         The chip's low-pass filter (the scene's ``dlpf``), read from the scene here only; the
         steps whose ``reads`` (:class:`ChainStep`) name ``dlpf`` pass their part of the signal
@@ -170,6 +173,7 @@ class SignalBatch:
     az: np.ndarray | None = None
     levels_x: np.ndarray = field(init=False)
     levels_z: np.ndarray = field(init=False)
+    saturated: np.ndarray | None = None
     chip_filter: object = field(init=False)
 
     def __post_init__(self):
@@ -423,6 +427,7 @@ def simulate_batch(
     seeds=0,
     show_progress=None,
     x_modes=True,
+    return_saturated=False,
 ):
     """Simulate many signals of one scene, each with its own contact, material, speed and seed.
 
@@ -445,6 +450,8 @@ def simulate_batch(
         Whether ``x`` carries the coupled modes even where the strikes of ``unilateral_contact``
         give the X axis (one eigenproblem per strike); False leaves them out there (``x`` then
         has no modes, only ``preload`` and ``restrikes``), as a data set build does.
+    return_saturated : bool
+        Also return ``saturated``.
 
     Returns
     -------
@@ -454,18 +461,28 @@ def simulate_batch(
         Tip accelerations, m/s^2.
     x, z : ModalTerms
         The modal parameters used.
+    saturated : ndarray of int, shape (n,), or None
+        Only with ``return_saturated``: per signal, the samples (X and Z together) that the chip's
+        range (the ``clipping`` effect) moved to a rail; None if the scene has no range.
     """
+    check_bool("return_saturated", return_saturated)
     batch = _checked_batch(
         scene, contact, material, sweep_speed, tilt_ratio, seeds,
         show_progress=show_progress, x_modes=x_modes,
     )  # fmt: skip
     _run_chain(batch)
-    return batch.t, batch.ax, batch.az, batch.x, batch.z
+    return _batch_result(batch, return_saturated)
+
+
+def _batch_result(batch: SignalBatch, return_saturated: bool) -> tuple:
+    """What :func:`simulate_batch` returns of a batch the chain ran on."""
+    done = (batch.t, batch.ax, batch.az, batch.x, batch.z)
+    return (*done, batch.saturated) if return_saturated else done
 
 
 def simulate_sensor_variants(
     scenes, *, contact=None, material=None, sweep_speed=None, tilt_ratio=None, seeds=0,
-    show_progress=None, x_modes=True,
+    show_progress=None, x_modes=True, return_saturated=False,
 ):
     """:func:`simulate_batch` of each of ``scenes``, which differ only in their sensor stage
     (the same :func:`physics_key`): the steps before it run once, on the first scene.
@@ -478,7 +495,7 @@ def simulate_sensor_variants(
     ----------
     scenes : sequence of Scene
         At least one, all with the same :func:`physics_key`.
-    contact, material, sweep_speed, tilt_ratio, seeds, show_progress, x_modes
+    contact, material, sweep_speed, tilt_ratio, seeds, show_progress, x_modes, return_saturated
         As in :func:`simulate_batch`.
 
     Returns
@@ -486,6 +503,7 @@ def simulate_sensor_variants(
     list of tuple
         Per scene, what :func:`simulate_batch` returns.
     """
+    check_bool("return_saturated", return_saturated)
     if isinstance(scenes, Scene) or not hasattr(scenes, "__iter__"):
         raise TypeError(f"scenes must be a non-empty sequence of Scene, got "
                         f"{type(scenes).__name__}")
@@ -511,7 +529,7 @@ def simulate_sensor_variants(
         batch.ax, batch.az = shared.ax.copy(), shared.az.copy()
         batch.levels_x, batch.levels_z = shared.levels_x.copy(), shared.levels_z.copy()
         _run_chain(batch, CHAIN[_SENSOR_STAGE:])
-        out.append((batch.t, batch.ax, batch.az, batch.x, batch.z))
+        out.append(_batch_result(batch, return_saturated))
     return out
 
 
@@ -531,7 +549,9 @@ def simulate(scene: Scene, seed: int = 0) -> Recording:
     Recording
         ``t`` (s), ``ax``, ``az`` (m/s^2), ``fs`` (Hz) and metadata: the scene, the seed and the
         simulated modes of X and Z (frequencies in Hz, damping ratios); with the
-        ``unilateral_contact`` effect also ``restrikes``, the contacts after the first touch.
+        ``unilateral_contact`` effect also ``restrikes``, the contacts after the first touch;
+        with the ``clipping`` effect ``samples_saturated``, the samples (X and Z together) that
+        the chip's range moved to a rail.
 
     Examples
     --------
@@ -558,4 +578,6 @@ def simulate(scene: Scene, seed: int = 0) -> Recording:
     }
     if x.restrikes is not None:  # the unilateral contact: strikes after the first touch
         metadata["restrikes"] = int(x.restrikes[0])
+    if batch.saturated is not None:  # the chip's range
+        metadata["samples_saturated"] = int(batch.saturated[0])
     return Recording(batch.t, batch.ax[0], batch.az[0], scene.fs, metadata)

@@ -30,6 +30,9 @@ class DatasetResult:
         Distinct contact positions.
     checksum : str or None
         SHA-256 of the data set's arrays.
+    saturated : dict or None
+        The recordings the chip's range held at a rail on at least one sample
+        (:func:`saturated_recordings`); None when the data set does not count them.
     """
 
     path: str | None
@@ -39,6 +42,7 @@ class DatasetResult:
     materials: tuple
     contacts: int
     checksum: str | None
+    saturated: dict | None = None
 
     def to_dict(self) -> dict:
         """The summary record of the data set.
@@ -55,6 +59,7 @@ class DatasetResult:
             "materials": list(self.materials),
             "contacts": self.contacts,
             "checksum_sha256": self.checksum,
+            "saturated": self.saturated,
         }
 
 
@@ -69,7 +74,43 @@ def compute(ds) -> DatasetResult:
         materials=tuple(dict.fromkeys(ds.material.tolist())),
         contacts=int(np.unique(ds.contact).size),
         checksum=ds.metadata.get("checksum_sha256"),
+        saturated=saturated_recordings(ds),
     )
+
+
+def saturated_recordings(ds) -> dict | None:
+    """The recordings of ``ds`` that reached the chip's range: ``recordings`` (with at least one
+    sample at a rail), ``samples`` (in all, X and Z together), ``most`` (in one recording),
+    ``by_material`` and ``contact_range_m`` (the nearest and farthest contact among them, None
+    if there are none), from the data set's ``samples_saturated``; None if it has no such
+    count (its scene has no ``clipping`` effect).
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> ds = SimpleNamespace(n_signals=3, metadata={"samples_saturated": [0, 2, 1]},
+    ...                      material=np.array(["wood", "steel", "steel"]),
+    ...                      contact=np.array([0.38, 0.36, 0.39]))
+    >>> saturated_recordings(ds)["by_material"], saturated_recordings(ds)["contact_range_m"]
+    ({'wood': 0, 'steel': 2}, [0.36, 0.39])
+    """
+    counts = ds.metadata.get("samples_saturated")
+    if counts is None:
+        return None
+    counts = np.asarray(counts)
+    if counts.shape != (ds.n_signals,):
+        raise ValueError(f"the data set's samples_saturated must hold one count per recording "
+                         f"({ds.n_signals}), got shape {counts.shape}")
+    hit = counts > 0
+    return {
+        "recordings": int(hit.sum()),
+        "samples": int(counts.sum()),
+        "most": int(counts.max(initial=0)),
+        "by_material": {m: int(np.sum(hit & (ds.material == m)))
+                        for m in dict.fromkeys(ds.material.tolist())},
+        "contact_range_m": ([float(ds.contact[hit].min()), float(ds.contact[hit].max())]
+                            if hit.any() else None),
+    }
 
 
 def render(result: DatasetResult, report, figures) -> None:
@@ -79,8 +120,36 @@ def render(result: DatasetResult, report, figures) -> None:
     report.paragraph(
         f"{result.signals} simulated recordings of {result.samples} samples at {result.fs:g} Hz: "
         f"{len(result.materials)} materials x {result.contacts} contact positions x "
-        f"{_repetitions(result)}, from {result.path} (SHA-256 {result.checksum})."
+        f"{_repetitions(result)}, from {result.path} (SHA-256 {result.checksum}). "
+        + saturation_sentence(result.saturated)
     )
+
+
+def saturation_sentence(saturated: dict | None) -> str:
+    """What the chip's range did to the recordings, from :func:`saturated_recordings`.
+
+    Examples
+    --------
+    >>> saturation_sentence(None)
+    'Its scene has no accelerometer range (no clipping effect): nothing was held at a rail.'
+    >>> saturation_sentence({"recordings": 0, "samples": 0, "most": 0, "by_material": {},
+    ...                      "contact_range_m": None})
+    "No recording reached the chip's range."
+    """
+    if saturated is None:
+        return ("Its scene has no accelerometer range (no clipping effect): nothing was held at "
+                "a rail.")
+    n = saturated["recordings"]
+    if n == 0:
+        return "No recording reached the chip's range."
+    lo, hi = saturated["contact_range_m"]
+    where = f"at {lo:g} m" if lo == hi else f"between {lo:g} and {hi:g} m"
+    materials = ", ".join(f"{k} {v}" for k, v in saturated["by_material"].items() if v)
+    samples = saturated["samples"]
+    return (f"{n} recording{'s' if n != 1 else ''} reached the chip's range ({materials}; "
+            f"contacts {where}): {samples} sample{'s' if samples != 1 else ''} in all, at most "
+            f"{saturated['most']} in one, held at the rail. They stay in the data set, as a real "
+            "recording keeps them.")
 
 
 def _repetitions(result: DatasetResult) -> str:

@@ -179,6 +179,15 @@ ROWS = {
         ("scenes-a-scene", lambda: simulator.simulate_sensor_variants(builtin_scene("paper")),
          ("scenes",), None),
         ("scenes-empty", lambda: simulator.simulate_sensor_variants([]), ("scenes",), None),
+        ("return_saturated-str", lambda: simulator.simulate_sensor_variants(
+            [builtin_scene("paper")], return_saturated="yes"), ("return_saturated",), None),
+    ],
+    s + "simulator.simulate_batch": [
+        ("return_saturated-str", lambda: simulator.simulate_batch(
+            builtin_scene("paper"), return_saturated="yes"), ("return_saturated",), None),
+        # the ideal scene has no range: nothing counted, said by None
+        ("return_saturated-no-range", lambda: simulator.simulate_batch(
+            builtin_scene("ideal"), return_saturated=True), None, lambda r: r[5] is None),
     ],
 }
 CASES = [(surface, *row) for surface, rows in ROWS.items() for row in rows]

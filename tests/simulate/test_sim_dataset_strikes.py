@@ -59,16 +59,42 @@ def test_a_scene_without_the_touched_objects_modes_keeps_neither(tmp_path):
     assert not {"restrikes", "lift_off_ratio"} & set(ds.metadata)
 
 
-def test_a_cached_set_written_without_the_ratios_is_rebuilt_and_says_why(linear_set, tmp_path,
-                                                                          caplog):
+@pytest.mark.parametrize("key", ["lift_off_ratio", "samples_saturated"])
+def test_a_cached_set_written_without_what_it_keeps_is_rebuilt_and_says_why(
+        linear_set, tmp_path, caplog, key):
     path = tmp_path / linear_set.path.name
     with np.load(linear_set.path) as f:
         arrays = {k: f[k] for k in f.files}
     metadata = json.loads(str(arrays.pop("metadata")))
-    del metadata["lift_off_ratio"]  # as a data set of an earlier version was written
+    del metadata[key]  # as a data set of an earlier version was written
     np.savez(path, metadata=json.dumps(metadata), **arrays)
     with caplog.at_level(logging.WARNING, logger=dataset_module.__name__):
         again = build_dataset(tmp_path, LINEAR, DESIGN, seed=3, n_jobs=1, show_progress=False)
-    assert "does not keep each strike's lift_off_ratio" in caplog.text
-    assert again.metadata["lift_off_ratio"] == linear_set.metadata["lift_off_ratio"]
+    assert f"does not keep each signal's {key}" in caplog.text
+    assert again.metadata[key] == linear_set.metadata[key]
     assert np.array_equal(again.az, linear_set.az)
+
+
+def test_each_signals_saturated_samples_are_those_beyond_the_range_without_it(tmp_path):
+    """The count the data set keeps, against a witness: the same rows simulated without the
+    range and the two steps after it (quantisation, Kalman filter), whose samples beyond the
+    range are counted directly. Every random effect draws from its own stream, so the signals
+    reaching the range are the same floats in both."""
+    design = DatasetDesign("near-tip", ("steel", "brass", "pvc"), 0.30, 0.03, 1)
+    ds = build_dataset(tmp_path, PAPER, design, seed=1, n_jobs=1, show_progress=False)
+    plan = dataset_plan(PAPER, design, 1)
+    open_ended = PAPER.with_(name="no-range", effects=[
+        e for e in PAPER.effects if e.name not in ("clipping", "quantisation", "kalman")])
+    _, ax, az, _, _ = simulate_batch(
+        open_ended, contact=plan["contact_true"], material=plan["material"],
+        sweep_speed=plan["sweep_speed"], tilt_ratio=plan["tilt_ratio"], seeds=plan["seed_row"],
+        show_progress=False, x_modes=False,
+    )  # fmt: skip
+    low, high = PAPER.effect("clipping").limits()
+    witness = ((ax < low) | (ax > high)).sum(axis=1) + ((az < low) | (az > high)).sum(axis=1)
+    kept = np.asarray(ds.metadata["samples_saturated"])
+    assert kept.tolist() == witness.tolist()
+    # the design reaches the range (the metals near the tip) and not everywhere: the count can
+    # tell the two apart
+    assert 0 < np.count_nonzero(kept) < kept.size
+    assert not np.any(kept[plan["material"] == "pvc"])

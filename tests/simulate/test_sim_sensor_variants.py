@@ -15,7 +15,13 @@ import pytest
 
 from ebantenna._validate import more_jobs_allowed
 from ebantenna.paper.controls import ABLATION_DESIGN
-from ebantenna.simulate import build_dataset, build_datasets, builtin_scene, simulate_batch
+from ebantenna.simulate import (
+    build_dataset,
+    build_datasets,
+    builtin_scene,
+    simulate,
+    simulate_batch,
+)
 from ebantenna.simulate.simulator import (
     SENSOR_EFFECTS,
     physics_key,
@@ -59,6 +65,31 @@ def test_sensor_variants_equal_each_scene_simulated_alone(paper):
         assert np.array_equal(x.restrikes, x1.restrikes)
     # the variants do differ: the test would not pass by giving every scene the first's signals
     assert not np.array_equal(shared[0][2], shared[2][2])  # Z without gravity
+
+
+def test_each_variant_counts_the_samples_its_own_range_saturated(paper):
+    """A narrower range (8 g) is a sensor variant of the paper's 16 g: the shared physics, its
+    own count of saturated samples, equal to the scene simulated alone and to the single
+    recording's metadata."""
+    narrow = paper.with_(name="paper-8g", effects=[
+        replace(e, range_g=8) if e.name in ("clipping", "quantisation") else e
+        for e in paper.effects])
+    rows = dict(contact=np.array([0.2, 0.36, 0.39]), material=np.array(["steel", "brass", "pvc"]),
+                seeds=[3, 4, 5], show_progress=False, x_modes=False)
+    shared = simulate_sensor_variants([paper, narrow], **rows, return_saturated=True)
+    counts = []
+    for scene, result in zip((paper, narrow), shared, strict=True):
+        assert len(result) == 6
+        alone = simulate_batch(scene, **rows, return_saturated=True)[5]
+        assert alone.tolist() == result[5].tolist(), scene.name
+        single = [simulate(scene.with_(contact=c, material=m), seed=s).metadata[
+            "samples_saturated"] for c, m, s in zip(rows["contact"], rows["material"],
+                                                    rows["seeds"], strict=True)]
+        assert single == result[5].tolist(), scene.name
+        counts.append(result[5])
+    # the narrower range holds at least the samples the wider one does, and more here
+    assert np.all(counts[1] >= counts[0]) and counts[1].sum() > counts[0].sum()
+    assert len(simulate_batch(paper, **rows)) == 5  # without the flag, as before
 
 
 def test_sensor_variants_refuse_scenes_that_differ_in_the_physics(paper):

@@ -4,6 +4,7 @@ direction flips, the words flip with them; where nothing measured tests a claim,
 describe the method instead."""
 
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -15,6 +16,7 @@ from ebantenna.signal.timefreq import TimeFrequency
 from ebantenna.study import (
     ann_setup,
     contact_law,
+    data_summary,
     hinge_fit,
     learning,
     seed_spread,
@@ -239,3 +241,33 @@ def test_the_budget_is_said_to_close_a_shortfall_only_below_the_paper(k, words):
                                                        1, None, up))
     assert "accounts for part of" in text and words in text
     assert ("shortfall" in text) == (k == 1)
+
+
+# ---------------------------------------------------------------- the chip's range
+def _saturated_set(counts, materials, contacts):
+    return SimpleNamespace(n_signals=len(counts), metadata={"samples_saturated": list(counts)},
+                           material=np.array(materials), contact=np.array(contacts))
+
+
+def test_the_saturation_sentence_reads_the_counts():
+    materials, contacts = ["steel", "steel", "pvc", "brass"], [0.36, 0.39, 0.39, 0.38]
+    none = data_summary.saturated_recordings(_saturated_set([0, 0, 0, 0], materials, contacts))
+    assert none["recordings"] == 0 and none["contact_range_m"] is None
+    assert data_summary.saturation_sentence(none) == "No recording reached the chip's range."
+    some = data_summary.saturated_recordings(_saturated_set([2, 0, 0, 5], materials, contacts))
+    assert some == {"recordings": 2, "samples": 7, "most": 5,
+                    "by_material": {"steel": 1, "pvc": 0, "brass": 1},
+                    "contact_range_m": [0.36, 0.38]}
+    text = data_summary.saturation_sentence(some)
+    assert text.startswith("2 recordings reached the chip's range (steel 1, brass 1; contacts "
+                           "between 0.36 and 0.38 m): 7 samples in all, at most 5 in one")
+    one = data_summary.saturated_recordings(_saturated_set([0, 1, 0, 0], materials, contacts))
+    assert data_summary.saturation_sentence(one).startswith(
+        "1 recording reached the chip's range (steel 1; contacts at 0.39 m): 1 sample in all")
+
+
+def test_a_saturation_count_of_the_wrong_length_is_refused():
+    short = _saturated_set([0, 1], ["a", "a", "a"], [0.1] * 3)  # two counts, three recordings
+    short.n_signals = 3
+    with pytest.raises(ValueError, match="samples_saturated must hold one count per recording"):
+        data_summary.saturated_recordings(short)

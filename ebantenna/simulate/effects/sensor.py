@@ -543,7 +543,12 @@ class Clipping(Effect):
 
 
 def _clip(clipping: Clipping, batch) -> None:
-    """The chain's step ``clipping``: the chip's range, on both axes."""
+    """The chain's step ``clipping``: the chip's range, on both axes. The samples it moves to a
+    rail are counted per signal (``batch.saturated``, X and Z together): a saturated recording is
+    a fact of the data, which a study reports."""
+    low, high = clipping.limits()
+    batch.saturated = sum(np.count_nonzero((a < low) | (a > high), axis=-1)
+                        for a in (batch.ax, batch.az))
     batch.ax, batch.az = clipping.apply(batch.ax), clipping.apply(batch.az)
 
 

@@ -238,8 +238,8 @@ PAPER_MAP = (
         ),
         ("plot_07_decay_fit",),
         "pvc_wood_overlap_cm",
-        here="a decay found in [[summary:decay.decay_fit_ok_fraction|pct]] of the recordings "
-        "on the first 80 % of the probe",
+        here="a usable decay fit (status 'ok') in [[summary:decay.decay_fit_ok_fraction|pct]] of "
+        "the recordings on the first 80 % of the probe",
         status="not computed: where PVC and wood overlap; the band-pass of Table 1, at the order "
         "[[filter:chebyshev|d]] its table needs, rings on and lengthens short decays",
     ),

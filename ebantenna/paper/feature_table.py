@@ -48,7 +48,10 @@ class SignalFeatures:
         Time constant (s) and gain (m/s^2) of the exponential fit to the Chebyshev band-passed
         resultant acceleration (section 4.1.2).
     decay_ok : ndarray of bool (n,)
-        Whether the decay fit found a decay (its ``status == "ok"``).
+        Whether the decay fit is usable (its ``status == "ok"``).
+    decay_status : ndarray of str (n,)
+        The decay fit's ``status`` (:class:`~ebantenna.signal.DecayFit`): why a fit is not
+        usable.
     fft : ndarray (n, 256)
         The paper's FFT feature vector of X and Z, each row divided by its maximum.
     fft_elliptic : ndarray (n, 256)
@@ -60,6 +63,7 @@ class SignalFeatures:
     tau: np.ndarray
     gain: np.ndarray
     decay_ok: np.ndarray
+    decay_status: np.ndarray
     fft: np.ndarray
     fft_elliptic: np.ndarray
 
@@ -90,10 +94,11 @@ def _chunk(ax, az, fs, cheb, ellip):
     tau = np.full(n, np.nan)
     gain = np.full(n, np.nan)
     ok = np.zeros(n, dtype=bool)
+    status = np.empty(n, dtype=object)
     for i in range(n):
         fit = fit_decay(banded[i], fs)
-        tau[i], gain[i], ok[i] = fit.tau, fit.a, fit.ok
-    return dominant, peaks, tau, gain, ok, fx, fz
+        tau[i], gain[i], ok[i], status[i] = fit.tau, fit.a, fit.ok, fit.status
+    return dominant, peaks, tau, gain, ok, status.astype(str), fx, fz
 
 
 def _checked(ax, az, fs, chunk, n_jobs):
@@ -167,7 +172,7 @@ def signal_features(ax, az, fs, *, n_jobs=None, chunk: int = 250, show_progress=
     # order its specification needs; see ebantenna.signal.filters.
     cheb = paper_filter("chebyshev", fs=fs)
     ellip = paper_filter("elliptic", fs=fs)
-    dominant, peaks, tau, gain, ok, fx, fz = _in_chunks(
+    dominant, peaks, tau, gain, ok, status, fx, fz = _in_chunks(
         _chunk, ax.shape[0], chunk, n_jobs, show_progress, ax, az, args=(fs, cheb, ellip))
     return SignalFeatures(
         dominant=dominant,
@@ -175,6 +180,7 @@ def signal_features(ax, az, fs, *, n_jobs=None, chunk: int = 250, show_progress=
         tau=tau,
         gain=gain,
         decay_ok=ok,
+        decay_status=status,
         fft=fft_features(ax, az),
         fft_elliptic=fft_features(fx, fz),
     )

@@ -38,7 +38,8 @@ def transient_span(x: np.ndarray) -> slice | None:
     is cut into 64 blocks about the median of ``x`` (the baseline). A transient is the span from
     the first to the last block above both 30 times the quietest block (the noise floor: for
     white noise the quietest of 64 blocks of 15 or more samples holds about 0.4 times the mean
-    block energy, and a block above 12 times the mean is a 1e-6 chance) and 1e-6 of the
+    block energy, and a block above 12 times the mean, a chi-squared tail of 15 degrees of
+    freedom beyond 180, has a chance of about 1e-28 among 64 blocks) and 1e-6 of the
     strongest block (an amplitude 60 dB down, where a noise-free decay counts as over). It counts
     as short when it covers less than half the record, which a steady oscillation never does.
     """
@@ -186,18 +187,39 @@ class DecayRegion:
     first : int
         First sample after the last clipped one (0 when nothing is clipped).
     keep : ndarray of int
-        Indices of the envelope samples to fit.
+        Indices of the envelope samples to fit: from the start of the region up to where the
+        envelope first sinks to ``floor_factor`` times the floor.
     end : int
         End (exclusive) of the window the damped-sinusoid witness is fitted to.
     too_short : bool
         The decay is over before two periods: ``keep`` is then every positive envelope sample
         of the region, to tell a decay too short to measure from no decay at all.
+    whole : ndarray of int
+        Every positive envelope sample of the region (edges and clipping left out), for a decay
+        that has not reached the floor by the tail, whose tail is then the decay itself.
+    floor : float
+        The floor, the median envelope of the last tenth of the region.
+    tail_start : int
+        Index of the first sample of that last tenth.
+    peak : float
+        The largest envelope sample from ``first`` to the end of the region (the first period
+        included: a decay may be over within it).
+    tail_spread : float
+        Standard deviation of the log envelope over the tail about its least-squares line: about
+        ``sigma / D`` for a decay ``D`` under noise of standard deviation ``sigma`` per
+        component, and ``pi / sqrt(24) = 0.64`` for a tail of noise (the log of a Rayleigh
+        envelope).
     """
 
     first: int
     keep: np.ndarray
     end: int
     too_short: bool
+    whole: np.ndarray
+    floor: float
+    tail_start: int
+    peak: float
+    tail_spread: float
 
 
 def decay_region(env: np.ndarray, clipped: np.ndarray, period: float,
@@ -206,10 +228,12 @@ def decay_region(env: np.ndarray, clipped: np.ndarray, period: float,
 
     The first and last period are dropped (the Hilbert transform's edge effects), and so is
     everything up to the last clipped sample; the fit runs from there up to where the envelope
-    first sinks to ``floor_factor`` times the noise floor (the median envelope of the last tenth
-    of the region): later samples are noise, Hilbert leakage from the record's ends, or the
-    offset left by removing the mean. Takes checked values: ``period`` in samples, ``floor_factor
-    >= 1``.
+    first sinks to ``floor_factor`` times the floor (the median envelope of the last tenth of the
+    region): later samples are noise, Hilbert leakage from the record's ends, or the offset left
+    by removing the mean. Whether the tail is that, or the decay itself, is for the caller to
+    decide (``_fitted_samples`` of :mod:`~ebantenna.signal.decay`). The cut is "too short" when
+    it holds fewer than two periods. Takes checked values: ``period`` in samples,
+    ``floor_factor >= 1``.
 
     Returns
     -------
@@ -224,16 +248,22 @@ def decay_region(env: np.ndarray, clipped: np.ndarray, period: float,
     if period > n / 4 or stop - start < 4:
         return None
     region = np.arange(start, stop)
-    tail = env[region[-max(2, region.size // 10) :]]
-    floor = float(np.median(tail))
+    tail_start = int(region[-max(2, region.size // 10)])
+    floor = float(np.median(env[tail_start:stop]))
+    # half of the tail lies at or below its median, so the envelope sinks to the cut level
     below = np.flatnonzero(env[region] <= floor_factor * floor)
-    # A record that ends before its decay reaches the noise floor has no floor to cut at: the
-    # envelope must rise well above its tail (floor_factor squared) for the tail to be noise.
-    if env[region].max() < floor_factor**2 * floor:
-        below = below[:0]
-    keep = region[: below[0]] if below.size else region
+    keep = region[: below[0]]
     end = min(n, int(keep[-1]) + 1 + edge) if keep.size else start
-    too_short = keep.size < 2 * period or keep.size < max(4, region.size // 20)
-    if too_short:
-        keep = region[env[region] > 0.0]
-    return DecayRegion(first, keep, end, bool(too_short))
+    whole = region[env[region] > 0.0]
+    too_short = keep.size < 2 * period
+    return DecayRegion(first, whole if too_short else keep, end, bool(too_short), whole, floor,
+                       tail_start, float(env[first:stop].max()), _log_spread(env[tail_start:stop]))
+
+
+def _log_spread(tail: np.ndarray) -> float:
+    """Tell a decaying tail from noise: the spread of ``log tail`` about its straight line."""
+    if not np.all(tail > 0):
+        return math.inf
+    u = np.arange(tail.size, dtype=float)
+    log_tail = np.log(tail)
+    return float(np.std(log_tail - np.polyval(np.polyfit(u, log_tail, 1), u)))

@@ -3,6 +3,7 @@ constant of the band-passed decay per material (Fig. 11)."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -193,22 +194,26 @@ class DecayResult:
     ----------
     per_material : tuple of dict
         Per material: ``material``, ``grid`` (m), ``gain`` (m/s^2) and ``tau`` (s) medians per
-        contact, and the medians ``median_gain``, ``median_tau`` and the share ``ok`` of fits
-        that found a decay.
+        contact over the usable fits, and the medians ``median_gain``, ``median_tau`` (NaN
+        without a usable fit) and the share ``ok`` of usable fits (``status == "ok"``).
     ok_fraction : float
-        Share of all recordings in the region whose fit found a decay.
+        Share of all recordings in the region whose fit is usable.
     filter_tau : float or None
         Time constant of the Table 1 filter's slowest pole at the data set's sampling
         frequency, s (:func:`~ebantenna.signal.filter_time_constant`); None when not computed.
+    statuses : dict
+        How many fits of the region ended with each ``status``, most first.
     """
 
     per_material: tuple
     ok_fraction: float
     filter_tau: float | None = None
+    statuses: dict | None = None
 
     def to_dict(self) -> dict:
-        """The summary number."""
-        return {"decay_fit_ok_fraction": self.ok_fraction}
+        """The summary numbers."""
+        return {"decay_fit_ok_fraction": self.ok_fraction,
+                "decay_fit_statuses": dict(self.statuses or {})}
 
 
 def compute_decay(ds, feats, materials) -> DecayResult:
@@ -223,12 +228,21 @@ def compute_decay(ds, feats, materials) -> DecayResult:
         _, tau, _ = per_contact(feats.tau[sel], ds.contact[sel], ok)
         per_material.append({
             "material": m, "grid": grid, "gain": gain, "tau": tau,
-            "median_gain": float(np.nanmedian(feats.gain[sel][ok])),
-            "median_tau": float(np.nanmedian(feats.tau[sel][ok])),
+            "median_gain": _median(feats.gain[sel][ok]),
+            "median_tau": _median(feats.tau[sel][ok]),
             "ok": float(ok.mean()),
         })
     tau_filter = filter_time_constant(paper_filter("chebyshev", fs=ds.fs), ds.fs)
-    return DecayResult(tuple(per_material), float(feats.decay_ok[region].mean()), tau_filter)
+    names, counts = np.unique(feats.decay_status[region], return_counts=True)
+    statuses = {str(names[i]): int(counts[i]) for i in np.argsort(-counts, kind="stable")}
+    return DecayResult(tuple(per_material), float(feats.decay_ok[region].mean()), tau_filter,
+                       statuses)
+
+
+def _median(values: np.ndarray) -> float:
+    """The median of the finite ``values``; NaN when there are none (no usable fit)."""
+    values = values[np.isfinite(values)]
+    return float(np.median(values)) if values.size else math.nan
 
 
 def render_decay(result: DecayResult, report, figures) -> None:
@@ -251,19 +265,55 @@ def render_decay(result: DecayResult, report, figures) -> None:
     report.paragraph(
         "Resultant acceleration band-passed by the Table 1 Chebyshev filter at the order its "
         "specification needs (zero phase), then a*exp(b t) fitted to the envelope (tau = -1/b), on "
-        "the first 80 % of the probe; recordings whose fit finds no decay are left out and "
-        "counted. " + ringing_sentence(result.filter_tau,
-                                       [r["median_tau"] for r in result.per_material])
+        "the first 80 % of the probe; only usable fits (status 'ok') enter the medians. "
+        + status_sentence(result.statuses)
+        + ringing_sentence(result.filter_tau, [r["median_tau"] for r in result.per_material])
     )
     report.table(
-        ["material", "median gain (m/s^2)", "median tau (ms)", "fits with a decay"],
+        ["material", "median gain (m/s^2)", "median tau (ms)", "usable fits"],
         [
-            [r["material"], f"{r['median_gain']:.3g}", f"{1000 * r['median_tau']:.1f}",
-             f"{r['ok']:.0%}"]
+            [r["material"], _shown(r["median_gain"], "{:.3g}"),
+             _shown(1000 * r["median_tau"], "{:.1f}"), f"{r['ok']:.0%}"]
             for r in result.per_material
         ],
     )
     report.figure(name, "Gain and time constant along the probe per material")
+
+
+#: What each status of :class:`~ebantenna.signal.DecayFit` says of a fit, for the report.
+STATUS_WORDS = {
+    "noise_limited": "the decay does not stand out of what follows it",
+    "not_decaying": "no decay stands out",
+    "too_few_points": "the decay is over within two periods",
+    "inconsistent": "the envelope disagrees with the damped sinusoid",
+}
+
+
+def status_sentence(statuses: dict | None) -> str:
+    """How many fits are usable and why the others are not, from the counts of their statuses.
+
+    Examples
+    --------
+    >>> status_sentence({"ok": 3, "not_decaying": 1})
+    'Of the 4 fits, 3 are usable; not_decaying: 1 (no decay stands out). '
+    >>> status_sentence({"noise_limited": 2})[:52]
+    'Of the 2 fits, none is usable, so the gains and time'
+    """
+    if not statuses:
+        return ""
+    total, usable = sum(statuses.values()), statuses.get("ok", 0)
+    others = "; ".join(f"{k}: {v} ({STATUS_WORDS.get(k, 'see DecayFit')})"
+                       for k, v in statuses.items() if k != "ok")
+    if usable == 0:
+        return (f"Of the {total} fits, none is usable, so the gains and time constants of Fig. 11 "
+                f"are not reproduced here; {others}. ")
+    return (f"Of the {total} fits, {usable} {'is' if usable == 1 else 'are'} usable"
+            + (f"; {others}. " if others else ". "))
+
+
+def _shown(value: float, spec: str) -> str:
+    """``value`` in ``spec``, or 'n/a' where it is NaN (no usable fit)."""
+    return spec.format(value) if math.isfinite(value) else "n/a"
 
 
 def ringing_sentence(filter_tau, taus) -> str:

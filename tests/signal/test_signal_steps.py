@@ -21,6 +21,8 @@ from ebantenna.signal._guards import (
     unit_scaled,
 )
 from ebantenna.signal.decay import (
+    _fitted_samples,
+    _rate_standard_error,
     analytic_envelope,
     damped_sinusoid_fit,
     envelope_fit,
@@ -318,3 +320,32 @@ def test_decay_region_leaves_out_the_edges_the_clipping_and_the_noise_tail():
     assert region.end == region.keep[-1] + 1 + edge
     # a record shorter than four periods has no region
     assert decay_region(env[:30], clipped[:30], period, 3.0) is None
+
+
+def test_rate_standard_error_against_numpy_polyfit():
+    rng = np.random.default_rng(9)
+    tk = np.arange(50) / 1000.0
+    ek = 0.8 * np.exp(-20.0 * tk + 0.05 * rng.standard_normal(50))
+    a, b = loglinear_fit(tk, ek)
+    # polyfit's covariance with cov="unscaled" is (X^T W X)^-1; times the residual variance
+    # sum w r^2 / (n - 2) it is the textbook standard error; both solve the same 2x2 system
+    _, cov = np.polyfit(tk, np.log(ek), 1, w=ek, cov="unscaled")
+    r = np.log(ek) - math.log(a) - b * tk
+    expected = math.sqrt(cov[0, 0] * (ek**2 * r**2).sum() / (50 - 2))
+    assert _rate_standard_error(tk, ek, a, b) == pytest.approx(expected, rel=1e-9)
+
+
+def test_fitted_samples_cuts_a_noise_tail_and_keeps_a_decaying_one():
+    fs, n = 1000.0, 1000
+    t = np.arange(n) / fs
+    clean = np.zeros(n, bool)
+    rng = np.random.default_rng(3)
+    noisy = np.exp(-t / 0.05) * np.sin(2 * np.pi * 80 * t) + 1e-3 * rng.standard_normal(n)
+    env = analytic_envelope(noisy)
+    region = decay_region(env, clean, fs / 80.0, 3.0)
+    keep, _, too_short, separable = _fitted_samples(t, env, region, 3.0)
+    assert np.array_equal(keep, region.keep) and not too_short and separable
+    slow = analytic_envelope(np.exp(-t / 1.0) * np.sin(2 * np.pi * 80 * t))
+    region = decay_region(slow, clean, fs / 80.0, 3.0)
+    keep, end, too_short, separable = _fitted_samples(t, slow, region, 3.0)
+    assert np.array_equal(keep, region.whole) and end == n and not too_short and separable

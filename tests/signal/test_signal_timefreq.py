@@ -114,3 +114,30 @@ def test_plot_returns_a_figure():
 def test_bad_input(call, match):
     with pytest.raises(ValueError, match=match):
         call()
+
+
+@pytest.mark.parametrize("f", [400.0, 450.0])
+def test_morlet_near_nyquist_beats_with_the_mirror_image(f):
+    from ebantenna.signal import morlet_scalogram
+
+    fs, b, c = 1000.0, 1.5, 1.0
+    t = np.arange(1000) / fs
+    a = c * fs / f
+    gain = np.exp(-np.pi**2 * b * c**2 * (fs / f - 2) ** 2)  # the image's: 0.025, then 0.48
+    ratio = np.concatenate([
+        np.abs(morlet_scalogram(np.sin(2 * np.pi * f * t + phi), fs, [f]).values[0, 300:700])
+        / (np.sqrt(a) / 2) for phi in np.linspace(0, np.pi, 9)])
+    # the docstring's range 1 -+ g; the other aliases add below 1e-11 (g at 300 Hz), and the
+    # edges are 300 samples (many wavelet lengths) away
+    assert ratio.min() == pytest.approx(1 - gain, abs=2e-3)
+    assert ratio.max() == pytest.approx(1 + gain, abs=2e-3)
+
+
+def test_spectrogram_drops_the_samples_after_the_last_whole_frame():
+    from ebantenna.signal import spectrogram
+
+    x = np.zeros(1000)
+    x[992:] = 1.0  # only in the 8 samples after the last whole frame (64 long, 32 apart)
+    tf = spectrogram(x, 1000.0)
+    assert tf.values.shape[1] == 1 + (1000 - 64) // 32
+    assert np.all(tf.values == 0.0)

@@ -70,7 +70,8 @@ def test_features_do_not_depend_on_the_number_of_jobs():
     one = signal_features(ax, az, 1000.0, n_jobs=1, chunk=3, show_progress=False)
     with more_jobs_allowed():  # two workers, on a machine of one core too
         two = signal_features(ax, az, 1000.0, n_jobs=2, chunk=2, show_progress=False)
-    for name in ("dominant", "peaks", "tau", "gain", "decay_ok", "fft", "fft_elliptic"):
+    for name in ("dominant", "peaks", "tau", "gain", "decay_ok", "decay_status", "fft",
+                 "fft_elliptic"):
         np.testing.assert_array_equal(getattr(one, name), getattr(two, name))
     np.testing.assert_allclose(one.dominant, f1[:, 0], atol=0.05)
     np.testing.assert_allclose(one.peaks[:, 1], 4.1 * f1[:, 0], rtol=2e-3)

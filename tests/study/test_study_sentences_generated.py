@@ -271,3 +271,14 @@ def test_a_saturation_count_of_the_wrong_length_is_refused():
     short.n_signals = 3
     with pytest.raises(ValueError, match="samples_saturated must hold one count per recording"):
         data_summary.saturated_recordings(short)
+
+
+# ---------------------------------------------------------------- the decay fits' statuses
+def test_the_decay_status_sentence_reads_the_counts():
+    none = signals.status_sentence({"noise_limited": 60, "not_decaying": 55, "too_few_points": 5})
+    assert none.startswith("Of the 120 fits, none is usable, so the gains and time constants of "
+                           "Fig. 11 are not reproduced here; noise_limited: 60")
+    some = signals.status_sentence({"ok": 54, "not_decaying": 39, "too_few_points": 27})
+    assert some.startswith("Of the 120 fits, 54 are usable; not_decaying: 39")
+    assert "not reproduced" not in some
+    assert signals.status_sentence({"ok": 1}) == "Of the 1 fits, 1 is usable. "

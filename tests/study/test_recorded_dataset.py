@@ -120,6 +120,37 @@ def test_a_sample_rate_that_differs_is_refused_by_name(session, tmp_path):
         assemble_dataset(session, tmp_path)
 
 
+def test_what_record_keeps_the_data_set_takes_whatever_its_timestamps_round_to(session, tmp_path):
+    """A recording that lost exactly the session's limit in one gap, whose timestamps after the
+    gap sit 0.56 of a period late (a restart re-anchors them within their stated uncertainty,
+    0.7 of a period here; the simulated rig made such a recording): on the nominal grid the gap
+    holds one point more than was lost. ``record`` kept it, so the data set takes it; one sample
+    more lost is refused."""
+    limit = json.loads((session / MANIFEST).read_text())["max_lost"]
+
+    def gap(lost):
+        def change(r):
+            lost_here = r.metadata.get("samples_lost", 0)
+            window = r.n_samples + lost_here
+            cut = np.r_[0:300, 300 + lost:r.n_samples]
+            t = r.t[cut] + np.where(cut >= 300, 0.56 / r.fs, 0.0)
+            return Recording(t, r.ax[cut], r.az[cut], r.fs,
+                             {**r.metadata, "samples_lost": window - cut.size,
+                              "timestamp_uncertainty_s": 0.7 / r.fs})
+        return change
+
+    window = Recording.load(session / rewrite(session, 3, lambda r: r)).n_samples
+    budget = int(limit * window)
+    rewrite(session, 3, gap(budget))
+    data = assemble_dataset(session, tmp_path)
+    assert data.metadata["provenance"]["samples_interpolated"][3] == budget + 1
+    shutil.rmtree(tmp_path / "data", ignore_errors=True)
+    name = rewrite(session, 4, gap(budget + 1))
+    with pytest.raises(ValueError, match=f"{name}: {budget + 1} of {window} samples of the window "
+                                         "lost"):
+        assemble_dataset(session, tmp_path)
+
+
 def test_a_recording_too_short_for_the_features_is_refused_by_name(session, tmp_path):
     cut = MIN_SAMPLES  # the window from the contact on then holds fewer samples than needed
     name = rewrite(session, 2, lambda r: Recording(r.t[:cut], r.ax[:cut], r.az[:cut], r.fs,

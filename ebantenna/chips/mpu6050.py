@@ -293,8 +293,10 @@ GYRO_STARTUP = 30e-3
 #: ``WHO_AM_I`` values of parts that answer the same registers as far as this package uses them
 #: (accelerometer data, FIFO of 6-byte samples, the same power and rate registers); from the
 #: table of Linux's ``inv_mpu6050`` driver (``drivers/iio/imu/inv_mpu6050/inv_mpu_iio.h``,
-#: ``INV_*_WHOAMI_VALUE``). Their FIFO sizes may differ (the MPU-6500 family holds 512 bytes, or
-#: 4 kB), so they are accepted with a warning only.
+#: ``INV_*_WHOAMI_VALUE``). Their FIFO sizes and filter registers differ (the MPU-6500 family
+#: holds 512 bytes, others 4 kB), so only the parts of :data:`CHIP_MODELS` are driven (with a
+#: warning, as what they are); the others are refused by name
+#: (:class:`~ebantenna.device.mpu6050.ChipIdentityError`).
 COMPATIBLE_WHO_AM_I = {
     0x70: "MPU-6500",
     0x71: "MPU-9250",

@@ -75,6 +75,7 @@ import numpy as np
 from .._validate import check_int, check_real
 from ..chips.mpu6050 import (
     ACCEL_SAMPLE_BYTES,
+    CHIP_MODELS,
     FifoEnable,
     Interrupt,
     Register,
@@ -113,6 +114,13 @@ STOLEN_SHARE_COVERED = 0.01
 #: :data:`MAX_CLOCK_ADAPT` before the stream refuses the clock: a corrupted count shows such a
 #: rate once, a part sampling at another rate at every count.
 REFUSE_AFTER = 3
+#: The FIFO sizes of the parts driven, bytes. A count equal to a smaller one than the chip's own
+#: is a full FIFO of a part with that FIFO answering this part's ``WHO_AM_I`` (512 bytes: an
+#: MPU-6500-family clone answering 0x68), not bytes taken by another reader, although it is not
+#: a whole number of samples.
+FIFO_SIZES = frozenset(model.fifo_size for model in CHIP_MODELS.values())
+#: The gyroscope's rate, which an MPU-6500-family part samples at with ``DLPF_CFG = 0``, Hz.
+CLONE_RATE = 8000.0
 
 
 @dataclass(frozen=True)
@@ -237,7 +245,8 @@ class FifoStream:
         # kept breaks the row): what _refuse decides from
         self._beyond = _seen_record(side=None)
         self.clock_adapted = False  # the period's prior bracket took in what the counts showed
-        #: The least rate a FIFO found full too soon showed, Hz (0 until one did).
+        #: The least rate a FIFO found full too soon showed, Hz (0 until one did, and again
+        #: once counts bracket the rate, :meth:`_adapt`, or the chip is configured again).
         self.rate_at_least = 0.0
         #: Why the stream refuses the chip's clock (a rate beyond MAX_CLOCK_ADAPT), or None.
         self.clock_refused: str | None = None
@@ -335,14 +344,20 @@ class FifoStream:
         rate = samples / since
         text = (f"FIFO count {count} {verdict} ({samples:g} samples in {1e3 * since:.1f} ms "
                 f"since the FIFO was started: a rate of {_hz(rate)}, not {_hz(fs)})")
-        clone = self.mpu.model.fifo_size == 1024 and fs < 8000.0 and (
-            abs(rate / 8000.0 - 1) < 0.2 or count == 512)
-        if count == 512 and self.mpu.model.fifo_size == 1024:
-            text += "; 512 bytes is the FIFO size of the MPU-6500 family (a full FIFO)"
-        if clone:
-            text += ("; is this an MPU-6500-family clone answering WHO_AM_I 0x68? Its divider "
-                     "is ignored with DLPF_CFG = 0, so it samples at 8 kHz")
+        if self._clone_possible() and abs(rate / CLONE_RATE - 1) < 0.2:
+            text += _CLONE_HINT
         return text
+
+    def _clone_possible(self) -> bool:
+        """Whether the part, driven as an MPU-6050 below 8 kHz, may be an MPU-6500-family
+        clone (whose FIFO is smaller)."""
+        return self.fifo_size > min(FIFO_SIZES) and 1.0 / self.estimator.nominal < CLONE_RATE
+
+    def _full(self, count: int) -> bool:
+        """Whether ``count`` says the FIFO is full: the FIFO's size, or a smaller part's FIFO
+        size that is not whole samples (:data:`FIFO_SIZES`)."""
+        return count == self.fifo_size or (
+            count in FIFO_SIZES and count < self.fifo_size and count % ACCEL_SAMPLE_BYTES != 0)
 
     def _trusted_count(self) -> tuple[int | None, tuple | None, str | None]:
         """Read ``FIFO_COUNT`` and check it before any data is read (rule 1 of the module notes).
@@ -360,8 +375,8 @@ class FifoStream:
             logger.warning("MPU-6050 FIFO: a count of %d bytes exceeds the FIFO's %d; rejected",
                            count, self.fifo_size)
             return None, None, f"FIFO count {count} exceeds the FIFO's {self.fifo_size} bytes"
-        if count == self.fifo_size:
-            return None, None, "overflow"
+        if self._full(count):  # before the whole-sample check: a clone's full FIFO is not
+            return count, None, "overflow"  # a foreign read
         if count % ACCEL_SAMPLE_BYTES:  # the driver reads whole samples: someone else read
             self.foreign += 1
             return None, None, self._rate_seen(
@@ -404,11 +419,11 @@ class FifoStream:
         self.contradictions[side] += 1
         est = self.estimator
         low, high = est._seen(extra)
-        if not (0.0 < low < high < math.inf):
-            return  # they disagree, or bound the period from one side only
         cap_low = est.nominal / (1.0 + MAX_CLOCK_ADAPT)
         cap_high = est.nominal / (1.0 - MAX_CLOCK_ADAPT)
-        beyond = high <= cap_low or low >= cap_high
+        beyond = low < high and (high <= cap_low or low >= cap_high)
+        if not (beyond or 0.0 < low < high < math.inf):
+            return  # they disagree, or bound the period from one side only within the limit
         seen = self._beyond if beyond else self.clock_seen[side]
         if beyond and seen["side"] != side:  # the other side's run is broken
             seen.update(_seen_record(), side=side)
@@ -434,8 +449,13 @@ class FifoStream:
         common = seen["common"]
         p_low, p_high = common if common[0] < common[1] else seen["hull"]
         fs = 1.0 / est.nominal
-        error = 50 * (1 / (p_high * fs) + 1 / (p_low * fs) - 2)  # %, the rate's middle
         produced, since = seen["last"]
+        if p_low <= 0.0:  # full FIFOs: they bound the rate from below only
+            error = 100 * (1 / (p_high * fs) - 1)
+            return (f"the FIFO was full {1e3 * since:.1f} ms after it was started ({produced} "
+                    f"samples or more): its clock runs at least {error:.1f} % fast (a rate of "
+                    f"at least {_hz(1 / p_high)}, not {_hz(fs)})"), error
+        error = 50 * (1 / (p_high * fs) + 1 / (p_low * fs) - 2)  # %, the rate's middle
         runs = f"{abs(error):.1f} % {'slow' if error < 0 else 'fast'}"
         return (f"the chip produced {produced} samples in {1e3 * since:.1f} ms since the FIFO "
                 f"was started: its clock runs {runs} (a rate between {_hz(1 / p_high)} and "
@@ -446,12 +466,18 @@ class FifoStream:
         part is not sampling as configured. The period's prior takes in what they showed, so
         that the samples kept so far state timestamps that hold (all flagged, the clock not
         being adapted to), and the stream keeps nothing more (``clock_refused``; the watchdog
-        ends the run with it at once)."""
-        self.estimator.widen(*self._beyond["hull"])
-        text, error = self._rate_text(self._beyond)
-        rate = (1.0 + error / 100.0) / self.estimator.nominal
+        ends the run with it at once). Full FIFOs show a least rate only: the prior is then
+        left as it is (every kept timestamp is flagged all the same)."""
+        hull = self._beyond["hull"]
+        if hull[0] > 0.0:
+            self.estimator.widen(*hull)
+        text, _ = self._rate_text(self._beyond)
+        common = self._beyond["common"]
+        p_low, p_high = common if common[0] < common[1] else hull
+        # the rates the counts allow, 20 % wider (a clone's clock is 8 kHz give or take that)
+        clone = 0.8 * CLONE_RATE * p_low <= 1.0 and 1.2 * CLONE_RATE * p_high >= 1.0
         hint = ("; an MPU-6500-family clone answering WHO_AM_I 0x68 samples at 8 kHz with "
-                "DLPF_CFG = 0" if abs(rate / 8000.0 - 1) < 0.2 else "")
+                "DLPF_CFG = 0" if clone and self._clone_possible() else "")
         self.clock_refused = (
             f"{text}: beyond the {100 * MAX_CLOCK_ADAPT:g} % the driver adapts to, the part is "
             f"not sampling as configured (a divider or filter setting that did not land, a "
@@ -469,6 +495,8 @@ class FifoStream:
             return  # the prior holds them: they contradict other segments' counts, not it
         est.widen(low, high)
         self.clock_adapted = True
+        if side == "more":  # counts now bracket the fast clock: the prior holds its rate
+            self.rate_at_least = 0.0
         self.foreign -= seen["blamed"]
         seen["blamed"] = 0
         text, _ = self._rate_text(seen)
@@ -489,26 +517,33 @@ class FifoStream:
         return ("more than the chip can have produced (its clock faster than the "
                 f"{100 * self.estimator.tolerance:g} % tolerance, or a corrupted count)")
 
-    def _overflow_seen(self) -> str:
-        """A full FIFO at the count just read: the chip had produced at least the FIFO's samples
-        since the segment began. Sooner than any period in the bracket allows, that is a count
+    def _overflow_seen(self, count: int) -> str:
+        """A full FIFO at the count just read (``count``: the FIFO's size, or a smaller part's,
+        :meth:`_full`): the chip had produced at least the samples it holds since the segment
+        began. Sooner than any period in the bracket allows, that is a count
         on the fast side of the clock's tolerance (an observation "``n`` samples by ``after``",
         nothing said of ``before``), so that a clock too fast to be drained in time is still
-        measured and adapted to (:meth:`_contradicted`) instead of overflowing every poll."""
+        measured and adapted to (:meth:`_contradicted`) instead of overflowing every poll; full
+        sooner than a clock :data:`MAX_CLOCK_ADAPT` fast can fill it, it counts towards the
+        refusal (an MPU-6500-family clone at 8 kHz)."""
         after = self._last_times[1]
-        produced = self.delivered[-1] + self.fifo_size // ACCEL_SAMPLE_BYTES
+        produced = self.delivered[-1] + count // ACCEL_SAMPLE_BYTES
         observation = (produced, -math.inf, after)
         low, high = self.estimator.bounds(*observation)
+        full, hint = "FIFO full (overflow)", ""
+        if count != self.fifo_size:
+            full = f"FIFO count {count}, the FIFO size of the MPU-6500 family: a full FIFO"
+            hint = _CLONE_HINT
         if low < high:
-            return "FIFO full (overflow)"
+            return full + hint
         self._contradicted(False, [observation])
         # a full FIFO bounds the rate from below only: too little to adapt the timestamps to,
         # enough for the poll to follow (MPU6050.fastest_rate), until drains that do not
         # overflow bracket the rate on both sides
         self.rate_at_least = max(self.rate_at_least, 1.0 / self.estimator._seen([observation])[1])
-        return (f"FIFO full (overflow) {1e3 * (after - self.starts[-1]):.1f} ms after the FIFO "
+        return (f"{full}, {1e3 * (after - self.starts[-1]):.1f} ms after the FIFO "
                 f"was started: sooner than the chip can fill it at the "
-                f"{100 * self.estimator.tolerance:g} % tolerance (its clock runs fast)")
+                f"{100 * self.estimator.tolerance:g} % tolerance (its clock runs fast){hint}")
 
     def drain(self) -> FifoBlock:
         """Drain every whole sample waiting; on any fault restart and return what was kept."""
@@ -527,7 +562,7 @@ class FifoStream:
         except OSError as exc:
             return self._fail(_cause(_as_i2c_error(exc)))
         if refused == "overflow":
-            return self._fail(self._overflow_seen(), overflow=True)
+            return self._fail(self._overflow_seen(count), overflow=True)
         if refused is not None:
             return self._diagnose(refused)
         if count == 0:
@@ -588,7 +623,7 @@ class FifoStream:
             logger.warning("MPU-6050 FIFO: a count of %d bytes after the drain exceeds the "
                            "FIFO's %d; rejected", count, self.fifo_size)
             return None
-        if count == self.fifo_size:
+        if self._full(count):
             return None  # an overflow shows at the next drain
         if count % ACCEL_SAMPLE_BYTES and not broken:
             self.foreign += 1
@@ -661,6 +696,8 @@ class FifoStream:
             return _empty_block()
         if reconfigure:
             self._note(cause, "reconfigure")
+            # what a full FIFO showed was at the settings that changed: forgotten
+            self.rate_at_least = 0.0
             self.unconfigured = True
             self._try_configure()
             if self.unconfigured:
@@ -1100,6 +1137,10 @@ def _seen_record(**extra) -> dict:
     segment began."""
     return {"counts": 0, "hull": (math.inf, 0.0), "common": (0.0, math.inf), "blamed": 0,
             "last": (0, 0.0), **extra}
+
+
+_CLONE_HINT = ("; is this an MPU-6500-family clone answering WHO_AM_I 0x68? Its divider is "
+               "ignored with DLPF_CFG = 0, so it samples at 8 kHz")
 
 
 def _hz(rate: float) -> str:

@@ -114,33 +114,41 @@ class BusDeadError(I2CError):
     more transfers are attempted on it (errno ``ETIMEDOUT``)."""
 
 
-def transfer_bits(nbytes: int) -> int:
+def transfer_bits(nbytes: int, *, read: bool = False) -> int:
     """Bus clock cycles of a register transfer carrying ``nbytes`` data bytes.
 
-    The address byte, the register byte and the data bytes each take nine clocks (eight bits and
-    the acknowledge), plus about one clock each for the START and the STOP condition.
+    Every byte takes nine clocks (eight bits and the acknowledge), and each START, repeated
+    START and STOP condition about one more. A register write is ``S, address+W, register,
+    data..., P``: ``9 (nbytes + 2) + 2``. A register read (``read=True``: SMBus
+    ``read_byte_data``, a block read, or an ``i2c_rdwr`` of a register write and a read) first
+    writes the register and then sends the address again to read, ``S, address+W, register, Sr,
+    address+R, data..., P``: ``9 (nbytes + 3) + 3``.
 
     Examples
     --------
     >>> from ebantenna.device.i2c import transfer_bits
-    >>> transfer_bits(1)
-    29
+    >>> transfer_bits(1), transfer_bits(1, read=True)
+    (29, 39)
     """
-    return 9 * (check_int("nbytes", nbytes, minimum=0) + 2) + 2
+    nbytes = check_int("nbytes", nbytes, minimum=0)
+    if read:
+        return 9 * (nbytes + 3) + 3
+    return 9 * (nbytes + 2) + 2
 
 
 def transfer_time(nbytes: int, bus_hz: float = RASPBERRY_PI_BUS_HZ,
-                  overhead: float = TRANSFER_OVERHEAD) -> float:
-    """Time one register transfer of ``nbytes`` data bytes takes at ``bus_hz`` (Hz), s.
+                  overhead: float = TRANSFER_OVERHEAD, *, read: bool = False) -> float:
+    """Time one register transfer of ``nbytes`` data bytes takes at ``bus_hz`` (Hz), s (a read
+    with ``read=True``, see :func:`transfer_bits`).
 
     Examples
     --------
     >>> from ebantenna.device.i2c import transfer_time
-    >>> round(transfer_time(30) * 1e3, 2)  # ms: five FIFO samples in one SMBus block at 100 kHz
-    2.95
+    >>> round(transfer_time(30, read=True) * 1e3, 2)  # ms: five FIFO samples read at 100 kHz
+    3.05
     """
     overhead = check_nonnegative("overhead", overhead)
-    return overhead + transfer_bits(nbytes) / check_positive("bus_hz", bus_hz)
+    return overhead + transfer_bits(nbytes, read=read) / check_positive("bus_hz", bus_hz)
 
 
 class ShortReadError(OSError):

@@ -289,16 +289,24 @@ class MPU6050:
                                                      rel_tol=1e-12)):
             raise ValueError(f"fs must be 1000 Hz / (1 + n) for an integer n in [0, 255] on an "
                              f"{self.part}; got {cfg.fs!r}")
-        filtered = max(cfg.dlpf_cfg, 1)
+        filtered = self.dlpf_cfg
         return {Register.CONFIG: filtered, Register.SMPLRT_DIV: divider,
                 Register.ACCEL_CONFIG: cfg.accel_config, Register.ACCEL_CONFIG2: filtered,
                 Register.INT_ENABLE: Interrupt.FIFO_OFLOW}
 
     @property
+    def dlpf_cfg(self) -> int:
+        """The ``DLPF_CFG`` written to ``CONFIG`` on this part (on the MPU-6500 family
+        ``max(dlpf_cfg, 1)``, also its ``A_DLPF_CFG``: module notes), what a recording states."""
+        if self.model.accel_config2:
+            return max(self.config.dlpf_cfg, 1)
+        return self.config.dlpf_cfg
+
+    @property
     def bandwidth(self) -> float:
         """The accelerometer's -3 dB bandwidth as configured on this part, Hz."""
         if self.model.accel_config2:
-            return ACCEL_DLPF_6500[max(self.config.dlpf_cfg, 1)]
+            return ACCEL_DLPF_6500[self.dlpf_cfg]
         return self.config.bandwidth
 
     def write_verified(self, register: int, value: int) -> None:
@@ -457,8 +465,10 @@ class MPU6050:
         """The longest wait between drains after which the FIFO still cannot overflow, s.
 
         A drain loop sleeps ``P``, then reads the ``N`` samples waiting, ``c`` seconds each on
-        the bus, plus ``F`` seconds of fixed transfers (the count before and after the data,
-        and the settings read back, :meth:`read_registers`) and ``busy`` seconds of other
+        the bus (register reads, the chip's address sent twice:
+        :func:`~ebantenna.device.i2c.transfer_bits`), plus ``F`` seconds of fixed transfers
+        (the count before and after the data, and the settings read back,
+        :meth:`read_registers`) and ``busy`` seconds of other
         traffic (servo updates). Samples arrive at up to ``r`` while it sleeps *and* while it
         drains (``r``: :meth:`fastest_rate`, ``fs (1 + tolerance)`` until a running stream has
         measured a faster clock), so ``N = r (P + F + busy + N c)``: ``N = r (P + F +
@@ -477,16 +487,17 @@ class MPU6050:
         >>> from ebantenna.device.mpu6050 import MPU6050
         >>> rig = SimulatedRig.quiet()
         >>> round(MPU6050(rig.bus, clock=rig.clock).max_poll_interval() * 1e3, 1)  # ms, 100 kHz
-        57.8
+        53.8
         >>> rig.bus.bus_hz = 400e3
         >>> round(MPU6050(rig.bus, clock=rig.clock).max_poll_interval() * 1e3, 1)  # ms, 400 kHz
-        132.2
+        131.3
         """
         busy = check_nonnegative("busy", busy)
         rate = self.fastest_rate()
-        per_sample = transfer_time(FIFO_CHUNK, self.bus_hz) / (FIFO_CHUNK // SAMPLE_BYTES)
+        per_sample = transfer_time(FIFO_CHUNK, self.bus_hz, read=True) / (
+            FIFO_CHUNK // SAMPLE_BYTES)
         settings = 5 if self.model.accel_config2 else 4
-        fixed = sum(transfer_time(n, self.bus_hz) for n in (2, 2, settings, 1, 3, 2))
+        fixed = sum(transfer_time(n, self.bus_hz, read=True) for n in (2, 2, settings, 1, 3, 2))
         most = self.fifo_size // SAMPLE_BYTES - FIFO_MARGIN
         return most * (1.0 - rate * per_sample) / rate - fixed - busy
 
@@ -496,7 +507,9 @@ class MPU6050:
         (:class:`~ebantenna.device.fifo.FifoStream`), the fastest rate its period's prior
         bracket now holds (the counts measured it). A FIFO found full sooner than the bracket
         allows shows a least rate (``rate_at_least``), which counts too: the poll then follows
-        the fast clock until drains that do not overflow bracket it."""
+        the fast clock until drains that do not overflow bracket it (the stream adapts to it,
+        and the bracket replaces the least rate) or the chip is configured again after a
+        setting changed (the least rate was shown at the old settings, and is forgotten)."""
         rate = self.config.fs * (1.0 + CLOCK_TOLERANCE)
         if self.stream is not None:
             stream = self.stream
@@ -560,7 +573,7 @@ class MPU6050:
             "device": self.part,
             "address": cfg.address,
             "sample_rate_hz": cfg.fs,
-            "dlpf_cfg": cfg.dlpf_cfg,
+            "dlpf_cfg": self.dlpf_cfg,
             "bandwidth_hz": self.bandwidth,
             "fifo_size_bytes": self.fifo_size,
             "full_scale_g": cfg.full_scale_g,
@@ -588,7 +601,7 @@ class MPU6050:
             Length of the recording, s: ``round(duration * fs)`` slots, at most
             :data:`MAX_RECORD_SAMPLES`.
         poll_interval : float
-            Time between drains, s. Must be below :meth:`max_poll_interval` (58 ms at 1 kHz on
+            Time between drains, s. Must be below :meth:`max_poll_interval` (54 ms at 1 kHz on
             a 100 kHz bus); a host that stalls for longer loses samples (and counts them).
         watchdog : float
             Longest time without a new sample, s. Default 1 s.

@@ -31,7 +31,7 @@ from .._validate import (
 )
 from ..chips.pca9685 import Led
 from ..recording import Recording
-from .i2c import I2CError, transfer_time
+from .i2c import I2CError, SettingError, transfer_time
 from .mpu6050 import MPU6050
 from .oe import OutputEnable
 from .pca9685 import PCA9685
@@ -48,6 +48,7 @@ __all__ = [
     "SearchConfig",
     "AcquisitionResult",
     "search_and_record",
+    "servo_bus_time",
 ]
 
 logger = logging.getLogger(__name__)
@@ -56,8 +57,11 @@ logger = logging.getLogger(__name__)
 MAX_DURATION = 60.0
 
 
-#: The PCA9685's settings are read back every this many steps of the search (10 steps of
-#: the default 20 ms poll: a brown-out costs at most 0.2 s of dead servos).
+#: The PCA9685's settings are read back every this many steps of the search: a backstop. A
+#: brown-out is found at the next servo update already (the chip wakes without its register
+#: auto-increment, so the pulse reads back wrong, ``_Search.sweep``), which bounds the dead
+#: servos by one step of the search: the poll *and* the drain, up to 69 ms at 100 kHz and
+#: 27 ms at 400 kHz (not the 20 ms poll alone).
 PCA_CHECK_EVERY = 10
 
 
@@ -195,8 +199,11 @@ class SearchConfig:
         Give up after this long without a contact, s. Default 12 s (three loops).
     back_off : float
         On contact, hold the servos this far behind the position they had certainly reached when
-        the contact sample was taken, degrees. Default 3: more than one servo update along the
-        default path (peak 94 deg/s times 20 ms = 1.9 deg).
+        the contact sample was taken, degrees. Default 7: more than one servo update along the
+        default path on the Raspberry Pi's 100 kHz bus. An update comes once per step of the
+        search, the poll interval *plus* the drain, which the bus makes long: up to 69 ms at
+        100 kHz (27 ms at 400 kHz), so at the path's peak 94 deg/s a step moves a servo up to
+        6.5 deg (2.5 deg). A faster path or a longer poll needs a larger ``back_off``.
     watchdog : float
         Longest time without a new accelerometer sample, s. Default 1 s.
     """
@@ -208,7 +215,7 @@ class SearchConfig:
     duration: float = 1.0
     poll_interval: float = 0.02
     max_search_time: float = 12.0
-    back_off: float = 3.0
+    back_off: float = 7.0
     watchdog: float = 1.0
 
     def __post_init__(self):
@@ -331,7 +338,8 @@ class AcquisitionResult:
                        f"outside its {100 * CLOCK_TOLERANCE:g} % tolerance: the timestamps and "
                        "the sample rate are those the FIFO counts measured")
         for fault in summary["pca9685_faults"]:
-            out.append(f"PCA9685 {fault} during the search: set up again")
+            again = "" if fault.endswith("written again") else ": set up again"
+            out.append(f"PCA9685 {fault} during the search{again}")
         if summary["foreign_reads_detected"]:
             out.append(f"another program read the FIFO {summary['foreign_reads_detected']} "
                        "time(s): those drains were dropped")
@@ -391,10 +399,7 @@ def search_and_record(mpu: MPU6050, pantilt: PanTilt, config: SearchConfig | Non
     if not (output_enable is None or isinstance(output_enable, OutputEnable)):
         raise TypeError(f"output_enable must be an OutputEnable or None, got "
                         f"{type(output_enable).__name__}")
-    # two 4-byte pulse writes per poll share the bus with the FIFO, and on some polls the
-    # PCA9685's settings read back (MODE1-MODE2, PRE_SCALE)
-    busy = 2 * transfer_time(len(Led), mpu.bus_hz) + transfer_time(2, mpu.bus_hz) + (
-        transfer_time(1, mpu.bus_hz))
+    busy = servo_bus_time(mpu.bus_hz)
     mpu.check_poll_interval(config.poll_interval, busy=busy)
     search = _Search(mpu, pantilt, config, labels, busy)
     guard = ServoGuard(pantilt.release, mpu.clock,
@@ -407,6 +412,21 @@ def search_and_record(mpu: MPU6050, pantilt: PanTilt, config: SearchConfig | Non
         exc.result = search.result(guard)
         raise
     return search.result(guard)
+
+
+def servo_bus_time(bus_hz: float) -> float:
+    """The servos' bus time in one step of the search, s: two 4-byte pulse writes, each read
+    back, and the PCA9685's settings read back (MODE1-MODE2, PRE_SCALE), which share the bus
+    with the FIFO's drains.
+
+    Examples
+    --------
+    >>> from ebantenna.device.pantilt import servo_bus_time
+    >>> round(servo_bus_time(100e3) * 1e3, 2), round(servo_bus_time(400e3) * 1e3, 2)  # ms
+    (3.61, 1.13)
+    """
+    pulses = 2 * (transfer_time(len(Led), bus_hz) + transfer_time(len(Led), bus_hz, read=True))
+    return pulses + transfer_time(2, bus_hz, read=True) + transfer_time(1, bus_hz, read=True)
 
 
 class _Search:
@@ -426,7 +446,9 @@ class _Search:
         self.stream = None
         self.report: dict = {}
         self.steps = 0
-        self.pca_faults: list[str] = []  # PCA9685 settings found changed, and set up again
+        # PCA9685 settings found changed (and the chip set up again), pulses written again
+        self.pca_faults: list[str] = []
+        self.rewritten_before = len(pantilt.pca.rewritten)
 
     def run(self) -> None:
         """Poll until the window after a contact is recorded or the search time is up."""
@@ -460,7 +482,8 @@ class _Search:
         finally:
             stop_quietly(mpu)
             self.report = {} if self.stream is None else self.stream.report()
-            self.report["pca9685_faults"] = list(self.pca_faults)
+            rewritten = self.pantilt.pca.rewritten[self.rewritten_before:]
+            self.report["pca9685_faults"] = self.pca_faults + rewritten
 
     def detect(self, block) -> None:
         """Look for the contact in a drained block; on contact hold the servos where they had
@@ -479,26 +502,35 @@ class _Search:
                     self.trigger / self.mpu.config.fs, self.angles)
 
     def sweep(self, elapsed: float) -> None:
-        """Command the next point of the path; a failed update leaves the last command. Every
-        :data:`PCA_CHECK_EVERY` steps the PCA9685's settings are read back; one that changed (a
-        brown-out: asleep at 200 Hz, its writes still acknowledged) is logged and the chip set
-        up again, so that the search does not sweep with dead or pinned servos."""
+        """Command the next point of the path; a failed update leaves the last command.
+
+        Each pulse is read back (:meth:`~ebantenna.device.pca9685.PCA9685.write_channel`). One
+        that reads back wrong twice is a brown-out (the chip lost its register auto-increment,
+        so the block landed in one register) or a pulse that does not land: the PCA9685's
+        settings are read back; a brown-out is logged and the chip set up again, anything else
+        ends the search (the servo may hold a wrong pulse; the guard releases it). The settings
+        are also read back every :data:`PCA_CHECK_EVERY` steps."""
         self.steps += 1
         if self.steps % PCA_CHECK_EVERY == 0:
             self.check_pca()
         try:
             moved = self.pantilt.move(*self.config.path.angles(elapsed))
-            self.commands.append((self.mpu.clock.monotonic(), *moved))
+        except SettingError:
+            if not self.check_pca():
+                raise
+            return
         except I2CError as exc:  # the servos keep their last command
             logger.warning("servo update failed (%s); the search goes on", exc)
+            return
+        self.commands.append((self.mpu.clock.monotonic(), *moved))
 
-    def check_pca(self) -> None:
-        """Read the PCA9685's settings back; set it up again if one changed."""
+    def check_pca(self) -> bool:
+        """Read the PCA9685's settings back; set it up again if one changed (returns True)."""
         pca = self.pantilt.pca
         try:
             changed = pca.changed_settings()
             if not changed:
-                return
+                return False
             what = ", ".join(f"{name} changed from 0x{w:02X} to 0x{v:02X}"
                              for name, w, v in changed)
             logger.warning("PCA9685: %s (a brown-out?); setting it up again", what)
@@ -506,6 +538,8 @@ class _Search:
             self.pantilt.initialize()
         except I2CError as exc:
             logger.warning("PCA9685 check failed (%s); the search goes on", exc)
+            return False
+        return True
 
     def result(self, guard: ServoGuard) -> AcquisitionResult:
         """What the search produced, with the release's outcome."""
@@ -553,8 +587,9 @@ def _reached_by(commands, when: float) -> tuple[float, float] | None:
     """The (pan, tilt) the servos had certainly reached by host time ``when``, degrees.
 
     That is the command *before* the one in effect at ``when``: the servo was on its way from
-    there to the newer one (a step of the path, 1.9 degrees at most by default, takes an MG996R
-    about 5 ms of its 20 ms frame). None before two commands.
+    there to the newer one (a step of the path, up to 6.5 degrees by default at 100 kHz, takes
+    an MG996R at its 353 deg/s, :data:`~ebantenna.chips.mg996r.SLEW_RATE`, about 18 ms of the
+    step's 69 ms). None before two commands.
     """
     earlier = [(pan, tilt) for t, pan, tilt in commands if t <= when]
     return earlier[-2] if len(earlier) >= 2 else None

@@ -17,6 +17,7 @@ elsewhere the guard still releases on exit and says so in the log.
 from __future__ import annotations
 
 import contextlib
+import errno
 import logging
 import signal
 import threading
@@ -26,7 +27,7 @@ from .i2c import BusDeadError, I2CError
 from .oe import OE_ONLY
 
 __all__ = ["ServoGuard", "SignalReceived", "GUARDED_SIGNALS", "ReleaseError", "signals_held",
-           "MAX_HELD_RETRY"]
+           "MAX_HELD_RETRY", "DEFAULT_HELD_RETRY"]
 
 logger = logging.getLogger(__name__)
 
@@ -38,6 +39,12 @@ GUARDED_SIGNALS = tuple(
 #: Longest time a :class:`ServoGuard` retries the I2C release while the ``OE`` pin holds the
 #: outputs off, s: the operator is told to cut the supply only after it.
 MAX_HELD_RETRY = 60.0
+#: Default of that time, s: a bus that a brown-out or a stuck slave held for a few seconds.
+#: Not shorter on purpose: while the ``OE`` pin holds the outputs off the servos are limp,
+#: and once the program exits the line is released and the outputs follow the registers
+#: again (the servos' pulses), so ending sooner makes nothing safer; it only gives up a bus
+#: that may come back.
+DEFAULT_HELD_RETRY = 10.0
 
 
 @contextlib.contextmanager
@@ -85,8 +92,10 @@ class ServoGuard:
     Parameters
     ----------
     release : callable
-        Releases the servos (e.g. :meth:`~ebantenna.device.pantilt.PanTilt.release`); may raise
-        :class:`I2CError`.
+        Releases the servos (e.g. :meth:`~ebantenna.device.pantilt.PanTilt.release`). An
+        :class:`I2CError` (a noisy or stuck bus) is retried; any other exception (an errno the
+        bus layer does not retry, such as ``ENXIO`` or ``ENODEV`` from a missing adapter, or a
+        bug) ends the attempts at once. Either way a release that failed leads to ``fallback``.
     clock : SystemClock or VirtualClock
         ``sleep`` provider for the waits between release attempts.
     attempts : int
@@ -97,7 +106,8 @@ class ServoGuard:
     deadline : float
         No attempt starts that would end more than this after the first began, judged by the
         longest attempt so far, s. Default 2 s. A bus declared dead
-        (:class:`~ebantenna.device.i2c.BusDeadError`) ends the attempts at once.
+        (:class:`~ebantenna.device.i2c.BusDeadError`), or a failure that is not an
+        :class:`I2CError`, ends the attempts at once.
     fallback : callable, optional
         A way to switch the outputs off that needs no I2C, called when the I2C release failed
         (e.g. :meth:`~ebantenna.device.oe.OutputEnable.disable_outputs`). It holds them off
@@ -107,8 +117,8 @@ class ServoGuard:
         but time); if it still fails, :class:`ReleaseError` is raised all the same.
     held_retry : float
         How long the I2C release is retried while the fallback holds the outputs off, s, at
-        most :data:`MAX_HELD_RETRY`. Default 10 s: a bus that a brown-out or a stuck slave
-        held for a few seconds. 0: not retried.
+        most :data:`MAX_HELD_RETRY`. Default :data:`DEFAULT_HELD_RETRY` (10 s). 0: not
+        retried.
     held_interval : float
         Wait between those retries, s (> 0). Default 1 s.
     revive : callable, optional
@@ -139,7 +149,7 @@ class ServoGuard:
     """
 
     def __init__(self, release, clock, *, attempts: int = 6, delay: float = 0.05,
-                 deadline: float = 2.0, fallback=None, held_retry: float = 10.0,
+                 deadline: float = 2.0, fallback=None, held_retry: float = DEFAULT_HELD_RETRY,
                  held_interval: float = 1.0, revive=None):
         if not callable(release):
             raise TypeError(f"release must be callable, got {type(release).__name__}")
@@ -186,22 +196,25 @@ class ServoGuard:
             )
         return self
 
-    def _release_over_i2c(self) -> I2CError | None:
+    def _release_over_i2c(self) -> Exception | None:
         """Try the release until it succeeds, the attempts are used up or the deadline is near;
-        returns the last error (None on success)."""
+        returns the last error (None on success). Every exception counts as a failed release
+        (so that the fallback follows); only an :class:`I2CError` other than a dead bus is
+        retried."""
         first = self.clock.monotonic()
         longest = 0.0
         for attempt in range(self.attempts):
             began = self.clock.monotonic()
             try:
                 self.release()
-            except I2CError as exc:
+            except Exception as exc:  # noqa: BLE001 - any failure must lead to the fallback
                 longest = max(longest, self.clock.monotonic() - began)
                 logger.warning("releasing the servos failed (attempt %d of %d): %s",
                                attempt + 1, self.attempts, exc)
                 wait = self.delay * 2**attempt
                 spent = self.clock.monotonic() - first
-                if (isinstance(exc, BusDeadError) or attempt + 1 == self.attempts
+                retried = isinstance(exc, I2CError) and not isinstance(exc, BusDeadError)
+                if (not retried or attempt + 1 == self.attempts
                         or spent + wait + longest > self.deadline):
                     return exc
                 self.clock.sleep(wait)
@@ -209,7 +222,7 @@ class ServoGuard:
             return None
         raise AssertionError("unreachable")  # pragma: no cover
 
-    def _retry_while_held(self, last: I2CError) -> I2CError | None:
+    def _retry_while_held(self, last: Exception) -> Exception | None:
         """While the fallback holds the outputs off, try the I2C release again every
         ``held_interval`` s for ``held_retry`` s (no attempt starts that would end later,
         judged by the longest so far); returns the last error, None once one succeeded."""
@@ -230,7 +243,7 @@ class ServoGuard:
             tries += 1
             try:
                 self.release()
-            except I2CError as exc:
+            except Exception as exc:  # noqa: BLE001 - the outputs stay held: try again
                 longest = max(longest, self.clock.monotonic() - began)
                 last = exc
                 continue
@@ -264,7 +277,7 @@ class ServoGuard:
         self.released, self.released_by = False, "oe" if held else None
         state = OE_ONLY if held else "they may still be powered"
         raise ReleaseError(
-            last.errno,
+            getattr(last, "errno", None) or errno.EIO,
             f"the servos could not be released ({last}): {state}; switch off the servo supply",
         ) from last
 

@@ -1,5 +1,7 @@
 """The chips' register maps: consistent in themselves and with what the datasheets derive."""
 
+import re
+
 import pytest
 
 from ebantenna.chips import BitField
@@ -83,3 +85,45 @@ def test_pca9685_prescale_range_matches_the_frequency_range_of_the_datasheet():
     assert round(pca.OSCILLATOR_HZ / (per_period * (pca.PRESCALE_MAX + 1))) == 24
     assert round(pca.OSCILLATOR_HZ / (per_period * (pca.PRESCALE_MIN + 1))) == 1526
     assert pca.POWER_ON[pca.Register.MODE1] == 0x11 and pca.POWER_ON[pca.Register.MODE2] == 0x04
+
+
+def test_the_compatible_parts_not_modelled_are_refused_as_their_doc_says():
+    # the doc of COMPATIBLE_WHO_AM_I said "accepted with a warning only", while WHO_AM_I 0x98
+    # (ICM-20689) raises ChipIdentityError, as the driver and the device guide say
+    import inspect
+    import warnings
+
+    from ebantenna.device.mpu6050 import MPU6050, ChipIdentityError
+    from ebantenna.device.simulated import Faults, SimulatedRig
+
+    source = inspect.getsource(mpu)
+    doc = source[:source.index("COMPATIBLE_WHO_AM_I = {")].rsplit("\n\n", 1)[-1]
+    assert "accepted with a warning only" not in doc and "refused by name" in doc
+    for who_am_i, name in mpu.COMPATIBLE_WHO_AM_I.items():
+        rig = SimulatedRig.quiet(faults=Faults(who_am_i=who_am_i))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            if who_am_i in mpu.CHIP_MODELS:
+                MPU6050(rig.bus, clock=rig.clock).initialize()  # driven as what it is
+                continue
+            with pytest.raises(ChipIdentityError, match=f"{name}.*not supported"):
+                MPU6050(rig.bus, clock=rig.clock).initialize()
+
+
+def test_a_pulse_refused_by_the_pca9685_is_told_the_range_it_can_make():
+    # 2 us was refused with "pulse must lie in (0, 0.019984] s", a range holding 2 us; the
+    # counts 1 to 4095 are pulses from half a count on
+    from ebantenna.device.pca9685 import PCA9685
+    from ebantenna.device.simulated import SimulatedRig
+
+    p = PCA9685(SimulatedRig.quiet().bus)
+    count = 1.0 / (pca.COUNTS_PER_PERIOD * p.frequency)
+    for pulse in (2e-6, 0.49 * count, (pca.COUNTS_PER_PERIOD - 0.49) * count, 0.02):
+        with pytest.raises(ValueError, match="pulse") as info:
+            p.counts_for(pulse)
+        low, high = map(float, re.search(r"in \(([\d.]+), ([\d.]+)\) us", str(info.value))
+                        .groups())
+        assert not low <= pulse * 1e6 < high  # the range stated does not hold it
+        assert low == pytest.approx(0.5e6 * count, abs=1e-3)  # printed to 1 ns
+    assert p.counts_for(0.51 * count) == 1
+    assert p.counts_for((pca.COUNTS_PER_PERIOD - 0.51) * count) == pca.COUNTS_PER_PERIOD - 1

@@ -259,8 +259,8 @@ def test_both_bus_speeds_keep_up_with_1_khz(bus_hz):
     _check(rig, mpu, rec, 500)
     sizes = np.asarray(rec.metadata["raw"]["drain_samples"][3:])  # after the first drains
     # a drain loop of n samples takes 20 ms + n c (c: a 30-byte transfer's time over its 5
-    # samples) + a few fixed transfers (2.8 ms at 100 kHz, see MPU6050.max_poll_interval)
-    per_sample = transfer_time(30, bus_hz) / 5
+    # samples) + a few fixed transfers (3.4 ms at 100 kHz, see MPU6050.max_poll_interval)
+    per_sample = transfer_time(30, bus_hz, read=True) / 5
     assert np.all(sizes <= (0.02 + 0.004) * 1000 / (1 - per_sample * 1000))
 
 

@@ -199,3 +199,32 @@ def test_search_config_validation():
     rig = SimulatedRig.quiet()
     with pytest.raises(ValueError, match="poll_interval"):
         _run(rig, SearchConfig(poll_interval=0.5))
+
+
+@pytest.mark.parametrize("bus_hz, longest_step", [(100e3, 0.069), (400e3, 0.027)])
+def test_the_default_back_off_exceeds_one_servo_update_along_the_default_path(bus_hz,
+                                                                             longest_step):
+    # SearchConfig's back_off was 3 deg, "peak 94 deg/s times 20 ms = 1.9 deg"; a step of the
+    # search is the poll *and* the drain: 59-69 ms at 100 kHz, pan steps up to 6.4 deg
+    from ebantenna.device.pantilt import SearchConfig, _Search
+
+    rig = SimulatedRig(None, obstacle=None, seed=0)
+    rig.bus.bus_hz = bus_hz
+    mpu = MPU6050(rig.bus, clock=rig.clock)
+    mpu.initialize()
+    unit = PanTilt(PCA9685(rig.bus, clock=rig.clock))
+    unit.initialize()
+    config = SearchConfig(max_search_time=4.0)  # one loop of the path
+    search = _Search(mpu, unit, config, None)
+    search.run()
+    c = np.array(search.commands)
+    steps = np.diff(c[:, 0])
+    moved = np.abs(np.diff(c[:, 1:], axis=0)).max()
+    assert steps.max() <= longest_step  # the docstring's and the guide's step times
+    peak = config.path.peak_rate()
+    assert round(peak) == 94 and moved <= peak * longest_step
+    assert round(peak * longest_step, 1) == {100e3: 6.5, 400e3: 2.5}[bus_hz]
+    assert moved < config.back_off == 7.0
+    if bus_hz == 100e3:  # the guide: the former 3 degrees "exceeded by 41 of 60 steps"
+        per_step = np.abs(np.diff(c[:, 1:], axis=0)).max(axis=1)
+        assert (int(np.sum(per_step > 3.0)), per_step.size) == (41, 60)

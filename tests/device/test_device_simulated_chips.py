@@ -97,10 +97,14 @@ def test_fault_injector_draws_from_its_own_seed():
 
 
 def test_bus_time_per_transfer():
-    # 50 us overhead plus (9 (n + 2) + 2) clocks at 100 kHz for n = 2 data bytes.
+    # 50 us overhead plus, for a read of n = 2 data bytes, (9 (n + 3) + 3) clocks at 100 kHz
+    # (S, address+W, register, Sr, address+R, data, P); a write of n bytes: 9 (n + 2) + 2
     bus = SimulatedBus(devices={0x68: _mpu()}, bus_hz=100e3)
     bus.read_i2c_block_data(0x68, R.FIFO_COUNTH, 2)
-    assert bus.clock.monotonic() == pytest.approx(50e-6 + 38 / 100e3, rel=1e-12)
+    assert bus.clock.monotonic() == pytest.approx(50e-6 + 48 / 100e3, rel=1e-12)  # float sums
+    start = bus.clock.monotonic()
+    bus.write_i2c_block_data(0x68, R.SMPLRT_DIV, [7, 0])
+    assert bus.clock.monotonic() - start == pytest.approx(50e-6 + 38 / 100e3, rel=1e-9)  # a diff
 
 
 def test_the_default_calibration_drives_the_simulated_servo_to_the_commanded_angle():
@@ -187,3 +191,31 @@ def test_the_rig_plays_its_vibration_as_the_masked_reference_does():
             got = rig._acceleration(times, fs, rng, own_noise=own_noise)
             np.testing.assert_array_equal(got, expected)  # bit for bit: the same arithmetic
             assert rng.bit_generator.state == twin.bit_generator.state  # the same draws
+
+
+@pytest.mark.parametrize("free_running", [False, True])
+def test_a_rate_change_starts_counting_at_the_write_without_back_filling(free_running):
+    # _catch_up counted (now - FIFO enable) x the NEW rate: SMPLRT_DIV set to 3 (2 kHz) after
+    # 0.4 s at 1 kHz pushed 289 samples in 1 ms and overflowed the FIFO
+    from ebantenna.chips.mpu6050 import Register
+    from ebantenna.device import MPU6050
+    from ebantenna.device.simulated import Faults, SimulatedRig
+
+    rig = SimulatedRig.quiet(seed=1, faults=Faults(free_running_divider=free_running))
+    mpu = MPU6050(rig.bus, clock=rig.clock)
+    mpu.initialize()
+    mpu.start_fifo()
+    for _ in range(6):
+        rig.clock.sleep(0.02)
+        mpu.read_fifo()
+    chip = rig.mpu
+    pushed = chip.samples_pushed
+    chip._corrupt(int(Register.SMPLRT_DIV), 3)  # 2 kHz from now on
+    assert chip.samples_pushed == pushed  # the write itself produces nothing at the new rate
+    rig.clock.sleep(0.001)
+    chip.read(int(Register.FIFO_COUNTH), 2)  # the chip catches up when it is read
+    # 1 ms at 2 kHz: two samples (one more on a free-running grid, whose tick may fall at 0)
+    assert 1 <= chip.samples_pushed - pushed <= 3 and chip.overflowed_bytes == 0
+    rig.clock.sleep(0.1)
+    chip.read(int(Register.FIFO_COUNTH), 2)
+    assert abs(chip.samples_pushed - pushed - 202) <= 1  # 101 ms at 2 kHz, to a sample

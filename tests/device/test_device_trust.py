@@ -264,6 +264,8 @@ def test_the_mpu6500_family_is_configured_as_itself():
         mpu.initialize()
     assert rig.mpu.sample_rate() == 1000.0 and mpu.fifo_size == rig.mpu.FIFO_SIZE == 512
     assert rig.mpu.regs[0x1D] == 1 and mpu.metadata()["bandwidth_hz"] == 218.1
+    # the metadata state what the chip holds: CONFIG = ACCEL_CONFIG2 = 1 (it said 0)
+    assert rig.mpu.regs[0x1A] == mpu.metadata()["dlpf_cfg"] == 1
     rec = mpu.record(0.3)
     assert rec.n_samples == 300 and rec.metadata["samples_lost"] == 0
     assert mpu.fifo_capacity == 85 / 1000.0  # 512 // 6 samples

@@ -25,7 +25,7 @@ from ebantenna.device.fifo import FifoBlock, StreamFault  # noqa: E402
 from ebantenna.device.i2c import I2CDevice, transfer_bits, transfer_time  # noqa: E402
 from ebantenna.device.mpu6050_config import accel_bandwidth  # noqa: E402
 from ebantenna.device.oe import OutputEnable  # noqa: E402
-from ebantenna.device.pantilt import PanTilt  # noqa: E402
+from ebantenna.device.pantilt import PanTilt, servo_bus_time  # noqa: E402
 from ebantenna.device.pca9685 import pwm_frequency  # noqa: E402
 from ebantenna.device.plan import Plan, Touch, session_time  # noqa: E402
 from ebantenna.device.recording_session import (  # noqa: E402
@@ -442,6 +442,20 @@ ROWS = {
     ],
     U + "to_recording": [
         ("no-stream", lambda: _mpu().to_recording(0, 10), ("stream", "start_fifo"), None),
+    ],
+    "ebantenna.device.pca9685.PCA9685.write_channel": [
+        ("channel-16", lambda: _pca9685().write_channel(16, [0, 0, 0, 16]), ("channel",), None),
+        ("data-3-bytes", lambda: _pca9685().write_channel(0, [0, 0, 1]), ("data",), None),
+        ("data-300", lambda: _pca9685().write_channel(0, [0, 0, 300, 0]), ("data",), None),
+        ("reads-back", lambda: _pca9685().write_channel(0, [0, 0, 51, 1]), None,
+         lambda r: r is None),
+    ],
+    "ebantenna.device.pantilt.servo_bus_time": [
+        ("bus_hz-0", lambda: servo_bus_time(0.0), ("bus_hz",), None),
+        ("bus_hz-str", lambda: servo_bus_time("1e5"), ("bus_hz",), None),
+        # two pulse writes and their read-backs, MODE1-MODE2 and PRE_SCALE read back
+        ("by-hand", lambda: servo_bus_time(100e3), None, lambda r: math.isclose(
+            r, 6 * 50e-6 + (2 * 56 + 2 * 66 + 48 + 39) / 100e3, rel_tol=1e-12)),
     ],
     "ebantenna.device.pca9685.PCA9685.channel_off": [
         ("channel-16", lambda: _pca9685().channel_off(16), ("channel",), None),

@@ -91,11 +91,11 @@ ANSWERS = {"samples_after_50ms": len(counts), "arrived_while_reading": arrived,
            "overflow_count": count, "lost": block.lost, "gap_ms": gap_ms, "period_us": period_us}
 # The tolerance of each answer: how far two correct ways of working may differ, and why.
 # Every transfer costs bus time on the virtual clock, so the transfers a student adds move the
-# counts: the same drain in transfers of 6 bytes (one sample) lets 40 samples in instead of 30
-# (each transfer costs 0.25 ms besides its data), an extra register read (0.34 ms) about a
-# third of a sample. Step 3 fixes the transfers
+# counts: the same drain in transfers of 6 bytes (one sample) lets 45 samples in instead of 31
+# (each transfer costs 0.35 ms besides its data), an extra register read (0.44 ms) about half
+# a sample. Step 3 fixes the transfers
 # (32 bytes); the driver fixes its own in step 5.
-TRANSFERS = "an extra register read or two (0.34 ms each) on the virtual clock"
+TRANSFERS = "an extra register read or two (0.44 ms each) on the virtual clock"
 TOLERANCES = {
     "samples_after_50ms": ("abs", 1, (
         "one sample more or less, as the 50 ms wait starts between two samples"

@@ -85,8 +85,8 @@ class SimulatedBus:
     Traceback (most recent call last):
     ...
     OSError: [Errno 121] Remote I/O error
-    >>> round(bus.clock.monotonic() * 1e6, 1)  # us: 50 us overhead + 29 clocks at 100 kHz
-    340.0
+    >>> round(bus.clock.monotonic() * 1e6, 1)  # us: 50 us overhead + a read's 39 clocks, 100 kHz
+    440.0
     """
 
     def __init__(self, clock=None, *, devices: dict | None = None, faults: Faults | None = None,
@@ -126,7 +126,8 @@ class SimulatedBus:
         self.clock.advance(self.injector.timeout_wait(error))
         return error
 
-    def _begin(self, address: int, nbytes: int, *, counting: bool = False):
+    def _begin(self, address: int, nbytes: int, *, counting: bool = False,
+               read: bool = False):
         """Run a transfer's bus phase: time, faults, acknowledge.
 
         Returns the chip addressed and the kind of late fault drawn for it (None, "late",
@@ -136,7 +137,7 @@ class SimulatedBus:
         if self.closed:
             raise OSError(errno.EBADF, "the simulated bus is closed")
         injector, clock = self.injector, self.clock
-        clock.advance(self.overhead + transfer_bits(nbytes) / self.bus_hz)
+        clock.advance(self.overhead + transfer_bits(nbytes, read=read) / self.bus_hz)
         # a stall or a preemption of 0 s (most transfers) leaves the clock as it is: not added
         stall = injector.host_stall(clock.monotonic())
         if stall:
@@ -168,7 +169,8 @@ class SimulatedBus:
     def _read(self, address: int, register: int, length: int, nbytes: int) -> list[int]:
         """One read transfer of ``length`` bytes from ``register`` on (``nbytes`` on the wire)."""
         counting = address == self.reset_address and register == Register.FIFO_COUNTH
-        chip, kind = self._begin(address, nbytes, counting=counting and length >= 2)
+        chip, kind = self._begin(address, nbytes, counting=counting and length >= 2,
+                                 read=True)
         if address == self.reset_address and register == Register.FIFO_R_W:
             self.injector._drain_read(self.clock.monotonic(), chip)
         if kind == "short":
@@ -267,7 +269,7 @@ class SimulatedBus:
                 or msgs[0].len != 1):
             raise ValueError("the simulated bus supports i2c_rdwr(write [register], read n) only")
         register = bytes(msgs[0])[0]
-        data = bytes(self._read(msgs[0].addr, register, msgs[1].len, msgs[1].len + 1))
+        data = bytes(self._read(msgs[0].addr, register, msgs[1].len, msgs[1].len))
         for k, value in enumerate(data):
             msgs[1].buf[k] = bytes([value])
         msgs[1].len = len(data)  # a short read: the kernel reports the bytes it received

@@ -206,6 +206,8 @@ class SimulatedMPU6050:
         self.fifo.clear()
         self._since = None
         self._produced = 0
+        # the rate samples are counted at, from when and from which sample (_anchor_rate)
+        self._rate, self._rate_origin, self._rate_base = None, None, 0
 
     def brown_out(self) -> None:
         """Lose power for a moment: the samples due so far are produced, then the power-on state."""
@@ -283,21 +285,25 @@ class SimulatedMPU6050:
         self._update_state(was)
 
     def _catch_up(self) -> None:
+        """Produce the samples due by now at the current rate, counted from the rate's anchor
+        (:meth:`_anchor_rate`: the FIFO's enable, or the last change of the rate)."""
         if self._since is None:
             return
         now = self.clock.monotonic()
         fs = self.true_rate()
+        origin, base = self._rate_origin, self._rate_base
         if self.free_running_divider:
-            target = int(math.floor((now - self.first_sample[-1]) * fs + 1e-9)) + 1
+            target = base + int(math.floor((now - origin) * fs + 1e-9)) + 1
         else:
-            target = int(math.floor((now - self._since) * fs + 1e-9))
+            target = base + int(math.floor((now - origin) * fs + 1e-9))
         if target <= self._produced:
             return
         n = target - self._produced
-        if self.free_running_divider:  # sample k at first + k / fs
-            times = self.first_sample[-1] + np.arange(self._produced, target) / fs
-        else:  # sample k at since + (k + 1) / fs
-            times = self._since + np.arange(self._produced + 1, target + 1) / fs
+        k = np.arange(self._produced, target) - base
+        if self.free_running_divider:  # sample k at origin + k / fs (origin: a tick)
+            times = origin + k / fs
+        else:  # sample k at origin + (k + 1) / fs
+            times = origin + (k + 1) / fs
         counts = self._counts(times)
         self.epochs[-1][1].append(counts.astype(np.int16))
         scale = np.empty(n, np.int32)
@@ -321,14 +327,24 @@ class SimulatedMPU6050:
             self._produced = 0
             self.epochs.append((self._since, []))
             self.epoch_scales.append([])
-            fs = self.true_rate()
-            if self.free_running_divider:  # the next tick of the chip's own grid
-                first = (math.floor(self._since * fs + 1e-9) + 1) / fs
-            else:
-                first = self._since + 1.0 / fs
-            self.first_sample.append(first)
+            self._anchor_rate()
+            self.first_sample.append(self._rate_origin if self.free_running_divider
+                                     else self._since + 1.0 / self._rate)
         elif was_producing and not producing:
             self._since = None
+        elif producing and self.true_rate() != self._rate:
+            self._anchor_rate()  # the samples due were produced at the old rate (_catch_up)
+
+    def _anchor_rate(self) -> None:
+        """Count the samples from now at the current rate: the FIFO was just enabled, or the
+        rate changed (a write of ``CONFIG`` or ``SMPLRT_DIV``), so that none is back-filled at
+        the new rate. Without a free-running divider the next sample comes a period after now;
+        with one, at the next tick of the chip's own grid."""
+        now = self.clock.monotonic()
+        self._rate = fs = self.true_rate()
+        self._rate_base = self._produced
+        self._rate_origin = ((math.floor(now * fs + 1e-9) + 1) / fs if self.free_running_divider
+                             else now)
 
     def read(self, register: int, length: int) -> list[int]:
         """Read ``length`` bytes from ``register`` on, as one I2C read transfer does."""

@@ -195,7 +195,8 @@ class DecayResult:
     per_material : tuple of dict
         Per material: ``material``, ``grid`` (m), ``gain`` (m/s^2) and ``tau`` (s) medians per
         contact over the usable fits, and the medians ``median_gain``, ``median_tau`` (NaN
-        without a usable fit) and the share ``ok`` of usable fits (``status == "ok"``).
+        without a usable fit), the share ``ok`` of usable fits (``status == "ok"``) and their
+        number ``n_ok`` of ``n`` fits.
     ok_fraction : float
         Share of all recordings in the region whose fit is usable.
     filter_tau : float or None
@@ -230,7 +231,7 @@ def compute_decay(ds, feats, materials) -> DecayResult:
             "material": m, "grid": grid, "gain": gain, "tau": tau,
             "median_gain": _median(feats.gain[sel][ok]),
             "median_tau": _median(feats.tau[sel][ok]),
-            "ok": float(ok.mean()),
+            "ok": float(ok.mean()), "n_ok": int(ok.sum()), "n": int(ok.size),
         })
     tau_filter = filter_time_constant(paper_filter("chebyshev", fs=ds.fs), ds.fs)
     names, counts = np.unique(feats.decay_status[region], return_counts=True)
@@ -273,7 +274,7 @@ def render_decay(result: DecayResult, report, figures) -> None:
         ["material", "median gain (m/s^2)", "median tau (ms)", "usable fits"],
         [
             [r["material"], _shown(r["median_gain"], "{:.3g}"),
-             _shown(1000 * r["median_tau"], "{:.1f}"), f"{r['ok']:.0%}"]
+             _shown(1000 * r["median_tau"], "{:.1f}"), f"{r['n_ok']} of {r['n']}"]
             for r in result.per_material
         ],
     )

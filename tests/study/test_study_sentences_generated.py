@@ -149,11 +149,21 @@ def test_the_ringing_sentence_follows_the_time_constants(taus, words):
 
 def test_the_decay_section_reads_the_filters_time_constant(tmp_path):
     row = dict(material="brass", grid=np.zeros(1), gain=np.ones(1), tau=np.ones(1),
-               median_gain=1.0, median_tau=0.1, ok=1.0)
+               median_gain=1.0, median_tau=0.1, ok=1.0, n_ok=3, n=3)
     report = Report("t")
-    signals.render_decay(signals.DecayResult((row,), 1.0, 0.25), report, FigureSet(tmp_path))
+    signals.render_decay(signals.DecayResult((row,), 1.0, 0.25, {"ok": 3}), report,
+                         FigureSet(tmp_path))
     text = report.markdown()
     assert "250 ms" in text and "every median here is shorter" in text and "0.4 s" not in text
+    assert "Of the 3 fits, 3 are usable." in text and "| 3 of 3 |" in text
+    # no usable fit: the table says so instead of printing NaN
+    row = dict(row, median_gain=np.nan, median_tau=np.nan, ok=0.0, n_ok=0)
+    report = Report("t")
+    signals.render_decay(signals.DecayResult((row,), 0.0, 0.25, {"noise_limited": 3}), report,
+                         FigureSet(tmp_path))
+    text = report.markdown()
+    assert "| n/a | n/a | 0 of 3 |" in text and "nan" not in text
+    assert "none is usable, so the gains and time constants of Fig. 11 are not reproduced" in text
 
 
 # ---------------------------------------------------------------- the contact law

@@ -246,7 +246,7 @@ class FifoStream:
         self._beyond = _seen_record(side=None)
         self.clock_adapted = False  # the period's prior bracket took in what the counts showed
         #: The least rate a FIFO found full too soon showed, Hz (0 until one did, and again
-        #: once counts bracket the rate, :meth:`_adapt`, or the chip is configured again).
+        #: once counts bracket the rate, ``_adapt``, or the chip is configured again).
         self.rate_at_least = 0.0
         #: Why the stream refuses the chip's clock (a rate beyond MAX_CLOCK_ADAPT), or None.
         self.clock_refused: str | None = None

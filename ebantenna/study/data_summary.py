@@ -32,7 +32,7 @@ class DatasetResult:
         SHA-256 of the data set's arrays.
     saturated : dict or None
         The recordings the chip's range held at a rail on at least one sample
-        (:func:`saturated_recordings`); None when the data set does not count them.
+        (``saturated_recordings``); None when the data set does not count them.
     """
 
     path: str | None

@@ -86,6 +86,9 @@ def test_a_clean_decay_is_fitted_within_3_percent_or_flagged():
     @example(tau=0.2, f=50.0, phase=0.3, exponent=0, method="nonlinear")
     @example(tau=0.2, f=50.0, phase=0.3, exponent=0, method="peaks")
     @example(tau=0.2, f=50.0, phase=0.3, exponent=0, method="sinusoid")
+    # a decay over in 18 samples near fs/2 that the damped sinusoid does not confirm (found by
+    # an older hypothesis: "ok" with tau 108 % long)
+    @example(tau=0.005003064870834361, f=474.0, phase=0.0, exponent=0, method="loglinear")
     def fit(tau, f, phase, exponent, method):
         x = 10.0**exponent * np.exp(-T / tau) * np.sin(2 * np.pi * f * T + phase)
         result = fit_decay(x, FS, method=method)

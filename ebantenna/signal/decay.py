@@ -328,7 +328,7 @@ def fit_decay(
         # decay's start, and near fs/2 the tone's mirror image, are not averaged out (a clean
         # 5 ms decay at 474 Hz sampled at 1 kHz: 18 samples, tau 108 % long)
         confirmed = sine is not None and sine[2] >= SINUSOID_R_SQUARED and sine[1] < 0
-        too_short = too_short or (separable and not confirmed
+        too_short = too_short or (decaying and separable and not confirmed
                                   and keep.size < region.whole.size * UNCONFIRMED_SHARE)
         status = envelope_status(b, decaying, too_short, sine, separable=separable)
     return _decay_fit(a, b / unit, status, r2, n_points, exponent, clipped, method)

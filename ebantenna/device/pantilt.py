@@ -59,8 +59,9 @@ MAX_DURATION = 60.0
 
 #: The PCA9685's settings are read back every this many steps of the search: a backstop. A
 #: brown-out is found at the next servo update already (the chip wakes without its register
-#: auto-increment, so the pulse reads back wrong, ``_Search.sweep``), which bounds the dead
-#: servos by one step of the search: the poll *and* the drain, up to 69 ms at 100 kHz and
+#: auto-increment, so the pulse reads back wrong, ``_Search.sweep``, which sets the chip up
+#: again and commands the same pulse at once), which bounds the dead servos by one step of the
+#: search: the poll *and* the drain, up to 69 ms at 100 kHz and
 #: 27 ms at 400 kHz (not the 20 ms poll alone).
 PCA_CHECK_EVERY = 10
 
@@ -518,7 +519,12 @@ class _Search:
         except SettingError:
             if not self.check_pca():
                 raise
-            return
+            try:  # set up again, its outputs off: the same command at once, not a step later
+                moved = self.pantilt.move(*self.config.path.angles(elapsed))
+            except I2CError as exc:
+                logger.warning("servo update after the set-up failed (%s); the search goes on",
+                               exc)
+                return
         except I2CError as exc:  # the servos keep their last command
             logger.warning("servo update failed (%s); the search goes on", exc)
             return

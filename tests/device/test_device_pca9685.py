@@ -208,7 +208,7 @@ def test_the_pulse_read_back_costs_what_the_guide_says(bus_hz, step, blind_step,
 @pytest.mark.parametrize("bus_hz, longest", [(100e3, 0.069), (400e3, 0.027)])
 def test_a_brown_out_costs_at_most_one_step_of_dead_servos(bus_hz, longest):
     # pantilt.py said 0.2 s (10 steps of 20 ms): 0.505 s measured at 100 kHz; now the next
-    # pulse reads back wrong and the chip is set up again at that step
+    # pulse reads back wrong, the chip is set up again at that step and the pulse commanded
     from ebantenna.device.simulated import Faults
 
     worst = 0.0
@@ -221,6 +221,9 @@ def test_a_brown_out_costs_at_most_one_step_of_dead_servos(bus_hz, longest):
         search.run()
         (browned,) = [t for t, k in rig.bus.injector.log if k == "pca brown-out"]
         assert again and len(search.report["pca9685_faults"]) == 1
-        worst = max(worst, again[0] - browned)
+        # dead from the brown-out until the first pulse commanded after the set-up (which
+        # switches every output off)
+        pulsed = min(t for t, *_ in search.commands if t > again[0])
+        worst = max(worst, pulsed - browned)
     assert worst <= longest
-    assert round(1e3 * worst) == {100e3: 27, 400e3: 6}[bus_hz]  # the guide's "measured"
+    assert f"{1e3 * worst:.0f}" == {100e3: "36", 400e3: "9"}[bus_hz]  # the guide's "measured"

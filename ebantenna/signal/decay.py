@@ -49,9 +49,9 @@ periods of the signal, and if it agrees within 3 % with the damped-sinusoid fit 
 explains the record (residual below 10 % of the signal, so one decaying mode is all there is);
 where it does not, the decay must stand out of the noise: its fit starts at least
 ``floor_factor**2`` above the noise floor it was cut at, and three standard errors of its rate
-(``_rate_standard_error``) lie within 3 %; and it must span at least a twentieth of the region
-(:data:`UNCONFIRMED_SHARE`: over fewer samples the envelope's errors at the start, and near
-``fs / 2`` the tone's mirror image, are not averaged out). Otherwise the status says what is wrong
+(``_rate_standard_error``) lie within 3 %; and it must span at least 50 samples
+(:data:`UNCONFIRMED_SPAN`: over fewer the envelope's errors at the start, and near ``fs / 2``
+the tone's mirror image, are not averaged out). Otherwise the status says what is wrong
 (``"too_few_points"``, ``"inconsistent"``, ``"noise_limited"``). Under noise the witness is
 noisy too: with white noise of 3 % of the start amplitude, ``"ok"`` fits of the tests err by up
 to 8 %; with 1 %, by up to 3.5 %. The
@@ -115,9 +115,10 @@ SINUSOID_R_SQUARED = 0.99
 #: Largest relative standard error of the rate of an ``"ok"`` envelope fit: three standard
 #: errors make the 3 % of :data:`CONSISTENCY`.
 PRECISION = CONSISTENCY / 3
-#: Smallest share of the region's samples an envelope fit must span to be ``"ok"`` when no
-#: damped-sinusoid fit confirms it; a shorter one is ``"too_few_points"``.
-UNCONFIRMED_SHARE = 0.05
+#: Fewest samples an envelope fit must span (first to last fitted sample) to be ``"ok"`` when no
+#: damped-sinusoid fit confirms it; a shorter one is ``"too_few_points"``. The envelope's error
+#: from the record's abrupt start spreads over tens of samples, whatever the record's length.
+UNCONFIRMED_SPAN = 50
 #: Shortest record :func:`fit_decay` accepts, samples.
 MIN_DECAY_SAMPLES = 16
 
@@ -323,13 +324,13 @@ def fit_decay(
         if sine is not None:
             a, b, r2, n_points = sine
     else:
-        # an envelope fit that no damped sinusoid confirms is trusted over at least a twentieth
-        # of the region (UNCONFIRMED_SHARE): over fewer samples the envelope's errors at the
-        # decay's start, and near fs/2 the tone's mirror image, are not averaged out (a clean
-        # 5 ms decay at 474 Hz sampled at 1 kHz: 18 samples, tau 108 % long)
+        # an envelope fit that no damped sinusoid confirms is trusted over at least
+        # UNCONFIRMED_SPAN samples: over fewer the envelope's errors at the decay's start, and
+        # near fs/2 the tone's mirror image, are not averaged out (a clean 5 ms decay at 474 Hz
+        # sampled at 1 kHz: 18 samples, tau 108 % long)
         confirmed = sine is not None and sine[2] >= SINUSOID_R_SQUARED and sine[1] < 0
         too_short = too_short or (decaying and separable and not confirmed
-                                  and keep.size < region.whole.size * UNCONFIRMED_SHARE)
+                                  and keep[-1] - keep[0] + 1 < UNCONFIRMED_SPAN)
         status = envelope_status(b, decaying, too_short, sine, separable=separable)
     return _decay_fit(a, b / unit, status, r2, n_points, exponent, clipped, method)
 
@@ -655,12 +656,15 @@ def damped_sinusoid_fit(x, t, n_fit, b0):
 def envelope_status(b, decaying, too_short, sine, *, separable=True) -> str:
     """The checks of an envelope fit with rate ``b`` (1/s): its ``status`` of a :class:`DecayFit`.
 
-    ``"not_decaying"`` unless ``decaying`` (``b < 0`` and R^2 high enough); ``"too_few_points"``
-    when the decay is over before two periods; ``"noise_limited"`` unless ``separable`` (the
-    decay rises less than ``floor_factor**2`` above the noise floor it was cut at, see
-    ``_fitted_samples``); ``"inconsistent"`` when the damped-sinusoid fit
-    ``sine``, ``(a, b, r_squared, n_fit)`` or None, explains the record (R^2 >= 0.99), decays,
-    and disagrees with ``b`` by more than 3 %; otherwise ``"ok"``.
+    In this order: a decay over before two periods (``too_short``, whose fit then spans the whole
+    region and need not decay) is ``"too_few_points"`` if it stands out of the floor
+    (``separable``), ``"not_decaying"`` if not; otherwise ``"not_decaying"`` unless
+    ``decaying`` (``b < 0`` and R^2 high enough); then, when the damped-sinusoid fit ``sine``,
+    ``(a, b, r_squared, n_fit)`` or None, explains the record (R^2 >= 0.99) and decays, it
+    decides: ``"inconsistent"`` if it disagrees with ``b`` by more than 3 %, else ``"ok"``;
+    without it, ``"noise_limited"`` unless ``separable`` (the decay does not rise
+    ``floor_factor**2`` above the floor it was cut at, or its rate is uncertain by more than
+    3 % in three standard errors, see the module notes), else ``"ok"``.
 
     Examples
     --------

@@ -149,9 +149,10 @@ def test_polling_slower_than_the_fifo_holds_is_refused():
     mpu = MPU6050(rig.bus, clock=rig.clock)
     mpu.initialize()
     # 170 samples, three kept free, at 1050 Hz (the clock's tolerance) while a 100 kHz bus
-    # drains 5 samples per 290 clocks and 50 us: 167 (1 - 1050 * 0.59e-3) / 1050 s, less the
-    # 2.8 ms of fixed transfers of a drain: the counts before and after (2 + 2 bytes) and the
-    # settings read back (4, 1, 3 and 2 bytes), 50 us + 9 (n + 2) + 2 clocks each
+    # drains 5 samples per 300 clocks and 50 us: 167 (1 - 1050 * 0.61e-3) / 1050 s, less the
+    # 3.36 ms of fixed transfers of a drain: the counts before and after (2 + 2 bytes) and the
+    # settings read back (4, 1, 3 and 2 bytes), 50 us + 9 (n + 3) + 3 clocks each (a read sends
+    # the address twice)
     with pytest.raises(ValueError, match=r"poll_interval must be < 0\.0538 s"):
         mpu.record(1.0, poll_interval=0.3)
     with pytest.raises(ValueError, match=r"poll_interval must be < 0\.0538 s"):

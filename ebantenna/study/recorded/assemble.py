@@ -226,9 +226,11 @@ def _resampled(rec: Recording, name: str, fs: float, n: int, max_lost: float):
     # A gap of k lost samples spans k + 1 periods of the recording's own clock, but the samples
     # after it are placed by timestamps anchored anew, within the recording's stated uncertainty:
     # on the nominal grid the gap may hold that many points more than the driver counted lost
-    # (at least one: the rounding to the grid), which the driver's count already bounds
+    # (at least one: the rounding to the grid); the loss itself is held to the driver's count
+    # above. Only the gaps that reach into the window count.
     per_gap = max(1, math.ceil(meta.get("timestamp_uncertainty_s", 0.0) * fs))
-    gaps = int(np.count_nonzero(np.diff(slots) > 1))
+    before, after = slots[:-1], slots[1:]
+    gaps = int(np.count_nonzero((after - before > 1) & (before + 1 < n) & (after > 0)))
     if interpolated > budget + gaps * per_gap:
         raise ValueError(f"{name}: {interpolated} of the {n} samples after the contact lost, "
                          f"more than {max_lost:.0%} of its {rec.n_samples + lost}-sample window")

@@ -238,7 +238,7 @@ PAPER_MAP = (
         ),
         ("plot_07_decay_fit",),
         "pvc_wood_overlap_cm",
-        here="a usable decay fit (status 'ok') in [[summary:decay.decay_fit_ok_fraction|pct]] of "
+        here="a usable decay fit (status 'ok') in [[summary:decay.decay_fit_ok_fraction|pct2]] of "
         "the recordings on the first 80 % of the probe",
         status="not computed: where PVC and wood overlap; the band-pass of Table 1, at the order "
         "[[filter:chebyshev|d]] its table needs, rings on and lengthens short decays",
@@ -534,15 +534,16 @@ PLACEHOLDER = re.compile(r"\[\[([^|\]]+)\|([^\]]*)\]\]")
 def _formatted(value, spec: str) -> str:
     """One value as the page shows it: ``pct`` through the report's own formatter
     (:func:`ebantenna.paper.uncertainty.percent`), so a number reads the same in both."""
-    if spec == "pct":
+    if spec.startswith("pct"):  # pct, or pct2 for two decimals
         from ebantenna.paper.uncertainty import percent
 
-        return percent(value)
+        return percent(value, int(spec[3:] or 1))
     return format(value, spec)
 
 
 def fill(text: str, values: dict) -> str:
-    """``text`` with every ``[[KEY|FORMAT]]`` replaced (FORMAT ``pct``: a fraction as percent)."""
+    """``text`` with every ``[[KEY|FORMAT]]`` replaced (FORMAT ``pct``, ``pct2``: a fraction as
+    percent, to one or two decimals)."""
 
     def one(match):
         key, spec = match.groups()

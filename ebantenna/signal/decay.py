@@ -140,9 +140,11 @@ class DecayFit:
         steady or growing oscillation); ``"too_few_points"`` (the record holds fewer than four
         periods of its dominant frequency: then ``a = b = 0``; or a decay that rises
         ``floor_factor**2`` above the floor is over before two periods could be fitted: then
-        ``a`` and ``b`` are the envelope fit's, not to be trusted); ``"noise_limited"`` (the
-        decay does not stand out of the noise enough for a usable ``tau``: see the module
-        notes; ``a``, ``b`` are the fit of the samples above the noise, not to be trusted);
+        ``a`` and ``b`` are the envelope fit's, not to be trusted); ``"noise_limited"`` (no
+        damped sinusoid confirms the fit, and the decay does not stand out of the floor or its
+        rate is too uncertain for a usable ``tau``: whatever scatters the envelope about the
+        line counts, noise or other modes beating with the first; see the module notes;
+        ``a``, ``b`` are the fit of the samples above the floor, not to be trusted);
         ``"inconsistent"`` (an envelope fit that disagrees by more
         than 3 % with a damped sinusoid that explains the record: ``a``, ``b`` and ``tau`` are
         the envelope's, not to be trusted); ``"poor_fit"`` (``"sinusoid"`` only: the model leaves

@@ -229,8 +229,8 @@ def compute_decay(ds, feats, materials) -> DecayResult:
         _, tau, _ = per_contact(feats.tau[sel], ds.contact[sel], ok)
         per_material.append({
             "material": m, "grid": grid, "gain": gain, "tau": tau,
-            "median_gain": _median(feats.gain[sel][ok]),
-            "median_tau": _median(feats.tau[sel][ok]),
+            "median_gain": _median(feats.gain[sel][ok]) if ok.sum() >= MIN_USABLE else math.nan,
+            "median_tau": _median(feats.tau[sel][ok]) if ok.sum() >= MIN_USABLE else math.nan,
             "ok": float(ok.mean()), "n_ok": int(ok.sum()), "n": int(ok.size),
         })
     tau_filter = filter_time_constant(paper_filter("chebyshev", fs=ds.fs), ds.fs)
@@ -283,11 +283,17 @@ def render_decay(result: DecayResult, report, figures) -> None:
 
 #: What each status of :class:`~ebantenna.signal.DecayFit` says of a fit, for the report.
 STATUS_WORDS = {
-    "noise_limited": "the decay does not stand out of what follows it",
+    "noise_limited": "no single decay the rate can be read from to 3 %: noise, or other modes "
+                     "beating in the envelope, scatter it about the line",
     "not_decaying": "no decay stands out",
-    "too_few_points": "the decay is over within two periods",
+    "too_few_points": "the decay is over too soon to be measured",
     "inconsistent": "the envelope disagrees with the damped sinusoid",
 }
+
+
+#: Fewest usable fits for a median of the table (a median of fewer is one or two recordings'
+#: own value), and for the section to say it reproduces Fig. 11.
+MIN_USABLE = 3
 
 
 def status_sentence(statuses: dict | None) -> str:
@@ -305,8 +311,9 @@ def status_sentence(statuses: dict | None) -> str:
     total, usable = sum(statuses.values()), statuses.get("ok", 0)
     others = "; ".join(f"{k}: {v} ({STATUS_WORDS.get(k, 'see DecayFit')})"
                        for k, v in statuses.items() if k != "ok")
-    if usable == 0:
-        return (f"Of the {total} fits, none is usable, so the gains and time constants of Fig. 11 "
+    if usable < MIN_USABLE:
+        count = "none is" if usable == 0 else f"only {usable} {'is' if usable == 1 else 'are'}"
+        return (f"Of the {total} fits, {count} usable, so the gains and time constants of Fig. 11 "
                 f"are not reproduced here; {others}. ")
     return (f"Of the {total} fits, {usable} {'is' if usable == 1 else 'are'} usable"
             + (f"; {others}. " if others else ". "))

@@ -226,9 +226,11 @@ def test_a_decay_buried_in_noise_is_not_ok(f0, tau, sigma):
                                      (30.0, 0.1)])
 def test_ok_under_noise_is_as_accurate_as_documented(f0, tau):
     for sigma, documented in ((0.01, 0.035), (0.03, 0.08)):  # the module notes' numbers
-        for seed in range(20):
-            fit = fit_decay(_noisy(f0, tau, sigma, seed), FS)
+        fits = [fit_decay(_noisy(f0, tau, sigma, seed), FS) for seed in range(20)]
+        for seed, fit in enumerate(fits):
             assert not fit.ok or abs(fit.tau / tau - 1) <= documented, (sigma, seed, fit)
+        # the bound must be tested on something: most of these decays stand out of 1 % noise
+        assert sigma > 0.01 or sum(fit.ok for fit in fits) >= 10, (f0, tau, sigma)
 
 
 def test_clean_short_decays_are_measured_or_too_short_never_not_decaying():

@@ -291,4 +291,8 @@ def test_the_decay_status_sentence_reads_the_counts():
     some = signals.status_sentence({"ok": 54, "not_decaying": 39, "too_few_points": 27})
     assert some.startswith("Of the 120 fits, 54 are usable; not_decaying: 39")
     assert "not reproduced" not in some
-    assert signals.status_sentence({"ok": 1}) == "Of the 1 fits, 1 is usable. "
+    # one usable fit is not a median: the section says Fig. 11 is not reproduced
+    assert signals.status_sentence({"ok": 1, "noise_limited": 7999}).startswith(
+        "Of the 8000 fits, only 1 is usable, so the gains and time constants of Fig. 11 are not "
+        "reproduced here")
+    assert signals.status_sentence({"ok": 3}) == "Of the 3 fits, 3 are usable. "

@@ -50,7 +50,7 @@ explains the record (residual below 10 % of the signal, so one decaying mode is 
 where it does not, the decay must stand out of the noise: its fit starts at least
 ``floor_factor**2`` above the noise floor it was cut at, and three standard errors of its rate
 (``_rate_standard_error``) lie within 3 %; and it must span at least 50 samples
-(:data:`UNCONFIRMED_SPAN`: over fewer the envelope's errors at the start, and near ``fs / 2``
+(``UNCONFIRMED_SPAN``: over fewer the envelope's errors at the start, and near ``fs / 2``
 the tone's mirror image, are not averaged out). Otherwise the status says what is wrong
 (``"too_few_points"``, ``"inconsistent"``, ``"noise_limited"``). Under noise the witness is
 noisy too: with white noise of 3 % of the start amplitude, ``"ok"`` fits of the tests err by up

@@ -330,8 +330,7 @@ def fit_decay(
         # UNCONFIRMED_SPAN samples: over fewer the envelope's errors at the decay's start, and
         # near fs/2 the tone's mirror image, are not averaged out (a clean 5 ms decay at 474 Hz
         # sampled at 1 kHz: 18 samples, tau 108 % long)
-        confirmed = sine is not None and sine[2] >= SINUSOID_R_SQUARED and sine[1] < 0
-        too_short = too_short or (decaying and separable and not confirmed
+        too_short = too_short or (decaying and separable and not _confirms(sine)
                                   and keep[-1] - keep[0] + 1 < UNCONFIRMED_SPAN)
         status = envelope_status(b, decaying, too_short, sine, separable=separable)
     return _decay_fit(a, b / unit, status, r2, n_points, exponent, clipped, method)
@@ -655,6 +654,12 @@ def damped_sinusoid_fit(x, t, n_fit, b0):
     return math.hypot(p, q) * math.exp(-b * t0), float(b), r2, n_fit
 
 
+def _confirms(sine) -> bool:
+    """Whether the damped-sinusoid fit ``sine`` (``(a, b, r_squared, n_fit)`` or None) is a
+    witness: it explains the record (R^2 >= :data:`SINUSOID_R_SQUARED`) and decays."""
+    return sine is not None and sine[2] >= SINUSOID_R_SQUARED and sine[1] < 0
+
+
 def envelope_status(b, decaying, too_short, sine, *, separable=True) -> str:
     """The checks of an envelope fit with rate ``b`` (1/s): its ``status`` of a :class:`DecayFit`.
 
@@ -687,7 +692,7 @@ def envelope_status(b, decaying, too_short, sine, *, separable=True) -> str:
         return "too_few_points" if separable else "not_decaying"
     if not decaying:
         return "not_decaying"
-    if sine is not None and sine[2] >= SINUSOID_R_SQUARED and sine[1] < 0:
+    if _confirms(sine):
         return "inconsistent" if abs(sine[1] / b - 1.0) > CONSISTENCY else "ok"
     return "ok" if separable else "noise_limited"
 

@@ -225,12 +225,13 @@ def compute_decay(ds, feats, materials) -> DecayResult:
     for m in materials:
         sel = (ds.material == m) & region
         ok = feats.decay_ok[sel]
+        enough = ok.sum() >= MIN_USABLE
         grid, gain, _ = per_contact(feats.gain[sel], ds.contact[sel], ok)
         _, tau, _ = per_contact(feats.tau[sel], ds.contact[sel], ok)
         per_material.append({
             "material": m, "grid": grid, "gain": gain, "tau": tau,
-            "median_gain": _median(feats.gain[sel][ok]) if ok.sum() >= MIN_USABLE else math.nan,
-            "median_tau": _median(feats.tau[sel][ok]) if ok.sum() >= MIN_USABLE else math.nan,
+            "median_gain": _median(feats.gain[sel][ok]) if enough else math.nan,
+            "median_tau": _median(feats.tau[sel][ok]) if enough else math.nan,
             "ok": float(ok.mean()), "n_ok": int(ok.sum()), "n": int(ok.size),
         })
     tau_filter = filter_time_constant(paper_filter("chebyshev", fs=ds.fs), ds.fs)

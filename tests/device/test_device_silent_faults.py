@@ -433,17 +433,23 @@ def test_the_sensor_check_refuses_what_is_not_counts(bad):
         sensor_check(bad, 2048)
 
 
-def _judge_take(rig, mpu, rec) -> int:
+def _within_stated_uncertainty(rig, mpu, rec):
     """The contract for a run another reader took single samples from: every kept value is a
     sample the chip took, and lies within its stated uncertainty of that sample's true time;
-    returns the unflagged samples one slot late (an undetected take, which the device guide
-    lists under "What the driver cannot detect")."""
+    returns the kept samples and each one's timing error."""
     kept = mpu.stream.kept(0, ASKED)
     assert rec.n_samples + rec.metadata["samples_lost"] == ASKED
     true = _true_times_of_values(rig, mpu, rec)
     assert not np.any(np.isnan(true) & ~kept["suspect"])  # no wrong value kept unflagged
     error = np.abs(kept["time"] - true)
     assert np.all((error <= kept["uncertainty"] + ROUND_OFF) | np.isnan(true))
+    return kept, error
+
+
+def _judge_take(rig, mpu, rec) -> int:
+    """:func:`_within_stated_uncertainty`, and the unflagged samples one slot late (an
+    undetected take, which the device guide lists under "What the driver cannot detect")."""
+    kept, _ = _within_stated_uncertainty(rig, mpu, rec)
     return int(np.sum(_wrong_each(rig, mpu, rec) & ~kept["suspect"]))
 
 
@@ -576,12 +582,7 @@ def test_single_samples_taken_unseen_stay_within_the_stated_uncertainty(bus_hz):
     for seed, takes in ((10, 3), (14, 3), (5, 4), (0, 3)):
         faults = Faults(foreign_reads=tuple((t, "sample") for t in _times(seed, takes)))
         rig, mpu, rec = _record(faults, bus_hz, seed)
-        kept = mpu.stream.kept(0, ASKED)
-        assert rec.n_samples + rec.metadata["samples_lost"] == ASKED
-        true = _true_times_of_values(rig, mpu, rec)
-        assert not np.any(np.isnan(true) & ~kept["suspect"])  # no wrong value kept unflagged
-        error = np.abs(kept["time"] - true)
-        assert np.all((error <= kept["uncertainty"] + ROUND_OFF) | np.isnan(true))
+        kept, error = _within_stated_uncertainty(rig, mpu, rec)
         assert np.all(kept["uncertainty_sole_reader"] <= kept["uncertainty"])
         assert rec.metadata["timestamp_uncertainty_sole_reader_s"] == (
             kept["uncertainty_sole_reader"].max())

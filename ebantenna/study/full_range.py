@@ -305,8 +305,8 @@ def _turning_point_text(r: FullRangeResult) -> str:
     >>> r = S(contact_one=np.array([0.05, 0.375]), turning_point=0.325, calibrated_to=0.325)
     >>> text = _turning_point_text(r)
     >>> text.split(": ")[0]
-    'Here its calibrated curve rises over every calibration position, up to the last (32.5 cm)'
-    >>> text.split(": ")[1].split(". ")[1]
+    'Here its calibrated curve is highest at its last calibration position (32.5 cm)'
+    >>> text.split(". ")[-1]
     'The tested positions beyond it, up to 37.5 cm, lie outside that range.'
     >>> _turning_point_text(S(contact_one=np.array([0.05, 0.375]), turning_point=0.30,
     ...                       calibrated_to=0.35)).split(":")[0]
@@ -318,8 +318,10 @@ def _turning_point_text(r: FullRangeResult) -> str:
         return (f"Here its calibrated curve turns at {100 * r.turning_point:.1f} cm, inside the "
                 f"calibrated range (up to {100 * end:.1f} cm): the first mode alone cannot place "
                 "a contact beyond it.")
-    text = (f"Here its calibrated curve rises over every calibration position, up to the last "
-            f"({100 * end:.1f} cm): no turning point lies inside the calibrated range.")
+    text = (f"Here its calibrated curve is highest at its last calibration position "
+            f"({100 * end:.1f} cm): no turning point lies inside the calibrated range (the "
+            "curve need not rise at every position on the way: where it dips, the estimator keeps "
+            "the highest value reached so far).")
     if last > end + 1e-9:
         text += (f" The tested positions beyond it, up to {100 * last:.1f} cm, lie outside that "
                  "range.")

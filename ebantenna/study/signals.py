@@ -31,53 +31,63 @@ class FrequencyResult:
     grid, spread : ndarray
         Contact grid (m) and standard deviation (Hz) of the dominant frequency over all
         recordings at each contact.
-    peak : float
-        Contact where the median dominant frequency peaks, m.
+    peaks : dict of str to float
+        Per material, the contact where its median dominant frequency is highest, m. A median
+        over all materials at once would be that of a mixture: where the materials' curves jump
+        at different contacts, it falls between their branches.
     spread_rises_at : float
         First contact whose spread exceeds three times the median spread of the first half, m.
     z_static : float or None
         The static acceleration the Z axis reads, m/s^2: the median over the recordings of
         each recording's mean ``az`` (gravity, where Z points up); None when not measured.
     steps : dict or None
-        The largest rise between neighbouring contacts of the median dominant frequency
-        (``"median"``) and of its spread (``"spread"``): each ``(from_m, to_m, from_hz,
-        to_hz)``, where a curve leaves its trend at once; None when not measured.
+        The largest rise between neighbouring contacts, where a curve leaves its trend at once,
+        as ``(from_m, to_m, from_hz, to_hz)``: ``"median"``, a dict of each material's median
+        dominant frequency's; ``"spread"``, the spread's. None when not measured.
     """
 
     length: float
     per_material: tuple
     grid: np.ndarray
     spread: np.ndarray
-    peak: float
+    peaks: dict
     spread_rises_at: float
     z_static: float | None = None
     steps: dict | None = None
 
     def to_dict(self) -> dict:
         """The summary numbers, in cm."""
+        rises = (self.steps or {}).get("median") or {}
         return {
-            "dominant_frequency_peak_cm": 100 * self.peak,
+            "dominant_frequency_peaks_cm": {m: 100 * p for m, p in self.peaks.items()},
+            "first_material_peak_cm": 100 * min(self.peaks.values()),
+            "median_largest_rise": {
+                m: dict(zip(("from_cm", "to_cm", "from_hz", "to_hz"),
+                            (100 * step[0], 100 * step[1], step[2], step[3]), strict=True))
+                for m, step in rises.items() if step is not None
+            },
             "spread_rises_at_cm": 100 * self.spread_rises_at,
             "z_axis_static_m_s2": self.z_static,
         }
 
 
 def compute_frequency(ds, feats, materials) -> FrequencyResult:
-    """Median dominant frequency per material and contact, and its spread over all recordings."""
+    """Median dominant frequency per material and contact (its peak and largest rise, per
+    material), and its spread over all recordings."""
     check_step(ds=ds, feats=feats, materials=materials)
-    per_material = []
+    per_material, peaks, rises = [], {}, {}
     for m in materials:
         sel = ds.material == m
         grid, med, _ = per_contact(feats.dominant[sel], ds.contact[sel])
         per_material.append((m, grid, med))
-    grid, med, spread = per_contact(feats.dominant, ds.contact)
-    peak = float(grid[np.nanargmax(med)])
+        peaks[m] = float(grid[np.nanargmax(med)])
+        rises[m] = _largest_step(grid, med)
+    grid, _, spread = per_contact(feats.dominant, ds.contact)
     first = int(np.argmax(spread > 3 * np.nanmedian(spread[: max(3, grid.size // 2)])))
     z_static = float(np.median(np.mean(ds.az, axis=1)))
-    return FrequencyResult(probe_length(ds), tuple(per_material), grid, spread, peak,
+    return FrequencyResult(probe_length(ds), tuple(per_material), grid, spread, peaks,
                            float(grid[first]), z_static,
-                           {"median": _largest_step(grid, med),
-                            "spread": _largest_step(grid, spread)})
+                           {"median": rises, "spread": _largest_step(grid, spread)})
 
 
 def _largest_step(grid, values) -> tuple | None:
@@ -114,7 +124,7 @@ def render_frequency(result: FrequencyResult, report, figures) -> None:
     a10.set_ylabel("std of the dominant frequency (Hz)")
     a10.set_title("cf. Fig. 10 (a)")
     name = figures.save(fig, "fig09_10_dominant_frequency")
-    peak, rises = result.peak, result.spread_rises_at
+    rises = result.spread_rises_at
     report.heading("Dominant frequency against contact distance (Figs. 9, 10)")
     report.paragraph(
         "Dominant frequency of the sweep-plane (X) acceleration of every recording, median over "
@@ -127,21 +137,53 @@ def render_frequency(result: FrequencyResult, report, figures) -> None:
             [
                 "deviation from the linear trend",
                 f"{printed.DEVIATION_CM.value} cm ({printed.PROBE_LENGTH_CM.value:g} cm probe)",
-                (f"dominant frequency peaks at {100 * peak:.1f} cm ({peak / L:.2f} L)"
-                 if peak < result.grid.max() else
-                 f"dominant frequency rises up to the last position measured, {100 * peak:.1f} "
-                 f"cm ({peak / L:.2f} L): no peak inside the range")
-                + _step_words(result, "median", "the median"),
+                _peaks_words(result) + _rises_words(result),
             ],
             [
                 "spread grows near",
-                f"about 30 cm ({100 * printed.SPREAD_RATIO.value:g} % of L)",
+                f"{100 * printed.SPREAD_RATIO.value:g} % of L ("
+                f"{printed.SPREAD_RATIO.value * printed.PROBE_LENGTH_CM.value:g} cm)",
                 f"above three times its first half's from {100 * rises:.1f} cm "
                 f"({rises / L:.2f} L)" + _step_words(result, "spread", "the spread"),
             ],
         ],
     )
     report.figure(name, "Dominant frequency per material (log scale) and its spread")
+
+
+def _peaks_words(result: FrequencyResult) -> str:
+    """Where each material's median dominant frequency is highest, from
+    :attr:`FrequencyResult.peaks`.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as S
+    >>> grid = np.array([0.1, 0.2, 0.3])
+    >>> _peaks_words(S(length=0.4, grid=grid, peaks={"brass": 0.3, "pvc": 0.3})).split(", ")[1]
+    '30.0 cm (0.75 L): no peak inside the range'
+    >>> _peaks_words(S(length=0.4, grid=grid, peaks={"brass": 0.3, "pvc": 0.2})).split(": ")[1]
+    'brass 30.0 cm (0.75 L), pvc 20.0 cm (0.50 L)'
+    """
+    L, last = result.length, float(np.max(result.grid))
+    if all(p >= last for p in result.peaks.values()):
+        return ("each material's median dominant frequency is highest at the last position "
+                f"measured, {100 * last:.1f} cm ({last / L:.2f} L): no peak inside the range")
+    return "the median dominant frequency is highest at: " + ", ".join(
+        f"{m} {100 * p:.1f} cm ({p / L:.2f} L)" for m, p in result.peaks.items())
+
+
+def _rises_words(result: FrequencyResult) -> str:
+    """``; the largest rise ...`` of each material's median between neighbouring contacts,
+    largest first, or ''."""
+    rises = {m: s for m, s in ((result.steps or {}).get("median") or {}).items() if s is not None}
+    if not rises:
+        return ""
+    L = result.length
+    order = sorted(rises, key=lambda m: rises[m][3] - rises[m][2], reverse=True)
+    return ("; the largest rise of each material's median between neighbouring contacts: "
+            + ", ".join(f"{m} {rises[m][2]:.1f} to {rises[m][3]:.1f} Hz at {100 * rises[m][0]:.1f}"
+                        f" to {100 * rises[m][1]:.1f} cm ({rises[m][1] / L:.2f} L)"
+                        for m in order))
 
 
 def _step_words(result: FrequencyResult, key: str, what: str) -> str:

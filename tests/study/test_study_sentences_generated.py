@@ -296,3 +296,36 @@ def test_the_decay_status_sentence_reads_the_counts():
         "Of the 8000 fits, only 1 is usable, so the gains and time constants of Fig. 11 are not "
         "reproduced here")
     assert signals.status_sentence({"ok": 3}) == "Of the 3 fits, 3 are usable. "
+
+
+def test_each_material_s_jump_is_read_on_its_own_median_not_on_the_pooled_one(tmp_path):
+    """Two materials whose dominant frequency jumps at different contacts: the median over both
+    jumps in between (the median of a mixture, no curve of Fig. 9). The section reads each
+    material's own median: the largest rise where that material jumps, and its own peak."""
+    from ebantenna.paper.feature_table import SignalFeatures
+    from ebantenna.simulate import Dataset
+
+    grid = np.round(np.arange(0.05, 0.40, 0.05), 3)
+    jumps = {"brass": 0.20, "steel": 0.30}  # each material's first contact on the upper branch
+    contact = np.tile(np.repeat(grid, 3), 2)
+    material = np.repeat(list(jumps), grid.size * 3)
+    dominant = np.where(contact >= np.vectorize(jumps.get)(material), 300.0, 100.0) + contact
+    n = contact.size
+    zeros = np.zeros((n, 8), np.float32)
+    ds = Dataset(zeros, zeros, material, contact, contact, np.tile([0, 1, 2], n // 3),
+                 np.ones(n), np.ones(n), np.arange(n), 1000.0,
+                 {"config": {"scene": {"probe": {"length": 0.4}}}})
+    feats = SignalFeatures(dominant, np.zeros((n, 2)), np.ones(n), np.ones(n), np.ones(n, bool),
+                           np.full(n, "ok"), np.zeros((n, 256)), np.zeros((n, 256)))
+    result = signals.compute_frequency(ds, feats, tuple(jumps))
+    rises = result.steps["median"]
+    for m, at in jumps.items():
+        below = grid[grid < at].max()
+        assert rises[m][:2] == pytest.approx((below, at))
+    assert result.peaks == {"brass": grid[-1], "steel": grid[-1]}
+    report = Report("t")
+    signals.render_frequency(result, report, FigureSet(tmp_path))
+    row = next(line for line in report.markdown().splitlines() if "linear trend" in line)
+    assert "steel 100.2 to 300.3 Hz at 25.0 to 30.0 cm" in row
+    assert "brass 100.2 to 300.2 Hz at 15.0 to 20.0 cm" in row
+    assert "highest at the last position measured, 35.0 cm" in row

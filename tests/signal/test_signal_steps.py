@@ -340,8 +340,9 @@ def test_rate_standard_error_against_numpy_polyfit():
     assert _rate_standard_error(tk, ek, a, b) == pytest.approx(expected, rel=1e-9)
 
 
-@pytest.mark.parametrize("bandwidth", [None, 100.0, 50.0])
-def test_the_rate_standard_error_covers_the_scatter_of_correlated_envelopes(bandwidth):
+@pytest.mark.parametrize(("bandwidth", "understated"), [(None, 1.3), (100.0, 3.0), (50.0, 4.5)])
+def test_the_rate_standard_error_covers_the_scatter_of_correlated_envelopes(bandwidth,
+                                                                           understated):
     """Over repeated records of one decay under noise (white, or band-passed about the tone as
     a filter leaves it), the fitted rate scatters by about its standard error. The samples of
     an envelope are correlated; counted as independent, the error is 1.4 to 5 times too small."""
@@ -372,7 +373,8 @@ def test_the_rate_standard_error_covers_the_scatter_of_correlated_envelopes(band
     # 300 records measure a standard deviation to about 1/sqrt(2 * 300) = 4 %; the correlation
     # time is itself estimated from each record's residuals, which leaves up to about 20 %
     assert 0.8 < scatter / np.mean(errors) < 1.3
-    assert scatter / np.mean(naive) > 1.3  # the independent count understates it
+    # the independent count understates it (docs/theory/decay.rst: 1.4 and 5.2 times)
+    assert scatter / np.mean(naive) > understated
 
 
 def test_fitted_samples_cuts_a_noise_tail_and_keeps_a_decaying_one():

@@ -15,8 +15,10 @@ With a positive semi-definite (PSD) kernel the dual is a convex quadratic proble
 SMO ends at the same optimum, within what the stopping tolerance allows, so the package's own
 conventions are free to take another path than libsvm's. The sigmoid kernel
 :math:`\\tanh(\\gamma x^T y + r)` is not PSD in general (H.-T. Lin and C.-J. Lin, "A study on
-sigmoid kernels for SVM and the training of non-PSD kernels by SMO-type methods", 2003), and a
-precomputed or callable kernel need not be. Then the quadratic form :math:`\\alpha^T Q \\alpha` has
+sigmoid kernels for SVM and the training of non-PSD kernels by SMO-type methods", 2003), nor is
+the polynomial kernel :math:`(\\gamma x^T y + r)^d` with :math:`r < 0` (on make_moons, degree 3,
+r = -5, its Gram matrix has eigenvalues down to -24364), and a precomputed or callable kernel
+need not be. Then the quadratic form :math:`\\alpha^T Q \\alpha` has
 directions of negative curvature, the dual is not convex and has several stationary points, and
 SMO stops at the one its path leads to: the index taken on a tie (every gradient equals -1 at the
 start, so the very first working set is a tie) and the curvature floor (a negative :math:`a_{ij}`
@@ -35,7 +37,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.linalg import lapack
 
-from .._validate import check_array
+from .._validate import check_array, check_real
 
 __all__ = ["SMOPolicy", "DEFAULT", "LIBSVM", "SELECTIONS", "TAU", "fit_policy",
            "positive_semidefinite"]
@@ -172,17 +174,23 @@ def fit_policy(libsvm_compat: bool, selection: str, shrinking: bool,
     return replace(DEFAULT, selection=selection)
 
 
-def positive_semidefinite(kernel, gram: np.ndarray | None = None) -> bool:
+def positive_semidefinite(kernel, gram: np.ndarray | None = None, *,
+                          coef0: float = 0.0) -> bool:
     """Whether a kernel counts as positive semi-definite, so that the SVM dual is convex.
 
     Parameters
     ----------
     kernel : str or callable
-        The kernel of the :class:`~ebantenna.ml.SVC`. 'linear', 'poly' and 'rbf' are PSD;
-        'sigmoid' never counts as PSD (it is not, for most of its parameters); for
-        'precomputed' and a callable the answer is that of their Gram matrix.
+        The kernel of the :class:`~ebantenna.ml.SVC`. 'linear' and 'rbf' are PSD; 'poly',
+        :math:`(\\gamma\\, x \\cdot y + r)^d`, is PSD when ``coef0`` :math:`r \\ge 0` (a sum of
+        PSD kernels raised to a whole power: Schur's product theorem) and does not count as PSD
+        when :math:`r < 0`, where its Gram matrix can have negative eigenvalues; 'sigmoid'
+        never counts as PSD (it is not, for most of its parameters); for 'precomputed' and a
+        callable the answer is that of their Gram matrix.
     gram : ndarray of shape (n, n), optional
         The training Gram matrix of a precomputed or callable kernel.
+    coef0 : float
+        The kernel's :math:`r` (read for 'poly' only).
 
     Returns
     -------
@@ -205,12 +213,15 @@ def positive_semidefinite(kernel, gram: np.ndarray | None = None) -> bool:
     False
     >>> positive_semidefinite("sigmoid"), positive_semidefinite("rbf")
     (False, True)
+    >>> positive_semidefinite("poly", coef0=1.0), positive_semidefinite("poly", coef0=-1.0)
+    (True, False)
     """
+    coef0 = check_real("coef0", coef0)
     if isinstance(kernel, str) and kernel != "precomputed":
         if kernel not in ("linear", "poly", "rbf", "sigmoid"):
             raise ValueError(f"kernel must be 'linear', 'poly', 'rbf', 'sigmoid', 'precomputed' "
                              f"or a callable, got {kernel!r}")
-        return kernel != "sigmoid"
+        return kernel in ("linear", "rbf") or (kernel == "poly" and coef0 >= 0)
     if not (isinstance(kernel, str) or callable(kernel)):
         raise TypeError(f"kernel must be a kernel's name or a callable, got "
                         f"{type(kernel).__name__}")

@@ -399,7 +399,8 @@ class SVC(ClassifierMixin, BaseEstimator):
         keep = c_vec > 0
         cache_bytes = int(float(self.cache_size) * 2**20)
         # a kernel that is not PSD takes libsvm's conventions whole: see smo_policy's module text
-        compat = self.libsvm_compat or not positive_semidefinite(self.kernel, given)
+        compat = self.libsvm_compat or not positive_semidefinite(self.kernel, given,
+                                                                 coef0=self.coef0)
         base = LIBSVM if compat else DEFAULT
         dtype = base.kernel_dtype(int(keep.sum()), cache_bytes)
         if self.solver == "reference":  # each pair's whole kernel in float64, whatever the cache

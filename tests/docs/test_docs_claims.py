@@ -715,11 +715,37 @@ def test_svm_non_psd_kernel_with_the_default_conventions_as_stated(monkeypatch):
     params = dict(kernel="sigmoid", C=100.0, decision_function_shape="ovo")
     ref = SklearnSVC(**params).fit(X, y)
     assert SVC(**params).fit(X, y).n_iter_[0] == ref.n_iter_[0]  # today: libsvm's path
-    monkeypatch.setattr(ebantenna.ml.svc, "positive_semidefinite", lambda kernel, given: True)
+    monkeypatch.setattr(ebantenna.ml.svc, "positive_semidefinite",
+                        lambda kernel, given, **_: True)
     before = SVC(**params).fit(X, y)
     gap = np.abs(before.decision_function(X) - ref.decision_function(X)).max()
     assert abs(gap - 1407) <= 0.5
     assert len(y) == 569 and int(np.sum(before.predict(X) != ref.predict(X))) == 61
+
+
+def test_svm_polynomial_kernel_with_negative_coef0_as_stated(monkeypatch):
+    # theory/svm.rst: "the 'poly' kernel when coef0 < 0 (on make_moons, degree 3, r = -5, the
+    # default conventions stopped 3347 away from scikit-learn's decision values, with 64 of 200
+    # predictions different)": the default conventions, made to take the kernel for positive
+    # semi-definite (what SVC did before it read coef0), to the digits printed
+    from sklearn.datasets import make_moons
+    from sklearn.svm import SVC as SklearnSVC
+
+    import ebantenna.ml.svc
+    from ebantenna.ml import SVC
+
+    page = " ".join(_page_text("theory/svm.rst").split())
+    assert ("degree 3, :math:`r = -5`, the default conventions stopped 3347 away from "
+            "scikit-learn's decision values, with 64 of 200 predictions different") in page
+    X, y = make_moons(200, noise=0.25, random_state=0)
+    params = dict(kernel="poly", degree=3, coef0=-5.0, C=1.0)
+    ref = SklearnSVC(**params).fit(X, y)
+    monkeypatch.setattr(ebantenna.ml.svc, "positive_semidefinite",
+                        lambda kernel, given, **_: True)
+    before = SVC(**params).fit(X, y)
+    gap = np.abs(before.decision_function(X) - ref.decision_function(X)).max()
+    assert abs(gap - 3347) <= 0.5  # printed to the unit
+    assert int(np.sum(before.predict(X) != ref.predict(X))) == 64
 
 
 def test_touched_object_coupled_rod_mode_as_stated():

@@ -346,6 +346,10 @@ def _smo_rows():
             ("gram",)),
         Row("ebantenna.ml.smo_policy.positive_semidefinite", "kernel-int",
             lambda: smo_policy.positive_semidefinite(5, np.eye(2)), ("kernel",)),
+        Row("ebantenna.ml.smo_policy.positive_semidefinite", "coef0-nan",
+            lambda: smo_policy.positive_semidefinite("poly", coef0=NAN), ("coef0",)),
+        Row("ebantenna.ml.smo_policy.positive_semidefinite", "coef0-str",
+            lambda: smo_policy.positive_semidefinite("poly", coef0="1"), ("coef0",)),
         # a Gram matrix X X^T is PSD; diag(1, -1) is not
         Row("ebantenna.ml.smo_policy.positive_semidefinite", "by-hand", lambda: (
             smo_policy.positive_semidefinite("precomputed", X @ X.T),

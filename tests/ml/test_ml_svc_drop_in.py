@@ -104,6 +104,28 @@ def test_sigmoid_kernel_takes_libsvms_path_by_default(name, scaled, C):
     np.testing.assert_array_equal(ours.predict(X), ref.predict(X))
 
 
+@pytest.mark.parametrize("coef0", [-5.0, -0.5])
+@pytest.mark.parametrize("degree", [2, 3])
+def test_a_polynomial_kernel_with_negative_coef0_takes_libsvms_path(coef0, degree):
+    """(gamma x.y + r)^d with r < 0 is not PSD (here its Gram matrix has negative eigenvalues):
+    the default SVC takes libsvm's path, as for the sigmoid kernel. Before, make_moons with
+    degree 3 and r = -5 gave decision values 3347 apart and 64 of 200 predictions different."""
+    from sklearn.datasets import make_moons
+    from sklearn.metrics.pairwise import polynomial_kernel
+
+    X, y = make_moons(200, noise=0.25, random_state=0)
+    params = dict(kernel="poly", degree=degree, coef0=coef0, C=1.0)
+    ours = SVC(**params).fit(X, y)
+    ref = LibSVC(**params).fit(X, y)
+    K = polynomial_kernel(X, degree=degree, gamma=ours._gamma, coef0=coef0)
+    assert not positive_semidefinite("precomputed", K)
+    np.testing.assert_array_equal(ours.n_iter_, ref.n_iter_)
+    # the same path: what is left is the summation order of the kernel sums
+    scale = float(np.abs(ref.decision_function(X)).max())
+    np.testing.assert_allclose(ours.decision_function(X), ref.decision_function(X),
+                               rtol=0, atol=1e-12 * scale)
+
+
 @pytest.mark.parametrize("form", ["precomputed", "callable"])
 def test_a_gram_matrix_that_is_not_psd_takes_libsvms_path(form):
     X, y = _load("wine", True)

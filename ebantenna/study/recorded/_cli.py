@@ -10,9 +10,10 @@ import time
 
 #: Exit code of ``record`` when the servos may still be powered (as ``acquire``'s).
 EXIT_SERVOS_POWERED = 3
-#: ``record``'s default limit of the share of a window lost to bus faults: a failed FIFO read
-#: restarts the FIFO and costs about 5 % of a one-second window (measured on the simulated bus),
-#: so one is kept and two are made again.
+#: ``record``'s default limit of the share of a window lost to bus faults (a share, not a number
+#: of failures): a failed FIFO read restarts the FIFO and costs 4 to 7 % of a one-second window
+#: at 100 kHz, under 3 % at 400 kHz, and two about twice that (measured on the simulated bus:
+#: the user guide's "Recording your own data set").
 
 
 def register(subparsers) -> None:
@@ -90,8 +91,9 @@ def _add_record(subparsers) -> None:
     rec.add_argument("--max-lost", type=_share, default=MAX_LOST, metavar="F",
                      help="a touch whose window lost more than this share is made again; kept "
                      "in the session, and 'dataset --from-recordings' holds its recordings to "
-                     f"the same limit ({MAX_LOST:g}: one failed FIFO read, about 5 %% of the "
-                     "window, is kept; two are not)")
+                     f"the same limit ({MAX_LOST:g}, a share of the window: one failed FIFO "
+                     "read costs 4-7 %% of a one-second window at 100 kHz (a touch with one is "
+                     "sometimes made again) and under 3 %% at 400 kHz; two about twice that)")
     rec.add_argument("--attempts", type=_attempts, default=5, metavar="N",
                      help="tries of a touch that lost too much before the session stops, 1 to "
                      "100 (5)")

@@ -66,9 +66,11 @@ class Probe:
         :data:`MAX_TIP_MASS_RATIO` times the tube's mass.
     loss_factor : float
         Structural loss factor eta of the tube (hysteretic damping, dimensionless), used by the
-        simulator's structural-damping effect; the modal analysis ignores it. Default 0.03: PMMA,
-        0.02-0.04 in L. Cremer, M. Heckl, B. A. T. Petersson, *Structure-Borne Sound*, 3rd ed.,
-        Springer, 2005, table 2.4 ("Plexiglas"). At most :data:`MAX_LOSS_FACTOR`.
+        simulator's structural-damping effect; the modal analysis ignores it. Default 0.03, an
+        assumption for PMMA: L. Cremer, M. Heckl, B. A. T. Petersson, *Structure-Borne Sound*, 3rd
+        ed., Springer, 2005, list 2e-2 for Plexiglas in their table of material loss factors, and
+        Ashby's loss-coefficient chart places glassy polymers at room temperature between 1e-2
+        and 5e-2; 0.03 lies in that range. At most :data:`MAX_LOSS_FACTOR`.
 
     Each parameter has a range with its reason (:data:`SIZE_RANGE` for the length and the
     diameters, :data:`MODULUS_RANGE`, :data:`DENSITY_RANGE`); a value outside it raises a
@@ -244,14 +246,19 @@ _FPL = (
 )
 
 #: The five materials of the paper's experiments (the paper names them, gives no grade or
-#: geometry). Each value is a mid value of the range its sources give (``ranges``):
+#: geometry). Each value lies in the range its sources give (``ranges``), most of them mid
+#: values; the wood's E is the handbook's bending MOE (the range's lower end, see below) and the
+#: PVC's nu the lower end of Ashby's range. Where a range's bound comes from no source it says
+#: so (an assumption):
 #:
 #: - aluminium, 6061-T6 (the common rod stock): E 68.9 GPa, rho 2700 kg/m^3, nu 0.33 (ASM vol. 2;
-#:   Ashby & Jones table 3.1: 69 GPa); eta 1e-4, metals of construction 1e-5 to 1e-3 (Cremer et
+#:   Ashby & Jones table 3.1: 69 GPa; the range 68-71 GPa widens these by about 1 % for alloy
+#:   and temper, an assumption); eta 1e-4, metals of construction 1e-5 to 1e-3 (Cremer et
 #:   al.; Ashby's chart);
 #: - brass: 97 GPa (C36000 free-cutting) to 110 GPa (C26000 cartridge), rho 8500 kg/m^3
 #:   (8490-8530), nu 0.34 (ASM vol. 2; Ashby & Jones table 3.1: 103-124 GPa); eta 1e-3, "< 1e-3"
-#:   in Cremer et al., up to 2e-3 for annealed brass;
+#:   in Cremer et al.; the range 2e-4 to 2e-3 about it is an assumption (no source here gives
+#:   its bounds);
 #: - wood: northern red oak at 12 % moisture (FPL table 5-3a): bending MOE 12.5 GPa along the grain
 #:   (the handbook's MOE includes shear deflection and reads up to ~10 % below the true E_L);
 #:   specific gravity 0.63 on oven-dry mass and volume at 12 % moisture, so rho = 0.63 * 1000 *

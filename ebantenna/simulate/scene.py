@@ -94,9 +94,10 @@ class Scene:
         Angular speed ``Omega`` of the sweep when the probe hits the object, rad/s. Default
         0.5 rad/s: an assumption, a slow search sweep (the MG996R turns at up to about 6 rad/s:
         0.17 s per 60 degrees at 4.8 V in its data sheet) that keeps the paper rig's readings
-        inside +-16 g with the contact up to 0.35 m from the hinge; nearer the tip the metals'
-        strikes reach up to 26 g (steel at 0.39 m), and the ``paper`` scene's ``clipping`` holds
-        those samples at the rail.
+        inside +-16 g with the contact up to about 0.34 m from the hinge; from about 0.345 m on
+        some of the metals' strikes reach the rail, up to 26 g (steel at 0.39 m), and the
+        ``paper`` scene's ``clipping`` holds those samples there (the data set counts them:
+        ``samples_saturated``).
     tilt_ratio : float
         Angular speed across the sweep plane at the contact, as a fraction of ``sweep_speed``
         (dimensionless): what drives the Z axis (see :mod:`ebantenna.simulate.modes`). Default

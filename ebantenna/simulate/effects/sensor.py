@@ -132,7 +132,9 @@ class MainsHum(Effect):
     Parameters
     ----------
     frequency : float
-        Mains frequency, Hz. Default 50 Hz (the 230 V, 50 Hz grid where the rig was built).
+        Mains frequency, Hz. Default 50 Hz: an assumption, read from the paper's Table 2 filter
+        (stop band below 48 Hz, pass band above 52 Hz), which suits a 50 Hz grid; the paper does
+        not say where the rig was built.
     amplitude : float
         Amplitude in each axis, m/s^2. Default 0.05 m/s^2 (about 5 mg): an assumption, about
         10 LSB at the +-16 g range.
@@ -181,10 +183,13 @@ class SensorNoise(Effect):
     """White noise of the accelerometer.
 
     The MPU6050's accelerometer noise power spectral density is 400 ug/sqrt(Hz) (InvenSense,
-    *MPU-6000 and MPU-6050 Product Specification*, rev. 3.4, 2013, table 6.2). White noise of that
-    density sampled at ``fs`` has the standard deviation ``density * sqrt(fs / 2)`` (about 0.088
-    m/s^2 at 1 kHz); the sensor's low-pass filter (:class:`LowPassFilter`), when listed, then
-    shapes it. Independent in X and Z.
+    *MPU-6000 and MPU-6050 Product Specification*, rev. 3.4, 2013, table 6.2), given there at
+    10 Hz, with ``AFS_SEL = 0`` (+-2 g) and a 1 kHz output rate. **Assumption:** the same density,
+    white, at every frequency up to the internal rate's Nyquist frequency and at the +-16 g range
+    the rig uses (the data sheet gives no other). White noise of that density sampled at ``fs``
+    has the standard deviation ``density * sqrt(fs / 2)`` (about 0.088 m/s^2 at 1 kHz); the
+    sensor's low-pass filter (:class:`LowPassFilter`), when listed, then shapes it. Independent
+    in X and Z.
 
     Parameters
     ----------
@@ -257,7 +262,9 @@ def _real(name: str, x) -> None:
 #: Signals whose internal-rate noise is drawn and filtered at once (bounds the memory).
 NOISE_BLOCK = 128
 #: Noise is drawn this many of the DLPF's time constants 1/(2 pi bandwidth) before the first
-#: kept sample (its transient then decays to exp(-12), 6e-6).
+#: kept sample: the second-order Butterworth's poles have the real part -2 pi bandwidth / sqrt(2),
+#: so its start-up transient then decays to about exp(-12 / sqrt(2)) = 2e-4 (on the filter itself,
+#: 0.9e-4 to 2.4e-4 of the steady RMS over the DLPF settings).
 NOISE_WARM_UP = 12
 
 

@@ -41,7 +41,10 @@ assert accuracy["random"] > accuracy["grouped"]
 # 3. The touched rod made rigid: the same data set without the rod's own modes (and without
 #    what needs the rod: its damping, its preload's scatter, its contact that only pushes).
 rod_effects = ("object_modes", "object_damping", "preload_scatter", "unilateral_contact")
-rigid = scene.with_(effects=[e for e in scene.effects if e.name not in rod_effects])
+# (a name of its own: the data set's cache file is named after the scene, and one file holds one
+# configuration)
+rigid = scene.with_(name="paper-rigid",
+                    effects=[e for e in scene.effects if e.name not in rod_effects])
 flat = build_dataset(default_cache_dir(), rigid, design, seed=12)
 X_rigid = fft_features(np.asarray(flat.ax, float), np.asarray(flat.az, float))
 rigid_accuracy = classify_materials_svm(X_rigid, flat.material, split=splits["random"])

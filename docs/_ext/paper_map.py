@@ -17,8 +17,8 @@
 
 A status is one of *agrees*, *differs: why*, *not computed: why*, *shown* (a figure or a method
 with no printed number to compare) or *implemented*. Where the paper prints a number, the item
-names a tolerance and the build refuses a status whose verdict ("agrees", "differs") is not the
-one the numbers give. ``.. paper-peaks::`` renders where the dominant frequency peaks, for the bare
+names a tolerance (or, for an estimate with a 95 % interval in the summary, the interval) and the
+build refuses a status whose verdict ("agrees", "differs") is not the one the numbers give. ``.. paper-peaks::`` renders where the dominant frequency peaks, for the bare
 tube and with the sensor board, with a clamped hinge, the fitted one and a pinned one.
 
 The tests check that every name below exists, that every figure, table and equation of the paper
@@ -99,7 +99,10 @@ class Item:
         One of :data:`STATUSES`, then a colon and the reason where there is one.
     check : tuple
         ``(KEY, tolerance)``: the value compared with the printed number, in the printed number's
-        unit; the status must then begin with the verdict. Empty: nothing to compare.
+        unit; the status must then begin with the verdict. Where the summary gives the value's
+        95 % interval (``KEY_ci95``), the verdict is whether that interval holds the printed
+        number, and the tolerance is not used: an estimate is judged with the uncertainty of its
+        design, never by its point alone. Empty: nothing to compare.
     """
 
     item: str
@@ -568,6 +571,10 @@ def verdict(item: Item, values: dict) -> str | None:
 
     key, tolerance = item.check
     printed = NUMBERS[item.printed].value
+    interval = values.get(f"{key}_ci95")
+    if interval is not None:
+        low, high = interval
+        return "agrees" if low <= printed <= high else "differs"
     return "agrees" if abs(values[key] - printed) <= tolerance else "differs"
 
 

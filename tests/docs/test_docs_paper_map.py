@@ -131,6 +131,22 @@ def test_each_verdict_is_the_one_the_numbers_give():
         paper_map._cells(wrong, VALUES)
 
 
+def test_an_estimate_with_an_interval_is_judged_by_its_interval():
+    """Where the summary gives a 95 % interval, the verdict is whether it holds the printed
+    number: a point farther than the tolerance agrees when its interval holds the paper's
+    number, and a point within it differs when the interval excludes it."""
+    item = paper_map.Item("Fig. 15", "x", printed="svm_test_accuracy", here="y",
+                          status="agrees", check=("summary:svm.test_accuracy", 0.02))
+    printed = NUMBERS["svm_test_accuracy"].value
+    wide = {"summary:svm.test_accuracy": printed - 0.05,
+            "summary:svm.test_accuracy_ci95": [printed - 0.1, printed + 0.01]}
+    narrow = {"summary:svm.test_accuracy": printed - 0.01,
+              "summary:svm.test_accuracy_ci95": [printed - 0.015, printed - 0.005]}
+    assert paper_map.verdict(item, wide) == "agrees"
+    assert paper_map.verdict(item, narrow) == "differs"
+    assert paper_map.verdict(item, {"summary:svm.test_accuracy": printed - 0.01}) == "agrees"
+
+
 def test_fill_formats_and_refuses_an_unknown_key():
     text = paper_map.fill("[[a|pct]] and [[b|.1f]] cm", {"a": 0.5, "b": 2.25})
     assert text == "50.0 % and 2.2 cm"

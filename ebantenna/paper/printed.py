@@ -5,7 +5,8 @@ The reproduction quotes these beside its own results; nothing here is computed. 
 two confusion matrices are :class:`PaperConfusion` records transcribed cell by cell. Printed
 material that belongs to a stage's public contract stays with that stage and is only indexed
 here: the filter specifications of Tables 1 and 2 (:data:`TABLE_1`, :data:`TABLE_2`, from
-:data:`ebantenna.signal.PAPER_FILTERS`) and the element and two-element matrices of eqs. 3-5
+:data:`ebantenna.signal.PAPER_FILTERS`) and the element and two-element matrices of section 2.2,
+printed between its eqs. 2 and 3 without numbers of their own
 (:func:`ebantenna.fem.symbolic.paper_matrices`, with their errata).
 
 Examples

@@ -43,8 +43,8 @@ assert accuracy["random"] > accuracy["grouped"]
 rod_effects = ("object_modes", "object_damping", "preload_scatter", "unilateral_contact")
 # (a name of its own: the data set's cache file is named after the scene, and one file holds one
 # configuration)
-rigid = scene.with_(name="paper-rigid",
-                    effects=[e for e in scene.effects if e.name not in rod_effects])
+without_rod = [e for e in scene.effects if e.name not in rod_effects]
+rigid = scene.with_(name="paper-rigid", effects=without_rod)
 flat = build_dataset(default_cache_dir(), rigid, design, seed=12)
 X_rigid = fft_features(np.asarray(flat.ax, float), np.asarray(flat.az, float))
 rigid_accuracy = classify_materials_svm(X_rigid, flat.material, split=splits["random"])

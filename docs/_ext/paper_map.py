@@ -18,8 +18,9 @@
 A status is one of *agrees*, *differs: why*, *not computed: why*, *shown* (a figure or a method
 with no printed number to compare) or *implemented*. Where the paper prints a number, the item
 names a tolerance (or, for an estimate with a 95 % interval in the summary, the interval) and the
-build refuses a status whose verdict ("agrees", "differs") is not the one the numbers give. ``.. paper-peaks::`` renders where the dominant frequency peaks, for the bare
-tube and with the sensor board, with a clamped hinge, the fitted one and a pinned one.
+build refuses a status whose verdict ("agrees", "differs") is not the one the numbers give.
+``.. paper-peaks::`` renders where the dominant frequency peaks, for the bare tube and with the
+sensor board, with a clamped hinge, the fitted one and a pinned one.
 
 The tests check that every name below exists, that every figure, table and equation of the paper
 is listed, that the summary has every key the map reads, and that those keys are the ones

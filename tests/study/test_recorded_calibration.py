@@ -10,6 +10,7 @@ the recordings do determine; a modal-only scene with a 20 N m/rad hinge checks t
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import types
@@ -130,25 +131,76 @@ def test_modal_rig_recovered_within_its_stated_uncertainty(rig):
     assert cal.model == "probe arrested by a pin"
 
 
-def test_a_probe_without_a_tip_mass_is_bounded_from_above_not_given_the_bound(tmp_path):
+def test_a_probe_without_a_tip_mass_is_bounded_from_above_not_given_the_bound(tmp_path,
+                                                                           monkeypatch):
     # Recordings of a probe with no tip mass: the fit sits on the search's lower bound (0 kg).
     # That is the optimiser's bound, not an estimate: the tip mass is reported not identifiable,
     # with "at most" its interval's upper end, and no value in the JSON; the interval holds 0.
     scene = Scene(name="no-tip", probe=Probe(tip_mass=0.0), hinge=TRUE_HINGE,
                   effects=(StructuralDamping(), SensorNoise()))
     ds = record(tmp_path, scene, "no-tip")
+    from ebantenna.study.recorded import calibration as C
+
+    fits, fit = [], C._fit
+    monkeypatch.setattr(C, "_fit", lambda *args: fits.append((fit(*args), args)) or fits[-1][0])
     cal, caught = calibrated(ds, RIG.with_(hinge="clamped", probe=Probe(tip_mass=0.001)))
+    # the fit's Jacobian at a tip mass near its bound of 0 is the misfit's derivative: a step
+    # relative to the value (SciPy's diff_step) sank below 1e-20 kg there, and its quotient was
+    # rounding (-3.7e7 per kg against about -300). Witness: the quotient over 1e-6 kg, whose
+    # curvature error is of the order of 1e-6 kg over the probe's mass-like scale, below 1 %.
+    last, (model, _, _, target, ok, _) = fits[-1]
+    log10_k, m = last.x
+    assert m < 1e-6  # at its bound, on the scale of the 0.002 kg searched
+    quotient = (C._misfit(model, log10_k, m + 1e-6, target, ok)
+                - C._misfit(model, log10_k, m, target, ok)) / 1e-6
+    np.testing.assert_allclose(last.jac[:, 1], quotient, rtol=0.01)
     assert "tip_mass" in [str(w.message).split()[0] for w in caught]
     assert "only from above" in cal.not_identifiable["tip_mass"]
     lo, hi = cal.interval("tip_mass")
     assert lo == 0.0 < hi
     d = cal.to_dict()
     assert d["tip_mass_kg"] is None and d["tip_mass_interval95"] == [0.0, hi]
+    # the upper end comes from the misfit's derivative, not from rounding (a relative
+    # finite-difference step at a fit of ~1e-14 kg once gave "at most 4.7e-10 kg"): a tip mass
+    # lowers the frequencies by at most ~1000 per kg, relative (200-320 measured at these
+    # positions), so one that moves them by less than the fit's relative scatter cannot be
+    # excluded
+    scatter = cal.rms_residual_hz / float(np.mean(cal.measured_hz))
+    assert hi > scatter / 1000.0
     # what was fitted, counted as the design holds it: one material at the plan's distances
     assert d["contact_materials"] == d["distances"] == len(CONTACTS)
     for name, truth in (("hinge_stiffness", TRUE_HINGE), ("loss_factor", RIG.probe.loss_factor)):
         lo, hi = cal.interval(name)
         assert cal.identifiable(name) and lo <= truth <= hi, (name, lo, truth, hi)
+
+
+def test_the_paper_probe_without_its_board_gets_a_tip_mass_bound_the_misfit_sets(tmp_path):
+    # The paper scene recorded without its board (no tip mass), calibrated with the paper
+    # scene: the fit ends at a tip mass of ~1e-14 kg, where a finite-difference step relative to
+    # the value is rounding; the bound then came out at 4.7e-10 kg. A tip lowers the frequencies
+    # by about 300 per kg relative, and the fit's relative misfit scatters by ~1e-3, so masses of
+    # a micro-kilogram are well within what the recordings allow.
+    paper = builtin_scene("paper")
+    bare = paper.with_(probe=dataclasses.replace(paper.probe, tip_mass=0.0),
+                       effects=tuple(e for e in paper.effects if e.name != "tip_mass"))
+    cal, _ = calibrated(record(tmp_path, bare, "bare"), paper)
+    lo, hi = cal.interval("tip_mass")
+    assert lo == 0.0 and hi > 1e-6, (lo, hi)
+
+
+def test_a_tip_mass_beyond_the_range_searched_is_bounded_from_below_only(rig):
+    # The true 4 g tip searched for up to 3 g: the fit stops at the search's bound, which is
+    # not a limit the recordings set, so the interval is open above (None in the JSON) and the
+    # tip mass is "at least" its lower end, never "at most" the search's bound.
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        cal = calibrate(rig, RIG, mass_bounds=(0.0, 0.003))
+    assert any(issubclass(w.category, IdentifiabilityWarning) for w in caught)
+    assert "only from below" in cal.not_identifiable["tip_mass"]
+    lo, hi = cal.interval("tip_mass")
+    assert 0.0 < lo <= 0.003 and math.isinf(hi)
+    assert cal.to_dict()["tip_mass_interval95"] == [lo, None]
+    assert cal.to_dict()["tip_mass_kg"] is None
 
 
 def test_loss_factor_without_tube_damping_in_the_model_is_not_identifiable(rig):

@@ -199,7 +199,10 @@ class Calibration:
         """``base`` (an :class:`ebantenna.simulate.Scene`) with the fitted hinge, tip mass and
         loss factor; save it with :meth:`~ebantenna.simulate.Scene.save` for ``simulate`` and
         ``dataset``. A hinge not bounded from above is written as a clamp (what the recordings
-        cannot tell it from); a loss factor not identifiable keeps ``base``'s."""
+        cannot tell it from); a loss factor not identifiable keeps ``base``'s. A scene must hold
+        a value: any other parameter the recordings do not determine (:attr:`not_identifiable`)
+        is written at the fit's stopping point, which is not an estimate (``ebantenna calibrate``
+        says which)."""
         from ...simulate.scene import Scene
 
         if not isinstance(base, Scene):
@@ -678,7 +681,9 @@ def calibrate(ds, scene, *, stiffness_bounds=None, mass_bounds=None,
         math.inf if "hinge_stiffness" in missing else math.sqrt(cov[0, 0]),
         float(p[1]), sd_m, eta, eta_sd, where[ok], target[ok], model.read(p[0], p[1])[ok], used,
         intervals={"hinge_stiffness": hinge,
-                   "tip_mass": (max(m_low, bounds[0][1]), min(m_high, bounds[1][1])),
+                   # a mass of 0 is a real end; the range searched is not: beyond it, open
+                   "tip_mass": (max(m_low, bounds[0][1]),
+                                math.inf if m_high >= bounds[1][1] else m_high),
                    "loss_factor": (0.0, math.inf) if reason else (eta - eta_half,
                                                                   eta + eta_half)},
         not_identifiable=missing, model=_describe_model(scene))
@@ -853,12 +858,35 @@ def _measure(ax, fs, predicted, contact):
     return out
 
 
+#: The parameters' typical sizes (``log10 k_h``, ``m_t`` in kg): least squares' ``x_scale``.
+SCALES = np.array([0.5, 0.002])
+#: Steps of the forward differences of the misfit's Jacobian: a millionth of :data:`SCALES`,
+#: whatever the value (SciPy's ``diff_step`` is relative to it, so at a tip mass near its lower
+#: bound of 0 its step sank below 1e-20 kg and the derivative was rounding: -3.7e7 against about
+#: -300 per kg).
+STEPS = 1e-6 * SCALES
+
+
 def _fit(model, start, bounds, target, ok, eta):
     """Least squares of ``(log10 k_h, m_t)`` to the positions' frequencies (relative misfit)."""
     start = np.clip(start, bounds[0], bounds[1])
-    return least_squares(lambda p: _misfit(model, p[0], p[1], target, ok),
-                         start, bounds=bounds, x_scale=[0.5, 0.002], diff_step=1e-6,
-                         xtol=1e-8, ftol=1e-10)
+    return least_squares(lambda p: _misfit(model, p[0], p[1], target, ok), start,
+                         jac=lambda p: _jacobian(model, p, target, ok, bounds), bounds=bounds,
+                         x_scale=SCALES, xtol=1e-8, ftol=1e-10)
+
+
+def _jacobian(model, p, target, ok, bounds):
+    """The misfit's Jacobian by one-sided differences of :data:`STEPS`, towards the side with
+    more room inside ``bounds`` (a step never leaves them)."""
+    r0 = _misfit(model, p[0], p[1], target, ok)
+    jac = np.empty((r0.size, 2))
+    for j in range(2):
+        up, down = bounds[1][j] - p[j], p[j] - bounds[0][j]
+        h = min(STEPS[j], up) if up >= down else -min(STEPS[j], down)
+        q = np.array(p, dtype=float)
+        q[j] += h
+        jac[:, j] = (_misfit(model, q[0], q[1], target, ok) - r0) / h
+    return jac
 
 
 def _profile_point(model, log10_k, m, slope, bounds, target, ok, eta, steps: int = 1):
@@ -996,8 +1024,11 @@ def plot_calibration(cal: Calibration, scene):
     hinge = fitted.hinge if isinstance(fitted.hinge, str) else f"{fitted.hinge:.3g} N m/rad"
     fig, ax = plt.subplots(figsize=(6, 4))
     ax.plot(100 * cal.contacts, cal.measured_hz, "o", label="measured (recordings)")
+    unknown = [name for name in ("hinge_stiffness", "tip_mass") if name in cal.not_identifiable]
     ax.plot(100 * grid, curve, "-", label=f"model ({scene.material}): hinge {hinge}, "
-            f"m_t = {1000 * cal.tip_mass:.2f} g")
+            f"m_t = {1000 * cal.tip_mass:.2f} g"
+            + (f"\n(drawn at the fit's stop: {' and '.join(unknown)} not identifiable)"
+               if unknown else ""))
     ax.set_xlabel("contact distance from the hinge (cm)")
     ax.set_ylabel("frequency of the fitted mode (Hz)")
     ax.legend(fontsize="small")

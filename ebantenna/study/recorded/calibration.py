@@ -200,7 +200,7 @@ class Calibration:
         loss factor; save it with :meth:`~ebantenna.simulate.Scene.save` for ``simulate`` and
         ``dataset``. A hinge not bounded from above is written as a clamp (what the recordings
         cannot tell it from); a loss factor not identifiable keeps ``base``'s. A scene must hold
-        a value: any other parameter the recordings do not determine (:attr:`not_identifiable`)
+        a value: any other parameter the recordings do not determine (``not_identifiable``)
         is written at the fit's stopping point, which is not an estimate (``ebantenna calibrate``
         says which)."""
         from ...simulate.scene import Scene

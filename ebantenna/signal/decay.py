@@ -51,8 +51,8 @@ it does not, the decay must stand out of the noise: its fit starts at least ``fl
 above the noise floor it was cut at, and three standard errors of its rate
 (``_rate_standard_error``, which counts neighbouring envelope samples as correlated: a noisy
 envelope is smooth over the inverse of the noise's bandwidth) lie within 3 %; and it must span at
-least 50 samples (``UNCONFIRMED_SPAN``: over fewer the envelope's errors at the start, and near ``fs
-/ 2`` the tone's mirror image, are not averaged out). Otherwise the status says what is wrong
+least 50 samples (``UNCONFIRMED_SPAN``: over fewer the envelope's errors at the start, and near
+``fs / 2`` the tone's mirror image, are not averaged out). Otherwise the status says what is wrong
 (``"too_few_points"``, ``"inconsistent"``, ``"noise_limited"``). Under noise the witness is noisy
 too: with white noise of 3 % of the start amplitude, ``"ok"`` fits of the tests err by up to 8 %;
 with 1 %, by up to 3.5 %. The damped-sinusoid fit is ``"ok"`` when it converged, decays, its

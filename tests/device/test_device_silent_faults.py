@@ -11,6 +11,7 @@ import re
 
 import numpy as np
 import pytest
+from rig_truth import true_times_of_values
 
 from ebantenna.chips.mpu6050 import Register
 from ebantenna.device import MPU6050, SimulatedRig
@@ -439,7 +440,7 @@ def _within_stated_uncertainty(rig, mpu, rec):
     returns the kept samples and each one's timing error."""
     kept = mpu.stream.kept(0, ASKED)
     assert rec.n_samples + rec.metadata["samples_lost"] == ASKED
-    true = _true_times_of_values(rig, mpu, rec)
+    true = true_times_of_values(rig, mpu, rec)
     assert not np.any(np.isnan(true) & ~kept["suspect"])  # no wrong value kept unflagged
     error = np.abs(kept["time"] - true)
     assert np.all((error <= kept["uncertainty"] + ROUND_OFF) | np.isnan(true))
@@ -544,29 +545,6 @@ def test_a_foreign_read_of_n_bytes_takes_them_from_the_fifo():
 
 def _times(seed, k):
     return tuple(sorted(0.05 + 0.9 * np.random.default_rng(1000 + seed).random(k)))
-
-
-def _true_times_of_values(rig, mpu, rec) -> np.ndarray:
-    """The true time (s, from the stream's first segment start) of the chip's sample that each
-    kept sample *is*, found by its counts near its position (a sample taken by another reader
-    shifts the later ones of its segment); NaN where none matches (a wrong value)."""
-    raw = rec.metadata["raw"]
-    starts = mpu.stream.starts
-    epochs = {round(start, 12): k for k, (start, _) in enumerate(rig.mpu.epochs)}
-    period = 1.0 / rig.mpu.true_rate()
-    out = np.full(len(raw["segment"]), np.nan)
-    for i, (seg, pos, counts) in enumerate(zip(raw["segment"], raw["position"],
-                                               raw["counts_xyz"], strict=True)):
-        k = epochs.get(round(starts[seg], 12))
-        if k is None:
-            continue
-        truth = rig.mpu.truth(k)
-        low = max(pos - 2, 0)
-        hits = low + np.flatnonzero(np.all(truth[low:pos + 64] == counts, axis=1))
-        if hits.size:
-            place = hits[np.argmin(np.abs(hits - pos))]
-            out[i] = rig.mpu.first_sample[k] + place * period - starts[0]
-    return out
 
 
 @pytest.mark.parametrize("bus_hz", BUSES)

@@ -6,6 +6,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import sympy as sp
+from rig_truth import true_times_of_values
 from scipy.optimize import minimize_scalar
 from scipy.signal import sosfreqz
 from smo_reference import assert_follows_reference
@@ -203,37 +204,6 @@ def simulate_at(scene, contact):
     from ebantenna.simulate import simulate
 
     return simulate(scene.with_(contact=contact), seed=1)
-
-
-def test_plot_12_retries_as_stated(caplog):
-    # plot_12_device_simulated_bus: at 2 % failing transfers every failure is retried once and
-    # goes through, each a missing acknowledge (errno 121); nothing lost, no kept sample wrong
-    import logging
-
-    from ebantenna.device import (
-        MPU6050,
-        PCA9685,
-        Faults,
-        PanTilt,
-        SearchConfig,
-        SimulatedRig,
-        search_and_record,
-    )
-
-    rig = SimulatedRig.for_contact(scene="paper", material="wood", ratio=0.5, seed=4,
-                                   faults=Faults(error_rate=0.02))
-    with caplog.at_level(logging.INFO, logger="ebantenna.device"):
-        mpu = MPU6050(rig.bus, clock=rig.clock)
-        mpu.initialize()
-        unit = PanTilt(PCA9685(rig.bus, clock=rig.clock))
-        unit.initialize()
-        result = search_and_record(mpu, unit, SearchConfig(duration=0.5))
-    rig.bus.close()
-    retries = [r.getMessage() for r in caplog.records if "retry" in r.getMessage()]
-    assert retries and all("[Errno 121]" in m and "retry 1 of" in m for m in retries)
-    assert any("register 0x74" in m for m in retries)  # FIFO_R_W reads among them
-    assert result.samples_lost == 0 and result.stream["fifo_restarts"] == 0
-    assert rig.wrong_samples(mpu, result.recording) == 0
 
 
 def _largest_omega2(supports, n_elements: int) -> float:
@@ -720,28 +690,6 @@ def _ringing_rig(faults=None, bus_hz=100e3):
     return rig, mpu
 
 
-def _true_times_of_values(rig, mpu, rec) -> np.ndarray:
-    """The true time (s, from the stream's first segment start) of the chip's sample that each
-    kept sample *is*, found by its counts near its position (a sample taken by another reader
-    shifts the later ones of its segment); NaN where none matches."""
-    raw = rec.metadata["raw"]
-    epochs = {round(start, 12): k for k, (start, _) in enumerate(rig.mpu.epochs)}
-    period = 1.0 / rig.mpu.true_rate()
-    out = np.full(len(raw["segment"]), np.nan)
-    for i, (seg, pos, counts) in enumerate(zip(raw["segment"], raw["position"],
-                                               raw["counts_xyz"], strict=True)):
-        k = epochs.get(round(mpu.stream.starts[seg], 12))
-        if k is None:
-            continue
-        truth = rig.mpu.truth(k)
-        low = max(pos - 2, 0)
-        hits = low + np.flatnonzero(np.all(truth[low:pos + 64] == counts, axis=1))
-        if hits.size:
-            place = hits[np.argmin(np.abs(hits - pos))]
-            out[i] = rig.mpu.first_sample[k] + place * period - mpu.stream.starts[0]
-    return out
-
-
 def _first_drain_takes(bus_hz, drift, taken):
     """``taken`` samples taken by another reader in the first drain of a one-second recording:
     whether the drain was kept, and the kept samples outside their stated uncertainty."""
@@ -751,7 +699,7 @@ def _first_drain_takes(bus_hz, drift, taken):
     rig, mpu = _ringing_rig(faults, bus_hz)
     rec = mpu.record(1.0)
     kept = mpu.stream.kept(0, 1000)
-    error = np.abs(kept["time"] - _true_times_of_values(rig, mpu, rec))
+    error = np.abs(kept["time"] - true_times_of_values(rig, mpu, rec))
     outside = error > kept["uncertainty"] + TIME_ROUND_OFF  # NaN (a wrong value) is not
     assert not np.any(outside & ~kept["suspect"])  # "No unflagged sample lies outside its bound"
     kept_first = 0 in rec.metadata["raw"]["slot"]  # the stream's first sample came in it

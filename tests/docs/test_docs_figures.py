@@ -341,10 +341,11 @@ def test_plot_11_zone_at_nine_tenths_as_stated():
     assert zones.zone[np.argmax(zones.frequency)] == 2
 
 
-def test_plot_12_two_separate_runs_as_stated(caplog):
-    # plot_12_device_simulated_bus: the runs without and with faults are separate realisations
-    # (contact detected at different samples, samples not all equal); the kept samples are right
-    # by the count against the simulated chip's ground truth, not by the overlay
+@pytest.fixture(scope="module")
+def plot_12_runs():
+    """The example's search and recording (wood at 0.5 L, seed 4), without and with 2 % failing
+    transfers, each run once for the tests below: rate -> (the rig, its accelerometer, the
+    result, the driver's log messages)."""
     import logging
 
     from ebantenna.device import (
@@ -357,25 +358,60 @@ def test_plot_12_two_separate_runs_as_stated(caplog):
         search_and_record,
     )
 
+    class Kept(logging.Handler):
+        def __init__(self):
+            super().__init__(logging.INFO)
+            self.messages = []
+
+        def emit(self, record):
+            self.messages.append(record.getMessage())
+
+    logger = logging.getLogger("ebantenna.device")
+    runs, level = {}, logger.level
+    for rate in (0.0, 0.02):
+        rig = SimulatedRig.for_contact(scene="paper", material="wood", ratio=0.5, seed=4,
+                                       faults=Faults(error_rate=rate))
+        kept = Kept()
+        logger.addHandler(kept)
+        logger.setLevel(logging.INFO)
+        try:
+            mpu = MPU6050(rig.bus, clock=rig.clock)
+            mpu.initialize()
+            unit = PanTilt(PCA9685(rig.bus, clock=rig.clock))
+            unit.initialize()
+            result = search_and_record(mpu, unit, SearchConfig(duration=0.5))
+        finally:
+            logger.removeHandler(kept)
+            logger.setLevel(level)
+        rig.bus.close()
+        runs[rate] = (rig, mpu, result, kept.messages)
+    return runs
+
+
+def test_plot_12_retries_as_stated(plot_12_runs):
+    # plot_12_device_simulated_bus: at 2 % failing transfers every failure is retried once and
+    # goes through, each a missing acknowledge (errno 121); nothing lost, no kept sample wrong
+    rig, mpu, result, messages = plot_12_runs[0.02]
+    retries = [m for m in messages if "retry" in m]
+    assert retries and all("[Errno 121]" in m and "retry 1 of" in m for m in retries)
+    assert any("register 0x74" in m for m in retries)  # FIFO_R_W reads among them
+    assert result.samples_lost == 0 and result.stream["fifo_restarts"] == 0
+    assert rig.wrong_samples(mpu, result.recording) == 0
+
+
+def test_plot_12_two_separate_runs_as_stated(plot_12_runs):
+    # plot_12_device_simulated_bus: the runs without and with faults are separate realisations
+    # (contact detected at different samples, samples not all equal); the kept samples are right
+    # by the count against the simulated chip's ground truth, not by the overlay
     page = _example_text("plot_12_device_simulated_bus")
     stated = re.search(r"the contact was detected at sample (\d+) in one and (\d+) in the other",
                        page)
     assert stated, "the sentence on the two runs changed: update this test"
     assert "what the printed count ``wrong=0`` says" in page
     contacts, recordings = [], []
-    for rate in (0.0, 0.02):
-        rig = SimulatedRig.for_contact(scene="paper", material="wood", ratio=0.5, seed=4,
-                                       faults=Faults(error_rate=rate))
-        caplog.clear()
-        with caplog.at_level(logging.INFO, logger="ebantenna.device"):
-            mpu = MPU6050(rig.bus, clock=rig.clock)
-            mpu.initialize()
-            unit = PanTilt(PCA9685(rig.bus, clock=rig.clock))
-            unit.initialize()
-            result = search_and_record(mpu, unit, SearchConfig(duration=0.5))
-        rig.bus.close()
-        (sample,) = (int(m[1]) for r in caplog.records
-                     if (m := re.match(r"contact at sample (\d+)", r.getMessage())))
+    for rig, mpu, result, messages in plot_12_runs.values():
+        (sample,) = (int(m[1]) for message in messages
+                     if (m := re.match(r"contact at sample (\d+)", message)))
         contacts.append(sample)
         recordings.append(result.recording)
         assert rig.wrong_samples(mpu, result.recording) == 0

@@ -94,6 +94,7 @@ def test_paper_scene_clamped_hinge_is_reported_not_identifiable_not_at_a_bound(p
     # no value for what the recordings do not determine: the fit is where the optimiser stopped
     assert cal.to_dict()["hinge_stiffness_n_m_per_rad"] is None
     assert cal.scene(builtin_scene("paper")).hinge == "clamped"
+    assert cal.held_at_fit_stop == ()  # a clamp is what the recordings allow, not a fit's stop
 
 
 def test_the_fitted_mode_is_the_lowest_shown_not_the_strongest_peak(paper):
@@ -201,6 +202,7 @@ def test_a_tip_mass_beyond_the_range_searched_is_bounded_from_below_only(rig):
     assert 0.0 < lo <= 0.003 and math.isinf(hi)
     assert cal.to_dict()["tip_mass_interval95"] == [lo, None]
     assert cal.to_dict()["tip_mass_kg"] is None
+    assert "tip_mass" in cal.held_at_fit_stop  # the scene holds the search's bound
 
 
 def test_loss_factor_without_tube_damping_in_the_model_is_not_identifiable(rig):

@@ -183,11 +183,10 @@ def run_calibrate(args) -> int:
             print(f"{name}: {getattr(cal, name):.4g} {units[name]} (95 % {lo:.4g} - {hi:.4g})"
                   .replace("  (", " ("))
     print(f"scene written to {summary['scene']}")
-    stopped = [n for n in ("tip_mass", "hinge_stiffness") if n in cal.not_identifiable
-               and not (n == "hinge_stiffness" and math.isinf(cal.interval(n)[1]))]
-    if stopped:
-        print(f"(the scene holds the fit's stopping point for {' and '.join(stopped)}, which the "
-              "recordings do not determine: not an estimate)")
+    if cal.held_at_fit_stop:
+        print(f"(the scene holds the fit's stopping point for "
+              f"{' and '.join(cal.held_at_fit_stop)}, which the recordings do not determine: not "
+              "an estimate)")
     return 0
 
 

@@ -191,6 +191,18 @@ class Calibration:
         return name not in self.not_identifiable
 
     @property
+    def held_at_fit_stop(self) -> tuple[str, ...]:
+        """The parameters that :meth:`scene` writes at the fit's stopping point, which the
+        recordings do not determine (not estimates): those ``not_identifiable`` but a hinge
+        not bounded from above (written as a clamp) and a loss factor (``base``'s is kept)."""
+        return tuple(name for name in ("hinge_stiffness", "tip_mass")
+                     if name in self.not_identifiable and not self._clamped(name))
+
+    def _clamped(self, name: str) -> bool:
+        """Whether :meth:`scene` writes ``name`` as a clamp: a hinge not bounded from above."""
+        return name == "hinge_stiffness" and math.isinf(self.intervals[name][1])
+
+    @property
     def rms_residual_hz(self) -> float:
         """Root-mean-square of fitted minus measured frequency, Hz."""
         return float(np.sqrt(np.mean((self.fitted_hz - self.measured_hz) ** 2)))
@@ -200,17 +212,15 @@ class Calibration:
         loss factor; save it with :meth:`~ebantenna.simulate.Scene.save` for ``simulate`` and
         ``dataset``. A hinge not bounded from above is written as a clamp (what the recordings
         cannot tell it from); a loss factor not identifiable keeps ``base``'s. A scene must hold
-        a value: any other parameter the recordings do not determine (``not_identifiable``)
-        is written at the fit's stopping point, which is not an estimate (``ebantenna calibrate``
-        says which)."""
+        a value: any other parameter the recordings do not determine is written at the fit's
+        stopping point, which is not an estimate (:attr:`Calibration.held_at_fit_stop` names
+        them)."""
         from ...simulate.scene import Scene
 
         if not isinstance(base, Scene):
             raise TypeError(f"base must be a Scene (the one calibrated), got "
                             f"{type(base).__name__}")
-        hinge = self.hinge_stiffness
-        if math.isinf(self.intervals["hinge_stiffness"][1]):
-            hinge = "clamped"
+        hinge = "clamped" if self._clamped("hinge_stiffness") else self.hinge_stiffness
         eta = base.probe.loss_factor if "loss_factor" in self.not_identifiable else (
             self.loss_factor)
         return _candidate(base, hinge, self.tip_mass, eta).with_(name=f"{base.name}-calibrated")
@@ -1024,7 +1034,7 @@ def plot_calibration(cal: Calibration, scene):
     hinge = fitted.hinge if isinstance(fitted.hinge, str) else f"{fitted.hinge:.3g} N m/rad"
     fig, ax = plt.subplots(figsize=(6, 4))
     ax.plot(100 * cal.contacts, cal.measured_hz, "o", label="measured (recordings)")
-    unknown = [name for name in ("hinge_stiffness", "tip_mass") if name in cal.not_identifiable]
+    unknown = cal.held_at_fit_stop
     ax.plot(100 * grid, curve, "-", label=f"model ({scene.material}): hinge {hinge}, "
             f"m_t = {1000 * cal.tip_mass:.2f} g"
             + (f"\n(drawn at the fit's stop: {' and '.join(unknown)} not identifiable)"

@@ -2,7 +2,13 @@
 sections that need only recordings run on it, and the scene calibrated from recordings."""
 
 from .assemble import LABELS, MIN_SAMPLES, assemble_dataset
-from .calibration import Calibration, IdentifiabilityWarning, calibrate, plot_calibration
+from .calibration import (
+    Calibration,
+    IdentifiabilityWarning,
+    ModelMisfitWarning,
+    calibrate,
+    plot_calibration,
+)
 from .planning import protocol_plan
 from .study import (
     NOT_APPLICABLE,
@@ -17,4 +23,4 @@ from .study import (
 __all__ = ["assemble_dataset", "LABELS", "MIN_SAMPLES", "protocol_plan", "reproduce_recorded",
            "intervals", "classification_interval", "placement_interval", "NOT_APPLICABLE",
            "RECORDED_STEPS", "SECTION_MINIMUM", "Calibration", "calibrate", "plot_calibration",
-           "IdentifiabilityWarning"]
+           "IdentifiabilityWarning", "ModelMisfitWarning"]

@@ -143,7 +143,12 @@ def run_calibrate(args) -> int:
     from ...cli import print_json
     from ...simulate import load_dataset
     from ...simulate.scene import resolve_scene
-    from .calibration import PARAMETERS, IdentifiabilityWarning, calibrate, plot_calibration
+    from .calibration import (
+        IdentifiabilityWarning,
+        ModelMisfitWarning,
+        calibrate,
+        plot_calibration,
+    )
 
     output_dir("--out", args.out)  # refused before any work is done
     base = resolve_scene(args.scene)
@@ -151,11 +156,14 @@ def run_calibrate(args) -> int:
         output_file_in("--out", args.out, name)  # what is written there, at the end
     data = load_dataset(check_path("--data", args.data))
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", IdentifiabilityWarning)  # said below, once each
+        for said_below in (IdentifiabilityWarning, ModelMisfitWarning):  # once each
+            warnings.simplefilter("ignore", said_below)
         cal = calibrate(data, base)
     for name, why in cal.not_identifiable.items():
         print(f"ebantenna calibrate: warning: {name} is not identifiable from these recordings: "
               f"{why}", file=sys.stderr)
+    if cal.misses_recordings:
+        print(f"ebantenna calibrate: warning: {cal.fit_statement}", file=sys.stderr)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     scene = cal.scene(base)
@@ -168,10 +176,18 @@ def run_calibrate(args) -> int:
     if args.json:
         print_json(summary)
         return 0
+    _print_calibration(cal, summary)
+    return 0
+
+
+def _print_calibration(cal, summary) -> None:
+    """The calibration as ``calibrate`` prints it: the fit, each parameter, the scene."""
+    from .calibration import PARAMETERS
+
     units = {"hinge_stiffness": "N m/rad", "tip_mass": "kg", "loss_factor": ""}
     print(f"model: {cal.model}; {summary['contact_materials']} contacts fitted (each distance "
           f"and material, at {summary['distances']} distances), rms misfit "
-          f"{cal.rms_residual_hz:.3g} Hz")
+          f"{cal.rms_residual_hz:.3g} Hz; {cal.fit_statement}")
     for name in PARAMETERS:
         lo, hi = cal.interval(name)
         if name in cal.not_identifiable:
@@ -187,7 +203,6 @@ def run_calibrate(args) -> int:
         print(f"(the scene holds the fit's stopping point for "
               f"{' and '.join(cal.held_at_fit_stop)}, which the recordings do not determine: not "
               "an estimate)")
-    return 0
 
 
 def _plan_of(args):

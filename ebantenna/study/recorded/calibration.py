@@ -61,6 +61,17 @@ Identifiability
     bounded on the other side only (recordings of a probe without a tip mass give "at most" a
     few tenths of a milligram, never the fit at 0 as a value).
 
+Lack of fit
+    Whether the model misses the recordings by more than they scatter is tested with the
+    repetitions, the textbook lack-of-fit F test: each recording's relative residual
+    ``f / f_model - 1`` splits into its position's mean residual (the lack of fit, ``n - 2``
+    degrees of freedom) and its scatter about that mean (the pure error, ``N - n``); their mean
+    squares' ratio is ``F(n - 2, N - n)`` when the model is right and the repetitions
+    independent. A rejection at :data:`LACK_OF_FIT_LEVEL` is reported
+    (:attr:`Calibration.fit_statement`, a :class:`ModelMisfitWarning`): the intervals above take
+    the misfit between positions as random, which a misfit the model makes, or one the near-copy
+    repetitions at a position share, is not. The test needs two recordings at some position.
+
 Loss factor
     The decay of the fitted mode in each recording gives its loss factor as read: the band-passed
     Hilbert envelope falls as ``exp(-eta omega t / 2)``. The mode's loss factor that the
@@ -92,14 +103,16 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import least_squares
 from scipy.signal import butter, hilbert, sosfiltfilt
+from scipy.stats import f as fisher_f
 from scipy.stats import t as student_t
 
 from ..._validate import check_array, check_in_range, check_int, check_real, describe
 from ...paper.protocol import DECAY_REGION
 from ...probe import MAX_TIP_MASS_RATIO
 
-__all__ = ["Calibration", "calibrate", "loss_factor_of", "IdentifiabilityWarning", "MIN_CYCLES",
-           "MIN_SHARE", "TIME_BASE", "plot_calibration"]
+__all__ = ["Calibration", "calibrate", "loss_factor_of", "IdentifiabilityWarning",
+           "ModelMisfitWarning", "MIN_CYCLES", "MIN_SHARE", "TIME_BASE", "LACK_OF_FIT_LEVEL",
+           "plot_calibration"]
 
 #: Fewest periods of the fitted mode a decay fit must span.
 MIN_CYCLES = 8
@@ -123,10 +136,19 @@ STIFFNESS_RANGE = (1e-3, 1e6)
 #: 1000 Hz), and :func:`loss_factor_of` reads from two periods past the peak to two before the
 #: end.
 READ_PERIODS = 5.5
+#: Level of the lack-of-fit test (module notes): the model is said to miss the recordings when
+#: the test rejects at this level, the complement of the intervals' 95 %.
+LACK_OF_FIT_LEVEL = 0.05
 
 
 class IdentifiabilityWarning(UserWarning):
     """A calibrated parameter the recordings do not determine (its name is in the message)."""
+
+
+class ModelMisfitWarning(UserWarning):
+    """The scene's model misses the recordings by more than their repetitions scatter (the
+    lack-of-fit test rejects it): the intervals then rest on the misfit being random between
+    positions."""
 
 
 @dataclass(frozen=True)
@@ -157,6 +179,10 @@ class Calibration:
         ``name -> reason`` for each parameter the recordings do not determine.
     model : str
         What the fitted model contains.
+    lack_of_fit : dict
+        The lack-of-fit test (module notes): ``f``, ``df`` (lack of fit, pure error), ``p``
+        (``f`` and ``p`` None where it cannot be tested) and ``largest`` (the contact, m, and
+        the relative misfit of the position the model misses most).
     """
 
     hinge_stiffness: float
@@ -172,6 +198,7 @@ class Calibration:
     intervals: dict = field(default_factory=dict)
     not_identifiable: dict = field(default_factory=dict)
     model: str = ""
+    lack_of_fit: dict = field(default_factory=dict)
 
     def interval(self, name: str) -> tuple[float, float]:
         """The 95 % interval of ``"hinge_stiffness"``, ``"tip_mass"`` or ``"loss_factor"``
@@ -201,6 +228,34 @@ class Calibration:
     def _clamped(self, name: str) -> bool:
         """Whether :meth:`scene` writes ``name`` as a clamp: a hinge not bounded from above."""
         return name == "hinge_stiffness" and math.isinf(self.intervals[name][1])
+
+    @property
+    def misses_recordings(self) -> bool:
+        """Whether the lack-of-fit test rejects the model at :data:`LACK_OF_FIT_LEVEL`."""
+        p = self.lack_of_fit.get("p")
+        return p is not None and p < LACK_OF_FIT_LEVEL
+
+    @property
+    def fit_statement(self) -> str:
+        """What the lack-of-fit test says of the model, generated from its numbers."""
+        test = self.lack_of_fit
+        if test.get("p") is None:
+            return ("the lack of fit is not tested: " + (
+                "fewer than two recordings at every position, or as many positions as "
+                "parameters" if test.get("f") is None or not test["df"][1] else
+                "the repetitions agree exactly and so does the model")
+                    + "; the intervals take the misfit between positions as random")
+        numbers = (f"lack-of-fit F = {test['f']:.3g} on {test['df'][0]} and {test['df'][1]} "
+                   f"degrees of freedom, p = {test['p']:.2g}")
+        if not self.misses_recordings:
+            return f"the model fits within the repetitions' scatter ({numbers})"
+        contact, misfit = test["largest"]
+        return (f"the model misses the positions by more than their repetitions scatter "
+                f"({numbers}; the recordings differ most from it at {contact:g} m, by "
+                f"{100 * misfit:+.2g} %): the intervals are set by the misfit between positions "
+                "as if it were random, but part of it is the model's (a mode it places wrong, "
+                "an effect the scene leaves out) or shared by the near-copy repetitions at a "
+                "position, and a systematic part biases the parameters beyond their intervals")
 
     @property
     def rms_residual_hz(self) -> float:
@@ -239,7 +294,9 @@ class Calibration:
                "loss_factor_sd": _json(self.loss_factor_sd),
                "hinge_stiffness_n_m_per_rad": self._value("hinge_stiffness"),
                "tip_mass_kg": self._value("tip_mass"),
-               "loss_factor": self._value("loss_factor")}
+               "loss_factor": self._value("loss_factor"),
+               "lack_of_fit": {**self.lack_of_fit, "model_misses_recordings":
+                               self.misses_recordings, "statement": self.fit_statement}}
         for name in PARAMETERS:
             # an end the recordings do not bound is None: infinite, or a stiffness of 0 (on the
             # log scale searched, no lower end); a mass or a loss factor of 0 is a real end
@@ -496,17 +553,32 @@ class _Model:
         self.evaluations = 0
         self._lags, self._filters = {}, {}
         self.rods = touched_rods(scene, materials.tolist())
+        self.held = None
 
-    def modes(self, log10_k, tip_mass, eta):
-        """Frequency (Hz) and loss factor of the fitted mode at each position."""
+    def _scene_modes(self, log10_k, tip_mass, eta) -> dict:
         self.evaluations += 1
         trial = _candidate(self.scene, float(10.0 ** log10_k), tip_mass, eta)
-        by_key = scene_modes(trial, [k[0] for k in self.keys], [k[1] for k in self.keys],
-                             rods=self.rods)
+        return scene_modes(trial, [k[0] for k in self.keys], [k[1] for k in self.keys],
+                           rods=self.rods)
+
+    def identify(self, log10_k, tip_mass, eta) -> np.ndarray:
+        """The mode the rule fits at each position (:func:`fitted_mode`; -1 where none)."""
+        by_key = self._scene_modes(log10_k, tip_mass, eta)
+        return np.array([fitted_mode(by_key[key], self.fs) for key in self.keys])
+
+    def hold(self, identity) -> None:
+        """Fit the modes ``identity`` (one index per position) whatever the trial parameters,
+        or (None) the mode the rule picks at each trial."""
+        self.held = None if identity is None else np.array(identity)
+
+    def modes(self, log10_k, tip_mass, eta):
+        """Frequency (Hz) and loss factor of the fitted mode at each position: the mode held
+        (:meth:`hold`), else the one the rule picks at these parameters."""
+        by_key = self._scene_modes(log10_k, tip_mass, eta)
         frequency, loss = np.full(len(self.keys), np.nan), np.full(len(self.keys), np.nan)
         for i, key in enumerate(self.keys):
-            j = fitted_mode(by_key[key], self.fs)
-            if j >= 0:
+            j = fitted_mode(by_key[key], self.fs) if self.held is None else self.held[i]
+            if 0 <= j < by_key[key][0].size:
                 frequency[i], loss[i] = by_key[key][0][j], by_key[key][1][j]
         return frequency, loss
 
@@ -636,6 +708,8 @@ def calibrate(ds, scene, *, stiffness_bounds=None, mass_bounds=None,
     -----
     IdentifiabilityWarning
         For each parameter the recordings do not determine, naming it and the reason.
+    ModelMisfitWarning
+        When the lack-of-fit test rejects the model (:attr:`Calibration.fit_statement`).
 
     Raises
     ------
@@ -682,21 +756,67 @@ def calibrate(ds, scene, *, stiffness_bounds=None, mass_bounds=None,
     eta, eta_sd, used, reason, eta_half = _loss_factor(model, p, decays, eta0)
     if reason:
         missing["loss_factor"] = reason
-    for name, why in missing.items():
-        warnings.warn(f"{name} is not identifiable from these recordings: {why}",
-                      IdentifiabilityWarning, stacklevel=2)
     where = np.array([c for c, _ in model.keys])
-    return Calibration(
+    fitted = model.read(p[0], p[1])
+    test = _lack_of_fit(np.array([d[1] for d in decays]) / fitted[model.index] - 1.0,
+                        model.index, where)
+    return _warned(Calibration(
         float(10.0 ** p[0]),
         math.inf if "hinge_stiffness" in missing else math.sqrt(cov[0, 0]),
-        float(p[1]), sd_m, eta, eta_sd, where[ok], target[ok], model.read(p[0], p[1])[ok], used,
+        float(p[1]), sd_m, eta, eta_sd, where[ok], target[ok], fitted[ok], used,
         intervals={"hinge_stiffness": hinge,
                    # a mass of 0 is a real end; the range searched is not: beyond it, open
                    "tip_mass": (max(m_low, bounds[0][1]),
                                 math.inf if m_high >= bounds[1][1] else m_high),
                    "loss_factor": (0.0, math.inf) if reason else (eta - eta_half,
                                                                   eta + eta_half)},
-        not_identifiable=missing, model=_describe_model(scene))
+        not_identifiable=missing, model=_describe_model(scene), lack_of_fit=test))
+
+
+def _warned(cal: Calibration) -> Calibration:
+    """``cal``, once what it cannot determine and a rejected fit are warned of (for the caller
+    of :func:`calibrate`)."""
+    for name, why in cal.not_identifiable.items():
+        warnings.warn(f"{name} is not identifiable from these recordings: {why}",
+                      IdentifiabilityWarning, stacklevel=3)
+    if cal.misses_recordings:
+        warnings.warn(cal.fit_statement, ModelMisfitWarning, stacklevel=3)
+    return cal
+
+
+def _lack_of_fit(residuals, index, where, parameters: int = 2) -> dict:
+    """The lack-of-fit F test with repetitions (module notes) on each recording's relative
+    residual (NaN: not fitted) at its position ``index`` (contacts ``where``), the model having
+    ``parameters`` fitted.
+
+    The residuals' sum of squares splits into the pure error, their scatter about each
+    position's mean (``N - n`` degrees of freedom), and the lack of fit, the positions' means
+    weighted by their counts (``n - parameters``); ``F`` is the ratio of their mean squares.
+
+    Examples
+    --------
+    Four positions, two recordings each: the pure error is 0.06 on 4 degrees of freedom, the
+    lack of fit 2 x 0.1^2 = 0.02 on 2, so ``F = 0.01 / 0.015``.
+
+    >>> test = _lack_of_fit(np.array([0.1, -0.1, 0.2, 0.0, -0.1, 0.1, 0.0, 0.0]),
+    ...                     np.repeat(np.arange(4), 2), np.array([1.0, 2.0, 3.0, 4.0]))
+    >>> test["df"], round(test["f"], 6), test["largest"]
+    ([2, 4], 0.666667, [2.0, 0.1])
+    """
+    ok = np.isfinite(residuals)
+    positions, group = np.unique(index[ok], return_inverse=True)
+    e, counts = residuals[ok], np.bincount(group)
+    means = np.bincount(group, weights=e) / counts
+    pure, lack = float(np.sum((e - means[group]) ** 2)), float(counts @ means**2)
+    df = [int(positions.size - parameters), int(e.size - positions.size)]
+    worst = int(np.argmax(np.abs(means))) if means.size else 0
+    out = {"f": None, "df": df, "p": None,
+           "largest": [float(where[positions[worst]]), float(means[worst])] if means.size
+           else None}
+    if df[0] >= 1 and df[1] >= 1 and (pure > 0 or lack > 0):
+        out["f"] = (lack / df[0]) / (pure / df[1]) if pure > 0 else math.inf
+        out["p"] = float(fisher_f.sf(out["f"], *df))
+    return out
 
 
 def _mass_bounded(m_low: float, m_high: float, fit: float, bounds) -> dict:
@@ -788,14 +908,21 @@ def _start(model, ax, fs, bounds, eta0) -> np.ndarray:
 def _measure_and_fit(model, ax, fs, contact, p, bounds, eta0, max_rounds):
     """Measure at the model's prediction and fit, until the measured frequencies settle:
     ``(fit, target, decays)``, the positions' frequencies and each recording's decay."""
-    target, fit = np.full(len(model.keys), np.nan), None
+    target, fit, held = np.full(len(model.keys), np.nan), None, None
     for _ in range(max_rounds):
+        # the mode fitted at each position is the rule's at the current parameters, held
+        # through the fit: a rule applied at every trial would switch modes within the fit, and
+        # the misfit would jump there (a clamped probe's fit once stopped at such a switch, at
+        # 27.7 N m/rad, its interval excluding the clamp)
+        identity = model.identify(p[0], p[1], eta0)
+        model.hold(identity)
         predicted, _ = model.modes(p[0], p[1], eta0)
         decays = _measure(ax, fs, predicted[model.index], contact)
         new = model.per_position(np.array([d[1] for d in decays]))
-        settled = np.array_equal(np.isfinite(new), np.isfinite(target)) and np.allclose(
+        settled = np.array_equal(identity, held) and np.array_equal(
+            np.isfinite(new), np.isfinite(target)) and np.allclose(
             new[np.isfinite(new)], target[np.isfinite(target)], rtol=SETTLED, atol=0.0)
-        target = new
+        target, held = new, identity
         model.measured_on(decays, eta0)
         ok = np.isfinite(target)
         if ok.sum() < 3:

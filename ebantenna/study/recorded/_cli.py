@@ -188,6 +188,8 @@ def _print_calibration(cal, summary) -> None:
     print(f"model: {cal.model}; {summary['contact_materials']} contacts fitted (each distance "
           f"and material, at {summary['distances']} distances), rms misfit "
           f"{cal.rms_residual_hz:.3g} Hz; {cal.fit_statement}")
+    for position, why in cal.left_out.items():
+        print(f"left out of the fit: {position}: {why}")
     for name in PARAMETERS:
         lo, hi = cal.interval(name)
         if name in cal.not_identifiable:

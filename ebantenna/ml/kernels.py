@@ -34,7 +34,10 @@ expands. With :math:`\\tilde x = \\mathrm{fl}(x - m)`, :math:`p` features and fi
 coordinates; the error of :math:`m` itself cancels because both sets use the same :math:`m`), and
 the kernel value :math:`K = e^{-\\gamma d}` is off by at most :math:`\\gamma K |\\hat d - d| + u K`.
 The bound now scales with the spread of the data about their mean, not with their distance from
-the origin: a common shift of the features no longer changes the machine.
+the origin: a common shift of the features no longer changes the kernel beyond its last bits.
+(It can still change the machine where SMO meets a near-tie: the shifted features themselves
+carry rounding, and a last bit can pick another working set; the machine then stops elsewhere
+within ``tol``.)
 
 libsvm trains with the uncentred expansion (its ``Kernel::kernel_rbf``) and predicts with direct
 differences (``Kernel::k_function``), so its training path changes when the features are shifted
@@ -351,8 +354,8 @@ def rbf_in_place(block, gamma, x_norms, y_norms, sparse_rows=None, scratch=None)
         raise TypeError(f"block must be a writeable 2-D float64 array (it is changed in place), "
                         f"got {type(block).__name__} {getattr(block, 'dtype', '')}")
     gamma = check_real("gamma", gamma)
-    if not gamma > 0:
-        raise ValueError(f"gamma must be > 0, got {gamma!r}")
+    if not gamma >= 0:  # 0: every entry 1, as scikit-learn's SVC(gamma=0) fits
+        raise ValueError(f"gamma must be >= 0, got {gamma!r}")
     for name, norms, size in (("x_norms", x_norms, block.shape[0]),
                               ("y_norms", y_norms, block.shape[1])):
         if np.shape(norms) != (size,):

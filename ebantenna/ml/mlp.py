@@ -31,7 +31,11 @@ with ``t_`` the samples seen, as scikit-learn's. ``partial_fit`` trains one epoc
 The loss is :math:`L = \\ell + \\frac{\\alpha}{2n}\\sum_l \\lVert W_l \\rVert^2` with :math:`\\ell`
 the mean cross-entropy per sample, or, for regression,
 :math:`\\ell = \\frac{1}{2 n m}\\sum_{i,k} (y_{ik} - \\hat y_{ik})^2` over ``n`` samples and ``m``
-outputs: the same numbers as scikit-learn reports.
+outputs: the same numbers as scikit-learn reports while no predicted probability saturates.
+Where one does, scikit-learn clips the probabilities to :math:`[\\epsilon, 1 - \\epsilon]` (a
+sample then costs at most :math:`-\\log\\epsilon \\approx 36`), and this package takes the exact
+log-sum-exp: with saturated weights the two losses part, by orders of magnitude, and with them
+``loss_curve_`` and the stop on ``tol``; the gradients agree.
 
 Difference from scikit-learn for several regression outputs
 -----------------------------------------------------------
@@ -57,7 +61,8 @@ slower, for stepping through the code that actually runs.
 
 The parameters are checked by scikit-learn's own constraint mechanism
 (``_parameter_constraints``), so a bad value raises the error scikit-learn raises, in the same
-words.
+words, except where the package checks more than scikit-learn does (``validation_fraction``
+with ``early_stopping``, a negative ``random_state``): those errors are the package's own.
 """
 
 from __future__ import annotations

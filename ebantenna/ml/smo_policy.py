@@ -146,7 +146,8 @@ def fit_policy(libsvm_compat: bool, selection: str, shrinking: bool,
     Otherwise the package's (:data:`DEFAULT`), with ``shrinking`` as given: the solver then
     shrinks as libsvm does and keeps the default tie-breaking, curvature floor and bias sum,
     whether the whole kernel is stored or its rows are cached (``whole_kernel`` no longer
-    changes the policy, so a fit's result does not depend on ``cache_size``). The floor
+    changes the policy; ``cache_size`` still sets the kernel's storage type,
+    :meth:`SMOPolicy.kernel_dtype`, and a float32 kernel can take another path). The floor
     :math:`\\max(a_{ij}, \\tau)` differs from libsvm's only for :math:`0 < a_{ij} < \\tau`
     (two points closer than about :math:`10^{-6}`), and costs the NumPy engines one call per
     update less.

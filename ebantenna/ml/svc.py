@@ -162,8 +162,9 @@ class SVC(ClassifierMixin, BaseEstimator):
         libsvm's shrinking heuristic (see :class:`~ebantenna.ml.smo_policy.SMOPolicy`); the
         solution is the same within ``tol`` either way. Shrinking leaves out the variables that
         sit at a bound, so each update passes over the few that can still move; it is used
-        whether the kernel of a pair of classes is stored whole or cached by rows, so the result
-        does not depend on ``cache_size``. ``shrinking=False`` passes over every variable at
+        whether the kernel of a pair of classes is stored whole or cached by rows (the result
+        still depends on ``cache_size`` through the kernel's storage: see there).
+        ``shrinking=False`` passes over every variable at
         every update. It concerns the engines only: ``solver="reference"`` passes over every
         variable whatever it says.
     probability : bool, default=False
@@ -180,6 +181,9 @@ class SVC(ClassifierMixin, BaseEstimator):
         too, unless ``libsvm_compat``), else rows are computed on demand and the least recently
         used are dropped. With shrinking the solver also keeps the float64 rows it has used
         since the last reordering, up to 64 MB (kernel rows and their curvatures together).
+        A kernel stored in float32 (libsvm's storage) takes libsvm's rounding, and can take
+        another path than float64 storage: the machine then stops elsewhere within ``tol``
+        (:mod:`ebantenna.ml.smo`), so a fit can change with ``cache_size``.
         Engines only: ``solver="reference"`` holds the kernel matrix of each pair of classes as
         one float64 array, whatever ``cache_size``.
     class_weight : dict or 'balanced', default=None
@@ -196,7 +200,7 @@ class SVC(ClassifierMixin, BaseEstimator):
     break_ties : bool, default=False
         With 'ovr' and more than two classes, predict the argmax of the decision function instead
         of the majority vote.
-    random_state : int, Generator, RandomState instance or None, default=None
+    random_state : int, RandomState instance or None, default=None
         Seeds the folds of ``probability=True`` as scikit-learn does: the seed is
         ``check_random_state(random_state).randint(2**31 - 1)``, and the folds are drawn by
         libsvm's own generator (:class:`~ebantenna.ml.platt.LibsvmRandom`), so that they are
@@ -214,8 +218,9 @@ class SVC(ClassifierMixin, BaseEstimator):
         origin, see :mod:`ebantenna.ml.kernels`): its path, like libsvm's, changes when every
         feature is shifted by the same amount. Predictions use centred points in both modes, as
         close as a GEMM gets to libsvm's direct differences when it predicts.
-        A kernel that is not positive semi-definite is always fitted this way, whatever
-        ``libsvm_compat`` says: 'sigmoid', and a precomputed or callable kernel whose training
+        A kernel that is not positive semi-definite is always fitted this way by the engines,
+        whatever ``libsvm_compat`` says (``solver="reference"`` follows none of these
+        conventions): 'sigmoid', and a precomputed or callable kernel whose training
         Gram matrix :func:`~ebantenna.ml.smo_policy.positive_semidefinite` refuses. Its dual is
         not convex, and the default conventions would stop at another of its stationary points
         than scikit-learn (see :mod:`ebantenna.ml.smo_policy`).
@@ -589,12 +594,8 @@ class SVC(ClassifierMixin, BaseEstimator):
 
     def _libsvm_seed(self) -> int:
         """libsvm's ``random_seed`` for ``random_state``, drawn as ``BaseLibSVM.fit`` draws it:
-        ``check_random_state(random_state).randint(2**31 - 1)`` (a Generator, which
-        scikit-learn refuses, gives ``integers(2**31 - 1)``)."""
-        rs = self.random_state
-        if isinstance(rs, np.random.Generator):
-            return int(rs.integers(np.iinfo(np.int32).max))
-        return int(check_random_state(rs).randint(np.iinfo(np.int32).max))
+        ``check_random_state(random_state).randint(2**31 - 1)``."""
+        return int(check_random_state(self.random_state).randint(np.iinfo(np.int32).max))
 
     def _check_proba(self):
         if not self.probability:

@@ -59,3 +59,27 @@ def test_each_convention_moves_its_digit(seed):
     n, dec = _solve(X, y, dtype=np.float32, ties_last=False)
     assert abs(n - n_ref) > iteration_slack(n_ref)
     assert 1e-5 < np.abs(dec - dref).max() < 10.0 * tol
+
+
+@pytest.mark.parametrize("kernel", [Kernel("rbf", gamma=0.25), Kernel("linear")])
+def test_a_float64_kernel_can_take_another_path_than_libsvms(kernel):
+    # ebantenna.ml.smo: "where an entry's lost bits decide a selection the path changes and the
+    # machine stops elsewhere within tol (on iris classes 1 and 2, with the RBF and the linear
+    # kernel, it does)". libsvm's float32 storage keeps scikit-learn's count; float64 storage
+    # of the same kernel takes another; both stop with every violation below tol.
+    from sklearn.datasets import load_iris
+
+    X, y = load_iris(return_X_y=True)
+    X, y = X[y > 0], np.where(y[y > 0] == 1, 1.0, -1.0)
+    full = kernel.gram(X, center=False)
+    counts = {}
+    for dtype in (np.float32, np.float64):
+        rows = KernelRows(None, kernel, dtype, 0, full=full.astype(dtype))
+        res = solve_smo(rows, y, np.ones(y.size), diagonal=kernel.diagonal(X), policy=LIBSVM)
+        assert res.converged
+        counts[dtype] = res.n_iter
+    gamma = kernel.gamma if kernel.name == "rbf" else "scale"
+    # libsvm's +1 is scikit-learn's classes_[0]: class 1, the +1 here (its rows come first)
+    ref = LibSVC(kernel=kernel.name, gamma=gamma).fit(X, np.where(y > 0, 1, 2))
+    assert counts[np.float32] == int(ref.n_iter_[0])  # libsvm's path
+    assert counts[np.float64] != counts[np.float32]  # another

@@ -116,3 +116,16 @@ def test_max_iter_minus_one_has_no_cap_as_in_scikit_learns_libsvm():
     assert ours.n_iter_[0] > 100 * X.shape[0]
     np.testing.assert_array_equal(ours.n_iter_, ref.n_iter_)
     assert ours.fit_status_ == ref.fit_status_ == 0
+
+
+@pytest.mark.parametrize("kernel", ["rbf", "linear", "poly", "sigmoid"])
+def test_gamma_zero_fits_as_in_scikit_learn(kernel):
+    # gamma >= 0 is the parameter's range (scikit-learn's); with 'rbf' a gamma of 0 makes every
+    # kernel entry exp(0) = 1, which the RBF step once refused with "gamma must be > 0". Every
+    # entry is a constant (or, linear, gamma is unused): libsvm's path, the same decision values
+    # to rounding of sums of at most n entries of size 1.
+    X, y, Xt = _data(k=3)
+    ours = SVC(kernel=kernel, gamma=0.0, libsvm_compat=True).fit(X, y)
+    ref = LibSVC(kernel=kernel, gamma=0.0).fit(X, y)
+    np.testing.assert_allclose(ours.decision_function(Xt), ref.decision_function(Xt),
+                               atol=X.shape[0] * 1e3 * EPS)

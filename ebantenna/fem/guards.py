@@ -60,7 +60,8 @@ __all__ = [
 #: Relative accuracy of the lowest frequency that a mesh must be able to hold in double precision.
 ROUNDOFF_RTOL = 1e-6
 
-#: The upper-bound constant ``c`` of :func:`roundoff_error` (measured: 1e-4 ... 0.02).
+#: The upper-bound constant ``c`` of :func:`roundoff_error` (measured: 1e-4 ... 0.04, the
+#: eigenproblem theory page).
 _ROUNDOFF_C = 0.05
 
 

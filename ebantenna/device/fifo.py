@@ -76,6 +76,7 @@ from .._validate import check_int, check_real
 from ..chips.mpu6050 import (
     ACCEL_SAMPLE_BYTES,
     CHIP_MODELS,
+    USER_CONTROL_SELF_CLEARING,
     FifoEnable,
     Interrupt,
     Register,
@@ -293,7 +294,8 @@ class FifoStream:
         device.write_byte(Register.USER_CTRL, UserControl.FIFO_EN, retry=False)
         start = self.clock.monotonic()  # the write landed at its last acknowledge, just before
         seen = device.read_byte(Register.USER_CTRL)  # read back: the segment starts only if
-        if not seen & UserControl.FIFO_EN:  # the enable landed
+        stable = 0xFF & ~int(USER_CONTROL_SELF_CLEARING)  # the write landed whole (every bit
+        if seen & stable != UserControl.FIFO_EN & stable:  # but the self-clearing resets)
             raise SettingError(errno.EIO, f"USER_CTRL (0x6A) reads back 0x{seen:02X} after "
                                f"0x{int(UserControl.FIFO_EN):02X} was written")
         period = self.estimator.period

@@ -92,6 +92,36 @@ def test_a_bit_flipped_in_a_setting_write_is_read_back_and_written_again(bus_hz)
     assert rec.metadata["samples_lost"] == 0
 
 
+@pytest.mark.parametrize("mask", [0x20, 0x40])
+def test_the_write_that_starts_a_segment_is_read_back_whole(mask):
+    # The USER_CTRL write that starts a segment (FIFO_EN, 0x40) is timed, so it is not retried;
+    # its read-back decides whether the segment starts. It once checked FIFO_EN alone: with
+    # I2C_MST_EN (0x20) flipped on as well the segment started, and only the next drain's
+    # read-back saw USER_CTRL changed (20 samples discarded, 74 lost). Any stable bit read back
+    # wrong now fails the restart, which is tried again: nothing read with the wrong setting.
+    ax, az = _ring()
+    rig = SimulatedRig.from_arrays(ax, az, fs=1000.0, obstacle=None, seed=0)
+    mpu = MPU6050(rig.bus, clock=rig.clock)
+    mpu.initialize()
+    rig.touch()
+    flipped, write = [], rig.bus._write
+
+    def _write(address, register, data):
+        if register == Register.USER_CTRL and list(data) == [0x40] and not flipped:
+            flipped.append(rig.clock.monotonic())
+            data = [0x40 ^ mask]
+        return write(address, register, data)
+
+    rig.bus._write = _write
+    rec = mpu.record(ASKED / 1000.0)
+    assert flipped
+    causes = [f["cause"] for f in rec.metadata["faults"]]
+    assert causes[0] == (f"restart failed (USER_CTRL (0x6A) reads back 0x{0x40 ^ mask:02X} "
+                         "after 0x40 was written)")
+    assert rec.metadata["samples_discarded"] == 0
+    _judge(rig, mpu, rec)
+
+
 def test_a_setting_that_never_lands_is_a_clear_error():
     ax, az = _ring()
     rig = SimulatedRig.from_arrays(ax, az, fs=1000.0, obstacle=None,

@@ -125,6 +125,9 @@ def test_modal_rig_recovered_within_its_stated_uncertainty(rig):
     base = RIG.with_(hinge="clamped", probe=Probe(tip_mass=0.001, loss_factor=0.01))
     cal, caught = calibrated(rig, base)
     assert not caught
+    # the model misses its own recordings by about 1e-4 (the time base) where the repetitions,
+    # near copies, agree to 3e-5: the test without the time base's floor rejected it (p 2e-5)
+    assert not cal.misses_recordings, cal.lack_of_fit
     for name, truth in (("hinge_stiffness", TRUE_HINGE), ("tip_mass", TRUE_TIP),
                         ("loss_factor", RIG.probe.loss_factor)):
         lo, hi = cal.interval(name)
@@ -277,6 +280,12 @@ def test_lack_of_fit_is_the_textbook_f_test_and_holds_its_level():
 
     assert 0.03 <= np.mean([rejected(0.0) for _ in range(2000)]) <= 0.07
     assert np.mean([rejected(0.4) for _ in range(200)]) > 0.95
+    # a floor shared by a position's 3 repetitions adds 3 floor^2 to the pure error's mean square
+    e = rng.standard_normal(x.size)
+    plain, floored = (_lack_of_fit(e, index, np.arange(6.0), floor=f) for f in (0.0, 0.5))
+    means = np.bincount(index, weights=e) / 3
+    pure = np.sum((e - means[index]) ** 2) / 12
+    assert plain["f"] / floored["f"] == pytest.approx((pure + 3 * 0.25) / pure, rel=1e-12)
 
 
 def test_a_scene_without_the_touched_rod_is_said_to_miss_the_recordings(paper):

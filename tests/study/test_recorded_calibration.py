@@ -307,12 +307,14 @@ def test_a_scene_without_the_touched_rod_is_said_to_miss_the_recordings(paper):
     assert own.lack_of_fit["df"] == [3, 5]  # 5 positions, 2 parameters; 5 x (2 - 1) repeats
 
 
-@pytest.mark.parametrize("p, says", [(0.5, "fits within"), (0.01, "misses the positions"),
-                                      (None, "not tested")])
-def test_the_fit_statement_follows_the_test(paper, p, says):
+@pytest.mark.parametrize("p, df, says", [
+    (0.5, [3, 5], "fits within"), (0.01, [3, 5], "misses the positions"),
+    (None, [3, 5], "not tested: the repetitions and the model agree exactly"),
+    (None, [3, 0], "not tested: no position was recorded twice")])
+def test_the_fit_statement_follows_the_test(paper, p, df, says):
     # the sentence is generated from the test's numbers: the same calibration with another p
     _, cal, _ = paper
-    test = {**cal.lack_of_fit, "p": p, "f": None if p is None else 4.0}
+    test = {**cal.lack_of_fit, "p": p, "df": df, "f": None if p is None else 4.0}
     changed = dataclasses.replace(cal, lack_of_fit=test)
     assert says in changed.fit_statement
     assert changed.misses_recordings == (p == 0.01)

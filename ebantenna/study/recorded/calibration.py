@@ -271,11 +271,11 @@ class Calibration:
         """What the lack-of-fit test says of the model, generated from its numbers."""
         test = self.lack_of_fit
         if test.get("p") is None:
-            return ("the lack of fit is not tested: " + (
-                "fewer than two recordings at every position, or as many positions as "
-                "parameters" if test.get("f") is None or not test["df"][1] else
-                "the repetitions agree exactly and so does the model")
-                    + "; the intervals take the misfit between positions as random")
+            why = ("the repetitions and the model agree exactly" if min(test.get("df", [0]))
+                   >= 1 else "no position was recorded twice, or there are no more positions "
+                   "than parameters")
+            return (f"the lack of fit is not tested: {why}; the intervals take the misfit "
+                    "between positions as random")
         numbers = (f"lack-of-fit F = {test['f']:.3g} on {test['df'][0]} and {test['df'][1]} "
                    f"degrees of freedom, p = {test['p']:.2g}")
         if not self.misses_recordings:

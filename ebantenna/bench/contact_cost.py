@@ -10,7 +10,7 @@ ratios within a round, the median re-strikes and what each law adds to the linea
 for the whole paper data set (9875 signals) on two cores, perfectly parallel, against the budget
 of 60 s for the whole build. The process caches the probe's reduction at each contact for later
 simulations; the cache is emptied before every timed simulation
-(:func:`~ebantenna.bench._timing.forget_probe_reductions`), so that each law, in each round, pays
+(``forget_probe_reductions`` in ``ebantenna.bench._timing``), so that each law, in each round, pays
 the reductions of its own signals, whichever runs first. (The sample's signals touch nearly as
 many positions as there are signals, 171 for the default 200, so each pays nearly one
 reduction, which the data set's 25 repetitions share: the per-signal cost here is an upper one;

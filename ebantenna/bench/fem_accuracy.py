@@ -9,7 +9,7 @@ first three frequencies against :func:`ebantenna.fem.exact_frequencies` and the 
 contact sweep: the banded and the secular-equation sweeps (with and without the static correction)
 against one position at a time, every row's error over the same 20 positions along the probe.
 
-Every arm is timed with BLAS held to one thread (:func:`ebantenna._threads.limited_threads`; the
+Every arm is timed with BLAS held to one thread (``ebantenna._threads.limited_threads``; the
 table says how many threads BLAS ran on): on a shared machine BLAS's default threads wait for
 each other (a dense solve of 256 elements once measured 4.4 s with OpenBLAS's default threads on
 a shared two-core machine, 0.047 s on one thread). The arms of a table alternate round by round,

@@ -5,7 +5,7 @@ materials, 1 s at 1 kHz) with the ``ideal`` scene plus one effect, then with the
 scene; the ratio column compares each row with the ``ideal`` scene measured in the same run, the
 rows alternating round by round (best of ``repeat`` rounds). Before every timed simulation the
 process's cache of probe reductions is emptied
-(:func:`~ebantenna.bench._timing.forget_probe_reductions`), so that every row with
+(``forget_probe_reductions`` in ``ebantenna.bench._timing``), so that every row with
 ``object_modes`` pays the reduction at each of its contacts, as in a fresh process, wherever it
 stands in the table and in whichever round. Rows are timed in CPU seconds of this process
 (``time.process_time``), which a busy machine disturbs less than wall time. The last lines build

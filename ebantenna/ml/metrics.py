@@ -108,9 +108,9 @@ def accuracy_interval(correct: int, n: int, *, z: float = 1.959963984540054) -> 
     """Wilson score interval of an accuracy of ``correct`` out of ``n`` (95 % for the default z).
 
     Unlike the normal approximation :math:`p \\pm z\\sqrt{p(1-p)/n}`, Wilson's interval stays
-    within [0, 1] and keeps close to its nominal coverage for small ``n`` and for accuracies near
-    0 or 1 (Wilson 1927, *J. Am. Stat. Assoc.* 22:209; Brown, Cai & DasGupta 2001, *Statist.
-    Sci.* 16:101). With :math:`p = k/n`,
+    within [0, 1] and keeps much closer to its nominal coverage for small ``n`` and for
+    accuracies near 0 or 1, though very near them it dips to about 84 % (Wilson 1927, *J. Am.
+    Stat. Assoc.* 22:209; Brown, Cai & DasGupta 2001, *Statist. Sci.* 16:101). With :math:`p = k/n`,
 
     .. math:: \\frac{p + z^2/2n \\pm z\\sqrt{p(1-p)/n + z^2/4n^2}}{1 + z^2/n}.
 

@@ -1107,3 +1107,40 @@ def test_touched_object_assumptions_are_the_codes_defaults():
     assert PreloadScatter().spread == 0.2
     assert "for a room whose temperature varies by 3 °C" in page
     assert SensorDrift().temperature_std == 3.0
+
+
+def test_decay_short_unconfirmed_fit_example_as_stated():
+    # theory/decay.rst: "a clean 5 ms decay at 474 Hz, sampled at 1 kHz, fitted over 18 samples,
+    # came out 109 % long; today the standard error of its rate marks it "noise_limited" before
+    # the span is counted"
+    from ebantenna.signal import fit_decay
+
+    page = " ".join(_page_text("theory/decay.rst").split())
+    assert ("a clean 5 ms decay at 474 Hz, sampled at 1 kHz, fitted over 18 samples, came out "
+            "109 % long; today the standard error of its rate marks it ``\"noise_limited\"`` "
+            "before the span is counted") in page
+    fs = 1000.0
+    t = np.arange(1000) / fs
+    fit = fit_decay(np.exp(-t / 0.005) * np.sin(2 * np.pi * 474 * t), fs)
+    assert fit.status == "noise_limited" and fit.n_points == 18
+    assert round(100 * (fit.tau / 0.005 - 1)) == 109  # to the digit printed
+
+
+def test_wilson_coverage_near_the_ends_as_stated():
+    # theory/uncertainty.rst: Wilson's interval "keeps much closer to its 95 % for small n and for
+    # accuracies near 0 or 1, though not at it: very near 0 or 1 its coverage dips to about
+    # 84 %": its exact coverage, the binomial probability of the counts whose interval holds p,
+    # on a fine grid of p near 0 (by symmetry the same near 1)
+    from scipy.stats import binom
+
+    from ebantenna.ml.metrics import accuracy_interval
+
+    page = _page_text("theory/uncertainty.rst")
+    assert "very near 0 or 1 its coverage dips to about 84 % (Brown, Cai & DasGupta 2001)" in page
+    for n in (10, 20, 50):
+        ends = np.array([accuracy_interval(k, n) for k in range(n + 1)])
+        p = np.linspace(1e-4, 0.2, 4000)
+        holds = (ends[:, :1] <= p) & (p <= ends[:, 1:])
+        coverage = (binom.pmf(np.arange(n + 1)[:, None], n, p) * holds).sum(axis=0)
+        assert abs(coverage.min() - 0.84) <= 0.005, (n, coverage.min())  # "about 84 %"
+        assert coverage[p > 0.1].min() > 0.9  # away from the ends it keeps close to 95 %

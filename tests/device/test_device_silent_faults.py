@@ -11,7 +11,7 @@ import re
 
 import numpy as np
 import pytest
-from rig_truth import true_times_of_values
+from rig_truth import in_wrong_slot, record_ringing, ringing, true_times_of_values
 
 from ebantenna.chips.mpu6050 import Register
 from ebantenna.device import MPU6050, SimulatedRig
@@ -32,48 +32,15 @@ ASKED = 1000
 ROUND_OFF = 1e-9
 
 
-def _ring(seed=0):
-    t = np.arange(3000) / 1000.0
-    rng = np.random.default_rng(seed)
-    ring = 30.0 * np.exp(-t / 0.4) * np.sin(2 * np.pi * 37.0 * t)
-    return ring + rng.normal(0, 0.5, t.size), 0.5 * ring
-
-
 def _record(faults, bus_hz=100e3, seed=0):
-    ax, az = _ring(seed)
-    rig = SimulatedRig.from_arrays(ax, az, fs=1000.0, obstacle=None, faults=faults, seed=seed)
-    rig.bus.bus_hz = bus_hz
-    mpu = MPU6050(rig.bus, clock=rig.clock)
-    mpu.initialize()
-    rig.touch()
-    try:
-        rec = mpu.record(ASKED / 1000.0)
-    except StreamStalledError as exc:
-        rec = exc.recording
-    return rig, mpu, rec
-
-
-def _wrong_each(rig, mpu, rec) -> np.ndarray:
-    """Per kept sample: differs from what the chip put at its place (the ground truth)."""
-    raw = rec.metadata["raw"]
-    epochs = {round(start, 12): k for k, (start, _) in enumerate(rig.mpu.epochs)}
-    truths = {}  # each epoch's samples joined once (a join per sample made a long run quadratic)
-    out = []
-    for seg, pos, counts in zip(raw["segment"], raw["position"], raw["counts_xyz"],
-                                strict=True):
-        k = epochs.get(round(mpu.stream.starts[seg], 12))
-        if k is not None and k not in truths:
-            truths[k] = rig.mpu.truth(k)
-        truth = None if k is None else truths[k]
-        out.append(truth is None or not (pos < len(truth) and list(truth[pos]) == counts))
-    return np.asarray(out, bool)
+    return record_ringing(faults, bus_hz, seed, ASKED)
 
 
 def _judge(rig, mpu, rec, asked=ASKED):
     """The contract, for a run that kept something."""
     kept = mpu.stream.kept(0, asked)
     assert rec.n_samples + rec.metadata["samples_lost"] == asked
-    assert not np.any(_wrong_each(rig, mpu, rec) & ~kept["suspect"])
+    assert not np.any(in_wrong_slot(rig, mpu, rec) & ~kept["suspect"])
     error = np.abs(kept["time"] - rig.true_times(mpu, rec))
     assert np.all((error <= kept["uncertainty"] + ROUND_OFF) | kept["suspect"])
     assert np.all(kept["uncertainty"] > 0)  # no timestamp claims to be exact
@@ -99,7 +66,7 @@ def test_the_write_that_starts_a_segment_is_read_back_whole(mask):
     # I2C_MST_EN (0x20) flipped on as well the segment started, and only the next drain's
     # read-back saw USER_CTRL changed (20 samples discarded, 74 lost). Any stable bit read back
     # wrong now fails the restart, which is tried again: nothing read with the wrong setting.
-    ax, az = _ring()
+    ax, az = ringing()
     rig = SimulatedRig.from_arrays(ax, az, fs=1000.0, obstacle=None, seed=0)
     mpu = MPU6050(rig.bus, clock=rig.clock)
     mpu.initialize()
@@ -123,7 +90,7 @@ def test_the_write_that_starts_a_segment_is_read_back_whole(mask):
 
 
 def test_a_setting_that_never_lands_is_a_clear_error():
-    ax, az = _ring()
+    ax, az = ringing()
     rig = SimulatedRig.from_arrays(ax, az, fs=1000.0, obstacle=None,
                                    faults=Faults(flip_write=((Register.ACCEL_CONFIG, 0x08, 9),)))
     with pytest.raises(SettingError, match=r"ACCEL_CONFIG \(0x1C\) .* reads back 0x10 after "
@@ -219,7 +186,7 @@ def test_a_clone_of_the_mpu6500_family_is_refused_at_once_and_named(bus_hz, capl
     # its FIFO is full at 512 bytes, not a whole number of samples: that count was taken for a
     # foreign read (40 of them), every overflow went uncounted, the rate named was 4.11 kHz
     # and the watchdog ended the run after a second
-    ax, az = _ring()
+    ax, az = ringing()
     rig = SimulatedRig.from_arrays(ax, az, fs=1000.0, obstacle=None,
                                    faults=Faults(clone_6500=True))
     rig.bus.bus_hz = bus_hz
@@ -481,7 +448,7 @@ def _judge_take(rig, mpu, rec) -> int:
     """:func:`_within_stated_uncertainty`, and the unflagged samples one slot late (an
     undetected take, which the device guide lists under "What the driver cannot detect")."""
     kept, _ = _within_stated_uncertainty(rig, mpu, rec)
-    return int(np.sum(_wrong_each(rig, mpu, rec) & ~kept["suspect"]))
+    return int(np.sum(in_wrong_slot(rig, mpu, rec) & ~kept["suspect"]))
 
 
 #: Per half of the forty recordings below: the seeds whose single take went undetected (its
@@ -532,7 +499,7 @@ def test_a_foreign_reader_taking_several_samples_or_part_of_one_is_never_kept_un
         assert sum(k == "foreign read" for _, k in rig.bus.injector.log) == 1
         _judge(rig, mpu, rec)
         assert rig.wrong_samples(mpu, rec) == int(
-            (_wrong_each(rig, mpu, rec) & mpu.stream.kept(0, ASKED)["suspect"]).sum())
+            (in_wrong_slot(rig, mpu, rec) & mpu.stream.kept(0, ASKED)["suspect"]).sum())
 
 
 @pytest.mark.parametrize("kind", ["eio", "short", "late"])
@@ -546,7 +513,7 @@ def test_part_of_a_sample_taken_mid_drain_with_a_failed_transfer_is_never_kept(k
         faults = Faults(drain_reads=((0.755, 2),), error_rate=0.1, kinds=(kind,))
         rig, mpu, rec = _record(faults, 100e3, seed)
         assert rig.wrong_samples(mpu, rec) == int(
-            (_wrong_each(rig, mpu, rec) & mpu.stream.kept(0, ASKED)["suspect"]).sum()) == 0
+            (in_wrong_slot(rig, mpu, rec) & mpu.stream.kept(0, ASKED)["suspect"]).sum()) == 0
         assert rec.n_samples + rec.metadata["samples_lost"] == ASKED
 
 

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from rig_truth import true_times_of_values
+from rig_truth import in_wrong_slot, record_ringing, true_times_of_values
 
 from ebantenna.chips.mpu6050 import ACCEL_SAMPLE_BYTES, FIFO_SIZE, Register
 from ebantenna.device import MPU6050, SimulatedRig
@@ -29,7 +29,6 @@ from ebantenna.device.fifo import FIFO_CHUNK
 from ebantenna.device.i2c import TRANSFER_OVERHEAD, transfer_bits, transfer_time
 from ebantenna.device.mpu6050 import FIFO_MARGIN
 from ebantenna.device.simulated import Faults
-from ebantenna.device.watchdog import StreamStalledError
 
 PAGE = Path(__file__).resolve().parents[2] / "docs" / "user_guide" / "device.rst"
 ASKED = 1000
@@ -42,37 +41,10 @@ def _page_text() -> str:
 
 
 def _record(faults, bus_hz=100e3, seed=0):
-    """A one-second recording of the ringing rig (tests/device/test_device_silent_faults.py)."""
-    t = np.arange(3000) / 1000.0
-    ring = 30.0 * np.exp(-t / 0.4) * np.sin(2 * np.pi * 37.0 * t)
-    x = ring + np.random.default_rng(seed).normal(0, 0.5, t.size)
-    rig = SimulatedRig.from_arrays(x, 0.5 * ring, fs=1000.0, obstacle=None, faults=faults,
-                                   seed=seed)
-    rig.bus.bus_hz = bus_hz
-    mpu = MPU6050(rig.bus, clock=rig.clock)
-    mpu.initialize()
-    rig.touch()
-    try:
-        rec = mpu.record(ASKED / 1000.0)
-    except StreamStalledError as exc:
-        rec = exc.recording
+    """A one-second recording of the ringing rig (``rig_truth.record_ringing``)."""
+    rig, mpu, rec = record_ringing(faults, bus_hz, seed, ASKED)
     assert rec.n_samples + rec.metadata["samples_lost"] == ASKED
     return rig, mpu, rec
-
-
-def _in_wrong_slot(rig, mpu, rec) -> np.ndarray:
-    """Per kept sample: not what the chip put at its place (a take before it went unseen)."""
-    raw = rec.metadata["raw"]
-    epochs = {round(start, 12): k for k, (start, _) in enumerate(rig.mpu.epochs)}
-    truths, out = {}, []
-    for seg, pos, counts in zip(raw["segment"], raw["position"], raw["counts_xyz"],
-                                strict=True):
-        k = epochs.get(round(mpu.stream.starts[seg], 12))
-        if k is not None and k not in truths:
-            truths[k] = rig.mpu.truth(k)
-        truth = None if k is None else truths[k]
-        out.append(truth is None or not (pos < len(truth) and list(truth[pos]) == counts))
-    return np.asarray(out, bool)
 
 
 def _judge(rig, mpu, rec) -> dict:
@@ -89,7 +61,7 @@ def _judge(rig, mpu, rec) -> dict:
         "sole": int(np.sum(unflagged & right
                            & (error > kept["uncertainty_sole_reader"] + ROUND_OFF))),
         "stated": int(np.sum(unflagged & right & (error > kept["uncertainty"] + ROUND_OFF))),
-        "late": int(np.sum(_in_wrong_slot(rig, mpu, rec) & unflagged)),
+        "late": int(np.sum(in_wrong_slot(rig, mpu, rec) & unflagged)),
         "wrong_values": int(np.sum(~right & unflagged)),
         "worst": float(error[right & unflagged].max()) if np.any(right & unflagged) else 0.0,
     }

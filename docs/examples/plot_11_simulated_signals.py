@@ -146,8 +146,12 @@ fig.tight_layout()
 # On the rigid object the strongest bin jumps to the probe's second mode (186.7 Hz): the lowest
 # mode hardly reaches the tip. On the brass rod it lands on the rod's own mode instead. Either way
 # the dominant frequency leaves the lowest mode beyond the peak of the lowest frequency in zone 2
-# (0.884 L with the tip mass), which is the jump in the paper's distance data; where it lands
-# depends on what the probe touched. On the brass rod it leaves with some seeds already at 0.8 L.
+# (0.884 L with the tip mass), 35.4 cm from the hinge of the 40 cm probe; where it lands depends
+# on what the probe touched. On the brass rod it leaves with some seeds already at 0.8 L. The
+# paper's distance data leave their straight line earlier, at 29.5 cm (0.74 L): about where zone 2
+# begins with the tip mass (0.741 L, printed above), not where the simulated lowest frequency
+# peaks. The bare tube's peak, 0.783 L (:class:`~ebantenna.simulate.effects.TipMass`), lies
+# nearer the paper's.
 #
 # sphinx_gallery_thumbnail_number = 2
 plt.show()

@@ -166,15 +166,16 @@ def search_bins(fmin: float, fmax: float, df: float) -> tuple[int, int]:
 def clipped_mask(x: np.ndarray) -> np.ndarray:
     """Skip a saturated accelerometer: the samples in flat runs at the signal's maximum or minimum.
 
-    A flat run is two or more neighbouring samples within 1e-9 of the signal's range of its
-    largest or smallest value.
+    A flat run is two or more neighbouring samples all within 1e-9 of the signal's range of its
+    largest value, or all within it of its smallest: a sample at the maximum beside one at the
+    minimum (a tone near the Nyquist frequency) is no run.
     """
     tol = 1e-9 * float(np.ptp(x))
-    at_extreme = (x >= x.max() - tol) | (x <= x.min() + tol)
-    run = at_extreme[1:] & at_extreme[:-1]
-    mask = np.zeros_like(at_extreme)
-    mask[1:] |= run
-    mask[:-1] |= run
+    mask = np.zeros(x.shape, dtype=bool)
+    for at_extreme in (x >= x.max() - tol, x <= x.min() + tol):
+        run = at_extreme[1:] & at_extreme[:-1]
+        mask[1:] |= run
+        mask[:-1] |= run
     return mask
 
 

@@ -20,15 +20,22 @@ from ._checks import MAX_FFT, check_fs, check_signal
 __all__ = ["resultant_acceleration", "norm_spectrum", "fft_features"]
 
 
-def _pair(ax, az):
-    """Return ``(ax, az, fs or None)`` from a :class:`Recording` or two arrays."""
+def _pair(ax, az, fs=None):
+    """Return ``(ax, az, fs or None)`` from a :class:`Recording` or two arrays (and ``fs``).
+
+    With a Recording, ``az`` must be omitted and ``fs``, when given, must be the recording's own:
+    another rate would silently rescale every frequency.
+    """
     if isinstance(ax, Recording):
         if az is not None:
             raise TypeError("az must not be given together with a Recording")
+        if fs is not None and check_fs(fs) != ax.fs:
+            raise ValueError(f"fs must be the Recording's own sampling frequency, {ax.fs:g} Hz, "
+                             f"or be omitted; got {fs:g} Hz")
         return np.asarray(ax.ax), np.asarray(ax.az), ax.fs
     if az is None:
         raise TypeError("az is required unless ax is a Recording")
-    return ax, az, None
+    return ax, az, fs
 
 
 def resultant_acceleration(ax, az=None) -> np.ndarray:
@@ -70,7 +77,8 @@ def norm_spectrum(ax, az=None, fs=None, *, n_fft=None, remove_mean: bool = False
     ax, az : arrays of shape (n,), or a Recording as ``ax``
         Accelerations, m/s^2.
     fs : float
-        Sampling frequency, Hz (taken from the recording when one is given).
+        Sampling frequency, Hz. Taken from the recording when one is given: omit it then (another
+        value than the recording's raises a ValueError).
     n_fft : int, optional
         FFT length: the signals are cut or zero-padded to it (default ``n``).
     remove_mean : bool
@@ -94,8 +102,8 @@ def norm_spectrum(ax, az=None, fs=None, *, n_fft=None, remove_mean: bool = False
     >>> float(f[np.argmax(mag)]), round(float(mag.max()), 6)
     (50.0, 5.0)
     """
-    ax, az, rec_fs = _pair(ax, az)
-    fs = check_fs(rec_fs if fs is None else fs)
+    ax, az, fs = _pair(ax, az, fs)
+    fs = check_fs(fs)
     ax = check_signal("ax", ax)
     az = check_signal("az", az)
     if ax.shape != az.shape:

@@ -217,11 +217,14 @@ def paper_filter(kind: str, order=None, *, fs=None) -> np.ndarray:
     kind : {"chebyshev", "elliptic"}
         Which table.
     order : int or None or "stated"
-        ``None`` (default): the order the table needs (13 and 8); ``"stated"``: the "second order"
-        of the paper's text, which does not meet the table (see the module notes).
+        ``None`` (default): the smallest order that meets the table at ``fs``
+        (:func:`filter_order`): 13 and 8 at the tables' 1000 Hz, 13 and 9 at 2 kHz, 14 and 9 at
+        10 kHz; ``"stated"``: the "second order" of the paper's text, which does not meet the
+        table (see the module notes).
     fs : float, optional
         Sampling frequency, Hz; default the tables' 1000 Hz. The band edges in Hz stay the same, and
-        must lie below ``fs / 2``.
+        must lie below ``fs / 2``: ``fs`` above 330 Hz for Table 1 and above 660 Hz for Table 2,
+        twice their highest stop-band edges.
 
     Returns
     -------
@@ -239,7 +242,7 @@ def paper_filter(kind: str, order=None, *, fs=None) -> np.ndarray:
     >>> check_specification(paper_filter("chebyshev", "stated"), PAPER_FILTERS["chebyshev"]).meets
     False """
     check_choice("kind", kind, tuple(PAPER_FILTERS))
-    spec = PAPER_FILTERS[kind] if fs is None else PAPER_FILTERS[kind].at(fs)
+    spec = PAPER_FILTERS[kind] if fs is None else PAPER_FILTERS[kind].at(_table_rate(kind, fs))
     with np.errstate(all="ignore"):  # a design too far below fs is refused just below
         sos = _designed(spec, order)
         fails = fs is not None and order is None and not (np.all(np.isfinite(sos))
@@ -250,6 +253,20 @@ def paper_filter(kind: str, order=None, *, fs=None) -> np.ndarray:
             "sampling frequency does not meet the table (its band edges are too small a fraction "
             "of fs); filter at a lower sampling frequency")
     return sos.copy()
+
+
+def _table_rate(kind: str, fs) -> float:
+    """``fs`` (Hz) checked for the table of ``kind``: all its band edges below ``fs / 2``.
+
+    The caller gave ``fs`` alone, so the error names ``fs``, not the table's stop band.
+    """
+    fs = check_fs(fs)
+    edge = PAPER_FILTERS[kind].stopband[1]
+    if not edge < fs / 2.0:
+        raise ValueError(f"fs must exceed {2 * edge:g} Hz, twice the highest band edge of the "
+                         f"{kind} table ({edge:g} Hz, which must lie below fs/2 = {fs / 2:g} Hz); "
+                         f"got {fs:g} Hz")
+    return fs
 
 
 @functools.lru_cache(maxsize=32)

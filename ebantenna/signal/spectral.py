@@ -9,12 +9,14 @@
    :func:`jacobsen_offset`).
 
 :func:`peak_frequencies` shares steps 1 and 3 and picks several peaks in step 2
-(:func:`local_maxima`, :func:`strongest_separated`). The arguments are validated once, by the two
-public functions; the steps take checked values. The numerical guards (an exact power-of-two
-scaling against overflow, the slack of a band edge on a bin) and the search for a short transient
-that ``transient=True`` asks for live in the private module ``ebantenna/signal/_guards.py``, each
-explained there. By default the whole record is analysed and the frequency returned lies in the
-search band ``[fmin, fmax]``.
+(:func:`local_maxima`, :func:`strongest_separated`). Each step checks its own arguments, so that
+called on its own it answers bad input with an error naming the parameter. The two public
+functions validate theirs once and then run the steps' unchecked cores (the private functions of
+the same names with a leading underscore), so that nothing is checked twice. The numerical
+guards (an exact power-of-two scaling against overflow, the slack of a band edge on a bin) and
+the search for a short transient that ``transient=True`` asks for live in the private module
+``ebantenna/signal/_guards.py``, each explained there. By default the whole record is analysed
+and the frequency returned lies in the search band ``[fmin, fmax]``.
 
 The plain estimate is the frequency of the largest FFT bin; its error is up to half a bin, ``fs / (2
 n)`` (0.5 Hz for one second of data). Two interpolating estimators refine it from the peak bin and
@@ -54,7 +56,7 @@ __all__ = [
     "peak_frequencies",
     "FREQUENCY_METHODS",
     "WINDOWS",
-    # the steps of the reference; they take checked arguments
+    # the steps of the reference; each checks its own arguments
     "windowed_spectrum",
     "window_weights",
     "strongest_bin",
@@ -134,16 +136,23 @@ def dominant_frequency(
     then depends on the record, so the choice is the caller's: by default every sample is.
 
     **Accuracy.** For a clean damped tone :math:`e^{-t/\\tau}\\sin(2\\pi f t + \\phi)` plus any
-    offset (checked for :math:`\\tau` from a tenth of the record to 10 s on the whole record, and
-    from 5 ms with ``transient=True``, offsets up to 10 g, 1 s at 1 kHz) the
-    Jacobsen estimate with the Hann window is within :math:`0.15/(2\\pi\\tau) + 0.01 f_s/n` of
-    :math:`f`, provided the tone is at least its half-bandwidth plus six bins,
-    :math:`1/(2\\pi\\tau) + 6 f_s/n`, away from 0 and from :math:`f_s/2` (closer, its peak merges
-    with its mirror image and is not :math:`f` any more). With ``transient=True`` the band
-    searched starts at :math:`2 f_s/m`, ``m`` the samples of the part analysed, so the tone must
-    also lie its half-bandwidth above that: below, the band's edge is returned (a 28 Hz tone with
-    :math:`\\tau` = 8 ms gives 33.3 Hz). Values of ``x`` from 1e-300 to 1e308 are
-    scaled by a power of two (exact) before the FFT.
+    offset (checked for offsets up to 10 g, 1 s at 1 kHz) the Jacobsen estimate with the Hann
+    window is within :math:`0.15/(2\\pi\\tau) + 0.01 f_s/n` of :math:`f`, provided the tone is at
+    least its half-bandwidth plus six bins, :math:`1/(2\\pi\\tau) + 6 f_s/n`, away from 0 and
+    from :math:`f_s/2` (closer, its peak merges with its mirror image and is not :math:`f` any
+    more). On the whole record this is checked for :math:`\\tau` from a tenth of the record to
+    10 s. With ``transient=True`` a decay found as a transient is analysed on its ``m`` samples
+    alone, whose bins are wider, :math:`f_s/m`: checked from :math:`\\tau` = 5 ms, the tone must
+    then also be its half-bandwidth plus two of these bins,
+    :math:`1/(2\\pi\\tau) + 2 f_s/m`, away from 0 and from :math:`f_s/2`. Nearer 0, the band
+    searched, which starts at :math:`2 f_s/m`, returns its edge (a 28 Hz tone with
+    :math:`\\tau` = 8 ms gives 33.3 Hz); nearer :math:`f_s/2`, the peak merges with its mirror
+    (466 Hz with :math:`\\tau` = 6 ms and :math:`\\phi` = 4.47, ``m`` = 45, gives 470.3 Hz). A
+    decay too long to be found as a transient (:math:`\\tau` from about 70 ms in a one-second
+    record) is analysed whole, where the statement needs :math:`\\tau` from a tenth of the
+    record: in between, a tone near 0 can be lost (9 Hz with :math:`\\tau` = 80 ms gives 1 Hz,
+    the band's edge). Values of ``x`` from 1e-300 to 1e308 are scaled by a power of two (exact)
+    before the FFT.
 
     Examples
     --------
@@ -161,14 +170,15 @@ def dominant_frequency(
     """
     x, fs, zero_pad, fmin, fmax = _checked_arguments(x, fs, method, window, zero_pad, fmin,
                                                      fmax, remove_mean, transient)
-    spectrum, part = windowed_spectrum(x, fs, window, zero_pad, fmin, fmax, remove_mean,
-                                       transient)
+    # the steps, checked above once: their unchecked cores
+    spectrum, part = _windowed_spectrum(x, fs, window, zero_pad, fmin, fmax, remove_mean,
+                                        transient)
     magnitude = np.abs(spectrum)
-    k = strongest_bin(magnitude, part.lo, part.hi)
+    k = _strongest_bin(magnitude, part.lo, part.hi)
     if magnitude[k] == 0.0:
         raise ValueError("x has no energy in the search band [fmin, fmax]")
-    return part.in_band(interpolated_frequency(spectrum, k, fs, part.n, method, window,
-                                               part.zero_pad))
+    return part.in_band(_interpolated_frequency(spectrum, k, fs, part.n, method, window,
+                                                part.zero_pad))
 
 
 def _checked_arguments(x, fs, method, window, zero_pad, fmin, fmax, remove_mean, transient):
@@ -181,11 +191,18 @@ def _checked_arguments(x, fs, method, window, zero_pad, fmin, fmax, remove_mean,
     :func:`~ebantenna.signal._guards.analysed_part`); the band is checked with the start
     ``fs / n``. ``fmax=None`` becomes the Nyquist frequency.
     """
+    _check_method_window(method, window)
+    return _checked_spectrum(x, fs, window, zero_pad, fmin, fmax, remove_mean, transient)
+
+
+def _check_method_window(method, window) -> None:
+    """Refuse an unknown ``method`` or ``window``, and Jacobsen's estimator with a window it has
+    no factor ``P`` for."""
     check_choice("method", method, FREQUENCY_METHODS)
     if method == "jacobsen" and window not in ("hann", "rectangular"):
         check_choice("window", window, WINDOWS)
         raise ValueError(f"method 'jacobsen' needs window 'hann' or 'rectangular', got {window!r}")
-    return _checked_spectrum(x, fs, window, zero_pad, fmin, fmax, remove_mean, transient)
+    check_choice("window", window, WINDOWS)
 
 
 def _checked_spectrum(x, fs, window, zero_pad, fmin, fmax, remove_mean, transient):
@@ -219,8 +236,7 @@ def windowed_spectrum(x, fs, window, zero_pad, fmin, fmax, remove_mean, transien
     The textbook steps, behind a numerical guard: ``x`` is first scaled by a power of two
     (exact) so that the FFT's sums cannot overflow near 1e308. With ``transient=True`` a short
     transient is analysed on its own part of the record (see the notes of
-    :func:`dominant_frequency`). Takes checked arguments (as :func:`dominant_frequency` returns
-    them after validation).
+    :func:`dominant_frequency`). Checks its arguments as :func:`dominant_frequency` does.
 
     Returns
     -------
@@ -240,6 +256,11 @@ def windowed_spectrum(x, fs, window, zero_pad, fmin, fmax, remove_mean, transien
     """
     x, fs, zero_pad, fmin, fmax = _checked_spectrum(x, fs, window, zero_pad, fmin, fmax,
                                                     remove_mean, transient)
+    return _windowed_spectrum(x, fs, window, zero_pad, fmin, fmax, remove_mean, transient)
+
+
+def _windowed_spectrum(x, fs, window, zero_pad, fmin, fmax, remove_mean, transient):
+    """:func:`windowed_spectrum` of checked arguments (as :func:`_checked_spectrum` returns)."""
     x, _ = unit_scaled(x)
     part = analysed_part(x, fs, zero_pad, fmin, fmax, transient)
     y = x[part.samples]
@@ -247,7 +268,7 @@ def windowed_spectrum(x, fs, window, zero_pad, fmin, fmax, remove_mean, transien
         # a transient's baseline is the level outside it, the median of the whole record (its
         # own mean would leave a step)
         y = y - (np.median(x) if part.is_transient else y.mean())
-    return np.fft.rfft(y * window_weights(window, part.n), n=part.n_fft), part
+    return np.fft.rfft(y * _window_weights(window, part.n), n=part.n_fft), part
 
 
 def window_weights(window: str, n: int) -> np.ndarray:
@@ -262,6 +283,11 @@ def window_weights(window: str, n: int) -> np.ndarray:
     check_choice("window", window, WINDOWS)
     n = check_int("n", n, minimum=1)
     check_allocation(8 * n, parameter="n", what="the window's weights")
+    return _window_weights(window, n)
+
+
+def _window_weights(window: str, n: int) -> np.ndarray:
+    """:func:`window_weights` of a known window and a checked ``n``."""
     return np.ones(n) if window == "rectangular" else get_window(window, n, fftbins=True)
 
 
@@ -275,7 +301,12 @@ def strongest_bin(magnitude: np.ndarray, lo: int, hi: int) -> int:
     >>> strongest_bin(np.array([9.0, 1.0, 4.0, 2.0]), 1, 3)  # the search band leaves out bin 0
     2
     """
-    lo, hi = _band_of("magnitude", magnitude, lo, hi)
+    magnitude, lo, hi = _band_of(magnitude, lo, hi)
+    return _strongest_bin(magnitude, lo, hi)
+
+
+def _strongest_bin(magnitude: np.ndarray, lo: int, hi: int) -> int:
+    """:func:`strongest_bin` of checked arguments."""
     return lo + int(np.argmax(magnitude[lo : hi + 1]))
 
 
@@ -285,7 +316,8 @@ def interpolated_frequency(spectrum, k, fs, n, method, window, zero_pad) -> floa
     ``method="bin"`` gives the bin's own frequency ``k fs / (n zero_pad)``; ``"parabolic"`` and
     ``"jacobsen"`` move it by the offset of :func:`parabolic_offset` or :func:`jacobsen_offset`.
     At the ends of the spectrum, where a neighbour is missing, the bin's frequency is returned.
-    Takes checked arguments.
+    ``spectrum`` is finite and 1-D, complex for ``"jacobsen"`` (which reads the phases); ``k``
+    is one of its bins; ``fs`` > 0; ``n`` and ``zero_pad`` >= 1.
 
     Examples
     --------
@@ -297,8 +329,17 @@ def interpolated_frequency(spectrum, k, fs, n, method, window, zero_pad) -> floa
     >>> round(interpolated_frequency(spectrum, 10, 64.0, n, "jacobsen", "hann", 1), 6)
     10.25
     """
-    check_choice("method", method, FREQUENCY_METHODS)
-    check_choice("window", window, WINDOWS)
+    _check_method_window(method, window)
+    spectrum = _spectrum_of("spectrum", spectrum, phases=method == "jacobsen")
+    k = check_int("k", k, minimum=0, maximum=spectrum.shape[0] - 1)
+    fs = check_fs(fs)
+    n = check_int("n", n, minimum=1)
+    zero_pad = check_int("zero_pad", zero_pad, minimum=1)
+    return _interpolated_frequency(spectrum, k, fs, n, method, window, zero_pad)
+
+
+def _interpolated_frequency(spectrum, k, fs, n, method, window, zero_pad) -> float:
+    """:func:`interpolated_frequency` of checked arguments."""
     df = fs / (n * zero_pad)
     # Jacobsen's neighbours are one unpadded bin (zero_pad padded bins) away on either side: the
     # derivation holds about any reference frequency, so it is exact on a padded grid too.
@@ -306,8 +347,8 @@ def interpolated_frequency(spectrum, k, fs, n, method, window, zero_pad) -> floa
     if method == "bin" or k - step < 0 or k + step > spectrum.shape[0] - 1:
         return float(k * df)
     if method == "parabolic":
-        return float((k + parabolic_offset(spectrum, k)) * df)
-    return float(k * df + jacobsen_offset(spectrum, k, step, window) * fs / n)
+        return float((k + _parabolic_offset(spectrum, k)) * df)
+    return float(k * df + _jacobsen_offset(spectrum, k, step, window) * fs / n)
 
 
 def parabolic_offset(spectrum: np.ndarray, k: int) -> float:
@@ -315,7 +356,8 @@ def parabolic_offset(spectrum: np.ndarray, k: int) -> float:
 
     ``delta = (L[k-1] - L[k+1]) / (2 (L[k-1] - 2 L[k] + L[k+1]))`` with ``L = log |X|``: exact
     for a Gaussian-shaped peak. Guards: a zero magnitude is read as the smallest normal float
-    (its log is finite), a flat top gives 0, and the offset is clipped to one bin.
+    (its log is finite), a flat top gives 0, and the offset is clipped to one bin. ``spectrum``
+    (complex or a magnitude) is finite and 1-D.
 
     Examples
     --------
@@ -325,7 +367,13 @@ def parabolic_offset(spectrum: np.ndarray, k: int) -> float:
     >>> round(parabolic_offset(np.exp(-((bins - 2.3) ** 2)), 2), 12)  # a Gaussian peak at 2.3
     0.3
     """
-    k = check_int("k", k, minimum=1, maximum=np.shape(spectrum)[0] - 2)  # both neighbours
+    spectrum = _spectrum_of("spectrum", spectrum, min_length=3)
+    k = check_int("k", k, minimum=1, maximum=spectrum.shape[0] - 2)  # both neighbours
+    return _parabolic_offset(spectrum, k)
+
+
+def _parabolic_offset(spectrum: np.ndarray, k: int) -> float:
+    """:func:`parabolic_offset` of checked arguments."""
     lm = np.log(np.maximum(np.abs(spectrum[k - 1 : k + 2]), np.finfo(float).tiny))
     curvature = lm[0] - 2.0 * lm[1] + lm[2]
     delta = 0.0 if curvature == 0.0 else 0.5 * (lm[0] - lm[2]) / curvature
@@ -337,7 +385,8 @@ def jacobsen_offset(spectrum: np.ndarray, k: int, step: int, window: str) -> flo
 
     ``delta = P Re[(X[k-s] - X[k+s]) / (2 X[k] - X[k-s] - X[k+s])]`` with the neighbours ``s =
     step`` padded bins away, ``P = 2`` for the Hann window and ``P = 1`` for the rectangular one.
-    Guards: a zero denominator gives 0, and the offset is clipped to one bin.
+    Guards: a zero denominator gives 0, and the offset is clipped to one bin. ``spectrum`` is
+    complex (the estimator reads its phases), finite and 1-D; ``window`` is one of these two.
 
     Examples
     --------
@@ -349,12 +398,18 @@ def jacobsen_offset(spectrum: np.ndarray, k: int, step: int, window: str) -> flo
     >>> round(jacobsen_offset(spectrum, 50, 1, "hann"), 9)  # Hann: exact as n grows
     0.4
     """
-    check_choice("window", window, WINDOWS)
-    k = check_int("k", k, minimum=0, maximum=np.shape(spectrum)[0] - 1)
+    check_choice("window", window, ("hann", "rectangular"))
+    spectrum = _spectrum_of("spectrum", spectrum, min_length=3, phases=True)
+    k = check_int("k", k, minimum=0, maximum=spectrum.shape[0] - 1)
     step = check_int("step", step, minimum=1)
-    if k - step < 0 or k + step > np.shape(spectrum)[0] - 1:
+    if k - step < 0 or k + step > spectrum.shape[0] - 1:
         raise ValueError(f"k must be at least step = {step} bins from either end of the "
-                         f"spectrum ({np.shape(spectrum)[0]} bins), got {k}")
+                         f"spectrum ({spectrum.shape[0]} bins), got {k}")
+    return _jacobsen_offset(spectrum, k, step, window)
+
+
+def _jacobsen_offset(spectrum: np.ndarray, k: int, step: int, window: str) -> float:
+    """:func:`jacobsen_offset` of checked arguments."""
     a, b, c = spectrum[k - step], spectrum[k], spectrum[k + step]
     scale = 2.0 if window == "hann" else 1.0
     denominator = 2.0 * b - a - c
@@ -424,29 +479,59 @@ def peak_frequencies(
                                               transient)
     if min_separation is not None:
         min_separation = check_positive("min_separation", min_separation)
-    spectrum, part = windowed_spectrum(x, fs, window, 1, fmin, fmax, remove_mean, transient)
+    # the steps, checked above once: their unchecked cores
+    spectrum, part = _windowed_spectrum(x, fs, window, 1, fmin, fmax, remove_mean, transient)
     separation = 4.0 * fs / part.n if min_separation is None else min_separation
     magnitude = np.abs(spectrum)
-    candidates = local_maxima(magnitude, part.lo, part.hi)
-    chosen = strongest_separated(magnitude, candidates, n_peaks, separation, fs / part.n_fft)
+    candidates = _local_maxima(magnitude, part.lo, part.hi)
+    chosen = _strongest_separated(magnitude, candidates, n_peaks, separation, fs / part.n_fft)
     if len(chosen) < n_peaks:
         raise ValueError(
             f"x holds only {len(chosen)} spectral peak(s) at least {separation:g} Hz apart in the "
             f"search band; n_peaks={n_peaks} requested"
         )
-    freqs = [part.in_band(interpolated_frequency(spectrum, k, fs, part.n, method, window,
-                                                 part.zero_pad)) for k in chosen]
+    freqs = [part.in_band(_interpolated_frequency(spectrum, k, fs, part.n, method, window,
+                                                  part.zero_pad)) for k in chosen]
     return np.sort(np.array(freqs))
 
 
-def _band_of(name: str, magnitude, lo, hi) -> tuple[int, int]:
-    """``(lo, hi)`` if they are bins of ``magnitude`` with ``lo <= hi``, else an error."""
-    size = np.shape(magnitude)[0] if np.ndim(magnitude) == 1 else 0
-    if size == 0:
-        raise ValueError(f"{name} must be a non-empty 1-D spectrum, got shape "
-                         f"{np.shape(magnitude)}")
+def _spectrum_of(name: str, spectrum, min_length: int = 1, phases: bool = False) -> np.ndarray:
+    """``spectrum`` as a finite 1-D array, complex (an FFT) or, unless the ``phases`` are needed,
+    real (a magnitude), else an error naming ``name``."""
+    if isinstance(spectrum, np.ma.MaskedArray):
+        return check_array(name, spectrum)  # refused, saying why
+    try:
+        is_complex = np.iscomplexobj(spectrum)
+    except (TypeError, ValueError):  # a ragged list: check_array says what is wrong
+        is_complex = False
+    if not is_complex and phases:
+        kind = getattr(spectrum, "dtype", type(spectrum).__name__)
+        raise TypeError(f"{name} must be a complex spectrum (the estimator reads its phases), "
+                        f"got {kind}")
+    if not is_complex:
+        return check_array(name, spectrum, ndim=1, min_length=min_length)
+    spectrum = np.asarray(spectrum, dtype=np.complex128)
+    check_array(name, spectrum.real, ndim=1, min_length=min_length)
+    if not np.all(np.isfinite(spectrum.imag)):
+        raise ValueError(f"{name} must contain only finite values (no NaN or inf)")
+    return spectrum
+
+
+def _magnitude_of(magnitude) -> np.ndarray:
+    """``magnitude`` as a finite 1-D float array of values >= 0, else an error naming it."""
+    magnitude = check_array("magnitude", magnitude, ndim=1)
+    if np.any(magnitude < 0):
+        raise ValueError("magnitude must be a magnitude spectrum (values >= 0)")
+    return magnitude
+
+
+def _band_of(magnitude, lo, hi) -> tuple[np.ndarray, int, int]:
+    """``(magnitude, lo, hi)`` if ``magnitude`` is a magnitude spectrum and ``lo <= hi`` are
+    bins of it, else an error."""
+    magnitude = _magnitude_of(magnitude)
+    size = magnitude.shape[0]
     lo = check_int("lo", lo, minimum=0, maximum=size - 1)
-    return lo, check_int("hi", hi, minimum=lo, maximum=size - 1)
+    return magnitude, lo, check_int("hi", hi, minimum=lo, maximum=size - 1)
 
 
 def local_maxima(magnitude: np.ndarray, lo: int, hi: int) -> np.ndarray:
@@ -461,7 +546,12 @@ def local_maxima(magnitude: np.ndarray, lo: int, hi: int) -> np.ndarray:
     >>> local_maxima(np.array([0.0, 3.0, 1.0, 5.0, 5.0, 2.0]), 0, 5)
     array([3, 1])
     """
-    lo, hi = _band_of("magnitude", magnitude, lo, hi)
+    magnitude, lo, hi = _band_of(magnitude, lo, hi)
+    return _local_maxima(magnitude, lo, hi)
+
+
+def _local_maxima(magnitude: np.ndarray, lo: int, hi: int) -> np.ndarray:
+    """:func:`local_maxima` of checked arguments."""
     band = magnitude[lo : hi + 1]
     inner = (band[1:-1] > band[:-2]) & (band[1:-1] >= band[2:])
     candidates = lo + 1 + np.flatnonzero(inner)
@@ -484,9 +574,7 @@ def strongest_separated(magnitude, candidates, n_peaks: int, separation: float,
     >>> strongest_separated(magnitude, np.array([1, 2, 4]), 2, 2.0, 1.0)  # bin 2 is too close
     [1, 4]
     """
-    magnitude = check_array("magnitude", magnitude, ndim=1)
-    if np.any(magnitude < 0):
-        raise ValueError("magnitude must be a magnitude spectrum (values >= 0)")
+    magnitude = _magnitude_of(magnitude)
     candidates = np.asarray(candidates)
     if candidates.ndim != 1 or (candidates.size and candidates.dtype.kind not in "iu"):
         raise TypeError(f"candidates must be a 1-D array of bin indices, got "
@@ -496,6 +584,11 @@ def strongest_separated(magnitude, candidates, n_peaks: int, separation: float,
     n_peaks = check_int("n_peaks", n_peaks, minimum=1)
     separation = check_positive("separation", separation)
     df = check_positive("df", df)
+    return _strongest_separated(magnitude, candidates, n_peaks, separation, df)
+
+
+def _strongest_separated(magnitude, candidates, n_peaks, separation, df) -> list[int]:
+    """:func:`strongest_separated` of checked arguments."""
     chosen: list[int] = []
     for k in candidates:
         if magnitude[k] > 0.0 and all(abs(k - j) * df >= separation for j in chosen):

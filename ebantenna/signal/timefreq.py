@@ -9,7 +9,7 @@ Spectrogram
     transformed.
     Amplitude scaling: ``2 |X| / sum(w)``, so a steady sinusoid of amplitude ``A`` on a bin gives a
     ridge of height ``A``; between two bins the ridge is lower, down to 0.85 ``A`` (Hann) or
-    0.65 ``A`` (rectangular) half a bin off. Resolution is fixed: ``fs / nperseg`` in
+    0.64 ``A`` (rectangular, about 2/pi) half a bin off. Resolution is fixed: ``fs / nperseg`` in
     frequency, ``nperseg / fs`` in time.
 
 Morlet scalogram

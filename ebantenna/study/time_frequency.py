@@ -145,8 +145,9 @@ def profile_sentence(ratios, shares, times, step: float = 0.0) -> str:
     True
     >>> text = profile_sentence([0.25, 0.5, 0.9], [0.8, 0.5, 0.4], [0.7, 0.3, 0.67], 0.032)
     >>> text[text.index("ms after"):]
-    'ms after the strongest frame (time step 32 ms): sooner than at 0.25 L at 0.50 L, not at \
-0.90 L, so the shorter life the paper describes towards the tip shows at some positions only.'
+    'ms after the strongest frame (time step 32 ms): sooner than at 0.25 L by more than one \
+time step (32 ms) at 0.50 L, not so at 0.90 L, so the shorter life the paper describes towards \
+the tip shows at some positions only; one simulated brass recording per position.'
     """
     where = [f"{r:.2f} L" for r in ratios]
     first, later = where[0], where[1:]
@@ -166,7 +167,8 @@ def profile_sentence(ratios, shares, times, step: float = 0.0) -> str:
         f"{listed(percent(v) for v in shares)} of the energy, {share_words}; 90 % of it has "
         f"arrived {listed(f'{1000 * t:.0f}' for t in times)} ms after the strongest frame"
         + (f" (time step {1000 * step:.0f} ms)" if step else "")
-        + f": {_time_words(first, later, times, step)}."
+        + f": {_time_words(first, later, times, step)}; one simulated brass recording per "
+        "position."
     )
 
 
@@ -179,7 +181,8 @@ def _time_words(first: str, later, times, step: float) -> str:
     if len(sooner) == len(later):
         return f"sooner at every later position than at {first}, as the paper describes"
     if sooner:
-        return (f"sooner than at {first} at {listed(sooner)}, not at "
+        by = f" by more than one time step ({1000 * step:.0f} ms)" if step else ""
+        return (f"sooner than at {first}{by} at {listed(sooner)}, not{' so' if step else ''} at "
                 f"{listed(w for w in later if w not in sooner)}, so the shorter life the paper "
                 "describes towards the tip shows at some positions only")
     if not late:

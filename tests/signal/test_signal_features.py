@@ -98,3 +98,16 @@ def test_resultant_of_rows_is_the_resultant_of_each_row():
     rows = resultant_acceleration(ax, az)
     for i in range(3):
         np.testing.assert_array_equal(rows[i], resultant_acceleration(ax[i], az[i]))
+
+
+def test_norm_spectrum_refuses_an_fs_other_than_the_recordings():
+    # A 50 Hz tone in a 1 kHz recording: another fs would move its peak (to 100 Hz at 2 kHz).
+    t = np.arange(1000) / 1000.0
+    rec = Recording(t, np.sin(2 * np.pi * 50 * t), np.zeros(1000), fs=1000.0)
+    with pytest.raises(ValueError, match="^fs must be the Recording's own"):
+        norm_spectrum(rec, fs=2000.0)
+    with pytest.raises(TypeError, match="^fs"):
+        norm_spectrum(rec, fs="1000")
+    for fs in (None, 1000.0, 1000):  # omitted or the recording's own: the same spectrum
+        f, mag = norm_spectrum(rec, fs=fs)
+        assert f[np.argmax(mag)] == 50.0

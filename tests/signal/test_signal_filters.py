@@ -154,3 +154,31 @@ def test_designs_are_cached_but_never_shared():
     a = paper_filter("chebyshev")
     a[0, 0] = 123.0
     assert paper_filter("chebyshev")[0, 0] != 123.0
+
+
+def test_the_default_order_is_the_tables_at_the_given_fs():
+    # paper_filter's docstring: 13 and 8 at 1 kHz, 13 and 9 at 2 kHz, 14 and 9 at 10 kHz; each
+    # the smallest order that meets the table there (one less does not).
+    stated = {1000.0: (13, 8), 2000.0: (13, 9), 10000.0: (14, 9)}
+    for fs, orders in stated.items():
+        for kind, order in zip(("chebyshev", "elliptic"), orders, strict=True):
+            spec = PAPER_FILTERS[kind].at(fs)
+            assert len(paper_filter(kind, fs=fs)) == order
+            assert check_specification(paper_filter(kind, order, fs=fs), spec).meets
+            assert not check_specification(paper_filter(kind, order - 1, fs=fs), spec).meets
+
+
+def test_an_fs_too_low_for_the_table_is_named_fs():
+    # The caller gave fs alone: the error names fs and says how high it must be (twice the
+    # highest stop-band edge), through paper_filter and through band_passed_decay.
+    from ebantenna.signal import band_passed_decay
+
+    x = np.exp(-np.arange(600) / 60.0) * np.sin(2 * np.pi * 0.2 * np.arange(600))
+    for kind, lowest in (("chebyshev", 330.0), ("elliptic", 660.0)):
+        for fs in (lowest / 2, lowest):
+            message = rf"^fs must exceed {lowest:g} Hz.*fs/2 = {fs / 2:g} Hz\); got {fs:g} Hz"
+            with pytest.raises(ValueError, match=message):
+                paper_filter(kind, fs=fs)
+            with pytest.raises(ValueError, match=message):
+                band_passed_decay(x, fs, kind=kind)
+        assert len(paper_filter(kind, fs=lowest + 10.0)) >= 1  # just above: designed

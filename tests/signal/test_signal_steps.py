@@ -301,6 +301,15 @@ def test_clipped_mask_against_its_definition():
     assert clipped_mask(x).tolist() == expected
 
 
+def test_a_maximum_beside_a_minimum_is_no_flat_run():
+    # a tone near the Nyquist frequency swings from one extreme to the other in one sample
+    assert not clipped_mask(np.array([0.0, 0.3, 1.0, -1.0, 0.2, 0.0])).any()
+    fs, f, tau = 1000.0, 494.0, 0.02
+    t = np.arange(1000) / fs
+    for phase in np.linspace(0.0, np.pi, 12, endpoint=False):
+        assert not clipped_mask(np.exp(-t / tau) * np.sin(2 * np.pi * f * t + phase)).any()
+
+
 def test_decay_region_leaves_out_the_edges_the_clipping_and_the_noise_tail():
     fs, n = 1000.0, 1000
     t = np.arange(n) / fs

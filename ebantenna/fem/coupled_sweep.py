@@ -18,6 +18,7 @@ from .._validate import check_array, check_int, real_array
 from ..probe import Probe
 from ._parallel import map_on_cores
 from .coupling import Rod, coupled_modes, craig_bampton, probe_substructure, rod_substructure
+from .guards import check_contact, check_resolvable
 
 __all__ = ["CoupledSweep", "coupled_sweep"]
 
@@ -92,17 +93,23 @@ def coupled_sweep(
     >>> sweep.frequencies[1, 1].round(1)  # pvc rod, contact at 0.2 m
     array([23. , 62.1])
     """
+    if not isinstance(probe, Probe):
+        raise TypeError(f"probe must be a Probe, got {type(probe).__name__}")
     rods = _check_rods(rods)
     contacts = check_array("contacts", contacts, ndim=1)
+    for contact in contacts:  # checked here, so that the error names the caller's parameters
+        check_contact("contacts", float(contact), probe.length)
     n_modes = check_int("n_modes", n_modes, minimum=1)
     k_c = _stiffness_table(contact_stiffness, len(rods), contacts.size)
+    rod_elements = check_resolvable(rod_elements, "rod_elements")
     reduced_rods = [
-        craig_bampton(rod_substructure(rod, n_elements=rod_elements), rod_modes) for rod in rods
+        _reduced(rod_substructure(rod, n_elements=rod_elements), rod_modes, "rod_modes")
+        for rod in rods
     ]
 
     def one_position(j):
         sub = probe_substructure(probe, float(contacts[j]), hinge=hinge, n_elements=n_elements)
-        p = craig_bampton(sub, probe_modes)
+        p = _reduced(sub, probe_modes, "probe_modes")
         out = []
         for i, (rod, r) in enumerate(zip(rods, reduced_rods, strict=True)):
             res = coupled_modes(
@@ -125,6 +132,12 @@ def coupled_sweep(
         for i, (fi, zi, ti) in enumerate(per_rod):
             f[i, j], z[i, j], tip[i, j] = fi, zi, ti
     return CoupledSweep(rods, contacts, f, z, tip)
+
+
+def _reduced(sub, kept, name: str):
+    """:func:`~ebantenna.fem.coupling.craig_bampton` of ``sub`` keeping ``kept`` modes, checked
+    under the caller's ``name`` (at most the substructure's interior DOFs, its size less one)."""
+    return craig_bampton(sub, check_int(name, kept, minimum=0, maximum=sub.stiffness.shape[0] - 1))
 
 
 def _check_rods(rods) -> tuple:

@@ -13,14 +13,17 @@ and ``K + s M = L L^T``,
 
 and the *largest* ``mu`` belong to the lowest modes, so they come out with full relative
 accuracy. The shift keeps ``K + s M`` positive definite even for a free (unsupported) probe,
-whose rigid-body mode then has ``omega = 0`` instead of a NaN. Small meshes are solved densely,
-large ones with sparse shift-invert Lanczos (:func:`scipy.sparse.linalg.eigsh`), the same idea.
+whose rigid-body mode then has ``omega = 0`` instead of a NaN. (Rounding moves a zero eigenvalue
+by up to about ``eps * omega_max^2`` either way; one below zero by more than the solve can round
+means ``K`` was not semi-definite, and is refused.) Small meshes are solved densely, large ones
+with sparse shift-invert Lanczos (:func:`scipy.sparse.linalg.eigsh`), the same idea.
 
 That is still not enough on very fine meshes: the assembled ``K`` itself is only known to
 rounding, and ``K phi`` for a smooth mode is a fourth difference that cancels to a relative
-``eps / (beta h)^4`` (about 2e-5 at 2048 elements). So the eigenvalues are finally refined by the
-Rayleigh quotient ``omega^2 = U(phi) / T(phi)`` with the strain energy summed from the element
-*curvatures* (a second difference, ``eps / (beta h)^2``, about 1e-10) instead of ``phi^T K phi``.
+``eps / (beta h)^4`` (about 1.6e-4 at 2048 elements with the contact at 0.2 L, where
+``beta h = 1.1e-3``). So the eigenvalues are finally refined by the Rayleigh quotient
+``omega^2 = U(phi) / T(phi)`` with the strain energy summed from the element *curvatures* (a
+second difference, ``eps / (beta h)^2``, about 2e-10) instead of ``phi^T K phi``.
 A Rayleigh quotient is stationary at an eigenvector, so the eigenvector's own error enters squared.
 """
 
@@ -36,6 +39,8 @@ import scipy.sparse.linalg as spla
 
 from .._validate import check_array, check_choice, check_int, check_positive, real_array
 from ..probe import Probe
+from ._rounding import floored as _floored
+from ._rounding import rounding as _rounding
 from .assembly import (
     ASSEMBLY_ENGINES,
     Supports,
@@ -43,9 +48,10 @@ from .assembly import (
     assemble,
     beam_mesh,
     contact_node,
+    free_dofs,
     support_diagonals,
 )
-from .elements import bending_energy, hermite, hermite_slope
+from .elements import bending_energy, consistent_mass, hermite, hermite_slope
 from .guards import check_contact, check_memory
 
 __all__ = [
@@ -63,8 +69,10 @@ __all__ = [
 #: and the textbook ``scipy.linalg.eigh(K, M)`` kept to show what it loses.
 EIGEN_SOLVERS = ("auto", "dense", "sparse", "naive")
 
-#: Above this many free DOFs, ``solver="auto"`` goes sparse (where shift-invert Lanczos on the
-#: banded matrices overtakes the dense solve: about 100 elements, see benchmarks/fem_accuracy.py).
+#: Above this many free DOFs (the size of ``K`` once the supports are applied), ``solver="auto"``
+#: goes sparse, in :func:`solve_modes` and :func:`modal_analysis` alike (where shift-invert Lanczos
+#: on the banded matrices overtakes the dense solve: about 100 elements, see
+#: benchmarks/fem_accuracy.py).
 DENSE_LIMIT = 200
 
 
@@ -85,16 +93,16 @@ def eigenvalue_shift(beam: Probe) -> float:
 
 
 def clip_eigenvalues(lam: np.ndarray, shift: float) -> np.ndarray:
-    """Eigenvalues ``omega^2`` (1/s^2) floored at zero; raise if one is truly negative.
+    """Eigenvalues ``omega^2`` (1/s^2) floored at zero; raise below ``-1e-8 shift``.
 
-    Rounding can leave a rigid-body eigenvalue a hair below zero (``|lam| ~ eps * shift``); below
-    ``-1e-8 shift`` the stiffness was not semi-definite.
+    A guard for eigenvalues that cannot come out negative but by far less than ``1e-8 shift``:
+    Rayleigh quotients of strain energies (never negative) and the secular equation's roots
+    (above the eigenvalues without the contact, themselves such quotients). An inverted solve
+    rounds a zero eigenvalue by up to about ``eps * omega_max^2`` instead, far more on a fine
+    mesh; :func:`solve_modes` holds its eigenvalues to a bound from its own ``K`` and ``M``.
     """
     lam = real_array("lam", lam)
-    tiny = 1e-8 * check_positive("shift", shift)
-    if np.any(lam < -tiny):
-        raise np.linalg.LinAlgError(f"negative eigenvalue {lam.min():g}: K is not semi-definite")
-    return np.maximum(lam, 0.0)
+    return _floored(lam, 1e-8 * check_positive("shift", shift))
 
 
 def solve_modes(K, M, n_modes: int, *, shift: float, solver: str = "auto"):
@@ -136,18 +144,7 @@ def solve_modes(K, M, n_modes: int, *, shift: float, solver: str = "auto"):
         lam, phi = sla.eigh(K, M, subset_by_index=[0, n_modes - 1])
         return np.maximum(lam, 0.0), phi
     if solver == "dense":
-        L = sla.cholesky(K + shift * M, lower=True)
-        X = sla.solve_triangular(L, M, lower=True)
-        B = sla.solve_triangular(L, X.T, lower=True)
-        mu, Y = sla.eigh((B + B.T) / 2, subset_by_index=[n - n_modes, n - 1])
-        mu, Y = mu[::-1], Y[:, ::-1]
-        # mu = 1 / (omega^2 + shift) is resolved only down to the rounding of the largest one,
-        # n eps mu_max: below it (a mode stiffer than the arithmetic can see, e.g. a nearly rigid
-        # substructure) it may even come out negative. Such modes are floored there: finite,
-        # normalised, with omega^2 at least 1 / (n eps mu_max).
-        mu = np.maximum(mu, n * np.finfo(float).eps * mu[0])
-        phi = sla.solve_triangular(L, Y, lower=True, trans="T") / np.sqrt(mu)
-        return clip_eigenvalues(1.0 / mu - shift, shift), phi
+        return _inverted_dense(K, M, n_modes, shift)
     # Sparse shift-invert Lanczos about -shift; a fixed start vector makes it deterministic.
     lam, phi = spla.eigsh(
         K.tocsc(), k=n_modes, M=M.tocsc(), sigma=-shift, which="LM", v0=np.ones(n), tol=0
@@ -155,7 +152,26 @@ def solve_modes(K, M, n_modes: int, *, shift: float, solver: str = "auto"):
     order = np.argsort(lam)
     lam, phi = lam[order], phi[:, order]
     phi = phi / np.sqrt(np.einsum("ik,ik->k", phi, M @ phi))
-    return clip_eigenvalues(lam, shift), phi
+    return _floored(lam, _rounding(K + shift * M, shift, lam, phi)), phi
+
+
+def _inverted_dense(K: np.ndarray, M: np.ndarray, n_modes: int, shift: float):
+    """The dense inverted solve of :func:`solve_modes`: ``(lam, phi)`` of the lowest modes."""
+    n = K.shape[0]
+    A = K + shift * M
+    L = sla.cholesky(A, lower=True)
+    X = sla.solve_triangular(L, M, lower=True)
+    B = sla.solve_triangular(L, X.T, lower=True)
+    mu, Y = sla.eigh((B + B.T) / 2, subset_by_index=[n - n_modes, n - 1])
+    mu, Y = mu[::-1], Y[:, ::-1]
+    # mu = 1 / (omega^2 + shift) is resolved only down to the rounding of the largest one,
+    # n eps mu_max: below it (a mode stiffer than the arithmetic can see, e.g. a nearly rigid
+    # substructure) it may even come out negative. Such modes are floored there: finite,
+    # normalised, with omega^2 at least 1 / (n eps mu_max).
+    mu = np.maximum(mu, n * np.finfo(float).eps * mu[0])
+    phi = sla.solve_triangular(L, Y, lower=True, trans="T") / np.sqrt(mu)
+    lam = 1.0 / mu - shift
+    return _floored(lam, _rounding(A, shift, lam, phi)), phi
 
 
 @dataclass(frozen=True, eq=False)
@@ -239,13 +255,17 @@ class ModalResult:
 
         Close to 1 for a mode in which the overhang swings like a cantilever on the contact, close
         to 0 for one in which the span between hinge and contact vibrates (Fig. 17 of the paper).
+        The energy is summed over the overhang's own elements and the tip mass: the global mass
+        matrix's entries at the contact node also hold the span's last element.
         """
         if self.supports.contact is None:
             raise ValueError("overhang_mass_fraction needs a contact (supports.contact is None)")
         c = contact_node(self.nodes, self.supports.contact)
-        part = self.shapes[2 * c :]
-        M = self.mass_matrix[2 * c :, 2 * c :]  # dense or sparse alike
-        return np.einsum("im,im->m", part, M @ part)
+        overhang = np.arange(c, self.nodes.size - 1)  # the elements from the contact to the tip
+        mass = consistent_mass(self.probe.mass_per_length, np.diff(self.nodes)[overhang])
+        local = self.shapes[2 * overhang[:, None] + np.arange(4)]  # (elements, 4, n_modes)
+        energy = np.einsum("eam,eab,ebm->m", local, mass, local)
+        return energy + self.probe.tip_mass * self.shapes[-2] ** 2  # phi^T M phi = 1 in all
 
     @property
     def dominant_mode(self) -> int:
@@ -290,8 +310,9 @@ def modal_analysis(
         :func:`~ebantenna.fem.assembly.assemble`: ``"loop"`` the reference (the element matrices
         written out, added one by one), ``"scatter"`` (default) the engine; the same matrices,
         hence the same modes, bit for bit. The loop builds dense matrices, so it takes a dense
-        solve: with ``solver="sparse"``, or ``"auto"`` on more than :data:`DENSE_LIMIT` DOFs
-        (100 elements or more), it is refused.
+        solve: with ``solver="sparse"``, or ``"auto"`` on more than :data:`DENSE_LIMIT` free
+        DOFs (101 elements or more; 100 when only the hinge's deflection is fixed, a hinge that
+        is not clamped and no rigid contact), it is refused.
 
     Returns
     -------
@@ -313,7 +334,8 @@ def modal_analysis(
         check_contact("contact", supports.contact, probe.length)
     check_choice("assembly", assembly, ASSEMBLY_ENGINES)
     nodes = beam_mesh(probe.length, supports.contact, n_elements)
-    use_sparse = solver == "sparse" or (solver == "auto" and 2 * nodes.size > DENSE_LIMIT)
+    n_free = free_dofs(nodes, supports).size  # the size solve_modes compares with DENSE_LIMIT
+    use_sparse = solver == "sparse" or (solver == "auto" and n_free > DENSE_LIMIT)
     if use_sparse and assembly == "loop":
         raise ValueError(
             f"assembly='loop' builds dense matrices, but solver={solver!r} solves {n_elements} "

@@ -10,7 +10,9 @@ engines solve a whole array of positions as a batch, with no Python loop per pos
   ``O(n)``, then the Rayleigh quotients from the element curvatures; as accurate as
   :func:`~ebantenna.fem.modal.modal_analysis`;
 - ``"dense"``: the dense inverted solve of :func:`~ebantenna.fem.modal.solve_modes` with batched
-  LAPACK calls, ``O(n^3)`` per position (:func:`dense_sweep`);
+  LAPACK calls, ``O(n^3)`` per position (:func:`dense_sweep`), without the Rayleigh quotients'
+  refinement: a mode far below the mesh's highest (a soft spring's on a fine mesh) is known
+  only to the solve's rounding, of the order ``eps omega_max^2``;
 - ``"secular"`` (:mod:`~ebantenna.fem.secular`): one modal analysis without the contact, then
   the roots of a secular equation per position.
 
@@ -29,6 +31,7 @@ from .._validate import check_array, check_choice, check_int
 from ..probe import Probe
 from ._assembly_engine import mass_polynomial, scatter, stiffness_polynomial
 from ._parallel import map_on_cores
+from ._rounding import floored, rounding
 from .assembly import Supports, beam_mesh, free_dofs, support_diagonals
 from .banded import BANDED_MAX_MODES, MAX_LANCZOS_STEPS, banded_sweep
 from .guards import check_contact, check_memory, check_resolvable
@@ -237,7 +240,8 @@ def dense_sweep(
     """Lowest ``n_modes`` frequencies (Hz) at each contact by batched dense solves, (n, n_modes).
 
     The inverted solve of :func:`~ebantenna.fem.modal.solve_modes`, one LAPACK call for the whole
-    batch: ``K + s M = L L^T``, the eigenvalues ``mu`` of ``L^-1 M L^-T``, ``omega^2 = 1/mu - s``.
+    batch: ``K + s M = L L^T``, the eigenpairs of ``L^-1 M L^-T``, ``omega^2 = 1/mu - s``, floored
+    at zero within the rounding bound of that solve (the eigenvectors give it).
     Inputs are trusted (the public entry is :func:`natural_frequencies`); ``supports`` gives the
     hinge and the contact's stiffness, its ``contact`` is replaced by each of ``contacts``.
     """
@@ -258,9 +262,16 @@ def dense_sweep(
     K = K[rows, keep[:, :, None], keep[:, None, :]]
     M = M[rows, keep[:, :, None], keep[:, None, :]]
     shift = eigenvalue_shift(probe)
-    L = np.linalg.cholesky(K + shift * M)
+    A = K + shift * M
+    L = np.linalg.cholesky(A)
     X = np.linalg.solve(L, M)
     Bm = np.linalg.solve(L, np.swapaxes(X, 1, 2))  # L^-1 M L^-T
-    mu = np.linalg.eigvalsh((Bm + np.swapaxes(Bm, 1, 2)) / 2)[:, ::-1][:, :n_modes]
-    lam = clip_eigenvalues(1.0 / mu - shift, shift)
+    mu, Y = np.linalg.eigh((Bm + np.swapaxes(Bm, 1, 2)) / 2)
+    mu, Y = mu[:, ::-1][:, :n_modes], Y[:, :, ::-1][:, :, :n_modes]
+    phi = np.linalg.solve(np.swapaxes(L, 1, 2), Y) / np.sqrt(mu)[:, None, :]
+    lam = 1.0 / mu - shift
+    # floored where rounding may leave a (nearly) rigid mode below zero, the bound of the
+    # single solve (``fem/_rounding.py``), member by member
+    lam = np.stack([floored(lam[b], rounding(A[b], shift, lam[b], phi[b]))
+                    for b in range(lam.shape[0])])
     return np.sqrt(lam) / (2 * math.pi)

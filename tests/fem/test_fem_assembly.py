@@ -90,9 +90,10 @@ def test_modal_analysis_refuses_an_unknown_assembly_or_a_sparse_loop():
         modal_analysis(Probe(), Supports(0.2), assembly="magic")
     with pytest.raises(ValueError, match=r"assembly='loop' builds dense matrices.*'sparse'"):
         modal_analysis(Probe(), Supports(0.2), n_elements=16, solver="sparse", assembly="loop")
+    # clamped hinge and rigid contact fix 3 DOFs: 101 elements leave 201 free, above DENSE_LIMIT
     with pytest.raises(ValueError, match=r"assembly='loop' builds dense matrices.*'auto'"):
-        modal_analysis(Probe(), Supports(0.2), n_elements=100, assembly="loop")
-    # one element fewer stays dense under solver="auto", and the loop is taken
-    res = modal_analysis(Probe(), Supports(0.2), n_elements=99, assembly="loop")
+        modal_analysis(Probe(), Supports(0.2), n_elements=101, assembly="loop")
+    # one element fewer (199 free DOFs) stays dense under solver="auto", and the loop is taken
+    res = modal_analysis(Probe(), Supports(0.2), n_elements=100, assembly="loop")
     assert np.array_equal(res.frequencies,
-                          modal_analysis(Probe(), Supports(0.2), n_elements=99).frequencies)
+                          modal_analysis(Probe(), Supports(0.2), n_elements=100).frequencies)

@@ -46,5 +46,5 @@ def test_stiffness_per_rod_and_position_and_bad_shapes():
         coupled_sweep(PROBE, rods, contacts, -1.0)
     with pytest.raises(ValueError, match="rods must hold at least one Rod"):
         coupled_sweep(PROBE, [], contacts, 1e5)
-    with pytest.raises(ValueError, match=r"contact must lie in \(0, 0.4\)"):
+    with pytest.raises(ValueError, match=r"contacts must lie in \(0, 0.4\)"):
         coupled_sweep(PROBE, rods, np.array([0.5]), 1e5)

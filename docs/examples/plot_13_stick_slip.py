@@ -75,18 +75,20 @@ bottom.legend(fontsize="small")
 fig.tight_layout()
 
 # %%
-# The contact point slides for a fraction of a millisecond, sticks, and slips briefly again
-# while the force it takes to hold the probe swings past the limit. From then on it holds, and
+# The contact point slides for a fraction of a millisecond, sticks, and slips briefly twice
+# more (the events printed above: at 1.588 and 2.537 ms, each for less than 0.2 ms) while the
+# force it takes to hold the probe swings past the limit. From then on it holds, and
 # Z's peaks move from the free probe's frequencies to the pinned probe's: in the simulator, with
 # friction the Z axis, too, tells where the probe touched.
 #
 # Whether Z would also tell the material, this example cannot show. The simulator takes the rod as
 # rigid along its axis and gives every material one pair of friction coefficients (0.45 for both,
-# the middle of the range the handbook tables give for Plexiglas on steel; they give none for the
-# other four) and one preload, so in the model the Z axis does not depend on what was touched: at
-# this contact and seed the five materials give the same Z signal, sample for sample (printed
-# below). That is the model's assumption, not a finding about the rig: a real rod's give along its
-# axis, or friction that differs from material to material, could make Z differ.
+# the middle of the range 0.4-0.5 that Autodesk Inventor's table of friction factors for bolted
+# connections gives for Plexiglas on steel; no value was found for the other four) and one
+# preload, so in the model the Z axis does not depend on what was touched: at this contact and
+# seed the five materials give the same Z signal, sample for sample (printed below).
+# That is the model's assumption, not a finding about the rig: a real rod's give along its axis,
+# or friction that differs from material to material, could make Z differ.
 names = material_names()
 for name in names:
     other = builtin_scene("paper").with_(contact=contact, material=name)

@@ -8,9 +8,11 @@ coordinates ``z`` (:class:`.unilateral.LinearState`), so a block of ``m`` steps 
 event lies ahead is read from those values (:func:`read_ahead`); where a bound shows that no
 event can happen over a longer span (a settled contact, :func:`stays_positive`), the span is
 read at the output samples only (:func:`samples`). Only the step that holds an event is taken
-through the law's ``advance``. The same events and, up to the rounding of the propagation, the
-same signals as the reference; this is the default because it costs about one matrix product
-per block instead of a propagation per step.
+through the law's ``advance``. Away from the tip it finds the same events as the reference and,
+up to the rounding of the propagation, the same signals; near the tip, where a strike chatters,
+the event sequence follows the last bits and the two marches can part (see
+:mod:`~ebantenna.simulate.unilateral`, "Reference and engine"). It is the default because it
+costs about one matrix product per block instead of a propagation per step.
 
 Each state carries the engine's tables in its attribute ``blocks`` (:class:`BlockTables`, set by
 :func:`prepare_blocks` when the march starts: the reference march needs none). What the engine

@@ -101,7 +101,11 @@ class DatasetDesign:
     position_error : float
         Standard deviation of the realised contact position about the nominal one, m.
     position_grid : float
-        Grid the realised position is rounded to, m.
+        Grid the realised position is rounded to, m (> 0). It must leave each nominal position,
+        rounded to it, a grid point of its own at least one grid step inside the probe (checked
+        by :meth:`contacts`, which knows the probe's length): so about no coarser than the
+        nominal positions' spacing and the first one's distance from the hinge, and below half
+        the probe's length.
     speed_spread, tilt_spread : float
         Log-normal sigmas of the sweep speed and of the tilt ratio, dimensionless.
 
@@ -159,7 +163,9 @@ class DatasetDesign:
             raise ValueError(
                 f"first_contact must lie on the probe (< {length:g} m), got {self.first_contact!r}"
             )
-        return np.round(nominal, 6)
+        nominal = np.round(nominal, 6)
+        _check_grid(self.position_grid, nominal, length)
+        return nominal
 
     def to_dict(self) -> dict:
         """The design as plain JSON values."""
@@ -167,6 +173,23 @@ class DatasetDesign:
             f.name: list(v) if isinstance(v := getattr(self, f.name), tuple) else v
             for f in fields(self)
         }
+
+
+def _check_grid(grid: float, nominal: np.ndarray, length: float) -> None:
+    """Refuse a ``position_grid`` that would move or merge the ``nominal`` positions (m) on a
+    probe of ``length`` (m): rounded to the grid, each must keep a grid point of its own within
+    ``[grid, length - grid]``, the band the realised positions are kept in."""
+    on_grid = np.round(np.round(nominal / grid) * grid, 9)
+    low, high = round(grid, 9), round(length - grid, 9)
+    outside = np.flatnonzero((on_grid < low) | (on_grid > high))
+    if outside.size or np.unique(on_grid).size < on_grid.size:
+        i = outside[0] if outside.size else 0
+        what = (f"rounds the nominal {nominal[i]:g} m to {on_grid[i]:g} m, outside [{low:g}, "
+                f"{high:g}] m" if outside.size else "rounds two nominal positions to one point")
+        raise ValueError(
+            f"position_grid must leave every nominal contact position a grid point of its own at "
+            f"least one grid step inside the {length:g} m probe; got {grid!r} m, which {what}"
+        )
 
 
 @dataclass(frozen=True, eq=False)

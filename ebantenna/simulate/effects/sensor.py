@@ -29,19 +29,30 @@ from ._base import Effect, check_rng, check_samples
 
 @dataclass(frozen=True)
 class ClockJitter(Effect):
-    """Sample-clock jitter of the acquisition loop.
+    """Jitter of the instants at which the samples are taken.
 
-    The Raspberry Pi polls the sensor from a user-space loop, so sample ``n`` is taken at
-    ``n / fs + e_n`` instead of ``n / fs``, while the recording still assigns it the nominal time.
-    The offsets ``e_n`` are independent, normal, with standard deviation ``rms``; the continuous
-    signals (modal response, gravity, hum) are evaluated exactly at the jittered instants.
+    **What it models.** Sample ``n`` is taken at ``n / fs + e_n`` instead of ``n / fs``, while
+    the recording still assigns it the nominal time. The offsets ``e_n`` are independent, normal,
+    with standard deviation ``rms``; the continuous signals (modal response, gravity, hum) are
+    evaluated exactly at the jittered instants, a stepped one (a contact law's) by
+    :func:`read_through_dlpf`. The MPU6050 takes its samples on its own clock: it writes its
+    data registers at the Sample Rate (RM 25 and 59-64), so a moved sampling instant is jitter of
+    the chip's sample clock (its oscillator and divider), which the register map does not
+    specify. **Assumption:** that jitter, independent from sample to sample, of size ``rms``.
     Simplification: the sensor's own filter then runs on these samples as if they were regular.
+
+    **What it does not model.** The host's timing: a Raspberry Pi whose user-space loop polls
+    the data registers late or early does not move the sampling instant; each poll reads the
+    last sample the chip wrote, so the host's jitter shows as a sample read twice (a repeat) or
+    never (a skip). Repeats and skips are the device layer's concern (:mod:`ebantenna.device`),
+    not this effect's.
 
     Parameters
     ----------
     rms : float
-        Standard deviation of the sampling instants, s. Default 50 us: an assumption, the order of
-        the scheduling latency of a Linux user-space loop without real-time priority.
+        Standard deviation of the sampling instants, s. Default 50 us: an assumption, no figure
+        of the chip's; it is the order of the scheduling latency of a Linux user-space loop
+        without real-time priority, a host's figure kept as the size of the jitter.
 
     Examples
     --------
@@ -283,14 +294,20 @@ class LowPassFilter(Effect):
     decimation, so whatever the DLPF lets through above ``fs / 2`` *aliases*: a mode at
     ``f > fs / 2`` appears at ``|f - m fs|`` with the DLPF's gain at ``f``.
 
-    The register map gives only the bandwidth of each DLPF setting, not the filter. Assumptions,
-    named here once: the filter is a second-order Butterworth low-pass with that -3 dB
-    frequency, discretised at the internal rate (its zeros then lie at the internal Nyquist
-    frequency, far above the band, not at ``fs / 2``); the internal rate is 8 kHz, the rate of
-    the same chip's gyroscope path with the filter off (RM 25; the accelerometer's own internal
-    rate is not published). The filter starts settled on the signal's level before the contact
-    (gravity only), as the sensor was running before. Default bandwidth 260 Hz: DLPF_CFG = 0, the
-    power-on value of register 26.
+    The register map gives each DLPF setting's bandwidth and delay (RM 26,
+    :data:`ebantenna.chips.mpu6050.DLPF`), not the filter; it counts DLPF_CFG = 0 as the filter
+    disabled (RM 25), yet lists 260 Hz and 0 ms for the accelerometer there. Assumptions, named
+    here once: the filter is a second-order Butterworth low-pass with that -3 dB frequency,
+    discretised at the internal rate (its zeros then lie at the internal Nyquist frequency, far
+    above the band, not at ``fs / 2``); the internal rate is 8 kHz, the rate of the same chip's
+    gyroscope path with the filter off (RM 25; the accelerometer's own internal rate is not
+    published). The model matches each setting's bandwidth (its gain there is 1/sqrt(2)) but not
+    its delay: its group delay at 0 Hz is 0.86, 1.22, 2.39, 5.11, 10.72, 22.51 and 45.02 ms for
+    DLPF_CFG 0 to 6, against the register map's 0, 2.0, 3.0, 4.9, 8.5, 13.8 and 19.0 ms
+    (``scipy.signal.group_delay`` of ``sos`` at the internal rate; the register map does not
+    say how it defines its delay). The filter starts settled on the signal's level before the
+    contact (gravity only), as the sensor was running before. Default bandwidth 260 Hz:
+    DLPF_CFG = 0, the power-on value of register 26.
 
     The simulator does not sample the modal response at the internal rate and filter it: a sum
     of damped exponentials stays one through a linear filter, so the modal sum reads this
@@ -386,8 +403,11 @@ def read_through_dlpf(dlpf, acc, rate, when) -> np.ndarray:
     fixed rate (:func:`~ebantenna.simulate.strikes.timed_rate`): the filter's internal rate
     when the chain has a :class:`LowPassFilter` (the ``chip_filter`` of
     :class:`~ebantenna.simulate.simulator.SignalBatch`). It is filtered there
-    (:meth:`LowPassFilter.apply_internal`) and read at the sample times by linear interpolation,
-    which is exact at whole internal samples: the chip's register holds such samples.
+    (:meth:`LowPassFilter.apply_internal`) and read at the sample times by linear interpolation
+    between the internal samples. At whole internal samples (the nominal times, without
+    :class:`ClockJitter`) this is exact; between them (jittered times) it is the chord between
+    the two neighbouring filtered samples, an approximation of the filtered signal at that
+    instant.
 
     Parameters
     ----------
@@ -612,7 +632,9 @@ class SteadyStateKalman(Effect):
     ``y_n = y_(n-1) + K (z_n - y_(n-1))``, where ``K = s / (s + 1)``, ``s = (rho + sqrt(rho^2 +
     4 rho)) / 2`` and ``rho = q / r`` solve the Riccati equation. It starts settled on the level
     before the contact. The paper gives no tuning; ``rho = 1`` (``K = 0.618``, -3 dB at fs/6) is an
-    assumption that keeps its analysis band (60-160 Hz) mostly intact.
+    assumption. Across its analysis band (60-160 Hz) at fs = 1 kHz it passes 0.936 of the
+    amplitude (-0.57 dB) at 60 Hz and 0.720 (-2.85 dB) at 160 Hz, its -3 dB frequency being
+    166.7 Hz (the magnitude of ``K / (1 - (1 - K) e^(-i w))``).
 
     Parameters
     ----------

@@ -119,13 +119,24 @@ def controls_lines(summary: dict) -> list[str]:
     paired = summary["materials"]["controls_paired"]
     rows = []
     for name, p in paired.items():
+        label = name.replace("ablation:", "switched off: ")
+        if p.get("identical"):
+            rows.append([label, _alike(p), "nothing to resolve", "-"])
+            continue
         lo, hi = (points(v).split()[0] for v in p["ci95"])
-        rows.append([name.replace("ablation:", "switched off: "),
-                     f"{points(p['difference'])} ({lo} to {hi})",
+        rows.append([label, f"{points(p['difference'])} ({lo} to {hi})",
                      "yes" if p["resolved"] else "no",
                      points(p["detectable_difference_80"]).lstrip("+")])
     return _table(["comparison", "paired difference (95 % interval on the position)",
                    "resolved", "detectable at 80 % power"], rows)
+
+
+def _alike(pair: dict) -> str:
+    """A paired comparison whose two conditions count as many right in every cluster (its
+    ``identical``): said so, with no interval, verdict or detectable difference."""
+    units = pair["n_units"]
+    return (f"none: as many test recordings right under both in each of the {units} "
+            f"{pair['unit']}{'s' if units != 1 else ''}")
 
 
 def sensitivity_lines(summary: dict) -> list[str]:
@@ -137,7 +148,8 @@ def sensitivity_lines(summary: dict) -> list[str]:
         rows.append([
             f"{r['diameter_mm']:.0f}", f"{r['free_length_mm']:.0f}",
             cell(r, "svm_grouped_accuracy"),
-            "(the scene's rod)" if against is None else points(against["difference"])
+            "(the scene's rod)" if against is None else _alike(against)
+            if against.get("identical") else points(against["difference"])
             + (" (resolved)" if against["resolved"] else " (not resolved)"),
             cell(r, "mode_curve_grouped_accuracy"),
             " / ".join(r["closest_materials"]), f"{r['second_mode_gap_hz']:.2f}"])
@@ -160,8 +172,20 @@ def ann_budget_lines(summary: dict) -> list[str]:
     if long is not None:
         rows.append(["no validation stop", f"{long['lr']:g}",
                      f"{long['epochs'][-1]} ({long['max_epochs']})", long["stopped_by"], "-",
-                     cell(long, "test_accuracy")])
+                     _long_test(long)])
     return _table(["run", "step", "epochs (cap)", "stopped by", "final loss", "test"], rows)
+
+
+def _long_test(long: dict) -> str:
+    """The long run's test cell: where it stopped at the first checkpoint whose test accuracy
+    reached the paper's, that epoch and the accuracy there, picked on the test rows and so
+    given no test interval; otherwise its last checkpoint's accuracy with its interval."""
+    reached = long.get("reached_paper_test_epoch")
+    if reached is None or reached != long["epochs"][-1]:
+        return cell(long, "test_accuracy")
+    return (f"first reaches the paper's {percent(long['paper_value'])} at epoch {reached} "
+            f"({percent(long['test_accuracy'])} there, picked on the test rows: no test "
+            "interval)")
 
 
 def _lookup(summary: dict, dotted: str):
@@ -179,7 +203,8 @@ def value_text(summary: dict, text: str) -> str:
     (:func:`~ebantenna.paper.uncertainty.percent`), ``span`` an interval's ends, ``acc`` an
     accuracy's cell (``KEY`` the accuracy's name: its ``_n_test``, ``_unit``, ``_n_units`` and
     ``_ci95`` beside it), ``pair`` a paired comparison with its verdict (``KEY`` an entry of
-    ``controls_paired`` or the like), anything else a format specification."""
+    ``controls_paired`` or the like), ``sqrtFORMAT`` the square root in ``FORMAT``, anything
+    else a format specification."""
     key, _, spec = text.partition("|")
     if spec == "acc":
         parent, _, name = key.rpartition(".")
@@ -189,10 +214,13 @@ def value_text(summary: dict, text: str) -> str:
         return percent(value)
     if spec == "span":
         return span(value)
+    if spec.startswith("sqrt"):  # the square root, in the format that follows
+        return format(value ** 0.5, spec[4:])
     if spec == "pair":
+        if value.get("identical"):
+            return f"({_alike(value).removeprefix('none: ')}: no difference to resolve)"
         lo, hi = (points(v).split()[0] for v in value["ci95"])
-        verdict = ("unchanged" if value.get("identical") else
-                   f"resolved, {value['direction']}" if value["resolved"] else
+        verdict = (f"resolved, {value['direction']}" if value["resolved"] else
                    "not resolved; detectable at 80 % power: "
                    + points(value["detectable_difference_80"]).lstrip("+"))
         return f"{points(value['difference'])} (95 % CI {lo} to {hi}; {verdict})"

@@ -18,7 +18,7 @@ about as much as ``n / deff`` independent recordings, where ``deff`` is the desi
 * :class:`PairedDifference`: two conditions on the same recordings compared recording by
   recording, the difference's interval on the clusters, whether it is resolved, and the
   smallest difference the design detects at 80 % power (:func:`minimal_detectable_difference`,
-  by resampling the design).
+  by simulating the design with that difference added as recordings that change outcome).
 
 Every accuracy the study writes to ``summary.json`` goes through :func:`clustered_entries`
 (training accuracies through :func:`training_entries`, which give no interval); every number
@@ -32,6 +32,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from scipy.stats import binom, norm
 from scipy.stats import t as student_t
 
 from .._validate import check_array, check_bool, check_in_range, check_int, check_real, describe
@@ -790,7 +791,11 @@ class PairedDifference:
     when that interval leaves out zero.
 
     ``detectable`` is the minimal detectable difference at 80 % power of this design
-    (:func:`minimal_detectable_difference`).
+    (:func:`minimal_detectable_difference`): the smallest true change, simulated as recordings
+    that change outcome in the resampled clusters, that this interval resolves in 80 % of
+    repeats. It is positive even when both conditions classify every recording alike (a few
+    recordings must change before a change is resolved), and it is a lower bound on what the
+    design detects when real changes come clustered (the simulated ones are independent).
 
     With ``by_fold`` the clusters are the folds of a split whose unit is the fold (the blocked
     split), and the accuracies are the folds' means, as :class:`FoldAccuracy` gives them with
@@ -840,7 +845,7 @@ class PairedDifference:
         self.resolved = bool(self.ci95[0] > 0 or self.ci95[1] < 0)
         self.method = (METHOD_PAIRED_FOLDS.format(folds=self.n_units, unit=unit) if self.by_fold
                        else METHOD_PAIRED.format(unit=unit))
-        self.detectable = _detectable(d, w, 0.8, resamples, seed)
+        self.detectable = _detectable(k_a, k_b, n, self.by_fold, 0.8, resamples, seed)
 
     @property
     def identical(self) -> bool:
@@ -904,18 +909,32 @@ def _paired_se(d, n, difference) -> float:
 
 
 def minimal_detectable_difference(k_a, k_b, n, *, power: float = 0.8, resamples: int = 4000,
-                                  seed: int = 0) -> float:
+                                  seed: int = 0, by_fold: bool = False) -> float:
     """The smallest true paired difference this design resolves with probability ``power``.
 
-    The design's own paired noise is resampled: the clusters' centred differences
-    ``r_j = d_j - D n_j`` are drawn with replacement (whole clusters), each resample giving an
-    error ``e`` of the difference and its own standard error ``s``. A true difference
-    ``delta > 0`` added to the noise is resolved when ``delta + e > q s`` (``q`` as in
-    :class:`PairedDifference`; the lower tail beyond ``-q s`` is negligible at the powers of
-    interest), so the power at ``delta`` is the share of resamples with ``q s - e < delta``,
-    and the difference reaching ``power`` is that quantity's ``power`` quantile; likewise for a
-    negative difference, and the larger of the two is returned. For normal noise and many
-    clusters this tends to ``(1.96 + 0.84) SE``.
+    The power at a true difference ``delta`` is found by simulating the design under that
+    alternative. Each resample draws whole clusters with replacement, as
+    :func:`cluster_bootstrap` does, and keeps their paired noise, the centred differences
+    ``r_j = d_j - D n_j``. The change itself is then added as recordings that change outcome:
+    for a gain, each recording wrong under B turns right independently with probability
+    ``p``, so a cluster gains ``f_j ~ Binomial(n_j - k_j^B, p)``; for a loss, each recording
+    right under B turns wrong. ``p`` makes the expected change ``delta``, so ``delta`` runs
+    over ``[0, 1 - accuracy_B]`` for a gain and ``[0, accuracy_B]`` for a loss. The resample is
+    resolved when its difference clears ``q`` times its own cluster-robust standard error on
+    the side of the change (``q`` and the standard error as in :class:`PairedDifference`). The
+    smallest ``delta`` resolved in a ``power`` share of resamples is found by bisection to
+    0.01 points, every step on the same draws (common random numbers), so the steps differ
+    only by ``delta``; the larger of the gain's and the loss's is returned. A direction
+    that cannot reach ``power`` even with every recording changed (B right on every recording
+    leaves no gain) is left out; ``math.inf`` if neither can.
+
+    Independent changes within a cluster are the most favourable way a change can come, the
+    least clustered: if real changes come in groups (a whole position turning at once) the
+    design detects less, so the result is a lower bound on the difference detected then. Even
+    two conditions that classify every recording alike (every ``d_j = 0``) get a positive
+    result: a handful of changed recordings is needed before any is resolved. For many
+    clusters the result tends to ``(1.96 + 0.84) SE``, with ``SE`` the standard error under
+    the alternative (the design's paired noise and the changed recordings' binomial spread).
 
     Parameters
     ----------
@@ -926,6 +945,9 @@ def minimal_detectable_difference(k_a, k_b, n, *, power: float = 0.8, resamples:
     resamples, seed : int
         Of the resampling (:func:`numpy.random.default_rng`); ``resamples`` from 10 to
         ``10**6``.
+    by_fold : bool
+        The clusters are folds weighing alike, as in :class:`PairedDifference`: a fold's
+        changed recordings count as a change of its accuracy, ``f_j / n_j``.
 
     Returns
     -------
@@ -940,31 +962,146 @@ def minimal_detectable_difference(k_a, k_b, n, *, power: float = 0.8, resamples:
     >>> mdd = minimal_detectable_difference(k_a, k_b, n)
     >>> 0.05 < mdd < 0.15
     True
+
+    Identical conditions still need changed recordings: a few, as a fraction of the 500
+    (:class:`PairedDifference` resolves no fewer than four, each in its own position):
+
+    >>> k = rng.binomial(5, 0.8, 100)
+    >>> mdd = minimal_detectable_difference(k, k, np.full(100, 5))
+    >>> round(500 * mdd, 1)  # recordings of the 500; four in four positions are resolved
+    5.7
     """
     k_a, n = _counts(k_a, n)
     k_b, _ = _counts(k_b, n)
     check_in_range("power", power, 0.0, 1.0)
     resamples = check_int("resamples", resamples, minimum=10, maximum=MAX_RESAMPLES)
     seed = check_int("seed", seed, minimum=0)
-    return _detectable((k_b - k_a).astype(float), n, power, resamples, seed)
+    return _detectable(k_a, k_b, n, check_bool("by_fold", by_fold), power, resamples, seed)
 
 
-def _detectable(d, n, power: float, resamples: int, seed: int) -> float:
-    """:func:`minimal_detectable_difference` of checked values: each cluster's difference ``d``
-    and weight ``n`` (its recordings, or one for a fold of :class:`PairedDifference`'s
-    ``by_fold``)."""
-    rng = np.random.default_rng(seed)
-    resid = d - d.sum() / n.sum() * n
-    pick = rng.integers(0, d.size, size=(resamples, d.size))
-    r, m = resid[pick], n[pick].astype(float)
-    total = m.sum(axis=1)
-    e = r.sum(axis=1) / total
-    g = d.size
-    s = np.sqrt(g / (g - 1) * np.sum((r - e[:, None] * m) ** 2, axis=1)) / total
-    q = _quantile95(g)
-    up = np.quantile(q * s - e, power)
-    down = np.quantile(q * s + e, power)
-    return float(max(up, down))
+def _detectable(k_a, k_b, n, by_fold: bool, power: float, resamples: int, seed: int) -> float:
+    """:func:`minimal_detectable_difference` of checked values."""
+    # a cluster's weight in the difference, and what one changed recording adds to it
+    w = np.ones(n.size) if by_fold else n.astype(float)
+    u = 1.0 / n if by_fold else np.ones(n.size)
+    d = (k_b - k_a) * u
+    resid = d - d.sum() / w.sum() * w
+    resid[np.abs(resid) < 1e-12 * w.max()] = 0.0  # exactly 0 where d is proportional to w
+    pick = np.random.default_rng(seed).integers(0, n.size, size=(resamples, n.size))
+    design = _Resampled(resid, u, w, pick)
+    found = [design.detectable(sign, room, power, np.random.default_rng([seed, stream]))
+             for sign, room, stream in ((1, n - k_b, 1), (-1, k_b, 2)) if room.sum() > 0]
+    finite = [v for v in found if math.isfinite(v)]
+    return max(finite) if finite else math.inf
+
+
+class _Resampled:
+    """The resamples of :func:`minimal_detectable_difference`: the clusters' paired noise
+    ``r``, what one changed recording adds to a cluster's difference (``u``), the clusters'
+    weights ``w``, each resample's cluster indices (``pick``, one row a resample), and the
+    sums over each resample that its difference and standard error need."""
+
+    #: The bisection stops when the bracket of the difference is this narrow (0.01 points).
+    PRECISION = 1e-4
+
+    def __init__(self, r, u, w, pick):
+        self.r, self.u, self.w, self.pick = r, u, w, pick
+        resamples, groups = pick.shape
+        self.groups, self.q = groups, _quantile95(groups)
+        times = np.bincount((pick + groups * np.arange(resamples)[:, None]).ravel(),
+                            minlength=resamples * groups).reshape(resamples, groups) * 1.0
+        # each resample's sums of r, r^2, r w, w^2 and w, from how often it drew each cluster
+        *self.sums, self.total = (times @ np.stack([r, r * r, r * w, w * w, w], axis=1)).T
+
+    def detectable(self, sign: int, room, power: float, rng) -> float:
+        """The smallest change in direction ``sign`` (the recordings that can change: ``room``
+        a cluster) resolved in a ``power`` share of resamples, ``math.inf`` if none is.
+
+        Each resampled cluster (a cell) gets one uniform ``v``, and at probability ``p`` its
+        changes are the ``v`` quantile of ``Binomial(room, p)``: exactly binomial, the same
+        draws at every ``p`` and never fewer at a larger ``p``. The bisection keeps the cells'
+        changes at both ends of its bracket and recomputes only the cells where they differ.
+        """
+        scale = float(np.sum(room * self.u)) / float(self.w.sum())  # the difference at p = 1
+        p_hi = min(1.0, 1.25 * self._normal_guess(sign, room, scale, power) / scale)
+        v = rng.random(self.pick.size)
+        rooms, row = np.unique(room, return_inverse=True)
+        cluster = self.pick.ravel()
+        while True:
+            live = np.flatnonzero(v > binom.cdf(0, rooms, p_hi)[row[cluster]])
+            cells = _Cells(self, sign, cluster[live], live // self.groups, v[live], rooms, row)
+            hi_changes = cells.changes(p_hi)
+            if self._power(sign, cells.adds(hi_changes)) >= power:
+                break
+            if p_hi == 1.0:
+                return math.inf
+            p_hi = min(1.0, 2 * p_hi)
+        lo, hi, base = 0.0, p_hi, np.zeros((3, self.total.size))  # base: the changes at lo
+        lo_changes, act = np.zeros_like(hi_changes), np.arange(hi_changes.size)
+        while (hi - lo) * scale > self.PRECISION:
+            mid = (lo + hi) / 2
+            mid_changes = cells.changes(mid, act)
+            trial = base + cells.adds(mid_changes, act) - cells.adds(lo_changes[act], act)
+            if self._power(sign, trial) >= power:
+                hi, hi_changes[act] = mid, mid_changes
+            else:
+                lo, base, lo_changes[act] = mid, trial, mid_changes
+            act = act[lo_changes[act] != hi_changes[act]]
+        return hi * scale
+
+    def _normal_guess(self, sign: int, room, scale: float, power: float) -> float:
+        """Where to look: ``delta = k SE(delta)``, ``k = q + z_power``, ``SE(delta)^2`` the
+        design's paired noise with the changes' expectation ``p room u`` added cluster by
+        cluster, plus their binomial variance, a quadratic in ``delta`` (``scale`` if it has
+        no root, where the changes' spread over clusters outgrows them)."""
+        k2 = (self.q + float(norm.ppf(power))) ** 2
+        g, total = self.groups, float(self.w.sum())
+        spread = room * self.u / scale - self.w  # a cluster's expected change less its share
+        a, b, c = (g / (g - 1) / total**2 * float(np.sum(x * y)) for x, y in
+                   ((self.r, self.r), (2 * sign * self.r, spread), (spread, spread)))
+        b += float(np.sum(room * self.u**2)) / (scale * total**2)
+        if 1 - k2 * c <= 0:
+            return scale
+        return (k2 * b + math.sqrt((k2 * b) ** 2 + 4 * (1 - k2 * c) * k2 * a)) / (2 - 2 * k2 * c)
+
+    def _power(self, sign: int, adds) -> float:
+        """The share of resamples resolved with the changes ``adds`` (each resample's added
+        difference, squares and cross products): its difference (noise signed so the change
+        is positive) above ``q`` times its cluster-robust standard error."""
+        s, ss, sw, sww = self.sums
+        est = (sign * s + adds[0]) / self.total
+        dev = (ss + adds[1]) - 2 * est * (sign * sw + adds[2]) + est * est * sww
+        g = self.groups
+        se = np.sqrt(np.maximum(dev, 0.0) * g / (g - 1)) / self.total
+        return float(np.mean(est > self.q * se))
+
+
+class _Cells:
+    """The resampled clusters that change at all in one direction of
+    :meth:`_Resampled.detectable`: each one's cluster, resample, uniform ``v``, and the row of
+    its room in the distinct rooms ``rooms``."""
+
+    def __init__(self, design: _Resampled, sign: int, cluster, resample, v, rooms, row):
+        self.size, self.resample, self.v = design.total.size, resample, v
+        self.r, self.u, self.w = sign * design.r[cluster], design.u[cluster], design.w[cluster]
+        self.rooms, self.row = rooms, row[cluster]
+
+    def changes(self, p: float, at=slice(None)):
+        """The cells' (those ``at``) changes at ``p``: ``v``'s quantile of
+        ``Binomial(room, p)``, by one search in the rooms' distributions laid end to end."""
+        top = int(self.rooms[-1])
+        cdf = binom.cdf(np.arange(top + 1), self.rooms[:, None], p)  # [room, count]
+        shift = 2 * np.arange(self.rooms.size)  # each room's above the last one's
+        row = self.row[at]
+        found = np.searchsorted((cdf + shift[:, None]).ravel(), shift[row] + self.v[at])
+        return np.minimum(found - (top + 1) * row, self.rooms[row])
+
+    def adds(self, changes, at=slice(None)):
+        """What ``changes`` in the cells ``at`` add to each resample's difference, sum of
+        squares and cross product with the weights: ``f u``, ``f u (2 r + f u)``, ``f u w``."""
+        fu = changes * self.u[at]
+        return np.stack([np.bincount(self.resample[at], weights=x, minlength=self.size)
+                         for x in (fu, fu * (2 * self.r[at] + fu), fu * self.w[at])])
 
 
 # ------------------------------------------------------------------------- formatting
@@ -1044,20 +1181,22 @@ def format_clustered(a) -> str:
 
 
 def format_difference(p: PairedDifference) -> str:
-    """A paired difference with its interval and the design's detectable difference.
+    """A paired difference with its interval and the design's detectable difference (``no
+    change within reach`` when no possible change reaches 80 % power, on a few clusters).
 
     Examples
     --------
     >>> p = PairedDifference([3, 3, 2, 3], [2, 1, 1, 2], [3] * 4, "position")
     >>> print(format_difference(p))
-    -41.7 points (95 % CI -68.2 to -15.1, 4 positions; detectable at 80 % power: 39.0 points)
+    -41.7 points (95 % CI -68.2 to -15.1, 4 positions; detectable at 80 % power: 45.6 points)
     """
     if not isinstance(p, PairedDifference):
         raise TypeError(f"p must be a PairedDifference, got {type(p).__name__}")
     lo, hi = (f"{_round_half_up(100 * v, 1):.1f}" for v in p.ci95)
-    detect = f"{_round_half_up(100 * p.detectable, 1):.1f}"
+    detect = (f"{_round_half_up(100 * p.detectable, 1):.1f} points"
+              if math.isfinite(p.detectable) else "no change within reach")
     return (f"{points(p.difference)} (95 % CI {lo} to {hi}, {p.n_units} {p.unit}s; "
-            f"detectable at 80 % power: {detect} points)")
+            f"detectable at 80 % power: {detect})")
 
 
 def cluster_mean_interval(values, clusters) -> dict:

@@ -380,6 +380,11 @@ def _verdict(result: AnnSetupResult) -> str:
     pair = result.larger_step
     if pair is None:
         return words
+    if pair.identical:
+        return words + (
+            f"The two steps count as many test recordings right in every one of the "
+            f"{pair.n_units} {pair.unit}s: there is no difference between them to resolve."
+        )
     if pair.direction == "higher":
         return words + (
             f"At step {other['lr']:g} the network's test accuracy is higher than at "
@@ -423,9 +428,16 @@ def _crossing_sharpness(lg: dict, paper: str) -> str:
                   "test set cannot tell at which epoch the network reaches it.")
     return placed + (" The run stops at the first checkpoint whose test accuracy reaches the "
                      "paper's: picked on these test rows, the accuracy it stops at is biased "
-                     "upwards. Gradient descent over this many epochs amplifies rounding: "
+                     "upwards, and the run gives no accuracy at a checkpoint fixed in advance. "
+                     "Gradient descent over this many epochs amplifies rounding: "
                      "arithmetic that differs in its last bits (another BLAS kernel or thread "
                      "count) follows another path and may reach it at another epoch.")
+
+
+def _selected_on_test(lg: dict) -> bool:
+    """Whether the long run's last checkpoint is the first whose test accuracy reached the
+    paper's (so that accuracy was picked on the test rows)."""
+    return lg["reached_test"] is not None and lg["reached_test"] == lg["epochs"][-1]
 
 
 def _long_verdict(result: AnnSetupResult) -> str:
@@ -449,15 +461,19 @@ def _long_verdict(result: AnnSetupResult) -> str:
     head = (
         f"The same network at step {LONG_RUN['lr']:g} trained with no validation stop, for at "
         f"most {lg['max_epochs']} epochs (what ended it: {lg['stopped_by']}): test accuracy "
-        f"{percent(lg['test'][0])} after {lg['epochs'][0]} epochs and {lg['final']} after "
-        f"{lg['epochs'][-1]}. "
+        f"{percent(lg['test'][0])} after {lg['epochs'][0]} epochs and "
+        + (f"{percent(lg['test'][-1])} after {lg['epochs'][-1]}, the checkpoint the run stopped "
+           "at because its test accuracy reached the paper's: chosen on the test rows, that "
+           "accuracy is no test result and has no test interval. "
+           if _selected_on_test(lg) else f"{lg['final']} after {lg['epochs'][-1]}. ")
     )
     if lg["reached_test"] is not None:
         return head + (
-            f"It reaches the paper's {paper} on its test recordings after {lg['reached_test']} "
-            "epochs: on this split of recordings (not of positions), plain gradient descent "
-            "gets there with a larger budget than 1000 epochs at the study's step. Whether the "
-            "features carry it as far on held-out positions is not what this run tests. "
+            f"Its test accuracy first reaches the paper's {paper} after {lg['reached_test']} "
+            "epochs (the epoch is the finding): on this split of recordings (not of positions), "
+            "plain gradient descent gets there with a larger budget than 1000 epochs at the "
+            "study's step. Whether the features carry it as far on held-out positions is not "
+            "what this run tests. "
         ) + _crossing_sharpness(lg, paper)
     if lg["reached_all"] is not None:
         return head + (

@@ -203,11 +203,19 @@ def _verdict(r: ContactLawResult) -> str:
     >>> text = _verdict(r)
     >>> "changes nothing this design resolves" in text, "lowers" in text
     (True, True)
+    >>> alike = PairedDifference([2, 1, 2, 1], [2, 1, 2, 1], [3] * 4, "position")
+    >>> r.paired["svm"] = alike
+    >>> "as many test recordings right under both laws" in _verdict(r)
+    True
     """
     parts = []
     for label, key in (("the SVM", "svm"), ("the mode-curve classifier", "mode_curves")):
         pair = r.paired[key]
-        if pair.resolved:
+        if pair.identical:
+            parts.append(f"{label} classifies as many test recordings right under both laws in "
+                         f"every one of the {pair.n_units} {pair.unit}s, so there is no "
+                         "difference between the laws to resolve")
+        elif pair.resolved:
             verb = "raises" if pair.direction == "higher" else "lowers"
             parts.append(f"for {label} the Hertz law {verb} the accuracy, {pair}: the contact "
                          "law matters")

@@ -97,14 +97,24 @@ def render(result: HingeResult, report, figures) -> None:
         )
     else:
         verdict = (
-            f"No single hinge-and-tip model explains both observations: the best fit "
-            f"misses by {100 * f.rms_residual:.2f} cm RMS, and its largest residual, "
-            f"{100 * np.max(np.abs(f.residual)):.2f} cm, is more than the observations' "
-            f"{1000 * result.resolution:g} mm resolution. What else differs between the two "
-            "probes, or in how the transition was located, lies outside this model's two "
-            "parameters: the fit cannot say which."
+            f"Under two assumptions, no single hinge-and-tip model explains both observations: "
+            f"the best fit misses by {100 * f.rms_residual:.2f} cm RMS, and its largest "
+            f"residual, {100 * np.max(np.abs(f.residual)):.2f} cm, is more than the "
+            f"observations' {1000 * result.resolution:g} mm resolution. What else differs "
+            "between the two probes, or in how the transition was located, lies outside this "
+            "model's two parameters: the fit cannot say which."
         )
-    report.paragraph(verdict)
+    report.paragraph(verdict + " " + _assumptions(result))
+
+
+def _assumptions(result: HingeResult) -> str:
+    """The two assumptions the verdict rests on, which the paper leaves open."""
+    return (
+        f"The two assumptions, which the paper leaves open: that its points were read to "
+        f"{1000 * result.resolution:g} mm, half its 5 mm contact step (the paper states no "
+        "precision for them); and that its 'deviation from the linear variation' is where the "
+        "lowest frequency peaks, which is where the model locates the transition."
+    )
 
 
 def _fitted_words(f) -> str:

@@ -386,7 +386,9 @@ def _render_splits(r: MaterialSplitsResult, report) -> None:
     """Why a random split can flatter, and the classifiers on the three splits."""
     report.heading("Random recordings against held-out positions")
     report.paragraph(
-        "The paper's 80/20 split draws recordings at random. " + _copies_text(r.design)
+        "The paper's 80/20 split (section 4.3) does not say how its test recordings were "
+        "chosen; the study assumes they were drawn at random, as recordings. "
+        + _copies_text(r.design)
         + " A classifier can then score by recognising the position and its recordings instead "
         "of the material, and look better on such a split than it will at a contact it has "
         "never seen. Holding out whole positions, interleaved (one position in "
@@ -474,7 +476,8 @@ def _flattery(r: MaterialSplitsResult) -> str:
     pairs = r.flattery or {}
     above = [c for c in CLASSIFIERS if c in pairs and pairs[c].direction == "higher"]
     below = [c for c in CLASSIFIERS if c in pairs and pairs[c].direction == "lower"]
-    even = [c for c in CLASSIFIERS if c in pairs and c not in above + below]
+    alike = [c for c in CLASSIFIERS if c in pairs and pairs[c].identical]
+    even = [c for c in CLASSIFIERS if c in pairs and c not in above + below + alike]
 
     def they(group, one, many):
         return one if len(group) == 1 else many
@@ -495,7 +498,27 @@ def _flattery(r: MaterialSplitsResult) -> str:
         words.append("The paired difference is not resolved for " + named(even)
                      + ": this design does not show the random split flattering "
                      + they(even, "it.", "them."))
+    if alike:
+        words.append("For " + listed(names[c] for c in alike) + ", the random split and whole "
+                     "positions held out count as many of its test recordings right in every "
+                     "position: there is no difference to resolve.")
     return " ".join(words)
+
+
+def _paired_text(pair) -> str:
+    """A paired difference with its interval, or, where both count as many right in every
+    cluster (``identical``), that: then there is no interval or verdict to give.
+
+    Examples
+    --------
+    >>> from ebantenna.paper.uncertainty import PairedDifference
+    >>> _paired_text(PairedDifference([2, 1], [2, 1], [3, 3], "position"))[:40]
+    'as many right under both in each of the '
+    """
+    if pair.identical:
+        return (f"as many right under both in each of the {pair.n_units} {pair.unit}s, so no "
+                "difference to resolve")
+    return format_difference(pair)
 
 
 def _confusions_text(matrix, labels) -> str:
@@ -715,7 +738,9 @@ def _distance_held_out(r: MaterialSplitsResult) -> str:
     its interval over the test positions."""
     rnd, held = (_distance_entry(x) for x in (r.distance["gd"], r.distance_held_out))
     return (
-        "The paper's distance network (gradient descent) is scored on a random split, where "
+        "The paper's distance network (gradient descent) is scored on a random split (the "
+        "paper's 70/15/15 split, section 4.2, does not say how its rows were drawn: at random "
+        "is the study's assumption), where "
         "nearly every test recording has a repetition of its own position in the training "
         f"set: {format_mae(rnd)}. Trained with whole positions held out (every fold of the "
         f"grouped split, each position of the region held out once) it errs by "
@@ -782,15 +807,17 @@ def _lift(r: MaterialSplitsResult) -> str:
     words = _grouped_lift(r) + (
         f"On the blocked split (all folds) it reaches {aware} against the paper's SVM's "
         f"{svm}; chance {percent(chance)}. Paired on the same folds, the difference is "
-        f"{pair}: "
+        f"{_paired_text(pair)}: "
     )
     above = aware.ci95[0] > chance
     if above and pair.direction == "higher":
         return words + "reading the spectrum at its distance lifts the classifier above chance."
     if above:
-        return words + "above chance, and not resolved as better than the raw spectrum."
-    compare = {"higher": "higher than", "lower": "lower than",
-               "unresolved": "not resolved from"}[pair.direction]
+        return words + ("above chance, and as many right as the raw spectrum." if pair.identical
+                        else "above chance, and not resolved as better than the raw spectrum.")
+    compare = ("as many right as" if pair.identical else
+               {"higher": "higher than", "lower": "lower than",
+                "unresolved": "not resolved from"}[pair.direction])
     return words + (
         f"not above chance, and {compare} the raw spectrum: what tells the materials apart at "
         "the positions it learnt from is not shown to carry over to an unseen stretch of the "
@@ -809,8 +836,11 @@ def _grouped_lift(r: MaterialSplitsResult) -> str:
                "lower": "lower than the raw spectrum, resolved: on positions between those it "
                         "learnt from, the standardisation costs more than it gives",
                "unresolved": "not resolved from the raw spectrum"}[pair.direction]
+    if pair.identical:
+        verdict = "the two classify alike"
     return (f"On whole held-out positions (grouped split, all folds) it reaches {aware} against "
-            f"the paper's SVM's {svm}; paired on the same folds, {pair}: {verdict}. ")
+            f"the paper's SVM's {svm}; paired on the same folds, {_paired_text(pair)}: "
+            f"{verdict}. ")
 
 
 def _classes(r: MaterialSplitsResult) -> int:
@@ -850,7 +880,7 @@ def _curves(r: MaterialSplitsResult, simulated: bool = True) -> str:
     for kind in ("grouped", "blocked"):
         pair = r.paired[kind]["mode_curves"]
         words.append(f"{r.measured['mode_curves', kind]} on the {kind} split, "
-                     f"{pair} against the SVM on the same folds")
+                     f"{_paired_text(pair)} against the SVM on the same folds")
     blocked = r.measured["mode_curves", "blocked"]
     carried = blocked.ci95[0] > 1 / _classes(r)
     if carried:

@@ -19,8 +19,9 @@
    classifier learns: the ablation of every effect of the scene and two equivalent pairs, over
    five split seeds; the touched rod's diameter and free length varied;
 7. beyond the paper: the contact distance over the *whole* probe from two modes, tested on
-   contact positions that the calibration never saw, against the first-mode-only estimator that
-   stops at 80 %;
+   contact positions that the calibration never saw, against the first-mode-only estimator
+   (which of the two errs less, and where, is the report's paired comparison, not assumed
+   here);
 8. spectrograms and scalograms at 0.25 L ... 0.9 L (Figs. 18 and 19);
 
 and writes every figure as PNG, a report in Markdown and HTML, and a JSON summary. Every test

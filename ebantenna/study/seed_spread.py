@@ -175,7 +175,7 @@ def repetitions_sentence(repetitions: dict) -> str:
     >>> many = ClusteredAccuracy([9, 10, 9, 10] * 4, [10] * 16, "position")
     >>> repetitions_sentence({2: few, 10: many})[:60]
     'From 2 to 10 repetitions per position the grouped accuracy r'
-    >>> "overlap" in repetitions_sentence({2: few, 10: few})
+    >>> "overlap is no test" in repetitions_sentence({2: few, 10: few})
     True
     """
     if len(repetitions) < 2:
@@ -188,9 +188,11 @@ def repetitions_sentence(repetitions: dict) -> str:
         text = (head + f"{way} {moves}, their 95 % intervals apart: the number of recordings "
                 "of each position the SVM learns from matters on whole held-out positions. ")
     else:
-        text = (head + f"goes {moves}, but their 95 % intervals overlap: this design does not "
-                "show that the number of repetitions changes the accuracy on whole held-out "
-                "positions. ")
+        text = (head + f"goes {moves}, and their 95 % intervals overlap. Both rows test the "
+                "same positions on the same grouped folds, so the two intervals are not "
+                "independent and their overlap is no test of the change: only a comparison "
+                "paired recording by recording could tell it, and this section does not make "
+                "one. ")
     grow = a1.n_recordings / a0.n_recordings
     narrow = _width(a0.ci95) / _width(a1.ci95)
     independent = _width(a0.recording_ci95) / _width(a1.recording_ci95)

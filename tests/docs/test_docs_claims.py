@@ -293,8 +293,9 @@ def test_plot_10_third_mode_about_477_hz():
 
 
 def test_plot_13_stick_then_hold_as_stated():
-    # plot_13_stick_slip: the contact slides for a fraction of a millisecond, sticks, slips briefly
-    # again, and from then on holds (the last event a stick) within the 30 ms shown
+    # plot_13_stick_slip: the contact slides for a fraction of a millisecond, sticks, "slips
+    # briefly twice more (the events printed above: at 1.588 and 2.537 ms, each for less than
+    # 0.2 ms)", and from then on holds (the last event a stick) within the 30 ms shown
     from ebantenna.fem.coupling import craig_bampton, probe_substructure
     from ebantenna.simulate.effects import CoulombFriction
     from ebantenna.simulate.stick_slip import friction_model, stick_slip_response
@@ -317,6 +318,16 @@ def test_plot_13_stick_then_hold_as_stated():
     assert times[1] < 1e-3  # "a fraction of a millisecond"
     slips = [b - a for (a, k), b in zip(res.events, times[1:], strict=False) if k != "stick"]
     assert max(slips[1:]) < slips[0]  # the later slips are brief
+    path = DOCS / "examples" / "plot_13_stick_slip.py"
+    text = " ".join(" ".join(re.sub(r"^\s*# ?", "", line)
+                             for line in path.read_text().splitlines()).split())  # fmt: skip
+    stated = re.search(r"slips briefly twice more \(the events printed above: at ([\d.]+) and "
+                       r"([\d.]+) ms, each for less than ([\d.]+) ms\)", text)
+    assert stated, "the sentence on the slips changed: update this test"
+    assert kinds == ["slip", "stick"] * 3  # the first slide, then two more slips, each stuck
+    starts = [t for t, k in res.events if k != "stick"]
+    assert [f"{1e3 * t:.3f}" for t in starts[1:]] == [stated[1], stated[2]]  # as printed
+    assert all(d < 1e-3 * float(stated[3]) for d in slips[1:])
 
 
 def test_plot_13_z_peaks_move_from_free_to_pinned():
@@ -1110,20 +1121,20 @@ def test_touched_object_assumptions_are_the_codes_defaults():
 
 
 def test_decay_short_unconfirmed_fit_example_as_stated():
-    # theory/decay.rst: "a clean 5 ms decay at 474 Hz, sampled at 1 kHz, fitted over 18 samples,
-    # came out 109 % long; today the standard error of its rate marks it "noise_limited" before
+    # theory/decay.rst: "a clean 5 ms decay at 474 Hz, sampled at 1 kHz, fitted over 24 samples,
+    # came out 146 % long; today the standard error of its rate marks it "noise_limited" before
     # the span is counted"
     from ebantenna.signal import fit_decay
 
     page = " ".join(_page_text("theory/decay.rst").split())
-    assert ("a clean 5 ms decay at 474 Hz, sampled at 1 kHz, fitted over 18 samples, came out "
-            "109 % long; today the standard error of its rate marks it ``\"noise_limited\"`` "
+    assert ("a clean 5 ms decay at 474 Hz, sampled at 1 kHz, fitted over 24 samples, came out "
+            "146 % long; today the standard error of its rate marks it ``\"noise_limited\"`` "
             "before the span is counted") in page
     fs = 1000.0
     t = np.arange(1000) / fs
     fit = fit_decay(np.exp(-t / 0.005) * np.sin(2 * np.pi * 474 * t), fs)
-    assert fit.status == "noise_limited" and fit.n_points == 18
-    assert round(100 * (fit.tau / 0.005 - 1)) == 109  # to the digit printed
+    assert fit.status == "noise_limited" and fit.n_points == 24
+    assert round(100 * (fit.tau / 0.005 - 1)) == 146  # to the digit printed
 
 
 def test_wilson_coverage_near_the_ends_as_stated():
@@ -1144,3 +1155,26 @@ def test_wilson_coverage_near_the_ends_as_stated():
         coverage = (binom.pmf(np.arange(n + 1)[:, None], n, p) * holds).sum(axis=0)
         assert abs(coverage.min() - 0.84) <= 0.005, (n, coverage.min())  # "about 84 %"
         assert coverage[p > 0.1].min() > 0.9  # away from the ends it keeps close to 95 %
+
+
+def test_the_folds_spread_is_not_said_to_follow_sqrt_deff_on_interleaved_folds():
+    # uncertainty.rst: the grouped folds interleave positions along the probe, so their spread
+    # may lie far below sqrt(deff); the page says so and reads both numbers from the summary
+    import sys
+
+    sys.path.insert(0, str(DOCS / "_ext"))
+    import study_tables
+
+    page, summary = _page_text("theory/uncertainty.rst"), _stored_summary()
+    assert "Where each fold holds positions of its own and they fail together" not in page
+    assert "each takes every fifth position along the probe (interleaved)" in page
+    grouped = "materials.seed_spread.paper's SVM.grouped"
+    for role in (f":study:`{grouped}.accuracy_design_effect|.2f`",
+                 f":study:`{grouped}.accuracy_design_effect|sqrt.2f`), yet the ratio is "
+                 f":study:`{grouped}.spread_ratio|.2f`"):
+        assert role in page, role
+    # "far below": the stored run's grouped ratio is below sqrt(deff) by more than the factor
+    # of two either way that five folds' spread carries
+    assert (summary[f"{grouped}.spread_ratio"]
+            < summary[f"{grouped}.accuracy_design_effect"] ** 0.5 / 2)
+    assert study_tables.value_text({"x": 9.0}, "x|sqrt.2f") == "3.00"

@@ -190,3 +190,13 @@ def test_the_pages_numbers_on_the_peak():
 
     zones = mode_zones.compute(builtin_scene("paper").probe, quick=False).zones
     assert len(zones.contacts) == 99
+
+
+def test_the_long_runs_picked_accuracy_is_no_test_result():
+    # the long run stops at the first checkpoint whose test accuracy reaches the paper's: the
+    # row gives that epoch, and no accuracy picked on the test rows as if it were a test result
+    status = paper_map.fill(ITEMS["Fig. 12"].status, VALUES)
+    long = RECORD["summary"]["materials"]["ann_training_setup"]["long_run"]
+    assert f"first reaches the paper's value at epoch {long['reached_paper_test_epoch']}" in status
+    assert "picked on the test rows" in status and "no test interval" in status
+    assert paper_map._formatted(long["test_accuracy"], "pct") not in status

@@ -306,10 +306,14 @@ def test_paired_difference_by_hand():
     assert (p.difference, p.se) == (-0.25, 0.25)  # residuals (-1/2, 1/2): sqrt(2 * 1/2) / 4
 
 
-def test_minimal_detectable_difference_of_a_noiseless_design_is_zero():
-    """The same count right under both in every cluster: no paired noise, any difference is
-    resolved; with noise, about (z_0.975 + z_0.8) SE for many clusters."""
-    assert minimal_detectable_difference([1, 2, 3], [1, 2, 3], [3, 3, 3]) == 0.0
+def test_minimal_detectable_difference_of_a_noiseless_design_is_not_zero():
+    """The same count right under both in every cluster: no paired noise, yet a change must
+    bring changed recordings before it is resolved, so the difference is positive (on three
+    clusters of three, q = 4.30, no change within reach is resolved 80 % of the time: inf);
+    with noise, about (z_0.975 + z_0.8) SE for many clusters."""
+    assert minimal_detectable_difference([1, 2, 3], [1, 2, 3], [3, 3, 3]) == math.inf
+    k = np.random.default_rng(1).binomial(5, 0.8, 100)
+    assert 0 < minimal_detectable_difference(k, k, np.full(100, 5), resamples=500) < 0.05
     rng = np.random.default_rng(0)
     n = np.full(400, 3)
     k_a, k_b = rng.binomial(3, 0.6, 400), rng.binomial(3, 0.6, 400)
@@ -398,7 +402,7 @@ def contract_rows() -> dict[str, list[str]]:
         u + "PairedDifference.from_recordings": _ids("paired-from-")
         + ["test_paired_difference_by_hand"],
         u + "minimal_detectable_difference": _ids("mdd-")
-        + ["test_minimal_detectable_difference_of_a_noiseless_design_is_zero"],
+        + ["test_minimal_detectable_difference_of_a_noiseless_design_is_not_zero"],
         u + "FoldAccuracy": _ids("folds-one", "folds-not", "folds-half", "folds-nan",
                                  "folds-empty", "folds-misaligned", "folds-unit", "folds-by")
         + ["test_fold_accuracy_and_entries_by_hand"],

@@ -67,8 +67,10 @@ from pathlib import Path
 
 #: Modules left out of the walk as run, with whatever they call: the argument checks (which name
 #: a parameter, its range and the value given) of the package and of the signal stage, the
-#: finite-element model's guards (mesh, memory and contact checks), the memory budget's size
-#: check before a large allocation, the progress bar, and BLAS's thread limit around a batch of
+#: finite-element model's guards (mesh, memory and contact checks, and the floor of an
+#: eigenvalue within its rounding, ``fem._rounding``), the memory budget's size
+#: check before a large allocation, the progress bar (and the stop signal it raises again,
+#: ``_signals``), and BLAS's thread limit around a batch of
 #: small solves (``_threads``, which wraps the call to ``threadpoolctl`` that the package made
 #: directly before, outside the walk as code outside the package). They are called from
 #: everywhere and teach nothing of the path.
@@ -76,9 +78,11 @@ LEFT_OUT = (
     "ebantenna._validate",
     "ebantenna._budget",
     "ebantenna._progress",
+    "ebantenna._signals",
     "ebantenna._threads",
     "ebantenna.signal._checks",
     "ebantenna.fem.guards",
+    "ebantenna.fem._rounding",
 )
 
 #: Names of code objects that are not functions a reader opens: a module's own code, and the

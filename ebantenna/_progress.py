@@ -7,6 +7,8 @@ import sys
 
 import tqdm.std
 
+from ._signals import raise_pending
+
 __all__ = ["bar_class", "progress"]
 
 
@@ -38,7 +40,30 @@ def progress(iterable=None, *, total=None, desc=None, enabled=None, **kwargs):
         Label in front of the bar.
     enabled : bool, optional
         Force the bar on (True) or off (False); by default on only for a terminal.
+
+    Each step (an item of ``iterable``, or a call of the bar's ``update``) first raises a stop
+    signal that a library caught and went on from (``ebantenna._signals.raise_pending``).
     """
     if enabled is None:
         enabled = sys.stderr.isatty()
-    return bar_class()(iterable, total=total, desc=desc, disable=not enabled, leave=False, **kwargs)
+    if iterable is not None:
+        if total is None and hasattr(iterable, "__len__"):
+            total = len(iterable)
+        iterable = _checked(iterable)
+    bar = bar_class()(iterable, total=total, desc=desc, disable=not enabled, leave=False, **kwargs)
+    update = bar.update
+
+    def checked_update(n=1):  # a stop a library swallowed is raised again at the next step
+        raise_pending()
+        return update(n)
+
+    bar.update = checked_update
+    return bar
+
+
+def _checked(iterable):
+    """``iterable``'s items, raising before each a signal that a library caught and went on
+    from (``ebantenna._signals``)."""
+    for item in iterable:
+        raise_pending()
+        yield item

@@ -32,7 +32,8 @@ import signal
 import sys
 import threading
 
-from . import __version__
+from . import __version__, _signals
+from ._signals import Terminated
 
 #: Modules that register subcommands, in the order ``--help`` lists them.
 COMMAND_MODULES = (
@@ -111,18 +112,14 @@ def print_json(obj) -> None:
     sys.stdout.write("\n")
 
 
-class Terminated(KeyboardInterrupt):
-    """SIGTERM (or another terminating signal), raised like Ctrl-C so that every ``finally`` and
-    ``except KeyboardInterrupt`` that makes the work safe (servos released, temporary files
-    removed) runs for it too."""
-
-    def __init__(self, signum: int = signal.SIGTERM):
-        super().__init__(signal.Signals(signum).name)
-        self.signum = int(signum)
-
-
 def _raise_terminated(signum, frame):
+    _signals.note(signum)
     raise Terminated(signum)
+
+
+def _raise_interrupt(signum, frame):
+    _signals.note(signum)
+    raise KeyboardInterrupt
 
 
 #: Signals that end a command like SIGTERM: terminate, and hang-up (the terminal closed, an SSH
@@ -143,7 +140,7 @@ def _sigterm_as_interrupt():
         return
     previous_int = signal.getsignal(signal.SIGINT)
     if previous_int is not signal.SIG_IGN:
-        signal.signal(signal.SIGINT, signal.default_int_handler)
+        signal.signal(signal.SIGINT, _raise_interrupt)
     previous = {signum: signal.signal(signum, _raise_terminated) for signum in _TERMINATING}
     try:
         yield
@@ -186,6 +183,7 @@ def _exit(code: int, message: str):
 def _interrupted(exc: KeyboardInterrupt, args, argv) -> None:
     """End an interrupted command: one line, and with ``--json`` the JSON of what it kept."""
     signum = exc.signum if isinstance(exc, Terminated) else signal.SIGINT
+    _signals.clear()
     partial = getattr(exc, "partial", None)
     # interrupted before its arguments were parsed, the command's --json is looked for by hand
     wants_json = getattr(args, "json", False) if args is not None else "--json" in argv
@@ -202,6 +200,7 @@ def main(argv=None) -> int:
     """Run the ``ebantenna`` command line; returns the exit code."""
     args = None
     argv = sys.argv[1:] if argv is None else list(argv)
+    _signals.clear()
     try:
         with _sigterm_as_interrupt():  # first: every import below is interruptible cleanly
             parser = build_parser()
@@ -219,7 +218,9 @@ def main(argv=None) -> int:
 
             # --force-jobs (checked by check_jobs) lets the workers through to the functions
             with more_jobs_allowed(getattr(args, "force_jobs", False)):
-                return int(args.func(args) or 0)
+                code = int(args.func(args) or 0)
+            _signals.raise_pending()  # a signal a library caught and went on from
+            return code
     except KeyboardInterrupt as exc:
         _interrupted(exc, args, argv)
     except (MemoryError, ValueError, TypeError, OSError) as exc:

@@ -63,3 +63,60 @@ def test_a_signal_during_the_start_up_imports_ends_in_one_line(tmp_path, target,
     assert proc.returncode == code, proc.stderr
     assert proc.stderr in ("ebantenna: interrupted\n", "ebantenna modes: interrupted\n")
     assert json.loads(proc.stdout) == {"interrupted": sig.name}
+
+
+@pytest.mark.parametrize("sig, code", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
+def test_a_stop_that_a_library_swallows_still_ends_the_command(monkeypatch, capsys, sig, code):
+    # scikit-learn's MLP training catches KeyboardInterrupt (and so Terminated), warns and
+    # returns; a command that went on from there must still end as stopped, not with success
+    import os
+
+    from ebantenna import _signals, cli
+    from ebantenna._progress import progress
+    from ebantenna.fem import _cli as fem_cli
+
+    steps = []
+
+    def swallowing(args):
+        try:
+            os.kill(os.getpid(), sig)  # the handler runs at the next bytecode, inside the try
+            for _ in range(10_000_000):
+                pass
+        except KeyboardInterrupt:
+            pass  # what a library that catches it does
+        for i in progress(range(3), enabled=False):  # the next step of a bar raises it again
+            steps.append(i)
+        return 0
+
+    monkeypatch.setattr(fem_cli, "run_modes", swallowing)
+    # as in a terminal: a test worker may ignore Ctrl-C, and the command keeps an ignored SIGINT
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        with pytest.raises(SystemExit) as stop:
+            cli.main(["modes", "--ratio", "0.5"])
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    assert stop.value.code == code and steps == []
+    assert "interrupted" in capsys.readouterr().err
+    assert _signals.pending() is None  # acted on, and forgotten
+
+
+def test_a_stop_swallowed_after_the_last_step_still_ends_the_command(monkeypatch):
+    import os
+
+    from ebantenna import cli
+    from ebantenna.fem import _cli as fem_cli
+
+    def swallowing(args):
+        try:
+            os.kill(os.getpid(), signal.SIGTERM)
+            for _ in range(10_000_000):
+                pass
+        except KeyboardInterrupt:
+            pass
+        return 0
+
+    monkeypatch.setattr(fem_cli, "run_modes", swallowing)
+    with pytest.raises(SystemExit) as stop:
+        cli.main(["modes", "--ratio", "0.5"])
+    assert stop.value.code == 143

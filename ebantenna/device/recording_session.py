@@ -551,18 +551,26 @@ class RecordingSession:
         return result, conn
 
     def _checked_rig(self, conn: Connection):
-        """Switch the servo outputs off and read them back, check the accelerometer."""
+        """Switch the servo outputs off and read them back, check the accelerometer.
+
+        A rig that does not answer before its servo outputs are read back off may have them
+        powered (exit 3); an accelerometer that does not answer after that is a stop with the
+        servos known off (exit 2)."""
         try:
             unit = PanTilt(PCA9685(conn.bus, clock=conn.clock))
             unit.initialize()  # the outputs off before anything else
-            if unit.pca.pulse(0) or unit.pca.pulse(1):
-                self._stop_unsafe("the servo outputs read back ON after being switched off; "
-                                  + CUT_SUPPLY, True)
-            mpu = MPU6050(conn.bus, clock=conn.clock)
-            mpu.initialize()
         except (I2CError, ChipIdentityError) as exc:
             self._stop_unsafe(f"the rig does not answer on the bus ({exc}); the servos may "
                               f"still be powered: {CUT_SUPPLY}", True)
+        if unit.pca.pulse(0) or unit.pca.pulse(1):
+            self._stop_unsafe("the servo outputs read back ON after being switched off; "
+                              + CUT_SUPPLY, True)
+        try:
+            mpu = MPU6050(conn.bus, clock=conn.clock)
+            mpu.initialize()
+        except (I2CError, ChipIdentityError) as exc:
+            self._stop_unsafe(f"the accelerometer does not answer ({exc}); the servo outputs "
+                              f"read back off: {CHECK_BUS}", False)
         return unit, mpu
 
     def _unreleased(self, touch: Touch, exc: ReleaseError) -> None:

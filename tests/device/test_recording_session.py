@@ -224,6 +224,22 @@ def test_a_dead_bus_is_refused_saying_what_to_do(tmp_path):
     assert read_manifest(tmp_path / "s" / MANIFEST)["recordings"] == {}
 
 
+def test_a_missing_accelerometer_stops_with_the_servos_known_off(tmp_path):
+    # the servo outputs read back off before the MPU-6050 is looked for: a stop, not a rig
+    # whose servos may be powered (that is exit 3, and the dead bus above)
+    inner = simulated_connect(SCENE, simulate)
+
+    def without_mpu(touch, attempt):
+        conn = inner(touch, attempt)
+        conn.bus.devices.pop(0x68)
+        return conn
+
+    with pytest.raises(UnsafeRigError, match="accelerometer does not answer") as err:
+        session(tmp_path, connect=without_mpu).run()
+    assert not err.value.servos_may_be_powered and "i2cdetect" in str(err.value)
+    assert read_manifest(tmp_path / "s" / MANIFEST)["unsafe"]["servos_may_be_powered"] is False
+
+
 def test_a_touch_that_lost_too_much_is_made_again(tmp_path):
     s = session(tmp_path, plan=Plan("one", ("brass",), (0.2,), 3), max_lost=0.0,
                 connect=simulated_connect(SCENE, simulate, seed=1, faults=Faults.every_kind(0.003)),

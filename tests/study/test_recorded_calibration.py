@@ -422,6 +422,16 @@ def test_too_few_positions_are_refused(rig):
         calibrate(one, RIG)
 
 
+def test_two_positions_are_refused_as_too_few_not_as_a_wrong_scene(rig):
+    # two distances of one material are two positions: the message asks for more recordings,
+    # rather than sending the user to check the scene
+    keep = np.isin(rig.contact, np.unique(rig.contact)[:2])
+    two = _fake(rig, contact=rig.contact[keep], material=np.full(keep.sum(), rig.material[0]),
+                ax=rig.ax[keep], az=rig.az[keep])
+    with pytest.raises(ValueError, match="hold 2 distinct contact positions .* record more"):
+        calibrate(two, RIG)
+
+
 @pytest.mark.parametrize("unilateral", [True, False])
 def test_scene_modes_are_the_simulators_own(unilateral):
     # The calibration's model is the simulator's: with a linear contact its modes are those of

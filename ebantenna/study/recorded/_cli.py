@@ -67,9 +67,11 @@ def _add_record(subparsers) -> None:
         "twice and nothing saved is lost; --dry-run shows the plan, its time estimate and the "
         "touches done and missing without moving anything. Exit codes: 0 every touch saved (or "
         "the dry run printed); 1 a search found no contact (place the object, run again); 2 bad "
-        "input, or the session stopped safely: the rig is unsafe (bus dead, a chip missing) or "
-        "a touch lost too many samples on every attempt (the message says which); 3 the servos "
-        "may still be powered (cut their supply); 130 and 143 on Ctrl-C and SIGTERM.",
+        "input, or the session stopped safely: the accelerometer does not answer once the servo "
+        "outputs read back off, or a touch lost too many samples on every attempt (the message "
+        "says which); 3 the servos may still be powered (cut their supply): the bus or the "
+        "servo board does not answer, or the outputs do not read back off; 130 and 143 on "
+        "Ctrl-C and SIGTERM.",
     )
     where = rec.add_mutually_exclusive_group(required=True)
     where.add_argument("--simulated", action="store_true", help="use the simulated rig")

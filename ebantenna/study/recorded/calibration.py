@@ -1025,6 +1025,10 @@ def _measure_and_fit(model, ax, fs, contact, p, bounds, eta0, max_rounds):
             if model.crowded:
                 why += (f"; at {', '.join(f'{model.keys[i][0]:g}' for i in model.crowded)} m "
                         "the model's other modes ring beside the fitted one")
+            if ok.size < 3:
+                raise ValueError(f"the recordings hold {ok.size} distinct contact positions "
+                                 "(a distance and a material each) in the region fitted; 3 are "
+                                 "needed: record more")
             raise ValueError(f"only {int(ok.sum())} of {ok.size} distinct contact positions show "
                              f"the mode the model predicts (3 are needed){why}; check that the "
                              "scene describes these recordings (--scene: the probe, the "

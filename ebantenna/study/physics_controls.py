@@ -847,8 +847,9 @@ def _damping_clauses(paired: dict, spreads, carrier: str) -> list[str]:
 
 def _damping_words(subject: str, p, where: str = "") -> str:
     """What ``subject`` (the rod's damping switched off, as a row or as its own share) does to
-    the accuracy, from the sign of its paired difference ``p``; ``where`` names what else the
-    compared rows leave out (the scene the finding holds in)."""
+    the accuracy, from the sign of its paired difference ``p`` (or from its being none: every
+    position as many right with it as without); ``where`` names what else the compared rows
+    leave out (the scene the finding holds in)."""
     if p.direction == "lower":
         return (f"{subject} lowers it too, {p}: in the simulator{where} this agrees with the "
                 "paper's explanation, that the materials differ by how much vibration energy "
@@ -857,6 +858,10 @@ def _damping_words(subject: str, p, where: str = "") -> str:
         return (f"{subject} raises the accuracy, {p}: in the simulator{where} the rods' damping "
                 "blurs the materials rather than separating them, against the paper's "
                 "explanation that they differ by the energy they absorb.")
+    if p.identical:
+        return (f"{subject} changes no position's count of right answers ({p.n_units} "
+                f"{p.unit}s): in the simulator{where} these recordings show no part for the "
+                "rods' damping, as assumed, in telling the materials apart.")
     return f"{subject} changes it by {p}, not resolved."
 
 

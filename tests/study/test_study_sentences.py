@@ -184,12 +184,18 @@ def test_a_crossing_is_not_placed_by_the_last_checkpoint_alone():
     assert "within the last" not in text
 
 
+ALIKE = _pair(SAME, SAME)  # every position as many right under both
+
+
 @pytest.mark.parametrize("pair, words", [(UP, "raises the accuracy"), (DOWN, "lowers it too"),
-                                         (FLAT, "not resolved")])
+                                         (FLAT, "not resolved"),
+                                         (ALIKE, "changes no position's count")])
 def test_the_dampings_share_says_in_which_scene_it_was_measured(pair, words):
     subject = "the rod's damping, switched off where 'unilateral_contact' is off too,"
     text = _damping_words(subject, pair, " without 'unilateral_contact'")
     assert words in text
     if pair is not FLAT:
         assert "in the simulator without 'unilateral_contact'" in text
+    if pair is ALIKE:  # an identical pair is no "+0.0 points, not resolved"
+        assert "not resolved" not in text and "+0.0" not in text
     assert "switched off on its own" not in text

@@ -38,7 +38,7 @@ from ..chips.pca9685 import OSCILLATOR_STARTUP
 from ..probe import material as lookup_material
 from .pantilt import SearchConfig
 
-__all__ = ["Touch", "Plan", "load_plan", "session_time", "check_session_length",
+__all__ = ["Touch", "Plan", "load_plan", "session_time", "check_session_length", "plan_differences",
            "SEARCH_SETTINGS", "MOVE_SECONDS", "MAX_TOUCHES", "MAX_NAME", "LONG_SESSION_S",
            "LONG_WORST_S", "KEY_RESOLUTION"]
 
@@ -237,6 +237,58 @@ class Plan:
     def placements(self) -> int:
         """How many times the operator places an object: once per material and distance."""
         return len(self.materials) * len(self.contacts)
+
+
+#: What each setting of :meth:`Plan.to_dict` is called in a message, and where it comes from.
+_SETTING_WORDS = {
+    "name": "the name", "materials": "the materials", "contacts_m": "the contacts (m)",
+    "repetitions": "the repetitions", "probe_length": "the probe length (m)",
+    "search": "the search settings",
+    "simulation": "the simulated touches' variation (true contact, sweep speed, tilt and seed "
+                  "of each touch: another --seed or --scene makes another)",
+}
+
+
+def plan_differences(stored: dict, given: dict) -> list[str]:
+    """The settings in which two plans (as :meth:`Plan.to_dict` gives them) differ, each
+    phrased for a message: ``["the repetitions: 3 in the folder, 2 given"]``.
+
+    A session folder holds one plan: a resume with another is refused, and the refusal says in
+    what the two differ (a seed or a repetition count is otherwise hard to spot in two long
+    tables).
+
+    Examples
+    --------
+    >>> a = Plan("demo", ("brass",), (0.1, 0.2), 3).to_dict()
+    >>> b = Plan("demo", ("brass",), (0.1, 0.2), 2).to_dict()
+    >>> plan_differences(a, b)
+    ['the repetitions: 3 in the folder, 2 given']
+    >>> plan_differences(a, a)
+    []
+    """
+    for name, value in (("stored", stored), ("given", given)):
+        if not isinstance(value, dict):
+            raise TypeError(f"{name} must be a plan as a dict (Plan.to_dict), got "
+                            f"{type(value).__name__}")
+    out = []
+    order = {k: i for i, k in enumerate(_KEYS)}
+    for key in sorted(set(stored) | set(given), key=lambda k: (order.get(k, len(_KEYS)), str(k))):
+        a, b = stored.get(key), given.get(key)
+        if a == b:
+            continue
+        words = _SETTING_WORDS.get(key, f"the setting {key!r}")
+        if key == "simulation" or a is None or b is None:
+            out.append(words + (" (in the folder only)" if b is None else
+                                " (given only)" if a is None else ""))
+        else:
+            out.append(f"{words}: {_short(a)} in the folder, {_short(b)} given")
+    return out
+
+
+def _short(value, limit: int = 60) -> str:
+    """A value for a message, cut to about ``limit`` characters."""
+    text = repr(value)
+    return text if len(text) <= limit else text[:limit - 3] + "..."
 
 
 def session_time(plan: Plan, *, move: float = MOVE_SECONDS) -> dict:

@@ -44,7 +44,7 @@ from .mpu6050 import MPU6050, ChipIdentityError
 from .oe import OE_ONLY
 from .pantilt import PanTilt, search_and_record
 from .pca9685 import PCA9685
-from .plan import Plan, Touch
+from .plan import Plan, Touch, plan_differences
 from .safety import ReleaseError, signals_held
 from .watchdog import StreamStalledError
 
@@ -345,9 +345,10 @@ class RecordingSession:
         self.manifest = read_manifest(self.manifest_path)
         if self.manifest["plan"] != self.plan.to_dict():
             self.release()
+            differs = "; ".join(plan_differences(self.manifest["plan"], self.plan.to_dict()))
             raise ValueError(f"{self.directory} holds a session of another plan "
-                             f"({self.manifest['plan']['name']!r}); give a new folder, or the "
-                             "same plan to resume it")
+                             f"({self.manifest['plan']['name']!r}), which differs in {differs}; "
+                             "give a new folder, or the same plan to resume it")
         self._check_same_settings()
         self._verify_listed()
         self._adopt_unlisted()

@@ -86,9 +86,12 @@ def test_a_dry_run_refuses_a_folder_of_another_plan(recorded, tmp_path):
     other = tmp_path / "other.json"
     other.write_text(json.dumps(Plan("other", ("brass",), (0.25,), 1).to_dict()),
                      encoding="utf-8")
-    with pytest.raises(CliError, match=re.escape(str(where / "s"))):
+    with pytest.raises(CliError, match=re.escape(str(where / "s"))) as err:
         run_cli(["record", "--simulated", "--plan", str(other), "--out", str(where / "s"),
                  "--dry-run"])
+    # what differs is named (the plan's name, its contacts), so the user sees what to change
+    assert "the name: 'dry' in the folder, 'other' given" in str(err.value)
+    assert "the contacts (m): [0.2, 0.3] in the folder, [0.25] given" in str(err.value)
 
 
 @pytest.mark.parametrize(("row", "text"), [("not-json", "{"), ("no-plan", "[]")])

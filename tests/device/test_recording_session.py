@@ -167,8 +167,9 @@ def test_a_changed_file_is_refused_by_name(tmp_path):
 def test_another_plan_in_the_same_folder_is_refused(tmp_path):
     session(tmp_path).open()
     other = Plan("other", ("wood",), (0.2,), 1)
-    with pytest.raises(ValueError, match="another plan"):
+    with pytest.raises(ValueError, match="another plan") as err:
         session(tmp_path, plan=other).open()
+    assert "the materials:" in str(err.value) and "['wood'] given" in str(err.value)
 
 
 def test_servos_not_released_stop_the_session_and_block_it_until_the_rig_checks_out(tmp_path):

@@ -365,7 +365,7 @@ def _dry_run(args) -> int:
     from pathlib import Path
 
     from ...cli import print_json
-    from ...device.plan import session_time
+    from ...device.plan import plan_differences, session_time
     from ...device.recording_session import MANIFEST, read_manifest
 
     plan = _plan_of(args)[0]
@@ -374,8 +374,9 @@ def _dry_run(args) -> int:
     if path.exists():
         manifest = read_manifest(path)
         if manifest["plan"] != plan.to_dict():
+            differs = "; ".join(plan_differences(manifest["plan"], plan.to_dict()))
             raise ValueError(f"{args.out} holds a session of another plan "
-                             f"({manifest['plan']['name']!r})")
+                             f"({manifest['plan']['name']!r}), which differs in {differs}")
         done = {k for k, e in manifest["recordings"].items()
                 if (Path(args.out) / e["file"]).exists()}
     missing = [t for t in plan if t.key not in done]

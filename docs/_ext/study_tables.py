@@ -111,7 +111,22 @@ def repetition_lines(summary: dict) -> list[str]:
     design = m["controls_design"]
     rows.append([f"controls' design ({design['recordings']} recordings), all effects on",
                  cell(m, "ablation", "none"), _deff(m, "ablation", "none")])
-    return _table(["repetitions per position", "grouped SVM, all folds", "design effect"], rows)
+    table = _table(["repetitions per position", "grouped SVM, all folds", "design effect"], rows)
+    return table + ["", *_paired_repetitions(m["svm_grouped_repetitions_paired"])]
+
+
+def _paired_repetitions(p: dict) -> list[str]:
+    """The most repetitions against the fewest, paired on the recordings both test."""
+    head = (f"Paired on the {p['n_test']} recordings both rows test (the first "
+            f"{'repetition' if p['fewest'] == 1 else str(p['fewest']) + ' repetitions'} of each "
+            f"of the {p['n_units']} positions), {p['most']} repetitions against {p['fewest']}: ")
+    if p["identical"]:
+        return [head + _alike(p) + "."]
+    lo, hi = (points(v).split()[0] for v in p["ci95"])
+    verdict = (f"resolved ({p['direction']})" if p["resolved"] else "not resolved, the design "
+               f"detecting {points(p['detectable_difference_80']).lstrip('+')} at 80 % power")
+    return [head + f"{points(p['difference'])} (95 % CI {lo} to {hi} on the position), "
+            f"{verdict}."]
 
 
 def controls_lines(summary: dict) -> list[str]:

@@ -76,6 +76,10 @@ class MaterialSplitsResult:
         The paper's distance network (gradient descent) trained with whole positions held out,
         over every fold of the grouped split (``_region_folds``), beside its random
         split.
+    grouped_answers : dict of str to ndarray or None
+        Per classifier of :data:`CLASSIFIERS`: each recording of the data set right (True) or
+        wrong on the grouped split, over its folds, which test every recording once
+        (``answers_over_folds``): what a comparison paired on the same recordings reads.
     flattery : dict of str to PairedDifference or None
         Per classifier of :data:`CLASSIFIERS`: its random split (B) against whole positions held
         out (A), paired on the random split's own test recordings, each of which the grouped
@@ -100,6 +104,7 @@ class MaterialSplitsResult:
     distance_held_out: object = None
     design: dict | None = None
     flattery: dict | None = None
+    grouped_answers: dict | None = None
 
     @property
     def distance_ranking(self) -> tuple[str, dict]:
@@ -298,29 +303,38 @@ def compute(ds, feats, seed: int, *, random_svm, paper_ann, paper_distance,
             a.correct(), positions[a.rows()], UNITS["random"])
     held_out = _pooled_distance([done["held_out", i] for i in range(len(regions))])
     first = {key: r[0] for key, r in by_fold.items()}
-    flattery = {c: random_against_grouped(by_fold[c, "random"][0], by_fold[c, "grouped"],
-                                          positions) for c in CLASSIFIERS}
+    answers = {c: answers_over_folds(by_fold[c, "grouped"], y.size) for c in CLASSIFIERS}
+    flattery = {c: random_against_grouped(by_fold[c, "random"][0], answers[c], positions)
+                for c in CLASSIFIERS}
     return MaterialSplitsResult(
         {k: first["svm", k] for k in SPLITS}, {k: first["position_aware", k] for k in SPLITS},
         {k: first["mode_curves", k] for k in SPLITS}, held, ann, distance, measured, paired,
-        held_out, _design_facts(y, positions, random_svm.rows()), flattery)
+        held_out, _design_facts(y, positions, random_svm.rows()), flattery, answers)
+
+
+def answers_over_folds(folds, n_rows: int) -> np.ndarray:
+    """Each of ``n_rows`` recordings right (True) or wrong over ``folds``, results of folds
+    that test every recording once (the grouped split's)."""
+    answer = np.zeros(n_rows, dtype=bool)
+    times = np.zeros(n_rows, dtype=int)
+    for fold in folds:
+        answer[fold.rows()] = fold.correct()
+        times[fold.rows()] += 1
+    if np.any(times != 1):
+        raise ValueError(f"the folds test {np.count_nonzero(times == 0)} recordings never and "
+                         f"{np.count_nonzero(times > 1)} more than once: they do not test every "
+                         "recording once")
+    return answer
 
 
 def random_against_grouped(random, grouped, positions) -> PairedDifference:
     """A classifier's random split (B) against its grouped split (A), paired on the random
-    split's test recordings: the grouped split's folds test every recording once, so each of
-    them has an answer from a network that saw other repetitions of its position (B) and one
-    from a network that saw none (A). Clustered on the position."""
-    answer = {}
-    for fold in grouped:
-        answer.update(zip(fold.rows().tolist(), fold.correct().tolist(), strict=True))
+    split's test recordings: the grouped split's folds test every recording once (``grouped``,
+    each recording's answer there, ``answers_over_folds``), so each of them has an answer from
+    a network that saw other repetitions of its position (B) and one from a network that saw
+    none (A). Clustered on the position."""
     rows = random.rows()
-    missing = [r for r in rows.tolist() if r not in answer]
-    if missing:
-        raise ValueError(f"the grouped folds do not test {len(missing)} of the random split's "
-                         "test recordings: the two cannot be paired")
-    held = np.array([answer[r] for r in rows.tolist()])
-    return PairedDifference.from_recordings(held, random.correct(),
+    return PairedDifference.from_recordings(np.asarray(grouped)[rows], random.correct(),
                                             np.asarray(positions)[rows], UNITS["grouped"])
 
 

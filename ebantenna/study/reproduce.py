@@ -294,8 +294,10 @@ def _learn_materials_and_distance(study: _Sections, ds, feats, materials, seed: 
         material_splits.render,
     )
     grouped = study.results["splits"].measured["svm", "grouped"]
-    study.run("seeds", seed_spread.compute, seed_spread.render, ds, feats, seed, grouped,
-              workers)
+    answers = study.results["splits"].grouped_answers["svm"]
+    study.run("seeds", lambda: seed_spread.compute(ds, feats, seed, grouped, workers,
+                                                   grouped_answers=answers),
+              seed_spread.render)
     study.run("ann setup",
               lambda: ann_setup.from_fits(ds, feats, seed, setup_fits, paper_ann=learnt.ann),
               ann_setup.render)

@@ -17,7 +17,16 @@ from scipy.stats import chi2
 
 from ..paper import experiments
 from ..paper.splits import SPLITS, split_folds
-from ..paper.uncertainty import UNITS, FoldAccuracy, clustered_entries, format_clustered, percent
+from ..paper.uncertainty import (
+    UNITS,
+    FoldAccuracy,
+    PairedDifference,
+    clustered_entries,
+    correct_count,
+    format_clustered,
+    format_difference,
+    percent,
+)
 from ._common import (
     check_instance,
     check_render,
@@ -26,6 +35,7 @@ from ._common import (
     fits_in_parallel,
     listed,
 )
+from .material_splits import answers_over_folds
 
 __all__ = ["SPLIT_SEEDS", "SUBSET_REPETITIONS", "TRAINING_REPETITIONS", "CLASSIFIERS",
            "SeedSpreadResult", "compute", "render"]
@@ -62,24 +72,37 @@ class SeedSpreadResult:
     subset_repetitions : int
         Repetitions of each position in the subset: :data:`SUBSET_REPETITIONS`, or all the data
         set holds when it holds fewer.
+    paired_repetitions : PairedDifference or None
+        The most repetitions (B) against the fewest (A) of :attr:`repetitions`, paired on the
+        recordings both test: the fewest repetitions' own (every position's first ones), each
+        tested once in either; clustered on the position. None when the grouped SVM's answers
+        per recording were not given.
     """
 
     spreads: dict
     subset_recordings: int
     repetitions: dict
     subset_repetitions: int
+    paired_repetitions: PairedDifference | None = None
 
     def to_dict(self) -> dict:
         """Under ``materials``: ``seed_spread`` (classifier -> split -> the accuracy over the
         folds, with ``binomial_std``, the spread the folds would show were the recordings
-        independent, and ``spread_ratio``) and ``svm_grouped_by_repetitions``."""
+        independent, and ``spread_ratio``), ``svm_grouped_by_repetitions`` and, when measured,
+        ``svm_grouped_repetitions_paired`` (the most repetitions against the fewest, paired,
+        with ``fewest`` and ``most``)."""
         spread = {c: {k: _spread_dict(self.spreads[c, k]) for k in SPLITS} for c in CLASSIFIERS}
-        return {
+        out = {
             "seed_spread": {"subset_recordings": self.subset_recordings, **spread},
             "svm_grouped_by_repetitions": {
                 str(r): clustered_entries("accuracy", a) for r, a in self.repetitions.items()
             },
         }
+        if self.paired_repetitions is not None:
+            out["svm_grouped_repetitions_paired"] = {
+                "fewest": min(self.repetitions), "most": max(self.repetitions),
+                **self.paired_repetitions.to_dict()}
+        return out
 
 
 def binomial_std(f: FoldAccuracy) -> float:
@@ -158,15 +181,19 @@ def scatter_sentence(rows) -> str:
     return "; ".join(parts) + "."
 
 
-def repetitions_sentence(repetitions: dict) -> str:
-    """What the grouped accuracy against the repetitions per position shows: the fewest and
-    the most repetitions' intervals, and how much the interval on the position narrows against
-    the one that counts every recording as independent.
+def repetitions_sentence(repetitions: dict, paired: PairedDifference | None = None) -> str:
+    """What the grouped accuracy against the repetitions per position shows: the change from the
+    fewest to the most repetitions (from ``paired`` when given, else from the two intervals), and
+    how much the interval on the position narrows against the one that counts every recording as
+    independent.
 
     Parameters
     ----------
     repetitions : dict of int to ClusteredAccuracy or FoldAccuracy
         By repetitions per position.
+    paired : PairedDifference, optional
+        The most repetitions (B) against the fewest (A) on the recordings both test
+        (``SeedSpreadResult.paired_repetitions``): the verdict then follows its interval.
 
     Examples
     --------
@@ -183,7 +210,9 @@ def repetitions_sentence(repetitions: dict) -> str:
     (r0, a0), (r1, a1) = (min(repetitions.items()), max(repetitions.items()))
     moves = f"from {percent(a0.estimate)} to {percent(a1.estimate)}"
     head = f"From {r0} to {r1} repetitions per position the grouped accuracy "
-    if a1.ci95[0] > a0.ci95[1] or a1.ci95[1] < a0.ci95[0]:
+    if paired is not None:
+        text = head + f"goes {moves}. " + _paired_words(paired, r0)
+    elif a1.ci95[0] > a0.ci95[1] or a1.ci95[1] < a0.ci95[0]:
         way = "rises" if a1.estimate > a0.estimate else "falls"
         text = (head + f"{way} {moves}, their 95 % intervals apart: the number of recordings "
                 "of each position the SVM learns from matters on whole held-out positions. ")
@@ -213,6 +242,24 @@ def repetitions_sentence(repetitions: dict) -> str:
     )
 
 
+def _paired_words(p: PairedDifference, fewest: int) -> str:
+    """The verdict on the repetitions from their paired difference ``p``, taken on the
+    recordings of the ``fewest`` repetitions of every position (tested under both)."""
+    on = (f"On the {p.n_recordings} recordings both rows test (the first "
+          f"{'repetition' if fewest == 1 else f'{fewest} repetitions'} of each of the "
+          f"{p.n_units} positions, each tested once in either row)")
+    if p.identical:
+        return (on + ", every position counts as many right with either: the added repetitions "
+                "change nothing there. ")
+    if p.resolved:
+        way = "rise" if p.direction == "higher" else "fall"
+        return (on + f", paired, the change is a {way} of {format_difference(p)}, resolved: the "
+                "number of recordings of each position the SVM learns from matters on whole "
+                "held-out positions. ")
+    return (on + f", paired, the change is {format_difference(p)}, not resolved: it is either "
+            "smaller than what this design detects at 80 % power or missed. ")
+
+
 def _fold(ratio: float) -> str:
     """``narrows 2-fold`` for a width ratio (before / after) of 2, ``widens 2-fold`` for 0.5."""
     return f"narrows {ratio:.3g}-fold" if ratio >= 1 else f"widens {1 / ratio:.3g}-fold"
@@ -234,13 +281,19 @@ def _subset(ds, repetitions: int) -> np.ndarray:
     return np.flatnonzero(np.asarray(ds.repetition) < repetitions)
 
 
-def compute(ds, feats, seed: int, grouped_full: FoldAccuracy, n_jobs: int = 1) -> SeedSpreadResult:
+def compute(ds, feats, seed: int, grouped_full: FoldAccuracy, n_jobs: int = 1, *,
+            grouped_answers=None) -> SeedSpreadResult:
     """The three classifiers on every fold of the three splits (on the subset), and the grouped
     SVM over all folds on 1, 3, 5 repetitions; ``grouped_full`` is the whole data set's grouped
-    SVM over its folds, already measured. Every fit runs on one of ``n_jobs`` worker processes
-    (``_common.fits_in_parallel``): the same numbers whatever ``n_jobs``."""
+    SVM over its folds, already measured, and ``grouped_answers`` (optional) its answer for
+    each recording of ``ds`` (True where right; the splits' ``grouped_answers["svm"]``), with
+    which the most repetitions are paired against the fewest. Every fit runs on one of
+    ``n_jobs`` worker processes (``_common.fits_in_parallel``): the same numbers whatever
+    ``n_jobs``."""
     check_step(ds=ds, feats=feats, seed=seed, n_jobs=n_jobs)
     check_instance("grouped_full", grouped_full, FoldAccuracy)
+    answers = None if grouped_answers is None else _check_answers(grouped_answers, ds,
+                                                                   grouped_full)
     depth = int(np.max(ds.repetition)) + 1
     rows = _subset(ds, SUBSET_REPETITIONS)
     X, y, d = feats.fft[rows], ds.material[rows], ds.contact[rows]
@@ -272,7 +325,30 @@ def compute(ds, feats, seed: int, grouped_full: FoldAccuracy, n_jobs: int = 1) -
     repetitions = {r: over_folds(("repetitions", r), UNITS["grouped"])
                    for r in TRAINING_REPETITIONS if r < depth}
     repetitions[depth] = grouped_full
-    return SeedSpreadResult(spreads, int(rows.size), repetitions, min(SUBSET_REPETITIONS, depth))
+    paired = None
+    if answers is not None and len(repetitions) > 1:
+        fewest = min(repetitions)
+        sub = _subset(ds, fewest)
+        few = answers_over_folds([done[key] for key in calls if key[:2] == ("repetitions",
+                                                                             fewest)], sub.size)
+        paired = PairedDifference.from_recordings(few, answers[sub], ds.contact[sub],
+                                                  UNITS["grouped"], seed=seed)
+    return SeedSpreadResult(spreads, int(rows.size), repetitions, min(SUBSET_REPETITIONS, depth),
+                            paired)
+
+
+def _check_answers(answers, ds, grouped_full: FoldAccuracy) -> np.ndarray:
+    """``answers`` as one bool per recording of ``ds``, agreeing with ``grouped_full``."""
+    a = np.asarray(answers)
+    if a.dtype != bool or a.shape != (len(ds.material),):
+        raise ValueError(f"grouped_answers must hold one bool per recording of ds "
+                         f"({len(ds.material)}), got dtype {a.dtype} and shape {a.shape}")
+    n = grouped_full.n_recordings
+    k = correct_count(grouped_full.pooled.estimate, n)
+    if (a.size, int(a.sum())) != (n, k):
+        raise ValueError(f"grouped_answers and grouped_full describe different runs: "
+                         f"{int(a.sum())} of {a.size} right against {k} of {n}")
+    return a
 
 
 def render(result: SeedSpreadResult, report, figures) -> None:
@@ -318,4 +394,4 @@ def render(result: SeedSpreadResult, report, figures) -> None:
         [[str(r), format_clustered(a), f"{a.pooled.design_effect:.1f}"]
          for r, a in sorted(result.repetitions.items())],
     )
-    report.paragraph(repetitions_sentence(result.repetitions))
+    report.paragraph(repetitions_sentence(result.repetitions, result.paired_repetitions))

@@ -39,6 +39,7 @@ from contract_files_cases import Row, check_row  # noqa: E402
 
 from ebantenna.paper import controls  # noqa: E402
 from ebantenna.paper.feature_table import signal_features  # noqa: E402
+from ebantenna.paper.uncertainty import FoldAccuracy  # noqa: E402
 from ebantenna.report import FigureSet, Report  # noqa: E402
 from ebantenna.simulate import DatasetDesign, Scene, build_dataset, builtin_scene  # noqa: E402
 from ebantenna.study import (  # noqa: E402
@@ -87,6 +88,13 @@ def other_feats():
     """Features of two rows only: not those of the tiny data set's six."""
     ds = ds_()
     return signal_features(ds.ax[:2], ds.az[:2], ds.fs, n_jobs=1, show_progress=False)
+
+
+def _six_folds():
+    """The grouped SVM's accuracy over two folds of the tiny data set's six recordings, three
+    right (what ``grouped_answers`` must agree with)."""
+    right = np.array([True, False, True])
+    return FoldAccuracy([(right, np.arange(3)), (~right, np.arange(3, 6))], "position")
 
 
 def report_figures():
@@ -329,6 +337,15 @@ def _computes():
             lambda: seed_spread.compute(ds(), feats(), 0, None, n_jobs=None), ("n_jobs",)),
         Row(S + "seed_spread.compute", "seed-str",
             lambda: seed_spread.compute(ds(), feats(), "0", None), ("seed",)),
+        Row(S + "seed_spread.compute", "grouped_answers-one-short",
+            lambda: seed_spread.compute(ds(), feats(), 0, _six_folds(),
+                                        grouped_answers=np.ones(5, bool)), ("grouped_answers",)),
+        Row(S + "seed_spread.compute", "grouped_answers-floats",
+            lambda: seed_spread.compute(ds(), feats(), 0, _six_folds(),
+                                        grouped_answers=np.ones(6)), ("grouped_answers",)),
+        Row(S + "seed_spread.compute", "grouped_answers-of-another-run",
+            lambda: seed_spread.compute(ds(), feats(), 0, _six_folds(),
+                                        grouped_answers=np.ones(6, bool)), ("grouped_answers",)),
         Row(S + "hinge_fit.compute", "probe-int", lambda: hinge_fit.compute(5, True), ("probe",)),
         Row(S + "hinge_fit.compute", "quick-str", lambda: hinge_fit.compute(PROBE, "no"),
             ("quick",)),

@@ -228,7 +228,11 @@ def test_the_random_split_is_paired_with_the_folds_that_test_its_recordings_agai
     # position out: the paired difference is the mean, over those recordings, of (random right)
     # minus (held-out right), clustered on the position
     from ebantenna.paper.experiments import ClassificationResult, RegressionResult
-    from ebantenna.study.material_splits import held_out_against_random, random_against_grouped
+    from ebantenna.study.material_splits import (
+        answers_over_folds,
+        held_out_against_random,
+        random_against_grouped,
+    )
 
     rng = np.random.default_rng(3)
     positions = np.repeat(np.arange(12) * 0.01, 4)
@@ -239,12 +243,17 @@ def test_the_random_split_is_paired_with_the_folds_that_test_its_recordings_agai
     rows = np.sort(rng.choice(positions.size, 12, replace=False))
     right_random = rng.random(12) < 0.9
     random = ClassificationResult("svm", ("a",), {}, 0.0, None, {"test": (rows, right_random)})
-    p = random_against_grouped(random, grouped, positions)
+    answers = answers_over_folds(grouped, positions.size)
+    assert np.array_equal(answers, right_held)  # each recording's answer in its own fold
+    p = random_against_grouped(random, answers, positions)
     assert p.difference == pytest.approx(np.mean(right_random.astype(float) - right_held[rows]),
                                          abs=1e-15)
     assert p.n_units == np.unique(positions[rows]).size
-    with pytest.raises(ValueError, match="cannot be paired"):
-        random_against_grouped(random, grouped[:2], positions)
+    # folds that leave recordings untested, or test one twice, give no answer to pair with
+    with pytest.raises(ValueError, match="16 recordings never and 0 more than once"):
+        answers_over_folds(grouped[:2], positions.size)
+    with pytest.raises(ValueError, match="0 recordings never and 16 more than once"):
+        answers_over_folds(grouped + grouped[:1], positions.size)
     # the distance network likewise, on errors (cm), from each result's own test rows
     truth = positions
     held = RegressionResult("held", truth, truth + 0.02, np.unique(truth), np.zeros(12), 0.0,

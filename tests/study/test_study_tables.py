@@ -43,3 +43,25 @@ def test_a_cell_shows_what_the_report_shows(quick_study):
     report = result.report_markdown.read_text()
     assert cell.replace(f", {span(ci)})", f", 95 % CI {span(ci)})") in report
     assert any(cell in line for line in study_tables.interval_lines(result.summary))
+
+
+def test_the_paired_repetitions_line_follows_the_summary(quick_study):
+    """The docs' line under the repetitions' table reads the paired entry: its difference as
+    the report prints it, and a verdict that flips with ``resolved`` and ``identical``."""
+    from ebantenna.paper.uncertainty import points
+
+    result, _ = quick_study
+    p = result.summary["materials"]["svm_grouped_repetitions_paired"]
+    (line,) = study_tables.repetition_lines(result.summary)[-1:]
+    assert f"{p['most']} repetitions against {p['fewest']}" in line
+    if not p["identical"]:
+        assert points(p["difference"]) in line
+        report = result.report_markdown.read_text(encoding="utf-8")
+        assert points(p["difference"]) in report  # the report's own string, one formatter
+    flipped = {**p, "identical": False, "resolved": not p["resolved"], "direction": "higher",
+               "ci95": [0.01, 0.02], "difference": 0.015}
+    words = study_tables._paired_repetitions(flipped)[0]
+    assert ("resolved (higher)" in words) == (not p["resolved"])
+    assert ("not resolved" in words) == p["resolved"]
+    alike = study_tables._paired_repetitions({**p, "identical": True})[0]
+    assert "as many test recordings right under both" in alike and "CI" not in alike

@@ -393,6 +393,18 @@ def compiled_status():
     )
 
 
+def march_engine(engine: str | None = None) -> str:
+    """The march that simulates the strikes the compiled march takes (:func:`compiled_fits`):
+    ``'compiled'`` when ``engine`` (None: ``EBANTENNA_ENGINE``) lets it and numba works
+    (:func:`compiled_status`), else ``'numpy'``. The two agree within a bound, not bit for bit
+    (a chattering strike near the tip follows the last bits), so a data set records which one
+    made it (a strike the compiled march gives up is marched by NumPy in either case)."""
+    from .._engines import use_compiled
+
+    return ("compiled" if use_compiled(engine, compiled_status, "compiled strike march")
+            else "numpy")
+
+
 def _one_strike(march):
     """A mass of 1 kg on a 100 N/m spring strikes a 1e4 N/m contact at 1 m/s, marched by
     ``march``; its events."""

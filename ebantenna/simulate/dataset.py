@@ -18,8 +18,10 @@ A data set is saved as an ``.npz`` archive (accelerations as float32; not compre
 noise-dominated signals barely shrink under zlib, which costs seconds per build) with a JSON
 metadata record and a SHA-256 checksum of the arrays, and reused when the same configuration asks
 again. The configuration is the cache key: the file format, the package version, the seed, the
-design, every parameter of the scene (probe, supports, sampling, each effect's parameters) and every
-property of the touched materials, so that changed physics never reuses stale data. A cached file
+design, every parameter of the scene (probe, supports, sampling, each effect's parameters), every
+property of the touched materials and the engine of the strike march (``strike_march``: NumPy or
+compiled, which agree within a bound but not bit for bit), so that changed physics never reuses
+stale data and a data set says which march made it. A cached file
 that is damaged, truncated, foreign or stale is rebuilt, and the log says why. The simulation runs
 through :class:`joblib.Parallel`, one task per material, so any joblib backend can run it: local
 processes, or a Dask cluster (``joblib.parallel_config(backend="dask")``) to grow a sweep beyond one
@@ -55,6 +57,7 @@ from .._validate import (
     plain_name,
 )
 from ..probe import material
+from ._block_march import march_engine
 from ._dataset_files import remove_leftovers, stale_reason, write_whole
 from .scene import Scene
 from .simulator import physics_key, simulate_batch, simulate_sensor_variants
@@ -332,6 +335,7 @@ def _config(scene: Scene, design: DatasetDesign, seed: int) -> dict:
         "scene": scene.to_dict(),
         "design": design.to_dict(),
         "materials": {name: dataclasses.asdict(material(name)) for name in design.materials},
+        "strike_march": march_engine(),
     }
     return json.loads(json.dumps(config))  # tuples as lists, as they come back from the file
 
@@ -511,9 +515,10 @@ def build_dataset(
     -------
     Dataset
         Also saved as ``<scene name>-<design name>-seed<seed>.npz``; a file there with the same
-        configuration (format, package version, every scene parameter, design, materials, seed)
-        and a valid checksum is loaded instead of simulated again. A damaged or stale file is
-        rebuilt (logged at WARNING with the reason). An interruption leaves no temporary file.
+        configuration (format, package version, every scene parameter, design, materials, seed,
+        strike march's engine) and a valid checksum is loaded instead of simulated again. A
+        damaged or stale file is rebuilt (logged at WARNING with the reason). An interruption
+        leaves no temporary file.
 
     Examples
     --------

@@ -11,6 +11,9 @@ from ._common import check_render, check_step
 
 __all__ = ["DatasetResult", "compute", "render"]
 
+#: How the report names each engine of the strike march a data set records.
+MARCHES = {"numpy": "the NumPy block march", "compiled": "the compiled march (the fast extra)"}
+
 
 @dataclass(frozen=True)
 class DatasetResult:
@@ -33,6 +36,10 @@ class DatasetResult:
     saturated : dict or None
         The recordings the chip's range held at a rail on at least one sample
         (``saturated_recordings``); None when the data set does not count them.
+    strike_march : str or None
+        The engine of the strike march that simulated it (``'numpy'`` or ``'compiled'``, from
+        its configuration; the two agree within a bound, not bit for bit); None for a data set
+        that does not say (recorded on the rig, or made before it was recorded).
     """
 
     path: str | None
@@ -43,6 +50,7 @@ class DatasetResult:
     contacts: int
     checksum: str | None
     saturated: dict | None = None
+    strike_march: str | None = None
 
     def to_dict(self) -> dict:
         """The summary record of the data set.
@@ -60,6 +68,7 @@ class DatasetResult:
             "contacts": self.contacts,
             "checksum_sha256": self.checksum,
             "saturated": self.saturated,
+            "strike_march": self.strike_march,
         }
 
 
@@ -75,7 +84,15 @@ def compute(ds) -> DatasetResult:
         contacts=int(np.unique(ds.contact).size),
         checksum=ds.metadata.get("checksum_sha256"),
         saturated=saturated_recordings(ds),
+        strike_march=_strike_march(ds.metadata),
     )
+
+
+def _strike_march(metadata: dict) -> str | None:
+    """The strike march's engine a data set's configuration names, if it names one."""
+    config = metadata.get("config")
+    march = config.get("strike_march") if isinstance(config, dict) else None
+    return march if isinstance(march, str) else None
 
 
 def saturated_recordings(ds) -> dict | None:
@@ -120,7 +137,10 @@ def render(result: DatasetResult, report, figures) -> None:
     report.paragraph(
         f"{result.signals} simulated recordings of {result.samples} samples at {result.fs:g} Hz: "
         f"{len(result.materials)} materials x {result.contacts} contact positions x "
-        f"{_repetitions(result)}, from {result.path} (SHA-256 {result.checksum}). "
+        f"{_repetitions(result)}, from {result.path} (SHA-256 {result.checksum}"
+        + (f"; strikes marched by {MARCHES[result.strike_march]}, which the other engine "
+           "matches within a bound, not bit for bit, so the two make different data sets"
+           if result.strike_march in MARCHES else "") + "). "
         + saturation_sentence(result.saturated)
     )
 

@@ -82,6 +82,29 @@ def test_a_stale_cache_of_another_version_is_rebuilt_even_with_a_valid_checksum(
     rebuilt(tmp_path, reference, caplog, stale, "configuration changed (ebantenna_version)")
 
 
+def test_a_cache_made_by_the_other_strike_march_is_rebuilt(tmp_path, reference, caplog):
+    # the compiled and NumPy marches agree within a bound, not bit for bit: a data set made by
+    # one is not the other's, and says which made it
+    made_by = reference.metadata["config"]["strike_march"]
+    assert made_by == dataset_module.march_engine() and made_by in ("numpy", "compiled")
+    other = {"numpy": "compiled", "compiled": "numpy"}[made_by]
+
+    def by_the_other(path):
+        rewrite(path, strike_march=other, ax=np.zeros_like(reference.ax))
+
+    rebuilt(tmp_path, reference, caplog, by_the_other, "configuration changed (strike_march)")
+
+
+def test_the_strike_march_of_the_key_follows_the_engine_choice(monkeypatch):
+    monkeypatch.setenv("EBANTENNA_ENGINE", "numpy")
+    assert dataset_module.march_engine() == "numpy"
+    monkeypatch.setenv("EBANTENNA_ENGINE", "auto")
+    from ebantenna.simulate._block_march import compiled_status
+
+    assert dataset_module.march_engine() == ("compiled" if compiled_status().available
+                                             else "numpy")
+
+
 def test_the_cache_key_covers_every_scene_parameter(tmp_path, reference, caplog):
     config = reference.metadata["config"]
     assert config["scene"] == json.loads(json.dumps(SCENE.to_dict()))

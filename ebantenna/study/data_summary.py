@@ -39,7 +39,7 @@ class DatasetResult:
     strike_march : str or None
         The engine of the strike march that simulated it (``'numpy'`` or ``'compiled'``, from
         its configuration; the two agree within a bound, not bit for bit); None for a data set
-        that does not say (recorded on the rig, or made before it was recorded).
+        that does not say (recorded on the rig, or saved by a version that did not record it).
     """
 
     path: str | None

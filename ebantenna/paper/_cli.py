@@ -74,6 +74,8 @@ def run_dataset(args) -> int:
         "seed": args.seed,
         "quick": bool(args.quick),
         "checksum_sha256": data.metadata["checksum_sha256"],
+        # the compiled and NumPy marches make different data sets (within a bound): say which
+        "strike_march": data.metadata["config"].get("strike_march"),
         "seconds": round(time.perf_counter() - start, 3),
     }
     if args.json:

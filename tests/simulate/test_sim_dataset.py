@@ -124,6 +124,9 @@ def test_cli_dataset_json(tmp_path, capsys):
     report = json.loads(capsys.readouterr().out)
     assert report["signals"] == 120 and report["repetitions"] == 3 and report["quick"] is True
     assert report["materials"] == sorted(material_names())
+    from ebantenna.simulate._block_march import march_engine
+
+    assert report["strike_march"] == march_engine()  # the checksum is that engine's
 
 
 def test_a_design_of_ones_own_and_its_cache_key(tmp_path):

@@ -14,6 +14,7 @@ import os
 import re
 import stat
 import tempfile
+import tokenize
 import zipfile
 import zlib
 from collections.abc import Iterable, Iterator
@@ -720,7 +721,8 @@ def open_npz(path, what: str) -> Iterator[np.lib.npyio.NpzFile]:
 
     A truncated, foreign or corrupted file makes NumPy and :mod:`zipfile` raise half a dozen
     kinds of errors (``BadZipFile``, ``EOFError``, ``zlib.error``, a ``KeyError`` for a missing
-    array, a ``ValueError`` for pickled data), some only when an array is read. Inside this
+    array, a ``ValueError`` for pickled data, tokenize's ``TokenError`` for an array header that
+    is no literal), some only when an array is read. Inside this
     context they all end as ``ValueError("<path> is not <what>: ...")``; a missing file stays a
     :class:`FileNotFoundError`. Only a regular file is opened (:func:`open_regular`), and every
     array's size is read from its header and checked against the memory budget
@@ -740,9 +742,10 @@ def open_npz(path, what: str) -> Iterator[np.lib.npyio.NpzFile]:
     ValueError: ...x.npz is not a recording: not an .npz archive (it does not begin like a zip file)
     """
     # zipfile raises NotImplementedError for an unknown compression method, RuntimeError for
-    # an encrypted member
+    # an encrypted member; NumPy's reader of an array's header lets tokenize's TokenError out of
+    # a header it cannot parse as a literal (its fallback for headers written by Python 2)
     damaged = (zipfile.BadZipFile, EOFError, zlib.error, ValueError, OSError,
-               NotImplementedError, RuntimeError)
+               NotImplementedError, RuntimeError, tokenize.TokenError, SyntaxError)
     if os.path.isdir(check_path("path", path)):
         raise ValueError(f"{Path(path)} is a directory, not {what}")
     # The file is opened here, not by NumPy, so that it is closed whatever fails.

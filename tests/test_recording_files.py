@@ -64,6 +64,29 @@ def test_a_damaged_or_foreign_file_names_itself_and_the_fault(tmp_path, content,
     assert str(path) in str(exc.value)
 
 
+@pytest.mark.parametrize("header", [
+    b"{'descr': '<f8', 'fortran_order': False, 'shape': (3,), ",  # a brace left open
+    b"{'descr': '<f8', 'fortran_order': False, 'shape': (3,)) }",  # one too many
+])
+def test_an_array_header_that_is_no_literal_names_the_file(tmp_path, header):
+    # NumPy parses a version-1 header as a literal and, failing, tokenizes it as one written by
+    # Python 2: an unbalanced bracket then escapes as tokenize's TokenError or a SyntaxError
+    # (a single bit flipped in a data set's header did)
+    import zipfile
+
+    from numpy.lib import format as npformat
+
+    body = header.ljust(117) + b"\n"  # padded so that magic, length and header fill 128 bytes
+    member = npformat.magic(1, 0) + len(body).to_bytes(2, "little") + body + bytes(24)
+    path = tmp_path / "r.npz"
+    np.savez(path, **arrays())
+    with zipfile.ZipFile(path, "a") as z:
+        z.writestr("zz.npy", member)  # a member every load opens to check its size
+    with pytest.raises(ValueError, match="r.npz is not a recording") as exc:
+        Recording.load(path)
+    assert str(path) in str(exc.value)
+
+
 def test_a_truncated_file_and_a_missing_one(tmp_path):
     path = REC.save(tmp_path / "r.npz")
     os.truncate(path, path.stat().st_size - 20)

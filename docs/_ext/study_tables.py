@@ -119,7 +119,8 @@ def _paired_repetitions(p: dict) -> list[str]:
     """The most repetitions against the fewest, paired on the recordings both test."""
     head = (f"Paired on the {p['n_test']} recordings both rows test (the first "
             f"{'repetition' if p['fewest'] == 1 else str(p['fewest']) + ' repetitions'} of each "
-            f"of the {p['n_units']} positions), {p['most']} repetitions against {p['fewest']}: ")
+            f"material at each of the {p['n_units']} positions), {p['most']} repetitions against "
+            f"{p['fewest']}: ")
     if p["identical"]:
         return [head + _alike(p) + "."]
     lo, hi = (points(v).split()[0] for v in p["ci95"])

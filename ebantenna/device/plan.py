@@ -239,7 +239,8 @@ class Plan:
         return len(self.materials) * len(self.contacts)
 
 
-#: What each setting of :meth:`Plan.to_dict` is called in a message, and where it comes from.
+#: What each setting of :meth:`Plan.to_dict` is called in a message (the simulated variation
+#: also says which options make it).
 _SETTING_WORDS = {
     "name": "the name", "materials": "the materials", "contacts_m": "the contacts (m)",
     "repetitions": "the repetitions", "probe_length": "the probe length (m)",

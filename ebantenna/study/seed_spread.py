@@ -73,7 +73,7 @@ class SeedSpreadResult:
         Repetitions of each position in the subset: :data:`SUBSET_REPETITIONS`, or all the data
         set holds when it holds fewer.
     paired_repetitions : PairedDifference or None
-        The most repetitions (B) against the fewest (A) of :attr:`repetitions`, paired on the
+        The most repetitions (B) against the fewest (A) of ``repetitions``, paired on the
         recordings both test: the fewest repetitions' own (every position's first ones), each
         tested once in either; clustered on the position. None when the grouped SVM's answers
         per recording were not given.
@@ -246,8 +246,8 @@ def _paired_words(p: PairedDifference, fewest: int) -> str:
     """The verdict on the repetitions from their paired difference ``p``, taken on the
     recordings of the ``fewest`` repetitions of every position (tested under both)."""
     on = (f"On the {p.n_recordings} recordings both rows test (the first "
-          f"{'repetition' if fewest == 1 else f'{fewest} repetitions'} of each of the "
-          f"{p.n_units} positions, each tested once in either row)")
+          f"{'repetition' if fewest == 1 else f'{fewest} repetitions'} of each material at "
+          f"each of the {p.n_units} positions, each tested once in either row)")
     if p.identical:
         return (on + ", every position counts as many right with either: the added repetitions "
                 "change nothing there. ")

@@ -116,18 +116,13 @@ def repetition_lines(summary: dict) -> list[str]:
 
 
 def _paired_repetitions(p: dict) -> list[str]:
-    """The most repetitions against the fewest, paired on the recordings both test."""
+    """The most repetitions against the fewest, paired on the recordings both test, written as
+    every paired comparison the pages show (``_pair_text``)."""
     head = (f"Paired on the {p['n_test']} recordings both rows test (the first "
             f"{'repetition' if p['fewest'] == 1 else str(p['fewest']) + ' repetitions'} of each "
             f"material at each of the {p['n_units']} positions), {p['most']} repetitions against "
             f"{p['fewest']}: ")
-    if p["identical"]:
-        return [head + _alike(p) + "."]
-    lo, hi = (points(v).split()[0] for v in p["ci95"])
-    verdict = (f"resolved ({p['direction']})" if p["resolved"] else "not resolved, the design "
-               f"detecting {points(p['detectable_difference_80']).lstrip('+')} at 80 % power")
-    return [head + f"{points(p['difference'])} (95 % CI {lo} to {hi} on the position), "
-            f"{verdict}."]
+    return [head + _pair_text(p) + "."]
 
 
 def controls_lines(summary: dict) -> list[str]:
@@ -233,14 +228,20 @@ def value_text(summary: dict, text: str) -> str:
     if spec.startswith("sqrt"):  # the square root, in the format that follows
         return format(value ** 0.5, spec[4:])
     if spec == "pair":
-        if value.get("identical"):
-            return f"({_alike(value).removeprefix('none: ')}: no difference to resolve)"
-        lo, hi = (points(v).split()[0] for v in value["ci95"])
-        verdict = (f"resolved, {value['direction']}" if value["resolved"] else
-                   "not resolved; detectable at 80 % power: "
-                   + points(value["detectable_difference_80"]).lstrip("+"))
-        return f"{points(value['difference'])} (95 % CI {lo} to {hi}; {verdict})"
+        return _pair_text(value)
     return format(value, spec)
+
+
+def _pair_text(value: dict) -> str:
+    """A paired comparison of the summary with its interval and verdict (``value_text``'s
+    ``pair``)."""
+    if value.get("identical"):
+        return f"({_alike(value).removeprefix('none: ')}: no difference to resolve)"
+    lo, hi = (points(v).split()[0] for v in value["ci95"])
+    verdict = (f"resolved, {value['direction']}" if value["resolved"] else
+               "not resolved; detectable at 80 % power: "
+               + points(value["detectable_difference_80"]).lstrip("+"))
+    return f"{points(value['difference'])} (95 % CI {lo} to {hi}; {verdict})"
 
 
 def study_role(name, rawtext, text, lineno, inliner, options=None, content=None):

@@ -61,7 +61,9 @@ def test_the_paired_repetitions_line_follows_the_summary(quick_study):
     flipped = {**p, "identical": False, "resolved": not p["resolved"], "direction": "higher",
                "ci95": [0.01, 0.02], "difference": 0.015}
     words = study_tables._paired_repetitions(flipped)[0]
-    assert ("resolved (higher)" in words) == (not p["resolved"])
+    assert ("resolved, higher" in words) == (not p["resolved"])
     assert ("not resolved" in words) == p["resolved"]
     alike = study_tables._paired_repetitions({**p, "identical": True})[0]
     assert "as many test recordings right under both" in alike and "CI" not in alike
+    # the same words as every paired comparison of the pages (the :study: role's ``pair``)
+    assert words.endswith(study_tables.value_text({"x": flipped}, "x|pair") + ".")

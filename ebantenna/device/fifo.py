@@ -51,7 +51,10 @@ estimates the sample period from the timestamps of its interrupts), are:
    ``FIFO_COUNT`` once more. A changed register discards the drain (counted in
    ``samples_discarded``), names itself from what to what, and the chip is configured again; a
    count after the data that is not whole samples, or does not follow from the count before at
-   any rate the tolerance allows, means another reader took bytes: the drain is dropped.
+   any rate the tolerance allows, means another reader took bytes: the drain is dropped. So
+   does a count after the data that confirms nothing: one above the FIFO's size (read wrong),
+   or a full FIFO (it may have overflowed during the drain, and another program may have
+   cleared the overflow flag before the driver read ``INT_STATUS``; counted as an overflow).
    A count that contradicts the clock's tolerance flags the timestamps of its segment. Once two
    counts fall off the same side, the clock itself is suspected: if the counts agree with the
    other counts of their segments (a clock, not a wrong count), the period's prior bracket is
@@ -597,8 +600,8 @@ class FifoStream:
         if status & Interrupt.FIFO_OFLOW:
             return self._fail("FIFO overflow", overflow=True, discarded=n)
         foreign = self._check_after(observed, n, after_count, before, after, broken is not None)
-        if foreign is not None:
-            return self._fail(foreign, discarded=n)
+        if foreign is not None:  # a full FIFO is counted with the overflows
+            return self._fail(foreign, discarded=n, overflow=self._full(after_count))
         block = self._keep(raw, observed)
         if broken is None and after_count < self.fifo_size:  # one more observation of the clock
             self.estimator.add(produced=self.delivered[-1] + after_count // ACCEL_SAMPLE_BYTES,
@@ -619,14 +622,23 @@ class FifoStream:
         took part of one between the count and the data has shifted the chunks kept before the
         failure), and it may not claim more samples than the chip can have produced even if the
         failed transfer took nothing. Fewer samples than expected say nothing there: whole
-        samples taken by another reader cannot be told from the failed transfer's."""
+        samples taken by another reader cannot be told from the failed transfer's.
+
+        A count that cannot be judged confirms nothing, and the drain is dropped: one above the
+        FIFO's size (read wrong: no chip makes it), and a full FIFO, which may have overflowed
+        during the drain (an overflow moves the FIFO's head by any number of bytes, and its flag
+        in ``INT_STATUS`` is gone if another program read that register first)."""
         if count > self.fifo_size:  # a corrupted count: no reader can make it
             self.estimator.rejected += 1
             logger.warning("MPU-6050 FIFO: a count of %d bytes after the drain exceeds the "
                            "FIFO's %d; rejected", count, self.fifo_size)
-            return None
+            return (f"the FIFO count after the drain, {count}, exceeds the FIFO's "
+                    f"{self.fifo_size} bytes (a count read wrong): nothing confirms the drain, "
+                    "which is dropped")
         if self._full(count):
-            return None  # an overflow shows at the next drain
+            return (f"the FIFO is full after the drain ({count} bytes): it may have overflowed "
+                    "during the drain, which moves its head, and nothing confirms the drain, "
+                    "which is dropped")
         if count % ACCEL_SAMPLE_BYTES and not broken:
             self.foreign += 1
             return (f"the FIFO count after the drain, {count}, is not a whole number of samples: "

@@ -3,8 +3,9 @@
 It samples at the rate ``CONFIG`` and ``SMPLRT_DIV`` set, quantises to the range ``ACCEL_CONFIG``
 sets and fills a 1024-byte FIFO that overflows (overwriting its oldest bytes and raising
 ``FIFO_OFLOW_INT``) when drained too slowly; see :mod:`ebantenna.chips.mpu6050` for the register
-map and its source. What it measures comes from a ``source`` callable; it does not model the
-chip's own low-pass filter.
+map and its source. ``INT_STATUS`` clears when it is read, or on any read with ``INT_PIN_CFG``'s
+``INT_RD_CLEAR`` bit (0x10) set. What it measures comes from a ``source``
+callable; it does not model the chip's own low-pass filter.
 
 Modelling assumption: the sample-rate divider starts counting when the FIFO starts filling (awake,
 ``USER_CTRL.FIFO_EN`` and ``FIFO_EN.ACCEL`` set), so the first sample of such an *epoch* lands one
@@ -61,6 +62,8 @@ MAX_CLOCK_DRIFT = 0.05
 REGISTER_SPACE = 128
 #: What a read of the empty FIFO returns in this model.
 _EMPTY_FIFO_BYTE = 0xFF
+#: ``INT_PIN_CFG``'s bit that makes any read clear ``INT_STATUS``, not only a read of it (RM 55).
+INT_RD_CLEAR = 0x10
 _COUNT_LIMITS = np.iinfo(np.int16)
 #: The int16 range the counts saturate at, as floats (taken once: ``iinfo`` is slow to ask).
 _COUNT_MIN, _COUNT_MAX = float(_COUNT_LIMITS.min), float(_COUNT_LIMITS.max)
@@ -368,9 +371,11 @@ class SimulatedMPU6050:
             else:
                 value = self.regs[reg]
                 if reg == Register.INT_STATUS:
-                    self.regs[reg] = 0  # cleared by reading (INT_PIN_CFG.INT_RD_CLEAR = 0)
+                    self.regs[reg] = 0  # cleared by reading it (INT_PIN_CFG.INT_RD_CLEAR = 0)
             out.append(value)
             reg = min(reg + 1, REGISTER_SPACE - 1) if reg < REGISTER_SPACE else reg
+        if length and self.regs[Register.INT_PIN_CFG] & INT_RD_CLEAR:
+            self.regs[Register.INT_STATUS] = 0  # cleared by any read (RM 55)
         return out
 
     def _fifo_bytes(self, n: int) -> list[int]:

@@ -156,6 +156,24 @@ def test_the_rod_geometry_sentence_follows_the_rank_order():
     assert "does not go with lower accuracy" in rod_geometry.gap_sentence(down)
 
 
+def test_the_long_run_says_it_reaches_the_paper_only_from_an_interval_above_it():
+    """A point value at the paper's accuracy shows nothing; an interval above it at a
+    checkpoint fixed in advance does (the one the run stopped at was picked on the test
+    rows)."""
+    final = ClusteredAccuracy(HIGH, N, "position")
+    long = dict(epochs=[50, 100, 150], test=[0.5, 0.79, 0.84], all=[0.5, 0.8, 0.9],
+                test_ci95=[(0.4, 0.6), (0.7, 0.85), (0.82, 0.88)], reached_test=150,
+                reached_all=100, final=final, stopped_by="x", max_epochs=200)
+    text = ann_setup._long_verdict(ann_setup.AnnSetupResult({}, 1, long))
+    assert "does not show that plain gradient descent reaches" in text  # 150 was picked
+    assert "gets there within" not in text
+    long.update(epochs=[50, 100, 150, 200], test=[0.5, 0.79, 0.9, 0.84], reached_test=150,
+                test_ci95=[(0.4, 0.6), (0.7, 0.85), (0.85, 0.95), (0.78, 0.88)])
+    text = ann_setup._long_verdict(ann_setup.AnnSetupResult({}, 1, long))
+    assert "At epoch 150 its 95 % interval (on the position) lies above" in text
+    assert "gets there within 150 epochs" in text and "does not show" not in text
+
+
 def test_the_long_runs_crossing_is_as_sharp_as_its_intervals_say():
     final = ClusteredAccuracy(HIGH, N, "position")
     long = dict(epochs=[50, 100, 150], test=[0.5, 0.79, 0.81], all=[0.5, 0.8, 0.9],

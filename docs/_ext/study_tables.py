@@ -139,7 +139,7 @@ def controls_lines(summary: dict) -> list[str]:
                      "yes" if p["resolved"] else "no",
                      points(p["detectable_difference_80"]).lstrip("+")])
     return _table(["comparison", "paired difference (95 % interval on the position)",
-                   "resolved", "detectable at 80 % power"], rows)
+                   "resolved", "detectable at 80 % power, at least"], rows)
 
 
 def _alike(pair: dict) -> str:
@@ -239,7 +239,7 @@ def _pair_text(value: dict) -> str:
         return f"({_alike(value).removeprefix('none: ')}: no difference to resolve)"
     lo, hi = (points(v).split()[0] for v in value["ci95"])
     verdict = (f"resolved, {value['direction']}" if value["resolved"] else
-               "not resolved; detectable at 80 % power: "
+               "not resolved; detectable at 80 % power: at least "
                + points(value["detectable_difference_80"]).lstrip("+"))
     return f"{points(value['difference'])} (95 % CI {lo} to {hi}; {verdict})"
 

@@ -17,8 +17,10 @@ about as much as ``n / deff`` independent recordings, where ``deff`` is the desi
   with the spread of the folds, and Student's t over the folds when the fold is the unit;
 * :class:`PairedDifference`: two conditions on the same recordings compared recording by
   recording, the difference's interval on the clusters, whether it is resolved, and the
-  smallest difference the design detects at 80 % power (:func:`minimal_detectable_difference`,
-  by simulating the design with that difference added as recordings that change outcome).
+  smallest difference the design detects at 80 % power when the changed recordings are spread
+  independently, a lower bound for changes that come a whole position at a time
+  (:func:`minimal_detectable_difference`, by simulating the design with that difference added
+  as recordings that change outcome).
 
 Every accuracy the study writes to ``summary.json`` goes through :func:`clustered_entries`
 (training accuracies through :func:`training_entries`, which give no interval); every number
@@ -1181,19 +1183,21 @@ def format_clustered(a) -> str:
 
 
 def format_difference(p: PairedDifference) -> str:
-    """A paired difference with its interval and the design's detectable difference (``no
-    change within reach`` when no possible change reaches 80 % power, on a few clusters).
+    """A paired difference with its interval and the design's detectable difference, said as
+    the lower bound it is (``no change within reach`` when no possible change reaches 80 %
+    power, on a few clusters).
 
     Examples
     --------
     >>> p = PairedDifference([3, 3, 2, 3], [2, 1, 1, 2], [3] * 4, "position")
-    >>> print(format_difference(p))
-    -41.7 points (95 % CI -68.2 to -15.1, 4 positions; detectable at 80 % power: 45.6 points)
+    >>> print(format_difference(p).replace("; ", ";\n"))
+    -41.7 points (95 % CI -68.2 to -15.1, 4 positions;
+    detectable at 80 % power: at least 45.6 points)
     """
     if not isinstance(p, PairedDifference):
         raise TypeError(f"p must be a PairedDifference, got {type(p).__name__}")
     lo, hi = (f"{_round_half_up(100 * v, 1):.1f}" for v in p.ci95)
-    detect = (f"{_round_half_up(100 * p.detectable, 1):.1f} points"
+    detect = (f"at least {_round_half_up(100 * p.detectable, 1):.1f} points"
               if math.isfinite(p.detectable) else "no change within reach")
     return (f"{points(p.difference)} (95 % CI {lo} to {hi}, {p.n_units} {p.unit}s; "
             f"detectable at 80 % power: {detect})")

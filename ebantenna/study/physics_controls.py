@@ -456,8 +456,10 @@ def _render_ablation(r: ControlsResult, report) -> None:
         "rows (same positions, same seeds), so each row is compared with the baseline "
         "recording by recording on the same folds: the difference's 95 % interval is on the "
         "position, and a change is 'resolved' when that interval leaves out zero. The last "
-        "column is the smallest change this design detects four times in five (80 % power), "
-        "found by resampling the design's own paired differences."
+        "column is the smallest change this design detects four times in five (80 % power) "
+        "when the changed recordings are spread independently over the positions, found by "
+        "resampling the design's own paired differences: a lower bound, since a change that "
+        "turns whole positions at once needs a larger difference to be detected as often."
     )
     report.paragraph(_baseline_relation(r))
     rows = [["none (all effects on)", format_clustered(base), "", "", ""]]
@@ -468,7 +470,8 @@ def _render_ablation(r: ControlsResult, report) -> None:
                          "unchanged" if pair.identical else "yes" if pair.resolved else "no",
                          _detectable(pair)])
     report.table(["switched off", "grouped test accuracy, all folds",
-                  "paired change (95 % CI)", "resolved", "detectable (80 % power)"], rows)
+                  "paired change (95 % CI)", "resolved", "detectable (80 % power), at least"],
+                 rows)
     for name, together in r.ablation.dropped_together.items():
         report.paragraph(
             f"'{name}' cannot go alone (the scene requires it for "
@@ -692,8 +695,8 @@ def _change_words(pair, *, subject: str = "the change") -> str:
     if pair.resolved:
         return f"{pair.direction}: the interval of the paired difference leaves out zero"
     return (f"not resolved: the interval of the paired difference holds zero, and the "
-            f"design detects {points(pair.detectable).lstrip('+')} at 80 % power, so "
-            f"{subject} is either smaller than that or missed")
+            f"design detects no less than {points(pair.detectable).lstrip('+')} at 80 % power, "
+            f"so {subject} is either smaller than that or missed")
 
 
 def _render_friction(r: ControlsResult, report) -> None:

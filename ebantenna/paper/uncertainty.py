@@ -1190,7 +1190,7 @@ def format_difference(p: PairedDifference) -> str:
     Examples
     --------
     >>> p = PairedDifference([3, 3, 2, 3], [2, 1, 1, 2], [3] * 4, "position")
-    >>> print(format_difference(p).replace("; ", ";\n"))
+    >>> print(format_difference(p))  # doctest: +NORMALIZE_WHITESPACE
     -41.7 points (95 % CI -68.2 to -15.1, 4 positions;
     detectable at 80 % power: at least 45.6 points)
     """

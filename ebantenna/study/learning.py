@@ -222,7 +222,8 @@ def _render_classifiers(svm, ann, positions, report, fig12: str, fig15: str,
         f"Training accuracies ('train', and the network's 'all', which is "
         f"{100 * MATERIAL_ANN.fractions[0]:.0f} % training rows) "
         "test nothing unseen and carry no interval. A test accuracy's interval is on the "
-        "contact position: the repetitions at one position are near copies of each other."
+        "contact position, the design's independent unit: the repetitions at one position "
+        "share its physics."
     )
     curve = np.asarray(getattr(ann.model, "loss_curve_", [np.nan]))
     n = len(ann.labels)

@@ -601,9 +601,10 @@ def _units_text(r: MaterialSplitsResult) -> str:
     return (
         "Each accuracy is followed by its test recordings n, the independent units they come in "
         "and its 95 % interval on those units: " + "; ".join(parts) + ". The repetitions at "
-        "one position are near copies, so the units, not the recordings, are what is "
-        "replicated; the recording-level Wilson interval, which counts every recording as "
-        "independent, is in summary.json only, labelled as such. The grouped and blocked rows "
+        "one position share its physics (the design effects say how alike they are here), so "
+        "the units, not the recordings, are what is replicated; the recording-level Wilson "
+        "interval, which counts every recording as independent, is in summary.json only, "
+        "labelled as such. The grouped and blocked rows "
         "are over all their folds, each recording tested once: the grouped split's accuracy "
         "pools the folds' recordings, the blocked split's is the mean of its folds' accuracies "
         "(its unit); after the interval, the folds' standard deviation."

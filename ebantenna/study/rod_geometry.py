@@ -211,6 +211,29 @@ def render(result: GeometryResult | None, report, figures) -> None:
     report.paragraph(gap_sentence(result))
 
 
+def _gap_clause(corr: dict) -> str:
+    """Whether a smaller gap goes with lower accuracy, from both classifiers' rank correlations
+    (``{"svm": rho, "mode_curves": rho}``, None where the accuracy does not change).
+
+    Examples
+    --------
+    >>> _gap_clause({"svm": 0.9, "mode_curves": 0.5})
+    'goes with lower accuracy here'
+    >>> _gap_clause({"svm": -0.9, "mode_curves": None})
+    'does not go with lower accuracy here'
+    >>> _gap_clause({"svm": 1.0, "mode_curves": -1.0})
+    'goes with lower accuracy for the SVM here, not for the mode curves'
+    """
+    labels = {"svm": "the SVM", "mode_curves": "the mode curves"}
+    rises = {name: (corr[name] or 0) > 0 for name in labels}
+    if all(rises.values()):
+        return "goes with lower accuracy here"
+    if not any(rises.values()):
+        return "does not go with lower accuracy here"
+    yes, no = (next(labels[n] for n in labels if rises[n] is flag) for flag in (True, False))
+    return f"goes with lower accuracy for {yes} here, not for {no}"
+
+
 def gap_sentence(result: GeometryResult) -> str:
     """What the geometries show, every clause from the table's numbers: the direction of the
     accuracies with the closest materials' gap (rank correlation), and how many geometries
@@ -254,8 +277,7 @@ def gap_sentence(result: GeometryResult) -> str:
     text = (
         f"Over the {len(result.rows)} geometries, " + "; ".join(parts) + ": a smaller gap "
         "between the two closest materials "
-        + ("goes with lower accuracy here" if (corr["svm"] or 0) > 0
-           else "does not go with lower accuracy here")
+        + _gap_clause(corr)
         + f" ({len(result.rows)} geometries, a rank order, not a test). The SVM's accuracy "
         f"spans {percent(min(svm))} to {percent(max(svm))}"
     )

@@ -147,11 +147,20 @@ def _row(gap, a):
     return dict(gap_hz=gap, svm_spread=f, curve_spread=f, paired=None)
 
 
+def _mixed(gap, svm, curves):
+    return dict(gap_hz=gap, svm_spread=_Folds([0, 1], [svm, svm], [10, 10]),
+                curve_spread=_Folds([0, 1], [curves, curves], [10, 10]), paired=None)
+
+
 def test_the_rod_geometry_sentence_follows_the_rank_order():
     up = rod_geometry.GeometryResult([_row(1, 0.5), _row(2, 0.6), _row(3, 0.7)], 30)
     down = rod_geometry.GeometryResult([_row(1, 0.7), _row(2, 0.6), _row(3, 0.5)], 30)
     assert "rises with the gap" in rod_geometry.gap_sentence(up)
     assert "goes with lower accuracy here" in rod_geometry.gap_sentence(up)
+    mixed = rod_geometry.GeometryResult([_mixed(1, 0.5, 0.7), _mixed(2, 0.6, 0.6),
+                                         _mixed(3, 0.7, 0.5)], 30)
+    assert "goes with lower accuracy for the SVM here, not for the mode curves" in \
+        rod_geometry.gap_sentence(mixed)  # both classifiers are read, not the SVM alone
     assert "falls as the gap grows" in rod_geometry.gap_sentence(down)
     assert "does not go with lower accuracy" in rod_geometry.gap_sentence(down)
 

@@ -264,6 +264,20 @@ def test_the_budget_is_said_to_close_a_shortfall_only_below_the_paper(k, words):
     assert ("shortfall" in text) == (k == 1)
 
 
+@pytest.mark.parametrize("before, after, words", [
+    (0.60, 0.70, "accounts for part of the network's shortfall"),
+    (0.60, 0.85, "accounts for the network's shortfall"),
+    (0.85, 0.95, "accounts for part of the network's accuracy")])
+def test_the_budget_closes_the_shortfall_only_as_far_as_the_larger_step_reaches(
+        before, after, words):
+    """The larger step's accuracy decides how much of the shortfall the budget accounts for:
+    part of it while it stays below the paper's 80.8 %, all of it (as a point estimate) once it
+    reaches it."""
+    text = ann_setup._budget_share(before, after)
+    assert text.startswith(words)
+    assert ("point estimate reaches it" in text) == (before < 0.808 <= after)
+
+
 # ---------------------------------------------------------------- the chip's range
 def _saturated_set(counts, materials, contacts):
     return SimpleNamespace(n_signals=len(counts), metadata={"samples_saturated": list(counts)},

@@ -14,10 +14,12 @@ to refresh it) and is printed by the formatters the report uses
 
 from __future__ import annotations
 
+import math
+
 from paper_map import SUMMARY_PATH, load_summary
 from sphinx.util.docutils import SphinxDirective
 
-from ebantenna.paper.uncertainty import percent, points, span
+from ebantenna.paper.uncertainty import detectable_text, percent, points, span
 
 __all__ = ["value_text", "study_role", "interval_lines", "design_effect_lines",
            "repetition_lines", "controls_lines", "sensitivity_lines",
@@ -137,9 +139,17 @@ def controls_lines(summary: dict) -> list[str]:
         lo, hi = (points(v).split()[0] for v in p["ci95"])
         rows.append([label, f"{points(p['difference'])} ({lo} to {hi})",
                      "yes" if p["resolved"] else "no",
-                     points(p["detectable_difference_80"]).lstrip("+")])
+                     _detectable(p)])
     return _table(["comparison", "paired difference (95 % interval on the position)",
-                   "resolved", "detectable at 80 % power, at least"], rows)
+                   "resolved", "detectable at 80 % power: spread / whole positions"], rows)
+
+
+def _detectable(pair: dict) -> str:
+    """The two detectable differences of a paired comparison of the summary, in points."""
+    return " / ".join(points(pair[k]).lstrip("+").removesuffix(" points")
+                      if math.isfinite(pair[k]) else "none within reach"
+                      for k in ("detectable_difference_80",
+                                "detectable_difference_80_clustered")) + " points"
 
 
 def _alike(pair: dict) -> str:
@@ -239,8 +249,9 @@ def _pair_text(value: dict) -> str:
         return f"({_alike(value).removeprefix('none: ')}: no difference to resolve)"
     lo, hi = (points(v).split()[0] for v in value["ci95"])
     verdict = (f"resolved, {value['direction']}" if value["resolved"] else
-               "not resolved; detectable at 80 % power: at least "
-               + points(value["detectable_difference_80"]).lstrip("+"))
+               "not resolved; detectable at 80 % power: "
+               + detectable_text(value["detectable_difference_80"],
+                                 value["detectable_difference_80_clustered"], value["unit"]))
     return f"{points(value['difference'])} (95 % CI {lo} to {hi}; {verdict})"
 
 

@@ -17,8 +17,8 @@ about as much as ``n / deff`` independent recordings, where ``deff`` is the desi
   with the spread of the folds, and Student's t over the folds when the fold is the unit;
 * :class:`PairedDifference`: two conditions on the same recordings compared recording by
   recording, the difference's interval on the clusters, whether it is resolved, and the
-  smallest difference the design detects at 80 % power when the changed recordings are spread
-  independently, a lower bound for changes that come a whole position at a time
+  smallest difference the design detects at 80 % power, when the changed recordings are spread
+  independently and when whole clusters change at once, the two ends of how a change can come
   (:func:`minimal_detectable_difference`, by simulating the design with that difference added
   as recordings that change outcome).
 
@@ -37,7 +37,15 @@ import numpy as np
 from scipy.stats import binom, norm
 from scipy.stats import t as student_t
 
-from .._validate import check_array, check_bool, check_in_range, check_int, check_real, describe
+from .._validate import (
+    check_array,
+    check_bool,
+    check_choice,
+    check_in_range,
+    check_int,
+    check_real,
+    describe,
+)
 from ..ml.metrics import accuracy_interval
 
 __all__ = [
@@ -65,6 +73,7 @@ __all__ = [
     "span",
     "format_clustered",
     "format_difference",
+    "detectable_text",
     "cluster_mean_interval",
 ]
 
@@ -798,6 +807,8 @@ class PairedDifference:
     repeats. It is positive even when both conditions classify every recording alike (a few
     recordings must change before a change is resolved), and it is a lower bound on what the
     design detects when real changes come clustered (the simulated ones are independent).
+    ``detectable_clustered`` is the same for a change that comes as whole clusters, the most
+    clustered (``changes="clusters"``): a real change needs a difference between the two.
 
     With ``by_fold`` the clusters are the folds of a split whose unit is the fold (the blocked
     split), and the accuracies are the folds' means, as :class:`FoldAccuracy` gives them with
@@ -848,6 +859,8 @@ class PairedDifference:
         self.method = (METHOD_PAIRED_FOLDS.format(folds=self.n_units, unit=unit) if self.by_fold
                        else METHOD_PAIRED.format(unit=unit))
         self.detectable = _detectable(k_a, k_b, n, self.by_fold, 0.8, resamples, seed)
+        self.detectable_clustered = _detectable(k_a, k_b, n, self.by_fold, 0.8, resamples,
+                                                seed, whole=True)
 
     @property
     def identical(self) -> bool:
@@ -891,6 +904,7 @@ class PairedDifference:
             "resolved": self.resolved,
             "direction": self.direction,
             "detectable_difference_80": self.detectable,
+            "detectable_difference_80_clustered": self.detectable_clustered,
             "identical": self.identical,
         }
 
@@ -911,7 +925,8 @@ def _paired_se(d, n, difference) -> float:
 
 
 def minimal_detectable_difference(k_a, k_b, n, *, power: float = 0.8, resamples: int = 4000,
-                                  seed: int = 0, by_fold: bool = False) -> float:
+                                  seed: int = 0, by_fold: bool = False,
+                                  changes: str = "recordings") -> float:
     """The smallest true paired difference this design resolves with probability ``power``.
 
     The power at a true difference ``delta`` is found by simulating the design under that
@@ -932,7 +947,11 @@ def minimal_detectable_difference(k_a, k_b, n, *, power: float = 0.8, resamples:
 
     Independent changes within a cluster are the most favourable way a change can come, the
     least clustered: if real changes come in groups (a whole position turning at once) the
-    design detects less, so the result is a lower bound on the difference detected then. Even
+    design detects less, so the result is a lower bound on the difference detected then.
+    ``changes="clusters"`` simulates the other end, the most clustered change: each cluster
+    turns whole (every recording wrong under B right, for a gain) with probability ``p``, and
+    not at all otherwise; a real change between the two needs a difference between the two
+    results. Even
     two conditions that classify every recording alike (every ``d_j = 0``) get a positive
     result: a handful of changed recordings is needed before any is resolved. For many
     clusters the result tends to ``(1.96 + 0.84) SE``, with ``SE`` the standard error under
@@ -950,6 +969,9 @@ def minimal_detectable_difference(k_a, k_b, n, *, power: float = 0.8, resamples:
     by_fold : bool
         The clusters are folds weighing alike, as in :class:`PairedDifference`: a fold's
         changed recordings count as a change of its accuracy, ``f_j / n_j``.
+    changes : {"recordings", "clusters"}
+        How the simulated change comes: recordings turning independently (the least
+        clustered, a lower bound), or whole clusters turning at once (the most clustered).
 
     Returns
     -------
@@ -972,17 +994,27 @@ def minimal_detectable_difference(k_a, k_b, n, *, power: float = 0.8, resamples:
     >>> mdd = minimal_detectable_difference(k, k, np.full(100, 5))
     >>> round(500 * mdd, 1)  # recordings of the 500; four in four positions are resolved
     5.7
+
+    The same change coming as whole positions needs many more recordings:
+
+    >>> whole = minimal_detectable_difference(k, k, np.full(100, 5), changes="clusters")
+    >>> whole > mdd
+    True
     """
     k_a, n = _counts(k_a, n)
     k_b, _ = _counts(k_b, n)
     check_in_range("power", power, 0.0, 1.0)
     resamples = check_int("resamples", resamples, minimum=10, maximum=MAX_RESAMPLES)
     seed = check_int("seed", seed, minimum=0)
-    return _detectable(k_a, k_b, n, check_bool("by_fold", by_fold), power, resamples, seed)
+    whole = check_choice("changes", changes, ("recordings", "clusters")) == "clusters"
+    return _detectable(k_a, k_b, n, check_bool("by_fold", by_fold), power, resamples, seed,
+                       whole)
 
 
-def _detectable(k_a, k_b, n, by_fold: bool, power: float, resamples: int, seed: int) -> float:
-    """:func:`minimal_detectable_difference` of checked values."""
+def _detectable(k_a, k_b, n, by_fold: bool, power: float, resamples: int, seed: int,
+                whole: bool = False) -> float:
+    """:func:`minimal_detectable_difference` of checked values (``whole``: the change comes
+    as whole clusters)."""
     # a cluster's weight in the difference, and what one changed recording adds to it
     w = np.ones(n.size) if by_fold else n.astype(float)
     u = 1.0 / n if by_fold else np.ones(n.size)
@@ -990,7 +1022,7 @@ def _detectable(k_a, k_b, n, by_fold: bool, power: float, resamples: int, seed: 
     resid = d - d.sum() / w.sum() * w
     resid[np.abs(resid) < 1e-12 * w.max()] = 0.0  # exactly 0 where d is proportional to w
     pick = np.random.default_rng(seed).integers(0, n.size, size=(resamples, n.size))
-    design = _Resampled(resid, u, w, pick)
+    design = _Resampled(resid, u, w, pick, whole)
     found = [design.detectable(sign, room, power, np.random.default_rng([seed, stream]))
              for sign, room, stream in ((1, n - k_b, 1), (-1, k_b, 2)) if room.sum() > 0]
     finite = [v for v in found if math.isfinite(v)]
@@ -1006,8 +1038,8 @@ class _Resampled:
     #: The bisection stops when the bracket of the difference is this narrow (0.01 points).
     PRECISION = 1e-4
 
-    def __init__(self, r, u, w, pick):
-        self.r, self.u, self.w, self.pick = r, u, w, pick
+    def __init__(self, r, u, w, pick, whole: bool = False):
+        self.r, self.u, self.w, self.pick, self.whole = r, u, w, pick, whole
         resamples, groups = pick.shape
         self.groups, self.q = groups, _quantile95(groups)
         times = np.bincount((pick + groups * np.arange(resamples)[:, None]).ravel(),
@@ -1021,7 +1053,8 @@ class _Resampled:
 
         Each resampled cluster (a cell) gets one uniform ``v``, and at probability ``p`` its
         changes are the ``v`` quantile of ``Binomial(room, p)``: exactly binomial, the same
-        draws at every ``p`` and never fewer at a larger ``p``. The bisection keeps the cells'
+        draws at every ``p`` and never fewer at a larger ``p`` (with ``whole``, its whole
+        room when ``v > 1 - p``, none otherwise). The bisection keeps the cells'
         changes at both ends of its bracket and recomputes only the cells where they differ.
         """
         scale = float(np.sum(room * self.u)) / float(self.w.sum())  # the difference at p = 1
@@ -1030,7 +1063,8 @@ class _Resampled:
         rooms, row = np.unique(room, return_inverse=True)
         cluster = self.pick.ravel()
         while True:
-            live = np.flatnonzero(v > binom.cdf(0, rooms, p_hi)[row[cluster]])
+            none = 1 - p_hi if self.whole else binom.cdf(0, rooms, p_hi)[row[cluster]]
+            live = np.flatnonzero(v > none)
             cells = _Cells(self, sign, cluster[live], live // self.groups, v[live], rooms, row)
             hi_changes = cells.changes(p_hi)
             if self._power(sign, cells.adds(hi_changes)) >= power:
@@ -1061,7 +1095,7 @@ class _Resampled:
         spread = room * self.u / scale - self.w  # a cluster's expected change less its share
         a, b, c = (g / (g - 1) / total**2 * float(np.sum(x * y)) for x, y in
                    ((self.r, self.r), (2 * sign * self.r, spread), (spread, spread)))
-        b += float(np.sum(room * self.u**2)) / (scale * total**2)
+        b += float(np.sum(room ** (2 if self.whole else 1) * self.u**2)) / (scale * total**2)
         if 1 - k2 * c <= 0:
             return scale
         return (k2 * b + math.sqrt((k2 * b) ** 2 + 4 * (1 - k2 * c) * k2 * a)) / (2 - 2 * k2 * c)
@@ -1085,12 +1119,16 @@ class _Cells:
 
     def __init__(self, design: _Resampled, sign: int, cluster, resample, v, rooms, row):
         self.size, self.resample, self.v = design.total.size, resample, v
+        self.whole = design.whole
         self.r, self.u, self.w = sign * design.r[cluster], design.u[cluster], design.w[cluster]
         self.rooms, self.row = rooms, row[cluster]
 
     def changes(self, p: float, at=slice(None)):
         """The cells' (those ``at``) changes at ``p``: ``v``'s quantile of
-        ``Binomial(room, p)``, by one search in the rooms' distributions laid end to end."""
+        ``Binomial(room, p)``, by one search in the rooms' distributions laid end to end (with
+        ``whole``, the whole room when ``v > 1 - p``)."""
+        if self.whole:
+            return np.where(self.v[at] > 1 - p, self.rooms[self.row[at]], 0)
         top = int(self.rooms[-1])
         cdf = binom.cdf(np.arange(top + 1), self.rooms[:, None], p)  # [room, count]
         shift = 2 * np.arange(self.rooms.size)  # each room's above the last one's
@@ -1183,24 +1221,40 @@ def format_clustered(a) -> str:
 
 
 def format_difference(p: PairedDifference) -> str:
-    """A paired difference with its interval and the design's detectable difference, said as
-    the lower bound it is (``no change within reach`` when no possible change reaches 80 %
-    power, on a few clusters).
+    """A paired difference with its interval and the design's detectable differences
+    (:func:`detectable_text`).
 
     Examples
     --------
     >>> p = PairedDifference([3, 3, 2, 3], [2, 1, 1, 2], [3] * 4, "position")
     >>> print(format_difference(p))  # doctest: +NORMALIZE_WHITESPACE
-    -41.7 points (95 % CI -68.2 to -15.1, 4 positions;
-    detectable at 80 % power: at least 45.6 points)
+    -41.7 points (95 % CI -68.2 to -15.1, 4 positions; detectable at 80 % power:
+    45.6 points spread over recordings, 46.5 by whole positions)
     """
     if not isinstance(p, PairedDifference):
         raise TypeError(f"p must be a PairedDifference, got {type(p).__name__}")
     lo, hi = (f"{_round_half_up(100 * v, 1):.1f}" for v in p.ci95)
-    detect = (f"at least {_round_half_up(100 * p.detectable, 1):.1f} points"
-              if math.isfinite(p.detectable) else "no change within reach")
     return (f"{points(p.difference)} (95 % CI {lo} to {hi}, {p.n_units} {p.unit}s; "
-            f"detectable at 80 % power: {detect})")
+            f"detectable at 80 % power: "
+            f"{detectable_text(p.detectable, p.detectable_clustered, p.unit)})")
+
+
+def detectable_text(spread: float, clustered: float, unit: str) -> str:
+    """The two detectable differences at 80 % power, a fraction each (``math.inf``: no change
+    within reach): the change spread over recordings, the least clustered way, and coming as
+    whole units, the most; a real change lies between.
+
+    Examples
+    --------
+    >>> detectable_text(0.0065, 0.057, "position")
+    '0.7 points spread over recordings, 5.7 by whole positions'
+    """
+    said = [f"{_round_half_up(100 * v, 1):.1f}" if math.isfinite(v) else "no change within reach"
+            for v in (check_real("spread", spread, allow_inf=True),
+                      check_real("clustered", clustered, allow_inf=True))]
+    if said[0][0].isdigit():
+        said[0] += " points"
+    return f"{said[0]} spread over recordings, {said[1]} by whole {_check_unit(unit)}s"
 
 
 def cluster_mean_interval(values, clusters) -> dict:

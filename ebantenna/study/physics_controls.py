@@ -3,6 +3,7 @@ equivalent-pair control."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -27,6 +28,7 @@ from ..paper.splits import distinct_split_seeds, grouped_split
 from ..paper.uncertainty import (
     UNITS,
     clustered_entries,
+    detectable_text,
     format_clustered,
     percent,
     points,
@@ -456,10 +458,11 @@ def _render_ablation(r: ControlsResult, report) -> None:
         "rows (same positions, same seeds), so each row is compared with the baseline "
         "recording by recording on the same folds: the difference's 95 % interval is on the "
         "position, and a change is 'resolved' when that interval leaves out zero. The last "
-        "column is the smallest change this design detects four times in five (80 % power) "
-        "when the changed recordings are spread independently over the positions, found by "
-        "resampling the design's own paired differences: a lower bound, since a change that "
-        "turns whole positions at once needs a larger difference to be detected as often."
+        "column is the smallest change this design detects four times in five (80 % power), "
+        "found by resampling the design's own paired differences, at the two ends of how a "
+        "change can come: spread over recordings that turn independently (the least clustered, "
+        "the smallest) and as whole positions turning at once (the most clustered); a real "
+        "change lies between."
     )
     report.paragraph(_baseline_relation(r))
     rows = [["none (all effects on)", format_clustered(base), "", "", ""]]
@@ -470,8 +473,8 @@ def _render_ablation(r: ControlsResult, report) -> None:
                          "unchanged" if pair.identical else "yes" if pair.resolved else "no",
                          _detectable(pair)])
     report.table(["switched off", "grouped test accuracy, all folds",
-                  "paired change (95 % CI)", "resolved", "detectable (80 % power), at least"],
-                 rows)
+                  "paired change (95 % CI)", "resolved",
+                  "detectable (80 % power): spread / whole positions"], rows)
     for name, together in r.ablation.dropped_together.items():
         report.paragraph(
             f"'{name}' cannot go alone (the scene requires it for "
@@ -493,8 +496,11 @@ def _difference(pair) -> str:
 
 
 def _detectable(pair) -> str:
-    """The minimal detectable difference, unsigned, in points."""
-    return points(pair.detectable).lstrip("+")
+    """The minimal detectable differences, spread over recordings and by whole positions,
+    unsigned, in points."""
+    return " / ".join(points(v).lstrip("+").removesuffix(" points") if math.isfinite(v)
+                      else "none within reach"
+                      for v in (pair.detectable, pair.detectable_clustered)) + " points"
 
 
 def _isolated(name: str, together, accuracies: dict) -> str:
@@ -695,8 +701,9 @@ def _change_words(pair, *, subject: str = "the change") -> str:
     if pair.resolved:
         return f"{pair.direction}: the interval of the paired difference leaves out zero"
     return (f"not resolved: the interval of the paired difference holds zero, and the "
-            f"design detects no less than {points(pair.detectable).lstrip('+')} at 80 % power, "
-            f"so {subject} is either smaller than that or missed")
+            f"design detects at 80 % power "
+            f"{detectable_text(pair.detectable, pair.detectable_clustered, pair.unit)}, so "
+            f"{subject} is either smaller than that or missed")
 
 
 def _render_friction(r: ControlsResult, report) -> None:

@@ -32,6 +32,7 @@ from ebantenna.paper.uncertainty import (
     cluster_mean_interval,
     clustered_entries,
     design_effect,
+    detectable_text,
     format_clustered,
     format_difference,
     minimal_detectable_difference,
@@ -140,6 +141,10 @@ BAD = [  # (id, call, error, name)
      "k and n"),
     ("mdd-resamples-huge", lambda: minimal_detectable_difference(
         [1, 2], [2, 2], [3, 3], resamples=HUGE), ValueError, "resamples"),
+    ("mdd-changes-unknown", lambda: minimal_detectable_difference(
+        [1, 2], [2, 2], [3, 3], changes="positions"), ValueError, "changes"),
+    ("mdd-changes-not-str", lambda: minimal_detectable_difference(
+        [1, 2], [2, 2], [3, 3], changes=True), ValueError, "changes"),
     # folds
     ("folds-one", lambda: FoldAccuracy([(np.ones(3, bool), np.arange(3))], "position"),
      ValueError, "two folds"),
@@ -226,6 +231,11 @@ BAD = [  # (id, call, error, name)
     ("span-digits", lambda: span((0.1, 0.2), digits=-3), ValueError, "digits"),
     ("format-clustered-dict", lambda: format_clustered({"estimate": 0.5}), TypeError, "a"),
     ("format-difference-accuracy", lambda: format_difference(ACC), TypeError, "p"),
+    ("detectable-text-nan", lambda: detectable_text(NAN, 0.1, "position"), ValueError,
+     "spread"),
+    ("detectable-text-str", lambda: detectable_text(0.1, "0.2", "position"), TypeError,
+     "clustered"),
+    ("detectable-text-unit", lambda: detectable_text(0.1, 0.2, 5), TypeError, "unit"),
 ]
 
 
@@ -299,6 +309,10 @@ def test_paired_difference_by_hand():
     text = format_difference(PAIR)
     lo, hi = (round(100 * v, 1) for v in PAIR.ci95)
     assert text.startswith(f"-41.7 points (95 % CI {lo} to {hi}, 4 positions; ")
+    both = detectable_text(PAIR.detectable, PAIR.detectable_clustered, "position")
+    assert text.endswith(f"detectable at 80 % power: {both})")
+    assert detectable_text(0.0065, math.inf, "block") == (
+        "0.7 points spread over recordings, no change within reach by whole blocks")
     d = PAIR.to_dict()
     assert (d["direction"], d["resolved"], d["n_units"]) == ("lower", True, 4)
     p = PairedDifference.from_recordings([1, 1, 1, 1], [0, 1, 1, 1], [0, 0, 1, 1], "position",
@@ -425,6 +439,7 @@ def contract_rows() -> dict[str, list[str]]:
         u + "format_clustered": _ids("format-clustered-")
         + ["test_clustered_accuracy_on_clusters_of_one_is_wilson"],
         u + "format_difference": _ids("format-difference-") + ["test_paired_difference_by_hand"],
+        u + "detectable_text": _ids("detectable-text-") + ["test_paired_difference_by_hand"],
         "ebantenna.paper.splits.split_folds": _ids("folds-too", "folds-one-fold",
                                                    "folds-fraction", "split-")
         + ["test_split_folds_hold_every_row_once"],

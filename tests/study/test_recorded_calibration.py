@@ -464,3 +464,25 @@ def test_scene_modes_are_the_simulators_own(unilateral):
             np.testing.assert_allclose(loss, 2 * m.damping_ratio, rtol=1e-12)
             np.testing.assert_allclose(frequency, m.frequencies * np.sqrt(1 - m.damping_ratio**2),
                                        rtol=1e-12)
+
+
+def _two_materials(where, contacts):
+    plan = Plan("two", ("brass", "wood"), contacts, 2)
+    RecordingSession(where / "two", plan, simulated_connect(RIG, simulate, seed=1),
+                     show_progress=False).run()
+    return assemble_dataset(where / "two", where)
+
+
+def test_materials_the_model_cannot_tell_apart_are_one_position(tmp_path):
+    """The pinned model (no touched rod, no contact spring per material) gives every material
+    the same modes at one distance: recordings of brass and wood there are repetitions of one
+    point of the model, not two positions. Two distances so are two positions, too few to fit
+    two parameters and test the fit (before, four 'positions' fitted a wrong probe length
+    exactly and said the model fits); at three distances the lack of fit has one degree of
+    freedom, and its pure error counts every recording at a distance as a repetition."""
+    with pytest.raises(ValueError, match="2 distinct contact positions .* record more distances"):
+        calibrate(_two_materials(tmp_path / "a", (0.10, 0.20)), RIG)
+    ds = _two_materials(tmp_path / "b", (0.10, 0.20, 0.30))
+    cal, _ = calibrated(ds, RIG)
+    assert cal.lack_of_fit["df"] == [1, 12 - 3]  # 3 positions, 2 parameters; 12 recordings
+    assert sorted(set(cal.contacts.tolist())) == [0.10, 0.20, 0.30]

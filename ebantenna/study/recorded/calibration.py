@@ -55,8 +55,9 @@ The measurement, modelled
     reads from it is compared with what it reads from the recording, so the bias cancels.
 
 Frequencies: hinge and tip mass
-    The independent unit is the contact position (a material at a distance): repetitions there
-    share the model's error, so each position's frequency is the mean of its recordings'.
+    The independent unit is the contact position (a material at a distance, or a distance alone
+    where the model gives every material the same modes, as the pinned probe does): repetitions
+    there share the model's error, so each position's frequency is the mean of its recordings'.
     ``(log10 k_h, m_t)`` are fitted by least squares to the relative misfit ``f_model / f - 1``
     over the ``n`` positions. The covariance is the residuals' scatter, ``s^2 (J^T J)^-1`` at the
     optimum (``s^2`` over ``n - 2`` degrees of freedom), plus the time base's: every frequency is
@@ -314,8 +315,9 @@ class Calibration:
     def to_dict(self) -> dict:
         """JSON values: each parameter with its uncertainty, 95 % interval (an unbounded end as
         None) and identifiability (None, or the reason it is not identifiable); what was fitted:
-        ``contact_materials``, the (distance, material) pairs, each the mean of its recordings,
-        at ``distances`` distinct distances."""
+        ``contact_materials``, the positions (a distance and a material, or a distance alone
+        where the model does not tell the materials apart), each the mean of its recordings, at
+        ``distances`` distinct distances."""
         out = {"contact_materials": int(self.contacts.size),
                "distances": len(set(self.contacts.tolist())),
                "decay_recordings": self.decay_used,
@@ -602,19 +604,28 @@ def _crowding(modes, j: int, n: int, fs: float) -> tuple[float, float]:
 
 
 class _Model:
-    """The scene's model at trial parameters, at the recordings' distinct (contact, material)
-    pairs -- the positions, the design's independent unit -- and which position each recording
-    is at (``index``)."""
+    """The scene's model at trial parameters, at the recordings' positions -- the design's
+    independent unit -- and which position each recording is at (``index``).
+
+    A position is a distinct (contact, material) pair where the model tells the materials apart
+    (the touched rod's modes, a contact spring per material), and a distinct contact where it
+    does not (a pinned probe): there, recordings of two materials at one distance are the same
+    point of the model, repetitions of it, and counting them as two positions would fit two
+    parameters to two distances exactly and test the fit on copies. ``keys`` holds one
+    (contact, material) per position, ``labels`` its materials."""
 
     def __init__(self, scene, contacts, materials, fs, n):
         self.scene, self.fs, self.n = scene, fs, n
-        pairs = list(zip(contacts.tolist(), materials.tolist(), strict=True))
-        self.keys = sorted(set(pairs))
-        self.index = np.array([self.keys.index(pair) for pair in pairs])
         self.evaluations = 0
         self._lags, self._filters = {}, {}
         self.rods = touched_rods(scene, materials.tolist())
         self.held, self.crowded = None, {}
+        pairs = list(zip(contacts.tolist(), materials.tolist(), strict=True))
+        same = _same_point(scene_modes(scene, contacts, materials, rods=self.rods))
+        self.keys = sorted({same[pair] for pair in pairs})
+        self.labels = ["+".join(sorted({pair[1] for pair, point in same.items() if point == key}))
+                       for key in self.keys]
+        self.index = np.array([self.keys.index(same[pair]) for pair in pairs])
 
     def _scene_modes(self, log10_k, tip_mass, eta) -> dict:
         self.evaluations += 1
@@ -690,6 +701,22 @@ class _Model:
             if got.size:
                 out[i] = got.mean()
         return out
+
+
+def _same_point(modes: dict) -> dict:
+    """Each (contact, material) of ``modes`` (:func:`scene_modes`) mapped to the first pair at
+    its contact whose modes are the same arrays, bit for bit: the model does not tell those
+    materials apart there."""
+    first, out = {}, {}
+    for key in sorted(modes):
+        for other in first.get(key[0], []):
+            if all(np.array_equal(a, b) for a, b in zip(modes[key], modes[other], strict=True)):
+                out[key] = other
+                break
+        else:
+            first.setdefault(key[0], []).append(key)
+            out[key] = key
+    return out
 
 
 def _check_bounds(name, bounds, low, high, unit, reason):
@@ -847,7 +874,7 @@ def calibrate(ds, scene, *, stiffness_bounds=None, mass_bounds=None,
 
 def _left_out(model) -> dict:
     """The positions :meth:`_Model.identify` left out, each with its reason."""
-    return {f"{model.keys[i][0]:g} m ({model.keys[i][1]})":
+    return {f"{model.keys[i][0]:g} m ({model.labels[i]})":
             f"the model's mode at {other:.1f} Hz rings beside the fitted one ({fitted:.1f} Hz) "
             f"and moves what the estimator reads of it by up to {shift:.2%}, more than "
             f"{CROWDING:g}" for i, (shift, other, fitted) in sorted(model.crowded.items())}
@@ -1027,8 +1054,9 @@ def _measure_and_fit(model, ax, fs, contact, p, bounds, eta0, max_rounds):
                         "the model's other modes ring beside the fitted one")
             if ok.size < 3:
                 raise ValueError(f"the recordings hold {ok.size} distinct contact positions "
-                                 "(a distance and a material each) in the region fitted; 3 are "
-                                 "needed: record more")
+                                 "in the region fitted (a distance each, and a material where "
+                                 "the model tells the materials apart); 3 are needed: record "
+                                 "more distances")
             raise ValueError(f"only {int(ok.sum())} of {ok.size} distinct contact positions show "
                              f"the mode the model predicts (3 are needed){why}; check that the "
                              "scene describes these recordings (--scene: the probe, the "

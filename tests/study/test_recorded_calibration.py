@@ -29,6 +29,7 @@ from ebantenna.simulate.effects import SensorNoise, StructuralDamping, TipMass
 from ebantenna.simulate.scene import load_scene
 from ebantenna.study.recorded import assemble_dataset, calibrate
 from ebantenna.study.recorded.calibration import (
+    Calibration,
     IdentifiabilityWarning,
     fitted_mode,
     loss_factor_of,
@@ -486,3 +487,32 @@ def test_materials_the_model_cannot_tell_apart_are_one_position(tmp_path):
     cal, _ = calibrated(ds, RIG)
     assert cal.lack_of_fit["df"] == [1, 12 - 3]  # 3 positions, 2 parameters; 12 recordings
     assert sorted(set(cal.contacts.tolist())) == [0.10, 0.20, 0.30]
+
+
+def test_what_the_recordings_do_not_bound_is_said_on_each_side():
+    """A hinge open at both ends of its search is bounded on neither side (not 'stiffer than
+    0 N m/rad', nor a clamp); a loss factor whose interval reaches 0 is bounded only from
+    above, its interval (0, upper); a fit that passes because the clock's uncertainty is larger
+    than the repetitions' scatter says so."""
+    from ebantenna.study.recorded.calibration import (
+        _hinge_interval,
+        _lack_of_fit,
+        _loss_interval,
+    )
+
+    missing = {}
+    assert _hinge_interval((-1.0, 5.0), ([-1.0, 0.0], [5.0, 0.02]), missing) == (0.0, math.inf)
+    assert "on neither side" in missing["hinge_stiffness"]
+    assert "clamp" not in missing["hinge_stiffness"]
+    one = {}
+    _hinge_interval((1.2, 5.0), ([-1.0, 0.0], [5.0, 0.02]), one)
+    assert "cannot tell the hinge from a clamp" in one["hinge_stiffness"]
+    interval, why = _loss_interval(0.0602, 0.063, "")
+    assert interval == (0.0, 0.0602 + 0.063) and "only from above" in why
+    assert _loss_interval(0.03, 0.001, "")[1] == ""
+    index = np.repeat(np.arange(4), 2)
+    residual = np.array([1.5e-4, 1.5e-4 + 1e-6] * 2 + [-1.5e-4, -1.5e-4 + 1e-6] * 2)
+    for floor, scatter in ((1e-4, "the clock's uncertainty"), (0.0, "the repetitions' scatter")):
+        test = _lack_of_fit(residual, index, np.arange(4.0), floor=floor)
+        cal = types.SimpleNamespace(lack_of_fit=test, misses_recordings=test["p"] < 0.05)
+        assert scatter in Calibration.fit_statement.fget(cal)

@@ -279,10 +279,12 @@ class Calibration:
                     "between positions as random")
         numbers = (f"lack-of-fit F = {test['f']:.3g} on {test['df'][0]} and {test['df'][1]} "
                    f"degrees of freedom, p = {test['p']:.2g}")
+        scatter = ("the clock's uncertainty (larger here than the repetitions' scatter)"
+                   if test.get("error_from") == "clock" else "the repetitions' scatter")
         if not self.misses_recordings:
-            return f"the model fits within the repetitions' scatter ({numbers})"
+            return f"the model fits within {scatter} ({numbers})"
         contact, misfit = test["largest"]
-        return (f"the model misses the positions by more than their repetitions scatter "
+        return (f"the model misses the positions by more than {scatter} allows "
                 f"({numbers}; the recordings differ most from it at {contact:g} m, by "
                 f"{100 * misfit:+.2g} %): the intervals are set by the misfit between positions "
                 "as if it were random, but part of it is the model's (a mode it places wrong, "
@@ -852,6 +854,7 @@ def calibrate(ds, scene, *, stiffness_bounds=None, mass_bounds=None,
     m_low, m_high = min(masses) - quantile * sd_m, max(masses) + quantile * sd_m
     missing.update(_mass_bounded(m_low, m_high, float(p[1]), bounds))
     eta, eta_sd, used, reason, eta_half = _loss_factor(model, p, decays, eta0)
+    eta_interval, reason = _loss_interval(eta, eta_half, reason)
     if reason:
         missing["loss_factor"] = reason
     where = np.array([c for c, _ in model.keys])
@@ -866,8 +869,7 @@ def calibrate(ds, scene, *, stiffness_bounds=None, mass_bounds=None,
                    # a mass of 0 is a real end; the range searched is not: beyond it, open
                    "tip_mass": (max(m_low, bounds[0][1]),
                                 math.inf if m_high >= bounds[1][1] else m_high),
-                   "loss_factor": (0.0, math.inf) if reason else (eta - eta_half,
-                                                                  eta + eta_half)},
+                   "loss_factor": eta_interval},
         not_identifiable=missing, model=_describe_model(scene), lack_of_fit=test,
         left_out=_left_out(model)))
 
@@ -925,7 +927,9 @@ def _lack_of_fit(residuals, index, where, parameters: int = 2, floor: float = 0.
     out = {"f": None, "df": df, "p": None,
            "largest": [float(where[positions[worst]]), float(means[worst])] if means.size
            else None}
-    error = pure / max(df[1], 1) + e.size / max(positions.size, 1) * floor**2
+    scatter, clock = pure / max(df[1], 1), e.size / max(positions.size, 1) * floor**2
+    error = scatter + clock
+    out["error_from"] = "clock" if clock > scatter else "repetitions"
     if df[0] >= 1 and df[1] >= 1 and (error > 0 or lack > 0):
         out["f"] = (lack / df[0]) / error if error > 0 else math.inf
         out["p"] = float(fisher_f.sf(out["f"], *df))
@@ -1068,6 +1072,28 @@ def _measure_and_fit(model, ax, fs, contact, p, bounds, eta0, max_rounds):
     return fit, target, decays
 
 
+def _loss_interval(eta: float, half: float, reason: str) -> tuple[tuple[float, float], str]:
+    """The loss factor's 95 % interval and why it is not identifiable ("" if it is): none
+    (``(0, inf)``) with a ``reason`` already; bounded only from above when ``eta - half``
+    reaches 0, a real end (the interval is then ``(0, eta + half)``).
+
+    Examples
+    --------
+    >>> _loss_interval(0.03, 0.002, "")[1] == ""
+    True
+    >>> interval, why = _loss_interval(0.06, 0.063, "")
+    >>> interval[0], why.split(": ")[1]
+    (0.0, 'the recordings bound it only from above, at most 0.123')
+    """
+    if reason:
+        return (0.0, math.inf), reason
+    low, high = eta - half, eta + half
+    if low > 0:
+        return (low, high), ""
+    return (0.0, high), (f"its 95 % interval ({low:.3g}, {high:.3g}) reaches 0: the "
+                         f"recordings bound it only from above, at most {high:.3g}")
+
+
 def _hinge_interval(k_interval, bounds, missing) -> tuple[float, float]:
     """The hinge's 95 % interval (N m/rad) from its profile set in log10; an end at the
     search's bound is open, and the hinge then not identifiable (its reason put in
@@ -1076,7 +1102,12 @@ def _hinge_interval(k_interval, bounds, missing) -> tuple[float, float]:
     hi_open = k_interval[1] >= bounds[1][0] - 1e-9
     low = 0.0 if lo_open else 10.0 ** k_interval[0]
     high = math.inf if hi_open else 10.0 ** k_interval[1]
-    if hi_open or lo_open:
+    if hi_open and lo_open:
+        missing["hinge_stiffness"] = (
+            f"the frequencies change by less than their uncertainty over the whole range "
+            f"searched, {10.0 ** bounds[0][0]:.3g} to {10.0 ** bounds[1][0]:.3g} N m/rad: the "
+            "recordings bound the hinge on neither side")
+    elif hi_open or lo_open:
         where = "stiffer than" if hi_open else "softer than"
         edge = low if hi_open else high
         missing["hinge_stiffness"] = (

@@ -141,15 +141,16 @@ def controls_lines(summary: dict) -> list[str]:
                      "yes" if p["resolved"] else "no",
                      _detectable(p)])
     return _table(["comparison", "paired difference (95 % interval on the position)",
-                   "resolved", "detectable at 80 % power: spread / whole positions"], rows)
+                   "resolved", "detectable at 80 % power, points: spread / whole positions"],
+                  rows)
 
 
 def _detectable(pair: dict) -> str:
-    """The two detectable differences of a paired comparison of the summary, in points."""
+    """The two detectable differences of a paired comparison of the summary, in points (the
+    table's header says so)."""
     return " / ".join(points(pair[k]).lstrip("+").removesuffix(" points")
                       if math.isfinite(pair[k]) else "none within reach"
-                      for k in ("detectable_difference_80",
-                                "detectable_difference_80_clustered")) + " points"
+                      for k in ("detectable_difference_80", "detectable_difference_80_clustered"))
 
 
 def _alike(pair: dict) -> str:

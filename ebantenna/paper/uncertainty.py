@@ -1252,8 +1252,9 @@ def detectable_text(spread: float, clustered: float, unit: str) -> str:
     said = [f"{_round_half_up(100 * v, 1):.1f}" if math.isfinite(v) else "no change within reach"
             for v in (check_real("spread", spread, allow_inf=True),
                       check_real("clustered", clustered, allow_inf=True))]
-    if said[0][0].isdigit():
-        said[0] += " points"
+    numbers = [i for i, s in enumerate(said) if s[0].isdigit()]
+    if numbers:  # the unit once, after the first number
+        said[numbers[0]] += " points"
     return f"{said[0]} spread over recordings, {said[1]} by whole {_check_unit(unit)}s"
 
 

@@ -474,7 +474,7 @@ def _render_ablation(r: ControlsResult, report) -> None:
                          _detectable(pair)])
     report.table(["switched off", "grouped test accuracy, all folds",
                   "paired change (95 % CI)", "resolved",
-                  "detectable (80 % power): spread / whole positions"], rows)
+                  "detectable at 80 % power, points: spread / whole positions"], rows)
     for name, together in r.ablation.dropped_together.items():
         report.paragraph(
             f"'{name}' cannot go alone (the scene requires it for "
@@ -497,10 +497,10 @@ def _difference(pair) -> str:
 
 def _detectable(pair) -> str:
     """The minimal detectable differences, spread over recordings and by whole positions,
-    unsigned, in points."""
+    unsigned, in points (the table's header says so)."""
     return " / ".join(points(v).lstrip("+").removesuffix(" points") if math.isfinite(v)
                       else "none within reach"
-                      for v in (pair.detectable, pair.detectable_clustered)) + " points"
+                      for v in (pair.detectable, pair.detectable_clustered))
 
 
 def _isolated(name: str, together, accuracies: dict) -> str:

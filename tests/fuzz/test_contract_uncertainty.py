@@ -313,6 +313,8 @@ def test_paired_difference_by_hand():
     assert text.endswith(f"detectable at 80 % power: {both})")
     assert detectable_text(0.0065, math.inf, "block") == (
         "0.7 points spread over recordings, no change within reach by whole blocks")
+    assert detectable_text(math.inf, 0.3, "fold") == (
+        "no change within reach spread over recordings, 30.0 points by whole folds")
     d = PAIR.to_dict()
     assert (d["direction"], d["resolved"], d["n_units"]) == ("lower", True, 4)
     p = PairedDifference.from_recordings([1, 1, 1, 1], [0, 1, 1, 1], [0, 0, 1, 1], "position",

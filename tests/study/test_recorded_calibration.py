@@ -516,3 +516,18 @@ def test_what_the_recordings_do_not_bound_is_said_on_each_side():
         test = _lack_of_fit(residual, index, np.arange(4.0), floor=floor)
         cal = types.SimpleNamespace(lack_of_fit=test, misses_recordings=test["p"] < 0.05)
         assert scatter in Calibration.fit_statement.fget(cal)
+
+
+def test_an_untested_fit_says_how_far_it_misses():
+    """With one recording per position the lack of fit cannot be tested; the statement then
+    gives the positions' misfit against the clock's uncertainty, from the numbers (a wrong
+    probe model missed by 0.2 %, twenty times the clock, and said nothing)."""
+    from ebantenna.study.recorded.calibration import _lack_of_fit
+
+    for misfit in (2e-3, 5e-5):
+        residual = np.array([misfit, -misfit, misfit, -misfit, misfit])
+        test = _lack_of_fit(residual, np.arange(5), np.arange(5.0), floor=1e-4)
+        said = Calibration.fit_statement.fget(types.SimpleNamespace(
+            lack_of_fit=test, misses_recordings=False))
+        assert "not tested" in said
+        assert f"{100 * misfit:.2g} % RMS, {misfit / 1e-4:.2g} times the clock's" in said

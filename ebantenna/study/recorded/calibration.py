@@ -275,8 +275,14 @@ class Calibration:
             why = ("the repetitions and the model agree exactly" if min(test.get("df", [0]))
                    >= 1 else "no position was recorded twice, or there are no more positions "
                    "than parameters")
+            size = ""
+            if test.get("rms_misfit") is not None and test.get("clock"):
+                size = (f" (the positions' misfit is {100 * test['rms_misfit']:.2g} % RMS, "
+                        f"{test['rms_misfit'] / test['clock']:.2g} times the clock's "
+                        "uncertainty: a model that misses by more than the recordings would "
+                        "scatter is not caught)")
             return (f"the lack of fit is not tested: {why}; the intervals take the misfit "
-                    "between positions as random")
+                    f"between positions as random{size}")
         numbers = (f"lack-of-fit F = {test['f']:.3g} on {test['df'][0]} and {test['df'][1]} "
                    f"degrees of freedom, p = {test['p']:.2g}")
         scatter = ("the clock's uncertainty (larger here than the repetitions' scatter)"
@@ -930,6 +936,9 @@ def _lack_of_fit(residuals, index, where, parameters: int = 2, floor: float = 0.
     scatter, clock = pure / max(df[1], 1), e.size / max(positions.size, 1) * floor**2
     error = scatter + clock
     out["error_from"] = "clock" if clock > scatter else "repetitions"
+    # the positions' misfit, relative, and the clock's uncertainty it is measured against
+    out["rms_misfit"] = float(np.sqrt(np.mean(means**2))) if means.size else None
+    out["clock"] = float(floor)
     if df[0] >= 1 and df[1] >= 1 and (error > 0 or lack > 0):
         out["f"] = (lack / df[0]) / error if error > 0 else math.inf
         out["p"] = float(fisher_f.sf(out["f"], *df))

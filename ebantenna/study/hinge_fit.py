@@ -81,7 +81,10 @@ def render(result: HingeResult, report, figures) -> None:
         f"{fractions}. A bare clamped tube "
         "puts it at the same fraction of any length; a rotational spring at the hinge and a "
         "point mass at the tip (sensor board, cable) can move it. Least squares over both: "
-        f"{_fitted_words(f)} (transition located at the lowest frequency's peak)."
+        f"{_fitted_words(f)} (transition located at the lowest frequency's peak)"
+        + ("." if result.explains_both else
+           ": the least-bad values of a model that misses the observations (below), not "
+           "estimates of the rig's hinge and tip.")
     )
     report.table(
         ["probe (cm)", "paper (cm)", "fitted model (cm)", "residual (cm)"],

@@ -354,3 +354,22 @@ def test_each_material_s_jump_is_read_on_its_own_median_not_on_the_pooled_one(tm
     assert "steel 100.2 to 300.3 Hz at 25.0 to 30.0 cm" in row
     assert "brass 100.2 to 300.2 Hz at 15.0 to 20.0 cm" in row
     assert "highest at the last position measured, 35.0 cm" in row
+
+
+@pytest.mark.parametrize("miss_cm, least_bad", [(0.1, False), (1.2, True)])
+def test_the_hinge_fit_is_called_least_bad_only_when_the_model_misses(tmp_path, miss_cm,
+                                                                       least_bad):
+    """The fitted hinge and tip are the model's least-bad values, not estimates of the rig,
+    when the model misses the observations by more than their resolution (2.5 mm)."""
+    from ebantenna.fem.hinge import HingeFit
+    from ebantenna.report import FigureSet, Report
+    from ebantenna.study import hinge_fit
+
+    observed = np.array([0.295, 0.395])
+    fit = HingeFit(5.82, 0.001, np.array([0.40, 0.50]), observed,
+                   observed + np.array([1, -1]) * miss_cm / 100, "peak")
+    report = Report("t")
+    hinge_fit.render(hinge_fit.HingeResult(fit), report, FigureSet(tmp_path))
+    text = report.markdown()
+    assert ("the least-bad values of a model that misses the observations" in text) == least_bad
+    assert "hinge 5.82 N m/rad" in text

@@ -16,15 +16,22 @@ def ringing(seed=0):
     return ring + rng.normal(0, 0.5, t.size), 0.5 * ring
 
 
-def record_ringing(faults, bus_hz=100e3, seed=0, asked=1000):
-    """``(rig, mpu, rec)``: ``asked`` samples at 1 kHz of :func:`ringing` through the simulated
-    bus at ``bus_hz`` with ``faults`` (what a stalled stream kept, if it stalls)."""
+def ringing_rig(faults, bus_hz=100e3, seed=0):
+    """``(rig, mpu)``: a simulated rig whose chip samples :func:`ringing`, on a bus at
+    ``bus_hz`` with ``faults``, its driver initialised and the probe touching."""
     ax, az = ringing(seed)
     rig = SimulatedRig.from_arrays(ax, az, fs=1000.0, obstacle=None, faults=faults, seed=seed)
     rig.bus.bus_hz = bus_hz
     mpu = MPU6050(rig.bus, clock=rig.clock)
     mpu.initialize()
     rig.touch()
+    return rig, mpu
+
+
+def record_ringing(faults, bus_hz=100e3, seed=0, asked=1000):
+    """``(rig, mpu, rec)``: ``asked`` samples at 1 kHz of :func:`ringing` through the simulated
+    bus at ``bus_hz`` with ``faults`` (what a stalled stream kept, if it stalls)."""
+    rig, mpu = ringing_rig(faults, bus_hz, seed)
     try:
         rec = mpu.record(asked / 1000.0)
     except StreamStalledError as exc:

@@ -9,10 +9,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from rig_truth import in_wrong_slot, ringing
+from rig_truth import in_wrong_slot, ringing_rig
 
 from ebantenna.chips.mpu6050 import Register
-from ebantenna.device import MPU6050, SimulatedRig
 from ebantenna.device.simulated import Faults
 from ebantenna.device.watchdog import StreamStalledError
 
@@ -21,13 +20,7 @@ ADDRESS = 0x68
 
 
 def _rig(faults=None, seed=0):
-    ax, az = ringing(seed)
-    rig = SimulatedRig.from_arrays(ax, az, fs=1000.0, obstacle=None, faults=faults, seed=seed)
-    rig.bus.bus_hz = 100e3
-    mpu = MPU6050(rig.bus, clock=rig.clock)
-    mpu.initialize()
-    rig.touch()
-    return rig, mpu
+    return ringing_rig(faults, 100e3, seed)
 
 
 def _record(rig, mpu):

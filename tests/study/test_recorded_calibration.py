@@ -44,8 +44,8 @@ RIG = Scene(name="rig", probe=Probe(tip_mass=TRUE_TIP), hinge=TRUE_HINGE,
 CONTACTS = (0.05, 0.10, 0.15, 0.20, 0.30)
 
 
-def record(where, scene, name):
-    plan = Plan(name, ("brass",), CONTACTS, 2)
+def record(where, scene, name, materials=("brass",), contacts=CONTACTS):
+    plan = Plan(name, materials, contacts, 2)
     RecordingSession(where / name, plan, simulated_connect(scene, simulate, seed=1),
                      show_progress=False).run()
     return assemble_dataset(where / name, where)
@@ -468,10 +468,7 @@ def test_scene_modes_are_the_simulators_own(unilateral):
 
 
 def _two_materials(where, contacts):
-    plan = Plan("two", ("brass", "wood"), contacts, 2)
-    RecordingSession(where / "two", plan, simulated_connect(RIG, simulate, seed=1),
-                     show_progress=False).run()
-    return assemble_dataset(where / "two", where)
+    return record(where, RIG, "two", ("brass", "wood"), contacts)
 
 
 def test_materials_the_model_cannot_tell_apart_are_one_position(tmp_path):

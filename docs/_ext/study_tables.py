@@ -14,12 +14,10 @@ to refresh it) and is printed by the formatters the report uses
 
 from __future__ import annotations
 
-import math
-
 from paper_map import SUMMARY_PATH, load_summary
 from sphinx.util.docutils import SphinxDirective
 
-from ebantenna.paper.uncertainty import detectable_text, percent, points, span
+from ebantenna.paper.uncertainty import detectable_cell, detectable_text, percent, points, span
 
 __all__ = ["value_text", "study_role", "interval_lines", "design_effect_lines",
            "repetition_lines", "controls_lines", "sensitivity_lines",
@@ -148,9 +146,8 @@ def controls_lines(summary: dict) -> list[str]:
 def _detectable(pair: dict) -> str:
     """The two detectable differences of a paired comparison of the summary, in points (the
     table's header says so)."""
-    return " / ".join(points(pair[k]).lstrip("+").removesuffix(" points")
-                      if math.isfinite(pair[k]) else "none within reach"
-                      for k in ("detectable_difference_80", "detectable_difference_80_clustered"))
+    return detectable_cell(pair["detectable_difference_80"],
+                           pair["detectable_difference_80_clustered"])
 
 
 def _alike(pair: dict) -> str:

@@ -74,6 +74,7 @@ __all__ = [
     "format_clustered",
     "format_difference",
     "detectable_text",
+    "detectable_cell",
     "cluster_mean_interval",
 ]
 
@@ -1256,6 +1257,22 @@ def detectable_text(spread: float, clustered: float, unit: str) -> str:
     if numbers:  # the unit once, after the first number
         said[numbers[0]] += " points"
     return f"{said[0]} spread over recordings, {said[1]} by whole {_check_unit(unit)}s"
+
+
+def detectable_cell(spread: float, clustered: float) -> str:
+    """The two detectable differences of :func:`detectable_text` as a table's cell, in points
+    (the table's header names the unit and the two ends), ``math.inf`` as ``none within
+    reach``.
+
+    Examples
+    --------
+    >>> detectable_cell(0.067, 0.114), detectable_cell(0.01, math.inf)
+    ('6.7 / 11.4', '1.0 / none within reach')
+    """
+    return " / ".join(f"{_round_half_up(100 * v, 1):.1f}" if math.isfinite(v)
+                      else "none within reach"
+                      for v in (check_real("spread", spread, allow_inf=True),
+                                check_real("clustered", clustered, allow_inf=True)))
 
 
 def cluster_mean_interval(values, clusters) -> dict:

@@ -3,7 +3,6 @@ equivalent-pair control."""
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -28,6 +27,7 @@ from ..paper.splits import distinct_split_seeds, grouped_split
 from ..paper.uncertainty import (
     UNITS,
     clustered_entries,
+    detectable_cell,
     detectable_text,
     format_clustered,
     percent,
@@ -498,9 +498,7 @@ def _difference(pair) -> str:
 def _detectable(pair) -> str:
     """The minimal detectable differences, spread over recordings and by whole positions,
     unsigned, in points (the table's header says so)."""
-    return " / ".join(points(v).lstrip("+").removesuffix(" points") if math.isfinite(v)
-                      else "none within reach"
-                      for v in (pair.detectable, pair.detectable_clustered))
+    return detectable_cell(pair.detectable, pair.detectable_clustered)
 
 
 def _isolated(name: str, together, accuracies: dict) -> str:

@@ -32,6 +32,7 @@ from ebantenna.paper.uncertainty import (
     cluster_mean_interval,
     clustered_entries,
     design_effect,
+    detectable_cell,
     detectable_text,
     format_clustered,
     format_difference,
@@ -236,6 +237,8 @@ BAD = [  # (id, call, error, name)
     ("detectable-text-str", lambda: detectable_text(0.1, "0.2", "position"), TypeError,
      "clustered"),
     ("detectable-text-unit", lambda: detectable_text(0.1, 0.2, 5), TypeError, "unit"),
+    ("detectable-cell-nan", lambda: detectable_cell(0.1, NAN), ValueError, "clustered"),
+    ("detectable-cell-str", lambda: detectable_cell("0.1", 0.2), TypeError, "spread"),
 ]
 
 
@@ -313,6 +316,7 @@ def test_paired_difference_by_hand():
     assert text.endswith(f"detectable at 80 % power: {both})")
     assert detectable_text(0.0065, math.inf, "block") == (
         "0.7 points spread over recordings, no change within reach by whole blocks")
+    assert detectable_cell(0.0065, math.inf) == "0.7 / none within reach"
     assert detectable_text(math.inf, 0.3, "fold") == (
         "no change within reach spread over recordings, 30.0 points by whole folds")
     d = PAIR.to_dict()
@@ -442,6 +446,7 @@ def contract_rows() -> dict[str, list[str]]:
         + ["test_clustered_accuracy_on_clusters_of_one_is_wilson"],
         u + "format_difference": _ids("format-difference-") + ["test_paired_difference_by_hand"],
         u + "detectable_text": _ids("detectable-text-") + ["test_paired_difference_by_hand"],
+        u + "detectable_cell": _ids("detectable-cell-") + ["test_paired_difference_by_hand"],
         "ebantenna.paper.splits.split_folds": _ids("folds-too", "folds-one-fold",
                                                    "folds-fraction", "split-")
         + ["test_split_folds_hold_every_row_once"],

@@ -19,6 +19,7 @@ is listed in ``LONG_FUNCTIONS`` with its reason. A module's length is only a war
 from __future__ import annotations
 
 import ast
+import functools
 import re
 from pathlib import Path
 
@@ -219,10 +220,15 @@ def test_code_lines_leave_out_the_docstring():
     assert code_lines(tree.body[0]) == 2
 
 
-def module_graph() -> dict[str, set[str]]:
-    """Module -> the package modules it imports (every statement, inside functions too)."""
+@functools.cache
+def module_graph() -> dict[str, frozenset[str]]:
+    """Module -> the package modules it imports (every statement, inside functions too).
+
+    Built once per test process and read by every import test (parsing the whole package again
+    for each was most of this file's time); the sets are frozen, so no test changes another's."""
     names = {module_name(p) for p in MODULES}
-    return {module_name(p): {t for _, t, _ in imports(p) if t in names and t != module_name(p)}
+    return {module_name(p): frozenset(t for _, t, _ in imports(p)
+                                      if t in names and t != module_name(p))
             for p in MODULES}
 
 

@@ -32,6 +32,7 @@ from .._validate import (
     check_choice,
     check_int,
     check_n_jobs,
+    check_nonnegative,
     check_positive,
     check_real,
     describe,
@@ -145,6 +146,11 @@ class HingeFit:
         How the transition was located.
     stiffness_bounds, mass_bounds : (float, float)
         The bounds the fit searched within (N m/rad, kg).
+    lattice : tuple of ndarray or None
+        The coarse search's lattice, ``(stiffness, mass, rms)``: its hinge stiffnesses (N m/rad,
+        shape ``(g,)``), its tip masses (kg, ``(g,)``) and the RMS residual at each pair (m,
+        ``(g, g)``, stiffness by row); None for a fit made without a search. What
+        :meth:`stiffness_within` reads.
     """
 
     hinge_stiffness: float
@@ -155,6 +161,7 @@ class HingeFit:
     criterion: str
     stiffness_bounds: tuple = _STIFFNESS_BOUNDS
     mass_bounds: tuple = _MASS_BOUNDS
+    lattice: tuple | None = None
 
     @property
     def at_bound(self) -> dict:
@@ -190,6 +197,51 @@ class HingeFit:
     def rms_residual(self) -> float:
         """Root-mean-square residual, m."""
         return float(np.sqrt(np.mean(self.residual**2)))
+
+    def stiffness_within(self, tolerance: float) -> np.ndarray:
+        """The lattice's hinge stiffnesses that come within ``tolerance`` of the least misfit.
+
+        A stiffness of the coarse search's :attr:`lattice` comes within when its least RMS
+        residual over the lattice's tip masses exceeds the least RMS residual found (the fit's
+        :attr:`rms_residual`, or a lattice point's where that is smaller: the fit weighs each
+        residual by its probe's length, the RMS does not) by at most ``tolerance``:
+        observations read no finer than ``tolerance`` cannot rank it below the best. The
+        lattice's masses are a sample of the range, so each stiffness's least residual is an
+        upper bound of its best: the stiffnesses returned come within, and others of the range
+        may too.
+
+        Parameters
+        ----------
+        tolerance : float
+            How much larger an RMS residual may be, m, >= 0.
+
+        Returns
+        -------
+        ndarray
+            Those stiffnesses, N m/rad, ascending.
+
+        Raises
+        ------
+        ValueError
+            For a fit made without a search (``lattice`` None).
+
+        Examples
+        --------
+        >>> one = np.ones(1)
+        >>> rms = np.array([[0.03, 0.02], [0.011, 0.012], [0.02, 0.015]])
+        >>> fit = HingeFit(10.0, 0.0, one, one, one + 0.01, "peak",
+        ...                lattice=(np.array([1.0, 10.0, 100.0]), np.array([0.0, 0.01]), rms))
+        >>> fit.stiffness_within(0.005).tolist()
+        [10.0, 100.0]
+        """
+        tolerance = check_nonnegative("tolerance", tolerance)
+        if self.lattice is None:
+            raise ValueError("stiffness_within needs the search's lattice: this fit has none "
+                             "(lattice=None)")
+        stiffness, _, rms = self.lattice
+        best = np.min(rms, axis=1)
+        least = min(self.rms_residual, float(best.min()))
+        return np.sort(stiffness[best <= least + tolerance])
 
 
 def fit_hinge_and_tip(
@@ -274,7 +326,7 @@ def fit_hinge_and_tip(
         return (predict(*p) - observed) / lengths
 
     bounds = ([math.log10(k_lo), m_lo], [math.log10(k_hi), m_hi])
-    best, best_cost = _grid_search(residual, bounds, grid, n_jobs)
+    best, best_cost, lattice = _grid_search(residual, bounds, grid, n_jobs)
     start = np.clip(best, np.array(bounds[0]) + 1e-9, np.array(bounds[1]) - 1e-9)
     scale = np.array([0.1, 0.02 * (m_hi - m_lo)])
     fit = least_squares(residual, start, bounds=bounds, x_scale=scale, diff_step=1e-4, xtol=1e-10)
@@ -288,6 +340,7 @@ def fit_hinge_and_tip(
         criterion=criterion,
         stiffness_bounds=(k_lo, k_hi),
         mass_bounds=(m_lo, m_hi),
+        lattice=(lattice[0], lattice[1], np.sqrt(np.mean((lattice[2] * lengths) ** 2, axis=2))),
     )
 
 
@@ -328,19 +381,17 @@ def _grid_search(residual, bounds, grid: int, n_jobs=1):
     """The point of a ``grid x grid`` lattice inside ``bounds`` with the least squared residual
     (the first in lattice order on a tie), its points computed on ``n_jobs`` processes.
 
-    Returns ``((log_k, mass), cost)``; the lattice finds the basin that a local least-squares
-    refinement then descends.
+    Returns ``((log_k, mass), cost, (stiffness, mass, residuals))``: the lattice finds the basin
+    that a local least-squares refinement then descends, and its stiffnesses (N m/rad), masses
+    and residuals at each point (``(grid, grid, n)``) are kept for :attr:`HingeFit.lattice`.
     """
-    lattice = [(log_k, mass) for log_k in np.linspace(bounds[0][0], bounds[1][0], grid)
-               for mass in np.linspace(bounds[0][1], bounds[1][1], grid)]
-    costs = Parallel(n_jobs=n_jobs or 1)(delayed(_cost)(residual, point) for point in lattice)
+    log_ks = np.linspace(bounds[0][0], bounds[1][0], grid)
+    masses = np.linspace(bounds[0][1], bounds[1][1], grid)
+    lattice = [(log_k, mass) for log_k in log_ks for mass in masses]
+    residuals = Parallel(n_jobs=n_jobs or 1)(delayed(residual)(point) for point in lattice)
     best, best_cost = None, math.inf
-    for point, cost in zip(lattice, costs, strict=True):
+    for point, r in zip(lattice, residuals, strict=True):
+        cost = float(np.sum(r**2))
         if cost < best_cost:
             best, best_cost = point, cost
-    return best, best_cost
-
-
-def _cost(residual, point) -> float:
-    """The squared residual at ``point`` of the lattice."""
-    return float(np.sum(residual(point) ** 2))
+    return best, best_cost, (10.0**log_ks, masses, np.reshape(residuals, (grid, grid, -1)))

@@ -41,7 +41,10 @@ class HingeResult:
     def to_dict(self) -> dict:
         """Best fit (N m/rad, g), which of its parameters sit on a bound of the search (there
         the bound, not the data, sets the value: ``at_bound``), observed and predicted
-        transitions and residuals (cm)."""
+        transitions and residuals (cm), and the search lattice's hinge stiffnesses with those
+        of them the observations cannot rank below the fit
+        (:meth:`~ebantenna.fem.hinge.HingeFit.stiffness_within` the resolution; None for a fit
+        made without a search)."""
         f = self.fit
         return {
             "hinge_stiffness_n_m_per_rad": f.hinge_stiffness,
@@ -53,6 +56,10 @@ class HingeResult:
             "residual_cm": (100 * f.residual).tolist(),
             "rms_residual_cm": 100 * f.rms_residual,
             "explains_both": self.explains_both,
+            "search_stiffness_n_m_per_rad":
+                None if f.lattice is None else f.lattice[0].tolist(),
+            "stiffness_within_resolution_n_m_per_rad":
+                None if f.lattice is None else f.stiffness_within(self.resolution).tolist(),
         }
 
 
@@ -107,7 +114,69 @@ def render(result: HingeResult, report, figures) -> None:
             "between the two probes, or in how the transition was located, lies outside this "
             "model's two parameters: the fit cannot say which."
         )
-    report.paragraph(verdict + " " + _assumptions(result))
+    report.paragraph(" ".join(filter(None, (verdict, _within_words(result),
+                                            _assumptions(result)))))
+
+
+def _within_words(result: HingeResult) -> str:
+    """How closely the observations set the hinge: the search lattice's stiffnesses that come
+    within the observations' resolution of the fit's misfit, said from the lattice's numbers
+    (nothing for a fit made without a search).
+
+    Examples
+    --------
+    >>> from ebantenna.fem.hinge import HingeFit
+    >>> one = np.ones(1)
+    >>> rms = np.array([[0.03, 0.02], [0.011, 0.012], [0.012, 0.015]])
+    >>> fit = HingeFit(10.0, 0.0, one, one, one + 0.011, "peak",
+    ...                lattice=(np.array([1.0, 10.0, 100.0]), np.array([0.0, 0.01]), rms))
+    >>> print(_within_words(HingeResult(fit)))  # doctest: +NORMALIZE_WHITESPACE
+    Of the search's 3 hinge stiffnesses (1 to 100 N m/rad, each with the best of its 2 tip
+    masses), those from 10 to 100 N m/rad come within the observations' 2.5 mm of the least
+    misfit found (RMS), up to the top of the search: the observations cannot tell these hinges
+    apart, and set no upper limit to the hinge within the search.
+    """
+    f = result.fit
+    if f.lattice is None:  # a fit made without a search: no lattice to read
+        return ""
+    lattice, masses = f.lattice[0], f.lattice[1]
+    within = f.stiffness_within(result.resolution)
+    opening = (f"Of the search's {lattice.size} hinge stiffnesses ({_n(lattice[0])} to "
+               f"{_n(lattice[-1])} N m/rad, each with the best of its {masses.size} tip masses)")
+    near = (f"within the observations' {1000 * result.resolution:g} mm of the least misfit "
+            "found (RMS)")
+    if within.size == 0:
+        return f"{opening}, none comes {near}."
+    index = np.flatnonzero(np.isin(lattice, within))
+    if within.size == 1:
+        others = [_n(lattice[j]) for j in (index[0] - 1, index[0] + 1) if 0 <= j < lattice.size]
+        miss = "its neighbour ({} N m/rad) misses" if len(others) == 1 else \
+            "its neighbours ({} N m/rad) miss"
+        return (f"{opening}, only {_n(within[0])} N m/rad comes {near}; "
+                f"{miss.format(' and '.join(others))} by more: the observations set the hinge "
+                "to within that step of the search.")
+    if np.any(np.diff(index) != 1):
+        listed = ", ".join(_n(k) for k in within)
+        return (f"{opening}, {listed} N m/rad come {near}, and stiffnesses between them do "
+                "not: the observations do not set the hinge to one range.")
+    ends = [end for end, at in (("bottom", index[0] == 0), ("top", index[-1] == lattice.size - 1))
+            if at]
+    reach = "".join(f", {'down' if e == 'bottom' else 'up'} to the {e} of the search"
+                    for e in ends)
+    if len(ends) == 2:
+        unset = ", and set neither a lower nor an upper limit"
+    elif ends:
+        unset = f", and set no {'lower' if ends[0] == 'bottom' else 'upper'} limit"
+    else:
+        unset = ""
+    return (f"{opening}, those from {_n(within[0])} to {_n(within[-1])} N m/rad come {near}"
+            f"{reach}: the observations cannot tell these hinges apart{unset}"
+            + (" to the hinge within the search." if ends else "."))
+
+
+def _n(x: float) -> str:
+    """``x`` to three significant figures, without an exponent (1000, 147, 0.0681)."""
+    return np.format_float_positional(x, precision=3, unique=False, fractional=False, trim="-")
 
 
 def _assumptions(result: HingeResult) -> str:

@@ -72,6 +72,44 @@ def test_the_fit_is_the_same_on_two_worker_processes():
         two = fit_hinge_and_tip(PROBE, [0.4], [0.3], n_jobs=2, **args)
     assert (one.hinge_stiffness, one.tip_mass) == (two.hinge_stiffness, two.tip_mass)
     np.testing.assert_array_equal(one.predicted, two.predicted)
+    for a, b in zip(one.lattice, two.lattice, strict=True):
+        np.testing.assert_array_equal(a, b)
+
+
+def test_the_lattice_holds_each_points_own_residual():
+    # the search's lattice, witnessed point by point: the transition located on the model with
+    # that hinge and tip mass, the same computation as the fit's, so the same to the last bit
+    fit = fit_hinge_and_tip(PROBE, [0.4, 0.5], [0.3, 0.4], grid=3, n_elements=8,
+                            stiffness_bounds=(0.1, 100.0), mass_bounds=(0.0, 0.004))
+    stiffness, mass, rms = fit.lattice
+    np.testing.assert_array_equal(stiffness, 10.0 ** np.linspace(-1, 2, 3))
+    np.testing.assert_array_equal(mass, np.linspace(0.0, 0.004, 3))
+    for i, k in enumerate(stiffness):
+        for j, m in enumerate(mass):
+            located = [transition_position(Probe(length=length, tip_mass=float(m)),
+                                           hinge=float(k), n_elements=8) for length in (0.4, 0.5)]
+            expected = np.sqrt(np.mean((np.array(located) - [0.3, 0.4]) ** 2))
+            assert rms[i, j] == expected, (k, m)
+    # within a tolerance: the stiffnesses whose best mass misses by at most that much more than
+    # the least misfit found. Here that is a lattice point's (100 N m/rad, no tip mass): the fit
+    # weighs the 40 cm probe's residual by 1/0.4 and the 50 cm one's by 1/0.5, the RMS does not
+    best = rms.min(axis=1)
+    assert best.min() < fit.rms_residual
+    least = best.min()
+    for tol in (0.0, 1e-3, float(np.median(best - least)), 1.0):
+        np.testing.assert_array_equal(fit.stiffness_within(tol), stiffness[best <= least + tol])
+    np.testing.assert_array_equal(fit.stiffness_within(0.0), [100.0])
+    np.testing.assert_array_equal(fit.stiffness_within(1.0), stiffness)
+
+
+def test_a_fit_without_a_search_has_no_lattice_to_read():
+    from ebantenna.fem.hinge import HingeFit
+
+    one = np.ones(1)
+    with pytest.raises(ValueError, match="lattice"):
+        HingeFit(5.0, 0.002, one, one, one, "peak").stiffness_within(0.001)
+    with pytest.raises(ValueError, match="tolerance"):
+        HingeFit(5.0, 0.002, one, one, one, "peak").stiffness_within(-1.0)
 
 
 @pytest.mark.parametrize(

@@ -303,6 +303,13 @@ def _metrics_rows():
 
 
 # ------------------------------------------------------------------ finite elements
+def _hinge_fit():
+    """A hinge fit with a 2 x 2 search lattice, made by hand."""
+    one = np.ones(1)
+    return hinge.HingeFit(5.0, 0.0, one, one, one, "peak",
+                          lattice=(np.array([1.0, 10.0]), np.array([0.0, 0.01]), np.ones((2, 2))))
+
+
 def _fem_rows():
     e, a = "ebantenna.fem.elements.", "ebantenna.fem.assembly."
     rows = []
@@ -425,6 +432,13 @@ def _fem_rows():
             ("mass_bounds",)),
         Row(h + "fit_hinge_and_tip", "n_jobs-zero",
             lambda: hinge.fit_hinge_and_tip(Probe(), [0.4], [0.3], n_jobs=0), ("n_jobs",)),
+        Row(h + "HingeFit.stiffness_within", "tolerance-negative",
+            lambda: _hinge_fit().stiffness_within(-0.001), ("tolerance",)),
+        Row(h + "HingeFit.stiffness_within", "tolerance-nan",
+            lambda: _hinge_fit().stiffness_within(NAN), ("tolerance",)),
+        Row(h + "HingeFit.stiffness_within", "no-lattice",
+            lambda: hinge.HingeFit(5.0, 0.0, *[np.ones(1)] * 3, "peak").stiffness_within(0.0),
+            ("lattice",)),
     ]
     return rows
 

@@ -213,6 +213,51 @@ def test_the_hinge_paragraph_reads_the_observations_and_the_resolution(tmp_path)
     assert "cannot say which" in text
 
 
+def _hinge_on_lattice(best_rms_cm):
+    """A fit 1 cm RMS off, on a lattice of 1, 10, 100, 1000 N m/rad whose best masses miss by
+    ``best_rms_cm`` (two masses each; the other mass misses by 5 cm more)."""
+    best = np.asarray(best_rms_cm) / 100
+    rms = np.stack([best, best + 0.05], axis=1)
+    fit = HingeFit(10.0, 0.0, np.array([0.4, 0.5]), np.array([0.30, 0.40]),
+                   np.array([0.31, 0.41]), "peak",
+                   lattice=(10.0 ** np.arange(4), np.array([0.0, 0.01]), rms))
+    return hinge_fit.HingeResult(fit)
+
+
+@pytest.mark.parametrize(("best_rms_cm", "words"), [
+    # 2.5 mm of the least misfit (the fit's 1 cm): rows within 1.25 cm are indistinct
+    ([1.2, 1.2, 1.1, 1.0], "those from 1 to 1000 N m/rad come within the observations' 2.5 mm "
+     "of the least misfit found (RMS), down to the bottom of the search, up to the top of the "
+     "search: the observations cannot tell these hinges apart, and set neither a lower nor an "
+     "upper limit to the hinge within the search."),
+    ([1.2, 1.1, 2.0, 2.0], "those from 1 to 10 N m/rad come within the observations' 2.5 mm "
+     "of the least misfit found (RMS), down to the bottom of the search: the observations "
+     "cannot tell these hinges apart, and set no lower limit to the hinge within the search."),
+    ([3.0, 1.2, 1.1, 2.0], "those from 10 to 100 N m/rad come within the observations' 2.5 mm of "
+     "the least misfit found (RMS): the observations cannot tell these hinges apart."),
+    ([3.0, 1.1, 2.0, 2.0], "only 10 N m/rad comes within the observations' 2.5 mm of the least "
+     "misfit found (RMS); its neighbours (1 and 100 N m/rad) miss by more: the observations set "
+     "the hinge to within that step of the search."),
+    ([2.0, 2.0, 2.0, 1.1], "only 1000 N m/rad comes within the observations' 2.5 mm of the "
+     "least misfit found (RMS); its neighbour (100 N m/rad) misses by more"),
+    ([1.1, 2.0, 1.2, 2.0], "1, 100 N m/rad come within the observations' 2.5 mm of the least "
+     "misfit found (RMS), and stiffnesses between them do not: the observations do not set the "
+     "hinge to one range."),
+    ([2.0, 2.0, 2.0, 2.0], "none comes within the observations' 2.5 mm of the least misfit "
+     "found (RMS)."),
+])
+def test_how_closely_the_hinge_is_set_is_read_from_the_lattice(tmp_path, best_rms_cm, words):
+    result = _hinge_on_lattice(best_rms_cm)
+    report = Report("t")
+    hinge_fit.render(result, report, FigureSet(tmp_path))
+    text = " ".join(report.markdown().split())
+    assert ("Of the search's 4 hinge stiffnesses (1 to 1000 N m/rad, each with the best of its "
+            "2 tip masses), " + words) in text
+    within = result.to_dict()["stiffness_within_resolution_n_m_per_rad"]
+    assert within == [k for k, r in zip(10.0 ** np.arange(4), best_rms_cm, strict=True)
+                      if r <= 1.25 + 1e-12]
+
+
 def test_an_interval_that_widens_is_said_to_widen():
     # the estimate moves from 0 towards one half: the interval on the position widens
     text = seed_spread.repetitions_sentence({

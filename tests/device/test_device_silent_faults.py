@@ -334,7 +334,8 @@ def test_bit_errors_in_the_data_cannot_be_detected(bus_hz):
 
 def test_every_silent_fault_is_exercised_by_name():
     exercised = {"write bit flip", "register lost", "foreign read", "undercount", "bit error",
-                 "clone", "stuck sensor", "second device", "pca brown-out"}
+                 "clone", "stuck sensor", "second device", "pca brown-out",
+                 "reset lost"}  # the last in test_device_resets.py
     assert exercised == set(SILENT_FAULTS)
 
 

@@ -8,12 +8,16 @@ the lost reset is said and counted."""
 
 from __future__ import annotations
 
+import logging
+
 import numpy as np
 import pytest
 from rig_truth import in_wrong_slot, ringing_rig
 
 from ebantenna.chips.mpu6050 import Register
+from ebantenna.device import MPU6050
 from ebantenna.device.fifo import FIFO_RESET_ATTEMPTS
+from ebantenna.device.i2c import SettingError
 from ebantenna.device.simulated import Faults
 from ebantenna.device.watchdog import StreamStalledError
 
@@ -100,6 +104,40 @@ def test_a_chip_that_never_resets_its_fifo_ends_the_stream_with_the_reason():
         mpu.record(ASKED / 1000.0)
     assert caught.value.recording is None
     assert mpu.stream.samples_read == 0 and mpu.stream.resets_unconfirmed >= FIFO_RESET_ATTEMPTS
+
+
+def test_a_lost_device_reset_is_seen_in_the_settings_it_leaves_and_made_again(caplog):
+    """A second run initialises a chip the first one set up, and its ``DEVICE_RESET`` is lost.
+    Before, nothing was said, and a register the driver never writes kept what another program
+    had set (``INT_PIN_CFG.INT_RD_CLEAR``, which makes every read clear ``INT_STATUS``): the
+    settings the reset must have cleared read as the first run left them, so it is made
+    again, and the chip starts from its reset values. The first run's reset is lost too, on a
+    chip just powered on: its settings read their reset values whether or not the reset acted,
+    and nothing can be said (the device guide's "What the driver cannot detect")."""
+    faults = Faults(reset_lost=((0.0, "device"), (LOST_AT, "device")),
+                    register_lost=((0.2, Register.INT_PIN_CFG, 0x10),))
+    with caplog.at_level(logging.WARNING, logger="ebantenna.device.mpu6050"):
+        rig, first = ringing_rig(faults)
+        assert [kind for _, kind in rig.bus.injector.log] == ["reset lost"]
+        assert "did not act" not in caplog.text  # the fresh chip's lost reset: unseen
+        first.record(0.05)
+        rig.clock.sleep(max(LOST_AT - rig.clock.monotonic(), 0.0) + 0.01)
+        MPU6050(rig.bus, clock=rig.clock).initialize()
+    assert [kind for _, kind in rig.bus.injector.log] == [
+        "reset lost", "register lost", "reset lost"]
+    assert rig.mpu.regs[Register.INT_PIN_CFG] == 0
+    assert caplog.text.count("did not act") == 1
+    assert "INT_ENABLE (0x38) reads 0x10 after PWR_MGMT_1.DEVICE_RESET: the reset did not act; " \
+           "resetting again" in caplog.text
+
+
+def test_a_device_reset_lost_every_time_is_refused_by_name():
+    faults = Faults(reset_lost=((LOST_AT, "device"), (LOST_AT, "device")))
+    rig, first = ringing_rig(faults)
+    first.record(0.05)
+    rig.clock.sleep(max(LOST_AT - rig.clock.monotonic(), 0.0) + 0.01)
+    with pytest.raises(SettingError, match=r"does not reset: SMPLRT_DIV \(0x19\) reads 0x07"):
+        MPU6050(rig.bus, clock=rig.clock).initialize()
 
 
 @pytest.mark.parametrize("bad, error, words", [

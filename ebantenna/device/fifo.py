@@ -105,7 +105,7 @@ logger = logging.getLogger(__name__)
 #: Longest SMBus chunk that holds whole samples (30 bytes: 5 samples).
 FIFO_CHUNK = (SMBUS_BLOCK_MAX // ACCEL_SAMPLE_BYTES) * ACCEL_SAMPLE_BYTES
 #: Writes of ``USER_CTRL.FIFO_RESET`` one restart makes before it fails: each is confirmed by a
-#: count of 0 read before the FIFO is enabled again (:meth:`FifoStream._reset_fifo`). A reset
+#: count of 0 read before the FIFO is enabled again (``FifoStream._reset_fifo``). A reset
 #: lost once (a bit that did not act, a ``USER_CTRL.FIFO_EN`` the silicon still saw set) or a
 #: count read wrong once is made good by the next; three in a row is a chip that does not reset.
 FIFO_RESET_ATTEMPTS = 3

@@ -136,7 +136,7 @@ class CompatibleChipWarning(UserWarning):
 
 
 #: Writes of ``PWR_MGMT_1.DEVICE_RESET`` :meth:`MPU6050.initialize` makes before it fails: each
-#: is confirmed by the settings it must have cleared (:meth:`MPU6050._reset_device`).
+#: is confirmed by the settings it must have cleared (``MPU6050._reset_device``).
 DEVICE_RESET_ATTEMPTS = 2
 
 #: Bits of ``USER_CTRL`` that read back as written (the reset bits clear themselves, RM 106).
@@ -253,7 +253,7 @@ class MPU6050:
 
         Register writes, in order: ``PWR_MGMT_1 = 0x80`` (device reset, then a
         :data:`~ebantenna.chips.mpu6050.RESET_WAIT` of 100 ms, confirmed by the settings it
-        clears and made again if they did not clear: :meth:`_reset_device`), then
+        clears and made again if they did not clear: ``_reset_device``), then
         :meth:`configure`.
         """
         self.check_identity()

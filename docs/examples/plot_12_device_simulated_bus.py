@@ -14,7 +14,7 @@ so the example also counts the kept samples that differ from it: none.
 The figure draws the recording without faults as a thick grey line and the one with faults as
 thin red dots over it; where the dots are missing, samples were lost, as the legend counts. The two
 are separate runs, not one recording with and without faults: the contact was detected at sample
-418 in one and 434 in the other (the log below), and the samples differ. That the dots follow the
+418 in one and 428 in the other (the log below), and the samples differ. That the dots follow the
 line shows only that the runs are alike; that each kept sample is right is what the printed count
 ``wrong=0`` says, each kept sample compared with the simulated chip's ground truth.
 """

@@ -27,10 +27,16 @@ estimates the sample period from the timestamps of its interrupts), are:
    transient where a retry is safe; an unknown errno becomes an :class:`I2CError`), the FIFO is
    **restarted** (``FIFO_EN = 0``, ``USER_CTRL.FIFO_RESET``, then ``FIFO_EN`` and
    ``USER_CTRL.FIFO_EN`` again, RM 35 and 106): a new *segment* begins, aligned on a sample
-   boundary, and what was kept so far stays kept. The whole-sample transfers of a drain that
-   came in before a failed one are kept, once ``INT_STATUS`` has confirmed them; nothing after
-   a failed transfer can be placed. The write that starts a segment is made once; if it fails
-   the whole restart is redone, so the segment's start is always a write known to have landed.
+   boundary, and what was kept so far stays kept. The reset bit clears itself, so reading
+   ``USER_CTRL`` back cannot show that the reset acted; ``FIFO_COUNT``, read while the FIFO is
+   still disabled (no sample can enter it), must then be 0. A reset it does not confirm is
+   counted (``fifo_resets_unconfirmed``) and made again, up to :data:`FIFO_RESET_ATTEMPTS`
+   times, after which the restart fails and is tried again at the next drain: bytes left from
+   before are never read as the new segment's first samples. The whole-sample transfers of a
+   drain that came in before a failed one are kept, once ``INT_STATUS`` has confirmed them;
+   nothing after a failed transfer can be placed. The write that starts a segment is made
+   once; if it fails the whole restart is redone, so the segment's start is always a write
+   known to have landed.
 4. **Timestamps** do not assume when a segment's first sample came: whether the divider
    restarts when the FIFO is enabled or runs free is a property of the silicon (see the HIL
    checklist of the user guide). The period ``T`` is bracketed from *differences* of counts
@@ -92,12 +98,17 @@ from .timing import CLOCK_TOLERANCE, PeriodEstimator
 __all__ = ["PeriodEstimator", "StreamFault", "FifoBlock", "FifoStream", "CLOCK_TOLERANCE",
            "MAX_CLOCK_ADAPT", "REFUSE_AFTER", "sensor_check", "PARITY_MIN_NOISE_LSB",
            "PREDICTOR_ORDER", "ODD_SHARE_LIMIT", "PARITY_BLOCK", "PARITY_FALSE_ALARM",
-           "MIN_PARITY_READINGS", "STOLEN_SHARE_COVERED"]
+           "MIN_PARITY_READINGS", "STOLEN_SHARE_COVERED", "FIFO_RESET_ATTEMPTS"]
 
 logger = logging.getLogger(__name__)
 
 #: Longest SMBus chunk that holds whole samples (30 bytes: 5 samples).
 FIFO_CHUNK = (SMBUS_BLOCK_MAX // ACCEL_SAMPLE_BYTES) * ACCEL_SAMPLE_BYTES
+#: Writes of ``USER_CTRL.FIFO_RESET`` one restart makes before it fails: each is confirmed by a
+#: count of 0 read before the FIFO is enabled again (``FifoStream._reset_fifo``). A reset
+#: lost once (a bit that did not act, a ``USER_CTRL.FIFO_EN`` the silicon still saw set) or a
+#: count read wrong once is made good by the next; three in a row is a chip that does not reset.
+FIFO_RESET_ATTEMPTS = 3
 #: A chip is asked whether it was reset when this many samples were due and none came.
 QUIET_SAMPLES = 3
 #: Counts off the same side of the clock's tolerance after which the clock itself is suspected
@@ -138,7 +149,8 @@ class StreamFault:
     cause : str
         What happened.
     action : str
-        What the driver did ("restart", "reconfigure", "wait").
+        What the driver did ("restart", "reconfigure", "wait", "reset again", "adapt",
+        "stop").
     """
 
     time: float
@@ -236,6 +248,7 @@ class FifoStream:
         self.next_slot = 0
         self.overflows = 0
         self.discarded = 0  # samples read but dropped: their drain could not be confirmed
+        self.resets_unconfirmed = 0  # FIFO resets after which the FIFO was not empty
         self.foreign = 0  # drains dropped because another reader took bytes from the FIFO
         self.suspect: set[int] = set()  # segments whose timestamps are flagged (_suspect)
         self.contradictions = {"more": 0, "fewer": 0}  # counts off the tolerance, by side
@@ -289,8 +302,7 @@ class FifoStream:
         """Empty the FIFO and start a new segment (raises :class:`I2CError` if the bus fails)."""
         device = self.device
         self.mpu.write_verified(Register.FIFO_EN, 0)
-        # FIFO_RESET only acts while USER_CTRL.FIFO_EN is 0 (RM 106).
-        self.mpu.write_verified(Register.USER_CTRL, UserControl.FIFO_RESET)
+        self._reset_fifo()
         device.read_byte(Register.INT_STATUS)  # clears a stale overflow flag (RM 58)
         self.mpu.write_verified(Register.FIFO_EN, FifoEnable.ACCEL)
         before = self.clock.monotonic()
@@ -311,6 +323,37 @@ class FifoStream:
         self.offsets.append(offset)
         self.delivered.append(0)
         self.pending = None
+
+    def _reset_fifo(self) -> None:
+        """Empty the FIFO (``USER_CTRL.FIFO_RESET``) and confirm it from ``FIFO_COUNT``.
+
+        The reset bit clears itself (RM 106), so the read-back of ``USER_CTRL`` cannot tell
+        whether the reset acted; what it leaves can be read. ``FIFO_EN`` (register 35) and
+        ``USER_CTRL.FIFO_EN`` are both 0 from the reset until the FIFO is enabled again, so no
+        sample can enter: the count read in between must be 0. One that is not (a reset that
+        did not act, or a count read wrong) is counted in ``resets_unconfirmed``, noted in the
+        fault log and the reset made again, :data:`FIFO_RESET_ATTEMPTS` times in all.
+
+        Raises
+        ------
+        SettingError
+            When the FIFO is still not empty after the last reset (the restart fails: what the
+            FIFO holds is never read as a sample of a new segment).
+        """
+        for _ in range(FIFO_RESET_ATTEMPTS):
+            # FIFO_RESET only acts while USER_CTRL.FIFO_EN is 0 (RM 106): this write clears it
+            self.mpu.write_verified(Register.USER_CTRL, UserControl.FIFO_RESET)
+            count = self.mpu.fifo_count()
+            if count == 0:
+                return
+            self.resets_unconfirmed += 1
+            self._note(f"FIFO_COUNT reads {count} bytes after USER_CTRL.FIFO_RESET with the FIFO "
+                       "disabled: the reset did not act (or the count was read wrong)",
+                       "reset again")
+        raise SettingError(
+            errno.EIO, f"the FIFO still holds {count} bytes after USER_CTRL.FIFO_RESET (0x6A = "
+            f"0x{int(UserControl.FIFO_RESET):02X}) was written {FIFO_RESET_ATTEMPTS} times with "
+            "the FIFO disabled: the chip does not reset its FIFO (or FIFO_COUNT reads wrong)")
 
     def _try_restart(self) -> None:
         try:
@@ -986,6 +1029,7 @@ class FifoStream:
             "fifo_restarts": len(self.starts) - 1,
             "fifo_overflows": self.overflows,
             "fifo_counts_rejected": est.rejected,
+            "fifo_resets_unconfirmed": self.resets_unconfirmed,
             "clock_outside_tolerance_suspected": self.clock_suspect,
             "clock_rate_adapted": self.clock_adapted,
             "clock_refused": self.clock_refused,

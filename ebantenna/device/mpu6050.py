@@ -135,6 +135,10 @@ class CompatibleChipWarning(UserWarning):
     """The chip is not an MPU-6050 but a part known to answer the same registers."""
 
 
+#: Writes of ``PWR_MGMT_1.DEVICE_RESET`` :meth:`MPU6050.initialize` makes before it fails: each
+#: is confirmed by the settings it must have cleared (``MPU6050._reset_device``).
+DEVICE_RESET_ATTEMPTS = 2
+
 #: Bits of ``USER_CTRL`` that read back as written (the reset bits clear themselves, RM 106).
 USER_CTRL_STABLE = 0xFF & ~int(USER_CONTROL_SELF_CLEARING)
 
@@ -248,12 +252,66 @@ class MPU6050:
         """Check the chip, reset it, wake it on the PLL clock and set rate, filter and range.
 
         Register writes, in order: ``PWR_MGMT_1 = 0x80`` (device reset, then a
-        :data:`~ebantenna.chips.mpu6050.RESET_WAIT` of 100 ms), then :meth:`configure`.
+        :data:`~ebantenna.chips.mpu6050.RESET_WAIT` of 100 ms, confirmed by the settings it
+        clears and made again if they did not clear: ``_reset_device``), then
+        :meth:`configure`.
         """
         self.check_identity()
-        self.device.write_byte(Register.PWR_MGMT_1, PowerManagement1.DEVICE_RESET)
-        self.clock.sleep(RESET_WAIT)
+        self._reset_device()
         self.configure()
+
+    def _reset_device(self) -> None:
+        """``PWR_MGMT_1.DEVICE_RESET`` and the :data:`~ebantenna.chips.mpu6050.RESET_WAIT`,
+        confirmed from what the reset leaves.
+
+        The bit clears itself once the reset is done (RM 107), so reading it back cannot tell
+        whether the reset acted. A reset returns every register to its reset value: 0 for every
+        setting the driver writes but ``PWR_MGMT_1`` (RM section 3; the MPU-6500 and MPU-9250
+        register maps say the same), whose reset value differs between the families. Those
+        settings (:meth:`expected_registers`) are read: one that is not 0 is a reset that did
+        not act, logged, and the reset is made again, :data:`DEVICE_RESET_ATTEMPTS` times in
+        all. A chip whose settings already read 0 (just powered on, or set up by a program that
+        left them so) cannot show a lost reset this way; its settings are written and read
+        back by :meth:`configure` all the same.
+
+        Raises
+        ------
+        SettingError
+            When a setting still reads non-zero after the last reset.
+        """
+        for attempt in range(DEVICE_RESET_ATTEMPTS):
+            self.device.write_byte(Register.PWR_MGMT_1, PowerManagement1.DEVICE_RESET)
+            self.clock.sleep(RESET_WAIT)
+            left = self._left_after_reset()
+            if not left:
+                return
+            logger.warning("%s at 0x%02X: %s after PWR_MGMT_1.DEVICE_RESET: the reset did not "
+                           "act%s", self.part, self.config.address, left,
+                           "; resetting again" if attempt + 1 < DEVICE_RESET_ATTEMPTS else "")
+        raise SettingError(
+            errno.EIO, f"the {self.part} at 0x{self.config.address:02X} does not reset: {left} "
+            f"after PWR_MGMT_1.DEVICE_RESET (0x6B = 0x80) was written {DEVICE_RESET_ATTEMPTS} "
+            "times (a write lost on the bus, or another program setting it up at the same time)")
+
+    def _left_after_reset(self) -> str:
+        """The settings the driver writes, but ``PWR_MGMT_1``, that do not read their reset value
+        0, and ``PWR_MGMT_1`` if its reset bit still reads set, as ``"ACCEL_CONFIG (0x1C) reads
+        0x18, ..."``; empty when none. Every read is retried after a missing acknowledge
+        (nothing read here clears on read)."""
+        device = self.device
+        first = Register.SMPLRT_DIV
+        last = max(r for r in self.expected_registers() if r < Register.FIFO_EN)
+        seen = dict(zip(range(first, last + 1), device.read_block(first, last - first + 1),
+                        strict=True))
+        for register in (Register.FIFO_EN, Register.INT_ENABLE):
+            seen[register] = device.read_byte(register)
+        seen[Register.USER_CTRL], seen[Register.PWR_MGMT_1] = device.read_block(
+            Register.USER_CTRL, 2)
+        left = [(r, v) for r, v in seen.items()
+                if r in self.expected_registers() and r != Register.PWR_MGMT_1 and v]
+        if seen[Register.PWR_MGMT_1] & PowerManagement1.DEVICE_RESET:
+            left.append((Register.PWR_MGMT_1, seen[Register.PWR_MGMT_1]))
+        return ", ".join(f"{register_name(r)} reads 0x{v:02X}" for r, v in sorted(left))
 
     def configure(self) -> None:
         """Wake the chip and set rate, filter, range and the overflow interrupt.

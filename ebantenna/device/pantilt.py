@@ -310,6 +310,7 @@ class AcquisitionResult:
         }
         out["pca9685_faults"] = self.stream.get("pca9685_faults", [])
         out["samples_discarded"] = self.stream.get("samples_discarded", 0)
+        out["fifo_resets_unconfirmed"] = self.stream.get("fifo_resets_unconfirmed", 0)
         out["foreign_reads_detected"] = self.stream.get("foreign_reads_detected", 0)
         out["clock_outside_tolerance_suspected"] = self.stream.get(
             "clock_outside_tolerance_suspected", False)

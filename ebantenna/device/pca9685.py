@@ -198,7 +198,10 @@ class PCA9685:
         ``PRE_SCALE``, ``MODE1 = old & ~SLEEP | AI`` (wake, register auto-increment), 500 us
         wait, ``MODE1 |= RESTART``. ``MODE2``, ``MODE1`` and ``PRE_SCALE`` are read back after
         each write (:meth:`write_verified`): a ``PRE_SCALE`` that did not land would give pulses
-        of the wrong width, pinning the servos at an end stop.
+        of the wrong width, pinning the servos at an end stop. ``RESTART`` is not: it clears
+        itself and reads 1 only while channels that ran before the sleep wait to be restarted (DS
+        7.3.1.1), and every output was switched off before it, so its read-back could not tell
+        whether it acted (the device guide's "What the driver cannot detect").
         """
         self.device.write_byte(Register.ALL_LED_OFF_H, LED_FULL)
         self.write_verified(Register.MODE2, Mode2.OUTDRV)

@@ -712,6 +712,7 @@ def _fault_counts(result, conn: Connection | None) -> dict:
               "fifo_restarts": stream.get("fifo_restarts", 0),
               "fifo_overflows": stream.get("fifo_overflows", 0),
               "fifo_counts_rejected": stream.get("fifo_counts_rejected", 0),
+              "fifo_resets_unconfirmed": stream.get("fifo_resets_unconfirmed", 0),
               "faults": len(stream.get("faults", []))}
     if conn is not None and conn.simulated is not None:
         counts["i2c_errors_injected"] = conn.simulated.bus.errors_injected

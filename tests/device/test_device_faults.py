@@ -62,7 +62,9 @@ def _check(rig, mpu, rec, wanted):
 
 @pytest.mark.parametrize("kind", TRANSFER_FAULTS)
 def test_each_kind_of_failed_transfer_keeps_only_right_samples(kind):
-    rig = _rig(Faults(error_rate=0.1, kinds=(kind,)), seed=5)
+    # a seed that draws every kind on the transfers it applies to (seed 5 drew no over-reported
+    # count on a count read once the FIFO reset's own count read had moved the draws)
+    rig = _rig(Faults(error_rate=0.1, kinds=(kind,)), seed=4)
     mpu = MPU6050(rig.bus, clock=rig.clock)
     mpu.initialize()
     rec = mpu.record(0.6)

@@ -3910,6 +3910,10 @@ ROWS += [
     bad("device.Faults", "kind-unknown", d.Faults, kinds=("gremlin",), match="kinds"),
     bad("device.Faults", "stall-neg", d.Faults, stall_at=-1.0, match="stall_at"),
     bad("device.Faults", "drift-inf", d.Faults, clock_drift=INF, match="clock_drift"),
+    bad("device.Faults", "reset-lost-which", d.Faults, reset_lost=((0.1, "gyro"),),
+        match="reset_lost which"),
+    bad("device.Faults", "reset-lost-time-nan", d.Faults, reset_lost=((NAN, "fifo"),),
+        match="reset_lost time"),
     bad(
         "device.Obstacle", "tilt-reversed", d.Obstacle, tilt_low=110.0, tilt_high=70.0, match="tilt"
     ),

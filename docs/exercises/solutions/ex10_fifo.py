@@ -25,6 +25,11 @@ bus = rig.bus
 # 1. Start the FIFO by hand: reset it (only while disabled), then let accelerometer samples in.
 bus.write_byte_data(address, Register.FIFO_EN, 0)
 bus.write_byte_data(address, Register.USER_CTRL, UserControl.FIFO_RESET)
+# The reset bit clears itself: USER_CTRL reads back 0 whether the reset acted or not. What the
+# reset leaves can be read instead: nothing enters the FIFO while it is disabled, so its count
+# must be 0 now (the driver checks the same, and resets again when it is not).
+high, low = bus.read_i2c_block_data(address, Register.FIFO_COUNTH, 2)
+assert (high << 8) | low == 0
 bus.read_byte_data(address, Register.INT_STATUS)  # clears a stale overflow flag
 bus.write_byte_data(address, Register.FIFO_EN, FifoEnable.ACCEL)
 bus.write_byte_data(address, Register.USER_CTRL, UserControl.FIFO_EN)

@@ -215,6 +215,8 @@ class SimulatedBus:
             self.injector.errors_injected += 1
             self.injector.log.append((self.clock.monotonic(), "release refused"))
             raise self._fail(self.injector.early_error("eio"))
+        if address == self.reset_address and self.faults.reset_lost:
+            data = self.injector._without_reset(register, data, self.clock.monotonic())
         if address == self.reset_address and self.faults.flip_write:
             data = [self.injector._flipped(register + k, v) for k, v in enumerate(data)]
         elif address == DEFAULT_ADDRESS and self.faults.pca_flip_write:

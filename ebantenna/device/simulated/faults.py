@@ -72,6 +72,11 @@ what it reads (the kinds of :data:`SILENT_FAULTS`, by the name each logs):
     The PCA9685 loses power for a moment (``pca_brown_out_at``): asleep at 200 Hz, every
     output off, its later writes still acknowledged. (``pca_flip_write`` flips bits of its
     writes, logged as ``"write bit flip"``.)
+``"reset lost"``
+    A self-clearing reset bit written to the accelerometer does not act (``reset_lost``): the
+    write lands without it, so a ``USER_CTRL.FIFO_RESET`` leaves the FIFO's bytes where they
+    were and a ``PWR_MGMT_1.DEVICE_RESET`` leaves every register as it was. The bit reads back
+    0 either way (it clears itself when the reset is done, RM 106 and 107).
 
 A sample clock off by more than ``MAX_CLOCK_DRIFT`` (up to ``MAX_FAULT_DRIFT``, 90 %) is also
 allowed, as a fault: outside the tolerance the driver assumes (and beyond 50 %, outside what it
@@ -87,12 +92,18 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..._validate import check_in_range, check_int, check_nonnegative, check_real
-from ...chips.mpu6050 import ACCEL_SAMPLE_BYTES, WHO_AM_I_VALUE, Register
+from ...chips.mpu6050 import (
+    ACCEL_SAMPLE_BYTES,
+    WHO_AM_I_VALUE,
+    PowerManagement1,
+    Register,
+    UserControl,
+)
 from ..i2c import MAX_TRANSFER_TIMEOUT
 from .mpu6050 import MAX_CLOCK_DRIFT, REGISTER_SPACE
 
 __all__ = ["Faults", "FaultInjector", "TRANSFER_FAULTS", "SILENT_FAULTS", "MAX_CLOCK_DRIFT",
-           "MAX_OVERCOUNT", "MAX_FAULT_DRIFT", "MAX_PREEMPTION", "MAX_READ_BYTES"]
+           "MAX_OVERCOUNT", "MAX_FAULT_DRIFT", "MAX_PREEMPTION", "MAX_READ_BYTES", "RESET_BITS"]
 
 #: Kinds of failed transfer the injector can draw (see the module notes).
 TRANSFER_FAULTS = ("nack", "eio", "etimedout", "eagain", "late", "short", "eintr", "overcount")
@@ -107,7 +118,11 @@ _LAST_REGISTER = REGISTER_SPACE - 1
 
 #: Faults that no bus error reveals (see the module notes), by the name each logs.
 SILENT_FAULTS = ("write bit flip", "register lost", "foreign read", "undercount", "bit error",
-                 "clone", "stuck sensor", "second device", "pca brown-out")
+                 "clone", "stuck sensor", "second device", "pca brown-out", "reset lost")
+#: The self-clearing reset bits a ``reset_lost`` entry can make fail, by name: the register
+#: and the bit (RM 106 and 107).
+RESET_BITS = {"fifo": (Register.USER_CTRL, UserControl.FIFO_RESET),
+              "device": (Register.PWR_MGMT_1, PowerManagement1.DEVICE_RESET)}
 #: Largest sample-clock error the faults allow, relative (beyond MAX_CLOCK_DRIFT: a fault;
 #: beyond the driver's MAX_CLOCK_ADAPT of 50 %: a part not sampling as configured).
 MAX_FAULT_DRIFT = 0.9
@@ -149,6 +164,23 @@ def _slow_host(value) -> tuple:
                              low_inclusive=True, high_inclusive=True,
                              reason="a longer loss of the processor is a stall (stall_at)")
     return share, longest
+
+
+def _reset_lost(value) -> tuple:
+    """``Faults.reset_lost`` checked: ``((time, which), ...)``, sorted by time, ``which`` a key
+    of :data:`RESET_BITS`."""
+    if isinstance(value, str) or not isinstance(value, tuple | list):
+        raise TypeError(f"reset_lost must be a tuple of (time, which) pairs, got {value!r}")
+    out = []
+    for entry in value:
+        if not isinstance(entry, tuple | list) or len(entry) != 2:
+            raise TypeError(f"reset_lost must be a tuple of (time, which) pairs, got {entry!r}")
+        time, which = entry
+        if not isinstance(which, str) or which not in RESET_BITS:
+            raise ValueError(f"reset_lost which must be one of {sorted(RESET_BITS)}, got "
+                             f"{which!r}")
+        out.append((check_nonnegative("reset_lost time", time), which))
+    return tuple(sorted(out, key=lambda entry: entry[0]))
 
 
 def _error(code: int) -> OSError:
@@ -243,6 +275,11 @@ class Faults:
         at most :data:`MAX_PREEMPTION`), from a generator of its own ("slow host"): a host
         loaded by other programs or throttled, slow at moments, between the count and the data
         of a drain as well as between drains. Empty (the default): never.
+    reset_lost : tuple of (float, str)
+        ``(time, which)``: the first write after that virtual time that sets the reset bit
+        ``which`` names (a key of :data:`RESET_BITS`: ``"fifo"``, ``USER_CTRL.FIFO_RESET``;
+        ``"device"``, ``PWR_MGMT_1.DEVICE_RESET``) lands without it: the reset does not act
+        ("reset lost"). Each entry acts once.
 
     Examples
     --------
@@ -277,6 +314,7 @@ class Faults:
     pca_brown_out_at: float | None = None
     pca_flip_write: tuple = ()
     slow_host: tuple = ()
+    reset_lost: tuple = ()
 
     def __post_init__(self):
         check_in_range("error_rate", self.error_rate, 0.0, 1.0, low_inclusive=True)
@@ -330,6 +368,7 @@ class Faults:
                                 for t, n in self.drain_reads))
         object.__setattr__(self, "drain_reads", in_drain)
         object.__setattr__(self, "slow_host", _slow_host(self.slow_host))
+        object.__setattr__(self, "reset_lost", _reset_lost(self.reset_lost))
         under = tuple(sorted(check_nonnegative("undercount_at", t) for t in self.undercount_at))
         for name, value in (("flip_write", flips), ("register_lost", lost),
                             ("foreign_reads", reads), ("undercount_at", under)):
@@ -383,6 +422,7 @@ class FaultInjector:
         self._flips_done: dict[tuple, int] = {}
         self._pca_reset_done = False
         self._lost_done = self._reads_done = self._under_done = self._drain_done = 0
+        self._resets_done: set[int] = set()  # the reset_lost entries that have acted
         self._now = 0.0
         self.errors_injected = 0
         self.log: list[tuple[float, str]] = []
@@ -478,6 +518,21 @@ class FaultInjector:
                 self.log.append((self._now, "write bit flip"))
                 return value ^ mask
         return value
+
+    def _without_reset(self, register: int, data: list[int], now: float) -> list[int]:
+        """``data`` written from ``register`` on to the accelerometer at ``now``, with the reset
+        bit of every ``reset_lost`` entry due by then and not yet acted taken out (each once)."""
+        out = list(data)
+        for k, (at, which) in enumerate(self.faults.reset_lost):
+            if at > now or k in self._resets_done:
+                continue
+            reg, bit = RESET_BITS[which]
+            place = reg - register
+            if 0 <= place < len(out) and out[place] & bit:
+                out[place] &= ~int(bit) & 0xFF
+                self._resets_done.add(k)
+                self.log.append((now, "reset lost"))
+        return out
 
     def _pca_brown_out(self, now: float) -> bool:
         """Whether the PCA9685 browns out before a transfer at ``now`` (once)."""

@@ -8,7 +8,6 @@ import os
 import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -251,27 +250,62 @@ def test_a_touch_that_lost_too_much_is_made_again(tmp_path):
         assert entry["samples_lost"] == 0
 
 
-def _run_record(out: Path, plan: Path) -> subprocess.Popen:
-    return subprocess.Popen(
-        [sys.executable, "-u", "-m", "ebantenna", "record", "--simulated", "--plan", str(plan),
-         "--out", str(out), "--seed", "5"],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-        env={**os.environ, "PYTHONUNBUFFERED": "1"})
+#: ``ebantenna record``, its simulated rig holding touch ``HOLD`` (0-based) at its first FIFO read
+#: until a signal stops the command: "held" on stderr says the touch is mid-way, so a signal sent
+#: then lands in it however late this process reads the line (a touch takes about 0.2 s).
+HOLDING_RECORD = """
+import sys, time
+from ebantenna.cli import main
+from ebantenna.device.simulated import touches
+
+HOLD, real = int(sys.argv[1]), touches.simulated_connect
+
+class HoldingBus:
+    def __init__(self, bus):
+        self._bus = bus
+    def __getattr__(self, name):
+        if name != "read_i2c_block_data":
+            return getattr(self._bus, name)
+        def read(*args, **kwargs):
+            print("held", file=sys.stderr, flush=True)
+            while True:  # until the signal's handler raises
+                time.sleep(0.01)
+        return read
+
+def holding(*args, **kwargs):
+    connect = real(*args, **kwargs)
+    def at(touch, attempt):
+        conn = connect(touch, attempt)
+        if touch.index == HOLD:
+            conn.bus = HoldingBus(conn.bus)
+        return conn
+    return at
+
+touches.simulated_connect = holding
+raise SystemExit(main(sys.argv[2:]))
+"""
+
+
+def _run_record(out: Path, plan: Path, hold: int | None = None) -> subprocess.Popen:
+    args = ["record", "--simulated", "--plan", str(plan), "--out", str(out), "--seed", "5"]
+    start = ["-m", "ebantenna"] if hold is None else ["-c", HOLDING_RECORD, str(hold)]
+    return subprocess.Popen([sys.executable, "-u", *start, *args],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            env={**os.environ, "PYTHONUNBUFFERED": "1"})
 
 
 def test_sigterm_mid_touch_then_resume_loses_nothing_and_repeats_nothing(tmp_path):
     """Killed with SIGTERM while touch 3 is searching: touches 1-2 stay saved and unchanged,
     touch 3 is not kept half made, and the resumed session makes 3 onwards, each once."""
     plan = tmp_path / "plan.json"
-    # a longer recording window: the touch the signal lands in takes longer than the signal
     plan.write_text(json.dumps(small_plan(duration=3.0).to_dict()))
     out = tmp_path / "session"
-    proc = _run_record(out, plan)
+    proc = _run_record(out, plan, hold=2)  # touch 3 held mid-way until the signal
     seen = []
     for line in proc.stderr:
         seen.append(line)
-        if "touch 3/8" in line and "searching" in line:
-            time.sleep(0.05)
+        if line.strip() == "held":
+            assert "touch 3/8" in seen[-2] and "searching" in seen[-2], "".join(seen)
             proc.send_signal(signal.SIGTERM)
             break
     rest = proc.stderr.read()

@@ -201,7 +201,7 @@ class HingeFit:
     def stiffness_within(self, tolerance: float) -> np.ndarray:
         """The lattice's hinge stiffnesses that come within ``tolerance`` of the least misfit.
 
-        A stiffness of the coarse search's :attr:`lattice` comes within when its least RMS
+        A stiffness of the coarse search's ``lattice`` comes within when its least RMS
         residual over the lattice's tip masses exceeds the least RMS residual found (the fit's
         :attr:`rms_residual`, or a lattice point's where that is smaller: the fit weighs each
         residual by its probe's length, the RMS does not) by at most ``tolerance``:

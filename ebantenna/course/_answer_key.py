@@ -188,8 +188,8 @@ ANSWER_KEY = {
                 'bb0da63f443e68bf', 'd7116e628bebaf27', 'f99019f6b98c8436',
             ],
             'reason': (
-                'the window (from 10 to 30 ms, up to 5 to 20 times the noise) moves it by up to 4'
-                ' %'
+                'the window (ending 10 to 30 ms in, while the envelope is well above the noise) '
+                'moves it by up to 4 %'
             ),
         },
         'tau_fit_ms': {
@@ -361,7 +361,7 @@ ANSWER_KEY = {
                 'd01ccc128319375a',
             ],
             'reason': (
-                'a count: the denominator of a 26-pole filter'
+                'a count of coefficients, which no rounding moves'
             ),
         },
     },
@@ -374,8 +374,8 @@ ANSWER_KEY = {
                 '22f0ce60e0ae0102',
             ],
             'reason': (
-                'a count: up or to the nearest, from the observed order or exactly 4, it is 18 '
-                '(17.9 and 18.0 before rounding)'
+                'a count: rounded up or to the nearest, from the observed order or exactly 4, it '
+                'is the same count'
             ),
         },
         'n_needed': {
@@ -415,7 +415,7 @@ ANSWER_KEY = {
                 'ccb6d6551e2d9fe2', 'd5e4d2057c8a43a4', 'f8b0b441d9e8a359',
             ],
             'reason': (
-                'one sample more or less, as the 50 ms wait starts between two samples'
+                'one sample more or less, as the wait starts between two samples'
             ),
         },
         'arrived_while_reading': {
@@ -440,7 +440,7 @@ ANSWER_KEY = {
                 '1ba9a3032785cf56',
             ],
             'reason': (
-                "the FIFO's size in bytes"
+                'a count of bytes, which no rounding moves'
             ),
         },
         'lost': {
@@ -701,7 +701,7 @@ ANSWER_KEY = {
             ],
             'reason': (
                 'the same data and split; another solver tolerance may flip a recording or two of'
-                ' 80'
+                ' the held-out set'
             ),
         },
         'n_correct': {
@@ -715,7 +715,7 @@ ANSWER_KEY = {
             ],
             'reason': (
                 'the same data and split; another solver tolerance may flip a recording or two of'
-                ' 80'
+                ' the held-out set'
             ),
         },
         'n_test': {
@@ -754,7 +754,7 @@ ANSWER_KEY = {
             ],
             'reason': (
                 'the same data and split; another solver tolerance may flip a recording or two of'
-                ' 80'
+                ' the held-out set'
             ),
         },
         'bins_per_cm': {

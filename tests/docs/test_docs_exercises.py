@@ -926,3 +926,47 @@ def test_the_published_data_are_the_variant_of_no_student(stem):
     data = source[source.index("# [data]"): source.index("# [/data]")]
     assert make_variant_key.STUDENT_LINE in data and f'parameters("{stem[:4]}"' in data
 
+
+# --- what a student sees of the tolerances gives no graded answer away ------------------------
+
+_NUMBER = re.compile(r"(?<![\w.])-?\d+(?:\.\d+)?(?:e[-+]?\d+)?(?![\w.]*\d)")
+
+
+def _gives_away(token: float, value: float, tol) -> bool:
+    """Whether a number in a student's text gives ``value`` away: the check would accept it,
+    it is the value rounded to 3 significant digits, or, for an exact count of 10 or more, a
+    count derived from it (one more or less, twice, twice and one more or less, half: a filter's order
+    and its coefficients)."""
+    if value in (0.0, 1.0):  # a share of none or all: no number to give away
+        return False
+    if tol.accepts(token, value) or token == float(f"{value:.3g}"):
+        return True
+    if tol.kind == "abs" and tol.width == 0 and value == round(value) and abs(value) >= 10:
+        n = round(value)
+        return token in {n - 1, n + 1, 2 * n - 1, 2 * n, 2 * n + 1, n / 2, (n - 1) / 2}
+    return False
+
+
+def _student_texts(stem: str) -> list[str]:
+    """What a student sees besides the statement: every tolerance's reason (the page's table,
+    the notebook, :func:`tolerances`) and the hints."""
+    import exercise_notebooks
+
+    page = exercise_notebooks.parse_page((DOCS / "exercises" / f"{stem}.rst").read_text(), stem)
+    # a hint's code and formulas (``K[2*e:2*e+4]``, :math:`C h^4`) are the method, not a result
+    hints = [re.sub(r"(:math:)?`+[^`]*`+", " ", h) for _, h in page.hints]
+    return [t.reason for t in tolerances(stem).values()] + hints
+
+
+@pytest.mark.parametrize("stem", [p.stem for p in PAGES])
+def test_no_reason_or_hint_gives_a_graded_answer_away(stem):
+    # "it is 18 (17.9 and 18.0 before rounding)" (ex09), "a recording or two of 80" (ex13's n_test),
+    # "the denominator of a 26-pole filter" (ex08: order 13, 27 coefficients) each told an answer
+    stated = tolerances(stem)
+    found = []
+    for text in _student_texts(stem):
+        for token in _NUMBER.findall(text):
+            for name, value in PLAIN[stem].items():
+                if _gives_away(float(token), value, stated[name]):
+                    found.append(f"{name} = {value:g} in {token!r}: {text}")
+    assert not found, "\n".join(found)

@@ -280,3 +280,24 @@ def test_any_float_gets_a_verdict_never_an_error(value, target):
     report = check(exercise, **{name: value})
     assert len(report.lines) == 1 and report.lines[0].startswith(f"{name}: ")
 
+
+@pytest.mark.parametrize(
+    ("value", "words"),
+    [(np.array([156.0]), "an array of shape (1,) is not a number: give one element"),
+     (np.array([[156.0]]), "an array of shape (1, 1) is not a number"),
+     (10**400, "a number of 401 digits, beyond the range of a float"),
+     (-(10**400), "a number of 401 digits, beyond the range of a float"),
+     (np.bool_(True), "is not a number")],
+)
+def test_arrays_and_huge_numbers_are_named_the_same_on_every_numpy(value, words):
+    # NumPy 1 converted a one-element array to a float and NumPy 2 refuses it: the check decides
+    # itself, so the verdict is the same on every supported NumPy; a huge integer is named by its
+    # size, not by a truncated repr of it
+    report = check("ex01", M11=value)
+    assert not report.ok and words in str(report), str(report)
+    assert "10000000000000000000 is" not in str(report)
+
+
+def test_a_0d_array_and_numpy_scalars_are_numbers():
+    for value in (np.array(156.0), np.float32(156.0), np.int64(156), np.float64(156.0)):
+        assert check("ex01", M11=value).ok, value

@@ -439,23 +439,55 @@ def tolerances(exercise: str) -> dict[str, Tolerance]:
     return {name: Tolerance(a["kind"], a["width"], a["reason"]) for name, a in key.items()}
 
 
+def _huge(value) -> str:
+    """A number beyond the floats, named by its size (not by a truncated repr)."""
+    try:
+        digits = math.floor(math.log10(abs(value))) + 1
+    except (TypeError, ValueError, OverflowError):
+        return f"a {type(value).__name__} beyond the range of a float (above 1.8e308)"
+    return f"a number of {digits} digits, beyond the range of a float (above 1.8e308)"
+
+
+def _as_float(value) -> float | str:
+    """The value as a float, or why it is not a number to check (the same on NumPy 1 and 2).
+
+    A Python or NumPy real number and a 0-d array are numbers; an array with a dimension is not,
+    even of one element (NumPy 2 no longer converts those): the message says to pick the element.
+    """
+    if isinstance(value, (str, bytes, bool)) or str(getattr(value, "dtype", "")) == "bool":
+        return f"{value!r:.40} is not a number"
+    shape = getattr(value, "shape", ())
+    if shape != () and hasattr(value, "ndim"):
+        return (f"an array of shape {tuple(shape)} is not a number: give one element "
+                "(value[0] or value.item())")
+    try:
+        number = float(value)
+    except OverflowError:  # an int or a Fraction beyond the largest float
+        return _huge(value)
+    except (TypeError, ValueError):
+        return f"{value!r:.40} is not a number"
+    if isinstance(number, float) and math.isinf(number):
+        try:  # a Decimal or a long double beyond the floats converts to inf without an error
+            finite = not (value * 2 == value)
+        except Exception:  # noqa: BLE001 - any type: then it is taken as the inf it gave
+            finite = False
+        if finite:
+            return _huge(value)
+    if not math.isfinite(number):
+        return f"{number} is not a finite number"
+    return number
+
+
 def _verdict(name: str, value, sealed: dict, tolerance: Tolerance) -> tuple[str, bool]:
     stated = tolerance.describe()
     stated = "equal to" if stated == "exact" else f"within {stated} of"
     stated += " the expected value"
     if value is None:
         return f"{name}: not yet: no value given (None)", False
-    try:  # a NumPy scalar or a 0-d array is a number too; a string or a bool is not
-        if isinstance(value, (str, bytes, bool)):
-            raise TypeError(value)
-        value = float(value)
-    except OverflowError:  # an int or a Fraction beyond the largest float
-        return f"{name}: not yet: {value!r:.20} is beyond the range of a float", False
-    except (TypeError, ValueError):
-        return f"{name}: not yet: {value!r} is not a number", False
-    if not math.isfinite(value):
-        return f"{name}: not yet: {value} is not a finite number", False
-    if _within(sealed, tolerance, value):
+    number = _as_float(value)
+    if isinstance(number, str):
+        return f"{name}: not yet: {number}", False
+    if _within(sealed, tolerance, number):
         return f"{name}: {stated}", True
     return f"{name}: not yet: not {stated}", False
 
@@ -474,7 +506,10 @@ def check(exercise: str, *, student: str | None = None, key=None, **values) -> C
         (``docs/_tools/make_variant_key.py`` writes it). Both or neither.
     **values : float or None
         The answers to check, by the names the exercise page gives (``tau_fit_ms=80.1``); ``None``
-        for one not computed yet.
+        for one not computed yet. A Python or NumPy real number or a 0-d array is a number; an
+        array with a dimension is not, even of one element (the same verdict on every supported
+        NumPy: NumPy 2 no longer converts those): the line says to give ``value[0]``. A number
+        beyond the floats (``10**400``) is named by its size.
 
     Returns
     -------

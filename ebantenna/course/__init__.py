@@ -51,7 +51,7 @@ from ._answer_key import ANSWER_KEY
 
 __all__ = [
     "Tolerance", "CheckReport", "exercises", "tolerances", "check", "seal", "VARIANTS",
-    "parameters", "load_variant_key", "student_tag", "KEY_FORMAT",
+    "parameters", "load_variant_key", "student_tag", "KEY_FORMAT", "KDF", "SHARES",
 ]
 
 #: the key-stretching function every sealed cell goes through: scrypt (memory-hard, from the

@@ -935,8 +935,8 @@ _NUMBER = re.compile(r"(?<![\w.])-?\d+(?:\.\d+)?(?:e[-+]?\d+)?(?![\w.]*\d)")
 def _gives_away(token: float, value: float, tol) -> bool:
     """Whether a number in a student's text gives ``value`` away: the check would accept it,
     it is the value rounded to 3 significant digits, or, for an exact count of 10 or more, a
-    count derived from it (one more or less, twice, twice and one more or less, half: a filter's order
-    and its coefficients)."""
+    count derived from it (one more or less, twice, twice and one more or less, half: a filter's
+    order and its coefficients)."""
     if value in (0.0, 1.0):  # a share of none or all: no number to give away
         return False
     if tol.accepts(token, value) or token == float(f"{value:.3g}"):

@@ -18,7 +18,10 @@ The format of an exercise page ``docs/exercises/exNN_name.rst``, in this order:
 4. When the exercise computes from data that are random or generated, ``.. rubric:: The data`` and
    a ``literalinclude`` of ``solutions/exNN_name.py`` with ``:start-after: # [data]`` and
    ``:end-before: # [/data]``: the solution script makes its data between these two marker lines,
-   at its top, so that the page and the notebook show exactly the code (and seed) it uses.
+   at its top, so that the page and the notebook show exactly the code (and seed) it uses. An
+   exercise with graded variants (:data:`ebantenna.course.VARIANTS`) follows it with a paragraph
+   that starts ``**A graded variant.**``; the notebook carries it, and its checks use the
+   teacher's key when the data cell's ``STUDENT`` is set.
 5. The hints, each a raw-HTML ``<details class="hint"><summary>Hint N</summary>`` ...
    ``</details>`` fold.
 6. ``.. exercise-check:: exNN_name``: the self-check section (the names, tolerances and reasons
@@ -55,7 +58,7 @@ from docutils import nodes
 from docutils.parsers.rst import Directive
 from docutils.statemachine import StringList
 
-from ebantenna.course import tolerances
+from ebantenna.course import VARIANTS, tolerances
 
 __all__ = [
     "EDITIONS", "ExercisePage", "parse_page", "data_code", "markdown", "exercise_notebook",
@@ -87,6 +90,7 @@ class ExercisePage:
     solution_notes: str
     has_data: bool = field(default=False)
     asked: dict[str, str] = field(default_factory=dict)
+    variant: str = ""
 
 
 def _field_list(text: str) -> dict[str, str]:
@@ -146,11 +150,12 @@ def parse_page(text: str, name: str) -> ExercisePage:
     notes = _teacher_block(text, "solution")
     notes = re.sub(r"^\.\. literalinclude::.*\n(?:   .*\n)*", "", notes, flags=re.M).strip()
     theory = re.search(r"^\*Theory:\*.*?(?=\n\n)", head, flags=re.M | re.S)
+    variant = re.search(r"^\*\*A graded variant\.\*\*.*?(?=\n\n)", text, flags=re.M | re.S)
     return ExercisePage(
         name=name, title=title, theory=theory.group(0) if theory else "", about=about,
         intro=intro, steps=steps, hints=hints, answers=_teacher_block(text, "answers"),
         solution_notes=notes, has_data=".. rubric:: The data" in text,
-        asked=asked_values(text, name),
+        asked=asked_values(text, name), variant=variant.group(0) if variant else "",
     )
 
 
@@ -201,15 +206,36 @@ def _check_call(name: str, names: list[str], values: str) -> str:
     return f'print(check(\n    "{name}",\n{args}))\n'
 
 
+def _key_file(name: str) -> str:
+    """The variant key's file name, as ``docs/_tools/make_variant_key.py`` writes it."""
+    return f"{name.split('_')[0]}_key.json"
+
+
+def _notebook_check(name: str, values: str) -> str:
+    """The code of a notebook's check of ``values`` (a mapping): against the teacher's key of
+    the student's variant when the data cell's ``STUDENT`` is set, else the published key."""
+    if name not in VARIANTS:
+        return f'print(check("{name}", **{values}))\n'
+    return (f'if STUDENT is None:  # the published exercise\n'
+            f'    print(check("{name}", **{values}))\n'
+            "else:  # your graded variant: your teacher's key, next to this notebook\n"
+            f'    print(check("{name}", student=STUDENT, key="{_key_file(name)}", **{values}))\n')
+
+
 def _student_cells(page: ExercisePage, solution: str, names, md) -> list[tuple[str, str]]:
     about = "\n".join(f"**{k}:** {md(v)}  " for k, v in page.about.items())
+    intro = md(page.intro) + "\n"
+    if page.variant:
+        intro += ("\n*These are the published exercise's numbers; a graded variant (see The data) "
+                  "has its own.*\n")
     cells = [("markdown", md(f"{page.title}\n{'=' * len(page.title)}\n\n{page.theory}\n\n")
               + about + "\n"),
-             ("markdown", md(page.intro) + "\n")]
+             ("markdown", intro)]
     data = data_code(solution)
     if data is not None:
+        variant = f"\n{md(page.variant)}\n" if page.variant else ""
         cells += [("markdown", "## The data\n\nRun this cell first: it makes the exercise's data "
-                   "with the seed of the expected answers.\n"), ("code", data)]
+                   "with the seed of the expected answers.\n" + variant), ("code", data)]
     for k, step in enumerate(page.steps, 1):
         cells += [("markdown", f"## Step {k}\n\n{md(step)}\n"),
                   ("code", f"# Step {k}: your work here\n")]
@@ -226,7 +252,7 @@ def _student_cells(page: ExercisePage, solution: str, names, md) -> list[tuple[s
          + table),
         ("code", "from ebantenna.course import check\n\nanswers = dict(\n"
          + "".join(f"    {n}=None,\n" for n in names) + ")\n"),
-        ("code", f'print(check("{page.name}", **answers))\n'),
+        ("code", _notebook_check(page.name, "answers")),
     ]
     return cells
 
@@ -238,7 +264,8 @@ def _teacher_cells(page: ExercisePage, solution: str, names, md) -> list[tuple[s
                   "pass when run; the last cell checks its own answers.\n"
                   + (f"\n{md(page.solution_notes)}\n" if page.solution_notes else "")))
     cells += [("code", step) for step in steps]
-    cells.append(("code", _check_call(page.name, list(names), "ANSWERS[{n!r}]")))
+    cells.append(("code", _notebook_check(page.name, "ANSWERS") if page.name in VARIANTS
+                  else _check_call(page.name, list(names), "ANSWERS[{n!r}]")))
     return cells
 
 

@@ -6,12 +6,13 @@ count (recordings of a held-out set, restrikes, whole positions) adds ``STEPS`` 
 answer's step): another machine's last-bit rounding may move such an answer by one step, so the
 tests hold the key and the page to the solution within one step, and the step must lie within
 the answer's ``"abs"`` tolerance, which grades the students' answers. This script runs each
-solution and writes the tolerances and the *sealed* answers (:func:`ebantenna.course.seal`: a
-salted hash of the answer's cell and its place in the cell, never the value) into one module of
-the package, so that a student's self-check needs neither the solutions nor the documentation,
-and the installed package holds no answer in readable form. Next to the solutions, in the
-repository only, it writes the same answers in plain form, ``docs/exercises/solutions/answers.json``
-(the teacher's sheet of the published exercises, and what the test of the wheel searches it for).
+solution and writes the tolerances and the *sealed* answers (:func:`ebantenna.course.seal`:
+stretched, salted hashes of the cells within the answer's tolerance, never the value) into one
+module of the package, so that a student's self-check needs neither the solutions nor the
+documentation, and the installed package holds no answer in readable form. Next to the
+solutions, in the repository only, it writes the same answers in plain form,
+``docs/exercises/solutions/answers.json`` (the teacher's sheet of the published exercises, and
+what the test of the wheel searches it for).
 Run it after changing a solution::
 
     python docs/_tools/make_answer_key.py
@@ -42,9 +43,9 @@ __all__ = ["entries", "sealed", "computed", "answer_key", "plain_text", "module_
 HEADER = '''"""Sealed answers of the exercises and their tolerances: ebantenna.course's key.
 
 Written by ``docs/_tools/make_answer_key.py`` from the worked solutions in
-``docs/exercises/solutions/``; do not edit by hand. Each answer is held as the salted hash of its
-cell and its place in the cell (see :func:`ebantenna.course.seal`), not as a value. The test
-suite checks that it seals what the solutions compute.
+``docs/exercises/solutions/``; do not edit by hand. Each answer is held as the stretched, salted
+hashes of the cells within its tolerance (see :func:`ebantenna.course.seal`), not as a value.
+The test suite checks that it seals what the solutions compute.
 """
 
 '''
@@ -110,8 +111,12 @@ def module_text(key: dict) -> str:
             lines += [
                 f"        {name!r}: {{\n",
                 f"            'kind': {entry['kind']!r}, 'width': {entry['width']!r},\n",
-                f"            'salt': {entry['salt']!r}, 'offset': {entry['offset']!r},\n",
-                f"            'digest': {entry['digest']!r},\n",
+                f"            'salt': {entry['salt']!r},\n",
+                f"            'kdf': {entry['kdf']!r},\n",
+                "            'cells': [\n",
+                *(f"                {', '.join(repr(c) for c in entry['cells'][i:i + 4])},\n"
+                  for i in range(0, len(entry['cells']), 4)),
+                "            ],\n",
                 "            'reason': (\n",
                 *(f"                {part!r}\n" for part in reason),
                 "            ),\n",

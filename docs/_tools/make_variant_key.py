@@ -8,7 +8,8 @@ student's id, so that :func:`ebantenna.course.parameters` draws that student's d
 * ``exNN_answers.csv``: the teacher's answer sheet, one row per student (the id, the
   parameters, every expected answer to full precision);
 * ``exNN_key.json``: the sealed key of every student's answers (no value in readable form,
-  see :func:`ebantenna.course.seal`), handed to the students with their ids. A student checks
+  see :func:`ebantenna.course.seal`; each student named by a hash of the id, not the id),
+  handed to the students with their ids. A student checks
   with ``check("ex05", student="s1234", key="ex05_key.json", tau_fit_ms=...)``.
 
 Usage, from a clone of the repository::
@@ -25,10 +26,19 @@ import contextlib
 import csv
 import io
 import json
+import secrets
 import sys
 from pathlib import Path
 
-from ebantenna.course import VARIANTS, Tolerance, parameters, seal, tolerances
+from ebantenna.course import (
+    KEY_FORMAT,
+    VARIANTS,
+    Tolerance,
+    parameters,
+    seal,
+    student_tag,
+    tolerances,
+)
 
 ROOT = Path(__file__).resolve().parents[2]
 SOLUTIONS = ROOT / "docs" / "exercises" / "solutions"
@@ -68,17 +78,21 @@ def answers_for(exercise: str, student: str | None) -> dict[str, float]:
     return {name: float(value) for name, value in namespace["ANSWERS"].items()}
 
 
-def variant_key(exercise: str, answers: dict[str, dict[str, float]]) -> dict:
-    """The sealed key of every student's answers (``{student: {name: value}}``)."""
+def variant_key(exercise: str, answers: dict[str, dict[str, float]],
+                salt: str | None = None) -> dict:
+    """The sealed key of every student's answers (``{student: {name: value}}``).
+
+    Each student is named by :func:`ebantenna.course.student_tag` of the key's ``salt`` (a
+    random one unless given) and their id; the id appears nowhere in the key.
+    """
     stated: dict[str, Tolerance] = tolerances(exercise)
-    return {
-        "exercise": exercise,
-        "students": {
-            student: {name: seal(value, stated[name], f"{exercise}/{student}/{name}")
-                      for name, value in values.items()}
-            for student, values in answers.items()
-        },
-    }
+    salt = secrets.token_hex(8) if salt is None else salt
+    students = {}
+    for student, values in answers.items():
+        tag = student_tag(salt, student)
+        students[tag] = {name: seal(value, stated[name], f"{exercise}/{tag}/{name}")
+                         for name, value in values.items()}
+    return {"format": KEY_FORMAT, "exercise": exercise, "salt": salt, "students": students}
 
 
 def main(argv=None) -> int:

@@ -10,26 +10,29 @@ the worked solution, without printing the answer::
     tau_fit_ms: not yet: no value given (None)
 
 The package does not hold the answers in readable form. Each one is *sealed* (:func:`seal`): the
-answer is written as a coordinate ``u`` in units of its tolerance (``value / width`` for an
-absolute tolerance, ``log|value| / log-width`` for a relative one or a factor); the key keeps the
-salted, iterated hash of the cell ``floor(u)`` and the position ``u - floor(u)`` inside the cell,
-which alone says nothing of the value. A value is checked by hashing its own cell and the cells
-next to it: a match gives back the answer, and the stated tolerance decides, exactly as if the
-answer were stored (so a right value near a cell's edge passes, and the tolerance's edges are
-where they were).
+answer's tolerance is cut into cells of a fifth of its width (on a log scale for a relative
+tolerance or a factor), and the key keeps the salted hashes of the cells within the tolerance,
+each stretched by scrypt (:data:`KDF`, about 4 ms a cell). A value is checked by hashing its
+own cell once: the check says "within" or "not yet" and gives nothing else back, not the answer
+nor its place in the cell. A value up to a fifth of the tolerance beyond its edge may still be
+"within" (its cell holds values within); a grade uses the teacher's plain answers instead.
 
-What this does not prevent, and the installation page tells teachers: :func:`check` answers
-"within" or "not yet", so a search over it (or over the cells) finds a value within the
-tolerance, which for a small count takes a few tries; and the worked solutions are in the public
-repository. The check is a help for learning, not a grader.
+What this does not prevent, and the installation page tells teachers: a search. :func:`check`
+answers "within" or "not yet", so trying values finds one within the tolerance; a student who
+knows an answer to within N tolerance widths needs at most about N / 2 tries, each one hash, by
+:func:`check` or by a program over the key (about 4 ms a try either way). The stretching makes
+a wide search slower (a million widths take about half an hour), not a narrow one. The worked
+solutions are in the public repository. The check is a help for learning, not a grader.
 
 **Graded variants.** For graded work a teacher gives each student their own data:
 :func:`parameters` draws an exercise's parameters from a student's id (the same id, the same
 parameters, on any machine), the exercise's data block reads them, and
 ``docs/_tools/make_variant_key.py`` (in the repository, for the teacher) runs the worked solution
 for every student of a list and writes the teacher's answer sheet and a sealed key for the
-students' self-checks, ``check(..., student=id, key=path)``. A student's answer is then of no
-use to another student, and the published answers are of no use to anyone.
+students' self-checks, ``check(..., student=id, key=path)``. Copying another student's answer or
+the published one then fails the check (unless the two answers happen to lie within a tolerance
+of each other); a search over one's own key, as above, does not. For a
+grade the teacher compares the values collected with the teacher's own answer sheet.
 
 The key comes from ``ebantenna/course/_answer_key.py``, which ``docs/_tools/make_answer_key.py``
 writes by running the worked solutions; the test suite checks that it still seals what they
@@ -47,13 +50,19 @@ from dataclasses import dataclass
 from ._answer_key import ANSWER_KEY
 
 __all__ = [
-    "Tolerance", "CheckReport", "exercises", "tolerances", "check", "seal", "unseal", "VARIANTS",
-    "parameters", "load_variant_key",
+    "Tolerance", "CheckReport", "exercises", "tolerances", "check", "seal", "VARIANTS",
+    "parameters", "load_variant_key", "student_tag", "KEY_FORMAT", "KDF", "SHARES",
 ]
 
-#: rounds of PBKDF2-HMAC-SHA256 per sealed cell: about a millisecond, so a check of a value (up to
-#: five cells) stays instant while a search over many cells is slowed by the same factor
-ROUNDS = 1000
+#: the key-stretching function every sealed cell goes through: scrypt (memory-hard, from the
+#: standard library), about 4 ms a cell with these costs on a server core (3.6 ms measured). A
+#: check costs one cell a value, a search that much for every cell it tries; the cost is kept low
+#: enough that a check stays instant in class and a class's variant key is written in seconds
+KDF = {"name": "scrypt", "n": 2**11, "r": 8, "p": 1}
+
+#: cells per tolerance width: the check accepts every value within the tolerance and, at each
+#: edge, may accept up to one cell (a fifth of the tolerance) more
+SHARES = 5
 
 #: how a tolerance is measured: an absolute difference, a relative one, or a ratio
 KINDS = ("abs", "rel", "factor")
@@ -118,36 +127,55 @@ class Tolerance:
         return 1 / self.width <= ratio <= self.width
 
 
-def _scale(tolerance: Tolerance) -> tuple[str, float]:
-    """The coordinate a tolerance is measured in, and the width of one cell of it.
+def _grid(tolerance: Tolerance) -> tuple[str, float, float, float]:
+    """The coordinate a tolerance is sealed in: ``(scale, cell, low, high)``.
 
-    ``"lin"``: ``u = value / cell``, with ``cell = width`` (an exact answer: cells of 1, the
-    answer's position in its cell kept); ``"log"``: ``u = log|value| / cell``, with ``cell`` the
-    widest log-distance the tolerance accepts, ``-log(1 - width)`` for a relative one and
-    ``log(width)`` for a factor. Either way every accepted value is within one cell of the answer.
+    ``"lin"``: ``u = value / cell``; ``"log"``: ``u = log|value| / cell`` (the sign kept apart);
+    ``"exact"``: no cells, the value's first 12 significant digits. ``cell`` is a
+    :data:`SHARES`-th of the tolerance, and a value is accepted when ``u - u_answer`` lies in
+    ``[low, high]`` (``low = -high = -SHARES`` but for a relative tolerance, which is wider above
+    the answer than below it on a log scale).
     """
     if tolerance.kind == "abs":
-        return "lin", tolerance.width if tolerance.width > 0 else 1.0
+        if tolerance.width == 0:
+            return "exact", 1.0, 0.0, 0.0
+        return "lin", tolerance.width / SHARES, -SHARES, SHARES
     if tolerance.kind == "rel":
         if not 0 < tolerance.width < 1:
             raise ValueError(f"a relative tolerance to seal must be in (0, 1), got "
                              f"{tolerance.width!r}")
-        return "log", -math.log1p(-tolerance.width)
+        low, high = math.log1p(-tolerance.width), math.log1p(tolerance.width)
+        cell = (high - low) / (2 * SHARES)
+        return "log", cell, low / cell, high / cell
     if tolerance.width <= 1:
         raise ValueError(f"a factor tolerance to seal must be > 1, got {tolerance.width!r}")
-    return "log", math.log(tolerance.width)
+    return "log", math.log(tolerance.width) / SHARES, -SHARES, SHARES
 
 
-def _coordinate(scale: str, cell: float, value: float) -> tuple[str, float]:
-    """``(sign, u)``: the value in cells of its tolerance (the sign kept apart on a log scale)."""
+def _cell_text(scale: str, cell: float, value: float) -> tuple[str, float]:
+    """``(sign, u)``: the value in cells (the sign kept apart on a log scale)."""
     if scale == "lin":
         return "", value / cell
+    if value == 0:
+        return "0", math.nan  # no relative tolerance or factor accepts a zero
     return ("+" if value > 0 else "-"), math.log(abs(value)) / cell
 
 
-def _digest(salt: str, sign: str, cell_index: int) -> str:
-    text = f"{sign}{cell_index}".encode()
-    return hashlib.pbkdf2_hmac("sha256", text, salt.encode(), ROUNDS).hex()[:32]
+def _digest(salt: str, text: str, kdf: dict) -> str:
+    """The stretched hash of one cell (scrypt, :data:`KDF`): 16 hex digits."""
+    return hashlib.scrypt(text.encode(), salt=salt.encode(), n=kdf["n"], r=kdf["r"],
+                          p=kdf["p"], maxmem=2**26, dklen=8).hex()
+
+
+def _cell_of(tolerance: Tolerance, value: float) -> str | None:
+    """The text of the cell ``value`` falls in, or None if no answer's cell can hold it."""
+    scale, cell, _, _ = _grid(tolerance)
+    if scale == "exact":
+        return f"={value + 0.0:.12g}"
+    sign, u = _cell_text(scale, cell, value)
+    if not math.isfinite(u):  # a zero on a log scale, or 1e308 in cells of 1e-9
+        return None
+    return f"{sign}{math.floor(u)}"
 
 
 def _finite(name: str, value) -> float:
@@ -165,69 +193,62 @@ def _finite(name: str, value) -> float:
 
 
 def seal(value: float, tolerance: Tolerance, salt: str) -> dict:
-    """The answer ``value`` in the form the key holds: a cell's hash and a place in the cell.
+    """The answer ``value`` in the form the key holds: the hashes of the cells it accepts.
+
+    The tolerance's coordinate (``value / width`` for an absolute tolerance, ``log|value|`` for a
+    relative one or a factor) is cut into cells of a :data:`SHARES`-th of the tolerance; the key
+    keeps the stretched hash (:data:`KDF`) of every cell that holds a value within the
+    tolerance, in sorted order. An exact answer (``width = 0``) keeps the hash of its first 12
+    significant digits. Nothing in the result says where in those cells the answer lies.
 
     Parameters
     ----------
     value : float
         The expected answer (finite; not zero when the tolerance is relative or a factor).
     tolerance : Tolerance
-        Its tolerance: it sets the cells (see the module's description).
+        Its tolerance: it sets the cells.
     salt : str
-        Text hashed with the cell, different for every answer (``"ex05_decay/tau_fit_ms"``), so
-        that two answers in the same cell do not show it.
+        Text hashed with every cell, different for every answer (``"ex05_decay/tau_fit_ms"``),
+        so that two answers in the same cell do not show it.
 
     Returns
     -------
     dict
-        ``{"salt", "digest", "offset"}``: :func:`unseal` gives the value back from any value
-        within one cell of it, and nothing without one.
+        ``{"salt", "kdf", "cells"}``; :func:`check` says whether a value's cell is one of
+        ``cells`` (one hash a value) and gives nothing else back.
     """
     if not isinstance(tolerance, Tolerance):
         raise TypeError(f"tolerance must be a Tolerance, got {type(tolerance).__name__}")
     if not isinstance(salt, str) or not salt:
         raise ValueError(f"salt must be a non-empty str, got {salt!r}")
     value = _finite("value", value)
-    scale, cell = _scale(tolerance)
+    scale, cell, low, high = _grid(tolerance)
     if scale == "log" and value == 0:
         raise ValueError("value must not be zero for a relative or factor tolerance")
-    sign, u = _coordinate(scale, cell, value)
-    if not math.isfinite(u):
-        raise ValueError(f"value must be within the range of floats in cells of the tolerance, "
-                         f"got {value!r} in cells of {cell!r}")
-    index = math.floor(u)
-    return {"salt": salt, "digest": _digest(salt, sign, index), "offset": u - index}
+    if scale == "exact":
+        texts = [_cell_of(tolerance, value)]
+    else:
+        sign, u = _cell_text(scale, cell, value)
+        if not math.isfinite(u) or not math.isfinite(u + high):
+            raise ValueError(f"value must be within the range of floats in cells of the "
+                             f"tolerance, got {value!r} in cells of {cell!r}")
+        texts = [f"{sign}{i}" for i in range(math.floor(u + low), math.floor(u + high) + 1)]
+    cells = sorted(_digest(salt, text, KDF) for text in texts)
+    return {"salt": salt, "kdf": dict(KDF), "cells": cells}
 
 
-def unseal(sealed: dict, tolerance: Tolerance, near: float) -> float | None:
-    """The sealed answer, if ``near`` is within two cells of it; else ``None``.
+def _is_sealed(sealed) -> bool:
+    return (isinstance(sealed, dict) and isinstance(sealed.get("salt"), str)
+            and isinstance(sealed.get("cells"), list)
+            and all(isinstance(c, str) for c in sealed["cells"])
+            and isinstance(sealed.get("kdf"), dict) and sealed["kdf"].get("name") == "scrypt"
+            and all(isinstance(sealed["kdf"].get(k), int) for k in ("n", "r", "p")))
 
-    ``near`` must be a finite number. Two cells cover every value the tolerance accepts (one
-    cell) with room for rounding at the edge; the tolerance then decides. ``sealed`` is what
-    :func:`seal` returned.
-    """
-    if not (isinstance(sealed, dict) and isinstance(sealed.get("salt"), str)
-            and isinstance(sealed.get("digest"), str)
-            and isinstance(sealed.get("offset"), float | int)):
-        raise ValueError(f"sealed must be a dict from seal() with 'salt', 'digest' and 'offset', "
-                         f"got {sealed!r:.80}")
-    if not isinstance(tolerance, Tolerance):
-        raise TypeError(f"tolerance must be a Tolerance, got {type(tolerance).__name__}")
-    near = _finite("near", near)
-    scale, cell = _scale(tolerance)
-    if scale == "log" and near == 0:
-        return None  # no relative tolerance or factor accepts a zero
-    sign, u = _coordinate(scale, cell, near)
-    if not math.isfinite(u):  # far beyond any answer (1e308 in cells of 1e-6)
-        return None
-    start = math.floor(u)
-    for index in (start, start - 1, start + 1, start - 2, start + 2):
-        if _digest(sealed["salt"], sign, index) == sealed["digest"]:
-            u = index + sealed["offset"]
-            if scale == "lin":
-                return u * cell
-            return (1.0 if sign == "+" else -1.0) * math.exp(u * cell)
-    return None
+
+def _within(sealed: dict, tolerance: Tolerance, value: float) -> bool:
+    """Whether the finite ``value`` falls in one of the sealed answer's cells (one hash)."""
+    text = _cell_of(tolerance, value)
+    return text is not None and _digest(sealed["salt"], text, sealed["kdf"]) in sealed["cells"]
 
 
 #: The exercises with graded variants: for each parameter, its published value and the range a
@@ -294,11 +315,43 @@ def parameters(exercise: str, student: str | None = None) -> dict:
     return out
 
 
+#: what a variant key file says it is; a key without it (an earlier version's, which kept each
+#: answer's place in its cell) is refused
+KEY_FORMAT = "ebantenna.course variant key 2"
+
+
+def student_tag(key_salt: str, student: str) -> str:
+    """How a variant key names a student: a hash of the key's salt and the id, not the id.
+
+    The key handed to a class then does not list the class (an id that is short or guessable,
+    ``s1``, ``s2``, ..., can still be tried against it).
+    """
+    if not isinstance(key_salt, str) or not isinstance(student, str):
+        raise TypeError("key_salt and student must be str")
+    return hashlib.sha256(f"{key_salt}/{student.strip()}".encode()).hexdigest()[:16]
+
+
+def _checked_key(key) -> dict:
+    if not (isinstance(key, dict) and isinstance(key.get("students"), dict)
+            and key.get("exercise") in ANSWER_KEY):
+        raise ValueError("key must be a variant key file, this is not one")
+    if key.get("format") != KEY_FORMAT or not isinstance(key.get("salt"), str):
+        raise ValueError(f"key must be a variant key file of this version ({KEY_FORMAT!r}); "
+                         "this one was written by an earlier ebantenna, whose keys showed more "
+                         "than they should: ask the teacher for a key written by "
+                         "docs/_tools/make_variant_key.py of this version")
+    if not all(isinstance(v, dict) and all(_is_sealed(x) for x in v.values())
+               for v in key["students"].values()):
+        raise ValueError("key must be a variant key file: a student's answers are not sealed")
+    return key
+
+
 def load_variant_key(path) -> dict:
     """Read a variant key written by ``docs/_tools/make_variant_key.py`` (a JSON file).
 
-    Returns ``{"exercise": name, "students": {id: {value name: sealed answer}}}``; raises
-    ValueError if the file is not such a key.
+    Returns ``{"format", "exercise", "salt", "students": {tag: {value name: sealed answer}}}``,
+    a student's tag being :func:`student_tag` of the key's salt and their id; raises ValueError
+    if the file is not such a key (a key of an earlier version included).
     """
     import json
     from pathlib import Path
@@ -312,10 +365,10 @@ def load_variant_key(path) -> dict:
     except (OSError, json.JSONDecodeError) as error:
         raise ValueError(f"key must be a variant key file, could not read {path!r}: "
                          f"{error}") from error
-    if not (isinstance(key, dict) and isinstance(key.get("students"), dict)
-            and key.get("exercise") in ANSWER_KEY):
-        raise ValueError(f"key must be a variant key file, {path!r} is not one")
-    return key
+    try:
+        return _checked_key(key)
+    except ValueError as error:
+        raise ValueError(f"{error} ({path!r})") from None
 
 
 @dataclass(frozen=True)
@@ -387,24 +440,55 @@ def tolerances(exercise: str) -> dict[str, Tolerance]:
     return {name: Tolerance(a["kind"], a["width"], a["reason"]) for name, a in key.items()}
 
 
+def _huge(value) -> str:
+    """A number beyond the floats, named by its size (not by a truncated repr)."""
+    try:
+        digits = math.floor(math.log10(abs(value))) + 1
+    except (TypeError, ValueError, OverflowError):
+        return f"a {type(value).__name__} beyond the range of a float (above 1.8e308)"
+    return f"a number of {digits} digits, beyond the range of a float (above 1.8e308)"
+
+
+def _as_float(value) -> float | str:
+    """The value as a float, or why it is not a number to check (the same on NumPy 1 and 2).
+
+    A Python or NumPy real number and a 0-d array are numbers; an array with a dimension is not,
+    even of one element (NumPy 2 no longer converts those): the message says to pick the element.
+    """
+    if isinstance(value, (str, bytes, bool)) or str(getattr(value, "dtype", "")) == "bool":
+        return f"{value!r:.40} is not a number"
+    shape = getattr(value, "shape", ())
+    if shape != () and hasattr(value, "ndim"):
+        return (f"an array of shape {tuple(shape)} is not a number: give one element "
+                "(value[0] or value.item())")
+    try:
+        number = float(value)
+    except OverflowError:  # an int or a Fraction beyond the largest float
+        return _huge(value)
+    except (TypeError, ValueError):
+        return f"{value!r:.40} is not a number"
+    if isinstance(number, float) and math.isinf(number):
+        try:  # a Decimal or a long double beyond the floats converts to inf without an error
+            finite = not (value * 2 == value)
+        except Exception:  # noqa: BLE001 - any type: then it is taken as the inf it gave
+            finite = False
+        if finite:
+            return _huge(value)
+    if not math.isfinite(number):
+        return f"{number} is not a finite number"
+    return number
+
+
 def _verdict(name: str, value, sealed: dict, tolerance: Tolerance) -> tuple[str, bool]:
     stated = tolerance.describe()
     stated = "equal to" if stated == "exact" else f"within {stated} of"
     stated += " the expected value"
     if value is None:
         return f"{name}: not yet: no value given (None)", False
-    try:  # a NumPy scalar or a 0-d array is a number too; a string or a bool is not
-        if isinstance(value, (str, bytes, bool)):
-            raise TypeError(value)
-        value = float(value)
-    except OverflowError:  # an int or a Fraction beyond the largest float
-        return f"{name}: not yet: {value!r:.20} is beyond the range of a float", False
-    except (TypeError, ValueError):
-        return f"{name}: not yet: {value!r} is not a number", False
-    if not math.isfinite(value):
-        return f"{name}: not yet: {value} is not a finite number", False
-    expected = unseal(sealed, tolerance, value)
-    if expected is not None and tolerance.accepts(value, expected):
+    number = _as_float(value)
+    if isinstance(number, str):
+        return f"{name}: not yet: {number}", False
+    if _within(sealed, tolerance, number):
         return f"{name}: {stated}", True
     return f"{name}: not yet: not {stated}", False
 
@@ -423,7 +507,10 @@ def check(exercise: str, *, student: str | None = None, key=None, **values) -> C
         (``docs/_tools/make_variant_key.py`` writes it). Both or neither.
     **values : float or None
         The answers to check, by the names the exercise page gives (``tau_fit_ms=80.1``); ``None``
-        for one not computed yet.
+        for one not computed yet. A Python or NumPy real number or a 0-d array is a number; an
+        array with a dimension is not, even of one element (the same verdict on every supported
+        NumPy: NumPy 2 no longer converts those): the line says to give ``value[0]``. A number
+        beyond the floats (``10**400``) is named by its size.
 
     Returns
     -------
@@ -445,13 +532,14 @@ def check(exercise: str, *, student: str | None = None, key=None, **values) -> C
         raise ValueError("student and key go together: give both for a graded variant, or "
                          "neither for the published exercise")
     if key is not None:
-        variants = key if isinstance(key, dict) else load_variant_key(key)
+        variants = _checked_key(key) if isinstance(key, dict) else load_variant_key(key)
         if variants.get("exercise") != name:
             raise ValueError(f"key is a key of {variants.get('exercise')!r}, not of {name!r}")
-        if not isinstance(student, str) or student.strip() not in variants["students"]:
+        tag = student_tag(variants["salt"], student) if isinstance(student, str) else None
+        if tag not in variants["students"]:
             raise ValueError(f"student {student!r} is not in this key: ask the teacher for the "
                              "key of your group")
-        sealed = variants["students"][student.strip()]
+        sealed = variants["students"][tag]
     unknown = sorted(set(values) - set(sealed))
     if unknown or not values:
         raise ValueError(f"the values of {name} are named {sorted(sealed)}, got {sorted(values)}")

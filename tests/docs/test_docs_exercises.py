@@ -4,6 +4,7 @@ import contextlib
 import functools
 import io
 import json
+import math
 import re
 import runpy
 import warnings
@@ -14,7 +15,7 @@ import make_answer_key
 import numpy as np
 import pytest
 
-from ebantenna.course import ANSWER_KEY, check, tolerances, unseal
+from ebantenna.course import ANSWER_KEY, _grid, _within, check, tolerances
 
 DOCS = Path(__file__).resolve().parents[2] / "docs"
 SOLUTIONS = sorted((DOCS / "exercises" / "solutions").glob("ex*.py"))
@@ -153,10 +154,33 @@ def test_a_wrong_answer_fails(tmp_path):
 # --- the answer key behind ebantenna.course.check ------------------------------------------------
 
 
+def _around(tol, value: float) -> tuple[list[float], list[float]]:
+    """Values just within the tolerance of ``value``, and values just beyond the one cell (a
+    fifth of the tolerance) past its edges that a sealed check may still accept."""
+    if tol.kind == "abs" and tol.width == 0:
+        return [value], [value + max(1e-6, 1e-9 * abs(value)), value - max(1e-6, 1e-9 * abs(value))]
+    scale, cell, low, high = _grid(tol)
+    if tol.kind == "abs":
+        inside = [value + tol.width * 0.999, value - tol.width * 0.999]
+    elif tol.kind == "rel":
+        inside = [value * (1 + 0.999 * tol.width), value * (1 - 0.999 * tol.width)]
+    else:
+        inside = [value * tol.width * 0.999, value / tol.width * 1.001]
+    if scale == "lin":
+        outside = [value + (high + 1.01) * cell, value + (low - 1.01) * cell]
+    else:
+        outside = [value * math.exp((high + 1.01) * cell), value * math.exp((low - 1.01) * cell)]
+    return inside, outside
+
+
 def _key_value(stem: str, name: str, near: float) -> float:
-    """The key's sealed answer, opened with a value near it (the solution's own)."""
-    value = unseal(ANSWER_KEY[stem][name], tolerances(stem)[name], near)
-    assert value is not None, f"{stem}.{name}: run python docs/_tools/make_answer_key.py"
+    """The answer the key was sealed from: the teacher's plain sheet, once the key holds it to a
+    cell (it accepts the sheet's value, and refuses values a cell beyond the tolerance of it)."""
+    value, tol = PLAIN[stem][name], tolerances(stem)[name]
+    sealed = ANSWER_KEY[stem][name]
+    assert _within(sealed, tol, value), f"{stem}.{name}: run python docs/_tools/make_answer_key.py"
+    assert not any(_within(sealed, tol, v) for v in _around(tol, value)[1]), (
+        f"{stem}.{name}: run python docs/_tools/make_answer_key.py")
     return value
 
 
@@ -210,16 +234,8 @@ def test_each_check_accepts_the_solution_and_rejects_just_outside(script):
         # machine may differ from it by rounding, see the test above)
         value, tol = _key_value(script.stem, name, float(answers[name])), stated[name]
         assert tol.reason and len(tol.reason) < 140  # one line
-        if tol.kind == "abs":
-            outside = [value + tol.width + max(1e-6, 1e-3 * tol.width)]
-            outside.append(value - tol.width - max(1e-6, 1e-3 * tol.width))
-            inside = [value + tol.width * 0.999, value - tol.width * 0.999]
-        elif tol.kind == "rel":
-            outside = [value * (1 + 1.001 * tol.width), value * (1 - 1.001 * tol.width)]
-            inside = [value * (1 + 0.999 * tol.width), value * (1 - 0.999 * tol.width)]
-        else:
-            outside, inside = [value * tol.width * 1.001, value / tol.width / 1.001], [
-                value * tol.width * 0.999, value / tol.width * 1.001]
+        # a cell is a fifth of the tolerance: the check may accept up to a cell beyond its edge
+        inside, outside = _around(tol, value)
         if value == 0 and tol.kind != "abs":
             pytest.fail(f"{name}: a relative tolerance of a zero answer accepts nothing else")
         for v in outside:
@@ -314,7 +330,7 @@ def test_answer_key_module_is_the_tools_output():
     assert {ex: list(v) for ex, v in PLAIN.items()} == {ex: list(v) for ex, v in ANSWER_KEY.items()}
     for exercise, values in PLAIN.items():
         for name, value in values.items():
-            assert _key_value(exercise, name, value) == pytest.approx(value, rel=1e-12, abs=1e-12)
+            assert _key_value(exercise, name, value) == value
     namespace = {}
     exec(compile(text, str(make_answer_key.MODULE), "exec"), namespace)
     assert namespace["ANSWER_KEY"] == ANSWER_KEY
@@ -909,3 +925,48 @@ def test_the_published_data_are_the_variant_of_no_student(stem):
     assert make_variant_key.solution_for(stem, None) == source
     data = source[source.index("# [data]"): source.index("# [/data]")]
     assert make_variant_key.STUDENT_LINE in data and f'parameters("{stem[:4]}"' in data
+
+
+# --- what a student sees of the tolerances gives no graded answer away ------------------------
+
+_NUMBER = re.compile(r"(?<![\w.])-?\d+(?:\.\d+)?(?:e[-+]?\d+)?(?![\w.]*\d)")
+
+
+def _gives_away(token: float, value: float, tol) -> bool:
+    """Whether a number in a student's text gives ``value`` away: the check would accept it,
+    it is the value rounded to 3 significant digits, or, for an exact count of 10 or more, a
+    count derived from it (one more or less, twice, twice and one more or less, half: a filter's
+    order and its coefficients)."""
+    if value in (0.0, 1.0):  # a share of none or all: no number to give away
+        return False
+    if tol.accepts(token, value) or token == float(f"{value:.3g}"):
+        return True
+    if tol.kind == "abs" and tol.width == 0 and value == round(value) and abs(value) >= 10:
+        n = round(value)
+        return token in {n - 1, n + 1, 2 * n - 1, 2 * n, 2 * n + 1, n / 2, (n - 1) / 2}
+    return False
+
+
+def _student_texts(stem: str) -> list[str]:
+    """What a student sees besides the statement: every tolerance's reason (the page's table,
+    the notebook, :func:`tolerances`) and the hints."""
+    import exercise_notebooks
+
+    page = exercise_notebooks.parse_page((DOCS / "exercises" / f"{stem}.rst").read_text(), stem)
+    # a hint's code and formulas (``K[2*e:2*e+4]``, :math:`C h^4`) are the method, not a result
+    hints = [re.sub(r"(:math:)?`+[^`]*`+", " ", h) for _, h in page.hints]
+    return [t.reason for t in tolerances(stem).values()] + hints
+
+
+@pytest.mark.parametrize("stem", [p.stem for p in PAGES])
+def test_no_reason_or_hint_gives_a_graded_answer_away(stem):
+    # "it is 18 (17.9 and 18.0 before rounding)" (ex09), "a recording or two of 80" (ex13's n_test),
+    # "the denominator of a 26-pole filter" (ex08: order 13, 27 coefficients) each told an answer
+    stated = tolerances(stem)
+    found = []
+    for text in _student_texts(stem):
+        for token in _NUMBER.findall(text):
+            for name, value in PLAIN[stem].items():
+                if _gives_away(float(token), value, stated[name]):
+                    found.append(f"{name} = {value:g} in {token!r}: {text}")
+    assert not found, "\n".join(found)

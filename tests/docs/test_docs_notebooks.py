@@ -15,7 +15,7 @@ import exercise_notebooks
 import pytest
 from exercise_secrets import STEMS, answer_pairs, solution_lines
 
-from ebantenna.course import tolerances
+from ebantenna.course import VARIANTS, tolerances
 
 DOCS = Path(__file__).resolve().parents[2] / "docs"
 EXERCISES = DOCS / "exercises"
@@ -143,3 +143,41 @@ def test_notebook_executes(stem, edition, tmp_path):
         assert "ok" in "".join(outputs)
         last = outputs[-1].splitlines()
         assert len(last) == len(names) and not [line for line in last if "not yet" in line]
+
+
+@pytest.mark.parametrize("stem", [s for s in STEMS if s in VARIANTS])
+def test_a_variant_exercises_notebook_carries_the_variant(stem):
+    # the page's "A graded variant" paragraph, a word that the statement's numbers are the
+    # published ones, and a check that follows the data cell's STUDENT
+    nb = notebook(stem, "student")
+    assert "**A graded variant.**" in text_of(nb, "markdown")
+    assert "published exercise's numbers" in text_of(nb, "markdown")
+    check_cell = text_of(nb, "code").split("from ebantenna.course import check")[1]
+    assert f'check("{stem}", student=STUDENT, key="{stem[:4]}_key.json", **answers)' in check_cell
+
+
+def test_a_students_notebook_checks_their_own_variant(tmp_path):
+    # STUDENT = "alice" in the data cell and the worked solution's answers for alice: the
+    # notebook's own check says "within" for each (it checked the published key before)
+    nbformat = pytest.importorskip("nbformat", reason="needs the teach extra (nbformat)")
+    nbclient = pytest.importorskip("nbclient", reason="needs the teach extra (nbclient)")
+    pytest.importorskip("ipykernel", reason="needs the teach extra (ipykernel)")
+    import make_variant_key
+
+    answers = make_variant_key.answers_for("ex05_decay", "alice")
+    key = make_variant_key.variant_key("ex05_decay", {"alice": answers})
+    (tmp_path / "ex05_key.json").write_text(json.dumps(key))
+    nb = notebook("ex05_decay", "student")
+    for cell in nb["cells"]:
+        source = "".join(cell["source"])
+        if cell["cell_type"] == "code" and "STUDENT = None" in source:
+            cell["source"] = source.replace("STUDENT = None", 'STUDENT = "alice"', 1)
+        elif cell["cell_type"] == "code" and source.startswith("from ebantenna.course import"):
+            cell["source"] = source + f"answers = {answers!r}\n"
+    nb = nbformat.reads(json.dumps(nb), as_version=4)
+    nbclient.NotebookClient(nb, timeout=600, kernel_name="python3",
+                            resources={"metadata": {"path": str(tmp_path)}}).execute()
+    shown = "".join(o.get("text", "") for c in nb.cells if c.cell_type == "code"
+                    for o in c.get("outputs", []))
+    lines = [line for line in shown.splitlines() if line.split(":")[0] in answers]
+    assert len(lines) == 3 and all(": within" in line for line in lines), shown

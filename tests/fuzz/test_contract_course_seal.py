@@ -1,10 +1,10 @@
 """The input contract of the course's sealed answers and graded variants: :func:`seal`,
-:func:`unseal`, :func:`parameters` and :func:`load_variant_key`.
+:func:`student_tag`, :func:`parameters` and :func:`load_variant_key`.
 
 A bad input is refused with a ValueError or TypeError naming the parameter; a good one is
-checked against a witness: a sealed value comes back from any value the tolerance accepts (and
-not from one it refuses), a student's parameters lie in the ranges of :data:`VARIANTS`, a key
-file reads back as written.
+checked against a witness: a sealed answer accepts every value its tolerance accepts (and none
+a cell beyond), a student's parameters lie in the ranges of :data:`VARIANTS`, a key file reads
+back as written, and a key of the earlier format is refused.
 """
 
 from __future__ import annotations
@@ -15,10 +15,18 @@ import math
 import numpy as np
 import pytest
 
-from ebantenna.course import VARIANTS, Tolerance, load_variant_key, parameters, seal, unseal
+from ebantenna.course import (
+    KEY_FORMAT,
+    VARIANTS,
+    Tolerance,
+    _within,
+    load_variant_key,
+    parameters,
+    seal,
+    student_tag,
+)
 
 REL = Tolerance("rel", 0.05, "two correct fits differ by a few percent")
-SEALED = seal(3.0, REL, "ex/x")
 
 SEAL_BAD = [  # (id, value, tolerance, salt, error, name)
     ("value-text", "3", REL, "s", TypeError, "value"),
@@ -30,14 +38,9 @@ SEAL_BAD = [  # (id, value, tolerance, salt, error, name)
     ("salt-empty", 3.0, REL, "", ValueError, "salt"),
     ("salt-int", 3.0, REL, 3, ValueError, "salt"),
 ]
-UNSEAL_BAD = [  # (id, sealed, tolerance, near, error, name)
-    ("sealed-text", "abc", REL, 3.0, ValueError, "sealed"),
-    ("sealed-empty", {}, REL, 3.0, ValueError, "sealed"),
-    ("sealed-offset-text", {**SEALED, "offset": "0.5"}, REL, 3.0, ValueError, "sealed"),
-    ("tolerance-text", SEALED, "rel", 3.0, TypeError, "tolerance"),
-    ("near-text", SEALED, REL, "3", TypeError, "near"),
-    ("near-none", SEALED, REL, None, TypeError, "near"),
-    ("near-inf", SEALED, REL, math.inf, ValueError, "near"),
+TAG_BAD = [  # (id, key_salt, student, error, name)
+    ("key-salt-none", None, "s1", TypeError, "key_salt"),
+    ("student-int", "k", 5, TypeError, "student"),
 ]
 PARAMETERS_BAD = [  # (id, exercise, student, error, name)
     ("exercise-int", 5, None, TypeError, "exercise"),
@@ -54,20 +57,28 @@ def test_seal_refuses_bad_input(row):
         seal(value, tolerance, salt)
 
 
-@pytest.mark.parametrize("row", UNSEAL_BAD, ids=[r[0] for r in UNSEAL_BAD])
-def test_unseal_refuses_bad_input(row):
-    _, sealed, tolerance, near, error, name = row
+@pytest.mark.parametrize("row", TAG_BAD, ids=[r[0] for r in TAG_BAD])
+def test_student_tag_refuses_bad_input(row):
+    _, key_salt, student, error, name = row
     with pytest.raises(error, match=name):
-        unseal(sealed, tolerance, near)
+        student_tag(key_salt, student)
+
+
+def test_student_tag_hides_the_id():
+    tag = student_tag("k", "alice")
+    assert "alice" not in tag and tag == student_tag("k", " alice ")
+    assert tag != student_tag("other key", "alice")
 
 
 @pytest.mark.parametrize("value", [3.0, -0.0123, 4.5e7])
-def test_a_sealed_value_comes_back_from_within_its_tolerance_only(value):
+def test_a_sealed_answer_accepts_its_tolerance_only(value):
     sealed = seal(value, REL, "ex/v")
+    assert set(sealed) == {"salt", "kdf", "cells"}  # no value, no place in a cell
     for near in (value, value * 1.049, value * 0.951):  # accepted by the tolerance
-        assert unseal(sealed, REL, near) == pytest.approx(value, rel=1e-12)  # exp(log): ulps
-    assert unseal(sealed, REL, value * 1.3) is None  # six cells away
-    assert unseal(sealed, REL, -value) is None  # the sign is part of the seal
+        assert _within(sealed, REL, near)
+    # a cell is a fifth of the tolerance: beyond 1.2 tolerances, refused
+    for far in (value * 1.3, value * (1 - 0.05 * 1.25), -value, 0.0):
+        assert not _within(sealed, REL, far)
 
 
 @pytest.mark.parametrize("row", PARAMETERS_BAD, ids=[r[0] for r in PARAMETERS_BAD])
@@ -111,23 +122,34 @@ def test_load_variant_key_refuses_a_file_that_is_no_key(tmp_path, row, text):
 
 
 def test_load_variant_key_reads_back_what_was_written(tmp_path):
-    key = {"exercise": "ex05_decay",
-           "students": {"s1": {"tau_fit_ms": seal(81.0, REL, "ex05_decay/s1/tau_fit_ms")}}}
+    tag = student_tag("k", "s1")
+    key = {"format": KEY_FORMAT, "exercise": "ex05_decay", "salt": "k",
+           "students": {tag: {"tau_fit_ms": seal(81.0, REL, f"ex05_decay/{tag}/tau_fit_ms")}}}
     path = tmp_path / "key.json"
     path.write_text(json.dumps(key), encoding="utf-8")
     back = load_variant_key(str(path))
     assert back == key
-    assert unseal(back["students"]["s1"]["tau_fit_ms"], REL, np.float64(80.0)) == pytest.approx(
-        81.0, rel=1e-12)
+    assert _within(back["students"][tag]["tau_fit_ms"], REL, np.float64(80.0))
+
+
+def test_load_variant_key_refuses_a_key_of_the_earlier_format(tmp_path):
+    # the earlier keys kept each answer's place in its cell, and the ids in plain text
+    old = {"exercise": "ex05_decay", "students": {"s1": {"tau_fit_ms": {
+        "salt": "ex05_decay/s1/tau_fit_ms", "digest": "0" * 32, "offset": 0.25}}}}
+    path = tmp_path / "key.json"
+    path.write_text(json.dumps(old), encoding="utf-8")
+    with pytest.raises(ValueError, match="written by an earlier ebantenna"):
+        load_variant_key(path)
 
 
 def contract_rows() -> dict[str, list[str]]:
     """The surfaces these rows cover (read by the inventory test)."""
     return {
-        "ebantenna.course.seal": [r[0] for r in SEAL_BAD] + ["back-from-within-tolerance"],
-        "ebantenna.course.unseal": [r[0] for r in UNSEAL_BAD] + ["back-from-within-tolerance"],
+        "ebantenna.course.seal": [r[0] for r in SEAL_BAD] + ["accepts-its-tolerance-only"],
+        "ebantenna.course.student_tag": [r[0] for r in TAG_BAD] + ["hides-the-id"],
         "ebantenna.course.parameters": [r[0] for r in PARAMETERS_BAD] + ["in-variant-ranges"],
         "ebantenna.course.load_variant_key": ["path-int", "path-none", "path-bytes",
                                               "path-empty", "not-json", "a-list", "no-students",
-                                              "unknown-exercise", "reads-back"],
+                                              "unknown-exercise", "reads-back",
+                                              "earlier-format"],
     }

@@ -46,7 +46,8 @@ ANSWERS = {"tau_hand_ms": 1e3 * tau_hand, "tau_fit_ms": 1e3 * fit.tau, "a_fit": 
 # The tolerance of each answer: how far two correct ways of working may differ, and why.
 # (up to 0.7 % on the published data, up to 3.4 % over 3000 students' variants: where the
 # envelope first crosses a threshold depends on the noise)
-WINDOW = "the window (from 10 to 30 ms, up to 5 to 20 times the noise) moves it by up to 4 %"
+WINDOW = ("the window (ending 10 to 30 ms in, while the envelope is well above the noise) moves "
+          "it by up to 4 %")
 # (a record cut to 500 to 800 samples moves tau by up to 0.15 % and a by up to 0.08 % over 400
 # students' variants: a decay of 100 ms is not yet down to the noise at 500 samples)
 CUT = "fit_decay on these samples; a record cut to 500 to 800 samples moves it by up to 0.2 %"

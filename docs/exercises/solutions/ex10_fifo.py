@@ -103,10 +103,10 @@ ANSWERS = {"samples_after_50ms": len(counts), "arrived_while_reading": arrived,
 TRANSFERS = "an extra register read or two (0.44 ms each) on the virtual clock"
 TOLERANCES = {
     "samples_after_50ms": ("abs", 1, (
-        "one sample more or less, as the 50 ms wait starts between two samples"
+        "one sample more or less, as the wait starts between two samples"
     )),
     "arrived_while_reading": ("abs", 2, TRANSFERS + " move it by a sample or two"),
-    "overflow_count": ("abs", 0, "the FIFO's size in bytes"),
+    "overflow_count": ("abs", 0, "a count of bytes, which no rounding moves"),
     "lost": ("abs", 1, TRANSFERS + " between the driver's calls move it by one sample"),
     "gap_ms": ("abs", 1, TRANSFERS + " between the driver's calls move it by under 1 ms"),
     "period_us": ("rel", 1e-9, "the middle of the bracket of a 5 % rate tolerance: rounding only"),

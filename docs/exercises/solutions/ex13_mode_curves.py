@@ -101,7 +101,8 @@ PEAK = (
     "peak_frequencies interpolates between FFT bins: another interpolation moves a peak by a "
     "small part of a bin"
 )
-SPLIT = "the same data and split; another solver tolerance may flip a recording or two of 80"
+SPLIT = ("the same data and split; another solver tolerance may flip a recording or two of the "
+         "held-out set")
 TOLERANCES = {
     "spread_f1_pct": ("rel", 0.1, PEAK), "spread_f2_pct": ("rel", 0.1, PEAK),
     "repeat_pct": ("rel", 0.1, PEAK),

@@ -51,8 +51,9 @@ The measurement, modelled
     signal's envelope and phase between the filter's transients), which is more than the time
     base's 10^-4 and would pass for a hinge softer than the truth. The model is therefore read
     through the same estimator (``as_measured``): the fitted mode rings alone over the
-    recording's length, its envelope peaking where the recording's does, and what the estimator
-    reads from it is compared with what it reads from the recording, so the bias cancels.
+    recording's length, its envelope first peaking where the recording's does, and what the
+    estimator reads from it is compared with what it reads from the recording, so the bias
+    cancels.
 
 Frequencies: hinge and tip mass
     The independent unit is the contact position (a material at a distance, or a distance alone
@@ -109,6 +110,19 @@ Loss factor
     the t interval of their mean, however few the positions). A scene without
     ``structural_damping`` has no tube loss to fit: the loss factor is then not identifiable.
 
+A decay too slow to show within the record
+    leaves the band envelope flat, wavering by a few per cent as the other modes beat through
+    the band: its largest value then falls anywhere, often late, and read from there an
+    undamped tube's recordings left nothing to read at most positions, which were refused
+    (their frequency with them). Each recording is read from where its envelope first peaks
+    (``_onset``: its largest value within :data:`RISE` periods of first reaching :data:`ONSET`
+    of it), which for a decay that shows is its largest value. A reading of 0 or below (an
+    envelope that does not fall, or the estimator's own bias on one that barely does) is
+    inverted and averaged like any other: dropping it kept only the readings that happened to
+    fall. Where the positions' interval then reaches 0 the loss factor is bounded from above,
+    not estimated (the modal rig below with an undamped tube: at most 6e-4, its hinge and tip
+    mass recovered within their intervals).
+
 Measured on the simulated rig (``ebantenna record --simulated --scene paper``, seed 0, brass at
 5, 10, 15, 20, 25 and 30 cm, two repetitions, calibrated with ``--scene paper``): a tip mass of
 2.499 g (95 % 2.492-2.504 g, truth 2.5 g), a loss factor of 0.0298 (0.0292-0.0304, truth 0.03)
@@ -160,6 +174,10 @@ STIFFNESS_RANGE = (1e-3, 1e6)
 #: 1000 Hz), and :func:`loss_factor_of` reads from two periods past the peak to two before the
 #: end.
 READ_PERIODS = 5.5
+#: Where a decay starts (``_onset``): at the band envelope's largest value within ``RISE``
+#: periods of where it first reaches ``ONSET`` of its largest value. A mode ringing from rest
+#: peaks 0.5 to 1.5 periods in (see :data:`READ_PERIODS`), having passed half its peak before.
+ONSET, RISE = 0.5, 2.0
 #: Largest relative change that the model's other modes, ringing beside the fitted one at any
 #: phase, may make to what the estimator reads of it: the time base's uncertainty. A position
 #: where they move it more is left out of the fit.
@@ -381,13 +399,14 @@ def _band(frequency, fs):
 
 def _decay(x, fs, frequency, sos=None):
     """:func:`loss_factor_of` on checked values (``sos``: its band filter about ``frequency``,
-    when already designed), and the index of the band envelope's peak."""
+    when already designed), and the index of the band envelope's first peak, where the decay
+    read starts (``_onset``)."""
     x = np.asarray(x, dtype=float) - np.mean(x)
     sos = _band(frequency, fs) if sos is None else sos
     analytic = hilbert(sosfiltfilt(sos, x))
     envelope = np.abs(analytic)
     t = np.arange(x.size) / fs
-    peak = int(envelope.argmax())
+    peak = _onset(envelope, fs / frequency)
     keep = ((t > t[peak] + 2.0 / frequency) & (t < t[-1] - 2.0 / frequency)
             & (envelope > 0.05 * envelope[peak]))
     if keep.sum() < 3:
@@ -397,6 +416,28 @@ def _decay(x, fs, frequency, sos=None):
     omega = abs(phase)
     return (float(-2.0 * slope / omega), float(omega / (2 * np.pi)),
             float(keep.sum() / fs * frequency), peak)
+
+
+def _onset(envelope, period: float) -> int:
+    """Where the decay starts: the largest value of the band envelope within :data:`RISE`
+    periods (``period``, in samples) of where it first reaches :data:`ONSET` of its largest
+    value.
+
+    A mode ringing from rest rises through half its peak and to the peak within a period or
+    two, and falls from there, so for a decay that shows within the record this is the
+    envelope's largest value. A decay too slow to show leaves the envelope flat, wavering by a
+    few per cent as the model's other modes beat through the band: its largest value then falls
+    anywhere, late in the record as often as not, where too little is left to read.
+
+    Examples
+    --------
+    >>> _onset(np.array([0.1, 0.6, 1.0, 0.9, 0.8, 0.7]), 2.0)
+    2
+    >>> _onset(np.array([0.1, 0.6, 0.97, 0.95, 0.96, 0.96, 1.0]), 2.0)  # flat: not the late 1.0
+    2
+    """
+    start = int(np.argmax(envelope >= ONSET * envelope.max()))
+    return start + int(np.argmax(envelope[start:start + max(int(RISE * period), 1) + 1]))
 
 
 def as_measured(frequency: float, loss: float, n: int, fs: float, peak: int, *, lag=None,
@@ -1084,23 +1125,33 @@ def _measure_and_fit(model, ax, fs, contact, p, bounds, eta0, max_rounds):
 def _loss_interval(eta: float, half: float, reason: str) -> tuple[tuple[float, float], str]:
     """The loss factor's 95 % interval and why it is not identifiable ("" if it is): none
     (``(0, inf)``) with a ``reason`` already; bounded only from above when ``eta - half``
-    reaches 0, a real end (the interval is then ``(0, eta + half)``).
+    reaches 0, a real end (the interval is then ``(0, eta + half)``); bounded on neither side
+    when ``eta + half`` lies below 0 too, where no loss factor is.
 
     Examples
     --------
     >>> _loss_interval(0.03, 0.002, "")[1] == ""
     True
     >>> interval, why = _loss_interval(0.06, 0.063, "")
-    >>> interval[0], why.split(": ")[1]
-    (0.0, 'the recordings bound it only from above, at most 0.123')
+    >>> interval[0], why.split(", and ")[1]
+    (0.0, 'bound it only from above, at most 0.123')
+    >>> _loss_interval(-0.002, 0.001, "")[0]
+    (0.0, inf)
     """
     if reason:
         return (0.0, math.inf), reason
     low, high = eta - half, eta + half
     if low > 0:
         return (low, high), ""
-    return (0.0, high), (f"its 95 % interval ({low:.3g}, {high:.3g}) reaches 0: the "
-                         f"recordings bound it only from above, at most {high:.3g}")
+    if high <= 0:
+        return (0.0, math.inf), (
+            f"its 95 % interval ({low:.3g}, {high:.3g}) lies below 0, where no loss factor is: "
+            "the envelopes rise where the model's decays fall, and the recordings bound it on "
+            "neither side (a decay too slow to measure within these records, read with a bias "
+            "the model does not have)")
+    return (0.0, high), (f"its 95 % interval ({low:.3g}, {high:.3g}) reaches 0: the decays "
+                         "cannot be told from none within their spread, and bound it only from "
+                         f"above, at most {high:.3g}")
 
 
 def _hinge_interval(k_interval, bounds, missing) -> tuple[float, float]:
@@ -1263,7 +1314,7 @@ def _loss_factor(model, p, decays, eta1):
     estimates = np.full(len(decays), np.nan)
     for r, (eta, f, cycles, peak, band) in enumerate(decays):
         k = model.index[r]
-        if cycles >= MIN_CYCLES and b[k] >= MIN_SHARE and eta > 0 and np.isfinite(f):
+        if cycles >= MIN_CYCLES and b[k] >= MIN_SHARE and np.isfinite(eta) and np.isfinite(f):
             mode = _as_read_inverse(eta, frequency[k], model.n, model.fs, peak, band)
             estimates[r] = (mode - a[k]) / b[k]
     used = int(np.isfinite(estimates).sum())
@@ -1284,9 +1335,12 @@ def _loss_factor(model, p, decays, eta1):
 def _as_read_inverse(eta_read: float, frequency: float, n: int, fs: float, peak: int,
                      band: float) -> float:
     """The mode's loss factor whose decay ``as_measured`` reads as ``eta_read`` (secant
-    steps from ``eta_read``: the reading is within a few per cent of linear in it)."""
+    steps from ``eta_read``: the reading is within a few per cent of linear in it). A reading
+    of 0 or below -- an envelope that does not fall over the record -- is inverted as any other:
+    the mode's loss factor is then about as small, and below 0 where the estimator reads the
+    ringing's own bias."""
     sos = _band(band, fs)
-    x0, x1 = eta_read, 1.1 * eta_read
+    x0, x1 = eta_read, eta_read + max(0.1 * abs(eta_read), 1e-5)
     g0 = as_measured(frequency, x0, n, fs, peak, band=band, sos=sos)[0] - eta_read
     for _ in range(4):
         g1 = as_measured(frequency, x1, n, fs, peak, band=band, sos=sos)[0] - eta_read

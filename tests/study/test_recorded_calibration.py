@@ -380,6 +380,46 @@ def test_an_undamped_tube_is_calibrated_and_its_loss_factor_bounded_from_above(t
     assert cal.scene(base).probe.loss_factor == base.probe.loss_factor
 
 
+@pytest.mark.parametrize("tip", [0.012, 0.015, 0.0195])
+@pytest.mark.parametrize("hinge", [2.0, 20.0, 1e4])
+def test_the_fit_starts_within_the_measured_band_over_the_whole_mass_range(tip, hinge):
+    # The start's tip masses stopped at half the range searched (10 g of 20), and a mode under
+    # about 16 Hz, whose +/- 3 % held no bin of a one-second spectrum, scored as no mode: heavy
+    # tips were started from 1-5 g, their modes 40 % to 170 % off, outside the +/- 25 % band
+    # the measurement reads about a prediction, and recordings of a 12-15 g tip were refused.
+    # Witness: recordings made of the model's own fitted mode at the truth, with noise; the
+    # start must put every position's mode inside that band (BAND), what the fit needs.
+    from ebantenna.study.recorded import calibration as C
+
+    base = RIG.with_(hinge="clamped", probe=Probe(tip_mass=0.001, loss_factor=0.01))
+    contact = np.array(CONTACTS)
+    model = C._Model(base, contact, np.full(contact.size, "brass"), 1000.0, 1000)
+    truth = model.modes(math.log10(hinge), tip, 0.03)[0]
+    t = np.arange(1000) / 1000.0
+    ax = np.array([np.exp(-0.03 * np.pi * f * t) * np.sin(2 * np.pi * f * t) for f in truth])
+    ax += 0.01 * np.random.default_rng(0).standard_normal(ax.shape)
+    start = C._start(model, ax, 1000.0, C._search_bounds(base.probe, None, None), 0.03)
+    assert np.all(np.abs(model.modes(*start, 0.03)[0] / truth - 1) < C.BAND), start
+
+
+def test_a_heavy_tip_inside_the_range_searched_is_recovered(tmp_path):
+    # A 15 g tip, inside the 20 g searched: the start stopped at 5 g and a hinge of 1e-3
+    # N m/rad, and the calibration was refused ("only 0 of 5 positions show the mode the model
+    # predicts", as if the scene were wrong). From 10 cm, where its mode holds more periods of
+    # the one-second record (at 5 cm, 6 Hz: under one period is read). Below about 15 Hz the
+    # model, read through the estimator, misses the recordings by 1e-4 to 3e-3 at the truth,
+    # and the lack-of-fit test may say so; the intervals must still hold the truth.
+    truth = RIG.with_(probe=Probe(tip_mass=0.015))
+    base = RIG.with_(hinge="clamped", probe=Probe(tip_mass=0.001, loss_factor=0.01))
+    contacts = (0.10, 0.15, 0.20, 0.25, 0.30)
+    cal, caught = calibrated(record(tmp_path, truth, "heavy", contacts=contacts), base)
+    assert not caught and cal.contacts.tolist() == list(contacts) and cal.left_out == {}
+    for name, value in (("hinge_stiffness", TRUE_HINGE), ("tip_mass", 0.015),
+                        ("loss_factor", truth.probe.loss_factor)):
+        lo, hi = cal.interval(name)
+        assert lo <= value <= hi, (name, lo, value, hi)
+
+
 def test_loss_factor_without_tube_damping_in_the_model_is_not_identifiable(rig):
     # A scene without structural_damping has no tube loss: the decays cannot measure it.
     bare = Scene(name="bare", probe=Probe(tip_mass=TRUE_TIP), hinge=TRUE_HINGE,
@@ -450,12 +490,17 @@ def test_a_probe_instead_of_a_scene_is_refused_by_name(rig):
 
 
 def test_a_mode_above_what_the_sampling_resolves_is_refused_clearly(rig):
-    # Recordings sampled at 60 Hz cannot show modes of 30-80 Hz: the calibration says which
-    # contact's mode lies above what fs resolves instead of a filter's error.
-    slow = _fake(rig, fs=60.0)
+    # Recordings sampled at 60 Hz cannot show modes above 24 Hz: where no hinge and tip mass
+    # searched put the fitted mode below (from 15 cm, stiffer than 100 N m/rad, under 0.5 g:
+    # 24.7 Hz and up), the calibration says which contact's mode lies above what fs resolves
+    # instead of a filter's error. (Over the whole default range a heavy tip on a soft hinge
+    # does put the modes below 24 Hz, and the fit is made.)
+    far = rig.contact >= 0.15
+    slow = _fake(rig, fs=60.0, contact=rig.contact[far], material=rig.material[far],
+                 ax=rig.ax[far], az=rig.az[far])
     with pytest.raises(ValueError, match=r"no mode below 24 Hz, the highest whose band "
                                          r"recordings at fs = 60 Hz resolve"):
-        calibrate(slow, RIG)
+        calibrate(slow, RIG, stiffness_bounds=(100.0, 1e4), mass_bounds=(0.0, 0.0005))
     with pytest.raises(ValueError, match="^frequency must lie in"):
         loss_factor_of(rig.ax[0], 1000.0, 450.0)
 

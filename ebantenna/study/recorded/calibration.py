@@ -24,13 +24,15 @@ The mode fitted, by identity
     higher mode or one of the rod's. Its frequency is measured where the model puts it: the
     recording is band-passed about the predicted frequency (+/- 25 %) and the mode's frequency
     read from the analytic signal's phase slope (:func:`loss_factor_of`). The fit starts from
-    the hinge (a grid of decades) and the tip mass (a few values) whose modes fall on the
-    recordings' spectral peaks, and alternates measuring at the prediction and fitting until the
-    measured frequencies and the modes fitted no longer change (by ``SETTLED``). Each fit holds
-    the mode at each position: the rule applied at every trial would switch to another mode
-    where the lowest one's share crosses :data:`MIN_SHARE`, the misfit would jump there, and
-    the fit could stop at the jump (a clamped probe without a tip mass once stopped at
-    27.7 N m/rad, its interval excluding the clamp).
+    the hinge (a grid of decades) and the tip mass (a grid over the whole range searched, its
+    neighbours' modes :data:`START_STEP` apart) whose modes fall on the recordings' spectral
+    peaks (a grid that stopped at half the range started a 12-15 g tip at 5 g, outside the
+    band, and its recordings were refused), and alternates measuring at the prediction and
+    fitting until the measured frequencies and the modes fitted no longer change (by
+    ``SETTLED``). Each fit holds the mode at each position: the rule applied at every trial
+    would switch to another mode where the lowest one's share crosses :data:`MIN_SHARE`, the
+    misfit would jump there, and the fit could stop at the jump (a clamped probe without a tip
+    mass once stopped at 27.7 N m/rad, its interval excluding the clamp).
 
 Positions the estimator cannot read
     A band of +/- 25 % with a second-order filter lets the model's other modes through. Where
@@ -174,6 +176,10 @@ STIFFNESS_RANGE = (1e-3, 1e6)
 #: 1000 Hz), and :func:`loss_factor_of` reads from two periods past the peak to two before the
 #: end.
 READ_PERIODS = 5.5
+#: Ratio of the modes of neighbouring tip masses of the start's grid (``_mass_grid``): a mass
+#: between two has modes within its square root, 14 %, of one of them's, inside the +/- 25 %
+#: band (:data:`BAND`) the measurement reads about a prediction.
+START_STEP = 1.3
 #: Where a decay starts (``_onset``): at the band envelope's largest value within ``RISE``
 #: periods of where it first reaches ``ONSET`` of its largest value. A mode ringing from rest
 #: peaks 0.5 to 1.5 periods in (see :data:`READ_PERIODS`), having passed half its peak before.
@@ -800,8 +806,10 @@ def _check_dataset(ds):
 def _peak_score(model, ax, fs):
     """``score(log10_k, m_t, eta)``: how well the model's fitted modes fall on the recordings'
     spectral peaks -- the mean over positions of the log of the position's mean amplitude
-    spectrum within +/- 3 % of the mode, over its median (a mode the model cannot show scores
-    as the median)."""
+    spectrum within +/- 3 % of the mode (or half a bin, where that is wider: a 6 Hz mode's
+    +/- 3 % holds no bin of a one-second record's, and scored as no mode, so heavy tips were
+    never started from), over its median (a mode the model cannot show scores as the
+    median)."""
     spectrum = np.abs(np.fft.rfft(ax - ax.mean(axis=1, keepdims=True), axis=1))
     f = np.fft.rfftfreq(ax.shape[1], 1.0 / fs)
     per_position = np.array([spectrum[model.index == k].mean(axis=0)
@@ -813,7 +821,7 @@ def _peak_score(model, ax, fs):
     def score(log10_k, tip_mass, eta):
         total = 0.0
         for k, mode in enumerate(model.modes(log10_k, tip_mass, eta)[0]):
-            near = (f >= 0.97 * mode) & (f <= 1.03 * mode)
+            near = np.abs(f - mode) <= max(0.03 * mode, 0.5 * f[1])
             total += level[k, near].max() if np.isfinite(mode) and near.any() else 0.0
         return total / len(model.keys)
 
@@ -1057,15 +1065,36 @@ def _check_length(model, bounds, eta0) -> None:
             "at the highest frequency the search allows); record longer")
 
 
+def _mass_grid(effective: float, low: float, high: float) -> np.ndarray:
+    """Tip masses (kg) from ``low`` to ``high`` whose modes lie within :data:`START_STEP` of
+    their neighbours': a tip mass lowers a mode about as ``1 / sqrt(m_e + m_t)``, ``m_e`` the
+    ``effective`` mass (kg) the tip already carries, so the masses plus ``m_e`` are spaced by
+    ``START_STEP**2`` (the last step shorter, to end at ``high``). Any mass in the range is then
+    within half a step of one of them (a smaller ``m_e`` only makes the steps finer).
+
+    Examples
+    --------
+    >>> np.round(1000 * _mass_grid(0.6e-3, 0.0, 0.02), 2)
+    array([ 0.  ,  0.41,  1.11,  2.3 ,  4.29,  7.67, 13.38, 20.  ])
+    """
+    steps = math.ceil(math.log((effective + high) / (effective + low))
+                      / (2 * math.log(START_STEP)))
+    return np.array([*((effective + low) * START_STEP ** (2 * np.arange(steps)) - effective),
+                     high])
+
+
 def _start(model, ax, fs, bounds, eta0) -> np.ndarray:
-    """The hinge (a grid of decades), then the tip mass, then the hinge again, whose modes fall
-    on the recordings' spectral peaks."""
+    """The hinge (a grid of decades), then the tip mass (a grid over the whole range searched,
+    ``_mass_grid``), then the hinge again, whose modes fall on the recordings' spectral peaks."""
     score = _peak_score(model, ax, fs)
     (k_lo, m_lo), (k_hi, m_hi) = bounds
-    m_start = min(max(model.scene.probe.tip_mass, m_lo), m_hi)
+    probe = model.scene.probe
+    m_start = min(max(probe.tip_mass, m_lo), m_hi)
     grid = np.unique(np.clip(np.arange(math.floor(k_lo), math.ceil(k_hi) + 1), k_lo, k_hi))
-    masses = np.unique([m_start, *(m_lo + (m_hi - m_lo) * np.array([0, 1 / 16, 1 / 8, 1 / 4,
-                                                                        1 / 2]))])
+    # the tube beyond the farthest contact swings with the tip there (33/140 of its mass,
+    # Rayleigh's cantilever): the least effective mass, where a tip mass moves the modes most
+    effective = 33 / 140 * probe.mass_per_length * (probe.length - max(c for c, _ in model.keys))
+    masses = np.unique([m_start, *_mass_grid(effective, m_lo, m_hi)])
     k_start = grid[int(np.argmax([score(g, m_start, eta0) for g in grid]))]
     m_start = masses[int(np.argmax([score(k_start, m, eta0) for m in masses]))]
     k_start = grid[int(np.argmax([score(g, m_start, eta0) for g in grid]))]

@@ -35,6 +35,14 @@ The mode fitted, by identity
     mass once stopped at 27.7 N m/rad, its interval excluding the clamp).
 
 Positions the estimator cannot read
+    Every recording the fit does not use is in ``left_out`` with the reason: beyond ``region``;
+    at a position where the model has no mode the recordings resolve, or where its other modes
+    crowd the fitted one (below); or where the estimator reads nothing (the envelope first peaks
+    too late in the record, or falls below 5 % within two periods) or a frequency outside the
+    band (another mode). A position none of whose recordings is read is left out whole (a
+    lightly damped tube's 5 cm position once left the fit so, ``left_out`` empty); recordings
+    read at fewer than 3 positions are refused, each of the others named with its reason.
+
     A band of +/- 25 % with a second-order filter lets the model's other modes through. Where
     they move what the estimator reads of the fitted mode by more than :data:`CROWDING` (the
     model's modes within half to twice its frequency, each ringing beside it at its share of the
@@ -236,8 +244,12 @@ class Calibration:
         (``f`` and ``p`` None where it cannot be tested) and ``largest`` (the contact, m, and
         the relative misfit of the position the model misses most).
     left_out : dict
-        ``"contact m (material)" -> reason`` for each position left out of the fit because the
-        model's other modes ring beside the fitted one there.
+        ``"contact m (material)" -> reason`` for each position left out of the fit: beyond
+        ``region``, where the model's other modes ring beside the fitted one, where it has no
+        mode the recordings resolve, or where none of its recordings could be read; and
+        ``"contact m (material), recording r" -> reason`` for a recording (row ``r`` of the
+        data set) not read at a position fitted from its others. Nothing recorded leaves the
+        fit without an entry here.
     """
 
     hinge_stiffness: float
@@ -674,7 +686,7 @@ class _Model:
         self.evaluations = 0
         self._lags, self._filters = {}, {}
         self.rods = touched_rods(scene, materials.tolist())
-        self.held, self.crowded = None, {}
+        self.held, self.crowded, self.unread = None, {}, {}
         pairs = list(zip(contacts.tolist(), materials.tolist(), strict=True))
         same = _same_point(scene_modes(scene, contacts, materials, rods=self.rods))
         self.keys = sorted({same[pair] for pair in pairs})
@@ -884,10 +896,7 @@ def calibrate(ds, scene, *, stiffness_bounds=None, mass_bounds=None,
                                high_inclusive=True)
     max_rounds = check_int("max_rounds", max_rounds, minimum=1, maximum=20)
     bounds = _search_bounds(scene.probe, stiffness_bounds, mass_bounds)
-    use = np.flatnonzero(contact <= region * scene.probe.length)
-    if use.size < 3 or np.unique(contact[use]).size < 2:
-        raise ValueError(f"calibration needs at least 3 recordings at 2 or more distances within "
-                         f"region={region:g} L of the hinge, got {use.size}")
+    use, beyond = _in_region(contact, material, region, scene.probe.length)
     contact, material, ax = contact[use], material[use], ax[use]
     model = _Model(scene, contact, material, fs, ax.shape[1])
     eta0 = scene.probe.loss_factor if scene.probe.loss_factor > 0 else 0.03
@@ -926,15 +935,43 @@ def calibrate(ds, scene, *, stiffness_bounds=None, mass_bounds=None,
                                 math.inf if m_high >= bounds[1][1] else m_high),
                    "loss_factor": eta_interval},
         not_identifiable=missing, model=_describe_model(scene), lack_of_fit=test,
-        left_out=_left_out(model)))
+        left_out=_left_out(model, material, use, beyond)))
 
 
-def _left_out(model) -> dict:
-    """The positions :meth:`_Model.identify` left out, each with its reason."""
-    return {f"{model.keys[i][0]:g} m ({model.labels[i]})":
-            f"the model's mode at {other:.1f} Hz rings beside the fitted one ({fitted:.1f} Hz) "
-            f"and moves what the estimator reads of it by up to {shift:.2%}, more than "
-            f"{CROWDING:g}" for i, (shift, other, fitted) in sorted(model.crowded.items())}
+def _left_out(model, material, rows, beyond) -> dict:
+    """Everything left out of the fit, with its reason, in order of distance: the distances
+    ``beyond`` the region fitted (``_in_region``), each position that gave no frequency
+    (``_not_fitted``), and each recording not read at a position that did, as
+    ``"contact m (material), recording r"`` (``material`` its material, ``r`` its row of the
+    data set, ``rows``)."""
+    entries = list(beyond)
+    for i, why in _not_fitted(model).items():
+        entries.append((model.keys[i][0], _label(model, i), why))
+    for r, why in model.unread.items():
+        i = model.index[r]
+        if any(np.isfinite(model.decays[q][1]) for q in np.flatnonzero(model.index == i)):
+            entries.append((model.keys[i][0],
+                            f"{model.keys[i][0]:g} m ({material[r]}), recording {rows[r]}", why))
+    return {key: why for _, key, why in sorted(entries, key=lambda e: (e[0], e[1]))}
+
+
+def _in_region(contact, material, region: float, length: float):
+    """The rows of the recordings within ``region`` of the probe's ``length`` from the hinge,
+    and ``(contact, key, why)`` of ``left_out`` for each distance beyond; too few within are
+    refused."""
+    limit = region * length
+    use = np.flatnonzero(contact <= limit)
+    if use.size < 3 or np.unique(contact[use]).size < 2:
+        raise ValueError(f"calibration needs at least 3 recordings at 2 or more distances within "
+                         f"region={region:g} L of the hinge, got {use.size}")
+    beyond = []
+    for c in np.unique(contact[contact > limit]):
+        here = contact == c
+        beyond.append((float(c), f"{c:g} m ({'+'.join(sorted(set(material[here].tolist())))})",
+                       f"beyond region = {region:g} of the probe's length ({limit:.3g} m from "
+                       f"the hinge): its {int(here.sum())} recordings lie outside the region "
+                       "fitted"))
+    return use, beyond
 
 
 def _warned(cal: Calibration) -> Calibration:
@@ -1113,7 +1150,7 @@ def _measure_and_fit(model, ax, fs, contact, p, bounds, eta0, max_rounds):
         identity = model.identify(p[0], p[1], eta0)
         model.hold(identity)
         predicted, _ = model.modes(p[0], p[1], eta0)
-        decays = _measure(ax, fs, predicted[model.index], contact)
+        decays, model.unread = _measure(ax, fs, predicted[model.index], contact)
         new = model.per_position(np.array([d[1] for d in decays]))
         settled = np.array_equal(identity, held) and np.array_equal(
             np.isfinite(new), np.isfinite(target)) and np.allclose(
@@ -1122,33 +1159,69 @@ def _measure_and_fit(model, ax, fs, contact, p, bounds, eta0, max_rounds):
         model.measured_on(decays, eta0)
         ok = np.isfinite(target)
         if ok.sum() < 3:
-            unread = [c for i, ((c, _), f) in enumerate(zip(model.keys, predicted, strict=True))
-                      if not np.isfinite(f) and i not in model.crowded]
-            why = (f"; at {', '.join(f'{c:g}' for c in unread)} m the model has no mode below "
-                   f"{fs / 2 / (1 + BAND):.4g} Hz, the highest whose band recordings at fs = "
-                   f"{fs:g} Hz resolve" if unread else "")
-            need = _samples_needed(predicted, fs)
-            if need.size >= 3 and ax.shape[1] < need[2]:
-                why += (f"; records of {ax.shape[1]} samples are too short for the modes "
-                        f"predicted: reading 3 positions needs {int(need[2])} samples at least "
-                        f"({READ_PERIODS:g} periods)")
-            if model.crowded:
-                why += (f"; at {', '.join(f'{model.keys[i][0]:g}' for i in model.crowded)} m "
-                        "the model's other modes ring beside the fitted one")
-            if ok.size < 3:
-                raise ValueError(f"the recordings hold {ok.size} distinct contact positions "
-                                 "in the region fitted (a distance each, and a material where "
-                                 "the model tells the materials apart); 3 are needed: record "
-                                 "more distances")
-            raise ValueError(f"only {int(ok.sum())} of {ok.size} distinct contact positions show "
-                             f"the mode the model predicts (3 are needed){why}; check that the "
-                             "scene describes these recordings (--scene: the probe, the "
-                             "material)")
+            raise ValueError(_refusal(model, predicted, ok))
         if settled and fit is not None:
             break
         fit = _fit(model, p, bounds, target, ok, eta0)
         p = fit.x
     return fit, target, decays
+
+
+def _refusal(model, predicted, ok) -> str:
+    """Why the calibration cannot go on with ``ok.sum()`` (under 3) positions that show the mode
+    the model predicts (``predicted``, Hz): each of the others with its reason
+    (``_not_fitted``, positions of one reason together), and records too short for the modes
+    predicted."""
+    if ok.size < 3:
+        return (f"the recordings hold {ok.size} distinct contact positions in the region fitted "
+                "(a distance each, and a material where the model tells the materials apart); 3 "
+                "are needed: record more distances")
+    together = {}
+    for i, reason in _not_fitted(model).items():
+        together.setdefault(reason, []).append(_label(model, i))
+    why = "".join(f"; at {', '.join(where)}: {reason}" for reason, where in together.items())
+    need = _samples_needed(predicted, model.fs)
+    if need.size >= 3 and model.n < need[2]:
+        why += (f"; records of {model.n} samples are too short for the modes predicted: reading "
+                f"3 positions needs {int(need[2])} samples at least ({READ_PERIODS:g} periods)")
+    if any(NO_MODE in reason or ANOTHER in reason for reason in together):
+        why += ("; check that the scene describes these recordings (--scene: the probe, the "
+                "material)")
+    return (f"only {int(ok.sum())} of {ok.size} distinct contact positions show the mode the "
+            f"model predicts (3 are needed){why}")
+
+
+#: What ``_not_fitted`` says of a position where the model has no mode the recordings resolve,
+#: and ``_unread`` of a band that holds another mode than the one predicted.
+NO_MODE, ANOTHER = "the model has no mode below", "not the mode predicted"
+
+
+def _label(model, i: int) -> str:
+    """Position ``i`` as ``left_out`` names it: ``"contact m (materials)"``."""
+    return f"{model.keys[i][0]:g} m ({model.labels[i]})"
+
+
+def _not_fitted(model) -> dict:
+    """``{position: why}`` for each position none of whose recordings gave a frequency: the
+    model's other modes ring beside the fitted one there (:data:`CROWDING`), it has no mode the
+    recordings resolve, or each recording's reading failed (``_unread``)."""
+    out = {}
+    for i in range(len(model.keys)):
+        mine = np.flatnonzero(model.index == i)
+        if any(np.isfinite(model.decays[r][1]) for r in mine):
+            continue
+        whys = list(dict.fromkeys(model.unread[r] for r in mine if r in model.unread))
+        if i in model.crowded:
+            shift, other, fitted = model.crowded[i]
+            out[i] = (f"the model's mode at {other:.1f} Hz rings beside the fitted one "
+                      f"({fitted:.1f} Hz) and moves what the estimator reads of it by up to "
+                      f"{shift:.2%}, more than {CROWDING:g}")
+        elif whys:
+            out[i] = f"none of its {mine.size} recordings is read: {'; '.join(whys)}"
+        else:
+            out[i] = (f"{NO_MODE} {model.fs / 2 / (1 + BAND):.4g} Hz, the highest whose band "
+                      f"recordings at fs = {model.fs:g} Hz resolve")
+    return out
 
 
 def _loss_interval(eta: float, half: float, reason: str) -> tuple[tuple[float, float], str]:
@@ -1218,9 +1291,10 @@ def _describe_model(scene) -> str:
 def _measure(ax, fs, predicted, contact):
     """Each recording's decay of the mode at its prediction: ``(eta, f, periods, peak, band)``
     (f NaN where no mode is predicted, or the band holds another; band: the prediction the
-    band-pass was centred on)."""
-    out = []
-    for x, f, c in zip(ax, predicted, contact, strict=True):
+    band-pass was centred on), and ``{recording: why}`` for each whose predicted mode gave no
+    frequency (``_unread``)."""
+    out, unread = [], {}
+    for r, (x, f, c) in enumerate(zip(ax, predicted, contact, strict=True)):
         if not np.isfinite(f):
             out.append((math.nan, math.nan, 0.0, 0, math.nan))
             continue
@@ -1230,10 +1304,35 @@ def _measure(ax, fs, predicted, contact):
                 f"recordings at fs = {fs:g} Hz resolve (its band +/- {BAND:.0%} must lie below "
                 f"fs / 2); lower region or record at a higher rate")
         eta, measured, cycles, peak = _decay(x, fs, f)
-        if not abs(measured / f - 1) < BAND:  # the band's content is not the predicted mode
+        if not abs(measured / f - 1) < BAND:  # nothing read, or not the predicted mode
+            unread[r] = _unread(x.size, fs, f, peak, measured)
             measured = math.nan
         out.append((eta, measured, cycles, peak, f))
-    return out
+    return out, unread
+
+
+def _unread(n: int, fs: float, band: float, peak: int, measured: float) -> str:
+    """Why a recording of ``n`` samples gave no frequency of the mode predicted at ``band``
+    (Hz): its band envelope first peaking at sample ``peak``, ``measured`` what
+    :func:`loss_factor_of` read (NaN: nothing, the stretch it reads holding under 3 samples).
+
+    Examples
+    --------
+    >>> _unread(1000, 1000.0, 10.0, 700, math.nan).split(":")[0]
+    'its band envelope about 10.0 Hz first peaks at 0.7 s of the 1 s record, too late to read'
+    >>> _unread(1000, 1000.0, 10.0, 100, 14.0).split(": ")[1]
+    'what rings there is not the mode predicted'
+    """
+    if np.isfinite(measured):
+        return (f"the band about the predicted {band:.1f} Hz reads {measured:.1f} Hz, more than "
+                f"{BAND:.0%} off: what rings there is {ANOTHER}")
+    t = np.arange(n) / fs
+    if np.count_nonzero((t > t[peak] + 2.0 / band) & (t < t[-1] - 2.0 / band)) < 3:
+        return (f"its band envelope about {band:.1f} Hz first peaks at {peak / fs:.3g} s of the "
+                f"{n / fs:.3g} s record, too late to read: a reading spans from 2 periods past "
+                "the peak to 2 before the end")
+    return (f"its band envelope about {band:.1f} Hz falls below 5 % of its peak within 2 periods "
+            "of it: a decay too fast to read")
 
 
 #: The parameters' typical sizes (``log10 k_h``, ``m_t`` in kg): least squares' ``x_scale``.

@@ -356,6 +356,21 @@ def test_an_undamped_ring_is_read_from_where_its_envelope_first_peaks():
         assert undamped[1] == pytest.approx(f, rel=5e-4) and undamped[2] >= 4, f
 
 
+def test_a_barely_falling_decay_is_inverted_to_the_loss_factor_that_reads_as_it():
+    # The paper scene with an undamped tube read 3.2e-5 at 25 cm (32.5 Hz): the model's own
+    # ringing at such a loss, its envelope flat, was aligned on a late largest value and read
+    # 0.498 or nothing, the secant stepped past a damping ratio of 1 and the calibration ended
+    # in "math domain error". Witness: the inverse, read again, gives the reading back, to the
+    # secant's last step (its reading is within a few per cent of linear in the loss).
+    from ebantenna.study.recorded.calibration import _as_read_inverse, as_measured
+
+    read, f, peak, band = 3.231041352546246e-05, 32.47598321077104, 84, 32.47463931063399
+    loss = _as_read_inverse(read, f, 1000, 1000.0, peak, band)
+    assert as_measured(f, loss, 1000, 1000.0, peak, band=band)[0] == pytest.approx(read,
+                                                                                 abs=1e-7)
+    assert 0.0 < loss < 1e-3
+
+
 def test_an_undamped_tube_is_calibrated_and_its_loss_factor_bounded_from_above(tmp_path):
     # The modal rig with an undamped tube: its envelopes do not fall within a record, and read
     # from their largest value (0.77 s into the one-second record at 5 cm) three of the five

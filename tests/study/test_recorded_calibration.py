@@ -337,6 +337,145 @@ def test_a_tip_mass_beyond_the_range_searched_is_bounded_from_below_only(rig):
     assert "tip_mass" in cal.held_at_fit_stop  # the scene holds the search's bound
 
 
+def test_an_undamped_ring_is_read_from_where_its_envelope_first_peaks():
+    # An undamped mode's band envelope is flat after its rise, its largest value anywhere: read
+    # from there (at 20 and 42 Hz, near the record's end), nothing was left to read and the
+    # frequency was NaN. Witness: the same ring with a loss factor of 0.001, which the estimator
+    # reads from its peak. The reading is affine in the loss, so the undamped ring's loss factor
+    # reads 0.001 lower, within the few per cent the reading departs from linear, and its
+    # frequency alike within a tenth of the time base (the estimator's bias moves with the
+    # loss, by a few parts in 10^6 for 0.001); the frequency lies within that bias on a
+    # one-second record, a few parts in 10^4 (module notes).
+    fs, t = 1000.0, np.arange(1000) / 1000.0
+    for f in (10.0, 20.0, 42.0):
+        undamped, damped = (loss_factor_of(np.exp(-eta * np.pi * f * t)
+                                           * np.sin(2 * np.pi * f * t), fs, f)
+                            for eta in (0.0, 0.001))
+        assert damped[0] - undamped[0] == pytest.approx(0.001, rel=0.05), f
+        assert undamped[1] == pytest.approx(damped[1], rel=1e-5), f
+        assert undamped[1] == pytest.approx(f, rel=5e-4) and undamped[2] >= 4, f
+
+
+def test_a_barely_falling_decay_is_inverted_to_the_loss_factor_that_reads_as_it():
+    # The paper scene with an undamped tube read 3.2e-5 at 25 cm (32.5 Hz): the model's own
+    # ringing at such a loss, its envelope flat, was aligned on a late largest value and read
+    # 0.498 or nothing, the secant stepped past a damping ratio of 1 and the calibration ended
+    # in "math domain error". Witness: the inverse, read again, gives the reading back, to the
+    # secant's last step (its reading is within a few per cent of linear in the loss).
+    from ebantenna.study.recorded.calibration import _as_read_inverse, as_measured
+
+    read, f, peak, band = 3.231041352546246e-05, 32.47598321077104, 84, 32.47463931063399
+    loss = _as_read_inverse(read, f, 1000, 1000.0, peak, band)
+    assert as_measured(f, loss, 1000, 1000.0, peak, band=band)[0] == pytest.approx(read,
+                                                                                 abs=1e-7)
+    assert 0.0 < loss < 1e-3
+
+
+def test_an_undamped_tube_is_calibrated_and_its_loss_factor_bounded_from_above(tmp_path):
+    # The modal rig with an undamped tube: its envelopes do not fall within a record, and read
+    # from their largest value (0.77 s into the one-second record at 5 cm) three of the five
+    # positions gave nothing, and the calibration was refused as if the scene were wrong. Read
+    # from where each envelope first peaks, every position is fitted and the hinge and tip are
+    # recovered within their intervals; the loss factor, which no decay here shows, is bounded
+    # from above only, its interval holding the truth, 0. Its bound must say something: a loss
+    # factor of 0.002 would lower the slowest envelope read (15 Hz) by 10 % over the record,
+    # beyond its few per cent of wavering.
+    truth = RIG.with_(probe=Probe(tip_mass=TRUE_TIP, loss_factor=0.0))
+    base = RIG.with_(hinge="clamped", probe=Probe(tip_mass=0.001, loss_factor=0.01))
+    cal, caught = calibrated(record(tmp_path, truth, "undamped"), base)
+    assert cal.contacts.tolist() == list(CONTACTS) and cal.left_out == {}
+    for name, value in (("hinge_stiffness", TRUE_HINGE), ("tip_mass", TRUE_TIP)):
+        lo, hi = cal.interval(name)
+        assert cal.identifiable(name) and lo <= value <= hi, (name, lo, value, hi)
+    assert "only from above" in cal.not_identifiable["loss_factor"]
+    assert [str(w.message).split()[0] for w in caught] == ["loss_factor"]
+    lo, hi = cal.interval("loss_factor")
+    assert lo == 0.0 < hi < 0.002
+    assert cal.to_dict()["loss_factor"] is None
+    assert cal.scene(base).probe.loss_factor == base.probe.loss_factor
+
+
+@pytest.mark.parametrize("tip", [0.012, 0.015, 0.0195])
+@pytest.mark.parametrize("hinge", [2.0, 20.0, 1e4])
+def test_the_fit_starts_within_the_measured_band_over_the_whole_mass_range(tip, hinge):
+    # The start's tip masses stopped at half the range searched (10 g of 20), and a mode under
+    # about 16 Hz, whose +/- 3 % held no bin of a one-second spectrum, scored as no mode: heavy
+    # tips were started from 1-5 g, their modes 40 % to 170 % off, outside the +/- 25 % band
+    # the measurement reads about a prediction, and recordings of a 12-15 g tip were refused.
+    # Witness: recordings made of the model's own fitted mode at the truth, with noise; the
+    # start must put every position's mode inside that band (BAND), what the fit needs.
+    from ebantenna.study.recorded import calibration as C
+
+    base = RIG.with_(hinge="clamped", probe=Probe(tip_mass=0.001, loss_factor=0.01))
+    contact = np.array(CONTACTS)
+    model = C._Model(base, contact, np.full(contact.size, "brass"), 1000.0, 1000)
+    truth = model.modes(math.log10(hinge), tip, 0.03)[0]
+    t = np.arange(1000) / 1000.0
+    ax = np.array([np.exp(-0.03 * np.pi * f * t) * np.sin(2 * np.pi * f * t) for f in truth])
+    ax += 0.01 * np.random.default_rng(0).standard_normal(ax.shape)
+    start = C._start(model, ax, 1000.0, C._search_bounds(base.probe, None, None), 0.03)
+    assert np.all(np.abs(model.modes(*start, 0.03)[0] / truth - 1) < C.BAND), start
+
+
+def test_a_heavy_tip_inside_the_range_searched_is_recovered(tmp_path):
+    # A 15 g tip, inside the 20 g searched: the start stopped at 5 g and a hinge of 1e-3
+    # N m/rad, and the calibration was refused ("only 0 of 5 positions show the mode the model
+    # predicts", as if the scene were wrong). From 10 cm, where its mode holds more periods of
+    # the one-second record (at 5 cm, 6 Hz: under one period is read). Below about 15 Hz the
+    # model, read through the estimator, misses the recordings by 1e-4 to 3e-3 at the truth,
+    # and the lack-of-fit test may say so; the intervals must still hold the truth.
+    truth = RIG.with_(probe=Probe(tip_mass=0.015))
+    base = RIG.with_(hinge="clamped", probe=Probe(tip_mass=0.001, loss_factor=0.01))
+    contacts = (0.10, 0.15, 0.20, 0.25, 0.30)
+    cal, caught = calibrated(record(tmp_path, truth, "heavy", contacts=contacts), base)
+    assert not caught and cal.contacts.tolist() == list(contacts) and cal.left_out == {}
+    for name, value in (("hinge_stiffness", TRUE_HINGE), ("tip_mass", 0.015),
+                        ("loss_factor", truth.probe.loss_factor)):
+        lo, hi = cal.interval(name)
+        assert lo <= value <= hi, (name, lo, value, hi)
+
+
+def test_a_lightly_damped_tube_keeps_every_position(tmp_path):
+    # At a loss factor of 0.001 the 5 cm recordings' envelopes (10 Hz) peaked late, gave no
+    # frequency, and the position was dropped from the fit with left_out empty: fitted at four
+    # positions, reported as if at all. Every position is now fitted, and the intervals hold
+    # the truth (the loss factor's, bounded from above only, holds 0.001).
+    truth = RIG.with_(probe=Probe(tip_mass=TRUE_TIP, loss_factor=0.001))
+    base = RIG.with_(hinge="clamped", probe=Probe(tip_mass=0.001, loss_factor=0.01))
+    cal, _ = calibrated(record(tmp_path, truth, "light"), base)
+    assert cal.contacts.tolist() == list(CONTACTS) and cal.left_out == {}
+    for name, value in (("hinge_stiffness", TRUE_HINGE), ("tip_mass", TRUE_TIP),
+                        ("loss_factor", 0.001)):
+        lo, hi = cal.interval(name)
+        assert lo <= value <= hi, (name, lo, value, hi)
+
+
+def test_every_position_and_recording_left_out_is_named_with_its_reason(rig):
+    # Witness: the rig's recordings with some made unreadable, their truth known. A recording
+    # whose ringing starts 0.9 s into its one-second record leaves nothing to read past its
+    # peak: one such at 10 cm (its position still fitted from the other), both at 15 cm (the
+    # position lost), and the 30 cm recordings relabelled 35 cm, beyond the 0.8 L (32 cm)
+    # fitted. Each must be in left_out with that reason; before, none was, and a position
+    # lost this way vanished from the fit unreported.
+    ax = np.array(rig.ax, dtype=float)
+    late = np.flatnonzero(rig.contact == 0.15).tolist() + [np.flatnonzero(rig.contact == 0.10)[0]]
+    for r in late:
+        ax[r] = np.concatenate([np.zeros(900), ax[r, :100]])
+    contact = np.where(rig.contact == 0.30, 0.35, rig.contact)
+    cal, _ = calibrated(_fake(rig, ax=ax, contact=contact), RIG)
+    row = late[-1]
+    assert list(cal.left_out) == [f"0.1 m (brass), recording {row}", "0.15 m (brass)",
+                                  "0.35 m (brass)"]
+    assert "first peaks at 0.9" in cal.left_out[f"0.1 m (brass), recording {row}"]
+    assert cal.left_out["0.15 m (brass)"].startswith("none of its 2 recordings is read: its band")
+    assert "too late to read" in cal.left_out["0.15 m (brass)"]
+    assert "beyond region = 0.8" in cal.left_out["0.35 m (brass)"]
+    assert "2 recordings" in cal.left_out["0.35 m (brass)"]
+    assert cal.contacts.tolist() == [0.05, 0.10, 0.20]
+    # what is left out is out of the fit: 5 recordings read at 3 positions, 2 parameters
+    assert cal.lack_of_fit["df"] == [3 - 2, 5 - 3]
+
+
 def test_loss_factor_without_tube_damping_in_the_model_is_not_identifiable(rig):
     # A scene without structural_damping has no tube loss: the decays cannot measure it.
     bare = Scene(name="bare", probe=Probe(tip_mass=TRUE_TIP), hinge=TRUE_HINGE,
@@ -407,12 +546,17 @@ def test_a_probe_instead_of_a_scene_is_refused_by_name(rig):
 
 
 def test_a_mode_above_what_the_sampling_resolves_is_refused_clearly(rig):
-    # Recordings sampled at 60 Hz cannot show modes of 30-80 Hz: the calibration says which
-    # contact's mode lies above what fs resolves instead of a filter's error.
-    slow = _fake(rig, fs=60.0)
+    # Recordings sampled at 60 Hz cannot show modes above 24 Hz: where no hinge and tip mass
+    # searched put the fitted mode below (from 15 cm, stiffer than 100 N m/rad, under 0.5 g:
+    # 24.7 Hz and up), the calibration says which contact's mode lies above what fs resolves
+    # instead of a filter's error. (Over the whole default range a heavy tip on a soft hinge
+    # does put the modes below 24 Hz, and the fit is made.)
+    far = rig.contact >= 0.15
+    slow = _fake(rig, fs=60.0, contact=rig.contact[far], material=rig.material[far],
+                 ax=rig.ax[far], az=rig.az[far])
     with pytest.raises(ValueError, match=r"no mode below 24 Hz, the highest whose band "
                                          r"recordings at fs = 60 Hz resolve"):
-        calibrate(slow, RIG)
+        calibrate(slow, RIG, stiffness_bounds=(100.0, 1e4), mass_bounds=(0.0, 0.0005))
     with pytest.raises(ValueError, match="^frequency must lie in"):
         loss_factor_of(rig.ax[0], 1000.0, 450.0)
 

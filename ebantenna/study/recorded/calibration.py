@@ -24,15 +24,25 @@ The mode fitted, by identity
     higher mode or one of the rod's. Its frequency is measured where the model puts it: the
     recording is band-passed about the predicted frequency (+/- 25 %) and the mode's frequency
     read from the analytic signal's phase slope (:func:`loss_factor_of`). The fit starts from
-    the hinge (a grid of decades) and the tip mass (a few values) whose modes fall on the
-    recordings' spectral peaks, and alternates measuring at the prediction and fitting until the
-    measured frequencies and the modes fitted no longer change (by ``SETTLED``). Each fit holds
-    the mode at each position: the rule applied at every trial would switch to another mode
-    where the lowest one's share crosses :data:`MIN_SHARE`, the misfit would jump there, and
-    the fit could stop at the jump (a clamped probe without a tip mass once stopped at
-    27.7 N m/rad, its interval excluding the clamp).
+    the hinge (a grid of decades) and the tip mass (a grid over the whole range searched, its
+    neighbours' modes ``START_STEP`` apart) whose modes fall on the recordings' spectral
+    peaks (a grid that stopped at half the range started a 12-15 g tip at 5 g, outside the
+    band, and its recordings were refused), and alternates measuring at the prediction and
+    fitting until the measured frequencies and the modes fitted no longer change (by
+    ``SETTLED``). Each fit holds the mode at each position: the rule applied at every trial
+    would switch to another mode where the lowest one's share crosses :data:`MIN_SHARE`, the
+    misfit would jump there, and the fit could stop at the jump (a clamped probe without a tip
+    mass once stopped at 27.7 N m/rad, its interval excluding the clamp).
 
 Positions the estimator cannot read
+    Every recording the fit does not use is in ``left_out`` with the reason: beyond ``region``;
+    at a position where the model has no mode the recordings resolve, or where its other modes
+    crowd the fitted one (below); or where the estimator reads nothing (the envelope first peaks
+    too late in the record, or falls below 5 % within two periods) or a frequency outside the
+    band (another mode). A position none of whose recordings is read is left out whole (a
+    lightly damped tube's 5 cm position once left the fit so, ``left_out`` empty); recordings
+    read at fewer than 3 positions are refused, each of the others named with its reason.
+
     A band of +/- 25 % with a second-order filter lets the model's other modes through. Where
     they move what the estimator reads of the fitted mode by more than :data:`CROWDING` (the
     model's modes within half to twice its frequency, each ringing beside it at its share of the
@@ -51,8 +61,9 @@ The measurement, modelled
     signal's envelope and phase between the filter's transients), which is more than the time
     base's 10^-4 and would pass for a hinge softer than the truth. The model is therefore read
     through the same estimator (``as_measured``): the fitted mode rings alone over the
-    recording's length, its envelope peaking where the recording's does, and what the estimator
-    reads from it is compared with what it reads from the recording, so the bias cancels.
+    recording's length, its envelope first peaking where the recording's does, and what the
+    estimator reads from it is compared with what it reads from the recording, so the bias
+    cancels.
 
 Frequencies: hinge and tip mass
     The independent unit is the contact position (a material at a distance, or a distance alone
@@ -109,10 +120,24 @@ Loss factor
     the t interval of their mean, however few the positions). A scene without
     ``structural_damping`` has no tube loss to fit: the loss factor is then not identifiable.
 
+Decays too slow to show
+    A decay too slow to show within the record leaves the band envelope flat, wavering by a few
+    per cent as the other modes beat through the band: its largest value then falls anywhere,
+    often late, and read from there an undamped tube's recordings left nothing to read at most
+    positions, which were refused (their frequency with them). Each recording is read from
+    where its envelope first peaks (``_onset``: its largest value within ``RISE`` periods of
+    first reaching ``ONSET`` of it), which for a decay that shows is its largest value. A
+    reading of 0 or below (an envelope that does not fall, or the estimator's own bias on one
+    that barely does) is inverted and averaged like any other: dropping it kept only the
+    readings that happened to fall. Where the positions' interval then reaches 0 the loss
+    factor is bounded from above, not estimated (the tests' modal rig, a 20 N m/rad hinge and a
+    4 g tip, with an undamped tube: at most 6e-4, its hinge and tip mass recovered within their
+    intervals).
+
 Measured on the simulated rig (``ebantenna record --simulated --scene paper``, seed 0, brass at
 5, 10, 15, 20, 25 and 30 cm, two repetitions, calibrated with ``--scene paper``): a tip mass of
-2.499 g (95 % 2.492-2.504 g, truth 2.5 g), a loss factor of 0.0298 (0.0292-0.0304, truth 0.03)
-and a hinge not identifiable, stiffer than about 790 N m/rad (a clamp); the same scene with a
+2.499 g (95 % 2.490-2.507 g, truth 2.5 g), a loss factor of 0.0298 (0.0293-0.0304, truth 0.03)
+and a hinge not identifiable, stiffer than about 840 N m/rad (a clamp); the same scene with a
 5 N m/rad hinge gives 4.91 (4.75-5.08) N m/rad. ``tests/study/test_recorded_calibration.py``
 checks, on five of these positions and another seed, that each interval holds the truth.
 """
@@ -160,6 +185,14 @@ STIFFNESS_RANGE = (1e-3, 1e6)
 #: 1000 Hz), and :func:`loss_factor_of` reads from two periods past the peak to two before the
 #: end.
 READ_PERIODS = 5.5
+#: Ratio of the modes of neighbouring tip masses of the start's grid (``_mass_grid``): a mass
+#: between two has modes within its square root, 14 %, of one of them's, inside the +/- 25 %
+#: band (:data:`BAND`) the measurement reads about a prediction.
+START_STEP = 1.3
+#: Where a decay starts (``_onset``): at the band envelope's largest value within ``RISE``
+#: periods of where it first reaches ``ONSET`` of its largest value. A mode ringing from rest
+#: peaks 0.5 to 1.5 periods in (see :data:`READ_PERIODS`), having passed half its peak before.
+ONSET, RISE = 0.5, 2.0
 #: Largest relative change that the model's other modes, ringing beside the fitted one at any
 #: phase, may make to what the estimator reads of it: the time base's uncertainty. A position
 #: where they move it more is left out of the fit.
@@ -212,8 +245,12 @@ class Calibration:
         (``f`` and ``p`` None where it cannot be tested) and ``largest`` (the contact, m, and
         the relative misfit of the position the model misses most).
     left_out : dict
-        ``"contact m (material)" -> reason`` for each position left out of the fit because the
-        model's other modes ring beside the fitted one there.
+        ``"contact m (material)" -> reason`` for each position left out of the fit: beyond
+        ``region``, where the model's other modes ring beside the fitted one, where it has no
+        mode the recordings resolve, or where none of its recordings could be read; and
+        ``"contact m (material), recording r" -> reason`` for a recording (row ``r`` of the
+        data set) not read at a position fitted from its others. Nothing recorded leaves the
+        fit without an entry here.
     """
 
     hinge_stiffness: float
@@ -381,13 +418,14 @@ def _band(frequency, fs):
 
 def _decay(x, fs, frequency, sos=None):
     """:func:`loss_factor_of` on checked values (``sos``: its band filter about ``frequency``,
-    when already designed), and the index of the band envelope's peak."""
+    when already designed), and the index of the band envelope's first peak, where the decay
+    read starts (``_onset``)."""
     x = np.asarray(x, dtype=float) - np.mean(x)
     sos = _band(frequency, fs) if sos is None else sos
     analytic = hilbert(sosfiltfilt(sos, x))
     envelope = np.abs(analytic)
     t = np.arange(x.size) / fs
-    peak = int(envelope.argmax())
+    peak = _onset(envelope, fs / frequency)
     keep = ((t > t[peak] + 2.0 / frequency) & (t < t[-1] - 2.0 / frequency)
             & (envelope > 0.05 * envelope[peak]))
     if keep.sum() < 3:
@@ -397,6 +435,28 @@ def _decay(x, fs, frequency, sos=None):
     omega = abs(phase)
     return (float(-2.0 * slope / omega), float(omega / (2 * np.pi)),
             float(keep.sum() / fs * frequency), peak)
+
+
+def _onset(envelope, period: float) -> int:
+    """Where the decay starts: the largest value of the band envelope within ``RISE``
+    periods (``period``, in samples) of where it first reaches ``ONSET`` of its largest
+    value.
+
+    A mode ringing from rest rises through half its peak and to the peak within a period or
+    two, and falls from there, so for a decay that shows within the record this is the
+    envelope's largest value. A decay too slow to show leaves the envelope flat, wavering by a
+    few per cent as the model's other modes beat through the band: its largest value then falls
+    anywhere, late in the record as often as not, where too little is left to read.
+
+    Examples
+    --------
+    >>> _onset(np.array([0.1, 0.6, 1.0, 0.9, 0.8, 0.7]), 2.0)
+    2
+    >>> _onset(np.array([0.1, 0.6, 0.97, 0.95, 0.96, 0.96, 1.0]), 2.0)  # flat: not the late 1.0
+    2
+    """
+    start = int(np.argmax(envelope >= ONSET * envelope.max()))
+    return start + int(np.argmax(envelope[start:start + max(int(RISE * period), 1) + 1]))
 
 
 def as_measured(frequency: float, loss: float, n: int, fs: float, peak: int, *, lag=None,
@@ -627,7 +687,7 @@ class _Model:
         self.evaluations = 0
         self._lags, self._filters = {}, {}
         self.rods = touched_rods(scene, materials.tolist())
-        self.held, self.crowded = None, {}
+        self.held, self.crowded, self.unread = None, {}, {}
         pairs = list(zip(contacts.tolist(), materials.tolist(), strict=True))
         same = _same_point(scene_modes(scene, contacts, materials, rods=self.rods))
         self.keys = sorted({same[pair] for pair in pairs})
@@ -759,8 +819,10 @@ def _check_dataset(ds):
 def _peak_score(model, ax, fs):
     """``score(log10_k, m_t, eta)``: how well the model's fitted modes fall on the recordings'
     spectral peaks -- the mean over positions of the log of the position's mean amplitude
-    spectrum within +/- 3 % of the mode, over its median (a mode the model cannot show scores
-    as the median)."""
+    spectrum within +/- 3 % of the mode (or half a bin, where that is wider: a 6 Hz mode's
+    +/- 3 % holds no bin of a one-second record's, and scored as no mode, so heavy tips were
+    never started from), over its median (a mode the model cannot show scores as the
+    median)."""
     spectrum = np.abs(np.fft.rfft(ax - ax.mean(axis=1, keepdims=True), axis=1))
     f = np.fft.rfftfreq(ax.shape[1], 1.0 / fs)
     per_position = np.array([spectrum[model.index == k].mean(axis=0)
@@ -772,7 +834,7 @@ def _peak_score(model, ax, fs):
     def score(log10_k, tip_mass, eta):
         total = 0.0
         for k, mode in enumerate(model.modes(log10_k, tip_mass, eta)[0]):
-            near = (f >= 0.97 * mode) & (f <= 1.03 * mode)
+            near = np.abs(f - mode) <= max(0.03 * mode, 0.5 * f[1])
             total += level[k, near].max() if np.isfinite(mode) and near.any() else 0.0
         return total / len(model.keys)
 
@@ -835,10 +897,7 @@ def calibrate(ds, scene, *, stiffness_bounds=None, mass_bounds=None,
                                high_inclusive=True)
     max_rounds = check_int("max_rounds", max_rounds, minimum=1, maximum=20)
     bounds = _search_bounds(scene.probe, stiffness_bounds, mass_bounds)
-    use = np.flatnonzero(contact <= region * scene.probe.length)
-    if use.size < 3 or np.unique(contact[use]).size < 2:
-        raise ValueError(f"calibration needs at least 3 recordings at 2 or more distances within "
-                         f"region={region:g} L of the hinge, got {use.size}")
+    use, beyond = _in_region(contact, material, region, scene.probe.length)
     contact, material, ax = contact[use], material[use], ax[use]
     model = _Model(scene, contact, material, fs, ax.shape[1])
     eta0 = scene.probe.loss_factor if scene.probe.loss_factor > 0 else 0.03
@@ -877,15 +936,43 @@ def calibrate(ds, scene, *, stiffness_bounds=None, mass_bounds=None,
                                 math.inf if m_high >= bounds[1][1] else m_high),
                    "loss_factor": eta_interval},
         not_identifiable=missing, model=_describe_model(scene), lack_of_fit=test,
-        left_out=_left_out(model)))
+        left_out=_left_out(model, material, use, beyond)))
 
 
-def _left_out(model) -> dict:
-    """The positions :meth:`_Model.identify` left out, each with its reason."""
-    return {f"{model.keys[i][0]:g} m ({model.labels[i]})":
-            f"the model's mode at {other:.1f} Hz rings beside the fitted one ({fitted:.1f} Hz) "
-            f"and moves what the estimator reads of it by up to {shift:.2%}, more than "
-            f"{CROWDING:g}" for i, (shift, other, fitted) in sorted(model.crowded.items())}
+def _left_out(model, material, rows, beyond) -> dict:
+    """Everything left out of the fit, with its reason, in order of distance: the distances
+    ``beyond`` the region fitted (``_in_region``), each position that gave no frequency
+    (``_not_fitted``), and each recording not read at a position that did, as
+    ``"contact m (material), recording r"`` (``material`` its material, ``r`` its row of the
+    data set, ``rows``)."""
+    entries = list(beyond)
+    for i, why in _not_fitted(model).items():
+        entries.append((model.keys[i][0], _label(model, i), why))
+    for r, why in model.unread.items():
+        i = model.index[r]
+        if any(np.isfinite(model.decays[q][1]) for q in np.flatnonzero(model.index == i)):
+            entries.append((model.keys[i][0],
+                            f"{model.keys[i][0]:g} m ({material[r]}), recording {rows[r]}", why))
+    return {key: why for _, key, why in sorted(entries, key=lambda e: (e[0], e[1]))}
+
+
+def _in_region(contact, material, region: float, length: float):
+    """The rows of the recordings within ``region`` of the probe's ``length`` from the hinge,
+    and ``(contact, key, why)`` of ``left_out`` for each distance beyond; too few within are
+    refused."""
+    limit = region * length
+    use = np.flatnonzero(contact <= limit)
+    if use.size < 3 or np.unique(contact[use]).size < 2:
+        raise ValueError(f"calibration needs at least 3 recordings at 2 or more distances within "
+                         f"region={region:g} L of the hinge, got {use.size}")
+    beyond = []
+    for c in np.unique(contact[contact > limit]):
+        here = contact == c
+        beyond.append((float(c), f"{c:g} m ({'+'.join(sorted(set(material[here].tolist())))})",
+                       f"beyond region = {region:g} of the probe's length ({limit:.3g} m from "
+                       f"the hinge): its {int(here.sum())} recordings lie outside the region "
+                       "fitted"))
+    return use, beyond
 
 
 def _warned(cal: Calibration) -> Calibration:
@@ -1016,15 +1103,36 @@ def _check_length(model, bounds, eta0) -> None:
             "at the highest frequency the search allows); record longer")
 
 
+def _mass_grid(effective: float, low: float, high: float) -> np.ndarray:
+    """Tip masses (kg) from ``low`` to ``high`` whose modes lie within ``START_STEP`` of
+    their neighbours': a tip mass lowers a mode about as ``1 / sqrt(m_e + m_t)``, ``m_e`` the
+    ``effective`` mass (kg) the tip already carries, so the masses plus ``m_e`` are spaced by
+    ``START_STEP**2`` (the last step shorter, to end at ``high``). Any mass in the range is then
+    within half a step of one of them (a smaller ``m_e`` only makes the steps finer).
+
+    Examples
+    --------
+    >>> np.round(1000 * _mass_grid(0.6e-3, 0.0, 0.02), 2)
+    array([ 0.  ,  0.41,  1.11,  2.3 ,  4.29,  7.67, 13.38, 20.  ])
+    """
+    steps = math.ceil(math.log((effective + high) / (effective + low))
+                      / (2 * math.log(START_STEP)))
+    return np.array([*((effective + low) * START_STEP ** (2 * np.arange(steps)) - effective),
+                     high])
+
+
 def _start(model, ax, fs, bounds, eta0) -> np.ndarray:
-    """The hinge (a grid of decades), then the tip mass, then the hinge again, whose modes fall
-    on the recordings' spectral peaks."""
+    """The hinge (a grid of decades), then the tip mass (a grid over the whole range searched,
+    ``_mass_grid``), then the hinge again, whose modes fall on the recordings' spectral peaks."""
     score = _peak_score(model, ax, fs)
     (k_lo, m_lo), (k_hi, m_hi) = bounds
-    m_start = min(max(model.scene.probe.tip_mass, m_lo), m_hi)
+    probe = model.scene.probe
+    m_start = min(max(probe.tip_mass, m_lo), m_hi)
     grid = np.unique(np.clip(np.arange(math.floor(k_lo), math.ceil(k_hi) + 1), k_lo, k_hi))
-    masses = np.unique([m_start, *(m_lo + (m_hi - m_lo) * np.array([0, 1 / 16, 1 / 8, 1 / 4,
-                                                                        1 / 2]))])
+    # the tube beyond the farthest contact swings with the tip there (33/140 of its mass,
+    # Rayleigh's cantilever): the least effective mass, where a tip mass moves the modes most
+    effective = 33 / 140 * probe.mass_per_length * (probe.length - max(c for c, _ in model.keys))
+    masses = np.unique([m_start, *_mass_grid(effective, m_lo, m_hi)])
     k_start = grid[int(np.argmax([score(g, m_start, eta0) for g in grid]))]
     m_start = masses[int(np.argmax([score(k_start, m, eta0) for m in masses]))]
     k_start = grid[int(np.argmax([score(g, m_start, eta0) for g in grid]))]
@@ -1043,7 +1151,7 @@ def _measure_and_fit(model, ax, fs, contact, p, bounds, eta0, max_rounds):
         identity = model.identify(p[0], p[1], eta0)
         model.hold(identity)
         predicted, _ = model.modes(p[0], p[1], eta0)
-        decays = _measure(ax, fs, predicted[model.index], contact)
+        decays, model.unread = _measure(ax, fs, predicted[model.index], contact)
         new = model.per_position(np.array([d[1] for d in decays]))
         settled = np.array_equal(identity, held) and np.array_equal(
             np.isfinite(new), np.isfinite(target)) and np.allclose(
@@ -1052,28 +1160,7 @@ def _measure_and_fit(model, ax, fs, contact, p, bounds, eta0, max_rounds):
         model.measured_on(decays, eta0)
         ok = np.isfinite(target)
         if ok.sum() < 3:
-            unread = [c for i, ((c, _), f) in enumerate(zip(model.keys, predicted, strict=True))
-                      if not np.isfinite(f) and i not in model.crowded]
-            why = (f"; at {', '.join(f'{c:g}' for c in unread)} m the model has no mode below "
-                   f"{fs / 2 / (1 + BAND):.4g} Hz, the highest whose band recordings at fs = "
-                   f"{fs:g} Hz resolve" if unread else "")
-            need = _samples_needed(predicted, fs)
-            if need.size >= 3 and ax.shape[1] < need[2]:
-                why += (f"; records of {ax.shape[1]} samples are too short for the modes "
-                        f"predicted: reading 3 positions needs {int(need[2])} samples at least "
-                        f"({READ_PERIODS:g} periods)")
-            if model.crowded:
-                why += (f"; at {', '.join(f'{model.keys[i][0]:g}' for i in model.crowded)} m "
-                        "the model's other modes ring beside the fitted one")
-            if ok.size < 3:
-                raise ValueError(f"the recordings hold {ok.size} distinct contact positions "
-                                 "in the region fitted (a distance each, and a material where "
-                                 "the model tells the materials apart); 3 are needed: record "
-                                 "more distances")
-            raise ValueError(f"only {int(ok.sum())} of {ok.size} distinct contact positions show "
-                             f"the mode the model predicts (3 are needed){why}; check that the "
-                             "scene describes these recordings (--scene: the probe, the "
-                             "material)")
+            raise ValueError(_refusal(model, predicted, ok))
         if settled and fit is not None:
             break
         fit = _fit(model, p, bounds, target, ok, eta0)
@@ -1081,26 +1168,93 @@ def _measure_and_fit(model, ax, fs, contact, p, bounds, eta0, max_rounds):
     return fit, target, decays
 
 
+def _refusal(model, predicted, ok) -> str:
+    """Why the calibration cannot go on with ``ok.sum()`` (under 3) positions that show the mode
+    the model predicts (``predicted``, Hz): each of the others with its reason
+    (``_not_fitted``, positions of one reason together), and records too short for the modes
+    predicted."""
+    if ok.size < 3:
+        return (f"the recordings hold {ok.size} distinct contact positions in the region fitted "
+                "(a distance each, and a material where the model tells the materials apart); 3 "
+                "are needed: record more distances")
+    together = {}
+    for i, reason in _not_fitted(model).items():
+        together.setdefault(reason, []).append(_label(model, i))
+    why = "".join(f"; at {', '.join(where)}: {reason}" for reason, where in together.items())
+    need = _samples_needed(predicted, model.fs)
+    if need.size >= 3 and model.n < need[2]:
+        why += (f"; records of {model.n} samples are too short for the modes predicted: reading "
+                f"3 positions needs {int(need[2])} samples at least ({READ_PERIODS:g} periods)")
+    if any(NO_MODE in reason or ANOTHER in reason for reason in together):
+        why += ("; check that the scene describes these recordings (--scene: the probe, the "
+                "material)")
+    return (f"only {int(ok.sum())} of {ok.size} distinct contact positions show the mode the "
+            f"model predicts (3 are needed){why}")
+
+
+#: What ``_not_fitted`` says of a position where the model has no mode the recordings resolve,
+#: and ``_unread`` of a band that holds another mode than the one predicted.
+NO_MODE, ANOTHER = "the model has no mode below", "not the mode predicted"
+
+
+def _label(model, i: int) -> str:
+    """Position ``i`` as ``left_out`` names it: ``"contact m (materials)"``."""
+    return f"{model.keys[i][0]:g} m ({model.labels[i]})"
+
+
+def _not_fitted(model) -> dict:
+    """``{position: why}`` for each position none of whose recordings gave a frequency: the
+    model's other modes ring beside the fitted one there (:data:`CROWDING`), it has no mode the
+    recordings resolve, or each recording's reading failed (``_unread``)."""
+    out = {}
+    for i in range(len(model.keys)):
+        mine = np.flatnonzero(model.index == i)
+        if any(np.isfinite(model.decays[r][1]) for r in mine):
+            continue
+        whys = list(dict.fromkeys(model.unread[r] for r in mine if r in model.unread))
+        if i in model.crowded:
+            shift, other, fitted = model.crowded[i]
+            out[i] = (f"the model's mode at {other:.1f} Hz rings beside the fitted one "
+                      f"({fitted:.1f} Hz) and moves what the estimator reads of it by up to "
+                      f"{shift:.2%}, more than {CROWDING:g}")
+        elif whys:
+            out[i] = f"none of its {mine.size} recordings is read: {'; '.join(whys)}"
+        else:
+            out[i] = (f"{NO_MODE} {model.fs / 2 / (1 + BAND):.4g} Hz, the highest whose band "
+                      f"recordings at fs = {model.fs:g} Hz resolve")
+    return out
+
+
 def _loss_interval(eta: float, half: float, reason: str) -> tuple[tuple[float, float], str]:
     """The loss factor's 95 % interval and why it is not identifiable ("" if it is): none
     (``(0, inf)``) with a ``reason`` already; bounded only from above when ``eta - half``
-    reaches 0, a real end (the interval is then ``(0, eta + half)``).
+    reaches 0, a real end (the interval is then ``(0, eta + half)``); bounded on neither side
+    when ``eta + half`` lies below 0 too, where no loss factor is.
 
     Examples
     --------
     >>> _loss_interval(0.03, 0.002, "")[1] == ""
     True
     >>> interval, why = _loss_interval(0.06, 0.063, "")
-    >>> interval[0], why.split(": ")[1]
-    (0.0, 'the recordings bound it only from above, at most 0.123')
+    >>> interval[0], why.split(", and ")[1]
+    (0.0, 'bound it only from above, at most 0.123')
+    >>> _loss_interval(-0.002, 0.001, "")[0]
+    (0.0, inf)
     """
     if reason:
         return (0.0, math.inf), reason
     low, high = eta - half, eta + half
     if low > 0:
         return (low, high), ""
-    return (0.0, high), (f"its 95 % interval ({low:.3g}, {high:.3g}) reaches 0: the "
-                         f"recordings bound it only from above, at most {high:.3g}")
+    if high <= 0:
+        return (0.0, math.inf), (
+            f"its 95 % interval ({low:.3g}, {high:.3g}) lies below 0, where no loss factor is: "
+            "the envelopes rise where the model's decays fall, and the recordings bound it on "
+            "neither side (a decay too slow to measure within these records, read with a bias "
+            "the model does not have)")
+    return (0.0, high), (f"its 95 % interval ({low:.3g}, {high:.3g}) reaches 0: the decays "
+                         "cannot be told from none within their spread, and bound it only from "
+                         f"above, at most {high:.3g}")
 
 
 def _hinge_interval(k_interval, bounds, missing) -> tuple[float, float]:
@@ -1138,9 +1292,10 @@ def _describe_model(scene) -> str:
 def _measure(ax, fs, predicted, contact):
     """Each recording's decay of the mode at its prediction: ``(eta, f, periods, peak, band)``
     (f NaN where no mode is predicted, or the band holds another; band: the prediction the
-    band-pass was centred on)."""
-    out = []
-    for x, f, c in zip(ax, predicted, contact, strict=True):
+    band-pass was centred on), and ``{recording: why}`` for each whose predicted mode gave no
+    frequency (``_unread``)."""
+    out, unread = [], {}
+    for r, (x, f, c) in enumerate(zip(ax, predicted, contact, strict=True)):
         if not np.isfinite(f):
             out.append((math.nan, math.nan, 0.0, 0, math.nan))
             continue
@@ -1150,10 +1305,35 @@ def _measure(ax, fs, predicted, contact):
                 f"recordings at fs = {fs:g} Hz resolve (its band +/- {BAND:.0%} must lie below "
                 f"fs / 2); lower region or record at a higher rate")
         eta, measured, cycles, peak = _decay(x, fs, f)
-        if not abs(measured / f - 1) < BAND:  # the band's content is not the predicted mode
+        if not abs(measured / f - 1) < BAND:  # nothing read, or not the predicted mode
+            unread[r] = _unread(x.size, fs, f, peak, measured)
             measured = math.nan
         out.append((eta, measured, cycles, peak, f))
-    return out
+    return out, unread
+
+
+def _unread(n: int, fs: float, band: float, peak: int, measured: float) -> str:
+    """Why a recording of ``n`` samples gave no frequency of the mode predicted at ``band``
+    (Hz): its band envelope first peaking at sample ``peak``, ``measured`` what
+    :func:`loss_factor_of` read (NaN: nothing, the stretch it reads holding under 3 samples).
+
+    Examples
+    --------
+    >>> _unread(1000, 1000.0, 10.0, 700, math.nan).split(":")[0]
+    'its band envelope about 10.0 Hz first peaks at 0.7 s of the 1 s record, too late to read'
+    >>> _unread(1000, 1000.0, 10.0, 100, 14.0).split(": ")[1]
+    'what rings there is not the mode predicted'
+    """
+    if np.isfinite(measured):
+        return (f"the band about the predicted {band:.1f} Hz reads {measured:.1f} Hz, more than "
+                f"{BAND:.0%} off: what rings there is {ANOTHER}")
+    t = np.arange(n) / fs
+    if np.count_nonzero((t > t[peak] + 2.0 / band) & (t < t[-1] - 2.0 / band)) < 3:
+        return (f"its band envelope about {band:.1f} Hz first peaks at {peak / fs:.3g} s of the "
+                f"{n / fs:.3g} s record, too late to read: a reading spans from 2 periods past "
+                "the peak to 2 before the end")
+    return (f"its band envelope about {band:.1f} Hz falls below 5 % of its peak within 2 periods "
+            "of it: a decay too fast to read")
 
 
 #: The parameters' typical sizes (``log10 k_h``, ``m_t`` in kg): least squares' ``x_scale``.
@@ -1263,7 +1443,7 @@ def _loss_factor(model, p, decays, eta1):
     estimates = np.full(len(decays), np.nan)
     for r, (eta, f, cycles, peak, band) in enumerate(decays):
         k = model.index[r]
-        if cycles >= MIN_CYCLES and b[k] >= MIN_SHARE and eta > 0 and np.isfinite(f):
+        if cycles >= MIN_CYCLES and b[k] >= MIN_SHARE and np.isfinite(eta) and np.isfinite(f):
             mode = _as_read_inverse(eta, frequency[k], model.n, model.fs, peak, band)
             estimates[r] = (mode - a[k]) / b[k]
     used = int(np.isfinite(estimates).sum())
@@ -1284,9 +1464,12 @@ def _loss_factor(model, p, decays, eta1):
 def _as_read_inverse(eta_read: float, frequency: float, n: int, fs: float, peak: int,
                      band: float) -> float:
     """The mode's loss factor whose decay ``as_measured`` reads as ``eta_read`` (secant
-    steps from ``eta_read``: the reading is within a few per cent of linear in it)."""
+    steps from ``eta_read``: the reading is within a few per cent of linear in it). A reading
+    of 0 or below -- an envelope that does not fall over the record -- is inverted as any other:
+    the mode's loss factor is then about as small, and below 0 where the estimator reads the
+    ringing's own bias."""
     sos = _band(band, fs)
-    x0, x1 = eta_read, 1.1 * eta_read
+    x0, x1 = eta_read, eta_read + max(0.1 * abs(eta_read), 1e-5)
     g0 = as_measured(frequency, x0, n, fs, peak, band=band, sos=sos)[0] - eta_read
     for _ in range(4):
         g1 = as_measured(frequency, x1, n, fs, peak, band=band, sos=sos)[0] - eta_read

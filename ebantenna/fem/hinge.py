@@ -394,4 +394,7 @@ def _grid_search(residual, bounds, grid: int, n_jobs=1):
         cost = float(np.sum(r**2))
         if cost < best_cost:
             best, best_cost = point, cost
-    return best, best_cost, (10.0**log_ks, masses, np.reshape(residuals, (grid, grid, -1)))
+    # each stiffness as the residual's model took it (a scalar power, which an array power may
+    # round to another last bit: the lattice names the hinges its residuals were computed at)
+    stiffness = np.array([10.0**log_k for log_k in log_ks])
+    return best, best_cost, (stiffness, masses, np.reshape(residuals, (grid, grid, -1)))

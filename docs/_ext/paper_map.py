@@ -663,14 +663,41 @@ class PaperPeaks(_Table):
 
     def lines(self, values, record):
         k = values["summary:hinge.hinge_stiffness_n_m_per_rad"]
-        hinges = (("clamped", "clamped"), ("fitted", f"rotational spring, {k:.2f} N m/rad"),
-                  ("pinned", "pinned"))
+        hinges = (("clamped", "clamped"), ("fitted", f"rotational spring, {k:.2f} N m/rad"
+                                           + _as_close(values)), ("pinned", "pinned"))
         rows = [
             (text, f"{values[f'peak:bare-{h}']:.3f} L", f"{values[f'peak:board-{h}']:.3f} L")
             for h, text in hinges
         ]
         header = ("hinge", "bare tube", f"{values['scene:tip_mass_g']:g} g board at the tip")
         return _list_table(rows, header, "40 30 30", "paper-peaks")
+
+
+def _as_close(values) -> str:
+    """How loosely the observations set the fitted hinge, from the stored summary: how many of
+    the search's stiffnesses come within the observations' 2.5 mm, and their range.
+
+    Examples
+    --------
+    >>> print(_as_close({
+    ...     "summary:hinge.stiffness_within_resolution_n_m_per_rad": [3.16, 21.5, 1000.0],
+    ...     "summary:hinge.search_stiffness_n_m_per_rad": [0.1, 3.16, 21.5, 1000.0]}))
+    ... # doctest: +NORMALIZE_WHITESPACE
+     (least squares; as close within the observations' 2.5 mm: 3 of the search's 4
+     stiffnesses, 3.16 to 1000 N m/rad)
+    """
+    within = values.get("summary:hinge.stiffness_within_resolution_n_m_per_rad")
+    search = values.get("summary:hinge.search_stiffness_n_m_per_rad")
+    if not within or not search:
+        return ""
+    lo, hi = _sig3(min(within)), _sig3(max(within))
+    return (f" (least squares; as close within the observations' 2.5 mm: {len(within)} of the "
+            f"search's {len(search)} stiffnesses, {lo} to {hi} N m/rad)")
+
+
+def _sig3(x: float) -> str:
+    """``x`` to three significant figures, without an exponent (1000, 147, 3.16, 0.0681)."""
+    return f"{float(f'{x:.3g}'):f}".rstrip("0").rstrip(".")
 
 
 def refresh(source, target=SUMMARY_PATH, commit: str | None = None) -> dict:

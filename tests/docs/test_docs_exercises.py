@@ -151,6 +151,25 @@ def test_a_wrong_answer_fails(tmp_path):
         runpy.run_path(str(path), run_name="__main__")
 
 
+def test_ex03_naive_solver_rounds_more_than_the_finest_mesh_errs():
+    # the page: keep the default eigensolver, because solver="naive" rounds mode 1 by more than
+    # its 64-element error (about 1e-9), and the order from 32 -> 64 then measures the rounding
+    from ebantenna import Probe
+    from ebantenna.fem import Supports, exact_frequencies, modal_analysis
+
+    probe = Probe()
+    contact = 0.25 * probe.length
+    exact = exact_frequencies(probe, contact, n_modes=1)[0]
+
+    def error64(solver):
+        return modal_analysis(probe, Supports(contact=contact), n_elements=64, n_modes=1,
+                              solver=solver).frequencies[0] / exact - 1
+
+    mesh = error64("auto")
+    assert 5e-10 < mesh < 2e-9  # "about a billionth"
+    assert abs(error64("naive") - mesh) > mesh  # the naive solve's rounding exceeds it
+
+
 # --- the answer key behind ebantenna.course.check ------------------------------------------------
 
 

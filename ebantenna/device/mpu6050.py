@@ -298,17 +298,10 @@ class MPU6050:
         0, and ``PWR_MGMT_1`` if its reset bit still reads set, as ``"ACCEL_CONFIG (0x1C) reads
         0x18, ..."``; empty when none. Every read is retried after a missing acknowledge
         (nothing read here clears on read)."""
-        device = self.device
-        first = Register.SMPLRT_DIV
-        last = max(r for r in self.expected_registers() if r < Register.FIFO_EN)
-        seen = dict(zip(range(first, last + 1), device.read_block(first, last - first + 1),
-                        strict=True))
-        for register in (Register.FIFO_EN, Register.INT_ENABLE):
-            seen[register] = device.read_byte(register)
-        seen[Register.USER_CTRL], seen[Register.PWR_MGMT_1] = device.read_block(
-            Register.USER_CTRL, 2)
+        seen, _ = self._read_settings(status=False)
+        expected = self.expected_registers()
         left = [(r, v) for r, v in seen.items()
-                if r in self.expected_registers() and r != Register.PWR_MGMT_1 and v]
+                if r in expected and r != Register.PWR_MGMT_1 and v]
         if seen[Register.PWR_MGMT_1] & PowerManagement1.DEVICE_RESET:
             left.append((Register.PWR_MGMT_1, seen[Register.PWR_MGMT_1]))
         return ", ".join(f"{register_name(r)} reads 0x{v:02X}" for r, v in sorted(left))
@@ -404,18 +397,27 @@ class MPU6050:
 
         Returns ``({register: value}, int_status)``.
         """
+        return self._read_settings(status=True)
+
+    def _read_settings(self, status: bool) -> tuple[dict, int | None]:
+        """The settings' registers in four bursts, as :meth:`read_registers`; without
+        ``status``, ``INT_ENABLE`` is read alone, retried after a missing acknowledge, and
+        ``INT_STATUS`` is left unread (None)."""
         device = self.device
         first = Register.SMPLRT_DIV
         last = Register.ACCEL_CONFIG2 if self.model.accel_config2 else Register.ACCEL_CONFIG
         seen = dict(zip(range(first, last + 1), device.read_block(first, last - first + 1),
                         strict=True))
         seen[Register.FIFO_EN] = device.read_byte(Register.FIFO_EN)
-        # INT_ENABLE (0x38), 0x39, INT_STATUS (0x3A): one attempt, INT_STATUS clears on read
-        enable, _, status = device.read_block(Register.INT_ENABLE, 3, retry=False)
-        seen[Register.INT_ENABLE] = enable
+        int_status = None
+        if status:  # INT_ENABLE (0x38), 0x39, INT_STATUS (0x3A): one attempt, clear on read
+            seen[Register.INT_ENABLE], _, int_status = device.read_block(Register.INT_ENABLE, 3,
+                                                                         retry=False)
+        else:
+            seen[Register.INT_ENABLE] = device.read_byte(Register.INT_ENABLE)
         seen[Register.USER_CTRL], seen[Register.PWR_MGMT_1] = device.read_block(
             Register.USER_CTRL, 2)
-        return {Register(r): v for r, v in seen.items()}, status
+        return {Register(r): v for r, v in seen.items()}, int_status
 
     def _changed_registers(self, seen: dict, streaming: bool = True) -> list:
         """The settings of ``seen`` (from :meth:`read_registers`) that differ from what was

@@ -42,7 +42,7 @@ class HingeResult:
         """Best fit (N m/rad, g), which of its parameters sit on a bound of the search (there
         the bound, not the data, sets the value: ``at_bound``), observed and predicted
         transitions and residuals (cm), and the search lattice's hinge stiffnesses with those
-        of them the observations cannot rank below the fit
+        of them the observations cannot rank below the least misfit found
         (:meth:`~ebantenna.fem.hinge.HingeFit.stiffness_within` the resolution; None for a fit
         made without a search)."""
         f = self.fit
@@ -120,8 +120,8 @@ def render(result: HingeResult, report, figures) -> None:
 
 def _within_words(result: HingeResult) -> str:
     """How closely the observations set the hinge: the search lattice's stiffnesses that come
-    within the observations' resolution of the fit's misfit, said from the lattice's numbers
-    (nothing for a fit made without a search).
+    within the observations' resolution of the least misfit found, said from the lattice's
+    numbers (nothing for a fit made without a search).
 
     Examples
     --------

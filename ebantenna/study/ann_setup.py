@@ -37,7 +37,14 @@ from ..paper.uncertainty import (
     percent,
     training_entries,
 )
-from ._common import check_instance, check_render, check_step, fits_in_parallel, listed
+from ._common import (
+    TRAINED_ONCE,
+    check_instance,
+    check_render,
+    check_step,
+    fits_in_parallel,
+    listed,
+)
 from .learning import ANN_MAX_EPOCHS, stop_sentence
 from .seed_spread import SUBSET_REPETITIONS
 
@@ -336,7 +343,7 @@ def render(result: AnnSetupResult, report, figures) -> None:
         "gradient, once per epoch. "
         f"Below, the same network on {_subset_words(result)} "
         f"({result.recordings} recordings, the same 70/15/15 split), two steps, each "
-        "with what ended its training."
+        "with what ended its training. " + TRAINED_ONCE.format(what="Each run is")
     )
     report.table(
         ["run", "step", "epochs run (cap)", "stopped by", "final loss (guessing)", "test",

@@ -26,6 +26,7 @@ from ..paper.uncertainty import (
     training_entries,
 )
 from ._common import (
+    TRAINED_ONCE,
     check_render,
     check_step,
     error_entry,
@@ -223,7 +224,7 @@ def _render_classifiers(svm, ann, positions, report, fig12: str, fig15: str,
         f"{100 * MATERIAL_ANN.fractions[0]:.0f} % training rows) "
         "test nothing unseen and carry no interval. A test accuracy's interval is on the "
         "contact position, the design's independent unit: the repetitions at one position "
-        "share its physics."
+        "share its physics. " + TRAINED_ONCE.format(what="The ANN is")
     )
     curve = np.asarray(getattr(ann.model, "loss_curve_", [np.nan]))
     n = len(ann.labels)
@@ -264,6 +265,7 @@ def _render_distance_networks(lin, full, report, fig1314: str) -> None:
             )
         ],
     )
+    report.paragraph(TRAINED_ONCE.format(what="Each network is"))
     report.figure(fig1314, "Mean absolute distance error along the probe (cf. Figs. 13, 14)")
 
 

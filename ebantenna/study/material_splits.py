@@ -23,6 +23,7 @@ from ..paper.uncertainty import (
     training_entries,
 )
 from ._common import (
+    TRAINED_ONCE,
     check_instance,
     check_render,
     check_step,
@@ -661,7 +662,8 @@ def _render_trainers(r: MaterialSplitsResult, report) -> None:
         "validation check), by scaled conjugate gradient and by Adam (each in one run with "
         "early stopping on the same validation share). Steps: gradient descent "
         f"{STEP_SIZES['ann']['gd']:g}, Adam {STEP_SIZES['ann']['adam']:g} (its textbook "
-        "default); nothing was tuned toward the paper's numbers, which are references only."
+        "default); nothing was tuned toward the paper's numbers, which are references only. "
+        + TRAINED_ONCE.format(what="Each network is")
     )
     report.table(
         ["network", "trainer", "epochs", "test", "paper"],

@@ -257,6 +257,23 @@ def test_report_sections_follow_the_recipe(quick_study):
     ]
 
 
+def test_every_section_that_trains_a_network_says_what_its_interval_holds_fixed(quick_study):
+    # a network's training is not convex: its test interval over positions holds the trained
+    # network fixed, which the report must say wherever it gives one (and nowhere else)
+    from ebantenna.study._common import TRAINED_ONCE
+
+    result, _ = quick_study
+    sections = {}
+    for block in result.report_markdown.read_text().split("\n## ")[1:]:
+        heading, _, text = block.partition("\n")
+        sections[heading] = " ".join(text.split())
+    tail = TRAINED_ONCE.split(" trained once", 1)[1]
+    with_networks = {"Material classification: ANN and SVM (Figs. 12, 15)",
+                     "Distance networks (Figs. 13, 14)", "The networks with other trainers",
+                     "What the paper's training budget changes"}
+    assert {h for h, text in sections.items() if tail in text} == with_networks
+
+
 def test_every_step_of_a_study_runs_on_the_measured_number_of_blas_threads():
     # benchmarks/study_blas_threads.py measured one thread as never slower and cheaper in CPU
     from threadpoolctl import threadpool_info, threadpool_limits

@@ -2,6 +2,10 @@
 
 Every classifier on every split over all the split's folds, with the folds' spread beside the
 spread binomial sampling would give, and the grouped split with fewer repetitions per position.
+The two distance networks, each trained again from :data:`NETWORK_RUNS` seeds (split and
+starting weights), with the runs' spread beside the spread one run's interval over its test
+positions allows: a network is trained once in the study, and its interval holds the trained
+network fixed.
 The folds of all three classifiers run on the data set's first :data:`SUBSET_REPETITIONS`
 repetitions (every position and material, a fifth of the recordings): the section fits each
 classifier on every fold of every split, and a kernel on a fifth of the rows costs about a
@@ -28,17 +32,19 @@ from ..paper.uncertainty import (
     percent,
 )
 from ._common import (
+    MAX_SEED,
     check_instance,
     check_render,
     check_step,
     classifier_call,
     fits_in_parallel,
     listed,
+    probe_length,
 )
 from .material_splits import answers_over_folds
 
 __all__ = ["SPLIT_SEEDS", "SUBSET_REPETITIONS", "TRAINING_REPETITIONS", "CLASSIFIERS",
-           "SeedSpreadResult", "compute", "render"]
+           "NETWORK_RUNS", "NETWORKS", "NetworkRuns", "SeedSpreadResult", "compute", "render"]
 
 #: Folds per classifier and split (:func:`~ebantenna.paper.splits.split_folds`): every
 #: recording tested once.
@@ -51,6 +57,77 @@ TRAINING_REPETITIONS = (1, 3, 5)
 CLASSIFIERS = ("paper's SVM", "position-aware", "mode curves")
 #: Each of :data:`CLASSIFIERS` by its name for :func:`~._common.classifier_call`.
 FITTED = dict(zip(CLASSIFIERS, ("svm", "position_aware", "mode_curves"), strict=True))
+#: Training runs of each distance network on the subset, from the seeds ``seed`` to
+#: ``seed + NETWORK_RUNS - 1`` (each its own split and starting weights).
+NETWORK_RUNS = 5
+#: The distance networks trained again, by the name the report gives them.
+NETWORKS = ("full-length", "linear-region")
+
+
+@dataclass(frozen=True, eq=False)
+class NetworkRuns:
+    """One distance network trained from several seeds on the same rows.
+
+    Attributes
+    ----------
+    seeds : tuple of int
+        The runs' seeds (split and starting weights).
+    mae_cm : ndarray
+        Per run, the mean over its test positions of their mean absolute errors (cm): the
+        estimate its interval over the positions is on.
+    se_cm : ndarray
+        Per run, the standard error of that mean over its test positions (cm): the spread one
+        run's interval allows, were the runs to differ only in the positions they test; NaN for
+        a run that tests fewer than two positions (no spread to measure).
+    """
+
+    seeds: tuple
+    mae_cm: np.ndarray
+    se_cm: np.ndarray
+
+    @classmethod
+    def from_results(cls, seeds, results) -> NetworkRuns:
+        """From the :class:`~ebantenna.paper.experiments.RegressionResult` of each run (at least
+        two), made with the seeds ``seeds`` (one whole number each)."""
+        if not isinstance(results, list | tuple) or len(results) < 2:
+            raise ValueError(f"results must be a list of at least two runs' results (a spread "
+                             f"needs two), got {results!r:.80}")
+        for r in results:
+            check_instance("results", r, experiments.RegressionResult)
+        if isinstance(seeds, str | bytes) or not hasattr(seeds, "__len__") or len(seeds) != len(
+                results) or not all(isinstance(v, int | np.integer) for v in seeds):
+            raise ValueError(f"seeds must hold one whole number per run of results "
+                             f"({len(results)}), got {seeds!r:.80}")
+        means = [np.asarray(r.mean_error_cm, dtype=float) for r in results]
+        return cls(tuple(int(v) for v in seeds), np.array([m.mean() for m in means]),
+                   np.array([m.std(ddof=1) / np.sqrt(m.size) if m.size > 1 else np.nan
+                             for m in means]))
+
+    @property
+    def spread(self) -> float:
+        """The runs' standard deviation (cm)."""
+        return float(np.std(self.mae_cm, ddof=1))
+
+    @property
+    def interval_std(self) -> float:
+        """The standard error one run's interval allows, as the root mean square over the runs
+        (cm)."""
+        return float(np.sqrt(np.mean(np.square(self.se_cm))))
+
+    @property
+    def ratio(self) -> float | None:
+        """:attr:`spread` over :attr:`interval_std` (None when the latter is 0 or not measured:
+        a run tested fewer than two positions)."""
+        return self.spread / self.interval_std if self.interval_std > 0 else None
+
+    def to_dict(self) -> dict:
+        ratio, measured = self.ratio, bool(np.all(np.isfinite(self.se_cm)))
+        return {"seeds": list(self.seeds), "mae_cm": self.mae_cm.tolist(),
+                "se_cm": [float(v) if np.isfinite(v) else None for v in self.se_cm],
+                "runs_std_cm": self.spread,
+                "interval_std_cm": self.interval_std if measured else None, "spread_ratio": ratio,
+                "spread_ratio_ci95": None if ratio is None else
+                list(ratio_interval(ratio, self.mae_cm.size))}
 
 
 @dataclass(frozen=True, eq=False)
@@ -77,6 +154,8 @@ class SeedSpreadResult:
         recordings both test: the fewest repetitions' own (every position's first ones), each
         tested once in either; clustered on the position. None when the grouped SVM's answers
         per recording were not given.
+    networks : dict of str to NetworkRuns
+        By network of :data:`NETWORKS`: trained from :data:`NETWORK_RUNS` seeds on the subset.
     """
 
     spreads: dict
@@ -84,13 +163,15 @@ class SeedSpreadResult:
     repetitions: dict
     subset_repetitions: int
     paired_repetitions: PairedDifference | None = None
+    networks: dict | None = None
 
     def to_dict(self) -> dict:
         """Under ``materials``: ``seed_spread`` (classifier -> split -> the accuracy over the
         folds, with ``binomial_std``, the spread the folds would show were the recordings
         independent, and ``spread_ratio``), ``svm_grouped_by_repetitions`` and, when measured,
         ``svm_grouped_repetitions_paired`` (the most repetitions against the fewest, paired,
-        with ``fewest`` and ``most``)."""
+        with ``fewest`` and ``most``) and ``distance_network_runs`` (network -> its runs, the
+        runs' spread and the ratio to what one run's interval allows)."""
         spread = {c: {k: _spread_dict(self.spreads[c, k]) for k in SPLITS} for c in CLASSIFIERS}
         out = {
             "seed_spread": {"subset_recordings": self.subset_recordings, **spread},
@@ -102,6 +183,8 @@ class SeedSpreadResult:
             out["svm_grouped_repetitions_paired"] = {
                 "fewest": min(self.repetitions), "most": max(self.repetitions),
                 **self.paired_repetitions.to_dict()}
+        if self.networks:
+            out["distance_network_runs"] = {n: r.to_dict() for n, r in self.networks.items()}
         return out
 
 
@@ -179,6 +262,48 @@ def scatter_sentence(rows) -> str:
                      "interval holds one): the folds' spread does not tell the recordings from "
                      "independent trials here, which does not show that they are")
     return "; ".join(parts) + "."
+
+
+def runs_sentence(networks: dict) -> str:
+    """What the networks' runs show against one run's interval, from each network's ratio.
+
+    Parameters
+    ----------
+    networks : dict of str to NetworkRuns
+        By network name.
+
+    Examples
+    --------
+    >>> def runs(maes, se):
+    ...     return NetworkRuns((0, 1, 2, 3, 4), np.array(maes), np.full(5, se))
+    >>> text = runs_sentence({"a": runs([2.0, 3.0, 2.5, 4.0, 2.2], 0.1)})
+    >>> text[:66]
+    "Trained again, the a network scatters more than one run's interval"
+    >>> "within what" in runs_sentence({"a": runs([2.0, 2.1, 2.05, 1.95, 2.0], 0.05)})
+    True
+    """
+    above, below, open_ = [], [], []
+    for name, runs in networks.items():
+        if runs.ratio is None:
+            continue
+        lo, hi = ratio_interval(runs.ratio, runs.mae_cm.size)
+        (above if lo > 1 else below if hi < 1 else open_).append(f"the {name} network")
+    parts = []
+    if above:
+        parts.append(f"Trained again, {listed(above)} scatter{'s' if len(above) == 1 else ''} "
+                     "more than one run's interval over its test positions allows, beyond "
+                     "what the runs' number leaves open: one run's interval does not carry "
+                     "the training's own spread, and a single run's error says less than its "
+                     "interval suggests")
+    if below:
+        parts.append(f"{'the runs of ' if parts else 'The runs of '}{listed(below)} scatter "
+                     "less than one run's interval allows")
+    if open_:
+        lead = "for " if parts else "For "
+        parts.append(f"{lead}{listed(open_)} the runs' spread is within what one run's "
+                     "interval allows (the ratio's 95 % interval holds one): the runs cannot "
+                     "tell the training's spread from the test positions'")
+    return "; ".join(parts) + "." if parts else ""
 
 
 def repetitions_sentence(repetitions: dict, paired: PairedDifference | None = None) -> str:
@@ -313,7 +438,17 @@ def compute(ds, feats, seed: int, grouped_full: FoldAccuracy, n_jobs: int = 1, *
             calls["repetitions", r, i] = (experiments.classify_materials_svm,
                                           (feats.fft[sub], ds.material[sub]), {"split": split})
             tested["repetitions", r, i] = d_sub
+    seeds = [(seed + i) % (MAX_SEED + 1) for i in range(NETWORK_RUNS)]
+    for i, s in enumerate(seeds):  # the study's calls of learning.fit_calls, on the subset
+        calls["network", "full-length", i] = (experiments.regress_distance_full_length,
+                                              (feats.fft_elliptic[rows], d), {"seed": s})
+        calls["network", "linear-region", i] = (experiments.regress_distance_linear_region,
+                                                (X, d), {"probe_length": probe_length(ds),
+                                                         "seed": s})
     done = dict(zip(calls, fits_in_parallel(list(calls.values()), n_jobs), strict=True))
+    networks = {n: NetworkRuns.from_results(seeds, [done[key] for key in calls
+                                                    if key[:2] == ("network", n)])
+                for n in NETWORKS}
 
     def over_folds(head, unit, by_fold=False):
         keys = [key for key in calls if key[:2] == head]
@@ -334,7 +469,7 @@ def compute(ds, feats, seed: int, grouped_full: FoldAccuracy, n_jobs: int = 1, *
         paired = PairedDifference.from_recordings(few, answers[sub], ds.contact[sub],
                                                   UNITS["grouped"], seed=seed)
     return SeedSpreadResult(spreads, int(rows.size), repetitions, min(SUBSET_REPETITIONS, depth),
-                            paired)
+                            paired, networks)
 
 
 def _check_answers(answers, ds, grouped_full: FoldAccuracy) -> np.ndarray:
@@ -381,6 +516,8 @@ def render(result: SeedSpreadResult, report, figures) -> None:
     report.table(["classifier", "split", "over all folds (95 % CI on the unit)",
                   "folds' std", "binomial std", "ratio"], rows)
     report.paragraph(scatter_sentence(ratios))
+    if result.networks:
+        _render_networks(result, report)
     report.paragraph(
         "Below, the grouped split (all folds) of the main data set with only its first "
         "repetitions of every position: what the number of recordings of each position the SVM "
@@ -395,3 +532,31 @@ def render(result: SeedSpreadResult, report, figures) -> None:
          for r, a in sorted(result.repetitions.items())],
     )
     report.paragraph(repetitions_sentence(result.repetitions, result.paired_repetitions))
+
+
+def _render_networks(result: SeedSpreadResult, report) -> None:
+    """The distance networks trained again: their runs' spread against one run's interval."""
+    runs = next(iter(result.networks.values()))
+    report.paragraph(
+        "The study trains each network once, and a network's interval over its test positions "
+        "holds the trained network fixed. Below, the two distance networks trained again from "
+        f"{runs.mae_cm.size} seeds (seeds {runs.seeds[0]} to {runs.seeds[-1]}, each its own "
+        "split and starting weights) on the same subset: the mean error over the test "
+        "positions (min to max over the runs), the runs' standard deviation, the standard "
+        "error one run's interval allows (root mean square over the runs), and the ratio of "
+        "the runs' spread to it, with its 95 % interval from the runs' number."
+    )
+    rows = []
+    for name, r in result.networks.items():
+        if r.ratio is None:
+            ratio = "-"
+        else:
+            lo, hi = ratio_interval(r.ratio, r.mae_cm.size)
+            ratio = f"{r.ratio:.1f} x ({lo:.1f} to {hi:.1f})"
+        rows.append([name, f"{np.mean(r.mae_cm):.2f} ({np.min(r.mae_cm):.2f} to "
+                     f"{np.max(r.mae_cm):.2f})", f"{r.spread:.2f}",
+                     f"{r.interval_std:.2f}" if np.isfinite(r.interval_std) else "-",
+                     ratio])
+    report.table(["distance network", "mean error over runs (cm, min to max)", "runs' std (cm)",
+                  "one run's standard error (cm)", "ratio"], rows)
+    report.paragraph(runs_sentence(result.networks))

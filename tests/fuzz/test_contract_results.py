@@ -25,6 +25,7 @@ from contract_files_cases import Row, check_row  # noqa: E402
 from ebantenna.paper import printed  # noqa: E402
 from ebantenna.simulate import builtin_scene  # noqa: E402
 from ebantenna.study.recorded.calibration import Calibration  # noqa: E402
+from ebantenna.study.seed_spread import NetworkRuns  # noqa: E402
 
 #: Result types: ``dotted name`` (class), each built by the package.
 RESULTS = [
@@ -46,6 +47,7 @@ RESULTS = [
     "ebantenna.study.recorded.calibration.Calibration",
     "ebantenna.study.rod_geometry.GeometryResult",
     "ebantenna.study.seed_spread.SeedSpreadResult",
+    "ebantenna.study.seed_spread.NetworkRuns",
     "ebantenna.study.signals.DecayResult",
     "ebantenna.study.signals.FrequencyResult",
     "ebantenna.study.time_frequency.TimeFrequencyResult",
@@ -145,7 +147,8 @@ NO_ARGUMENT = [
     "full_range.FullRangeResult", "hinge_fit.HingeResult", "learning.LearningResult",
     "material_splits.MaterialSplitsResult", "mode_zones.ModesResult",
     "physics_controls.ControlsResult", "rod_geometry.GeometryResult",
-    "seed_spread.SeedSpreadResult", "signals.DecayResult", "signals.FrequencyResult",
+    "seed_spread.SeedSpreadResult", "seed_spread.NetworkRuns", "signals.DecayResult",
+    "signals.FrequencyResult",
     "time_frequency.TimeFrequencyResult")]
 
 
@@ -214,6 +217,30 @@ ROWS = {
          and s.probe.loss_factor == 0.03 and s.name == "paper-calibrated"),
     ],
 }
+def _regression_result(positions=(0.1, 0.2, 0.3)):
+    """A distance network's result as the package builds it, two recordings a position."""
+    from ebantenna.paper.experiments import RegressionResult
+
+    truth = np.repeat(positions, 2)
+    pred = truth + 0.01 * np.tile([1.0, 3.0], len(positions))  # errors of 1 and 3 cm
+    return RegressionResult("net", truth, pred, np.asarray(positions),
+                            np.full(len(positions), 2.0), 0.0)
+
+
+ROWS["ebantenna.study.seed_spread.NetworkRuns.from_results"] = [
+    ("results-not-results", lambda: NetworkRuns.from_results((0, 1), [1.0, 2.0]), ("results",),
+     None),
+    ("seeds-one-short", lambda: NetworkRuns.from_results(
+        (0,), [_regression_result(), _regression_result()]), ("seeds",), None),
+    ("seeds-str", lambda: NetworkRuns.from_results(
+        "01", [_regression_result(), _regression_result()]), ("seeds",), None),
+    ("results-one", lambda: NetworkRuns.from_results((0,), [_regression_result()]),
+     ("results",), None),
+    # every position's mean error is 2 cm: the runs' mean 2, no spread over positions
+    ("by-hand", lambda: NetworkRuns.from_results((0, 1), [_regression_result()] * 2), None,
+     lambda r: r.mae_cm.tolist() == [2.0, 2.0] and r.se_cm.tolist() == [0.0, 0.0]
+     and r.spread == 0.0 and r.ratio is None),
+]
 CASES = [(surface, *row) for surface, rows in ROWS.items() for row in rows]
 
 

@@ -240,3 +240,95 @@ def test_the_learning_steps_give_the_same_numbers_on_two_workers(quick_study):
     assert distance == {k: summary["distance"][k] for k in distance}
     setup = _without_times(ann_setup.compute(ds, feats, 0, quick=True, n_jobs=2).to_dict())
     assert setup == {k: summary["materials"][k] for k in setup}
+
+
+def _regression(seed, positions=15):
+    """A real distance network's result on a small synthetic problem (the docstring's)."""
+    from ebantenna.paper.experiments import regress_distance_full_length
+
+    d = np.repeat(np.linspace(0.02, 0.30, positions), 8)
+    X = np.column_stack([np.cos(8 * d), np.sin(8 * d)])
+    X = X + np.random.default_rng(seed).normal(0, 0.01, X.shape)
+    return regress_distance_full_length(X, d, max_iter=60, seed=seed)
+
+
+def test_a_network_run_carries_the_spread_its_interval_over_positions_allows():
+    # witness: the study's own interval over the test positions (mae_entry, a t interval on the
+    # positions' mean errors); its half-width is the standard error times Student's quantile
+    from scipy.stats import t
+
+    from ebantenna.study._common import mae_entry
+    from ebantenna.study.seed_spread import NetworkRuns
+
+    results = [_regression(s) for s in (0, 1, 2)]
+    runs = NetworkRuns.from_results((0, 1, 2), results)
+    for r, mae, se in zip(results, runs.mae_cm, runs.se_cm, strict=True):
+        e = mae_entry(r.errors_cm, r.distance_test)
+        lo, hi = e["mae_cm_ci95"]
+        # both are a few sums over at most 15 positions: rounding far below 1e-12
+        assert mae == pytest.approx(e["mae_cm_estimate"], rel=1e-12)
+        assert (hi - lo) / 2 == pytest.approx(se * t.ppf(0.975, e["mae_cm_n_units"] - 1),
+                                              rel=1e-12)
+    assert runs.spread == pytest.approx(np.std(runs.mae_cm, ddof=1), rel=1e-12)
+    assert runs.interval_std == pytest.approx(np.sqrt(np.mean(runs.se_cm ** 2)), rel=1e-12)
+    d = runs.to_dict()
+    assert d["spread_ratio"] == pytest.approx(runs.spread / runs.interval_std, rel=1e-12)
+    lo, hi = d["spread_ratio_ci95"]
+    assert lo < d["spread_ratio"] < hi
+    json.dumps(d, allow_nan=False)
+
+
+def test_a_run_that_tests_one_position_has_no_interval_and_no_ratio():
+    from ebantenna.paper.experiments import RegressionResult
+    from ebantenna.study import seed_spread
+
+    one = RegressionResult("one", np.full(4, 0.1), np.full(4, 0.12), np.array([0.1]),
+                           np.array([2.0]), 0.0)
+    runs = seed_spread.NetworkRuns.from_results((0, 1), [one, _regression(1)])
+    assert np.isnan(runs.se_cm[0]) and runs.ratio is None
+    d = runs.to_dict()
+    assert d["se_cm"][0] is None and d["interval_std_cm"] is None
+    assert d["spread_ratio"] is None and d["spread_ratio_ci95"] is None
+    json.dumps(d, allow_nan=False)
+    assert seed_spread.runs_sentence({"x": runs}) == ""
+
+
+@pytest.mark.parametrize("maes, se, words", [
+    ([2.0, 3.0, 2.5, 4.0, 2.2], 0.1, "scatters more than one run's interval"),
+    ([2.0, 2.001, 2.002, 1.999, 2.0], 1.0, "scatter less than one run's interval"),
+    ([2.0, 2.2, 2.1, 1.9, 2.0], 0.15, "the runs' spread is within what one run's interval"),
+])
+def test_the_runs_sentence_follows_the_ratio_and_its_interval(maes, se, words):
+    from ebantenna.study.seed_spread import NetworkRuns, ratio_interval, runs_sentence
+
+    runs = NetworkRuns((0, 1, 2, 3, 4), np.array(maes), np.full(5, se))
+    lo, hi = ratio_interval(runs.ratio, 5)
+    text = runs_sentence({"a": runs})
+    assert words in text
+    assert ("scatters more than" in text) == (lo > 1)
+    assert ("scatter less than" in text) == (hi < 1)
+
+
+def test_two_networks_on_either_side_are_both_named():
+    from ebantenna.study.seed_spread import NetworkRuns, runs_sentence
+
+    wide = NetworkRuns((0, 1, 2, 3, 4), np.array([2.0, 3.0, 2.5, 4.0, 2.2]), np.full(5, 0.1))
+    open_ = NetworkRuns((0, 1, 2, 3, 4), np.array([2.0, 2.2, 2.1, 1.9, 2.0]), np.full(5, 0.15))
+    text = runs_sentence({"full-length": wide, "linear-region": open_})
+    assert text.startswith("Trained again, the full-length network scatters more")
+    assert "; for the linear-region network the runs' spread is within" in text
+
+
+def test_the_distance_networks_trained_again_hold_their_own_statistics(quick_study):
+    from ebantenna.study.seed_spread import NETWORK_RUNS, NETWORKS
+
+    result, _ = quick_study
+    runs = result.summary["materials"]["distance_network_runs"]
+    assert set(runs) == set(NETWORKS)
+    for r in runs.values():
+        assert r["seeds"] == list(range(result.summary["seed"],
+                                        result.summary["seed"] + NETWORK_RUNS))
+        assert len(r["mae_cm"]) == len(r["se_cm"]) == NETWORK_RUNS
+        assert r["runs_std_cm"] == pytest.approx(np.std(r["mae_cm"], ddof=1), rel=1e-12)
+    md = result.report_markdown.read_text()
+    assert "the two distance networks trained again from 5 seeds" in md

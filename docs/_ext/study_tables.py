@@ -222,7 +222,8 @@ def value_text(summary: dict, text: str) -> str:
     (:func:`~ebantenna.paper.uncertainty.percent`), ``span`` an interval's ends, ``acc`` an
     accuracy's cell (``KEY`` the accuracy's name: its ``_n_test``, ``_unit``, ``_n_units`` and
     ``_ci95`` beside it), ``pair`` a paired comparison with its verdict (``KEY`` an entry of
-    ``controls_paired`` or the like), ``sqrtFORMAT`` the square root in ``FORMAT``, anything
+    ``controls_paired`` or the like), ``sqrtFORMAT`` the square root in ``FORMAT``,
+    ``minFORMAT`` and ``maxFORMAT`` the least and the largest of a list in ``FORMAT``, anything
     else a format specification."""
     key, _, spec = text.partition("|")
     if spec == "acc":
@@ -235,6 +236,8 @@ def value_text(summary: dict, text: str) -> str:
         return span(value)
     if spec.startswith("sqrt"):  # the square root, in the format that follows
         return format(value ** 0.5, spec[4:])
+    if spec.startswith(("min", "max")):  # a list's least or largest, in the format that follows
+        return format((min if spec.startswith("min") else max)(value), spec[3:])
     if spec == "pair":
         return _pair_text(value)
     return format(value, spec)

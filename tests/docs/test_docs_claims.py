@@ -1178,3 +1178,26 @@ def test_the_folds_spread_is_not_said_to_follow_sqrt_deff_on_interleaved_folds()
     assert (summary[f"{grouped}.spread_ratio"]
             < summary[f"{grouped}.accuracy_design_effect"] ** 0.5 / 2)
     assert study_tables.value_text({"x": 9.0}, "x|sqrt.2f") == "3.00"
+
+
+def test_the_networks_spread_is_read_from_the_runs_and_said_to_be_measured_loosely():
+    # uncertainty.rst: a network trained again lands elsewhere; the page reads the runs' range
+    # and ratio from the summary, and "five runs measure a spread only to within a factor of
+    # about two" is the chi-square interval of seed_spread.ratio_interval on 4 degrees
+    import sys
+
+    from ebantenna.study.seed_spread import NETWORK_RUNS, ratio_interval
+
+    sys.path.insert(0, str(DOCS / "_ext"))
+    import study_tables
+
+    page = _page_text("theory/uncertainty.rst")
+    key = "materials.distance_network_runs.full-length"
+    for role in (f":study:`{key}.mae_cm|min.2f`", f":study:`{key}.mae_cm|max.2f`",
+                 f":study:`{key}.spread_ratio|.2f`"):
+        assert role in page, role
+    assert "trained again from five seeds" in page and NETWORK_RUNS == 5
+    lo, hi = ratio_interval(1.0, NETWORK_RUNS)
+    assert 1 / lo < 2 < hi < 3  # "about two" either way (1.7 below, 2.9 above)
+    assert study_tables.value_text({"x": [3.0, 1.0, 2.0]}, "x|min.1f") == "1.0"
+    assert study_tables.value_text({"x": [3.0, 1.0, 2.0]}, "x|max.1f") == "3.0"

@@ -331,4 +331,4 @@ def test_the_distance_networks_trained_again_hold_their_own_statistics(quick_stu
         assert len(r["mae_cm"]) == len(r["se_cm"]) == NETWORK_RUNS
         assert r["runs_std_cm"] == pytest.approx(np.std(r["mae_cm"], ddof=1), rel=1e-12)
     md = result.report_markdown.read_text()
-    assert "the two distance networks trained again from 5 seeds" in md
+    assert f"the two distance networks trained again from {NETWORK_RUNS} seeds" in md

@@ -300,7 +300,8 @@ def runs_sentence(networks: dict) -> str:
                      "interval suggests")
     if below:
         parts.append(f"{'the runs of ' if parts else 'The runs of '}{listed(below)} scatter "
-                     "less than one run's interval allows")
+                     "less than one run's interval allows: the runs share most of their test "
+                     "positions, and their training adds little spread of its own")
     if open_:
         lead = "for " if parts else "For "
         parts.append(f"{lead}{listed(open_)} the runs' spread is within what one run's "
@@ -548,7 +549,11 @@ def _render_networks(result: SeedSpreadResult, report) -> None:
         "split and starting weights) on the same subset: the mean error over the test "
         "positions (min to max over the runs), the runs' standard deviation, the standard "
         "error one run's interval allows (root mean square over the runs), and the ratio of "
-        "the runs' spread to it, with its 95 % interval from the runs' number."
+        "the runs' spread to it, with its 95 % interval from the runs' number. The runs' "
+        "random splits test mostly the same positions, so their spread leaves out most of what "
+        "the interval counts (which positions happen to be tested): a ratio above one is "
+        "training spread beyond all of the interval, and a ratio below one is what a training "
+        "that adds little gives."
     )
     rows = []
     for name, r in result.networks.items():

@@ -501,9 +501,11 @@ class MPU6050:
         return self.stream
 
     def stop_fifo(self) -> None:
-        """Stop filling the FIFO (the stream's record stays readable)."""
-        self.device.write_byte(Register.USER_CTRL, 0)
-        self.device.write_byte(Register.FIFO_EN, 0)
+        """Stop filling the FIFO (the stream's record stays readable). Both enables are read
+        back (:meth:`write_verified`): a stop that did not land would leave the FIFO filling
+        and overflowing behind a recording said to be over."""
+        self.write_verified(Register.USER_CTRL, 0)
+        self.write_verified(Register.FIFO_EN, 0)
 
     def fifo_count(self) -> int:
         """Bytes waiting in the FIFO (``FIFO_COUNTH``/``L`` read in one burst, RM 114-115)."""

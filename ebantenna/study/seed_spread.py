@@ -59,7 +59,7 @@ CLASSIFIERS = ("paper's SVM", "position-aware", "mode curves")
 FITTED = dict(zip(CLASSIFIERS, ("svm", "position_aware", "mode_curves"), strict=True))
 #: Training runs of each distance network on the subset, from the seeds ``seed`` to
 #: ``seed + NETWORK_RUNS - 1`` (each its own split and starting weights). Ten runs measure a
-#: spread to within a factor of 1.5 below and 1.8 above (:func:`ratio_interval`); five, to
+#: spread to within a factor of 1.5 below and 1.8 above (``ratio_interval``); five, to
 #: within 1.7 and 2.9, left the full-length network's verdict open on one of the two strike
 #: marches' data sets and resolved on the other.
 NETWORK_RUNS = 10

@@ -217,6 +217,8 @@ ROWS = {
          and s.probe.loss_factor == 0.03 and s.name == "paper-calibrated"),
     ],
 }
+
+
 def _regression_result(positions=(0.1, 0.2, 0.3)):
     """A distance network's result as the package builds it, two recordings a position."""
     from ebantenna.paper.experiments import RegressionResult
@@ -241,6 +243,7 @@ ROWS["ebantenna.study.seed_spread.NetworkRuns.from_results"] = [
      lambda r: r.mae_cm.tolist() == [2.0, 2.0] and r.se_cm.tolist() == [0.0, 0.0]
      and r.spread == 0.0 and r.ratio is None),
 ]
+
 CASES = [(surface, *row) for surface, rows in ROWS.items() for row in rows]
 
 

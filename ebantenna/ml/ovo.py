@@ -2,7 +2,8 @@
 
 With :math:`k` classes, one binary machine is trained per pair :math:`(a, b)`, :math:`a < b`, in
 the order ``(0, 1), (0, 2), ..., (1, 2), ...``. The functions here turn the pairwise results into
-votes, one-vs-rest scores and, for the linear kernel, the weight vectors of the pairs.
+one-vs-rest scores and, for the linear kernel, the weight vectors of the pairs; the pairs' votes,
+which predict the class, are counted where it is predicted (:meth:`ebantenna.ml.SVC.predict`).
 They take checked values: :class:`~ebantenna.ml.SVC` validates its input once, in ``fit`` and
 ``predict``.
 """
@@ -11,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["ovr_decision_function", "ovo_votes", "one_vs_one_coef", "dual_layout"]
+__all__ = ["ovr_decision_function", "one_vs_one_coef", "dual_layout"]
 
 
 def ovr_decision_function(predictions: np.ndarray, confidences: np.ndarray, n_classes: int):
@@ -61,33 +62,6 @@ def ovr_decision_function(predictions: np.ndarray, confidences: np.ndarray, n_cl
             votes[predictions[:, k] == 1, j] += 1
             k += 1
     return votes + conf / (3 * (np.abs(conf) + 1))
-
-
-def ovo_votes(decisions: np.ndarray, n_classes: int) -> np.ndarray:
-    """Votes of the pairwise machines: a positive decision value votes for the pair's first class.
-
-    Examples
-    --------
-    >>> ovo_votes(np.array([[1.0, -2.0, 0.5]]), 3)
-    array([[1, 1, 1]])
-    """
-    from .._validate import check_array, check_int
-
-    n_classes = check_int("n_classes", n_classes, minimum=2)
-    decisions = check_array("decisions", decisions, ndim=2, min_length=0, finite=False)
-    pairs = n_classes * (n_classes - 1) // 2
-    if decisions.shape[1] != pairs:
-        raise ValueError(f"decisions must have one column per pair of the {n_classes} classes "
-                         f"({pairs}), got shape {decisions.shape}")
-    votes = np.zeros((decisions.shape[0], n_classes), dtype=np.int64)
-    p = 0
-    for a in range(n_classes):
-        for b in range(a + 1, n_classes):
-            win = decisions[:, p] > 0
-            votes[win, a] += 1
-            votes[~win, b] += 1
-            p += 1
-    return votes
 
 
 def one_vs_one_coef(dual_coef: np.ndarray, n_support: np.ndarray,

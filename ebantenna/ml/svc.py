@@ -51,7 +51,7 @@ from .._validate import (
 )
 from .fitted import INPUT_ATTRIBUTES, FittedAttribute
 from .kernels import Kernel, KernelRows, call_kernel, resolve_gamma
-from .ovo import dual_layout, one_vs_one_coef, ovo_votes, ovr_decision_function
+from .ovo import dual_layout, one_vs_one_coef, ovr_decision_function
 from .pair_kernels import PairKernels
 from .platt import LibsvmRandom, pairwise_coupling, pairwise_sigmoids
 from .smo import reference_smo, solve_smo
@@ -744,10 +744,16 @@ class SVC(ClassifierMixin, BaseEstimator):
         return dec
 
     def predict(self, X):
-        """Class labels by one-vs-one majority vote (ties: the first class)."""
+        """Class labels by one-vs-one majority vote (ties: the first class): the machine of the
+        pair ``(a, b)`` votes for ``a`` where its decision value is positive, else for ``b``."""
         dec = self._ovo_decision(X)
         k = self.classes_.size
         if self.break_ties and self.decision_function_shape == "ovr" and k > 2:
             return self.classes_[np.argmax(ovr_decision_function(dec < 0, -dec, k), axis=1)]
-        votes = ovo_votes(dec, k)
+        votes = np.zeros((dec.shape[0], k), dtype=np.int64)
+        pairs = zip(*np.triu_indices(k, 1), strict=True)  # (0, 1), (0, 2), ..., (1, 2), ...
+        for p, (a, b) in enumerate(pairs):
+            wins = dec[:, p] > 0
+            votes[wins, a] += 1
+            votes[~wins, b] += 1
         return self.classes_[np.argmax(votes, axis=1)]

@@ -30,7 +30,7 @@ sys.path.insert(0, os.path.dirname(__file__))
 from contract_files_cases import Row, row_tests  # noqa: E402
 
 from ebantenna.fem import Rod  # noqa: E402
-from ebantenna.ml import backprop, kernels, optimizers, ovo, platt, sparse_input  # noqa: E402
+from ebantenna.ml import backprop, kernels, optimizers, platt, sparse_input  # noqa: E402
 from ebantenna.paper import controls, estimators, mode_curves, position_aware  # noqa: E402
 from ebantenna.paper import data as paper_data  # noqa: E402
 from ebantenna.simulate import builtin_scene  # noqa: E402
@@ -252,14 +252,8 @@ def _mlp_rows():
         Row(o + "Momentum.update", "first-step-by-hand", lambda: _momentum_step(),
             same=lambda w: w.tolist() == [0.75, 1.25]),
     ]
-    v, s = "ebantenna.ml.ovo.ovo_votes", "ebantenna.ml.sparse_input."
+    s = "ebantenna.ml.sparse_input."
     rows += [
-        Row(v, "n_classes-1", lambda: ovo.ovo_votes(np.ones((2, 1)), 1), ("n_classes",)),
-        Row(v, "decisions-other-pairs", lambda: ovo.ovo_votes(np.ones((2, 2)), 3),
-            ("decisions",)),
-        Row(v, "decisions-str", lambda: ovo.ovo_votes("ab", 2), ("decisions",)),
-        Row(v, "by-hand", lambda: ovo.ovo_votes(np.array([[1.0, -2.0, 0.5]]), 3),
-            same=lambda r: r.tolist() == [[1, 1, 1]]),
         Row(s + "as_csr", "X-str", lambda: sparse_input.as_csr("abc"), ("X",)),
         Row(s + "as_csr", "X-3-D", lambda: sparse_input.as_csr(np.ones((2, 2, 2))), ("X",)),
         Row(s + "as_csr", "X-complex-sparse",

@@ -282,6 +282,23 @@ def test_break_ties_predicts_argmax_of_ovr_scores():
                                   clf.classes_[np.argmax(clf.decision_function(X), axis=1)])
 
 
+@pytest.mark.parametrize("k", [2, 3, 5])
+def test_predict_counts_the_pairs_votes(k):
+    # the vote of the pair (a, b), counted here over itertools' pairs: a where its decision
+    # value is positive, b elsewhere; the class with most votes, the first of a tie
+    from itertools import combinations
+
+    X, y = _data(n=150, k=k, seed=10 + k, noise=1.5)  # overlapping classes: some votes split
+    svc = SVC(kernel="rbf", C=1.0, gamma=0.5).fit(X[:100], y[:100])
+    dec = svc.set_params(decision_function_shape="ovo").decision_function(X[100:])
+    dec = dec.reshape(len(X) - 100, -1) if k > 2 else -dec[:, None]  # binary: the pair's sign
+    votes = np.zeros((dec.shape[0], k), dtype=int)
+    for p, (a, b) in enumerate(combinations(range(k), 2)):
+        votes[:, a] += dec[:, p] > 0
+        votes[:, b] += dec[:, p] <= 0
+    assert np.array_equal(svc.predict(X[100:]), svc.classes_[np.argmax(votes, axis=1)])
+
+
 def test_string_labels_and_binary_sign_convention():
     X, y = _data(n=80, k=2, seed=13)
     names = np.array(["pvc", "steel"])[y]

@@ -19,7 +19,7 @@ position; here every position of a batch is handled at once, vectorised over the
    on Python floats instead: the same IEEE operations in the same order, bit for bit, without
    NumPy's cost per call on arrays of one element (about three times faster per sweep);
 4. the frequencies are the Rayleigh quotients of the Ritz vectors, the strain energy summed from
-   the element curvatures (:func:`~ebantenna.fem.elements.bending_energy`): good to about
+   the element curvatures (:func:`~ebantenna.fem.modal.bending_energy`): good to about
    ``1e-12``, like :func:`~ebantenna.fem.modal.modal_analysis`, where ``1/mu - s`` alone carries
    a rounding bounded by ``eps omega_max^2 / omega^2`` (5e-7 at 64 elements with the contact at
    0.2 L; 6e-10 measured there).
@@ -35,8 +35,8 @@ import numpy as np
 
 from ..probe import Probe
 from ._assembly_engine import mass_polynomial, stiffness_polynomial
-from .elements import bending_energy
 from .guards import check_sweep
+from .modal import bending_energy
 
 __all__ = ["banded_sweep", "sweep_meshes"]
 
@@ -286,7 +286,7 @@ def banded_sweep(
     Mb = np.ascontiguousarray(np.transpose(M, (1, 2, 0)))  # (4, n, B): one diagonal each
     _, y = _lanczos(L, Mb, n_modes, free)
     # Rayleigh quotients of the mode shapes phi = L^-T y, the strain energy summed from element
-    # curvatures (elements.bending_energy): the Ritz values themselves carry the rounding of
+    # curvatures (modal.bending_energy): the Ritz values themselves carry the rounding of
     # 1 / mu - s and of K phi, about eps * omega_max^2 / omega^2; the quotient, stationary at an
     # eigenvector, does not.
     lam = np.empty((B, n_modes))

@@ -29,14 +29,11 @@ from numbers import Real
 
 import numpy as np
 
-from .._validate import check_bool, real_array
-
 __all__ = [
     "element_stiffness",
     "consistent_mass",
     "hermite",
     "hermite_slope",
-    "bending_energy",
 ]
 
 
@@ -195,54 +192,3 @@ def hermite_slope(xi, l):
         ],
         axis=-1,
     )
-
-
-def bending_energy(EI, l, u, *, check_finite: bool = True) -> np.ndarray:
-    r"""Twice the bending strain energy ``u^T K u`` of a chain of elements, from curvatures, J.
-
-    Inside an element the curvature ``v''`` is linear between its end values
-
-    .. math:: \kappa_1 = \frac{6 (v_2 - v_1) - l (4 \theta_1 + 2 \theta_2)}{l^2}, \qquad
-              \kappa_2 = \frac{6 (v_1 - v_2) + l (2 \theta_1 + 4 \theta_2)}{l^2},
-
-    so ``int EI v''^2 dx = EI l (k1^2 + k1 k2 + k2^2) / 3``. The same value as ``u^T K u`` in
-    exact arithmetic, with far fewer cancellations in floating point: a second difference of the
-    deflections instead of the fourth difference ``K u``.
-
-    Parameters
-    ----------
-    EI : float
-        Bending stiffness, N m^2.
-    l : array of shape (n_elements,) or (n_elements, m)
-        Element lengths, m, broadcasting against ``u[:-2:2]``.
-    u : array of shape (2 n_elements + 2,) or (2 n_elements + 2, m)
-        DOF vectors ``(v0, theta0, v1, ...)`` (m, rad), one per column.
-    check_finite : bool, default=True
-        Refuse NaN or infinite entries of ``u``, as SciPy's linear algebra does. A solver that
-        passes its own mode shapes turns it off: a shape it could not resolve then gives NaN,
-        which the solver reports in its own words.
-
-    Returns
-    -------
-    float or ndarray of shape (m,)
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from ebantenna.fem.elements import bending_energy, element_stiffness
-    >>> u = np.array([0.0, 0.0, 1e-3, 2e-2])           # one element, 0.1 m, EI = 2 N m^2
-    >>> bool(np.isclose(bending_energy(2.0, 0.1, u), u @ element_stiffness(2.0, 0.1) @ u))
-    True
-    """
-    EI, l = _checked("EI", EI), _checked("l", l)
-    if check_bool("check_finite", check_finite):
-        u = _checked("u", u, positive=False)
-    else:
-        u = real_array("u", u)
-    if u.ndim not in (1, 2) or u.shape[0] < 4 or u.shape[0] % 2:
-        raise ValueError(f"u must hold 2 n_elements + 2 DOFs (v, theta per node) along its first "
-                         f"axis, n_elements >= 1, got shape {u.shape}")
-    v1, t1, v2, t2 = u[0:-2:2], u[1:-2:2], u[2::2], u[3::2]
-    k1 = (6 * (v2 - v1) - l * (4 * t1 + 2 * t2)) / l**2
-    k2 = (6 * (v1 - v2) + l * (2 * t1 + 4 * t2)) / l**2
-    return (EI * l / 3 * (k1 * k1 + k1 * k2 + k2 * k2)).sum(axis=0)

@@ -61,8 +61,9 @@ from .._validate import check_array, check_bool, check_int, check_positive
 from ..probe import Probe
 from ._parallel import map_on_cores
 from .assembly import assemble
-from .elements import bending_energy, hermite
+from .elements import hermite
 from .guards import check_sweep, check_uniform_mesh
+from .modal import bending_energy
 
 __all__ = ["secular_sweep", "contact_weights", "static_correction"]
 

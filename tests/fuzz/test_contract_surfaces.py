@@ -31,7 +31,7 @@ sys.path.insert(0, os.path.dirname(__file__))
 from contract_files_cases import Row, check_row, rows_by_surface  # noqa: E402
 
 from ebantenna import Probe, course  # noqa: E402
-from ebantenna.fem import assembly, elements, exact, guards, hinge  # noqa: E402
+from ebantenna.fem import assembly, elements, exact, guards, hinge, modal  # noqa: E402
 from ebantenna.ml import metrics  # noqa: E402
 from ebantenna.paper import protocol, splits  # noqa: E402
 from ebantenna.paper import uncertainty as unc  # noqa: E402
@@ -334,26 +334,27 @@ def _fem_rows():
         rows += _numbers(e + name, "xi", lambda v, c=call: c(v, 0.1),
                          [("-0.5", -0.5), ("1.5", 1.5)], arrays=True)
         rows += _numbers(e + name, "l", lambda v, c=call: c(0.5, v), [("0", 0.0)], arrays=True)
+    b = "ebantenna.fem.modal.bending_energy"
     rows += [
         # at xi = 1/2 the end deflections share equally and the slopes give +-l/8
         Row(e + "hermite", "midpoint-by-hand", lambda: elements.hermite(0.5, 0.4),
             same=lambda r: np.allclose(r, [0.5, 0.05, 0.5, -0.05], rtol=0, atol=1e-16)),
-        Row(e + "bending_energy", "u-too-short", lambda: elements.bending_energy(1.0, 0.1, [1.0]),
+        Row(b, "u-too-short", lambda: modal.bending_energy(1.0, 0.1, [1.0]),
             ("u",)),
-        Row(e + "bending_energy", "u-odd", lambda: elements.bending_energy(1.0, 0.1, [0.0] * 5),
+        Row(b, "u-odd", lambda: modal.bending_energy(1.0, 0.1, [0.0] * 5),
             ("u",)),
-        Row(e + "bending_energy", "u-nan",
-            lambda: elements.bending_energy(1.0, 0.1, [0.0, NAN, 0.0, 0.0]), ("u",)),
+        Row(b, "u-nan",
+            lambda: modal.bending_energy(1.0, 0.1, [0.0, NAN, 0.0, 0.0]), ("u",)),
         # a solver's own unresolved shape: NaN passes through for it to report in its words
-        Row(e + "bending_energy", "u-nan-unchecked", lambda: elements.bending_energy(
+        Row(b, "u-nan-unchecked", lambda: modal.bending_energy(
             1.0, 0.1, [0.0, NAN, 0.0, 0.0], check_finite=False), same=math.isnan),
-        Row(e + "bending_energy", "check_finite-str",
-            lambda: elements.bending_energy(1.0, 0.1, [0.0] * 4, check_finite="no"),
+        Row(b, "check_finite-str",
+            lambda: modal.bending_energy(1.0, 0.1, [0.0] * 4, check_finite="no"),
             ("check_finite",)),
-        Row(e + "bending_energy", "EI-negative",
-            lambda: elements.bending_energy(-1.0, 0.1, [0.0] * 4), ("EI",)),
+        Row(b, "EI-negative",
+            lambda: modal.bending_energy(-1.0, 0.1, [0.0] * 4), ("EI",)),
         # a uniform curvature k = 2 / l^2 ... : u^T K u with K from element_stiffness
-        Row(e + "bending_energy", "equals-uKu", lambda: elements.bending_energy(
+        Row(b, "equals-uKu", lambda: modal.bending_energy(
             2.0, 0.5, np.array([0.0, 0.1, 0.03, -0.2])),
             same=lambda r: math.isclose(r, (lambda u: u @ elements.element_stiffness(2.0, 0.5)
                                              @ u)(np.array([0.0, 0.1, 0.03, -0.2])),

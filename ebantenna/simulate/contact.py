@@ -73,7 +73,7 @@ import numpy as np
 import scipy.optimize as spo
 import scipy.special as spsp
 
-from .._validate import check_in_range, check_nonnegative, check_positive, real_array
+from .._validate import check_bool, check_in_range, check_nonnegative, check_positive, real_array
 
 __all__ = [
     "TUBE_POISSON_RATIO",
@@ -83,6 +83,7 @@ __all__ = [
     "ring_stiffness",
     "ContactStiffness",
     "tube_on_rod_stiffness",
+    "tube_on_rod_spring",
     "HertzInSeries",
     "PiecewiseSpring",
     "tube_on_rod_law",
@@ -580,6 +581,43 @@ def tube_on_rod_stiffness(
     k_r = law.ring
     total = 1.0 / (1.0 / k_h + 1.0 / k_r)
     return ContactStiffness(k_h, k_r, total, law.hertz.modulus)
+
+
+def tube_on_rod_spring(probe, obj, rod_diameter: float, preload: float, *,
+                       object_loss: bool) -> tuple[float, float]:
+    """The contact spring of the probe's tube on a round rod at ``preload``: its stiffness, N/m
+    (:func:`tube_on_rod_stiffness`'s ``total``), and its loss factor (dimensionless).
+
+    The spring's compliance is the sum of the tube's share (its Hertz share and the wall's ring
+    compliance) and the rod's Hertz share; each share loses energy with its own body's loss
+    factor, so the spring's loss factor is their compliance-weighted mean. With ``object_loss``
+    False the rod's share is lossless (the ``object_damping`` effect not listed).
+
+    Parameters
+    ----------
+    probe, obj, rod_diameter, preload
+        As in :func:`tube_on_rod_stiffness`.
+    object_loss : bool
+        Whether the rod's share loses energy with the rod material's loss factor.
+
+    Examples
+    --------
+    >>> from ebantenna.probe import Probe, material
+    >>> k, eta = tube_on_rod_spring(Probe(), material("steel"), 0.012, 0.5, object_loss=True)
+    >>> k == tube_on_rod_stiffness(Probe(), material("steel"), 0.012, 0.5).total
+    True
+    """
+    object_loss = check_bool("object_loss", object_loss)
+    ks = tube_on_rod_stiffness(probe, obj, rod_diameter, preload)
+    e_probe = probe.youngs_modulus / (1 - TUBE_POISSON_RATIO**2)
+    c_hertz = 1 / ks.hertz
+    # Hertz compliance splits between the bodies as their (1 - nu^2)/E do: 1/E* = sum.
+    probe_share = c_hertz * ks.contact_modulus / e_probe
+    rod_share = c_hertz - probe_share
+    ring = 0.0 if math.isinf(ks.ring) else 1 / ks.ring
+    eta_rod = obj.loss_factor if object_loss else 0.0
+    loss = (probe.loss_factor * (probe_share + ring) + eta_rod * rod_share) / (c_hertz + ring)
+    return ks.total, loss
 
 
 def tube_on_rod_law(

@@ -155,6 +155,24 @@ def all_rows():
             C.tube_on_rod_stiffness(Probe(), material("steel"), 0.012, 0.5),
             C.tube_on_rod_law(Probe(), material("steel"), 0.012).stiffness(0.5)),
             same=lambda r: math.isclose(r[0].total, r[1], rel_tol=1e-12)),
+        Row(c + "tube_on_rod_spring", "object_loss-str", lambda: C.tube_on_rod_spring(
+            Probe(), material("brass"), 0.012, 0.5, object_loss="no"), ("object_loss",)),
+        Row(c + "tube_on_rod_spring", "preload-nan", lambda: C.tube_on_rod_spring(
+            Probe(), material("brass"), 0.012, NAN, object_loss=True), ("preload",)),
+        Row(c + "tube_on_rod_spring", "obj-int", lambda: C.tube_on_rod_spring(
+            Probe(), 5, 0.012, 0.5, object_loss=True), ("obj",)),
+        # the stiffness is tube_on_rod_stiffness's; bodies that lose alike give the spring their
+        # loss factor (a compliance-weighted mean of equal values; a few roundings of it)
+        Row(c + "tube_on_rod_spring", "equal-losses-weigh-to-theirs", lambda: (
+            C.tube_on_rod_spring(Probe(loss_factor=material("steel").loss_factor),
+                                 material("steel"), 0.012, 0.5, object_loss=True),
+            C.tube_on_rod_stiffness(Probe(), material("steel"), 0.012, 0.5).total),
+            same=lambda r: r[0][0] == r[1]
+            and math.isclose(r[0][1], material("steel").loss_factor, rel_tol=1e-14)),
+        # a lossless rod (object_loss False) and a lossless probe: a lossless spring
+        Row(c + "tube_on_rod_spring", "lossless-bodies", lambda: C.tube_on_rod_spring(
+            Probe(loss_factor=0.0), material("steel"), 0.012, 0.5, object_loss=False),
+            same=lambda r: r[1] == 0.0 and r[0] > 0),
     ]
 
 

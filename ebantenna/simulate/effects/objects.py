@@ -12,7 +12,6 @@ five materials ("a brass rod", its Fig. 1) and gives no dimensions.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import ClassVar
 
@@ -21,7 +20,7 @@ import numpy as np
 from ..._validate import check_choice, check_int, check_nonnegative, check_positive
 from ...fem.coupling import ROD_DIAMETER, ROD_FREE_LENGTH, Rod
 from ...probe import Material, Probe
-from ..contact import PRELOAD, TUBE_POISSON_RATIO, tube_on_rod_stiffness
+from ..contact import PRELOAD, tube_on_rod_spring, tube_on_rod_stiffness
 from ..stick_slip import check_coefficients
 from ..unilateral import MARCHES
 from ._base import Effect, check_bodies, check_rng
@@ -120,12 +119,10 @@ class ObjectModes(Effect):
         self, obj: Material, probe: Probe, *, object_loss: bool, preload: float | None = None
     ) -> tuple[float, float]:
         """The contact spring at ``preload`` (default the effect's): its stiffness, N/m (as
-        :meth:`contact_stiffness`), and its loss factor (dimensionless).
-
-        The spring's compliance is the sum of the tube's share (its Hertz share and the wall's
-        ring compliance) and the rod's Hertz share; each share loses energy with its own body's
-        loss factor, so the spring's loss factor is their compliance-weighted mean. With
-        ``object_loss`` False the rod's share is lossless (:class:`ObjectDamping` not listed).
+        :meth:`contact_stiffness`), and its loss factor (dimensionless), by
+        :func:`~ebantenna.simulate.contact.tube_on_rod_spring` (which says how the loss factor
+        is shared between the bodies). With ``object_loss`` False the rod's share is lossless
+        (:class:`ObjectDamping` not listed).
 
         Examples
         --------
@@ -135,21 +132,9 @@ class ObjectModes(Effect):
         >>> k == ObjectModes().contact_stiffness(material("steel"), Probe())
         True
         """
-        from ..._validate import check_bool
-
         check_bodies(obj, probe)
-        object_loss = check_bool("object_loss", object_loss)
         force = self.preload if preload is None else check_positive("preload", preload)
-        ks = tube_on_rod_stiffness(probe, obj, self.diameter, force)
-        e_probe = probe.youngs_modulus / (1 - TUBE_POISSON_RATIO**2)
-        c_hertz = 1 / ks.hertz
-        # Hertz compliance splits between the bodies as their (1 - nu^2)/E do: 1/E* = sum.
-        probe_share = c_hertz * ks.contact_modulus / e_probe
-        rod_share = c_hertz - probe_share
-        ring = 0.0 if math.isinf(ks.ring) else 1 / ks.ring
-        eta_rod = obj.loss_factor if object_loss else 0.0
-        loss = (probe.loss_factor * (probe_share + ring) + eta_rod * rod_share) / (c_hertz + ring)
-        return ks.total, loss
+        return tube_on_rod_spring(probe, obj, self.diameter, force, object_loss=object_loss)
 
 
 @dataclass(frozen=True)

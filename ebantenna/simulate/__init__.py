@@ -31,8 +31,8 @@ from .dataset import (
     dataset_plan,
     load_dataset,
 )
-from .effects import effect_names, make_effect
-from .scene import Scene, builtin_scene, load_scene, scene_names
+from .effects import effect_names
+from .scene import Scene, builtin_scene, load_scene, make_effect, scene_names
 from .simulator import ModalTerms, modal_terms, simulate, simulate_batch
 
 __all__ = [

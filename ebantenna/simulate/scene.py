@@ -12,7 +12,9 @@ duration) and the explicit list of effects. Two scenes are built in (:func:`buil
     those in ``PAPER_LEAVES_OUT``, the probe's and the rod's modes up to 3 kHz, which the
     sensor's filter and decimation fold into the 0-500 Hz band as on the chip.
 
-Scenes are saved to and loaded from TOML or JSON (:meth:`Scene.save`, :func:`load_scene`).
+A scene makes its effects from their names, parameters or instances (:func:`make_effects`,
+each by :func:`make_effect`), in the order the simulator applies them. Scenes are saved to and
+loaded from TOML or JSON (:meth:`Scene.save`, :func:`load_scene`).
 """
 
 from __future__ import annotations
@@ -36,7 +38,7 @@ from .._validate import (
 from ..fem.assembly import HINGES
 from ..fem.guards import check_contact, check_resolvable
 from ..probe import Probe, material
-from .effects import EFFECT_TYPES, GY521_MASS, make_effects
+from .effects import EFFECT_TYPES, GY521_MASS, effect_names
 
 #: Effects the ``paper`` scene leaves out: ``contact_compliance``, because the rod's own contact
 #: spring (in ``object_modes``) replaces it, and ``coulomb_friction``, because no friction
@@ -47,7 +49,8 @@ from .effects import EFFECT_TYPES, GY521_MASS, make_effects
 #: bench``); ``ebantenna reproduce`` measures what it changes on the controls' design.
 PAPER_LEAVES_OUT = frozenset({"contact_compliance", "coulomb_friction", "hertz_contact"})
 
-__all__ = ["Scene", "builtin_scene", "scene_names", "load_scene", "resolve_scene"]
+__all__ = ["Scene", "builtin_scene", "scene_names", "load_scene", "resolve_scene", "make_effect",
+           "make_effects"]
 
 #: Effects that need another effect listed with them: (effect, needed, why).
 EFFECT_NEEDS = (
@@ -61,6 +64,9 @@ EFFECT_NEEDS = (
     ("coulomb_friction", "object_modes", "its normal force is the rod contact's preload"),
     ("preload_scatter", "object_modes", "the preload it scatters is the rod contact's"),
 )
+
+#: Every effect type by its name (:func:`make_effect`).
+_BY_NAME = {cls.name: cls for cls in EFFECT_TYPES}
 
 #: Most samples one simulated recording may have.
 MAX_SAMPLES = 10_000_000
@@ -242,6 +248,13 @@ class Scene:
         """Names of the listed effects, in the order they are applied."""
         return tuple(e.name for e in self.effects)
 
+    @property
+    def probe_damping_ratio(self) -> float:
+        """Damping ratio of the probe's modes (dimensionless): the ``structural_damping``
+        effect's, 0 when it is not listed."""
+        damping = self.effect("structural_damping")
+        return damping.damping_ratio(self.probe) if damping is not None else 0.0
+
     def has(self, name: str) -> bool:
         """Whether the effect ``name`` (one of :func:`~ebantenna.simulate.effect_names`) is
         listed."""
@@ -277,10 +290,9 @@ class Scene:
     # ---------------------------------------------------------------------------------------------
     def to_dict(self) -> dict:
         """A JSON-ready description: scalars, ``probe`` and ``effects`` ({name: parameters})."""
-        out = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
-        out["probe"] = self.probe.to_dict()
-        out["effects"] = {e.name: e.parameters() for e in self.effects}
-        return out
+        return {**{f.name: getattr(self, f.name) for f in dataclasses.fields(self)},
+                "probe": self.probe.to_dict(),
+                "effects": {e.name: e.parameters() for e in self.effects}}
 
     @classmethod
     def from_dict(cls, data: dict) -> Scene:
@@ -322,10 +334,72 @@ class Scene:
         return path
 
 
+def make_effect(effect, params: dict | None = None):
+    """An effect instance from a name (with optional parameters) or an instance.
+
+    Raises
+    ------
+    ValueError
+        For an unknown name, listing the valid ones.
+
+    Examples
+    --------
+    >>> make_effect("sensor_noise", {"density": 0.01})
+    SensorNoise(density=0.01)
+    """
+    if isinstance(effect, EFFECT_TYPES):
+        if params:
+            raise TypeError("parameters can only be given with an effect's name, not an instance")
+        return effect
+    if not isinstance(effect, str):
+        raise TypeError(f"an effect must be a name or an effect instance, got {effect!r}")
+    if effect not in _BY_NAME:
+        raise ValueError(f"unknown effect {effect!r}; valid effects: {', '.join(_BY_NAME)}")
+    return _BY_NAME[effect].from_parameters(params or {})
+
+
+def make_effects(effects) -> tuple:
+    """A scene's effects, each made by :func:`make_effect`, in the order the simulator applies
+    them (:func:`effect_names`).
+
+    Parameters
+    ----------
+    effects : sequence or dict
+        Effect names or instances, or ``{name: {parameter: value}}``; none listed twice.
+
+    Raises
+    ------
+    TypeError
+        For a string or anything else that is not a sequence of names or instances.
+    ValueError
+        For an unknown name, or an effect listed twice.
+
+    Examples
+    --------
+    >>> [e.name for e in make_effects(["sensor_noise", "gravity"])]
+    ['gravity', 'sensor_noise']
+    """
+    if isinstance(effects, str | bytes):
+        raise TypeError("effects must be a sequence of effect names or instances, not a string")
+    if isinstance(effects, dict):
+        items = [make_effect(name, params) for name, params in effects.items()]
+    else:
+        try:
+            items = [make_effect(e) for e in effects]
+        except TypeError as exc:
+            if "not iterable" in str(exc):
+                raise TypeError(f"effects must be a sequence, got {effects!r}") from exc
+            raise
+    names = [e.name for e in items]
+    duplicates = sorted({n for n in names if names.count(n) > 1})
+    if duplicates:
+        raise ValueError(f"effects must not repeat; {', '.join(duplicates)} listed twice")
+    position = {name: i for i, name in enumerate(effect_names())}
+    return tuple(sorted(items, key=lambda e: position[e.name]))
+
+
 def _check_effect_name(name) -> str:
     """``name`` if it names an effect of the package (a misspelt one is never "not listed")."""
-    from .effects import effect_names
-
     return check_choice("name", name, effect_names())
 
 
@@ -417,7 +491,7 @@ def builtin_scene(name: str) -> Scene:
         return Scene(
             name="paper",
             probe=Probe(tip_mass=GY521_MASS),
-            effects=tuple(cls() for cls in EFFECT_TYPES if cls.name not in PAPER_LEAVES_OUT),
+            effects=tuple(cls.name for cls in EFFECT_TYPES if cls.name not in PAPER_LEAVES_OUT),
             n_modes=16,
             max_frequency=3000.0,
         )

@@ -16,9 +16,9 @@ from ebantenna.simulate.effects import (
     Quantisation,
     SensorNoise,
     SteadyStateKalman,
-    make_effect,
 )
 from ebantenna.simulate.modes import filtered_exponentials
+from ebantenna.simulate.scene import make_effect
 
 BASE = builtin_scene("ideal").with_(contact=0.3, effects=("structural_damping",))
 

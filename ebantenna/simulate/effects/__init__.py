@@ -25,7 +25,8 @@ and why (the filter is linear, so it acts on each part of the signal as that par
 effect is a step of that list or is read by one (a step's ``reads``). The touched rod's models
 are the list :data:`ebantenna.simulate.touched_object.OBJECT_MODELS`. A new effect is a class
 here, an entry of :data:`EFFECT_TYPES` and one step in the simulator's list (or a name in the
-``reads`` of the step that uses it).
+``reads`` of the step that uses it). A scene makes its effects from their names
+(:func:`ebantenna.simulate.scene.make_effects`).
 
 All arrays here have shape ``(n_signals, n_samples)``: every effect is vectorised over signals.
 Random effects draw from a :class:`numpy.random.Generator` per signal that the simulator makes
@@ -84,8 +85,6 @@ __all__ = [
     "read_through_dlpf",
     "EFFECT_TYPES",
     "effect_names",
-    "make_effect",
-    "make_effects",
 ]
 
 #: Every effect type, in the order the simulator applies them.
@@ -110,9 +109,6 @@ EFFECT_TYPES = (
     SteadyStateKalman,
 )
 
-_BY_NAME = {cls.name: cls for cls in EFFECT_TYPES}
-
-
 def effect_names() -> tuple[str, ...]:
     """Names of every effect, in the order the simulator applies them.
 
@@ -121,68 +117,4 @@ def effect_names() -> tuple[str, ...]:
     >>> effect_names()[:2]
     ('structural_damping', 'contact_compliance')
     """
-    return tuple(_BY_NAME)
-
-
-def make_effect(effect, params: dict | None = None):
-    """An effect instance from a name (with optional parameters) or an instance.
-
-    Raises
-    ------
-    ValueError
-        For an unknown name, listing the valid ones.
-
-    Examples
-    --------
-    >>> make_effect("sensor_noise", {"density": 0.01})
-    SensorNoise(density=0.01)
-    """
-    if isinstance(effect, EFFECT_TYPES):
-        if params:
-            raise TypeError("parameters can only be given with an effect's name, not an instance")
-        return effect
-    if not isinstance(effect, str):
-        raise TypeError(f"an effect must be a name or an effect instance, got {effect!r}")
-    if effect not in _BY_NAME:
-        raise ValueError(f"unknown effect {effect!r}; valid effects: {', '.join(_BY_NAME)}")
-    return _BY_NAME[effect].from_parameters(params or {})
-
-
-def make_effects(effects) -> tuple:
-    """A scene's effects, each made by :func:`make_effect`, in the order the simulator applies
-    them (:func:`effect_names`).
-
-    Parameters
-    ----------
-    effects : sequence or dict
-        Effect names or instances, or ``{name: {parameter: value}}``; none listed twice.
-
-    Raises
-    ------
-    TypeError
-        For a string or anything else that is not a sequence of names or instances.
-    ValueError
-        For an unknown name, or an effect listed twice.
-
-    Examples
-    --------
-    >>> [e.name for e in make_effects(["sensor_noise", "gravity"])]
-    ['gravity', 'sensor_noise']
-    """
-    if isinstance(effects, str | bytes):
-        raise TypeError("effects must be a sequence of effect names or instances, not a string")
-    if isinstance(effects, dict):
-        items = [make_effect(name, params) for name, params in effects.items()]
-    else:
-        try:
-            items = [make_effect(e) for e in effects]
-        except TypeError as exc:
-            if "not iterable" in str(exc):
-                raise TypeError(f"effects must be a sequence, got {effects!r}") from exc
-            raise
-    names = [e.name for e in items]
-    duplicates = sorted({n for n in names if names.count(n) > 1})
-    if duplicates:
-        raise ValueError(f"effects must not repeat; {', '.join(duplicates)} listed twice")
-    position = {name: i for i, name in enumerate(effect_names())}
-    return tuple(sorted(items, key=lambda e: position[e.name]))
+    return tuple(cls.name for cls in EFFECT_TYPES)

@@ -30,9 +30,10 @@ at the free probe's frequencies, the same for every contact and material.
 arrest (:func:`arrest_modes`, :func:`coupled_arrest_modes`), laid out per signal
 (:class:`ModalTerms`, :func:`x_terms`, :func:`z_terms`), then their sum
 (:func:`modal_acceleration`): the exponentials, through the chip's filter read as its design
-(:func:`filtered_exponentials`), summed (:func:`damped_exponentials`). The simulator's responses
-step, at the end (``CHAIN_STEPS``), sums every axis read from its modes and runs the models
-stepped in time for the others.
+(:func:`filtered_exponentials`), summed (:func:`damped_exponentials`). Two of the simulator's
+steps are at the end (``CHAIN_STEPS``): the free probe's, before the touched object's, lays out
+Z's modes (the same for every contact and material); the responses' sums every axis read from
+its modes and runs the models stepped in time for the others.
 """
 
 from __future__ import annotations
@@ -142,13 +143,8 @@ def sweep_velocity(nodes: np.ndarray) -> np.ndarray:
     >>> sweep_velocity(np.array([0.0, 0.1, 0.2]))
     array([0. , 1. , 0.1, 1. , 0.2, 1. ])
     """
-    from .._validate import check_array
-
-    nodes = check_array("nodes", nodes, ndim=1)
-    u0 = np.zeros(2 * nodes.size)
-    u0[0::2] = nodes  # v = Omega x per unit Omega
-    u0[1::2] = 1.0  # theta = Omega
-    return u0
+    # (v, theta) = (Omega x, Omega) at every node, per unit Omega, node after node
+    return np.stack(np.broadcast_arrays(check_array("nodes", nodes, ndim=1), 1.0), axis=-1).ravel()
 
 
 def arrest_modes(
@@ -775,7 +771,17 @@ def modal_acceleration(
     return damped_exponentials(t, coef, rate, max_elements=max_elements)
 
 
-# ------------------------------------------------------------- the simulator's step
+# ------------------------------------------------------------- the simulator's steps
+def _free_probe(_, batch) -> None:
+    """The free probe: Z's modal parameters (:func:`z_terms`). Across the sweep plane the probe
+    swings free, touching nothing, whatever the object; its modes carry the probe's structural
+    damping (:attr:`~ebantenna.simulate.Scene.probe_damping_ratio`)."""
+    scene = batch.scene
+    batch.z = z_terms(scene.probe, scene.hinge, batch.speeds, batch.tilts,
+                      scene.probe_damping_ratio, n_elements=scene.n_elements,
+                      n_modes=scene.n_modes, max_frequency=scene.max_frequency)
+
+
 def _respond(_, batch) -> None:
     """The responses: X and Z after the arrest. Each axis read from its modes is their sum at
     the sample instants, through the chip's filter if listed (:func:`modal_acceleration`); then
@@ -789,8 +795,8 @@ def _respond(_, batch) -> None:
         batch.timed_acc[axis] = respond(batch, models)
 
 
-#: The simulator's responses step, written beside the modal sum it runs: it takes
-#: ``(effect, batch)`` and changes the simulator's
+#: The simulator's steps written beside the modes they read, the free probe's and the
+#: responses': each takes ``(effect, batch)`` and changes the simulator's
 #: :class:`~ebantenna.simulate.simulator.SignalBatch` in place, with values the simulator
-#: checked. :data:`ebantenna.simulate.simulator.CHAIN` puts it in order, and says why.
-CHAIN_STEPS = {"responses": _respond}
+#: checked. :data:`ebantenna.simulate.simulator.CHAIN` puts them in order, and says why.
+CHAIN_STEPS = {"free_probe": _free_probe, "responses": _respond}

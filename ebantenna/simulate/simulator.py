@@ -7,39 +7,44 @@ the step reads (``reads``): every effect of the scene is a step or is read by on
 written beside the physics it applies: the sensor's and the acquisition's (``clock_jitter``'s,
 the chip's reading of the axes stepped in time, and every step from ``gravity`` on) beside their
 effects, in :mod:`~ebantenna.simulate.effects.sensor` (its ``CHAIN_STEPS``); the touched
-object's beside the models it runs, in :mod:`~ebantenna.simulate.touched_object`, and the
-responses' beside the modal sum, in :mod:`~ebantenna.simulate.modes` (their ``CHAIN_STEPS``);
+object's beside the models it runs, in :mod:`~ebantenna.simulate.touched_object`, and the free
+probe's and the responses' beside the modal sum, in :mod:`~ebantenna.simulate.modes` (their
+``CHAIN_STEPS``);
 the preload's is here. Each step finishes its work before the next starts, and hands the next
 what it needs as values in the batch. A scene that does not list an effect skips its step, and a
 new effect is one more entry in the list. In order:
 
 1. ``preload_scatter``: each strike's preload. It sets the contact spring, so it comes before
    the modes.
-2. *The touched object* (always, :func:`~ebantenna.simulate.touched_object.signal_terms`): the
-   modal parameters of X and Z, and the time-stepped models, from one physics model of the
-   touched object (below). Reads ``object_modes``, ``structural_damping``,
-   ``contact_compliance``, ``tip_mass``, ``object_damping``, ``unilateral_contact``,
-   ``hertz_contact`` and ``coulomb_friction``.
-3. ``clock_jitter``: when each sample is taken. The responses are evaluated at these instants.
-4. *The responses* (always): X and Z after the arrest. An axis read from its modes is their sum
+2. *The free probe* (always, beside the modal sum in :mod:`~ebantenna.simulate.modes`): the
+   modal parameters of Z (:func:`~ebantenna.simulate.modes.z_terms`). Across the sweep plane
+   the probe swings free, touching nothing, whatever the object. Reads ``structural_damping``
+   and ``tip_mass``.
+3. *The touched object* (always, :func:`~ebantenna.simulate.touched_object.object_terms`): the
+   modal parameters of X, and the time-stepped models, from one physics model of the touched
+   object (below). Reads ``object_modes``, ``structural_damping``, ``contact_compliance``,
+   ``tip_mass``, ``object_damping``, ``unilateral_contact``, ``hertz_contact`` and
+   ``coulomb_friction``.
+4. ``clock_jitter``: when each sample is taken. The responses are evaluated at these instants.
+5. *The responses* (always): X and Z after the arrest. An axis read from its modes is their sum
    (:func:`~ebantenna.simulate.modes.modal_acceleration`) through the chip's low-pass filter
    (``dlpf``) and its decimation, in closed form; an axis with a time-stepped model in the scene
    (``unilateral_contact``, ``coulomb_friction``) is computed at the filter's internal rate.
-5. *The chip's reading* (always) of the axes stepped in time: through its filter at its
+6. *The chip's reading* (always) of the axes stepped in time: through its filter at its
    internal rate, then at the sample instants. The filter is read from the scene once, into
-   ``SignalBatch.chip_filter``; steps 4, 5, 8 and 9 read it there.
-6. ``clock_jitter`` again: a sample taken before the arrest reads no acceleration.
-7. ``gravity``,
-8. ``mains_hum`` and
-9. ``sensor_noise``: what the chip measures besides the vibration. On the chip the filter acts
-   on the sum, after the noise; it is linear, so applying it to each part as that part enters
-   gives the same: to the modal exponentials exactly (step 4), to the hum by its gain and phase
-   at the hum's frequency, to the noise as drawn at the chip's internal rate; gravity, a
-   constant, passes the settled filter unchanged.
-10. ``sensor_drift``: the chip's offset and sensitivity, after its filter.
-11. ``clipping`` and
-12. ``quantisation``: the chip's range and its 16-bit output.
-13. ``kalman``: the filter on the Raspberry Pi, about each axis's resting level.
+   ``SignalBatch.chip_filter``; steps 5, 6, 9 and 10 read it there.
+7. ``clock_jitter`` again: a sample taken before the arrest reads no acceleration.
+8. ``gravity``,
+9. ``mains_hum`` and
+10. ``sensor_noise``: what the chip measures besides the vibration. On the chip the filter acts
+    on the sum, after the noise; it is linear, so applying it to each part as that part enters
+    gives the same: to the modal exponentials exactly (step 5), to the hum by its gain and phase
+    at the hum's frequency, to the noise as drawn at the chip's internal rate; gravity, a
+    constant, passes the settled filter unchanged.
+11. ``sensor_drift``: the chip's offset and sensitivity, after its filter.
+12. ``clipping`` and
+13. ``quantisation``: the chip's range and its 16-bit output.
+14. ``kalman``: the filter on the Raspberry Pi, about each axis's resting level.
 
 The touched object is one of four physics models, each a named step of
 :mod:`~ebantenna.simulate.touched_object`: without ``object_modes`` it is rigid
@@ -77,7 +82,7 @@ from ..probe import material as lookup_material
 from ..recording import Recording
 from .effects import effect_names
 from .effects.sensor import CHAIN_STEPS as SENSOR_STEPS
-from .modes import CHAIN_STEPS as RESPONSE_STEPS
+from .modes import CHAIN_STEPS as MODAL_STEPS
 from .modes import ModalTerms
 from .scene import Scene
 from .touched_object import CHAIN_STEPS as OBJECT_STEPS
@@ -253,12 +258,13 @@ class ChainStep:
 #: The simulator's steps, in the order it applies them (see the module's docstring for why).
 CHAIN = (
     ChainStep("preload_scatter", _scatter_preloads, reads=("object_modes",)),
+    ChainStep(None, MODAL_STEPS["free_probe"], reads=("structural_damping", "tip_mass")),
     ChainStep(None, OBJECT_STEPS["touched_object"],
               reads=("object_modes", "structural_damping", "contact_compliance", "tip_mass",
                      "object_damping", "unilateral_contact", "hertz_contact",
                      "coulomb_friction")),
     ChainStep("clock_jitter", SENSOR_STEPS["sample_instants"]),
-    ChainStep(None, RESPONSE_STEPS["responses"],
+    ChainStep(None, MODAL_STEPS["responses"],
               reads=("unilateral_contact", "coulomb_friction", "dlpf")),
     ChainStep(None, SENSOR_STEPS["read_timed"], reads=("dlpf",)),
     ChainStep("clock_jitter", SENSOR_STEPS["rest_before_arrest"]),

@@ -19,15 +19,17 @@ preload) -- a :class:`~ebantenna.simulate.structure.ContactCase` -- every model 
 
 A new model of the touched rod is one entry of :data:`OBJECT_MODELS`.
 
-:func:`signal_terms` is the simulator's step of the touched object (the second step of
+:func:`object_terms` is the simulator's step of the touched object (the third step of
 :data:`~ebantenna.simulate.simulator.CHAIN`, at the end of this module, ``CHAIN_STEPS``): it
-runs the physics model, then has each signal's modal parameters laid out as
+runs the physics model, then has X's modal parameters laid out as
 :class:`~ebantenna.simulate.modes.ModalTerms` beside the modal sum that reads them
-(:func:`~ebantenna.simulate.modes.x_terms`, :func:`~ebantenna.simulate.modes.z_terms`: the modes
-side by side, zero-padded, each signal's row scaled by its sweep speed), and hands the responses'
-step, also beside the modal sum (:mod:`ebantenna.simulate.modes`), which axis a model stepped in
-time gives (an :class:`ObjectModel`'s ``respond``). Every function here takes values checked by
-the simulator's public entries (:mod:`ebantenna.simulate.simulator`).
+(:func:`~ebantenna.simulate.modes.x_terms`: the modes side by side, zero-padded, each signal's
+row scaled by its sweep speed), and hands the responses' step, also beside the modal sum
+(:mod:`ebantenna.simulate.modes`), which axis a model stepped in time gives (an
+:class:`ObjectModel`'s ``respond``). Z's modes are the free probe's, whatever the object: the
+step before, beside the modal sum, lays them out (:func:`~ebantenna.simulate.modes.z_terms`);
+:func:`signal_terms` gives both axes' terms as the two steps do. Every function here takes
+values checked by the simulator's public entries (:mod:`ebantenna.simulate.simulator`).
 """
 
 from __future__ import annotations
@@ -48,6 +50,7 @@ from ..fem.coupling import craig_bampton, probe_substructure, rod_substructure
 from ..fem.guards import check_contact
 from ..probe import Probe
 from ..probe import material as lookup_material
+from .contact import tube_on_rod_spring
 from .effects import effect_names
 from .modes import arrest_modes, coupled_modes_of, x_terms, z_terms
 from .scene import Scene
@@ -60,6 +63,7 @@ __all__ = [
     "OBJECT_MODELS",
     "pinned_modes",
     "object_modes",
+    "object_terms",
     "signal_terms",
 ]
 
@@ -172,31 +176,26 @@ OBJECT_MODELS = (
 )
 
 
-def _reduced_rods(scene: Scene, materials, object_loss: bool) -> dict:
-    """Each touched rod and its Craig-Bampton reduction, once per material."""
-    obj = scene.effect("object_modes")
-    rods = {}
-    for name in sorted(set(materials)):
-        rod = obj.rod(lookup_material(name))
-        sub = rod_substructure(rod, n_elements=obj.rod_elements)
-        if not object_loss:
-            sub = dataclasses.replace(sub, loss_factor=0.0)
-        rods[name] = (rod, craig_bampton(sub, obj.rod_modes))
-    return rods
-
-
 def _contact_cases(scene: Scene, probe: Probe, contact: float, rods: dict, pairs, object_loss):
     """The contact cases at one position: the probe reduced once, then each (material, preload).
 
     ``pairs`` lists the (material, preload) of the signals touching at ``contact``; yields one
     :class:`~ebantenna.simulate.structure.ContactCase` per distinct pair, in sorted order.
+    ``rods`` holds each touched rod and its Craig-Bampton reduction by material: a rod not in it
+    yet is reduced here, once for the whole batch.
     """
     obj = scene.effect("object_modes")
     reduced = _probe_reduction(probe, contact, scene.hinge, scene.n_elements, obj.probe_modes)
     for name, preload in sorted(set(pairs)):
+        if name not in rods:
+            rod = obj.rod(lookup_material(name))
+            sub = rod_substructure(rod, n_elements=obj.rod_elements)
+            if not object_loss:
+                sub = dataclasses.replace(sub, loss_factor=0.0)
+            rods[name] = (rod, craig_bampton(sub, obj.rod_modes))
         rod, rod_reduced = rods[name]
-        stiffness, loss_factor = obj.contact_spring(rod.material, probe, object_loss=object_loss,
-                                                    preload=preload)
+        stiffness, loss_factor = tube_on_rod_spring(probe, rod.material, obj.diameter, preload,
+                                                    object_loss=object_loss)
         yield ContactCase(
             scene=scene,
             probe=probe,
@@ -251,7 +250,7 @@ def object_modes(scene: Scene, contacts, materials, preloads, show_progress, x_m
     process's later calls: a study's data sets touch the same positions); what is left per
     (position, material, preload) is each model of :data:`OBJECT_MODELS` the scene needs.
     Returns the coupled modes (X), which case each signal uses, and the models stepped in time
-    by name (``timed``, only those built); the parameters are those of :func:`signal_terms`,
+    by name (``timed``, only those built); the parameters are those of :func:`object_terms`,
     ``preloads`` given.
     """
     _check_signal_inputs(scene, contacts, materials, preloads)
@@ -264,9 +263,9 @@ def object_modes(scene: Scene, contacts, materials, preloads, show_progress, x_m
     if not scene.has("structural_damping"):
         probe = dataclasses.replace(probe, loss_factor=0.0)
     object_loss = scene.has("object_damping")
-    rods = _reduced_rods(scene, materials, object_loss)
     models = [model for model in OBJECT_MODELS if model.wanted(scene, x_modes)]
     built = {model.name: [] for model in OBJECT_MODELS}
+    rods = {}  # each rod reduced once, at its first contact case
     unique_c, inverse_c = np.unique(contacts, return_inverse=True)
     inverse_c = inverse_c.ravel()
     key_of = {}
@@ -311,23 +310,21 @@ def _check_signal_inputs(scene, contacts, materials, preloads=None, **per_signal
     return n
 
 
-def signal_terms(
-    scene: Scene, contacts, materials, speeds, tilts, preloads=None, show_progress=None,
-    x_modes=True,
-):  # fmt: skip
-    """The touched object's step of the simulator: its physics model, then each signal's terms.
+def object_terms(scene: Scene, contacts, materials, speeds, preloads=None, show_progress=None,
+                 x_modes=True):
+    """The touched object's step of the simulator: its physics model, then X's terms per signal.
 
     The touched object is a rod coupled to the probe with ``object_modes`` (:func:`object_modes`)
-    and rigid without (:func:`pinned_modes`); the probe's ``structural_damping`` gives the damping
-    ratio of the modes of a rigid contact and of Z. Each signal's row is its contact case's modes
-    scaled by its sweep speed (X) or by its speed and tilt (Z, the free probe driven across the
-    sweep plane). Takes checked values (the simulator's public entries check them).
+    and rigid without (:func:`pinned_modes`); on a rigid contact the modes carry the probe's
+    structural damping (:attr:`~ebantenna.simulate.Scene.probe_damping_ratio`). Each signal's
+    row is its contact case's modes scaled by its sweep speed. Takes checked values (the
+    simulator's public entries check them).
 
     Parameters
     ----------
     scene : Scene
-    contacts, speeds, tilts : ndarray of shape (n,)
-        Per-signal contact position (m), sweep speed (rad/s) and tilt ratio.
+    contacts, speeds : ndarray of shape (n,)
+        Per-signal contact position (m) and sweep speed (rad/s).
     materials : ndarray of str, shape (n,)
         Per-signal material names.
     preloads : ndarray of shape (n,), optional
@@ -339,25 +336,14 @@ def signal_terms(
 
     Returns
     -------
-    x, z : ebantenna.simulate.modes.ModalTerms
-        The modal parameters of X and Z per signal.
+    x : ebantenna.simulate.modes.ModalTerms
+        The modal parameters of X per signal.
     timed : dict
         The models stepped in time by name (:data:`OBJECT_MODELS`), only those built.
     inverse : ndarray of int, shape (n,)
         Which contact case each signal uses.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from ebantenna.simulate import builtin_scene
-    >>> from ebantenna.simulate.touched_object import signal_terms
-    >>> scene = builtin_scene("ideal")
-    >>> x, z, timed, inverse = signal_terms(scene, np.array([0.2]), np.array(["brass"]),
-    ...                                     np.array([1.0]), np.array([0.0]))
-    >>> x.frequencies().size > 0, timed
-    (True, {})
     """
-    n = _check_signal_inputs(scene, contacts, materials, preloads, speeds=speeds, tilts=tilts)
+    n = _check_signal_inputs(scene, contacts, materials, preloads, speeds=speeds)
     if show_progress is not None:
         show_progress = check_bool("show_progress", show_progress)
     x_modes = check_bool("x_modes", x_modes)
@@ -371,26 +357,58 @@ def signal_terms(
             )
         else:
             (modes, inverse), timed = pinned_modes(scene, contacts, materials, show_progress), {}
-    damping = scene.effect("structural_damping")
-    zeta_s = damping.damping_ratio(scene.probe) if damping is not None else 0.0
     # with object_modes the coupled modes carry every body's damping (zeta None: their own)
-    x = x_terms(modes, inverse, speeds, zeta=None if scene.has("object_modes") else zeta_s,
-                preloads=preloads)
-    z = z_terms(scene.probe, scene.hinge, speeds, tilts, zeta_s, n_elements=scene.n_elements,
-                n_modes=scene.n_modes, max_frequency=scene.max_frequency)
+    zeta = None if scene.has("object_modes") else scene.probe_damping_ratio
+    return x_terms(modes, inverse, speeds, zeta=zeta, preloads=preloads), timed, inverse
+
+
+def signal_terms(
+    scene: Scene, contacts, materials, speeds, tilts, preloads=None, show_progress=None,
+    x_modes=True,
+):  # fmt: skip
+    """Both axes' modal terms, as the simulator's steps give them: Z's of the free probe
+    (:func:`~ebantenna.simulate.modes.z_terms`, driven across the sweep plane at each signal's
+    speed and tilt), then X's and the models stepped in time of the touched object
+    (:func:`object_terms`, whose parameters these are, with ``tilts``: each signal's tilt ratio).
+
+    Returns
+    -------
+    x, z : ebantenna.simulate.modes.ModalTerms
+        The modal parameters of X and Z per signal.
+    timed : dict
+        The models stepped in time by name, as in :func:`object_terms`.
+    inverse : ndarray of int, shape (n,)
+        Which contact case each signal uses, as in :func:`object_terms`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ebantenna.simulate import builtin_scene
+    >>> from ebantenna.simulate.touched_object import signal_terms
+    >>> scene = builtin_scene("ideal")
+    >>> x, z, timed, inverse = signal_terms(scene, np.array([0.2]), np.array(["brass"]),
+    ...                                     np.array([1.0]), np.array([0.0]))
+    >>> x.frequencies().size > 0, timed
+    (True, {})
+    """
+    _check_signal_inputs(scene, contacts, materials, preloads, speeds=speeds, tilts=tilts)
+    z = z_terms(scene.probe, scene.hinge, speeds, tilts, scene.probe_damping_ratio,
+                n_elements=scene.n_elements, n_modes=scene.n_modes,
+                max_frequency=scene.max_frequency)
+    x, timed, inverse = object_terms(scene, contacts, materials, speeds, preloads, show_progress,
+                                     x_modes)
     return x, z, timed, inverse
 
 
 # ------------------------------------------------------------- the simulator's step
 def _touched_object(_, batch) -> None:
-    """The touched object: the modal parameters of X and Z, and the models stepped in time; for
-    the responses, which axis each of those gives, with its ``respond`` (:data:`OBJECT_MODELS`)."""
-    batch.x, batch.z, batch.timed, batch.inverse = signal_terms(
+    """The touched object: the modal parameters of X, and the models stepped in time; for the
+    responses, which axis each of those gives, with its ``respond`` (:data:`OBJECT_MODELS`)."""
+    batch.x, batch.timed, batch.inverse = object_terms(
         batch.scene,
         batch.contacts,
         batch.materials,
         batch.speeds,
-        batch.tilts,
         batch.preloads,
         batch.show_progress,
         batch.x_modes,

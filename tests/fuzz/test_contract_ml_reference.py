@@ -16,11 +16,12 @@ import math
 import numpy as np
 import pytest
 
+from ebantenna.fem import Supports, modal_analysis
 from ebantenna.ml.backprop import glorot_uniform, loss_and_gradients, train_epochs
 from ebantenna.ml.mlp_base import training_optimizer
 from ebantenna.simulate import builtin_scene
 from ebantenna.simulate.modes import direct_exponentials
-from ebantenna.simulate.touched_object import signal_terms
+from ebantenna.simulate.touched_object import object_terms, signal_terms
 from ebantenna.study.recorded.calibration import Calibration
 
 # ------------------------------------------------------------------ training loop
@@ -176,6 +177,36 @@ def test_signal_terms_refuse_bad_input(row, changes, error, name):
         signal_terms(**args)
 
 
+@pytest.mark.parametrize(("row", "changes", "error", "name"), [
+    ("scene-name", dict(scene="ideal"), TypeError, "scene"),
+    ("contacts-nan", dict(contacts=np.array([math.nan])), ValueError, "contacts"),
+    ("speeds-two", dict(speeds=np.array([1.0, 1.0])), ValueError, "speeds"),
+    ("materials-list", dict(materials=["brass"]), TypeError, "materials"),
+    ("preloads-two", dict(preloads=np.array([1.0, 2.0])), ValueError, "preloads"),
+    ("x-modes-text", dict(x_modes="yes"), TypeError, "x_modes"),
+    ("progress-text", dict(show_progress="no"), TypeError, "show_progress"),
+])
+def test_object_terms_refuse_bad_input(row, changes, error, name):
+    args = {"scene": SCENE, "contacts": np.array([0.2]), "materials": np.array(["brass"]),
+            "speeds": ONE, **changes}
+    with pytest.raises(error, match=name):
+        object_terms(**args)
+
+
+def test_object_terms_on_a_pin_are_the_pinned_probes_modes():
+    """The ideal scene's object is a rigid pin: X rings at the modes of the probe on its hinge
+    and the pin (the finite-element model's own solve), below the scene's band."""
+    x, timed, inverse = object_terms(SCENE, np.array([0.2, 0.2]), np.array(["brass"] * 2),
+                                     np.array([1.0, 2.0]))
+    res = modal_analysis(SCENE.probe, Supports(contact=0.2, hinge=SCENE.hinge),
+                         n_elements=SCENE.n_elements, n_modes=SCENE.n_modes)
+    want = res.frequencies[res.frequencies < SCENE.max_frequency]
+    # the same model solved the same way: equal to a few roundings of the frequencies
+    np.testing.assert_allclose(x.frequencies(), want, rtol=1e-13)
+    np.testing.assert_allclose(x.amplitude[1], 2 * x.amplitude[0], rtol=1e-15)  # per speed
+    assert timed == {} and list(inverse) == [0, 0]
+
+
 def test_z_terms_are_the_free_cantilevers_modes():
     """Across the sweep plane the probe is a cantilever free at its tip (the ideal scene has no
     tip mass): ``f_n = (beta_n L)^2 / (2 pi L^2) sqrt(E I / (rho A))``."""
@@ -226,6 +257,9 @@ def contract_rows() -> dict[str, list[str]]:
         "ebantenna.simulate.modes.direct_exponentials": [
             "coef-list", "t-int", "shapes-differ", "t-rows-differ", "max-elements-zero",
             "max-elements-float", "damped-sines"],
+        "ebantenna.simulate.touched_object.object_terms": [
+            "scene-name", "contacts-nan", "speeds-two", "materials-list", "preloads-two",
+            "x-modes-text", "progress-text", "pinned-probe"],
         "ebantenna.simulate.touched_object.signal_terms": [
             "scene-name", "contacts-list", "contacts-nan", "contacts-beyond-probe", "speeds-two",
             "tilts-text", "materials-list", "preloads-two", "x-modes-text", "progress-text",

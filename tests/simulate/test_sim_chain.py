@@ -4,7 +4,10 @@ import numpy as np
 import pytest
 
 from ebantenna.simulate import builtin_scene, effect_names, simulate, simulator
+from ebantenna.simulate.effects.sensor import CHAIN_STEPS as SENSOR_STEPS
+from ebantenna.simulate.modes import CHAIN_STEPS as MODAL_STEPS
 from ebantenna.simulate.simulator import CHAIN, ChainStep
+from ebantenna.simulate.touched_object import CHAIN_STEPS as OBJECT_STEPS
 from ebantenna.simulate.touched_object import OBJECT_MODELS
 
 
@@ -16,11 +19,16 @@ def _chain_effects():
     return seen
 
 
+def _step(apply):
+    (step,) = [step for step in CHAIN if step.apply is apply]
+    return step
+
+
 def test_every_effect_is_a_step_of_the_chain_or_read_by_one():
     read = {name for step in CHAIN for name in step.reads}
     assert set(effect_names()) == set(_chain_effects()) | read
     models = {model.effect for model in OBJECT_MODELS if model.effect is not None}
-    touched, respond = CHAIN[1], CHAIN[3]  # the touched object and the responses
+    touched, respond = (_step(OBJECT_STEPS["touched_object"]), _step(MODAL_STEPS["responses"]))
     assert models <= set(touched.reads) and models <= set(respond.reads)
 
 
@@ -37,7 +45,9 @@ def test_the_chip_filter_is_read_from_the_scene_in_one_place():
     assert sorted(readers) == ["scene.py", "simulator.py"]  # scene.py: checks its settings
     assert Path(root, "simulator.py").read_text().count('effect("dlpf")') == 1
     # the responses, the chip's reading of the axes stepped in time, the hum and the noise
-    assert [i for i, step in enumerate(CHAIN) if "dlpf" in step.reads] == [3, 4, 7, 8]
+    readers = [step.apply for step in CHAIN if "dlpf" in step.reads]
+    assert readers == [MODAL_STEPS["responses"], SENSOR_STEPS["read_timed"],
+                       SENSOR_STEPS["mains_hum"], SENSOR_STEPS["sensor_noise"]]
 
 
 def test_the_chain_applies_effects_in_the_order_a_scene_lists_them():

@@ -94,33 +94,24 @@ NOT_FUNCTIONS = frozenset({"<module>", "<listcomp>", "<dictcomp>", "<setcomp>", 
 READING_ORDER = (
     "ebantenna/simulate/scene.py",
     "ebantenna/probe.py",
-    "ebantenna/simulate/effects/__init__.py",
     "ebantenna/simulate/simulator.py",
-    "ebantenna/simulate/touched_object.py",
-    "ebantenna/fem/coupling.py",
+    "ebantenna/simulate/modes.py",
+    "ebantenna/fem/modal.py",
     "ebantenna/fem/assembly.py",
-    "ebantenna/fem/coupling.py",
     "ebantenna/fem/modal.py",
     "ebantenna/simulate/touched_object.py",
     "ebantenna/fem/coupling.py",
-    "ebantenna/simulate/effects/objects.py",
     "ebantenna/simulate/contact.py",
     "ebantenna/simulate/modes.py",
     "ebantenna/fem/coupling.py",
     "ebantenna/simulate/strikes.py",
     "ebantenna/simulate/modes.py",
-    "ebantenna/fem/modal.py",
-    "ebantenna/fem/elements.py",
-    "ebantenna/fem/modal.py",
-    "ebantenna/simulate/modes.py",
     "ebantenna/simulate/strikes.py",
     "ebantenna/simulate/unilateral.py",
     "ebantenna/simulate/effects/sensor.py",
-    "ebantenna/simulate/scene.py",
     "ebantenna/signal/features.py",
     "ebantenna/ml/svc.py",
     "ebantenna/ml/kernels.py",
-    "ebantenna/ml/ovo.py",
 )
 
 #: The goals: at most this many files (modules) and returns as read (as run).
@@ -128,7 +119,7 @@ TARGETS = {"read_files": 15, "read_returns": 5, "run_modules": 25, "run_returns"
 
 #: The walk as it stands, which ``tests/test_reading_walk.py`` keeps it within so that it cannot
 #: grow back unnoticed: lower these as the walk shrinks, down to :data:`TARGETS`.
-CEILINGS = {"read_files": 19, "read_returns": 10, "run_modules": 25, "run_returns": 40}
+CEILINGS = {"read_files": 15, "read_returns": 5, "run_modules": 25, "run_returns": 40}
 
 SCENE, MATERIAL, CONTACT, SEED = "paper", "brass", 0.25, 0
 

@@ -28,12 +28,13 @@ at the free probe's frequencies, the same for every contact and material.
 
 **In the simulator.** The module reads in the order the simulator uses it: the modes after the
 arrest (:func:`arrest_modes`, :func:`coupled_arrest_modes`), laid out per signal
-(:class:`ModalTerms`, :func:`x_terms`, :func:`z_terms`), then their sum
-(:func:`modal_acceleration`): the exponentials, through the chip's filter read as its design
-(:func:`filtered_exponentials`), summed (:func:`damped_exponentials`). Two of the simulator's
-steps are at the end (``CHAIN_STEPS``): the free probe's, before the touched object's, lays out
-Z's modes (the same for every contact and material); the responses' sums every axis read from
-its modes and runs the models stepped in time for the others.
+(:class:`ModalTerms`, :func:`x_terms`, :func:`z_terms`; a scene's free probe's,
+:func:`free_probe_terms`), then their sum (:func:`modal_acceleration`): the exponentials, through
+the chip's filter read as its design (:func:`filtered_exponentials`), summed
+(:func:`damped_exponentials`). Two of the simulator's steps are at the end (``CHAIN_STEPS``): the
+free probe's, before the touched object's, lays out Z's modes (the same for every contact and
+material); the responses' sums every axis read from its modes and runs the models stepped in time
+for the others.
 """
 
 from __future__ import annotations
@@ -63,6 +64,7 @@ __all__ = [
     "ModalTerms",
     "x_terms",
     "z_terms",
+    "free_probe_terms",
     "arrest_modes",
     "coupled_arrest_modes",
     "coupled_modes_of",
@@ -546,6 +548,34 @@ def z_terms(probe: Probe, hinge, speeds, tilts, zeta: float, *, n_elements: int,
     )
 
 
+def free_probe_terms(scene, speeds, tilts) -> ModalTerms:
+    """Z's modal parameters per signal of a scene's free probe: :func:`z_terms` with the scene's
+    probe, hinge, mesh and band, every mode damped by the probe's structural damping
+    (:attr:`~ebantenna.simulate.Scene.probe_damping_ratio`). The simulator's free-probe step
+    reads Z here, and so does :func:`~ebantenna.simulate.touched_object.signal_terms`.
+
+    Parameters
+    ----------
+    scene : ebantenna.simulate.Scene
+    speeds, tilts : arrays of shape (n,)
+        As in :func:`z_terms`.
+
+    Examples
+    --------
+    >>> from ebantenna.simulate import builtin_scene
+    >>> z = free_probe_terms(builtin_scene("ideal"), np.array([1.0]), np.array([0.5]))
+    >>> z.frequencies().round(1)
+    array([ 13.9,  87. , 243.6, 477.4])
+    """
+    # known by the Probe it holds: scene.py imports this module (through its effects), so this
+    # module cannot import Scene without a circle
+    if not isinstance(getattr(scene, "probe", None), Probe):
+        raise TypeError(f"scene must be a Scene, got {type(scene).__name__}")
+    return z_terms(scene.probe, scene.hinge, speeds, tilts, scene.probe_damping_ratio,
+                   n_elements=scene.n_elements, n_modes=scene.n_modes,
+                   max_frequency=scene.max_frequency)
+
+
 def modal_exponentials(amplitude, omega, zeta):
     """The modes' tip acceleration as complex exponentials: ``C_k`` and ``s_k`` (module docstring).
 
@@ -773,13 +803,10 @@ def modal_acceleration(
 
 # ------------------------------------------------------------- the simulator's steps
 def _free_probe(_, batch) -> None:
-    """The free probe: Z's modal parameters (:func:`z_terms`). Across the sweep plane the probe
-    swings free, touching nothing, whatever the object; its modes carry the probe's structural
-    damping (:attr:`~ebantenna.simulate.Scene.probe_damping_ratio`)."""
-    scene = batch.scene
-    batch.z = z_terms(scene.probe, scene.hinge, batch.speeds, batch.tilts,
-                      scene.probe_damping_ratio, n_elements=scene.n_elements,
-                      n_modes=scene.n_modes, max_frequency=scene.max_frequency)
+    """The free probe: Z's modal parameters (:func:`free_probe_terms`). Across the sweep plane
+    the probe swings free, touching nothing, whatever the object; its modes carry the probe's
+    structural damping (:attr:`~ebantenna.simulate.Scene.probe_damping_ratio`)."""
+    batch.z = free_probe_terms(batch.scene, batch.speeds, batch.tilts)
 
 
 def _respond(_, batch) -> None:

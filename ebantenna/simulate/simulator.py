@@ -17,9 +17,9 @@ new effect is one more entry in the list. In order:
 1. ``preload_scatter``: each strike's preload. It sets the contact spring, so it comes before
    the modes.
 2. *The free probe* (always, beside the modal sum in :mod:`~ebantenna.simulate.modes`): the
-   modal parameters of Z (:func:`~ebantenna.simulate.modes.z_terms`). Across the sweep plane
-   the probe swings free, touching nothing, whatever the object. Reads ``structural_damping``
-   and ``tip_mass``.
+   modal parameters of Z (:func:`~ebantenna.simulate.modes.free_probe_terms`). Across the sweep
+   plane the probe swings free, touching nothing, whatever the object. Reads
+   ``structural_damping`` and ``tip_mass``.
 3. *The touched object* (always, :func:`~ebantenna.simulate.touched_object.object_terms`): the
    modal parameters of X, and the time-stepped models, from one physics model of the touched
    object (below). Reads ``object_modes``, ``structural_damping``, ``contact_compliance``,

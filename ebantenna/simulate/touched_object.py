@@ -26,10 +26,10 @@ runs the physics model, then has X's modal parameters laid out as
 (:func:`~ebantenna.simulate.modes.x_terms`: the modes side by side, zero-padded, each signal's
 row scaled by its sweep speed), and hands the responses' step, also beside the modal sum
 (:mod:`ebantenna.simulate.modes`), which axis a model stepped in time gives (an
-:class:`ObjectModel`'s ``respond``). Z's modes are the free probe's, whatever the object: the
-step before, beside the modal sum, lays them out (:func:`~ebantenna.simulate.modes.z_terms`);
-:func:`signal_terms` gives both axes' terms as the two steps do. Every function here takes
-values checked by the simulator's public entries (:mod:`ebantenna.simulate.simulator`).
+:class:`ObjectModel`'s ``respond``). Z's modes are the free probe's, whatever the object: the step
+before, beside the modal sum, lays them out (:func:`~ebantenna.simulate.modes.free_probe_terms`);
+:func:`signal_terms` gives both axes' terms as the two steps do. Every function here takes values
+checked by the simulator's public entries (:mod:`ebantenna.simulate.simulator`).
 """
 
 from __future__ import annotations
@@ -52,7 +52,7 @@ from ..probe import Probe
 from ..probe import material as lookup_material
 from .contact import tube_on_rod_spring
 from .effects import effect_names
-from .modes import arrest_modes, coupled_modes_of, x_terms, z_terms
+from .modes import arrest_modes, coupled_modes_of, free_probe_terms, x_terms
 from .scene import Scene
 from .stick_slip import friction_axis, friction_model_of
 from .strikes import strike_axis, strike_model_of
@@ -367,8 +367,8 @@ def signal_terms(
     x_modes=True,
 ):  # fmt: skip
     """Both axes' modal terms, as the simulator's steps give them: Z's of the free probe
-    (:func:`~ebantenna.simulate.modes.z_terms`, driven across the sweep plane at each signal's
-    speed and tilt), then X's and the models stepped in time of the touched object
+    (:func:`~ebantenna.simulate.modes.free_probe_terms`, driven across the sweep plane at each
+    signal's speed and tilt), then X's and the models stepped in time of the touched object
     (:func:`object_terms`, whose parameters these are, with ``tilts``: each signal's tilt ratio).
 
     Returns
@@ -392,9 +392,7 @@ def signal_terms(
     (True, {})
     """
     _check_signal_inputs(scene, contacts, materials, preloads, speeds=speeds, tilts=tilts)
-    z = z_terms(scene.probe, scene.hinge, speeds, tilts, scene.probe_damping_ratio,
-                n_elements=scene.n_elements, n_modes=scene.n_modes,
-                max_frequency=scene.max_frequency)
+    z = free_probe_terms(scene, speeds, tilts)
     x, timed, inverse = object_terms(scene, contacts, materials, speeds, preloads, show_progress,
                                      x_modes)
     return x, z, timed, inverse

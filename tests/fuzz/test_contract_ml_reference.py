@@ -20,7 +20,7 @@ from ebantenna.fem import Supports, modal_analysis
 from ebantenna.ml.backprop import glorot_uniform, loss_and_gradients, train_epochs
 from ebantenna.ml.mlp_base import training_optimizer
 from ebantenna.simulate import builtin_scene
-from ebantenna.simulate.modes import direct_exponentials
+from ebantenna.simulate.modes import direct_exponentials, free_probe_terms
 from ebantenna.simulate.touched_object import object_terms, signal_terms
 from ebantenna.study.recorded.calibration import Calibration
 
@@ -223,6 +223,34 @@ def test_z_terms_are_the_free_cantilevers_modes():
     assert timed == {} and list(inverse) == [0, 1, 0]  # equal contacts share one case
 
 
+@pytest.mark.parametrize(("row", "changes", "error", "name"), [
+    ("scene-name", dict(scene="ideal"), TypeError, "scene"),
+    ("scene-probe", dict(scene=SCENE.probe), TypeError, "scene"),
+    ("speeds-2d", dict(speeds=np.ones((1, 1))), ValueError, "speeds"),
+    ("tilts-two-for-one", dict(tilts=np.ones(2)), ValueError, "tilts"),
+])
+def test_free_probe_terms_refuse_bad_input(row, changes, error, name):
+    args = {"scene": SCENE, "speeds": ONE, "tilts": ONE, **changes}
+    with pytest.raises(error, match=name):
+        free_probe_terms(**args)
+
+
+def test_free_probe_terms_are_the_free_probes_modes_damped_by_the_scene():
+    """Z of a scene: the probe on its hinge alone (the finite-element model's own solve) below
+    the scene's band, every mode at the structural damping effect's ratio, each row scaled by
+    its signal's tilt times speed."""
+    scene = SCENE.with_(effects=("structural_damping",))
+    z = free_probe_terms(scene, np.array([1.0, 2.0]), np.array([0.5, 0.75]))
+    res = modal_analysis(scene.probe, Supports(hinge=scene.hinge), n_elements=scene.n_elements,
+                         n_modes=scene.n_modes)
+    want = res.frequencies[res.frequencies < scene.max_frequency]
+    # the same model solved the same way: equal to a few roundings of the frequencies
+    np.testing.assert_allclose(z.frequencies(), want, rtol=1e-13)
+    zeta = scene.effect("structural_damping").damping_ratio(scene.probe)
+    assert zeta > 0 and np.all(z.zeta == zeta)
+    np.testing.assert_allclose(z.amplitude[1], 3 * z.amplitude[0], rtol=1e-15)  # 1.5 / 0.5
+
+
 # ------------------------------------------------------------------ calibration
 def _calibration(not_identifiable):
     return Calibration(
@@ -257,6 +285,8 @@ def contract_rows() -> dict[str, list[str]]:
         "ebantenna.simulate.modes.direct_exponentials": [
             "coef-list", "t-int", "shapes-differ", "t-rows-differ", "max-elements-zero",
             "max-elements-float", "damped-sines"],
+        "ebantenna.simulate.modes.free_probe_terms": [
+            "scene-name", "scene-probe", "speeds-2d", "tilts-two-for-one", "free-probe-damped"],
         "ebantenna.simulate.touched_object.object_terms": [
             "scene-name", "contacts-nan", "speeds-two", "materials-list", "preloads-two",
             "x-modes-text", "progress-text", "pinned-probe"],
